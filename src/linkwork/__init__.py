@@ -1,0 +1,37 @@
+"""linkwork: analysis of planar lever mechanisms of machines.
+
+Describe a mechanism once (a YAML file or :class:`MechanismBuilder`),
+:func:`compile` it, and run the analyses on the compiled model.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__version__ = "0.1.0"
+
+_LAZY = {
+    "load": ("linkwork.spec.load", "load"),
+    "loads": ("linkwork.spec.load", "loads"),
+    "from_dict": ("linkwork.spec.load", "from_dict"),
+    "Spec": ("linkwork.spec.schema", "Spec"),
+    "MechanismBuilder": ("linkwork.spec.builder", "MechanismBuilder"),
+    "compile": ("linkwork.structure.compile", "compile"),
+    "Mechanism": ("linkwork.structure.model", "Mechanism"),
+    "Structure": ("linkwork.structure.model", "Structure"),
+    "AssurGroup": ("linkwork.structure.model", "AssurGroup"),
+    "example": ("linkwork.examples", "load_example"),
+    "examples": ("linkwork.examples", "names"),
+    "resolve": ("linkwork.examples", "resolve"),
+}
+
+__all__ = ["__version__", *_LAZY]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        import importlib
+
+        module, attr = _LAZY[name]
+        return getattr(importlib.import_module(module), attr)
+    raise AttributeError(f"module 'linkwork' has no attribute {name!r}")

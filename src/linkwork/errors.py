@@ -1,0 +1,90 @@
+"""The exception tree of linkwork.
+
+Every error says *where*: the file and line, the element of the mechanism, the
+crank angle or the design variant, and what was expected.  The command line
+prints :class:`LinkworkError` messages as they are and exits with code 2.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One problem found in a mechanism description.
+
+    Attributes
+    ----------
+    path : str
+        Dotted path of the element in the file, e.g. ``links.rod.length``;
+        empty for problems of the file as a whole.
+    message : str
+        What is wrong and what was expected.
+    file : str or None
+        The file name as the user gave it, or None for a spec built in Python.
+    line : int or None
+        One-based line number in the file, when known.
+    """
+
+    path: str
+    message: str
+    file: str | None = None
+    line: int | None = None
+
+    def __str__(self) -> str:
+        where = self.file or "<spec>"
+        if self.line is not None:
+            where = f"{where}:{self.line}"
+        return f"{where}: {self.path}: {self.message}" if self.path else f"{where}: {self.message}"
+
+
+class LinkworkError(Exception):
+    """Base class of all errors raised by linkwork."""
+
+
+class SpecError(LinkworkError, ValueError):
+    """A mechanism description has one or more problems.
+
+    Attributes
+    ----------
+    problems : tuple of Problem
+        Every problem found, in file order.
+    """
+
+    def __init__(self, problems: list[Problem] | tuple[Problem, ...]):
+        self.problems = tuple(problems)
+        super().__init__("\n".join(str(p) for p in self.problems))
+
+
+class StructureError(LinkworkError, ValueError):
+    """The mechanism's structure does not match its drives (wrong mobility)."""
+
+
+class UnassemblableError(LinkworkError):
+    """The mechanism cannot be assembled in the requested position.
+
+    Attributes
+    ----------
+    group : str
+        The Assur group that fails, e.g. ``II(2,3) RRR``.
+    angle : float or None
+        Drive coordinate (rad or m) at which it fails, when known.
+    """
+
+    def __init__(self, message: str, group: str = "", angle: float | None = None):
+        self.group = group
+        self.angle = angle
+        super().__init__(message)
+
+
+class LinkworkWarning(UserWarning):
+    """Base class of linkwork's warnings."""
+
+
+class SingularityWarning(LinkworkWarning):
+    """A position where the Jacobian of a group is singular (dead point)."""
+
+
+class ConvergenceWarning(LinkworkWarning):
+    """An iterative solve did not converge."""

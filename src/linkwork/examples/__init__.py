@@ -1,0 +1,48 @@
+"""The bundled example mechanisms."""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from linkwork.errors import Problem, SpecError
+
+
+def names() -> list[str]:
+    """Names of the bundled examples."""
+    return sorted(p.name[:-5] for p in resources.files(__name__).iterdir() if p.name.endswith(".yaml"))
+
+
+def text(name: str) -> str:
+    """The YAML text of a bundled example."""
+    if name not in names():
+        from linkwork.spec.checks import suggest
+
+        raise SpecError([Problem("", f'no bundled example "{name}"{suggest(name, names())}; '
+                                 f"the examples are: {', '.join(names())}")])
+    return (resources.files(__name__) / f"{name}.yaml").read_text(encoding="utf-8")
+
+
+def load_example(name: str) -> Any:
+    """The validated spec of a bundled example."""
+    from linkwork.spec.load import loads
+
+    return loads(text(name), file=f"{name}.yaml")
+
+
+def resolve(file_or_example: str) -> Any:
+    """Load a mechanism file, or a bundled example by name."""
+    from linkwork.spec.load import load
+
+    path = Path(file_or_example)
+    if path.exists() or path.suffix in (".yaml", ".yml") or "/" in file_or_example:
+        if not path.exists():
+            raise SpecError([Problem("", "no such file", file_or_example)])
+        return load(path)
+    if file_or_example in names():
+        return load_example(file_or_example)
+    from linkwork.spec.checks import suggest
+
+    raise SpecError([Problem("", f'no such file or bundled example "{file_or_example}"'
+                             f"{suggest(file_or_example, names())}; `linkwork examples` lists the examples")])

@@ -1,0 +1,134 @@
+"""Build a mechanism description in Python.
+
+The builder writes the same plain data a YAML file holds and validates it
+by the same pass, so a file and a builder script give equal specs::
+
+    b = MechanismBuilder("four-bar", units={"length": "mm"})
+    b.frame(points={"O": (0, 0), "D": (300, 0)})
+    b.link("crank", ends=("O", "A"), length=100)
+    b.link("coupler", ends=("A", "B"), length=350)
+    b.link("rocker", ends=("D", "B"), length=250)
+    b.revolute("O", "frame", "crank").revolute("A", "crank", "coupler")
+    b.revolute("B", "coupler", "rocker").revolute("D", "frame", "rocker")
+    b.drive("O", speed="60 rpm").hint("B", 280, 240)
+    spec = b.build()
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from linkwork.spec.schema import Spec
+
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, tuple | list):
+        return [_plain(v) for v in value]
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if hasattr(value, "item") and callable(value.item):  # numpy scalars
+        return value.item()
+    return value
+
+
+def _some(**fields: Any) -> dict[str, Any]:
+    return {k: _plain(v) for k, v in fields.items() if v is not None}
+
+
+class MechanismBuilder:
+    """Collects links, joints, drives and hints; :meth:`build` validates them.
+
+    Every value may be a number (in the declared ``units``) or a string with
+    a unit, exactly as in a file.
+    """
+
+    def __init__(
+        self,
+        name: str | None = None,
+        *,
+        units: dict[str, str] | None = None,
+        description: str | None = None,
+        gravity: float | str | None = None,
+    ) -> None:
+        self._data: dict[str, Any] = _some(name=name, description=description, units=units, gravity=gravity)
+        self._data.update(links={}, joints={}, drives=[])
+
+    def frame(self, points: dict[str, Any] | None = None, *, mass: Any = None, com: Any = None) -> MechanismBuilder:
+        """Frame points (global coordinates), and the frame's mass and centre of mass."""
+        frame = self._data.setdefault("frame", {})
+        frame.setdefault("points", {}).update(_plain(points or {}))
+        frame.update(_some(mass=mass, com=com))
+        return self
+
+    def link(
+        self,
+        name: str,
+        *,
+        ends: tuple[str, str] | None = None,
+        length: Any = None,
+        points: dict[str, Any] | None = None,
+        mass: Any = None,
+        com: Any = None,
+        inertia: Any = None,
+        inertia_about: str | None = None,
+    ) -> MechanismBuilder:
+        """A moving link; see :class:`~linkwork.spec.schema.Link`."""
+        self._data["links"][name] = _some(
+            ends=ends, length=length, points=points, mass=mass, com=com, inertia=inertia, inertia_about=inertia_about
+        )
+        return self
+
+    def revolute(self, name: str, *links: str, point: str | None = None) -> MechanismBuilder:
+        """A revolute pair (a compound hinge with three or more links)."""
+        self._data["joints"][name] = _some(type="revolute", links=list(links), point=point)
+        return self
+
+    def prismatic(
+        self, name: str, guide: str, slider: str, *, through: Any, axis: Any, point: str | None = None
+    ) -> MechanismBuilder:
+        """A prismatic pair: ``slider`` moves along a line of ``guide``."""
+        self._data["joints"][name] = _some(
+            type="prismatic", links=[guide, slider], point=point, through=through, axis=axis
+        )
+        return self
+
+    def pin_in_slot(
+        self, name: str, slot: str, pin: str, *, through: Any, axis: Any, point: str | None = None
+    ) -> MechanismBuilder:
+        """A pin of link ``pin`` moving in a straight slot of link ``slot`` (a higher pair)."""
+        self._data["joints"][name] = _some(
+            type="pin-in-slot", links=[slot, pin], point=point, through=through, axis=axis
+        )
+        return self
+
+    def drive(
+        self,
+        joint: str,
+        *,
+        speed: Any = None,
+        direction: str | None = None,
+        angle: Any = None,
+        position: Any = None,
+    ) -> MechanismBuilder:
+        """Drive a joint; ``angle``/``position`` is its value in the assembly pose."""
+        self._data["drives"].append(
+            _some(joint=joint, speed=speed, direction=direction, angle=angle, position=position)
+        )
+        return self
+
+    def hint(self, point: str, x: Any, y: Any) -> MechanismBuilder:
+        """Approximate global position of a moving point in the assembly pose."""
+        self._data.setdefault("hints", {})[point] = _plain([x, y])
+        return self
+
+    def to_dict(self) -> dict[str, Any]:
+        """The plain data, as it would stand in a YAML file."""
+        import copy
+
+        return copy.deepcopy(self._data)
+
+    def build(self) -> Spec:
+        """Validate and return the spec; raises SpecError listing every problem."""
+        from linkwork.spec.load import from_dict
+
+        return from_dict(self.to_dict())

@@ -1,0 +1,246 @@
+"""Checks of a mechanism description that go beyond its schema.
+
+They run on the raw data of the file, so that they report their problems in
+the same pass as the schema's own (units, types, unknown keys): names and
+references, the connection of every link to the frame, the drives and the
+hints.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from collections.abc import Iterable
+from typing import Any
+
+from linkwork.errors import Problem
+from linkwork.spec.yamlsource import Source
+from linkwork.units import UnitParseError, parse_quantity
+
+NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_']*$")
+FRAME = "frame"
+
+
+def suggest(word: str, candidates: Iterable[str]) -> str:
+    """`` (did you mean "x"?)`` for the closest candidate, or an empty string."""
+    close = difflib.get_close_matches(str(word), [str(c) for c in candidates], n=1, cutoff=0.6)
+    return f' (did you mean "{close[0]}"?)' if close else ""
+
+
+def _dict(value: Any) -> dict[str, Any]:
+    return value if isinstance(value, dict) else {}
+
+
+def link_points(links: dict[str, Any], frame: dict[str, Any]) -> dict[str, set[str]]:
+    """Point names of every link (and of ``frame``) as declared in raw data."""
+    out: dict[str, set[str]] = {FRAME: set(_dict(frame.get("points")))}
+    for name, link in links.items():
+        link = _dict(link)
+        pts = set(_dict(link.get("points")))
+        ends = link.get("ends")
+        if isinstance(ends, list):
+            pts |= {e for e in ends if isinstance(e, str)}
+        out[name] = pts
+    return out
+
+
+def check(src: Source, declared: dict[str, str]) -> list[Problem]:
+    """All reference and consistency problems of the raw data in ``src``."""
+    data = _dict(src.data)
+    out: list[Problem] = []
+
+    def bad(path: tuple[Any, ...], message: str) -> None:
+        out.append(src.problem(path, message))
+
+    links = _dict(data.get("links"))
+    frame = _dict(data.get("frame"))
+    joints = _dict(data.get("joints"))
+    points = link_points(links, frame)
+
+    if "links" in data and isinstance(data["links"], dict) and not links:
+        bad(("links",), "a mechanism needs at least one moving link")
+    for name in frame.get("points", {}) if isinstance(frame.get("points"), dict) else {}:
+        if not NAME.match(name):
+            bad(("frame", "points", name), f'"{name}" is not a valid point name (letters, digits, _)')
+
+    for name, link in links.items():
+        path = ("links", name)
+        if name == FRAME:
+            bad(path, '"frame" is the fixed link; give a moving link another name')
+            continue
+        if not NAME.match(name):
+            bad(path, f'"{name}" is not a valid link name (letters, digits, _, starting with a letter)')
+        link = _dict(link)
+        ends, length = link.get("ends"), link.get("length")
+        if ends is not None and length is None:
+            bad(path, 'a link given by "ends" needs its "length"')
+        if length is not None and ends is None:
+            bad(path + ("length",), 'a "length" needs "ends: [P, Q]", the two points it separates')
+        if isinstance(ends, list):
+            if len(ends) != 2:
+                bad(path + ("ends",), f"expected two point names, got {len(ends)}")
+            elif ends[0] == ends[1]:
+                bad(path + ("ends",), f'the two ends must differ, got "{ends[0]}" twice')
+            for e in ends:
+                if isinstance(e, str) and e in _dict(link.get("points")):
+                    bad(path + ("points", e), f'point "{e}" is already one of the ends')
+                elif isinstance(e, str) and not NAME.match(e):
+                    bad(path + ("ends",), f'"{e}" is not a valid point name')
+        for p in _dict(link.get("points")):
+            if not NAME.match(p):
+                bad(path + ("points", p), f'"{p}" is not a valid point name (letters, digits, _)')
+        if not points[name]:
+            bad(path, 'a link needs at least one point ("ends" with "length", or "points")')
+        for key in ("com", "inertia_about"):
+            ref = link.get(key)
+            if isinstance(ref, str) and ref not in points[name]:
+                bad(path + (key,), f'link "{name}" has no point "{ref}"{suggest(ref, points[name])}')
+        if link.get("inertia_about") is not None and link.get("inertia") is None:
+            bad(path + ("inertia_about",), '"inertia_about" needs "inertia"')
+    com = frame.get("com")
+    if isinstance(com, str) and com not in points[FRAME]:
+        bad(("frame", "com"), f'the frame has no point "{com}"{suggest(com, points[FRAME])}')
+
+    known = set(links) | {FRAME}
+    for jname, joint in joints.items():
+        _check_joint(bad, jname, _dict(joint), known, points)
+
+    _check_connected(bad, links, joints, known)
+    _check_drives(bad, data, joints, declared)
+    _check_hints(bad, data, joints, points)
+    return out
+
+
+def _check_joint(bad: Any, jname: str, joint: dict[str, Any], known: set[str], points: dict[str, set[str]]) -> None:
+    path = ("joints", jname)
+    if not NAME.match(jname):
+        bad(path, f'"{jname}" is not a valid joint name (letters, digits, _)')
+    names = joint.get("links")
+    if not isinstance(names, list):
+        return
+    kind = joint.get("type")
+    for i, ln in enumerate(names):
+        if isinstance(ln, str) and ln not in known:
+            bad(path + ("links", i), f'unknown link "{ln}"{suggest(ln, known)}')
+    if len(names) < 2:
+        bad(path + ("links",), f"a joint joins at least two links, got {len(names)}")
+        return
+    dup = {n for n in names if isinstance(n, str) and names.count(n) > 1}
+    for n in sorted(dup):
+        bad(path + ("links",), f'link "{n}" is listed twice')
+    point = joint.get("point", jname)
+    if not isinstance(point, str):
+        return
+    if kind == "revolute":
+        for key in ("through", "axis"):
+            if key in joint:
+                bad(path + (key,), f'"{key}" applies to prismatic and pin-in-slot joints only')
+        for ln in names:
+            if isinstance(ln, str) and ln in points and point not in points[ln]:
+                where = "the frame" if ln == FRAME else f'link "{ln}"'
+                bad(path, f'{where} has no point "{point}" for this joint{suggest(point, points[ln])}')
+    elif kind in ("prismatic", "pin-in-slot"):
+        if len(names) != 2:
+            bad(path + ("links",), f"a {kind} joint joins exactly two links: [guide, slider], got {len(names)}")
+            return
+        guide, slider = names
+        if isinstance(slider, str) and slider in points and point not in points[slider]:
+            role = "slider" if kind == "prismatic" else "pin link"
+            bad(path, f'the {role} "{slider}" has no point "{point}"{suggest(point, points[slider])}')
+        for key, what in (("axis", "direction of the guide line"), ("through", "a point of the guide line")):
+            if joint.get(key) is None:
+                bad(path, f'missing field "{key}" ({what})')
+        through = joint.get("through")
+        if isinstance(through, str) and isinstance(guide, str) and guide in points and through not in points[guide]:
+            where = "the frame" if guide == FRAME else f'the guide link "{guide}"'
+            bad(path + ("through",), f'{where} has no point "{through}"{suggest(through, points[guide])}')
+        if guide == FRAME and slider == FRAME:
+            bad(path + ("links",), "a joint cannot join the frame to itself")
+
+
+def _check_connected(bad: Any, links: dict[str, Any], joints: dict[str, Any], known: set[str]) -> None:
+    adj: dict[str, set[str]] = {n: set() for n in known}
+    for joint in joints.values():
+        names = [n for n in _dict(joint).get("links", []) or [] if isinstance(n, str) and n in known]
+        for a in names:
+            adj[a] |= set(names) - {a}
+    seen, stack = {FRAME}, [FRAME]
+    while stack:
+        for nxt in adj[stack.pop()] - seen:
+            seen.add(nxt)
+            stack.append(nxt)
+    for name in links:
+        if name != FRAME and name not in seen:
+            bad(("links", name), "not connected to the frame: no chain of joints leads from this link to the frame")
+
+
+def _check_drives(bad: Any, data: dict[str, Any], joints: dict[str, Any], declared: dict[str, str]) -> None:
+    drives = data.get("drives")
+    if isinstance(drives, list) and not drives:
+        bad(("drives",), "a mechanism needs at least one drive")
+    if not isinstance(drives, list):
+        return
+    seen: dict[str, int] = {}
+    for i, drive in enumerate(drives):
+        path = ("drives", i)
+        drive = _dict(drive)
+        jname = drive.get("joint")
+        if not isinstance(jname, str):
+            continue
+        if jname in seen:
+            bad(path + ("joint",), f'joint "{jname}" is already driven by drives[{seen[jname]}]')
+        seen[jname] = i
+        if jname not in joints:
+            bad(path + ("joint",), f'drive on a missing joint "{jname}"{suggest(jname, joints)}')
+            continue
+        joint = _dict(joints[jname])
+        kind = joint.get("type")
+        if kind == "pin-in-slot":
+            bad(path + ("joint",), f'"{jname}" is a pin-in-slot pair, which cannot be driven')
+            continue
+        nlinks = len(joint.get("links") or [])
+        if kind == "revolute" and nlinks != 2:
+            bad(path + ("joint",), f'a driven revolute joint must join exactly two links, "{jname}" joins {nlinks}')
+        rot = kind == "revolute"
+        direction = drive.get("direction")
+        if rot and direction in ("forward", "backward"):
+            bad(path + ("direction",), f'a revolute drive turns "ccw" or "cw", got "{direction}"')
+        if not rot and direction in ("ccw", "cw"):
+            bad(path + ("direction",), f'a prismatic drive moves "forward" or "backward", got "{direction}"')
+        wrong = "position" if rot else "angle"
+        if drive.get(wrong) is not None:
+            right = "angle" if rot else "position"
+            bad(path + (wrong,), f'a {kind} drive has an "{right}", not a "{wrong}"')
+        if drive.get("speed") is not None:
+            try:
+                parse_quantity(drive["speed"], "angular_speed" if rot else "speed", declared)
+            except UnitParseError as exc:
+                bad(path + ("speed",), str(exc))
+        law = _dict(drive.get("law"))
+        values = law.get("value")
+        if isinstance(values, list):
+            for j, v in enumerate(values):
+                try:
+                    parse_quantity(v, "angle" if rot else "length", declared)
+                except UnitParseError as exc:
+                    bad(path + ("law", "value", j), str(exc))
+            times = law.get("time")
+            if isinstance(times, list) and len(times) != len(values):
+                bad(path + ("law",), f"time has {len(times)} entries but value has {len(values)}")
+        if law and drive.get("speed") is not None:
+            bad(path + ("speed",), 'give either a uniform "speed" or a motion "law", not both')
+
+
+def _check_hints(bad: Any, data: dict[str, Any], joints: dict[str, Any], points: dict[str, set[str]]) -> None:
+    hints = _dict(data.get("hints"))
+    names = hint_names(joints, points)
+    for key in hints:
+        if key not in names:
+            bad(("hints", key), f'no moving point "{key}" (give a joint name or link.point){suggest(key, names)}')
+
+
+def hint_names(joints: dict[str, Any], points: dict[str, set[str]]) -> set[str]:
+    """Names a hint may use: joint names and ``link.point`` of moving links."""
+    names = {f"{ln}.{p}" for ln, pts in points.items() if ln != FRAME for p in pts}
+    names |= {j for j, joint in joints.items() if _dict(joint).get("type") in ("revolute", "prismatic", "pin-in-slot")}
+    return names

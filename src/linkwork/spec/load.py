@@ -1,0 +1,189 @@
+"""Load and validate mechanism descriptions: one pass, every problem reported."""
+
+from __future__ import annotations
+
+import types
+import typing
+from pathlib import Path
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+
+from linkwork.errors import Problem, SpecError
+from linkwork.spec.checks import check, suggest
+from linkwork.spec.schema import Spec
+from linkwork.spec.yamlsource import Source, read_yaml
+from linkwork.units import DEFAULT_UNITS, KINDS, UnitParseError, check_unit, parse_quantity
+
+
+def load(path: str | Path) -> Spec:
+    """Read and validate a mechanism file.
+
+    Raises
+    ------
+    SpecError
+        Listing every problem with ``file:line``, the element and what was expected.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise SpecError([Problem("", f"cannot read the file: {reason}", str(path))]) from None
+    return loads(text, file=str(path))
+
+
+def loads(text: str, file: str | None = None) -> Spec:
+    """Validate a mechanism given as YAML text."""
+    return validate(read_yaml(text, file))
+
+
+def from_dict(data: dict[str, Any], file: str | None = None) -> Spec:
+    """Validate a mechanism given as plain data (the builder's route)."""
+    return validate(Source(data, {}, file, []))
+
+
+def validate(src: Source) -> Spec:
+    """Validate raw data with line numbers; raise one SpecError for all problems."""
+    problems = list(src.problems)
+    if src.data is None:
+        raise SpecError(problems)
+    if not isinstance(src.data, dict):
+        problems.append(src.problem((), "a mechanism file is a mapping with links, joints and drives"))
+        raise SpecError(problems)
+    declared = _declared_units(src, problems)
+    spec: Spec | None = None
+    try:
+        spec = Spec.model_validate(src.data, context={"units": declared})
+    except ValidationError as exc:
+        problems += [_convert(src, err) for err in exc.errors(include_url=False)]
+    problems += check(src, declared)
+    problems = _unique(problems)
+    if problems or spec is None:
+        raise SpecError(problems)
+    spec = _finish(spec, declared)
+    spec._source = src
+    return spec
+
+
+def _declared_units(src: Source, problems: list[Problem]) -> dict[str, str]:
+    declared = dict(DEFAULT_UNITS)
+    units = src.data.get("units")
+    if not isinstance(units, dict):
+        return declared
+    for kind, unit in units.items():
+        if kind not in declared or not isinstance(unit, str):
+            continue  # reported by the schema
+        try:
+            check_unit(unit, kind)
+        except UnitParseError as exc:
+            msg = str(exc)
+            if not msg.startswith("expected"):
+                msg = f"expected a unit of {KINDS[kind][0].split(' ', 1)[1]}, got {msg.split(' ', 2)[2]}"
+            problems.append(src.problem(("units", kind), msg))
+        else:
+            declared[kind] = unit
+    return declared
+
+
+def _finish(spec: Spec, declared: dict[str, str]) -> Spec:
+    """Convert the drive fields whose kind depends on the joint type to SI."""
+    drives = []
+    for drive in spec.drives:
+        rot = spec.joints[drive.joint].type == "revolute"
+        update: dict[str, Any] = {}
+        if drive.speed is not None:
+            update["speed"] = parse_quantity(drive.speed, "angular_speed" if rot else "speed", declared)
+        if drive.law is not None:
+            values = [parse_quantity(v, "angle" if rot else "length", declared) for v in drive.law.value]
+            update["law"] = drive.law.model_copy(update={"value": values})
+        drives.append(drive.model_copy(update=update))
+    return spec.model_copy(update={"drives": drives})
+
+
+def _unique(problems: list[Problem]) -> list[Problem]:
+    seen: set[tuple[str, str]] = set()
+    out = []
+    for p in problems:
+        if (p.path, p.message) not in seen:
+            seen.add((p.path, p.message))
+            out.append(p)
+    return sorted(out, key=lambda p: (p.line if p.line is not None else 0))
+
+
+def _convert(src: Source, err: Any) -> Problem:
+    loc = tuple(err["loc"])
+    kind = err["type"]
+    value = err.get("input")
+    if kind == "extra_forbidden":
+        allowed = _fields_at(loc[:-1])
+        return src.problem(loc, f'unknown key "{loc[-1]}"{suggest(loc[-1], allowed)}')
+    if kind == "missing":
+        return src.problem(loc[:-1], f'missing field "{loc[-1]}"')
+    if kind == "literal_error":
+        expected = err.get("ctx", {}).get("expected", "")
+        options = [o.strip().strip("'") for o in expected.replace(" or ", ", ").split(",")]
+        return src.problem(loc, f'expected one of {", ".join(options)}, got {_show(value)}{suggest(str(value), options)}')
+    if kind == "linkwork":
+        return src.problem(loc, err["msg"])
+    if kind in ("dict_type", "model_type", "model_attributes_type"):
+        return src.problem(loc, f"expected a mapping, got {_show(value)}")
+    if kind == "list_type":
+        return src.problem(loc, f"expected a list, got {_show(value)}")
+    if kind == "string_type":
+        return src.problem(loc, f"expected a name or text, got {_show(value)}")
+    if kind in ("float_type", "float_parsing"):
+        return src.problem(loc, f"expected a number, got {_show(value)}")
+    return src.problem(loc, err["msg"])
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list):
+        return "a list"
+    if value is None:
+        return "nothing"
+    return f'"{value}"' if isinstance(value, str) else repr(value)
+
+
+def _fields_at(loc: tuple[Any, ...]) -> list[str]:
+    """Field names allowed at ``loc`` in the schema (for "did you mean")."""
+    current: Any = Spec
+    for part in loc:
+        current = _step(current, part)
+        if current is None:
+            return []
+    model = _model_of(current)
+    return list(model.model_fields) if model else []
+
+
+def _model_of(tp: Any) -> type[BaseModel] | None:
+    if isinstance(tp, type) and issubclass(tp, BaseModel):
+        return tp
+    for arg in typing.get_args(tp):
+        found = _model_of(arg)
+        if found:
+            return found
+    return None
+
+
+def _step(tp: Any, part: Any) -> Any:
+    model = _model_of(tp) if not _is_container(tp) else None
+    if model is not None and isinstance(part, str) and part in model.model_fields:
+        return model.model_fields[part].annotation
+    for candidate in (tp, *typing.get_args(tp)):
+        origin = typing.get_origin(candidate)
+        if origin in (dict,) and isinstance(part, str):
+            return typing.get_args(candidate)[1]
+        if origin in (list,) and isinstance(part, int):
+            return typing.get_args(candidate)[0]
+    return None
+
+
+def _is_container(tp: Any) -> bool:
+    if typing.get_origin(tp) in (dict, list):
+        return True
+    if typing.get_origin(tp) in (typing.Union, types.UnionType):
+        return any(_is_container(a) for a in typing.get_args(tp))
+    return False

@@ -1,0 +1,210 @@
+"""The mechanism description: pydantic models of the file format.
+
+Quantities are converted to SI while validating: a bare number is read in
+the file's declared unit of its kind (``units:``), a string carries its own
+unit.  The JSON Schema of these models is what ``linkwork schema`` prints.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, ValidationInfo, WithJsonSchema
+from pydantic_core import PydanticCustomError
+
+from linkwork.units import DEFAULT_UNITS, KINDS, UnitParseError, parse_quantity
+
+
+def _declared(info: ValidationInfo) -> dict[str, str]:
+    ctx = info.context or {}
+    return ctx.get("units", DEFAULT_UNITS)
+
+
+def _error(message: str) -> PydanticCustomError:
+    return PydanticCustomError("linkwork", "{message}", {"message": message})
+
+
+def _scalar(kind: str, value: Any, info: ValidationInfo, sign: str = "") -> float:
+    try:
+        x = parse_quantity(value, kind, _declared(info))
+    except UnitParseError as exc:
+        raise _error(str(exc)) from None
+    noun = KINDS[kind][0].split(" ", 1)[1]
+    if sign == "positive" and not x > 0:
+        raise _error(f"expected a positive {noun}, got {_show(value)}")
+    if sign == "nonnegative" and not x >= 0:
+        raise _error(f"expected a non-negative {noun}, got {_show(value)}")
+    return x
+
+
+def _show(value: Any) -> str:
+    return f'"{value}"' if isinstance(value, str) else repr(value)
+
+
+def _quantity(kind: str, sign: str = "") -> Any:
+    phrase = KINDS[kind][0]
+
+    def validate(value: Any, info: ValidationInfo) -> float:
+        return _scalar(kind, value, info, sign)
+
+    desc = f"{phrase}: a number in the file's declared unit, or a string with a unit"
+    if sign:
+        desc = f"{sign} " + desc
+    schema = {"anyOf": [{"type": "number"}, {"type": "string"}], "description": desc}
+    return Annotated[float, BeforeValidator(validate), WithJsonSchema(schema)]
+
+
+Length = _quantity("length")
+PositiveLength = _quantity("length", "positive")
+Angle = _quantity("angle")
+PositiveMass = _quantity("mass", "positive")
+Inertia = _quantity("inertia", "nonnegative")
+PositiveAcceleration = _quantity("acceleration", "positive")
+
+
+def _vector(value: Any, info: ValidationInfo) -> tuple[float, float]:
+    if not isinstance(value, list | tuple) or len(value) != 2:
+        got = f"{len(value)} values" if isinstance(value, list | tuple) else _show(value)
+        raise _error(f"expected a point [x, y] of two lengths, got {got}")
+    return (_scalar("length", value[0], info), _scalar("length", value[1], info))
+
+
+_VEC_SCHEMA = {
+    "type": "array",
+    "items": {"anyOf": [{"type": "number"}, {"type": "string"}]},
+    "minItems": 2,
+    "maxItems": 2,
+    "description": "a point [x, y]: two lengths",
+}
+Vec2 = Annotated[tuple[float, float], BeforeValidator(_vector), WithJsonSchema(_VEC_SCHEMA)]
+
+
+def _point_or_vector(value: Any, info: ValidationInfo) -> str | tuple[float, float]:
+    if isinstance(value, str):
+        return value
+    return _vector(value, info)
+
+
+PointOrVec = Annotated[
+    str | tuple[float, float],
+    BeforeValidator(_point_or_vector),
+    WithJsonSchema({"anyOf": [{"type": "string", "description": "a point name"}, _VEC_SCHEMA]}),
+]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class Units(_Strict):
+    """Units in which bare numbers of the file are read."""
+
+    length: str = Field(DEFAULT_UNITS["length"], description="e.g. m or mm")
+    mass: str = Field(DEFAULT_UNITS["mass"], description="e.g. kg")
+    time: str = Field(DEFAULT_UNITS["time"], description="e.g. s or min")
+    force: str = Field(DEFAULT_UNITS["force"], description="e.g. N or kN")
+    angle: str = Field(DEFAULT_UNITS["angle"], description="deg or rad")
+
+
+class Frame(_Strict):
+    """The fixed link (link 0): its points in global coordinates."""
+
+    points: dict[str, Vec2] = Field(default_factory=dict, description="frame points, global [x, y]")
+    mass: PositiveMass | None = Field(None, description="mass of the housing or bed")
+    com: PointOrVec | None = Field(None, description="centre of mass of the frame, global")
+
+
+class Link(_Strict):
+    """A moving link, described by its own dimensions in its local frame.
+
+    A binary link may be given by ``ends: [P, Q]`` and ``length``: P is at the
+    local origin and Q at (length, 0).  Any further points (joint points of
+    ternary and quaternary links, markers such as a blade edge) go in
+    ``points`` with local coordinates.
+    """
+
+    ends: list[str] | None = Field(None, description="two point names: the link runs from the first to the second")
+    length: PositiveLength | None = Field(None, description="distance between the two ends")
+    points: dict[str, Vec2] = Field(default_factory=dict, description="points in the link's own coordinates")
+    mass: PositiveMass | None = None
+    com: PointOrVec | None = Field(
+        None, description="centre of mass: a point name or local [x, y]; default: centroid of the points"
+    )
+    inertia: Inertia | None = Field(
+        None, description="moment of inertia about the centre of mass (or about inertia_about); "
+        "default for a link given by ends and length: uniform rod m L^2/12, otherwise 0"
+    )
+    inertia_about: str | None = Field(None, description="a point name: inertia is given about this point")
+    description: str | None = None
+
+
+class Joint(_Strict):
+    """A kinematic pair.
+
+    ``revolute``: the links share the point ``point`` (default: the joint's
+    name); three or more links make a compound hinge.  ``prismatic``: the
+    second link (the slider) translates along a line of the first (the guide)
+    through ``through`` with direction ``axis`` in the guide's coordinates;
+    ``point`` is the slider's point on that line, and the slider's axes stay
+    parallel to the guide's.  ``pin-in-slot``: a higher pair; the point of
+    the second link moves in a straight slot of the first.
+    """
+
+    type: Literal["revolute", "prismatic", "pin-in-slot"]
+    links: list[str] = Field(description="names of the joined links ('frame' for the fixed link)")
+    point: str | None = Field(None, description="the point of the pair; default: the joint's name")
+    through: PointOrVec | None = Field(None, description="prismatic/pin-in-slot: a point of the guide line")
+    axis: Angle | None = Field(None, description="prismatic/pin-in-slot: direction of the guide line")
+
+
+class Law(_Strict):
+    """A drive motion law given as a table of the drive coordinate against time."""
+
+    time: list[Annotated[float, BeforeValidator(lambda v, i: _scalar("time", v, i))]]
+    value: list[Any] = Field(description="drive coordinate: angles for a revolute drive, lengths for a prismatic one")
+
+
+class Drive(_Strict):
+    """An input motion on a joint.
+
+    For a revolute joint the drive coordinate is the angle of the second
+    link's local x axis (for a link given by ends: the line from its first to
+    its second end) measured from the first link's x axis; for a prismatic
+    joint, the position of the slider's point along the guide axis from the
+    ``through`` point.
+    """
+
+    joint: str
+    speed: float | str | None = Field(
+        None, description="uniform speed: an angular speed (revolute) or a speed (prismatic)"
+    )
+    direction: Literal["ccw", "cw", "forward", "backward"] | None = Field(
+        None, description="ccw/cw for revolute drives, forward/backward for prismatic ones"
+    )
+    angle: Angle | None = Field(None, description="revolute: drive angle of the assembly pose (default 0)")
+    position: Length | None = Field(None, description="prismatic: drive position of the assembly pose (default 0)")
+    law: Law | None = None
+
+
+class Spec(_Strict):
+    """A planar mechanism: the root of a linkwork mechanism file."""
+
+    name: str | None = None
+    description: str | None = None
+    units: Units = Field(default_factory=Units)
+    gravity: PositiveAcceleration = Field(9.81, description="acceleration of gravity, acting along -y")
+    frame: Frame = Field(default_factory=Frame)
+    links: dict[str, Link]
+    joints: dict[str, Joint]
+    drives: list[Drive]
+    hints: dict[str, Vec2] = Field(
+        default_factory=dict,
+        description="approximate global positions of moving points in the assembly pose "
+        "(joint names or link.point); they choose the assembly mode",
+    )
+    _source: Any = PrivateAttr(default=None)
+
+    @property
+    def source(self) -> Any:
+        """The :class:`~linkwork.spec.yamlsource.Source` it was read from (lines for messages), or None."""
+        return self._source

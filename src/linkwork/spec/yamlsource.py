@@ -1,0 +1,159 @@
+"""Read a YAML mechanism file into plain data, remembering where each value is.
+
+The file is composed into a node tree (not constructed), so every key and
+value keeps its line, duplicate keys are reported instead of silently
+overwritten, and YAML syntax errors become one :class:`Problem` with a line.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from linkwork.errors import Problem
+
+Path = tuple[str | int, ...]
+
+
+@dataclass
+class Source:
+    """Plain data of a YAML document with the line of every element.
+
+    Attributes
+    ----------
+    data : Any
+        The document as dicts, lists, str, int, float, bool and None.
+    lines : dict
+        One-based line of each element, keyed by its path tuple; the line of
+        a mapping entry is the line of its key.
+    file : str or None
+        The file name for messages.
+    problems : list of Problem
+        Duplicate keys found while reading.
+    """
+
+    data: Any
+    lines: dict[Path, int] = field(default_factory=dict)
+    file: str | None = None
+    problems: list[Problem] = field(default_factory=list)
+
+    def line(self, path: Path) -> int | None:
+        """The line of ``path``, or of its nearest ancestor that has one."""
+        path = tuple(path)
+        while path:
+            if path in self.lines:
+                return self.lines[path]
+            path = path[:-1]
+        return self.lines.get((), None)
+
+    def problem(self, path: Path, message: str) -> Problem:
+        """A :class:`Problem` at ``path`` with this source's file and line."""
+        return Problem(dotted(path), message, self.file, self.line(path))
+
+
+def dotted(path: Path) -> str:
+    """``('links', 'rod', 'length')`` -> ``'links.rod.length'``; list items as ``[i]``."""
+    out = ""
+    for part in path:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        else:
+            out += ("." if out else "") + str(part)
+    return out
+
+
+def read_yaml(text: str, file: str | None = None) -> Source:
+    """Parse YAML ``text``; syntax errors come back as a single problem.
+
+    Returns
+    -------
+    Source
+        ``data`` is None and ``problems`` holds the syntax error when the
+        text is not valid YAML.
+    """
+    from ruamel.yaml import YAML
+    from ruamel.yaml.error import MarkedYAMLError, YAMLError
+
+    yaml = YAML(typ="rt")
+    try:
+        node = yaml.compose(text)
+    except MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        line = mark.line + 1 if mark is not None else None
+        what = exc.problem or "invalid YAML"
+        if exc.context:
+            what = f"{exc.context}, {what}"
+        return Source(None, {}, file, [Problem("", f"YAML syntax error: {what}", file, line)])
+    except YAMLError as exc:
+        return Source(None, {}, file, [Problem("", f"YAML syntax error: {exc}", file, None)])
+    src = Source(None, {}, file, [])
+    if node is None:
+        src.data = {}
+        return src
+    src.data = _build(node, (), src)
+    return src
+
+
+_TAG = "tag:yaml.org,2002:"
+
+
+def _build(node: Any, path: Path, src: Source) -> Any:
+    from ruamel.yaml.nodes import MappingNode, ScalarNode, SequenceNode
+
+    src.lines.setdefault(path, node.start_mark.line + 1)
+    if isinstance(node, MappingNode):
+        out: dict[str, Any] = {}
+        seen: dict[str, int] = {}
+        for key_node, value_node in node.value:
+            key = _scalar(key_node) if isinstance(key_node, ScalarNode) else None
+            line = key_node.start_mark.line + 1
+            if not isinstance(key, str | int | float) or isinstance(key, bool):
+                src.problems.append(Problem(dotted(path), "keys must be names", src.file, line))
+                continue
+            key = str(key)
+            if key in seen:
+                src.problems.append(
+                    Problem(
+                        dotted(path + (key,)),
+                        f"duplicate name {key!r} (first defined at line {seen[key]})",
+                        src.file,
+                        line,
+                    )
+                )
+                continue
+            seen[key] = line
+            src.lines[path + (key,)] = line
+            out[key] = _build(value_node, path + (key,), src)
+        return out
+    if isinstance(node, SequenceNode):
+        return [_build(item, path + (i,), src) for i, item in enumerate(node.value)]
+    return _scalar(node)
+
+
+def _scalar(node: Any) -> Any:
+    tag = node.tag
+    tag = getattr(tag, "value", tag)
+    value = node.value
+    if tag == _TAG + "null":
+        return None
+    if tag == _TAG + "bool":
+        return value.lower() in ("true", "yes", "on")
+    if tag == _TAG + "int":
+        try:
+            return int(value.replace("_", ""), 0)
+        except ValueError:
+            return value
+    if tag == _TAG + "float":
+        low = value.lower().replace("_", "")
+        if low in (".inf", "+.inf"):
+            return math.inf
+        if low == "-.inf":
+            return -math.inf
+        if low == ".nan":
+            return math.nan
+        try:
+            return float(low)
+        except ValueError:
+            return value
+    return value

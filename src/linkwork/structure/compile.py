@@ -1,0 +1,328 @@
+"""compile(spec) -> Mechanism: arrays, structural analysis, assembly pose."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import Problem, SpecError, StructureError, UnassemblableError
+from linkwork.spec.schema import Spec
+from linkwork.structure.assemble import assemble, group_rows, scaled, solve_group
+from linkwork.structure.assur import decompose, rank
+from linkwork.structure.constraints import PRISMATIC, REVOLUTE, build_rows, global_points
+from linkwork.structure.model import AssurGroup, Mechanism, Structure, formula
+
+
+def compile(spec: Spec) -> Mechanism:  # noqa: A001 - the public name of the pipeline step
+    """Compile a validated spec into a :class:`Mechanism`.
+
+    Builds the flat arrays, decomposes the mechanism into Assur groups,
+    assembles it in the pose chosen by the drives' start values and the
+    hints, and finds redundant constraints from the Jacobian's rank there.
+
+    Raises
+    ------
+    SpecError
+        A group lacks the hint that chooses its assembly mode, or a mass
+        property is impossible.
+    StructureError
+        The mobility does not match the drives.
+    UnassemblableError
+        The assembly pose does not exist.
+    """
+    arrays, hints, counts = _arrays(spec)
+    mech = Mechanism(**arrays, pose0=np.zeros((len(arrays["link_names"]), 3)), structure=_EMPTY)
+    rows = build_rows(mech.pair_type, mech.pair_links, mech.drive_pair)
+    scale = _scale(mech)
+    n_total = mech.n_links_total
+    n, p5, p4 = counts
+    w = 3 * n - 2 * p5 - p4
+
+    rng = np.random.default_rng(20240607)
+    qg = np.column_stack([rng.uniform(-scale, scale, (n_total, 2)), rng.uniform(-math.pi, math.pi, n_total)])
+    jac_g = scaled(qg, mech, rows, scale)[1]
+    groups, free = decompose(
+        rows, jac_g, n_total, mech.pair_type, mech.pair_links, mech.pair_joint, mech.link_names, mech.n_drives
+    )
+    drives_text = _drives_text(spec)
+    if free:
+        names = ", ".join(f"{i} ({mech.link_names[i]})" for i in free)
+        raise StructureError(
+            f"{_w_text(n, p5, p4, w)}, but {drives_text}: the links {names} are not determined by the drives"
+            + (f"; add {w - mech.n_drives} more drive(s)" if w > mech.n_drives else "")
+        )
+    _require_hints(spec, mech, groups, hints)
+    try:
+        q0 = assemble(mech, rows, groups, hints, scale)
+    except UnassemblableError:
+        if w != mech.n_drives:
+            raise StructureError(_mismatch(n, p5, p4, w, drives_text)) from None
+        raise
+    mech = dataclasses.replace(mech, pose0=q0)
+
+    pair_rows = [i for i in range(rows.n) if rows.drive[i] < 0]
+    r0 = rank(scaled(q0, mech, rows, scale)[1][np.ix_(pair_rows, range(3, 3 * n_total))])
+    r1 = _neighbour_rank(mech, rows, q0, scale, pair_rows)
+    r = max(r0, r1)
+    mobility = 3 * (n_total - 1) - r
+    redundant = len(pair_rows) - r
+    if mobility != mech.n_drives:
+        msg = _mismatch(n, p5, p4, w, drives_text)
+        if redundant:
+            msg += f"; {redundant} constraint(s) are redundant in the assembly pose, so the actual mobility is {mobility}"
+        raise StructureError(msg)
+    warnings = []
+    if r0 < r:
+        warnings.append(
+            "the assembly pose is a singular position (dead point): the constraint Jacobian loses "
+            f"rank {r - r0} there; choose another drive angle for the assembly"
+        )
+    warnings += _hint_warnings(mech, hints, scale)
+    structure = Structure(n, p5, p4, w, redundant, mobility, tuple(groups), formula(groups), tuple(warnings))
+    return dataclasses.replace(mech, structure=structure)
+
+
+_EMPTY = Structure(0, 0, 0, 0, 0, 0, (), "")
+
+
+def _w_text(n: int, p5: int, p4: int, w: int) -> str:
+    tail = f" - {p4}" if p4 else ""
+    return f"W = 3n - 2p5{' - p4' if p4 else ''} = 3*{n} - 2*{p5}{tail} = {w}"
+
+
+def _mismatch(n: int, p5: int, p4: int, w: int, drives_text: str) -> str:
+    what = (
+        "the mechanism is a rigid structure" if w <= 0 else f"the mechanism has {w} degree(s) of freedom"
+    )
+    return f"{_w_text(n, p5, p4, w)}: {what}, but {drives_text}; the number of drives must equal W"
+
+
+def _drives_text(spec: Spec) -> str:
+    names = ", ".join(d.joint for d in spec.drives)
+    return f"{len(spec.drives)} drive{'s' if len(spec.drives) != 1 else ''} ({names}) {'is' if len(spec.drives) == 1 else 'are'} given"
+
+
+def _scale(mech: Mechanism) -> float:
+    frame_pts = mech.point_local[mech.point_link == 0]
+    spans = [np.abs(frame_pts).max() if len(frame_pts) else 0.0]
+    spans.append(float(np.abs(mech.point_local).max()) if len(mech.point_local) else 0.0)
+    return max(max(spans), 1e-3)
+
+
+def _neighbour_rank(mech: Mechanism, rows: Any, q0: np.ndarray, scale: float, pair_rows: list[int]) -> int:
+    """Rank at a pose a little way along the motion (singular poses are isolated)."""
+    step = np.where(mech.pair_type[mech.drive_pair] == REVOLUTE, 0.02, 0.002 * scale)
+    values = mech.drive_start + step
+    links = tuple(range(1, mech.n_links_total))
+    q1, worst = solve_group(mech, rows, q0, links, list(range(rows.n)), scale, values)
+    if not worst <= 1e-9 * scale:
+        return 0
+    return rank(scaled(q1, mech, rows, scale, values)[1][np.ix_(pair_rows, range(3, 3 * mech.n_links_total))])
+
+
+def _require_hints(spec: Spec, mech: Mechanism, groups: list[AssurGroup], hints: dict[int, np.ndarray]) -> None:
+    src = spec.source
+    problems = []
+    for group in groups:
+        if len(group.links) < 2:
+            continue
+        for k in group.pairs:
+            if set(map(int, mech.pair_links[k])) <= set(group.links):
+                p = int(mech.pair_points[k, 1])
+                if p not in hints:
+                    joint = mech.pair_joint[k]
+                    msg = (
+                        f'group {group.label} (links {", ".join(group.link_names)}) needs a hint for its inner '
+                        f'joint "{joint}" to choose its assembly mode: add it under hints, e.g. '
+                        f"{joint}: [x, y] near where it is in the assembly pose"
+                    )
+                    path = ("hints",) if "hints" in (src.data if src else {}) else ("joints", joint)
+                    problems.append(
+                        src.problem(path, msg) if src else Problem(".".join(path), msg)
+                    )
+    if problems:
+        raise SpecError(list(dict.fromkeys(problems)))
+
+
+def _hint_warnings(mech: Mechanism, hints: dict[int, np.ndarray], scale: float) -> list[str]:
+    pts = global_points(mech.pose0, mech.point_link, mech.point_local)
+    out = []
+    for p, h in hints.items():
+        gap = float(np.hypot(*(pts[p] - h)))
+        if gap > 0.1 * scale:
+            out.append(
+                f"hint for {mech.point_names[p]} at ({h[0]:.4g}, {h[1]:.4g}) is {gap:.3g} m from where it "
+                f"assembled, ({pts[p][0]:.4g}, {pts[p][1]:.4g}): check that the assembly mode is the one you meant"
+            )
+    return out
+
+
+def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[int, int, int]]:
+    slots = [j for j, joint in spec.joints.items() if joint.type == "pin-in-slot"]
+    link_names = ["frame", *spec.links, *(f"{j}_block" for j in slots)]
+    index = {name: i for i, name in enumerate(link_names)}
+    point_names: list[str] = []
+    point_link: list[int] = []
+    point_local: list[tuple[float, float]] = []
+    pindex: dict[tuple[int, str], int] = {}
+
+    def add_point(link: int, name: str, xy: tuple[float, float]) -> None:
+        pindex[(link, name)] = len(point_names)
+        point_names.append(f"{link_names[link]}.{name}")
+        point_link.append(link)
+        point_local.append(xy)
+
+    for name, xy in spec.frame.points.items():
+        add_point(0, name, xy)
+    n_total = len(link_names)
+    mass = np.zeros(n_total)
+    com = np.zeros((n_total, 2))
+    inertia = np.zeros(n_total)
+    virtual = np.zeros(n_total, dtype=bool)
+    problems = []
+    for name, link in spec.links.items():
+        i = index[name]
+        if link.ends is not None and link.length is not None:
+            add_point(i, link.ends[0], (0.0, 0.0))
+            add_point(i, link.ends[1], (link.length, 0.0))
+        for pname, xy in link.points.items():
+            add_point(i, pname, xy)
+        local = {p: np.array(point_local[pindex[(i, p)]]) for (li, p) in pindex if li == i}
+        if isinstance(link.com, str):
+            com[i] = local[link.com]
+        elif link.com is not None:
+            com[i] = link.com
+        else:
+            com[i] = np.mean(list(local.values()), axis=0)
+        mass[i] = link.mass or 0.0
+        if link.inertia is not None:
+            j = link.inertia
+            if link.inertia_about is not None:
+                d2 = float(np.sum((local[link.inertia_about] - com[i]) ** 2))
+                j = link.inertia - mass[i] * d2
+                if j < -1e-12 * max(link.inertia, 1e-30):
+                    problems.append(
+                        _problem(spec, ("links", name, "inertia"),
+                                 f"an inertia of {link.inertia:.6g} kg m^2 about {link.inertia_about} is less than "
+                                 f"m d^2 = {mass[i] * d2:.6g} kg m^2 of the centre of mass alone: impossible")
+                    )
+                j = max(j, 0.0)
+            inertia[i] = j
+        elif link.length is not None:
+            inertia[i] = mass[i] * link.length**2 / 12.0
+        if len(local) >= 2:
+            pts = np.array(list(local.values()))
+            for a in range(len(pts)):
+                for b in range(a + 1, len(pts)):
+                    if np.hypot(*(pts[a] - pts[b])) < 1e-12:
+                        names = list(local)
+                        problems.append(_problem(spec, ("links", name, "points"),
+                                                 f"points {names[a]} and {names[b]} coincide"))
+    if problems:
+        raise SpecError(problems)
+    if spec.frame.mass is not None:
+        mass[0] = spec.frame.mass
+        c = spec.frame.com
+        if isinstance(c, str):
+            com[0] = point_local[pindex[(0, c)]]
+        elif c is not None:
+            com[0] = c
+
+    pair_type, pair_links, pair_points, pair_origin, pair_axis, pair_joint = [], [], [], [], [], []
+
+    def add_pair(kind: int, a: int, b: int, pa: int, pb: int, origin: Any = (0.0, 0.0), axis: Any = (1.0, 0.0), joint: str = "") -> None:
+        pair_type.append(kind)
+        pair_links.append((a, b))
+        pair_points.append((pa, pb))
+        pair_origin.append(origin)
+        pair_axis.append(axis)
+        pair_joint.append(joint)
+
+    def line(guide: int, through: Any, axis: float) -> tuple[Any, Any]:
+        origin = point_local[pindex[(guide, through)]] if isinstance(through, str) else through
+        return origin, (math.cos(axis), math.sin(axis))
+
+    joint_pair: dict[str, int] = {}
+    p5 = p4 = 0
+    for jname, joint in spec.joints.items():
+        pt = joint.point or jname
+        links = [index[ln] for ln in joint.links]
+        if joint.type == "revolute":
+            joint_pair[jname] = len(pair_type)
+            for other in links[1:]:
+                add_pair(REVOLUTE, links[0], other, pindex[(links[0], pt)], pindex[(other, pt)], joint=jname)
+                p5 += 1
+        elif joint.type == "prismatic":
+            joint_pair[jname] = len(pair_type)
+            origin, axis = line(links[0], joint.through, joint.axis)
+            add_pair(PRISMATIC, links[0], links[1], -1, pindex[(links[1], pt)], origin, axis, jname)
+            p5 += 1
+        else:
+            block = index[f"{jname}_block"]
+            virtual[block] = True
+            add_point(block, pt, (0.0, 0.0))
+            add_pair(REVOLUTE, links[1], block, pindex[(links[1], pt)], pindex[(block, pt)], joint=jname)
+            origin, axis = line(links[0], joint.through, joint.axis)
+            add_pair(PRISMATIC, links[0], block, -1, pindex[(block, pt)], origin, axis, jname)
+            p4 += 1
+
+    drive_pair, drive_speed, drive_start = [], [], []
+    for drive in spec.drives:
+        k = joint_pair[drive.joint]
+        drive_pair.append(k)
+        sign = -1.0 if drive.direction in ("cw", "backward") else 1.0
+        speed = drive.speed if isinstance(drive.speed, float) else (math.nan if drive.law else 0.0)
+        drive_speed.append(sign * speed)
+        start = drive.angle if pair_type[k] == REVOLUTE else drive.position
+        drive_start.append(start or 0.0)
+
+    hints: dict[int, np.ndarray] = {}
+    for key, xy in spec.hints.items():
+        if "." in key:
+            ln, p = key.split(".", 1)
+            hints[pindex[(index[ln], p)]] = np.array(xy)
+        else:
+            joint = spec.joints[key]
+            pt = joint.point or key
+            for ln in joint.links[1:] if joint.type != "revolute" else joint.links:
+                if ln != "frame":
+                    hints[pindex[(index[ln], pt)]] = np.array(xy)
+            if joint.type == "pin-in-slot":
+                hints[pindex[(index[f"{key}_block"], pt)]] = np.array(xy)
+
+    def f(a: Any, dtype: Any = float) -> np.ndarray:
+        arr = np.array(a, dtype=dtype)
+        arr.flags.writeable = False
+        return arr
+
+    arrays = dict(
+        name=spec.name or (spec.source.file if spec.source and spec.source.file else "mechanism"),
+        source=spec.source.file if spec.source else None,
+        link_names=tuple(link_names),
+        link_virtual=f(virtual, bool),
+        link_mass=f(mass),
+        link_com=f(com),
+        link_inertia=f(inertia),
+        point_names=tuple(point_names),
+        point_link=f(point_link, int),
+        point_local=f(point_local).reshape(-1, 2),
+        pair_type=f(pair_type, int),
+        pair_links=f(pair_links, int).reshape(-1, 2),
+        pair_points=f(pair_points, int).reshape(-1, 2),
+        pair_origin=f(pair_origin).reshape(-1, 2),
+        pair_axis=f(pair_axis).reshape(-1, 2),
+        pair_joint=tuple(pair_joint),
+        drive_pair=f(drive_pair, int),
+        drive_speed=f(drive_speed),
+        drive_start=f(drive_start),
+        gravity=spec.gravity,
+        joint_names=tuple(spec.joints),
+    )
+    return arrays, hints, (len(spec.links), p5, p4)
+
+
+def _problem(spec: Spec, path: tuple[str, ...], message: str) -> Problem:
+    return spec.source.problem(path, message) if spec.source else Problem(".".join(path), message)

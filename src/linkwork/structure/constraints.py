@@ -1,0 +1,190 @@
+"""Constraint equations of a planar mechanism and their Jacobian.
+
+Every link ``i`` has a pose ``q[i] = (x, y, theta)``: the global position of
+its local origin and the angle of its local x axis.  Link 0 is the frame
+(pose zero).  A point with local coordinates ``p`` on link ``i`` is at
+``(x, y) + R(theta) p``.
+
+Rows, per pair:
+
+* revolute ``a``-``b`` at points ``pa``, ``pb``: ``P_a - P_b = 0`` (2 rows);
+* prismatic, guide ``a`` with line through ``c`` along ``u`` (local to a),
+  slider ``b`` with point ``pb``: ``theta_b - theta_a = 0`` and
+  ``n_a . (P_b - C_a) = 0`` with ``n = perp(u)`` (2 rows);
+
+and per drive: ``theta_b - theta_a - phi = 0`` (revolute) or
+``u_a . (P_b - C_a) - s = 0`` (prismatic).
+
+All functions broadcast over leading dimensions of ``q``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+REVOLUTE, PRISMATIC = 0, 1
+
+
+@dataclass(frozen=True)
+class Rows:
+    """Bookkeeping of the constraint rows.
+
+    Attributes
+    ----------
+    pair : ndarray of int, shape (m,)
+        Pair index of each row (-1 for a drive row).
+    drive : ndarray of int, shape (m,)
+        Drive index of each row (-1 for a pair row).
+    links : ndarray of int, shape (m, 2)
+        The two links a row involves.
+    angular : ndarray of bool, shape (m,)
+        Rows whose residual is an angle (rad) rather than a length.
+    """
+
+    pair: np.ndarray
+    drive: np.ndarray
+    links: np.ndarray
+    angular: np.ndarray
+
+    @property
+    def n(self) -> int:
+        return len(self.pair)
+
+
+def build_rows(pair_type: np.ndarray, pair_links: np.ndarray, drive_pair: np.ndarray) -> Rows:
+    """Rows of the pair constraints followed by one row per drive."""
+    pair, drive, links, angular = [], [], [], []
+    for k, kind in enumerate(pair_type):
+        pair += [k, k]
+        drive += [-1, -1]
+        links += [pair_links[k], pair_links[k]]
+        angular += [False, False] if kind == REVOLUTE else [True, False]
+    for d, k in enumerate(drive_pair):
+        pair.append(-1)
+        drive.append(d)
+        links.append(pair_links[k])
+        angular.append(pair_type[k] == REVOLUTE)
+    return Rows(
+        np.array(pair, dtype=int),
+        np.array(drive, dtype=int),
+        np.array(links, dtype=int).reshape(-1, 2),
+        np.array(angular, dtype=bool),
+    )
+
+
+def wrap(angle: np.ndarray) -> np.ndarray:
+    """Angles wrapped to [-pi, pi)."""
+    return (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi
+
+
+def _rot(theta: np.ndarray, v: np.ndarray) -> np.ndarray:
+    c, s = np.cos(theta), np.sin(theta)
+    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
+
+
+def _perp(v: np.ndarray) -> np.ndarray:
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def global_points(q: np.ndarray, point_link: np.ndarray, point_local: np.ndarray) -> np.ndarray:
+    """Global coordinates of points, shape ``(..., n_points, 2)``."""
+    ql = q[..., point_link, :]
+    return ql[..., :2] + _rot(ql[..., 2], point_local)
+
+
+def residuals_and_jacobian(
+    q: np.ndarray,
+    mech: "object",
+    drive_values: np.ndarray | None = None,
+    with_drives: bool = True,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Residuals ``(..., m)`` and Jacobian ``(..., m, 3 * n_links_total)``.
+
+    Parameters
+    ----------
+    q : ndarray, shape (..., N, 3)
+        Link poses, frame included as link 0.
+    mech : Mechanism
+        Needs the ``pair_*``, ``point_*`` and ``drive_*`` arrays.
+    drive_values : ndarray, shape (..., n_drives), optional
+        Drive coordinates; default: the assembly values ``drive_start``.
+    with_drives : bool
+        Include the drive rows.
+    """
+    q = np.asarray(q, dtype=float)
+    batch = q.shape[:-2]
+    n = q.shape[-2]
+    pts_local = mech.point_local
+    res: list[np.ndarray] = []
+    jac: list[np.ndarray] = []
+
+    def zeros() -> np.ndarray:
+        return np.zeros(batch + (3 * n,))
+
+    def point_terms(link: int, p_local: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        theta = q[..., link, 2]
+        rp = _rot(theta, np.broadcast_to(p_local, batch + (2,)))
+        return q[..., link, :2] + rp, _perp(rp)
+
+    def line_terms(k: int) -> tuple[np.ndarray, ...]:
+        a, b = mech.pair_links[k]
+        pa_b, dpb = point_terms(b, pts_local[mech.pair_points[k, 1]])
+        c_glob, dc = point_terms(a, mech.pair_origin[k])
+        u = _rot(q[..., a, 2], np.broadcast_to(mech.pair_axis[k], batch + (2,)))
+        return a, b, pa_b, dpb, c_glob, dc, u
+
+    def line_row(k: int, direction: str) -> tuple[np.ndarray, np.ndarray]:
+        a, b, p_b, dpb, c_a, dc, u = line_terms(k)
+        v = _perp(u) if direction == "n" else u
+        dv = _perp(v)  # d(v)/d(theta_a)
+        d = p_b - c_a
+        r = np.sum(v * d, axis=-1)
+        row = zeros()
+        row[..., 3 * a : 3 * a + 2] -= v
+        row[..., 3 * a + 2] += np.sum(dv * d, axis=-1) - np.sum(v * dc, axis=-1)
+        row[..., 3 * b : 3 * b + 2] += v
+        row[..., 3 * b + 2] += np.sum(v * dpb, axis=-1)
+        return r, row
+
+    for k, kind in enumerate(mech.pair_type):
+        a, b = mech.pair_links[k]
+        if kind == REVOLUTE:
+            pa, dpa = point_terms(a, pts_local[mech.pair_points[k, 0]])
+            pb, dpb = point_terms(b, pts_local[mech.pair_points[k, 1]])
+            for axis in (0, 1):
+                row = zeros()
+                row[..., 3 * a + axis] += 1.0
+                row[..., 3 * a + 2] += dpa[..., axis]
+                row[..., 3 * b + axis] -= 1.0
+                row[..., 3 * b + 2] -= dpb[..., axis]
+                res.append(pa[..., axis] - pb[..., axis])
+                jac.append(row)
+        else:
+            row = zeros()
+            row[..., 3 * b + 2] += 1.0
+            row[..., 3 * a + 2] -= 1.0
+            res.append(wrap(q[..., b, 2] - q[..., a, 2]))
+            jac.append(row)
+            r, row = line_row(k, "n")
+            res.append(r)
+            jac.append(row)
+    if with_drives:
+        values = mech.drive_start if drive_values is None else np.asarray(drive_values, dtype=float)
+        values = np.broadcast_to(values, batch + (len(mech.drive_pair),))
+        for d, k in enumerate(mech.drive_pair):
+            a, b = mech.pair_links[k]
+            if mech.pair_type[k] == REVOLUTE:
+                row = zeros()
+                row[..., 3 * b + 2] += 1.0
+                row[..., 3 * a + 2] -= 1.0
+                res.append(wrap(q[..., b, 2] - q[..., a, 2] - values[..., d]))
+                jac.append(row)
+            else:
+                r, row = line_row(k, "u")
+                res.append(r - values[..., d])
+                jac.append(row)
+    if not res:
+        return np.zeros(batch + (0,)), np.zeros(batch + (0, 3 * n))
+    return np.stack(res, axis=-1), np.stack(jac, axis=-2)

@@ -1,0 +1,227 @@
+"""The compiled mechanism: frozen arrays and its structural analysis."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+ROMAN = ["0", "I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX", "X"]
+
+
+def roman(n: int) -> str:
+    return ROMAN[n] if 0 <= n < len(ROMAN) else str(n)
+
+
+@dataclass(frozen=True)
+class AssurGroup:
+    """One step of the structural decomposition, in solving order.
+
+    Attributes
+    ----------
+    klass : int
+        Class after Artobolevsky: 1 for a driving link (or a group that
+        carries a drive), 2 for dyads, 3 for triads, 4 for four-link groups
+        with a closed contour, ...; 0 for a link that only adds redundant
+        constraints.
+    order : int or None
+        Number of external pairs (None for class 1).
+    kind : str
+        Pair letters: ``RRR``, ``RRP``, ``RPR``, ``PRP``, ``RPP`` for dyads;
+        the letter of the driven pair for a driving link; for larger groups
+        the letters of their pairs, external ones first.
+    links : tuple of int
+        Link numbers (frame = 0) of the group.
+    link_names : tuple of str
+    joints : tuple of str
+        Names of the joints of the group (internal and external).
+    internal : tuple of str
+        Names of the joints between links of the group.
+    pairs : tuple of int
+        Indices of the pairs (rows of ``Mechanism.pair_*``) of the group.
+    redundant : int
+        Redundant constraints inside the group.
+    driven : bool
+        The group carries a drive.
+    """
+
+    klass: int
+    order: int | None
+    kind: str
+    links: tuple[int, ...]
+    link_names: tuple[str, ...]
+    joints: tuple[str, ...]
+    internal: tuple[str, ...]
+    pairs: tuple[int, ...]
+    redundant: int = 0
+    driven: bool = False
+
+    @property
+    def label(self) -> str:
+        """``II(2,3) RRR``-style label."""
+        nums = ",".join(str(i) for i in self.links)
+        if self.klass == 1:
+            return f"I(0,{nums}) {self.kind}"
+        if self.klass == 0:
+            return f"({nums}) redundant link"
+        return f"{roman(self.klass)}({nums}) {self.kind}"
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "class": self.klass,
+            "order": self.order,
+            "kind": self.kind,
+            "links": list(self.links),
+            "link_names": list(self.link_names),
+            "joints": list(self.joints),
+            "internal_joints": list(self.internal),
+            "redundant": self.redundant,
+            "driven": self.driven,
+        }
+
+
+@dataclass(frozen=True)
+class Structure:
+    """Structural analysis of a mechanism.
+
+    Attributes
+    ----------
+    n_links : int
+        Moving links n (the frame and slot blocks not counted).
+    p5, p4 : int
+        Lower pairs (a compound hinge of k links counts k - 1) and higher
+        (pin-in-slot) pairs.
+    dof : int
+        W = 3 n - 2 p5 - p4 by the Chebyshev formula.
+    redundant : int
+        Redundant (passive) constraints q, from the rank of the constraint
+        Jacobian in the assembly pose and a neighbouring pose.
+    mobility : int
+        Actual degrees of freedom, W + q.
+    groups : tuple of AssurGroup
+        The decomposition, in solving order.
+    formula : str
+        The structural formula, e.g. ``I(0,1) -> II(2,3) -> II(4,5)``.
+    warnings : tuple of str
+        Singular assembly pose, hints far from the assembled points, ...
+    """
+
+    n_links: int
+    p5: int
+    p4: int
+    dof: int
+    redundant: int
+    mobility: int
+    groups: tuple[AssurGroup, ...]
+    formula: str
+    warnings: tuple[str, ...] = ()
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "n_links": self.n_links,
+            "p5": self.p5,
+            "p4": self.p4,
+            "dof": self.dof,
+            "redundant": self.redundant,
+            "mobility": self.mobility,
+            "groups": [g.as_dict() for g in self.groups],
+            "formula": self.formula,
+            "warnings": list(self.warnings),
+        }
+
+
+def formula(groups: tuple[AssurGroup, ...] | list[AssurGroup]) -> str:
+    """The structural formula of a decomposition."""
+    parts = []
+    for g in groups:
+        nums = ",".join(str(i) for i in g.links)
+        if g.klass == 1:
+            parts.append(f"I(0,{nums})")
+        elif g.klass == 0:
+            parts.append(f"q({nums})")
+        else:
+            parts.append(f"{roman(g.klass)}({nums})")
+    return " -> ".join(parts)
+
+
+def _frozen(a: Any, dtype: Any = float) -> np.ndarray:
+    arr = np.array(a, dtype=dtype)
+    arr.flags.writeable = False
+    return arr
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """A compiled mechanism: flat read-only arrays, no state.
+
+    Link 0 is the frame; links ``1..n_links`` are the moving links in the
+    order of the file (the paper's numbering); pin-in-slot pairs add a
+    massless slot block link each after them (``link_virtual``).  Pairs are
+    the elementary kinematic pairs: a compound hinge of k links becomes
+    k - 1 revolute pairs, a pin-in-slot a revolute and a prismatic pair of
+    its block.
+
+    Shapes: ``N = n_links_total`` links, ``P`` points, ``M`` pairs, ``D``
+    drives.  Lengths in m, angles in rad, SI throughout.
+    """
+
+    name: str
+    source: str | None
+    link_names: tuple[str, ...]
+    link_virtual: np.ndarray  # (N,) bool
+    link_mass: np.ndarray  # (N,) kg
+    link_com: np.ndarray  # (N, 2) local m
+    link_inertia: np.ndarray  # (N,) kg m^2 about the centre of mass
+    point_names: tuple[str, ...]  # "link.point"
+    point_link: np.ndarray  # (P,) int
+    point_local: np.ndarray  # (P, 2)
+    pair_type: np.ndarray  # (M,) 0 revolute, 1 prismatic
+    pair_links: np.ndarray  # (M, 2) [a, b]; prismatic: [guide, slider]
+    pair_points: np.ndarray  # (M, 2) point indices; -1 where none
+    pair_origin: np.ndarray  # (M, 2) prismatic: guide line point, local to a
+    pair_axis: np.ndarray  # (M, 2) prismatic: guide unit direction, local to a
+    pair_joint: tuple[str, ...]  # spec joint name of each pair
+    drive_pair: np.ndarray  # (D,) int
+    drive_speed: np.ndarray  # (D,) rad/s or m/s, signed; NaN where a law is given
+    drive_start: np.ndarray  # (D,) drive coordinate of the assembly pose
+    gravity: float
+    pose0: np.ndarray  # (N, 3) assembly pose
+    structure: Structure
+    joint_names: tuple[str, ...] = field(default=())
+
+    @property
+    def n_links(self) -> int:
+        """Number of moving links n of the Chebyshev formula."""
+        return self.structure.n_links
+
+    @property
+    def n_links_total(self) -> int:
+        return len(self.link_names)
+
+    @property
+    def n_pairs(self) -> int:
+        return len(self.pair_type)
+
+    @property
+    def n_joints(self) -> int:
+        return len(self.joint_names)
+
+    @property
+    def n_drives(self) -> int:
+        return len(self.drive_pair)
+
+    def point_index(self, name: str) -> int:
+        """Index of a point given as ``link.point`` or a joint name."""
+        if name in self.point_names:
+            return self.point_names.index(name)
+        for k, joint in enumerate(self.pair_joint):
+            if joint == name:
+                return int(self.pair_points[k, 1])
+        raise KeyError(f'no point "{name}"')
+
+    def points0(self) -> np.ndarray:
+        """Global positions of all points in the assembly pose, (P, 2)."""
+        from linkwork.structure.constraints import global_points
+
+        return global_points(self.pose0, self.point_link, self.point_local)
