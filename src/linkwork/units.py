@@ -55,6 +55,7 @@ def registry() -> Any:
     import pint
 
     ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    ureg.define("rev = revolution")
     return ureg
 
 

@@ -23,7 +23,7 @@ FRAME = "frame"
 
 def suggest(word: str, candidates: Iterable[str]) -> str:
     """`` (did you mean "x"?)`` for the closest candidate, or an empty string."""
-    close = difflib.get_close_matches(str(word), [str(c) for c in candidates], n=1, cutoff=0.6)
+    close = difflib.get_close_matches(str(word), [str(c) for c in candidates], n=1, cutoff=0.5)
     return f' (did you mean "{close[0]}"?)' if close else ""
 
 
@@ -35,6 +35,8 @@ def link_points(links: dict[str, Any], frame: dict[str, Any]) -> dict[str, set[s
     """Point names of every link (and of ``frame``) as declared in raw data."""
     out: dict[str, set[str]] = {FRAME: set(_dict(frame.get("points")))}
     for name, link in links.items():
+        if name == FRAME:
+            continue
         link = _dict(link)
         pts = set(_dict(link.get("points")))
         ends = link.get("ends")
@@ -236,7 +238,9 @@ def _check_hints(bad: Any, data: dict[str, Any], joints: dict[str, Any], points:
     names = hint_names(joints, points)
     for key in hints:
         if key not in names:
-            bad(("hints", key), f'no moving point "{key}" (give a joint name or link.point){suggest(key, names)}')
+            same = sorted(n for n in names if n.endswith(f".{key}"))
+            hint = f' (did you mean "{same[0]}"?)' if same else suggest(key, names)
+            bad(("hints", key), f'no moving point "{key}" (give a joint name or link.point){hint}')
 
 
 def hint_names(joints: dict[str, Any], points: dict[str, set[str]]) -> set[str]:

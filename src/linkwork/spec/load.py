@@ -77,10 +77,9 @@ def _declared_units(src: Source, problems: list[Problem]) -> dict[str, str]:
         try:
             check_unit(unit, kind)
         except UnitParseError as exc:
-            msg = str(exc)
-            if not msg.startswith("expected"):
-                msg = f"expected a unit of {KINDS[kind][0].split(' ', 1)[1]}, got {msg.split(' ', 2)[2]}"
-            problems.append(src.problem(("units", kind), msg))
+            noun = KINDS[kind][0].split(" ", 1)[1]
+            reason = "" if str(exc).startswith("expected") else f" ({exc})"
+            problems.append(src.problem(("units", kind), f'expected a unit of {noun}, got "{unit}"{reason}'))
         else:
             declared[kind] = unit
     return declared

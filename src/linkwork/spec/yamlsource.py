@@ -116,7 +116,7 @@ def _build(node: Any, path: Path, src: Source) -> Any:
                 src.problems.append(
                     Problem(
                         dotted(path + (key,)),
-                        f"duplicate name {key!r} (first defined at line {seen[key]})",
+                        f'duplicate name "{key}" (first defined at line {seen[key]})',
                         src.file,
                         line,
                     )

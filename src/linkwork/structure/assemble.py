@@ -80,6 +80,55 @@ def solve_group(
     return q, float(np.max(np.abs(fun(sol.x)))) if sel else 0.0
 
 
+def locate(
+    mech: Mechanism, group: AssurGroup, placed: set[int], hints: dict[int, np.ndarray]
+) -> tuple[dict[int, list[tuple[int, str, int]]], dict[int, tuple[str, int, int] | None]]:
+    """What fixes each link of a group before it is solved.
+
+    Returns
+    -------
+    points : dict
+        For each link, its located points as ``(own point, "joint" or
+        "hint", source point)``: a joint point of a placed link or a hint.
+    angle : dict
+        For each link, how its angle is known: ``("pair", k, other)`` when a
+        prismatic or driven revolute pair ``k`` ties it to a link ``other``
+        whose angle is known (placed, fitted, or itself tied), else None.
+    """
+    points: dict[int, list[tuple[int, str, int]]] = {i: [] for i in group.links}
+    angle: dict[int, tuple[str, int, int] | None] = dict.fromkeys(group.links)
+    driven = set(int(k) for k in mech.drive_pair)
+    for i in group.links:
+        for k in group.pairs:
+            a, b = (int(v) for v in mech.pair_links[k])
+            if i in (a, b) and (b if i == a else a) in placed and mech.pair_type[k] == REVOLUTE:
+                mine, theirs = mech.pair_points[k, 0 if i == a else 1], mech.pair_points[k, 1 if i == a else 0]
+                points[i].append((int(mine), "joint", int(theirs)))
+        for p in np.flatnonzero(mech.point_link == i):
+            if int(p) in hints and all(int(p) != own for own, _, _ in points[i]):
+                points[i].append((int(p), "hint", int(p)))
+    known = set(placed) | {i for i in group.links if len(points[i]) >= 2}
+    changed = True
+    while changed:
+        changed = False
+        for k in group.pairs:
+            a, b = (int(v) for v in mech.pair_links[k])
+            if mech.pair_type[k] == PRISMATIC or k in driven:
+                for i, other in ((a, b), (b, a)):
+                    if i in angle and i not in known and other in known:
+                        angle[i] = ("pair", k, other)
+                        known.add(i)
+                        changed = True
+    return points, angle
+
+
+def unfixed_links(mech: Mechanism, group: AssurGroup, placed: set[int], hints: dict[int, np.ndarray]) -> list[int]:
+    """Links of a group whose starting pose the placed joints and hints leave open."""
+    points, angle = locate(mech, group, placed, hints)
+    n_points = np.bincount(mech.point_link, minlength=mech.n_links_total)
+    return [i for i in group.links if len(points[i]) < 2 and angle[i] is None and n_points[i] >= 2]
+
+
 def initial_guess(
     mech: Mechanism, q: np.ndarray, group: AssurGroup, placed: set[int], hints: dict[int, np.ndarray]
 ) -> np.ndarray:
@@ -88,33 +137,35 @@ def initial_guess(
 
     q = q.copy()
     glob_all = global_points(q, mech.point_link, mech.point_local)
-    for i in group.links:
-        local, glob = [], []
-        theta = None
-        for k in group.pairs:
-            a, b = (int(v) for v in mech.pair_links[k])
-            if i not in (a, b):
-                continue
-            other = b if i == a else a
-            if other in placed and mech.pair_type[k] == REVOLUTE:
-                mine = mech.pair_points[k, 0 if i == a else 1]
-                theirs = mech.pair_points[k, 1 if i == a else 0]
-                local.append(mech.point_local[mine])
-                glob.append(glob_all[theirs])
-            if other in placed and mech.pair_type[k] == PRISMATIC:
+    points, angle = locate(mech, group, placed, hints)
+
+    def target(src: str, p: int) -> np.ndarray:
+        return glob_all[p] if src == "joint" else hints[p]
+
+    fitted: set[int] = set(placed)
+    pending = list(group.links)
+    for _ in range(len(pending) + 1):
+        for i in list(pending):
+            how = angle[i]
+            theta = None
+            if how is not None:
+                _, k, other = how
+                if other not in fitted:
+                    continue
                 theta = q[other, 2]
-            for d, dk in enumerate(mech.drive_pair):
-                if dk == k and other in placed and mech.pair_type[k] == REVOLUTE:
-                    phi = mech.drive_start[d]
-                    theta = q[a, 2] + phi if i == b else q[b, 2] - phi
-        for p in np.flatnonzero(mech.point_link == i):
-            if int(p) in hints:
-                local.append(mech.point_local[p])
-                glob.append(hints[int(p)])
-        if local:
-            q[i] = fit_pose(np.array(local), np.array(glob), theta)
-        elif theta is not None:
-            q[i, 2] = theta
+                a, b = (int(v) for v in mech.pair_links[k])
+                for d, dk in enumerate(mech.drive_pair):
+                    if dk == k and mech.pair_type[k] == REVOLUTE:
+                        phi = mech.drive_start[d]
+                        theta = q[a, 2] + phi if i == b else q[b, 2] - phi
+            local = [mech.point_local[own] for own, _, _ in points[i]]
+            glob = [target(src, p) for _, src, p in points[i]]
+            if local:
+                q[i] = fit_pose(np.array(local), np.array(glob), theta)
+            elif theta is not None:
+                q[i, 2] = theta
+            fitted.add(i)
+            pending.remove(i)
     return q
 
 
@@ -129,20 +180,72 @@ def assemble(
         sel = group_rows(rows, placed, set(group.links))
         q, worst = solve_group(mech, rows, q, group.links, sel, scale)
         if not worst <= 1e-9 * scale:
-            raise UnassemblableError(_why(mech, group, worst), group=group.label)
+            raise UnassemblableError(_why(mech, group, worst, q, placed), group=group.label)
         placed |= set(group.links)
     return q
 
 
-def _why(mech: Mechanism, group: AssurGroup, worst: float) -> str:
+def _why(mech: Mechanism, group: AssurGroup, worst: float, q: np.ndarray, placed: set[int]) -> str:
     drives = ", ".join(
         f"{mech.pair_joint[k]} = {_coord(mech, k, mech.drive_start[d])}" for d, k in enumerate(mech.drive_pair)
     )
+    reason = _dyad_reason(mech, group, q, placed) or (
+        f"its joints {', '.join(group.joints)} cannot all be closed (a gap of {worst:.4g} m remains)"
+    )
     return (
         f"group {group.label} (links {', '.join(group.link_names)}) cannot be assembled at the drive "
-        f"position {drives}: its joints {', '.join(group.joints)} cannot all be closed "
-        f"(a gap of {worst:.4g} m remains); check the dimensions, or the drive angle of the assembly pose"
+        f"position {drives}: {reason}; check the dimensions, or the drive angle of the assembly pose"
     )
+
+
+def _dyad_reason(mech: Mechanism, group: AssurGroup, q: np.ndarray, placed: set[int]) -> str | None:
+    """Why an RRR or RRP dyad does not close, in the words of the circle construction."""
+    from linkwork.structure.constraints import global_points
+
+    if group.klass != 2 or group.kind not in ("RRR", "RRP"):
+        return None
+    glob = global_points(q, mech.point_link, mech.point_local)
+    inner = next(k for k in group.pairs if set(map(int, mech.pair_links[k])) <= set(group.links))
+    outer = {}
+    for k in group.pairs:
+        if k == inner:
+            continue
+        a, b = (int(v) for v in mech.pair_links[k])
+        mine = b if a in placed else a
+        outer[mine] = k
+
+    def arm(link: int, k: int) -> tuple[float, np.ndarray, str]:
+        """Distance on ``link`` from its outer joint to the inner one, the outer joint's position, name."""
+        a = int(mech.pair_links[k, 0])
+        own = int(mech.pair_points[k, 1 if a in placed else 0])
+        other = int(mech.pair_points[k, 0 if a in placed else 1])
+        inner_pt = int(mech.pair_points[inner, 0 if int(mech.pair_links[inner, 0]) == link else 1])
+        return float(np.hypot(*(mech.point_local[inner_pt] - mech.point_local[own]))), glob[other], mech.pair_joint[k]
+
+    (la, ka), (lb, kb) = outer.items()
+    if group.kind == "RRR":
+        ra, pa, na = arm(la, ka)
+        rb, pb, nb = arm(lb, kb)
+        d = float(np.hypot(*(pa - pb)))
+        if d > ra + rb:
+            return (f"the joints {na} and {nb} are {d:.4g} m apart, more than the {ra:.4g} + {rb:.4g} = "
+                    f"{ra + rb:.4g} m that the links {mech.link_names[la]} and {mech.link_names[lb]} can span")
+        return (f"the joints {na} and {nb} are {d:.4g} m apart, less than the difference {abs(ra - rb):.4g} m "
+                f"of the links {mech.link_names[la]} and {mech.link_names[lb]}")
+    rod, slider = (la, lb) if mech.pair_type[outer[la]] == REVOLUTE else (lb, la)
+    r, p, name = arm(rod, outer[rod])
+    kp = outer[slider]
+    guide = int(mech.pair_links[kp, 0])
+    c, s = math.cos(q[guide, 2]), math.sin(q[guide, 2])
+    rot = np.array([[c, -s], [s, c]])
+    u = rot @ mech.pair_axis[kp]
+    origin = q[guide, :2] + rot @ mech.pair_origin[kp]
+    inner_pt = int(mech.pair_points[inner, 0 if int(mech.pair_links[inner, 0]) == slider else 1])
+    offset = rot @ (mech.point_local[inner_pt] - mech.point_local[int(mech.pair_points[kp, 1])])
+    n = np.array([-u[1], u[0]])
+    h = abs(float(n @ (p - origin - offset)))
+    return (f"the joint {name} is {h:.4g} m from the line on which the slider {mech.link_names[slider]} "
+            f"carries the joint {mech.pair_joint[inner]}, more than the {r:.4g} m of the link {mech.link_names[rod]}")
 
 
 def _coord(mech: Mechanism, pair: int, value: float) -> str:

@@ -10,7 +10,7 @@ import numpy as np
 
 from linkwork.errors import Problem, SpecError, StructureError, UnassemblableError
 from linkwork.spec.schema import Spec
-from linkwork.structure.assemble import assemble, group_rows, scaled, solve_group
+from linkwork.structure.assemble import assemble, scaled, solve_group, unfixed_links
 from linkwork.structure.assur import decompose, rank
 from linkwork.structure.constraints import PRISMATIC, REVOLUTE, build_rows, global_points
 from linkwork.structure.model import AssurGroup, Mechanism, Structure, formula
@@ -33,6 +33,16 @@ def compile(spec: Spec) -> Mechanism:  # noqa: A001 - the public name of the pip
     UnassemblableError
         The assembly pose does not exist.
     """
+    try:
+        return _compile(spec)
+    except (StructureError, UnassemblableError) as exc:
+        file = spec.source.file if spec.source is not None else None
+        if file and not str(exc).startswith(file):
+            exc.args = (f"{file}: {exc}",)
+        raise
+
+
+def _compile(spec: Spec) -> Mechanism:
     arrays, hints, counts = _arrays(spec)
     mech = Mechanism(**arrays, pose0=np.zeros((len(arrays["link_names"]), 3)), structure=_EMPTY)
     rows = build_rows(mech.pair_type, mech.pair_links, mech.drive_pair)
@@ -124,40 +134,53 @@ def _neighbour_rank(mech: Mechanism, rows: Any, q0: np.ndarray, scale: float, pa
 
 
 def _require_hints(spec: Spec, mech: Mechanism, groups: list[AssurGroup], hints: dict[int, np.ndarray]) -> None:
+    """Every group needs hints that fix its assembly mode: its inner joints,
+    and enough points of each link to give a starting pose."""
     src = spec.source
+    in_file = src is not None and isinstance(src.data, dict) and "hints" in src.data
     problems = []
+
+    def add(path: tuple[str, ...], msg: str) -> None:
+        problems.append(src.problem(path, msg) if src is not None else Problem(".".join(path), msg))
+
+    placed = {0}
     for group in groups:
-        if len(group.links) < 2:
-            continue
-        for k in group.pairs:
-            if set(map(int, mech.pair_links[k])) <= set(group.links):
-                p = int(mech.pair_points[k, 1])
-                if p not in hints:
-                    joint = mech.pair_joint[k]
-                    msg = (
-                        f'group {group.label} (links {", ".join(group.link_names)}) needs a hint for its inner '
-                        f'joint "{joint}" to choose its assembly mode: add it under hints, e.g. '
-                        f"{joint}: [x, y] near where it is in the assembly pose"
-                    )
-                    path = ("hints",) if "hints" in (src.data if src else {}) else ("joints", joint)
-                    problems.append(
-                        src.problem(path, msg) if src else Problem(".".join(path), msg)
-                    )
+        inner = [k for k in group.pairs if set(map(int, mech.pair_links[k])) <= set(group.links)]
+        for k in inner:
+            if int(mech.pair_points[k, 1]) not in hints:
+                joint = mech.pair_joint[k]
+                add(
+                    ("hints",) if in_file else ("joints", joint),
+                    f'group {group.label} (links {", ".join(group.link_names)}) needs a hint for its inner '
+                    f'joint "{joint}" to choose its assembly mode: add "{joint}: [x, y]" under hints, '
+                    "near where it is in the assembly pose",
+                )
+        for i in unfixed_links(mech, group, placed, hints):
+            names = [n.split(".", 1)[1] for n, li in zip(mech.point_names, mech.point_link, strict=True) if li == i]
+            add(
+                ("hints",) if in_file else ("links", mech.link_names[i]),
+                f'group {group.label}: the position of link "{mech.link_names[i]}" is not fixed by the joints '
+                f"already placed and the hints; add a hint for one more of its points ({', '.join(names)}) "
+                "to choose the assembly mode",
+            )
+        placed |= set(group.links)
     if problems:
         raise SpecError(list(dict.fromkeys(problems)))
 
 
 def _hint_warnings(mech: Mechanism, hints: dict[int, np.ndarray], scale: float) -> list[str]:
     pts = global_points(mech.pose0, mech.point_link, mech.point_local)
-    out = []
+    out: dict[tuple[str, float, float], str] = {}
     for p, h in hints.items():
         gap = float(np.hypot(*(pts[p] - h)))
-        if gap > 0.1 * scale:
-            out.append(
-                f"hint for {mech.point_names[p]} at ({h[0]:.4g}, {h[1]:.4g}) is {gap:.3g} m from where it "
-                f"assembled, ({pts[p][0]:.4g}, {pts[p][1]:.4g}): check that the assembly mode is the one you meant"
+        name = mech.point_names[p].split(".", 1)[1]
+        key = (name, float(h[0]), float(h[1]))
+        if gap > 0.1 * scale and key not in out:
+            out[key] = (
+                f"the hint for {name} at ({h[0]:.4g}, {h[1]:.4g}) is {gap:.3g} m from where it assembled, "
+                f"({pts[p][0]:.4g}, {pts[p][1]:.4g}): check that the assembly mode is the one you meant"
             )
-    return out
+    return list(out.values())
 
 
 def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[int, int, int]]:

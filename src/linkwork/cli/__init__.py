@@ -1,0 +1,1 @@
+"""The ``linkwork`` command line."""

@@ -1,0 +1,149 @@
+"""``linkwork``: the command line.
+
+Errors in files, options or geometry are printed to stderr, one line per
+problem, and the command exits with code 2.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from typing import Annotated, Any
+
+import typer
+
+app = typer.Typer(
+    name="linkwork",
+    help="Analysis of planar lever mechanisms: structure, kinematics, forces, dynamics, impact.",
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    rich_markup_mode=None,
+)
+
+FileOrExample = Annotated[str, typer.Argument(help="a mechanism file (.yaml) or the name of a bundled example")]
+
+
+def fail(exc: Exception) -> None:
+    """Print a linkwork error to stderr and exit with code 2."""
+    sys.stderr.write(f"error: {exc}\n" if "\n" not in str(exc) else f"error:\n{exc}\n")
+    raise typer.Exit(2)
+
+
+def _compile(file_or_example: str) -> Any:
+    from linkwork.errors import LinkworkError
+    from linkwork.examples import resolve
+    from linkwork.structure.compile import compile
+
+    try:
+        return compile(resolve(file_or_example))
+    except LinkworkError as exc:
+        fail(exc)
+
+
+@app.command()
+def check(
+    file_or_example: FileOrExample,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object instead of the report")] = False,
+) -> None:
+    """Validate a mechanism and print its structure: DOF, redundant constraints, Assur groups."""
+    mech = _compile(file_or_example)
+    if as_json:
+        out = {"name": mech.name, **mech.structure.as_dict(), "drives": _drives(mech)}
+        typer.echo(json.dumps(out, indent=2))
+        return
+    _print_structure(mech)
+
+
+def _drives(mech: Any) -> list[dict[str, Any]]:
+    from linkwork.structure.constraints import REVOLUTE
+
+    out = []
+    for d, k in enumerate(mech.drive_pair):
+        rot = mech.pair_type[k] == REVOLUTE
+        out.append(
+            {
+                "joint": mech.pair_joint[k],
+                "type": "revolute" if rot else "prismatic",
+                "speed": None if math.isnan(mech.drive_speed[d]) else float(mech.drive_speed[d]),
+                "speed_unit": "rad/s" if rot else "m/s",
+                "start": float(mech.drive_start[d]),
+                "start_unit": "rad" if rot else "m",
+            }
+        )
+    return out
+
+
+def _print_structure(mech: Any) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    s = mech.structure
+    console = Console(highlight=False)
+    console.print(f"[bold]{mech.name}[/bold]" + (f"  ({mech.source})" if mech.source else ""))
+    tail = f" - {s.p4}" if s.p4 else ""
+    console.print(f"  moving links n = {s.n_links}, lower pairs p5 = {s.p5}, higher pairs p4 = {s.p4}")
+    console.print(f"  W = 3n - 2p5 - p4 = 3*{s.n_links} - 2*{s.p5}{tail} = {s.dof}   (Chebyshev)")
+    console.print(f"  redundant constraints q = {s.redundant}, mobility W + q = {s.mobility}")
+    for drive in _drives(mech):
+        if drive["speed"] is None:
+            speed = "motion law"
+        elif drive["type"] == "revolute":
+            speed = f"{abs(drive['speed']) * 30 / math.pi:.6g} rpm {'ccw' if drive['speed'] >= 0 else 'cw'}"
+        else:
+            speed = f"{drive['speed']:.6g} m/s"
+        console.print(f"  drive: joint {drive['joint']} ({drive['type']}), {speed}")
+    table = Table(title="Assur groups in solving order", title_justify="left")
+    for col in ("#", "group", "class", "order", "kind", "links", "joints"):
+        table.add_column(col)
+    for i, g in enumerate(s.groups, 1):
+        links = ", ".join(f"{n} {name}" for n, name in zip(g.links, g.link_names, strict=True))
+        table.add_row(
+            str(i), g.label.split(" ")[0], str(g.klass), "-" if g.order is None else str(g.order),
+            g.kind, links, ", ".join(g.joints),
+        )
+    console.print(table)
+    console.print(f"  structural formula: {s.formula}")
+    for w in s.warnings:
+        console.print(f"  [yellow]warning:[/yellow] {w}")
+
+
+@app.command()
+def schema() -> None:
+    """Print the JSON Schema of the mechanism file format (for editors)."""
+    from linkwork.spec.schema import Spec
+
+    typer.echo(json.dumps(Spec.model_json_schema(), indent=2))
+
+
+@app.command()
+def examples() -> None:
+    """List the bundled example mechanisms."""
+    from linkwork.examples import load_example, names
+
+    for name in names():
+        spec = load_example(name)
+        first = (spec.description or "").strip().split(". ")[0].split("\n")[0]
+        typer.echo(f"{name:22s} {first}")
+
+
+@app.command()
+def example(name: Annotated[str, typer.Argument(help="name of a bundled example")]) -> None:
+    """Print a bundled example as YAML (a starting point for your own file)."""
+    from linkwork.errors import LinkworkError
+    from linkwork.examples import text
+
+    try:
+        typer.echo(text(name), nl=False)
+    except LinkworkError as exc:
+        fail(exc)
+
+
+def main() -> None:
+    """Entry point of the ``linkwork`` script."""
+    app()
+
+
+if __name__ == "__main__":
+    main()

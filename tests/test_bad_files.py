@@ -1,0 +1,65 @@
+"""The corpus of bad mechanism files: each must give exactly its messages, with file:line, and exit code 2.
+
+``tests/bad/NAME.yaml`` is a small four-bar with one mistake;
+``tests/bad/NAME.expected`` lists, one per line, what linkwork must print for
+it after the file name: ``LINE: PATH: MESSAGE``, or just the message for
+errors of the mechanism as a whole (mobility, assembly).
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from linkwork.cli.app import app
+from linkwork.errors import SpecError
+
+BAD = Path(__file__).parent / "bad"
+CASES = sorted(p.stem for p in BAD.glob("*.yaml"))
+
+
+def test_the_corpus_is_large_enough():
+    assert len(CASES) >= 20
+
+
+def expected_lines(name: str) -> list[str]:
+    path = BAD / f"{name}.yaml"
+    lines = (BAD / f"{name}.expected").read_text(encoding="utf-8").splitlines()
+    return [f"{path}:{line}" if line[0].isdigit() else f"{path}: {line}" for line in lines]
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_bad_file_gives_each_problem_with_its_line_and_exit_code_2(name):
+    path = BAD / f"{name}.yaml"
+    result = CliRunner().invoke(app, ["check", str(path)])
+    assert result.exit_code == 2
+    assert "Traceback" not in result.output
+    assert result.stdout == ""
+    got = [line.removeprefix("error: ") for line in result.stderr.splitlines() if line != "error:"]
+    assert got == expected_lines(name)
+
+
+@pytest.mark.parametrize("name", ["yaml-syntax", "wrong-unit", "unassemblable", "mobility-three"])
+def test_bad_file_through_the_real_command(name):
+    """The installed entry point: exit code 2, messages on stderr, no traceback."""
+    path = BAD / f"{name}.yaml"
+    proc = subprocess.run(
+        [sys.executable, "-m", "linkwork.cli.app", "check", str(path)], capture_output=True, text=True
+    )
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr
+    assert proc.stdout == ""
+    assert expected_lines(name)[0] in proc.stderr
+
+
+def test_spec_error_collects_every_problem_in_one_pass():
+    from linkwork import load
+
+    with pytest.raises(SpecError) as err:
+        load(BAD / "missing-joints.yaml")
+    assert len(err.value.problems) == 6
+    assert [p.line for p in err.value.problems] == [2, 6, 7, 8, 10, 12]
