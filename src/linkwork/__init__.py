@@ -21,7 +21,6 @@ _LAZY = {
     "Structure": ("linkwork.structure.model", "Structure"),
     "AssurGroup": ("linkwork.structure.model", "AssurGroup"),
     "example": ("linkwork.examples", "load_example"),
-    "examples": ("linkwork.examples", "names"),
     "resolve": ("linkwork.examples", "resolve"),
 }
 

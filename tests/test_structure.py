@@ -1,0 +1,278 @@
+"""Structural analysis: DOF, redundant constraints, Assur groups, assembly."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from mechanisms import TEXTBOOK, circle_intersection, hydraulic_boom, parallelogram_with_redundant_link
+
+import linkwork as lw
+from linkwork.errors import StructureError, UnassemblableError
+from linkwork.structure.constraints import PRISMATIC, REVOLUTE, global_points, residuals_and_jacobian
+
+
+@pytest.mark.parametrize("name", sorted(TEXTBOOK))
+def test_textbook_mechanism_structure(name):
+    factory, n, p5, p4, w, redundant, groups = TEXTBOOK[name]
+    mech = lw.compile(factory().build())
+    s = mech.structure
+    assert (s.n_links, s.p5, s.p4, s.dof, s.redundant) == (n, p5, p4, w, redundant)
+    assert s.dof == 3 * s.n_links - 2 * s.p5 - s.p4
+    assert s.mobility == mech.n_drives
+    got = [(g.klass, g.order, g.kind if kind is not None else None) for g, (_, _, kind) in zip(s.groups, groups)]
+    assert got == groups
+    # every link is placed exactly once, the frame never
+    placed = [i for g in s.groups for i in g.links]
+    assert sorted(placed) == list(range(1, mech.n_links_total))
+
+
+# The structures the papers and textbooks give for the bundled examples.
+EXAMPLES = {
+    "double-cut-shears": (7, 10, 1, "I(0,1) -> II(2,3) -> II(4,5) -> II(6,7)", ["R", "RRR", "RRP", "RRP"]),
+    "shears-slider-crank": (3, 4, 1, "I(0,1) -> II(2,3)", ["R", "RRP"]),
+    "percussion-rocker": (3, 4, 1, "I(0,1) -> II(2,3)", ["R", "RRR"]),
+    "four-bar": (3, 4, 1, "I(0,1) -> II(2,3)", ["R", "RRR"]),
+    "watt-six-bar": (5, 7, 1, "I(0,1) -> II(2,3) -> II(4,5)", ["R", "RRR", "RRR"]),
+    "stephenson-six-bar": (5, 7, 1, "I(0,1) -> II(2,3) -> II(4,5)", ["R", "RRR", "RRR"]),
+    "class3-triad": (5, 7, 1, "I(0,1) -> III(2,3,4,5)", ["R", None]),
+}
+
+
+def test_every_example_is_covered():
+    from linkwork.examples import names
+
+    assert sorted(EXAMPLES) == names()
+
+
+@pytest.mark.parametrize("name", sorted(EXAMPLES))
+def test_example_structure(name):
+    n, p5, w, formula, kinds = EXAMPLES[name]
+    s = lw.compile(lw.example(name)).structure
+    assert (s.n_links, s.p5, s.p4, s.dof, s.redundant) == (n, p5, 0, w, 0)
+    assert s.formula == formula
+    assert [g.kind if k is not None else None for g, k in zip(s.groups, kinds)] == kinds
+    assert s.warnings == ()
+
+
+def test_double_cut_shears_groups_follow_the_paper():
+    """Seed 002: B from A and O3 (eq. 3), E from D and the guide (eq. 4), F from C and the guide (eq. 5)."""
+    s = lw.compile(lw.example("double-cut-shears")).structure
+    assert [set(g.joints) for g in s.groups] == [{"O1"}, {"A", "B", "O3"}, {"D", "E", "guide_E"}, {"C", "F", "guide_F"}]
+    assert [g.internal for g in s.groups] == [(), ("B",), ("E",), ("F",)]
+
+
+def test_triad_is_class_three_of_order_three():
+    g = lw.compile(lw.example("class3-triad")).structure.groups[1]
+    assert (g.klass, g.order, len(g.links)) == (3, 3, 4)
+    assert set(g.internal) == {"B", "C", "D"}
+
+
+def test_class_four_group_has_a_closed_contour_of_four_pairs():
+    g = lw.compile(TEXTBOOK["class IV"][0]().build()).structure.groups[1]
+    assert (g.klass, g.order) == (4, 2)
+    assert set(g.internal) == {"B", "C", "D", "E"}
+
+
+def test_redundant_link_found_from_geometry_not_counting():
+    """A parallel third crank moves with the parallelogram (q = 1); a slightly longer one locks it."""
+    mech = lw.compile(parallelogram_with_redundant_link().build())
+    assert (mech.structure.dof, mech.structure.redundant, mech.structure.mobility) == (0, 1, 1)
+    builder = parallelogram_with_redundant_link()
+    builder.link("extra", ends=("O6", "C"), length=0.101)
+    with pytest.raises(StructureError, match="rigid structure"):
+        lw.compile(builder.build())
+
+
+def test_linear_actuator_drive_makes_one_driving_group():
+    s = lw.compile(hydraulic_boom().build()).structure
+    assert s.dof == 1
+    assert [(g.klass, g.links, g.driven) for g in s.groups] == [(1, (1, 2, 3), True)]
+
+
+MECHANISMS = [("example", n) for n in sorted(EXAMPLES)] + [("textbook", n) for n in sorted(TEXTBOOK)]
+
+
+def _mech(kind, name):
+    return lw.compile(lw.example(name) if kind == "example" else TEXTBOOK[name][0]().build())
+
+
+@pytest.mark.parametrize("kind, name", MECHANISMS)
+def test_jacobian_matches_finite_differences(kind, name):
+    mech = _mech(kind, name)
+    rng = np.random.default_rng(1)
+    q = mech.pose0 + rng.normal(scale=0.05, size=mech.pose0.shape)
+    q[0] = 0
+    _, jac = residuals_and_jacobian(q, mech)
+    h = 1e-6
+    fd = np.zeros_like(jac)
+    for j in range(q.size):
+        dq = np.zeros(q.size)
+        dq[j] = h
+        rp, _ = residuals_and_jacobian(q + dq.reshape(q.shape), mech)
+        rm, _ = residuals_and_jacobian(q - dq.reshape(q.shape), mech)
+        fd[:, j] = (rp - rm) / (2 * h)
+    np.testing.assert_allclose(jac, fd, atol=1e-7)
+
+
+@pytest.mark.parametrize("kind, name", MECHANISMS)
+def test_assembly_closes_every_pair(kind, name):
+    """Loop closure checked geometrically, independently of the residual function."""
+    mech = _mech(kind, name)
+    pts = mech.points0()
+    for k in range(mech.n_pairs):
+        a, b = mech.pair_links[k]
+        if mech.pair_type[k] == REVOLUTE:
+            pa, pb = pts[mech.pair_points[k]]
+            assert np.hypot(*(pa - pb)) < 1e-9
+        else:
+            assert mech.pair_type[k] == PRISMATIC
+            assert abs(mech.pose0[b, 2] - mech.pose0[a, 2]) % (2 * math.pi) < 1e-9
+            th = mech.pose0[a, 2]
+            rot = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])
+            origin = mech.pose0[a, :2] + rot @ mech.pair_origin[k]
+            u = rot @ mech.pair_axis[k]
+            d = pts[mech.pair_points[k, 1]] - origin
+            assert abs(u[0] * d[1] - u[1] * d[0]) < 1e-9
+    # link dimensions are kept: distances between points of one link equal the local ones
+    for i in range(mech.n_links_total):
+        idx = np.flatnonzero(mech.point_link == i)
+        for a in idx:
+            for b in idx:
+                assert np.hypot(*(pts[a] - pts[b])) == pytest.approx(
+                    np.hypot(*(mech.point_local[a] - mech.point_local[b])), abs=1e-9
+                )
+
+
+def test_double_cut_shears_assembly_by_circle_construction():
+    mech = lw.compile(lw.example("double-cut-shears"))
+    pts = dict(zip(mech.point_names, mech.points0()))
+    a = (0.6, 0.4)  # crank angle 0
+    b = circle_intersection(a, 0.4, (0.0, 0.0), 0.5, left=True)  # the branch near (0.5, 0)
+    assert abs(b[1]) < 0.1
+    np.testing.assert_allclose(pts["rocker.B"], b, atol=1e-12)
+    psi = math.atan2(b[1], b[0])
+    d = (-0.3 * math.cos(psi), -0.3 * math.sin(psi))
+    c = (0.3 * math.cos(psi), 0.3 * math.sin(psi))
+    np.testing.assert_allclose(pts["knife_upper.E"], (0, d[1] + math.sqrt(0.35**2 - d[0] ** 2)), atol=1e-12)
+    np.testing.assert_allclose(pts["knife_lower.F"], (0, c[1] - math.sqrt(0.35**2 - c[0] ** 2)), atol=1e-12)
+    np.testing.assert_allclose(pts["knife_upper.edge"][1], pts["knife_upper.E"][1] - 0.135, atol=1e-12)
+
+
+def test_percussion_rocker_is_assembled_in_the_pose_of_impact():
+    mech = lw.compile(lw.example("percussion-rocker"))
+    pts = dict(zip(mech.point_names, mech.points0()))
+    np.testing.assert_allclose(pts["rocker.N"], (0.10, 0.02), atol=1e-9)
+    np.testing.assert_allclose(pts["rocker.K"], (0.30, -0.02), atol=1e-9)
+    # J about O = 0.30 kg m^2 given; about the centre of mass by the parallel-axis theorem
+    rocker = mech.link_names.index("rocker")
+    assert mech.link_inertia[rocker] == pytest.approx(0.30 - 6.0 * (0.16**2 + 0.01**2), rel=1e-12)
+
+
+def test_slider_crank_shears_assembly():
+    mech = lw.compile(lw.example("shears-slider-crank"))
+    pts = dict(zip(mech.point_names, mech.points0()))
+    np.testing.assert_allclose(pts["knife.B"], (0, 2 * 0.15 * math.sin(math.pi / 2)), atol=1e-12)
+    crank = mech.link_names.index("crank")
+    assert mech.link_inertia[crank] == pytest.approx(10 * 0.15**2 / 12)
+
+
+def test_rrp_dyad_that_cannot_reach_its_guide_says_why():
+    b = TEXTBOOK["offset slider-crank"][0]()
+    b.link("rod", ends=("A", "B"), length=10)  # mm
+    spec = b.to_dict()
+    spec["drives"][0]["angle"] = -90  # A = (0, -100) mm: 150 mm below the guide y = 50 mm
+    with pytest.raises(UnassemblableError, match=r"the joint A is 0\.15 m from the line .* more than the 0\.01 m"):
+        lw.compile(lw.from_dict(spec))
+
+
+def four_bar_spec(a, b, c, d, phi, left, transform=(0.0, 0.0, 0.0)):
+    """A four-bar as plain data, moved rigidly by ``transform`` = (dx, dy, rotation)."""
+    dx, dy, rot = transform
+    cr, sr = math.cos(rot), math.sin(rot)
+
+    def move(p):
+        return [cr * p[0] - sr * p[1] + dx, sr * p[0] + cr * p[1] + dy]
+
+    pa = (a * math.cos(phi), a * math.sin(phi))
+    pb = circle_intersection(pa, b, (d, 0.0), c, left=left)
+    data = {
+        "units": {"angle": "rad"},
+        "frame": {"points": {"O2": move((0, 0)), "O4": move((d, 0))}},
+        "links": {
+            "crank": {"ends": ["O2", "A"], "length": a},
+            "coupler": {"ends": ["A", "B"], "length": b},
+            "rocker": {"ends": ["O4", "B"], "length": c},
+        },
+        "joints": {
+            "O2": {"type": "revolute", "links": ["frame", "crank"]},
+            "A": {"type": "revolute", "links": ["crank", "coupler"]},
+            "B": {"type": "revolute", "links": ["coupler", "rocker"]},
+            "O4": {"type": "revolute", "links": ["frame", "rocker"]},
+        },
+        "drives": [{"joint": "O2", "angle": phi + rot}],  # the drive angle turns with the frame
+        "hints": {"B": move(pb)},
+    }
+    return data, move(pb)
+
+
+four_bars = st.tuples(
+    st.floats(0.05, 1.0), st.floats(0.05, 1.0), st.floats(0.05, 1.0), st.floats(0.05, 1.0),
+    st.floats(-math.pi, math.pi), st.booleans(),
+).filter(lambda t: _assembles(*t[:5]))
+
+
+def _assembles(a, b, c, d, phi):
+    e = math.hypot(a * math.cos(phi) - d, a * math.sin(phi))
+    # away from the dead points, so that the branch is well defined
+    return abs(b - c) + 0.02 < e < b + c - 0.02 and e > 0.02
+
+
+@settings(max_examples=40, deadline=None)
+@given(four_bars, st.floats(-2, 2), st.floats(-2, 2), st.floats(-math.pi, math.pi))
+def test_random_four_bars_assemble_on_the_hinted_branch_whatever_the_frame(dims, dx, dy, rot):
+    a, b, c, d, phi, left = dims
+    data, pb = four_bar_spec(a, b, c, d, phi, left, (dx, dy, rot))
+    mech = lw.compile(lw.from_dict(data))
+    s = mech.structure
+    assert (s.dof, s.redundant, s.formula) == (1, 0, "I(0,1) -> II(2,3)")
+    np.testing.assert_allclose(mech.points0()[mech.point_names.index("rocker.B")], pb, atol=1e-8)
+
+
+def test_units_do_not_change_the_compiled_model():
+    """The four-bar example in mm, kg and deg equals the same file rewritten in m, g and rad."""
+    from linkwork.examples import text as example_text
+
+    swaps = [
+        ("units: {length: mm, mass: kg, angle: deg}", "units: {length: m, mass: g, angle: rad}"),
+        ("length: 100", "length: 0.1"), ("length: 350", "length: 0.35"), ("length: 250", "length: 0.25"),
+        ("[300, 0]", "[0.3, 0]"), ("[175, 80]", "[0.175, 0.08]"), ("[330, 240]", "[0.33, 0.24]"),
+        ("mass: 1.0", "mass: 1000"), ("mass: 2.5", "mass: 2500"), ("mass: 1.8", "mass: 1800"),
+        ("angle: 60 deg", f"angle: {math.pi / 3!r}"),
+    ]
+    text = example_text("four-bar")
+    for old, new in swaps:
+        assert old in text
+        text = text.replace(old, new)
+    mm, si = lw.compile(lw.example("four-bar")), lw.compile(lw.loads(text))
+    for field in ("point_local", "link_mass", "link_inertia", "link_com", "pose0", "drive_speed", "drive_start"):
+        np.testing.assert_allclose(getattr(si, field), getattr(mm, field), rtol=1e-12, atol=1e-15, err_msg=field)
+
+
+def test_arrays_are_frozen():
+    mech = lw.compile(lw.example("four-bar"))
+    with pytest.raises(ValueError):
+        mech.point_local[0, 0] = 1.0
+    with pytest.raises(AttributeError):
+        mech.name = "x"
+
+
+def test_global_points_broadcast_over_batches():
+    mech = lw.compile(lw.example("double-cut-shears"))
+    q = np.stack([mech.pose0, mech.pose0 + 0.1])
+    batch = global_points(q, mech.point_link, mech.point_local)
+    assert batch.shape == (2, len(mech.point_names), 2)
+    np.testing.assert_allclose(batch[0], mech.points0())
