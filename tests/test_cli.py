@@ -67,8 +67,15 @@ def test_examples_lists_every_bundled_example():
     result = runner.invoke(app, ["examples"])
     assert result.exit_code == 0
     assert [line.split()[0] for line in result.stdout.splitlines()] == names()
-    assert set(names()) >= {"shears-slider-crank", "double-cut-shears", "percussion-rocker", "four-bar",
-                            "watt-six-bar", "stephenson-six-bar", "class3-triad"}
+    assert set(names()) >= {
+        "shears-slider-crank",
+        "double-cut-shears",
+        "percussion-rocker",
+        "four-bar",
+        "watt-six-bar",
+        "stephenson-six-bar",
+        "class3-triad",
+    }
 
 
 def test_example_prints_yaml_that_loads():

@@ -19,8 +19,13 @@ def double_cut_shears_builder():
     b.frame(points={"O1": (0.50, 0.40), "O3": (0.0, 0.0)})
     b.link("crank", ends=("O1", "A"), length=0.10, mass=40, inertia=0.05)
     b.link("rod", ends=("A", "B"), length=0.40, mass=60, inertia=0.80)
-    b.link("rocker", points={"O3": (0, 0), "B": (0.5, 0), "C": (0.3, 0), "D": (-0.3, 0)}, mass=150,
-           com=(0.1, 0), inertia=8.0)
+    b.link(
+        "rocker",
+        points={"O3": (0, 0), "B": (0.5, 0), "C": (0.3, 0), "D": (-0.3, 0)},
+        mass=150,
+        com=(0.1, 0),
+        inertia=8.0,
+    )
     b.link("rod_DE", ends=("D", "E"), length=0.35, mass=30, inertia=0.31)
     b.link("knife_upper", points={"E": (0, 0), "edge": (0, -0.135)}, mass=300, com="E", inertia=0)
     b.link("rod_CF", ends=("C", "F"), length=0.35, mass=30, inertia=0.31)

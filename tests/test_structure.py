@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from mechanisms import TEXTBOOK, circle_intersection, hydraulic_boom, parallelogram_with_redundant_link
 
 import linkwork as lw
 from linkwork.errors import StructureError, UnassemblableError
 from linkwork.structure.constraints import PRISMATIC, REVOLUTE, global_points, residuals_and_jacobian
+from mechanisms import TEXTBOOK, circle_intersection, hydraulic_boom, parallelogram_with_redundant_link
 
 
 @pytest.mark.parametrize("name", sorted(TEXTBOOK))
@@ -23,7 +23,10 @@ def test_textbook_mechanism_structure(name):
     assert (s.n_links, s.p5, s.p4, s.dof, s.redundant) == (n, p5, p4, w, redundant)
     assert s.dof == 3 * s.n_links - 2 * s.p5 - s.p4
     assert s.mobility == mech.n_drives
-    got = [(g.klass, g.order, g.kind if kind is not None else None) for g, (_, _, kind) in zip(s.groups, groups)]
+    got = [
+        (g.klass, g.order, g.kind if kind is not None else None)
+        for g, (_, _, kind) in zip(s.groups, groups, strict=False)
+    ]
     assert got == groups
     # every link is placed exactly once, the frame never
     placed = [i for g in s.groups for i in g.links]
@@ -54,7 +57,7 @@ def test_example_structure(name):
     s = lw.compile(lw.example(name)).structure
     assert (s.n_links, s.p5, s.p4, s.dof, s.redundant) == (n, p5, 0, w, 0)
     assert s.formula == formula
-    assert [g.kind if k is not None else None for g, k in zip(s.groups, kinds)] == kinds
+    assert [g.kind if k is not None else None for g, k in zip(s.groups, kinds, strict=False)] == kinds
     assert s.warnings == ()
 
 
@@ -149,7 +152,7 @@ def test_assembly_closes_every_pair(kind, name):
 
 def test_double_cut_shears_assembly_by_circle_construction():
     mech = lw.compile(lw.example("double-cut-shears"))
-    pts = dict(zip(mech.point_names, mech.points0()))
+    pts = dict(zip(mech.point_names, mech.points0(), strict=False))
     a = (0.6, 0.4)  # crank angle 0
     b = circle_intersection(a, 0.4, (0.0, 0.0), 0.5, left=True)  # the branch near (0.5, 0)
     assert abs(b[1]) < 0.1
@@ -164,7 +167,7 @@ def test_double_cut_shears_assembly_by_circle_construction():
 
 def test_percussion_rocker_is_assembled_in_the_pose_of_impact():
     mech = lw.compile(lw.example("percussion-rocker"))
-    pts = dict(zip(mech.point_names, mech.points0()))
+    pts = dict(zip(mech.point_names, mech.points0(), strict=False))
     np.testing.assert_allclose(pts["rocker.N"], (0.10, 0.02), atol=1e-9)
     np.testing.assert_allclose(pts["rocker.K"], (0.30, -0.02), atol=1e-9)
     # J about O = 0.30 kg m^2 given; about the centre of mass by the parallel-axis theorem
@@ -174,7 +177,7 @@ def test_percussion_rocker_is_assembled_in_the_pose_of_impact():
 
 def test_slider_crank_shears_assembly():
     mech = lw.compile(lw.example("shears-slider-crank"))
-    pts = dict(zip(mech.point_names, mech.points0()))
+    pts = dict(zip(mech.point_names, mech.points0(), strict=False))
     np.testing.assert_allclose(pts["knife.B"], (0, 2 * 0.15 * math.sin(math.pi / 2)), atol=1e-12)
     crank = mech.link_names.index("crank")
     assert mech.link_inertia[crank] == pytest.approx(10 * 0.15**2 / 12)
@@ -220,8 +223,12 @@ def four_bar_spec(a, b, c, d, phi, left, transform=(0.0, 0.0, 0.0)):
 
 
 four_bars = st.tuples(
-    st.floats(0.05, 1.0), st.floats(0.05, 1.0), st.floats(0.05, 1.0), st.floats(0.05, 1.0),
-    st.floats(-math.pi, math.pi), st.booleans(),
+    st.floats(0.05, 1.0),
+    st.floats(0.05, 1.0),
+    st.floats(0.05, 1.0),
+    st.floats(0.05, 1.0),
+    st.floats(-math.pi, math.pi),
+    st.booleans(),
 ).filter(lambda t: _assembles(*t[:5]))
 
 
@@ -248,9 +255,15 @@ def test_units_do_not_change_the_compiled_model():
 
     swaps = [
         ("units: {length: mm, mass: kg, angle: deg}", "units: {length: m, mass: g, angle: rad}"),
-        ("length: 100", "length: 0.1"), ("length: 350", "length: 0.35"), ("length: 250", "length: 0.25"),
-        ("[300, 0]", "[0.3, 0]"), ("[175, 80]", "[0.175, 0.08]"), ("[330, 240]", "[0.33, 0.24]"),
-        ("mass: 1.0", "mass: 1000"), ("mass: 2.5", "mass: 2500"), ("mass: 1.8", "mass: 1800"),
+        ("length: 100", "length: 0.1"),
+        ("length: 350", "length: 0.35"),
+        ("length: 250", "length: 0.25"),
+        ("[300, 0]", "[0.3, 0]"),
+        ("[175, 80]", "[0.175, 0.08]"),
+        ("[330, 240]", "[0.33, 0.24]"),
+        ("mass: 1.0", "mass: 1000"),
+        ("mass: 2.5", "mass: 2500"),
+        ("mass: 1.8", "mass: 1800"),
         ("angle: 60 deg", f"angle: {math.pi / 3!r}"),
     ]
     text = example_text("four-bar")

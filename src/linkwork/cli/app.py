@@ -100,8 +100,13 @@ def _print_structure(mech: Any) -> None:
     for i, g in enumerate(s.groups, 1):
         links = ", ".join(f"{n} {name}" for n, name in zip(g.links, g.link_names, strict=True))
         table.add_row(
-            str(i), g.label.split(" ")[0], str(g.klass), "-" if g.order is None else str(g.order),
-            g.kind, links, ", ".join(g.joints),
+            str(i),
+            g.label.split(" ")[0],
+            str(g.klass),
+            "-" if g.order is None else str(g.order),
+            g.kind,
+            links,
+            ", ".join(g.joints),
         )
     console.print(table)
     console.print(f"  structural formula: {s.formula}")

@@ -19,8 +19,13 @@ def text(name: str) -> str:
     if name not in names():
         from linkwork.spec.checks import suggest
 
-        raise SpecError([Problem("", f'no bundled example "{name}"{suggest(name, names())}; '
-                                 f"the examples are: {', '.join(names())}")])
+        raise SpecError(
+            [
+                Problem(
+                    "", f'no bundled example "{name}"{suggest(name, names())}; the examples are: {", ".join(names())}'
+                )
+            ]
+        )
     return (resources.files(__name__) / f"{name}.yaml").read_text(encoding="utf-8")
 
 
@@ -44,5 +49,12 @@ def resolve(file_or_example: str) -> Any:
         return load_example(file_or_example)
     from linkwork.spec.checks import suggest
 
-    raise SpecError([Problem("", f'no such file or bundled example "{file_or_example}"'
-                             f"{suggest(file_or_example, names())}; `linkwork examples` lists the examples")])
+    raise SpecError(
+        [
+            Problem(
+                "",
+                f'no such file or bundled example "{file_or_example}"'
+                f"{suggest(file_or_example, names())}; `linkwork examples` lists the examples",
+            )
+        ]
+    )

@@ -107,7 +107,7 @@ def _unique(problems: list[Problem]) -> list[Problem]:
         if (p.path, p.message) not in seen:
             seen.add((p.path, p.message))
             out.append(p)
-    return sorted(out, key=lambda p: (p.line if p.line is not None else 0))
+    return sorted(out, key=lambda p: p.line if p.line is not None else 0)
 
 
 def _convert(src: Source, err: Any) -> Problem:
@@ -122,7 +122,9 @@ def _convert(src: Source, err: Any) -> Problem:
     if kind == "literal_error":
         expected = err.get("ctx", {}).get("expected", "")
         options = [o.strip().strip("'") for o in expected.replace(" or ", ", ").split(",")]
-        return src.problem(loc, f'expected one of {", ".join(options)}, got {_show(value)}{suggest(str(value), options)}')
+        return src.problem(
+            loc, f"expected one of {', '.join(options)}, got {_show(value)}{suggest(str(value), options)}"
+        )
     if kind == "linkwork":
         return src.problem(loc, err["msg"])
     if kind in ("dict_type", "model_type", "model_attributes_type"):

@@ -131,8 +131,9 @@ class Link(_Strict):
         None, description="centre of mass: a point name or local [x, y]; default: centroid of the points"
     )
     inertia: Inertia | None = Field(
-        None, description="moment of inertia about the centre of mass (or about inertia_about); "
-        "default for a link given by ends and length: uniform rod m L^2/12, otherwise 0"
+        None,
+        description="moment of inertia about the centre of mass (or about inertia_about); "
+        "default for a link given by ends and length: uniform rod m L^2/12, otherwise 0",
     )
     inertia_about: str | None = Field(None, description="a point name: inertia is given about this point")
     description: str | None = None

@@ -39,7 +39,9 @@ def fit_pose(local: np.ndarray, glob: np.ndarray, theta: float | None = None) ->
     return np.array([t[0], t[1], theta])
 
 
-def scaled(q: np.ndarray, mech: Mechanism, rows: Rows, scale: float, drive_values: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+def scaled(
+    q: np.ndarray, mech: Mechanism, rows: Rows, scale: float, drive_values: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Residuals and Jacobian with angles made commensurate with lengths."""
     r, jac = residuals_and_jacobian(q, mech, drive_values, with_drives=True)
     r = np.where(rows.angular, r * scale, r)
@@ -54,7 +56,12 @@ def group_rows(rows: Rows, placed: set[int], group: set[int]) -> list[int]:
 
 
 def solve_group(
-    mech: Mechanism, rows: Rows, q: np.ndarray, subset: tuple[int, ...], sel: list[int], scale: float,
+    mech: Mechanism,
+    rows: Rows,
+    q: np.ndarray,
+    subset: tuple[int, ...],
+    sel: list[int],
+    scale: float,
     drive_values: np.ndarray | None = None,
 ) -> tuple[np.ndarray, float]:
     """Solve one group in place of ``q``; returns the new q and the largest residual (m)."""
@@ -228,10 +235,14 @@ def _dyad_reason(mech: Mechanism, group: AssurGroup, q: np.ndarray, placed: set[
         rb, pb, nb = arm(lb, kb)
         d = float(np.hypot(*(pa - pb)))
         if d > ra + rb:
-            return (f"the joints {na} and {nb} are {d:.4g} m apart, more than the {ra:.4g} + {rb:.4g} = "
-                    f"{ra + rb:.4g} m that the links {mech.link_names[la]} and {mech.link_names[lb]} can span")
-        return (f"the joints {na} and {nb} are {d:.4g} m apart, less than the difference {abs(ra - rb):.4g} m "
-                f"of the links {mech.link_names[la]} and {mech.link_names[lb]}")
+            return (
+                f"the joints {na} and {nb} are {d:.4g} m apart, more than the {ra:.4g} + {rb:.4g} = "
+                f"{ra + rb:.4g} m that the links {mech.link_names[la]} and {mech.link_names[lb]} can span"
+            )
+        return (
+            f"the joints {na} and {nb} are {d:.4g} m apart, less than the difference {abs(ra - rb):.4g} m "
+            f"of the links {mech.link_names[la]} and {mech.link_names[lb]}"
+        )
     rod, slider = (la, lb) if mech.pair_type[outer[la]] == REVOLUTE else (lb, la)
     r, p, name = arm(rod, outer[rod])
     kp = outer[slider]
@@ -244,8 +255,10 @@ def _dyad_reason(mech: Mechanism, group: AssurGroup, q: np.ndarray, placed: set[
     offset = rot @ (mech.point_local[inner_pt] - mech.point_local[int(mech.pair_points[kp, 1])])
     n = np.array([-u[1], u[0]])
     h = abs(float(n @ (p - origin - offset)))
-    return (f"the joint {name} is {h:.4g} m from the line on which the slider {mech.link_names[slider]} "
-            f"carries the joint {mech.pair_joint[inner]}, more than the {r:.4g} m of the link {mech.link_names[rod]}")
+    return (
+        f"the joint {name} is {h:.4g} m from the line on which the slider {mech.link_names[slider]} "
+        f"carries the joint {mech.pair_joint[inner]}, more than the {r:.4g} m of the link {mech.link_names[rod]}"
+    )
 
 
 def _coord(mech: Mechanism, pair: int, value: float) -> str:

@@ -126,9 +126,7 @@ def _classify(
     return group(klass, len(external), kind)
 
 
-def _group_class(
-    subset: tuple[int, ...], internal: list[int], external: list[int], pair_links: np.ndarray
-) -> int:
+def _group_class(subset: tuple[int, ...], internal: list[int], external: list[int], pair_links: np.ndarray) -> int:
     """Artobolevsky's class: the largest closed contour of internal pairs, or
     the most pairs on one link of the group, whichever is larger."""
     adj: dict[int, set[int]] = {i: set() for i in subset}

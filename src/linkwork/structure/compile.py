@@ -82,7 +82,9 @@ def _compile(spec: Spec) -> Mechanism:
     if mobility != mech.n_drives:
         msg = _mismatch(n, p5, p4, w, drives_text)
         if redundant:
-            msg += f"; {redundant} constraint(s) are redundant in the assembly pose, so the actual mobility is {mobility}"
+            msg += (
+                f"; {redundant} constraint(s) are redundant in the assembly pose, so the actual mobility is {mobility}"
+            )
         raise StructureError(msg)
     warnings = []
     if r0 < r:
@@ -104,15 +106,15 @@ def _w_text(n: int, p5: int, p4: int, w: int) -> str:
 
 
 def _mismatch(n: int, p5: int, p4: int, w: int, drives_text: str) -> str:
-    what = (
-        "the mechanism is a rigid structure" if w <= 0 else f"the mechanism has {w} degree(s) of freedom"
-    )
+    what = "the mechanism is a rigid structure" if w <= 0 else f"the mechanism has {w} degree(s) of freedom"
     return f"{_w_text(n, p5, p4, w)}: {what}, but {drives_text}; the number of drives must equal W"
 
 
 def _drives_text(spec: Spec) -> str:
     names = ", ".join(d.joint for d in spec.drives)
-    return f"{len(spec.drives)} drive{'s' if len(spec.drives) != 1 else ''} ({names}) {'is' if len(spec.drives) == 1 else 'are'} given"
+    if len(spec.drives) == 1:
+        return f"1 drive ({names}) is given"
+    return f"{len(spec.drives)} drives ({names}) are given"
 
 
 def _scale(mech: Mechanism) -> float:
@@ -151,7 +153,7 @@ def _require_hints(spec: Spec, mech: Mechanism, groups: list[AssurGroup], hints:
                 joint = mech.pair_joint[k]
                 add(
                     ("hints",) if in_file else ("joints", joint),
-                    f'group {group.label} (links {", ".join(group.link_names)}) needs a hint for its inner '
+                    f"group {group.label} (links {', '.join(group.link_names)}) needs a hint for its inner "
                     f'joint "{joint}" to choose its assembly mode: add "{joint}: [x, y]" under hints, '
                     "near where it is in the assembly pose",
                 )
@@ -228,9 +230,12 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
                 j = link.inertia - mass[i] * d2
                 if j < -1e-12 * max(link.inertia, 1e-30):
                     problems.append(
-                        _problem(spec, ("links", name, "inertia"),
-                                 f"an inertia of {link.inertia:.6g} kg m^2 about {link.inertia_about} is less than "
-                                 f"m d^2 = {mass[i] * d2:.6g} kg m^2 of the centre of mass alone: impossible")
+                        _problem(
+                            spec,
+                            ("links", name, "inertia"),
+                            f"an inertia of {link.inertia:.6g} kg m^2 about {link.inertia_about} is less than "
+                            f"m d^2 = {mass[i] * d2:.6g} kg m^2 of the centre of mass alone: impossible",
+                        )
                     )
                 j = max(j, 0.0)
             inertia[i] = j
@@ -242,8 +247,9 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
                 for b in range(a + 1, len(pts)):
                     if np.hypot(*(pts[a] - pts[b])) < 1e-12:
                         names = list(local)
-                        problems.append(_problem(spec, ("links", name, "points"),
-                                                 f"points {names[a]} and {names[b]} coincide"))
+                        problems.append(
+                            _problem(spec, ("links", name, "points"), f"points {names[a]} and {names[b]} coincide")
+                        )
     if problems:
         raise SpecError(problems)
     if spec.frame.mass is not None:
@@ -256,7 +262,9 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
 
     pair_type, pair_links, pair_points, pair_origin, pair_axis, pair_joint = [], [], [], [], [], []
 
-    def add_pair(kind: int, a: int, b: int, pa: int, pb: int, origin: Any = (0.0, 0.0), axis: Any = (1.0, 0.0), joint: str = "") -> None:
+    def add_pair(
+        kind: int, a: int, b: int, pa: int, pb: int, origin: Any = (0.0, 0.0), axis: Any = (1.0, 0.0), joint: str = ""
+    ) -> None:
         pair_type.append(kind)
         pair_links.append((a, b))
         pair_points.append((pa, pb))

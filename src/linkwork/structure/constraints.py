@@ -96,7 +96,7 @@ def global_points(q: np.ndarray, point_link: np.ndarray, point_local: np.ndarray
 
 def residuals_and_jacobian(
     q: np.ndarray,
-    mech: "object",
+    mech: object,
     drive_values: np.ndarray | None = None,
     with_drives: bool = True,
 ) -> tuple[np.ndarray, np.ndarray]:
