@@ -289,3 +289,21 @@ def test_global_points_broadcast_over_batches():
     batch = global_points(q, mech.point_link, mech.point_local)
     assert batch.shape == (2, len(mech.point_names), 2)
     np.testing.assert_allclose(batch[0], mech.points0())
+
+
+def test_assembly_at_a_dead_point_is_reported():
+    """Non-Grashof four-bar a, b, c, d = 0.1, 0.2, 0.15, 0.3 at its limit angle, where coupler and
+    rocker are stretched in line: cos(phi) = (a^2 + d^2 - (b + c)^2) / (2 a d) by the cosine law."""
+    a, b, c, d = 0.1, 0.2, 0.15, 0.3
+    phi = math.acos((a * a + d * d - (b + c) ** 2) / (2 * a * d))
+    pa = (a * math.cos(phi), a * math.sin(phi))
+    pb = (pa[0] + b / (b + c) * (d - pa[0]), pa[1] * (1 - b / (b + c)))
+    data, _ = four_bar_spec(a, 0.35, 0.25, d, phi, False)
+    data["links"]["coupler"]["length"], data["links"]["rocker"]["length"] = b, c
+    data["hints"] = {"B": [pb[0], pb[1] + 0.01]}
+    mech = lw.compile(lw.from_dict(data))
+    assert mech.structure.redundant == 0
+    assert any("singular position (dead point)" in w for w in mech.structure.warnings)
+    np.testing.assert_allclose(mech.points0()[mech.point_names.index("rocker.B")], pb, atol=1e-6)
+    data["drives"][0]["angle"] = phi - 0.3  # away from it: no warning
+    assert lw.compile(lw.from_dict(data)).structure.warnings == ()

@@ -74,9 +74,10 @@ def _compile(spec: Spec) -> Mechanism:
     mech = dataclasses.replace(mech, pose0=q0)
 
     pair_rows = [i for i in range(rows.n) if rows.drive[i] < 0]
-    r0 = rank(scaled(q0, mech, rows, scale)[1][np.ix_(pair_rows, range(3, 3 * n_total))])
-    r1 = _neighbour_rank(mech, rows, q0, scale, pair_rows)
-    r = max(r0, r1)
+    r0, rd0 = _ranks(mech, rows, q0, scale, pair_rows)
+    near = [_ranks(mech, rows, q1, scale, pair_rows, v) for q1, v in _neighbours(mech, rows, q0, scale)]
+    r = max([r0] + [n[0] for n in near])
+    rd = max([rd0] + [n[1] for n in near])
     mobility = 3 * (n_total - 1) - r
     redundant = len(pair_rows) - r
     if mobility != mech.n_drives:
@@ -87,10 +88,10 @@ def _compile(spec: Spec) -> Mechanism:
             )
         raise StructureError(msg)
     warnings = []
-    if r0 < r:
+    if rd0 < rd:
         warnings.append(
             "the assembly pose is a singular position (dead point): the constraint Jacobian loses "
-            f"rank {r - r0} there; choose another drive angle for the assembly"
+            f"rank {rd - rd0} there; choose another drive angle for the assembly"
         )
     warnings += _hint_warnings(mech, hints, scale)
     structure = Structure(n, p5, p4, w, redundant, mobility, tuple(groups), formula(groups), tuple(warnings))
@@ -124,15 +125,25 @@ def _scale(mech: Mechanism) -> float:
     return max(max(spans), 1e-3)
 
 
-def _neighbour_rank(mech: Mechanism, rows: Any, q0: np.ndarray, scale: float, pair_rows: list[int]) -> int:
-    """Rank at a pose a little way along the motion (singular poses are isolated)."""
+def _ranks(
+    mech: Mechanism, rows: Any, q: np.ndarray, scale: float, pair_rows: list[int], values: Any = None
+) -> tuple[int, int]:
+    """Rank of the pair constraints, and of pairs and drives together, at pose ``q``."""
+    jac = scaled(q, mech, rows, scale, values)[1][:, 3:]
+    return rank(jac[pair_rows]), rank(jac)
+
+
+def _neighbours(mech: Mechanism, rows: Any, q0: np.ndarray, scale: float) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Poses a little way either side along the motion (singular poses are isolated)."""
     step = np.where(mech.pair_type[mech.drive_pair] == REVOLUTE, 0.02, 0.002 * scale)
-    values = mech.drive_start + step
     links = tuple(range(1, mech.n_links_total))
-    q1, worst = solve_group(mech, rows, q0, links, list(range(rows.n)), scale, values)
-    if not worst <= 1e-9 * scale:
-        return 0
-    return rank(scaled(q1, mech, rows, scale, values)[1][np.ix_(pair_rows, range(3, 3 * mech.n_links_total))])
+    out = []
+    for sign in (1.0, -1.0):
+        values = mech.drive_start + sign * step
+        q1, worst = solve_group(mech, rows, q0, links, list(range(rows.n)), scale, values)
+        if worst <= 1e-9 * scale:
+            out.append((q1, values))
+    return out
 
 
 def _require_hints(spec: Spec, mech: Mechanism, groups: list[AssurGroup], hints: dict[int, np.ndarray]) -> None:
