@@ -305,5 +305,5 @@ def test_assembly_at_a_dead_point_is_reported():
     assert mech.structure.redundant == 0
     assert any("singular position (dead point)" in w for w in mech.structure.warnings)
     np.testing.assert_allclose(mech.points0()[mech.point_names.index("rocker.B")], pb, atol=1e-6)
-    data["drives"][0]["angle"] = phi - 0.3  # away from it: no warning
-    assert lw.compile(lw.from_dict(data)).structure.warnings == ()
+    data["drives"][0]["angle"] = phi - 0.3  # away from it: no such warning
+    assert not any("dead point" in w for w in lw.compile(lw.from_dict(data)).structure.warnings)
