@@ -218,12 +218,14 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
     com = np.zeros((n_total, 2))
     inertia = np.zeros(n_total)
     virtual = np.zeros(n_total, dtype=bool)
+    ends = np.full((n_total, 2), -1)
     problems = []
     for name, link in spec.links.items():
         i = index[name]
         if link.ends is not None and link.length is not None:
             add_point(i, link.ends[0], (0.0, 0.0))
             add_point(i, link.ends[1], (link.length, 0.0))
+            ends[i] = (pindex[(i, link.ends[0])], pindex[(i, link.ends[1])])
         for pname, xy in link.points.items():
             add_point(i, pname, xy)
         local = {p: np.array(point_local[pindex[(i, p)]]) for (li, p) in pindex if li == i}
@@ -272,6 +274,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
             com[0] = c
 
     pair_type, pair_links, pair_points, pair_origin, pair_axis, pair_joint = [], [], [], [], [], []
+    origin_point: list[int] = []
 
     def add_pair(
         kind: int, a: int, b: int, pa: int, pb: int, origin: Any = (0.0, 0.0), axis: Any = (1.0, 0.0), joint: str = ""
@@ -282,8 +285,11 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         pair_origin.append(origin)
         pair_axis.append(axis)
         pair_joint.append(joint)
+        if kind == REVOLUTE:
+            origin_point.append(-1)
 
     def line(guide: int, through: Any, axis: float) -> tuple[Any, Any]:
+        origin_point.append(pindex[(guide, through)] if isinstance(through, str) else -1)
         origin = point_local[pindex[(guide, through)]] if isinstance(through, str) else through
         return origin, (math.cos(axis), math.sin(axis))
 
@@ -362,6 +368,8 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         drive_start=f(drive_start),
         gravity=spec.gravity,
         joint_names=tuple(spec.joints),
+        link_ends=f(ends, int).reshape(-1, 2),
+        pair_origin_point=f(origin_point, int),
     )
     return arrays, hints, (len(spec.links), p5, p4)
 

@@ -99,6 +99,7 @@ def residuals_and_jacobian(
     mech: object,
     drive_values: np.ndarray | None = None,
     with_drives: bool = True,
+    geom: object | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Residuals ``(..., m)`` and Jacobian ``(..., m, 3 * n_links_total)``.
 
@@ -108,15 +109,21 @@ def residuals_and_jacobian(
         Link poses, frame included as link 0.
     mech : Mechanism
         Needs the ``pair_*``, ``point_*`` and ``drive_*`` arrays.
+    geom : object, optional
+        Dimensions of design variants (``point_local``, ``pair_origin``,
+        ``pair_axis`` with leading dimensions that broadcast against ``q``'s);
+        default: the mechanism's own.
     drive_values : ndarray, shape (..., n_drives), optional
         Drive coordinates; default: the assembly values ``drive_start``.
     with_drives : bool
         Include the drive rows.
     """
     q = np.asarray(q, dtype=float)
-    batch = q.shape[:-2]
+    geom = mech if geom is None else geom
+    batch = np.broadcast_shapes(q.shape[:-2], np.shape(geom.point_local)[:-2])
+    q = np.broadcast_to(q, batch + q.shape[-2:])
     n = q.shape[-2]
-    pts_local = mech.point_local
+    pts_local = geom.point_local
     res: list[np.ndarray] = []
     jac: list[np.ndarray] = []
 
@@ -130,9 +137,9 @@ def residuals_and_jacobian(
 
     def line_terms(k: int) -> tuple[np.ndarray, ...]:
         a, b = mech.pair_links[k]
-        pa_b, dpb = point_terms(b, pts_local[mech.pair_points[k, 1]])
-        c_glob, dc = point_terms(a, mech.pair_origin[k])
-        u = _rot(q[..., a, 2], np.broadcast_to(mech.pair_axis[k], batch + (2,)))
+        pa_b, dpb = point_terms(b, pts_local[..., mech.pair_points[k, 1], :])
+        c_glob, dc = point_terms(a, geom.pair_origin[..., k, :])
+        u = _rot(q[..., a, 2], np.broadcast_to(geom.pair_axis[..., k, :], batch + (2,)))
         return a, b, pa_b, dpb, c_glob, dc, u
 
     def line_row(k: int, direction: str) -> tuple[np.ndarray, np.ndarray]:
@@ -151,8 +158,8 @@ def residuals_and_jacobian(
     for k, kind in enumerate(mech.pair_type):
         a, b = mech.pair_links[k]
         if kind == REVOLUTE:
-            pa, dpa = point_terms(a, pts_local[mech.pair_points[k, 0]])
-            pb, dpb = point_terms(b, pts_local[mech.pair_points[k, 1]])
+            pa, dpa = point_terms(a, pts_local[..., mech.pair_points[k, 0], :])
+            pb, dpb = point_terms(b, pts_local[..., mech.pair_points[k, 1], :])
             for axis in (0, 1):
                 row = zeros()
                 row[..., 3 * a + axis] += 1.0
@@ -188,3 +195,51 @@ def residuals_and_jacobian(
     if not res:
         return np.zeros(batch + (0,)), np.zeros(batch + (0, 3 * n))
     return np.stack(res, axis=-1), np.stack(jac, axis=-2)
+
+
+def velocity_products(q: np.ndarray, qd: np.ndarray, mech: "object", geom: "object | None" = None) -> np.ndarray:
+    """The terms of the constraints' second time derivative that are quadratic in velocity.
+
+    With these, ``J @ qdd + gamma = d2(drive)/dt2`` on drive rows and 0 on the others.
+    Shapes as in :func:`residuals_and_jacobian`: ``(..., m)`` with the drive rows last.
+    """
+    geom = mech if geom is None else geom
+    batch = np.broadcast_shapes(q.shape[:-2], qd.shape[:-2], np.shape(geom.point_local)[:-2])
+    q = np.broadcast_to(q, batch + q.shape[-2:])
+    qd = np.broadcast_to(qd, batch + qd.shape[-2:])
+    out: list[np.ndarray] = []
+
+    def rp(link: int, p_local: np.ndarray) -> np.ndarray:
+        return _rot(q[..., link, 2], np.broadcast_to(p_local, batch + (2,)))
+
+    def vel(link: int, r: np.ndarray) -> np.ndarray:
+        return qd[..., link, :2] + qd[..., link, 2, None] * _perp(r)
+
+    def line_gamma(k: int, direction: str) -> np.ndarray:
+        a, b = mech.pair_links[k]
+        r_b = rp(b, geom.point_local[..., mech.pair_points[k, 1], :])
+        r_c = rp(a, geom.pair_origin[..., k, :])
+        u = rp(a, geom.pair_axis[..., k, :])
+        v = _perp(u) if direction == "n" else u
+        d = q[..., b, :2] + r_b - q[..., a, :2] - r_c
+        dd = vel(b, r_b) - vel(a, r_c)
+        wa, wb = qd[..., a, 2], qd[..., b, 2]
+        return (
+            -(wa**2) * np.sum(v * d, -1)
+            + 2 * wa * np.sum(_perp(v) * dd, -1)
+            + np.sum(v * (-(wb[..., None] ** 2) * r_b + wa[..., None] ** 2 * r_c), -1)
+        )
+
+    for k, kind in enumerate(mech.pair_type):
+        a, b = mech.pair_links[k]
+        if kind == REVOLUTE:
+            ra = rp(a, geom.point_local[..., mech.pair_points[k, 0], :])
+            rb = rp(b, geom.point_local[..., mech.pair_points[k, 1], :])
+            g = -(qd[..., a, 2, None] ** 2) * ra + qd[..., b, 2, None] ** 2 * rb
+            out += [g[..., 0], g[..., 1]]
+        else:
+            out.append(np.zeros(batch))
+            out.append(line_gamma(k, "n"))
+    for k in mech.drive_pair:
+        out.append(np.zeros(batch) if mech.pair_type[k] == REVOLUTE else line_gamma(k, "u"))
+    return np.stack(out, axis=-1)

@@ -189,6 +189,8 @@ class Mechanism:
     pose0: np.ndarray  # (N, 3) assembly pose
     structure: Structure
     joint_names: tuple[str, ...] = field(default=())
+    link_ends: np.ndarray | None = None  # (N, 2) point indices of links given by ends and length; -1 otherwise
+    pair_origin_point: np.ndarray | None = None  # (M,) point whose local coordinates are the guide origin; -1
 
     @property
     def n_links(self) -> int:
