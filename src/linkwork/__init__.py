@@ -22,6 +22,9 @@ _LAZY = {
     "AssurGroup": ("linkwork.structure.model", "AssurGroup"),
     "example": ("linkwork.examples", "load_example"),
     "resolve": ("linkwork.examples", "resolve"),
+    "kinematics": ("linkwork.motion", "kinematics"),
+    "Kinematics": ("linkwork.motion", "Kinematics"),
+    "parameters": ("linkwork.motion.geometry", "parameters"),
 }
 
 __all__ = ["__version__", *_LAZY]

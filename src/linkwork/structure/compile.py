@@ -95,7 +95,10 @@ def _compile(spec: Spec) -> Mechanism:
         )
     warnings += _hint_warnings(mech, hints, scale)
     structure = Structure(n, p5, p4, w, redundant, mobility, tuple(groups), formula(groups), tuple(warnings))
-    return dataclasses.replace(mech, structure=structure)
+    mech = dataclasses.replace(mech, structure=structure)
+    from linkwork.motion.program import build
+
+    return dataclasses.replace(mech, program=build(mech))
 
 
 _EMPTY = Structure(0, 0, 0, 0, 0, 0, (), "")

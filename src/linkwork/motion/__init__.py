@@ -1,0 +1,195 @@
+"""Kinematics: positions, velocities and accelerations of every point and link.
+
+>>> import linkwork as lw
+>>> mech = lw.compile(lw.load("double-cut-shears"))
+>>> kin = lw.kinematics(mech, steps=360)
+>>> kin.position("E").shape
+(360, 2)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError, UnassemblableError
+from linkwork.motion.events import Event
+from linkwork.motion.geometry import Geometry, ParameterError, geometry, parameters
+from linkwork.structure.constraints import REVOLUTE
+
+__all__ = ["Event", "Geometry", "Kinematics", "ParameterError", "geometry", "kinematics", "parameters"]
+
+
+@dataclass(frozen=True)
+class Kinematics:
+    """Positions, velocities and accelerations over crank angles and design variants.
+
+    Arrays are ``(n_variants, n_angles, ...)``; the accessors drop the
+    variant axis when no variants were asked for, so ``position("E")`` is
+    ``(n_angles, 2)`` for one mechanism and ``(n_variants, n_angles, 2)``
+    for a sweep.  Link states are the pose ``(x, y, theta)`` of each link's
+    local frame, its velocity ``(vx, vy, omega)`` and acceleration
+    ``(ax, ay, epsilon)``; SI units, radians.  Samples where the mechanism
+    does not assemble are NaN and ``valid`` is False there.
+    """
+
+    mechanism: Any
+    drive: np.ndarray  # (A, D) drive coordinates
+    rates: np.ndarray  # (A, D) drive speeds
+    pose: np.ndarray  # (V, A, N, 3)
+    vel: np.ndarray
+    acc: np.ndarray
+    local: np.ndarray  # (V, 1, P, 2)
+    valid_all: np.ndarray  # (V, A)
+    events: tuple[Event, ...]
+    variants: bool
+    step_det: tuple[np.ndarray, ...] = ()
+
+    def _out(self, a: np.ndarray) -> np.ndarray:
+        return a if self.variants else a[0]
+
+    @property
+    def angles(self) -> np.ndarray:
+        """Drive coordinate of the (first) drive at each sample, rad (m for a linear drive)."""
+        return self.drive[:, 0]
+
+    @property
+    def valid(self) -> np.ndarray:
+        """True where every group assembled."""
+        return self._out(self.valid_all)
+
+    def point_index(self, point: str) -> int:
+        """Index of a point given as ``link.point`` or a joint name."""
+        try:
+            return self.mechanism.point_index(point)
+        except KeyError:
+            from linkwork.spec.checks import suggest
+
+            names = list(self.mechanism.point_names) + list(self.mechanism.joint_names)
+            raise KeyError(f'no point "{point}"{suggest(point, names)}') from None
+
+    def link_index(self, link: str | int) -> int:
+        if isinstance(link, int | np.integer):
+            return int(link)
+        if link not in self.mechanism.link_names:
+            from linkwork.spec.checks import suggest
+
+            raise KeyError(f'no link "{link}"{suggest(link, self.mechanism.link_names)}')
+        return self.mechanism.link_names.index(link)
+
+    def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        p = self.point_index(point)
+        link = int(self.mechanism.point_link[p])
+        q, v, a = self.pose[:, :, link], self.vel[:, :, link], self.acc[:, :, link]
+        loc = self.local[:, :, p]
+        c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
+        r = np.stack([c * loc[..., 0] - s * loc[..., 1], s * loc[..., 0] + c * loc[..., 1]], axis=-1)
+        pr = np.stack([-r[..., 1], r[..., 0]], axis=-1)
+        w, e = v[..., 2, None], a[..., 2, None]
+        return q[..., :2] + r, v[..., :2] + w * pr, a[..., :2] + e * pr - w * w * r
+
+    def position(self, point: str) -> np.ndarray:
+        """Global position of a point, m: ``(..., n_angles, 2)``."""
+        return self._out(self._point(point)[0])
+
+    def velocity(self, point: str) -> np.ndarray:
+        """Velocity of a point, m/s: ``(..., n_angles, 2)``."""
+        return self._out(self._point(point)[1])
+
+    def acceleration(self, point: str) -> np.ndarray:
+        """Acceleration of a point, m/s^2: ``(..., n_angles, 2)``."""
+        return self._out(self._point(point)[2])
+
+    def angle(self, link: str | int) -> np.ndarray:
+        """Angle of a link's local x axis, rad: ``(..., n_angles)``."""
+        return self._out(self.pose[:, :, self.link_index(link), 2])
+
+    def omega(self, link: str | int) -> np.ndarray:
+        """Angular velocity, rad/s (counter-clockwise positive)."""
+        return self._out(self.vel[:, :, self.link_index(link), 2])
+
+    def epsilon(self, link: str | int) -> np.ndarray:
+        """Angular acceleration, rad/s^2."""
+        return self._out(self.acc[:, :, self.link_index(link), 2])
+
+    def points(self) -> np.ndarray:
+        """Positions of all points, ``(..., n_angles, n_points, 2)`` (order of ``mechanism.point_names``)."""
+        m = self.mechanism
+        q = self.pose[:, :, m.point_link]
+        c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
+        loc = self.local
+        r = np.stack([c * loc[..., 0] - s * loc[..., 1], s * loc[..., 0] + c * loc[..., 1]], axis=-1)
+        return self._out(q[..., :2] + r)
+
+
+def cycle(mech: Any, steps: int) -> np.ndarray:
+    """Drive coordinates of a uniform cycle of the first drive from its assembly value, in its direction."""
+    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+        raise LinkworkError("steps= needs a mechanism with one revolute drive; give the angles instead")
+    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
+    return mech.drive_start[0] + sign * 2 * np.pi * np.arange(steps) / steps
+
+
+def kinematics(
+    mech: Any,
+    angles: Any = None,
+    *,
+    steps: int | None = None,
+    variants: dict[str, Any] | None = None,
+    speed: Any = None,
+    strict: bool = False,
+) -> Kinematics:
+    """Positions, velocities and accelerations at the given drive coordinates.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        From :func:`linkwork.compile`.
+    angles : array_like, shape (A,) or (A, D)
+        Drive coordinates (rad for revolute drives, m for prismatic ones):
+        the crank angle in the frame's axes, counter-clockwise from +x.
+    steps : int, optional
+        Instead of ``angles``: ``steps`` equal steps of a whole turn of the
+        crank from its assembly angle, in its direction of rotation.
+    variants : dict, optional
+        Design variants: arrays of values (SI) of named dimensions, all of
+        one length V, e.g. ``{"links.crank.length": np.linspace(0.09, 0.11, 100)}``;
+        :func:`parameters` lists the names.
+    speed : float or array_like (D,), optional
+        Drive speeds (rad/s or m/s); default the file's.  A drive without a
+        speed is taken at 1 rad/s (1 m/s): velocities are then the first
+        kinematic transfer functions (velocity analogues).
+    strict : bool
+        Raise :class:`UnassemblableError` if any sample fails to assemble.
+
+    Returns
+    -------
+    Kinematics
+    """
+    from linkwork.motion.events import find
+    from linkwork.motion.solve import run
+
+    if (angles is None) == (steps is None):
+        raise LinkworkError("give either angles or steps")
+    values = cycle(mech, steps) if steps is not None else np.asarray(angles, dtype=float)
+    values = values.reshape(len(values), -1) if values.ndim else values.reshape(1, 1)
+    if values.shape[1] != mech.n_drives:
+        raise LinkworkError(f"the mechanism has {mech.n_drives} drives; angles must have shape (n, {mech.n_drives})")
+    if speed is None:
+        rate = np.where(np.isfinite(mech.drive_speed) & (mech.drive_speed != 0), mech.drive_speed, 1.0)
+    else:
+        rate = np.broadcast_to(np.asarray(speed, dtype=float), (mech.n_drives,))
+    rates = np.broadcast_to(rate, values.shape)
+    geom = geometry(mech, variants)
+    state = run(mech, mech.program, geom, values, rates, np.zeros_like(values))
+    revolute = bool(mech.pair_type[mech.drive_pair[0]] == REVOLUTE)
+    events = tuple(find(mech.program, state, values[:, 0], revolute))
+    if strict and not state.valid.all():
+        first = next(e for e in events if e.kind == "no-assembly")
+        raise UnassemblableError(first.message, group=first.group, angle=first.start)
+    return Kinematics(
+        mech, values, np.array(rates), state.pose, state.vel, state.acc, geom.point_local, state.valid,
+        events, variants is not None and len(variants) > 0, tuple(state.step_det),
+    )

@@ -1,0 +1,87 @@
+"""What happens along the cycle: no assembly, singular (dead-point) positions."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Event:
+    """Something an engineer must know about a range of crank angles.
+
+    Attributes
+    ----------
+    kind : str
+        ``"no-assembly"`` or ``"singular"``.
+    group : str
+        The group, e.g. ``II(4,5) RRP``.
+    start, end : float
+        Drive coordinates (rad or m) of the range; equal for a single position.
+    variant : int
+        Design-variant index.
+    message : str
+    """
+
+    kind: str
+    group: str
+    start: float
+    end: float
+    variant: int
+    message: str
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "group": self.group, "start_deg": math.degrees(self.start),
+                "end_deg": math.degrees(self.end), "variant": self.variant, "message": self.message}
+
+
+def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Index ranges [i, j] of consecutive True entries."""
+    if not mask.any():
+        return []
+    d = np.diff(np.concatenate([[0], mask.astype(int), [0]]))
+    return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1, strict=True))
+
+
+def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variants: int = 20) -> list[Event]:
+    """Events of every step for the first ``max_variants`` variants.
+
+    ``angles`` is the drive coordinate of drive 0 at each sample, in the order given.
+    """
+    events: list[Event] = []
+    unit = "deg" if revolute else "m"
+
+    def show(x: float) -> str:
+        return f"{math.degrees(x):.1f}" if revolute else f"{x:.4g}"
+
+    n_var = min(state.valid.shape[0], max_variants)
+    before = np.ones(state.valid.shape, dtype=bool)
+    for step, ok, det in zip(steps, state.step_valid, state.step_det, strict=True):
+        fails = before & ~ok
+        for v in range(n_var):
+            tag = f" (variant {v})" if state.valid.shape[0] > 1 else ""
+            for i, j in _runs(fails[v]):
+                a, b = angles[i], angles[j]
+                span = f"{show(a)} {unit}" if i == j else f"{show(a)} to {show(b)} {unit}"
+                events.append(Event("no-assembly", step.label, a, b, v,
+                                    f"group {step.label}: cannot be assembled at crank {'angle' if i == j else 'angles'} "
+                                    f"{span}{tag}"))
+            d = np.where(before[v] & ok[v], det[v], np.nan)
+            cross = np.flatnonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:]) & (np.sign(d[:-1]) * np.sign(d[1:]) < 0))
+            zero = np.flatnonzero(np.abs(d) < 1e-9)
+            cross = cross[~np.isin(cross, zero) & ~np.isin(cross + 1, zero)]
+            for i in cross:
+                t = d[i] / (d[i] - d[i + 1])
+                x = angles[i] + t * (angles[i + 1] - angles[i])
+                events.append(Event("singular", step.label, x, x, v,
+                                    f"group {step.label}: singular position (dead point) near crank angle "
+                                    f"{show(x)} {unit}{tag}"))
+            for i in zero:
+                events.append(Event("singular", step.label, angles[i], angles[i], v,
+                                    f"group {step.label}: singular position (dead point) at crank angle "
+                                    f"{show(angles[i])} {unit}{tag}"))
+        before &= ok
+    return events

@@ -1,0 +1,127 @@
+"""The solve program: the Assur groups of a compiled mechanism as kernel steps.
+
+Each group of the structural decomposition becomes one step, solved in the
+order of the decomposition: a driving link (``crank`` or ``slide``), a
+class II dyad in closed form (``RRR``, ``RRP``, ``PRP`` through their inner
+joint, ``RPR`` through its common angle, ``RPP`` through its known angle),
+or any other group by a vectorised Newton method (``newton``).  The
+assembly mode of each closed-form step is its ``branch`` (+1 or -1), read
+off the assembly pose, so the hints of the file decide it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from linkwork.structure.constraints import PRISMATIC, REVOLUTE
+from linkwork.structure.model import AssurGroup
+
+
+@dataclass(frozen=True)
+class Arm:
+    """How one link of a dyad carries the point X where the dyad closes.
+
+    ``kind`` "R": the link turns about the point ``src`` of a placed link,
+    which is its own point ``own``; "P": the link keeps the angle of the
+    placed link ``carrier`` and X slides along a line of the pair ``pair``.
+    """
+
+    kind: str
+    link: int
+    pair: int
+    own: int = -1  # R: own point at the outer joint
+    src: int = -1  # R: the placed link's point there
+    carrier: int = -1  # P: the placed link whose angle the link keeps
+    own_is_slider: bool = True  # P: the link is the slider of the pair (else the guide)
+    slider_point: int = -1  # P: the slider's point of the pair
+
+
+@dataclass(frozen=True)
+class Step:
+    """One group of the solve program."""
+
+    kind: str
+    group: AssurGroup
+    links: tuple[int, ...]
+    arms: tuple[Arm, ...] = ()
+    x_local: tuple[int, ...] = ()  # point index of X on each arm's link (-1: the link's origin)
+    drive: int = -1
+    pair: int = -1
+    inner: int = -1
+    branch: float = 1.0
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def label(self) -> str:
+        return self.group.label
+
+
+def _other(mech: Any, k: int, link: int) -> int:
+    a, b = (int(v) for v in mech.pair_links[k])
+    return b if a == link else a
+
+
+def _r_arm(mech: Any, link: int, k: int) -> Arm:
+    a = int(mech.pair_links[k, 0])
+    own = int(mech.pair_points[k, 0 if a == link else 1])
+    src = int(mech.pair_points[k, 1 if a == link else 0])
+    return Arm("R", link, k, own=own, src=src)
+
+
+def _p_arm(mech: Any, link: int, k: int) -> Arm:
+    guide, slider = (int(v) for v in mech.pair_links[k])
+    return Arm(
+        "P", link, k, carrier=_other(mech, k, link), own_is_slider=slider == link,
+        slider_point=int(mech.pair_points[k, 1]),
+    )
+
+
+def _arm(mech: Any, link: int, k: int) -> Arm:
+    return _r_arm(mech, link, k) if mech.pair_type[k] == REVOLUTE else _p_arm(mech, link, k)
+
+
+def build(mech: Any) -> tuple[Step, ...]:
+    """The solve program of a compiled mechanism (branches from its assembly pose)."""
+    from linkwork.motion import kernels
+
+    steps = []
+    driven = {int(k): d for d, k in enumerate(mech.drive_pair)}
+    for g in mech.structure.groups:
+        inner = [k for k in g.pairs if set(map(int, mech.pair_links[k])) <= set(g.links)]
+        outer = {}
+        for k in g.pairs:
+            if k not in inner:
+                outer.setdefault(next(i for i in g.links if i in map(int, mech.pair_links[k])), []).append(k)
+        step = Step("newton", g, g.links)
+        if g.klass == 1 and len(g.links) == 1 and len(g.pairs) == 1 and g.pairs[0] in driven:
+            k = g.pairs[0]
+            link = g.links[0]
+            if mech.pair_type[k] == REVOLUTE:
+                step = Step("crank", g, g.links, arms=(_r_arm(mech, link, k),), drive=driven[k], pair=k)
+            elif int(mech.pair_links[k, 1]) == link:
+                step = Step("slide", g, g.links, arms=(_p_arm(mech, link, k),), drive=driven[k], pair=k)
+        elif g.klass == 2 and not g.driven and len(inner) == 1 and all(len(v) == 1 for v in outer.values()):
+            a, b = g.links
+            ka, kb, ki = outer[a][0], outer[b][0], inner[0]
+            if mech.pair_type[ki] == REVOLUTE:
+                xa = int(mech.pair_points[ki, 0 if int(mech.pair_links[ki, 0]) == a else 1])
+                xb = int(mech.pair_points[ki, 0 if int(mech.pair_links[ki, 0]) == b else 1])
+                step = Step(g.kind, g, g.links, arms=(_arm(mech, a, ka), _arm(mech, b, kb)), x_local=(xa, xb))
+            elif mech.pair_type[ka] == REVOLUTE and mech.pair_type[kb] == REVOLUTE:
+                guide, slider = (int(v) for v in mech.pair_links[ki])
+                arm_s = _r_arm(mech, slider, kb if guide == a else ka)
+                arm_s = dataclasses.replace(arm_s, slider_point=int(mech.pair_points[ki, 1]))
+                arms = (_r_arm(mech, guide, ka if guide == a else kb), arm_s)
+                step = Step("RPR", g, g.links, arms=arms, inner=ki)
+            else:
+                pinned, other = (a, b) if mech.pair_type[ka] == REVOLUTE else (b, a)
+                kp, ko = (ka, kb) if pinned == a else (kb, ka)
+                if mech.pair_type[kp] == REVOLUTE and mech.pair_type[ko] == PRISMATIC:
+                    arms = (_r_arm(mech, pinned, kp), _p_arm(mech, other, ki), _p_arm(mech, other, ko))
+                    step = Step("RPP", g, g.links, arms=arms, inner=ki, x_local=(-1, -1))
+        steps.append(step)
+    return tuple(kernels.with_branches(mech, steps))

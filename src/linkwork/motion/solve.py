@@ -1,0 +1,186 @@
+"""Running the solve program over crank angles and design variants."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from linkwork.motion import kernels
+from linkwork.motion.geometry import Geometry
+from linkwork.motion.program import Step
+from linkwork.motion.state import State
+from linkwork.structure.constraints import residuals_and_jacobian, velocity_products
+
+
+def single_state(mech: Any) -> State:
+    """The assembly pose as a state of one variant at one angle (at rest)."""
+    pose = np.asarray(mech.pose0, dtype=float)[None, None].copy()
+    return State(
+        pose, np.zeros_like(pose), np.zeros_like(pose),
+        np.asarray(mech.point_local, dtype=float)[None, None],
+        np.asarray(mech.pair_origin, dtype=float)[None, None],
+        np.asarray(mech.pair_axis, dtype=float)[None, None],
+        np.ones((1, 1), dtype=bool),
+    )
+
+
+def run(
+    mech: Any, program: tuple[Step, ...], geom: Geometry, values: np.ndarray, rates: np.ndarray,
+    accels: np.ndarray,
+) -> State:
+    """Solve every step for all variants and angles.
+
+    Parameters
+    ----------
+    values, rates, accels : ndarray, shape (A, D)
+        Drive coordinates and their first and second time derivatives.
+    """
+    n_var, n_ang, n = geom.n_variants, values.shape[0], mech.n_links_total
+    shape = (n_var, n_ang, n, 3)
+    state = State(
+        np.zeros(shape), np.zeros(shape), np.zeros(shape),
+        geom.point_local, geom.pair_origin, geom.pair_axis, np.ones((n_var, n_ang), dtype=bool),
+    )
+    ones = np.ones((n_var, n_ang))
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        _steps(mech, program, state, values, rates, accels, ones)
+    bad = ~state.valid
+    for arr in (state.pose, state.vel, state.acc):
+        arr[bad] = np.nan
+    return state
+
+
+def _steps(
+    mech: Any, program: tuple[Step, ...], state: State, values: np.ndarray, rates: np.ndarray,
+    accels: np.ndarray, ones: np.ndarray,
+) -> None:
+    for step in program:
+        if step.kind in ("crank", "slide"):
+            d = step.drive
+            args = (values[:, d] * ones, rates[:, d] * ones, accels[:, d] * ones)
+            (kernels.crank if step.kind == "crank" else kernels.slide)(step, state, mech.point_link, *args)
+        elif step.kind in ("RRR", "RRP", "PRP"):
+            kernels.dyad(step, state, mech.point_link)
+        elif step.kind == "RPR":
+            kernels.rpr(step, state, mech.point_link)
+        elif step.kind == "RPP":
+            kernels.rpp(step, state, mech.point_link)
+        else:
+            newton(mech, step, state, values, rates, accels)
+        state.valid &= state.step_valid[-1]
+        state.placed |= set(step.links)
+
+
+def _rows(mech: Any, links: tuple[int, ...], placed: set[int]) -> list[int]:
+    from linkwork.structure.constraints import build_rows
+
+    rows = build_rows(mech.pair_type, mech.pair_links, mech.drive_pair)
+    group = set(links)
+    allowed = placed | group
+    return [i for i, rl in enumerate(rows.links) if set(map(int, rl)) <= allowed and set(map(int, rl)) & group]
+
+
+def newton(
+    mech: Any, step: Step, state: State, values: np.ndarray, rates: np.ndarray, accels: np.ndarray,
+    tol: float = 1e-12, iterations: int = 40,
+) -> None:
+    """Any group by a vectorised Newton method on its constraint rows.
+
+    Samples are solved in rings of growing distance from the drive values
+    of the assembly pose, each ring started from the nearest solved
+    sample, so that the assembly mode of the assembly pose is followed
+    along the cycle.  Velocities and accelerations come from the linear
+    systems of the differentiated constraints.
+    """
+    links = list(step.links)
+    sel = _rows(mech, step.links, state.placed)
+    cols = np.array([3 * i + c for i in links for c in range(3)])
+    n_var, n_ang = state.valid.shape
+    geom = _Geom(state)
+    drive = np.broadcast_to(values[None], (n_var, n_ang, values.shape[1]))
+    scale = max(float(np.abs(mech.point_local).max()), 1e-3)
+    q = state.pose
+    q[:, :, links] = np.asarray(mech.pose0)[links]
+
+    offset = (values - mech.drive_start + np.pi) % (2 * np.pi) - np.pi  # (A, D)
+    key = offset[:, 0] if values.shape[1] == 1 else np.max(np.abs(offset), axis=1)
+    dist = np.abs(key)
+    ring = np.floor(dist / 0.2).astype(int)
+    converged = np.zeros((n_var, n_ang), dtype=bool)
+    solved = np.zeros(n_ang, dtype=bool)
+    for r in np.unique(ring):
+        idx = np.flatnonzero(ring == r)
+        if solved.any():
+            ref = np.flatnonzero(solved)
+            ref = ref[np.argsort(key[ref])]
+            pos = np.clip(np.searchsorted(key[ref], key[idx]), 1, len(ref)) - 1
+            alt = np.minimum(pos + 1, len(ref) - 1)
+            near = np.where(np.abs(key[ref[alt]] - key[idx]) < np.abs(key[ref[pos]] - key[idx]), ref[alt], ref[pos])
+            sub = q[:, idx]
+            sub[:, :, links] = q[:, near][:, :, links]
+            q[:, idx] = sub
+        sub = q[:, idx]
+        converged[:, idx] = _newton_solve(mech, sub, drive[:, idx], links, sel, cols, geom, scale, tol, iterations)
+        q[:, idx] = sub
+        solved[idx] = True
+
+    _, jac = residuals_and_jacobian(q, mech, drive, geom=geom)
+    jac = jac[..., sel, :]
+    js = jac[..., cols]
+    rest = np.setdiff1d(np.arange(jac.shape[-1]), cols)
+    vel = state.vel.reshape(n_var, n_ang, -1)
+    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], vel[..., rest]) + _drive_rows(mech, sel, rates)
+    vel[..., cols] = _lstsq(js, rhs)
+    state.vel[:] = vel.reshape(state.vel.shape)
+    gamma = velocity_products(q, state.vel, mech, geom=geom)[..., sel]
+    acc = state.acc.reshape(n_var, n_ang, -1)
+    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], acc[..., rest]) - gamma + _drive_rows(mech, sel, accels)
+    acc[..., cols] = _lstsq(js, rhs)
+    state.acc[:] = acc.reshape(state.acc.shape)
+    sv = np.linalg.svd(np.nan_to_num(js), compute_uv=False)
+    state.step_slack.append(np.where(converged, 1.0, -1.0))
+    state.step_det.append(sv[..., -1] / np.maximum(sv[..., 0], 1e-300))
+    state.step_valid.append(converged)
+
+
+class _Geom:
+    """The variant geometry of a state, in the attribute names the constraint functions read."""
+
+    def __init__(self, state: State):
+        self.point_local = state.local
+        self.pair_origin = state.origin
+        self.pair_axis = state.axis
+
+
+def _drive_rows(mech: Any, sel: list[int], rates: np.ndarray) -> np.ndarray:
+    """Right-hand side entries of the drive rows among ``sel``: shape (A, len(sel))."""
+    n_pair_rows = 2 * len(mech.pair_type)
+    out = np.zeros((rates.shape[0], len(sel)))
+    for j, row in enumerate(sel):
+        if row >= n_pair_rows:
+            out[:, j] = rates[:, row - n_pair_rows]
+    return out
+
+
+def _lstsq(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Batched least squares (exact for square systems) through the pseudo-inverse."""
+    return np.einsum("...ij,...j->...i", np.linalg.pinv(np.nan_to_num(a)), b)
+
+
+def _newton_solve(
+    mech: Any, sub: np.ndarray, drive: np.ndarray, links: list[int], sel: list[int], cols: np.ndarray,
+    geom: Any, scale: float, tol: float, iterations: int,
+) -> np.ndarray:
+    """Newton iterations in place on ``sub`` (V, a, N, 3); returns the convergence mask."""
+    ok = np.zeros(sub.shape[:2], dtype=bool)
+    flat = sub.reshape(sub.shape[0], sub.shape[1], -1)
+    for _ in range(iterations):
+        r, jac = residuals_and_jacobian(sub, mech, drive, geom=geom)
+        r, js = r[..., sel], jac[..., sel, :][..., cols]
+        ok = np.max(np.abs(r), axis=-1) < tol * scale
+        if ok.all():
+            break
+        flat[..., cols] -= np.where(ok[..., None], 0.0, _lstsq(js, r))
+        sub[:] = flat.reshape(sub.shape)
+    return ok
