@@ -190,6 +190,15 @@ def kinematics(
         first = next(e for e in events if e.kind == "no-assembly")
         raise UnassemblableError(first.message, group=first.group, angle=first.start)
     return Kinematics(
-        mech, values, np.array(rates), state.pose, state.vel, state.acc, geom.point_local, state.valid,
-        events, variants is not None and len(variants) > 0, tuple(state.step_det),
+        mech,
+        values,
+        np.array(rates),
+        state.pose,
+        state.vel,
+        state.acc,
+        geom.point_local,
+        state.valid,
+        events,
+        variants is not None and len(variants) > 0,
+        tuple(state.step_det),
     )

@@ -16,7 +16,10 @@ class Event:
     Attributes
     ----------
     kind : str
-        ``"no-assembly"`` or ``"singular"``.
+        ``"no-assembly"`` (a range), ``"dead-point"`` (a limit of such a
+        range), ``"singular"`` (the group's Jacobian is singular inside the
+        assembled range) or ``"change-point"`` (the two assembly modes meet
+        and the motion goes on in the other one).
     group : str
         The group, e.g. ``II(4,5) RRP``.
     start, end : float
@@ -34,8 +37,14 @@ class Event:
     message: str
 
     def as_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "group": self.group, "start_deg": math.degrees(self.start),
-                "end_deg": math.degrees(self.end), "variant": self.variant, "message": self.message}
+        return {
+            "kind": self.kind,
+            "group": self.group,
+            "start_deg": math.degrees(self.start),
+            "end_deg": math.degrees(self.end),
+            "variant": self.variant,
+            "message": self.message,
+        }
 
 
 def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
@@ -55,33 +64,94 @@ def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variant
     unit = "deg" if revolute else "m"
 
     def show(x: float) -> str:
-        return f"{math.degrees(x):.1f}" if revolute else f"{x:.4g}"
+        return f"{math.degrees(x) % 360:.1f}" if revolute else f"{x:.4g}"
 
     n_var = min(state.valid.shape[0], max_variants)
     before = np.ones(state.valid.shape, dtype=bool)
-    for step, ok, det in zip(steps, state.step_valid, state.step_det, strict=True):
+    n = len(angles)
+    for step, ok, det, slack, flips in zip(
+        steps, state.step_valid, state.step_det, state.step_slack, state.step_flips, strict=True
+    ):
         fails = before & ~ok
         for v in range(n_var):
             tag = f" (variant {v})" if state.valid.shape[0] > 1 else ""
+
+            def limit(i: int, j: int) -> float:
+                """Drive value where the assembly margin crosses zero between samples i (valid) and j."""
+                s0, s1 = slack[v, i], slack[v, j]
+                if not (np.isfinite(s0) and np.isfinite(s1)) or s0 == s1:
+                    return float(angles[j])
+                return float(angles[i] + s0 / (s0 - s1) * (angles[j] - angles[i]))
+
             for i, j in _runs(fails[v]):
-                a, b = angles[i], angles[j]
+                a = limit(i - 1, i) if i > 0 and before[v, i - 1] else float(angles[i])
+                b = limit(j + 1, j) if j + 1 < n and before[v, j + 1] else float(angles[j])
                 span = f"{show(a)} {unit}" if i == j else f"{show(a)} to {show(b)} {unit}"
-                events.append(Event("no-assembly", step.label, a, b, v,
-                                    f"group {step.label}: cannot be assembled at crank {'angle' if i == j else 'angles'} "
-                                    f"{span}{tag}"))
+                events.append(
+                    Event(
+                        "no-assembly",
+                        step.label,
+                        a,
+                        b,
+                        v,
+                        f"group {step.label}: no assembly (no intersection) for crank "
+                        f"{'angle' if i == j else 'angles'} {span}{tag}",
+                    )
+                )
+                for x, inside in ((a, i > 0), (b, j + 1 < n)):
+                    if inside:
+                        events.append(
+                            Event(
+                                "dead-point",
+                                step.label,
+                                x,
+                                x,
+                                v,
+                                f"group {step.label}: limit (dead) position near crank angle {show(x)} {unit}{tag}",
+                            )
+                        )
             d = np.where(before[v] & ok[v], det[v], np.nan)
-            cross = np.flatnonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:]) & (np.sign(d[:-1]) * np.sign(d[1:]) < 0))
             zero = np.flatnonzero(np.abs(d) < 1e-9)
+            cross = np.flatnonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:]) & (np.sign(d[:-1]) * np.sign(d[1:]) < 0))
             cross = cross[~np.isin(cross, zero) & ~np.isin(cross + 1, zero)]
             for i in cross:
                 t = d[i] / (d[i] - d[i + 1])
                 x = angles[i] + t * (angles[i + 1] - angles[i])
-                events.append(Event("singular", step.label, x, x, v,
-                                    f"group {step.label}: singular position (dead point) near crank angle "
-                                    f"{show(x)} {unit}{tag}"))
+                events.append(
+                    Event(
+                        "singular",
+                        step.label,
+                        x,
+                        x,
+                        v,
+                        f"group {step.label}: singular position (dead point) near crank angle {show(x)} {unit}{tag}",
+                    )
+                )
             for i in zero:
-                events.append(Event("singular", step.label, angles[i], angles[i], v,
-                                    f"group {step.label}: singular position (dead point) at crank angle "
-                                    f"{show(angles[i])} {unit}{tag}"))
+                events.append(
+                    Event(
+                        "singular",
+                        step.label,
+                        angles[i],
+                        angles[i],
+                        v,
+                        f"group {step.label}: singular position (dead point) at crank angle "
+                        f"{show(angles[i])} {unit}{tag}",
+                    )
+                )
+            for fv, i in flips:
+                if fv == v:
+                    events.append(
+                        Event(
+                            "change-point",
+                            step.label,
+                            angles[i],
+                            angles[i],
+                            v,
+                            f"group {step.label}: its two assembly modes meet near crank angle "
+                            f"{show(angles[i])} {unit}; the motion goes on smoothly in the other "
+                            f"mode{tag}",
+                        )
+                    )
         before &= ok
     return events

@@ -96,23 +96,38 @@ def _intersect(la: _Locus, lb: _Locus, branch: float) -> tuple[np.ndarray, np.nd
         return x, disc / circle.r**2
 
 
-def dyad(step: Step, state: State, point_link: np.ndarray, arms: tuple[Arm, Arm] | None = None) -> None:
-    """RRR, RRP and PRP dyads (X = the inner joint), and the second stage of RPP."""
+def dyad(
+    step: Step,
+    state: State,
+    point_link: np.ndarray,
+    arms: tuple[Arm, Arm] | None = None,
+    branch: np.ndarray | None = None,
+) -> None:
+    """RRR, RRP and PRP dyads (X = the inner joint), and the second stage of RPP.
+
+    ``branch`` (V, A) overrides the step's assembly mode sample by sample;
+    without it the mode of the assembly pose is followed, switching at
+    change points (where the two modes meet and the motion goes on
+    smoothly in the other one).
+    """
     arm_a, arm_b = arms or step.arms
     xa = _x_local(state, step.x_local[0])
     xb = _x_local(state, step.x_local[1])
     la, lb = _Locus(state, arm_a, xa, point_link), _Locus(state, arm_b, xb, point_link)
-    x, slack = _intersect(la, lb, step.branch)
+    flips: list[tuple[int, int]] = []
+    if branch is None:
+        branch = np.full(state.valid.shape, step.branch)
+        if "R" in (arm_a.kind, arm_b.kind):
+            flips = _change_points(state, la, lb, branch)
+    x, slack = _intersect(la, lb, branch)
     ca, cb = la.column(x), lb.column(x)
+    ka, kb, det, vx = _rates(state, la, lb, x)
     va, aa = la.base(state, x)
     vb, ab = lb.base(state, x)
-    ka, kb_neg, det = solve2(ca, -cb, vb - va)
-    kb = -kb_neg
     rhs = ab + lb.accel_extra(state, x, kb) - aa - la.accel_extra(state, x, ka)
-    ka_d, kb_neg_d, _ = solve2(ca, -cb, rhs)
-    vx = va + ka[..., None] * ca
+    ka_d, kb_d, _ = solve2(ca, -cb, rhs)
     ax = aa + ka_d[..., None] * ca + la.accel_extra(state, x, ka)
-    for arm, loc, k, kd, xl in ((arm_a, la, ka, ka_d, xa), (arm_b, lb, kb, -kb_neg_d, xb)):
+    for arm, loc, k, kd, xl in ((arm_a, la, ka, ka_d, xa), (arm_b, lb, kb, kb_d, xb)):
         if arm.kind == "R":
             v = x - loc.p
             theta = np.arctan2(v[..., 1], v[..., 0]) - loc.local_angle
@@ -121,7 +136,66 @@ def dyad(step: Step, state: State, point_link: np.ndarray, arms: tuple[Arm, Arm]
             c = arm.carrier
             state.place(arm.link, state.pose[:, :, c, 2], state.vel[:, :, c, 2], state.acc[:, :, c, 2], x, vx, ax, xl)
     norm = np.hypot(*np.moveaxis(ca, -1, 0)) * np.hypot(*np.moveaxis(cb, -1, 0))
-    _record(state, slack, det / norm)
+    _record(state, slack, det / norm, branch, flips)
+
+
+def _rates(state: State, la: _Locus, lb: _Locus, x: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The arms' rates, the determinant, and the velocity of X: X moves as base_a + ka col_a = base_b + kb col_b."""
+    ca, cb = la.column(x), lb.column(x)
+    va, _ = la.base(state, x)
+    vb, _ = lb.base(state, x)
+    ka, kb, det = solve2(ca, -cb, vb - va)
+    return ka, kb, det, va + ka[..., None] * ca
+
+
+def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> list[tuple[int, int]]:
+    """Switch the mode after each change point along the angles (in the order given).
+
+    A change point is a sample where the two assembly modes nearly meet
+    (a local minimum of the intersection margin) and the velocity of X
+    goes on continuously only in the other mode.  ``branch`` is changed in
+    place; returns the (variant, first sample in the new mode) pairs.
+    """
+    x_p, slack = _intersect(la, lb, branch)
+    root = np.sqrt(np.where(slack >= 0, slack, np.nan))
+    inner = (root[:, 1:-1] <= root[:, :-2]) & (root[:, 1:-1] <= root[:, 2:]) & (root[:, 1:-1] < 0.2)
+    cand = np.argwhere(inner)
+    if len(cand) == 0:
+        return []
+    x_m, _ = _intersect(la, lb, -branch)
+    v_p = _rates(state, la, lb, x_p)[3]
+    v_m = _rates(state, la, lb, x_m)[3]
+    flips = []
+    start = state.start_index
+    for v in np.unique(cand[:, 0]):
+        mids = cand[cand[:, 0] == v, 1] + 1
+        # from the sample nearest to the assembly pose, forwards and then backwards
+        for direction in (1, -1):
+            order = np.arange(start, branch.shape[1]) if direction > 0 else np.arange(start, -1, -1)
+            pos = {int(i): n for n, i in enumerate(order)}
+            parity = 1.0
+            for i in sorted(
+                (int(i) for i in mids if int(i) in pos and pos[int(i)] not in (0, len(order) - 1)), key=lambda i: pos[i]
+            ):
+                n = pos[i]
+                prev, here, nxt = order[n - 1], order[n], order[n + 1]
+                cur_v, alt_v = (v_p[v], v_m[v]) if parity > 0 else (v_m[v], v_p[v])
+                cur_x, alt_x = (x_p[v], x_m[v]) if parity > 0 else (x_m[v], x_p[v])
+                if not np.hypot(*(alt_x[here] - cur_x[here])) <= np.hypot(*(cur_x[nxt] - cur_x[prev])):
+                    continue
+                before = cur_v[prev]
+                if np.all(np.isfinite(cur_v[here])) and np.hypot(*(alt_v[here] - before)) < np.hypot(
+                    *(cur_v[here] - before)
+                ):
+                    first = n
+                elif np.hypot(*(alt_v[nxt] - before)) < np.hypot(*(cur_v[nxt] - before)):
+                    first = n + 1
+                else:
+                    continue
+                branch[v, order[first:]] *= -1
+                parity *= -1
+                flips.append((int(v), int(order[first])))
+    return flips
 
 
 def rpr(step: Step, state: State, point_link: np.ndarray) -> None:
@@ -133,22 +207,21 @@ def rpr(step: Step, state: State, point_link: np.ndarray) -> None:
     loc = state.local
     u_loc = state.axis[:, :, k]
     n_loc = perp(u_loc)
-    w = (loc[:, :, arm_s.slider_point] - loc[:, :, arm_s.own]) - (
-        state.origin[:, :, k] - loc[:, :, arm_g.own]
-    )
+    w = (loc[:, :, arm_s.slider_point] - loc[:, :, arm_s.own]) - (state.origin[:, :, k] - loc[:, :, arm_g.own])
     e = dot(n_loc, w)
     d = ps - pg
     dist = np.hypot(d[..., 0], d[..., 1])
     with np.errstate(invalid="ignore", divide="ignore"):
         theta = (
-            np.arctan2(d[..., 1], d[..., 0]) - np.arctan2(n_loc[..., 1], n_loc[..., 0])
+            np.arctan2(d[..., 1], d[..., 0])
+            - np.arctan2(n_loc[..., 1], n_loc[..., 0])
             + step.branch * np.arccos(-e / dist)
         )
         slack = 1 - (e / dist) ** 2
     u = rot(theta, u_loc)
     col = perp(pg - ps)
-    omega, sdot_neg, det = solve2(col, -u, vg - vs)
-    rhs = ag - as_ + (omega**2)[..., None] * (pg - ps) + 2 * (omega * -sdot_neg)[..., None] * perp(u)
+    omega, sdot, det = solve2(col, -u, vg - vs)
+    rhs = ag - as_ + (omega**2)[..., None] * (pg - ps) + 2 * (omega * sdot)[..., None] * perp(u)
     eps, _, _ = solve2(col, -u, rhs)
     state.place(arm_g.link, theta, omega, eps, pg, vg, ag, loc[:, :, arm_g.own])
     state.place(arm_s.link, theta, omega, eps, ps, vs, as_, loc[:, :, arm_s.own])
@@ -161,13 +234,21 @@ def rpp(step: Step, state: State, point_link: np.ndarray) -> None:
     g = outer_arm.carrier
     p, vp, ap = state.point(int(point_link[pinned.src]), pinned.src)
     state.place(
-        pinned.link, state.pose[:, :, g, 2], state.vel[:, :, g, 2], state.acc[:, :, g, 2], p, vp, ap,
+        pinned.link,
+        state.pose[:, :, g, 2],
+        state.vel[:, :, g, 2],
+        state.acc[:, :, g, 2],
+        p,
+        vp,
+        ap,
         state.local[:, :, pinned.own],
     )
     dyad(step, state, point_link, arms=(inner_arm, outer_arm))
 
 
-def crank(step: Step, state: State, point_link: np.ndarray, phi: np.ndarray, dphi: np.ndarray, ddphi: np.ndarray) -> None:
+def crank(
+    step: Step, state: State, point_link: np.ndarray, phi: np.ndarray, dphi: np.ndarray, ddphi: np.ndarray
+) -> None:
     """A link driven by a revolute pair about a placed link."""
     arm = step.arms[0]
     base = int(point_link[arm.src])
@@ -193,16 +274,32 @@ def slide(step: Step, state: State, point_link: np.ndarray, s: np.ndarray, ds: n
     vm, am = state.material(g, x)
     vx = vm + ds[..., None] * u
     ax = am + dds[..., None] * u + 2 * (state.vel[:, :, g, 2] * ds)[..., None] * perp(u)
-    state.place(arm.link, state.pose[:, :, g, 2], state.vel[:, :, g, 2], state.acc[:, :, g, 2], x, vx, ax,
-                state.local[:, :, arm.slider_point])
+    state.place(
+        arm.link,
+        state.pose[:, :, g, 2],
+        state.vel[:, :, g, 2],
+        state.acc[:, :, g, 2],
+        x,
+        vx,
+        ax,
+        state.local[:, :, arm.slider_point],
+    )
     _record(state, np.ones_like(s), np.ones_like(s))
 
 
-def _record(state: State, slack: np.ndarray, det: np.ndarray) -> None:
+def _record(
+    state: State,
+    slack: np.ndarray,
+    det: np.ndarray,
+    branch: np.ndarray | None = None,
+    flips: list[tuple[int, int]] | None = None,
+) -> None:
     ok = np.isfinite(slack) & (slack >= 0)
     state.step_slack.append(slack)
     state.step_det.append(det)
     state.step_valid.append(ok)
+    state.step_branch.append(branch)
+    state.step_flips.append(flips or [])
 
 
 def with_branches(mech: Any, steps: list[Step]) -> list[Step]:

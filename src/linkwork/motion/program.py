@@ -15,8 +15,6 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-
 from linkwork.structure.constraints import PRISMATIC, REVOLUTE
 from linkwork.structure.model import AssurGroup
 
@@ -75,7 +73,11 @@ def _r_arm(mech: Any, link: int, k: int) -> Arm:
 def _p_arm(mech: Any, link: int, k: int) -> Arm:
     guide, slider = (int(v) for v in mech.pair_links[k])
     return Arm(
-        "P", link, k, carrier=_other(mech, k, link), own_is_slider=slider == link,
+        "P",
+        link,
+        k,
+        carrier=_other(mech, k, link),
+        own_is_slider=slider == link,
         slider_point=int(mech.pair_points[k, 1]),
     )
 

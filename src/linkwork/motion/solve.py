@@ -17,7 +17,9 @@ def single_state(mech: Any) -> State:
     """The assembly pose as a state of one variant at one angle (at rest)."""
     pose = np.asarray(mech.pose0, dtype=float)[None, None].copy()
     return State(
-        pose, np.zeros_like(pose), np.zeros_like(pose),
+        pose,
+        np.zeros_like(pose),
+        np.zeros_like(pose),
         np.asarray(mech.point_local, dtype=float)[None, None],
         np.asarray(mech.pair_origin, dtype=float)[None, None],
         np.asarray(mech.pair_axis, dtype=float)[None, None],
@@ -26,7 +28,11 @@ def single_state(mech: Any) -> State:
 
 
 def run(
-    mech: Any, program: tuple[Step, ...], geom: Geometry, values: np.ndarray, rates: np.ndarray,
+    mech: Any,
+    program: tuple[Step, ...],
+    geom: Geometry,
+    values: np.ndarray,
+    rates: np.ndarray,
     accels: np.ndarray,
 ) -> State:
     """Solve every step for all variants and angles.
@@ -36,32 +42,52 @@ def run(
     values, rates, accels : ndarray, shape (A, D)
         Drive coordinates and their first and second time derivatives.
     """
-    n_var, n_ang, n = geom.n_variants, values.shape[0], mech.n_links_total
-    shape = (n_var, n_ang, n, 3)
-    state = State(
-        np.zeros(shape), np.zeros(shape), np.zeros(shape),
-        geom.point_local, geom.pair_origin, geom.pair_axis, np.ones((n_var, n_ang), dtype=bool),
-    )
-    ones = np.ones((n_var, n_ang))
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        _steps(mech, program, state, values, rates, accels, ones)
+        state = _solve(mech, program, geom, values, rates, accels)
+        _repair_singular(mech, program, geom, values, rates, accels, state)
     bad = ~state.valid
     for arr in (state.pose, state.vel, state.acc):
         arr[bad] = np.nan
     return state
 
 
-def _steps(
-    mech: Any, program: tuple[Step, ...], state: State, values: np.ndarray, rates: np.ndarray,
-    accels: np.ndarray, ones: np.ndarray,
-) -> None:
-    for step in program:
+#: Normalised Jacobian determinant below which a sample is a singular position.
+SINGULAR = 1e-9
+
+
+def _solve(
+    mech: Any,
+    program: tuple[Step, ...],
+    geom: Geometry,
+    values: np.ndarray,
+    rates: np.ndarray,
+    accels: np.ndarray,
+    branches: list[np.ndarray | None] | None = None,
+) -> State:
+    n_var, n_ang, n = geom.n_variants, values.shape[0], mech.n_links_total
+    shape = (n_var, n_ang, n, 3)
+    state = State(
+        np.zeros(shape),
+        np.zeros(shape),
+        np.zeros(shape),
+        geom.point_local,
+        geom.pair_origin,
+        geom.pair_axis,
+        np.ones((n_var, n_ang), dtype=bool),
+    )
+    offset = (values[:, 0] - mech.drive_start[0] + np.pi) % (2 * np.pi) - np.pi
+    if mech.pair_type[mech.drive_pair[0]] == 1:
+        offset = values[:, 0] - mech.drive_start[0]
+    state.start_index = int(np.argmin(np.abs(offset)))
+    ones = np.ones((n_var, n_ang))
+    for i, step in enumerate(program):
+        branch = branches[i] if branches is not None else None
         if step.kind in ("crank", "slide"):
             d = step.drive
             args = (values[:, d] * ones, rates[:, d] * ones, accels[:, d] * ones)
             (kernels.crank if step.kind == "crank" else kernels.slide)(step, state, mech.point_link, *args)
         elif step.kind in ("RRR", "RRP", "PRP"):
-            kernels.dyad(step, state, mech.point_link)
+            kernels.dyad(step, state, mech.point_link, branch=branch)
         elif step.kind == "RPR":
             kernels.rpr(step, state, mech.point_link)
         elif step.kind == "RPP":
@@ -70,6 +96,54 @@ def _steps(
             newton(mech, step, state, values, rates, accels)
         state.valid &= state.step_valid[-1]
         state.placed |= set(step.links)
+    return state
+
+
+def _repair_singular(
+    mech: Any,
+    program: tuple[Step, ...],
+    geom: Geometry,
+    values: np.ndarray,
+    rates: np.ndarray,
+    accels: np.ndarray,
+    state: State,
+) -> None:
+    """Velocities and accelerations at samples exactly on a singular position.
+
+    There the linear systems have no unique solution; the motion's own
+    values are the limits from both sides, taken as the mean of the
+    solutions a step of 1e-6 (rad, or 1e-6 of the mechanism's size for a
+    linear drive) to either side, each in the assembly mode of its side.
+    """
+    det = np.stack([np.abs(d) for d in state.step_det])  # (S, V, A)
+    singular = state.valid & np.any(det < SINGULAR, axis=0)
+    idx = np.flatnonzero(singular.any(axis=0))
+    if len(idx) == 0:
+        return
+    scale = max(float(np.abs(mech.point_local).max()), 1e-3)
+    delta = np.where(mech.pair_type[mech.drive_pair] == 0, 1e-3, 1e-3 * scale)
+    n_ang = values.shape[0]
+    means = []
+    for h in (delta, 2 * delta):
+        sides = []
+        for sign, near in ((-1.0, np.maximum(idx - 1, 0)), (1.0, np.minimum(idx + 1, n_ang - 1))):
+            branches = [b[:, near] if b is not None else None for b in state.step_branch]
+            sides.append(_solve(mech, program, geom, values[idx] + sign * h, rates[idx], accels[idx], branches))
+        means.append(
+            [0.5 * (a + b) for a, b in zip((sides[0].vel, sides[0].acc), (sides[1].vel, sides[1].acc), strict=True)]
+        )
+    # links of the first singular step and after it: upstream links are regular there
+    first = np.argmax(det[:, :, idx] < SINGULAR, axis=0)  # (V, a)
+    order = np.full(mech.n_links_total, -1)
+    for i, step in enumerate(program):
+        order[list(step.links)] = i
+    affected = order[None, None, :] >= first[..., None]  # (V, a, N)
+    mask = singular[:, idx][..., None] & affected
+    for k, full in enumerate((state.vel, state.acc)):
+        richardson = (4 * means[0][k] - means[1][k]) / 3  # removes the h^2 error of the central mean
+        block = full[:, idx]
+        block[mask] = richardson[mask]
+        full[:, idx] = block
 
 
 def _rows(mech: Any, links: tuple[int, ...], placed: set[int]) -> list[int]:
@@ -82,8 +156,14 @@ def _rows(mech: Any, links: tuple[int, ...], placed: set[int]) -> list[int]:
 
 
 def newton(
-    mech: Any, step: Step, state: State, values: np.ndarray, rates: np.ndarray, accels: np.ndarray,
-    tol: float = 1e-12, iterations: int = 40,
+    mech: Any,
+    step: Step,
+    state: State,
+    values: np.ndarray,
+    rates: np.ndarray,
+    accels: np.ndarray,
+    tol: float = 1e-12,
+    iterations: int = 40,
 ) -> None:
     """Any group by a vectorised Newton method on its constraint rows.
 
@@ -142,6 +222,8 @@ def newton(
     state.step_slack.append(np.where(converged, 1.0, -1.0))
     state.step_det.append(sv[..., -1] / np.maximum(sv[..., 0], 1e-300))
     state.step_valid.append(converged)
+    state.step_branch.append(None)
+    state.step_flips.append([])
 
 
 class _Geom:
@@ -169,8 +251,16 @@ def _lstsq(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def _newton_solve(
-    mech: Any, sub: np.ndarray, drive: np.ndarray, links: list[int], sel: list[int], cols: np.ndarray,
-    geom: Any, scale: float, tol: float, iterations: int,
+    mech: Any,
+    sub: np.ndarray,
+    drive: np.ndarray,
+    links: list[int],
+    sel: list[int],
+    cols: np.ndarray,
+    geom: Any,
+    scale: float,
+    tol: float,
+    iterations: int,
 ) -> np.ndarray:
     """Newton iterations in place on ``sub`` (V, a, N, 3); returns the convergence mask."""
     ok = np.zeros(sub.shape[:2], dtype=bool)

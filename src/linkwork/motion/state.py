@@ -56,6 +56,9 @@ class State:
     step_det: list[np.ndarray] = field(default_factory=list)  # per step, normalised Jacobian determinant
     step_slack: list[np.ndarray] = field(default_factory=list)  # per step, assembly margin (< 0: no assembly)
     placed: set[int] = field(default_factory=lambda: {0})
+    start_index: int = 0  # the sample nearest to the assembly pose: continuation starts there
+    step_branch: list[np.ndarray | None] = field(default_factory=list)  # per step, the mode used (V, A)
+    step_flips: list[list[tuple[int, int]]] = field(default_factory=list)  # per step, change points
 
     def point(self, link: int, p: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position, velocity and acceleration of point ``p`` of ``link``: each ``(V, A, 2)``."""
@@ -68,8 +71,15 @@ class State:
         return q[..., :2] + r, v[..., :2] + w * perp(r), a[..., :2] + e * perp(r) - w * w * r
 
     def place(
-        self, link: int, theta: np.ndarray, omega: np.ndarray, eps: np.ndarray,
-        x: np.ndarray, vx: np.ndarray, ax: np.ndarray, loc: np.ndarray,
+        self,
+        link: int,
+        theta: np.ndarray,
+        omega: np.ndarray,
+        eps: np.ndarray,
+        x: np.ndarray,
+        vx: np.ndarray,
+        ax: np.ndarray,
+        loc: np.ndarray,
     ) -> None:
         """Set a link's state from its angle terms and the motion of its point at local ``loc``."""
         r = rot(theta, loc)

@@ -197,7 +197,7 @@ def residuals_and_jacobian(
     return np.stack(res, axis=-1), np.stack(jac, axis=-2)
 
 
-def velocity_products(q: np.ndarray, qd: np.ndarray, mech: "object", geom: "object | None" = None) -> np.ndarray:
+def velocity_products(q: np.ndarray, qd: np.ndarray, mech: object, geom: object | None = None) -> np.ndarray:
     """The terms of the constraints' second time derivative that are quadratic in velocity.
 
     With these, ``J @ qdd + gamma = d2(drive)/dt2`` on drive rows and 0 on the others.

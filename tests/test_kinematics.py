@@ -1,0 +1,356 @@
+"""Kinematics: closed forms, finite differences, an independent Newton solver, properties."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import linkwork as lw
+from linkwork.errors import UnassemblableError
+from linkwork.motion.geometry import geometry
+from linkwork.motion.solve import run
+from mechanisms import TEXTBOOK, circle_intersection
+
+MECHANISMS = [
+    ("example", n)
+    for n in [
+        "double-cut-shears",
+        "four-bar",
+        "watt-six-bar",
+        "stephenson-six-bar",
+        "class3-triad",
+        "percussion-rocker",
+        "shears-slider-crank",
+    ]
+] + [
+    ("textbook", n)
+    for n in [
+        "offset slider-crank",
+        "crank-shaper",
+        "scotch yoke",
+        "PRP dyad",
+        "pin in slot",
+        "compound hinge",
+        "class IV",
+        "five-bar",
+        "parallelogram",
+    ]
+]
+
+
+def _mech(kind, name):
+    return lw.compile(lw.example(name) if kind == "example" else TEXTBOOK[name][0]().build())
+
+
+def _angles(mech, n=48, span=2 * np.pi):
+    """Drive values around the assembly pose (a whole turn for cranks)."""
+    start = mech.drive_start
+    offsets = np.linspace(-span / 2, span / 2, n, endpoint=False) + 1e-3
+    if mech.pair_type[mech.drive_pair[0]] == 1:  # linear drive: a few centimetres
+        offsets = np.linspace(-0.05, 0.05, n)
+    return start[None, :] + offsets[:, None]
+
+
+def _span(kind, name):
+    """Angle span of the comparisons: the Newton reference does not follow change points
+    (the isosceles slider-crank at 0 and 180 deg, the parallelogram at 0 and 180 deg), so stay inside."""
+    return {"five-bar": 0.6, "class IV": 0.8, "shears-slider-crank": 2.7, "parallelogram": 1.9}.get(name, 2 * np.pi)
+
+
+@pytest.mark.parametrize("kind, name", MECHANISMS)
+def test_closed_forms_agree_with_the_generic_newton_solver(kind, name):
+    """Every kernel against Newton iterations and linear solves on the full constraint equations."""
+    mech = _mech(kind, name)
+    angles = _angles(mech, span=_span(kind, name))
+    kin = lw.kinematics(mech, angles)
+    program = tuple(dataclasses.replace(s, kind="newton") for s in mech.program)
+    values = kin.drive
+    ref = run(mech, program, geometry(mech), values, kin.rates, np.zeros_like(values))
+    ok = kin.valid & ref.valid[0]
+    assert ok.mean() > 0.5
+    for a, b in ((kin.pose, ref.pose), (kin.vel, ref.vel), (kin.acc, ref.acc)):
+        a, b = a[0][ok], b[0][ok]
+        a[..., 2] = np.angle(np.exp(1j * a[..., 2])) if a is kin.pose[0][ok] else a[..., 2]
+        np.testing.assert_allclose(np.cos(kin.pose[0][ok][..., 2]), np.cos(ref.pose[0][ok][..., 2]), atol=1e-9)
+    np.testing.assert_allclose(kin.pose[0][ok][..., :2], ref.pose[0][ok][..., :2], atol=1e-9)
+    scale_v = max(np.nanmax(np.abs(kin.vel[0][ok])), 1e-9)
+    scale_a = max(np.nanmax(np.abs(kin.acc[0][ok])), 1e-9)
+    np.testing.assert_allclose(kin.vel[0][ok], ref.vel[0][ok], atol=1e-8 * scale_v)
+    np.testing.assert_allclose(kin.acc[0][ok], ref.acc[0][ok], atol=1e-7 * scale_a)
+
+
+@pytest.mark.parametrize("kind, name", MECHANISMS)
+def test_velocity_and_acceleration_are_derivatives_of_motion(kind, name):
+    """Central finite differences in the drive coordinate, times the drive speed."""
+    mech = _mech(kind, name)
+    if mech.n_drives != 1:
+        pytest.skip("one drive")
+    base = _angles(mech, n=12, span=_span(kind, name))[:, 0]
+    h = 1e-5 if mech.pair_type[mech.drive_pair[0]] == 0 else 1e-6
+    kin = lw.kinematics(mech, np.concatenate([base - h, base, base + h]))
+    w = kin.rates[0, 0]
+    n = len(base)
+    pts = kin.points()
+    mid = slice(n, 2 * n)
+    vel = np.stack([kin.velocity(p) for p in mech.point_names], axis=1)[mid]
+    acc = np.stack([kin.acceleration(p) for p in mech.point_names], axis=1)[mid]
+    fd_v = (pts[2 * n :] - pts[:n]) / (2 * h) * w
+    fd_a = (pts[2 * n :] - 2 * pts[mid] + pts[:n]) / h**2 * w * w
+    ok = kin.valid[:n] & kin.valid[mid] & kin.valid[2 * n :]
+    scale = np.nanmax(np.abs(vel[ok])) + 1e-12
+    np.testing.assert_allclose(vel[ok], fd_v[ok], atol=1e-6 * scale)
+    np.testing.assert_allclose(acc[ok], fd_a[ok], atol=2e-3 * (np.nanmax(np.abs(acc[ok])) + 1e-12))
+    omega = np.stack([kin.omega(i) for i in range(mech.n_links_total)], axis=1)[mid]
+    theta = np.stack([kin.angle(i) for i in range(mech.n_links_total)], axis=1)
+    fd_w = (np.angle(np.exp(1j * (theta[2 * n :] - theta[:n])))) / (2 * h) * w
+    np.testing.assert_allclose(omega[ok], fd_w[ok], atol=1e-6 * (np.nanmax(np.abs(omega[ok])) + 1e-12))
+
+
+def slider_crank_closed_form(r, l, e, phi, w):
+    """Offset slider-crank with the guide y = e: x_B and its derivatives (textbook closed form)."""
+    s = r * np.sin(phi) - e
+    c = np.sqrt(l * l - s * s)
+    x = r * np.cos(phi) + c
+    ds = r * np.cos(phi)
+    dx = -r * np.sin(phi) - s * ds / c
+    d2s = -r * np.sin(phi)
+    d2x = -r * np.cos(phi) - (ds * ds + s * d2s) / c - (s * ds) ** 2 / c**3
+    return x, dx * w, d2x * w * w
+
+
+def test_offset_slider_crank_closed_form():
+    mech = lw.compile(TEXTBOOK["offset slider-crank"][0]().build())
+    phi = np.linspace(0, 2 * np.pi, 73)
+    kin = lw.kinematics(mech, phi)
+    w = 100 * 2 * np.pi / 60
+    x, v, a = slider_crank_closed_form(0.1, 0.4, 0.05, phi, w)
+    np.testing.assert_allclose(kin.position("B")[:, 0], x, atol=1e-12)
+    np.testing.assert_allclose(kin.position("B")[:, 1], 0.05, atol=1e-12)
+    np.testing.assert_allclose(kin.velocity("B")[:, 0], v, atol=1e-11)
+    np.testing.assert_allclose(kin.acceleration("B")[:, 0], a, atol=1e-9)
+    np.testing.assert_allclose(kin.velocity("B")[:, 1], 0, atol=1e-12)
+
+
+def test_four_bar_against_a_sympy_derivation():
+    sp = pytest.importorskip("sympy")
+    phi = sp.symbols("phi")
+    a, b, c, d = sp.Rational(1, 10), sp.Rational(35, 100), sp.Rational(25, 100), sp.Rational(3, 10)
+    ax, ay = a * sp.cos(phi), a * sp.sin(phi)
+    # B from the circle intersection, the branch below the line A -> O4 (as the test four-bar is built)
+    dx, dy = d - ax, -ay
+    dist2 = dx**2 + dy**2
+    aa = (b**2 - c**2 + dist2) / (2 * sp.sqrt(dist2))
+    h = sp.sqrt(b**2 - aa**2)
+    bx = ax + aa * dx / sp.sqrt(dist2) + h * dy / sp.sqrt(dist2)
+    by = ay + aa * dy / sp.sqrt(dist2) - h * dx / sp.sqrt(dist2)
+    w = 2 * sp.pi  # 60 rpm
+    exprs = [bx, by, sp.diff(bx, phi) * w, sp.diff(by, phi) * w, sp.diff(bx, phi, 2) * w**2, sp.diff(by, phi, 2) * w**2]
+    f = sp.lambdify(phi, exprs, "numpy")
+    mech = lw.compile(TEXTBOOK["four-bar"][0]().build())
+    angles = np.linspace(0, 2 * np.pi, 25)
+    kin = lw.kinematics(mech, angles)
+    ref = np.array(f(angles))
+    np.testing.assert_allclose(kin.position("B"), ref[0:2].T, atol=1e-12)
+    np.testing.assert_allclose(kin.velocity("B"), ref[2:4].T, atol=1e-10)
+    np.testing.assert_allclose(kin.acceleration("B"), ref[4:6].T, atol=1e-8)
+
+
+def test_crank_shaper_rocker_angle_closed_form():
+    """RPR: the rocker points from O2 at the crank pin: theta = atan2(A - O2)."""
+    mech = lw.compile(TEXTBOOK["crank-shaper"][0]().build())
+    phi = np.linspace(0, 2 * np.pi, 37)
+    kin = lw.kinematics(mech, phi, speed=1.0)
+    ax, ay = 0.1 * np.cos(phi), 0.2 + 0.1 * np.sin(phi)
+    np.testing.assert_allclose(np.cos(kin.angle("rocker")), ax / np.hypot(ax, ay), atol=1e-12)
+    np.testing.assert_allclose(np.sin(kin.angle("rocker")), ay / np.hypot(ax, ay), atol=1e-12)
+    # omega = d/dphi atan2(ay, ax) = (ax ay' - ay ax') / (ax^2 + ay^2)
+    dax, day = -0.1 * np.sin(phi), 0.1 * np.cos(phi)
+    np.testing.assert_allclose(kin.omega("rocker"), (ax * day - ay * dax) / (ax**2 + ay**2), atol=1e-12)
+
+
+def test_scotch_yoke_is_simple_harmonic():
+    mech = lw.compile(TEXTBOOK["scotch yoke"][0]().build())
+    phi = np.linspace(0, 2 * np.pi, 37)
+    kin = lw.kinematics(mech, phi, speed=3.0)
+    np.testing.assert_allclose(kin.position("yoke.Y")[:, 0], 0.1 * np.cos(phi), atol=1e-12)
+    np.testing.assert_allclose(kin.velocity("yoke.Y")[:, 0], -0.3 * np.sin(phi), atol=1e-12)
+    np.testing.assert_allclose(kin.acceleration("yoke.Y")[:, 0], -0.9 * np.cos(phi), atol=1e-11)
+
+
+def test_prp_slider_on_a_slotted_crank():
+    """Q at the crossing of the crank's line and y = 0.1: x = 0.1 / tan(phi)."""
+    mech = lw.compile(TEXTBOOK["PRP dyad"][0]().build())
+    phi = np.linspace(0.3, 2.8, 26)
+    kin = lw.kinematics(mech, phi, speed=1.0)
+    np.testing.assert_allclose(kin.position("slider.Q"), np.stack([0.1 / np.tan(phi), 0.1 + 0 * phi], -1), atol=1e-12)
+    np.testing.assert_allclose(kin.velocity("slider.Q")[:, 0], -0.1 / np.sin(phi) ** 2, atol=1e-11)
+    np.testing.assert_allclose(kin.acceleration("slider.Q")[:, 0], 0.2 * np.cos(phi) / np.sin(phi) ** 3, atol=1e-9)
+
+
+def test_class3_triad_against_an_independent_solver():
+    """Each pose solved on its own by scipy's fsolve on the triad's six loop equations."""
+    from scipy.optimize import fsolve
+
+    mech = lw.compile(lw.example("class3-triad"))
+    angles = np.radians(np.arange(0, 360, 15))
+    kin = lw.kinematics(mech, angles)
+    assert kin.valid.all()
+    pts = {n: mech.points0()[mech.point_names.index(n)] * 1000 for n in ("base.B", "base.C", "base.D")}
+    o1, o2, o3 = (0.220, -0.120), (0.51321, 0.13072), (0.16679, 0.26928)
+    bc, bd, cd = (
+        np.hypot(*(pts[p] - pts[q])) / 1000
+        for p, q in (("base.B", "base.C"), ("base.B", "base.D"), ("base.C", "base.D"))
+    )
+    guess = np.concatenate([pts["base.B"], pts["base.C"], pts["base.D"]]) / 1000
+    for i, phi in enumerate(angles):
+        a = (o1[0] + 0.03 * math.cos(phi), o1[1] + 0.03 * math.sin(phi))
+
+        def eq(x):
+            b, c, d = x[:2], x[2:4], x[4:]
+            return [
+                np.hypot(*(b - a)) - 0.19,
+                np.hypot(*(c - o2)) - 0.2,
+                np.hypot(*(d - o3)) - 0.2,
+                np.hypot(*(c - b)) - bc,
+                np.hypot(*(d - b)) - bd,
+                np.hypot(*(d - c)) - cd,
+            ]
+
+        sol = fsolve(eq, guess, xtol=1e-14)
+        guess = sol
+        np.testing.assert_allclose(kin.position("B")[i], sol[:2], atol=1e-9)
+        np.testing.assert_allclose(kin.position("C")[i], sol[2:4], atol=1e-9)
+        np.testing.assert_allclose(kin.position("D")[i], sol[4:], atol=1e-9)
+
+
+def test_non_grashof_four_bar_reports_where_it_cannot_be_assembled():
+    """a, b, c, d = 0.1, 0.2, 0.15, 0.3: the crank cannot pass |AO4| > b + c = 0.35,
+    i.e. cos(phi) < (a^2 + d^2 - 0.35^2) / (2 a d) -> phi in (112.02, 247.98) deg."""
+    from test_structure import four_bar_spec
+
+    data, _ = four_bar_spec(0.1, 0.35, 0.25, 0.3, 1.0, False)
+    data["links"]["coupler"]["length"], data["links"]["rocker"]["length"] = 0.2, 0.15
+    a = np.pi / 3
+    pa = (0.1 * math.cos(a), 0.1 * math.sin(a))
+    data["drives"][0]["angle"] = a
+    data["hints"] = {"B": list(circle_intersection(pa, 0.2, (0.3, 0.0), 0.15, left=False))}
+    mech = lw.compile(lw.from_dict(data))
+    angles = np.radians(np.arange(0, 360, 0.5))
+    kin = lw.kinematics(mech, angles)
+    limit = math.degrees(math.acos((0.01 + 0.09 - 0.35**2) / 0.06))
+    bad = np.degrees(angles[~kin.valid])
+    assert bad.min() == pytest.approx(limit, abs=0.5) and bad.max() == pytest.approx(360 - limit, abs=0.5)
+    assert np.isnan(kin.position("B")[~kin.valid]).all()
+    messages = [e.message for e in kin.events if e.kind in ("no-assembly", "dead-point")]
+    assert messages == [
+        "group II(2,3) RRR: no assembly (no intersection) for crank angles 112.0 to 248.0 deg",
+        "group II(2,3) RRR: limit (dead) position near crank angle 112.0 deg",
+        "group II(2,3) RRR: limit (dead) position near crank angle 248.0 deg",
+    ]
+    limits = [e.start for e in kin.events if e.kind == "dead-point"]
+    np.testing.assert_allclose(np.degrees(limits), [limit, 360 - limit], atol=1e-3)
+    with pytest.raises(UnassemblableError, match="112.0 to 248.0"):
+        lw.kinematics(mech, angles, strict=True)
+
+
+def test_dead_points_of_a_crank_rocker_driven_by_its_rocker_are_found():
+    """Drive the four-bar's rocker instead: dead points where crank and coupler are in line."""
+    b = TEXTBOOK["four-bar"][0]()
+    data = b.to_dict()
+    a = math.radians(60)
+    pa = (0.1 * math.cos(a), 0.1 * math.sin(a))
+    pb = circle_intersection(pa, 0.35, (0.3, 0.0), 0.25, left=False)
+    data["drives"] = [{"joint": "O4", "angle": math.degrees(math.atan2(pb[1], pb[0] - 0.3))}]
+    data["links"]["rocker"] = {"ends": ["O4", "B"], "length": 0.25}
+    data["hints"] = {"A": list(pa)}
+    mech = lw.compile(lw.from_dict(data))
+    angles = np.linspace(-np.pi, np.pi, 3601)
+    kin = lw.kinematics(mech, angles)
+    sing = sorted(e.start for e in kin.events if e.kind in ("singular", "dead-point"))
+    # rocker angles where |A B| in line: |B - O2| = b + a or b - a
+    expect = []
+    for r in (0.45, 0.25):
+        cos_t = (0.3**2 + 0.25**2 - r * r) / (2 * 0.3 * 0.25)
+        expect += [math.pi - math.acos(cos_t), -(math.pi - math.acos(cos_t))]
+    for e in sorted(expect):
+        assert min(abs(s - e) for s in sing) < 2e-3
+
+
+four_bars = st.tuples(
+    st.floats(0.05, 1.0),
+    st.floats(0.05, 1.0),
+    st.floats(0.05, 1.0),
+    st.floats(0.05, 1.0),
+    st.floats(-math.pi, math.pi),
+    st.booleans(),
+)
+
+
+@settings(max_examples=30, deadline=None)
+@given(four_bars, st.floats(-2, 2), st.floats(-2, 2), st.floats(-math.pi, math.pi))
+def test_random_four_bars_keep_their_lengths_and_move_rigidly_with_the_frame(dims, dx, dy, rot):
+    from test_structure import _assembles, four_bar_spec
+
+    a, b, c, d, phi, left = dims
+    if not _assembles(a, b, c, d, phi):
+        return
+    base, _ = four_bar_spec(a, b, c, d, phi, left)
+    moved, _ = four_bar_spec(a, b, c, d, phi, left, (dx, dy, rot))
+    m0, m1 = lw.compile(lw.from_dict(base)), lw.compile(lw.from_dict(moved))
+    offsets = np.linspace(-0.5, 0.5, 21)
+    k0 = lw.kinematics(m0, phi + offsets)
+    k1 = lw.kinematics(m1, phi + rot + offsets)
+    assert (k0.valid == k1.valid).all()
+    ok = k0.valid
+    pa, pb = k0.position("A")[ok], k0.position("B")[ok]
+    np.testing.assert_allclose(np.hypot(*(pb - pa).T), b, atol=1e-12)
+    np.testing.assert_allclose(np.hypot(*(pb - (d, 0)).T), c, atol=1e-12)
+    cr, sr = math.cos(rot), math.sin(rot)
+    for p in ("A", "B"):
+        x = k0.position(p)[ok]
+        moved_x = np.stack([cr * x[:, 0] - sr * x[:, 1] + dx, sr * x[:, 0] + cr * x[:, 1] + dy], -1)
+        np.testing.assert_allclose(k1.position(p)[ok], moved_x, atol=1e-11)
+        v = k0.velocity(p)[ok]
+        np.testing.assert_allclose(
+            k1.velocity(p)[ok], np.stack([cr * v[:, 0] - sr * v[:, 1], sr * v[:, 0] + cr * v[:, 1]], -1), atol=1e-10
+        )
+    # batch equals a per-sample loop
+    for i in (0, 7, 20):
+        one = lw.kinematics(m0, [phi + offsets[i]])
+        np.testing.assert_array_equal(one.position("B")[0], k0.position("B")[i])
+
+
+def test_design_variants_equal_separately_compiled_mechanisms():
+    lengths = np.array([0.09, 0.10, 0.11])
+    mech = lw.compile(lw.example("double-cut-shears"))
+    angles = np.radians(np.arange(0, 360, 10))
+    kin = lw.kinematics(mech, angles, variants={"links.crank.length": lengths})
+    assert kin.position("E").shape == (3, 36, 2)
+    from linkwork.examples import text
+
+    for i, length in enumerate(lengths):
+        spec = lw.loads(text("double-cut-shears").replace("length: 0.10\n", f"length: {length}\n", 1))
+        one = lw.kinematics(lw.compile(spec), angles)
+        np.testing.assert_allclose(kin.position("E")[i], one.position("E"), atol=1e-12)
+        np.testing.assert_allclose(kin.acceleration("F")[i], one.acceleration("F"), atol=1e-9)
+
+
+def test_unknown_variant_dimension_is_named():
+    mech = lw.compile(lw.example("four-bar"))
+    with pytest.raises(
+        lw.motion.ParameterError, match='no dimension "links.crank.lenght" .did you mean "links.crank.length"'
+    ):
+        lw.kinematics(mech, [0.0], variants={"links.crank.lenght": [0.1, 0.2]})
+
+
+def test_steps_cover_a_turn_in_the_direction_of_rotation():
+    mech = lw.compile(lw.example("four-bar"))
+    kin = lw.kinematics(mech, steps=8)
+    np.testing.assert_allclose(kin.angles, np.radians(60) + np.arange(8) * np.pi / 4)
+    assert kin.position("B").shape == (8, 2)
+    assert kin.omega("crank") == pytest.approx(2 * np.pi)
