@@ -111,10 +111,10 @@ def test_velocity_and_acceleration_are_derivatives_of_motion(kind, name):
     np.testing.assert_allclose(omega[ok], fd_w[ok], atol=1e-6 * (np.nanmax(np.abs(omega[ok])) + 1e-12))
 
 
-def slider_crank_closed_form(r, l, e, phi, w):
+def slider_crank_closed_form(r, rod, e, phi, w):
     """Offset slider-crank with the guide y = e: x_B and its derivatives (textbook closed form)."""
     s = r * np.sin(phi) - e
-    c = np.sqrt(l * l - s * s)
+    c = np.sqrt(rod * rod - s * s)
     x = r * np.cos(phi) + c
     ds = r * np.cos(phi)
     dx = -r * np.sin(phi) - s * ds / c
@@ -210,7 +210,7 @@ def test_class3_triad_against_an_independent_solver():
     for i, phi in enumerate(angles):
         a = (o1[0] + 0.03 * math.cos(phi), o1[1] + 0.03 * math.sin(phi))
 
-        def eq(x):
+        def eq(x, a=a):
             b, c, d = x[:2], x[2:4], x[4:]
             return [
                 np.hypot(*(b - a)) - 0.19,

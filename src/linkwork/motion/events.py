@@ -76,9 +76,9 @@ def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variant
         for v in range(n_var):
             tag = f" (variant {v})" if state.valid.shape[0] > 1 else ""
 
-            def limit(i: int, j: int) -> float:
+            def limit(i: int, j: int, margin: np.ndarray = slack[v]) -> float:
                 """Drive value where the assembly margin crosses zero between samples i (valid) and j."""
-                s0, s1 = slack[v, i], slack[v, j]
+                s0, s1 = margin[i], margin[j]
                 if not (np.isfinite(s0) and np.isfinite(s1)) or s0 == s1:
                     return float(angles[j])
                 return float(angles[i] + s0 / (s0 - s1) * (angles[j] - angles[i]))
