@@ -26,10 +26,10 @@ __all__ = ["Event", "Geometry", "Kinematics", "ParameterError", "geometry", "kin
 class Kinematics:
     """Positions, velocities and accelerations over crank angles and design variants.
 
-    Arrays are ``(n_variants, n_angles, ...)``; the accessors drop the
-    variant axis when no variants were asked for, so ``position("E")`` is
+    The accessors return ``(n_variants, n_angles, ...)`` arrays, without the
+    variant axis when no variants were asked for: ``position("E")`` is
     ``(n_angles, 2)`` for one mechanism and ``(n_variants, n_angles, 2)``
-    for a sweep.  Link states are the pose ``(x, y, theta)`` of each link's
+    for a sweep.  The state of a link is the pose ``(x, y, theta)`` of its
     local frame, its velocity ``(vx, vy, omega)`` and acceleration
     ``(ax, ay, epsilon)``; SI units, radians.  Samples where the mechanism
     does not assemble are NaN and ``valid`` is False there.
@@ -38,10 +38,10 @@ class Kinematics:
     mechanism: Any
     drive: np.ndarray  # (A, D) drive coordinates
     rates: np.ndarray  # (A, D) drive speeds
-    pose: np.ndarray  # (V, A, N, 3)
-    vel: np.ndarray
-    acc: np.ndarray
-    local: np.ndarray  # (V, 1, P, 2)
+    q: np.ndarray  # (N, 3, V, A) link poses, link-major
+    v: np.ndarray  # (N, 3, V, A)
+    a: np.ndarray  # (N, 3, V, A)
+    local: np.ndarray  # (P, 2, V, 1) point coordinates of the variants
     valid_all: np.ndarray  # (V, A)
     events: tuple[Event, ...]
     variants: bool
@@ -49,6 +49,21 @@ class Kinematics:
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
+
+    @property
+    def pose(self) -> np.ndarray:
+        """Link poses ``(V, A, N, 3)`` (a view)."""
+        return np.moveaxis(self.q, (0, 1), (2, 3))
+
+    @property
+    def vel(self) -> np.ndarray:
+        """Link velocities ``(V, A, N, 3)`` (a view)."""
+        return np.moveaxis(self.v, (0, 1), (2, 3))
+
+    @property
+    def acc(self) -> np.ndarray:
+        """Link accelerations ``(V, A, N, 3)`` (a view)."""
+        return np.moveaxis(self.a, (0, 1), (2, 3))
 
     @property
     def angles(self) -> np.ndarray:
@@ -82,13 +97,15 @@ class Kinematics:
     def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         p = self.point_index(point)
         link = int(self.mechanism.point_link[p])
-        q, v, a = self.pose[:, :, link], self.vel[:, :, link], self.acc[:, :, link]
-        loc = self.local[:, :, p]
-        c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
-        r = np.stack([c * loc[..., 0] - s * loc[..., 1], s * loc[..., 0] + c * loc[..., 1]], axis=-1)
-        pr = np.stack([-r[..., 1], r[..., 0]], axis=-1)
-        w, e = v[..., 2, None], a[..., 2, None]
-        return q[..., :2] + r, v[..., :2] + w * pr, a[..., :2] + e * pr - w * w * r
+        q, v, a = self.q[link], self.v[link], self.a[link]
+        lx, ly = self.local[p, 0], self.local[p, 1]
+        c, s = np.cos(q[2]), np.sin(q[2])
+        rx, ry = c * lx - s * ly, s * lx + c * ly
+        w, e = v[2], a[2]
+        pos = np.stack([q[0] + rx, q[1] + ry], -1)
+        vel = np.stack([v[0] - w * ry, v[1] + w * rx], -1)
+        acc = np.stack([a[0] - e * ry - w * w * rx, a[1] + e * rx - w * w * ry], -1)
+        return pos, vel, acc
 
     def position(self, point: str) -> np.ndarray:
         """Global position of a point, m: ``(..., n_angles, 2)``."""
@@ -104,24 +121,24 @@ class Kinematics:
 
     def angle(self, link: str | int) -> np.ndarray:
         """Angle of a link's local x axis, rad: ``(..., n_angles)``."""
-        return self._out(self.pose[:, :, self.link_index(link), 2])
+        return self._out(self.q[self.link_index(link), 2])
 
     def omega(self, link: str | int) -> np.ndarray:
         """Angular velocity, rad/s (counter-clockwise positive)."""
-        return self._out(self.vel[:, :, self.link_index(link), 2])
+        return self._out(self.v[self.link_index(link), 2])
 
     def epsilon(self, link: str | int) -> np.ndarray:
         """Angular acceleration, rad/s^2."""
-        return self._out(self.acc[:, :, self.link_index(link), 2])
+        return self._out(self.a[self.link_index(link), 2])
 
     def points(self) -> np.ndarray:
         """Positions of all points, ``(..., n_angles, n_points, 2)`` (order of ``mechanism.point_names``)."""
         m = self.mechanism
-        q = self.pose[:, :, m.point_link]
-        c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
-        loc = self.local
-        r = np.stack([c * loc[..., 0] - s * loc[..., 1], s * loc[..., 0] + c * loc[..., 1]], axis=-1)
-        return self._out(q[..., :2] + r)
+        q = self.q[m.point_link]  # (P, 3, V, A)
+        c, s = np.cos(q[:, 2]), np.sin(q[:, 2])
+        lx, ly = self.local[:, 0], self.local[:, 1]
+        out = np.stack([q[:, 0] + c * lx - s * ly, q[:, 1] + s * lx + c * ly], -1)  # (P, V, A, 2)
+        return self._out(np.moveaxis(out, 0, 2))
 
 
 def cycle(mech: Any, steps: int) -> np.ndarray:
@@ -193,10 +210,10 @@ def kinematics(
         mech,
         values,
         np.array(rates),
-        state.pose,
-        state.vel,
-        state.acc,
-        geom.point_local,
+        state.q,
+        state.v,
+        state.a,
+        state.local,
         state.valid,
         events,
         variants is not None and len(variants) > 0,

@@ -17,83 +17,86 @@ from typing import Any
 import numpy as np
 
 from linkwork.motion.program import Arm, Step
-from linkwork.motion.state import State, cross, dot, perp, rot, solve2
+from linkwork.motion.state import State, Vec, add, cross, dot, norm, perp, rot, scale, solve2, sub
 
 
-def _x_local(state: State, idx: int) -> np.ndarray:
+def _x_local(state: State, idx: int) -> Vec:
     if idx < 0:
-        return np.zeros(state.local.shape[:2] + (2,))
-    return state.local[:, :, idx]
-
-
-def _src_link(state: State, arm: Arm, point_link: np.ndarray) -> int:
-    return int(point_link[arm.src])
+        zero = np.zeros(state.local.shape[2:])
+        return zero, zero
+    return state.loc(idx)
 
 
 class _Locus:
     """The locus of X given by one arm, with what its velocity equations need."""
 
-    def __init__(self, state: State, arm: Arm, x_loc: np.ndarray, point_link: np.ndarray):
+    def __init__(self, state: State, arm: Arm, x_loc: Vec, point_link: np.ndarray):
         self.arm = arm
         if arm.kind == "R":
-            self.p, self.vp, self.ap = state.point(_src_link(state, arm, point_link), arm.src)
-            d = x_loc - state.local[:, :, arm.own]
-            self.r = np.hypot(d[..., 0], d[..., 1])
-            self.local_angle = np.arctan2(d[..., 1], d[..., 0])
+            self.p, self.vp, self.ap = state.point(int(point_link[arm.src]), arm.src)
+            d = sub(x_loc, state.loc(arm.own))
+            self.r = norm(d)
+            self.local_angle = np.arctan2(d[1], d[0])
         else:
             c = arm.carrier
-            theta = state.pose[:, :, c, 2]
+            cs = state.cos[c], state.sin[c]
             if arm.own_is_slider:
                 origin, self.u = state.line(arm.pair, c)
-                self.l0 = origin + rot(theta, x_loc - state.local[:, :, arm.slider_point])
+                self.l0 = add(origin, rot(*cs, sub(x_loc, state.loc(arm.slider_point))))
             else:
                 s = state.point(c, arm.slider_point)[0]
-                self.u = rot(theta, state.axis[:, :, arm.pair])
-                self.l0 = s + rot(theta, x_loc - state.origin[:, :, arm.pair])
+                self.u = rot(*cs, (state.axis[arm.pair, 0], state.axis[arm.pair, 1]))
+                self.l0 = add(s, rot(*cs, sub(x_loc, (state.origin[arm.pair, 0], state.origin[arm.pair, 1]))))
             self.carrier = c
 
-    def column(self, x: np.ndarray) -> np.ndarray:
-        return perp(x - self.p) if self.arm.kind == "R" else self.u
+    def column(self, x: Vec) -> Vec:
+        return perp(sub(x, self.p)) if self.arm.kind == "R" else self.u
 
-    def base(self, state: State, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def base(self, state: State, x: Vec) -> tuple[Vec, Vec]:
         """Velocity and acceleration of X with the arm's unknown rate (and its square terms) left out."""
         if self.arm.kind == "R":
             return self.vp, self.ap
         return state.material(self.carrier, x)
 
-    def accel_extra(self, state: State, x: np.ndarray, k: np.ndarray) -> np.ndarray:
+    def accel_extra(self, state: State, x: Vec, k: np.ndarray) -> Vec:
         """Acceleration terms quadratic in the rates: centripetal (R) or Coriolis (P)."""
         if self.arm.kind == "R":
-            return -(k[..., None] ** 2) * (x - self.p)
-        w = state.vel[:, :, self.carrier, 2]
-        return 2 * (w * k)[..., None] * perp(self.u)
+            return scale(-(k * k), sub(x, self.p))
+        return scale(2 * state.v[self.carrier, 2] * k, perp(self.u))
 
 
-def _intersect(la: _Locus, lb: _Locus, branch: float) -> tuple[np.ndarray, np.ndarray]:
+def _intersect(la: _Locus, lb: _Locus, branch: np.ndarray | float) -> tuple[Vec, np.ndarray]:
     """X where the two loci meet, and the assembly margin (negative where they do not)."""
-    with np.errstate(invalid="ignore", divide="ignore"):
-        if la.arm.kind == "R" and lb.arm.kind == "R":
-            d = lb.p - la.p
-            dist2 = dot(d, d)
-            dist = np.sqrt(dist2)
-            a = (la.r**2 - lb.r**2 + dist2) / (2 * dist)
-            h2 = la.r**2 - a * a
-            scale = (la.r + lb.r) ** 2
-            slack = np.minimum((la.r + lb.r) ** 2 - dist2, dist2 - (la.r - lb.r) ** 2) / scale
-            e = d / dist[..., None]
-            x = la.p + a[..., None] * e + (branch * np.sqrt(h2))[..., None] * perp(e)
-            return x, slack
-        if la.arm.kind == "P" and lb.arm.kind == "P":
-            den = cross(la.u, lb.u)
-            t = cross(lb.l0 - la.l0, lb.u) / den
-            return la.l0 + t[..., None] * la.u, np.abs(den)
-        circle, line = (la, lb) if la.arm.kind == "R" else (lb, la)
-        w = circle.p - line.l0
-        t0 = dot(w, line.u)
-        h = cross(line.u, w)
-        disc = circle.r**2 - h * h
-        x = line.l0 + (t0 + branch * np.sqrt(disc))[..., None] * line.u
-        return x, disc / circle.r**2
+    if la.arm.kind == "R" and lb.arm.kind == "R":
+        d = sub(lb.p, la.p)
+        dist2 = dot(d, d)
+        inv = 1.0 / np.sqrt(dist2)
+        a = (la.r * la.r - lb.r * lb.r + dist2) * (0.5 * inv)
+        h2 = la.r * la.r - a * a
+        rsum2 = (la.r + lb.r) ** 2
+        slack = np.minimum(rsum2 - dist2, dist2 - (la.r - lb.r) ** 2) / rsum2
+        e = scale(inv, d)
+        h = branch * np.sqrt(h2)
+        return (la.p[0] + a * e[0] - h * e[1], la.p[1] + a * e[1] + h * e[0]), slack
+    if la.arm.kind == "P" and lb.arm.kind == "P":
+        den = cross(la.u, lb.u)
+        t = cross(sub(lb.l0, la.l0), lb.u) / den
+        return add(la.l0, scale(t, la.u)), np.abs(den)
+    circle, line = (la, lb) if la.arm.kind == "R" else (lb, la)
+    w = sub(circle.p, line.l0)
+    t0 = dot(w, line.u)
+    h = cross(line.u, w)
+    disc = circle.r * circle.r - h * h
+    return add(line.l0, scale(t0 + branch * np.sqrt(disc), line.u)), disc / (circle.r * circle.r)
+
+
+def _rates(state: State, la: _Locus, lb: _Locus, x: Vec) -> tuple[np.ndarray, ...]:
+    """The arms' rates, the determinant, and X's velocity: base_a + ka col_a = base_b + kb col_b."""
+    ca, cb = la.column(x), lb.column(x)
+    va, _ = la.base(state, x)
+    vb, _ = lb.base(state, x)
+    ka, kb, det = solve2(ca, scale(-1.0, cb), sub(vb, va))
+    return ka, kb, det, add(va, scale(ka, ca))
 
 
 def dyad(
@@ -116,55 +119,62 @@ def dyad(
     la, lb = _Locus(state, arm_a, xa, point_link), _Locus(state, arm_b, xb, point_link)
     flips: list[tuple[int, int]] = []
     if branch is None:
-        branch = np.full(state.valid.shape, step.branch)
+        branch_used: Any = step.branch
         if "R" in (arm_a.kind, arm_b.kind):
-            flips = _change_points(state, la, lb, branch)
-    x, slack = _intersect(la, lb, branch)
+            full = np.full(state.valid.shape, step.branch)
+            flips = _change_points(state, la, lb, full)
+            if flips:
+                branch_used = full
+    else:
+        branch_used = branch
+    x, slack = _intersect(la, lb, branch_used)
     ca, cb = la.column(x), lb.column(x)
-    ka, kb, det, vx = _rates(state, la, lb, x)
     va, aa = la.base(state, x)
     vb, ab = lb.base(state, x)
-    rhs = ab + lb.accel_extra(state, x, kb) - aa - la.accel_extra(state, x, ka)
-    ka_d, kb_d, _ = solve2(ca, -cb, rhs)
-    ax = aa + ka_d[..., None] * ca + la.accel_extra(state, x, ka)
+    ncb = scale(-1.0, cb)
+    ka, kb, det = solve2(ca, ncb, sub(vb, va))
+    ea, eb = la.accel_extra(state, x, ka), lb.accel_extra(state, x, kb)
+    ka_d, kb_d, _ = solve2(ca, ncb, sub(add(ab, eb), add(aa, ea)))
+    vx = add(va, scale(ka, ca))
+    ax = add(add(aa, scale(ka_d, ca)), ea)
     for arm, loc, k, kd, xl in ((arm_a, la, ka, ka_d, xa), (arm_b, lb, kb, kb_d, xb)):
         if arm.kind == "R":
-            v = x - loc.p
-            theta = np.arctan2(v[..., 1], v[..., 0]) - loc.local_angle
-            state.place(arm.link, theta, k, kd, loc.p, loc.vp, loc.ap, state.local[:, :, arm.own])
+            d = sub(x, loc.p)
+            dist = norm(d)
+            # angle of the link: direction of X from the outer joint, less its local direction
+            c0, s0 = np.cos(loc.local_angle), np.sin(loc.local_angle)
+            cg, sg = d[0] / dist, d[1] / dist
+            c, s = cg * c0 + sg * s0, sg * c0 - cg * s0
+            theta = np.arctan2(s, c)
+            state.place(arm.link, theta, k, kd, loc.p, loc.vp, loc.ap, state.loc(arm.own), (c, s))
         else:
-            c = arm.carrier
-            state.place(arm.link, state.pose[:, :, c, 2], state.vel[:, :, c, 2], state.acc[:, :, c, 2], x, vx, ax, xl)
-    norm = np.hypot(*np.moveaxis(ca, -1, 0)) * np.hypot(*np.moveaxis(cb, -1, 0))
-    _record(state, slack, det / norm, branch, flips)
-
-
-def _rates(state: State, la: _Locus, lb: _Locus, x: np.ndarray) -> tuple[np.ndarray, ...]:
-    """The arms' rates, the determinant, and the velocity of X: X moves as base_a + ka col_a = base_b + kb col_b."""
-    ca, cb = la.column(x), lb.column(x)
-    va, _ = la.base(state, x)
-    vb, _ = lb.base(state, x)
-    ka, kb, det = solve2(ca, -cb, vb - va)
-    return ka, kb, det, va + ka[..., None] * ca
+            cl = arm.carrier
+            state.place(
+                arm.link, state.q[cl, 2], state.v[cl, 2], state.a[cl, 2], x, vx, ax, xl, (state.cos[cl], state.sin[cl])
+            )
+    _record(state, slack, det / (norm(ca) * norm(cb)), None if np.isscalar(branch_used) else branch_used, flips)
 
 
 def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> list[tuple[int, int]]:
     """Switch the mode after each change point along the angles (in the order given).
 
-    A change point is a sample where the two assembly modes nearly meet
-    (a local minimum of the intersection margin) and the velocity of X
-    goes on continuously only in the other mode.  ``branch`` is changed in
-    place; returns the (variant, first sample in the new mode) pairs.
+    A change point is a sample where the two assembly modes nearly meet (a
+    V-shaped minimum of the intersection margin near zero) and the velocity
+    of X goes on continuously only in the other mode.  ``branch`` is changed
+    in place; returns the (variant, first sample in the new mode) pairs.
     """
     x_p, slack = _intersect(la, lb, branch)
     root = np.sqrt(np.where(slack >= 0, slack, np.nan))
-    inner = (root[:, 1:-1] <= root[:, :-2]) & (root[:, 1:-1] <= root[:, 2:]) & (root[:, 1:-1] < 0.2)
+    mid, left, right = root[:, 1:-1], root[:, :-2], root[:, 2:]
+    with np.errstate(invalid="ignore"):
+        inner = (mid <= left) & (mid <= right) & (mid < 0.2) & (mid <= 2 * np.maximum(left - mid, right - mid))
     cand = np.argwhere(inner)
     if len(cand) == 0:
         return []
     x_m, _ = _intersect(la, lb, -branch)
-    v_p = _rates(state, la, lb, x_p)[3]
-    v_m = _rates(state, la, lb, x_m)[3]
+    v_p = np.stack(_rates(state, la, lb, x_p)[3], -1)
+    v_m = np.stack(_rates(state, la, lb, x_m)[3], -1)
+    xp, xm = np.stack(x_p, -1), np.stack(x_m, -1)
     flips = []
     start = state.start_index
     for v in np.unique(cand[:, 0]):
@@ -180,7 +190,7 @@ def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> 
                 n = pos[i]
                 prev, here, nxt = order[n - 1], order[n], order[n + 1]
                 cur_v, alt_v = (v_p[v], v_m[v]) if parity > 0 else (v_m[v], v_p[v])
-                cur_x, alt_x = (x_p[v], x_m[v]) if parity > 0 else (x_m[v], x_p[v])
+                cur_x, alt_x = (xp[v], xm[v]) if parity > 0 else (xm[v], xp[v])
                 if not np.hypot(*(alt_x[here] - cur_x[here])) <= np.hypot(*(cur_x[nxt] - cur_x[prev])):
                     continue
                 before = cur_v[prev]
@@ -204,28 +214,27 @@ def rpr(step: Step, state: State, point_link: np.ndarray) -> None:
     k = step.inner
     pg, vg, ag = state.point(int(point_link[arm_g.src]), arm_g.src)
     ps, vs, as_ = state.point(int(point_link[arm_s.src]), arm_s.src)
-    loc = state.local
-    u_loc = state.axis[:, :, k]
+    u_loc = (state.axis[k, 0], state.axis[k, 1])
     n_loc = perp(u_loc)
-    w = (loc[:, :, arm_s.slider_point] - loc[:, :, arm_s.own]) - (state.origin[:, :, k] - loc[:, :, arm_g.own])
+    w = sub(
+        sub(state.loc(arm_s.slider_point), state.loc(arm_s.own)),
+        sub((state.origin[k, 0], state.origin[k, 1]), state.loc(arm_g.own)),
+    )
     e = dot(n_loc, w)
-    d = ps - pg
-    dist = np.hypot(d[..., 0], d[..., 1])
-    with np.errstate(invalid="ignore", divide="ignore"):
-        theta = (
-            np.arctan2(d[..., 1], d[..., 0])
-            - np.arctan2(n_loc[..., 1], n_loc[..., 0])
-            + step.branch * np.arccos(-e / dist)
-        )
-        slack = 1 - (e / dist) ** 2
-    u = rot(theta, u_loc)
-    col = perp(pg - ps)
-    omega, sdot, det = solve2(col, -u, vg - vs)
-    rhs = ag - as_ + (omega**2)[..., None] * (pg - ps) + 2 * (omega * sdot)[..., None] * perp(u)
-    eps, _, _ = solve2(col, -u, rhs)
-    state.place(arm_g.link, theta, omega, eps, pg, vg, ag, loc[:, :, arm_g.own])
-    state.place(arm_s.link, theta, omega, eps, ps, vs, as_, loc[:, :, arm_s.own])
-    _record(state, slack, det / np.maximum(np.hypot(col[..., 0], col[..., 1]), 1e-300))
+    d = sub(ps, pg)
+    dist = norm(d)
+    theta = np.arctan2(d[1], d[0]) - np.arctan2(n_loc[1], n_loc[0]) + step.branch * np.arccos(-e / dist)
+    slack = 1 - (e / dist) ** 2
+    c, s = np.cos(theta), np.sin(theta)
+    u = rot(c, s, u_loc)
+    col = perp(sub(pg, ps))
+    nu = scale(-1.0, u)
+    omega, sdot, det = solve2(col, nu, sub(vg, vs))
+    rhs = add(add(sub(ag, as_), scale(omega * omega, sub(pg, ps))), scale(2 * omega * sdot, perp(u)))
+    eps, _, _ = solve2(col, nu, rhs)
+    state.place(arm_g.link, theta, omega, eps, pg, vg, ag, state.loc(arm_g.own), (c, s))
+    state.place(arm_s.link, theta, omega, eps, ps, vs, as_, state.loc(arm_s.own), (c, s))
+    _record(state, slack, det / norm(col))
 
 
 def rpp(step: Step, state: State, point_link: np.ndarray) -> None:
@@ -235,13 +244,14 @@ def rpp(step: Step, state: State, point_link: np.ndarray) -> None:
     p, vp, ap = state.point(int(point_link[pinned.src]), pinned.src)
     state.place(
         pinned.link,
-        state.pose[:, :, g, 2],
-        state.vel[:, :, g, 2],
-        state.acc[:, :, g, 2],
+        state.q[g, 2],
+        state.v[g, 2],
+        state.a[g, 2],
         p,
         vp,
         ap,
-        state.local[:, :, pinned.own],
+        state.loc(pinned.own),
+        (state.cos[g], state.sin[g]),
     )
     dyad(step, state, point_link, arms=(inner_arm, outer_arm))
 
@@ -252,17 +262,14 @@ def crank(
     """A link driven by a revolute pair about a placed link."""
     arm = step.arms[0]
     base = int(point_link[arm.src])
-    sign = 1.0 if int(state_pair_b(step)) == arm.link else -1.0
-    theta = state.pose[:, :, base, 2] + sign * phi
-    omega = state.vel[:, :, base, 2] + sign * dphi
-    eps = state.acc[:, :, base, 2] + sign * ddphi
+    sign = 1.0 if step.extra["b"] == arm.link else -1.0
+    theta = state.q[base, 2] + sign * phi
+    omega = state.v[base, 2] + sign * dphi
+    eps = state.a[base, 2] + sign * ddphi
     p, vp, ap = state.point(base, arm.src)
-    state.place(arm.link, theta, omega, eps, p, vp, ap, state.local[:, :, arm.own])
-    _record(state, np.ones_like(theta), np.ones_like(theta))
-
-
-def state_pair_b(step: Step) -> int:
-    return step.extra["b"]
+    state.place(arm.link, theta, omega, eps, p, vp, ap, state.loc(arm.own))
+    one = np.ones(state.valid.shape)
+    _record(state, one, one)
 
 
 def slide(step: Step, state: State, point_link: np.ndarray, s: np.ndarray, ds: np.ndarray, dds: np.ndarray) -> None:
@@ -270,21 +277,23 @@ def slide(step: Step, state: State, point_link: np.ndarray, s: np.ndarray, ds: n
     arm = step.arms[0]
     g = arm.carrier
     origin, u = state.line(arm.pair, g)
-    x = origin + s[..., None] * u
+    x = add(origin, scale(s, u))
     vm, am = state.material(g, x)
-    vx = vm + ds[..., None] * u
-    ax = am + dds[..., None] * u + 2 * (state.vel[:, :, g, 2] * ds)[..., None] * perp(u)
+    vx = add(vm, scale(ds, u))
+    ax = add(add(am, scale(dds, u)), scale(2 * state.v[g, 2] * ds, perp(u)))
     state.place(
         arm.link,
-        state.pose[:, :, g, 2],
-        state.vel[:, :, g, 2],
-        state.acc[:, :, g, 2],
+        state.q[g, 2],
+        state.v[g, 2],
+        state.a[g, 2],
         x,
         vx,
         ax,
-        state.local[:, :, arm.slider_point],
+        state.loc(arm.slider_point),
+        (state.cos[g], state.sin[g]),
     )
-    _record(state, np.ones_like(s), np.ones_like(s))
+    one = np.ones(state.valid.shape)
+    _record(state, one, one)
 
 
 def _record(
@@ -294,10 +303,10 @@ def _record(
     branch: np.ndarray | None = None,
     flips: list[tuple[int, int]] | None = None,
 ) -> None:
-    ok = np.isfinite(slack) & (slack >= 0)
+    slack = np.broadcast_to(slack, state.valid.shape)
     state.step_slack.append(slack)
-    state.step_det.append(det)
-    state.step_valid.append(ok)
+    state.step_det.append(np.broadcast_to(det, state.valid.shape))
+    state.step_valid.append(slack >= 0)
     state.step_branch.append(branch)
     state.step_flips.append(flips or [])
 
@@ -313,36 +322,29 @@ def with_branches(mech: Any, steps: list[Step]) -> list[Step]:
             step = dataclasses.replace(step, extra={"b": int(mech.pair_links[step.pair, 1])})
         elif step.kind in ("RRR", "RRP", "PRP", "RPP"):
             arms = step.arms if step.kind != "RPP" else step.arms[1:]
-            if step.kind == "RPP":
-                _place_pinned(step, state, mech.point_link)
             xa = _x_local(state, step.x_local[0])
             xb = _x_local(state, step.x_local[1])
             la = _Locus(state, arms[0], xa, mech.point_link)
             lb = _Locus(state, arms[1], xb, mech.point_link)
             x = state.point_at(arms[0].link, xa)[0]
             if la.arm.kind == "R" and lb.arm.kind == "R":
-                branch = np.sign(cross(lb.p - la.p, x - la.p))
+                branch = cross(sub(lb.p, la.p), sub(x, la.p))
             elif la.arm.kind == "R" or lb.arm.kind == "R":
                 circle = la if la.arm.kind == "R" else lb
                 other = lb if circle is la else la
-                branch = np.sign(dot(x - circle.p, other.u))
+                branch = dot(sub(x, circle.p), other.u)
             else:
                 branch = np.ones(1)
-            step = dataclasses.replace(step, branch=float(np.ravel(branch)[0]) or 1.0)
+            step = dataclasses.replace(step, branch=float(np.sign(np.ravel(branch)[0])) or 1.0)
         elif step.kind == "RPR":
             arm_g, arm_s = step.arms
             pg = state.point(int(mech.point_link[arm_g.src]), arm_g.src)[0]
             ps = state.point(int(mech.point_link[arm_s.src]), arm_s.src)[0]
-            d = ps - pg
-            n_loc = perp(state.axis[:, :, step.inner])
-            theta = state.pose[:, :, arm_g.link, 2]
-            rel = theta - np.arctan2(d[..., 1], d[..., 0]) + np.arctan2(n_loc[..., 1], n_loc[..., 0])
+            d = sub(ps, pg)
+            n_loc = perp((state.axis[step.inner, 0], state.axis[step.inner, 1]))
+            theta = state.q[arm_g.link, 2]
+            rel = theta - np.arctan2(d[1], d[0]) + np.arctan2(n_loc[1], n_loc[0])
             rel = (rel + np.pi) % (2 * np.pi) - np.pi
             step = dataclasses.replace(step, branch=float(np.sign(np.ravel(rel)[0])) or 1.0)
         out.append(step)
     return out
-
-
-def _place_pinned(step: Step, state: State, point_link: np.ndarray) -> None:
-    """No-op at the assembly pose: the pinned link of an RPP is already in place there."""
-    del step, state, point_link

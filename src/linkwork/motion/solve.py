@@ -13,18 +13,24 @@ from linkwork.motion.state import State
 from linkwork.structure.constraints import residuals_and_jacobian, velocity_products
 
 
+def _soa(a: np.ndarray) -> np.ndarray:
+    """(V, 1, K, 2) geometry arrays -> (K, 2, V, 1)."""
+    return np.ascontiguousarray(np.moveaxis(np.asarray(a, dtype=float), (0, 1), (2, 3)))
+
+
 def single_state(mech: Any) -> State:
     """The assembly pose as a state of one variant at one angle (at rest)."""
-    pose = np.asarray(mech.pose0, dtype=float)[None, None].copy()
-    return State(
-        pose,
-        np.zeros_like(pose),
-        np.zeros_like(pose),
-        np.asarray(mech.point_local, dtype=float)[None, None],
-        np.asarray(mech.pair_origin, dtype=float)[None, None],
-        np.asarray(mech.pair_axis, dtype=float)[None, None],
-        np.ones((1, 1), dtype=bool),
+    state = State.empty(
+        mech.n_links_total,
+        _soa(np.asarray(mech.point_local)[None, None]),
+        _soa(np.asarray(mech.pair_origin)[None, None]),
+        _soa(np.asarray(mech.pair_axis)[None, None]),
+        1,
     )
+    pose = np.asarray(mech.pose0, dtype=float)
+    state.q[:, :, 0, 0] = pose
+    state.cos[:, 0, 0], state.sin[:, 0, 0] = np.cos(pose[:, 2]), np.sin(pose[:, 2])
+    return state
 
 
 def run(
@@ -46,8 +52,8 @@ def run(
         state = _solve(mech, program, geom, values, rates, accels)
         _repair_singular(mech, program, geom, values, rates, accels, state)
     bad = ~state.valid
-    for arr in (state.pose, state.vel, state.acc):
-        arr[bad] = np.nan
+    for arr in (state.q, state.v, state.a):
+        arr[:, :, bad] = np.nan
     return state
 
 
@@ -64,17 +70,8 @@ def _solve(
     accels: np.ndarray,
     branches: list[np.ndarray | None] | None = None,
 ) -> State:
-    n_var, n_ang, n = geom.n_variants, values.shape[0], mech.n_links_total
-    shape = (n_var, n_ang, n, 3)
-    state = State(
-        np.zeros(shape),
-        np.zeros(shape),
-        np.zeros(shape),
-        geom.point_local,
-        geom.pair_origin,
-        geom.pair_axis,
-        np.ones((n_var, n_ang), dtype=bool),
-    )
+    n_var, n_ang = geom.n_variants, values.shape[0]
+    state = State.empty(mech.n_links_total, _soa(geom.point_local), _soa(geom.pair_origin), _soa(geom.pair_axis), n_ang)
     offset = (values[:, 0] - mech.drive_start[0] + np.pi) % (2 * np.pi) - np.pi
     if mech.pair_type[mech.drive_pair[0]] == 1:
         offset = values[:, 0] - mech.drive_start[0]
@@ -93,7 +90,7 @@ def _solve(
         elif step.kind == "RPP":
             kernels.rpp(step, state, mech.point_link)
         else:
-            newton(mech, step, state, values, rates, accels)
+            newton(mech, step, state, geom, values, rates, accels)
         state.valid &= state.step_valid[-1]
         state.placed |= set(step.links)
     return state
@@ -139,11 +136,12 @@ def _repair_singular(
         order[list(step.links)] = i
     affected = order[None, None, :] >= first[..., None]  # (V, a, N)
     mask = singular[:, idx][..., None] & affected
-    for k, full in enumerate((state.vel, state.acc)):
+    for k, full in enumerate((state.v, state.a)):
         richardson = (4 * means[0][k] - means[1][k]) / 3  # removes the h^2 error of the central mean
-        block = full[:, idx]
-        block[mask] = richardson[mask]
-        full[:, idx] = block
+        view = np.moveaxis(full, (0, 1), (2, 3))  # (V, A, N, 3)
+        block = view[:, idx]
+        block[mask] = np.moveaxis(richardson, (0, 1), (2, 3))[mask]
+        view[:, idx] = block
 
 
 def _rows(mech: Any, links: tuple[int, ...], placed: set[int]) -> list[int]:
@@ -159,6 +157,7 @@ def newton(
     mech: Any,
     step: Step,
     state: State,
+    geom: Geometry,
     values: np.ndarray,
     rates: np.ndarray,
     accels: np.ndarray,
@@ -177,16 +176,14 @@ def newton(
     sel = _rows(mech, step.links, state.placed)
     cols = np.array([3 * i + c for i in links for c in range(3)])
     n_var, n_ang = state.valid.shape
-    geom = _Geom(state)
     drive = np.broadcast_to(values[None], (n_var, n_ang, values.shape[1]))
     scale = max(float(np.abs(mech.point_local).max()), 1e-3)
-    q = state.pose
+    q = np.ascontiguousarray(np.moveaxis(state.q, (0, 1), (2, 3)))  # (V, A, N, 3)
     q[:, :, links] = np.asarray(mech.pose0)[links]
 
     offset = (values - mech.drive_start + np.pi) % (2 * np.pi) - np.pi  # (A, D)
     key = offset[:, 0] if values.shape[1] == 1 else np.max(np.abs(offset), axis=1)
-    dist = np.abs(key)
-    ring = np.floor(dist / 0.2).astype(int)
+    ring = np.floor(np.abs(key) / 0.2).astype(int)
     converged = np.zeros((n_var, n_ang), dtype=bool)
     solved = np.zeros(n_ang, dtype=bool)
     for r in np.unique(ring):
@@ -209,30 +206,24 @@ def newton(
     jac = jac[..., sel, :]
     js = jac[..., cols]
     rest = np.setdiff1d(np.arange(jac.shape[-1]), cols)
-    vel = state.vel.reshape(n_var, n_ang, -1)
+    vel = np.ascontiguousarray(np.moveaxis(state.v, (0, 1), (2, 3))).reshape(n_var, n_ang, -1)
     rhs = -np.einsum("vamk,vak->vam", jac[..., rest], vel[..., rest]) + _drive_rows(mech, sel, rates)
     vel[..., cols] = _lstsq(js, rhs)
-    state.vel[:] = vel.reshape(state.vel.shape)
-    gamma = velocity_products(q, state.vel, mech, geom=geom)[..., sel]
-    acc = state.acc.reshape(n_var, n_ang, -1)
+    vel = vel.reshape(q.shape)
+    gamma = velocity_products(q, vel, mech, geom=geom)[..., sel]
+    acc = np.ascontiguousarray(np.moveaxis(state.a, (0, 1), (2, 3))).reshape(n_var, n_ang, -1)
     rhs = -np.einsum("vamk,vak->vam", jac[..., rest], acc[..., rest]) - gamma + _drive_rows(mech, sel, accels)
     acc[..., cols] = _lstsq(js, rhs)
-    state.acc[:] = acc.reshape(state.acc.shape)
+    acc = acc.reshape(q.shape)
+    for full, view in ((state.q, q), (state.v, vel), (state.a, acc)):
+        full[links] = np.moveaxis(view[:, :, links], (0, 1), (2, 3))
+    state.cos[links], state.sin[links] = np.cos(state.q[links, 2]), np.sin(state.q[links, 2])
     sv = np.linalg.svd(np.nan_to_num(js), compute_uv=False)
     state.step_slack.append(np.where(converged, 1.0, -1.0))
     state.step_det.append(sv[..., -1] / np.maximum(sv[..., 0], 1e-300))
     state.step_valid.append(converged)
     state.step_branch.append(None)
     state.step_flips.append([])
-
-
-class _Geom:
-    """The variant geometry of a state, in the attribute names the constraint functions read."""
-
-    def __init__(self, state: State):
-        self.point_local = state.local
-        self.pair_origin = state.origin
-        self.pair_axis = state.axis
 
 
 def _drive_rows(mech: Any, sel: list[int], rates: np.ndarray) -> np.ndarray:

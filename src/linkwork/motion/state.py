@@ -1,9 +1,11 @@
 """Kinematic state arrays and the small vector helpers the kernels share.
 
-The state of link ``i`` is its pose ``(x, y, theta)`` (origin of its local
-frame and angle of its x axis), its velocity ``(vx, vy, omega)`` and its
-acceleration ``(ax, ay, epsilon)``, each an array of shape
-``(n_variants, n_angles, n_links, 3)``.
+The state is kept link-major, one contiguous ``(n_variants, n_angles)``
+block per quantity, so that every kernel operation streams through
+contiguous memory: ``q[i] = (x, y, theta)`` is the pose of link ``i`` (the
+origin of its local frame and the angle of its x axis), ``v[i] = (vx, vy,
+omega)`` its velocity and ``a[i] = (ax, ay, epsilon)`` its acceleration.
+Plane vectors are pairs ``(x, y)`` of arrays.
 """
 
 from __future__ import annotations
@@ -12,45 +14,73 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-
-def rot(theta: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Rotate vectors ``v (..., 2)`` by angles ``theta (...)``."""
-    c, s = np.cos(theta), np.sin(theta)
-    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
+Vec = tuple[np.ndarray, np.ndarray]
 
 
-def perp(v: np.ndarray) -> np.ndarray:
+def rot(c: np.ndarray, s: np.ndarray, v: Vec) -> Vec:
+    """Rotate ``v`` by the angle whose cosine and sine are ``c`` and ``s``."""
+    return c * v[0] - s * v[1], s * v[0] + c * v[1]
+
+
+def perp(v: Vec) -> Vec:
     """``v`` turned by +90 degrees: ``omega x r`` is ``omega * perp(r)``."""
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+    return -v[1], v[0]
 
 
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+def add(a: Vec, b: Vec) -> Vec:
+    return a[0] + b[0], a[1] + b[1]
 
 
-def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+def sub(a: Vec, b: Vec) -> Vec:
+    return a[0] - b[0], a[1] - b[1]
 
 
-def solve2(c1: np.ndarray, c2: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Solve ``k1 c1 + k2 c2 = rhs`` for 2-vectors by Cramer's rule; also returns the determinant."""
+def scale(k: np.ndarray, v: Vec) -> Vec:
+    return k * v[0], k * v[1]
+
+
+def cross(a: Vec, b: Vec) -> np.ndarray:
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def dot(a: Vec, b: Vec) -> np.ndarray:
+    return a[0] * b[0] + a[1] * b[1]
+
+
+def norm(v: Vec) -> np.ndarray:
+    return np.hypot(v[0], v[1])
+
+
+def solve2(c1: Vec, c2: Vec, rhs: Vec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Solve ``k1 c1 + k2 c2 = rhs`` by Cramer's rule; also returns the determinant."""
     det = cross(c1, c2)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        k1 = cross(rhs, c2) / det
-        k2 = cross(c1, rhs) / det
-    return k1, k2, det
+    inv = 1.0 / det
+    return cross(rhs, c2) * inv, cross(c1, rhs) * inv, det
 
 
 @dataclass
 class State:
-    """Arrays being filled by the solve program, group by group."""
+    """Arrays being filled by the solve program, group by group.
 
-    pose: np.ndarray
-    vel: np.ndarray
-    acc: np.ndarray
-    local: np.ndarray  # (V, 1, P, 2) point coordinates of the variants
-    origin: np.ndarray  # (V, 1, M, 2)
-    axis: np.ndarray  # (V, 1, M, 2)
+    Attributes
+    ----------
+    q, v, a : ndarray, shape (N, 3, V, A)
+        Pose, velocity and acceleration of every link.
+    cos, sin : ndarray, shape (N, V, A)
+        Of each link's angle, kept with the pose.
+    local : ndarray, shape (P, 2, V, 1)
+    origin, axis : ndarray, shape (M, 2, V, 1)
+        Dimensions of the design variants (guide lines of prismatic pairs).
+    """
+
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    cos: np.ndarray
+    sin: np.ndarray
+    local: np.ndarray
+    origin: np.ndarray
+    axis: np.ndarray
     valid: np.ndarray  # (V, A) bool
     step_valid: list[np.ndarray] = field(default_factory=list)  # per step (V, A)
     step_det: list[np.ndarray] = field(default_factory=list)  # per step, normalised Jacobian determinant
@@ -60,15 +90,40 @@ class State:
     step_branch: list[np.ndarray | None] = field(default_factory=list)  # per step, the mode used (V, A)
     step_flips: list[list[tuple[int, int]]] = field(default_factory=list)  # per step, change points
 
-    def point(self, link: int, p: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Position, velocity and acceleration of point ``p`` of ``link``: each ``(V, A, 2)``."""
-        return self.point_at(link, self.local[:, :, p])
+    @classmethod
+    def empty(cls, n_links: int, local: np.ndarray, origin: np.ndarray, axis: np.ndarray, n_ang: int) -> State:
+        n_var = local.shape[2]
+        shape = (n_links, 3, n_var, n_ang)
+        cos = np.ones((n_links, n_var, n_ang))
+        return cls(
+            np.zeros(shape),
+            np.zeros(shape),
+            np.zeros(shape),
+            cos,
+            np.zeros_like(cos),
+            local,
+            origin,
+            axis,
+            np.ones((n_var, n_ang), dtype=bool),
+        )
 
-    def point_at(self, link: int, loc: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        q, v, a = self.pose[:, :, link], self.vel[:, :, link], self.acc[:, :, link]
-        r = rot(q[..., 2], loc)
-        w, e = v[..., 2, None], a[..., 2, None]
-        return q[..., :2] + r, v[..., :2] + w * perp(r), a[..., :2] + e * perp(r) - w * w * r
+    def loc(self, p: int) -> Vec:
+        """Local coordinates of point ``p``: ``(V, 1)`` arrays."""
+        return self.local[p, 0], self.local[p, 1]
+
+    def point(self, link: int, p: int) -> tuple[Vec, Vec, Vec]:
+        """Position, velocity and acceleration of point ``p`` of ``link``."""
+        return self.point_at(link, self.loc(p))
+
+    def point_at(self, link: int, loc: Vec) -> tuple[Vec, Vec, Vec]:
+        q, v, a = self.q[link], self.v[link], self.a[link]
+        r = rot(self.cos[link], self.sin[link], loc)
+        w, e = v[2], a[2]
+        return (
+            (q[0] + r[0], q[1] + r[1]),
+            (v[0] - w * r[1], v[1] + w * r[0]),
+            (a[0] - e * r[1] - w * w * r[0], a[1] + e * r[0] - w * w * r[1]),
+        )
 
     def place(
         self,
@@ -76,29 +131,38 @@ class State:
         theta: np.ndarray,
         omega: np.ndarray,
         eps: np.ndarray,
-        x: np.ndarray,
-        vx: np.ndarray,
-        ax: np.ndarray,
-        loc: np.ndarray,
+        x: Vec,
+        vx: Vec,
+        ax: Vec,
+        loc: Vec,
+        cs: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> None:
         """Set a link's state from its angle terms and the motion of its point at local ``loc``."""
-        r = rot(theta, loc)
-        w, e = omega[..., None], eps[..., None]
-        self.pose[:, :, link, :2] = x - r
-        self.pose[:, :, link, 2] = theta
-        self.vel[:, :, link, :2] = vx - w * perp(r)
-        self.vel[:, :, link, 2] = omega
-        self.acc[:, :, link, :2] = ax - e * perp(r) + w * w * r
-        self.acc[:, :, link, 2] = eps
+        c, s = cs if cs is not None else (np.cos(theta), np.sin(theta))
+        r = rot(c, s, loc)
+        q, v, a = self.q[link], self.v[link], self.a[link]
+        q[0], q[1], q[2] = x[0] - r[0], x[1] - r[1], theta
+        v[0], v[1], v[2] = vx[0] + omega * r[1], vx[1] - omega * r[0], omega
+        w2 = omega * omega
+        a[0], a[1], a[2] = ax[0] + eps * r[1] + w2 * r[0], ax[1] - eps * r[0] + w2 * r[1], eps
+        self.cos[link], self.sin[link] = c, s
 
-    def line(self, k: int, guide: int) -> tuple[np.ndarray, np.ndarray]:
+    def line(self, k: int, guide: int) -> tuple[Vec, Vec]:
         """Global origin and unit direction of the guide line of prismatic pair ``k``."""
-        q = self.pose[:, :, guide]
-        return q[..., :2] + rot(q[..., 2], self.origin[:, :, k]), rot(q[..., 2], self.axis[:, :, k])
+        c, s = self.cos[guide], self.sin[guide]
+        o = rot(c, s, (self.origin[k, 0], self.origin[k, 1]))
+        return (self.q[guide, 0] + o[0], self.q[guide, 1] + o[1]), rot(c, s, (self.axis[k, 0], self.axis[k, 1]))
 
-    def material(self, link: int, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def material(self, link: int, x: Vec) -> tuple[Vec, Vec]:
         """Velocity and acceleration of the material point of ``link`` at global ``x``."""
-        q, v, a = self.pose[:, :, link], self.vel[:, :, link], self.acc[:, :, link]
-        r = x - q[..., :2]
-        w, e = v[..., 2, None], a[..., 2, None]
-        return v[..., :2] + w * perp(r), a[..., :2] + e * perp(r) - w * w * r
+        q, v, a = self.q[link], self.v[link], self.a[link]
+        r = (x[0] - q[0], x[1] - q[1])
+        w, e = v[2], a[2]
+        return (
+            (v[0] - w * r[1], v[1] + w * r[0]),
+            (a[0] - e * r[1] - w * w * r[0], a[1] + e * r[0] - w * w * r[1]),
+        )
+
+    def pose_view(self) -> np.ndarray:
+        """``(V, A, N, 3)`` view of the poses."""
+        return np.moveaxis(self.q, (0, 1), (2, 3))
