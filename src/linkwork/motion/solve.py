@@ -47,7 +47,40 @@ def run(
     ----------
     values, rates, accels : ndarray, shape (A, D)
         Drive coordinates and their first and second time derivatives.
+
+    Many variants are solved in chunks of about :data:`CHUNK` samples, so
+    that the arrays of a chunk stay in the processor's cache.
     """
+    n_var, n_ang = geom.n_variants, values.shape[0]
+    size = max(1, CHUNK // max(n_ang, 1))
+    if n_var <= size:
+        return _run_chunk(mech, program, geom, values, rates, accels)
+    parts = []
+    for start in range(0, n_var, size):
+        part = Geometry(*(g[start : start + size] for g in (geom.point_local, geom.pair_origin, geom.pair_axis)))
+        parts.append(_run_chunk(mech, program, part, values, rates, accels))
+    out = parts[0]
+    for name in ("q", "v", "a", "cos", "sin", "local", "origin", "axis"):
+        setattr(out, name, np.concatenate([getattr(p, name) for p in parts], axis=2 if name != "cos" and name != "sin"
+                                          else 1))
+    out.valid = np.concatenate([p.valid for p in parts])
+    for name in ("step_valid", "step_det", "step_slack"):
+        setattr(out, name, [np.concatenate(x) for x in zip(*(getattr(p, name) for p in parts), strict=True)])
+    out.step_branch = [None if x[0] is None else np.concatenate(x)
+                       for x in zip(*(p.step_branch for p in parts), strict=True)]
+    offsets = np.cumsum([0] + [p.valid.shape[0] for p in parts])
+    out.step_flips = [[(v + int(o), i) for p, o in zip(parts, offsets, strict=False) for v, i in p.step_flips[k]]
+                      for k in range(len(program))]
+    return out
+
+
+#: Samples per chunk of design variants.
+CHUNK = 1 << 15
+
+
+def _run_chunk(
+    mech: Any, program: tuple[Step, ...], geom: Geometry, values: np.ndarray, rates: np.ndarray, accels: np.ndarray
+) -> State:
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         state = _solve(mech, program, geom, values, rates, accels)
         _repair_singular(mech, program, geom, values, rates, accels, state)
