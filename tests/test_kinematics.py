@@ -354,3 +354,20 @@ def test_steps_cover_a_turn_in_the_direction_of_rotation():
     np.testing.assert_allclose(kin.angles, np.radians(60) + np.arange(8) * np.pi / 4)
     assert kin.position("B").shape == (8, 2)
     assert kin.omega("crank") == pytest.approx(2 * np.pi)
+
+
+def test_isosceles_slider_crank_goes_through_its_change_points_smoothly():
+    """Seed 000: OA = AB = l, so y_B = 2 l sin(phi) over the whole turn; at 0 and 180 deg the two
+    assembly modes meet (B at O), and the motion must go on in the other mode, with the exact
+    velocity 2 l w cos(phi) and acceleration -2 l w^2 sin(phi) even on those samples."""
+    mech = lw.compile(lw.example("shears-slider-crank"))
+    kin = lw.kinematics(mech, steps=24)
+    phi, l, w = kin.angles, 0.15, 10.0
+    assert kin.valid.all()
+    np.testing.assert_allclose(kin.position("B")[:, 1], 2 * l * np.sin(phi), atol=1e-12)
+    np.testing.assert_allclose(kin.velocity("B")[:, 1], 2 * l * w * np.cos(phi), atol=1e-8)
+    np.testing.assert_allclose(kin.acceleration("B")[:, 1], -2 * l * w * w * np.sin(phi), atol=1e-6)
+    # the rod turns at -w: A B mirrors O A about the horizontal through A
+    np.testing.assert_allclose(kin.omega("rod"), -w, atol=1e-8)
+    kinds = [e.kind for e in kin.events]
+    assert kinds.count("change-point") == 2

@@ -147,6 +147,8 @@ def example(name: Annotated[str, typer.Argument(help="name of a bundled example"
 
 def main() -> None:
     """Entry point of the ``linkwork`` script."""
+    import linkwork.cli.motion  # noqa: F401 - registers its commands
+
     app()
 
 

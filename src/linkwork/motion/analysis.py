@@ -48,9 +48,16 @@ class Extremes:
     def as_dict(self) -> dict[str, Any]:
         unit = "m" if self.kind == "slider" else "rad"
         return {
-            "name": self.name, "kind": self.kind, "unit": unit, "low": self.low, "high": self.high,
-            "stroke": self.stroke, "at_low_deg": math.degrees(self.at_low), "at_high_deg": math.degrees(self.at_high),
-            "forward_deg": math.degrees(self.forward), "backward_deg": math.degrees(self.backward),
+            "name": self.name,
+            "kind": self.kind,
+            "unit": unit,
+            "low": self.low,
+            "high": self.high,
+            "stroke": self.stroke,
+            "at_low_deg": math.degrees(self.at_low),
+            "at_high_deg": math.degrees(self.at_high),
+            "forward_deg": math.degrees(self.forward),
+            "backward_deg": math.degrees(self.backward),
             "time_ratio": self.time_ratio,
         }
 
@@ -64,7 +71,7 @@ def _refine(values: np.ndarray, angles: np.ndarray, i: int) -> tuple[float, floa
     t = float(np.clip(t, -1, 1))
     step = (angles[(i + 1) % n] - angles[(i - 1) % n]) / 2 if n > 2 else 0.0
     if n > 2 and (i == 0 or i == n - 1):
-        step = (angles[1] - angles[0])
+        step = angles[1] - angles[0]
     return float(y1 - 0.25 * (y0 - y2) * t), float(angles[i] + t * step)
 
 

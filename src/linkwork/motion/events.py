@@ -139,7 +139,7 @@ def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variant
                         f"{show(angles[i])} {unit}{tag}",
                     )
                 )
-            for fv, i in flips:
+            for fv, _, i in flips:
                 if fv == v:
                     events.append(
                         Event(

@@ -117,7 +117,7 @@ def dyad(
     xa = _x_local(state, step.x_local[0])
     xb = _x_local(state, step.x_local[1])
     la, lb = _Locus(state, arm_a, xa, point_link), _Locus(state, arm_b, xb, point_link)
-    flips: list[tuple[int, int]] = []
+    flips: list[tuple[int, int, int]] = []
     if branch is None:
         branch_used: Any = step.branch
         if "R" in (arm_a.kind, arm_b.kind):
@@ -155,13 +155,13 @@ def dyad(
     _record(state, slack, det / (norm(ca) * norm(cb)), None if np.isscalar(branch_used) else branch_used, flips)
 
 
-def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> list[tuple[int, int]]:
+def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> list[tuple[int, int, int]]:
     """Switch the mode after each change point along the angles (in the order given).
 
     A change point is a sample where the two assembly modes nearly meet (a
     V-shaped minimum of the intersection margin near zero) and the velocity
     of X goes on continuously only in the other mode.  ``branch`` is changed
-    in place; returns the (variant, first sample in the new mode) pairs.
+    in place; returns (variant, first sample in the new mode, sample nearest the change point).
     """
     x_p, slack = _intersect(la, lb, branch)
     root = np.sqrt(np.where(slack >= 0, slack, np.nan))
@@ -204,7 +204,7 @@ def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> 
                     continue
                 branch[v, order[first:]] *= -1
                 parity *= -1
-                flips.append((int(v), int(order[first])))
+                flips.append((int(v), int(order[first]), int(here)))
     return flips
 
 
@@ -301,7 +301,7 @@ def _record(
     slack: np.ndarray,
     det: np.ndarray,
     branch: np.ndarray | None = None,
-    flips: list[tuple[int, int]] | None = None,
+    flips: list[tuple[int, int, int]] | None = None,
 ) -> None:
     slack = np.broadcast_to(slack, state.valid.shape)
     state.step_slack.append(slack)

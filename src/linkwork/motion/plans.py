@@ -27,7 +27,6 @@ from typing import Any
 import numpy as np
 
 
-
 @dataclass(frozen=True)
 class PlanVector:
     """One vector of the construction, from plan point ``start`` to plan point ``end``.
@@ -46,8 +45,14 @@ class PlanVector:
     about: str = ""
 
     def as_dict(self) -> dict[str, Any]:
-        return {"from": self.start, "to": self.end, "vector": list(self.vector), "kind": self.kind,
-                "group": self.group, "about": self.about}
+        return {
+            "from": self.start,
+            "to": self.end,
+            "vector": list(self.vector),
+            "kind": self.kind,
+            "group": self.group,
+            "about": self.about,
+        }
 
 
 @dataclass(frozen=True)
@@ -76,10 +81,15 @@ class Plan:
     scale: float = 1.0
 
     def as_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "angle_deg": float(np.degrees(self.angle)), "pole": [0.0, 0.0],
-                "points": {k: list(v) for k, v in self.points.items()},
-                "vectors": [v.as_dict() for v in self.vectors], "scale_per_mm": self.scale,
-                "unit": "m/s" if self.kind == "velocity" else "m/s^2"}
+        return {
+            "kind": self.kind,
+            "angle_deg": float(np.degrees(self.angle)),
+            "pole": [0.0, 0.0],
+            "points": {k: list(v) for k, v in self.points.items()},
+            "vectors": [v.as_dict() for v in self.vectors],
+            "scale_per_mm": self.scale,
+            "unit": "m/s" if self.kind == "velocity" else "m/s^2",
+        }
 
 
 def _round_scale(longest: float) -> float:
@@ -111,8 +121,11 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
         c, s = np.cos(q[i, 2]), np.sin(q[i, 2])
         return q[i, :2] + np.array([c * loc[p, 0] - s * loc[p, 1], s * loc[p, 0] + c * loc[p, 1]])
 
-    grounded = {int(mech.pair_points[k, 1]) for k in range(mech.n_pairs)
-                if mech.pair_type[k] == 0 and mech.pair_links[k, 0] == 0}
+    grounded = {
+        int(mech.pair_points[k, 1])
+        for k in range(mech.n_pairs)
+        if mech.pair_type[k] == 0 and mech.pair_links[k, 0] == 0
+    }
     counts = {n: names.count(n) for n in names}
     joints = {mech.point_names[int(mech.pair_points[k, 1])].split(".", 1)[1] for k in range(mech.n_pairs)}
 
@@ -140,27 +153,48 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
             arm = arms[0]
             for p in np.flatnonzero(mech.point_link == arm.link):
                 if p != arm.own:
-                    _rotation(vvec, avec, g, label_of(arm.src), label_of(p), glob(p) - glob(arm.src),
-                              v[arm.link, 2], a[arm.link, 2], names[arm.src])
+                    _rotation(
+                        vvec,
+                        avec,
+                        g,
+                        label_of(arm.src),
+                        label_of(p),
+                        glob(p) - glob(arm.src),
+                        v[arm.link, 2],
+                        a[arm.link, 2],
+                        names[arm.src],
+                    )
         elif step.kind in ("RRR", "RRP", "PRP"):
             xp = step.x_local[0]
             x = glob(xp)
             lab = label_of(xp)
             for arm in arms:
                 if arm.kind == "R":
-                    _rotation(vvec, avec, g, label_of(arm.src), lab, x - glob(arm.src), v[arm.link, 2],
-                              a[arm.link, 2], names[arm.src])
+                    _rotation(
+                        vvec,
+                        avec,
+                        g,
+                        label_of(arm.src),
+                        lab,
+                        x - glob(arm.src),
+                        v[arm.link, 2],
+                        a[arm.link, 2],
+                        names[arm.src],
+                    )
                 else:
                     _sliding(vvec, avec, g, lab, x, arm, mech, q, v, a, state_at)
     longest_v = max((np.hypot(*pv) for pv in vel_pts.values()), default=0.0)
     longest_a = max((np.hypot(*pa) for pa in acc_pts.values()), default=0.0)
     angle = float(kin.angles[index])
-    return (Plan("velocity", angle, vel_pts, vvec, _round_scale(longest_v)),
-            Plan("acceleration", angle, acc_pts, avec, _round_scale(longest_a)))
+    return (
+        Plan("velocity", angle, vel_pts, vvec, _round_scale(longest_v)),
+        Plan("acceleration", angle, acc_pts, avec, _round_scale(longest_a)),
+    )
 
 
-def _rotation(vvec: list, avec: list, group: str, start: str, end: str, r: np.ndarray, w: float, e: float,
-              about: str) -> None:
+def _rotation(
+    vvec: list, avec: list, group: str, start: str, end: str, r: np.ndarray, w: float, e: float, about: str
+) -> None:
     """X turning with a link about P (r = X - P): v = w perp(r); a = -w^2 r + e perp(r)."""
     pr = np.array([-r[1], r[0]])
     vvec.append(PlanVector(start, end, tuple(map(float, w * pr)), "rotation", group, about))
@@ -169,8 +203,19 @@ def _rotation(vvec: list, avec: list, group: str, start: str, end: str, r: np.nd
     avec.append(PlanVector(mid, end, tuple(map(float, e * pr)), "tangential", group, about))
 
 
-def _sliding(vvec: list, avec: list, group: str, lab: str, x: np.ndarray, arm: Any, mech: Any, q: np.ndarray,
-             v: np.ndarray, a: np.ndarray, state_at: Any) -> None:
+def _sliding(
+    vvec: list,
+    avec: list,
+    group: str,
+    lab: str,
+    x: np.ndarray,
+    arm: Any,
+    mech: Any,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    state_at: Any,
+) -> None:
     """X on a link sliding along a guide of the carrier: transport + (Coriolis) + sliding."""
     c = arm.carrier
     th = q[c, 2]

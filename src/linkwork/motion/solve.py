@@ -61,16 +61,22 @@ def run(
         parts.append(_run_chunk(mech, program, part, values, rates, accels))
     out = parts[0]
     for name in ("q", "v", "a", "cos", "sin", "local", "origin", "axis"):
-        setattr(out, name, np.concatenate([getattr(p, name) for p in parts], axis=2 if name != "cos" and name != "sin"
-                                          else 1))
+        setattr(
+            out,
+            name,
+            np.concatenate([getattr(p, name) for p in parts], axis=2 if name != "cos" and name != "sin" else 1),
+        )
     out.valid = np.concatenate([p.valid for p in parts])
     for name in ("step_valid", "step_det", "step_slack"):
         setattr(out, name, [np.concatenate(x) for x in zip(*(getattr(p, name) for p in parts), strict=True)])
-    out.step_branch = [None if x[0] is None else np.concatenate(x)
-                       for x in zip(*(p.step_branch for p in parts), strict=True)]
+    out.step_branch = [
+        None if x[0] is None else np.concatenate(x) for x in zip(*(p.step_branch for p in parts), strict=True)
+    ]
     offsets = np.cumsum([0] + [p.valid.shape[0] for p in parts])
-    out.step_flips = [[(v + int(o), i) for p, o in zip(parts, offsets, strict=False) for v, i in p.step_flips[k]]
-                      for k in range(len(program))]
+    out.step_flips = [
+        [(v + int(o), i, j) for p, o in zip(parts, offsets, strict=False) for v, i, j in p.step_flips[k]]
+        for k in range(len(program))
+    ]
     return out
 
 
@@ -159,9 +165,7 @@ def _repair_singular(
         for sign, near in ((-1.0, np.maximum(idx - 1, 0)), (1.0, np.minimum(idx + 1, n_ang - 1))):
             branches = [b[:, near] if b is not None else None for b in state.step_branch]
             sides.append(_solve(mech, program, geom, values[idx] + sign * h, rates[idx], accels[idx], branches))
-        means.append(
-            [0.5 * (a + b) for a, b in zip((sides[0].vel, sides[0].acc), (sides[1].vel, sides[1].acc), strict=True)]
-        )
+        means.append([0.5 * (a + b) for a, b in zip((sides[0].v, sides[0].a), (sides[1].v, sides[1].a), strict=True)])
     # links of the first singular step and after it: upstream links are regular there
     first = np.argmax(det[:, :, idx] < SINGULAR, axis=0)  # (V, a)
     order = np.full(mech.n_links_total, -1)

@@ -1,0 +1,159 @@
+"""``linkwork kinematics`` and ``linkwork positions``."""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from linkwork.cli.app import FileOrExample, _compile, app, fail
+
+
+def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
+    from linkwork.errors import LinkworkError
+
+    if steps is not None and angles is not None:
+        fail(LinkworkError("give either --steps or --angles, not both"))
+    if angles is not None:
+        try:
+            values = [math.radians(float(a)) for a in angles.split(",") if a.strip()]
+        except ValueError:
+            fail(LinkworkError(f'--angles: expected numbers in degrees separated by commas, got "{angles}"'))
+        if not values:
+            fail(LinkworkError("--angles: no angles given"))
+        return {"angles": np.array(values)}
+    if steps is not None and steps < 1:
+        fail(LinkworkError(f"--steps: expected a positive number of steps, got {steps}"))
+    return {"steps": steps or 360}
+
+
+@app.command()
+def kinematics(
+    file_or_example: FileOrExample,
+    steps: Annotated[int | None, typer.Option(help="equal steps over one turn of the crank (default 360)")] = None,
+    angles: Annotated[str | None, typer.Option(help="crank angles in degrees, e.g. 0,30,60")] = None,
+    out: Annotated[str | None, typer.Option(help="directory for kinematics.csv and kinematics.nc")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+) -> None:
+    """Positions, velocities and accelerations of every point and link over the cycle."""
+    from linkwork.errors import LinkworkError
+    from linkwork.io.motion_tables import to_json, write_csv, write_netcdf
+    from linkwork.motion import kinematics as solve
+    from linkwork.motion.analysis import extremes
+
+    mech = _compile(file_or_example)
+    try:
+        kin = solve(mech, **_angles(mech, steps, angles))
+    except LinkworkError as exc:
+        fail(exc)
+    ext = extremes(kin) if angles is None else []
+    written = []
+    if out is not None:
+        from pathlib import Path
+
+        try:
+            written.append(write_csv(kin, Path(out) / "kinematics.csv"))
+            try:
+                written.append(write_netcdf(kin, Path(out) / "kinematics.nc"))
+            except ImportError:
+                fail(LinkworkError("writing NetCDF needs xarray: pip install 'linkwork[data]'"))
+        except OSError as exc:
+            fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
+    if as_json:
+        typer.echo(json.dumps(to_json(kin, ext)))
+        return
+    n_ok = int(np.sum(kin.valid))
+    typer.echo(f"{mech.name}: {len(kin.angles)} positions, {n_ok} assembled")
+    for e in ext:
+        if e.kind == "slider":
+            typer.echo(
+                f"  slider {e.name}: stroke {e.stroke * 1000:.2f} mm, from {e.low * 1000:.2f} to "
+                f"{e.high * 1000:.2f} mm (at {math.degrees(e.at_low) % 360:.1f} and "
+                f"{math.degrees(e.at_high) % 360:.1f} deg), time ratio {e.time_ratio:.4f}"
+            )
+        else:
+            typer.echo(f"  rocker {e.name}: swing {math.degrees(e.stroke):.3f} deg, time ratio {e.time_ratio:.4f}")
+    from linkwork.motion.analysis import transmission_angles
+
+    for label, mu in transmission_angles(kin).items():
+        if np.any(np.isfinite(mu)):
+            i = int(np.nanargmin(mu))
+            typer.echo(
+                f"  {label}: least transmission angle {math.degrees(mu[i]):.2f} deg at "
+                f"{math.degrees(kin.angles[i]) % 360:.1f} deg"
+            )
+    for e in kin.events:
+        typer.echo(f"  {e.kind}: {e.message}")
+    for path in written:
+        typer.echo(f"  wrote {path}")
+
+
+def zero_angle(mech: Any) -> float:
+    """Crank angle of position 0: the first slider on a frame guide at the high end of its stroke
+    (for shears: the knives fully open), else the first rocker at its high extreme, else the assembly angle."""
+    from linkwork.motion import kinematics as solve
+    from linkwork.motion.analysis import extremes
+
+    ext = extremes(solve(mech, steps=3600))
+    for kind in ("slider", "rocker"):
+        for e in ext:
+            if e.kind == kind:
+                return e.at_high
+    return float(mech.drive_start[0])
+
+
+@app.command()
+def positions(
+    file_or_example: FileOrExample,
+    count: Annotated[int, typer.Option(help="number of positions over the turn")] = 12,
+    zero: Annotated[
+        float | None,
+        typer.Option(
+            help="crank angle of position 0, deg (default: the working "
+            "slider at the top of its stroke, e.g. the knives open)"
+        ),
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+) -> None:
+    """The plan of positions: coordinates of the points at COUNT crank positions (mm)."""
+    from linkwork.errors import LinkworkError
+    from linkwork.io.motion_tables import point_labels
+    from linkwork.motion import cycle
+    from linkwork.motion import kinematics as solve
+
+    mech = _compile(file_or_example)
+    if count < 1:
+        fail(LinkworkError(f"--count: expected a positive number, got {count}"))
+    try:
+        start = math.radians(zero) if zero is not None else zero_angle(mech)
+        sign = 1.0 if cycle(mech, 2)[1] > cycle(mech, 2)[0] else -1.0
+        values = start + sign * 2 * math.pi * np.arange(count) / count
+        kin = solve(mech, values)
+    except LinkworkError as exc:
+        fail(exc)
+    labels = point_labels(mech)
+    rows = []
+    for k in range(count):
+        row: dict[str, Any] = {"position": k, "angle_deg": math.degrees(values[k]) % 360}
+        for label, p in labels:
+            x = kin.position(mech.point_names[p])[k] * 1000
+            row[label] = [None if not np.isfinite(c) else round(float(c), 3) for c in x]
+        rows.append(row)
+    if as_json:
+        typer.echo(json.dumps({"name": mech.name, "unit": "mm", "positions": rows}))
+        return
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title=f"{mech.name}: {count} positions (coordinates in mm)", title_justify="left")
+    table.add_column("pos")
+    table.add_column("crank, deg")
+    for label, _ in labels:
+        table.add_column(label)
+    for row in rows:
+        cells = ["-" if row[label][0] is None else f"{row[label][0]:.1f}, {row[label][1]:.1f}" for label, _ in labels]
+        table.add_row(str(row["position"]), f"{row['angle_deg']:.1f}", *cells)
+    Console(width=max(120, 16 * (len(labels) + 2))).print(table)

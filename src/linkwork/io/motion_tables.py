@@ -1,0 +1,151 @@
+"""Tables of a kinematic result: rows of plain data, CSV, NetCDF (xarray), JSON."""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from linkwork.io.atomic import write_atomic
+
+
+def point_labels(mech: Any) -> list[tuple[str, int]]:
+    """One name per physical point: the joint name for joint points, ``link.point`` for markers
+    whose name is not unique, the point's name otherwise; frame points left out."""
+    joints = {mech.point_names[int(mech.pair_points[k, 1])].split(".", 1)[1] for k in range(mech.n_pairs)}
+    short = [n.split(".", 1)[1] for n in mech.point_names]
+    out: list[tuple[str, int]] = []
+    seen: set[str] = set()
+    for p, name in enumerate(short):
+        if mech.point_link[p] == 0 or mech.link_virtual[mech.point_link[p]]:
+            continue
+        label = name if name in joints or short.count(name) == 1 else mech.point_names[p]
+        if label not in seen:
+            seen.add(label)
+            out.append((label, p))
+    return out
+
+
+def moving_links(mech: Any) -> list[tuple[str, int]]:
+    return [(n, i) for i, n in enumerate(mech.link_names) if i > 0 and not mech.link_virtual[i]]
+
+
+def to_json(kin: Any, extremes: list[Any]) -> dict[str, Any]:
+    """The ``linkwork kinematics --json`` object (one mechanism, no variants)."""
+    mech = kin.mechanism
+
+    def arr(a: np.ndarray) -> list[float | None]:
+        return [None if not math.isfinite(float(x)) else float(x) for x in np.asarray(a).ravel()]
+
+    points = {}
+    for label, p in point_labels(mech):
+        name = mech.point_names[p]
+        x, v, a = kin.position(name), kin.velocity(name), kin.acceleration(name)
+        points[label] = {
+            "x": arr(x[:, 0]),
+            "y": arr(x[:, 1]),
+            "vx": arr(v[:, 0]),
+            "vy": arr(v[:, 1]),
+            "ax": arr(a[:, 0]),
+            "ay": arr(a[:, 1]),
+        }
+    links = {
+        n: {"angle": arr(kin.angle(i)), "omega": arr(kin.omega(i)), "epsilon": arr(kin.epsilon(i))}
+        for n, i in moving_links(mech)
+    }
+    events = [e.as_dict() for e in kin.events]
+    events += [{"kind": "stroke", **e.as_dict()} for e in extremes]
+    return {
+        "name": mech.name,
+        "units": {
+            "length": "m",
+            "speed": "m/s",
+            "acceleration": "m/s^2",
+            "angle": "rad",
+            "omega": "rad/s",
+            "epsilon": "rad/s^2",
+            "angles_deg": "deg",
+        },
+        "angles_deg": arr(np.degrees(kin.angles)),
+        "points": points,
+        "links": links,
+        "valid": [bool(x) for x in np.asarray(kin.valid).ravel()],
+        "events": events,
+    }
+
+
+def write_csv(kin: Any, path: str | Path) -> Path:
+    """One row per angle, one column per quantity, units in the header."""
+    mech = kin.mechanism
+    cols: list[tuple[str, np.ndarray]] = [
+        ("angle [deg]", np.degrees(kin.angles)),
+        ("valid", np.asarray(kin.valid, dtype=int)),
+    ]
+    for label, p in point_labels(mech):
+        name = mech.point_names[p]
+        x, v, a = kin.position(name), kin.velocity(name), kin.acceleration(name)
+        for q, unit, data in (
+            ("x", "m", x[:, 0]),
+            ("y", "m", x[:, 1]),
+            ("vx", "m/s", v[:, 0]),
+            ("vy", "m/s", v[:, 1]),
+            ("ax", "m/s^2", a[:, 0]),
+            ("ay", "m/s^2", a[:, 1]),
+        ):
+            cols.append((f"{label}.{q} [{unit}]", data))
+    for n, i in moving_links(mech):
+        cols += [
+            (f"{n}.angle [rad]", kin.angle(i)),
+            (f"{n}.omega [rad/s]", kin.omega(i)),
+            (f"{n}.epsilon [rad/s^2]", kin.epsilon(i)),
+        ]
+
+    def writer(tmp: Path) -> None:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            w = csv.writer(fh)
+            w.writerow([c[0] for c in cols])
+            for row in zip(*(c[1] for c in cols), strict=True):
+                w.writerow([repr(float(x)) if not isinstance(x, np.integer | int) else int(x) for x in row])
+
+    return write_atomic(path, writer)
+
+
+def to_dataset(kin: Any) -> Any:
+    """An xarray Dataset with dimensions variant x angle x point (and link)."""
+    import xarray as xr
+
+    mech = kin.mechanism
+    labels = point_labels(mech)
+    links = moving_links(mech)
+    pos = np.stack([kin._point(mech.point_names[p])[0] for _, p in labels], axis=2)  # (V, A, P, 2)
+    vel = np.stack([kin._point(mech.point_names[p])[1] for _, p in labels], axis=2)
+    acc = np.stack([kin._point(mech.point_names[p])[2] for _, p in labels], axis=2)
+    idx = [i for _, i in links]
+    dims3 = ("variant", "angle", "point")
+    dimsl = ("variant", "angle", "link")
+    data = {
+        "x": (dims3, pos[..., 0], {"units": "m"}),
+        "y": (dims3, pos[..., 1], {"units": "m"}),
+        "vx": (dims3, vel[..., 0], {"units": "m/s"}),
+        "vy": (dims3, vel[..., 1], {"units": "m/s"}),
+        "ax": (dims3, acc[..., 0], {"units": "m/s^2"}),
+        "ay": (dims3, acc[..., 1], {"units": "m/s^2"}),
+        "theta": (dimsl, np.moveaxis(kin.q[idx, 2], 0, -1), {"units": "rad"}),
+        "omega": (dimsl, np.moveaxis(kin.v[idx, 2], 0, -1), {"units": "rad/s"}),
+        "epsilon": (dimsl, np.moveaxis(kin.a[idx, 2], 0, -1), {"units": "rad/s^2"}),
+        "valid": (("variant", "angle"), kin.valid_all.astype("int8"), {}),
+    }
+    coords = {
+        "angle": ("angle", np.degrees(kin.angles), {"units": "deg"}),
+        "point": [label for label, _ in labels],
+        "link": [n for n, _ in links],
+    }
+    return xr.Dataset(data, coords=coords, attrs={"mechanism": mech.name, "source": "linkwork kinematics"})
+
+
+def write_netcdf(kin: Any, path: str | Path) -> Path:
+    ds = to_dataset(kin)
+    return write_atomic(path, lambda tmp: ds.to_netcdf(tmp, engine="scipy"))
