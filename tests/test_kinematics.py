@@ -362,11 +362,11 @@ def test_isosceles_slider_crank_goes_through_its_change_points_smoothly():
     velocity 2 l w cos(phi) and acceleration -2 l w^2 sin(phi) even on those samples."""
     mech = lw.compile(lw.example("shears-slider-crank"))
     kin = lw.kinematics(mech, steps=24)
-    phi, l, w = kin.angles, 0.15, 10.0
+    phi, r, w = kin.angles, 0.15, 10.0
     assert kin.valid.all()
-    np.testing.assert_allclose(kin.position("B")[:, 1], 2 * l * np.sin(phi), atol=1e-12)
-    np.testing.assert_allclose(kin.velocity("B")[:, 1], 2 * l * w * np.cos(phi), atol=1e-8)
-    np.testing.assert_allclose(kin.acceleration("B")[:, 1], -2 * l * w * w * np.sin(phi), atol=1e-6)
+    np.testing.assert_allclose(kin.position("B")[:, 1], 2 * r * np.sin(phi), atol=1e-12)
+    np.testing.assert_allclose(kin.velocity("B")[:, 1], 2 * r * w * np.cos(phi), atol=1e-8)
+    np.testing.assert_allclose(kin.acceleration("B")[:, 1], -2 * r * w * w * np.sin(phi), atol=1e-6)
     # the rod turns at -w: A B mirrors O A about the horizontal through A
     np.testing.assert_allclose(kin.omega("rod"), -w, atol=1e-8)
     kinds = [e.kind for e in kin.events]
