@@ -57,7 +57,7 @@ def to_json(kin: Any, extremes: list[Any]) -> dict[str, Any]:
         for n, i in moving_links(mech)
     }
     events = [e.as_dict() for e in kin.events]
-    events += [{"kind": "stroke", **e.as_dict()} for e in extremes]
+    events += [{**e.as_dict(), "what": e.kind, "kind": "stroke"} for e in extremes]
     return {
         "name": mech.name,
         "units": {

@@ -1,0 +1,173 @@
+"""Strokes, time ratio, transmission angles, instantaneous centres, plans, and the CLI commands."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+import linkwork as lw
+import linkwork.cli.motion  # noqa: F401,E402 - registers the commands
+from linkwork.cli.app import app
+from linkwork.motion.analysis import extremes, instant_centre, transmission_angles
+from linkwork.motion.plans import plans
+from mechanisms import TEXTBOOK
+
+runner = CliRunner()
+
+
+def cross2(a, b):
+    a, b = np.asarray(a), np.asarray(b)
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def test_offset_slider_crank_stroke_and_time_ratio_closed_form():
+    r, rod, e = 0.1, 0.4, 0.05
+    mech = lw.compile(TEXTBOOK["offset slider-crank"][0]().build())
+    kin = lw.kinematics(mech, steps=3600)
+    (ext,) = [x for x in extremes(kin) if x.kind == "slider"]
+    stroke = math.sqrt((rod + r) ** 2 - e**2) - math.sqrt((rod - r) ** 2 - e**2)
+    assert ext.stroke == pytest.approx(stroke, abs=1e-9)
+    theta = math.asin(e / (rod - r)) - math.asin(e / (rod + r))
+    assert ext.time_ratio == pytest.approx((math.pi + theta) / (math.pi - theta), rel=1e-6)
+    # the outer dead point: crank and rod in line, phi = asin(e / (l + r))
+    assert math.degrees(ext.at_high) % 360 == pytest.approx(math.degrees(math.asin(e / (rod + r))), abs=1e-3)
+
+
+def test_four_bar_rocker_swing_and_transmission_angle_closed_form():
+    a, b, c, d = 0.1, 0.35, 0.25, 0.3
+    mech = lw.compile(lw.example("four-bar"))
+    kin = lw.kinematics(mech, steps=7200)
+    (rocker,) = [x for x in extremes(kin) if x.kind == "rocker"]
+
+    def rocker_angle(o2b):  # angle of O4B from +x, B above the frame line
+        return math.pi - math.acos((d * d + c * c - o2b * o2b) / (2 * d * c))
+
+    swing = rocker_angle(a + b) - rocker_angle(b - a)
+    assert rocker.stroke == pytest.approx(abs(swing), abs=1e-7)
+    mu = transmission_angles(kin)["II(2,3) RRR"]
+    o4a = np.hypot(*(kin.position("A") - (d, 0)).T)
+    cos_mu = (b * b + c * c - o4a**2) / (2 * b * c)
+    expect = np.arcsin(np.sqrt(1 - cos_mu**2))  # folded into [0, 90] deg
+    np.testing.assert_allclose(mu, expect, atol=1e-9)
+    # extreme transmission angles at crank angles 0 and 180 deg (Freudenstein)
+    mu_min = math.acos((b * b + c * c - (d - a) ** 2) / (2 * b * c))
+    mu_max = math.acos((b * b + c * c - (d + a) ** 2) / (2 * b * c))
+    assert mu.min() == pytest.approx(min(mu_min, math.pi - mu_max, math.pi / 2), abs=1e-5)
+
+
+def test_instant_centres_by_kennedy():
+    mech = lw.compile(lw.example("four-bar"))
+    kin = lw.kinematics(mech, steps=36)
+    a, b = kin.position("A"), kin.position("B")
+    ic = instant_centre(kin, "coupler")
+    # on O2A and on O4B
+    np.testing.assert_allclose(cross2(a, ic), 0, atol=1e-12)
+    np.testing.assert_allclose(cross2(b - (0.3, 0), ic - (0.3, 0)), 0, atol=1e-12)
+    # relative centres of links joined by a pin are the pin
+    rel = instant_centre(kin, "coupler", "rocker")
+    finite = np.isfinite(rel[:, 0])
+    assert finite.sum() >= 34
+    np.testing.assert_allclose(rel[finite], b[finite], atol=1e-9)
+    np.testing.assert_allclose(instant_centre(kin, "crank"), 0, atol=1e-12)
+    # three-centre theorem: the centre of crank relative to rocker lies on the frame line O2 O4
+    # and on the coupler line A B
+    p24 = instant_centre(kin, "crank", "rocker")
+    np.testing.assert_allclose(p24[:, 1], 0, atol=1e-9)
+    np.testing.assert_allclose(cross2(b - a, p24 - a), 0, atol=1e-9)
+
+
+def test_velocity_plan_of_the_double_cut_shears_follows_the_paper():
+    mech = lw.compile(lw.example("double-cut-shears"))
+    kin = lw.kinematics(mech, steps=12)
+    vp, ap = plans(kin, 9)
+    pts = {k: np.array(v) for k, v in vp.points.items()}
+    vec = {(v.start, v.end): np.array(v.vector) for v in vp.vectors}
+    pos = {n: kin.position(n)[9] for n in ("A", "B", "C", "D", "E", "F")}
+    # (2): pa = omega l, normal to O1A
+    assert np.hypot(*pts["a"]) == pytest.approx(math.pi * 0.1)
+    # (3): b from a along the normal to AB, and from p along the normal to O3B
+    assert vec[("a", "b")] @ (pos["B"] - pos["A"]) == pytest.approx(0, abs=1e-12)
+    np.testing.assert_allclose(pts["a"] + vec[("a", "b")], pts["b"], atol=1e-12)
+    np.testing.assert_allclose(vec[("p", "b")], pts["b"], atol=1e-12)
+    assert pts["b"] @ pos["B"] == pytest.approx(0, abs=1e-12)
+    # c and d by similarity: on the line p b, |pc| / |pb| = 0.3 / 0.5
+    for name in ("c", "d"):
+        assert cross2(pts[name], pts["b"]) == pytest.approx(0, abs=1e-12)
+        assert np.hypot(*pts[name]) / np.hypot(*pts["b"]) == pytest.approx(0.6)
+    # (4): e from d along the normal to DE, and from p vertically (the fixed guide)
+    assert vec[("d", "e")] @ (pos["E"] - pos["D"]) == pytest.approx(0, abs=1e-12)
+    np.testing.assert_allclose(pts["d"] + vec[("d", "e")], pts["e"], atol=1e-12)
+    assert vec[("p", "e")][0] == pytest.approx(0, abs=1e-12)
+    # (5): the same for f from c
+    np.testing.assert_allclose(pts["c"] + vec[("c", "f")], pts["f"], atol=1e-12)
+    assert vp.scale in (0.001, 0.002, 0.0025, 0.005) and max(np.hypot(*p) for p in pts.values()) / vp.scale <= 100
+
+
+def test_acceleration_plan_components():
+    mech = lw.compile(lw.example("double-cut-shears"))
+    kin = lw.kinematics(mech, steps=12)
+    _, ap = plans(kin, 9)
+    pts = {k: np.array(v) for k, v in ap.points.items()}
+    by = {(v.start, v.end, v.kind): np.array(v.vector) for v in ap.vectors}
+    a, b = kin.position("A")[9], kin.position("B")[9]
+    w2 = kin.omega("rod")[9]
+    n = by[("a", "n_ba", "normal")]
+    np.testing.assert_allclose(n, -(w2**2) * (b - a), atol=1e-12)  # towards A, omega^2 |AB|
+    t = by[("n_ba", "b", "tangential")]
+    assert t @ (b - a) == pytest.approx(0, abs=1e-12)
+    np.testing.assert_allclose(pts["a"] + n + t, pts["b"], atol=1e-10)
+    # the fixed guides: no Coriolis component
+    np.testing.assert_allclose(by[("p", "k_e", "coriolis")], 0, atol=1e-15)
+
+
+def test_kinematics_command_json_and_files(tmp_path):
+    result = runner.invoke(app, ["kinematics", "double-cut-shears", "--steps", "36", "--json", "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    out = json.loads(result.stdout)
+    assert set(out) >= {"angles_deg", "points", "links", "valid", "events"}
+    assert set(out["points"]["E"]) == {"x", "y", "vx", "vy", "ax", "ay"}
+    assert set(out["links"]["rocker"]) == {"angle", "omega", "epsilon"}
+    kin = lw.kinematics(lw.compile(lw.example("double-cut-shears")), steps=36)
+    np.testing.assert_allclose(out["points"]["E"]["vy"], kin.velocity("E")[:, 1])
+    strokes = [e for e in out["events"] if e["kind"] == "stroke"]
+    assert {s["name"] for s in strokes} >= {"guide_E", "guide_F"}
+    header = (tmp_path / "kinematics.csv").read_text().splitlines()[0].split(",")
+    assert "E.vy [m/s]" in header and "rocker.omega [rad/s]" in header
+    xr = pytest.importorskip("xarray")
+    ds = xr.open_dataset(tmp_path / "kinematics.nc", engine="scipy")
+    assert dict(ds.sizes) == {"variant": 1, "angle": 36, "point": len(ds.point), "link": 7}
+    np.testing.assert_allclose(ds["ay"].sel(point="F").values[0], kin.acceleration("F")[:, 1])
+    assert ds["vx"].attrs["units"] == "m/s"
+
+
+def test_positions_start_with_the_knives_open():
+    result = runner.invoke(app, ["positions", "double-cut-shears", "--json"])
+    assert result.exit_code == 0, result.output
+    rows = json.loads(result.stdout)["positions"]
+    assert len(rows) == 12
+    e = [r["E"][1] for r in rows]
+    assert e[0] == max(e) and rows[0]["F"][1] == min(r["F"][1] for r in rows)
+    kin = lw.kinematics(lw.compile(lw.example("double-cut-shears")), steps=36000)
+    assert e[0] == pytest.approx(kin.position("E")[:, 1].max() * 1000, abs=1e-3)
+    step = (rows[1]["angle_deg"] - rows[0]["angle_deg"]) % 360
+    assert step == pytest.approx(30)
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["kinematics", "four-bar", "--angles", "ten"], "--angles: expected numbers in degrees"),
+        (["kinematics", "four-bar", "--angles", "10", "--steps", "5"], "give either --steps or --angles"),
+        (["kinematics", "four-bar", "--steps", "0"], "--steps: expected a positive number"),
+        (["positions", "four-bar", "--count", "0"], "--count: expected a positive number"),
+    ],
+)
+def test_bad_options_exit_2_with_a_message(args, message):
+    result = runner.invoke(app, args)
+    assert result.exit_code == 2
+    assert message in result.stderr
+    assert "Traceback" not in result.output
