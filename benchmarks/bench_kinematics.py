@@ -1,0 +1,163 @@
+"""Kinematics benchmark: linkwork against pylinkage, a NumPy closed form and a plain C closed form.
+
+Run with ``python benchmarks/bench_kinematics.py``.  All peers solve the
+same four-bar (the bundled ``four-bar`` example): positions, velocities and
+accelerations over a turn of the crank, in one process, one after the other,
+best of several runs.  The C kernel is compiled at run time with the
+system's C compiler (``cc -O3``); pylinkage (with numba) is used when
+installed.  Each peer's coupler-rocker joint B is checked against
+linkwork's before its time is reported.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import math
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+import linkwork as lw
+
+A, B, C, D = 0.10, 0.35, 0.25, 0.30
+W = 2 * math.pi  # 60 rpm
+
+
+def best(fn, repeat=7, budget=3.0):
+    """Best wall time of ``fn()`` over a few runs (after one warm-up)."""
+    fn()
+    times = []
+    start = time.perf_counter()
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+        if time.perf_counter() - start > budget:
+            break
+    return min(times)
+
+
+def numpy_closed_form(phi, sigma):
+    ax, ay = A * np.cos(phi), A * np.sin(phi)
+    vax, vay, aax, aay = -W * ay, W * ax, -W * W * ax, -W * W * ay
+    dx, dy = D - ax, -ay
+    dist2 = dx * dx + dy * dy
+    inv = 1 / np.sqrt(dist2)
+    t = (B * B - C * C + dist2) * 0.5 * inv
+    h = sigma * np.sqrt(B * B - t * t)
+    ex, ey = dx * inv, dy * inv
+    bx, by = ax + t * ex - h * ey, ay + t * ey + h * ex
+    r1x, r1y, r2x, r2y = bx - ax, by - ay, bx - D, by
+    c1x, c1y, c2x, c2y = -r1y, r1x, r2y, -r2x
+    det = c1x * c2y - c1y * c2x
+    w2 = (-vax * c2y + vay * c2x) / det
+    w3 = (-c1x * vay + c1y * vax) / det
+    rax = -aax + w2 * w2 * r1x - w3 * w3 * r2x
+    ray = -aay + w2 * w2 * r1y - w3 * w3 * r2y
+    e2 = (rax * c2y - ray * c2x) / det
+    e3 = (c1x * ray - c1y * rax) / det
+    return bx, by, -w3 * r2y, w3 * r2x, -e3 * r2y - w3 * w3 * r2x, e3 * r2x - w3 * w3 * r2y, w2, w3, e2, e3
+
+
+def c_kernel():
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None:
+        return None
+    tmp = Path(tempfile.mkdtemp())
+    lib = tmp / "four_bar.so"
+    src = Path(__file__).with_name("four_bar_c.c")
+    subprocess.run([cc, "-O3", "-march=native", "-shared", "-fPIC", str(src), "-o", str(lib), "-lm"], check=True)
+    dll = ctypes.CDLL(str(lib))
+    f = dll.four_bar
+    dp = ctypes.POINTER(ctypes.c_double)
+    f.argtypes = [
+        ctypes.c_int,
+        dp,
+        ctypes.c_double,
+        ctypes.c_double,
+        ctypes.c_double,
+        ctypes.c_double,
+        ctypes.c_double,
+        ctypes.c_double,
+        dp,
+    ]
+
+    def run(phi, sigma):
+        out = np.empty((len(phi), 10))
+        f(len(phi), phi.ctypes.data_as(dp), A, B, C, D, W, sigma, out.ctypes.data_as(dp))
+        return out
+
+    return run
+
+
+def pylinkage_four_bar(n):
+    try:
+        import pylinkage as pl
+    except ImportError:
+        return None
+    mech = lw.compile(lw.example("four-bar"))
+    b0 = mech.points0()[mech.point_names.index("rocker.B")]
+    o2, o4 = pl.Ground(0.0, 0.0, name="O2"), pl.Ground(D, 0.0, name="O4")
+    crank = pl.Crank(o2, radius=A, angular_velocity=2 * math.pi / n, initial_angle=math.radians(60), name="A")
+    dyad = pl.RRRDyad(crank.output, o4, distance1=B, distance2=C, x=b0[0], y=b0[1], name="B")
+    linkage = pl.Linkage([o2, o4, crank, dyad], name="four-bar")
+    linkage.set_input_velocity(crank, W)
+    idx = [c.name for c in linkage.components].index("B")
+
+    def run():
+        return linkage.step_fast_with_kinematics(iterations=n)
+
+    return run, idx
+
+
+def main() -> None:
+    mech = lw.compile(lw.example("four-bar"))
+    sigma = mech.program[1].branch
+    sigma_c = sigma  # the same assembly mode in the closed forms
+    rows = []
+    ckern = c_kernel()
+    for n in (360, 36_000):
+        phi = mech.drive_start[0] + 2 * np.pi * np.arange(n) / n
+        kin = lw.kinematics(mech, phi)
+        ref = kin.position("B")
+        t_lw = best(lambda phi=phi: lw.kinematics(mech, phi))
+        npy = numpy_closed_form(phi, sigma_c)
+        err_np = float(np.max(np.abs(np.stack(npy[:2], -1) - ref)))
+        t_np = best(lambda phi=phi: numpy_closed_form(phi, sigma_c))
+        row = {"case": f"four-bar, {n} angles", "n": n, "linkwork": t_lw, "numpy": t_np, "err_numpy": err_np}
+        if ckern is not None:
+            out = ckern(phi, sigma_c)
+            row["err_c"] = float(np.max(np.abs(out[:, :2] - ref)))
+            row["c"] = best(lambda phi=phi: ckern(phi, sigma_c))
+        pyl = pylinkage_four_bar(n)
+        if pyl is not None:
+            run, idx = pyl
+            pos = run()[0]
+            start = np.argmin(np.abs(pos[:, idx, 0] - ref[0, 0]) + np.abs(pos[:, idx, 1] - ref[0, 1]))
+            row["err_pylinkage"] = float(np.max(np.abs(np.roll(pos[:, idx], -start, axis=0) - ref)))
+            row["pylinkage"] = best(run)
+        rows.append(row)
+    variants = {"links.crank.length": np.linspace(0.09, 0.11, 10_000)}
+    phi = mech.drive_start[0] + 2 * np.pi * np.arange(360) / 360
+    t_var = best(lambda: lw.kinematics(mech, phi, variants=variants), repeat=3, budget=20)
+    print(f"python {sys.version.split()[0]}, numpy {np.__version__}")
+    print(f"{'case':28s} {'peer':10s} {'time, ms':>10s} {'configs/s':>12s} {'vs C':>7s} {'max |dB|, m':>12s}")
+    for row in rows:
+        for peer in ("linkwork", "numpy", "c", "pylinkage"):
+            if peer not in row:
+                continue
+            t = row[peer]
+            rate = row["n"] / t
+            ratio = t / row["c"] if "c" in row else float("nan")
+            err = row.get(f"err_{peer}", 0.0)
+            print(f"{row['case']:28s} {peer:10s} {t * 1e3:10.3f} {rate:12.3e} {ratio:7.2f} {err:12.1e}")
+    print(f"{'four-bar, 10000 x 360':28s} {'linkwork':10s} {t_var * 1e3:10.1f} {3.6e6 / t_var:12.3e}")
+
+
+if __name__ == "__main__":
+    main()
