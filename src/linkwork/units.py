@@ -9,6 +9,7 @@ metres, kilograms, seconds, newtons and radians.
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 from typing import Any
 
@@ -37,16 +38,23 @@ DEFAULT_UNITS: dict[str, str] = {
 
 # Units of derived kinds, built from the declared base units.
 _DERIVED = {
-    "inertia": "({mass})*({length})**2",
-    "moment": "({force})*({length})",
-    "speed": "({length})/({time})",
-    "angular_speed": "({angle})/({time})",
-    "acceleration": "({length})/({time})**2",
+    "inertia": "{mass}*{length}**2",
+    "moment": "{force}*{length}",
+    "speed": "{length}/{time}",
+    "angular_speed": "{angle}/{time}",
+    "acceleration": "{length}/{time}**2",
 }
 
 
 class UnitParseError(ValueError):
-    """A value could not be read as the expected kind of quantity."""
+    """A value could not be read as the expected kind of quantity.
+
+    ``reason`` says why a unit was refused, when there is more to say than its kind.
+    """
+
+    def __init__(self, message: str, reason: str = ""):
+        super().__init__(message)
+        self.reason = reason
 
 
 @lru_cache(maxsize=1)
@@ -70,11 +78,25 @@ def unit_for(kind: str, declared: dict[str, str]) -> str:
 def _factor(unit: str, kind: str) -> float:
     """SI value of one ``unit`` of ``kind``; raises UnitParseError."""
     ureg = registry()
+    phrase = KINDS[kind][0]
+    unknown = f"unknown unit {_quote(unit)}"
+    if not _UNIT_TEXT.match(unit):
+        raise UnitParseError(unknown, unknown)
     try:
-        q = ureg.Quantity(1.0, unit)
+        units = ureg.parse_units(unit)
+        q = ureg.Quantity(1.0, units)
     except Exception as exc:  # pint raises several types for bad units
-        raise UnitParseError(f"unknown unit {_quote(unit)}") from exc
+        raise UnitParseError(unknown, unknown) from exc
+    names = set(units._units)
+    if kind == "angle" and not names <= ANGLE_UNITS:
+        raise UnitParseError(f"expected {phrase}, got {_quote(unit)}", "use deg, rad or rev")
+    if kind not in ("angle", "angular_speed") and names & ANGLE_UNITS:
+        raise UnitParseError(f"expected {phrase}, got {_quote(unit)}", "an angle unit in it")
     return _to_si(q, kind, unit)
+
+
+#: What a unit expression may contain: names, *, /, ^ or ** with small integer powers, spaces.
+_UNIT_TEXT = re.compile(r"^[A-Za-z_][A-Za-z0-9_ ]*(?:\s*(?:\*\*|\^|\*|/)\s*(?:[A-Za-z_][A-Za-z0-9_]*|-?\d))*\s*$")
 
 
 def _to_si(q: Any, kind: str, text: str) -> float:
@@ -85,7 +107,7 @@ def _to_si(q: Any, kind: str, text: str) -> float:
     else:
         ok = q.dimensionality == ureg.get_dimensionality(dim)
     if kind == "angular_speed" and ok and "hertz" in str(q.units):
-        raise UnitParseError(f"expected {phrase}, got {_quote(text)} (write rpm, rev/s or rad/s, not Hz)")
+        raise UnitParseError(f"expected {phrase}, got {_quote(text)}", "write rpm, rev/s or rad/s, not Hz")
     if not ok:
         raise UnitParseError(f"expected {phrase}, got {_quote(text)}")
     return float(q.to(si).magnitude)
@@ -125,9 +147,13 @@ def parse_quantity(value: Any, kind: str, declared: dict[str, str] | None = None
     if isinstance(value, bool) or value is None:
         raise UnitParseError(f"expected {phrase}, got {_show(value)}")
     if isinstance(value, int | float):
-        if not math.isfinite(value):
+        try:
+            number = float(value)
+        except OverflowError:
+            raise UnitParseError(f"expected {phrase}, got a number too large to use") from None
+        if not math.isfinite(number):
             raise UnitParseError(f"expected {phrase}, got {value!r}")
-        return float(value) * _factor(unit_for(kind, declared), kind)
+        return number * _factor(unit_for(kind, declared), kind)
     if not isinstance(value, str):
         raise UnitParseError(f"expected {phrase}, got {_show(value)}")
     text = value.strip()
@@ -137,14 +163,28 @@ def parse_quantity(value: Any, kind: str, declared: dict[str, str] | None = None
         pass
     else:
         return parse_quantity(number, kind, declared)
-    ureg = registry()
-    try:
-        q = ureg.Quantity(text)
-    except Exception as exc:
-        raise UnitParseError(f"expected {phrase}, got {_quote(value)} (not a number with a unit)") from exc
-    if not isinstance(q, ureg.Quantity) or not math.isfinite(float(q.magnitude)):
+    match = _NUMBER_UNIT.match(text)
+    if match is None:
+        raise UnitParseError(f"expected {phrase}, got {_quote(value)} (write a number and a unit, e.g. \"100 mm\")")
+    number, unit = float(match.group(1)), match.group(2)
+    if not math.isfinite(number):
         raise UnitParseError(f"expected {phrase}, got {_quote(value)}")
-    return _to_si(q, kind, value)
+    try:
+        factor = _factor(unit, kind)
+    except UnitParseError as exc:
+        tail = f" ({exc.reason})" if exc.reason else ""
+        raise UnitParseError(f"expected {phrase}, got {_quote(value)}{tail}", exc.reason) from None
+    result = number * factor
+    if not math.isfinite(result):
+        raise UnitParseError(f"expected {phrase}, got {_quote(value)} (out of range)")
+    return result
+
+
+#: A plain decimal number followed by a unit expression: nothing is evaluated but the unit.
+_NUMBER_UNIT = re.compile(r"^([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z_].*)$")
+
+#: Units an angle may be written in (pint's canonical names).
+ANGLE_UNITS = {"radian", "degree", "revolution", "turn", "arcminute", "arcsecond", "gradian"}
 
 
 def _show(value: Any) -> str:

@@ -78,7 +78,7 @@ def _declared_units(src: Source, problems: list[Problem]) -> dict[str, str]:
             check_unit(unit, kind)
         except UnitParseError as exc:
             noun = KINDS[kind][0].split(" ", 1)[1]
-            reason = "" if str(exc).startswith("expected") else f" ({exc})"
+            reason = f" ({exc.reason})" if exc.reason else ""
             problems.append(src.problem(("units", kind), f'expected a unit of {noun}, got "{unit}"{reason}'))
         else:
             declared[kind] = unit
