@@ -15,6 +15,7 @@ from linkwork.errors import UnassemblableError
 from linkwork.motion.geometry import geometry
 from linkwork.motion.solve import run
 from mechanisms import TEXTBOOK, circle_intersection
+from test_structure import _assembles, four_bar_spec
 
 MECHANISMS = [
     ("example", n)
@@ -231,8 +232,6 @@ def test_class3_triad_against_an_independent_solver():
 def test_non_grashof_four_bar_reports_where_it_cannot_be_assembled():
     """a, b, c, d = 0.1, 0.2, 0.15, 0.3: the crank cannot pass |AO4| > b + c = 0.35,
     i.e. cos(phi) < (a^2 + d^2 - 0.35^2) / (2 a d) -> phi in (112.02, 247.98) deg."""
-    from test_structure import four_bar_spec
-
     data, _ = four_bar_spec(0.1, 0.35, 0.25, 0.3, 1.0, False)
     data["links"]["coupler"]["length"], data["links"]["rocker"]["length"] = 0.2, 0.15
     a = np.pi / 3
@@ -294,8 +293,6 @@ four_bars = st.tuples(
 @settings(max_examples=30, deadline=None)
 @given(four_bars, st.floats(-2, 2), st.floats(-2, 2), st.floats(-math.pi, math.pi))
 def test_random_four_bars_keep_their_lengths_and_move_rigidly_with_the_frame(dims, dx, dy, rot):
-    from test_structure import _assembles, four_bar_spec
-
     a, b, c, d, phi, left = dims
     if not _assembles(a, b, c, d, phi):
         return

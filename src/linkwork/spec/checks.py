@@ -67,6 +67,8 @@ def check(src: Source, declared: dict[str, str]) -> list[Problem]:
 
     for name, link in links.items():
         path = ("links", name)
+        if not isinstance(name, str):
+            continue
         if name == FRAME:
             bad(path, '"frame" is the fixed link; give a moving link another name')
             continue
@@ -130,7 +132,7 @@ def _check_joint(bad: Any, jname: str, joint: dict[str, Any], known: set[str], p
     dup = {n for n in names if isinstance(n, str) and names.count(n) > 1}
     for n in sorted(dup):
         bad(path + ("links",), f'link "{n}" is listed twice')
-    point = joint.get("point", jname)
+    point = joint.get("point") or jname
     if not isinstance(point, str):
         return
     if kind == "revolute":
@@ -163,7 +165,8 @@ def _check_joint(bad: Any, jname: str, joint: dict[str, Any], known: set[str], p
 def _check_connected(bad: Any, links: dict[str, Any], joints: dict[str, Any], known: set[str]) -> None:
     adj: dict[str, set[str]] = {n: set() for n in known}
     for joint in joints.values():
-        names = [n for n in _dict(joint).get("links", []) or [] if isinstance(n, str) and n in known]
+        listed = _dict(joint).get("links")
+        names = [n for n in (listed if isinstance(listed, list) else []) if isinstance(n, str) and n in known]
         for a in names:
             adj[a] |= set(names) - {a}
     seen, stack = {FRAME}, [FRAME]
@@ -197,10 +200,13 @@ def _check_drives(bad: Any, data: dict[str, Any], joints: dict[str, Any], declar
             continue
         joint = _dict(joints[jname])
         kind = joint.get("type")
+        if kind not in ("revolute", "prismatic", "pin-in-slot"):
+            continue  # the joint's own problem is reported at the joint
         if kind == "pin-in-slot":
             bad(path + ("joint",), f'"{jname}" is a pin-in-slot pair, which cannot be driven')
             continue
-        nlinks = len(joint.get("links") or [])
+        listed = joint.get("links")
+        nlinks = len(listed) if isinstance(listed, list) else 0
         if kind == "revolute" and nlinks != 2:
             bad(path + ("joint",), f'a driven revolute joint must join exactly two links, "{jname}" joins {nlinks}')
         rot = kind == "revolute"
@@ -211,8 +217,8 @@ def _check_drives(bad: Any, data: dict[str, Any], joints: dict[str, Any], declar
             bad(path + ("direction",), f'a prismatic drive moves "forward" or "backward", got "{direction}"')
         wrong = "position" if rot else "angle"
         if drive.get(wrong) is not None:
-            right = "angle" if rot else "position"
-            bad(path + (wrong,), f'a {kind} drive has an "{right}", not a "{wrong}"')
+            right = "an angle" if rot else "a position"
+            bad(path + (wrong,), f'a {kind} drive has {right} (the drive coordinate of the assembly pose), not a "{wrong}"')
         if drive.get("speed") is not None:
             try:
                 parse_quantity(drive["speed"], "angular_speed" if rot else "speed", declared)
@@ -229,6 +235,15 @@ def _check_drives(bad: Any, data: dict[str, Any], joints: dict[str, Any], declar
             times = law.get("time")
             if isinstance(times, list) and len(times) != len(values):
                 bad(path + ("law",), f"time has {len(times)} entries but value has {len(values)}")
+            elif isinstance(times, list) and len(times) < 2:
+                bad(path + ("law",), f"a motion law needs at least two points, got {len(times)}")
+            elif isinstance(times, list):
+                try:
+                    t = [parse_quantity(x, "time", declared) for x in times]
+                except UnitParseError:
+                    t = []
+                if any(b <= a for a, b in zip(t, t[1:], strict=False)):
+                    bad(path + ("law", "time"), "the times of a motion law must increase")
         if law and drive.get("speed") is not None:
             bad(path + ("speed",), 'give either a uniform "speed" or a motion "law", not both')
 

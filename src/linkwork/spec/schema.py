@@ -30,11 +30,27 @@ def _scalar(kind: str, value: Any, info: ValidationInfo, sign: str = "") -> floa
     except UnitParseError as exc:
         raise _error(str(exc)) from None
     noun = KINDS[kind][0].split(" ", 1)[1]
+    if abs(x) > 1e9:
+        raise _error(f"expected {KINDS[kind][0]} of a machine's size, got {_show(value)} (out of range)")
     if sign == "positive" and not x > 0:
         raise _error(f"expected a positive {noun}, got {_show(value)}")
     if sign == "nonnegative" and not x >= 0:
         raise _error(f"expected a non-negative {noun}, got {_show(value)}")
     return x
+
+
+def _number_or_text(value: Any) -> Any:
+    if value is None or isinstance(value, str) or (isinstance(value, int | float) and not isinstance(value, bool)):
+        return value
+    raise _error(f"expected a number or a number with a unit, got {_describe(value)}")
+
+
+def _describe(value: Any) -> str:
+    if isinstance(value, list):
+        return "a list"
+    if isinstance(value, dict):
+        return "a mapping"
+    return _show(value)
 
 
 def _show(value: Any) -> str:
@@ -176,7 +192,8 @@ class Drive(_Strict):
     """
 
     joint: str
-    speed: float | str | None = Field(
+    speed: Annotated[Any, BeforeValidator(_number_or_text), WithJsonSchema(
+        {"anyOf": [{"type": "number"}, {"type": "string"}]})] = Field(
         None, description="uniform speed: an angular speed (revolute) or a speed (prismatic)"
     )
     direction: Literal["ccw", "cw", "forward", "backward"] | None = Field(

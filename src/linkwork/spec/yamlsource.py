@@ -78,8 +78,11 @@ def read_yaml(text: str, file: str | None = None) -> Source:
     yaml = YAML(typ="rt")
     try:
         node = yaml.compose(text)
+    except RecursionError:
+        return Source(None, {}, file, [Problem("", "YAML nesting too deep", file, None)])
     except MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
+        scanning = exc.context is not None and "scanning" in exc.context
+        mark = (exc.context_mark if scanning else None) or exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark is not None else None
         what = exc.problem or "invalid YAML"
         if exc.context:
@@ -88,31 +91,49 @@ def read_yaml(text: str, file: str | None = None) -> Source:
     except YAMLError as exc:
         return Source(None, {}, file, [Problem("", f"YAML syntax error: {exc}", file, None)])
     src = Source(None, {}, file, [])
-    if node is None:
-        src.data = {}
-        return src
-    src.data = _build(node, (), src)
+    if node is None or (getattr(node, "tag", None) and str(getattr(node.tag, "value", node.tag)).endswith("null")):
+        return Source(None, {}, file, [Problem("", "the file is empty: a mechanism file is a mapping with links, "
+                                           "joints and drives", file, 1)])
+    try:
+        src.data = _build(node, (), src, 0)
+    except RecursionError:
+        return Source(None, {}, file, [Problem("", "YAML nesting too deep, or an alias that contains itself", file,
+                                              None)])
     return src
 
 
 _TAG = "tag:yaml.org,2002:"
 
 
-def _build(node: Any, path: Path, src: Source) -> Any:
+def _build(node: Any, path: Path, src: Source, depth: int) -> Any:
     from ruamel.yaml.nodes import MappingNode, ScalarNode, SequenceNode
 
+    if depth > 64:
+        raise RecursionError
     src.lines.setdefault(path, node.start_mark.line + 1)
     if isinstance(node, MappingNode):
         out: dict[str, Any] = {}
         seen: dict[str, int] = {}
+        pairs = []
+        n_merged = 0
         for key_node, value_node in node.value:
+            tag = str(getattr(key_node.tag, "value", key_node.tag))
+            if tag.endswith(":merge"):  # <<: {...} or <<: [*a, *b]: merged keys, which the mapping's own override
+                merged = value_node.value if isinstance(value_node, SequenceNode) else [value_node]
+                for m in merged:
+                    if isinstance(m, MappingNode):
+                        pairs[:0] = list(m.value)
+                        n_merged += len(m.value)
+                continue
+            pairs.append((key_node, value_node))
+        for n, (key_node, value_node) in enumerate(pairs):
             key = _scalar(key_node) if isinstance(key_node, ScalarNode) else None
             line = key_node.start_mark.line + 1
             if not isinstance(key, str | int | float) or isinstance(key, bool):
                 src.problems.append(Problem(dotted(path), "keys must be names", src.file, line))
                 continue
             key = str(key)
-            if key in seen:
+            if key in seen and n >= n_merged and seen[key] >= 0:
                 src.problems.append(
                     Problem(
                         dotted(path + (key,)),
@@ -122,12 +143,12 @@ def _build(node: Any, path: Path, src: Source) -> Any:
                     )
                 )
                 continue
-            seen[key] = line
+            seen[key] = line if n >= n_merged else -1
             src.lines[path + (key,)] = line
-            out[key] = _build(value_node, path + (key,), src)
+            out[key] = _build(value_node, path + (key,), src, depth + 1)
         return out
     if isinstance(node, SequenceNode):
-        return [_build(item, path + (i,), src) for i, item in enumerate(node.value)]
+        return [_build(item, path + (i,), src, depth + 1) for i, item in enumerate(node.value)]
     return _scalar(node)
 
 
