@@ -63,3 +63,33 @@ def test_spec_error_collects_every_problem_in_one_pass():
         load(BAD / "missing-joints.yaml")
     assert len(err.value.problems) == 6
     assert [p.line for p in err.value.problems] == [2, 6, 7, 8, 10, 12]
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("~\n", "the file is empty"),
+        ("foo: &a [*a]\n", "an alias that contains itself"),
+        ("name: x\nlinks: {a: {ends: [O, A], length: " + "9" * 400 + "}}\n", "a number too large to use"),
+        ("name: x\nlinks: {a: {ends: [O, A], length: 1e300}}\n", "(out of range)"),
+        ('name: x\nlinks: {a: {ends: [O, A], length: "10**10**9 mm"}}\n', "write a number and a unit"),
+        ("name: x\njoints: {J: {type: revolute, links: 5}}\n", "joints.J.links: expected a list, got 5"),
+    ],
+)
+def test_hostile_files_give_messages_not_tracebacks(tmp_path, text, message):
+    path = tmp_path / "bad.yaml"
+    path.write_text(text, encoding="utf-8")
+    result = CliRunner().invoke(app, ["check", str(path)])
+    assert result.exit_code == 2
+    assert message in result.stderr
+    assert "Traceback" not in result.output
+
+
+def test_rich_markup_in_names_is_printed_as_is(tmp_path):
+    from linkwork.examples import text
+
+    path = tmp_path / "m[1].yaml"
+    path.write_text(text("four-bar").replace("name: four-bar", 'name: "x [/bold] y"'), encoding="utf-8")
+    result = CliRunner().invoke(app, ["check", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "x [/bold] y" in result.stdout

@@ -307,3 +307,45 @@ def test_assembly_at_a_dead_point_is_reported():
     np.testing.assert_allclose(mech.points0()[mech.point_names.index("rocker.B")], pb, atol=1e-6)
     data["drives"][0]["angle"] = phi - 0.3  # away from it: no such warning
     assert not any("dead point" in w for w in lw.compile(lw.from_dict(data)).structure.warnings)
+
+
+def test_compound_hinge_structure_does_not_depend_on_the_listed_order():
+    from mechanisms import compound_hinge
+
+    for order in (("coupler", "rocker", "rod"), ("rod", "coupler", "rocker"), ("rocker", "rod", "coupler")):
+        b = compound_hinge()
+        b.revolute("B", *order)
+        s = lw.compile(b.build()).structure
+        assert s.formula == "I(0,1) -> II(2,3) -> II(4,5)"
+        assert [g.kind for g in s.groups] == ["R", "RRR", "RRP"]
+
+
+def test_a_repeated_pair_is_redundant_not_a_bigger_group():
+    data, _ = four_bar_spec(0.1, 0.35, 0.25, 0.3, 1.0, False)
+    data["joints"]["A2"] = {"type": "revolute", "links": ["coupler", "crank"], "point": "A"}
+    s = lw.compile(lw.from_dict(data)).structure
+    assert (s.dof, s.redundant, s.mobility) == (-1, 2, 1)
+    assert [(g.klass, g.kind) for g in s.groups] == [(1, "R"), (2, "RRR")]
+    assert s.groups[1].redundant == 2
+
+
+def test_a_link_may_be_named_like_a_slot_block():
+    from mechanisms import pin_in_slot
+
+    b = pin_in_slot()
+    data = b.to_dict()
+    data["links"]["slot_block"] = {"ends": ["T", "Q"], "length": 0.2}
+    data["joints"]["T"] = {"type": "revolute", "links": ["rocker", "slot_block"]}
+    data["links"]["slider"] = {"points": {"Q": [0, 0]}}
+    data["joints"]["Q"] = {"type": "revolute", "links": ["slot_block", "slider"]}
+    data["frame"]["points"]["G"] = [0, 0.6]
+    data["joints"]["guide"] = {
+        "type": "prismatic",
+        "links": ["frame", "slider"],
+        "point": "Q",
+        "through": "G",
+        "axis": 0,
+    }
+    data["hints"]["Q"] = [0.1, 0.6]
+    s = lw.compile(lw.from_dict(data)).structure
+    assert s.formula == "I(0,1) -> II(2,5) -> II(3,4)"

@@ -165,7 +165,7 @@ def parse_quantity(value: Any, kind: str, declared: dict[str, str] | None = None
         return parse_quantity(number, kind, declared)
     match = _NUMBER_UNIT.match(text)
     if match is None:
-        raise UnitParseError(f"expected {phrase}, got {_quote(value)} (write a number and a unit, e.g. \"100 mm\")")
+        raise UnitParseError(f'expected {phrase}, got {_quote(value)} (write a number and a unit, e.g. "100 mm")')
     number, unit = float(match.group(1)), match.group(2)
     if not math.isfinite(number):
         raise UnitParseError(f"expected {phrase}, got {_quote(value)}")

@@ -77,11 +77,12 @@ def _drives(mech: Any) -> list[dict[str, Any]]:
 
 def _print_structure(mech: Any) -> None:
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     s = mech.structure
     console = Console(highlight=False)
-    console.print(f"[bold]{mech.name}[/bold]" + (f"  ({mech.source})" if mech.source else ""))
+    console.print(f"[bold]{escape(mech.name)}[/bold]" + (f"  ({escape(mech.source)})" if mech.source else ""))
     tail = f" - {s.p4}" if s.p4 else ""
     console.print(f"  moving links n = {s.n_links}, lower pairs p5 = {s.p5}, higher pairs p4 = {s.p4}")
     console.print(f"  W = 3n - 2p5 - p4 = 3*{s.n_links} - 2*{s.p5}{tail} = {s.dof}   (Chebyshev)")
@@ -93,25 +94,30 @@ def _print_structure(mech: Any) -> None:
             speed = f"{abs(drive['speed']) * 30 / math.pi:.6g} rpm {'ccw' if drive['speed'] >= 0 else 'cw'}"
         else:
             speed = f"{drive['speed']:.6g} m/s"
-        console.print(f"  drive: joint {drive['joint']} ({drive['type']}), {speed}")
+        console.print(f"  drive: joint {escape(drive['joint'])} ({drive['type']}), {speed}")
     table = Table(title="Assur groups in solving order", title_justify="left")
     for col in ("#", "group", "class", "order", "kind", "links", "joints"):
         table.add_column(col)
     for i, g in enumerate(s.groups, 1):
         links = ", ".join(f"{n} {name}" for n, name in zip(g.links, g.link_names, strict=True))
         table.add_row(
-            str(i),
-            g.label.split(" ")[0],
-            str(g.klass),
-            "-" if g.order is None else str(g.order),
-            g.kind,
-            links,
-            ", ".join(g.joints),
+            *(
+                escape(c)
+                for c in (
+                    str(i),
+                    g.label.split(" ")[0],
+                    str(g.klass),
+                    "-" if g.order is None else str(g.order),
+                    g.kind,
+                    links,
+                    ", ".join(g.joints),
+                )
+            ),
         )
     console.print(table)
     console.print(f"  structural formula: {s.formula}")
     for w in s.warnings:
-        console.print(f"  [yellow]warning:[/yellow] {w}")
+        console.print(f"  [yellow]warning:[/yellow] {escape(w)}")
 
 
 @app.command()

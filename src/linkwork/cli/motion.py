@@ -146,9 +146,10 @@ def positions(
         typer.echo(json.dumps({"name": mech.name, "unit": "mm", "positions": rows}))
         return
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
-    table = Table(title=f"{mech.name}: {count} positions (coordinates in mm)", title_justify="left")
+    table = Table(title=f"{escape(mech.name)}: {count} positions (coordinates in mm)", title_justify="left")
     table.add_column("pos")
     table.add_column("crank, deg")
     for label, _ in labels:

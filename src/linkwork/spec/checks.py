@@ -218,7 +218,10 @@ def _check_drives(bad: Any, data: dict[str, Any], joints: dict[str, Any], declar
         wrong = "position" if rot else "angle"
         if drive.get(wrong) is not None:
             right = "an angle" if rot else "a position"
-            bad(path + (wrong,), f'a {kind} drive has {right} (the drive coordinate of the assembly pose), not a "{wrong}"')
+            bad(
+                path + (wrong,),
+                f'a {kind} drive has {right} (the drive coordinate of the assembly pose), not a "{wrong}"',
+            )
         if drive.get("speed") is not None:
             try:
                 parse_quantity(drive["speed"], "angular_speed" if rot else "speed", declared)

@@ -192,10 +192,9 @@ class Drive(_Strict):
     """
 
     joint: str
-    speed: Annotated[Any, BeforeValidator(_number_or_text), WithJsonSchema(
-        {"anyOf": [{"type": "number"}, {"type": "string"}]})] = Field(
-        None, description="uniform speed: an angular speed (revolute) or a speed (prismatic)"
-    )
+    speed: Annotated[
+        Any, BeforeValidator(_number_or_text), WithJsonSchema({"anyOf": [{"type": "number"}, {"type": "string"}]})
+    ] = Field(None, description="uniform speed: an angular speed (revolute) or a speed (prismatic)")
     direction: Literal["ccw", "cw", "forward", "backward"] | None = Field(
         None, description="ccw/cw for revolute drives, forward/backward for prismatic ones"
     )

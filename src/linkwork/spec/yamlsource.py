@@ -92,13 +92,18 @@ def read_yaml(text: str, file: str | None = None) -> Source:
         return Source(None, {}, file, [Problem("", f"YAML syntax error: {exc}", file, None)])
     src = Source(None, {}, file, [])
     if node is None or (getattr(node, "tag", None) and str(getattr(node.tag, "value", node.tag)).endswith("null")):
-        return Source(None, {}, file, [Problem("", "the file is empty: a mechanism file is a mapping with links, "
-                                           "joints and drives", file, 1)])
+        return Source(
+            None,
+            {},
+            file,
+            [Problem("", "the file is empty: a mechanism file is a mapping with links, joints and drives", file, 1)],
+        )
     try:
         src.data = _build(node, (), src, 0)
     except RecursionError:
-        return Source(None, {}, file, [Problem("", "YAML nesting too deep, or an alias that contains itself", file,
-                                              None)])
+        return Source(
+            None, {}, file, [Problem("", "YAML nesting too deep, or an alias that contains itself", file, None)]
+        )
     return src
 
 

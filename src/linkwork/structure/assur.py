@@ -98,6 +98,12 @@ def _classify(
 ) -> AssurGroup:
     s = set(subset)
     pairs = sorted({int(rows.pair[i]) for i in sel if rows.pair[i] >= 0})
+    # a pair repeated between the same links at the same points only adds redundant constraints
+    distinct: dict[tuple, int] = {}
+    for k in pairs:
+        key = (frozenset(map(int, pair_links[k])), int(pair_type[k]), pair_joint[k] if pair_type[k] else None)
+        distinct.setdefault(key, k)
+    pairs = sorted(distinct.values())
     driven = any(rows.drive[i] >= 0 for i in sel)
     internal = [k for k in pairs if set(map(int, pair_links[k])) <= s]
     external = [k for k in pairs if k not in internal]

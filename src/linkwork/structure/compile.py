@@ -54,10 +54,18 @@ def _compile(spec: Spec) -> Mechanism:
     rng = np.random.default_rng(20240607)
     qg = np.column_stack([rng.uniform(-scale, scale, (n_total, 2)), rng.uniform(-math.pi, math.pi, n_total)])
     jac_g = scaled(qg, mech, rows, scale)[1]
-    groups, free = decompose(
-        rows, jac_g, n_total, mech.pair_type, mech.pair_links, mech.pair_joint, mech.link_names, mech.n_drives
-    )
     drives_text = _drives_text(spec)
+    moving = jac_g[:, 3:]
+    if rank(moving) < moving.shape[1]:
+        # the drives leave some links free: name them from the null space, without searching for groups
+        _, sv, vt = np.linalg.svd(moving)
+        null = vt[np.sum(sv > 1e-8 * sv[0]) :] if len(sv) else vt
+        weight = np.abs(null).reshape(len(null), -1, 3).max(axis=(0, 2))
+        free = [i + 1 for i in np.flatnonzero(weight > 1e-8)]
+    else:
+        groups, free = decompose(
+            rows, jac_g, n_total, mech.pair_type, mech.pair_links, mech.pair_joint, mech.link_names, mech.n_drives
+        )
     if free:
         names = ", ".join(f"{i} ({mech.link_names[i]})" for i in free)
         raise StructureError(
@@ -171,7 +179,8 @@ def _require_hints(spec: Spec, mech: Mechanism, groups: list[AssurGroup], hints:
                     f'joint "{joint}" to choose its assembly mode: add "{joint}: [x, y]" under hints, '
                     "near where it is in the assembly pose",
                 )
-        for i in unfixed_links(mech, group, placed, hints):
+        asked = any(int(mech.pair_points[k, 1]) not in hints for k in inner)
+        for i in [] if asked else unfixed_links(mech, group, placed, hints):
             names = [n.split(".", 1)[1] for n, li in zip(mech.point_names, mech.point_link, strict=True) if li == i]
             add(
                 ("hints",) if in_file else ("links", mech.link_names[i]),
@@ -201,7 +210,7 @@ def _hint_warnings(mech: Mechanism, hints: dict[int, np.ndarray], scale: float) 
 
 def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[int, int, int]]:
     slots = [j for j, joint in spec.joints.items() if joint.type == "pin-in-slot"]
-    link_names = ["frame", *spec.links, *(f"{j}_block" for j in slots)]
+    link_names = ["frame", *spec.links, *(f"{j}:block" for j in slots)]
     index = {name: i for i, name in enumerate(link_names)}
     point_names: list[str] = []
     point_link: list[int] = []
@@ -296,11 +305,16 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         origin = point_local[pindex[(guide, through)]] if isinstance(through, str) else through
         return origin, (math.cos(axis), math.sin(axis))
 
+    depth = _depths(spec, index)
     joint_pair: dict[str, int] = {}
     p5 = p4 = 0
     for jname, joint in spec.joints.items():
         pt = joint.point or jname
         links = [index[ln] for ln in joint.links]
+        if joint.type == "revolute" and len(links) > 2:
+            # a compound hinge: k - 1 pairs from the member nearest the frame (whatever the listed order)
+            centre = min(links, key=lambda i: (depth[i], i))
+            links = [centre] + [i for i in links if i != centre]
         if joint.type == "revolute":
             joint_pair[jname] = len(pair_type)
             for other in links[1:]:
@@ -312,7 +326,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
             add_pair(PRISMATIC, links[0], links[1], -1, pindex[(links[1], pt)], origin, axis, jname)
             p5 += 1
         else:
-            block = index[f"{jname}_block"]
+            block = index[f"{jname}:block"]
             virtual[block] = True
             add_point(block, pt, (0.0, 0.0))
             add_pair(REVOLUTE, links[1], block, pindex[(links[1], pt)], pindex[(block, pt)], joint=jname)
@@ -342,7 +356,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
                 if ln != "frame":
                     hints[pindex[(index[ln], pt)]] = np.array(xy)
             if joint.type == "pin-in-slot":
-                hints[pindex[(index[f"{key}_block"], pt)]] = np.array(xy)
+                hints[pindex[(index[f"{key}:block"], pt)]] = np.array(xy)
 
     def f(a: Any, dtype: Any = float) -> np.ndarray:
         arr = np.array(a, dtype=dtype)
@@ -375,6 +389,25 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         pair_origin_point=f(origin_point, int),
     )
     return arrays, hints, (len(spec.links), p5, p4)
+
+
+def _depths(spec: Spec, index: dict[str, int]) -> dict[int, int]:
+    """Number of joints between each link and the frame (breadth first)."""
+    adj: dict[int, set[int]] = {i: set() for i in index.values()}
+    for joint in spec.joints.values():
+        members = [index[ln] for ln in joint.links]
+        for i in members:
+            adj[i] |= set(members) - {i}
+    depth, frontier = {0: 0}, [0]
+    while frontier:
+        nxt = []
+        for i in frontier:
+            for j in adj[i]:
+                if j not in depth:
+                    depth[j] = depth[i] + 1
+                    nxt.append(j)
+        frontier = nxt
+    return {i: depth.get(i, 1 << 30) for i in index.values()}
 
 
 def _problem(spec: Spec, path: tuple[str, ...], message: str) -> Problem:
