@@ -368,19 +368,3 @@ def test_isosceles_slider_crank_goes_through_its_change_points_smoothly():
     np.testing.assert_allclose(kin.omega("rod"), -w, atol=1e-8)
     kinds = [e.kind for e in kin.events]
     assert kinds.count("change-point") == 2
-
-
-@pytest.mark.parametrize("name", ["double-cut-shears", "four-bar", "watt-six-bar", "shears-slider-crank"])
-def test_compiled_kernels_equal_the_numpy_kernels(name, monkeypatch):
-    from linkwork.motion import fast
-
-    if not fast.AVAILABLE:
-        pytest.skip("numba is not installed")
-    mech = lw.compile(lw.example(name))
-    variants = {"links.crank.length": np.array([0.9, 1.0, 1.05]) * mech.point_local[mech.link_ends[1][1], 0]}
-    quick = lw.kinematics(mech, steps=90, variants=variants)
-    monkeypatch.setattr(fast, "AVAILABLE", False)
-    slow = lw.kinematics(mech, steps=90, variants=variants)
-    for x, y in ((quick.pose, slow.pose), (quick.vel, slow.vel), (quick.acc, slow.acc)):
-        np.testing.assert_allclose(x, y, rtol=1e-12, atol=1e-12)
-    assert [e.message for e in quick.events] == [e.message for e in slow.events]

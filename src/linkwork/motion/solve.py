@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.motion import fast, kernels
+from linkwork.motion import kernels
 from linkwork.motion.geometry import Geometry
 from linkwork.motion.program import Step
 from linkwork.motion.state import State
@@ -118,14 +118,10 @@ def _solve(
     ones = np.ones((n_var, n_ang))
     for i, step in enumerate(program):
         branch = branches[i] if branches is not None else None
-        if step.kind == "crank" and fast.AVAILABLE:
-            _fast_crank(mech, step, state, values, rates, accels)
-        elif step.kind in ("crank", "slide"):
+        if step.kind in ("crank", "slide"):
             d = step.drive
             args = (values[:, d] * ones, rates[:, d] * ones, accels[:, d] * ones)
             (kernels.crank if step.kind == "crank" else kernels.slide)(step, state, mech.point_link, *args)
-        elif step.kind in ("RRR", "RRP", "PRP") and fast.AVAILABLE and _fast_dyad(mech, step, state, branch):
-            pass
         elif step.kind in ("RRR", "RRP", "PRP"):
             kernels.dyad(step, state, mech.point_link, branch=branch)
         elif step.kind == "RPR":
@@ -306,60 +302,3 @@ def _newton_solve(
         flat[..., cols] -= np.where(ok[..., None], 0.0, _lstsq(js, r))
         sub[:] = flat.reshape(sub.shape)
     return ok
-
-
-def _fast_crank(mech: Any, step: Step, state: State, values: np.ndarray, rates: np.ndarray, accels: np.ndarray) -> None:
-    arm = step.arms[0]
-    base = int(mech.point_link[arm.src])
-    sign = 1.0 if step.extra["b"] == arm.link else -1.0
-    d = step.drive
-    fast.crank_kernel(
-        state.q,
-        state.v,
-        state.a,
-        state.cos,
-        state.sin,
-        state.local,
-        arm.link,
-        base,
-        arm.own,
-        arm.src,
-        sign,
-        np.ascontiguousarray(values[:, d]),
-        np.ascontiguousarray(rates[:, d]),
-        np.ascontiguousarray(accels[:, d]),
-    )
-    one = np.ones(state.valid.shape)
-    kernels._record(state, one, one)
-
-
-def _fast_dyad(mech: Any, step: Step, state: State, branch: np.ndarray | None) -> bool:
-    """The compiled dyad; returns False (leaving the state alone) where a change point needs the NumPy kernel."""
-    arms, xpts = fast.arm_table(step, mech.point_link)
-    full = np.full(state.valid.shape, step.branch) if branch is None else np.ascontiguousarray(branch, dtype=float)
-    slack = np.empty(state.valid.shape)
-    det = np.empty(state.valid.shape)
-    fast.dyad_kernel(
-        state.q,
-        state.v,
-        state.a,
-        state.cos,
-        state.sin,
-        state.local,
-        state.origin,
-        state.axis,
-        arms,
-        xpts,
-        full,
-        slack,
-        det,
-    )
-    if branch is None and "R" in (step.arms[0].kind, step.arms[1].kind):
-        root = np.sqrt(np.where(slack >= 0, slack, np.nan))
-        mid, left, right = root[:, 1:-1], root[:, :-2], root[:, 2:]
-        with np.errstate(invalid="ignore"):
-            near = (mid <= left) & (mid <= right) & (mid < 0.2) & (mid <= 2 * np.maximum(left - mid, right - mid))
-        if near.any():
-            return False  # the NumPy kernel overwrites the dyad's links, following the change points
-    kernels._record(state, slack, det, None if branch is None else full)
-    return True
