@@ -148,10 +148,7 @@ def dyad(
             theta = np.arctan2(s, c)
             state.place(arm.link, theta, k, kd, loc.p, loc.vp, loc.ap, state.loc(arm.own), (c, s))
         else:
-            cl = arm.carrier
-            state.place(
-                arm.link, state.q[cl, 2], state.v[cl, 2], state.a[cl, 2], x, vx, ax, xl, (state.cos[cl], state.sin[cl])
-            )
+            state.place_like(arm.link, arm.carrier, x, vx, ax, xl)
     _record(state, slack, det / (norm(ca) * norm(cb)), None if np.isscalar(branch_used) else branch_used, flips)
 
 
@@ -242,17 +239,7 @@ def rpp(step: Step, state: State, point_link: np.ndarray) -> None:
     pinned, inner_arm, outer_arm = step.arms
     g = outer_arm.carrier
     p, vp, ap = state.point(int(point_link[pinned.src]), pinned.src)
-    state.place(
-        pinned.link,
-        state.q[g, 2],
-        state.v[g, 2],
-        state.a[g, 2],
-        p,
-        vp,
-        ap,
-        state.loc(pinned.own),
-        (state.cos[g], state.sin[g]),
-    )
+    state.place_like(pinned.link, g, p, vp, ap, state.loc(pinned.own))
     dyad(step, state, point_link, arms=(inner_arm, outer_arm))
 
 
@@ -281,17 +268,7 @@ def slide(step: Step, state: State, point_link: np.ndarray, s: np.ndarray, ds: n
     vm, am = state.material(g, x)
     vx = add(vm, scale(ds, u))
     ax = add(add(am, scale(dds, u)), scale(2 * state.v[g, 2] * ds, perp(u)))
-    state.place(
-        arm.link,
-        state.q[g, 2],
-        state.v[g, 2],
-        state.a[g, 2],
-        x,
-        vx,
-        ax,
-        state.loc(arm.slider_point),
-        (state.cos[g], state.sin[g]),
-    )
+    state.place_like(arm.link, g, x, vx, ax, state.loc(arm.slider_point))
     one = np.ones(state.valid.shape)
     _record(state, one, one)
 

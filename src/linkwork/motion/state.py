@@ -147,6 +147,20 @@ class State:
         a[0], a[1], a[2] = ax[0] + eps * r[1] + w2 * r[0], ax[1] - eps * r[0] + w2 * r[1], eps
         self.cos[link], self.sin[link] = c, s
 
+    def place_like(self, link: int, guide: int, x: Vec, vx: Vec, ax: Vec, loc: Vec) -> None:
+        """Place a link that keeps the angle of ``guide`` (a slider on it), through its point at local ``loc``."""
+        self.place(
+            link,
+            self.q[guide, 2],
+            self.v[guide, 2],
+            self.a[guide, 2],
+            x,
+            vx,
+            ax,
+            loc,
+            (self.cos[guide], self.sin[guide]),
+        )
+
     def line(self, k: int, guide: int) -> tuple[Vec, Vec]:
         """Global origin and unit direction of the guide line of prismatic pair ``k``."""
         c, s = self.cos[guide], self.sin[guide]
