@@ -58,6 +58,8 @@ def validate(src: Source) -> Spec:
     except ValidationError as exc:
         problems += [_convert(src, err) for err in exc.errors(include_url=False)]
     problems += check(src, declared)
+    if spec is not None:
+        problems += _geometry_checks(spec, src)
     problems = _unique(problems)
     if problems or spec is None:
         raise SpecError(problems)
@@ -188,3 +190,38 @@ def _is_container(tp: Any) -> bool:
     if typing.get_origin(tp) in (typing.Union, types.UnionType):
         return any(_is_container(a) for a in typing.get_args(tp))
     return False
+
+
+def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
+    """Problems that need the values in SI: coincident points of a link, impossible inertia."""
+    import math
+
+    out = []
+    for name, link in spec.links.items():
+        local: dict[str, tuple[float, float]] = {}
+        if link.ends is not None and link.length is not None:
+            local = {link.ends[0]: (0.0, 0.0), link.ends[1]: (link.length, 0.0)}
+        local.update(link.points)
+        names = list(local)
+        for a in range(len(names)):
+            for b in range(a + 1, len(names)):
+                pa, pb = local[names[a]], local[names[b]]
+                if math.hypot(pa[0] - pb[0], pa[1] - pb[1]) < 1e-12:
+                    out.append(src.problem(("links", name, "points"), f"points {names[a]} and {names[b]} coincide"))
+        if link.inertia is not None and link.inertia_about in local and link.mass is not None and local:
+            com = link.com if link.com is not None else None
+            if isinstance(com, str):
+                com = local.get(com)
+            if com is None:
+                com = (sum(p[0] for p in local.values()) / len(local), sum(p[1] for p in local.values()) / len(local))
+            about = local[link.inertia_about]
+            d2 = (about[0] - com[0]) ** 2 + (about[1] - com[1]) ** 2
+            if link.inertia < link.mass * d2 * (1 - 1e-12):
+                out.append(
+                    src.problem(
+                        ("links", name, "inertia"),
+                        f"an inertia of {link.inertia:.6g} kg m^2 about {link.inertia_about} is less than "
+                        f"m d^2 = {link.mass * d2:.6g} kg m^2 of the centre of mass alone: impossible",
+                    )
+                )
+    return out

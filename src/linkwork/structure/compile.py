@@ -231,7 +231,6 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
     inertia = np.zeros(n_total)
     virtual = np.zeros(n_total, dtype=bool)
     ends = np.full((n_total, 2), -1)
-    problems = []
     for name, link in spec.links.items():
         i = index[name]
         if link.ends is not None and link.length is not None:
@@ -250,33 +249,11 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         mass[i] = link.mass or 0.0
         if link.inertia is not None:
             j = link.inertia
-            if link.inertia_about is not None:
-                d2 = float(np.sum((local[link.inertia_about] - com[i]) ** 2))
-                j = link.inertia - mass[i] * d2
-                if j < -1e-12 * max(link.inertia, 1e-30):
-                    problems.append(
-                        _problem(
-                            spec,
-                            ("links", name, "inertia"),
-                            f"an inertia of {link.inertia:.6g} kg m^2 about {link.inertia_about} is less than "
-                            f"m d^2 = {mass[i] * d2:.6g} kg m^2 of the centre of mass alone: impossible",
-                        )
-                    )
-                j = max(j, 0.0)
+            if link.inertia_about is not None:  # parallel axes; validation refused an impossible value
+                j = max(link.inertia - mass[i] * float(np.sum((local[link.inertia_about] - com[i]) ** 2)), 0.0)
             inertia[i] = j
         elif link.length is not None:
             inertia[i] = mass[i] * link.length**2 / 12.0
-        if len(local) >= 2:
-            pts = np.array(list(local.values()))
-            for a in range(len(pts)):
-                for b in range(a + 1, len(pts)):
-                    if np.hypot(*(pts[a] - pts[b])) < 1e-12:
-                        names = list(local)
-                        problems.append(
-                            _problem(spec, ("links", name, "points"), f"points {names[a]} and {names[b]} coincide")
-                        )
-    if problems:
-        raise SpecError(problems)
     if spec.frame.mass is not None:
         mass[0] = spec.frame.mass
         c = spec.frame.com
