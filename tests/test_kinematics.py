@@ -368,3 +368,16 @@ def test_isosceles_slider_crank_goes_through_its_change_points_smoothly():
     np.testing.assert_allclose(kin.omega("rod"), -w, atol=1e-8)
     kinds = [e.kind for e in kin.events]
     assert kinds.count("change-point") == 2
+
+
+def test_jumps_of_a_newton_group_are_found():
+    """A link moving on a circle, smooth except for one sample where it jumps across."""
+    from linkwork.motion.solve import _jumps
+    from linkwork.motion.state import State
+
+    phi = np.linspace(0, 2, 41)
+    state = State.empty(2, np.zeros((1, 2, 1, 1)), np.zeros((0, 2, 1, 1)), np.zeros((0, 2, 1, 1)), len(phi))
+    state.q[1, 0, 0], state.q[1, 1, 0] = np.cos(phi), np.sin(phi)
+    assert _jumps(state, [1], phi) == []
+    state.q[1, :2, 0, 25:] *= -1  # the other assembly mode from sample 25 on
+    assert _jumps(state, [1], phi) == [(0, 24)]

@@ -108,3 +108,12 @@ def test_mass_defaults():
     coupler = mech.link_names.index("coupler")
     np.testing.assert_allclose(mech.link_com[coupler], np.mean([[0, 0], [0.35, 0], [0.175, 0.08]], axis=0))
     assert mech.link_inertia[coupler] == pytest.approx(2.5 * 0.35**2 / 12)
+
+
+def test_load_takes_a_file_or_an_example_name(tmp_path):
+    from linkwork.examples import text
+
+    path = tmp_path / "mine.yaml"
+    path.write_text(text("four-bar"), encoding="utf-8")
+    assert lw.load(path).model_dump() == lw.load("four-bar").model_dump() == lw.example("four-bar").model_dump()
+    assert lw.load(str(path)).source.file == str(path)

@@ -11,7 +11,7 @@ from typing import Any
 __version__ = "0.1.0"
 
 _LAZY = {
-    "load": ("linkwork.spec.load", "load"),
+    "load": ("linkwork.examples", "resolve"),
     "loads": ("linkwork.spec.load", "loads"),
     "from_dict": ("linkwork.spec.load", "from_dict"),
     "Spec": ("linkwork.spec.schema", "Spec"),
@@ -21,7 +21,6 @@ _LAZY = {
     "Structure": ("linkwork.structure.model", "Structure"),
     "AssurGroup": ("linkwork.structure.model", "AssurGroup"),
     "example": ("linkwork.examples", "load_example"),
-    "resolve": ("linkwork.examples", "resolve"),
     "kinematics": ("linkwork.motion", "kinematics"),
     "Kinematics": ("linkwork.motion", "Kinematics"),
     "parameters": ("linkwork.motion.geometry", "parameters"),

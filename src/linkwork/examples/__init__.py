@@ -36,11 +36,18 @@ def load_example(name: str) -> Any:
     return loads(text(name), file=f"{name}.yaml")
 
 
-def resolve(file_or_example: str) -> Any:
-    """Load a mechanism file, or a bundled example by name."""
+def resolve(file_or_example: str | Path) -> Any:
+    """Load and validate a mechanism file, or a bundled example by name (``linkwork.load``).
+
+    Raises
+    ------
+    SpecError
+        Listing every problem with ``file:line``, the element and what was expected.
+    """
     from linkwork.spec.load import load
 
     path = Path(file_or_example)
+    file_or_example = str(file_or_example)
     if path.exists() or path.suffix in (".yaml", ".yml") or "/" in file_or_example:
         if not path.exists():
             raise SpecError([Problem("", "no such file", file_or_example)])

@@ -18,8 +18,9 @@ class Event:
     kind : str
         ``"no-assembly"`` (a range), ``"dead-point"`` (a limit of such a
         range), ``"singular"`` (the group's Jacobian is singular inside the
-        assembled range) or ``"change-point"`` (the two assembly modes meet
-        and the motion goes on in the other one).
+        assembled range), ``"change-point"`` (the two assembly modes meet
+        and the motion goes on in the other one) or ``"branch-jump"`` (a
+        group solved by Newton's method jumps between two samples).
     group : str
         The group, e.g. ``II(4,5) RRP``.
     start, end : float
@@ -69,8 +70,8 @@ def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variant
     n_var = min(state.valid.shape[0], max_variants)
     before = np.ones(state.valid.shape, dtype=bool)
     n = len(angles)
-    for step, ok, det, slack, flips in zip(
-        steps, state.step_valid, state.step_det, state.step_slack, state.step_flips, strict=True
+    for step, ok, det, slack, flips, jumps in zip(
+        steps, state.step_valid, state.step_det, state.step_slack, state.step_flips, state.step_jumps, strict=True
     ):
         fails = before & ~ok
         for v in range(n_var):
@@ -139,6 +140,20 @@ def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variant
                         f"{show(angles[i])} {unit}{tag}",
                     )
                 )
+            for jv, j in jumps:
+                if jv == v:
+                    events.append(
+                        Event(
+                            "branch-jump",
+                            step.label,
+                            angles[j],
+                            angles[j + 1],
+                            v,
+                            f"group {step.label}: the solution jumps between crank angles "
+                            f"{show(angles[j])} and {show(angles[j + 1])} {unit}: it may have changed "
+                            f"assembly mode there; check with finer steps{tag}",
+                        )
+                    )
             for fv, _, i in flips:
                 if fv == v:
                     events.append(

@@ -128,6 +128,8 @@ def dyad(
     else:
         branch_used = branch
     x, slack = _intersect(la, lb, branch_used)
+    # no single point X although the loci "meet" (coincident circle centres, parallel guides): not assembled
+    slack = np.where((slack >= 0) & ~(np.isfinite(x[0]) & np.isfinite(x[1])), -1.0, slack)
     ca, cb = la.column(x), lb.column(x)
     va, aa = la.base(state, x)
     vb, ab = lb.base(state, x)
@@ -286,6 +288,7 @@ def _record(
     state.step_valid.append(slack >= 0)
     state.step_branch.append(branch)
     state.step_flips.append(flips or [])
+    state.step_jumps.append([])
 
 
 def with_branches(mech: Any, steps: list[Step]) -> list[Step]:

@@ -73,6 +73,10 @@ def run(
         None if x[0] is None else np.concatenate(x) for x in zip(*(p.step_branch for p in parts), strict=True)
     ]
     offsets = np.cumsum([0] + [p.valid.shape[0] for p in parts])
+    out.step_jumps = [
+        [(v + int(o), j) for p, o in zip(parts, offsets, strict=False) for v, j in p.step_jumps[k]]
+        for k in range(len(program))
+    ]
     out.step_flips = [
         [(v + int(o), i, j) for p, o in zip(parts, offsets, strict=False) for v, i, j in p.step_flips[k]]
         for k in range(len(program))
@@ -261,6 +265,23 @@ def newton(
     state.step_valid.append(converged)
     state.step_branch.append(None)
     state.step_flips.append([])
+    state.step_jumps.append(_jumps(state, links, values[:, 0]))
+
+
+def _jumps(state: State, links: list[int], drive: np.ndarray) -> list[tuple[int, int]]:
+    """Samples where a Newton-solved group moves far more than its neighbours would have it:
+    the continuation may have changed the assembly mode there.  Returns (variant, sample) pairs."""
+    if len(drive) < 4:
+        return []
+    step = np.abs(np.diff(drive))
+    moves = np.zeros(state.valid.shape[0:1] + (len(drive) - 1,))
+    for i in links:
+        d = np.diff(state.q[i, :2], axis=-1)
+        moves = np.maximum(moves, np.hypot(d[0], d[1]) / np.maximum(step, 1e-300))
+    with np.errstate(invalid="ignore"):
+        typical = np.nanmedian(moves, axis=1, keepdims=True)
+        bad = moves > 20 * typical + 1e-12
+    return [(int(v), int(j)) for v, j in np.argwhere(bad)]
 
 
 def _drive_rows(mech: Any, sel: list[int], rates: np.ndarray) -> np.ndarray:

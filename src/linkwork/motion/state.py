@@ -89,6 +89,7 @@ class State:
     start_index: int = 0  # the sample nearest to the assembly pose: continuation starts there
     step_branch: list[np.ndarray | None] = field(default_factory=list)  # per step, the mode used (V, A)
     step_flips: list[list[tuple[int, int, int]]] = field(default_factory=list)  # per step, change points
+    step_jumps: list[list[tuple[int, int]]] = field(default_factory=list)  # per step, (variant, sample) jumps
 
     @classmethod
     def empty(cls, n_links: int, local: np.ndarray, origin: np.ndarray, axis: np.ndarray, n_ang: int) -> State:
