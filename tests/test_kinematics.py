@@ -381,3 +381,56 @@ def test_jumps_of_a_newton_group_are_found():
     assert _jumps(state, [1], phi) == []
     state.q[1, :2, 0, 25:] *= -1  # the other assembly mode from sample 25 on
     assert _jumps(state, [1], phi) == [(0, 24)]
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(0.02, 0.3), st.floats(1.5, 6.0), st.floats(-0.8, 0.8), st.floats(0.5, 50.0))
+def test_random_slider_cranks_match_the_closed_form(r, ratio, offset, w):
+    """Crank r, rod l = ratio r, guide y = e with |e| < l - r: the slider always assembles."""
+    rod = ratio * r
+    e = offset * (rod - r)
+    b = TEXTBOOK["offset slider-crank"][0]()
+    data = b.to_dict()
+    data["units"] = {"length": "m"}
+    data["frame"]["points"] = {"O": [0, 0], "G": [0, e]}
+    data["links"]["crank"]["length"] = r
+    data["links"]["rod"]["length"] = rod
+    data["drives"][0].update(speed=f"{w} rad/s", angle=30)
+    a = (r * math.cos(math.pi / 6), r * math.sin(math.pi / 6))
+    data["hints"] = {"B": [a[0] + math.sqrt(rod**2 - (e - a[1]) ** 2), e]}
+    mech = lw.compile(lw.from_dict(data))
+    phi = np.linspace(0, 2 * np.pi, 50)
+    kin = lw.kinematics(mech, phi)
+    x, v, acc = slider_crank_closed_form(r, rod, e, phi, w)
+    np.testing.assert_allclose(kin.position("B")[:, 0], x, atol=1e-12)
+    np.testing.assert_allclose(kin.velocity("B")[:, 0], v, atol=1e-10 * max(1.0, w * r))
+    np.testing.assert_allclose(kin.acceleration("B")[:, 0], acc, atol=1e-8 * max(1.0, w * w * r))
+    np.testing.assert_allclose(np.hypot(*(kin.position("B") - kin.position("A")).T), rod, atol=1e-12)
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.floats(-1, 1), st.floats(-1, 1), st.floats(-math.pi, math.pi))
+def test_six_bars_move_rigidly_with_the_frame(dx, dy, rot):
+    """The Watt and Stephenson examples turned and shifted as a whole give turned and shifted motions."""
+    from linkwork.examples import text
+    from linkwork.spec.yamlsource import read_yaml
+
+    c, s = math.cos(rot), math.sin(rot)
+    for name in ("watt-six-bar", "stephenson-six-bar"):
+        data = read_yaml(text(name)).data
+        moved = read_yaml(text(name)).data
+        for group in (moved["frame"]["points"], moved["hints"]):
+            for key, (x, y) in group.items():
+                group[key] = [c * x - s * y + dx * 1000, s * x + c * y + dy * 1000]  # mm
+        moved["drives"][0]["angle"] = f"{60 + math.degrees(rot)!r} deg"
+        k0 = lw.kinematics(lw.compile(lw.from_dict(data)), steps=24)
+        k1 = lw.kinematics(lw.compile(lw.from_dict(moved)), steps=24)
+        for p in ("B", "C", "D"):
+            x0, x1 = k0.position(p), k1.position(p)
+            np.testing.assert_allclose(
+                x1, np.stack([c * x0[:, 0] - s * x0[:, 1] + dx, s * x0[:, 0] + c * x0[:, 1] + dy], -1), atol=1e-10
+            )
+            a0, a1 = k0.acceleration(p), k1.acceleration(p)
+            np.testing.assert_allclose(
+                a1, np.stack([c * a0[:, 0] - s * a0[:, 1], s * a0[:, 0] + c * a0[:, 1]], -1), atol=1e-8
+            )
