@@ -73,7 +73,7 @@ def geometry(mech: Any, variants: dict[str, Any] | None = None) -> Geometry:
         For an unknown path (with the closest known one) or arrays of unequal length.
     """
     variants = variants or {}
-    known = parameters(mech)
+    known = parameters(mech) if variants else {}
     sizes = {np.size(v) for v in variants.values()} - {1}
     if len(sizes) > 1:
         raise ParameterError(f"design-variant arrays must have one length, got lengths {sorted(sizes)}")
