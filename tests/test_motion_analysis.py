@@ -48,6 +48,12 @@ def test_four_bar_rocker_swing_and_transmission_angle_closed_form():
 
     swing = rocker_angle(a + b) - rocker_angle(b - a)
     assert rocker.stroke == pytest.approx(abs(swing), abs=1e-7)
+    # time ratio from the crank angles of the two dead points: crank and coupler stretched, then folded
+    b_ext = (d + c * math.cos(rocker_angle(a + b)), c * math.sin(rocker_angle(a + b)))
+    b_fold = (d + c * math.cos(rocker_angle(b - a)), c * math.sin(rocker_angle(b - a)))
+    forward = (math.atan2(b_fold[1], b_fold[0]) + math.pi - math.atan2(b_ext[1], b_ext[0])) % (2 * math.pi)
+    ratio = max(forward, 2 * math.pi - forward) / min(forward, 2 * math.pi - forward)
+    assert rocker.time_ratio == pytest.approx(ratio, rel=1e-6)
     mu = transmission_angles(kin)["II(2,3) RRR"]
     o4a = np.hypot(*(kin.position("A") - (d, 0)).T)
     cos_mu = (b * b + c * c - o4a**2) / (2 * b * c)
