@@ -127,7 +127,7 @@ def test_acceleration_plan_components():
     assert t @ (b - a) == pytest.approx(0, abs=1e-12)
     np.testing.assert_allclose(pts["a"] + n + t, pts["b"], atol=1e-10)
     # the fixed guides: no Coriolis component
-    np.testing.assert_allclose(by[("p", "k_e", "coriolis")], 0, atol=1e-15)
+    np.testing.assert_allclose(by[("p", "k'_e", "coriolis")], 0, atol=1e-15)
 
 
 def test_kinematics_command_json_and_files(tmp_path):

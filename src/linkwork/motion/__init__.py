@@ -46,6 +46,7 @@ class Kinematics:
     events: tuple[Event, ...]
     variants: bool
     step_det: tuple[np.ndarray, ...] = ()
+    axis: np.ndarray | None = None  # (M, 2, V, 1) guide directions of the variants
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
@@ -218,4 +219,5 @@ def kinematics(
         events,
         variants is not None and len(variants) > 0,
         tuple(state.step_det),
+        state.axis,
     )

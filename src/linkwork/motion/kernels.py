@@ -74,9 +74,9 @@ def _intersect(la: _Locus, lb: _Locus, branch: np.ndarray | float) -> tuple[Vec,
         a = (la.r * la.r - lb.r * lb.r + dist2) * (0.5 * inv)
         h2 = la.r * la.r - a * a
         rsum2 = (la.r + lb.r) ** 2
-        slack = np.minimum(rsum2 - dist2, dist2 - (la.r - lb.r) ** 2) / rsum2
+        slack = _touching(np.minimum(rsum2 - dist2, dist2 - (la.r - lb.r) ** 2) / rsum2)
         e = scale(inv, d)
-        h = branch * np.sqrt(h2)
+        h = branch * np.sqrt(np.where(slack >= 0, np.maximum(h2, 0.0), h2))
         return (la.p[0] + a * e[0] - h * e[1], la.p[1] + a * e[1] + h * e[0]), slack
     if la.arm.kind == "P" and lb.arm.kind == "P":
         den = cross(la.u, lb.u)
@@ -87,7 +87,13 @@ def _intersect(la: _Locus, lb: _Locus, branch: np.ndarray | float) -> tuple[Vec,
     t0 = dot(w, line.u)
     h = cross(line.u, w)
     disc = circle.r * circle.r - h * h
-    return add(line.l0, scale(t0 + branch * np.sqrt(disc), line.u)), disc / (circle.r * circle.r)
+    slack = _touching(disc / (circle.r * circle.r))
+    return add(line.l0, scale(t0 + branch * np.sqrt(np.where(slack >= 0, np.maximum(disc, 0.0), disc)), line.u)), slack
+
+
+def _touching(slack: np.ndarray) -> np.ndarray:
+    """Margins within rounding of zero are a touch (one point), not a miss."""
+    return np.where((slack < 0) & (slack > -1e-12), 0.0, slack)
 
 
 def _rates(state: State, la: _Locus, lb: _Locus, x: Vec) -> tuple[np.ndarray, ...]:
@@ -155,55 +161,56 @@ def dyad(
 
 
 def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> list[tuple[int, int, int]]:
-    """Switch the mode after each change point along the angles (in the order given).
+    """Follow the motion through change points, along the angles in the order given.
 
-    A change point is a sample where the two assembly modes nearly meet (a
-    V-shaped minimum of the intersection margin near zero) and the velocity
-    of X goes on continuously only in the other mode.  ``branch`` is changed
-    in place; returns (variant, first sample in the new mode, sample nearest the change point).
+    From the sample nearest the assembly pose, forwards and then backwards,
+    each sample where the two assembly modes of the dyad nearly meet (their
+    points X closer together than X moves in a step) takes the mode whose X
+    lies nearer the extrapolation of X from the two samples before it.  So
+    the motion keeps going smoothly where the modes cross (the isosceles
+    slider-crank at 0 and 180 deg, a parallelogram laid flat) and never
+    jumps between modes that are apart.  ``branch`` is changed in place;
+    returns (variant, first sample in the new mode, sample nearest the change point).
     """
-    x_p, slack = _intersect(la, lb, branch)
-    root = np.sqrt(np.where(slack >= 0, slack, np.nan))
-    mid, left, right = root[:, 1:-1], root[:, :-2], root[:, 2:]
-    with np.errstate(invalid="ignore"):
-        inner = (mid <= left) & (mid <= right) & (mid < 0.2) & (mid <= 2 * np.maximum(left - mid, right - mid))
-    cand = np.argwhere(inner)
-    if len(cand) == 0:
-        return []
+    x_p, _ = _intersect(la, lb, branch)
     x_m, _ = _intersect(la, lb, -branch)
-    v_p = np.stack(_rates(state, la, lb, x_p)[3], -1)
-    v_m = np.stack(_rates(state, la, lb, x_m)[3], -1)
     xp, xm = np.stack(x_p, -1), np.stack(x_m, -1)
+    n = branch.shape[1]
+    if n < 3:
+        return []
+    gap = np.hypot(*np.moveaxis(xp - xm, -1, 0))  # (V, A)
+    step = np.fmax(np.hypot(*np.moveaxis(np.diff(xp, axis=1), -1, 0)),
+                   np.hypot(*np.moveaxis(np.diff(xm, axis=1), -1, 0)))  # (V, A - 1), either mode
+    move = np.maximum(np.pad(step, ((0, 0), (1, 0)), mode="edge"), np.pad(step, ((0, 0), (0, 1)), mode="edge"))
+    with np.errstate(invalid="ignore"):
+        near = gap <= 2 * move + 1e-12 * (1 + np.abs(xp).max())
+    if not near.any():
+        return []
+    drive = state.drive
     flips = []
     start = state.start_index
-    for v in np.unique(cand[:, 0]):
-        mids = cand[cand[:, 0] == v, 1] + 1
-        # from the sample nearest to the assembly pose, forwards and then backwards
+    for v in np.unique(np.nonzero(near)[0]):
+        flipped = np.zeros(n, dtype=bool)  # samples now in the mode opposite to the first solution
+
+        def at(i: int, other: bool = False) -> np.ndarray:
+            return xm[v, i] if flipped[i] != other else xp[v, i]
+
         for direction in (1, -1):
-            order = np.arange(start, branch.shape[1]) if direction > 0 else np.arange(start, -1, -1)
-            pos = {int(i): n for n, i in enumerate(order)}
-            parity = 1.0
-            for i in sorted(
-                (int(i) for i in mids if int(i) in pos and pos[int(i)] not in (0, len(order) - 1)), key=lambda i: pos[i]
-            ):
-                n = pos[i]
-                prev, here, nxt = order[n - 1], order[n], order[n + 1]
-                cur_v, alt_v = (v_p[v], v_m[v]) if parity > 0 else (v_m[v], v_p[v])
-                cur_x, alt_x = (xp[v], xm[v]) if parity > 0 else (xm[v], xp[v])
-                if not np.hypot(*(alt_x[here] - cur_x[here])) <= np.hypot(*(cur_x[nxt] - cur_x[prev])):
+            order = np.arange(start, n) if direction > 0 else np.arange(start, -1, -1)
+            for k in range(2, len(order)):
+                here = order[k]
+                if not near[v, here]:
                     continue
-                before = cur_v[prev]
-                if np.all(np.isfinite(cur_v[here])) and np.hypot(*(alt_v[here] - before)) < np.hypot(
-                    *(cur_v[here] - before)
-                ):
-                    first = n
-                elif np.hypot(*(alt_v[nxt] - before)) < np.hypot(*(cur_v[nxt] - before)):
-                    first = n + 1
-                else:
-                    continue
-                branch[v, order[first:]] *= -1
-                parity *= -1
-                flips.append((int(v), int(order[first]), int(here)))
+                p1, p2 = order[k - 1], order[k - 2]
+                span = drive[p1] - drive[p2]
+                t = (drive[here] - drive[p1]) / span if span != 0 else 1.0
+                guess = at(p1) + (at(p1) - at(p2)) * t
+                tol = 1e-12 * (1 + np.abs(guess).max())
+                if np.hypot(*(at(here, True) - guess)) < np.hypot(*(at(here) - guess)) - tol:
+                    branch[v, order[k:]] *= -1
+                    flipped[order[k:]] = ~flipped[order[k:]]
+                    touch = int(order[k - 1] if gap[v, order[k - 1]] < gap[v, here] else here)
+                    flips.append((int(v), int(here), touch))
     return flips
 
 

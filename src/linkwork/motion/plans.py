@@ -109,6 +109,7 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
     mech = kin.mechanism
     q, v, a = (x[:, :, variant, index] for x in (kin.q, kin.v, kin.a))  # (N, 3)
     loc = kin.local[:, :, variant, 0]
+    axis = kin.axis[:, :, variant, 0]
     names = [n.split(".", 1)[1] for n in mech.point_names]
 
     def state_at(link: int, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -126,16 +127,15 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
         for k in range(mech.n_pairs)
         if mech.pair_type[k] == 0 and mech.pair_links[k, 0] == 0
     }
-    counts = {n: names.count(n) for n in names}
-    joints = {mech.point_names[int(mech.pair_points[k, 1])].split(".", 1)[1] for k in range(mech.n_pairs)}
+    from linkwork.io.motion_tables import point_labels
+
+    labels = {p: label.lower() for label, p in point_labels(mech, with_all=True)}
 
     def label_of(p: int) -> str:
         """Plan label: the point's name in lower case; p for the frame and points pinned to it."""
         if mech.point_link[p] == 0 or p in grounded:
             return "p"
-        if names[p] in joints or counts[names[p]] == 1:
-            return names[p].lower()
-        return mech.point_names[p].lower()
+        return labels[p]
 
     vel_pts: dict[str, tuple[float, float]] = {}
     acc_pts: dict[str, tuple[float, float]] = {}
@@ -182,7 +182,8 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
                         names[arm.src],
                     )
                 else:
-                    _sliding(vvec, avec, g, lab, x, arm, mech, q, v, a, state_at)
+                    primes = "'" * (1 + sum(1 for other in arms[: arms.index(arm)] if other.kind == "P"))
+                    _sliding(vvec, avec, g, lab, x, arm, mech, q, v, a, state_at, axis, primes)
     longest_v = max((np.hypot(*pv) for pv in vel_pts.values()), default=0.0)
     longest_a = max((np.hypot(*pa) for pa in acc_pts.values()), default=0.0)
     angle = float(kin.angles[index])
@@ -215,12 +216,14 @@ def _sliding(
     v: np.ndarray,
     a: np.ndarray,
     state_at: Any,
+    axis: np.ndarray,
+    prime: str = "'",
 ) -> None:
     """X on a link sliding along a guide of the carrier: transport + (Coriolis) + sliding."""
     c = arm.carrier
     th = q[c, 2]
     k = arm.pair
-    ax_loc = mech.pair_axis[k]
+    ax_loc = axis[k]
     cs, sn = np.cos(th), np.sin(th)
     u = np.array([cs * ax_loc[0] - sn * ax_loc[1], sn * ax_loc[0] + cs * ax_loc[1]])
     v_tr, a_tr = state_at(c, x)
@@ -228,10 +231,10 @@ def _sliding(
     sdot = float((v_x - v_tr) @ u)
     cor = 2 * v[c, 2] * sdot * np.array([-u[1], u[0]])
     sddot = float((a_x - a_tr - cor) @ u)
-    carrier = "p" if c == 0 else f"{lab}'"
+    carrier = "p" if c == 0 else f"{lab}{prime}"
     vvec.append(PlanVector("p", carrier, tuple(map(float, v_tr)), "transport", group, mech.link_names[c]))
     vvec.append(PlanVector(carrier, lab, tuple(map(float, sdot * u)), "sliding", group, mech.link_names[c]))
     avec.append(PlanVector("p", carrier, tuple(map(float, a_tr)), "transport", group, mech.link_names[c]))
-    mid = f"k_{lab}"
+    mid = f"k{prime}_{lab}"
     avec.append(PlanVector(carrier, mid, tuple(map(float, cor)), "coriolis", group, mech.link_names[c]))
     avec.append(PlanVector(mid, lab, tuple(map(float, sddot * u)), "sliding", group, mech.link_names[c]))

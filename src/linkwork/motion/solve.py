@@ -119,6 +119,7 @@ def _solve(
     if mech.pair_type[mech.drive_pair[0]] == 1:
         offset = values[:, 0] - mech.drive_start[0]
     state.start_index = int(np.argmin(np.abs(offset)))
+    state.drive = values[:, 0]
     ones = np.ones((n_var, n_ang))
     for i, step in enumerate(program):
         branch = branches[i] if branches is not None else None
@@ -152,8 +153,9 @@ def _repair_singular(
 
     There the linear systems have no unique solution; the motion's own
     values are the limits from both sides, taken as the mean of the
-    solutions a step of 1e-6 (rad, or 1e-6 of the mechanism's size for a
-    linear drive) to either side, each in the assembly mode of its side.
+    solutions a small step (1e-3 rad, or 1e-3 of the mechanism's size for a
+    linear drive) to either side, each in the assembly mode of its side,
+    extrapolated to a zero step (Richardson).
     """
     det = np.stack([np.abs(d) for d in state.step_det])  # (S, V, A)
     singular = state.valid & np.any(det < SINGULAR, axis=0)
@@ -163,11 +165,31 @@ def _repair_singular(
     scale = max(float(np.abs(mech.point_local).max()), 1e-3)
     delta = np.where(mech.pair_type[mech.drive_pair] == 0, 1e-3, 1e-3 * scale)
     n_ang = values.shape[0]
+    # the assembly mode on each side: that of the neighbouring sample on that side (whatever the order
+    # of the angles); where there is none, a change point is crossed: the other mode than the far side's
+    below, above = np.maximum(idx - 1, 0), np.minimum(idx + 1, n_ang - 1)
+    rising = np.where(below == above, True, values[above, 0] >= values[below, 0])
+    near_minus, near_plus = np.where(rising, below, above), np.where(rising, above, below)
+    side_branches = ([], [])
+    for i, step in enumerate(program):
+        b = state.step_branch[i]
+        if step.kind not in ("RRR", "RRP", "PRP"):
+            side_branches[0].append(None)
+            side_branches[1].append(None)
+            continue
+        full = b if b is not None else np.full(state.valid.shape, step.branch)
+        lone = det[i][:, idx] < SINGULAR
+        minus, plus = full[:, near_minus].copy(), full[:, near_plus].copy()
+        alone = near_minus == near_plus  # a single sample: the side facing the assembly pose keeps its mode
+        facing_up = values[idx, 0] < mech.drive_start[0]
+        minus = np.where(lone & (near_minus == idx) & ~(alone & ~facing_up), -plus, minus)
+        plus = np.where(lone & (near_plus == idx) & ((near_minus != idx) | (alone & ~facing_up)), -minus, plus)
+        side_branches[0].append(minus)
+        side_branches[1].append(plus)
     means = []
     for h in (delta, 2 * delta):
         sides = []
-        for sign, near in ((-1.0, np.maximum(idx - 1, 0)), (1.0, np.minimum(idx + 1, n_ang - 1))):
-            branches = [b[:, near] if b is not None else None for b in state.step_branch]
+        for sign, branches in ((-1.0, side_branches[0]), (1.0, side_branches[1])):
             sides.append(_solve(mech, program, geom, values[idx] + sign * h, rates[idx], accels[idx], branches))
         means.append([0.5 * (a + b) for a, b in zip((sides[0].v, sides[0].a), (sides[1].v, sides[1].a), strict=True)])
     # links of the first singular step and after it: upstream links are regular there
@@ -265,22 +287,27 @@ def newton(
     state.step_valid.append(converged)
     state.step_branch.append(None)
     state.step_flips.append([])
-    state.step_jumps.append(_jumps(state, links, values[:, 0]))
+    state.step_jumps.append(_jumps(state, links, values[:, 0], scale, converged))
 
 
-def _jumps(state: State, links: list[int], drive: np.ndarray) -> list[tuple[int, int]]:
+def _jumps(
+    state: State, links: list[int], drive: np.ndarray, scale: float = 1.0, ok: np.ndarray | None = None
+) -> list[tuple[int, int]]:
     """Samples where a Newton-solved group moves far more than its neighbours would have it:
     the continuation may have changed the assembly mode there.  Returns (variant, sample) pairs."""
     if len(drive) < 4:
         return []
-    step = np.abs(np.diff(drive))
-    moves = np.zeros(state.valid.shape[0:1] + (len(drive) - 1,))
+    step = np.maximum(np.abs(np.diff(drive)), 1e-300)
+    moves = np.zeros(state.q.shape[2:3] + (len(drive) - 1,))
     for i in links:
-        d = np.diff(state.q[i, :2], axis=-1)
-        moves = np.maximum(moves, np.hypot(d[0], d[1]) / np.maximum(step, 1e-300))
+        d = np.diff(state.q[i], axis=-1)
+        turn = np.abs((d[2] + np.pi) % (2 * np.pi) - np.pi) * scale
+        moves = np.maximum(moves, (np.hypot(d[0], d[1]) + turn) / step)
+    if ok is not None:
+        moves = np.where(ok[:, 1:] & ok[:, :-1], moves, np.nan)
     with np.errstate(invalid="ignore"):
         typical = np.nanmedian(moves, axis=1, keepdims=True)
-        bad = moves > 20 * typical + 1e-12
+        bad = moves > 20 * typical + 1e-6 * scale / step
     return [(int(v), int(j)) for v, j in np.argwhere(bad)]
 
 
