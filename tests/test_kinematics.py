@@ -434,3 +434,49 @@ def test_six_bars_move_rigidly_with_the_frame(dx, dy, rot):
             np.testing.assert_allclose(
                 a1, np.stack([c * a0[:, 0] - s * a0[:, 1], s * a0[:, 0] + c * a0[:, 1]], -1), atol=1e-8
             )
+
+
+@pytest.mark.parametrize(
+    "angles",
+    [
+        np.radians(90 + 360 * np.arange(8) / 8),
+        np.radians(90 + 360 * np.arange(10) / 10),
+        np.radians(np.arange(90, -270, -1.0)),  # clockwise
+        np.radians([0.0]),
+        np.radians([180.0]),
+        np.linspace(0, 2 * np.pi, 13),
+    ],
+)
+def test_change_points_of_the_isosceles_slider_crank_in_any_order(angles):
+    mech = lw.compile(lw.example("shears-slider-crank"))
+    kin = lw.kinematics(mech, angles)
+    np.testing.assert_allclose(kin.position("B")[:, 1], 0.3 * np.sin(angles), atol=1e-12)
+    np.testing.assert_allclose(kin.velocity("B")[:, 1], 3.0 * np.cos(angles), atol=1e-8)
+
+
+@pytest.mark.parametrize("steps", [37, 100, 360, 361, 1000])
+def test_a_parallelogram_stays_a_parallelogram(steps):
+    from mechanisms import parallelogram_with_redundant_link
+
+    mech = lw.compile(parallelogram_with_redundant_link().build())
+    kin = lw.kinematics(mech, steps=steps)
+    assert kin.valid.all()
+    np.testing.assert_allclose(kin.position("B") - kin.position("A"), np.tile([0.3, 0.0], (steps, 1)), atol=1e-8)
+    assert {e.kind for e in kin.events} <= {"singular", "change-point"}
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        ({"steps": 0}, "steps: expected a positive whole number"),
+        ({"steps": 2.5}, "steps: expected a positive whole number"),
+        ({"angles": []}, "no angles given"),
+        ({"angles": [float("nan")]}, "angles must be finite"),
+        ({"angles": [0.0], "speed": [1, 2]}, "speed: expected 1 finite value"),
+        ({"angles": [0.0], "variants": {"links.crank.length": [[0.1, 0.2]]}}, "one-dimensional"),
+    ],
+)
+def test_odd_inputs_give_clear_errors(kwargs, message):
+    mech = lw.compile(lw.example("four-bar"))
+    with pytest.raises(lw.errors.LinkworkError, match=message):
+        lw.kinematics(mech, **kwargs)

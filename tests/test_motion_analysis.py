@@ -177,3 +177,54 @@ def test_bad_options_exit_2_with_a_message(args, message):
     assert result.exit_code == 2
     assert message in result.stderr
     assert "Traceback" not in result.output
+
+
+def test_plans_follow_the_variants_guides_and_keep_names_apart(tmp_path):
+    kin = lw.kinematics(lw.compile(lw.example("double-cut-shears")), [0.3], variants={"joints.guide_E.axis": [1.4]})
+    vp, _ = plans(kin, 0)
+    vec = {(v.start, v.end): np.array(v.vector) for v in vp.vectors}
+    np.testing.assert_allclose(vec[("p", "e")], vp.points["e"], atol=1e-12)  # transport 0 + sliding = v_E
+    from linkwork.examples import text
+
+    path = tmp_path / "marker.yaml"
+    path.write_text(
+        text("four-bar").replace(
+            "    ends: [O2, A]\n    length: 100\n", "    ends: [O2, A]\n    length: 100\n    points: {B: [50, 10]}\n"
+        ),
+        encoding="utf-8",
+    )
+    mech = lw.compile(lw.load(path))
+    kin = lw.kinematics(mech, [math.radians(60)])
+    vp, _ = plans(kin, 0)
+    np.testing.assert_allclose(vp.points["b"], kin.velocity("rocker.B")[0], atol=1e-12)
+    np.testing.assert_allclose(vp.points["crank.b"], kin.velocity("crank.B")[0], atol=1e-12)
+    out = json.loads(runner.invoke(app, ["kinematics", str(path), "--angles", "60", "--json"]).stdout)
+    np.testing.assert_allclose(out["points"]["B"]["x"], kin.position("rocker.B")[:, 0])
+
+
+def test_extremes_over_a_turn_that_does_not_all_assemble():
+    kin = lw.kinematics(lw.compile(lw.example("four-bar")), steps=360, variants={"links.crank.length": [0.22]})
+    (rocker,) = [e for e in extremes(kin, 0) if e.kind == "rocker"]
+    assert np.isfinite(rocker.stroke) and math.isnan(rocker.time_ratio)
+
+
+def test_linear_drive_and_two_drives_on_the_command_line(tmp_path):
+    from ruamel.yaml import YAML
+
+    from mechanisms import five_bar, hydraulic_boom
+
+    boom = tmp_path / "boom.yaml"
+    with open(boom, "w") as fh:
+        YAML().dump(hydraulic_boom().to_dict(), fh)
+    result = runner.invoke(app, ["kinematics", str(boom), "--angles", "500,520", "--json"])
+    assert result.exit_code == 0, result.output
+    kin = lw.kinematics(lw.compile(lw.load(boom)), [0.5, 0.52])
+    np.testing.assert_allclose(json.loads(result.stdout)["points"]["B"]["x"], kin.position("B")[:, 0])
+    assert runner.invoke(app, ["kinematics", str(boom)]).exit_code == 2
+    five = tmp_path / "five.yaml"
+    with open(five, "w") as fh:
+        YAML().dump(five_bar().to_dict(), fh)
+    result = runner.invoke(app, ["kinematics", str(five), "--angles", "90"])
+    assert result.exit_code == 2 and "this mechanism has 2 drives" in result.stderr
+    result = runner.invoke(app, ["kinematics", "four-bar", "--angles", "nan"])
+    assert result.exit_code == 2 and "finite" in result.stderr

@@ -13,20 +13,40 @@ from linkwork.cli.app import FileOrExample, _compile, app, fail
 
 
 def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
+    """Keyword arguments of lw.kinematics from the options; crank angles in degrees, or slider
+    positions in mm for a linear drive."""
     from linkwork.errors import LinkworkError
+    from linkwork.structure.constraints import REVOLUTE
 
+    if mech.n_drives != 1:
+        fail(
+            LinkworkError(
+                f"the command line drives one input; this mechanism has {mech.n_drives} drives "
+                "(use linkwork.kinematics in Python with angles of shape (n, drives))"
+            )
+        )
+    revolute = mech.pair_type[mech.drive_pair[0]] == REVOLUTE
     if steps is not None and angles is not None:
         fail(LinkworkError("give either --steps or --angles, not both"))
     if angles is not None:
+        unit = "degrees" if revolute else "mm"
         try:
-            values = [math.radians(float(a)) for a in angles.split(",") if a.strip()]
+            values = [float(a) for a in angles.replace(" ", "").split(",") if a]
         except ValueError:
-            fail(LinkworkError(f'--angles: expected numbers in degrees separated by commas, got "{angles}"'))
+            fail(LinkworkError(f'--angles: expected numbers in {unit} separated by commas, got "{angles}"'))
         if not values:
             fail(LinkworkError("--angles: no angles given"))
-        return {"angles": np.array(values)}
+        if not all(math.isfinite(v) for v in values):
+            fail(LinkworkError(f'--angles: expected finite numbers in {unit}, got "{angles}"'))
+        return {"angles": np.radians(values) if revolute else np.array(values) / 1000}
     if steps is not None and steps < 1:
         fail(LinkworkError(f"--steps: expected a positive number of steps, got {steps}"))
+    if not revolute:
+        fail(
+            LinkworkError(
+                "--steps needs a crank (a revolute drive); for a linear drive give --angles as positions in mm"
+            )
+        )
     return {"steps": steps or 360}
 
 
@@ -127,9 +147,11 @@ def positions(
     mech = _compile(file_or_example)
     if count < 1:
         fail(LinkworkError(f"--count: expected a positive number, got {count}"))
+    if zero is not None and not math.isfinite(zero):
+        fail(LinkworkError(f"--zero: expected a crank angle in degrees, got {zero}"))
     try:
+        sign = 1.0 if cycle(mech, 2)[1] > cycle(mech, 2)[0] else -1.0  # checks for a crank first
         start = math.radians(zero) if zero is not None else zero_angle(mech)
-        sign = 1.0 if cycle(mech, 2)[1] > cycle(mech, 2)[0] else -1.0
         values = start + sign * 2 * math.pi * np.arange(count) / count
         kin = solve(mech, values)
     except LinkworkError as exc:

@@ -39,8 +39,16 @@ def moving_links(mech: Any) -> list[tuple[str, int]]:
     return [(n, i) for i, n in enumerate(mech.link_names) if i > 0 and not mech.link_virtual[i]]
 
 
+def _single(kin: Any) -> None:
+    if kin.variants:
+        from linkwork.errors import LinkworkError
+
+        raise LinkworkError("this table holds one mechanism; for design variants use to_dataset (NetCDF)")
+
+
 def to_json(kin: Any, extremes: list[Any]) -> dict[str, Any]:
     """The ``linkwork kinematics --json`` object (one mechanism, no variants)."""
+    _single(kin)
     mech = kin.mechanism
 
     def arr(a: np.ndarray) -> list[float | None]:
@@ -84,7 +92,8 @@ def to_json(kin: Any, extremes: list[Any]) -> dict[str, Any]:
 
 
 def write_csv(kin: Any, path: str | Path) -> Path:
-    """One row per angle, one column per quantity, units in the header."""
+    """One row per angle, one column per quantity, units in the header (one mechanism, no variants)."""
+    _single(kin)
     mech = kin.mechanism
     cols: list[tuple[str, np.ndarray]] = [
         ("angle [deg]", np.degrees(kin.angles)),

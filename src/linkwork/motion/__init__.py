@@ -191,14 +191,26 @@ def kinematics(
 
     if (angles is None) == (steps is None):
         raise LinkworkError("give either angles or steps")
-    values = cycle(mech, steps) if steps is not None else np.asarray(angles, dtype=float)
+    if steps is not None and (isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 1):
+        raise LinkworkError(f"steps: expected a positive whole number, got {steps!r}")
+    values = cycle(mech, int(steps)) if steps is not None else np.asarray(angles, dtype=float)
+    if values.size == 0:
+        raise LinkworkError("no angles given")
     values = values.reshape(len(values), -1) if values.ndim else values.reshape(1, 1)
     if values.shape[1] != mech.n_drives:
         raise LinkworkError(f"the mechanism has {mech.n_drives} drives; angles must have shape (n, {mech.n_drives})")
+    if not np.isfinite(values).all():
+        raise LinkworkError("angles must be finite numbers")
     if speed is None:
         rate = np.where(np.isfinite(mech.drive_speed) & (mech.drive_speed != 0), mech.drive_speed, 1.0)
     else:
-        rate = np.broadcast_to(np.asarray(speed, dtype=float), (mech.n_drives,))
+        speed = np.asarray(speed, dtype=float)
+        if speed.size not in (1, mech.n_drives) or not np.isfinite(speed).all():
+            raise LinkworkError(f"speed: expected {mech.n_drives} finite value(s), got {speed.tolist()!r}")
+        rate = np.broadcast_to(speed.ravel(), (mech.n_drives,))
+    for path, value in (variants or {}).items():
+        if np.ndim(value) > 1:
+            raise LinkworkError(f'variants["{path}"]: expected a one-dimensional array, got shape {np.shape(value)}')
     rates = np.broadcast_to(rate, values.shape)
     geom = geometry(mech, variants)
     state = run(mech, mech.program, geom, values, rates, np.zeros_like(values))

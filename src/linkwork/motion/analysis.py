@@ -66,6 +66,8 @@ def _refine(values: np.ndarray, angles: np.ndarray, i: int) -> tuple[float, floa
     """Extreme of a sampled periodic function near sample i, by a parabola through i-1, i, i+1."""
     n = len(values)
     y0, y1, y2 = values[(i - 1) % n], values[i], values[(i + 1) % n]
+    if not (np.isfinite(y0) and np.isfinite(y2)):
+        return float(y1), float(angles[i])
     den = y0 - 2 * y1 + y2
     t = 0.0 if den == 0 or not np.isfinite(den) else 0.5 * (y0 - y2) / den
     t = float(np.clip(t, -1, 1))
@@ -97,13 +99,19 @@ def extremes(kin: Any, variant: int = 0) -> list[Extremes]:
             values = (x - mech.pair_origin[k]) @ mech.pair_axis[k]
             out.append(_extremes(mech.pair_joint[k], "slider", values, angles, sign))
         elif mech.pair_type[k] == REVOLUTE and b not in {int(mech.pair_links[d, 1]) for d in driven}:
-            values = np.unwrap(pose[:, b, 2])
+            values = pose[:, b, 2].copy()
+            ok = np.isfinite(values)
+            values[ok] = np.unwrap(values[ok])
             if np.nanmax(values) - np.nanmin(values) < 2 * math.pi - 1e-6:
                 out.append(_extremes(mech.link_names[b], "rocker", values, angles, sign))
     return out
 
 
 def _extremes(name: str, kind: str, values: np.ndarray, angles: np.ndarray, sign: float) -> Extremes:
+    """Extremes over the samples that assembled; the time ratio only where the whole turn did."""
+    if not np.isfinite(values).any():
+        nan = math.nan
+        return Extremes(name, kind, nan, nan, nan, nan, nan, nan, nan, nan)
     lo_i, hi_i = int(np.nanargmin(values)), int(np.nanargmax(values))
     low, at_low = _refine(values, angles, lo_i)
     high, at_high = _refine(-values, angles, hi_i)
@@ -111,6 +119,8 @@ def _extremes(name: str, kind: str, values: np.ndarray, angles: np.ndarray, sign
     forward = (sign * (at_high - at_low)) % (2 * math.pi)
     backward = 2 * math.pi - forward
     ratio = max(forward, backward) / min(forward, backward) if min(forward, backward) > 0 else math.inf
+    if not np.isfinite(values).all():  # part of the turn does not assemble: no strokes to compare
+        forward = backward = ratio = math.nan
     return Extremes(name, kind, low, high, at_low, at_high, high - low, forward, backward, ratio)
 
 

@@ -179,8 +179,9 @@ def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> 
     if n < 3:
         return []
     gap = np.hypot(*np.moveaxis(xp - xm, -1, 0))  # (V, A)
-    step = np.fmax(np.hypot(*np.moveaxis(np.diff(xp, axis=1), -1, 0)),
-                   np.hypot(*np.moveaxis(np.diff(xm, axis=1), -1, 0)))  # (V, A - 1), either mode
+    step = np.fmax(
+        np.hypot(*np.moveaxis(np.diff(xp, axis=1), -1, 0)), np.hypot(*np.moveaxis(np.diff(xm, axis=1), -1, 0))
+    )  # (V, A - 1), either mode
     move = np.maximum(np.pad(step, ((0, 0), (1, 0)), mode="edge"), np.pad(step, ((0, 0), (0, 1)), mode="edge"))
     with np.errstate(invalid="ignore"):
         near = gap <= 2 * move + 1e-12 * (1 + np.abs(xp).max())
