@@ -193,7 +193,7 @@ def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> 
     for v in np.unique(np.nonzero(near)[0]):
         flipped = np.zeros(n, dtype=bool)  # samples now in the mode opposite to the first solution
 
-        def at(i: int, other: bool = False) -> np.ndarray:
+        def at(i: int, other: bool = False, v: int = v, flipped: np.ndarray = flipped) -> np.ndarray:
             return xm[v, i] if flipped[i] != other else xp[v, i]
 
         for direction in (1, -1):
