@@ -14,6 +14,10 @@ the graphical method draws them:
   the acceleration of ``x'`` plus the Coriolis component ``2 omega v_rel``
   plus the relative acceleration along the guide.
 
+The constructions cover cranks and RRR, RRP and PRP dyads; the points of
+other groups (RPR, RPP, Newton-solved groups) appear by their absolute
+vectors only.
+
 For the double-cut shears the velocity plan of E is ``v_E = v_D + v_ED``
 (``v_ED`` normal to DE) ``= v_E'`` (zero: the guide is fixed) ``+ v_EE'``
 (vertical), as in equations (3)-(5) of the paper.
