@@ -222,7 +222,7 @@ def test_class3_triad_against_an_independent_solver():
                 np.hypot(*(d - c)) - cd,
             ]
 
-        sol = fsolve(eq, guess, xtol=1e-14)
+        sol = fsolve(eq, guess, xtol=1e-12)
         guess = sol
         np.testing.assert_allclose(kin.position("B")[i], sol[:2], atol=1e-9)
         np.testing.assert_allclose(kin.position("C")[i], sol[2:4], atol=1e-9)
