@@ -174,19 +174,22 @@ def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> 
     """
     x_p, _ = _intersect(la, lb, branch)
     x_m, _ = _intersect(la, lb, -branch)
-    xp, xm = np.stack(x_p, -1), np.stack(x_m, -1)
     n = branch.shape[1]
     if n < 3:
         return []
-    gap = np.hypot(*np.moveaxis(xp - xm, -1, 0))  # (V, A)
+    gap = np.hypot(x_p[0] - x_m[0], x_p[1] - x_m[1])  # (V, A)
     step = np.fmax(
-        np.hypot(*np.moveaxis(np.diff(xp, axis=1), -1, 0)), np.hypot(*np.moveaxis(np.diff(xm, axis=1), -1, 0))
+        np.hypot(np.diff(x_p[0], axis=1), np.diff(x_p[1], axis=1)),
+        np.hypot(np.diff(x_m[0], axis=1), np.diff(x_m[1], axis=1)),
     )  # (V, A - 1), either mode
-    move = np.maximum(np.pad(step, ((0, 0), (1, 0)), mode="edge"), np.pad(step, ((0, 0), (0, 1)), mode="edge"))
+    move = np.empty_like(gap)
+    move[:, 0], move[:, -1] = step[:, 0], step[:, -1]
+    np.fmax(step[:, :-1], step[:, 1:], out=move[:, 1:-1])
     with np.errstate(invalid="ignore"):
-        near = gap <= 2 * move + 1e-12 * (1 + np.abs(xp).max())
+        near = gap <= 2 * move + 1e-12 * (1 + float(np.abs(state.local).max()))
     if not near.any():
         return []
+    xp, xm = np.stack(x_p, -1), np.stack(x_m, -1)
     drive = state.drive
     flips = []
     start = state.start_index
