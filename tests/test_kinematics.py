@@ -15,7 +15,7 @@ from linkwork.errors import UnassemblableError
 from linkwork.motion.geometry import geometry
 from linkwork.motion.solve import run
 from mechanisms import TEXTBOOK, circle_intersection
-from test_structure import _assembles, four_bar_spec
+from test_structure import _assembles, four_bar_spec, four_bars
 
 MECHANISMS = [
     ("example", n)
@@ -278,16 +278,6 @@ def test_dead_points_of_a_crank_rocker_driven_by_its_rocker_are_found():
         expect += [math.pi - math.acos(cos_t), -(math.pi - math.acos(cos_t))]
     for e in sorted(expect):
         assert min(abs(s - e) for s in sing) < 2e-3
-
-
-four_bars = st.tuples(
-    st.floats(0.05, 1.0),
-    st.floats(0.05, 1.0),
-    st.floats(0.05, 1.0),
-    st.floats(0.05, 1.0),
-    st.floats(-math.pi, math.pi),
-    st.booleans(),
-)
 
 
 @settings(max_examples=30, deadline=None)

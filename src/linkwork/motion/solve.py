@@ -208,12 +208,11 @@ def _repair_singular(
 
 
 def _rows(mech: Any, links: tuple[int, ...], placed: set[int]) -> list[int]:
+    """Constraint rows of a group: those that involve its links and placed links only."""
+    from linkwork.structure.assemble import group_rows
     from linkwork.structure.constraints import build_rows
 
-    rows = build_rows(mech.pair_type, mech.pair_links, mech.drive_pair)
-    group = set(links)
-    allowed = placed | group
-    return [i for i, rl in enumerate(rows.links) if set(map(int, rl)) <= allowed and set(map(int, rl)) & group]
+    return group_rows(build_rows(mech.pair_type, mech.pair_links, mech.drive_pair), placed, set(links))
 
 
 def newton(
