@@ -228,3 +228,24 @@ def test_linear_drive_and_two_drives_on_the_command_line(tmp_path):
     assert result.exit_code == 2 and "this mechanism has 2 drives" in result.stderr
     result = runner.invoke(app, ["kinematics", "four-bar", "--angles", "nan"])
     assert result.exit_code == 2 and "finite" in result.stderr
+
+
+def test_coriolis_in_the_acceleration_plan_of_a_slotted_rocker():
+    """Crank-shaper (RPR): the block at the crank pin A slides in the rocker's slot.  The rocker's
+    point A' under A has a_A' = a^n + a^t about O2; a_A = a_A' + 2 omega_3 x v_rel + a_rel."""
+    mech = lw.compile(TEXTBOOK["crank-shaper"][0]().build())
+    kin = lw.kinematics(mech, np.radians([30.0]), speed=10.0)
+    vp, ap = plans(kin, 0)
+    vec = {(v.start, v.end, v.kind): np.array(v.vector) for v in ap.vectors}
+    vvec = {(v.start, v.end, v.kind): np.array(v.vector) for v in vp.vectors}
+    w3 = kin.omega("rocker")[0]
+    a_pos = kin.position("A")[0]
+    u = a_pos / np.hypot(*a_pos)  # the slot runs through O2 = (0, 0)
+    v_rel = vvec[("a'", "a", "sliding")]
+    np.testing.assert_allclose(v_rel, (kin.velocity("A")[0] - w3 * np.array([-a_pos[1], a_pos[0]])), atol=1e-12)
+    cor = vec[("a'", "k'_a", "coriolis")]
+    np.testing.assert_allclose(cor, 2 * w3 * np.array([-v_rel[1], v_rel[0]]), atol=1e-12)
+    assert abs(cor @ u) < 1e-12 and np.hypot(*cor) > 0
+    # closure: a_A' (transport) + Coriolis + relative = a_A
+    chain = vec[("p", "a'", "transport")] + cor + vec[("k'_a", "a", "sliding")]
+    np.testing.assert_allclose(chain, kin.acceleration("A")[0], atol=1e-10)

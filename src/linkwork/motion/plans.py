@@ -14,8 +14,9 @@ the graphical method draws them:
   the acceleration of ``x'`` plus the Coriolis component ``2 omega v_rel``
   plus the relative acceleration along the guide.
 
-The constructions cover cranks and RRR, RRP and PRP dyads; the points of
-other groups (RPR, RPP, Newton-solved groups) appear by their absolute
+The constructions cover cranks and RRR, RRP, PRP and RPR dyads (the RPR
+with its Coriolis component, as for the slotted rocker of a shaper); the
+points of other groups (RPP, Newton-solved groups) appear by their absolute
 vectors only.
 
 For the double-cut shears the velocity plan of E is ``v_E = v_D + v_ED``
@@ -26,6 +27,7 @@ For the double-cut shears the velocity plan of E is ``v_E = v_D + v_ED``
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -188,6 +190,25 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
                 else:
                     primes = "'" * (1 + sum(1 for other in arms[: arms.index(arm)] if other.kind == "P"))
                     _sliding(vvec, avec, g, lab, x, arm, mech, q, v, a, state_at, axis, primes)
+        elif step.kind == "RPR":
+            # the slider turns about its pivot; the guide's coincident point turns about the guide's pivot,
+            # and the slider slides along the guide relative to it (with the Coriolis component)
+            arm_g, arm_s = arms
+            sp = arm_s.slider_point
+            x, lab = glob(sp), label_of(sp)
+            _rotation(
+                vvec,
+                avec,
+                g,
+                label_of(arm_s.src),
+                lab,
+                x - glob(arm_s.src),
+                v[arm_s.link, 2],
+                a[arm_s.link, 2],
+                names[arm_s.src],
+            )
+            on_guide = SimpleNamespace(carrier=arm_g.link, pair=step.inner, link=arm_s.link)
+            _sliding(vvec, avec, g, lab, x, on_guide, mech, q, v, a, state_at, axis)
     longest_v = max((np.hypot(*pv) for pv in vel_pts.values()), default=0.0)
     longest_a = max((np.hypot(*pa) for pa in acc_pts.values()), default=0.0)
     angle = float(kin.angles[index])
