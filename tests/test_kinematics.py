@@ -434,6 +434,9 @@ def test_six_bars_move_rigidly_with_the_frame(dx, dy, rot):
         np.radians(np.arange(90, -270, -1.0)),  # clockwise
         np.radians([0.0]),
         np.radians([180.0]),
+        np.radians([270.0]),  # alone, beyond a change point
+        np.radians([30, 210, 120, 300]),  # unsorted
+        np.radians(90 + 360 * np.arange(5) / 5),  # coarse
         np.linspace(0, 2 * np.pi, 13),
     ],
 )

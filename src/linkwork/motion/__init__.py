@@ -142,6 +142,33 @@ class Kinematics:
         return self._out(np.moveaxis(out, 0, 2))
 
 
+#: Largest step (rad) of a path along which change points are followed.
+PATH_STEP = np.radians(5.0)
+
+
+def _path(mech: Any, angles: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """A path of crank angles that reaches every asked angle from the assembly pose.
+
+    Change points are followed along the order of the samples, so angles
+    that are not such a path already (one angle, unsorted angles, big steps,
+    angles away from the assembly pose) are solved on the sorted union of
+    the asked angles and a grid of 5 degrees from the assembly angle; the
+    result keeps the asked ones.  Returns (path, indices of the asked
+    angles in it), or (None, None) when the angles are a path already.
+    """
+    if not any(step.kind in ("RRR", "RRP", "PRP") for step in mech.program):
+        return None, None
+    start = float(mech.drive_start[0])
+    d = np.diff(angles)
+    monotonic = len(angles) > 1 and (np.all(d > 0) or np.all(d < 0))
+    if monotonic and np.abs(d).max() <= PATH_STEP and angles.min() - PATH_STEP <= start <= angles.max() + PATH_STEP:
+        return None, None
+    lo, hi = min(angles.min(), start), max(angles.max(), start)
+    grid = start + PATH_STEP * np.arange(np.floor((lo - start) / PATH_STEP), np.ceil((hi - start) / PATH_STEP) + 1)
+    path, inverse = np.unique(np.concatenate([angles, grid]), return_inverse=True)
+    return path, inverse[: len(angles)]
+
+
 def cycle(mech: Any, steps: int) -> np.ndarray:
     """Drive coordinates of a uniform cycle of the first drive from its assembly value, in its direction."""
     if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
@@ -213,9 +240,20 @@ def kinematics(
             raise LinkworkError(f'variants["{path}"]: expected a one-dimensional array, got shape {np.shape(value)}')
     rates = np.broadcast_to(rate, values.shape)
     geom = geometry(mech, variants)
-    state = run(mech, mech.program, geom, values, rates, np.zeros_like(values))
     revolute = bool(mech.pair_type[mech.drive_pair[0]] == REVOLUTE)
-    events = tuple(find(mech.program, state, values[:, 0], revolute))
+    path, take = _path(mech, values[:, 0]) if revolute and mech.n_drives == 1 else (None, None)
+    if path is None:
+        state = run(mech, mech.program, geom, values, rates, np.zeros_like(values))
+        events = tuple(find(mech.program, state, values[:, 0], revolute))
+    else:
+        # solve along a path from the assembly pose through every asked angle, then keep those
+        state = run(
+            mech, mech.program, geom, path[:, None], np.broadcast_to(rate, (len(path), 1)), np.zeros((len(path), 1))
+        )
+        events = tuple(find(mech.program, state, path, revolute))
+        state.q, state.v, state.a = state.q[..., take], state.v[..., take], state.a[..., take]
+        state.valid = state.valid[:, take]
+        state.step_det = [d[:, take] for d in state.step_det]
     if strict and not state.valid.all():
         first = next(e for e in events if e.kind == "no-assembly")
         raise UnassemblableError(first.message, group=first.group, angle=first.start)
