@@ -96,15 +96,6 @@ def _touching(slack: np.ndarray) -> np.ndarray:
     return np.where((slack < 0) & (slack > -1e-12), 0.0, slack)
 
 
-def _rates(state: State, la: _Locus, lb: _Locus, x: Vec) -> tuple[np.ndarray, ...]:
-    """The arms' rates, the determinant, and X's velocity: base_a + ka col_a = base_b + kb col_b."""
-    ca, cb = la.column(x), lb.column(x)
-    va, _ = la.base(state, x)
-    vb, _ = lb.base(state, x)
-    ka, kb, det = solve2(ca, scale(-1.0, cb), sub(vb, va))
-    return ka, kb, det, add(va, scale(ka, ca))
-
-
 def dyad(
     step: Step,
     state: State,

@@ -178,7 +178,3 @@ class State:
             (v[0] - w * r[1], v[1] + w * r[0]),
             (a[0] - e * r[1] - w * w * r[0], a[1] + e * r[0] - w * w * r[1]),
         )
-
-    def pose_view(self) -> np.ndarray:
-        """``(V, A, N, 3)`` view of the poses."""
-        return np.moveaxis(self.q, (0, 1), (2, 3))

@@ -385,7 +385,3 @@ def _depths(spec: Spec, index: dict[str, int]) -> dict[int, int]:
                     nxt.append(j)
         frontier = nxt
     return {i: depth.get(i, 1 << 30) for i in index.values()}
-
-
-def _problem(spec: Spec, path: tuple[str, ...], message: str) -> Problem:
-    return spec.source.problem(path, message) if spec.source else Problem(".".join(path), message)

@@ -145,12 +145,6 @@ def formula(groups: tuple[AssurGroup, ...] | list[AssurGroup]) -> str:
     return " -> ".join(parts)
 
 
-def _frozen(a: Any, dtype: Any = float) -> np.ndarray:
-    arr = np.array(a, dtype=dtype)
-    arr.flags.writeable = False
-    return arr
-
-
 @dataclass(frozen=True)
 class Mechanism:
     """A compiled mechanism: flat read-only arrays, no state.
