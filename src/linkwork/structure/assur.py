@@ -38,7 +38,6 @@ def decompose(
     pair_links: np.ndarray,
     pair_joint: tuple[str, ...],
     link_names: tuple[str, ...],
-    n_drives: int,
 ) -> tuple[list[AssurGroup], list[int]]:
     """Split the moving links into groups in solving order.
 

@@ -64,7 +64,7 @@ def _compile(spec: Spec) -> Mechanism:
         free = [i + 1 for i in np.flatnonzero(weight > 1e-8)]
     else:
         groups, free = decompose(
-            rows, jac_g, n_total, mech.pair_type, mech.pair_links, mech.pair_joint, mech.link_names, mech.n_drives
+            rows, jac_g, n_total, mech.pair_type, mech.pair_links, mech.pair_joint, mech.link_names
         )
     if free:
         names = ", ".join(f"{i} ({mech.link_names[i]})" for i in free)
