@@ -68,6 +68,13 @@ def _compile(spec: Spec) -> Mechanism:
         )
     if free:
         names = ", ".join(f"{i} ({mech.link_names[i]})" for i in free)
+        spinning = _spinning_links(mech)
+        if set(free) <= set(spinning):
+            raise StructureError(
+                f"{_w_text(n, p5, p4, w)}, but {drives_text}: the links {names} only turn about their one joint "
+                "point (a passive degree of freedom, such as a roller on its pin), which W counts; join each to "
+                "the link it turns on, or give it a point fixed by another pair"
+            )
         raise StructureError(
             f"{_w_text(n, p5, p4, w)}, but {drives_text}: the links {names} are not determined by the drives"
             + (f"; add {w - mech.n_drives} more drive(s)" if w > mech.n_drives else "")
@@ -110,6 +117,24 @@ def _compile(spec: Spec) -> Mechanism:
 
 
 _EMPTY = Structure(0, 0, 0, 0, 0, 0, (), "")
+
+
+def _spinning_links(mech: Mechanism) -> list[int]:
+    """Links whose every pair is a revolute at one and the same point of theirs (they spin about it)."""
+    out = []
+    for i in range(1, mech.n_links_total):
+        pts = []
+        for k in range(mech.n_pairs):
+            a, b = (int(x) for x in mech.pair_links[k])
+            if i not in (a, b):
+                continue
+            if mech.pair_type[k] != REVOLUTE:
+                pts = None
+                break
+            pts.append(mech.point_local[mech.pair_points[k, 0 if a == i else 1]])
+        if pts and np.ptp(np.array(pts), axis=0).max() < 1e-12:
+            out.append(i)
+    return out
 
 
 def _w_text(n: int, p5: int, p4: int, w: int) -> str:
