@@ -252,7 +252,10 @@ def test_non_grashof_four_bar_reports_where_it_cannot_be_assembled():
         "group II(2,3) RRR: limit (dead) position near crank angle 248.0 deg",
     ]
     limits = [e.start for e in kin.events if e.kind == "dead-point"]
-    np.testing.assert_allclose(np.degrees(limits), [limit, 360 - limit], atol=1e-3)
+    np.testing.assert_allclose(np.degrees(limits), [limit, 360 - limit], atol=1e-5)
+    coarse = lw.kinematics(mech, np.radians(np.arange(0, 360, 10.0)))  # limits by parabolas, 5-degree path
+    limits = [e.start for e in coarse.events if e.kind == "dead-point"]
+    np.testing.assert_allclose(np.degrees(limits), [limit, 360 - limit], atol=0.01)
     with pytest.raises(UnassemblableError, match="112.0 to 248.0"):
         lw.kinematics(mech, angles, strict=True)
 

@@ -161,10 +161,15 @@ def _path(mech: Any, angles: np.ndarray) -> tuple[np.ndarray | None, np.ndarray 
     start = float(mech.drive_start[0])
     d = np.diff(angles)
     monotonic = len(angles) > 1 and (np.all(d > 0) or np.all(d < 0))
-    if monotonic and np.abs(d).max() <= PATH_STEP and angles.min() - PATH_STEP <= start <= angles.max() + PATH_STEP:
+    step = PATH_STEP * (1 + 1e-9)
+    if monotonic and np.abs(d).max() <= step and angles.min() - step <= start <= angles.max() + step:
         return None, None
     lo, hi = min(angles.min(), start), max(angles.max(), start)
     grid = start + PATH_STEP * np.arange(np.floor((lo - start) / PATH_STEP), np.ceil((hi - start) / PATH_STEP) + 1)
+    asked = np.sort(angles)
+    pos = np.clip(np.searchsorted(asked, grid), 1, len(asked)) - 1
+    gap = np.minimum(np.abs(grid - asked[pos]), np.abs(grid - asked[np.minimum(pos + 1, len(asked) - 1)]))
+    grid = grid[gap > 1e-9]  # no grid point beside an asked angle
     path, inverse = np.unique(np.concatenate([angles, grid]), return_inverse=True)
     return path, inverse[: len(angles)]
 

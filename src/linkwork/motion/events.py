@@ -78,11 +78,22 @@ def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variant
             tag = f" (variant {v})" if state.valid.shape[0] > 1 else ""
 
             def limit(i: int, j: int, margin: np.ndarray = slack[v]) -> float:
-                """Drive value where the assembly margin crosses zero between samples i (valid) and j."""
+                """Drive value where the assembly margin crosses zero between samples i (valid) and j:
+                a parabola through i, j and the sample beyond i, else a straight line."""
                 s0, s1 = margin[i], margin[j]
                 if not (np.isfinite(s0) and np.isfinite(s1)) or s0 == s1:
                     return float(angles[j])
-                return float(angles[i] + s0 / (s0 - s1) * (angles[j] - angles[i]))
+                linear = float(angles[i] + s0 / (s0 - s1) * (angles[j] - angles[i]))
+                k = i - (j - i)
+                if 0 <= k < len(margin) and np.isfinite(margin[k]):
+                    x = np.array([angles[k], angles[i], angles[j]], dtype=float)
+                    c = np.polyfit(x - x[1], [margin[k], s0, s1], 2)
+                    roots = np.roots(c) + x[1] if np.any(c) else []
+                    lo, hi = sorted((float(angles[i]), float(angles[j])))
+                    inside = [float(r.real) for r in roots if abs(r.imag) < 1e-12 and lo <= r.real <= hi]
+                    if inside:
+                        return min(inside, key=lambda r: abs(r - linear))
+                return linear
 
             for i, j in _runs(fails[v]):
                 a = limit(i - 1, i) if i > 0 and before[v, i - 1] else float(angles[i])
