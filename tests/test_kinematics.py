@@ -87,28 +87,28 @@ def test_closed_forms_agree_with_the_generic_newton_solver(kind, name):
 
 @pytest.mark.parametrize("kind, name", MECHANISMS)
 def test_velocity_and_acceleration_are_derivatives_of_motion(kind, name):
-    """Central finite differences in the drive coordinate, times the drive speed."""
+    """Central finite differences in time: every drive moves at its speed (several drives at once)."""
     mech = _mech(kind, name)
-    if mech.n_drives != 1:
-        pytest.skip("one drive")
-    base = _angles(mech, n=12, span=_span(kind, name))[:, 0]
-    h = 1e-5 if mech.pair_type[mech.drive_pair[0]] == 0 else 1e-6
-    kin = lw.kinematics(mech, np.concatenate([base - h, base, base + h]))
-    w = kin.rates[0, 0]
+    base = _angles(mech, n=12, span=_span(kind, name))
+    rates = lw.kinematics(mech, base[:1]).rates[0]
+    step = 1e-5 if mech.pair_type[mech.drive_pair[0]] == 0 else 1e-6
+    dt = step / np.abs(rates).max()
+    kin = lw.kinematics(mech, np.concatenate([base - rates * dt, base, base + rates * dt]))
     n = len(base)
     pts = kin.points()
     mid = slice(n, 2 * n)
     vel = np.stack([kin.velocity(p) for p in mech.point_names], axis=1)[mid]
     acc = np.stack([kin.acceleration(p) for p in mech.point_names], axis=1)[mid]
-    fd_v = (pts[2 * n :] - pts[:n]) / (2 * h) * w
-    fd_a = (pts[2 * n :] - 2 * pts[mid] + pts[:n]) / h**2 * w * w
+    fd_v = (pts[2 * n :] - pts[:n]) / (2 * dt)
+    fd_a = (pts[2 * n :] - 2 * pts[mid] + pts[:n]) / dt**2
     ok = kin.valid[:n] & kin.valid[mid] & kin.valid[2 * n :]
+    assert ok.mean() > 0.5
     scale = np.nanmax(np.abs(vel[ok])) + 1e-12
     np.testing.assert_allclose(vel[ok], fd_v[ok], atol=1e-6 * scale)
     np.testing.assert_allclose(acc[ok], fd_a[ok], atol=2e-3 * (np.nanmax(np.abs(acc[ok])) + 1e-12))
     omega = np.stack([kin.omega(i) for i in range(mech.n_links_total)], axis=1)[mid]
     theta = np.stack([kin.angle(i) for i in range(mech.n_links_total)], axis=1)
-    fd_w = (np.angle(np.exp(1j * (theta[2 * n :] - theta[:n])))) / (2 * h) * w
+    fd_w = (np.angle(np.exp(1j * (theta[2 * n :] - theta[:n])))) / (2 * dt)
     np.testing.assert_allclose(omega[ok], fd_w[ok], atol=1e-6 * (np.nanmax(np.abs(omega[ok])) + 1e-12))
 
 
