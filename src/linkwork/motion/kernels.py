@@ -168,10 +168,10 @@ def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> 
     n = branch.shape[1]
     if n < 3:
         return []
-    gap = np.hypot(x_p[0] - x_m[0], x_p[1] - x_m[1])  # (V, A)
+    gap = norm(sub(x_p, x_m))  # (V, A)
     step = np.fmax(
-        np.hypot(np.diff(x_p[0], axis=1), np.diff(x_p[1], axis=1)),
-        np.hypot(np.diff(x_m[0], axis=1), np.diff(x_m[1], axis=1)),
+        norm((np.diff(x_p[0], axis=1), np.diff(x_p[1], axis=1))),
+        norm((np.diff(x_m[0], axis=1), np.diff(x_m[1], axis=1))),
     )  # (V, A - 1), either mode
     move = np.empty_like(gap)
     move[:, 0], move[:, -1] = step[:, 0], step[:, -1]
