@@ -152,6 +152,12 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
     vvec: list[PlanVector] = []
     avec: list[PlanVector] = []
 
+    def turn(group: str, arm: Any, x: np.ndarray, lab: str) -> None:
+        """X of the arm's link turning about the arm's outer joint."""
+        _rotation(
+            vvec, avec, group, label_of(arm.src), lab, x - glob(arm.src), v[arm.link, 2], a[arm.link, 2], names[arm.src]
+        )
+
     for step in mech.program:
         g = step.label
         arms = step.arms
@@ -159,34 +165,14 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
             arm = arms[0]
             for p in np.flatnonzero(mech.point_link == arm.link):
                 if p != arm.own:
-                    _rotation(
-                        vvec,
-                        avec,
-                        g,
-                        label_of(arm.src),
-                        label_of(p),
-                        glob(p) - glob(arm.src),
-                        v[arm.link, 2],
-                        a[arm.link, 2],
-                        names[arm.src],
-                    )
+                    turn(g, arm, glob(p), label_of(p))
         elif step.kind in ("RRR", "RRP", "PRP"):
             xp = step.x_local[0]
             x = glob(xp)
             lab = label_of(xp)
             for arm in arms:
                 if arm.kind == "R":
-                    _rotation(
-                        vvec,
-                        avec,
-                        g,
-                        label_of(arm.src),
-                        lab,
-                        x - glob(arm.src),
-                        v[arm.link, 2],
-                        a[arm.link, 2],
-                        names[arm.src],
-                    )
+                    turn(g, arm, x, lab)
                 else:
                     primes = "'" * (1 + sum(1 for other in arms[: arms.index(arm)] if other.kind == "P"))
                     _sliding(vvec, avec, g, lab, x, arm, mech, q, v, a, state_at, axis, primes)
@@ -196,17 +182,7 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
             arm_g, arm_s = arms
             sp = arm_s.slider_point
             x, lab = glob(sp), label_of(sp)
-            _rotation(
-                vvec,
-                avec,
-                g,
-                label_of(arm_s.src),
-                lab,
-                x - glob(arm_s.src),
-                v[arm_s.link, 2],
-                a[arm_s.link, 2],
-                names[arm_s.src],
-            )
+            turn(g, arm_s, x, lab)
             on_guide = SimpleNamespace(carrier=arm_g.link, pair=step.inner, link=arm_s.link)
             _sliding(vvec, avec, g, lab, x, on_guide, mech, q, v, a, state_at, axis)
     longest_v = max((np.hypot(*pv) for pv in vel_pts.values()), default=0.0)
