@@ -73,8 +73,18 @@ def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variant
     for step, ok, det, slack, flips, jumps in zip(
         steps, state.step_valid, state.step_det, state.step_slack, state.step_flips, state.step_jumps, strict=True
     ):
+        if step.kind in ("crank", "slide"):
+            continue  # a driving link always assembles and is never singular
         fails = before & ~ok
-        for v in range(n_var):
+        head = det[:n_var]
+        quiet = not (
+            fails[:n_var].any()
+            or jumps
+            or flips
+            or (np.abs(head) < 1e-9).any()
+            or (np.signbit(head[:, 1:]) != np.signbit(head[:, :-1])).any()
+        )
+        for v in range(0 if quiet else n_var):
             tag = f" (variant {v})" if state.valid.shape[0] > 1 else ""
 
             def limit(i: int, j: int, margin: np.ndarray = slack[v]) -> float:

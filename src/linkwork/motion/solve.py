@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.motion import kernels
+from linkwork.motion import fast, kernels
 from linkwork.motion.geometry import Geometry
 from linkwork.motion.program import Step
 from linkwork.motion.state import State
@@ -52,6 +52,10 @@ def run(
     that the arrays of a chunk stay in the processor's cache.
     """
     n_var, n_ang = geom.n_variants, values.shape[0]
+    if fast.available() and mech.fast_program is not None and program is mech.program:
+        state = _run_fast(mech, program, geom, values, rates, accels)
+        if state is not None:
+            return state
     size = max(1, CHUNK // max(n_ang, 1))
     if n_var <= size:
         return _run_chunk(mech, program, geom, values, rates, accels)
@@ -84,6 +88,55 @@ def run(
     return out
 
 
+def _run_fast(
+    mech: Any, program: tuple[Step, ...], geom: Geometry, values: np.ndarray, rates: np.ndarray, accels: np.ndarray
+) -> State | None:
+    """The compiled closed-form path; None where a dyad passes near a change point (the NumPy path follows it)."""
+    ops, branch = mech.fast_program
+    res = fast.run(
+        ops,
+        branch,
+        mech.n_links_total,
+        geom.point_local[:, 0],
+        geom.pair_origin[:, 0],
+        geom.pair_axis[:, 0],
+        np.ascontiguousarray(values),
+        np.ascontiguousarray(rates),
+        np.ascontiguousarray(accels),
+    )
+    if res["near"].any():
+        return None
+    n_steps = len(program)
+    state = State(
+        res["q"],
+        res["v"],
+        res["a"],
+        None,
+        None,
+        _soa(geom.point_local),
+        _soa(geom.pair_origin),
+        _soa(geom.pair_axis),
+        res["valid"],
+        [
+            s >= 0 if step.kind not in ("crank", "slide") else np.ones(s.shape, bool)
+            for s, step in zip(res["slack"], program, strict=True)
+        ],
+        list(res["det"]),
+        list(res["slack"]),
+    )
+    state.step_branch = [None] * n_steps
+    state.step_flips = [[] for _ in range(n_steps)]
+    state.step_jumps = [[] for _ in range(n_steps)]
+    if res["singular"]:
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            _repair_singular(mech, program, geom, values, rates, accels, state)
+    if not state.valid.all():
+        bad = ~state.valid
+        for arr in (state.q, state.v, state.a):
+            arr[:, :, bad] = np.nan
+    return state
+
+
 #: Samples per chunk of design variants.
 CHUNK = 1 << 15
 
@@ -101,7 +154,7 @@ def _run_chunk(
 
 
 #: Normalised Jacobian determinant below which a sample is a singular position.
-SINGULAR = 1e-9
+SINGULAR = fast.SINGULAR
 
 
 def _solve(

@@ -111,9 +111,12 @@ def _compile(spec: Spec) -> Mechanism:
     warnings += _hint_warnings(mech, hints, scale)
     structure = Structure(n, p5, p4, w, redundant, mobility, tuple(groups), formula(groups), tuple(warnings))
     mech = dataclasses.replace(mech, structure=structure)
+    from linkwork.motion import fast
     from linkwork.motion.program import build
 
-    return dataclasses.replace(mech, program=build(mech))
+    program = build(mech)
+    encoded = fast.encode(program, mech.point_link) if fast.supports(program) else None
+    return dataclasses.replace(mech, program=program, fast_program=encoded)
 
 
 _EMPTY = Structure(0, 0, 0, 0, 0, 0, (), "")

@@ -186,6 +186,7 @@ class Mechanism:
     link_ends: np.ndarray | None = None  # (N, 2) point indices of links given by ends and length; -1 otherwise
     pair_origin_point: np.ndarray | None = None  # (M,) point whose local coordinates are the guide origin; -1
     program: tuple = ()  # the solve program (linkwork.motion.program.Step), in solving order
+    fast_program: tuple | None = None  # the program encoded for the compiled kernels (ops, branches), if it has them
 
     @property
     def n_links(self) -> int:

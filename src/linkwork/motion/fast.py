@@ -1,0 +1,491 @@
+"""The closed-form solve program compiled to machine code (with numba, when installed).
+
+The same mathematics as :mod:`linkwork.motion.kernels`, one sample at a
+time: for each design variant and drive value the steps of the program run
+in order on a small scratch block of link states, and the results go
+straight into the link-major output arrays.  No temporaries the size of the
+batch are made, which is what makes NumPy slow on long batches.
+
+Used for programs made of closed-form steps only (cranks, slides and the
+class II dyads); the NumPy kernels remain the reference and handle the
+rest: Newton groups, samples near change points (where the assembly mode is
+chosen by continuation) and explicit branch overrides.  ``available()``
+says whether numba is there; ``LINKWORK_NUMBA=0`` in the environment turns
+the compiled path off.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+import numpy as np
+
+from linkwork.motion.program import Arm, Step
+
+try:  # pragma: no cover - exercised when numba is installed
+    if os.environ.get("LINKWORK_NUMBA", "1") == "0":
+        raise ImportError
+    from numba import njit
+except ImportError:  # pragma: no cover
+    njit = None
+
+#: Step kinds of the compiled program.
+CRANK, SLIDE, DYAD, RPR, RPP = range(5)
+#: Fields of an arm in the encoded program.
+ARM = 9
+_CODES = {"crank": CRANK, "slide": SLIDE, "RRR": DYAD, "RRP": DYAD, "PRP": DYAD, "RPR": RPR, "RPP": RPP}
+
+
+#: Normalised Jacobian determinant below which a sample is a singular position.
+SINGULAR = 1e-9
+#: Threads a long batch is split over (the kernels release the GIL), and the least samples per thread.
+THREADS = min(os.cpu_count() or 1, 8)
+PER_THREAD = 5_000
+_POOL: list[ThreadPoolExecutor] = []
+
+
+def _pool() -> ThreadPoolExecutor:
+    if not _POOL:
+        _POOL.append(ThreadPoolExecutor(THREADS, thread_name_prefix="linkwork"))
+    return _POOL[0]
+
+
+#: Whether kinematics uses the compiled path (numba installed and not turned off).
+ENABLED = njit is not None
+
+
+def available() -> bool:
+    return ENABLED
+
+
+def supports(program: tuple[Step, ...]) -> bool:
+    """Whether every step has a compiled kernel."""
+    return all(step.kind in _CODES for step in program)
+
+
+def _arm(arm: Arm, point_link: np.ndarray) -> list[int]:
+    src_link = int(point_link[arm.src]) if arm.src >= 0 else -1
+    return [
+        0 if arm.kind == "R" else 1,
+        arm.link,
+        arm.pair,
+        arm.own,
+        arm.src,
+        src_link,
+        arm.carrier,
+        int(arm.own_is_slider),
+        arm.slider_point,
+    ]
+
+
+def encode(program: tuple[Step, ...], point_link: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The program as an integer table (one row a step) and the branch of each step."""
+    ops = np.full((len(program), 3 + 3 * ARM), -1, dtype=np.int64)
+    for s, step in enumerate(program):
+        kind = _CODES[step.kind]
+        ops[s, 0] = kind
+        if kind == CRANK:
+            arm = step.arms[0]
+            sign = 1 if step.extra["b"] == arm.link else -1
+            ops[s, 1:7] = [arm.link, int(point_link[arm.src]), arm.src, arm.own, sign, step.drive]
+        elif kind == SLIDE:
+            arm = step.arms[0]
+            ops[s, 1:6] = [arm.link, arm.carrier, arm.pair, arm.slider_point, step.drive]
+        else:
+            if kind == DYAD:
+                ops[s, 1:3] = step.x_local
+            elif kind == RPR:
+                ops[s, 1] = step.inner
+            for j, arm in enumerate(step.arms):
+                ops[s, 3 + j * ARM : 3 + (j + 1) * ARM] = _arm(arm, point_link)
+    return ops, np.array([step.branch for step in program], dtype=float)
+
+
+def run(
+    ops: np.ndarray,
+    branch: np.ndarray,
+    n_links: int,
+    local: np.ndarray,
+    origin: np.ndarray,
+    axis: np.ndarray,
+    values: np.ndarray,
+    rates: np.ndarray,
+    accels: np.ndarray,
+) -> dict[str, Any]:
+    """Solve every sample.
+
+    Parameters
+    ----------
+    local : (V, P, 2); origin, axis : (V, M, 2)
+        Geometry of the design variants.
+    values, rates, accels : (A, D)
+
+    Returns arrays ``q, v, a`` (N, 3, V, A), ``slack, det`` (S, V, A),
+    ``valid`` (V, A) (every step assembled), ``near`` (S, V) (True where a
+    dyad's two assembly modes come within a step of each other: the NumPy
+    path decides the mode there) and ``singular`` (whether any assembled
+    sample has a normalised determinant below :data:`SINGULAR`).
+    """
+    n_var, n_ang, n_steps = local.shape[0], values.shape[0], len(ops)
+    out = np.zeros((3, n_links, 3, n_var, n_ang))  # one block: q, v, a (the frame's pages are never touched)
+    slack = np.empty((n_steps, n_var, n_ang))
+    det = np.empty_like(slack)
+    valid = np.empty((n_var, n_ang), dtype=np.bool_)
+    near = np.zeros((n_steps, n_var), dtype=np.bool_)
+    singular = np.zeros(1, dtype=np.bool_)
+    tol = 1e-12 * (1 + float(np.abs(local).max()))
+    args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, singular, tol)
+    n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
+    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
+
+    def part(lo: int, hi: int) -> None:
+        _kernel(*args, lo, hi, np.zeros((n_links, 11)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 4)))
+
+    if len(bounds) == 2:
+        part(0, n_ang)
+    else:
+        list(_pool().map(part, bounds[:-1], bounds[1:]))
+    if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
+        near[:] = False
+    return {
+        "q": out[0],
+        "v": out[1],
+        "a": out[2],
+        "slack": slack,
+        "det": det,
+        "valid": valid,
+        "near": near,
+        "singular": bool(singular[0]),
+    }
+
+
+# ---------------------------------------------------------------------------------------------
+# scalar kernels; a link's state in the scratch block L[i] is
+# x, y, theta, vx, vy, omega, ax, ay, epsilon, cos(theta), sin(theta)
+
+
+def _point(L, link, lx, ly):
+    c, s = L[link, 9], L[link, 10]
+    rx, ry = c * lx - s * ly, s * lx + c * ly
+    w, e = L[link, 5], L[link, 8]
+    return (
+        L[link, 0] + rx,
+        L[link, 1] + ry,
+        L[link, 3] - w * ry,
+        L[link, 4] + w * rx,
+        L[link, 6] - e * ry - w * w * rx,
+        L[link, 7] + e * rx - w * w * ry,
+    )
+
+
+def _material(L, link, x, y):
+    rx, ry = x - L[link, 0], y - L[link, 1]
+    w, e = L[link, 5], L[link, 8]
+    return L[link, 3] - w * ry, L[link, 4] + w * rx, L[link, 6] - e * ry - w * w * rx, L[link, 7] + e * rx - w * w * ry
+
+
+def _place(L, link, theta, omega, eps, x, y, vx, vy, ax, ay, lx, ly, c, s):
+    rx, ry = c * lx - s * ly, s * lx + c * ly
+    w2 = omega * omega
+    L[link, 0], L[link, 1], L[link, 2] = x - rx, y - ry, theta
+    L[link, 3], L[link, 4], L[link, 5] = vx + omega * ry, vy - omega * rx, omega
+    L[link, 6], L[link, 7], L[link, 8] = ax + eps * ry + w2 * rx, ay - eps * rx + w2 * ry, eps
+    L[link, 9], L[link, 10] = c, s
+
+
+def _place_like(L, link, guide, x, y, vx, vy, ax, ay, lx, ly):
+    _place(L, link, L[guide, 2], L[guide, 5], L[guide, 8], x, y, vx, vy, ax, ay, lx, ly, L[guide, 9], L[guide, 10])
+
+
+def _loc(local, p):
+    if p < 0:
+        return 0.0, 0.0
+    return local[p, 0], local[p, 1]
+
+
+def _locus(L, ops, st, o, pre, local, origin, axis, xlx, xly):
+    """The locus of X of the arm at ``ops[st, o:]``: (px, py, vpx, vpy, apx, apy, r, c0, s0) for an
+    R arm (circle about p, the local direction of X from the joint), (l0x, l0y, ux, uy, 0...) for P."""
+    if ops[st, o] == 0:
+        px, py, vpx, vpy, apx, apy = _point(L, ops[st, o + 5], local[ops[st, o + 4], 0], local[ops[st, o + 4], 1])
+        j = (o - 3) // ARM
+        return px, py, vpx, vpy, apx, apy, pre[st, j, 0], pre[st, j, 1], pre[st, j, 2]
+    g, k = ops[st, o + 6], ops[st, o + 2]
+    c, s = L[g, 9], L[g, 10]
+    ux, uy = c * axis[k, 0] - s * axis[k, 1], s * axis[k, 0] + c * axis[k, 1]
+    if ops[st, o + 7] == 1:  # the arm's link is the slider: the guide line of the carrier, shifted to X
+        ox, oy = origin[k, 0], origin[k, 1]
+        sp = ops[st, o + 8]
+        dx, dy = xlx - local[sp, 0], xly - local[sp, 1]
+        bx, by = L[g, 0] + c * ox - s * oy, L[g, 1] + s * ox + c * oy
+    else:  # the arm's link is the guide: the line through the carrier's slider point
+        sp = ops[st, o + 8]
+        bx, by = _point(L, g, local[sp, 0], local[sp, 1])[:2]
+        dx, dy = xlx - origin[k, 0], xly - origin[k, 1]
+    return bx + c * dx - s * dy, by + s * dx + c * dy, ux, uy, 0.0, 0.0, 0.0, 0.0, 0.0
+
+
+def _touching(x):
+    return 0.0 if -1e-12 < x < 0 else x
+
+
+def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
+    """A dyad through the loci of its arms at ``ops[st, o1:]`` and ``ops[st, o2:]``: places both links and
+    returns (slack, normalised determinant, X, X of the other mode - X of this one)."""
+    xax, xay = _loc(local, xa_i)
+    xbx, xby = _loc(local, xb_i)
+    A = _locus(L, ops, st, o1, pre, local, origin, axis, xax, xay)
+    B = _locus(L, ops, st, o2, pre, local, origin, axis, xbx, xby)
+    ka_r, kb_r = ops[st, o1] == 0, ops[st, o2] == 0
+    gx = gy = 0.0
+    if ka_r and kb_r:
+        dx, dy = B[0] - A[0], B[1] - A[1]
+        dist2 = dx * dx + dy * dy
+        inv = 1.0 / math.sqrt(dist2)
+        ra, rb = A[6], B[6]
+        t = (ra * ra - rb * rb + dist2) * (0.5 * inv)
+        h2 = ra * ra - t * t
+        rsum2 = (ra + rb) * (ra + rb)
+        slack = _touching(min(rsum2 - dist2, dist2 - (ra - rb) * (ra - rb)) / rsum2)
+        ex, ey = dx * inv, dy * inv
+        h = branch * math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
+        x, y = A[0] + t * ex - h * ey, A[1] + t * ey + h * ex
+        gx, gy = 2 * h * ey, -2 * h * ex
+    elif not ka_r and not kb_r:
+        den = A[2] * B[3] - A[3] * B[2]
+        t = ((B[0] - A[0]) * B[3] - (B[1] - A[1]) * B[2]) / den
+        x, y = A[0] + t * A[2], A[1] + t * A[3]
+        slack = abs(den)
+    else:
+        C, Ln = (A, B) if ka_r else (B, A)
+        wx, wy = C[0] - Ln[0], C[1] - Ln[1]
+        t0 = wx * Ln[2] + wy * Ln[3]
+        hh = Ln[2] * wy - Ln[3] * wx
+        r2 = C[6] * C[6]
+        disc = r2 - hh * hh
+        slack = _touching(disc / r2)
+        root = branch * math.sqrt(max(disc, 0.0) if slack >= 0 else disc)
+        x, y = Ln[0] + (t0 + root) * Ln[2], Ln[1] + (t0 + root) * Ln[3]
+        gx, gy = -2 * root * Ln[2], -2 * root * Ln[3]
+    if slack >= 0 and not (math.isfinite(x) and math.isfinite(y)):
+        slack = -1.0
+    # columns, base velocities and accelerations of X on each arm
+    if ka_r:
+        cax, cay = -(y - A[1]), x - A[0]
+        vax, vay, aax, aay = A[2], A[3], A[4], A[5]
+    else:
+        cax, cay = A[2], A[3]
+        vax, vay, aax, aay = _material(L, ops[st, o1 + 6], x, y)
+    if kb_r:
+        cbx, cby = -(y - B[1]), x - B[0]
+        vbx, vby, abx, aby = B[2], B[3], B[4], B[5]
+    else:
+        cbx, cby = B[2], B[3]
+        vbx, vby, abx, aby = _material(L, ops[st, o2 + 6], x, y)
+    nbx, nby = -cbx, -cby
+    d = cax * nby - cay * nbx
+    inv = 1.0 / d
+    rx, ry = vbx - vax, vby - vay
+    ka, kb = (rx * nby - ry * nbx) * inv, (cax * ry - cay * rx) * inv
+    if ka_r:
+        eax, eay = -ka * ka * (x - A[0]), -ka * ka * (y - A[1])
+    else:
+        f = 2 * L[ops[st, o1 + 6], 5] * ka
+        eax, eay = -f * A[3], f * A[2]
+    if kb_r:
+        ebx, eby = -kb * kb * (x - B[0]), -kb * kb * (y - B[1])
+    else:
+        f = 2 * L[ops[st, o2 + 6], 5] * kb
+        ebx, eby = -f * B[3], f * B[2]
+    rx, ry = abx + ebx - aax - eax, aby + eby - aay - eay
+    ka_d, kb_d = (rx * nby - ry * nbx) * inv, (cax * ry - cay * rx) * inv
+    vx, vy = vax + ka * cax, vay + ka * cay
+    ax, ay = aax + ka_d * cax + eax, aay + ka_d * cay + eay
+    for j in range(2):
+        o, P, k, kd, xl = (o1, A, ka, ka_d, xa_i) if j == 0 else (o2, B, kb, kb_d, xb_i)
+        link = ops[st, o + 1]
+        if ops[st, o] == 0:
+            # X is on the circle of radius P[6] about P: its direction from P less the local one
+            cg, sg = (x - P[0]) / P[6], (y - P[1]) / P[6]
+            c, s = cg * P[7] + sg * P[8], sg * P[7] - cg * P[8]
+            lx, ly = local[ops[st, o + 3], 0], local[ops[st, o + 3], 1]
+            _place(L, link, math.atan2(s, c), k, kd, P[0], P[1], P[2], P[3], P[4], P[5], lx, ly, c, s)
+        else:
+            lx, ly = _loc(local, xl)
+            _place_like(L, link, ops[st, o + 6], x, y, vx, vy, ax, ay, lx, ly)
+    return slack, d / math.sqrt((cax * cax + cay * cay) * (cbx * cbx + cby * cby)), x, y, gx, gy
+
+
+def _rpr(L, ops, st, branch, local, origin, axis):
+    k = ops[st, 1]
+    og, os_ = 3, 3 + ARM
+    pgx, pgy, vgx, vgy, agx, agy = _point(L, ops[st, og + 5], local[ops[st, og + 4], 0], local[ops[st, og + 4], 1])
+    psx, psy, vsx, vsy, asx, asy = _point(L, ops[st, os_ + 5], local[ops[st, os_ + 4], 0], local[ops[st, os_ + 4], 1])
+    ulx, uly = axis[k, 0], axis[k, 1]
+    nlx, nly = -uly, ulx
+    sp, own_s, own_g = ops[st, os_ + 8], ops[st, os_ + 3], ops[st, og + 3]
+    wx = local[sp, 0] - local[own_s, 0] - (origin[k, 0] - local[own_g, 0])
+    wy = local[sp, 1] - local[own_s, 1] - (origin[k, 1] - local[own_g, 1])
+    e = nlx * wx + nly * wy
+    dx, dy = psx - pgx, psy - pgy
+    dist = math.sqrt(dx * dx + dy * dy)
+    theta = math.atan2(dy, dx) - math.atan2(nly, nlx) + branch * math.acos(-e / dist)
+    slack = 1 - (e / dist) ** 2
+    c, s = math.cos(theta), math.sin(theta)
+    ux, uy = c * ulx - s * uly, s * ulx + c * uly
+    colx, coly = -(pgy - psy), pgx - psx
+    nux, nuy = -ux, -uy
+    d = colx * nuy - coly * nux
+    rx, ry = vgx - vsx, vgy - vsy
+    omega, sdot = (rx * nuy - ry * nux) / d, (colx * ry - coly * rx) / d
+    rx = agx - asx + omega * omega * (pgx - psx) - 2 * omega * sdot * uy
+    ry = agy - asy + omega * omega * (pgy - psy) + 2 * omega * sdot * ux
+    eps = (rx * nuy - ry * nux) / d
+    _place(L, ops[st, og + 1], theta, omega, eps, pgx, pgy, vgx, vgy, agx, agy, local[own_g, 0], local[own_g, 1], c, s)
+    _place(L, ops[st, os_ + 1], theta, omega, eps, psx, psy, vsx, vsy, asx, asy, local[own_s, 0], local[own_s, 1], c, s)
+    return slack, d / math.sqrt(colx * colx + coly * coly)
+
+
+def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i):
+    """One step at one sample: (slack, normalised determinant, X, gap vector) (the last two for dyads)."""
+    kind = ops[st, 0]
+    if kind == CRANK:
+        link, base, src, own, sign, drv = ops[st, 1], ops[st, 2], ops[st, 3], ops[st, 4], ops[st, 5], ops[st, 6]
+        theta = L[base, 2] + sign * values[i, drv]
+        omega = L[base, 5] + sign * rates[i, drv]
+        eps = L[base, 8] + sign * accels[i, drv]
+        px, py, vx, vy, ax, ay = _point(L, base, local[src, 0], local[src, 1])
+        c, s = math.cos(theta), math.sin(theta)
+        _place(L, link, theta, omega, eps, px, py, vx, vy, ax, ay, local[own, 0], local[own, 1], c, s)
+        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0
+    if kind == SLIDE:
+        link, g, k, sp, drv = ops[st, 1], ops[st, 2], ops[st, 3], ops[st, 4], ops[st, 5]
+        c, s = L[g, 9], L[g, 10]
+        ox, oy = origin[k, 0], origin[k, 1]
+        ux, uy = c * axis[k, 0] - s * axis[k, 1], s * axis[k, 0] + c * axis[k, 1]
+        sv, ds, dds = values[i, drv], rates[i, drv], accels[i, drv]
+        x, y = L[g, 0] + c * ox - s * oy + sv * ux, L[g, 1] + s * ox + c * oy + sv * uy
+        vmx, vmy, amx, amy = _material(L, g, x, y)
+        f = 2 * L[g, 5] * ds
+        ax, ay = amx + dds * ux - f * uy, amy + dds * uy + f * ux
+        _place_like(L, link, g, x, y, vmx + ds * ux, vmy + ds * uy, ax, ay, local[sp, 0], local[sp, 1])
+        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0
+    if kind == DYAD:
+        return _dyad(L, ops, st, 3, 3 + ARM, ops[st, 1], ops[st, 2], branch, pre, local, origin, axis)
+    if kind == RPR:
+        slack, det = _rpr(L, ops, st, branch, local, origin, axis)
+        return slack, det, 0.0, 0.0, 0.0, 0.0
+    # RPP: the pinned link keeps the guide's angle; then the other link as a dyad of two lines
+    o = 3
+    g = ops[st, 3 + 2 * ARM + 6]
+    px, py, vx, vy, ax, ay = _point(L, ops[st, o + 5], local[ops[st, o + 4], 0], local[ops[st, o + 4], 1])
+    _place_like(L, ops[st, o + 1], g, px, py, vx, vy, ax, ay, local[ops[st, o + 3], 0], local[ops[st, o + 3], 1])
+    return _dyad(L, ops, st, 3 + ARM, 3 + 2 * ARM, -1, -1, branch, pre, local, origin, axis)
+
+
+def _arm_constants(ops, local, pre):
+    """Radius and local direction of X about the outer joint of every R arm of a dyad (of one variant)."""
+    for st in range(ops.shape[0]):
+        if ops[st, 0] != DYAD:
+            continue
+        for j in range(2):
+            o = 3 + j * ARM
+            if ops[st, o] != 0:
+                continue
+            xlx, xly = _loc(local, ops[st, 1 + j])
+            dx, dy = xlx - local[ops[st, o + 3], 0], xly - local[ops[st, o + 3], 1]
+            r = math.sqrt(dx * dx + dy * dy)
+            pre[st, j, 0] = r
+            pre[st, j, 1], pre[st, j, 2] = (dx / r, dy / r) if r > 0 else (1.0, 0.0)
+
+
+def _kernel(
+    ops,
+    branch,
+    local,
+    origin,
+    axis,
+    values,
+    rates,
+    accels,
+    out,
+    slack,
+    det,
+    valid,
+    near,
+    singular,
+    tol,
+    lo,
+    hi,
+    L,
+    pre,
+    prev,
+):
+    """Samples ``lo:hi`` of every variant (``near`` also from the step between ``lo - 1`` and ``lo``).
+
+    Scratch: ``L`` (N, 11) the link states of a sample, ``pre`` (S, 2, 3) constants of the R arms
+    of a variant, ``prev`` (S, 4) X of each dyad and the vector to X of its other mode at the sample before.
+    """
+    n_links, n_var = out.shape[1], out.shape[3]
+    n_steps = ops.shape[0]
+    for var in range(n_var):
+        loc, org, axs = local[var], origin[var], axis[var]
+        _arm_constants(ops, loc, pre)
+        first = max(lo - 1, 0)
+        for i in range(first, hi):
+            L[0, 9] = 1.0
+            ok = True
+            small = False
+            for st in range(n_steps):
+                s, d, x, y, gx, gy = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
+                ok = ok and s >= 0
+                small = small or abs(d) < SINGULAR
+                if i >= lo:
+                    slack[st, var, i] = s
+                    det[st, var, i] = d
+                if ops[st, 0] == DYAD and (ops[st, 3] == 0 or ops[st, 3 + ARM] == 0):
+                    if i > first:
+                        # does either sample come within twice the step (in either mode) of the other mode?
+                        dp2 = (x - prev[st, 0]) ** 2 + (y - prev[st, 1]) ** 2
+                        dm2 = (x + gx - prev[st, 0] - prev[st, 2]) ** 2 + (y + gy - prev[st, 1] - prev[st, 3]) ** 2
+                        m2 = max(dp2, dm2)
+                        if not (m2 == m2):
+                            m2 = dp2 if dp2 == dp2 else dm2
+                        lim = (2 * math.sqrt(m2) + tol) ** 2
+                        if prev[st, 2] ** 2 + prev[st, 3] ** 2 <= lim or gx * gx + gy * gy <= lim:
+                            near[st, var] = True
+                    prev[st, 0], prev[st, 1], prev[st, 2], prev[st, 3] = x, y, gx, gy
+            if i < lo:
+                continue
+            valid[var, i] = ok
+            if ok and small:
+                singular[0] = True
+            for link in range(1, n_links):
+                for k in range(3):
+                    out[0, link, k, var, i] = L[link, k]
+                    out[1, link, k, var, i] = L[link, 3 + k]
+                    out[2, link, k, var, i] = L[link, 6 + k]
+
+
+if njit is not None:  # pragma: no branch
+    _opts = {
+        "cache": True,
+        "error_model": "numpy",
+        "nogil": True,
+        "_nrt": False,
+    }  # no reference counting: the kernels allocate nothing
+    _point = njit(inline="always", **_opts)(_point)
+    _material = njit(inline="always", **_opts)(_material)
+    _place = njit(inline="always", **_opts)(_place)
+    _place_like = njit(inline="always", **_opts)(_place_like)
+    _loc = njit(inline="always", **_opts)(_loc)
+    _locus = njit(inline="always", **_opts)(_locus)
+    _touching = njit(inline="always", **_opts)(_touching)
+    _dyad = njit(inline="always", **_opts)(_dyad)
+    _rpr = njit(inline="always", **_opts)(_rpr)
+    _step = njit(inline="always", **_opts)(_step)
+    _arm_constants = njit(**_opts)(_arm_constants)
+    _kernel = njit(**_opts)(_kernel)

@@ -1,0 +1,118 @@
+"""The compiled kernels against the NumPy kernels they mirror."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import linkwork as lw
+from linkwork.motion import fast
+from linkwork.motion.geometry import geometry
+from mechanisms import TEXTBOOK, circle_intersection, hydraulic_boom
+from test_kinematics import MECHANISMS, _angles, _mech
+
+pytestmark = pytest.mark.skipif(not fast.available(), reason="numba is not installed")
+
+
+def _both(mech, angles, monkeypatch, **kw):
+    compiled = lw.kinematics(mech, angles, **kw)
+    with monkeypatch.context() as m:
+        m.setattr(fast, "ENABLED", False)
+        reference = lw.kinematics(mech, angles, **kw)
+    return compiled, reference
+
+
+def _same(compiled, reference, scale=1.0):
+    np.testing.assert_array_equal(compiled.valid_all, reference.valid_all)
+    for name in ("q", "v", "a"):
+        got, want = getattr(compiled, name), getattr(reference, name)
+        np.testing.assert_array_equal(np.isnan(got), np.isnan(want))
+        size = np.nanmax(np.abs(want), axis=-1, keepdims=True) + scale
+        np.testing.assert_allclose(got / size, want / size, rtol=0, atol=1e-11, equal_nan=True, err_msg=name)
+    assert [e.message for e in compiled.events] == [e.message for e in reference.events]
+
+
+CLOSED_FORM = [m for m in MECHANISMS if _mech(*m).fast_program is not None] + [("textbook", "boom")]
+
+
+def test_every_closed_form_program_is_compiled():
+    """Only the groups without a closed form (class III and IV, the redundant link) go to Newton."""
+    assert {name for _, name in MECHANISMS} - {name for _, name in CLOSED_FORM} == {
+        "class3-triad",
+        "class IV",
+        "parallelogram",
+    }
+
+
+def _textbook_or_example(kind, name):
+    if name == "boom":
+        return lw.compile(hydraulic_boom().build())
+    return _mech(kind, name)
+
+
+@pytest.mark.parametrize("kind, name", CLOSED_FORM)
+def test_compiled_kernels_equal_numpy_kernels(kind, name, monkeypatch):
+    mech = _textbook_or_example(kind, name)
+    compiled, reference = _both(mech, _angles(mech, n=181), monkeypatch)
+    _same(compiled, reference, float(np.abs(mech.point_local).max()))
+
+
+def test_design_variants_that_fail_to_assemble_agree(monkeypatch):
+    mech = lw.compile(lw.example("four-bar"))
+    crank = np.linspace(0.05, 0.3, 40)  # beyond 0.15 the four-bar is no longer a crank-rocker
+    compiled, reference = _both(mech, _angles(mech, n=90), monkeypatch, variants={"links.crank.length": crank})
+    assert not compiled.valid_all.all() and compiled.valid_all.any()
+    _same(compiled, reference)
+
+
+def test_dead_points_agree(monkeypatch):
+    """The four-bar driven by its rocker: dead points where crank and coupler line up, some on samples."""
+    data = TEXTBOOK["four-bar"][0]().to_dict()
+    pa = (0.1 * math.cos(math.radians(60)), 0.1 * math.sin(math.radians(60)))
+    pb = circle_intersection(pa, 0.35, (0.3, 0.0), 0.25, left=False)
+    data["drives"] = [{"joint": "O4", "angle": math.degrees(math.atan2(pb[1], pb[0] - 0.3))}]
+    data["hints"] = {"A": list(pa)}
+    mech = lw.compile(lw.from_dict(data))
+    cos_t = (0.3**2 + 0.25**2 - 0.45**2) / (2 * 0.3 * 0.25)
+    dead = math.pi - math.acos(cos_t)  # |O2 B| = a + b
+    angles = np.sort(np.concatenate([np.linspace(-np.pi, np.pi, 721), [dead, -dead]]))
+    compiled, reference = _both(mech, angles, monkeypatch)
+    _same(compiled, reference)
+    assert any(e.kind in ("dead-point", "singular") for e in compiled.events)
+
+
+def test_threads_split_the_samples_without_changing_a_bit(monkeypatch):
+    mech = lw.compile(lw.example("double-cut-shears"))
+    angles = mech.drive_start[0] + np.linspace(0, 2 * np.pi, 5000, endpoint=False)
+    monkeypatch.setattr(fast, "THREADS", 1)
+    one = lw.kinematics(mech, angles)
+    monkeypatch.setattr(fast, "THREADS", 3)
+    monkeypatch.setattr(fast, "PER_THREAD", 100)
+    three = lw.kinematics(mech, angles)
+    for name in ("q", "v", "a"):
+        np.testing.assert_array_equal(getattr(one, name), getattr(three, name))
+
+
+def test_change_points_go_to_the_numpy_path(monkeypatch):
+    """The isosceles slider-crank: the compiled path sees the two modes meet and hands over."""
+    mech = lw.compile(lw.example("shears-slider-crank"))
+    ops, branch = mech.fast_program
+    values = mech.drive_start[0] + np.linspace(0, 2 * np.pi, 360, endpoint=False)[:, None]
+    geom = geometry(mech)
+    res = fast.run(
+        ops,
+        branch,
+        mech.n_links_total,
+        geom.point_local[:, 0],
+        geom.pair_origin[:, 0],
+        geom.pair_axis[:, 0],
+        values,
+        np.ones_like(values),
+        np.zeros_like(values),
+    )
+    assert res["near"].any()
+    compiled, reference = _both(mech, values[:, 0], monkeypatch)
+    _same(compiled, reference)
+    assert any(e.kind == "change-point" for e in compiled.events)
