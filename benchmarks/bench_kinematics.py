@@ -5,7 +5,9 @@ same four-bar (the bundled ``four-bar`` example): positions, velocities and
 accelerations over a turn of the crank, in one process, one after the other,
 best of several runs.  The C kernel is compiled at run time with the
 system's C compiler (``cc -O3``); pylinkage (with numba) is used when
-installed.  Each peer's coupler-rocker joint B is checked against
+installed.  linkwork runs through its public API, with the compiled
+kernels when numba is installed (``pip install ".[bench]"``), on all cores
+and on one thread.  Each peer's coupler-rocker joint B is checked against
 linkwork's before its time is reported.
 """
 
@@ -23,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 import linkwork as lw
+from linkwork.motion import fast
 
 A, B, C, D = 0.10, 0.35, 0.25, 0.30
 W = 2 * math.pi  # 60 rpm
@@ -126,10 +129,15 @@ def main() -> None:
         kin = lw.kinematics(mech, phi)
         ref = kin.position("B")
         t_lw = best(lambda phi=phi: lw.kinematics(mech, phi))
+        threads = fast.THREADS
+        fast.THREADS = 1
+        t_lw1 = best(lambda phi=phi: lw.kinematics(mech, phi))
+        fast.THREADS = threads
         npy = numpy_closed_form(phi, sigma_c)
         err_np = float(np.max(np.abs(np.stack(npy[:2], -1) - ref)))
         t_np = best(lambda phi=phi: numpy_closed_form(phi, sigma_c))
-        row = {"case": f"four-bar, {n} angles", "n": n, "linkwork": t_lw, "numpy": t_np, "err_numpy": err_np}
+        row = {"case": f"four-bar, {n} angles", "n": n, "linkwork": t_lw, "linkwork-1": t_lw1}
+        row.update(numpy=t_np, err_numpy=err_np)
         if ckern is not None:
             out = ckern(phi, sigma_c)
             row["err_c"] = float(np.max(np.abs(out[:, :2] - ref)))
@@ -145,10 +153,11 @@ def main() -> None:
     variants = {"links.crank.length": np.linspace(0.09, 0.11, 10_000)}
     phi = mech.drive_start[0] + 2 * np.pi * np.arange(360) / 360
     t_var = best(lambda: lw.kinematics(mech, phi, variants=variants), repeat=3, budget=20)
-    print(f"python {sys.version.split()[0]}, numpy {np.__version__}")
+    compiled = f"compiled kernels, up to {fast.THREADS} threads" if fast.available() else "NumPy kernels (no numba)"
+    print(f"python {sys.version.split()[0]}, numpy {np.__version__}; linkwork: {compiled}; linkwork-1: one thread")
     print(f"{'case':28s} {'peer':10s} {'time, ms':>10s} {'configs/s':>12s} {'vs C':>7s} {'max |dB|, m':>12s}")
     for row in rows:
-        for peer in ("linkwork", "numpy", "c", "pylinkage"):
+        for peer in ("linkwork", "linkwork-1", "numpy", "c", "pylinkage"):
             if peer not in row:
                 continue
             t = row[peer]

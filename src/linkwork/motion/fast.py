@@ -130,7 +130,7 @@ def run(
     sample has a normalised determinant below :data:`SINGULAR`).
     """
     n_var, n_ang, n_steps = local.shape[0], values.shape[0], len(ops)
-    out = np.zeros((3, n_links, 3, n_var, n_ang))  # one block: q, v, a (the frame's pages are never touched)
+    out = np.empty((3, n_links, 3, n_var, n_ang))  # one block: q, v, a
     slack = np.empty((n_steps, n_var, n_ang))
     det = np.empty_like(slack)
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
@@ -463,7 +463,7 @@ def _kernel(
             valid[var, i] = ok
             if ok and small:
                 singular[0] = True
-            for link in range(1, n_links):
+            for link in range(n_links):
                 for k in range(3):
                     out[0, link, k, var, i] = L[link, k]
                     out[1, link, k, var, i] = L[link, 3 + k]
