@@ -24,6 +24,9 @@ _LAZY = {
     "kinematics": ("linkwork.motion", "kinematics"),
     "Kinematics": ("linkwork.motion", "Kinematics"),
     "parameters": ("linkwork.motion.geometry", "parameters"),
+    "forces": ("linkwork.kinetostatics", "forces"),
+    "Forces": ("linkwork.kinetostatics", "Forces"),
+    "bolt_speed": ("linkwork.kinetostatics", "bolt_speed"),
 }
 
 __all__ = ["__version__", *_LAZY]

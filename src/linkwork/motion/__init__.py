@@ -47,6 +47,7 @@ class Kinematics:
     variants: bool
     step_det: tuple[np.ndarray, ...] = ()
     axis: np.ndarray | None = None  # (M, 2, V, 1) guide directions of the variants
+    origin: np.ndarray | None = None  # (M, 2, V, 1) guide origins of the variants
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
@@ -275,4 +276,5 @@ def kinematics(
         variants is not None and len(variants) > 0,
         tuple(state.step_det),
         state.axis,
+        state.origin,
     )

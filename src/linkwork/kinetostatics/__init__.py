@@ -1,0 +1,188 @@
+"""Kinetostatics: joint reactions, driving torque and the loads on the foundation.
+
+Each link is held in equilibrium by its applied loads (gravity), its
+d'Alembert inertia loads and the reactions of its pairs.  The reactions are
+the Lagrange multipliers of the constraint equations of
+:mod:`linkwork.structure.constraints`: for the constraint rows ``Phi`` and
+multipliers ``lam``, the pairs put the generalised forces ``Phi_q^T lam`` on
+the links, and equilibrium of every moving link is
+
+    Phi_q^T lam = -(Q_applied + Q_inertia).
+
+Each Assur group is statically determinate: the groups are solved one by one
+in the reverse order of the solve program, each a square linear system of
+its own rows (3 per link), with the reactions of the groups solved before it
+as known loads.  Two independent checks come with every result: the driving
+torque from the power balance (the rate of change of kinetic energy less
+the power of gravity, divided by the drive speed: Zhukovsky's lever in
+analytic form), and the force and moment on the foundation from the theorem
+on the change of momentum (the method of seed paper 000).
+
+>>> import linkwork as lw
+>>> f = lw.forces(lw.compile(lw.load("shears-slider-crank")), steps=72)
+>>> f.foundation.shape
+(72, 3)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+from linkwork.kinetostatics.bolts import Bolts, bolt_loads, bolt_speed
+from linkwork.kinetostatics.reactions import (
+    Loads,
+    foundation,
+    inertia_and_gravity,
+    momentum_check,
+    power_check,
+    solve_reactions,
+)
+
+__all__ = ["Bolts", "Forces", "Loads", "bolt_loads", "bolt_speed", "forces"]
+
+
+@dataclass(frozen=True)
+class Forces:
+    """Reactions, driving torque and foundation loads over the angles of a kinematics result.
+
+    Shapes as in :class:`~linkwork.motion.Kinematics`: ``(n_variants, n_angles, ...)``
+    with the variant axis dropped for a single mechanism.  SI units.
+
+    Attributes
+    ----------
+    kinematics : Kinematics
+    multipliers : ndarray (V, A, m)
+        The reaction of every constraint row (see :meth:`reaction`).
+    loads : Loads
+        Applied and inertia loads of every link.
+    """
+
+    kinematics: Any
+    multipliers: np.ndarray
+    loads: Loads
+    foundation_all: np.ndarray  # (V, A, 3)
+    foundation_momentum_all: np.ndarray  # (V, A, 3)
+    torque_power_all: np.ndarray  # (V, A, D)
+
+    def _out(self, a: np.ndarray) -> np.ndarray:
+        return a if self.kinematics.variants else a[0]
+
+    @property
+    def mechanism(self) -> Any:
+        return self.kinematics.mechanism
+
+    @property
+    def angles(self) -> np.ndarray:
+        return self.kinematics.angles
+
+    @property
+    def driving_torque(self) -> np.ndarray:
+        """Torque (N m) the drive puts on its driven link, counter-clockwise positive (N for a linear drive):
+        ``(..., n_angles)`` for one drive, ``(..., n_angles, n_drives)`` for several."""
+        m = self.mechanism
+        lam = self.multipliers[..., 2 * m.n_pairs :]
+        return self._out(lam[..., 0] if m.n_drives == 1 else lam)
+
+    def pairs(self, joint: str) -> list[int]:
+        m = self.mechanism
+        ks = [k for k, j in enumerate(m.pair_joint) if j == joint]
+        if not ks:
+            from linkwork.spec.checks import suggest
+
+            raise KeyError(f'no joint "{joint}"{suggest(joint, sorted(set(m.pair_joint)))}')
+        return ks
+
+    def pair_force(self, k: int) -> np.ndarray:
+        """Force (N) that link ``pair_links[k, 0]`` exerts on link ``pair_links[k, 1]`` in pair ``k``:
+        ``(V, A, 2)``.  For a prismatic pair (guide first) it is normal to the guide and acts at
+        the slider's point of the pair."""
+        m = self.mechanism
+        lam = self.multipliers[..., 2 * k : 2 * k + 2]
+        if m.pair_type[k] == 0:
+            return -lam
+        theta = self.kinematics.pose[..., int(m.pair_links[k, 0]), 2]  # the guide's angle (V, A)
+        ux, uy = self.kinematics.axis[k, 0], self.kinematics.axis[k, 1]  # local direction (V, 1)
+        c, s = np.cos(theta), np.sin(theta)
+        u = (c * ux - s * uy, s * ux + c * uy)
+        normal = lam[..., 1]  # along n = u turned by +90 deg, on the slider
+        return np.stack([-u[1] * normal, u[0] * normal], -1)
+
+    def reaction(self, joint: str) -> np.ndarray:
+        """Force (N) the first-named link of a joint exerts on the second: ``(..., n_angles, 2)``.
+
+        For a compound hinge (several links), the force in its first elementary pair; see
+        :meth:`pair_force` for the others."""
+        return self._out(self.pair_force(self.pairs(joint)[0]))
+
+    def pair_moment(self, joint: str) -> np.ndarray:
+        """Moment (N m) the guide exerts on the slider in a prismatic joint, about the slider's point."""
+        k = self.pairs(joint)[0]
+        if self.mechanism.pair_type[k] != 1:
+            raise LinkworkError(f'joint "{joint}" is revolute: it carries no moment')
+        return self._out(self.multipliers[..., 2 * k])
+
+    @property
+    def foundation(self) -> np.ndarray:
+        """Force (x, y) in N and moment about the origin in N m that the machine (frame included)
+        puts on its foundation: ``(..., n_angles, 3)``.  y up: a positive y force pulls the bolts."""
+        return self._out(self.foundation_all)
+
+    @property
+    def checks(self) -> dict[str, float]:
+        """Largest discrepancy of the independent checks, relative to the largest value checked."""
+
+        def rel(a: np.ndarray, b: np.ndarray) -> float:
+            scale = np.nanmax(np.abs(b)) if np.isfinite(b).any() else 0.0
+            return float(np.nanmax(np.abs(a - b)) / scale) if scale > 0 else float(np.nanmax(np.abs(a - b)))
+
+        m = self.mechanism
+        lam = self.multipliers[..., 2 * m.n_pairs :]
+        return {
+            "driving_torque_vs_power_balance": rel(lam, self.torque_power_all),
+            "foundation_force_vs_momentum": rel(self.foundation_all[..., :2], self.foundation_momentum_all[..., :2]),
+            "foundation_moment_vs_momentum": rel(self.foundation_all[..., 2], self.foundation_momentum_all[..., 2]),
+        }
+
+    def bolts(self) -> Bolts:
+        """Pull, push and shear of the foundation bolts and where their maxima occur.
+
+        At singular positions, where the reactions are indeterminate (NaN), the
+        foundation force is still defined: there it is taken from the momentum theorem."""
+        found = np.where(np.isfinite(self.foundation_all), self.foundation_all, self.foundation_momentum_all)
+        return bolt_loads(found, self.angles)
+
+
+def forces(
+    mech: Any,
+    angles: Any = None,
+    *,
+    steps: int | None = None,
+    speed: Any = None,
+    variants: dict[str, Any] | None = None,
+) -> Forces:
+    """Reactions in every pair, the driving torque and the foundation loads.
+
+    Parameters as for :func:`linkwork.kinematics`; the drive turns at a
+    uniform ``speed`` (default: the file's).
+
+    Raises
+    ------
+    LinkworkError
+        For a mechanism with redundant constraints: its reactions are
+        statically indeterminate.
+    """
+    from linkwork.motion import kinematics
+
+    if mech.structure.redundant:
+        raise LinkworkError(
+            f"the mechanism has {mech.structure.redundant} redundant constraint(s): its reactions are "
+            "statically indeterminate (they depend on the links' elasticity); remove the redundant link"
+        )
+    kin = kinematics(mech, angles, steps=steps, speed=speed, variants=variants)
+    loads = inertia_and_gravity(kin)
+    lam, frame = solve_reactions(kin, loads)
+    return Forces(kin, lam, loads, foundation(kin, frame), momentum_check(kin, loads), power_check(kin, loads))

@@ -1,0 +1,149 @@
+"""Loads of the links, the reactions group by group, and the two independent checks."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.structure.assemble import group_rows
+from linkwork.structure.constraints import build_rows, residuals_and_jacobian
+
+
+@dataclass(frozen=True)
+class Loads:
+    """Loads on every link, frame included, over (V, A).
+
+    Attributes
+    ----------
+    applied : ndarray (V, A, N, 3)
+        Generalised applied loads (force x, y and moment about the link's local origin): gravity.
+    inertia : ndarray (V, A, N, 3)
+        d'Alembert loads: -m a_C and -(J_C epsilon + r_C x m a_C).
+    com, com_velocity, com_acceleration : ndarray (V, A, N, 2)
+        Centre of mass of every link.
+    """
+
+    applied: np.ndarray
+    inertia: np.ndarray
+    com: np.ndarray
+    com_velocity: np.ndarray
+    com_acceleration: np.ndarray
+
+    @property
+    def total(self) -> np.ndarray:
+        return self.applied + self.inertia
+
+
+def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
+    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
+
+
+def inertia_and_gravity(kin: Any) -> Loads:
+    m = kin.mechanism
+    q, v, a = kin.pose, kin.vel, kin.acc  # (V, A, N, 3)
+    c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
+    lx, ly = m.link_com[:, 0], m.link_com[:, 1]
+    r = np.stack([c * lx - s * ly, s * lx + c * ly], -1)  # origin -> centre of mass, global
+    w, e = v[..., 2:3], a[..., 2:3]
+    perp = np.stack([-r[..., 1], r[..., 0]], -1)
+    com = q[..., :2] + r
+    vc = v[..., :2] + w * perp
+    ac = a[..., :2] + e * perp - w * w * r
+    mass = m.link_mass
+    weight = np.zeros(com.shape)
+    weight[..., 1] = -mass * m.gravity
+    applied = np.concatenate([weight, _cross(r, weight)[..., None]], -1)
+    f_in = -mass[:, None] * ac
+    inertia = np.concatenate([f_in, (_cross(r, f_in) - m.link_inertia * a[..., 2])[..., None]], -1)
+    return Loads(applied, inertia, com, vc, ac)
+
+
+def solve_reactions(kin: Any, loads: Loads) -> tuple[np.ndarray, np.ndarray]:
+    """Multipliers of every constraint row ``(V, A, m)``, group by group from the last group back,
+    and the generalised force the pairs put on the frame ``(V, A, 3)`` (force, moment about the origin).
+
+    Where a group's system is singular (a dead point) its reactions are NaN.
+    """
+    from linkwork.motion.geometry import Geometry
+
+    m = kin.mechanism
+    geom = Geometry(*(np.moveaxis(g, (0, 1), (2, 3)) for g in (kin.local, kin.origin, kin.axis)))
+    _, jac = residuals_and_jacobian(kin.pose, m, geom=geom)
+    rows = build_rows(m.pair_type, m.pair_links, m.drive_pair)
+    placed: set[int] = {0}
+    owned = []
+    for group in m.structure.groups:
+        links = set(group.links)
+        owned.append((list(group.links), group_rows(rows, placed, links)))
+        placed |= links
+    rhs_all = -loads.total.reshape(loads.total.shape[:2] + (-1,))  # (V, A, 3N)
+    lam = np.full(jac.shape[:-1], np.nan)
+    done: list[int] = []
+    for links, sel in reversed(owned):
+        cols = [3 * i + k for i in links for k in range(3)]
+        rhs = rhs_all[..., cols]
+        if done:
+            rhs = rhs - np.einsum("...rc,...r->...c", jac[..., done, :][..., cols], lam[..., done])
+        mat = np.swapaxes(jac[..., sel, :][..., cols], -1, -2)  # (V, A, 3n, 3n): a column per row
+        lam[..., sel] = _solve(mat, rhs)
+        done += sel
+    frame = np.einsum("...rc,...r->...c", jac[..., :3], lam)
+    return lam, frame
+
+
+def _solve(mat: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """Batched square solves; NaN where a matrix is singular or not finite."""
+    good = np.isfinite(mat).all(axis=(-1, -2)) & np.isfinite(rhs).all(axis=-1)
+    out = np.full(rhs.shape, np.nan)
+    if not good.any():
+        return out
+    a, b = mat[good], rhs[good]
+    sv = np.linalg.svd(a, compute_uv=False)
+    ok = sv[..., -1] > 1e-9 * np.maximum(sv[..., 0], 1e-300)
+    x = np.full(b.shape, np.nan)
+    if ok.any():
+        x[ok] = np.linalg.solve(a[ok], b[ok][..., None])[..., 0]
+    out[good] = x
+    return out
+
+
+def power_check(kin: Any, loads: Loads) -> np.ndarray:
+    """Driving torque from the power balance: (dT/dt - power of the applied loads) / drive speed.
+
+    Needs one drive (several drives share the power in a way the balance alone does not fix);
+    NaN otherwise.  Shape (V, A, D).
+    """
+    m = kin.mechanism
+    v, a = kin.vel, kin.acc
+    kinetic_rate = np.sum(m.link_mass * np.sum(loads.com_velocity * loads.com_acceleration, -1), -1) + np.sum(
+        m.link_inertia * v[..., 2] * a[..., 2], -1
+    )
+    applied = loads.applied
+    power = np.sum(applied[..., :2] * loads.com_velocity, axis=(-1, -2))  # gravity acts at the centres of mass
+    rate = kin.rates[None, :, 0]
+    out = np.full(kinetic_rate.shape + (m.n_drives,), np.nan)
+    if m.n_drives == 1:
+        with np.errstate(invalid="ignore", divide="ignore"):  # at rest the balance says nothing: NaN
+            out[..., 0] = (kinetic_rate - power) / rate
+    return out
+
+
+def foundation(kin: Any, frame: np.ndarray) -> np.ndarray:
+    """Force (x, y) and moment about the origin the machine puts on its foundation, (V, A, 3):
+    the pairs' force on the frame plus the frame's own weight."""
+    m = kin.mechanism
+    w = -m.link_mass[0] * m.gravity
+    return frame + np.array([0.0, w, m.link_com[0, 0] * w])
+
+
+def momentum_check(kin: Any, loads: Loads) -> np.ndarray:
+    """The same from the theorem on the change of momentum: the foundation carries the weights of
+    all links less the rate of change of their momentum (and of their moment of momentum)."""
+    m = kin.mechanism
+    weight = np.zeros(loads.com.shape)
+    weight[..., 1] = -m.link_mass * m.gravity
+    f = weight - m.link_mass[:, None] * loads.com_acceleration
+    moment = np.sum(_cross(loads.com, f), -1) - np.sum(m.link_inertia * kin.acc[..., 2], -1)
+    return np.concatenate([np.sum(f, axis=-2), moment[..., None]], -1)

@@ -1,0 +1,142 @@
+"""Kinetostatics: a sympy derivation of seed 000, statics by virtual work, Newton's laws, balances."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+from hypothesis import given, settings
+
+import linkwork as lw
+from mechanisms import TEXTBOOK
+from test_structure import _assembles, four_bar_spec, four_bars
+
+L, M1, M2, M_HOUSING, OMEGA, G = 0.15, 10.0, 20.0, 500.0, 10.0, 9.81
+
+
+def seed000_closed_form():
+    """Foundation force and driving torque of the seed 000 shears, derived in sympy from the
+    positions alone: crank OA and rod AB uniform rods of length l, knife B on the vertical through O."""
+    t, w, l, m1, m2, m, g = sp.symbols("t omega l m1 m2 m g", positive=True)
+    phi = w * t
+    a = sp.Matrix([l * sp.cos(phi), l * sp.sin(phi)])
+    b = sp.Matrix([0, 2 * l * sp.sin(phi)])
+    bodies = [(m1, a / 2, phi, m1 * l**2 / 12), (m1, (a + b) / 2, sp.atan2(b[1] - a[1], b[0] - a[0]), m1 * l**2 / 12)]
+    bodies.append((m2, b, sp.Integer(0), sp.Integer(0)))
+    momentum = sum((mass * sp.diff(c, t) for mass, c, _, _ in bodies), sp.zeros(2, 1))
+    weight = -(m + 2 * m1 + m2) * g
+    force = sp.Matrix([0, weight]) - sp.diff(momentum, t)  # what the machine puts on its foundation
+    kinetic = sum(
+        (mass * (sp.diff(c, t).dot(sp.diff(c, t))) / 2 + j * sp.diff(ang, t) ** 2 / 2 for mass, c, ang, j in bodies),
+        sp.Integer(0),
+    )
+    potential = sum((mass * g * c[1] for mass, c, _, _ in bodies), sp.Integer(0))
+    torque = (sp.diff(kinetic, t) + sp.diff(potential, t)) / w
+    values = {l: L, m1: M1, m2: M2, m: M_HOUSING, g: G}
+    f = sp.lambdify((t, w), [e.subs(values) for e in (force[0], force[1], torque)], "numpy")
+    angle = sp.symbols("phi")
+    per_omega2 = sp.simplify((force[1].subs(t, angle / w) - weight) / w**2)  # the inertia part, / omega^2
+    assert not per_omega2.has(w)
+    grid = np.linspace(0, 2 * np.pi, 100_001)
+    coefficient = float(np.max(sp.lambdify(angle, per_omega2.subs(values), "numpy")(grid)))
+    return f, coefficient, float(-weight.subs(values))
+
+
+def test_seed_000_foundation_bolts_and_torque_against_sympy():
+    mech = lw.compile(lw.example("shears-slider-crank"))
+    f = lw.forces(mech, steps=720)
+    phi = f.angles
+    closed, coefficient, weight = seed000_closed_form()
+    fx, fy, torque = (np.broadcast_to(np.asarray(v, dtype=float), phi.shape) for v in closed(phi / OMEGA, OMEGA))
+    ok = np.isfinite(f.foundation[:, 0])  # the reactions are indeterminate at the singular 0 and 180 deg
+    assert ok.sum() >= 716
+    scale = np.abs(fy).max()
+    np.testing.assert_allclose(f.foundation[ok, 0], fx[ok], rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(f.foundation[ok, 1], fy[ok], rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(f.driving_torque[ok], torque[ok], rtol=0, atol=1e-9 * np.abs(torque).max())
+    bolts = f.bolts()
+    assert bolts.shear == pytest.approx(np.abs(fx).max(), rel=1e-9)  # m1 omega^2 l = 150 N
+    assert bolts.shear == pytest.approx(M1 * OMEGA**2 * L, rel=1e-9)
+    assert bolts.pull == 0.0  # at 10 rad/s the shears never lift
+    # the speed at which the pull equals the weight: of the whole shears, and of the housing alone
+    for pull in (weight, M_HOUSING * G):
+        expected = math.sqrt((pull + weight) / coefficient)
+        assert lw.bolt_speed(mech, pull=pull) == pytest.approx(expected, rel=1e-9)
+
+
+def test_statics_by_virtual_work():
+    """At rest the driving torque balances gravity: M = dV/dphi, V the potential energy (finite differences)."""
+    mech_heavy = lw.compile(
+        lw.from_dict(
+            {
+                **TEXTBOOK["four-bar"][0]().to_dict(),
+                "links": {
+                    "crank": {"ends": ["O2", "A"], "length": 0.1, "mass": 2.0},
+                    "coupler": {"ends": ["A", "B"], "length": 0.35, "mass": 5.0, "points": {"P": [0.2, 0.1]}},
+                    "rocker": {"ends": ["O4", "B"], "length": 0.25, "mass": 3.0, "com": [0.1, 0.02]},
+                },
+            }
+        )
+    )
+    phi = mech_heavy.drive_start[0] + np.linspace(-1, 1, 41)
+    f = lw.forces(mech_heavy, phi, speed=0.0)
+    h = 1e-6
+
+    def potential(angles):
+        kin = lw.kinematics(mech_heavy, angles, speed=0.0)
+        q = kin.pose[0]
+        c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
+        y = q[..., 1] + s * mech_heavy.link_com[:, 0] + c * mech_heavy.link_com[:, 1]
+        return np.sum(mech_heavy.link_mass * mech_heavy.gravity * y, -1)
+
+    dvdphi = (potential(phi + h) - potential(phi - h)) / (2 * h)
+    np.testing.assert_allclose(f.driving_torque, dvdphi, rtol=1e-7, atol=1e-8)
+
+
+def test_newtons_second_law_for_the_coupler():
+    """The pair forces on the coupler, its weight and m a_C balance (the reactions read back by joint)."""
+    data = TEXTBOOK["four-bar"][0]().to_dict()
+    data["links"]["coupler"] = {"ends": ["A", "B"], "length": 0.35, "mass": 5.0, "inertia": 0.07}
+    mech = lw.compile(lw.from_dict(data))
+    f = lw.forces(mech, steps=90)
+    kin = f.kinematics
+    on_coupler = f.reaction("A") - f.reaction("B")  # crank -> coupler, and coupler -> rocker reversed
+    i = mech.link_names.index("coupler")
+    com = kin.position("A") + 0.5 * (kin.position("B") - kin.position("A"))
+    a_c = kin.acceleration("A") + 0.5 * (kin.acceleration("B") - kin.acceleration("A"))
+    weight = np.array([0.0, -5.0 * mech.gravity])
+    np.testing.assert_allclose(on_coupler + weight, 5.0 * a_c, rtol=1e-9, atol=1e-9)
+    # moment about the centre of mass: r x F of the two pair forces = J epsilon
+    ra, rb = kin.position("A") - com, kin.position("B") - com
+    fa, fb = f.reaction("A"), f.reaction("B")
+    moment = ra[:, 0] * fa[:, 1] - ra[:, 1] * fa[:, 0] - (rb[:, 0] * fb[:, 1] - rb[:, 1] * fb[:, 0])
+    np.testing.assert_allclose(moment, 0.07 * kin.epsilon(i), rtol=1e-9, atol=1e-9)
+
+
+@pytest.mark.parametrize("name", ["double-cut-shears", "watt-six-bar", "stephenson-six-bar", "class3-triad"])
+def test_power_and_momentum_balances_of_the_examples(name):
+    f = lw.forces(lw.compile(lw.example(name)), steps=180)
+    assert all(v < 1e-9 for v in f.checks.values()), f.checks
+
+
+@settings(max_examples=20, deadline=None)
+@given(four_bars)
+def test_random_four_bars_balance_power_and_momentum(dims):
+    a, b, c, d, phi, left = dims
+    if not _assembles(a, b, c, d, phi):
+        return
+    data, _ = four_bar_spec(a, b, c, d, phi, left)
+    for k, name in enumerate(data["links"]):
+        data["links"][name]["mass"] = 1.0 + k
+        data["links"][name]["com"] = [0.3 * (k + 1) * data["links"][name].get("length", 0.1), 0.01 * k]
+    mech = lw.compile(lw.from_dict(data))
+    f = lw.forces(mech, steps=72)
+    assert all(v < 1e-9 for v in f.checks.values()), f.checks
+
+
+def test_redundant_constraints_are_refused():
+    mech = lw.compile(TEXTBOOK["parallelogram"][0]().build())
+    with pytest.raises(lw.errors.LinkworkError, match="statically indeterminate"):
+        lw.forces(mech, steps=12)
