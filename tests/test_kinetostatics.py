@@ -19,7 +19,7 @@ L, M1, M2, M_HOUSING, OMEGA, G = 0.15, 10.0, 20.0, 500.0, 10.0, 9.81
 def seed000_closed_form():
     """Foundation force and driving torque of the seed 000 shears, derived in sympy from the
     positions alone: crank OA and rod AB uniform rods of length l, knife B on the vertical through O."""
-    t, w, l, m1, m2, m, g = sp.symbols("t omega l m1 m2 m g", positive=True)
+    t, w, l, m1, m2, m, g = sp.symbols("t omega l m1 m2 m g", positive=True)  # noqa: E741 - the paper's l
     phi = w * t
     a = sp.Matrix([l * sp.cos(phi), l * sp.sin(phi)])
     b = sp.Matrix([0, 2 * l * sp.sin(phi)])
