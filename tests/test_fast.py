@@ -98,20 +98,8 @@ def test_threads_split_the_samples_without_changing_a_bit(monkeypatch):
 def test_change_points_go_to_the_numpy_path(monkeypatch):
     """The isosceles slider-crank: the compiled path sees the two modes meet and hands over."""
     mech = lw.compile(lw.example("shears-slider-crank"))
-    ops, branch = mech.fast_program
     values = mech.drive_start[0] + np.linspace(0, 2 * np.pi, 360, endpoint=False)[:, None]
-    geom = geometry(mech)
-    res = fast.run(
-        ops,
-        branch,
-        mech.n_links_total,
-        geom.point_local[:, 0],
-        geom.pair_origin[:, 0],
-        geom.pair_axis[:, 0],
-        values,
-        np.ones_like(values),
-        np.zeros_like(values),
-    )
+    res = fast.run(mech, geometry(mech), values, np.ones_like(values), np.zeros_like(values))
     assert res["near"].any()
     compiled, reference = _both(mech, values[:, 0], monkeypatch)
     _same(compiled, reference)

@@ -104,23 +104,15 @@ def encode(program: tuple[Step, ...], point_link: np.ndarray) -> tuple[np.ndarra
     return ops, np.array([step.branch for step in program], dtype=float)
 
 
-def run(
-    ops: np.ndarray,
-    branch: np.ndarray,
-    n_links: int,
-    local: np.ndarray,
-    origin: np.ndarray,
-    axis: np.ndarray,
-    values: np.ndarray,
-    rates: np.ndarray,
-    accels: np.ndarray,
-) -> dict[str, Any]:
+def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.ndarray) -> dict[str, Any]:
     """Solve every sample.
 
     Parameters
     ----------
-    local : (V, P, 2); origin, axis : (V, M, 2)
-        Geometry of the design variants.
+    mech : Mechanism
+        With a compiled program (``mech.fast_program``).
+    geom : Geometry
+        Dimensions of the design variants.
     values, rates, accels : (A, D)
 
     Returns arrays ``q, v, a`` (N, 3, V, A), ``slack, det`` (S, V, A),
@@ -129,6 +121,10 @@ def run(
     path decides the mode there) and ``singular`` (whether any assembled
     sample has a normalised determinant below :data:`SINGULAR`).
     """
+    ops, branch = mech.fast_program
+    n_links = mech.n_links_total
+    local, origin, axis = geom.point_local[:, 0], geom.pair_origin[:, 0], geom.pair_axis[:, 0]
+    values, rates, accels = (np.ascontiguousarray(x, dtype=float) for x in (values, rates, accels))
     n_var, n_ang, n_steps = local.shape[0], values.shape[0], len(ops)
     out = np.empty((3, n_links, 3, n_var, n_ang))  # one block: q, v, a
     slack = np.empty((n_steps, n_var, n_ang))
@@ -232,6 +228,23 @@ def _touching(x):
     return 0.0 if -1e-12 < x < 0 else x
 
 
+def _arm_motion(L, ops, st, o, P, x, y):
+    """Column of the arm's unknown rate in the velocity equation of X, and X's velocity and
+    acceleration with that rate left out: about the joint (R), or of the carrier's point at X (P)."""
+    if ops[st, o] == 0:
+        return -(y - P[1]), x - P[0], P[2], P[3], P[4], P[5]
+    vx, vy, ax, ay = _material(L, ops[st, o + 6], x, y)
+    return P[2], P[3], vx, vy, ax, ay
+
+
+def _arm_extra(L, ops, st, o, P, x, y, k):
+    """Acceleration terms of X quadratic in the rates: centripetal (R) or Coriolis (P)."""
+    if ops[st, o] == 0:
+        return -k * k * (x - P[0]), -k * k * (y - P[1])
+    f = 2 * L[ops[st, o + 6], 5] * k
+    return -f * P[3], f * P[2]
+
+
 def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
     """A dyad through the loci of its arms at ``ops[st, o1:]`` and ``ops[st, o2:]``: places both links and
     returns (slack, normalised determinant, X, X of the other mode - X of this one)."""
@@ -273,33 +286,15 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
     if slack >= 0 and not (math.isfinite(x) and math.isfinite(y)):
         slack = -1.0
     # columns, base velocities and accelerations of X on each arm
-    if ka_r:
-        cax, cay = -(y - A[1]), x - A[0]
-        vax, vay, aax, aay = A[2], A[3], A[4], A[5]
-    else:
-        cax, cay = A[2], A[3]
-        vax, vay, aax, aay = _material(L, ops[st, o1 + 6], x, y)
-    if kb_r:
-        cbx, cby = -(y - B[1]), x - B[0]
-        vbx, vby, abx, aby = B[2], B[3], B[4], B[5]
-    else:
-        cbx, cby = B[2], B[3]
-        vbx, vby, abx, aby = _material(L, ops[st, o2 + 6], x, y)
+    cax, cay, vax, vay, aax, aay = _arm_motion(L, ops, st, o1, A, x, y)
+    cbx, cby, vbx, vby, abx, aby = _arm_motion(L, ops, st, o2, B, x, y)
     nbx, nby = -cbx, -cby
     d = cax * nby - cay * nbx
     inv = 1.0 / d
     rx, ry = vbx - vax, vby - vay
     ka, kb = (rx * nby - ry * nbx) * inv, (cax * ry - cay * rx) * inv
-    if ka_r:
-        eax, eay = -ka * ka * (x - A[0]), -ka * ka * (y - A[1])
-    else:
-        f = 2 * L[ops[st, o1 + 6], 5] * ka
-        eax, eay = -f * A[3], f * A[2]
-    if kb_r:
-        ebx, eby = -kb * kb * (x - B[0]), -kb * kb * (y - B[1])
-    else:
-        f = 2 * L[ops[st, o2 + 6], 5] * kb
-        ebx, eby = -f * B[3], f * B[2]
+    eax, eay = _arm_extra(L, ops, st, o1, A, x, y, ka)
+    ebx, eby = _arm_extra(L, ops, st, o2, B, x, y, kb)
     rx, ry = abx + ebx - aax - eax, aby + eby - aay - eay
     ka_d, kb_d = (rx * nby - ry * nbx) * inv, (cax * ry - cay * rx) * inv
     vx, vy = vax + ka * cax, vay + ka * cay
@@ -484,6 +479,8 @@ if njit is not None:  # pragma: no branch
     _loc = njit(inline="always", **_opts)(_loc)
     _locus = njit(inline="always", **_opts)(_locus)
     _touching = njit(inline="always", **_opts)(_touching)
+    _arm_motion = njit(inline="always", **_opts)(_arm_motion)
+    _arm_extra = njit(inline="always", **_opts)(_arm_extra)
     _dyad = njit(inline="always", **_opts)(_dyad)
     _rpr = njit(inline="always", **_opts)(_rpr)
     _step = njit(inline="always", **_opts)(_step)

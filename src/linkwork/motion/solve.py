@@ -92,18 +92,7 @@ def _run_fast(
     mech: Any, program: tuple[Step, ...], geom: Geometry, values: np.ndarray, rates: np.ndarray, accels: np.ndarray
 ) -> State | None:
     """The compiled closed-form path; None where a dyad passes near a change point (the NumPy path follows it)."""
-    ops, branch = mech.fast_program
-    res = fast.run(
-        ops,
-        branch,
-        mech.n_links_total,
-        geom.point_local[:, 0],
-        geom.pair_origin[:, 0],
-        geom.pair_axis[:, 0],
-        np.ascontiguousarray(values),
-        np.ascontiguousarray(rates),
-        np.ascontiguousarray(accels),
-    )
+    res = fast.run(mech, geom, values, rates, accels)
     if res["near"].any():
         return None
     n_steps = len(program)
