@@ -37,6 +37,14 @@ def double_cut_shears_builder():
     b.prismatic("guide_F", "frame", "knife_lower", point="F", through="O3", axis="90 deg")
     b.drive("O1", speed="30 rpm", direction="ccw", angle="0 deg")
     b.hint("B", 0.5, 0.0).hint("E", 0.0, 0.18).hint("F", 0.0, -0.18)
+    b.process(
+        "cutting",
+        ["knife_upper.edge", "knife_lower.edge"],
+        axis="90 deg",
+        workpiece=[-0.05, 0.05],
+        penetration=[0, 0.15, 0.30, 0.45],
+        force=["0 kN", "250 kN", "250 kN", "0 kN"],
+    )
     return b
 
 

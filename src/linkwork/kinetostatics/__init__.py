@@ -185,4 +185,4 @@ def forces(
     kin = kinematics(mech, angles, steps=steps, speed=speed, variants=variants)
     loads = inertia_and_gravity(kin)
     lam, frame = solve_reactions(kin, loads)
-    return Forces(kin, lam, loads, foundation(kin, frame), momentum_check(kin, loads), power_check(kin, loads))
+    return Forces(kin, lam, loads, foundation(kin, frame, loads), momentum_check(kin, loads), power_check(kin, loads))

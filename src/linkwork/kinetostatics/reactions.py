@@ -18,7 +18,8 @@ class Loads:
     Attributes
     ----------
     applied : ndarray (V, A, N, 3)
-        Generalised applied loads (force x, y and moment about the link's local origin): gravity.
+        Generalised applied loads (force x, y and moment about the link's local origin): gravity
+        and the external loads of the file.
     inertia : ndarray (V, A, N, 3)
         d'Alembert loads: -m a_C and -(J_C epsilon + r_C x m a_C).
     com, com_velocity, com_acceleration : ndarray (V, A, N, 2)
@@ -30,6 +31,7 @@ class Loads:
     com: np.ndarray
     com_velocity: np.ndarray
     com_acceleration: np.ndarray
+    external: Any = None  # linkwork.kinetostatics.external.Applied
 
     @property
     def total(self) -> np.ndarray:
@@ -41,6 +43,9 @@ def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
 
 
 def inertia_and_gravity(kin: Any) -> Loads:
+    """Gravity, the external loads and the d'Alembert inertia loads of every link."""
+    from linkwork.kinetostatics.external import evaluate, generalised
+
     m = kin.mechanism
     q, v, a = kin.pose, kin.vel, kin.acc  # (V, A, N, 3)
     c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
@@ -55,9 +60,12 @@ def inertia_and_gravity(kin: Any) -> Loads:
     weight = np.zeros(com.shape)
     weight[..., 1] = -mass * m.gravity
     applied = np.concatenate([weight, _cross(r, weight)[..., None]], -1)
+    external = evaluate(kin)
+    if m.loads:
+        applied = applied + generalised(kin, external)
     f_in = -mass[:, None] * ac
     inertia = np.concatenate([f_in, (_cross(r, f_in) - m.link_inertia * a[..., 2])[..., None]], -1)
-    return Loads(applied, inertia, com, vc, ac)
+    return Loads(applied, inertia, com, vc, ac, external)
 
 
 def solve_reactions(kin: Any, loads: Loads) -> tuple[np.ndarray, np.ndarray]:
@@ -120,8 +128,9 @@ def power_check(kin: Any, loads: Loads) -> np.ndarray:
     kinetic_rate = np.sum(m.link_mass * np.sum(loads.com_velocity * loads.com_acceleration, -1), -1) + np.sum(
         m.link_inertia * v[..., 2] * a[..., 2], -1
     )
-    applied = loads.applied
-    power = np.sum(applied[..., :2] * loads.com_velocity, axis=(-1, -2))  # gravity acts at the centres of mass
+    from linkwork.kinetostatics.external import power as external_power
+
+    power = -m.gravity * np.sum(m.link_mass * loads.com_velocity[..., 1], -1) + external_power(kin, loads.external)
     rate = kin.rates[None, :, 0]
     out = np.full(kinetic_rate.shape + (m.n_drives,), np.nan)
     if m.n_drives == 1:
@@ -130,20 +139,22 @@ def power_check(kin: Any, loads: Loads) -> np.ndarray:
     return out
 
 
-def foundation(kin: Any, frame: np.ndarray) -> np.ndarray:
+def foundation(kin: Any, frame: np.ndarray, loads: Loads) -> np.ndarray:
     """Force (x, y) and moment about the origin the machine puts on its foundation, (V, A, 3):
-    the pairs' force on the frame plus the frame's own weight."""
-    m = kin.mechanism
-    w = -m.link_mass[0] * m.gravity
-    return frame + np.array([0.0, w, m.link_com[0, 0] * w])
+    the pairs' force on the frame plus the frame's own weight and the loads applied to it."""
+    return frame + loads.applied[..., 0, :]
 
 
 def momentum_check(kin: Any, loads: Loads) -> np.ndarray:
     """The same from the theorem on the change of momentum: the foundation carries the weights of
-    all links less the rate of change of their momentum (and of their moment of momentum)."""
+    all links and the external loads, less the rate of change of the momentum of the links (and
+    of their moment of momentum)."""
+    from linkwork.kinetostatics.external import resultant
+
     m = kin.mechanism
     weight = np.zeros(loads.com.shape)
     weight[..., 1] = -m.link_mass * m.gravity
     f = weight - m.link_mass[:, None] * loads.com_acceleration
     moment = np.sum(_cross(loads.com, f), -1) - np.sum(m.link_inertia * kin.acc[..., 2], -1)
-    return np.concatenate([np.sum(f, axis=-2), moment[..., None]], -1)
+    total = np.concatenate([np.sum(f, axis=-2), moment[..., None]], -1)
+    return total + resultant(loads.external, total.shape[:-1])

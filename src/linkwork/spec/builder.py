@@ -121,6 +121,30 @@ class MechanismBuilder:
         self._data.setdefault("hints", {})[point] = _plain([x, y])
         return self
 
+    def force(
+        self, name: str, at: str, *, force: Any = None, magnitude: Any = None, direction: Any = None, angle: Any = None
+    ) -> MechanismBuilder:
+        """A force at the point ``at`` (``link.point``): ``force=(Fx, Fy)``, or ``magnitude`` along
+        ``direction`` (a table with ``angle``); see :class:`~linkwork.spec.schema.Load`."""
+        self._data.setdefault("loads", {})[name] = _some(
+            type="force", at=at, force=force, magnitude=magnitude, direction=direction, angle=angle
+        )
+        return self
+
+    def moment(self, name: str, on: str, moment: Any, *, angle: Any = None) -> MechanismBuilder:
+        """A moment on the link ``on``, constant or a table against the crank ``angle``."""
+        self._data.setdefault("loads", {})[name] = _some(type="moment", on=on, moment=moment, angle=angle)
+        return self
+
+    def process(
+        self, name: str, tools: list[str], *, axis: Any, workpiece: Any, penetration: Any, force: Any
+    ) -> MechanismBuilder:
+        """A technological load of a workpiece on one or two tools; see :class:`~linkwork.spec.schema.Load`."""
+        self._data.setdefault("loads", {})[name] = _some(
+            type="process", tools=tools, axis=axis, workpiece=workpiece, penetration=penetration, force=force
+        )
+        return self
+
     def to_dict(self) -> dict[str, Any]:
         """The plain data, as it would stand in a YAML file."""
         import copy

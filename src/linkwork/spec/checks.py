@@ -112,6 +112,7 @@ def check(src: Source, declared: dict[str, str]) -> list[Problem]:
     _check_connected(bad, links, joints, known)
     _check_drives(bad, data, joints, declared)
     _check_hints(bad, data, joints, points)
+    _check_loads(bad, data, points)
     return out
 
 
@@ -266,3 +267,96 @@ def hint_names(joints: dict[str, Any], points: dict[str, set[str]]) -> set[str]:
     names = {f"{ln}.{p}" for ln, pts in points.items() if ln != FRAME for p in pts}
     names |= {j for j, joint in joints.items() if _dict(joint).get("type") in ("revolute", "prismatic", "pin-in-slot")}
     return names
+
+
+_LOAD_FIELDS = {
+    "force": ({"at"}, {"at", "force", "magnitude", "direction", "angle"}),
+    "moment": ({"on", "moment"}, {"on", "moment", "angle"}),
+    "process": (
+        {"tools", "axis", "workpiece", "penetration", "force"},
+        {"tools", "axis", "workpiece", "penetration", "force"},
+    ),
+}
+
+
+def _check_loads(bad: Any, data: dict[str, Any], points: dict[str, set[str]]) -> None:
+    """Fields and references of the external loads; their values are checked in SI after validation."""
+    loads = _dict(data.get("loads"))
+    names = {f"{ln}.{p}" for ln, pts in points.items() for p in pts}
+
+    def point(path: tuple[Any, ...], ref: Any) -> str | None:
+        if not isinstance(ref, str):
+            return None
+        if ref not in names:
+            same = sorted(n for n in names if n.endswith(f".{ref}"))
+            hint = f' (did you mean "{same[0]}"?)' if same else suggest(ref, names)
+            bad(path, f'no point "{ref}": give link.point, the link the load acts on and its point{hint}')
+            return None
+        return ref.split(".", 1)[0]
+
+    for name, load in loads.items():
+        path = ("loads", name)
+        if not isinstance(name, str) or not NAME.match(name):
+            bad(path, f'"{name}" is not a valid load name (letters, digits, _)')
+        load = _dict(load)
+        kind = load.get("type")
+        if kind not in _LOAD_FIELDS:
+            continue  # reported by the schema
+        needed, allowed = _LOAD_FIELDS[kind]
+        for key in sorted(needed - set(load)):
+            bad(path, f'missing field "{key}" (a {kind} load needs {", ".join(sorted(needed))})')
+        for key in sorted(set(load) - allowed - {"type", "description"}):
+            if key in {f for _, a in _LOAD_FIELDS.values() for f in a}:
+                bad(path + (key,), f'"{key}" does not apply to a {kind} load')
+        if kind == "force":
+            point(path + ("at",), load.get("at"))
+            vector, magnitude = load.get("force"), load.get("magnitude")
+            if (vector is None) == (magnitude is None):
+                bad(path, 'give either "force: [Fx, Fy]" or "magnitude" with "direction"')
+            if vector is not None and (not isinstance(vector, list) or len(vector) != 2):
+                bad(path + ("force",), "expected the two components [Fx, Fy] of a force")
+            if magnitude is not None and load.get("direction") is None:
+                bad(path, 'missing field "direction" (the direction of the magnitude)')
+            if vector is not None and (load.get("direction") is not None or load.get("angle") is not None):
+                bad(path, '"force: [Fx, Fy]" is constant; for a table give "magnitude", "direction" and "angle"')
+            _check_table(bad, path, load, "magnitude")
+        elif kind == "moment":
+            on = load.get("on")
+            if isinstance(on, str) and on not in points:
+                bad(path + ("on",), f'unknown link "{on}"{suggest(on, points)}')
+            _check_table(bad, path, load, "moment")
+        else:
+            tools = load.get("tools")
+            if isinstance(tools, list):
+                if len(tools) not in (1, 2):
+                    bad(path + ("tools",), f"expected one or two tool points, got {len(tools)}")
+                owners = [point(path + ("tools", i), t) for i, t in enumerate(tools)]
+                if len(owners) == 2 and owners[0] is not None and owners[0] == owners[1]:
+                    bad(path + ("tools",), "the two tools must be on different links")
+                if FRAME in owners:
+                    bad(path + ("tools",), "a tool is a point of a moving link, not of the frame")
+            for key, count in (("workpiece", 2),):
+                value = load.get(key)
+                if value is not None and (not isinstance(value, list) or len(value) != count):
+                    bad(path + (key,), "expected [low, high]: the extent of the workpiece along the axis")
+            pen, force = load.get("penetration"), load.get("force")
+            if isinstance(pen, list) and isinstance(force, list) and len(pen) != len(force):
+                bad(path, f"penetration has {len(pen)} entries but force has {len(force)}")
+            elif isinstance(pen, list) and len(pen) < 2:
+                bad(path + ("penetration",), f"a table needs at least two points, got {len(pen)}")
+
+
+def _check_table(bad: Any, path: tuple[Any, ...], load: dict[str, Any], key: str) -> None:
+    angle, value = load.get("angle"), load.get(key)
+    if angle is None:
+        if isinstance(value, list):
+            bad(path + (key,), 'a list of values is a table: give the crank angles in "angle"')
+        return
+    if not isinstance(angle, list) or value is None:
+        return
+    if not isinstance(value, list):
+        bad(path + (key,), f'with "angle", "{key}" is a list of the same length')
+    elif len(value) != len(angle):
+        bad(path, f"angle has {len(angle)} entries but {key} has {len(value)}")
+    elif len(angle) < 2:
+        bad(path + ("angle",), f"a table needs at least two points, got {len(angle)}")

@@ -59,7 +59,7 @@ def validate(src: Source) -> Spec:
         problems += [_convert(src, err) for err in exc.errors(include_url=False)]
     problems += check(src, declared)
     if spec is not None:
-        problems += _geometry_checks(spec, src)
+        problems += _geometry_checks(spec, src) + _load_checks(spec, src)
     problems = _unique(problems)
     if problems or spec is None:
         raise SpecError(problems)
@@ -224,4 +224,35 @@ def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
                         f"m d^2 = {link.mass * d2:.6g} kg m^2 of the centre of mass alone: impossible",
                     )
                 )
+    return out
+
+
+def _load_checks(spec: Spec, src: Source) -> list[Problem]:
+    """Values of the external loads in SI: tables that increase, a workpiece of positive height."""
+    import math
+
+    out = []
+    first = spec.joints.get(spec.drives[0].joint) if spec.drives else None
+    for name, load in spec.loads.items():
+        path = ("loads", name)
+        if load.angle is not None:
+            if first is not None and first.type != "revolute":
+                out.append(
+                    src.problem(path + ("angle",), "a table against the crank angle needs a revolute first drive")
+                )
+            a = load.angle
+            if any(y <= x for x, y in zip(a, a[1:], strict=False)):
+                out.append(src.problem(path + ("angle",), "the crank angles of a table must increase"))
+            elif a and a[-1] - a[0] > 2 * math.pi * (1 + 1e-12):
+                span = math.degrees(a[-1] - a[0])
+                out.append(src.problem(path + ("angle",), f"a table spans at most one turn, got {span:.6g} deg"))
+        if load.type != "process":
+            continue
+        if load.workpiece is not None and len(load.workpiece) == 2 and not load.workpiece[1] > load.workpiece[0]:
+            out.append(src.problem(path + ("workpiece",), "expected [low, high] with high above low"))
+        pen = load.penetration or []
+        if any(not math.isfinite(x) or x < 0 for x in pen):
+            out.append(src.problem(path + ("penetration",), "relative penetrations are numbers from 0 up"))
+        elif any(y <= x for x, y in zip(pen, pen[1:], strict=False)):
+            out.append(src.problem(path + ("penetration",), "the penetrations of a table must increase"))
     return out

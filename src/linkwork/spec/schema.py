@@ -76,6 +76,33 @@ Angle = _quantity("angle")
 PositiveMass = _quantity("mass", "positive")
 Inertia = _quantity("inertia", "nonnegative")
 PositiveAcceleration = _quantity("acceleration", "positive")
+Force = _quantity("force")
+
+
+def _one_or_table(kind: str) -> Any:
+    """A quantity, or a list of them (the values of a table)."""
+    phrase = KINDS[kind][0]
+
+    def validate(value: Any, info: ValidationInfo) -> float | list[float]:
+        if not isinstance(value, list):
+            return _scalar(kind, value, info)
+        out = []
+        for i, v in enumerate(value):
+            try:
+                out.append(_scalar(kind, v, info))
+            except PydanticCustomError as exc:
+                raise _error(f"item {i}: {exc.message()}") from None
+        return out
+
+    schema = {
+        "anyOf": [{"type": "number"}, {"type": "string"}, {"type": "array"}],
+        "description": f"{phrase}, or a list of them (a table)",
+    }
+    return Annotated[float | list[float], BeforeValidator(validate), WithJsonSchema(schema)]
+
+
+ForceOrTable = _one_or_table("force")
+MomentOrTable = _one_or_table("moment")
 
 
 def _vector(value: Any, info: ValidationInfo) -> tuple[float, float]:
@@ -203,6 +230,45 @@ class Drive(_Strict):
     law: Law | None = None
 
 
+class Load(_Strict):
+    """An external load: a force at a point, a moment on a link, or a technological (process) load.
+
+    ``force``: acts at the point ``at`` (``link.point``) with global components
+    ``force: [Fx, Fy]``, or with ``magnitude`` along the global ``direction``.
+    ``moment``: acts on the link ``on``, counter-clockwise positive.  Either may
+    follow the crank angle: ``angle: [...]`` (drive angles of the first drive,
+    increasing, spanning at most a turn) with ``magnitude`` or ``moment`` a list
+    of the same length; linear in between, zero outside the table.
+
+    ``process``: the resistance of a workpiece to the tools, such as a cutting
+    force.  ``tools`` are one or two points (``link.point``): the first comes
+    from the positive side of ``axis`` (a global direction), the second from
+    the negative side; ``workpiece`` is its extent ``[low, high]`` along the
+    axis.  The relative penetration ``eps`` is the sum of the tools'
+    penetrations divided by the workpiece's height; ``force`` against
+    ``penetration`` (linear in between, zero outside) is the force that pushes
+    the first tool back along ``axis`` and the second the other way.  It acts
+    only while the tools move into the workpiece.  With one tool the workpiece
+    rests on the frame, which takes the opposite force at the tool's point.
+    """
+
+    type: Literal["force", "moment", "process"]
+    at: str | None = Field(None, description="force: the point link.point where it acts")
+    on: str | None = Field(None, description="moment: the link it acts on")
+    force: list[Force] | None = Field(
+        None, description="force: [Fx, Fy], global; process: forces of the table against penetration"
+    )
+    magnitude: ForceOrTable | None = Field(None, description="force: magnitude along direction, or a table")
+    direction: Angle | None = Field(None, description="force: direction of the magnitude, global")
+    moment: MomentOrTable | None = Field(None, description="moment: its value, or a table")
+    angle: list[Angle] | None = Field(None, description="crank angles of a table (first drive)")
+    tools: list[str] | None = Field(None, description="process: one or two points link.point")
+    axis: Angle | None = Field(None, description="process: global direction along which the first tool is pushed")
+    workpiece: list[Length] | None = Field(None, description="process: [low, high] extent along the axis")
+    penetration: list[float] | None = Field(None, description="process: relative penetrations of the table")
+    description: str | None = None
+
+
 class Spec(_Strict):
     """A planar mechanism: the root of a linkwork mechanism file."""
 
@@ -214,6 +280,7 @@ class Spec(_Strict):
     links: dict[str, Link]
     joints: dict[str, Joint]
     drives: list[Drive]
+    loads: dict[str, Load] = Field(default_factory=dict, description="external loads by name")
     hints: dict[str, Vec2] = Field(
         default_factory=dict,
         description="approximate global positions of moving points in the assembly pose "

@@ -363,6 +363,8 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
             if joint.type == "pin-in-slot":
                 hints[pindex[(index[f"{key}:block"], pt)]] = np.array(xy)
 
+    from linkwork.kinetostatics.external import compile_loads
+
     def f(a: Any, dtype: Any = float) -> np.ndarray:
         arr = np.array(a, dtype=dtype)
         arr.flags.writeable = False
@@ -392,6 +394,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         joint_names=tuple(spec.joints),
         link_ends=f(ends, int).reshape(-1, 2),
         pair_origin_point=f(origin_point, int),
+        loads=compile_loads(spec, index, pindex),
     )
     return arrays, hints, (len(spec.links), p5, p4)
 

@@ -187,6 +187,7 @@ class Mechanism:
     pair_origin_point: np.ndarray | None = None  # (M,) point whose local coordinates are the guide origin; -1
     program: tuple = ()  # the solve program (linkwork.motion.program.Step), in solving order
     fast_program: tuple | None = None  # the program encoded for the compiled kernels (ops, branches), if it has them
+    loads: tuple = ()  # external loads (linkwork.kinetostatics.external.ExternalLoad)
 
     @property
     def n_links(self) -> int:
