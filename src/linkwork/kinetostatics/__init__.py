@@ -26,6 +26,7 @@ on the change of momentum (the method of seed paper 000).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -133,9 +134,12 @@ class Forces:
 
     @property
     def checks(self) -> dict[str, float]:
-        """Largest discrepancy of the independent checks, relative to the largest value checked."""
+        """Largest discrepancy of the independent checks, relative to the largest value checked
+        (NaN where a check has nothing to compare: the power balance at rest)."""
 
         def rel(a: np.ndarray, b: np.ndarray) -> float:
+            if not np.isfinite(a - b).any():
+                return math.nan  # nothing to compare: at rest, or every position singular
             scale = np.nanmax(np.abs(b)) if np.isfinite(b).any() else 0.0
             return float(np.nanmax(np.abs(a - b)) / scale) if scale > 0 else float(np.nanmax(np.abs(a - b)))
 

@@ -1,0 +1,120 @@
+"""External loads: virtual work, tables read by hand, the cutting load of seed 002 against the positions."""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import pytest
+
+import linkwork as lw
+from mechanisms import TEXTBOOK
+
+
+def _four_bar_with_loads(moment_table):
+    b = TEXTBOOK["four-bar"][0]()
+    data = b.to_dict()
+    data["links"]["coupler"]["points"] = {"P": [0.2, 0.1]}
+    data["loads"] = {
+        "push": {"type": "force", "at": "coupler.P", "force": ["30 N", "-50 N"]},
+        "spring": {"type": "moment", "on": "rocker", **moment_table},
+    }
+    return lw.compile(lw.from_dict(data))
+
+
+def test_statics_with_external_loads_by_virtual_work():
+    """At rest, the drive balances the external loads: M = -(F . dP/dphi + M_4 dtheta_4/dphi),
+    the derivatives by finite differences of the positions."""
+    mech = _four_bar_with_loads({"angle": [0, 360], "moment": ["0 N*m", "36 N*m"]})
+    phi = mech.drive_start[0] + np.linspace(-0.8, 0.8, 33)
+    f = lw.forces(mech, phi, speed=0.0)
+    h = 1e-6
+    plus, minus = lw.kinematics(mech, phi + h, speed=0.0), lw.kinematics(mech, phi - h, speed=0.0)
+    dp = (plus.position("coupler.P") - minus.position("coupler.P")) / (2 * h)
+    dtheta = (np.unwrap(plus.angle("rocker")) - np.unwrap(minus.angle("rocker"))) / (2 * h)
+    moment = 36.0 * np.mod(phi, 2 * np.pi) / (2 * np.pi)  # the table is linear over the turn
+    expected = -(30.0 * dp[:, 0] - 50.0 * dp[:, 1] + moment * dtheta)
+    np.testing.assert_allclose(f.driving_torque, expected, rtol=1e-7, atol=1e-8)
+    assert np.isnan(f.checks["driving_torque_vs_power_balance"])  # at rest the power balance says nothing
+    assert f.checks["foundation_force_vs_momentum"] < 1e-9
+    assert f.checks["foundation_moment_vs_momentum"] < 1e-9
+
+
+def test_table_against_the_crank_angle_is_linear_inside_and_zero_outside():
+    mech = _four_bar_with_loads({"angle": [0, 90, 180], "moment": [0, 10, 30]})
+    angles = np.radians([45.0, 135.0, 270.0, 450.0, -315.0, 180.0])
+    f = lw.forces(mech, angles, speed=0.0)
+    np.testing.assert_allclose(f.loads.external.magnitude["spring"][0], [5, 20, 0, 10, 5, 30], rtol=1e-12)
+
+
+def _without_loads(spec):
+    data = copy.deepcopy(spec.model_dump(exclude_none=True))
+    data.pop("loads")
+    data["units"] = {"angle": "rad"}
+    return lw.compile(lw.from_dict(data))
+
+
+def test_cutting_load_of_seed_002_against_the_knife_positions():
+    """The relative penetration from the blade edges' positions, the force from the table of
+    example-data.md, acting only while the knives close; the drive does the cutting work
+    (torque x omega = P x closing speed); the foundation does not feel the cut (the two equal and
+    opposite forces act along one line)."""
+    spec = lw.example("double-cut-shears")
+    mech = lw.compile(spec)
+    bare = _without_loads(spec)
+    steps = 720
+    f, f0 = lw.forces(mech, steps=steps), lw.forces(bare, steps=steps)
+    kin = f.kinematics
+    upper, lower = kin.position("knife_upper.edge")[:, 1], kin.position("knife_lower.edge")[:, 1]
+    eps = (np.maximum(0.05 - upper, 0) + np.maximum(lower + 0.05, 0)) / 0.10
+    np.testing.assert_allclose(f.loads.external.penetration["cutting"][0], eps, atol=1e-12)
+    # closing speed by finite differences of the positions in the crank angle
+    h = 1e-6
+    plus, minus = lw.kinematics(mech, kin.angles + h), lw.kinematics(mech, kin.angles - h)
+    gap = lambda k: k.position("knife_upper.edge")[:, 1] - k.position("knife_lower.edge")[:, 1]  # noqa: E731
+    omega = mech.drive_speed[0]
+    closing = -(gap(plus) - gap(minus)) / (2 * h) * omega
+    table = np.interp(eps, [0, 0.15, 0.30, 0.45], [0, 250e3, 250e3, 0], right=0.0)
+    force = np.where(closing > 0, table, 0.0)
+    sure = np.abs(closing) > 1e-3  # away from the turning points of the knives
+    np.testing.assert_allclose(f.loads.external.magnitude["cutting"][0][sure], force[sure], atol=1e-6)
+    assert force.max() == pytest.approx(250e3)
+    assert np.all(force[closing < 0] == 0)
+    extra = (f.driving_torque - f0.driving_torque) * omega
+    np.testing.assert_allclose(extra, force * closing, rtol=1e-6, atol=1e-6 * 250e3)
+    np.testing.assert_allclose(f.foundation, f0.foundation, rtol=0, atol=1e-9 * 250e3)
+    # but the pairs carry it: the guides of the knives do not, O3 does
+    assert np.nanmax(np.abs(f.reaction("O3") - f0.reaction("O3"))) > 100e3
+    assert all(v < 1e-9 for v in f.checks.values()), f.checks
+
+
+def test_one_tool_leaves_the_reaction_on_the_frame():
+    """A press: one tool, the workpiece on the frame.  The force on the tool and the reaction on
+    the frame cancel in the foundation; the drive still does the work."""
+    b = TEXTBOOK["offset slider-crank"][0]()
+    data = b.to_dict()
+    data["links"]["slider"]["mass"] = 2.0
+    data["loads"] = {
+        "press": {
+            "type": "process",
+            "tools": ["slider.B"],
+            "axis": "0 deg",
+            "workpiece": [280, 380],
+            "penetration": [0, 0.5, 1.0],
+            "force": ["0 N", "2 kN", "0 N"],
+        }
+    }
+    mech = lw.compile(lw.from_dict(data))
+    data.pop("loads")
+    bare = lw.compile(lw.from_dict(data))
+    f, f0 = lw.forces(mech, steps=360), lw.forces(bare, steps=360)
+    kin = f.kinematics
+    x = kin.position("slider.B")[:, 0]
+    vx = kin.velocity("slider.B")[:, 0]
+    eps = np.maximum(0.380 - x, 0) / 0.100
+    force = np.where(vx < 0, np.interp(eps, [0, 0.5, 1.0], [0, 2000, 0], right=0.0), 0.0)
+    assert force.max() > 1500
+    np.testing.assert_allclose(f.foundation, f0.foundation, rtol=0, atol=1e-9 * 2000)
+    extra = (f.driving_torque - f0.driving_torque) * mech.drive_speed[0]
+    np.testing.assert_allclose(extra, force * -vx, rtol=1e-9, atol=1e-9 * 2000)
+    assert all(v < 1e-9 for v in f.checks.values()), f.checks
