@@ -115,10 +115,21 @@ def test_newtons_second_law_for_the_coupler():
     np.testing.assert_allclose(moment, 0.07 * kin.epsilon(i), rtol=1e-9, atol=1e-9)
 
 
+def assert_free_bodies_balance(f):
+    """Each group, cut free, is in equilibrium under the pair forces read back at their points."""
+    for body in f.free_bodies():
+        scale = max(np.nanmax(np.abs(c.force)) for c in body.external)
+        scale = max(scale, np.nanmax(np.abs(body.loads[..., :2])))
+        arm = np.nanmax(np.abs(np.concatenate([c.point for c in body.external], -1))) + 1.0
+        assert np.nanmax(np.abs(body.residual[..., :2])) < 1e-9 * scale, body.label
+        assert np.nanmax(np.abs(body.residual[..., 2])) < 1e-9 * scale * arm, body.label
+
+
 @pytest.mark.parametrize("name", ["double-cut-shears", "watt-six-bar", "stephenson-six-bar", "class3-triad"])
 def test_power_and_momentum_balances_of_the_examples(name):
     f = lw.forces(lw.compile(lw.example(name)), steps=180)
     assert all(v < 1e-9 for v in f.checks.values()), f.checks
+    assert_free_bodies_balance(f)
 
 
 @settings(max_examples=20, deadline=None)
@@ -134,6 +145,7 @@ def test_random_four_bars_balance_power_and_momentum(dims):
     mech = lw.compile(lw.from_dict(data))
     f = lw.forces(mech, steps=72)
     assert all(v < 1e-9 for v in f.checks.values()), f.checks
+    assert_free_bodies_balance(f)
 
 
 def test_redundant_constraints_are_refused():

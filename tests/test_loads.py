@@ -9,6 +9,7 @@ import pytest
 
 import linkwork as lw
 from mechanisms import TEXTBOOK
+from test_kinetostatics import assert_free_bodies_balance
 
 
 def _four_bar_with_loads(moment_table):
@@ -93,7 +94,7 @@ def test_one_tool_leaves_the_reaction_on_the_frame():
     the frame cancel in the foundation; the drive still does the work."""
     b = TEXTBOOK["offset slider-crank"][0]()
     data = b.to_dict()
-    data["links"]["slider"]["mass"] = 2.0
+    data["links"]["slider"].update(mass=2.0, com=[30, 20], inertia=0.01)  # off the guide: the guide takes a couple
     data["loads"] = {
         "press": {
             "type": "process",
@@ -118,3 +119,5 @@ def test_one_tool_leaves_the_reaction_on_the_frame():
     extra = (f.driving_torque - f0.driving_torque) * mech.drive_speed[0]
     np.testing.assert_allclose(extra, force * -vx, rtol=1e-9, atol=1e-9 * 2000)
     assert all(v < 1e-9 for v in f.checks.values()), f.checks
+    assert np.abs(f.pair_moment("guide")).max() > 0.1
+    assert_free_bodies_balance(f)

@@ -34,6 +34,7 @@ import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads, bolt_speed
+from linkwork.kinetostatics.free_body import FreeBody, free_bodies
 from linkwork.kinetostatics.reactions import (
     Loads,
     foundation,
@@ -43,7 +44,7 @@ from linkwork.kinetostatics.reactions import (
     solve_reactions,
 )
 
-__all__ = ["Bolts", "Forces", "Loads", "bolt_loads", "bolt_speed", "forces"]
+__all__ = ["Bolts", "Forces", "FreeBody", "Loads", "bolt_loads", "bolt_speed", "forces"]
 
 
 @dataclass(frozen=True)
@@ -150,6 +151,12 @@ class Forces:
             "foundation_force_vs_momentum": rel(self.foundation_all[..., :2], self.foundation_momentum_all[..., :2]),
             "foundation_moment_vs_momentum": rel(self.foundation_all[..., 2], self.foundation_momentum_all[..., 2]),
         }
+
+    def free_bodies(self) -> list[FreeBody]:
+        """Every Assur group cut free: the forces of the other links on it, its loads, and the
+        sum of them all (the residual, zero for a correct solution); see
+        :mod:`linkwork.kinetostatics.free_body`."""
+        return free_bodies(self)
 
     def bolts(self) -> Bolts:
         """Pull, push and shear of the foundation bolts and where their maxima occur.

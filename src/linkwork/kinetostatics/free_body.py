@@ -1,0 +1,129 @@
+"""Free bodies of the Assur groups: the forces of every pair on the group's links, and their balance.
+
+The solution by Lagrange multipliers gives the reactions of all pairs at
+once; this module reads them back pair by pair as forces acting at points
+(Newton's third law: the first link on the second, and the opposite back),
+and adds them up, with the applied and inertia loads, for each group of the
+structural decomposition, as the graphical method of kinetostatics does.  The
+sum (the ``residual``) vanishes when the reactions are right; it is computed
+from the pair forces and the points, not from the constraint Jacobian.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.structure.constraints import REVOLUTE
+
+
+@dataclass(frozen=True)
+class Contact:
+    """The force of link ``other`` on link ``on`` in joint ``joint``.
+
+    ``force`` (V, A, 2) acts at ``point`` (V, A, 2); ``moment`` (V, A) is the couple of a prismatic
+    pair or of a revolute drive; for a drive, ``joint`` is the driven joint and ``drive`` is True.
+    """
+
+    joint: str
+    on: int
+    other: int
+    force: np.ndarray
+    point: np.ndarray
+    moment: np.ndarray
+    drive: bool = False
+
+
+@dataclass(frozen=True)
+class FreeBody:
+    """One Assur group (or the driving link) cut free.
+
+    Attributes
+    ----------
+    label : str
+        ``II(2,3) RRR``-style label of the group.
+    links : tuple of int
+    external : list of Contact
+        The forces of the links outside the group (frame and drive included) on its links.
+    internal : list of Contact
+        The group's internal pairs: the force of the first-named link on the second.
+    loads : ndarray (V, A, 3)
+        Applied and inertia loads of the group's links: force and moment about the global origin.
+    residual : ndarray (V, A, 3)
+        Sum of the external contacts and the loads: zero for a correct solution.
+    """
+
+    label: str
+    links: tuple[int, ...]
+    external: list[Contact]
+    internal: list[Contact]
+    loads: np.ndarray
+    residual: np.ndarray
+
+
+def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
+    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
+
+
+def contacts(forces: Any) -> list[Contact]:
+    """Every pair and drive, each side: the force on ``on`` from ``other``."""
+    m = forces.mechanism
+    kin = forces.kinematics
+    shape = kin.valid_all.shape
+    zero = np.zeros(shape)
+    lam = forces.multipliers
+    out: list[Contact] = []
+    for k in range(m.n_pairs):
+        a, b = (int(x) for x in m.pair_links[k])
+        point = kin._point(m.point_names[int(m.pair_points[k, 1])])[0]
+        f = forces.pair_force(k)
+        couple = zero if m.pair_type[k] == REVOLUTE else lam[..., 2 * k]
+        out.append(Contact(m.pair_joint[k], b, a, f, point, couple))
+        out.append(Contact(m.pair_joint[k], a, b, -f, point, -couple))
+    for d, k in enumerate(m.drive_pair):
+        a, b = (int(x) for x in m.pair_links[k])
+        value = lam[..., 2 * m.n_pairs + d]
+        point = kin._point(m.point_names[int(m.pair_points[k, 1])])[0]
+        if m.pair_type[k] == REVOLUTE:
+            f, couple = np.zeros(shape + (2,)), value
+        else:
+            theta = kin.pose[..., a, 2]
+            ux, uy = kin.axis[k, 0], kin.axis[k, 1]
+            c, s = np.cos(theta), np.sin(theta)
+            f = value[..., None] * np.stack([c * ux - s * uy, s * ux + c * uy], -1)
+            couple = zero
+        out.append(Contact(m.pair_joint[k], b, a, f, point, couple, drive=True))
+        out.append(Contact(m.pair_joint[k], a, b, -f, point, -couple, drive=True))
+    return out
+
+
+def free_bodies(forces: Any) -> list[FreeBody]:
+    """The free body of every group of the structural decomposition, in solving order."""
+    m = forces.mechanism
+    q = forces.kinematics.pose
+    total = forces.loads.total  # about each link's origin
+    about_origin = total.copy()
+    about_origin[..., 2] += _cross(q[..., :2], total[..., :2])
+    every = contacts(forces)
+    out = []
+    for group in m.structure.groups:
+        links = set(group.links)
+        external = [c for c in every if c.on in links and c.other not in links]
+        internal = [c for c in every if c.on in links and c.other in links and c.on == _second(m, c)]
+        loads = np.sum(about_origin[..., sorted(links), :], axis=-2)
+        residual = loads.copy()
+        for c in external:
+            residual[..., :2] += c.force
+            residual[..., 2] += _cross(c.point, c.force) + c.moment
+        out.append(FreeBody(group.label, tuple(group.links), external, internal, loads, residual))
+    return out
+
+
+def _second(m: Any, c: Contact) -> int:
+    """The second-named link of the contact's pair (so each internal pair is listed once)."""
+    for k in range(m.n_pairs):
+        if m.pair_joint[k] == c.joint and {int(x) for x in m.pair_links[k]} == {c.on, c.other}:
+            return int(m.pair_links[k, 1])
+    return c.on
