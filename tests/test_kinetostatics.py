@@ -152,3 +152,45 @@ def test_redundant_constraints_are_refused():
     mech = lw.compile(TEXTBOOK["parallelogram"][0]().build())
     with pytest.raises(lw.errors.LinkworkError, match="statically indeterminate"):
         lw.forces(mech, steps=12)
+
+
+def test_full_balancing_of_a_four_bar_by_linearly_independent_vectors():
+    """Counterweights on crank and rocker against the closed form of the method of linearly
+    independent vectors (Berkof-Lowen): substituting the coupler direction from the loop
+    a e^(i th2) + b e^(i th3) = d + c e^(i th4) into the total mass moment, its terms in
+    e^(i th2) and e^(i th4) must vanish.  After balancing, the full solution shows no shaking force."""
+    mech = lw.compile(lw.example("four-bar"))
+    names = mech.link_names
+    crank, coupler, rocker = (names.index(n) for n in ("crank", "coupler", "rocker"))
+    pts = {n: mech.point_local[mech.point_index(n)] for n in ("crank.A", "coupler.B", "rocker.B")}
+    a, b, c = (float(np.hypot(*pts[n])) for n in ("crank.A", "coupler.B", "rocker.B"))
+    m, r = mech.link_mass, mech.link_com[:, 0] + 1j * mech.link_com[:, 1]
+    p2 = -(m[crank] * r[crank] + m[coupler] * a * (1 - r[coupler] / b))
+    p4 = -(m[rocker] * r[rocker] + m[coupler] * c / b * r[coupler])
+    result = lw.balance(mech, ["crank", "rocker"])
+    for w, p in zip(result.counterweights, (p2, p4), strict=True):
+        assert w.mass_radius == pytest.approx(abs(p), rel=1e-9)
+        assert w.angle == pytest.approx(np.angle(p), abs=1e-9)
+    before = np.abs(result.before.shaking_force).max()
+    assert before > 1.0
+    assert np.abs(result.after.shaking_force).max() < 1e-9 * before
+    assert all(v < 1e-9 for v in result.after.checks.values())
+
+
+def test_first_harmonic_balancing_of_the_seed_000_shears():
+    """The mass moment of crank, rod and knife about O is (m1 l cos phi, (2 m1 + 2 m2) l sin phi):
+    an ellipse with semi-axes X = 1.5 and Y = 9 kg m, the sum of a circle (X + Y) / 2 turning with
+    the crank and a circle (Y - X) / 2 turning against it.  A crank counterweight cancels the first,
+    (X + Y) / 2 = 5.25 kg m opposite the crank; the second is left, a shaking force of constant
+    magnitude (Y - X) / 2 omega^2 = 375 N."""
+    mech = lw.compile(lw.example("shears-slider-crank"))
+    x_axis, y_axis = M1 * L, (M1 / 2 + 3 * M1 / 2 + 2 * M2) * L
+    result = lw.balance(mech, ["crank"], harmonic=1)
+    (w,) = result.counterweights
+    assert w.mass_radius == pytest.approx((x_axis + y_axis) / 2, rel=1e-9)
+    assert abs(np.cos(w.angle) + 1) < 1e-9  # opposite the crank
+    assert w.mass == pytest.approx(w.mass_radius / L, rel=1e-12)  # default radius: the crank's length
+    before = np.hypot(*result.before.shaking_force.T)
+    after = np.hypot(*result.after.shaking_force.T)
+    assert before.max() == pytest.approx(y_axis * OMEGA**2, rel=1e-9)
+    np.testing.assert_allclose(after, (y_axis - x_axis) / 2 * OMEGA**2, rtol=1e-9)

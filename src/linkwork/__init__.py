@@ -27,6 +27,7 @@ _LAZY = {
     "forces": ("linkwork.kinetostatics", "forces"),
     "Forces": ("linkwork.kinetostatics", "Forces"),
     "bolt_speed": ("linkwork.kinetostatics", "bolt_speed"),
+    "balance": ("linkwork.kinetostatics", "balance"),
 }
 
 __all__ = ["__version__", *_LAZY]

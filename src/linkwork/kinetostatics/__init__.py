@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.kinetostatics.balancing import Balance, Counterweight, balance
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads, bolt_speed
 from linkwork.kinetostatics.free_body import FreeBody, free_bodies
 from linkwork.kinetostatics.reactions import (
@@ -44,7 +45,18 @@ from linkwork.kinetostatics.reactions import (
     solve_reactions,
 )
 
-__all__ = ["Bolts", "Forces", "FreeBody", "Loads", "bolt_loads", "bolt_speed", "forces"]
+__all__ = [
+    "Balance",
+    "Bolts",
+    "Counterweight",
+    "Forces",
+    "FreeBody",
+    "Loads",
+    "balance",
+    "bolt_loads",
+    "bolt_speed",
+    "forces",
+]
 
 
 @dataclass(frozen=True)
@@ -132,6 +144,19 @@ class Forces:
         """Force (x, y) in N and moment about the origin in N m that the machine (frame included)
         puts on its foundation: ``(..., n_angles, 3)``.  y up: a positive y force pulls the bolts."""
         return self._out(self.foundation_all)
+
+    @property
+    def shaking_force(self) -> np.ndarray:
+        """Resultant of the inertia forces of the links, N: ``(..., n_angles, 2)``; what the
+        foundation feels beyond the weights and the external loads."""
+        return self._out(np.sum(self.loads.inertia[..., :2], axis=-2))
+
+    @property
+    def shaking_moment(self) -> np.ndarray:
+        """Resultant moment of the inertia loads about the origin, N m: ``(..., n_angles)``."""
+        q, f = self.kinematics.pose, self.loads.inertia
+        about = f[..., 2] + q[..., 0] * f[..., 1] - q[..., 1] * f[..., 0]
+        return self._out(np.sum(about, axis=-1))
 
     @property
     def checks(self) -> dict[str, float]:

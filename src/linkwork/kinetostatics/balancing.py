@@ -1,0 +1,201 @@
+"""Balancing the shaking force with counterweights on links that turn about frame pivots.
+
+The shaking force is the resultant of the inertia forces of the moving links,
+``-sum m_i a_Ci``: what the foundation feels beyond the weights.  A
+counterweight of mass ``mu`` on link ``j``, at the local vector ``c`` from the
+link's pivot on the frame, adds ``-mu d2/dt2 (R(theta_j) c)`` to it, which is
+linear in the mass-radius vector ``p = mu c``.  The ``p`` of all counterweights
+together therefore follow from one linear least-squares problem over the cycle:
+minimise the sum of the squared shaking forces (full balancing; it is exact,
+a zero residual, where the links chosen can balance the mechanism fully, as
+the crank and rocker of a four-bar can), or of their first harmonics in the
+crank angle (first-harmonic balancing, the usual choice for a slider-crank,
+whose slider a rotating counterweight can balance only in part).
+
+The balanced mechanism (links with the counterweights' mass, centre of mass
+and inertia added, as point masses) is then solved again in full, so the
+figures after balancing (shaking force and moment, driving torque, joint
+reactions) come from the same solver as those before, independently of the
+least-squares step.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+from linkwork.structure.constraints import REVOLUTE
+
+
+@dataclass(frozen=True)
+class Counterweight:
+    """A counterweight on ``link``: mass-radius product ``mass_radius`` (kg m) at ``angle`` (rad)
+    from the link's local x axis, measured from its pivot ``pivot`` (a frame joint); ``mass`` (kg)
+    at ``radius`` (m)."""
+
+    link: str
+    pivot: str
+    mass_radius: float
+    angle: float
+    radius: float
+    mass: float
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "link": self.link,
+            "pivot": self.pivot,
+            "mass_radius_kg_m": self.mass_radius,
+            "angle_deg": math.degrees(self.angle),
+            "radius_m": self.radius,
+            "mass_kg": self.mass,
+        }
+
+
+@dataclass(frozen=True)
+class Balance:
+    """Counterweights and the forces before and after.
+
+    Attributes
+    ----------
+    counterweights : list of Counterweight
+    harmonic : int or None
+        1 for first-harmonic balancing, None for full.
+    mechanism : Mechanism
+        The balanced mechanism.
+    before, after : Forces
+    """
+
+    counterweights: list[Counterweight]
+    harmonic: int | None
+    mechanism: Any
+    before: Any
+    after: Any
+
+    def summary(self) -> dict[str, dict[str, float]]:
+        """Peak and RMS shaking force (N), peak shaking moment (N m), peak driving torque (N m), and
+        the largest force in any revolute pair (N), before and after."""
+
+        def figures(f: Any) -> dict[str, float]:
+            force = np.hypot(*np.moveaxis(f.shaking_force, -1, 0))
+            pairs = [
+                np.nanmax(np.hypot(*np.moveaxis(f.pair_force(k), -1, 0)))
+                for k in range(f.mechanism.n_pairs)
+                if f.mechanism.pair_type[k] == REVOLUTE
+            ]
+            return {
+                "shaking_force_peak": float(np.nanmax(force)),
+                "shaking_force_rms": float(np.sqrt(np.nanmean(force**2))),
+                "shaking_moment_peak": float(np.nanmax(np.abs(f.shaking_moment))),
+                "driving_torque_peak": float(np.nanmax(np.abs(f.driving_torque))),
+                "pair_force_peak": float(max(pairs)) if pairs else 0.0,
+            }
+
+        return {"before": figures(self.before), "after": figures(self.after)}
+
+
+def _pivot(mech: Any, link: int) -> tuple[int, int]:
+    """(pair, point) of the revolute pair joining ``link`` to the frame."""
+    for k in range(mech.n_pairs):
+        a, b = (int(x) for x in mech.pair_links[k])
+        if mech.pair_type[k] == REVOLUTE and {a, b} == {0, link}:
+            return k, int(mech.pair_points[k, 1 if b == link else 0])
+    raise LinkworkError(
+        f'link "{mech.link_names[link]}" does not turn about a frame pivot: counterweights go on links '
+        "jointed to the frame by a revolute pair (crank, rocker)"
+    )
+
+
+def balance(
+    mech: Any,
+    links: list[str] | tuple[str, ...],
+    *,
+    harmonic: int | None = None,
+    radius: dict[str, float] | float | None = None,
+    steps: int = 360,
+    speed: Any = None,
+) -> Balance:
+    """Counterweights on ``links`` that cancel the shaking force (``harmonic=None``) or its first
+    harmonic in the crank angle (``harmonic=1``).
+
+    ``radius``: the distance (m) of each counterweight from its pivot (one value, or one per link);
+    default: the distance of the link's farthest point.  The solution is at ``steps`` crank
+    angles over a turn of the file's uniform drive (or ``speed``).
+    """
+    from linkwork.kinetostatics import forces
+
+    if harmonic not in (None, 1):
+        raise LinkworkError(f"harmonic: expected 1 (first-harmonic balancing) or None (full), got {harmonic}")
+    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+        raise LinkworkError("balancing needs one crank (a revolute drive) turning uniformly")
+    if steps < 8:
+        raise LinkworkError(f"steps: expected at least 8 angles over the turn, got {steps}")
+    if not links:
+        raise LinkworkError("give at least one link for a counterweight")
+    index = []
+    for name in links:
+        if name not in mech.link_names[1:]:
+            from linkwork.spec.checks import suggest
+
+            raise LinkworkError(f'no link "{name}"{suggest(name, mech.link_names[1:])}')
+        index.append(mech.link_names.index(name))
+    before = forces(mech, steps=steps, speed=speed)
+    kin = before.kinematics
+    if not np.all(kin.valid):
+        raise LinkworkError("the mechanism does not assemble over the whole turn: it cannot be balanced over it")
+    theta, w, e = kin.pose[0, :, :, 2], kin.vel[0, :, :, 2], kin.acc[0, :, :, 2]
+    columns = []
+    for j in index:
+        c, s = np.cos(theta[:, j]), np.sin(theta[:, j])
+        ww, ee = w[:, j] ** 2, e[:, j]
+        # d2/dt2 of R(theta) e_x and R(theta) e_y
+        columns.append(np.stack([-ee * s - ww * c, ee * c - ww * s], -1))
+        columns.append(np.stack([-ee * c + ww * s, -ee * s - ww * c], -1))
+    a = np.stack(columns, -1)  # (A, 2, 2k): acceleration of the mass moment per unit p
+    b = -before.shaking_force  # sum m a_C, (A, 2)
+    if harmonic == 1:
+        phi = kin.angles
+        basis = np.stack([np.cos(phi), np.sin(phi)], -1) * math.sqrt(2.0 / len(phi))  # orthonormal on the grid
+        a = _first_harmonic(a, basis)
+        b = _first_harmonic(b, basis)
+    p, *_ = np.linalg.lstsq(a.reshape(-1, a.shape[-1]), -b.reshape(-1), rcond=None)
+    weights = []
+    mass, com, inertia = (np.array(x, dtype=float) for x in (mech.link_mass, mech.link_com, mech.link_inertia))
+    for n, j in enumerate(index):
+        px, py = p[2 * n], p[2 * n + 1]
+        _, point = _pivot(mech, j)
+        pivot_local = mech.point_local[point]
+        own = mech.point_local[mech.point_link == j]
+        r = radius.get(mech.link_names[j]) if isinstance(radius, dict) else radius
+        r = float(r) if r is not None else float(np.max(np.hypot(*(own - pivot_local).T)))
+        if not r > 0:
+            raise LinkworkError(f'radius of the counterweight on "{mech.link_names[j]}": expected a positive length')
+        mr = math.hypot(px, py)
+        mu = mr / r
+        weights.append(
+            Counterweight(mech.link_names[j], mech.pair_joint[_pivot(mech, j)[0]], mr, math.atan2(py, px), r, mu)
+        )
+        if mu > 0:
+            at = pivot_local + np.array([px, py]) / mr * r
+            total = mass[j] + mu
+            new_com = (mass[j] * com[j] + mu * at) / total
+            inertia[j] += mass[j] * np.sum((com[j] - new_com) ** 2) + mu * np.sum((at - new_com) ** 2)
+            mass[j], com[j] = total, new_com
+
+    def frozen(x: np.ndarray) -> np.ndarray:
+        x.flags.writeable = False
+        return x
+
+    balanced = dataclasses.replace(mech, link_mass=frozen(mass), link_com=frozen(com), link_inertia=frozen(inertia))
+    after = forces(balanced, steps=steps, speed=speed)
+    return Balance(weights, harmonic, balanced, before, after)
+
+
+def _first_harmonic(x: np.ndarray, basis: np.ndarray) -> np.ndarray:
+    """Projection of series ``x`` (A, ...) onto cos and sin of the crank angle."""
+    coef = np.einsum("ak,a...->k...", basis, x)
+    return np.einsum("ak,k...->a...", basis, coef)
