@@ -1,0 +1,202 @@
+"""``linkwork forces`` and ``linkwork balance``."""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from linkwork.cli.app import FileOrExample, _compile, app, fail
+from linkwork.cli.motion import _angles
+
+
+def _speed(mech: Any, text: str | None) -> float | None:
+    """The drive speed of ``--speed`` in SI, in the file's direction of the drive."""
+    from linkwork.errors import LinkworkError
+    from linkwork.structure.constraints import REVOLUTE
+    from linkwork.units import UnitParseError, parse_quantity
+
+    if text is None:
+        return None
+    revolute = mech.pair_type[mech.drive_pair[0]] == REVOLUTE
+    kind, example = ("angular_speed", "30 rpm") if revolute else ("speed", "0.2 m/s")
+    try:
+        float(text)
+    except ValueError:
+        pass
+    else:
+        fail(LinkworkError(f'--speed: give the unit, e.g. "{example}", got "{text}"'))
+    try:
+        value = parse_quantity(text, kind)
+    except UnitParseError as exc:
+        fail(LinkworkError(f"--speed: {exc}"))
+    if value < 0:
+        fail(LinkworkError(f'--speed: the direction comes from the file; give a speed from 0 up, got "{text}"'))
+    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
+    return sign * value
+
+
+def _deg(angle: float) -> str:
+    return f"{math.degrees(angle) % 360:.1f} deg"
+
+
+def _peak(values: np.ndarray, angles: np.ndarray) -> tuple[float, float]:
+    i = int(np.nanargmax(np.abs(values)))
+    return float(values[i]), float(angles[i])
+
+
+@app.command()
+def forces(
+    file_or_example: FileOrExample,
+    steps: Annotated[int | None, typer.Option(help="equal steps over one turn of the crank (default 360)")] = None,
+    angles: Annotated[str | None, typer.Option(help="crank angles in degrees, e.g. 0,30,60")] = None,
+    speed: Annotated[str | None, typer.Option(help='uniform drive speed with a unit, e.g. "30 rpm"')] = None,
+    out: Annotated[str | None, typer.Option(help="directory for forces.csv and forces.json")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+) -> None:
+    """Joint reactions, driving torque, foundation and bolt loads over the cycle, with the checks."""
+    from linkwork.errors import LinkworkError
+    from linkwork.io.force_tables import CONVENTION, pair_labels, to_json, write_csv
+    from linkwork.kinetostatics import forces as solve
+
+    mech = _compile(file_or_example)
+    where = _angles(mech, steps, angles)
+    rate = _speed(mech, speed)
+    try:
+        f = solve(mech, **where, speed=rate)
+    except LinkworkError as exc:
+        fail(exc)
+    data = to_json(f)
+    written = []
+    if out is not None:
+        from pathlib import Path
+
+        from linkwork.io.atomic import write_atomic
+
+        try:
+            written.append(write_csv(f, Path(out) / "forces.csv"))
+            text = json.dumps(data)
+            written.append(write_atomic(Path(out) / "forces.json", lambda tmp: tmp.write_text(text, "utf-8")))
+        except OSError as exc:
+            fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
+    if as_json:
+        typer.echo(json.dumps(data))
+        return
+    _report(f, pair_labels(mech), CONVENTION)
+    for path in written:
+        typer.echo(f"  wrote {path}")
+
+
+def _report(f: Any, labels: list[tuple[str, int]], convention: str) -> None:
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.table import Table
+
+    from linkwork.structure.constraints import REVOLUTE
+
+    mech, phi = f.mechanism, f.angles
+    console = Console(highlight=False, width=120)
+    rate = float(f.kinematics.rates[0, 0])
+    revolute = mech.pair_type[mech.drive_pair[0]] == REVOLUTE
+    speed = f"{abs(rate) * 30 / math.pi:.6g} rpm" if revolute else f"{abs(rate):.6g} m/s"
+    ok = np.isfinite(f.driving_torque)
+    console.print(f"{escape(mech.name)}: {len(phi)} positions at {speed}, {int(ok.sum())} solved")
+    if not ok.all():
+        bad = np.degrees(phi[~ok]) % 360
+        console.print(
+            f"  reactions indeterminate (singular or unassembled) at {int((~ok).sum())} positions, "
+            f"e.g. {', '.join(f'{a:.1f}' for a in bad[:6])} deg"
+        )
+    if not ok.any():
+        return
+    unit = "N m" if revolute else "N"
+    t, at = _peak(f.driving_torque, phi)
+    console.print(f"  driving torque: peak {t:.6g} {unit} at {_deg(at)}")
+    table = Table(title="largest pair forces over the cycle", title_justify="left")
+    for col in ("joint", "first on second", "|F| max, N", "at", "moment max, N m"):
+        table.add_column(col)
+    for label, k in labels:
+        force = f.pair_force(k)[0]
+        size = np.hypot(force[:, 0], force[:, 1])
+        value, where = _peak(size, phi)
+        moment = "-"
+        if mech.pair_type[k] != REVOLUTE:
+            moment = f"{_peak(f.multipliers[0, :, 2 * k], phi)[0] + 0.0:.6g}"
+        a, b = (mech.link_names[int(i)] for i in mech.pair_links[k])
+        table.add_row(escape(label), escape(f"{a} on {b}"), f"{value:.6g}", _deg(where), moment)
+    console.print(table)
+    bolts = f.bolts()
+    pull = f"{bolts.pull:.6g} N at {_deg(bolts.pull_angle)}" if bolts.pull > 0 else "none (the machine never lifts)"
+    console.print(f"  foundation: horizontal (bolt shear) max {bolts.shear:.6g} N at {_deg(bolts.shear_angle)}")
+    console.print(f"              pull on the bolts max {pull}")
+    console.print(f"              push on the foundation max {bolts.push:.6g} N at {_deg(bolts.push_angle)}")
+    console.print(f"              moment about the origin max {bolts.moment:.6g} N m at {_deg(bolts.moment_angle)}")
+    shake = np.hypot(f.shaking_force[:, 0], f.shaking_force[:, 1])
+    s, s_at = _peak(shake, phi)
+    m, m_at = _peak(f.shaking_moment, phi)
+    console.print(f"  shaking force max {s:.6g} N at {_deg(s_at)}, shaking moment max {abs(m):.6g} N m at {_deg(m_at)}")
+    checks = ", ".join(f"{k.replace('_', ' ')} {v:.1e}" for k, v in f.checks.items() if math.isfinite(v))
+    console.print(f"  checks (relative discrepancy): {checks}", soft_wrap=True)
+    console.print(f"  {escape(convention)}", soft_wrap=True)
+
+
+@app.command()
+def balance(
+    file_or_example: FileOrExample,
+    links: Annotated[str, typer.Option(help="links for counterweights, e.g. crank,rocker")],
+    first_harmonic: Annotated[
+        bool, typer.Option("--first-harmonic", help="cancel the first harmonic of the shaking force only")
+    ] = False,
+    radius: Annotated[
+        str | None, typer.Option(help='distance of the counterweights from their pivots, e.g. "120 mm"')
+    ] = None,
+    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+) -> None:
+    """Counterweights that cancel the shaking force (or its first harmonic), with the figures before and after."""
+    from linkwork.errors import LinkworkError
+    from linkwork.kinetostatics import balance as solve
+    from linkwork.units import UnitParseError, parse_quantity
+
+    mech = _compile(file_or_example)
+    r = None
+    if radius is not None:
+        try:
+            r = parse_quantity(radius, "length")
+        except UnitParseError as exc:
+            fail(LinkworkError(f"--radius: {exc}"))
+    names = [n.strip() for n in links.split(",") if n.strip()]
+    try:
+        result = solve(mech, names, harmonic=1 if first_harmonic else None, radius=r, steps=steps)
+    except LinkworkError as exc:
+        fail(exc)
+    summary = result.summary()
+    if as_json:
+        out = {
+            "name": mech.name,
+            "mode": "first harmonic" if first_harmonic else "full",
+            "counterweights": [w.as_dict() for w in result.counterweights],
+            **summary,
+        }
+        typer.echo(json.dumps(out))
+        return
+    mode = "first harmonic of the shaking force" if first_harmonic else "shaking force"
+    typer.echo(f"{mech.name}: counterweights against the {mode}")
+    for w in result.counterweights:
+        typer.echo(
+            f"  {w.link}: m r = {w.mass_radius:.6g} kg m at {math.degrees(w.angle):.2f} deg from the link's axis "
+            f"about {w.pivot}; {w.mass:.6g} kg at {w.radius * 1000:.6g} mm"
+        )
+    rows = [
+        ("shaking force, peak", "shaking_force_peak", "N"),
+        ("shaking force, rms", "shaking_force_rms", "N"),
+        ("shaking moment, peak", "shaking_moment_peak", "N m"),
+        ("driving torque, peak", "driving_torque_peak", "N m"),
+        ("largest pin force", "pair_force_peak", "N"),
+    ]
+    typer.echo(f"  {'':24s} {'before':>14s} {'after':>14s}")
+    for text, key, unit in rows:
+        typer.echo(f"  {text + ', ' + unit:24s} {summary['before'][key]:14.6g} {summary['after'][key]:14.6g}")

@@ -1,0 +1,115 @@
+"""Tables of a kinetostatic result: the JSON object of ``linkwork forces --json`` and a CSV file."""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from linkwork.io.atomic import write_atomic
+from linkwork.structure.constraints import REVOLUTE
+
+CONVENTION = (
+    "joints: the force the first-named link exerts on the second (x, y, N); for a prismatic pair "
+    "(guide first) also its moment on the slider (N m) about the slider's point; driving torque: "
+    "what the drive puts on its driven link, counter-clockwise positive; foundation: the force and "
+    "the moment about the origin that the machine puts on its foundation, y up (positive y pulls the bolts)"
+)
+
+
+def pair_labels(mech: Any) -> list[tuple[str, int]]:
+    """One label per elementary pair: the joint's name, with ``:link`` where a joint has several
+    pairs (a compound hinge, a pin in a slot)."""
+    out = []
+    for k, joint in enumerate(mech.pair_joint):
+        several = mech.pair_joint.count(joint) > 1
+        out.append((f"{joint}:{mech.link_names[int(mech.pair_links[k, 1])]}" if several else joint, k))
+    return out
+
+
+def _single(f: Any) -> None:
+    if f.kinematics.variants:
+        from linkwork.errors import LinkworkError
+
+        raise LinkworkError("this table holds one mechanism, not design variants")
+
+
+def _arr(a: Any) -> list[float | None]:
+    return [None if not math.isfinite(float(x)) else float(x) for x in np.asarray(a, dtype=float).ravel()]
+
+
+def _clean(value: float) -> float | None:
+    return value if math.isfinite(value) else None
+
+
+def to_json(f: Any) -> dict[str, Any]:
+    """The ``linkwork forces --json`` object (one mechanism)."""
+    _single(f)
+    mech = f.mechanism
+    joints = {}
+    for label, k in pair_labels(mech):
+        force = f.pair_force(k)[0]
+        entry: dict[str, Any] = {
+            "type": "revolute" if mech.pair_type[k] == REVOLUTE else "prismatic",
+            "links": [mech.link_names[int(i)] for i in mech.pair_links[k]],
+            "fx": _arr(force[:, 0]),
+            "fy": _arr(force[:, 1]),
+        }
+        if mech.pair_type[k] != REVOLUTE:
+            entry["moment"] = _arr(f.multipliers[0, :, 2 * k])
+        joints[label] = entry
+    found = f.foundation
+    shaking = f.shaking_force
+    torque = f.driving_torque
+    linear = mech.pair_type[mech.drive_pair[0]] != REVOLUTE
+    return {
+        "name": mech.name,
+        "convention": CONVENTION,
+        "units": {"force": "N", "moment": "N m", "driving_torque": "N" if linear else "N m", "angles_deg": "deg"},
+        "angles_deg": _arr(np.degrees(f.angles)),
+        "driving_torque": _arr(torque),
+        "joints": joints,
+        "foundation": {"fx": _arr(found[:, 0]), "fy": _arr(found[:, 1]), "moment": _arr(found[:, 2])},
+        "shaking": {"fx": _arr(shaking[:, 0]), "fy": _arr(shaking[:, 1]), "moment": _arr(f.shaking_moment)},
+        "loads": {name: _arr(v[0]) for name, v in f.loads.external.magnitude.items()},
+        "bolts": {k: _clean(v) for k, v in f.bolts().as_dict().items()},
+        "checks": {k: _clean(v) for k, v in f.checks.items()},
+        "valid": [bool(x) for x in np.asarray(f.kinematics.valid).ravel()],
+    }
+
+
+def write_csv(f: Any, path: str | Path) -> Path:
+    """One row per angle: the driving torque, every pair's force (the first-named link on the
+    second, named in the header), the foundation and shaking loads, the external loads."""
+    _single(f)
+    mech = f.mechanism
+    unit = "N" if mech.pair_type[mech.drive_pair[0]] != REVOLUTE else "N m"
+    cols: list[tuple[str, np.ndarray]] = [
+        ("angle [deg]", np.degrees(f.angles)),
+        (f"driving_torque [{unit}]", f.driving_torque),
+    ]
+    for label, k in pair_labels(mech):
+        force = f.pair_force(k)[0]
+        a, b = (mech.link_names[int(i)] for i in mech.pair_links[k])
+        label = f"{label} ({a} on {b})"
+        cols += [(f"{label}.fx [N]", force[:, 0]), (f"{label}.fy [N]", force[:, 1])]
+        if mech.pair_type[k] != REVOLUTE:
+            cols.append((f"{label}.moment [N m]", f.multipliers[0, :, 2 * k]))
+    found = f.foundation
+    cols += [("foundation.fx [N]", found[:, 0]), ("foundation.fy [N]", found[:, 1])]
+    cols += [("foundation.moment [N m]", found[:, 2])]
+    cols += [("shaking.fx [N]", f.shaking_force[:, 0]), ("shaking.fy [N]", f.shaking_force[:, 1])]
+    cols += [("shaking.moment [N m]", f.shaking_moment)]
+    cols += [(f"load.{name} [N or N m]", v[0]) for name, v in f.loads.external.magnitude.items()]
+
+    def writer(tmp: Path) -> None:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            w = csv.writer(fh)
+            w.writerow([c[0] for c in cols])
+            for row in zip(*(c[1] for c in cols), strict=True):
+                w.writerow([repr(float(x)) for x in row])
+
+    return write_atomic(path, writer)
