@@ -70,8 +70,9 @@ def test_forces_bad_options_exit_2(args, message):
 
 
 def test_forces_refuses_redundant_constraints_with_a_message(tmp_path):
-    from mechanisms import TEXTBOOK
     from ruamel.yaml import YAML
+
+    from mechanisms import TEXTBOOK
 
     path = tmp_path / "parallelogram.yaml"
     with open(path, "w", encoding="utf-8") as fh:
