@@ -28,13 +28,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.kinetostatics import fast
 from linkwork.kinetostatics.balancing import Balance, Counterweight, balance
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads, bolt_speed
+from linkwork.kinetostatics.external import evaluate
 from linkwork.kinetostatics.free_body import FreeBody, free_bodies
 from linkwork.kinetostatics.reactions import (
     Loads,
@@ -72,15 +75,27 @@ class Forces:
     multipliers : ndarray (V, A, m)
         The reaction of every constraint row (see :meth:`reaction`).
     loads : Loads
-        Applied and inertia loads of every link.
+        Applied and inertia loads of every link (computed when first asked for, as are the checks).
     """
 
     kinematics: Any
     multipliers: np.ndarray
-    loads: Loads
     foundation_all: np.ndarray  # (V, A, 3)
-    foundation_momentum_all: np.ndarray  # (V, A, 3)
-    torque_power_all: np.ndarray  # (V, A, D)
+
+    @cached_property
+    def loads(self) -> Loads:
+        """Applied (gravity, external) and inertia loads of every link."""
+        return inertia_and_gravity(self.kinematics)
+
+    @cached_property
+    def foundation_momentum_all(self) -> np.ndarray:
+        """The foundation loads from the theorem on the change of momentum, (V, A, 3)."""
+        return momentum_check(self.kinematics, self.loads)
+
+    @cached_property
+    def torque_power_all(self) -> np.ndarray:
+        """The driving torque from the power balance, (V, A, D)."""
+        return power_check(self.kinematics, self.loads)
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.kinematics.variants else a[0]
@@ -219,6 +234,11 @@ def forces(
             "statically indeterminate (they depend on the links' elasticity); remove the redundant link"
         )
     kin = kinematics(mech, angles, steps=steps, speed=speed, variants=variants)
-    loads = inertia_and_gravity(kin)
-    lam, frame = solve_reactions(kin, loads)
-    return Forces(kin, lam, loads, foundation(kin, frame, loads), momentum_check(kin, loads), power_check(kin, loads))
+    if not fast.available():
+        loads = inertia_and_gravity(kin)
+        lam, frame = solve_reactions(kin, loads)
+        out = Forces(kin, lam, foundation(kin, frame, loads))
+        object.__setattr__(out, "loads", loads)  # the cached value
+        return out
+    lam, found = fast.run(kin, evaluate(kin) if mech.loads else None)
+    return Forces(kin, lam, found)

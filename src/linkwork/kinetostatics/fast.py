@@ -1,0 +1,298 @@
+"""The reactions solved one sample at a time in machine code (with numba, when installed).
+
+The same mathematics as :func:`linkwork.kinetostatics.reactions.solve_reactions`:
+the constraint Jacobian's rows of each Assur group, from the last group back,
+a small square system per group (Gaussian elimination with partial pivoting),
+the reactions of the groups solved before it as known loads.  The inertia and
+gravity loads are formed in the kernel from the link states; external loads
+come in as generalised forces.  A group whose pivots fall below
+:data:`SINGULAR` relative to its matrix gets NaN reactions, and so do the
+groups solved after it.  ``LINKWORK_NUMBA=0`` turns it off, as for the
+kinematics.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from linkwork.motion.fast import PER_THREAD, THREADS, _pool, njit
+from linkwork.structure.assemble import group_rows
+from linkwork.structure.constraints import REVOLUTE, build_rows
+
+#: Row kinds.
+REV_X, REV_Y, ANGLE, NORMAL, DRIVE_ANGLE, DRIVE_LINE = range(6)
+#: Smallest pivot, relative to the largest entry of a group's matrix, of a solvable group.
+SINGULAR = 1e-12
+
+
+def available() -> bool:
+    from linkwork.motion import fast
+
+    return fast.ENABLED
+
+
+def encode(mech: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Rows ``(m, 6)``: kind, a, b, point of a, point of b, pair; groups in the order they are solved
+    (reverse of the structure), one row of ``(G, 2 + 4 L)`` each: the number of links, the links,
+    the number of the group's rows, its rows, then the rows of the groups solved before it that
+    touch its links (ended by -1); and the rows that touch the frame (ended by -1)."""
+    rows = []
+    for k in range(mech.n_pairs):
+        a, b = (int(x) for x in mech.pair_links[k])
+        pa, pb = (int(x) for x in mech.pair_points[k])
+        if mech.pair_type[k] == REVOLUTE:
+            rows += [[REV_X, a, b, pa, pb, k], [REV_Y, a, b, pa, pb, k]]
+        else:
+            rows += [[ANGLE, a, b, pa, pb, k], [NORMAL, a, b, pa, pb, k]]
+    for k in mech.drive_pair:
+        a, b = (int(x) for x in mech.pair_links[k])
+        kind = DRIVE_ANGLE if mech.pair_type[k] == REVOLUTE else DRIVE_LINE
+        rows.append([kind, a, b, int(mech.pair_points[k, 0]), int(mech.pair_points[k, 1]), int(k)])
+    spec = build_rows(mech.pair_type, mech.pair_links, mech.drive_pair)
+    placed: set[int] = {0}
+    owned = []
+    for group in mech.structure.groups:
+        links = set(group.links)
+        owned.append((list(group.links), group_rows(spec, placed, links)))
+        placed |= links
+    width = max(len(links) for links, _ in owned)
+    known_width = len(rows) + 1
+    table = np.full((len(owned), 2 + 4 * width + known_width), -1, dtype=np.int64)
+    done: list[int] = []
+    for g, (links, sel) in enumerate(reversed(owned)):
+        table[g, 0] = len(links)
+        table[g, 1 : 1 + len(links)] = links
+        table[g, 1 + width] = len(sel)
+        table[g, 2 + width : 2 + width + len(sel)] = sel
+        known = [r for r in done if rows[r][1] in links or rows[r][2] in links]
+        table[g, 2 + 4 * width : 2 + 4 * width + len(known)] = known
+        done += sel
+    on_frame = [r for r in range(len(rows)) if rows[r][1] == 0 or rows[r][2] == 0] + [-1]
+    return np.array(rows, dtype=np.int64).reshape(-1, 6), table, np.array([width, *on_frame])
+
+
+def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Multipliers ``(V, A, m)`` and the foundation loads ``(V, A, 3)``: the pairs' force and moment
+    on the frame plus the frame's own applied loads (its weight, external loads on it).
+
+    ``applied``: the external loads (:class:`linkwork.kinetostatics.external.Applied`) or None.
+    """
+    mech = kin.mechanism
+    rows, groups, width = encode(mech)
+    n_var, n_ang = kin.valid_all.shape
+    local = np.ascontiguousarray(np.moveaxis(kin.local[..., 0], 2, 0))  # (V, P, 2)
+    origin = np.ascontiguousarray(np.moveaxis(kin.origin[..., 0], 2, 0))  # (V, M, 2)
+    axis = np.ascontiguousarray(np.moveaxis(kin.axis[..., 0], 2, 0))
+    forces = applied.forces if applied is not None else []
+    moments = applied.moments if applied is not None else []
+    shape = (n_var, n_ang)
+    f_link = np.array([f[0] for f in forces], dtype=np.int64)
+    f_val = np.stack([np.broadcast_to(f[3], shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
+    f_pos = np.stack([np.broadcast_to(f[1], shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
+    m_link = np.array([m[0] for m in moments], dtype=np.int64)
+    m_val = np.stack([np.broadcast_to(m[1], shape) for m in moments]) if moments else np.zeros((0, 1, 1))
+    mass = np.ascontiguousarray(mech.link_mass, dtype=float)
+    com = np.ascontiguousarray(mech.link_com, dtype=float)
+    inertia = np.ascontiguousarray(mech.link_inertia, dtype=float)
+    m = len(rows)
+    lam = np.empty((n_var, n_ang, m))
+    frame = np.empty((n_var, n_ang, 3))
+    size = 3 * int(width[0])
+    on_frame = width[1:]
+    n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
+    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
+
+    def part(lo: int, hi: int) -> None:
+        _kernel(
+            rows, groups, on_frame, kin.q, kin.v, kin.a, local, origin, axis, mass, com, inertia,
+            float(mech.gravity), f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi,
+            np.empty((mech.n_links_total, 6)), np.empty((m, 6)), np.empty((size, size)), np.empty(size),
+            np.empty(m), np.zeros((m, 8)),
+        )  # fmt: skip
+
+    if len(bounds) == 2:
+        part(0, n_ang)
+    else:
+        list(_pool().map(part, bounds[:-1], bounds[1:]))
+    return lam, frame
+
+
+def _row_geometry(rows, local, origin, axis, var, G):
+    """Local coordinates each row needs, for one design variant: point of a, point of b, guide
+    direction and origin (local to the guide)."""
+    for r in range(rows.shape[0]):
+        pa, pb, k = rows[r, 3], rows[r, 4], rows[r, 5]
+        if pa >= 0:
+            G[r, 0], G[r, 1] = local[var, pa, 0], local[var, pa, 1]
+        if pb >= 0:
+            G[r, 2], G[r, 3] = local[var, pb, 0], local[var, pb, 1]
+        G[r, 4], G[r, 5] = axis[var, k, 0], axis[var, k, 1]
+        G[r, 6], G[r, 7] = origin[var, k, 0], origin[var, k, 1]
+
+
+def _rows_at(rows, q, G, var, i, J, Q):
+    """Jacobian entries of every row at one sample: J[r] = d/d(x_a, y_a, th_a, x_b, y_b, th_b).
+    ``Q[n, 3:6]`` holds cos and sin of every link's angle, and the angle."""
+    for r in range(rows.shape[0]):
+        kind, a, b = rows[r, 0], rows[r, 1], rows[r, 2]
+        if kind == ANGLE or kind == DRIVE_ANGLE:
+            J[r, 0], J[r, 1], J[r, 2], J[r, 3], J[r, 4], J[r, 5] = 0.0, 0.0, -1.0, 0.0, 0.0, 1.0
+            continue
+        ca, sa, cb, sb = Q[a, 3], Q[a, 4], Q[b, 3], Q[b, 4]
+        rbx, rby = cb * G[r, 2] - sb * G[r, 3], sb * G[r, 2] + cb * G[r, 3]  # R_b p_b
+        if kind == REV_X:
+            ray = sa * G[r, 0] + ca * G[r, 1]
+            J[r, 0], J[r, 1], J[r, 2], J[r, 3], J[r, 4], J[r, 5] = 1.0, 0.0, -ray, -1.0, 0.0, rby
+            continue
+        if kind == REV_Y:
+            rax = ca * G[r, 0] - sa * G[r, 1]
+            J[r, 0], J[r, 1], J[r, 2], J[r, 3], J[r, 4], J[r, 5] = 0.0, 1.0, rax, 0.0, -1.0, -rbx
+            continue
+        ux, uy = G[r, 4], G[r, 5]
+        gx, gy = ca * ux - sa * uy, sa * ux + ca * uy  # the guide direction, global
+        if kind == NORMAL:
+            gx, gy = -gy, gx
+        cx, cy = ca * G[r, 6] - sa * G[r, 7], sa * G[r, 6] + ca * G[r, 7]  # R_a c
+        dx = q[b, 0, var, i] + rbx - q[a, 0, var, i] - cx
+        dy = q[b, 1, var, i] + rby - q[a, 1, var, i] - cy
+        # d(v)/d(theta_a) = perp(v); d(c)/d(theta_a) = perp(R_a c)
+        J[r, 0], J[r, 1] = -gx, -gy
+        J[r, 2] = (-gy * dx + gx * dy) - (gx * -cy + gy * cx)
+        J[r, 3], J[r, 4] = gx, gy
+        J[r, 5] = gx * -rby + gy * rbx
+
+
+def _kernel(
+    rows, groups, on_frame, q, v, a, local, origin, axis, mass, com, inertia, g,
+    f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi, Q, J, M, x, mu, G,
+):  # fmt: skip
+    n_links = q.shape[0]
+    n_rows = rows.shape[0]
+    n_var = lam.shape[0]
+    width = (groups.shape[1] - 2 - n_rows - 1) // 4
+    known0 = 2 + 4 * width
+    for var in range(n_var):
+        _row_geometry(rows, local, origin, axis, var, G)
+        for n in range(n_links):
+            Q[n, 5] = math.nan
+        for i in range(lo, hi):
+            # applied and inertia loads of every link, about its origin
+            Q[0, 3], Q[0, 4] = 1.0, 0.0  # the frame does not move
+            for n in range(n_links):
+                th, w, e = q[n, 2, var, i], v[n, 2, var, i], a[n, 2, var, i]
+                if n > 0 and th != Q[n, 5]:  # a slider's angle stays put: no new cos and sin
+                    Q[n, 3], Q[n, 4], Q[n, 5] = math.cos(th), math.sin(th), th
+                c, s = Q[n, 3], Q[n, 4]
+                rx = c * com[n, 0] - s * com[n, 1]
+                ry = s * com[n, 0] + c * com[n, 1]
+                acx = a[n, 0, var, i] - e * ry - w * w * rx
+                acy = a[n, 1, var, i] + e * rx - w * w * ry
+                fx = -mass[n] * acx
+                fy = -mass[n] * acy - mass[n] * g
+                Q[n, 0] = fx
+                Q[n, 1] = fy
+                Q[n, 2] = rx * fy - ry * fx - inertia[n] * e
+            for kk in range(f_link.shape[0]):
+                n = f_link[kk]
+                fx, fy = f_val[kk, var, i, 0], f_val[kk, var, i, 1]
+                Q[n, 0] += fx
+                Q[n, 1] += fy
+                Q[n, 2] += (f_pos[kk, var, i, 0] - q[n, 0, var, i]) * fy - (f_pos[kk, var, i, 1] - q[n, 1, var, i]) * fx
+            for kk in range(m_link.shape[0]):
+                Q[m_link[kk], 2] += m_val[kk, var, i]
+            _rows_at(rows, q, G, var, i, J, Q)
+            bad = False
+            for gi in range(groups.shape[0]):
+                nl = groups[gi, 0]
+                nr = groups[gi, 1 + width]
+                size = 3 * nl
+                # M[c, j]: column j of the group's row j, c over the group's link coordinates
+                big = 0.0
+                for j in range(nr):
+                    r = groups[gi, 2 + width + j]
+                    ra, rb = rows[r, 1], rows[r, 2]
+                    for li in range(nl):
+                        link = groups[gi, 1 + li]
+                        for d in range(3):
+                            val = 0.0
+                            if ra == link:
+                                val = J[r, d]
+                            elif rb == link:
+                                val = J[r, 3 + d]
+                            M[3 * li + d, j] = val
+                            big = max(big, abs(val))
+                # right-hand side: -Q less the reactions already known
+                for li in range(nl):
+                    link = groups[gi, 1 + li]
+                    for d in range(3):
+                        x[3 * li + d] = -Q[link, d]
+                for kk in range(known0, groups.shape[1]):
+                    r = groups[gi, kk]
+                    if r < 0:
+                        break
+                    lr = mu[r]
+                    ra, rb = rows[r, 1], rows[r, 2]
+                    for li in range(nl):
+                        link = groups[gi, 1 + li]
+                        if ra == link:
+                            for d in range(3):
+                                x[3 * li + d] -= J[r, d] * lr
+                        elif rb == link:
+                            for d in range(3):
+                                x[3 * li + d] -= J[r, 3 + d] * lr
+                # Gaussian elimination with partial pivoting
+                ok = not bad and big > 0.0
+                for col in range(size):
+                    if not ok:
+                        break
+                    piv = col
+                    for rr in range(col + 1, size):
+                        if abs(M[rr, col]) > abs(M[piv, col]):
+                            piv = rr
+                    if not abs(M[piv, col]) > SINGULAR * big:
+                        ok = False
+                        break
+                    if piv != col:
+                        for cc in range(col, size):
+                            M[col, cc], M[piv, cc] = M[piv, cc], M[col, cc]
+                        x[col], x[piv] = x[piv], x[col]
+                    inv = 1.0 / M[col, col]
+                    for rr in range(col + 1, size):
+                        f = M[rr, col] * inv
+                        if f != 0.0:
+                            for cc in range(col + 1, size):
+                                M[rr, cc] -= f * M[col, cc]
+                            x[rr] -= f * x[col]
+                if ok:
+                    for col in range(size - 1, -1, -1):
+                        acc = x[col]
+                        for cc in range(col + 1, size):
+                            acc -= M[col, cc] * x[cc]
+                        x[col] = acc / M[col, col]
+                for j in range(nr):
+                    r = groups[gi, 2 + width + j]
+                    mu[r] = x[j] if ok else math.nan
+                bad = bad or not ok
+            for r in range(n_rows):
+                lam[var, i, r] = mu[r]
+            for d in range(3):
+                total = Q[0, d]  # the frame's weight and the external loads on it
+                for kk in range(on_frame.shape[0]):
+                    r = on_frame[kk]
+                    if r < 0:
+                        break
+                    if rows[r, 1] == 0:
+                        total += J[r, d] * mu[r]
+                    if rows[r, 2] == 0:
+                        total += J[r, 3 + d] * mu[r]
+                frame[var, i, d] = total
+
+
+if njit is not None:  # pragma: no branch
+    _opts = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
+    _row_geometry = njit(inline="always", **_opts)(_row_geometry)
+    _rows_at = njit(inline="always", **_opts)(_rows_at)
+    _kernel = njit(**_opts)(_kernel)
