@@ -64,6 +64,11 @@ def test_seed_000_foundation_bolts_and_torque_against_sympy():
     for pull in (weight, M_HOUSING * G):
         expected = math.sqrt((pull + weight) / coefficient)
         assert lw.bolt_speed(mech, pull=pull) == pytest.approx(expected, rel=1e-9)
+    # the paper prints F_max = 3/4 m1 omega^2 l (1/2 + 1/2 summed as 3/4) and, for the last question,
+    # omega = sqrt(m1 g / ((m1 + m2) l)) = 4.67 rad/s: there the bolts carry no pull at all
+    assert bolts.shear > 1.3 * 0.75 * M1 * OMEGA**2 * L
+    paper = math.sqrt(M1 * G / ((M1 + M2) * L))
+    assert lw.forces(mech, steps=720, speed=paper).bolts().pull == 0.0
 
 
 def test_statics_by_virtual_work():

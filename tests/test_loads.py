@@ -121,3 +121,12 @@ def test_one_tool_leaves_the_reaction_on_the_frame():
     assert all(v < 1e-9 for v in f.checks.values()), f.checks
     assert np.abs(f.pair_moment("guide")).max() > 0.1
     assert_free_bodies_balance(f)
+
+
+def test_the_drive_does_the_cutting_work_of_seed_002_per_turn():
+    """At a uniform crank speed gravity and inertia do no net work over a turn, so the mean driving
+    torque times 2 pi is the cutting work: h * P_max * (area under s(eps)) = 0.10 m * 250 kN * 0.30
+    = 7500 J (the trapezoid through (0, 0), (0.15, 1), (0.30, 1), (0.45, 0))."""
+    f = lw.forces(lw.compile(lw.example("double-cut-shears")), steps=7200)
+    work = np.mean(f.driving_torque) * 2 * np.pi
+    assert work == pytest.approx(0.10 * 250e3 * 0.30, rel=2e-4)  # the rectangle rule over the cut
