@@ -121,6 +121,11 @@ def _interp(x: np.ndarray, table: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
     return np.where(np.isnan(x), np.nan, y)
 
 
+def _along(x: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """Component of vectors (..., 2) along ``u`` (written out: ``@`` would wake BLAS threads that spin)."""
+    return x[..., 0] * u[0] + x[..., 1] * u[1]
+
+
 def evaluate(kin: Any) -> Applied:
     """The external loads of ``kin.mechanism`` over a kinematics result."""
     mech = kin.mechanism
@@ -154,12 +159,12 @@ def evaluate(kin: Any) -> Applied:
         lo, hi = load.workpiece
         tools = [state(p) for p in load.points]
         (p1, v1) = tools[0]
-        depth = np.maximum(hi - p1 @ u, 0.0)
-        closing = -(v1 @ u)
+        depth = np.maximum(hi - _along(p1, u), 0.0)
+        closing = -_along(v1, u)
         if len(tools) == 2:
             p2, v2 = tools[1]
-            depth = depth + np.maximum(p2 @ u - lo, 0.0)
-            closing = closing + v2 @ u
+            depth = depth + np.maximum(_along(p2, u) - lo, 0.0)
+            closing = closing + _along(v2, u)
         eps = depth / (hi - lo)
         size = np.where(closing > 0, _interp(eps, load.table), 0.0)
         size = np.where(np.isnan(closing) | np.isnan(eps), np.nan, size)
