@@ -93,3 +93,18 @@ def test_balance_json_four_bar_and_bad_link():
     assert "does not turn about a frame pivot" in bad.stderr
     typo = runner.invoke(app, ["balance", "four-bar", "--links", "crnk"])
     assert typo.exit_code == 2 and 'did you mean "crank"' in typo.stderr
+
+
+def test_forces_lift_speed_and_free_bodies_in_json():
+    """The bolts start to be pulled when 2 (m1 + m2) l omega^2 reaches the weight (m + 2 m1 + m2) g."""
+    result = runner.invoke(app, ["forces", "shears-slider-crank", "--steps", "72", "--pull", "0 N", "--json"])
+    assert result.exit_code == 0, result.output
+    out = json.loads(result.stdout)
+    g, m1, m2, m, length = 9.81, 10.0, 20.0, 500.0, 0.15
+    lift = ((m + 2 * m1 + m2) * g / (2 * (m1 + m2) * length)) ** 0.5
+    assert out["bolts"]["speed_for_pull_rad_s"] == pytest.approx(lift, rel=1e-9)
+    assert [b["group"] for b in out["groups"]] == ["I(0,1) R", "II(2,3) RRP"]
+    assert out["groups"][1]["internal"] == ["B"]
+    assert all(b["residual"] < 1e-12 for b in out["groups"])
+    bad = runner.invoke(app, ["forces", "shears-slider-crank", "--pull", "5 kg"])
+    assert bad.exit_code == 2 and "--pull: expected a force" in bad.stderr

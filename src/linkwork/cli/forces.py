@@ -54,6 +54,10 @@ def forces(
     steps: Annotated[int | None, typer.Option(help="equal steps over one turn of the crank (default 360)")] = None,
     angles: Annotated[str | None, typer.Option(help="crank angles in degrees, e.g. 0,30,60")] = None,
     speed: Annotated[str | None, typer.Option(help='uniform drive speed with a unit, e.g. "30 rpm"')] = None,
+    pull: Annotated[
+        str | None,
+        typer.Option(help='also find the crank speed at which the pull on the bolts reaches this force, e.g. "5 kN"'),
+    ] = None,
     out: Annotated[str | None, typer.Option(help="directory for forces.csv and forces.json")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
@@ -65,11 +69,16 @@ def forces(
     mech = _compile(file_or_example)
     where = _angles(mech, steps, angles)
     rate = _speed(mech, speed)
+    target = _force(pull)
     try:
         f = solve(mech, **where, speed=rate)
+        lift = _lift(mech, target) if target is not None else None
     except LinkworkError as exc:
         fail(exc)
     data = to_json(f)
+    if lift is not None:
+        data["bolts"]["pull_target"] = target
+        data["bolts"]["speed_for_pull_rad_s"] = lift if math.isfinite(lift) else None
     written = []
     if out is not None:
         from pathlib import Path
@@ -85,12 +94,44 @@ def forces(
     if as_json:
         typer.echo(json.dumps(data))
         return
-    _report(f, pair_labels(mech), CONVENTION)
+    _report(f, pair_labels(mech), CONVENTION, data["groups"])
+    if lift is not None:
+        text = (
+            f"{lift:.6g} rad/s ({lift * 30 / math.pi:.6g} rpm)"
+            if math.isfinite(lift)
+            else "none: the machine's inertia never lifts it"
+        )
+        typer.echo(f"  crank speed at which the pull on the bolts reaches {target:.6g} N: {text}")
     for path in written:
         typer.echo(f"  wrote {path}")
 
 
-def _report(f: Any, labels: list[tuple[str, int]], convention: str) -> None:
+def _force(text: str | None) -> float | None:
+    from linkwork.errors import LinkworkError
+    from linkwork.units import UnitParseError, parse_quantity
+
+    if text is None:
+        return None
+    try:
+        value = parse_quantity(text, "force")
+    except UnitParseError as exc:
+        fail(LinkworkError(f"--pull: {exc}"))
+    if value < 0:
+        fail(LinkworkError(f'--pull: expected a force from 0 up, got "{text}"'))
+    return value
+
+
+def _lift(mech: Any, pull: float) -> float:
+    from linkwork.errors import LinkworkError
+    from linkwork.kinetostatics import bolt_speed
+    from linkwork.structure.constraints import REVOLUTE
+
+    if mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+        raise LinkworkError("--pull needs a crank (a revolute drive) turning uniformly")
+    return bolt_speed(mech, pull=pull)
+
+
+def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list[dict[str, Any]]) -> None:
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
@@ -128,6 +169,12 @@ def _report(f: Any, labels: list[tuple[str, int]], convention: str) -> None:
         a, b = (mech.link_names[int(i)] for i in mech.pair_links[k])
         table.add_row(escape(label), escape(f"{a} on {b}"), f"{value:.6g}", _deg(where), moment)
     console.print(table)
+    for g in groups:
+        console.print(
+            f"  {escape(g['group'])}: held by {escape(', '.join(g['external']))}"
+            + (f"; inner {escape(', '.join(g['internal']))}" if g["internal"] else "")
+            + f"; balance of the free body {g['residual']:.1e}"
+        )
     bolts = f.bolts()
     pull = f"{bolts.pull:.6g} N at {_deg(bolts.pull_angle)}" if bolts.pull > 0 else "none (the machine never lifts)"
     console.print(f"  foundation: horizontal (bolt shear) max {bolts.shear:.6g} N at {_deg(bolts.shear_angle)}")

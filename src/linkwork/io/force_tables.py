@@ -76,9 +76,32 @@ def to_json(f: Any) -> dict[str, Any]:
         "shaking": {"fx": _arr(shaking[:, 0]), "fy": _arr(shaking[:, 1]), "moment": _arr(f.shaking_moment)},
         "loads": {name: _arr(v[0]) for name, v in f.loads.external.magnitude.items()},
         "bolts": {k: _clean(v) for k, v in f.bolts().as_dict().items()},
+        "groups": groups(f),
         "checks": {k: _clean(v) for k, v in f.checks.items()},
         "valid": [bool(x) for x in np.asarray(f.kinematics.valid).ravel()],
     }
+
+
+def groups(f: Any) -> list[dict[str, Any]]:
+    """Each Assur group's free body: its joints, and the largest residual of its balance relative to
+    the largest force on it (zero for a correct solution)."""
+    mech = f.mechanism
+    out = []
+    for body in f.free_bodies():
+        scale = max([float(np.nanmax(np.abs(c.force), initial=0.0)) for c in body.external] + [1e-300])
+        arm = 1.0 + max(float(np.nanmax(np.abs(c.point), initial=0.0)) for c in body.external)
+        force = float(np.nanmax(np.abs(body.residual[..., :2]), initial=0.0)) / scale
+        moment = float(np.nanmax(np.abs(body.residual[..., 2]), initial=0.0)) / (scale * arm)
+        out.append(
+            {
+                "group": body.label,
+                "links": [mech.link_names[i] for i in body.links],
+                "external": sorted({c.joint + (" (drive)" if c.drive else "") for c in body.external}),
+                "internal": sorted({c.joint for c in body.internal}),
+                "residual": max(force, moment),
+            }
+        )
+    return out
 
 
 def write_csv(f: Any, path: str | Path) -> Path:
