@@ -16,9 +16,9 @@ several runs, one process.
 from __future__ import annotations
 
 import sys
-import time
 
 import numpy as np
+from timing import best
 
 import linkwork as lw
 from linkwork.kinetostatics import fast
@@ -26,20 +26,6 @@ from linkwork.kinetostatics.reactions import inertia_and_gravity, solve_reaction
 from linkwork.motion import fast as motion_fast
 from linkwork.motion.geometry import Geometry
 from linkwork.structure.constraints import residuals_and_jacobian
-
-
-def best(fn, repeat=7, budget=5.0):
-    """Best wall time of ``fn()`` over a few runs (after one warm-up)."""
-    fn()
-    times = []
-    start = time.perf_counter()
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-        if time.perf_counter() - start > budget:
-            break
-    return min(times)
 
 
 def numpy_groups(mech, phi):
@@ -76,7 +62,7 @@ def main() -> None:
             err = float(np.max(np.abs(torque[ok] - reference[ok])) / scale)
             if err > 1e-9:
                 sys.exit(f"{label}: driving torque differs from linkwork's by {err:.1e} (relative)")
-            t = best(fn)
+            t = best(fn, budget=5.0)
         finally:
             fast.THREADS, motion_fast.THREADS = saved
         rows.append((label, t, err))

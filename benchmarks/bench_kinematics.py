@@ -19,30 +19,16 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
+from timing import best
 
 import linkwork as lw
 from linkwork.motion import fast
 
 A, B, C, D = 0.10, 0.35, 0.25, 0.30
 W = 2 * math.pi  # 60 rpm
-
-
-def best(fn, repeat=7, budget=3.0):
-    """Best wall time of ``fn()`` over a few runs (after one warm-up)."""
-    fn()
-    times = []
-    start = time.perf_counter()
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-        if time.perf_counter() - start > budget:
-            break
-    return min(times)
 
 
 def numpy_closed_form(phi, sigma):

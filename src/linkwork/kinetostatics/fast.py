@@ -18,9 +18,9 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.kinetostatics.reactions import group_order
 from linkwork.motion.fast import PER_THREAD, THREADS, _pool, njit
-from linkwork.structure.assemble import group_rows
-from linkwork.structure.constraints import REVOLUTE, build_rows
+from linkwork.structure.constraints import REVOLUTE
 
 #: Row kinds.
 REV_X, REV_Y, ANGLE, NORMAL, DRIVE_ANGLE, DRIVE_LINE = range(6)
@@ -51,13 +51,7 @@ def encode(mech: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         a, b = (int(x) for x in mech.pair_links[k])
         kind = DRIVE_ANGLE if mech.pair_type[k] == REVOLUTE else DRIVE_LINE
         rows.append([kind, a, b, int(mech.pair_points[k, 0]), int(mech.pair_points[k, 1]), int(k)])
-    spec = build_rows(mech.pair_type, mech.pair_links, mech.drive_pair)
-    placed: set[int] = {0}
-    owned = []
-    for group in mech.structure.groups:
-        links = set(group.links)
-        owned.append((list(group.links), group_rows(spec, placed, links)))
-        placed |= links
+    owned = group_order(mech)
     width = max(len(links) for links, _ in owned)
     known_width = len(rows) + 1
     table = np.full((len(owned), 2 + 4 * width + known_width), -1, dtype=np.int64)

@@ -68,6 +68,19 @@ def inertia_and_gravity(kin: Any) -> Loads:
     return Loads(applied, inertia, com, vc, ac, external)
 
 
+def group_order(mech: Any) -> list[tuple[list[int], list[int]]]:
+    """The links of each Assur group and the constraint rows it owns (the rows between its links
+    and the links placed before it), in solving order."""
+    rows = build_rows(mech.pair_type, mech.pair_links, mech.drive_pair)
+    placed: set[int] = {0}
+    owned = []
+    for group in mech.structure.groups:
+        links = set(group.links)
+        owned.append((list(group.links), group_rows(rows, placed, links)))
+        placed |= links
+    return owned
+
+
 def solve_reactions(kin: Any, loads: Loads) -> tuple[np.ndarray, np.ndarray]:
     """Multipliers of every constraint row ``(V, A, m)``, group by group from the last group back,
     and the generalised force the pairs put on the frame ``(V, A, 3)`` (force, moment about the origin).
@@ -79,13 +92,7 @@ def solve_reactions(kin: Any, loads: Loads) -> tuple[np.ndarray, np.ndarray]:
     m = kin.mechanism
     geom = Geometry(*(np.moveaxis(g, (0, 1), (2, 3)) for g in (kin.local, kin.origin, kin.axis)))
     _, jac = residuals_and_jacobian(kin.pose, m, geom=geom)
-    rows = build_rows(m.pair_type, m.pair_links, m.drive_pair)
-    placed: set[int] = {0}
-    owned = []
-    for group in m.structure.groups:
-        links = set(group.links)
-        owned.append((list(group.links), group_rows(rows, placed, links)))
-        placed |= links
+    owned = group_order(m)
     rhs_all = -loads.total.reshape(loads.total.shape[:2] + (-1,))  # (V, A, 3N)
     lam = np.full(jac.shape[:-1], np.nan)
     done: list[int] = []
