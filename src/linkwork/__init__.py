@@ -28,6 +28,8 @@ _LAZY = {
     "Forces": ("linkwork.kinetostatics", "Forces"),
     "bolt_speed": ("linkwork.kinetostatics", "bolt_speed"),
     "balance": ("linkwork.kinetostatics", "balance"),
+    "reduced": ("linkwork.machine", "reduced"),
+    "dynamics": ("linkwork.machine", "dynamics"),
 }
 
 __all__ = ["__version__", *_LAZY]

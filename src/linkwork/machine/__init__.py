@@ -1,0 +1,143 @@
+"""Machine dynamics: reduced inertia and loads, the drive, forward simulation, flywheel sizing.
+
+>>> import linkwork as lw
+>>> from linkwork.machine import ConstantTorque, Drive
+>>> red = lw.reduced(lw.compile(lw.load("four-bar")), steps=360)
+>>> red.inertia.shape
+(360,)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from linkwork.machine.drive import ConstantTorque, Drive, InductionMotor, LinearMotor
+from linkwork.machine.flywheel import Flywheel, constant_moment_cycle, size_flywheel
+from linkwork.machine.reduced import Reduced, reduced
+from linkwork.machine.simulate import Motion, Turn, simulate
+
+__all__ = [
+    "ConstantTorque",
+    "Drive",
+    "Dynamics",
+    "Flywheel",
+    "InductionMotor",
+    "LinearMotor",
+    "Motion",
+    "Reduced",
+    "Turn",
+    "balance_speed",
+    "constant_moment_cycle",
+    "dynamics",
+    "reduced",
+    "simulate",
+    "size_flywheel",
+]
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    """Reduced quantities, the simulated runs with the drive, and the flywheel sized for ``delta``.
+
+    ``startup`` is the run from rest; for a machine with process loads it runs idle (no workpiece:
+    a shears is brought up to speed before the first cut), and ``motion`` then continues from its
+    steady state with the process loads to the steady working cycle.  Without process loads the
+    two are the same run.
+    """
+
+    reduced: Reduced
+    drive: Drive
+    motion: Motion
+    flywheel: Flywheel | None
+    startup: Motion
+
+    @property
+    def startup_time(self) -> float:
+        """Time (s) from rest until the mean speed of the turns stays within 2 % of its final value."""
+        return self.startup.startup_time()
+
+    @property
+    def delta(self) -> float:
+        """Coefficient of speed fluctuation of the steady cycle."""
+        return self.motion.last.delta
+
+    @property
+    def mean_power(self) -> float:
+        """Mean power of the loads over the steady cycle, W (what the drive gives at the crank)."""
+        return -self.reduced.mean_load * self.motion.last.omega_mean
+
+
+def balance_speed(drive: Drive, moment: float) -> float:
+    """The crank speed (rad/s) at which the drive gives ``moment`` on the stable (falling) part of
+    its characteristic, the highest such speed; NaN if there is none (a constant torque)."""
+    import numpy as np
+
+    hi = 1.0
+    while drive.moment(hi) > moment and hi < 1e6:
+        hi *= 2.0
+    if not drive.moment(hi) <= moment:
+        return float("nan")
+    lo = hi / 2.0 if hi > 1.0 else 0.0
+    if drive.moment(lo) < moment:
+        grid = np.linspace(0.0, hi, 4097)
+        above = np.flatnonzero(drive.moment(grid) >= moment)
+        if len(above) == 0:
+            return float("nan")
+        lo = float(grid[above[-1]])
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if drive.moment(mid) >= moment:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def dynamics(
+    mech: Any,
+    drive: Drive,
+    *,
+    delta: float | None = None,
+    speed: float | None = None,
+    steps: int = 3600,
+    omega0: float = 0.0,
+    start: float | None = None,
+    turns: int = 500,
+) -> Dynamics:
+    """Run the machine unit with ``drive`` from ``omega0`` to its steady cycle.
+
+    With ``delta``, the flywheel is first sized for that coefficient of speed fluctuation by the
+    energy method, at the mean crank speed ``speed`` (default: where the drive's moment balances the
+    loads' mean moment, or the file's speed for a drive without such a point), and put on the drive's
+    ``flywheel_on`` shaft; the run then checks it.  The run starts at the turning angle ``start``
+    (rad from the assembly angle; default: where the loads resist least, e.g. the knives open).
+    """
+    import dataclasses
+    import math
+
+    import numpy as np
+
+    red = reduced(mech, steps)
+    if start is None:
+        start = float(red.psi[int(np.argmax(red.load))])
+    fly = None
+    if delta is not None:
+        if speed is None:
+            speed = balance_speed(drive, -red.mean_load)
+        if speed is None or not math.isfinite(speed):
+            speed = abs(float(mech.drive_speed[0]))
+        base = drive.with_flywheel(0.0)
+        fly = size_flywheel(red, delta, speed, base.inertia)
+        shaft = fly.flywheel if drive.flywheel_on == "crank" else fly.on_motor_shaft(drive.ratio)
+        drive = drive.with_flywheel(shaft)
+    process = [load for load in mech.loads if load.kind == "process"]
+    if not process:
+        motion = simulate(red, drive, omega0=omega0, start=start, turns=turns)
+        return Dynamics(red, drive, motion, fly, motion)
+    idle = dataclasses.replace(mech, loads=tuple(load for load in mech.loads if load.kind != "process"))
+    startup = simulate(reduced(idle, steps), drive, omega0=omega0, start=start, turns=turns)
+    motion = simulate(
+        red, drive, omega0=float(startup.omega[-1]), start=start + 2 * np.pi * len(startup.turns), turns=turns
+    )
+    return Dynamics(red, drive, motion, fly, startup)

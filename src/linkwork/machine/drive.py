@@ -1,0 +1,136 @@
+"""The drive of a machine unit: motor characteristic, gear, flywheel.
+
+A motor characteristic gives the torque on the motor shaft against its
+speed.  The gear (ratio ``u = omega_motor / omega_crank``, efficiency
+``eta``) turns it into a moment on the crank, ``u eta M(u omega)``; the
+rotor and a flywheel on the motor shaft add ``u^2 J`` to the reduced
+inertia, a flywheel on the crank shaft adds its own inertia.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+
+
+@dataclass(frozen=True)
+class ConstantTorque:
+    """A torque independent of the speed, N m."""
+
+    torque: float
+
+    def __call__(self, omega: Any) -> Any:
+        return self.torque + 0.0 * np.asarray(omega)
+
+
+@dataclass(frozen=True)
+class LinearMotor:
+    """A straight characteristic: ``stall`` torque at rest falling to zero at ``no_load`` speed (rad/s)
+    (a DC shunt motor, or the working part of an induction motor's)."""
+
+    stall: float
+    no_load: float
+
+    def __call__(self, omega: Any) -> Any:
+        return self.stall * (1.0 - np.asarray(omega) / self.no_load)
+
+
+@dataclass(frozen=True)
+class InductionMotor:
+    """An induction motor by the Kloss formula ``M = 2 M_k / (s / s_k + s_k / s)``.
+
+    From the rated ``power`` (W) at the rated ``speed`` (rad/s), the ``synchronous`` speed (rad/s)
+    and the breakdown torque ratio ``breakdown = M_k / M_n``:
+    ``M_n = P / omega_n``, ``s_n = 1 - omega_n / omega_s``, ``s_k = s_n (lambda + sqrt(lambda^2 - 1))``.
+    """
+
+    power: float
+    speed: float
+    synchronous: float
+    breakdown: float = 2.0
+
+    def __post_init__(self) -> None:
+        if not 0 < self.speed < self.synchronous:
+            raise LinkworkError(
+                f"induction motor: the rated speed ({self.speed:.6g} rad/s) must lie between 0 and the "
+                f"synchronous speed ({self.synchronous:.6g} rad/s)"
+            )
+        if not self.breakdown > 1:
+            raise LinkworkError(f"induction motor: the breakdown torque ratio must exceed 1, got {self.breakdown}")
+        if not self.power > 0:
+            raise LinkworkError(f"induction motor: the rated power must be positive, got {self.power}")
+
+    @property
+    def rated_torque(self) -> float:
+        return self.power / self.speed
+
+    @property
+    def critical_slip(self) -> float:
+        s_n = 1.0 - self.speed / self.synchronous
+        lam = self.breakdown
+        return s_n * (lam + math.sqrt(lam * lam - 1.0))
+
+    def __call__(self, omega: Any) -> Any:
+        s = 1.0 - np.asarray(omega, dtype=float) / self.synchronous
+        sk = self.critical_slip
+        mk = self.breakdown * self.rated_torque
+        return 2 * mk * s * sk / (s * s + sk * sk)
+
+
+@dataclass(frozen=True)
+class Drive:
+    """Motor, gear and flywheel of a machine unit.
+
+    Attributes
+    ----------
+    motor : callable
+        Torque (N m) on the motor shaft against its speed (rad/s).
+    ratio : float
+        ``u = omega_motor / omega_crank``.
+    efficiency : float
+        Of the gear, applied to the motor torque.
+    rotor : float
+        Inertia of the rotor and everything else on the motor shaft, kg m^2.
+    flywheel : float
+        Inertia of a flywheel, kg m^2, on the shaft named by ``flywheel_on``.
+    flywheel_on : str
+        ``"motor"`` or ``"crank"``.
+    """
+
+    motor: Any
+    ratio: float = 1.0
+    efficiency: float = 1.0
+    rotor: float = 0.0
+    flywheel: float = 0.0
+    flywheel_on: str = "crank"
+
+    def __post_init__(self) -> None:
+        if not self.ratio > 0:
+            raise LinkworkError(f"gear ratio: expected a positive number, got {self.ratio}")
+        if not 0 < self.efficiency <= 1:
+            raise LinkworkError(f"gear efficiency: expected a number in (0, 1], got {self.efficiency}")
+        if self.flywheel_on not in ("motor", "crank"):
+            raise LinkworkError(f'flywheel: on "motor" or "crank", got "{self.flywheel_on}"')
+        if self.rotor < 0 or self.flywheel < 0:
+            raise LinkworkError("inertias of rotor and flywheel must not be negative")
+
+    @property
+    def inertia(self) -> float:
+        """Constant inertia the drive adds on the crank shaft, kg m^2."""
+        on_motor = self.rotor + (self.flywheel if self.flywheel_on == "motor" else 0.0)
+        return on_motor * self.ratio**2 + (self.flywheel if self.flywheel_on == "crank" else 0.0)
+
+    def moment(self, omega: Any) -> Any:
+        """Moment (N m) of the drive on the crank at crank speed ``omega``."""
+        return self.ratio * self.efficiency * self.motor(self.ratio * np.asarray(omega))
+
+    def with_flywheel(self, inertia: float) -> Drive:
+        """The same drive with another flywheel (on the same shaft)."""
+        import dataclasses
+
+        return dataclasses.replace(self, flywheel=inertia)

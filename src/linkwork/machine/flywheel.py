@@ -1,0 +1,103 @@
+"""Flywheel sizing by the energy method, and the exact cycle under a constant drive moment.
+
+Energy method (after Merkalov): at a nearly uniform speed the drive gives
+the constant moment that balances the loads over a turn, ``M_d = -mean(M)``.
+The work ``A(psi) = integral (M + M_d) dpsi`` goes into kinetic energy; of it,
+the mechanism's own reduced inertia takes ``J(psi) omega_m^2 / 2`` (its
+variable part, counted at the mean speed), and the rest changes the energy of
+the constant inertia ``J_c`` (flywheel, rotor): ``E(psi) = A(psi) - J(psi)
+omega_m^2 / 2``.  Its swing over the turn, ``dE = max E - min E``, is
+``J_c omega_m^2 delta``, whence ``J_c = dE / (delta omega_m^2)``.
+
+Under a constant drive moment the energy integral gives the exact periodic
+cycle: ``(J(psi) + J_c) omega^2 / 2 = (J(0) + J_c) omega_0^2 / 2 + A(psi)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+
+
+@dataclass(frozen=True)
+class Flywheel:
+    """A flywheel sized by the energy method.
+
+    Attributes
+    ----------
+    delta : float
+        The coefficient of speed fluctuation asked for.
+    omega_mean : float
+        Mean crank speed, rad/s.
+    energy_swing : float
+        ``dE``, J.
+    inertia : float
+        Constant inertia needed on the crank shaft, kg m^2 (flywheel and rotor together).
+    flywheel : float
+        The flywheel's own inertia on the crank shaft: ``inertia`` less the drive's constant
+        inertia (0 where that is enough already).
+    drive_moment : float
+        The constant drive moment that balances the loads over a turn, N m on the crank.
+    mean_power : float
+        ``drive_moment * omega_mean``, W: what the motor must give on average (at the crank).
+    """
+
+    delta: float
+    omega_mean: float
+    energy_swing: float
+    inertia: float
+    flywheel: float
+    drive_moment: float
+    mean_power: float
+
+    def on_motor_shaft(self, ratio: float) -> float:
+        """The flywheel's inertia if it is put on the motor shaft of a gear ``ratio``, kg m^2."""
+        return self.flywheel / ratio**2
+
+
+def _work(red: Any, moment: float) -> np.ndarray:
+    """Work of the loads and a constant drive ``moment`` from psi = 0 at the grid points, (K,)."""
+    return red.work()[:-1] + moment * red.psi
+
+
+def size_flywheel(red: Any, delta: float, omega_mean: float, drive_inertia: float = 0.0) -> Flywheel:
+    """The constant inertia that keeps the speed fluctuation at ``delta``, by the energy method."""
+    if not 0 < delta < 1:
+        raise LinkworkError(f"delta: expected a coefficient of speed fluctuation between 0 and 1, got {delta}")
+    if not omega_mean > 0:
+        raise LinkworkError(f"mean crank speed: expected a positive speed, got {omega_mean}")
+    moment = -red.mean_load
+    energy = _work(red, moment) - 0.5 * red.inertia * omega_mean**2
+    swing = float(energy.max() - energy.min())
+    need = swing / (delta * omega_mean**2)
+    return Flywheel(delta, omega_mean, swing, need, max(need - drive_inertia, 0.0), moment, moment * omega_mean)
+
+
+def constant_moment_cycle(red: Any, inertia: float, omega_mean: float) -> tuple[np.ndarray, float]:
+    """Exact periodic crank speed over a turn, (K,), under the constant drive moment that balances
+    the loads, with a constant ``inertia`` added, the speed at ``psi = 0`` chosen so that
+    ``(max + min) / 2 = omega_mean``; and its coefficient of speed fluctuation."""
+    work = _work(red, -red.mean_load)
+    total = red.inertia + inertia
+    w0 = omega_mean
+    for _ in range(50):
+        energy = 0.5 * total[0] * w0**2 + work
+        if energy.min() <= 0:
+            raise LinkworkError("the crank stops within the turn at this speed: more inertia or more speed needed")
+        omega = np.sqrt(2 * energy / total)
+        mid = 0.5 * (omega.max() + omega.min())
+        if abs(mid - omega_mean) <= 1e-13 * omega_mean:
+            break
+        w0 += omega_mean - mid
+    return omega, float((omega.max() - omega.min()) / mid)
+
+
+def mean_power(red: Any, omega_mean: float) -> float:
+    """Mean power the drive gives at the crank at a steady mean speed, W (the loads' mean moment
+    times the speed)."""
+    return -red.mean_load * omega_mean if math.isfinite(omega_mean) else math.nan

@@ -1,0 +1,99 @@
+"""Reduced (generalised) inertia and load moment of a one-degree-of-freedom mechanism.
+
+With the turning angle ``psi`` of the crank as the generalised coordinate
+(``psi = 0`` at the assembly angle, increasing in the file's direction of
+rotation), the kinetic energy is ``T = J(psi) psi'^2 / 2`` and the power of
+the loads is ``M(psi) psi'``.  Both follow exactly from a kinematic solution
+at unit crank speed, where every velocity is a first transfer function
+(``d r / d psi``) and, the crank turning uniformly, every acceleration is
+the second (``d2 r / d psi2``):
+
+    J(psi)      = sum m_i |v_Ci|^2 + J_Ci omega_i^2
+    dJ/dpsi     = 2 sum m_i v_Ci . a_Ci + J_Ci omega_i epsilon_i
+    M(psi)      = sum F . v_P + M omega_i        (gravity and the file's loads)
+
+The equation of motion of the machine unit is then
+``J(psi) psi'' + J'(psi) psi'^2 / 2 = M(psi) + M_drive``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+from linkwork.structure.constraints import REVOLUTE
+
+
+@dataclass(frozen=True)
+class Reduced:
+    """Reduced quantities on a uniform grid of the turning angle over one turn.
+
+    Attributes
+    ----------
+    psi : ndarray (K,)
+        Turning angle of the crank from its assembly angle, rad, ``2 pi k / K``.
+    angle : ndarray (K,)
+        The crank's drive angle at each ``psi``.
+    inertia : ndarray (K,)
+        Reduced moment of inertia ``J``, kg m^2, on the crank shaft.
+    inertia_slope : ndarray (K,)
+        ``dJ/dpsi``, kg m^2/rad.
+    load : ndarray (K,)
+        Reduced moment of gravity and the external loads, N m; positive where they drive the
+        crank forward (a cutting load gives a negative moment).
+    """
+
+    psi: np.ndarray
+    angle: np.ndarray
+    inertia: np.ndarray
+    inertia_slope: np.ndarray
+    load: np.ndarray
+
+    def work(self) -> np.ndarray:
+        """Work of the loads from ``psi = 0`` (J), by the trapezoid rule over the grid, ``(K + 1,)``
+        (the last value after the whole turn)."""
+        step = 2 * np.pi / len(self.psi)
+        m = np.append(self.load, self.load[0])
+        return np.concatenate([[0.0], np.cumsum((m[1:] + m[:-1]) * step / 2)])
+
+    @property
+    def mean_load(self) -> float:
+        """Mean reduced load moment over the turn, N m: the drive must supply its opposite."""
+        return float(np.mean(self.load))
+
+
+def reduced(mech: Any, steps: int = 3600) -> Reduced:
+    """Reduced inertia, its slope and the reduced load moment over one turn of the crank.
+
+    Raises
+    ------
+    LinkworkError
+        Unless the mechanism has one crank (a revolute drive) and assembles over the whole turn.
+    """
+    from linkwork.kinetostatics.external import power as external_power
+    from linkwork.kinetostatics.reactions import inertia_and_gravity
+    from linkwork.motion import cycle, kinematics
+
+    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+        raise LinkworkError("machine dynamics needs one crank (a revolute drive)")
+    if steps < 16:
+        raise LinkworkError(f"steps: expected at least 16 angles over the turn, got {steps}")
+    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
+    angle = cycle(mech, steps)
+    kin = kinematics(mech, angle, speed=sign)
+    if not np.all(kin.valid):
+        bad = np.degrees(angle[~np.asarray(kin.valid)][0]) % 360
+        raise LinkworkError(f"the mechanism does not assemble over the whole turn (first at {bad:.1f} deg)")
+    loads = inertia_and_gravity(kin)
+    m, j = mech.link_mass, mech.link_inertia
+    vc, ac = loads.com_velocity[0], loads.com_acceleration[0]
+    w, e = kin.vel[0, :, :, 2], kin.acc[0, :, :, 2]
+    inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1)
+    slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
+    gravity = -mech.gravity * np.sum(m * vc[..., 1], -1)
+    load = gravity + external_power(kin, loads.external)[0]
+    psi = 2 * np.pi * np.arange(steps) / steps
+    return Reduced(psi, angle, inertia, slope, load)

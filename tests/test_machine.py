@@ -1,0 +1,137 @@
+"""Machine dynamics: reduced quantities against finite differences, energy and power balances,
+the flywheel by the energy method against simulation, closed forms of start-up and of the motor."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+import linkwork as lw
+from linkwork.machine import (
+    ConstantTorque,
+    Drive,
+    InductionMotor,
+    constant_moment_cycle,
+    simulate,
+    size_flywheel,
+)
+from linkwork.machine.simulate import Model
+
+
+def _fd_kinetic_and_potential(mech, angle, h=1e-6):
+    """Reduced inertia from the positions alone: velocities of the centres of mass and angular
+    velocities by central differences in the crank angle; the potential energy too."""
+    plus, minus = lw.kinematics(mech, angle + h), lw.kinematics(mech, angle - h)
+
+    def com(k):
+        q = k.pose[0]
+        c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
+        lx, ly = mech.link_com[:, 0], mech.link_com[:, 1]
+        return np.stack([q[..., 0] + c * lx - s * ly, q[..., 1] + s * lx + c * ly], -1), q[..., 2]
+
+    (cp, tp), (cm, tm) = com(plus), com(minus)
+    v = (cp - cm) / (2 * h)
+    w = (np.unwrap(np.stack([tm, tp]), axis=0)[1] - np.unwrap(np.stack([tm, tp]), axis=0)[0]) / (2 * h)
+    inertia = np.sum(mech.link_mass * np.sum(v * v, -1) + mech.link_inertia * w * w, -1)
+    potential = lambda c: np.sum(mech.link_mass * mech.gravity * c[..., 1], -1)  # noqa: E731
+    return inertia, (potential(cp) - potential(cm)) / (2 * h)
+
+
+@pytest.mark.parametrize("name", ["four-bar", "double-cut-shears", "watt-six-bar"])
+def test_reduced_inertia_and_gravity_moment_against_finite_differences(name):
+    mech = lw.compile(lw.example(name))
+    red = lw.reduced(mech, steps=720)
+    inertia, dvdphi = _fd_kinetic_and_potential(mech, red.angle)
+    np.testing.assert_allclose(red.inertia, inertia, rtol=1e-6)
+    slope = (np.roll(red.inertia, -1) - np.roll(red.inertia, 1)) / (2 * (red.psi[1] - red.psi[0]))
+    np.testing.assert_allclose(red.inertia_slope, slope, rtol=0, atol=1e-3 * np.abs(red.inertia_slope).max())
+    if not mech.loads:
+        sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
+        np.testing.assert_allclose(red.load, -sign * dvdphi, rtol=0, atol=1e-6 * np.abs(red.load).max())
+
+
+def test_reduced_load_of_the_shears_does_the_cutting_work():
+    red = lw.reduced(lw.compile(lw.example("double-cut-shears")), steps=7200)
+    assert red.work()[-1] == pytest.approx(-0.10 * 250e3 * 0.30, rel=2e-4)  # gravity gives nothing back
+
+
+def test_energy_of_the_free_mechanism_is_conserved():
+    """No drive, no loads, no friction: J(psi) omega^2 / 2 stays put (to 1e-8 per turn)."""
+    red = lw.reduced(lw.compile(lw.example("four-bar")), steps=720)
+    red = dataclasses.replace(red, load=np.zeros_like(red.load))
+    run = simulate(red, Drive(ConstantTorque(0.0)), omega0=5.0, turns=4, tol=0.0, rtol=1e-12)
+    model = Model(red)
+    energy = np.array([0.5 * model.at(p)[0] * w * w for p, w in zip(run.psi, run.omega, strict=True)])
+    assert len(run.turns) == 4
+    ends = np.array([0.5 * model.at(0.0)[0] * turn.omega_end**2 for turn in run.turns])  # psi back at 0
+    assert np.max(np.abs(ends - energy[0]) / energy[0] / np.arange(1, 5)) < 1e-8
+    assert np.ptp(energy) / energy[0] < 1e-7  # and within the turns
+    assert np.ptp(run.omega) > 0.01  # the speed does vary
+    # the time of a turn, integral of sqrt(J / 2E) dpsi: the periodic trapezoid rule on the exact J
+    period = np.mean(np.sqrt(red.inertia / (2 * energy[0]))) * 2 * np.pi
+    for turn in run.turns:
+        assert turn.end - turn.start == pytest.approx(period, rel=1e-9)
+
+
+def test_steady_cycle_mean_drive_power_equals_mean_load_power():
+    mech = lw.compile(lw.example("double-cut-shears"))
+    motor = InductionMotor(5500.0, 1450 * math.pi / 30, 1500 * math.pi / 30, 2.2)
+    result = lw.dynamics(mech, Drive(motor, ratio=1450 / 30, rotor=0.03, flywheel_on="motor"), delta=0.05)
+    assert result.motion.steady
+    t, psi, omega = result.motion.cycle()
+    drive_work = np.trapezoid(result.drive.moment(omega) * omega, t)  # the motor's torque is smooth in time
+    load_work = result.reduced.work()[-1]  # exact for the model's piecewise linear load moment
+    model = Model(result.reduced, result.drive.inertia)
+    j = model.at(result.motion.psi[-1])[0]
+    change = 0.5 * j * (omega[-1] ** 2 - omega[0] ** 2)  # zero but for the last bit of the approach
+    assert drive_work + load_work - change == pytest.approx(0.0, abs=1e-5 * drive_work)
+    assert drive_work / t[-1] == pytest.approx(result.mean_power, rel=1e-3)
+    # the flywheel sized by the energy method holds delta within 5 % in the simulated cycle
+    assert result.delta == pytest.approx(0.05, rel=0.05)
+    assert result.startup_time > 0
+
+
+def test_flywheel_energy_method_against_the_exact_cycle_and_the_simulation():
+    """Under the constant drive moment that balances the loads, the energy integral gives the exact
+    cycle; the simulation must follow it, and its delta must be the energy method's within 5 %."""
+    red = lw.reduced(lw.compile(lw.example("double-cut-shears")), steps=3600)
+    omega_m = math.pi
+    fly = size_flywheel(red, 0.05, omega_m)
+    omega, delta = constant_moment_cycle(red, fly.inertia, omega_m)
+    assert delta == pytest.approx(0.05, rel=0.05)
+    drive = Drive(ConstantTorque(fly.drive_moment), flywheel=fly.inertia)
+    run = simulate(red, drive, omega0=float(omega[0]), turns=1, rtol=1e-12)
+    exact = np.interp(run.psi, np.append(red.psi, 2 * np.pi), np.append(omega, omega[0]))
+    np.testing.assert_allclose(run.omega, exact, rtol=2e-5)
+    assert fly.mean_power == pytest.approx(-red.mean_load * omega_m)
+
+
+def test_constant_torque_start_up_with_constant_inertia():
+    """A crank balanced about its pivot: J constant, no load; under a torque M it turns through
+    2 pi k at t_k = sqrt(4 pi k J / M), with omega = M t / J."""
+    b = lw.MechanismBuilder("flywheel", units={"angle": "deg"})
+    b.frame(points={"O": (0, 0)}).link("crank", ends=("O", "A"), length=0.2, mass=5.0, com="O", inertia=0.7)
+    b.revolute("O", "frame", "crank").drive("O", speed="60 rpm")
+    red = lw.reduced(lw.compile(b.build()), steps=64)
+    np.testing.assert_allclose(red.inertia, 0.7, rtol=1e-12)
+    run = simulate(red, Drive(ConstantTorque(10.0)), turns=3, tol=0.0)
+    for k, turn in enumerate(run.turns, 1):
+        t = math.sqrt(4 * math.pi * k * 0.7 / 10.0)
+        assert turn.end == pytest.approx(t, rel=1e-9)
+        assert turn.omega_max == pytest.approx(10.0 * t / 0.7, rel=1e-9)
+
+
+def test_induction_motor_by_the_kloss_formula():
+    motor = InductionMotor(5500.0, 1450 * math.pi / 30, 1500 * math.pi / 30, 2.2)
+    rated = 5500.0 / (1450 * math.pi / 30)
+    assert motor(1450 * math.pi / 30) == pytest.approx(rated, rel=1e-12)
+    assert motor(1500 * math.pi / 30) == 0.0
+    slip = (1 / 30) * (2.2 + math.sqrt(2.2**2 - 1))  # s_k = s_n (lambda + sqrt(lambda^2 - 1))
+    assert motor((1 - slip) * 1500 * math.pi / 30) == pytest.approx(2.2 * rated, rel=1e-12)
+    grid = np.linspace(0, 1500 * math.pi / 30, 2001)
+    assert motor(grid).max() == pytest.approx(2.2 * rated, rel=1e-5)  # the breakdown torque is the peak
+    with pytest.raises(lw.errors.LinkworkError, match="synchronous"):
+        InductionMotor(5500.0, 1600 * math.pi / 30, 1500 * math.pi / 30)
