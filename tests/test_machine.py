@@ -4,6 +4,7 @@ the flywheel by the energy method against simulation, closed forms of start-up a
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 
 import numpy as np
@@ -135,3 +136,29 @@ def test_induction_motor_by_the_kloss_formula():
     assert motor(grid).max() == pytest.approx(2.2 * rated, rel=1e-5)  # the breakdown torque is the peak
     with pytest.raises(lw.errors.LinkworkError, match="synchronous"):
         InductionMotor(5500.0, 1600 * math.pi / 30, 1500 * math.pi / 30)
+
+
+def test_dynamics_command_on_the_double_cut_shears(tmp_path):
+    """30 cuts a minute through a 48.33 gear from a 5.5 kW induction motor, flywheel sized for
+    delta = 0.05: the run holds it, and the motor's mean power times the gear's efficiency is the
+    cutting work per second (7500 J a cut)."""
+    from typer.testing import CliRunner
+
+    import linkwork.cli.dynamics  # noqa: F401 - registers the command
+    from linkwork.cli.app import app
+
+    result = CliRunner().invoke(app, ["dynamics", "double-cut-shears", "--json", "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    out = json.loads(result.stdout)
+    for key in ("reduced_inertia", "omega", "delta", "flywheel_inertia", "mean_power", "startup_time"):
+        assert key in out
+    assert out["delta"] == pytest.approx(0.05, rel=0.05)
+    assert out["mean_motor_power"] * 0.95 == pytest.approx(out["mean_power"], rel=1e-3)
+    cuts_per_second = out["omega_mean"] / (2 * math.pi)
+    assert out["mean_power"] == pytest.approx(7500.0 * cuts_per_second, rel=1e-3)
+    assert 29.0 < out["omega_mean"] * 30 / math.pi < 31.0
+    assert (tmp_path / "dynamics.csv").read_text().startswith("psi [deg],t [s],omega [rad/s]")
+    bare = CliRunner().invoke(app, ["dynamics", "four-bar"])
+    assert bare.exit_code == 2 and 'give a "machine:" section' in bare.stderr
+    bad = CliRunner().invoke(app, ["dynamics", "double-cut-shears", "--delta", "2"])
+    assert bad.exit_code == 2 and "--delta" in bad.stderr

@@ -45,6 +45,10 @@ def double_cut_shears_builder():
         penetration=[0, 0.15, 0.30, 0.45],
         force=["0 kN", "250 kN", "250 kN", "0 kN"],
     )
+    motor = {"type": "induction", "power": "5.5 kW", "speed": "1450 rpm", "synchronous": "1500 rpm"}
+    b.machine(
+        {**motor, "breakdown": 2.2, "inertia": "0.03 kg*m^2"}, gear={"ratio": 48.33, "efficiency": 0.95}, delta=0.05
+    )
     return b
 
 

@@ -25,6 +25,7 @@ KINDS: dict[str, tuple[str, str, str]] = {
     "speed": ("a speed", "m/s", "[length]/[time]"),
     "angular_speed": ("an angular speed", "rad/s", "1/[time]"),
     "acceleration": ("an acceleration", "m/s**2", "[length]/[time]**2"),
+    "power": ("a power", "W", "[power]"),
 }
 
 #: Base kinds a file may declare, with their SI defaults (angles in degrees).
@@ -43,6 +44,7 @@ _DERIVED = {
     "speed": "{length}/{time}",
     "angular_speed": "{angle}/{time}",
     "acceleration": "{length}/{time}**2",
+    "power": "{force}*{length}/{time}",
 }
 
 

@@ -153,7 +153,8 @@ def example(name: Annotated[str, typer.Argument(help="name of a bundled example"
 
 def main() -> None:
     """Entry point of the ``linkwork`` script."""
-    import linkwork.cli.forces  # noqa: F401 - registers its commands
+    import linkwork.cli.dynamics  # noqa: F401 - registers its commands
+    import linkwork.cli.forces  # noqa: F401
     import linkwork.cli.motion  # noqa: F401
 
     app()

@@ -96,7 +96,7 @@ def balance_speed(drive: Drive, moment: float) -> float:
 
 def dynamics(
     mech: Any,
-    drive: Drive,
+    drive: Drive | None = None,
     *,
     delta: float | None = None,
     speed: float | None = None,
@@ -105,9 +105,10 @@ def dynamics(
     start: float | None = None,
     turns: int = 500,
 ) -> Dynamics:
-    """Run the machine unit with ``drive`` from ``omega0`` to its steady cycle.
+    """Run the machine unit with ``drive`` (default: the file's ``machine:``) from ``omega0`` to its
+    steady cycle.
 
-    With ``delta``, the flywheel is first sized for that coefficient of speed fluctuation by the
+    With ``delta`` (default: the file's), the flywheel is first sized for that coefficient of speed fluctuation by the
     energy method, at the mean crank speed ``speed`` (default: where the drive's moment balances the
     loads' mean moment, or the file's speed for a drive without such a point), and put on the drive's
     ``flywheel_on`` shaft; the run then checks it.  The run starts at the turning angle ``start``
@@ -118,6 +119,16 @@ def dynamics(
 
     import numpy as np
 
+    from linkwork.errors import LinkworkError
+
+    if drive is None:
+        drive = mech.machine
+    if drive is None:
+        raise LinkworkError(
+            'the mechanism has no drive: give a "machine:" section (motor, gear) in its file, or a Drive'
+        )
+    if delta is None:
+        delta = mech.delta
     red = reduced(mech, steps)
     if start is None:
         start = float(red.psi[int(np.argmax(red.load))])

@@ -134,3 +134,24 @@ class Drive:
         import dataclasses
 
         return dataclasses.replace(self, flywheel=inertia)
+
+
+def from_spec(machine: Any) -> Drive:
+    """The :class:`Drive` of a validated ``machine:`` section."""
+    m = machine.motor
+    if m.type == "constant":
+        motor: Any = ConstantTorque(m.torque)
+    elif m.type == "linear":
+        motor = LinearMotor(m.stall, m.no_load)
+    else:
+        motor = InductionMotor(m.power, m.speed, m.synchronous, m.breakdown)
+    gear = machine.gear
+    fly = machine.flywheel
+    return Drive(
+        motor,
+        ratio=gear.ratio if gear else 1.0,
+        efficiency=gear.efficiency if gear else 1.0,
+        rotor=m.inertia or 0.0,
+        flywheel=fly.inertia if fly else 0.0,
+        flywheel_on=fly.on if fly else "motor",
+    )

@@ -145,6 +145,15 @@ class MechanismBuilder:
         )
         return self
 
+    def machine(
+        self, motor: dict[str, Any], *, gear: dict[str, Any] | None = None, flywheel: dict[str, Any] | None = None,
+        delta: float | None = None,
+    ) -> MechanismBuilder:  # fmt: skip
+        """The drive for machine dynamics: ``motor`` (``type`` and its fields), ``gear`` (``ratio``,
+        ``efficiency``), ``flywheel`` (``inertia``, ``on``); see :class:`~linkwork.spec.schema.Machine`."""
+        self._data["machine"] = _some(motor=motor, gear=gear, flywheel=flywheel, delta=delta)
+        return self
+
     def to_dict(self) -> dict[str, Any]:
         """The plain data, as it would stand in a YAML file."""
         import copy

@@ -113,6 +113,7 @@ def check(src: Source, declared: dict[str, str]) -> list[Problem]:
     _check_drives(bad, data, joints, declared)
     _check_hints(bad, data, joints, points)
     _check_loads(bad, data, points)
+    _check_machine(bad, data)
     return out
 
 
@@ -360,3 +361,26 @@ def _check_table(bad: Any, path: tuple[Any, ...], load: dict[str, Any], key: str
         bad(path, f"angle has {len(angle)} entries but {key} has {len(value)}")
     elif len(angle) < 2:
         bad(path + ("angle",), f"a table needs at least two points, got {len(angle)}")
+
+
+_MOTOR_FIELDS = {
+    "constant": {"torque"},
+    "linear": {"stall", "no_load"},
+    "induction": {"power", "speed", "synchronous", "breakdown"},
+}
+
+
+def _check_machine(bad: Any, data: dict[str, Any]) -> None:
+    machine = _dict(data.get("machine"))
+    motor = _dict(machine.get("motor"))
+    kind = motor.get("type")
+    if kind not in _MOTOR_FIELDS:
+        return  # reported by the schema
+    path = ("machine", "motor")
+    needed = _MOTOR_FIELDS[kind]
+    what = f"{'an' if kind[0] in 'aeiou' else 'a'} {kind} motor"
+    for key in sorted(needed - set(motor)):
+        bad(path, f'missing field "{key}" ({what} needs {", ".join(sorted(needed))})')
+    others = {f for fields in _MOTOR_FIELDS.values() for f in fields} - needed
+    for key in sorted(others & set(motor)):
+        bad(path + (key,), f'"{key}" does not apply to {what}')

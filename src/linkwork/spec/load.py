@@ -59,7 +59,7 @@ def validate(src: Source) -> Spec:
         problems += [_convert(src, err) for err in exc.errors(include_url=False)]
     problems += check(src, declared)
     if spec is not None:
-        problems += _geometry_checks(spec, src) + _load_checks(spec, src)
+        problems += _geometry_checks(spec, src) + _load_checks(spec, src) + _machine_checks(spec, src)
     problems = _unique(problems)
     if problems or spec is None:
         raise SpecError(problems)
@@ -137,6 +137,12 @@ def _convert(src: Source, err: Any) -> Problem:
         return src.problem(loc, f"expected a name or text, got {_show(value)}")
     if kind in ("float_type", "float_parsing"):
         return src.problem(loc, f"expected a number, got {_show(value)}")
+    bounds = {"greater_than": "greater than", "greater_than_equal": "at least", "less_than": "less than"}
+    bounds["less_than_equal"] = "at most"
+    if kind in bounds:
+        limit = next(iter(err.get("ctx", {}).values()), "")
+        limit = f"{limit:g}" if isinstance(limit, int | float) else limit
+        return src.problem(loc, f"expected a number {bounds[kind]} {limit}, got {_show(value)}")
     return src.problem(loc, err["msg"])
 
 
@@ -224,6 +230,22 @@ def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
                         f"m d^2 = {link.mass * d2:.6g} kg m^2 of the centre of mass alone: impossible",
                     )
                 )
+    return out
+
+
+def _machine_checks(spec: Spec, src: Source) -> list[Problem]:
+    """An induction motor's speeds and breakdown ratio, in SI."""
+    motor = spec.machine.motor if spec.machine is not None else None
+    if motor is None or motor.type != "induction" or None in (motor.speed, motor.synchronous, motor.breakdown):
+        return []
+    out = []
+    path = ("machine", "motor")
+    if not motor.speed < motor.synchronous:
+        out.append(src.problem(path + ("speed",), "the rated speed must be below the synchronous speed"))
+    if not motor.breakdown > 1:
+        out.append(
+            src.problem(path + ("breakdown",), f"the breakdown torque ratio must exceed 1, got {motor.breakdown}")
+        )
     return out
 
 

@@ -77,6 +77,10 @@ PositiveMass = _quantity("mass", "positive")
 Inertia = _quantity("inertia", "nonnegative")
 PositiveAcceleration = _quantity("acceleration", "positive")
 Force = _quantity("force")
+PositiveMoment = _quantity("moment", "positive")
+Moment = _quantity("moment")
+PositivePower = _quantity("power", "positive")
+PositiveAngularSpeed = _quantity("angular_speed", "positive")
 
 
 def _one_or_table(kind: str) -> Any:
@@ -269,6 +273,48 @@ class Load(_Strict):
     description: str | None = None
 
 
+class Motor(_Strict):
+    """The motor's mechanical characteristic.
+
+    ``constant``: ``torque`` at any speed.  ``linear``: ``stall`` torque at rest falling to zero at
+    the ``no_load`` speed.  ``induction``: rated ``power`` at the rated ``speed``, the
+    ``synchronous`` speed and the ``breakdown`` torque ratio (Kloss formula).
+    """
+
+    type: Literal["constant", "linear", "induction"]
+    torque: Moment | None = Field(None, description="constant: the torque")
+    stall: PositiveMoment | None = Field(None, description="linear: torque at rest")
+    no_load: PositiveAngularSpeed | None = Field(None, description="linear: speed at zero torque")
+    power: PositivePower | None = Field(None, description="induction: rated power")
+    speed: PositiveAngularSpeed | None = Field(None, description="induction: rated speed")
+    synchronous: PositiveAngularSpeed | None = Field(None, description="induction: synchronous speed")
+    breakdown: float | None = Field(None, description="induction: breakdown torque / rated torque, e.g. 2.2")
+    inertia: Inertia | None = Field(None, description="moment of inertia of the rotor")
+
+
+class Gear(_Strict):
+    """A gear between motor and crank: ``ratio`` = motor speed / crank speed."""
+
+    ratio: float = Field(gt=0, description="motor speed / crank speed")
+    efficiency: float = Field(1.0, gt=0, le=1, description="of the gear")
+
+
+class FlywheelSpec(_Strict):
+    """A flywheel on the motor shaft or on the crank shaft."""
+
+    inertia: Inertia
+    on: Literal["motor", "crank"] = "crank"
+
+
+class Machine(_Strict):
+    """The drive of the machine unit, for machine dynamics."""
+
+    motor: Motor
+    gear: Gear | None = None
+    flywheel: FlywheelSpec | None = None
+    delta: float | None = Field(None, gt=0, lt=1, description="coefficient of speed fluctuation to size a flywheel for")
+
+
 class Spec(_Strict):
     """A planar mechanism: the root of a linkwork mechanism file."""
 
@@ -281,6 +327,7 @@ class Spec(_Strict):
     joints: dict[str, Joint]
     drives: list[Drive]
     loads: dict[str, Load] = Field(default_factory=dict, description="external loads by name")
+    machine: Machine | None = Field(None, description="motor, gear and flywheel, for machine dynamics")
     hints: dict[str, Vec2] = Field(
         default_factory=dict,
         description="approximate global positions of moving points in the assembly pose "

@@ -364,6 +364,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
                 hints[pindex[(index[f"{key}:block"], pt)]] = np.array(xy)
 
     from linkwork.kinetostatics.external import compile_loads
+    from linkwork.machine.drive import from_spec
 
     def f(a: Any, dtype: Any = float) -> np.ndarray:
         arr = np.array(a, dtype=dtype)
@@ -395,6 +396,8 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         link_ends=f(ends, int).reshape(-1, 2),
         pair_origin_point=f(origin_point, int),
         loads=compile_loads(spec, index, pindex),
+        machine=from_spec(spec.machine) if spec.machine is not None else None,
+        delta=spec.machine.delta if spec.machine is not None else None,
     )
     return arrays, hints, (len(spec.links), p5, p4)
 

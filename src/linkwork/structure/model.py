@@ -188,6 +188,8 @@ class Mechanism:
     program: tuple = ()  # the solve program (linkwork.motion.program.Step), in solving order
     fast_program: tuple | None = None  # the program encoded for the compiled kernels (ops, branches), if it has them
     loads: tuple = ()  # external loads (linkwork.kinetostatics.external.ExternalLoad)
+    machine: Any = None  # the drive of the machine unit (linkwork.machine.Drive), if the file gives one
+    delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
 
     @property
     def n_links(self) -> int:

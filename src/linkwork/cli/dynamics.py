@@ -1,0 +1,145 @@
+"""``linkwork dynamics``: reduced inertia, the run of the machine unit, the flywheel."""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from linkwork.cli.app import FileOrExample, _compile, app, fail
+
+
+def _list(a: Any) -> list[float | None]:
+    return [None if not math.isfinite(float(x)) else float(x) for x in np.asarray(a, dtype=float).ravel()]
+
+
+def to_json(mech: Any, result: Any) -> dict[str, Any]:
+    """The ``linkwork dynamics --json`` object."""
+    red, drive, last = result.reduced, result.drive, result.motion.last
+    t, psi, omega = result.motion.cycle()
+    motor_speed = drive.ratio * omega
+    motor_torque = drive.motor(motor_speed)
+    out: dict[str, Any] = {
+        "name": mech.name,
+        "units": {
+            "angle": "deg",
+            "inertia": "kg m^2",
+            "moment": "N m",
+            "omega": "rad/s",
+            "power": "W",
+            "time": "s",
+        },
+        "angles_deg": _list(np.degrees(red.angle)),
+        "reduced_inertia": _list(red.inertia),
+        "reduced_inertia_slope": _list(red.inertia_slope),
+        "reduced_load": _list(red.load),
+        "cycle": {
+            "psi_deg": _list(np.degrees(psi)),
+            "t": _list(t),
+            "omega": _list(omega),
+            "motor_torque": _list(motor_torque),
+            "motor_power": _list(motor_torque * motor_speed),
+        },
+        "omega": _list(omega),
+        "omega_mean": last.omega_mean,
+        "omega_min": last.omega_min,
+        "omega_max": last.omega_max,
+        "delta": last.delta,
+        "mean_power": result.mean_power,
+        "mean_motor_power": float(np.trapezoid(motor_torque * motor_speed, t) / t[-1]) if len(t) > 1 else None,
+        "startup_time": result.startup_time,
+        "steady": result.motion.steady,
+        "flywheel_inertia": drive.flywheel,
+        "flywheel_on": drive.flywheel_on,
+        "gear": {"ratio": drive.ratio, "efficiency": drive.efficiency},
+    }
+    if result.flywheel is not None:
+        f = result.flywheel
+        out["energy_method"] = {
+            "delta": f.delta,
+            "omega_mean": f.omega_mean,
+            "energy_swing": f.energy_swing,
+            "inertia_on_crank": f.inertia,
+            "flywheel_on_crank": f.flywheel,
+            "drive_moment": f.drive_moment,
+        }
+    return out
+
+
+@app.command()
+def dynamics(
+    file_or_example: FileOrExample,
+    delta: Annotated[
+        float | None, typer.Option(help="size a flywheel for this coefficient of speed fluctuation, e.g. 0.05")
+    ] = None,
+    steps: Annotated[int, typer.Option(help="crank angles over a turn for the reduced quantities")] = 3600,
+    out: Annotated[str | None, typer.Option(help="directory for dynamics.json and dynamics.csv")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+) -> None:
+    """Reduced inertia and loads, the run of the machine unit from rest to its steady cycle, the flywheel."""
+    from linkwork.errors import LinkworkError
+    from linkwork.machine import dynamics as run
+
+    mech = _compile(file_or_example)
+    if delta is not None and not 0 < delta < 1:
+        fail(LinkworkError(f"--delta: expected a coefficient of speed fluctuation between 0 and 1, got {delta}"))
+    try:
+        result = run(mech, delta=delta, steps=steps)
+    except LinkworkError as exc:
+        fail(exc)
+    data = to_json(mech, result)
+    if out is not None:
+        from pathlib import Path
+
+        from linkwork.io.atomic import write_atomic
+
+        cycle = data["cycle"]
+        rows = ["psi [deg],t [s],omega [rad/s],motor_torque [N m],motor_power [W]"]
+        rows += [",".join(repr(v) for v in row) for row in zip(*cycle.values(), strict=True)]
+        text = json.dumps(data)
+        try:
+            paths = [
+                write_atomic(Path(out) / "dynamics.csv", lambda tmp: tmp.write_text("\n".join(rows) + "\n", "utf-8")),
+                write_atomic(Path(out) / "dynamics.json", lambda tmp: tmp.write_text(text, "utf-8")),
+            ]
+        except OSError as exc:
+            fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
+    if as_json:
+        typer.echo(json.dumps(data))
+        return
+    rpm = 30 / math.pi
+    red = result.reduced
+    typer.echo(f"{mech.name}: machine dynamics")
+    typer.echo(
+        f"  reduced inertia of the mechanism {red.inertia.min():.6g} to {red.inertia.max():.6g} kg m^2; "
+        f"mean load moment {red.mean_load:.6g} N m ({-red.mean_load * 2 * math.pi:.6g} J a turn)"
+    )
+    if result.flywheel is not None:
+        f = result.flywheel
+        shaft = "motor" if result.drive.flywheel_on == "motor" else "crank"
+        typer.echo(
+            f"  flywheel for delta = {f.delta:g} at {f.omega_mean * rpm:.4g} rpm (energy method): energy swing "
+            f"{f.energy_swing:.6g} J, {f.inertia:.6g} kg m^2 on the crank, {result.drive.flywheel:.6g} kg m^2 "
+            f"on the {shaft} shaft"
+        )
+    last = result.motion.last
+    typer.echo(
+        f"  steady cycle: crank {last.omega_mean * rpm:.4g} rpm mean, {last.omega_min * rpm:.4g} to "
+        f"{last.omega_max * rpm:.4g} rpm, delta = {last.delta:.4g}"
+        + ("" if result.motion.steady else " (not yet steady)")
+    )
+    t, psi, omega = result.motion.cycle()
+    i = int(np.argmin(omega))
+    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
+    angle = math.degrees(float(mech.drive_start[0]) + sign * float(result.motion.psi[-len(psi) + i])) % 360
+    typer.echo(f"  lowest speed at crank angle {angle:.1f} deg")
+    typer.echo(
+        f"  mean power {result.mean_power:.6g} W at the crank, {data['mean_motor_power']:.6g} W at the motor; "
+        f"start-up {result.startup_time:.3g} s"
+    )
+    if out is not None:
+        for path in paths:
+            typer.echo(f"  wrote {path}")
