@@ -57,8 +57,13 @@ def to_json(mech: Any, result: Any) -> dict[str, Any]:
         "gear": {"ratio": drive.ratio, "efficiency": drive.efficiency},
     }
     if result.flywheel is not None:
+        from linkwork.machine import size_flywheel
+
         f = result.flywheel
+        approx = size_flywheel(red, f.delta, f.omega_mean, drive.with_flywheel(0.0).inertia)
         out["energy_method"] = {
+            "method": "Wittenbauer (tangents to the energy-inertia diagram)",
+            "merkalov_inertia_on_crank": approx.inertia,
             "delta": f.delta,
             "omega_mean": f.omega_mean,
             "energy_swing": f.energy_swing,
@@ -121,7 +126,7 @@ def dynamics(
         f = result.flywheel
         shaft = "motor" if result.drive.flywheel_on == "motor" else "crank"
         typer.echo(
-            f"  flywheel for delta = {f.delta:g} at {f.omega_mean * rpm:.4g} rpm (energy method): energy swing "
+            f"  flywheel for delta = {f.delta:g} at {f.omega_mean * rpm:.4g} rpm (Wittenbauer): energy swing "
             f"{f.energy_swing:.6g} J, {f.inertia:.6g} kg m^2 on the crank, {result.drive.flywheel:.6g} kg m^2 "
             f"on the {shaft} shaft"
         )
@@ -138,8 +143,13 @@ def dynamics(
     typer.echo(f"  lowest speed at crank angle {angle:.1f} deg")
     typer.echo(
         f"  mean power {result.mean_power:.6g} W at the crank, {data['mean_motor_power']:.6g} W at the motor; "
-        f"start-up {result.startup_time:.3g} s"
+        f"start-up {result.startup_time:.3g} s (idle, where the file has process loads)"
     )
+    rated = getattr(result.drive.motor, "power", None)
+    if rated:
+        typer.echo(
+            f"  the motor's rated power {rated:.6g} W is loaded to {data['mean_motor_power'] / rated:.0%} on average"
+        )
     if out is not None:
         for path in paths:
             typer.echo(f"  wrote {path}")

@@ -13,7 +13,13 @@ from dataclasses import dataclass
 from typing import Any
 
 from linkwork.machine.drive import ConstantTorque, Drive, InductionMotor, LinearMotor
-from linkwork.machine.flywheel import Flywheel, constant_moment_cycle, size_flywheel
+from linkwork.machine.flywheel import (
+    Flywheel,
+    constant_moment_cycle,
+    size_flywheel,
+    size_flywheel_wittenbauer,
+    wittenbauer,
+)
 from linkwork.machine.reduced import Reduced, reduced
 from linkwork.machine.simulate import Motion, Turn, simulate
 
@@ -33,6 +39,8 @@ __all__ = [
     "reduced",
     "simulate",
     "size_flywheel",
+    "size_flywheel_wittenbauer",
+    "wittenbauer",
 ]
 
 
@@ -108,11 +116,12 @@ def dynamics(
     """Run the machine unit with ``drive`` (default: the file's ``machine:``) from ``omega0`` to its
     steady cycle.
 
-    With ``delta`` (default: the file's), the flywheel is first sized for that coefficient of speed fluctuation by the
-    energy method, at the mean crank speed ``speed`` (default: where the drive's moment balances the
-    loads' mean moment, or the file's speed for a drive without such a point), and put on the drive's
-    ``flywheel_on`` shaft; the run then checks it.  The run starts at the turning angle ``start``
-    (rad from the assembly angle; default: where the loads resist least, e.g. the knives open).
+    With ``delta`` (default: the file's), the flywheel is first sized for that coefficient of speed
+    fluctuation by the energy method (Wittenbauer's tangents), at the mean crank speed ``speed``
+    (default: where the drive's moment balances the loads' mean moment, or the file's speed for a
+    drive without such a point), and put on the drive's ``flywheel_on`` shaft; the run then checks
+    it.  The run starts at the turning angle ``start`` (rad from the assembly angle; default: where
+    the loads resist least, e.g. the knives open).
     """
     import dataclasses
     import math
@@ -139,7 +148,7 @@ def dynamics(
         if speed is None or not math.isfinite(speed):
             speed = abs(float(mech.drive_speed[0]))
         base = drive.with_flywheel(0.0)
-        fly = size_flywheel(red, delta, speed, base.inertia)
+        fly = size_flywheel_wittenbauer(red, delta, speed, base.inertia)
         shaft = fly.flywheel if drive.flywheel_on == "crank" else fly.on_motor_shaft(drive.ratio)
         drive = drive.with_flywheel(shaft)
     process = [load for load in mech.loads if load.kind == "process"]

@@ -9,6 +9,13 @@ the constant inertia ``J_c`` (flywheel, rotor): ``E(psi) = A(psi) - J(psi)
 omega_m^2 / 2``.  Its swing over the turn, ``dE = max E - min E``, is
 ``J_c omega_m^2 delta``, whence ``J_c = dE / (delta omega_m^2)``.
 
+Wittenbauer's diagram plots the same energy ``A(psi)`` against the reduced
+inertia ``J(psi)``.  Seen from the pole ``(-J_c, -T_0)`` a point of the curve
+lies at the slope ``omega^2 / 2``; the tangents to the curve at the slopes
+``omega_max^2 / 2`` and ``omega_min^2 / 2`` (``omega_max, min = omega_m (1 +- delta / 2)``)
+meet at the pole, whence ``J_c = (b_max - b_min) / (delta omega_m^2)`` with ``b`` their intercepts:
+exact under a constant drive moment, with no approximation for the variable part.
+
 Under a constant drive moment the energy integral gives the exact periodic
 cycle: ``(J(psi) + J_c) omega^2 / 2 = (J(0) + J_c) omega_0^2 / 2 + A(psi)``.
 """
@@ -76,6 +83,26 @@ def size_flywheel(red: Any, delta: float, omega_mean: float, drive_inertia: floa
     swing = float(energy.max() - energy.min())
     need = swing / (delta * omega_mean**2)
     return Flywheel(delta, omega_mean, swing, need, max(need - drive_inertia, 0.0), moment, moment * omega_mean)
+
+
+def wittenbauer(red: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Wittenbauer's diagram: the reduced inertia ``J(psi)`` and the energy ``A(psi)`` given to the
+    machine from ``psi = 0`` by the loads and the constant drive moment that balances them, (K,) each."""
+    return red.inertia, _work(red, -red.mean_load)
+
+
+def size_flywheel_wittenbauer(red: Any, delta: float, omega_mean: float, drive_inertia: float = 0.0) -> Flywheel:
+    """The constant inertia for ``delta`` from the tangents to Wittenbauer's diagram."""
+    if not 0 < delta < 1:
+        raise LinkworkError(f"delta: expected a coefficient of speed fluctuation between 0 and 1, got {delta}")
+    inertia, energy = wittenbauer(red)
+    k_max = 0.5 * (omega_mean * (1 + delta / 2)) ** 2
+    k_min = 0.5 * (omega_mean * (1 - delta / 2)) ** 2
+    b_max = float(np.max(energy - k_max * inertia))
+    b_min = float(np.min(energy - k_min * inertia))
+    need = (b_max - b_min) / (k_max - k_min)
+    moment = -red.mean_load
+    return Flywheel(delta, omega_mean, b_max - b_min, need, max(need - drive_inertia, 0.0), moment, moment * omega_mean)
 
 
 def constant_moment_cycle(red: Any, inertia: float, omega_mean: float) -> tuple[np.ndarray, float]:
