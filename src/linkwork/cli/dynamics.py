@@ -18,6 +18,8 @@ def _list(a: Any) -> list[float | None]:
 
 def to_json(mech: Any, result: Any) -> dict[str, Any]:
     """The ``linkwork dynamics --json`` object."""
+    from linkwork.machine import wittenbauer
+
     red, drive, last = result.reduced, result.drive, result.motion.last
     t, psi, omega = result.motion.cycle()
     motor_speed = drive.ratio * omega
@@ -36,6 +38,8 @@ def to_json(mech: Any, result: Any) -> dict[str, Any]:
         "reduced_inertia": _list(red.inertia),
         "reduced_inertia_slope": _list(red.inertia_slope),
         "reduced_load": _list(red.load),
+        "work": _list(red.work()[:-1]),
+        "wittenbauer": {"inertia": _list(wittenbauer(red)[0]), "energy": _list(wittenbauer(red)[1])},
         "cycle": {
             "psi_deg": _list(np.degrees(psi)),
             "t": _list(t),
