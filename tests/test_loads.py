@@ -130,3 +130,32 @@ def test_the_drive_does_the_cutting_work_of_seed_002_per_turn():
     f = lw.forces(lw.compile(lw.example("double-cut-shears")), steps=7200)
     work = np.mean(f.driving_torque) * 2 * np.pi
     assert work == pytest.approx(0.10 * 250e3 * 0.30, rel=2e-4)  # the rectangle rule over the cut
+
+
+def test_friction_in_a_hinge_and_a_guide_costs_its_power():
+    """Coulomb friction of constant size: the drive pays M_f |relative turning speed| in the hinge
+    and F_f |sliding speed| in the guide (both by finite differences of the positions), and the
+    balances still hold."""
+    b = TEXTBOOK["offset slider-crank"][0]()
+    data = b.to_dict()
+    data["links"]["slider"]["mass"] = 2.0
+    data["links"]["rod"]["mass"] = 1.5
+    bare = lw.compile(lw.from_dict(data))
+    data["loads"] = {
+        "pin": {"type": "friction", "joint": "A", "moment": "3 N*m"},
+        "guide": {"type": "friction", "joint": "guide", "magnitude": "40 N"},
+    }
+    mech = lw.compile(lw.from_dict(data))
+    phi = bare.drive_start[0] + np.linspace(0.05, 2 * np.pi - 0.05, 91)
+    f, f0 = lw.forces(mech, phi), lw.forces(bare, phi)
+    h = 1e-6
+    plus, minus = lw.kinematics(mech, phi + h), lw.kinematics(mech, phi - h)
+    turn = (plus.angle("rod") - plus.angle("crank") - minus.angle("rod") + minus.angle("crank")) / (2 * h)
+    slide = (plus.position("slider.B")[:, 0] - minus.position("slider.B")[:, 0]) / (2 * h)
+    omega = mech.drive_speed[0]
+    lost = (3.0 * np.abs(turn) + 40.0 * np.abs(slide)) * abs(omega)
+    np.testing.assert_allclose((f.driving_torque - f0.driving_torque) * omega, lost, rtol=1e-6)
+    assert all(v < 1e-9 for v in f.checks.values()), f.checks
+    assert_free_bodies_balance(f)
+    red, red0 = lw.reduced(mech, steps=720), lw.reduced(bare, steps=720)
+    assert red0.mean_load - red.mean_load == pytest.approx(np.mean(lost) / abs(omega), rel=2e-2)

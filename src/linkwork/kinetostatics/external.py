@@ -24,7 +24,8 @@ class ExternalLoad:
     ----------
     name : str
     kind : str
-        ``force``, ``moment`` or ``process``.
+        ``force``, ``moment``, ``process`` or ``friction`` (in the pair ``pair``: a moment for a
+        revolute pair, a force for a prismatic one, of size ``value``).
     link : int
         The link a force or moment acts on (for a process load: the first tool's link).
     points : tuple of int
@@ -48,10 +49,14 @@ class ExternalLoad:
     value: float = math.nan
     table: tuple[np.ndarray, np.ndarray] | None = None
     workpiece: tuple[float, float] = (0.0, 0.0)
+    pair: int = -1  # friction: the elementary pair it acts in
 
 
-def compile_loads(spec: Any, link_index: dict[str, int], pindex: dict[tuple[int, str], int]) -> tuple:
-    """The :class:`ExternalLoad` records of a validated spec."""
+def compile_loads(
+    spec: Any, link_index: dict[str, int], pindex: dict[tuple[int, str], int], pairs: Any = None
+) -> tuple:
+    """The :class:`ExternalLoad` records of a validated spec; ``pairs`` lists ``(joint, type, a, b)``
+    of every elementary pair (for friction)."""
 
     def point(ref: str) -> int:
         ln, p = ref.split(".", 1)
@@ -73,6 +78,14 @@ def compile_loads(spec: Any, link_index: dict[str, int], pindex: dict[tuple[int,
                 out.append(ExternalLoad(name, "force", link, (p,), u, float(load.magnitude)))
             else:
                 out.append(ExternalLoad(name, "force", link, (p,), u, table=table(load.angle, load.magnitude)))
+        elif load.type == "friction":
+            for k, (joint, kind, _, b) in enumerate(pairs or ()):
+                if joint != load.joint:
+                    continue
+                if kind == 0 and load.moment is not None:
+                    out.append(ExternalLoad(name, "friction", int(b), value=float(load.moment), pair=k))
+                elif kind == 1 and load.magnitude is not None:
+                    out.append(ExternalLoad(name, "friction", int(b), value=float(load.magnitude), pair=k))
         elif load.type == "moment":
             link = link_index[load.on]
             if load.angle is None:
@@ -141,6 +154,9 @@ def evaluate(kin: Any) -> Applied:
         return pos, vel
 
     for load in getattr(mech, "loads", ()):
+        if load.kind == "friction":
+            _friction(kin, load, forces, moments, magnitude)
+            continue
         if load.kind in ("force", "moment"):
             if load.table is None:
                 size = np.full(shape, load.value)
@@ -178,6 +194,31 @@ def evaluate(kin: Any) -> Applied:
         else:  # the workpiece rests on the frame
             forces.append((0, p1, np.zeros_like(v1), -f))
     return Applied(forces, moments, magnitude, penetration)
+
+
+def _friction(kin: Any, load: ExternalLoad, forces: list, moments: list, magnitude: dict) -> None:
+    """Coulomb friction of constant size in one pair, against the relative motion (none at rest)."""
+    mech = kin.mechanism
+    k = load.pair
+    a, b = (int(x) for x in mech.pair_links[k])
+    w = kin.vel[..., 2]
+    if mech.pair_type[k] == 0:
+        turn = np.sign(w[..., b] - w[..., a])
+        moments.append((b, -load.value * turn))
+        moments.append((a, load.value * turn))
+    else:
+        pos, vb, _ = kin._point(mech.point_names[int(mech.pair_points[k, 1])])
+        q, v = kin.pose[..., a, :], kin.vel[..., a, :]
+        r = pos - q[..., :2]
+        va = v[..., :2] + w[..., a, None] * np.stack([-r[..., 1], r[..., 0]], -1)  # a's material point at P
+        c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
+        ux, uy = kin.axis[k, 0], kin.axis[k, 1]  # (V, 1)
+        u = np.stack([c * ux - s * uy, s * ux + c * uy], -1)
+        slide = np.sign(np.sum((vb - va) * u, -1))
+        f = (-load.value * slide)[..., None] * u
+        forces.append((b, pos, vb, f))
+        forces.append((a, pos, va, -f))
+    magnitude[load.name] = np.full(kin.valid_all.shape, load.value)
 
 
 def generalised(kin: Any, applied: Applied) -> np.ndarray:

@@ -273,6 +273,7 @@ def hint_names(joints: dict[str, Any], points: dict[str, set[str]]) -> set[str]:
 _LOAD_FIELDS = {
     "force": ({"at"}, {"at", "force", "magnitude", "direction", "angle"}),
     "moment": ({"on", "moment"}, {"on", "moment", "angle"}),
+    "friction": ({"joint"}, {"joint", "moment", "magnitude"}),
     "process": (
         {"tools", "axis", "workpiece", "penetration", "force"},
         {"tools", "axis", "workpiece", "penetration", "force"},
@@ -295,6 +296,7 @@ def _check_loads(bad: Any, data: dict[str, Any], points: dict[str, set[str]]) ->
             return None
         return ref.split(".", 1)[0]
 
+    joints = _dict(data.get("joints"))
     for name, load in loads.items():
         path = ("loads", name)
         if not isinstance(name, str) or not NAME.match(name):
@@ -321,6 +323,22 @@ def _check_loads(bad: Any, data: dict[str, Any], points: dict[str, set[str]]) ->
             if vector is not None and (load.get("direction") is not None or load.get("angle") is not None):
                 bad(path, '"force: [Fx, Fy]" is constant; for a table give "magnitude", "direction" and "angle"')
             _check_table(bad, path, load, "magnitude")
+        elif kind == "friction":
+            jname = load.get("joint")
+            jtype = _dict(joints.get(jname)).get("type") if isinstance(jname, str) else None
+            if isinstance(jname, str) and jname not in joints:
+                bad(path + ("joint",), f'unknown joint "{jname}"{suggest(jname, joints)}')
+            elif jtype == "revolute" and load.get("moment") is None:
+                bad(path, 'missing field "moment" (the friction moment of a revolute joint)')
+            elif jtype in ("prismatic", "pin-in-slot") and load.get("magnitude") is None:
+                bad(path, 'missing field "magnitude" (the friction force of a sliding joint)')
+            if jtype == "revolute" and load.get("magnitude") is not None:
+                bad(path + ("magnitude",), 'a revolute joint has a friction "moment", not a force "magnitude"')
+            if jtype in ("prismatic", "pin-in-slot") and load.get("moment") is not None:
+                bad(path + ("moment",), 'a sliding joint has a friction force "magnitude", not a "moment"')
+            for key in ("moment", "magnitude"):
+                if isinstance(load.get(key), list):
+                    bad(path + (key,), "friction is one value, not a table")
         elif kind == "moment":
             on = load.get("on")
             if isinstance(on, str) and on not in points:

@@ -268,6 +268,12 @@ def _load_checks(spec: Spec, src: Source) -> list[Problem]:
             elif a and a[-1] - a[0] > 2 * math.pi * (1 + 1e-12):
                 span = math.degrees(a[-1] - a[0])
                 out.append(src.problem(path + ("angle",), f"a table spans at most one turn, got {span:.6g} deg"))
+        if load.type == "friction":
+            for key in ("moment", "magnitude"):
+                value = getattr(load, key)
+                if isinstance(value, float) and value < 0:
+                    out.append(src.problem(path + (key,), "a friction is given by its size, from 0 up"))
+            continue
         if load.type != "process":
             continue
         if load.workpiece is not None and len(load.workpiece) == 2 and not load.workpiece[1] > load.workpiece[0]:

@@ -254,9 +254,14 @@ class Load(_Strict):
     the first tool back along ``axis`` and the second the other way.  It acts
     only while the tools move into the workpiece.  With one tool the workpiece
     rests on the frame, which takes the opposite force at the tool's point.
+
+    ``friction``: a constant (Coulomb) friction in the pairs of a ``joint``: a
+    ``moment`` against the relative turning of a revolute pair, or a force
+    ``magnitude`` against the sliding of a prismatic one.
     """
 
-    type: Literal["force", "moment", "process"]
+    type: Literal["force", "moment", "process", "friction"]
+    joint: str | None = Field(None, description="friction: the joint whose pairs it acts in")
     at: str | None = Field(None, description="force: the point link.point where it acts")
     on: str | None = Field(None, description="moment: the link it acts on")
     force: list[Force] | None = Field(

@@ -395,7 +395,9 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         joint_names=tuple(spec.joints),
         link_ends=f(ends, int).reshape(-1, 2),
         pair_origin_point=f(origin_point, int),
-        loads=compile_loads(spec, index, pindex),
+        loads=compile_loads(
+            spec, index, pindex, [(j, t, a, b) for j, t, (a, b) in zip(pair_joint, pair_type, pair_links, strict=True)]
+        ),
         machine=from_spec(spec.machine) if spec.machine is not None else None,
         delta=spec.machine.delta if spec.machine is not None else None,
     )
