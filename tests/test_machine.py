@@ -154,6 +154,7 @@ def test_dynamics_command_on_the_double_cut_shears(tmp_path):
         assert key in out
     assert out["delta"] == pytest.approx(0.05, rel=0.05)
     assert out["mean_motor_power"] * 0.95 == pytest.approx(out["mean_power"], rel=1e-3)
+    assert out["motor_power_needed"] == pytest.approx(out["mean_power"] / 0.95, rel=1e-12)
     cuts_per_second = out["omega_mean"] / (2 * math.pi)
     assert out["mean_power"] == pytest.approx(7500.0 * cuts_per_second, rel=1e-3)
     assert 29.0 < out["omega_mean"] * 30 / math.pi < 31.0

@@ -54,6 +54,7 @@ def to_json(mech: Any, result: Any) -> dict[str, Any]:
         "delta": last.delta,
         "mean_power": result.mean_power,
         "mean_motor_power": float(np.trapezoid(motor_torque * motor_speed, t) / t[-1]) if len(t) > 1 else None,
+        "motor_power_needed": result.mean_power / drive.efficiency,
         "startup_time": result.startup_time,
         "steady": result.motion.steady,
         "flywheel_inertia": drive.flywheel,
