@@ -150,11 +150,12 @@ def dynamics(
         f"  mean power {result.mean_power:.6g} W at the crank, {data['mean_motor_power']:.6g} W at the motor; "
         f"start-up {result.startup_time:.3g} s (idle, where the file has process loads)"
     )
+    need = data["motor_power_needed"]
     rated = getattr(result.drive.motor, "power", None)
+    line = f"  motor: at least {need:.6g} W of continuous rating (the mean power over the cycle)"
     if rated:
-        typer.echo(
-            f"  the motor's rated power {rated:.6g} W is loaded to {data['mean_motor_power'] / rated:.0%} on average"
-        )
+        line += f"; the rated {rated:.6g} W is loaded to {need / rated:.0%}"
+    typer.echo(line)
     if out is not None:
         for path in paths:
             typer.echo(f"  wrote {path}")
