@@ -30,6 +30,7 @@ _LAZY = {
     "balance": ("linkwork.kinetostatics", "balance"),
     "reduced": ("linkwork.machine", "reduced"),
     "dynamics": ("linkwork.machine", "dynamics"),
+    "rocker_impact": ("linkwork.impulse", "rocker_impact"),
 }
 
 __all__ = ["__version__", *_LAZY]

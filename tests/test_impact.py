@@ -1,0 +1,117 @@
+"""The rocker's impact on the tool (seed 004): impulse-momentum balances, the paper's special
+cases, the centre of percussion."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import linkwork as lw
+
+DATA = dict(inertia=0.30, mass=6.0, com=(0.16, 0.01), impact_point=(0.30, -0.02), omega_before=30.0)
+DATA.update(restitution=0.4, friction=0.15, rod_mass=1.2, rod_joint=(0.10, 0.02), normal=(0.0, -1.0))
+
+
+def _balances(r, kw):
+    """Linear momentum of rocker and reduced rod mass, angular momentum about O."""
+    o = np.asarray(kw.get("support", (0.0, 0.0)))
+    dw = r.omega_after - r.omega_before
+
+    def dv(p):
+        rel = np.asarray(p) - o
+        return np.array([-dw * rel[1], dw * rel[0]])
+
+    momentum = kw["mass"] * dv(kw["com"]) + kw.get("rod_mass", 0.0) * dv(kw.get("rod_joint", (0.0, 0.0)))
+    scale = np.abs(r.impulse).max()
+    np.testing.assert_allclose(momentum, r.impulse + r.support_impulse, rtol=0, atol=1e-12 * scale)
+    rk = np.asarray(kw["impact_point"]) - o
+    moment = rk[0] * r.impulse[1] - rk[1] * r.impulse[0]
+    assert moment == pytest.approx(r.inertia * dw, rel=1e-12)
+
+
+def test_the_example_against_the_papers_general_formulas():
+    """Equations (4), (5), (8), (9) of the paper hold as printed for y_K < 0 (the example)."""
+    r = lw.rocker_impact(**DATA)
+    _balances(r, DATA)
+    j_o = 0.30 + 1.2 * (0.10**2 + 0.02**2)
+    w, big_r, f, xk, yk = 30.0, 0.4, 0.15, 0.30, -0.02
+    iy = j_o * w * (1 + big_r) / (f * yk - xk)  # (4)
+    ix = f * j_o * w * (1 + big_r) * math.copysign(1, yk) / (xk - yk * f)  # (5)
+    i0x = w * (1 + big_r) * (6.0 * 0.01 + 1.2 * 0.02 - j_o * f * math.copysign(1, yk) / (xk - f * yk))  # (8)
+    i0y = -w * (1 + big_r) * (6.0 * 0.16 + 1.2 * 0.10 + j_o / (f * yk - xk))  # (9)
+    np.testing.assert_allclose(r.impulse, [ix, iy], rtol=1e-12)
+    np.testing.assert_allclose(r.support_impulse, [i0x, i0y], rtol=1e-12)
+    assert r.omega_after == pytest.approx(-12.0)
+    assert r.energy_loss == pytest.approx(0.5 * j_o * 30.0**2 * (1 - 0.4**2), rel=1e-12)
+
+
+def test_the_collinear_case_of_the_paper():
+    """C, N and K on the x axis (the paper's (10)): the support takes f J_O omega (1 + R) / x_K
+    along x; along y the printed (10) has lost the minus sign of (9)."""
+    kw = {**DATA, "com": (0.16, 0.0), "rod_joint": (0.10, 0.0), "impact_point": (0.30, 0.0)}
+    r = lw.rocker_impact(**kw)
+    _balances(r, kw)
+    j_o, w = 0.30 + 1.2 * 0.10**2, 30.0 * 1.4
+    assert r.support_impulse[0] == pytest.approx(w * j_o * 0.15 / 0.30, rel=1e-12)
+    assert r.support_impulse[1] == pytest.approx(-w * (6.0 * 0.16 + 1.2 * 0.10 - j_o / 0.30), rel=1e-12)
+
+
+def test_the_centre_of_percussion():
+    """No friction, no rod, K on the x axis (the paper's (18)): the support feels nothing when the
+    centre of mass is at x = J / (m x_K), y = 0."""
+    kw = {**DATA, "friction": 0.0, "rod_mass": 0.0, "impact_point": (0.30, 0.0)}
+    r = lw.rocker_impact(**kw)
+    np.testing.assert_allclose(r.ideal_com, [0.30 / (6.0 * 0.30), 0.0], atol=1e-15)
+    again = lw.rocker_impact(**{**kw, "com": tuple(r.ideal_com)})
+    np.testing.assert_allclose(again.support_impulse, 0.0, atol=1e-12)
+    # frictionless central impact: the impulse is J omega (1 + R) / x_K, the energy lost (1 - R^2) T
+    assert np.hypot(*again.impulse) == pytest.approx(0.30 * 30.0 * 1.4 / 0.30, rel=1e-12)
+    assert again.energy_loss == pytest.approx((1 - 0.4**2) * 0.5 * 0.30 * 30.0**2, rel=1e-12)
+
+
+def test_the_ideal_centre_of_mass_removes_the_support_impulse():
+    r = lw.rocker_impact(**DATA)
+    for com, rod in ((r.ideal_com, 1.2), (r.ideal_com_without_rod, 0.0)):
+        again = lw.rocker_impact(**{**DATA, "com": tuple(com), "rod_mass": rod})
+        np.testing.assert_allclose(again.support_impulse, 0.0, atol=1e-12 * np.abs(again.impulse).max())
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.floats(0.05, 2.0),
+    st.floats(1.0, 20.0),
+    st.tuples(st.floats(-0.3, 0.3), st.floats(-0.3, 0.3)),
+    st.tuples(st.floats(0.1, 0.6), st.floats(-0.1, 0.1)),
+    st.floats(0.0, 0.3),
+    st.floats(0.0, 1.0),
+    st.floats(0.0, 3.0),
+    st.floats(0.0, 2 * math.pi),
+)
+def test_impulse_momentum_balances_for_random_rockers(j, m, com, k, f, big_r, mu, turn):
+    """Turned as a whole by ``turn`` (the face normal with it), any rocker balances to 1e-12."""
+    c, s = math.cos(turn), math.sin(turn)
+
+    def rot(p):
+        return (c * p[0] - s * p[1], s * p[0] + c * p[1])
+
+    kw = dict(inertia=j + m * (com[0] ** 2 + com[1] ** 2), mass=m, com=rot(com), impact_point=rot(k))
+    kw.update(omega_before=25.0, restitution=big_r, friction=f, rod_mass=mu, rod_joint=rot((0.1, 0.02)))
+    kw.update(normal=rot((0.0, -1.0)))
+    try:
+        r = lw.rocker_impact(**kw)
+    except lw.errors.LinkworkError:
+        return  # a striker moving away from the tool: refused with a message
+    _balances(r, kw)
+    assert r.energy_loss >= 0
+    assert float(np.dot(r.impulse, kw["normal"])) > 0  # the tool pushes the striker out
+
+
+def test_impossible_impacts_are_refused():
+    with pytest.raises(lw.errors.LinkworkError, match="does not move towards the tool"):
+        lw.rocker_impact(**{**DATA, "normal": (0.0, 1.0)})
+    with pytest.raises(lw.errors.LinkworkError, match="does not move towards the tool"):
+        lw.rocker_impact(**{**DATA, "impact_point": (0.0, -0.3)})  # K below O: it slides along the face
