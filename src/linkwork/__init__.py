@@ -31,6 +31,7 @@ _LAZY = {
     "reduced": ("linkwork.machine", "reduced"),
     "dynamics": ("linkwork.machine", "dynamics"),
     "rocker_impact": ("linkwork.impulse", "rocker_impact"),
+    "impact": ("linkwork.impulse", "impact"),
 }
 
 __all__ = ["__version__", *_LAZY]

@@ -137,8 +137,8 @@ def rocker_impact(
         Direction (+1 or -1, along ``t``) the striker slides in, for the case where it does not
         slide before the impact (K on the line through O along the normal): there the friction
         impulse is indeterminate (it depends on the clearance in the support); default -1, which
-        with the paper's axes (the tool above, ``normal = (0, -1)``) is the choice of its
-        equation (10).
+        with the paper's axes (the tool below, ``normal = (0, 1)``, the rocker turning clockwise)
+        is the choice of its equation (10), the limit of ``y_K -> 0`` from below.
     """
     o, c, k, nj = (np.asarray(v, dtype=float) for v in (support, com, impact_point, rod_joint))
     n = np.asarray(normal, dtype=float)

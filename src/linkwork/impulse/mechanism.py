@@ -1,0 +1,207 @@
+"""Impact of a point of a one-degree-of-freedom mechanism against a surface at rest.
+
+In the pose of impact every velocity is the crank speed ``psi'`` times its
+transfer function (the kinematics at unit crank speed), so the mechanism's
+mass matrix reduces to the reduced inertia ``J`` and an impulse ``S`` at the
+point K (transfer function ``G_K``) is the generalised impulse ``G_K . S``:
+
+    J (psi'_+ - psi'_-) = G_K . S,   S = s_n (n + phi t),   psi'_+ = -R psi'_-
+
+(``R`` as in seed 004, on the speed of every link alike; the drive gives no
+impulse: its torque is finite).  The jump of every link's velocity is then
+``(psi'_+ - psi'_-)`` times its transfer function, and the impulsive
+reactions of all pairs follow from the same group-by-group solution as the
+forces (:mod:`linkwork.kinetostatics.reactions`), with the impulse at K as the
+applied load and the change of momentum of every link in place of the
+inertia loads; the drive row's multiplier, the drive's impulse, comes out
+zero, a check.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+from linkwork.structure.constraints import REVOLUTE
+
+
+@dataclass(frozen=True)
+class Impact:
+    """The impact of a mechanism in one pose.
+
+    Attributes
+    ----------
+    impulse : ndarray (2,)
+        Impulse of the surface on the striking link at K, N s.
+    speed_before, speed_after : float
+        Crank speed, rad/s.
+    velocities_before, velocities_after : ndarray (N, 3)
+        Every link's (vx, vy, omega) of its local origin.
+    joints : dict
+        For each joint, the impulse (x, y) that its first-named link exerts on the second, N s
+        (compound hinges: their first pair).
+    drive_impulse : float
+        The impulse the drive would have to give (zero up to rounding: a check).
+    energy_loss : float
+        J.
+    inertia : float
+        Reduced inertia on the crank in the pose, kg m^2.
+    forces : Forces
+        The impulses as a :class:`~linkwork.kinetostatics.Forces` (``pair_force`` in N s).
+    """
+
+    impulse: np.ndarray
+    speed_before: float
+    speed_after: float
+    velocities_before: np.ndarray
+    velocities_after: np.ndarray
+    joints: dict[str, np.ndarray]
+    drive_impulse: float
+    energy_loss: float
+    inertia: float
+    phi: float
+    forces: Any
+
+    def on(self, joint: str, link: str) -> np.ndarray:
+        """Impulse (x, y) of a joint on ``link`` (the first-named link's impulse on the second, or
+        its opposite), N s."""
+        m = self.forces.mechanism
+        for k, name in enumerate(m.pair_joint):
+            a, b = (m.link_names[int(i)] for i in m.pair_links[k])
+            if name == joint and link in (a, b):
+                f = self.forces.pair_force(k)[0, 0]
+                return f if link == b else -f
+        raise KeyError(f'joint "{joint}" does not hold link "{link}"')
+
+
+def impact(
+    mech: Any,
+    *,
+    at: str,
+    normal: Any,
+    omega_before: float,
+    restitution: float,
+    friction: float = 0.0,
+    link: str | None = None,
+    angle: float | None = None,
+    slip: float | None = None,
+) -> Impact:
+    """The impact of point ``at`` (``link.point``) on a surface at rest with outward ``normal``.
+
+    ``omega_before``: the angular speed of ``link`` (default: the link of ``at``) before the impact,
+    rad/s; ``angle``: the crank angle of the pose (default: the assembly pose); ``slip`` as in
+    :func:`~linkwork.impulse.rocker_impact`.
+    """
+    from linkwork.kinetostatics import Forces
+    from linkwork.kinetostatics.reactions import Loads, solve_reactions
+    from linkwork.motion import kinematics
+
+    if mech.n_drives != 1:
+        raise LinkworkError("impact needs a mechanism of one degree of freedom (one drive)")
+    if not (0 <= restitution <= 1 and friction >= 0):
+        raise LinkworkError("expected 0 <= R <= 1 and friction >= 0")
+    phi0 = float(mech.drive_start[0]) if angle is None else float(angle)
+    kin = kinematics(mech, np.array([phi0]), speed=1.0)
+    if not bool(np.all(kin.valid)):
+        raise LinkworkError(f"the mechanism does not assemble at {math.degrees(phi0):.3f} deg")
+    p = kin.point_index(at)
+    striker = int(mech.point_link[p])
+    name = link if link is not None else mech.link_names[striker]
+    gain = float(kin.omega(name)[0])  # the link's angular speed per unit crank speed
+    if abs(gain) < 1e-12:
+        raise LinkworkError(f'link "{name}" does not turn in this pose: give the speed of another link')
+    w_before = omega_before / gain
+    pos, g_k, _ = kin._point(mech.point_names[p])
+    pos, g_k = pos[0, 0], g_k[0, 0]
+    n = np.asarray(normal, dtype=float)
+    n = n / np.linalg.norm(n)
+    t = np.array([n[1], -n[0]])
+    if not float(g_k @ n) * w_before < 0:
+        raise LinkworkError(
+            f'"{at}" does not move towards the surface: its normal velocity is {g_k @ n * w_before:.6g} m/s'
+        )
+    sliding = float(g_k @ t) * w_before
+    if abs(sliding) > 1e-12 * abs(w_before) * np.linalg.norm(g_k):
+        direction = math.copysign(1.0, sliding)
+    else:
+        direction = -1.0 if slip is None else math.copysign(1.0, slip)
+    phi = -friction * direction
+    # reduced inertia in the pose, from the unit-speed velocities of the centres of mass
+    q, v = kin.pose[0, 0], kin.vel[0, 0]
+    c, s = np.cos(q[:, 2]), np.sin(q[:, 2])
+    r = np.stack(
+        [c * mech.link_com[:, 0] - s * mech.link_com[:, 1], s * mech.link_com[:, 0] + c * mech.link_com[:, 1]], -1
+    )
+    vc = v[:, :2] + v[:, 2:3] * np.stack([-r[:, 1], r[:, 0]], -1)
+    inertia = float(np.sum(mech.link_mass * np.sum(vc * vc, -1) + mech.link_inertia * v[:, 2] ** 2))
+    jump = -(1.0 + restitution) * w_before
+    s_n = inertia * jump / float(g_k @ (n + phi * t))
+    impulse = s_n * (n + phi * t)
+    # impulsive loads: the impulse at K, and the change of momentum of every link (as an inertia load)
+    applied = np.zeros((1, 1, mech.n_links_total, 3))
+    arm = pos - q[striker, :2]
+    applied[0, 0, striker] = [impulse[0], impulse[1], arm[0] * impulse[1] - arm[1] * impulse[0]]
+    dm = mech.link_mass[:, None] * vc * jump  # m dv_C
+    momentum = np.concatenate(
+        [-dm, (-(r[:, 0] * dm[:, 1] - r[:, 1] * dm[:, 0]) - mech.link_inertia * v[:, 2] * jump)[:, None]], -1
+    )
+    loads = Loads(applied, momentum[None, None], r[None, None], vc[None, None], np.zeros_like(vc)[None, None])
+    lam, frame = solve_reactions(kin, loads)
+    forces = Forces(kin, lam, frame)
+    joints = {}
+    for k, joint in enumerate(mech.pair_joint):
+        if joint not in joints:
+            joints[joint] = forces.pair_force(k)[0, 0]
+    before = v * w_before
+    return Impact(
+        impulse,
+        w_before,
+        -restitution * w_before,
+        before,
+        -restitution * before,
+        joints,
+        float(lam[0, 0, 2 * mech.n_pairs]),
+        0.5 * inertia * w_before**2 * (1 - restitution**2),
+        inertia,
+        phi,
+        forces,
+    )
+
+
+def reduced_model(mech: Any, *, at: str, rod_joint: str, **kw: Any) -> Any:
+    """The model of seed 004 for the same blow: the striking link turning about its frame pivot,
+    the link jointed to it at ``rod_joint`` replaced by its whole mass at that joint (the others
+    left out); keyword arguments as for :func:`~linkwork.impulse.rocker_impact`."""
+    from linkwork.impulse.rocker import rocker_impact
+
+    p = mech.point_index(at)
+    rocker = int(mech.point_link[p])
+    pivot = None
+    rod = None
+    for k in range(mech.n_pairs):
+        a, b = (int(x) for x in mech.pair_links[k])
+        if mech.pair_type[k] == REVOLUTE and {a, b} == {0, rocker}:
+            pivot = int(mech.pair_points[k, 1 if b == rocker else 0])
+        if mech.pair_joint[k] == rod_joint and rocker in (a, b):
+            rod = (b if a == rocker else a, int(mech.pair_points[k, 0 if a == rocker else 1]))
+    if pivot is None or rod is None:
+        raise LinkworkError(f'"{at}" is not on a link turning about a frame pivot with a joint "{rod_joint}"')
+    q = mech.pose0[rocker]
+    c, s = math.cos(q[2]), math.sin(q[2])
+
+    def world(local: np.ndarray) -> np.ndarray:
+        return q[:2] + np.array([c * local[0] - s * local[1], s * local[0] + c * local[1]])
+
+    o, com, k_pt, n_pt = (
+        world(x)
+        for x in (mech.point_local[pivot], mech.link_com[rocker], mech.point_local[p], mech.point_local[rod[1]])
+    )
+    j_o = float(mech.link_inertia[rocker] + mech.link_mass[rocker] * np.sum((com - o) ** 2))
+    return rocker_impact(
+        inertia=j_o, mass=float(mech.link_mass[rocker]), com=com, impact_point=k_pt, support=o,
+        rod_mass=float(mech.link_mass[rod[0]]), rod_joint=n_pt, **kw,
+    )  # fmt: skip
