@@ -3,6 +3,7 @@ cases, the centre of percussion."""
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -177,3 +178,50 @@ def test_whole_mechanism_impulses_balance_every_link():
         assert moment == pytest.approx(mech.link_inertia[i] * dv[2], abs=1e-12 * scale)
     # the real crank and rod make the blow harder than the reduced model says
     assert np.abs(r.impulse[1]) > 1.1 * 43.3
+
+
+def test_whole_mechanism_ideal_centre_of_mass():
+    """Moved there (mass and inertia about O kept), the rocker's centre of mass leaves its support
+    without an impulse."""
+    import dataclasses
+
+    mech = lw.compile(lw.example("percussion-rocker"))
+    r = lw.impact(mech, at="rocker.K", **BLOW)
+    i = mech.link_names.index("rocker")
+    q = mech.pose0[i]
+    c, s = np.cos(q[2]), np.sin(q[2])
+    d = r.ideal_com - q[:2]
+    local = np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]])
+    com = np.array(mech.link_com)
+    inertia = np.array(mech.link_inertia)
+    about_o = inertia[i] + mech.link_mass[i] * np.sum(com[i] ** 2)  # O is the rocker's origin
+    com[i] = local
+    inertia[i] = about_o - mech.link_mass[i] * np.sum(local**2)
+    moved = dataclasses.replace(mech, link_com=com, link_inertia=inertia)
+    again = lw.impact(moved, at="rocker.K", **BLOW)
+    np.testing.assert_allclose(again.on("O", "rocker"), 0.0, atol=1e-12 * np.abs(again.impulse).max())
+    np.testing.assert_allclose(again.impulse, r.impulse, rtol=1e-12)
+
+
+def test_impact_command_json():
+    from typer.testing import CliRunner
+
+    import linkwork.cli.impact  # noqa: F401 - registers the command
+    from linkwork.cli.app import app
+
+    result = CliRunner().invoke(app, ["impact", "percussion-rocker", "--json"])
+    assert result.exit_code == 0, result.output
+    out = json.loads(result.stdout)
+    for key in ("impulse", "support_impulse", "omega_after", "energy_loss", "ideal_com"):
+        assert key in out
+    assert out["omega_after"] == pytest.approx(12.0, rel=1e-12)
+    assert out["support_impulse"]["O"]["on"] == "rocker"
+    # the reduced model against the paper's (4), (5), (8), (9) (valid for y_K < 0)
+    j_o, w, f, xk, yk = 0.30 + 1.2 * (0.10**2 + 0.02**2), -30.0 * 1.4, 0.15, 0.30, -0.02
+    iy = j_o * w / (f * yk - xk)
+    i0y = -w * (6.0 * 0.16 + 1.2 * 0.10 + j_o / (f * yk - xk))
+    assert out["model"]["impulse"]["y"] == pytest.approx(iy, rel=1e-12)
+    assert out["model"]["impulse"]["x"] == pytest.approx(f * iy, rel=1e-12)
+    assert out["model"]["support_impulse"]["O"]["y"] == pytest.approx(i0y, rel=1e-12)
+    bare = CliRunner().invoke(app, ["impact", "four-bar"])
+    assert bare.exit_code == 2 and 'give an "impact:" section' in bare.stderr

@@ -155,6 +155,7 @@ def main() -> None:
     """Entry point of the ``linkwork`` script."""
     import linkwork.cli.dynamics  # noqa: F401 - registers its commands
     import linkwork.cli.forces  # noqa: F401
+    import linkwork.cli.impact  # noqa: F401
     import linkwork.cli.motion  # noqa: F401
 
     app()

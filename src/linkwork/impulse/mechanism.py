@@ -52,6 +52,9 @@ class Impact:
         Reduced inertia on the crank in the pose, kg m^2.
     forces : Forces
         The impulses as a :class:`~linkwork.kinetostatics.Forces` (``pair_force`` in N s).
+    ideal_com : ndarray (2,) or None
+        Where the striking link's centre of mass would have to be (its mass and its inertia about
+        its pivot kept) for its frame pivot to feel no impulse; None unless it turns about one.
     """
 
     impulse: np.ndarray
@@ -65,6 +68,7 @@ class Impact:
     inertia: float
     phi: float
     forces: Any
+    ideal_com: np.ndarray | None = None
 
     def on(self, joint: str, link: str) -> np.ndarray:
         """Impulse (x, y) of a joint on ``link`` (the first-named link's impulse on the second, or
@@ -157,6 +161,7 @@ def impact(
         if joint not in joints:
             joints[joint] = forces.pair_force(k)[0, 0]
     before = v * w_before
+    ideal = _ideal_com(mech, forces, striker, impulse, v[striker, 2] * jump)
     return Impact(
         impulse,
         w_before,
@@ -169,7 +174,32 @@ def impact(
         inertia,
         phi,
         forces,
+        ideal,
     )
+
+
+def _ideal_com(mech: Any, forces: Any, link: int, impulse: np.ndarray, d_omega: float) -> np.ndarray | None:
+    """m (C - O) d_omega z x = the impulses on the link other than its pivot's: solved for C."""
+    from linkwork.kinetostatics.free_body import contacts
+
+    pivot = None
+    for k in range(mech.n_pairs):
+        a, b = (int(x) for x in mech.pair_links[k])
+        if mech.pair_type[k] == REVOLUTE and {a, b} == {0, link}:
+            pivot = k
+    if pivot is None or d_omega == 0:
+        return None
+    total = impulse.copy()
+    support = None
+    for c in contacts(forces):
+        if c.on != link or c.drive:
+            continue
+        if c.other == 0 and c.joint == mech.pair_joint[pivot]:
+            support = c.point[0, 0]
+            continue
+        total = total + c.force[0, 0]
+    w = total / (mech.link_mass[link] * d_omega)
+    return support + np.array([w[1], -w[0]])
 
 
 def reduced_model(mech: Any, *, at: str, rod_joint: str, **kw: Any) -> Any:

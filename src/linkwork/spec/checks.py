@@ -114,6 +114,7 @@ def check(src: Source, declared: dict[str, str]) -> list[Problem]:
     _check_hints(bad, data, joints, points)
     _check_loads(bad, data, points)
     _check_machine(bad, data)
+    _check_impact(bad, data, points)
     return out
 
 
@@ -402,3 +403,18 @@ def _check_machine(bad: Any, data: dict[str, Any]) -> None:
     others = {f for fields in _MOTOR_FIELDS.values() for f in fields} - needed
     for key in sorted(others & set(motor)):
         bad(path + (key,), f'"{key}" does not apply to {what}')
+
+
+def _check_impact(bad: Any, data: dict[str, Any], points: dict[str, set[str]]) -> None:
+    blow = _dict(data.get("impact"))
+    at = blow.get("at")
+    names = {f"{ln}.{p}" for ln, pts in points.items() if ln != FRAME for p in pts}
+    if isinstance(at, str) and at not in names:
+        bad(("impact", "at"), f'no point "{at}" of a moving link (give link.point){suggest(at, names)}')
+    link = blow.get("link")
+    if isinstance(link, str) and (link not in points or link == FRAME):
+        bad(("impact", "link"), f'unknown link "{link}"{suggest(link, set(points) - {FRAME})}')
+    joint = blow.get("rod_joint")
+    joints = _dict(data.get("joints"))
+    if isinstance(joint, str) and joint not in joints:
+        bad(("impact", "rod_joint"), f'unknown joint "{joint}"{suggest(joint, joints)}')

@@ -81,6 +81,7 @@ PositiveMoment = _quantity("moment", "positive")
 Moment = _quantity("moment")
 PositivePower = _quantity("power", "positive")
 PositiveAngularSpeed = _quantity("angular_speed", "positive")
+AngularSpeed = _quantity("angular_speed")
 
 
 def _one_or_table(kind: str) -> Any:
@@ -320,6 +321,22 @@ class Machine(_Strict):
     delta: float | None = Field(None, gt=0, lt=1, description="coefficient of speed fluctuation to size a flywheel for")
 
 
+class ImpactSpec(_Strict):
+    """A blow of a point of the mechanism on a surface at rest, in the assembly pose."""
+
+    at: str = Field(description="the striking point, link.point")
+    normal: Angle = Field(description="direction of the surface's normal, out of it (towards the striker)")
+    omega: AngularSpeed = Field(
+        description="angular speed of the striking link (or of `link`) before the blow, counter-clockwise positive"
+    )
+    link: str | None = Field(None, description="the link whose angular speed `omega` is")
+    restitution: float = Field(ge=0, le=1, description="R = -omega_after / omega_before")
+    friction: float = Field(0.0, ge=0, description="f: tangential impulse / normal impulse")
+    rod_joint: str | None = Field(
+        None, description="for the reduced model of seed 004: the joint at which the rod's mass is taken"
+    )
+
+
 class Spec(_Strict):
     """A planar mechanism: the root of a linkwork mechanism file."""
 
@@ -333,6 +350,7 @@ class Spec(_Strict):
     drives: list[Drive]
     loads: dict[str, Load] = Field(default_factory=dict, description="external loads by name")
     machine: Machine | None = Field(None, description="motor, gear and flywheel, for machine dynamics")
+    impact: ImpactSpec | None = Field(None, description="a blow, for linkwork impact")
     hints: dict[str, Vec2] = Field(
         default_factory=dict,
         description="approximate global positions of moving points in the assembly pose "
