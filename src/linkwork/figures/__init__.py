@@ -1,0 +1,33 @@
+"""Drawings of the results (matplotlib, ``pip install "linkwork[plot]"``): the kinematic scheme,
+the plan of positions, velocity and acceleration plans, and diagrams against the crank angle.
+
+Every function takes public results and returns a matplotlib ``Figure`` (no pyplot state), to
+show, save (``fig.savefig("scheme.svg")``) or embed.
+"""
+
+from __future__ import annotations
+
+from linkwork.figures.diagrams import (
+    dynamics_diagrams,
+    foundation_diagram,
+    hodograph,
+    link_angles,
+    motion_diagram,
+    torque_diagram,
+)
+from linkwork.figures.plans import acceleration_plan, draw_plan, velocity_plan
+from linkwork.figures.scheme import draw_positions, draw_scheme
+
+__all__ = [
+    "acceleration_plan",
+    "draw_plan",
+    "draw_positions",
+    "draw_scheme",
+    "dynamics_diagrams",
+    "foundation_diagram",
+    "hodograph",
+    "link_angles",
+    "motion_diagram",
+    "torque_diagram",
+    "velocity_plan",
+]
