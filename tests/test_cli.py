@@ -90,16 +90,19 @@ def test_schema_is_json():
     assert json.loads(result.stdout)["title"] == "Spec"
 
 
-def test_readme_quick_start_has_two_commands_and_the_main_job_runs():
+def test_readme_quick_start_has_two_commands_and_the_main_job_runs(tmp_path):
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     quick = readme.split("## Quick start", 1)[1].split("\n## ", 1)[0]
     commands = re.findall(r"```(?:bash|sh)?\n(.*?)```", quick, flags=re.S)
     lines = [line for block in commands for line in block.strip().splitlines()]
     assert len(lines) == 2
     main_job = lines[0].split("&&")[-1].strip().split()
-    assert main_job[0] == "linkwork"
-    proc = subprocess.run([sys.executable, "-m", "linkwork.cli.app", *main_job[1:]], capture_output=True, text=True)
+    assert main_job[:2] == ["linkwork", "analyze"]
+    proc = subprocess.run(
+        [sys.executable, "-m", "linkwork.cli.app", *main_job[1:]], capture_output=True, text=True, cwd=tmp_path
+    )
     assert proc.returncode == 0, proc.stderr
-    assert "II(2,3)" in proc.stdout
+    report = (tmp_path / main_job[main_job.index("--out") + 1] / "report.html").read_text(encoding="utf-8")
+    assert "I(0,1) -&gt; II(2,3) -&gt; II(4,5) -&gt; II(6,7)" in report
     ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
     assert lines[1] in ci

@@ -153,7 +153,8 @@ def example(name: Annotated[str, typer.Argument(help="name of a bundled example"
 
 def main() -> None:
     """Entry point of the ``linkwork`` script."""
-    import linkwork.cli.dynamics  # noqa: F401 - registers its commands
+    import linkwork.cli.analyze  # noqa: F401 - registers its commands
+    import linkwork.cli.dynamics  # noqa: F401
     import linkwork.cli.forces  # noqa: F401
     import linkwork.cli.impact  # noqa: F401
     import linkwork.cli.motion  # noqa: F401
@@ -161,5 +162,7 @@ def main() -> None:
     app()
 
 
-if __name__ == "__main__":
-    main()
+if __name__ == "__main__":  # python -m linkwork.cli.app: the commands register on the imported module's app
+    from linkwork.cli.app import main as _main
+
+    _main()

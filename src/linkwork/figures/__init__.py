@@ -7,6 +7,7 @@ show, save (``fig.savefig("scheme.svg")``) or embed.
 
 from __future__ import annotations
 
+from linkwork.figures.animation import animate
 from linkwork.figures.diagrams import (
     dynamics_diagrams,
     foundation_diagram,
@@ -20,6 +21,7 @@ from linkwork.figures.scheme import draw_positions, draw_scheme
 
 __all__ = [
     "acceleration_plan",
+    "animate",
     "draw_plan",
     "draw_positions",
     "draw_scheme",

@@ -1,0 +1,48 @@
+"""``linkwork analyze``: the main job."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from linkwork.cli.app import FileOrExample, _compile, app, fail
+
+
+@app.command()
+def analyze(
+    file_or_example: FileOrExample,
+    out: Annotated[str, typer.Option(help="folder for the report, tables, figures and animation")] = "report",
+    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
+    position: Annotated[
+        int, typer.Option(help="which of the 12 positions gets the velocity and acceleration plans")
+    ] = 0,
+    pdf: Annotated[bool, typer.Option("--pdf", help="also write report.pdf")] = False,
+    animation: Annotated[bool, typer.Option(help="write animation.gif (and .mp4 with ffmpeg)")] = True,
+) -> None:
+    """Every analysis the mechanism supports: tables, figures, animation and report.html."""
+    from rich.progress import Progress, SpinnerColumn, TextColumn
+
+    from linkwork.errors import LinkworkError
+
+    if steps < 12:
+        fail(LinkworkError(f"--steps: expected at least 12 steps over the turn, got {steps}"))
+    mech = _compile(file_or_example)
+    try:
+        from linkwork.report import analyze as run
+    except ImportError:  # pragma: no cover - without the plot extra
+        fail(LinkworkError("the report needs matplotlib: pip install 'linkwork[plot]'"))
+    with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True) as bar:
+        task = bar.add_task("analysing", total=None)
+        try:
+            path = run(
+                mech, out, steps=steps, position=position, pdf=pdf, animation=animation, source=file_or_example,
+                progress=lambda what: bar.update(task, description=f"analysing: {what}"),
+            )  # fmt: skip
+        except ImportError as exc:
+            fail(LinkworkError(f"the report needs matplotlib: pip install 'linkwork[plot]' ({exc})"))
+        except LinkworkError as exc:
+            fail(exc)
+        except OSError as exc:
+            fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
+    typer.echo(f"wrote {path}")

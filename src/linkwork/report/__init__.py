@@ -1,0 +1,362 @@
+"""The main job: every analysis a mechanism supports, its tables, figures, animation and a report.
+
+:func:`analyze` writes into a fresh folder beside the output folder and puts
+it in place only when everything is written, so an interrupted run never
+leaves a half-written report where a good one was.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+import math
+import os
+import shutil
+import tempfile
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+
+@dataclass
+class Section:
+    """One section of the report: a title, paragraphs and tables (HTML), figures (names)."""
+
+    key: str
+    title: str
+    body: list[str] = field(default_factory=list)
+    figures: list[str] = field(default_factory=list)
+
+
+def _table(head: list[str], rows: list[list[Any]]) -> str:
+    def cell(x: Any) -> str:
+        if isinstance(x, float):
+            return "-" if not math.isfinite(x) else f"{x:.6g}"
+        return html.escape(str(x))
+
+    out = ["<table><thead><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr></thead><tbody>"]
+    out += ["<tr>" + "".join(f"<td>{cell(x)}</td>" for x in row) + "</tr>" for row in rows]
+    return "".join(out) + "</tbody></table>"
+
+
+def _p(text: str) -> str:
+    return f"<p>{html.escape(text)}</p>"
+
+
+class _Run:
+    def __init__(self, mech: Any, folder: Path, progress: Callable[[str], None]) -> None:
+        self.mech = mech
+        self.folder = folder
+        self.progress = progress
+        self.sections: list[Section] = []
+        self.figures: dict[str, Any] = {}
+        (folder / "figures").mkdir(parents=True)
+
+    def figure(self, name: str, fig: Any) -> str:
+        fig.savefig(self.folder / "figures" / f"{name}.svg")
+        fig.savefig(self.folder / "figures" / f"{name}.png", dpi=90)
+        self.figures[name] = fig
+        return name
+
+
+def analyze(
+    mech: Any,
+    out: str | Path,
+    *,
+    steps: int = 360,
+    position: int = 0,
+    pdf: bool = False,
+    animation: bool = True,
+    source: str | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> Path:
+    """Run every analysis ``mech`` supports and write tables, figures, an animation and
+    ``report.html`` (and ``report.pdf``) into the folder ``out``; returns the report's path.
+
+    ``position``: which of the 12 positions (numbered from the working slider's or rocker's high
+    end, as ``linkwork positions`` does) gets the velocity and acceleration plans.
+    """
+    out = Path(out)
+    parent = out.resolve().parent
+    parent.mkdir(parents=True, exist_ok=True)
+    work = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".part", dir=parent))
+    try:
+        run = _Run(mech, work, progress or (lambda _: None))
+        _build(run, steps, position, animation, source)
+        _write_html(run, work / "report.html")
+        if pdf:
+            _write_pdf(run, work / "report.pdf")
+        _swap(work, out)
+    except BaseException:
+        shutil.rmtree(work, ignore_errors=True)
+        raise
+    return out / "report.html"
+
+
+def _swap(new: Path, out: Path) -> None:
+    """Put ``new`` where ``out`` is, the old one removed only after the new one is in place."""
+    old = None
+    if out.exists():
+        old = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".old", dir=out.resolve().parent))
+        os.rmdir(old)
+        os.replace(out, old)
+    os.replace(new, out)
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def _build(run: _Run, steps: int, position: int, animation: bool, source: str | None) -> None:
+    from linkwork import figures
+    from linkwork.cli.motion import zero_angle
+    from linkwork.io.motion_tables import point_labels, write_csv
+    from linkwork.motion import kinematics
+    from linkwork.motion.analysis import extremes, transmission_angles
+    from linkwork.structure.constraints import REVOLUTE
+
+    mech = run.mech
+    s = mech.structure
+    run.progress("structure")
+    sec = Section("structure", "Structure")
+    sec.body.append(
+        _p(
+            f"Moving links n = {s.n_links}, lower pairs p5 = {s.p5}, higher pairs p4 = {s.p4}: "
+            f"W = 3n - 2p5 - p4 = {s.dof}; redundant constraints q = {s.redundant}, mobility {s.mobility}."
+        )
+    )
+    sec.body.append(
+        _table(
+            ["#", "group", "kind", "links", "joints"],
+            [
+                [i, g.label.split(" ")[0], g.kind, ", ".join(g.link_names), ", ".join(g.joints)]
+                for i, g in enumerate(s.groups, 1)
+            ],
+        )  # fmt: skip
+    )
+    sec.body.append(_p(f"Structural formula: {s.formula}"))
+    run.sections.append(sec)
+
+    crank = mech.n_drives == 1 and mech.pair_type[mech.drive_pair[0]] == REVOLUTE
+    if not crank:
+        run.sections.append(Section("kinematics", "Kinematics", [_p("Needs one crank (a revolute drive).")]))
+        return
+    run.progress("kinematics")
+    kin = kinematics(mech, steps=steps)
+    write_csv(kin, run.folder / "kinematics.csv")
+    try:
+        from linkwork.io.motion_tables import write_netcdf
+
+        write_netcdf(kin, run.folder / "kinematics.nc")
+    except ImportError:
+        pass
+    sec = Section("kinematics", "Kinematics")
+    zero = zero_angle(mech)
+    sign = 1.0 if mech.drive_speed[0] >= 0 else -1.0
+    twelve = zero + sign * 2 * np.pi * np.arange(12) / 12
+    kin12 = kinematics(mech, twelve)
+    labels = point_labels(mech)
+    rows = []
+    for k in range(12):
+        row: list[Any] = [k, f"{math.degrees(twelve[k]) % 360:.1f}"]
+        for _, p in labels:
+            x = kin12.position(mech.point_names[p])[k] * 1000
+            row.append("-" if not np.isfinite(x).all() else f"{x[0]:.1f}, {x[1]:.1f}")
+        rows.append(row)
+    sec.body.append(_p("The 12 positions (coordinates in mm), position 0 at the working slider's high end:"))
+    sec.body.append(_table(["pos", "crank, deg", *[label for label, _ in labels]], rows))
+    ext = extremes(kin)
+    if ext:
+        sec.body.append(
+            _table(
+                ["", "stroke", "from", "to", "time ratio"],
+                [
+                    [
+                        f"{e.kind} {e.name}",
+                        e.stroke if e.kind == "slider" else math.degrees(e.stroke),
+                        e.low,
+                        e.high,
+                        e.time_ratio,
+                    ]
+                    for e in ext
+                ],
+            )  # fmt: skip
+        )
+    mu = [(lab, float(np.nanmin(v))) for lab, v in transmission_angles(kin).items() if np.isfinite(v).any()]
+    if mu:
+        sec.body.append(_table(["transmission angle", "least, deg"], [[lab, math.degrees(v)] for lab, v in mu]))
+    for e in kin.events:
+        sec.body.append(_p(f"{e.kind}: {e.message}"))
+    index = int(np.argmin(np.abs(((kin.angles - twelve[position % 12]) + np.pi) % (2 * np.pi) - np.pi)))
+    sec.figures += [
+        run.figure("scheme", figures.draw_scheme(kin, index)),
+        run.figure("positions", figures.draw_positions(kin)),
+        run.figure("velocity_plan", figures.velocity_plan(kin, index)),
+        run.figure("acceleration_plan", figures.acceleration_plan(kin, index)),
+        run.figure("link_angles", figures.link_angles(kin)),
+    ]
+    moving = [p for _, p in labels if mech.point_link[p] != 0]
+    if moving:
+        sec.figures.append(run.figure("motion", figures.motion_diagram(kin, mech.point_names[moving[-1]])))
+    run.sections.append(sec)
+    if animation:
+        run.progress("animation")
+        figures.animate(kin, run.folder / "animation.gif")
+
+    if not mech.structure.redundant:
+        _forces(run, steps)
+    if mech.machine is not None:
+        _dynamics(run)
+    if source is not None:
+        _impact(run, source)
+
+
+def _forces(run: _Run, steps: int) -> None:
+    from linkwork import figures
+    from linkwork.io.force_tables import groups, pair_labels, to_json, write_csv
+    from linkwork.kinetostatics import forces
+
+    mech = run.mech
+    run.progress("forces")
+    f = forces(mech, steps=steps)
+    write_csv(f, run.folder / "forces.csv")
+    (run.folder / "forces.json").write_text(json.dumps(to_json(f)), encoding="utf-8")
+    sec = Section("forces", "Forces (kinetostatics)")
+    phi = f.angles
+    ok = np.isfinite(f.driving_torque)
+    if ok.any():
+        i = int(np.nanargmax(np.abs(f.driving_torque)))
+        at = math.degrees(phi[i]) % 360
+        sec.body.append(_p(f"Driving torque: peak {f.driving_torque[i]:.6g} N m at {at:.1f} deg."))
+    rows = []
+    for label, k in pair_labels(mech):
+        size = np.hypot(*f.pair_force(k)[0].T)
+        if np.isfinite(size).any():
+            j = int(np.nanargmax(size))
+            a, b = (mech.link_names[int(x)] for x in mech.pair_links[k])
+            rows.append([label, f"{a} on {b}", float(size[j]), f"{math.degrees(phi[j]) % 360:.1f}"])
+    sec.body.append(_table(["joint", "first on second", "largest force, N", "at, deg"], rows))
+    b = f.bolts()
+    sec.body.append(
+        _table(
+            ["foundation", "largest", "at, deg"],
+            [
+                ["horizontal force (bolt shear), N", b.shear, f"{math.degrees(b.shear_angle) % 360:.1f}"],
+                ["pull on the bolts, N", b.pull, f"{math.degrees(b.pull_angle) % 360:.1f}"],
+                ["push on the foundation, N", b.push, f"{math.degrees(b.push_angle) % 360:.1f}"],
+                ["moment about the origin, N m", b.moment, f"{math.degrees(b.moment_angle) % 360:.1f}"],
+            ],
+        )  # fmt: skip
+    )
+    checks = [[k.replace("_", " "), v] for k, v in f.checks.items()]
+    checks += [[f"free body {g['group']}", g["residual"]] for g in groups(f)]
+    sec.body.append(_p("Cross-checks (relative discrepancy of the independent methods):"))
+    sec.body.append(_table(["check", "discrepancy"], checks))
+    sec.figures.append(run.figure("driving_torque", figures.torque_diagram(f)))
+    sec.figures.append(run.figure("foundation", figures.foundation_diagram(f)))
+    for k in range(mech.n_pairs):
+        if mech.pair_links[k, 0] == 0 and mech.pair_type[k] == 0:
+            sec.figures.append(run.figure(f"hodograph_{mech.pair_joint[k]}", figures.hodograph(f, mech.pair_joint[k])))
+    run.sections.append(sec)
+
+
+def _dynamics(run: _Run) -> None:
+    from linkwork import figures
+    from linkwork.cli.dynamics import to_json
+    from linkwork.machine import dynamics
+
+    mech = run.mech
+    run.progress("dynamics")
+    result = dynamics(mech, steps=1440)
+    data = to_json(mech, result)
+    (run.folder / "dynamics.json").write_text(json.dumps(data), encoding="utf-8")
+    rpm = 30 / math.pi
+    last = result.motion.last
+    sec = Section("dynamics", "Machine dynamics")
+    rows = [
+        ["mean crank speed, rpm", last.omega_mean * rpm],
+        ["least and largest crank speed, rpm", f"{last.omega_min * rpm:.4g} to {last.omega_max * rpm:.4g}"],
+        ["coefficient of speed fluctuation", last.delta],
+        ["mean power at the crank, W", result.mean_power],
+        ["motor power needed, W", data["motor_power_needed"]],
+        ["start-up time, s", result.startup_time],
+        ["flywheel, kg m^2 (on the " + result.drive.flywheel_on + " shaft)", result.drive.flywheel],
+    ]
+    sec.body.append(_table(["quantity", "value"], rows))
+    sec.figures.append(run.figure("dynamics", figures.dynamics_diagrams(result)))
+    run.sections.append(sec)
+
+
+def _impact(run: _Run, source: str | None) -> None:
+    from linkwork.examples import resolve
+    from linkwork.impulse import impact
+
+    if source is None:
+        return
+    blow = resolve(source).impact
+    if blow is None:
+        return
+    mech = run.mech
+    run.progress("impact")
+    normal = (math.cos(blow.normal), math.sin(blow.normal))
+    r = impact(mech, at=blow.at, normal=normal, omega_before=blow.omega, link=blow.link,
+               restitution=blow.restitution, friction=blow.friction)  # fmt: skip
+    sec = Section("impact", "Impact")
+    rows = [[f"impulse on {blow.at}", f"({r.impulse[0]:.6g}, {r.impulse[1]:.6g}) N s"]]
+    rows += [[f"joint {j}", f"({v[0]:.6g}, {v[1]:.6g}) N s"] for j, v in r.joints.items()]
+    rows += [["energy lost, J", r.energy_loss]]
+    if r.ideal_com is not None:
+        rows.append(["ideal centre of mass", f"({r.ideal_com[0]:.6g}, {r.ideal_com[1]:.6g}) m"])
+    sec.body.append(_table(["", "value"], rows))
+    run.sections.append(sec)
+
+
+STYLE = """
+body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}
+table{border-collapse:collapse;margin:0.6em 0;font-size:90%}
+td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}th{background:#f3f3f3}
+img{max-width:100%;border:1px solid #eee;margin:0.4em 0}
+pre{background:#f8f8f8;padding:0.6em;overflow:auto}nav a{margin-right:1em}
+"""
+
+
+def _write_html(run: _Run, path: Path) -> None:
+    mech = run.mech
+    title = f"{html.escape(mech.name)}: linkwork report"
+    parts = [f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title>"]
+    parts.append(f"<style>{STYLE}</style></head><body><h1>{html.escape(mech.name)}</h1>")
+    parts.append("<nav>" + "".join(f"<a href='#{s.key}'>{html.escape(s.title)}</a>" for s in run.sections) + "</nav>")
+    if mech.source and Path(mech.source).exists():
+        text = Path(mech.source).read_text(encoding="utf-8")
+        parts.append(f"<section id='input'><h2>Input</h2><pre>{html.escape(text)}</pre></section>")
+    for s in run.sections:
+        parts.append(f"<section id='{s.key}'><h2>{html.escape(s.title)}</h2>")
+        parts += s.body
+        for name in s.figures:
+            data = base64.b64encode((run.folder / "figures" / f"{name}.png").read_bytes()).decode()
+            parts.append(f"<figure><img alt='{html.escape(name)}' src='data:image/png;base64,{data}'></figure>")
+        parts.append("</section>")
+    if (run.folder / "animation.gif").exists():
+        data = base64.b64encode((run.folder / "animation.gif").read_bytes()).decode()
+        img = f"<img alt='animation' src='data:image/gif;base64,{data}'>"
+        parts.append(f"<section id='animation'><h2>Animation</h2>{img}</section>")
+    if mech.structure.warnings:
+        warnings = "".join(_p(w) for w in mech.structure.warnings)
+        parts.append(f"<section id='warnings'><h2>Warnings</h2>{warnings}</section>")
+    parts.append("</body></html>")
+    path.write_text("".join(parts), encoding="utf-8")
+
+
+def _write_pdf(run: _Run, path: Path) -> None:
+    from matplotlib.backends.backend_pdf import PdfPages
+    from matplotlib.figure import Figure
+
+    with PdfPages(path) as pdf:
+        title = Figure(figsize=(8.27, 11.69))
+        title.text(0.1, 0.9, f"{run.mech.name}: linkwork report", fontsize=18)
+        title.text(0.1, 0.85, f"structural formula {run.mech.structure.formula}", fontsize=11)
+        pdf.savefig(title)
+        for fig in run.figures.values():
+            pdf.savefig(fig)
