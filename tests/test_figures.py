@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import os
+import shutil
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -77,3 +81,30 @@ def test_plans_are_drawn_to_their_stated_scale(name):
         longest = max(np.hypot(*v) for v in plan.points.values()) / plan.scale
         assert 20 < longest <= 100  # mm on the sheet
     assert checked >= 4
+
+
+BASELINES = Path(__file__).parent / "baseline"
+
+
+def _baseline_figures():
+    kin = lw.kinematics(lw.compile(lw.example("double-cut-shears")), steps=36)
+    return {
+        "scheme": figures.draw_scheme(kin, 3),
+        "velocity_plan": figures.velocity_plan(kin, 3),
+        "acceleration_plan": figures.acceleration_plan(kin, 3),
+    }
+
+
+@pytest.mark.parametrize("name", ["scheme", "velocity_plan", "acceleration_plan"])
+def test_drawings_match_their_baselines(name, tmp_path):
+    """The drawings as they were checked by eye (tests/baseline, regenerate with
+    ``LINKWORK_NEW_BASELINES=1``), within a tolerance for rendering differences."""
+    from matplotlib.testing.compare import compare_images
+
+    fig = _baseline_figures()[name]
+    got = tmp_path / f"{name}.png"
+    fig.savefig(got, dpi=60)
+    expected = BASELINES / f"{name}.png"
+    if os.environ.get("LINKWORK_NEW_BASELINES"):
+        shutil.copy(got, expected)
+    assert compare_images(str(expected), str(got), tol=8) is None
