@@ -36,7 +36,7 @@ def analyze(
         task = bar.add_task("analysing", total=None)
         try:
             path = run(
-                mech, out, steps=steps, position=position, pdf=pdf, animation=animation, source=file_or_example,
+                mech, out, steps=steps, position=position, pdf=pdf, animation=animation,
                 progress=lambda what: bar.update(task, description=f"analysing: {what}"),
             )  # fmt: skip
         except ImportError as exc:

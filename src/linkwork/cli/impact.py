@@ -23,12 +23,11 @@ def impact(
     """Impulses of a blow in the pose of the file: on the striker, in every joint, the speed after,
     the energy lost, the ideal centre of mass; and the reduced model of seed 004 beside them."""
     from linkwork.errors import LinkworkError
-    from linkwork.examples import resolve
     from linkwork.impulse import impact as solve
     from linkwork.impulse import reduced_model
 
     mech = _compile(file_or_example)
-    blow = resolve(file_or_example).impact
+    blow = mech.blow
     if blow is None:
         fail(LinkworkError('the mechanism has no blow: give an "impact:" section (at, normal, omega, restitution)'))
     normal = (math.cos(blow.normal), math.sin(blow.normal))

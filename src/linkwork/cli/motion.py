@@ -111,20 +111,6 @@ def kinematics(
         typer.echo(f"  wrote {path}")
 
 
-def zero_angle(mech: Any) -> float:
-    """Crank angle of position 0: the first slider on a frame guide at the high end of its stroke
-    (for shears: the knives fully open), else the first rocker at its high extreme, else the assembly angle."""
-    from linkwork.motion import kinematics as solve
-    from linkwork.motion.analysis import extremes
-
-    ext = extremes(solve(mech, steps=3600))
-    for kind in ("slider", "rocker"):
-        for e in ext:
-            if e.kind == kind:
-                return e.at_high
-    return float(mech.drive_start[0])
-
-
 @app.command()
 def positions(
     file_or_example: FileOrExample,
@@ -141,7 +127,7 @@ def positions(
     """The plan of positions: coordinates of the points at COUNT crank positions (mm)."""
     from linkwork.errors import LinkworkError
     from linkwork.io.motion_tables import point_labels
-    from linkwork.motion import cycle
+    from linkwork.motion import analysis, cycle
     from linkwork.motion import kinematics as solve
 
     mech = _compile(file_or_example)
@@ -151,7 +137,7 @@ def positions(
         fail(LinkworkError(f"--zero: expected a crank angle in degrees, got {zero}"))
     try:
         sign = 1.0 if cycle(mech, 2)[1] > cycle(mech, 2)[0] else -1.0  # checks for a crank first
-        start = math.radians(zero) if zero is not None else zero_angle(mech)
+        start = math.radians(zero) if zero is not None else analysis.zero_angle(mech)
         values = start + sign * 2 * math.pi * np.arange(count) / count
         kin = solve(mech, values)
     except LinkworkError as exc:

@@ -101,7 +101,7 @@ def impact(
     :func:`~linkwork.impulse.rocker_impact`.
     """
     from linkwork.kinetostatics import Forces
-    from linkwork.kinetostatics.reactions import Loads, solve_reactions
+    from linkwork.kinetostatics.reactions import Loads, inertia_and_gravity, solve_reactions
     from linkwork.motion import kinematics
 
     if mech.n_drives != 1:
@@ -136,11 +136,9 @@ def impact(
     phi = -friction * direction
     # reduced inertia in the pose, from the unit-speed velocities of the centres of mass
     q, v = kin.pose[0, 0], kin.vel[0, 0]
-    c, s = np.cos(q[:, 2]), np.sin(q[:, 2])
-    r = np.stack(
-        [c * mech.link_com[:, 0] - s * mech.link_com[:, 1], s * mech.link_com[:, 0] + c * mech.link_com[:, 1]], -1
-    )
-    vc = v[:, :2] + v[:, 2:3] * np.stack([-r[:, 1], r[:, 0]], -1)
+    state = inertia_and_gravity(kin)
+    r = state.com[0, 0] - q[:, :2]  # origin -> centre of mass of every link
+    vc = state.com_velocity[0, 0]
     inertia = float(np.sum(mech.link_mass * np.sum(vc * vc, -1) + mech.link_inertia * v[:, 2] ** 2))
     jump = -(1.0 + restitution) * w_before
     s_n = inertia * jump / float(g_k @ (n + phi * t))

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.kinetostatics.reactions import group_order
-from linkwork.motion.fast import PER_THREAD, THREADS, _pool, njit
+from linkwork.motion.fast import OPTS, PER_THREAD, THREADS, _pool, njit
 from linkwork.structure.constraints import REVOLUTE
 
 #: Row kinds.
@@ -286,7 +286,7 @@ def _kernel(
 
 
 if njit is not None:  # pragma: no branch
-    _opts = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
+    _opts = OPTS
     _row_geometry = njit(inline="always", **_opts)(_row_geometry)
     _rows_at = njit(inline="always", **_opts)(_rows_at)
     _kernel = njit(**_opts)(_kernel)

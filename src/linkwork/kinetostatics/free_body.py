@@ -34,6 +34,7 @@ class Contact:
     point: np.ndarray
     moment: np.ndarray
     drive: bool = False
+    pair: int = -1  # the elementary pair (drives: the driven pair)
 
 
 @dataclass(frozen=True)
@@ -80,8 +81,8 @@ def contacts(forces: Any) -> list[Contact]:
         point = kin._point(m.point_names[int(m.pair_points[k, 1])])[0]
         f = forces.pair_force(k)
         couple = zero if m.pair_type[k] == REVOLUTE else lam[..., 2 * k]
-        out.append(Contact(m.pair_joint[k], b, a, f, point, couple))
-        out.append(Contact(m.pair_joint[k], a, b, -f, point, -couple))
+        out.append(Contact(m.pair_joint[k], b, a, f, point, couple, pair=k))
+        out.append(Contact(m.pair_joint[k], a, b, -f, point, -couple, pair=k))
     for d, k in enumerate(m.drive_pair):
         a, b = (int(x) for x in m.pair_links[k])
         value = lam[..., 2 * m.n_pairs + d]
@@ -94,8 +95,8 @@ def contacts(forces: Any) -> list[Contact]:
             c, s = np.cos(theta), np.sin(theta)
             f = value[..., None] * np.stack([c * ux - s * uy, s * ux + c * uy], -1)
             couple = zero
-        out.append(Contact(m.pair_joint[k], b, a, f, point, couple, drive=True))
-        out.append(Contact(m.pair_joint[k], a, b, -f, point, -couple, drive=True))
+        out.append(Contact(m.pair_joint[k], b, a, f, point, couple, drive=True, pair=int(k)))
+        out.append(Contact(m.pair_joint[k], a, b, -f, point, -couple, drive=True, pair=int(k)))
     return out
 
 
@@ -111,7 +112,7 @@ def free_bodies(forces: Any) -> list[FreeBody]:
     for group in m.structure.groups:
         links = set(group.links)
         external = [c for c in every if c.on in links and c.other not in links]
-        internal = [c for c in every if c.on in links and c.other in links and c.on == _second(m, c)]
+        internal = [c for c in every if c.on in links and c.other in links and c.on == int(m.pair_links[c.pair, 1])]
         loads = np.sum(about_origin[..., sorted(links), :], axis=-2)
         residual = loads.copy()
         for c in external:
@@ -119,11 +120,3 @@ def free_bodies(forces: Any) -> list[FreeBody]:
             residual[..., 2] += _cross(c.point, c.force) + c.moment
         out.append(FreeBody(group.label, tuple(group.links), external, internal, loads, residual))
     return out
-
-
-def _second(m: Any, c: Contact) -> int:
-    """The second-named link of the contact's pair (so each internal pair is listed once)."""
-    for k in range(m.n_pairs):
-        if m.pair_joint[k] == c.joint and {int(x) for x in m.pair_links[k]} == {c.on, c.other}:
-            return int(m.pair_links[k, 1])
-    return c.on

@@ -27,7 +27,7 @@ from linkwork.errors import LinkworkError
 
 
 class Model:
-    """``J``, ``J'`` and ``M`` of a :class:`~linkwork.machine.reduced.Reduced` as fast scalar functions."""
+    """``J`` and ``M`` of a :class:`~linkwork.machine.reduced.Reduced` as fast scalar functions."""
 
     def __init__(self, red: Any, extra_inertia: float = 0.0) -> None:
         from scipy.interpolate import CubicSpline
@@ -41,16 +41,15 @@ class Model:
         self.m = list(map(float, np.append(red.load, red.load[0])))
         self.extra = float(extra_inertia)
 
-    def at(self, psi: float) -> tuple[float, float, float]:
-        """``J + J_d``, ``J'`` and ``M`` at ``psi``."""
+    def at(self, psi: float) -> tuple[float, float]:
+        """``J + J_d`` and ``M`` at ``psi``."""
         u = (psi % (2 * math.pi)) / self.h
         i = min(int(u), self.k - 1)
         dx = (u - i) * self.h
         c3, c2, c1, c0 = self.c[i]
         j = ((c3 * dx + c2) * dx + c1) * dx + c0
-        dj = (3 * c3 * dx + 2 * c2) * dx + c1
         m = self.m[i] + (self.m[i + 1] - self.m[i]) * (u - i)
-        return j + self.extra, dj, m
+        return j + self.extra, m
 
 
 @dataclass(frozen=True)
@@ -102,10 +101,12 @@ class Motion:
     def startup_time(self, within: float = 0.02) -> float:
         """Time (s) until the turns' mean speed stays within ``within`` of the last turn's."""
         target = self.last.omega_mean
-        for turn in self.turns:
-            if all(abs(t.omega_mean - target) <= within * target for t in self.turns[self.turns.index(turn) :]):
-                return turn.start
-        return self.last.start
+        start = self.last.start
+        for turn in reversed(self.turns):  # back from the end while the turns stay within
+            if abs(turn.omega_mean - target) > within * target:
+                break
+            start = turn.start
+        return start
 
     def cycle(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The last turn: time from its start, turning angle within the turn (0 to 2 pi), speed."""
@@ -139,7 +140,7 @@ def simulate(
     moment = drive.moment
 
     def rhs(psi: float, y: np.ndarray) -> list[float]:
-        j, _, m = model.at(psi)
+        j, m = model.at(psi)
         e = max(y[1], 1e-300)
         w = math.sqrt(2 * e / j)
         return [1.0 / w, m + float(moment(w))]
@@ -156,12 +157,12 @@ def simulate(
     t0, e0 = 0.0, 0.5 * j0 * omega0**2
     first = psi0
     if omega0 == 0:
-        m0 = model.at(psi0)[2] + float(moment(0.0))
+        m0 = model.at(psi0)[1] + float(moment(0.0))
         if not m0 > 0:
             raise LinkworkError(
                 f"the drive cannot start the crank at {math.degrees(psi0 % (2 * np.pi)):.1f} deg of turning: "
                 f"its moment at rest ({float(moment(0.0)):.6g} N m) does not overcome the loads "
-                f"({-model.at(psi0)[2]:.6g} N m)"
+                f"({-model.at(psi0)[1]:.6g} N m)"
             )
         step = 1e-6
         first, e0, t0 = psi0 + step, m0 * step, math.sqrt(2 * j0 * step / m0)

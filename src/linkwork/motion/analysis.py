@@ -159,3 +159,16 @@ def instant_centre(kin: Any, link: str | int, relative_to: str | int = 0) -> np.
     far = np.abs(dw) <= 1e-12 * np.maximum(scale, 1e-300)
     px, py = np.where(far, np.nan, px), np.where(far, np.nan, py)
     return kin._out(np.stack([px, py], -1))
+
+
+def zero_angle(mech: Any) -> float:
+    """Crank angle of position 0: the first slider on a frame guide at the high end of its stroke
+    (for shears: the knives fully open), else the first rocker at its high extreme, else the assembly angle."""
+    from linkwork.motion import kinematics as solve
+
+    ext = extremes(solve(mech, steps=3600))
+    for kind in ("slider", "rocker"):
+        for e in ext:
+            if e.kind == kind:
+                return e.at_high
+    return float(mech.drive_start[0])

@@ -465,13 +465,11 @@ def _kernel(
                     out[2, link, k, var, i] = L[link, 6 + k]
 
 
+#: Options of every compiled kernel: no reference counting, the kernels allocate nothing.
+OPTS = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
+
 if njit is not None:  # pragma: no branch
-    _opts = {
-        "cache": True,
-        "error_model": "numpy",
-        "nogil": True,
-        "_nrt": False,
-    }  # no reference counting: the kernels allocate nothing
+    _opts = OPTS
     _point = njit(inline="always", **_opts)(_point)
     _material = njit(inline="always", **_opts)(_material)
     _place = njit(inline="always", **_opts)(_place)

@@ -71,7 +71,6 @@ def analyze(
     position: int = 0,
     pdf: bool = False,
     animation: bool = True,
-    source: str | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> Path:
     """Run every analysis ``mech`` supports and write tables, figures, an animation and
@@ -86,7 +85,7 @@ def analyze(
     work = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".part", dir=parent))
     try:
         run = _Run(mech, work, progress or (lambda _: None))
-        _build(run, steps, position, animation, source)
+        _build(run, steps, position, animation)
         _write_html(run, work / "report.html")
         if pdf:
             _write_pdf(run, work / "report.pdf")
@@ -109,12 +108,11 @@ def _swap(new: Path, out: Path) -> None:
         shutil.rmtree(old, ignore_errors=True)
 
 
-def _build(run: _Run, steps: int, position: int, animation: bool, source: str | None) -> None:
+def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
     from linkwork import figures
-    from linkwork.cli.motion import zero_angle
     from linkwork.io.motion_tables import point_labels, write_csv
     from linkwork.motion import kinematics
-    from linkwork.motion.analysis import extremes, transmission_angles
+    from linkwork.motion.analysis import extremes, transmission_angles, zero_angle
     from linkwork.structure.constraints import REVOLUTE
 
     mech = run.mech
@@ -209,8 +207,8 @@ def _build(run: _Run, steps: int, position: int, animation: bool, source: str | 
         _forces(run, steps)
     if mech.machine is not None:
         _dynamics(run)
-    if source is not None:
-        _impact(run, source)
+    if mech.blow is not None:
+        _impact(run)
 
 
 def _forces(run: _Run, steps: int) -> None:
@@ -264,7 +262,7 @@ def _forces(run: _Run, steps: int) -> None:
 
 def _dynamics(run: _Run) -> None:
     from linkwork import figures
-    from linkwork.cli.dynamics import to_json
+    from linkwork.io.dynamics_tables import to_json
     from linkwork.machine import dynamics
 
     mech = run.mech
@@ -289,16 +287,11 @@ def _dynamics(run: _Run) -> None:
     run.sections.append(sec)
 
 
-def _impact(run: _Run, source: str | None) -> None:
-    from linkwork.examples import resolve
+def _impact(run: _Run) -> None:
     from linkwork.impulse import impact
 
-    if source is None:
-        return
-    blow = resolve(source).impact
-    if blow is None:
-        return
     mech = run.mech
+    blow = mech.blow
     run.progress("impact")
     normal = (math.cos(blow.normal), math.sin(blow.normal))
     r = impact(mech, at=blow.at, normal=normal, omega_before=blow.omega, link=blow.link,

@@ -400,6 +400,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         ),
         machine=from_spec(spec.machine) if spec.machine is not None else None,
         delta=spec.machine.delta if spec.machine is not None else None,
+        blow=spec.impact,
     )
     return arrays, hints, (len(spec.links), p5, p4)
 

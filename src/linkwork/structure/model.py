@@ -190,6 +190,7 @@ class Mechanism:
     loads: tuple = ()  # external loads (linkwork.kinetostatics.external.ExternalLoad)
     machine: Any = None  # the drive of the machine unit (linkwork.machine.Drive), if the file gives one
     delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
+    blow: Any = None  # the file's impact: section (linkwork.spec.schema.ImpactSpec), SI
 
     @property
     def n_links(self) -> int:

@@ -1,0 +1,75 @@
+"""The JSON object of a machine-dynamics result (``linkwork dynamics --json``, the report)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+
+def _list(a: Any) -> list[float | None]:
+    return [None if not math.isfinite(float(x)) else float(x) for x in np.asarray(a, dtype=float).ravel()]
+
+
+def to_json(mech: Any, result: Any) -> dict[str, Any]:
+    """The ``linkwork dynamics --json`` object."""
+    from linkwork.machine import wittenbauer
+
+    red, drive, last = result.reduced, result.drive, result.motion.last
+    t, psi, omega = result.motion.cycle()
+    motor_speed = drive.ratio * omega
+    motor_torque = drive.motor(motor_speed)
+    out: dict[str, Any] = {
+        "name": mech.name,
+        "units": {
+            "angle": "deg",
+            "inertia": "kg m^2",
+            "moment": "N m",
+            "omega": "rad/s",
+            "power": "W",
+            "time": "s",
+        },
+        "angles_deg": _list(np.degrees(red.angle)),
+        "reduced_inertia": _list(red.inertia),
+        "reduced_inertia_slope": _list(red.inertia_slope),
+        "reduced_load": _list(red.load),
+        "work": _list(red.work()[:-1]),
+        "wittenbauer": {"inertia": _list(wittenbauer(red)[0]), "energy": _list(wittenbauer(red)[1])},
+        "cycle": {
+            "psi_deg": _list(np.degrees(psi)),
+            "t": _list(t),
+            "omega": _list(omega),
+            "motor_torque": _list(motor_torque),
+            "motor_power": _list(motor_torque * motor_speed),
+        },
+        "omega": _list(omega),
+        "omega_mean": last.omega_mean,
+        "omega_min": last.omega_min,
+        "omega_max": last.omega_max,
+        "delta": last.delta,
+        "mean_power": result.mean_power,
+        "mean_motor_power": float(np.trapezoid(motor_torque * motor_speed, t) / t[-1]) if len(t) > 1 else None,
+        "motor_power_needed": result.mean_power / drive.efficiency,
+        "startup_time": result.startup_time,
+        "steady": result.motion.steady,
+        "flywheel_inertia": drive.flywheel,
+        "flywheel_on": drive.flywheel_on,
+        "gear": {"ratio": drive.ratio, "efficiency": drive.efficiency},
+    }
+    if result.flywheel is not None:
+        from linkwork.machine import size_flywheel
+
+        f = result.flywheel
+        approx = size_flywheel(red, f.delta, f.omega_mean, drive.with_flywheel(0.0).inertia)
+        out["energy_method"] = {
+            "method": "Wittenbauer (tangents to the energy-inertia diagram)",
+            "merkalov_inertia_on_crank": approx.inertia,
+            "delta": f.delta,
+            "omega_mean": f.omega_mean,
+            "energy_swing": f.energy_swing,
+            "inertia_on_crank": f.inertia,
+            "flywheel_on_crank": f.flywheel,
+            "drive_moment": f.drive_moment,
+        }
+    return out
