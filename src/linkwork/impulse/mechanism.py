@@ -100,8 +100,6 @@ def impact(
     rad/s; ``angle``: the crank angle of the pose (default: the assembly pose); ``slip`` as in
     :func:`~linkwork.impulse.rocker_impact`.
     """
-    from linkwork.kinetostatics import Forces
-    from linkwork.kinetostatics.reactions import Loads, inertia_and_gravity, solve_reactions
     from linkwork.motion import kinematics
 
     if mech.n_drives != 1:
@@ -134,30 +132,12 @@ def impact(
     else:
         direction = -1.0 if slip is None else math.copysign(1.0, slip)
     phi = -friction * direction
-    # reduced inertia in the pose, from the unit-speed velocities of the centres of mass
-    q, v = kin.pose[0, 0], kin.vel[0, 0]
-    state = inertia_and_gravity(kin)
-    r = state.com[0, 0] - q[:, :2]  # origin -> centre of mass of every link
-    vc = state.com_velocity[0, 0]
-    inertia = float(np.sum(mech.link_mass * np.sum(vc * vc, -1) + mech.link_inertia * v[:, 2] ** 2))
+    v = kin.vel[0, 0]
+    inertia = pose_inertia(kin)
     jump = -(1.0 + restitution) * w_before
     s_n = inertia * jump / float(g_k @ (n + phi * t))
     impulse = s_n * (n + phi * t)
-    # impulsive loads: the impulse at K, and the change of momentum of every link (as an inertia load)
-    applied = np.zeros((1, 1, mech.n_links_total, 3))
-    arm = pos - q[striker, :2]
-    applied[0, 0, striker] = [impulse[0], impulse[1], arm[0] * impulse[1] - arm[1] * impulse[0]]
-    dm = mech.link_mass[:, None] * vc * jump  # m dv_C
-    momentum = np.concatenate(
-        [-dm, (-(r[:, 0] * dm[:, 1] - r[:, 1] * dm[:, 0]) - mech.link_inertia * v[:, 2] * jump)[:, None]], -1
-    )
-    loads = Loads(applied, momentum[None, None], r[None, None], vc[None, None], np.zeros_like(vc)[None, None])
-    lam, frame = solve_reactions(kin, loads)
-    forces = Forces(kin, lam, frame)
-    joints = {}
-    for k, joint in enumerate(mech.pair_joint):
-        if joint not in joints:
-            joints[joint] = forces.pair_force(k)[0, 0]
+    forces, lam, joints = impulsive_reactions(kin, striker, pos, impulse, jump)
     before = v * w_before
     ideal = _ideal_com(mech, forces, striker, impulse, v[striker, 2] * jump)
     return Impact(
@@ -174,6 +154,55 @@ def impact(
         forces,
         ideal,
     )
+
+
+def pose_inertia(kin: Any) -> float:
+    """Reduced inertia (kg m^2) on the crank in the single pose of ``kin`` (kinematics at unit
+    crank speed), from the velocities of the centres of mass."""
+    from linkwork.kinetostatics.reactions import inertia_and_gravity
+
+    mech = kin.mechanism
+    v = kin.vel[0, 0]
+    vc = inertia_and_gravity(kin).com_velocity[0, 0]
+    return float(np.sum(mech.link_mass * np.sum(vc * vc, -1) + mech.link_inertia * v[:, 2] ** 2))
+
+
+def impulsive_reactions(
+    kin: Any, striker: int, at: np.ndarray, impulse: np.ndarray, jump: float
+) -> tuple[Any, np.ndarray, dict[str, np.ndarray]]:
+    """Impulsive reactions of every pair in the single pose of ``kin`` (kinematics at unit crank
+    speed) when the impulse ``impulse`` (N s, global axes) acts on link ``striker`` at the point
+    ``at`` and the crank speed jumps by ``jump`` (in ``kin``'s unit of speed).
+
+    The change of momentum of every link enters as an inertia load.  Returns the impulses as a
+    :class:`~linkwork.kinetostatics.Forces` (``pair_force`` in N s), the raw multipliers (the drive
+    row ``[..., 2 n_pairs]`` is the drive's impulse on the crank, N m s) and, for each joint, the
+    impulse its first-named link exerts on the second (compound hinges: their first pair).
+    """
+    from linkwork.kinetostatics import Forces
+    from linkwork.kinetostatics.reactions import Loads, inertia_and_gravity, solve_reactions
+
+    mech = kin.mechanism
+    q, v = kin.pose[0, 0], kin.vel[0, 0]
+    state = inertia_and_gravity(kin)
+    r = state.com[0, 0] - q[:, :2]  # origin -> centre of mass of every link
+    vc = state.com_velocity[0, 0]
+    # impulsive loads: the impulse at K, and the change of momentum of every link (as an inertia load)
+    applied = np.zeros((1, 1, mech.n_links_total, 3))
+    arm = np.asarray(at) - q[striker, :2]
+    applied[0, 0, striker] = [impulse[0], impulse[1], arm[0] * impulse[1] - arm[1] * impulse[0]]
+    dm = mech.link_mass[:, None] * vc * jump  # m dv_C
+    momentum = np.concatenate(
+        [-dm, (-(r[:, 0] * dm[:, 1] - r[:, 1] * dm[:, 0]) - mech.link_inertia * v[:, 2] * jump)[:, None]], -1
+    )
+    loads = Loads(applied, momentum[None, None], r[None, None], vc[None, None], np.zeros_like(vc)[None, None])
+    lam, frame = solve_reactions(kin, loads)
+    forces = Forces(kin, lam, frame)
+    joints: dict[str, np.ndarray] = {}
+    for k, joint in enumerate(mech.pair_joint):
+        if joint not in joints:
+            joints[joint] = forces.pair_force(k)[0, 0]
+    return forces, lam, joints
 
 
 def _ideal_com(mech: Any, forces: Any, link: int, impulse: np.ndarray, d_omega: float) -> np.ndarray | None:

@@ -77,6 +77,8 @@ PositiveMass = _quantity("mass", "positive")
 Inertia = _quantity("inertia", "nonnegative")
 PositiveAcceleration = _quantity("acceleration", "positive")
 Force = _quantity("force")
+PositiveForce = _quantity("force", "positive")
+NonnegativeForce = _quantity("force", "nonnegative")
 PositiveMoment = _quantity("moment", "positive")
 Moment = _quantity("moment")
 PositivePower = _quantity("power", "positive")
@@ -321,6 +323,16 @@ class Machine(_Strict):
     delta: float | None = Field(None, gt=0, lt=1, description="coefficient of speed fluctuation to size a flywheel for")
 
 
+class ToolSpec(_Strict):
+    """The tool the striker hits, for the working cycle: it slides along the face's normal, the
+    feed presses it back onto its seat (the face's position in the pose of the blow), the work
+    resists its motion into it."""
+
+    mass: PositiveMass = Field(description="the tool's mass")
+    feed: PositiveForce = Field(description="constant force pressing the tool towards the striker, onto its seat")
+    resistance: NonnegativeForce = Field(0.0, description="force of the work against the tool's motion into it")
+
+
 class ImpactSpec(_Strict):
     """A blow of a point of the mechanism on a surface at rest, in the assembly pose."""
 
@@ -335,6 +347,7 @@ class ImpactSpec(_Strict):
     rod_joint: str | None = Field(
         None, description="for the reduced model of seed 004: the joint at which the rod's mass is taken"
     )
+    tool: ToolSpec | None = Field(None, description="the tool, for the working cycle (linkwork impact --cycle)")
 
 
 class Spec(_Strict):
