@@ -32,6 +32,8 @@ _LAZY = {
     "dynamics": ("linkwork.machine", "dynamics"),
     "rocker_impact": ("linkwork.impulse", "rocker_impact"),
     "impact": ("linkwork.impulse", "impact"),
+    "sweep": ("linkwork.design", "sweep"),
+    "optimize": ("linkwork.design", "optimize"),
 }
 
 __all__ = ["__version__", *_LAZY]

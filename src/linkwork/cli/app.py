@@ -154,10 +154,12 @@ def example(name: Annotated[str, typer.Argument(help="name of a bundled example"
 def main() -> None:
     """Entry point of the ``linkwork`` script."""
     import linkwork.cli.analyze  # noqa: F401 - registers its commands
+    import linkwork.cli.design  # noqa: F401
     import linkwork.cli.dynamics  # noqa: F401
     import linkwork.cli.forces  # noqa: F401
     import linkwork.cli.impact  # noqa: F401
     import linkwork.cli.motion  # noqa: F401
+    import linkwork.cli.view  # noqa: F401
 
     app()
 

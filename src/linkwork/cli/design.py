@@ -1,0 +1,157 @@
+"""``linkwork sweep``, ``linkwork optimize`` and ``linkwork parameters``: design over many variants."""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Annotated, Any
+
+import typer
+
+from linkwork.cli.app import FileOrExample, app, fail
+
+Vary = Annotated[
+    list[str],
+    typer.Option(
+        "--vary",
+        help='PATH=START:STOP:COUNT, e.g. "links.crank.length=90mm:110mm:50" (bare numbers in the file\'s units); '
+        "repeat for more dimensions",
+    ),
+]
+
+
+def _show(value: float, unit: str) -> str:
+    if not math.isfinite(value):
+        return str(value)
+    if unit == "rad":
+        return f"{math.degrees(value):.6g} deg"
+    return f"{value:.6g} {unit}" if unit != "1" else f"{value:.6g}"
+
+
+@app.command()
+def parameters(file_or_example: FileOrExample) -> None:
+    """List the dimensions and masses a sweep may vary, with the file's values (SI)."""
+    from linkwork.cli.app import _compile
+    from linkwork.design.plan import design_parameters, kind_of
+
+    mech = _compile(file_or_example)
+    si = {"length": "m", "angle": "rad", "mass": "kg"}
+    for path, value in design_parameters(mech).items():
+        typer.echo(f"{path:40s} {_show(value, si[kind_of(path)])}")
+
+
+@app.command()
+def sweep(
+    file_or_example: FileOrExample,
+    vary: Vary,
+    metric: Annotated[list[str], typer.Option("--metric", help="a metric to compute (repeat); see --list-metrics")],
+    out: Annotated[str, typer.Option("--out", help="the table to write: .parquet or .nc")],
+    sample: Annotated[str, typer.Option("--sample", help="grid, random or lhs (Latin hypercube)")] = "grid",
+    samples: Annotated[int | None, typer.Option("--samples", help="variants of a random or lhs sample")] = None,
+    seed: Annotated[int, typer.Option("--seed", help="seed of a random or lhs sample")] = 0,
+    steps: Annotated[int, typer.Option("--steps", help="crank angles over the turn")] = 360,
+    chunk_size: Annotated[int | None, typer.Option("--chunk-size", help="variants per chunk")] = None,
+    workers: Annotated[
+        int | None, typer.Option("--workers", help="local Dask worker processes (0: run in this process)")
+    ] = None,
+    scheduler: Annotated[
+        str | None, typer.Option("--scheduler", help="address or scheduler file of a running Dask cluster")
+    ] = None,
+    resume: Annotated[bool, typer.Option("--resume", help="finish a sweep whose chunks are on disk")] = False,
+    quiet: Annotated[bool, typer.Option("--quiet", help="no progress bar")] = False,
+) -> None:
+    """Metrics of many design variants, a row per variant, computed in chunks (here or on Dask).
+
+    Metrics: assembles, stroke[:JOINT], swing[:LINK], time_ratio[:JOINT|LINK], min_transmission_angle,
+    peak_driving_torque, peak_foundation_force, knife_overlap[:LOAD], knife_clearance[:LOAD].
+    """
+    from linkwork.design.plan import DesignError
+    from linkwork.design.store import parts_dir
+    from linkwork.design.sweep import sweep as run
+    from linkwork.errors import LinkworkError
+
+    try:
+        table = run(
+            file_or_example, vary, metric, sampling=sample, samples=samples, seed=seed, steps=steps,
+            chunk_size=chunk_size, out=out, resume=resume, workers=workers, scheduler=scheduler, progress=not quiet,
+        )  # fmt: skip
+    except (DesignError, LinkworkError) as exc:
+        fail(exc)
+    except KeyboardInterrupt:
+        typer.echo(f"interrupted: the finished chunks are in {parts_dir(out)}; run again with --resume", err=True)
+        raise typer.Exit(130) from None
+    except OSError as exc:
+        if scheduler is None:
+            raise
+        fail(LinkworkError(f"cannot reach the Dask scheduler at {scheduler}: {exc}"))
+    typer.echo(f"{table.meta['mechanism']}: {len(table)} variants x {steps} angles -> {out}")
+    for name in table.meta["metrics"]:
+        values = table.columns[name]
+        ok = values[~_isnan(values)]
+        if len(ok) == 0:
+            typer.echo(f"  {name:28s} no variant assembles over the whole turn")
+            continue
+        unit = table.units[name]
+        lo, hi = int(_nanarg(values, min)), int(_nanarg(values, max))
+        typer.echo(
+            f"  {name:28s} min {_show(float(values[lo]), unit)} (variant {table.columns['variant'][lo]}), "
+            f"max {_show(float(values[hi]), unit)} (variant {table.columns['variant'][hi]})"
+        )
+
+
+def _isnan(values: Any) -> Any:
+    import numpy as np
+
+    return np.isnan(values)
+
+
+def _nanarg(values: Any, which: Any) -> int:
+    import numpy as np
+
+    return int(np.nanargmin(values) if which is min else np.nanargmax(values))
+
+
+@app.command()
+def optimize(
+    file_or_example: FileOrExample,
+    vary: Vary,
+    objective: Annotated[str, typer.Option("--objective", help="the metric to minimise (or --maximize)")],
+    constraint: Annotated[
+        list[str] | None, typer.Option("--constraint", help='"METRIC>=VALUE" or "METRIC<=VALUE" (repeat)')
+    ] = None,
+    out: Annotated[str | None, typer.Option("--out", help="write the optimised mechanism file (.yaml)")] = None,
+    maximize: Annotated[bool, typer.Option("--maximize", help="the largest objective")] = False,
+    metric: Annotated[list[str] | None, typer.Option("--metric", help="more metrics to report")] = None,
+    steps: Annotated[int, typer.Option("--steps", help="crank angles over the turn")] = 180,
+    seed: Annotated[int, typer.Option("--seed", help="seed of the optimiser")] = 0,
+    popsize: Annotated[int, typer.Option("--popsize", help="population size per dimension")] = 15,
+    maxiter: Annotated[int, typer.Option("--maxiter", help="generations at most")] = 100,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+) -> None:
+    """The best design in the ranges (differential evolution over the whole population at once)."""
+    from linkwork.design.optimize import optimize as run
+    from linkwork.design.plan import DesignError
+    from linkwork.errors import LinkworkError
+
+    if out is not None and not out.endswith((".yaml", ".yml")):
+        fail(LinkworkError(f'--out "{out}": expected a .yaml file'))
+    try:
+        best = run(
+            file_or_example, vary, objective, constraint or [], maximize=maximize, metrics=metric or [],
+            steps=steps, seed=seed, popsize=popsize, maxiter=maxiter, out=out,
+        )  # fmt: skip
+    except (DesignError, LinkworkError) as exc:
+        fail(exc)
+    if as_json:
+        typer.echo(json.dumps(best.as_dict()))
+        return
+    typer.echo(f"{'best design' if best.feasible else 'no design meets every constraint; the nearest'}: "
+               f"{best.evaluations} designs evaluated in {best.generations} generations")  # fmt: skip
+    for path, value in best.values.items():
+        typer.echo(f"  {path:36s} {_show(value, best.units[path])}")
+    typer.echo("metrics" + ("  (the file's design beside)" if best.initial else ""))
+    for name, value in best.metrics.items():
+        before = f"   was {_show(best.initial[name], best.units[name])}" if name in best.initial else ""
+        typer.echo(f"  {name:36s} {_show(value, best.units[name])}{before}")
+    if best.out is not None:
+        typer.echo(f"written: {best.out}")

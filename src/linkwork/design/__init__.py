@@ -1,0 +1,28 @@
+"""Design: sweeps over many variants of a mechanism, and optimisation, in one process or on Dask.
+
+:func:`sweep` evaluates metrics (:data:`METRICS`) over a grid or a random or
+Latin-hypercube sample of dimensions and masses of the file, in chunks, with
+results written chunk by chunk so that a stopped sweep resumes; :func:`optimize`
+searches the ranges by differential evolution for the best design under
+constraints and writes it as a mechanism file.
+"""
+
+from __future__ import annotations
+
+from linkwork.design.metrics import METRICS, Metric
+from linkwork.design.optimize import Optimum, optimize
+from linkwork.design.plan import DesignError, Plan, Vary, design_parameters
+from linkwork.design.sweep import SweepTable, sweep
+
+__all__ = [
+    "METRICS",
+    "DesignError",
+    "Metric",
+    "Optimum",
+    "Plan",
+    "SweepTable",
+    "Vary",
+    "design_parameters",
+    "optimize",
+    "sweep",
+]

@@ -1,0 +1,238 @@
+"""What a sweep varies: the dimensions, their ranges and how the variants are sampled.
+
+A dimension is named by its path in the mechanism file (``links.crank.length``,
+``frame.points.O1.x``, ``joints.guide_E.axis``, ``links.rod.mass``), as
+:func:`design_parameters` lists them.  Ranges are read with units at the edge:
+``"links.crank.length=90mm:110mm:50"``; bare numbers are in the file's units.
+Inside, everything is SI.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+
+#: How a plan samples its ranges.
+SAMPLINGS = ("grid", "random", "lhs")
+
+
+class DesignError(LinkworkError, ValueError):
+    """Bad design options: one line per problem in the message, the problems in ``problems``."""
+
+    def __init__(self, problems: list[str] | tuple[str, ...]):
+        self.problems = tuple(problems)
+        super().__init__("\n".join(self.problems))
+
+
+@dataclass(frozen=True)
+class Vary:
+    """One varied dimension.
+
+    Attributes
+    ----------
+    path : str
+        Its path in the file, e.g. ``links.crank.length``.
+    start, stop : float
+        The range, SI (m, rad, kg).
+    count : int or None
+        Number of grid values (``None`` where only the range is given, as for optimisation).
+    kind : str
+        ``length``, ``angle`` or ``mass``.
+    """
+
+    path: str
+    start: float
+    stop: float
+    count: int | None
+    kind: str
+
+    def grid(self) -> np.ndarray:
+        """The ``count`` equally spaced values from ``start`` to ``stop``, SI."""
+        n = self.count or 1
+        return self.start + (self.stop - self.start) * (np.arange(n) / (n - 1) if n > 1 else np.zeros(1))
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"path": self.path, "start": self.start, "stop": self.stop, "count": self.count, "kind": self.kind}
+
+
+def kind_of(path: str) -> str:
+    """The kind of quantity a path names: ``angle`` for guide axes, ``mass`` for masses, else ``length``."""
+    if path.endswith(".axis"):
+        return "angle"
+    if path.endswith(".mass"):
+        return "mass"
+    return "length"
+
+
+def design_parameters(mech: Any) -> dict[str, float]:
+    """Every dimension a sweep may vary, with the file's value (SI).
+
+    The geometry of :func:`linkwork.parameters` and the mass of every moving
+    link that has one (``links.NAME.mass``).
+    """
+    from linkwork.motion.geometry import parameters
+
+    out = dict(parameters(mech))
+    for i, name in enumerate(mech.link_names):
+        if i > 0 and not mech.link_virtual[i] and mech.link_mass[i] > 0:
+            out[f"links.{name}.mass"] = float(mech.link_mass[i])
+    return out
+
+
+_VARY = re.compile(r"^\s*([^=\s]+)\s*=\s*(.*)$")
+
+
+def parse_vary(
+    text: str, mech: Any, declared: dict[str, str], count_required: bool = True
+) -> tuple[Vary | None, list[str]]:
+    """Read ``PATH=START:STOP[:COUNT]``; returns the :class:`Vary` (or None) and the problems found."""
+    from linkwork.spec.checks import suggest
+    from linkwork.units import UnitParseError, parse_quantity
+
+    problems: list[str] = []
+    match = _VARY.match(text)
+    if match is None:
+        return None, [f'--vary "{text}": expected PATH=START:STOP:COUNT, e.g. "links.crank.length=90mm:110mm:50"']
+    path, rest = match.group(1), match.group(2)
+    known = design_parameters(mech)
+    if path not in known:
+        hint = suggest(path, known)
+        if not hint and path.endswith(".mass"):
+            hint = " (only links with a mass in the file can vary it)"
+        problems.append(f'--vary "{text}": no dimension "{path}"{hint}; `linkwork parameters FILE` lists them')
+    parts = [p.strip() for p in rest.split(":")]
+    if len(parts) not in (2, 3) or not all(parts[:2]):
+        problems.append(f'--vary "{text}": expected START:STOP:COUNT after "=", got "{rest}"')
+        return None, problems
+    kind = kind_of(path)
+    values = []
+    for label, part in zip(("START", "STOP"), parts[:2], strict=True):
+        try:
+            values.append(parse_quantity(part, kind, declared))
+        except UnitParseError as exc:
+            problems.append(f'--vary "{text}": {label}: {exc}')
+    count: int | None = None
+    if len(parts) == 3:
+        try:
+            count = int(parts[2])
+            if str(count) != parts[2].lstrip("+"):
+                raise ValueError
+        except ValueError:
+            problems.append(f'--vary "{text}": COUNT: expected a whole number, got "{parts[2]}"')
+            count = None
+        else:
+            if count < 1:
+                problems.append(f'--vary "{text}": COUNT must be 1 or more, got {count}')
+    elif count_required:
+        problems.append(f'--vary "{text}": COUNT missing (PATH=START:STOP:COUNT)')
+    if len(values) == 2:
+        start, stop = values
+        if start > stop:
+            problems.append(f'--vary "{text}": START {parts[0]} is greater than STOP {parts[1]}')
+        if kind == "mass" and start <= 0:
+            problems.append(f'--vary "{text}": a mass must be positive, got START {parts[0]}')
+    if problems:
+        return None, problems
+    return Vary(path, float(values[0]), float(values[1]), count, kind), []
+
+
+def parse_varies(texts: list[str], mech: Any, declared: dict[str, str], count_required: bool = True) -> list[Vary]:
+    """Read every ``--vary``; raises :class:`DesignError` listing every problem of them all."""
+    problems: list[str] = []
+    out: list[Vary] = []
+    if not texts:
+        problems.append("give at least one --vary PATH=START:STOP:COUNT")
+    for text in texts:
+        vary, found = parse_vary(text, mech, declared, count_required)
+        problems += found
+        if vary is not None:
+            out.append(vary)
+    seen: set[str] = set()
+    for v in out:
+        if v.path in seen:
+            problems.append(f'--vary: "{v.path}" is given twice')
+        seen.add(v.path)
+    if problems:
+        raise DesignError(problems)
+    return out
+
+
+@dataclass(frozen=True)
+class Plan:
+    """The variants of a sweep.
+
+    Attributes
+    ----------
+    varies : tuple of Vary
+    sampling : str
+        ``grid`` (every combination of the ``count`` values, the first dimension slowest),
+        ``random`` (uniform) or ``lhs`` (Latin hypercube), both from ``seed``.
+    n_variants : int
+    seed : int
+    """
+
+    varies: tuple[Vary, ...]
+    sampling: str = "grid"
+    n_variants: int = 0
+    seed: int = 0
+
+    @property
+    def paths(self) -> list[str]:
+        return [v.path for v in self.varies]
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "varies": [v.as_dict() for v in self.varies],
+            "sampling": self.sampling,
+            "n_variants": self.n_variants,
+            "seed": self.seed,
+        }
+
+    def unit_sample(self) -> np.ndarray | None:
+        """The random or Latin-hypercube sample in the unit cube, ``(n_variants, n_varies)``; None for a grid."""
+        k = len(self.varies)
+        if self.sampling == "grid":
+            return None
+        if self.sampling == "random":
+            return np.random.default_rng(self.seed).random((self.n_variants, k))
+        from scipy.stats import qmc
+
+        return qmc.LatinHypercube(d=k, rng=np.random.default_rng(self.seed)).random(self.n_variants)
+
+    def values(self, start: int, stop: int, unit: np.ndarray | None = None) -> np.ndarray:
+        """SI values of variants ``start`` to ``stop - 1``: ``(stop - start, n_varies)``.
+
+        ``unit`` is :meth:`unit_sample` (computed here when not given) for the random samplings.
+        """
+        ids = np.arange(start, stop)
+        if self.sampling == "grid":
+            counts = [v.count or 1 for v in self.varies]
+            index = np.unravel_index(ids, counts)
+            return np.stack([v.grid()[i] for v, i in zip(self.varies, index, strict=True)], axis=-1)
+        u = (self.unit_sample() if unit is None else unit)[start:stop]
+        lo = np.array([v.start for v in self.varies])
+        hi = np.array([v.stop for v in self.varies])
+        return lo + (hi - lo) * u
+
+
+def make_plan(varies: list[Vary], sampling: str = "grid", samples: int | None = None, seed: int = 0) -> Plan:
+    """A :class:`Plan`; raises :class:`DesignError` for an unknown sampling or a bad sample count."""
+    problems = []
+    if sampling not in SAMPLINGS:
+        problems.append(f'--sample "{sampling}": expected one of {", ".join(SAMPLINGS)}')
+    if samples is not None and samples < 1:
+        problems.append(f"--samples must be 1 or more, got {samples}")
+    if sampling == "grid" and samples is not None:
+        problems.append("--samples is for --sample random or lhs; a grid has the product of the COUNTs")
+    if sampling == "grid" and any(v.count is None for v in varies):
+        problems.append("a grid needs a COUNT in every --vary")
+    if problems:
+        raise DesignError(problems)
+    n = samples if samples is not None else math.prod(v.count or 1 for v in varies)
+    return Plan(tuple(varies), sampling, int(n), int(seed))
