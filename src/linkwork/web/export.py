@@ -1,0 +1,67 @@
+"""One self-contained page: the viewer with its script, style and the whole cycle inlined.
+
+The page needs no server and no network: it opens from a file URL, and its
+Content-Security-Policy forbids every fetch, so the page cannot reach out
+even by mistake.  The file is written atomically.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from linkwork.io.atomic import write_atomic
+
+_CSP = (
+    "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:; "
+    "base-uri 'none'; form-action 'none'"
+)
+
+
+def render_page(payload: dict[str, Any]) -> str:
+    """The viewer's page with ``payload`` (from :func:`~linkwork.web.payload.cycle_payload`) embedded."""
+    from linkwork.web.session import static_text
+
+    page = static_text("index.html")
+    css, js = static_text("viewer.css"), static_text("viewer.js")
+    if "</" in css or "</script" in js.lower():
+        raise ValueError("the viewer's files cannot be inlined")  # a packaging error, not a user's
+    data = json.dumps(payload, allow_nan=False, separators=(",", ":"))
+    data = data.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+    replace = {
+        '<link rel="stylesheet" href="static/viewer.css">': f'<meta http-equiv="Content-Security-Policy" '
+        f'content="{_CSP}">\n<style>\n{css}</style>',
+        '<script src="static/viewer.js"></script>': f"<script>\n{js}</script>",
+        "<!--linkwork-data-->": f'<script type="application/json" id="linkwork-data">{data}</script>',
+    }
+    for old, new in replace.items():
+        if page.count(old) != 1:
+            raise ValueError(f"the viewer's page lacks {old!r}")
+        page = page.replace(old, new)
+    return page
+
+
+def export_page(spec_or_mech: Any, path: str | Path, steps: int = 360) -> Path:
+    """Write the viewer of a spec, a compiled mechanism, or a file or example name to one HTML file.
+
+    Parameters
+    ----------
+    spec_or_mech : Spec, Mechanism or str
+    path : str or Path
+        The page to write (replaced atomically).
+    steps : int
+        Crank angles of the precomputed cycle.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    from linkwork.web.session import Viewer
+
+    viewer = Viewer(spec_or_mech, steps)
+    payload = dict(viewer.cycle())
+    payload["editable"] = False
+    text = render_page(payload)
+    return write_atomic(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))

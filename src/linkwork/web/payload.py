@@ -1,0 +1,314 @@
+"""The whole cycle of a mechanism as plain JSON-able data, for the viewer and its exported page.
+
+One call solves the cycle at ``steps`` crank angles (kinematics, the velocity
+and acceleration plans of every position, and the forces where the
+mechanism has masses or loads), so the page only indexes arrays when the
+crank turns.  Lengths in m, the plans' vectors in m/s and m/s^2, angles of
+the cycle in degrees, the series in the units they name; missing values
+(samples that do not assemble) are ``null``.
+
+Layout (``format: linkwork-view/1``):
+
+* ``angles_deg`` (A,): the drive angle of every sample, counter-clockwise
+  from +x, from the assembly angle in the direction of rotation;
+  ``turn_deg`` (A,): the angle turned from the first sample;
+* ``points`` (P,): ``name`` (``link.point``), ``label``, ``link``,
+  ``joint`` (a point of a pair) and ``positions`` (A, P, 2), m;
+* ``links``: the points each moving link is drawn through; ``pairs``: the
+  joints (``revolute`` / ``prismatic``, links, points, the guide's global
+  direction ``axis`` (A, 2) for prismatic pairs);
+* ``plans``: for ``velocity`` and ``acceleration``, the labels of the plan
+  points (``p``, ``a``, ``b``..., and the construction's intermediate
+  points), their vectors from the pole ``values`` (A, L, 2), the
+  construction's ``vectors`` (from, to, kind, group) and one drawing
+  ``scale_per_mm`` for the whole cycle (units per mm of drawing);
+* ``series``: quantities over the cycle (slider positions, rocker angles,
+  driving torque, foundation force...), each with ``label``, ``unit`` and
+  ``values`` (A,);
+* ``structure``, ``drives``, ``extremes``, ``events``, ``warnings``.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+from linkwork.structure.constraints import PRISMATIC, REVOLUTE
+
+FORMAT = "linkwork-view/1"
+
+
+def _json(a: Any, decimals: int | None = None) -> Any:
+    """A nested list of Python floats, NaN and infinities as None, optionally rounded."""
+    a = np.asarray(a, dtype=float)
+    if decimals is not None:
+        a = np.round(a, decimals)
+    out = a.astype(object)
+    out[~np.isfinite(a)] = None
+    return out.tolist()
+
+
+def _significant(a: np.ndarray, digits: int = 9) -> int:
+    """Decimals that keep ``digits`` significant digits of the largest finite value of ``a``."""
+    finite = np.abs(a[np.isfinite(a)])
+    top = float(finite.max()) if finite.size else 0.0
+    return digits - (math.ceil(math.log10(top)) if top > 0 else 0)
+
+
+def cycle_payload(mech: Any, steps: int = 360) -> dict[str, Any]:
+    """Everything the viewer shows, over a whole turn of the crank at ``steps`` angles.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        From :func:`linkwork.compile`, with one revolute drive.
+    steps : int
+        Samples of the turn.
+
+    Returns
+    -------
+    dict
+        JSON-able data, see the module's description.
+
+    Raises
+    ------
+    LinkworkError
+        For a mechanism without a single crank.
+    """
+    from linkwork.motion import kinematics
+    from linkwork.motion.analysis import extremes
+
+    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+        raise LinkworkError("the viewer turns one crank: the mechanism needs exactly one revolute drive")
+    notes: list[str] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        kin = kinematics(mech, steps=steps)
+        forces, reason = _forces(mech, steps)
+    notes += [str(w.message) for w in caught]
+    pts = kin.points()  # (A, P, 2)
+    angles = kin.angles
+    speed = float(kin.rates[0, 0])
+    out: dict[str, Any] = {
+        "format": FORMAT,
+        "name": mech.name,
+        "source": mech.source,
+        "steps": int(steps),
+        "angles_deg": _json(np.degrees(angles), 9),
+        "turn_deg": _json(np.abs(np.degrees(angles - angles[0])), 9),
+        "speed": speed,
+        "period_s": 2 * math.pi / abs(speed) if speed else None,
+        "valid": [bool(x) for x in kin.valid],
+        "points": _points(mech),
+        "positions": _json(pts, 9),
+        "links": _links(mech),
+        "pairs": _pairs(mech, kin),
+        "plans": _plans(kin),
+        "series": _series(mech, kin, forces),
+        "structure": _structure(mech),
+        "drives": [
+            {
+                "joint": mech.pair_joint[int(mech.drive_pair[0])],
+                "speed_rad_s": speed,
+                "rpm": abs(speed) * 30 / math.pi,
+                "direction": "ccw" if speed >= 0 else "cw",
+                "start_deg": math.degrees(float(mech.drive_start[0])),
+            }
+        ],
+        "extremes": [_finite(e.as_dict()) for e in extremes(kin)],
+        "events": [_finite(e.as_dict()) for e in kin.events],
+        "forces": {"available": forces is not None, "reason": reason},
+        "warnings": list(dict.fromkeys(notes)),
+    }
+    if forces is not None:
+        out["forces"]["checks"] = _finite(forces.checks)
+    return out
+
+
+def _finite(d: dict[str, Any]) -> dict[str, Any]:
+    return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in d.items()}
+
+
+def _forces(mech: Any, steps: int) -> tuple[Any, str]:
+    from linkwork.kinetostatics import forces
+
+    if mech.structure.redundant:
+        return None, "the mechanism has redundant constraints: its reactions are statically indeterminate"
+    if not (np.asarray(mech.link_mass)[1:] > 0).any() and not mech.loads:
+        return None, "the file gives no masses and no loads"
+    try:
+        return forces(mech, steps=steps), ""
+    except LinkworkError as exc:
+        return None, str(exc)
+
+
+def _points(mech: Any) -> list[dict[str, Any]]:
+    from linkwork.io.motion_tables import point_labels
+
+    labels = dict((p, label) for label, p in point_labels(mech, with_all=True))
+    joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
+    return [
+        {
+            "name": name,
+            "label": labels.get(p, name),
+            "link": int(mech.point_link[p]),
+            "joint": p in joint,
+            "virtual": bool(mech.link_virtual[mech.point_link[p]]),
+        }
+        for p, name in enumerate(mech.point_names)
+    ]
+
+
+def _links(mech: Any) -> list[dict[str, Any]]:
+    """Each link with the points it is drawn through: its joint points, then its markers."""
+    joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
+    out = []
+    for i, name in enumerate(mech.link_names):
+        own = [p for p in range(len(mech.point_names)) if mech.point_link[p] == i]
+        draw = [p for p in own if p in joint] + [p for p in own if p not in joint]
+        out.append({"index": i, "name": name, "virtual": bool(mech.link_virtual[i]), "draw": draw})
+    return out
+
+
+def _pairs(mech: Any, kin: Any) -> list[dict[str, Any]]:
+    driven = {int(k) for k in mech.drive_pair}
+    out = []
+    for k in range(mech.n_pairs):
+        a, b = (int(x) for x in mech.pair_links[k])
+        item: dict[str, Any] = {
+            "joint": mech.pair_joint[k],
+            "type": "revolute" if mech.pair_type[k] == REVOLUTE else "prismatic",
+            "links": [a, b],
+            "points": [int(x) for x in mech.pair_points[k]],
+            "driven": k in driven,
+            "axis": None,
+        }
+        if mech.pair_type[k] == PRISMATIC:
+            theta = kin.pose[0, :, a, 2]
+            ux, uy = float(kin.axis[k, 0, 0, 0]), float(kin.axis[k, 1, 0, 0])
+            c, s = np.cos(theta), np.sin(theta)
+            item["axis"] = _json(np.stack([c * ux - s * uy, s * ux + c * uy], -1), 9)
+        out.append(item)
+    return out
+
+
+def _plans(kin: Any) -> dict[str, Any]:
+    """The plans of every sample: plan points (pole-relative vectors) and the construction's vectors."""
+    from linkwork.motion.plans import _round_scale, plans
+
+    n = len(kin.angles)
+    valid = np.asarray(kin.valid)
+    first = int(np.flatnonzero(valid)[0]) if valid.any() else 0
+    templates = plans(kin, first)
+    out = {}
+    for which, template in enumerate(templates):
+        labels = list(template.points)
+        for vec in template.vectors:
+            for lab in (vec.start, vec.end):
+                if lab not in labels:
+                    labels.append(lab)
+        index = {lab: j for j, lab in enumerate(labels)}
+        out[template.kind] = {
+            "kind": template.kind,
+            "unit": "m/s" if template.kind == "velocity" else "m/s^2",
+            "labels": labels,
+            "absolute": [index[lab] for lab in template.points if lab != "p"],
+            "vectors": [
+                {"from": index[v.start], "to": index[v.end], "kind": v.kind, "group": v.group, "about": v.about}
+                for v in template.vectors
+            ],
+            "values": np.full((n, len(labels), 2), np.nan),
+        }
+        out[template.kind]["_which"] = which
+    for i in range(n):
+        if not valid[i]:
+            continue
+        for plan in plans(kin, i):
+            data = out[plan.kind]
+            known = {lab: np.asarray(vec, dtype=float) for lab, vec in plan.points.items()}
+            known.setdefault("p", np.zeros(2))
+            for vec in plan.vectors:
+                if vec.start in known:
+                    known.setdefault(vec.end, known[vec.start] + np.asarray(vec.vector, dtype=float))
+            for lab, j in zip(data["labels"], range(len(data["labels"])), strict=True):
+                if lab in known:
+                    data["values"][i, j] = known[lab]
+    for data in out.values():
+        values = data.pop("values")
+        data.pop("_which")
+        absolute = values[:, data["absolute"]] if data["absolute"] else np.zeros((n, 0, 2))
+        longest = float(np.nanmax(np.hypot(absolute[..., 0], absolute[..., 1]))) if np.isfinite(absolute).any() else 0
+        data["scale_per_mm"] = _round_scale(longest)
+        data["values"] = _json(values, _significant(values))
+    return out
+
+
+def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
+    """Quantities over the cycle the page can chart."""
+    out: list[dict[str, Any]] = []
+
+    def add(key: str, label: str, unit: str, group: str, values: np.ndarray) -> None:
+        values = np.asarray(values, dtype=float)
+        rounded = _json(values, _significant(values))
+        out.append({"key": key, "label": label, "unit": unit, "group": group, "values": rounded})
+
+    driven = {int(k) for k in mech.drive_pair}
+    driven_links = {int(mech.pair_links[k, 1]) for k in driven}
+    for k in range(mech.n_pairs):
+        a, b = (int(x) for x in mech.pair_links[k])
+        if a != 0 or mech.link_virtual[b] or k in driven:
+            continue
+        if mech.pair_type[k] == PRISMATIC:
+            name = mech.point_names[int(mech.pair_points[k, 1])]
+            label = name.split(".", 1)[1]
+            u = mech.pair_axis[k]
+            s = (kin.position(name) - mech.pair_origin[k]) @ u
+            joint = mech.pair_joint[k]
+            add(f"slider:{joint}:s", f"{label} along {joint}", "mm", "sliders", 1000 * s)
+            add(f"slider:{joint}:v", f"velocity of {label} along {joint}", "m/s", "sliders", kin.velocity(name) @ u)
+            add(f"slider:{joint}:a", f"acceleration of {label} along {joint}", "m/s²", "sliders",
+                kin.acceleration(name) @ u)  # fmt: skip
+        elif mech.pair_type[k] == REVOLUTE and b not in driven_links:
+            angle = kin.angle(b).copy()
+            ok = np.isfinite(angle)
+            angle[ok] = np.unwrap(angle[ok])
+            lname = mech.link_names[b]
+            add(f"link:{lname}:angle", f"angle of {lname}", "deg", "links", np.degrees(angle))
+            add(f"link:{lname}:omega", f"angular velocity of {lname}", "rad/s", "links", kin.omega(b))
+    if forces is not None:
+        add("torque", "driving torque", "N m", "forces", forces.driving_torque)
+        found = forces.foundation
+        add("foundation:fx", "force on the foundation, x", "N", "forces", found[:, 0])
+        add("foundation:fy", "force on the foundation, y (pulls the bolts)", "N", "forces", found[:, 1])
+        add("foundation:m", "moment on the foundation about the origin", "N m", "forces", found[:, 2])
+        for k in range(mech.n_pairs):
+            if mech.pair_links[k, 0] == 0 and mech.pair_type[k] == REVOLUTE:
+                joint = mech.pair_joint[k]
+                f = forces.reaction(joint)
+                add(f"reaction:{joint}", f"reaction in {joint} (size)", "N", "forces", np.hypot(f[:, 0], f[:, 1]))
+    return out
+
+
+def _structure(mech: Any) -> dict[str, Any]:
+    s = mech.structure
+    out = s.as_dict()
+    out["groups"] = [{**g.as_dict(), "label": g.label, "formula_part": g.label.split(" ")[0]} for g in s.groups]
+    out["link_names"] = list(mech.link_names)
+    return out
+
+
+def pose_payload(mech: Any, angle: float) -> dict[str, Any]:
+    """Positions of every point at one crank angle (rad), solved on its own: ``{name: [x, y]}`` in m."""
+    from linkwork.motion import kinematics
+
+    kin = kinematics(mech, np.array([angle]))
+    pts = kin.points()[0]
+    return {
+        "angle_deg": math.degrees(angle),
+        "valid": bool(kin.valid[0]),
+        "points": {name: _json(pts[p]) for p, name in enumerate(mech.point_names)},
+    }

@@ -1,0 +1,81 @@
+"""The mechanism a viewer shows and the cycles of its edits, shared by the server and the exported page."""
+
+from __future__ import annotations
+
+import threading
+from collections import OrderedDict
+from importlib import resources
+from typing import Any
+
+
+def static_text(name: str) -> str:
+    """One of the page's files: ``index.html``, ``viewer.js`` or ``viewer.css``."""
+    return (resources.files("linkwork.web") / "static" / name).read_text(encoding="utf-8")
+
+
+class Viewer:
+    """The mechanism a server shows, and the cycles of its edits (a small cache)."""
+
+    def __init__(self, spec_or_mech: Any, steps: int = 360, cache: int = 16) -> None:
+        from linkwork.examples import resolve
+        from linkwork.spec.schema import Spec
+        from linkwork.structure.compile import compile
+
+        if isinstance(spec_or_mech, str):
+            spec_or_mech = resolve(spec_or_mech)
+        self.spec = spec_or_mech if isinstance(spec_or_mech, Spec) else None
+        self.mech = compile(spec_or_mech) if self.spec is not None else spec_or_mech
+        self.steps = steps
+        self._cache: OrderedDict[tuple[Any, ...], dict[str, Any]] = OrderedDict()
+        self._size = cache
+        self._lock = threading.Lock()
+        self._busy = threading.BoundedSemaphore(2)
+
+    def parameters(self, mech: Any = None) -> list[dict[str, Any]]:
+        from linkwork.web.edits import editable
+
+        if self.spec is None:
+            return []
+        return [p.as_dict() for p in editable(self.spec, mech if mech is not None else self.mech)]
+
+    def compile(self, overrides: dict[str, float]) -> Any:
+        """The mechanism with ``overrides`` (SI) applied; raises a LinkworkError when it fails."""
+        from linkwork.structure.compile import compile
+        from linkwork.web.edits import EditError, apply
+
+        if not overrides:
+            return self.mech
+        if self.spec is None:
+            raise EditError("this viewer shows a compiled mechanism without its description: it cannot be edited")
+        return compile(apply(self.spec, self.mech, overrides))
+
+    def cycle(self, overrides: dict[str, float] | None = None, steps: int | None = None) -> dict[str, Any]:
+        """The cycle payload of the mechanism with ``overrides``, with ``parameters`` and ``editable``."""
+        from linkwork.web.payload import cycle_payload
+
+        overrides = overrides or {}
+        steps = steps or self.steps
+        key = (steps, *sorted(overrides.items()))
+        with self._lock:
+            if key in self._cache:
+                self._cache.move_to_end(key)
+                return self._cache[key]
+        if not self._busy.acquire(timeout=30):
+            raise BusyError("the server is busy solving other edits; try again")
+        try:
+            mech = self.compile(overrides)
+            out = cycle_payload(mech, steps)
+        finally:
+            self._busy.release()
+        out["editable"] = self.spec is not None
+        out["overrides"] = dict(overrides)
+        out["parameters"] = self.parameters(mech)
+        with self._lock:
+            self._cache[key] = out
+            while len(self._cache) > self._size:
+                self._cache.popitem(last=False)
+        return out
+
+
+class BusyError(Exception):
+    """Too many solves at once."""
