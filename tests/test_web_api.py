@@ -1,0 +1,390 @@
+"""The viewer's server: its cycle against independent computations, edits, exports and bad requests."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import socket
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+pytest.importorskip("fastapi")
+pytest.importorskip("httpx")
+
+from fastapi.testclient import TestClient  # noqa: E402
+
+import linkwork as lw  # noqa: E402
+from linkwork.examples import text as example_text  # noqa: E402
+from linkwork.web import create_app, cycle_payload, export_page  # noqa: E402
+from linkwork.web.edits import MAX_OVERRIDES  # noqa: E402
+from linkwork.web.server import MAX_BODY  # noqa: E402
+
+LOCAL = "http://127.0.0.1"
+
+
+@pytest.fixture(scope="module")
+def shears():
+    return TestClient(create_app(lw.load("double-cut-shears")), base_url=LOCAL)
+
+
+@pytest.fixture(scope="module")
+def shears_cycle(shears):
+    r = shears.get("/api/cycle")
+    assert r.status_code == 200
+    return r.json()
+
+
+def _arr(values):
+    return np.array([[np.nan if v is None else v for v in row] for row in values], dtype=float)
+
+
+def _positions(payload):
+    """(A, P, 2) positions of the payload, NaN where null."""
+    return np.array(
+        [[[np.nan, np.nan] if xy is None or xy[0] is None else xy for xy in pose] for pose in payload["positions"]]
+    )
+
+
+def _plan(payload, kind):
+    plan = payload["plans"][kind]
+    values = np.array([[[np.nan, np.nan] if v is None or v[0] is None else v for v in row] for row in plan["values"]])
+    return {lab: values[:, j] for j, lab in enumerate(plan["labels"])}
+
+
+def _series(payload, key):
+    s = next(s for s in payload["series"] if s["key"] == key)
+    return np.array([np.nan if v is None else v for v in s["values"]])
+
+
+# ---------------------------------------------------------------------------- the cycle
+
+
+def test_the_cycle_is_the_mechanism_solved_angle_by_angle(shears, shears_cycle):
+    """Every position of the precomputed cycle (one batch of 360) equals a solve of that angle alone, and the
+    pose endpoint gives the same."""
+    mech = lw.compile(lw.load("double-cut-shears"))
+    pos = _positions(shears_cycle)
+    names = [p["name"] for p in shears_cycle["points"]]
+    assert names == list(mech.point_names)
+    for i in (0, 45, 97, 180, 271, 359):
+        angle = math.radians(shears_cycle["angles_deg"][i])
+        kin = lw.kinematics(mech, [angle])
+        np.testing.assert_allclose(pos[i], kin.points()[0], atol=1e-8)
+        pose = shears.post("/api/pose", json={"angle_deg": shears_cycle["angles_deg"][i]}).json()
+        np.testing.assert_allclose(pose["points"]["rod_DE.E"], kin.position("E")[0], atol=1e-12)
+    # a whole turn from the assembly angle, in the direction of rotation (30 rpm ccw)
+    assert shears_cycle["turn_deg"][0] == 0 and shears_cycle["turn_deg"][-1] == pytest.approx(359)
+    assert shears_cycle["period_s"] == pytest.approx(2.0)
+
+
+def test_plans_are_the_derivatives_of_the_positions(shears_cycle):
+    """The velocity plan's point vectors are the central differences of the positions over the cycle, and the
+    acceleration plan's those of the velocities (1 degree steps: agreement to 1e-3 of the largest)."""
+    pos = _positions(shears_cycle)
+    labels = {p["label"]: j for j, p in enumerate(shears_cycle["points"])}
+    dt = math.radians(1.0) / abs(shears_cycle["speed"])
+    vel, acc = _plan(shears_cycle, "velocity"), _plan(shears_cycle, "acceleration")
+    for name in ("A", "B", "C", "D", "E", "F"):
+        x = pos[:, labels[name]]
+        v_fd = (np.roll(x, -1, 0) - np.roll(x, 1, 0)) / (2 * dt)
+        v = vel[name.lower()]
+        assert np.abs(v - v_fd).max() < 1e-3 * np.abs(v).max()
+        a_fd = (np.roll(v, -1, 0) - np.roll(v, 1, 0)) / (2 * dt)
+        a = acc[name.lower()]
+        assert np.abs(a - a_fd).max() < 2e-3 * np.abs(a).max()
+    assert np.abs(vel["p"]).max() == 0  # the pole
+    # the construction of E: v_E = v_D + v_ED (normal to DE) closes on the absolute v_E
+    plan = shears_cycle["plans"]["velocity"]
+    edges = {(plan["labels"][v["from"]], plan["labels"][v["to"]]): v["kind"] for v in plan["vectors"]}
+    assert edges[("d", "e")] == "rotation"
+    de = pos[:, labels["E"]] - pos[:, labels["D"]]
+    v_ed = vel["e"] - vel["d"]
+    assert np.abs(np.sum(de * v_ed, axis=1)).max() < 1e-7 * 0.35 * np.abs(v_ed).max()  # |DE| = 0.35 m
+
+
+def _d1(f, dt):
+    """First derivative of a periodic sampled function, fourth-order central differences."""
+    return (-np.roll(f, -2, 0) + 8 * np.roll(f, -1, 0) - 8 * np.roll(f, 1, 0) + np.roll(f, 2, 0)) / (12 * dt)
+
+
+def _d2(f, dt):
+    """Second derivative of a periodic sampled function, fourth-order central differences."""
+    return (-np.roll(f, -2, 0) + 16 * np.roll(f, -1, 0) - 30 * f + 16 * np.roll(f, 1, 0) - np.roll(f, 2, 0)) / (
+        12 * dt**2
+    )
+
+
+def _com_motion(kin):
+    """Centres of mass (A, N, 2) and the kinetic and potential energy (A,) of a kinematics result."""
+    mech = kin.mechanism
+    q, v = kin.pose[0], kin.vel[0]
+    c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
+    lx, ly = mech.link_com[:, 0], mech.link_com[:, 1]
+    rx, ry = c * lx - s * ly, s * lx + c * ly
+    com = np.stack([q[..., 0] + rx, q[..., 1] + ry], -1)
+    vx, vy = v[..., 0] - v[..., 2] * ry, v[..., 1] + v[..., 2] * rx
+    m, j = mech.link_mass, mech.link_inertia
+    kinetic = 0.5 * np.sum(m * (vx**2 + vy**2) + j * v[..., 2] ** 2, axis=1)
+    potential = mech.gravity * np.sum(m * com[..., 1], axis=1)
+    return com, kinetic, potential
+
+
+def test_torque_and_foundation_charts_obey_the_energy_and_momentum_theorems():
+    """The driving torque chart times the crank speed is the rate of change of the energy, and the vertical
+    foundation force chart is minus the weight less the rate of change of momentum, both by finite
+    differences over the cycle of the bundled four-bar (no external loads)."""
+    mech = lw.compile(lw.load("four-bar"))
+    payload = cycle_payload(mech, steps=720)
+    kin = lw.kinematics(mech, steps=720)
+    omega = kin.rates[0, 0]
+    dt = 2 * math.pi / 720 / abs(omega)
+    com, kinetic, potential = _com_motion(kin)
+    energy = kinetic + potential
+    power = _d1(energy, dt)
+    torque = _series(payload, "torque")
+    assert np.abs(torque * omega - power).max() < 1e-6 * np.abs(power).max()
+    y = np.sum(mech.link_mass * com[..., 1], axis=1)  # first moment of mass, kg m
+    momentum_rate = _d2(y, dt)
+    fy = _series(payload, "foundation:fy")
+    expected = -mech.gravity * mech.link_mass.sum() - momentum_rate
+    assert np.abs(fy - expected).max() < 1e-6 * np.abs(expected).max()
+
+
+def test_knife_chart_is_the_slider_crank_closed_form():
+    """Seed 000's shears, OA = AB = l: the knife moves as y_B = 2 l sin(phi) along its guide through O, also
+    through the change points at 0 and 180 deg."""
+    payload = cycle_payload(lw.compile(lw.load("shears-slider-crank")), steps=360)
+    phi = np.radians(payload["angles_deg"])
+    s = _series(payload, "slider:guide:s")  # mm
+    np.testing.assert_allclose(s, 1000 * 2 * 0.15 * np.sin(phi), atol=1e-6)
+    v = _series(payload, "slider:guide:v")
+    np.testing.assert_allclose(v, 2 * 0.15 * np.cos(phi) * 10.0, atol=1e-9)
+
+
+# ---------------------------------------------------------------------------- edits
+
+
+def test_an_edit_gives_what_the_edited_file_gives(shears):
+    """Overrides of a length and a mass (SI) give the cycle of the file edited by hand."""
+    r = shears.post("/api/solve", json={"overrides": {"links.crank.length": 0.12, "links.rod.mass": 90.0}})
+    assert r.status_code == 200, r.text
+    edited = r.json()
+    text = example_text("double-cut-shears")
+    crank, rod = "    length: 0.10\n    mass: 40\n", "    length: 0.40\n    mass: 60\n"
+    assert text.count(crank) == text.count(rod) == 1
+    text = text.replace(crank, "    length: 0.12\n    mass: 40\n").replace(rod, "    length: 0.40\n    mass: 90\n")
+    by_hand = cycle_payload(lw.compile(lw.loads(text, file="double-cut-shears.yaml")))
+    np.testing.assert_allclose(_positions(edited), _positions(by_hand), atol=1e-9)
+    np.testing.assert_allclose(_series(edited, "torque"), _series(by_hand, "torque"), rtol=1e-8, atol=1e-6)
+    pos = _positions(edited)
+    labels = {p["name"]: j for j, p in enumerate(edited["points"])}
+    crank = np.hypot(*(pos[:, labels["crank.A"]] - pos[:, labels["crank.O1"]]).T)
+    np.testing.assert_allclose(crank, 0.12, atol=1e-8)
+    values = {p["name"]: p["value"] for p in edited["parameters"]}
+    assert values["links.crank.length"] == pytest.approx(0.12) and values["links.rod.mass"] == 90
+    assert edited["overrides"] == {"links.crank.length": 0.12, "links.rod.mass": 90.0}
+
+
+def test_edits_are_si_whatever_the_files_units():
+    """The four-bar's file is in millimetres: an override of 0.11 (m) gives a crank of 110 mm."""
+    client = TestClient(create_app("four-bar"), base_url=LOCAL)
+    r = client.post("/api/solve", json={"overrides": {"links.crank.length": 0.11}, "steps": 36})
+    assert r.status_code == 200, r.text
+    pos = _positions(r.json())
+    names = [p["name"] for p in r.json()["points"]]
+    crank = pos[:, names.index("crank.A")] - pos[:, names.index("crank.O2")]
+    np.testing.assert_allclose(np.hypot(*crank.T), 0.11, atol=1e-8)
+    assert len(r.json()["angles_deg"]) == 36
+
+
+@pytest.mark.parametrize(
+    "overrides, fragment",
+    [
+        (
+            {"links.rod.length": 0.01},
+            "double-cut-shears.yaml: group II(2,3) RRR (links rod, rocker) cannot be assembled",
+        ),
+        ({"links.rod.length": -0.4}, "links.rod.length: expected a positive length"),
+        ({"links.rod.lenght": 0.4}, 'no editable value "links.rod.lenght" (did you mean "links.rod.length"?)'),
+        ({"links.rocker.mass": 0.0}, "links.rocker.mass: expected a positive mass"),
+        ({"joints.guide_E.axis": 1e9}, "joints.guide_E.axis: expected a value from -100 to 100 rad"),
+    ],
+)
+def test_an_edit_that_fails_answers_422_with_the_reason_and_the_server_goes_on(shears, overrides, fragment):
+    r = shears.post("/api/solve", json={"overrides": overrides})
+    assert r.status_code == 422
+    assert fragment in r.json()["error"]
+    assert shears.get("/api/cycle").status_code == 200
+    ok = shears.post("/api/solve", json={"overrides": {"links.crank.length": 0.105}})
+    assert ok.status_code == 200
+
+
+def test_a_compiled_mechanism_is_shown_but_not_edited():
+    client = TestClient(create_app(lw.compile(lw.load("four-bar"))), base_url=LOCAL)
+    cycle = client.get("/api/cycle").json()
+    assert cycle["editable"] is False and cycle["parameters"] == []
+    r = client.post("/api/solve", json={"overrides": {"links.crank.length": 0.11}})
+    assert r.status_code == 422 and "cannot be edited" in r.json()["error"]
+    assert client.post("/api/solve", json={}).status_code == 200
+
+
+# ---------------------------------------------------------------------------- bad requests
+
+JSON = "application/json"
+BAD = [
+    (b"{bad", JSON, 400, "not valid JSON"),
+    (b"\xff\xfe{}", JSON, 400, "not valid JSON"),
+    (b"[" * 30000, JSON, 400, "not valid JSON"),
+    (b"[]", JSON, 422, "a JSON object"),
+    (b'{"overrides": {}}', "text/plain", 415, "application/json"),
+    (b'{"overrides": {}}', None, 415, "application/json"),
+    (b" " * (MAX_BODY + 1) + b"{}", JSON, 413, "limited to"),
+    (b'{"overrides": {"links.crank.length": "__import__(\'os\').system(\'true\')"}}', JSON, 422, "valid number"),
+    (b'{"overrides": {"links.crank.length": "0.1"}}', JSON, 422, "valid number"),
+    (b'{"overrides": {"links.crank.length": true}}', JSON, 422, "valid number"),
+    (b'{"overrides": {"links.crank.length": NaN}}', JSON, 422, "finite number"),
+    (b'{"overrides": {"links.crank.length": 1e999}}', JSON, 422, "finite number"),
+    (b'{"overrides": [1, 2]}', JSON, 422, "overrides"),
+    (b'{"overrides": {}, "code": "print(1)"}', JSON, 422, "code: Extra inputs are not permitted"),
+    (b'{"steps": 5}', JSON, 422, "steps"),
+    (b'{"steps": 100000000}', JSON, 422, "steps"),
+    (json.dumps({"overrides": {f"p{i}": 1.0 for i in range(MAX_OVERRIDES + 1)}}).encode(), JSON, 422, "at most"),
+    (json.dumps({"overrides": {"x" * 1000: 1.0}}).encode(), JSON, 422, "at most 200 characters"),
+]
+
+
+@pytest.mark.parametrize("content, kind, status, fragment", BAD)
+def test_a_bad_request_gets_a_4xx_with_a_message(shears, content, kind, status, fragment):
+    headers = {"content-type": kind} if kind else {}
+    r = shears.post("/api/solve", content=content, headers=headers)
+    assert r.status_code == status
+    assert fragment in r.json()["error"]
+    assert shears.get("/api/parameters").status_code == 200  # still serving
+
+
+def test_only_the_loopback_host_and_the_known_paths_are_served(shears):
+    assert shears.get("/api/cycle", headers={"host": "attacker.example"}).status_code == 400
+    assert shears.get("/api/cycle", headers={"host": "localhost:8765"}).status_code == 200
+    assert shears.get("/static/viewer.js").headers["content-type"].startswith("text/javascript")
+    for path in ("/static/../web/server.py", "/static/index.html", "/api/nothing", "/docs", "/openapi.json"):
+        assert shears.get(path).status_code == 404, path
+    assert shears.delete("/api/cycle").status_code == 405
+    r = shears.get("/")
+    assert (
+        "script-src 'self'" in r.headers["content-security-policy"]
+        and "connect-src 'self'" in r.headers["content-security-policy"]
+    )
+    assert r.headers["x-content-type-options"] == "nosniff"
+    for ref in re.findall(r'(?:src|href)="([^"]*)"', r.text):
+        assert ref.startswith("static/") or ref.startswith("data:"), ref  # nothing from the network
+
+
+def test_the_parameters_list_the_files_dimensions_and_masses(shears):
+    params = {p["name"]: p for p in shears.get("/api/parameters").json()["parameters"]}
+    mech = lw.compile(lw.load("double-cut-shears"))
+    for name, value in lw.parameters(mech).items():
+        assert params[name]["value"] == pytest.approx(value)
+    assert params["links.rocker.mass"]["value"] == 150 and params["links.rocker.inertia"]["value"] == 8.0
+    assert params["links.crank.length"]["kind"] == "length" and params["joints.guide_E.axis"]["kind"] == "angle"
+
+
+# ---------------------------------------------------------------------------- export and command line
+
+
+def _embedded(page: str) -> dict:
+    found = re.search(r'<script type="application/json" id="linkwork-data">(.*?)</script>', page, re.S)
+    assert found
+    return json.loads(found.group(1))
+
+
+def test_export_writes_one_self_contained_page_atomically(tmp_path, monkeypatch):
+    out = tmp_path / "page.html"
+    export_page("shears-slider-crank", out, steps=72)
+    page = out.read_text(encoding="utf-8")
+    data = _embedded(page)
+    mech = lw.compile(lw.load("shears-slider-crank"))
+    kin = lw.kinematics(mech, steps=72)
+    np.testing.assert_allclose(_positions(data), kin.points(), atol=1e-8)
+    assert data["editable"] is False
+    assert "<script src" not in page and '<link rel="stylesheet"' not in page
+    assert re.findall(r'(?:src|href)="([^"]*)"', page) == ["data:,"]
+    assert "default-src 'none'" in page  # the page may fetch nothing
+    assert "</script>" not in page.split('id="linkwork-data">', 1)[1].split("</script>", 1)[0]
+
+    import linkwork.web.export as export
+
+    def broken(payload):
+        raise RuntimeError("interrupted")
+
+    monkeypatch.setattr(export, "render_page", broken)
+    with pytest.raises(RuntimeError):
+        export.export_page("four-bar", out)
+    assert out.read_text(encoding="utf-8") == page
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["page.html"]
+
+
+def test_export_embeds_text_that_cannot_close_its_script(tmp_path):
+    """A mechanism named like markup stays data: the embedded JSON has no '<' at all."""
+    text = example_text("four-bar")
+    text = text.replace("name: four-bar", 'name: "</script><script>alert(1)</script>"')
+    out = export_page(lw.loads(text, file="evil.yaml"), tmp_path / "p.html", steps=24)
+    page = out.read_text(encoding="utf-8")
+    blob = page.split('id="linkwork-data">', 1)[1].split("</script>", 1)[0]
+    assert "<" not in blob
+    assert _embedded(page)["name"] == "</script><script>alert(1)</script>"
+
+
+runner = CliRunner()
+
+
+def test_view_command_exports_and_reports_errors(tmp_path):
+    import linkwork.cli.view  # noqa: F401
+    from linkwork.cli.app import app
+
+    out = tmp_path / "v.html"
+    result = runner.invoke(app, ["view", "four-bar", "--export", str(out), "--steps", "36"])
+    assert result.exit_code == 0, result.output
+    assert len(_embedded(out.read_text(encoding="utf-8"))["angles_deg"]) == 36
+    result = runner.invoke(app, ["view", "four-barr", "--no-browser"])
+    assert result.exit_code == 2
+    assert 'no such file or bundled example "four-barr" (did you mean "four-bar"?)' in result.output
+    with socket.socket() as busy:
+        busy.bind(("127.0.0.1", 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        result = runner.invoke(app, ["view", "four-bar", "--no-browser", "--port", str(port), "--steps", "24"])
+    assert result.exit_code == 2 and f"cannot listen on 127.0.0.1:{port}" in result.output
+
+
+def test_view_command_serves_on_loopback_with_a_free_port():
+    import httpx
+
+    code = "import sys; from linkwork.cli.app import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
+    proc = subprocess.Popen(
+        [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        line = proc.stdout.readline()
+        url = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+        assert url, line + proc.stderr.read() if proc.poll() is not None else line
+        deadline = time.monotonic() + 20
+        while True:
+            try:
+                r = httpx.get(url.group(0) + "api/parameters", timeout=5)
+                break
+            except httpx.ConnectError:
+                assert time.monotonic() < deadline
+                time.sleep(0.1)
+        assert r.status_code == 200 and r.json()["editable"] is True
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
