@@ -144,6 +144,10 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
         part(0, n_ang)
     else:
         list(_pool().map(part, bounds[:-1], bounds[1:]))
+    out[:, 0] = 0.0  # the frame: at rest, its frame the global one
+    steady = ops[:, 0] < DYAD
+    slack[steady] = 1.0
+    det[steady] = 1.0
     if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
         near[:] = False
     return {
@@ -438,7 +442,7 @@ def _kernel(
                 s, d, x, y, gx, gy = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
                 ok = ok and s >= 0
                 small = small or abs(d) < SINGULAR
-                if i >= lo:
+                if i >= lo and ops[st, 0] >= DYAD:  # cranks and slides always assemble: filled once
                     slack[st, var, i] = s
                     det[st, var, i] = d
                 if ops[st, 0] == DYAD and (ops[st, 3] == 0 or ops[st, 3 + ARM] == 0):
@@ -458,7 +462,7 @@ def _kernel(
             valid[var, i] = ok
             if ok and small:
                 singular[0] = True
-            for link in range(n_links):
+            for link in range(1, n_links):  # the frame's rows (at rest) are filled once
                 for k in range(3):
                     out[0, link, k, var, i] = L[link, k]
                     out[1, link, k, var, i] = L[link, 3 + k]
