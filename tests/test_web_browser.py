@@ -1,0 +1,256 @@
+"""The viewer in headless Chromium (Debian's, driven by Playwright; nothing is downloaded).
+
+The scheme is drawn in millimetres with y down: a point at (x, y) m is at
+``cx = 1000 x``, ``cy = -1000 y`` in the SVG (written to 0.001 mm); a plan
+point of vector ``u`` is at ``(u_x, -u_y) / scale`` mm (to 0.0001 mm), with
+the plan's ``scale`` in its ``data-scale``.  The page's Content-Security-Policy
+forbids evaluating strings, so the tests wait with Playwright's ``expect``
+rather than ``wait_for_function``.  The tests read these
+coordinates back from the DOM and compare them with linkwork's kinematics
+solved at the angle the page shows.  Screenshots of the main states go to
+``test-artifacts/``.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import shutil
+import socket
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("fastapi")
+uvicorn = pytest.importorskip("uvicorn")
+playwright = pytest.importorskip("playwright.sync_api")
+expect = playwright.expect
+
+import linkwork as lw  # noqa: E402
+from linkwork.examples import text as example_text  # noqa: E402
+from linkwork.web import create_app, export_page  # noqa: E402
+
+ARTIFACTS = Path(__file__).resolve().parent.parent / "test-artifacts"
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+NAME = "double-cut-shears"
+JOINTS = ("A", "B", "C", "D", "E", "F")
+
+
+def chromium_path() -> str:
+    path = shutil.which("chromium") or shutil.which("chromium-browser")
+    if path is None and os.environ.get("CI"):
+        pytest.fail("chromium is not installed")
+    if path is None:
+        pytest.skip("chromium is not installed (.ci/run installs it)")
+    return path
+
+
+@pytest.fixture(scope="module")
+def browser():
+    path = chromium_path()
+    with playwright.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=path, args=FLAGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture(scope="module")
+def server():
+    """The viewer of the double-cut shears on 127.0.0.1, a free port, in a background thread."""
+    app = create_app(lw.load(NAME))
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    sock.bind(("127.0.0.1", 0))
+    srv = uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off"))
+    thread = threading.Thread(target=srv.run, kwargs={"sockets": [sock]}, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + 30
+    while not srv.started:
+        assert time.monotonic() < deadline and thread.is_alive(), "the server did not start"
+        time.sleep(0.05)
+    yield f"http://127.0.0.1:{sock.getsockname()[1]}/"
+    srv.should_exit = True
+    thread.join(timeout=10)
+    sock.close()
+
+
+@pytest.fixture
+def page(browser):
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    pg = context.new_page()
+    pg.errors = []
+    pg.on("console", lambda msg: pg.errors.append(msg.text) if msg.type == "error" else None)
+    pg.on("pageerror", lambda exc: pg.errors.append(str(exc)))
+    yield pg
+    context.close()
+
+
+def shot(page, name: str) -> None:
+    ARTIFACTS.mkdir(exist_ok=True)
+    page.screenshot(path=str(ARTIFACTS / f"{name}.png"), full_page=True)
+
+
+def open_viewer(page, url: str) -> None:
+    page.goto(url)
+    page.wait_for_selector('#scheme circle.joint[data-point="E"]')
+
+
+def drawn(page, point: str) -> np.ndarray:
+    """Position (m) of a joint as drawn: the inverse of cx = 1000 x, cy = -1000 y."""
+    cx, cy = page.eval_on_selector(
+        f'#scheme circle[data-point="{point}"]', "e => [e.getAttribute('cx'), e.getAttribute('cy')]"
+    )
+    return np.array([float(cx) / 1000, -float(cy) / 1000])
+
+
+def plan_point(page, kind: str, label: str) -> np.ndarray:
+    """A plan point's vector (m/s or m/s^2) as drawn: the inverse of (u_x, -u_y) / scale."""
+    scale = float(page.get_attribute(f"#{kind}-plan", "data-scale"))
+    cx, cy = page.eval_on_selector(
+        f'#{kind}-plan circle[data-label="{label}"]', "e => [e.getAttribute('cx'), e.getAttribute('cy')]"
+    )
+    return np.array([float(cx), -float(cy)]) * scale, scale
+
+
+def turn_to(page, index: int) -> float:
+    """Move the crank slider to sample ``index``; the drive angle the page shows, rad."""
+    page.locator("#angle").fill(str(index))
+    expect(page.locator("#scheme")).to_have_attribute("data-index", str(index))
+    return math.radians(float(page.get_attribute("#scheme", "data-angle-deg")))
+
+
+def test_the_page_loads_without_errors_and_draws_the_mechanism(page, server):
+    open_viewer(page, server)
+    mech = lw.compile(lw.load(NAME))
+    assert page.locator("#title").text_content() == NAME
+    assert page.locator("#formula").text_content() == mech.structure.formula
+    # the symbols: 8 pivots, two hatched supports, two slider blocks on two hatched guides, 7 links
+    revolute = {j for j, kind in zip(mech.pair_joint, mech.pair_type, strict=True) if kind == 0}
+    assert page.locator("#scheme circle.joint").count() == len(revolute) == 8
+    assert page.locator("#scheme #ground polygon.support").count() == 2
+    assert page.locator("#scheme polygon.block").count() == 2
+    assert page.locator("#scheme #ground line.guide").count() == 2
+    assert page.locator("#scheme .bar, #scheme .plate").count() == 7
+    assert page.locator("#structure table").first.locator("tbody tr").count() == len(mech.structure.groups)
+    assert page.locator("#charts svg.chart").count() >= 2
+    assert page.locator("#error").is_hidden()
+    assert page.errors == []
+    shot(page, "viewer-loaded")
+
+
+def test_moving_the_slider_draws_the_positions_the_kinematics_computes(page, server):
+    open_viewer(page, server)
+    mech = lw.compile(lw.load(NAME))
+    before = {j: drawn(page, j) for j in JOINTS}
+    for index in (0, 97, 250):
+        angle = turn_to(page, index)
+        kin = lw.kinematics(mech, [angle])
+        api = page.request.post(server + "api/pose", data={"angle_deg": math.degrees(angle)}).json()
+        for j in JOINTS:
+            expected = kin.position(j)[0]
+            assert np.abs(drawn(page, j) - expected).max() < 2e-6, (index, j)  # the drawing's 0.001 mm
+            assert np.abs(np.array(api["points"][mech.point_names[mech.point_index(j)]]) - expected).max() < 1e-12
+    assert np.abs(drawn(page, "E") - before["E"]).max() > 0.01  # the knife moved
+    assert page.errors == []
+    shot(page, "viewer-turned")
+
+
+def test_the_plans_follow_the_crank(page, server):
+    open_viewer(page, server)
+    mech = lw.compile(lw.load(NAME))
+    captions = set()
+    for index in (30, 200):
+        angle = turn_to(page, index)
+        kin = lw.kinematics(mech, [angle])
+        for label in ("a", "b", "e", "f"):
+            v, scale = plan_point(page, "velocity", label)
+            assert np.abs(v - kin.velocity(label.upper())[0]).max() < 2e-4 * scale, (index, label)
+            a, scale = plan_point(page, "acceleration", label)
+            assert np.abs(a - kin.acceleration(label.upper())[0]).max() < 2e-4 * scale, (index, label)
+        captions.add(page.locator("#velocity-caption").text_content())
+        cursors = page.eval_on_selector_all("#charts line.cursor", "els => els.map(e => e.getAttribute('data-index'))")
+        assert cursors and set(cursors) == {str(index)}
+    assert len(captions) == 2  # the values in the caption changed with the crank
+    shot(page, "viewer-plans")
+
+
+def test_an_edit_that_does_not_assemble_shows_the_error_and_the_page_recovers(page, server):
+    open_viewer(page, server)
+    angle = turn_to(page, 60)
+    e_before = drawn(page, "E")
+    page.fill('input[data-param="links.rod.length"]', "10")  # mm: the rod cannot reach the rocker
+    page.click("#apply")
+    page.wait_for_selector("#error", state="visible")
+    message = page.locator("#error-text").text_content()
+    assert "group II(2,3) RRR (links rod, rocker) cannot be assembled" in message
+    assert np.abs(drawn(page, "E") - e_before).max() < 1e-9  # the last good mechanism stays drawn
+    shot(page, "viewer-edit-error")
+
+    page.fill('input[data-param="links.rod.length"]', "400")
+    page.fill('input[data-param="links.crank.length"]', "120")
+    page.click("#apply")
+    page.wait_for_selector("#error", state="hidden")
+    expect(page.locator("#edit-status")).to_contain_text("changed")
+    text = example_text(NAME)
+    assert text.count("    length: 0.10\n    mass: 40\n") == 1
+    edited = lw.compile(lw.loads(text.replace("    length: 0.10\n    mass: 40\n", "    length: 0.12\n    mass: 40\n")))
+    kin = lw.kinematics(edited, [angle])
+    assert math.radians(float(page.get_attribute("#scheme", "data-angle-deg"))) == pytest.approx(angle)
+    for j in JOINTS:
+        assert np.abs(drawn(page, j) - kin.position(j)[0]).max() < 2e-6, j
+    assert np.hypot(*(drawn(page, "A") - np.array([0.5, 0.4]))) == pytest.approx(0.12, abs=2e-6)
+    shot(page, "viewer-edited")
+
+    page.click("#reset")
+    base = lw.kinematics(lw.compile(lw.load(NAME)), [angle])
+    expect(page.locator("#params .changed")).to_have_count(0)
+    assert np.abs(drawn(page, "A") - base.position("A")[0]).max() < 2e-6
+    # the browser itself logs the refused edit's response; nothing else went wrong
+    assert [e for e in page.errors if "status of 422" not in e] == []
+    assert len(page.errors) == 1
+
+
+def test_play_turns_the_crank_and_pause_stops_it(page, server):
+    open_viewer(page, server)
+    turn_to(page, 0)
+    page.select_option("#speed", "2")
+    page.click("#play")
+    deadline = time.monotonic() + 10
+    while int(page.get_attribute("#scheme", "data-index")) <= 5:  # 2x real time: 360 samples in a second
+        assert time.monotonic() < deadline, "the crank did not turn"
+        page.wait_for_timeout(50)
+    page.click("#play")
+    stopped = page.get_attribute("#scheme", "data-index")
+    page.wait_for_timeout(200)
+    assert page.get_attribute("#scheme", "data-index") == stopped
+    assert page.locator("#play").text_content() == "Play"
+
+
+def test_the_exported_page_works_from_a_file_url_with_no_network(page, tmp_path):
+    out = export_page(NAME, tmp_path / "shears.html", steps=180)
+    requests: list[str] = []
+    page.on("request", lambda r: requests.append(r.url))
+    open_viewer(page, out.as_uri())
+    mech = lw.compile(lw.load(NAME))
+    angle = turn_to(page, 123)
+    kin = lw.kinematics(mech, [angle])
+    for j in JOINTS:
+        assert np.abs(drawn(page, j) - kin.position(j)[0]).max() < 2e-6, j
+    v, scale = plan_point(page, "velocity", "e")
+    assert np.abs(v - kin.velocity("E")[0]).max() < 2e-4 * scale
+    assert page.locator("#apply").is_disabled()
+    assert "exported" in page.locator("#edit-note").text_content()
+    assert all(u.startswith(("file:", "data:")) for u in requests), requests
+    assert page.errors == []
+    shot(page, "viewer-exported")
