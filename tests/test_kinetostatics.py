@@ -232,3 +232,17 @@ def test_compiled_reactions_of_design_variants():
     for k, value in enumerate(lengths["links.coupler.length"]):
         one = lw.forces(mech, steps=24, variants={"links.coupler.length": [value]})
         np.testing.assert_allclose(f.driving_torque[k], one.driving_torque[0], rtol=1e-12, atol=1e-12)
+
+
+def test_compiled_reactions_take_the_structured_solves():
+    """Dyads and cranks go through the closed 2 x 2 and 3 x 3 solves, a class III triad through elimination
+    (the comparison above with the NumPy solution then covers each kind)."""
+    from linkwork.kinetostatics import fast
+
+    for name, expected in [
+        ("double-cut-shears", [fast.DYAD, fast.DYAD, fast.DYAD, fast.SINGLE]),
+        ("shears-slider-crank", [fast.DYAD, fast.SINGLE]),
+        ("class3-triad", [fast.GENERAL, fast.SINGLE]),
+    ]:
+        rows, groups, _ = fast.encode(lw.compile(lw.example(name)))
+        assert list(fast.shapes(rows, groups)[:, 0]) == expected, name

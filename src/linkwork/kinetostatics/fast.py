@@ -68,6 +68,34 @@ def encode(mech: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.array(rows, dtype=np.int64).reshape(-1, 6), table, np.array([width, *on_frame])
 
 
+#: Shapes of a group's system: general (Gaussian elimination), one link with three rows, a dyad.
+GENERAL, SINGLE, DYAD = range(3)
+
+
+def shapes(rows: np.ndarray, groups: np.ndarray) -> np.ndarray:
+    """How each group's system is solved, ``(G, 7)``: the shape, then its rows in the order the
+    solver takes them (SINGLE: the three rows; DYAD: two rows on the first link only, two on the
+    second only, two between them)."""
+    width = (groups.shape[1] - 2 - rows.shape[0] - 1) // 4
+    out = np.full((len(groups), 7), -1, dtype=np.int64)
+    out[:, 0] = GENERAL
+    for g, row in enumerate(groups):
+        links = [int(x) for x in row[1 : 1 + row[0]]]
+        sel = [int(x) for x in row[2 + width : 2 + width + row[1 + width]]]
+        if len(links) == 1 and len(sel) == 3:
+            out[g] = [SINGLE, *sel, -1, -1, -1]
+            continue
+        if len(links) != 2 or len(sel) != 6:
+            continue
+        touch = [tuple(link in (rows[r, 1], rows[r, 2]) for link in links) for r in sel]
+        only_a = [r for r, t in zip(sel, touch, strict=True) if t == (True, False)]
+        only_b = [r for r, t in zip(sel, touch, strict=True) if t == (False, True)]
+        both = [r for r, t in zip(sel, touch, strict=True) if t == (True, True)]
+        if len(only_a) == len(only_b) == len(both) == 2:
+            out[g] = [DYAD, *only_a, *only_b, *both]
+    return out
+
+
 def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
     """Multipliers ``(V, A, m)`` and the foundation loads ``(V, A, 3)``: the pairs' force and moment
     on the frame plus the frame's own applied loads (its weight, external loads on it).
@@ -76,6 +104,7 @@ def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
     """
     mech = kin.mechanism
     rows, groups, width = encode(mech)
+    shape_of = shapes(rows, groups)
     n_var, n_ang = kin.valid_all.shape
     local = np.ascontiguousarray(np.moveaxis(kin.local[..., 0], 2, 0))  # (V, P, 2)
     origin = np.ascontiguousarray(np.moveaxis(kin.origin[..., 0], 2, 0))  # (V, M, 2)
@@ -101,7 +130,7 @@ def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
 
     def part(lo: int, hi: int) -> None:
         _kernel(
-            rows, groups, on_frame, kin.q, kin.v, kin.a, local, origin, axis, mass, com, inertia,
+            rows, groups, shape_of, on_frame, kin.q, kin.v, kin.a, local, origin, axis, mass, com, inertia,
             float(mech.gravity), f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi,
             np.empty((mech.n_links_total, 6)), np.empty((m, 6)), np.empty((size, size)), np.empty(size),
             np.empty(m), np.zeros((m, 8)),
@@ -159,8 +188,102 @@ def _rows_at(rows, q, G, var, i, J, Q):
         J[r, 5] = gx * -rby + gy * rbx
 
 
+def _col(J, rows, r, link):
+    """The three entries of row ``r`` in the equations of ``link``."""
+    o = 0 if rows[r, 1] == link else 3
+    return J[r, o], J[r, o + 1], J[r, o + 2]
+
+
+def _cross(ax, ay, az, bx, by, bz):
+    return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
+
+
+def _single(J, rows, sh, link, x, mu):
+    """Three rows on one link: ``[c1 c2 c3] mu = x`` by Cramer's rule; False where singular."""
+    r1, r2, r3 = sh[1], sh[2], sh[3]
+    c1 = _col(J, rows, r1, link)
+    c2 = _col(J, rows, r2, link)
+    c3 = _col(J, rows, r3, link)
+    n23 = _cross(c2[0], c2[1], c2[2], c3[0], c3[1], c3[2])
+    det = c1[0] * n23[0] + c1[1] * n23[1] + c1[2] * n23[2]
+    norm = math.sqrt((c1[0] ** 2 + c1[1] ** 2 + c1[2] ** 2) * (n23[0] ** 2 + n23[1] ** 2 + n23[2] ** 2))
+    if not abs(det) > SINGULAR * norm:
+        return False
+    xc3 = _cross(x[0], x[1], x[2], c3[0], c3[1], c3[2])
+    c2x = _cross(c2[0], c2[1], c2[2], x[0], x[1], x[2])
+    mu[r1] = (x[0] * n23[0] + x[1] * n23[1] + x[2] * n23[2]) / det
+    mu[r2] = (c1[0] * xc3[0] + c1[1] * xc3[1] + c1[2] * xc3[2]) / det
+    mu[r3] = (c1[0] * c2x[0] + c1[1] * c2x[1] + c1[2] * c2x[2]) / det
+    return True
+
+
+def _pair_on(c1, c2, rx, ry, rz):
+    """``c1 l1 + c2 l2 = r`` for (l1, l2), with ``n = c1 x c2`` (r in the plane of c1 and c2)."""
+    n = _cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
+    nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2]
+    a = _cross(rx, ry, rz, c2[0], c2[1], c2[2])
+    b = _cross(c1[0], c1[1], c1[2], rx, ry, rz)
+    return (a[0] * n[0] + a[1] * n[1] + a[2] * n[2]) / nn, (b[0] * n[0] + b[1] * n[1] + b[2] * n[2]) / nn
+
+
+def _dyad(J, rows, sh, la, lb, x, mu):
+    """A dyad's six rows: the two between its links from the balance of each link along the normal
+    ``n`` of its own outer pair's columns (which takes them out), a 2 x 2 system; then each outer
+    pair from its link's balance.  False where singular."""
+    ca1, ca2 = _col(J, rows, sh[1], la), _col(J, rows, sh[2], la)
+    cb1, cb2 = _col(J, rows, sh[3], lb), _col(J, rows, sh[4], lb)
+    da1, da2 = _col(J, rows, sh[5], la), _col(J, rows, sh[6], la)
+    db1, db2 = _col(J, rows, sh[5], lb), _col(J, rows, sh[6], lb)
+    na = _cross(ca1[0], ca1[1], ca1[2], ca2[0], ca2[1], ca2[2])
+    nb = _cross(cb1[0], cb1[1], cb1[2], cb2[0], cb2[1], cb2[2])
+    m11 = na[0] * da1[0] + na[1] * da1[1] + na[2] * da1[2]
+    m12 = na[0] * da2[0] + na[1] * da2[1] + na[2] * da2[2]
+    m21 = nb[0] * db1[0] + nb[1] * db1[1] + nb[2] * db1[2]
+    m22 = nb[0] * db2[0] + nb[1] * db2[1] + nb[2] * db2[2]
+    det = m11 * m22 - m12 * m21
+    scale = math.sqrt((m11 * m11 + m12 * m12) * (m21 * m21 + m22 * m22))
+    if not abs(det) > SINGULAR * scale:
+        return False
+    ra = na[0] * x[0] + na[1] * x[1] + na[2] * x[2]
+    rb = nb[0] * x[3] + nb[1] * x[4] + nb[2] * x[5]
+    i1 = (ra * m22 - rb * m12) / det
+    i2 = (m11 * rb - m21 * ra) / det
+    mu[sh[5]], mu[sh[6]] = i1, i2
+    a1, a2 = _pair_on(
+        ca1, ca2, x[0] - i1 * da1[0] - i2 * da2[0], x[1] - i1 * da1[1] - i2 * da2[1], x[2] - i1 * da1[2] - i2 * da2[2]
+    )
+    b1, b2 = _pair_on(
+        cb1, cb2, x[3] - i1 * db1[0] - i2 * db2[0], x[4] - i1 * db1[1] - i2 * db2[1], x[5] - i1 * db1[2] - i2 * db2[2]
+    )
+    mu[sh[1]], mu[sh[2]], mu[sh[3]], mu[sh[4]] = a1, a2, b1, b2
+    return True
+
+
+def _rhs(groups, gi, width, known0, rows, J, Q, mu, x):
+    """Right-hand side of group ``gi``: -Q of its links less the reactions already known."""
+    nl = groups[gi, 0]
+    for li in range(nl):
+        link = groups[gi, 1 + li]
+        for d in range(3):
+            x[3 * li + d] = -Q[link, d]
+    for kk in range(known0, groups.shape[1]):
+        r = groups[gi, kk]
+        if r < 0:
+            break
+        lr = mu[r]
+        ra, rb = rows[r, 1], rows[r, 2]
+        for li in range(nl):
+            link = groups[gi, 1 + li]
+            if ra == link:
+                for d in range(3):
+                    x[3 * li + d] -= J[r, d] * lr
+            elif rb == link:
+                for d in range(3):
+                    x[3 * li + d] -= J[r, 3 + d] * lr
+
+
 def _kernel(
-    rows, groups, on_frame, q, v, a, local, origin, axis, mass, com, inertia, g,
+    rows, groups, shape_of, on_frame, q, v, a, local, origin, axis, mass, com, inertia, g,
     f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi, Q, J, M, x, mu, G,
 ):  # fmt: skip
     n_links = q.shape[0]
@@ -203,6 +326,20 @@ def _kernel(
                 nl = groups[gi, 0]
                 nr = groups[gi, 1 + width]
                 size = 3 * nl
+                sh = shape_of[gi]
+                if sh[0] != GENERAL:
+                    _rhs(groups, gi, width, known0, rows, J, Q, mu, x)
+                    if bad:
+                        ok = False
+                    elif sh[0] == SINGLE:
+                        ok = _single(J, rows, sh, groups[gi, 1], x, mu)
+                    else:
+                        ok = _dyad(J, rows, sh, groups[gi, 1], groups[gi, 2], x, mu)
+                    if not ok:
+                        for j in range(nr):
+                            mu[groups[gi, 2 + width + j]] = math.nan
+                    bad = bad or not ok
+                    continue
                 # M[c, j]: column j of the group's row j, c over the group's link coordinates
                 big = 0.0
                 for j in range(nr):
@@ -218,25 +355,7 @@ def _kernel(
                                 val = J[r, 3 + d]
                             M[3 * li + d, j] = val
                             big = max(big, abs(val))
-                # right-hand side: -Q less the reactions already known
-                for li in range(nl):
-                    link = groups[gi, 1 + li]
-                    for d in range(3):
-                        x[3 * li + d] = -Q[link, d]
-                for kk in range(known0, groups.shape[1]):
-                    r = groups[gi, kk]
-                    if r < 0:
-                        break
-                    lr = mu[r]
-                    ra, rb = rows[r, 1], rows[r, 2]
-                    for li in range(nl):
-                        link = groups[gi, 1 + li]
-                        if ra == link:
-                            for d in range(3):
-                                x[3 * li + d] -= J[r, d] * lr
-                        elif rb == link:
-                            for d in range(3):
-                                x[3 * li + d] -= J[r, 3 + d] * lr
+                _rhs(groups, gi, width, known0, rows, J, Q, mu, x)
                 # Gaussian elimination with partial pivoting
                 ok = not bad and big > 0.0
                 for col in range(size):
@@ -289,4 +408,10 @@ if njit is not None:  # pragma: no branch
     _opts = OPTS
     _row_geometry = njit(inline="always", **_opts)(_row_geometry)
     _rows_at = njit(inline="always", **_opts)(_rows_at)
+    _col = njit(inline="always", **_opts)(_col)
+    _cross = njit(inline="always", **_opts)(_cross)
+    _single = njit(inline="always", **_opts)(_single)
+    _pair_on = njit(inline="always", **_opts)(_pair_on)
+    _dyad = njit(inline="always", **_opts)(_dyad)
+    _rhs = njit(inline="always", **_opts)(_rhs)
     _kernel = njit(**_opts)(_kernel)
