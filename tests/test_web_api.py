@@ -40,10 +40,6 @@ def shears_cycle(shears):
     return r.json()
 
 
-def _arr(values):
-    return np.array([[np.nan if v is None else v for v in row] for row in values], dtype=float)
-
-
 def _positions(payload):
     """(A, P, 2) positions of the payload, NaN where null."""
     return np.array(
@@ -223,6 +219,35 @@ def test_an_edit_that_fails_answers_422_with_the_reason_and_the_server_goes_on(s
     assert shears.get("/api/cycle").status_code == 200
     ok = shears.post("/api/solve", json={"overrides": {"links.crank.length": 0.105}})
     assert ok.status_code == 200
+
+
+def test_a_cycle_that_assembles_only_in_part_has_gaps_where_the_dyad_cannot_close(shears):
+    """A crank of 0.3 m puts A farther from O3 than rod + rocker (0.4 + 0.5 m) can reach over part of the turn:
+    exactly there the samples are invalid and null, and the events say so."""
+    r = shears.post("/api/solve", json={"overrides": {"links.crank.length": 0.3}})
+    assert r.status_code == 200
+    d = r.json()
+    phi = np.radians(d["angles_deg"])
+    beyond = np.hypot(0.5 + 0.3 * np.cos(phi), 0.4 + 0.3 * np.sin(phi)) > 0.4 + 0.5
+    assert 0 < beyond.sum() < len(phi)
+    np.testing.assert_array_equal(~np.array(d["valid"]), beyond)
+    i = int(np.flatnonzero(beyond)[0])
+    assert all(xy == [None, None] for xy in d["positions"][i][2:])  # frame points stay
+    assert all(v == [None, None] for v in d["plans"]["velocity"]["values"][i][1:])
+    assert np.isnan(_series(d, "torque")[beyond]).all() and np.isfinite(_series(d, "torque")[~beyond]).all()
+    assert any("no assembly" in e["message"] for e in d["events"])
+
+
+def test_a_spec_built_without_a_file_is_edited_in_si():
+    spec = lw.load("four-bar").model_copy()
+    spec._source = None  # as if built by hand: no file, no lines
+    client = TestClient(create_app(spec), base_url=LOCAL)
+    r = client.post("/api/solve", json={"overrides": {"links.crank.length": 0.11, "links.coupler.mass": 3.0}})
+    assert r.status_code == 200, r.text
+    pos = _positions(r.json())
+    names = [p["name"] for p in r.json()["points"]]
+    np.testing.assert_allclose(np.hypot(*(pos[:, names.index("crank.A")] - pos[:, names.index("crank.O2")]).T), 0.11)
+    assert {p["name"]: p["value"] for p in r.json()["parameters"]}["links.coupler.mass"] == 3.0
 
 
 def test_a_compiled_mechanism_is_shown_but_not_edited():

@@ -221,6 +221,22 @@ def test_an_edit_that_does_not_assemble_shows_the_error_and_the_page_recovers(pa
     assert len(page.errors) == 1
 
 
+def test_an_edit_that_assembles_over_part_of_the_turn_shows_where_it_does_not(page, server):
+    open_viewer(page, server)
+    page.fill('input[data-param="links.crank.length"]', "300")  # A out of reach of rod + rocker near 40 deg
+    page.click("#apply")
+    expect(page.locator("#edit-status")).to_contain_text("changed")
+    turn_to(page, 40)
+    expect(page.locator("#pose-note")).to_contain_text("does not assemble")
+    assert page.locator('#scheme line.bar[data-link="rod"]').get_attribute("visibility") == "hidden"
+    assert page.locator("#structure .warn").first.text_content().startswith("no-assembly")
+    turn_to(page, 200)
+    expect(page.locator("#pose-note")).to_be_hidden()
+    assert page.locator('#scheme line.bar[data-link="rod"]').get_attribute("visibility") == "visible"
+    assert page.errors == []
+    shot(page, "viewer-partial")
+
+
 def test_play_turns_the_crank_and_pause_stops_it(page, server):
     open_viewer(page, server)
     turn_to(page, 0)

@@ -21,7 +21,9 @@ Layout (``format: linkwork-view/1``):
   points (``p``, ``a``, ``b``..., and the construction's intermediate
   points), their vectors from the pole ``values`` (A, L, 2), the
   construction's ``vectors`` (from, to, kind, group) and one drawing
-  ``scale_per_mm`` for the whole cycle (units per mm of drawing);
+  ``scale_per_mm`` for the whole cycle (units per mm of drawing, from
+  the 1-2-5 series, that draws the longest vector of 95 % of the positions
+  at most 100 mm long);
 * ``series``: quantities over the cycle (slider positions, rocker angles,
   driving torque, foundation force...), each with ``label``, ``unit`` and
   ``values`` (A,);
@@ -40,6 +42,9 @@ from linkwork.errors import LinkworkError
 from linkwork.structure.constraints import PRISMATIC, REVOLUTE
 
 FORMAT = "linkwork-view/1"
+
+#: Percentile of the positions' longest plan vectors that sets the plans' one scale for the cycle.
+PLAN_PERCENTILE = 95.0
 
 
 def _json(a: Any, decimals: int | None = None) -> Any:
@@ -241,8 +246,11 @@ def _plans(kin: Any) -> dict[str, Any]:
         values = data.pop("values")
         data.pop("_which")
         absolute = values[:, data["absolute"]] if data["absolute"] else np.zeros((n, 0, 2))
-        longest = float(np.nanmax(np.hypot(absolute[..., 0], absolute[..., 1]))) if np.isfinite(absolute).any() else 0
-        data["scale_per_mm"] = _round_scale(longest)
+        size = np.hypot(absolute[..., 0], absolute[..., 1])
+        longest = size.max(axis=1, initial=0.0, where=np.isfinite(size))  # (A,)
+        # one scale for the cycle: the longest vector of nearly every position at most 100 mm (the rare
+        # positions near a dead point, where accelerations grow without bound, would shrink all the others)
+        data["scale_per_mm"] = _round_scale(float(np.percentile(longest, PLAN_PERCENTILE)) if n else 0.0)
         data["values"] = _json(values, _significant(values))
     return out
 

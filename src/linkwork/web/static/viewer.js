@@ -298,15 +298,25 @@
     const scale = plan.scale_per_mm;
     root.setAttribute("data-scale", String(scale));
     root.setAttribute("data-transform", "x_svg = u_x / scale, y_svg = -u_y / scale (mm of the drawing)");
-    // one frame for the whole cycle, so that the plan does not jump while the crank turns
-    let x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    // one frame for the whole cycle, so that the plan does not jump while the crank turns: it holds the
+    // plans of 95 % of the positions (near a dead point accelerations grow without bound)
+    const lo = [[], []], hi = [[], []];
     for (const row of plan.values) {
+      let a = [0, 0], b = [0, 0];
       for (const v of row) {
         if (!v || v[0] === null) continue;
-        x0 = Math.min(x0, v[0] / scale); x1 = Math.max(x1, v[0] / scale);
-        y0 = Math.min(y0, -v[1] / scale); y1 = Math.max(y1, -v[1] / scale);
+        const p = [v[0] / scale, -v[1] / scale];
+        a = [Math.min(a[0], p[0]), Math.min(a[1], p[1])];
+        b = [Math.max(b[0], p[0]), Math.max(b[1], p[1])];
       }
+      for (const k of [0, 1]) { lo[k].push(a[k]); hi[k].push(b[k]); }
     }
+    const quantile = (xs, q) => {
+      const s = xs.slice().sort((u, v) => u - v);
+      return s.length ? s[Math.min(s.length - 1, Math.max(0, Math.round(q * (s.length - 1))))] : 0;
+    };
+    const x0 = quantile(lo[0], 0.025), y0 = quantile(lo[1], 0.025);
+    const x1 = quantile(hi[0], 0.975), y1 = quantile(hi[1], 0.975);
     const m = Math.max(x1 - x0, y1 - y0, 1e-9);
     const pad = 0.1 * m;
     root.setAttribute("viewBox", [x0 - pad, y0 - pad, x1 - x0 + 2 * pad, y1 - y0 + 2 * pad].map((v) => v.toFixed(3)).join(" "));
@@ -337,7 +347,7 @@
     }, lines));
     const marks = plan.labels.map((lab) => {
       const c = svg("circle", { class: "dot", r: (0.012 * m).toFixed(4), "data-label": lab }, dots);
-      const t = svg("text", { class: "plabel" }, dots);
+      const t = svg("text", { class: /^(n_|k'+_)/.test(lab) ? "plabel minor" : "plabel" }, dots);
       t.textContent = lab;
       return [c, t];
     });
