@@ -413,3 +413,21 @@ def test_view_command_serves_on_loopback_with_a_free_port():
     finally:
         proc.terminate()
         proc.wait(timeout=10)
+
+
+def test_the_readme_export_command_runs(tmp_path):
+    from pathlib import Path
+
+    import linkwork.cli.view  # noqa: F401
+    from linkwork.cli.app import app
+
+    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## Browser viewer", 1)[1].split("\n## ", 1)[0]
+    line = next(x for x in re.findall(r"```\n(.*?)```", section, re.S)[0].splitlines() if "--export" in x)
+    args = line.split("#")[0].split()
+    assert args[:2] == ["linkwork", "view"]
+    out = tmp_path / args[args.index("--export") + 1]
+    args[args.index("--export") + 1] = str(out)
+    result = runner.invoke(app, [*args[2:], "--steps", "36"])
+    assert result.exit_code == 0, result.output
+    assert _embedded(out.read_text(encoding="utf-8"))["name"] == args[2]
