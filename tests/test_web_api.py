@@ -428,6 +428,6 @@ def test_the_readme_export_command_runs(tmp_path):
     assert args[:2] == ["linkwork", "view"]
     out = tmp_path / args[args.index("--export") + 1]
     args[args.index("--export") + 1] = str(out)
-    result = runner.invoke(app, [*args[2:], "--steps", "36"])
+    result = runner.invoke(app, [*args[1:], "--steps", "36"])
     assert result.exit_code == 0, result.output
     assert _embedded(out.read_text(encoding="utf-8"))["name"] == args[2]
