@@ -25,6 +25,8 @@ from __future__ import annotations
 
 import json
 import math
+import time
+from collections.abc import Callable
 from typing import Annotated, Any
 
 from fastapi import FastAPI, Request
@@ -213,12 +215,18 @@ def _validation_message(exc: Any) -> str:
     return "\n".join(lines)
 
 
-def serve(app: Any, port: int = 8765, ready: Any = None) -> None:
+def serve(app: Any, port: int = 8765, ready: Callable[[str], None] | None = None) -> None:
     """Serve ``app`` on 127.0.0.1 (``port`` 0: a free port) until interrupted.
 
-    ``ready(url)`` is called once the server listens.
+    ``ready(url)`` is called (from another thread) once the server listens.
+
+    Raises
+    ------
+    LinkworkError
+        When the port cannot be had (in use, or privileged).
     """
     import socket
+    import threading
 
     import uvicorn
 
@@ -230,14 +238,18 @@ def serve(app: Any, port: int = 8765, ready: Any = None) -> None:
         sock.close()
         raise LinkworkError(f"cannot listen on 127.0.0.1:{port}: {exc.strerror or exc}; try --port 0") from None
     url = f"http://127.0.0.1:{sock.getsockname()[1]}/"
-    config = uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off")
-    server = uvicorn.Server(config)
-    if ready is not None:
-        started = server.startup
+    server = uvicorn.Server(uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off"))
 
-        async def startup(sockets: Any = None) -> None:
-            await started(sockets=sockets)
+    def announce() -> None:
+        while not server.started and not server.should_exit:
+            time.sleep(0.02)
+        if server.started and ready is not None:
             ready(url)
 
-        server.startup = startup  # type: ignore[method-assign]
-    server.run(sockets=[sock])
+    watcher = threading.Thread(target=announce, daemon=True)
+    watcher.start()
+    try:
+        server.run(sockets=[sock])
+    finally:
+        server.should_exit = True
+        sock.close()
