@@ -55,7 +55,7 @@ class Evaluation:
 
     @cached_property
     def _forces(self) -> tuple[np.ndarray, np.ndarray]:
-        lam, found = forces_of(self.kin)
+        lam0, found0 = lam, found = forces_of(self.kin)
         mech = self.kin.mechanism
         for link, scale in self.mass_scale.items():
             mass, inertia = mech.link_mass.copy(), mech.link_inertia.copy()
@@ -64,8 +64,8 @@ class Evaluation:
             heavy = dataclasses.replace(mech, link_mass=mass, link_inertia=inertia)
             lam2, found2 = forces_of(dataclasses.replace(self.kin, mechanism=heavy))
             s = (scale - 1.0)[:, None, None]
-            lam = lam + s * (lam2 - lam)
-            found = found + s * (found2 - found)
+            lam = lam + s * (lam2 - lam0)
+            found = found + s * (found2 - found0)
         return lam, found
 
     @property

@@ -1,0 +1,319 @@
+"""Design sweeps and optimisation: the metrics against closed forms and independent solutions,
+sampling plans, chunk files and resuming, errors, the optimised file."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from ruamel.yaml import YAML
+
+import linkwork as lw
+from linkwork.design import DesignError, design_parameters
+from linkwork.design.plan import Vary, make_plan
+from linkwork.examples import text
+from mechanisms import offset_slider_crank
+
+pytest.importorskip("pyarrow")
+
+
+def _fold(mu):
+    """Transmission angle folded into [0, 90] deg."""
+    mu = np.abs(np.asarray(mu)) % np.pi
+    return np.minimum(mu, np.pi - mu)
+
+
+# ---------------------------------------------------------------- metrics against closed forms
+
+
+def test_stroke_and_time_ratio_of_an_offset_slider_crank_match_the_closed_form():
+    t = lw.sweep(
+        offset_slider_crank().build(),
+        {"links.crank.length": ("80", "120", 5), "links.rod.length": ("380 mm", "0.42 m", 3)},
+        ["stroke", "time_ratio", "assembles"],
+        steps=720,
+    )
+    r, rod, e = t["links.crank.length"], t["links.rod.length"], 0.05
+    stroke = np.sqrt((rod + r) ** 2 - e**2) - np.sqrt((rod - r) ** 2 - e**2)
+    alpha = np.arcsin(e / (rod - r)) - np.arcsin(e / (rod + r))
+    assert len(t) == 15 and np.all(t["assembles"] == 1)
+    # the extremes refined by a parabola through three samples half a degree apart
+    np.testing.assert_allclose(t["stroke"], stroke, rtol=1e-7)
+    np.testing.assert_allclose(t["time_ratio"], (np.pi + alpha) / (np.pi - alpha), rtol=1e-4)
+    # grid order: the first dimension slowest
+    np.testing.assert_allclose(t["links.crank.length"][:3], 0.08)
+    np.testing.assert_allclose(t["links.rod.length"][:3], [0.38, 0.40, 0.42])
+
+
+def test_four_bar_swing_and_transmission_angle_match_the_law_of_cosines():
+    t = lw.sweep(
+        "four-bar",
+        ["links.crank.length=80:110:4", "links.rocker.length=230mm:270mm:5"],
+        ["swing", "min_transmission_angle", "time_ratio"],
+    )
+    a, b, c, d = t["links.crank.length"], 0.35, t["links.rocker.length"], 0.30
+    # transmission angle (coupler-rocker) is extreme with the crank along the frame line: 0 and 180 deg,
+    # both among the 360 samples (the turn starts at 60 deg)
+    mu = [np.arccos((b * b + c * c - (d - s * a) ** 2) / (2 * b * c)) for s in (1, -1)]
+    np.testing.assert_allclose(t["min_transmission_angle"], np.minimum(*(_fold(m) for m in mu)), rtol=1e-9)
+    # the rocker's extremes: crank and coupler in line, O2B = b + a and b - a
+    psi = [np.arccos((d * d + c * c - s**2) / (2 * d * c)) for s in (b + a, b - a)]
+    np.testing.assert_allclose(t["swing"], np.abs(psi[0] - psi[1]), rtol=1e-6)
+    # time ratio from the crank angles of the extremes
+    phi = [np.arccos((d * d + s * s - c * c) / (2 * d * s)) for s in (b + a, b - a)]
+    theta = np.pi + phi[0] - phi[1]  # forward stroke: from the extended to the folded position
+    np.testing.assert_allclose(
+        t["time_ratio"], np.maximum(theta, 2 * np.pi - theta) / np.minimum(theta, 2 * np.pi - theta), rtol=1e-4
+    )
+
+
+def _shears_variant(crank: float, rod_mass: float | None = None, upper_mass: float | None = None) -> str:
+    """The double-cut shears file with a longer crank (its centre of mass and inertia kept, as a sweep
+    keeps the file's mass properties) and optionally heavier rod and knife (inertia scaled with mass)."""
+    yaml = YAML()
+    data = yaml.load(text("double-cut-shears"))
+    data["links"]["crank"]["length"] = crank
+    data["links"]["crank"]["com"] = [0.05, 0.0]
+    if rod_mass is not None:
+        data["links"]["rod"]["mass"] = rod_mass
+        data["links"]["rod"]["inertia"] = 0.80 * rod_mass / 60
+    if upper_mass is not None:
+        data["links"]["knife_upper"]["mass"] = upper_mass
+    import io
+
+    buf = io.StringIO()
+    yaml.dump(data, buf)
+    return buf.getvalue()
+
+
+def test_forces_of_geometry_and_mass_variants_equal_those_of_the_edited_file():
+    """Geometry through the variant overrides and masses by superposition, against a file with the
+    same values compiled and solved from scratch (lw.forces on one mechanism)."""
+    values = [(0.1, 60.0, 300.0), (0.105, 90.0, 300.0), (0.095, 45.0, 420.0)]
+    vary = {
+        "links.crank.length": ("95 mm", "105 mm", 3),
+        "links.rod.mass": ("45", "90", 4),
+        "links.knife_upper.mass": ("300", "420", 2),
+    }
+    metrics = ["peak_driving_torque", "peak_foundation_force", "knife_overlap", "knife_clearance"]
+    t = lw.sweep("double-cut-shears", vary, metrics, steps=360)
+    assert len(t) == 24
+    for crank, rod, upper in values:
+        row = int(
+            np.flatnonzero(
+                np.isclose(t["links.crank.length"], crank)
+                & np.isclose(t["links.rod.mass"], rod)
+                & np.isclose(t["links.knife_upper.mass"], upper)
+            )[0]
+        )
+        mech = lw.compile(lw.loads(_shears_variant(crank, rod, upper)))
+        f = lw.forces(mech, steps=360)
+        assert t["peak_driving_torque"][row] == pytest.approx(np.max(np.abs(f.driving_torque)), rel=1e-9)
+        found = np.max(np.hypot(f.foundation[:, 0], f.foundation[:, 1]))
+        assert t["peak_foundation_force"][row] == pytest.approx(found, rel=1e-9)
+        # the knives' gap on a fine turn (no interpolation)
+        k = lw.kinematics(mech, steps=36000)
+        gap = k.position("knife_upper.edge")[:, 1] - k.position("knife_lower.edge")[:, 1]
+        assert t["knife_overlap"][row] == pytest.approx(-gap.min(), abs=1e-7)
+        assert t["knife_clearance"][row] == pytest.approx(gap.max(), abs=1e-7)
+
+
+def test_a_variant_that_does_not_assemble_has_nan_metrics():
+    # a crank of 260 mm: O2B would reach 610 mm at 180 deg, beyond frame + rocker = 550 mm
+    t = lw.sweep("four-bar", ["links.crank.length=100:260:2"], ["swing", "assembles", "peak_driving_torque"])
+    assert list(t["assembles"]) == [1.0, 0.0]
+    assert np.isfinite(t["swing"][0]) and np.isnan(t["swing"][1]) and np.isnan(t["peak_driving_torque"][1])
+
+
+# ---------------------------------------------------------------- sample plans
+
+
+def test_latin_hypercube_puts_one_sample_in_every_stratum_and_random_is_seeded():
+    varies = [Vary("a", 1.0, 3.0, None, "length"), Vary("b", -1.0, 0.0, None, "length")]
+    n = 64
+    lhs = make_plan(varies, "lhs", n, seed=7)
+    v = lhs.values(0, n)
+    for j, (lo, hi) in enumerate([(1.0, 3.0), (-1.0, 0.0)]):
+        strata = np.floor((v[:, j] - lo) / (hi - lo) * n).astype(int)
+        assert sorted(strata) == list(range(n))
+    np.testing.assert_array_equal(lhs.values(10, 20), v[10:20])
+    rnd = make_plan(varies, "random", 1000, seed=3)
+    w = rnd.values(0, 1000)
+    assert np.all((w[:, 0] >= 1) & (w[:, 0] <= 3) & (w[:, 1] >= -1) & (w[:, 1] <= 0))
+    np.testing.assert_array_equal(w, make_plan(varies, "random", 1000, seed=3).values(0, 1000))
+    assert not np.array_equal(w, make_plan(varies, "random", 1000, seed=4).values(0, 1000))
+
+
+def test_mass_paths_are_listed_with_the_geometry():
+    params = design_parameters(lw.compile(lw.load("double-cut-shears")))
+    assert params["links.rod.mass"] == 60.0 and params["links.crank.length"] == pytest.approx(0.1)
+
+
+# ---------------------------------------------------------------- chunks on disk, interruption, resume
+
+
+def _log(path):
+    lines = [line.split() for f in sorted(path.glob("attempts-*.txt")) for line in f.read_text().splitlines()]
+    return [int(c) for c, _ in lines]
+
+
+def test_an_interrupted_sweep_resumes_and_computes_every_chunk_once(tmp_path):
+    out = tmp_path / "four.parquet"
+    args = ("four-bar", ["links.crank.length=80:110:12", "links.rocker.length=240:260:5"], ["swing", "time_ratio"])
+    whole = lw.sweep(*args, chunk_size=7)
+
+    class Stop(Exception):
+        pass
+
+    def stop_after_three(chunk, done, total):
+        if done == 3:
+            raise Stop
+
+    attempts = tmp_path / "attempts"
+    attempts.mkdir()
+    with pytest.raises(Stop):
+        lw.sweep(*args, chunk_size=7, out=out, attempts=attempts, on_chunk=stop_after_three)
+    assert not out.exists()
+    parts = sorted(p.name for p in (tmp_path / "four.parquet.parts").glob("chunk-*.parquet"))
+    assert parts == ["chunk-00000.parquet", "chunk-00001.parquet", "chunk-00002.parquet"]
+    with pytest.raises(DesignError, match="--resume"):
+        lw.sweep(*args, chunk_size=7, out=out)
+    with pytest.raises(DesignError, match="another plan"):
+        lw.sweep("four-bar", ["links.crank.length=80:111:12", "links.rocker.length=240:260:5"], ["swing", "time_ratio"],
+                 chunk_size=7, out=out, resume=True)  # fmt: skip
+    t = lw.sweep(*args, chunk_size=7, out=out, attempts=attempts, resume=True)
+    assert sorted(_log(attempts)) == list(range(9))  # 60 variants in 9 chunks, each evaluated once
+    np.testing.assert_array_equal(t["variant"], np.arange(60))
+    for name in whole.columns:
+        np.testing.assert_array_equal(t[name], whole[name])
+    import pyarrow.parquet as pq
+
+    table = pq.read_table(out)
+    assert table.num_rows == 60 and table.schema.field("swing").metadata[b"unit"] == b"rad"
+    np.testing.assert_array_equal(table.column("time_ratio").to_numpy(), whole["time_ratio"])
+    manifest = json.loads((tmp_path / "four.parquet.parts" / "manifest.json").read_text())
+    assert manifest["chunk_size"] == 7 and manifest["plan"]["varies"][0]["count"] == 12
+
+
+def test_netcdf_output(tmp_path):
+    xr = pytest.importorskip("xarray")
+    out = tmp_path / "s.nc"
+    t = lw.sweep("four-bar", ["links.crank.length=90:110:4"], ["swing"], out=out)
+    with xr.open_dataset(out) as ds:
+        np.testing.assert_array_equal(ds["swing"].values, t["swing"])
+        assert ds["swing"].attrs["units"] == "rad"
+
+
+# ---------------------------------------------------------------- errors
+
+
+def test_every_problem_of_the_options_is_reported_at_once():
+    with pytest.raises(DesignError) as err:
+        lw.sweep(
+            "four-bar",
+            ["links.crank.lenght=90:110:3", "links.rocker.length=260:240:0", "links.coupler.length=abc:1:2",
+             "links.crank.length=1 kg:2 kg:3", "frame.points.O4.x=1:2"],
+            ["knife_overlap", "bogus", "stroke"],
+        )  # fmt: skip
+    msg = str(err.value).splitlines()
+    assert 'no dimension "links.crank.lenght" (did you mean "links.crank.length"?)' in msg[0]
+    assert any("COUNT must be 1 or more, got 0" in m for m in msg)
+    assert any("START 260 is greater than STOP 240" in m for m in msg)
+    assert any('START: expected a length, got "abc"' in m for m in msg)
+    assert any('START: expected a length, got "1 kg"' in m for m in msg)
+    assert any("COUNT missing" in m for m in msg)
+    assert any('"knife_overlap" does not apply to four-bar' in m for m in msg)
+    assert any('"stroke" does not apply' in m and "no slider" in m for m in msg)
+    assert any('metric "bogus": unknown' in m and "peak_driving_torque" in m for m in msg)
+    assert any('STOP: expected a length, got "2 kg"' in m for m in msg)
+    assert len(msg) == 10
+
+
+def _cli(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "linkwork.cli.app", *args], capture_output=True, text=True, cwd=cwd)
+
+
+def test_cli_sweep_errors_exit_2_with_no_traceback_and_no_file(tmp_path):
+    out = tmp_path / "s.parquet"
+    r = _cli("sweep", "four-bar", "--vary", "links.crank.length=110:90:3", "--metric", "knife_clearance",
+             "--out", str(out))  # fmt: skip
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "START 110 is greater than STOP 90" in r.stderr and "knife_clearance" in r.stderr
+    assert not out.exists() and not (tmp_path / "s.parquet.parts").exists()
+
+
+def test_cli_sweep_writes_the_table(tmp_path):
+    out = tmp_path / "s.parquet"
+    r = _cli("sweep", "shears-slider-crank", "--vary", "links.crank.length=100mm:140mm:3", "--metric", "stroke",
+             "--out", str(out), "--quiet")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    import pyarrow.parquet as pq
+
+    t = pq.read_table(out)
+    # a centric slider-crank (the knife on the line through O) with the crank shorter than the rod: stroke 2 r
+    r_ = t.column("links.crank.length").to_numpy()
+    np.testing.assert_allclose(t.column("stroke").to_numpy(), 2 * r_, rtol=1e-7)
+    assert t.num_rows == 3 and "3 variants" in r.stdout
+
+
+# ---------------------------------------------------------------- optimisation
+
+
+def test_optimum_transmission_angle_of_a_four_bar_is_the_closed_form_one():
+    """The smallest transmission angle occurs with the crank along the frame line (0 and 180 deg); it is
+    largest when the two are supplementary: b^2 + c^2 = a^2 + d^2, so for the coupler b* = sqrt(a^2 + d^2 - c^2)."""
+    best = lw.optimize("four-bar", ["links.coupler.length=150:300"], "min_transmission_angle", maximize=True,
+                       steps=360, seed=1, maxiter=100, tol=1e-12)  # fmt: skip
+    a, c, d = 0.1, 0.25, 0.3
+    b = math.sqrt(a * a + d * d - c * c)
+    assert best.feasible
+    assert best.values["links.coupler.length"] == pytest.approx(b, rel=1e-6)
+    mu = math.acos((b * b + c * c - (d - a) ** 2) / (2 * b * c))
+    assert best.metrics["min_transmission_angle"] == pytest.approx(mu, rel=1e-6)
+
+
+def test_double_cut_shears_optimum_is_feasible_better_than_a_sample_and_its_file_reproduces_it(tmp_path):
+    vary = ["links.crank.length=80mm:120mm", "links.rocker.points.B.x=0.4:0.6",
+            "links.rocker.points.C.x=0.25:0.35", "links.rocker.points.D.x=-0.35:-0.25"]  # fmt: skip
+    cons = ["knife_overlap>=5mm", "knife_clearance>=200mm"]
+    out = tmp_path / "best.yaml"
+    best = lw.optimize("double-cut-shears", vary, "peak_driving_torque", cons, seed=0, maxiter=40, out=out)
+    assert best.feasible and best.metrics["knife_overlap"] >= 0.005 and best.metrics["knife_clearance"] >= 0.2
+    assert best.metrics["peak_driving_torque"] < best.initial["peak_driving_torque"]
+    # no design of a random sample in the same ranges that meets the constraints does better
+    sample = lw.sweep("double-cut-shears", [v + ":2" for v in vary], ["peak_driving_torque", "knife_overlap",
+                      "knife_clearance"], sampling="random", samples=400, seed=5, steps=180)  # fmt: skip
+    ok = (sample["knife_overlap"] >= 0.005) & (sample["knife_clearance"] >= 0.2)
+    assert ok.sum() > 10
+    assert best.metrics["peak_driving_torque"] <= sample["peak_driving_torque"][ok].min() * (1 + 1e-9)
+    # the written file, compiled afresh and solved by lw.forces and lw.kinematics on one mechanism
+    mech = lw.compile(lw.load(out))
+    for path, value in best.values.items():
+        assert design_parameters(mech)[path] == pytest.approx(value, rel=1e-9)
+    f = lw.forces(mech, steps=180)
+    assert np.max(np.abs(f.driving_torque)) == pytest.approx(best.metrics["peak_driving_torque"], rel=1e-7)
+    k = lw.kinematics(mech, steps=36000)
+    gap = k.position("knife_upper.edge")[:, 1] - k.position("knife_lower.edge")[:, 1]
+    assert gap.max() == pytest.approx(best.metrics["knife_clearance"], abs=2e-6)
+    assert -gap.min() == pytest.approx(best.metrics["knife_overlap"], abs=2e-6)
+    assert "# crank pivot" in out.read_text()  # the file's comments are kept
+
+
+def test_cli_optimize_reports_and_writes(tmp_path):
+    out = tmp_path / "best.yaml"
+    r = _cli("optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective", "peak_driving_torque",
+             "--constraint", "min_transmission_angle>=33deg", "--maxiter", "20", "--out", str(out),
+             "--json")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    res = json.loads(r.stdout)
+    assert res["feasible"] and res["metrics"]["min_transmission_angle"] >= math.radians(33)
+    assert lw.compile(lw.load(out)).point_local is not None
+    bad = _cli("optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective", "peak_torque",
+               "--constraint", "swing=>3", "--out", str(tmp_path / "x.yaml"))  # fmt: skip
+    assert bad.returncode == 2 and "Traceback" not in bad.stderr
+    assert 'metric "peak_torque": unknown' in bad.stderr and '--constraint "swing=>3"' in bad.stderr
+    assert not (tmp_path / "x.yaml").exists()
