@@ -79,6 +79,46 @@ class PoseRequest(BaseModel):
     overrides: Overrides = Field(default_factory=dict)
 
 
+class Rejected(Exception):
+    """A request refused before any solving: its HTTP status and the reason, for the page."""
+
+    def __init__(self, status: int, message: str) -> None:
+        super().__init__(message)
+        self.status = status
+        self.message = message
+
+
+async def read_body(request: Request, model: type[BaseModel]) -> Any:
+    """The request's JSON body validated by ``model``; raises :class:`Rejected` with a plain message otherwise.
+
+    The body is read in chunks up to :data:`MAX_BODY` bytes, parsed by :func:`json.loads` (no evaluation)
+    and checked by pydantic in strict mode (no strings for numbers, no extra keys).
+    """
+    kind = request.headers.get("content-type", "").split(";")[0].strip().lower()
+    if kind != "application/json":
+        raise Rejected(415, f"send the body as application/json, not {kind[:100] or 'nothing'!r}")
+    length = request.headers.get("content-length")
+    if length is not None and not length.isdigit():
+        raise Rejected(400, "the Content-Length header is not a number")
+    if length is not None and int(length) > MAX_BODY:
+        raise Rejected(413, f"the body is limited to {MAX_BODY} bytes")
+    raw = bytearray()
+    async for chunk in request.stream():
+        raw += chunk
+        if len(raw) > MAX_BODY:
+            raise Rejected(413, f"the body is limited to {MAX_BODY} bytes")
+    try:
+        data = json.loads(bytes(raw).decode("utf-8"))
+    except (UnicodeDecodeError, ValueError, RecursionError) as exc:
+        raise Rejected(400, f"the body is not valid JSON: {str(exc)[:200]}") from None
+    if not isinstance(data, dict):
+        raise Rejected(422, "the body must be a JSON object")
+    try:
+        return model.model_validate(data)
+    except ValidationError as exc:
+        raise Rejected(422, _validation_message(exc)) from None
+
+
 def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
     """The viewer's FastAPI application for a spec, a compiled mechanism, or a file or example name.
 
@@ -106,38 +146,8 @@ def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
             response.headers.setdefault(key, value)
         return response
 
-    class _Reject(Exception):
-        def __init__(self, status: int, message: str) -> None:
-            super().__init__(message)
-            self.status = status
-            self.message = message
-
-    async def body(request: Request, model: Any) -> Any:
-        """The request's JSON body validated by ``model``; an HTTPException with a plain message otherwise."""
-        kind = request.headers.get("content-type", "").split(";")[0].strip().lower()
-        if kind != "application/json":
-            raise _Reject(415, f"send the body as application/json, not {kind[:100] or 'nothing'!r}")
-        length = request.headers.get("content-length")
-        if length is not None and (not length.isdigit() or int(length) > MAX_BODY):
-            raise _Reject(413, f"the body is limited to {MAX_BODY} bytes")
-        raw = bytearray()
-        async for chunk in request.stream():
-            raw += chunk
-            if len(raw) > MAX_BODY:
-                raise _Reject(413, f"the body is limited to {MAX_BODY} bytes")
-        try:
-            data = json.loads(bytes(raw).decode("utf-8"))
-        except (UnicodeDecodeError, ValueError, RecursionError) as exc:
-            raise _Reject(400, f"the body is not valid JSON: {str(exc)[:200]}") from None
-        if not isinstance(data, dict):
-            raise _Reject(422, "the body must be a JSON object")
-        try:
-            return model.model_validate(data)
-        except ValidationError as exc:
-            raise _Reject(422, _validation_message(exc)) from None
-
-    @app.exception_handler(_Reject)
-    async def rejected(request: Request, exc: _Reject) -> JSONResponse:
+    @app.exception_handler(Rejected)
+    async def rejected(request: Request, exc: Rejected) -> JSONResponse:
         return error(exc.status, exc.message)
 
     @app.exception_handler(LinkworkError)
@@ -172,23 +182,23 @@ def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
         return Response(static_text(name), media_type=kinds[name] + "; charset=utf-8")
 
     @app.get("/api/cycle")
-    async def cycle() -> JSONResponse:
+    async def cycle() -> Response:
         return _json(await run_in_threadpool(viewer.cycle))
 
     @app.get("/api/parameters")
-    def parameters() -> JSONResponse:
+    def parameters() -> Response:
         return _json({"editable": viewer.spec is not None, "parameters": viewer.parameters()})
 
     @app.post("/api/solve")
-    async def solve(request: Request) -> JSONResponse:
-        req = await body(request, SolveRequest)
+    async def solve(request: Request) -> Response:
+        req = await read_body(request, SolveRequest)
         return _json(await run_in_threadpool(viewer.cycle, req.overrides, req.steps))
 
     @app.post("/api/pose")
-    async def pose(request: Request) -> JSONResponse:
+    async def pose(request: Request) -> Response:
         from linkwork.web.payload import pose_payload
 
-        req = await body(request, PoseRequest)
+        req = await read_body(request, PoseRequest)
         mech = await run_in_threadpool(viewer.compile, req.overrides)
         return _json(await run_in_threadpool(pose_payload, mech, math.radians(req.angle_deg)))
 
