@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import json
 import math
+import shlex
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -317,3 +319,18 @@ def test_cli_optimize_reports_and_writes(tmp_path):
     assert bad.returncode == 2 and "Traceback" not in bad.stderr
     assert 'metric "peak_torque": unknown' in bad.stderr and '--constraint "swing=>3"' in bad.stderr
     assert not (tmp_path / "x.yaml").exists()
+
+
+def test_the_readme_design_commands_run(tmp_path):
+    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## Design sweeps and optimisation", 1)[1].split("\n## ", 1)[0]
+    block = section.split("```", 2)[1]
+    lines = block.replace("\\\n", " ").strip().splitlines()
+    assert [shlex.split(line)[1] for line in lines] == ["parameters", "sweep", "optimize"]
+    for line in lines:
+        args = shlex.split(line.split("  #")[0])
+        r = _cli(*args[1:], cwd=tmp_path)
+        assert r.returncode == 0, r.stderr
+    best = lw.compile(lw.load(tmp_path / "shears-optimised.yaml"))
+    assert design_parameters(best)["links.crank.length"] != pytest.approx(0.1, abs=1e-6)
+    assert (tmp_path / "shears.parquet").exists()

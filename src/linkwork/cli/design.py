@@ -122,7 +122,7 @@ def optimize(
     out: Annotated[str | None, typer.Option("--out", help="write the optimised mechanism file (.yaml)")] = None,
     maximize: Annotated[bool, typer.Option("--maximize", help="the largest objective")] = False,
     metric: Annotated[list[str] | None, typer.Option("--metric", help="more metrics to report")] = None,
-    steps: Annotated[int, typer.Option("--steps", help="crank angles over the turn")] = 180,
+    steps: Annotated[int, typer.Option("--steps", help="crank angles over the turn")] = 360,
     seed: Annotated[int, typer.Option("--seed", help="seed of the optimiser")] = 0,
     popsize: Annotated[int, typer.Option("--popsize", help="population size per dimension")] = 15,
     maxiter: Annotated[int, typer.Option("--maxiter", help="generations at most")] = 100,

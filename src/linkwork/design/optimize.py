@@ -136,7 +136,7 @@ def optimize(
     *,
     maximize: bool = False,
     metrics: list[str] = (),  # type: ignore[assignment]
-    steps: int = 180,
+    steps: int = 360,
     seed: int = 0,
     popsize: int = 15,
     maxiter: int = 100,
