@@ -389,7 +389,8 @@ def parse_metrics(names: list[str], mech: Any) -> list[MetricRequest]:
     from linkwork.design.plan import DesignError
     from linkwork.spec.checks import suggest
 
-    problems, out = [], []
+    problems: list[str] = []
+    out: list[MetricRequest] = []
     for text in names:
         name, _, arg = text.partition(":")
         metric = METRICS.get(name)

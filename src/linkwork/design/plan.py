@@ -215,7 +215,9 @@ class Plan:
             counts = [v.count or 1 for v in self.varies]
             index = np.unravel_index(ids, counts)
             return np.stack([v.grid()[i] for v, i in zip(self.varies, index, strict=True)], axis=-1)
-        u = (self.unit_sample() if unit is None else unit)[start:stop]
+        sample = self.unit_sample() if unit is None else unit
+        assert sample is not None
+        u = sample[start:stop]
         lo = np.array([v.start for v in self.varies])
         hi = np.array([v.stop for v in self.varies])
         return lo + (hi - lo) * u

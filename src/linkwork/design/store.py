@@ -102,7 +102,11 @@ def prepare(out: str | Path, manifest: dict[str, Any], resume: bool) -> set[int]
     if resume and parts.is_dir() and done_chunks(parts):
         raise DesignError([f"{parts}: chunks without a manifest; remove the directory and start afresh"])
     parts.mkdir(parents=True, exist_ok=True)
-    write_atomic(path, lambda tmp: tmp.write_text(json.dumps(manifest, indent=2) + "\n", encoding="utf-8"))
+
+    def write(tmp: Path) -> None:
+        tmp.write_text(json.dumps(manifest, indent=2) + "\n", encoding="utf-8")
+
+    write_atomic(path, write)
     return set()
 
 

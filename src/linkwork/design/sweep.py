@@ -183,7 +183,9 @@ def sweep(
         not computed again.
     workers : int, optional
         Worker processes of an embedded local Dask cluster (one thread each); 0 runs in this process.
-        Default: this process for up to :data:`IN_PROCESS` variants, else one worker per core.
+        Default: this process for up to :data:`IN_PROCESS` variants, else one worker per core.  A script
+        that starts a local cluster needs the ``if __name__ == "__main__":`` guard (the workers are
+        started as fresh Python processes that import the script's main module).
     scheduler : str, optional
         The address of a running Dask scheduler (``tcp://host:8786``) or its scheduler file.
     progress : bool
@@ -257,7 +259,7 @@ def sweep(
         if on_chunk is not None:
             on_chunk(chunk, len(done), n_chunks)
 
-    def task_args(c: int) -> tuple:
+    def task_args(c: int) -> tuple[Any, list[str], np.ndarray, list[str], int, int, int]:
         lo, hi = c * size, min((c + 1) * size, plan.n_variants)
         return mech, plan.paths, plan.values(lo, hi, unit), columns, steps, lo, c
 
@@ -270,7 +272,7 @@ def sweep(
             _on_dask(todo, task_args, store, workers, scheduler, log)
     finally:
         bar.close()
-    if parts is not None:
+    if parts is not None and out is not None:
         cols = read_chunks(parts, n_chunks)
         write_table(out, cols, units, meta)
     else:

@@ -95,4 +95,8 @@ def write_design(mechanism: Any, spec: Any, mech: Any, values: dict[str, float],
     buf = io.StringIO()
     yaml.dump(data, buf)
     text = buf.getvalue()
-    return write_atomic(out, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+
+    def write(tmp: Path) -> None:
+        tmp.write_text(text, encoding="utf-8")
+
+    return write_atomic(out, write)
