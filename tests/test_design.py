@@ -334,3 +334,37 @@ def test_the_readme_design_commands_run(tmp_path):
     best = lw.compile(lw.load(tmp_path / "shears-optimised.yaml"))
     assert design_parameters(best)["links.crank.length"] != pytest.approx(0.1, abs=1e-6)
     assert (tmp_path / "shears.parquet").exists()
+
+
+def test_a_sweep_killed_on_the_command_line_resumes_with_its_chunks_untouched(tmp_path):
+    import os
+    import signal
+    import time
+
+    out = tmp_path / "s.parquet"
+    args = ["sweep", "double-cut-shears", "--vary", "links.crank.length=95mm:105mm:8", "--vary",
+            "links.rod.length=390mm:410mm:3", "--metric", "peak_driving_torque", "--metric", "knife_overlap",
+            "--out", str(out), "--chunk-size", "1", "--workers", "0", "--quiet"]  # fmt: skip
+    proc = subprocess.Popen([sys.executable, "-m", "linkwork.cli.app", *args], stderr=subprocess.PIPE)
+    parts = tmp_path / "s.parquet.parts"
+    deadline = time.monotonic() + 120
+    while len(list(parts.glob("chunk-*.parquet"))) < 3 and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.01)
+    assert proc.poll() is None, "the sweep ended before it could be stopped"
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    proc.stderr.close()
+    assert not out.exists()
+    before = {p.name: (p.stat().st_ino, p.stat().st_mtime_ns) for p in parts.glob("chunk-*.parquet")}
+    assert 3 <= len(before) < 24
+    r = _cli(*args, "--resume")
+    assert r.returncode == 0, r.stderr
+    after = {p.name: (p.stat().st_ino, p.stat().st_mtime_ns) for p in parts.glob("chunk-*.parquet")}
+    assert len(after) == 24 and all(after[name] == stamp for name, stamp in before.items())
+    assert not list(parts.glob(".*"))  # no temporary file left
+    import pyarrow.parquet as pq
+
+    t = pq.read_table(out)
+    np.testing.assert_array_equal(t.column("variant").to_numpy(), np.arange(24))
+    here = lw.sweep("double-cut-shears", args[3:6:2], ["peak_driving_torque", "knife_overlap"], workers=0)
+    np.testing.assert_array_equal(t.column("peak_driving_torque").to_numpy(), here["peak_driving_torque"])

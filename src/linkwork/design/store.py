@@ -98,6 +98,8 @@ def prepare(out: str | Path, manifest: dict[str, Any], resume: bool) -> set[int]
                 [f"{path}: --resume with another plan than the one on disk; start afresh with another --out, "
                  "or give the same options:", *(f"  {d}" for d in diff)]
             )  # fmt: skip
+        for tmp in parts.glob(".chunk-*.part"):  # a chunk being written when the sweep was killed
+            tmp.unlink(missing_ok=True)
         return done_chunks(parts)
     if resume and parts.is_dir() and done_chunks(parts):
         raise DesignError([f"{parts}: chunks without a manifest; remove the directory and start afresh"])
