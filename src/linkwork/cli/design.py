@@ -44,7 +44,7 @@ def parameters(file_or_example: FileOrExample) -> None:
 def sweep(
     file_or_example: FileOrExample,
     vary: Vary,
-    metric: Annotated[list[str], typer.Option("--metric", help="a metric to compute (repeat); see --list-metrics")],
+    metric: Annotated[list[str], typer.Option("--metric", help="a metric to compute (repeat): one of those above")],
     out: Annotated[str, typer.Option("--out", help="the table to write: .parquet or .nc")],
     sample: Annotated[str, typer.Option("--sample", help="grid, random or lhs (Latin hypercube)")] = "grid",
     samples: Annotated[int | None, typer.Option("--samples", help="variants of a random or lhs sample")] = None,
