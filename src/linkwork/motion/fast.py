@@ -208,7 +208,7 @@ def _loc(local, p):
 
 def _locus(L, ops, st, o, pre, local, origin, axis, xlx, xly):
     """The locus of X of the arm at ``ops[st, o:]``: (px, py, vpx, vpy, apx, apy, r, c0, s0) for an
-    R arm (circle about p, the local direction of X from the joint), (l0x, l0y, ux, uy, 0...) for P."""
+    R arm (circle about p, the local vector from the joint to X over r^2), (l0x, l0y, ux, uy, 0...) for P."""
     if ops[st, o] == 0:
         px, py, vpx, vpy, apx, apy = _point(L, ops[st, o + 5], local[ops[st, o + 4], 0], local[ops[st, o + 4], 1])
         j = (o - 3) // ARM
@@ -308,8 +308,9 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
         link = ops[st, o + 1]
         if ops[st, o] == 0:
             # X is on the circle of radius P[6] about P: its direction from P less the local one
-            cg, sg = (x - P[0]) / P[6], (y - P[1]) / P[6]
-            c, s = cg * P[7] + sg * P[8], sg * P[7] - cg * P[8]
+            # (P[7], P[8]: the local one over the radius)
+            gx_, gy_ = x - P[0], y - P[1]
+            c, s = gx_ * P[7] + gy_ * P[8], gy_ * P[7] - gx_ * P[8]
             lx, ly = local[ops[st, o + 3], 0], local[ops[st, o + 3], 1]
             _place(L, link, math.atan2(s, c), k, kd, P[0], P[1], P[2], P[3], P[4], P[5], lx, ly, c, s)
         else:
@@ -386,7 +387,8 @@ def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i
 
 
 def _arm_constants(ops, local, pre):
-    """Radius and local direction of X about the outer joint of every R arm of a dyad (of one variant)."""
+    """Radius of X about the outer joint of every R arm of a dyad (of one variant), and the local
+    vector from the joint to X over the radius squared."""
     for st in range(ops.shape[0]):
         if ops[st, 0] != DYAD:
             continue
@@ -398,7 +400,7 @@ def _arm_constants(ops, local, pre):
             dx, dy = xlx - local[ops[st, o + 3], 0], xly - local[ops[st, o + 3], 1]
             r = math.sqrt(dx * dx + dy * dy)
             pre[st, j, 0] = r
-            pre[st, j, 1], pre[st, j, 2] = (dx / r, dy / r) if r > 0 else (1.0, 0.0)
+            pre[st, j, 1], pre[st, j, 2] = (dx / (r * r), dy / (r * r)) if r > 0 else (1.0, 0.0)
 
 
 def _kernel(
