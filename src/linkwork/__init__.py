@@ -32,6 +32,7 @@ _LAZY = {
     "dynamics": ("linkwork.machine", "dynamics"),
     "rocker_impact": ("linkwork.impulse", "rocker_impact"),
     "impact": ("linkwork.impulse", "impact"),
+    "simulate_blows": ("linkwork.impulse.cycle", "simulate_blows"),
     "sweep": ("linkwork.design", "sweep"),
     "optimize": ("linkwork.design", "optimize"),
 }

@@ -9,7 +9,19 @@
 
 from __future__ import annotations
 
+from linkwork.impulse.cycle import Blow, Phase, Tool, WorkingCycle, simulate_blows
 from linkwork.impulse.mechanism import Impact, impact, reduced_model
 from linkwork.impulse.rocker import RockerImpact, rocker_impact
 
-__all__ = ["Impact", "RockerImpact", "impact", "reduced_model", "rocker_impact"]
+__all__ = [
+    "Blow",
+    "Impact",
+    "Phase",
+    "RockerImpact",
+    "Tool",
+    "WorkingCycle",
+    "impact",
+    "reduced_model",
+    "rocker_impact",
+    "simulate_blows",
+]

@@ -1,0 +1,747 @@
+"""Working cycle of a percussion mechanism of variable structure: blows, rebounds, contact.
+
+The machine: a one-degree-of-freedom mechanism (turning angle ``psi`` of the crank, reduced
+inertia ``J(psi)``, reduced load moment ``M(psi)`` of gravity and the file's loads) driven by a
+motor through a gear with a flywheel (:class:`~linkwork.machine.Drive`: moment ``M_d(psi')``,
+constant inertia ``J_d``), and the tool, a body of mass ``m_t`` that slides along the normal ``n``
+of its face.  The feed presses the tool with a constant force ``F`` towards the striker onto its
+seat, where its face passes through the striking point K in the pose of the file's blow; the work
+resists its motion into it with a constant force ``F_w`` (a rigid-plastic material: no force
+when the tool comes back).  ``u`` is the tool's travel into the work from its seat, ``s(psi)`` the
+height of K above the seated face along ``n``; the gap is ``g = s(psi) + u``.
+
+A rigid crank-rocker cannot stop at the tool (it would jam the crank), so the tool gives way and
+the structure of the machine changes with the contact:
+
+* ``flight``: the striker free, the tool on its seat: one degree of freedom (``psi``);
+* ``apart``: after a blow, striker and tool move apart: two degrees of freedom (``psi``, ``u``);
+  the tool flies under ``-(F + F_w)`` into the work, ``-F`` back, and stops on its seat
+  (a plastic stop: its kinetic energy there is lost);
+* ``contact``: the striker pushes the tool, ``g = 0``: one degree of freedom again, with the
+  contact force ``lambda >= 0`` as the constraint's multiplier; the phase ends where
+  ``lambda`` falls to zero (separation) or the tool reaches its seat.
+
+Between events the motion is the energy-exact equation
+``(J + J_d) psi'' + J' psi'^2 / 2 = M + M_d + G_phi lambda`` (``G_phi = (dK/dpsi) . (n + phi t)``,
+``phi = -f sgn(sliding)``) with scipy's ``solve_ivp`` (DOP853) and its events.  ``J``, ``M``,
+``s`` and the sliding transfer function are periodic cubic splines through their exact values on
+a grid of the turn (``steps``); the blows use the exact kinematics of their pose.
+
+The blow (``g = 0`` closing) is the impact map of :func:`~linkwork.impulse.impact`, generalised
+to a tool that moves: with the normal impulse ``P`` on the striker,
+
+    (J + J_d) (psi'_+ - psi'_-) = G_phi P,   m_t (u'_+ - u'_-) = P,   g'_+ = -R g'_-
+    =>  P = -(1 + R) g'_- / (G_n G_phi / (J + J_d) + 1 / m_t)
+
+(``G_n = ds/dpsi``, Newton's restitution on the normal closing speed, the striker sliding through
+the impact), which for a tool that cannot move (``m_t`` infinite) and no drive inertia is exactly
+:func:`~linkwork.impulse.impact`.  The impulsive reactions of every pair follow as there; the
+drive's row gives the impulse of the drive on the crank, ``-J_d (psi'_+ - psi'_-)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+
+FLIGHT, APART, CONTACT = "flight", "apart", "contact"
+#: Degrees of freedom of the machine (mechanism and tool) in each phase.
+FREEDOM = {FLIGHT: 1, APART: 2, CONTACT: 1}
+
+
+@dataclass(frozen=True)
+class Tool:
+    """The tool: ``mass`` (kg), the ``feed`` force pressing it towards the striker onto its seat
+    (N, positive: it brings the tool back) and the work's ``resistance`` to its motion into it (N)."""
+
+    mass: float
+    feed: float
+    resistance: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not self.mass > 0:
+            raise LinkworkError(f"tool: the mass must be positive, got {self.mass}")
+        if not self.feed > 0:
+            raise LinkworkError(f"tool: the feed force must be positive (it returns the tool), got {self.feed}")
+        if not self.resistance >= 0:
+            raise LinkworkError(f"tool: the work's resistance must not be negative, got {self.resistance}")
+
+
+@dataclass(frozen=True)
+class Blow:
+    """One blow of the striker on the tool at rest on its seat, and what followed until the next.
+
+    Speeds of the crank are its turning speed (rad/s, positive in the drive's direction); vectors
+    in global axes.
+
+    Attributes
+    ----------
+    time : float
+        s from the start of the run.
+    psi : float
+        Turning angle of the crank from the assembly angle, rad (growing over the run).
+    angle : float
+        The crank's drive angle in the pose of the blow, rad.
+    crank_speed_before, crank_speed_after : float
+    omega_before, omega_after : float
+        The striking link's angular speed, rad/s, counter-clockwise positive.
+    impact_speed : float
+        Speed of the striker towards the tool's face along its normal, m/s.
+    striker_speed : float
+        Magnitude of the striker's velocity before the blow, m/s.
+    tool_speed : float
+        The tool's speed into the work after the blow, m/s.
+    impulse : ndarray (2,)
+        Impulse of the tool on the striker, N s.
+    joints : dict
+        For each joint, the impulse (x, y) its first-named link exerts on the second, N s.
+    joint_links : dict
+        For each joint, its (first, second) link names.
+    drive_impulse : float
+        Impulse of the drive (motor, gear, flywheel) on the crank, N m s.
+    energy_before : float
+        Kinetic energy of the machine (mechanism and drive) before the blow, J.
+    energy_lost : float
+        Kinetic energy lost in the blow (machine and tool), J.
+    energy_to_tool : float
+        Kinetic energy the blow gives the tool, J: what it carries into the work.
+    rebounds : int
+        Further impacts of striker and tool before the tool is back on its seat.
+    rebound_loss : float
+        Kinetic energy lost in them, J.
+    work_on_work : float
+        Work done on the work (its resistance times the tool's travel into it) until the next blow, J.
+    penetration : float
+        The tool's deepest travel into the work after this blow, m.
+    """
+
+    time: float
+    psi: float
+    angle: float
+    crank_speed_before: float
+    crank_speed_after: float
+    omega_before: float
+    omega_after: float
+    impact_speed: float
+    striker_speed: float
+    tool_speed: float
+    impulse: np.ndarray
+    joints: dict[str, np.ndarray]
+    joint_links: dict[str, tuple[str, str]]
+    drive_impulse: float
+    energy_before: float
+    energy_lost: float
+    energy_to_tool: float
+    rebounds: int = 0
+    rebound_loss: float = 0.0
+    work_on_work: float = 0.0
+    penetration: float = 0.0
+
+
+@dataclass(frozen=True)
+class Phase:
+    """A stretch of motion of one structure: ``kind`` (``flight``, ``apart``, ``contact``), its
+    start and end times (s) and turning angles (rad)."""
+
+    kind: str
+    start: float
+    end: float
+    psi_start: float
+    psi_end: float
+
+    @property
+    def duration(self) -> float:
+        return self.end - self.start
+
+    @property
+    def freedom(self) -> int:
+        """Degrees of freedom of machine and tool in this phase."""
+        return FREEDOM[self.kind]
+
+
+@dataclass(frozen=True)
+class WorkingCycle:
+    """The run of :func:`simulate_blows`.
+
+    Attributes
+    ----------
+    blows : tuple of Blow
+        Every blow on the seated tool, each with what followed until the next.
+    phases : tuple of Phase
+        The phases of the whole run, in order.
+    period : float
+        Time from the last recorded blow to the next (where the run ends), s.
+    steady : bool
+        Whether the run reached its steady cycle.
+    t, psi, omega, u, v, force, mode : ndarray (N,)
+        Samples at the solver's steps: time (s), turning angle (rad), crank speed (rad/s), the
+        tool's travel into the work (m) and its speed (m/s), the contact force (N, NaN outside
+        contact) and the phase (index into ``("flight", "apart", "contact")``).
+    energy : dict
+        The run's ledger, J: ``motor``, ``loads`` (work done on the machine), ``kinetic`` (change
+        of the kinetic energy of machine and tool), ``feed`` (change of the feed's potential
+        ``F u``), ``blows``, ``rebounds``, ``seat`` (kinetic energy lost in impacts and on the
+        seat), ``work`` (done on the work), ``friction`` (lost sliding in contact phases).
+    cycle_energy : dict
+        The same over the last cycle, from the last blow to the next.
+    tool : Tool
+    """
+
+    blows: tuple[Blow, ...]
+    phases: tuple[Phase, ...]
+    period: float
+    steady: bool
+    t: np.ndarray
+    psi: np.ndarray
+    omega: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+    force: np.ndarray
+    mode: np.ndarray
+    energy: dict[str, float]
+    cycle_energy: dict[str, float]
+    tool: Tool
+
+    @property
+    def blows_per_minute(self) -> float:
+        """Of the steady cycle: 60 over the time between the last two blows."""
+        return 60.0 / self.period
+
+    @property
+    def last(self) -> Blow:
+        return self.blows[-1]
+
+    def cycle_phases(self) -> tuple[Phase, ...]:
+        """The phases of the last cycle, from the last blow to the next."""
+        start = self.blows[-1].time
+        return tuple(p for p in self.phases if p.start >= start - 1e-12)
+
+    @property
+    def mean_power(self) -> float:
+        """Mean power of the drive over the last cycle, W."""
+        return self.cycle_energy["motor"] / self.period
+
+    @property
+    def balance(self) -> float:
+        """Motor and load work less everything it went into over the run, J: zero up to the
+        integrator's error."""
+        e = self.energy
+        spent = e["kinetic"] + e["feed"] + e["blows"] + e["rebounds"] + e["seat"] + e["work"] + e["friction"]
+        return e["motor"] + e["loads"] - spent
+
+
+def _heading(value: float, rate: float, scale: float) -> float:
+    """The sign a quantity is taking: its own, or its rate's where it is zero (to rounding)."""
+    if abs(value) > 1e-12 * max(abs(scale), 1.0):
+        return math.copysign(1.0, value)
+    return math.copysign(1.0, rate)
+
+
+class _Splines:
+    """Periodic cubic splines over the turn, evaluated one turning angle at a time (fast scalars)."""
+
+    def __init__(self, psi: np.ndarray, columns: list[np.ndarray]) -> None:
+        from scipy.interpolate import CubicSpline
+
+        k = len(psi)
+        self.k, self.h = k, 2 * math.pi / k
+        x = np.append(psi, 2 * math.pi)
+        coef = []
+        for col in columns:
+            spline = CubicSpline(x, np.append(col, col[0]), bc_type="periodic")
+            coef.append(spline.c.T)
+        self.c = [tuple(map(float, np.concatenate([c[i] for c in coef]))) for i in range(k)]
+
+    def at(self, psi: float) -> tuple[float, ...]:
+        """Value and first and second derivatives of every column at ``psi``."""
+        u = (psi % (2 * math.pi)) / self.h
+        i = min(int(u), self.k - 1)
+        x = (u - i) * self.h
+        c = self.c[i]
+        out = []
+        for j in range(0, len(c), 4):
+            c3, c2, c1, c0 = c[j : j + 4]
+            out += [((c3 * x + c2) * x + c1) * x + c0, (3 * c3 * x + 2 * c2) * x + c1, 6 * c3 * x + 2 * c2]
+        return tuple(out)
+
+
+class _Free:
+    """The tool flying free from ``(t0, u0, v0)``: a parabola into the work, another back."""
+
+    def __init__(self, t0: float, u0: float, v0: float, tool: Tool) -> None:
+        self.t0, self.u0, self.v0 = t0, u0, v0
+        self.a_in = -(tool.feed + tool.resistance) / tool.mass
+        self.a_out = -tool.feed / tool.mass
+        if v0 > 0:
+            self.t_top = t0 + v0 / -self.a_in
+            self.u_top = u0 + v0 * v0 / (2 * -self.a_in)
+        else:
+            self.t_top, self.u_top = t0, u0
+        self.resistance = tool.resistance
+        # on the seat (u = 0) coming back
+        if v0 > 0 or u0 > 0:
+            if v0 > 0:
+                self.t_seat = self.t_top + math.sqrt(2 * self.u_top / -self.a_out)
+            else:
+                a = 0.5 * self.a_out
+                self.t_seat = t0 + (-v0 - math.sqrt(v0 * v0 - 4 * a * u0)) / (2 * a)
+        else:
+            self.t_seat = t0
+
+    def state(self, t: float) -> tuple[float, float]:
+        if t <= self.t_top and self.v0 > 0:
+            d = t - self.t0
+            return self.u0 + self.v0 * d + 0.5 * self.a_in * d * d, self.v0 + self.a_in * d
+        if self.v0 > 0:
+            d = t - self.t_top
+            return self.u_top + 0.5 * self.a_out * d * d, self.a_out * d
+        d = t - self.t0
+        return self.u0 + self.v0 * d + 0.5 * self.a_out * d * d, self.v0 + self.a_out * d
+
+    def work(self, t: float) -> float:
+        """Work done on the work from ``t0`` to ``t``."""
+        if self.v0 <= 0:
+            return 0.0
+        return self.resistance * (self.state(min(t, self.t_top))[0] - self.u0)
+
+
+def simulate_blows(
+    mech: Any,
+    drive: Any = None,
+    *,
+    tool: Tool | None = None,
+    at: str | None = None,
+    normal: Any = None,
+    restitution: float | None = None,
+    friction: float | None = None,
+    link: str | None = None,
+    omega0: float | None = None,
+    blows: int = 200,
+    steps: int = 3600,
+    tol: float = 1e-6,
+    rtol: float = 1e-10,
+) -> WorkingCycle:
+    """Run the percussion machine from ``omega0`` until its steady cycle (``blows`` at the most).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        One crank; its file's ``impact:`` section gives the defaults of ``at``, ``normal``
+        (a vector, or the angle of the file), ``restitution``, ``friction``, ``link`` and ``tool``
+        (its ``tool:``); the tool's face on its seat passes through ``at`` in the assembly pose.
+    drive : Drive, optional
+        Motor, gear and flywheel (default: the file's ``machine:``).
+    omega0 : float, optional
+        Crank speed at the start, rad/s (default: the file's drive speed); the run starts where
+        the striker is farthest from the tool.
+    blows : int
+        At most this many blows.
+    tol : float
+        The cycle is steady when two blow-to-blow periods in a row and the crank speeds before
+        the blows agree within ``tol`` (relative).
+    rtol : float
+        Of the integrator (DOP853).
+
+    Raises
+    ------
+    LinkworkError
+        Without a drive or a tool; if the striker never reaches the tool, the crank stops, or
+        friction would lock the blow.
+    """
+    from scipy.integrate import solve_ivp
+
+    from linkwork.impulse.mechanism import impulsive_reactions, pose_inertia
+    from linkwork.machine import reduced
+    from linkwork.motion import kinematics
+
+    blow_spec = mech.blow
+    if drive is None:
+        drive = mech.machine
+    if drive is None:
+        raise LinkworkError('the working cycle needs a drive: give a "machine:" section (motor, gear, flywheel)')
+    if tool is None and blow_spec is not None and blow_spec.tool is not None:
+        t_spec = blow_spec.tool
+        tool = Tool(t_spec.mass, t_spec.feed, t_spec.resistance)
+    if tool is None:
+        raise LinkworkError('the working cycle needs the tool: give "tool:" (mass, feed, resistance) in "impact:"')
+    if at is None and blow_spec is not None:
+        at = blow_spec.at
+    if at is None:
+        raise LinkworkError("the working cycle needs the striking point (at=link.point)")
+    if normal is None:
+        if blow_spec is None:
+            raise LinkworkError("the working cycle needs the normal of the tool's face")
+        normal = (math.cos(blow_spec.normal), math.sin(blow_spec.normal))
+    if restitution is None:
+        restitution = blow_spec.restitution if blow_spec is not None else 0.0
+    if friction is None:
+        friction = blow_spec.friction if blow_spec is not None else 0.0
+    if link is None and blow_spec is not None:
+        link = blow_spec.link
+    if not (0 <= restitution <= 1 and friction >= 0):
+        raise LinkworkError(f"expected 0 <= R <= 1 and friction >= 0, got R = {restitution}, f = {friction}")
+    if blows < 3:
+        raise LinkworkError(f"blows: expected at least 3 (a steady cycle is two periods alike), got {blows}")
+    n = np.asarray(normal, dtype=float)
+    n = n / np.linalg.norm(n)
+    tang = np.array([n[1], -n[0]])
+    red = reduced(mech, steps)
+    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
+    start_angle = float(mech.drive_start[0])
+    kin = kinematics(mech, red.angle, speed=sign)
+    p = kin.point_index(at)
+    striker = int(mech.point_link[p])
+    link = link if link is not None else mech.link_names[striker]
+    pos, vel, _ = kin._point(mech.point_names[p])
+    pos, vel = pos[0], vel[0]
+    face = pos[0].copy()  # the seated face passes through K in the assembly pose
+    height = (pos - face) @ n
+    if not height.max() > 0:
+        raise LinkworkError(f'"{at}" never leaves the tool\'s face: no room for a blow')
+    spl = _Splines(red.psi, [red.inertia, red.load, height, vel @ tang])
+    jd = float(drive.inertia)
+    moment = drive.moment
+    mt, feed, resist = tool.mass, tool.feed, tool.resistance
+    f_c = float(friction)
+    pairs = 2 * mech.n_pairs
+
+    def phi_of(gt: float, w: float) -> float:
+        return f_c if gt * w <= 0 else -f_c
+
+    def flags(psi: float, w: float) -> tuple[bool, float]:
+        """In contact: whether the tool is going into the work, and phi (against the sliding), from
+        the signs the two velocities are taking (where they are zero, from their rates)."""
+        _, _, _, _, _, _, _, ds, dds, gt, dgt, _ = spl.at(psi)
+        into = _heading(-ds * w, -dds * w * w, w * abs(ds) + 1e-300) > 0
+        sliding = _heading(gt * w, dgt * w * w, w * abs(gt) + 1e-300)
+        return into, -f_c * sliding
+
+    seg = {"into": True, "phi": 0.0}  # the flags of the contact phase being integrated
+
+    def contact_force(psi: float, w: float, into: bool | None = None, phi: float | None = None) -> tuple[float, ...]:
+        """lambda, psi'', the sliding transfer function and phi in contact (flags: the segment's)."""
+        j, dj, _, m, _, _, s, ds, dds, gt, _, _ = spl.at(psi)
+        jt = j + jd
+        q = m + float(moment(w)) - 0.5 * dj * w * w
+        into = seg["into"] if into is None else into
+        phi = seg["phi"] if phi is None else phi
+        gphi = ds + phi * gt
+        rr = resist if into else 0.0
+        lam = (feed + rr - mt * (dds * w * w + ds * q / jt)) / (1.0 + mt * ds * gphi / jt)
+        return lam, (q + gphi * lam) / jt, gt, phi
+
+    # state: psi, omega, motor work, load work, friction loss, work on the work
+    def rhs_free(t: float, y: np.ndarray) -> list[float]:
+        j, dj, _, m, _, _ = spl.at(y[0])[:6]
+        w = y[1]
+        md = float(moment(w))
+        return [w, (m + md - 0.5 * dj * w * w) / (j + jd), md * w, m * w, 0.0, 0.0]
+
+    def rhs_contact(t: float, y: np.ndarray) -> list[float]:
+        w = y[1]
+        lam, acc, gt, phi = contact_force(y[0], w)
+        j, dj, _, m, _, _, s, ds = spl.at(y[0])[:8]
+        v = -ds * w
+        return [w, acc, float(moment(w)) * w, m * w, -phi * lam * gt * w, resist * v if seg["into"] else 0.0]
+
+    def stalled(t: float, y: np.ndarray) -> float:
+        return y[1]
+
+    stalled.terminal = True  # type: ignore[attr-defined]
+    stalled.direction = -1  # type: ignore[attr-defined]
+
+    def kinetic(psi: float, w: float, v: float) -> float:
+        return 0.5 * (spl.at(psi)[0] + jd) * w * w + 0.5 * mt * v * v
+
+    # start where the striker is farthest from the tool
+    i0 = int(np.argmax(height))
+    psi = float(red.psi[i0])
+    w = float(abs(mech.drive_speed[0]) if omega0 is None else omega0)
+    if not w > 0:
+        raise LinkworkError(f"omega0: expected a positive crank speed, got {w}")
+    t = 0.0
+    y = np.array([psi, w, 0.0, 0.0, 0.0, 0.0])
+    mode = FLIGHT
+    free: _Free | None = None
+    ledger = dict(blows=0.0, rebounds=0.0, seat=0.0, work_free=0.0)
+    snapshots: list[dict[str, float]] = []
+
+    def account(y_: np.ndarray) -> dict[str, float]:
+        """The ledger so far, with the tool on its seat (every blow starts and the run ends so)."""
+        return dict(
+            motor=float(y_[2]), loads=float(y_[3]), kinetic=kinetic(float(y_[0]), float(y_[1]), 0.0), feed=0.0,
+            blows=ledger["blows"], rebounds=ledger["rebounds"], seat=ledger["seat"],
+            work=float(y_[5]) + ledger["work_free"], friction=float(y_[4]),
+        )  # fmt: skip
+
+    first = account(y)
+    records: list[dict[str, Any]] = []
+    phases: list[list[Any]] = []
+    samples: list[tuple[np.ndarray, ...]] = []
+    impacts_since = 0
+    speed_scale = abs(float(np.max(np.abs(vel @ n)))) * w
+    # rebounds slower than this end the chatter (plastic): their height would drown in rounding
+    v_eps = 1e-5 * max(speed_scale, 1e-3)
+    slack = 1e-12  # m: a gap event fires this far past touching, not lost to rounding at zero
+    steady = False
+    end_time = math.nan
+    fine_until = -math.inf
+
+    def report_stall(psi_now: float) -> LinkworkError:
+        deg = math.degrees(start_angle + sign * psi_now) % 360
+        return LinkworkError(
+            f"the crank stops at {deg:.1f} deg (in the {mode} phase): the drive cannot carry the machine "
+            "through the blow (too weak a motor, too little flywheel, or too stiff a work)"
+        )
+
+    def blow_map(psi_b: float, w_b: float, u_b: float, v_b: float, plastic: bool) -> dict[str, Any]:
+        angle = start_angle + sign * psi_b
+        k1 = kinematics(mech, np.array([angle]), speed=sign)
+        if not bool(np.all(k1.valid)):
+            raise LinkworkError(f"the mechanism does not assemble at {math.degrees(angle) % 360:.3f} deg")
+        kp, kg, _ = k1._point(mech.point_names[p])
+        kp, kg = kp[0, 0], kg[0, 0]
+        jt = pose_inertia(k1) + jd
+        sn, st = float(kg @ n), float(kg @ tang)
+        closing = sn * w_b + v_b
+        phi = phi_of(st, w_b) if abs(st * w_b) > 1e-12 * abs(w_b) * np.linalg.norm(kg) else f_c
+        gphi = sn + phi * st
+        if not sn * gphi > 0:
+            raise LinkworkError(
+                f"friction f = {f_c:g} locks the blow at {math.degrees(angle) % 360:.3f} deg: the impulse "
+                "would pull the striker into the tool"
+            )
+        r_eff = 0.0 if plastic else restitution
+        big_p = -(1.0 + r_eff) * closing / (sn * gphi / jt + 1.0 / mt)
+        dw = gphi * big_p / jt
+        impulse = big_p * (n + phi * tang)
+        gain = float(k1.omega(link)[0])
+        out = dict(
+            angle=angle,
+            closing=closing,
+            dw=dw,
+            dv=big_p / mt,
+            impulse=impulse,
+            kin=k1,
+            pos=kp,
+            gain=gain,
+            striker_speed=float(np.linalg.norm(kg)) * abs(w_b),
+        )
+        return out
+
+    def after_impact(t_b: float, psi_b: float, w_a: float, u_a: float, v_a: float, rel: float) -> str:
+        """The phase that follows an impact with normal separating speed ``rel``."""
+        nonlocal free, fine_until
+        if rel > v_eps:
+            free = _Free(t_b, u_a, v_a, tool)
+            # the time to meet again, were the striker to keep its speed: 2 rel / the tool's deceleration
+            fine_until = t_b + 8 * rel / -free.a_in
+            return APART
+        lam = contact_force(psi_b, w_a, *flags(psi_b, w_a))[0]
+        if lam > 0:
+            return CONTACT
+        free = _Free(t_b, u_a, v_a, tool)
+        return APART
+
+    max_segments = 2000 * blows
+    for _ in range(max_segments):
+        t_seg = t
+        if mode == FLIGHT:
+
+            def gap(t_: float, y_: np.ndarray) -> float:
+                return spl.at(y_[0])[6] + slack
+
+            gap.terminal, gap.direction = True, -1  # type: ignore[attr-defined]
+            horizon = t + 40 * math.pi / max(y[1], 1e-6)
+            sol = solve_ivp(rhs_free, (t, horizon), y, method="DOP853", rtol=rtol, atol=1e-12, events=[gap, stalled])
+            if sol.status == 0:
+                raise LinkworkError(f'"{at}" does not come back to the tool within 20 turns of the crank')
+            uu = np.zeros_like(sol.t)
+            vv = np.zeros_like(sol.t)
+            ff = np.full_like(sol.t, np.nan)
+        elif mode == APART:
+            assert free is not None
+            fr = free
+
+            def gap(t_: float, y_: np.ndarray, fr: _Free = fr) -> float:
+                return spl.at(y_[0])[6] + fr.state(t_)[0] + slack
+
+            gap.terminal, gap.direction = True, -1  # type: ignore[attr-defined]
+            span = max(fr.t_seat - t, 1e-12)
+            if t < fine_until:  # short steps while the two may meet again at once
+                t_end, step = min(fine_until, t + span), (fine_until - t_seg) / 32
+            else:
+                t_end, step = t + span, span / 64
+            sol = solve_ivp(
+                rhs_free, (t, t_end), y, method="DOP853", rtol=rtol, atol=1e-12, events=[gap, stalled],
+                max_step=max(step, 1e-12),
+            )  # fmt: skip
+            st_ = [fr.state(x) for x in sol.t]
+            uu = np.array([a for a, _ in st_])
+            vv = np.array([b for _, b in st_])
+            ff = np.full_like(sol.t, np.nan)
+        else:
+
+            def separate(t_: float, y_: np.ndarray) -> float:
+                return contact_force(y_[0], y_[1])[0]
+
+            def seated(t_: float, y_: np.ndarray) -> float:
+                return -spl.at(y_[0])[6]
+
+            def turn(t_: float, y_: np.ndarray) -> float:
+                return -spl.at(y_[0])[7] * y_[1]
+
+            def slide(t_: float, y_: np.ndarray) -> float:
+                return spl.at(y_[0])[9] * y_[1]
+
+            separate.terminal, separate.direction = True, -1  # type: ignore[attr-defined]
+            seated.terminal, seated.direction = True, -1  # type: ignore[attr-defined]
+            into, phi = flags(y[0], y[1])
+            seg["into"], seg["phi"] = into, phi
+            turn.terminal, turn.direction = True, (-1 if into else 1)  # type: ignore[attr-defined]
+            slide.terminal, slide.direction = True, (1 if phi > 0 else -1)  # type: ignore[attr-defined]
+            horizon = t + 4 * math.pi / max(y[1], 1e-6)
+            sol = solve_ivp(
+                rhs_contact, (t, horizon), y, method="DOP853", rtol=rtol, atol=1e-12,
+                events=[separate, seated, turn, stalled] + ([slide] if f_c > 0 else []),
+            )  # fmt: skip
+            if sol.status == 0:
+                raise LinkworkError("the striker stays on the tool for two turns of the crank")
+            hh = np.array([spl.at(a)[6:8] for a in sol.y[0]])
+            uu = -hh[:, 0]
+            vv = -hh[:, 1] * sol.y[1]
+            ff = np.array([contact_force(a, b)[0] for a, b in zip(sol.y[0], sol.y[1], strict=True)])
+        code = np.full(len(sol.t), (FLIGHT, APART, CONTACT).index(mode))
+        samples.append((sol.t, sol.y[0], sol.y[1], uu, vv, ff, code))
+        t = float(sol.t[-1])
+        work_before = float(y[5])
+        y = sol.y[:, -1].copy()
+        phases.append([mode, t_seg, t, float(sol.y[0, 0]), float(y[0])])
+        if sol.status == -1:
+            raise LinkworkError(f"the integrator failed in the {mode} phase: {sol.message}")
+        which = [k for k, ev in enumerate(sol.t_events) if len(ev)]
+        if mode == FLIGHT:
+            if 1 in which:
+                raise report_stall(y[0])
+            # a blow on the seated tool
+            if records:
+                periods = [r["time"] for r in records] + [t]
+                speeds = [r["crank_speed_before"] for r in records] + [y[1]]
+                if len(periods) >= 4:
+                    p1, p2, p3 = np.diff(periods[-4:])
+                    s1, s2, s3 = speeds[-3:]
+                    if abs(p3 - p2) <= tol * p3 and abs(p2 - p1) <= tol * p3 and abs(s3 - s2) <= tol * s3:
+                        steady = True
+                if steady or len(records) >= blows:
+                    end_time = t
+                    break
+            snapshots.append(account(y))
+            b = blow_map(y[0], y[1], 0.0, 0.0, plastic=False)
+            if not b["closing"] < 0:
+                raise LinkworkError("the striker grazes the tool without a blow")
+            e0 = kinetic(y[0], y[1], 0.0)
+            w_a, v_a = y[1] + b["dw"], b["dv"]
+            forces, lam, joints = impulsive_reactions(b["kin"], striker, b["pos"], b["impulse"], b["dw"])
+            e1 = kinetic(y[0], w_a, v_a)
+            links = {}
+            for k, name in enumerate(mech.pair_joint):
+                if name not in links:
+                    links[name] = tuple(mech.link_names[int(x)] for x in mech.pair_links[k])
+            records.append(
+                dict(
+                    time=t, psi=float(y[0]), angle=b["angle"] % (2 * math.pi), crank_speed_before=float(y[1]),
+                    crank_speed_after=float(w_a), omega_before=b["gain"] * float(y[1]),
+                    omega_after=b["gain"] * float(w_a), impact_speed=-b["closing"],
+                    striker_speed=b["striker_speed"], tool_speed=float(v_a), impulse=b["impulse"],
+                    joints=joints, joint_links=links, drive_impulse=float(lam[0, 0, pairs]),
+                    energy_before=0.5 * (spl.at(y[0])[0] + jd) * float(y[1]) ** 2, energy_lost=e0 - e1,
+                    energy_to_tool=0.5 * mt * float(v_a) ** 2, rebounds=0, rebound_loss=0.0, work_on_work=0.0,
+                    penetration=0.0,
+                )
+            )  # fmt: skip
+            ledger["blows"] += e0 - e1
+            impacts_since = 0
+            y[1] = w_a
+            mode = after_impact(t, y[0], w_a, 0.0, v_a, -restitution * b["closing"])
+            continue
+        if (mode == CONTACT and 3 in which) or (mode == APART and 1 in which):
+            raise report_stall(y[0])
+        rec = records[-1]
+        rec["work_on_work"] += float(y[5]) - work_before
+        if mode == APART:
+            assert free is not None
+            u_now, v_now = free.state(t)
+            rec["penetration"] = max(rec["penetration"], free.u_top if free.v0 > 0 else u_now)
+            ledger["work_free"] += free.work(t) - free.work(t_seg)
+            rec["work_on_work"] += free.work(t) - free.work(t_seg)
+            if not which and t < free.t_seat:
+                continue  # on from the short steps to the long ones
+            if 0 in which:  # striker and tool meet again
+                impacts_since += 1
+                if impacts_since > 500:
+                    raise LinkworkError("striker and tool chatter without end (more than 500 impacts after a blow)")
+                b = blow_map(y[0], y[1], u_now, v_now, plastic=False)
+                plastic = -b["closing"] * restitution <= v_eps
+                if plastic:
+                    b = blow_map(y[0], y[1], u_now, v_now, plastic=True)
+                e0 = kinetic(y[0], y[1], v_now)
+                w_a, v_a = y[1] + b["dw"], v_now + b["dv"]
+                e1 = kinetic(y[0], w_a, v_a)
+                rec["rebounds"] += 1
+                rec["rebound_loss"] += e0 - e1
+                ledger["rebounds"] += e0 - e1
+                y[1] = w_a
+                mode = after_impact(t, y[0], w_a, u_now, v_a, 0.0 if plastic else -restitution * b["closing"])
+                continue
+            # the tool is back on its seat: it stops there
+            ledger["seat"] += 0.5 * mt * v_now**2
+            mode = FLIGHT
+            continue
+        # contact
+        hs = spl.at(y[0])
+        u_now, v_now = -hs[6], -hs[7] * y[1]
+        rec["penetration"] = max(rec["penetration"], float(np.max(uu)))
+        if 0 in which:  # the contact force falls to zero: the tool goes on alone
+            free = _Free(t, u_now, v_now, tool)
+            mode = APART
+        elif 1 in which:  # on the seat: the tool stops, the striker goes on up
+            ledger["seat"] += 0.5 * mt * v_now**2
+            mode = FLIGHT
+        elif contact_force(y[0], y[1], *flags(y[0], y[1]))[0] < 0:
+            # the tool stops in the work and its resistance lets go (or the sliding turns): the force
+            # the contact would need pulls, so the two part here
+            free = _Free(t, u_now, v_now, tool)
+            mode = APART
+        # otherwise the same phase goes on afresh
+    else:
+        raise LinkworkError("the run did not settle within its limit of phases")
+    if len(records) < 2:
+        raise LinkworkError(f"only {len(records)} blow(s) in the run: give more blows")
+    # merge the phases split by restarts
+    merged: list[list[Any]] = []
+    for ph in phases:
+        if merged and merged[-1][0] == ph[0] and merged[-1][2] == ph[1]:
+            merged[-1][2], merged[-1][4] = ph[2], ph[4]
+        else:
+            merged.append(list(ph))
+    cat = [np.concatenate([s[i] for s in samples]) for i in range(7)]
+    last = account(y)
+    energy = {k: last[k] - first[k] for k in last}
+    per_cycle = {k: last[k] - snapshots[-1][k] for k in last}
+    out = tuple(Blow(**r) for r in records)
+    return WorkingCycle(
+        out,
+        tuple(Phase(*ph) for ph in merged),
+        end_time - records[-1]["time"],
+        steady,
+        *cat[:6],
+        cat[6],
+        energy,
+        per_cycle,
+        tool,
+    )
