@@ -19,17 +19,36 @@ def _xy(v: Any) -> dict[str, float]:
 def impact(
     file_or_example: FileOrExample,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    cycle: Annotated[
+        bool,
+        typer.Option(
+            "--cycle",
+            help="run the working cycle with the file's machine: and the impact: section's tool: every blow, "
+            "the rebounds and the contact phase, until the steady cycle",
+        ),
+    ] = False,
+    blows: Annotated[
+        int | None, typer.Option("--blows", help="with --cycle: at most this many blows (default 200)")
+    ] = None,
 ) -> None:
     """Impulses of a blow in the pose of the file: on the striker, in every joint, the speed after,
-    the energy lost, the ideal centre of mass; and the reduced model of seed 004 beside them."""
+    the energy lost, the ideal centre of mass; and the reduced model of seed 004 beside them.
+    With --cycle: the machine's working cycle, blow after blow."""
     from linkwork.errors import LinkworkError
     from linkwork.impulse import impact as solve
     from linkwork.impulse import reduced_model
 
+    if blows is not None and not cycle:
+        fail(LinkworkError("--blows: only with --cycle"))
+    if blows is not None and blows < 3:
+        fail(LinkworkError(f"--blows: expected at least 3 (a steady cycle is two periods alike), got {blows}"))
     mech = _compile(file_or_example)
     blow = mech.blow
     if blow is None:
         fail(LinkworkError('the mechanism has no blow: give an "impact:" section (at, normal, omega, restitution)'))
+    if cycle:
+        _cycle(mech, as_json, 200 if blows is None else blows)
+        return
     normal = (math.cos(blow.normal), math.sin(blow.normal))
     kw = dict(normal=normal, restitution=blow.restitution, friction=blow.friction)
     try:
@@ -86,3 +105,109 @@ def impact(
             f"N s; ideal centre of mass ({model.ideal_com[0]:.6g}, {model.ideal_com[1]:.6g}) m, without the rod "
             f"({model.ideal_com_without_rod[0]:.6g}, {model.ideal_com_without_rod[1]:.6g}) m"
         )
+
+
+def _blow_dict(b: Any) -> dict[str, Any]:
+    return {
+        "time": b.time,
+        "crank_angle": math.degrees(b.angle),
+        "crank_speed_before": b.crank_speed_before,
+        "crank_speed_after": b.crank_speed_after,
+        "omega_before": b.omega_before,
+        "omega_after": b.omega_after,
+        "impact_speed": b.impact_speed,
+        "striker_speed": b.striker_speed,
+        "tool_speed": b.tool_speed,
+        "impulse": _xy(b.impulse),
+        "support_impulse": {
+            name: {"on": b.joint_links[name][1], "from": b.joint_links[name][0], **_xy(v)}
+            for name, v in b.joints.items()
+        },
+        "drive_impulse": b.drive_impulse,
+        "energy_before": b.energy_before,
+        "energy_lost": b.energy_lost,
+        "energy_to_tool": b.energy_to_tool,
+        "rebounds": b.rebounds,
+        "rebound_loss": b.rebound_loss,
+        "work_on_work": b.work_on_work,
+        "penetration": b.penetration,
+    }
+
+
+def _cycle(mech: Any, as_json: bool, blows: int) -> None:
+    """``linkwork impact --cycle``: the working cycle, report or JSON."""
+    from linkwork.errors import LinkworkError
+    from linkwork.impulse.cycle import simulate_blows
+
+    try:
+        run = simulate_blows(mech, blows=blows)
+    except LinkworkError as exc:
+        fail(exc)
+    last = run.last
+    phases = [
+        {
+            "kind": p.kind,
+            "freedom": p.freedom,
+            "start": p.start - last.time,
+            "duration": p.duration,
+            "crank_turn": math.degrees(p.psi_end - p.psi_start),
+        }
+        for p in run.cycle_phases()
+    ]
+    tool = run.tool
+    if as_json:
+        out = {
+            "name": mech.name,
+            "units": {
+                "time": "s", "angle": "deg", "omega": "rad/s", "speed": "m/s", "impulse": "N s", "energy": "J",
+                "length": "m", "power": "W", "force": "N",
+            },
+            "convention": "impulses in global axes; support_impulse: what each joint's first-named link exerts on "
+            "the second ('from' on 'on'); crank speeds in the drive's direction; phases of the last cycle, "
+            "start from its blow",
+            "tool": {"mass": tool.mass, "feed": tool.feed, "resistance": tool.resistance},
+            "steady": run.steady,
+            "blows_per_minute": run.blows_per_minute,
+            "period": run.period,
+            "mean_power": run.mean_power,
+            "blows": [_blow_dict(b) for b in run.blows],
+            "phases": phases,
+            "cycle_energy": {k: float(v) for k, v in run.cycle_energy.items()},
+            "energy": {k: float(v) for k, v in run.energy.items()},
+        }  # fmt: skip
+        typer.echo(json.dumps(out))
+        return
+    state = "steady" if run.steady else f"not steady after {len(run.blows)} blows"
+    typer.echo(
+        f"{mech.name}: working cycle, {run.blows_per_minute:.6g} blows per minute ({state} after "
+        f"{len(run.blows)} blows); tool {tool.mass:g} kg, feed {tool.feed:g} N, resistance of the work "
+        f"{tool.resistance:g} N"
+    )
+    typer.echo(
+        f"  the blow at {math.degrees(last.angle):.2f} deg: crank {last.crank_speed_before:.6g} -> "
+        f"{last.crank_speed_after:.6g} rad/s, striker {last.impact_speed:.6g} m/s onto the tool "
+        f"(speed {last.striker_speed:.6g} m/s), rocker {last.omega_before:.6g} -> {last.omega_after:.6g} rad/s, "
+        f"tool {last.tool_speed:.6g} m/s"
+    )
+    typer.echo(
+        f"    energy: {last.energy_before:.6g} J in the machine, {last.energy_lost:.6g} J lost in the blow, "
+        f"{last.energy_to_tool:.6g} J to the tool; {last.rebounds} rebounds ({last.rebound_loss:.6g} J); "
+        f"{last.work_on_work:.6g} J done on the work, the tool {1000 * last.penetration:.6g} mm into it"
+    )
+    typer.echo(f"    impulse on the striker ({last.impulse[0]:.6g}, {last.impulse[1]:.6g}) N s")
+    for name, v in last.joints.items():
+        a, b = last.joint_links[name]
+        typer.echo(f"    joint {name}: {a} on {b} ({v[0]:.6g}, {v[1]:.6g}) N s")
+    typer.echo(f"    drive on the crank {last.drive_impulse:.6g} N m s")
+    typer.echo("  phases of the cycle (degrees of freedom of machine and tool):")
+    for p in phases:
+        typer.echo(
+            f"    {p['kind']:8s} W = {p['freedom']}  from {1000 * p['start']:9.3f} ms  for {1000 * p['duration']:9.3f} "
+            f"ms  ({p['crank_turn']:.2f} deg of the crank)"
+        )
+    e = run.cycle_energy
+    typer.echo(
+        f"  energy of the cycle: motor {e['motor']:.6g} J ({run.mean_power:.6g} W) = blow {e['blows']:.6g} + rebounds "
+        f"{e['rebounds']:.6g} + seat {e['seat']:.6g} + work {e['work']:.6g} + friction {e['friction']:.6g} "
+        f"+ kinetic {e['kinetic']:.3g} - loads {e['loads']:.3g} J"
+    )

@@ -103,7 +103,7 @@ class Blow:
     joint_links : dict
         For each joint, its (first, second) link names.
     drive_impulse : float
-        Impulse of the drive (motor, gear, flywheel) on the crank, N m s.
+        Impulse of the drive (motor, gear, flywheel) on the crank, N m s, counter-clockwise positive.
     energy_before : float
         Kinetic energy of the machine (mechanism and drive) before the blow, J.
     energy_lost : float
