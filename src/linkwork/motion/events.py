@@ -70,11 +70,14 @@ def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variant
     n_var = min(state.valid.shape[0], max_variants)
     before = np.ones(state.valid.shape, dtype=bool)
     n = len(angles)
-    for step, ok, det, slack, flips, jumps in zip(
-        steps, state.step_valid, state.step_det, state.step_slack, state.step_flips, state.step_jumps, strict=True
+    trouble = state.step_trouble
+    for k, (step, ok, det, slack, flips, jumps) in enumerate(
+        zip(steps, state.step_valid, state.step_det, state.step_slack, state.step_flips, state.step_jumps, strict=True)
     ):
         if step.kind in ("crank", "slide"):
             continue  # a driving link always assembles and is never singular
+        if trouble is not None and not trouble[k, :n_var].any() and not (jumps or flips):
+            continue  # the compiled kernel saw it assemble everywhere, away from singular positions
         fails = before & ~ok
         head = det[:n_var]
         quiet = not (

@@ -118,8 +118,11 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     Returns arrays ``q, v, a`` (N, 3, V, A), ``slack, det`` (S, V, A),
     ``valid`` (V, A) (every step assembled), ``near`` (S, V) (True where a
     dyad's two assembly modes come within a step of each other: the NumPy
-    path decides the mode there) and ``singular`` (whether any assembled
-    sample has a normalised determinant below :data:`SINGULAR`).
+    path decides the mode there), ``trouble`` (S, V) (True where a step
+    fails to assemble, comes within :data:`SINGULAR` of a singular position
+    or its determinant changes sign: only there are events looked for) and
+    ``singular`` (whether any assembled sample has a normalised determinant
+    below :data:`SINGULAR`).
     """
     ops, branch = mech.fast_program
     n_links = mech.n_links_total
@@ -131,23 +134,24 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     det = np.empty_like(slack)
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
     near = np.zeros((n_steps, n_var), dtype=np.bool_)
+    trouble = np.zeros((n_steps, n_var), dtype=np.bool_)
     singular = np.zeros(1, dtype=np.bool_)
     tol = 1e-12 * (1 + float(np.abs(local).max()))
-    args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, singular, tol)
+    args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, trouble)
+    args += (singular, tol)
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
     def part(lo: int, hi: int) -> None:
-        _kernel(*args, lo, hi, np.zeros((n_links, 11)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 4)))
+        _kernel(*args, lo, hi, np.zeros((n_links, 11)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
 
     if len(bounds) == 2:
         part(0, n_ang)
-    else:
-        list(_pool().map(part, bounds[:-1], bounds[1:]))
-    out[:, 0] = 0.0  # the frame: at rest, its frame the global one
-    steady = ops[:, 0] < DYAD
-    slack[steady] = 1.0
-    det[steady] = 1.0
+    else:  # the calling thread takes the first part
+        rest = [_pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
+        part(bounds[0], bounds[1])
+        for job in rest:
+            job.result()
     if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
         near[:] = False
     return {
@@ -158,6 +162,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
         "det": det,
         "valid": valid,
         "near": near,
+        "trouble": trouble,
         "singular": bool(singular[0]),
     }
 
@@ -417,6 +422,7 @@ def _kernel(
     det,
     valid,
     near,
+    trouble,
     singular,
     tol,
     lo,
@@ -428,7 +434,8 @@ def _kernel(
     """Samples ``lo:hi`` of every variant (``near`` also from the step between ``lo - 1`` and ``lo``).
 
     Scratch: ``L`` (N, 11) the link states of a sample, ``pre`` (S, 2, 3) constants of the R arms
-    of a variant, ``prev`` (S, 4) X of each dyad and the vector to X of its other mode at the sample before.
+    of a variant, ``prev`` (S, 5) X of each dyad, the vector to X of its other mode and the determinant
+    at the sample before.
     """
     n_links, n_var = out.shape[1], out.shape[3]
     n_steps = ops.shape[0]
@@ -444,9 +451,13 @@ def _kernel(
                 s, d, x, y, gx, gy = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
                 ok = ok and s >= 0
                 small = small or abs(d) < SINGULAR
-                if i >= lo and ops[st, 0] >= DYAD:  # cranks and slides always assemble: filled once
-                    slack[st, var, i] = s
-                    det[st, var, i] = d
+                if ops[st, 0] >= DYAD:  # cranks and slides always assemble: filled below
+                    if i >= lo:
+                        slack[st, var, i] = s
+                        det[st, var, i] = d
+                    if not (s >= 0 and abs(d) >= SINGULAR) or (i > first and (d < 0) != (prev[st, 4] < 0)):
+                        trouble[st, var] = True
+                    prev[st, 4] = d
                 if ops[st, 0] == DYAD and (ops[st, 3] == 0 or ops[st, 3 + ARM] == 0):
                     if i > first:
                         # does either sample come within twice the step (in either mode) of the other mode?
@@ -464,11 +475,21 @@ def _kernel(
             valid[var, i] = ok
             if ok and small:
                 singular[0] = True
-            for link in range(1, n_links):  # the frame's rows (at rest) are filled once
+            for link in range(1, n_links):  # the frame's rows (at rest) are filled below
                 for k in range(3):
                     out[0, link, k, var, i] = L[link, k]
                     out[1, link, k, var, i] = L[link, 3 + k]
                     out[2, link, k, var, i] = L[link, 6 + k]
+        for t in range(3):  # the frame, at rest, its frame the global one
+            for k in range(3):
+                for i in range(lo, hi):
+                    out[t, 0, k, var, i] = 0.0
+        for st in range(n_steps):
+            if ops[st, 0] < DYAD:  # a driving link always assembles
+                for i in range(lo, hi):
+                    slack[st, var, i] = 1.0
+                for i in range(lo, hi):
+                    det[st, var, i] = 1.0
 
 
 #: Options of every compiled kernel: no reference counting, the kernels allocate nothing.

@@ -116,6 +116,7 @@ def _run_fast(
     state.step_branch = [None] * n_steps
     state.step_flips = [[] for _ in range(n_steps)]
     state.step_jumps = [[] for _ in range(n_steps)]
+    state.step_trouble = res["trouble"]
     if res["singular"]:
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             _repair_singular(mech, program, geom, values, rates, accels, state)

@@ -91,6 +91,9 @@ class State:
     step_branch: list[np.ndarray | None] = field(default_factory=list)  # per step, the mode used (V, A)
     step_flips: list[list[tuple[int, int, int]]] = field(default_factory=list)  # per step, change points
     step_jumps: list[list[tuple[int, int]]] = field(default_factory=list)  # per step, (variant, sample) jumps
+    # per step (V,), from the compiled path: where a step may have events (no assembly, a singular
+    # position, a sign change of its determinant); None: look everywhere
+    step_trouble: np.ndarray | None = None
 
     @classmethod
     def empty(cls, n_links: int, local: np.ndarray, origin: np.ndarray, axis: np.ndarray, n_ang: int) -> State:
