@@ -62,26 +62,19 @@ def c_kernel():
     src = Path(__file__).with_name("four_bar_c.c")
     subprocess.run([cc, "-O3", "-march=native", "-shared", "-fPIC", str(src), "-o", str(lib), "-lm"], check=True)
     dll = ctypes.CDLL(str(lib))
-    f = dll.four_bar
     dp = ctypes.POINTER(ctypes.c_double)
-    f.argtypes = [
-        ctypes.c_int,
-        dp,
-        ctypes.c_double,
-        ctypes.c_double,
-        ctypes.c_double,
-        ctypes.c_double,
-        ctypes.c_double,
-        ctypes.c_double,
-        dp,
-    ]
+    runs = []
+    for name, width in (("four_bar", 10), ("four_bar_full", 27)):
+        f = getattr(dll, name)
+        f.argtypes = [ctypes.c_int, dp, *[ctypes.c_double] * 6, dp]
 
-    def run(phi, sigma):
-        out = np.empty((len(phi), 10))
-        f(len(phi), phi.ctypes.data_as(dp), A, B, C, D, W, sigma, out.ctypes.data_as(dp))
-        return out
+        def run(phi, sigma, f=f, width=width):
+            out = np.empty((len(phi), width))
+            f(len(phi), phi.ctypes.data_as(dp), A, B, C, D, W, sigma, out.ctypes.data_as(dp))
+            return out
 
-    return run
+        runs.append(run)
+    return runs
 
 
 def pylinkage_four_bar(n):
@@ -125,9 +118,18 @@ def main() -> None:
         row = {"case": f"four-bar, {n} angles", "n": n, "linkwork": t_lw, "linkwork-1": t_lw1}
         row.update(numpy=t_np, err_numpy=err_np)
         if ckern is not None:
-            out = ckern(phi, sigma_c)
+            c_b, c_full = ckern
+            out = c_b(phi, sigma_c)
             row["err_c"] = float(np.max(np.abs(out[:, :2] - ref)))
-            row["c"] = best(lambda phi=phi: ckern(phi, sigma_c))
+            row["c"] = best(lambda phi=phi, f=c_b: f(phi, sigma_c))
+            full = c_full(phi, sigma_c)
+            # linkwork's state of every moving link in the kernel's layout: x, y, angle, their rates, accelerations
+            mine = np.stack([np.stack([kin.q[k], kin.v[k], kin.a[k]], 0)[:, :, 0] for k in (1, 2, 3)])  # (3, 3, 3, A)
+            mine = np.moveaxis(mine.reshape(27, -1), 0, 1)
+            diff = np.abs(full - mine)
+            diff[:, 2::9] = np.abs(np.angle(np.exp(1j * (full[:, 2::9] - mine[:, 2::9]))))  # angles modulo a turn
+            row["err_c-full"] = float(diff.max() / np.abs(mine).max())
+            row["c-full"] = best(lambda phi=phi, f=c_full: f(phi, sigma_c))
         pyl = pylinkage_four_bar(n)
         if pyl is not None:
             run, idx = pyl
@@ -141,16 +143,25 @@ def main() -> None:
     t_var = best(lambda: lw.kinematics(mech, phi, variants=variants), repeat=3, budget=20)
     compiled = f"compiled kernels, up to {fast.THREADS} threads" if fast.available() else "NumPy kernels (no numba)"
     print(f"python {sys.version.split()[0]}, numpy {np.__version__}; linkwork: {compiled}; linkwork-1: one thread")
-    print(f"{'case':28s} {'peer':10s} {'time, ms':>10s} {'configs/s':>12s} {'vs C':>7s} {'max |dB|, m':>12s}")
+    print("c: the closed form for B and the two angular rates (10 numbers a sample); c-full: the same closed")
+    print("form giving what linkwork gives, every moving link's pose, velocity and acceleration (27 numbers);")
+    print("its last column is the largest difference from linkwork's relative to the largest value")
+    print(
+        f"{'case':28s} {'peer':10s} {'time, ms':>10s} {'configs/s':>12s} {'vs C':>7s} {'vs C-full':>9s} "
+        f"{'max |dB|, m':>12s}"
+    )
     for row in rows:
-        for peer in ("linkwork", "linkwork-1", "numpy", "c", "pylinkage"):
+        for peer in ("linkwork", "linkwork-1", "numpy", "c", "c-full", "pylinkage"):
             if peer not in row:
                 continue
             t = row[peer]
             rate = row["n"] / t
             ratio = t / row["c"] if "c" in row else float("nan")
+            ratio_full = t / row["c-full"] if "c-full" in row else float("nan")
             err = row.get(f"err_{peer}", 0.0)
-            print(f"{row['case']:28s} {peer:10s} {t * 1e3:10.3f} {rate:12.3e} {ratio:7.2f} {err:12.1e}")
+            print(
+                f"{row['case']:28s} {peer:10s} {t * 1e3:10.3f} {rate:12.3e} {ratio:7.2f} {ratio_full:9.2f} {err:12.1e}"
+            )
     print(f"{'four-bar, 10000 x 360':28s} {'linkwork':10s} {t_var * 1e3:10.1f} {3.6e6 / t_var:12.3e}")
 
 
