@@ -106,3 +106,21 @@ def test_readme_quick_start_has_two_commands_and_the_main_job_runs(tmp_path):
     assert "I(0,1) -&gt; II(2,3) -&gt; II(4,5) -&gt; II(6,7)" in report
     ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
     assert lines[1] in ci
+
+
+def test_written_files_have_the_mode_of_a_plain_open(tmp_path):
+    """Outputs are written through a temporary file, and get the permissions open() would give them."""
+    import os
+
+    from linkwork.io.atomic import write_atomic
+
+    umask = os.umask(0o022)
+    try:
+        out = write_atomic(tmp_path / "table.csv", lambda p: p.write_text("x\n"))
+        plain = tmp_path / "plain.csv"
+        plain.write_text("x\n")
+    finally:
+        os.umask(umask)
+    assert out.read_text() == "x\n"
+    assert out.stat().st_mode & 0o777 == plain.stat().st_mode & 0o777 == 0o644
+    assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".")] == []
