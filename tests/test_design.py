@@ -286,6 +286,12 @@ def test_double_cut_shears_optimum_is_feasible_better_than_a_sample_and_its_file
     best = lw.optimize("double-cut-shears", vary, "peak_driving_torque", cons, seed=0, maxiter=40, out=out)
     assert best.feasible and best.metrics["knife_overlap"] >= 0.005 and best.metrics["knife_clearance"] >= 0.2
     assert best.metrics["peak_driving_torque"] < best.initial["peak_driving_torque"]
+    # every design evaluated, with the sum of its violations: zero exactly where the constraints hold
+    ev = best.evaluated
+    assert len(ev) == best.evaluations
+    meets = (ev["knife_overlap"] >= 0.005) & (ev["knife_clearance"] >= 0.2) & (ev["assembles"] == 1)
+    np.testing.assert_array_equal(ev["violation"] == 0, meets)
+    assert ev["peak_driving_torque"][meets].min() == pytest.approx(best.metrics["peak_driving_torque"], rel=1e-12)
     # no design of a random sample in the same ranges that meets the constraints does better
     sample = lw.sweep("double-cut-shears", [v + ":2" for v in vary], ["peak_driving_torque", "knife_overlap",
                       "knife_clearance"], sampling="random", samples=400, seed=5, steps=180)  # fmt: skip

@@ -22,7 +22,7 @@ import numpy as np
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import MetricRequest, parse_metrics
 from linkwork.design.plan import DesignError, Vary
-from linkwork.design.sweep import _declared, _source, _varies
+from linkwork.design.sweep import SweepTable, _declared, _source, _varies
 
 
 @dataclass(frozen=True)
@@ -100,6 +100,9 @@ class Optimum:
         The optimiser's.
     out : Path or None
         The mechanism file written with the best values.
+    evaluated : SweepTable or None
+        Every design the optimiser evaluated, in order: ``variant`` (its number), the values, the
+        metrics and ``violation`` (the sum of the relative violations of the constraints; 0: feasible).
     """
 
     values: dict[str, float]
@@ -112,6 +115,7 @@ class Optimum:
     generations: int
     message: str
     out: Path | None = None
+    evaluated: SweepTable | None = None
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -202,6 +206,7 @@ def optimize(
     bounds = [(v.start, v.stop) for v in varies]
     cache: dict[bytes, dict[str, float]] = {}
     count = [0]
+    history: list[tuple[np.ndarray, dict[str, np.ndarray]]] = []
 
     def metrics_of(x: np.ndarray) -> list[dict[str, float]]:
         pop = np.atleast_2d(np.asarray(x, dtype=float).T)  # (S, k)
@@ -212,15 +217,20 @@ def optimize(
                 cache.clear()
             cols = evaluate(mech, paths, pop[new], requests, steps)
             count[0] += len(new)
+            history.append((pop[new], cols))
             for j, i in enumerate(new):
                 cache[keys[i]] = {c: float(v[j]) for c, v in cols.items()}
         return [cache[key] for key in keys]
 
-    def violation(rows: list[dict[str, float]]) -> np.ndarray:
-        total = np.array([1e3 * (1.0 - r["assembles"]) for r in rows])
+    def violation(cols: dict[str, np.ndarray]) -> np.ndarray:
+        """Sum of the relative violations, (S,); a design that does not assemble violates by 1000."""
+        total = 1e3 * (1.0 - np.asarray(cols["assembles"], dtype=float))
         for c in cons:
-            total += c.violation(np.array([r[c.column] for r in rows]))
+            total = total + c.violation(np.asarray(cols[c.column], dtype=float))
         return total
+
+    def columns(rows: list[dict[str, float]]) -> dict[str, np.ndarray]:
+        return {name: np.array([r[name] for r in rows]) for name in rows[0]}
 
     sign = -1.0 if maximize else 1.0
 
@@ -235,7 +245,7 @@ def optimize(
         result = differential_evolution(
             fun,
             bounds,
-            constraints=NonlinearConstraint(lambda x: violation(metrics_of(x))[None], -np.inf, 0.0),
+            constraints=NonlinearConstraint(lambda x: violation(columns(metrics_of(x)))[None], -np.inf, 0.0),
             vectorized=True,
             updating="deferred",
             rng=seed,
@@ -251,7 +261,7 @@ def optimize(
     initial = {}
     if inside:
         initial = {c: float(v[0]) for c, v in evaluate(mech, paths, start[None], requests, steps).items()}
-    feasible = bool(violation([found])[0] == 0)
+    feasible = bool(violation(row)[0] == 0)
     si = {"length": "m", "angle": "rad", "mass": "kg"}
     units = {v.path: si[v.kind] for v in varies} | {r.column: r.metric.unit for r in requests}
     written = None
@@ -259,6 +269,15 @@ def optimize(
         from linkwork.design.yamlout import write_design
 
         written = write_design(mechanism, spec, mech, dict(zip(paths, best.tolist(), strict=True)), out)
+    table = None
+    if history:
+        values = np.concatenate([h[0] for h in history])
+        cols = {"variant": np.arange(len(values), dtype=np.int64)}
+        cols.update({p: values[:, j] for j, p in enumerate(paths)})
+        for r in requests:
+            cols[r.column] = np.concatenate([h[1][r.column] for h in history])
+        cols["violation"] = violation(cols)
+        table = SweepTable(cols, {"variant": "1", "violation": "1", **units}, {"objective": objective})
     return Optimum(
         dict(zip(paths, best.tolist(), strict=True)),
         found,
@@ -270,6 +289,7 @@ def optimize(
         int(getattr(result, "nit", 0)),
         str(result.message),
         written,
+        table,
     )
 
 
