@@ -268,7 +268,7 @@ def sweep(
         if scheduler is None and (workers == 0 or (workers is None and plan.n_variants <= IN_PROCESS)):
             for c in todo:
                 store(*chunk_task(*task_args(c), attempts=log))
-        else:
+        elif todo:
             _on_dask(todo, task_args, store, workers, scheduler, log)
     finally:
         bar.close()
