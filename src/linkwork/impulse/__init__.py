@@ -9,7 +9,7 @@
 
 from __future__ import annotations
 
-from linkwork.impulse.cycle import Blow, Phase, Tool, WorkingCycle, simulate_blows
+from linkwork.impulse.cycle import Blow, Phase, Strike, Tool, WorkingCycle, simulate_blows, strike
 from linkwork.impulse.mechanism import Impact, impact, reduced_model
 from linkwork.impulse.rocker import RockerImpact, rocker_impact
 
@@ -18,10 +18,12 @@ __all__ = [
     "Impact",
     "Phase",
     "RockerImpact",
+    "Strike",
     "Tool",
     "WorkingCycle",
     "impact",
     "reduced_model",
     "rocker_impact",
     "simulate_blows",
+    "strike",
 ]

@@ -310,6 +310,141 @@ class _Free:
         return self.resistance * (self.state(min(t, self.t_top))[0] - self.u0)
 
 
+@dataclass(frozen=True)
+class Strike:
+    """One impact of the striker on the tool in one pose (:func:`strike`); vectors in global axes.
+
+    Attributes
+    ----------
+    angle : float
+        The crank's drive angle, rad.
+    closing_speed : float
+        ``g'_-``: the rate of the gap before, m/s (negative: closing).
+    crank_speed_before, crank_speed_after : float
+        Turning speed of the crank, rad/s, positive in the drive's direction.
+    tool_speed_before, tool_speed_after : float
+        The tool's speed into the work, m/s.
+    omega_before, omega_after : float
+        The striking link's angular speed, rad/s, counter-clockwise positive.
+    striker_speed : float
+        Magnitude of the striker's velocity before, m/s.
+    impulse : ndarray (2,)
+        Impulse of the tool on the striker, N s.
+    phi : float
+        Tangential over normal impulse, ``-f sgn(sliding)``.
+    inertia : float
+        Reduced inertia of mechanism and drive on the crank in the pose, kg m^2.
+    energy_lost : float
+        J.
+    joints, joint_links : dict
+        For each joint, the impulse (x, y) its first-named link exerts on the second (N s), and those links.
+    drive_impulse : float
+        Impulse of the drive on the crank, N m s, counter-clockwise positive.
+    forces : Forces
+        The impulses as a :class:`~linkwork.kinetostatics.Forces` (``pair_force`` in N s).
+    """
+
+    angle: float
+    closing_speed: float
+    crank_speed_before: float
+    crank_speed_after: float
+    tool_speed_before: float
+    tool_speed_after: float
+    omega_before: float
+    omega_after: float
+    striker_speed: float
+    impulse: np.ndarray
+    phi: float
+    inertia: float
+    energy_lost: float
+    joints: dict[str, np.ndarray]
+    joint_links: dict[str, tuple[str, str]]
+    drive_impulse: float
+    forces: Any
+
+
+def strike(
+    mech: Any,
+    *,
+    at: str,
+    normal: Any,
+    angle: float,
+    crank_speed: float,
+    restitution: float,
+    friction: float = 0.0,
+    tool_mass: float = math.inf,
+    tool_speed: float = 0.0,
+    drive_inertia: float = 0.0,
+    link: str | None = None,
+) -> Strike:
+    """The impact of the point ``at`` on the tool's face (outward ``normal``) in the pose of the drive
+    angle ``angle``, the crank turning at ``crank_speed`` (rad/s, in the drive's direction) with
+    ``drive_inertia`` (kg m^2) on its shaft, the tool of ``tool_mass`` (infinite: it cannot move)
+    moving at ``tool_speed`` into the work; ``restitution`` on the normal closing speed, the striker
+    sliding through the impact with ``friction``; ``link``: whose angular speed to report (default:
+    the striking link).
+
+    Raises
+    ------
+    LinkworkError
+        If the mechanism does not assemble, the striker does not close on the tool, or the friction
+        would lock the blow.
+    """
+    from linkwork.impulse.mechanism import impulsive_reactions, pose_inertia
+    from linkwork.motion import kinematics
+
+    if not (0 <= restitution <= 1 and friction >= 0 and tool_mass > 0):
+        raise LinkworkError("expected 0 <= R <= 1, friction >= 0 and a positive tool mass")
+    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
+    n = np.asarray(normal, dtype=float)
+    n = n / np.linalg.norm(n)
+    tang = np.array([n[1], -n[0]])
+    kin = kinematics(mech, np.array([angle]), speed=sign)
+    if not bool(np.all(kin.valid)):
+        raise LinkworkError(f"the mechanism does not assemble at {math.degrees(angle) % 360:.3f} deg")
+    p = kin.point_index(at)
+    striker = int(mech.point_link[p])
+    link = link if link is not None else mech.link_names[striker]
+    pos, g, _ = kin._point(mech.point_names[p])
+    pos, g = pos[0, 0], g[0, 0]
+    jt = pose_inertia(kin) + drive_inertia
+    w = float(crank_speed)
+    sn, st = float(g @ n), float(g @ tang)
+    closing = sn * w + tool_speed
+    if not closing < 0:
+        raise LinkworkError(f'"{at}" does not close on the tool: the gap opens at {closing:.6g} m/s')
+    sliding = st * w
+    if abs(sliding) > 1e-12 * abs(w) * float(np.linalg.norm(g)):
+        phi = -friction * math.copysign(1.0, sliding)
+    else:
+        phi = friction
+    gphi = sn + phi * st
+    if not sn * gphi > 0:
+        raise LinkworkError(
+            f"friction f = {friction:g} locks the blow at {math.degrees(angle) % 360:.3f} deg: the impulse "
+            "would pull the striker into the tool"
+        )
+    inv_mass = 0.0 if math.isinf(tool_mass) else 1.0 / tool_mass
+    big_p = -(1.0 + restitution) * closing / (sn * gphi / jt + inv_mass)
+    dw = gphi * big_p / jt
+    v_after = tool_speed + big_p * inv_mass
+    impulse = big_p * (n + phi * tang)
+    forces, lam, joints = impulsive_reactions(kin, striker, pos, impulse, dw)
+    links: dict[str, tuple[str, str]] = {}
+    for k, name in enumerate(mech.pair_joint):
+        if name not in links:
+            a, b = (mech.link_names[int(x)] for x in mech.pair_links[k])
+            links[name] = (a, b)
+    gain = float(kin.omega(link)[0])
+    lost = 0.5 * jt * (w * w - (w + dw) ** 2)
+    if inv_mass:
+        lost += 0.5 * tool_mass * (tool_speed**2 - v_after**2)
+    return Strike(
+        angle, closing, w, w + dw, tool_speed, v_after, gain * w, gain * (w + dw), float(np.linalg.norm(g)) * abs(w),
+        impulse, phi, jt, lost, joints, links, float(lam[0, 0, 2 * mech.n_pairs]), forces,
+    )  # fmt: skip
+
+
 def simulate_blows(
     mech: Any,
     drive: Any = None,
@@ -355,7 +490,6 @@ def simulate_blows(
     """
     from scipy.integrate import solve_ivp
 
-    from linkwork.impulse.mechanism import impulsive_reactions, pose_inertia
     from linkwork.machine import reduced
     from linkwork.motion import kinematics
 
@@ -408,10 +542,6 @@ def simulate_blows(
     moment = drive.moment
     mt, feed, resist = tool.mass, tool.feed, tool.resistance
     f_c = float(friction)
-    pairs = 2 * mech.n_pairs
-
-    def phi_of(gt: float, w: float) -> float:
-        return f_c if gt * w <= 0 else -f_c
 
     def flags(psi: float, w: float) -> tuple[bool, float]:
         """In contact: whether the tool is going into the work, and phi (against the sliding), from
@@ -499,40 +629,11 @@ def simulate_blows(
             "through the blow (too weak a motor, too little flywheel, or too stiff a work)"
         )
 
-    def blow_map(psi_b: float, w_b: float, u_b: float, v_b: float, plastic: bool) -> dict[str, Any]:
-        angle = start_angle + sign * psi_b
-        k1 = kinematics(mech, np.array([angle]), speed=sign)
-        if not bool(np.all(k1.valid)):
-            raise LinkworkError(f"the mechanism does not assemble at {math.degrees(angle) % 360:.3f} deg")
-        kp, kg, _ = k1._point(mech.point_names[p])
-        kp, kg = kp[0, 0], kg[0, 0]
-        jt = pose_inertia(k1) + jd
-        sn, st = float(kg @ n), float(kg @ tang)
-        closing = sn * w_b + v_b
-        phi = phi_of(st, w_b) if abs(st * w_b) > 1e-12 * abs(w_b) * np.linalg.norm(kg) else f_c
-        gphi = sn + phi * st
-        if not sn * gphi > 0:
-            raise LinkworkError(
-                f"friction f = {f_c:g} locks the blow at {math.degrees(angle) % 360:.3f} deg: the impulse "
-                "would pull the striker into the tool"
-            )
-        r_eff = 0.0 if plastic else restitution
-        big_p = -(1.0 + r_eff) * closing / (sn * gphi / jt + 1.0 / mt)
-        dw = gphi * big_p / jt
-        impulse = big_p * (n + phi * tang)
-        gain = float(k1.omega(link)[0])
-        out = dict(
-            angle=angle,
-            closing=closing,
-            dw=dw,
-            dv=big_p / mt,
-            impulse=impulse,
-            kin=k1,
-            pos=kp,
-            gain=gain,
-            striker_speed=float(np.linalg.norm(kg)) * abs(w_b),
-        )
-        return out
+    def blow_map(psi_b: float, w_b: float, v_b: float, plastic: bool) -> Strike:
+        return strike(
+            mech, at=at, normal=n, angle=start_angle + sign * psi_b, crank_speed=w_b, tool_speed=v_b,
+            restitution=0.0 if plastic else restitution, friction=f_c, tool_mass=mt, drive_inertia=jd, link=link,
+        )  # fmt: skip
 
     def after_impact(t_b: float, psi_b: float, w_a: float, u_a: float, v_a: float, rel: float) -> str:
         """The phase that follows an impact with normal separating speed ``rel``."""
@@ -641,24 +742,16 @@ def simulate_blows(
                     end_time = t
                     break
             snapshots.append(account(y))
-            b = blow_map(y[0], y[1], 0.0, 0.0, plastic=False)
-            if not b["closing"] < 0:
-                raise LinkworkError("the striker grazes the tool without a blow")
+            b = blow_map(y[0], y[1], 0.0, plastic=False)
             e0 = kinetic(y[0], y[1], 0.0)
-            w_a, v_a = y[1] + b["dw"], b["dv"]
-            forces, lam, joints = impulsive_reactions(b["kin"], striker, b["pos"], b["impulse"], b["dw"])
+            w_a, v_a = b.crank_speed_after, b.tool_speed_after
             e1 = kinetic(y[0], w_a, v_a)
-            links = {}
-            for k, name in enumerate(mech.pair_joint):
-                if name not in links:
-                    links[name] = tuple(mech.link_names[int(x)] for x in mech.pair_links[k])
             records.append(
                 dict(
-                    time=t, psi=float(y[0]), angle=b["angle"] % (2 * math.pi), crank_speed_before=float(y[1]),
-                    crank_speed_after=float(w_a), omega_before=b["gain"] * float(y[1]),
-                    omega_after=b["gain"] * float(w_a), impact_speed=-b["closing"],
-                    striker_speed=b["striker_speed"], tool_speed=float(v_a), impulse=b["impulse"],
-                    joints=joints, joint_links=links, drive_impulse=float(lam[0, 0, pairs]),
+                    time=t, psi=float(y[0]), angle=b.angle % (2 * math.pi), crank_speed_before=float(y[1]),
+                    crank_speed_after=float(w_a), omega_before=b.omega_before, omega_after=b.omega_after,
+                    impact_speed=-b.closing_speed, striker_speed=b.striker_speed, tool_speed=float(v_a),
+                    impulse=b.impulse, joints=b.joints, joint_links=b.joint_links, drive_impulse=b.drive_impulse,
                     energy_before=0.5 * (spl.at(y[0])[0] + jd) * float(y[1]) ** 2, energy_lost=e0 - e1,
                     energy_to_tool=0.5 * mt * float(v_a) ** 2, rebounds=0, rebound_loss=0.0, work_on_work=0.0,
                     penetration=0.0,
@@ -667,7 +760,7 @@ def simulate_blows(
             ledger["blows"] += e0 - e1
             impacts_since = 0
             y[1] = w_a
-            mode = after_impact(t, y[0], w_a, 0.0, v_a, -restitution * b["closing"])
+            mode = after_impact(t, y[0], w_a, 0.0, v_a, -restitution * b.closing_speed)
             continue
         if (mode == CONTACT and 3 in which) or (mode == APART and 1 in which):
             raise report_stall(y[0])
@@ -685,18 +778,18 @@ def simulate_blows(
                 impacts_since += 1
                 if impacts_since > 500:
                     raise LinkworkError("striker and tool chatter without end (more than 500 impacts after a blow)")
-                b = blow_map(y[0], y[1], u_now, v_now, plastic=False)
-                plastic = -b["closing"] * restitution <= v_eps
+                b = blow_map(y[0], y[1], v_now, plastic=False)
+                plastic = -b.closing_speed * restitution <= v_eps
                 if plastic:
-                    b = blow_map(y[0], y[1], u_now, v_now, plastic=True)
+                    b = blow_map(y[0], y[1], v_now, plastic=True)
                 e0 = kinetic(y[0], y[1], v_now)
-                w_a, v_a = y[1] + b["dw"], v_now + b["dv"]
+                w_a, v_a = b.crank_speed_after, b.tool_speed_after
                 e1 = kinetic(y[0], w_a, v_a)
                 rec["rebounds"] += 1
                 rec["rebound_loss"] += e0 - e1
                 ledger["rebounds"] += e0 - e1
                 y[1] = w_a
-                mode = after_impact(t, y[0], w_a, u_now, v_a, 0.0 if plastic else -restitution * b["closing"])
+                mode = after_impact(t, y[0], w_a, u_now, v_a, 0.0 if plastic else -restitution * b.closing_speed)
                 continue
             # the tool is back on its seat: it stops there
             ledger["seat"] += 0.5 * mt * v_now**2
