@@ -283,6 +283,45 @@ def test_a_contact_phase_ending_in_a_smooth_separation():
     assert ends >= 1
 
 
+def test_the_rockers_loads_in_the_contact_phase_balance_its_acceleration(example):
+    """While the striker presses the tool: the forces on the rocker (its support O, the rod at N, the
+    tool at K, gravity) equal its mass times the acceleration of its centre of mass, from the exact
+    kinematics and the crank's acceleration (central differences of the sampled crank speed)."""
+    from linkwork.motion import kinematics
+
+    run, loads = example, example.contact
+    assert len(loads.t) > 10
+    t = run.t - run.last.time
+    rocker = MECH.link_names.index("rocker")
+    checked = 0
+    for k in range(1, len(loads.t) - 1):
+        i = int(np.flatnonzero(np.isclose(t, loads.t[k], rtol=0, atol=1e-12) & (run.mode == 2))[0])
+        if not (run.mode[i - 1] == run.mode[i + 1] == 2):
+            continue
+        acc = (run.omega[i + 1] - run.omega[i - 1]) / (run.t[i + 1] - run.t[i - 1])
+        kin = kinematics(MECH, np.array([MECH.drive_start[0] + SIGN * run.psi[i]]), speed=SIGN)
+        q = kin.pose[0, 0, rocker]
+        c, s = np.cos(q[2]), np.sin(q[2])
+        lc = MECH.link_com[rocker]
+        rc = np.array([c * lc[0] - s * lc[1], s * lc[0] + c * lc[1]])
+        v, a = kin.vel[0, 0, rocker], kin.acc[0, 0, rocker]  # transfer functions of the rocker's origin
+
+        def com(x, rc=rc):
+            return x[:2] + x[2] * np.array([-rc[1], rc[0]])
+
+        w = run.omega[i]
+        a_c = com(v) * acc + com(a) * w * w - (v[2] * w) ** 2 * rc
+        push = loads.force[k] * np.array([loads.phi[k], 1.0])  # n = (0, 1), t = (1, 0)
+        total = loads.joints["O"][k] + loads.joints["N"][k] + push  # frame on rocker, rod on rocker, tool
+        total = total + np.array([0.0, -MECH.gravity * MECH.link_mass[rocker]])
+        np.testing.assert_allclose(total, MECH.link_mass[rocker] * a_c, rtol=0, atol=1e-3 * loads.force.max())
+        checked += 1
+    assert checked > 5
+    # the support O carries more than the blow's force on the striker: the rod presses the rocker down
+    peak_o = np.hypot(*loads.peak("O")[1])
+    assert peak_o > 1.5 * loads.force.max()
+
+
 def test_phases_tile_the_cycle(example):
     run = example
     cycle = run.cycle_phases()

@@ -172,6 +172,15 @@ def _cycle(mech: Any, as_json: bool, blows: int) -> None:
             "mean_power": run.mean_power,
             "blows": [_blow_dict(b) for b in run.blows],
             "phases": phases,
+            "contact": {
+                "force_max": float(run.contact.force.max()) if len(run.contact.t) else None,
+                "peak": {
+                    name: {"time": run.contact.peak(name)[0], **_xy(run.contact.peak(name)[1])}
+                    for name in run.contact.joints
+                }
+                if len(run.contact.t)
+                else {},
+            },
             "cycle_energy": {k: float(v) for k, v in run.cycle_energy.items()},
             "energy": {k: float(v) for k, v in run.energy.items()},
         }  # fmt: skip
@@ -205,6 +214,19 @@ def _cycle(mech: Any, as_json: bool, blows: int) -> None:
             f"    {p['kind']:8s} W = {p['freedom']}  from {1000 * p['start']:9.3f} ms  for {1000 * p['duration']:9.3f} "
             f"ms  ({p['crank_turn']:.2f} deg of the crank)"
         )
+    loads = run.contact
+    if len(loads.t):
+        typer.echo(
+            f"  striker and tool together: contact force {loads.force.min():.6g} to {loads.force.max():.6g} N; "
+            "largest joint forces:"
+        )
+        for name in loads.joints:
+            at, f = loads.peak(name)
+            a, b = loads.joint_links[name]
+            typer.echo(
+                f"    joint {name}: {a} on {b} ({f[0]:.6g}, {f[1]:.6g}) N, |F| = {math.hypot(*f):.6g} N "
+                f"at {1000 * at:.3f} ms"
+            )
     e = run.cycle_energy
     typer.echo(
         f"  energy of the cycle: motor {e['motor']:.6g} J ({run.mean_power:.6g} W) = blow {e['blows']:.6g} + rebounds "

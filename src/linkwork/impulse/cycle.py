@@ -165,6 +165,42 @@ class Phase:
 
 
 @dataclass(frozen=True)
+class ContactLoads:
+    """Forces while striker and tool move together (the contact phases of the last cycle), at the
+    samples of those phases: from the contact force, gravity and the inertia of every link at the
+    crank's actual speed and acceleration.
+
+    Attributes
+    ----------
+    t : ndarray (k,)
+        Time from the last blow, s.
+    force : ndarray (k,)
+        The contact force, N, along the face's normal.
+    phi : ndarray (k,)
+        Friction force over contact force (``-f sgn(sliding)``): the tool's force on the striker is
+        ``force (n + phi t)``.
+    joints : dict
+        For each joint, the force (k, 2) its first-named link exerts on the second, N.
+    joint_links : dict
+        For each joint, its (first, second) link names.
+    """
+
+    t: np.ndarray
+    force: np.ndarray
+    phi: np.ndarray
+    joints: dict[str, np.ndarray]
+    joint_links: dict[str, tuple[str, str]]
+
+    def peak(self, joint: str) -> tuple[float, np.ndarray]:
+        """Time (s from the blow) and force (2,) of the joint's largest force; NaN without contact."""
+        if len(self.t) == 0:
+            return math.nan, np.full(2, np.nan)
+        f = self.joints[joint]
+        i = int(np.argmax(np.hypot(f[:, 0], f[:, 1])))
+        return float(self.t[i]), f[i]
+
+
+@dataclass(frozen=True)
 class WorkingCycle:
     """The run of :func:`simulate_blows`.
 
@@ -190,6 +226,8 @@ class WorkingCycle:
     cycle_energy : dict
         The same over the last cycle, from the last blow to the next.
     tool : Tool
+    contact : ContactLoads
+        The loads of the pairs while striker and tool moved together in the last cycle.
     """
 
     blows: tuple[Blow, ...]
@@ -206,6 +244,7 @@ class WorkingCycle:
     energy: dict[str, float]
     cycle_energy: dict[str, float]
     tool: Tool
+    contact: ContactLoads
 
     @property
     def blows_per_minute(self) -> float:
@@ -490,6 +529,9 @@ def simulate_blows(
     """
     from scipy.integrate import solve_ivp
 
+    from linkwork.impulse.mechanism import impulsive_reactions
+    from linkwork.kinetostatics import Forces
+    from linkwork.kinetostatics.reactions import inertia_and_gravity, solve_reactions
     from linkwork.machine import reduced
     from linkwork.motion import kinematics
 
@@ -709,16 +751,26 @@ def simulate_blows(
             horizon = t + 4 * math.pi / max(y[1], 1e-6)
             sol = solve_ivp(
                 rhs_contact, (t, horizon), y, method="DOP853", rtol=rtol, atol=1e-12,
-                events=[separate, seated, turn, stalled] + ([slide] if f_c > 0 else []),
+                events=[separate, seated, turn, stalled] + ([slide] if f_c > 0 else []), dense_output=True,
             )  # fmt: skip
             if sol.status == 0:
                 raise LinkworkError("the striker stays on the tool for two turns of the crank")
-            hh = np.array([spl.at(a)[6:8] for a in sol.y[0]])
+            # the contact phase carries the forces: sampled densely, from the solver's interpolant
+            tt = np.linspace(sol.t[0], sol.t[-1], max(len(sol.t), 33))
+            yy = sol.sol(tt)
+            yy[:, 0], yy[:, -1] = sol.y[:, 0], sol.y[:, -1]
+            hh = np.array([spl.at(a)[6:8] for a in yy[0]])
             uu = -hh[:, 0]
-            vv = -hh[:, 1] * sol.y[1]
-            ff = np.array([contact_force(a, b)[0] for a, b in zip(sol.y[0], sol.y[1], strict=True)])
-        code = np.full(len(sol.t), (FLIGHT, APART, CONTACT).index(mode))
-        samples.append((sol.t, sol.y[0], sol.y[1], uu, vv, ff, code))
+            vv = -hh[:, 1] * yy[1]
+            both = np.array([contact_force(a, b)[:2] for a, b in zip(yy[0], yy[1], strict=True)])
+            ff, aa = both[:, 0], both[:, 1]
+        if mode == CONTACT:
+            ts, ps, ws, pp = tt, yy[0], yy[1], np.full(len(tt), seg["phi"])
+        else:
+            ts, ps, ws = sol.t, sol.y[0], sol.y[1]
+            aa = pp = np.full(len(ts), np.nan)
+        code = np.full(len(ts), (FLIGHT, APART, CONTACT).index(mode))
+        samples.append((ts, ps, ws, uu, vv, ff, code, aa, pp))
         t = float(sol.t[-1])
         work_before = float(y[5])
         y = sol.y[:, -1].copy()
@@ -822,7 +874,27 @@ def simulate_blows(
             merged[-1][2], merged[-1][4] = ph[2], ph[4]
         else:
             merged.append(list(ph))
-    cat = [np.concatenate([s[i] for s in samples]) for i in range(7)]
+    cat = [np.concatenate([s[i] for s in samples]) for i in range(9)]
+    # the loads of the pairs while striker and tool move together, in the last cycle
+    sel = np.flatnonzero((cat[6] == 2) & (cat[0] >= records[-1]["time"]))
+    first_pairs: dict[str, int] = {}
+    for k, name in enumerate(mech.pair_joint):
+        first_pairs.setdefault(name, k)
+    pair_loads = {name: np.zeros((len(sel), 2)) for name in first_pairs}
+    for row, k in enumerate(sel):
+        angle = np.array([start_angle + sign * cat[1][k]])
+        unit = kinematics(mech, angle, speed=sign)
+        at_speed = kinematics(mech, angle, speed=sign * cat[2][k])
+        k_pos = unit._point(mech.point_names[p])[0][0, 0]
+        push = cat[5][k] * (n + cat[8][k] * tang)  # the tool's force on the striker
+        _, _, from_push = impulsive_reactions(unit, striker, k_pos, push, float(cat[7][k]))
+        lam, frame = solve_reactions(at_speed, inertia_and_gravity(at_speed))
+        steady_part = Forces(at_speed, lam, frame)
+        for name, kk in first_pairs.items():
+            pair_loads[name][row] = from_push[name] + steady_part.pair_force(kk)[0, 0]
+    contact = ContactLoads(
+        cat[0][sel] - records[-1]["time"], cat[5][sel], cat[8][sel], pair_loads, dict(records[-1]["joint_links"])
+    )
     last = account(y)
     energy = {k: last[k] - first[k] for k in last}
     per_cycle = {k: last[k] - snapshots[-1][k] for k in last}
@@ -837,4 +909,5 @@ def simulate_blows(
         energy,
         per_cycle,
         tool,
+        contact,
     )
