@@ -343,6 +343,20 @@ def test_bad_input_is_refused():
         simulate_blows(MECH, Drive(ConstantTorque(1.0), flywheel=0.01), blows=5)
 
 
+def test_a_bad_tool_section_names_each_problem_with_its_line():
+    from importlib.resources import files
+
+    text = (files("linkwork") / "examples" / "percussion-rocker.yaml").read_text(encoding="utf-8")
+    bad = text.replace("feed: 250 N ", "feed: -5 N ").replace("mass: 3.0\n", "mass: 3.0\n    stiffness: 5\n")
+    with pytest.raises(ValueError) as err:
+        lw.loads(bad)
+    message = str(err.value)
+    assert 'impact.tool.stiffness: unknown key "stiffness"' in message
+    assert "impact.tool.feed: expected a positive force" in message
+    lines = [int(line.split(":")[1]) for line in message.splitlines() if "impact.tool" in line]
+    assert len(lines) == 2 and lines[0] != lines[1]
+
+
 runner = CliRunner()
 
 
