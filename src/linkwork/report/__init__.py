@@ -303,7 +303,34 @@ def _impact(run: _Run) -> None:
     if r.ideal_com is not None:
         rows.append(["ideal centre of mass", f"({r.ideal_com[0]:.6g}, {r.ideal_com[1]:.6g}) m"])
     sec.body.append(_table(["", "value"], rows))
+    if mech.machine is not None and blow.tool is not None:
+        _impact_cycle(sec, mech)
     run.sections.append(sec)
+
+
+def _impact_cycle(sec: Section, mech: Any) -> None:
+    """The working cycle with the file's drive and tool: the steady cycle's blow and phases."""
+    from linkwork.errors import LinkworkError
+    from linkwork.impulse import simulate_blows
+
+    try:
+        c = simulate_blows(mech)
+    except LinkworkError as exc:
+        sec.body.append(_p(f"Working cycle: {exc}"))
+        return
+    b = c.last
+    sec.body.append(_p(f"Working cycle with the drive and the tool: {c.blows_per_minute:.6g} blows per minute."))
+    rows = [
+        ["impact speed of the striker, m/s", b.impact_speed],
+        ["crank speed before / after, rad/s", f"{b.crank_speed_before:.6g} / {b.crank_speed_after:.6g}"],
+        ["energy lost in the blow / given to the tool, J", f"{b.energy_lost:.6g} / {b.energy_to_tool:.6g}"],
+        [f"impulse on {mech.blow.at}", f"({b.impulse[0]:.6g}, {b.impulse[1]:.6g}) N s"],
+    ]
+    rows += [[f"joint {j}", f"({v[0]:.6g}, {v[1]:.6g}) N s"] for j, v in b.joints.items()]
+    rows += [["work on the work per cycle, J", b.work_on_work], ["mean motor power, W", c.mean_power]]
+    sec.body.append(_table(["blow of the steady cycle", "value"], rows))
+    phases = [[p.kind, p.freedom, 1000 * (p.start - b.time), 1000 * p.duration] for p in c.cycle_phases()]
+    sec.body.append(_table(["phase", "W", "from the blow, ms", "lasts, ms"], phases))
 
 
 STYLE = """
