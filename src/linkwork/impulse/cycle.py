@@ -19,7 +19,12 @@ the structure of the machine changes with the contact:
   (a plastic stop: its kinetic energy there is lost);
 * ``contact``: the striker pushes the tool, ``g = 0``: one degree of freedom again, with the
   contact force ``lambda >= 0`` as the constraint's multiplier; the phase ends where
-  ``lambda`` falls to zero (separation) or the tool reaches its seat.
+  ``lambda`` falls to zero (separation), where the tool stops in the work and the force the
+  contact would need there pulls (the work's resistance lets go), or on the seat.
+
+Striker and tool may meet again after a blow (rebounds, with the same map); a rebound slower than
+1e-5 of the striker's speeds ends the chatter as a plastic impact, after which they move together
+if the contact force is compressive.
 
 Between events the motion is the energy-exact equation
 ``(J + J_d) psi'' + J' psi'^2 / 2 = M + M_d + G_phi lambda`` (``G_phi = (dK/dpsi) . (n + phi t)``,
@@ -36,7 +41,8 @@ to a tool that moves: with the normal impulse ``P`` on the striker,
 (``G_n = ds/dpsi``, Newton's restitution on the normal closing speed, the striker sliding through
 the impact), which for a tool that cannot move (``m_t`` infinite) and no drive inertia is exactly
 :func:`~linkwork.impulse.impact`.  The impulsive reactions of every pair follow as there; the
-drive's row gives the impulse of the drive on the crank, ``-J_d (psi'_+ - psi'_-)``.
+drive's row gives the impulse of the drive on the crank, ``-J_d (psi'_+ - psi'_-)`` in the
+turning direction.
 """
 
 from __future__ import annotations
@@ -593,7 +599,7 @@ def simulate_blows(
         sliding = _heading(gt * w, dgt * w * w, w * abs(gt) + 1e-300)
         return into, -f_c * sliding
 
-    seg = {"into": True, "phi": 0.0}  # the flags of the contact phase being integrated
+    seg: dict[str, Any] = {"into": True, "phi": 0.0}  # the flags of the contact phase being integrated
 
     def contact_force(psi: float, w: float, into: bool | None = None, phi: float | None = None) -> tuple[float, ...]:
         """lambda, psi'', the sliding transfer function and phi in contact (flags: the segment's)."""
@@ -696,12 +702,12 @@ def simulate_blows(
         t_seg = t
         if mode == FLIGHT:
 
-            def gap(t_: float, y_: np.ndarray) -> float:
+            def reach(t_: float, y_: np.ndarray) -> float:
                 return spl.at(y_[0])[6] + slack
 
-            gap.terminal, gap.direction = True, -1  # type: ignore[attr-defined]
+            reach.terminal, reach.direction = True, -1  # type: ignore[attr-defined]
             horizon = t + 40 * math.pi / max(y[1], 1e-6)
-            sol = solve_ivp(rhs_free, (t, horizon), y, method="DOP853", rtol=rtol, atol=1e-12, events=[gap, stalled])
+            sol = solve_ivp(rhs_free, (t, horizon), y, method="DOP853", rtol=rtol, atol=1e-12, events=[reach, stalled])
             if sol.status == 0:
                 raise LinkworkError(f'"{at}" does not come back to the tool within 20 turns of the crank')
             uu = np.zeros_like(sol.t)
@@ -881,13 +887,13 @@ def simulate_blows(
     for k, name in enumerate(mech.pair_joint):
         first_pairs.setdefault(name, k)
     pair_loads = {name: np.zeros((len(sel), 2)) for name in first_pairs}
-    for row, k in enumerate(sel):
-        angle = np.array([start_angle + sign * cat[1][k]])
+    for row, j in enumerate(sel):
+        angle = np.array([start_angle + sign * cat[1][j]])
         unit = kinematics(mech, angle, speed=sign)
-        at_speed = kinematics(mech, angle, speed=sign * cat[2][k])
+        at_speed = kinematics(mech, angle, speed=sign * cat[2][j])
         k_pos = unit._point(mech.point_names[p])[0][0, 0]
-        push = cat[5][k] * (n + cat[8][k] * tang)  # the tool's force on the striker
-        _, _, from_push = impulsive_reactions(unit, striker, k_pos, push, float(cat[7][k]))
+        push = cat[5][j] * (n + cat[8][j] * tang)  # the tool's force on the striker
+        _, _, from_push = impulsive_reactions(unit, striker, k_pos, push, float(cat[7][j]))
         lam, frame = solve_reactions(at_speed, inertia_and_gravity(at_speed))
         steady_part = Forces(at_speed, lam, frame)
         for name, kk in first_pairs.items():
@@ -904,7 +910,12 @@ def simulate_blows(
         tuple(Phase(*ph) for ph in merged),
         end_time - records[-1]["time"],
         steady,
-        *cat[:6],
+        cat[0],
+        cat[1],
+        cat[2],
+        cat[3],
+        cat[4],
+        cat[5],
         cat[6],
         energy,
         per_cycle,
