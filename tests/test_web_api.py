@@ -431,3 +431,30 @@ def test_the_readme_export_command_runs(tmp_path):
     result = runner.invoke(app, [*args[1:], "--steps", "36"])
     assert result.exit_code == 0, result.output
     assert _embedded(out.read_text(encoding="utf-8"))["name"] == args[2]
+
+
+def test_a_frame_pivot_named_second_is_charted_and_drawn_as_when_named_first():
+    """``O4: [rocker, frame]`` is the same joint as ``[frame, rocker]``: the rocker's angle and angular velocity,
+    the reaction in O4 and the frame point the page draws the support at do not depend on the order."""
+    text = example_text("four-bar")
+    first = "O4: {type: revolute, links: [frame, rocker]}"
+    assert text.count(first) == 1
+    swapped = text.replace(first, "O4: {type: revolute, links: [rocker, frame]}")
+    a = cycle_payload(lw.compile(lw.loads(text, file="four-bar.yaml")), steps=72)
+    b = cycle_payload(lw.compile(lw.loads(swapped, file="four-bar.yaml")), steps=72)
+    assert [s["key"] for s in b["series"]] == [s["key"] for s in a["series"]]
+    for key in ("link:rocker:angle", "link:rocker:omega", "reaction:O4", "reaction:O2", "torque"):
+        np.testing.assert_allclose(_series(b, key), _series(a, key), rtol=1e-9, atol=1e-9)
+    # the rocker's angle against the positions: the direction of O4B
+    pos = _positions(a)
+    names = [p["name"] for p in a["points"]]
+    ob = pos[:, names.index("rocker.B")] - pos[:, names.index("rocker.O4")]
+    angle = np.degrees(np.unwrap(np.arctan2(ob[:, 1], ob[:, 0])))
+    np.testing.assert_allclose(_series(b, "link:rocker:angle"), angle, atol=1e-6)
+    # the reaction's size: that of lw.forces for the file as given
+    f = lw.forces(lw.compile(lw.loads(text, file="four-bar.yaml")), steps=72).reaction("O4")
+    np.testing.assert_allclose(_series(b, "reaction:O4"), np.hypot(f[:, 0], f[:, 1]), rtol=1e-8)
+    supports = [(p["joint"], a["positions"][0][p["frame_point"]]) for p in a["pairs"] if p["frame_point"] is not None]
+    drawn_b = [(p["joint"], b["positions"][0][p["frame_point"]]) for p in b["pairs"] if p["frame_point"] is not None]
+    assert supports == drawn_b
+    assert [j for j, _ in supports] == ["O2", "O4"] and supports[1][1] == pytest.approx([0.3, 0.0])

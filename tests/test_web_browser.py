@@ -270,3 +270,18 @@ def test_the_exported_page_works_from_a_file_url_with_no_network(page, tmp_path)
     assert all(u.startswith(("file:", "data:")) for u in requests), requests
     assert page.errors == []
     shot(page, "viewer-exported")
+
+
+def test_a_frame_pivot_named_second_gets_its_support(page, tmp_path):
+    """The four-bar with ``O4: [rocker, frame]``: two supports, their apexes at O2 (0, 0) and O4 (300 mm, 0)."""
+    text = example_text("four-bar")
+    text = text.replace("O4: {type: revolute, links: [frame, rocker]}", "O4: {type: revolute, links: [rocker, frame]}")
+    out = export_page(lw.loads(text, file="four-bar.yaml"), tmp_path / "four-bar.html", steps=36)
+    page.goto(out.as_uri())
+    page.wait_for_selector('#scheme circle.joint[data-joint="O4"]')
+    apexes = page.eval_on_selector_all(
+        "#ground polygon.support", "els => els.map(e => [e.getAttribute('data-joint'), e.getAttribute('points')])"
+    )
+    found = {joint: [float(v) for v in points.split(" ")[0].split(",")] for joint, points in apexes}
+    assert len(apexes) == 2 and found == {"O2": [0.0, 0.0], "O4": [300.0, 0.0]}
+    assert page.errors == []

@@ -16,7 +16,8 @@ Layout (``format: linkwork-view/1``):
   ``joint`` (a point of a pair) and ``positions`` (A, P, 2), m;
 * ``links``: the points each moving link is drawn through; ``pairs``: the
   joints (``revolute`` / ``prismatic``, links, points, the guide's global
-  direction ``axis`` (A, 2) for prismatic pairs);
+  direction ``axis`` (A, 2) for prismatic pairs, and ``frame_point``, the
+  frame's point of a pair on the frame whichever side it is named on);
 * ``plans``: for ``velocity`` and ``acceleration``, the labels of the plan
   points (``p``, ``a``, ``b``..., and the construction's intermediate
   points), their vectors from the pole ``values`` (A, L, 2), the
@@ -191,6 +192,8 @@ def _pairs(mech: Any, kin: Any) -> list[dict[str, Any]]:
             "points": [int(x) for x in mech.pair_points[k]],
             "driven": k in driven,
             "axis": None,
+            # the frame's point of the pair (a support is drawn there), whichever side the frame is named on
+            "frame_point": int(mech.pair_points[k, 0 if a == 0 else 1]) if 0 in (a, b) else None,
         }
         if mech.pair_type[k] == PRISMATIC:
             theta = kin.pose[0, :, a, 2]
@@ -265,10 +268,15 @@ def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
         out.append({"key": key, "label": label, "unit": unit, "group": group, "values": rounded})
 
     driven = {int(k) for k in mech.drive_pair}
-    driven_links = {int(mech.pair_links[k, 1]) for k in driven}
+    driven_links = {_moving(mech, k) for k in driven}
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
-        if a != 0 or mech.link_virtual[b] or k in driven:
+        if 0 not in (a, b) or k in driven:
+            continue
+        if mech.pair_type[k] == PRISMATIC and a != 0:
+            continue  # a guide on the moving link, the frame's point slides in it: no slider to chart
+        b = _moving(mech, k)
+        if mech.link_virtual[b]:
             continue
         if mech.pair_type[k] == PRISMATIC:
             name = mech.point_names[int(mech.pair_points[k, 1])]
@@ -293,12 +301,23 @@ def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
         add("foundation:fx", "force on the foundation, x", "N", "forces", found[:, 0])
         add("foundation:fy", "force on the foundation, y (pulls the bolts)", "N", "forces", found[:, 1])
         add("foundation:m", "moment on the foundation about the origin", "N m", "forces", found[:, 2])
+        seen: set[str] = set()
         for k in range(mech.n_pairs):
-            if mech.pair_links[k, 0] == 0 and mech.pair_type[k] == REVOLUTE:
+            if 0 in mech.pair_links[k] and mech.pair_type[k] == REVOLUTE and mech.pair_joint[k] not in seen:
+                # the size of the force between the frame and its link: the same whichever is named first
                 joint = mech.pair_joint[k]
-                f = forces.reaction(joint)
+                seen.add(joint)
+                f = forces.pair_force(k)
+                if f.ndim == 3:
+                    f = f[0]
                 add(f"reaction:{joint}", f"reaction in {joint} (size)", "N", "forces", np.hypot(f[:, 0], f[:, 1]))
     return out
+
+
+def _moving(mech: Any, k: int) -> int:
+    """The link of pair ``k`` other than the frame (the second one when neither is the frame)."""
+    a, b = (int(x) for x in mech.pair_links[k])
+    return a if b == 0 else b
 
 
 def _structure(mech: Any) -> dict[str, Any]:

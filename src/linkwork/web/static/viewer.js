@@ -190,9 +190,9 @@
       const [a] = pair.links;
       const pb = pair.points[1];
       if (pair.type === "revolute") {
-        if (a === 0) {
-          const fixed = pos[first][pair.points[0]] || pos[first][pb];
-          if (fixed && fixed[0] !== null) support(gGround, fixed, r);
+        if (pair.frame_point !== null && pair.frame_point !== undefined) {
+          const fixed = pos[first][pair.frame_point];
+          if (fixed && fixed[0] !== null) support(gGround, fixed, r, pair.joint);
         }
         const key = pair.joint + "@" + data.points[pb].label;
         if (seen.has(key)) return;
@@ -255,10 +255,10 @@
   }
 
   // a hinge on the frame: a triangle below the pivot standing on a hatched base
-  function support(g, p, r) {
+  function support(g, p, r, joint) {
     const cx = 1000 * p[0], cy = -1000 * p[1];
     const tri = [[cx, cy], [cx - 1.6 * r, cy + 2.8 * r], [cx + 1.6 * r, cy + 2.8 * r]];
-    svg("polygon", { class: "support", points: tri.map((v) => v[0].toFixed(3) + "," + v[1].toFixed(3)).join(" ") }, g);
+    svg("polygon", { class: "support", "data-joint": joint, points: tri.map((v) => v[0].toFixed(3) + "," + v[1].toFixed(3)).join(" ") }, g);
     svg("line", { class: "support", x1: (cx - 2.6 * r).toFixed(3), y1: (cy + 2.8 * r).toFixed(3), x2: (cx + 2.6 * r).toFixed(3), y2: (cy + 2.8 * r).toFixed(3) }, g);
     svg("rect", { class: "ground", fill: "url(#hatch)", x: (cx - 2.6 * r).toFixed(3), y: (cy + 2.8 * r).toFixed(3), width: (5.2 * r).toFixed(3), height: (0.9 * r).toFixed(3) }, g);
   }
