@@ -458,3 +458,44 @@ def test_a_frame_pivot_named_second_is_charted_and_drawn_as_when_named_first():
     drawn_b = [(p["joint"], b["positions"][0][p["frame_point"]]) for p in b["pairs"] if p["frame_point"] is not None]
     assert supports == drawn_b
     assert [j for j, _ in supports] == ["O2", "O4"] and supports[1][1] == pytest.approx([0.3, 0.0])
+
+
+@pytest.mark.parametrize(
+    "name, overrides",
+    [
+        (
+            "double-cut-shears",
+            {
+                "links.crank.length": 0.11,
+                "frame.points.O1.x": 0.52,
+                "links.rocker.points.B.x": 0.48,
+                "links.rod.mass": 70.0,
+                "links.rocker.inertia": 9.5,
+                "joints.guide_E.axis": 1.6,
+            },
+        ),
+        ("four-bar", {"links.rocker.inertia": 20.0, "links.coupler.points.M.y": 0.09, "links.rocker.mass": 2.0}),
+    ],
+)
+def test_every_kind_of_edit_comes_back_in_the_parameters(name, overrides):
+    """A length, coordinates, a mass, an inertia and an angle come back as sent in the answer's parameters, the
+    values not edited as in the file (the four-bar's file, in mm, gives no inertias: the crank's and the coupler's
+    stay m l^2 / 12 of their unedited masses); the edited crank's length is that of the positions."""
+    client = TestClient(create_app(name), base_url=LOCAL)
+    before = {p["name"]: p["value"] for p in client.get("/api/parameters").json()["parameters"]}
+    r = client.post("/api/solve", json={"overrides": overrides, "steps": 36})
+    assert r.status_code == 200, r.text
+    after = {p["name"]: p["value"] for p in r.json()["parameters"]}
+    assert after.keys() == before.keys()
+    for key, value in before.items():
+        assert after[key] == pytest.approx(overrides.get(key, value), rel=1e-12, abs=1e-15), key
+    if "links.crank.length" in overrides:
+        pos = _positions(r.json())
+        names = [p["name"] for p in r.json()["points"]]
+        crank = pos[:, names.index("crank.A")] - pos[:, names.index("crank.O1")]
+        np.testing.assert_allclose(np.hypot(*crank.T), overrides["links.crank.length"], atol=1e-8)
+    # a second call (from the cache) answers the same
+    assert (
+        client.post("/api/solve", json={"overrides": overrides, "steps": 36}).json()["parameters"]
+        == r.json()["parameters"]
+    )

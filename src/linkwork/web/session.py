@@ -31,23 +31,31 @@ class Viewer:
         self._lock = threading.Lock()
         self._busy = threading.BoundedSemaphore(2)
 
-    def parameters(self, mech: Any = None) -> list[dict[str, Any]]:
+    def parameters(self, spec: Any = None, mech: Any = None) -> list[dict[str, Any]]:
+        """The editable values of ``spec`` compiled as ``mech`` (by default the mechanism as loaded)."""
         from linkwork.web.edits import editable
 
         if self.spec is None:
             return []
-        return [p.as_dict() for p in editable(self.spec, mech if mech is not None else self.mech)]
+        if spec is None:
+            spec, mech = self.spec, self.mech
+        return [p.as_dict() for p in editable(spec, mech)]
 
-    def compile(self, overrides: dict[str, float]) -> Any:
-        """The mechanism with ``overrides`` (SI) applied; raises a LinkworkError when it fails."""
+    def edit(self, overrides: dict[str, float]) -> tuple[Any, Any]:
+        """The description and the mechanism with ``overrides`` (SI) applied; a LinkworkError when it fails."""
         from linkwork.structure.compile import compile
         from linkwork.web.edits import EditError, apply
 
         if not overrides:
-            return self.mech
+            return self.spec, self.mech
         if self.spec is None:
             raise EditError("this viewer shows a compiled mechanism without its description: it cannot be edited")
-        return compile(apply(self.spec, self.mech, overrides))
+        spec = apply(self.spec, self.mech, overrides)
+        return spec, compile(spec)
+
+    def compile(self, overrides: dict[str, float]) -> Any:
+        """The mechanism with ``overrides`` (SI) applied; raises a LinkworkError when it fails."""
+        return self.edit(overrides)[1]
 
     def cycle(self, overrides: dict[str, float] | None = None, steps: int | None = None) -> dict[str, Any]:
         """The cycle payload of the mechanism with ``overrides``, with ``parameters`` and ``editable``."""
@@ -63,13 +71,13 @@ class Viewer:
         if not self._busy.acquire(timeout=30):
             raise BusyError("the server is busy solving other edits; try again")
         try:
-            mech = self.compile(overrides)
+            spec, mech = self.edit(overrides)
             out = cycle_payload(mech, steps)
         finally:
             self._busy.release()
         out["editable"] = self.spec is not None
         out["overrides"] = dict(overrides)
-        out["parameters"] = self.parameters(mech)
+        out["parameters"] = self.parameters(spec, mech)
         with self._lock:
             self._cache[key] = out
             while len(self._cache) > self._size:
