@@ -499,3 +499,31 @@ def test_every_kind_of_edit_comes_back_in_the_parameters(name, overrides):
         client.post("/api/solve", json={"overrides": overrides, "steps": 36}).json()["parameters"]
         == r.json()["parameters"]
     )
+
+
+@pytest.mark.parametrize(
+    "target, fragment",
+    [
+        ("DIR", "is a directory"),
+        ("", "give the name of the page to write"),
+        ("/proc/x.html", "--export /proc/x.html: cannot write"),
+        ("FILE/page.html", "cannot write"),
+    ],
+)
+def test_view_export_to_a_place_that_cannot_be_written_fails_cleanly(tmp_path, monkeypatch, target, fragment):
+    """A directory, an empty name, a place where no file can be made: exit 2 and one line, no traceback, and no
+    file (finished or partial) left behind."""
+    import linkwork.cli.view  # noqa: F401
+    from linkwork.cli.app import app
+
+    monkeypatch.chdir(tmp_path)  # an empty name would write beside the working directory
+    (tmp_path / "FILE").write_text("x", encoding="utf-8")
+    target = target.replace("DIR", str(tmp_path)).replace("FILE", str(tmp_path / "FILE"))
+    before = sorted(p.name for p in tmp_path.iterdir())
+    result = runner.invoke(app, ["view", "four-bar", "--export", target, "--steps", "24"])
+    assert result.exit_code == 2, result.output
+    assert fragment in result.output and result.output.startswith("error: ")
+    assert isinstance(result.exception, SystemExit) and "Traceback" not in result.output
+    assert len(result.output.strip().splitlines()) == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+    assert sorted(p.name for p in tmp_path.parent.iterdir() if p.name.endswith(".part")) == []

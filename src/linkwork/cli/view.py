@@ -30,9 +30,18 @@ def view(
     try:
         spec = resolve(file_or_example)
         if export is not None:
+            from pathlib import Path
+
             from linkwork.web.export import export_page
 
-            written = export_page(spec, export, steps=steps)
+            if not export.strip():
+                fail(LinkworkError("--export: give the name of the page to write, e.g. --export shears.html"))
+            if Path(export).is_dir():
+                fail(LinkworkError(f"--export {export}: is a directory; give the name of the page to write"))
+            try:
+                written = export_page(spec, export, steps=steps)
+            except OSError as exc:
+                fail(LinkworkError(f"--export {export}: cannot write ({exc.strerror or exc})"))
             typer.echo(f"wrote {written}")
             return
         try:
