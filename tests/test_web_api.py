@@ -527,3 +527,31 @@ def test_view_export_to_a_place_that_cannot_be_written_fails_cleanly(tmp_path, m
     assert len(result.output.strip().splitlines()) == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == before
     assert sorted(p.name for p in tmp_path.parent.iterdir() if p.name.endswith(".part")) == []
+
+
+@pytest.mark.parametrize(
+    "host, status",
+    [
+        ("127.0.0.1:8765", 200),
+        ("localhost:8765", 200),
+        ("LocalHost:8765", 200),
+        ("[::1]:8765", 200),
+        ("127.0.0.1", 200),
+        ("localhost", 200),
+        ("[::1].evil.com", 400),
+        ("[::1]evil:80", 400),
+        ("localhost.evil.com", 400),
+        ("127.0.0.1.nip.io:8765", 400),
+        ("evil.com:8765", 400),
+        ("localhost:8765:80", 400),
+        ("localhost:", 400),
+        ("localhost:http", 400),
+        ("::1", 400),
+        ("evil.com@localhost", 400),
+    ],
+)
+def test_the_whole_host_header_must_be_a_loopback_name_and_a_port(shears, host, status):
+    r = shears.get("/api/parameters", headers={"host": host})
+    assert r.status_code == status
+    if status == 400:
+        assert "loopback" in r.json()["error"]

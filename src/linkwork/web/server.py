@@ -16,7 +16,7 @@ pydantic (types, ranges, at most :data:`~linkwork.web.edits.MAX_OVERRIDES`
 overrides); an edit that fails answers 422 with linkwork's message (the
 file's line, the group and crank angle that do not assemble), a malformed
 request 400, 413 or 415, and the server goes on serving.  Requests must
-name the loopback host (``127.0.0.1``, ``localhost``): a page elsewhere
+name the loopback host (``127.0.0.1``, ``localhost``, ``[::1]``, with a port): a page elsewhere
 cannot reach the server through a rebound DNS name.  Nothing from a
 request is evaluated.
 """
@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import time
 from collections.abc import Callable
 from typing import Annotated, Any
@@ -44,8 +45,8 @@ from linkwork.web.session import BusyError, Viewer, static_text
 MAX_BODY = 64 * 1024
 #: Steps of the cycle an edit may ask for.
 MIN_STEPS, MAX_STEPS = 12, 3600
-#: Host names the server answers to.
-HOSTS = ("127.0.0.1", "localhost", "[::1]", "::1")
+#: The Host headers the server answers to: a loopback name and an optional port, nothing else.
+HOST = re.compile(r"(\[::1\]|127\.0\.0\.1|localhost)(:\d{1,5})?", re.IGNORECASE)
 
 SECURITY_HEADERS = {
     "Content-Security-Policy": "default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' data:; "
@@ -138,8 +139,8 @@ def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
 
     @app.middleware("http")
     async def guard(request: Request, call_next: Any) -> Any:
-        host = _hostname(request.headers.get("host") or "")
-        if host not in HOSTS:
+        host = request.headers.get("host") or ""
+        if not HOST.fullmatch(host):
             return error(400, f"this server answers only to the loopback host (127.0.0.1), not {host[:100]!r}")
         response = await call_next(request)
         for key, value in SECURITY_HEADERS.items():
@@ -203,13 +204,6 @@ def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
         return _json(await run_in_threadpool(pose_payload, mech, math.radians(req.angle_deg)))
 
     return app
-
-
-def _hostname(header: str) -> str:
-    """The host of a Host header, without its port."""
-    if header.startswith("["):
-        return header.split("]", 1)[0] + "]"
-    return header.rsplit(":", 1)[0]
 
 
 def _json(data: Any) -> Response:
