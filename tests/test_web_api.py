@@ -279,6 +279,7 @@ BAD = [
     (b'{"overrides": {}, "code": "print(1)"}', JSON, 422, "code: Extra inputs are not permitted"),
     (b'{"steps": 5}', JSON, 422, "steps"),
     (b'{"steps": 100000000}', JSON, 422, "steps"),
+    (b'{"steps": 1441}', JSON, 422, "steps: Input should be less than or equal to 1440"),
     (json.dumps({"overrides": {f"p{i}": 1.0 for i in range(MAX_OVERRIDES + 1)}}).encode(), JSON, 422, "at most"),
     (json.dumps({"overrides": {"x" * 1000: 1.0}}).encode(), JSON, 422, "at most 200 characters"),
 ]
@@ -555,3 +556,33 @@ def test_the_whole_host_header_must_be_a_loopback_name_and_a_port(shears, host, 
     assert r.status_code == status
     if status == 400:
         assert "loopback" in r.json()["error"]
+
+
+def test_poses_and_cycles_share_the_two_solving_slots():
+    """With both slots held (two long solves), a pose waits and is answered 503 like a cycle; once a slot is
+    free it is solved, and matches the kinematics at that angle."""
+    app = create_app("four-bar", steps=36)
+    client = TestClient(app, base_url=LOCAL)
+    viewer = app.state.viewer
+    viewer.wait_s = 0.05
+    assert viewer._busy.acquire(timeout=1) and viewer._busy.acquire(timeout=1)
+    try:
+        for path, body in (("/api/pose", {"angle_deg": 30}), ("/api/solve", {"steps": 48})):
+            r = client.post(path, json=body)
+            assert r.status_code == 503 and "busy" in r.json()["error"], path
+    finally:
+        viewer._busy.release()
+        viewer._busy.release()
+    r = client.post("/api/pose", json={"angle_deg": 30})
+    assert r.status_code == 200
+    kin = lw.kinematics(lw.compile(lw.load("four-bar")), [math.radians(30)])
+    np.testing.assert_allclose(r.json()["points"]["rocker.B"], kin.position("B")[0], atol=1e-12)
+
+
+def test_view_command_refuses_more_than_1440_steps(tmp_path):
+    import linkwork.cli.view  # noqa: F401
+    from linkwork.cli.app import app
+
+    result = runner.invoke(app, ["view", "four-bar", "--export", str(tmp_path / "p.html"), "--steps", "1441"])
+    assert result.exit_code == 2 and "1440" in result.output
+    assert list(tmp_path.iterdir()) == []

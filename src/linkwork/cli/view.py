@@ -17,7 +17,7 @@ def view(
     export: Annotated[
         str | None, typer.Option("--export", metavar="PAGE.html", help="write one self-contained page and exit")
     ] = None,
-    steps: Annotated[int, typer.Option("--steps", min=12, max=3600, help="crank angles of the cycle")] = 360,
+    steps: Annotated[int, typer.Option("--steps", min=12, max=1440, help="crank angles of the cycle")] = 360,
 ) -> None:
     """Show the mechanism in the browser: crank slider, plans, charts, structure, edits.
 

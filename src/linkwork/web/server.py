@@ -43,8 +43,8 @@ from linkwork.web.session import BusyError, Viewer, static_text
 
 #: Largest request body, bytes.
 MAX_BODY = 64 * 1024
-#: Steps of the cycle an edit may ask for.
-MIN_STEPS, MAX_STEPS = 12, 3600
+#: Steps of the cycle an edit may ask for (1440: a quarter of a degree; the cache keeps 16 cycles).
+MIN_STEPS, MAX_STEPS = 12, 1440
 #: The Host headers the server answers to: a loopback name and an optional port, nothing else.
 HOST = re.compile(r"(\[::1\]|127\.0\.0\.1|localhost)(:\d{1,5})?", re.IGNORECASE)
 
@@ -200,8 +200,12 @@ def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
         from linkwork.web.payload import pose_payload
 
         req = await read_body(request, PoseRequest)
-        mech = await run_in_threadpool(viewer.compile, req.overrides)
-        return _json(await run_in_threadpool(pose_payload, mech, math.radians(req.angle_deg)))
+
+        def solve_pose() -> dict[str, Any]:
+            with viewer.solving():
+                return pose_payload(viewer.compile(req.overrides), math.radians(req.angle_deg))
+
+        return _json(await run_in_threadpool(solve_pose))
 
     return app
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import threading
 from collections import OrderedDict
+from collections.abc import Iterator
+from contextlib import contextmanager
 from importlib import resources
 from typing import Any
 
@@ -30,6 +32,18 @@ class Viewer:
         self._size = cache
         self._lock = threading.Lock()
         self._busy = threading.BoundedSemaphore(2)
+        #: Seconds a request waits for one of the two solving slots before it is answered busy.
+        self.wait_s = 30.0
+
+    @contextmanager
+    def solving(self) -> Iterator[None]:
+        """Hold one of the two slots every solve (a cycle, a pose) shares; :class:`BusyError` if none frees."""
+        if not self._busy.acquire(timeout=self.wait_s):
+            raise BusyError("the server is busy solving other edits; try again")
+        try:
+            yield
+        finally:
+            self._busy.release()
 
     def parameters(self, spec: Any = None, mech: Any = None) -> list[dict[str, Any]]:
         """The editable values of ``spec`` compiled as ``mech`` (by default the mechanism as loaded)."""
@@ -68,13 +82,9 @@ class Viewer:
             if key in self._cache:
                 self._cache.move_to_end(key)
                 return self._cache[key]
-        if not self._busy.acquire(timeout=30):
-            raise BusyError("the server is busy solving other edits; try again")
-        try:
+        with self.solving():
             spec, mech = self.edit(overrides)
             out = cycle_payload(mech, steps)
-        finally:
-            self._busy.release()
         out["editable"] = self.spec is not None
         out["overrides"] = dict(overrides)
         out["parameters"] = self.parameters(spec, mech)
