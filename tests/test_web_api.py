@@ -586,3 +586,20 @@ def test_view_command_refuses_more_than_1440_steps(tmp_path):
     result = runner.invoke(app, ["view", "four-bar", "--export", str(tmp_path / "p.html"), "--steps", "1441"])
     assert result.exit_code == 2 and "1440" in result.output
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_torque_and_moment_charts_say_counter_clockwise_positive():
+    """The percussion rocker's crank turns clockwise: its driving torque is charted counter-clockwise positive,
+    as the label says, so that torque times the (negative) crank speed is the rate of change of the energy."""
+    mech = lw.compile(lw.load("percussion-rocker"))
+    payload = cycle_payload(mech, steps=720)
+    labels = {s["key"]: s["label"] for s in payload["series"]}
+    assert labels["torque"] == "driving torque on the crank (ccw +)"
+    assert labels["foundation:m"].endswith("(ccw +)")
+    kin = lw.kinematics(mech, steps=720)
+    omega = kin.rates[0, 0]
+    assert omega < 0 and payload["drives"][0]["direction"] == "cw"
+    _, kinetic, potential = _com_motion(kin)
+    power = _d1(kinetic + potential, 2 * math.pi / 720 / abs(omega))
+    torque = _series(payload, "torque")
+    assert np.abs(torque * omega - power).max() < 1e-6 * np.abs(power).max()

@@ -27,7 +27,9 @@ Layout (``format: linkwork-view/1``):
   at most 100 mm long);
 * ``series``: quantities over the cycle (slider positions, rocker angles,
   driving torque, foundation force...), each with ``label``, ``unit`` and
-  ``values`` (A,);
+  ``values`` (A,); torques and moments counter-clockwise positive (a
+  clockwise drive's driving torque is mostly negative), forces x right and
+  y up, as the labels say;
 * ``structure``, ``drives``, ``extremes``, ``events``, ``warnings``.
 """
 
@@ -296,11 +298,13 @@ def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
             add(f"link:{lname}:angle", f"angle of {lname}", "deg", "links", np.degrees(angle))
             add(f"link:{lname}:omega", f"angular velocity of {lname}", "rad/s", "links", kin.omega(b))
     if forces is not None:
-        add("torque", "driving torque", "N m", "forces", forces.driving_torque)
+        # signs as in linkwork.forces: torques and moments counter-clockwise positive, whatever the direction of
+        # rotation (a clockwise crank driven against the load has a negative driving torque); x right, y up
+        add("torque", "driving torque on the crank (ccw +)", "N m", "forces", forces.driving_torque)
         found = forces.foundation
-        add("foundation:fx", "force on the foundation, x", "N", "forces", found[:, 0])
-        add("foundation:fy", "force on the foundation, y (pulls the bolts)", "N", "forces", found[:, 1])
-        add("foundation:m", "moment on the foundation about the origin", "N m", "forces", found[:, 2])
+        add("foundation:fx", "force on the foundation, x (right +)", "N", "forces", found[:, 0])
+        add("foundation:fy", "force on the foundation, y (up +: pulls the bolts)", "N", "forces", found[:, 1])
+        add("foundation:m", "moment on the foundation about the origin (ccw +)", "N m", "forces", found[:, 2])
         seen: set[str] = set()
         for k in range(mech.n_pairs):
             if 0 in mech.pair_links[k] and mech.pair_type[k] == REVOLUTE and mech.pair_joint[k] not in seen:
