@@ -131,25 +131,53 @@ def _com_motion(kin):
     return com, kinetic, potential
 
 
-def test_torque_and_foundation_charts_obey_the_energy_and_momentum_theorems():
-    """The driving torque chart times the crank speed is the rate of change of the energy, and the vertical
-    foundation force chart is minus the weight less the rate of change of momentum, both by finite
-    differences over the cycle of the bundled four-bar (no external loads)."""
-    mech = lw.compile(lw.load("four-bar"))
+def _cutting_power(kin):
+    """Power (W) of the double-cut shears' cutting load on its two knives, from the file's table worked out here:
+    the billet spans y = -0.05..0.05 m, the relative penetration is (upper + lower) / 0.10, the force follows
+    0 - 250 - 250 - 0 kN at 0, 0.15, 0.30, 0.45 while the knives close (none while they open), up on the upper
+    knife's edge and down on the lower's."""
+    yu, vu = kin.position("knife_upper.edge")[:, 1], kin.velocity("knife_upper.edge")[:, 1]
+    yl, vl = kin.position("knife_lower.edge")[:, 1], kin.velocity("knife_lower.edge")[:, 1]
+    eps = (np.maximum(0.05 - yu, 0) + np.maximum(yl + 0.05, 0)) / 0.10
+    size = np.interp(eps, [0, 0.15, 0.30, 0.45], [0, 250e3, 250e3, 0], left=0, right=0)
+    size = np.where(vl - vu > 0, size, 0.0)
+    assert size.max() == 250e3  # the knives cut through the plateau of the table
+    return size * vu - size * vl
+
+
+@pytest.mark.parametrize("name", ["four-bar", "double-cut-shears", "percussion-rocker"])
+def test_torque_and_foundation_charts_obey_the_energy_and_momentum_theorems(name):
+    """Finite differences over the cycle (720 steps, fourth order): the driving torque chart times the (signed)
+    crank speed plus the power of the loads is the rate of change of the kinetic and potential energy; the
+    foundation force charts are the weights less the rate of change of the momentum, and the foundation moment
+    chart the weights' moment about the origin less the rate of change of the angular momentum about it.  The
+    four-bar has no loads, the shears their cutting load (equal and opposite on the knives: no net force on the
+    machine), the percussion rocker's crank turns clockwise."""
+    mech = lw.compile(lw.load(name))
     payload = cycle_payload(mech, steps=720)
     kin = lw.kinematics(mech, steps=720)
     omega = kin.rates[0, 0]
     dt = 2 * math.pi / 720 / abs(omega)
     com, kinetic, potential = _com_motion(kin)
-    energy = kinetic + potential
-    power = _d1(energy, dt)
-    torque = _series(payload, "torque")
-    assert np.abs(torque * omega - power).max() < 1e-6 * np.abs(power).max()
-    y = np.sum(mech.link_mass * com[..., 1], axis=1)  # first moment of mass, kg m
-    momentum_rate = _d2(y, dt)
-    fy = _series(payload, "foundation:fy")
-    expected = -mech.gravity * mech.link_mass.sum() - momentum_rate
-    assert np.abs(fy - expected).max() < 1e-6 * np.abs(expected).max()
+    loads = _cutting_power(kin) if name == "double-cut-shears" else 0.0
+    power = _d1(kinetic + potential, dt)
+    torque_power = _series(payload, "torque") * omega
+    assert np.abs(torque_power + loads - power).max() < 1e-6 * np.abs(torque_power).max()
+
+    m, g = mech.link_mass, mech.gravity
+    q, v = kin.pose[0], kin.vel[0]
+    c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
+    rx = c * mech.link_com[:, 0] - s * mech.link_com[:, 1]
+    ry = s * mech.link_com[:, 0] + c * mech.link_com[:, 1]
+    vx, vy = v[..., 0] - v[..., 2] * ry, v[..., 1] + v[..., 2] * rx
+    momentum = np.sum(m * (com[..., 0] * vy - com[..., 1] * vx) + mech.link_inertia * v[..., 2], axis=1)
+    expected = {
+        "foundation:fx": -_d2(np.sum(m * com[..., 0], axis=1), dt),
+        "foundation:fy": -g * m.sum() - _d2(np.sum(m * com[..., 1], axis=1), dt),
+        "foundation:m": -g * np.sum(m * com[..., 0], axis=1) - _d1(momentum, dt),
+    }
+    for key, value in expected.items():
+        assert np.abs(_series(payload, key) - value).max() < 1e-6 * np.abs(value).max(), key
 
 
 def test_knife_chart_is_the_slider_crank_closed_form():
