@@ -631,3 +631,61 @@ def test_the_torque_and_moment_charts_say_counter_clockwise_positive():
     power = _d1(kinetic + potential, 2 * math.pi / 720 / abs(omega))
     torque = _series(payload, "torque")
     assert np.abs(torque * omega - power).max() < 1e-6 * np.abs(power).max()
+
+
+@pytest.fixture(scope="module")
+def live_server():
+    """The four-bar's viewer on a real uvicorn server in a thread (127.0.0.1, a free port): (host, port)."""
+    import threading
+
+    uvicorn = pytest.importorskip("uvicorn")
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    sock.bind(("127.0.0.1", 0))
+    srv = uvicorn.Server(uvicorn.Config(create_app("four-bar", steps=36), log_level="warning", lifespan="off"))
+    thread = threading.Thread(target=srv.run, kwargs={"sockets": [sock]}, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + 30
+    while not srv.started:
+        assert time.monotonic() < deadline and thread.is_alive(), "the server did not start"
+        time.sleep(0.05)
+    yield "127.0.0.1", sock.getsockname()[1]
+    srv.should_exit = True
+    thread.join(timeout=10)
+    sock.close()
+
+
+@pytest.mark.parametrize("size, status", [(MAX_BODY + 1, 413), (4 * MAX_BODY, 413), (MAX_BODY - 100, 200)])
+def test_a_chunked_body_without_a_length_is_limited_too(live_server, size, status):
+    """Transfer-Encoding: chunked and no Content-Length: the server counts the bytes as they come and answers 413
+    past the limit; a body under it (padded with spaces) is solved."""
+    import http.client
+
+    host, port = live_server
+    body = b'{"steps": 24}'
+    body = body + b" " * (size - len(body))
+
+    def chunks():
+        for i in range(0, len(body), 4096):
+            yield body[i : i + 4096]
+
+    conn = http.client.HTTPConnection(host, port, timeout=30)
+    try:
+        conn.putrequest("POST", "/api/solve")
+        conn.putheader("Content-Type", "application/json")
+        conn.putheader("Transfer-Encoding", "chunked")
+        conn.endheaders()
+        try:
+            for chunk in chunks():
+                conn.send(b"%x\r\n%s\r\n" % (len(chunk), chunk))
+            conn.send(b"0\r\n\r\n")
+        except (BrokenPipeError, ConnectionResetError):
+            pass  # the server may answer and close before the whole body is sent
+        r = conn.getresponse()
+        assert r.status == status
+        answer = json.loads(r.read())
+        if status == 413:
+            assert f"limited to {MAX_BODY} bytes" in answer["error"]
+        else:
+            assert len(answer["angles_deg"]) == 24
+    finally:
+        conn.close()
