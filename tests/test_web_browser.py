@@ -285,3 +285,83 @@ def test_a_frame_pivot_named_second_gets_its_support(page, tmp_path):
     found = {joint: [float(v) for v in points.split(" ")[0].split(",")] for joint, points in apexes}
     assert len(apexes) == 2 and found == {"O2": [0.0, 0.0], "O4": [300.0, 0.0]}
     assert page.errors == []
+
+
+def chart_geometry(page, key: str) -> dict:
+    """A chart's plot as drawn: its axes' ends (viewBox units), the value range, the cursor, the curve's vertices
+    and the content box of the svg on the screen (the viewBox stretched onto it: preserveAspectRatio none)."""
+    return page.eval_on_selector(
+        f'#charts svg.chart[data-series="{key}"]',
+        """g => {
+            const lines = Array.from(g.querySelectorAll('line.axis')).map(l => ['x1', 'y1', 'x2', 'y2'].map(
+                a => Number(l.getAttribute(a))));
+            const cursor = g.querySelector('line.cursor');
+            const box = g.getBoundingClientRect(), css = getComputedStyle(g);
+            const px = (name) => parseFloat(css.getPropertyValue(name));
+            const left = box.left + px('border-left-width') + px('padding-left');
+            const width = box.width - px('border-left-width') - px('padding-left') - px('padding-right')
+                - px('border-right-width');
+            const top = box.top + px('border-top-width') + px('padding-top');
+            const height = box.height - px('border-top-width') - px('padding-top') - px('padding-bottom')
+                - px('border-bottom-width');
+            return {
+                lines, view: g.getAttribute('viewBox').split(' ').map(Number),
+                lo: Number(g.getAttribute('data-lo')), hi: Number(g.getAttribute('data-hi')),
+                cursor: Number(cursor.getAttribute('x1')), d: g.querySelector('path.curve').getAttribute('d'),
+                ticks: Array.from(g.querySelectorAll('text[text-anchor="end"]')).map(t => [Number(t.getAttribute('y')),
+                    t.textContent]),
+                content: [left, top, width, height],
+            };
+        }""",
+    )
+
+
+def plot_area(geo: dict) -> tuple[float, float, float, float]:
+    """(left, right, top, bottom) of the plot from its two axes: the x axis is horizontal, the y axis vertical."""
+    horizontal = max((ln for ln in geo["lines"] if ln[1] == ln[3]), key=lambda ln: ln[2] - ln[0])
+    vertical = max((ln for ln in geo["lines"] if ln[0] == ln[2]), key=lambda ln: ln[3] - ln[1])
+    return horizontal[0], horizontal[2], vertical[1], vertical[3]
+
+
+def test_a_chart_draws_the_torque_the_forces_compute_and_a_click_turns_the_crank(page, server):
+    """The cursor's x and the curve's vertex under it, turned back into a crank angle and a torque through the
+    chart's axes, are the angle shown and the driving torque of lw.forces at it; a click at the x of 90 deg
+    turned moves the crank there, also on a chart resized and padded."""
+    open_viewer(page, server)
+    mech = lw.compile(lw.load(NAME))
+    first = lw.kinematics(mech, steps=360).angles[0]
+    for index in (97, 250):
+        angle = turn_to(page, index)
+        geo = chart_geometry(page, "torque")
+        left, right, top, bottom = plot_area(geo)
+        turned = (geo["cursor"] - left) / (right - left) * 360
+        assert turned == pytest.approx(math.degrees(angle - first) % 360, abs=0.01 * 360 / (right - left))
+        vertices = [tuple(map(float, v.split(","))) for v in geo["d"][1:].replace("M", "L").split("L")]
+        y = next(vy for vx, vy in vertices if abs(vx - geo["cursor"]) < 1e-6)
+        value = geo["hi"] - (y - top) / (bottom - top) * (geo["hi"] - geo["lo"])
+        torque = lw.forces(mech, [angle]).driving_torque[0]
+        assert abs(value - torque) < 0.006 / (bottom - top) * (geo["hi"] - geo["lo"]) + 1e-6 * abs(torque)
+        # the tick labels sit where the axis puts their values (labels of 3 significant digits)
+        for ty, text in geo["ticks"]:
+            v = float(text)
+            at = top + (bottom - top) * (geo["hi"] - v) / (geo["hi"] - geo["lo"])
+            assert abs(at + 4 - ty) < 0.01 + 0.005 * abs(v) / (geo["hi"] - geo["lo"]) * (bottom - top), text
+
+    def click_at(turn: float) -> None:
+        page.locator('#charts svg.chart[data-series="torque"]').scroll_into_view_if_needed()
+        geo = chart_geometry(page, "torque")
+        left, right, top, bottom = plot_area(geo)
+        x_view = left + (right - left) * turn / 360
+        cx0, cy0, cw, ch = geo["content"]
+        page.mouse.click(cx0 + x_view * cw / geo["view"][2], cy0 + (top + bottom) / 2 * ch / geo["view"][3])
+
+    click_at(90.0)
+    expect(page.locator("#scheme")).to_have_attribute("data-index", "90")
+    page.eval_on_selector(
+        '#charts svg.chart[data-series="torque"]',
+        "g => { g.style.width = '420px'; g.style.padding = '6px 30px 6px 90px'; g.style.border = '7px solid #ccc'; }",
+    )
+    click_at(300.0)
+    expect(page.locator("#scheme")).to_have_attribute("data-index", "300")
+    assert page.errors == []
+    shot(page, "viewer-chart-click")

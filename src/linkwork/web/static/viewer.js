@@ -417,11 +417,14 @@
     return out;
   }
 
+  // a chart's viewBox (W x H) and the margins of its plot (left, right, top, bottom)
+  const CHART = { W: 640, H: 150, L: 64, R: 12, T: 20, B: 22 };
+
   function drawCharts(data) {
     const root = $("charts");
     root.replaceChildren();
     state.chartUpdate = [];
-    const W = 640, H = 150, L = 64, R = 12, T = 20, B = 22;
+    const { W, H, L, R, T, B } = CHART;
     const n = data.turn_deg.length;
     const xOf = (i) => L + (W - L - R) * (data.turn_deg[i] / 360);
     for (const key of state.chosen) {
@@ -432,6 +435,9 @@
       let lo = vals.length ? Math.min(...vals) : 0, hi = vals.length ? Math.max(...vals) : 1;
       if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
       const yOf = (v) => T + (H - T - B) * (1 - (v - lo) / (hi - lo));
+      g.setAttribute("data-lo", String(lo));
+      g.setAttribute("data-hi", String(hi));
+      g.setAttribute("data-transform", `x = ${L} + ${W - L - R} turn / 360, y = ${T} + ${H - T - B} (hi - v) / (hi - lo)`);
       svg("line", { class: "axis", x1: L, y1: H - B, x2: W - R, y2: H - B }, g);
       svg("line", { class: "axis", x1: L, y1: T, x2: L, y2: H - B }, g);
       if (lo < 0 && hi > 0) svg("line", { class: "zero", x1: L, y1: yOf(0), x2: W - R, y2: yOf(0) }, g);
@@ -467,12 +473,19 @@
     note.className = "note";
   }
 
+  // the crank angle under the pointer: the pointer mapped into the chart's own coordinates by the SVG's
+  // current geometry (whatever its size, padding or border), then the plot's x axis turned back into degrees
   function pick(ev, g) {
-    const box = g.getBoundingClientRect();
-    const f = (ev.clientX - box.left) / box.width;
-    const turn = ((f * 640 - 64) / (640 - 64 - 12)) * 360;
-    const n = state.data.turn_deg.length;
-    setIndex(Math.max(0, Math.min(n - 1, Math.round((turn / 360) * n))));
+    const ctm = g.getScreenCTM();
+    if (!ctm) return;
+    const pt = g.createSVGPoint();
+    pt.x = ev.clientX; pt.y = ev.clientY;
+    const x = pt.matrixTransform(ctm.inverse()).x;
+    const turn = ((x - CHART.L) / (CHART.W - CHART.L - CHART.R)) * 360;
+    const turns = state.data.turn_deg;
+    let best = 0;
+    for (let i = 1; i < turns.length; i++) if (Math.abs(turns[i] - turn) < Math.abs(turns[best] - turn)) best = i;
+    setIndex(best);
   }
 
   // ------------------------------------------------------------------ structure
