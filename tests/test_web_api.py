@@ -260,7 +260,14 @@ def test_a_cycle_that_assembles_only_in_part_has_gaps_where_the_dyad_cannot_clos
     assert 0 < beyond.sum() < len(phi)
     np.testing.assert_array_equal(~np.array(d["valid"]), beyond)
     i = int(np.flatnonzero(beyond)[0])
-    assert all(xy == [None, None] for xy in d["positions"][i][2:])  # frame points stay
+    assert d["positions"][i][:2] == [[0.5, 0.4], [0.0, 0.0]]  # frame.O1 and frame.O3 stay
+    assert all(xy == [None, None] for xy in d["positions"][i][2:])
+    # a pose solved on its own at that angle says the same, and echoes the angle as sent
+    pose = shears.post(
+        "/api/pose", json={"angle_deg": d["angles_deg"][i], "overrides": {"links.crank.length": 0.3}}
+    ).json()
+    assert pose["valid"] is False and pose["angle_deg"] == d["angles_deg"][i]
+    assert [pose["points"][p["name"]] for p in d["points"]] == d["positions"][i]
     assert all(v == [None, None] for v in d["plans"]["velocity"]["values"][i][1:])
     assert np.isnan(_series(d, "torque")[beyond]).all() and np.isfinite(_series(d, "torque")[~beyond]).all()
     assert any("no assembly" in e["message"] for e in d["events"])
@@ -689,3 +696,23 @@ def test_a_chunked_body_without_a_length_is_limited_too(live_server, size, statu
             assert len(answer["angles_deg"]) == 24
     finally:
         conn.close()
+
+
+def test_a_pose_echoes_the_angle_as_sent(shears):
+    r = shears.post("/api/pose", json={"angle_deg": 30})
+    assert r.status_code == 200 and r.json()["angle_deg"] == 30
+    assert shears.post("/api/pose", json={"angle_deg": 0.1 + 0.2}).json()["angle_deg"] == 0.1 + 0.2
+
+
+def test_an_internal_error_answers_500_with_the_security_headers(monkeypatch):
+    app = create_app("four-bar", steps=24)
+    client = TestClient(app, base_url=LOCAL, raise_server_exceptions=False)
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("broken on purpose")
+
+    monkeypatch.setattr(app.state.viewer, "cycle", broken)
+    r = client.get("/api/cycle")
+    assert r.status_code == 500 and r.json()["error"] == "internal error: RuntimeError: broken on purpose"
+    assert "default-src 'none'" in r.headers["content-security-policy"]
+    assert r.headers["x-content-type-options"] == "nosniff" and r.headers["cache-control"] == "no-store"

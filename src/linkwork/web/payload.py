@@ -5,7 +5,8 @@ and acceleration plans of every position, and the forces where the
 mechanism has masses or loads), so the page only indexes arrays when the
 crank turns.  Lengths in m, the plans' vectors in m/s and m/s^2, angles of
 the cycle in degrees, the series in the units they name; missing values
-(samples that do not assemble) are ``null``.
+(samples that do not assemble) are ``null``, except the frame's points,
+which are always given.
 
 Layout (``format: linkwork-view/1``):
 
@@ -98,7 +99,7 @@ def cycle_payload(mech: Any, steps: int = 360) -> dict[str, Any]:
         kin = kinematics(mech, steps=steps)
         forces, reason = _forces(mech, steps)
     notes += [str(w.message) for w in caught]
-    pts = kin.points()  # (A, P, 2)
+    pts = _with_frame(mech, kin.points())  # (A, P, 2)
     angles = kin.angles
     speed = float(kin.rates[0, 0])
     out: dict[str, Any] = {
@@ -332,14 +333,26 @@ def _structure(mech: Any) -> dict[str, Any]:
     return out
 
 
-def pose_payload(mech: Any, angle: float) -> dict[str, Any]:
-    """Positions of every point at one crank angle (rad), solved on its own: ``{name: [x, y]}`` in m."""
+def pose_payload(mech: Any, angle_deg: float) -> dict[str, Any]:
+    """Positions of every point at one crank angle, solved on its own: ``{name: [x, y]}`` in m.
+
+    ``angle_deg`` (degrees) is echoed as given; the frame's points are given where the mechanism does not
+    assemble, as in the cycle.
+    """
     from linkwork.motion import kinematics
 
-    kin = kinematics(mech, np.array([angle]))
-    pts = kin.points()[0]
+    kin = kinematics(mech, np.array([math.radians(angle_deg)]))
+    pts = _with_frame(mech, kin.points())[0]
     return {
-        "angle_deg": math.degrees(angle),
+        "angle_deg": angle_deg,
         "valid": bool(kin.valid[0]),
         "points": {name: _json(pts[p]) for p, name in enumerate(mech.point_names)},
     }
+
+
+def _with_frame(mech: Any, pts: np.ndarray) -> np.ndarray:
+    """Positions (A, P, 2) with the frame's points where they are fixed, also at samples that do not assemble."""
+    frame = np.asarray(mech.point_link) == 0
+    out = pts.copy()
+    out[:, frame] = np.asarray(mech.point_local)[frame]
+    return out

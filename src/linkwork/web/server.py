@@ -24,7 +24,6 @@ request is evaluated.
 from __future__ import annotations
 
 import json
-import math
 import re
 import time
 from collections.abc import Callable
@@ -203,7 +202,7 @@ def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
 
         def solve_pose() -> dict[str, Any]:
             with viewer.solving():
-                return pose_payload(viewer.compile(req.overrides), math.radians(req.angle_deg))
+                return pose_payload(viewer.compile(req.overrides), req.angle_deg)
 
         return _json(await run_in_threadpool(solve_pose))
 
