@@ -178,7 +178,11 @@ def test_the_plans_follow_the_crank(page, server):
             assert np.abs(v - kin.velocity(label.upper())[0]).max() < 2e-4 * scale, (index, label)
             a, scale = plan_point(page, "acceleration", label)
             assert np.abs(a - kin.acceleration(label.upper())[0]).max() < 2e-4 * scale, (index, label)
-        captions.add(page.locator("#velocity-caption").text_content())
+        caption = page.locator("#velocity-caption").text_content()
+        captions.add(caption)
+        # the caption's scale is per mm of the plan at full size (the viewBox's units), not of the screen
+        mu = page.get_attribute("#velocity-plan", "data-scale")
+        assert f"μv = {mu} (m/s)/mm of the plan drawn full size (shown scaled to fit);" in caption
         cursors = page.eval_on_selector_all("#charts line.cursor", "els => els.map(e => e.getAttribute('data-index'))")
         assert cursors and set(cursors) == {str(index)}
     assert len(captions) == 2  # the values in the caption changed with the crank

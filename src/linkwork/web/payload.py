@@ -23,7 +23,8 @@ Layout (``format: linkwork-view/1``):
   points (``p``, ``a``, ``b``..., and the construction's intermediate
   points), their vectors from the pole ``values`` (A, L, 2), the
   construction's ``vectors`` (from, to, kind, group) and one drawing
-  ``scale_per_mm`` for the whole cycle (units per mm of drawing, from
+  ``scale_per_mm`` for the whole cycle (units per mm of the plan drawn
+  full size, before the page scales the drawing to fit its panel; from
   the 1-2-5 series, that draws the longest vector of 95 % of the positions
   at most 100 mm long);
 * ``series``: quantities over the cycle (slider positions, rocker angles,

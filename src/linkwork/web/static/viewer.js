@@ -379,7 +379,8 @@
         const v = plan.values[i][j];
         return v && v[0] !== null ? `${plan.labels[j]} ${fmt(Math.hypot(v[0], v[1]), 3)}` : `${plan.labels[j]} -`;
       });
-      caption.textContent = `${kind} plan, pole p, ${mu} = ${scale} ${unit}; |${kind === "velocity" ? "v" : "a"}| in ${plan.unit}: ${parts.join(", ")}`;
+      caption.textContent = `${kind} plan, pole p, ${mu} = ${scale} ${unit} of the plan drawn full size (shown scaled to fit); ` +
+        `|${kind === "velocity" ? "v" : "a"}| in ${plan.unit}: ${parts.join(", ")}`;
     });
   }
 
