@@ -476,3 +476,24 @@ def test_odd_inputs_give_clear_errors(kwargs, message):
     mech = lw.compile(lw.example("four-bar"))
     with pytest.raises(lw.errors.LinkworkError, match=message):
         lw.kinematics(mech, **kwargs)
+
+
+def test_a_drive_on_the_frame_measures_the_crank_angle_whatever_the_order_of_its_links():
+    """``links: [crank, frame]`` describes the same drive as ``[frame, crank]``: the crank angle is the crank's
+    angle counter-clockwise from the frame's x axis, and ``ccw`` turns it counter-clockwise."""
+    from linkwork.examples import text
+
+    src = text("four-bar")
+    swapped = src.replace("links: [frame, crank]", "links: [crank, frame]")
+    assert swapped != src
+    a, b = (lw.compile(lw.loads(s)) for s in (src, swapped))
+    phi = np.radians([0.0, 60.0, 135.0, 250.0])
+    ka, kb = lw.kinematics(a, phi), lw.kinematics(b, phi)
+    np.testing.assert_allclose(np.cos(kb.angle("crank") - phi), 1.0, atol=1e-15)  # the angle asked for
+    assert kb.omega("crank") == pytest.approx(np.full(4, 2 * np.pi))  # 60 rpm ccw
+    for point in ("A", "B"):
+        np.testing.assert_allclose(kb.position(point), ka.position(point), atol=1e-15)
+        np.testing.assert_allclose(kb.acceleration(point), ka.acceleration(point), atol=1e-12)
+    fa, fb = lw.forces(a, phi), lw.forces(b, phi)
+    np.testing.assert_allclose(fb.driving_torque, fa.driving_torque, rtol=1e-12)
+    np.testing.assert_allclose(fb.reaction("O2"), fa.reaction("O2"), rtol=1e-12)  # the frame's force on the crank

@@ -312,6 +312,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
 
     depth = _depths(spec, index)
     joint_pair: dict[str, int] = {}
+    driven_joints = {drive.joint for drive in spec.drives}
     p5 = p4 = 0
     for jname, joint in spec.joints.items():
         pt = joint.point or jname
@@ -320,6 +321,9 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
             # a compound hinge: k - 1 pairs from the member nearest the frame (whatever the listed order)
             centre = min(links, key=lambda i: (depth[i], i))
             links = [centre] + [i for i in links if i != centre]
+        if joint.type == "revolute" and len(links) == 2 and links[1] == 0 and jname in driven_joints:
+            # a drive on the frame measures the driven link's angle from the frame, however the file orders them
+            links = links[::-1]
         if joint.type == "revolute":
             joint_pair[jname] = len(pair_type)
             for other in links[1:]:
