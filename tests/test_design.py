@@ -124,6 +124,36 @@ def test_forces_of_geometry_and_mass_variants_equal_those_of_the_edited_file():
         assert t["knife_clearance"][row] == pytest.approx(gap.max(), abs=1e-7)
 
 
+def test_peak_forces_of_the_slider_crank_shears_are_finite_where_the_knife_passes_the_crank_pivot(tmp_path):
+    """Seed 000 (OA = AB = l): the knife passes O at 90 and 270 deg, where the reactions are singular (NaN);
+    the peaks are taken over the finite samples, the foundation force filled there from the momentum theorem.
+    Closed form: the crank (mc, centre l/2) and the rod (mr, centre at (l cos, 3 l sin)/2) move with the knife
+    (m2, y = 2 l sin); the foundation carries the weights less the rate of change of momentum:
+    Fx = (mc + mr) l/2 w^2 cos(phi), Fy = -M g + (mc/2 + 3 mr/2 + 2 m2) l w^2 sin(phi)."""
+    t = lw.sweep("shears-slider-crank", ["links.crank.mass=5:20:2", "links.knife.mass=10:40:2"],
+                 ["peak_foundation_force", "peak_driving_torque", "assembles"])  # fmt: skip
+    length, w, g, mr, housing = 0.15, 10.0, 9.81, 10.0, 500.0
+    phi = np.linspace(0, 2 * np.pi, 360, endpoint=False)[:, None]
+    mc, m2 = t["links.crank.mass"], t["links.knife.mass"]
+    fx = (mc + mr) * length / 2 * w * w * np.cos(phi)
+    fy = -(housing + mc + mr + m2) * g + (mc / 2 + 3 * mr / 2 + 2 * m2) * length * w * w * np.sin(phi)
+    assert np.all(t["assembles"] == 1)
+    np.testing.assert_allclose(t["peak_foundation_force"], np.hypot(fx, fy).max(axis=0), rtol=1e-9)
+    assert np.all(np.isfinite(t["peak_driving_torque"]))
+    out = tmp_path / "x.parquet"
+    r = _cli("sweep", "shears-slider-crank", "--vary", "links.knife.mass=10:40:4", "--metric",
+             "peak_foundation_force", "--metric", "assembles", "--out", str(out), "--quiet")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "no variant assembles" not in r.stdout
+
+
+def test_a_metric_with_no_value_is_explained_by_its_cause(tmp_path):
+    r = _cli("sweep", "four-bar", "--vary", "links.crank.length=255:260:2", "--metric", "swing", "--metric",
+             "assembles", "--out", str(tmp_path / "x.parquet"), "--quiet")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "no variant assembles over the whole turn" in r.stdout
+
+
 def test_a_variant_that_does_not_assemble_has_nan_metrics():
     # a crank of 260 mm: O2B would reach 610 mm at 180 deg, beyond frame + rocker = 550 mm
     t = lw.sweep("four-bar", ["links.crank.length=100:260:2"], ["swing", "assembles", "peak_driving_torque"])

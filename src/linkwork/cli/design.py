@@ -89,7 +89,7 @@ def sweep(
         values = table.columns[name]
         ok = values[~_isnan(values)]
         if len(ok) == 0:
-            typer.echo(f"  {name:28s} no variant assembles over the whole turn")
+            typer.echo(f"  {name:28s} {_why_none(table.columns)}")
             continue
         unit = table.units[name]
         lo, hi = int(_nanarg(values, min)), int(_nanarg(values, max))
@@ -97,6 +97,16 @@ def sweep(
             f"  {name:28s} min {_show(float(values[lo]), unit)} (variant {table.columns['variant'][lo]}), "
             f"max {_show(float(values[hi]), unit)} (variant {table.columns['variant'][hi]})"
         )
+
+
+def _why_none(columns: dict[str, Any]) -> str:
+    """Why a metric has no value in any variant, as far as the table tells."""
+    if "assembles" not in columns:
+        return "no value in any variant (a variant that does not assemble over the whole turn has none)"
+    n = int((columns["assembles"] == 1).sum())
+    if n == 0:
+        return "no variant assembles over the whole turn"
+    return f"no value in any variant, though {n} assemble over the whole turn"
 
 
 def _isnan(values: Any) -> Any:

@@ -10,6 +10,11 @@ torque and the foundation loads of a variant are those of the file's masses
 plus, for every varied link, ``(s - 1)`` times the change that doubling that
 link's mass and inertia makes, ``s`` being the variant's mass over the file's.
 That is exact, and costs one more solution of the reactions per varied mass.
+
+At a singular position of a sample (a dead point where the reactions are
+indeterminate, NaN) the driving torque and the foundation loads are still
+defined: there they are taken from the power balance and from the theorem on
+the change of momentum, as :meth:`linkwork.kinetostatics.Forces.bolts` does.
 """
 
 from __future__ import annotations
@@ -20,6 +25,16 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
+
+
+def balances_of(kin: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Driving torque from the power balance ``(V, A)`` and foundation loads from the momentum theorem
+    ``(V, A, 3)``: defined also where the reactions are singular."""
+    from linkwork.kinetostatics.reactions import inertia_and_gravity, momentum_check, power_check
+
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        loads = inertia_and_gravity(kin)
+        return power_check(kin, loads)[..., 0], momentum_check(kin, loads)
 
 
 def forces_of(kin: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -55,28 +70,40 @@ class Evaluation:
 
     @cached_property
     def _forces(self) -> tuple[np.ndarray, np.ndarray]:
-        lam0, found0 = lam, found = forces_of(self.kin)
+        lam, found = self._superposed(forces_of)
+        torque = lam[..., 2 * self.kin.mechanism.n_pairs]
+        singular = ~(np.isfinite(torque) & np.all(np.isfinite(found), axis=-1))
+        if np.any(singular & self.kin.valid_all):
+            power, momentum = self._superposed(balances_of)
+            torque = np.where(np.isfinite(torque), torque, power)
+            found = np.where(np.isfinite(found), found, momentum)
+        return torque, found
+
+    def _superposed(self, solve: Any) -> tuple[np.ndarray, np.ndarray]:
+        """``solve(kin)`` at the variants' masses: the file's plus ``(s - 1)`` times the change that
+        doubling each varied link's mass and inertia makes (both results are linear in them)."""
+        a0, b0 = a, b = solve(self.kin)
         mech = self.kin.mechanism
         for link, scale in self.mass_scale.items():
             mass, inertia = mech.link_mass.copy(), mech.link_inertia.copy()
             mass[link] *= 2.0
             inertia[link] *= 2.0
             heavy = dataclasses.replace(mech, link_mass=mass, link_inertia=inertia)
-            lam2, found2 = forces_of(dataclasses.replace(self.kin, mechanism=heavy))
-            s = (scale - 1.0)[:, None, None]
-            lam = lam + s * (lam2 - lam0)
-            found = found + s * (found2 - found0)
-        return lam, found
+            a2, b2 = solve(dataclasses.replace(self.kin, mechanism=heavy))
+            s = scale - 1.0
+            a = a + s.reshape(-1, *[1] * (a0.ndim - 1)) * (a2 - a0)
+            b = b + s.reshape(-1, *[1] * (b0.ndim - 1)) * (b2 - b0)
+        return a, b
 
     @property
     def driving_torque(self) -> np.ndarray:
-        """Driving torque on the crank, N m: ``(V, A)``."""
-        mech = self.kin.mechanism
-        return self._forces[0][..., 2 * mech.n_pairs]
+        """Driving torque on the crank, N m: ``(V, A)``; from the power balance at singular samples."""
+        return self._forces[0]
 
     @property
     def foundation(self) -> np.ndarray:
-        """Force x, y (N) and moment (N m) on the foundation: ``(V, A, 3)``."""
+        """Force x, y (N) and moment (N m) on the foundation: ``(V, A, 3)``; from the momentum theorem at
+        singular samples."""
         return self._forces[1]
 
 

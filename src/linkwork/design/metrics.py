@@ -219,13 +219,20 @@ def _applies_transmission(mech: Any, arg: str | None) -> str | None:
 # ---------------------------------------------------------------- forces
 
 
+def _finite_max(values: np.ndarray) -> np.ndarray:
+    """Largest finite value of each row ``(V, A) -> (V,)``; NaN for a row with none."""
+    finite = np.isfinite(values)
+    top = np.max(np.where(finite, values, -np.inf), axis=1)
+    return np.where(finite.any(axis=1), top, np.nan)
+
+
 def _peak_torque(ev: Any, arg: str | None) -> np.ndarray:
-    return np.max(np.abs(ev.driving_torque), axis=1)
+    return _finite_max(np.abs(ev.driving_torque))
 
 
 def _peak_foundation(ev: Any, arg: str | None) -> np.ndarray:
     f = ev.foundation
-    return np.max(np.hypot(f[..., 0], f[..., 1]), axis=1)
+    return _finite_max(np.hypot(f[..., 0], f[..., 1]))
 
 
 def _applies_forces(mech: Any, arg: str | None) -> str | None:
