@@ -45,7 +45,9 @@ def test_stroke_and_time_ratio_of_an_offset_slider_crank_match_the_closed_form()
     assert len(t) == 15 and np.all(t["assembles"] == 1)
     # the extremes refined by a parabola through three samples half a degree apart
     np.testing.assert_allclose(t["stroke"], stroke, rtol=1e-7)
-    np.testing.assert_allclose(t["time_ratio"], (np.pi + alpha) / (np.pi - alpha), rtol=1e-4)
+    # counter-clockwise, the slider moves + x (away from the crank) from the folded position
+    # (crank angle pi + asin(e / (l - r))) to the extended one (asin(e / (l + r))): pi - alpha of the turn
+    np.testing.assert_allclose(t["time_ratio"], (np.pi - alpha) / (np.pi + alpha), rtol=1e-4)
     # grid order: the first dimension slowest
     np.testing.assert_allclose(t["links.crank.length"][:3], 0.08)
     np.testing.assert_allclose(t["links.rod.length"][:3], [0.38, 0.40, 0.42])
@@ -67,10 +69,31 @@ def test_four_bar_swing_and_transmission_angle_match_the_law_of_cosines():
     np.testing.assert_allclose(t["swing"], np.abs(psi[0] - psi[1]), rtol=1e-6)
     # time ratio from the crank angles of the extremes
     phi = [np.arccos((d * d + s * s - c * c) / (2 * d * s)) for s in (b + a, b - a)]
-    theta = np.pi + phi[0] - phi[1]  # forward stroke: from the extended to the folded position
-    np.testing.assert_allclose(
-        t["time_ratio"], np.maximum(theta, 2 * np.pi - theta) / np.minimum(theta, 2 * np.pi - theta), rtol=1e-4
-    )
+    # B above the frame line: O2B shortening from b + a (crank angle phi0) to b - a (crank angle pi + phi1)
+    # turns the rocker counter-clockwise, over the crank angle theta
+    theta = np.pi + phi[1] - phi[0]
+    np.testing.assert_allclose(t["time_ratio"], theta / (2 * np.pi - theta), rtol=1e-4)
+
+
+@pytest.mark.parametrize("direction", ["ccw", "cw"])
+def test_time_ratios_of_an_offset_slider_crank_follow_the_direction_of_rotation(direction):
+    """Extreme positions: extended at crank angle asin(e / (l + r)), folded at pi + asin(e / (l - r)).
+    Turning counter-clockwise the slider goes out (+ x) over pi - alpha, clockwise over pi + alpha.
+    A process load between the slider and the crank pivot closes as the slider comes back in."""
+    mech = (
+        offset_slider_crank()
+        .drive("O", speed="100 rpm", direction=direction, angle=30)
+        .process("press", ["slider.B", "crank.O"], axis="0 deg", workpiece=[0.3, 0.6], penetration=[0, 1],
+                 force=["0 N", "0 N"])
+    )  # fmt: skip
+    mech._data["drives"] = mech._data["drives"][-1:]
+    t = lw.sweep(mech.build(), {"links.crank.length": ("80", "120", 3)}, ["time_ratio", "working_time_ratio"],
+                 steps=720)  # fmt: skip
+    r, rod, e = t["links.crank.length"], 0.4, 0.05
+    alpha = np.arcsin(e / (rod - r)) - np.arcsin(e / (rod + r))
+    out = np.pi - alpha if direction == "ccw" else np.pi + alpha
+    np.testing.assert_allclose(t["time_ratio"], out / (2 * np.pi - out), rtol=1e-4)
+    np.testing.assert_allclose(t["working_time_ratio"], (2 * np.pi - out) / out, rtol=1e-4)
 
 
 def _shears_variant(crank: float, rod_mass: float | None = None, upper_mass: float | None = None) -> str:

@@ -152,14 +152,20 @@ def _range(values: np.ndarray, angles: np.ndarray) -> np.ndarray:
     return high - low
 
 
-def _ratio(values: np.ndarray, angles: np.ndarray) -> np.ndarray:
+def _rising(values: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """Crank angle (in the drive's direction, rad) over which ``values`` rise from their lowest to their
+    highest, ``(V,)``: the time of that stroke at uniform crank speed, times the speed."""
     _, at_high = _peak(values, angles, lowest=False)
     _, at_low = _peak(values, angles, lowest=True)
     sign = 1.0 if angles[1] > angles[0] else -1.0
-    forward = (sign * (at_high - at_low)) % (2 * math.pi)
-    backward = 2 * math.pi - forward
+    return (sign * (at_high - at_low)) % (2 * math.pi)
+
+
+def _ratio(values: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """Time of the stroke in which ``values`` rise over the time of the one in which they fall."""
+    rise = _rising(values, angles)
     with np.errstate(divide="ignore"):
-        return np.maximum(forward, backward) / np.minimum(forward, backward)
+        return rise / (2 * math.pi - rise)
 
 
 def _stroke(ev: Any, arg: str | None) -> np.ndarray:
@@ -279,6 +285,17 @@ def _applies_knives(mech: Any, arg: str | None) -> str | None:
     return load if isinstance(load, str) else None
 
 
+def _working_ratio(ev: Any, arg: str | None) -> np.ndarray:
+    """Time of the working stroke (the tools closing: their gap falling) over that of the return stroke."""
+    closing = 2 * math.pi - _rising(_gap(ev, arg), ev.kin.angles)
+    with np.errstate(divide="ignore"):
+        return closing / (2 * math.pi - closing)
+
+
+def _applies_working_ratio(mech: Any, arg: str | None) -> str | None:
+    return _applies_knives(mech, arg) or _one_revolute_drive(mech)
+
+
 def _assembles(ev: Any, arg: str | None) -> np.ndarray:
     return ev.kin.valid_all.all(axis=1).astype(float)
 
@@ -326,7 +343,20 @@ METRICS: dict[str, Metric] = {
             _time_ratio,
             _applies_time_ratio,
             "Time ratio of the strokes of a slider (time_ratio:JOINT) or a rocker (time_ratio:LINK) at uniform "
-            "crank speed: the crank angle of the longer stroke over the shorter, >= 1.",
+            "crank speed, in the drive's direction of rotation: the time of the stroke in which the slider moves "
+            "in the + direction of its guide's axis (the rocker turns counter-clockwise) over the time of the "
+            "other stroke; below 1 where that stroke is the faster one.",
+        ),
+        Metric(
+            "working_time_ratio",
+            "1",
+            None,
+            False,
+            _working_ratio,
+            _applies_working_ratio,
+            "Time ratio of a machine with a process load on two tools (working_time_ratio:LOAD): the time of "
+            "the working stroke (the tools closing, their gap along the load's axis falling) over the time of "
+            "the return stroke (the tools opening), at uniform crank speed in the drive's direction.",
         ),
         Metric(
             "min_transmission_angle",
