@@ -203,6 +203,46 @@ def test_latin_hypercube_puts_one_sample_in_every_stratum_and_random_is_seeded()
     assert not np.array_equal(w, make_plan(varies, "random", 1000, seed=4).values(0, 1000))
 
 
+def test_zero_and_negative_lengths_and_masses_are_refused(tmp_path):
+    with pytest.raises(DesignError) as err:
+        lw.sweep("four-bar", ["links.crank.length=0:100:3", "links.rocker.length=-10mm:250mm:2",
+                              "links.coupler.mass=0:1:2", "frame.points.O4.x=-100:300:2"], ["swing"])  # fmt: skip
+    problems = err.value.problems
+    assert any("links.crank.length=0:100:3" in p and "a length must be positive" in p for p in problems)
+    assert any("links.rocker.length=-10mm:250mm:2" in p and "a length must be positive" in p for p in problems)
+    assert not any("frame.points.O4.x" in p for p in problems)  # a coordinate may be negative
+    out = tmp_path / "z.parquet"
+    r = _cli("sweep", "four-bar", "--vary", "links.crank.length=0:100:3", "--metric", "swing", "--out", str(out))
+    assert r.returncode == 2 and "Traceback" not in r.stderr and "a length must be positive" in r.stderr
+    assert not out.exists() and not (tmp_path / "z.parquet.parts").exists()
+    with pytest.raises(DesignError, match="a mass must be positive"):
+        lw.sweep("four-bar", ["links.crank.mass=-1:2:2"], ["swing"])
+
+
+def test_random_and_lhs_samples_need_no_count_and_refuse_one():
+    t = lw.sweep("four-bar", ["links.crank.length=90:110"], ["swing"], sampling="lhs", samples=10, seed=2)
+    # one sample in each tenth of the range
+    strata = np.floor((t["links.crank.length"] - 0.09) / 0.02 * 10).astype(int)
+    assert sorted(strata) == list(range(10))
+    with pytest.raises(DesignError, match="COUNT is for a grid"):
+        lw.sweep("four-bar", ["links.crank.length=90:110:3"], ["swing"], sampling="random", samples=10)
+    with pytest.raises(DesignError, match="COUNT missing"):
+        lw.sweep("four-bar", ["links.crank.length=90:110"], ["swing"])
+    r = _cli("sweep", "four-bar", "--sample", "lhs", "--samples", "4", "--vary", "links.crank.length=90:110",
+             "--metric", "swing", "--out", "/dev/null/x.parquet")  # fmt: skip
+    assert "COUNT" not in r.stderr
+
+
+def test_a_negative_number_of_workers_is_refused(tmp_path):
+    with pytest.raises(DesignError, match="workers: expected 0 or more"):
+        lw.sweep("four-bar", ["links.crank.length=90:110:3"], ["swing"], workers=-1)
+    out = tmp_path / "w.parquet"
+    r = _cli("sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--workers", "-1",
+             "--out", str(out), "--quiet")  # fmt: skip
+    assert r.returncode == 2 and "Traceback" not in r.stderr and "workers" in r.stderr
+    assert not out.exists() and not (tmp_path / "w.parquet.parts").exists()
+
+
 def test_mass_paths_are_listed_with_the_geometry():
     params = design_parameters(lw.compile(lw.load("double-cut-shears")))
     assert params["links.rod.mass"] == 60.0 and params["links.crank.length"] == pytest.approx(0.1)

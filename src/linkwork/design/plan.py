@@ -137,6 +137,8 @@ def parse_vary(
             problems.append(f'--vary "{text}": START {parts[0]} is greater than STOP {parts[1]}')
         if kind == "mass" and start <= 0:
             problems.append(f'--vary "{text}": a mass must be positive, got START {parts[0]}')
+        if path.endswith(".length") and start <= 0:
+            problems.append(f'--vary "{text}": a length must be positive, got START {parts[0]}')
     if problems:
         return None, problems
     return Vary(path, float(values[0]), float(values[1]), count, kind), []
