@@ -30,7 +30,7 @@ def run(n: int, steps: int, workers: int, chunk: int | None):
     """Time one sweep; on a local cluster of ``workers`` processes (started and warmed up first, timed apart)
     or, for 0, in this process.  Returns (startup, sweep time, table)."""
     kw = dict(sampling="lhs", samples=n, seed=1, steps=steps, chunk_size=chunk)
-    vary = [v + ":2" for v in VARY]
+    vary = VARY
     if workers == 0:
         lw.sweep("four-bar", vary, METRICS, sampling="lhs", samples=10, steps=steps, workers=0)  # compile
         t = time.perf_counter()

@@ -386,7 +386,7 @@ def test_double_cut_shears_optimum_is_feasible_better_than_a_sample_and_its_file
     np.testing.assert_array_equal(ev["violation"] == 0, meets)
     assert ev["peak_driving_torque"][meets].min() == pytest.approx(best.metrics["peak_driving_torque"], rel=1e-12)
     # no design of a random sample in the same ranges that meets the constraints does better
-    sample = lw.sweep("double-cut-shears", [v + ":2" for v in vary], ["peak_driving_torque", "knife_overlap",
+    sample = lw.sweep("double-cut-shears", vary, ["peak_driving_torque", "knife_overlap",
                       "knife_clearance"], sampling="random", samples=400, seed=5, steps=180)  # fmt: skip
     ok = (sample["knife_overlap"] >= 0.005) & (sample["knife_clearance"] >= 0.2)
     assert ok.sum() > 10

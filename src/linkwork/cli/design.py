@@ -14,7 +14,8 @@ Vary = Annotated[
     list[str],
     typer.Option(
         "--vary",
-        help='PATH=START:STOP:COUNT, e.g. "links.crank.length=90mm:110mm:50" (bare numbers in the file\'s units); '
+        help='PATH=START:STOP:COUNT, e.g. "links.crank.length=90mm:110mm:50" (bare numbers in the file\'s units, '
+        "as `linkwork parameters` lists them); PATH=START:STOP for --sample random or lhs and for optimize; "
         "repeat for more dimensions",
     ),
 ]

@@ -89,9 +89,13 @@ _VARY = re.compile(r"^\s*([^=\s]+)\s*=\s*(.*)$")
 
 
 def parse_vary(
-    text: str, mech: Any, declared: dict[str, str], count_required: bool = True
+    text: str, mech: Any, declared: dict[str, str], count_required: bool | None = True
 ) -> tuple[Vary | None, list[str]]:
-    """Read ``PATH=START:STOP[:COUNT]``; returns the :class:`Vary` (or None) and the problems found."""
+    """Read ``PATH=START:STOP[:COUNT]``; returns the :class:`Vary` (or None) and the problems found.
+
+    ``count_required``: True for a grid (COUNT needed), None for a random or Latin-hypercube sample
+    (COUNT refused: ``samples`` gives the number of variants), False where it is ignored (optimisation).
+    """
     from linkwork.spec.checks import suggest
     from linkwork.units import UnitParseError, parse_quantity
 
@@ -129,6 +133,11 @@ def parse_vary(
         else:
             if count < 1:
                 problems.append(f'--vary "{text}": COUNT must be 1 or more, got {count}')
+        if count_required is None:
+            problems.append(
+                f'--vary "{text}": COUNT is for a grid; a random or lhs sample takes PATH=START:STOP '
+                "and its number of variants from --samples"
+            )
     elif count_required:
         problems.append(f'--vary "{text}": COUNT missing (PATH=START:STOP:COUNT)')
     if len(values) == 2:
@@ -144,12 +153,14 @@ def parse_vary(
     return Vary(path, float(values[0]), float(values[1]), count, kind), []
 
 
-def parse_varies(texts: list[str], mech: Any, declared: dict[str, str], count_required: bool = True) -> list[Vary]:
+def parse_varies(
+    texts: list[str], mech: Any, declared: dict[str, str], count_required: bool | None = True
+) -> list[Vary]:
     """Read every ``--vary``; raises :class:`DesignError` listing every problem of them all."""
     problems: list[str] = []
     out: list[Vary] = []
     if not texts:
-        problems.append("give at least one --vary PATH=START:STOP:COUNT")
+        problems.append("give at least one --vary PATH=START:STOP:COUNT (PATH=START:STOP for random, lhs)")
     for text in texts:
         vary, found = parse_vary(text, mech, declared, count_required)
         problems += found
@@ -232,11 +243,13 @@ def make_plan(varies: list[Vary], sampling: str = "grid", samples: int | None = 
         problems.append(f'--sample "{sampling}": expected one of {", ".join(SAMPLINGS)}')
     if samples is not None and samples < 1:
         problems.append(f"--samples must be 1 or more, got {samples}")
+    if sampling != "grid" and samples is None:
+        problems.append(f"--sample {sampling} needs --samples N, the number of variants")
     if sampling == "grid" and samples is not None:
         problems.append("--samples is for --sample random or lhs; a grid has the product of the COUNTs")
     if sampling == "grid" and any(v.count is None for v in varies):
         problems.append("a grid needs a COUNT in every --vary")
     if problems:
         raise DesignError(problems)
-    n = samples if samples is not None else math.prod(v.count or 1 for v in varies)
+    n = samples if samples is not None else math.prod(v.count or 1 for v in varies)  # a grid's
     return Plan(tuple(varies), sampling, int(n), int(seed))

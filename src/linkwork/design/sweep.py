@@ -84,7 +84,7 @@ def _declared(spec: Any) -> dict[str, str]:
     return {**DEFAULT_UNITS, **spec.units.model_dump(exclude_none=True)}
 
 
-def _varies(vary: Any, mech: Any, spec: Any, count_required: bool = True) -> list[Vary]:
+def _varies(vary: Any, mech: Any, spec: Any, count_required: bool | None = True) -> list[Vary]:
     """``--vary`` texts, or a dict ``path -> (start, stop[, count])`` (numbers in the file's units or with units)."""
     if isinstance(vary, dict):
         texts = []
@@ -166,12 +166,12 @@ def sweep(
         A mechanism file, the name of a bundled example, a spec or a compiled mechanism.
     vary : dict or list of str
         ``{"links.crank.length": ("90 mm", "110 mm", 50)}`` or ``["links.crank.length=90mm:110mm:50"]``:
-        each dimension's range and, for a grid, its number of values; bare numbers in the file's units.
+        each dimension's range and, for a grid only, its number of values; bare numbers in the file's units.
     metrics : list of str
         Names from :data:`linkwork.design.metrics.METRICS`, some with an argument (``stroke:guide_E``).
     sampling : {"grid", "random", "lhs"}
         Every combination of the ranges' values, or a uniform random or Latin-hypercube sample of
-        ``samples`` variants (default: the product of the counts) from ``seed``.
+        ``samples`` variants from ``seed`` (the ranges then without a count).
     steps : int
         Crank angles over the turn.
     chunk_size : int, optional
@@ -212,7 +212,7 @@ def sweep(
     varies: list[Vary] = []
     requests: list[MetricRequest] = []
     try:
-        varies = _varies(vary, mech, spec)
+        varies = _varies(vary, mech, spec, True if sampling == "grid" else None)
     except DesignError as exc:
         problems += exc.problems
     try:
