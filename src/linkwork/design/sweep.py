@@ -221,6 +221,8 @@ def sweep(
         problems += exc.problems
     if isinstance(steps, bool) or not isinstance(steps, int) or steps < 3:
         problems.append(f"steps: expected a whole number of 3 or more, got {steps!r}")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
+        problems.append(f"workers: expected 0 or more (0: in this process), got {workers!r}")
     if chunk_size is not None and chunk_size < 1:
         problems.append(f"chunk size: expected 1 or more, got {chunk_size}")
     if out is not None and Path(out).suffix not in (".parquet", ".nc"):
