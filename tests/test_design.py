@@ -294,6 +294,19 @@ def test_an_interrupted_sweep_resumes_and_computes_every_chunk_once(tmp_path):
     assert manifest["chunk_size"] == 7 and manifest["plan"]["varies"][0]["count"] == 12
 
 
+def test_an_unwritable_out_is_refused_before_the_work(tmp_path):
+    for args in (["sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out",
+                  "/proc/x.parquet"],
+                 ["optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective",
+                  "peak_driving_torque", "--out", "/proc/b.yaml"],
+                 ["sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out",
+                  str(tmp_path / "no" / "x.parquet")]):  # fmt: skip
+        r = _cli(*args)
+        assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+        assert len(r.stderr.strip().splitlines()) == 1 and "--out" in r.stderr
+    assert not Path("/proc/x.parquet.parts").exists() and not (tmp_path / "no").exists()
+
+
 def test_netcdf_output(tmp_path):
     xr = pytest.importorskip("xarray")
     out = tmp_path / "s.nc"

@@ -85,9 +85,8 @@ def sweep(
         typer.echo(f"interrupted: the finished chunks are in {parts_dir(out)}; run again with --resume", err=True)
         raise typer.Exit(130) from None
     except OSError as exc:
-        if scheduler is None:
-            raise
-        fail(LinkworkError(f"cannot reach the Dask scheduler at {scheduler}: {exc}"))
+        where = f"the Dask scheduler at {scheduler}" if scheduler is not None else f'"{out}"'
+        fail(LinkworkError(f"{where}: {exc}"))
     typer.echo(f"{table.meta['mechanism']}: {len(table)} variants x {steps} angles -> {out}")
     for name in table.meta["metrics"]:
         values = table.columns[name]

@@ -200,6 +200,12 @@ def optimize(
             problems.append(f'--vary "{v.path}": START equals STOP; nothing to optimise over')
     if out is not None and spec is None:
         problems.append("writing the optimised file needs a mechanism file or a bundled example")
+    elif out is not None:
+        from linkwork.design.store import cannot_write
+
+        why = cannot_write(out)
+        if why:
+            problems.append(f'--out "{out}": {why}')
     if problems:
         raise DesignError(problems)
     paths = [v.path for v in varies]
@@ -268,7 +274,10 @@ def optimize(
     if out is not None:
         from linkwork.design.yamlout import write_design
 
-        written = write_design(mechanism, spec, mech, dict(zip(paths, best.tolist(), strict=True)), out)
+        try:
+            written = write_design(mechanism, spec, mech, dict(zip(paths, best.tolist(), strict=True)), out)
+        except OSError as exc:
+            raise DesignError([f'--out "{out}": cannot write ({exc})']) from None
     table = None
     if history:
         values = np.concatenate([h[0] for h in history])

@@ -112,6 +112,24 @@ def prepare(out: str | Path, manifest: dict[str, Any], resume: bool) -> set[int]
     return set()
 
 
+def cannot_write(out: str | Path) -> str | None:
+    """Why ``out`` (and ``OUT.parts`` beside it) cannot be written, or None: a file is created and removed
+    in its folder, so that a sweep or an optimisation does not find out only at its end."""
+    import os
+    import secrets
+
+    folder = Path(out).parent
+    if not folder.is_dir():
+        return f"no folder {folder}"
+    probe = folder / f".{Path(out).name}.{secrets.token_hex(6)}.probe"
+    try:
+        os.close(os.open(probe, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666))
+        probe.unlink()
+    except OSError as exc:
+        return f"cannot write in {folder} ({exc.strerror or exc})"
+    return None
+
+
 def to_arrow(columns: dict[str, np.ndarray], units: dict[str, str], meta: dict[str, Any] | None = None) -> Any:
     """A pyarrow Table of the columns; each field's unit in its metadata (``unit``)."""
     import pyarrow as pa

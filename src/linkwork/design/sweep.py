@@ -204,7 +204,13 @@ def sweep(
     DesignError
         Bad ranges, paths or metrics (every problem in one message), or a resume of another plan.
     """
-    from linkwork.design.store import mechanism_hash, prepare, read_chunks, write_chunk, write_table
+    from linkwork.design.store import (
+        mechanism_hash,
+        prepare,
+        read_chunks,
+        write_chunk,
+        write_table,
+    )
     from linkwork.design.store import parts_dir as _parts
 
     mech, spec = _source(mechanism)
@@ -227,6 +233,12 @@ def sweep(
         problems.append(f"chunk size: expected 1 or more, got {chunk_size}")
     if out is not None and Path(out).suffix not in (".parquet", ".nc"):
         problems.append(f'--out "{out}": expected a .parquet or .nc file')
+    elif out is not None:
+        from linkwork.design.store import cannot_write
+
+        why = cannot_write(out)
+        if why:
+            problems.append(f'--out "{out}": {why}')
     if problems:
         raise DesignError(problems)
     plan = make_plan(varies, sampling, samples, seed)
@@ -276,7 +288,10 @@ def sweep(
         bar.close()
     if parts is not None and out is not None:
         cols = read_chunks(parts, n_chunks)
-        write_table(out, cols, units, meta)
+        try:
+            write_table(out, cols, units, meta)
+        except OSError as exc:
+            raise DesignError([f'--out "{out}": cannot write the table ({exc}); the chunks are in {parts}']) from None
     else:
         cols = {k: np.concatenate([results[c][k] for c in range(n_chunks)]) for k in results[0]} if results else {}
     return SweepTable(cols, units, meta)
