@@ -307,6 +307,15 @@ def test_an_unwritable_out_is_refused_before_the_work(tmp_path):
     assert not Path("/proc/x.parquet.parts").exists() and not (tmp_path / "no").exists()
 
 
+def test_netcdf_without_xarray_is_refused_up_front(tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "xarray", None)  # import xarray raises ImportError
+    calls = []
+    with pytest.raises(DesignError, match=r'pip install "linkwork\[data\]"'):
+        lw.sweep("four-bar", ["links.crank.length=90:110:3"], ["swing"], out=tmp_path / "s.nc",
+                 on_chunk=lambda *a: calls.append(a))  # fmt: skip
+    assert not calls and not list(tmp_path.iterdir())
+
+
 def test_netcdf_output(tmp_path):
     xr = pytest.importorskip("xarray")
     out = tmp_path / "s.nc"

@@ -239,6 +239,11 @@ def sweep(
         why = cannot_write(out)
         if why:
             problems.append(f'--out "{out}": {why}')
+        if Path(out).suffix == ".nc":
+            try:
+                import xarray  # noqa: F401
+            except ImportError:
+                problems.append(f'--out "{out}": NetCDF output needs xarray: pip install "linkwork[data]"')
     if problems:
         raise DesignError(problems)
     plan = make_plan(varies, sampling, samples, seed)
