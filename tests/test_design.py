@@ -280,7 +280,7 @@ def test_an_interrupted_sweep_resumes_and_computes_every_chunk_once(tmp_path):
     with pytest.raises(DesignError, match="another plan"):
         lw.sweep("four-bar", ["links.crank.length=80:111:12", "links.rocker.length=240:260:5"], ["swing", "time_ratio"],
                  chunk_size=7, out=out, resume=True)  # fmt: skip
-    t = lw.sweep(*args, chunk_size=7, out=out, attempts=attempts, resume=True)
+    t = lw.sweep(*args, chunk_size=7, out=out, attempts=attempts, resume=True, keep_parts=True)
     assert sorted(_log(attempts)) == list(range(9))  # 60 variants in 9 chunks, each evaluated once
     np.testing.assert_array_equal(t["variant"], np.arange(60))
     for name in whole.columns:
@@ -292,6 +292,20 @@ def test_an_interrupted_sweep_resumes_and_computes_every_chunk_once(tmp_path):
     np.testing.assert_array_equal(table.column("time_ratio").to_numpy(), whole["time_ratio"])
     manifest = json.loads((tmp_path / "four.parquet.parts" / "manifest.json").read_text())
     assert manifest["chunk_size"] == 7 and manifest["plan"]["varies"][0]["count"] == 12
+
+
+def test_the_parts_folder_goes_once_the_table_is_written_and_a_run_again_is_not_refused(tmp_path):
+    out = tmp_path / "p.parquet"
+    args = ("four-bar", ["links.crank.length=90:110:6"], ["swing"])
+    first = lw.sweep(*args, chunk_size=2, out=out)
+    assert out.exists() and not (tmp_path / "p.parquet.parts").exists()
+    again = lw.sweep(*args, chunk_size=2, out=out)  # no --resume needed: nothing is left to resume
+    np.testing.assert_array_equal(again["swing"], first["swing"])
+    # a stale manifest with no chunk (a sweep that stopped before its first chunk) does not block a run
+    (tmp_path / "p.parquet.parts").mkdir()
+    (tmp_path / "p.parquet.parts" / "manifest.json").write_text("{}")
+    lw.sweep(*args, chunk_size=2, out=out)
+    assert not (tmp_path / "p.parquet.parts").exists()
 
 
 def test_an_unwritable_out_is_refused_before_the_work(tmp_path):
@@ -478,7 +492,7 @@ def test_a_sweep_killed_on_the_command_line_resumes_with_its_chunks_untouched(tm
     assert not out.exists()
     before = {p.name: (p.stat().st_ino, p.stat().st_mtime_ns) for p in parts.glob("chunk-*.parquet")}
     assert 3 <= len(before) < 24
-    r = _cli(*args, "--resume")
+    r = _cli(*args, "--resume", "--keep-parts")
     assert r.returncode == 0, r.stderr
     after = {p.name: (p.stat().st_ino, p.stat().st_mtime_ns) for p in parts.glob("chunk-*.parquet")}
     assert len(after) == 24 and all(after[name] == stamp for name, stamp in before.items())

@@ -179,7 +179,7 @@ def test_a_worker_killed_mid_sweep_has_its_chunk_retried_and_every_variant_is_co
 
     out = tmp_path / "s.parquet"
     t = lw.sweep("double-cut-shears", VARY, METRICS, steps=360, chunk_size=2, scheduler=cluster["file"], out=out,
-                 attempts=tmp_path, on_chunk=kill_after_two)  # fmt: skip
+                 attempts=tmp_path, on_chunk=kill_after_two, keep_parts=True)  # fmt: skip
     assert killed and victim.wait(timeout=10) == -signal.SIGKILL
     np.testing.assert_array_equal(t["variant"], np.arange(24))
     parts = sorted(p.name for p in (tmp_path / "s.parquet.parts").glob("chunk-*.parquet"))

@@ -59,6 +59,9 @@ def sweep(
         str | None, typer.Option("--scheduler", help="address or scheduler file of a running Dask cluster")
     ] = None,
     resume: Annotated[bool, typer.Option("--resume", help="finish a sweep whose chunks are on disk")] = False,
+    keep_parts: Annotated[
+        bool, typer.Option("--keep-parts", help="keep OUT.parts/ (the chunk files) once the table is written")
+    ] = False,
     quiet: Annotated[bool, typer.Option("--quiet", help="no progress bar")] = False,
 ) -> None:
     """Metrics of many design variants, a row per variant, computed in chunks (here or on Dask).
@@ -78,6 +81,7 @@ def sweep(
         table = run(
             file_or_example, vary, metric, sampling=sample, samples=samples, seed=seed, steps=steps,
             chunk_size=chunk_size, out=out, resume=resume, workers=workers, scheduler=scheduler, progress=not quiet,
+            keep_parts=keep_parts,
         )  # fmt: skip
     except (DesignError, LinkworkError) as exc:
         fail(exc)

@@ -4,7 +4,10 @@
 ``chunk-00012.parquet`` files, each written to a temporary name and renamed
 into place, so a file that exists is complete.  A resumed sweep checks that
 its plan matches the manifest and computes only the chunks that are missing;
-the final table is the chunks concatenated in variant order.
+the final table is the chunks concatenated in variant order.  Once it is
+written, the parts folder is removed (unless asked to keep it); a folder
+with a manifest and no chunk (a sweep stopped before its first chunk) counts
+as empty.
 """
 
 from __future__ import annotations
@@ -83,6 +86,8 @@ def prepare(out: str | Path, manifest: dict[str, Any], resume: bool) -> set[int]
 
     parts = parts_dir(out)
     path = parts / "manifest.json"
+    if path.exists() and not done_chunks(parts):  # a sweep that stopped before its first chunk: nothing to keep
+        path.unlink()
     if path.exists():
         if not resume:
             raise DesignError(
@@ -128,6 +133,17 @@ def cannot_write(out: str | Path) -> str | None:
     except OSError as exc:
         return f"cannot write in {folder} ({exc.strerror or exc})"
     return None
+
+
+def remove_parts(parts: Path) -> None:
+    """Remove the chunk files, the manifest and the folder of a finished sweep."""
+    for p in parts.iterdir():
+        if p.is_file() and (p.name == "manifest.json" or _CHUNK.match(p.name) or p.name.endswith(".part")):
+            p.unlink()
+    try:
+        parts.rmdir()
+    except OSError:  # something else was put there: leave it
+        pass
 
 
 def to_arrow(columns: dict[str, np.ndarray], units: dict[str, str], meta: dict[str, Any] | None = None) -> Any:

@@ -157,6 +157,7 @@ def sweep(
     progress: bool = False,
     on_chunk: Callable[[int, int, int], None] | None = None,
     attempts: str | Path | None = None,
+    keep_parts: bool = False,
 ) -> SweepTable:
     """Metrics of many design variants of one mechanism, a row per variant.
 
@@ -194,6 +195,8 @@ def sweep(
         ``on_chunk(chunk, done, total)`` after each chunk is stored.
     attempts : str or Path, optional
         A directory in which every evaluation of a chunk is logged (see :func:`chunk_task`).
+    keep_parts : bool
+        Keep ``OUT.parts/`` once the table is written (by default it is removed then).
 
     Returns
     -------
@@ -205,9 +208,11 @@ def sweep(
         Bad ranges, paths or metrics (every problem in one message), or a resume of another plan.
     """
     from linkwork.design.store import (
+        done_chunks,
         mechanism_hash,
         prepare,
         read_chunks,
+        remove_parts,
         write_chunk,
         write_table,
     )
@@ -289,6 +294,10 @@ def sweep(
                 store(*chunk_task(*task_args(c), attempts=log))
         elif todo:
             _on_dask(todo, task_args, store, workers, scheduler, log)
+    except BaseException:
+        if parts is not None and not done_chunks(parts):  # nothing to resume: leave no folder behind
+            remove_parts(parts)
+        raise
     finally:
         bar.close()
     if parts is not None and out is not None:
@@ -297,6 +306,8 @@ def sweep(
             write_table(out, cols, units, meta)
         except OSError as exc:
             raise DesignError([f'--out "{out}": cannot write the table ({exc}); the chunks are in {parts}']) from None
+        if not keep_parts:
+            remove_parts(parts)
     else:
         cols = {k: np.concatenate([results[c][k] for c in range(n_chunks)]) for k in results[0]} if results else {}
     return SweepTable(cols, units, meta)
