@@ -321,6 +321,25 @@ def test_an_unwritable_out_is_refused_before_the_work(tmp_path):
     assert not Path("/proc/x.parquet.parts").exists() and not (tmp_path / "no").exists()
 
 
+def test_a_bad_or_unreachable_scheduler_is_one_message_and_blocks_no_later_run(tmp_path):
+    import socket
+
+    out = tmp_path / "s.parquet"
+    base = ["sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out", str(out),
+            "--quiet"]  # fmt: skip
+    r = _cli(*base, "--scheduler", str(tmp_path / "nonexistent.json"))
+    assert r.returncode == 2 and "Traceback" not in r.stderr and "no such scheduler file" in r.stderr
+    with socket.socket() as sock:  # a port nobody listens on
+        sock.bind(("127.0.0.1", 0))
+        port = sock.getsockname()[1]
+    r = _cli(*base, "--scheduler", f"tcp://127.0.0.1:{port}", "--connect-timeout", "1")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert f"cannot reach the Dask scheduler at tcp://127.0.0.1:{port} within 1 s" in r.stderr
+    assert not out.exists() and not (tmp_path / "s.parquet.parts").exists()
+    r = _cli(*base)  # the failed connection left nothing that would need --resume
+    assert r.returncode == 0, r.stderr
+
+
 def test_netcdf_without_xarray_is_refused_up_front(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "xarray", None)  # import xarray raises ImportError
     calls = []

@@ -62,6 +62,9 @@ def sweep(
     keep_parts: Annotated[
         bool, typer.Option("--keep-parts", help="keep OUT.parts/ (the chunk files) once the table is written")
     ] = False,
+    connect_timeout: Annotated[
+        float, typer.Option("--connect-timeout", help="seconds to wait for the scheduler of --scheduler")
+    ] = 30.0,
     quiet: Annotated[bool, typer.Option("--quiet", help="no progress bar")] = False,
 ) -> None:
     """Metrics of many design variants, a row per variant, computed in chunks (here or on Dask).
@@ -81,7 +84,7 @@ def sweep(
         table = run(
             file_or_example, vary, metric, sampling=sample, samples=samples, seed=seed, steps=steps,
             chunk_size=chunk_size, out=out, resume=resume, workers=workers, scheduler=scheduler, progress=not quiet,
-            keep_parts=keep_parts,
+            keep_parts=keep_parts, connect_timeout=connect_timeout,
         )  # fmt: skip
     except (DesignError, LinkworkError) as exc:
         fail(exc)

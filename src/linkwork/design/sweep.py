@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -158,6 +159,7 @@ def sweep(
     on_chunk: Callable[[int, int, int], None] | None = None,
     attempts: str | Path | None = None,
     keep_parts: bool = False,
+    connect_timeout: float = 30.0,
 ) -> SweepTable:
     """Metrics of many design variants of one mechanism, a row per variant.
 
@@ -197,6 +199,8 @@ def sweep(
         A directory in which every evaluation of a chunk is logged (see :func:`chunk_task`).
     keep_parts : bool
         Keep ``OUT.parts/`` once the table is written (by default it is removed then).
+    connect_timeout : float
+        Seconds to wait for the scheduler at ``scheduler``.
 
     Returns
     -------
@@ -249,6 +253,8 @@ def sweep(
                 import xarray  # noqa: F401
             except ImportError:
                 problems.append(f'--out "{out}": NetCDF output needs xarray: pip install "linkwork[data]"')
+    if scheduler is not None:
+        problems += _scheduler_problems(scheduler, connect_timeout)
     if problems:
         raise DesignError(problems)
     plan = make_plan(varies, sampling, samples, seed)
@@ -293,7 +299,7 @@ def sweep(
             for c in todo:
                 store(*chunk_task(*task_args(c), attempts=log))
         elif todo:
-            _on_dask(todo, task_args, store, workers, scheduler, log)
+            _on_dask(todo, task_args, store, workers, scheduler, log, connect_timeout)
     except BaseException:
         if parts is not None and not done_chunks(parts):  # nothing to resume: leave no folder behind
             remove_parts(parts)
@@ -313,6 +319,22 @@ def sweep(
     return SweepTable(cols, units, meta)
 
 
+_ADDRESS = re.compile(r"^([a-z]+://)?[^\s/:]+:\d+$|^[a-z]+://\[[0-9a-fA-F:]+\]:\d+$")
+
+
+def _scheduler_problems(scheduler: str, connect_timeout: float) -> list[str]:
+    """What is wrong with a ``--scheduler`` (an address or a scheduler file) before connecting."""
+    out = []
+    if not Path(scheduler).is_file() and not _ADDRESS.match(scheduler):
+        if scheduler.endswith(".json") or "/" in scheduler.split("://")[-1]:
+            out.append(f'--scheduler "{scheduler}": no such scheduler file')
+        else:
+            out.append(f'--scheduler "{scheduler}": expected an address tcp://HOST:PORT or a scheduler file')
+    if not (isinstance(connect_timeout, int | float) and connect_timeout > 0):
+        out.append(f"connect timeout: expected a positive number of seconds, got {connect_timeout!r}")
+    return out
+
+
 def _on_dask(
     todo: list[int],
     task_args: Callable[[int], tuple],
@@ -320,6 +342,7 @@ def _on_dask(
     workers: int | None,
     scheduler: str | None,
     attempts: str | None,
+    connect_timeout: float = 30.0,
 ) -> None:
     """Run the chunks on a Dask cluster: an embedded local one, or the one at ``scheduler``.
 
@@ -330,9 +353,17 @@ def _on_dask(
 
     cluster = None
     if scheduler is not None:
-        client = (
-            Client(scheduler_file=scheduler, timeout=30) if Path(scheduler).is_file() else Client(scheduler, timeout=30)
-        )
+        try:
+            if Path(scheduler).is_file():
+                client = Client(scheduler_file=scheduler, timeout=connect_timeout)
+            else:
+                client = Client(scheduler, timeout=connect_timeout)
+        except (OSError, ValueError) as exc:
+            from linkwork.errors import LinkworkError
+
+            raise LinkworkError(
+                f"cannot reach the Dask scheduler at {scheduler} within {connect_timeout:g} s: {exc}"
+            ) from None
     else:
         n = workers or os.cpu_count() or 1
         cluster = LocalCluster(
