@@ -244,8 +244,42 @@ def test_a_negative_number_of_workers_is_refused(tmp_path):
 
 
 def test_mass_paths_are_listed_with_the_geometry():
+    """Against the file read as plain YAML: every moving link with a mass gets a mass path with that mass,
+    every link with a length its length, and nothing else is a mass path."""
+    data = YAML(typ="safe").load(text("double-cut-shears"))
+    assert data["units"]["length"] == "m" and data["units"]["mass"] == "kg"
     params = design_parameters(lw.compile(lw.load("double-cut-shears")))
-    assert params["links.rod.mass"] == 60.0 and params["links.crank.length"] == pytest.approx(0.1)
+    masses = {f"links.{name}.mass": float(link["mass"]) for name, link in data["links"].items() if link.get("mass")}
+    assert {p: v for p, v in params.items() if p.endswith(".mass")} == pytest.approx(masses, rel=1e-12)
+    for name, link in data["links"].items():
+        if "length" in link:
+            assert params[f"links.{name}.length"] == pytest.approx(float(link["length"]), rel=1e-12)
+
+
+def test_parameters_are_listed_in_the_files_units_and_a_range_far_from_them_warns(tmp_path):
+    data = YAML(typ="safe").load(text("four-bar"))
+    assert data["units"]["length"] == "mm"
+    r = _cli("parameters", "four-bar")
+    assert r.returncode == 0, r.stderr
+    listed = {line.split()[0]: (float(line.split()[1]), line.split()[2]) for line in r.stdout.splitlines()}
+    for name, link in data["links"].items():
+        assert listed[f"links.{name}.length"] == (pytest.approx(float(link["length"])), "mm")
+        assert listed[f"links.{name}.mass"] == (pytest.approx(float(link["mass"])), "kg")
+    assert listed["frame.points.O4.x"] == (pytest.approx(float(data["frame"]["points"]["O4"][0])), "mm")
+    out = tmp_path / "u.parquet"
+    base = ["sweep", "four-bar", "--metric", "swing", "--out", str(out), "--quiet"]
+    r = _cli(*base, "--vary", "links.crank.length=0.09:0.11:3")  # metres meant, millimetres read
+    assert r.returncode == 0, r.stderr
+    warned = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
+    assert len(warned) == 1 and "below 1/100 of the file's value 100 mm" in warned[0]
+    for vary in ("links.crank.length=90:110:3", "links.crank.length=0.09m:0.11m:3"):
+        out.unlink()
+        r = _cli(*base, "--vary", vary)
+        assert r.returncode == 0 and "warning" not in r.stderr, r.stderr
+    from linkwork.design.plan import DesignWarning
+
+    with pytest.warns(DesignWarning, match="above 100 times"):
+        lw.sweep("four-bar", ["links.rocker.length=30m:40m:2"], ["assembles"])
 
 
 # ---------------------------------------------------------------- chunks on disk, interruption, resume

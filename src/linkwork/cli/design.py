@@ -31,14 +31,41 @@ def _show(value: float, unit: str) -> str:
 
 @app.command()
 def parameters(file_or_example: FileOrExample) -> None:
-    """List the dimensions and masses a sweep may vary, with the file's values (SI)."""
-    from linkwork.cli.app import _compile
-    from linkwork.design.plan import design_parameters, kind_of
+    """List the dimensions and masses a sweep may vary, with the file's values in the file's units (the units
+    in which bare numbers of --vary are read)."""
+    from linkwork.design.plan import design_parameters, in_file_units, kind_of
+    from linkwork.design.sweep import _declared, _source
+    from linkwork.errors import LinkworkError
 
-    mech = _compile(file_or_example)
-    si = {"length": "m", "angle": "rad", "mass": "kg"}
+    try:
+        mech, spec = _source(file_or_example)
+    except LinkworkError as exc:
+        fail(exc)
+    declared = _declared(spec)
     for path, value in design_parameters(mech).items():
-        typer.echo(f"{path:40s} {_show(value, si[kind_of(path)])}")
+        shown, unit = in_file_units(value, kind_of(path), declared)
+        typer.echo(f"{path:40s} {shown:.10g} {unit}")
+
+
+class _Warnings:
+    """Design warnings raised inside, printed as one line each on stderr."""
+
+    def __enter__(self) -> None:
+        import warnings
+
+        self.catcher = warnings.catch_warnings(record=True)
+        self.caught = self.catcher.__enter__()
+        from linkwork.design.plan import DesignWarning
+
+        warnings.simplefilter("always", DesignWarning)
+
+    def __exit__(self, *exc: Any) -> None:
+        from linkwork.design.plan import DesignWarning
+
+        self.catcher.__exit__(*exc)
+        for w in self.caught:
+            if issubclass(w.category, DesignWarning):
+                typer.echo(f"warning: {w.message}", err=True)
 
 
 @app.command()
@@ -81,11 +108,12 @@ def sweep(
     from linkwork.errors import LinkworkError
 
     try:
-        table = run(
-            file_or_example, vary, metric, sampling=sample, samples=samples, seed=seed, steps=steps,
-            chunk_size=chunk_size, out=out, resume=resume, workers=workers, scheduler=scheduler, progress=not quiet,
-            keep_parts=keep_parts, connect_timeout=connect_timeout,
-        )  # fmt: skip
+        with _Warnings():
+            table = run(
+                file_or_example, vary, metric, sampling=sample, samples=samples, seed=seed, steps=steps,
+                chunk_size=chunk_size, out=out, resume=resume, workers=workers, scheduler=scheduler,
+                progress=not quiet, keep_parts=keep_parts, connect_timeout=connect_timeout,
+            )  # fmt: skip
     except (DesignError, LinkworkError) as exc:
         fail(exc)
     except KeyboardInterrupt:
@@ -156,10 +184,11 @@ def optimize(
     if out is not None and not out.endswith((".yaml", ".yml")):
         fail(LinkworkError(f'--out "{out}": expected a .yaml file'))
     try:
-        best = run(
-            file_or_example, vary, objective, constraint or [], maximize=maximize, metrics=metric or [],
-            steps=steps, seed=seed, popsize=popsize, maxiter=maxiter, out=out,
-        )  # fmt: skip
+        with _Warnings():
+            best = run(
+                file_or_example, vary, objective, constraint or [], maximize=maximize, metrics=metric or [],
+                steps=steps, seed=seed, popsize=popsize, maxiter=maxiter, out=out,
+            )  # fmt: skip
     except (DesignError, LinkworkError) as exc:
         fail(exc)
     if as_json:

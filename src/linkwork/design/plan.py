@@ -85,6 +85,43 @@ def design_parameters(mech: Any) -> dict[str, float]:
     return out
 
 
+class DesignWarning(UserWarning):
+    """A design option that is valid but probably not what was meant (e.g. a range in the wrong units)."""
+
+
+def in_file_units(value: float, kind: str, declared: dict[str, str]) -> tuple[float, str]:
+    """An SI value of ``kind`` in the file's unit of that kind: ``(value, unit)``."""
+    from linkwork.units import _factor, unit_for
+
+    unit = unit_for(kind, declared)
+    return value / _factor(unit, kind), unit
+
+
+def scale_warnings(varies: list[Vary], mech: Any, declared: dict[str, str]) -> list[str]:
+    """One line for each range that lies wholly below 1/100 or above 100 times the file's value: most
+    often a range written in other units than the file's (bare numbers are read in the file's units)."""
+    known = design_parameters(mech)
+    out = []
+    for v in varies:
+        file_value = abs(known.get(v.path, 0.0))
+        if file_value == 0 or v.start * v.stop <= 0:
+            continue
+        low, high = sorted((abs(v.start), abs(v.stop)))
+        if high < file_value / 100:
+            where = "below 1/100 of"
+        elif low > 100 * file_value:
+            where = "above 100 times"
+        else:
+            continue
+        shown = [in_file_units(x, v.kind, declared) for x in (v.start, v.stop, known[v.path])]
+        unit = shown[0][1]
+        out.append(
+            f'--vary "{v.path}": the range {shown[0][0]:.6g}:{shown[1][0]:.6g} {unit} lies {where} the file\'s '
+            f"value {shown[2][0]:.6g} {unit}; bare numbers are in the file's units ({unit})"
+        )
+    return out
+
+
 _VARY = re.compile(r"^\s*([^=\s]+)\s*=\s*(.*)$")
 
 

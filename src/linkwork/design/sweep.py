@@ -86,14 +86,24 @@ def _declared(spec: Any) -> dict[str, str]:
 
 
 def _varies(vary: Any, mech: Any, spec: Any, count_required: bool | None = True) -> list[Vary]:
-    """``--vary`` texts, or a dict ``path -> (start, stop[, count])`` (numbers in the file's units or with units)."""
+    """``--vary`` texts, or a dict ``path -> (start, stop[, count])`` (numbers in the file's units or with units).
+
+    A range far from the file's value (see :func:`~linkwork.design.plan.scale_warnings`) gives a
+    :class:`~linkwork.design.plan.DesignWarning`."""
+    import warnings
+
+    from linkwork.design.plan import DesignWarning, scale_warnings
+
     if isinstance(vary, dict):
         texts = []
         for path, rng in vary.items():
             parts = [str(x) for x in (rng if isinstance(rng, tuple | list) else (rng,))]
             texts.append(f"{path}={':'.join(parts)}")
         vary = texts
-    return parse_varies(list(vary), mech, _declared(spec), count_required)
+    out = parse_varies(list(vary), mech, _declared(spec), count_required)
+    for line in scale_warnings(out, mech, _declared(spec)):
+        warnings.warn(line, DesignWarning, stacklevel=3)
+    return out
 
 
 def _units(plan: Plan, requests: list[MetricRequest]) -> dict[str, str]:
