@@ -501,12 +501,33 @@ def test_cli_optimize_reports_and_writes(tmp_path):
     assert r.returncode == 0, r.stderr
     res = json.loads(r.stdout)
     assert res["feasible"] and res["metrics"]["min_transmission_angle"] >= math.radians(33)
-    assert lw.compile(lw.load(out)).point_local is not None
+    # the written file, solved afresh: its rocker, its peak torque (lw.forces) and its smallest transmission
+    # angle (law of cosines with the crank along the frame line, 0 and 180 deg, both among the samples)
+    mech = lw.compile(lw.load(out))
+    c = design_parameters(mech)["links.rocker.length"]
+    assert c == pytest.approx(res["values"]["links.rocker.length"], rel=1e-9)
+    f = lw.forces(mech, steps=360)
+    assert np.max(np.abs(f.driving_torque)) == pytest.approx(res["metrics"]["peak_driving_torque"], rel=1e-9)
+    a, b, d = 0.1, 0.35, 0.3
+    mu = [_fold(np.arccos((b * b + c * c - (d - s * a) ** 2) / (2 * b * c))) for s in (1, -1)]
+    assert min(mu) == pytest.approx(res["metrics"]["min_transmission_angle"], rel=1e-9)
+    assert isinstance(res["converged"], bool) and res["message"]
     bad = _cli("optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective", "peak_torque",
                "--constraint", "swing=>3", "--out", str(tmp_path / "x.yaml"))  # fmt: skip
     assert bad.returncode == 2 and "Traceback" not in bad.stderr
     assert 'metric "peak_torque": unknown' in bad.stderr and '--constraint "swing=>3"' in bad.stderr
     assert not (tmp_path / "x.yaml").exists()
+
+
+def test_an_optimisation_stopped_at_its_generation_limit_says_it_did_not_converge():
+    best = lw.optimize("four-bar", ["links.coupler.length=150:300"], "min_transmission_angle", maximize=True,
+                       seed=1, maxiter=2, tol=1e-12)  # fmt: skip
+    assert best.generations == 2 and best.converged is False and "iterations" in best.message
+    assert best.as_dict()["converged"] is False
+    r = _cli("optimize", "four-bar", "--vary", "links.coupler.length=150:300", "--objective",
+             "min_transmission_angle", "--maximize", "--maxiter", "2")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "not converged (Maximum number of iterations" in r.stdout
 
 
 def test_the_readme_design_commands_run(tmp_path):

@@ -173,7 +173,9 @@ def optimize(
     steps: Annotated[int, typer.Option("--steps", help="crank angles over the turn")] = 360,
     seed: Annotated[int, typer.Option("--seed", help="seed of the optimiser")] = 0,
     popsize: Annotated[int, typer.Option("--popsize", help="population size per dimension")] = 15,
-    maxiter: Annotated[int, typer.Option("--maxiter", help="generations at most")] = 100,
+    maxiter: Annotated[
+        int, typer.Option("--maxiter", help="generations at most (the report says when it stops there unconverged)")
+    ] = 100,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """The best design in the ranges (differential evolution over the whole population at once)."""
@@ -196,6 +198,8 @@ def optimize(
         return
     typer.echo(f"{'best design' if best.feasible else 'no design meets every constraint; the nearest'}: "
                f"{best.evaluations} designs evaluated in {best.generations} generations")  # fmt: skip
+    if not best.converged:
+        typer.echo(f"  not converged ({best.message}): the best found so far; more --maxiter may do better")
     for path, value in best.values.items():
         typer.echo(f"  {path:36s} {_show(value, best.units[path])}")
     typer.echo("metrics" + ("  (the file's design beside)" if best.initial else ""))

@@ -96,6 +96,9 @@ class Optimum:
     evaluations : int
         Number of designs evaluated.
     generations : int
+    converged : bool
+        Whether differential evolution met its tolerance; False where it stopped at its generation limit
+        (``maxiter``): the best design found then, not necessarily the optimum.
     message : str
         The optimiser's.
     out : Path or None
@@ -115,6 +118,7 @@ class Optimum:
     generations: int
     message: str
     out: Path | None = None
+    converged: bool = True
     evaluated: SweepTable | None = None
 
     def as_dict(self) -> dict[str, Any]:
@@ -127,6 +131,7 @@ class Optimum:
             "units": self.units,
             "evaluations": self.evaluations,
             "generations": self.generations,
+            "converged": self.converged,
             "message": self.message,
             "out": str(self.out) if self.out is not None else None,
         }
@@ -297,8 +302,9 @@ def optimize(
         count[0],
         int(getattr(result, "nit", 0)),
         str(result.message),
-        written,
-        table,
+        out=written,
+        evaluated=table,
+        converged=bool(result.success),
     )
 
 
