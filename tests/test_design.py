@@ -536,13 +536,29 @@ def test_the_readme_design_commands_run(tmp_path):
     block = section.split("```", 2)[1]
     lines = block.replace("\\\n", " ").strip().splitlines()
     assert [shlex.split(line)[1] for line in lines] == ["parameters", "sweep", "optimize"]
+    stdout = []
     for line in lines:
         args = shlex.split(line.split("  #")[0])
         r = _cli(*args[1:], cwd=tmp_path)
         assert r.returncode == 0, r.stderr
+        stdout.append(r.stdout)
+    # the sweep's row of the file's own design (crank 100 mm, B at 500 mm) against lw.forces on the file
+    import pyarrow.parquet as pq
+
+    t = pq.read_table(tmp_path / "shears.parquet").to_pandas()
+    row = t[np.isclose(t["links.crank.length"], 0.1) & np.isclose(t["links.rocker.points.B.x"], 0.5)]
+    f = lw.forces(lw.compile(lw.load("double-cut-shears")), steps=360)
+    assert len(row) == 1
+    assert row["peak_driving_torque"].iloc[0] == pytest.approx(np.max(np.abs(f.driving_torque)), rel=1e-9)
+    # the optimised file, solved afresh: the peak torque reported and the constraints, on a fine turn
     best = lw.compile(lw.load(tmp_path / "shears-optimised.yaml"))
-    assert design_parameters(best)["links.crank.length"] != pytest.approx(0.1, abs=1e-6)
-    assert (tmp_path / "shears.parquet").exists()
+    reported = next(line for line in stdout[2].splitlines() if line.split()[:1] == ["peak_driving_torque"])
+    torque = np.max(np.abs(lw.forces(best, steps=360).driving_torque))
+    assert float(reported.split()[1]) == pytest.approx(torque, rel=1e-5)
+    assert torque < 0.95 * np.max(np.abs(f.driving_torque))
+    k = lw.kinematics(best, steps=36000)
+    gap = k.position("knife_upper.edge")[:, 1] - k.position("knife_lower.edge")[:, 1]
+    assert -gap.min() >= 0.005 - 2e-6 and gap.max() >= 0.2 - 2e-6
 
 
 def test_a_sweep_killed_on_the_command_line_resumes_with_its_chunks_untouched(tmp_path):

@@ -111,6 +111,17 @@ def _equal(a, b):
         np.testing.assert_array_equal(a[name], b[name])
 
 
+def test_an_embedded_local_cluster_gives_the_results_of_this_process(tmp_path):
+    """--workers 2: a LocalCluster of two worker processes started by the sweep itself."""
+    vary = ["links.crank.length=95mm:105mm:3", "links.rod.mass=50:70:2"]
+    here = lw.sweep("double-cut-shears", vary, METRICS, steps=60, chunk_size=1, workers=0)
+    there = lw.sweep("double-cut-shears", vary, METRICS, steps=60, chunk_size=1, workers=2, attempts=tmp_path)
+    _equal(here, there)
+    log = _attempts(tmp_path)
+    assert sorted(c for c, _ in log) == list(range(6))
+    assert os.getpid() not in {pid for _, pid in log}  # computed in the workers, not here
+
+
 def test_the_cluster_gives_the_results_of_this_process(cluster, tmp_path):
     here = lw.sweep("double-cut-shears", VARY, METRICS, steps=120, chunk_size=5, workers=0)
     there = lw.sweep("double-cut-shears", VARY, METRICS, steps=120, chunk_size=5, scheduler=cluster["file"],
