@@ -177,6 +177,30 @@ def test_a_metric_with_no_value_is_explained_by_its_cause(tmp_path):
     assert "no variant assembles over the whole turn" in r.stdout
 
 
+def test_a_named_centre_of_mass_stays_where_the_point_was_when_the_point_is_varied():
+    """percussion-rocker: the rocker's ``com: C``.  A variant moving C keeps the centre of mass at the file's
+    C (0.16, 0.01): the same as a file with C moved and the centre of mass as coordinates, not as ``com: C``."""
+    t = lw.sweep("percussion-rocker", ["links.rocker.points.C.x=0.2:0.2:1"], ["peak_driving_torque"])
+
+    def peak(com):
+        yaml = YAML()
+        data = yaml.load(text("percussion-rocker"))
+        rocker = data["links"]["rocker"]
+        rocker["points"]["C"] = [0.2, 0.01]
+        rocker["com"] = com
+        rocker["inertia"] = 0.30 - 6.0 * (0.16**2 + 0.01**2)  # the file's, about the centre of mass
+        del rocker["inertia_about"]
+        import io
+
+        buf = io.StringIO()
+        yaml.dump(data, buf)
+        return np.max(np.abs(lw.forces(lw.compile(lw.loads(buf.getvalue())), steps=360).driving_torque))
+
+    kept, moved = peak([0.16, 0.01]), peak("C")
+    assert t["peak_driving_torque"][0] == pytest.approx(kept, rel=1e-9)
+    assert abs(moved - kept) > 1e-3 * kept  # the test can tell the two apart
+
+
 def test_a_variant_that_does_not_assemble_has_nan_metrics():
     # a crank of 260 mm: O2B would reach 610 mm at 180 deg, beyond frame + rocker = 550 mm
     t = lw.sweep("four-bar", ["links.crank.length=100:260:2"], ["swing", "assembles", "peak_driving_torque"])

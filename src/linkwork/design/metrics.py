@@ -366,7 +366,8 @@ METRICS: dict[str, Metric] = {
             _min_transmission,
             _applies_transmission,
             "Smallest transmission angle of all closed-form dyads over the turn, in [0, pi/2] "
-            "(see linkwork.motion.analysis.transmission_angles).",
+            "(see linkwork.motion.analysis.transmission_angles): the smallest sampled value, not refined "
+            "between samples (more steps for a finer one).",
         ),
         Metric(
             "peak_driving_torque",
