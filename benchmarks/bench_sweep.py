@@ -30,11 +30,10 @@ def run(n: int, steps: int, workers: int, chunk: int | None):
     """Time one sweep; on a local cluster of ``workers`` processes (started and warmed up first, timed apart)
     or, for 0, in this process.  Returns (startup, sweep time, table)."""
     kw = dict(sampling="lhs", samples=n, seed=1, steps=steps, chunk_size=chunk)
-    vary = VARY
     if workers == 0:
-        lw.sweep("four-bar", vary, METRICS, sampling="lhs", samples=10, steps=steps, workers=0)  # compile
+        lw.sweep("four-bar", VARY, METRICS, sampling="lhs", samples=10, steps=steps, workers=0)  # compile
         t = time.perf_counter()
-        table = lw.sweep("four-bar", vary, METRICS, workers=0, **kw)
+        table = lw.sweep("four-bar", VARY, METRICS, workers=0, **kw)
         return 0.0, time.perf_counter() - t, table
     from distributed import Client, LocalCluster
 
@@ -43,11 +42,11 @@ def run(n: int, steps: int, workers: int, chunk: int | None):
         with Client(cluster) as client:
             client.wait_for_workers(workers)
         # load the compiled kernels in every worker
-        lw.sweep("four-bar", vary, METRICS, sampling="lhs", samples=20 * workers, steps=steps, chunk_size=10,
+        lw.sweep("four-bar", VARY, METRICS, sampling="lhs", samples=20 * workers, steps=steps, chunk_size=10,
                  scheduler=cluster.scheduler_address)  # fmt: skip
         startup = time.perf_counter() - t
         t = time.perf_counter()
-        table = lw.sweep("four-bar", vary, METRICS, scheduler=cluster.scheduler_address, **kw)
+        table = lw.sweep("four-bar", VARY, METRICS, scheduler=cluster.scheduler_address, **kw)
         return startup, time.perf_counter() - t, table
 
 
