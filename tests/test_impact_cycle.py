@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 
 import linkwork as lw
 from linkwork.errors import LinkworkError
-from linkwork.impulse import Tool, simulate_blows, strike
+from linkwork.impulse import SlidingReversal, Tool, simulate_blows, strike
 from linkwork.machine import ConstantTorque, Drive, LinearMotor
 
 MECH = lw.compile(lw.example("percussion-rocker"))
@@ -153,16 +153,23 @@ def test_each_blow_balances_impulse_and_momentum(example):
         _check_blow_balances(b, 3.0, drive.inertia, 0.4, 0.15)
 
 
-def test_a_tool_that_cannot_move_and_no_drive_inertia_is_the_impact_of_the_whole_mechanism():
+@pytest.mark.parametrize(("restitution", "friction"), [(0.4, 0.0), (0.0, 0.15)])
+def test_a_tool_that_cannot_move_and_no_drive_inertia_is_the_impact_of_the_whole_mechanism(restitution, friction):
     """``strike`` with an infinitely heavy tool and no flywheel is ``linkwork.impact`` (an independent
-    implementation: the generalised impulse from the reduced inertia, the jump of every link)."""
+    implementation: the generalised impulse from the reduced inertia, the jump of every link): elastic
+    without friction, and plastic with friction (the crank stopped dead, the sliding ending with the
+    impact)."""
     angle = float(MECH.drive_start[0])
-    ref = lw.impact(MECH, at="rocker.K", normal=UP, omega_before=-30.0, restitution=0.4, friction=0.15)
+    ref = lw.impact(
+        MECH, at="rocker.K", normal=UP, omega_before=-30.0, restitution=restitution, friction=friction
+    )  # fmt: skip
     crank = ref.speed_before * SIGN  # turning speed
-    s = strike(MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=crank, restitution=0.4, friction=0.15)
+    s = strike(
+        MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=crank, restitution=restitution, friction=friction
+    )  # fmt: skip
     np.testing.assert_allclose(s.impulse, ref.impulse, rtol=1e-12)
     assert s.omega_before == pytest.approx(-30.0, rel=1e-12)
-    assert s.omega_after == pytest.approx(12.0, rel=1e-12)
+    assert s.omega_after == pytest.approx(30.0 * restitution, rel=1e-12, abs=1e-12)
     assert s.energy_lost == pytest.approx(ref.energy_loss, rel=1e-12)
     for joint, impulse in ref.joints.items():
         np.testing.assert_allclose(s.joints[joint], impulse, rtol=0, atol=1e-12 * np.abs(ref.impulse).max())
@@ -173,6 +180,35 @@ def test_a_tool_that_cannot_move_and_no_drive_inertia_is_the_impact_of_the_whole
     )  # fmt: skip
     assert soft.crank_speed_after > 0 and abs(soft.drive_impulse) > 0
     assert soft.tool_speed_after * 3.0 == pytest.approx(soft.impulse[1], rel=1e-12)
+
+
+def test_a_blow_that_would_reverse_the_sliding_is_refused():
+    """A tool that cannot move, R = 0.4 and friction: the crank is thrown back (psi'_+ = -R psi'_-), so
+    the striker's sliding on the tool, ``(dK/dpsi . t) psi'`` in a chain of one degree of freedom,
+    would reverse inside the impact; the map assumes one friction sign throughout and says so."""
+    angle = float(MECH.drive_start[0])
+    with pytest.raises(SlidingReversal, match="slides one way throughout"):
+        strike(MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=30.0, restitution=0.4, friction=0.15)
+    # without friction the sign of the sliding does not matter: the crank turns back at -R psi'_-
+    s = strike(MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=30.0, restitution=0.4, friction=0.0)
+    assert s.crank_speed_after == pytest.approx(-12.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("friction", [0.3, 0.0])
+def test_a_crank_thrown_back_by_the_blow_is_reported_as_a_stall(friction):
+    """No flywheel and a heavy tool: the elastic blow throws the crank back (the rocker rebounds off
+    the 200 kg tool), so the crank never turns through its cycle: an error, not blows per minute."""
+    drive = dataclasses.replace(MECH.machine, flywheel=0.0)
+    tool = Tool(200.0, 250.0, 2000.0)
+    # the first blow alone: the crank's speed after it, from the impact map, is negative
+    start = MECH.drive_start[0]
+    first = strike(
+        MECH, at="rocker.K", normal=UP, angle=start, crank_speed=30.0, restitution=1.0, friction=0.0,
+        tool_mass=tool.mass, drive_inertia=drive.inertia,
+    )  # fmt: skip
+    assert first.crank_speed_after < 0
+    with pytest.raises(LinkworkError, match="crank stops at 358.1 deg"):
+        simulate_blows(MECH, drive, tool=tool, restitution=1.0, friction=friction, blows=10)
 
 
 @pytest.mark.parametrize("tool_mass", [3.0, math.inf])

@@ -355,6 +355,10 @@ class _Free:
         return self.resistance * (self.state(min(t, self.t_top))[0] - self.u0)
 
 
+class SlidingReversal(LinkworkError):
+    """The striker's sliding on the tool would reverse within an impact (the crank thrown back)."""
+
+
 @dataclass(frozen=True)
 class Strike:
     """One impact of the striker on the tool in one pose (:func:`strike`); vectors in global axes.
@@ -434,6 +438,10 @@ def strike(
     LinkworkError
         If the mechanism does not assemble, the striker does not close on the tool, or the friction
         would lock the blow.
+    SlidingReversal
+        (a LinkworkError) With friction, if the blow would turn the crank back: in a chain of one degree
+        of freedom the sliding of K is ``(dK/dpsi . t) psi'``, so it would reverse within the impact,
+        which this map (one friction sign throughout) does not model.
     """
     from linkwork.impulse.mechanism import impulsive_reactions, pose_inertia
     from linkwork.motion import kinematics
@@ -472,6 +480,13 @@ def strike(
     inv_mass = 0.0 if math.isinf(tool_mass) else 1.0 / tool_mass
     big_p = -(1.0 + restitution) * closing / (sn * gphi / jt + inv_mass)
     dw = gphi * big_p / jt
+    # the sliding of K on the tool (which moves along n only) is st psi': it turns where the crank does
+    if friction > 0 and st != 0.0 and w * (w + dw) < 0 and abs(w + dw) > 1e-9 * abs(w):
+        raise SlidingReversal(
+            f"the blow at {math.degrees(angle) % 360:.3f} deg would throw the crank back (from {w:.6g} to "
+            f"{w + dw:.6g} rad/s), so the striker's sliding on the tool would reverse within the impact: the "
+            f"impact map assumes it slides one way throughout (friction f = {friction:g})"
+        )
     v_after = tool_speed + big_p * inv_mass
     impulse = big_p * (n + phi * tang)
     forces, lam, joints = impulsive_reactions(kin, striker, pos, impulse, dw)
@@ -530,8 +545,8 @@ def simulate_blows(
     Raises
     ------
     LinkworkError
-        Without a drive or a tool; if the striker never reaches the tool, the crank stops, or
-        friction would lock the blow.
+        Without a drive or a tool; if the striker never reaches the tool, the crank stops (also when
+        an impact throws it back, or stops it dead), or friction would lock the blow.
     """
     from scipy.integrate import solve_ivp
 
@@ -665,23 +680,32 @@ def simulate_blows(
     speed_scale = abs(float(np.max(np.abs(vel @ n)))) * w
     # rebounds slower than this end the chatter (plastic): their height would drown in rounding
     v_eps = 1e-5 * max(speed_scale, 1e-3)
+    w_eps = 1e-9 * w  # rad/s: a crank slower than this has stopped
     slack = 1e-12  # m: a gap event fires this far past touching, not lost to rounding at zero
     steady = False
     end_time = math.nan
     fine_until = -math.inf
 
-    def report_stall(psi_now: float) -> LinkworkError:
+    def report_stall(psi_now: float, how: str = "") -> LinkworkError:
         deg = math.degrees(start_angle + sign * psi_now) % 360
         return LinkworkError(
-            f"the crank stops at {deg:.1f} deg (in the {mode} phase): the drive cannot carry the machine "
+            f"the crank stops at {deg:.1f} deg (in the {mode} phase{how}): the drive cannot carry the machine "
             "through the blow (too weak a motor, too little flywheel, or too stiff a work)"
         )
 
     def blow_map(psi_b: float, w_b: float, v_b: float, plastic: bool) -> Strike:
-        return strike(
-            mech, at=at, normal=n, angle=start_angle + sign * psi_b, crank_speed=w_b, tool_speed=v_b,
-            restitution=0.0 if plastic else restitution, friction=f_c, tool_mass=mt, drive_inertia=jd, link=link,
-        )  # fmt: skip
+        try:
+            b = strike(
+                mech, at=at, normal=n, angle=start_angle + sign * psi_b, crank_speed=w_b, tool_speed=v_b,
+                restitution=0.0 if plastic else restitution, friction=f_c, tool_mass=mt, drive_inertia=jd,
+                link=link,
+            )  # fmt: skip
+        except SlidingReversal as err:
+            raise report_stall(psi_b, ", thrown back by an impact") from err
+        if not b.crank_speed_after > w_eps:
+            # the crank turns back (or stops dead) in the impact: the blow has stalled the drive
+            raise report_stall(psi_b, f", an impact leaves it at {b.crank_speed_after:.4g} rad/s")
+        return b
 
     def after_impact(t_b: float, psi_b: float, w_a: float, u_a: float, v_a: float, rel: float) -> str:
         """The phase that follows an impact with normal separating speed ``rel``."""
