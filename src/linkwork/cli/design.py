@@ -117,7 +117,10 @@ def sweep(
     except (DesignError, LinkworkError) as exc:
         fail(exc)
     except KeyboardInterrupt:
-        typer.echo(f"interrupted: the finished chunks are in {parts_dir(out)}; run again with --resume", err=True)
+        if parts_dir(out).is_dir():
+            typer.echo(f"interrupted: the finished chunks are in {parts_dir(out)}; run again with --resume", err=True)
+        else:
+            typer.echo("interrupted before the first chunk was stored: nothing to resume", err=True)
         raise typer.Exit(130) from None
     except OSError as exc:
         where = f"the Dask scheduler at {scheduler}" if scheduler is not None else f'"{out}"'
