@@ -211,6 +211,38 @@ def test_a_crank_thrown_back_by_the_blow_is_reported_as_a_stall(friction):
         simulate_blows(MECH, drive, tool=tool, restitution=1.0, friction=friction, blows=10)
 
 
+@pytest.mark.parametrize(("restitution", "friction"), [(None, None), (0.0, 0.15)])
+def test_a_heavy_tool_without_flywheel_stops_the_crank_with_a_clear_error(restitution, friction):
+    """A 300 kg tool and no flywheel: the file's blow (R = 0.4) throws the crank back; a plastic blow
+    leaves it so slow that the crank comes to rest while it presses the tool (the tool's speed, tied to
+    the crank's in contact, falls to zero with it). Either way: the crank stops, said at once, not a
+    run through thousands of empty contact phases to a limit."""
+    drive = dataclasses.replace(MECH.machine, flywheel=0.0)
+    tool = Tool(300.0, 250.0, 2000.0)
+    phase = "flight" if restitution is None else "contact"
+    with pytest.raises(LinkworkError, match=f"crank stops at .* deg \\(in the {phase} phase") as err:
+        simulate_blows(MECH, drive, tool=tool, restitution=restitution, friction=friction, blows=10)
+    if restitution is None:
+        return
+    # where: within the first stroke after the blow. An energy bound: the kinetic energy E after the
+    # plastic blow (machine and tool, from the impact map) plus the motor's largest moment over the
+    # turn it makes must pay the feed and the work's resistance over the tool's travel |s'| dpsi
+    start = float(MECH.drive_start[0])
+    w0 = float(abs(MECH.drive_speed[0]))
+    b = strike(
+        MECH, at="rocker.K", normal=UP, angle=start, crank_speed=32.87, restitution=0.0, friction=0.15,
+        tool_mass=tool.mass, drive_inertia=drive.inertia,
+    )  # fmt: skip
+    energy = 0.5 * b.inertia * b.crank_speed_after**2 + 0.5 * tool.mass * b.tool_speed_after**2
+    slope = abs(b.closing_speed / b.crank_speed_before)  # |s'| at the blow, m/rad
+    push = float(np.max(drive.moment(np.linspace(0.0, 2 * w0, 2001))))
+    turn = energy / ((tool.feed + tool.resistance) * slope - push)
+    assert 0 < turn < math.radians(3.0)
+    stop = float(str(err.value).split("stops at ")[1].split(" deg")[0])
+    blow = math.degrees(start) % 360  # the crank turns clockwise: the angle falls
+    assert blow - 2 * math.degrees(turn) < stop <= blow + 0.05, (blow, math.degrees(turn), stop)
+
+
 @pytest.mark.parametrize("tool_mass", [3.0, math.inf])
 def test_elastic_blow_without_friction_loses_no_energy(tool_mass):
     angle = float(MECH.drive_start[0])

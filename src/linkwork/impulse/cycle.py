@@ -614,6 +614,13 @@ def simulate_blows(
         sliding = _heading(gt * w, dgt * w * w, w * abs(gt) + 1e-300)
         return into, -f_c * sliding
 
+    def locked(psi: float, inertia: float) -> LinkworkError:
+        deg = math.degrees(start_angle + sign * psi) % 360
+        return LinkworkError(
+            f"friction f = {f_c:g} locks the contact at {deg:.1f} deg: the striker pressing the tool would "
+            f"have no positive effective inertia (J + J_d + m_t s' G_phi = {inertia:.4g} kg m^2)"
+        )
+
     seg: dict[str, Any] = {"into": True, "phi": 0.0}  # the flags of the contact phase being integrated
 
     def contact_force(psi: float, w: float, into: bool | None = None, phi: float | None = None) -> tuple[float, ...]:
@@ -625,7 +632,10 @@ def simulate_blows(
         phi = seg["phi"] if phi is None else phi
         gphi = ds + phi * gt
         rr = resist if into else 0.0
-        lam = (feed + rr - mt * (dds * w * w + ds * q / jt)) / (1.0 + mt * ds * gphi / jt)
+        den = 1.0 + mt * ds * gphi / jt  # the effective inertia of the contact over J + J_d
+        if not den > 0:
+            raise locked(psi, jt * den)
+        lam = (feed + rr - mt * (dds * w * w + ds * q / jt)) / den
         return lam, (q + gphi * lam) / jt, gt, phi
 
     # state: psi, omega, motor work, load work, friction loss, work on the work
@@ -722,8 +732,11 @@ def simulate_blows(
         return APART
 
     max_segments = 2000 * blows
+    stuck = 0  # segments in a row that did not advance the time
     for _ in range(max_segments):
         t_seg = t
+        if not y[1] > w_eps:  # the crank has stopped (or turns back) where a phase begins
+            raise report_stall(y[0])
         if mode == FLIGHT:
 
             def reach(t_: float, y_: np.ndarray) -> float:
@@ -772,16 +785,21 @@ def simulate_blows(
             def slide(t_: float, y_: np.ndarray) -> float:
                 return spl.at(y_[0])[9] * y_[1]
 
+            def locking(t_: float, y_: np.ndarray) -> float:  # the effective inertia, over J + J_d
+                j, _, _, _, _, _, _, ds, _, gt = spl.at(y_[0])[:10]
+                return 1.0 + mt * ds * (ds + seg["phi"] * gt) / (j + jd) - 1e-9
+
             separate.terminal, separate.direction = True, -1  # type: ignore[attr-defined]
             seated.terminal, seated.direction = True, -1  # type: ignore[attr-defined]
             into, phi = flags(y[0], y[1])
             seg["into"], seg["phi"] = into, phi
             turn.terminal, turn.direction = True, (-1 if into else 1)  # type: ignore[attr-defined]
             slide.terminal, slide.direction = True, (1 if phi > 0 else -1)  # type: ignore[attr-defined]
+            locking.terminal, locking.direction = True, -1  # type: ignore[attr-defined]
             horizon = t + 4 * math.pi / max(y[1], 1e-6)
             sol = solve_ivp(
                 rhs_contact, (t, horizon), y, method="DOP853", rtol=rtol, atol=1e-12,
-                events=[separate, seated, turn, stalled] + ([slide] if f_c > 0 else []), dense_output=True,
+                events=[separate, seated, turn, stalled, locking] + ([slide] if f_c > 0 else []), dense_output=True,
             )  # fmt: skip
             if sol.status == 0:
                 raise LinkworkError("the striker stays on the tool for two turns of the crank")
@@ -808,6 +826,16 @@ def simulate_blows(
         if sol.status == -1:
             raise LinkworkError(f"the integrator failed in the {mode} phase: {sol.message}")
         which = [k for k, ev in enumerate(sol.t_events) if len(ev)]
+        stuck = stuck + 1 if t <= t_seg else 0
+        if stuck > 3:
+            deg = math.degrees(start_angle + sign * y[0]) % 360
+            raise LinkworkError(
+                f"the {mode} phase makes no progress at {deg:.1f} deg (t = {t:.6g} s, crank speed {y[1]:.3g} "
+                "rad/s): its events fire where it starts"
+            )
+        if mode == CONTACT and 4 in which:
+            j_, _, _, _, _, _, _, ds_, _, gt_ = spl.at(y[0])[:10]
+            raise locked(y[0], j_ + jd + mt * ds_ * (ds_ + seg["phi"] * gt_))
         if mode == FLIGHT:
             if 1 in which:
                 raise report_stall(y[0])
