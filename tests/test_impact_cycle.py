@@ -87,14 +87,39 @@ def test_energy_balance_over_the_run_with_the_motor(example):
     assert abs(run.balance) < 1e-7 * e["motor"]
     c = run.cycle_energy
     spent = c["kinetic"] + c["blows"] + c["rebounds"] + c["seat"] + c["work"] + c["friction"]
-    assert c["motor"] + c["loads"] == pytest.approx(spent, rel=1e-7)
+    assert c["drive"] + c["loads"] == pytest.approx(spent, rel=1e-7)  # at the crank
+    assert c["motor"] - c["gear"] + c["loads"] == pytest.approx(spent, rel=1e-7)  # at the motor's shaft
     assert abs(c["kinetic"]) < 1e-5 * c["motor"]  # steady: the speed comes back
     assert abs(c["loads"]) < 1e-6 * c["motor"]  # gravity gives nothing over a turn
     for b in run.blows:
         assert b.work_on_work == pytest.approx(run.tool.resistance * b.penetration, rel=1e-7)
     assert c["work"] == pytest.approx(run.last.work_on_work, rel=1e-9)
-    assert min(c[k] for k in ("blows", "rebounds", "seat", "work", "friction")) > 0
+    assert min(c[k] for k in ("blows", "rebounds", "seat", "work", "friction", "gear")) > 0
     assert run.mean_power == pytest.approx(c["motor"] / run.period)
+    assert run.drive_power == pytest.approx(c["drive"] / run.period)
+
+
+def test_the_motor_works_at_its_own_shaft_and_the_gear_takes_its_share(example):
+    """The motor's work over the cycle is its own moment times its shaft's speed, ratio times the
+    crank's (the motor's characteristic, not the drive's moment on the crank), integrated over the
+    sampled crank speed (Simpson's rule on a cubic resampling of each stretch between impacts); the
+    gear takes 1 - eta of it."""
+    from scipy.integrate import simpson
+    from scipy.interpolate import CubicSpline
+
+    run, drive = example, MECH.machine
+    motor = 0.0
+    for idx in _segments(run):
+        t, w = run.t[idx], run.omega[idx]
+        if t[0] < run.last.time or len(t) < 2:
+            continue
+        fine = np.linspace(t[0], t[-1], 2001)
+        shaft = drive.ratio * (CubicSpline(t, w)(fine) if len(t) > 3 else np.interp(fine, t, w))
+        motor += simpson(np.asarray(drive.motor(shaft)) * shaft, x=fine)
+    c = run.cycle_energy
+    assert c["motor"] == pytest.approx(motor, rel=1e-4)  # agrees to 1.1e-5
+    assert c["gear"] == pytest.approx((1 - drive.efficiency) * motor, rel=1e-4)
+    assert drive.efficiency < 1 and c["drive"] < c["motor"]
 
 
 def _check_blow_balances(b, tool_mass, drive_inertia, restitution, friction):
@@ -455,6 +480,11 @@ def test_impact_cycle_command():
     out = json.loads(result.stdout)
     assert out["steady"] and len(out["blows"]) <= 40
     assert out["blows_per_minute"] == pytest.approx(60.0 / out["period"])
+    c = out["cycle_energy"]
+    assert c["motor"] - c["gear"] == pytest.approx(c["drive"], rel=1e-12)
+    assert c["drive"] == pytest.approx(MECH.machine.efficiency * c["motor"], rel=1e-12)
+    assert out["mean_power"] == pytest.approx(c["motor"] / out["period"])
+    assert out["drive_power"] == pytest.approx(c["drive"] / out["period"])
     blow = out["blows"][-1]
     assert {"O", "O1", "A", "N"} <= set(blow["support_impulse"])
     assert blow["support_impulse"]["O"]["on"] == "rocker"

@@ -164,12 +164,15 @@ def _cycle(mech: Any, as_json: bool, blows: int) -> None:
             },
             "convention": "impulses in global axes; support_impulse: what each joint's first-named link exerts on "
             "the second ('from' on 'on'); crank speeds in the drive's direction; phases of the last cycle, "
-            "start from its blow",
+            "start from its blow; mean_power: the motor's at its shaft, drive_power: the crank's after the "
+            "gear; energy, cycle_energy: motor (at its shaft) = gear (lost in it) + drive (on the crank); "
+            "drive + loads = kinetic + feed + blows + rebounds + seat + work + friction",
             "tool": {"mass": tool.mass, "feed": tool.feed, "resistance": tool.resistance},
             "steady": run.steady,
             "blows_per_minute": run.blows_per_minute,
             "period": run.period,
             "mean_power": run.mean_power,
+            "drive_power": run.drive_power,
             "blows": [_blow_dict(b) for b in run.blows],
             "phases": phases,
             "contact": {
@@ -229,7 +232,9 @@ def _cycle(mech: Any, as_json: bool, blows: int) -> None:
             )
     e = run.cycle_energy
     typer.echo(
-        f"  energy of the cycle: motor {e['motor']:.6g} J ({run.mean_power:.6g} W) = blow {e['blows']:.6g} + rebounds "
-        f"{e['rebounds']:.6g} + seat {e['seat']:.6g} + work {e['work']:.6g} + friction {e['friction']:.6g} "
+        f"  energy of the cycle: motor {e['motor']:.6g} J at its shaft ({run.mean_power:.6g} W) - gear "
+        f"{e['gear']:.6g} J = drive {e['drive']:.6g} J on the crank ({run.drive_power:.6g} W) = blow "
+        f"{e['blows']:.6g} + rebounds {e['rebounds']:.6g} + seat {e['seat']:.6g} + work {e['work']:.6g} + friction "
+        f"{e['friction']:.6g} "
         f"+ kinetic {e['kinetic']:.3g} - loads {e['loads']:.3g} J"
     )

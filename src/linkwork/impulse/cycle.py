@@ -225,10 +225,12 @@ class WorkingCycle:
         tool's travel into the work (m) and its speed (m/s), the contact force (N, NaN outside
         contact) and the phase (index into ``("flight", "apart", "contact")``).
     energy : dict
-        The run's ledger, J: ``motor``, ``loads`` (work done on the machine), ``kinetic`` (change
-        of the kinetic energy of machine and tool), ``feed`` (change of the feed's potential
-        ``F u``), ``blows``, ``rebounds``, ``seat`` (kinetic energy lost in impacts and on the
-        seat), ``work`` (done on the work), ``friction`` (lost sliding in contact phases).
+        The run's ledger, J: ``motor`` (work of the motor at its own shaft), ``gear`` (lost in the
+        gear), ``drive`` (work of the drive on the crank: ``motor - gear``), ``loads`` (work done
+        on the machine), ``kinetic`` (change of the kinetic energy of machine and tool), ``feed``
+        (change of the feed's potential ``F u``), ``blows``, ``rebounds``, ``seat`` (kinetic
+        energy lost in impacts and on the seat), ``work`` (done on the work), ``friction`` (lost
+        sliding in contact phases).
     cycle_energy : dict
         The same over the last cycle, from the last blow to the next.
     tool : Tool
@@ -268,16 +270,21 @@ class WorkingCycle:
 
     @property
     def mean_power(self) -> float:
-        """Mean power of the drive over the last cycle, W."""
+        """Mean power of the motor at its shaft over the last cycle, W (to compare with its rating)."""
         return self.cycle_energy["motor"] / self.period
 
     @property
+    def drive_power(self) -> float:
+        """Mean power the drive gives the crank over the last cycle (after the gear's loss), W."""
+        return self.cycle_energy["drive"] / self.period
+
+    @property
     def balance(self) -> float:
-        """Motor and load work less everything it went into over the run, J: zero up to the
-        integrator's error."""
+        """Motor and load work less everything it went into (the gear's loss included) over the run,
+        J: zero up to the integrator's error."""
         e = self.energy
         spent = e["kinetic"] + e["feed"] + e["blows"] + e["rebounds"] + e["seat"] + e["work"] + e["friction"]
-        return e["motor"] + e["loads"] - spent
+        return e["motor"] - e["gear"] + e["loads"] - spent
 
 
 def _heading(value: float, rate: float, scale: float) -> float:
@@ -602,6 +609,7 @@ def simulate_blows(
         raise LinkworkError(f'"{at}" never leaves the tool\'s face: no room for a blow')
     spl = _Splines(red.psi, [red.inertia, red.load, height, vel @ tang])
     jd = float(drive.inertia)
+    eta = float(getattr(drive, "efficiency", 1.0))
     moment = drive.moment
     mt, feed, resist = tool.mass, tool.feed, tool.resistance
     f_c = float(friction)
@@ -638,7 +646,7 @@ def simulate_blows(
         lam = (feed + rr - mt * (dds * w * w + ds * q / jt)) / den
         return lam, (q + gphi * lam) / jt, gt, phi
 
-    # state: psi, omega, motor work, load work, friction loss, work on the work
+    # state: psi, omega, work of the drive on the crank, load work, friction loss, work on the work
     def rhs_free(t: float, y: np.ndarray) -> list[float]:
         j, dj, _, m, _, _ = spl.at(y[0])[:6]
         w = y[1]
@@ -676,8 +684,12 @@ def simulate_blows(
 
     def account(y_: np.ndarray) -> dict[str, float]:
         """The ledger so far, with the tool on its seat (every blow starts and the run ends so)."""
+        # the gear passes eta of the motor's moment times its ratio to the crank: the motor's shaft
+        # does the crank's work over eta
+        on_crank = float(y_[2])
         return dict(
-            motor=float(y_[2]), loads=float(y_[3]), kinetic=kinetic(float(y_[0]), float(y_[1]), 0.0), feed=0.0,
+            motor=on_crank / eta, gear=on_crank / eta - on_crank, drive=on_crank, loads=float(y_[3]),
+            kinetic=kinetic(float(y_[0]), float(y_[1]), 0.0), feed=0.0,
             blows=ledger["blows"], rebounds=ledger["rebounds"], seat=ledger["seat"],
             work=float(y_[5]) + ledger["work_free"], friction=float(y_[4]),
         )  # fmt: skip
