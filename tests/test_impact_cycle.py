@@ -169,7 +169,12 @@ def _check_blow_balances(b, tool_mass, drive_inertia, restitution, friction):
     after = g[1] * b.crank_speed_after + b.tool_speed
     assert -before == pytest.approx(b.impact_speed, rel=1e-12)
     assert after == pytest.approx(restitution * b.impact_speed, rel=1e-10, abs=1e-12)
-    assert abs(b.impulse[0]) == pytest.approx(friction * b.impulse[1], rel=1e-12)
+    # friction: the tangential impulse opposes the sliding of K on the tool (which moves along n only,
+    # t = (1, 0)), before and after the blow alike (the crank keeps turning), in the ratio f
+    assert abs(b.impulse[0]) == pytest.approx(friction * b.impulse[1], rel=1e-12, abs=1e-12 * b.impulse[1])
+    if friction > 0:
+        assert b.impulse[0] * g[0] * b.crank_speed_before < 0
+        assert b.impulse[0] * g[0] * b.crank_speed_after < 0
 
 
 def test_each_blow_balances_impulse_and_momentum(example):
@@ -217,6 +222,36 @@ def test_a_blow_that_would_reverse_the_sliding_is_refused():
     # without friction the sign of the sliding does not matter: the crank turns back at -R psi'_-
     s = strike(MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=30.0, restitution=0.4, friction=0.0)
     assert s.crank_speed_after == pytest.approx(-12.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("tool_speed", [1.5, -1.0])
+def test_a_rebound_on_a_moving_tool_balances_momentum_and_restitution(tool_speed):
+    """An impact on a tool already moving (into the work ahead of the striker, or coming back up at it,
+    as in the rebounds): the tool's momentum takes the normal impulse, the machine's generalised
+    momentum (reduced inertia from the exact kinematics, flywheel and rotor) the impulse's
+    generalised part ``dK/dpsi . S``, the normal closing speed reverses times R, and the friction
+    opposes the sliding in the ratio f."""
+    angle = float(MECH.drive_start[0])
+    jd, mt, r, f = MECH.machine.inertia, 3.0, 0.4, 0.15
+    s = strike(
+        MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=30.0, restitution=r, friction=f,
+        tool_mass=mt, tool_speed=tool_speed, drive_inertia=jd,
+    )  # fmt: skip
+    inertia, _, _, _, g, _ = _pose([angle])
+    g = g[0]  # dK/dpsi: the kinematics at unit turning speed
+    jt = inertia[0] + jd
+    assert jt * (s.crank_speed_after - s.crank_speed_before) == pytest.approx(g @ s.impulse, rel=1e-10)
+    assert mt * (s.tool_speed_after - s.tool_speed_before) == pytest.approx(s.impulse[1], rel=1e-12)
+    before = g[1] * s.crank_speed_before + tool_speed  # the gap's rate
+    after = g[1] * s.crank_speed_after + s.tool_speed_after
+    assert before < 0 and after == pytest.approx(-r * before, rel=1e-10)
+    assert abs(s.impulse[0]) == pytest.approx(f * s.impulse[1], rel=1e-12)
+    assert s.impulse[0] * g[0] * s.crank_speed_before < 0
+    # the energy it loses: the machine's and the tool's kinetic energy, before less after
+    lost = 0.5 * jt * (s.crank_speed_before**2 - s.crank_speed_after**2)
+    lost += 0.5 * mt * (tool_speed**2 - s.tool_speed_after**2)
+    assert s.energy_lost == pytest.approx(lost, rel=1e-12)
+    assert lost > 0
 
 
 @pytest.mark.parametrize("friction", [0.3, 0.0])
@@ -304,16 +339,44 @@ def test_blows_per_minute_against_the_motor_balance_with_a_large_flywheel():
         """The crank speed at which ratio * stall * (1 - ratio w / no_load) * 2 pi = consumed."""
         return no_load / ratio * (1.0 - consumed / (2 * math.pi * ratio * stall))
 
+    def consumed(run):
+        """What the cycle spends: the impacts, the seat, the work, friction (not the motor's entry)."""
+        c = run.cycle_energy
+        return c["blows"] + c["rebounds"] + c["seat"] + c["work"] + c["friction"] + c["kinetic"] - c["loads"]
+
     first = simulate_blows(MECH, drive, blows=3, tol=0.0, omega0=30.0)  # what a cycle needs near there
-    run = simulate_blows(MECH, drive, blows=60, omega0=balanced(first.cycle_energy["motor"]), tol=1e-7)
+    run = simulate_blows(MECH, drive, blows=60, omega0=balanced(consumed(first)), tol=1e-7)
     assert run.steady
-    speed = balanced(run.cycle_energy["motor"])
+    speed = balanced(consumed(run))
     # a linear characteristic: its mean over the turn is its value at the mean speed over the turn,
     # which differs from 2 pi / period by the square of the (small) fluctuation
     assert run.blows_per_minute == pytest.approx(60.0 * speed / (2 * math.pi), rel=1e-4)
     # the crank's speed through the cycle stays within a small band around it
     tail = run.t >= run.last.time
     assert np.ptp(run.omega[tail]) < 0.02 * speed
+
+
+def test_the_period_is_the_time_the_crank_takes_for_its_turn(example):
+    """The blow-to-blow period, from the events' times, against the turn's time integrated from the
+    sampled crank speed, dt = dpsi / psi' (Simpson's rule on a cubic resampling of each stretch
+    between impacts, over the turning angle): one blow per turn of the crank."""
+    from scipy.integrate import simpson
+    from scipy.interpolate import CubicSpline
+
+    run = example
+    period, turn = 0.0, 0.0
+    for idx in _segments(run):
+        psi, w = run.psi[idx], run.omega[idx]
+        if run.t[idx[0]] < run.last.time or len(psi) < 2:
+            continue
+        assert np.all(np.diff(psi) > 0) and np.all(w > 0)
+        fine = np.linspace(psi[0], psi[-1], 2001)
+        speed = CubicSpline(psi, w)(fine) if len(psi) > 3 else np.interp(fine, psi, w)
+        period += simpson(1.0 / speed, x=fine)
+        turn += psi[-1] - psi[0]
+    assert turn == pytest.approx(2 * math.pi, rel=1e-9)
+    assert run.period == pytest.approx(period, rel=1e-6)
+    assert run.blows_per_minute == pytest.approx(60.0 / period, rel=1e-6)
 
 
 def _free_gap_acceleration(run, k, into):
@@ -376,38 +439,59 @@ def test_a_contact_phase_ending_in_a_smooth_separation():
     assert ends >= 1
 
 
-def test_the_rockers_loads_in_the_contact_phase_balance_its_acceleration(example):
-    """While the striker presses the tool: the forces on the rocker (its support O, the rod at N, the
-    tool at K, gravity) equal its mass times the acceleration of its centre of mass, from the exact
-    kinematics and the crank's acceleration (central differences of the sampled crank speed)."""
+def test_the_loads_in_the_contact_phase_balance_every_links_acceleration(example):
+    """While the striker presses the tool: the forces on each moving link (the joints' forces read back
+    from the per-joint table, the tool's at K on the rocker, gravity) equal its mass times the
+    acceleration of its centre of mass, and their moments about it its inertia times its angular
+    acceleration, from the exact kinematics and the crank's acceleration (central differences of the
+    sampled crank speed); on the crank also the drive's moment, the motor's through the gear less what
+    the flywheel and rotor take, M_d(psi') - J_d psi''."""
     from linkwork.motion import kinematics
 
-    run, loads = example, example.contact
+    run, loads, drive = example, example.contact, MECH.machine
     assert len(loads.t) > 10
     t = run.t - run.last.time
-    rocker = MECH.link_names.index("rocker")
     checked = 0
     for k in range(1, len(loads.t) - 1):
         i = int(np.flatnonzero(np.isclose(t, loads.t[k], rtol=0, atol=1e-12) & (run.mode == 2))[0])
         if not (run.mode[i - 1] == run.mode[i + 1] == 2):
             continue
         acc = (run.omega[i + 1] - run.omega[i - 1]) / (run.t[i + 1] - run.t[i - 1])
-        kin = kinematics(MECH, np.array([MECH.drive_start[0] + SIGN * run.psi[i]]), speed=SIGN)
-        q = kin.pose[0, 0, rocker]
-        c, s = np.cos(q[2]), np.sin(q[2])
-        lc = MECH.link_com[rocker]
-        rc = np.array([c * lc[0] - s * lc[1], s * lc[0] + c * lc[1]])
-        v, a = kin.vel[0, 0, rocker], kin.acc[0, 0, rocker]  # transfer functions of the rocker's origin
-
-        def com(x, rc=rc):
-            return x[:2] + x[2] * np.array([-rc[1], rc[0]])
-
         w = run.omega[i]
-        a_c = com(v) * acc + com(a) * w * w - (v[2] * w) ** 2 * rc
-        push = loads.force[k] * np.array([loads.phi[k], 1.0])  # n = (0, 1), t = (1, 0)
-        total = loads.joints["O"][k] + loads.joints["N"][k] + push  # frame on rocker, rod on rocker, tool
-        total = total + np.array([0.0, -MECH.gravity * MECH.link_mass[rocker]])
-        np.testing.assert_allclose(total, MECH.link_mass[rocker] * a_c, rtol=0, atol=1e-3 * loads.force.max())
+        kin = kinematics(MECH, np.array([MECH.drive_start[0] + SIGN * run.psi[i]]), speed=SIGN)
+        pos = {name: kin.position(name)[0] for name in loads.joints}
+        k_pos = kin.position("rocker.K")[0]
+        scale = loads.force.max()
+        for li, name in enumerate(MECH.link_names[1:], 1):
+            q = kin.pose[0, 0, li]
+            c, s_ = np.cos(q[2]), np.sin(q[2])
+            lc = MECH.link_com[li]
+            rc = np.array([c * lc[0] - s_ * lc[1], s_ * lc[0] + c * lc[1]])
+            v, a = kin.vel[0, 0, li], kin.acc[0, 0, li]  # transfer functions of the link's origin
+
+            def com(x, rc=rc):
+                return x[:2] + x[2] * np.array([-rc[1], rc[0]])
+
+            a_c = com(v) * acc + com(a) * w * w - (v[2] * w) ** 2 * rc
+            alpha = v[2] * acc + a[2] * w * w
+            centre = q[:2] + rc
+            total = np.array([0.0, -MECH.gravity * MECH.link_mass[li]])
+            moment = 0.0
+            for joint, f_all in loads.joints.items():
+                first, second = loads.joint_links[joint]
+                f = f_all[k] if name == second else -f_all[k] if name == first else None
+                if f is None:
+                    continue
+                arm = pos[joint] - centre
+                total, moment = total + f, moment + arm[0] * f[1] - arm[1] * f[0]
+            if name == "rocker":
+                push = loads.force[k] * np.array([loads.phi[k], 1.0])  # n = (0, 1), t = (1, 0)
+                arm = k_pos - centre
+                total, moment = total + push, moment + arm[0] * push[1] - arm[1] * push[0]
+            if name == "crank":  # counter-clockwise; the crank turns clockwise
+                moment += SIGN * (float(drive.moment(w)) - drive.inertia * acc)
+            np.testing.assert_allclose(total, MECH.link_mass[li] * a_c, rtol=0, atol=1e-3 * scale)
+            assert moment == pytest.approx(MECH.link_inertia[li] * alpha, abs=1e-4 * scale), name  # N m
         checked += 1
     assert checked > 5
     # the support O carries more than the blow's force on the striker: the rod presses the rocker down
