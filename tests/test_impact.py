@@ -225,3 +225,17 @@ def test_impact_command_json():
     assert out["model"]["support_impulse"]["O"]["y"] == pytest.approx(i0y, rel=1e-12)
     bare = CliRunner().invoke(app, ["impact", "four-bar"])
     assert bare.exit_code == 2 and 'give an "impact:" section' in bare.stderr
+
+
+def test_the_whole_mechanism_impact_says_when_the_sliding_reverses():
+    """In one degree of freedom K's velocity after the blow is -R times the one before, tangential part
+    included: with R > 0 the sliding reverses (read off the velocities), with R = 0 it only stops."""
+    mech = lw.compile(lw.load("percussion-rocker"))
+    kw = dict(at="rocker.K", normal=(0.0, 1.0), omega_before=-30.0, friction=0.15)
+    bouncing, plastic = lw.impact(mech, restitution=0.4, **kw), lw.impact(mech, restitution=0.0, **kw)
+    kin = lw.kinematics(mech, mech.drive_start[:1], speed=1.0)
+    g_t = float(kin.velocity("rocker.K")[0, 0])  # the tangent of a horizontal face is x
+    before, after = g_t * bouncing.speed_before, g_t * bouncing.speed_after
+    assert before * after < 0 and bouncing.sliding_reverses
+    assert g_t * plastic.speed_after == 0 and not plastic.sliding_reverses
+    assert not lw.impact(mech, restitution=0.4, **{**kw, "friction": 0.0}).sliding_reverses

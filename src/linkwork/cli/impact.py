@@ -83,6 +83,7 @@ def impact(
         "energy_loss": whole.energy_loss,
         "ideal_com": _xy(whole.ideal_com) if whole.ideal_com is not None else None,
         "drive_impulse": whole.drive_impulse,
+        "sliding_reverses": whole.sliding_reverses,
     }
     if model is not None:
         out["model"] = {"striker": striker, **model.as_dict()}
@@ -98,6 +99,11 @@ def impact(
         typer.echo(f"    joint {name}: {j['from']} on {j['on']} ({j['x']:.6g}, {j['y']:.6g}) N s")
     if whole.ideal_com is not None:
         typer.echo(f"    ideal centre of mass of {striker}: ({whole.ideal_com[0]:.6g}, {whole.ideal_com[1]:.6g}) m")
+    if whole.sliding_reverses:
+        typer.echo(
+            "    note: with R > 0 the striker's sliding on the surface reverses within the blow; friction is "
+            "taken one way throughout, as in seed 004's model"
+        )
     if model is not None:
         typer.echo(
             f"  reduced model (rod as a point mass at {blow.rod_joint}): impulse ({model.impulse[0]:.6g}, "

@@ -55,6 +55,11 @@ class Impact:
     ideal_com : ndarray (2,) or None
         Where the striking link's centre of mass would have to be (its mass and its inertia about
         its pivot kept) for its frame pivot to feel no impulse; None unless it turns about one.
+    sliding_reverses : bool
+        True where friction acts and the striker's sliding on the surface changes direction within
+        the blow (in one degree of freedom every velocity scales by -R, so any R > 0 reverses it):
+        the friction impulse is then taken one way throughout, as in seed 004's model, which a
+        Coulomb law that followed the sliding would not give.
     """
 
     impulse: np.ndarray
@@ -69,6 +74,7 @@ class Impact:
     phi: float
     forces: Any
     ideal_com: np.ndarray | None = None
+    sliding_reverses: bool = False
 
     def on(self, joint: str, link: str) -> np.ndarray:
         """Impulse (x, y) of a joint on ``link`` (the first-named link's impulse on the second, or
@@ -127,7 +133,8 @@ def impact(
             f'"{at}" does not move towards the surface: its normal velocity is {g_k @ n * w_before:.6g} m/s'
         )
     sliding = float(g_k @ t) * w_before
-    if abs(sliding) > 1e-12 * abs(w_before) * np.linalg.norm(g_k):
+    slides = abs(sliding) > 1e-12 * abs(w_before) * np.linalg.norm(g_k)
+    if slides:
         direction = math.copysign(1.0, sliding)
     else:
         direction = -1.0 if slip is None else math.copysign(1.0, slip)
@@ -153,6 +160,7 @@ def impact(
         phi,
         forces,
         ideal,
+        bool(friction > 0 and restitution > 0 and slides),
     )
 
 
