@@ -643,22 +643,11 @@ def test_the_torque_and_moment_charts_say_counter_clockwise_positive():
 @pytest.fixture(scope="module")
 def live_server():
     """The four-bar's viewer on a real uvicorn server in a thread (127.0.0.1, a free port): (host, port)."""
-    import threading
+    pytest.importorskip("uvicorn")
+    from webserver import serving
 
-    uvicorn = pytest.importorskip("uvicorn")
-    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
-    sock.bind(("127.0.0.1", 0))
-    srv = uvicorn.Server(uvicorn.Config(create_app("four-bar", steps=36), log_level="warning", lifespan="off"))
-    thread = threading.Thread(target=srv.run, kwargs={"sockets": [sock]}, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not srv.started:
-        assert time.monotonic() < deadline and thread.is_alive(), "the server did not start"
-        time.sleep(0.05)
-    yield "127.0.0.1", sock.getsockname()[1]
-    srv.should_exit = True
-    thread.join(timeout=10)
-    sock.close()
+    with serving(create_app("four-bar", steps=36)) as address:
+        yield address
 
 
 @pytest.mark.parametrize("size, status", [(MAX_BODY + 1, 413), (4 * MAX_BODY, 413), (MAX_BODY - 100, 200)])

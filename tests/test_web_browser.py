@@ -16,8 +16,6 @@ from __future__ import annotations
 import math
 import os
 import shutil
-import socket
-import threading
 import time
 from pathlib import Path
 
@@ -69,20 +67,10 @@ def browser():
 @pytest.fixture(scope="module")
 def server():
     """The viewer of the double-cut shears on 127.0.0.1, a free port, in a background thread."""
-    app = create_app(lw.load(NAME))
-    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
-    sock.bind(("127.0.0.1", 0))
-    srv = uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off"))
-    thread = threading.Thread(target=srv.run, kwargs={"sockets": [sock]}, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not srv.started:
-        assert time.monotonic() < deadline and thread.is_alive(), "the server did not start"
-        time.sleep(0.05)
-    yield f"http://127.0.0.1:{sock.getsockname()[1]}/"
-    srv.should_exit = True
-    thread.join(timeout=10)
-    sock.close()
+    from webserver import serving
+
+    with serving(create_app(lw.load(NAME))) as (host, port):
+        yield f"http://{host}:{port}/"
 
 
 @pytest.fixture
