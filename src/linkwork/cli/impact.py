@@ -40,14 +40,12 @@ def impact(
 
     if blows is not None and not cycle:
         fail(LinkworkError("--blows: only with --cycle"))
-    if blows is not None and blows < 3:
-        fail(LinkworkError(f"--blows: expected at least 3 (a steady cycle is two periods alike), got {blows}"))
     mech = _compile(file_or_example)
     blow = mech.blow
     if blow is None:
         fail(LinkworkError('the mechanism has no blow: give an "impact:" section (at, normal, omega, restitution)'))
     if cycle:
-        _cycle(mech, as_json, 200 if blows is None else blows)
+        _cycle(mech, as_json, blows)
         return
     normal = (math.cos(blow.normal), math.sin(blow.normal))
     kw = dict(normal=normal, restitution=blow.restitution, friction=blow.friction)
@@ -140,13 +138,13 @@ def _blow_dict(b: Any) -> dict[str, Any]:
     }
 
 
-def _cycle(mech: Any, as_json: bool, blows: int) -> None:
-    """``linkwork impact --cycle``: the working cycle, report or JSON."""
+def _cycle(mech: Any, as_json: bool, blows: int | None) -> None:
+    """``linkwork impact --cycle``: the working cycle, report or JSON (``blows``: None for the default)."""
     from linkwork.errors import LinkworkError
     from linkwork.impulse.cycle import simulate_blows
 
     try:
-        run = simulate_blows(mech, blows=blows)
+        run = simulate_blows(mech) if blows is None else simulate_blows(mech, blows=blows)
     except LinkworkError as exc:
         fail(exc)
     last = run.last

@@ -632,10 +632,12 @@ def simulate_blows(
     seg: dict[str, Any] = {"into": True, "phi": 0.0}  # the flags of the contact phase being integrated
 
     def contact_force(psi: float, w: float, into: bool | None = None, phi: float | None = None) -> tuple[float, ...]:
-        """lambda, psi'', the sliding transfer function and phi in contact (flags: the segment's)."""
+        """lambda, psi'', the sliding transfer function and phi in contact (flags: the segment's), then the
+        load moment, s' and the drive's moment there."""
         j, dj, _, m, _, _, s, ds, dds, gt, _, _ = spl.at(psi)
         jt = j + jd
-        q = m + float(moment(w)) - 0.5 * dj * w * w
+        md = float(moment(w))
+        q = m + md - 0.5 * dj * w * w
         into = seg["into"] if into is None else into
         phi = seg["phi"] if phi is None else phi
         gphi = ds + phi * gt
@@ -644,7 +646,7 @@ def simulate_blows(
         if not den > 0:
             raise locked(psi, jt * den)
         lam = (feed + rr - mt * (dds * w * w + ds * q / jt)) / den
-        return lam, (q + gphi * lam) / jt, gt, phi
+        return lam, (q + gphi * lam) / jt, gt, phi, m, ds, md
 
     # state: psi, omega, work of the drive on the crank, load work, friction loss, work on the work
     def rhs_free(t: float, y: np.ndarray) -> list[float]:
@@ -655,10 +657,9 @@ def simulate_blows(
 
     def rhs_contact(t: float, y: np.ndarray) -> list[float]:
         w = y[1]
-        lam, acc, gt, phi = contact_force(y[0], w)
-        j, dj, _, m, _, _, s, ds = spl.at(y[0])[:8]
+        lam, acc, gt, phi, m, ds, md = contact_force(y[0], w)
         v = -ds * w
-        return [w, acc, float(moment(w)) * w, m * w, -phi * lam * gt * w, resist * v if seg["into"] else 0.0]
+        return [w, acc, md * w, m * w, -phi * lam * gt * w, resist * v if seg["into"] else 0.0]
 
     def stalled(t: float, y: np.ndarray) -> float:
         return y[1]
@@ -874,7 +875,7 @@ def simulate_blows(
                     crank_speed_after=float(w_a), omega_before=b.omega_before, omega_after=b.omega_after,
                     impact_speed=-b.closing_speed, striker_speed=b.striker_speed, tool_speed=float(v_a),
                     impulse=b.impulse, joints=b.joints, joint_links=b.joint_links, drive_impulse=b.drive_impulse,
-                    energy_before=0.5 * (spl.at(y[0])[0] + jd) * float(y[1]) ** 2, energy_lost=e0 - e1,
+                    energy_before=e0, energy_lost=e0 - e1,
                     energy_to_tool=0.5 * mt * float(v_a) ** 2, rebounds=0, rebound_loss=0.0, work_on_work=0.0,
                     penetration=0.0,
                 )
