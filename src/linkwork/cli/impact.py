@@ -61,11 +61,9 @@ def impact(
     striker = blow.at.split(".", 1)[0]
     i = mech.link_names.index(link)
     joints = {}
-    for k, name in enumerate(mech.pair_joint):
-        if name in joints:
-            continue
+    for name, k in mech.first_pairs().items():
         a, b = (mech.link_names[int(x)] for x in mech.pair_links[k])
-        joints[name] = {"on": b, "from": a, **_xy(whole.forces.pair_force(k)[0, 0])}
+        joints[name] = {"on": b, "from": a, **_xy(whole.joints[name])}
     out: dict[str, Any] = {
         "name": mech.name,
         "units": {"impulse": "N s", "omega": "rad/s", "energy": "J", "length": "m"},

@@ -497,11 +497,10 @@ def strike(
     v_after = tool_speed + big_p * inv_mass
     impulse = big_p * (n + phi * tang)
     forces, lam, joints = impulsive_reactions(kin, striker, pos, impulse, dw)
-    links: dict[str, tuple[str, str]] = {}
-    for k, name in enumerate(mech.pair_joint):
-        if name not in links:
-            a, b = (mech.link_names[int(x)] for x in mech.pair_links[k])
-            links[name] = (a, b)
+    links = {
+        name: (mech.link_names[int(mech.pair_links[k, 0])], mech.link_names[int(mech.pair_links[k, 1])])
+        for name, k in mech.first_pairs().items()
+    }
     gain = float(kin.omega(link)[0])
     lost = 0.5 * jt * (w * w - (w + dw) ** 2)
     if inv_mass:
@@ -948,9 +947,7 @@ def simulate_blows(
     cat = [np.concatenate([s[i] for s in samples]) for i in range(9)]
     # the loads of the pairs while striker and tool move together, in the last cycle
     sel = np.flatnonzero((cat[6] == 2) & (cat[0] >= records[-1]["time"]))
-    first_pairs: dict[str, int] = {}
-    for k, name in enumerate(mech.pair_joint):
-        first_pairs.setdefault(name, k)
+    first_pairs = mech.first_pairs()
     pair_loads = {name: np.zeros((len(sel), 2)) for name in first_pairs}
     for row, j in enumerate(sel):
         angle = np.array([start_angle + sign * cat[1][j]])

@@ -206,10 +206,7 @@ def impulsive_reactions(
     loads = Loads(applied, momentum[None, None], r[None, None], vc[None, None], np.zeros_like(vc)[None, None])
     lam, frame = solve_reactions(kin, loads)
     forces = Forces(kin, lam, frame)
-    joints: dict[str, np.ndarray] = {}
-    for k, joint in enumerate(mech.pair_joint):
-        if joint not in joints:
-            joints[joint] = forces.pair_force(k)[0, 0]
+    joints = {joint: forces.pair_force(k)[0, 0] for joint, k in mech.first_pairs().items()}
     return forces, lam, joints
 
 

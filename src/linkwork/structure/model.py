@@ -213,6 +213,13 @@ class Mechanism:
     def n_drives(self) -> int:
         return len(self.drive_pair)
 
+    def first_pairs(self) -> dict[str, int]:
+        """The first pair of every joint, by the joint's name (a compound hinge makes several)."""
+        out: dict[str, int] = {}
+        for k, joint in enumerate(self.pair_joint):
+            out.setdefault(joint, k)
+        return out
+
     def point_index(self, name: str) -> int:
         """Index of a point given as ``link.point`` or a joint name."""
         if name in self.point_names:
