@@ -54,6 +54,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.machine.simulate import PeriodicSplines
 
 FLIGHT, APART, CONTACT = "flight", "apart", "contact"
 #: Degrees of freedom of the machine (mechanism and tool) in each phase.
@@ -292,34 +293,6 @@ def _heading(value: float, rate: float, scale: float) -> float:
     if abs(value) > 1e-12 * max(abs(scale), 1.0):
         return math.copysign(1.0, value)
     return math.copysign(1.0, rate)
-
-
-class _Splines:
-    """Periodic cubic splines over the turn, evaluated one turning angle at a time (fast scalars)."""
-
-    def __init__(self, psi: np.ndarray, columns: list[np.ndarray]) -> None:
-        from scipy.interpolate import CubicSpline
-
-        k = len(psi)
-        self.k, self.h = k, 2 * math.pi / k
-        x = np.append(psi, 2 * math.pi)
-        coef = []
-        for col in columns:
-            spline = CubicSpline(x, np.append(col, col[0]), bc_type="periodic")
-            coef.append(spline.c.T)
-        self.c = [tuple(map(float, np.concatenate([c[i] for c in coef]))) for i in range(k)]
-
-    def at(self, psi: float) -> tuple[float, ...]:
-        """Value and first and second derivatives of every column at ``psi``."""
-        u = (psi % (2 * math.pi)) / self.h
-        i = min(int(u), self.k - 1)
-        x = (u - i) * self.h
-        c = self.c[i]
-        out = []
-        for j in range(0, len(c), 4):
-            c3, c2, c1, c0 = c[j : j + 4]
-            out += [((c3 * x + c2) * x + c1) * x + c0, (3 * c3 * x + 2 * c2) * x + c1, 6 * c3 * x + 2 * c2]
-        return tuple(out)
 
 
 class _Free:
@@ -606,7 +579,7 @@ def simulate_blows(
     height = (pos - face) @ n
     if not height.max() > 0:
         raise LinkworkError(f'"{at}" never leaves the tool\'s face: no room for a blow')
-    spl = _Splines(red.psi, [red.inertia, red.load, height, vel @ tang])
+    spl = PeriodicSplines(red.psi, [red.inertia, red.load, height, vel @ tang])
     jd = float(drive.inertia)
     eta = float(getattr(drive, "efficiency", 1.0))
     moment = drive.moment

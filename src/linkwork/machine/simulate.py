@@ -26,30 +26,60 @@ import numpy as np
 from linkwork.errors import LinkworkError
 
 
-class Model:
-    """``J`` and ``M`` of a :class:`~linkwork.machine.reduced.Reduced` as fast scalar functions."""
+class PeriodicSplines:
+    """Periodic cubic splines of several columns over a turn of the crank, on a uniform grid ``psi``,
+    evaluated one turning angle at a time (fast scalars)."""
 
-    def __init__(self, red: Any, extra_inertia: float = 0.0) -> None:
+    def __init__(self, psi: np.ndarray, columns: list[np.ndarray]) -> None:
         from scipy.interpolate import CubicSpline
 
-        k = len(red.psi)
-        self.h = 2 * np.pi / k
-        self.k = k
-        x = np.append(red.psi, 2 * np.pi)
-        spline = CubicSpline(x, np.append(red.inertia, red.inertia[0]), bc_type="periodic")
-        self.c = [list(map(float, row)) for row in spline.c.T]  # per interval: cubic, square, linear, constant
+        k = len(psi)
+        self.k, self.h = k, 2 * math.pi / k
+        x = np.append(psi, 2 * math.pi)
+        coef = []
+        for col in columns:
+            spline = CubicSpline(x, np.append(col, col[0]), bc_type="periodic")
+            coef.append(spline.c.T)  # per interval: cubic, square, linear, constant
+        self.c = [tuple(map(float, np.concatenate([c[i] for c in coef]))) for i in range(k)]
+
+    def interval(self, psi: float) -> tuple[int, float]:
+        """The grid interval of ``psi`` and the fraction of it that ``psi`` is into."""
+        u = (psi % (2 * math.pi)) / self.h
+        i = min(int(u), self.k - 1)
+        return i, u - i
+
+    def value(self, i: int, f: float) -> float:
+        """The first column at the fraction ``f`` into grid interval ``i``."""
+        x = f * self.h
+        c3, c2, c1, c0 = self.c[i][:4]
+        return ((c3 * x + c2) * x + c1) * x + c0
+
+    def at(self, psi: float) -> tuple[float, ...]:
+        """Value and first and second derivatives of every column at ``psi``."""
+        i, f = self.interval(psi)
+        x = f * self.h
+        c = self.c[i]
+        out = []
+        for j in range(0, len(c), 4):
+            c3, c2, c1, c0 = c[j : j + 4]
+            out += [((c3 * x + c2) * x + c1) * x + c0, (3 * c3 * x + 2 * c2) * x + c1, 6 * c3 * x + 2 * c2]
+        return tuple(out)
+
+
+class Model:
+    """``J`` and ``M`` of a :class:`~linkwork.machine.reduced.Reduced` as fast scalar functions: ``J``
+    by a periodic cubic spline, ``M`` linear between the grid points (technological loads have corners)."""
+
+    def __init__(self, red: Any, extra_inertia: float = 0.0) -> None:
+        self.inertia = PeriodicSplines(red.psi, [red.inertia])
         self.m = list(map(float, np.append(red.load, red.load[0])))
         self.extra = float(extra_inertia)
 
     def at(self, psi: float) -> tuple[float, float]:
         """``J + J_d`` and ``M`` at ``psi``."""
-        u = (psi % (2 * math.pi)) / self.h
-        i = min(int(u), self.k - 1)
-        dx = (u - i) * self.h
-        c3, c2, c1, c0 = self.c[i]
-        j = ((c3 * dx + c2) * dx + c1) * dx + c0
-        m = self.m[i] + (self.m[i + 1] - self.m[i]) * (u - i)
-        return j + self.extra, m
+        i, f = self.inertia.interval(psi)
+        m = self.m[i] + (self.m[i + 1] - self.m[i]) * f
+        return self.inertia.value(i, f) + self.extra, m
 
 
 @dataclass(frozen=True)
