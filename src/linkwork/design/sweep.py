@@ -222,6 +222,7 @@ def sweep(
         Bad ranges, paths or metrics (every problem in one message), or a resume of another plan.
     """
     from linkwork.design.store import (
+        FORMAT,
         done_chunks,
         mechanism_hash,
         prepare,
@@ -273,7 +274,7 @@ def sweep(
     columns = [r.column for r in requests]
     units = _units(plan, requests)
     meta = {
-        "format": 1,
+        "format": FORMAT,
         "mechanism": mech.name,
         "mechanism_sha256": mechanism_hash(mech),
         "plan": plan.as_dict(),
