@@ -15,7 +15,7 @@ import pytest
 from ruamel.yaml import YAML
 
 import linkwork as lw
-from linkwork.design import DesignError, design_parameters
+from linkwork.design import DesignError
 from linkwork.design.plan import Vary, make_plan
 from linkwork.examples import text
 from mechanisms import offset_slider_crank
@@ -97,15 +97,14 @@ def test_time_ratios_of_an_offset_slider_crank_follow_the_direction_of_rotation(
 
 
 def _shears_variant(crank: float, rod_mass: float | None = None, upper_mass: float | None = None) -> str:
-    """The double-cut shears file with a longer crank (its centre of mass and inertia kept, as a sweep
-    keeps the file's mass properties) and optionally heavier rod and knife (inertia scaled with mass)."""
+    """The double-cut shears file edited by hand: another crank length (its centre of mass, left to its
+    default, follows to mid-length; its inertia, given, stays), optionally heavier rod and knife (their
+    given inertias stay)."""
     yaml = YAML()
     data = yaml.load(text("double-cut-shears"))
     data["links"]["crank"]["length"] = crank
-    data["links"]["crank"]["com"] = [0.05, 0.0]
     if rod_mass is not None:
         data["links"]["rod"]["mass"] = rod_mass
-        data["links"]["rod"]["inertia"] = 0.80 * rod_mass / 60
     if upper_mass is not None:
         data["links"]["knife_upper"]["mass"] = upper_mass
     import io
@@ -116,8 +115,8 @@ def _shears_variant(crank: float, rod_mass: float | None = None, upper_mass: flo
 
 
 def test_forces_of_geometry_and_mass_variants_equal_those_of_the_edited_file():
-    """Geometry through the variant overrides and masses by superposition, against a file with the
-    same values compiled and solved from scratch (lw.forces on one mechanism)."""
+    """Geometry and masses through the variant overrides, against the file edited by hand to the same
+    values, compiled and solved from scratch (lw.forces on one mechanism)."""
     values = [(0.1, 60.0, 300.0), (0.105, 90.0, 300.0), (0.095, 45.0, 420.0)]
     vary = {
         "links.crank.length": ("95 mm", "105 mm", 3),
@@ -177,9 +176,10 @@ def test_a_metric_with_no_value_is_explained_by_its_cause(tmp_path):
     assert "no variant assembles over the whole turn" in r.stdout
 
 
-def test_a_named_centre_of_mass_stays_where_the_point_was_when_the_point_is_varied():
-    """percussion-rocker: the rocker's ``com: C``.  A variant moving C keeps the centre of mass at the file's
-    C (0.16, 0.01): the same as a file with C moved and the centre of mass as coordinates, not as ``com: C``."""
+def test_a_named_centre_of_mass_follows_its_point_as_in_the_edited_file():
+    """percussion-rocker: the rocker's ``com: C`` and its inertia about O.  A variant moving C moves the
+    centre of mass with it and keeps the inertia about O, exactly as the file edited by hand does; a file
+    that pins the centre of mass at the old C (as coordinates) differs, so the test can tell them apart."""
     t = lw.sweep("percussion-rocker", ["links.rocker.points.C.x=0.2:0.2:1"], ["peak_driving_torque"])
 
     def peak(com):
@@ -187,18 +187,17 @@ def test_a_named_centre_of_mass_stays_where_the_point_was_when_the_point_is_vari
         data = yaml.load(text("percussion-rocker"))
         rocker = data["links"]["rocker"]
         rocker["points"]["C"] = [0.2, 0.01]
-        rocker["com"] = com
-        rocker["inertia"] = 0.30 - 6.0 * (0.16**2 + 0.01**2)  # the file's, about the centre of mass
-        del rocker["inertia_about"]
+        if com is not None:
+            rocker["com"] = com
         import io
 
         buf = io.StringIO()
         yaml.dump(data, buf)
         return np.max(np.abs(lw.forces(lw.compile(lw.loads(buf.getvalue())), steps=360).driving_torque))
 
-    kept, moved = peak([0.16, 0.01]), peak("C")
-    assert t["peak_driving_torque"][0] == pytest.approx(kept, rel=1e-9)
-    assert abs(moved - kept) > 1e-3 * kept  # the test can tell the two apart
+    edited, pinned = peak(None), peak([0.16, 0.01])
+    assert t["peak_driving_torque"][0] == pytest.approx(edited, rel=1e-9)
+    assert abs(pinned - edited) > 1e-3 * edited
 
 
 def test_a_variant_that_does_not_assemble_has_nan_metrics():
@@ -272,7 +271,7 @@ def test_mass_paths_are_listed_with_the_geometry():
     every link with a length its length, and nothing else is a mass path."""
     data = YAML(typ="safe").load(text("double-cut-shears"))
     assert data["units"]["length"] == "m" and data["units"]["mass"] == "kg"
-    params = design_parameters(lw.compile(lw.load("double-cut-shears")))
+    params = lw.parameters(lw.compile(lw.load("double-cut-shears")))
     masses = {f"links.{name}.mass": float(link["mass"]) for name, link in data["links"].items() if link.get("mass")}
     assert {p: v for p, v in params.items() if p.endswith(".mass")} == pytest.approx(masses, rel=1e-12)
     for name, link in data["links"].items():
@@ -428,7 +427,7 @@ def test_every_problem_of_the_options_is_reported_at_once():
             ["knife_overlap", "bogus", "stroke"],
         )  # fmt: skip
     msg = str(err.value).splitlines()
-    assert 'no dimension "links.crank.lenght" (did you mean "links.crank.length"?)' in msg[0]
+    assert 'no parameter "links.crank.lenght" (did you mean "links.crank.length"?)' in msg[0]
     assert any("COUNT must be 1 or more, got 0" in m for m in msg)
     assert any("START 260 is greater than STOP 240" in m for m in msg)
     assert any('START: expected a length, got "abc"' in m for m in msg)
@@ -507,7 +506,7 @@ def test_double_cut_shears_optimum_is_feasible_better_than_a_sample_and_its_file
     # the written file, compiled afresh and solved by lw.forces and lw.kinematics on one mechanism
     mech = lw.compile(lw.load(out))
     for path, value in best.values.items():
-        assert design_parameters(mech)[path] == pytest.approx(value, rel=1e-9)
+        assert lw.parameters(mech)[path] == pytest.approx(value, rel=1e-9)
     f = lw.forces(mech, steps=180)
     assert np.max(np.abs(f.driving_torque)) == pytest.approx(best.metrics["peak_driving_torque"], rel=1e-7)
     k = lw.kinematics(mech, steps=36000)
@@ -528,7 +527,7 @@ def test_cli_optimize_reports_and_writes(tmp_path):
     # the written file, solved afresh: its rocker, its peak torque (lw.forces) and its smallest transmission
     # angle (law of cosines with the crank along the frame line, 0 and 180 deg, both among the samples)
     mech = lw.compile(lw.load(out))
-    c = design_parameters(mech)["links.rocker.length"]
+    c = lw.parameters(mech)["links.rocker.length"]
     assert c == pytest.approx(res["values"]["links.rocker.length"], rel=1e-9)
     f = lw.forces(mech, steps=360)
     assert np.max(np.abs(f.driving_torque)) == pytest.approx(res["metrics"]["peak_driving_torque"], rel=1e-9)

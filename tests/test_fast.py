@@ -9,7 +9,7 @@ import pytest
 
 import linkwork as lw
 from linkwork.motion import fast
-from linkwork.motion.geometry import geometry
+from linkwork.structure.parameters import apply
 from mechanisms import TEXTBOOK, circle_intersection, hydraulic_boom
 from test_kinematics import MECHANISMS, _angles, _mech
 
@@ -99,7 +99,7 @@ def test_change_points_go_to_the_numpy_path(monkeypatch):
     """The isosceles slider-crank: the compiled path sees the two modes meet and hands over."""
     mech = lw.compile(lw.example("shears-slider-crank"))
     values = mech.drive_start[0] + np.linspace(0, 2 * np.pi, 360, endpoint=False)[:, None]
-    res = fast.run(mech, geometry(mech), values, np.ones_like(values), np.zeros_like(values))
+    res = fast.run(mech, apply(mech)[0], values, np.ones_like(values), np.zeros_like(values))
     assert res["near"].any()
     compiled, reference = _both(mech, values[:, 0], monkeypatch)
     _same(compiled, reference)

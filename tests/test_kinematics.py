@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 import linkwork as lw
 from linkwork.errors import UnassemblableError
-from linkwork.motion.geometry import geometry
+from linkwork.structure.parameters import apply
 from linkwork.motion.solve import run
 from mechanisms import TEXTBOOK, circle_intersection
 from test_structure import _assembles, four_bar_spec, four_bars
@@ -71,7 +71,7 @@ def test_closed_forms_agree_with_the_generic_newton_solver(kind, name):
     kin = lw.kinematics(mech, angles)
     program = tuple(dataclasses.replace(s, kind="newton") for s in mech.program)
     values = kin.drive
-    ref = run(mech, program, geometry(mech), values, kin.rates, np.zeros_like(values))
+    ref = run(mech, program, apply(mech)[0], values, kin.rates, np.zeros_like(values))
     ok = kin.valid & ref.valid[0]
     assert ok.mean() > 0.5
     pose, vel, acc = (np.moveaxis(x, (0, 1), (2, 3))[0][ok] for x in (ref.q, ref.v, ref.a))
@@ -333,7 +333,7 @@ def test_design_variants_equal_separately_compiled_mechanisms():
 def test_unknown_variant_dimension_is_named():
     mech = lw.compile(lw.example("four-bar"))
     with pytest.raises(
-        lw.motion.ParameterError, match='no dimension "links.crank.lenght" .did you mean "links.crank.length"'
+        lw.errors.ParameterError, match='no parameter "links.crank.lenght" .did you mean "links.crank.length"'
     ):
         lw.kinematics(mech, [0.0], variants={"links.crank.lenght": [0.1, 0.2]})
 

@@ -235,7 +235,7 @@ def test_edits_are_si_whatever_the_files_units():
             "double-cut-shears.yaml: group II(2,3) RRR (links rod, rocker) cannot be assembled",
         ),
         ({"links.rod.length": -0.4}, "links.rod.length: expected a positive length"),
-        ({"links.rod.lenght": 0.4}, 'no editable value "links.rod.lenght" (did you mean "links.rod.length"?)'),
+        ({"links.rod.lenght": 0.4}, 'no parameter "links.rod.lenght" (did you mean "links.rod.length"?)'),
         ({"links.rocker.mass": 0.0}, "links.rocker.mass: expected a positive mass"),
         ({"joints.guide_E.axis": 1e9}, "joints.guide_E.axis: expected a value from -100 to 100 rad"),
     ],
@@ -285,8 +285,22 @@ def test_a_spec_built_without_a_file_is_edited_in_si():
     assert {p["name"]: p["value"] for p in r.json()["parameters"]}["links.coupler.mass"] == 3.0
 
 
-def test_a_compiled_mechanism_is_shown_but_not_edited():
+def test_a_compiled_mechanism_is_edited_like_its_file():
+    """A Mechanism carries the description it was compiled from: the viewer edits it like the file."""
     client = TestClient(create_app(lw.compile(lw.load("four-bar"))), base_url=LOCAL)
+    r = client.post("/api/solve", json={"overrides": {"links.crank.length": 0.11}})
+    assert r.status_code == 200 and r.json()["editable"] is True
+    text = example_text("four-bar")
+    edited = lw.compile(lw.loads(text.replace("length: 100\n", "length: 110\n", 1)))
+    kin = lw.kinematics(edited, steps=360)
+    a = [p["name"] for p in r.json()["points"]].index("crank.A")
+    np.testing.assert_allclose(_positions(r.json())[:, a], kin.position("crank.A"), atol=1e-8)
+
+
+def test_a_mechanism_without_its_description_is_shown_but_not_edited():
+    import dataclasses
+
+    client = TestClient(create_app(dataclasses.replace(lw.compile(lw.load("four-bar")), spec=None)), base_url=LOCAL)
     cycle = client.get("/api/cycle").json()
     assert cycle["editable"] is False and cycle["parameters"] == []
     r = client.post("/api/solve", json={"overrides": {"links.crank.length": 0.11}})

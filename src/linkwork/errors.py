@@ -58,6 +58,11 @@ class SpecError(LinkworkError, ValueError):
         super().__init__("\n".join(str(p) for p in self.problems))
 
 
+class ParameterError(LinkworkError, ValueError):
+    """An override names no parameter of the mechanism, its value is out of range, or its arrays
+    have unequal lengths (see :mod:`linkwork.structure.parameters`)."""
+
+
 class StructureError(LinkworkError, ValueError):
     """The mechanism's structure does not match its drives (wrong mobility)."""
 

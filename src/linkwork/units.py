@@ -37,6 +37,9 @@ DEFAULT_UNITS: dict[str, str] = {
     "angle": "deg",
 }
 
+#: The base units of a description given in SI (built in code, or written out in SI).
+SI_UNITS: dict[str, str] = {"length": "m", "mass": "kg", "time": "s", "force": "N", "angle": "rad"}
+
 # Units of derived kinds, built from the declared base units.
 _DERIVED = {
     "inertia": "{mass}*{length}**2",

@@ -31,20 +31,22 @@ def _show(value: float, unit: str) -> str:
 
 @app.command()
 def parameters(file_or_example: FileOrExample) -> None:
-    """List the dimensions and masses a sweep may vary, with the file's values in the file's units (the units
-    in which bare numbers of --vary are read)."""
-    from linkwork.design.plan import design_parameters, in_file_units, kind_of
+    """List the named parameters (dimensions, masses, moments of inertia) a sweep may vary, with the file's
+    values in the file's units (the units in which bare numbers of --vary are read)."""
+    from linkwork.design.plan import in_file_units
     from linkwork.design.sweep import _declared, _source
     from linkwork.errors import LinkworkError
+    from linkwork.structure.parameters import parameter_list
 
     try:
         mech, spec = _source(file_or_example)
     except LinkworkError as exc:
         fail(exc)
     declared = _declared(spec)
-    for path, value in design_parameters(mech).items():
-        shown, unit = in_file_units(value, kind_of(path), declared)
-        typer.echo(f"{path:40s} {shown:.10g} {unit}")
+    for p in parameter_list(mech):
+        shown, unit = in_file_units(p.value, p.kind, declared)
+        note = f"  ({p.note})" if p.note and p.kind == "inertia" and not p.note.endswith("centre of mass") else ""
+        typer.echo(f"{p.name:40s} {shown:.10g} {unit}{note}")
 
 
 class _Warnings:

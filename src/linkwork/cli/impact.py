@@ -47,15 +47,16 @@ def impact(
     if cycle:
         _cycle(mech, as_json, blows)
         return
-    normal = (math.cos(blow.normal), math.sin(blow.normal))
-    kw = dict(normal=normal, restitution=blow.restitution, friction=blow.friction)
     try:
-        whole = solve(mech, at=blow.at, omega_before=blow.omega, link=blow.link, **kw)
+        whole = solve(mech)
         link = blow.link or blow.at.split(".", 1)[0]
         model = None
         if blow.rod_joint is not None:
             own = float(whole.velocities_before[mech.link_names.index(blow.at.split(".", 1)[0]), 2])
-            model = reduced_model(mech, at=blow.at, rod_joint=blow.rod_joint, omega_before=own, **kw)
+            kw = dict(normal=(math.cos(blow.normal), math.sin(blow.normal)), restitution=blow.restitution)
+            model = reduced_model(
+                mech, at=blow.at, rod_joint=blow.rod_joint, omega_before=own, friction=blow.friction, **kw
+            )
     except LinkworkError as exc:
         fail(exc)
     striker = blow.at.split(".", 1)[0]

@@ -1,7 +1,7 @@
 """Design: sweeps over many variants of a mechanism, and optimisation, in one process or on Dask.
 
 :func:`sweep` evaluates metrics (:data:`METRICS`) over a grid or a random or
-Latin-hypercube sample of dimensions and masses of the file, in chunks, with
+Latin-hypercube sample of the file's named parameters (:func:`linkwork.parameters`), in chunks, with
 results written chunk by chunk so that a stopped sweep resumes; :func:`optimize`
 searches the ranges by differential evolution for the best design under
 constraints and writes it as a mechanism file.
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from linkwork.design.metrics import METRICS, Metric
 from linkwork.design.optimize import Optimum, optimize
-from linkwork.design.plan import DesignError, Plan, Vary, design_parameters
+from linkwork.design.plan import DesignError, Plan, Vary
 from linkwork.design.sweep import SweepTable, sweep
 
 __all__ = [
@@ -22,7 +22,6 @@ __all__ = [
     "Plan",
     "SweepTable",
     "Vary",
-    "design_parameters",
     "optimize",
     "sweep",
 ]

@@ -23,6 +23,7 @@ from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import MetricRequest, parse_metrics
 from linkwork.design.plan import DesignError, Vary
 from linkwork.design.sweep import SweepTable, _declared, _source, _varies
+from linkwork.units import KINDS
 
 
 @dataclass(frozen=True)
@@ -156,8 +157,9 @@ def optimize(
 
     Parameters
     ----------
-    mechanism : str, Path or Spec
-        A mechanism file or bundled example (a file is needed to write ``out``).
+    mechanism : str, Path, Spec or Mechanism
+        A mechanism file, a bundled example, a description or a compiled mechanism
+        (:mod:`linkwork.resolve`); writing ``out`` needs its description.
     vary : dict or list of str
         Ranges as for :func:`linkwork.sweep`; a COUNT, if given, is ignored.
     objective : str
@@ -204,7 +206,7 @@ def optimize(
         if v.start == v.stop:
             problems.append(f'--vary "{v.path}": START equals STOP; nothing to optimise over')
     if out is not None and spec is None:
-        problems.append("writing the optimised file needs a mechanism file or a bundled example")
+        problems.append("writing the optimised file needs the mechanism's description (a file, an example or a Spec)")
     elif out is not None:
         from linkwork.design.store import cannot_write
 
@@ -273,14 +275,13 @@ def optimize(
     if inside:
         initial = {c: float(v[0]) for c, v in evaluate(mech, paths, start[None], requests, steps).items()}
     feasible = bool(violation(row)[0] == 0)
-    si = {"length": "m", "angle": "rad", "mass": "kg"}
-    units = {v.path: si[v.kind] for v in varies} | {r.column: r.metric.unit for r in requests}
+    units = {v.path: KINDS[v.kind][1] for v in varies} | {r.column: r.metric.unit for r in requests}
     written = None
     if out is not None:
-        from linkwork.design.yamlout import write_design
+        from linkwork.structure.parameters import write_file
 
         try:
-            written = write_design(mechanism, spec, mech, dict(zip(paths, best.tolist(), strict=True)), out)
+            written = write_file(mech, dict(zip(paths, best.tolist(), strict=True)), out)
         except OSError as exc:
             raise DesignError([f'--out "{out}": cannot write ({exc})']) from None
     table = None
@@ -309,6 +310,6 @@ def optimize(
 
 
 def _file_value(mech: Any, path: str) -> float:
-    from linkwork.design.plan import design_parameters
+    from linkwork.structure.parameters import parameter
 
-    return design_parameters(mech)[path]
+    return parameter(mech, path).value

@@ -1,8 +1,9 @@
-"""What a sweep varies: the dimensions, their ranges and how the variants are sampled.
+"""What a sweep varies: the parameters, their ranges and how the variants are sampled.
 
-A dimension is named by its path in the mechanism file (``links.crank.length``,
+A parameter is named by its path in the mechanism file (``links.crank.length``,
 ``frame.points.O1.x``, ``joints.guide_E.axis``, ``links.rod.mass``), as
-:func:`design_parameters` lists them.  Ranges are read with units at the edge:
+:func:`linkwork.parameters` lists them; an override means what the same edit
+of the file means (:mod:`linkwork.structure.parameters`).  Ranges are read with units at the edge:
 ``"links.crank.length=90mm:110mm:50"``; bare numbers are in the file's units.
 Inside, everything is SI.
 """
@@ -17,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.structure.parameters import parameter_list
 
 #: How a plan samples its ranges.
 SAMPLINGS = ("grid", "random", "lhs")
@@ -43,7 +45,7 @@ class Vary:
     count : int or None
         Number of grid values (``None`` where only the range is given, as for optimisation).
     kind : str
-        ``length``, ``angle`` or ``mass``.
+        The kind of quantity: ``length``, ``angle``, ``mass`` or ``inertia``.
     """
 
     path: str
@@ -61,30 +63,6 @@ class Vary:
         return {"path": self.path, "start": self.start, "stop": self.stop, "count": self.count, "kind": self.kind}
 
 
-def kind_of(path: str) -> str:
-    """The kind of quantity a path names: ``angle`` for guide axes, ``mass`` for masses, else ``length``."""
-    if path.endswith(".axis"):
-        return "angle"
-    if path.endswith(".mass"):
-        return "mass"
-    return "length"
-
-
-def design_parameters(mech: Any) -> dict[str, float]:
-    """Every dimension a sweep may vary, with the file's value (SI).
-
-    The geometry of :func:`linkwork.parameters` and the mass of every moving
-    link that has one (``links.NAME.mass``).
-    """
-    from linkwork.motion.geometry import parameters
-
-    out = dict(parameters(mech))
-    for i, name in enumerate(mech.link_names):
-        if i > 0 and not mech.link_virtual[i] and mech.link_mass[i] > 0:
-            out[f"links.{name}.mass"] = float(mech.link_mass[i])
-    return out
-
-
 class DesignWarning(UserWarning):
     """A design option that is valid but probably not what was meant (e.g. a range in the wrong units)."""
 
@@ -100,7 +78,7 @@ def in_file_units(value: float, kind: str, declared: dict[str, str]) -> tuple[fl
 def scale_warnings(varies: list[Vary], mech: Any, declared: dict[str, str]) -> list[str]:
     """One line for each range that lies wholly below 1/100 or above 100 times the file's value: most
     often a range written in other units than the file's (bare numbers are read in the file's units)."""
-    known = design_parameters(mech)
+    known = {p.name: p.value for p in parameter_list(mech)}
     out = []
     for v in varies:
         file_value = abs(known.get(v.path, 0.0))
@@ -141,17 +119,16 @@ def parse_vary(
     if match is None:
         return None, [f'--vary "{text}": expected PATH=START:STOP:COUNT, e.g. "links.crank.length=90mm:110mm:50"']
     path, rest = match.group(1), match.group(2)
-    known = design_parameters(mech)
+    known = {p.name: p for p in parameter_list(mech)}
     if path not in known:
         hint = suggest(path, known)
-        if not hint and path.endswith(".mass"):
-            hint = " (only links with a mass in the file can vary it)"
-        problems.append(f'--vary "{text}": no dimension "{path}"{hint}; `linkwork parameters FILE` lists them')
+        problems.append(f'--vary "{text}": no parameter "{path}"{hint}; `linkwork parameters FILE` lists them')
     parts = [p.strip() for p in rest.split(":")]
     if len(parts) not in (2, 3) or not all(parts[:2]):
         problems.append(f'--vary "{text}": expected START:STOP:COUNT after "=", got "{rest}"')
         return None, problems
-    kind = kind_of(path)
+    param = known.get(path)
+    kind = param.kind if param is not None else "length"
     values = []
     for label, part in zip(("START", "STOP"), parts[:2], strict=True):
         try:
@@ -181,10 +158,11 @@ def parse_vary(
         start, stop = values
         if start > stop:
             problems.append(f'--vary "{text}": START {parts[0]} is greater than STOP {parts[1]}')
-        if kind == "mass" and start <= 0:
-            problems.append(f'--vary "{text}": a mass must be positive, got START {parts[0]}')
-        if path.endswith(".length") and start <= 0:
-            problems.append(f'--vary "{text}": a length must be positive, got START {parts[0]}')
+        if param is not None and (param.positive or kind == "inertia"):
+            wrong = param.check(start)
+            if wrong is not None:
+                what = "positive" if param.positive else "0 or more"
+                problems.append(f'--vary "{text}": a {kind} must be {what}, got START {parts[0]}')
     if problems:
         return None, problems
     return Vary(path, float(values[0]), float(values[1]), count, kind), []

@@ -67,21 +67,20 @@ class SweepTable:
 
 
 def _source(mechanism: Any) -> tuple[Any, Any]:
-    """(compiled mechanism, spec or None) from a file, an example name, a spec or a compiled mechanism."""
-    from linkwork.examples import resolve
-    from linkwork.structure.compile import compile
+    """(compiled mechanism, its description or None) of a file, an example name, a spec or a compiled
+    mechanism (:mod:`linkwork.resolve`)."""
+    from linkwork.resolve import mechanism_of
 
-    if hasattr(mechanism, "program"):
-        return mechanism, None
-    spec = resolve(mechanism) if isinstance(mechanism, str | Path) else mechanism
-    return compile(spec), spec
+    mech = mechanism_of(mechanism, "mechanism")
+    return mech, mech.spec
 
 
 def _declared(spec: Any) -> dict[str, str]:
-    from linkwork.units import DEFAULT_UNITS
+    """The units bare numbers of the description are read in (SI without a description)."""
+    from linkwork.units import DEFAULT_UNITS, SI_UNITS
 
     if spec is None:
-        return dict(DEFAULT_UNITS, length="m", angle="rad")
+        return dict(SI_UNITS)
     return {**DEFAULT_UNITS, **spec.units.model_dump(exclude_none=True)}
 
 
@@ -107,9 +106,10 @@ def _varies(vary: Any, mech: Any, spec: Any, count_required: bool | None = True)
 
 
 def _units(plan: Plan, requests: list[MetricRequest]) -> dict[str, str]:
-    si = {"length": "m", "angle": "rad", "mass": "kg"}
+    from linkwork.units import KINDS
+
     units = {"variant": "1"}
-    units.update({v.path: si[v.kind] for v in plan.varies})
+    units.update({v.path: KINDS[v.kind][1] for v in plan.varies})
     units.update({r.column: r.metric.unit for r in requests})
     return units
 

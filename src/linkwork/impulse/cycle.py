@@ -529,12 +529,14 @@ def simulate_blows(
     """
     from scipy.integrate import solve_ivp
 
-    from linkwork.impulse.mechanism import impulsive_reactions
+    from linkwork.impulse.mechanism import blow_setup, impulsive_reactions
     from linkwork.kinetostatics import Forces
     from linkwork.kinetostatics.reactions import inertia_and_gravity, solve_reactions
     from linkwork.machine import reduced
     from linkwork.motion import kinematics
+    from linkwork.resolve import mechanism_of
 
+    mech = mechanism_of(mech, "simulate_blows")
     blow_spec = mech.blow
     if drive is None:
         drive = mech.machine
@@ -545,26 +547,12 @@ def simulate_blows(
         tool = Tool(t_spec.mass, t_spec.feed, t_spec.resistance)
     if tool is None:
         raise LinkworkError('the working cycle needs the tool: give "tool:" (mass, feed, resistance) in "impact:"')
-    if at is None and blow_spec is not None:
-        at = blow_spec.at
-    if at is None:
-        raise LinkworkError("the working cycle needs the striking point (at=link.point)")
-    if normal is None:
-        if blow_spec is None:
-            raise LinkworkError("the working cycle needs the normal of the tool's face")
-        normal = (math.cos(blow_spec.normal), math.sin(blow_spec.normal))
-    if restitution is None:
-        restitution = blow_spec.restitution if blow_spec is not None else 0.0
-    if friction is None:
-        friction = blow_spec.friction if blow_spec is not None else 0.0
-    if link is None and blow_spec is not None:
-        link = blow_spec.link
-    if not (0 <= restitution <= 1 and friction >= 0):
-        raise LinkworkError(f"expected 0 <= R <= 1 and friction >= 0, got R = {restitution}, f = {friction}")
+    setup = blow_setup(
+        mech, at=at, normal=normal, restitution=restitution, friction=friction, link=link, need_speed=False
+    )
+    at, n, restitution, friction, link = setup.at, setup.normal, setup.restitution, setup.friction, setup.link
     if blows < 3:
         raise LinkworkError(f"blows: expected at least 3 (a steady cycle is two periods alike), got {blows}")
-    n = np.asarray(normal, dtype=float)
-    n = n / np.linalg.norm(n)
     tang = np.array([n[1], -n[0]])
     red = reduced(mech, steps)
     sign = -1.0 if mech.drive_speed[0] < 0 else 1.0

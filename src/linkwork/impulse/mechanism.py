@@ -88,30 +88,111 @@ class Impact:
         raise KeyError(f'joint "{joint}" does not hold link "{link}"')
 
 
+@dataclass(frozen=True)
+class BlowSetup:
+    """What a blow needs, from the file's ``impact:`` section and the caller's arguments.
+
+    Attributes
+    ----------
+    at : str
+        The striking point, ``link.point``.
+    normal : ndarray (2,)
+        Unit normal of the surface, out of it (towards the striker).
+    omega_before : float or None
+        Angular speed of ``link`` before the blow, rad/s (None where not given: the working cycle
+        finds it).
+    restitution, friction : float
+        R and f.
+    link : str or None
+        The link whose angular speed ``omega_before`` is (None: the link of ``at``).
+    """
+
+    at: str
+    normal: np.ndarray
+    omega_before: float | None
+    restitution: float
+    friction: float
+    link: str | None
+
+
+def blow_setup(
+    mech: Any,
+    *,
+    at: str | None = None,
+    normal: Any = None,
+    omega_before: float | None = None,
+    restitution: float | None = None,
+    friction: float | None = None,
+    link: str | None = None,
+    need_speed: bool = True,
+) -> BlowSetup:
+    """The blow's inputs: each argument given here, else the file's ``impact:`` section's value
+    (``normal`` as a vector or an angle in rad; the file gives an angle).
+
+    Raises
+    ------
+    LinkworkError
+        Naming every input neither given nor in the file, or R outside [0, 1] or f < 0.
+    """
+    blow = mech.blow
+    at = at if at is not None else (blow.at if blow is not None else None)
+    if normal is None and blow is not None:
+        normal = blow.normal
+    if omega_before is None and blow is not None:
+        omega_before = blow.omega
+    restitution = restitution if restitution is not None else (blow.restitution if blow is not None else None)
+    friction = friction if friction is not None else (blow.friction if blow is not None else 0.0)
+    link = link if link is not None else (blow.link if blow is not None else None)
+    missing = [name for name, value in (("at", at), ("normal", normal), ("restitution", restitution)) if value is None]
+    if need_speed and omega_before is None:
+        missing.append("omega_before")
+    if missing:
+        raise LinkworkError(
+            f"the blow needs {', '.join(missing)}: give them as arguments or in the file's impact: section"
+        )
+    assert at is not None and restitution is not None and friction is not None
+    if not (0 <= restitution <= 1 and friction >= 0):
+        raise LinkworkError(f"expected 0 <= R <= 1 and friction >= 0, got R = {restitution}, f = {friction}")
+    n = np.array([math.cos(normal), math.sin(normal)]) if np.ndim(normal) == 0 else np.asarray(normal, dtype=float)
+    length = float(np.linalg.norm(n)) if n.shape == (2,) else 0.0
+    if not (length > 0 and math.isfinite(length)):
+        raise LinkworkError(f"normal: expected a non-zero vector (x, y) or an angle, got {normal!r}")
+    return BlowSetup(at, n / length, omega_before, float(restitution), float(friction), link)
+
+
 def impact(
     mech: Any,
     *,
-    at: str,
-    normal: Any,
-    omega_before: float,
-    restitution: float,
-    friction: float = 0.0,
+    at: str | None = None,
+    normal: Any = None,
+    omega_before: float | None = None,
+    restitution: float | None = None,
+    friction: float | None = None,
     link: str | None = None,
     angle: float | None = None,
     slip: float | None = None,
 ) -> Impact:
     """The impact of point ``at`` (``link.point``) on a surface at rest with outward ``normal``.
 
-    ``omega_before``: the angular speed of ``link`` (default: the link of ``at``) before the impact,
-    rad/s; ``angle``: the crank angle of the pose (default: the assembly pose); ``slip`` as in
+    ``mech``: a path, an example name, a Spec or a Mechanism (:mod:`linkwork.resolve`).  Every
+    argument of the blow not given is the file's (its ``impact:`` section; see :func:`blow_setup`):
+    ``normal`` a vector or an angle (rad); ``omega_before`` the angular speed of ``link``
+    (default: the link of ``at``) before the impact, rad/s; ``restitution`` R and ``friction`` f.
+    ``angle``: the crank angle of the pose (default: the assembly pose); ``slip`` as in
     :func:`~linkwork.impulse.rocker_impact`.
     """
     from linkwork.motion import kinematics
+    from linkwork.resolve import mechanism_of
 
+    mech = mechanism_of(mech, "impact")
     if mech.n_drives != 1:
         raise LinkworkError("impact needs a mechanism of one degree of freedom (one drive)")
-    if not (0 <= restitution <= 1 and friction >= 0):
-        raise LinkworkError("expected 0 <= R <= 1 and friction >= 0")
+    setup = blow_setup(
+        mech, at=at, normal=normal, omega_before=omega_before, restitution=restitution, friction=friction, link=link
+    )
+    at, n, restitution, friction, link = setup.at, setup.normal, setup.restitution, setup.friction, setup.link
+    assert setup.omega_before is not None
+    omega_before = setup.omega_before
     phi0 = float(mech.drive_start[0]) if angle is None else float(angle)
     kin = kinematics(mech, np.array([phi0]), speed=1.0)
     if not bool(np.all(kin.valid)):
@@ -125,8 +206,6 @@ def impact(
     w_before = omega_before / gain
     pos, g_k, _ = kin._point(mech.point_names[p])
     pos, g_k = pos[0, 0], g_k[0, 0]
-    n = np.asarray(normal, dtype=float)
-    n = n / np.linalg.norm(n)
     t = np.array([n[1], -n[0]])
     if not float(g_k @ n) * w_before < 0:
         raise LinkworkError(

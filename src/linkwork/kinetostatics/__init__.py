@@ -59,6 +59,7 @@ __all__ = [
     "bolt_loads",
     "bolt_speed",
     "forces",
+    "forces_of",
 ]
 
 
@@ -108,13 +109,35 @@ class Forces:
     def angles(self) -> np.ndarray:
         return self.kinematics.angles
 
+    @cached_property
+    def singular_all(self) -> np.ndarray:
+        """True where the mechanism assembles but its reactions are indeterminate (a dead or change
+        point: some group's system is singular there), ``(V, A)``."""
+        return self.kinematics.valid_all & ~np.all(np.isfinite(self.multipliers), axis=-1)
+
+    @property
+    def singular(self) -> np.ndarray:
+        """:attr:`singular_all` without the variant axis for one mechanism: ``(..., n_angles)``."""
+        return self._out(self.singular_all)
+
+    @cached_property
+    def _torque_all(self) -> np.ndarray:
+        m = self.mechanism
+        lam = self.multipliers[..., 2 * m.n_pairs :]
+        fill = self.singular_all[..., None] & ~np.isfinite(lam)
+        if m.n_drives != 1 or not fill.any():
+            return lam
+        return np.where(fill, self.torque_power_all, lam)
+
     @property
     def driving_torque(self) -> np.ndarray:
         """Torque (N m) the drive puts on its driven link, counter-clockwise positive (N for a linear drive):
-        ``(..., n_angles)`` for one drive, ``(..., n_angles, n_drives)`` for several."""
-        m = self.mechanism
-        lam = self.multipliers[..., 2 * m.n_pairs :]
-        return self._out(lam[..., 0] if m.n_drives == 1 else lam)
+        ``(..., n_angles)`` for one drive, ``(..., n_angles, n_drives)`` for several.
+
+        At a singular position (:attr:`singular`: a dead or change point, where the reactions are
+        indeterminate) the torque of one drive is still defined: there it is the power balance's."""
+        lam = self._torque_all
+        return self._out(lam[..., 0] if self.mechanism.n_drives == 1 else lam)
 
     def pairs(self, joint: str) -> list[int]:
         m = self.mechanism
@@ -154,11 +177,21 @@ class Forces:
             raise LinkworkError(f'joint "{joint}" is revolute: it carries no moment')
         return self._out(self.multipliers[..., 2 * k])
 
+    @cached_property
+    def _foundation_filled(self) -> np.ndarray:
+        fill = self.singular_all[..., None] & ~np.isfinite(self.foundation_all)
+        if not fill.any():
+            return self.foundation_all
+        return np.where(fill, self.foundation_momentum_all, self.foundation_all)
+
     @property
     def foundation(self) -> np.ndarray:
         """Force (x, y) in N and moment about the origin in N m that the machine (frame included)
-        puts on its foundation: ``(..., n_angles, 3)``.  y up: a positive y force pulls the bolts."""
-        return self._out(self.foundation_all)
+        puts on its foundation: ``(..., n_angles, 3)``.  y up: a positive y force pulls the bolts.
+
+        At a singular position (:attr:`singular`) it is still defined: there it is the theorem on
+        the change of momentum's."""
+        return self._out(self._foundation_filled)
 
     @property
     def shaking_force(self) -> np.ndarray:
@@ -199,12 +232,9 @@ class Forces:
         return free_bodies(self)
 
     def bolts(self) -> Bolts:
-        """Pull, push and shear of the foundation bolts and where their maxima occur.
-
-        At singular positions, where the reactions are indeterminate (NaN), the
-        foundation force is still defined: there it is taken from the momentum theorem."""
-        found = np.where(np.isfinite(self.foundation_all), self.foundation_all, self.foundation_momentum_all)
-        return bolt_loads(found, self.angles)
+        """Pull, push and shear of the foundation bolts and where their maxima occur (from
+        :attr:`foundation`, defined at singular positions too)."""
+        return bolt_loads(self._foundation_filled, self.angles)
 
 
 def forces(
@@ -217,8 +247,10 @@ def forces(
 ) -> Forces:
     """Reactions in every pair, the driving torque and the foundation loads.
 
-    Parameters as for :func:`linkwork.kinematics`; the drive turns at a
-    uniform ``speed`` (default: the file's).
+    ``mech``: a path, an example name, a Spec or a Mechanism (:mod:`linkwork.resolve`), or a
+    :class:`~linkwork.motion.Kinematics` result (then without other arguments: its angles, speeds
+    and variants are the result's; the same as :func:`forces_of`).  Other parameters as for
+    :func:`linkwork.kinematics`; the drive turns at a uniform ``speed`` (default: the file's).
 
     Raises
     ------
@@ -226,14 +258,38 @@ def forces(
         For a mechanism with redundant constraints: its reactions are
         statically indeterminate.
     """
-    from linkwork.motion import kinematics
+    from linkwork.motion import Kinematics, kinematics
+    from linkwork.resolve import mechanism_of
 
+    if isinstance(mech, Kinematics):
+        if angles is not None or steps is not None or speed is not None or variants is not None:
+            raise TypeError("forces(kinematics): the angles, speeds and variants are the kinematics result's")
+        return forces_of(mech)
+    mech = mechanism_of(mech, "forces")
+    _statically_determinate(mech)
+    return forces_of(kinematics(mech, angles, steps=steps, speed=speed, variants=variants))
+
+
+def _statically_determinate(mech: Any) -> None:
     if mech.structure.redundant:
         raise LinkworkError(
             f"the mechanism has {mech.structure.redundant} redundant constraint(s): its reactions are "
             "statically indeterminate (they depend on the links' elasticity); remove the redundant link"
         )
-    kin = kinematics(mech, angles, steps=steps, speed=speed, variants=variants)
+
+
+def forces_of(kin: Any) -> Forces:
+    """The :class:`Forces` of a kinematics result: reactions, driving torque and foundation loads at
+    its angles, speeds and variants (with the variants' mass properties), without solving the
+    motion again.
+
+    Raises
+    ------
+    LinkworkError
+        For a mechanism with redundant constraints.
+    """
+    mech = kin.mechanism
+    _statically_determinate(mech)
     if not fast.available():
         loads = inertia_and_gravity(kin)
         lam, frame = solve_reactions(kin, loads)

@@ -127,7 +127,9 @@ def balance(
     angles over a turn of the file's uniform drive (or ``speed``).
     """
     from linkwork.kinetostatics import forces
+    from linkwork.resolve import mechanism_of
 
+    mech = mechanism_of(mech, "balance")
     if harmonic not in (None, 1):
         raise LinkworkError(f"harmonic: expected 1 (first-harmonic balancing) or None (full), got {harmonic}")
     if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:

@@ -62,7 +62,9 @@ def bolt_speed(mech: Any, pull: float = 0.0, steps: int = 720) -> float:
     0 if the bolts carry that pull at rest already.
     """
     from linkwork.kinetostatics import forces
+    from linkwork.resolve import mechanism_of
 
+    mech = mechanism_of(mech, "bolt_speed")
     rest = forces(mech, steps=steps, speed=0.0).foundation[..., 1]
     one = forces(mech, steps=steps, speed=1.0).foundation[..., 1]
     inertia = one - rest

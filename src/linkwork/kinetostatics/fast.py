@@ -117,9 +117,10 @@ def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
     f_pos = np.stack([np.broadcast_to(f[1], shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
     m_link = np.array([m[0] for m in moments], dtype=np.int64)
     m_val = np.stack([np.broadcast_to(m[1], shape) for m in moments]) if moments else np.zeros((0, 1, 1))
-    mass = np.ascontiguousarray(mech.link_mass, dtype=float)
-    com = np.ascontiguousarray(mech.link_com, dtype=float)
-    inertia = np.ascontiguousarray(mech.link_inertia, dtype=float)
+    ms = kin.mass_properties  # (V or 1, N)
+    mass = np.ascontiguousarray(np.broadcast_to(ms.mass, (n_var, mech.n_links_total)), dtype=float)
+    com = np.ascontiguousarray(np.broadcast_to(ms.com, (n_var, mech.n_links_total, 2)), dtype=float)
+    inertia = np.ascontiguousarray(np.broadcast_to(ms.inertia, (n_var, mech.n_links_total)), dtype=float)
     m = len(rows)
     lam = np.empty((n_var, n_ang, m))
     frame = np.empty((n_var, n_ang, 3))
@@ -303,15 +304,15 @@ def _kernel(
                 if n > 0 and th != Q[n, 5]:  # a slider's angle stays put: no new cos and sin
                     Q[n, 3], Q[n, 4], Q[n, 5] = math.cos(th), math.sin(th), th
                 c, s = Q[n, 3], Q[n, 4]
-                rx = c * com[n, 0] - s * com[n, 1]
-                ry = s * com[n, 0] + c * com[n, 1]
+                rx = c * com[var, n, 0] - s * com[var, n, 1]
+                ry = s * com[var, n, 0] + c * com[var, n, 1]
                 acx = a[n, 0, var, i] - e * ry - w * w * rx
                 acy = a[n, 1, var, i] + e * rx - w * w * ry
-                fx = -mass[n] * acx
-                fy = -mass[n] * acy - mass[n] * g
+                fx = -mass[var, n] * acx
+                fy = -mass[var, n] * acy - mass[var, n] * g
                 Q[n, 0] = fx
                 Q[n, 1] = fy
-                Q[n, 2] = rx * fy - ry * fx - inertia[n] * e
+                Q[n, 2] = rx * fy - ry * fx - inertia[var, n] * e
             for kk in range(f_link.shape[0]):
                 n = f_link[kk]
                 fx, fy = f_val[kk, var, i, 0], f_val[kk, var, i, 1]

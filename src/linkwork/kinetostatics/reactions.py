@@ -47,25 +47,31 @@ def inertia_and_gravity(kin: Any) -> Loads:
     from linkwork.kinetostatics.external import evaluate, generalised
 
     m = kin.mechanism
+    mass, lx, ly, j_c = _mass_arrays(kin)
     q, v, a = kin.pose, kin.vel, kin.acc  # (V, A, N, 3)
     c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
-    lx, ly = m.link_com[:, 0], m.link_com[:, 1]
     r = np.stack([c * lx - s * ly, s * lx + c * ly], -1)  # origin -> centre of mass, global
     w, e = v[..., 2:3], a[..., 2:3]
     perp = np.stack([-r[..., 1], r[..., 0]], -1)
     com = q[..., :2] + r
     vc = v[..., :2] + w * perp
     ac = a[..., :2] + e * perp - w * w * r
-    mass = m.link_mass
     weight = np.zeros(com.shape)
     weight[..., 1] = -mass * m.gravity
     applied = np.concatenate([weight, _cross(r, weight)[..., None]], -1)
     external = evaluate(kin)
     if m.loads:
         applied = applied + generalised(kin, external)
-    f_in = -mass[:, None] * ac
-    inertia = np.concatenate([f_in, (_cross(r, f_in) - m.link_inertia * a[..., 2])[..., None]], -1)
+    f_in = -mass[..., None] * ac
+    inertia = np.concatenate([f_in, (_cross(r, f_in) - j_c * a[..., 2])[..., None]], -1)
     return Loads(applied, inertia, com, vc, ac, external)
+
+
+def _mass_arrays(kin: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Mass, centre of mass x and y (local) and moment of inertia of every link of every variant,
+    each ``(V, 1, N)`` to broadcast over angles."""
+    ms = kin.mass_properties
+    return ms.mass[:, None], ms.com[:, None, :, 0], ms.com[:, None, :, 1], ms.inertia[:, None]
 
 
 def group_order(mech: Any) -> list[tuple[list[int], list[int]]]:
@@ -87,7 +93,7 @@ def solve_reactions(kin: Any, loads: Loads) -> tuple[np.ndarray, np.ndarray]:
 
     Where a group's system is singular (a dead point) its reactions are NaN.
     """
-    from linkwork.motion.geometry import Geometry
+    from linkwork.structure.parameters import Geometry
 
     m = kin.mechanism
     geom = Geometry(*(np.moveaxis(g, (0, 1), (2, 3)) for g in (kin.local, kin.origin, kin.axis)))
@@ -131,13 +137,14 @@ def power_check(kin: Any, loads: Loads) -> np.ndarray:
     NaN otherwise.  Shape (V, A, D).
     """
     m = kin.mechanism
+    mass, _, _, j_c = _mass_arrays(kin)
     v, a = kin.vel, kin.acc
-    kinetic_rate = np.sum(m.link_mass * np.sum(loads.com_velocity * loads.com_acceleration, -1), -1) + np.sum(
-        m.link_inertia * v[..., 2] * a[..., 2], -1
+    kinetic_rate = np.sum(mass * np.sum(loads.com_velocity * loads.com_acceleration, -1), -1) + np.sum(
+        j_c * v[..., 2] * a[..., 2], -1
     )
     from linkwork.kinetostatics.external import power as external_power
 
-    power = -m.gravity * np.sum(m.link_mass * loads.com_velocity[..., 1], -1) + external_power(kin, loads.external)
+    power = -m.gravity * np.sum(mass * loads.com_velocity[..., 1], -1) + external_power(kin, loads.external)
     rate = kin.rates[None, :, 0]
     out = np.full(kinetic_rate.shape + (m.n_drives,), np.nan)
     if m.n_drives == 1:
@@ -159,9 +166,10 @@ def momentum_check(kin: Any, loads: Loads) -> np.ndarray:
     from linkwork.kinetostatics.external import resultant
 
     m = kin.mechanism
+    mass, _, _, j_c = _mass_arrays(kin)
     weight = np.zeros(loads.com.shape)
-    weight[..., 1] = -m.link_mass * m.gravity
-    f = weight - m.link_mass[:, None] * loads.com_acceleration
-    moment = np.sum(_cross(loads.com, f), -1) - np.sum(m.link_inertia * kin.acc[..., 2], -1)
+    weight[..., 1] = -mass * m.gravity
+    f = weight - mass[..., None] * loads.com_acceleration
+    moment = np.sum(_cross(loads.com, f), -1) - np.sum(j_c * kin.acc[..., 2], -1)
     total = np.concatenate([np.sum(f, axis=-2), moment[..., None]], -1)
     return total + resultant(loads.external, total.shape[:-1])

@@ -129,7 +129,9 @@ def dynamics(
     import numpy as np
 
     from linkwork.errors import LinkworkError
+    from linkwork.resolve import mechanism_of
 
+    mech = mechanism_of(mech, "dynamics")
     if drive is None:
         drive = mech.machine
     if drive is None:

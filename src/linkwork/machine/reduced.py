@@ -76,7 +76,9 @@ def reduced(mech: Any, steps: int = 3600) -> Reduced:
     from linkwork.kinetostatics.external import power as external_power
     from linkwork.kinetostatics.reactions import inertia_and_gravity
     from linkwork.motion import cycle, kinematics
+    from linkwork.resolve import mechanism_of
 
+    mech = mechanism_of(mech, "reduced")
     if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
         raise LinkworkError("machine dynamics needs one crank (a revolute drive)")
     if steps < 16:
@@ -88,7 +90,8 @@ def reduced(mech: Any, steps: int = 3600) -> Reduced:
         bad = np.degrees(angle[~np.asarray(kin.valid)][0]) % 360
         raise LinkworkError(f"the mechanism does not assemble over the whole turn (first at {bad:.1f} deg)")
     loads = inertia_and_gravity(kin)
-    m, j = mech.link_mass, mech.link_inertia
+    ms = kin.mass_properties
+    m, j = ms.mass[0], ms.inertia[0]
     vc, ac = loads.com_velocity[0], loads.com_acceleration[0]
     w, e = kin.vel[0, :, :, 2], kin.acc[0, :, :, 2]
     inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1)

@@ -16,10 +16,10 @@ import numpy as np
 
 from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.motion.events import Event
-from linkwork.motion.geometry import Geometry, ParameterError, geometry, parameters
 from linkwork.structure.constraints import REVOLUTE
+from linkwork.structure.parameters import Geometry, Masses, apply, parameters
 
-__all__ = ["Event", "Geometry", "Kinematics", "ParameterError", "geometry", "kinematics", "parameters"]
+__all__ = ["Event", "Geometry", "Kinematics", "Masses", "kinematics", "parameters"]
 
 
 @dataclass(frozen=True)
@@ -48,6 +48,7 @@ class Kinematics:
     step_det: tuple[np.ndarray, ...] = ()
     axis: np.ndarray | None = None  # (M, 2, V, 1) guide directions of the variants
     origin: np.ndarray | None = None  # (M, 2, V, 1) guide origins of the variants
+    masses: Masses | None = None  # mass properties of the variants' links; None: the mechanism's
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
@@ -66,6 +67,16 @@ class Kinematics:
     def acc(self) -> np.ndarray:
         """Link accelerations ``(V, A, N, 3)`` (a view)."""
         return np.moveaxis(self.a, (0, 1), (2, 3))
+
+    @property
+    def mass_properties(self) -> Masses:
+        """Mass, centre of mass and moment of inertia of every link of every variant, ``(V, N)``,
+        ``(V, N, 2)``, ``(V, N)``: the mechanism's, or those the mass rule gives the variants
+        (:mod:`linkwork.structure.parameters`)."""
+        if self.masses is not None:
+            return self.masses
+        m = self.mechanism
+        return Masses(m.link_mass[None], m.link_com[None], m.link_inertia[None])
 
     @property
     def angles(self) -> np.ndarray:
@@ -196,8 +207,8 @@ def kinematics(
 
     Parameters
     ----------
-    mech : Mechanism
-        From :func:`linkwork.compile`.
+    mech : path, example name, Spec or Mechanism
+        The mechanism (see :mod:`linkwork.resolve`); compiled here unless it is a Mechanism.
     angles : array_like, shape (A,) or (A, D)
         Drive coordinates (rad for revolute drives, m for prismatic ones):
         the crank angle in the frame's axes, counter-clockwise from +x.
@@ -205,9 +216,12 @@ def kinematics(
         Instead of ``angles``: ``steps`` equal steps of a whole turn of the
         crank from its assembly angle, in its direction of rotation.
     variants : dict, optional
-        Design variants: arrays of values (SI) of named dimensions, all of
+        Design variants: arrays of values (SI) of named parameters, all of
         one length V, e.g. ``{"links.crank.length": np.linspace(0.09, 0.11, 100)}``;
-        :func:`parameters` lists the names.
+        :func:`parameters` lists the names.  An override means what the same
+        edit of the file means, mass properties included (the mass rule of
+        :mod:`linkwork.structure.parameters`); they come with the result for
+        :func:`linkwork.forces`.
     speed : float or array_like (D,), optional
         Drive speeds (rad/s or m/s); default the file's.  A drive without a
         speed is taken at 1 rad/s (1 m/s): velocities are then the first
@@ -221,7 +235,9 @@ def kinematics(
     """
     from linkwork.motion.events import find
     from linkwork.motion.solve import run
+    from linkwork.resolve import mechanism_of
 
+    mech = mechanism_of(mech, "kinematics")
     if (angles is None) == (steps is None):
         raise LinkworkError("give either angles or steps")
     if steps is not None and (isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 1):
@@ -245,7 +261,7 @@ def kinematics(
         if np.ndim(value) > 1:
             raise LinkworkError(f'variants["{path}"]: expected a one-dimensional array, got shape {np.shape(value)}')
     rates = np.broadcast_to(rate, values.shape)
-    geom = geometry(mech, variants)
+    geom, masses = apply(mech, variants)
     revolute = bool(mech.pair_type[mech.drive_pair[0]] == REVOLUTE)
     path, take = _path(mech, values[:, 0]) if revolute and mech.n_drives == 1 else (None, None)
     if path is None:
@@ -277,4 +293,5 @@ def kinematics(
         tuple(state.step_det),
         state.axis,
         state.origin,
+        masses if variants else None,
     )

@@ -293,9 +293,7 @@ def _impact(run: _Run) -> None:
     mech = run.mech
     blow = mech.blow
     run.progress("impact")
-    normal = (math.cos(blow.normal), math.sin(blow.normal))
-    r = impact(mech, at=blow.at, normal=normal, omega_before=blow.omega, link=blow.link,
-               restitution=blow.restitution, friction=blow.friction)  # fmt: skip
+    r = impact(mech)
     sec = Section("impact", "Impact")
     rows = [[f"impulse on {blow.at}", f"({r.impulse[0]:.6g}, {r.impulse[1]:.6g}) N s"]]
     rows += [[f"joint {j}", f"({v[0]:.6g}, {v[1]:.6g}) N s"] for j, v in r.joints.items()]

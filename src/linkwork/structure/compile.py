@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -16,8 +17,11 @@ from linkwork.structure.constraints import PRISMATIC, REVOLUTE, build_rows, glob
 from linkwork.structure.model import AssurGroup, Mechanism, Structure, formula
 
 
-def compile(spec: Spec) -> Mechanism:  # noqa: A001 - the public name of the pipeline step
+def compile(spec: Spec | Any) -> Mechanism:  # noqa: A001 - the public name of the pipeline step
     """Compile a validated spec into a :class:`Mechanism`.
+
+    ``spec`` may also be a mechanism file's path or a bundled example's name (loaded first), or a
+    compiled Mechanism (returned as it is); anything else is a TypeError.
 
     Builds the flat arrays, decomposes the mechanism into Assur groups,
     assembles it in the pose chosen by the drives' start values and the
@@ -33,6 +37,12 @@ def compile(spec: Spec) -> Mechanism:  # noqa: A001 - the public name of the pip
     UnassemblableError
         The assembly pose does not exist.
     """
+    from linkwork.resolve import spec_of
+
+    if not isinstance(spec, Spec):
+        if isinstance(spec, Mechanism):
+            return spec
+        spec = spec_of(spec, "compile")
     try:
         return _compile(spec)
     except (StructureError, UnassemblableError) as exc:
@@ -255,8 +265,6 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         add_point(0, name, xy)
     n_total = len(link_names)
     mass = np.zeros(n_total)
-    com = np.zeros((n_total, 2))
-    inertia = np.zeros(n_total)
     virtual = np.zeros(n_total, dtype=bool)
     ends = np.full((n_total, 2), -1)
     for name, link in spec.links.items():
@@ -267,28 +275,10 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
             ends[i] = (pindex[(i, link.ends[0])], pindex[(i, link.ends[1])])
         for pname, xy in link.points.items():
             add_point(i, pname, xy)
-        local = {p: np.array(point_local[pindex[(i, p)]]) for (li, p) in pindex if li == i}
-        if isinstance(link.com, str):
-            com[i] = local[link.com]
-        elif link.com is not None:
-            com[i] = link.com
-        else:
-            com[i] = np.mean(list(local.values()), axis=0)
         mass[i] = link.mass or 0.0
-        if link.inertia is not None:
-            j = link.inertia
-            if link.inertia_about is not None:  # parallel axes; validation refused an impossible value
-                j = max(link.inertia - mass[i] * float(np.sum((local[link.inertia_about] - com[i]) ** 2)), 0.0)
-            inertia[i] = j
-        elif link.length is not None:
-            inertia[i] = mass[i] * link.length**2 / 12.0
     if spec.frame.mass is not None:
         mass[0] = spec.frame.mass
-        c = spec.frame.com
-        if isinstance(c, str):
-            com[0] = point_local[pindex[(0, c)]]
-        elif c is not None:
-            com[0] = c
+    com_rule, com_given, inertia_rule, inertia_given = _mass_rules(spec, index, pindex)
 
     pair_type, pair_links, pair_points, pair_origin, pair_axis, pair_joint = [], [], [], [], [], []
     origin_point: list[int] = []
@@ -375,14 +365,31 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         arr.flags.writeable = False
         return arr
 
+    from linkwork.structure.parameters import mass_properties
+
+    rules = dict(
+        link_com_rule=f(com_rule, int),
+        link_inertia_rule=f(inertia_rule, int),
+        link_inertia_given=f(inertia_given),
+        link_com=f(com_given).reshape(-1, 2),
+        link_ends=f(ends, int).reshape(-1, 2),
+        point_link=f(point_link, int),
+        link_names=tuple(link_names),
+    )
+    com, inertia = mass_properties(
+        _Rules(**rules), np.array(point_local, dtype=float).reshape(1, -1, 2), mass[None], inertia_given[None]
+    )
     arrays = dict(
         name=spec.name or (spec.source.file if spec.source and spec.source.file else "mechanism"),
         source=spec.source.file if spec.source else None,
         link_names=tuple(link_names),
         link_virtual=f(virtual, bool),
         link_mass=f(mass),
-        link_com=f(com),
-        link_inertia=f(inertia),
+        link_com=f(com[0]),
+        link_inertia=f(inertia[0]),
+        link_com_rule=rules["link_com_rule"],
+        link_inertia_rule=rules["link_inertia_rule"],
+        link_inertia_given=rules["link_inertia_given"],
         point_names=tuple(point_names),
         point_link=f(point_link, int),
         point_local=f(point_local).reshape(-1, 2),
@@ -405,8 +412,59 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         machine=from_spec(spec.machine) if spec.machine is not None else None,
         delta=spec.machine.delta if spec.machine is not None else None,
         blow=spec.impact,
+        spec=spec,
     )
     return arrays, hints, (len(spec.links), p5, p4)
+
+
+@dataclass(frozen=True)
+class _Rules:
+    """What :func:`~linkwork.structure.parameters.mass_properties` reads of a mechanism being compiled."""
+
+    link_com_rule: np.ndarray
+    link_inertia_rule: np.ndarray
+    link_inertia_given: np.ndarray
+    link_com: np.ndarray
+    link_ends: np.ndarray
+    point_link: np.ndarray
+    link_names: tuple[str, ...]
+
+
+def _mass_rules(
+    spec: Spec, index: dict[str, int], pindex: dict[tuple[int, str], int]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """How the file gives each link's centre of mass and moment of inertia (the mass rule of
+    :mod:`linkwork.structure.parameters`): the rules ``(N,)``, the given centres ``(N, 2)`` and the
+    given moments of inertia ``(N,)``."""
+    from linkwork.structure.parameters import (
+        COM_CENTROID,
+        COM_GIVEN,
+        INERTIA_GIVEN,
+        INERTIA_NONE,
+        INERTIA_ROD,
+    )
+
+    n = len(index)
+    com_rule = np.full(n, COM_CENTROID)
+    com_given = np.zeros((n, 2))
+    inertia_rule = np.full(n, INERTIA_NONE)
+    inertia_given = np.zeros(n)
+    owners = [(0, spec.frame.com, None, None, None)] + [
+        (index[name], link.com, link.inertia, link.inertia_about, link.length) for name, link in spec.links.items()
+    ]
+    for i, com, inertia, about, length in owners:
+        if isinstance(com, str):
+            com_rule[i] = pindex[(i, com)]
+        elif com is not None:
+            com_rule[i], com_given[i] = COM_GIVEN, com
+        elif i == 0:
+            com_rule[i] = COM_GIVEN  # the frame's centre of mass, where the file gives none: its origin
+        if inertia is not None:
+            inertia_given[i] = inertia
+            inertia_rule[i] = pindex[(i, about)] if about is not None else INERTIA_GIVEN
+        elif length is not None:
+            inertia_rule[i] = INERTIA_ROD
+    return com_rule, com_given, inertia_rule, inertia_given
 
 
 def _depths(spec: Spec, index: dict[str, int]) -> dict[int, int]:

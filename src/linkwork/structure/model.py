@@ -167,6 +167,10 @@ class Mechanism:
     link_mass: np.ndarray  # (N,) kg
     link_com: np.ndarray  # (N, 2) local m
     link_inertia: np.ndarray  # (N,) kg m^2 about the centre of mass
+    # how the file gives them (linkwork.structure.parameters: the mass rule for variants)
+    link_com_rule: np.ndarray  # (N,) COM_GIVEN, COM_CENTROID, or the point it is at
+    link_inertia_rule: np.ndarray  # (N,) INERTIA_GIVEN, INERTIA_ROD, INERTIA_NONE, or the point it is about
+    link_inertia_given: np.ndarray  # (N,) kg m^2: the file's value (about the rule's point), else 0
     point_names: tuple[str, ...]  # "link.point"
     point_link: np.ndarray  # (P,) int
     point_local: np.ndarray  # (P, 2)
@@ -191,6 +195,7 @@ class Mechanism:
     machine: Any = None  # the drive of the machine unit (linkwork.machine.Drive), if the file gives one
     delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
     blow: Any = None  # the file's impact: section (linkwork.spec.schema.ImpactSpec), SI
+    spec: Any = field(default=None, repr=False, compare=False)  # the description it was compiled from
 
     @property
     def n_links(self) -> int:

@@ -19,14 +19,10 @@ class Viewer:
     """The mechanism a server shows, and the cycles of its edits (a small cache)."""
 
     def __init__(self, spec_or_mech: Any, steps: int = 360, cache: int = 16) -> None:
-        from linkwork.examples import resolve
-        from linkwork.spec.schema import Spec
-        from linkwork.structure.compile import compile
+        from linkwork.resolve import mechanism_of
 
-        if isinstance(spec_or_mech, str):
-            spec_or_mech = resolve(spec_or_mech)
-        self.spec = spec_or_mech if isinstance(spec_or_mech, Spec) else None
-        self.mech = compile(spec_or_mech) if self.spec is not None else spec_or_mech
+        self.mech = mechanism_of(spec_or_mech, "viewer")
+        self.spec = self.mech.spec
         self.steps = steps
         self._cache: OrderedDict[tuple[Any, ...], dict[str, Any]] = OrderedDict()
         self._size = cache
@@ -45,26 +41,20 @@ class Viewer:
         finally:
             self._busy.release()
 
-    def parameters(self, spec: Any = None, mech: Any = None) -> list[dict[str, Any]]:
-        """The editable values of ``spec`` compiled as ``mech`` (by default the mechanism as loaded)."""
+    def parameters(self, mech: Any = None) -> list[dict[str, Any]]:
+        """The editable values of ``mech`` (by default the mechanism as loaded)."""
         from linkwork.web.edits import editable
 
-        if self.spec is None:
-            return []
-        if spec is None:
-            spec, mech = self.spec, self.mech
-        return [p.as_dict() for p in editable(spec, mech)]
+        return [p.as_dict() for p in editable(mech if mech is not None else self.mech)]
 
     def edit(self, overrides: dict[str, float]) -> tuple[Any, Any]:
         """The description and the mechanism with ``overrides`` (SI) applied; a LinkworkError when it fails."""
         from linkwork.structure.compile import compile
-        from linkwork.web.edits import EditError, apply
+        from linkwork.web.edits import apply
 
         if not overrides:
             return self.spec, self.mech
-        if self.spec is None:
-            raise EditError("this viewer shows a compiled mechanism without its description: it cannot be edited")
-        spec = apply(self.spec, self.mech, overrides)
+        spec = apply(self.mech, overrides)
         return spec, compile(spec)
 
     def compile(self, overrides: dict[str, float]) -> Any:
@@ -87,7 +77,7 @@ class Viewer:
             out = cycle_payload(mech, steps)
         out["editable"] = self.spec is not None
         out["overrides"] = dict(overrides)
-        out["parameters"] = self.parameters(spec, mech)
+        out["parameters"] = self.parameters(mech)
         with self._lock:
             self._cache[key] = out
             while len(self._cache) > self._size:

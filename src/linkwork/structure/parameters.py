@@ -1,0 +1,528 @@
+"""Named parameters of a mechanism: what an override means, in one place.
+
+A parameter is named by its path in the mechanism file, and an override
+means exactly what the same edit of the file means:
+
+=================================  ===============================================  ========
+path                               what it is                                       SI unit
+=================================  ===============================================  ========
+``links.crank.length``             length of a link given by ``ends``               m
+``links.rocker.points.B.x``        a point of a link, in the link's coordinates     m
+``frame.points.O1.y``              a frame point                                    m
+``joints.guide_E.axis``            direction of a guide, in the guide's coordinates rad
+``joints.guide_E.through.x``       a point of a guide line given by coordinates     m
+``links.rod.mass``                 mass of a link                                   kg
+``links.rod.inertia``              the file's moment of inertia of a link (about    kg m^2
+                                   the centre of mass, or about ``inertia_about``)
+=================================  ===============================================  ========
+
+**The mass rule.**  A mass property the file gives stays as it is; one it
+leaves to its default follows the new geometry and mass:
+
+- the centre of mass: given as local ``[x, y]``, it stays; named by a point
+  (``com: E``), it stays at that point wherever the point goes; not given, it
+  is the centroid of the link's points, of the variant;
+- the moment of inertia: given about the centre of mass, it stays; given
+  about a point (``inertia_about``), the inertia about that point stays, so
+  the one about the centre of mass is ``J_P - m |P - C|^2`` of the variant;
+  not given, a link given by ``ends`` is a uniform rod, ``m L^2 / 12`` of the
+  variant's length and mass (zero for other links).
+
+:func:`apply` gives the arrays of the variants (:class:`Geometry` and
+:class:`Masses`) for the kinematics and the forces; :func:`set_values`
+writes values into a file's data, keeping its comments, its layout and the
+units it writes each value in.  :func:`compile <linkwork.structure.compile.compile>`
+uses :func:`mass_properties` for the file's own values, so the rule has one
+home.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import ParameterError
+
+#: The centre of mass given in the file's link coordinates: it stays.
+COM_GIVEN = -2
+#: No centre of mass in the file: the centroid of the link's points.
+COM_CENTROID = -1
+
+#: A moment of inertia given about the centre of mass: it stays.
+INERTIA_GIVEN = -3
+#: No moment of inertia in the file, a link given by ends: a uniform rod, m L^2 / 12.
+INERTIA_ROD = -2
+#: No moment of inertia in the file and no ends: zero.
+INERTIA_NONE = -1
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """Local dimensions of every variant.
+
+    Attributes
+    ----------
+    point_local : ndarray, shape (V, 1, P, 2)
+    pair_origin : ndarray, shape (V, 1, M, 2)
+    pair_axis : ndarray, shape (V, 1, M, 2)
+        The singleton axis broadcasts over crank angles.
+    """
+
+    point_local: np.ndarray
+    pair_origin: np.ndarray
+    pair_axis: np.ndarray
+
+    @property
+    def n_variants(self) -> int:
+        return self.point_local.shape[0]
+
+
+@dataclass(frozen=True)
+class Masses:
+    """Mass properties of every link of every variant.
+
+    Attributes
+    ----------
+    mass : ndarray, shape (V, N)
+        kg.
+    com : ndarray, shape (V, N, 2)
+        Centre of mass in the link's coordinates, m.
+    inertia : ndarray, shape (V, N)
+        Moment of inertia about the centre of mass, kg m^2.
+    """
+
+    mass: np.ndarray
+    com: np.ndarray
+    inertia: np.ndarray
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One named parameter.
+
+    Attributes
+    ----------
+    name : str
+        Its path in the file, e.g. ``links.crank.length``.
+    kind : str
+        The kind of quantity (:data:`linkwork.units.KINDS`): ``length``, ``angle``, ``mass`` or ``inertia``.
+    value : float
+        The file's value, SI.
+    group : str
+        ``dimensions`` or ``masses``.
+    positive : bool
+        Only values above zero are valid (lengths of links, masses); inertias must not be negative.
+    note : str
+        What it means where the name does not say (``about O3`` for an inertia).
+    """
+
+    name: str
+    kind: str
+    value: float
+    group: str
+    positive: bool = False
+    note: str = ""
+
+    @property
+    def unit(self) -> str:
+        """Its SI unit."""
+        from linkwork.units import KINDS
+
+        return KINDS[self.kind][1]
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "name": self.name,
+            "kind": self.kind,
+            "unit": self.unit,
+            "value": self.value,
+            "group": self.group,
+            "note": self.note,
+        }
+
+    def check(self, value: float) -> str | None:
+        """What is wrong with ``value`` (SI) for this parameter, or None."""
+        if not math.isfinite(value):
+            return f"{self.name}: expected a finite number, got {value!r}"
+        if self.positive and value <= 0:
+            return f"{self.name}: expected a positive {self.kind}, got {value:g} {self.unit}"
+        if self.kind == "inertia" and value < 0:
+            return f"{self.name}: expected a moment of inertia of 0 or more, got {value:g} {self.unit}"
+        return None
+
+
+def parameter_list(mech: Any) -> list[Parameter]:
+    """Every named parameter of ``mech``, with the file's values (SI): the dimensions, then the
+    mass and moment of inertia of every moving link."""
+    return [*_dimensions(mech), *_masses(mech)]
+
+
+def parameters(mech: Any) -> dict[str, float]:
+    """The named parameters an override may set, with their values (SI).
+
+    ``mech``: a path, an example name, a Spec or a Mechanism (:mod:`linkwork.resolve`).
+    """
+    from linkwork.resolve import mechanism_of
+
+    return {p.name: p.value for p in parameter_list(mechanism_of(mech, "parameters"))}
+
+
+def parameter(mech: Any, path: str, known: dict[str, Parameter] | None = None) -> Parameter:
+    """The parameter named ``path``; :class:`ParameterError` with the closest name for an unknown one."""
+    known = known if known is not None else {p.name: p for p in parameter_list(mech)}
+    if path in known:
+        return known[path]
+    from linkwork.spec.checks import suggest
+
+    raise ParameterError(f'no parameter "{path}"{suggest(path, list(known))}; linkwork.parameters(mech) lists them')
+
+
+def _dimensions(mech: Any) -> list[Parameter]:
+    out: list[Parameter] = []
+    for p, (name, link) in enumerate(zip(mech.point_names, mech.point_link, strict=True)):
+        lname, pname = name.split(".", 1)
+        if mech.link_virtual[link]:
+            continue
+        base = f"frame.points.{pname}" if link == 0 else f"links.{lname}.points.{pname}"
+        ends = mech.link_ends[link]
+        if link != 0 and ends[1] == p:
+            out.append(Parameter(f"links.{lname}.length", "length", float(mech.point_local[p, 0]), "dimensions", True))
+            continue
+        if link != 0 and ends[0] == p:
+            continue
+        out.append(Parameter(f"{base}.x", "length", float(mech.point_local[p, 0]), "dimensions"))
+        out.append(Parameter(f"{base}.y", "length", float(mech.point_local[p, 1]), "dimensions"))
+    seen: set[str] = set()
+    for k, joint in enumerate(mech.pair_joint):
+        if mech.pair_type[k] != 1 or joint in seen:
+            continue
+        seen.add(joint)
+        angle = float(np.arctan2(mech.pair_axis[k, 1], mech.pair_axis[k, 0]))
+        out.append(Parameter(f"joints.{joint}.axis", "angle", angle, "dimensions"))
+        if mech.pair_origin_point[k] < 0:
+            for c, axis in enumerate("xy"):
+                out.append(Parameter(f"joints.{joint}.through.{axis}", "length", float(mech.pair_origin[k, c]), "dimensions"))
+    return out
+
+
+def _masses(mech: Any) -> list[Parameter]:
+    out: list[Parameter] = []
+    for i, lname in enumerate(mech.link_names):
+        if i == 0 or mech.link_virtual[i]:
+            continue
+        out.append(Parameter(f"links.{lname}.mass", "mass", float(mech.link_mass[i]), "masses", True))
+        rule = int(mech.link_inertia_rule[i])
+        if rule >= 0:
+            about = mech.point_names[rule].split(".", 1)[1]
+            value, note = float(mech.link_inertia_given[i]), f"about {about}"
+        else:
+            value, note = float(mech.link_inertia[i]), "about the centre of mass"
+        out.append(Parameter(f"links.{lname}.inertia", "inertia", value, "masses", note=note))
+    return out
+
+
+# --- the arrays of the variants --------------------------------------------------------------------
+
+
+def apply(mech: Any, overrides: dict[str, Any] | None = None) -> tuple[Geometry, Masses]:
+    """The geometry and mass properties of the variants that ``overrides`` (path -> SI value or
+    ``(V,)`` array of values) describe; one variant, the file's, when there are none.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown path (with the closest known one) or arrays of unequal length.
+    """
+    overrides = overrides or {}
+    known = {p.name: p for p in parameter_list(mech)} if overrides else {}
+    sizes = {np.size(v) for v in overrides.values()} - {1}
+    if len(sizes) > 1:
+        raise ParameterError(f"override arrays must have one length, got lengths {sorted(sizes)}")
+    n = sizes.pop() if sizes else 1
+    pts = np.repeat(np.asarray(mech.point_local, dtype=float)[None], n, axis=0)
+    origin = np.repeat(np.asarray(mech.pair_origin, dtype=float)[None], n, axis=0)
+    axis = np.repeat(np.asarray(mech.pair_axis, dtype=float)[None], n, axis=0)
+    mass = np.repeat(np.asarray(mech.link_mass, dtype=float)[None], n, axis=0)
+    given = np.repeat(np.asarray(mech.link_inertia_given, dtype=float)[None], n, axis=0)
+    inertia_rule = np.asarray(mech.link_inertia_rule).copy()
+    for path, value in overrides.items():
+        parameter(mech, path, known)
+        v = np.broadcast_to(np.asarray(value, dtype=float).ravel(), (n,))
+        _set(mech, path.split("."), v, pts, origin, axis, mass, given, inertia_rule)
+    follow = np.flatnonzero(mech.pair_origin_point >= 0)
+    origin[:, follow] = pts[:, mech.pair_origin_point[follow]]
+    if not overrides:
+        masses = Masses(mass, np.asarray(mech.link_com, dtype=float)[None], np.asarray(mech.link_inertia)[None])
+    else:
+        com, inertia = mass_properties(mech, pts, mass, given, inertia_rule)
+        masses = Masses(mass, com, inertia)
+    return Geometry(pts[:, None], origin[:, None], axis[:, None]), masses
+
+
+def _set(
+    mech: Any,
+    parts: list[str],
+    v: np.ndarray,
+    pts: np.ndarray,
+    origin: np.ndarray,
+    axis: np.ndarray,
+    mass: np.ndarray,
+    given: np.ndarray,
+    inertia_rule: np.ndarray,
+) -> None:
+    """Write the values ``v`` (V,) of the parameter at ``parts`` into the variants' arrays."""
+    if parts[0] == "links" and parts[2] in ("length", "mass", "inertia"):
+        link = mech.link_names.index(parts[1])
+        if parts[2] == "length":
+            pts[:, mech.link_ends[link][1], 0] = v
+        elif parts[2] == "mass":
+            mass[:, link] = v
+        else:
+            given[:, link] = v
+            if inertia_rule[link] < 0:  # the file gives none, or gives it about the centre of mass
+                inertia_rule[link] = INERTIA_GIVEN
+    elif parts[-3] == "points":
+        lname = "frame" if parts[0] == "frame" else parts[1]
+        p = mech.point_names.index(f"{lname}.{parts[-2]}")
+        pts[:, p, 0 if parts[-1] == "x" else 1] = v
+    else:
+        for k in (k for k, j in enumerate(mech.pair_joint) if j == parts[1] and mech.pair_type[k] == 1):
+            if parts[2] == "axis":
+                axis[:, k] = np.stack([np.cos(v), np.sin(v)], axis=-1)
+            else:
+                origin[:, k, 0 if parts[-1] == "x" else 1] = v
+
+
+def mass_properties(
+    mech: Any,
+    point_local: np.ndarray,
+    mass: np.ndarray,
+    given: np.ndarray,
+    inertia_rule: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Centres of mass ``(V, N, 2)`` and moments of inertia about them ``(V, N)`` by the mass rule.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        For its rules (``link_com_rule``, ``link_inertia_rule``), the file's given centres of
+        mass (``link_com`` where the rule is :data:`COM_GIVEN`) and the links' points and ends.
+    point_local : ndarray (V, P, 2)
+        The variants' points.
+    mass : ndarray (V, N)
+    given : ndarray (V, N)
+        The moments of inertia the file gives (about the centre of mass or about the rule's point).
+    inertia_rule : ndarray (N,), optional
+        Instead of the mechanism's.
+
+    A moment of inertia given about a point that comes out below zero about the centre of mass
+    (the point too far from it for the mass) is NaN.
+    """
+    rule = np.asarray(mech.link_inertia_rule if inertia_rule is None else inertia_rule)
+    com = _centres(mech, point_local)
+    inertia = np.where(rule == INERTIA_GIVEN, given, 0.0)
+    ends = np.asarray(mech.link_ends)
+    rods = np.flatnonzero(rule == INERTIA_ROD)
+    if len(rods):
+        span = point_local[:, ends[rods, 1]] - point_local[:, ends[rods, 0]]
+        inertia[:, rods] = mass[:, rods] * np.sum(span * span, -1) / 12.0
+    about = np.flatnonzero(rule >= 0)
+    if len(about):
+        d = point_local[:, rule[about]] - com[:, about]
+        j = given[:, about] - mass[:, about] * np.sum(d * d, -1)
+        scale = np.maximum(np.abs(given[:, about]), 1e-300)
+        inertia[:, about] = np.where(j >= -1e-12 * scale, np.maximum(j, 0.0), np.nan)
+    return com, inertia
+
+
+def _centres(mech: Any, point_local: np.ndarray) -> np.ndarray:
+    """Centres of mass ``(V, N, 2)`` of the variants by the rule of each link."""
+    n_var, n_links = point_local.shape[0], len(mech.link_names)
+    rule = np.asarray(mech.link_com_rule)
+    com = np.broadcast_to(np.asarray(mech.link_com, dtype=float), (n_var, n_links, 2)).copy()
+    at = np.flatnonzero(rule >= 0)
+    com[:, at] = point_local[:, rule[at]]
+    centroid = np.flatnonzero(rule == COM_CENTROID)
+    if len(centroid):
+        owner = np.asarray(mech.point_link)
+        member = owner[None, :] == centroid[:, None]  # (C, P)
+        count = np.maximum(member.sum(axis=1), 1)
+        com[:, centroid] = np.einsum("cp,vpk->vck", member.astype(float), point_local) / count[None, :, None]
+    return com
+
+
+# --- writing values into a file ---------------------------------------------------------------------
+
+_NUMBER_AND_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*)?$")
+
+
+def set_values(data: Any, values: dict[str, float], declared: dict[str, str], kinds: dict[str, str]) -> None:
+    """Write ``values`` (path -> SI) at their places in a mechanism file's data (a mapping as YAML
+    loads it; a ruamel round-trip mapping keeps its comments and layout).
+
+    Each value is written the way the file writes the one it replaces: a string with a unit in
+    that unit (``"0.25 m"`` -> ``"0.3 m"``), a bare number as a bare number in the unit the file
+    reads it in (its ``units:``).  A value the file leaves out (a moment of inertia left to its
+    default) is written with its SI unit.  ``kinds``: path -> kind of quantity.
+
+    Raises
+    ------
+    ParameterError
+        Where the file has no place for a value (a point not given as ``[x, y]``).
+    """
+    for path, si in values.items():
+        parts = path.split(".")
+        kind = kinds[path]
+        if parts[-1] in ("x", "y"):
+            pair = _node(data, parts[:-1], path)
+            if not isinstance(pair, list) or len(pair) != 2:
+                raise ParameterError(f"{path}: the file does not give this point as [x, y]")
+            c = 0 if parts[-1] == "x" else 1
+            pair[c] = _written(pair[c], si, kind, declared)
+        else:
+            owner = _node(data, parts[:-1], path)
+            owner[parts[-1]] = _written(owner.get(parts[-1]), si, kind, declared)
+
+
+def _node(data: Any, keys: list[str], path: str) -> Any:
+    node = data
+    for key in keys:
+        if not isinstance(node, dict) or key not in node:
+            raise ParameterError(f"{path}: the file gives no such value")
+        node = node[key]
+    return node
+
+
+def _written(old: Any, si: float, kind: str, declared: dict[str, str]) -> Any:
+    """``si`` as the file would write it where it writes ``old`` (None: not written)."""
+    from linkwork.units import KINDS, _factor, unit_for
+
+    if isinstance(old, str):
+        match = _NUMBER_AND_UNIT.match(old)
+        if match is not None and match.group(2):
+            unit = match.group(2).strip()
+            return f"{_number(si / _factor(unit, kind))} {unit}"
+    if old is None or isinstance(old, bool):
+        return f"{_number(si)} {KINDS[kind][1].replace('**', '^')}"
+    return _number(si / _factor(unit_for(kind, declared), kind))
+
+
+def _number(value: float) -> float:
+    """A float that prints short and reads back within 1e-12 relative."""
+    return float(f"{value:.12g}")
+
+
+# --- an edited description ---------------------------------------------------------------------------
+
+
+def edited_spec(mechanism: Any, overrides: dict[str, float]) -> Any:
+    """The description of ``mechanism`` with ``overrides`` (path -> SI) written in, validated again:
+    what a user gets who edits the file by hand.
+
+    Raises
+    ------
+    ParameterError
+        An unknown name (with the closest known one), or a value out of its range.
+    SpecError
+        The edited description fails validation (the file's message, with its line).
+    """
+    from linkwork.spec.load import validate
+    from linkwork.spec.yamlsource import Source
+
+    spec, mech, kinds = _described(mechanism, overrides)
+    data, declared = _file_data(spec, round_trip=False)
+    set_values(data, overrides, declared, kinds)
+    src = spec.source
+    return validate(Source(data, src.lines if src is not None else {}, src.file if src is not None else None, []))
+
+
+def write_file(mechanism: Any, values: dict[str, float], out: Any) -> Any:
+    """Write the file of ``mechanism`` with ``values`` (path -> SI) to ``out``, atomically: the
+    original text with its comments and layout, each value in the unit the file writes it in
+    (:func:`set_values`).  A description built in code is written in SI.  Returns the path."""
+    import io
+
+    from linkwork.io.atomic import write_atomic
+
+    spec, _, kinds = _described(mechanism, values)
+    data, declared = _file_data(spec, round_trip=True)
+    set_values(data, values, declared, kinds)
+    buf = io.StringIO()
+    _yaml().dump(data, buf)
+    text = buf.getvalue()
+    return write_atomic(out, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+
+
+def _described(mechanism: Any, values: dict[str, float]) -> tuple[Any, Any, dict[str, str]]:
+    """(spec, mechanism, kinds of the paths of ``values``), each value checked against its parameter."""
+    from linkwork.resolve import mechanism_of, spec_of
+
+    spec = spec_of(mechanism)
+    if spec is None:
+        raise ParameterError("this mechanism was assembled in code without a description: it has no file to edit")
+    mech = mechanism_of(mechanism)
+    known = {p.name: p for p in parameter_list(mech)}
+    for path, value in values.items():
+        wrong = parameter(mech, path, known).check(float(value))
+        if wrong is not None:
+            raise ParameterError(wrong)
+    return spec, mech, {path: known[path].kind for path in values}
+
+
+def _file_data(spec: Any, round_trip: bool) -> tuple[Any, dict[str, str]]:
+    """The description's data to write values into, and the units bare numbers are read in: the file
+    as written (a ruamel round-trip tree for ``round_trip``, else a deep copy of the loaded data);
+    for a description built in code, its values in SI."""
+    import copy
+
+    from linkwork.units import DEFAULT_UNITS, SI_UNITS
+
+    text = _source_text(spec) if round_trip else None
+    if text is not None:
+        data = _yaml().load(text)
+    elif spec.source is not None and isinstance(spec.source.data, dict):
+        data = copy.deepcopy(spec.source.data)
+    else:
+        data = _plain(spec.model_dump(mode="python", exclude_none=True))
+        data["units"] = dict(SI_UNITS)
+    units = data.get("units") if isinstance(data, dict) else None
+    return data, {**DEFAULT_UNITS, **(dict(units) if isinstance(units, dict) else {})}
+
+
+def _source_text(spec: Any) -> str | None:
+    """The text of the file or bundled example ``spec`` was read from, when it can be read again."""
+    from pathlib import Path
+
+    from linkwork.examples import names, text
+
+    file = spec.source.file if spec.source is not None else None
+    if not file:
+        return None
+    path = Path(file)
+    if path.is_file():
+        return path.read_text(encoding="utf-8")
+    if file.endswith(".yaml") and file[:-5] in names():
+        return text(file[:-5])
+    return None
+
+
+def _yaml() -> Any:
+    from ruamel.yaml import YAML
+
+    yaml = YAML()  # round trip: comments, order and flow style kept
+    yaml.preserve_quotes = True
+    yaml.width = 4096  # no folding of long flow mappings
+    yaml.indent(mapping=2, sequence=4, offset=2)
+    return yaml
+
+
+def _plain(x: Any) -> Any:
+    if isinstance(x, dict):
+        return {k: _plain(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [_plain(v) for v in x]
+    return x
