@@ -1,0 +1,45 @@
+"""At a dead or change point the reactions are indeterminate, but the driving torque and the foundation
+loads are not: lw.forces gives them there from the power balance and the momentum theorem.
+
+Seed 000's shears (OA = AB = l, uniform rods of mass m1, knife m2 on the vertical through O, housing m)
+pass through a change point at phi = 0 and 180 deg, both among 360 samples of the turn.  By hand, with the
+crank turning uniformly at omega: the centres of mass are r1 = l/2 (c, s), r2 = (l/2 c, 3 l/2 s),
+r3 = (0, 2 l s); the rod's angle is pi - phi.  The reduced inertia
+I = m1 l^2/4 + m1 l^2/12 + m1 (l^2/4 s^2 + 9 l^2/4 c^2) + m1 l^2/12 + 4 m2 l^2 c^2, so the driving torque
+M = omega^2/2 dI/dphi + dV/dphi (written out below), and the foundation force is the weight
+of everything less the rate of change of momentum.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+import linkwork as lw
+
+L, M1, M2, HOUSING, OMEGA, G = 0.15, 10.0, 20.0, 500.0, 10.0, 9.81
+
+
+def test_torque_and_foundation_are_finite_at_the_change_points_and_equal_the_closed_form():
+    f = lw.forces("shears-slider-crank", steps=360)
+    phi = f.angles
+    assert f.kinematics.valid.all()
+    assert f.singular.sum() == 2  # the change points, where the reactions are indeterminate
+    np.testing.assert_allclose(np.degrees(phi[f.singular]) % 360, [180.0, 0.0], atol=1e-9)
+    s, c = np.sin(phi), np.cos(phi)
+    # dI/dphi = m1 (l^2/2 - 9 l^2/2) s c - 8 m2 l^2 s c; dV/dphi = g l c (m1/2 + 3 m1/2 + 2 m2)
+    di = (M1 * (L**2 / 2 - 9 * L**2 / 2) - 8 * M2 * L**2) * s * c
+    torque = 0.5 * OMEGA**2 * di + G * L * c * (M1 / 2 + 3 * M1 / 2 + 2 * M2)
+    np.testing.assert_allclose(f.driving_torque, torque, rtol=0, atol=1e-9 * np.abs(torque).max())
+    # momentum: sum m a = -omega^2 (m1 l/2 c + m1 l/2 c, m1 l/2 s + m1 3l/2 s + m2 2 l s)
+    ma_x = -(OMEGA**2) * (M1 * L / 2 + M1 * L / 2) * c
+    ma_y = -(OMEGA**2) * (M1 * L / 2 + 3 * M1 * L / 2 + 2 * M2 * L) * s
+    weight = -(HOUSING + 2 * M1 + M2) * G
+    np.testing.assert_allclose(f.foundation[:, 0], -ma_x, rtol=0, atol=1e-9 * abs(weight))
+    np.testing.assert_allclose(f.foundation[:, 1], weight - ma_y, rtol=0, atol=1e-9 * abs(weight))
+    # the reactions stay NaN there: they are indeterminate, and saying a number would be a guess
+    assert np.isnan(f.reaction("B")[f.singular]).all()
+    # the sweep's metrics are those of Forces (one policy): the largest torque and foundation force
+    t = lw.sweep("shears-slider-crank", {"links.knife.mass": ("20", "20", 1)},
+                 ["peak_driving_torque", "peak_foundation_force"], steps=360)  # fmt: skip
+    assert t["peak_driving_torque"][0] == np.max(np.abs(f.driving_torque))
+    assert t["peak_foundation_force"][0] == np.max(np.hypot(f.foundation[:, 0], f.foundation[:, 1]))
