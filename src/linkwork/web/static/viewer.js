@@ -534,7 +534,7 @@
   // ------------------------------------------------------------------ edits
 
   const DISPLAY = {
-    length: ["mm", 1000], coordinate: ["mm", 1000], angle: ["deg", 180 / Math.PI], mass: ["kg", 1], inertia: ["kg m²", 1],
+    length: ["mm", 1000], angle: ["deg", 180 / Math.PI], mass: ["kg", 1], inertia: ["kg m²", 1],
   };
 
   function buildParams(data) {
