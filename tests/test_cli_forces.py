@@ -108,3 +108,58 @@ def test_forces_lift_speed_and_free_bodies_in_json():
     assert all(b["residual"] < 1e-12 for b in out["groups"])
     bad = runner.invoke(app, ["forces", "shears-slider-crank", "--pull", "5 kg"])
     assert bad.exit_code == 2 and "--pull: expected a force" in bad.stderr
+
+
+def test_forces_json_and_csv_give_the_drive_joint_in_the_files_order(tmp_path):
+    """The four-bar with its drive written ``O2: links: [crank, frame]``: the table gives the crank's force on
+    the frame, by Newton's law on the crank (1 kg at mid-length, 60 rpm ccw: a_C = -omega^2 r_C) with the
+    coupler's force on it (-A, the crank's on the coupler) from the same table."""
+    from linkwork.examples import text
+
+    path = tmp_path / "four-bar.yaml"
+    path.write_text(text("four-bar").replace("links: [frame, crank]", "links: [crank, frame]"), encoding="utf-8")
+    result = runner.invoke(app, ["forces", str(path), "--angles", "0,60,135,250", "--json", "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    out = json.loads(result.stdout)
+    assert out["joints"]["O2"]["links"] == ["crank", "frame"]
+    assert out["joints"]["A"]["links"] == ["crank", "coupler"]
+    phi = np.radians(out["angles_deg"])
+    a_c = -((2 * np.pi) ** 2) * 0.05 * np.stack([np.cos(phi), np.sin(phi)], -1)
+    crank_on_coupler = np.stack([out["joints"]["A"]["fx"], out["joints"]["A"]["fy"]], -1)
+    frame_on_crank = 1.0 * a_c - np.array([0.0, -9.81]) + crank_on_coupler
+    crank_on_frame = np.stack([out["joints"]["O2"]["fx"], out["joints"]["O2"]["fy"]], -1)
+    np.testing.assert_allclose(crank_on_frame, -frame_on_crank, rtol=1e-12, atol=1e-9)
+    with open(tmp_path / "forces.csv", encoding="utf-8") as fh:
+        rows = list(csv.reader(fh))
+    column = rows[0].index("O2 (crank on frame).fx [N]")
+    np.testing.assert_allclose([float(r[column]) for r in rows[1:]], crank_on_frame[:, 0], rtol=1e-15)
+
+
+def test_forces_json_of_a_compound_hinge_and_a_pin_in_a_slot():
+    """Each pair of the hinge B (the rocker carries the pin) as the file orders its two links, against the
+    free body of each member; a pin in a slot once, as the slot's force on the pin."""
+    import linkwork as lw
+    from linkwork.io.force_tables import to_json
+    from mechanisms import pin_in_slot
+    from test_kinetostatics import _compound, _on_at_b
+
+    f = lw.forces(_compound(("coupler", "rocker", "rod")), steps=12)
+    joints, on = to_json(f)["joints"], _on_at_b(f)
+    assert {k: v["links"] for k, v in joints.items() if k.startswith("B")} == {
+        "B:coupler": ["coupler", "rocker"],
+        "B:rod": ["rocker", "rod"],
+    }
+    np.testing.assert_allclose(joints["B:coupler"]["fx"], -on["coupler"][:, 0], rtol=1e-9, atol=1e-7)
+    np.testing.assert_allclose(joints["B:rod"]["fy"], on["rod"][:, 1], rtol=1e-9, atol=1e-7)
+    data = pin_in_slot().to_dict()
+    data["links"]["crank"]["mass"] = 2.0
+    data["links"]["rocker"].update(mass=4.0, com=[0.25, 0], inertia=0.08)
+    f = lw.forces(lw.compile(lw.from_dict(data)), steps=12)
+    joints = to_json(f)["joints"]
+    assert sorted(joints) == ["O1", "O2", "slot"]
+    assert (joints["slot"]["type"], joints["slot"]["links"]) == ("pin-in-slot", ["rocker", "crank"])
+    a_c = 0.5 * f.kinematics.acceleration("crank.A")
+    frame_on_crank = np.stack([joints["O1"]["fx"], joints["O1"]["fy"]], -1)
+    slot_on_pin = 2.0 * a_c - np.array([0.0, -2.0 * 9.81]) - frame_on_crank
+    assert np.abs(slot_on_pin).max() > 10.0
+    np.testing.assert_allclose(np.stack([joints["slot"]["fx"], joints["slot"]["fy"]], -1), slot_on_pin, atol=1e-9)

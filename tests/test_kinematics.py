@@ -496,4 +496,4 @@ def test_a_drive_on_the_frame_measures_the_crank_angle_whatever_the_order_of_its
         np.testing.assert_allclose(kb.acceleration(point), ka.acceleration(point), atol=1e-12)
     fa, fb = lw.forces(a, phi), lw.forces(b, phi)
     np.testing.assert_allclose(fb.driving_torque, fa.driving_torque, rtol=1e-12)
-    np.testing.assert_allclose(fb.reaction("O2"), fa.reaction("O2"), rtol=1e-12)  # the frame's force on the crank
+    np.testing.assert_allclose(fb.reaction("O2", on="crank"), fa.reaction("O2", on="crank"), rtol=1e-12)

@@ -246,3 +246,127 @@ def test_compiled_reactions_take_the_structured_solves():
     ]:
         rows, groups, _ = fast.encode(lw.compile(lw.example(name)))
         assert list(fast.shapes(rows, groups)[:, 0]) == expected, name
+
+
+def _drive_written(order):
+    """The bundled four-bar with its drive joint O2 written ``links: order``."""
+    from linkwork.examples import text
+
+    src = text("four-bar")
+    return lw.compile(lw.loads(src.replace("links: [frame, crank]", f"links: [{', '.join(order)}]")))
+
+
+def _crank_mass_only(order):
+    data = TEXTBOOK["four-bar"][0]().to_dict()
+    data["links"]["crank"].update(mass=3.0, inertia=0.01)  # coupler and rocker massless: they carry nothing
+    data["joints"]["O2"]["links"] = list(order)
+    return lw.compile(lw.from_dict(data))
+
+
+def test_the_reaction_of_a_drive_joint_is_the_first_named_links_force_on_the_second_in_either_order():
+    """``reaction("O2")`` is the force of the link the file names first on the other, also for the drive
+    joint, which the model measures from the frame whichever way it is written.  A lone crank (3 kg, its
+    centre of mass at mid-length) turning uniformly at omega: the frame holds it with
+    m a_C - W = -m omega^2 r_C + m g y, in closed form; with every link heavy, Newton's law on the crank
+    with the coupler's force known (-reaction("A"))."""
+    phi = np.radians([0.0, 60.0, 135.0, 250.0])
+    omega = 2 * np.pi  # 60 rpm
+    r_c = 0.05 * np.stack([np.cos(phi), np.sin(phi)], -1)
+    frame_on_crank = -3.0 * omega**2 * r_c + np.array([0.0, 3.0 * 9.81])
+    for order, sign in ((("frame", "crank"), 1.0), (("crank", "frame"), -1.0)):
+        f = lw.forces(_crank_mass_only(order), phi)
+        np.testing.assert_allclose(f.reaction("O2"), sign * frame_on_crank, rtol=1e-12, atol=1e-12)
+    heavy = {order: lw.forces(_drive_written(order), phi) for order in (("frame", "crank"), ("crank", "frame"))}
+    for order, f in heavy.items():
+        mech, kin = f.mechanism, f.kinematics
+        m_crank = mech.link_mass[mech.link_names.index("crank")]
+        a_c = 0.5 * kin.acceleration("A")  # the centroid of O2 and A; O2 does not move
+        expected = m_crank * a_c - np.array([0.0, -m_crank * 9.81]) + f.reaction("A")
+        first_on_second = expected if order[0] == "frame" else -expected
+        np.testing.assert_allclose(f.reaction("O2"), first_on_second, rtol=1e-12, atol=1e-9)
+        np.testing.assert_allclose(f.reaction("O2", on="crank"), expected, rtol=1e-12, atol=1e-9)
+        np.testing.assert_allclose(f.reaction("O2", on="frame"), -expected, rtol=1e-12, atol=1e-9)
+    a, b = heavy.values()
+    np.testing.assert_allclose(b.reaction("O2"), -a.reaction("O2"), rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(b.driving_torque, a.driving_torque, rtol=1e-12)
+
+
+def _compound(order):
+    """The four-bar with a slider rod on its compound hinge B (members nearest the frame: the rocker),
+    every link heavy, B written ``links: order``."""
+    from mechanisms import compound_hinge
+
+    data = compound_hinge().to_dict()
+    for name, mass in (("crank", 2.0), ("coupler", 5.0), ("rocker", 4.0), ("rod", 3.0), ("slider", 6.0)):
+        data["links"][name]["mass"] = mass
+    data["joints"]["B"]["links"] = list(order)
+    return lw.compile(lw.from_dict(data))
+
+
+def _on_at_b(f):
+    """The force B puts on each of its members, from the free body of that member alone: m a_C - W less
+    the force of its other joint (reaction of a two-link joint: the first-named link on the second)."""
+    mech, kin = f.mechanism, f.kinematics
+    g = np.array([0.0, -mech.gravity])
+    other = {"coupler": ("A", f.reaction("A")), "rocker": ("O4", f.reaction("O4")), "rod": ("C", -f.reaction("C"))}
+    out = {}
+    for link, (joint, force) in other.items():
+        m = mech.link_mass[mech.link_names.index(link)]
+        a_c = 0.5 * (kin.acceleration("B") + kin.acceleration(joint))  # mid-length of each binary link
+        out[link] = m * a_c - m * g - force
+    return out
+
+
+@pytest.mark.parametrize(
+    ("order", "first", "on"),
+    [
+        (("coupler", "rocker", "rod"), -1.0, "coupler"),  # the coupler's force on the rocker, which carries the pin
+        (("rod", "coupler", "rocker"), -1.0, "rod"),  # the rod's on the rocker
+        (("rocker", "rod", "coupler"), 1.0, "rod"),  # the first-named carries the pin: its force on the second
+    ],
+)
+def test_a_compound_hinge_gives_the_force_on_each_of_its_links(order, first, on):
+    """B joins the coupler, the rocker and the rod.  ``reaction("B", on=link)`` is the force of the other two
+    on that link, equal to what the link's own free body needs; the three sum to zero (the pin carries
+    nothing).  ``reaction("B")`` is the pair of the first-named link with the rocker, which carries the pin."""
+    f = lw.forces(_compound(order), steps=36)
+    expected = _on_at_b(f)
+    scale = max(np.abs(v).max() for v in expected.values())
+    assert scale > 50.0
+    for link, force in expected.items():
+        np.testing.assert_allclose(f.reaction("B", on=link), force, rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(sum(expected.values()), 0.0, atol=1e-9 * scale)
+    np.testing.assert_allclose(f.reaction("B"), first * expected[on], rtol=0, atol=1e-9 * scale)
+    kin = f.kinematics  # the rod's moment about its centre of mass, with the force on it at B: J epsilon
+    com = 0.5 * (kin.position("B") + kin.position("C"))
+    rb, rc = kin.position("B") - com, kin.position("C") - com
+    fb, fc = expected["rod"], -f.reaction("C")
+    moment = rb[:, 0] * fb[:, 1] - rb[:, 1] * fb[:, 0] + rc[:, 0] * fc[:, 1] - rc[:, 1] * fc[:, 0]
+    np.testing.assert_allclose(moment, 3.0 * 0.3**2 / 12 * kin.epsilon(4), rtol=1e-9, atol=1e-9 * scale)
+
+
+def test_a_link_that_is_not_in_the_joint_is_refused_by_name():
+    f = lw.forces(_compound(("coupler", "rocker", "rod")), steps=4)
+    with pytest.raises(KeyError, match='joint "B" joins coupler, rocker, rod, not "crank"'):
+        f.reaction("B", on="crank")
+    with pytest.raises(KeyError, match='did you mean "rocker"'):
+        f.reaction("B", on="rockr")
+    with pytest.raises(KeyError, match='no joint "Q"'):
+        f.reaction("Q", on="rod")
+
+
+def test_a_pin_in_a_slot_gives_the_slots_force_on_the_pin():
+    """Joint ``slot`` is written ``[rocker, crank]``: the rocker's slot holds the crank's pin A.  Newton's
+    law on the crank (2 kg at mid-length, turning uniformly) with the frame's force at O1 known."""
+    from mechanisms import pin_in_slot
+
+    data = pin_in_slot().to_dict()
+    data["links"]["crank"]["mass"] = 2.0
+    data["links"]["rocker"].update(mass=4.0, com=[0.25, 0], inertia=0.08)
+    f = lw.forces(lw.compile(lw.from_dict(data)), steps=24)
+    kin = f.kinematics
+    expected = 2.0 * 0.5 * kin.acceleration("crank.A") - np.array([0.0, -2.0 * 9.81]) - f.reaction("O1")
+    assert np.abs(expected).max() > 10.0
+    np.testing.assert_allclose(f.reaction("slot"), expected, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(f.reaction("slot", on="crank"), expected, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(f.reaction("slot", on="rocker"), -expected, rtol=1e-9, atol=1e-9)

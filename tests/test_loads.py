@@ -159,3 +159,37 @@ def test_friction_in_a_hinge_and_a_guide_costs_its_power():
     assert_free_bodies_balance(f)
     red, red0 = lw.reduced(mech, steps=720), lw.reduced(bare, steps=720)
     assert red0.mean_load - red.mean_load == pytest.approx(np.mean(lost) / abs(omega), rel=2e-2)
+
+
+def test_a_constant_process_force_acts_from_the_touch_of_the_tool_only():
+    """A press cutting a constant 4 kN (the table ``[4 kN, 4 kN]`` from penetration 0) acts only once the
+    tool is in the work: per turn the drive does F * c, c the cut from the workpiece's face to the tool's
+    lowest point, by the closed form of the offset slider-crank (x_min = sqrt((l - r)^2 - e^2)), not F times
+    the whole closing stroke.  Gravity and inertia do no net work over a turn at uniform speed."""
+    b = TEXTBOOK["offset slider-crank"][0]()
+    data = b.to_dict()
+    data["links"]["rod"]["mass"] = 1.5
+    data["links"]["slider"].update(mass=2.0)
+    face = 0.450  # the tool closes from x = 497.5 mm down to 295.8 mm
+    data["loads"] = {
+        "cut": {
+            "type": "process",
+            "tools": ["slider.B"],
+            "axis": "0 deg",
+            "workpiece": [250, 1000 * face],
+            "penetration": [0, 1],
+            "force": ["4 kN", "4 kN"],
+        }
+    }
+    mech = lw.compile(lw.from_dict(data))
+    steps = 14400
+    f = lw.forces(mech, steps=steps)
+    x = f.kinematics.position("slider.B")[:, 0]
+    vx = f.kinematics.velocity("slider.B")[:, 0]
+    size = f.loads.external.magnitude["cut"][0]
+    assert np.all(size[x >= face] == 0)  # not in the work: no force, whatever the table gives at zero
+    assert np.all(size[(x < face) & (vx < 0)] == 4000.0)
+    cut = face - np.sqrt((0.4 - 0.1) ** 2 - 0.05**2)
+    work = np.mean(f.driving_torque) * 2 * np.pi
+    assert work == pytest.approx(4000.0 * cut, rel=1e-3)  # the rectangle rule over the jump at the touch
+    assert all(v < 1e-9 for v in f.checks.values()), f.checks

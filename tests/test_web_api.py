@@ -719,3 +719,27 @@ def test_an_internal_error_answers_500_with_the_security_headers(monkeypatch):
     assert r.status_code == 500 and r.json()["error"] == "internal error: RuntimeError: broken on purpose"
     assert "default-src 'none'" in r.headers["content-security-policy"]
     assert r.headers["x-content-type-options"] == "nosniff" and r.headers["cache-control"] == "no-store"
+
+
+def test_the_support_reaction_of_a_compound_hinge_is_the_force_on_the_frame():
+    """The Watt six-bar with its output swinging about O4 too (O4 joins the frame, the rocker and the output):
+    the viewer's reaction in O4 is the size of the force on the frame, minus the forces O4 puts on the rocker
+    and on the output, each from that link's own free body (m a_C - W less its other joints' forces)."""
+    src = example_text("watt-six-bar")
+    src = src.replace(
+        "O4: {type: revolute, links: [frame, rocker]}", "O4: {type: revolute, links: [frame, rocker, output]}"
+    )
+    src = src.replace("  O6: {type: revolute, links: [frame, output]}\n", "")
+    src = src.replace("O6: [650, 100]", "O6: [300, 0]").replace("ends: [O6, D]", "ends: [O4, D]")
+    src = src.replace("length: 269.3", "length: 345.745").replace("D: [550, 350]", "D: [338.197, 343.649]")
+    mech = lw.compile(lw.loads(src, file="watt-six-bar.yaml"))
+    payload = cycle_payload(mech, steps=36)
+    f = lw.forces(mech, steps=36)
+    kin, g = f.kinematics, np.array([0.0, -mech.gravity])
+    a_rocker = (kin.acceleration("rocker.B") + kin.acceleration("rocker.C")) / 3  # the centroid; O4 is fixed
+    on_rocker = 3.0 * a_rocker - 3.0 * g - f.reaction("B") + f.reaction("C")  # coupler on it at B, rod at C
+    on_output = 1.5 * 0.5 * kin.acceleration("D") - 1.5 * g - f.reaction("D")  # the rod's force on it at D
+    on_frame = -(on_rocker + on_output)
+    size = np.hypot(on_frame[:, 0], on_frame[:, 1])
+    assert np.abs(size - np.hypot(*f.reaction("O4").T)).max() > 1.0  # more than the pair of one link
+    np.testing.assert_allclose(_series(payload, "reaction:O4"), size, rtol=1e-7)  # the payload keeps 8 digits

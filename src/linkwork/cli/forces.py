@@ -136,6 +136,7 @@ def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list
     from rich.markup import escape
     from rich.table import Table
 
+    from linkwork.io.force_tables import pair_kind
     from linkwork.structure.constraints import REVOLUTE
 
     mech, phi = f.mechanism, f.angles
@@ -164,9 +165,9 @@ def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list
         size = np.hypot(force[:, 0], force[:, 1])
         value, where = _peak(size, phi)
         moment = "-"
-        if mech.pair_type[k] != REVOLUTE:
+        if pair_kind(mech, k) == "prismatic":
             moment = f"{_peak(f.multipliers[0, :, 2 * k], phi)[0] + 0.0:.6g}"
-        a, b = (mech.link_names[int(i)] for i in mech.pair_links[k])
+        a, b = (mech.link_names[int(i)] for i in mech.pair_members[k])
         table.add_row(escape(label), escape(f"{a} on {b}"), f"{value:.6g}", _deg(where), moment)
     console.print(table)
     for g in groups:

@@ -63,7 +63,7 @@ def impact(
     i = mech.link_names.index(link)
     joints = {}
     for name, k in mech.first_pairs().items():
-        a, b = (mech.link_names[int(x)] for x in mech.pair_links[k])
+        a, b = (mech.link_names[int(x)] for x in mech.pair_members[k])
         joints[name] = {"on": b, "from": a, **_xy(whole.joints[name])}
     out: dict[str, Any] = {
         "name": mech.name,

@@ -471,7 +471,7 @@ def strike(
     impulse = big_p * (n + phi * tang)
     forces, lam, joints = impulsive_reactions(kin, striker, pos, impulse, dw)
     links = {
-        name: (mech.link_names[int(mech.pair_links[k, 0])], mech.link_names[int(mech.pair_links[k, 1])])
+        name: (mech.link_names[int(mech.pair_members[k, 0])], mech.link_names[int(mech.pair_members[k, 1])])
         for name, k in mech.first_pairs().items()
     }
     gain = float(kin.omega(link)[0])
@@ -919,8 +919,8 @@ def simulate_blows(
         _, _, from_push = impulsive_reactions(unit, striker, k_pos, push, float(cat[7][j]))
         lam, frame = solve_reactions(at_speed, inertia_and_gravity(at_speed))
         steady_part = Forces(at_speed, lam, frame)
-        for name, kk in first_pairs.items():
-            pair_loads[name][row] = from_push[name] + steady_part.pair_force(kk)[0, 0]
+        for name in first_pairs:
+            pair_loads[name][row] = from_push[name] + steady_part.reaction(name)[0]
     contact = ContactLoads(
         cat[0][sel] - records[-1]["time"], cat[5][sel], cat[8][sel], pair_loads, dict(records[-1]["joint_links"])
     )

@@ -43,7 +43,7 @@ class Impact:
         Every link's (vx, vy, omega) of its local origin.
     joints : dict
         For each joint, the impulse (x, y) that its first-named link exerts on the second, N s
-        (compound hinges: their first pair).
+        (as :meth:`~linkwork.kinetostatics.Forces.reaction` gives forces: compound hinges, their first pair).
     drive_impulse : float
         The impulse the drive would have to give (zero up to rounding: a check).
     energy_loss : float
@@ -77,15 +77,9 @@ class Impact:
     sliding_reverses: bool = False
 
     def on(self, joint: str, link: str) -> np.ndarray:
-        """Impulse (x, y) of a joint on ``link`` (the first-named link's impulse on the second, or
-        its opposite), N s."""
-        m = self.forces.mechanism
-        for k, name in enumerate(m.pair_joint):
-            a, b = (m.link_names[int(i)] for i in m.pair_links[k])
-            if name == joint and link in (a, b):
-                f = self.forces.pair_force(k)[0, 0]
-                return f if link == b else -f
-        raise KeyError(f'joint "{joint}" does not hold link "{link}"')
+        """Impulse (x, y) of a joint on ``link`` (of all its other links together), N s; see
+        :meth:`~linkwork.kinetostatics.Forces.reaction`."""
+        return self.forces.reaction(joint, on=link)[0]
 
 
 @dataclass(frozen=True)
@@ -285,7 +279,7 @@ def impulsive_reactions(
     loads = Loads(applied, momentum[None, None], r[None, None], vc[None, None], np.zeros_like(vc)[None, None])
     lam, frame = solve_reactions(kin, loads)
     forces = Forces(kin, lam, frame)
-    joints = {joint: forces.pair_force(k)[0, 0] for joint, k in mech.first_pairs().items()}
+    joints = {joint: forces.reaction(joint)[0] for joint in mech.first_pairs()}
     return forces, lam, joints
 
 

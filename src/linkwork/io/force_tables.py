@@ -13,21 +13,43 @@ from linkwork.io.atomic import write_atomic
 from linkwork.structure.constraints import REVOLUTE
 
 CONVENTION = (
-    "joints: the force the first-named link exerts on the second (x, y, N); for a prismatic pair "
-    "(guide first) also its moment on the slider (N m) about the slider's point; driving torque: "
+    "joints: the force the first-named link exerts on the second, in the order of the file's joint and of "
+    "'links' (x, y, N); a compound hinge is a pair from the link that carries the pin to each other link; "
+    "for a prismatic pair (guide first) also its moment on the slider (N m) about the slider's point; driving torque: "
     "what the drive puts on its driven link, counter-clockwise positive; foundation: the force and "
     "the moment about the origin that the machine puts on its foundation, y up (positive y pulls the bolts)"
 )
 
 
 def pair_labels(mech: Any) -> list[tuple[str, int]]:
-    """One label per elementary pair: the joint's name, with ``:link`` where a joint has several
-    pairs (a compound hinge, a pin in a slot)."""
+    """One label per pair a table reports: the joint's name, with ``:link`` for each pair of a compound
+    hinge (the link other than the one that carries the pin).  A pin in a slot is reported once, by its
+    slot's pair: through the massless block, the pin's pair with the block carries the same force."""
+    shown = [
+        k
+        for k in range(mech.n_pairs)
+        if not (mech.pair_type[k] == REVOLUTE and mech.link_virtual[mech.pair_links[k]].any())
+    ]
+    joints = [mech.pair_joint[k] for k in shown]
     out = []
-    for k, joint in enumerate(mech.pair_joint):
-        several = mech.pair_joint.count(joint) > 1
+    for k, joint in zip(shown, joints, strict=True):
+        several = joints.count(joint) > 1
         out.append((f"{joint}:{mech.link_names[int(mech.pair_links[k, 1])]}" if several else joint, k))
     return out
+
+
+def pair_kind(mech: Any, k: int) -> str:
+    """``revolute``, ``prismatic`` (which carries a moment) or ``pin-in-slot`` (the pairs of its block)."""
+    if mech.link_virtual[mech.pair_links[k]].any():
+        return "pin-in-slot"
+    return "revolute" if mech.pair_type[k] == REVOLUTE else "prismatic"
+
+
+def _named(f: Any, k: int) -> tuple[str, str, np.ndarray]:
+    """The links of pair ``k`` as the file names them, and the force of the first on the second ``(A, 2)``."""
+    mech = f.mechanism
+    first, second = (mech.link_names[int(i)] for i in mech.pair_members[k])
+    return first, second, mech.pair_sign[k] * f.pair_force(k)[0]
 
 
 def _single(f: Any) -> None:
@@ -51,14 +73,15 @@ def to_json(f: Any) -> dict[str, Any]:
     mech = f.mechanism
     joints = {}
     for label, k in pair_labels(mech):
-        force = f.pair_force(k)[0]
+        first, second, force = _named(f, k)
+        kind = pair_kind(mech, k)
         entry: dict[str, Any] = {
-            "type": "revolute" if mech.pair_type[k] == REVOLUTE else "prismatic",
-            "links": [mech.link_names[int(i)] for i in mech.pair_links[k]],
+            "type": kind,
+            "links": [first, second],
             "fx": _arr(force[:, 0]),
             "fy": _arr(force[:, 1]),
         }
-        if mech.pair_type[k] != REVOLUTE:
+        if kind == "prismatic":
             entry["moment"] = _arr(f.multipliers[0, :, 2 * k])
         joints[label] = entry
     found = f.foundation
@@ -105,8 +128,8 @@ def groups(f: Any) -> list[dict[str, Any]]:
 
 
 def write_csv(f: Any, path: str | Path) -> Path:
-    """One row per angle: the driving torque, every pair's force (the first-named link on the
-    second, named in the header), the foundation and shaking loads, the external loads."""
+    """One row per angle: the driving torque, every pair's force (the link the file names first on
+    the second, both in the header), the foundation and shaking loads, the external loads."""
     _single(f)
     mech = f.mechanism
     unit = "N" if mech.pair_type[mech.drive_pair[0]] != REVOLUTE else "N m"
@@ -115,11 +138,10 @@ def write_csv(f: Any, path: str | Path) -> Path:
         (f"driving_torque [{unit}]", f.driving_torque),
     ]
     for label, k in pair_labels(mech):
-        force = f.pair_force(k)[0]
-        a, b = (mech.link_names[int(i)] for i in mech.pair_links[k])
+        a, b, force = _named(f, k)
         label = f"{label} ({a} on {b})"
         cols += [(f"{label}.fx [N]", force[:, 0]), (f"{label}.fy [N]", force[:, 1])]
-        if mech.pair_type[k] != REVOLUTE:
+        if pair_kind(mech, k) == "prismatic":
             cols.append((f"{label}.moment [N m]", f.multipliers[0, :, 2 * k]))
     found = f.foundation
     cols += [("foundation.fx [N]", found[:, 0]), ("foundation.fy [N]", found[:, 1])]

@@ -150,8 +150,9 @@ class Forces:
 
     def pair_force(self, k: int) -> np.ndarray:
         """Force (N) that link ``pair_links[k, 0]`` exerts on link ``pair_links[k, 1]`` in pair ``k``:
-        ``(V, A, 2)``.  For a prismatic pair (guide first) it is normal to the guide and acts at
-        the slider's point of the pair."""
+        ``(V, A, 2)``, in the model's order (times ``mechanism.pair_sign[k]``: in the file's, as
+        :meth:`reaction` gives it).  For a prismatic pair (guide first) it is normal to the guide and
+        acts at the slider's point of the pair."""
         m = self.mechanism
         lam = self.multipliers[..., 2 * k : 2 * k + 2]
         if m.pair_type[k] == 0:
@@ -163,12 +164,42 @@ class Forces:
         normal = lam[..., 1]  # along n = u turned by +90 deg, on the slider
         return np.stack([-u[1] * normal, u[0] * normal], -1)
 
-    def reaction(self, joint: str) -> np.ndarray:
-        """Force (N) the first-named link of a joint exerts on the second: ``(..., n_angles, 2)``.
+    def reaction(self, joint: str, on: str | None = None) -> np.ndarray:
+        """Force (N) in a joint, ``(..., n_angles, 2)``, in the order the file's ``links`` name its links.
 
-        For a compound hinge (several links), the force in its first elementary pair; see
-        :meth:`pair_force` for the others."""
-        return self._out(self.pair_force(self.pairs(joint)[0]))
+        Without ``on``: the force the first-named link exerts on the second, whichever link the drive
+        of the joint turns.  A pin in a slot: the slot's force on the pin.  A compound hinge of
+        k >= 3 links is k - 1 pairs, each between the member nearest the frame (which carries the pin)
+        and one of the others; this is its first pair, that of the first-named link: the force the
+        first-named link exerts on the pin's carrier, or on the second-named link where the first
+        carries the pin.
+
+        With ``on=link``: the force the joint puts on that link, the sum of the forces of all its
+        other members on it (for two links, the other's force on it); it does not depend on which
+        member carries the pin.  A prismatic pair's moment is :meth:`pair_moment`.
+
+        Raises
+        ------
+        KeyError
+            No such joint, or ``on`` is not one of its links.
+        """
+        ks = self.pairs(joint)
+        m = self.mechanism
+        if on is None:
+            return self._out(m.pair_sign[ks[0]] * self.pair_force(ks[0]))
+        members = {int(i) for k in ks for i in m.pair_links[k] if not m.link_virtual[int(i)]}
+        names = [m.link_names[i] for i in sorted(members)]
+        if on not in names:
+            from linkwork.spec.checks import suggest
+
+            raise KeyError(f'joint "{joint}" joins {", ".join(names)}, not "{on}"{suggest(on, names)}')
+        link = m.link_names.index(on)
+        total = np.zeros(self.multipliers.shape[:-1] + (2,))
+        for k in ks:
+            a, b = (int(x) for x in m.pair_links[k])
+            if link in (a, b):
+                total = total + (self.pair_force(k) if link == b else -self.pair_force(k))
+        return self._out(total)
 
     def pair_moment(self, joint: str) -> np.ndarray:
         """Moment (N m) the guide exerts on the slider in a prismatic joint, about the slider's point."""

@@ -182,7 +182,8 @@ def evaluate(kin: Any) -> Applied:
             depth = depth + np.maximum(_along(p2, u) - lo, 0.0)
             closing = closing + _along(v2, u)
         eps = depth / (hi - lo)
-        size = np.where(closing > 0, _interp(eps, load.table), 0.0)
+        # the table's value at zero penetration (a constant cutting force) acts from the touch on, not before
+        size = np.where((closing > 0) & (eps > 0), _interp(eps, load.table), 0.0)
         size = np.where(np.isnan(closing) | np.isnan(eps), np.nan, size)
         magnitude[load.name] = size
         penetration[load.name] = eps

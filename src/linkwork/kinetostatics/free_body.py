@@ -49,7 +49,7 @@ class FreeBody:
     external : list of Contact
         The forces of the links outside the group (frame and drive included) on its links.
     internal : list of Contact
-        The group's internal pairs: the force of the first-named link on the second.
+        The group's internal pairs: the force of the link the file names first on the other.
     loads : ndarray (V, A, 3)
         Applied and inertia loads of the group's links: force and moment about the global origin.
     residual : ndarray (V, A, 3)
@@ -108,11 +108,12 @@ def free_bodies(forces: Any) -> list[FreeBody]:
     about_origin = total.copy()
     about_origin[..., 2] += _cross(q[..., :2], total[..., :2])
     every = contacts(forces)
+    second = np.where(m.pair_sign > 0, m.pair_links[:, 1], m.pair_links[:, 0])  # the later named of each pair
     out = []
     for group in m.structure.groups:
         links = set(group.links)
         external = [c for c in every if c.on in links and c.other not in links]
-        internal = [c for c in every if c.on in links and c.other in links and c.on == int(m.pair_links[c.pair, 1])]
+        internal = [c for c in every if c.on in links and c.other in links and c.on == second[c.pair]]
         loads = np.sum(about_origin[..., sorted(links), :], axis=-2)
         residual = loads.copy()
         for c in external:

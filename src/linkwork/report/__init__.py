@@ -233,7 +233,7 @@ def _forces(run: _Run, steps: int) -> None:
         size = np.hypot(*f.pair_force(k)[0].T)
         if np.isfinite(size).any():
             j = int(np.nanargmax(size))
-            a, b = (mech.link_names[int(x)] for x in mech.pair_links[k])
+            a, b = (mech.link_names[int(x)] for x in mech.pair_members[k])
             rows.append([label, f"{a} on {b}", float(size[j]), f"{math.degrees(phi[j]) % 360:.1f}"])
     sec.body.append(_table(["joint", "first on second", "largest force, N", "at, deg"], rows))
     b = f.bolts()

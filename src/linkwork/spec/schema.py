@@ -255,8 +255,10 @@ class Load(_Strict):
     penetrations divided by the workpiece's height; ``force`` against
     ``penetration`` (linear in between, zero outside) is the force that pushes
     the first tool back along ``axis`` and the second the other way.  It acts
-    only while the tools move into the workpiece.  With one tool the workpiece
-    rests on the frame, which takes the opposite force at the tool's point.
+    only while the tools move into the workpiece and are in it: none while
+    ``eps`` is zero or less, whatever the table gives at 0.  With one tool
+    the workpiece rests on the frame, which takes the opposite force at the
+    tool's point.
 
     ``friction``: a constant (Coulomb) friction in the pairs of a ``joint``: a
     ``moment`` against the relative turning of a revolute pair, or a force

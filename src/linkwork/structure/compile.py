@@ -282,12 +282,18 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
 
     pair_type, pair_links, pair_points, pair_origin, pair_axis, pair_joint = [], [], [], [], [], []
     origin_point: list[int] = []
+    pair_members: list[tuple[int, int]] = []  # the links each pair stands for, in the file's order
 
     def add_pair(
         kind: int, a: int, b: int, pa: int, pb: int, origin: Any = (0.0, 0.0), axis: Any = (1.0, 0.0), joint: str = ""
     ) -> None:
         pair_type.append(kind)
         pair_links.append((a, b))
+        named = [index[ln] for ln in spec.joints[joint].links]
+        if a in named and b in named:
+            pair_members.append((a, b) if named.index(a) < named.index(b) else (b, a))
+        else:  # a pin in a slot: its block stands for the other member
+            pair_members.append((named[0], named[1]))
         pair_points.append((pa, pb))
         pair_origin.append(origin)
         pair_axis.append(axis)
@@ -312,7 +318,8 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
             centre = min(links, key=lambda i: (depth[i], i))
             links = [centre] + [i for i in links if i != centre]
         if joint.type == "revolute" and len(links) == 2 and links[1] == 0 and jname in driven_joints:
-            # a drive on the frame measures the driven link's angle from the frame, however the file orders them
+            # a drive on the frame measures the driven link's angle from the frame, however the file orders them;
+            # pair_members keeps the file's order, in which the reactions are given
             links = links[::-1]
         if joint.type == "revolute":
             joint_pair[jname] = len(pair_type)
@@ -399,6 +406,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         pair_origin=f(pair_origin).reshape(-1, 2),
         pair_axis=f(pair_axis).reshape(-1, 2),
         pair_joint=tuple(pair_joint),
+        pair_members=f(pair_members, int).reshape(-1, 2),
         drive_pair=f(drive_pair, int),
         drive_speed=f(drive_speed),
         drive_start=f(drive_start),

@@ -153,8 +153,9 @@ class Mechanism:
     order of the file (the paper's numbering); pin-in-slot pairs add a
     massless slot block link each after them (``link_virtual``).  Pairs are
     the elementary kinematic pairs: a compound hinge of k links becomes
-    k - 1 revolute pairs, a pin-in-slot a revolute and a prismatic pair of
-    its block.
+    k - 1 revolute pairs, each between the member nearest the frame (which
+    carries the pin) and one of the others in the file's order; a
+    pin-in-slot a revolute and a prismatic pair of its block.
 
     Shapes: ``N = n_links_total`` links, ``P`` points, ``M`` pairs, ``D``
     drives.  Lengths in m, angles in rad, SI throughout.
@@ -195,6 +196,7 @@ class Mechanism:
     machine: Any = None  # the drive of the machine unit (linkwork.machine.Drive), if the file gives one
     delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
     blow: Any = None  # the file's impact: section (linkwork.spec.schema.ImpactSpec), SI
+    pair_members: np.ndarray | None = None  # (M, 2) the links of each pair in the order its joint names them
     spec: Any = field(default=None, repr=False, compare=False)  # the description it was compiled from
 
     @property
@@ -217,6 +219,17 @@ class Mechanism:
     @property
     def n_drives(self) -> int:
         return len(self.drive_pair)
+
+    @property
+    def pair_sign(self) -> np.ndarray:
+        """``(M,)``: +1 where ``pair_links`` lists a pair's links in the order its joint names them in
+        the file (``pair_members``), -1 where the model reverses them (a drive written ``[crank, frame]``,
+        which the model measures from the frame; the member of a compound hinge that carries the pin
+        named after the other; a pin's pair with its slot's block, the block standing for the slot).
+        It turns the force of ``pair_links[k, 0]`` on ``pair_links[k, 1]`` into the force of
+        ``pair_members[k, 0]`` on ``pair_members[k, 1]``."""
+        members = self.pair_links if self.pair_members is None else self.pair_members
+        return np.where(self.pair_links[:, 0] == members[:, 0], 1.0, -1.0)
 
     def first_pairs(self) -> dict[str, int]:
         """The first pair of every joint, by the joint's name (a compound hinge makes several)."""

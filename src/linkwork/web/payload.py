@@ -310,12 +310,10 @@ def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
         seen: set[str] = set()
         for k in range(mech.n_pairs):
             if 0 in mech.pair_links[k] and mech.pair_type[k] == REVOLUTE and mech.pair_joint[k] not in seen:
-                # the size of the force between the frame and its link: the same whichever is named first
+                # the size of the force the support takes: of all the links it holds in the joint
                 joint = mech.pair_joint[k]
                 seen.add(joint)
-                f = forces.pair_force(k)
-                if f.ndim == 3:
-                    f = f[0]
+                f = forces.reaction(joint, on=mech.link_names[0])
                 add(f"reaction:{joint}", f"reaction in {joint} (size)", "N", "forces", np.hypot(f[:, 0], f[:, 1]))
     return out
 
