@@ -159,8 +159,8 @@ class Range:
     Attributes
     ----------
     low, high : ndarray
-        Extreme values, refined between the samples by a parabola through the extreme sample and its
-        two neighbours (NaN where no sample assembles or a rocker turns fully).
+        Extreme values, refined between the samples (see :func:`sampled_range`; NaN where no sample
+        assembles or a rocker turns fully).
     at_low, at_high : ndarray
         Drive coordinates (rad) at which they occur.
     whole : ndarray of bool
@@ -327,7 +327,7 @@ class Extremes:
     kind : str
         ``"slider"`` (values in m along the guide axis) or ``"rocker"`` (rad).
     low, high : float
-        Extreme values, refined between samples by a parabola.
+        Extreme values, refined between samples (see :func:`sampled_range`).
     at_low, at_high : float
         Drive coordinates (rad) at which they occur.
     stroke : float

@@ -32,7 +32,10 @@ Layout (``format: linkwork-view/1``):
   ``values`` (A,); torques and moments counter-clockwise positive (a
   clockwise drive's driving torque is mostly negative), forces x right and
   y up, as the labels say;
-* ``structure``, ``drives``, ``extremes``, ``events``, ``warnings``.
+* ``extremes``: every slider on a frame guide and rocker, as
+  :func:`linkwork.motion.analysis.extremes` gives them (stroke, extreme
+  positions, ``time_ratio`` K and ``forward_time_ratio``);
+* ``structure``, ``drives``, ``events``, ``warnings``.
 """
 
 from __future__ import annotations
