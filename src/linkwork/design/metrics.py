@@ -130,8 +130,8 @@ def _applies(kind: str) -> Callable[[Any, str | None], str | None]:
 
 
 def _applies_time_ratio(mech: Any, arg: str | None) -> str | None:
-    if find_output(mech, arg, "slider") is not None:
-        return _one_revolute_drive(mech)
+    if find_output(mech, arg, "slider") is not None or (arg is not None and arg in mech.pair_joint):
+        return _applies("slider")(mech, arg)
     if arg is None and find_output(mech, None, "rocker") is None:
         return "the mechanism has no slider on a frame guide and no rocker"
     return _applies("rocker")(mech, arg)
