@@ -36,7 +36,7 @@ def test_stroke_and_time_ratio_of_an_offset_slider_crank_match_the_closed_form()
     t = lw.sweep(
         offset_slider_crank().build(),
         {"links.crank.length": ("80", "120", 5), "links.rod.length": ("380 mm", "0.42 m", 3)},
-        ["stroke", "time_ratio", "assembles"],
+        ["stroke", "time_ratio", "forward_time_ratio", "assembles"],
         steps=720,
     )
     r, rod, e = t["links.crank.length"], t["links.rod.length"], 0.05
@@ -47,7 +47,9 @@ def test_stroke_and_time_ratio_of_an_offset_slider_crank_match_the_closed_form()
     np.testing.assert_allclose(t["stroke"], stroke, rtol=1e-7)
     # counter-clockwise, the slider moves + x (away from the crank) from the folded position
     # (crank angle pi + asin(e / (l - r))) to the extended one (asin(e / (l + r))): pi - alpha of the turn
-    np.testing.assert_allclose(t["time_ratio"], (np.pi - alpha) / (np.pi + alpha), rtol=1e-4)
+    np.testing.assert_allclose(t["forward_time_ratio"], (np.pi - alpha) / (np.pi + alpha), rtol=1e-4)
+    # the coefficient K: the slower stroke over the faster one
+    np.testing.assert_allclose(t["time_ratio"], (np.pi + alpha) / (np.pi - alpha), rtol=1e-4)
     # grid order: the first dimension slowest
     np.testing.assert_allclose(t["links.crank.length"][:3], 0.08)
     np.testing.assert_allclose(t["links.rod.length"][:3], [0.38, 0.40, 0.42])
@@ -57,7 +59,7 @@ def test_four_bar_swing_and_transmission_angle_match_the_law_of_cosines():
     t = lw.sweep(
         "four-bar",
         ["links.crank.length=80:110:4", "links.rocker.length=230mm:270mm:5"],
-        ["swing", "min_transmission_angle", "time_ratio"],
+        ["swing", "min_transmission_angle", "time_ratio", "forward_time_ratio"],
     )
     a, b, c, d = t["links.crank.length"], 0.35, t["links.rocker.length"], 0.30
     # transmission angle (coupler-rocker) is extreme with the crank along the frame line: 0 and 180 deg,
@@ -72,13 +74,16 @@ def test_four_bar_swing_and_transmission_angle_match_the_law_of_cosines():
     # B above the frame line: O2B shortening from b + a (crank angle phi0) to b - a (crank angle pi + phi1)
     # turns the rocker counter-clockwise, over the crank angle theta
     theta = np.pi + phi[1] - phi[0]
-    np.testing.assert_allclose(t["time_ratio"], theta / (2 * np.pi - theta), rtol=1e-4)
+    np.testing.assert_allclose(t["forward_time_ratio"], theta / (2 * np.pi - theta), rtol=1e-4)
+    k = np.maximum(theta, 2 * np.pi - theta) / np.minimum(theta, 2 * np.pi - theta)
+    np.testing.assert_allclose(t["time_ratio"], k, rtol=1e-4)
 
 
 @pytest.mark.parametrize("direction", ["ccw", "cw"])
 def test_time_ratios_of_an_offset_slider_crank_follow_the_direction_of_rotation(direction):
     """Extreme positions: extended at crank angle asin(e / (l + r)), folded at pi + asin(e / (l - r)).
-    Turning counter-clockwise the slider goes out (+ x) over pi - alpha, clockwise over pi + alpha.
+    Turning counter-clockwise the slider goes out (+ x) over pi - alpha, clockwise over pi + alpha:
+    forward_time_ratio turns into its reciprocal, time_ratio (K, the slower stroke over the faster) stays.
     A process load between the slider and the crank pivot closes as the slider comes back in."""
     mech = (
         offset_slider_crank()
@@ -87,12 +92,13 @@ def test_time_ratios_of_an_offset_slider_crank_follow_the_direction_of_rotation(
                  force=["0 N", "0 N"])
     )  # fmt: skip
     mech._data["drives"] = mech._data["drives"][-1:]
-    t = lw.sweep(mech.build(), {"links.crank.length": ("80", "120", 3)}, ["time_ratio", "working_time_ratio"],
-                 steps=720)  # fmt: skip
+    t = lw.sweep(mech.build(), {"links.crank.length": ("80", "120", 3)},
+                 ["time_ratio", "forward_time_ratio", "working_time_ratio"], steps=720)  # fmt: skip
     r, rod, e = t["links.crank.length"], 0.4, 0.05
     alpha = np.arcsin(e / (rod - r)) - np.arcsin(e / (rod + r))
     out = np.pi - alpha if direction == "ccw" else np.pi + alpha
-    np.testing.assert_allclose(t["time_ratio"], out / (2 * np.pi - out), rtol=1e-4)
+    np.testing.assert_allclose(t["forward_time_ratio"], out / (2 * np.pi - out), rtol=1e-4)
+    np.testing.assert_allclose(t["time_ratio"], (np.pi + alpha) / (np.pi - alpha), rtol=1e-4)
     np.testing.assert_allclose(t["working_time_ratio"], (2 * np.pi - out) / out, rtol=1e-4)
 
 
@@ -198,6 +204,18 @@ def test_a_named_centre_of_mass_follows_its_point_as_in_the_edited_file():
     edited, pinned = peak(None), peak([0.16, 0.01])
     assert t["peak_driving_torque"][0] == pytest.approx(edited, rel=1e-9)
     assert abs(pinned - edited) > 1e-3 * edited
+
+
+def test_a_link_pivoted_on_the_frame_that_turns_fully_has_no_swing():
+    """O2O4 = 50 mm, the shortest link, with s + l = 0.05 + 0.28 <= 0.10 + 0.25 (Grashof): a drag link, whose
+    'rocker' turns fully with the crank, so it has no swing and no time ratio; the crank-rocker beside it has."""
+    t = lw.sweep("four-bar", ["frame.points.O4.x=50:300:2", "links.coupler.length=280:280:1"],
+                 ["swing", "time_ratio", "assembles"])  # fmt: skip
+    assert list(t["assembles"]) == [1.0, 1.0]
+    assert np.isnan(t["swing"][0]) and np.isnan(t["time_ratio"][0])
+    a, b, c, d = 0.1, 0.28, 0.25, 0.3
+    psi = [np.arccos((d * d + c * c - s**2) / (2 * d * c)) for s in (b + a, b - a)]
+    assert t["swing"][1] == pytest.approx(abs(psi[0] - psi[1]), rel=1e-6)
 
 
 def test_a_variant_that_does_not_assemble_has_nan_metrics():

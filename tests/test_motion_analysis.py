@@ -249,3 +249,114 @@ def test_coriolis_in_the_acceleration_plan_of_a_slotted_rocker():
     # closure: a_A' (transport) + Coriolis + relative = a_A
     chain = vec[("p", "a'", "transport")] + cor + vec[("k'_a", "a", "sliding")]
     np.testing.assert_allclose(chain, kin.acceleration("A")[0], atol=1e-10)
+
+
+def test_the_stroke_of_the_seed_000_shears_is_measured_along_the_variants_guide():
+    """Seed 000: OA = AB = l and the knife's guide through O.  With the guide at psi, B lies on it at
+    s = 2 l cos(phi - psi) (the isosceles triangle OAB), so the stroke is 4 l = 0.6 m whatever psi, with the
+    knife at the top of it when the crank points along the guide (phi = psi) and at the bottom at psi + 180."""
+    rod = 0.15
+    psi = np.radians([90.0, 100.0])
+    mech = lw.compile(lw.example("shears-slider-crank"))
+    kin = lw.kinematics(mech, steps=360, variants={"joints.guide.axis": psi})
+    for v, angle in enumerate(psi):
+        (knife,) = extremes(kin, v)
+        assert knife.name == "guide" and knife.stroke == pytest.approx(4 * rod, abs=1e-12)
+        assert knife.high == pytest.approx(2 * rod, abs=1e-12) and knife.low == pytest.approx(-2 * rod, abs=1e-12)
+        assert knife.at_high % (2 * np.pi) == pytest.approx(angle, abs=1e-9)
+        assert knife.at_low % (2 * np.pi) == pytest.approx(angle + np.pi, abs=1e-9)
+        # the knife's strokes each take half a turn
+        assert knife.time_ratio == pytest.approx(1.0, abs=1e-9)
+
+
+def test_a_link_pivoted_on_the_frame_that_turns_fully_is_no_rocker():
+    """A drag link (O2O4 = 50 mm the shortest, 0.05 + 0.28 <= 0.10 + 0.25): its 'rocker' turns fully with the
+    crank, so it has no swing to list; the crank-rocker beside it (O2O4 = 300 mm) has."""
+    kin = lw.kinematics(lw.compile(lw.example("four-bar")), steps=360,
+                        variants={"frame.points.O4.x": [0.05, 0.3], "links.coupler.length": [0.28, 0.28]})  # fmt: skip
+    assert kin.valid_all.all()
+    closed = np.unwrap(np.append(kin.angle("rocker")[0], kin.angle("rocker")[0, 0]))
+    assert abs(closed[-1] - closed[0]) == pytest.approx(2 * np.pi)  # it does turn fully
+    assert extremes(kin, 0) == []
+    (rocker,) = extremes(kin, 1)
+    a, b, c, d = 0.1, 0.28, 0.25, 0.3
+    psi = [math.acos((d * d + c * c - s**2) / (2 * d * c)) for s in (b + a, b - a)]
+    assert rocker.stroke == pytest.approx(abs(psi[0] - psi[1]), rel=1e-6)
+
+
+def test_transmission_angles_of_four_bars_follow_the_law_of_cosines_at_every_angle_and_variant():
+    """The coupler-rocker angle mu from the triangle A B O4: cos mu = (b^2 + c^2 - |O4A|^2) / (2 b c), folded
+    into [0, 90] deg, for every sample of every variant; the sweep metric is the least of them."""
+    from linkwork.motion.analysis import transmission
+
+    b = np.array([0.33, 0.35, 0.37, 0.36])
+    c = np.array([0.25, 0.24, 0.27, 0.23])
+    d = np.array([0.30, 0.31, 0.29, 0.30])
+    variants = {"links.coupler.length": b, "links.rocker.length": c, "frame.points.O4.x": d}
+    kin = lw.kinematics(lw.compile(lw.example("four-bar")), steps=360, variants=variants)
+    assert kin.valid_all.all()
+    (mu,) = transmission(kin).values()
+    assert mu.shape == (4, 360)
+    o4a = np.hypot(kin.position("A")[..., 0] - d[:, None], kin.position("A")[..., 1])
+    cos_mu = (b[:, None] ** 2 + c[:, None] ** 2 - o4a**2) / (2 * b[:, None] * c[:, None])
+    np.testing.assert_allclose(mu, np.arcsin(np.sqrt(1 - cos_mu**2)), atol=1e-9)
+    from linkwork.design.evaluate import Evaluation
+    from linkwork.design.metrics import METRICS
+
+    least = METRICS["min_transmission_angle"].compute(Evaluation(kin), None)
+    np.testing.assert_allclose(least, np.arcsin(np.sqrt(1 - cos_mu**2)).min(axis=1), atol=1e-9)
+
+
+def _d1(f, h):
+    """First derivative along axis 1 of periodic samples, fourth-order central differences."""
+    return (-np.roll(f, -2, 1) + 8 * np.roll(f, -1, 1) - 8 * np.roll(f, 1, 1) + np.roll(f, 2, 1)) / (12 * h)
+
+
+def test_the_plans_of_every_position_are_the_derivatives_of_the_motion():
+    """One construction for every position of two variants of the double-cut shears (one with its knives'
+    guides turned): each point's plan vector is its velocity (acceleration), and also the fourth-order
+    central difference of the positions (velocities) over the turn; the relative vectors of the construction
+    close on the absolute ones (v_B = v_A + v_BA; a_E = a_E' + a_cor + a_rel)."""
+    from linkwork.motion.plans import plan_series
+
+    mech = lw.compile(lw.example("double-cut-shears"))
+    variants = {"links.crank.length": [0.10, 0.11], "joints.guide_E.axis": [math.pi / 2, math.radians(95)]}
+    kin = lw.kinematics(mech, steps=720, variants=variants)
+    assert kin.valid_all.all()
+    vel, acc = plan_series(kin)
+    assert vel.values.shape[:2] == acc.values.shape[:2] == (2, 720)
+    h = math.radians(0.5) / abs(kin.rates[0, 0])
+    for name in ("A", "B", "C", "D", "E", "F"):
+        x, v, a = kin.position(name), kin.velocity(name), kin.acceleration(name)
+        pv, pa = vel.values[:, :, vel.labels.index(name.lower())], acc.values[:, :, acc.labels.index(name.lower())]
+        np.testing.assert_allclose(pv, v, rtol=0, atol=1e-12 * np.abs(v).max())
+        np.testing.assert_allclose(pa, a, rtol=0, atol=1e-12 * np.abs(a).max())
+        assert np.abs(pv - _d1(x, h)).max() < 1e-6 * np.abs(v).max()
+        assert np.abs(pa - _d1(v, h)).max() < 1e-5 * np.abs(a).max()
+    for series in (vel, acc):
+        at = {lab: series.values[:, :, j] for j, lab in enumerate(series.labels)}
+        for j, edge in enumerate(series.edges):
+            gap = at[edge.end] - at[edge.start] - series.vectors[:, :, j]
+            assert np.abs(gap).max() < 1e-9 * np.abs(series.values).max(), (series.kind, edge)
+    # the sliding of E is along the variant's guide: 95 deg from +x in variant 1
+    j = next(j for j, e in enumerate(vel.edges) if e.kind == "sliding" and e.end == "e")
+    u = np.array([math.cos(math.radians(95)), math.sin(math.radians(95))])
+    np.testing.assert_allclose(cross2(vel.vectors[1, :, j], u), 0, atol=1e-12)
+
+
+def test_the_plans_of_every_position_equal_those_of_each_position_solved_alone():
+    """The plans of a whole turn (one vectorised construction) against :func:`plans` of each angle solved on
+    its own, for every position of the crank-shaper (RPR, with its Coriolis component) and the shears."""
+    from linkwork.motion.plans import plan_series
+
+    for mech in (lw.compile(TEXTBOOK["crank-shaper"][0]().build()), lw.compile(lw.example("double-cut-shears"))):
+        kin = lw.kinematics(mech, steps=24)
+        series = plan_series(kin)
+        for i, angle in enumerate(kin.angles):
+            alone = plans(lw.kinematics(mech, [angle]), 0)
+            for s, plan in zip(series, alone, strict=True):
+                assert list(plan.points) == list(s.points) and s.at(i).scale == plan.scale
+                np.testing.assert_allclose([s.at(i).points[k] for k in s.points], list(plan.points.values()),
+                                           rtol=1e-9, atol=1e-12)  # fmt: skip
+                assert [(v.start, v.end, v.kind) for v in plan.vectors] == [(e.start, e.end, e.kind) for e in s.edges]
+                np.testing.assert_allclose(s.vectors[0, i], [v.vector for v in plan.vectors], rtol=1e-9, atol=1e-12)

@@ -98,11 +98,12 @@ def sweep(
 ) -> None:
     """Metrics of many design variants, a row per variant, computed in chunks (here or on Dask).
 
-    Metrics: assembles, stroke[:JOINT], swing[:LINK], time_ratio[:JOINT|LINK], min_transmission_angle,
-    peak_driving_torque, peak_foundation_force, knife_overlap[:LOAD], knife_clearance[:LOAD],
-    working_time_ratio[:LOAD].  time_ratio: the time of the stroke in which the slider moves in the + direction
-    of its guide's axis (the rocker turns counter-clockwise) over that of the other stroke, the crank turning
-    its own way; working_time_ratio: the knives closing over opening.
+    Metrics: assembles, stroke[:JOINT], swing[:LINK], time_ratio[:JOINT|LINK], forward_time_ratio[:JOINT|LINK],
+    min_transmission_angle, peak_driving_torque, peak_foundation_force, knife_overlap[:LOAD],
+    knife_clearance[:LOAD], working_time_ratio[:LOAD].  time_ratio: the coefficient K, the longer stroke's time
+    over the shorter's (>= 1); forward_time_ratio: the time of the stroke in which the slider moves in the +
+    direction of its guide's axis (the rocker turns counter-clockwise) over that of the other stroke, the crank
+    turning its own way; working_time_ratio: the knives closing over opening.
     """
     from linkwork.design.plan import DesignError
     from linkwork.design.store import parts_dir

@@ -16,7 +16,7 @@ def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
     """Keyword arguments of lw.kinematics from the options; crank angles in degrees, or slider
     positions in mm for a linear drive."""
     from linkwork.errors import LinkworkError
-    from linkwork.structure.constraints import REVOLUTE
+    from linkwork.motion.analysis import one_crank
 
     if mech.n_drives != 1:
         fail(
@@ -25,7 +25,7 @@ def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
                 "(use linkwork.kinematics in Python with angles of shape (n, drives))"
             )
         )
-    revolute = mech.pair_type[mech.drive_pair[0]] == REVOLUTE
+    revolute = one_crank(mech)
     if steps is not None and angles is not None:
         fail(LinkworkError("give either --steps or --angles, not both"))
     if angles is not None:
@@ -62,7 +62,7 @@ def kinematics(
     from linkwork.errors import LinkworkError
     from linkwork.io.motion_tables import to_json, write_csv, write_netcdf
     from linkwork.motion import kinematics as solve
-    from linkwork.motion.analysis import extremes
+    from linkwork.motion.analysis import extremes, transmission_angles
 
     mech = _compile(file_or_example)
     try:
@@ -88,16 +88,15 @@ def kinematics(
     n_ok = int(np.sum(kin.valid))
     typer.echo(f"{mech.name}: {len(kin.angles)} positions, {n_ok} assembled")
     for e in ext:
+        ratios = f"time ratio K {e.time_ratio:.4f} (+ stroke over the other {e.forward_time_ratio:.4f})"
         if e.kind == "slider":
             typer.echo(
                 f"  slider {e.name}: stroke {e.stroke * 1000:.2f} mm, from {e.low * 1000:.2f} to "
                 f"{e.high * 1000:.2f} mm (at {math.degrees(e.at_low) % 360:.1f} and "
-                f"{math.degrees(e.at_high) % 360:.1f} deg), time ratio {e.time_ratio:.4f}"
+                f"{math.degrees(e.at_high) % 360:.1f} deg), {ratios}"
             )
         else:
-            typer.echo(f"  rocker {e.name}: swing {math.degrees(e.stroke):.3f} deg, time ratio {e.time_ratio:.4f}")
-    from linkwork.motion.analysis import transmission_angles
-
+            typer.echo(f"  rocker {e.name}: swing {math.degrees(e.stroke):.3f} deg, {ratios}")
     for label, mu in transmission_angles(kin).items():
         if np.any(np.isfinite(mu)):
             i = int(np.nanargmin(mu))

@@ -5,19 +5,31 @@ A metric is asked for by name, some with an argument after a colon:
 Every metric is computed over one whole turn of the crank, from arrays
 ``(n_variants, n_angles)``; a variant that does not assemble at every angle
 gets NaN in every metric but ``assembles``.  Values are SI; :data:`METRICS`
-gives each metric's unit.
+gives each metric's unit.  The motion metrics (strokes, swings, time ratios,
+transmission angles) are those of :mod:`linkwork.motion.analysis`, as the
+report, the viewer and the command line give them.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from linkwork.structure.constraints import PRISMATIC, REVOLUTE
+from linkwork.motion.analysis import (
+    DYADS,
+    Output,
+    Range,
+    find_output,
+    one_crank,
+    output_range,
+    outputs,
+    sampled_range,
+    slopes,
+    transmission,
+)
 
 
 @dataclass(frozen=True)
@@ -49,177 +61,94 @@ class Metric:
     doc: str
 
 
-def _frame_sliders(mech: Any) -> list[int]:
-    """Prismatic pairs whose guide is the frame (the drive excluded), in pair order."""
-    driven = {int(k) for k in mech.drive_pair}
-    return [
-        k
-        for k in range(mech.n_pairs)
-        if mech.pair_type[k] == PRISMATIC and int(mech.pair_links[k, 0]) == 0 and k not in driven
-        and not mech.link_virtual[int(mech.pair_links[k, 1])]
-    ]  # fmt: skip
-
-
-def _frame_rockers(mech: Any) -> list[int]:
-    """Links pivoted on the frame by a revolute pair that is not driven (candidates for rockers)."""
-    driven = {int(k) for k in mech.drive_pair}
-    driven_links = {int(mech.pair_links[k, 1]) for k in driven}
-    out = []
-    for k in range(mech.n_pairs):
-        b = int(mech.pair_links[k, 1])
-        if mech.pair_type[k] == REVOLUTE and int(mech.pair_links[k, 0]) == 0 and k not in driven:
-            if b not in driven_links and not mech.link_virtual[b] and b not in out:
-                out.append(b)
-    return out
-
-
-def _slider(mech: Any, arg: str | None) -> int | str:
-    """The pair of the slider ``arg`` names (a prismatic joint), or the first; a message if there is none."""
-    sliders = _frame_sliders(mech)
+def _output(mech: Any, arg: str | None, kind: str) -> Output | str:
+    """The slider (its prismatic joint ``arg``) or rocker (its link ``arg``), or the first; a message if none."""
+    found = find_output(mech, arg, kind)
+    if found is not None:
+        return found
+    names = [out.name for out in outputs(mech) if out.kind == kind]
     if arg is None:
-        return sliders[0] if sliders else "the mechanism has no slider on a frame guide"
-    for k in sliders:
-        if mech.pair_joint[k] == arg:
-            return k
+        return (
+            "the mechanism has no slider on a frame guide"
+            if kind == "slider"
+            else "the mechanism has no link pivoted on the frame besides the crank"
+        )
     from linkwork.spec.checks import suggest
 
-    names = [mech.pair_joint[k] for k in sliders]
-    return f'no slider on a frame guide in joint "{arg}"{suggest(arg, names)}' + (
-        f"; the sliders' joints are: {', '.join(names)}" if names else ""
-    )
-
-
-def _rocker(mech: Any, arg: str | None) -> int | str:
-    rockers = _frame_rockers(mech)
-    if arg is None:
-        return rockers[0] if rockers else "the mechanism has no link pivoted on the frame besides the crank"
-    names = [mech.link_names[b] for b in rockers]
-    if arg in names:
-        return rockers[names.index(arg)]
-    from linkwork.spec.checks import suggest
-
+    if kind == "slider":
+        return f'no slider on a frame guide in joint "{arg}"{suggest(arg, names)}' + (
+            f"; the sliders' joints are: {', '.join(names)}" if names else ""
+        )
     return f'no link "{arg}" pivoted on the frame{suggest(arg, names)}' + (
         f"; they are: {', '.join(names)}" if names else ""
     )
 
 
 def _one_revolute_drive(mech: Any) -> str | None:
-    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
-        return "it needs one revolute drive turning a whole cycle"
-    return None
+    return None if one_crank(mech) else "it needs one revolute drive turning a whole cycle"
 
 
-# ---------------------------------------------------------------- extremes, vectorised
+# ---------------------------------------------------------------- strokes, swings, time ratios
 
 
-def _peak(values: np.ndarray, angles: np.ndarray, lowest: bool) -> tuple[np.ndarray, np.ndarray]:
-    """Extreme of periodic samples ``(V, A)`` over a uniform turn, refined by a parabola through the
-    extreme sample and its two neighbours: the value and the drive angle, ``(V,)`` each."""
-    y = -values if lowest else values
-    n = y.shape[1]
-    filled = np.where(np.isfinite(y), y, -np.inf)
-    i = np.argmax(filled, axis=1)
-    rows = np.arange(y.shape[0])
-    y0, y1, y2 = y[rows, (i - 1) % n], y[rows, i], y[rows, (i + 1) % n]
-    den = y0 - 2 * y1 + y2
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.where(den != 0, 0.5 * (y0 - y2) / den, 0.0)
-    t = np.clip(np.nan_to_num(t), -1.0, 1.0)
-    step = angles[1] - angles[0] if n > 1 else 0.0
-    peak = y1 - 0.25 * (y0 - y2) * t
-    at = angles[i] + t * step
-    return (-peak if lowest else peak), at
+def _range(ev: Any, arg: str | None, kind: str) -> Range:
+    out = _output(ev.kin.mechanism, arg, kind)
+    assert isinstance(out, Output)  # parse_metrics refused the metric otherwise
+    return output_range(ev.kin, out)
 
 
-def _stroke_values(ev: Any, k: int) -> np.ndarray:
-    """Position of the slider of pair ``k`` along its guide (V, A), m."""
+def _either(ev: Any, arg: str | None) -> Range:
+    """The range of the slider ``arg`` (a prismatic joint), else of the rocker ``arg``; default the first slider,
+    else the first rocker."""
     mech = ev.kin.mechanism
-    p = int(mech.pair_points[k, 1])
-    x = ev.kin.position(mech.point_names[p])  # (V, A, 2)
-    origin = ev.kin.origin[k, :, :, 0].T[:, None, :]  # (V, 1, 2)
-    axis = ev.kin.axis[k, :, :, 0].T[:, None, :]
-    return np.sum((x - origin) * axis, axis=-1)
-
-
-def _rocker_values(ev: Any, b: int) -> np.ndarray:
-    q = ev.kin.q[b, 2]  # (V, A)
-    return np.unwrap(q, axis=1)
-
-
-def _range(values: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    high, _ = _peak(values, angles, lowest=False)
-    low, _ = _peak(values, angles, lowest=True)
-    return high - low
-
-
-def _rising(values: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    """Crank angle (in the drive's direction, rad) over which ``values`` rise from their lowest to their
-    highest, ``(V,)``: the time of that stroke at uniform crank speed, times the speed."""
-    _, at_high = _peak(values, angles, lowest=False)
-    _, at_low = _peak(values, angles, lowest=True)
-    sign = 1.0 if angles[1] > angles[0] else -1.0
-    return (sign * (at_high - at_low)) % (2 * math.pi)
-
-
-def _ratio(values: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    """Time of the stroke in which ``values`` rise over the time of the one in which they fall."""
-    rise = _rising(values, angles)
-    with np.errstate(divide="ignore"):
-        return rise / (2 * math.pi - rise)
+    slider = find_output(mech, arg, "slider")
+    return output_range(ev.kin, slider) if slider is not None else _range(ev, arg, "rocker")
 
 
 def _stroke(ev: Any, arg: str | None) -> np.ndarray:
-    return _range(_stroke_values(ev, int(_slider(ev.kin.mechanism, arg))), ev.kin.angles)
+    return _range(ev, arg, "slider").stroke
 
 
 def _swing(ev: Any, arg: str | None) -> np.ndarray:
-    return _range(_rocker_values(ev, int(_rocker(ev.kin.mechanism, arg))), ev.kin.angles)
+    return _range(ev, arg, "rocker").stroke
 
 
 def _time_ratio(ev: Any, arg: str | None) -> np.ndarray:
-    mech = ev.kin.mechanism
-    k = _slider(mech, arg) if arg is None or arg in mech.pair_joint else "-"
-    if isinstance(k, int):
-        return _ratio(_stroke_values(ev, k), ev.kin.angles)
-    b = _rocker(mech, arg)
-    return _ratio(_rocker_values(ev, int(b)), ev.kin.angles)
+    return _either(ev, arg).time_ratio
 
 
-def _applies_slider(mech: Any, arg: str | None) -> str | None:
-    k = _slider(mech, arg)
-    return k if isinstance(k, str) else _one_revolute_drive(mech)
+def _forward_time_ratio(ev: Any, arg: str | None) -> np.ndarray:
+    return _either(ev, arg).forward_time_ratio
 
 
-def _applies_rocker(mech: Any, arg: str | None) -> str | None:
-    b = _rocker(mech, arg)
-    return b if isinstance(b, str) else _one_revolute_drive(mech)
+def _applies(kind: str) -> Callable[[Any, str | None], str | None]:
+    def applies(mech: Any, arg: str | None) -> str | None:
+        out = _output(mech, arg, kind)
+        return out if isinstance(out, str) else _one_revolute_drive(mech)
+
+    return applies
 
 
 def _applies_time_ratio(mech: Any, arg: str | None) -> str | None:
-    if arg is not None and arg in mech.pair_joint:
-        return _applies_slider(mech, arg)
-    if arg is None and _frame_sliders(mech):
-        return _one_revolute_drive(mech)
-    if arg is None and not _frame_rockers(mech):
+    if find_output(mech, arg, "slider") is not None or (arg is not None and arg in mech.pair_joint):
+        return _applies("slider")(mech, arg)
+    if arg is None and find_output(mech, None, "rocker") is None:
         return "the mechanism has no slider on a frame guide and no rocker"
-    return _applies_rocker(mech, arg)
+    return _applies("rocker")(mech, arg)
 
 
 # ---------------------------------------------------------------- transmission
 
 
-def _dyads(mech: Any) -> list[int]:
-    return [i for i, step in enumerate(mech.program) if step.kind in ("RRR", "RRP", "PRP", "RPR")]
-
-
 def _min_transmission(ev: Any, arg: str | None) -> np.ndarray:
-    dets = [np.abs(ev.kin.step_det[i]) for i in _dyads(ev.kin.mechanism)]
-    smallest = np.min(np.stack(dets), axis=0)  # (V, A)
-    return np.arcsin(np.clip(np.min(smallest, axis=1), 0.0, 1.0))
+    angles = np.stack(list(transmission(ev.kin).values()))  # (dyads, V, A)
+    return np.min(angles, axis=(0, 2))
 
 
 def _applies_transmission(mech: Any, arg: str | None) -> str | None:
-    return None if _dyads(mech) else "the mechanism has no dyad solved in closed form (RRR, RRP, PRP, RPR)"
+    if any(step.kind in DYADS for step in mech.program):
+        return None
+    return "the mechanism has no dyad solved in closed form (RRR, RRP, PRP, RPR)"
 
 
 # ---------------------------------------------------------------- forces
@@ -263,21 +192,21 @@ def _knives(mech: Any, arg: str | None) -> Any:
     return loads[0]
 
 
-def _gap(ev: Any, arg: str | None) -> np.ndarray:
-    """Gap between the two tools along the load's axis (V, A), m: positive while open."""
-    mech = ev.kin.mechanism
-    load = _knives(mech, arg)
-    p1 = ev.kin.position(mech.point_names[load.points[0]])
-    p2 = ev.kin.position(mech.point_names[load.points[1]])
-    return np.sum((p1 - p2) * np.asarray(load.vector), axis=-1)
+def _gap(ev: Any, arg: str | None) -> Range:
+    """Extremes of the gap between the two tools along the load's axis (positive while open), m."""
+    kin = ev.kin
+    load = _knives(kin.mechanism, arg)
+    one, two = (kin._point(kin.mechanism.point_names[p]) for p in load.points[:2])
+    gap, rate, accel = (np.sum((x1 - x2) * np.asarray(load.vector), axis=-1) for x1, x2 in zip(one, two, strict=True))
+    return sampled_range(gap, kin.angles, slopes(kin, rate, accel))
 
 
 def _overlap(ev: Any, arg: str | None) -> np.ndarray:
-    return -_peak(_gap(ev, arg), ev.kin.angles, lowest=True)[0]
+    return -_gap(ev, arg).low
 
 
 def _clearance(ev: Any, arg: str | None) -> np.ndarray:
-    return _peak(_gap(ev, arg), ev.kin.angles, lowest=False)[0]
+    return _gap(ev, arg).high
 
 
 def _applies_knives(mech: Any, arg: str | None) -> str | None:
@@ -287,9 +216,9 @@ def _applies_knives(mech: Any, arg: str | None) -> str | None:
 
 def _working_ratio(ev: Any, arg: str | None) -> np.ndarray:
     """Time of the working stroke (the tools closing: their gap falling) over that of the return stroke."""
-    closing = 2 * math.pi - _rising(_gap(ev, arg), ev.kin.angles)
-    with np.errstate(divide="ignore"):
-        return closing / (2 * math.pi - closing)
+    gap = _gap(ev, arg)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return gap.falling / gap.rising
 
 
 def _applies_working_ratio(mech: Any, arg: str | None) -> str | None:
@@ -322,7 +251,7 @@ METRICS: dict[str, Metric] = {
             "length",
             False,
             _stroke,
-            _applies_slider,
+            _applies("slider"),
             "Stroke of a slider on a frame guide (stroke:JOINT for its prismatic joint; default the first): "
             "the distance between its extreme positions along the guide, refined between samples.",
         ),
@@ -332,7 +261,7 @@ METRICS: dict[str, Metric] = {
             "angle",
             False,
             _swing,
-            _applies_rocker,
+            _applies("rocker"),
             "Swing of a link pivoted on the frame (swing:LINK; default the first besides the crank).",
         ),
         Metric(
@@ -342,10 +271,22 @@ METRICS: dict[str, Metric] = {
             False,
             _time_ratio,
             _applies_time_ratio,
-            "Time ratio of the strokes of a slider (time_ratio:JOINT) or a rocker (time_ratio:LINK) at uniform "
-            "crank speed, in the drive's direction of rotation: the time of the stroke in which the slider moves "
-            "in the + direction of its guide's axis (the rocker turns counter-clockwise) over the time of the "
-            "other stroke; below 1 where that stroke is the faster one.",
+            "Time ratio (coefficient K) of the strokes of a slider (time_ratio:JOINT) or a rocker "
+            "(time_ratio:LINK; default the first slider, else the first rocker) at uniform crank speed: the "
+            "longer stroke's time over the shorter's, >= 1, whatever the direction of rotation.",
+        ),
+        Metric(
+            "forward_time_ratio",
+            "1",
+            None,
+            False,
+            _forward_time_ratio,
+            _applies_time_ratio,
+            "Directional time ratio of a slider (forward_time_ratio:JOINT) or a rocker (forward_time_ratio:LINK) "
+            "at uniform crank speed in the drive's direction of rotation: the time of the stroke in which the "
+            "slider moves in the + direction of its guide's axis (the rocker turns counter-clockwise) over the "
+            "time of the other stroke; below 1 where that stroke is the faster one, its reciprocal when the "
+            "crank turns the other way.",
         ),
         Metric(
             "working_time_ratio",
@@ -366,7 +307,7 @@ METRICS: dict[str, Metric] = {
             _min_transmission,
             _applies_transmission,
             "Smallest transmission angle of all closed-form dyads over the turn, in [0, pi/2] "
-            "(see linkwork.motion.analysis.transmission_angles): the smallest sampled value, not refined "
+            "(see linkwork.motion.analysis.transmission): the smallest sampled value, not refined "
             "between samples (more steps for a finer one).",
         ),
         Metric(

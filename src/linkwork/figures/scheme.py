@@ -36,6 +36,7 @@ def draw_scheme(kin: Any, index: int = 0, ax: Any = None, trajectories: bool = F
     from matplotlib.patches import Circle, Polygon, Rectangle
 
     from linkwork.io.motion_tables import point_labels
+    from linkwork.motion.analysis import guide
 
     mech = kin.mechanism
     fig = ax.figure if ax is not None else Figure(figsize=(7, 6))
@@ -43,7 +44,6 @@ def draw_scheme(kin: Any, index: int = 0, ax: Any = None, trajectories: bool = F
     pts = _points(kin, index)
     size = _size(kin.points().reshape(-1, 2))
     r = 0.012 * size
-    pose = kin.pose[0, index]
     joint_pts = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
     if trajectories:
         allpts = kin.points()
@@ -76,9 +76,7 @@ def draw_scheme(kin: Any, index: int = 0, ax: Any = None, trajectories: bool = F
                 ax.add_patch(Rectangle(pb + [-2.4 * r, -3.6 * r], 4.8 * r, 0.8 * r, fc="none", ec="black",
                                        hatch="////", lw=0.6, zorder=3))  # fmt: skip
         else:
-            theta = pose[a, 2]
-            ux, uy = kin.axis[k, 0, 0, 0], kin.axis[k, 1, 0, 0]
-            u = np.array([np.cos(theta) * ux - np.sin(theta) * uy, np.sin(theta) * ux + np.cos(theta) * uy])
+            u = guide(kin, k)[1][0, index]
             w = np.array([-u[1], u[0]])
             block = np.array(
                 [pb - 2 * r * u - r * w, pb + 2 * r * u - r * w, pb + 2 * r * u + r * w, pb - 2 * r * u + r * w]

@@ -127,12 +127,13 @@ def balance(
     angles over a turn of the file's uniform drive (or ``speed``).
     """
     from linkwork.kinetostatics import forces
+    from linkwork.motion.analysis import one_crank
     from linkwork.resolve import mechanism_of
 
     mech = mechanism_of(mech, "balance")
     if harmonic not in (None, 1):
         raise LinkworkError(f"harmonic: expected 1 (first-harmonic balancing) or None (full), got {harmonic}")
-    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+    if not one_crank(mech):
         raise LinkworkError("balancing needs one crank (a revolute drive) turning uniformly")
     if steps < 8:
         raise LinkworkError(f"steps: expected at least 8 angles over the turn, got {steps}")

@@ -24,7 +24,6 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.structure.constraints import REVOLUTE
 
 
 @dataclass(frozen=True)
@@ -76,10 +75,11 @@ def reduced(mech: Any, steps: int = 3600) -> Reduced:
     from linkwork.kinetostatics.external import power as external_power
     from linkwork.kinetostatics.reactions import inertia_and_gravity
     from linkwork.motion import cycle, kinematics
+    from linkwork.motion.analysis import one_crank
     from linkwork.resolve import mechanism_of
 
     mech = mechanism_of(mech, "reduced")
-    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+    if not one_crank(mech):
         raise LinkworkError("machine dynamics needs one crank (a revolute drive)")
     if steps < 16:
         raise LinkworkError(f"steps: expected at least 16 angles over the turn, got {steps}")

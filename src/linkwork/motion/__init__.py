@@ -188,7 +188,9 @@ def _path(mech: Any, angles: np.ndarray) -> tuple[np.ndarray | None, np.ndarray 
 
 def cycle(mech: Any, steps: int) -> np.ndarray:
     """Drive coordinates of a uniform cycle of the first drive from its assembly value, in its direction."""
-    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+    from linkwork.motion.analysis import one_crank
+
+    if not one_crank(mech):
         raise LinkworkError("steps= needs a mechanism with one revolute drive; give the angles instead")
     sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
     return mech.drive_start[0] + sign * 2 * np.pi * np.arange(steps) / steps

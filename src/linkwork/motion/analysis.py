@@ -1,5 +1,20 @@
-"""What an engineer reads off the motion: strokes, time ratio, transmission angles,
-instantaneous centres."""
+"""What an engineer reads off the motion, over design variants x crank angles: the sliders and
+rockers of the frame, their strokes, swings and time ratios, the guides' directions, the transmission
+angles and the instantaneous centres.
+
+This module is the one home of these quantities: the sweeps' metrics, the report, the viewer and the
+command line call it.  Arrays are ``(V, A)`` (variants, angles) as in :class:`~linkwork.motion.Kinematics`'
+state, ``(V,)`` for a quantity of the whole turn.
+
+Two time ratios, at uniform crank speed, from the crank angles turned during the two strokes between
+the extreme positions:
+
+* ``time_ratio``: the classical coefficient K, the longer stroke's time over the shorter's (>= 1),
+  whatever the direction of rotation;
+* ``forward_time_ratio``: the time of the stroke in which the slider moves in the + direction of its
+  guide's axis (the rocker turns counter-clockwise) over the time of the other stroke; it turns into
+  its reciprocal when the crank turns the other way.
+"""
 
 from __future__ import annotations
 
@@ -11,10 +26,299 @@ import numpy as np
 
 from linkwork.structure.constraints import PRISMATIC, REVOLUTE
 
+TWO_PI = 2 * math.pi
+
+
+def one_crank(mech: Any) -> bool:
+    """Whether the mechanism has exactly one drive and it is revolute (a crank turning whole cycles)."""
+    return bool(mech.n_drives == 1 and mech.pair_type[mech.drive_pair[0]] == REVOLUTE)
+
+
+# ---------------------------------------------------------------- the frame's sliders and rockers
+
+
+@dataclass(frozen=True)
+class Output:
+    """A slider on a guide of the frame, or a link pivoted on the frame: an output whose extremes are read.
+
+    Attributes
+    ----------
+    kind : str
+        ``"slider"`` (its coordinate in m along the guide's axis) or ``"rocker"`` (its angle, rad).
+    name : str
+        The prismatic joint of a slider, the link of a rocker.
+    pair : int
+        The pair on the frame (the prismatic one of a slider, the pivot of a rocker).
+    link : int
+        The moving link.
+    point : int
+        The slider's point on the guide; -1 for a rocker.
+    """
+
+    kind: str
+    name: str
+    pair: int
+    link: int
+    point: int = -1
+
+
+def outputs(mech: Any) -> tuple[Output, ...]:
+    """The sliders on frame guides and the links pivoted on the frame, in the order of their pairs.
+
+    A slider is the moving link of a prismatic pair whose guide is the frame's (the frame named first);
+    a rocker is a link joined to the frame by a revolute pair, named first or second.  Drives, the links
+    they move and the massless blocks of pin-in-slot joints are left out.  Whether a pivoted link swings
+    or turns fully depends on the dimensions: see :attr:`Range.turns`.
+    """
+    driven = {int(k) for k in mech.drive_pair}
+    driven_links = {_moving(mech, k) for k in driven}
+    out: list[Output] = []
+    seen: set[int] = set()
+    for k in range(mech.n_pairs):
+        a, b = (int(x) for x in mech.pair_links[k])
+        if k in driven or 0 not in (a, b):
+            continue
+        link = _moving(mech, k)
+        if mech.link_virtual[link] or link in seen:
+            continue
+        if mech.pair_type[k] == PRISMATIC and a == 0:
+            out.append(Output("slider", str(mech.pair_joint[k]), k, link, int(mech.pair_points[k, 1])))
+        elif mech.pair_type[k] == REVOLUTE and link not in driven_links:
+            out.append(Output("rocker", str(mech.link_names[link]), k, link))
+        else:
+            continue
+        seen.add(link)
+    return tuple(out)
+
+
+def _moving(mech: Any, k: int) -> int:
+    """The link of pair ``k`` other than the frame (the second one when neither is the frame)."""
+    a, b = (int(x) for x in mech.pair_links[k])
+    return a if b == 0 else b
+
+
+def find_output(mech: Any, name: str | None, kind: str) -> Output | None:
+    """The output of ``kind`` named ``name`` (a slider's joint or a rocker's link), or the first; None if none."""
+    for out in outputs(mech):
+        if out.kind == kind and (name is None or out.name == name):
+            return out
+    return None
+
+
+def guide(kin: Any, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The guide line of prismatic pair ``k`` of every variant at every angle, in the frame's axes.
+
+    Returns
+    -------
+    origin, direction : ndarray, shape (V, A, 2)
+        A point of the line (m) and its unit direction (the joint's ``axis``, the variant's, turned with the
+        link that carries the guide).
+    """
+    carrier = int(kin.mechanism.pair_links[k, 0])
+    theta = kin.q[carrier, 2]  # (V, A)
+    c, s = np.cos(theta), np.sin(theta)
+    ox, oy = kin.origin[k, 0], kin.origin[k, 1]  # (V, 1)
+    ux, uy = kin.axis[k, 0], kin.axis[k, 1]
+    origin = np.stack([kin.q[carrier, 0] + c * ox - s * oy, kin.q[carrier, 1] + s * ox + c * oy], -1)
+    return origin, np.stack([c * ux - s * uy, s * ux + c * uy], -1)
+
+
+def coordinate(kin: Any, out: Output) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The coordinate of an output and its first and second time derivatives, ``(V, A)`` each.
+
+    A slider's position along its guide's axis from the guide's origin (m, m/s, m/s^2), on the variant's
+    guide; a rocker's angle (rad, unwrapped along the samples that assemble), angular velocity and
+    acceleration.
+    """
+    if out.kind == "rocker":
+        return _unwrap(kin.q[out.link, 2]), kin.v[out.link, 2], kin.a[out.link, 2]
+    origin, u = guide(kin, out.pair)
+    x, v, a = kin._point(kin.mechanism.point_names[out.point])
+    return np.sum((x - origin) * u, -1), np.sum(v * u, -1), np.sum(a * u, -1)
+
+
+def _unwrap(angle: np.ndarray) -> np.ndarray:
+    """Angles ``(V, A)`` unwrapped along the samples, across the samples that are NaN (kept NaN)."""
+    ok = np.isfinite(angle)
+    idx = np.maximum.accumulate(np.where(ok, np.arange(angle.shape[-1]), 0), axis=-1)
+    filled = np.take_along_axis(angle, idx, -1)  # each NaN replaced by the last finite value before it
+    step = np.diff(filled, axis=-1)
+    with np.errstate(invalid="ignore"):
+        jump = np.where(np.abs(step) >= math.pi, np.mod(step + math.pi, TWO_PI) - math.pi - step, 0.0)
+    turns = np.concatenate([np.zeros(angle.shape[:-1] + (1,)), np.cumsum(jump, axis=-1)], -1)
+    return np.where(ok, angle + turns, np.nan)
+
+
+# ---------------------------------------------------------------- extremes over the turn
+
+
+@dataclass(frozen=True)
+class Range:
+    """The extremes of a quantity sampled over a whole turn of the crank, for every variant: ``(V,)`` arrays.
+
+    Attributes
+    ----------
+    low, high : ndarray
+        Extreme values, refined between the samples (see :func:`sampled_range`; NaN where no sample
+        assembles or a rocker turns fully).
+    at_low, at_high : ndarray
+        Drive coordinates (rad) at which they occur.
+    whole : ndarray of bool
+        Every sample of the turn assembles: the time ratios need the whole turn (NaN otherwise).
+    sign : float
+        +1 for samples in increasing drive angle (counter-clockwise), -1 for decreasing.
+    turns : ndarray of bool
+        A rocker that turns fully about its pivot (no swing, no extremes); False for anything else.
+    """
+
+    low: np.ndarray
+    high: np.ndarray
+    at_low: np.ndarray
+    at_high: np.ndarray
+    whole: np.ndarray
+    sign: float
+    turns: np.ndarray
+
+    @property
+    def stroke(self) -> np.ndarray:
+        """``high - low``: a slider's stroke (m) or a rocker's swing (rad)."""
+        return self.high - self.low
+
+    @property
+    def rising(self) -> np.ndarray:
+        """Crank angle (rad, in the drive's direction) turned from the low extreme to the high one:
+        the time of that stroke at uniform crank speed, times the speed; NaN without the whole turn."""
+        rise = (self.sign * (self.at_high - self.at_low)) % TWO_PI
+        return np.where(self.whole & ~self.turns, rise, np.nan)
+
+    @property
+    def falling(self) -> np.ndarray:
+        """Crank angle turned from the high extreme back to the low one (rad)."""
+        return TWO_PI - self.rising
+
+    @property
+    def time_ratio(self) -> np.ndarray:
+        """The coefficient K of the strokes' times: the longer over the shorter, >= 1."""
+        rise, fall = self.rising, self.falling
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.maximum(rise, fall) / np.minimum(rise, fall)
+
+    @property
+    def forward_time_ratio(self) -> np.ndarray:
+        """The time of the rising stroke (the + direction) over the time of the falling one."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return self.rising / self.falling
+
+
+def sampled_range(
+    values: np.ndarray, angles: np.ndarray, slopes: tuple[np.ndarray, np.ndarray] | None = None
+) -> Range:
+    """Extremes of periodic samples ``(V, A)`` over a whole turn at equally spaced drive angles ``(A,)``.
+
+    With ``slopes``, the first and second derivatives of the values with respect to the drive angle
+    ``(V, A)`` each (velocity over crank speed, acceleration over its square at uniform speed), each
+    extreme is refined between its two samples by the quintic through the values and both derivatives
+    there (errors of the order of the sixth power of the step); without them, or where they are not
+    finite, by a parabola through the extreme sample and its two neighbours.  Samples that are NaN (the
+    mechanism does not assemble there) are left out of the extremes; the time ratios then are NaN.
+    """
+    values = np.asarray(values, dtype=float)
+    angles = np.asarray(angles, dtype=float)
+    d1, d2 = (None, None) if slopes is None else slopes
+    low, at_low = _peak(-values, angles, None if d1 is None else (-d1, -d2))
+    high, at_high = _peak(values, angles, None if d1 is None else (d1, d2))
+    sign = 1.0 if len(angles) < 2 or angles[1] > angles[0] else -1.0
+    whole = np.isfinite(values).all(axis=-1)
+    return Range(-low, high, at_low, at_high, whole, sign, np.zeros(values.shape[:-1], dtype=bool))
+
+
+def _peak(
+    y: np.ndarray, angles: np.ndarray, slopes: tuple[np.ndarray, np.ndarray] | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Largest value of periodic samples ``(V, A)`` and its drive angle, refined between samples (see
+    :func:`sampled_range`); NaN for a row without a finite sample."""
+    n = y.shape[-1]
+    finite = np.isfinite(y)
+    i = np.argmax(np.where(finite, y, -np.inf), axis=-1)[..., None]
+    y0, y1, y2 = (np.take_along_axis(y, (i + d) % n, -1)[..., 0] for d in (-1, 0, 1))
+    den = y0 - 2 * y1 + y2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.where(np.isfinite(den) & (den != 0), 0.5 * (y0 - y2) / den, 0.0)
+    t = np.clip(t, -1.0, 1.0) if n > 2 else np.zeros_like(t)
+    step = angles[1] - angles[0] if n > 1 else 0.0
+    peak = np.where(t != 0, y1 - 0.25 * (y0 - y2) * t, y1)
+    at = angles[i[..., 0]] + t * step
+    if slopes is not None and n > 2:
+        peak, t = _quintic(y, slopes, i, step, peak, t)
+        at = angles[i[..., 0]] + t * step
+    none = ~finite.any(axis=-1)
+    return np.where(none, np.nan, peak), np.where(none, np.nan, at)
+
+
+def _quintic(
+    y: np.ndarray, slopes: tuple[np.ndarray, np.ndarray], i: np.ndarray, step: float, peak: np.ndarray, t: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The maximum of the quintic Hermite interpolant between the largest sample ``i`` ``(V, 1)`` and the
+    neighbour the slope rises towards: ``(value, offset in steps from i)``; ``peak`` and ``t`` (the parabola's)
+    where a derivative is not finite or the maximum is not inside the interval."""
+    n = y.shape[-1]
+    d1, d2 = (np.asarray(d, dtype=float) * f for d, f in zip(slopes, (step, step * step), strict=True))
+    ahead = np.take_along_axis(d1, i, -1) > 0  # (V, 1): the maximum lies between i and i + 1
+    j = np.where(ahead, i, i - 1) % n
+    a, b = (np.take_along_axis(y, k, -1)[..., 0] for k in (j, (j + 1) % n))
+    da, db = (np.take_along_axis(d1, k, -1)[..., 0] for k in (j, (j + 1) % n))
+    sa, sb = (np.take_along_axis(d2, k, -1)[..., 0] for k in (j, (j + 1) % n))
+    c3 = 10 * (b - a) - 6 * da - 4 * db - 1.5 * sa + 0.5 * sb
+    c4 = -15 * (b - a) + 8 * da + 7 * db + 1.5 * sa - sb
+    c5 = 6 * (b - a) - 3 * da - 3 * db - 0.5 * sa + 0.5 * sb
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        u = np.clip(np.where(da != db, da / (da - db), 0.5), 0.0, 1.0)  # the slope's zero, linearly
+        for _ in range(4):  # Newton on the quintic's slope
+            slope = da + u * (sa + u * (3 * c3 + u * (4 * c4 + u * 5 * c5)))
+            curve = sa + u * (6 * c3 + u * (12 * c4 + u * 20 * c5))
+            u = np.clip(u - np.where(curve < 0, slope / curve, 0.0), 0.0, 1.0)
+        value = a + u * (da + u * (0.5 * sa + u * (c3 + u * (c4 + u * c5))))
+    offset = np.where(ahead[..., 0], u, u - 1.0)
+    top = np.take_along_axis(y, i, -1)[..., 0]
+    good = np.isfinite(value) & (value >= top)  # the interpolant passes through the largest sample
+    return np.where(good, value, peak), np.where(good, offset, t)
+
+
+def slopes(kin: Any, rate: np.ndarray, accel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """First and second derivatives ``(V, A)`` with respect to the crank angle of a quantity whose time
+    derivatives are ``rate`` and ``accel``, the crank turning uniformly (as :func:`linkwork.kinematics`
+    solves a turn)."""
+    speed = kin.rates[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return rate / speed, accel / (speed * speed)
+
+
+def output_range(kin: Any, out: Output) -> Range:
+    """The extremes of an output over a whole turn (:func:`linkwork.kinematics` with ``steps=``), ``(V,)``:
+    a slider's stroke along its variant's guide, a rocker's swing; NaN for a rocker that turns fully."""
+    values, rate, accel = coordinate(kin, out)
+    r = sampled_range(values, kin.angles, slopes(kin, rate, accel))
+    if out.kind != "rocker":
+        return r
+    turns = _turns(values, r.whole)
+    low, high, at_low, at_high = (np.where(turns, np.nan, x) for x in (r.low, r.high, r.at_low, r.at_high))
+    return Range(low, high, at_low, at_high, r.whole, r.sign, turns)
+
+
+def _turns(angle: np.ndarray, whole: np.ndarray) -> np.ndarray:
+    """Whether an unwrapped angle ``(V, A)`` turns fully: over a whole turn of samples, it does not come back
+    to its first value; over a part of the turn, it spans a full turn."""
+    last_to_first = angle[..., 0] - angle[..., -1]
+    winding = -last_to_first + np.mod(last_to_first + math.pi, TWO_PI) - math.pi
+    ok = np.isfinite(angle)
+    with np.errstate(invalid="ignore"):
+        span = np.max(np.where(ok, angle, -np.inf), -1) - np.min(np.where(ok, angle, np.inf), -1)
+        return np.where(whole, np.abs(winding) > math.pi, span >= TWO_PI - 1e-6)
+
 
 @dataclass(frozen=True)
 class Extremes:
-    """Extreme positions of a slider (along its guide) or a rocker (its angle).
+    """Extreme positions of one output of one variant (a view of :func:`output_range`).
 
     Attributes
     ----------
@@ -23,7 +327,7 @@ class Extremes:
     kind : str
         ``"slider"`` (values in m along the guide axis) or ``"rocker"`` (rad).
     low, high : float
-        Extreme values, refined between samples by a parabola.
+        Extreme values, refined between samples (see :func:`sampled_range`).
     at_low, at_high : float
         Drive coordinates (rad) at which they occur.
     stroke : float
@@ -31,7 +335,10 @@ class Extremes:
     forward, backward : float
         Drive angles of the stroke from low to high and back, in the direction of rotation.
     time_ratio : float
-        Time ratio of the strokes at uniform drive speed: the longer over the shorter, >= 1.
+        The coefficient K: the longer stroke's time over the shorter's, >= 1 (uniform crank speed).
+    forward_time_ratio : float
+        ``forward / backward``: the stroke in the + direction (the rocker turning counter-clockwise) over
+        the other.
     """
 
     name: str
@@ -44,6 +351,7 @@ class Extremes:
     forward: float
     backward: float
     time_ratio: float
+    forward_time_ratio: float
 
     def as_dict(self) -> dict[str, Any]:
         unit = "m" if self.kind == "slider" else "rad"
@@ -59,85 +367,65 @@ class Extremes:
             "forward_deg": math.degrees(self.forward),
             "backward_deg": math.degrees(self.backward),
             "time_ratio": self.time_ratio,
+            "forward_time_ratio": self.forward_time_ratio,
         }
 
 
-def _refine(values: np.ndarray, angles: np.ndarray, i: int) -> tuple[float, float]:
-    """Extreme of a sampled periodic function near sample i, by a parabola through i-1, i, i+1."""
-    n = len(values)
-    y0, y1, y2 = values[(i - 1) % n], values[i], values[(i + 1) % n]
-    if not (np.isfinite(y0) and np.isfinite(y2)):
-        return float(y1), float(angles[i])
-    den = y0 - 2 * y1 + y2
-    t = 0.0 if den == 0 or not np.isfinite(den) else 0.5 * (y0 - y2) / den
-    t = float(np.clip(t, -1, 1))
-    step = (angles[(i + 1) % n] - angles[(i - 1) % n]) / 2 if n > 2 else 0.0
-    if n > 2 and (i == 0 or i == n - 1):
-        step = angles[1] - angles[0]
-    return float(y1 - 0.25 * (y0 - y2) * t), float(angles[i] + t * step)
-
-
 def extremes(kin: Any, variant: int = 0) -> list[Extremes]:
-    """Strokes of the sliders on frame guides and swings of the rockers pivoted on the frame.
+    """Strokes of the sliders on frame guides and swings of the rockers pivoted on the frame, of one variant.
 
-    Meaningful for a whole cycle of a crank (``steps=`` or equally spaced
-    angles over a turn); the time ratio assumes a uniform drive speed.
+    Meaningful for a whole cycle of a crank (``steps=`` or equally spaced angles over a turn); the time
+    ratios assume a uniform drive speed.  Links pivoted on the frame that turn fully are left out.
     """
-    mech = kin.mechanism
-    angles = kin.angles
-    sign = 1.0 if len(angles) < 2 or angles[1] > angles[0] else -1.0
-    out = []
-    driven = set(int(k) for k in mech.drive_pair)
-    pose = kin.pose[variant]
-    for k in range(mech.n_pairs):
-        a, b = (int(x) for x in mech.pair_links[k])
-        if mech.link_virtual[b] or a != 0 or k in driven:
+    rows = []
+    for out in outputs(kin.mechanism):
+        r = output_range(kin, out)
+        if r.turns[variant]:
             continue
-        if mech.pair_type[k] == PRISMATIC:
-            p = mech.pair_points[k, 1]
-            x = kin.position(mech.point_names[p]) if not kin.variants else kin.position(mech.point_names[p])[variant]
-            values = (x - mech.pair_origin[k]) @ mech.pair_axis[k]
-            out.append(_extremes(mech.pair_joint[k], "slider", values, angles, sign))
-        elif mech.pair_type[k] == REVOLUTE and b not in {int(mech.pair_links[d, 1]) for d in driven}:
-            values = pose[:, b, 2].copy()
-            ok = np.isfinite(values)
-            values[ok] = np.unwrap(values[ok])
-            if np.nanmax(values) - np.nanmin(values) < 2 * math.pi - 1e-6:
-                out.append(_extremes(mech.link_names[b], "rocker", values, angles, sign))
-    return out
+        values = (r.low, r.high, r.at_low, r.at_high, r.stroke, r.rising, r.falling, r.time_ratio,
+                  r.forward_time_ratio)  # fmt: skip
+        rows.append(Extremes(out.name, out.kind, *(float(v[variant]) for v in values)))
+    return rows
 
 
-def _extremes(name: str, kind: str, values: np.ndarray, angles: np.ndarray, sign: float) -> Extremes:
-    """Extremes over the samples that assembled; the time ratio only where the whole turn did."""
-    if not np.isfinite(values).any():
-        nan = math.nan
-        return Extremes(name, kind, nan, nan, nan, nan, nan, nan, nan, nan)
-    lo_i, hi_i = int(np.nanargmin(values)), int(np.nanargmax(values))
-    low, at_low = _refine(values, angles, lo_i)
-    high, at_high = _refine(-values, angles, hi_i)
-    high = -high
-    forward = (sign * (at_high - at_low)) % (2 * math.pi)
-    backward = 2 * math.pi - forward
-    ratio = max(forward, backward) / min(forward, backward) if min(forward, backward) > 0 else math.inf
-    if not np.isfinite(values).all():  # part of the turn does not assemble: no strokes to compare
-        forward = backward = ratio = math.nan
-    return Extremes(name, kind, low, high, at_low, at_high, high - low, forward, backward, ratio)
+def zero_angle(mech: Any) -> float:
+    """Crank angle of position 0: the first slider on a frame guide at the high end of its stroke
+    (for shears: the knives fully open), else the first rocker at its high extreme, else the assembly angle."""
+    from linkwork.motion import kinematics as solve
+
+    ext = extremes(solve(mech, steps=360))
+    for kind in ("slider", "rocker"):
+        for e in ext:
+            if e.kind == kind:
+                return e.at_high
+    return float(mech.drive_start[0])
 
 
-def transmission_angles(kin: Any) -> dict[str, np.ndarray]:
-    """Transmission angle of every closed-form dyad over the samples, rad in [0, pi/2].
+# ---------------------------------------------------------------- transmission angles, instant centres
 
-    The angle between the directions in which the two links of the dyad
-    would move the joint X where they meet (for an RRR dyad, the angle
-    between coupler and rocker; for an RRP dyad, between the rod and the
-    normal to the guide), folded into [0, 90] deg: 90 deg transmits best,
-    0 is a dead point.  Shape ``(..., n_angles)``.
+
+#: The groups solved in closed form whose transmission angle :func:`transmission` gives.
+DYADS = ("RRR", "RRP", "PRP", "RPR")
+
+
+def transmission(kin: Any) -> dict[str, np.ndarray]:
+    """Transmission angle of every closed-form dyad (RRR, RRP, PRP, RPR), rad in [0, pi/2]: ``(V, A)`` each.
+
+    The angle between the directions in which the two links of the dyad would move the joint X where
+    they meet (for an RRR dyad, the angle between coupler and rocker; for an RRP dyad, between the rod
+    and the normal to the guide), folded into [0, 90] deg: 90 deg transmits best, 0 is a dead point.
+    It is the arcsine of the dyad's normalised Jacobian determinant.
     """
     out = {}
     for step, det in zip(kin.mechanism.program, kin.step_det, strict=True):
-        if step.kind in ("RRR", "RRP", "PRP", "RPR"):
-            out[step.label] = kin._out(np.arcsin(np.clip(np.abs(det), 0, 1)))
+        if step.kind in DYADS:
+            out[step.label] = np.arcsin(np.clip(np.abs(det), 0.0, 1.0))
     return out
+
+
+def transmission_angles(kin: Any) -> dict[str, np.ndarray]:
+    """:func:`transmission` without the variant axis for a result without variants: ``(..., n_angles)``."""
+    return {label: kin._out(mu) for label, mu in transmission(kin).items()}
 
 
 def instant_centre(kin: Any, link: str | int, relative_to: str | int = 0) -> np.ndarray:
@@ -159,16 +447,3 @@ def instant_centre(kin: Any, link: str | int, relative_to: str | int = 0) -> np.
     far = np.abs(dw) <= 1e-12 * np.maximum(scale, 1e-300)
     px, py = np.where(far, np.nan, px), np.where(far, np.nan, py)
     return kin._out(np.stack([px, py], -1))
-
-
-def zero_angle(mech: Any) -> float:
-    """Crank angle of position 0: the first slider on a frame guide at the high end of its stroke
-    (for shears: the knives fully open), else the first rocker at its high extreme, else the assembly angle."""
-    from linkwork.motion import kinematics as solve
-
-    ext = extremes(solve(mech, steps=3600))
-    for kind in ("slider", "rocker"):
-        for e in ext:
-            if e.kind == kind:
-                return e.at_high
-    return float(mech.drive_start[0])

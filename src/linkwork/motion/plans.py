@@ -22,10 +22,15 @@ vectors only.
 For the double-cut shears the velocity plan of E is ``v_E = v_D + v_ED``
 (``v_ED`` normal to DE) ``= v_E'`` (zero: the guide is fixed) ``+ v_EE'``
 (vertical), as in equations (3)-(5) of the paper.
+
+:func:`plan_series` builds the plans of every position of every variant at
+once (arrays over variants x angles, one construction); :func:`plans` is the
+view of one position.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Any
@@ -110,132 +115,213 @@ def _round_scale(longest: float) -> float:
     return float(10 ** (exp + 1))
 
 
+@dataclass(frozen=True)
+class PlanEdge:
+    """One vector of the construction, without its values: see :class:`PlanVector`."""
+
+    start: str
+    end: str
+    kind: str
+    group: str
+    about: str = ""
+
+
+@dataclass(frozen=True)
+class PlanSeries:
+    """The velocity or acceleration plan of every position of every variant: one construction.
+
+    Attributes
+    ----------
+    kind : str
+        ``"velocity"`` (m/s) or ``"acceleration"`` (m/s^2).
+    angles : ndarray, shape (A,)
+        Drive coordinates of the positions (rad).
+    points : tuple of str
+        Labels of the plan points that are the points' absolute vectors, ``p`` (the pole) first among them.
+    labels : tuple of str
+        Every plan point: ``points``, then the construction's intermediate points in order.
+    edges : tuple of PlanEdge
+        The relative vectors of the construction, group by group in solving order.
+    values : ndarray, shape (V, A, L, 2)
+        Each plan point (``labels``) from the pole; NaN where the mechanism does not assemble.
+    vectors : ndarray, shape (V, A, E, 2)
+        Each vector of the construction (``edges``).
+    """
+
+    kind: str
+    angles: np.ndarray
+    points: tuple[str, ...]
+    labels: tuple[str, ...]
+    edges: tuple[PlanEdge, ...]
+    values: np.ndarray
+    vectors: np.ndarray
+
+    def at(self, index: int, variant: int = 0) -> Plan:
+        """The plan of one position."""
+        values, vectors = self.values[variant, index], self.vectors[variant, index]
+        points = {lab: (float(values[j, 0]), float(values[j, 1])) for j, lab in enumerate(self.points)}
+        vecs = [
+            PlanVector(e.start, e.end, (float(vectors[j, 0]), float(vectors[j, 1])), e.kind, e.group, e.about)
+            for j, e in enumerate(self.edges)
+        ]
+        longest = float(_longest(values[: len(self.points)]))
+        return Plan(self.kind, float(self.angles[index]), points, vecs, _round_scale(longest))
+
+
+def _longest(vectors: np.ndarray) -> np.ndarray:
+    """Length of the longest finite vector ``(..., K, 2) -> (...)``; 0 where none is finite."""
+    size = np.hypot(vectors[..., 0], vectors[..., 1])
+    return np.max(size, axis=-1, initial=0.0, where=np.isfinite(size))
+
+
 def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
-    """The velocity and acceleration plans of sample ``index``."""
-    mech = kin.mechanism
-    q, v, a = (x[:, :, variant, index] for x in (kin.q, kin.v, kin.a))  # (N, 3)
-    loc = kin.local[:, :, variant, 0]
-    axis = kin.axis[:, :, variant, 0]
-    names = [n.split(".", 1)[1] for n in mech.point_names]
+    """The velocity and acceleration plans of sample ``index`` (of design variant ``variant``)."""
+    n = len(kin.angles)
+    if not -n <= index < n:
+        raise IndexError(f"sample {index} is out of range: the result has {n} angles")
+    i = index % n
+    one = dataclasses.replace(
+        kin,
+        drive=kin.drive[i : i + 1],
+        rates=kin.rates[i : i + 1],
+        q=kin.q[..., i : i + 1],
+        v=kin.v[..., i : i + 1],
+        a=kin.a[..., i : i + 1],
+        valid_all=kin.valid_all[:, i : i + 1],
+        step_det=tuple(d[..., i : i + 1] for d in kin.step_det),
+    )
+    vel, acc = plan_series(one)
+    return vel.at(0, variant), acc.at(0, variant)
 
-    def state_at(link: int, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        r = x - q[link, :2]
-        w, e = v[link, 2], a[link, 2]
-        return v[link, :2] + w * np.array([-r[1], r[0]]), a[link, :2] + e * np.array([-r[1], r[0]]) - w * w * r
 
-    def glob(p: int) -> np.ndarray:
-        i = mech.point_link[p]
-        c, s = np.cos(q[i, 2]), np.sin(q[i, 2])
-        return q[i, :2] + np.array([c * loc[p, 0] - s * loc[p, 1], s * loc[p, 0] + c * loc[p, 1]])
+def plan_series(kin: Any) -> tuple[PlanSeries, PlanSeries]:
+    """The velocity and acceleration plans of every sample and variant of a kinematics result, at once.
 
-    grounded = {
-        int(mech.pair_points[k, 1])
-        for k in range(mech.n_pairs)
-        if mech.pair_type[k] == 0 and mech.pair_links[k, 0] == 0
-    }
-    from linkwork.io.motion_tables import point_labels
+    Returns
+    -------
+    velocity, acceleration : PlanSeries
+        Values ``(V, A, L, 2)`` in m/s and m/s^2.
+    """
+    c = _Construction(kin)
+    c.build()
+    return c.series("velocity", c.vel_pts, c.vvec), c.series("acceleration", c.acc_pts, c.avec)
 
-    labels = {p: label.lower() for label, p in point_labels(mech, with_all=True)}
 
-    def label_of(p: int) -> str:
-        """Plan label: the point's name in lower case; p for the frame and points pinned to it."""
-        if mech.point_link[p] == 0 or p in grounded:
-            return "p"
-        return labels[p]
+def _perp(r: np.ndarray) -> np.ndarray:
+    return np.stack([-r[..., 1], r[..., 0]], -1)
 
-    vel_pts: dict[str, tuple[float, float]] = {}
-    acc_pts: dict[str, tuple[float, float]] = {}
-    for p in range(len(names)):
-        vx, ax = state_at(int(mech.point_link[p]), glob(p))
-        vel_pts.setdefault(label_of(p), tuple(map(float, vx)))
-        acc_pts.setdefault(label_of(p), tuple(map(float, ax)))
-    vvec: list[PlanVector] = []
-    avec: list[PlanVector] = []
 
-    def turn(group: str, arm: Any, x: np.ndarray, lab: str) -> None:
-        """X of the arm's link turning about the arm's outer joint."""
-        _rotation(
-            vvec, avec, group, label_of(arm.src), lab, x - glob(arm.src), v[arm.link, 2], a[arm.link, 2], names[arm.src]
-        )
+class _Construction:
+    """The graphical construction over ``(V, A)``: every vector an array ``(V, A, 2)``."""
 
-    for step in mech.program:
-        g = step.label
-        arms = step.arms
+    def __init__(self, kin: Any) -> None:
+        from linkwork.io.motion_tables import point_labels
+
+        mech = self.mech = kin.mechanism
+        self.kin = kin
+        self.q, self.v, self.a = kin.pose, kin.vel, kin.acc  # (V, A, N, 3)
+        pts = kin.points()
+        self.pts = pts if kin.variants else pts[None]  # (V, A, P, 2)
+        self.names = [n.split(".", 1)[1] for n in mech.point_names]
+        grounded = {
+            int(mech.pair_points[k, 1])
+            for k in range(mech.n_pairs)
+            if mech.pair_type[k] == 0 and mech.pair_links[k, 0] == 0
+        }
+        labels = {p: label.lower() for label, p in point_labels(mech, with_all=True)}
+        self.label = [
+            "p" if mech.point_link[p] == 0 or p in grounded else labels[p] for p in range(len(mech.point_names))
+        ]
+        self.vel_pts: dict[str, np.ndarray] = {}
+        self.acc_pts: dict[str, np.ndarray] = {}
+        self.vvec: list[tuple[PlanEdge, np.ndarray]] = []
+        self.avec: list[tuple[PlanEdge, np.ndarray]] = []
+
+    def state_at(self, link: int, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Velocity and acceleration of the material point of ``link`` at ``x`` (V, A, 2)."""
+        q, v, a = self.q[..., link, :], self.v[..., link, :], self.a[..., link, :]
+        r = x - q[..., :2]
+        w, e = v[..., 2:3], a[..., 2:3]
+        return v[..., :2] + w * _perp(r), a[..., :2] + e * _perp(r) - w * w * r
+
+    def build(self) -> None:
+        mech = self.mech
+        for p in range(len(self.names)):
+            vx, ax = self.state_at(int(mech.point_link[p]), self.pts[..., p, :])
+            self.vel_pts.setdefault(self.label[p], vx)
+            self.acc_pts.setdefault(self.label[p], ax)
+        for step in mech.program:
+            self.step(step)
+
+    def step(self, step: Any) -> None:
+        g, arms = step.label, step.arms
         if step.kind == "crank":
             arm = arms[0]
-            for p in np.flatnonzero(mech.point_link == arm.link):
+            for p in np.flatnonzero(self.mech.point_link == arm.link):
                 if p != arm.own:
-                    turn(g, arm, glob(p), label_of(p))
+                    self.turn(g, arm, int(p))
         elif step.kind in ("RRR", "RRP", "PRP"):
             xp = step.x_local[0]
-            x = glob(xp)
-            lab = label_of(xp)
             for arm in arms:
                 if arm.kind == "R":
-                    turn(g, arm, x, lab)
+                    self.turn(g, arm, xp)
                 else:
                     primes = "'" * (1 + sum(1 for other in arms[: arms.index(arm)] if other.kind == "P"))
-                    _sliding(vvec, avec, g, lab, x, arm, mech, q, v, a, state_at, axis, primes)
+                    self.sliding(g, xp, arm, primes)
         elif step.kind == "RPR":
             # the slider turns about its pivot; the guide's coincident point turns about the guide's pivot,
             # and the slider slides along the guide relative to it (with the Coriolis component)
             arm_g, arm_s = arms
             sp = arm_s.slider_point
-            x, lab = glob(sp), label_of(sp)
-            turn(g, arm_s, x, lab)
-            on_guide = SimpleNamespace(carrier=arm_g.link, pair=step.inner, link=arm_s.link)
-            _sliding(vvec, avec, g, lab, x, on_guide, mech, q, v, a, state_at, axis)
-    longest_v = max((np.hypot(*pv) for pv in vel_pts.values()), default=0.0)
-    longest_a = max((np.hypot(*pa) for pa in acc_pts.values()), default=0.0)
-    angle = float(kin.angles[index])
-    return (
-        Plan("velocity", angle, vel_pts, vvec, _round_scale(longest_v)),
-        Plan("acceleration", angle, acc_pts, avec, _round_scale(longest_a)),
-    )
+            self.turn(g, arm_s, sp)
+            self.sliding(g, sp, SimpleNamespace(carrier=arm_g.link, pair=step.inner, link=arm_s.link))
 
+    def turn(self, group: str, arm: Any, p: int) -> None:
+        """Point ``p`` turning with the arm's link about the arm's outer joint: v = w perp(r);
+        a = -w^2 r + e perp(r), r = X - P."""
+        start, end, about = self.label[arm.src], self.label[p], self.names[arm.src]
+        r = self.pts[..., p, :] - self.pts[..., arm.src, :]
+        w, e = self.v[..., arm.link, 2:3], self.a[..., arm.link, 2:3]
+        pr = _perp(r)
+        self.vvec.append((PlanEdge(start, end, "rotation", group, about), w * pr))
+        mid = f"n_{end}{start}"
+        self.avec.append((PlanEdge(start, mid, "normal", group, about), -w * w * r))
+        self.avec.append((PlanEdge(mid, end, "tangential", group, about), e * pr))
 
-def _rotation(
-    vvec: list, avec: list, group: str, start: str, end: str, r: np.ndarray, w: float, e: float, about: str
-) -> None:
-    """X turning with a link about P (r = X - P): v = w perp(r); a = -w^2 r + e perp(r)."""
-    pr = np.array([-r[1], r[0]])
-    vvec.append(PlanVector(start, end, tuple(map(float, w * pr)), "rotation", group, about))
-    mid = f"n_{end}{start}"
-    avec.append(PlanVector(start, mid, tuple(map(float, -w * w * r)), "normal", group, about))
-    avec.append(PlanVector(mid, end, tuple(map(float, e * pr)), "tangential", group, about))
+    def sliding(self, group: str, p: int, arm: Any, prime: str = "'") -> None:
+        """Point ``p`` on a link sliding along a guide of the carrier: transport + (Coriolis) + sliding."""
+        from linkwork.motion.analysis import guide
 
+        c, lab, x = arm.carrier, self.label[p], self.pts[..., p, :]
+        u = guide(self.kin, arm.pair)[1]
+        v_tr, a_tr = self.state_at(c, x)
+        v_x, a_x = self.state_at(arm.link, x)
+        sdot = np.sum((v_x - v_tr) * u, -1)[..., None]
+        cor = 2 * self.v[..., c, 2:3] * sdot * _perp(u)
+        sddot = np.sum((a_x - a_tr - cor) * u, -1)[..., None]
+        carrier = "p" if c == 0 else f"{lab}{prime}"
+        about = self.mech.link_names[c]
+        mid = f"k{prime}_{lab}"
+        self.vvec.append((PlanEdge("p", carrier, "transport", group, about), v_tr))
+        self.vvec.append((PlanEdge(carrier, lab, "sliding", group, about), sdot * u))
+        self.avec.append((PlanEdge("p", carrier, "transport", group, about), a_tr))
+        self.avec.append((PlanEdge(carrier, mid, "coriolis", group, about), cor))
+        self.avec.append((PlanEdge(mid, lab, "sliding", group, about), sddot * u))
 
-def _sliding(
-    vvec: list,
-    avec: list,
-    group: str,
-    lab: str,
-    x: np.ndarray,
-    arm: Any,
-    mech: Any,
-    q: np.ndarray,
-    v: np.ndarray,
-    a: np.ndarray,
-    state_at: Any,
-    axis: np.ndarray,
-    prime: str = "'",
-) -> None:
-    """X on a link sliding along a guide of the carrier: transport + (Coriolis) + sliding."""
-    c = arm.carrier
-    th = q[c, 2]
-    k = arm.pair
-    ax_loc = axis[k]
-    cs, sn = np.cos(th), np.sin(th)
-    u = np.array([cs * ax_loc[0] - sn * ax_loc[1], sn * ax_loc[0] + cs * ax_loc[1]])
-    v_tr, a_tr = state_at(c, x)
-    v_x, a_x = state_at(arm.link, x)
-    sdot = float((v_x - v_tr) @ u)
-    cor = 2 * v[c, 2] * sdot * np.array([-u[1], u[0]])
-    sddot = float((a_x - a_tr - cor) @ u)
-    carrier = "p" if c == 0 else f"{lab}{prime}"
-    vvec.append(PlanVector("p", carrier, tuple(map(float, v_tr)), "transport", group, mech.link_names[c]))
-    vvec.append(PlanVector(carrier, lab, tuple(map(float, sdot * u)), "sliding", group, mech.link_names[c]))
-    avec.append(PlanVector("p", carrier, tuple(map(float, a_tr)), "transport", group, mech.link_names[c]))
-    mid = f"k{prime}_{lab}"
-    avec.append(PlanVector(carrier, mid, tuple(map(float, cor)), "coriolis", group, mech.link_names[c]))
-    avec.append(PlanVector(mid, lab, tuple(map(float, sddot * u)), "sliding", group, mech.link_names[c]))
+    def series(self, kind: str, pts: dict[str, np.ndarray], vecs: list[tuple[PlanEdge, np.ndarray]]) -> PlanSeries:
+        """The plan points (absolute, then each intermediate point reached along the construction)."""
+        known = dict(pts)
+        labels = list(pts)
+        for edge, vec in vecs:
+            for lab in (edge.start, edge.end):
+                if lab not in labels:
+                    labels.append(lab)
+            if edge.start in known and edge.end not in known:
+                known[edge.end] = known[edge.start] + vec
+        shape = self.pts.shape[:2] + (2,)
+        nan = np.full(shape, np.nan)
+        values = np.stack([known.get(lab, nan) for lab in labels], axis=2)
+        vectors = np.stack([vec for _, vec in vecs], axis=2) if vecs else np.zeros(shape[:2] + (0, 2))
+        return PlanSeries(
+            kind, self.kin.angles, tuple(pts), tuple(labels), tuple(e for e, _ in vecs), values, vectors
+        )

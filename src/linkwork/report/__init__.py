@@ -112,8 +112,7 @@ def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
     from linkwork import figures
     from linkwork.io.motion_tables import point_labels, write_csv
     from linkwork.motion import kinematics
-    from linkwork.motion.analysis import extremes, transmission_angles, zero_angle
-    from linkwork.structure.constraints import REVOLUTE
+    from linkwork.motion.analysis import extremes, one_crank, transmission_angles, zero_angle
 
     mech = run.mech
     s = mech.structure
@@ -137,8 +136,7 @@ def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
     sec.body.append(_p(f"Structural formula: {s.formula}"))
     run.sections.append(sec)
 
-    crank = mech.n_drives == 1 and mech.pair_type[mech.drive_pair[0]] == REVOLUTE
-    if not crank:
+    if not one_crank(mech):
         run.sections.append(Section("kinematics", "Kinematics", [_p("Needs one crank (a revolute drive).")]))
         return
     run.progress("kinematics")
@@ -167,20 +165,13 @@ def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
     sec.body.append(_table(["pos", "crank, deg", *[label for label, _ in labels]], rows))
     ext = extremes(kin)
     if ext:
+        sec.body.append(_table(["", "stroke", "from", "to", "time ratio K", "+ stroke / other"], _extreme_rows(ext)))
         sec.body.append(
-            _table(
-                ["", "stroke", "from", "to", "time ratio"],
-                [
-                    [
-                        f"{e.kind} {e.name}",
-                        e.stroke if e.kind == "slider" else math.degrees(e.stroke),
-                        e.low,
-                        e.high,
-                        e.time_ratio,
-                    ]
-                    for e in ext
-                ],
-            )  # fmt: skip
+            _p(
+                "Sliders in mm along their guide's axis, rockers in degrees.  Time ratio K: the longer stroke's "
+                "time over the shorter's at uniform crank speed; + stroke / other: the time of the stroke in the + "
+                "direction of the guide's axis (the rocker turning counter-clockwise) over the other's."
+            )
         )
     mu = [(lab, float(np.nanmin(v))) for lab, v in transmission_angles(kin).items() if np.isfinite(v).any()]
     if mu:
@@ -209,6 +200,16 @@ def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
         _dynamics(run)
     if mech.blow is not None:
         _impact(run)
+
+
+def _extreme_rows(ext: list[Any]) -> list[list[Any]]:
+    """Rows of the strokes' table: sliders in mm, rockers in degrees."""
+    rows = []
+    for e in ext:
+        scale, unit = (1000.0, "mm") if e.kind == "slider" else (180 / math.pi, "deg")
+        cells = [f"{x * scale:.6g} {unit}" if math.isfinite(x) else "-" for x in (e.stroke, e.low, e.high)]
+        rows.append([f"{e.kind} {e.name}", *cells, e.time_ratio, e.forward_time_ratio])
+    return rows
 
 
 def _forces(run: _Run, steps: int) -> None:

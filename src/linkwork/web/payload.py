@@ -32,7 +32,10 @@ Layout (``format: linkwork-view/1``):
   ``values`` (A,); torques and moments counter-clockwise positive (a
   clockwise drive's driving torque is mostly negative), forces x right and
   y up, as the labels say;
-* ``structure``, ``drives``, ``extremes``, ``events``, ``warnings``.
+* ``extremes``: every slider on a frame guide and rocker, as
+  :func:`linkwork.motion.analysis.extremes` gives them (stroke, extreme
+  positions, ``time_ratio`` K and ``forward_time_ratio``);
+* ``structure``, ``drives``, ``events``, ``warnings``.
 """
 
 from __future__ import annotations
@@ -44,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.motion.analysis import coordinate, extremes, guide, one_crank, outputs
 from linkwork.structure.constraints import PRISMATIC, REVOLUTE
 
 FORMAT = "linkwork-view/1"
@@ -90,9 +94,8 @@ def cycle_payload(mech: Any, steps: int = 360) -> dict[str, Any]:
         For a mechanism without a single crank.
     """
     from linkwork.motion import kinematics
-    from linkwork.motion.analysis import extremes
 
-    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+    if not one_crank(mech):
         raise LinkworkError("the viewer turns one crank: the mechanism needs exactly one revolute drive")
     notes: list[str] = []
     with warnings.catch_warnings(record=True) as caught:
@@ -200,65 +203,34 @@ def _pairs(mech: Any, kin: Any) -> list[dict[str, Any]]:
             "frame_point": int(mech.pair_points[k, 0 if a == 0 else 1]) if 0 in (a, b) else None,
         }
         if mech.pair_type[k] == PRISMATIC:
-            theta = kin.pose[0, :, a, 2]
-            ux, uy = float(kin.axis[k, 0, 0, 0]), float(kin.axis[k, 1, 0, 0])
-            c, s = np.cos(theta), np.sin(theta)
-            item["axis"] = _json(np.stack([c * ux - s * uy, s * ux + c * uy], -1), 9)
+            item["axis"] = _json(guide(kin, k)[1][0], 9)
         out.append(item)
     return out
 
 
 def _plans(kin: Any) -> dict[str, Any]:
     """The plans of every sample: plan points (pole-relative vectors) and the construction's vectors."""
-    from linkwork.motion.plans import _round_scale, plans
+    from linkwork.motion.plans import _longest, _round_scale, plan_series
 
-    n = len(kin.angles)
-    valid = np.asarray(kin.valid)
-    first = int(np.flatnonzero(valid)[0]) if valid.any() else 0
-    templates = plans(kin, first)
     out = {}
-    for which, template in enumerate(templates):
-        labels = list(template.points)
-        for vec in template.vectors:
-            for lab in (vec.start, vec.end):
-                if lab not in labels:
-                    labels.append(lab)
-        index = {lab: j for j, lab in enumerate(labels)}
-        out[template.kind] = {
-            "kind": template.kind,
-            "unit": "m/s" if template.kind == "velocity" else "m/s^2",
-            "labels": labels,
-            "absolute": [index[lab] for lab in template.points if lab != "p"],
-            "vectors": [
-                {"from": index[v.start], "to": index[v.end], "kind": v.kind, "group": v.group, "about": v.about}
-                for v in template.vectors
-            ],
-            "values": np.full((n, len(labels), 2), np.nan),
-        }
-        out[template.kind]["_which"] = which
-    for i in range(n):
-        if not valid[i]:
-            continue
-        for plan in plans(kin, i):
-            data = out[plan.kind]
-            known = {lab: np.asarray(vec, dtype=float) for lab, vec in plan.points.items()}
-            known.setdefault("p", np.zeros(2))
-            for vec in plan.vectors:
-                if vec.start in known:
-                    known.setdefault(vec.end, known[vec.start] + np.asarray(vec.vector, dtype=float))
-            for lab, j in zip(data["labels"], range(len(data["labels"])), strict=True):
-                if lab in known:
-                    data["values"][i, j] = known[lab]
-    for data in out.values():
-        values = data.pop("values")
-        data.pop("_which")
-        absolute = values[:, data["absolute"]] if data["absolute"] else np.zeros((n, 0, 2))
-        size = np.hypot(absolute[..., 0], absolute[..., 1])
-        longest = size.max(axis=1, initial=0.0, where=np.isfinite(size))  # (A,)
+    for series in plan_series(kin):
+        index = {lab: j for j, lab in enumerate(series.labels)}
+        values = np.where(kin.valid[:, None, None], series.values[0], np.nan)  # (A, L, 2), none where not assembled
         # one scale for the cycle: the longest vector of nearly every position at most 100 mm (the rare
         # positions near a dead point, where accelerations grow without bound, would shrink all the others)
-        data["scale_per_mm"] = _round_scale(float(np.percentile(longest, PLAN_PERCENTILE)) if n else 0.0)
-        data["values"] = _json(values, _significant(values))
+        longest = _longest(values[:, : len(series.points)])
+        out[series.kind] = {
+            "kind": series.kind,
+            "unit": "m/s" if series.kind == "velocity" else "m/s^2",
+            "labels": list(series.labels),
+            "absolute": [index[lab] for lab in series.points if lab != "p"],
+            "vectors": [
+                {"from": index[e.start], "to": index[e.end], "kind": e.kind, "group": e.group, "about": e.about}
+                for e in series.edges
+            ],
+            "scale_per_mm": _round_scale(float(np.percentile(longest, PLAN_PERCENTILE)) if len(longest) else 0.0),
+            "values": _json(values, _significant(values)),
+        }
     return out
 
 
@@ -271,34 +243,17 @@ def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
         rounded = _json(values, _significant(values))
         out.append({"key": key, "label": label, "unit": unit, "group": group, "values": rounded})
 
-    driven = {int(k) for k in mech.drive_pair}
-    driven_links = {_moving(mech, k) for k in driven}
-    for k in range(mech.n_pairs):
-        a, b = (int(x) for x in mech.pair_links[k])
-        if 0 not in (a, b) or k in driven:
-            continue
-        if mech.pair_type[k] == PRISMATIC and a != 0:
-            continue  # a guide on the moving link, the frame's point slides in it: no slider to chart
-        b = _moving(mech, k)
-        if mech.link_virtual[b]:
-            continue
-        if mech.pair_type[k] == PRISMATIC:
-            name = mech.point_names[int(mech.pair_points[k, 1])]
-            label = name.split(".", 1)[1]
-            u = mech.pair_axis[k]
-            s = (kin.position(name) - mech.pair_origin[k]) @ u
-            joint = mech.pair_joint[k]
+    for output in outputs(mech):
+        s, v, a = (x[0] for x in coordinate(kin, output))
+        if output.kind == "slider":
+            label, joint = mech.point_names[output.point].split(".", 1)[1], output.name
             add(f"slider:{joint}:s", f"{label} along {joint}", "mm", "sliders", 1000 * s)
-            add(f"slider:{joint}:v", f"velocity of {label} along {joint}", "m/s", "sliders", kin.velocity(name) @ u)
-            add(f"slider:{joint}:a", f"acceleration of {label} along {joint}", "m/s²", "sliders",
-                kin.acceleration(name) @ u)  # fmt: skip
-        elif mech.pair_type[k] == REVOLUTE and b not in driven_links:
-            angle = kin.angle(b).copy()
-            ok = np.isfinite(angle)
-            angle[ok] = np.unwrap(angle[ok])
-            lname = mech.link_names[b]
-            add(f"link:{lname}:angle", f"angle of {lname}", "deg", "links", np.degrees(angle))
-            add(f"link:{lname}:omega", f"angular velocity of {lname}", "rad/s", "links", kin.omega(b))
+            add(f"slider:{joint}:v", f"velocity of {label} along {joint}", "m/s", "sliders", v)
+            add(f"slider:{joint}:a", f"acceleration of {label} along {joint}", "m/s²", "sliders", a)
+        else:
+            lname = output.name
+            add(f"link:{lname}:angle", f"angle of {lname}", "deg", "links", np.degrees(s))
+            add(f"link:{lname}:omega", f"angular velocity of {lname}", "rad/s", "links", v)
     if forces is not None:
         # signs as in linkwork.forces: torques and moments counter-clockwise positive, whatever the direction of
         # rotation (a clockwise crank driven against the load has a negative driving torque); x right, y up
@@ -316,12 +271,6 @@ def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
                 f = forces.reaction(joint, on=mech.link_names[0])
                 add(f"reaction:{joint}", f"reaction in {joint} (size)", "N", "forces", np.hypot(f[:, 0], f[:, 1]))
     return out
-
-
-def _moving(mech: Any, k: int) -> int:
-    """The link of pair ``k`` other than the frame (the second one when neither is the frame)."""
-    a, b = (int(x) for x in mech.pair_links[k])
-    return a if b == 0 else b
 
 
 def _structure(mech: Any) -> dict[str, Any]:

@@ -504,10 +504,11 @@
       s.groups.map((g, i) => [i + 1, g.formula_part, g.kind, g.link_names.join(", "), g.joints.join(", ")]));
     html("p", `structural formula: ${s.formula}`, root);
     if (data.extremes.length) {
-      table(root, ["", "stroke", "time ratio"], data.extremes.map((e) => [
+      table(root, ["", "stroke", "time ratio K", "+ stroke / other"], data.extremes.map((e) => [
         `${e.kind} ${e.name}`,
         e.kind === "slider" ? `${fmt(1000 * e.stroke)} mm` : `${fmt((e.stroke * 180) / Math.PI)}°`,
         fmt(e.time_ratio),
+        fmt(e.forward_time_ratio),
       ]));
     }
     if (data.forces.available) {
