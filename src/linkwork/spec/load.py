@@ -13,7 +13,7 @@ from linkwork.errors import Problem, SpecError
 from linkwork.spec.checks import check, suggest
 from linkwork.spec.schema import Spec
 from linkwork.spec.yamlsource import Source, read_yaml
-from linkwork.units import DEFAULT_UNITS, KINDS, UnitParseError, check_unit, parse_quantity
+from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, UnitParseError, check_unit, parse_quantity
 
 
 def load(path: str | Path) -> Spec:
@@ -74,7 +74,7 @@ def _declared_units(src: Source, problems: list[Problem]) -> dict[str, str]:
     if not isinstance(units, dict):
         return declared
     for kind, unit in units.items():
-        if kind not in declared or not isinstance(unit, str):
+        if kind not in DECLARABLE or not isinstance(unit, str):
             continue  # reported by the schema
         try:
             check_unit(unit, kind)
