@@ -1,6 +1,7 @@
 """Writing a design back as a mechanism file: the original file with new values, comments kept.
 
-Values are written as bare numbers in the file's units.  Design variants keep
+Values are written as the file reads them back (:func:`linkwork.units.written`): bare numbers in the
+file's units, or with their unit where a bare number of their kind would need one.  Design variants keep
 the file's mass properties (see :mod:`linkwork.design.evaluate`), so a link
 whose geometry changed gets its centre of mass and moment of inertia written
 out explicitly where the file left them to their defaults (the centroid, a
@@ -29,17 +30,13 @@ def _text(mechanism: Any) -> tuple[str, str]:
     raise DesignError([f'"{mechanism}": the optimised design is written from a mechanism file or a bundled example'])
 
 
-def _number(value: float) -> float:
-    return float(f"{value:.10g}")
-
-
 def write_design(mechanism: Any, spec: Any, mech: Any, values: dict[str, float], out: str | Path) -> Path:
     """Write the file of ``mechanism`` with ``values`` (path -> SI) to ``out``, atomically."""
     from ruamel.yaml import YAML
     from ruamel.yaml.comments import CommentedSeq
 
     from linkwork.io.atomic import write_atomic
-    from linkwork.units import DEFAULT_UNITS, parse_quantity
+    from linkwork.units import DEFAULT_UNITS, parse_quantity, written
 
     source, _ = _text(mechanism)
     yaml = YAML()  # round trip: comments, order and flow style kept
@@ -49,8 +46,8 @@ def write_design(mechanism: Any, spec: Any, mech: Any, values: dict[str, float],
     data = yaml.load(source)
     declared = {**DEFAULT_UNITS, **spec.units.model_dump(exclude_none=True)}
 
-    def file_units(si: float, kind: str) -> float:
-        return _number(si / parse_quantity(1.0, kind, declared))
+    def file_units(si: float, kind: str) -> float | str:
+        return written(si, kind, declared)
 
     changed_links: set[str] = set()
     scaled: dict[str, float] = {}
