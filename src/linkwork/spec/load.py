@@ -117,6 +117,8 @@ def _convert(src: Source, err: Any) -> Problem:
     kind = err["type"]
     value = err.get("input")
     if kind == "extra_forbidden":
+        if loc[:-1] == ("units",) and loc[-1] == "torque":
+            return src.problem(loc, 'unknown key "torque" (the unit of moments and torques is "moment")')
         allowed = _fields_at(loc[:-1])
         return src.problem(loc, f'unknown key "{loc[-1]}"{suggest(loc[-1], allowed)}')
     if kind == "missing":
