@@ -87,3 +87,21 @@ def test_a_bare_derived_quantity_needs_its_unit_where_the_file_units_are_not_si(
     message = str(err.value)
     assert message.startswith(f"a bare {value} is not read as ") and why in message, message
     assert would in message and f"units: {{{kind}: " in message
+
+
+@pytest.mark.parametrize(
+    "kind, declared, si, shown",
+    [
+        ("length", MM_ONLY, 0.1234, 123.4),
+        ("inertia", MM_ONLY, 0.0125, "0.0125 kg*m^2"),  # a bare one would need its unit
+        ("inertia", {"length": "mm", "inertia": "kg*mm^2"}, 0.0125, 12500.0),
+        ("inertia", None, 0.0125, 0.0125),
+        ("angular_speed", None, math.pi, "3.141592654 rad/s"),
+    ],
+)
+def test_a_value_is_written_as_the_file_reads_it_back(kind, declared, si, shown):
+    from linkwork.units import written
+
+    out = written(si, kind, declared or {})
+    assert out == pytest.approx(shown, rel=1e-12) if isinstance(shown, float) else out == shown
+    assert parse_quantity(out, kind, declared) == pytest.approx(si, rel=1e-9)
