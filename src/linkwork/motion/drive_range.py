@@ -176,7 +176,7 @@ def drive_range(mech: Any, steps: int = STEPS) -> DriveRange | None:
     ends = [b for _, b in gaps]
     begins = [a for a, _ in gaps]
     spans = [(ends[-1] - 2 * np.pi, begins[0])] + list(zip(ends[:-1], begins[1:], strict=True))
-    intervals = [_ccw(start + sign * a, start + sign * b) for a, b in spans]
+    intervals = [_interval(start + sign * a, start + sign * b) for a, b in spans]
     return DriveRange(joint, start, False, intervals[0], tuple(intervals[1:]), steps, grashof(mech))
 
 
@@ -198,8 +198,11 @@ def _solve(mech: Any, angles: np.ndarray) -> tuple[np.ndarray, list[Any]]:
 def _gaps(
     valid: np.ndarray, travel: np.ndarray, events: list[Any], start: float, sign: float
 ) -> list[tuple[float, float]]:
-    """Travel intervals ``(a, b)`` (rad from the assembly pose) of no assembly, their limits refined by the
-    events' (drive angles between the last sample that assembles and the first that does not)."""
+    """Intervals ``(a, b)`` of no assembly, as travel (rad from the assembly pose in the drive's direction).
+
+    Each limit is the events' refined one that lies between the last sample that assembles and the first
+    that does not (that sample where there is none).
+    """
     from linkwork.motion.events import _runs
 
     limits = np.array([x for e in events for x in (e.start, e.end)], dtype=float)
@@ -217,7 +220,7 @@ def _gaps(
     ]
 
 
-def _ccw(a: float, b: float) -> tuple[float, float]:
+def _interval(a: float, b: float) -> tuple[float, float]:
     """The interval between two drive angles, low first, its middle in (-pi, pi]."""
     lo, hi = sorted((a, b))
     shift = math.ceil((lo + hi) / 2 / (2 * np.pi) - 0.5 - 1e-9) * 2 * np.pi  # a middle at -pi goes to pi
@@ -242,7 +245,7 @@ def grashof(mech: Any) -> Grashof | None:
         kind = ("double-crank", "crank-rocker", "double-rocker", "crank-rocker")[short[0]]
     grashof_ok = sl <= pq + tol
     # in a Grashof chain a link turns fully relative to its neighbours exactly when it is the shortest
-    turning = {i for i in short} if grashof_ok else set()
+    turning = set(short) if grashof_ok else set()
     cranks = tuple(links[i] for i in (1, 3) if grashof_ok and (i in turning or 0 in turning))
     drive = set(mech.pair_links[mech.drive_pair[0]].tolist())
     index = [mech.link_names.index(name) for name in links]
