@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import re
 import subprocess
 import sys
@@ -124,3 +125,61 @@ def test_written_files_have_the_mode_of_a_plain_open(tmp_path):
     assert out.read_text() == "x\n"
     assert out.stat().st_mode & 0o777 == plain.stat().st_mode & 0o777 == 0o644
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".")] == []
+
+
+VALUES_FILE = """\
+units: {length: mm, force: kN}
+frame: {points: {O2: [0, 0], O4: [300, 0]}}
+links:
+  crank: {ends: [O2, A], length: 100, mass: 1, inertia: "0.002 kg*m^2"}
+  coupler: {ends: [A, B], length: 350, mass: 2}
+  rocker: {ends: [O4, B], length: 250, mass: 1.5}
+joints:
+  O2: {type: revolute, links: [frame, crank]}
+  A: {type: revolute, links: [crank, coupler]}
+  B: {type: revolute, links: [coupler, rocker]}
+  O4: {type: revolute, links: [frame, rocker]}
+drives:
+  - {joint: O2, speed: 60 rpm, angle: 90}
+hints: {B: [330, 240]}
+loads:
+  push: {type: force, at: coupler.B, magnitude: 2, direction: 270}
+machine:
+  motor: {type: constant, torque: 5 N*m}
+  gear: {ratio: 3}
+"""
+
+# (line, path, text, SI value, unit), converted by hand
+VALUES = [
+    (2, "frame.points.O4[0]", 300, 0.3, "m"),
+    (4, "links.crank.length", 100, 0.1, "m"),
+    (4, "links.crank.mass", 1, 1.0, "kg"),
+    (4, "links.crank.inertia", "0.002 kg*m^2", 0.002, "kg*m^2"),
+    (13, "drives[0].speed", "60 rpm", 2 * math.pi, "rad/s"),
+    (13, "drives[0].angle", 90, math.pi / 2, "rad"),
+    (14, "hints.B[1]", 240, 0.24, "m"),
+    (16, "loads.push.magnitude", 2, 2000.0, "N"),
+    (16, "loads.push.direction", 270, 1.5 * math.pi, "rad"),
+    (18, "machine.motor.torque", "5 N*m", 5.0, "N*m"),
+    (19, "machine.gear.ratio", 3, 3.0, ""),
+]
+
+
+def test_check_values_lists_every_value_read_in_si(tmp_path):
+    path = tmp_path / "values.yaml"
+    path.write_text(VALUES_FILE, encoding="utf-8")
+    out = json.loads(runner.invoke(app, ["check", str(path), "--json", "--values"]).stdout)
+    got = {v["path"]: v for v in out["values"]}
+    assert len(got) == 19  # 4 of the frame, 3 + 2 + 2 of the links, 2 drive, 2 hint, 2 load, 1 motor, 1 gear
+    for line, where, written, si, unit in VALUES:
+        v = got[where]
+        assert (v["line"], v["text"], v["unit"]) == (line, written, unit), v
+        assert v["value"] == pytest.approx(si, rel=1e-12)
+    assert [v["line"] for v in out["values"]] == sorted(v["line"] for v in out["values"])
+    result = runner.invoke(app, ["check", str(path), "--values"], terminal_width=200)
+    assert result.exit_code == 0, result.output
+    rows = [re.split(r"\s*│\s*", line.strip("│ ")) for line in result.stdout.splitlines() if "│" in line]
+    table = {r[1]: r for r in rows if len(r) == 5}
+    for line, where, written, si, unit in VALUES:
+        assert table[where] == [str(line), where, str(written), f"{si:.10g}", unit or "-"]
+    assert "values" not in json.loads(runner.invoke(app, ["check", str(path), "--json"]).stdout)

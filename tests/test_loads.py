@@ -94,7 +94,8 @@ def test_one_tool_leaves_the_reaction_on_the_frame():
     the frame cancel in the foundation; the drive still does the work."""
     b = TEXTBOOK["offset slider-crank"][0]()
     data = b.to_dict()
-    data["links"]["slider"].update(mass=2.0, com=[30, 20], inertia=0.01)  # off the guide: the guide takes a couple
+    # off the guide: the guide takes a couple
+    data["links"]["slider"].update(mass=2.0, com=[30, 20], inertia="0.01 kg*mm^2")
     data["loads"] = {
         "press": {
             "type": "process",

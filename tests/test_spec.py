@@ -129,3 +129,73 @@ def test_load_takes_a_file_or_an_example_name(tmp_path):
     path.write_text(text("four-bar"), encoding="utf-8")
     assert lw.load(path).model_dump() == lw.load("four-bar").model_dump() == lw.example("four-bar").model_dump()
     assert lw.load(str(path)).source.file == str(path)
+
+
+MM_FILE = """\
+units: {length: mm%s}
+frame: {points: {O2: [0, 0], O4: [300, 0]}}
+links:
+  crank: {ends: [O2, A], length: 100, mass: 1, inertia: %s}
+  coupler: {ends: [A, B], length: 350, mass: 2}
+  rocker: {ends: [O4, B], length: 250, mass: 1.5}
+joints:
+  O2: {type: revolute, links: [frame, crank]}
+  A: {type: revolute, links: [crank, coupler]}
+  B: {type: revolute, links: [coupler, rocker]}
+  O4: {type: revolute, links: [frame, rocker]}
+drives:
+  - {joint: O2, speed: %s, angle: 60 deg}
+hints: {B: [330, 240]}
+machine:
+  motor: {type: constant, torque: %s}
+"""
+
+
+def test_derived_quantities_in_a_file_in_mm_need_a_unit_or_a_declared_one():
+    """The issue's file: a bare inertia 2, torque 1000 and speed 60 in a file in mm were read as 2 kg mm^2,
+    1 N m and 60 deg/s without a word.  Now they are refused, one problem each with its line; with their
+    units, or with units declared for their kinds, they read as written (values converted by hand)."""
+    with pytest.raises(SpecError) as err:
+        lw.loads(MM_FILE % ("", 2, 60, 1000))
+    assert [(p.line, p.path) for p in err.value.problems] == [
+        (4, "links.crank.inertia"), (13, "drives[0].speed"), (16, "machine.motor.torque")
+    ]  # fmt: skip
+    explicit = lw.compile(lw.loads(MM_FILE % ("", '"2e6 kg*mm^2"', '"60 rpm"', '"1000 N*mm"')))
+    declared = lw.compile(lw.loads(MM_FILE % (", inertia: kg*mm^2, angular_speed: rpm, moment: N*mm", 2e6, 60, 1000)))
+    for mech in (explicit, declared):
+        assert mech.link_inertia[mech.link_names.index("crank")] == pytest.approx(2.0, rel=1e-12)
+        assert mech.drive_speed[0] == pytest.approx(2 * np.pi, rel=1e-12)
+        assert mech.machine.motor(0.0) == pytest.approx(1.0, rel=1e-12)
+
+
+def test_bare_derived_quantities_of_a_file_in_si_are_si():
+    """Lengths in m, masses in kg, times in s: a bare inertia is kg m^2, a bare torque N m; with angles in rad a
+    bare angular speed is rad/s."""
+    text = MM_FILE.replace("[300, 0]", "[0.3, 0]").replace("[330, 240]", "[0.33, 0.24]")
+    for old, new in (("length: 100", "length: 0.1"), ("length: 350", "length: 0.35"), ("length: 250", "length: 0.25")):
+        text = text.replace(old, new)
+    mech = lw.compile(lw.loads(text.replace("{length: mm%s}", "{length: m, angle: rad%s}") % ("", 2, 3.5, 12)))
+    assert mech.link_inertia[mech.link_names.index("crank")] == 2.0
+    assert mech.drive_speed[0] == 3.5 and mech.machine.motor(0.0) == 12.0
+    with pytest.raises(SpecError, match=r'drives\[0\].speed: a bare 3.5 is not read as an angular speed where angles'):
+        lw.loads(text.replace("{length: mm%s}", "{length: m%s}") % ("", 2, 3.5, 12))
+
+
+def test_a_builder_follows_the_same_rule():
+    from mechanisms import offset_slider_crank
+
+    b = offset_slider_crank()
+    b.link("crank", ends=("O", "A"), length=100, mass=1, inertia=0.5)
+    with pytest.raises(SpecError, match="links.crank.inertia: a bare 0.5 is not read as a moment of inertia"):
+        b.build()
+
+
+def test_schema_states_the_rule_for_bare_numbers():
+    units = lw.Spec.model_json_schema()["$defs"]["Units"]
+    assert set(units["properties"]) == {
+        "length", "mass", "time", "angle", "force", "moment", "inertia", "speed", "angular_speed", "acceleration",
+        "power",
+    }  # fmt: skip
+    assert "otherwise it needs its unit" in units["description"]
+    inertia = lw.Spec.model_json_schema()["$defs"]["Link"]["properties"]["inertia"]
+    assert "in SI where the file's units of what it is made of are SI" in json.dumps(inertia)

@@ -15,13 +15,20 @@ MM = {"length": "mm", "mass": "kg", "time": "s", "force": "N", "angle": "deg"}
         ("2 in", "length", None, 0.0508),
         ("30 rpm", "angular_speed", None, math.pi),
         ("1 rev/s", "angular_speed", None, 2 * math.pi),
-        (30, "angular_speed", None, math.radians(30)),  # deg/s by default
+        (30, "angular_speed", {"angle": "rad"}, 30.0),  # rad/s where angles are in rad and times in s
+        (30, "angular_speed", {"angular_speed": "rpm"}, math.pi),  # a declared unit of its kind
         ("12 deg", "angle", None, 12 * math.pi / 180),
         ("0.5 rad", "angle", None, 0.5),
         (90, "angle", None, math.pi / 2),
         ("250 kN", "force", None, 250e3),
         ("3 t", "mass", None, 3000.0),
-        (2.0e6, "inertia", MM, 2.0),  # kg mm^2
+        (2.0e6, "inertia", {**MM, "inertia": "kg*mm^2"}, 2.0),
+        (2.0, "inertia", None, 2.0),  # kg m^2 where lengths and masses are in m and kg
+        ("2 kg*m^2", "inertia", MM, 2.0),
+        (0, "inertia", MM, 0.0),  # zero in any unit
+        (5, "moment", {"force": "kN", "moment": "kN*m"}, 5000.0),
+        (500, "force", MM, 500.0),  # declared
+        (7, "power", None, 7.0),
         ("9.81 m/s^2", "acceleration", None, 9.81),
         ("1.5", "length", MM, 1.5e-3),
     ],
@@ -52,3 +59,49 @@ def test_bad_quantities_say_what_was_expected(value, kind, message):
     with pytest.raises(UnitParseError) as err:
         parse_quantity(value, kind)
     assert str(err.value) == message
+
+
+MM_ONLY = {"length": "mm"}
+
+
+@pytest.mark.parametrize(
+    "value, kind, declared, why, would",
+    [
+        # the issue's three: 2 kg mm^2 = 2e-6 kg m^2, 1000 N mm = 1 N m, 60 deg/s = pi/3 rad/s
+        (2, "inertia", MM_ONLY, "where lengths are in mm", '"2 kg*mm^2" (= 2e-06 kg*m^2)'),
+        (1000, "moment", MM_ONLY, "where lengths are in mm", '"1000 N*mm" (= 1 N*m)'),
+        (60, "angular_speed", MM_ONLY, "where angles are in deg", f'"60 deg/s" (= {math.pi / 3:.6g} rad/s)'),
+        (60, "angular_speed", None, "where angles are in deg", '"60 rpm" or "60 deg/s"'),
+        (9.81, "acceleration", MM_ONLY, "where lengths are in mm", '"9.81 mm/s^2" (= 0.00981 m/s^2)'),
+        (5, "moment", {"force": "kN"}, "where forces are in kN", '"5 kN*m" (= 5000 N*m)'),
+        (500, "force", MM_ONLY, "where lengths are in mm", 'e.g. "500 N", or'),
+        (3, "speed", {"time": "min"}, "where times are in min", '"3 m/min" (= 0.05 m/s)'),
+        (2, "inertia", {"mass": "g", "length": "cm"}, "where masses are in g and lengths are in cm", "(= 2e-07"),
+    ],
+)
+def test_a_bare_derived_quantity_needs_its_unit_where_the_file_units_are_not_si(value, kind, declared, why, would):
+    """A bare number is never read in a unit built from non-SI base units: the message says what it would
+    have been (the hand-converted values above) and how to write it."""
+    with pytest.raises(UnitParseError) as err:
+        parse_quantity(value, kind, declared)
+    message = str(err.value)
+    assert message.startswith(f"a bare {value} is not read as ") and why in message, message
+    assert would in message and f"units: {{{kind}: " in message
+
+
+@pytest.mark.parametrize(
+    "kind, declared, si, shown",
+    [
+        ("length", MM_ONLY, 0.1234, 123.4),
+        ("inertia", MM_ONLY, 0.0125, "0.0125 kg*m^2"),  # a bare one would need its unit
+        ("inertia", {"length": "mm", "inertia": "kg*mm^2"}, 0.0125, 12500.0),
+        ("inertia", None, 0.0125, 0.0125),
+        ("angular_speed", None, math.pi, "3.141592654 rad/s"),
+    ],
+)
+def test_a_value_is_written_as_the_file_reads_it_back(kind, declared, si, shown):
+    from linkwork.units import written
+
+    out = written(si, kind, declared or {})
+    assert out == pytest.approx(shown, rel=1e-12) if isinstance(shown, float) else out == shown
+    assert parse_quantity(out, kind, declared) == pytest.approx(si, rel=1e-9)

@@ -1,9 +1,19 @@
 """Units at the edges: parse numbers with units into SI floats.
 
-A value in a mechanism file is either a bare number, read in the file's
-declared unit for its kind of quantity, or a string with a unit such as
-``"100 mm"``, ``"30 rpm"`` or ``"12 deg"``.  Inside linkwork everything is SI:
-metres, kilograms, seconds, newtons and radians.
+A value in a mechanism file is either a string with a unit, such as
+``"100 mm"``, ``"30 rpm"`` or ``"12 deg"``, or a bare number.  Inside
+linkwork everything is SI: metres, kilograms, seconds, newtons and radians.
+
+The rule for bare numbers (:func:`bare_unit`) is one that cannot surprise:
+
+* a length, mass, time or angle is read in the file's declared unit of its
+  kind (``units:``; by default m, kg, s and deg);
+* any other kind (a force, moment, moment of inertia, speed, angular speed,
+  acceleration, power) is read in the unit the file declares for that kind,
+  if it declares one; else in its SI unit, but only where the units of what
+  it is made of are SI (m, kg, s and rad, and N where the file declares the
+  unit of forces); else it needs its unit, and a bare number other than 0 is
+  refused with a message that says what it would have been read as.
 """
 
 from __future__ import annotations
@@ -28,20 +38,34 @@ KINDS: dict[str, tuple[str, str, str]] = {
     "power": ("a power", "W", "[power]"),
 }
 
-#: Base kinds a file may declare, with their SI defaults (angles in degrees).
+#: Base kinds, read bare in the file's declared unit, and their defaults (angles in degrees).
 DEFAULT_UNITS: dict[str, str] = {
     "length": "m",
     "mass": "kg",
     "time": "s",
-    "force": "N",
     "angle": "deg",
 }
 
-#: The base units of a description given in SI (built in code, or written out in SI).
+#: The units of a description given in SI (built in code, or written out in SI).
 SI_UNITS: dict[str, str] = {"length": "m", "mass": "kg", "time": "s", "force": "N", "angle": "rad"}
 
-# Units of derived kinds, built from the declared base units.
-_DERIVED = {
+#: What each derived kind is made of: its bare numbers are SI only where these units are.
+MADE_OF: dict[str, tuple[str, ...]] = {
+    "force": ("length", "mass", "time"),
+    "moment": ("force", "length"),
+    "inertia": ("mass", "length"),
+    "speed": ("length", "time"),
+    "angular_speed": ("angle", "time"),
+    "acceleration": ("length", "time"),
+    "power": ("force", "length", "time"),
+}
+
+#: Kinds whose unit a file may declare in ``units:``: the base kinds and every derived kind.
+DECLARABLE: tuple[str, ...] = (*DEFAULT_UNITS, *MADE_OF)
+
+# What a bare number of a derived kind would be in the file's declared units (for messages).
+_IN_FILE_UNITS = {
+    "force": "{force}",
     "inertia": "{mass}*{length}**2",
     "moment": "{force}*{length}",
     "speed": "{length}/{time}",
@@ -49,6 +73,11 @@ _DERIVED = {
     "acceleration": "{length}/{time}**2",
     "power": "{force}*{length}/{time}",
 }
+
+# A unit to propose for a derived kind written without one.
+_PROPOSED = {"angular_speed": "rpm"}
+
+_PLURAL = {"length": "lengths", "mass": "masses", "time": "times", "angle": "angles", "force": "forces"}
 
 
 class UnitParseError(ValueError):
@@ -72,11 +101,67 @@ def registry() -> Any:
     return ureg
 
 
+def bare_unit(kind: str, declared: dict[str, str]) -> str | None:
+    """The unit in which a bare number of ``kind`` is read, or None where it needs its unit (but 0).
+
+    ``declared`` holds the units the file declares (missing base kinds take
+    :data:`DEFAULT_UNITS`); see the module's docstring for the rule.
+    """
+    if kind in declared:
+        return declared[kind]
+    if kind in DEFAULT_UNITS:
+        return DEFAULT_UNITS[kind]
+    return None if _not_si(kind, declared) else KINDS[kind][1]
+
+
 def unit_for(kind: str, declared: dict[str, str]) -> str:
-    """The unit in which a bare number of ``kind`` is read."""
-    if kind in _DERIVED:
-        return _DERIVED[kind].format(**declared)
-    return declared[kind]
+    """The unit to show values of ``kind`` in for a file: the unit of its bare numbers, else SI."""
+    return bare_unit(kind, declared) or KINDS[kind][1]
+
+
+def written(si: float, kind: str, declared: dict[str, str], digits: int = 10) -> float | str:
+    """An SI value of ``kind`` as a file with ``declared`` units reads it back.
+
+    A bare number in the file's unit of that kind where it has one, else a
+    string with the SI unit (``"0.0125 kg*m^2"``); ``digits`` significant digits.
+    """
+    unit = bare_unit(kind, declared)
+    if unit is None:
+        return f"{si:.{digits}g} {_show_unit(KINDS[kind][1])}"
+    return float(f"{si / _factor(unit, kind):.{digits}g}")
+
+
+def _not_si(kind: str, declared: dict[str, str]) -> list[str]:
+    """What makes a bare number of a derived ``kind`` ambiguous: ``["lengths are in mm", ...]``."""
+    out: list[str] = []
+    for part in MADE_OF[kind]:
+        unit = declared.get(part, DEFAULT_UNITS.get(part))
+        if unit is None:
+            out += _not_si(part, declared)
+        elif abs(_factor(unit, part) - 1.0) > 1e-12:
+            out.append(f"{_PLURAL[part]} are in {unit}")
+    return list(dict.fromkeys(out))
+
+
+def _needs_unit(number: float, kind: str, declared: dict[str, str]) -> str:
+    """The message for a bare number of a kind that needs its unit in this file."""
+    phrase, si, _ = KINDS[kind]
+    text = f"{number:.15g}"
+    naive = _IN_FILE_UNITS[kind].format(**{"force": "N", **DEFAULT_UNITS, **declared})
+    factor = _factor(naive, kind)
+    examples = [f'"{text} {_show_unit(_PROPOSED.get(kind, si))}"']
+    if abs(factor - 1.0) > 1e-12:
+        examples.append(f'"{text} {_show_unit(naive)}" (= {number * factor:.6g} {_show_unit(si)})')
+    noun = phrase.split(" ", 1)[1]
+    return (
+        f"a bare {text} is not read as {phrase} where {' and '.join(_not_si(kind, declared))}: write its unit, "
+        f"e.g. {' or '.join(examples)}, or declare one for every {noun} of the file, "
+        f"e.g. units: {{{kind}: {_show_unit(naive)}}}"
+    )
+
+
+def _show_unit(unit: str) -> str:
+    return unit.replace("**", "^")
 
 
 @lru_cache(maxsize=256)
@@ -129,13 +214,13 @@ def parse_quantity(value: Any, kind: str, declared: dict[str, str] | None = None
     Parameters
     ----------
     value : float, int or str
-        A bare number (read in the declared unit of its kind) or a string
-        with a unit, e.g. ``"100 mm"``.
+        A string with a unit, e.g. ``"100 mm"``, or a bare number, read in
+        :func:`bare_unit` (refused where that is None).
     kind : str
         One of :data:`KINDS`.
     declared : dict, optional
-        Declared units of the file (``length``, ``mass``, ``time``, ``force``,
-        ``angle``); defaults to :data:`DEFAULT_UNITS`.
+        Units the file declares, by kind (any of :data:`DECLARABLE`); base
+        kinds it leaves out take :data:`DEFAULT_UNITS`.
 
     Returns
     -------
@@ -145,7 +230,9 @@ def parse_quantity(value: Any, kind: str, declared: dict[str, str] | None = None
     Raises
     ------
     UnitParseError
-        With a message such as ``expected a length, got "12 kg"``.
+        With a message such as ``expected a length, got "12 kg"``, or for a
+        bare number that needs its unit, what it would be read as and how to
+        write it.
     """
     declared = declared or DEFAULT_UNITS
     phrase = KINDS[kind][0]
@@ -158,7 +245,12 @@ def parse_quantity(value: Any, kind: str, declared: dict[str, str] | None = None
             raise UnitParseError(f"expected {phrase}, got a number too large to use") from None
         if not math.isfinite(number):
             raise UnitParseError(f"expected {phrase}, got {value!r}")
-        return number * _factor(unit_for(kind, declared), kind)
+        unit = bare_unit(kind, declared)
+        if unit is None and number == 0:
+            return 0.0  # zero in any unit
+        if unit is None:
+            raise UnitParseError(_needs_unit(number, kind, declared))
+        return number * _factor(unit, kind)
     if not isinstance(value, str):
         raise UnitParseError(f"expected {phrase}, got {_show(value)}")
     text = value.strip()

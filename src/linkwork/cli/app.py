@@ -46,14 +46,37 @@ def _compile(file_or_example: str) -> Any:
 def check(
     file_or_example: FileOrExample,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object instead of the report")] = False,
+    values: Annotated[
+        bool, typer.Option("--values", help="list every value read from the file: its text, in SI, with its unit")
+    ] = False,
 ) -> None:
-    """Validate a mechanism and print its structure: DOF, redundant constraints, Assur groups."""
-    mech = _compile(file_or_example)
+    """Validate a mechanism and print its structure (DOF, redundant constraints, Assur groups) and the range
+    of its drive over which it assembles (Grashof's class for a four-bar)."""
+    from linkwork.errors import LinkworkError
+    from linkwork.examples import resolve
+    from linkwork.motion.drive_range import drive_range
+    from linkwork.spec.values import values_read
+    from linkwork.structure.compile import compile
+
+    try:
+        spec = resolve(file_or_example)
+        mech = compile(spec)
+    except LinkworkError as exc:
+        fail(exc)
+    reach = drive_range(mech)
+    warnings = [*mech.structure.warnings, *([reach.warning()] if reach is not None and reach.warning() else [])]
+    read = values_read(spec) if values else None
     if as_json:
         out = {"name": mech.name, **mech.structure.as_dict(), "drives": _drives(mech)}
+        out["drive_range"] = None if reach is None else reach.as_dict()
+        out["warnings"] = warnings
+        if read is not None:
+            out["values"] = [v.as_dict() for v in read]
         typer.echo(json.dumps(out, indent=2))
         return
-    _print_structure(mech)
+    _print_structure(mech, reach, warnings)
+    if read is not None:
+        _print_values(read)
 
 
 def _drives(mech: Any) -> list[dict[str, Any]]:
@@ -75,7 +98,7 @@ def _drives(mech: Any) -> list[dict[str, Any]]:
     return out
 
 
-def _print_structure(mech: Any) -> None:
+def _print_structure(mech: Any, reach: Any, warnings: list[str]) -> None:
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
@@ -116,8 +139,26 @@ def _print_structure(mech: Any) -> None:
         )
     console.print(table)
     console.print(f"  structural formula: {s.formula}")
-    for w in s.warnings:
+    for i, line in enumerate(reach.describe() if reach is not None else []):
+        console.print(f"  {'drive range:' if i == 0 else ' ' * 12} {escape(line)}")
+    if reach is not None and reach.grashof is not None:
+        console.print(f"  Grashof: {escape(reach.grashof.describe())}")
+    for w in warnings:
         console.print(f"  [yellow]warning:[/yellow] {escape(w)}")
+
+
+def _print_values(read: list[Any]) -> None:
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.table import Table
+
+    table = Table(title="Values read from the file, in SI", title_justify="left")
+    for col in ("line", "path", "in the file", "SI", "unit"):
+        table.add_column(col, justify="right" if col in ("line", "SI") else "left")
+    for v in read:
+        line = "" if v.line is None else str(v.line)
+        table.add_row(*(escape(c) for c in (line, v.path, str(v.text), f"{v.value:.10g}", v.unit or "-")))
+    Console(highlight=False).print(table)
 
 
 @app.command()

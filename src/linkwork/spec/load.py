@@ -13,7 +13,7 @@ from linkwork.errors import Problem, SpecError
 from linkwork.spec.checks import check, suggest
 from linkwork.spec.schema import Spec
 from linkwork.spec.yamlsource import Source, read_yaml
-from linkwork.units import DEFAULT_UNITS, KINDS, UnitParseError, check_unit, parse_quantity
+from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, UnitParseError, check_unit, parse_quantity
 
 
 def load(path: str | Path) -> Spec:
@@ -74,7 +74,7 @@ def _declared_units(src: Source, problems: list[Problem]) -> dict[str, str]:
     if not isinstance(units, dict):
         return declared
     for kind, unit in units.items():
-        if kind not in declared or not isinstance(unit, str):
+        if kind not in DECLARABLE or not isinstance(unit, str):
             continue  # reported by the schema
         try:
             check_unit(unit, kind)
@@ -117,6 +117,8 @@ def _convert(src: Source, err: Any) -> Problem:
     kind = err["type"]
     value = err.get("input")
     if kind == "extra_forbidden":
+        if loc[:-1] == ("units",) and loc[-1] == "torque":
+            return src.problem(loc, 'unknown key "torque" (the unit of moments and torques is "moment")')
         allowed = _fields_at(loc[:-1])
         return src.problem(loc, f'unknown key "{loc[-1]}"{suggest(loc[-1], allowed)}')
     if kind == "missing":

@@ -1,18 +1,36 @@
 """The mechanism description: pydantic models of the file format.
 
-Quantities are converted to SI while validating: a bare number is read in
-the file's declared unit of its kind (``units:``), a string carries its own
-unit.  The JSON Schema of these models is what ``linkwork schema`` prints.
+Quantities are converted to SI while validating: a string carries its own
+unit, a bare number is read by the rule of :func:`linkwork.units.bare_unit`
+(see :class:`Units`).  Each quantity's field is marked by a
+:class:`Quantity`, which :mod:`linkwork.spec.values` follows to list every
+value read.  The JSON Schema of these models is what ``linkwork schema``
+prints.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, ValidationInfo, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
-from linkwork.units import DEFAULT_UNITS, KINDS, UnitParseError, parse_quantity
+from linkwork.units import DEFAULT_UNITS, KINDS, MADE_OF, UnitParseError, parse_quantity
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """Marks a field (or item) of the format as a quantity.
+
+    ``kind``: one of :data:`linkwork.units.KINDS`, or ``drive_speed`` /
+    ``drive_coordinate`` for a drive's, whose kind follows its joint's type.
+    ``shape``: ``one`` value, a ``point`` (two lengths), a ``point_or_name``
+    or a ``table`` (one value or a list of them).
+    """
+
+    kind: str
+    shape: str = "one"
 
 
 def _declared(info: ValidationInfo) -> dict[str, str]:
@@ -63,11 +81,18 @@ def _quantity(kind: str, sign: str = "") -> Any:
     def validate(value: Any, info: ValidationInfo) -> float:
         return _scalar(kind, value, info, sign)
 
-    desc = f"{phrase}: a number in the file's declared unit, or a string with a unit"
+    desc = f"{phrase}: {_BARE[kind in MADE_OF]}"
     if sign:
         desc = f"{sign} " + desc
     schema = {"anyOf": [{"type": "number"}, {"type": "string"}], "description": desc}
-    return Annotated[float, BeforeValidator(validate), WithJsonSchema(schema)]
+    return Annotated[float, BeforeValidator(validate), WithJsonSchema(schema), Quantity(kind)]
+
+
+_BARE = {
+    False: "a string with a unit, or a number in the file's unit of its kind (units:)",
+    True: "a string with a unit; a number only in the unit units: declares for its kind, or in SI where "
+    "the file's units of what it is made of are SI",
+}
 
 
 Length = _quantity("length")
@@ -103,9 +128,9 @@ def _one_or_table(kind: str) -> Any:
 
     schema = {
         "anyOf": [{"type": "number"}, {"type": "string"}, {"type": "array"}],
-        "description": f"{phrase}, or a list of them (a table)",
+        "description": f"{phrase}, or a list of them (a table): {_BARE[kind in MADE_OF]}",
     }
-    return Annotated[float | list[float], BeforeValidator(validate), WithJsonSchema(schema)]
+    return Annotated[float | list[float], BeforeValidator(validate), WithJsonSchema(schema), Quantity(kind, "table")]
 
 
 ForceOrTable = _one_or_table("force")
@@ -126,7 +151,9 @@ _VEC_SCHEMA = {
     "maxItems": 2,
     "description": "a point [x, y]: two lengths",
 }
-Vec2 = Annotated[tuple[float, float], BeforeValidator(_vector), WithJsonSchema(_VEC_SCHEMA)]
+Vec2 = Annotated[
+    tuple[float, float], BeforeValidator(_vector), WithJsonSchema(_VEC_SCHEMA), Quantity("length", "point")
+]
 
 
 def _point_or_vector(value: Any, info: ValidationInfo) -> str | tuple[float, float]:
@@ -139,6 +166,7 @@ PointOrVec = Annotated[
     str | tuple[float, float],
     BeforeValidator(_point_or_vector),
     WithJsonSchema({"anyOf": [{"type": "string", "description": "a point name"}, _VEC_SCHEMA]}),
+    Quantity("length", "point_or_name"),
 ]
 
 
@@ -147,13 +175,28 @@ class _Strict(BaseModel):
 
 
 class Units(_Strict):
-    """Units in which bare numbers of the file are read."""
+    """Units in which bare numbers of the file are read.
+
+    A bare length, mass, time or angle is read in the unit declared here for
+    its kind (by default m, kg, s and deg).  A bare number of any other kind
+    (force, moment, inertia, speed, angular_speed, acceleration, power) is
+    read in the unit declared here for that kind; where none is declared, in
+    SI (N, N*m, kg*m^2, m/s, rad/s, m/s^2, W) only where the units of what it
+    is made of are SI (m, kg, s, rad, and N where forces are declared);
+    otherwise it needs its unit, e.g. "30 rpm" or "2 kg*m^2".
+    """
 
     length: str = Field(DEFAULT_UNITS["length"], description="e.g. m or mm")
     mass: str = Field(DEFAULT_UNITS["mass"], description="e.g. kg")
     time: str = Field(DEFAULT_UNITS["time"], description="e.g. s or min")
-    force: str = Field(DEFAULT_UNITS["force"], description="e.g. N or kN")
     angle: str = Field(DEFAULT_UNITS["angle"], description="deg or rad")
+    force: str | None = Field(None, description="e.g. N or kN")
+    moment: str | None = Field(None, description="of moments and torques, e.g. N*m or kN*m")
+    inertia: str | None = Field(None, description="of moments of inertia, e.g. kg*m^2 or kg*mm^2")
+    speed: str | None = Field(None, description="of linear speeds, e.g. m/s or mm/s")
+    angular_speed: str | None = Field(None, description="e.g. rpm or rad/s")
+    acceleration: str | None = Field(None, description="e.g. m/s^2")
+    power: str | None = Field(None, description="e.g. W or kW")
 
 
 class Frame(_Strict):
@@ -211,8 +254,10 @@ class Joint(_Strict):
 class Law(_Strict):
     """A drive motion law given as a table of the drive coordinate against time."""
 
-    time: list[Annotated[float, BeforeValidator(lambda v, i: _scalar("time", v, i))]]
-    value: list[Any] = Field(description="drive coordinate: angles for a revolute drive, lengths for a prismatic one")
+    time: list[Annotated[float, BeforeValidator(lambda v, i: _scalar("time", v, i)), Quantity("time")]]
+    value: list[Annotated[Any, Quantity("drive_coordinate")]] = Field(
+        description="drive coordinate: angles for a revolute drive, lengths for a prismatic one"
+    )
 
 
 class Drive(_Strict):
@@ -227,8 +272,15 @@ class Drive(_Strict):
 
     joint: str
     speed: Annotated[
-        Any, BeforeValidator(_number_or_text), WithJsonSchema({"anyOf": [{"type": "number"}, {"type": "string"}]})
-    ] = Field(None, description="uniform speed: an angular speed (revolute) or a speed (prismatic)")
+        Any,
+        BeforeValidator(_number_or_text),
+        WithJsonSchema({"anyOf": [{"type": "number"}, {"type": "string"}]}),
+        Quantity("drive_speed"),
+    ] = Field(
+        None,
+        description="uniform speed: an angular speed (revolute) or a speed (prismatic), with its unit, "
+        'e.g. "30 rpm" (a bare number as for any speed: see units)',
+    )
     direction: Literal["ccw", "cw", "forward", "backward"] | None = Field(
         None, description="ccw/cw for revolute drives, forward/backward for prismatic ones"
     )

@@ -205,7 +205,8 @@ def _dimensions(mech: Any) -> list[Parameter]:
         out.append(Parameter(f"joints.{joint}.axis", "angle", angle, "dimensions"))
         if mech.pair_origin_point[k] < 0:
             for c, axis in enumerate("xy"):
-                out.append(Parameter(f"joints.{joint}.through.{axis}", "length", float(mech.pair_origin[k, c]), "dimensions"))
+                value = float(mech.pair_origin[k, c])
+                out.append(Parameter(f"joints.{joint}.through.{axis}", "length", value, "dimensions"))
     return out
 
 
@@ -398,22 +399,17 @@ def _node(data: Any, keys: list[str], path: str) -> Any:
 
 
 def _written(old: Any, si: float, kind: str, declared: dict[str, str]) -> Any:
-    """``si`` as the file would write it where it writes ``old`` (None: not written)."""
-    from linkwork.units import KINDS, _factor, unit_for
+    """``si`` as the file would write it where it writes ``old``: in the unit of a string with a unit,
+    else as :func:`linkwork.units.written` writes a value for the file (a bare number where the file
+    reads one, else with its SI unit), 12 significant digits."""
+    from linkwork.units import _factor, written
 
     if isinstance(old, str):
         match = _NUMBER_AND_UNIT.match(old)
         if match is not None and match.group(2):
             unit = match.group(2).strip()
-            return f"{_number(si / _factor(unit, kind))} {unit}"
-    if old is None or isinstance(old, bool):
-        return f"{_number(si)} {KINDS[kind][1].replace('**', '^')}"
-    return _number(si / _factor(unit_for(kind, declared), kind))
-
-
-def _number(value: float) -> float:
-    """A float that prints short and reads back within 1e-12 relative."""
-    return float(f"{value:.12g}")
+            return f"{si / _factor(unit, kind):.12g} {unit}"
+    return written(si, kind, declared, digits=12)
 
 
 # --- an edited description ---------------------------------------------------------------------------
