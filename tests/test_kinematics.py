@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 
 import linkwork as lw
 from linkwork.errors import UnassemblableError
-from linkwork.structure.parameters import apply
 from linkwork.motion.solve import run
+from linkwork.structure.parameters import apply
 from mechanisms import TEXTBOOK, circle_intersection
 from test_structure import _assembles, four_bar_spec, four_bars
 

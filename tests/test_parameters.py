@@ -37,8 +37,9 @@ CASES = [
         "double-cut-shears",
         {"joints.guide_E.axis": math.radians(93), "frame.points.O1.y": 0.42, "links.rod.mass": 70.0,
          "links.rocker.points.C.x": 0.28, "links.crank.length": 0.105},
-        [(("joints", "guide_E", "axis"), "93 deg"), (("frame", "points", "O1", 1), 0.42), (("links", "rod", "mass"), 70),
-         (("links", "rocker", "points", "C", 0), 0.28), (("links", "crank", "length"), 0.105)],
+        [(("joints", "guide_E", "axis"), "93 deg"), (("frame", "points", "O1", 1), 0.42),
+         (("links", "rod", "mass"), 70), (("links", "rocker", "points", "C", 0), 0.28),
+         (("links", "crank", "length"), 0.105)],
     ),  # fmt: skip
     ("shears-slider-crank", {"joints.guide.axis": math.radians(100)}, [(("joints", "guide", "axis"), "100 deg")]),
     (

@@ -16,7 +16,9 @@ import os
 from typing import Any
 
 #: What a mechanism argument may be, for messages.
-EXPECTED = "a mechanism file path, the name of a bundled example, a Spec (linkwork.load) or a Mechanism (linkwork.compile)"
+EXPECTED = (
+    "a mechanism file path, the name of a bundled example, a Spec (linkwork.load) or a Mechanism (linkwork.compile)"
+)
 
 
 def _is_mechanism(x: Any) -> bool:

@@ -7,10 +7,10 @@ from typing import Any
 import numpy as np
 
 from linkwork.motion import fast, kernels
-from linkwork.structure.parameters import Geometry
 from linkwork.motion.program import Step
 from linkwork.motion.state import State
 from linkwork.structure.constraints import residuals_and_jacobian, velocity_products
+from linkwork.structure.parameters import Geometry
 
 
 def _soa(a: np.ndarray) -> np.ndarray:
