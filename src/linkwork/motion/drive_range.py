@@ -187,8 +187,8 @@ def _solve(mech: Any, angles: np.ndarray) -> tuple[np.ndarray, list[Any]]:
     take milliseconds, less than loading the compiled kernels into a fresh process (``check``'s case).
     """
     from linkwork.motion.events import find
-    from linkwork.structure.parameters import apply
     from linkwork.motion.solve import _run_chunk
+    from linkwork.structure.parameters import apply
 
     values = angles[:, None]
     state = _run_chunk(mech, mech.program, apply(mech)[0], values, np.ones_like(values), np.zeros_like(values))
