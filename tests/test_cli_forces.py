@@ -47,7 +47,7 @@ def test_forces_out_writes_csv_and_json(tmp_path):
     assert len(rows) == 37
     data = json.loads((tmp_path / "forces.json").read_text(encoding="utf-8"))
     torque = np.array([float(r[1]) for r in rows[1:]])
-    np.testing.assert_allclose(torque, data["driving_torque"], rtol=1e-15)
+    np.testing.assert_allclose(torque, data["driving_torque"], rtol=1e-11)  # JSON: 12 significant digits
     assert max(data["loads"]["cutting"]) == pytest.approx(250e3)
     assert all(v < 1e-9 for v in data["checks"].values())
     assert not list(tmp_path.glob(".*part"))

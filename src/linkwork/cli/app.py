@@ -1,15 +1,17 @@
 """``linkwork``: the command line.
 
 Errors in files, options or geometry are printed to stderr, one line per
-problem, and the command exits with code 2.
+problem, and the command exits with code 2; so is a missing optional package
+(with the pip command that installs it), checked before a command starts its
+work.  ``--json`` output goes through one writer (:func:`linkwork.io.jsonout.dumps`),
+tables through :func:`make_console`, :func:`make_table` and :func:`show`.
 """
 
 from __future__ import annotations
 
-import json
 import math
 import sys
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -22,6 +24,10 @@ app = typer.Typer(
     rich_markup_mode=None,
 )
 
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table
+
 FileOrExample = Annotated[str, typer.Argument(help="a mechanism file (.yaml) or the name of a bundled example")]
 
 
@@ -29,6 +35,63 @@ def fail(exc: Exception) -> None:
     """Print a linkwork error to stderr and exit with code 2."""
     sys.stderr.write(f"error: {exc}\n" if "\n" not in str(exc) else f"error:\n{exc}\n")
     raise typer.Exit(2)
+
+
+def needs(*modules: str, purpose: str) -> None:
+    """Exit with the one-line message of :func:`linkwork.optional.require` unless ``modules`` import."""
+    from linkwork.errors import MissingDependencyError
+    from linkwork.optional import require
+
+    try:
+        require(*modules, purpose=purpose)
+    except MissingDependencyError as exc:
+        fail(exc)
+
+
+def echo_json(data: Any, indent: int | None = None) -> None:
+    """Print ``data`` as JSON by the command line's one writer (rounded numbers, no NaN)."""
+    from linkwork.io.jsonout import dumps
+
+    typer.echo(dumps(data, indent=indent))
+
+
+def make_console() -> Console:
+    """The console of the commands' reports: in a terminal, as wide as it is; piped or redirected,
+    plain text whose lines are as long as they need."""
+    from rich.console import Console
+
+    out = Console(highlight=False)
+    if out.is_terminal:
+        return out
+    return Console(highlight=False, width=_PIPED_WIDTH, no_color=True)
+
+
+#: Width of the text of the reports when stdout is not a terminal: lines are not folded.
+_PIPED_WIDTH = 1000
+
+
+def make_table(title: str) -> Table:
+    """A table of a report, to print with :func:`show`."""
+    from rich.table import Table
+
+    return Table(title=title, title_justify="left")
+
+
+def show(out: Console, tab: Table) -> None:
+    """Print a table: with box lines in a terminal (fitted to its width); piped, as plain text, the
+    title on its own line and the rows indented under it, with no box characters."""
+    from rich.padding import Padding
+
+    if out.is_terminal:
+        out.print(tab)
+        return
+    title, tab.title = tab.title, None
+    tab.box, tab.pad_edge, tab.padding = None, False, (0, 2, 0, 0)
+    with out.capture() as text:
+        if title:
+            out.print(title)
+        out.print(Padding(tab, (0, 0, 0, 2)))
+    typer.echo("\n".join(line.rstrip() for line in text.get().splitlines()))
 
 
 def _compile(file_or_example: str) -> Any:
@@ -51,7 +114,7 @@ def check(
     mech = _compile(file_or_example)
     if as_json:
         out = {"name": mech.name, **mech.structure.as_dict(), "drives": _drives(mech)}
-        typer.echo(json.dumps(out, indent=2))
+        echo_json(out, indent=2)
         return
     _print_structure(mech)
 
@@ -76,12 +139,10 @@ def _drives(mech: Any) -> list[dict[str, Any]]:
 
 
 def _print_structure(mech: Any) -> None:
-    from rich.console import Console
     from rich.markup import escape
-    from rich.table import Table
 
     s = mech.structure
-    console = Console(highlight=False)
+    console = make_console()
     console.print(f"[bold]{escape(mech.name)}[/bold]" + (f"  ({escape(mech.source)})" if mech.source else ""))
     tail = f" - {s.p4}" if s.p4 else ""
     console.print(f"  moving links n = {s.n_links}, lower pairs p5 = {s.p5}, higher pairs p4 = {s.p4}")
@@ -95,7 +156,7 @@ def _print_structure(mech: Any) -> None:
         else:
             speed = f"{drive['speed']:.6g} m/s"
         console.print(f"  drive: joint {escape(drive['joint'])} ({drive['type']}), {speed}")
-    table = Table(title="Assur groups in solving order", title_justify="left")
+    table = make_table("Assur groups in solving order")
     for col in ("#", "group", "class", "order", "kind", "links", "joints"):
         table.add_column(col)
     for i, g in enumerate(s.groups, 1):
@@ -114,7 +175,7 @@ def _print_structure(mech: Any) -> None:
                 )
             ),
         )
-    console.print(table)
+    show(console, table)
     console.print(f"  structural formula: {s.formula}")
     for w in s.warnings:
         console.print(f"  [yellow]warning:[/yellow] {escape(w)}")
@@ -125,7 +186,7 @@ def schema() -> None:
     """Print the JSON Schema of the mechanism file format (for editors)."""
     from linkwork.spec.schema import Spec
 
-    typer.echo(json.dumps(Spec.model_json_schema(), indent=2))
+    echo_json(Spec.model_json_schema(), indent=2)
 
 
 @app.command()
