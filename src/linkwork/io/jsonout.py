@@ -31,11 +31,17 @@ def dumps(data: Any, *, indent: int | None = None) -> str:
     return json.dumps(_clean(data, 0.0), indent=indent, allow_nan=False)
 
 
-def _flat(v: Any) -> list[Any]:
-    """The entries of a list, tuple or array (an array's all), else nothing."""
-    if isinstance(v, np.ndarray):
-        return v.ravel().tolist()
-    return list(v) if isinstance(v, list | tuple) else []
+def _largest(values: Any) -> float:
+    """The largest finite magnitude among the numbers of a list, tuple or array (0 if none)."""
+    if isinstance(values, np.ndarray) or (
+        isinstance(values, list | tuple) and values and all(isinstance(v, float | np.floating) for v in values)
+    ):
+        a = np.abs(np.asarray(values, dtype=float).ravel())
+        a = a[np.isfinite(a)]
+        return float(a.max()) if a.size else 0.0
+    if not isinstance(values, list | tuple):
+        return 0.0
+    return max((abs(float(v)) for v in values if _is_number(v) and math.isfinite(float(v))), default=0.0)
 
 
 def _scale(container: Any) -> float:
@@ -43,10 +49,8 @@ def _scale(container: Any) -> float:
     (its values and the entries of its lists)."""
     if isinstance(container, dict):
         values = list(container.values())
-        values += [y for v in container.values() for y in _flat(v)]
-    else:
-        values = _flat(container)
-    return max((abs(float(v)) for v in values if _is_number(v) and math.isfinite(float(v))), default=0.0)
+        return max([_largest(values), *(_largest(v) for v in values)])
+    return _largest(container)
 
 
 def _is_number(v: Any) -> bool:
@@ -63,16 +67,33 @@ def _clean(x: Any, scale: float) -> Any:
         return {str(k): _clean(v, group) for k, v in x.items()}
     if isinstance(x, list | tuple):
         group = max(scale, _scale(x))
+        if x and all(isinstance(v, float | np.floating) for v in x):  # an array of numbers, at once
+            return _floats(np.asarray(x, dtype=float), group)
         return [_clean(v, group) for v in x]
     if isinstance(x, bool | np.bool_):
         return bool(x)
     if isinstance(x, int | np.integer):
         return int(x)
     if isinstance(x, float | np.floating):
-        v = float(x)
-        if not math.isfinite(v):
-            return None
-        if abs(v) < ZERO * scale or v == 0.0:
-            return 0.0
-        return float(f"{v:.{DIGITS}g}")
+        return _floats(np.array([x], dtype=float), scale)[0]
     return x
+
+
+def _floats(a: np.ndarray, scale: float) -> list[float | None]:
+    """The floats ``a`` (n,) rounded to :data:`DIGITS` significant digits, those below ``ZERO * scale``
+    as 0.0, NaN and infinities as None: ``float(f"{v:.12g}")``, but a division by a power of ten
+    instead of a string where the power is exact (ties may round the other way)."""
+    finite = np.isfinite(a)
+    zero = ~finite | (np.abs(a) < ZERO * scale) | (a == 0.0)
+    v = np.where(zero, 1.0, a)
+    k = DIGITS - 1 - np.floor(np.log10(np.abs(v)))
+    exact = np.abs(k) <= 22  # 10**k is a double exactly
+    p = 10.0 ** np.abs(np.where(exact, k, 0.0))
+    out = np.where(k >= 0, np.round(v * p) / p, np.round(v / p) * p)
+    out[zero] = 0.0
+    values: list[float | None] = out.tolist()
+    for i in np.flatnonzero(~exact & ~zero):
+        values[i] = float(f"{a[i]:.{DIGITS}g}")
+    for i in np.flatnonzero(~finite):
+        values[i] = None
+    return values
