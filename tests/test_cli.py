@@ -318,14 +318,15 @@ def test_tables_are_plain_text_when_piped():
 
 
 def test_tables_fit_the_terminal():
-    """In a terminal 64 columns wide, the table of the 12 positions folds its cells to fit."""
+    """In a terminal 50 columns wide, the table of the 12 positions comes in parts that fit, each with the
+    position and the crank angle, no cell cut short."""
     import fcntl
     import pty
     import struct
     import termios
 
     leader, follower = pty.openpty()
-    fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 50, 64, 0, 0))
+    fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 50, 50, 0, 0))
     env = {k: v for k, v in os.environ.items() if k not in ("COLUMNS", "LINES", "FORCE_COLOR", "NO_COLOR")}
     proc = subprocess.Popen(
         [sys.executable, "-m", "linkwork.cli.app", "positions", "four-bar"],
@@ -345,8 +346,13 @@ def test_tables_fit_the_terminal():
     os.close(leader)
     screen = re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", b"".join(chunks).decode("utf-8"))
     lines = screen.replace("\r", "").splitlines()
-    assert len(lines) > 12 and any("┃" in line or "│" in line for line in lines)
-    assert max(len(line) for line in lines) <= 64
+    assert max(len(line) for line in lines) <= 50
+    assert "…" not in screen
+    headers = [line for line in lines if line.startswith("┃ pos")]
+    assert len(headers) > 1
+    assert {"O2", "A", "B", "M", "O4"} <= {c.strip() for h in headers for c in h.split("┃")}
+    rows = [line for line in lines if line.startswith("│ ")]
+    assert len(rows) == 12 * len(headers)
 
 
 @pytest.mark.parametrize("position", ["12", "-1"])

@@ -77,13 +77,15 @@ def make_table(title: str) -> Table:
     return Table(title=title, title_justify="left")
 
 
-def show(out: Console, tab: Table) -> None:
-    """Print a table: with box lines in a terminal (fitted to its width); piped, as plain text, the
+def show(out: Console, tab: Table, keep: int = 1) -> None:
+    """Print a table: in a terminal with box lines, and where it is wider than the terminal, in parts
+    of as many columns as fit, each with the first ``keep`` columns again; piped, as plain text, the
     title on its own line and the rows indented under it, with no box characters."""
     from rich.padding import Padding
 
     if out.is_terminal:
-        out.print(tab)
+        for part in _parts(out, tab, keep):
+            out.print(part)
         return
     title, tab.title = tab.title, None
     tab.box, tab.pad_edge, tab.padding = None, False, (0, 2, 0, 0)
@@ -92,6 +94,32 @@ def show(out: Console, tab: Table) -> None:
             out.print(title)
         out.print(Padding(tab, (0, 0, 0, 2)))
     typer.echo("\n".join(line.rstrip() for line in text.get().splitlines()))
+
+
+def _parts(out: Console, tab: Table, keep: int) -> list[Table]:
+    """``tab`` cut into tables of its first ``keep`` columns and as many of the others as fit ``out``."""
+    from rich.table import Table
+
+    def part(columns: list[Any], title: Any) -> Table:
+        new = Table(title=title, title_justify=tab.title_justify)
+        for c in columns:
+            new.add_column(c.header, justify=c.justify)
+        for row in zip(*(list(c.cells) for c in columns), strict=True):
+            new.add_row(*row)
+        return new
+
+    def width(t: Table) -> int:  # as wide as its cells ask, not cut to the terminal
+        return out.measure(t, options=out.options.update_width(1_000_000)).maximum
+
+    head, rest = tab.columns[:keep], tab.columns[keep:]
+    if width(tab) <= out.width or not rest:
+        return [tab]
+    parts: list[list[Any]] = [[]]
+    for c in rest:
+        if parts[-1] and width(part(head + parts[-1] + [c], None)) > out.width:
+            parts.append([])
+        parts[-1].append(c)
+    return [part(head + cols, tab.title if i == 0 else None) for i, cols in enumerate(parts)]
 
 
 def _compile(file_or_example: str) -> Any:

@@ -109,6 +109,11 @@ def kinematics(
         typer.echo(f"  wrote {path}")
 
 
+def _mm(value: float) -> str:
+    """A coordinate in mm to 0.1 mm, without the sign of a zero ("0.0", not "-0.0")."""
+    return f"{round(value, 1) + 0.0:.1f}"
+
+
 @app.command()
 def positions(
     file_or_example: FileOrExample,
@@ -159,6 +164,6 @@ def positions(
     for label, _ in labels:
         tab.add_column(escape(label))
     for row in rows:
-        cells = ["-" if row[label][0] is None else f"{row[label][0]:.1f}, {row[label][1]:.1f}" for label, _ in labels]
+        cells = ["-" if row[label][0] is None else ", ".join(_mm(c) for c in row[label]) for label, _ in labels]
         tab.add_row(str(row["position"]), f"{row['angle_deg']:.1f}", *cells)
-    show(make_console(), tab)
+    show(make_console(), tab, keep=2)
