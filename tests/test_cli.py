@@ -1,14 +1,17 @@
-"""The command line: check, schema, examples, example."""
+"""The command line: check, schema, examples, example; missing optional packages, JSON and tables."""
 
 from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
@@ -174,12 +177,248 @@ def test_check_values_lists_every_value_read_in_si(tmp_path):
     for line, where, written, si, unit in VALUES:
         v = got[where]
         assert (v["line"], v["text"], v["unit"]) == (line, written, unit), v
-        assert v["value"] == pytest.approx(si, rel=1e-12)
+        assert v["value"] == pytest.approx(si, rel=1e-11)  # JSON numbers have 12 significant digits
     assert [v["line"] for v in out["values"]] == sorted(v["line"] for v in out["values"])
     result = runner.invoke(app, ["check", str(path), "--values"], terminal_width=200)
     assert result.exit_code == 0, result.output
-    rows = [re.split(r"\s*│\s*", line.strip("│ ")) for line in result.stdout.splitlines() if "│" in line]
+    rows = [re.split(r"\s{2,}", line.strip()) for line in result.stdout.splitlines()]  # piped: plain columns
     table = {r[1]: r for r in rows if len(r) == 5}
     for line, where, written, si, unit in VALUES:
         assert table[where] == [str(line), where, str(written), f"{si:.10g}", unit or "-"]
     assert "values" not in json.loads(runner.invoke(app, ["check", str(path), "--json"]).stdout)
+
+
+def _commands() -> None:
+    """Register every command on ``app`` (as ``linkwork``'s entry point does)."""
+    import linkwork.cli.analyze  # noqa: F401
+    import linkwork.cli.design  # noqa: F401
+    import linkwork.cli.dynamics  # noqa: F401
+    import linkwork.cli.forces  # noqa: F401
+    import linkwork.cli.impact  # noqa: F401
+    import linkwork.cli.motion  # noqa: F401
+    import linkwork.cli.view  # noqa: F401
+
+
+def _hide(monkeypatch: pytest.MonkeyPatch, *packages: str) -> None:
+    """Make ``packages`` (and their submodules) fail to import, as if they were not installed."""
+    for name in list(sys.modules):
+        if name.split(".", 1)[0] in packages:
+            monkeypatch.setitem(sys.modules, name, None)
+    for name in packages:
+        monkeypatch.setitem(sys.modules, name, None)
+
+
+PIP = 'pip install "linkwork'
+SWEEP = ["sweep", "four-bar", "--vary", "links.crank.length=90mm:110mm:3", "--metric", "swing", "--quiet"]
+
+
+@pytest.mark.parametrize(
+    ("hidden", "args", "missing"),
+    [
+        (("xarray",), ["kinematics", "four-bar", "--out", "{out}"], 'xarray: pip install "linkwork[data]"'),
+        (("xarray",), ["analyze", "four-bar", "--out", "{out}"], 'xarray: pip install "linkwork[data]"'),
+        (("matplotlib",), ["analyze", "four-bar", "--out", "{out}"], 'matplotlib: pip install "linkwork[plot]"'),
+        (
+            ("matplotlib", "xarray"),
+            ["analyze", "four-bar", "--out", "{out}"],
+            'matplotlib and xarray: pip install "linkwork[plot,data]"',
+        ),
+        (("pyarrow",), [*SWEEP, "--out", "{out}.parquet"], 'pyarrow: pip install "linkwork[design]"'),
+        (("xarray",), [*SWEEP, "--out", "{out}.nc"], 'xarray: pip install "linkwork[data]"'),
+        (("distributed",), [*SWEEP, "--workers", "1", "--out", "{out}.parquet"], f'distributed: {PIP}[design]"'),
+        (("fastapi", "uvicorn"), ["view", "four-bar", "--no-browser"], f'fastapi and uvicorn: {PIP}[web]"'),
+    ],
+)  # fmt: skip
+def test_a_missing_optional_package_is_one_line_before_any_work(tmp_path, monkeypatch, hidden, args, missing):
+    """Without the package an output needs, the command says which and how to install it, exits 2 and
+    has written nothing (no CSV before a NetCDF it cannot write, no report without its NetCDF table)."""
+    _commands()
+    _hide(monkeypatch, *hidden)
+    result = runner.invoke(app, [a.format(out=tmp_path / "out") for a in args])
+    assert result.exit_code == 2, result.output
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ") and lines[0].endswith(f" needs {missing}"), lines
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_the_python_api_names_the_missing_package_too(monkeypatch):
+    """``to_pandas`` without pandas, the drawings without matplotlib: a LinkworkError that is also an
+    ImportError, with the pip command."""
+    from linkwork.design.sweep import SweepTable
+    from linkwork.errors import LinkworkError, MissingDependencyError
+
+    table = SweepTable({"variant": np.arange(2), "swing": np.array([0.5, 0.6])}, {"variant": "1", "swing": "rad"})
+    _hide(monkeypatch, "pandas")
+    with pytest.raises(MissingDependencyError, match=r'needs pandas: pip install "linkwork\[design\]"$') as err:
+        table.to_pandas()
+    assert isinstance(err.value, LinkworkError) and isinstance(err.value, ImportError)
+    _hide(monkeypatch, "matplotlib")
+    for name in [n for n in sys.modules if n.startswith("linkwork.figures")]:
+        monkeypatch.delitem(sys.modules, name)
+    with pytest.raises(MissingDependencyError, match=r'needs matplotlib: pip install "linkwork\[plot\]"$'):
+        import linkwork.figures  # noqa: F401
+
+
+def test_numba_comes_with_linkwork_and_pandas_with_its_tables():
+    """numba is a core dependency where it has wheels (CPython 3.11 to 3.15 on x86-64 and ARM Linux,
+    x86-64 Windows, macOS); pandas comes with the extra whose tables offer ``to_pandas``."""
+    import tomllib
+
+    from packaging.requirements import Requirement
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    core = {Requirement(r).name: Requirement(r) for r in project["dependencies"]}
+    marker = core["numba"].marker
+
+    def env(python: str, system: str, machine: str, implementation: str = "CPython") -> dict[str, str]:
+        return {"python_version": python, "sys_platform": system, "platform_machine": machine,
+                "platform_python_implementation": implementation}  # fmt: skip
+
+    for python in ("3.11", "3.12", "3.13", "3.14", "3.15"):
+        for system, machine in (("linux", "x86_64"), ("linux", "aarch64"), ("win32", "AMD64"), ("darwin", "arm64")):
+            assert marker.evaluate(env(python, system, machine)), (python, system, machine)
+    assert marker.evaluate(env("3.13", "darwin", "x86_64"))
+    assert not marker.evaluate(env("3.14", "darwin", "x86_64"))  # no wheel: the NumPy kernels run
+    assert not marker.evaluate(env("3.16", "linux", "x86_64"))
+    assert not marker.evaluate(env("3.11", "linux", "x86_64", "PyPy"))
+    extras = project["optional-dependencies"]
+    assert "pandas" in {Requirement(r).name for r in extras["design"]}
+    assert not any(Requirement(r).name == "numba" for reqs in extras.values() for r in reqs)
+    from linkwork.motion import fast
+
+    if marker.evaluate() and os.environ.get("LINKWORK_NUMBA", "1") != "0":
+        assert fast.available()  # installed with linkwork here, so the compiled kernels run
+
+
+def _strict(text: str) -> Any:
+    def refuse(constant: str) -> None:
+        raise ValueError(f"not JSON: {constant}")
+
+    return json.loads(text, parse_constant=refuse)
+
+
+def test_json_numbers_are_rounded_and_zeros_are_zeros():
+    """The four-bar's crank at 60 + 30 k deg: the angles are written as the round numbers they are, and
+    the crank pin A at 90 and 270 deg has x = 0 (at 0 and 180, y = 0), not a round-off of 1e-17."""
+    _commands()
+    result = runner.invoke(app, ["kinematics", "four-bar", "--steps", "12", "--json"])
+    assert result.exit_code == 0, result.output
+    out = _strict(result.stdout)
+    angles = out["angles_deg"]
+    assert angles == [60.0 + 30 * k for k in range(12)]
+    a = out["points"]["A"]
+    for k, angle in enumerate(angles):
+        if angle % 180 == 90:
+            assert a["x"][k] == 0.0 and a["vy"][k] == 0.0 and a["ax"][k] == 0.0
+            assert a["y"][k] == (0.1 if angle % 360 == 90 else -0.1)
+        if angle % 180 == 0:
+            assert a["y"][k] == 0.0 and a["vx"][k] == 0.0 and a["ay"][k] == 0.0
+            assert a["x"][k] == (0.1 if angle % 360 == 0 else -0.1)
+
+
+def test_json_has_null_where_a_number_is_not_finite(tmp_path):
+    """A four-bar whose coupler (100 mm) lets it assemble only over part of the turn: the positions it
+    does not reach, and the quantities that have no value, are null; the output is strict JSON."""
+    _commands()
+    src = text("four-bar").replace("length: 350", "length: 100").replace("B: [330, 240]", "B: [140, 130]")
+    path = tmp_path / "partial.yaml"
+    path.write_text(src.replace("M: [175, 80]", "M: [50, 20]"), encoding="utf-8")
+    result = runner.invoke(app, ["kinematics", str(path), "--steps", "36", "--json"])
+    assert result.exit_code == 0, result.output
+    assert "NaN" not in result.stdout and "Infinity" not in result.stdout
+    out = _strict(result.stdout)
+    x = out["points"]["B"]["x"]
+    assert 0 < x.count(None) < 36
+    assert all((v is None) == (not ok) for v, ok in zip(x, out["valid"], strict=True))
+
+
+def test_the_json_writer_rule():
+    """Twelve significant digits; zero below 1e-10 of the largest number beside it (in its array, or
+    among its object's values and their arrays); NaN and infinities as null."""
+    from linkwork.io.jsonout import dumps
+
+    data = {
+        "angle": 29.999999999999996,
+        "point": {"x": 0.3, "y": -2e-12},
+        "fx": [250.0, 1e-13, -0.0],
+        "fy": [3e-14, -1e-7],
+        "residuals": {"power": 1.6e-16, "momentum": 2.5e-15},
+        "rows": [[1e-20, 2.0], [3.0, float("inf")]],
+        "stroke": float("nan"),
+        "count": np.int64(12),
+        "array": np.array([1.0, 1e-15]),
+    }
+    assert _strict(dumps(data)) == {
+        "angle": 30.0,
+        "point": {"x": 0.3, "y": 0.0},
+        "fx": [250.0, 0.0, 0.0],
+        "fy": [0.0, -1e-07],
+        "residuals": {"power": 1.6e-16, "momentum": 2.5e-15},
+        "rows": [[0.0, 2.0], [3.0, None]],
+        "stroke": None,
+        "count": 12,
+        "array": [1.0, 0.0],
+    }
+
+
+def test_tables_are_plain_text_when_piped():
+    """Piped, `linkwork check` prints what the README shows: no box characters, no trailing blanks."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    shown = readme.split("$ linkwork check double-cut-shears\n", 1)[1].split("```", 1)[0]
+    proc = subprocess.run(
+        [sys.executable, "-m", "linkwork.cli.app", "check", "double-cut-shears"], capture_output=True, text=True
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout == shown
+    for command in (["positions", "four-bar"], ["forces", "four-bar", "--steps", "36"]):
+        proc = subprocess.run([sys.executable, "-m", "linkwork.cli.app", *command], capture_output=True, text=True)
+        assert proc.returncode == 0, proc.stderr
+        assert proc.stdout.isascii(), command
+        assert all(line == line.rstrip() for line in proc.stdout.splitlines())
+
+
+def test_tables_fit_the_terminal():
+    """In a terminal 50 columns wide, the table of the 12 positions comes in parts that fit, each with the
+    position and the crank angle, no cell cut short."""
+    import fcntl
+    import pty
+    import struct
+    import termios
+
+    leader, follower = pty.openpty()
+    fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 50, 50, 0, 0))
+    env = {k: v for k, v in os.environ.items() if k not in ("COLUMNS", "LINES", "FORCE_COLOR", "NO_COLOR")}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "linkwork.cli.app", "positions", "four-bar"],
+        stdout=follower, stderr=follower, env={**env, "TERM": "xterm"},
+    )  # fmt: skip
+    os.close(follower)
+    chunks = []
+    while True:
+        try:
+            chunk = os.read(leader, 4096)
+        except OSError:  # the other end closed
+            break
+        if not chunk:
+            break
+        chunks.append(chunk)
+    assert proc.wait(timeout=60) == 0
+    os.close(leader)
+    screen = re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", b"".join(chunks).decode("utf-8"))
+    lines = screen.replace("\r", "").splitlines()
+    assert max(len(line) for line in lines) <= 50
+    assert "…" not in screen
+    headers = [line for line in lines if line.startswith("┃ pos")]
+    assert len(headers) > 1
+    assert {"O2", "A", "B", "M", "O4"} <= {c.strip() for h in headers for c in h.split("┃")}
+    rows = [line for line in lines if line.startswith("│ ")]
+    assert len(rows) == 12 * len(headers)
+
+
+@pytest.mark.parametrize("position", ["12", "-1"])
+def test_analyze_takes_one_of_the_12_positions(tmp_path, position):
+    _commands()
+    result = runner.invoke(app, ["analyze", "four-bar", "--out", str(tmp_path / "r"), "--position", position])
+    assert result.exit_code == 2
+    assert result.stderr.strip() == f"error: --position: expected one of the 12 positions, 0 to 11, got {position}"
+    assert list(tmp_path.iterdir()) == []

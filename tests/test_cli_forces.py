@@ -47,7 +47,7 @@ def test_forces_out_writes_csv_and_json(tmp_path):
     assert len(rows) == 37
     data = json.loads((tmp_path / "forces.json").read_text(encoding="utf-8"))
     torque = np.array([float(r[1]) for r in rows[1:]])
-    np.testing.assert_allclose(torque, data["driving_torque"], rtol=1e-15)
+    np.testing.assert_allclose(torque, data["driving_torque"], rtol=1e-11)  # JSON: 12 significant digits
     assert max(data["loads"]["cutting"]) == pytest.approx(250e3)
     assert all(v < 1e-9 for v in data["checks"].values())
     assert not list(tmp_path.glob(".*part"))
@@ -132,7 +132,7 @@ def test_forces_json_and_csv_give_the_drive_joint_in_the_files_order(tmp_path):
     with open(tmp_path / "forces.csv", encoding="utf-8") as fh:
         rows = list(csv.reader(fh))
     column = rows[0].index("O2 (crank on frame).fx [N]")
-    np.testing.assert_allclose([float(r[column]) for r in rows[1:]], crank_on_frame[:, 0], rtol=1e-15)
+    np.testing.assert_allclose([float(r[column]) for r in rows[1:]], crank_on_frame[:, 0], rtol=1e-11)  # JSON: 12 digits
 
 
 def test_forces_json_of_a_compound_hinge_and_a_pin_in_a_slot():

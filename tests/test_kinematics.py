@@ -497,3 +497,53 @@ def test_a_drive_on_the_frame_measures_the_crank_angle_whatever_the_order_of_its
     fa, fb = lw.forces(a, phi), lw.forces(b, phi)
     np.testing.assert_allclose(fb.driving_torque, fa.driving_torque, rtol=1e-12)
     np.testing.assert_allclose(fb.reaction("O2", on="crank"), fa.reaction("O2", on="crank"), rtol=1e-12)
+
+
+
+RHOMBUS = """
+name: rhombus
+units: {length: mm, angle: deg}
+frame:
+  points: {O2: [0, 0], O4: [100, 0]}
+links:
+  crank: {ends: [O2, A], length: 100}
+  coupler: {ends: [A, B], length: 100}
+  rocker: {ends: [O4, B], length: 100}
+joints:
+  O2: {type: revolute, links: [frame, crank]}
+  A: {type: revolute, links: [crank, coupler]}
+  B: {type: revolute, links: [coupler, rocker]}
+  O4: {type: revolute, links: [frame, rocker]}
+drives:
+  - {joint: O2, speed: 60 rpm, direction: ccw, angle: 60 deg}
+hints:
+  B: [150, 86.6]
+"""
+
+
+@pytest.mark.parametrize("angle", [0.5, 1.0, 2.0, 4.9])
+def test_a_single_angle_of_a_rhombus_reports_no_event_it_was_not_asked_about(angle):
+    """All four sides equal: the parallelogram and the folded (kite) modes meet at 0 and 180 deg.  An
+    angle a little beside 0 is reached from the assembly pose (60 deg, parallelogram) on a path whose
+    grid has a point at 0; what happens there is not at the angle asked, and is not reported.  The
+    pose itself is the parallelogram's: B = A + (100 mm, 0)."""
+    mech = lw.compile(lw.loads(RHOMBUS))
+    phi = np.radians([angle])
+    kin = lw.kinematics(mech, phi)
+    assert kin.valid.all()
+    assert kin.events == ()
+    a = 0.1 * np.stack([np.cos(phi), np.sin(phi)], -1)
+    np.testing.assert_allclose(kin.position("A"), a, atol=1e-15)
+    np.testing.assert_allclose(kin.position("B"), a + [0.1, 0.0], atol=1e-12)
+
+
+def test_events_of_asked_angles_lie_within_their_span():
+    """Angles that straddle the change point at 180 deg report it there, and nothing at 0 deg, which the
+    path from the assembly pose passes but the angles do not."""
+    mech = lw.compile(lw.loads(RHOMBUS))
+    kin = lw.kinematics(mech, np.radians([3.0, 185.0, 175.0]))
+    assert kin.valid.all()
+    assert {e.kind for e in kin.events} == {"singular", "change-point"}
+    for e in kin.events:
+        assert math.degrees(e.start) == pytest.approx(180.0, abs=1e-6)
+        assert math.degrees(e.end) == pytest.approx(180.0, abs=1e-6)

@@ -199,3 +199,68 @@ def test_schema_states_the_rule_for_bare_numbers():
     assert "otherwise it needs its unit" in units["description"]
     inertia = lw.Spec.model_json_schema()["$defs"]["Link"]["properties"]["inertia"]
     assert "in SI where the file's units of what it is made of are SI" in json.dumps(inertia)
+
+
+def _readme_four_bar() -> str:
+    """The four-bar of the README's section "The mechanism file"."""
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    return readme.split("## The mechanism file", 1)[1].split("```yaml\n", 1)[1].split("```", 1)[0]
+
+
+def test_a_builder_script_equals_the_file_it_describes(tmp_path):
+    """The README says a file and a builder script give equal specs: ``==`` holds, whatever the spec was
+    read from (the file's lines are not part of it), and fails for a spec that differs in one value."""
+    path = tmp_path / "four-bar.yaml"
+    path.write_text(_readme_four_bar(), encoding="utf-8")
+    b = MechanismBuilder("four-bar", units={"length": "mm", "mass": "kg", "angle": "deg"})
+    b.frame(points={"O2": (0, 0), "O4": (300, 0)})
+    b.link("crank", ends=("O2", "A"), length=100, mass=1.0)
+    b.link("coupler", ends=("A", "B"), length=350, points={"M": (175, 80)}, mass=2.5)
+    b.link("rocker", ends=("O4", "B"), length="0.25 m", mass=1.8)
+    b.revolute("O2", "frame", "crank").revolute("A", "crank", "coupler")
+    b.revolute("B", "coupler", "rocker").revolute("O4", "frame", "rocker")
+    b.drive("O2", speed="60 rpm", direction="ccw", angle="60 deg").hint("B", 330, 240)
+    assert b.build() == lw.load(path)
+    assert b.build() == lw.load(str(path)) == lw.loads(path.read_text(encoding="utf-8"))
+    assert b.link("rocker", ends=("O4", "B"), length="0.26 m", mass=1.8).build() != lw.load(path)
+    assert lw.load(path) != lw.load(path).model_dump()
+
+
+@pytest.mark.parametrize(
+    ("word", "sign"),
+    [("clockwise", -1), ("Clockwise", -1), ("cw", -1), ("counterclockwise", 1), ("counter-clockwise", 1),
+     ("anticlockwise", 1), ("CCW", 1)],
+)  # fmt: skip
+def test_a_drive_turns_the_way_its_direction_says_in_words(word, sign):
+    """``direction: clockwise`` means what ``cw`` means: the crank turns at -60 rpm."""
+    src = text("four-bar").replace("direction: ccw", f"direction: {word}")
+    assert f"direction: {word}" in src
+    spec = lw.loads(src)
+    assert spec.drives[0].direction == ("cw" if sign < 0 else "ccw")
+    mech = lw.compile(spec)
+    assert mech.drive_speed[0] == pytest.approx(sign * 2 * np.pi)
+    kin = lw.kinematics(mech, steps=4)
+    assert kin.omega("crank") == pytest.approx(np.full(4, sign * 2 * np.pi))
+
+
+def test_a_prismatic_drive_takes_no_turning_word():
+    src = text("four-bar").replace("direction: ccw", "direction: forward")
+    with pytest.raises(SpecError, match='a revolute drive turns "ccw" or "cw", got "forward"'):
+        lw.loads(src)
+    with pytest.raises(SpecError, match='expected one of ccw, cw, forward, backward, got "sideways"'):
+        lw.loads(text("four-bar").replace("direction: ccw", "direction: sideways"))
+
+
+def test_a_removed_joint_is_named_before_its_hint():
+    """The four-bar without its joint B: the one problem names the missing joint, at the joints, not the
+    hint of B as if it were a misspelt point."""
+    src = "\n".join(line for line in text("four-bar").splitlines() if not line.strip().startswith("B: {type"))
+    assert "links: [coupler, rocker]" not in src
+    with pytest.raises(SpecError) as err:
+        lw.loads(src)
+    problems = err.value.problems
+    assert problems[0].path == "joints"
+    assert problems[0].message.startswith('no joint "B": coupler and rocker have a point "B" that no joint joins')
+    assert not any("did you mean" in p.message for p in problems)

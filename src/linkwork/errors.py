@@ -94,3 +94,25 @@ class SingularityWarning(LinkworkWarning):
 
 class ConvergenceWarning(LinkworkWarning):
     """An iterative solve did not converge."""
+
+
+class MissingDependencyError(LinkworkError, ImportError):
+    """An optional package that a feature needs is not installed.
+
+    Attributes
+    ----------
+    packages : tuple of str
+        The missing packages, as pip names them.
+    extras : tuple of str
+        The extras of linkwork that bring them (``pip install "linkwork[EXTRA]"``).
+    purpose : str
+        What needs them, e.g. ``NetCDF output (kinematics.nc)``.
+    """
+
+    def __init__(self, packages: tuple[str, ...], extras: tuple[str, ...], purpose: str):
+        self.packages = packages
+        self.extras = extras
+        self.purpose = purpose
+        names = " and ".join(packages)
+        command = f'pip install "linkwork[{",".join(extras)}]"' if extras else f"pip install {' '.join(packages)}"
+        super().__init__(f"{purpose} needs {names}: {command}")

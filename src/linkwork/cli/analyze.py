@@ -15,7 +15,7 @@ def analyze(
     out: Annotated[str, typer.Option(help="folder for the report, tables, figures and animation")] = "report",
     steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
     position: Annotated[
-        int, typer.Option(help="which of the 12 positions gets the velocity and acceleration plans")
+        int, typer.Option(help="which of the 12 positions (0 to 11) gets the velocity and acceleration plans")
     ] = 0,
     pdf: Annotated[bool, typer.Option("--pdf", help="also write report.pdf")] = False,
     animation: Annotated[bool, typer.Option(help="write animation.gif (and .mp4 with ffmpeg)")] = True,
@@ -23,15 +23,19 @@ def analyze(
     """Every analysis the mechanism supports: tables, figures, animation and report.html."""
     from rich.progress import Progress, SpinnerColumn, TextColumn
 
-    from linkwork.errors import LinkworkError
+    from linkwork.errors import LinkworkError, MissingDependencyError
+    from linkwork.report import analyze as run
+    from linkwork.report import require_packages
 
     if steps < 12:
         fail(LinkworkError(f"--steps: expected at least 12 steps over the turn, got {steps}"))
-    mech = _compile(file_or_example)
+    if not 0 <= position < 12:
+        fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {position}"))
     try:
-        from linkwork.report import analyze as run
-    except ImportError:  # pragma: no cover - without the plot extra
-        fail(LinkworkError("the report needs matplotlib: pip install 'linkwork[plot]'"))
+        require_packages()
+    except MissingDependencyError as exc:
+        fail(exc)
+    mech = _compile(file_or_example)
     with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True) as bar:
         task = bar.add_task("analysing", total=None)
         try:
@@ -39,8 +43,6 @@ def analyze(
                 mech, out, steps=steps, position=position, pdf=pdf, animation=animation,
                 progress=lambda what: bar.update(task, description=f"analysing: {what}"),
             )  # fmt: skip
-        except ImportError as exc:
-            fail(LinkworkError(f"the report needs matplotlib: pip install 'linkwork[plot]' ({exc})"))
         except LinkworkError as exc:
             fail(exc)
         except OSError as exc:

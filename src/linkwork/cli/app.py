@@ -1,15 +1,17 @@
 """``linkwork``: the command line.
 
 Errors in files, options or geometry are printed to stderr, one line per
-problem, and the command exits with code 2.
+problem, and the command exits with code 2; so is a missing optional package
+(with the pip command that installs it), checked before a command starts its
+work.  ``--json`` output goes through one writer (:func:`linkwork.io.jsonout.dumps`),
+tables through :func:`make_console`, :func:`make_table` and :func:`show`.
 """
 
 from __future__ import annotations
 
-import json
 import math
 import sys
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -22,6 +24,10 @@ app = typer.Typer(
     rich_markup_mode=None,
 )
 
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table
+
 FileOrExample = Annotated[str, typer.Argument(help="a mechanism file (.yaml) or the name of a bundled example")]
 
 
@@ -29,6 +35,91 @@ def fail(exc: Exception) -> None:
     """Print a linkwork error to stderr and exit with code 2."""
     sys.stderr.write(f"error: {exc}\n" if "\n" not in str(exc) else f"error:\n{exc}\n")
     raise typer.Exit(2)
+
+
+def needs(*modules: str, purpose: str) -> None:
+    """Exit with the one-line message of :func:`linkwork.optional.require` unless ``modules`` import."""
+    from linkwork.errors import MissingDependencyError
+    from linkwork.optional import require
+
+    try:
+        require(*modules, purpose=purpose)
+    except MissingDependencyError as exc:
+        fail(exc)
+
+
+def echo_json(data: Any, indent: int | None = None) -> None:
+    """Print ``data`` as JSON by the command line's one writer (rounded numbers, no NaN)."""
+    from linkwork.io.jsonout import dumps
+
+    typer.echo(dumps(data, indent=indent))
+
+
+def make_console() -> Console:
+    """The console of the commands' reports: in a terminal, as wide as it is; piped or redirected,
+    plain text whose lines are as long as they need."""
+    from rich.console import Console
+
+    out = Console(highlight=False)
+    if out.is_terminal:
+        return out
+    return Console(highlight=False, width=_PIPED_WIDTH, no_color=True)
+
+
+#: Width of the text of the reports when stdout is not a terminal: lines are not folded.
+_PIPED_WIDTH = 1000
+
+
+def make_table(title: str) -> Table:
+    """A table of a report, to print with :func:`show`."""
+    from rich.table import Table
+
+    return Table(title=title, title_justify="left")
+
+
+def show(out: Console, tab: Table, keep: int = 1) -> None:
+    """Print a table: in a terminal with box lines, and where it is wider than the terminal, in parts
+    of as many columns as fit, each with the first ``keep`` columns again; piped, as plain text, the
+    title on its own line and the rows indented under it, with no box characters."""
+    from rich.padding import Padding
+
+    if out.is_terminal:
+        for part in _parts(out, tab, keep):
+            out.print(part)
+        return
+    title, tab.title = tab.title, None
+    tab.box, tab.pad_edge, tab.padding = None, False, (0, 2, 0, 0)
+    with out.capture() as text:
+        if title:
+            out.print(title)
+        out.print(Padding(tab, (0, 0, 0, 2)))
+    typer.echo("\n".join(line.rstrip() for line in text.get().splitlines()))
+
+
+def _parts(out: Console, tab: Table, keep: int) -> list[Table]:
+    """``tab`` cut into tables of its first ``keep`` columns and as many of the others as fit ``out``."""
+    from rich.table import Table
+
+    def part(columns: list[Any], title: Any) -> Table:
+        new = Table(title=title, title_justify=tab.title_justify)
+        for c in columns:
+            new.add_column(c.header, justify=c.justify)
+        for row in zip(*(list(c.cells) for c in columns), strict=True):
+            new.add_row(*row)
+        return new
+
+    def width(t: Table) -> int:  # as wide as its cells ask, not cut to the terminal
+        return out.measure(t, options=out.options.update_width(1_000_000)).maximum
+
+    head, rest = tab.columns[:keep], tab.columns[keep:]
+    if width(tab) <= out.width or not rest:
+        return [tab]
+    parts: list[list[Any]] = [[]]
+    for c in rest:
+        if parts[-1] and width(part(head + parts[-1] + [c], None)) > out.width:
+            parts.append([])
+        parts[-1].append(c)
+    return [part(head + cols, tab.title if i == 0 else None) for i, cols in enumerate(parts)]
 
 
 def _compile(file_or_example: str) -> Any:
@@ -72,7 +163,7 @@ def check(
         out["warnings"] = warnings
         if read is not None:
             out["values"] = [v.as_dict() for v in read]
-        typer.echo(json.dumps(out, indent=2))
+        echo_json(out, indent=2)
         return
     _print_structure(mech, reach, warnings)
     if read is not None:
@@ -99,12 +190,10 @@ def _drives(mech: Any) -> list[dict[str, Any]]:
 
 
 def _print_structure(mech: Any, reach: Any, warnings: list[str]) -> None:
-    from rich.console import Console
     from rich.markup import escape
-    from rich.table import Table
 
     s = mech.structure
-    console = Console(highlight=False)
+    console = make_console()
     console.print(f"[bold]{escape(mech.name)}[/bold]" + (f"  ({escape(mech.source)})" if mech.source else ""))
     tail = f" - {s.p4}" if s.p4 else ""
     console.print(f"  moving links n = {s.n_links}, lower pairs p5 = {s.p5}, higher pairs p4 = {s.p4}")
@@ -118,7 +207,7 @@ def _print_structure(mech: Any, reach: Any, warnings: list[str]) -> None:
         else:
             speed = f"{drive['speed']:.6g} m/s"
         console.print(f"  drive: joint {escape(drive['joint'])} ({drive['type']}), {speed}")
-    table = Table(title="Assur groups in solving order", title_justify="left")
+    table = make_table("Assur groups in solving order")
     for col in ("#", "group", "class", "order", "kind", "links", "joints"):
         table.add_column(col)
     for i, g in enumerate(s.groups, 1):
@@ -137,7 +226,7 @@ def _print_structure(mech: Any, reach: Any, warnings: list[str]) -> None:
                 )
             ),
         )
-    console.print(table)
+    show(console, table)
     console.print(f"  structural formula: {s.formula}")
     for i, line in enumerate(reach.describe() if reach is not None else []):
         console.print(f"  {'drive range:' if i == 0 else ' ' * 12} {escape(line)}")
@@ -148,17 +237,15 @@ def _print_structure(mech: Any, reach: Any, warnings: list[str]) -> None:
 
 
 def _print_values(read: list[Any]) -> None:
-    from rich.console import Console
     from rich.markup import escape
-    from rich.table import Table
 
-    table = Table(title="Values read from the file, in SI", title_justify="left")
+    table = make_table("Values read from the file, in SI")
     for col in ("line", "path", "in the file", "SI", "unit"):
         table.add_column(col, justify="right" if col in ("line", "SI") else "left")
     for v in read:
         line = "" if v.line is None else str(v.line)
         table.add_row(*(escape(c) for c in (line, v.path, str(v.text), f"{v.value:.10g}", v.unit or "-")))
-    Console(highlight=False).print(table)
+    show(make_console(), table)
 
 
 @app.command()
@@ -166,7 +253,7 @@ def schema() -> None:
     """Print the JSON Schema of the mechanism file format (for editors)."""
     from linkwork.spec.schema import Spec
 
-    typer.echo(json.dumps(Spec.model_json_schema(), indent=2))
+    echo_json(Spec.model_json_schema(), indent=2)
 
 
 @app.command()

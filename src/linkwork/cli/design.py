@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import json
 import math
 from typing import Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, app, fail
+from linkwork.cli.app import FileOrExample, app, echo_json, fail, needs
 
 Vary = Annotated[
     list[str],
@@ -110,6 +109,8 @@ def sweep(
     from linkwork.design.sweep import sweep as run
     from linkwork.errors import LinkworkError
 
+    if scheduler is not None or (workers or 0) > 0:
+        needs("distributed", purpose="a sweep on Dask (--workers, --scheduler)")
     try:
         with _Warnings():
             table = run(
@@ -200,7 +201,7 @@ def optimize(
     except (DesignError, LinkworkError) as exc:
         fail(exc)
     if as_json:
-        typer.echo(json.dumps(best.as_dict()))
+        echo_json(best.as_dict())
         return
     typer.echo(f"{'best design' if best.feasible else 'no design meets every constraint; the nearest'}: "
                f"{best.evaluations} designs evaluated in {best.generations} generations")  # fmt: skip

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import json
 import math
 from typing import Annotated
 
 import numpy as np
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, fail
+from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail
 
 
 @app.command()
@@ -39,11 +38,12 @@ def dynamics(
         from pathlib import Path
 
         from linkwork.io.atomic import write_atomic
+        from linkwork.io.jsonout import dumps
 
         cycle = data["cycle"]
         rows = ["psi [deg],t [s],omega [rad/s],motor_torque [N m],motor_power [W]"]
         rows += [",".join(repr(v) for v in row) for row in zip(*cycle.values(), strict=True)]
-        text = json.dumps(data)
+        text = dumps(data)
         try:
             paths = [
                 write_atomic(Path(out) / "dynamics.csv", lambda tmp: tmp.write_text("\n".join(rows) + "\n", "utf-8")),
@@ -52,7 +52,7 @@ def dynamics(
         except OSError as exc:
             fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     if as_json:
-        typer.echo(json.dumps(data))
+        echo_json(data)
         return
     rpm = 30 / math.pi
     red = result.reduced
@@ -63,11 +63,11 @@ def dynamics(
     )
     if result.flywheel is not None:
         f = result.flywheel
-        shaft = "motor" if result.drive.flywheel_on == "motor" else "crank"
+        beside = "" if f.shaft == "crank" else f" ({f.on_crank:.6g} kg m^2 reduced to the crank)"
         typer.echo(
             f"  flywheel for delta = {f.delta:g} at {f.omega_mean * rpm:.4g} rpm (Wittenbauer): energy swing "
-            f"{f.energy_swing:.6g} J, {f.inertia:.6g} kg m^2 on the crank, {result.drive.flywheel:.6g} kg m^2 "
-            f"on the {shaft} shaft"
+            f"{f.energy_swing:.6g} J, constant inertia {f.inertia:.6g} kg m^2 on the crank; the flywheel "
+            f"{f.flywheel:.6g} kg m^2 on the {f.shaft} shaft{beside}"
         )
     last = result.motion.last
     typer.echo(
@@ -81,12 +81,12 @@ def dynamics(
     angle = math.degrees(float(mech.drive_start[0]) + sign * float(result.motion.psi[-len(psi) + i])) % 360
     typer.echo(f"  lowest speed at crank angle {angle:.1f} deg")
     typer.echo(
-        f"  mean power {result.mean_power:.6g} W at the crank, {data['mean_motor_power']:.6g} W at the motor; "
-        f"start-up {result.startup_time:.3g} s (idle, where the file has process loads)"
+        f"  mean power of the motor {result.mean_power:.6g} W at its shaft, of the drive {result.drive_power:.6g} W "
+        f"on the crank; start-up {result.startup_time:.3g} s (idle, where the file has process loads)"
     )
-    need = data["motor_power_needed"]
+    need = result.mean_power
     rated = getattr(result.drive.motor, "power", None)
-    line = f"  motor: at least {need:.6g} W of continuous rating (the mean power over the cycle)"
+    line = f"  motor: at least {need:.6g} W of continuous rating (its mean power over the cycle)"
     if rated:
         line += f"; the rated {rated:.6g} W is loaded to {need / rated:.0%}"
     typer.echo(line)

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import json
 import math
 from typing import Annotated, Any
 
 import numpy as np
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, fail
+from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, make_console, make_table, show
 from linkwork.cli.motion import _angles
 
 
@@ -84,15 +83,16 @@ def forces(
         from pathlib import Path
 
         from linkwork.io.atomic import write_atomic
+        from linkwork.io.jsonout import dumps
 
         try:
             written.append(write_csv(f, Path(out) / "forces.csv"))
-            text = json.dumps(data)
+            text = dumps(data)
             written.append(write_atomic(Path(out) / "forces.json", lambda tmp: tmp.write_text(text, "utf-8")))
         except OSError as exc:
             fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     if as_json:
-        typer.echo(json.dumps(data))
+        echo_json(data)
         return
     _report(f, pair_labels(mech), CONVENTION, data["groups"])
     if lift is not None:
@@ -132,23 +132,21 @@ def _lift(mech: Any, pull: float) -> float:
 
 
 def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list[dict[str, Any]]) -> None:
-    from rich.console import Console
     from rich.markup import escape
-    from rich.table import Table
 
     from linkwork.io.force_tables import pair_kind
     from linkwork.structure.constraints import REVOLUTE
 
     mech, phi = f.mechanism, f.angles
-    console = Console(highlight=False, width=120)
+    out = make_console()
     rate = float(f.kinematics.rates[0, 0])
     revolute = mech.pair_type[mech.drive_pair[0]] == REVOLUTE
     speed = f"{abs(rate) * 30 / math.pi:.6g} rpm" if revolute else f"{abs(rate):.6g} m/s"
     ok = np.isfinite(f.driving_torque)
-    console.print(f"{escape(mech.name)}: {len(phi)} positions at {speed}, {int(ok.sum())} solved")
+    out.print(f"{escape(mech.name)}: {len(phi)} positions at {speed}, {int(ok.sum())} solved")
     if not ok.all():
         bad = np.degrees(phi[~ok]) % 360
-        console.print(
+        out.print(
             f"  reactions indeterminate (singular or unassembled) at {int((~ok).sum())} positions, "
             f"e.g. {', '.join(f'{a:.1f}' for a in bad[:6])} deg"
         )
@@ -156,10 +154,10 @@ def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list
         return
     unit = "N m" if revolute else "N"
     t, at = _peak(f.driving_torque, phi)
-    console.print(f"  driving torque: peak {t:.6g} {unit} at {_deg(at)}")
-    table = Table(title="largest pair forces over the cycle", title_justify="left")
+    out.print(f"  driving torque: peak {t:.6g} {unit} at {_deg(at)}")
+    tab = make_table("largest pair forces over the cycle")
     for col in ("joint", "first on second", "|F| max, N", "at", "moment max, N m"):
-        table.add_column(col)
+        tab.add_column(col)
     for label, k in labels:
         force = f.pair_force(k)[0]
         size = np.hypot(force[:, 0], force[:, 1])
@@ -168,27 +166,27 @@ def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list
         if pair_kind(mech, k) == "prismatic":
             moment = f"{_peak(f.multipliers[0, :, 2 * k], phi)[0] + 0.0:.6g}"
         a, b = (mech.link_names[int(i)] for i in mech.pair_members[k])
-        table.add_row(escape(label), escape(f"{a} on {b}"), f"{value:.6g}", _deg(where), moment)
-    console.print(table)
+        tab.add_row(escape(label), escape(f"{a} on {b}"), f"{value:.6g}", _deg(where), moment)
+    show(out, tab)
     for g in groups:
-        console.print(
+        out.print(
             f"  {escape(g['group'])}: held by {escape(', '.join(g['external']))}"
             + (f"; inner {escape(', '.join(g['internal']))}" if g["internal"] else "")
             + f"; balance of the free body {g['residual']:.1e}"
         )
     bolts = f.bolts()
     pull = f"{bolts.pull:.6g} N at {_deg(bolts.pull_angle)}" if bolts.pull > 0 else "none (the machine never lifts)"
-    console.print(f"  foundation: horizontal (bolt shear) max {bolts.shear:.6g} N at {_deg(bolts.shear_angle)}")
-    console.print(f"              pull on the bolts max {pull}")
-    console.print(f"              push on the foundation max {bolts.push:.6g} N at {_deg(bolts.push_angle)}")
-    console.print(f"              moment about the origin max {bolts.moment:.6g} N m at {_deg(bolts.moment_angle)}")
+    out.print(f"  foundation: horizontal (bolt shear) max {bolts.shear:.6g} N at {_deg(bolts.shear_angle)}")
+    out.print(f"              pull on the bolts max {pull}")
+    out.print(f"              push on the foundation max {bolts.push:.6g} N at {_deg(bolts.push_angle)}")
+    out.print(f"              moment about the origin max {bolts.moment:.6g} N m at {_deg(bolts.moment_angle)}")
     shake = np.hypot(f.shaking_force[:, 0], f.shaking_force[:, 1])
     s, s_at = _peak(shake, phi)
     m, m_at = _peak(f.shaking_moment, phi)
-    console.print(f"  shaking force max {s:.6g} N at {_deg(s_at)}, shaking moment max {abs(m):.6g} N m at {_deg(m_at)}")
+    out.print(f"  shaking force max {s:.6g} N at {_deg(s_at)}, shaking moment max {abs(m):.6g} N m at {_deg(m_at)}")
     checks = ", ".join(f"{k.replace('_', ' ')} {v:.1e}" for k, v in f.checks.items() if math.isfinite(v))
-    console.print(f"  checks (relative discrepancy): {checks}", soft_wrap=True)
-    console.print(f"  {escape(convention)}", soft_wrap=True)
+    out.print(f"  checks (relative discrepancy): {checks}", soft_wrap=True)
+    out.print(f"  {escape(convention)}", soft_wrap=True)
 
 
 @app.command()
@@ -229,7 +227,7 @@ def balance(
             "counterweights": [w.as_dict() for w in result.counterweights],
             **summary,
         }
-        typer.echo(json.dumps(out))
+        echo_json(out)
         return
     mode = "first harmonic of the shaking force" if first_harmonic else "shaking force"
     typer.echo(f"{mech.name}: counterweights against the {mode}")

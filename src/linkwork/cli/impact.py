@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import json
 import math
 from typing import Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, fail
+from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail
 
 
 def _xy(v: Any) -> dict[str, float]:
@@ -85,7 +84,7 @@ def impact(
     if model is not None:
         out["model"] = {"striker": striker, **model.as_dict()}
     if as_json:
-        typer.echo(json.dumps(out))
+        echo_json(out)
         return
     typer.echo(f"{mech.name}: blow of {blow.at}, R = {blow.restitution:g}, f = {blow.friction:g}")
     typer.echo(
@@ -190,7 +189,7 @@ def _cycle(mech: Any, as_json: bool, blows: int | None) -> None:
             "cycle_energy": {k: float(v) for k, v in run.cycle_energy.items()},
             "energy": {k: float(v) for k, v in run.energy.items()},
         }  # fmt: skip
-        typer.echo(json.dumps(out))
+        echo_json(out)
         return
     state = "steady" if run.steady else f"not steady after {len(run.blows)} blows"
     typer.echo(

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import json
 import math
 from typing import Annotated, Any
 
 import numpy as np
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, fail
+from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, make_console, make_table, needs, show
 
 
 def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
@@ -64,6 +63,8 @@ def kinematics(
     from linkwork.motion import kinematics as solve
     from linkwork.motion.analysis import extremes, transmission_angles
 
+    if out is not None:
+        needs("xarray", purpose=f"--out {out}: kinematics.nc (NetCDF)")
     mech = _compile(file_or_example)
     try:
         kin = solve(mech, **_angles(mech, steps, angles))
@@ -76,14 +77,11 @@ def kinematics(
 
         try:
             written.append(write_csv(kin, Path(out) / "kinematics.csv"))
-            try:
-                written.append(write_netcdf(kin, Path(out) / "kinematics.nc"))
-            except ImportError:
-                fail(LinkworkError("writing NetCDF needs xarray: pip install 'linkwork[data]'"))
+            written.append(write_netcdf(kin, Path(out) / "kinematics.nc"))
         except OSError as exc:
             fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     if as_json:
-        typer.echo(json.dumps(to_json(kin, ext)))
+        echo_json(to_json(kin, ext))
         return
     n_ok = int(np.sum(kin.valid))
     typer.echo(f"{mech.name}: {len(kin.angles)} positions, {n_ok} assembled")
@@ -108,6 +106,11 @@ def kinematics(
         typer.echo(f"  {e.kind}: {e.message}")
     for path in written:
         typer.echo(f"  wrote {path}")
+
+
+def _mm(value: float) -> str:
+    """A coordinate in mm to 0.1 mm, without the sign of a zero ("0.0", not "-0.0")."""
+    return f"{round(value, 1) + 0.0:.1f}"
 
 
 @app.command()
@@ -150,18 +153,16 @@ def positions(
             row[label] = [None if not np.isfinite(c) else round(float(c), 3) for c in x]
         rows.append(row)
     if as_json:
-        typer.echo(json.dumps({"name": mech.name, "unit": "mm", "positions": rows}))
+        echo_json({"name": mech.name, "unit": "mm", "positions": rows})
         return
-    from rich.console import Console
     from rich.markup import escape
-    from rich.table import Table
 
-    table = Table(title=f"{escape(mech.name)}: {count} positions (coordinates in mm)", title_justify="left")
-    table.add_column("pos")
-    table.add_column("crank, deg")
+    tab = make_table(f"{escape(mech.name)}: {count} positions (coordinates in mm)")
+    tab.add_column("pos")
+    tab.add_column("crank, deg")
     for label, _ in labels:
-        table.add_column(label)
+        tab.add_column(escape(label))
     for row in rows:
-        cells = ["-" if row[label][0] is None else f"{row[label][0]:.1f}, {row[label][1]:.1f}" for label, _ in labels]
-        table.add_row(str(row["position"]), f"{row['angle_deg']:.1f}", *cells)
-    Console(width=max(120, 16 * (len(labels) + 2))).print(table)
+        cells = ["-" if row[label][0] is None else ", ".join(_mm(c) for c in row[label]) for label, _ in labels]
+        tab.add_row(str(row["position"]), f"{row['angle_deg']:.1f}", *cells)
+    show(make_console(), tab, keep=2)

@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from linkwork.cli.app import FileOrExample, app, fail
+from linkwork.cli.app import FileOrExample, app, fail, needs
 
 
 @app.command()
@@ -27,6 +27,8 @@ def view(
     from linkwork.errors import LinkworkError
     from linkwork.examples import resolve
 
+    if export is None:
+        needs("fastapi", "uvicorn", purpose="the viewer's server (linkwork view)")
     try:
         spec = resolve(file_or_example)
         if export is not None:
@@ -44,10 +46,8 @@ def view(
                 fail(LinkworkError(f"--export {export}: cannot write ({exc.strerror or exc})"))
             typer.echo(f"wrote {written}")
             return
-        try:
-            from linkwork.web.server import create_app, serve
-        except ImportError as exc:  # pragma: no cover - the extra is part of the test install
-            fail(LinkworkError(f'the viewer needs FastAPI and uvicorn: pip install "linkwork[web]" ({exc})'))
+        from linkwork.web.server import create_app, serve
+
         app_ = create_app(spec, steps=steps)
     except LinkworkError as exc:
         fail(exc)

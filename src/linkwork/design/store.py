@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.design.plan import DesignError
+from linkwork.optional import require
 
 #: Version of the manifest's layout.
 FORMAT = 1
@@ -148,7 +149,7 @@ def remove_parts(parts: Path) -> None:
 
 def to_arrow(columns: dict[str, np.ndarray], units: dict[str, str], meta: dict[str, Any] | None = None) -> Any:
     """A pyarrow Table of the columns; each field's unit in its metadata (``unit``)."""
-    import pyarrow as pa
+    pa = require("pyarrow", purpose="a sweep's table (pyarrow)")
 
     fields, arrays = [], []
     for name, values in columns.items():
@@ -161,7 +162,7 @@ def to_arrow(columns: dict[str, np.ndarray], units: dict[str, str], meta: dict[s
 
 def write_chunk(parts: Path, chunk: int, columns: dict[str, np.ndarray], units: dict[str, str]) -> Path:
     """Write one chunk's rows atomically."""
-    import pyarrow.parquet as pq
+    pq = require("pyarrow.parquet", purpose="a sweep's chunk files (Parquet)")
 
     from linkwork.io.atomic import write_atomic
 
@@ -171,8 +172,8 @@ def write_chunk(parts: Path, chunk: int, columns: dict[str, np.ndarray], units: 
 
 def read_chunks(parts: Path, n_chunks: int) -> dict[str, np.ndarray]:
     """All chunks, concatenated in variant order."""
-    import pyarrow as pa
-    import pyarrow.parquet as pq
+    pa = require("pyarrow", purpose="a sweep's chunk files (Parquet)")
+    pq = require("pyarrow.parquet", purpose="a sweep's chunk files (Parquet)")
 
     missing = [c for c in range(n_chunks) if not chunk_path(parts, c).exists()]
     if missing:
@@ -187,7 +188,7 @@ def write_table(out: str | Path, columns: dict[str, np.ndarray], units: dict[str
 
     out = Path(out)
     if out.suffix == ".nc":
-        import xarray as xr
+        xr = require("xarray", purpose="a sweep's table as NetCDF (.nc)")
 
         data = {
             name: ("variant", values, {"units": units.get(name, "")})
@@ -196,7 +197,6 @@ def write_table(out: str | Path, columns: dict[str, np.ndarray], units: dict[str
         }
         ds = xr.Dataset(data, coords={"variant": columns["variant"]}, attrs={"linkwork": json.dumps(meta)})
         return write_atomic(out, lambda tmp: ds.to_netcdf(tmp))
-    import pyarrow.parquet as pq
-
+    pq = require("pyarrow.parquet", purpose="a sweep's table as Parquet (.parquet)")
     table = to_arrow(columns, units, meta)
     return write_atomic(out, lambda tmp: pq.write_table(table, tmp))

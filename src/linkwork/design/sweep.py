@@ -21,6 +21,8 @@ import numpy as np
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import MetricRequest, parse_metrics
 from linkwork.design.plan import DesignError, Plan, Vary, make_plan, parse_varies
+from linkwork.errors import MissingDependencyError
+from linkwork.optional import require
 
 #: Samples (variants x crank angles) per chunk by default: the arrays of a chunk stay some hundred MB.
 CHUNK_SAMPLES = 1 << 19
@@ -61,7 +63,7 @@ class SweepTable:
 
     def to_pandas(self) -> Any:
         """A pandas DataFrame indexed by variant."""
-        import pandas as pd
+        pd = require("pandas", purpose="SweepTable.to_pandas")
 
         return pd.DataFrame(self.columns).set_index("variant")
 
@@ -259,11 +261,10 @@ def sweep(
         why = cannot_write(out)
         if why:
             problems.append(f'--out "{out}": {why}')
-        if Path(out).suffix == ".nc":
-            try:
-                import xarray  # noqa: F401
-            except ImportError:
-                problems.append(f'--out "{out}": NetCDF output needs xarray: pip install "linkwork[data]"')
+        try:
+            require("pyarrow", *(["xarray"] if Path(out).suffix == ".nc" else []), purpose=f'--out "{out}"')
+        except MissingDependencyError as exc:
+            problems.append(str(exc))
     if scheduler is not None:
         problems += _scheduler_problems(scheduler, connect_timeout)
     if problems:
@@ -360,6 +361,7 @@ def _on_dask(
     A chunk whose worker dies is given to another worker by the scheduler; each result is stored
     by this process as it comes back, so nothing done is lost if this process stops.
     """
+    require("distributed", purpose="a sweep on Dask (--workers, --scheduler, or more than 20,000 variants)")
     from distributed import Client, LocalCluster, as_completed
 
     cluster = None

@@ -18,6 +18,9 @@ from linkwork.figures.diagrams import (
 )
 from linkwork.figures.plans import acceleration_plan, draw_plan, velocity_plan
 from linkwork.figures.scheme import draw_positions, draw_scheme
+from linkwork.optional import require
+
+require("matplotlib", purpose="the drawings (linkwork.figures)")
 
 __all__ = [
     "acceleration_plan",

@@ -1,4 +1,9 @@
-"""The JSON object of a machine-dynamics result (``linkwork dynamics --json``, the report)."""
+"""The JSON object of a machine-dynamics result (``linkwork dynamics --json``, the report).
+
+``mean_power`` is the motor's at its shaft, ``drive_power`` the drive's on the crank (after the
+gear), over the steady cycle, as in :class:`linkwork.machine.Dynamics` and the working cycle of
+:func:`linkwork.simulate_blows`; ``flywheel_inertia`` is on the shaft ``flywheel_on``.
+"""
 
 from __future__ import annotations
 
@@ -49,8 +54,7 @@ def to_json(mech: Any, result: Any) -> dict[str, Any]:
         "omega_max": last.omega_max,
         "delta": last.delta,
         "mean_power": result.mean_power,
-        "mean_motor_power": float(np.trapezoid(motor_torque * motor_speed, t) / t[-1]) if len(t) > 1 else None,
-        "motor_power_needed": result.mean_power / drive.efficiency,
+        "drive_power": result.drive_power,
         "startup_time": result.startup_time,
         "steady": result.motion.steady,
         "flywheel_inertia": drive.flywheel,
@@ -69,7 +73,9 @@ def to_json(mech: Any, result: Any) -> dict[str, Any]:
             "omega_mean": f.omega_mean,
             "energy_swing": f.energy_swing,
             "inertia_on_crank": f.inertia,
-            "flywheel_on_crank": f.flywheel,
+            "flywheel": f.flywheel,
+            "flywheel_on": f.shaft,
+            "flywheel_on_crank": f.on_crank,
             "drive_moment": f.drive_moment,
         }
     return out

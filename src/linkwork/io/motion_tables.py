@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.io.atomic import write_atomic
+from linkwork.optional import require
 
 
 def point_labels(mech: Any, with_all: bool = False) -> list[tuple[str, int]]:
@@ -130,7 +131,7 @@ def write_csv(kin: Any, path: str | Path) -> Path:
 
 def to_dataset(kin: Any) -> Any:
     """An xarray Dataset with dimensions variant x angle x point (and link)."""
-    import xarray as xr
+    xr = require("xarray", purpose="NetCDF tables of the kinematics")
 
     mech = kin.mechanism
     labels = point_labels(mech)

@@ -51,7 +51,9 @@ class Dynamics:
     ``startup`` is the run from rest; for a machine with process loads it runs idle (no workpiece:
     a shears is brought up to speed before the first cut), and ``motion`` then continues from its
     steady state with the process loads to the steady working cycle.  Without process loads the
-    two are the same run.
+    two are the same run.  ``flywheel`` is the sizing (None without ``delta``): its ``flywheel`` is
+    the inertia on its own shaft (``drive.flywheel``, the one the run used), ``on_crank`` the same
+    reduced to the crank shaft.
     """
 
     reduced: Reduced
@@ -71,9 +73,16 @@ class Dynamics:
         return self.motion.last.delta
 
     @property
-    def mean_power(self) -> float:
-        """Mean power of the loads over the steady cycle, W (what the drive gives at the crank)."""
+    def drive_power(self) -> float:
+        """Mean power the drive gives the crank over the steady cycle (after the gear's loss), W: the
+        mean power of the loads, which the periodic cycle's drive work balances."""
         return -self.reduced.mean_load * self.motion.last.omega_mean
+
+    @property
+    def mean_power(self) -> float:
+        """Mean power of the motor at its shaft over the steady cycle, W (to compare with its rating):
+        ``drive_power`` over the gear's efficiency."""
+        return self.drive_power / self.drive.efficiency
 
 
 def balance_speed(drive: Drive, moment: float) -> float:
@@ -136,7 +145,8 @@ def dynamics(
         drive = mech.machine
     if drive is None:
         raise LinkworkError(
-            'the mechanism has no drive: give a "machine:" section (motor, gear) in its file, or a Drive'
+            'the mechanism has no motor for its dynamics: give a "machine:" section in its file with the motor '
+            "(type constant, linear or induction, and its data), and the gear and flywheel if it has them"
         )
     if delta is None:
         delta = mech.delta
@@ -150,9 +160,8 @@ def dynamics(
         if speed is None or not math.isfinite(speed):
             speed = abs(float(mech.drive_speed[0]))
         base = drive.with_flywheel(0.0)
-        fly = size_flywheel_wittenbauer(red, delta, speed, base.inertia)
-        shaft = fly.flywheel if drive.flywheel_on == "crank" else fly.on_motor_shaft(drive.ratio)
-        drive = drive.with_flywheel(shaft)
+        fly = size_flywheel_wittenbauer(red, delta, speed, base.inertia, shaft=drive.flywheel_on, ratio=drive.ratio)
+        drive = drive.with_flywheel(fly.flywheel)
     process = [load for load in mech.loads if load.kind == "process"]
     if not process:
         motion = simulate(red, drive, omega0=omega0, start=start, turns=turns)

@@ -22,7 +22,6 @@ cycle: ``(J(psi) + J_c) omega^2 / 2 = (J(0) + J_c) omega_0^2 / 2 + A(psi)``.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -44,27 +43,35 @@ class Flywheel:
     energy_swing : float
         ``dE``, J.
     inertia : float
-        Constant inertia needed on the crank shaft, kg m^2 (flywheel and rotor together).
-    flywheel : float
-        The flywheel's own inertia on the crank shaft: ``inertia`` less the drive's constant
-        inertia (0 where that is enough already).
+        Constant inertia needed on the crank shaft, kg m^2 (flywheel, rotor and gear together).
+    on_crank : float
+        The flywheel's inertia reduced to the crank shaft: ``inertia`` less the drive's own constant
+        inertia (0 where that is enough already), kg m^2.
     drive_moment : float
         The constant drive moment that balances the loads over a turn, N m on the crank.
-    mean_power : float
-        ``drive_moment * omega_mean``, W: what the motor must give on average (at the crank).
+    drive_power : float
+        ``drive_moment * omega_mean``, W: the mean power the drive gives the crank.
+    shaft : str
+        The shaft the flywheel is on, ``"crank"`` or ``"motor"``.
+    ratio : float
+        The gear ratio ``omega_motor / omega_crank`` (for a flywheel on the motor shaft).
     """
 
     delta: float
     omega_mean: float
     energy_swing: float
     inertia: float
-    flywheel: float
+    on_crank: float
     drive_moment: float
-    mean_power: float
+    drive_power: float
+    shaft: str = "crank"
+    ratio: float = 1.0
 
-    def on_motor_shaft(self, ratio: float) -> float:
-        """The flywheel's inertia if it is put on the motor shaft of a gear ``ratio``, kg m^2."""
-        return self.flywheel / ratio**2
+    @property
+    def flywheel(self) -> float:
+        """The flywheel's inertia on its own shaft, kg m^2: ``on_crank`` on the crank shaft,
+        ``on_crank / ratio**2`` on the motor shaft."""
+        return self.on_crank if self.shaft == "crank" else self.on_crank / self.ratio**2
 
 
 def _work(red: Any, moment: float) -> np.ndarray:
@@ -72,8 +79,11 @@ def _work(red: Any, moment: float) -> np.ndarray:
     return red.work()[:-1] + moment * red.psi
 
 
-def size_flywheel(red: Any, delta: float, omega_mean: float, drive_inertia: float = 0.0) -> Flywheel:
-    """The constant inertia that keeps the speed fluctuation at ``delta``, by the energy method."""
+def size_flywheel(
+    red: Any, delta: float, omega_mean: float, drive_inertia: float = 0.0, *, shaft: str = "crank", ratio: float = 1.0
+) -> Flywheel:
+    """The constant inertia that keeps the speed fluctuation at ``delta``, by the energy method (Merkalov);
+    ``drive_inertia`` is the drive's own on the crank shaft, ``shaft`` and ``ratio`` say where the flywheel goes."""
     if not 0 < delta < 1:
         raise LinkworkError(f"delta: expected a coefficient of speed fluctuation between 0 and 1, got {delta}")
     if not omega_mean > 0:
@@ -82,7 +92,17 @@ def size_flywheel(red: Any, delta: float, omega_mean: float, drive_inertia: floa
     energy = _work(red, moment) - 0.5 * red.inertia * omega_mean**2
     swing = float(energy.max() - energy.min())
     need = swing / (delta * omega_mean**2)
-    return Flywheel(delta, omega_mean, swing, need, max(need - drive_inertia, 0.0), moment, moment * omega_mean)
+    return _flywheel(delta, omega_mean, swing, need, drive_inertia, moment, shaft, ratio)
+
+
+def _flywheel(
+    delta: float, omega_mean: float, swing: float, need: float, drive_inertia: float, moment: float, shaft: str,
+    ratio: float,
+) -> Flywheel:  # fmt: skip
+    if shaft not in ("crank", "motor"):
+        raise LinkworkError(f'flywheel: on "motor" or "crank", got "{shaft}"')
+    on_crank = max(need - drive_inertia, 0.0)
+    return Flywheel(delta, omega_mean, swing, need, on_crank, moment, moment * omega_mean, shaft, ratio)
 
 
 def wittenbauer(red: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -91,8 +111,11 @@ def wittenbauer(red: Any) -> tuple[np.ndarray, np.ndarray]:
     return red.inertia, _work(red, -red.mean_load)
 
 
-def size_flywheel_wittenbauer(red: Any, delta: float, omega_mean: float, drive_inertia: float = 0.0) -> Flywheel:
-    """The constant inertia for ``delta`` from the tangents to Wittenbauer's diagram."""
+def size_flywheel_wittenbauer(
+    red: Any, delta: float, omega_mean: float, drive_inertia: float = 0.0, *, shaft: str = "crank", ratio: float = 1.0
+) -> Flywheel:
+    """The constant inertia for ``delta`` from the tangents to Wittenbauer's diagram; the arguments as
+    for :func:`size_flywheel`."""
     if not 0 < delta < 1:
         raise LinkworkError(f"delta: expected a coefficient of speed fluctuation between 0 and 1, got {delta}")
     inertia, energy = wittenbauer(red)
@@ -101,8 +124,7 @@ def size_flywheel_wittenbauer(red: Any, delta: float, omega_mean: float, drive_i
     b_max = float(np.max(energy - k_max * inertia))
     b_min = float(np.min(energy - k_min * inertia))
     need = (b_max - b_min) / (k_max - k_min)
-    moment = -red.mean_load
-    return Flywheel(delta, omega_mean, b_max - b_min, need, max(need - drive_inertia, 0.0), moment, moment * omega_mean)
+    return _flywheel(delta, omega_mean, b_max - b_min, need, drive_inertia, -red.mean_load, shaft, ratio)
 
 
 def constant_moment_cycle(red: Any, inertia: float, omega_mean: float) -> tuple[np.ndarray, float]:
@@ -122,9 +144,3 @@ def constant_moment_cycle(red: Any, inertia: float, omega_mean: float) -> tuple[
             break
         w0 += omega_mean - mid
     return omega, float((omega.max() - omega.min()) / mid)
-
-
-def mean_power(red: Any, omega_mean: float) -> float:
-    """Mean power the drive gives at the crank at a steady mean speed, W (the loads' mean moment
-    times the speed)."""
-    return -red.mean_load * omega_mean if math.isfinite(omega_mean) else math.nan

@@ -274,7 +274,7 @@ def kinematics(
         state = run(
             mech, mech.program, geom, path[:, None], np.broadcast_to(rate, (len(path), 1)), np.zeros((len(path), 1))
         )
-        events = tuple(find(mech.program, state, path, revolute))
+        events = tuple(find(mech.program, state, path, revolute, within=(int(take.min()), int(take.max()))))
         state.q, state.v, state.a = state.q[..., take], state.v[..., take], state.a[..., take]
         state.valid = state.valid[:, take]
         state.step_det = [d[:, take] for d in state.step_det]

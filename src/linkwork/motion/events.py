@@ -56,11 +56,49 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1, strict=True))
 
 
-def find(steps: Any, state: Any, angles: np.ndarray, revolute: bool, max_variants: int = 20) -> list[Event]:
+@dataclass
+class _Window:
+    """The samples ``lo`` to ``hi`` (inclusive) of a state's records of its steps."""
+
+    step_valid: list[np.ndarray]
+    step_det: list[np.ndarray]
+    step_slack: list[np.ndarray]
+    step_flips: list[list[tuple[int, int, int]]]
+    step_jumps: list[list[tuple[int, int]]]
+    step_trouble: np.ndarray | None
+    valid: np.ndarray
+
+    @classmethod
+    def of(cls, state: Any, lo: int, hi: int) -> _Window:
+        cut = slice(lo, hi + 1)
+        return cls(
+            [x[:, cut] for x in state.step_valid],
+            [x[:, cut] for x in state.step_det],
+            [x[:, cut] for x in state.step_slack],
+            [[(v, j, i - lo) for v, j, i in f if lo <= i <= hi] for f in state.step_flips],
+            [[(v, j - lo) for v, j in f if lo <= j < hi] for f in state.step_jumps],
+            state.step_trouble,
+            state.valid[:, cut],
+        )
+
+
+def find(
+    steps: Any,
+    state: Any,
+    angles: np.ndarray,
+    revolute: bool,
+    max_variants: int = 20,
+    within: tuple[int, int] | None = None,
+) -> list[Event]:
     """Events of every step for the first ``max_variants`` variants.
 
-    ``angles`` is the drive coordinate of drive 0 at each sample, in the order given.
+    ``angles`` is the drive coordinate of drive 0 at each sample, in the order given.  ``within``:
+    the first and last sample to look at (the span of the angles asked for, in a path that reaches
+    them from the assembly pose), so that no event is reported outside it; default all.
     """
+    if within is not None:
+        lo, hi = within
+        state, angles = _Window.of(state, lo, hi), angles[lo : hi + 1]
     events: list[Event] = []
     unit = "deg" if revolute else "m"
 

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import base64
 import html
-import json
 import math
 import os
 import shutil
@@ -20,6 +19,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from linkwork.io.jsonout import dumps
 
 
 @dataclass
@@ -77,8 +78,10 @@ def analyze(
     ``report.html`` (and ``report.pdf``) into the folder ``out``; returns the report's path.
 
     ``position``: which of the 12 positions (numbered from the working slider's or rocker's high
-    end, as ``linkwork positions`` does) gets the velocity and acceleration plans.
+    end, as ``linkwork positions`` does) gets the velocity and acceleration plans.  Needs
+    matplotlib and xarray (:func:`require_packages`).
     """
+    require_packages()
     out = Path(out)
     parent = out.resolve().parent
     parent.mkdir(parents=True, exist_ok=True)
@@ -96,6 +99,14 @@ def analyze(
     return out / "report.html"
 
 
+def require_packages() -> None:
+    """Raise :class:`~linkwork.errors.MissingDependencyError` unless the optional packages of the
+    report are installed: matplotlib (the figures) and xarray (``kinematics.nc``)."""
+    from linkwork.optional import require
+
+    require("matplotlib", "xarray", purpose="the report (linkwork analyze)")
+
+
 def _swap(new: Path, out: Path) -> None:
     """Put ``new`` where ``out`` is, the old one removed only after the new one is in place."""
     old = None
@@ -110,7 +121,7 @@ def _swap(new: Path, out: Path) -> None:
 
 def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
     from linkwork import figures
-    from linkwork.io.motion_tables import point_labels, write_csv
+    from linkwork.io.motion_tables import point_labels, write_csv, write_netcdf
     from linkwork.motion import kinematics
     from linkwork.motion.analysis import extremes, one_crank, transmission_angles, zero_angle
 
@@ -142,12 +153,7 @@ def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
     run.progress("kinematics")
     kin = kinematics(mech, steps=steps)
     write_csv(kin, run.folder / "kinematics.csv")
-    try:
-        from linkwork.io.motion_tables import write_netcdf
-
-        write_netcdf(kin, run.folder / "kinematics.nc")
-    except ImportError:
-        pass
+    write_netcdf(kin, run.folder / "kinematics.nc")
     sec = Section("kinematics", "Kinematics")
     zero = zero_angle(mech)
     sign = 1.0 if mech.drive_speed[0] >= 0 else -1.0
@@ -221,7 +227,7 @@ def _forces(run: _Run, steps: int) -> None:
     run.progress("forces")
     f = forces(mech, steps=steps)
     write_csv(f, run.folder / "forces.csv")
-    (run.folder / "forces.json").write_text(json.dumps(to_json(f)), encoding="utf-8")
+    (run.folder / "forces.json").write_text(dumps(to_json(f)), encoding="utf-8")
     sec = Section("forces", "Forces (kinetostatics)")
     phi = f.angles
     ok = np.isfinite(f.driving_torque)
@@ -270,7 +276,7 @@ def _dynamics(run: _Run) -> None:
     run.progress("dynamics")
     result = dynamics(mech, steps=1440)
     data = to_json(mech, result)
-    (run.folder / "dynamics.json").write_text(json.dumps(data), encoding="utf-8")
+    (run.folder / "dynamics.json").write_text(dumps(data), encoding="utf-8")
     rpm = 30 / math.pi
     last = result.motion.last
     sec = Section("dynamics", "Machine dynamics")
@@ -278,8 +284,8 @@ def _dynamics(run: _Run) -> None:
         ["mean crank speed, rpm", last.omega_mean * rpm],
         ["least and largest crank speed, rpm", f"{last.omega_min * rpm:.4g} to {last.omega_max * rpm:.4g}"],
         ["coefficient of speed fluctuation", last.delta],
-        ["mean power at the crank, W", result.mean_power],
-        ["motor power needed, W", data["motor_power_needed"]],
+        ["mean power of the drive on the crank, W", result.drive_power],
+        ["mean power of the motor at its shaft, W", result.mean_power],
         ["start-up time, s", result.startup_time],
         ["flywheel, kg m^2 (on the " + result.drive.flywheel_on + " shaft)", result.drive.flywheel],
     ]

@@ -14,6 +14,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from linkwork.errors import Problem
+from linkwork.spec.schema import direction_word
 from linkwork.spec.yamlsource import Source
 from linkwork.units import UnitParseError, parse_quantity
 
@@ -213,7 +214,7 @@ def _check_drives(bad: Any, data: dict[str, Any], joints: dict[str, Any], declar
         if kind == "revolute" and nlinks != 2:
             bad(path + ("joint",), f'a driven revolute joint must join exactly two links, "{jname}" joins {nlinks}')
         rot = kind == "revolute"
-        direction = drive.get("direction")
+        direction = direction_word(drive.get("direction"))
         if rot and direction in ("forward", "backward"):
             bad(path + ("direction",), f'a revolute drive turns "ccw" or "cw", got "{direction}"')
         if not rot and direction in ("ccw", "cw"):
@@ -258,10 +259,26 @@ def _check_hints(bad: Any, data: dict[str, Any], joints: dict[str, Any], points:
     hints = _dict(data.get("hints"))
     names = hint_names(joints, points)
     for key in hints:
-        if key not in names:
-            same = sorted(n for n in names if n.endswith(f".{key}"))
-            hint = f' (did you mean "{same[0]}"?)' if same else suggest(key, names)
-            bad(("hints", key), f'no moving point "{key}" (give a joint name or link.point){hint}')
+        if key in names:
+            continue
+        owners = sorted(ln for ln, pts in points.items() if key in pts)
+        if len(owners) > 1:  # a point of several links that no joint joins: the joint is missing, not the hint
+            if "joints" not in data:
+                continue  # the missing section is the problem, reported as such
+            bad(
+                ("joints",),
+                f'no joint "{key}": {_and(owners)} have a point "{key}" that no joint joins '
+                f'(the hint "{key}" names it as a joint)',
+            )
+            continue
+        same = sorted(n for n in names if n.endswith(f".{key}"))
+        hint = f' (did you mean "{same[0]}"?)' if same else suggest(key, names)
+        bad(("hints", key), f'no moving point "{key}" (give a joint name or link.point){hint}')
+
+
+def _and(names: list[str]) -> str:
+    """``a``, ``a and b``, ``a, b and c``."""
+    return " and ".join([", ".join(names[:-1]), names[-1]]) if len(names) > 1 else "".join(names)
 
 
 def hint_names(joints: dict[str, Any], points: dict[str, set[str]]) -> set[str]:

@@ -133,6 +133,25 @@ def _one_or_table(kind: str) -> Any:
     return Annotated[float | list[float], BeforeValidator(validate), WithJsonSchema(schema), Quantity(kind, "table")]
 
 
+#: The words a drive's ``direction`` may be written in (any case), and the one each means.
+DIRECTIONS = {
+    "ccw": "ccw",
+    "counterclockwise": "ccw",
+    "counter-clockwise": "ccw",
+    "anticlockwise": "ccw",
+    "anti-clockwise": "ccw",
+    "cw": "cw",
+    "clockwise": "cw",
+    "forward": "forward",
+    "backward": "backward",
+}
+
+
+def direction_word(value: Any) -> Any:
+    """``ccw``, ``cw``, ``forward`` or ``backward`` for a word of :data:`DIRECTIONS`; anything else as it is."""
+    return DIRECTIONS.get(value.strip().lower(), value) if isinstance(value, str) else value
+
+
 ForceOrTable = _one_or_table("force")
 MomentOrTable = _one_or_table("moment")
 
@@ -281,8 +300,14 @@ class Drive(_Strict):
         description="uniform speed: an angular speed (revolute) or a speed (prismatic), with its unit, "
         'e.g. "30 rpm" (a bare number as for any speed: see units)',
     )
-    direction: Literal["ccw", "cw", "forward", "backward"] | None = Field(
-        None, description="ccw/cw for revolute drives, forward/backward for prismatic ones"
+    direction: Annotated[
+        Literal["ccw", "cw", "forward", "backward"] | None,
+        BeforeValidator(direction_word),
+        WithJsonSchema({"anyOf": [{"enum": list(DIRECTIONS)}, {"type": "null"}]}),
+    ] = Field(
+        None,
+        description="revolute drives: ccw (counterclockwise, counter-clockwise, anticlockwise) or cw (clockwise); "
+        "prismatic ones: forward or backward",
     )
     angle: Angle | None = Field(None, description="revolute: drive angle of the assembly pose (default 0)")
     position: Length | None = Field(None, description="prismatic: drive position of the assembly pose (default 0)")
@@ -424,6 +449,12 @@ class Spec(_Strict):
         "(joint names or link.point); they choose the assembly mode",
     )
     _source: Any = PrivateAttr(default=None)
+
+    def __eq__(self, other: object) -> bool:
+        """Equal descriptions: the same values, wherever they were read from (a file's lines, or a builder)."""
+        if not isinstance(other, Spec):
+            return NotImplemented
+        return type(self) is type(other) and self.__dict__ == other.__dict__
 
     @property
     def source(self) -> Any:

@@ -23,5 +23,9 @@ def __getattr__(name: str) -> Any:
         "export_page": "linkwork.web.export",
     }
     if name in where:
+        if where[name].endswith("server"):
+            from linkwork.optional import require
+
+            require("fastapi", "uvicorn", purpose="the viewer's server (linkwork view)")
         return getattr(importlib.import_module(where[name]), name)
     raise AttributeError(f"module 'linkwork.web' has no attribute {name!r}")
