@@ -123,6 +123,11 @@ def cannot_write(out: str | Path) -> str | None:
     import os
     import secrets
 
+    from linkwork.io.atomic import target_problem
+
+    why = target_problem(out)
+    if why is not None:
+        return why
     folder = Path(out).parent
     if not folder.is_dir():
         return f"no folder {folder}"
