@@ -12,7 +12,10 @@ from linkwork.cli.app import FileOrExample, _compile, app, fail
 @app.command()
 def analyze(
     file_or_example: FileOrExample,
-    out: Annotated[str, typer.Option(help="folder for the report, tables, figures and animation")] = "report",
+    out: Annotated[
+        str,
+        typer.Option(help="folder for the report, tables, figures and animation: new, empty, or an earlier report"),
+    ] = "report",
     steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
     position: Annotated[
         int, typer.Option(help="which of the 12 positions gets the velocity and acceleration plans")
@@ -27,6 +30,11 @@ def analyze(
 
     if steps < 12:
         fail(LinkworkError(f"--steps: expected at least 12 steps over the turn, got {steps}"))
+    from linkwork.report.folder import problem
+
+    why = problem(out)
+    if why is not None:
+        fail(LinkworkError(f"--out {out}: {why}"))
     mech = _compile(file_or_example)
     try:
         from linkwork.report import analyze as run
