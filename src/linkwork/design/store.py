@@ -309,8 +309,8 @@ def check_table(columns: dict[str, np.ndarray], meta: dict[str, Any]) -> None:
     bad = [name for name, values in columns.items() if len(values) != n]
     if bad:
         problems.append(f"the table's columns {', '.join(bad)} do not have the plan's {n} rows")
-    elif not np.array_equal(columns.get("variant"), np.arange(n)):
-        ids = np.asarray(columns.get("variant", []))
+    ids = np.asarray(columns.get("variant", np.arange(n)))
+    if not bad and not np.array_equal(ids, np.arange(n)):
         missing = np.setdiff1d(np.arange(n), ids).size
         twice = ids.size - np.unique(ids).size
         problems.append(f"the table does not hold every variant once in order ({missing} missing, {twice} repeated)")

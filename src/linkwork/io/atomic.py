@@ -49,7 +49,7 @@ def target_problem(path: str | Path) -> str | None:
     return f"is {kind(st.st_mode)}{via}, not a regular file; linkwork writes only files, replacing them whole"
 
 
-def write_atomic(path: str | Path, writer: Callable[[Path], None]) -> Path:
+def write_atomic(path: str | Path, writer: Callable[[Path], object]) -> Path:
     """Call ``writer(tmp)`` on a temporary file beside ``path``, then move it into place.
 
     An interrupted or failed write leaves the old file (if any) untouched

@@ -60,7 +60,7 @@ def entries(folder: Path) -> set[str]:
     def fail(exc: OSError) -> None:
         raise exc
 
-    found = set()
+    found: set[str] = set()
     for root, dirs, files in os.walk(folder, onerror=fail):
         rel = PurePosixPath(Path(root).relative_to(folder).as_posix())
         found.update(str(rel / n) for n in (*dirs, *files))
