@@ -3,7 +3,6 @@ a kill at any moment leaves the old or the new report whole, and the next run le
 
 from __future__ import annotations
 
-import fcntl
 import json
 import os
 import signal
@@ -17,6 +16,7 @@ import pytest
 from typer.testing import CliRunner
 
 pytest.importorskip("matplotlib")
+fcntl = pytest.importorskip("fcntl")  # POSIX: locks, fork, fifos
 
 import linkwork.cli.analyze  # noqa: E402,F401 - registers the command
 from linkwork.cli.app import app  # noqa: E402
