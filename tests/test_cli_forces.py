@@ -132,7 +132,8 @@ def test_forces_json_and_csv_give_the_drive_joint_in_the_files_order(tmp_path):
     with open(tmp_path / "forces.csv", encoding="utf-8") as fh:
         rows = list(csv.reader(fh))
     column = rows[0].index("O2 (crank on frame).fx [N]")
-    np.testing.assert_allclose([float(r[column]) for r in rows[1:]], crank_on_frame[:, 0], rtol=1e-11)  # JSON: 12 digits
+    csv_fx = [float(r[column]) for r in rows[1:]]
+    np.testing.assert_allclose(csv_fx, crank_on_frame[:, 0], rtol=1e-11)  # from JSON numbers of 12 digits
 
 
 def test_forces_json_of_a_compound_hinge_and_a_pin_in_a_slot():

@@ -12,7 +12,10 @@ from linkwork.cli.app import FileOrExample, _compile, app, fail
 @app.command()
 def analyze(
     file_or_example: FileOrExample,
-    out: Annotated[str, typer.Option(help="folder for the report, tables, figures and animation")] = "report",
+    out: Annotated[
+        str,
+        typer.Option(help="folder for the report, tables, figures and animation: new, empty, or an earlier report"),
+    ] = "report",
     steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
     position: Annotated[
         int, typer.Option(help="which of the 12 positions (0 to 11) gets the velocity and acceleration plans")
@@ -31,6 +34,11 @@ def analyze(
         fail(LinkworkError(f"--steps: expected at least 12 steps over the turn, got {steps}"))
     if not 0 <= position < 12:
         fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {position}"))
+    from linkwork.report.folder import problem
+
+    why = problem(out)
+    if why is not None:
+        fail(LinkworkError(f"--out {out}: {why}"))
     try:
         require_packages()
     except MissingDependencyError as exc:

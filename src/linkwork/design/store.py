@@ -1,13 +1,19 @@
-"""Sweep results on disk: one Parquet file per chunk, a manifest of the plan, the final table.
+"""Sweep results on disk: one Parquet file per chunk, a manifest of the plan and of every stored chunk, the final table.
 
 ``OUT.parts/`` (beside the output file ``OUT``) holds ``manifest.json`` and
 ``chunk-00012.parquet`` files, each written to a temporary name and renamed
-into place, so a file that exists is complete.  A resumed sweep checks that
-its plan matches the manifest and computes only the chunks that are missing;
-the final table is the chunks concatenated in variant order.  Once it is
-written, the parts folder is removed (unless asked to keep it); a folder
-with a manifest and no chunk (a sweep stopped before its first chunk) counts
-as empty.
+into place.  The manifest holds the plan, its hash, and for every stored
+chunk its first variant, its row count and the SHA-256 of its file; the
+chunk's file carries the plan's hash, its chunk number and range in its own
+metadata.  A resumed sweep checks that its plan matches the manifest and
+keeps only the chunks that prove themselves (the file there, of the
+manifest's checksum, of this plan, of the chunk's range and row count, with
+the variants of that range): any other is computed again, with a
+:class:`~linkwork.design.plan.DesignWarning`.  The final table is the chunks
+concatenated in variant order, checked to hold every variant once before it
+is written.  Once it is written, the parts folder is removed (unless asked to
+keep it); a folder with a manifest and no chunk file (a sweep stopped before
+its first chunk) counts as empty.
 """
 
 from __future__ import annotations
@@ -15,18 +21,20 @@ from __future__ import annotations
 import hashlib
 import json
 import re
+import warnings
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from linkwork.design.plan import DesignError
+from linkwork.design.plan import DesignError, DesignWarning
 from linkwork.optional import require
 
 #: Version of the manifest's layout.
-FORMAT = 1
+FORMAT = 2
 
 _CHUNK = re.compile(r"^chunk-(\d{5,})\.parquet$")
+_MANIFEST = "manifest.json"
 
 
 def mechanism_hash(mech: Any) -> str:
@@ -60,11 +68,27 @@ def chunk_path(parts: Path, chunk: int) -> Path:
     return parts / f"chunk-{chunk:05d}.parquet"
 
 
-def done_chunks(parts: Path) -> set[int]:
-    """Chunks whose file is on disk."""
+def chunk_files(parts: Path) -> set[int]:
+    """Chunks that have a file in ``parts`` (proven or not)."""
     if not parts.is_dir():
         return set()
     return {int(m.group(1)) for p in parts.iterdir() if (m := _CHUNK.match(p.name))}
+
+
+def plan_hash(meta: dict[str, Any]) -> str:
+    """SHA-256 of a sweep's plan (its ``meta``), which every chunk file of the sweep carries."""
+    return hashlib.sha256(json.dumps(meta, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
+
+
+def chunk_range(meta: dict[str, Any], chunk: int) -> tuple[int, int]:
+    """The variants ``(first, stop)`` of chunk ``chunk`` of the plan ``meta``."""
+    size, n = int(meta["chunk_size"]), int(meta["plan"]["n_variants"])
+    return chunk * size, min((chunk + 1) * size, n)
+
+
+def _columns(meta: dict[str, Any]) -> list[str]:
+    """The columns of the plan's table, in order: ``variant``, the varied paths, the metrics."""
+    return list(dict.fromkeys(["variant", *(v["path"] for v in meta["plan"]["varies"]), *meta["metrics"]]))
 
 
 def _differences(old: dict[str, Any], new: dict[str, Any]) -> list[str]:
@@ -75,46 +99,85 @@ def _differences(old: dict[str, Any], new: dict[str, Any]) -> list[str]:
     return out
 
 
-def prepare(out: str | Path, manifest: dict[str, Any], resume: bool) -> set[int]:
-    """Make the parts directory of ``out`` ready; returns the chunks already done (resume only).
+def _read_manifest(parts: Path) -> dict[str, Any]:
+    """The manifest in ``parts``, of this version's layout.
 
     Raises
     ------
     DesignError
-        Results are there and ``resume`` is not set; or the manifest on disk is of another plan.
+        It cannot be read, is not a manifest, or is of another layout.
     """
+    path = parts / _MANIFEST
+    again = f"remove {parts} and start afresh"
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise DesignError([f"{path}: cannot read the manifest ({exc}); {again}"]) from None
+    if not isinstance(data, dict) or not isinstance(data.get("chunks"), dict):
+        if isinstance(data, dict) and data.get("format") not in (None, FORMAT):
+            raise DesignError(
+                [f"{path}: a manifest of format {data.get('format')!r}, whose chunks this version cannot check "
+                 f"(format {FORMAT}); {again}"]
+            )  # fmt: skip
+        raise DesignError([f"{path}: not a manifest of linkwork's sweeps; {again}"])
+    return data
+
+
+def _write_manifest(parts: Path, manifest: dict[str, Any]) -> None:
     from linkwork.io.atomic import write_atomic
 
+    text = json.dumps(manifest, indent=1) + "\n"
+    write_atomic(parts / _MANIFEST, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+
+
+def prepare(out: str | Path, meta: dict[str, Any], resume: bool) -> set[int]:
+    """Make the parts directory of ``out`` ready; returns the chunks already done that prove themselves
+    (resume only; see :func:`read_part`), each other one named in a :class:`DesignWarning`.
+
+    Raises
+    ------
+    DesignError
+        Results are there and ``resume`` is not set; or the manifest on disk is of another plan, or
+        cannot be read.
+    """
     parts = parts_dir(out)
-    path = parts / "manifest.json"
-    if path.exists() and not done_chunks(parts):  # a sweep that stopped before its first chunk: nothing to keep
+    path = parts / _MANIFEST
+    if path.exists() and not chunk_files(parts):  # a sweep that stopped before its first chunk: nothing to keep
         path.unlink()
+    plan = {**meta, "plan_sha256": plan_hash(meta)}
+    manifest = {**plan, "chunks": {}}
     if path.exists():
         if not resume:
             raise DesignError(
                 [f"{parts} holds the chunks of a sweep already: add --resume to finish it, or choose another --out"]
             )
-        try:
-            old = json.loads(path.read_text(encoding="utf-8"))
-        except (OSError, ValueError) as exc:
-            raise DesignError([f"{path}: cannot read the manifest ({exc})"]) from None
-        diff = _differences(old, manifest)
+        old = _read_manifest(parts)
+        diff = _differences({k: v for k, v in old.items() if k != "chunks"}, plan)
         if diff:
             raise DesignError(
                 [f"{path}: --resume with another plan than the one on disk; start afresh with another --out, "
                  "or give the same options:", *(f"  {d}" for d in diff)]
             )  # fmt: skip
-        for tmp in parts.glob(".chunk-*.part"):  # a chunk being written when the sweep was killed
+        for tmp in parts.glob(".*.part"):  # a chunk or the manifest being written when the sweep was killed
             tmp.unlink(missing_ok=True)
-        return done_chunks(parts)
-    if resume and parts.is_dir() and done_chunks(parts):
+        for key, entry in old["chunks"].items():
+            chunk = int(key) if isinstance(key, str) and key.isdigit() else -1
+            why = read_part(parts, manifest, chunk, entry)[1]
+            if why is None:
+                manifest["chunks"][str(chunk)] = entry
+            elif 0 <= chunk < int(meta["n_chunks"]):
+                lo, hi = chunk_range(meta, chunk)
+                warnings.warn(
+                    f"{chunk_path(parts, chunk)}: {why}; computing chunk {chunk} (variants {lo} to {hi - 1}) again",
+                    DesignWarning,
+                    stacklevel=3,
+                )
+        _write_manifest(parts, manifest)
+        return {int(c) for c in manifest["chunks"]}
+    if resume and parts.is_dir() and chunk_files(parts):
         raise DesignError([f"{parts}: chunks without a manifest; remove the directory and start afresh"])
     parts.mkdir(parents=True, exist_ok=True)
-
-    def write(tmp: Path) -> None:
-        tmp.write_text(json.dumps(manifest, indent=2) + "\n", encoding="utf-8")
-
-    write_atomic(path, write)
+    _write_manifest(parts, manifest)
     return set()
 
 
@@ -124,6 +187,11 @@ def cannot_write(out: str | Path) -> str | None:
     import os
     import secrets
 
+    from linkwork.io.atomic import target_problem
+
+    why = target_problem(out)
+    if why is not None:
+        return why
     folder = Path(out).parent
     if not folder.is_dir():
         return f"no folder {folder}"
@@ -161,25 +229,119 @@ def to_arrow(columns: dict[str, np.ndarray], units: dict[str, str], meta: dict[s
 
 
 def write_chunk(parts: Path, chunk: int, columns: dict[str, np.ndarray], units: dict[str, str]) -> Path:
-    """Write one chunk's rows atomically."""
+    """Write one chunk's rows atomically, with the plan's hash, the chunk and its range in the file's
+    metadata, and record it in the manifest with its row count and checksum.
+
+    The record is written before the file is renamed into place, so a sweep stopped in between finds a
+    record of a missing file (computed again), never a file without its record."""
+    pa = require("pyarrow", purpose="a sweep's chunk files (Parquet)")
     pq = require("pyarrow.parquet", purpose="a sweep's chunk files (Parquet)")
 
     from linkwork.io.atomic import write_atomic
 
-    table = to_arrow(columns, units)
-    return write_atomic(chunk_path(parts, chunk), lambda tmp: pq.write_table(table, tmp))
+    manifest = _read_manifest(parts)
+    first, rows = int(columns["variant"][0]), len(columns["variant"])
+    own = {"plan_sha256": manifest["plan_sha256"], "chunk": chunk, "first": first, "rows": rows}
+    sink = pa.BufferOutputStream()
+    pq.write_table(to_arrow(columns, units, own), sink)
+    data = sink.getvalue().to_pybytes()
+    manifest["chunks"][str(chunk)] = {"first": first, "rows": rows, "sha256": hashlib.sha256(data).hexdigest()}
+
+    def write(tmp: Path) -> None:  # the record goes in before the file: a file in place is always recorded
+        tmp.write_bytes(data)
+        _write_manifest(parts, manifest)
+
+    return write_atomic(chunk_path(parts, chunk), write)
 
 
-def read_chunks(parts: Path, n_chunks: int) -> dict[str, np.ndarray]:
-    """All chunks, concatenated in variant order."""
+def read_part(parts: Path, manifest: dict[str, Any], chunk: int, entry: Any) -> tuple[Any, str | None]:
+    """Chunk ``chunk``'s file as a pyarrow Table, where it proves that it holds the chunk's rows of the
+    manifest's plan, intact: ``(table, None)``; else ``(None, why)``.
+
+    The proof: the file's bytes have the checksum the manifest's record ``entry`` gives; its metadata
+    names the plan's hash, the chunk's number, first variant and row count; it holds the plan's columns
+    and the variants of the chunk's range, in order."""
     pa = require("pyarrow", purpose="a sweep's chunk files (Parquet)")
     pq = require("pyarrow.parquet", purpose="a sweep's chunk files (Parquet)")
 
-    missing = [c for c in range(n_chunks) if not chunk_path(parts, c).exists()]
-    if missing:
-        raise DesignError([f"{parts}: {len(missing)} chunk(s) missing, the first chunk-{missing[0]:05d}"])
-    table = pa.concat_tables([pq.read_table(chunk_path(parts, c)) for c in range(n_chunks)])
-    return {name: table.column(name).to_numpy() for name in table.column_names}
+    if not 0 <= chunk < int(manifest["n_chunks"]):
+        return None, f"chunk {chunk} is not one of the plan's {manifest['n_chunks']}"
+    first, stop = chunk_range(manifest, chunk)
+    if entry is None:
+        return None, "not recorded in the manifest"
+    if not isinstance(entry, dict) or entry.get("first") != first or entry.get("rows") != stop - first:
+        return None, f"the manifest's record of it is not of variants {first} to {stop - 1}"
+    try:
+        data = chunk_path(parts, chunk).read_bytes()
+    except FileNotFoundError:
+        return None, "missing"
+    except OSError as exc:
+        return None, f"cannot be read ({exc.strerror or exc})"
+    if hashlib.sha256(data).hexdigest() != entry.get("sha256"):
+        return None, "its checksum is not the one the manifest recorded (damaged or replaced)"
+    try:
+        table = pq.read_table(pa.BufferReader(data))
+        own = json.loads((table.schema.metadata or {}).get(b"linkwork", b"null"))
+    except (pa.ArrowException, OSError, ValueError) as exc:
+        return None, f"not a readable Parquet file ({exc})"
+    expected = {"plan_sha256": manifest["plan_sha256"], "chunk": chunk, "first": first, "rows": stop - first}
+    if own != expected:
+        return None, f"its own record {json.dumps(own)} is not {json.dumps(expected)}"
+    if table.column_names != _columns(manifest) or table.num_rows != stop - first:
+        return None, f"its columns or rows are not the plan's ({table.column_names}, {table.num_rows} rows)"
+    if not np.array_equal(table.column("variant").to_numpy(), np.arange(first, stop)):
+        return None, f"its variants are not {first} to {stop - 1}"
+    return table, None
+
+
+def check_table(columns: dict[str, np.ndarray], meta: dict[str, Any]) -> None:
+    """Check a sweep's table before it is written: the plan's columns, every variant ``0..n-1`` exactly once
+    and in order.
+
+    Raises
+    ------
+    DesignError
+        What is wrong.
+    """
+    n = int(meta["plan"]["n_variants"])
+    problems = []
+    if list(columns) != _columns(meta):
+        problems.append(f"the table's columns {list(columns)} are not the plan's {_columns(meta)}")
+    bad = [name for name, values in columns.items() if len(values) != n]
+    if bad:
+        problems.append(f"the table's columns {', '.join(bad)} do not have the plan's {n} rows")
+    ids = np.asarray(columns.get("variant", np.arange(n)))
+    if not bad and not np.array_equal(ids, np.arange(n)):
+        missing = np.setdiff1d(np.arange(n), ids).size
+        twice = ids.size - np.unique(ids).size
+        problems.append(f"the table does not hold every variant once in order ({missing} missing, {twice} repeated)")
+    if problems:
+        raise DesignError(problems)
+
+
+def read_chunks(parts: Path) -> dict[str, np.ndarray]:
+    """All the chunks of the manifest in ``parts``, each proven (:func:`read_part`), concatenated in
+    variant order and checked (:func:`check_table`).
+
+    Raises
+    ------
+    DesignError
+        A chunk is not recorded or does not prove itself (changed since it was written), or the table
+        fails its check.
+    """
+    manifest = _read_manifest(parts)
+    tables, problems = [], []
+    for chunk in range(int(manifest["n_chunks"])):
+        table, why = read_part(parts, manifest, chunk, manifest["chunks"].get(str(chunk)))
+        if why is not None:
+            problems.append(f"{chunk_path(parts, chunk)}: {why}")
+        tables.append(table)
+    if problems:
+        raise DesignError([*problems, f"run again with --resume to compute {'it' if len(problems) == 1 else 'them'}"])
+    names = tables[0].column_names if tables else _columns(manifest)
+    columns = {name: np.concatenate([t.column(name).to_numpy() for t in tables]) for name in names}
+    check_table(columns, manifest)
+    return columns
 
 
 def write_table(out: str | Path, columns: dict[str, np.ndarray], units: dict[str, str], meta: dict[str, Any]) -> Path:

@@ -194,8 +194,9 @@ def sweep(
     out : str or Path, optional
         The table to write (``.parquet`` or ``.nc``); the chunks go to ``OUT.parts/`` as they finish.
     resume : bool
-        Finish a sweep whose chunks are in ``OUT.parts/``: the plan must be the same; chunks on disk are
-        not computed again.
+        Finish a sweep whose chunks are in ``OUT.parts/``: the plan must be the same; chunks on disk that
+        prove themselves intact and of this plan are not computed again, any other is (with a
+        :class:`~linkwork.design.plan.DesignWarning` naming it).
     workers : int, optional
         Worker processes of an embedded local Dask cluster (one thread each); 0 runs in this process.
         Default: this process for up to :data:`IN_PROCESS` variants, else one worker per core.  A script
@@ -221,11 +222,13 @@ def sweep(
     Raises
     ------
     DesignError
-        Bad ranges, paths or metrics (every problem in one message), or a resume of another plan.
+        Bad ranges, paths or metrics (every problem in one message), a resume of another plan or of an
+        unreadable manifest, or a chunk on disk that changed during the run.
     """
     from linkwork.design.store import (
         FORMAT,
-        done_chunks,
+        chunk_files,
+        chunk_range,
         mechanism_hash,
         prepare,
         read_chunks,
@@ -302,7 +305,7 @@ def sweep(
             on_chunk(chunk, len(done), n_chunks)
 
     def task_args(c: int) -> tuple[Any, list[str], np.ndarray, list[str], int, int, int]:
-        lo, hi = c * size, min((c + 1) * size, plan.n_variants)
+        lo, hi = chunk_range(meta, c)
         return mech, plan.paths, plan.values(lo, hi, unit), columns, steps, lo, c
 
     log = str(attempts) if attempts is not None else None
@@ -313,13 +316,13 @@ def sweep(
         elif todo:
             _on_dask(todo, task_args, store, workers, scheduler, log, connect_timeout)
     except BaseException:
-        if parts is not None and not done_chunks(parts):  # nothing to resume: leave no folder behind
+        if parts is not None and not chunk_files(parts):  # nothing to resume: leave no folder behind
             remove_parts(parts)
         raise
     finally:
         bar.close()
     if parts is not None and out is not None:
-        cols = read_chunks(parts, n_chunks)
+        cols = read_chunks(parts)
         try:
             write_table(out, cols, units, meta)
         except OSError as exc:

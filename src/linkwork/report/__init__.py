@@ -2,7 +2,8 @@
 
 :func:`analyze` writes into a fresh folder beside the output folder and puts
 it in place only when everything is written, so an interrupted run never
-leaves a half-written report where a good one was.
+leaves a half-written report where a good one was; it replaces only a folder
+that holds a report and nothing else (:mod:`linkwork.report.folder`).
 """
 
 from __future__ import annotations
@@ -10,9 +11,6 @@ from __future__ import annotations
 import base64
 import html
 import math
-import os
-import shutil
-import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -80,23 +78,23 @@ def analyze(
     ``position``: which of the 12 positions (numbered from the working slider's or rocker's high
     end, as ``linkwork positions`` does) gets the velocity and acceleration plans.  Needs
     matplotlib and xarray (:func:`require_packages`).
+
+    Raises
+    ------
+    LinkworkError
+        ``out`` is something other than a report folder, an empty folder or a new name: a folder of
+        other files, a file, a symbolic link, a device (see :func:`linkwork.report.folder.problem`).
     """
+    from linkwork.report.folder import replacing
+
     require_packages()
-    out = Path(out)
-    parent = out.resolve().parent
-    parent.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".part", dir=parent))
-    try:
+    with replacing(out) as work:
         run = _Run(mech, work, progress or (lambda _: None))
         _build(run, steps, position, animation)
         _write_html(run, work / "report.html")
         if pdf:
             _write_pdf(run, work / "report.pdf")
-        _swap(work, out)
-    except BaseException:
-        shutil.rmtree(work, ignore_errors=True)
-        raise
-    return out / "report.html"
+    return Path(out) / "report.html"
 
 
 def require_packages() -> None:
@@ -105,18 +103,6 @@ def require_packages() -> None:
     from linkwork.optional import require
 
     require("matplotlib", "xarray", purpose="the report (linkwork analyze)")
-
-
-def _swap(new: Path, out: Path) -> None:
-    """Put ``new`` where ``out`` is, the old one removed only after the new one is in place."""
-    old = None
-    if out.exists():
-        old = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".old", dir=out.resolve().parent))
-        os.rmdir(old)
-        os.replace(out, old)
-    os.replace(new, out)
-    if old is not None:
-        shutil.rmtree(old, ignore_errors=True)
 
 
 def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
