@@ -17,7 +17,7 @@ def timed(args: list[str], repeat: int) -> float:
     best = float("inf")
     for _ in range(repeat):
         t = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "linkwork.cli.app", *args], check=True, capture_output=True)
+        subprocess.run([sys.executable, "-m", "linkwork.cli", *args], check=True, capture_output=True)
         best = min(best, time.perf_counter() - t)
     return best
 

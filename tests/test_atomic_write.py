@@ -10,8 +10,8 @@ import pytest
 from typer.testing import CliRunner
 
 import linkwork.cli.view  # noqa: F401 - registers the command
-from linkwork.cli.app import app
-from linkwork.io.atomic import write_atomic
+from linkwork.atomic import write_atomic
+from linkwork.cli.main import app
 
 runner = CliRunner()
 
@@ -66,7 +66,7 @@ def test_a_replaced_file_keeps_its_permissions(tmp_path):
 def test_a_sweep_into_a_fifo_is_refused_before_the_work(tmp_path):
     pytest.importorskip("pyarrow")
     import linkwork as lw
-    from linkwork.design import DesignError
+    from linkwork.errors import DesignError
 
     out = tmp_path / "t.parquet"
     os.mkfifo(out)

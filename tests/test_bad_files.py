@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from linkwork.cli.app import app
+from linkwork.cli.main import app
 from linkwork.errors import SpecError
 
 BAD = Path(__file__).parent / "bad"
@@ -48,7 +48,7 @@ def test_bad_file_through_the_real_command(name):
     """The installed entry point: exit code 2, messages on stderr, no traceback."""
     path = BAD / f"{name}.yaml"
     proc = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli.app", "check", str(path)], capture_output=True, text=True
+        [sys.executable, "-m", "linkwork.cli", "check", str(path)], capture_output=True, text=True
     )
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr

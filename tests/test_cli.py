@@ -16,7 +16,7 @@ import pytest
 from typer.testing import CliRunner
 
 import linkwork as lw
-from linkwork.cli.app import app
+from linkwork.cli.main import app
 from linkwork.examples import names, text
 
 runner = CliRunner()
@@ -103,7 +103,7 @@ def test_readme_quick_start_has_two_commands_and_the_main_job_runs(tmp_path):
     main_job = lines[0].split("&&")[-1].strip().split()
     assert main_job[:2] == ["linkwork", "analyze"]
     proc = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli.app", *main_job[1:]], capture_output=True, text=True, cwd=tmp_path
+        [sys.executable, "-m", "linkwork.cli", *main_job[1:]], capture_output=True, text=True, cwd=tmp_path
     )
     assert proc.returncode == 0, proc.stderr
     report = (tmp_path / main_job[main_job.index("--out") + 1] / "report.html").read_text(encoding="utf-8")
@@ -116,7 +116,7 @@ def test_written_files_have_the_mode_of_a_plain_open(tmp_path):
     """Outputs are written through a temporary file, and get the permissions open() would give them."""
     import os
 
-    from linkwork.io.atomic import write_atomic
+    from linkwork.atomic import write_atomic
 
     umask = os.umask(0o022)
     try:
@@ -366,12 +366,12 @@ def test_tables_are_plain_text_when_piped():
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     shown = readme.split("$ linkwork check double-cut-shears\n", 1)[1].split("```", 1)[0]
     proc = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli.app", "check", "double-cut-shears"], capture_output=True, text=True
+        [sys.executable, "-m", "linkwork.cli", "check", "double-cut-shears"], capture_output=True, text=True
     )
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout == shown
     for command in (["positions", "four-bar"], ["forces", "four-bar", "--steps", "36"]):
-        proc = subprocess.run([sys.executable, "-m", "linkwork.cli.app", *command], capture_output=True, text=True)
+        proc = subprocess.run([sys.executable, "-m", "linkwork.cli", *command], capture_output=True, text=True)
         assert proc.returncode == 0, proc.stderr
         assert proc.stdout.isascii(), command
         assert all(line == line.rstrip() for line in proc.stdout.splitlines())
@@ -389,7 +389,7 @@ def test_tables_fit_the_terminal():
     fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 50, 50, 0, 0))
     env = {k: v for k, v in os.environ.items() if k not in ("COLUMNS", "LINES", "FORCE_COLOR", "NO_COLOR")}
     proc = subprocess.Popen(
-        [sys.executable, "-m", "linkwork.cli.app", "positions", "four-bar"],
+        [sys.executable, "-m", "linkwork.cli", "positions", "four-bar"],
         stdout=follower, stderr=follower, env={**env, "TERM": "xterm"},
     )  # fmt: skip
     os.close(follower)

@@ -10,7 +10,7 @@ import pytest
 from typer.testing import CliRunner
 
 import linkwork.cli.forces  # noqa: F401 - registers the commands
-from linkwork.cli.app import app
+from linkwork.cli.main import app
 
 runner = CliRunner()
 

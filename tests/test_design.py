@@ -15,8 +15,8 @@ import pytest
 from ruamel.yaml import YAML
 
 import linkwork as lw
-from linkwork.design import DesignError
 from linkwork.design.plan import Vary, make_plan
+from linkwork.errors import DesignError
 from linkwork.examples import text
 from mechanisms import offset_slider_crank
 
@@ -317,7 +317,7 @@ def test_parameters_are_listed_in_the_files_units_and_a_range_far_from_them_warn
         out.unlink()
         r = _cli(*base, "--vary", vary)
         assert r.returncode == 0 and "warning" not in r.stderr, r.stderr
-    from linkwork.design.plan import DesignWarning
+    from linkwork.errors import DesignWarning
 
     with pytest.warns(DesignWarning, match="above 100 times"):
         lw.sweep("four-bar", ["links.rocker.length=30m:40m:2"], ["assembles"])
@@ -459,7 +459,7 @@ def test_every_problem_of_the_options_is_reported_at_once():
 
 
 def _cli(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "linkwork.cli.app", *args], capture_output=True, text=True, cwd=cwd)
+    return subprocess.run([sys.executable, "-m", "linkwork.cli", *args], capture_output=True, text=True, cwd=cwd)
 
 
 def test_cli_sweep_errors_exit_2_with_no_traceback_and_no_file(tmp_path):
@@ -611,7 +611,7 @@ def test_a_sweep_killed_on_the_command_line_resumes_with_its_chunks_untouched(tm
     args = ["sweep", "double-cut-shears", "--vary", "links.crank.length=95mm:105mm:8", "--vary",
             "links.rod.length=390mm:410mm:3", "--metric", "peak_driving_torque", "--metric", "knife_overlap",
             "--out", str(out), "--chunk-size", "1", "--workers", "0", "--quiet"]  # fmt: skip
-    proc = subprocess.Popen([sys.executable, "-m", "linkwork.cli.app", *args], stderr=subprocess.PIPE)
+    proc = subprocess.Popen([sys.executable, "-m", "linkwork.cli", *args], stderr=subprocess.PIPE)
     parts = tmp_path / "s.parquet.parts"
     deadline = time.monotonic() + 120
     while len(list(parts.glob("chunk-*.parquet"))) < 3 and time.monotonic() < deadline and proc.poll() is None:

@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 
 import linkwork as lw
 from linkwork import MechanismBuilder
-from linkwork.cli.app import app
+from linkwork.cli.main import app
 from linkwork.errors import LinkworkError
 from linkwork.examples import names
 from linkwork.motion.drive_range import drive_range, grashof

@@ -207,7 +207,7 @@ def test_impact_command_json():
     from typer.testing import CliRunner
 
     import linkwork.cli.impact  # noqa: F401 - registers the command
-    from linkwork.cli.app import app
+    from linkwork.cli.main import app
 
     result = CliRunner().invoke(app, ["impact", "percussion-rocker", "--json"])
     assert result.exit_code == 0, result.output

@@ -555,7 +555,7 @@ runner = CliRunner()
 
 def test_impact_cycle_command():
     import linkwork.cli.impact  # noqa: F401 - registers the command
-    from linkwork.cli.app import app
+    from linkwork.cli.main import app
 
     result = runner.invoke(app, ["impact", "percussion-rocker", "--cycle"])
     assert result.exit_code == 0, result.output

@@ -145,7 +145,7 @@ def test_dynamics_command_on_the_double_cut_shears(tmp_path):
     from typer.testing import CliRunner
 
     import linkwork.cli.dynamics  # noqa: F401 - registers the command
-    from linkwork.cli.app import app
+    from linkwork.cli.main import app
 
     result = CliRunner().invoke(app, ["dynamics", "double-cut-shears", "--json", "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output

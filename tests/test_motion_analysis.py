@@ -11,7 +11,7 @@ from typer.testing import CliRunner
 
 import linkwork as lw
 import linkwork.cli.motion  # noqa: F401,E402 - registers the commands
-from linkwork.cli.app import app
+from linkwork.cli.main import app
 from linkwork.motion.analysis import extremes, instant_centre, transmission_angles
 from linkwork.motion.plans import plans
 from mechanisms import TEXTBOOK

@@ -133,7 +133,7 @@ def test_the_python_listing_and_the_command_line_listing_agree():
     import subprocess
     import sys
 
-    out = subprocess.run([sys.executable, "-m", "linkwork.cli.app", "parameters", "double-cut-shears"],
+    out = subprocess.run([sys.executable, "-m", "linkwork.cli", "parameters", "double-cut-shears"],
                          capture_output=True, text=True)  # fmt: skip
     assert out.returncode == 0, out.stderr
     listed = [line.split()[0] for line in out.stdout.splitlines()]

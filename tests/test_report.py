@@ -14,7 +14,7 @@ pytest.importorskip("matplotlib")
 
 import linkwork.cli.analyze  # noqa: E402,F401 - registers the command
 import linkwork.cli.motion  # noqa: E402,F401 - registers the command
-from linkwork.cli.app import app  # noqa: E402
+from linkwork.cli.main import app  # noqa: E402
 
 runner = CliRunner()
 SECTIONS = {

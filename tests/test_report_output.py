@@ -19,7 +19,7 @@ pytest.importorskip("matplotlib")
 fcntl = pytest.importorskip("fcntl")  # POSIX: locks, fork, fifos
 
 import linkwork.cli.analyze  # noqa: E402,F401 - registers the command
-from linkwork.cli.app import app  # noqa: E402
+from linkwork.cli.main import app  # noqa: E402
 
 runner = CliRunner()
 MARKER = ".linkwork-report"
@@ -299,7 +299,7 @@ def test_a_killed_analyze_leaves_the_old_report_and_the_next_run_no_stray_folder
     out = tmp_path / "r"
     out.mkdir()
     _fake_report(out, "old")
-    cmd = [sys.executable, "-m", "linkwork.cli.app", "analyze", "four-bar", "--out", str(out), "--steps", "36",
+    cmd = [sys.executable, "-m", "linkwork.cli", "analyze", "four-bar", "--out", str(out), "--steps", "36",
            "--no-animation"]  # fmt: skip
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = time.monotonic() + 120

@@ -14,8 +14,7 @@ import numpy as np
 import pytest
 
 import linkwork as lw
-from linkwork.design import DesignError
-from linkwork.design.plan import DesignWarning
+from linkwork.errors import DesignError, DesignWarning
 
 pq = pytest.importorskip("pyarrow.parquet")
 
@@ -191,7 +190,7 @@ def test_an_unreadable_or_older_manifest_is_refused_with_a_message(tmp_path, man
         manifest = json.dumps({**old, "format": 1})
     (parts / "manifest.json").write_text(manifest)
     r = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli.app", "sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
+        [sys.executable, "-m", "linkwork.cli", "sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
          *sum((["--metric", m] for m in METRICS), []), "--chunk-size", "4", "--steps", "36", "--out", str(out),
          "--resume", "--quiet"],
         capture_output=True, text=True,
@@ -205,7 +204,7 @@ def test_the_command_says_which_parts_it_computes_again_one_line_each(tmp_path, 
     for name in ("chunk-00000.parquet", "chunk-00004.parquet"):
         (parts / name).write_bytes(b"PAR1 damaged PAR1")
     r = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli.app", "sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
+        [sys.executable, "-m", "linkwork.cli", "sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
          *sum((["--metric", m] for m in METRICS), []), "--chunk-size", "4", "--steps", "36", "--out", str(out),
          "--resume", "--quiet"],
         capture_output=True, text=True,

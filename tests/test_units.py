@@ -2,7 +2,8 @@ import math
 
 import pytest
 
-from linkwork.units import UnitParseError, parse_quantity
+from linkwork.errors import UnitParseError
+from linkwork.units import parse_quantity
 
 MM = {"length": "mm", "mass": "kg", "time": "s", "force": "N", "angle": "deg"}
 

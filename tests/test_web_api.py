@@ -420,7 +420,7 @@ runner = CliRunner()
 
 def test_view_command_exports_and_reports_errors(tmp_path):
     import linkwork.cli.view  # noqa: F401
-    from linkwork.cli.app import app
+    from linkwork.cli.main import app
 
     out = tmp_path / "v.html"
     result = runner.invoke(app, ["view", "four-bar", "--export", str(out), "--steps", "36"])
@@ -440,7 +440,7 @@ def test_view_command_exports_and_reports_errors(tmp_path):
 def test_view_command_serves_on_loopback_with_a_free_port():
     import httpx
 
-    code = "import sys; from linkwork.cli.app import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
+    code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
     proc = subprocess.Popen(
         [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"],
         stdout=subprocess.PIPE,
@@ -469,7 +469,7 @@ def test_the_readme_export_command_runs(tmp_path):
     from pathlib import Path
 
     import linkwork.cli.view  # noqa: F401
-    from linkwork.cli.app import app
+    from linkwork.cli.main import app
 
     readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
     section = readme.split("## Browser viewer", 1)[1].split("\n## ", 1)[0]
@@ -564,7 +564,7 @@ def test_view_export_to_a_place_that_cannot_be_written_fails_cleanly(tmp_path, m
     """A directory, an empty name, a place where no file can be made: exit 2 and one line, no traceback, and no
     file (finished or partial) left behind."""
     import linkwork.cli.view  # noqa: F401
-    from linkwork.cli.app import app
+    from linkwork.cli.main import app
 
     monkeypatch.chdir(tmp_path)  # an empty name would write beside the working directory
     (tmp_path / "FILE").write_text("x", encoding="utf-8")
@@ -630,7 +630,7 @@ def test_poses_and_cycles_share_the_two_solving_slots():
 
 def test_view_command_refuses_more_than_1440_steps(tmp_path):
     import linkwork.cli.view  # noqa: F401
-    from linkwork.cli.app import app
+    from linkwork.cli.main import app
 
     result = runner.invoke(app, ["view", "four-bar", "--export", str(tmp_path / "p.html"), "--steps", "1441"])
     assert result.exit_code == 2 and "1440" in result.output

@@ -84,16 +84,40 @@ class UnassemblableError(LinkworkError):
         super().__init__(message)
 
 
+class UnitParseError(LinkworkError, ValueError):
+    """A value could not be read as the expected kind of quantity.
+
+    ``reason`` says why a unit was refused, when there is more to say than its kind.
+    """
+
+    def __init__(self, message: str, reason: str = ""):
+        super().__init__(message)
+        self.reason = reason
+
+
+class DesignError(LinkworkError, ValueError):
+    """Bad design options (sweeps, optimisation): one line per problem in the message, the problems
+    in ``problems``."""
+
+    def __init__(self, problems: list[str] | tuple[str, ...]):
+        self.problems = tuple(problems)
+        super().__init__("\n".join(self.problems))
+
+
+class SlidingReversal(LinkworkError):
+    """The striker's sliding on the tool would reverse within an impact (the crank thrown back)."""
+
+
+class BusyError(LinkworkError):
+    """The viewer is solving as many edits as it may at once: try again."""
+
+
 class LinkworkWarning(UserWarning):
     """Base class of linkwork's warnings."""
 
 
-class SingularityWarning(LinkworkWarning):
-    """A position where the Jacobian of a group is singular (dead point)."""
-
-
-class ConvergenceWarning(LinkworkWarning):
-    """An iterative solve did not converge."""
+class DesignWarning(LinkworkWarning):
+    """A design option that is valid but probably not what was meant (e.g. a range in the wrong units)."""
 
 
 class MissingDependencyError(LinkworkError, ImportError):

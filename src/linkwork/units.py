@@ -23,6 +23,8 @@ import re
 from functools import lru_cache
 from typing import Any
 
+from linkwork.errors import UnitParseError
+
 #: Kinds of quantity: (phrase for messages, SI unit, pint dimensionality).
 KINDS: dict[str, tuple[str, str, str]] = {
     "length": ("a length", "m", "[length]"),
@@ -78,17 +80,6 @@ _IN_FILE_UNITS = {
 _PROPOSED = {"angular_speed": "rpm"}
 
 _PLURAL = {"length": "lengths", "mass": "masses", "time": "times", "angle": "angles", "force": "forces"}
-
-
-class UnitParseError(ValueError):
-    """A value could not be read as the expected kind of quantity.
-
-    ``reason`` says why a unit was refused, when there is more to say than its kind.
-    """
-
-    def __init__(self, message: str, reason: str = ""):
-        super().__init__(message)
-        self.reason = reason
 
 
 @lru_cache(maxsize=1)

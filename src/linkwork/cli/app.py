@@ -123,9 +123,9 @@ def _parts(out: Console, tab: Table, keep: int) -> list[Table]:
 
 
 def _compile(file_or_example: str) -> Any:
+    from linkwork.api import compile
     from linkwork.errors import LinkworkError
     from linkwork.examples import resolve
-    from linkwork.structure.compile import compile
 
     try:
         return compile(resolve(file_or_example))
@@ -143,11 +143,11 @@ def check(
 ) -> None:
     """Validate a mechanism and print its structure (DOF, redundant constraints, Assur groups) and the range
     of its drive over which it assembles (Grashof's class for a four-bar)."""
+    from linkwork.api import compile
     from linkwork.errors import LinkworkError
     from linkwork.examples import resolve
     from linkwork.motion.drive_range import drive_range
     from linkwork.spec.values import values_read
-    from linkwork.structure.compile import compile
 
     try:
         spec = resolve(file_or_example)
@@ -277,22 +277,3 @@ def example(name: Annotated[str, typer.Argument(help="name of a bundled example"
         typer.echo(text(name), nl=False)
     except LinkworkError as exc:
         fail(exc)
-
-
-def main() -> None:
-    """Entry point of the ``linkwork`` script."""
-    import linkwork.cli.analyze  # noqa: F401 - registers its commands
-    import linkwork.cli.design  # noqa: F401
-    import linkwork.cli.dynamics  # noqa: F401
-    import linkwork.cli.forces  # noqa: F401
-    import linkwork.cli.impact  # noqa: F401
-    import linkwork.cli.motion  # noqa: F401
-    import linkwork.cli.view  # noqa: F401
-
-    app()
-
-
-if __name__ == "__main__":  # python -m linkwork.cli.app: the commands register on the imported module's app
-    from linkwork.cli.app import main as _main
-
-    _main()

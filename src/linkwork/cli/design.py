@@ -56,12 +56,12 @@ class _Warnings:
 
         self.catcher = warnings.catch_warnings(record=True)
         self.caught = self.catcher.__enter__()
-        from linkwork.design.plan import DesignWarning
+        from linkwork.errors import DesignWarning
 
         warnings.simplefilter("always", DesignWarning)
 
     def __exit__(self, *exc: Any) -> None:
-        from linkwork.design.plan import DesignWarning
+        from linkwork.errors import DesignWarning
 
         self.catcher.__exit__(*exc)
         for w in self.caught:
@@ -104,10 +104,9 @@ def sweep(
     direction of its guide's axis (the rocker turns counter-clockwise) over that of the other stroke, the crank
     turning its own way; working_time_ratio: the knives closing over opening.
     """
-    from linkwork.design.plan import DesignError
     from linkwork.design.store import parts_dir
     from linkwork.design.sweep import sweep as run
-    from linkwork.errors import LinkworkError
+    from linkwork.errors import DesignError, LinkworkError
 
     if scheduler is not None or (workers or 0) > 0:
         needs("distributed", purpose="a sweep on Dask (--workers, --scheduler)")
@@ -187,8 +186,7 @@ def optimize(
 ) -> None:
     """The best design in the ranges (differential evolution over the whole population at once)."""
     from linkwork.design.optimize import optimize as run
-    from linkwork.design.plan import DesignError
-    from linkwork.errors import LinkworkError
+    from linkwork.errors import DesignError, LinkworkError
 
     if out is not None and not out.endswith((".yaml", ".yml")):
         fail(LinkworkError(f'--out "{out}": expected a .yaml file'))

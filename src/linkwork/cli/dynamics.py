@@ -37,7 +37,7 @@ def dynamics(
     if out is not None:
         from pathlib import Path
 
-        from linkwork.io.atomic import write_atomic
+        from linkwork.atomic import write_atomic
         from linkwork.io.jsonout import dumps
 
         cycle = data["cycle"]

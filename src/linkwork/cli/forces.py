@@ -14,9 +14,9 @@ from linkwork.cli.motion import _angles
 
 def _speed(mech: Any, text: str | None) -> float | None:
     """The drive speed of ``--speed`` in SI, in the file's direction of the drive."""
-    from linkwork.errors import LinkworkError
+    from linkwork.errors import LinkworkError, UnitParseError
     from linkwork.structure.constraints import REVOLUTE
-    from linkwork.units import UnitParseError, parse_quantity
+    from linkwork.units import parse_quantity
 
     if text is None:
         return None
@@ -82,7 +82,7 @@ def forces(
     if out is not None:
         from pathlib import Path
 
-        from linkwork.io.atomic import write_atomic
+        from linkwork.atomic import write_atomic
         from linkwork.io.jsonout import dumps
 
         try:
@@ -107,8 +107,8 @@ def forces(
 
 
 def _force(text: str | None) -> float | None:
-    from linkwork.errors import LinkworkError
-    from linkwork.units import UnitParseError, parse_quantity
+    from linkwork.errors import LinkworkError, UnitParseError
+    from linkwork.units import parse_quantity
 
     if text is None:
         return None
@@ -203,9 +203,9 @@ def balance(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Counterweights that cancel the shaking force (or its first harmonic), with the figures before and after."""
-    from linkwork.errors import LinkworkError
+    from linkwork.errors import LinkworkError, UnitParseError
     from linkwork.kinetostatics import balance as solve
-    from linkwork.units import UnitParseError, parse_quantity
+    from linkwork.units import parse_quantity
 
     mech = _compile(file_or_example)
     r = None

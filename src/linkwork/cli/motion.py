@@ -15,7 +15,7 @@ def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
     """Keyword arguments of lw.kinematics from the options; crank angles in degrees, or slider
     positions in mm for a linear drive."""
     from linkwork.errors import LinkworkError
-    from linkwork.motion.analysis import one_crank
+    from linkwork.structure.model import one_crank
 
     if mech.n_drives != 1:
         fail(
@@ -128,9 +128,9 @@ def positions(
 ) -> None:
     """The plan of positions: coordinates of the points at COUNT crank positions (mm)."""
     from linkwork.errors import LinkworkError
-    from linkwork.io.motion_tables import point_labels
     from linkwork.motion import analysis, cycle
     from linkwork.motion import kinematics as solve
+    from linkwork.structure.model import point_labels
 
     mech = _compile(file_or_example)
     if count < 1:

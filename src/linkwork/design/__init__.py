@@ -11,8 +11,9 @@ from __future__ import annotations
 
 from linkwork.design.metrics import METRICS, Metric
 from linkwork.design.optimize import Optimum, optimize
-from linkwork.design.plan import DesignError, Plan, Vary
+from linkwork.design.plan import Plan, Vary
 from linkwork.design.sweep import SweepTable, sweep
+from linkwork.errors import DesignError
 
 __all__ = [
     "METRICS",

@@ -23,13 +23,13 @@ from linkwork.motion.analysis import (
     Output,
     Range,
     find_output,
-    one_crank,
     output_range,
     outputs,
     sampled_range,
     slopes,
     transmission,
 )
+from linkwork.structure.model import one_crank
 
 
 @dataclass(frozen=True)
@@ -365,7 +365,7 @@ class MetricRequest:
 
 def parse_metrics(names: list[str], mech: Any) -> list[MetricRequest]:
     """Read metric names (``NAME`` or ``NAME:ARG``); raises DesignError listing every problem."""
-    from linkwork.design.plan import DesignError
+    from linkwork.errors import DesignError
     from linkwork.spec.checks import suggest
 
     problems: list[str] = []

@@ -21,8 +21,9 @@ import numpy as np
 
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import MetricRequest, parse_metrics
-from linkwork.design.plan import DesignError, Vary
+from linkwork.design.plan import Vary
 from linkwork.design.sweep import SweepTable, _declared, _source, _varies
+from linkwork.errors import DesignError
 from linkwork.units import KINDS
 
 
@@ -48,7 +49,8 @@ _CONSTRAINT = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_:.\-]*)\s*(>=|<=|>|<)\s*(.+?
 def parse_constraints(texts: list[str], mech: Any, declared: dict[str, str]) -> list[Constraint]:
     """Read ``"METRIC>=VALUE"`` / ``"METRIC<=VALUE"`` (VALUE with a unit, or in the file's units)."""
     from linkwork.design.metrics import METRICS
-    from linkwork.units import UnitParseError, parse_quantity
+    from linkwork.errors import UnitParseError
+    from linkwork.units import parse_quantity
 
     problems, out = [], []
     for text in texts:
@@ -159,7 +161,7 @@ def optimize(
     ----------
     mechanism : str, Path, Spec or Mechanism
         A mechanism file, a bundled example, a description or a compiled mechanism
-        (:mod:`linkwork.resolve`); writing ``out`` needs its description.
+        (:mod:`linkwork.api`); writing ``out`` needs its description.
     vary : dict or list of str
         Ranges as for :func:`linkwork.sweep`; a COUNT, if given, is ignored.
     objective : str

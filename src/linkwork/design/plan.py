@@ -17,19 +17,11 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.errors import LinkworkError
+from linkwork.errors import DesignError
 from linkwork.structure.parameters import parameter_list
 
 #: How a plan samples its ranges.
 SAMPLINGS = ("grid", "random", "lhs")
-
-
-class DesignError(LinkworkError, ValueError):
-    """Bad design options: one line per problem in the message, the problems in ``problems``."""
-
-    def __init__(self, problems: list[str] | tuple[str, ...]):
-        self.problems = tuple(problems)
-        super().__init__("\n".join(self.problems))
 
 
 @dataclass(frozen=True)
@@ -61,10 +53,6 @@ class Vary:
 
     def as_dict(self) -> dict[str, Any]:
         return {"path": self.path, "start": self.start, "stop": self.stop, "count": self.count, "kind": self.kind}
-
-
-class DesignWarning(UserWarning):
-    """A design option that is valid but probably not what was meant (e.g. a range in the wrong units)."""
 
 
 def in_file_units(value: float, kind: str, declared: dict[str, str]) -> tuple[float, str]:
@@ -111,8 +99,9 @@ def parse_vary(
     ``count_required``: True for a grid (COUNT needed), None for a random or Latin-hypercube sample
     (COUNT refused: ``samples`` gives the number of variants), False where it is ignored (optimisation).
     """
+    from linkwork.errors import UnitParseError
     from linkwork.spec.checks import suggest
-    from linkwork.units import UnitParseError, parse_quantity
+    from linkwork.units import parse_quantity
 
     problems: list[str] = []
     match = _VARY.match(text)

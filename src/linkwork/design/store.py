@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.design.plan import DesignError, DesignWarning
+from linkwork.errors import DesignError, DesignWarning
 from linkwork.optional import require
 
 #: Version of the manifest's layout.
@@ -124,7 +124,7 @@ def _read_manifest(parts: Path) -> dict[str, Any]:
 
 
 def _write_manifest(parts: Path, manifest: dict[str, Any]) -> None:
-    from linkwork.io.atomic import write_atomic
+    from linkwork.atomic import write_atomic
 
     text = json.dumps(manifest, indent=1) + "\n"
     write_atomic(parts / _MANIFEST, lambda tmp: tmp.write_text(text, encoding="utf-8"))
@@ -187,7 +187,7 @@ def cannot_write(out: str | Path) -> str | None:
     import os
     import secrets
 
-    from linkwork.io.atomic import target_problem
+    from linkwork.atomic import target_problem
 
     why = target_problem(out)
     if why is not None:
@@ -237,7 +237,7 @@ def write_chunk(parts: Path, chunk: int, columns: dict[str, np.ndarray], units: 
     pa = require("pyarrow", purpose="a sweep's chunk files (Parquet)")
     pq = require("pyarrow.parquet", purpose="a sweep's chunk files (Parquet)")
 
-    from linkwork.io.atomic import write_atomic
+    from linkwork.atomic import write_atomic
 
     manifest = _read_manifest(parts)
     first, rows = int(columns["variant"][0]), len(columns["variant"])
@@ -346,7 +346,7 @@ def read_chunks(parts: Path) -> dict[str, np.ndarray]:
 
 def write_table(out: str | Path, columns: dict[str, np.ndarray], units: dict[str, str], meta: dict[str, Any]) -> Path:
     """The final table, atomically: Parquet (``.parquet``) or NetCDF (``.nc``, needs xarray), a row per variant."""
-    from linkwork.io.atomic import write_atomic
+    from linkwork.atomic import write_atomic
 
     out = Path(out)
     if out.suffix == ".nc":

@@ -20,8 +20,8 @@ import numpy as np
 
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import MetricRequest, parse_metrics
-from linkwork.design.plan import DesignError, Plan, Vary, make_plan, parse_varies
-from linkwork.errors import MissingDependencyError
+from linkwork.design.plan import Plan, Vary, make_plan, parse_varies
+from linkwork.errors import DesignError, MissingDependencyError
 from linkwork.optional import require
 
 #: Samples (variants x crank angles) per chunk by default: the arrays of a chunk stay some hundred MB.
@@ -70,8 +70,8 @@ class SweepTable:
 
 def _source(mechanism: Any) -> tuple[Any, Any]:
     """(compiled mechanism, its description or None) of a file, an example name, a spec or a compiled
-    mechanism (:mod:`linkwork.resolve`)."""
-    from linkwork.resolve import mechanism_of
+    mechanism (:mod:`linkwork.api`)."""
+    from linkwork.api import mechanism_of
 
     mech = mechanism_of(mechanism, "mechanism")
     return mech, mech.spec
@@ -93,7 +93,8 @@ def _varies(vary: Any, mech: Any, spec: Any, count_required: bool | None = True)
     :class:`~linkwork.design.plan.DesignWarning`."""
     import warnings
 
-    from linkwork.design.plan import DesignWarning, scale_warnings
+    from linkwork.design.plan import scale_warnings
+    from linkwork.errors import DesignWarning
 
     if isinstance(vary, dict):
         texts = []

@@ -35,8 +35,8 @@ def draw_scheme(kin: Any, index: int = 0, ax: Any = None, trajectories: bool = F
     from matplotlib.figure import Figure
     from matplotlib.patches import Circle, Polygon, Rectangle
 
-    from linkwork.io.motion_tables import point_labels
     from linkwork.motion.analysis import guide
+    from linkwork.structure.model import point_labels
 
     mech = kin.mechanism
     fig = ax.figure if ax is not None else Figure(figsize=(7, 6))

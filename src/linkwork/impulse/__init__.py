@@ -9,7 +9,8 @@
 
 from __future__ import annotations
 
-from linkwork.impulse.cycle import Blow, Phase, SlidingReversal, Strike, Tool, WorkingCycle, simulate_blows, strike
+from linkwork.errors import SlidingReversal
+from linkwork.impulse.cycle import Blow, Phase, Strike, Tool, WorkingCycle, simulate_blows, strike
 from linkwork.impulse.mechanism import Impact, impact, reduced_model
 from linkwork.impulse.rocker import RockerImpact, rocker_impact
 

@@ -53,7 +53,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.errors import LinkworkError
+from linkwork.errors import LinkworkError, SlidingReversal
 from linkwork.machine.simulate import PeriodicSplines
 
 FLIGHT, APART, CONTACT = "flight", "apart", "contact"
@@ -335,10 +335,6 @@ class _Free:
         return self.resistance * (self.state(min(t, self.t_top))[0] - self.u0)
 
 
-class SlidingReversal(LinkworkError):
-    """The striker's sliding on the tool would reverse within an impact (the crank thrown back)."""
-
-
 @dataclass(frozen=True)
 class Strike:
     """One impact of the striker on the tool in one pose (:func:`strike`); vectors in global axes.
@@ -534,9 +530,6 @@ def simulate_blows(
     from linkwork.kinetostatics.reactions import inertia_and_gravity, solve_reactions
     from linkwork.machine import reduced
     from linkwork.motion import kinematics
-    from linkwork.resolve import mechanism_of
-
-    mech = mechanism_of(mech, "simulate_blows")
     blow_spec = mech.blow
     if drive is None:
         drive = mech.machine

@@ -168,7 +168,8 @@ def impact(
 ) -> Impact:
     """The impact of point ``at`` (``link.point``) on a surface at rest with outward ``normal``.
 
-    ``mech``: a path, an example name, a Spec or a Mechanism (:mod:`linkwork.resolve`).  Every
+    ``mech``: a compiled Mechanism (``linkwork.impact`` also takes a path, an example name or a
+    Spec: :mod:`linkwork.api`).  Every
     argument of the blow not given is the file's (its ``impact:`` section; see :func:`blow_setup`):
     ``normal`` a vector or an angle (rad); ``omega_before`` the angular speed of ``link``
     (default: the link of ``at``) before the impact, rad/s; ``restitution`` R and ``friction`` f.
@@ -176,9 +177,6 @@ def impact(
     :func:`~linkwork.impulse.rocker_impact`.
     """
     from linkwork.motion import kinematics
-    from linkwork.resolve import mechanism_of
-
-    mech = mechanism_of(mech, "impact")
     if mech.n_drives != 1:
         raise LinkworkError("impact needs a mechanism of one degree of freedom (one drive)")
     setup = blow_setup(

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.io.atomic import write_atomic
+from linkwork.atomic import write_atomic
 from linkwork.structure.constraints import REVOLUTE
 
 CONVENTION = (

@@ -126,11 +126,9 @@ def balance(
     default: the distance of the link's farthest point.  The solution is at ``steps`` crank
     angles over a turn of the file's uniform drive (or ``speed``).
     """
-    from linkwork.kinetostatics import forces
-    from linkwork.motion.analysis import one_crank
-    from linkwork.resolve import mechanism_of
+    from linkwork.kinetostatics.forces import forces
+    from linkwork.structure.model import one_crank
 
-    mech = mechanism_of(mech, "balance")
     if harmonic not in (None, 1):
         raise LinkworkError(f"harmonic: expected 1 (first-harmonic balancing) or None (full), got {harmonic}")
     if not one_crank(mech):

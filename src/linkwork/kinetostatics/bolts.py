@@ -1,4 +1,5 @@
-"""What the foundation bolts carry: pull, push, shear; the speed at which they start to be pulled.
+"""What the foundation bolts carry: pull, push, shear (:mod:`linkwork.kinetostatics.bolt_speed`: the speed
+at which they start to be pulled).
 
 The machine stands on its foundation and is held down by bolts; friction
 between the two is neglected, so the bolts take all of the horizontal force
@@ -10,7 +11,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -48,29 +48,3 @@ def bolt_loads(foundation: np.ndarray, angles: np.ndarray) -> Bolts:
         i = int(np.nanargmax(values)) if np.isfinite(values).any() else 0
         out += [float(values[i]), float(angles[i])]
     return Bolts(*out)
-
-
-def bolt_speed(mech: Any, pull: float = 0.0, steps: int = 720) -> float:
-    """Uniform crank speed (rad/s) at which the largest pull on the bolts reaches ``pull`` (N).
-
-    With the crank turning uniformly, every velocity is proportional to the
-    speed and every acceleration to its square, so the vertical foundation
-    force is ``F(phi) = G(phi) + omega^2 I(phi)``: ``G`` from the weights
-    (computed at rest) and ``I`` from the inertia (the force at 1 rad/s less
-    ``G``).  The pull reaches ``pull`` first at ``omega^2 = min (pull - G) / I``
-    over the angles where ``I > 0``.  Returns ``inf`` if no speed does it,
-    0 if the bolts carry that pull at rest already.
-    """
-    from linkwork.kinetostatics import forces
-    from linkwork.resolve import mechanism_of
-
-    mech = mechanism_of(mech, "bolt_speed")
-    rest = forces(mech, steps=steps, speed=0.0).foundation[..., 1]
-    one = forces(mech, steps=steps, speed=1.0).foundation[..., 1]
-    inertia = one - rest
-    if np.nanmax(rest) >= pull:
-        return 0.0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        need = np.where(inertia > 0, (pull - rest) / inertia, np.inf)
-    best = float(np.nanmin(need))
-    return math.sqrt(best) if math.isfinite(best) else math.inf

@@ -52,11 +52,12 @@ class ExternalLoad:
     pair: int = -1  # friction: the elementary pair it acts in
 
 
-def compile_loads(
-    spec: Any, link_index: dict[str, int], pindex: dict[tuple[int, str], int], pairs: Any = None
-) -> tuple:
-    """The :class:`ExternalLoad` records of a validated spec; ``pairs`` lists ``(joint, type, a, b)``
-    of every elementary pair (for friction)."""
+def compile_loads(spec: Any, mech: Any) -> tuple:
+    """The :class:`ExternalLoad` records of a validated spec, for its structural model ``mech``
+    (:func:`linkwork.structure.compile.structural_model`: its links, points and elementary pairs)."""
+    link_index = {name: i for i, name in enumerate(mech.link_names)}
+    pindex = {(int(mech.point_link[p]), name.split(".", 1)[1]): p for p, name in enumerate(mech.point_names)}
+    pairs = [(j, t, a, b) for j, t, (a, b) in zip(mech.pair_joint, mech.pair_type, mech.pair_links, strict=True)]
 
     def point(ref: str) -> int:
         ln, p = ref.split(".", 1)
@@ -79,7 +80,7 @@ def compile_loads(
             else:
                 out.append(ExternalLoad(name, "force", link, (p,), u, table=table(load.angle, load.magnitude)))
         elif load.type == "friction":
-            for k, (joint, kind, _, b) in enumerate(pairs or ()):
+            for k, (joint, kind, _, b) in enumerate(pairs):
                 if joint != load.joint:
                     continue
                 if kind == 0 and load.moment is not None:

@@ -75,10 +75,7 @@ def reduced(mech: Any, steps: int = 3600) -> Reduced:
     from linkwork.kinetostatics.external import power as external_power
     from linkwork.kinetostatics.reactions import inertia_and_gravity
     from linkwork.motion import cycle, kinematics
-    from linkwork.motion.analysis import one_crank
-    from linkwork.resolve import mechanism_of
-
-    mech = mechanism_of(mech, "reduced")
+    from linkwork.structure.model import one_crank
     if not one_crank(mech):
         raise LinkworkError("machine dynamics needs one crank (a revolute drive)")
     if steps < 16:

@@ -29,11 +29,6 @@ from linkwork.structure.constraints import PRISMATIC, REVOLUTE
 TWO_PI = 2 * math.pi
 
 
-def one_crank(mech: Any) -> bool:
-    """Whether the mechanism has exactly one drive and it is revolute (a crank turning whole cycles)."""
-    return bool(mech.n_drives == 1 and mech.pair_type[mech.drive_pair[0]] == REVOLUTE)
-
-
 # ---------------------------------------------------------------- the frame's sliders and rockers
 
 
@@ -391,7 +386,7 @@ def extremes(kin: Any, variant: int = 0) -> list[Extremes]:
 def zero_angle(mech: Any) -> float:
     """Crank angle of position 0: the first slider on a frame guide at the high end of its stroke
     (for shears: the knives fully open), else the first rocker at its high extreme, else the assembly angle."""
-    from linkwork.motion import kinematics as solve
+    from linkwork.motion.kinematics import kinematics as solve
 
     ext = extremes(solve(mech, steps=360))
     for kind in ("slider", "rocker"):

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.motion.program import Arm, Step
-from linkwork.motion.state import State, Vec, add, cross, dot, norm, perp, rot, scale, solve2, sub
+from linkwork.motion.state import State, Vec, add, cross, dot, norm, perp, rot, scale, single_state, solve2, sub
 
 
 def _x_local(state: State, idx: int) -> Vec:
@@ -295,8 +295,6 @@ def _record(
 
 def with_branches(mech: Any, steps: list[Step]) -> list[Step]:
     """Read the branch of every closed-form step off the assembly pose."""
-    from linkwork.motion.solve import single_state
-
     state = single_state(mech)
     out = []
     for step in steps:

@@ -215,7 +215,7 @@ class _Construction:
     """The graphical construction over ``(V, A)``: every vector an array ``(V, A, 2)``."""
 
     def __init__(self, kin: Any) -> None:
-        from linkwork.io.motion_tables import point_labels
+        from linkwork.structure.model import point_labels
 
         mech = self.mech = kin.mechanism
         self.kin = kin

@@ -86,10 +86,10 @@ def _arm(mech: Any, link: int, k: int) -> Arm:
     return _r_arm(mech, link, k) if mech.pair_type[k] == REVOLUTE else _p_arm(mech, link, k)
 
 
-def build(mech: Any) -> tuple[Step, ...]:
-    """The solve program of a compiled mechanism (branches from its assembly pose)."""
-    from linkwork.motion import kernels
-
+def build(mech: Any) -> list[Step]:
+    """The steps of the solve program of a mechanism's structural model, one per Assur group, their
+    branches not yet read (:func:`linkwork.motion.kernels.with_branches` reads them off the assembly
+    pose)."""
     steps = []
     driven = {int(k): d for d, k in enumerate(mech.drive_pair)}
     for g in mech.structure.groups:
@@ -126,4 +126,4 @@ def build(mech: Any) -> tuple[Step, ...]:
                     arms = (_r_arm(mech, pinned, kp), _p_arm(mech, other, ki), _p_arm(mech, other, ko))
                     step = Step("RPP", g, g.links, arms=arms, inner=ki, x_local=(-1, -1))
         steps.append(step)
-    return tuple(kernels.with_branches(mech, steps))
+    return steps

@@ -8,29 +8,9 @@ import numpy as np
 
 from linkwork.motion import fast, kernels
 from linkwork.motion.program import Step
-from linkwork.motion.state import State
+from linkwork.motion.state import State, soa
 from linkwork.structure.constraints import residuals_and_jacobian, velocity_products
 from linkwork.structure.parameters import Geometry
-
-
-def _soa(a: np.ndarray) -> np.ndarray:
-    """(V, 1, K, 2) geometry arrays -> (K, 2, V, 1)."""
-    return np.ascontiguousarray(np.moveaxis(np.asarray(a, dtype=float), (0, 1), (2, 3)))
-
-
-def single_state(mech: Any) -> State:
-    """The assembly pose as a state of one variant at one angle (at rest)."""
-    state = State.empty(
-        mech.n_links_total,
-        _soa(np.asarray(mech.point_local)[None, None]),
-        _soa(np.asarray(mech.pair_origin)[None, None]),
-        _soa(np.asarray(mech.pair_axis)[None, None]),
-        1,
-    )
-    pose = np.asarray(mech.pose0, dtype=float)
-    state.q[:, :, 0, 0] = pose
-    state.cos[:, 0, 0], state.sin[:, 0, 0] = np.cos(pose[:, 2]), np.sin(pose[:, 2])
-    return state
 
 
 def run(
@@ -102,9 +82,9 @@ def _run_fast(
         res["a"],
         None,
         None,
-        _soa(geom.point_local),
-        _soa(geom.pair_origin),
-        _soa(geom.pair_axis),
+        soa(geom.point_local),
+        soa(geom.pair_origin),
+        soa(geom.pair_axis),
         res["valid"],
         [
             s >= 0 if step.kind not in ("crank", "slide") else np.ones(s.shape, bool)
@@ -157,7 +137,7 @@ def _solve(
     branches: list[np.ndarray | None] | None = None,
 ) -> State:
     n_var, n_ang = geom.n_variants, values.shape[0]
-    state = State.empty(mech.n_links_total, _soa(geom.point_local), _soa(geom.pair_origin), _soa(geom.pair_axis), n_ang)
+    state = State.empty(mech.n_links_total, soa(geom.point_local), soa(geom.pair_origin), soa(geom.pair_axis), n_ang)
     offset = (values[:, 0] - mech.drive_start[0] + np.pi) % (2 * np.pi) - np.pi
     if mech.pair_type[mech.drive_pair[0]] == 1:
         offset = values[:, 0] - mech.drive_start[0]

@@ -11,6 +11,7 @@ Plane vectors are pairs ``(x, y)`` of arrays.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -181,3 +182,23 @@ class State:
             (v[0] - w * r[1], v[1] + w * r[0]),
             (a[0] - e * r[1] - w * w * r[0], a[1] + e * r[0] - w * w * r[1]),
         )
+
+
+def soa(a: np.ndarray) -> np.ndarray:
+    """(V, 1, K, 2) geometry arrays -> (K, 2, V, 1)."""
+    return np.ascontiguousarray(np.moveaxis(np.asarray(a, dtype=float), (0, 1), (2, 3)))
+
+
+def single_state(mech: Any) -> State:
+    """The assembly pose as a state of one variant at one angle (at rest)."""
+    state = State.empty(
+        mech.n_links_total,
+        soa(np.asarray(mech.point_local)[None, None]),
+        soa(np.asarray(mech.pair_origin)[None, None]),
+        soa(np.asarray(mech.pair_axis)[None, None]),
+        1,
+    )
+    pose = np.asarray(mech.pose0, dtype=float)
+    state.q[:, :, 0, 0] = pose
+    state.cos[:, 0, 0], state.sin[:, 0, 0] = np.cos(pose[:, 2]), np.sin(pose[:, 2])
+    return state

@@ -86,7 +86,7 @@ def read_marker(folder: Path) -> dict[str, Any] | None:
 
 def _mark(folder: Path, complete: bool) -> None:
     """Write the marker: ``complete`` with the list of every file now in ``folder``."""
-    from linkwork.io.atomic import write_atomic
+    from linkwork.atomic import write_atomic
 
     files = sorted(entries(folder) - {MARKER}) if complete else []
     text = json.dumps({"linkwork_report": FORMAT, "note": _NOTE, "complete": complete, "files": files}, indent=1)
@@ -99,7 +99,7 @@ def problem(out: str | Path) -> str | None:
     It may be: a path that does not exist, an empty folder, or a report folder whose marker
     lists everything in it.  Not: anything else, nor a folder that holds the current one.
     """
-    from linkwork.io.atomic import kind
+    from linkwork.atomic import kind
 
     out = Path(os.path.abspath(out))
     try:

@@ -13,10 +13,10 @@ import re
 from collections.abc import Iterable
 from typing import Any
 
-from linkwork.errors import Problem
+from linkwork.errors import Problem, UnitParseError
 from linkwork.spec.schema import direction_word
 from linkwork.spec.yamlsource import Source
-from linkwork.units import UnitParseError, parse_quantity
+from linkwork.units import parse_quantity
 
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_']*$")
 FRAME = "frame"

@@ -9,11 +9,11 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from linkwork.errors import Problem, SpecError
+from linkwork.errors import Problem, SpecError, UnitParseError
 from linkwork.spec.checks import check, suggest
 from linkwork.spec.schema import Spec
 from linkwork.spec.yamlsource import Source, read_yaml
-from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, UnitParseError, check_unit, parse_quantity
+from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, check_unit, parse_quantity
 
 
 def load(path: str | Path) -> Spec:

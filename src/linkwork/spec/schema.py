@@ -16,7 +16,8 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, ValidationInfo, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
-from linkwork.units import DEFAULT_UNITS, KINDS, MADE_OF, UnitParseError, parse_quantity
+from linkwork.errors import UnitParseError
+from linkwork.units import DEFAULT_UNITS, KINDS, MADE_OF, parse_quantity
 
 
 @dataclass(frozen=True)

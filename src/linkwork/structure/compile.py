@@ -1,4 +1,9 @@
-"""compile(spec) -> Mechanism: arrays, structural analysis, assembly pose."""
+"""The structural model of a description: arrays, structural analysis, assembly pose.
+
+:func:`linkwork.compile` (:mod:`linkwork.api`) composes it with the stages that build on it: the
+solve program (:mod:`linkwork.motion.program`), the external loads
+(:mod:`linkwork.kinetostatics.external`) and the machine's drive (:mod:`linkwork.machine.drive`).
+"""
 
 from __future__ import annotations
 
@@ -17,11 +22,9 @@ from linkwork.structure.constraints import PRISMATIC, REVOLUTE, build_rows, glob
 from linkwork.structure.model import AssurGroup, Mechanism, Structure, formula
 
 
-def compile(spec: Spec | Any) -> Mechanism:  # noqa: A001 - the public name of the pipeline step
-    """Compile a validated spec into a :class:`Mechanism`.
-
-    ``spec`` may also be a mechanism file's path or a bundled example's name (loaded first), or a
-    compiled Mechanism (returned as it is); anything else is a TypeError.
+def structural_model(spec: Spec) -> Mechanism:
+    """The structural model of a validated spec: a :class:`Mechanism` without its solve program, its
+    loads and its drive (those are added by :func:`linkwork.compile`).
 
     Builds the flat arrays, decomposes the mechanism into Assur groups,
     assembles it in the pose chosen by the drives' start values and the
@@ -37,12 +40,6 @@ def compile(spec: Spec | Any) -> Mechanism:  # noqa: A001 - the public name of t
     UnassemblableError
         The assembly pose does not exist.
     """
-    from linkwork.resolve import spec_of
-
-    if not isinstance(spec, Spec):
-        if isinstance(spec, Mechanism):
-            return spec
-        spec = spec_of(spec, "compile")
     try:
         return _compile(spec)
     except (StructureError, UnassemblableError) as exc:
@@ -120,13 +117,7 @@ def _compile(spec: Spec) -> Mechanism:
         )
     warnings += _hint_warnings(mech, hints, scale)
     structure = Structure(n, p5, p4, w, redundant, mobility, tuple(groups), formula(groups), tuple(warnings))
-    mech = dataclasses.replace(mech, structure=structure)
-    from linkwork.motion import fast
-    from linkwork.motion.program import build
-
-    program = build(mech)
-    encoded = fast.encode(program, mech.point_link) if fast.supports(program) else None
-    return dataclasses.replace(mech, program=program, fast_program=encoded)
+    return dataclasses.replace(mech, structure=structure)
 
 
 _EMPTY = Structure(0, 0, 0, 0, 0, 0, (), "")
@@ -364,9 +355,6 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
             if joint.type == "pin-in-slot":
                 hints[pindex[(index[f"{key}:block"], pt)]] = np.array(xy)
 
-    from linkwork.kinetostatics.external import compile_loads
-    from linkwork.machine.drive import from_spec
-
     def f(a: Any, dtype: Any = float) -> np.ndarray:
         arr = np.array(a, dtype=dtype)
         arr.flags.writeable = False
@@ -414,10 +402,6 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         joint_names=tuple(spec.joints),
         link_ends=f(ends, int).reshape(-1, 2),
         pair_origin_point=f(origin_point, int),
-        loads=compile_loads(
-            spec, index, pindex, [(j, t, a, b) for j, t, (a, b) in zip(pair_joint, pair_type, pair_links, strict=True)]
-        ),
-        machine=from_spec(spec.machine) if spec.machine is not None else None,
         delta=spec.machine.delta if spec.machine is not None else None,
         blow=spec.impact,
         spec=spec,

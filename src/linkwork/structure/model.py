@@ -252,3 +252,33 @@ class Mechanism:
         from linkwork.structure.constraints import global_points
 
         return global_points(self.pose0, self.point_link, self.point_local)
+
+
+def point_labels(mech: Any, with_all: bool = False) -> list[tuple[str, int]]:
+    """One name per physical point: the joint's name for the points of a joint (given once), the
+    point's own name for a marker whose name no other point has, ``link.point`` otherwise.  Frame
+    points and slot blocks are left out, unless ``with_all`` (then every point, joints repeated)."""
+    joint_of: dict[int, str] = {}
+    for k in range(mech.n_pairs):
+        for p in mech.pair_points[k]:
+            if p >= 0:
+                joint_of[int(p)] = mech.point_names[int(p)].split(".", 1)[1]
+    short = [n.split(".", 1)[1] for n in mech.point_names]
+    out: list[tuple[str, int]] = []
+    seen: set[str] = set()
+    for p, name in enumerate(short):
+        link = mech.point_link[p]
+        if not with_all and (link == 0 or mech.link_virtual[link]):
+            continue
+        label = name if p in joint_of or short.count(name) == 1 else mech.point_names[p]
+        if with_all or label not in seen:
+            seen.add(label)
+            out.append((label, p))
+    return out
+
+
+def one_crank(mech: Any) -> bool:
+    """Whether the mechanism has exactly one drive and it is revolute (a crank turning whole cycles)."""
+    from linkwork.structure.constraints import REVOLUTE
+
+    return bool(mech.n_drives == 1 and mech.pair_type[mech.drive_pair[0]] == REVOLUTE)

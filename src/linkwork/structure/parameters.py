@@ -161,14 +161,10 @@ def parameter_list(mech: Any) -> list[Parameter]:
     return [*_dimensions(mech), *_masses(mech)]
 
 
-def parameters(mech: Any) -> dict[str, float]:
-    """The named parameters an override may set, with their values (SI).
-
-    ``mech``: a path, an example name, a Spec or a Mechanism (:mod:`linkwork.resolve`).
-    """
-    from linkwork.resolve import mechanism_of
-
-    return {p.name: p.value for p in parameter_list(mechanism_of(mech, "parameters"))}
+def parameter_values(mech: Any) -> dict[str, float]:
+    """The named parameters an override may set, with their values (SI) (``linkwork.parameters``,
+    which also takes a path, an example name or a Spec: :mod:`linkwork.api`)."""
+    return {p.name: p.value for p in parameter_list(mech)}
 
 
 def parameter(mech: Any, path: str, known: dict[str, Parameter] | None = None) -> Parameter:
@@ -416,7 +412,7 @@ def _written(old: Any, si: float, kind: str, declared: dict[str, str]) -> Any:
 
 
 def edited_spec(mechanism: Any, overrides: dict[str, float]) -> Any:
-    """The description of ``mechanism`` with ``overrides`` (path -> SI) written in, validated again:
+    """The description of the compiled ``mechanism`` with ``overrides`` (path -> SI) written in, validated again:
     what a user gets who edits the file by hand.
 
     Raises
@@ -437,12 +433,12 @@ def edited_spec(mechanism: Any, overrides: dict[str, float]) -> Any:
 
 
 def write_file(mechanism: Any, values: dict[str, float], out: Any) -> Any:
-    """Write the file of ``mechanism`` with ``values`` (path -> SI) to ``out``, atomically: the
+    """Write the file of the compiled ``mechanism`` with ``values`` (path -> SI) to ``out``, atomically: the
     original text with its comments and layout, each value in the unit the file writes it in
     (:func:`set_values`).  A description built in code is written in SI.  Returns the path."""
     import io
 
-    from linkwork.io.atomic import write_atomic
+    from linkwork.atomic import write_atomic
 
     spec, _, kinds = _described(mechanism, values)
     data, declared = _file_data(spec, round_trip=True)
@@ -453,14 +449,11 @@ def write_file(mechanism: Any, values: dict[str, float], out: Any) -> Any:
     return write_atomic(out, lambda tmp: tmp.write_text(text, encoding="utf-8"))
 
 
-def _described(mechanism: Any, values: dict[str, float]) -> tuple[Any, Any, dict[str, str]]:
+def _described(mech: Any, values: dict[str, float]) -> tuple[Any, Any, dict[str, str]]:
     """(spec, mechanism, kinds of the paths of ``values``), each value checked against its parameter."""
-    from linkwork.resolve import mechanism_of, spec_of
-
-    spec = spec_of(mechanism)
+    spec = mech.spec
     if spec is None:
         raise ParameterError("this mechanism was assembled in code without a description: it has no file to edit")
-    mech = mechanism_of(mechanism)
     known = {p.name: p for p in parameter_list(mech)}
     for path, value in values.items():
         wrong = parameter(mech, path, known).check(float(value))

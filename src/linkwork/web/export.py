@@ -11,7 +11,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from linkwork.io.atomic import write_atomic
+from linkwork.atomic import write_atomic
 
 _CSP = (
     "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:; "

@@ -47,8 +47,9 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.motion.analysis import coordinate, extremes, guide, one_crank, outputs
+from linkwork.motion.analysis import coordinate, extremes, guide, outputs
 from linkwork.structure.constraints import PRISMATIC, REVOLUTE
+from linkwork.structure.model import one_crank
 
 FORMAT = "linkwork-view/1"
 
@@ -160,7 +161,7 @@ def _forces(mech: Any, steps: int) -> tuple[Any, str]:
 
 
 def _points(mech: Any) -> list[dict[str, Any]]:
-    from linkwork.io.motion_tables import point_labels
+    from linkwork.structure.model import point_labels
 
     labels = dict((p, label) for label, p in point_labels(mech, with_all=True))
     joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}

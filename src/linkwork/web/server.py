@@ -36,9 +36,9 @@ from pydantic import BaseModel, ConfigDict, Field, StringConstraints, Validation
 from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from linkwork.errors import LinkworkError
+from linkwork.errors import BusyError, LinkworkError
 from linkwork.web.edits import MAX_OVERRIDES
-from linkwork.web.session import BusyError, Viewer, static_text
+from linkwork.web.session import Viewer, static_text
 
 #: Largest request body, bytes.
 MAX_BODY = 64 * 1024

@@ -9,6 +9,8 @@ from contextlib import contextmanager
 from importlib import resources
 from typing import Any
 
+from linkwork.errors import BusyError
+
 
 def static_text(name: str) -> str:
     """One of the page's files: ``index.html``, ``viewer.js`` or ``viewer.css``."""
@@ -19,7 +21,7 @@ class Viewer:
     """The mechanism a server shows, and the cycles of its edits (a small cache)."""
 
     def __init__(self, spec_or_mech: Any, steps: int = 360, cache: int = 16) -> None:
-        from linkwork.resolve import mechanism_of
+        from linkwork.api import mechanism_of
 
         self.mech = mechanism_of(spec_or_mech, "viewer")
         self.spec = self.mech.spec
@@ -49,7 +51,7 @@ class Viewer:
 
     def edit(self, overrides: dict[str, float]) -> tuple[Any, Any]:
         """The description and the mechanism with ``overrides`` (SI) applied; a LinkworkError when it fails."""
-        from linkwork.structure.compile import compile
+        from linkwork.api import compile
         from linkwork.web.edits import apply
 
         if not overrides:
@@ -83,7 +85,3 @@ class Viewer:
             while len(self._cache) > self._size:
                 self._cache.popitem(last=False)
         return out
-
-
-class BusyError(Exception):
-    """Too many solves at once."""

@@ -1,0 +1,166 @@
+"""The public entry points: what a mechanism argument is, and the stages :func:`compile` composes.
+
+Every analysis of ``linkwork`` (``linkwork.kinematics``, ``linkwork.forces``, ...) takes its
+mechanism as any of
+
+- a path to a mechanism file (``str`` or :class:`os.PathLike`, ``.yaml``/``.yml``),
+- the name of a bundled example (``"four-bar"``; ``linkwork examples`` lists them),
+- a :class:`~linkwork.spec.schema.Spec` (from :func:`linkwork.load` or :class:`linkwork.MechanismBuilder`),
+- a compiled :class:`~linkwork.structure.model.Mechanism` (from :func:`linkwork.compile`).
+
+Anything else is a :class:`TypeError` that says what is expected.  The algorithms themselves live in
+the module named for them (:func:`linkwork.motion.kinematics.kinematics`,
+:func:`linkwork.kinetostatics.forces.forces`, ...) and take a compiled mechanism; the functions here
+are those algorithms with the argument resolved first (:func:`resolving`), with the same signature
+and documentation.  This module sits above the analysis packages and below the design, output,
+viewer and command-line packages, which call :func:`mechanism_of` themselves.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import inspect
+import os
+from collections.abc import Callable
+from typing import Any, Concatenate, ParamSpec, TypeVar, Union
+
+from linkwork.impulse.cycle import simulate_blows as _simulate_blows
+from linkwork.impulse.mechanism import impact as _impact
+from linkwork.kinetostatics.balancing import balance as _balance
+from linkwork.kinetostatics.bolt_speed import bolt_speed as _bolt_speed
+from linkwork.kinetostatics.external import compile_loads
+from linkwork.kinetostatics.forces import forces as _forces
+from linkwork.machine.drive import from_spec
+from linkwork.machine.dynamics import dynamics as _dynamics
+from linkwork.machine.reduced import reduced as _reduced
+from linkwork.motion import fast
+from linkwork.motion.kernels import with_branches
+from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematics import kinematics as _kinematics
+from linkwork.motion.program import build
+from linkwork.spec.schema import Spec
+from linkwork.structure.compile import structural_model
+from linkwork.structure.model import Mechanism
+from linkwork.structure.parameters import parameter_values
+
+#: What a mechanism argument may be.
+MechanismLike = Union[str, "os.PathLike[str]", Spec, Mechanism]  # noqa: UP007 - a string forward reference
+
+#: What a mechanism argument may be, for messages.
+EXPECTED = (
+    "a mechanism file path, the name of a bundled example, a Spec (linkwork.load) or a Mechanism (linkwork.compile)"
+)
+
+P = ParamSpec("P")
+R = TypeVar("R")
+
+
+def spec_of(mechanism: Any, what: str = "mechanism") -> Spec | None:
+    """The description of ``mechanism``: loaded from a file or example, given, or the one a
+    compiled mechanism was compiled from (None for a mechanism assembled in code without one).
+
+    Raises
+    ------
+    TypeError
+        For anything but a path, an example name, a Spec or a Mechanism.
+    SpecError
+        For a file or example with problems, or a name that is neither.
+    """
+    if isinstance(mechanism, Spec):
+        return mechanism
+    if isinstance(mechanism, Mechanism):
+        return mechanism.spec  # type: ignore[no-any-return]
+    if isinstance(mechanism, str | os.PathLike):
+        from linkwork.examples import resolve
+
+        return resolve(os.fspath(mechanism))
+    raise TypeError(f"{what}: expected {EXPECTED}, got {type(mechanism).__name__}")
+
+
+def mechanism_of(mechanism: Any, what: str = "mechanism") -> Mechanism:
+    """The compiled :class:`~linkwork.structure.model.Mechanism` of ``mechanism`` (compiled here
+    when it is a path, an example name or a Spec; returned as it is when compiled already).
+
+    Raises
+    ------
+    TypeError
+        For anything but a path, an example name, a Spec or a Mechanism.
+    SpecError, StructureError, UnassemblableError
+        From loading and compiling.
+    """
+    if isinstance(mechanism, Mechanism):
+        return mechanism
+    spec = spec_of(mechanism, what)
+    assert spec is not None
+    return compile(spec)
+
+
+def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name of the pipeline step
+    """Compile a description into a :class:`~linkwork.structure.model.Mechanism`.
+
+    ``spec``: a validated Spec, or a mechanism file's path or a bundled example's name (loaded
+    first); a compiled Mechanism is returned as it is.  The stages: the structural model
+    (:func:`linkwork.structure.compile.structural_model`: arrays, Assur groups, assembly pose,
+    redundant constraints), the solve program of its groups (:func:`linkwork.motion.program.build`, the
+    branches read off the assembly pose by :func:`linkwork.motion.kernels.with_branches`,
+    encoded for the compiled kernels where they cover it), the external loads
+    (:func:`linkwork.kinetostatics.external.compile_loads`) and the machine's drive
+    (:func:`linkwork.machine.drive.from_spec`).
+
+    Raises
+    ------
+    TypeError
+        For anything but a path, an example name, a Spec or a Mechanism.
+    SpecError
+        A group lacks the hint that chooses its assembly mode, or a mass property is impossible.
+    StructureError
+        The mobility does not match the drives.
+    UnassemblableError
+        The assembly pose does not exist.
+    """
+    if isinstance(spec, Mechanism):
+        return spec
+    if not isinstance(spec, Spec):
+        described = spec_of(spec, "compile")
+        assert described is not None
+        spec = described
+    mech = structural_model(spec)
+    program = tuple(with_branches(mech, build(mech)))
+    encoded = fast.encode(program, mech.point_link) if fast.supports(program) else None
+    drive = from_spec(spec.machine) if spec.machine is not None else None
+    return dataclasses.replace(
+        mech, program=program, fast_program=encoded, loads=compile_loads(spec, mech), machine=drive
+    )
+
+
+def resolving(
+    algorithm: Callable[Concatenate[Any, P], R], what: str, passes: tuple[type, ...] = ()
+) -> Callable[Concatenate[Any, P], R]:
+    """``algorithm`` taking any mechanism argument (:func:`mechanism_of`) in place of a compiled one,
+    with its name, documentation and signature (its first parameter typed :data:`MechanismLike`);
+    arguments of the types ``passes`` go to it as they are."""
+
+    @functools.wraps(algorithm)
+    def entry(mechanism: Any, /, *args: P.args, **kwargs: P.kwargs) -> R:
+        if not isinstance(mechanism, passes):
+            mechanism = mechanism_of(mechanism, what)
+        return algorithm(mechanism, *args, **kwargs)
+
+    signature = inspect.signature(algorithm)
+    first, *rest = signature.parameters.values()
+    entry.__signature__ = signature.replace(  # type: ignore[attr-defined]
+        parameters=[first.replace(annotation="MechanismLike"), *rest]
+    )
+    return entry
+
+
+kinematics = resolving(_kinematics, "kinematics")
+forces = resolving(_forces, "forces", passes=(Kinematics,))
+reduced = resolving(_reduced, "reduced")
+dynamics = resolving(_dynamics, "dynamics")
+impact = resolving(_impact, "impact")
+simulate_blows = resolving(_simulate_blows, "simulate_blows")
+balance = resolving(_balance, "balance")
+bolt_speed = resolving(_bolt_speed, "bolt_speed")
+parameters = resolving(parameter_values, "parameters")

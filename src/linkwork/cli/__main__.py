@@ -1,0 +1,5 @@
+"""``python -m linkwork.cli``: the ``linkwork`` command."""
+
+from linkwork.cli.main import main
+
+main()

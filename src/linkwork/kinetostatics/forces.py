@@ -1,0 +1,290 @@
+"""``linkwork.forces``: reactions, driving torque and foundation loads of a kinematics result."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+from linkwork.kinetostatics import fast
+from linkwork.kinetostatics.bolts import Bolts, bolt_loads
+from linkwork.kinetostatics.external import evaluate
+from linkwork.kinetostatics.free_body import FreeBody, free_bodies
+from linkwork.kinetostatics.reactions import (
+    Loads,
+    foundation,
+    inertia_and_gravity,
+    momentum_check,
+    power_check,
+    solve_reactions,
+)
+from linkwork.motion.kinematics import Kinematics, kinematics
+
+
+@dataclass(frozen=True)
+class Forces:
+    """Reactions, driving torque and foundation loads over the angles of a kinematics result.
+
+    Shapes as in :class:`~linkwork.motion.Kinematics`: ``(n_variants, n_angles, ...)``
+    with the variant axis dropped for a single mechanism.  SI units.
+
+    Attributes
+    ----------
+    kinematics : Kinematics
+    multipliers : ndarray (V, A, m)
+        The reaction of every constraint row (see :meth:`reaction`).
+    loads : Loads
+        Applied and inertia loads of every link (computed when first asked for, as are the checks).
+    """
+
+    kinematics: Any
+    multipliers: np.ndarray
+    foundation_all: np.ndarray  # (V, A, 3)
+
+    @cached_property
+    def loads(self) -> Loads:
+        """Applied (gravity, external) and inertia loads of every link."""
+        return inertia_and_gravity(self.kinematics)
+
+    @cached_property
+    def foundation_momentum_all(self) -> np.ndarray:
+        """The foundation loads from the theorem on the change of momentum, (V, A, 3)."""
+        return momentum_check(self.kinematics, self.loads)
+
+    @cached_property
+    def torque_power_all(self) -> np.ndarray:
+        """The driving torque from the power balance, (V, A, D)."""
+        return power_check(self.kinematics, self.loads)
+
+    def _out(self, a: np.ndarray) -> np.ndarray:
+        return a if self.kinematics.variants else a[0]
+
+    @property
+    def mechanism(self) -> Any:
+        return self.kinematics.mechanism
+
+    @property
+    def angles(self) -> np.ndarray:
+        return self.kinematics.angles
+
+    @cached_property
+    def singular_all(self) -> np.ndarray:
+        """True where the mechanism assembles but its reactions are indeterminate (a dead or change
+        point: some group's system is singular there), ``(V, A)``."""
+        return self.kinematics.valid_all & ~np.all(np.isfinite(self.multipliers), axis=-1)
+
+    @property
+    def singular(self) -> np.ndarray:
+        """:attr:`singular_all` without the variant axis for one mechanism: ``(..., n_angles)``."""
+        return self._out(self.singular_all)
+
+    @cached_property
+    def _torque_all(self) -> np.ndarray:
+        m = self.mechanism
+        lam = self.multipliers[..., 2 * m.n_pairs :]
+        fill = self.singular_all[..., None] & ~np.isfinite(lam)
+        if m.n_drives != 1 or not fill.any():
+            return lam
+        return np.where(fill, self.torque_power_all, lam)
+
+    @property
+    def driving_torque(self) -> np.ndarray:
+        """Torque (N m) the drive puts on its driven link, counter-clockwise positive (N for a linear drive):
+        ``(..., n_angles)`` for one drive, ``(..., n_angles, n_drives)`` for several.
+
+        At a singular position (:attr:`singular`: a dead or change point, where the reactions are
+        indeterminate) the torque of one drive is still defined: there it is the power balance's."""
+        lam = self._torque_all
+        return self._out(lam[..., 0] if self.mechanism.n_drives == 1 else lam)
+
+    def pairs(self, joint: str) -> list[int]:
+        m = self.mechanism
+        ks = [k for k, j in enumerate(m.pair_joint) if j == joint]
+        if not ks:
+            from linkwork.spec.checks import suggest
+
+            raise KeyError(f'no joint "{joint}"{suggest(joint, sorted(set(m.pair_joint)))}')
+        return ks
+
+    def pair_force(self, k: int) -> np.ndarray:
+        """Force (N) that link ``pair_links[k, 0]`` exerts on link ``pair_links[k, 1]`` in pair ``k``:
+        ``(V, A, 2)``, in the model's order (times ``mechanism.pair_sign[k]``: in the file's, as
+        :meth:`reaction` gives it).  For a prismatic pair (guide first) it is normal to the guide and
+        acts at the slider's point of the pair."""
+        m = self.mechanism
+        lam = self.multipliers[..., 2 * k : 2 * k + 2]
+        if m.pair_type[k] == 0:
+            return -lam
+        theta = self.kinematics.pose[..., int(m.pair_links[k, 0]), 2]  # the guide's angle (V, A)
+        ux, uy = self.kinematics.axis[k, 0], self.kinematics.axis[k, 1]  # local direction (V, 1)
+        c, s = np.cos(theta), np.sin(theta)
+        u = (c * ux - s * uy, s * ux + c * uy)
+        normal = lam[..., 1]  # along n = u turned by +90 deg, on the slider
+        return np.stack([-u[1] * normal, u[0] * normal], -1)
+
+    def reaction(self, joint: str, on: str | None = None) -> np.ndarray:
+        """Force (N) in a joint, ``(..., n_angles, 2)``, in the order the file's ``links`` name its links.
+
+        Without ``on``: the force the first-named link exerts on the second, whichever link the drive
+        of the joint turns.  A pin in a slot: the slot's force on the pin.  A compound hinge of
+        k >= 3 links is k - 1 pairs, each between the member nearest the frame (which carries the pin)
+        and one of the others; this is its first pair, that of the first-named link: the force the
+        first-named link exerts on the pin's carrier, or on the second-named link where the first
+        carries the pin.
+
+        With ``on=link``: the force the joint puts on that link, the sum of the forces of all its
+        other members on it (for two links, the other's force on it); it does not depend on which
+        member carries the pin.  A prismatic pair's moment is :meth:`pair_moment`.
+
+        Raises
+        ------
+        KeyError
+            No such joint, or ``on`` is not one of its links.
+        """
+        ks = self.pairs(joint)
+        m = self.mechanism
+        if on is None:
+            return self._out(m.pair_sign[ks[0]] * self.pair_force(ks[0]))
+        members = {int(i) for k in ks for i in m.pair_links[k] if not m.link_virtual[int(i)]}
+        names = [m.link_names[i] for i in sorted(members)]
+        if on not in names:
+            from linkwork.spec.checks import suggest
+
+            raise KeyError(f'joint "{joint}" joins {", ".join(names)}, not "{on}"{suggest(on, names)}')
+        link = m.link_names.index(on)
+        total = np.zeros(self.multipliers.shape[:-1] + (2,))
+        for k in ks:
+            a, b = (int(x) for x in m.pair_links[k])
+            if link in (a, b):
+                total = total + (self.pair_force(k) if link == b else -self.pair_force(k))
+        return self._out(total)
+
+    def pair_moment(self, joint: str) -> np.ndarray:
+        """Moment (N m) the guide exerts on the slider in a prismatic joint, about the slider's point."""
+        k = self.pairs(joint)[0]
+        if self.mechanism.pair_type[k] != 1:
+            raise LinkworkError(f'joint "{joint}" is revolute: it carries no moment')
+        return self._out(self.multipliers[..., 2 * k])
+
+    @cached_property
+    def _foundation_filled(self) -> np.ndarray:
+        fill = self.singular_all[..., None] & ~np.isfinite(self.foundation_all)
+        if not fill.any():
+            return self.foundation_all
+        return np.where(fill, self.foundation_momentum_all, self.foundation_all)
+
+    @property
+    def foundation(self) -> np.ndarray:
+        """Force (x, y) in N and moment about the origin in N m that the machine (frame included)
+        puts on its foundation: ``(..., n_angles, 3)``.  y up: a positive y force pulls the bolts.
+
+        At a singular position (:attr:`singular`) it is still defined: there it is the theorem on
+        the change of momentum's."""
+        return self._out(self._foundation_filled)
+
+    @property
+    def shaking_force(self) -> np.ndarray:
+        """Resultant of the inertia forces of the links, N: ``(..., n_angles, 2)``; what the
+        foundation feels beyond the weights and the external loads."""
+        return self._out(np.sum(self.loads.inertia[..., :2], axis=-2))
+
+    @property
+    def shaking_moment(self) -> np.ndarray:
+        """Resultant moment of the inertia loads about the origin, N m: ``(..., n_angles)``."""
+        q, f = self.kinematics.pose, self.loads.inertia
+        about = f[..., 2] + q[..., 0] * f[..., 1] - q[..., 1] * f[..., 0]
+        return self._out(np.sum(about, axis=-1))
+
+    @property
+    def checks(self) -> dict[str, float]:
+        """Largest discrepancy of the independent checks, relative to the largest value checked
+        (NaN where a check has nothing to compare: the power balance at rest)."""
+
+        def rel(a: np.ndarray, b: np.ndarray) -> float:
+            if not np.isfinite(a - b).any():
+                return math.nan  # nothing to compare: at rest, or every position singular
+            scale = np.nanmax(np.abs(b)) if np.isfinite(b).any() else 0.0
+            return float(np.nanmax(np.abs(a - b)) / scale) if scale > 0 else float(np.nanmax(np.abs(a - b)))
+
+        m = self.mechanism
+        lam = self.multipliers[..., 2 * m.n_pairs :]
+        return {
+            "driving_torque_vs_power_balance": rel(lam, self.torque_power_all),
+            "foundation_force_vs_momentum": rel(self.foundation_all[..., :2], self.foundation_momentum_all[..., :2]),
+            "foundation_moment_vs_momentum": rel(self.foundation_all[..., 2], self.foundation_momentum_all[..., 2]),
+        }
+
+    def free_bodies(self) -> list[FreeBody]:
+        """Every Assur group cut free: the forces of the other links on it, its loads, and the
+        sum of them all (the residual, zero for a correct solution); see
+        :mod:`linkwork.kinetostatics.free_body`."""
+        return free_bodies(self)
+
+    def bolts(self) -> Bolts:
+        """Pull, push and shear of the foundation bolts and where their maxima occur (from
+        :attr:`foundation`, defined at singular positions too)."""
+        return bolt_loads(self._foundation_filled, self.angles)
+
+
+def forces(
+    mech: Any,
+    angles: Any = None,
+    *,
+    steps: int | None = None,
+    speed: Any = None,
+    variants: dict[str, Any] | None = None,
+) -> Forces:
+    """Reactions in every pair, the driving torque and the foundation loads.
+
+    ``mech``: a compiled Mechanism (``linkwork.forces`` also takes a path, an example name or a
+    Spec: :mod:`linkwork.api`), or a :class:`~linkwork.motion.Kinematics` result (then without other
+    arguments: its angles, speeds and variants are the result's; the same as :func:`forces_of`).
+    Other parameters as for :func:`linkwork.kinematics`; the drive turns at a uniform ``speed``
+    (default: the file's).
+
+    Raises
+    ------
+    LinkworkError
+        For a mechanism with redundant constraints: its reactions are
+        statically indeterminate.
+    """
+    if isinstance(mech, Kinematics):
+        if angles is not None or steps is not None or speed is not None or variants is not None:
+            raise TypeError("forces(kinematics): the angles, speeds and variants are the kinematics result's")
+        return forces_of(mech)
+    _statically_determinate(mech)
+    return forces_of(kinematics(mech, angles, steps=steps, speed=speed, variants=variants))
+
+
+def _statically_determinate(mech: Any) -> None:
+    if mech.structure.redundant:
+        raise LinkworkError(
+            f"the mechanism has {mech.structure.redundant} redundant constraint(s): its reactions are "
+            "statically indeterminate (they depend on the links' elasticity); remove the redundant link"
+        )
+
+
+def forces_of(kin: Any) -> Forces:
+    """The :class:`Forces` of a kinematics result: reactions, driving torque and foundation loads at
+    its angles, speeds and variants (with the variants' mass properties), without solving the
+    motion again.
+
+    Raises
+    ------
+    LinkworkError
+        For a mechanism with redundant constraints.
+    """
+    mech = kin.mechanism
+    _statically_determinate(mech)
+    if not fast.available():
+        loads = inertia_and_gravity(kin)
+        lam, frame = solve_reactions(kin, loads)
+        out = Forces(kin, lam, foundation(kin, frame, loads))
+        object.__setattr__(out, "loads", loads)  # the cached value
+        return out
+    lam, found = fast.run(kin, evaluate(kin) if mech.loads else None)
+    return Forces(kin, lam, found)

@@ -1,0 +1,137 @@
+"""``linkwork.dynamics``: the machine unit run with its drive to the steady cycle, with a flywheel sized for
+the coefficient of speed fluctuation asked."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+from linkwork.machine.drive import Drive
+from linkwork.machine.flywheel import Flywheel, size_flywheel_wittenbauer
+from linkwork.machine.reduced import Reduced, reduced
+from linkwork.machine.simulate import Motion, simulate
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    """Reduced quantities, the simulated runs with the drive, and the flywheel sized for ``delta``.
+
+    ``startup`` is the run from rest; for a machine with process loads it runs idle (no workpiece:
+    a shears is brought up to speed before the first cut), and ``motion`` then continues from its
+    steady state with the process loads to the steady working cycle.  Without process loads the
+    two are the same run.  ``flywheel`` is the sizing (None without ``delta``): its ``flywheel`` is
+    the inertia on its own shaft (``drive.flywheel``, the one the run used), ``on_crank`` the same
+    reduced to the crank shaft.
+    """
+
+    reduced: Reduced
+    drive: Drive
+    motion: Motion
+    flywheel: Flywheel | None
+    startup: Motion
+
+    @property
+    def startup_time(self) -> float:
+        """Time (s) from rest until the mean speed of the turns stays within 2 % of its final value."""
+        return self.startup.startup_time()
+
+    @property
+    def delta(self) -> float:
+        """Coefficient of speed fluctuation of the steady cycle."""
+        return self.motion.last.delta
+
+    @property
+    def drive_power(self) -> float:
+        """Mean power the drive gives the crank over the steady cycle (after the gear's loss), W: the
+        mean power of the loads, which the periodic cycle's drive work balances."""
+        return -self.reduced.mean_load * self.motion.last.omega_mean
+
+    @property
+    def mean_power(self) -> float:
+        """Mean power of the motor at its shaft over the steady cycle, W (to compare with its rating):
+        ``drive_power`` over the gear's efficiency."""
+        return self.drive_power / self.drive.efficiency
+
+
+def balance_speed(drive: Drive, moment: float) -> float:
+    """The crank speed (rad/s) at which the drive gives ``moment`` on the stable (falling) part of
+    its characteristic, the highest such speed; NaN if there is none (a constant torque)."""
+    hi = 1.0
+    while drive.moment(hi) > moment and hi < 1e6:
+        hi *= 2.0
+    if not drive.moment(hi) <= moment:
+        return float("nan")
+    lo = hi / 2.0 if hi > 1.0 else 0.0
+    if drive.moment(lo) < moment:
+        grid = np.linspace(0.0, hi, 4097)
+        above = np.flatnonzero(drive.moment(grid) >= moment)
+        if len(above) == 0:
+            return float("nan")
+        lo = float(grid[above[-1]])
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if drive.moment(mid) >= moment:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def dynamics(
+    mech: Any,
+    drive: Drive | None = None,
+    *,
+    delta: float | None = None,
+    speed: float | None = None,
+    steps: int = 3600,
+    omega0: float = 0.0,
+    start: float | None = None,
+    turns: int = 500,
+) -> Dynamics:
+    """Run the machine unit with ``drive`` (default: the file's ``machine:``) from ``omega0`` to its
+    steady cycle.  ``mech``: a compiled Mechanism (``linkwork.dynamics`` also takes a path, an example
+    name or a Spec: :mod:`linkwork.api`).
+
+    With ``delta`` (default: the file's), the flywheel is first sized for that coefficient of speed
+    fluctuation by the energy method (Wittenbauer's tangents), at the mean crank speed ``speed``
+    (default: where the drive's moment balances the loads' mean moment, or the file's speed for a
+    drive without such a point), and put on the drive's ``flywheel_on`` shaft; the run then checks
+    it.  The run starts at the turning angle ``start`` (rad from the assembly angle; default: where
+    the loads resist least, e.g. the knives open).
+    """
+    if drive is None:
+        drive = mech.machine
+    if drive is None:
+        raise LinkworkError(
+            'the mechanism has no motor for its dynamics: give a "machine:" section in its file with the motor '
+            "(type constant, linear or induction, and its data), and the gear and flywheel if it has them"
+        )
+    if delta is None:
+        delta = mech.delta
+    red = reduced(mech, steps)
+    if start is None:
+        start = float(red.psi[int(np.argmax(red.load))])
+    fly = None
+    if delta is not None:
+        if speed is None:
+            speed = balance_speed(drive, -red.mean_load)
+        if speed is None or not math.isfinite(speed):
+            speed = abs(float(mech.drive_speed[0]))
+        base = drive.with_flywheel(0.0)
+        fly = size_flywheel_wittenbauer(red, delta, speed, base.inertia, shaft=drive.flywheel_on, ratio=drive.ratio)
+        drive = drive.with_flywheel(fly.flywheel)
+    process = [load for load in mech.loads if load.kind == "process"]
+    if not process:
+        motion = simulate(red, drive, omega0=omega0, start=start, turns=turns)
+        return Dynamics(red, drive, motion, fly, motion)
+    idle = dataclasses.replace(mech, loads=tuple(load for load in mech.loads if load.kind != "process"))
+    startup = simulate(reduced(idle, steps), drive, omega0=omega0, start=start, turns=turns)
+    motion = simulate(
+        red, drive, omega0=float(startup.omega[-1]), start=start + 2 * np.pi * len(startup.turns), turns=turns
+    )
+    return Dynamics(red, drive, motion, fly, startup)
