@@ -78,7 +78,7 @@ def test_the_report_renders_in_a_headless_browser(reports):
 
 def test_a_rerun_replaces_the_report_and_a_failed_run_leaves_the_old_one(tmp_path, monkeypatch):
     import linkwork as lw
-    from linkwork import report
+    from linkwork.report import build as report
 
     out = tmp_path / "r"
     mech = lw.compile(lw.example("four-bar"))
