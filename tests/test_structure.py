@@ -11,7 +11,8 @@ from hypothesis import strategies as st
 
 import linkwork as lw
 from linkwork.errors import StructureError, UnassemblableError
-from linkwork.structure.constraints import PRISMATIC, REVOLUTE, global_points, residuals_and_jacobian
+from linkwork.structure.constraints import residuals_and_jacobian
+from linkwork.structure.model import PairType, global_points
 from mechanisms import TEXTBOOK, circle_intersection, hydraulic_boom, parallelogram_with_redundant_link
 
 
@@ -128,11 +129,11 @@ def test_assembly_closes_every_pair(kind, name):
     pts = mech.points0()
     for k in range(mech.n_pairs):
         a, b = mech.pair_links[k]
-        if mech.pair_type[k] == REVOLUTE:
+        if mech.pair_type[k] == PairType.REVOLUTE:
             pa, pb = pts[mech.pair_points[k]]
             assert np.hypot(*(pa - pb)) < 1e-9
         else:
-            assert mech.pair_type[k] == PRISMATIC
+            assert mech.pair_type[k] == PairType.PRISMATIC
             assert abs(mech.pose0[b, 2] - mech.pose0[a, 2]) % (2 * math.pi) < 1e-9
             th = mech.pose0[a, 2]
             rot = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])

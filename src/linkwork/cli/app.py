@@ -171,11 +171,11 @@ def check(
 
 
 def _drives(mech: Any) -> list[dict[str, Any]]:
-    from linkwork.structure.constraints import REVOLUTE
+    from linkwork.structure.model import PairType
 
     out = []
     for d, k in enumerate(mech.drive_pair):
-        rot = mech.pair_type[k] == REVOLUTE
+        rot = mech.pair_type[k] == PairType.REVOLUTE
         out.append(
             {
                 "joint": mech.pair_joint[k],

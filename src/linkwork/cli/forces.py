@@ -15,12 +15,12 @@ from linkwork.cli.motion import _angles
 def _speed(mech: Any, text: str | None) -> float | None:
     """The drive speed of ``--speed`` in SI, in the file's direction of the drive."""
     from linkwork.errors import LinkworkError, UnitParseError
-    from linkwork.structure.constraints import REVOLUTE
+    from linkwork.structure.model import PairType
     from linkwork.units import parse_quantity
 
     if text is None:
         return None
-    revolute = mech.pair_type[mech.drive_pair[0]] == REVOLUTE
+    revolute = mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE
     kind, example = ("angular_speed", "30 rpm") if revolute else ("speed", "0.2 m/s")
     try:
         float(text)
@@ -124,9 +124,9 @@ def _force(text: str | None) -> float | None:
 def _lift(mech: Any, pull: float) -> float:
     from linkwork.errors import LinkworkError
     from linkwork.kinetostatics import bolt_speed
-    from linkwork.structure.constraints import REVOLUTE
+    from linkwork.structure.model import PairType
 
-    if mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+    if mech.pair_type[mech.drive_pair[0]] != PairType.REVOLUTE:
         raise LinkworkError("--pull needs a crank (a revolute drive) turning uniformly")
     return bolt_speed(mech, pull=pull)
 
@@ -135,12 +135,12 @@ def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list
     from rich.markup import escape
 
     from linkwork.io.force_tables import pair_kind
-    from linkwork.structure.constraints import REVOLUTE
+    from linkwork.structure.model import PairType
 
     mech, phi = f.mechanism, f.angles
     out = make_console()
     rate = float(f.kinematics.rates[0, 0])
-    revolute = mech.pair_type[mech.drive_pair[0]] == REVOLUTE
+    revolute = mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE
     speed = f"{abs(rate) * 30 / math.pi:.6g} rpm" if revolute else f"{abs(rate):.6g} m/s"
     ok = np.isfinite(f.driving_torque)
     out.print(f"{escape(mech.name)}: {len(phi)} positions at {speed}, {int(ok.sum())} solved")

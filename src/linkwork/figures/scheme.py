@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.structure.constraints import REVOLUTE
+from linkwork.structure.model import PairType
 
 
 def _points(kin: Any, index: int) -> np.ndarray:
@@ -68,7 +68,7 @@ def draw_scheme(kin: Any, index: int = 0, ax: Any = None, trajectories: bool = F
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
         pb = pts[int(mech.pair_points[k, 1])]
-        if mech.pair_type[k] == REVOLUTE:
+        if mech.pair_type[k] == PairType.REVOLUTE:
             ax.add_patch(Circle(pb, r, fc="white", ec="black", lw=1.2, zorder=4))
             if a == 0:
                 tri = np.array([pb, pb + [-1.6 * r, -2.8 * r], pb + [1.6 * r, -2.8 * r]])

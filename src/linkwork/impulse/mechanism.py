@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.structure.constraints import REVOLUTE
+from linkwork.structure.model import PairType
 
 
 @dataclass(frozen=True)
@@ -288,7 +288,7 @@ def _ideal_com(mech: Any, forces: Any, link: int, impulse: np.ndarray, d_omega: 
     pivot = None
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
-        if mech.pair_type[k] == REVOLUTE and {a, b} == {0, link}:
+        if mech.pair_type[k] == PairType.REVOLUTE and {a, b} == {0, link}:
             pivot = k
     if pivot is None or d_omega == 0:
         return None
@@ -317,7 +317,7 @@ def reduced_model(mech: Any, *, at: str, rod_joint: str, **kw: Any) -> Any:
     rod = None
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
-        if mech.pair_type[k] == REVOLUTE and {a, b} == {0, rocker}:
+        if mech.pair_type[k] == PairType.REVOLUTE and {a, b} == {0, rocker}:
             pivot = int(mech.pair_points[k, 1 if b == rocker else 0])
         if mech.pair_joint[k] == rod_joint and rocker in (a, b):
             rod = (b if a == rocker else a, int(mech.pair_points[k, 0 if a == rocker else 1]))

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.atomic import write_atomic
-from linkwork.structure.constraints import REVOLUTE
+from linkwork.structure.model import PairType
 
 CONVENTION = (
     "joints: the force the first-named link exerts on the second, in the order of the file's joint and of "
@@ -28,7 +28,7 @@ def pair_labels(mech: Any) -> list[tuple[str, int]]:
     shown = [
         k
         for k in range(mech.n_pairs)
-        if not (mech.pair_type[k] == REVOLUTE and mech.link_virtual[mech.pair_links[k]].any())
+        if not (mech.pair_type[k] == PairType.REVOLUTE and mech.link_virtual[mech.pair_links[k]].any())
     ]
     joints = [mech.pair_joint[k] for k in shown]
     out = []
@@ -42,7 +42,7 @@ def pair_kind(mech: Any, k: int) -> str:
     """``revolute``, ``prismatic`` (which carries a moment) or ``pin-in-slot`` (the pairs of its block)."""
     if mech.link_virtual[mech.pair_links[k]].any():
         return "pin-in-slot"
-    return "revolute" if mech.pair_type[k] == REVOLUTE else "prismatic"
+    return "revolute" if mech.pair_type[k] == PairType.REVOLUTE else "prismatic"
 
 
 def _named(f: Any, k: int) -> tuple[str, str, np.ndarray]:
@@ -87,7 +87,7 @@ def to_json(f: Any) -> dict[str, Any]:
     found = f.foundation
     shaking = f.shaking_force
     torque = f.driving_torque
-    linear = mech.pair_type[mech.drive_pair[0]] != REVOLUTE
+    linear = mech.pair_type[mech.drive_pair[0]] != PairType.REVOLUTE
     return {
         "name": mech.name,
         "convention": CONVENTION,
@@ -132,7 +132,7 @@ def write_csv(f: Any, path: str | Path) -> Path:
     the second, both in the header), the foundation and shaking loads, the external loads."""
     _single(f)
     mech = f.mechanism
-    unit = "N" if mech.pair_type[mech.drive_pair[0]] != REVOLUTE else "N m"
+    unit = "N" if mech.pair_type[mech.drive_pair[0]] != PairType.REVOLUTE else "N m"
     cols: list[tuple[str, np.ndarray]] = [
         ("angle [deg]", np.degrees(f.angles)),
         (f"driving_torque [{unit}]", f.driving_torque),

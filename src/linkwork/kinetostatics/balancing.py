@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.structure.constraints import REVOLUTE
+from linkwork.structure.model import PairType
 
 
 @dataclass(frozen=True)
@@ -85,7 +85,7 @@ class Balance:
             pairs = [
                 np.nanmax(np.hypot(*np.moveaxis(f.pair_force(k), -1, 0)))
                 for k in range(f.mechanism.n_pairs)
-                if f.mechanism.pair_type[k] == REVOLUTE
+                if f.mechanism.pair_type[k] == PairType.REVOLUTE
             ]
             return {
                 "shaking_force_peak": float(np.nanmax(force)),
@@ -102,7 +102,7 @@ def _pivot(mech: Any, link: int) -> tuple[int, int]:
     """(pair, point) of the revolute pair joining ``link`` to the frame."""
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
-        if mech.pair_type[k] == REVOLUTE and {a, b} == {0, link}:
+        if mech.pair_type[k] == PairType.REVOLUTE and {a, b} == {0, link}:
             return k, int(mech.pair_points[k, 1 if b == link else 0])
     raise LinkworkError(
         f'link "{mech.link_names[link]}" does not turn about a frame pivot: counterweights go on links '

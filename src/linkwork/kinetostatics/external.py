@@ -15,6 +15,8 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.structure.model import PairType
+
 
 @dataclass(frozen=True)
 class ExternalLoad:
@@ -83,9 +85,9 @@ def compile_loads(spec: Any, mech: Any) -> tuple:
             for k, (joint, kind, _, b) in enumerate(pairs):
                 if joint != load.joint:
                     continue
-                if kind == 0 and load.moment is not None:
+                if kind == PairType.REVOLUTE and load.moment is not None:
                     out.append(ExternalLoad(name, "friction", int(b), value=float(load.moment), pair=k))
-                elif kind == 1 and load.magnitude is not None:
+                elif kind == PairType.PRISMATIC and load.magnitude is not None:
                     out.append(ExternalLoad(name, "friction", int(b), value=float(load.magnitude), pair=k))
         elif load.type == "moment":
             link = link_index[load.on]
@@ -204,7 +206,7 @@ def _friction(kin: Any, load: ExternalLoad, forces: list, moments: list, magnitu
     k = load.pair
     a, b = (int(x) for x in mech.pair_links[k])
     w = kin.vel[..., 2]
-    if mech.pair_type[k] == 0:
+    if mech.pair_type[k] == PairType.REVOLUTE:
         turn = np.sign(w[..., b] - w[..., a])
         moments.append((b, -load.value * turn))
         moments.append((a, load.value * turn))

@@ -20,7 +20,7 @@ import numpy as np
 
 from linkwork.kinetostatics.reactions import group_order
 from linkwork.motion.fast import OPTS, PER_THREAD, THREADS, _pool, njit
-from linkwork.structure.constraints import REVOLUTE
+from linkwork.structure.model import PairType
 
 #: Row kinds.
 REV_X, REV_Y, ANGLE, NORMAL, DRIVE_ANGLE, DRIVE_LINE = range(6)
@@ -43,13 +43,13 @@ def encode(mech: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
         pa, pb = (int(x) for x in mech.pair_points[k])
-        if mech.pair_type[k] == REVOLUTE:
+        if mech.pair_type[k] == PairType.REVOLUTE:
             rows += [[REV_X, a, b, pa, pb, k], [REV_Y, a, b, pa, pb, k]]
         else:
             rows += [[ANGLE, a, b, pa, pb, k], [NORMAL, a, b, pa, pb, k]]
     for k in mech.drive_pair:
         a, b = (int(x) for x in mech.pair_links[k])
-        kind = DRIVE_ANGLE if mech.pair_type[k] == REVOLUTE else DRIVE_LINE
+        kind = DRIVE_ANGLE if mech.pair_type[k] == PairType.REVOLUTE else DRIVE_LINE
         rows.append([kind, a, b, int(mech.pair_points[k, 0]), int(mech.pair_points[k, 1]), int(k)])
     owned = group_order(mech)
     width = max(len(links) for links, _ in owned)

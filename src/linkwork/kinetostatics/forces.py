@@ -23,6 +23,7 @@ from linkwork.kinetostatics.reactions import (
     solve_reactions,
 )
 from linkwork.motion.kinematics import Kinematics, kinematics
+from linkwork.structure.model import PairType
 
 
 @dataclass(frozen=True)
@@ -117,7 +118,7 @@ class Forces:
         acts at the slider's point of the pair."""
         m = self.mechanism
         lam = self.multipliers[..., 2 * k : 2 * k + 2]
-        if m.pair_type[k] == 0:
+        if m.pair_type[k] == PairType.REVOLUTE:
             return -lam
         theta = self.kinematics.pose[..., int(m.pair_links[k, 0]), 2]  # the guide's angle (V, A)
         ux, uy = self.kinematics.axis[k, 0], self.kinematics.axis[k, 1]  # local direction (V, 1)
@@ -166,7 +167,7 @@ class Forces:
     def pair_moment(self, joint: str) -> np.ndarray:
         """Moment (N m) the guide exerts on the slider in a prismatic joint, about the slider's point."""
         k = self.pairs(joint)[0]
-        if self.mechanism.pair_type[k] != 1:
+        if self.mechanism.pair_type[k] != PairType.PRISMATIC:
             raise LinkworkError(f'joint "{joint}" is revolute: it carries no moment')
         return self._out(self.multipliers[..., 2 * k])
 

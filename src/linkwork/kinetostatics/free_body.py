@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.structure.constraints import REVOLUTE
+from linkwork.structure.model import PairType
 
 
 @dataclass(frozen=True)
@@ -80,14 +80,14 @@ def contacts(forces: Any) -> list[Contact]:
         a, b = (int(x) for x in m.pair_links[k])
         point = kin._point(m.point_names[int(m.pair_points[k, 1])])[0]
         f = forces.pair_force(k)
-        couple = zero if m.pair_type[k] == REVOLUTE else lam[..., 2 * k]
+        couple = zero if m.pair_type[k] == PairType.REVOLUTE else lam[..., 2 * k]
         out.append(Contact(m.pair_joint[k], b, a, f, point, couple, pair=k))
         out.append(Contact(m.pair_joint[k], a, b, -f, point, -couple, pair=k))
     for d, k in enumerate(m.drive_pair):
         a, b = (int(x) for x in m.pair_links[k])
         value = lam[..., 2 * m.n_pairs + d]
         point = kin._point(m.point_names[int(m.pair_points[k, 1])])[0]
-        if m.pair_type[k] == REVOLUTE:
+        if m.pair_type[k] == PairType.REVOLUTE:
             f, couple = np.zeros(shape + (2,)), value
         else:
             theta = kin.pose[..., a, 2]

@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.structure.constraints import PRISMATIC, REVOLUTE
+from linkwork.structure.model import PairType
 
 TWO_PI = 2 * math.pi
 
@@ -76,9 +76,9 @@ def outputs(mech: Any) -> tuple[Output, ...]:
         link = _moving(mech, k)
         if mech.link_virtual[link] or link in seen:
             continue
-        if mech.pair_type[k] == PRISMATIC and a == 0:
+        if mech.pair_type[k] == PairType.PRISMATIC and a == 0:
             out.append(Output("slider", str(mech.pair_joint[k]), k, link, int(mech.pair_points[k, 1])))
-        elif mech.pair_type[k] == REVOLUTE and link not in driven_links:
+        elif mech.pair_type[k] == PairType.REVOLUTE and link not in driven_links:
             out.append(Output("rocker", str(mech.link_names[link]), k, link))
         else:
             continue

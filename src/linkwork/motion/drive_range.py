@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.structure.constraints import REVOLUTE
+from linkwork.structure.model import PairType
 
 #: Samples of the turn that :func:`drive_range` solves (0.5 deg apart).
 STEPS = 720
@@ -162,7 +162,7 @@ def drive_range(mech: Any, steps: int = STEPS) -> DriveRange | None:
     -------
     DriveRange or None
     """
-    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != REVOLUTE:
+    if mech.n_drives != 1 or mech.pair_type[mech.drive_pair[0]] != PairType.REVOLUTE:
         return None
     sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
     start = float(mech.drive_start[0])
@@ -255,7 +255,8 @@ def grashof(mech: Any) -> Grashof | None:
 
 def _four_bar(mech: Any) -> tuple[tuple[str, str, str, str], tuple[float, float, float, float]] | None:
     """The names (frame, input, coupler, output) and lengths of a four-bar, or None."""
-    if len(mech.link_names) != 4 or mech.n_pairs != 4 or mech.n_drives != 1 or np.any(mech.pair_type != REVOLUTE):
+    revolute = bool(np.all(mech.pair_type == PairType.REVOLUTE))
+    if len(mech.link_names) != 4 or mech.n_pairs != 4 or mech.n_drives != 1 or not revolute:
         return None
     pivots: dict[int, list[int]] = {link: [] for link in range(4)}
     for k in range(4):

@@ -9,7 +9,7 @@ import numpy as np
 
 from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.motion.events import Event
-from linkwork.structure.constraints import REVOLUTE
+from linkwork.structure.model import PairType
 from linkwork.structure.parameters import Masses, apply
 
 
@@ -253,7 +253,7 @@ def kinematics(
             raise LinkworkError(f'variants["{path}"]: expected a one-dimensional array, got shape {np.shape(value)}')
     rates = np.broadcast_to(rate, values.shape)
     geom, masses = apply(mech, variants)
-    revolute = bool(mech.pair_type[mech.drive_pair[0]] == REVOLUTE)
+    revolute = bool(mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE)
     path, take = _path(mech, values[:, 0]) if revolute and mech.n_drives == 1 else (None, None)
     if path is None:
         state = run(mech, mech.program, geom, values, rates, np.zeros_like(values))

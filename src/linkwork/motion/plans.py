@@ -37,6 +37,8 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.structure.model import PairType
+
 
 @dataclass(frozen=True)
 class PlanVector:
@@ -226,7 +228,7 @@ class _Construction:
         grounded = {
             int(mech.pair_points[k, 1])
             for k in range(mech.n_pairs)
-            if mech.pair_type[k] == 0 and mech.pair_links[k, 0] == 0
+            if mech.pair_type[k] == PairType.REVOLUTE and mech.pair_links[k, 0] == 0
         }
         labels = {p: label.lower() for label, p in point_labels(mech, with_all=True)}
         self.label = [

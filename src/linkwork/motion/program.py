@@ -15,8 +15,7 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
-from linkwork.structure.constraints import PRISMATIC, REVOLUTE
-from linkwork.structure.model import AssurGroup
+from linkwork.structure.model import AssurGroup, PairType
 
 
 @dataclass(frozen=True)
@@ -83,7 +82,7 @@ def _p_arm(mech: Any, link: int, k: int) -> Arm:
 
 
 def _arm(mech: Any, link: int, k: int) -> Arm:
-    return _r_arm(mech, link, k) if mech.pair_type[k] == REVOLUTE else _p_arm(mech, link, k)
+    return _r_arm(mech, link, k) if mech.pair_type[k] == PairType.REVOLUTE else _p_arm(mech, link, k)
 
 
 def build(mech: Any) -> list[Step]:
@@ -102,27 +101,27 @@ def build(mech: Any) -> list[Step]:
         if g.klass == 1 and len(g.links) == 1 and len(g.pairs) == 1 and g.pairs[0] in driven:
             k = g.pairs[0]
             link = g.links[0]
-            if mech.pair_type[k] == REVOLUTE:
+            if mech.pair_type[k] == PairType.REVOLUTE:
                 step = Step("crank", g, g.links, arms=(_r_arm(mech, link, k),), drive=driven[k], pair=k)
             elif int(mech.pair_links[k, 1]) == link:
                 step = Step("slide", g, g.links, arms=(_p_arm(mech, link, k),), drive=driven[k], pair=k)
         elif g.klass == 2 and not g.driven and len(inner) == 1 and all(len(v) == 1 for v in outer.values()):
             a, b = g.links
             ka, kb, ki = outer[a][0], outer[b][0], inner[0]
-            if mech.pair_type[ki] == REVOLUTE:
+            if mech.pair_type[ki] == PairType.REVOLUTE:
                 xa = int(mech.pair_points[ki, 0 if int(mech.pair_links[ki, 0]) == a else 1])
                 xb = int(mech.pair_points[ki, 0 if int(mech.pair_links[ki, 0]) == b else 1])
                 step = Step(g.kind, g, g.links, arms=(_arm(mech, a, ka), _arm(mech, b, kb)), x_local=(xa, xb))
-            elif mech.pair_type[ka] == REVOLUTE and mech.pair_type[kb] == REVOLUTE:
+            elif mech.pair_type[ka] == PairType.REVOLUTE and mech.pair_type[kb] == PairType.REVOLUTE:
                 guide, slider = (int(v) for v in mech.pair_links[ki])
                 arm_s = _r_arm(mech, slider, kb if guide == a else ka)
                 arm_s = dataclasses.replace(arm_s, slider_point=int(mech.pair_points[ki, 1]))
                 arms = (_r_arm(mech, guide, ka if guide == a else kb), arm_s)
                 step = Step("RPR", g, g.links, arms=arms, inner=ki)
             else:
-                pinned, other = (a, b) if mech.pair_type[ka] == REVOLUTE else (b, a)
+                pinned, other = (a, b) if mech.pair_type[ka] == PairType.REVOLUTE else (b, a)
                 kp, ko = (ka, kb) if pinned == a else (kb, ka)
-                if mech.pair_type[kp] == REVOLUTE and mech.pair_type[ko] == PRISMATIC:
+                if mech.pair_type[kp] == PairType.REVOLUTE and mech.pair_type[ko] == PairType.PRISMATIC:
                     arms = (_r_arm(mech, pinned, kp), _p_arm(mech, other, ki), _p_arm(mech, other, ko))
                     step = Step("RPP", g, g.links, arms=arms, inner=ki, x_local=(-1, -1))
         steps.append(step)

@@ -10,6 +10,7 @@ from linkwork.motion import fast, kernels
 from linkwork.motion.program import Step
 from linkwork.motion.state import State, soa
 from linkwork.structure.constraints import residuals_and_jacobian, velocity_products
+from linkwork.structure.model import PairType
 from linkwork.structure.parameters import Geometry
 
 
@@ -139,7 +140,7 @@ def _solve(
     n_var, n_ang = geom.n_variants, values.shape[0]
     state = State.empty(mech.n_links_total, soa(geom.point_local), soa(geom.pair_origin), soa(geom.pair_axis), n_ang)
     offset = (values[:, 0] - mech.drive_start[0] + np.pi) % (2 * np.pi) - np.pi
-    if mech.pair_type[mech.drive_pair[0]] == 1:
+    if mech.pair_type[mech.drive_pair[0]] == PairType.PRISMATIC:
         offset = values[:, 0] - mech.drive_start[0]
     state.start_index = int(np.argmin(np.abs(offset)))
     state.drive = values[:, 0]
@@ -186,7 +187,7 @@ def _repair_singular(
     if len(idx) == 0:
         return
     scale = max(float(np.abs(mech.point_local).max()), 1e-3)
-    delta = np.where(mech.pair_type[mech.drive_pair] == 0, 1e-3, 1e-3 * scale)
+    delta = np.where(mech.pair_type[mech.drive_pair] == PairType.REVOLUTE, 1e-3, 1e-3 * scale)
     n_ang = values.shape[0]
     # the assembly mode on each side: that of the neighbouring sample on that side (whatever the order
     # of the angles); where there is none, a change point is crossed: the other mode than the far side's

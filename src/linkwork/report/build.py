@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.io.jsonout import dumps
+from linkwork.structure.model import PairType
 
 
 @dataclass
@@ -249,7 +250,7 @@ def _forces(run: _Run, steps: int) -> None:
     sec.figures.append(run.figure("driving_torque", figures.torque_diagram(f)))
     sec.figures.append(run.figure("foundation", figures.foundation_diagram(f)))
     for k in range(mech.n_pairs):
-        if mech.pair_links[k, 0] == 0 and mech.pair_type[k] == 0:
+        if mech.pair_links[k, 0] == 0 and mech.pair_type[k] == PairType.REVOLUTE:
             sec.figures.append(run.figure(f"hodograph_{mech.pair_joint[k]}", figures.hodograph(f, mech.pair_joint[k])))
     run.sections.append(sec)
 

@@ -13,8 +13,8 @@ import math
 import numpy as np
 
 from linkwork.errors import UnassemblableError
-from linkwork.structure.constraints import PRISMATIC, REVOLUTE, Rows, residuals_and_jacobian
-from linkwork.structure.model import AssurGroup, Mechanism
+from linkwork.structure.constraints import Rows, residuals_and_jacobian
+from linkwork.structure.model import AssurGroup, Mechanism, PairType
 
 
 def fit_pose(local: np.ndarray, glob: np.ndarray, theta: float | None = None) -> np.ndarray:
@@ -108,7 +108,7 @@ def locate(
     for i in group.links:
         for k in group.pairs:
             a, b = (int(v) for v in mech.pair_links[k])
-            if i in (a, b) and (b if i == a else a) in placed and mech.pair_type[k] == REVOLUTE:
+            if i in (a, b) and (b if i == a else a) in placed and mech.pair_type[k] == PairType.REVOLUTE:
                 mine, theirs = mech.pair_points[k, 0 if i == a else 1], mech.pair_points[k, 1 if i == a else 0]
                 points[i].append((int(mine), "joint", int(theirs)))
         for p in np.flatnonzero(mech.point_link == i):
@@ -120,7 +120,7 @@ def locate(
         changed = False
         for k in group.pairs:
             a, b = (int(v) for v in mech.pair_links[k])
-            if mech.pair_type[k] == PRISMATIC or k in driven:
+            if mech.pair_type[k] == PairType.PRISMATIC or k in driven:
                 for i, other in ((a, b), (b, a)):
                     if i in angle and i not in known and other in known:
                         angle[i] = ("pair", k, other)
@@ -140,7 +140,7 @@ def initial_guess(
     mech: Mechanism, q: np.ndarray, group: AssurGroup, placed: set[int], hints: dict[int, np.ndarray]
 ) -> np.ndarray:
     """A starting pose of the group's links from placed joints and hints."""
-    from linkwork.structure.constraints import global_points
+    from linkwork.structure.model import global_points
 
     q = q.copy()
     glob_all = global_points(q, mech.point_link, mech.point_local)
@@ -162,7 +162,7 @@ def initial_guess(
                 theta = q[other, 2]
                 a, b = (int(v) for v in mech.pair_links[k])
                 for d, dk in enumerate(mech.drive_pair):
-                    if dk == k and mech.pair_type[k] == REVOLUTE:
+                    if dk == k and mech.pair_type[k] == PairType.REVOLUTE:
                         phi = mech.drive_start[d]
                         theta = q[a, 2] + phi if i == b else q[b, 2] - phi
             local = [mech.point_local[own] for own, _, _ in points[i]]
@@ -207,7 +207,7 @@ def _why(mech: Mechanism, group: AssurGroup, worst: float, q: np.ndarray, placed
 
 def _dyad_reason(mech: Mechanism, group: AssurGroup, q: np.ndarray, placed: set[int]) -> str | None:
     """Why an RRR or RRP dyad does not close, in the words of the circle construction."""
-    from linkwork.structure.constraints import global_points
+    from linkwork.structure.model import global_points
 
     if group.klass != 2 or group.kind not in ("RRR", "RRP"):
         return None
@@ -243,7 +243,7 @@ def _dyad_reason(mech: Mechanism, group: AssurGroup, q: np.ndarray, placed: set[
             f"the joints {na} and {nb} are {d:.4g} m apart, less than the difference {abs(ra - rb):.4g} m "
             f"of the links {mech.link_names[la]} and {mech.link_names[lb]}"
         )
-    rod, slider = (la, lb) if mech.pair_type[outer[la]] == REVOLUTE else (lb, la)
+    rod, slider = (la, lb) if mech.pair_type[outer[la]] == PairType.REVOLUTE else (lb, la)
     r, p, name = arm(rod, outer[rod])
     kp = outer[slider]
     guide = int(mech.pair_links[kp, 0])
@@ -262,6 +262,6 @@ def _dyad_reason(mech: Mechanism, group: AssurGroup, q: np.ndarray, placed: set[
 
 
 def _coord(mech: Mechanism, pair: int, value: float) -> str:
-    if mech.pair_type[pair] == REVOLUTE:
+    if mech.pair_type[pair] == PairType.REVOLUTE:
         return f"{math.degrees(value):.6g} deg"
     return f"{value:.6g} m"

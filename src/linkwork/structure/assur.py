@@ -16,8 +16,8 @@ from itertools import combinations
 
 import numpy as np
 
-from linkwork.structure.constraints import PRISMATIC, Rows
-from linkwork.structure.model import AssurGroup
+from linkwork.structure.constraints import Rows
+from linkwork.structure.model import AssurGroup, PairType
 
 DYADS = ("RRR", "RRP", "RPR", "PRP", "RPP")
 
@@ -106,7 +106,7 @@ def _classify(
     driven = any(rows.drive[i] >= 0 for i in sel)
     internal = [k for k in pairs if set(map(int, pair_links[k])) <= s]
     external = [k for k in pairs if k not in internal]
-    letter = {k: ("P" if pair_type[k] == PRISMATIC else "R") for k in pairs}
+    letter = {k: ("P" if pair_type[k] == PairType.PRISMATIC else "R") for k in pairs}
     joints = tuple(dict.fromkeys(pair_joint[k] for k in external + internal))
     inner = tuple(dict.fromkeys(pair_joint[k] for k in internal))
     names = tuple(link_names[i] for i in subset)

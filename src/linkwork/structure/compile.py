@@ -18,8 +18,8 @@ from linkwork.errors import Problem, SpecError, StructureError, UnassemblableErr
 from linkwork.spec.schema import Spec
 from linkwork.structure.assemble import assemble, scaled, solve_group, unfixed_links
 from linkwork.structure.assur import decompose, rank
-from linkwork.structure.constraints import PRISMATIC, REVOLUTE, build_rows, global_points
-from linkwork.structure.model import AssurGroup, Mechanism, Structure, formula
+from linkwork.structure.constraints import build_rows
+from linkwork.structure.model import AssurGroup, Mechanism, PairType, Structure, formula, global_points
 
 
 def structural_model(spec: Spec) -> Mechanism:
@@ -132,7 +132,7 @@ def _spinning_links(mech: Mechanism) -> list[int]:
             a, b = (int(x) for x in mech.pair_links[k])
             if i not in (a, b):
                 continue
-            if mech.pair_type[k] != REVOLUTE:
+            if mech.pair_type[k] != PairType.REVOLUTE:
                 pts = None
                 break
             pts.append(mech.point_local[mech.pair_points[k, 0 if a == i else 1]])
@@ -175,7 +175,7 @@ def _ranks(
 
 def _neighbours(mech: Mechanism, rows: Any, q0: np.ndarray, scale: float) -> list[tuple[np.ndarray, np.ndarray]]:
     """Poses a little way either side along the motion (singular poses are isolated)."""
-    step = np.where(mech.pair_type[mech.drive_pair] == REVOLUTE, 0.02, 0.002 * scale)
+    step = np.where(mech.pair_type[mech.drive_pair] == PairType.REVOLUTE, 0.02, 0.002 * scale)
     links = tuple(range(1, mech.n_links_total))
     out = []
     for sign in (1.0, -1.0):
@@ -289,7 +289,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         pair_origin.append(origin)
         pair_axis.append(axis)
         pair_joint.append(joint)
-        if kind == REVOLUTE:
+        if kind == PairType.REVOLUTE:
             origin_point.append(-1)
 
     def line(guide: int, through: Any, axis: float) -> tuple[Any, Any]:
@@ -315,20 +315,20 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         if joint.type == "revolute":
             joint_pair[jname] = len(pair_type)
             for other in links[1:]:
-                add_pair(REVOLUTE, links[0], other, pindex[(links[0], pt)], pindex[(other, pt)], joint=jname)
+                add_pair(PairType.REVOLUTE, links[0], other, pindex[(links[0], pt)], pindex[(other, pt)], joint=jname)
                 p5 += 1
         elif joint.type == "prismatic":
             joint_pair[jname] = len(pair_type)
             origin, axis = line(links[0], joint.through, joint.axis)
-            add_pair(PRISMATIC, links[0], links[1], -1, pindex[(links[1], pt)], origin, axis, jname)
+            add_pair(PairType.PRISMATIC, links[0], links[1], -1, pindex[(links[1], pt)], origin, axis, jname)
             p5 += 1
         else:
             block = index[f"{jname}:block"]
             virtual[block] = True
             add_point(block, pt, (0.0, 0.0))
-            add_pair(REVOLUTE, links[1], block, pindex[(links[1], pt)], pindex[(block, pt)], joint=jname)
+            add_pair(PairType.REVOLUTE, links[1], block, pindex[(links[1], pt)], pindex[(block, pt)], joint=jname)
             origin, axis = line(links[0], joint.through, joint.axis)
-            add_pair(PRISMATIC, links[0], block, -1, pindex[(block, pt)], origin, axis, jname)
+            add_pair(PairType.PRISMATIC, links[0], block, -1, pindex[(block, pt)], origin, axis, jname)
             p4 += 1
 
     drive_pair, drive_speed, drive_start = [], [], []
@@ -338,7 +338,7 @@ def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[in
         sign = -1.0 if drive.direction in ("cw", "backward") else 1.0
         speed = drive.speed if isinstance(drive.speed, float) else (math.nan if drive.law else 0.0)
         drive_speed.append(sign * speed)
-        start = drive.angle if pair_type[k] == REVOLUTE else drive.position
+        start = drive.angle if pair_type[k] == PairType.REVOLUTE else drive.position
         drive_start.append(start or 0.0)
 
     hints: dict[int, np.ndarray] = {}

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-REVOLUTE, PRISMATIC = 0, 1
+from linkwork.structure.model import PairType
 
 
 @dataclass(frozen=True)
@@ -60,12 +60,12 @@ def build_rows(pair_type: np.ndarray, pair_links: np.ndarray, drive_pair: np.nda
         pair += [k, k]
         drive += [-1, -1]
         links += [pair_links[k], pair_links[k]]
-        angular += [False, False] if kind == REVOLUTE else [True, False]
+        angular += [False, False] if kind == PairType.REVOLUTE else [True, False]
     for d, k in enumerate(drive_pair):
         pair.append(-1)
         drive.append(d)
         links.append(pair_links[k])
-        angular.append(pair_type[k] == REVOLUTE)
+        angular.append(pair_type[k] == PairType.REVOLUTE)
     return Rows(
         np.array(pair, dtype=int),
         np.array(drive, dtype=int),
@@ -86,12 +86,6 @@ def _rot(theta: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 def _perp(v: np.ndarray) -> np.ndarray:
     return np.stack([-v[..., 1], v[..., 0]], axis=-1)
-
-
-def global_points(q: np.ndarray, point_link: np.ndarray, point_local: np.ndarray) -> np.ndarray:
-    """Global coordinates of points, shape ``(..., n_points, 2)``."""
-    ql = q[..., point_link, :]
-    return ql[..., :2] + _rot(ql[..., 2], point_local)
 
 
 def residuals_and_jacobian(
@@ -157,7 +151,7 @@ def residuals_and_jacobian(
 
     for k, kind in enumerate(mech.pair_type):
         a, b = mech.pair_links[k]
-        if kind == REVOLUTE:
+        if kind == PairType.REVOLUTE:
             pa, dpa = point_terms(a, pts_local[..., mech.pair_points[k, 0], :])
             pb, dpb = point_terms(b, pts_local[..., mech.pair_points[k, 1], :])
             for axis in (0, 1):
@@ -182,7 +176,7 @@ def residuals_and_jacobian(
         values = np.broadcast_to(values, batch + (len(mech.drive_pair),))
         for d, k in enumerate(mech.drive_pair):
             a, b = mech.pair_links[k]
-            if mech.pair_type[k] == REVOLUTE:
+            if mech.pair_type[k] == PairType.REVOLUTE:
                 row = zeros()
                 row[..., 3 * b + 2] += 1.0
                 row[..., 3 * a + 2] -= 1.0
@@ -232,7 +226,7 @@ def velocity_products(q: np.ndarray, qd: np.ndarray, mech: object, geom: object 
 
     for k, kind in enumerate(mech.pair_type):
         a, b = mech.pair_links[k]
-        if kind == REVOLUTE:
+        if kind == PairType.REVOLUTE:
             ra = rp(a, geom.point_local[..., mech.pair_points[k, 0], :])
             rb = rp(b, geom.point_local[..., mech.pair_points[k, 1], :])
             g = -(qd[..., a, 2, None] ** 2) * ra + qd[..., b, 2, None] ** 2 * rb
@@ -241,5 +235,5 @@ def velocity_products(q: np.ndarray, qd: np.ndarray, mech: object, geom: object 
             out.append(np.zeros(batch))
             out.append(line_gamma(k, "n"))
     for k in mech.drive_pair:
-        out.append(np.zeros(batch) if mech.pair_type[k] == REVOLUTE else line_gamma(k, "u"))
+        out.append(np.zeros(batch) if mech.pair_type[k] == PairType.REVOLUTE else line_gamma(k, "u"))
     return np.stack(out, axis=-1)

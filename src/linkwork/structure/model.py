@@ -3,9 +3,18 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import IntEnum
 from typing import Any
 
 import numpy as np
+
+
+class PairType(IntEnum):
+    """The kind of an elementary pair (``Mechanism.pair_type``)."""
+
+    REVOLUTE = 0
+    PRISMATIC = 1
+
 
 ROMAN = ["0", "I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX", "X"]
 
@@ -175,7 +184,7 @@ class Mechanism:
     point_names: tuple[str, ...]  # "link.point"
     point_link: np.ndarray  # (P,) int
     point_local: np.ndarray  # (P, 2)
-    pair_type: np.ndarray  # (M,) 0 revolute, 1 prismatic
+    pair_type: np.ndarray  # (M,) PairType: 0 revolute, 1 prismatic
     pair_links: np.ndarray  # (M, 2) [a, b]; prismatic: [guide, slider]
     pair_points: np.ndarray  # (M, 2) point indices; -1 where none
     pair_origin: np.ndarray  # (M, 2) prismatic: guide line point, local to a
@@ -249,8 +258,6 @@ class Mechanism:
 
     def points0(self) -> np.ndarray:
         """Global positions of all points in the assembly pose, (P, 2)."""
-        from linkwork.structure.constraints import global_points
-
         return global_points(self.pose0, self.point_link, self.point_local)
 
 
@@ -279,6 +286,12 @@ def point_labels(mech: Any, with_all: bool = False) -> list[tuple[str, int]]:
 
 def one_crank(mech: Any) -> bool:
     """Whether the mechanism has exactly one drive and it is revolute (a crank turning whole cycles)."""
-    from linkwork.structure.constraints import REVOLUTE
+    return bool(mech.n_drives == 1 and mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE)
 
-    return bool(mech.n_drives == 1 and mech.pair_type[mech.drive_pair[0]] == REVOLUTE)
+
+def global_points(q: np.ndarray, point_link: np.ndarray, point_local: np.ndarray) -> np.ndarray:
+    """Global coordinates of points, shape ``(..., n_points, 2)``, of the poses ``q`` ``(..., N, 3)``."""
+    ql = q[..., point_link, :]
+    c, s = np.cos(ql[..., 2]), np.sin(ql[..., 2])
+    x, y = point_local[..., 0], point_local[..., 1]
+    return ql[..., :2] + np.stack([c * x - s * y, s * x + c * y], -1)

@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import ParameterError
+from linkwork.structure.model import PairType
 
 #: The centre of mass given in the file's link coordinates: it stays.
 COM_GIVEN = -2
@@ -194,7 +195,7 @@ def _dimensions(mech: Any) -> list[Parameter]:
         out.append(Parameter(f"{base}.y", "length", float(mech.point_local[p, 1]), "dimensions"))
     seen: set[str] = set()
     for k, joint in enumerate(mech.pair_joint):
-        if mech.pair_type[k] != 1 or joint in seen:
+        if mech.pair_type[k] != PairType.PRISMATIC or joint in seen:
             continue
         seen.add(joint)
         angle = float(np.arctan2(mech.pair_axis[k, 1], mech.pair_axis[k, 0]))
@@ -287,7 +288,8 @@ def _set(
         p = mech.point_names.index(f"{lname}.{parts[-2]}")
         pts[:, p, 0 if parts[-1] == "x" else 1] = v
     else:
-        for k in (k for k, j in enumerate(mech.pair_joint) if j == parts[1] and mech.pair_type[k] == 1):
+        guides = [k for k, j in enumerate(mech.pair_joint) if j == parts[1] and mech.pair_type[k] == PairType.PRISMATIC]
+        for k in guides:
             if parts[2] == "axis":
                 axis[:, k] = np.stack([np.cos(v), np.sin(v)], axis=-1)
             else:

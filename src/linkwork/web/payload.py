@@ -48,8 +48,7 @@ import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.motion.analysis import coordinate, extremes, guide, outputs
-from linkwork.structure.constraints import PRISMATIC, REVOLUTE
-from linkwork.structure.model import one_crank
+from linkwork.structure.model import PairType, one_crank
 
 FORMAT = "linkwork-view/1"
 
@@ -195,7 +194,7 @@ def _pairs(mech: Any, kin: Any) -> list[dict[str, Any]]:
         a, b = (int(x) for x in mech.pair_links[k])
         item: dict[str, Any] = {
             "joint": mech.pair_joint[k],
-            "type": "revolute" if mech.pair_type[k] == REVOLUTE else "prismatic",
+            "type": "revolute" if mech.pair_type[k] == PairType.REVOLUTE else "prismatic",
             "links": [a, b],
             "points": [int(x) for x in mech.pair_points[k]],
             "driven": k in driven,
@@ -203,7 +202,7 @@ def _pairs(mech: Any, kin: Any) -> list[dict[str, Any]]:
             # the frame's point of the pair (a support is drawn there), whichever side the frame is named on
             "frame_point": int(mech.pair_points[k, 0 if a == 0 else 1]) if 0 in (a, b) else None,
         }
-        if mech.pair_type[k] == PRISMATIC:
+        if mech.pair_type[k] == PairType.PRISMATIC:
             item["axis"] = _json(guide(kin, k)[1][0], 9)
         out.append(item)
     return out
@@ -265,7 +264,7 @@ def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
         add("foundation:m", "moment on the foundation about the origin (ccw +)", "N m", "forces", found[:, 2])
         seen: set[str] = set()
         for k in range(mech.n_pairs):
-            if 0 in mech.pair_links[k] and mech.pair_type[k] == REVOLUTE and mech.pair_joint[k] not in seen:
+            if 0 in mech.pair_links[k] and mech.pair_type[k] == PairType.REVOLUTE and mech.pair_joint[k] not in seen:
                 # the size of the force the support takes: of all the links it holds in the joint
                 joint = mech.pair_joint[k]
                 seen.add(joint)
