@@ -70,7 +70,7 @@ def spec_of(mechanism: Any, what: str = "mechanism") -> Spec | None:
     if isinstance(mechanism, Spec):
         return mechanism
     if isinstance(mechanism, Mechanism):
-        return mechanism.spec  # type: ignore[no-any-return]
+        return mechanism.spec
     if isinstance(mechanism, str | os.PathLike):
         from linkwork.examples import resolve
 

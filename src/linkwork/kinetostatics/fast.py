@@ -18,9 +18,13 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.kinetostatics.external import Applied
+from linkwork.kinetostatics.geometry import variant_geometry
 from linkwork.kinetostatics.reactions import group_order
+from linkwork.motion import fast as motion_fast
 from linkwork.motion.fast import OPTS, PER_THREAD, THREADS, _pool, njit
-from linkwork.structure.model import PairType
+from linkwork.motion.kinematics import Kinematics
+from linkwork.structure.model import Mechanism, PairType
 
 #: Row kinds.
 REV_X, REV_Y, ANGLE, NORMAL, DRIVE_ANGLE, DRIVE_LINE = range(6)
@@ -29,12 +33,11 @@ SINGULAR = 1e-12
 
 
 def available() -> bool:
-    from linkwork.motion import fast
+    """Whether the reactions run in machine code (as the kinematics do: :func:`linkwork.motion.fast.available`)."""
+    return motion_fast.ENABLED
 
-    return fast.ENABLED
 
-
-def encode(mech: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def encode(mech: Mechanism) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Rows ``(m, 6)``: kind, a, b, point of a, point of b, pair; groups in the order they are solved
     (reverse of the structure), one row of ``(G, 2 + 4 L)`` each: the number of links, the links,
     the number of the group's rows, its rows, then the rows of the groups solved before it that
@@ -96,27 +99,19 @@ def shapes(rows: np.ndarray, groups: np.ndarray) -> np.ndarray:
     return out
 
 
-def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
+def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarray]:
     """Multipliers ``(V, A, m)`` and the foundation loads ``(V, A, 3)``: the pairs' force and moment
     on the frame plus the frame's own applied loads (its weight, external loads on it).
 
-    ``applied``: the external loads (:class:`linkwork.kinetostatics.external.Applied`) or None.
+    ``applied``: the external loads, or None.
     """
     mech = kin.mechanism
     rows, groups, width = encode(mech)
     shape_of = shapes(rows, groups)
     n_var, n_ang = kin.valid_all.shape
-    local = np.ascontiguousarray(np.moveaxis(kin.local[..., 0], 2, 0))  # (V, P, 2)
-    origin = np.ascontiguousarray(np.moveaxis(kin.origin[..., 0], 2, 0))  # (V, M, 2)
-    axis = np.ascontiguousarray(np.moveaxis(kin.axis[..., 0], 2, 0))
-    forces = applied.forces if applied is not None else []
-    moments = applied.moments if applied is not None else []
-    shape = (n_var, n_ang)
-    f_link = np.array([f[0] for f in forces], dtype=np.int64)
-    f_val = np.stack([np.broadcast_to(f[3], shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
-    f_pos = np.stack([np.broadcast_to(f[1], shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
-    m_link = np.array([m[0] for m in moments], dtype=np.int64)
-    m_val = np.stack([np.broadcast_to(m[1], shape) for m in moments]) if moments else np.zeros((0, 1, 1))
+    geom = variant_geometry(kin)
+    local, origin, axis = (np.ascontiguousarray(g[:, 0]) for g in (geom.point_local, geom.pair_origin, geom.pair_axis))
+    f_link, f_val, f_pos, m_link, m_val = _external(applied, (n_var, n_ang))
     ms = kin.mass_properties  # (V or 1, N)
     mass = np.ascontiguousarray(np.broadcast_to(ms.mass, (n_var, mech.n_links_total)), dtype=float)
     com = np.ascontiguousarray(np.broadcast_to(ms.com, (n_var, mech.n_links_total, 2)), dtype=float)
@@ -142,6 +137,19 @@ def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
     else:
         list(_pool().map(part, bounds[:-1], bounds[1:]))
     return lam, frame
+
+
+def _external(applied: Applied | None, shape: tuple[int, int]) -> tuple[np.ndarray, ...]:
+    """The external loads as the kernel reads them: the links of the forces ``(F,)``, the forces and their
+    points ``(F, V, A, 2)``; the links of the moments ``(C,)`` and the moments ``(C, V, A)``."""
+    forces = applied.forces if applied is not None else []
+    moments = applied.moments if applied is not None else []
+    f_link = np.array([f.link for f in forces], dtype=np.int64)
+    f_val = np.stack([np.broadcast_to(f.force, shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
+    f_pos = np.stack([np.broadcast_to(f.position, shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
+    m_link = np.array([m.link for m in moments], dtype=np.int64)
+    m_val = np.stack([np.broadcast_to(m.moment, shape) for m in moments]) if moments else np.zeros((0, 1, 1))
+    return f_link, f_val, f_pos, m_link, m_val
 
 
 def _row_geometry(rows, local, origin, axis, var, G):
@@ -406,7 +414,7 @@ def _kernel(
 
 
 if njit is not None:  # pragma: no branch
-    _opts = OPTS
+    _opts: dict[str, Any] = OPTS
     _row_geometry = njit(inline="always", **_opts)(_row_geometry)
     _rows_at = njit(inline="always", **_opts)(_rows_at)
     _col = njit(inline="always", **_opts)(_col)
