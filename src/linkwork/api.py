@@ -25,6 +25,7 @@ import os
 from collections.abc import Callable
 from typing import Concatenate, ParamSpec, TypeVar, Union, cast
 
+from linkwork.examples import resolve
 from linkwork.impulse.cycle import simulate_blows as _simulate_blows
 from linkwork.impulse.mechanism import impact as _impact
 from linkwork.kinetostatics.balancing import balance as _balance
@@ -72,8 +73,6 @@ def spec_of(mechanism: object, what: str = "mechanism") -> Spec | None:
     if isinstance(mechanism, Mechanism):
         return mechanism.spec
     if isinstance(mechanism, str | os.PathLike):
-        from linkwork.examples import resolve
-
         return resolve(os.fspath(mechanism))
     raise TypeError(f"{what}: expected {EXPECTED}, got {type(mechanism).__name__}")
 

@@ -42,11 +42,13 @@ import copy
 import io
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from linkwork import examples
 from linkwork.atomic import write_atomic
@@ -232,7 +234,7 @@ def _masses(mech: Mechanism) -> list[Parameter]:
 # --- the arrays of the variants --------------------------------------------------------------------
 
 
-def apply(mech: Mechanism, overrides: dict[str, Any] | None = None) -> tuple[Geometry, Masses]:
+def apply(mech: Mechanism, overrides: Mapping[str, npt.ArrayLike] | None = None) -> tuple[Geometry, Masses]:
     """The geometry and mass properties of the variants that ``overrides`` (path -> SI value or
     ``(V,)`` array of values) describe; one variant, the file's, when there are none.
 
