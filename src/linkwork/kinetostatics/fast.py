@@ -14,7 +14,7 @@ kinematics.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -37,11 +37,33 @@ def available() -> bool:
     return motion_fast.ENABLED
 
 
-def encode(mech: Mechanism) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Rows ``(m, 6)``: kind, a, b, point of a, point of b, pair; groups in the order they are solved
-    (reverse of the structure), one row of ``(G, 2 + 4 L)`` each: the number of links, the links,
-    the number of the group's rows, its rows, then the rows of the groups solved before it that
-    touch its links (ended by -1); and the rows that touch the frame (ended by -1)."""
+class Encoded(NamedTuple):
+    """A mechanism's constraint rows and Assur groups as integer tables for the kernel.
+
+    Attributes
+    ----------
+    rows : ndarray of int, shape (m, 6)
+        Each row: its kind (:data:`REV_X`, ...), links a and b, point of a, point of b, pair.
+    groups : ndarray of int, shape (G, 2 + 4 L + m + 1)
+        The groups in the order they are solved (reverse of the structure), one a row: the number of
+        its links, its links (``L`` places, the most links of a group), the number of its rows, its rows
+        (``3 L`` places), then the rows of the groups solved before it that touch its links (ended by -1).
+    on_frame : ndarray of int
+        The rows that touch the frame, ended by -1.
+    """
+
+    rows: np.ndarray
+    groups: np.ndarray
+    on_frame: np.ndarray
+
+    @property
+    def width(self) -> int:
+        """``L``, the most links of a group."""
+        return (self.groups.shape[1] - 2 - len(self.rows) - 1) // 4
+
+
+def encode(mech: Mechanism) -> Encoded:
+    """The constraint rows and the Assur groups of ``mech`` as the kernel reads them."""
     rows = []
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
@@ -68,7 +90,7 @@ def encode(mech: Mechanism) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         table[g, 2 + 4 * width : 2 + 4 * width + len(known)] = known
         done += sel
     on_frame = [r for r in range(len(rows)) if rows[r][1] == 0 or rows[r][2] == 0] + [-1]
-    return np.array(rows, dtype=np.int64).reshape(-1, 6), table, np.array([width, *on_frame])
+    return Encoded(np.array(rows, dtype=np.int64).reshape(-1, 6), table, np.array(on_frame, dtype=np.int64))
 
 
 #: Shapes of a group's system: general (Gaussian elimination), one link with three rows, a dyad.
@@ -106,7 +128,7 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
     ``applied``: the external loads, or None.
     """
     mech = kin.mechanism
-    rows, groups, width = encode(mech)
+    rows, groups, on_frame = encoded = encode(mech)
     shape_of = shapes(rows, groups)
     n_var, n_ang = kin.valid_all.shape
     geom = variant_geometry(kin)
@@ -119,8 +141,7 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
     m = len(rows)
     lam = np.empty((n_var, n_ang, m))
     frame = np.empty((n_var, n_ang, 3))
-    size = 3 * int(width[0])
-    on_frame = width[1:]
+    size = 3 * encoded.width
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
