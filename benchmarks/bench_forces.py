@@ -24,8 +24,8 @@ import linkwork as lw
 from linkwork.kinetostatics import fast
 from linkwork.kinetostatics.reactions import inertia_and_gravity, solve_reactions
 from linkwork.motion import fast as motion_fast
-from linkwork.motion.geometry import Geometry
 from linkwork.structure.constraints import residuals_and_jacobian
+from linkwork.structure.parameters import Geometry
 
 
 def numpy_groups(mech, phi):

@@ -350,3 +350,30 @@ def test_a_link_may_be_named_like_a_slot_block():
     data["hints"]["Q"] = [0.1, 0.6]
     s = lw.compile(lw.from_dict(data)).structure
     assert s.formula == "I(0,1) -> II(2,5) -> II(3,4)"
+
+
+def test_rrr_dyad_whose_links_differ_by_more_than_the_distance_of_its_joints_says_why():
+    # crank 100 mm at 60 deg: A = (50, 86.6) mm, 264.6 mm from O4 = (300, 0); coupler 50 mm and rocker 500 mm
+    # cannot meet: their difference, 450 mm, is more than that
+    data = {
+        "units": {"length": "mm", "angle": "deg"},
+        "frame": {"points": {"O2": [0, 0], "O4": [300, 0]}},
+        "links": {
+            "crank": {"ends": ["O2", "A"], "length": 100},
+            "coupler": {"ends": ["A", "B"], "length": 50},
+            "rocker": {"ends": ["O4", "B"], "length": 500},
+        },
+        "joints": {
+            "O2": {"type": "revolute", "links": ["frame", "crank"]},
+            "A": {"type": "revolute", "links": ["crank", "coupler"]},
+            "B": {"type": "revolute", "links": ["coupler", "rocker"]},
+            "O4": {"type": "revolute", "links": ["frame", "rocker"]},
+        },
+        "drives": [{"joint": "O2", "speed": "60 rpm", "angle": 60}],
+        "hints": {"B": [330, 240]},
+    }
+    d = math.hypot(300 - 100 * math.cos(math.radians(60)), 100 * math.sin(math.radians(60))) / 1000
+    with pytest.raises(
+        UnassemblableError, match=rf"the joints A and O4 are {d:.4g} m apart, less than the difference 0\.45 m"
+    ):
+        lw.compile(lw.from_dict(data))

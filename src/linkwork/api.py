@@ -23,8 +23,9 @@ import functools
 import inspect
 import os
 from collections.abc import Callable
-from typing import Any, Concatenate, ParamSpec, TypeVar, Union
+from typing import Concatenate, ParamSpec, TypeVar, Union, cast
 
+from linkwork.examples import resolve
 from linkwork.impulse.cycle import simulate_blows as _simulate_blows
 from linkwork.impulse.mechanism import impact as _impact
 from linkwork.kinetostatics.balancing import balance as _balance
@@ -56,7 +57,7 @@ P = ParamSpec("P")
 R = TypeVar("R")
 
 
-def spec_of(mechanism: Any, what: str = "mechanism") -> Spec | None:
+def spec_of(mechanism: object, what: str = "mechanism") -> Spec | None:
     """The description of ``mechanism``: loaded from a file or example, given, or the one a
     compiled mechanism was compiled from (None for a mechanism assembled in code without one).
 
@@ -70,15 +71,13 @@ def spec_of(mechanism: Any, what: str = "mechanism") -> Spec | None:
     if isinstance(mechanism, Spec):
         return mechanism
     if isinstance(mechanism, Mechanism):
-        return mechanism.spec  # type: ignore[no-any-return]
+        return mechanism.spec
     if isinstance(mechanism, str | os.PathLike):
-        from linkwork.examples import resolve
-
         return resolve(os.fspath(mechanism))
     raise TypeError(f"{what}: expected {EXPECTED}, got {type(mechanism).__name__}")
 
 
-def mechanism_of(mechanism: Any, what: str = "mechanism") -> Mechanism:
+def mechanism_of(mechanism: object, what: str = "mechanism") -> Mechanism:
     """The compiled :class:`~linkwork.structure.model.Mechanism` of ``mechanism`` (compiled here
     when it is a path, an example name or a Spec; returned as it is when compiled already).
 
@@ -135,17 +134,18 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
 
 
 def resolving(
-    algorithm: Callable[Concatenate[Any, P], R], what: str, passes: tuple[type, ...] = ()
-) -> Callable[Concatenate[Any, P], R]:
+    algorithm: Callable[Concatenate[Mechanism, P], R], what: str, passes: tuple[type, ...] = ()
+) -> Callable[Concatenate[object, P], R]:
     """``algorithm`` taking any mechanism argument (:func:`mechanism_of`) in place of a compiled one,
     with its name, documentation and signature (its first parameter typed :data:`MechanismLike`);
-    arguments of the types ``passes`` go to it as they are."""
+    arguments of the types ``passes`` go to it as they are.  Anything else is a :class:`TypeError`
+    when it is called."""
 
     @functools.wraps(algorithm)
-    def entry(mechanism: Any, /, *args: P.args, **kwargs: P.kwargs) -> R:
-        if not isinstance(mechanism, passes):
-            mechanism = mechanism_of(mechanism, what)
-        return algorithm(mechanism, *args, **kwargs)
+    def entry(mechanism: object, /, *args: P.args, **kwargs: P.kwargs) -> R:
+        if isinstance(mechanism, passes):  # a type the algorithm takes as it is (forces: a Kinematics)
+            return algorithm(cast(Mechanism, mechanism), *args, **kwargs)
+        return algorithm(mechanism_of(mechanism, what), *args, **kwargs)
 
     signature = inspect.signature(algorithm)
     first, *rest = signature.parameters.values()

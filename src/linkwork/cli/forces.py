@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 import typer
@@ -11,8 +12,17 @@ import typer
 from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, make_console, make_table, show
 from linkwork.cli.motion import _angles
 
+# what a command needs is imported when it runs, so that the command line starts fast
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table
 
-def _speed(mech: Any, text: str | None) -> float | None:
+    from linkwork.kinetostatics.balancing import Balance
+    from linkwork.kinetostatics.forces import Forces
+    from linkwork.structure.model import Mechanism
+
+
+def _speed(mech: Mechanism, text: str | None) -> float | None:
     """The drive speed of ``--speed`` in SI, in the file's direction of the drive."""
     from linkwork.errors import LinkworkError, UnitParseError
     from linkwork.structure.model import PairType
@@ -62,7 +72,7 @@ def forces(
 ) -> None:
     """Joint reactions, driving torque, foundation and bolt loads over the cycle, with the checks."""
     from linkwork.errors import LinkworkError
-    from linkwork.io.force_tables import CONVENTION, pair_labels, to_json, write_csv
+    from linkwork.io.force_tables import CONVENTION, pair_labels, to_json
     from linkwork.kinetostatics import forces as solve
 
     mech = _compile(file_or_example)
@@ -78,19 +88,7 @@ def forces(
     if lift is not None:
         data["bolts"]["pull_target"] = target
         data["bolts"]["speed_for_pull_rad_s"] = lift if math.isfinite(lift) else None
-    written = []
-    if out is not None:
-        from pathlib import Path
-
-        from linkwork.atomic import write_atomic
-        from linkwork.io.jsonout import dumps
-
-        try:
-            written.append(write_csv(f, Path(out) / "forces.csv"))
-            text = dumps(data)
-            written.append(write_atomic(Path(out) / "forces.json", lambda tmp: tmp.write_text(text, "utf-8")))
-        except OSError as exc:
-            fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
+    written = _write(f, data, out) if out is not None else []
     if as_json:
         echo_json(data)
         return
@@ -106,7 +104,25 @@ def forces(
         typer.echo(f"  wrote {path}")
 
 
+def _write(f: Forces, data: dict[str, Any], out: str) -> list[Path]:
+    """Write ``forces.csv`` and ``forces.json`` (``data``) into the folder ``out``; the paths written."""
+    from linkwork.atomic import write_atomic
+    from linkwork.errors import LinkworkError
+    from linkwork.io.force_tables import write_csv
+    from linkwork.io.jsonout import dumps
+
+    written = []
+    try:
+        written.append(write_csv(f, Path(out) / "forces.csv"))
+        text = dumps(data)
+        written.append(write_atomic(Path(out) / "forces.json", lambda tmp: tmp.write_text(text, "utf-8")))
+    except OSError as exc:
+        fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
+    return written
+
+
 def _force(text: str | None) -> float | None:
+    """The force of ``--pull`` in SI."""
     from linkwork.errors import LinkworkError, UnitParseError
     from linkwork.units import parse_quantity
 
@@ -121,7 +137,8 @@ def _force(text: str | None) -> float | None:
     return value
 
 
-def _lift(mech: Any, pull: float) -> float:
+def _lift(mech: Mechanism, pull: float) -> float:
+    """The crank speed (rad/s) at which the pull on the bolts reaches ``pull`` (N)."""
     from linkwork.errors import LinkworkError
     from linkwork.kinetostatics import bolt_speed
     from linkwork.structure.model import PairType
@@ -131,10 +148,11 @@ def _lift(mech: Any, pull: float) -> float:
     return bolt_speed(mech, pull=pull)
 
 
-def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list[dict[str, Any]]) -> None:
+def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: list[dict[str, Any]]) -> None:
+    """The report of ``linkwork forces`` on the terminal: the driving torque, the largest pair forces (one
+    row per pair in ``labels``), the free bodies of the ``groups``, the foundation and the checks."""
     from rich.markup import escape
 
-    from linkwork.io.force_tables import pair_kind
     from linkwork.structure.model import PairType
 
     mech, phi = f.mechanism, f.angles
@@ -155,6 +173,27 @@ def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list
     unit = "N m" if revolute else "N"
     t, at = _peak(f.driving_torque, phi)
     out.print(f"  driving torque: peak {t:.6g} {unit} at {_deg(at)}")
+    show(out, _pair_table(f, labels))
+    for g in groups:
+        out.print(
+            f"  {escape(g['group'])}: held by {escape(', '.join(g['external']))}"
+            + (f"; inner {escape(', '.join(g['internal']))}" if g["internal"] else "")
+            + f"; balance of the free body {g['residual']:.1e}"
+        )
+    _report_foundation(f, out)
+    checks = ", ".join(f"{k.replace('_', ' ')} {v:.1e}" for k, v in f.checks.items() if math.isfinite(v))
+    out.print(f"  checks (relative discrepancy): {checks}", soft_wrap=True)
+    out.print(f"  {escape(convention)}", soft_wrap=True)
+
+
+def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
+    """The largest force of each pair of ``labels`` (label, pair) over the cycle, where it is, and a prismatic
+    pair's largest moment."""
+    from rich.markup import escape
+
+    from linkwork.io.force_tables import pair_kind
+
+    mech, phi = f.mechanism, f.angles
     tab = make_table("largest pair forces over the cycle")
     for col in ("joint", "first on second", "|F| max, N", "at", "moment max, N m"):
         tab.add_column(col)
@@ -167,13 +206,12 @@ def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list
             moment = f"{_peak(f.multipliers[0, :, 2 * k], phi)[0] + 0.0:.6g}"
         a, b = (mech.link_names[int(i)] for i in mech.pair_members[k])
         tab.add_row(escape(label), escape(f"{a} on {b}"), f"{value:.6g}", _deg(where), moment)
-    show(out, tab)
-    for g in groups:
-        out.print(
-            f"  {escape(g['group'])}: held by {escape(', '.join(g['external']))}"
-            + (f"; inner {escape(', '.join(g['internal']))}" if g["internal"] else "")
-            + f"; balance of the free body {g['residual']:.1e}"
-        )
+    return tab
+
+
+def _report_foundation(f: Forces, out: Console) -> None:
+    """The extremes of the foundation loads and of the shaking force and moment, with their angles."""
+    phi = f.angles
     bolts = f.bolts()
     pull = f"{bolts.pull:.6g} N at {_deg(bolts.pull_angle)}" if bolts.pull > 0 else "none (the machine never lifts)"
     out.print(f"  foundation: horizontal (bolt shear) max {bolts.shear:.6g} N at {_deg(bolts.shear_angle)}")
@@ -184,9 +222,6 @@ def _report(f: Any, labels: list[tuple[str, int]], convention: str, groups: list
     s, s_at = _peak(shake, phi)
     m, m_at = _peak(f.shaking_moment, phi)
     out.print(f"  shaking force max {s:.6g} N at {_deg(s_at)}, shaking moment max {abs(m):.6g} N m at {_deg(m_at)}")
-    checks = ", ".join(f"{k.replace('_', ' ')} {v:.1e}" for k, v in f.checks.items() if math.isfinite(v))
-    out.print(f"  checks (relative discrepancy): {checks}", soft_wrap=True)
-    out.print(f"  {escape(convention)}", soft_wrap=True)
 
 
 @app.command()
@@ -219,18 +254,23 @@ def balance(
         result = solve(mech, names, harmonic=1 if first_harmonic else None, radius=r, steps=steps)
     except LinkworkError as exc:
         fail(exc)
-    summary = result.summary()
     if as_json:
         out = {
             "name": mech.name,
             "mode": "first harmonic" if first_harmonic else "full",
             "counterweights": [w.as_dict() for w in result.counterweights],
-            **summary,
+            **result.summary(),
         }
         echo_json(out)
         return
+    _report_balance(mech.name, result, first_harmonic)
+
+
+def _report_balance(name: str, result: Balance, first_harmonic: bool) -> None:
+    """The report of ``linkwork balance`` on the terminal: the counterweights and the figures before and after."""
+    summary = result.summary()
     mode = "first harmonic of the shaking force" if first_harmonic else "shaking force"
-    typer.echo(f"{mech.name}: counterweights against the {mode}")
+    typer.echo(f"{name}: counterweights against the {mode}")
     for w in result.counterweights:
         typer.echo(
             f"  {w.link}: m r = {w.mass_radius:.6g} kg m at {math.degrees(w.angle):.2f} deg from the link's axis "

@@ -27,9 +27,12 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
-from linkwork.structure.model import PairType
+from linkwork.kinetostatics.forces import Forces, forces
+from linkwork.spec.checks import suggest
+from linkwork.structure.model import Mechanism, PairType, frozen, one_crank
 
 
 @dataclass(frozen=True)
@@ -72,15 +75,15 @@ class Balance:
 
     counterweights: list[Counterweight]
     harmonic: int | None
-    mechanism: Any
-    before: Any
-    after: Any
+    mechanism: Mechanism
+    before: Forces
+    after: Forces
 
     def summary(self) -> dict[str, dict[str, float]]:
         """Peak and RMS shaking force (N), peak shaking moment (N m), peak driving torque (N m), and
         the largest force in any revolute pair (N), before and after."""
 
-        def figures(f: Any) -> dict[str, float]:
+        def figures(f: Forces) -> dict[str, float]:
             force = np.hypot(*np.moveaxis(f.shaking_force, -1, 0))
             pairs = [
                 np.nanmax(np.hypot(*np.moveaxis(f.pair_force(k), -1, 0)))
@@ -98,7 +101,7 @@ class Balance:
         return {"before": figures(self.before), "after": figures(self.after)}
 
 
-def _pivot(mech: Any, link: int) -> tuple[int, int]:
+def _pivot(mech: Mechanism, link: int) -> tuple[int, int]:
     """(pair, point) of the revolute pair joining ``link`` to the frame."""
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
@@ -111,13 +114,13 @@ def _pivot(mech: Any, link: int) -> tuple[int, int]:
 
 
 def balance(
-    mech: Any,
+    mech: Mechanism,
     links: list[str] | tuple[str, ...],
     *,
     harmonic: int | None = None,
     radius: dict[str, float] | float | None = None,
     steps: int = 360,
-    speed: Any = None,
+    speed: npt.ArrayLike | None = None,
 ) -> Balance:
     """Counterweights on ``links`` that cancel the shaking force (``harmonic=None``) or its first
     harmonic in the crank angle (``harmonic=1``).
@@ -126,9 +129,36 @@ def balance(
     default: the distance of the link's farthest point.  The solution is at ``steps`` crank
     angles over a turn of the file's uniform drive (or ``speed``).
     """
-    from linkwork.kinetostatics.forces import forces
-    from linkwork.structure.model import one_crank
+    index = _links(mech, links, harmonic, steps)
+    before = forces(mech, steps=steps, speed=speed)
+    if not np.all(before.kinematics.valid):
+        raise LinkworkError("the mechanism does not assemble over the whole turn: it cannot be balanced over it")
+    p = _mass_radius(before, index, harmonic)
+    mass, com, inertia = (np.array(x, dtype=float) for x in (mech.link_mass, mech.link_com, mech.link_inertia))
+    weights = []
+    for n, j in enumerate(index):
+        r = radius.get(mech.link_names[j]) if isinstance(radius, dict) else radius
+        weight, at = _counterweight(mech, j, p[2 * n], p[2 * n + 1], r)
+        weights.append(weight)
+        if weight.mass > 0:
+            total = mass[j] + weight.mass
+            new_com = (mass[j] * com[j] + weight.mass * at) / total
+            inertia[j] += mass[j] * np.sum((com[j] - new_com) ** 2) + weight.mass * np.sum((at - new_com) ** 2)
+            mass[j], com[j] = total, new_com
+    balanced = dataclasses.replace(mech, link_mass=frozen(mass), link_com=frozen(com), link_inertia=frozen(inertia))
+    after = forces(balanced, steps=steps, speed=speed)
+    return Balance(weights, harmonic, balanced, before, after)
 
+
+def _links(mech: Mechanism, links: list[str] | tuple[str, ...], harmonic: int | None, steps: int) -> list[int]:
+    """The indices of the links named for counterweights, the arguments checked.
+
+    Raises
+    ------
+    LinkworkError
+        For a harmonic other than 1 or None, a mechanism without one crank, fewer than 8 steps, no links or
+        an unknown one.
+    """
     if harmonic not in (None, 1):
         raise LinkworkError(f"harmonic: expected 1 (first-harmonic balancing) or None (full), got {harmonic}")
     if not one_crank(mech):
@@ -137,17 +167,17 @@ def balance(
         raise LinkworkError(f"steps: expected at least 8 angles over the turn, got {steps}")
     if not links:
         raise LinkworkError("give at least one link for a counterweight")
-    index = []
     for name in links:
         if name not in mech.link_names[1:]:
-            from linkwork.spec.checks import suggest
-
             raise LinkworkError(f'no link "{name}"{suggest(name, mech.link_names[1:])}')
-        index.append(mech.link_names.index(name))
-    before = forces(mech, steps=steps, speed=speed)
+    return [mech.link_names.index(name) for name in links]
+
+
+def _mass_radius(before: Forces, index: list[int], harmonic: int | None) -> np.ndarray:
+    """The mass-radius vectors ``p`` (kg m), ``(2 k,)`` (x, y of each link's in turn, local to it), whose
+    counterweights cancel the shaking force of ``before`` (or its first harmonic), by least squares over
+    its angles."""
     kin = before.kinematics
-    if not np.all(kin.valid):
-        raise LinkworkError("the mechanism does not assemble over the whole turn: it cannot be balanced over it")
     theta, w, e = kin.pose[0, :, :, 2], kin.vel[0, :, :, 2], kin.acc[0, :, :, 2]
     columns = []
     for j in index:
@@ -164,36 +194,25 @@ def balance(
         a = _first_harmonic(a, basis)
         b = _first_harmonic(b, basis)
     p, *_ = np.linalg.lstsq(a.reshape(-1, a.shape[-1]), -b.reshape(-1), rcond=None)
-    weights = []
-    mass, com, inertia = (np.array(x, dtype=float) for x in (mech.link_mass, mech.link_com, mech.link_inertia))
-    for n, j in enumerate(index):
-        px, py = p[2 * n], p[2 * n + 1]
-        _, point = _pivot(mech, j)
-        pivot_local = mech.point_local[point]
-        own = mech.point_local[mech.point_link == j]
-        r = radius.get(mech.link_names[j]) if isinstance(radius, dict) else radius
-        r = float(r) if r is not None else float(np.max(np.hypot(*(own - pivot_local).T)))
-        if not r > 0:
-            raise LinkworkError(f'radius of the counterweight on "{mech.link_names[j]}": expected a positive length')
-        mr = math.hypot(px, py)
-        mu = mr / r
-        weights.append(
-            Counterweight(mech.link_names[j], mech.pair_joint[_pivot(mech, j)[0]], mr, math.atan2(py, px), r, mu)
-        )
-        if mu > 0:
-            at = pivot_local + np.array([px, py]) / mr * r
-            total = mass[j] + mu
-            new_com = (mass[j] * com[j] + mu * at) / total
-            inertia[j] += mass[j] * np.sum((com[j] - new_com) ** 2) + mu * np.sum((at - new_com) ** 2)
-            mass[j], com[j] = total, new_com
+    return p
 
-    def frozen(x: np.ndarray) -> np.ndarray:
-        x.flags.writeable = False
-        return x
 
-    balanced = dataclasses.replace(mech, link_mass=frozen(mass), link_com=frozen(com), link_inertia=frozen(inertia))
-    after = forces(balanced, steps=steps, speed=speed)
-    return Balance(weights, harmonic, balanced, before, after)
+def _counterweight(
+    mech: Mechanism, j: int, px: float, py: float, radius: float | None
+) -> tuple[Counterweight, np.ndarray]:
+    """The counterweight of mass-radius vector ``(px, py)`` on link ``j`` at ``radius`` from its pivot (default:
+    the distance of the link's farthest point), and where it is in the link's coordinates ``(2,)``."""
+    k, point = _pivot(mech, j)
+    pivot_local = mech.point_local[point]
+    own = mech.point_local[mech.point_link == j]
+    r = float(radius) if radius is not None else float(np.max(np.hypot(*(own - pivot_local).T)))
+    if not r > 0:
+        raise LinkworkError(f'radius of the counterweight on "{mech.link_names[j]}": expected a positive length')
+    mr = math.hypot(px, py)
+    mu = mr / r
+    weight = Counterweight(mech.link_names[j], mech.pair_joint[k], mr, math.atan2(py, px), r, mu)
+    at = pivot_local + np.array([px, py]) / mr * r if mu > 0 else pivot_local
+    return weight, at
 
 
 def _first_harmonic(x: np.ndarray, basis: np.ndarray) -> np.ndarray:

@@ -4,14 +4,14 @@ given pull)."""
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from linkwork.kinetostatics.forces import forces
+from linkwork.structure.model import Mechanism
 
 
-def bolt_speed(mech: Any, pull: float = 0.0, steps: int = 720) -> float:
+def bolt_speed(mech: Mechanism, pull: float = 0.0, steps: int = 720) -> float:
     """Uniform crank speed (rad/s) at which the largest pull on the bolts reaches ``pull`` (N).
 
     With the crank turning uniformly, every velocity is proportional to the

@@ -11,11 +11,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import NamedTuple, TypeVar, cast
 
 import numpy as np
 
-from linkwork.structure.model import PairType
+from linkwork.kinetostatics.geometry import guide_direction
+from linkwork.motion.kinematics import Kinematics
+from linkwork.spec.schema import Load, Spec
+from linkwork.structure.model import Mechanism, PairType
+
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -54,58 +59,123 @@ class ExternalLoad:
     pair: int = -1  # friction: the elementary pair it acts in
 
 
-def compile_loads(spec: Any, mech: Any) -> tuple:
+def compile_loads(spec: Spec, mech: Mechanism) -> tuple[ExternalLoad, ...]:
     """The :class:`ExternalLoad` records of a validated spec, for its structural model ``mech``
     (:func:`linkwork.structure.compile.structural_model`: its links, points and elementary pairs)."""
-    link_index = {name: i for i, name in enumerate(mech.link_names)}
-    pindex = {(int(mech.point_link[p]), name.split(".", 1)[1]): p for p, name in enumerate(mech.point_names)}
-    pairs = [(j, t, a, b) for j, t, (a, b) in zip(mech.pair_joint, mech.pair_type, mech.pair_links, strict=True)]
-
-    def point(ref: str) -> int:
-        ln, p = ref.split(".", 1)
-        return pindex[(link_index[ln], p)]
-
-    def table(x: list[float], y: Any) -> tuple[np.ndarray, np.ndarray]:
-        return np.array(x, dtype=float), np.array(y, dtype=float)
-
-    out = []
+    names = _Names(mech)
+    out: list[ExternalLoad] = []
     for name, load in spec.loads.items():
         if load.type == "force":
-            p = point(load.at)
-            link = link_index[load.at.split(".", 1)[0]]
-            if load.force is not None:
-                out.append(ExternalLoad(name, "force", link, (p,), (load.force[0], load.force[1]), 1.0))
-                continue
-            u = (math.cos(load.direction), math.sin(load.direction))
-            if load.angle is None:
-                out.append(ExternalLoad(name, "force", link, (p,), u, float(load.magnitude)))
-            else:
-                out.append(ExternalLoad(name, "force", link, (p,), u, table=table(load.angle, load.magnitude)))
+            out.append(_force(name, load, names))
         elif load.type == "friction":
-            for k, (joint, kind, _, b) in enumerate(pairs):
-                if joint != load.joint:
-                    continue
-                if kind == PairType.REVOLUTE and load.moment is not None:
-                    out.append(ExternalLoad(name, "friction", int(b), value=float(load.moment), pair=k))
-                elif kind == PairType.PRISMATIC and load.magnitude is not None:
-                    out.append(ExternalLoad(name, "friction", int(b), value=float(load.magnitude), pair=k))
+            out += _friction_loads(name, load, mech)
         elif load.type == "moment":
-            link = link_index[load.on]
-            if load.angle is None:
-                out.append(ExternalLoad(name, "moment", link, value=float(load.moment)))
-            else:
-                out.append(ExternalLoad(name, "moment", link, table=table(load.angle, load.moment)))
+            out.append(_moment(name, load, names))
         else:
-            pts = tuple(point(t) for t in load.tools)
-            link = link_index[load.tools[0].split(".", 1)[0]]
-            u = (math.cos(load.axis), math.sin(load.axis))
-            lo, hi = load.workpiece
-            out.append(
-                ExternalLoad(
-                    name, "process", link, pts, u, table=table(load.penetration, load.force), workpiece=(lo, hi)
-                )
-            )
+            out.append(_process(name, load, names))
     return tuple(out)
+
+
+class _Names:
+    """The links and points of a structural model by the names a file gives them."""
+
+    def __init__(self, mech: Mechanism) -> None:
+        self.links = {name: i for i, name in enumerate(mech.link_names)}
+        self.points = {(int(mech.point_link[p]), name.split(".", 1)[1]): p for p, name in enumerate(mech.point_names)}
+
+    def point(self, ref: str) -> int:
+        """Index of the point ``link.point``."""
+        ln, p = ref.split(".", 1)
+        return self.points[(self.links[ln], p)]
+
+    def link(self, ref: str) -> int:
+        """Index of the link of the point ``link.point``."""
+        return self.links[ref.split(".", 1)[0]]
+
+
+def _given(value: T | None) -> T:
+    """A field of a load that :mod:`linkwork.spec.checks` requires for its type."""
+    assert value is not None
+    return value
+
+
+def _number(value: object) -> float:
+    """A load's value that the checks of :mod:`linkwork.spec` make one number where it is read (no table)."""
+    return float(cast(float, value))
+
+
+def _table(x: list[float], y: object) -> tuple[np.ndarray, np.ndarray]:
+    """A table's arguments ``x`` and values ``y``."""
+    return np.array(x, dtype=float), np.array(y, dtype=float)
+
+
+def _force(name: str, load: Load, names: _Names) -> ExternalLoad:
+    """A force at a point: given by its components, or by a magnitude (constant or a table over the crank
+    angle) along a direction."""
+    at = _given(load.at)
+    p, link = names.point(at), names.link(at)
+    if load.force is not None:
+        return ExternalLoad(name, "force", link, (p,), (load.force[0], load.force[1]), 1.0)
+    direction = _number(load.direction)
+    u = (math.cos(direction), math.sin(direction))
+    if load.angle is None:
+        return ExternalLoad(name, "force", link, (p,), u, _number(load.magnitude))
+    return ExternalLoad(name, "force", link, (p,), u, table=_table(load.angle, load.magnitude))
+
+
+def _friction_loads(name: str, load: Load, mech: Mechanism) -> list[ExternalLoad]:
+    """Friction in every elementary pair of a joint: a moment in a revolute pair, a force in a prismatic one."""
+    out: list[ExternalLoad] = []
+    pairs = zip(mech.pair_joint, mech.pair_type, mech.pair_links, strict=True)
+    for k, (joint, kind, (_, b)) in enumerate(pairs):
+        if joint != load.joint:
+            continue
+        if kind == PairType.REVOLUTE and load.moment is not None:
+            out.append(ExternalLoad(name, "friction", int(b), value=_number(load.moment), pair=k))
+        elif kind == PairType.PRISMATIC and load.magnitude is not None:
+            out.append(ExternalLoad(name, "friction", int(b), value=_number(load.magnitude), pair=k))
+    return out
+
+
+def _moment(name: str, load: Load, names: _Names) -> ExternalLoad:
+    """A moment on a link: constant, or a table over the crank angle."""
+    link = names.links[_given(load.on)]
+    if load.angle is None:
+        return ExternalLoad(name, "moment", link, value=_number(load.moment))
+    return ExternalLoad(name, "moment", link, table=_table(load.angle, load.moment))
+
+
+def _process(name: str, load: Load, names: _Names) -> ExternalLoad:
+    """A process load: a table of force against the tools' relative penetration into a workpiece."""
+    tools = _given(load.tools)
+    axis = _number(load.axis)
+    lo, hi = _given(load.workpiece)
+    return ExternalLoad(
+        name,
+        "process",
+        names.link(tools[0]),
+        tuple(names.point(t) for t in tools),
+        (math.cos(axis), math.sin(axis)),
+        table=_table(_given(load.penetration), load.force),
+        workpiece=(lo, hi),
+    )
+
+
+class PointForce(NamedTuple):
+    """A force ``force`` (N) on ``link`` at a point whose ``position`` (m) and ``velocity`` (m/s) are given;
+    each ``(V, A, 2)``."""
+
+    link: int
+    position: np.ndarray
+    velocity: np.ndarray
+    force: np.ndarray
+
+
+class LinkMoment(NamedTuple):
+    """A moment ``moment`` (N m) ``(V, A)`` on ``link``."""
+
+    link: int
+    moment: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -114,18 +184,16 @@ class Applied:
 
     Attributes
     ----------
-    forces : list of (link, position, velocity, force)
-        A force (V, A, 2) at a point of ``link`` whose position and velocity are (V, A, 2).
-    moments : list of (link, moment)
-        A moment (V, A) on ``link``.
+    forces : list of PointForce
+    moments : list of LinkMoment
     magnitude : dict
         Each load's magnitude (V, A): N for forces and process loads, N m for moments.
     penetration : dict
         Relative penetration (V, A) of each process load.
     """
 
-    forces: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]]
-    moments: list[tuple[int, np.ndarray]]
+    forces: list[PointForce]
+    moments: list[LinkMoment]
     magnitude: dict[str, np.ndarray]
     penetration: dict[str, np.ndarray]
 
@@ -142,65 +210,73 @@ def _along(x: np.ndarray, u: np.ndarray) -> np.ndarray:
     return x[..., 0] * u[0] + x[..., 1] * u[1]
 
 
-def evaluate(kin: Any) -> Applied:
+def evaluate(kin: Kinematics) -> Applied:
     """The external loads of ``kin.mechanism`` over a kinematics result."""
-    mech = kin.mechanism
-    forces: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]] = []
-    moments: list[tuple[int, np.ndarray]] = []
-    magnitude: dict[str, np.ndarray] = {}
-    penetration: dict[str, np.ndarray] = {}
-    shape = kin.valid_all.shape
-    drive = np.broadcast_to(kin.angles, shape)
-
-    def state(p: int) -> tuple[np.ndarray, np.ndarray]:
-        pos, vel, _ = kin._point(mech.point_names[p])
-        return pos, vel
-
-    for load in getattr(mech, "loads", ()):
+    out = Applied([], [], {}, {})
+    for load in kin.mechanism.loads:
         if load.kind == "friction":
-            _friction(kin, load, forces, moments, magnitude)
-            continue
-        if load.kind in ("force", "moment"):
-            if load.table is None:
-                size = np.full(shape, load.value)
-            else:
-                x0 = load.table[0][0]
-                size = _interp(x0 + np.mod(drive - x0, 2 * np.pi), load.table)
-            magnitude[load.name] = size
-            if load.kind == "moment":
-                moments.append((load.link, size))
-                continue
-            pos, vel = state(load.points[0])
-            f = size[..., None] * np.asarray(load.vector)
-            forces.append((load.link, pos, vel, f))
-            continue
-        u = np.asarray(load.vector)
-        lo, hi = load.workpiece
-        tools = [state(p) for p in load.points]
-        (p1, v1) = tools[0]
-        depth = np.maximum(hi - _along(p1, u), 0.0)
-        closing = -_along(v1, u)
-        if len(tools) == 2:
-            p2, v2 = tools[1]
-            depth = depth + np.maximum(_along(p2, u) - lo, 0.0)
-            closing = closing + _along(v2, u)
-        eps = depth / (hi - lo)
-        # the table's value at zero penetration (a constant cutting force) acts from the touch on, not before
-        size = np.where((closing > 0) & (eps > 0), _interp(eps, load.table), 0.0)
-        size = np.where(np.isnan(closing) | np.isnan(eps), np.nan, size)
-        magnitude[load.name] = size
-        penetration[load.name] = eps
-        f = size[..., None] * u
-        forces.append((load.link, p1, v1, f))
-        if len(tools) == 2:
-            link2 = int(mech.point_link[load.points[1]])
-            forces.append((link2, tools[1][0], tools[1][1], -f))
-        else:  # the workpiece rests on the frame
-            forces.append((0, p1, np.zeros_like(v1), -f))
-    return Applied(forces, moments, magnitude, penetration)
+            _friction(kin, load, out)
+        elif load.kind in ("force", "moment"):
+            _given_load(kin, load, out)
+        else:
+            _process_load(kin, load, out)
+    return out
 
 
-def _friction(kin: Any, load: ExternalLoad, forces: list, moments: list, magnitude: dict) -> None:
+def _state(kin: Kinematics, p: int) -> tuple[np.ndarray, np.ndarray]:
+    """Position and velocity ``(V, A, 2)`` of point ``p``."""
+    pos, vel, _ = kin._point(kin.mechanism.point_names[p])
+    return pos, vel
+
+
+def _given_load(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
+    """A force at a point or a moment on a link, constant or from its table over the drive angle."""
+    shape = kin.valid_all.shape
+    if load.table is None:
+        size = np.full(shape, load.value)
+    else:
+        drive = np.broadcast_to(kin.angles, shape)
+        x0 = load.table[0][0]
+        size = _interp(x0 + np.mod(drive - x0, 2 * np.pi), load.table)
+    out.magnitude[load.name] = size
+    if load.kind == "moment":
+        out.moments.append(LinkMoment(load.link, size))
+        return
+    pos, vel = _state(kin, load.points[0])
+    f = size[..., None] * np.asarray(load.vector)
+    out.forces.append(PointForce(load.link, pos, vel, f))
+
+
+def _process_load(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
+    """A process load: the table's force at the tools' relative penetration into the workpiece while they
+    close on it, on the first tool and back on the second (or on the frame, where the workpiece rests)."""
+    assert load.table is not None  # a process load has its table
+    u = np.asarray(load.vector)
+    lo, hi = load.workpiece
+    tools = [_state(kin, p) for p in load.points]
+    (p1, v1) = tools[0]
+    depth = np.maximum(hi - _along(p1, u), 0.0)
+    closing = -_along(v1, u)
+    if len(tools) == 2:
+        p2, v2 = tools[1]
+        depth = depth + np.maximum(_along(p2, u) - lo, 0.0)
+        closing = closing + _along(v2, u)
+    eps = depth / (hi - lo)
+    # the table's value at zero penetration (a constant cutting force) acts from the touch on, not before
+    size = np.where((closing > 0) & (eps > 0), _interp(eps, load.table), 0.0)
+    size = np.where(np.isnan(closing) | np.isnan(eps), np.nan, size)
+    out.magnitude[load.name] = size
+    out.penetration[load.name] = eps
+    f = size[..., None] * u
+    out.forces.append(PointForce(load.link, p1, v1, f))
+    if len(tools) == 2:
+        link2 = int(kin.mechanism.point_link[load.points[1]])
+        out.forces.append(PointForce(link2, tools[1][0], tools[1][1], -f))
+    else:  # the workpiece rests on the frame
+        out.forces.append(PointForce(0, p1, np.zeros_like(v1), -f))
+
+
+def _friction(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
     """Coulomb friction of constant size in one pair, against the relative motion (none at rest)."""
     mech = kin.mechanism
     k = load.pair
@@ -208,24 +284,22 @@ def _friction(kin: Any, load: ExternalLoad, forces: list, moments: list, magnitu
     w = kin.vel[..., 2]
     if mech.pair_type[k] == PairType.REVOLUTE:
         turn = np.sign(w[..., b] - w[..., a])
-        moments.append((b, -load.value * turn))
-        moments.append((a, load.value * turn))
+        out.moments.append(LinkMoment(b, -load.value * turn))
+        out.moments.append(LinkMoment(a, load.value * turn))
     else:
         pos, vb, _ = kin._point(mech.point_names[int(mech.pair_points[k, 1])])
         q, v = kin.pose[..., a, :], kin.vel[..., a, :]
         r = pos - q[..., :2]
         va = v[..., :2] + w[..., a, None] * np.stack([-r[..., 1], r[..., 0]], -1)  # a's material point at P
-        c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
-        ux, uy = kin.axis[k, 0], kin.axis[k, 1]  # (V, 1)
-        u = np.stack([c * ux - s * uy, s * ux + c * uy], -1)
+        u = guide_direction(kin, k)
         slide = np.sign(np.sum((vb - va) * u, -1))
         f = (-load.value * slide)[..., None] * u
-        forces.append((b, pos, vb, f))
-        forces.append((a, pos, va, -f))
-    magnitude[load.name] = np.full(kin.valid_all.shape, load.value)
+        out.forces.append(PointForce(b, pos, vb, f))
+        out.forces.append(PointForce(a, pos, va, -f))
+    out.magnitude[load.name] = np.full(kin.valid_all.shape, load.value)
 
 
-def generalised(kin: Any, applied: Applied) -> np.ndarray:
+def generalised(kin: Kinematics, applied: Applied) -> np.ndarray:
     """Generalised loads (V, A, N, 3): force and moment about each link's origin."""
     q = kin.pose
     out = np.zeros(q.shape)
@@ -238,23 +312,23 @@ def generalised(kin: Any, applied: Applied) -> np.ndarray:
     return out
 
 
-def power(kin: Any, applied: Applied) -> np.ndarray:
-    """Power (W) of the external loads, (V, A)."""
+def power(kin: Kinematics, applied: Applied | None) -> np.ndarray:
+    """Power (W) of the external loads ``applied`` (none: zero), (V, A)."""
     w = kin.vel[..., 2]
     total = np.zeros(kin.valid_all.shape)
-    for _, _, vel, f in applied.forces:
+    for _, _, vel, f in applied.forces if applied is not None else ():
         total = total + np.sum(f * vel, -1)
-    for link, m in applied.moments:
+    for link, m in applied.moments if applied is not None else ():
         total = total + m * w[..., link]
     return total
 
 
-def resultant(applied: Applied, shape: tuple[int, ...]) -> np.ndarray:
-    """Total external force and moment about the global origin, (V, A, 3)."""
+def resultant(applied: Applied | None, shape: tuple[int, ...]) -> np.ndarray:
+    """Total external force and moment about the global origin of the loads ``applied`` (none: zero), (V, A, 3)."""
     out = np.zeros(shape + (3,))
-    for _, pos, _, f in applied.forces:
+    for _, pos, _, f in applied.forces if applied is not None else ():
         out[..., :2] += f
         out[..., 2] += pos[..., 0] * f[..., 1] - pos[..., 1] * f[..., 0]
-    for _, m in applied.moments:
+    for _, m in applied.moments if applied is not None else ():
         out[..., 2] += m
     return out

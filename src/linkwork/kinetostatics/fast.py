@@ -14,13 +14,17 @@ kinematics.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
+from linkwork.kinetostatics.external import Applied
+from linkwork.kinetostatics.geometry import variant_geometry
 from linkwork.kinetostatics.reactions import group_order
+from linkwork.motion import fast as motion_fast
 from linkwork.motion.fast import OPTS, PER_THREAD, THREADS, _pool, njit
-from linkwork.structure.model import PairType
+from linkwork.motion.kinematics import Kinematics
+from linkwork.structure.model import Mechanism, PairType
 
 #: Row kinds.
 REV_X, REV_Y, ANGLE, NORMAL, DRIVE_ANGLE, DRIVE_LINE = range(6)
@@ -29,16 +33,37 @@ SINGULAR = 1e-12
 
 
 def available() -> bool:
-    from linkwork.motion import fast
+    """Whether the reactions run in machine code (as the kinematics do: :func:`linkwork.motion.fast.available`)."""
+    return motion_fast.ENABLED
 
-    return fast.ENABLED
+
+class Encoded(NamedTuple):
+    """A mechanism's constraint rows and Assur groups as integer tables for the kernel.
+
+    Attributes
+    ----------
+    rows : ndarray of int, shape (m, 6)
+        Each row: its kind (:data:`REV_X`, ...), links a and b, point of a, point of b, pair.
+    groups : ndarray of int, shape (G, 2 + 4 L + m + 1)
+        The groups in the order they are solved (reverse of the structure), one a row: the number of
+        its links, its links (``L`` places, the most links of a group), the number of its rows, its rows
+        (``3 L`` places), then the rows of the groups solved before it that touch its links (ended by -1).
+    on_frame : ndarray of int
+        The rows that touch the frame, ended by -1.
+    """
+
+    rows: np.ndarray
+    groups: np.ndarray
+    on_frame: np.ndarray
+
+    @property
+    def width(self) -> int:
+        """``L``, the most links of a group."""
+        return (self.groups.shape[1] - 2 - len(self.rows) - 1) // 4
 
 
-def encode(mech: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Rows ``(m, 6)``: kind, a, b, point of a, point of b, pair; groups in the order they are solved
-    (reverse of the structure), one row of ``(G, 2 + 4 L)`` each: the number of links, the links,
-    the number of the group's rows, its rows, then the rows of the groups solved before it that
-    touch its links (ended by -1); and the rows that touch the frame (ended by -1)."""
+def encode(mech: Mechanism) -> Encoded:
+    """The constraint rows and the Assur groups of ``mech`` as the kernel reads them."""
     rows = []
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
@@ -65,7 +90,7 @@ def encode(mech: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         table[g, 2 + 4 * width : 2 + 4 * width + len(known)] = known
         done += sel
     on_frame = [r for r in range(len(rows)) if rows[r][1] == 0 or rows[r][2] == 0] + [-1]
-    return np.array(rows, dtype=np.int64).reshape(-1, 6), table, np.array([width, *on_frame])
+    return Encoded(np.array(rows, dtype=np.int64).reshape(-1, 6), table, np.array(on_frame, dtype=np.int64))
 
 
 #: Shapes of a group's system: general (Gaussian elimination), one link with three rows, a dyad.
@@ -96,27 +121,19 @@ def shapes(rows: np.ndarray, groups: np.ndarray) -> np.ndarray:
     return out
 
 
-def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
+def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarray]:
     """Multipliers ``(V, A, m)`` and the foundation loads ``(V, A, 3)``: the pairs' force and moment
     on the frame plus the frame's own applied loads (its weight, external loads on it).
 
-    ``applied``: the external loads (:class:`linkwork.kinetostatics.external.Applied`) or None.
+    ``applied``: the external loads, or None.
     """
     mech = kin.mechanism
-    rows, groups, width = encode(mech)
+    rows, groups, on_frame = encoded = encode(mech)
     shape_of = shapes(rows, groups)
     n_var, n_ang = kin.valid_all.shape
-    local = np.ascontiguousarray(np.moveaxis(kin.local[..., 0], 2, 0))  # (V, P, 2)
-    origin = np.ascontiguousarray(np.moveaxis(kin.origin[..., 0], 2, 0))  # (V, M, 2)
-    axis = np.ascontiguousarray(np.moveaxis(kin.axis[..., 0], 2, 0))
-    forces = applied.forces if applied is not None else []
-    moments = applied.moments if applied is not None else []
-    shape = (n_var, n_ang)
-    f_link = np.array([f[0] for f in forces], dtype=np.int64)
-    f_val = np.stack([np.broadcast_to(f[3], shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
-    f_pos = np.stack([np.broadcast_to(f[1], shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
-    m_link = np.array([m[0] for m in moments], dtype=np.int64)
-    m_val = np.stack([np.broadcast_to(m[1], shape) for m in moments]) if moments else np.zeros((0, 1, 1))
+    geom = variant_geometry(kin)
+    local, origin, axis = (np.ascontiguousarray(g[:, 0]) for g in (geom.point_local, geom.pair_origin, geom.pair_axis))
+    f_link, f_val, f_pos, m_link, m_val = _external(applied, (n_var, n_ang))
     ms = kin.mass_properties  # (V or 1, N)
     mass = np.ascontiguousarray(np.broadcast_to(ms.mass, (n_var, mech.n_links_total)), dtype=float)
     com = np.ascontiguousarray(np.broadcast_to(ms.com, (n_var, mech.n_links_total, 2)), dtype=float)
@@ -124,8 +141,7 @@ def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
     m = len(rows)
     lam = np.empty((n_var, n_ang, m))
     frame = np.empty((n_var, n_ang, 3))
-    size = 3 * int(width[0])
-    on_frame = width[1:]
+    size = 3 * encoded.width
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
@@ -142,6 +158,19 @@ def run(kin: Any, applied: Any) -> tuple[np.ndarray, np.ndarray]:
     else:
         list(_pool().map(part, bounds[:-1], bounds[1:]))
     return lam, frame
+
+
+def _external(applied: Applied | None, shape: tuple[int, int]) -> tuple[np.ndarray, ...]:
+    """The external loads as the kernel reads them: the links of the forces ``(F,)``, the forces and their
+    points ``(F, V, A, 2)``; the links of the moments ``(C,)`` and the moments ``(C, V, A)``."""
+    forces = applied.forces if applied is not None else []
+    moments = applied.moments if applied is not None else []
+    f_link = np.array([f.link for f in forces], dtype=np.int64)
+    f_val = np.stack([np.broadcast_to(f.force, shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
+    f_pos = np.stack([np.broadcast_to(f.position, shape + (2,)) for f in forces]) if forces else np.zeros((0, 1, 1, 2))
+    m_link = np.array([m.link for m in moments], dtype=np.int64)
+    m_val = np.stack([np.broadcast_to(m.moment, shape) for m in moments]) if moments else np.zeros((0, 1, 1))
+    return f_link, f_val, f_pos, m_link, m_val
 
 
 def _row_geometry(rows, local, origin, axis, var, G):
@@ -283,130 +312,164 @@ def _rhs(groups, gi, width, known0, rows, J, Q, mu, x):
                     x[3 * li + d] -= J[r, 3 + d] * lr
 
 
+def _link_loads(q, v, a, mass, com, inertia, g, var, i, Q):
+    """Gravity and d'Alembert inertia loads of every link at sample ``(var, i)``, about the link's origin, into
+    ``Q[n, 0:3]``; ``Q[n, 3:6]``: cos and sin of the link's angle, and the angle."""
+    Q[0, 3], Q[0, 4] = 1.0, 0.0  # the frame does not move
+    for n in range(q.shape[0]):
+        th, w, e = q[n, 2, var, i], v[n, 2, var, i], a[n, 2, var, i]
+        if n > 0 and th != Q[n, 5]:  # a slider's angle stays put: no new cos and sin
+            Q[n, 3], Q[n, 4], Q[n, 5] = math.cos(th), math.sin(th), th
+        c, s = Q[n, 3], Q[n, 4]
+        rx = c * com[var, n, 0] - s * com[var, n, 1]
+        ry = s * com[var, n, 0] + c * com[var, n, 1]
+        acx = a[n, 0, var, i] - e * ry - w * w * rx
+        acy = a[n, 1, var, i] + e * rx - w * w * ry
+        fx = -mass[var, n] * acx
+        fy = -mass[var, n] * acy - mass[var, n] * g
+        Q[n, 0] = fx
+        Q[n, 1] = fy
+        Q[n, 2] = rx * fy - ry * fx - inertia[var, n] * e
+
+
+def _external_loads(q, f_link, f_val, f_pos, m_link, m_val, var, i, Q):
+    """Add the external forces and moments at sample ``(var, i)`` to ``Q``."""
+    for kk in range(f_link.shape[0]):
+        n = f_link[kk]
+        fx, fy = f_val[kk, var, i, 0], f_val[kk, var, i, 1]
+        Q[n, 0] += fx
+        Q[n, 1] += fy
+        Q[n, 2] += (f_pos[kk, var, i, 0] - q[n, 0, var, i]) * fy - (f_pos[kk, var, i, 1] - q[n, 1, var, i]) * fx
+    for kk in range(m_link.shape[0]):
+        Q[m_link[kk], 2] += m_val[kk, var, i]
+
+
+def _group_matrix(groups, gi, width, rows, J, M):
+    """``M[c, j]``: the entry of the group's row ``j`` in coordinate ``c`` of its links; returns the largest
+    magnitude of an entry."""
+    big = 0.0
+    for j in range(groups[gi, 1 + width]):
+        r = groups[gi, 2 + width + j]
+        ra, rb = rows[r, 1], rows[r, 2]
+        for li in range(groups[gi, 0]):
+            link = groups[gi, 1 + li]
+            for d in range(3):
+                val = 0.0
+                if ra == link:
+                    val = J[r, d]
+                elif rb == link:
+                    val = J[r, 3 + d]
+                M[3 * li + d, j] = val
+                big = max(big, abs(val))
+    return big
+
+
+def _eliminate(M, x, size, big):
+    """Gaussian elimination with partial pivoting of ``M[:size, :size] y = x[:size]``, in place, to an upper
+    triangle; False where ``big`` (the largest entry) is zero or a pivot falls below :data:`SINGULAR` relative
+    to it."""
+    ok = big > 0.0
+    for col in range(size):
+        if not ok:
+            break
+        piv = col
+        for rr in range(col + 1, size):
+            if abs(M[rr, col]) > abs(M[piv, col]):
+                piv = rr
+        if not abs(M[piv, col]) > SINGULAR * big:
+            ok = False
+            break
+        if piv != col:
+            for cc in range(col, size):
+                M[col, cc], M[piv, cc] = M[piv, cc], M[col, cc]
+            x[col], x[piv] = x[piv], x[col]
+        inv = 1.0 / M[col, col]
+        for rr in range(col + 1, size):
+            f = M[rr, col] * inv
+            if f != 0.0:
+                for cc in range(col + 1, size):
+                    M[rr, cc] -= f * M[col, cc]
+                x[rr] -= f * x[col]
+    return ok
+
+
+def _back_substitute(M, x, size):
+    """Solve the upper triangle ``M[:size, :size]`` for ``x[:size]`` in place."""
+    for col in range(size - 1, -1, -1):
+        acc = x[col]
+        for cc in range(col + 1, size):
+            acc -= M[col, cc] * x[cc]
+        x[col] = acc / M[col, col]
+
+
+def _general(groups, gi, width, rows, J, M, x, mu):
+    """A group of any shape by Gaussian elimination (its right-hand side in ``x``); False where singular."""
+    big = _group_matrix(groups, gi, width, rows, J, M)
+    size = 3 * groups[gi, 0]
+    ok = _eliminate(M, x, size, big)
+    if ok:
+        _back_substitute(M, x, size)
+        for j in range(groups[gi, 1 + width]):
+            mu[groups[gi, 2 + width + j]] = x[j]
+    return ok
+
+
+def _group(groups, gi, width, known0, rows, sh, J, Q, M, x, mu):
+    """The reactions ``mu`` of group ``gi``'s rows from its links' loads and the reactions already known;
+    False where its system is singular."""
+    _rhs(groups, gi, width, known0, rows, J, Q, mu, x)
+    if sh[0] == SINGLE:
+        return _single(J, rows, sh, groups[gi, 1], x, mu)
+    if sh[0] == DYAD:
+        return _dyad(J, rows, sh, groups[gi, 1], groups[gi, 2], x, mu)
+    return _general(groups, gi, width, rows, J, M, x, mu)
+
+
+def _frame_loads(rows, on_frame, J, Q, mu, frame, var, i):
+    """The foundation loads at sample ``(var, i)``: the frame's own loads and the pairs' force on it."""
+    for d in range(3):
+        total = Q[0, d]  # the frame's weight and the external loads on it
+        for kk in range(on_frame.shape[0]):
+            r = on_frame[kk]
+            if r < 0:
+                break
+            if rows[r, 1] == 0:
+                total += J[r, d] * mu[r]
+            if rows[r, 2] == 0:
+                total += J[r, 3 + d] * mu[r]
+        frame[var, i, d] = total
+
+
 def _kernel(
     rows, groups, shape_of, on_frame, q, v, a, local, origin, axis, mass, com, inertia, g,
     f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi, Q, J, M, x, mu, G,
 ):  # fmt: skip
-    n_links = q.shape[0]
+    """The reactions ``lam`` and foundation loads ``frame`` of the samples ``lo:hi`` of every variant: at each,
+    the links' loads, the rows' Jacobian, then the groups in turn (NaN from a singular group on)."""
     n_rows = rows.shape[0]
-    n_var = lam.shape[0]
     width = (groups.shape[1] - 2 - n_rows - 1) // 4
     known0 = 2 + 4 * width
-    for var in range(n_var):
+    for var in range(lam.shape[0]):
         _row_geometry(rows, local, origin, axis, var, G)
-        for n in range(n_links):
+        for n in range(q.shape[0]):
             Q[n, 5] = math.nan
         for i in range(lo, hi):
-            # applied and inertia loads of every link, about its origin
-            Q[0, 3], Q[0, 4] = 1.0, 0.0  # the frame does not move
-            for n in range(n_links):
-                th, w, e = q[n, 2, var, i], v[n, 2, var, i], a[n, 2, var, i]
-                if n > 0 and th != Q[n, 5]:  # a slider's angle stays put: no new cos and sin
-                    Q[n, 3], Q[n, 4], Q[n, 5] = math.cos(th), math.sin(th), th
-                c, s = Q[n, 3], Q[n, 4]
-                rx = c * com[var, n, 0] - s * com[var, n, 1]
-                ry = s * com[var, n, 0] + c * com[var, n, 1]
-                acx = a[n, 0, var, i] - e * ry - w * w * rx
-                acy = a[n, 1, var, i] + e * rx - w * w * ry
-                fx = -mass[var, n] * acx
-                fy = -mass[var, n] * acy - mass[var, n] * g
-                Q[n, 0] = fx
-                Q[n, 1] = fy
-                Q[n, 2] = rx * fy - ry * fx - inertia[var, n] * e
-            for kk in range(f_link.shape[0]):
-                n = f_link[kk]
-                fx, fy = f_val[kk, var, i, 0], f_val[kk, var, i, 1]
-                Q[n, 0] += fx
-                Q[n, 1] += fy
-                Q[n, 2] += (f_pos[kk, var, i, 0] - q[n, 0, var, i]) * fy - (f_pos[kk, var, i, 1] - q[n, 1, var, i]) * fx
-            for kk in range(m_link.shape[0]):
-                Q[m_link[kk], 2] += m_val[kk, var, i]
+            _link_loads(q, v, a, mass, com, inertia, g, var, i, Q)
+            _external_loads(q, f_link, f_val, f_pos, m_link, m_val, var, i, Q)
             _rows_at(rows, q, G, var, i, J, Q)
             bad = False
             for gi in range(groups.shape[0]):
-                nl = groups[gi, 0]
-                nr = groups[gi, 1 + width]
-                size = 3 * nl
-                sh = shape_of[gi]
-                if sh[0] != GENERAL:
-                    _rhs(groups, gi, width, known0, rows, J, Q, mu, x)
-                    if bad:
-                        ok = False
-                    elif sh[0] == SINGLE:
-                        ok = _single(J, rows, sh, groups[gi, 1], x, mu)
-                    else:
-                        ok = _dyad(J, rows, sh, groups[gi, 1], groups[gi, 2], x, mu)
-                    if not ok:
-                        for j in range(nr):
-                            mu[groups[gi, 2 + width + j]] = math.nan
-                    bad = bad or not ok
-                    continue
-                # M[c, j]: column j of the group's row j, c over the group's link coordinates
-                big = 0.0
-                for j in range(nr):
-                    r = groups[gi, 2 + width + j]
-                    ra, rb = rows[r, 1], rows[r, 2]
-                    for li in range(nl):
-                        link = groups[gi, 1 + li]
-                        for d in range(3):
-                            val = 0.0
-                            if ra == link:
-                                val = J[r, d]
-                            elif rb == link:
-                                val = J[r, 3 + d]
-                            M[3 * li + d, j] = val
-                            big = max(big, abs(val))
-                _rhs(groups, gi, width, known0, rows, J, Q, mu, x)
-                # Gaussian elimination with partial pivoting
-                ok = not bad and big > 0.0
-                for col in range(size):
-                    if not ok:
-                        break
-                    piv = col
-                    for rr in range(col + 1, size):
-                        if abs(M[rr, col]) > abs(M[piv, col]):
-                            piv = rr
-                    if not abs(M[piv, col]) > SINGULAR * big:
-                        ok = False
-                        break
-                    if piv != col:
-                        for cc in range(col, size):
-                            M[col, cc], M[piv, cc] = M[piv, cc], M[col, cc]
-                        x[col], x[piv] = x[piv], x[col]
-                    inv = 1.0 / M[col, col]
-                    for rr in range(col + 1, size):
-                        f = M[rr, col] * inv
-                        if f != 0.0:
-                            for cc in range(col + 1, size):
-                                M[rr, cc] -= f * M[col, cc]
-                            x[rr] -= f * x[col]
-                if ok:
-                    for col in range(size - 1, -1, -1):
-                        acc = x[col]
-                        for cc in range(col + 1, size):
-                            acc -= M[col, cc] * x[cc]
-                        x[col] = acc / M[col, col]
-                for j in range(nr):
-                    r = groups[gi, 2 + width + j]
-                    mu[r] = x[j] if ok else math.nan
-                bad = bad or not ok
+                if bad or not _group(groups, gi, width, known0, rows, shape_of[gi], J, Q, M, x, mu):
+                    for j in range(groups[gi, 1 + width]):
+                        mu[groups[gi, 2 + width + j]] = math.nan
+                    bad = True
             for r in range(n_rows):
                 lam[var, i, r] = mu[r]
-            for d in range(3):
-                total = Q[0, d]  # the frame's weight and the external loads on it
-                for kk in range(on_frame.shape[0]):
-                    r = on_frame[kk]
-                    if r < 0:
-                        break
-                    if rows[r, 1] == 0:
-                        total += J[r, d] * mu[r]
-                    if rows[r, 2] == 0:
-                        total += J[r, 3 + d] * mu[r]
-                frame[var, i, d] = total
+            _frame_loads(rows, on_frame, J, Q, mu, frame, var, i)
 
 
 if njit is not None:  # pragma: no branch
-    _opts = OPTS
+    _opts: dict[str, Any] = OPTS
     _row_geometry = njit(inline="always", **_opts)(_row_geometry)
     _rows_at = njit(inline="always", **_opts)(_rows_at)
     _col = njit(inline="always", **_opts)(_col)
@@ -415,4 +478,12 @@ if njit is not None:  # pragma: no branch
     _pair_on = njit(inline="always", **_opts)(_pair_on)
     _dyad = njit(inline="always", **_opts)(_dyad)
     _rhs = njit(inline="always", **_opts)(_rhs)
+    _link_loads = njit(inline="always", **_opts)(_link_loads)
+    _external_loads = njit(inline="always", **_opts)(_external_loads)
+    _group_matrix = njit(inline="always", **_opts)(_group_matrix)
+    _eliminate = njit(inline="always", **_opts)(_eliminate)
+    _back_substitute = njit(inline="always", **_opts)(_back_substitute)
+    _general = njit(inline="always", **_opts)(_general)
+    _group = njit(inline="always", **_opts)(_group)
+    _frame_loads = njit(inline="always", **_opts)(_frame_loads)
     _kernel = njit(**_opts)(_kernel)

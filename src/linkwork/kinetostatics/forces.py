@@ -5,15 +5,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics import fast
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
 from linkwork.kinetostatics.external import evaluate
 from linkwork.kinetostatics.free_body import FreeBody, free_bodies
+from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.kinetostatics.reactions import (
     Loads,
     foundation,
@@ -23,7 +24,8 @@ from linkwork.kinetostatics.reactions import (
     solve_reactions,
 )
 from linkwork.motion.kinematics import Kinematics, kinematics
-from linkwork.structure.model import PairType
+from linkwork.spec.checks import suggest
+from linkwork.structure.model import Mechanism, PairType
 
 
 @dataclass(frozen=True)
@@ -42,7 +44,7 @@ class Forces:
         Applied and inertia loads of every link (computed when first asked for, as are the checks).
     """
 
-    kinematics: Any
+    kinematics: Kinematics
     multipliers: np.ndarray
     foundation_all: np.ndarray  # (V, A, 3)
 
@@ -65,7 +67,7 @@ class Forces:
         return a if self.kinematics.variants else a[0]
 
     @property
-    def mechanism(self) -> Any:
+    def mechanism(self) -> Mechanism:
         return self.kinematics.mechanism
 
     @property
@@ -106,8 +108,6 @@ class Forces:
         m = self.mechanism
         ks = [k for k, j in enumerate(m.pair_joint) if j == joint]
         if not ks:
-            from linkwork.spec.checks import suggest
-
             raise KeyError(f'no joint "{joint}"{suggest(joint, sorted(set(m.pair_joint)))}')
         return ks
 
@@ -120,12 +120,9 @@ class Forces:
         lam = self.multipliers[..., 2 * k : 2 * k + 2]
         if m.pair_type[k] == PairType.REVOLUTE:
             return -lam
-        theta = self.kinematics.pose[..., int(m.pair_links[k, 0]), 2]  # the guide's angle (V, A)
-        ux, uy = self.kinematics.axis[k, 0], self.kinematics.axis[k, 1]  # local direction (V, 1)
-        c, s = np.cos(theta), np.sin(theta)
-        u = (c * ux - s * uy, s * ux + c * uy)
+        u = guide_direction(self.kinematics, k)
         normal = lam[..., 1]  # along n = u turned by +90 deg, on the slider
-        return np.stack([-u[1] * normal, u[0] * normal], -1)
+        return np.stack([-u[..., 1] * normal, u[..., 0] * normal], -1)
 
     def reaction(self, joint: str, on: str | None = None) -> np.ndarray:
         """Force (N) in a joint, ``(..., n_angles, 2)``, in the order the file's ``links`` name its links.
@@ -153,8 +150,6 @@ class Forces:
         members = {int(i) for k in ks for i in m.pair_links[k] if not m.link_virtual[int(i)]}
         names = [m.link_names[i] for i in sorted(members)]
         if on not in names:
-            from linkwork.spec.checks import suggest
-
             raise KeyError(f'joint "{joint}" joins {", ".join(names)}, not "{on}"{suggest(on, names)}')
         link = m.link_names.index(on)
         total = np.zeros(self.multipliers.shape[:-1] + (2,))
@@ -232,12 +227,12 @@ class Forces:
 
 
 def forces(
-    mech: Any,
-    angles: Any = None,
+    mech: Mechanism | Kinematics,
+    angles: npt.ArrayLike | None = None,
     *,
     steps: int | None = None,
-    speed: Any = None,
-    variants: dict[str, Any] | None = None,
+    speed: npt.ArrayLike | None = None,
+    variants: dict[str, npt.ArrayLike] | None = None,
 ) -> Forces:
     """Reactions in every pair, the driving torque and the foundation loads.
 
@@ -261,7 +256,7 @@ def forces(
     return forces_of(kinematics(mech, angles, steps=steps, speed=speed, variants=variants))
 
 
-def _statically_determinate(mech: Any) -> None:
+def _statically_determinate(mech: Mechanism) -> None:
     if mech.structure.redundant:
         raise LinkworkError(
             f"the mechanism has {mech.structure.redundant} redundant constraint(s): its reactions are "
@@ -269,7 +264,7 @@ def _statically_determinate(mech: Any) -> None:
         )
 
 
-def forces_of(kin: Any) -> Forces:
+def forces_of(kin: Kinematics) -> Forces:
     """The :class:`Forces` of a kinematics result: reactions, driving torque and foundation loads at
     its angles, speeds and variants (with the variants' mass properties), without solving the
     motion again.

@@ -12,11 +12,15 @@ from the pair forces and the points, not from the constraint Jacobian.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.structure.model import PairType
+
+if TYPE_CHECKING:  # the forces module makes the free bodies of its results
+    from linkwork.kinetostatics.forces import Forces
 
 
 @dataclass(frozen=True)
@@ -68,7 +72,7 @@ def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
     return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
 
 
-def contacts(forces: Any) -> list[Contact]:
+def contacts(forces: Forces) -> list[Contact]:
     """Every pair and drive, each side: the force on ``on`` from ``other``."""
     m = forces.mechanism
     kin = forces.kinematics
@@ -90,17 +94,13 @@ def contacts(forces: Any) -> list[Contact]:
         if m.pair_type[k] == PairType.REVOLUTE:
             f, couple = np.zeros(shape + (2,)), value
         else:
-            theta = kin.pose[..., a, 2]
-            ux, uy = kin.axis[k, 0], kin.axis[k, 1]
-            c, s = np.cos(theta), np.sin(theta)
-            f = value[..., None] * np.stack([c * ux - s * uy, s * ux + c * uy], -1)
-            couple = zero
+            f, couple = value[..., None] * guide_direction(kin, k), zero
         out.append(Contact(m.pair_joint[k], b, a, f, point, couple, drive=True, pair=int(k)))
         out.append(Contact(m.pair_joint[k], a, b, -f, point, -couple, drive=True, pair=int(k)))
     return out
 
 
-def free_bodies(forces: Any) -> list[FreeBody]:
+def free_bodies(forces: Forces) -> list[FreeBody]:
     """The free body of every group of the structural decomposition, in solving order."""
     m = forces.mechanism
     q = forces.kinematics.pose

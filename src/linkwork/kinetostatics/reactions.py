@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
+from linkwork.kinetostatics.external import Applied, evaluate, generalised, resultant
+from linkwork.kinetostatics.external import power as external_power
+from linkwork.kinetostatics.geometry import variant_geometry
+from linkwork.motion.kinematics import Kinematics
 from linkwork.structure.assemble import group_rows
 from linkwork.structure.constraints import build_rows, residuals_and_jacobian
+from linkwork.structure.model import Mechanism
 
 
 @dataclass(frozen=True)
@@ -31,7 +35,7 @@ class Loads:
     com: np.ndarray
     com_velocity: np.ndarray
     com_acceleration: np.ndarray
-    external: Any = None  # linkwork.kinetostatics.external.Applied
+    external: Applied | None = None  # the external loads, where they were evaluated
 
     @property
     def total(self) -> np.ndarray:
@@ -42,10 +46,8 @@ def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
     return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
 
 
-def inertia_and_gravity(kin: Any) -> Loads:
+def inertia_and_gravity(kin: Kinematics) -> Loads:
     """Gravity, the external loads and the d'Alembert inertia loads of every link."""
-    from linkwork.kinetostatics.external import evaluate, generalised
-
     m = kin.mechanism
     mass, lx, ly, j_c = _mass_arrays(kin)
     q, v, a = kin.pose, kin.vel, kin.acc  # (V, A, N, 3)
@@ -67,19 +69,19 @@ def inertia_and_gravity(kin: Any) -> Loads:
     return Loads(applied, inertia, com, vc, ac, external)
 
 
-def _mass_arrays(kin: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _mass_arrays(kin: Kinematics) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Mass, centre of mass x and y (local) and moment of inertia of every link of every variant,
     each ``(V, 1, N)`` to broadcast over angles."""
     ms = kin.mass_properties
     return ms.mass[:, None], ms.com[:, None, :, 0], ms.com[:, None, :, 1], ms.inertia[:, None]
 
 
-def group_order(mech: Any) -> list[tuple[list[int], list[int]]]:
+def group_order(mech: Mechanism) -> list[tuple[list[int], list[int]]]:
     """The links of each Assur group and the constraint rows it owns (the rows between its links
     and the links placed before it), in solving order."""
     rows = build_rows(mech.pair_type, mech.pair_links, mech.drive_pair)
     placed: set[int] = {0}
-    owned = []
+    owned: list[tuple[list[int], list[int]]] = []
     for group in mech.structure.groups:
         links = set(group.links)
         owned.append((list(group.links), group_rows(rows, placed, links)))
@@ -87,17 +89,14 @@ def group_order(mech: Any) -> list[tuple[list[int], list[int]]]:
     return owned
 
 
-def solve_reactions(kin: Any, loads: Loads) -> tuple[np.ndarray, np.ndarray]:
+def solve_reactions(kin: Kinematics, loads: Loads) -> tuple[np.ndarray, np.ndarray]:
     """Multipliers of every constraint row ``(V, A, m)``, group by group from the last group back,
     and the generalised force the pairs put on the frame ``(V, A, 3)`` (force, moment about the origin).
 
     Where a group's system is singular (a dead point) its reactions are NaN.
     """
-    from linkwork.structure.parameters import Geometry
-
     m = kin.mechanism
-    geom = Geometry(*(np.moveaxis(g, (0, 1), (2, 3)) for g in (kin.local, kin.origin, kin.axis)))
-    _, jac = residuals_and_jacobian(kin.pose, m, geom=geom)
+    _, jac = residuals_and_jacobian(kin.pose, m, geom=variant_geometry(kin))
     owned = group_order(m)
     rhs_all = -loads.total.reshape(loads.total.shape[:2] + (-1,))  # (V, A, 3N)
     lam = np.full(jac.shape[:-1], np.nan)
@@ -130,7 +129,7 @@ def _solve(mat: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     return out
 
 
-def power_check(kin: Any, loads: Loads) -> np.ndarray:
+def power_check(kin: Kinematics, loads: Loads) -> np.ndarray:
     """Driving torque from the power balance: (dT/dt - power of the applied loads) / drive speed.
 
     Needs one drive (several drives share the power in a way the balance alone does not fix);
@@ -142,8 +141,6 @@ def power_check(kin: Any, loads: Loads) -> np.ndarray:
     kinetic_rate = np.sum(mass * np.sum(loads.com_velocity * loads.com_acceleration, -1), -1) + np.sum(
         j_c * v[..., 2] * a[..., 2], -1
     )
-    from linkwork.kinetostatics.external import power as external_power
-
     power = -m.gravity * np.sum(mass * loads.com_velocity[..., 1], -1) + external_power(kin, loads.external)
     rate = kin.rates[None, :, 0]
     out = np.full(kinetic_rate.shape + (m.n_drives,), np.nan)
@@ -153,18 +150,16 @@ def power_check(kin: Any, loads: Loads) -> np.ndarray:
     return out
 
 
-def foundation(kin: Any, frame: np.ndarray, loads: Loads) -> np.ndarray:
+def foundation(kin: Kinematics, frame: np.ndarray, loads: Loads) -> np.ndarray:
     """Force (x, y) and moment about the origin the machine puts on its foundation, (V, A, 3):
     the pairs' force on the frame plus the frame's own weight and the loads applied to it."""
     return frame + loads.applied[..., 0, :]
 
 
-def momentum_check(kin: Any, loads: Loads) -> np.ndarray:
+def momentum_check(kin: Kinematics, loads: Loads) -> np.ndarray:
     """The same from the theorem on the change of momentum: the foundation carries the weights of
     all links and the external loads, less the rate of change of the momentum of the links (and
     of their moment of momentum)."""
-    from linkwork.kinetostatics.external import resultant
-
     m = kin.mechanism
     mass, _, _, j_c = _mass_arrays(kin)
     weight = np.zeros(loads.com.shape)

@@ -9,12 +9,13 @@ thus choose the assembly mode of every group.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
 from linkwork.errors import UnassemblableError
 from linkwork.structure.constraints import Rows, residuals_and_jacobian
-from linkwork.structure.model import AssurGroup, Mechanism, PairType
+from linkwork.structure.model import AssurGroup, Mechanism, PairType, global_points
 
 
 def fit_pose(local: np.ndarray, glob: np.ndarray, theta: float | None = None) -> np.ndarray:
@@ -51,6 +52,7 @@ def scaled(
 
 
 def group_rows(rows: Rows, placed: set[int], group: set[int]) -> list[int]:
+    """The constraint rows a group owns: those between its links and the links ``placed`` before it."""
     allowed = placed | group
     return [i for i, rl in enumerate(rows.links) if set(map(int, rl)) <= allowed and set(map(int, rl)) & group]
 
@@ -87,33 +89,48 @@ def solve_group(
     return q, float(np.max(np.abs(fun(sol.x)))) if sel else 0.0
 
 
+class Located(NamedTuple):
+    """A point of a link whose place is known before its group is solved: the link's point ``own`` is at the
+    point ``point`` of a placed link (``source`` "joint") or at the hint for it (``source`` "hint")."""
+
+    own: int
+    source: str
+    point: int
+
+
+class TiedAngle(NamedTuple):
+    """A link's angle known through the prismatic or driven revolute ``pair`` that ties it to ``other``."""
+
+    pair: int
+    other: int
+
+
 def locate(
     mech: Mechanism, group: AssurGroup, placed: set[int], hints: dict[int, np.ndarray]
-) -> tuple[dict[int, list[tuple[int, str, int]]], dict[int, tuple[str, int, int] | None]]:
+) -> tuple[dict[int, list[Located]], dict[int, TiedAngle | None]]:
     """What fixes each link of a group before it is solved.
 
     Returns
     -------
     points : dict
-        For each link, its located points as ``(own point, "joint" or
-        "hint", source point)``: a joint point of a placed link or a hint.
+        For each link, its located points: joint points of placed links, and hints.
     angle : dict
-        For each link, how its angle is known: ``("pair", k, other)`` when a
-        prismatic or driven revolute pair ``k`` ties it to a link ``other``
-        whose angle is known (placed, fitted, or itself tied), else None.
+        For each link, how its angle is known: tied by a prismatic or driven
+        revolute pair to a link whose angle is known (placed, fitted, or
+        itself tied), else None.
     """
-    points: dict[int, list[tuple[int, str, int]]] = {i: [] for i in group.links}
-    angle: dict[int, tuple[str, int, int] | None] = dict.fromkeys(group.links)
+    points: dict[int, list[Located]] = {i: [] for i in group.links}
+    angle: dict[int, TiedAngle | None] = dict.fromkeys(group.links)
     driven = set(int(k) for k in mech.drive_pair)
     for i in group.links:
         for k in group.pairs:
             a, b = (int(v) for v in mech.pair_links[k])
             if i in (a, b) and (b if i == a else a) in placed and mech.pair_type[k] == PairType.REVOLUTE:
                 mine, theirs = mech.pair_points[k, 0 if i == a else 1], mech.pair_points[k, 1 if i == a else 0]
-                points[i].append((int(mine), "joint", int(theirs)))
+                points[i].append(Located(int(mine), "joint", int(theirs)))
         for p in np.flatnonzero(mech.point_link == i):
-            if int(p) in hints and all(int(p) != own for own, _, _ in points[i]):
-                points[i].append((int(p), "hint", int(p)))
+            if int(p) in hints and all(int(p) != located.own for located in points[i]):
+                points[i].append(Located(int(p), "hint", int(p)))
     known = set(placed) | {i for i in group.links if len(points[i]) >= 2}
     changed = True
     while changed:
@@ -123,7 +140,7 @@ def locate(
             if mech.pair_type[k] == PairType.PRISMATIC or k in driven:
                 for i, other in ((a, b), (b, a)):
                     if i in angle and i not in known and other in known:
-                        angle[i] = ("pair", k, other)
+                        angle[i] = TiedAngle(k, other)
                         known.add(i)
                         changed = True
     return points, angle
@@ -140,8 +157,6 @@ def initial_guess(
     mech: Mechanism, q: np.ndarray, group: AssurGroup, placed: set[int], hints: dict[int, np.ndarray]
 ) -> np.ndarray:
     """A starting pose of the group's links from placed joints and hints."""
-    from linkwork.structure.model import global_points
-
     q = q.copy()
     glob_all = global_points(q, mech.point_link, mech.point_local)
     points, angle = locate(mech, group, placed, hints)
@@ -156,7 +171,7 @@ def initial_guess(
             how = angle[i]
             theta = None
             if how is not None:
-                _, k, other = how
+                k, other = how
                 if other not in fitted:
                     continue
                 theta = q[other, 2]
@@ -165,8 +180,8 @@ def initial_guess(
                     if dk == k and mech.pair_type[k] == PairType.REVOLUTE:
                         phi = mech.drive_start[d]
                         theta = q[a, 2] + phi if i == b else q[b, 2] - phi
-            local = [mech.point_local[own] for own, _, _ in points[i]]
-            glob = [target(src, p) for _, src, p in points[i]]
+            local = [mech.point_local[located.own] for located in points[i]]
+            glob = [target(located.source, located.point) for located in points[i]]
             if local:
                 q[i] = fit_pose(np.array(local), np.array(glob), theta)
             elif theta is not None:
@@ -207,32 +222,13 @@ def _why(mech: Mechanism, group: AssurGroup, worst: float, q: np.ndarray, placed
 
 def _dyad_reason(mech: Mechanism, group: AssurGroup, q: np.ndarray, placed: set[int]) -> str | None:
     """Why an RRR or RRP dyad does not close, in the words of the circle construction."""
-    from linkwork.structure.model import global_points
-
     if group.klass != 2 or group.kind not in ("RRR", "RRP"):
         return None
-    glob = global_points(q, mech.point_link, mech.point_local)
-    inner = next(k for k in group.pairs if set(map(int, mech.pair_links[k])) <= set(group.links))
-    outer = {}
-    for k in group.pairs:
-        if k == inner:
-            continue
-        a, b = (int(v) for v in mech.pair_links[k])
-        mine = b if a in placed else a
-        outer[mine] = k
-
-    def arm(link: int, k: int) -> tuple[float, np.ndarray, str]:
-        """Distance on ``link`` from its outer joint to the inner one, the outer joint's position, name."""
-        a = int(mech.pair_links[k, 0])
-        own = int(mech.pair_points[k, 1 if a in placed else 0])
-        other = int(mech.pair_points[k, 0 if a in placed else 1])
-        inner_pt = int(mech.pair_points[inner, 0 if int(mech.pair_links[inner, 0]) == link else 1])
-        return float(np.hypot(*(mech.point_local[inner_pt] - mech.point_local[own]))), glob[other], mech.pair_joint[k]
-
-    (la, ka), (lb, kb) = outer.items()
+    dyad = _Dyad(mech, group, q, placed)
+    (la, ka), (lb, kb) = dyad.outer.items()
     if group.kind == "RRR":
-        ra, pa, na = arm(la, ka)
-        rb, pb, nb = arm(lb, kb)
+        ra, pa, na = dyad.arm(la, ka)
+        rb, pb, nb = dyad.arm(lb, kb)
         d = float(np.hypot(*(pa - pb)))
         if d > ra + rb:
             return (
@@ -243,22 +239,54 @@ def _dyad_reason(mech: Mechanism, group: AssurGroup, q: np.ndarray, placed: set[
             f"the joints {na} and {nb} are {d:.4g} m apart, less than the difference {abs(ra - rb):.4g} m "
             f"of the links {mech.link_names[la]} and {mech.link_names[lb]}"
         )
-    rod, slider = (la, lb) if mech.pair_type[outer[la]] == PairType.REVOLUTE else (lb, la)
-    r, p, name = arm(rod, outer[rod])
-    kp = outer[slider]
-    guide = int(mech.pair_links[kp, 0])
-    c, s = math.cos(q[guide, 2]), math.sin(q[guide, 2])
-    rot = np.array([[c, -s], [s, c]])
-    u = rot @ mech.pair_axis[kp]
-    origin = q[guide, :2] + rot @ mech.pair_origin[kp]
-    inner_pt = int(mech.pair_points[inner, 0 if int(mech.pair_links[inner, 0]) == slider else 1])
-    offset = rot @ (mech.point_local[inner_pt] - mech.point_local[int(mech.pair_points[kp, 1])])
-    n = np.array([-u[1], u[0]])
-    h = abs(float(n @ (p - origin - offset)))
+    rod, slider = (la, lb) if mech.pair_type[dyad.outer[la]] == PairType.REVOLUTE else (lb, la)
+    r, p, name = dyad.arm(rod, dyad.outer[rod])
+    h = dyad.off_line(slider, p)
     return (
         f"the joint {name} is {h:.4g} m from the line on which the slider {mech.link_names[slider]} "
-        f"carries the joint {mech.pair_joint[inner]}, more than the {r:.4g} m of the link {mech.link_names[rod]}"
+        f"carries the joint {mech.pair_joint[dyad.inner]}, more than the {r:.4g} m of the link {mech.link_names[rod]}"
     )
+
+
+class _Dyad:
+    """A dyad that does not close, in the pose ``q`` of the links ``placed`` before it: its inner pair, and
+    the outer pair of each of its links (``outer``: link -> pair)."""
+
+    def __init__(self, mech: Mechanism, group: AssurGroup, q: np.ndarray, placed: set[int]) -> None:
+        self.mech, self.q, self.placed = mech, q, placed
+        self.glob = global_points(q, mech.point_link, mech.point_local)
+        self.inner = next(k for k in group.pairs if set(map(int, mech.pair_links[k])) <= set(group.links))
+        self.outer: dict[int, int] = {}
+        for k in group.pairs:
+            if k == self.inner:
+                continue
+            a, b = (int(v) for v in mech.pair_links[k])
+            self.outer[b if a in placed else a] = k
+
+    def _inner_point(self, link: int) -> int:
+        """The inner joint's point on ``link``."""
+        return int(self.mech.pair_points[self.inner, 0 if int(self.mech.pair_links[self.inner, 0]) == link else 1])
+
+    def arm(self, link: int, k: int) -> tuple[float, np.ndarray, str]:
+        """Distance on ``link`` from its outer joint ``k`` to the inner one, the outer joint's position, name."""
+        mech = self.mech
+        a = int(mech.pair_links[k, 0])
+        own = int(mech.pair_points[k, 1 if a in self.placed else 0])
+        other = int(mech.pair_points[k, 0 if a in self.placed else 1])
+        span = mech.point_local[self._inner_point(link)] - mech.point_local[own]
+        return float(np.hypot(*span)), self.glob[other], mech.pair_joint[k]
+
+    def off_line(self, slider: int, p: np.ndarray) -> float:
+        """Distance of the point ``p`` from the line on which ``slider`` carries the inner joint."""
+        mech, kp = self.mech, self.outer[slider]
+        guide = int(mech.pair_links[kp, 0])
+        c, s = math.cos(self.q[guide, 2]), math.sin(self.q[guide, 2])
+        rot = np.array([[c, -s], [s, c]])
+        u = rot @ mech.pair_axis[kp]
+        origin = self.q[guide, :2] + rot @ mech.pair_origin[kp]
+        offset = rot @ (mech.point_local[self._inner_point(slider)] - mech.point_local[int(mech.pair_points[kp, 1])])
+        n = np.array([-u[1], u[0]])
+        return abs(float(n @ (p - origin - offset)))
 
 
 def _coord(mech: Mechanism, pair: int, value: float) -> str:

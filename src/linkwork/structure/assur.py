@@ -59,22 +59,7 @@ def decompose(
     groups: list[AssurGroup] = []
     row_links = [set(map(int, rl)) for rl in rows.links]
     while remaining:
-        found = None
-        for k in range(1, len(remaining) + 1):
-            for subset in combinations(remaining, k):
-                s = set(subset)
-                allowed = placed | s
-                sel = [i for i, rl in enumerate(row_links) if rl <= allowed and rl & s]
-                if len(sel) < 3 * k:
-                    continue
-                cols = [3 * i + c for i in subset for c in range(3)]
-                sub = jac[np.ix_(sel, cols)]
-                r = rank(sub)
-                if r == 3 * k:
-                    found = (subset, sel, len(sel) - r)
-                    break
-            if found:
-                break
+        found = _smallest_group(jac, row_links, placed, remaining)
         if found is None:
             return groups, remaining
         subset, sel, redundant = found
@@ -82,6 +67,26 @@ def decompose(
         placed |= set(subset)
         remaining = [i for i in remaining if i not in subset]
     return groups, []
+
+
+def _smallest_group(
+    jac: np.ndarray, row_links: list[set[int]], placed: set[int], remaining: list[int]
+) -> tuple[tuple[int, ...], list[int], int] | None:
+    """The smallest set of the ``remaining`` links whose coordinates the rows between them and the ``placed``
+    links determine (the first found among sets of one size): the set, its rows and the number of its
+    redundant constraints; None where no set is determined."""
+    for k in range(1, len(remaining) + 1):
+        for subset in combinations(remaining, k):
+            s = set(subset)
+            allowed = placed | s
+            sel = [i for i, rl in enumerate(row_links) if rl <= allowed and rl & s]
+            if len(sel) < 3 * k:
+                continue
+            cols = [3 * i + c for i in subset for c in range(3)]
+            r = rank(jac[np.ix_(sel, cols)])
+            if r == 3 * k:
+                return subset, sel, len(sel) - r
+    return None
 
 
 def _classify(
@@ -98,7 +103,7 @@ def _classify(
     s = set(subset)
     pairs = sorted({int(rows.pair[i]) for i in sel if rows.pair[i] >= 0})
     # a pair repeated between the same links at the same points only adds redundant constraints
-    distinct: dict[tuple, int] = {}
+    distinct: dict[tuple[frozenset[int], int, str | None], int] = {}
     for k in pairs:
         key = (frozenset(map(int, pair_links[k])), int(pair_type[k]), pair_joint[k] if pair_type[k] else None)
         distinct.setdefault(key, k)

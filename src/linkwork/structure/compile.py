@@ -9,17 +9,25 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
 from linkwork.errors import Problem, SpecError, StructureError, UnassemblableError
-from linkwork.spec.schema import Spec
+from linkwork.spec.schema import Joint, Spec
 from linkwork.structure.assemble import assemble, scaled, solve_group, unfixed_links
 from linkwork.structure.assur import decompose, rank
-from linkwork.structure.constraints import build_rows
-from linkwork.structure.model import AssurGroup, Mechanism, PairType, Structure, formula, global_points
+from linkwork.structure.constraints import Rows, build_rows
+from linkwork.structure.model import AssurGroup, Mechanism, PairType, Structure, formula, frozen, global_points
+from linkwork.structure.parameters import (
+    COM_CENTROID,
+    COM_GIVEN,
+    INERTIA_GIVEN,
+    INERTIA_NONE,
+    INERTIA_ROD,
+    mass_properties,
+)
 
 
 def structural_model(spec: Spec) -> Mechanism:
@@ -49,61 +57,119 @@ def structural_model(spec: Spec) -> Mechanism:
         raise
 
 
+@dataclass(frozen=True)
+class _Count:
+    """The Chebyshev count of a description: ``n`` moving links, ``p5`` lower and ``p4`` higher pairs;
+    and its drives, as a message names them (``1 drive (crank) is given``)."""
+
+    n: int
+    p5: int
+    p4: int
+    drives: str
+
+    @property
+    def w(self) -> int:
+        """The degrees of freedom W = 3n - 2p5 - p4."""
+        return 3 * self.n - 2 * self.p5 - self.p4
+
+    def text(self) -> str:
+        """``W = 3n - 2p5 = 3*3 - 2*4 = 1``."""
+        tail = f" - {self.p4}" if self.p4 else ""
+        return f"W = 3n - 2p5{' - p4' if self.p4 else ''} = 3*{self.n} - 2*{self.p5}{tail} = {self.w}"
+
+    def mismatch(self) -> str:
+        """The message of a mechanism whose drives are not as many as its degrees of freedom."""
+        w = self.w
+        what = "the mechanism is a rigid structure" if w <= 0 else f"the mechanism has {w} degree(s) of freedom"
+        return f"{self.text()}: {what}, but {self.drives}; the number of drives must equal W"
+
+
 def _compile(spec: Spec) -> Mechanism:
-    arrays, hints, counts = _arrays(spec)
-    mech = Mechanism(**arrays, pose0=np.zeros((len(arrays["link_names"]), 3)), structure=_EMPTY)
+    """The structural model: the arrays, the Assur groups, the assembly pose and the structural analysis."""
+    mech, hints, count = _arrays(spec)
     rows = build_rows(mech.pair_type, mech.pair_links, mech.drive_pair)
     scale = _scale(mech)
-    n_total = mech.n_links_total
-    n, p5, p4 = counts
-    w = 3 * n - 2 * p5 - p4
+    groups = _groups(mech, rows, scale, count)
+    _require_hints(spec, mech, groups, hints)
+    try:
+        q0 = assemble(mech, rows, groups, hints, scale)
+    except UnassemblableError:
+        if count.w != mech.n_drives:
+            raise StructureError(count.mismatch()) from None
+        raise
+    mech = dataclasses.replace(mech, pose0=q0)
+    return dataclasses.replace(mech, structure=_structure(mech, rows, scale, groups, hints, count))
 
+
+def _groups(mech: Mechanism, rows: Rows, scale: float, count: _Count) -> list[AssurGroup]:
+    """The Assur groups in solving order, found from the constraint Jacobian at a random (generic) pose.
+
+    Raises
+    ------
+    StructureError
+        Naming the links the drives leave free.
+    """
+    n_total = mech.n_links_total
     rng = np.random.default_rng(20240607)
     qg = np.column_stack([rng.uniform(-scale, scale, (n_total, 2)), rng.uniform(-math.pi, math.pi, n_total)])
     jac_g = scaled(qg, mech, rows, scale)[1]
-    drives_text = _drives_text(spec)
     moving = jac_g[:, 3:]
     if rank(moving) < moving.shape[1]:
         # the drives leave some links free: name them from the null space, without searching for groups
-        _, sv, vt = np.linalg.svd(moving)
-        null = vt[np.sum(sv > 1e-8 * sv[0]) :] if len(sv) else vt
-        weight = np.abs(null).reshape(len(null), -1, 3).max(axis=(0, 2))
-        free = [i + 1 for i in np.flatnonzero(weight > 1e-8)]
+        groups: list[AssurGroup] = []
+        free = _null_links(moving)
     else:
         groups, free = decompose(
             rows, jac_g, n_total, mech.pair_type, mech.pair_links, mech.pair_joint, mech.link_names
         )
     if free:
-        names = ", ".join(f"{i} ({mech.link_names[i]})" for i in free)
-        spinning = _spinning_links(mech)
-        if set(free) <= set(spinning):
-            raise StructureError(
-                f"{_w_text(n, p5, p4, w)}, but {drives_text}: the links {names} only turn about their one joint "
-                "point (a passive degree of freedom, such as a roller on its pin), which W counts; join each to "
-                "the link it turns on, or give it a point fixed by another pair"
-            )
-        raise StructureError(
-            f"{_w_text(n, p5, p4, w)}, but {drives_text}: the links {names} are not determined by the drives"
-            + (f"; add {w - mech.n_drives} more drive(s)" if w > mech.n_drives else "")
-        )
-    _require_hints(spec, mech, groups, hints)
-    try:
-        q0 = assemble(mech, rows, groups, hints, scale)
-    except UnassemblableError:
-        if w != mech.n_drives:
-            raise StructureError(_mismatch(n, p5, p4, w, drives_text)) from None
-        raise
-    mech = dataclasses.replace(mech, pose0=q0)
+        raise StructureError(_free_message(mech, free, count))
+    return groups
 
+
+def _null_links(moving: np.ndarray) -> list[int]:
+    """The links (numbered from 1) that move in the null space of the moving links' Jacobian ``(m, 3 n)``."""
+    _, sv, vt = np.linalg.svd(moving)
+    null = vt[np.sum(sv > 1e-8 * sv[0]) :] if len(sv) else vt
+    weight = np.abs(null).reshape(len(null), -1, 3).max(axis=(0, 2))
+    return [int(i) + 1 for i in np.flatnonzero(weight > 1e-8)]
+
+
+def _free_message(mech: Mechanism, free: list[int], count: _Count) -> str:
+    """What is wrong with a mechanism whose drives leave the links ``free`` undetermined."""
+    names = ", ".join(f"{i} ({mech.link_names[i]})" for i in free)
+    if set(free) <= set(_spinning_links(mech)):
+        return (
+            f"{count.text()}, but {count.drives}: the links {names} only turn about their one joint "
+            "point (a passive degree of freedom, such as a roller on its pin), which W counts; join each to "
+            "the link it turns on, or give it a point fixed by another pair"
+        )
+    return f"{count.text()}, but {count.drives}: the links {names} are not determined by the drives" + (
+        f"; add {count.w - mech.n_drives} more drive(s)" if count.w > mech.n_drives else ""
+    )
+
+
+def _structure(
+    mech: Mechanism, rows: Rows, scale: float, groups: list[AssurGroup], hints: dict[int, np.ndarray], count: _Count
+) -> Structure:
+    """The structural analysis of the assembled ``mech``: redundant constraints and the actual mobility from the
+    rank of the Jacobian in the assembly pose and beside it, and the warnings of the assembly.
+
+    Raises
+    ------
+    StructureError
+        The mobility does not match the drives.
+    """
+    q0 = mech.pose0
     pair_rows = [i for i in range(rows.n) if rows.drive[i] < 0]
     r0, rd0 = _ranks(mech, rows, q0, scale, pair_rows)
     near = [_ranks(mech, rows, q1, scale, pair_rows, v) for q1, v in _neighbours(mech, rows, q0, scale)]
     r = max([r0] + [n[0] for n in near])
     rd = max([rd0] + [n[1] for n in near])
-    mobility = 3 * (n_total - 1) - r
+    mobility = 3 * (mech.n_links_total - 1) - r
     redundant = len(pair_rows) - r
     if mobility != mech.n_drives:
-        msg = _mismatch(n, p5, p4, w, drives_text)
+        msg = count.mismatch()
         if redundant:
             msg += (
                 f"; {redundant} constraint(s) are redundant in the assembly pose, so the actual mobility is {mobility}"
@@ -116,8 +182,9 @@ def _compile(spec: Spec) -> Mechanism:
             f"rank {rd - rd0} there; choose another drive angle for the assembly"
         )
     warnings += _hint_warnings(mech, hints, scale)
-    structure = Structure(n, p5, p4, w, redundant, mobility, tuple(groups), formula(groups), tuple(warnings))
-    return dataclasses.replace(mech, structure=structure)
+    return Structure(
+        count.n, count.p5, count.p4, count.w, redundant, mobility, tuple(groups), formula(groups), tuple(warnings)
+    )
 
 
 _EMPTY = Structure(0, 0, 0, 0, 0, 0, (), "")
@@ -127,13 +194,13 @@ def _spinning_links(mech: Mechanism) -> list[int]:
     """Links whose every pair is a revolute at one and the same point of theirs (they spin about it)."""
     out = []
     for i in range(1, mech.n_links_total):
-        pts = []
+        pts: list[np.ndarray] = []
         for k in range(mech.n_pairs):
             a, b = (int(x) for x in mech.pair_links[k])
             if i not in (a, b):
                 continue
             if mech.pair_type[k] != PairType.REVOLUTE:
-                pts = None
+                pts = []  # a link with a prismatic pair does not spin about a point
                 break
             pts.append(mech.point_local[mech.pair_points[k, 0 if a == i else 1]])
         if pts and np.ptp(np.array(pts), axis=0).max() < 1e-12:
@@ -141,17 +208,8 @@ def _spinning_links(mech: Mechanism) -> list[int]:
     return out
 
 
-def _w_text(n: int, p5: int, p4: int, w: int) -> str:
-    tail = f" - {p4}" if p4 else ""
-    return f"W = 3n - 2p5{' - p4' if p4 else ''} = 3*{n} - 2*{p5}{tail} = {w}"
-
-
-def _mismatch(n: int, p5: int, p4: int, w: int, drives_text: str) -> str:
-    what = "the mechanism is a rigid structure" if w <= 0 else f"the mechanism has {w} degree(s) of freedom"
-    return f"{_w_text(n, p5, p4, w)}: {what}, but {drives_text}; the number of drives must equal W"
-
-
 def _drives_text(spec: Spec) -> str:
+    """The drives as a message names them: ``1 drive (crank) is given``."""
     names = ", ".join(d.joint for d in spec.drives)
     if len(spec.drives) == 1:
         return f"1 drive ({names}) is given"
@@ -159,6 +217,7 @@ def _drives_text(spec: Spec) -> str:
 
 
 def _scale(mech: Mechanism) -> float:
+    """The size of the mechanism (m), by which angles are made commensurate with lengths."""
     frame_pts = mech.point_local[mech.point_link == 0]
     spans = [np.abs(frame_pts).max() if len(frame_pts) else 0.0]
     spans.append(float(np.abs(mech.point_local).max()) if len(mech.point_local) else 0.0)
@@ -166,14 +225,14 @@ def _scale(mech: Mechanism) -> float:
 
 
 def _ranks(
-    mech: Mechanism, rows: Any, q: np.ndarray, scale: float, pair_rows: list[int], values: Any = None
+    mech: Mechanism, rows: Rows, q: np.ndarray, scale: float, pair_rows: list[int], values: np.ndarray | None = None
 ) -> tuple[int, int]:
     """Rank of the pair constraints, and of pairs and drives together, at pose ``q``."""
     jac = scaled(q, mech, rows, scale, values)[1][:, 3:]
     return rank(jac[pair_rows]), rank(jac)
 
 
-def _neighbours(mech: Mechanism, rows: Any, q0: np.ndarray, scale: float) -> list[tuple[np.ndarray, np.ndarray]]:
+def _neighbours(mech: Mechanism, rows: Rows, q0: np.ndarray, scale: float) -> list[tuple[np.ndarray, np.ndarray]]:
     """Poses a little way either side along the motion (singular poses are isolated)."""
     step = np.where(mech.pair_type[mech.drive_pair] == PairType.REVOLUTE, 0.02, 0.002 * scale)
     links = tuple(range(1, mech.n_links_total))
@@ -223,6 +282,7 @@ def _require_hints(spec: Spec, mech: Mechanism, groups: list[AssurGroup], hints:
 
 
 def _hint_warnings(mech: Mechanism, hints: dict[int, np.ndarray], scale: float) -> list[str]:
+    """A warning for each hint far (more than a tenth of ``scale``) from where its point assembled."""
     pts = global_points(mech.pose0, mech.point_link, mech.point_local)
     out: dict[tuple[str, float, float], str] = {}
     for p, h in hints.items():
@@ -237,210 +297,95 @@ def _hint_warnings(mech: Mechanism, hints: dict[int, np.ndarray], scale: float) 
     return list(out.values())
 
 
-def _arrays(spec: Spec) -> tuple[dict[str, Any], dict[int, np.ndarray], tuple[int, int, int]]:
+# --- the arrays of a description ---------------------------------------------------------------------
+
+
+class _Draft(NamedTuple):
+    """The arrays of a description before its analysis: the model (its assembly pose zero, its structure
+    empty), the hints by point index and the Chebyshev count."""
+
+    mechanism: Mechanism
+    hints: dict[int, np.ndarray]
+    chebyshev: _Count
+
+
+def _arrays(spec: Spec) -> _Draft:
+    """The flat arrays of a validated description, in the steps that build them: the links and their points,
+    the mass rules, the elementary pairs, the drives and the hints."""
     slots = [j for j, joint in spec.joints.items() if joint.type == "pin-in-slot"]
-    link_names = ["frame", *spec.links, *(f"{j}:block" for j in slots)]
+    link_names = ("frame", *spec.links, *(f"{j}:block" for j in slots))
     index = {name: i for i, name in enumerate(link_names)}
-    point_names: list[str] = []
-    point_link: list[int] = []
-    point_local: list[tuple[float, float]] = []
-    pindex: dict[tuple[int, str], int] = {}
+    points = _points(spec, link_names, index)
+    rules = _mass_rules(spec, index, points.index)
+    pairs = _pairs(spec, index, points)
+    drives = _drives(spec, pairs)
+    mech = _model(spec, points, rules, pairs, drives)
+    count = _Count(len(spec.links), pairs.p5, pairs.p4, _drives_text(spec))
+    return _Draft(mech, _hints(spec, index, points.index), count)
 
-    def add_point(link: int, name: str, xy: tuple[float, float]) -> None:
-        pindex[(link, name)] = len(point_names)
-        point_names.append(f"{link_names[link]}.{name}")
-        point_link.append(link)
-        point_local.append(xy)
 
+@dataclass
+class _Points:
+    """The points of the model as they are added: ``link.point`` names, owner links, local coordinates (m),
+    the index of each ``(link, point name)``; and the point indices of the ends of each link given by ends
+    and length (-1 for the others)."""
+
+    link_names: tuple[str, ...]
+    ends: np.ndarray
+    names: list[str] = field(default_factory=list)
+    link: list[int] = field(default_factory=list)
+    local: list[tuple[float, float]] = field(default_factory=list)
+    index: dict[tuple[int, str], int] = field(default_factory=dict)
+
+    def add(self, link: int, name: str, xy: tuple[float, float]) -> None:
+        self.index[(link, name)] = len(self.names)
+        self.names.append(f"{self.link_names[link]}.{name}")
+        self.link.append(link)
+        self.local.append(xy)
+
+
+def _points(spec: Spec, link_names: tuple[str, ...], index: dict[str, int]) -> _Points:
+    """The frame's points, then each link's: its two ends (for a link given by ends and length, on its
+    local x axis) and its named points.  The slot blocks' points come with their pairs."""
+    points = _Points(link_names, np.full((len(link_names), 2), -1))
     for name, xy in spec.frame.points.items():
-        add_point(0, name, xy)
-    n_total = len(link_names)
-    mass = np.zeros(n_total)
-    virtual = np.zeros(n_total, dtype=bool)
-    ends = np.full((n_total, 2), -1)
+        points.add(0, name, xy)
     for name, link in spec.links.items():
         i = index[name]
         if link.ends is not None and link.length is not None:
-            add_point(i, link.ends[0], (0.0, 0.0))
-            add_point(i, link.ends[1], (link.length, 0.0))
-            ends[i] = (pindex[(i, link.ends[0])], pindex[(i, link.ends[1])])
+            points.add(i, link.ends[0], (0.0, 0.0))
+            points.add(i, link.ends[1], (link.length, 0.0))
+            points.ends[i] = (points.index[(i, link.ends[0])], points.index[(i, link.ends[1])])
         for pname, xy in link.points.items():
-            add_point(i, pname, xy)
-        mass[i] = link.mass or 0.0
-    if spec.frame.mass is not None:
-        mass[0] = spec.frame.mass
-    com_rule, com_given, inertia_rule, inertia_given = _mass_rules(spec, index, pindex)
-
-    pair_type, pair_links, pair_points, pair_origin, pair_axis, pair_joint = [], [], [], [], [], []
-    origin_point: list[int] = []
-    pair_members: list[tuple[int, int]] = []  # the links each pair stands for, in the file's order
-
-    def add_pair(
-        kind: int, a: int, b: int, pa: int, pb: int, origin: Any = (0.0, 0.0), axis: Any = (1.0, 0.0), joint: str = ""
-    ) -> None:
-        pair_type.append(kind)
-        pair_links.append((a, b))
-        named = [index[ln] for ln in spec.joints[joint].links]
-        if a in named and b in named:
-            pair_members.append((a, b) if named.index(a) < named.index(b) else (b, a))
-        else:  # a pin in a slot: its block stands for the other member
-            pair_members.append((named[0], named[1]))
-        pair_points.append((pa, pb))
-        pair_origin.append(origin)
-        pair_axis.append(axis)
-        pair_joint.append(joint)
-        if kind == PairType.REVOLUTE:
-            origin_point.append(-1)
-
-    def line(guide: int, through: Any, axis: float) -> tuple[Any, Any]:
-        origin_point.append(pindex[(guide, through)] if isinstance(through, str) else -1)
-        origin = point_local[pindex[(guide, through)]] if isinstance(through, str) else through
-        return origin, (math.cos(axis), math.sin(axis))
-
-    depth = _depths(spec, index)
-    joint_pair: dict[str, int] = {}
-    driven_joints = {drive.joint for drive in spec.drives}
-    p5 = p4 = 0
-    for jname, joint in spec.joints.items():
-        pt = joint.point or jname
-        links = [index[ln] for ln in joint.links]
-        if joint.type == "revolute" and len(links) > 2:
-            # a compound hinge: k - 1 pairs from the member nearest the frame (whatever the listed order)
-            centre = min(links, key=lambda i: (depth[i], i))
-            links = [centre] + [i for i in links if i != centre]
-        if joint.type == "revolute" and len(links) == 2 and links[1] == 0 and jname in driven_joints:
-            # a drive on the frame measures the driven link's angle from the frame, however the file orders them;
-            # pair_members keeps the file's order, in which the reactions are given
-            links = links[::-1]
-        if joint.type == "revolute":
-            joint_pair[jname] = len(pair_type)
-            for other in links[1:]:
-                add_pair(PairType.REVOLUTE, links[0], other, pindex[(links[0], pt)], pindex[(other, pt)], joint=jname)
-                p5 += 1
-        elif joint.type == "prismatic":
-            joint_pair[jname] = len(pair_type)
-            origin, axis = line(links[0], joint.through, joint.axis)
-            add_pair(PairType.PRISMATIC, links[0], links[1], -1, pindex[(links[1], pt)], origin, axis, jname)
-            p5 += 1
-        else:
-            block = index[f"{jname}:block"]
-            virtual[block] = True
-            add_point(block, pt, (0.0, 0.0))
-            add_pair(PairType.REVOLUTE, links[1], block, pindex[(links[1], pt)], pindex[(block, pt)], joint=jname)
-            origin, axis = line(links[0], joint.through, joint.axis)
-            add_pair(PairType.PRISMATIC, links[0], block, -1, pindex[(block, pt)], origin, axis, jname)
-            p4 += 1
-
-    drive_pair, drive_speed, drive_start = [], [], []
-    for drive in spec.drives:
-        k = joint_pair[drive.joint]
-        drive_pair.append(k)
-        sign = -1.0 if drive.direction in ("cw", "backward") else 1.0
-        speed = drive.speed if isinstance(drive.speed, float) else (math.nan if drive.law else 0.0)
-        drive_speed.append(sign * speed)
-        start = drive.angle if pair_type[k] == PairType.REVOLUTE else drive.position
-        drive_start.append(start or 0.0)
-
-    hints: dict[int, np.ndarray] = {}
-    for key, xy in spec.hints.items():
-        if "." in key:
-            ln, p = key.split(".", 1)
-            hints[pindex[(index[ln], p)]] = np.array(xy)
-        else:
-            joint = spec.joints[key]
-            pt = joint.point or key
-            for ln in joint.links[1:] if joint.type != "revolute" else joint.links:
-                if ln != "frame":
-                    hints[pindex[(index[ln], pt)]] = np.array(xy)
-            if joint.type == "pin-in-slot":
-                hints[pindex[(index[f"{key}:block"], pt)]] = np.array(xy)
-
-    def f(a: Any, dtype: Any = float) -> np.ndarray:
-        arr = np.array(a, dtype=dtype)
-        arr.flags.writeable = False
-        return arr
-
-    from linkwork.structure.parameters import mass_properties
-
-    rules = dict(
-        link_com_rule=f(com_rule, int),
-        link_inertia_rule=f(inertia_rule, int),
-        link_inertia_given=f(inertia_given),
-        link_com=f(com_given).reshape(-1, 2),
-        link_ends=f(ends, int).reshape(-1, 2),
-        point_link=f(point_link, int),
-        link_names=tuple(link_names),
-    )
-    com, inertia = mass_properties(
-        _Rules(**rules), np.array(point_local, dtype=float).reshape(1, -1, 2), mass[None], inertia_given[None]
-    )
-    arrays = dict(
-        name=spec.name or (spec.source.file if spec.source and spec.source.file else "mechanism"),
-        source=spec.source.file if spec.source else None,
-        link_names=tuple(link_names),
-        link_virtual=f(virtual, bool),
-        link_mass=f(mass),
-        link_com=f(com[0]),
-        link_inertia=f(inertia[0]),
-        link_com_rule=rules["link_com_rule"],
-        link_inertia_rule=rules["link_inertia_rule"],
-        link_inertia_given=rules["link_inertia_given"],
-        point_names=tuple(point_names),
-        point_link=f(point_link, int),
-        point_local=f(point_local).reshape(-1, 2),
-        pair_type=f(pair_type, int),
-        pair_links=f(pair_links, int).reshape(-1, 2),
-        pair_points=f(pair_points, int).reshape(-1, 2),
-        pair_origin=f(pair_origin).reshape(-1, 2),
-        pair_axis=f(pair_axis).reshape(-1, 2),
-        pair_joint=tuple(pair_joint),
-        pair_members=f(pair_members, int).reshape(-1, 2),
-        drive_pair=f(drive_pair, int),
-        drive_speed=f(drive_speed),
-        drive_start=f(drive_start),
-        gravity=spec.gravity,
-        joint_names=tuple(spec.joints),
-        link_ends=f(ends, int).reshape(-1, 2),
-        pair_origin_point=f(origin_point, int),
-        delta=spec.machine.delta if spec.machine is not None else None,
-        blow=spec.impact,
-        spec=spec,
-    )
-    return arrays, hints, (len(spec.links), p5, p4)
+            points.add(i, pname, xy)
+    return points
 
 
-@dataclass(frozen=True)
-class _Rules:
-    """What :func:`~linkwork.structure.parameters.mass_properties` reads of a mechanism being compiled."""
+class _MassRules(NamedTuple):
+    """What the file gives of each link's mass properties, ``(N,)`` or ``(N, 2)``: masses (kg), the rule of
+    the centre of mass and the given centres (m), the rule of the moment of inertia and the given moments
+    (kg m^2) (:mod:`linkwork.structure.parameters`)."""
 
-    link_com_rule: np.ndarray
-    link_inertia_rule: np.ndarray
-    link_inertia_given: np.ndarray
-    link_com: np.ndarray
-    link_ends: np.ndarray
-    point_link: np.ndarray
-    link_names: tuple[str, ...]
+    mass: np.ndarray
+    com_rule: np.ndarray
+    com_given: np.ndarray
+    inertia_rule: np.ndarray
+    inertia_given: np.ndarray
 
 
-def _mass_rules(
-    spec: Spec, index: dict[str, int], pindex: dict[tuple[int, str], int]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """How the file gives each link's centre of mass and moment of inertia (the mass rule of
-    :mod:`linkwork.structure.parameters`): the rules ``(N,)``, the given centres ``(N, 2)`` and the
-    given moments of inertia ``(N,)``."""
-    from linkwork.structure.parameters import (
-        COM_CENTROID,
-        COM_GIVEN,
-        INERTIA_GIVEN,
-        INERTIA_NONE,
-        INERTIA_ROD,
-    )
-
+def _mass_rules(spec: Spec, index: dict[str, int], pindex: dict[tuple[int, str], int]) -> _MassRules:
+    """How the file gives each link's mass, centre of mass and moment of inertia (the mass rule of
+    :mod:`linkwork.structure.parameters`)."""
     n = len(index)
+    mass = np.zeros(n)
     com_rule = np.full(n, COM_CENTROID)
     com_given = np.zeros((n, 2))
     inertia_rule = np.full(n, INERTIA_NONE)
     inertia_given = np.zeros(n)
+    for name, link in spec.links.items():
+        mass[index[name]] = link.mass or 0.0
+    if spec.frame.mass is not None:
+        mass[0] = spec.frame.mass
     owners = [(0, spec.frame.com, None, None, None)] + [
         (index[name], link.com, link.inertia, link.inertia_about, link.length) for name, link in spec.links.items()
     ]
@@ -456,7 +401,193 @@ def _mass_rules(
             inertia_rule[i] = pindex[(i, about)] if about is not None else INERTIA_GIVEN
         elif length is not None:
             inertia_rule[i] = INERTIA_ROD
-    return com_rule, com_given, inertia_rule, inertia_given
+    return _MassRules(mass, com_rule, com_given, inertia_rule, inertia_given)
+
+
+#: A guide line: its origin and unit direction, local to the guide, and the guide's point the origin is at (or -1).
+_Line = tuple[tuple[float, float], tuple[float, float], int]
+
+
+@dataclass
+class _Pairs:
+    """The elementary pairs as they are added (the rows of ``Mechanism.pair_*``), the first pair of each
+    revolute and prismatic joint, and the counts of lower (``p5``) and higher (``p4``) pairs."""
+
+    type: list[int] = field(default_factory=list)
+    links: list[tuple[int, int]] = field(default_factory=list)
+    points: list[tuple[int, int]] = field(default_factory=list)
+    origin: list[tuple[float, float]] = field(default_factory=list)
+    axis: list[tuple[float, float]] = field(default_factory=list)
+    origin_point: list[int] = field(default_factory=list)
+    joint: list[str] = field(default_factory=list)
+    members: list[tuple[int, int]] = field(default_factory=list)
+    first: dict[str, int] = field(default_factory=dict)
+    p5: int = 0
+    p4: int = 0
+
+    def add(
+        self,
+        kind: PairType,
+        links: tuple[int, int],
+        points: tuple[int, int],
+        joint: str,
+        named: list[int],
+        line: _Line = ((0.0, 0.0), (1.0, 0.0), -1),
+    ) -> None:
+        """One pair of ``kind`` between ``links`` at ``points`` (-1 where none), of the joint that names the
+        links ``named``; a prismatic pair's guide ``line``: its origin and direction, local to the guide, and
+        the point the origin is at (-1: given by coordinates)."""
+        a, b = links
+        self.type.append(kind)
+        self.links.append(links)
+        if a in named and b in named:
+            self.members.append((a, b) if named.index(a) < named.index(b) else (b, a))
+        else:  # a pin in a slot: its block stands for the other member
+            self.members.append((named[0], named[1]))
+        self.points.append(points)
+        self.origin.append(line[0])
+        self.axis.append(line[1])
+        self.origin_point.append(line[2])
+        self.joint.append(joint)
+
+
+def _pairs(spec: Spec, index: dict[str, int], points: _Points) -> _Pairs:
+    """The elementary pairs of the joints, in the file's order: a revolute joint of k links makes k - 1
+    revolute pairs, a prismatic joint one prismatic pair, a pin in a slot a revolute pair of the pin with
+    the slot's block and a prismatic pair of the block in the slot (the block's point is added here)."""
+    depth = _depths(spec, index)
+    driven_joints = {drive.joint for drive in spec.drives}
+    pairs = _Pairs()
+    pin = points.index
+    for jname, joint in spec.joints.items():
+        pt = joint.point or jname
+        named = [index[ln] for ln in joint.links]
+        links = list(named)
+        if joint.type == "revolute" and len(links) > 2:
+            # a compound hinge: k - 1 pairs from the member nearest the frame (whatever the listed order)
+            centre = min(links, key=lambda i: (depth[i], i))
+            links = [centre] + [i for i in links if i != centre]
+        if joint.type == "revolute" and len(links) == 2 and links[1] == 0 and jname in driven_joints:
+            # a drive on the frame measures the driven link's angle from the frame, however the file orders them;
+            # pair_members keeps the file's order, in which the reactions are given
+            links = links[::-1]
+        if joint.type == "revolute":
+            pairs.first[jname] = len(pairs.type)
+            for other in links[1:]:
+                pairs.add(PairType.REVOLUTE, (links[0], other), (pin[(links[0], pt)], pin[(other, pt)]), jname, named)
+                pairs.p5 += 1
+        elif joint.type == "prismatic":
+            pairs.first[jname] = len(pairs.type)
+            line = _guide(points, links[0], joint)
+            pairs.add(PairType.PRISMATIC, (links[0], links[1]), (-1, pin[(links[1], pt)]), jname, named, line)
+            pairs.p5 += 1
+        else:
+            block = index[f"{jname}:block"]
+            points.add(block, pt, (0.0, 0.0))
+            pairs.add(PairType.REVOLUTE, (links[1], block), (pin[(links[1], pt)], pin[(block, pt)]), jname, named)
+            line = _guide(points, links[0], joint)
+            pairs.add(PairType.PRISMATIC, (links[0], block), (-1, pin[(block, pt)]), jname, named, line)
+            pairs.p4 += 1
+    return pairs
+
+
+def _guide(points: _Points, guide: int, joint: Joint) -> _Line:
+    """The line of a prismatic pair or a slot on the link ``guide``: its origin and unit direction, local to
+    the guide, and the guide's point the origin is at (-1 where the file gives coordinates)."""
+    through, angle = joint.through, joint.axis
+    assert through is not None and angle is not None  # the checks of linkwork.spec ask for both
+    axis = (math.cos(angle), math.sin(angle))
+    if isinstance(through, str):
+        p = points.index[(guide, through)]
+        return points.local[p], axis, p
+    return through, axis, -1
+
+
+class _Drives(NamedTuple):
+    """The drives: the pair each drives, its signed speed (rad/s or m/s; NaN where a law gives the motion)
+    and its coordinate in the assembly pose."""
+
+    pair: list[int]
+    speed: list[float]
+    start: list[float]
+
+
+def _drives(spec: Spec, pairs: _Pairs) -> _Drives:
+    """The drives of the file, on the first pair of their joints."""
+    out = _Drives([], [], [])
+    for drive in spec.drives:
+        k = pairs.first[drive.joint]
+        out.pair.append(k)
+        sign = -1.0 if drive.direction in ("cw", "backward") else 1.0
+        speed = drive.speed if isinstance(drive.speed, float) else (math.nan if drive.law else 0.0)
+        out.speed.append(sign * speed)
+        start = drive.angle if pairs.type[k] == PairType.REVOLUTE else drive.position
+        out.start.append(start or 0.0)
+    return out
+
+
+def _hints(spec: Spec, index: dict[str, int], pindex: dict[tuple[int, str], int]) -> dict[int, np.ndarray]:
+    """The hints by point index: a hint named by a joint is a hint for its point on each moving member (and on
+    a pin-in-slot's block)."""
+    hints: dict[int, np.ndarray] = {}
+    for key, xy in spec.hints.items():
+        if "." in key:
+            ln, p = key.split(".", 1)
+            hints[pindex[(index[ln], p)]] = np.array(xy)
+        else:
+            joint = spec.joints[key]
+            pt = joint.point or key
+            for ln in joint.links[1:] if joint.type != "revolute" else joint.links:
+                if ln != "frame":
+                    hints[pindex[(index[ln], pt)]] = np.array(xy)
+            if joint.type == "pin-in-slot":
+                hints[pindex[(index[f"{key}:block"], pt)]] = np.array(xy)
+    return hints
+
+
+def _model(spec: Spec, points: _Points, rules: _MassRules, pairs: _Pairs, drives: _Drives) -> Mechanism:
+    """The frozen arrays: a :class:`Mechanism` with its assembly pose zero and its structure empty, its centres of
+    mass and moments of inertia by the mass rule (:func:`~linkwork.structure.parameters.mass_properties`)."""
+    n_total = len(points.link_names)
+    source = spec.source
+    mech = Mechanism(
+        name=spec.name or (source.file if source and source.file else "mechanism"),
+        source=source.file if source else None,
+        link_names=points.link_names,
+        link_virtual=frozen(np.arange(n_total) > len(spec.links), bool),  # the slot blocks come last
+        link_mass=frozen(rules.mass),
+        link_com=frozen(rules.com_given).reshape(-1, 2),  # the given ones; the rule fills in the others below
+        link_inertia=frozen(rules.inertia_given),
+        link_com_rule=frozen(rules.com_rule, int),
+        link_inertia_rule=frozen(rules.inertia_rule, int),
+        link_inertia_given=frozen(rules.inertia_given),
+        point_names=tuple(points.names),
+        point_link=frozen(points.link, int),
+        point_local=frozen(points.local).reshape(-1, 2),
+        pair_type=frozen(pairs.type, int),
+        pair_links=frozen(pairs.links, int).reshape(-1, 2),
+        pair_points=frozen(pairs.points, int).reshape(-1, 2),
+        pair_origin=frozen(pairs.origin).reshape(-1, 2),
+        pair_axis=frozen(pairs.axis).reshape(-1, 2),
+        pair_joint=tuple(pairs.joint),
+        pair_members=frozen(pairs.members, int).reshape(-1, 2),
+        drive_pair=frozen(drives.pair, int),
+        drive_speed=frozen(drives.speed),
+        drive_start=frozen(drives.start),
+        gravity=spec.gravity,
+        pose0=np.zeros((n_total, 3)),
+        structure=_EMPTY,
+        joint_names=tuple(spec.joints),
+        link_ends=frozen(points.ends, int).reshape(-1, 2),
+        pair_origin_point=frozen(pairs.origin_point, int),
+        delta=spec.machine.delta if spec.machine is not None else None,
+        blow=spec.impact,
+        spec=spec,
+    )
+    com, inertia = mass_properties(
+        mech, np.array(points.local, dtype=float).reshape(1, -1, 2), rules.mass[None], rules.inertia_given[None]
+    )
+    return dataclasses.replace(mech, link_com=frozen(com[0]), link_inertia=frozen(inertia[0]))
 
 
 def _depths(spec: Spec, index: dict[str, int]) -> dict[int, int]:

@@ -24,7 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from linkwork.structure.model import PairType
+from linkwork.structure.model import Mechanism, PairType
+from linkwork.structure.parameters import Geometry
 
 
 @dataclass(frozen=True)
@@ -88,12 +89,36 @@ def _perp(v: np.ndarray) -> np.ndarray:
     return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 
+#: The local dimensions the constraints are read with: a mechanism's own, or its variants'.
+Dimensions = Geometry | Mechanism
+
+
+@dataclass(frozen=True)
+class _Poses:
+    """Link poses ``q`` ``(..., N, 3)`` broadcast over ``batch``, the leading dimensions of ``q`` and of the
+    dimensions ``dims`` they are read with."""
+
+    q: np.ndarray
+    dims: Dimensions
+    batch: tuple[int, ...]
+
+    def zeros(self) -> np.ndarray:
+        """A Jacobian row of zeros, ``(..., 3 N)``."""
+        return np.zeros(self.batch + (3 * self.q.shape[-2],))
+
+    def point(self, link: int, p_local: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Global position ``(..., 2)`` of the point ``p_local`` of ``link`` and its derivative by the link's angle."""
+        theta = self.q[..., link, 2]
+        rp = _rot(theta, np.broadcast_to(p_local, self.batch + (2,)))
+        return self.q[..., link, :2] + rp, _perp(rp)
+
+
 def residuals_and_jacobian(
     q: np.ndarray,
-    mech: object,
+    mech: Mechanism,
     drive_values: np.ndarray | None = None,
     with_drives: bool = True,
-    geom: object | None = None,
+    geom: Geometry | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Residuals ``(..., m)`` and Jacobian ``(..., m, 3 * n_links_total)``.
 
@@ -103,7 +128,7 @@ def residuals_and_jacobian(
         Link poses, frame included as link 0.
     mech : Mechanism
         Needs the ``pair_*``, ``point_*`` and ``drive_*`` arrays.
-    geom : object, optional
+    geom : Geometry, optional
         Dimensions of design variants (``point_local``, ``pair_origin``,
         ``pair_axis`` with leading dimensions that broadcast against ``q``'s);
         default: the mechanism's own.
@@ -113,92 +138,87 @@ def residuals_and_jacobian(
         Include the drive rows.
     """
     q = np.asarray(q, dtype=float)
-    geom = mech if geom is None else geom
-    batch = np.broadcast_shapes(q.shape[:-2], np.shape(geom.point_local)[:-2])
-    q = np.broadcast_to(q, batch + q.shape[-2:])
-    n = q.shape[-2]
-    pts_local = geom.point_local
-    res: list[np.ndarray] = []
-    jac: list[np.ndarray] = []
-
-    def zeros() -> np.ndarray:
-        return np.zeros(batch + (3 * n,))
-
-    def point_terms(link: int, p_local: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        theta = q[..., link, 2]
-        rp = _rot(theta, np.broadcast_to(p_local, batch + (2,)))
-        return q[..., link, :2] + rp, _perp(rp)
-
-    def line_terms(k: int) -> tuple[np.ndarray, ...]:
-        a, b = mech.pair_links[k]
-        pa_b, dpb = point_terms(b, pts_local[..., mech.pair_points[k, 1], :])
-        c_glob, dc = point_terms(a, geom.pair_origin[..., k, :])
-        u = _rot(q[..., a, 2], np.broadcast_to(geom.pair_axis[..., k, :], batch + (2,)))
-        return a, b, pa_b, dpb, c_glob, dc, u
-
-    def line_row(k: int, direction: str) -> tuple[np.ndarray, np.ndarray]:
-        a, b, p_b, dpb, c_a, dc, u = line_terms(k)
-        v = _perp(u) if direction == "n" else u
-        dv = _perp(v)  # d(v)/d(theta_a)
-        d = p_b - c_a
-        r = np.sum(v * d, axis=-1)
-        row = zeros()
-        row[..., 3 * a : 3 * a + 2] -= v
-        row[..., 3 * a + 2] += np.sum(dv * d, axis=-1) - np.sum(v * dc, axis=-1)
-        row[..., 3 * b : 3 * b + 2] += v
-        row[..., 3 * b + 2] += np.sum(v * dpb, axis=-1)
-        return r, row
-
+    dims: Dimensions = mech if geom is None else geom
+    batch = np.broadcast_shapes(q.shape[:-2], np.shape(dims.point_local)[:-2])
+    at = _Poses(np.broadcast_to(q, batch + q.shape[-2:]), dims, batch)
+    rows: list[tuple[np.ndarray, np.ndarray]] = []
     for k, kind in enumerate(mech.pair_type):
-        a, b = mech.pair_links[k]
-        if kind == PairType.REVOLUTE:
-            pa, dpa = point_terms(a, pts_local[..., mech.pair_points[k, 0], :])
-            pb, dpb = point_terms(b, pts_local[..., mech.pair_points[k, 1], :])
-            for axis in (0, 1):
-                row = zeros()
-                row[..., 3 * a + axis] += 1.0
-                row[..., 3 * a + 2] += dpa[..., axis]
-                row[..., 3 * b + axis] -= 1.0
-                row[..., 3 * b + 2] -= dpb[..., axis]
-                res.append(pa[..., axis] - pb[..., axis])
-                jac.append(row)
-        else:
-            row = zeros()
-            row[..., 3 * b + 2] += 1.0
-            row[..., 3 * a + 2] -= 1.0
-            res.append(wrap(q[..., b, 2] - q[..., a, 2]))
-            jac.append(row)
-            r, row = line_row(k, "n")
-            res.append(r)
-            jac.append(row)
+        rows += _revolute_rows(at, mech, k) if kind == PairType.REVOLUTE else _prismatic_rows(at, mech, k)
     if with_drives:
         values = mech.drive_start if drive_values is None else np.asarray(drive_values, dtype=float)
         values = np.broadcast_to(values, batch + (len(mech.drive_pair),))
-        for d, k in enumerate(mech.drive_pair):
-            a, b = mech.pair_links[k]
-            if mech.pair_type[k] == PairType.REVOLUTE:
-                row = zeros()
-                row[..., 3 * b + 2] += 1.0
-                row[..., 3 * a + 2] -= 1.0
-                res.append(wrap(q[..., b, 2] - q[..., a, 2] - values[..., d]))
-                jac.append(row)
-            else:
-                r, row = line_row(k, "u")
-                res.append(r - values[..., d])
-                jac.append(row)
-    if not res:
-        return np.zeros(batch + (0,)), np.zeros(batch + (0, 3 * n))
-    return np.stack(res, axis=-1), np.stack(jac, axis=-2)
+        rows += [_drive_row(at, mech, k, values[..., d]) for d, k in enumerate(mech.drive_pair)]
+    if not rows:
+        return np.zeros(batch + (0,)), np.zeros(batch + (0, 3 * q.shape[-2]))
+    return np.stack([r for r, _ in rows], axis=-1), np.stack([row for _, row in rows], axis=-2)
 
 
-def velocity_products(q: np.ndarray, qd: np.ndarray, mech: object, geom: object | None = None) -> np.ndarray:
+def _revolute_rows(at: _Poses, mech: Mechanism, k: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The residual and Jacobian row of revolute pair ``k`` along x and along y: ``P_a - P_b``."""
+    a, b = mech.pair_links[k]
+    pa, dpa = at.point(a, at.dims.point_local[..., mech.pair_points[k, 0], :])
+    pb, dpb = at.point(b, at.dims.point_local[..., mech.pair_points[k, 1], :])
+    out = []
+    for axis in (0, 1):
+        row = at.zeros()
+        row[..., 3 * a + axis] += 1.0
+        row[..., 3 * a + 2] += dpa[..., axis]
+        row[..., 3 * b + axis] -= 1.0
+        row[..., 3 * b + 2] -= dpb[..., axis]
+        out.append((pa[..., axis] - pb[..., axis], row))
+    return out
+
+
+def _prismatic_rows(at: _Poses, mech: Mechanism, k: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The residuals and Jacobian rows of prismatic pair ``k``: the slider's angle less the guide's, and the
+    distance of the slider's point from the guide line."""
+    a, b = mech.pair_links[k]
+    row = at.zeros()
+    row[..., 3 * b + 2] += 1.0
+    row[..., 3 * a + 2] -= 1.0
+    return [(wrap(at.q[..., b, 2] - at.q[..., a, 2]), row), _line_row(at, mech, k, normal=True)]
+
+
+def _drive_row(at: _Poses, mech: Mechanism, k: int, value: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The residual and Jacobian row of a drive of pair ``k`` at the drive coordinates ``value`` ``(...)``:
+    the angle of b from a less the drive angle, or the slider's point along the guide less the drive position."""
+    a, b = mech.pair_links[k]
+    if mech.pair_type[k] != PairType.REVOLUTE:
+        r, row = _line_row(at, mech, k, normal=False)
+        return r - value, row
+    row = at.zeros()
+    row[..., 3 * b + 2] += 1.0
+    row[..., 3 * a + 2] -= 1.0
+    return wrap(at.q[..., b, 2] - at.q[..., a, 2] - value), row
+
+
+def _line_row(at: _Poses, mech: Mechanism, k: int, normal: bool) -> tuple[np.ndarray, np.ndarray]:
+    """The slider's point of prismatic pair ``k`` from the guide line's origin, along the line's normal (``normal``)
+    or its direction, ``v . (P_b - C_a)``, and its Jacobian row."""
+    a, b = mech.pair_links[k]
+    p_b, dpb = at.point(b, at.dims.point_local[..., mech.pair_points[k, 1], :])
+    c_a, dc = at.point(a, at.dims.pair_origin[..., k, :])
+    u = _rot(at.q[..., a, 2], np.broadcast_to(at.dims.pair_axis[..., k, :], at.batch + (2,)))
+    v = _perp(u) if normal else u
+    dv = _perp(v)  # d(v)/d(theta_a)
+    d = p_b - c_a
+    r = np.sum(v * d, axis=-1)
+    row = at.zeros()
+    row[..., 3 * a : 3 * a + 2] -= v
+    row[..., 3 * a + 2] += np.sum(dv * d, axis=-1) - np.sum(v * dc, axis=-1)
+    row[..., 3 * b : 3 * b + 2] += v
+    row[..., 3 * b + 2] += np.sum(v * dpb, axis=-1)
+    return r, row
+
+
+def velocity_products(q: np.ndarray, qd: np.ndarray, mech: Mechanism, geom: Geometry | None = None) -> np.ndarray:
     """The terms of the constraints' second time derivative that are quadratic in velocity.
 
     With these, ``J @ qdd + gamma = d2(drive)/dt2`` on drive rows and 0 on the others.
     Shapes as in :func:`residuals_and_jacobian`: ``(..., m)`` with the drive rows last.
     """
-    geom = mech if geom is None else geom
-    batch = np.broadcast_shapes(q.shape[:-2], qd.shape[:-2], np.shape(geom.point_local)[:-2])
+    dims: Dimensions = mech if geom is None else geom
+    batch = np.broadcast_shapes(q.shape[:-2], qd.shape[:-2], np.shape(dims.point_local)[:-2])
     q = np.broadcast_to(q, batch + q.shape[-2:])
     qd = np.broadcast_to(qd, batch + qd.shape[-2:])
     out: list[np.ndarray] = []
@@ -211,9 +231,9 @@ def velocity_products(q: np.ndarray, qd: np.ndarray, mech: object, geom: object 
 
     def line_gamma(k: int, direction: str) -> np.ndarray:
         a, b = mech.pair_links[k]
-        r_b = rp(b, geom.point_local[..., mech.pair_points[k, 1], :])
-        r_c = rp(a, geom.pair_origin[..., k, :])
-        u = rp(a, geom.pair_axis[..., k, :])
+        r_b = rp(b, dims.point_local[..., mech.pair_points[k, 1], :])
+        r_c = rp(a, dims.pair_origin[..., k, :])
+        u = rp(a, dims.pair_axis[..., k, :])
         v = _perp(u) if direction == "n" else u
         d = q[..., b, :2] + r_b - q[..., a, :2] - r_c
         dd = vel(b, r_b) - vel(a, r_c)
@@ -227,8 +247,8 @@ def velocity_products(q: np.ndarray, qd: np.ndarray, mech: object, geom: object 
     for k, kind in enumerate(mech.pair_type):
         a, b = mech.pair_links[k]
         if kind == PairType.REVOLUTE:
-            ra = rp(a, geom.point_local[..., mech.pair_points[k, 0], :])
-            rb = rp(b, geom.point_local[..., mech.pair_points[k, 1], :])
+            ra = rp(a, dims.point_local[..., mech.pair_points[k, 0], :])
+            rb = rp(b, dims.point_local[..., mech.pair_points[k, 1], :])
             g = -(qd[..., a, 2, None] ** 2) * ra + qd[..., b, 2, None] ** 2 * rb
             out += [g[..., 0], g[..., 1]]
         else:

@@ -4,9 +4,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import IntEnum
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
+
+if TYPE_CHECKING:  # the stages above the structural model, which fill in its later fields
+    from linkwork.kinetostatics.external import ExternalLoad
+    from linkwork.machine.drive import Drive
+    from linkwork.motion.program import Step
+    from linkwork.spec.schema import ImpactSpec, Spec
 
 
 class PairType(IntEnum):
@@ -196,17 +203,18 @@ class Mechanism:
     gravity: float
     pose0: np.ndarray  # (N, 3) assembly pose
     structure: Structure
+    link_ends: np.ndarray  # (N, 2) point indices of links given by ends and length; -1 otherwise
+    pair_origin_point: np.ndarray  # (M,) point whose local coordinates are the guide origin; -1
+    pair_members: np.ndarray  # (M, 2) the links of each pair in the order its joint names them
     joint_names: tuple[str, ...] = field(default=())
-    link_ends: np.ndarray | None = None  # (N, 2) point indices of links given by ends and length; -1 otherwise
-    pair_origin_point: np.ndarray | None = None  # (M,) point whose local coordinates are the guide origin; -1
-    program: tuple = ()  # the solve program (linkwork.motion.program.Step), in solving order
-    fast_program: tuple | None = None  # the program encoded for the compiled kernels (ops, branches), if it has them
-    loads: tuple = ()  # external loads (linkwork.kinetostatics.external.ExternalLoad)
-    machine: Any = None  # the drive of the machine unit (linkwork.machine.Drive), if the file gives one
+    program: tuple[Step, ...] = ()  # the solve program, in solving order
+    # the program encoded for the compiled kernels (linkwork.motion.fast.encode: ops, branches), if it has them
+    fast_program: tuple[np.ndarray, np.ndarray] | None = None
+    loads: tuple[ExternalLoad, ...] = ()  # the external loads
+    machine: Drive | None = None  # the drive of the machine unit, if the file gives one
     delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
-    blow: Any = None  # the file's impact: section (linkwork.spec.schema.ImpactSpec), SI
-    pair_members: np.ndarray | None = None  # (M, 2) the links of each pair in the order its joint names them
-    spec: Any = field(default=None, repr=False, compare=False)  # the description it was compiled from
+    blow: ImpactSpec | None = None  # the file's impact: section, SI
+    spec: Spec | None = field(default=None, repr=False, compare=False)  # the description it was compiled from
 
     @property
     def n_links(self) -> int:
@@ -237,8 +245,7 @@ class Mechanism:
         named after the other; a pin's pair with its slot's block, the block standing for the slot).
         It turns the force of ``pair_links[k, 0]`` on ``pair_links[k, 1]`` into the force of
         ``pair_members[k, 0]`` on ``pair_members[k, 1]``."""
-        members = self.pair_links if self.pair_members is None else self.pair_members
-        return np.where(self.pair_links[:, 0] == members[:, 0], 1.0, -1.0)
+        return np.where(self.pair_links[:, 0] == self.pair_members[:, 0], 1.0, -1.0)
 
     def first_pairs(self) -> dict[str, int]:
         """The first pair of every joint, by the joint's name (a compound hinge makes several)."""
@@ -261,7 +268,7 @@ class Mechanism:
         return global_points(self.pose0, self.point_link, self.point_local)
 
 
-def point_labels(mech: Any, with_all: bool = False) -> list[tuple[str, int]]:
+def point_labels(mech: Mechanism, with_all: bool = False) -> list[tuple[str, int]]:
     """One name per physical point: the joint's name for the points of a joint (given once), the
     point's own name for a marker whose name no other point has, ``link.point`` otherwise.  Frame
     points and slot blocks are left out, unless ``with_all`` (then every point, joints repeated)."""
@@ -284,9 +291,16 @@ def point_labels(mech: Any, with_all: bool = False) -> list[tuple[str, int]]:
     return out
 
 
-def one_crank(mech: Any) -> bool:
+def one_crank(mech: Mechanism) -> bool:
     """Whether the mechanism has exactly one drive and it is revolute (a crank turning whole cycles)."""
     return bool(mech.n_drives == 1 and mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE)
+
+
+def frozen(values: npt.ArrayLike, dtype: npt.DTypeLike = float) -> np.ndarray:
+    """``values`` as a new read-only array of ``dtype``: the arrays of a :class:`Mechanism` are never written."""
+    out: np.ndarray = np.array(values, dtype=dtype)
+    out.flags.writeable = False
+    return out
 
 
 def global_points(q: np.ndarray, point_link: np.ndarray, point_local: np.ndarray) -> np.ndarray:

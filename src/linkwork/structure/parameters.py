@@ -38,15 +38,27 @@ home.
 
 from __future__ import annotations
 
+import copy
+import io
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
+from linkwork import examples
+from linkwork.atomic import write_atomic
 from linkwork.errors import ParameterError
-from linkwork.structure.model import PairType
+from linkwork.spec.checks import suggest
+from linkwork.spec.load import validate
+from linkwork.spec.schema import Spec
+from linkwork.spec.yamlsource import Source
+from linkwork.structure.model import Mechanism, PairType
+from linkwork.units import DEFAULT_UNITS, KINDS, SI_UNITS, _factor, written
 
 #: The centre of mass given in the file's link coordinates: it stays.
 COM_GIVEN = -2
@@ -131,8 +143,6 @@ class Parameter:
     @property
     def unit(self) -> str:
         """Its SI unit."""
-        from linkwork.units import KINDS
-
         return KINDS[self.kind][1]
 
     def as_dict(self) -> dict[str, Any]:
@@ -156,29 +166,27 @@ class Parameter:
         return None
 
 
-def parameter_list(mech: Any) -> list[Parameter]:
+def parameter_list(mech: Mechanism) -> list[Parameter]:
     """Every named parameter of ``mech``, with the file's values (SI): the dimensions, then the
     mass and moment of inertia of every moving link."""
     return [*_dimensions(mech), *_masses(mech)]
 
 
-def parameter_values(mech: Any) -> dict[str, float]:
+def parameter_values(mech: Mechanism) -> dict[str, float]:
     """The named parameters an override may set, with their values (SI) (``linkwork.parameters``,
     which also takes a path, an example name or a Spec: :mod:`linkwork.api`)."""
     return {p.name: p.value for p in parameter_list(mech)}
 
 
-def parameter(mech: Any, path: str, known: dict[str, Parameter] | None = None) -> Parameter:
+def parameter(mech: Mechanism, path: str, known: dict[str, Parameter] | None = None) -> Parameter:
     """The parameter named ``path``; :class:`ParameterError` with the closest name for an unknown one."""
     known = known if known is not None else {p.name: p for p in parameter_list(mech)}
     if path in known:
         return known[path]
-    from linkwork.spec.checks import suggest
-
     raise ParameterError(f'no parameter "{path}"{suggest(path, list(known))}; linkwork.parameters(mech) lists them')
 
 
-def _dimensions(mech: Any) -> list[Parameter]:
+def _dimensions(mech: Mechanism) -> list[Parameter]:
     out: list[Parameter] = []
     for p, (name, link) in enumerate(zip(mech.point_names, mech.point_link, strict=True)):
         lname, pname = name.split(".", 1)
@@ -207,7 +215,7 @@ def _dimensions(mech: Any) -> list[Parameter]:
     return out
 
 
-def _masses(mech: Any) -> list[Parameter]:
+def _masses(mech: Mechanism) -> list[Parameter]:
     out: list[Parameter] = []
     for i, lname in enumerate(mech.link_names):
         if i == 0 or mech.link_virtual[i]:
@@ -226,7 +234,7 @@ def _masses(mech: Any) -> list[Parameter]:
 # --- the arrays of the variants --------------------------------------------------------------------
 
 
-def apply(mech: Any, overrides: dict[str, Any] | None = None) -> tuple[Geometry, Masses]:
+def apply(mech: Mechanism, overrides: Mapping[str, npt.ArrayLike] | None = None) -> tuple[Geometry, Masses]:
     """The geometry and mass properties of the variants that ``overrides`` (path -> SI value or
     ``(V,)`` array of values) describe; one variant, the file's, when there are none.
 
@@ -262,7 +270,7 @@ def apply(mech: Any, overrides: dict[str, Any] | None = None) -> tuple[Geometry,
 
 
 def _set(
-    mech: Any,
+    mech: Mechanism,
     parts: list[str],
     v: np.ndarray,
     pts: np.ndarray,
@@ -297,7 +305,7 @@ def _set(
 
 
 def mass_properties(
-    mech: Any,
+    mech: Mechanism,
     point_local: np.ndarray,
     mass: np.ndarray,
     given: np.ndarray,
@@ -338,7 +346,7 @@ def mass_properties(
     return com, inertia
 
 
-def _centres(mech: Any, point_local: np.ndarray) -> np.ndarray:
+def _centres(mech: Mechanism, point_local: np.ndarray) -> np.ndarray:
     """Centres of mass ``(V, N, 2)`` of the variants by the rule of each link."""
     n_var, n_links = point_local.shape[0], len(mech.link_names)
     rule = np.asarray(mech.link_com_rule)
@@ -400,8 +408,6 @@ def _written(old: Any, si: float, kind: str, declared: dict[str, str]) -> Any:
     """``si`` as the file would write it where it writes ``old``: in the unit of a string with a unit,
     else as :func:`linkwork.units.written` writes a value for the file (a bare number where the file
     reads one, else with its SI unit), 12 significant digits."""
-    from linkwork.units import _factor, written
-
     if isinstance(old, str):
         match = _NUMBER_AND_UNIT.match(old)
         if match is not None and match.group(2):
@@ -413,7 +419,7 @@ def _written(old: Any, si: float, kind: str, declared: dict[str, str]) -> Any:
 # --- an edited description ---------------------------------------------------------------------------
 
 
-def edited_spec(mechanism: Any, overrides: dict[str, float]) -> Any:
+def edited_spec(mechanism: Mechanism, overrides: dict[str, float]) -> Spec:
     """The description of the compiled ``mechanism`` with ``overrides`` (path -> SI) written in, validated again:
     what a user gets who edits the file by hand.
 
@@ -424,9 +430,6 @@ def edited_spec(mechanism: Any, overrides: dict[str, float]) -> Any:
     SpecError
         The edited description fails validation (the file's message, with its line).
     """
-    from linkwork.spec.load import validate
-    from linkwork.spec.yamlsource import Source
-
     spec, mech, kinds = _described(mechanism, overrides)
     data, declared = _file_data(spec, round_trip=False)
     set_values(data, overrides, declared, kinds)
@@ -434,14 +437,10 @@ def edited_spec(mechanism: Any, overrides: dict[str, float]) -> Any:
     return validate(Source(data, src.lines if src is not None else {}, src.file if src is not None else None, []))
 
 
-def write_file(mechanism: Any, values: dict[str, float], out: Any) -> Any:
+def write_file(mechanism: Mechanism, values: dict[str, float], out: str | Path) -> Path:
     """Write the file of the compiled ``mechanism`` with ``values`` (path -> SI) to ``out``, atomically: the
     original text with its comments and layout, each value in the unit the file writes it in
     (:func:`set_values`).  A description built in code is written in SI.  Returns the path."""
-    import io
-
-    from linkwork.atomic import write_atomic
-
     spec, _, kinds = _described(mechanism, values)
     data, declared = _file_data(spec, round_trip=True)
     set_values(data, values, declared, kinds)
@@ -451,7 +450,7 @@ def write_file(mechanism: Any, values: dict[str, float], out: Any) -> Any:
     return write_atomic(out, lambda tmp: tmp.write_text(text, encoding="utf-8"))
 
 
-def _described(mech: Any, values: dict[str, float]) -> tuple[Any, Any, dict[str, str]]:
+def _described(mech: Mechanism, values: dict[str, float]) -> tuple[Spec, Mechanism, dict[str, str]]:
     """(spec, mechanism, kinds of the paths of ``values``), each value checked against its parameter."""
     spec = mech.spec
     if spec is None:
@@ -464,14 +463,10 @@ def _described(mech: Any, values: dict[str, float]) -> tuple[Any, Any, dict[str,
     return spec, mech, {path: known[path].kind for path in values}
 
 
-def _file_data(spec: Any, round_trip: bool) -> tuple[Any, dict[str, str]]:
+def _file_data(spec: Spec, round_trip: bool) -> tuple[Any, dict[str, str]]:
     """The description's data to write values into, and the units bare numbers are read in: the file
     as written (a ruamel round-trip tree for ``round_trip``, else a deep copy of the loaded data);
     for a description built in code, its values in SI."""
-    import copy
-
-    from linkwork.units import DEFAULT_UNITS, SI_UNITS
-
     text = _source_text(spec) if round_trip else None
     if text is not None:
         data = _yaml().load(text)
@@ -484,20 +479,16 @@ def _file_data(spec: Any, round_trip: bool) -> tuple[Any, dict[str, str]]:
     return data, {**DEFAULT_UNITS, **(dict(units) if isinstance(units, dict) else {})}
 
 
-def _source_text(spec: Any) -> str | None:
+def _source_text(spec: Spec) -> str | None:
     """The text of the file or bundled example ``spec`` was read from, when it can be read again."""
-    from pathlib import Path
-
-    from linkwork.examples import names, text
-
     file = spec.source.file if spec.source is not None else None
     if not file:
         return None
     path = Path(file)
     if path.is_file():
         return path.read_text(encoding="utf-8")
-    if file.endswith(".yaml") and file[:-5] in names():
-        return text(file[:-5])
+    if file.endswith(".yaml") and file[:-5] in examples.names():
+        return examples.text(file[:-5])
     return None
 
 
