@@ -27,6 +27,8 @@ from linkwork.errors import LinkworkError
 from linkwork.machine.drive import Characteristic
 from linkwork.machine.simulate import Curve, PeriodicSplines
 
+_tuple = tuple.__new__
+
 #: The integrated state, in order: turning angle ``psi`` (rad), crank speed ``omega`` (rad/s), and from
 #: the start of the run the work of the drive on the crank, the work of the loads, the loss to friction
 #: and the work done on the work (J).
@@ -138,7 +140,7 @@ class ContactModel:
 
     def curves(self, psi: float) -> Curves:
         """The machine's curves at the turning angle ``psi``."""
-        return Curves(*self.splines.at(psi))
+        return _tuple(Curves, self.splines.at(psi))  # tuple.__new__: without the Python-level constructor
 
     def degrees(self, psi: float) -> float:
         """The crank's drive angle at ``psi``, degrees in [0, 360)."""

@@ -40,6 +40,9 @@ class Curve(NamedTuple):
     curvature: float
 
 
+_tuple = tuple.__new__
+
+
 class PeriodicSplines:
     """Periodic cubic splines of several columns over a turn of the crank, on a uniform grid ``psi``,
     evaluated one turning angle at a time (fast scalars)."""
@@ -54,7 +57,8 @@ class PeriodicSplines:
         for col in columns:
             spline = CubicSpline(x, np.append(col, col[0]), bc_type="periodic")
             coef.append(spline.c.T)  # per interval: cubic, square, linear, constant
-        self.c = [tuple(map(float, np.concatenate([c[i] for c in coef]))) for i in range(k)]
+        #: per interval, per column: the coefficients of its cubic, constant last
+        self.c = [tuple(tuple(map(float, c[i])) for c in coef) for i in range(k)]
 
     def interval(self, psi: float) -> tuple[int, float]:
         """The grid interval of ``psi`` and the fraction of it that ``psi`` is into."""
@@ -65,18 +69,18 @@ class PeriodicSplines:
     def value(self, i: int, f: float) -> float:
         """The first column at the fraction ``f`` into grid interval ``i``."""
         x = f * self.h
-        c3, c2, c1, c0 = self.c[i][:4]
+        c3, c2, c1, c0 = self.c[i][0]
         return ((c3 * x + c2) * x + c1) * x + c0
 
     def at(self, psi: float) -> tuple[Curve, ...]:
         """Every column at ``psi``, in the order given, with its first and second derivatives."""
         i, f = self.interval(psi)
         x = f * self.h
-        c = self.c[i]
         out = []
-        for j in range(0, len(c), 4):
-            c3, c2, c1, c0 = c[j : j + 4]
-            out.append(Curve(((c3 * x + c2) * x + c1) * x + c0, (3 * c3 * x + 2 * c2) * x + c1, 6 * c3 * x + 2 * c2))
+        for c3, c2, c1, c0 in self.c[i]:  # tuple.__new__: the Curve without its Python-level constructor
+            out.append(
+                _tuple(Curve, (((c3 * x + c2) * x + c1) * x + c0, (3 * c3 * x + 2 * c2) * x + c1, 6 * c3 * x + 2 * c2))
+            )
         return tuple(out)
 
 
@@ -120,7 +124,7 @@ class Model:
         """``J + J_d`` and ``M`` at ``psi``."""
         i, f = self.inertia.interval(psi)
         m = self.m[i] + (self.m[i + 1] - self.m[i]) * f
-        return InertiaAndLoad(self.inertia.value(i, f) + self.extra, m)
+        return _tuple(InertiaAndLoad, (self.inertia.value(i, f) + self.extra, m))
 
 
 @dataclass(frozen=True)
