@@ -59,6 +59,23 @@ def test_reduced_load_of_the_shears_does_the_cutting_work():
     assert red.work()[-1] == pytest.approx(-0.10 * 250e3 * 0.30, rel=2e-4)  # gravity gives nothing back
 
 
+def test_periodic_splines_name_each_columns_value_slope_and_curvature():
+    """``PeriodicSplines.at`` gives each column, in the order given, as its value and its first and
+    second derivatives in the turning angle: against the closed forms of sin(psi) and cos(2 psi)."""
+    from linkwork.machine.simulate import PeriodicSplines
+
+    psi = 2 * np.pi * np.arange(720) / 720
+    splines = PeriodicSplines(psi, [np.sin(psi), np.cos(2 * psi)])
+    for x in (0.1234, 2.5, 6.2):
+        first, second = splines.at(x)
+        assert (first.value, first.slope, first.curvature) == pytest.approx(
+            (math.sin(x), math.cos(x), -math.sin(x)), abs=1e-5
+        )
+        assert (second.value, second.slope, second.curvature) == pytest.approx(
+            (math.cos(2 * x), -2 * math.sin(2 * x), -4 * math.cos(2 * x)), abs=1e-4
+        )
+
+
 def test_energy_of_the_free_mechanism_is_conserved():
     """No drive, no loads, no friction: J(psi) omega^2 / 2 stays put (to 1e-8 per turn)."""
     red = lw.reduced(lw.compile(lw.example("four-bar")), steps=720)

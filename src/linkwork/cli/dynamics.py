@@ -3,12 +3,18 @@
 from __future__ import annotations
 
 import math
-from typing import Annotated
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 import typer
 
 from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail
+from linkwork.errors import LinkworkError
+
+if TYPE_CHECKING:
+    from linkwork.machine import Dynamics
+    from linkwork.structure.model import Mechanism
 
 
 @app.command()
@@ -22,7 +28,6 @@ def dynamics(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Reduced inertia and loads, the run of the machine unit from rest to its steady cycle, the flywheel."""
-    from linkwork.errors import LinkworkError
     from linkwork.io.dynamics_tables import to_json
     from linkwork.machine import dynamics as run
 
@@ -34,26 +39,36 @@ def dynamics(
     except LinkworkError as exc:
         fail(exc)
     data = to_json(mech, result)
-    if out is not None:
-        from pathlib import Path
-
-        from linkwork.atomic import write_atomic
-        from linkwork.io.jsonout import dumps
-
-        cycle = data["cycle"]
-        rows = ["psi [deg],t [s],omega [rad/s],motor_torque [N m],motor_power [W]"]
-        rows += [",".join(repr(v) for v in row) for row in zip(*cycle.values(), strict=True)]
-        text = dumps(data)
-        try:
-            paths = [
-                write_atomic(Path(out) / "dynamics.csv", lambda tmp: tmp.write_text("\n".join(rows) + "\n", "utf-8")),
-                write_atomic(Path(out) / "dynamics.json", lambda tmp: tmp.write_text(text, "utf-8")),
-            ]
-        except OSError as exc:
-            fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
+    paths = _write(out, data) if out is not None else []
     if as_json:
         echo_json(data)
         return
+    _print_report(mech, result)
+    for path in paths:
+        typer.echo(f"  wrote {path}")
+
+
+def _write(out: str, data: dict[str, Any]) -> list[Path]:
+    """``dynamics.csv`` (the steady cycle) and ``dynamics.json`` (``data``) in the folder ``out``."""
+    from linkwork.atomic import write_atomic
+    from linkwork.io.jsonout import dumps
+
+    cycle = data["cycle"]
+    rows = ["psi [deg],t [s],omega [rad/s],motor_torque [N m],motor_power [W]"]
+    rows += [",".join(repr(v) for v in row) for row in zip(*cycle.values(), strict=True)]
+    text = dumps(data)
+    try:
+        paths = [
+            write_atomic(Path(out) / "dynamics.csv", lambda tmp: tmp.write_text("\n".join(rows) + "\n", "utf-8")),
+            write_atomic(Path(out) / "dynamics.json", lambda tmp: tmp.write_text(text, "utf-8")),
+        ]
+    except OSError as exc:
+        fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
+    return paths
+
+
+def _print_report(mech: Mechanism, result: Dynamics) -> None:
+    """The report of ``linkwork dynamics``."""
     rpm = 30 / math.pi
     red = result.reduced
     typer.echo(f"{mech.name}: machine dynamics")
@@ -90,6 +105,3 @@ def dynamics(
     if rated:
         line += f"; the rated {rated:.6g} W is loaded to {need / rated:.0%}"
     typer.echo(line)
-    if out is not None:
-        for path in paths:
-            typer.echo(f"  wrote {path}")

@@ -3,11 +3,16 @@
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail
+from linkwork.errors import LinkworkError
+
+if TYPE_CHECKING:
+    from linkwork.impulse import Blow, Impact, Phase, RockerImpact, WorkingCycle
+    from linkwork.structure.model import Mechanism
 
 
 def _xy(v: Any) -> dict[str, float]:
@@ -33,38 +38,51 @@ def impact(
     """Impulses of a blow in the pose of the file: on the striker, in every joint, the speed after,
     the energy lost, the ideal centre of mass; and the reduced model of seed 004 beside them.
     With --cycle: the machine's working cycle, blow after blow."""
-    from linkwork.errors import LinkworkError
-    from linkwork.impulse import impact as solve
-    from linkwork.impulse import reduced_model
-
     if blows is not None and not cycle:
         fail(LinkworkError("--blows: only with --cycle"))
     mech = _compile(file_or_example)
-    blow = mech.blow
-    if blow is None:
+    if mech.blow is None:
         fail(LinkworkError('the mechanism has no blow: give an "impact:" section (at, normal, omega, restitution)'))
     if cycle:
         _cycle(mech, as_json, blows)
-        return
+    else:
+        _blow(mech, as_json)
+
+
+def _blow(mech: Mechanism, as_json: bool) -> None:
+    """``linkwork impact``: the file's blow on the whole mechanism and on seed 004's reduced model."""
+    from linkwork.impulse import impact as solve
+    from linkwork.impulse import reduced_model
+
+    blow = mech.blow
+    striker = blow.at.split(".", 1)[0]
     try:
         whole = solve(mech)
-        link = blow.link or blow.at.split(".", 1)[0]
         model = None
         if blow.rod_joint is not None:
-            own = float(whole.velocities_before[mech.link_names.index(blow.at.split(".", 1)[0]), 2])
+            own = float(whole.velocities_before[mech.link_names.index(striker), 2])
             kw = dict(normal=(math.cos(blow.normal), math.sin(blow.normal)), restitution=blow.restitution)
             model = reduced_model(
                 mech, at=blow.at, rod_joint=blow.rod_joint, omega_before=own, friction=blow.friction, **kw
             )
     except LinkworkError as exc:
         fail(exc)
-    striker = blow.at.split(".", 1)[0]
+    out = _blow_json(mech, whole, blow.link or striker)
+    if model is not None:
+        out["model"] = {"striker": striker, **model.as_dict()}
+    if as_json:
+        echo_json(out)
+    else:
+        _print_blow(mech, whole, out, model)
+
+
+def _blow_json(mech: Mechanism, whole: Impact, link: str) -> dict[str, Any]:
+    """The JSON object of ``linkwork impact --json`` (``link``: whose angular speed it gives)."""
+    from linkwork.impulse.mechanism import joint_links
+
     i = mech.link_names.index(link)
-    joints = {}
-    for name, k in mech.first_pairs().items():
-        a, b = (mech.link_names[int(x)] for x in mech.pair_members[k])
-        joints[name] = {"on": b, "from": a, **_xy(whole.joints[name])}
-    out: dict[str, Any] = {
+    joints = {name: {"on": b, "from": a, **_xy(whole.joints[name])} for name, (a, b) in joint_links(mech).items()}
+    return {
         "name": mech.name,
         "units": {"impulse": "N s", "omega": "rad/s", "energy": "J", "length": "m"},
         "convention": "impulses in global axes; support_impulse: what each joint's first-named link "
@@ -81,19 +99,21 @@ def impact(
         "drive_impulse": whole.drive_impulse,
         "sliding_reverses": whole.sliding_reverses,
     }
-    if model is not None:
-        out["model"] = {"striker": striker, **model.as_dict()}
-    if as_json:
-        echo_json(out)
-        return
+
+
+def _print_blow(mech: Mechanism, whole: Impact, out: dict[str, Any], model: RockerImpact | None) -> None:
+    """The report of ``linkwork impact``, from its JSON object ``out``."""
+    blow = mech.blow
     typer.echo(f"{mech.name}: blow of {blow.at}, R = {blow.restitution:g}, f = {blow.friction:g}")
     typer.echo(
         f"  whole mechanism: impulse on the striker ({whole.impulse[0]:.6g}, {whole.impulse[1]:.6g}) N s; "
-        f"{link} {out['omega_before']:.6g} -> {out['omega_after']:.6g} rad/s; energy lost {whole.energy_loss:.6g} J"
+        f"{out['link']} {out['omega_before']:.6g} -> {out['omega_after']:.6g} rad/s; energy lost "
+        f"{whole.energy_loss:.6g} J"
     )
-    for name, j in joints.items():
+    for name, j in out["support_impulse"].items():
         typer.echo(f"    joint {name}: {j['from']} on {j['on']} ({j['x']:.6g}, {j['y']:.6g}) N s")
     if whole.ideal_com is not None:
+        striker = blow.at.split(".", 1)[0]
         typer.echo(f"    ideal centre of mass of {striker}: ({whole.ideal_com[0]:.6g}, {whole.ideal_com[1]:.6g}) m")
     if whole.sliding_reverses:
         typer.echo(
@@ -109,7 +129,7 @@ def impact(
         )
 
 
-def _blow_dict(b: Any) -> dict[str, Any]:
+def _blow_dict(b: Blow) -> dict[str, Any]:
     return {
         "time": b.time,
         "crank_angle": math.degrees(b.angle),
@@ -136,61 +156,68 @@ def _blow_dict(b: Any) -> dict[str, Any]:
     }
 
 
-def _cycle(mech: Any, as_json: bool, blows: int | None) -> None:
+def _cycle(mech: Mechanism, as_json: bool, blows: int | None) -> None:
     """``linkwork impact --cycle``: the working cycle, report or JSON (``blows``: None for the default)."""
-    from linkwork.errors import LinkworkError
     from linkwork.impulse.cycle import simulate_blows
 
     try:
         run = simulate_blows(mech) if blows is None else simulate_blows(mech, blows=blows)
     except LinkworkError as exc:
         fail(exc)
-    last = run.last
-    phases = [
-        {
-            "kind": p.kind,
-            "freedom": p.freedom,
-            "start": p.start - last.time,
-            "duration": p.duration,
-            "crank_turn": math.degrees(p.psi_end - p.psi_start),
-        }
-        for p in run.cycle_phases()
-    ]
-    tool = run.tool
     if as_json:
-        out = {
-            "name": mech.name,
-            "units": {
-                "time": "s", "angle": "deg", "omega": "rad/s", "speed": "m/s", "impulse": "N s", "energy": "J",
-                "length": "m", "power": "W", "force": "N",
-            },
-            "convention": "impulses in global axes; support_impulse: what each joint's first-named link exerts on "
-            "the second ('from' on 'on'); crank speeds in the drive's direction; phases of the last cycle, "
-            "start from its blow; mean_power: the motor's at its shaft, drive_power: the crank's after the "
-            "gear; energy, cycle_energy: motor (at its shaft) = gear (lost in it) + drive (on the crank); "
-            "drive + loads = kinetic + feed + blows + rebounds + seat + work + friction",
-            "tool": {"mass": tool.mass, "feed": tool.feed, "resistance": tool.resistance},
-            "steady": run.steady,
-            "blows_per_minute": run.blows_per_minute,
-            "period": run.period,
-            "mean_power": run.mean_power,
-            "drive_power": run.drive_power,
-            "blows": [_blow_dict(b) for b in run.blows],
-            "phases": phases,
-            "contact": {
-                "force_max": float(run.contact.force.max()) if len(run.contact.t) else None,
-                "peak": {
-                    name: {"time": run.contact.peak(name)[0], **_xy(run.contact.peak(name)[1])}
-                    for name in run.contact.joints
-                }
-                if len(run.contact.t)
-                else {},
-            },
-            "cycle_energy": {k: float(v) for k, v in run.cycle_energy.items()},
-            "energy": {k: float(v) for k, v in run.energy.items()},
-        }  # fmt: skip
-        echo_json(out)
+        echo_json(_cycle_json(mech, run))
         return
+    _print_cycle_blow(mech, run)
+    _print_cycle_phases(run)
+
+
+def _phase_dict(p: Phase, since: float) -> dict[str, Any]:
+    """A phase of the last cycle, its start from the blow at ``since`` (s)."""
+    return {
+        "kind": p.kind,
+        "freedom": p.freedom,
+        "start": p.start - since,
+        "duration": p.duration,
+        "crank_turn": math.degrees(p.psi_end - p.psi_start),
+    }
+
+
+def _cycle_json(mech: Mechanism, run: WorkingCycle) -> dict[str, Any]:
+    """The JSON object of ``linkwork impact --cycle --json``."""
+    tool, loads = run.tool, run.contact
+    return {
+        "name": mech.name,
+        "units": {
+            "time": "s", "angle": "deg", "omega": "rad/s", "speed": "m/s", "impulse": "N s", "energy": "J",
+            "length": "m", "power": "W", "force": "N",
+        },
+        "convention": "impulses in global axes; support_impulse: what each joint's first-named link exerts on "
+        "the second ('from' on 'on'); crank speeds in the drive's direction; phases of the last cycle, "
+        "start from its blow; mean_power: the motor's at its shaft, drive_power: the crank's after the "
+        "gear; energy, cycle_energy: motor (at its shaft) = gear (lost in it) + drive (on the crank); "
+        "drive + loads = kinetic + feed + blows + rebounds + seat + work + friction",
+        "tool": {"mass": tool.mass, "feed": tool.feed, "resistance": tool.resistance},
+        "steady": run.steady,
+        "blows_per_minute": run.blows_per_minute,
+        "period": run.period,
+        "mean_power": run.mean_power,
+        "drive_power": run.drive_power,
+        "blows": [_blow_dict(b) for b in run.blows],
+        "phases": [_phase_dict(p, run.last.time) for p in run.cycle_phases()],
+        "contact": {
+            "force_max": float(loads.force.max()) if len(loads.t) else None,
+            "peak": {name: {"time": loads.peak(name)[0], **_xy(loads.peak(name)[1])} for name in loads.joints}
+            if len(loads.t)
+            else {},
+        },
+        "cycle_energy": {k: float(v) for k, v in run.cycle_energy.items()},
+        "energy": {k: float(v) for k, v in run.energy.items()},
+    }  # fmt: skip
+
+
+def _print_cycle_blow(mech: Mechanism, run: WorkingCycle) -> None:
+    """The head of the report of ``linkwork impact --cycle``: the run and its last blow."""
+    last, tool = run.last, run.tool
     state = "steady" if run.steady else f"not steady after {len(run.blows)} blows"
     typer.echo(
         f"{mech.name}: working cycle, {run.blows_per_minute:.6g} blows per minute ({state} after "
@@ -213,8 +240,12 @@ def _cycle(mech: Any, as_json: bool, blows: int | None) -> None:
         a, b = last.joint_links[name]
         typer.echo(f"    joint {name}: {a} on {b} ({v[0]:.6g}, {v[1]:.6g}) N s")
     typer.echo(f"    drive on the crank {last.drive_impulse:.6g} N m s")
+
+
+def _print_cycle_phases(run: WorkingCycle) -> None:
+    """The rest of the report of ``linkwork impact --cycle``: the phases, the contact's loads, the energy."""
     typer.echo("  phases of the cycle (degrees of freedom of machine and tool):")
-    for p in phases:
+    for p in (_phase_dict(p, run.last.time) for p in run.cycle_phases()):
         typer.echo(
             f"    {p['kind']:8s} W = {p['freedom']}  from {1000 * p['start']:9.3f} ms  for {1000 * p['duration']:9.3f} "
             f"ms  ({p['crank_turn']:.2f} deg of the crank)"

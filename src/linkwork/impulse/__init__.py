@@ -10,9 +10,11 @@
 from __future__ import annotations
 
 from linkwork.errors import SlidingReversal
-from linkwork.impulse.cycle import Blow, Phase, Strike, Tool, WorkingCycle, simulate_blows, strike
+from linkwork.impulse.contact import Tool
+from linkwork.impulse.cycle import Blow, Phase, WorkingCycle, simulate_blows
 from linkwork.impulse.mechanism import Impact, impact, reduced_model
 from linkwork.impulse.rocker import RockerImpact, rocker_impact
+from linkwork.impulse.strike import Strike, strike
 
 __all__ = [
     "Blow",

@@ -21,12 +21,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
+import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
-from linkwork.structure.model import PairType
+from linkwork.impulse.rocker import RockerImpact, rocker_impact, sliding_direction
+from linkwork.kinetostatics.forces import Forces
+from linkwork.kinetostatics.free_body import contacts
+from linkwork.kinetostatics.reactions import Loads, inertia_and_gravity, solve_reactions
+from linkwork.motion import Kinematics, kinematics
+from linkwork.structure.model import Mechanism, PairType
 
 
 @dataclass(frozen=True)
@@ -72,7 +78,7 @@ class Impact:
     energy_loss: float
     inertia: float
     phi: float
-    forces: Any
+    forces: Forces
     ideal_com: np.ndarray | None = None
     sliding_reverses: bool = False
 
@@ -110,10 +116,10 @@ class BlowSetup:
 
 
 def blow_setup(
-    mech: Any,
+    mech: Mechanism,
     *,
     at: str | None = None,
-    normal: Any = None,
+    normal: npt.ArrayLike | float | None = None,
     omega_before: float | None = None,
     restitution: float | None = None,
     friction: float | None = None,
@@ -144,10 +150,14 @@ def blow_setup(
         raise LinkworkError(
             f"the blow needs {', '.join(missing)}: give them as arguments or in the file's impact: section"
         )
-    assert at is not None and restitution is not None and friction is not None
+    assert at is not None and normal is not None and restitution is not None and friction is not None
     if not (0 <= restitution <= 1 and friction >= 0):
         raise LinkworkError(f"expected 0 <= R <= 1 and friction >= 0, got R = {restitution}, f = {friction}")
-    n = np.array([math.cos(normal), math.sin(normal)]) if np.ndim(normal) == 0 else np.asarray(normal, dtype=float)
+    if np.ndim(normal) == 0:
+        angle = float(np.asarray(normal))
+        n = np.array([math.cos(angle), math.sin(angle)])
+    else:
+        n = np.asarray(normal, dtype=float)
     length = float(np.linalg.norm(n)) if n.shape == (2,) else 0.0
     if not (length > 0 and math.isfinite(length)):
         raise LinkworkError(f"normal: expected a non-zero vector (x, y) or an angle, got {normal!r}")
@@ -155,10 +165,10 @@ def blow_setup(
 
 
 def impact(
-    mech: Any,
+    mech: Mechanism,
     *,
     at: str | None = None,
-    normal: Any = None,
+    normal: npt.ArrayLike | float | None = None,
     omega_before: float | None = None,
     restitution: float | None = None,
     friction: float | None = None,
@@ -176,70 +186,82 @@ def impact(
     ``angle``: the crank angle of the pose (default: the assembly pose); ``slip`` as in
     :func:`~linkwork.impulse.rocker_impact`.
     """
-    from linkwork.motion import kinematics
     if mech.n_drives != 1:
         raise LinkworkError("impact needs a mechanism of one degree of freedom (one drive)")
     setup = blow_setup(
         mech, at=at, normal=normal, omega_before=omega_before, restitution=restitution, friction=friction, link=link
     )
-    at, n, restitution, friction, link = setup.at, setup.normal, setup.restitution, setup.friction, setup.link
-    assert setup.omega_before is not None
-    omega_before = setup.omega_before
+    n, restitution, friction = setup.normal, setup.restitution, setup.friction
     phi0 = float(mech.drive_start[0]) if angle is None else float(angle)
     kin = kinematics(mech, np.array([phi0]), speed=1.0)
     if not bool(np.all(kin.valid)):
         raise LinkworkError(f"the mechanism does not assemble at {math.degrees(phi0):.3f} deg")
-    p = kin.point_index(at)
-    striker = int(mech.point_link[p])
-    name = link if link is not None else mech.link_names[striker]
-    gain = float(kin.omega(name)[0])  # the link's angular speed per unit crank speed
-    if abs(gain) < 1e-12:
-        raise LinkworkError(f'link "{name}" does not turn in this pose: give the speed of another link')
-    w_before = omega_before / gain
-    pos, g_k, _ = kin._point(mech.point_names[p])
-    pos, g_k = pos[0, 0], g_k[0, 0]
+    point = striking_point(kin, setup.at)
+    w_before = _crank_speed(kin, setup, point.link)
+    pos, g_k = point.position[0], point.velocity[0]
     t = np.array([n[1], -n[0]])
     if not float(g_k @ n) * w_before < 0:
         raise LinkworkError(
-            f'"{at}" does not move towards the surface: its normal velocity is {g_k @ n * w_before:.6g} m/s'
+            f'"{setup.at}" does not move towards the surface: its normal velocity is {g_k @ n * w_before:.6g} m/s'
         )
     sliding = float(g_k @ t) * w_before
-    slides = abs(sliding) > 1e-12 * abs(w_before) * np.linalg.norm(g_k)
-    if slides:
-        direction = math.copysign(1.0, sliding)
-    else:
-        direction = -1.0 if slip is None else math.copysign(1.0, slip)
-    phi = -friction * direction
+    tiny = float(1e-12 * abs(w_before) * np.linalg.norm(g_k))
+    phi = -friction * sliding_direction(sliding, tiny, slip)
     v = kin.vel[0, 0]
     inertia = pose_inertia(kin)
     jump = -(1.0 + restitution) * w_before
     s_n = inertia * jump / float(g_k @ (n + phi * t))
     impulse = s_n * (n + phi * t)
-    forces, lam, joints = impulsive_reactions(kin, striker, pos, impulse, jump)
+    forces, lam, joints = impulsive_reactions(kin, point.link, pos, impulse, jump)
     before = v * w_before
-    ideal = _ideal_com(mech, forces, striker, impulse, v[striker, 2] * jump)
+    ideal = _ideal_com(mech, forces, point.link, impulse, v[point.link, 2] * jump)
     return Impact(
-        impulse,
-        w_before,
-        -restitution * w_before,
-        before,
-        -restitution * before,
-        joints,
-        float(lam[0, 0, 2 * mech.n_pairs]),
-        0.5 * inertia * w_before**2 * (1 - restitution**2),
-        inertia,
-        phi,
-        forces,
-        ideal,
-        bool(friction > 0 and restitution > 0 and slides),
-    )
+        impulse, w_before, -restitution * w_before, before, -restitution * before, joints,
+        float(lam[0, 0, 2 * mech.n_pairs]), 0.5 * inertia * w_before**2 * (1 - restitution**2), inertia, phi,
+        forces, ideal, bool(friction > 0 and restitution > 0 and abs(sliding) > tiny),
+    )  # fmt: skip
 
 
-def pose_inertia(kin: Any) -> float:
+class StrikingPoint(NamedTuple):
+    """The striking point of the (first) variant of a kinematics result: the index of its ``link``, its
+    ``position`` (A, 2) and its ``velocity`` (A, 2) at the samples (m, m/s in the result's speed)."""
+
+    link: int
+    position: np.ndarray
+    velocity: np.ndarray
+
+
+def striking_point(kin: Kinematics, at: str) -> StrikingPoint:
+    """The point ``at`` (``link.point`` or a joint's name) in ``kin``."""
+    mech = kin.mechanism
+    p = kin.point_index(at)
+    pos, vel, _ = kin._point(mech.point_names[p])
+    return StrikingPoint(int(mech.point_link[p]), pos[0], vel[0])
+
+
+def _crank_speed(kin: Kinematics, setup: BlowSetup, striker: int) -> float:
+    """The crank speed before the blow (``kin`` at unit crank speed, in its single pose) at which the
+    link of the blow turns at ``omega_before``."""
+    assert setup.omega_before is not None
+    name = setup.link if setup.link is not None else kin.mechanism.link_names[striker]
+    gain = float(kin.omega(name)[0])  # the link's angular speed per unit crank speed
+    if abs(gain) < 1e-12:
+        raise LinkworkError(f'link "{name}" does not turn in this pose: give the speed of another link')
+    return setup.omega_before / gain
+
+
+def joint_links(mech: Mechanism) -> dict[str, tuple[str, str]]:
+    """For each joint, its (first, second) link names in the order the joint names them."""
+    members = mech.pair_links if mech.pair_members is None else mech.pair_members
+    return {
+        name: (mech.link_names[int(members[k, 0])], mech.link_names[int(members[k, 1])])
+        for name, k in mech.first_pairs().items()
+    }
+
+
+def pose_inertia(kin: Kinematics) -> float:
     """Reduced inertia (kg m^2) on the crank in the single pose of ``kin`` (kinematics at unit
     crank speed), from the velocities of the centres of mass."""
-    from linkwork.kinetostatics.reactions import inertia_and_gravity
-
     mech = kin.mechanism
     v = kin.vel[0, 0]
     vc = inertia_and_gravity(kin).com_velocity[0, 0]
@@ -247,8 +269,8 @@ def pose_inertia(kin: Any) -> float:
 
 
 def impulsive_reactions(
-    kin: Any, striker: int, at: np.ndarray, impulse: np.ndarray, jump: float
-) -> tuple[Any, np.ndarray, dict[str, np.ndarray]]:
+    kin: Kinematics, striker: int, at: np.ndarray, impulse: np.ndarray, jump: float
+) -> tuple[Forces, np.ndarray, dict[str, np.ndarray]]:
     """Impulsive reactions of every pair in the single pose of ``kin`` (kinematics at unit crank
     speed) when the impulse ``impulse`` (N s, global axes) acts on link ``striker`` at the point
     ``at`` and the crank speed jumps by ``jump`` (in ``kin``'s unit of speed).
@@ -258,9 +280,6 @@ def impulsive_reactions(
     row ``[..., 2 n_pairs]`` is the drive's impulse on the crank, N m s) and, for each joint, the
     impulse its first-named link exerts on the second (compound hinges: their first pair).
     """
-    from linkwork.kinetostatics import Forces
-    from linkwork.kinetostatics.reactions import Loads, inertia_and_gravity, solve_reactions
-
     mech = kin.mechanism
     q, v = kin.pose[0, 0], kin.vel[0, 0]
     state = inertia_and_gravity(kin)
@@ -281,10 +300,8 @@ def impulsive_reactions(
     return forces, lam, joints
 
 
-def _ideal_com(mech: Any, forces: Any, link: int, impulse: np.ndarray, d_omega: float) -> np.ndarray | None:
+def _ideal_com(mech: Mechanism, forces: Forces, link: int, impulse: np.ndarray, d_omega: float) -> np.ndarray | None:
     """m (C - O) d_omega z x = the impulses on the link other than its pivot's: solved for C."""
-    from linkwork.kinetostatics.free_body import contacts
-
     pivot = None
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
@@ -305,12 +322,10 @@ def _ideal_com(mech: Any, forces: Any, link: int, impulse: np.ndarray, d_omega: 
     return support + np.array([w[1], -w[0]])
 
 
-def reduced_model(mech: Any, *, at: str, rod_joint: str, **kw: Any) -> Any:
+def reduced_model(mech: Mechanism, *, at: str, rod_joint: str, **kw: Any) -> RockerImpact:
     """The model of seed 004 for the same blow: the striking link turning about its frame pivot,
     the link jointed to it at ``rod_joint`` replaced by its whole mass at that joint (the others
     left out); keyword arguments as for :func:`~linkwork.impulse.rocker_impact`."""
-    from linkwork.impulse.rocker import rocker_impact
-
     p = mech.point_index(at)
     rocker = int(mech.point_link[p])
     pivot = None

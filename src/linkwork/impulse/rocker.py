@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
 
@@ -101,15 +102,15 @@ def rocker_impact(
     *,
     inertia: float,
     mass: float,
-    com: Any,
-    impact_point: Any,
+    com: npt.ArrayLike,
+    impact_point: npt.ArrayLike,
     omega_before: float,
     restitution: float,
     friction: float = 0.0,
-    support: Any = (0.0, 0.0),
+    support: npt.ArrayLike = (0.0, 0.0),
     rod_mass: float = 0.0,
-    rod_joint: Any = (0.0, 0.0),
-    normal: Any = (0.0, 1.0),
+    rod_joint: npt.ArrayLike = (0.0, 0.0),
+    normal: npt.ArrayLike = (0.0, 1.0),
     slip: float | None = None,
 ) -> RockerImpact:
     """The impact of a rocker on a tool at rest, by the impulse-momentum equations.
@@ -156,12 +157,8 @@ def rocker_impact(
             f"{float(vk @ n):.6g} m/s (turn the other way, or give the normal out of the tool)"
         )
     sliding = float(vk @ t)
-    if abs(sliding) > 1e-12 * np.linalg.norm(vk):
-        direction = math.copysign(1.0, sliding)
-    else:
-        direction = -1.0 if slip is None else math.copysign(1.0, slip)
     # the normal impulse pushes the striker out (S_n > 0); friction opposes the sliding
-    phi = -friction * direction
+    phi = -friction * sliding_direction(sliding, float(1e-12 * np.linalg.norm(vk)), slip)
     j_o = inertia + rod_mass * float(rn @ rn)
     dw = -(1.0 + restitution) * omega_before
     arm = _cross(rk, n + phi * t)  # of the sign of rk x n, which the approach makes non-zero
@@ -177,14 +174,15 @@ def rocker_impact(
         return o + np.array([need[1], -need[0]]) / mass
 
     return RockerImpact(
-        impulse,
-        support_impulse,
-        float(omega_before),
-        float(-restitution * omega_before),
-        0.5 * j_o * omega_before**2 * (1 - restitution**2),
-        ideal(rod_mass),
-        ideal(0.0),
-        phi,
-        sliding,
-        j_o,
-    )
+        impulse, support_impulse, float(omega_before), float(-restitution * omega_before),
+        0.5 * j_o * omega_before**2 * (1 - restitution**2), ideal(rod_mass), ideal(0.0), phi, sliding, j_o,
+    )  # fmt: skip
+
+
+def sliding_direction(sliding: float, tiny: float, slip: float | None = None) -> float:
+    """The direction (+1 or -1 along the face) the striker slides in at the impact: its sliding speed's
+    sign; where that is no more than ``tiny`` (it does not slide, and the friction impulse is
+    indeterminate), ``slip``'s, by default -1."""
+    if abs(sliding) > tiny:
+        return math.copysign(1.0, sliding)
+    return -1.0 if slip is None else math.copysign(1.0, slip)

@@ -9,13 +9,22 @@ inertia, a flywheel on the crank shaft adds its own inertia.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
+
+if TYPE_CHECKING:
+    from linkwork.spec.schema import Machine as MachineSpec
+    from linkwork.spec.schema import Motor as MotorSpec
+
+#: A motor's characteristic: torque (N m) on its shaft against its speed (rad/s), scalars or arrays.
+Characteristic = Callable[[Any], Any]
 
 
 @dataclass(frozen=True)
@@ -88,7 +97,7 @@ class Drive:
 
     Attributes
     ----------
-    motor : callable
+    motor : Characteristic
         Torque (N m) on the motor shaft against its speed (rad/s).
     ratio : float
         ``u = omega_motor / omega_crank``.
@@ -102,7 +111,7 @@ class Drive:
         ``"motor"`` or ``"crank"``.
     """
 
-    motor: Any
+    motor: Characteristic
     ratio: float = 1.0
     efficiency: float = 1.0
     rotor: float = 0.0
@@ -131,27 +140,31 @@ class Drive:
 
     def with_flywheel(self, inertia: float) -> Drive:
         """The same drive with another flywheel (on the same shaft)."""
-        import dataclasses
-
         return dataclasses.replace(self, flywheel=inertia)
 
 
-def from_spec(machine: Any) -> Drive:
+def from_spec(machine: MachineSpec) -> Drive:
     """The :class:`Drive` of a validated ``machine:`` section."""
     m = machine.motor
-    if m.type == "constant":
-        motor: Any = ConstantTorque(m.torque)
-    elif m.type == "linear":
-        motor = LinearMotor(m.stall, m.no_load)
-    else:
-        motor = InductionMotor(m.power, m.speed, m.synchronous, m.breakdown)
     gear = machine.gear
     fly = machine.flywheel
     return Drive(
-        motor,
+        _motor(m),
         ratio=gear.ratio if gear else 1.0,
         efficiency=gear.efficiency if gear else 1.0,
         rotor=m.inertia or 0.0,
         flywheel=fly.inertia if fly else 0.0,
         flywheel_on=fly.on if fly else "motor",
     )
+
+
+def _motor(m: MotorSpec) -> Characteristic:
+    """The characteristic of a validated ``motor:`` (its type's values are there)."""
+    if m.type == "constant":
+        assert m.torque is not None
+        return ConstantTorque(m.torque)
+    if m.type == "linear":
+        assert m.stall is not None and m.no_load is not None
+        return LinearMotor(m.stall, m.no_load)
+    assert m.power is not None and m.speed is not None and m.synchronous is not None and m.breakdown is not None
+    return InductionMotor(m.power, m.speed, m.synchronous, m.breakdown)

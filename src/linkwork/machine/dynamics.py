@@ -6,7 +6,6 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -15,6 +14,7 @@ from linkwork.machine.drive import Drive
 from linkwork.machine.flywheel import Flywheel, size_flywheel_wittenbauer
 from linkwork.machine.reduced import Reduced, reduced
 from linkwork.machine.simulate import Motion, simulate
+from linkwork.structure.model import Mechanism
 
 
 @dataclass(frozen=True)
@@ -83,7 +83,7 @@ def balance_speed(drive: Drive, moment: float) -> float:
 
 
 def dynamics(
-    mech: Any,
+    mech: Mechanism,
     drive: Drive | None = None,
     *,
     delta: float | None = None,

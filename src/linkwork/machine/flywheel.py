@@ -23,11 +23,14 @@ cycle: ``(J(psi) + J_c) omega^2 / 2 = (J(0) + J_c) omega_0^2 / 2 + A(psi)``.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
+
+if TYPE_CHECKING:
+    from linkwork.machine.reduced import Reduced
 
 
 @dataclass(frozen=True)
@@ -74,13 +77,19 @@ class Flywheel:
         return self.on_crank if self.shaft == "crank" else self.on_crank / self.ratio**2
 
 
-def _work(red: Any, moment: float) -> np.ndarray:
+def _work(red: Reduced, moment: float) -> np.ndarray:
     """Work of the loads and a constant drive ``moment`` from psi = 0 at the grid points, (K,)."""
     return red.work()[:-1] + moment * red.psi
 
 
 def size_flywheel(
-    red: Any, delta: float, omega_mean: float, drive_inertia: float = 0.0, *, shaft: str = "crank", ratio: float = 1.0
+    red: Reduced,
+    delta: float,
+    omega_mean: float,
+    drive_inertia: float = 0.0,
+    *,
+    shaft: str = "crank",
+    ratio: float = 1.0,
 ) -> Flywheel:
     """The constant inertia that keeps the speed fluctuation at ``delta``, by the energy method (Merkalov);
     ``drive_inertia`` is the drive's own on the crank shaft, ``shaft`` and ``ratio`` say where the flywheel goes."""
@@ -105,14 +114,20 @@ def _flywheel(
     return Flywheel(delta, omega_mean, swing, need, on_crank, moment, moment * omega_mean, shaft, ratio)
 
 
-def wittenbauer(red: Any) -> tuple[np.ndarray, np.ndarray]:
+def wittenbauer(red: Reduced) -> tuple[np.ndarray, np.ndarray]:
     """Wittenbauer's diagram: the reduced inertia ``J(psi)`` and the energy ``A(psi)`` given to the
     machine from ``psi = 0`` by the loads and the constant drive moment that balances them, (K,) each."""
     return red.inertia, _work(red, -red.mean_load)
 
 
 def size_flywheel_wittenbauer(
-    red: Any, delta: float, omega_mean: float, drive_inertia: float = 0.0, *, shaft: str = "crank", ratio: float = 1.0
+    red: Reduced,
+    delta: float,
+    omega_mean: float,
+    drive_inertia: float = 0.0,
+    *,
+    shaft: str = "crank",
+    ratio: float = 1.0,
 ) -> Flywheel:
     """The constant inertia for ``delta`` from the tangents to Wittenbauer's diagram; the arguments as
     for :func:`size_flywheel`."""
@@ -127,7 +142,7 @@ def size_flywheel_wittenbauer(
     return _flywheel(delta, omega_mean, b_max - b_min, need, drive_inertia, -red.mean_load, shaft, ratio)
 
 
-def constant_moment_cycle(red: Any, inertia: float, omega_mean: float) -> tuple[np.ndarray, float]:
+def constant_moment_cycle(red: Reduced, inertia: float, omega_mean: float) -> tuple[np.ndarray, float]:
     """Exact periodic crank speed over a turn, (K,), under the constant drive moment that balances
     the loads, with a constant ``inertia`` added, the speed at ``psi = 0`` chosen so that
     ``(max + min) / 2 = omega_mean``; and its coefficient of speed fluctuation."""

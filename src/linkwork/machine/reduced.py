@@ -19,11 +19,14 @@ The equation of motion of the machine unit is then
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.kinetostatics.external import power as external_power
+from linkwork.kinetostatics.reactions import inertia_and_gravity
+from linkwork.motion import cycle, kinematics
+from linkwork.structure.model import Mechanism, one_crank
 
 
 @dataclass(frozen=True)
@@ -64,7 +67,7 @@ class Reduced:
         return float(np.mean(self.load))
 
 
-def reduced(mech: Any, steps: int = 3600) -> Reduced:
+def reduced(mech: Mechanism, steps: int = 3600) -> Reduced:
     """Reduced inertia, its slope and the reduced load moment over one turn of the crank.
 
     Raises
@@ -72,10 +75,6 @@ def reduced(mech: Any, steps: int = 3600) -> Reduced:
     LinkworkError
         Unless the mechanism has one crank (a revolute drive) and assembles over the whole turn.
     """
-    from linkwork.kinetostatics.external import power as external_power
-    from linkwork.kinetostatics.reactions import inertia_and_gravity
-    from linkwork.motion import cycle, kinematics
-    from linkwork.structure.model import one_crank
     if not one_crank(mech):
         raise LinkworkError("machine dynamics needs one crank (a revolute drive)")
     if steps < 16:

@@ -18,19 +18,36 @@ micro-radian is taken in closed form (constant moment), where ``dt/dpsi`` is inf
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
+
+if TYPE_CHECKING:
+    from linkwork.machine.drive import Drive
+    from linkwork.machine.reduced import Reduced
+
+
+class Curve(NamedTuple):
+    """A smooth quantity at one turning angle ``psi`` of the crank: its value and its first and
+    second derivatives in ``psi`` (per rad, per rad^2)."""
+
+    value: float
+    slope: float
+    curvature: float
+
+
+_tuple = tuple.__new__
 
 
 class PeriodicSplines:
     """Periodic cubic splines of several columns over a turn of the crank, on a uniform grid ``psi``,
     evaluated one turning angle at a time (fast scalars)."""
 
-    def __init__(self, psi: np.ndarray, columns: list[np.ndarray]) -> None:
+    def __init__(self, psi: np.ndarray, columns: Sequence[np.ndarray]) -> None:
         from scipy.interpolate import CubicSpline
 
         k = len(psi)
@@ -40,7 +57,8 @@ class PeriodicSplines:
         for col in columns:
             spline = CubicSpline(x, np.append(col, col[0]), bc_type="periodic")
             coef.append(spline.c.T)  # per interval: cubic, square, linear, constant
-        self.c = [tuple(map(float, np.concatenate([c[i] for c in coef]))) for i in range(k)]
+        #: per interval, per column: the coefficients of its cubic, constant last
+        self.c = [tuple(tuple(map(float, c[i])) for c in coef) for i in range(k)]
 
     def interval(self, psi: float) -> tuple[int, float]:
         """The grid interval of ``psi`` and the fraction of it that ``psi`` is into."""
@@ -51,35 +69,62 @@ class PeriodicSplines:
     def value(self, i: int, f: float) -> float:
         """The first column at the fraction ``f`` into grid interval ``i``."""
         x = f * self.h
-        c3, c2, c1, c0 = self.c[i][:4]
+        c3, c2, c1, c0 = self.c[i][0]
         return ((c3 * x + c2) * x + c1) * x + c0
 
-    def at(self, psi: float) -> tuple[float, ...]:
-        """Value and first and second derivatives of every column at ``psi``."""
+    def at(self, psi: float) -> tuple[Curve, ...]:
+        """Every column at ``psi``, in the order given, with its first and second derivatives."""
         i, f = self.interval(psi)
         x = f * self.h
-        c = self.c[i]
         out = []
-        for j in range(0, len(c), 4):
-            c3, c2, c1, c0 = c[j : j + 4]
-            out += [((c3 * x + c2) * x + c1) * x + c0, (3 * c3 * x + 2 * c2) * x + c1, 6 * c3 * x + 2 * c2]
+        for c3, c2, c1, c0 in self.c[i]:  # tuple.__new__: the Curve without its Python-level constructor
+            out.append(
+                _tuple(Curve, (((c3 * x + c2) * x + c1) * x + c0, (3 * c3 * x + 2 * c2) * x + c1, 6 * c3 * x + 2 * c2))
+            )
         return tuple(out)
+
+
+@dataclass(frozen=True)
+class Event:
+    """A terminal event of scipy's ``solve_ivp`` with a name: where ``fn(t, y)`` crosses zero in
+    ``direction`` (negative: falling, positive: rising, zero: either way)."""
+
+    name: str
+    fn: Callable[[float, np.ndarray], float]
+    direction: float = 0.0
+    terminal: bool = True
+
+    def __call__(self, t: float, y: np.ndarray) -> float:
+        return self.fn(t, y)
+
+
+def fired(events: Sequence[Event], sol: Any) -> frozenset[str]:
+    """The names of the events that ended (or occurred in) the solution ``sol`` of ``solve_ivp``."""
+    return frozenset(event.name for event, times in zip(events, sol.t_events, strict=True) if len(times))
+
+
+class InertiaAndLoad(NamedTuple):
+    """The machine unit at one turning angle: ``inertia`` ``J + J_d`` (kg m^2) and the reduced load
+    moment ``load`` ``M`` (N m)."""
+
+    inertia: float
+    load: float
 
 
 class Model:
     """``J`` and ``M`` of a :class:`~linkwork.machine.reduced.Reduced` as fast scalar functions: ``J``
     by a periodic cubic spline, ``M`` linear between the grid points (technological loads have corners)."""
 
-    def __init__(self, red: Any, extra_inertia: float = 0.0) -> None:
+    def __init__(self, red: Reduced, extra_inertia: float = 0.0) -> None:
         self.inertia = PeriodicSplines(red.psi, [red.inertia])
         self.m = list(map(float, np.append(red.load, red.load[0])))
         self.extra = float(extra_inertia)
 
-    def at(self, psi: float) -> tuple[float, float]:
+    def at(self, psi: float) -> InertiaAndLoad:
         """``J + J_d`` and ``M`` at ``psi``."""
         i, f = self.inertia.interval(psi)
         m = self.m[i] + (self.m[i + 1] - self.m[i]) * f
-        return self.inertia.value(i, f) + self.extra, m
+        return _tuple(InertiaAndLoad, (self.inertia.value(i, f) + self.extra, m))
 
 
 @dataclass(frozen=True)
@@ -146,8 +191,8 @@ class Motion:
 
 
 def simulate(
-    red: Any,
-    drive: Any,
+    red: Reduced,
+    drive: Drive,
     *,
     omega0: float = 0.0,
     start: float = 0.0,
@@ -164,69 +209,98 @@ def simulate(
     steady cycle is reached when two turns in a row have the same mean and least speed within
     ``tol`` (relative).
     """
-    from scipy.integrate import solve_ivp
+    unit = _Unit(Model(red, drive.inertia), drive.moment, float(start), rtol, points)
+    first, t0, e0 = unit.first_step(omega0)
+    ts, ps, ws, done = [], [], [], []
+    for k in range(turns):
+        lo = first if k == 0 else unit.psi0 + 2 * np.pi * k
+        t, psi, w, turn, e0 = unit.turn(k, lo, t0, e0, from_rest=k == 0 and omega0 == 0)
+        ts.append(t)
+        ps.append(psi)
+        ws.append(w)
+        done.append(turn)
+        t0 = turn.end
+        if len(done) > 2 and _alike(done[-2], done[-1], tol):
+            break
+    steady = len(done) > 2 and abs(done[-1].omega_mean - done[-2].omega_mean) <= tol * done[-1].omega_mean
+    return Motion(np.concatenate(ts), np.concatenate(ps), np.concatenate(ws), done, steady)
 
-    model = Model(red, drive.inertia)
-    moment = drive.moment
 
-    def rhs(psi: float, y: np.ndarray) -> list[float]:
-        j, m = model.at(psi)
+def _alike(a: Turn, b: Turn, tol: float) -> bool:
+    """Whether two turns have the same mean and least speed within ``tol`` of the later one's mean."""
+    scale = b.omega_mean
+    return all(abs(x - z) <= tol * scale for x, z in ((a.omega_mean, b.omega_mean), (a.omega_min, b.omega_min)))
+
+
+def _stalled(psi: float, y: np.ndarray) -> float:
+    return float(y[1])
+
+
+@dataclass(frozen=True)
+class _Unit:
+    """The machine unit's energy equation with the crank's turning angle as the independent variable:
+    the state is ``(t, E)``, time (s) and kinetic energy (J), from the turning angle ``psi0``."""
+
+    model: Model
+    moment: Callable[[Any], Any]
+    psi0: float
+    rtol: float
+    points: int
+
+    def __call__(self, psi: float, y: np.ndarray) -> list[float]:
+        """``dt/dpsi`` and ``dE/dpsi``."""
+        j, m = self.model.at(psi)
         e = max(y[1], 1e-300)
         w = math.sqrt(2 * e / j)
-        return [1.0 / w, m + float(moment(w))]
+        return [1.0 / w, m + float(self.moment(w))]
 
-    def stalled(psi: float, y: np.ndarray) -> float:
-        return y[1]
-
-    stalled.terminal = True
-    stalled.direction = -1
-    psi0 = float(start)
-    j0 = model.at(psi0)[0]
-    if omega0 < 0:
-        raise LinkworkError(f"omega0: the crank turns forward, from rest or faster; got {omega0}")
-    t0, e0 = 0.0, 0.5 * j0 * omega0**2
-    first = psi0
-    if omega0 == 0:
-        m0 = model.at(psi0)[1] + float(moment(0.0))
+    def first_step(self, omega0: float) -> tuple[float, float, float]:
+        """Where the integration starts: turning angle, time and kinetic energy; from rest the first
+        micro-radian is taken in closed form (constant moment), where ``dt/dpsi`` is infinite."""
+        psi0 = self.psi0
+        j0 = self.model.at(psi0).inertia
+        if omega0 < 0:
+            raise LinkworkError(f"omega0: the crank turns forward, from rest or faster; got {omega0}")
+        if omega0 != 0:
+            return psi0, 0.0, 0.5 * j0 * omega0**2
+        m0 = self.model.at(psi0).load + float(self.moment(0.0))
         if not m0 > 0:
             raise LinkworkError(
                 f"the drive cannot start the crank at {math.degrees(psi0 % (2 * np.pi)):.1f} deg of turning: "
-                f"its moment at rest ({float(moment(0.0)):.6g} N m) does not overcome the loads "
-                f"({-model.at(psi0)[1]:.6g} N m)"
+                f"its moment at rest ({float(self.moment(0.0)):.6g} N m) does not overcome the loads "
+                f"({-self.model.at(psi0).load:.6g} N m)"
             )
         step = 1e-6
-        first, e0, t0 = psi0 + step, m0 * step, math.sqrt(2 * j0 * step / m0)
-    ts, ps, ws, done = [], [], [], []
-    for k in range(turns):
-        lo, hi = (first if k == 0 else psi0 + 2 * np.pi * k), psi0 + 2 * np.pi * (k + 1)
+        return psi0 + step, math.sqrt(2 * j0 * step / m0), m0 * step
+
+    def turn(
+        self, k: int, lo: float, t0: float, e0: float, from_rest: bool
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Turn, float]:
+        """Turn ``k`` from the turning angle ``lo`` at time ``t0`` with kinetic energy ``e0``: its
+        samples (time, turning angle, speed), the :class:`Turn` and the kinetic energy at its end."""
+        from scipy.integrate import solve_ivp
+
+        hi = self.psi0 + 2 * np.pi * (k + 1)
+        stalled = Event("stalled", _stalled, -1)
         sol = solve_ivp(
-            rhs, (lo, hi), [t0, e0], method="DOP853", rtol=rtol, atol=[1e-12, 1e-12 * max(e0, 1.0)],
+            self, (lo, hi), [t0, e0], method="DOP853", rtol=self.rtol, atol=[1e-12, 1e-12 * max(e0, 1.0)],
             events=stalled, dense_output=True,
         )  # fmt: skip
         if sol.status != 0:
-            where = float(sol.t[-1]) - psi0
+            where = float(sol.t[-1]) - self.psi0
             raise LinkworkError(
                 f"the drive cannot carry the crank through turn {k + 1}: it stops "
                 f"{math.degrees(where % (2 * np.pi)):.1f} deg of turning after the start "
                 "(too weak a motor, or too little flywheel for the work of the cycle)"
             )
-        grid = np.linspace(lo, hi, points + 1)
+        grid = np.linspace(lo, hi, self.points + 1)
         y = sol.sol(grid)
-        j = np.array([model.at(p)[0] for p in grid])
+        j = np.array([self.model.at(p)[0] for p in grid])
         w = np.sqrt(2 * np.maximum(y[1], 0.0) / j)
-        if k == 0 and omega0 == 0:
-            grid, y, w = np.concatenate([[psi0], grid]), np.concatenate([[[0.0], [0.0]], y], axis=1), np.append(0.0, w)
+        if from_rest:
+            grid, y, w = (
+                np.concatenate([[self.psi0], grid]), np.concatenate([[[0.0], [0.0]], y], axis=1), np.append(0.0, w)
+            )  # fmt: skip
         t1, e1 = float(sol.y[0, -1]), float(sol.y[1, -1])
-        w1 = math.sqrt(2 * e1 / model.at(hi)[0])
-        ts.append(y[0])
-        ps.append(grid)
-        ws.append(w)
-        done.append(Turn(float(y[0][0]) if k else 0.0, t1, float(w.min()), float(w.max()), w1))
-        t0, e0 = t1, e1
-        if len(done) > 2:
-            a, b = done[-2], done[-1]
-            scale = b.omega_mean
-            if all(abs(x - z) <= tol * scale for x, z in ((a.omega_mean, b.omega_mean), (a.omega_min, b.omega_min))):
-                break
-    steady = len(done) > 2 and abs(done[-1].omega_mean - done[-2].omega_mean) <= tol * done[-1].omega_mean
-    return Motion(np.concatenate(ts), np.concatenate(ps), np.concatenate(ws), done, steady)
+        w1 = math.sqrt(2 * e1 / self.model.at(hi)[0])
+        return y[0], grid, w, Turn(float(y[0][0]) if k else 0.0, t1, float(w.min()), float(w.max()), w1), e1
