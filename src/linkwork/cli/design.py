@@ -7,7 +7,7 @@ from typing import Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, app, echo_json, fail, needs
+from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, needs
 
 Vary = Annotated[
     list[str],
@@ -32,16 +32,11 @@ def _show(value: float, unit: str) -> str:
 def parameters(file_or_example: FileOrExample) -> None:
     """List the named parameters (dimensions, masses, moments of inertia) a sweep may vary, with the file's
     values in the file's units (the units in which bare numbers of --vary are read)."""
-    from linkwork.design.plan import in_file_units
-    from linkwork.design.sweep import _declared, _source
-    from linkwork.errors import LinkworkError
+    from linkwork.design.plan import file_units, in_file_units
     from linkwork.structure.parameters import parameter_list
 
-    try:
-        mech, spec = _source(file_or_example)
-    except LinkworkError as exc:
-        fail(exc)
-    declared = _declared(spec)
+    mech = _compile(file_or_example)
+    declared = file_units(mech.spec)
     for p in parameter_list(mech):
         shown, unit = in_file_units(p.value, p.kind, declared)
         note = f"  ({p.note})" if p.note and p.kind == "inertia" and not p.note.endswith("centre of mass") else ""
