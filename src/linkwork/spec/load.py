@@ -238,16 +238,17 @@ def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
 def _machine_checks(spec: Spec, src: Source) -> list[Problem]:
     """An induction motor's speeds and breakdown ratio, in SI."""
     motor = spec.machine.motor if spec.machine is not None else None
-    if motor is None or motor.type != "induction" or None in (motor.speed, motor.synchronous, motor.breakdown):
+    if motor is None or motor.type != "induction":
+        return []
+    speed, synchronous, breakdown = motor.speed, motor.synchronous, motor.breakdown
+    if speed is None or synchronous is None or breakdown is None:
         return []
     out = []
     path = ("machine", "motor")
-    if not motor.speed < motor.synchronous:
+    if not speed < synchronous:
         out.append(src.problem(path + ("speed",), "the rated speed must be below the synchronous speed"))
-    if not motor.breakdown > 1:
-        out.append(
-            src.problem(path + ("breakdown",), f"the breakdown torque ratio must exceed 1, got {motor.breakdown}")
-        )
+    if not breakdown > 1:
+        out.append(src.problem(path + ("breakdown",), f"the breakdown torque ratio must exceed 1, got {breakdown}"))
     return out
 
 

@@ -119,7 +119,7 @@ def _build(node: Any, path: Path, src: Source, depth: int) -> Any:
     if isinstance(node, MappingNode):
         out: dict[str, Any] = {}
         seen: dict[str, int] = {}
-        pairs = []
+        pairs: list[tuple[Any, Any]] = []
         n_merged = 0
         for key_node, value_node in node.value:
             tag = str(getattr(key_node.tag, "value", key_node.tag))
