@@ -334,7 +334,7 @@ def _check_loads(bad: Report, data: dict[str, Any], points: dict[str, set[str]])
             bad(path, f'"{name}" is not a valid load name (letters, digits, _)')
         load = _dict(load)
         kind = load.get("type")
-        if kind not in _LOAD_FIELDS:
+        if not isinstance(kind, str) or kind not in _LOAD_FIELDS:
             continue  # reported by the schema
         _check_load_fields(bad, path, load, kind)
         if kind == "force":
@@ -456,7 +456,7 @@ def _check_machine(bad: Report, data: dict[str, Any]) -> None:
     machine = _dict(data.get("machine"))
     motor = _dict(machine.get("motor"))
     kind = motor.get("type")
-    if kind not in _MOTOR_FIELDS:
+    if not isinstance(kind, str) or kind not in _MOTOR_FIELDS:
         return  # reported by the schema
     path = ("machine", "motor")
     needed = _MOTOR_FIELDS[kind]

@@ -207,7 +207,7 @@ def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
     out = []
     for name, link in spec.links.items():
         local: dict[str, tuple[float, float]] = {}
-        if link.ends is not None and link.length is not None:
+        if link.ends is not None and len(link.ends) == 2 and link.length is not None:
             local = {link.ends[0]: (0.0, 0.0), link.ends[1]: (link.length, 0.0)}
         local.update(link.points)
         names = list(local)
