@@ -20,10 +20,10 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.api import mechanism_of
+from linkwork.api import MechanismLike, mechanism_of
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import METRICS, MetricRequest, parse_metrics
-from linkwork.design.plan import Vary, file_units, read_varies
+from linkwork.design.plan import Ranges, Vary, file_units, read_varies
 from linkwork.design.store import cannot_write
 from linkwork.design.sweep import Columns, SweepTable
 from linkwork.errors import DesignError, UnitParseError
@@ -142,8 +142,8 @@ class Optimum:
 
 
 def optimize(
-    mechanism: Any,
-    vary: Mapping[str, Any] | Sequence[str],
+    mechanism: MechanismLike,
+    vary: Ranges,
     objective: str,
     constraints: Sequence[str] = (),
     *,
@@ -199,18 +199,18 @@ def optimize(
         initial = _first(evaluate(problem.mech, problem.paths, start[None], problem.requests, problem.steps))
     written = _write(problem, best, out) if out is not None else None
     return Optimum(
-        dict(zip(problem.paths, best.tolist(), strict=True)),
-        _first(row),
-        problem.units,
-        objective,
-        bool(problem.violation(row)[0] == 0),
-        initial,
-        designs.count,
-        int(getattr(result, "nit", 0)),
-        str(result.message),
+        values=dict(zip(problem.paths, best.tolist(), strict=True)),
+        metrics=_first(row),
+        units=problem.units,
+        objective=objective,
+        feasible=bool(problem.violation(row)[0] == 0),
+        initial=initial,
+        evaluations=designs.count,
+        generations=int(getattr(result, "nit", 0)),
+        message=str(result.message),
         out=written,
-        evaluated=designs.table(),
         converged=bool(result.success),
+        evaluated=designs.table(),
     )
 
 
@@ -247,7 +247,7 @@ class _Problem:
     def of(
         cls,
         mech: Mechanism,
-        vary: Mapping[str, Any] | Sequence[str],
+        vary: Ranges,
         objective: str,
         constraints: Sequence[str],
         metrics: Sequence[str],

@@ -29,6 +29,10 @@ from linkwork.units import DEFAULT_UNITS, SI_UNITS, _factor, parse_quantity, uni
 #: How a plan samples its ranges.
 SAMPLINGS = ("grid", "random", "lhs")
 
+#: The ranges of a sweep as given: ``--vary`` texts ``PATH=START:STOP[:COUNT]``, or a dict
+#: ``path -> (start, stop[, count])`` (numbers in the file's units, or with units).
+Ranges = Mapping[str, Any] | Sequence[str]
+
 
 @dataclass(frozen=True)
 class Vary:
@@ -210,9 +214,7 @@ def parse_varies(
     return out
 
 
-def read_varies(
-    vary: Mapping[str, Any] | Sequence[str], mech: Mechanism, count_required: bool | None = True, stacklevel: int = 2
-) -> list[Vary]:
+def read_varies(vary: Ranges, mech: Mechanism, count_required: bool | None = True, stacklevel: int = 2) -> list[Vary]:
     """``--vary`` texts, or a dict ``path -> (start, stop[, count])`` (numbers in the file's units or with
     units), read in the units of ``mech``'s description (:func:`file_units`).
 

@@ -11,17 +11,17 @@ from __future__ import annotations
 import math
 import os
 import re
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NamedTuple
 
 import numpy as np
 
-from linkwork.api import mechanism_of
+from linkwork.api import MechanismLike, mechanism_of
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import MetricRequest, parse_metrics
-from linkwork.design.plan import Plan, Vary, make_plan, read_varies
+from linkwork.design.plan import Plan, Ranges, Vary, make_plan, read_varies
 from linkwork.design.store import (
     FORMAT,
     cannot_write,
@@ -142,8 +142,8 @@ def chunk_task(task: ChunkTask, threads: int | None = None, attempts: str | None
 
 
 def sweep(
-    mechanism: Any,
-    vary: Mapping[str, Any] | Sequence[str],
+    mechanism: MechanismLike,
+    vary: Ranges,
     metrics: list[str],
     *,
     sampling: str = "grid",
@@ -240,7 +240,7 @@ def sweep(
 
 def _checked(
     mech: Mechanism,
-    vary: Mapping[str, Any] | Sequence[str],
+    vary: Ranges,
     metrics: list[str],
     sampling: str,
     steps: int,
