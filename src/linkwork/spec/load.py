@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import types
 import typing
 from pathlib import Path
@@ -202,8 +203,6 @@ def _is_container(tp: Any) -> bool:
 
 def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
     """Problems that need the values in SI: coincident points of a link, impossible inertia."""
-    import math
-
     out = []
     for name, link in spec.links.items():
         local: dict[str, tuple[float, float]] = {}
@@ -254,8 +253,6 @@ def _machine_checks(spec: Spec, src: Source) -> list[Problem]:
 
 def _load_checks(spec: Spec, src: Source) -> list[Problem]:
     """Values of the external loads in SI: tables that increase, a workpiece of positive height."""
-    import math
-
     out = []
     first = spec.joints.get(spec.drives[0].joint) if spec.drives else None
     for name, load in spec.loads.items():
