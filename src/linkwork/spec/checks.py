@@ -131,7 +131,8 @@ def _check_ends(bad: Report, path: Path, link: dict[str, Any]) -> None:
 
 
 def _check_joint(bad: Report, jname: str, joint: dict[str, Any], known: set[str], points: dict[str, set[str]]) -> None:
-    path = ("joints", jname)
+    """A joint's name and links (known, at least two, each once), and its point on each of them."""
+    path: Path = ("joints", jname)
     if not NAME.match(jname):
         bad(path, f'"{jname}" is not a valid joint name (letters, digits, _)')
     names = joint.get("links")
@@ -151,30 +152,51 @@ def _check_joint(bad: Report, jname: str, joint: dict[str, Any], known: set[str]
     if not isinstance(point, str):
         return
     if kind == "revolute":
-        for key in ("through", "axis"):
-            if key in joint:
-                bad(path + (key,), f'"{key}" applies to prismatic and pin-in-slot joints only')
-        for ln in names:
-            if isinstance(ln, str) and ln in points and point not in points[ln]:
-                where = "the frame" if ln == FRAME else f'link "{ln}"'
-                bad(path, f'{where} has no point "{point}" for this joint{suggest(point, points[ln])}')
+        _check_revolute(bad, path, joint, names, point, points)
     elif kind in ("prismatic", "pin-in-slot"):
-        if len(names) != 2:
-            bad(path + ("links",), f"a {kind} joint joins exactly two links: [guide, slider], got {len(names)}")
-            return
-        guide, slider = names
-        if isinstance(slider, str) and slider in points and point not in points[slider]:
-            role = "slider" if kind == "prismatic" else "pin link"
-            bad(path, f'the {role} "{slider}" has no point "{point}"{suggest(point, points[slider])}')
-        for key, what in (("axis", "direction of the guide line"), ("through", "a point of the guide line")):
-            if joint.get(key) is None:
-                bad(path, f'missing field "{key}" ({what})')
-        through = joint.get("through")
-        if isinstance(through, str) and isinstance(guide, str) and guide in points and through not in points[guide]:
-            where = "the frame" if guide == FRAME else f'the guide link "{guide}"'
-            bad(path + ("through",), f'{where} has no point "{through}"{suggest(through, points[guide])}')
-        if guide == FRAME and slider == FRAME:
-            bad(path + ("links",), "a joint cannot join the frame to itself")
+        _check_sliding(bad, path, joint, kind, names, point, points)
+
+
+def _check_revolute(
+    bad: Report, path: Path, joint: dict[str, Any], names: list[Any], point: str, points: dict[str, set[str]]
+) -> None:
+    """A revolute joint: no guide line, and its ``point`` on every link it joins."""
+    for key in ("through", "axis"):
+        if key in joint:
+            bad(path + (key,), f'"{key}" applies to prismatic and pin-in-slot joints only')
+    for ln in names:
+        if isinstance(ln, str) and ln in points and point not in points[ln]:
+            where = "the frame" if ln == FRAME else f'link "{ln}"'
+            bad(path, f'{where} has no point "{point}" for this joint{suggest(point, points[ln])}')
+
+
+def _check_sliding(
+    bad: Report,
+    path: Path,
+    joint: dict[str, Any],
+    kind: str,
+    names: list[Any],
+    point: str,
+    points: dict[str, set[str]],
+) -> None:
+    """A prismatic or pin-in-slot joint: a guide and a slider, its ``point`` on the slider, a guide line
+    ``through`` a point of the guide along ``axis``."""
+    if len(names) != 2:
+        bad(path + ("links",), f"a {kind} joint joins exactly two links: [guide, slider], got {len(names)}")
+        return
+    guide, slider = names
+    if isinstance(slider, str) and slider in points and point not in points[slider]:
+        role = "slider" if kind == "prismatic" else "pin link"
+        bad(path, f'the {role} "{slider}" has no point "{point}"{suggest(point, points[slider])}')
+    for key, what in (("axis", "direction of the guide line"), ("through", "a point of the guide line")):
+        if joint.get(key) is None:
+            bad(path, f'missing field "{key}" ({what})')
+    through = joint.get("through")
+    if isinstance(through, str) and isinstance(guide, str) and guide in points and through not in points[guide]:
+        where = "the frame" if guide == FRAME else f'the guide link "{guide}"'
+        bad(path + ("through",), f'{where} has no point "{through}"{suggest(through, points[guide])}')
+    if guide == FRAME and slider == FRAME:
+        bad(path + ("links",), "a joint cannot join the frame to itself")
 
 
 def _check_connected(bad: Report, links: dict[str, Any], joints: dict[str, Any], known: set[str]) -> None:
