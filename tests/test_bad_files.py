@@ -74,6 +74,8 @@ def test_spec_error_collects_every_problem_in_one_pass():
         ("name: x\nlinks: {a: {ends: [O, A], length: 1e300}}\n", "(out of range)"),
         ('name: x\nlinks: {a: {ends: [O, A], length: "10**10**9 mm"}}\n', "write a number and a unit"),
         ("name: x\njoints: {J: {type: revolute, links: 5}}\n", "joints.J.links: expected a list, got 5"),
+        ("name: x\nloads: {L: {type: [1]}}\n", "loads.L.type: expected one of force, moment, process, friction"),
+        ("name: x\nmachine: {motor: {type: [1]}}\n", "machine.motor.type: expected one of constant, linear"),
     ],
 )
 def test_hostile_files_give_messages_not_tracebacks(tmp_path, text, message):
@@ -82,6 +84,20 @@ def test_hostile_files_give_messages_not_tracebacks(tmp_path, text, message):
     result = CliRunner().invoke(app, ["check", str(path)])
     assert result.exit_code == 2
     assert message in result.stderr
+    assert "Traceback" not in result.output
+
+
+@pytest.mark.parametrize("ends", ["[]", "[A]"])
+def test_a_link_of_fewer_than_two_ends_is_a_message_not_a_traceback(tmp_path, ends):
+    """A file the schema accepts whose link has fewer than two ``ends``: the checks that need SI values
+    (coincident points) must not index the missing end."""
+    from linkwork.examples import text
+
+    path = tmp_path / "bad.yaml"
+    path.write_text(text("four-bar").replace("ends: [O2, A]", f"ends: {ends}"), encoding="utf-8")
+    result = CliRunner().invoke(app, ["check", str(path)])
+    assert result.exit_code == 2, result.output
+    assert "links.crank.ends: expected two point names" in result.stderr
     assert "Traceback" not in result.output
 
 

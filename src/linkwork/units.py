@@ -87,7 +87,7 @@ def registry() -> Any:
     """The shared pint unit registry (built on first use)."""
     import pint
 
-    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    ureg: Any = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     ureg.define("rev = revolution")
     return ureg
 
@@ -227,31 +227,43 @@ def parse_quantity(value: Any, kind: str, declared: dict[str, str] | None = None
     """
     declared = declared or DEFAULT_UNITS
     phrase = KINDS[kind][0]
-    if isinstance(value, bool) or value is None:
+    if isinstance(value, bool) or value is None or not isinstance(value, int | float | str):
         raise UnitParseError(f"expected {phrase}, got {_show(value)}")
     if isinstance(value, int | float):
-        try:
-            number = float(value)
-        except OverflowError:
-            raise UnitParseError(f"expected {phrase}, got a number too large to use") from None
-        if not math.isfinite(number):
-            raise UnitParseError(f"expected {phrase}, got {value!r}")
-        unit = bare_unit(kind, declared)
-        if unit is None and number == 0:
-            return 0.0  # zero in any unit
-        if unit is None:
-            raise UnitParseError(_needs_unit(number, kind, declared))
-        return number * _factor(unit, kind)
-    if not isinstance(value, str):
-        raise UnitParseError(f"expected {phrase}, got {_show(value)}")
-    text = value.strip()
+        return _bare(value, kind, declared)
+    number = _number(value)
+    return _with_unit(value, kind) if number is None else _bare(number, kind, declared)
+
+
+def _number(text: str) -> float | None:
+    """``text`` as a plain number (a bare number written as a string), or None."""
     try:
-        number = float(text)
+        return float(text.strip())
     except ValueError:
-        pass
-    else:
-        return parse_quantity(number, kind, declared)
-    match = _NUMBER_UNIT.match(text)
+        return None
+
+
+def _bare(value: float, kind: str, declared: dict[str, str]) -> float:
+    """A bare number of ``kind`` in SI, read in :func:`bare_unit`; raises UnitParseError."""
+    phrase = KINDS[kind][0]
+    try:
+        number = float(value)
+    except OverflowError:
+        raise UnitParseError(f"expected {phrase}, got a number too large to use") from None
+    if not math.isfinite(number):
+        raise UnitParseError(f"expected {phrase}, got {value!r}")
+    unit = bare_unit(kind, declared)
+    if unit is None and number == 0:
+        return 0.0  # zero in any unit
+    if unit is None:
+        raise UnitParseError(_needs_unit(number, kind, declared))
+    return number * _factor(unit, kind)
+
+
+def _with_unit(value: str, kind: str) -> float:
+    """A number with its unit (``"100 mm"``) of ``kind`` in SI; raises UnitParseError."""
+    phrase = KINDS[kind][0]
+    match = _NUMBER_UNIT.match(value.strip())
     if match is None:
         raise UnitParseError(f'expected {phrase}, got {_quote(value)} (write a number and a unit, e.g. "100 mm")')
     number, unit = float(match.group(1)), match.group(2)

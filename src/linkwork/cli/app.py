@@ -11,9 +11,12 @@ from __future__ import annotations
 
 import math
 import sys
-from typing import TYPE_CHECKING, Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any, NoReturn
 
 import typer
+
+from linkwork.errors import LinkworkError, MissingDependencyError
+from linkwork.optional import require
 
 app = typer.Typer(
     name="linkwork",
@@ -28,10 +31,14 @@ if TYPE_CHECKING:
     from rich.console import Console
     from rich.table import Table
 
+    from linkwork.motion.drive_range import DriveRange
+    from linkwork.spec.values import ValueRead
+    from linkwork.structure.model import Mechanism
+
 FileOrExample = Annotated[str, typer.Argument(help="a mechanism file (.yaml) or the name of a bundled example")]
 
 
-def fail(exc: Exception) -> None:
+def fail(exc: Exception) -> NoReturn:
     """Print a linkwork error to stderr and exit with code 2."""
     sys.stderr.write(f"error: {exc}\n" if "\n" not in str(exc) else f"error:\n{exc}\n")
     raise typer.Exit(2)
@@ -39,9 +46,6 @@ def fail(exc: Exception) -> None:
 
 def needs(*modules: str, purpose: str) -> None:
     """Exit with the one-line message of :func:`linkwork.optional.require` unless ``modules`` import."""
-    from linkwork.errors import MissingDependencyError
-    from linkwork.optional import require
-
     try:
         require(*modules, purpose=purpose)
     except MissingDependencyError as exc:
@@ -122,9 +126,9 @@ def _parts(out: Console, tab: Table, keep: int) -> list[Table]:
     return [part(head + cols, tab.title if i == 0 else None) for i, cols in enumerate(parts)]
 
 
-def _compile(file_or_example: str) -> Any:
+def _compile(file_or_example: str) -> Mechanism:
+    """The compiled mechanism of a file or a bundled example; its problems printed, exit code 2."""
     from linkwork.api import compile
-    from linkwork.errors import LinkworkError
     from linkwork.examples import resolve
 
     try:
@@ -144,7 +148,6 @@ def check(
     """Validate a mechanism and print its structure (DOF, redundant constraints, Assur groups) and the range
     of its drive over which it assembles (Grashof's class for a four-bar)."""
     from linkwork.api import compile
-    from linkwork.errors import LinkworkError
     from linkwork.examples import resolve
     from linkwork.motion.drive_range import drive_range
     from linkwork.spec.values import values_read
@@ -155,7 +158,8 @@ def check(
     except LinkworkError as exc:
         fail(exc)
     reach = drive_range(mech)
-    warnings = [*mech.structure.warnings, *([reach.warning()] if reach is not None and reach.warning() else [])]
+    note = reach.warning() if reach is not None else None
+    warnings = [*mech.structure.warnings, *([note] if note else [])]
     read = values_read(spec) if values else None
     if as_json:
         out = {"name": mech.name, **mech.structure.as_dict(), "drives": _drives(mech)}
@@ -170,7 +174,8 @@ def check(
         _print_values(read)
 
 
-def _drives(mech: Any) -> list[dict[str, Any]]:
+def _drives(mech: Mechanism) -> list[dict[str, Any]]:
+    """Each drive of ``mech``: its joint, its type, its speed and its value in the assembly pose, SI."""
     from linkwork.structure.model import PairType
 
     out = []
@@ -189,7 +194,8 @@ def _drives(mech: Any) -> list[dict[str, Any]]:
     return out
 
 
-def _print_structure(mech: Any, reach: Any, warnings: list[str]) -> None:
+def _print_structure(mech: Mechanism, reach: DriveRange | None, warnings: list[str]) -> None:
+    """The report of ``linkwork check``: the structure, the drives, the Assur groups, the drive's range."""
     from rich.markup import escape
 
     s = mech.structure
@@ -236,7 +242,8 @@ def _print_structure(mech: Any, reach: Any, warnings: list[str]) -> None:
         console.print(f"  [yellow]warning:[/yellow] {escape(w)}")
 
 
-def _print_values(read: list[Any]) -> None:
+def _print_values(read: list[ValueRead]) -> None:
+    """The table of every value read from the file (``linkwork check --values``)."""
     from rich.markup import escape
 
     table = make_table("Values read from the file, in SI")
@@ -270,7 +277,6 @@ def examples() -> None:
 @app.command()
 def example(name: Annotated[str, typer.Argument(help="name of a bundled example")]) -> None:
     """Print a bundled example as YAML (a starting point for your own file)."""
-    from linkwork.errors import LinkworkError
     from linkwork.examples import text
 
     try:

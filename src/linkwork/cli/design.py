@@ -3,11 +3,16 @@
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any
+import warnings
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, app, echo_json, fail, needs
+from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, needs
+from linkwork.errors import DesignError, DesignWarning, LinkworkError
+
+if TYPE_CHECKING:
+    from linkwork.design.sweep import SweepTable
 
 Vary = Annotated[
     list[str],
@@ -32,16 +37,11 @@ def _show(value: float, unit: str) -> str:
 def parameters(file_or_example: FileOrExample) -> None:
     """List the named parameters (dimensions, masses, moments of inertia) a sweep may vary, with the file's
     values in the file's units (the units in which bare numbers of --vary are read)."""
-    from linkwork.design.plan import in_file_units
-    from linkwork.design.sweep import _declared, _source
-    from linkwork.errors import LinkworkError
+    from linkwork.design.plan import file_units, in_file_units
     from linkwork.structure.parameters import parameter_list
 
-    try:
-        mech, spec = _source(file_or_example)
-    except LinkworkError as exc:
-        fail(exc)
-    declared = _declared(spec)
+    mech = _compile(file_or_example)
+    declared = file_units(mech.spec)
     for p in parameter_list(mech):
         shown, unit = in_file_units(p.value, p.kind, declared)
         note = f"  ({p.note})" if p.note and p.kind == "inertia" and not p.note.endswith("centre of mass") else ""
@@ -52,17 +52,11 @@ class _Warnings:
     """Design warnings raised inside, printed as one line each on stderr."""
 
     def __enter__(self) -> None:
-        import warnings
-
         self.catcher = warnings.catch_warnings(record=True)
         self.caught = self.catcher.__enter__()
-        from linkwork.errors import DesignWarning
-
         warnings.simplefilter("always", DesignWarning)
 
     def __exit__(self, *exc: Any) -> None:
-        from linkwork.errors import DesignWarning
-
         self.catcher.__exit__(*exc)
         for w in self.caught:
             if issubclass(w.category, DesignWarning):
@@ -106,7 +100,6 @@ def sweep(
     """
     from linkwork.design.store import parts_dir
     from linkwork.design.sweep import sweep as run
-    from linkwork.errors import DesignError, LinkworkError
 
     if scheduler is not None or (workers or 0) > 0:
         needs("distributed", purpose="a sweep on Dask (--workers, --scheduler)")
@@ -128,18 +121,26 @@ def sweep(
     except OSError as exc:
         where = f"the Dask scheduler at {scheduler}" if scheduler is not None else f'"{out}"'
         fail(LinkworkError(f"{where}: {exc}"))
+    _print_sweep(table, steps, out)
+
+
+def _print_sweep(table: SweepTable, steps: int, out: str) -> None:
+    """What a sweep wrote: a line per metric with its smallest and largest value and their variants, or
+    why it has none."""
+    import numpy as np
+
     typer.echo(f"{table.meta['mechanism']}: {len(table)} variants x {steps} angles -> {out}")
+    variant = table.columns["variant"]
     for name in table.meta["metrics"]:
         values = table.columns[name]
-        ok = values[~_isnan(values)]
-        if len(ok) == 0:
+        if np.isnan(values).all():
             typer.echo(f"  {name:28s} {_why_none(table.columns)}")
             continue
         unit = table.units[name]
-        lo, hi = int(_nanarg(values, min)), int(_nanarg(values, max))
+        lo, hi = int(np.nanargmin(values)), int(np.nanargmax(values))
         typer.echo(
-            f"  {name:28s} min {_show(float(values[lo]), unit)} (variant {table.columns['variant'][lo]}), "
-            f"max {_show(float(values[hi]), unit)} (variant {table.columns['variant'][hi]})"
+            f"  {name:28s} min {_show(float(values[lo]), unit)} (variant {variant[lo]}), "
+            f"max {_show(float(values[hi]), unit)} (variant {variant[hi]})"
         )
 
 
@@ -151,18 +152,6 @@ def _why_none(columns: dict[str, Any]) -> str:
     if n == 0:
         return "no variant assembles over the whole turn"
     return f"no value in any variant, though {n} assemble over the whole turn"
-
-
-def _isnan(values: Any) -> Any:
-    import numpy as np
-
-    return np.isnan(values)
-
-
-def _nanarg(values: Any, which: Any) -> int:
-    import numpy as np
-
-    return int(np.nanargmin(values) if which is min else np.nanargmax(values))
 
 
 @app.command()
@@ -186,7 +175,6 @@ def optimize(
 ) -> None:
     """The best design in the ranges (differential evolution over the whole population at once)."""
     from linkwork.design.optimize import optimize as run
-    from linkwork.errors import DesignError, LinkworkError
 
     if out is not None and not out.endswith((".yaml", ".yml")):
         fail(LinkworkError(f'--out "{out}": expected a .yaml file'))

@@ -15,9 +15,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+from linkwork.kinetostatics.forces import Forces, forces_of
+from linkwork.motion.kinematics import Kinematics, kinematics
+from linkwork.structure.model import Mechanism
+
+if TYPE_CHECKING:
+    from linkwork.design.metrics import MetricRequest
 
 
 @dataclass
@@ -30,13 +37,11 @@ class Evaluation:
         With a variant axis: ``(V, A, ...)``.
     """
 
-    kin: Any
+    kin: Kinematics
 
     @cached_property
-    def forces(self) -> Any:
+    def forces(self) -> Forces:
         """The :class:`~linkwork.kinetostatics.Forces` of the variants."""
-        from linkwork.kinetostatics import forces_of
-
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             return forces_of(self.kin)
 
@@ -55,7 +60,7 @@ class Evaluation:
 
 
 def evaluate(
-    mech: Any, paths: list[str], values: np.ndarray, requests: list[Any], steps: int = 360
+    mech: Mechanism, paths: list[str], values: np.ndarray, requests: list[MetricRequest], steps: int = 360
 ) -> dict[str, np.ndarray]:
     """Metrics of a batch of variants.
 
@@ -76,8 +81,6 @@ def evaluate(
         Column name -> ``(V,)`` float array; NaN in every metric but ``assembles`` for a variant
         that does not assemble at every angle.
     """
-    from linkwork.motion import kinematics
-
     values = np.asarray(values, dtype=float).reshape(len(values), len(paths))
     overrides = {path: values[:, j] for j, path in enumerate(paths)}
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):

@@ -14,10 +14,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
+from linkwork.design.evaluate import Evaluation
+from linkwork.errors import DesignError
+from linkwork.kinetostatics.external import ExternalLoad
 from linkwork.motion.analysis import (
     DYADS,
     Output,
@@ -29,7 +31,8 @@ from linkwork.motion.analysis import (
     slopes,
     transmission,
 )
-from linkwork.structure.model import one_crank
+from linkwork.spec.checks import suggest
+from linkwork.structure.model import Mechanism, one_crank
 
 
 @dataclass(frozen=True)
@@ -56,12 +59,12 @@ class Metric:
     unit: str
     kind: str | None
     forces: bool
-    compute: Callable[[Any, str | None], np.ndarray]
-    applies: Callable[[Any, str | None], str | None]
+    compute: Callable[[Evaluation, str | None], np.ndarray]
+    applies: Callable[[Mechanism, str | None], str | None]
     doc: str
 
 
-def _output(mech: Any, arg: str | None, kind: str) -> Output | str:
+def _output(mech: Mechanism, arg: str | None, kind: str) -> Output | str:
     """The slider (its prismatic joint ``arg``) or rocker (its link ``arg``), or the first; a message if none."""
     found = find_output(mech, arg, kind)
     if found is not None:
@@ -73,8 +76,6 @@ def _output(mech: Any, arg: str | None, kind: str) -> Output | str:
             if kind == "slider"
             else "the mechanism has no link pivoted on the frame besides the crank"
         )
-    from linkwork.spec.checks import suggest
-
     if kind == "slider":
         return f'no slider on a frame guide in joint "{arg}"{suggest(arg, names)}' + (
             f"; the sliders' joints are: {', '.join(names)}" if names else ""
@@ -84,20 +85,20 @@ def _output(mech: Any, arg: str | None, kind: str) -> Output | str:
     )
 
 
-def _one_revolute_drive(mech: Any) -> str | None:
+def _one_revolute_drive(mech: Mechanism) -> str | None:
     return None if one_crank(mech) else "it needs one revolute drive turning a whole cycle"
 
 
 # ---------------------------------------------------------------- strokes, swings, time ratios
 
 
-def _range(ev: Any, arg: str | None, kind: str) -> Range:
+def _range(ev: Evaluation, arg: str | None, kind: str) -> Range:
     out = _output(ev.kin.mechanism, arg, kind)
     assert isinstance(out, Output)  # parse_metrics refused the metric otherwise
     return output_range(ev.kin, out)
 
 
-def _either(ev: Any, arg: str | None) -> Range:
+def _either(ev: Evaluation, arg: str | None) -> Range:
     """The range of the slider ``arg`` (a prismatic joint), else of the rocker ``arg``; default the first slider,
     else the first rocker."""
     mech = ev.kin.mechanism
@@ -105,31 +106,31 @@ def _either(ev: Any, arg: str | None) -> Range:
     return output_range(ev.kin, slider) if slider is not None else _range(ev, arg, "rocker")
 
 
-def _stroke(ev: Any, arg: str | None) -> np.ndarray:
+def _stroke(ev: Evaluation, arg: str | None) -> np.ndarray:
     return _range(ev, arg, "slider").stroke
 
 
-def _swing(ev: Any, arg: str | None) -> np.ndarray:
+def _swing(ev: Evaluation, arg: str | None) -> np.ndarray:
     return _range(ev, arg, "rocker").stroke
 
 
-def _time_ratio(ev: Any, arg: str | None) -> np.ndarray:
+def _time_ratio(ev: Evaluation, arg: str | None) -> np.ndarray:
     return _either(ev, arg).time_ratio
 
 
-def _forward_time_ratio(ev: Any, arg: str | None) -> np.ndarray:
+def _forward_time_ratio(ev: Evaluation, arg: str | None) -> np.ndarray:
     return _either(ev, arg).forward_time_ratio
 
 
-def _applies(kind: str) -> Callable[[Any, str | None], str | None]:
-    def applies(mech: Any, arg: str | None) -> str | None:
+def _applies(kind: str) -> Callable[[Mechanism, str | None], str | None]:
+    def applies(mech: Mechanism, arg: str | None) -> str | None:
         out = _output(mech, arg, kind)
         return out if isinstance(out, str) else _one_revolute_drive(mech)
 
     return applies
 
 
-def _applies_time_ratio(mech: Any, arg: str | None) -> str | None:
+def _applies_time_ratio(mech: Mechanism, arg: str | None) -> str | None:
     if find_output(mech, arg, "slider") is not None or (arg is not None and arg in mech.pair_joint):
         return _applies("slider")(mech, arg)
     if arg is None and find_output(mech, None, "rocker") is None:
@@ -140,12 +141,12 @@ def _applies_time_ratio(mech: Any, arg: str | None) -> str | None:
 # ---------------------------------------------------------------- transmission
 
 
-def _min_transmission(ev: Any, arg: str | None) -> np.ndarray:
+def _min_transmission(ev: Evaluation, arg: str | None) -> np.ndarray:
     angles = np.stack(list(transmission(ev.kin).values()))  # (dyads, V, A)
     return np.min(angles, axis=(0, 2))
 
 
-def _applies_transmission(mech: Any, arg: str | None) -> str | None:
+def _applies_transmission(mech: Mechanism, arg: str | None) -> str | None:
     if any(step.kind in DYADS for step in mech.program):
         return None
     return "the mechanism has no dyad solved in closed form (RRR, RRP, PRP, RPR)"
@@ -161,16 +162,16 @@ def _finite_max(values: np.ndarray) -> np.ndarray:
     return np.where(finite.any(axis=1), top, np.nan)
 
 
-def _peak_torque(ev: Any, arg: str | None) -> np.ndarray:
+def _peak_torque(ev: Evaluation, arg: str | None) -> np.ndarray:
     return _finite_max(np.abs(ev.driving_torque))
 
 
-def _peak_foundation(ev: Any, arg: str | None) -> np.ndarray:
+def _peak_foundation(ev: Evaluation, arg: str | None) -> np.ndarray:
     f = ev.foundation
     return _finite_max(np.hypot(f[..., 0], f[..., 1]))
 
 
-def _applies_forces(mech: Any, arg: str | None) -> str | None:
+def _applies_forces(mech: Mechanism, arg: str | None) -> str | None:
     if mech.structure.redundant:
         return "the mechanism has redundant constraints: its reactions are statically indeterminate"
     if mech.n_drives != 1:
@@ -181,7 +182,7 @@ def _applies_forces(mech: Any, arg: str | None) -> str | None:
 # ---------------------------------------------------------------- knives
 
 
-def _knives(mech: Any, arg: str | None) -> Any:
+def _knives(mech: Mechanism, arg: str | None) -> ExternalLoad | str:
     """The process load with two tools (named ``arg``, or the first); a message if there is none."""
     loads = [load for load in mech.loads if load.kind == "process" and len(load.points) == 2]
     if arg is not None:
@@ -192,44 +193,45 @@ def _knives(mech: Any, arg: str | None) -> Any:
     return loads[0]
 
 
-def _gap(ev: Any, arg: str | None) -> Range:
+def _gap(ev: Evaluation, arg: str | None) -> Range:
     """Extremes of the gap between the two tools along the load's axis (positive while open), m."""
     kin = ev.kin
     load = _knives(kin.mechanism, arg)
+    assert isinstance(load, ExternalLoad)  # parse_metrics refused the metric otherwise
     one, two = (kin._point(kin.mechanism.point_names[p]) for p in load.points[:2])
     gap, rate, accel = (np.sum((x1 - x2) * np.asarray(load.vector), axis=-1) for x1, x2 in zip(one, two, strict=True))
     return sampled_range(gap, kin.angles, slopes(kin, rate, accel))
 
 
-def _overlap(ev: Any, arg: str | None) -> np.ndarray:
+def _overlap(ev: Evaluation, arg: str | None) -> np.ndarray:
     return -_gap(ev, arg).low
 
 
-def _clearance(ev: Any, arg: str | None) -> np.ndarray:
+def _clearance(ev: Evaluation, arg: str | None) -> np.ndarray:
     return _gap(ev, arg).high
 
 
-def _applies_knives(mech: Any, arg: str | None) -> str | None:
+def _applies_knives(mech: Mechanism, arg: str | None) -> str | None:
     load = _knives(mech, arg)
     return load if isinstance(load, str) else None
 
 
-def _working_ratio(ev: Any, arg: str | None) -> np.ndarray:
+def _working_ratio(ev: Evaluation, arg: str | None) -> np.ndarray:
     """Time of the working stroke (the tools closing: their gap falling) over that of the return stroke."""
     gap = _gap(ev, arg)
     with np.errstate(divide="ignore", invalid="ignore"):
         return gap.falling / gap.rising
 
 
-def _applies_working_ratio(mech: Any, arg: str | None) -> str | None:
+def _applies_working_ratio(mech: Mechanism, arg: str | None) -> str | None:
     return _applies_knives(mech, arg) or _one_revolute_drive(mech)
 
 
-def _assembles(ev: Any, arg: str | None) -> np.ndarray:
+def _assembles(ev: Evaluation, arg: str | None) -> np.ndarray:
     return ev.kin.valid_all.all(axis=1).astype(float)
 
 
-def _always(mech: Any, arg: str | None) -> str | None:
+def _always(mech: Mechanism, arg: str | None) -> str | None:
     return None
 
 
@@ -363,11 +365,8 @@ class MetricRequest:
     arg: str | None
 
 
-def parse_metrics(names: list[str], mech: Any) -> list[MetricRequest]:
+def parse_metrics(names: list[str], mech: Mechanism) -> list[MetricRequest]:
     """Read metric names (``NAME`` or ``NAME:ARG``); raises DesignError listing every problem."""
-    from linkwork.errors import DesignError
-    from linkwork.spec.checks import suggest
-
     problems: list[str] = []
     out: list[MetricRequest] = []
     for text in names:

@@ -13,18 +13,23 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from linkwork.api import MechanismLike, mechanism_of
 from linkwork.design.evaluate import evaluate
-from linkwork.design.metrics import MetricRequest, parse_metrics
-from linkwork.design.plan import Vary
-from linkwork.design.sweep import SweepTable, _declared, _source, _varies
-from linkwork.errors import DesignError
-from linkwork.units import KINDS
+from linkwork.design.metrics import METRICS, MetricRequest, parse_metrics
+from linkwork.design.plan import Ranges, Vary, file_units, read_varies
+from linkwork.design.store import cannot_write
+from linkwork.design.sweep import Columns, SweepTable
+from linkwork.errors import DesignError, UnitParseError
+from linkwork.structure.model import Mechanism
+from linkwork.structure.parameters import parameter, write_file
+from linkwork.units import KINDS, parse_quantity
 
 
 @dataclass(frozen=True)
@@ -46,12 +51,8 @@ class Constraint:
 _CONSTRAINT = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_:.\-]*)\s*(>=|<=|>|<)\s*(.+?)\s*$")
 
 
-def parse_constraints(texts: list[str], mech: Any, declared: dict[str, str]) -> list[Constraint]:
+def parse_constraints(texts: list[str], mech: Mechanism, declared: dict[str, str]) -> list[Constraint]:
     """Read ``"METRIC>=VALUE"`` / ``"METRIC<=VALUE"`` (VALUE with a unit, or in the file's units)."""
-    from linkwork.design.metrics import METRICS
-    from linkwork.errors import UnitParseError
-    from linkwork.units import parse_quantity
-
     problems, out = [], []
     for text in texts:
         m = _CONSTRAINT.match(text)
@@ -141,13 +142,13 @@ class Optimum:
 
 
 def optimize(
-    mechanism: Any,
-    vary: Any,
+    mechanism: MechanismLike,
+    vary: Ranges,
     objective: str,
-    constraints: list[str] = (),  # type: ignore[assignment]
+    constraints: Sequence[str] = (),
     *,
     maximize: bool = False,
-    metrics: list[str] = (),  # type: ignore[assignment]
+    metrics: Sequence[str] = (),
     steps: int = 360,
     seed: int = 0,
     popsize: int = 15,
@@ -184,83 +185,212 @@ def optimize(
     -------
     Optimum
     """
-    from scipy.optimize import NonlinearConstraint, differential_evolution
+    mech = mechanism_of(mechanism, "mechanism")
+    problem = _Problem.of(mech, vary, objective, constraints, metrics, maximize, steps, out)
+    designs = _Designs(problem)
+    start = np.array([parameter(problem.mech, p).value for p in problem.paths])
+    lo, hi = np.array(problem.bounds).T
+    inside = bool(np.all((start >= lo) & (start <= hi)))
+    result = _run(problem, designs, start if inside else None, seed=seed, popsize=popsize, maxiter=maxiter, tol=tol)
+    best = np.atleast_1d(result.x)
+    row = evaluate(problem.mech, problem.paths, best[None], problem.requests, problem.steps)
+    initial = {}
+    if inside:
+        initial = _first(evaluate(problem.mech, problem.paths, start[None], problem.requests, problem.steps))
+    written = _write(problem, best, out) if out is not None else None
+    return Optimum(
+        values=dict(zip(problem.paths, best.tolist(), strict=True)),
+        metrics=_first(row),
+        units=problem.units,
+        objective=objective,
+        feasible=bool(problem.violation(row)[0] == 0),
+        initial=initial,
+        evaluations=designs.count,
+        generations=int(getattr(result, "nit", 0)),
+        message=str(result.message),
+        out=written,
+        converged=bool(result.success),
+        evaluated=designs.table(),
+    )
 
-    mech, spec = _source(mechanism)
-    problems: list[str] = []
-    varies: list[Vary] = []
-    cons: list[Constraint] = []
-    requests: list[MetricRequest] = []
-    try:
-        varies = _varies(vary, mech, spec, count_required=False)
-    except DesignError as exc:
-        problems += exc.problems
-    try:
-        cons = parse_constraints(list(constraints), mech, _declared(spec))
-    except DesignError as exc:
-        problems += exc.problems
-    names = [objective, *(c.column for c in cons), *metrics, "assembles"]
-    try:
-        requests = parse_metrics(list(dict.fromkeys(names)), mech)
-    except DesignError as exc:
-        problems += exc.problems
-    for v in varies:
-        if v.start == v.stop:
-            problems.append(f'--vary "{v.path}": START equals STOP; nothing to optimise over')
-    if out is not None and spec is None:
-        problems.append("writing the optimised file needs the mechanism's description (a file, an example or a Spec)")
-    elif out is not None:
-        from linkwork.design.store import cannot_write
 
-        why = cannot_write(out)
-        if why:
-            problems.append(f'--out "{out}": {why}')
-    if problems:
-        raise DesignError(problems)
-    paths = [v.path for v in varies]
-    bounds = [(v.start, v.stop) for v in varies]
-    cache: dict[bytes, dict[str, float]] = {}
-    count = [0]
-    history: list[tuple[np.ndarray, dict[str, np.ndarray]]] = []
+# ---------------------------------------------------------------- the problem
 
-    def metrics_of(x: np.ndarray) -> list[dict[str, float]]:
-        pop = np.atleast_2d(np.asarray(x, dtype=float).T)  # (S, k)
-        keys = [row.tobytes() for row in pop]
-        new = [i for i, key in enumerate(keys) if key not in cache]
-        if new:
-            if len(cache) > 50_000:
-                cache.clear()
-            cols = evaluate(mech, paths, pop[new], requests, steps)
-            count[0] += len(new)
-            history.append((pop[new], cols))
-            for j, i in enumerate(new):
-                cache[keys[i]] = {c: float(v[j]) for c, v in cols.items()}
-        return [cache[key] for key in keys]
 
-    def violation(cols: dict[str, np.ndarray]) -> np.ndarray:
+@dataclass(frozen=True)
+class _Problem:
+    """An optimisation, read and checked.
+
+    Attributes
+    ----------
+    mech : Mechanism
+    varies : list of Vary
+        The ranges searched.
+    requests : list of MetricRequest
+        The objective, the constrained metrics, the others asked for and ``assembles``.
+    constraints : list of Constraint
+    objective : str
+    sign : float
+        1 to minimise the objective, -1 to maximise it.
+    steps : int
+    """
+
+    mech: Mechanism
+    varies: list[Vary]
+    requests: list[MetricRequest]
+    constraints: list[Constraint]
+    objective: str
+    sign: float
+    steps: int
+
+    @classmethod
+    def of(
+        cls,
+        mech: Mechanism,
+        vary: Ranges,
+        objective: str,
+        constraints: Sequence[str],
+        metrics: Sequence[str],
+        maximize: bool,
+        steps: int,
+        out: str | Path | None,
+    ) -> _Problem:
+        """Read the ranges, the constraints and the metrics; every problem of them and of ``out`` in one
+        :class:`DesignError`."""
+        problems: list[str] = []
+        varies: list[Vary] = []
+        cons: list[Constraint] = []
+        requests: list[MetricRequest] = []
+        try:
+            varies = read_varies(vary, mech, count_required=False, stacklevel=3)
+        except DesignError as exc:
+            problems += exc.problems
+        try:
+            cons = parse_constraints(list(constraints), mech, file_units(mech.spec))
+        except DesignError as exc:
+            problems += exc.problems
+        names = [objective, *(c.column for c in cons), *metrics, "assembles"]
+        try:
+            requests = parse_metrics(list(dict.fromkeys(names)), mech)
+        except DesignError as exc:
+            problems += exc.problems
+        problems += [
+            f'--vary "{v.path}": START equals STOP; nothing to optimise over' for v in varies if v.start == v.stop
+        ]
+        problems += _out_problems(mech, out)
+        if problems:
+            raise DesignError(problems)
+        return cls(mech, varies, requests, cons, objective, -1.0 if maximize else 1.0, steps)
+
+    @property
+    def paths(self) -> list[str]:
+        return [v.path for v in self.varies]
+
+    @property
+    def bounds(self) -> list[tuple[float, float]]:
+        return [(v.start, v.stop) for v in self.varies]
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The SI unit of each varied value and metric."""
+        return {v.path: KINDS[v.kind][1] for v in self.varies} | {r.column: r.metric.unit for r in self.requests}
+
+    def violation(self, cols: Mapping[str, np.ndarray]) -> np.ndarray:
         """Sum of the relative violations, (S,); a design that does not assemble violates by 1000."""
         total = 1e3 * (1.0 - np.asarray(cols["assembles"], dtype=float))
-        for c in cons:
+        for c in self.constraints:
             total = total + c.violation(np.asarray(cols[c.column], dtype=float))
         return total
 
-    def columns(rows: list[dict[str, float]]) -> dict[str, np.ndarray]:
-        return {name: np.array([r[name] for r in rows]) for name in rows[0]}
 
-    sign = -1.0 if maximize else 1.0
+def _out_problems(mech: Mechanism, out: str | Path | None) -> list[str]:
+    """What keeps the optimised file ``out`` from being written."""
+    if out is None:
+        return []
+    if mech.spec is None:
+        return ["writing the optimised file needs the mechanism's description (a file, an example or a Spec)"]
+    why = cannot_write(out)
+    return [f'--out "{out}": {why}'] if why else []
 
-    def fun(x: np.ndarray) -> np.ndarray:
-        rows = metrics_of(x)
-        f = sign * np.array([r[objective] for r in rows])
+
+# ---------------------------------------------------------------- the objective and the constraint
+
+
+@dataclass
+class _Designs:
+    """The designs evaluated for the optimiser, each once: its objective and constraint functions over a
+    population, and the table of every design evaluated, in order.
+
+    Attributes
+    ----------
+    problem : _Problem
+    cache : dict
+        The metrics of each design evaluated, by the bytes of its values (cleared past 50,000).
+    count : int
+        Designs evaluated.
+    history : list
+        ``(values (S, k), columns)`` of each batch evaluated.
+    """
+
+    problem: _Problem
+    cache: dict[bytes, dict[str, float]] = field(default_factory=dict)
+    count: int = 0
+    history: list[tuple[np.ndarray, Columns]] = field(default_factory=list)
+
+    def metrics_of(self, x: np.ndarray) -> list[dict[str, float]]:
+        """The metrics of the designs ``x``, ``(k, S)`` or ``(k,)`` as the optimiser gives them: one dict each."""
+        pop = np.atleast_2d(np.asarray(x, dtype=float).T)  # (S, k)
+        keys = [row.tobytes() for row in pop]
+        new = [i for i, key in enumerate(keys) if key not in self.cache]
+        if new:
+            if len(self.cache) > 50_000:
+                self.cache.clear()
+            p = self.problem
+            cols = evaluate(p.mech, p.paths, pop[new], p.requests, p.steps)
+            self.count += len(new)
+            self.history.append((pop[new], cols))
+            for j, i in enumerate(new):
+                self.cache[keys[i]] = {c: float(v[j]) for c, v in cols.items()}
+        return [self.cache[key] for key in keys]
+
+    def objective(self, x: np.ndarray) -> np.ndarray:
+        """The objective to minimise of the designs ``x``, ``(S,)``: 1e300 where it has no value."""
+        f = self.problem.sign * np.array([r[self.problem.objective] for r in self.metrics_of(x)])
         return np.where(np.isnan(f), 1e300, f)
 
-    start = np.array([_file_value(mech, p) for p in paths])
-    inside = bool(np.all((start >= [b[0] for b in bounds]) & (start <= [b[1] for b in bounds])))
+    def violation(self, x: np.ndarray) -> np.ndarray:
+        """The constraint of the designs ``x``: their sum of relative violations, ``(1, S)``, <= 0 to hold."""
+        rows = self.metrics_of(x)
+        return self.problem.violation({name: np.array([r[name] for r in rows]) for name in rows[0]})[None]
+
+    def table(self) -> SweepTable | None:
+        """Every design evaluated: ``variant``, the values, the metrics and ``violation``; None before any."""
+        if not self.history:
+            return None
+        p = self.problem
+        values = np.concatenate([h[0] for h in self.history])
+        cols = {"variant": np.arange(len(values), dtype=np.int64)}
+        cols.update({path: values[:, j] for j, path in enumerate(p.paths)})
+        for r in p.requests:
+            cols[r.column] = np.concatenate([h[1][r.column] for h in self.history])
+        cols["violation"] = p.violation(cols)
+        return SweepTable(cols, {"variant": "1", "violation": "1", **p.units}, {"objective": p.objective})
+
+
+# ---------------------------------------------------------------- the run, the result, the file
+
+
+def _run(
+    problem: _Problem, designs: _Designs, x0: np.ndarray | None, *, seed: int, popsize: int, maxiter: int, tol: float
+) -> Any:
+    """Differential evolution over the whole population at once, from ``x0`` where given: its result."""
+    from scipy.optimize import NonlinearConstraint, differential_evolution
+
     with np.errstate(invalid="ignore"):
-        result = differential_evolution(
-            fun,
-            bounds,
-            constraints=NonlinearConstraint(lambda x: violation(columns(metrics_of(x)))[None], -np.inf, 0.0),
+        return differential_evolution(
+            designs.objective,
+            problem.bounds,
+            constraints=NonlinearConstraint(designs.violation, -np.inf, 0.0),
             vectorized=True,
             updating="deferred",
             rng=seed,
@@ -268,50 +398,19 @@ def optimize(
             maxiter=maxiter,
             tol=tol,
             polish=False,
-            x0=start if inside else None,
+            x0=x0,
         )
-    best = np.atleast_1d(result.x)
-    row = evaluate(mech, paths, best[None], requests, steps)
-    found = {c: float(v[0]) for c, v in row.items()}
-    initial = {}
-    if inside:
-        initial = {c: float(v[0]) for c, v in evaluate(mech, paths, start[None], requests, steps).items()}
-    feasible = bool(violation(row)[0] == 0)
-    units = {v.path: KINDS[v.kind][1] for v in varies} | {r.column: r.metric.unit for r in requests}
-    written = None
-    if out is not None:
-        from linkwork.structure.parameters import write_file
-
-        try:
-            written = write_file(mech, dict(zip(paths, best.tolist(), strict=True)), out)
-        except OSError as exc:
-            raise DesignError([f'--out "{out}": cannot write ({exc})']) from None
-    table = None
-    if history:
-        values = np.concatenate([h[0] for h in history])
-        cols = {"variant": np.arange(len(values), dtype=np.int64)}
-        cols.update({p: values[:, j] for j, p in enumerate(paths)})
-        for r in requests:
-            cols[r.column] = np.concatenate([h[1][r.column] for h in history])
-        cols["violation"] = violation(cols)
-        table = SweepTable(cols, {"variant": "1", "violation": "1", **units}, {"objective": objective})
-    return Optimum(
-        dict(zip(paths, best.tolist(), strict=True)),
-        found,
-        units,
-        objective,
-        feasible,
-        initial,
-        count[0],
-        int(getattr(result, "nit", 0)),
-        str(result.message),
-        out=written,
-        evaluated=table,
-        converged=bool(result.success),
-    )
 
 
-def _file_value(mech: Any, path: str) -> float:
-    from linkwork.structure.parameters import parameter
+def _first(cols: Columns) -> dict[str, float]:
+    """The first row of ``cols``."""
+    return {c: float(v[0]) for c, v in cols.items()}
 
-    return parameter(mech, path).value
+
+def _write(problem: _Problem, best: np.ndarray, out: str | Path) -> Path:
+    """The mechanism file with the values ``best``, written to ``out``
+    (:func:`~linkwork.structure.parameters.write_file`)."""
+    try:
+        return write_file(problem.mech, dict(zip(problem.paths, best.tolist(), strict=True)), out)
+    except OSError as exc:
+        raise DesignError([f'--out "{out}": cannot write ({exc})']) from None

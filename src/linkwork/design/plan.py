@@ -12,16 +12,26 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from linkwork.errors import DesignError
-from linkwork.structure.parameters import parameter_list
+from linkwork.errors import DesignError, DesignWarning, UnitParseError
+from linkwork.spec.checks import suggest
+from linkwork.spec.schema import Spec
+from linkwork.structure.model import Mechanism
+from linkwork.structure.parameters import Parameter, parameter_list
+from linkwork.units import DEFAULT_UNITS, SI_UNITS, _factor, parse_quantity, unit_for
 
 #: How a plan samples its ranges.
 SAMPLINGS = ("grid", "random", "lhs")
+
+#: The ranges of a sweep as given: ``--vary`` texts ``PATH=START:STOP[:COUNT]``, or a dict
+#: ``path -> (start, stop[, count])`` (numbers in the file's units, or with units).
+Ranges = Mapping[str, Any] | Sequence[str]
 
 
 @dataclass(frozen=True)
@@ -55,15 +65,20 @@ class Vary:
         return {"path": self.path, "start": self.start, "stop": self.stop, "count": self.count, "kind": self.kind}
 
 
+def file_units(spec: Spec | None) -> dict[str, str]:
+    """The units bare numbers of the description ``spec`` are read in, by kind (SI without a description)."""
+    if spec is None:
+        return dict(SI_UNITS)
+    return {**DEFAULT_UNITS, **spec.units.model_dump(exclude_none=True)}
+
+
 def in_file_units(value: float, kind: str, declared: dict[str, str]) -> tuple[float, str]:
     """An SI value of ``kind`` in the file's unit of that kind: ``(value, unit)``."""
-    from linkwork.units import _factor, unit_for
-
     unit = unit_for(kind, declared)
     return value / _factor(unit, kind), unit
 
 
-def scale_warnings(varies: list[Vary], mech: Any, declared: dict[str, str]) -> list[str]:
+def scale_warnings(varies: list[Vary], mech: Mechanism, declared: dict[str, str]) -> list[str]:
     """One line for each range that lies wholly below 1/100 or above 100 times the file's value: most
     often a range written in other units than the file's (bare numbers are read in the file's units)."""
     known = {p.name: p.value for p in parameter_list(mech)}
@@ -92,23 +107,19 @@ _VARY = re.compile(r"^\s*([^=\s]+)\s*=\s*(.*)$")
 
 
 def parse_vary(
-    text: str, mech: Any, declared: dict[str, str], count_required: bool | None = True
+    text: str, mech: Mechanism, declared: dict[str, str], count_required: bool | None = True
 ) -> tuple[Vary | None, list[str]]:
     """Read ``PATH=START:STOP[:COUNT]``; returns the :class:`Vary` (or None) and the problems found.
 
     ``count_required``: True for a grid (COUNT needed), None for a random or Latin-hypercube sample
     (COUNT refused: ``samples`` gives the number of variants), False where it is ignored (optimisation).
     """
-    from linkwork.errors import UnitParseError
-    from linkwork.spec.checks import suggest
-    from linkwork.units import parse_quantity
-
-    problems: list[str] = []
     match = _VARY.match(text)
     if match is None:
         return None, [f'--vary "{text}": expected PATH=START:STOP:COUNT, e.g. "links.crank.length=90mm:110mm:50"']
     path, rest = match.group(1), match.group(2)
     known = {p.name: p for p in parameter_list(mech)}
+    problems: list[str] = []
     if path not in known:
         hint = suggest(path, known)
         problems.append(f'--vary "{text}": no parameter "{path}"{hint}; `linkwork parameters FILE` lists them')
@@ -118,47 +129,70 @@ def parse_vary(
         return None, problems
     param = known.get(path)
     kind = param.kind if param is not None else "length"
-    values = []
-    for label, part in zip(("START", "STOP"), parts[:2], strict=True):
+    values, found = _range(text, parts[:2], kind, declared)
+    problems += found
+    count, found = _count(text, parts[2] if len(parts) == 3 else None, count_required)
+    problems += found
+    if values is not None:
+        problems += _range_problems(text, parts, values, param, kind)
+    if problems or values is None:
+        return None, problems
+    return Vary(path, values[0], values[1], count, kind), []
+
+
+def _range(
+    text: str, given: list[str], kind: str, declared: dict[str, str]
+) -> tuple[tuple[float, float] | None, list[str]]:
+    """START and STOP of ``--vary text`` in SI, or None; and the problems of each."""
+    values, problems = [], []
+    for label, part in zip(("START", "STOP"), given, strict=True):
         try:
-            values.append(parse_quantity(part, kind, declared))
+            values.append(float(parse_quantity(part, kind, declared)))
         except UnitParseError as exc:
             problems.append(f'--vary "{text}": {label}: {exc}')
+    return ((values[0], values[1]) if len(values) == 2 else None), problems
+
+
+def _count(text: str, given: str | None, count_required: bool | None) -> tuple[int | None, list[str]]:
+    """The COUNT of ``--vary text`` (``given``; None where it has none), and what is wrong with it."""
+    if given is None:
+        return None, ([f'--vary "{text}": COUNT missing (PATH=START:STOP:COUNT)'] if count_required else [])
+    problems = []
     count: int | None = None
-    if len(parts) == 3:
-        try:
-            count = int(parts[2])
-            if str(count) != parts[2].lstrip("+"):
-                raise ValueError
-        except ValueError:
-            problems.append(f'--vary "{text}": COUNT: expected a whole number, got "{parts[2]}"')
-            count = None
-        else:
-            if count < 1:
-                problems.append(f'--vary "{text}": COUNT must be 1 or more, got {count}')
-        if count_required is None:
-            problems.append(
-                f'--vary "{text}": COUNT is for a grid; a random or lhs sample takes PATH=START:STOP '
-                "and its number of variants from --samples"
-            )
-    elif count_required:
-        problems.append(f'--vary "{text}": COUNT missing (PATH=START:STOP:COUNT)')
-    if len(values) == 2:
-        start, stop = values
-        if start > stop:
-            problems.append(f'--vary "{text}": START {parts[0]} is greater than STOP {parts[1]}')
-        if param is not None and (param.positive or kind == "inertia"):
-            wrong = param.check(start)
-            if wrong is not None:
-                what = "positive" if param.positive else "0 or more"
-                problems.append(f'--vary "{text}": a {kind} must be {what}, got START {parts[0]}')
-    if problems:
-        return None, problems
-    return Vary(path, float(values[0]), float(values[1]), count, kind), []
+    try:
+        count = int(given)
+        if str(count) != given.lstrip("+"):
+            raise ValueError
+    except ValueError:
+        problems.append(f'--vary "{text}": COUNT: expected a whole number, got "{given}"')
+        count = None
+    else:
+        if count < 1:
+            problems.append(f'--vary "{text}": COUNT must be 1 or more, got {count}')
+    if count_required is None:
+        problems.append(
+            f'--vary "{text}": COUNT is for a grid; a random or lhs sample takes PATH=START:STOP '
+            "and its number of variants from --samples"
+        )
+    return count, problems
+
+
+def _range_problems(
+    text: str, parts: list[str], values: tuple[float, float], param: Parameter | None, kind: str
+) -> list[str]:
+    """What is wrong with the range ``values`` (SI) of ``--vary text``: reversed, or of a sign ``param`` refuses."""
+    start, stop = values
+    problems = []
+    if start > stop:
+        problems.append(f'--vary "{text}": START {parts[0]} is greater than STOP {parts[1]}')
+    if param is not None and (param.positive or kind == "inertia") and param.check(start) is not None:
+        what = "positive" if param.positive else "0 or more"
+        problems.append(f'--vary "{text}": a {kind} must be {what}, got START {parts[0]}')
+    return problems
 
 
 def parse_varies(
-    texts: list[str], mech: Any, declared: dict[str, str], count_required: bool | None = True
+    texts: list[str], mech: Mechanism, declared: dict[str, str], count_required: bool | None = True
 ) -> list[Vary]:
     """Read every ``--vary``; raises :class:`DesignError` listing every problem of them all."""
     problems: list[str] = []
@@ -177,6 +211,32 @@ def parse_varies(
         seen.add(v.path)
     if problems:
         raise DesignError(problems)
+    return out
+
+
+def read_varies(vary: Ranges, mech: Mechanism, count_required: bool | None = True, stacklevel: int = 2) -> list[Vary]:
+    """``--vary`` texts, or a dict ``path -> (start, stop[, count])`` (numbers in the file's units or with
+    units), read in the units of ``mech``'s description (:func:`file_units`).
+
+    A range far from the file's value (see :func:`scale_warnings`) gives a :class:`DesignWarning`,
+    ``stacklevel`` frames above this function.
+
+    Raises
+    ------
+    DesignError
+        Every problem of them all (:func:`parse_varies`).
+    """
+    if isinstance(vary, Mapping):
+        texts = []
+        for path, rng in vary.items():
+            parts = [str(x) for x in (rng if isinstance(rng, tuple | list) else (rng,))]
+            texts.append(f"{path}={':'.join(parts)}")
+    else:
+        texts = list(vary)
+    declared = file_units(mech.spec)
+    out = parse_varies(texts, mech, declared, count_required)
+    for line in scale_warnings(out, mech, declared):
+        warnings.warn(line, DesignWarning, stacklevel=stacklevel + 1)
     return out
 
 

@@ -20,15 +20,19 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import re
+import secrets
 import warnings
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from linkwork.atomic import target_problem, write_atomic
 from linkwork.errors import DesignError, DesignWarning
 from linkwork.optional import require
+from linkwork.structure.model import Mechanism
 
 #: Version of the manifest's layout.
 FORMAT = 2
@@ -37,7 +41,7 @@ _CHUNK = re.compile(r"^chunk-(\d{5,})\.parquet$")
 _MANIFEST = "manifest.json"
 
 
-def mechanism_hash(mech: Any) -> str:
+def mechanism_hash(mech: Mechanism) -> str:
     """SHA-256 of what a compiled mechanism computes with: its arrays, names, drives and loads."""
     h = hashlib.sha256()
     for name in (
@@ -124,8 +128,6 @@ def _read_manifest(parts: Path) -> dict[str, Any]:
 
 
 def _write_manifest(parts: Path, manifest: dict[str, Any]) -> None:
-    from linkwork.atomic import write_atomic
-
     text = json.dumps(manifest, indent=1) + "\n"
     write_atomic(parts / _MANIFEST, lambda tmp: tmp.write_text(text, encoding="utf-8"))
 
@@ -184,11 +186,6 @@ def prepare(out: str | Path, meta: dict[str, Any], resume: bool) -> set[int]:
 def cannot_write(out: str | Path) -> str | None:
     """Why ``out`` (and ``OUT.parts`` beside it) cannot be written, or None: a file is created and removed
     in its folder, so that a sweep or an optimisation does not find out only at its end."""
-    import os
-    import secrets
-
-    from linkwork.atomic import target_problem
-
     why = target_problem(out)
     if why is not None:
         return why
@@ -236,8 +233,6 @@ def write_chunk(parts: Path, chunk: int, columns: dict[str, np.ndarray], units: 
     record of a missing file (computed again), never a file without its record."""
     pa = require("pyarrow", purpose="a sweep's chunk files (Parquet)")
     pq = require("pyarrow.parquet", purpose="a sweep's chunk files (Parquet)")
-
-    from linkwork.atomic import write_atomic
 
     manifest = _read_manifest(parts)
     first, rows = int(columns["variant"][0]), len(columns["variant"])
@@ -346,8 +341,6 @@ def read_chunks(parts: Path) -> dict[str, np.ndarray]:
 
 def write_table(out: str | Path, columns: dict[str, np.ndarray], units: dict[str, str], meta: dict[str, Any]) -> Path:
     """The final table, atomically: Parquet (``.parquet``) or NetCDF (``.nc``, needs xarray), a row per variant."""
-    from linkwork.atomic import write_atomic
-
     out = Path(out)
     if out.suffix == ".nc":
         xr = require("xarray", purpose="a sweep's table as NetCDF (.nc)")

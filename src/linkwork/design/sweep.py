@@ -14,21 +14,43 @@ import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
+from linkwork.api import MechanismLike, mechanism_of
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import MetricRequest, parse_metrics
-from linkwork.design.plan import Plan, Vary, make_plan, parse_varies
-from linkwork.errors import DesignError, MissingDependencyError
+from linkwork.design.plan import Plan, Ranges, Vary, make_plan, read_varies
+from linkwork.design.store import (
+    FORMAT,
+    cannot_write,
+    chunk_files,
+    chunk_range,
+    mechanism_hash,
+    parts_dir,
+    prepare,
+    read_chunks,
+    remove_parts,
+    to_arrow,
+    write_chunk,
+    write_table,
+)
+from linkwork.errors import DesignError, LinkworkError, MissingDependencyError
+from linkwork.kinetostatics import fast as kfast
+from linkwork.motion import fast as mfast
 from linkwork.optional import require
+from linkwork.structure.model import Mechanism
+from linkwork.units import KINDS
 
 #: Samples (variants x crank angles) per chunk by default: the arrays of a chunk stay some hundred MB.
 CHUNK_SAMPLES = 1 << 19
 
 #: Sweeps of up to this many variants run in this process unless workers or a scheduler are given.
 IN_PROCESS = 20_000
+
+#: The columns of one chunk: column name -> ``(rows,)``.
+Columns = dict[str, np.ndarray]
 
 
 @dataclass(frozen=True)
@@ -57,8 +79,6 @@ class SweepTable:
 
     def to_arrow(self) -> Any:
         """A pyarrow Table (units in each field's metadata)."""
-        from linkwork.design.store import to_arrow
-
         return to_arrow(self.columns, self.units, self.meta)
 
     def to_pandas(self) -> Any:
@@ -68,75 +88,42 @@ class SweepTable:
         return pd.DataFrame(self.columns).set_index("variant")
 
 
-def _source(mechanism: Any) -> tuple[Any, Any]:
-    """(compiled mechanism, its description or None) of a file, an example name, a spec or a compiled
-    mechanism (:mod:`linkwork.api`)."""
-    from linkwork.api import mechanism_of
+class ChunkTask(NamedTuple):
+    """One chunk of a sweep, as a worker evaluates it.
 
-    mech = mechanism_of(mechanism, "mechanism")
-    return mech, mech.spec
+    Attributes
+    ----------
+    mech : Mechanism
+    paths : list of str
+        The varied parameters.
+    values : ndarray, shape (rows, len(paths))
+        Their values in the chunk's variants, SI.
+    metrics : list of str
+        The metrics' columns, as asked for.
+    steps : int
+        Crank angles over the turn.
+    first : int
+        The chunk's first variant.
+    chunk : int
+        The chunk's number.
+    """
 
-
-def _declared(spec: Any) -> dict[str, str]:
-    """The units bare numbers of the description are read in (SI without a description)."""
-    from linkwork.units import DEFAULT_UNITS, SI_UNITS
-
-    if spec is None:
-        return dict(SI_UNITS)
-    return {**DEFAULT_UNITS, **spec.units.model_dump(exclude_none=True)}
-
-
-def _varies(vary: Any, mech: Any, spec: Any, count_required: bool | None = True) -> list[Vary]:
-    """``--vary`` texts, or a dict ``path -> (start, stop[, count])`` (numbers in the file's units or with units).
-
-    A range far from the file's value (see :func:`~linkwork.design.plan.scale_warnings`) gives a
-    :class:`~linkwork.design.plan.DesignWarning`."""
-    import warnings
-
-    from linkwork.design.plan import scale_warnings
-    from linkwork.errors import DesignWarning
-
-    if isinstance(vary, dict):
-        texts = []
-        for path, rng in vary.items():
-            parts = [str(x) for x in (rng if isinstance(rng, tuple | list) else (rng,))]
-            texts.append(f"{path}={':'.join(parts)}")
-        vary = texts
-    out = parse_varies(list(vary), mech, _declared(spec), count_required)
-    for line in scale_warnings(out, mech, _declared(spec)):
-        warnings.warn(line, DesignWarning, stacklevel=3)
-    return out
-
-
-def _units(plan: Plan, requests: list[MetricRequest]) -> dict[str, str]:
-    from linkwork.units import KINDS
-
-    units = {"variant": "1"}
-    units.update({v.path: KINDS[v.kind][1] for v in plan.varies})
-    units.update({r.column: r.metric.unit for r in requests})
-    return units
+    mech: Mechanism
+    paths: list[str]
+    values: np.ndarray
+    metrics: list[str]
+    steps: int
+    first: int
+    chunk: int
 
 
 def _set_threads(threads: int) -> None:
     """Threads of the compiled kernels in this process: one in a process of a cluster of one thread each,
     where the kernels' own pool would only compete with the other workers for the cores."""
-    from linkwork.kinetostatics import fast as kfast
-    from linkwork.motion import fast as mfast
-
     mfast.THREADS = kfast.THREADS = max(1, int(threads))
 
 
-def chunk_task(
-    mech: Any,
-    paths: list[str],
-    values: np.ndarray,
-    metrics: list[str],
-    steps: int,
-    first: int,
-    chunk: int,
-    threads: int | None = None,
-    attempts: str | None = None,
-) -> tuple[int, dict[str, np.ndarray]]:
+def chunk_task(task: ChunkTask, threads: int | None = None, attempts: str | None = None) -> tuple[int, Columns]:
     """Evaluate one chunk (the function a Dask worker runs): ``(chunk, columns)``.
 
     ``attempts``: a directory where each evaluation appends a line ``chunk pid`` to
@@ -146,17 +133,17 @@ def chunk_task(
         _set_threads(threads)
     if attempts is not None:
         with open(Path(attempts) / f"attempts-{os.getpid()}.txt", "a", encoding="utf-8") as fh:
-            fh.write(f"{chunk} {os.getpid()}\n")
-    requests = parse_metrics(metrics, mech)
-    out = {"variant": np.arange(first, first + len(values), dtype=np.int64)}
-    out.update({p: np.asarray(values[:, j], dtype=float) for j, p in enumerate(paths)})
-    out.update(evaluate(mech, paths, values, requests, steps))
-    return chunk, out
+            fh.write(f"{task.chunk} {os.getpid()}\n")
+    requests = parse_metrics(task.metrics, task.mech)
+    out = {"variant": np.arange(task.first, task.first + len(task.values), dtype=np.int64)}
+    out.update({p: np.asarray(task.values[:, j], dtype=float) for j, p in enumerate(task.paths)})
+    out.update(evaluate(task.mech, task.paths, task.values, requests, task.steps))
+    return task.chunk, out
 
 
 def sweep(
-    mechanism: Any,
-    vary: Any,
+    mechanism: MechanismLike,
+    vary: Ranges,
     metrics: list[str],
     *,
     sampling: str = "grid",
@@ -226,113 +213,91 @@ def sweep(
         Bad ranges, paths or metrics (every problem in one message), a resume of another plan or of an
         unreadable manifest, or a chunk on disk that changed during the run.
     """
-    from linkwork.design.store import (
-        FORMAT,
-        chunk_files,
-        chunk_range,
-        mechanism_hash,
-        prepare,
-        read_chunks,
-        remove_parts,
-        write_chunk,
-        write_table,
+    mech = mechanism_of(mechanism, "mechanism")
+    varies, requests = _checked(
+        mech, vary, metrics, sampling, steps, chunk_size, out, workers, scheduler, connect_timeout
     )
-    from linkwork.design.store import parts_dir as _parts
+    job = _Job.of(mech, make_plan(varies, sampling, samples, seed), requests, steps, chunk_size)
+    chunks = _Chunks(job, out, resume, on_chunk, progress)
+    log = str(attempts) if attempts is not None else None
+    in_process = scheduler is None and (workers == 0 or (workers is None and job.plan.n_variants <= IN_PROCESS))
+    try:
+        if in_process:
+            for c in chunks.todo():
+                chunks.store(*chunk_task(job.task(c), attempts=log))
+        elif chunks.todo():
+            _on_dask(job, chunks.todo(), chunks.store, _connect(workers, scheduler, connect_timeout), log)
+    except BaseException:
+        chunks.abandon()
+        raise
+    finally:
+        chunks.bar.close()
+    return SweepTable(chunks.table(out, keep_parts), job.units, job.meta)
 
-    mech, spec = _source(mechanism)
+
+# ---------------------------------------------------------------- the plan and the options, checked
+
+
+def _checked(
+    mech: Mechanism,
+    vary: Ranges,
+    metrics: list[str],
+    sampling: str,
+    steps: int,
+    chunk_size: int | None,
+    out: str | Path | None,
+    workers: int | None,
+    scheduler: str | None,
+    connect_timeout: float,
+) -> tuple[list[Vary], list[MetricRequest]]:
+    """The ranges and the metrics of a sweep, read; every problem of them and of the options in one
+    :class:`DesignError`."""
     problems: list[str] = []
     varies: list[Vary] = []
     requests: list[MetricRequest] = []
     try:
-        varies = _varies(vary, mech, spec, True if sampling == "grid" else None)
+        varies = read_varies(vary, mech, True if sampling == "grid" else None, stacklevel=3)
     except DesignError as exc:
         problems += exc.problems
     try:
         requests = parse_metrics(list(metrics), mech)
     except DesignError as exc:
         problems += exc.problems
+    problems += _option_problems(steps, workers, chunk_size)
+    if out is not None:
+        problems += _out_problems(out)
+    if scheduler is not None:
+        problems += _scheduler_problems(scheduler, connect_timeout)
+    if problems:
+        raise DesignError(problems)
+    return varies, requests
+
+
+def _option_problems(steps: Any, workers: Any, chunk_size: int | None) -> list[str]:
+    """What is wrong with the crank steps, the number of workers and the chunk size."""
+    problems = []
     if isinstance(steps, bool) or not isinstance(steps, int) or steps < 3:
         problems.append(f"steps: expected a whole number of 3 or more, got {steps!r}")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
         problems.append(f"workers: expected 0 or more (0: in this process), got {workers!r}")
     if chunk_size is not None and chunk_size < 1:
         problems.append(f"chunk size: expected 1 or more, got {chunk_size}")
-    if out is not None and Path(out).suffix not in (".parquet", ".nc"):
-        problems.append(f'--out "{out}": expected a .parquet or .nc file')
-    elif out is not None:
-        from linkwork.design.store import cannot_write
+    return problems
 
-        why = cannot_write(out)
-        if why:
-            problems.append(f'--out "{out}": {why}')
-        try:
-            require("pyarrow", *(["xarray"] if Path(out).suffix == ".nc" else []), purpose=f'--out "{out}"')
-        except MissingDependencyError as exc:
-            problems.append(str(exc))
-    if scheduler is not None:
-        problems += _scheduler_problems(scheduler, connect_timeout)
-    if problems:
-        raise DesignError(problems)
-    plan = make_plan(varies, sampling, samples, seed)
-    size = int(chunk_size or max(1, CHUNK_SAMPLES // steps))
-    n_chunks = math.ceil(plan.n_variants / size)
-    columns = [r.column for r in requests]
-    units = _units(plan, requests)
-    meta = {
-        "format": FORMAT,
-        "mechanism": mech.name,
-        "mechanism_sha256": mechanism_hash(mech),
-        "plan": plan.as_dict(),
-        "metrics": columns,
-        "steps": steps,
-        "chunk_size": size,
-        "n_chunks": n_chunks,
-    }
-    parts = _parts(out) if out is not None else None
-    done = prepare(out, meta, resume) if out is not None else set()
-    todo = [c for c in range(n_chunks) if c not in done]
-    unit = plan.unit_sample()
-    results: dict[int, dict[str, np.ndarray]] = {}
-    bar = _Progress(n_chunks, len(done), progress)
 
-    def store(chunk: int, cols: dict[str, np.ndarray]) -> None:
-        if parts is not None:
-            write_chunk(parts, chunk, cols, units)
-        else:
-            results[chunk] = cols
-        done.add(chunk)
-        bar.advance()
-        if on_chunk is not None:
-            on_chunk(chunk, len(done), n_chunks)
-
-    def task_args(c: int) -> tuple[Any, list[str], np.ndarray, list[str], int, int, int]:
-        lo, hi = chunk_range(meta, c)
-        return mech, plan.paths, plan.values(lo, hi, unit), columns, steps, lo, c
-
-    log = str(attempts) if attempts is not None else None
+def _out_problems(out: str | Path) -> list[str]:
+    """What keeps the table ``out`` from being written: its suffix, its folder, a missing package."""
+    if Path(out).suffix not in (".parquet", ".nc"):
+        return [f'--out "{out}": expected a .parquet or .nc file']
+    problems = []
+    why = cannot_write(out)
+    if why:
+        problems.append(f'--out "{out}": {why}')
     try:
-        if scheduler is None and (workers == 0 or (workers is None and plan.n_variants <= IN_PROCESS)):
-            for c in todo:
-                store(*chunk_task(*task_args(c), attempts=log))
-        elif todo:
-            _on_dask(todo, task_args, store, workers, scheduler, log, connect_timeout)
-    except BaseException:
-        if parts is not None and not chunk_files(parts):  # nothing to resume: leave no folder behind
-            remove_parts(parts)
-        raise
-    finally:
-        bar.close()
-    if parts is not None and out is not None:
-        cols = read_chunks(parts)
-        try:
-            write_table(out, cols, units, meta)
-        except OSError as exc:
-            raise DesignError([f'--out "{out}": cannot write the table ({exc}); the chunks are in {parts}']) from None
-        if not keep_parts:
-            remove_parts(parts)
-    else:
-        cols = {k: np.concatenate([results[c][k] for c in range(n_chunks)]) for k in results[0]} if results else {}
-    return SweepTable(cols, units, meta)
+        require("pyarrow", *(["xarray"] if Path(out).suffix == ".nc" else []), purpose=f'--out "{out}"')
+    except MissingDependencyError as exc:
+        problems.append(str(exc))
+    return problems
 
 
 _ADDRESS = re.compile(r"^([a-z]+://)?[^\s/:]+:\d+$|^[a-z]+://\[[0-9a-fA-F:]+\]:\d+$")
@@ -351,55 +316,186 @@ def _scheduler_problems(scheduler: str, connect_timeout: float) -> list[str]:
     return out
 
 
-def _on_dask(
-    todo: list[int],
-    task_args: Callable[[int], tuple],
-    store: Callable[[int, dict[str, np.ndarray]], None],
-    workers: int | None,
-    scheduler: str | None,
-    attempts: str | None,
-    connect_timeout: float = 30.0,
-) -> None:
-    """Run the chunks on a Dask cluster: an embedded local one, or the one at ``scheduler``.
+# ---------------------------------------------------------------- the job: its chunks and its table's layout
 
-    A chunk whose worker dies is given to another worker by the scheduler; each result is stored
-    by this process as it comes back, so nothing done is lost if this process stops.
+
+@dataclass(frozen=True)
+class _Job:
+    """What a sweep computes, in chunks of ``meta["chunk_size"]`` variants.
+
+    Attributes
+    ----------
+    mech : Mechanism
+    plan : Plan
+    metrics : list of str
+        The metrics' columns.
+    steps : int
+    units : dict
+        The SI unit of every column of the table.
+    meta : dict
+        The plan, the metrics, the crank steps, the chunks and the mechanism's content hash: what the
+        manifest of the parts records and the table carries.
+    unit : ndarray or None
+        The plan's sample in the unit cube (:meth:`Plan.unit_sample`), drawn once.
+    """
+
+    mech: Mechanism
+    plan: Plan
+    metrics: list[str]
+    steps: int
+    units: dict[str, str]
+    meta: dict[str, Any]
+    unit: np.ndarray | None
+
+    @classmethod
+    def of(cls, mech: Mechanism, plan: Plan, requests: list[MetricRequest], steps: int, chunk_size: int | None) -> _Job:
+        size = int(chunk_size or max(1, CHUNK_SAMPLES // steps))
+        metrics = [r.column for r in requests]
+        units = {"variant": "1"}
+        units.update({v.path: KINDS[v.kind][1] for v in plan.varies})
+        units.update({r.column: r.metric.unit for r in requests})
+        meta = {
+            "format": FORMAT,
+            "mechanism": mech.name,
+            "mechanism_sha256": mechanism_hash(mech),
+            "plan": plan.as_dict(),
+            "metrics": metrics,
+            "steps": steps,
+            "chunk_size": size,
+            "n_chunks": math.ceil(plan.n_variants / size),
+        }
+        return cls(mech, plan, metrics, steps, units, meta, plan.unit_sample())
+
+    @property
+    def n_chunks(self) -> int:
+        return int(self.meta["n_chunks"])
+
+    def task(self, chunk: int) -> ChunkTask:
+        """The chunk ``chunk`` to evaluate."""
+        lo, hi = chunk_range(self.meta, chunk)
+        values = self.plan.values(lo, hi, self.unit)
+        return ChunkTask(self.mech, self.plan.paths, values, self.metrics, self.steps, lo, chunk)
+
+
+# ---------------------------------------------------------------- the chunks stored, resumed, and the table
+
+
+class _Chunks:
+    """Where the chunks of a job go as they finish: the parts folder of ``out`` (a manifest and a file
+    per chunk, resumed where ``resume`` is set; :mod:`linkwork.design.store`), or memory without ``out``;
+    a progress bar of them where ``progress`` is set."""
+
+    def __init__(
+        self,
+        job: _Job,
+        out: str | Path | None,
+        resume: bool,
+        on_chunk: Callable[[int, int, int], None] | None,
+        progress: bool,
+    ) -> None:
+        self.job = job
+        self.parts = parts_dir(out) if out is not None else None
+        self.done: set[int] = prepare(out, job.meta, resume) if out is not None else set()
+        self.memory: dict[int, Columns] = {}
+        self.on_chunk = on_chunk
+        self.bar = _Progress(job.n_chunks, len(self.done), progress)
+
+    def todo(self) -> list[int]:
+        """The chunks not done yet, in order."""
+        return [c for c in range(self.job.n_chunks) if c not in self.done]
+
+    def store(self, chunk: int, cols: Columns) -> None:
+        """Keep a finished chunk (a file and its record in the manifest, or in memory)."""
+        if self.parts is not None:
+            write_chunk(self.parts, chunk, cols, self.job.units)
+        else:
+            self.memory[chunk] = cols
+        self.done.add(chunk)
+        self.bar.advance()
+        if self.on_chunk is not None:
+            self.on_chunk(chunk, len(self.done), self.job.n_chunks)
+
+    def abandon(self) -> None:
+        """After a failure: remove a parts folder that holds nothing to resume."""
+        if self.parts is not None and not chunk_files(self.parts):
+            remove_parts(self.parts)
+
+    def table(self, out: str | Path | None, keep_parts: bool) -> Columns:
+        """The table of every chunk in variant order; with ``out``, read back from the parts, each chunk
+        proven and the whole checked (:func:`~linkwork.design.store.read_chunks`), then written to ``out``
+        (the parts then removed unless ``keep_parts``)."""
+        if self.parts is None or out is None:
+            n, memory = self.job.n_chunks, self.memory
+            return {k: np.concatenate([memory[c][k] for c in range(n)]) for k in memory[0]} if memory else {}
+        cols = read_chunks(self.parts)
+        try:
+            write_table(out, cols, self.job.units, self.job.meta)
+        except OSError as exc:
+            why = f'--out "{out}": cannot write the table ({exc}); the chunks are in {self.parts}'
+            raise DesignError([why]) from None
+        if not keep_parts:
+            remove_parts(self.parts)
+        return cols
+
+
+# ---------------------------------------------------------------- the chunks on Dask
+
+
+def _connect(workers: int | None, scheduler: str | None, connect_timeout: float) -> tuple[Any, Any]:
+    """A Dask client of the scheduler at ``scheduler`` (an address or a scheduler file), or of an embedded
+    local cluster of ``workers`` processes of one thread each: ``(client, cluster or None)``.
+
+    Raises
+    ------
+    LinkworkError
+        The scheduler cannot be reached within ``connect_timeout`` seconds.
     """
     require("distributed", purpose="a sweep on Dask (--workers, --scheduler, or more than 20,000 variants)")
-    from distributed import Client, LocalCluster, as_completed
+    from distributed import Client, LocalCluster
 
-    cluster = None
-    if scheduler is not None:
-        try:
-            if Path(scheduler).is_file():
-                client = Client(scheduler_file=scheduler, timeout=connect_timeout)
-            else:
-                client = Client(scheduler, timeout=connect_timeout)
-        except (OSError, ValueError) as exc:
-            from linkwork.errors import LinkworkError
-
-            raise LinkworkError(
-                f"cannot reach the Dask scheduler at {scheduler} within {connect_timeout:g} s: {exc}"
-            ) from None
-    else:
+    if scheduler is None:
         n = workers or os.cpu_count() or 1
         cluster = LocalCluster(
             n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
         )
-        client = Client(cluster)
+        return Client(cluster), cluster
+    try:
+        if Path(scheduler).is_file():
+            return Client(scheduler_file=scheduler, timeout=connect_timeout), None
+        return Client(scheduler, timeout=connect_timeout), None
+    except (OSError, ValueError) as exc:
+        raise LinkworkError(
+            f"cannot reach the Dask scheduler at {scheduler} within {connect_timeout:g} s: {exc}"
+        ) from None
+
+
+def _on_dask(
+    job: _Job,
+    todo: list[int],
+    store: Callable[[int, Columns], None],
+    connection: tuple[Any, Any],
+    attempts: str | None,
+) -> None:
+    """Run the chunks ``todo`` on the Dask cluster of ``connection`` (:func:`_connect`), which is closed
+    at the end.
+
+    A chunk whose worker dies is given to another worker by the scheduler; each result is stored
+    by this process as it comes back, so nothing done is lost if this process stops.  Workers of one
+    thread each run the compiled kernels on one thread.
+    """
+    from distributed import as_completed
+
+    client, cluster = connection
     futures = []
     try:
         threads = 1
-        if scheduler is not None:
+        if cluster is None:
             info = client.scheduler_info()["workers"].values()
             threads = max([w.get("nthreads", 1) for w in info] or [1])
-        futures = [
-            client.submit(chunk_task, *task_args(c), threads=1 if threads == 1 else None, attempts=attempts, pure=False)
-            for c in todo
-        ]
+        one = 1 if threads == 1 else None
+        futures = [client.submit(chunk_task, job.task(c), threads=one, attempts=attempts, pure=False) for c in todo]
         for fut in as_completed(futures):
-            chunk, cols = fut.result()
-            store(chunk, cols)
+            store(*fut.result())
             fut.release()
     finally:
         for fut in futures:

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 from importlib import resources
 from pathlib import Path
-from typing import Any
 
 from linkwork.errors import Problem, SpecError
+from linkwork.spec.checks import suggest
+from linkwork.spec.load import load, loads
+from linkwork.spec.schema import Spec
 
 
 def names() -> list[str]:
@@ -17,8 +19,6 @@ def names() -> list[str]:
 def text(name: str) -> str:
     """The YAML text of a bundled example."""
     if name not in names():
-        from linkwork.spec.checks import suggest
-
         raise SpecError(
             [
                 Problem(
@@ -29,14 +29,12 @@ def text(name: str) -> str:
     return (resources.files(__name__) / f"{name}.yaml").read_text(encoding="utf-8")
 
 
-def load_example(name: str) -> Any:
+def load_example(name: str) -> Spec:
     """The validated spec of a bundled example."""
-    from linkwork.spec.load import loads
-
     return loads(text(name), file=f"{name}.yaml")
 
 
-def resolve(file_or_example: str | Path) -> Any:
+def resolve(file_or_example: str | Path) -> Spec:
     """Load and validate a mechanism file, or a bundled example by name (``linkwork.load``).
 
     Raises
@@ -44,8 +42,6 @@ def resolve(file_or_example: str | Path) -> Any:
     SpecError
         Listing every problem with ``file:line``, the element and what was expected.
     """
-    from linkwork.spec.load import load
-
     path = Path(file_or_example)
     file_or_example = str(file_or_example)
     if path.exists() or path.suffix in (".yaml", ".yml") or "/" in file_or_example:
@@ -54,8 +50,6 @@ def resolve(file_or_example: str | Path) -> Any:
         return load(path)
     if file_or_example in names():
         return load_example(file_or_example)
-    from linkwork.spec.checks import suggest
-
     raise SpecError(
         [
             Problem(

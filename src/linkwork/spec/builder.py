@@ -16,8 +16,10 @@ by the same pass, so a file and a builder script give equal specs::
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
+from linkwork.spec.load import from_dict
 from linkwork.spec.schema import Spec
 
 
@@ -156,12 +158,8 @@ class MechanismBuilder:
 
     def to_dict(self) -> dict[str, Any]:
         """The plain data, as it would stand in a YAML file."""
-        import copy
-
         return copy.deepcopy(self._data)
 
     def build(self) -> Spec:
         """Validate and return the spec; raises SpecError listing every problem."""
-        from linkwork.spec.load import from_dict
-
         return from_dict(self.to_dict())

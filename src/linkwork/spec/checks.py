@@ -10,16 +10,19 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 from linkwork.errors import Problem, UnitParseError
 from linkwork.spec.schema import direction_word
-from linkwork.spec.yamlsource import Source
+from linkwork.spec.yamlsource import Path, Source
 from linkwork.units import parse_quantity
 
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_']*$")
 FRAME = "frame"
+
+#: ``bad(path, message)``: report a problem at ``path`` of the file's data.
+Report = Callable[[Path, str], None]
 
 
 def suggest(word: str, candidates: Iterable[str]) -> str:
@@ -52,7 +55,7 @@ def check(src: Source, declared: dict[str, str]) -> list[Problem]:
     data = _dict(src.data)
     out: list[Problem] = []
 
-    def bad(path: tuple[Any, ...], message: str) -> None:
+    def bad(path: Path, message: str) -> None:
         out.append(src.problem(path, message))
 
     links = _dict(data.get("links"))
@@ -65,43 +68,9 @@ def check(src: Source, declared: dict[str, str]) -> list[Problem]:
     for name in frame.get("points", {}) if isinstance(frame.get("points"), dict) else {}:
         if not NAME.match(name):
             bad(("frame", "points", name), f'"{name}" is not a valid point name (letters, digits, _)')
-
     for name, link in links.items():
-        path = ("links", name)
-        if not isinstance(name, str):
-            continue
-        if name == FRAME:
-            bad(path, '"frame" is the fixed link; give a moving link another name')
-            continue
-        if not NAME.match(name):
-            bad(path, f'"{name}" is not a valid link name (letters, digits, _, starting with a letter)')
-        link = _dict(link)
-        ends, length = link.get("ends"), link.get("length")
-        if ends is not None and length is None:
-            bad(path, 'a link given by "ends" needs its "length"')
-        if length is not None and ends is None:
-            bad(path + ("length",), 'a "length" needs "ends: [P, Q]", the two points it separates')
-        if isinstance(ends, list):
-            if len(ends) != 2:
-                bad(path + ("ends",), f"expected two point names, got {len(ends)}")
-            elif ends[0] == ends[1]:
-                bad(path + ("ends",), f'the two ends must differ, got "{ends[0]}" twice')
-            for e in ends:
-                if isinstance(e, str) and e in _dict(link.get("points")):
-                    bad(path + ("points", e), f'point "{e}" is already one of the ends')
-                elif isinstance(e, str) and not NAME.match(e):
-                    bad(path + ("ends",), f'"{e}" is not a valid point name')
-        for p in _dict(link.get("points")):
-            if not NAME.match(p):
-                bad(path + ("points", p), f'"{p}" is not a valid point name (letters, digits, _)')
-        if not points[name]:
-            bad(path, 'a link needs at least one point ("ends" with "length", or "points")')
-        for key in ("com", "inertia_about"):
-            ref = link.get(key)
-            if isinstance(ref, str) and ref not in points[name]:
-                bad(path + (key,), f'link "{name}" has no point "{ref}"{suggest(ref, points[name])}')
-        if link.get("inertia_about") is not None and link.get("inertia") is None:
-            bad(path + ("inertia_about",), '"inertia_about" needs "inertia"')
+        if isinstance(name, str):
+            _check_link(bad, name, _dict(link), points)
     com = frame.get("com")
     if isinstance(com, str) and com not in points[FRAME]:
         bad(("frame", "com"), f'the frame has no point "{com}"{suggest(com, points[FRAME])}')
@@ -119,8 +88,51 @@ def check(src: Source, declared: dict[str, str]) -> list[Problem]:
     return out
 
 
-def _check_joint(bad: Any, jname: str, joint: dict[str, Any], known: set[str], points: dict[str, set[str]]) -> None:
-    path = ("joints", jname)
+def _check_link(bad: Report, name: str, link: dict[str, Any], points: dict[str, set[str]]) -> None:
+    """The name, the ends and points, and the mass properties' references of the moving link ``name``."""
+    path: Path = ("links", name)
+    if name == FRAME:
+        bad(path, '"frame" is the fixed link; give a moving link another name')
+        return
+    if not NAME.match(name):
+        bad(path, f'"{name}" is not a valid link name (letters, digits, _, starting with a letter)')
+    _check_ends(bad, path, link)
+    for p in _dict(link.get("points")):
+        if not NAME.match(p):
+            bad(path + ("points", p), f'"{p}" is not a valid point name (letters, digits, _)')
+    if not points[name]:
+        bad(path, 'a link needs at least one point ("ends" with "length", or "points")')
+    for key in ("com", "inertia_about"):
+        ref = link.get(key)
+        if isinstance(ref, str) and ref not in points[name]:
+            bad(path + (key,), f'link "{name}" has no point "{ref}"{suggest(ref, points[name])}')
+    if link.get("inertia_about") is not None and link.get("inertia") is None:
+        bad(path + ("inertia_about",), '"inertia_about" needs "inertia"')
+
+
+def _check_ends(bad: Report, path: Path, link: dict[str, Any]) -> None:
+    """A link given by ``ends: [P, Q]`` and ``length``: both given, two different valid names, not in ``points``."""
+    ends, length = link.get("ends"), link.get("length")
+    if ends is not None and length is None:
+        bad(path, 'a link given by "ends" needs its "length"')
+    if length is not None and ends is None:
+        bad(path + ("length",), 'a "length" needs "ends: [P, Q]", the two points it separates')
+    if not isinstance(ends, list):
+        return
+    if len(ends) != 2:
+        bad(path + ("ends",), f"expected two point names, got {len(ends)}")
+    elif ends[0] == ends[1]:
+        bad(path + ("ends",), f'the two ends must differ, got "{ends[0]}" twice')
+    for e in ends:
+        if isinstance(e, str) and e in _dict(link.get("points")):
+            bad(path + ("points", e), f'point "{e}" is already one of the ends')
+        elif isinstance(e, str) and not NAME.match(e):
+            bad(path + ("ends",), f'"{e}" is not a valid point name')
+
+
+def _check_joint(bad: Report, jname: str, joint: dict[str, Any], known: set[str], points: dict[str, set[str]]) -> None:
+    """A joint's name and links (known, at least two, each once), and its point on each of them."""
+    path: Path = ("joints", jname)
     if not NAME.match(jname):
         bad(path, f'"{jname}" is not a valid joint name (letters, digits, _)')
     names = joint.get("links")
@@ -140,33 +152,54 @@ def _check_joint(bad: Any, jname: str, joint: dict[str, Any], known: set[str], p
     if not isinstance(point, str):
         return
     if kind == "revolute":
-        for key in ("through", "axis"):
-            if key in joint:
-                bad(path + (key,), f'"{key}" applies to prismatic and pin-in-slot joints only')
-        for ln in names:
-            if isinstance(ln, str) and ln in points and point not in points[ln]:
-                where = "the frame" if ln == FRAME else f'link "{ln}"'
-                bad(path, f'{where} has no point "{point}" for this joint{suggest(point, points[ln])}')
+        _check_revolute(bad, path, joint, names, point, points)
     elif kind in ("prismatic", "pin-in-slot"):
-        if len(names) != 2:
-            bad(path + ("links",), f"a {kind} joint joins exactly two links: [guide, slider], got {len(names)}")
-            return
-        guide, slider = names
-        if isinstance(slider, str) and slider in points and point not in points[slider]:
-            role = "slider" if kind == "prismatic" else "pin link"
-            bad(path, f'the {role} "{slider}" has no point "{point}"{suggest(point, points[slider])}')
-        for key, what in (("axis", "direction of the guide line"), ("through", "a point of the guide line")):
-            if joint.get(key) is None:
-                bad(path, f'missing field "{key}" ({what})')
-        through = joint.get("through")
-        if isinstance(through, str) and isinstance(guide, str) and guide in points and through not in points[guide]:
-            where = "the frame" if guide == FRAME else f'the guide link "{guide}"'
-            bad(path + ("through",), f'{where} has no point "{through}"{suggest(through, points[guide])}')
-        if guide == FRAME and slider == FRAME:
-            bad(path + ("links",), "a joint cannot join the frame to itself")
+        _check_sliding(bad, path, joint, kind, names, point, points)
 
 
-def _check_connected(bad: Any, links: dict[str, Any], joints: dict[str, Any], known: set[str]) -> None:
+def _check_revolute(
+    bad: Report, path: Path, joint: dict[str, Any], names: list[Any], point: str, points: dict[str, set[str]]
+) -> None:
+    """A revolute joint: no guide line, and its ``point`` on every link it joins."""
+    for key in ("through", "axis"):
+        if key in joint:
+            bad(path + (key,), f'"{key}" applies to prismatic and pin-in-slot joints only')
+    for ln in names:
+        if isinstance(ln, str) and ln in points and point not in points[ln]:
+            where = "the frame" if ln == FRAME else f'link "{ln}"'
+            bad(path, f'{where} has no point "{point}" for this joint{suggest(point, points[ln])}')
+
+
+def _check_sliding(
+    bad: Report,
+    path: Path,
+    joint: dict[str, Any],
+    kind: str,
+    names: list[Any],
+    point: str,
+    points: dict[str, set[str]],
+) -> None:
+    """A prismatic or pin-in-slot joint: a guide and a slider, its ``point`` on the slider, a guide line
+    ``through`` a point of the guide along ``axis``."""
+    if len(names) != 2:
+        bad(path + ("links",), f"a {kind} joint joins exactly two links: [guide, slider], got {len(names)}")
+        return
+    guide, slider = names
+    if isinstance(slider, str) and slider in points and point not in points[slider]:
+        role = "slider" if kind == "prismatic" else "pin link"
+        bad(path, f'the {role} "{slider}" has no point "{point}"{suggest(point, points[slider])}')
+    for key, what in (("axis", "direction of the guide line"), ("through", "a point of the guide line")):
+        if joint.get(key) is None:
+            bad(path, f'missing field "{key}" ({what})')
+    through = joint.get("through")
+    if isinstance(through, str) and isinstance(guide, str) and guide in points and through not in points[guide]:
+        where = "the frame" if guide == FRAME else f'the guide link "{guide}"'
+        bad(path + ("through",), f'{where} has no point "{through}"{suggest(through, points[guide])}')
+    if guide == FRAME and slider == FRAME:
+        bad(path + ("links",), "a joint cannot join the frame to itself")
+
+
+def _check_connected(bad: Report, links: dict[str, Any], joints: dict[str, Any], known: set[str]) -> None:
     adj: dict[str, set[str]] = {n: set() for n in known}
     for joint in joints.values():
         listed = _dict(joint).get("links")
@@ -183,7 +216,8 @@ def _check_connected(bad: Any, links: dict[str, Any], joints: dict[str, Any], kn
             bad(("links", name), "not connected to the frame: no chain of joints leads from this link to the frame")
 
 
-def _check_drives(bad: Any, data: dict[str, Any], joints: dict[str, Any], declared: dict[str, str]) -> None:
+def _check_drives(bad: Report, data: dict[str, Any], joints: dict[str, Any], declared: dict[str, str]) -> None:
+    """Every drive on an existing joint, driven once; each drive's own fields (:func:`_check_drive`)."""
     drives = data.get("drives")
     if isinstance(drives, list) and not drives:
         bad(("drives",), "a mechanism needs at least one drive")
@@ -191,7 +225,7 @@ def _check_drives(bad: Any, data: dict[str, Any], joints: dict[str, Any], declar
         return
     seen: dict[str, int] = {}
     for i, drive in enumerate(drives):
-        path = ("drives", i)
+        path: Path = ("drives", i)
         drive = _dict(drive)
         jname = drive.get("joint")
         if not isinstance(jname, str):
@@ -202,60 +236,72 @@ def _check_drives(bad: Any, data: dict[str, Any], joints: dict[str, Any], declar
         if jname not in joints:
             bad(path + ("joint",), f'drive on a missing joint "{jname}"{suggest(jname, joints)}')
             continue
-        joint = _dict(joints[jname])
-        kind = joint.get("type")
-        if kind not in ("revolute", "prismatic", "pin-in-slot"):
-            continue  # the joint's own problem is reported at the joint
-        if kind == "pin-in-slot":
-            bad(path + ("joint",), f'"{jname}" is a pin-in-slot pair, which cannot be driven')
-            continue
-        listed = joint.get("links")
-        nlinks = len(listed) if isinstance(listed, list) else 0
-        if kind == "revolute" and nlinks != 2:
-            bad(path + ("joint",), f'a driven revolute joint must join exactly two links, "{jname}" joins {nlinks}')
-        rot = kind == "revolute"
-        direction = direction_word(drive.get("direction"))
-        if rot and direction in ("forward", "backward"):
-            bad(path + ("direction",), f'a revolute drive turns "ccw" or "cw", got "{direction}"')
-        if not rot and direction in ("ccw", "cw"):
-            bad(path + ("direction",), f'a prismatic drive moves "forward" or "backward", got "{direction}"')
-        wrong = "position" if rot else "angle"
-        if drive.get(wrong) is not None:
-            right = "an angle" if rot else "a position"
-            bad(
-                path + (wrong,),
-                f'a {kind} drive has {right} (the drive coordinate of the assembly pose), not a "{wrong}"',
-            )
-        if drive.get("speed") is not None:
-            try:
-                parse_quantity(drive["speed"], "angular_speed" if rot else "speed", declared)
-            except UnitParseError as exc:
-                bad(path + ("speed",), str(exc))
-        law = _dict(drive.get("law"))
-        values = law.get("value")
-        if isinstance(values, list):
-            for j, v in enumerate(values):
-                try:
-                    parse_quantity(v, "angle" if rot else "length", declared)
-                except UnitParseError as exc:
-                    bad(path + ("law", "value", j), str(exc))
-            times = law.get("time")
-            if isinstance(times, list) and len(times) != len(values):
-                bad(path + ("law",), f"time has {len(times)} entries but value has {len(values)}")
-            elif isinstance(times, list) and len(times) < 2:
-                bad(path + ("law",), f"a motion law needs at least two points, got {len(times)}")
-            elif isinstance(times, list):
-                try:
-                    t = [parse_quantity(x, "time", declared) for x in times]
-                except UnitParseError:
-                    t = []
-                if any(b <= a for a, b in zip(t, t[1:], strict=False)):
-                    bad(path + ("law", "time"), "the times of a motion law must increase")
-        if law and drive.get("speed") is not None:
-            bad(path + ("speed",), 'give either a uniform "speed" or a motion "law", not both')
+        _check_drive(bad, path, drive, jname, _dict(joints[jname]), declared)
 
 
-def _check_hints(bad: Any, data: dict[str, Any], joints: dict[str, Any], points: dict[str, set[str]]) -> None:
+def _check_drive(
+    bad: Report, path: Path, drive: dict[str, Any], jname: str, joint: dict[str, Any], declared: dict[str, str]
+) -> None:
+    """A drive's fields for the type of its joint ``jname``: its direction, its pose coordinate, its speed
+    or its motion law."""
+    kind = joint.get("type")
+    if kind not in ("revolute", "prismatic", "pin-in-slot"):
+        return  # the joint's own problem is reported at the joint
+    if kind == "pin-in-slot":
+        bad(path + ("joint",), f'"{jname}" is a pin-in-slot pair, which cannot be driven')
+        return
+    listed = joint.get("links")
+    nlinks = len(listed) if isinstance(listed, list) else 0
+    if kind == "revolute" and nlinks != 2:
+        bad(path + ("joint",), f'a driven revolute joint must join exactly two links, "{jname}" joins {nlinks}')
+    rot = kind == "revolute"
+    direction = direction_word(drive.get("direction"))
+    if rot and direction in ("forward", "backward"):
+        bad(path + ("direction",), f'a revolute drive turns "ccw" or "cw", got "{direction}"')
+    if not rot and direction in ("ccw", "cw"):
+        bad(path + ("direction",), f'a prismatic drive moves "forward" or "backward", got "{direction}"')
+    wrong = "position" if rot else "angle"
+    if drive.get(wrong) is not None:
+        right = "an angle" if rot else "a position"
+        bad(path + (wrong,), f'a {kind} drive has {right} (the drive coordinate of the assembly pose), not a "{wrong}"')
+    if drive.get("speed") is not None:
+        try:
+            parse_quantity(drive["speed"], "angular_speed" if rot else "speed", declared)
+        except UnitParseError as exc:
+            bad(path + ("speed",), str(exc))
+    law = _dict(drive.get("law"))
+    _check_law(bad, path, law, rot, declared)
+    if law and drive.get("speed") is not None:
+        bad(path + ("speed",), 'give either a uniform "speed" or a motion "law", not both')
+
+
+def _check_law(bad: Report, path: Path, law: dict[str, Any], rot: bool, declared: dict[str, str]) -> None:
+    """A drive's motion law: its values (angles where ``rot``, else lengths) against increasing times."""
+    values = law.get("value")
+    if not isinstance(values, list):
+        return
+    for j, v in enumerate(values):
+        try:
+            parse_quantity(v, "angle" if rot else "length", declared)
+        except UnitParseError as exc:
+            bad(path + ("law", "value", j), str(exc))
+    times = law.get("time")
+    if not isinstance(times, list):
+        return
+    if len(times) != len(values):
+        bad(path + ("law",), f"time has {len(times)} entries but value has {len(values)}")
+    elif len(times) < 2:
+        bad(path + ("law",), f"a motion law needs at least two points, got {len(times)}")
+    else:
+        try:
+            t = [parse_quantity(x, "time", declared) for x in times]
+        except UnitParseError:
+            t = []
+        if any(b <= a for a, b in zip(t, t[1:], strict=False)):
+            bad(path + ("law", "time"), "the times of a motion law must increase")
+
+
+def _check_hints(bad: Report, data: dict[str, Any], joints: dict[str, Any], points: dict[str, set[str]]) -> None:
     hints = _dict(data.get("hints"))
     names = hint_names(joints, points)
     for key in hints:
@@ -299,91 +345,113 @@ _LOAD_FIELDS = {
 }
 
 
-def _check_loads(bad: Any, data: dict[str, Any], points: dict[str, set[str]]) -> None:
+def _check_loads(bad: Report, data: dict[str, Any], points: dict[str, set[str]]) -> None:
     """Fields and references of the external loads; their values are checked in SI after validation."""
     loads = _dict(data.get("loads"))
     names = {f"{ln}.{p}" for ln, pts in points.items() for p in pts}
-
-    def point(path: tuple[Any, ...], ref: Any) -> str | None:
-        if not isinstance(ref, str):
-            return None
-        if ref not in names:
-            same = sorted(n for n in names if n.endswith(f".{ref}"))
-            hint = f' (did you mean "{same[0]}"?)' if same else suggest(ref, names)
-            bad(path, f'no point "{ref}": give link.point, the link the load acts on and its point{hint}')
-            return None
-        return ref.split(".", 1)[0]
-
     joints = _dict(data.get("joints"))
     for name, load in loads.items():
-        path = ("loads", name)
+        path: Path = ("loads", name)
         if not isinstance(name, str) or not NAME.match(name):
             bad(path, f'"{name}" is not a valid load name (letters, digits, _)')
         load = _dict(load)
         kind = load.get("type")
-        if kind not in _LOAD_FIELDS:
+        if not isinstance(kind, str) or kind not in _LOAD_FIELDS:
             continue  # reported by the schema
-        needed, allowed = _LOAD_FIELDS[kind]
-        for key in sorted(needed - set(load)):
-            bad(path, f'missing field "{key}" (a {kind} load needs {", ".join(sorted(needed))})')
-        for key in sorted(set(load) - allowed - {"type", "description"}):
-            if key in {f for _, a in _LOAD_FIELDS.values() for f in a}:
-                bad(path + (key,), f'"{key}" does not apply to a {kind} load')
+        _check_load_fields(bad, path, load, kind)
         if kind == "force":
-            point(path + ("at",), load.get("at"))
-            vector, magnitude = load.get("force"), load.get("magnitude")
-            if (vector is None) == (magnitude is None):
-                bad(path, 'give either "force: [Fx, Fy]" or "magnitude" with "direction"')
-            if vector is not None and (not isinstance(vector, list) or len(vector) != 2):
-                bad(path + ("force",), "expected the two components [Fx, Fy] of a force")
-            if magnitude is not None and load.get("direction") is None:
-                bad(path, 'missing field "direction" (the direction of the magnitude)')
-            if vector is not None and (load.get("direction") is not None or load.get("angle") is not None):
-                bad(path, '"force: [Fx, Fy]" is constant; for a table give "magnitude", "direction" and "angle"')
-            _check_table(bad, path, load, "magnitude")
+            _check_force(bad, path, load, names)
         elif kind == "friction":
-            jname = load.get("joint")
-            jtype = _dict(joints.get(jname)).get("type") if isinstance(jname, str) else None
-            if isinstance(jname, str) and jname not in joints:
-                bad(path + ("joint",), f'unknown joint "{jname}"{suggest(jname, joints)}')
-            elif jtype == "revolute" and load.get("moment") is None:
-                bad(path, 'missing field "moment" (the friction moment of a revolute joint)')
-            elif jtype in ("prismatic", "pin-in-slot") and load.get("magnitude") is None:
-                bad(path, 'missing field "magnitude" (the friction force of a sliding joint)')
-            if jtype == "revolute" and load.get("magnitude") is not None:
-                bad(path + ("magnitude",), 'a revolute joint has a friction "moment", not a force "magnitude"')
-            if jtype in ("prismatic", "pin-in-slot") and load.get("moment") is not None:
-                bad(path + ("moment",), 'a sliding joint has a friction force "magnitude", not a "moment"')
-            for key in ("moment", "magnitude"):
-                if isinstance(load.get(key), list):
-                    bad(path + (key,), "friction is one value, not a table")
+            _check_friction(bad, path, load, joints)
         elif kind == "moment":
             on = load.get("on")
             if isinstance(on, str) and on not in points:
                 bad(path + ("on",), f'unknown link "{on}"{suggest(on, points)}')
             _check_table(bad, path, load, "moment")
         else:
-            tools = load.get("tools")
-            if isinstance(tools, list):
-                if len(tools) not in (1, 2):
-                    bad(path + ("tools",), f"expected one or two tool points, got {len(tools)}")
-                owners = [point(path + ("tools", i), t) for i, t in enumerate(tools)]
-                if len(owners) == 2 and owners[0] is not None and owners[0] == owners[1]:
-                    bad(path + ("tools",), "the two tools must be on different links")
-                if FRAME in owners:
-                    bad(path + ("tools",), "a tool is a point of a moving link, not of the frame")
-            for key, count in (("workpiece", 2),):
-                value = load.get(key)
-                if value is not None and (not isinstance(value, list) or len(value) != count):
-                    bad(path + (key,), "expected [low, high]: the extent of the workpiece along the axis")
-            pen, force = load.get("penetration"), load.get("force")
-            if isinstance(pen, list) and isinstance(force, list) and len(pen) != len(force):
-                bad(path, f"penetration has {len(pen)} entries but force has {len(force)}")
-            elif isinstance(pen, list) and len(pen) < 2:
-                bad(path + ("penetration",), f"a table needs at least two points, got {len(pen)}")
+            _check_process(bad, path, load, names)
 
 
-def _check_table(bad: Any, path: tuple[Any, ...], load: dict[str, Any], key: str) -> None:
+def _check_load_fields(bad: Report, path: Path, load: dict[str, Any], kind: str) -> None:
+    """The fields a load of ``kind`` needs, and those of other kinds of load it has."""
+    needed, allowed = _LOAD_FIELDS[kind]
+    for key in sorted(needed - set(load)):
+        bad(path, f'missing field "{key}" (a {kind} load needs {", ".join(sorted(needed))})')
+    for key in sorted(set(load) - allowed - {"type", "description"}):
+        if key in {f for _, a in _LOAD_FIELDS.values() for f in a}:
+            bad(path + (key,), f'"{key}" does not apply to a {kind} load')
+
+
+def _load_point(bad: Report, names: set[str], path: Path, ref: Any) -> str | None:
+    """The link of a load's point ``ref`` (``link.point``, one of ``names``); None where it is not one."""
+    if not isinstance(ref, str):
+        return None
+    if ref not in names:
+        same = sorted(n for n in names if n.endswith(f".{ref}"))
+        hint = f' (did you mean "{same[0]}"?)' if same else suggest(ref, names)
+        bad(path, f'no point "{ref}": give link.point, the link the load acts on and its point{hint}')
+        return None
+    return ref.split(".", 1)[0]
+
+
+def _check_force(bad: Report, path: Path, load: dict[str, Any], names: set[str]) -> None:
+    """A force: its point, and either ``force: [Fx, Fy]`` or ``magnitude`` with ``direction`` (or a table)."""
+    _load_point(bad, names, path + ("at",), load.get("at"))
+    vector, magnitude = load.get("force"), load.get("magnitude")
+    if (vector is None) == (magnitude is None):
+        bad(path, 'give either "force: [Fx, Fy]" or "magnitude" with "direction"')
+    if vector is not None and (not isinstance(vector, list) or len(vector) != 2):
+        bad(path + ("force",), "expected the two components [Fx, Fy] of a force")
+    if magnitude is not None and load.get("direction") is None:
+        bad(path, 'missing field "direction" (the direction of the magnitude)')
+    if vector is not None and (load.get("direction") is not None or load.get("angle") is not None):
+        bad(path, '"force: [Fx, Fy]" is constant; for a table give "magnitude", "direction" and "angle"')
+    _check_table(bad, path, load, "magnitude")
+
+
+def _check_friction(bad: Report, path: Path, load: dict[str, Any], joints: dict[str, Any]) -> None:
+    """A friction: in an existing joint, a ``moment`` in a revolute one, a force ``magnitude`` in a sliding one."""
+    jname = load.get("joint")
+    jtype = _dict(joints.get(jname)).get("type") if isinstance(jname, str) else None
+    sliding = jtype in ("prismatic", "pin-in-slot")
+    if isinstance(jname, str) and jname not in joints:
+        bad(path + ("joint",), f'unknown joint "{jname}"{suggest(jname, joints)}')
+    elif jtype == "revolute" and load.get("moment") is None:
+        bad(path, 'missing field "moment" (the friction moment of a revolute joint)')
+    elif sliding and load.get("magnitude") is None:
+        bad(path, 'missing field "magnitude" (the friction force of a sliding joint)')
+    if jtype == "revolute" and load.get("magnitude") is not None:
+        bad(path + ("magnitude",), 'a revolute joint has a friction "moment", not a force "magnitude"')
+    if sliding and load.get("moment") is not None:
+        bad(path + ("moment",), 'a sliding joint has a friction force "magnitude", not a "moment"')
+    for key in ("moment", "magnitude"):
+        if isinstance(load.get(key), list):
+            bad(path + (key,), "friction is one value, not a table")
+
+
+def _check_process(bad: Report, path: Path, load: dict[str, Any], names: set[str]) -> None:
+    """A process load: one or two tools on different moving links, a workpiece ``[low, high]``, a table of
+    force against penetration."""
+    tools = load.get("tools")
+    if isinstance(tools, list):
+        if len(tools) not in (1, 2):
+            bad(path + ("tools",), f"expected one or two tool points, got {len(tools)}")
+        owners = [_load_point(bad, names, path + ("tools", i), t) for i, t in enumerate(tools)]
+        if len(owners) == 2 and owners[0] is not None and owners[0] == owners[1]:
+            bad(path + ("tools",), "the two tools must be on different links")
+        if FRAME in owners:
+            bad(path + ("tools",), "a tool is a point of a moving link, not of the frame")
+    workpiece = load.get("workpiece")
+    if workpiece is not None and (not isinstance(workpiece, list) or len(workpiece) != 2):
+        bad(path + ("workpiece",), "expected [low, high]: the extent of the workpiece along the axis")
+    pen, force = load.get("penetration"), load.get("force")
+    if isinstance(pen, list) and isinstance(force, list) and len(pen) != len(force):
+        bad(path, f"penetration has {len(pen)} entries but force has {len(force)}")
+    elif isinstance(pen, list) and len(pen) < 2:
+        bad(path + ("penetration",), f"a table needs at least two points, got {len(pen)}")
+
+
+def _check_table(bad: Report, path: Path, load: dict[str, Any], key: str) -> None:
     angle, value = load.get("angle"), load.get(key)
     if angle is None:
         if isinstance(value, list):
@@ -406,11 +474,11 @@ _MOTOR_FIELDS = {
 }
 
 
-def _check_machine(bad: Any, data: dict[str, Any]) -> None:
+def _check_machine(bad: Report, data: dict[str, Any]) -> None:
     machine = _dict(data.get("machine"))
     motor = _dict(machine.get("motor"))
     kind = motor.get("type")
-    if kind not in _MOTOR_FIELDS:
+    if not isinstance(kind, str) or kind not in _MOTOR_FIELDS:
         return  # reported by the schema
     path = ("machine", "motor")
     needed = _MOTOR_FIELDS[kind]
@@ -422,7 +490,7 @@ def _check_machine(bad: Any, data: dict[str, Any]) -> None:
         bad(path + (key,), f'"{key}" does not apply to {what}')
 
 
-def _check_impact(bad: Any, data: dict[str, Any], points: dict[str, set[str]]) -> None:
+def _check_impact(bad: Report, data: dict[str, Any], points: dict[str, set[str]]) -> None:
     blow = _dict(data.get("impact"))
     at = blow.get("at")
     names = {f"{ln}.{p}" for ln, pts in points.items() if ln != FRAME for p in pts}

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import types
 import typing
 from pathlib import Path
@@ -202,12 +203,10 @@ def _is_container(tp: Any) -> bool:
 
 def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
     """Problems that need the values in SI: coincident points of a link, impossible inertia."""
-    import math
-
     out = []
     for name, link in spec.links.items():
         local: dict[str, tuple[float, float]] = {}
-        if link.ends is not None and link.length is not None:
+        if link.ends is not None and len(link.ends) == 2 and link.length is not None:
             local = {link.ends[0]: (0.0, 0.0), link.ends[1]: (link.length, 0.0)}
         local.update(link.points)
         names = list(local)
@@ -238,23 +237,22 @@ def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
 def _machine_checks(spec: Spec, src: Source) -> list[Problem]:
     """An induction motor's speeds and breakdown ratio, in SI."""
     motor = spec.machine.motor if spec.machine is not None else None
-    if motor is None or motor.type != "induction" or None in (motor.speed, motor.synchronous, motor.breakdown):
+    if motor is None or motor.type != "induction":
+        return []
+    speed, synchronous, breakdown = motor.speed, motor.synchronous, motor.breakdown
+    if speed is None or synchronous is None or breakdown is None:
         return []
     out = []
     path = ("machine", "motor")
-    if not motor.speed < motor.synchronous:
+    if not speed < synchronous:
         out.append(src.problem(path + ("speed",), "the rated speed must be below the synchronous speed"))
-    if not motor.breakdown > 1:
-        out.append(
-            src.problem(path + ("breakdown",), f"the breakdown torque ratio must exceed 1, got {motor.breakdown}")
-        )
+    if not breakdown > 1:
+        out.append(src.problem(path + ("breakdown",), f"the breakdown torque ratio must exceed 1, got {breakdown}"))
     return out
 
 
 def _load_checks(spec: Spec, src: Source) -> list[Problem]:
     """Values of the external loads in SI: tables that increase, a workpiece of positive height."""
-    import math
-
     out = []
     first = spec.joints.get(spec.drives[0].joint) if spec.drives else None
     for name, load in spec.loads.items():

@@ -76,7 +76,9 @@ def _show(value: Any) -> str:
     return f'"{value}"' if isinstance(value, str) else repr(value)
 
 
-def _quantity(kind: str, sign: str = "") -> Any:
+def _quantity(kind: str, sign: str = "") -> tuple[BeforeValidator, WithJsonSchema, Quantity]:
+    """The metadata of a float field that holds one quantity of ``kind`` (``sign``: ``positive``,
+    ``nonnegative`` or any): its validator, its JSON schema and its :class:`Quantity` mark."""
     phrase = KINDS[kind][0]
 
     def validate(value: Any, info: ValidationInfo) -> float:
@@ -86,7 +88,7 @@ def _quantity(kind: str, sign: str = "") -> Any:
     if sign:
         desc = f"{sign} " + desc
     schema = {"anyOf": [{"type": "number"}, {"type": "string"}], "description": desc}
-    return Annotated[float, BeforeValidator(validate), WithJsonSchema(schema), Quantity(kind)]
+    return BeforeValidator(validate), WithJsonSchema(schema), Quantity(kind)
 
 
 _BARE = {
@@ -96,24 +98,24 @@ _BARE = {
 }
 
 
-Length = _quantity("length")
-PositiveLength = _quantity("length", "positive")
-Angle = _quantity("angle")
-PositiveMass = _quantity("mass", "positive")
-Inertia = _quantity("inertia", "nonnegative")
-PositiveAcceleration = _quantity("acceleration", "positive")
-Force = _quantity("force")
-PositiveForce = _quantity("force", "positive")
-NonnegativeForce = _quantity("force", "nonnegative")
-PositiveMoment = _quantity("moment", "positive")
-Moment = _quantity("moment")
-PositivePower = _quantity("power", "positive")
-PositiveAngularSpeed = _quantity("angular_speed", "positive")
-AngularSpeed = _quantity("angular_speed")
+Length = Annotated[float, *_quantity("length")]
+PositiveLength = Annotated[float, *_quantity("length", "positive")]
+Angle = Annotated[float, *_quantity("angle")]
+PositiveMass = Annotated[float, *_quantity("mass", "positive")]
+Inertia = Annotated[float, *_quantity("inertia", "nonnegative")]
+PositiveAcceleration = Annotated[float, *_quantity("acceleration", "positive")]
+Force = Annotated[float, *_quantity("force")]
+PositiveForce = Annotated[float, *_quantity("force", "positive")]
+NonnegativeForce = Annotated[float, *_quantity("force", "nonnegative")]
+PositiveMoment = Annotated[float, *_quantity("moment", "positive")]
+Moment = Annotated[float, *_quantity("moment")]
+PositivePower = Annotated[float, *_quantity("power", "positive")]
+PositiveAngularSpeed = Annotated[float, *_quantity("angular_speed", "positive")]
+AngularSpeed = Annotated[float, *_quantity("angular_speed")]
 
 
-def _one_or_table(kind: str) -> Any:
-    """A quantity, or a list of them (the values of a table)."""
+def _one_or_table(kind: str) -> tuple[BeforeValidator, WithJsonSchema, Quantity]:
+    """The metadata of a field that holds a quantity of ``kind``, or a list of them (the values of a table)."""
     phrase = KINDS[kind][0]
 
     def validate(value: Any, info: ValidationInfo) -> float | list[float]:
@@ -131,7 +133,7 @@ def _one_or_table(kind: str) -> Any:
         "anyOf": [{"type": "number"}, {"type": "string"}, {"type": "array"}],
         "description": f"{phrase}, or a list of them (a table): {_BARE[kind in MADE_OF]}",
     }
-    return Annotated[float | list[float], BeforeValidator(validate), WithJsonSchema(schema), Quantity(kind, "table")]
+    return BeforeValidator(validate), WithJsonSchema(schema), Quantity(kind, "table")
 
 
 #: The words a drive's ``direction`` may be written in (any case), and the one each means.
@@ -153,8 +155,8 @@ def direction_word(value: Any) -> Any:
     return DIRECTIONS.get(value.strip().lower(), value) if isinstance(value, str) else value
 
 
-ForceOrTable = _one_or_table("force")
-MomentOrTable = _one_or_table("moment")
+ForceOrTable = Annotated[float | list[float], *_one_or_table("force")]
+MomentOrTable = Annotated[float | list[float], *_one_or_table("moment")]
 
 
 def _vector(value: Any, info: ValidationInfo) -> tuple[float, float]:
@@ -206,25 +208,25 @@ class Units(_Strict):
     otherwise it needs its unit, e.g. "30 rpm" or "2 kg*m^2".
     """
 
-    length: str = Field(DEFAULT_UNITS["length"], description="e.g. m or mm")
-    mass: str = Field(DEFAULT_UNITS["mass"], description="e.g. kg")
-    time: str = Field(DEFAULT_UNITS["time"], description="e.g. s or min")
-    angle: str = Field(DEFAULT_UNITS["angle"], description="deg or rad")
-    force: str | None = Field(None, description="e.g. N or kN")
-    moment: str | None = Field(None, description="of moments and torques, e.g. N*m or kN*m")
-    inertia: str | None = Field(None, description="of moments of inertia, e.g. kg*m^2 or kg*mm^2")
-    speed: str | None = Field(None, description="of linear speeds, e.g. m/s or mm/s")
-    angular_speed: str | None = Field(None, description="e.g. rpm or rad/s")
-    acceleration: str | None = Field(None, description="e.g. m/s^2")
-    power: str | None = Field(None, description="e.g. W or kW")
+    length: str = Field(default=DEFAULT_UNITS["length"], description="e.g. m or mm")
+    mass: str = Field(default=DEFAULT_UNITS["mass"], description="e.g. kg")
+    time: str = Field(default=DEFAULT_UNITS["time"], description="e.g. s or min")
+    angle: str = Field(default=DEFAULT_UNITS["angle"], description="deg or rad")
+    force: str | None = Field(default=None, description="e.g. N or kN")
+    moment: str | None = Field(default=None, description="of moments and torques, e.g. N*m or kN*m")
+    inertia: str | None = Field(default=None, description="of moments of inertia, e.g. kg*m^2 or kg*mm^2")
+    speed: str | None = Field(default=None, description="of linear speeds, e.g. m/s or mm/s")
+    angular_speed: str | None = Field(default=None, description="e.g. rpm or rad/s")
+    acceleration: str | None = Field(default=None, description="e.g. m/s^2")
+    power: str | None = Field(default=None, description="e.g. W or kW")
 
 
 class Frame(_Strict):
     """The fixed link (link 0): its points in global coordinates."""
 
     points: dict[str, Vec2] = Field(default_factory=dict, description="frame points, global [x, y]")
-    mass: PositiveMass | None = Field(None, description="mass of the housing or bed")
-    com: PointOrVec | None = Field(None, description="centre of mass of the frame, global")
+    mass: PositiveMass | None = Field(default=None, description="mass of the housing or bed")
+    com: PointOrVec | None = Field(default=None, description="centre of mass of the frame, global")
 
 
 class Link(_Strict):

@@ -11,6 +11,10 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from ruamel.yaml import YAML
+from ruamel.yaml.error import MarkedYAMLError, YAMLError
+from ruamel.yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
+
 from linkwork.errors import Problem
 
 Path = tuple[str | int, ...]
@@ -72,9 +76,6 @@ def read_yaml(text: str, file: str | None = None) -> Source:
         ``data`` is None and ``problems`` holds the syntax error when the
         text is not valid YAML.
     """
-    from ruamel.yaml import YAML
-    from ruamel.yaml.error import MarkedYAMLError, YAMLError
-
     yaml = YAML(typ="rt")
     try:
         node = yaml.compose(text)
@@ -110,16 +111,15 @@ def read_yaml(text: str, file: str | None = None) -> Source:
 _TAG = "tag:yaml.org,2002:"
 
 
-def _build(node: Any, path: Path, src: Source, depth: int) -> Any:
-    from ruamel.yaml.nodes import MappingNode, ScalarNode, SequenceNode
-
+def _build(node: Node, path: Path, src: Source, depth: int) -> Any:
+    """The plain data of ``node``, each element's line recorded in ``src`` and each duplicate key reported."""
     if depth > 64:
         raise RecursionError
     src.lines.setdefault(path, node.start_mark.line + 1)
     if isinstance(node, MappingNode):
         out: dict[str, Any] = {}
         seen: dict[str, int] = {}
-        pairs = []
+        pairs: list[tuple[Any, Any]] = []
         n_merged = 0
         for key_node, value_node in node.value:
             tag = str(getattr(key_node.tag, "value", key_node.tag))
