@@ -21,8 +21,8 @@ from linkwork.scene.style import TEXT
 if TYPE_CHECKING:
     from linkwork.motion.kinematics import Kinematics
 
-#: Width of the frames, pixels.
-WIDTH = 720
+#: Width of the frames, pixels, and their resolution (pixels per inch).
+WIDTH, DPI = 720, 100
 
 
 def animate(kin: Kinematics, path: str | Path, frames: int = 48, fps: int = 16) -> list[Path]:
@@ -42,33 +42,48 @@ def animate(kin: Kinematics, path: str | Path, frames: int = 48, fps: int = 16) 
 
 
 def _frames(scene: SchemeScene, picks: list[int]) -> list[np.ndarray]:
-    """The frames ``(H, W, 3)`` (uint8, even sizes): artists made once, moved from frame to frame."""
+    """The frames ``(H, W, 3)`` (uint8, even sizes) of the samples ``picks``."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    box = scheme_extent(scene, picks)
-    bar = round_length(box[2] - box[0])
-    box[1] -= 3.0 * scene.em
-    dpi = 100
-    sh = sheet(box, width=WIDTH / dpi - 0.3, height=WIDTH / dpi, least=WIDTH / dpi)
-    canvas = FigureCanvasAgg(sh.fig)
-    draw_paths(sh, scene.paths)
-    scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em)
-    moving = [(it, draw_item(sh.ax, it, scene.placed(it, picks[0]))) for it in scene.items if it.kind != "path"]
-    texts = [sh.ax.text(0, 0, lab.text, ha="center", va="center", fontsize=sh.font(scene.em), color=TEXT[lab.kind],
-                        zorder=5) for lab in scene.labels]  # fmt: skip
-    title = sh.ax.set_title("", fontsize=11)
+    film = Film(scene, picks)
+    canvas = FigureCanvasAgg(film.fig)
     out = []
     for i in picks:
-        for it, artist in moving:
-            _move(artist, it.radius, scene.placed(it, i))
-        for lab, text in zip(scene.labels, texts, strict=True):
-            text.set_position(tuple(lab.centre[i]))
-            text.set_visible(bool(np.isfinite(lab.centre[i]).all()))
-        title.set_text(f"{scene.name}: crank at {np.degrees(scene.angles[i]) % 360:.0f}°")
+        film.show(i)
         canvas.draw()
         rgb = np.asarray(canvas.buffer_rgba())[..., :3]
         out.append(np.ascontiguousarray(rgb[: rgb.shape[0] // 2 * 2, : rgb.shape[1] // 2 * 2]))
     return out
+
+
+class Film:
+    """The animation's figure, :data:`WIDTH` pixels wide at 100 dpi, holding the scheme at every sample of
+    ``picks``: its artists are made once and moved to the sample :meth:`show` is given."""
+
+    def __init__(self, scene: SchemeScene, picks: list[int]) -> None:
+        self.scene = scene
+        box = scheme_extent(scene, picks)
+        bar = round_length(box[2] - box[0])
+        box[1] -= 3.0 * scene.em
+        sh = sheet(box, width=WIDTH / DPI - 0.3, height=WIDTH / DPI, least=WIDTH / DPI)
+        self.fig = sh.fig
+        self.fig.set_dpi(DPI)
+        draw_paths(sh, scene.paths)
+        scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em)
+        self.items = [(it, draw_item(sh.ax, it, scene.placed(it, picks[0]))) for it in scene.items if it.kind != "path"]
+        self.texts = [sh.ax.text(0, 0, lab.text, ha="center", va="center", fontsize=sh.font(scene.em),
+                                 color=TEXT[lab.kind], zorder=5) for lab in scene.labels]  # fmt: skip
+        self.title = sh.ax.set_title("", fontsize=11)
+
+    def show(self, i: int) -> None:
+        """Move everything to sample ``i``."""
+        scene = self.scene
+        for it, artist in self.items:
+            _move(artist, it.radius, scene.placed(it, i))
+        for lab, text in zip(scene.labels, self.texts, strict=True):
+            text.set_position(tuple(lab.centre[i]))
+            text.set_visible(bool(np.isfinite(lab.centre[i]).all()))
+        self.title.set_text(f"{scene.name}: crank at {np.degrees(scene.angles[i]) % 360:.0f}°")
 
 
 def _move(artist: Any, radius: float, xy: np.ndarray) -> None:

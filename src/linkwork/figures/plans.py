@@ -72,18 +72,18 @@ def draw_plan(plan: Plan, ax: Axes | None = None) -> Figure:
 def _title(scene: PlanScene, index: int, name: str, position: int | None) -> str:
     where = f"position {position}, " if position is not None else ""
     head = f"{name}: " if name else ""
-    return f"{head}{scene.kind} plan, {where}crank at {np.degrees(scene.angles[index]) % 360:.1f}°"
+    return f"{head}{scene.kind} plan\n{where}crank at {np.degrees(scene.angles[index]) % 360:.1f}°"
 
 
 def render_plan(scene: PlanScene, index: int, ax: Axes | None = None, title: str = "", legend: bool = True) -> Figure:
     """Draw position ``index`` of a plan's scene with its scale and (``legend``) the legend of its vectors' kinds."""
     kinds = scene.kinds(index)
     rows = -(-len(kinds) // 3) if legend else 0
-    sh = sheet(scene.extent(index), top=0.75, bottom=0.25 + 0.24 * rows, width=5.6, height=6.0, ax=ax, least=6.2)
+    sh = sheet(scene.extent(index), top=0.8, bottom=0.25 + 0.24 * rows, width=5.6, height=6.0, ax=ax, least=5.6)
     draw_vectors(sh, scene, index)
-    note = f"pole p;  {scene.symbol} = {scene.scale:g} {scene.scale_unit}"
+    note = f"pole p,  {scene.symbol} = {scene.scale:g} {scene.scale_unit}"
     if title:
-        sh.ax.set_title(f"{title}\n{note}", fontsize=10)
+        sh.ax.set_title(f"{title};  {note}", fontsize=10)
     else:
         sh.ax.set_title(note, fontsize=9)
     if legend and kinds and ax is None:
@@ -95,14 +95,17 @@ def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
     """The arrows, dots and labels of position ``index``."""
     names = scene.names
     head = 0.55 * scene.em
-    for e in scene.drawn(index):
-        arrow = scene.arrows[e]
+    shown = set(scene.drawn(index))
+    for e, arrow in enumerate(scene.arrows):
         start, end = scene.ends[index, e]
+        if not np.isfinite(scene.ends[index, e]).all():
+            continue
         style = VECTORS.get(arrow.kind, VECTORS["rotation"])
         (line,) = sh.ax.plot([start[0], end[0]], [start[1], end[1]], color=style.colour, lw=style.width,
                              ls=dashes(style), zorder=3)  # fmt: skip
-        line.set_gid(f"{arrow.kind}:{names[arrow.start]}->{names[arrow.end]}")
-        _head(sh, start, end, head, style.colour)
+        line.set_gid(f"{arrow.kind}:{names[arrow.start]}->{names[arrow.end]}")  # of no length too: read back
+        if e in shown:
+            _head(sh, start, end, head, style.colour)
     pts = scene.points[index]
     shown = np.isfinite(pts).all(-1)
     sh.ax.plot(pts[shown, 0], pts[shown, 1], "o", color="black", ms=2.2, zorder=4)

@@ -40,7 +40,7 @@ def draw_scheme(kin: Kinematics, index: int = 0, ax: Axes | None = None, traject
     angle = float(np.degrees(kin.angles[index]) % 360)
     where = f"position {position}, " if position is not None else ""
     return render_scheme(scene, index, ax=ax, trajectories=trajectories,
-                         title=f"{scene.name}: kinematic scheme, {where}crank at {angle:.1f}°")  # fmt: skip
+                         title=f"{scene.name}: kinematic scheme\n{where}crank at {angle:.1f}°")  # fmt: skip
 
 
 def render_scheme(scene: SchemeScene, index: int, ax: Axes | None = None, trajectories: bool = False,
@@ -49,7 +49,7 @@ def render_scheme(scene: SchemeScene, index: int, ax: Axes | None = None, trajec
     box = scene.extent(index, paths=trajectories)
     bar = round_length(box[2] - box[0])
     box[1] -= 3.0 * scene.em  # room for the scale bar
-    sh = sheet(box, ax=ax)
+    sh = sheet(box, ax=ax, top=0.7)
     if trajectories:
         draw_paths(sh, scene.paths)
     draw_items(sh, scene, index)
@@ -87,7 +87,7 @@ def draw_item(ax: Axes, it: Item, xy: np.ndarray, thin: float = 1.0) -> Any:
 
     style = SCHEME[it.kind]
     z = 2 + KINDS.index(it.kind) * 0.1
-    face = to_rgba(style.fill, style.alpha) if style.fill else "none"
+    face = to_rgba(style.fill, style.alpha) if style.fill and (thin == 1.0 or style.alpha == 1.0) else "none"
     if it.radius:
         artist = ax.add_patch(Circle(tuple(xy[0]), it.radius * min(1.0, 0.3 + thin), fc=face, ec=style.colour,
                                      lw=style.width * thin, zorder=z))  # fmt: skip
@@ -133,7 +133,7 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None) 
     box = scene.extent()
     bar = round_length(box[2] - box[0])
     box[1] -= 3.0 * s.em
-    sh = sheet(box, ax=ax)
+    sh = sheet(box, ax=ax, top=0.7)
     draw_paths(sh, s.paths)
     draw_items(sh, s, 0)
     for k in range(1, len(angles)):
@@ -145,7 +145,7 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None) 
                    color=TEXT["position"], zorder=5)  # fmt: skip
     scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em)
     turn = "counter-clockwise" if mech.drive_speed[0] >= 0 else "clockwise"
-    sh.ax.set_title(f"{mech.name}: plan of {count} positions, 0 at crank {np.degrees(angles[0]) % 360:.1f}°, "
+    sh.ax.set_title(f"{mech.name}: plan of {count} positions\n0 at crank {np.degrees(angles[0]) % 360:.1f}°, "
                     f"then {turn}", fontsize=11)  # fmt: skip
     return sh.fig
 

@@ -1,9 +1,10 @@
 """Where the labels of a drawing go: beside their points, clear of each other and of the lines drawn.
 
 Each label is a box of text centred at a point chosen among candidates around its anchor (twelve
-directions at three distances).  A candidate costs more the more it covers: another label (never
-accepted where any candidate is free), a line of the drawing, a pivot; then the farther it is and the
-farther from the label's preferred direction.  Labels are placed one after the other in the order
+directions at six distances, the farther ones weighed only where the nearer are all taken).  A
+candidate costs more the more it covers: another label (never accepted where any candidate is free), a
+line of the drawing, a pivot; then the farther it is and the farther from the label's preferred
+direction.  Labels are placed one after the other in the order
 given (the first ones choose first), each at every sample at once: the choice along the samples is
 the cheapest path in which a label changes place only where that saves more than a small penalty, so
 that labels do not flicker while the mechanism moves (a Viterbi pass over the samples).  Deterministic:
@@ -19,7 +20,7 @@ import numpy as np
 #: Directions of the candidates (counter-clockwise from +x, starting up-right) and their distances from
 #: the anchor in units of the label's gap.
 DIRECTIONS = np.radians(np.array([45, 135, 315, 225, 90, 0, 270, 180, 60, 120, 300, 240]))
-RINGS = (1.0, 2.0, 3.2)
+RINGS = (1.0, 2.0, 3.2, 4.6, 6.5, 9.0)
 
 #: Costs: covering another label, a line, a pivot; each ring farther out; turning away from the
 #: preferred direction (at most); changing place from one sample to the next.
@@ -88,19 +89,47 @@ def place_labels(
     placed = np.full((n_samples, 0, 4), np.nan) if taken is None else np.asarray(taken, dtype=float)
     out = np.full((n_samples, n_labels, 2), np.nan)
     for j in range(n_labels):
-        alts = alternatives[:, j]  # (A, M, 2)
-        centres = np.concatenate(
-            [_candidates(alts[:, m], sizes[:, j], float(gaps[j])) for m in range(alts.shape[1])], 1
-        )
-        boxes = _boxes(centres, sizes[:, j, None, :])
-        near = _near(obstacles, boxes)
-        slide = np.repeat(SLIDE * np.arange(alts.shape[1]), len(DIRECTIONS) * len(RINGS))
-        cost = _cost(boxes, placed, near, pad) + np.tile(_preference(prefer[:, j]), alts.shape[1]) + slide
-        pick = _smooth(np.where(np.isfinite(centres).all(-1), cost, 1e9))
-        out[:, j] = np.take_along_axis(centres, pick[:, None, None], 1)[:, 0]
-        chosen = np.take_along_axis(boxes, pick[:, None, None], 1)
-        placed = np.concatenate([placed, chosen], 1)
+        centres, boxes = _place_one(alternatives[:, j], sizes[:, j], float(gaps[j]), prefer[:, j], placed, obstacles,
+                                    pad)  # fmt: skip
+        out[:, j] = centres
+        placed = np.concatenate([placed, boxes[:, None]], 1)
     return out
+
+
+def _place_one(
+    alts: np.ndarray,
+    size: np.ndarray,
+    gap: float,
+    prefer: np.ndarray,
+    placed: np.ndarray,
+    obstacles: Obstacles,
+    pad: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The centre ``(A, 2)`` and box ``(A, 4)`` of one label with alternative anchors ``alts`` ``(A, M, 2)``.
+
+    The candidates are weighed ring by ring and anchor by anchor, in the order of their preference; a
+    sample stops being weighed once a candidate covers nothing (the others stay out of its choice).
+    """
+    n, m = alts.shape[:2]
+    per = len(DIRECTIONS)
+    centres = np.concatenate([_candidates(alts[:, a], size, gap) for a in range(m)], 1)  # (A, M * R * D, 2)
+    boxes = _boxes(centres, size[:, None, :])
+    base = np.tile(_preference(prefer), m) + np.repeat(SLIDE * np.arange(m), per * len(RINGS))
+    cost = np.full(base.shape, 1e6)
+    todo = np.isfinite(alts).all(-1).any(-1)
+    for _, a, ring in sorted((ring * FARTHER + a * SLIDE, a, ring) for a in range(m) for ring in range(len(RINGS))):
+        rows = np.flatnonzero(todo)
+        if not len(rows):
+            break
+        cols = slice((a * len(RINGS) + ring) * per, (a * len(RINGS) + ring + 1) * per)
+        sub = boxes[rows, cols]
+        near = _near(Obstacles(obstacles.segments[rows], obstacles.circles[rows]), sub)
+        covered = np.where(np.isfinite(sub).all(-1), _cost(sub, placed[rows], near, pad), np.inf)
+        cost[rows, cols] = covered + base[rows, cols]
+        todo[rows] &= ~(covered.min(1) == 0)
+    pick = _smooth(np.where(np.isfinite(cost), cost, 1e9))
+    return (np.take_along_axis(centres, pick[:, None, None], 1)[:, 0],
+            np.take_along_axis(boxes, pick[:, None, None], 1)[:, 0])  # fmt: skip
 
 
 def _candidates(anchor: np.ndarray, size: np.ndarray, gap: float) -> np.ndarray:

@@ -38,6 +38,9 @@ PIVOT, FONT = 0.012, 0.032
 #: Samples of the whole turn the fixed symbols are chosen from, where the drawing is given fewer.
 CYCLE = 72
 
+#: A support stands down unless another side is crossed at fewer samples by this fraction of them.
+DOWN = 0.15
+
 
 @dataclass(frozen=True)
 class Item:
@@ -277,26 +280,28 @@ class _Builder:
         return out
 
     def _free_side(self, apex: np.ndarray) -> np.ndarray:
-        """Of down, left, right and up, the direction from ``apex`` in which a support's symbol is crossed by
-        the fewest lines of the moving links over the samples (down where there is a tie)."""
+        """Of down, left, right and up, the direction from ``apex`` in which a support's symbol is crossed by the
+        lines of the moving links at the fewest samples of the cycle, down preferred (by :data:`DOWN` of the
+        samples over the sides, twice that over up)."""
         sides = np.array([[0.0, -1.0], [-1.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
-        segs = self._link_segments() - apex
+        segs = self._link_segments() - apex  # (S, n, 2, 2): sides of links, samples
         box = np.array([1.2 * self.r, -2.6 * self.r, 3.6 * self.r, 2.6 * self.r])
-        crossing = []
+        score = []
         for d in sides:  # in the axes of the side: along it, across it
-            turned = np.stack([segs @ d, segs @ perp(d)], -1)
-            crossing.append(float(segments_hit(box[None, None], turned[None])[0, 0]))
-        return sides[int(np.argmin(crossing))]
+            turned = np.stack([segs @ d, segs @ perp(d)], -1).reshape(-1, 2, 2)
+            hit = segments_hit(box[None, None], turned[None])[0, 0] / max(segs.shape[1], 1)
+            score.append(hit)
+        return sides[int(np.argmin(np.array(score) + DOWN * np.array([0.0, 1.0, 1.0, 2.0])))]
 
     def _link_segments(self) -> np.ndarray:
-        """The sides of every drawn link at every sample, ``(S, 2, 2)``."""
+        """The sides of every drawn link at every sample of the cycle, ``(S, n, 2, 2)`` (NaN where it does not
+        assemble)."""
         segs = []
         for link in range(1, self.mech.n_links_total):
             draw = self._outline_points(link) if self._drawn_link(link) else []
             for i, j in zip(draw, draw[1:], strict=False):
                 segs.append(np.stack([self.cycle[:, i], self.cycle[:, j]], 1))
-        out = np.concatenate(segs) if segs else np.zeros((0, 2, 2))
-        return out[np.isfinite(out).all((1, 2))]
+        return np.stack(segs) if segs else np.zeros((0, len(self.cycle), 2, 2))
 
     def _sliders(self) -> list[Item]:
         """A block at every slider, and a hatched guide under those that slide on the frame."""
@@ -319,7 +324,7 @@ class _Builder:
         s = (self.cycle[:, p] - origin) @ u
         s = s[np.isfinite(s)]
         span = (float(s.min()) - 3 * self.r, float(s.max()) + 3 * self.r) if len(s) else (-3 * self.r, 3 * self.r)
-        segs = self._link_segments() - origin
+        segs = (self._link_segments() - origin).reshape(-1, 2, 2)
         turned = np.stack([segs @ u, segs @ perp(u)], -1)  # along the guide, across it (left +)
         left = [span[0], 1.5 * self.r, span[1], 8 * self.r]
         right = [span[0], -8 * self.r, span[1], -1.5 * self.r]
@@ -390,7 +395,8 @@ class _Builder:
     def _point_labels(self) -> list[tuple[str, str, int, np.ndarray, np.ndarray, float]]:
         """(text, kind, link, local anchor, anchors (A, 2), gap) of every named point, each name once:
         the joints (a slider's beyond its block), the markers, the frame's points away from any joint."""
-        sliders = {int(self.mech.pair_points[k, 1]) for k in range(self.mech.n_pairs)
+        short = [name.split(".", 1)[1] for name in self.mech.point_names]
+        sliders = {short[int(self.mech.pair_points[k, 1])] for k in range(self.mech.n_pairs)
                    if self.mech.pair_type[k] == PairType.PRISMATIC}  # fmt: skip
         out, seen = [], set()
         named = [(lab, p) for lab, p in point_labels(self.mech) if not self.mech.link_virtual[self.mech.point_link[p]]]
@@ -403,7 +409,7 @@ class _Builder:
                 continue
             seen.add(key)
             link = int(self.mech.point_link[p])
-            gap = (2.6 if p in sliders else 1.5) * self.r
+            gap = (2.6 if p in self.joint and short[p] in sliders else 1.5) * self.r
             out.append((text, "point", link, self.local[p], self.pts[:, p], gap))
         return out
 
