@@ -229,3 +229,63 @@ def test_the_scene_and_the_viewer_need_no_matplotlib():
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert done.stdout.strip() == "[]"
+
+
+def _cli():
+    from typer.testing import CliRunner
+
+    import linkwork.cli.analyze  # noqa: F401  (registers the command)
+    from linkwork.cli.main import app
+
+    return CliRunner(), app
+
+
+def test_analyze_writes_the_drawings_for_cad_and_the_sheets_of_all_twelve_plans(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    runner, app = _cli()
+    out = tmp_path / "r"
+    result = runner.invoke(app, ["analyze", "four-bar", "--out", str(out), "--steps", "36", "--no-animation",
+                                 "--dxf", "--position", "all"])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    for name in ("scheme", "positions", "velocity_plan", "acceleration_plan"):
+        doc = ezdxf.readfile(out / "figures" / f"{name}.dxf")
+        assert doc.units == ezdxf.units.MM and len(doc.modelspace()) > 10
+    for name in ("velocity_plans", "acceleration_plans"):
+        assert (out / "figures" / f"{name}.png").stat().st_size > 10000
+    assert "velocity_plans" in (out / "report.html").read_text()
+
+
+def test_analyze_without_ezdxf_says_what_to_install_before_any_work(tmp_path, monkeypatch):
+    import importlib
+
+    real = importlib.import_module
+
+    def without_ezdxf(name, *args, **kwargs):
+        if name.split(".")[0] == "ezdxf":
+            raise ImportError(name)
+        return real(name, *args, **kwargs)
+
+    monkeypatch.setattr(importlib, "import_module", without_ezdxf)
+    runner, app = _cli()
+    result = runner.invoke(app, ["analyze", "four-bar", "--out", str(tmp_path / "r"), "--dxf"])
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "ezdxf" in lines[0] and 'pip install "linkwork[cad]"' in lines[0]
+    assert not (tmp_path / "r").exists()
+
+
+def test_the_animation_is_720_pixels_wide_and_an_mp4_where_imageio_ffmpeg_is(tmp_path):
+    from PIL import Image
+
+    from linkwork.figures.animation import animate
+
+    mech = lw.compile(lw.example("double-cut-shears"))
+    written = animate(lw.kinematics(mech, steps=72), tmp_path / "a.gif", frames=12)
+    with Image.open(written[0]) as gif:
+        assert gif.size[0] == 720 and gif.n_frames == 12
+    try:
+        import imageio_ffmpeg  # noqa: F401
+    except ImportError:
+        assert written == [tmp_path / "a.gif"]
+    else:
+        assert written[1] == tmp_path / "a.mp4" and written[1].read_bytes()[4:8] == b"ftyp"

@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, fail
+from linkwork.cli.app import FileOrExample, _compile, app, fail, needs
 
 
 @app.command()
@@ -35,7 +35,6 @@ def analyze(
     from rich.progress import Progress, SpinnerColumn, TextColumn
 
     from linkwork.errors import LinkworkError, MissingDependencyError
-    from linkwork.optional import require
     from linkwork.report import analyze as run
     from linkwork.report import require_packages
 
@@ -50,10 +49,10 @@ def analyze(
         fail(LinkworkError(f"--out {out}: {why}"))
     try:
         require_packages()
-        if dxf:
-            require("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
     except MissingDependencyError as exc:
         fail(exc)
+    if dxf:
+        needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
     mech = _compile(file_or_example)
     with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True) as bar:
         task = bar.add_task("analysing", total=None)

@@ -88,6 +88,7 @@ def draw_item(ax: Axes, it: Item, xy: np.ndarray, thin: float = 1.0) -> Any:
     style = SCHEME[it.kind]
     z = 2 + KINDS.index(it.kind) * 0.1
     face = to_rgba(style.fill, style.alpha) if style.fill and (thin == 1.0 or style.alpha == 1.0) else "none"
+    artist: Any
     if it.radius:
         artist = ax.add_patch(Circle(tuple(xy[0]), it.radius * min(1.0, 0.3 + thin), fc=face, ec=style.colour,
                                      lw=style.width * thin, zorder=z))  # fmt: skip

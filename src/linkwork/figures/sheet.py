@@ -5,7 +5,7 @@ to a size given in the drawing's own units (as the scene places it)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -66,7 +66,7 @@ def sheet(extent: np.ndarray, top: float = 0.5, bottom: float = 0.2, width: floa
 def _into(ax: Axes, box: tuple[float, float, float, float]) -> Sheet:
     """``ax`` (of a figure laid out elsewhere) holding ``box`` at equal scales."""
     x0, y0, x1, y1 = box
-    fig = ax.figure
+    fig = cast("Figure", ax.figure)  # a figure's own axes, not a subfigure's
     pos = ax.get_position()
     w_in, h_in = pos.width * fig.get_figwidth(), pos.height * fig.get_figheight()
     scale = min(w_in / (x1 - x0), h_in / (y1 - y0))
@@ -75,7 +75,7 @@ def _into(ax: Axes, box: tuple[float, float, float, float]) -> Sheet:
     ax.set_ylim(cy - h_in / scale / 2, cy + h_in / scale / 2)
     ax.set_aspect("equal", adjustable="box")
     ax.set_axis_off()
-    return Sheet(fig, ax, scale * 72.0)  # type: ignore[arg-type]
+    return Sheet(fig, ax, scale * 72.0)
 
 
 def round_length(span: float) -> float:

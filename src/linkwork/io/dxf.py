@@ -40,7 +40,7 @@ CAP = 0.73
 _ACI = {"#000000": 7, "#1f5fa8": 5, "#1f77b4": 5, "#2ca02c": 3, "#d62728": 1, "#ff7f0e": 30, "#9467bd": 6,
         "#999999": 8, "#777777": 8}  # fmt: skip
 
-PURPOSE = "DXF drawings (linkwork analyze --dxf)"
+PURPOSE = "the drawings for CAD (linkwork analyze --dxf)"
 
 
 def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinematics | None = None) -> list[Path]:

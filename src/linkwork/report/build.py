@@ -201,7 +201,7 @@ def _drawings(run: _Run, kin: Any, kin12: Any, position: int | str | None, dxf: 
     from linkwork import figures
     from linkwork.scene.positions import plan_positions
 
-    drawn = plan_positions(run.mech, kin12) if position in (None, "all") else [int(position)]  # type: ignore[arg-type]
+    drawn = plan_positions(run.mech, kin12) if position in (None, "all") else [int(position)]
     first = drawn[0]
     names = [
         run.figure("scheme", figures.draw_scheme(kin12, first, position=first, cycle=kin)),
