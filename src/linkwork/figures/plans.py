@@ -132,7 +132,7 @@ def _legend(sh: Sheet, kinds: list[str]) -> None:
     from matplotlib.lines import Line2D
 
     handles = [Line2D([], [], color=VECTORS[k].colour, lw=VECTORS[k].width, ls=dashes(VECTORS[k])) for k in kinds]
-    sh.fig.legend(handles, [KINDS[k] for k in kinds], loc="lower center", ncol=min(3, len(kinds)), fontsize=7.5,
+    sh.fig.legend(handles, [KINDS[k] for k in kinds], loc="lower center", ncol=min(3, len(kinds)), fontsize=8.5,
                   frameon=False, handlelength=2.2, columnspacing=1.2)  # fmt: skip
 
 
