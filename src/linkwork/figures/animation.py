@@ -43,47 +43,61 @@ def animate(kin: Kinematics, path: str | Path, frames: int = 48, fps: int = 16) 
 
 def _frames(scene: SchemeScene, picks: list[int]) -> list[np.ndarray]:
     """The frames ``(H, W, 3)`` (uint8, even sizes) of the samples ``picks``."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-
     film = Film(scene, picks)
-    canvas = FigureCanvasAgg(film.fig)
-    out = []
-    for i in picks:
-        film.show(i)
-        canvas.draw()
-        rgb = np.asarray(canvas.buffer_rgba())[..., :3]
-        out.append(np.ascontiguousarray(rgb[: rgb.shape[0] // 2 * 2, : rgb.shape[1] // 2 * 2]))
-    return out
+    return [film.frame(i) for i in picks]
 
 
 class Film:
     """The animation's figure, :data:`WIDTH` pixels wide at 100 dpi, holding the scheme at every sample of
-    ``picks``: its artists are made once and moved to the sample :meth:`show` is given."""
+    ``picks``: its artists are made once and moved to the sample :meth:`show` is given; what does not move
+    (the frame's symbols, the trajectories, the scale bar) is drawn once, under every frame."""
 
     def __init__(self, scene: SchemeScene, picks: list[int]) -> None:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+
         self.scene = scene
         box = scheme_extent(scene, picks)
         bar = round_length(box[2] - box[0])
         box[1] -= 3.0 * scene.em
         sh = sheet(box, width=WIDTH / DPI - 0.3, height=WIDTH / DPI, least=WIDTH / DPI)
-        self.fig = sh.fig
+        self.fig, self.ax = sh.fig, sh.ax
         self.fig.set_dpi(DPI)
+        self.canvas = FigureCanvasAgg(self.fig)
         draw_paths(sh, scene.paths)
         scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em)
         self.items = [(it, draw_item(sh.ax, it, scene.placed(it, picks[0]))) for it in scene.items if it.kind != "path"]
         self.texts = [sh.ax.text(0, 0, lab.text, ha="center", va="center", fontsize=sh.font(scene.em),
                                  color=TEXT[lab.kind], zorder=5) for lab in scene.labels]  # fmt: skip
         self.title = sh.ax.set_title("", fontsize=11)
+        self.where = [scene.placed(it) for it, _ in self.items]  # (A, K, 2) each: every sample at once
+        self.moving = [a for it, a in self.items if it.link != 0] + self.texts + [self.title]
+        for artist in self.moving:
+            artist.set_animated(True)
+        self.background: Any = None
 
     def show(self, i: int) -> None:
         """Move everything to sample ``i``."""
         scene = self.scene
-        for it, artist in self.items:
-            _move(artist, it.radius, scene.placed(it, i))
+        for (it, artist), xy in zip(self.items, self.where, strict=True):
+            _move(artist, it.radius, xy[i])
         for lab, text in zip(scene.labels, self.texts, strict=True):
             text.set_position(tuple(lab.centre[i]))
             text.set_visible(bool(np.isfinite(lab.centre[i]).all()))
         self.title.set_text(f"{scene.name}: crank at {np.degrees(scene.angles[i]) % 360:.0f}°")
+
+    def frame(self, i: int) -> np.ndarray:
+        """The picture ``(H, W, 3)`` (uint8, even sizes) of sample ``i``: the moving artists drawn over the
+        picture of what does not move."""
+        self.show(i)
+        if self.background is None:
+            self.canvas.draw()
+            self.background = self.canvas.copy_from_bbox(self.fig.bbox)
+        else:
+            self.canvas.restore_region(self.background)
+        for artist in sorted(self.moving, key=lambda a: a.get_zorder()):
+            self.ax.draw_artist(artist)
+        rgb = np.asarray(self.canvas.buffer_rgba())[..., :3]
+        return np.ascontiguousarray(rgb[: rgb.shape[0] // 2 * 2, : rgb.shape[1] // 2 * 2])
 
 
 def _move(artist: Any, radius: float, xy: np.ndarray) -> None:
