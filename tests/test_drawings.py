@@ -146,20 +146,23 @@ def test_dxf_plans_are_the_velocities_and_accelerations_drawn_to_their_scale(nam
     assert {"LINKS", "TRAJECTORIES"} <= {e.dxf.layer for e in ezdxf.readfile(tmp_path / "positions.dxf").modelspace()}
 
 
-def _longest(kin, index: int) -> float:
+def _speeds(kin, index: int) -> np.ndarray:
+    """Speeds of the joints of the moving links at sample ``index``, m/s."""
     mech = kin.mechanism
-    v = np.array([kin.velocity(n)[index] for n in mech.point_names])
-    return float(np.nanmax(np.hypot(v[:, 0], v[:, 1])))
+    joints = sorted({int(p) for pair in mech.pair_points for p in pair if p >= 0 and mech.point_link[p] != 0})
+    v = np.array([kin.velocity(mech.point_names[p])[index] for p in joints])
+    return np.hypot(v[:, 0], v[:, 1])
 
 
 @pytest.mark.parametrize("name", names())
 def test_the_plans_are_drawn_where_the_mechanism_moves(name):
-    """Not at a dead point: at the position drawn the fastest point moves at least 0.4 times as fast as it does at
-    the fastest of the twelve, and every dyad transmits at an angle of at least 10 degrees."""
+    """Not at a dead point, where the chain beyond the crank stands still and the plan collapses onto the pole:
+    at the position drawn at least half of the moving joints move at a tenth of the fastest one's speed or
+    more, and every dyad transmits at an angle of at least 10 degrees."""
     mech, cycle, twelve = _solved(name)
     k = plan_positions(mech, twelve)[0]
-    fastest = max(_longest(twelve, i) for i in range(12))
-    assert _longest(twelve, k) >= 0.4 * fastest
+    speeds = _speeds(twelve, k)
+    assert np.mean(speeds >= 0.1 * speeds.max()) >= 0.5, speeds
     for mu in transmission(twelve).values():
         assert np.degrees(np.asarray(mu).reshape(-1, 12)[0, k]) >= 10.0
 
