@@ -297,3 +297,29 @@ def test_the_animation_is_720_pixels_wide_and_an_mp4_where_imageio_ffmpeg_is(tmp
         assert written == [tmp_path / "a.gif"]
     else:
         assert written[1] == tmp_path / "a.mp4" and written[1].read_bytes()[4:8] == b"ftyp"
+
+
+def test_no_name_lies_on_a_slider_block_a_knife_or_the_hatching():
+    """The double-cut shears at each of the twelve positions, read back through the Agg renderer: no label's
+    box meets the box of a slider block, a knife, a support or a hatching stroke (E and F beside their blocks,
+    the links' numbers off the hatching)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    mech, cycle, twelve = _solved("double-cut-shears")
+    found = []
+    for k in range(12):
+        fig = figures.draw_scheme(twelve, k, cycle=cycle)
+        canvas = FigureCanvasAgg(fig)
+        canvas.draw()
+        renderer = canvas.get_renderer()
+        ax = fig.axes[0]
+        symbols = [a for a in [*ax.patches, *ax.lines]
+                   if (a.get_gid() or "").split(":")[0] in ("block", "tool", "support", "hatch")]  # fmt: skip
+        assert len(symbols) > 40
+        boxes = [(a.get_gid(), a.get_window_extent(renderer)) for a in symbols]
+        for text in ax.texts:
+            if not (text.get_gid() or "").startswith("label:"):
+                continue
+            box = text.get_window_extent(renderer)
+            found += [f"position {k}: {text.get_text()!r} on {gid}" for gid, b in boxes if box.overlaps(b)]
+    assert found == []
