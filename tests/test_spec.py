@@ -49,6 +49,7 @@ def double_cut_shears_builder():
     b.machine(
         {**motor, "breakdown": 2.2, "inertia": "0.03 kg*m^2"}, gear={"ratio": 48.33, "efficiency": 0.95}, delta=0.05
     )
+    b.drawing(positions=[9])
     return b
 
 

@@ -26,6 +26,8 @@ PACKAGES: dict[str, tuple[str, str]] = {
     "distributed": ("distributed", "design"),
     "dask": ("dask", "design"),
     "pandas": ("pandas", "design"),
+    "ezdxf": ("ezdxf", "cad"),
+    "imageio_ffmpeg": ("imageio-ffmpeg", "video"),
 }
 
 

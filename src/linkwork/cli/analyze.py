@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, fail
+from linkwork.cli.app import FileOrExample, _compile, app, fail, needs
 
 
 @app.command()
@@ -18,10 +18,18 @@ def analyze(
     ] = "report",
     steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
     position: Annotated[
-        int, typer.Option(help="which of the 12 positions (0 to 11) gets the velocity and acceleration plans")
-    ] = 0,
+        str | None,
+        typer.Option(
+            help="which of the 12 positions (0 to 11) gets the scheme and the velocity and acceleration plans, "
+            "or all (also sheets of the twelve plans); default: the file's drawing.positions, else where the "
+            "working point moves fastest"
+        ),
+    ] = None,
     pdf: Annotated[bool, typer.Option("--pdf", help="also write report.pdf")] = False,
-    animation: Annotated[bool, typer.Option(help="write animation.gif (and .mp4 with ffmpeg)")] = True,
+    animation: Annotated[bool, typer.Option(help="write animation.gif (and .mp4 with imageio-ffmpeg)")] = True,
+    dxf: Annotated[
+        bool, typer.Option("--dxf", help="also write the drawings for CAD, figures/*.dxf (needs ezdxf)")
+    ] = False,
 ) -> None:
     """Every analysis the mechanism supports: tables, figures, animation and report.html."""
     from rich.progress import Progress, SpinnerColumn, TextColumn
@@ -32,7 +40,7 @@ def analyze(
 
     if steps < 12:
         fail(LinkworkError(f"--steps: expected at least 12 steps over the turn, got {steps}"))
-    if not 0 <= position < 12:
+    if position is not None and position != "all" and not (position.isdigit() and 0 <= int(position) < 12):
         fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {position}"))
     from linkwork.report.folder import problem
 
@@ -43,12 +51,15 @@ def analyze(
         require_packages()
     except MissingDependencyError as exc:
         fail(exc)
+    if dxf:
+        needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
     mech = _compile(file_or_example)
     with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True) as bar:
         task = bar.add_task("analysing", total=None)
         try:
             path = run(
-                mech, out, steps=steps, position=position, pdf=pdf, animation=animation,
+                mech, out, steps=steps, position=int(position) if position and position.isdigit() else position,
+                pdf=pdf, animation=animation, dxf=dxf,
                 progress=lambda what: bar.update(task, description=f"analysing: {what}"),
             )  # fmt: skip
         except LinkworkError as exc:

@@ -16,7 +16,7 @@ from linkwork.figures.diagrams import (
     motion_diagram,
     torque_diagram,
 )
-from linkwork.figures.plans import acceleration_plan, draw_plan, velocity_plan
+from linkwork.figures.plans import acceleration_plan, draw_plan, plan_sheet, velocity_plan
 from linkwork.figures.scheme import draw_positions, draw_scheme
 from linkwork.optional import require
 
@@ -33,6 +33,7 @@ __all__ = [
     "hodograph",
     "link_angles",
     "motion_diagram",
+    "plan_sheet",
     "torque_diagram",
     "velocity_plan",
 ]

@@ -1,87 +1,168 @@
-"""Velocity and acceleration plans drawn as the graphical method draws them.
+"""Velocity and acceleration plans drawn with matplotlib from their scenes (:mod:`linkwork.scene.plans`).
 
-The drawing is in millimetres of the sheet: a vector ``u`` of the plan is drawn
-``u / scale`` mm long (``scale`` in units per mm, written on the sheet as
-``mu_v`` or ``mu_a``).  The pole ``p`` is at the origin; every point's
-absolute vector ends at its lower-case letter; the relative vectors of the
-construction (rotation, normal and tangential, transport, Coriolis, sliding)
-are drawn between plan points in their own styles.  Each drawn vector is a
-line whose ``gid`` is ``"kind:start->end"`` (tests read them back).
+The drawing is in millimetres of the sheet: a vector ``u`` of the plan is drawn ``u / scale`` mm long
+(``scale`` in units per mm, written under the plan as mu_v or mu_a).  The pole ``p`` is at the origin;
+every point's absolute vector ends at its lower-case letter; the relative vectors of the construction
+(rotation, normal and tangential, transport, Coriolis, sliding) are drawn between plan points in their
+own styles, named in a legend.  Each drawn vector is a line whose ``gid`` is ``"kind:start->end"``
+(tests read them back).
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-STYLE = {
-    "absolute": {"color": "black", "lw": 1.6},
-    "rotation": {"color": "tab:blue", "lw": 1.1},
-    "normal": {"color": "tab:green", "lw": 1.1},
-    "tangential": {"color": "tab:blue", "lw": 1.1},
-    "transport": {"color": "tab:purple", "lw": 1.1, "ls": "--"},
-    "coriolis": {"color": "tab:red", "lw": 1.1},
-    "sliding": {"color": "tab:orange", "lw": 1.1},
-}
+from linkwork.figures.sheet import Sheet, dashes, sheet
+from linkwork.motion.kinematics import kinematics
+from linkwork.motion.plans import plan_series
+from linkwork.scene.plans import KINDS, PlanScene, plan_scene
+from linkwork.scene.positions import COUNT, position_angles
+from linkwork.scene.style import TEXT, VECTORS
 
-
-def _arrow(ax: Any, start: np.ndarray, end: np.ndarray, kind: str, gid: str) -> None:
-    style = STYLE.get(kind, STYLE["rotation"])
-    (line,) = ax.plot([start[0], end[0]], [start[1], end[1]], **style)
-    line.set_gid(gid)
-    d = end - start
-    size = float(np.hypot(*d))
-    if size > 0:
-        head = min(3.0, 0.3 * size)
-        u = d / size
-        w = np.array([-u[1], u[0]])
-        tip = np.array([end, end - head * u + 0.35 * head * w, end - head * u - 0.35 * head * w])
-        ax.fill(tip[:, 0], tip[:, 1], color=style["color"], lw=0)
-
-
-def draw_plan(plan: Any, ax: Any = None) -> Any:
-    """Draw a :class:`~linkwork.motion.plans.Plan`; returns the matplotlib Figure."""
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    fig = ax.figure if ax is not None else Figure(figsize=(6, 6))
-    ax = ax if ax is not None else fig.add_subplot()
-    scale = plan.scale
-    at = {label: np.asarray(vec, dtype=float) / scale for label, vec in plan.points.items()}
-    at["p"] = np.zeros(2)
-    for label, pos in at.items():
-        if label != "p" and np.hypot(*pos) > 0:
-            _arrow(ax, np.zeros(2), pos, "absolute", f"absolute:p->{label}")
-    known = dict(at)
-    for vec in plan.vectors:
-        start = known.get(vec.start)
-        if start is None:
+    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.plans import Plan
+
+
+def velocity_plan(kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None) -> Figure:
+    """The velocity plan of sample ``index`` of a kinematics result (``position``: its number, for the title)."""
+    return _one(kin, index, "velocity", ax, position)
+
+
+def acceleration_plan(kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None) -> Figure:
+    """The acceleration plan of sample ``index`` of a kinematics result (``position``: its number, for the title)."""
+    return _one(kin, index, "acceleration", ax, position)
+
+
+def _one(kin: Kinematics, index: int, kind: str, ax: Axes | None, position: int | None) -> Figure:
+    i = int(index) % len(kin.angles)
+    series = plan_series(kin)[0 if kind == "velocity" else 1]
+    scene = plan_scene(series, [i], valid=np.asarray(kin.valid_all[0]))
+    return render_plan(scene, 0, ax=ax, title=_title(scene, 0, kin.mechanism.name, position))
+
+
+def draw_plan(plan: Plan, ax: Axes | None = None) -> Figure:
+    """Draw a :class:`~linkwork.motion.plans.Plan` (one position's plan as data); returns the matplotlib Figure."""
+    from linkwork.motion.plans import PlanEdge, PlanSeries
+
+    labels = list(plan.points)
+    for v in plan.vectors:
+        labels += [lab for lab in (v.start, v.end) if lab not in labels]
+    values = np.full((1, 1, len(labels), 2), np.nan)
+    known = {lab: np.asarray(v, dtype=float) for lab, v in plan.points.items()}
+    known.setdefault("p", np.zeros(2))
+    for v in plan.vectors:
+        if v.start in known and v.end not in known:
+            known[v.end] = known[v.start] + np.asarray(v.vector)
+    for j, lab in enumerate(labels):
+        values[0, 0, j] = known.get(lab, np.nan)
+    edges = tuple(PlanEdge(v.start, v.end, v.kind, v.group, v.about) for v in plan.vectors)
+    vectors = np.array([[[v.vector for v in plan.vectors]]], dtype=float).reshape(1, 1, len(edges), 2)
+    points = tuple(plan.points) if "p" in plan.points else ("p", *plan.points)
+    series = PlanSeries(plan.kind, np.array([plan.angle]), points, tuple(labels), edges, values, vectors)
+    scene = plan_scene(series, [0], scale=plan.scale)
+    return render_plan(scene, 0, ax=ax, title=_title(scene, 0, "", None))
+
+
+def _title(scene: PlanScene, index: int, name: str, position: int | None) -> str:
+    where = f"position {position}, " if position is not None else ""
+    head = f"{name}: " if name else ""
+    return f"{head}{scene.kind} plan\n{where}crank at {np.degrees(scene.angles[index]) % 360:.1f}°"
+
+
+def render_plan(scene: PlanScene, index: int, ax: Axes | None = None, title: str = "", legend: bool = True) -> Figure:
+    """Draw position ``index`` of a plan's scene with its scale and (``legend``) the legend of its vectors' kinds."""
+    kinds = scene.kinds(index)
+    rows = -(-len(kinds) // 3) if legend else 0
+    sh = sheet(scene.extent(index), top=0.8, bottom=0.25 + 0.24 * rows, width=5.6, height=6.0, ax=ax, least=5.6)
+    draw_vectors(sh, scene, index)
+    note = f"pole p,  {scene.symbol} = {scene.scale:g} {scene.scale_unit}"
+    if title:
+        sh.ax.set_title(f"{title};  {note}", fontsize=10)
+    else:
+        sh.ax.set_title(note, fontsize=9)
+    if legend and kinds and ax is None:
+        _legend(sh, kinds)
+    return sh.fig
+
+
+def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
+    """The arrows, dots and labels of position ``index``."""
+    names = scene.names
+    head = 0.55 * scene.em
+    shown = set(scene.drawn(index))
+    for e, arrow in enumerate(scene.arrows):
+        start, end = scene.ends[index, e]
+        if not np.isfinite(scene.ends[index, e]).all():
             continue
-        end = start + np.asarray(vec.vector, dtype=float) / scale
-        known.setdefault(vec.end, end)
-        _arrow(ax, start, end, vec.kind, f"{vec.kind}:{vec.start}->{vec.end}")
-    for label, pos in known.items():
-        ax.plot(*pos, "o", color="black", ms=2.5)
-        ax.annotate(label, pos, xytext=(3, 3), textcoords="offset points", fontsize=9)
-    unit = "(m/s)/mm" if plan.kind == "velocity" else "(m/s²)/mm"
-    mu = "μ_v" if plan.kind == "velocity" else "μ_a"
-    ax.set_title(f"{plan.kind} plan at {np.degrees(plan.angle) % 360:.1f}°;  {mu} = {scale:g} {unit}")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("mm")
-    ax.set_ylabel("mm")
-    ax.grid(True, lw=0.3, alpha=0.5)
+        style = VECTORS.get(arrow.kind, VECTORS["rotation"])
+        (line,) = sh.ax.plot([start[0], end[0]], [start[1], end[1]], color=style.colour, lw=style.width,
+                             ls=dashes(style), zorder=3)  # fmt: skip
+        line.set_gid(f"{arrow.kind}:{names[arrow.start]}->{names[arrow.end]}")  # of no length too: read back
+        if e in shown:
+            _head(sh, start, end, head, style.colour)
+    pts = scene.points[index]
+    shown = np.isfinite(pts).all(-1)
+    sh.ax.plot(pts[shown, 0], pts[shown, 1], "o", color="black", ms=2.2, zorder=4)
+    for j, text in enumerate(scene.text[index]):
+        c = scene.centres[index, j]
+        if text and np.isfinite(c).all():
+            main = bool(scene.main[j])
+            sh.ax.text(c[0], c[1], text, ha="center", va="center", zorder=5,
+                       fontsize=sh.font(scene.em) * (1.0 if main else 0.8),
+                       color=TEXT["point" if main else "minor"], style="normal" if main else "italic")  # fmt: skip
+
+
+def _head(sh: Sheet, start: np.ndarray, end: np.ndarray, size: float, colour: str) -> None:
+    d = end - start
+    length = float(np.hypot(*d))
+    size = min(size, 0.35 * length)
+    u = d / length
+    w = np.array([-u[1], u[0]])
+    tip = np.array([end, end - size * u + 0.3 * size * w, end - size * u - 0.3 * size * w])
+    sh.ax.fill(tip[:, 0], tip[:, 1], color=colour, lw=0, zorder=3)
+
+
+def _legend(sh: Sheet, kinds: list[str]) -> None:
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], color=VECTORS[k].colour, lw=VECTORS[k].width, ls=dashes(VECTORS[k])) for k in kinds]
+    sh.fig.legend(handles, [KINDS[k] for k in kinds], loc="lower center", ncol=min(3, len(kinds)), fontsize=8.5,
+                  frameon=False, handlelength=2.2, columnspacing=1.2)  # fmt: skip
+
+
+def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT) -> Figure:
+    """The ``kind`` plans of all ``count`` positions on one sheet, to one scale (position 0 first)."""
+    from matplotlib.figure import Figure
+
+    mech = kin.mechanism
+    positions = kinematics(mech, position_angles(mech, count))
+    series = plan_series(positions)[0 if kind == "velocity" else 1]
+    valid = np.asarray(positions.valid_all[0])
+    cols, rows = 4, -(-count // 4)
+    cell = 2.6  # inches of each plan's drawing
+    rough = plan_scene(series, list(range(count)), valid=valid)
+    ends = rough.ends.reshape(count, -1, 2)
+    span = np.nanmax(np.nanmax(ends, axis=1) - np.nanmin(ends, axis=1))
+    em = 7.0 / (cell * 72 / (1.4 * span))  # 7-point letters on the plans drawn that large
+    scene = plan_scene(series, list(range(count)), scale=rough.scale, valid=valid, em=em)
+    fig = Figure(figsize=(11.0, 2.9 * rows + 0.9))
+    grid = fig.add_gridspec(rows, cols, left=0.02, right=0.98, top=1 - 0.55 / fig.get_figheight(),
+                            bottom=0.5 / fig.get_figheight(), hspace=0.3, wspace=0.08)  # fmt: skip
+    boxes = np.array([scene.extent(k) for k in range(count)])
+    half = np.max(boxes[:, 2:] - boxes[:, :2], axis=0) / 2  # one size for all: one scale on the sheet
+    for k in range(count):
+        ax = fig.add_subplot(grid[k // cols, k % cols])
+        centre = (boxes[k, :2] + boxes[k, 2:]) / 2
+        sh = sheet(np.concatenate([centre - half, centre + half]), ax=ax)
+        draw_vectors(sh, scene, k)
+        ax.set_title(f"{k}: crank {np.degrees(scene.angles[k]) % 360:.0f}°", fontsize=8)
+    fig.suptitle(f"{mech.name}: {kind} plans of the {count} positions;  pole p,  {scene.symbol} = {scene.scale:g} "
+                 f"{scene.scale_unit}", fontsize=11)  # fmt: skip
+    _legend(Sheet(fig, fig.axes[0], 1.0), [k for k in KINDS if any(k in scene.kinds(i) for i in range(count))])
     return fig
-
-
-def velocity_plan(kin: Any, index: int, ax: Any = None) -> Any:
-    """The velocity plan of sample ``index`` of a kinematics result."""
-    from linkwork.motion.plans import plans
-
-    return draw_plan(plans(kin, index)[0], ax)
-
-
-def acceleration_plan(kin: Any, index: int, ax: Any = None) -> Any:
-    """The acceleration plan of sample ``index`` of a kinematics result."""
-    from linkwork.motion.plans import plans
-
-    return draw_plan(plans(kin, index)[1], ax)

@@ -1,135 +1,156 @@
-"""The kinematic scheme of a mechanism in a pose, with the conventional symbols.
+"""The kinematic scheme and the plan of positions, drawn with matplotlib from their scenes.
 
-Links are drawn through their joint points (a bar, or a hatched-free plate
-for three and more), revolute pairs as small circles, supports on the frame
-as hatched triangles, sliders as blocks on their guides, and guides on the
-frame as hatched lines; links are numbered as in the file (1, 2, ...) and
-points lettered with their names.  Optionally the plan of positions: the
-mechanism in several positions, thin, with the trajectories of its points.
+The scene (:mod:`linkwork.scene`) says what is drawn and where; this module only draws it: links as
+bars and plates, pivots, supports and guides with their hatching, slider blocks, tools with their
+working edges, markers, the labels where the scene placed them (their text as high as the scene says,
+in the drawing's units), and a scale bar.  Every item's artist has the ``gid`` ``"kind:name"``
+(``"pivot:B"``, ``"bar:rod"``), so that tests can read the drawing back.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from linkwork.structure.model import PairType
+from linkwork.figures.sheet import Sheet, dashes, round_length, sheet
+from linkwork.motion.kinematics import kinematics
+from linkwork.scene.geometry import bounds
+from linkwork.scene.positions import COUNT, position_angles, positions_scene
+from linkwork.scene.scheme import KINDS, Item, SchemeScene, scheme_scene
+from linkwork.scene.style import SCHEME, TEXT
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from linkwork.motion.kinematics import Kinematics
 
 
-def _points(kin: Any, index: int) -> np.ndarray:
-    pts = kin.points()
-    return pts[0, index] if kin.variants else pts[index]
-
-
-def _size(pts: np.ndarray) -> float:
-    finite = pts[np.isfinite(pts).all(-1)]
-    return float(np.ptp(finite, axis=0).max()) if len(finite) > 1 else 1.0
-
-
-def draw_scheme(kin: Any, index: int = 0, ax: Any = None, trajectories: bool = False) -> Any:
+def draw_scheme(kin: Kinematics, index: int = 0, ax: Axes | None = None, trajectories: bool = False,
+                position: int | None = None, cycle: Kinematics | None = None) -> Figure:  # fmt: skip
     """The scheme at sample ``index`` of a kinematics result; returns the matplotlib Figure.
 
-    With ``trajectories``, the paths of the joint points over all the samples are drawn too.
+    With ``trajectories``, the paths of the points over the whole turn are drawn too; ``position`` (the
+    number of the position the sample is) goes into the title; ``cycle``: a whole turn of the mechanism
+    (see :func:`~linkwork.scene.scheme_scene`).
     """
-    from matplotlib.figure import Figure
-    from matplotlib.patches import Circle, Polygon, Rectangle
+    index = int(index) % len(kin.angles)
+    scene = scheme_scene(kin, at=[index], cycle=cycle)
+    angle = float(np.degrees(kin.angles[index]) % 360)
+    where = f"position {position}, " if position is not None else ""
+    return render_scheme(scene, index, ax=ax, trajectories=trajectories,
+                         title=f"{scene.name}: kinematic scheme\n{where}crank at {angle:.1f}°")  # fmt: skip
 
-    from linkwork.motion.analysis import guide
-    from linkwork.structure.model import point_labels
 
-    mech = kin.mechanism
-    fig = ax.figure if ax is not None else Figure(figsize=(7, 6))
-    ax = ax if ax is not None else fig.add_subplot()
-    pts = _points(kin, index)
-    size = _size(kin.points().reshape(-1, 2))
-    r = 0.012 * size
-    joint_pts = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
+def render_scheme(scene: SchemeScene, index: int, ax: Axes | None = None, trajectories: bool = False,
+                  title: str = "") -> Figure:  # fmt: skip
+    """Draw sample ``index`` of a scheme's scene (with the trajectories of its points), a scale bar under it."""
+    box = scene.extent(index, paths=trajectories)
+    bar = round_length(box[2] - box[0])
+    box[1] -= 3.0 * scene.em  # room for the scale bar
+    sh = sheet(box, ax=ax, top=0.7)
     if trajectories:
-        allpts = kin.points()
-        allpts = allpts[0] if kin.variants else allpts
-        for p in sorted(joint_pts):
-            if mech.point_link[p] != 0:
-                ax.plot(allpts[:, p, 0], allpts[:, p, 1], lw=0.6, color="0.6", zorder=1)
-    for i in range(1, mech.n_links_total):
-        if mech.link_virtual[i]:
+        draw_paths(sh, scene.paths)
+    draw_items(sh, scene, index)
+    draw_labels(sh, scene, index)
+    scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em)
+    if title:
+        sh.ax.set_title(title, fontsize=11)
+    return sh.fig
+
+
+def draw_paths(sh: Sheet, paths: np.ndarray) -> None:
+    """Trajectories ``(A, Q, 2)`` as thin dashed lines."""
+    style = SCHEME["path"]
+    for q in range(paths.shape[1]):
+        sh.ax.plot(paths[:, q, 0], paths[:, q, 1], color=style.colour, lw=style.width, ls=dashes(style),
+                   zorder=KINDS.index("path"))  # fmt: skip
+
+
+def draw_items(sh: Sheet, scene: SchemeScene, index: int, frame: bool = True, kinds: tuple[str, ...] = KINDS,
+               thin: float = 1.0) -> None:  # fmt: skip
+    """The items of ``kinds`` at sample ``index``, the frame's too if ``frame``; line widths and circles times
+    ``thin``."""
+    for it in scene.items:
+        if it.kind == "path" or it.kind not in kinds or (it.link == 0 and not frame):
             continue
-        own = [p for p in range(len(mech.point_names)) if mech.point_link[p] == i and p in joint_pts]
-        xy = pts[own] if own else pts[[p for p in range(len(mech.point_names)) if mech.point_link[p] == i]]
-        if len(xy) == 2:
-            ax.plot(xy[:, 0], xy[:, 1], lw=2.2, color="tab:blue", zorder=2, solid_capstyle="round")
-        elif len(xy) > 2:
-            centre = xy.mean(0)
-            order = np.argsort(np.arctan2(xy[:, 1] - centre[1], xy[:, 0] - centre[0]))
-            ax.add_patch(Polygon(xy[order], closed=True, fc="tab:blue", alpha=0.25, ec="tab:blue", lw=2, zorder=2))
-        if len(xy):
-            c = xy.mean(0)
-            ax.annotate(str(i), c, xytext=(6, -10), textcoords="offset points", fontsize=9, color="tab:blue")
-    for k in range(mech.n_pairs):
-        a, b = (int(x) for x in mech.pair_links[k])
-        pb = pts[int(mech.pair_points[k, 1])]
-        if mech.pair_type[k] == PairType.REVOLUTE:
-            ax.add_patch(Circle(pb, r, fc="white", ec="black", lw=1.2, zorder=4))
-            if a == 0:
-                tri = np.array([pb, pb + [-1.6 * r, -2.8 * r], pb + [1.6 * r, -2.8 * r]])
-                ax.add_patch(Polygon(tri, closed=True, fc="none", ec="black", lw=1, zorder=3))
-                ax.add_patch(Rectangle(pb + [-2.4 * r, -3.6 * r], 4.8 * r, 0.8 * r, fc="none", ec="black",
-                                       hatch="////", lw=0.6, zorder=3))  # fmt: skip
-        else:
-            u = guide(kin, k)[1][0, index]
-            w = np.array([-u[1], u[0]])
-            block = np.array(
-                [pb - 2 * r * u - r * w, pb + 2 * r * u - r * w, pb + 2 * r * u + r * w, pb - 2 * r * u + r * w]
-            )
-            ax.add_patch(Polygon(block, closed=True, fc="white", ec="black", lw=1.2, zorder=4))
-            if a == 0:
-                line = np.array([pb - 6 * r * u, pb + 6 * r * u]) - 1.4 * r * w
-                ax.plot(line[:, 0], line[:, 1], color="black", lw=1, zorder=3)
-                for s in np.linspace(-6, 6, 13):
-                    base = pb + s * r * u - 1.4 * r * w
-                    tick = np.array([base, base - 0.8 * r * w - 0.6 * r * u])
-                    ax.plot(tick[:, 0], tick[:, 1], color="black", lw=0.5, zorder=3)
-    for label, p in point_labels(mech, with_all=False):
-        ax.annotate(label, pts[p], xytext=(5, 5), textcoords="offset points", fontsize=10)
-    for p in range(len(mech.point_names)):
-        if mech.point_link[p] == 0:
-            ax.annotate(mech.point_names[p].split(".", 1)[1], pts[p], xytext=(5, 5), textcoords="offset points",
-                        fontsize=10)  # fmt: skip
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_title(f"{mech.name}: crank at {np.degrees(kin.angles[index]) % 360:.1f}°")
-    ax.set_xlabel("x, m")
-    ax.set_ylabel("y, m")
-    ax.autoscale_view()
-    return fig
+        xy = scene.placed(it, index)
+        if np.isfinite(xy).all():
+            draw_item(sh.ax, it, xy, thin)
 
 
-def draw_positions(kin: Any, count: int = 12, ax: Any = None) -> Any:
-    """The plan of positions: ``count`` positions evenly over the samples, overlaid, with the
-    trajectories of the joint points."""
-    from matplotlib.figure import Figure
+def draw_item(ax: Axes, it: Item, xy: np.ndarray, thin: float = 1.0) -> Any:
+    """One item at its global vertices ``xy`` ``(K, 2)``; returns its artist."""
+    from matplotlib.colors import to_rgba
+    from matplotlib.patches import Circle, Polygon
 
-    fig = ax.figure if ax is not None else Figure(figsize=(7, 6))
-    ax = ax if ax is not None else fig.add_subplot()
+    style = SCHEME[it.kind]
+    z = 2 + KINDS.index(it.kind) * 0.1
+    face = to_rgba(style.fill, style.alpha) if style.fill and (thin == 1.0 or style.alpha == 1.0) else "none"
+    artist: Any
+    if it.radius:
+        artist = ax.add_patch(Circle(tuple(xy[0]), it.radius * min(1.0, 0.3 + thin), fc=face, ec=style.colour,
+                                     lw=style.width * thin, zorder=z))  # fmt: skip
+    elif it.closed:
+        artist = ax.add_patch(Polygon(xy, closed=True, fc=face, ec=style.colour, lw=style.width * thin, zorder=z,
+                                      joinstyle="round"))  # fmt: skip
+    else:
+        (artist,) = ax.plot(xy[:, 0], xy[:, 1], color=style.colour, lw=style.width * thin, ls=dashes(style), zorder=z,
+                            solid_capstyle="round")  # fmt: skip
+    artist.set_gid(f"{it.kind}:{it.name}")
+    return artist
+
+
+def draw_labels(sh: Sheet, scene: SchemeScene, index: int) -> None:
+    """The labels of sample ``index`` where the scene placed them."""
+    for lab in scene.labels:
+        c = lab.centre[index]
+        if np.isfinite(c).all():
+            sh.ax.text(c[0], c[1], lab.text, ha="center", va="center", fontsize=sh.font(scene.em),
+                       color=TEXT[lab.kind], zorder=5, gid=f"label:{lab.text}")  # fmt: skip
+
+
+def scale_bar(sh: Sheet, at: tuple[float, float], length: float, em: float) -> None:
+    """A bar ``length`` (m) long from ``at``, with ticks at its ends and its length in mm above it."""
+    x, y = at
+    ax = sh.ax
+    ax.plot([x, x + length], [y, y], color="black", lw=1.0, zorder=5)
+    for end in (x, x + length):
+        ax.plot([end, end], [y - 0.25 * em, y + 0.25 * em], color="black", lw=1.0, zorder=5)
+    ax.text(x + length + 0.5 * em, y, f"{1000 * length:g} mm", ha="left", va="center",
+            fontsize=0.8 * sh.font(em), zorder=5)  # fmt: skip
+
+
+def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None) -> Figure:
+    """The plan of positions: the mechanism at ``count`` positions from position 0 (the working slider
+    at the high end of its stroke), every ``360 / count`` degrees in the direction of rotation, overlaid
+    thin, with the trajectories of its points over ``kin``'s samples and the position numbers at the
+    crank pin and at the working point."""
     mech = kin.mechanism
-    n = len(kin.angles)
-    allpts = kin.points()
-    allpts = allpts[0] if kin.variants else allpts
-    joint_pts = sorted({int(p) for pair in mech.pair_points for p in pair if p >= 0})
-    for p in joint_pts:
-        if mech.point_link[p] != 0:
-            ax.plot(allpts[:, p, 0], allpts[:, p, 1], lw=0.6, color="0.5")
-    for j, i in enumerate(np.linspace(0, n, count, endpoint=False).astype(int)):
-        pts = allpts[i]
-        for link in range(1, mech.n_links_total):
-            own = [p for p in joint_pts if mech.point_link[p] == link]
-            if len(own) >= 2:
-                xy = pts[own]
-                ax.plot(xy[:, 0], xy[:, 1], lw=0.9, color="tab:blue", alpha=0.6)
-        moving = [p for p in joint_pts if mech.point_link[p] != 0]
-        if moving:
-            ax.annotate(str(j), pts[moving[-1]], xytext=(3, 3), textcoords="offset points", fontsize=7)
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_title(f"{mech.name}: {count} positions")
-    ax.set_xlabel("x, m")
-    ax.set_ylabel("y, m")
-    return fig
+    angles = position_angles(mech, count)
+    scene = positions_scene(kinematics(mech, angles), cycle=kin)
+    s = scene.scheme
+    box = scene.extent()
+    bar = round_length(box[2] - box[0])
+    box[1] -= 3.0 * s.em
+    sh = sheet(box, ax=ax, top=0.7)
+    draw_paths(sh, s.paths)
+    draw_items(sh, s, 0)
+    for k in range(1, len(angles)):
+        draw_items(sh, s, k, frame=False, kinds=("bar", "plate", "pivot"), thin=0.45)
+    draw_labels(sh, s, 0)
+    for lab in scene.numbers:
+        c = lab.centre[0]
+        sh.ax.text(c[0], c[1], lab.text, ha="center", va="center", fontsize=0.85 * sh.font(s.em),
+                   color=TEXT["position"], zorder=5)  # fmt: skip
+    scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em)
+    turn = "counter-clockwise" if mech.drive_speed[0] >= 0 else "clockwise"
+    sh.ax.set_title(f"{mech.name}: plan of {count} positions\n0 at crank {np.degrees(angles[0]) % 360:.1f}°, "
+                    f"then {turn}", fontsize=11)  # fmt: skip
+    return sh.fig
+
+
+def scheme_extent(scene: SchemeScene, indices: list[int]) -> np.ndarray:
+    """``[x0, y0, x1, y1]`` of the scheme over the samples ``indices`` (for an animation's one frame)."""
+    return bounds(*[np.array([scene.extent(i)[:2], scene.extent(i)[2:]]) for i in indices])

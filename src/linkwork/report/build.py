@@ -68,17 +68,21 @@ def analyze(
     out: str | Path,
     *,
     steps: int = 360,
-    position: int = 0,
+    position: int | str | None = None,
     pdf: bool = False,
     animation: bool = True,
+    dxf: bool = False,
     progress: Callable[[str], None] | None = None,
 ) -> Path:
     """Run every analysis ``mech`` supports and write tables, figures, an animation and
     ``report.html`` (and ``report.pdf``) into the folder ``out``; returns the report's path.
 
     ``position``: which of the 12 positions (numbered from the working slider's or rocker's high
-    end, as ``linkwork positions`` does) gets the velocity and acceleration plans.  Needs
-    matplotlib and xarray (:func:`require_packages`).
+    end, as ``linkwork positions`` does) gets the scheme and the velocity and acceleration plans;
+    ``"all"`` adds sheets of the plans of all twelve; default the file's ``drawing.positions``, else
+    where the working point moves fastest (:func:`linkwork.scene.positions.plan_positions`).  ``dxf``:
+    also the drawings for CAD, ``figures/*.dxf`` (needs ezdxf).  Needs matplotlib and xarray
+    (:func:`require_packages`).
 
     Raises
     ------
@@ -91,7 +95,7 @@ def analyze(
     require_packages()
     with replacing(out) as work:
         run = _Run(mech, work, progress or (lambda _: None))
-        _build(run, steps, position, animation)
+        _build(run, steps, position, animation, dxf)
         _write_html(run, work / "report.html")
         if pdf:
             _write_pdf(run, work / "report.pdf")
@@ -106,7 +110,7 @@ def require_packages() -> None:
     require("matplotlib", "xarray", purpose="the report (linkwork analyze)")
 
 
-def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
+def _build(run: _Run, steps: int, position: int | str | None, animation: bool, dxf: bool = False) -> None:
     from linkwork import figures
     from linkwork.io.motion_tables import write_csv, write_netcdf
     from linkwork.motion import kinematics
@@ -172,14 +176,8 @@ def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
         sec.body.append(_table(["transmission angle", "least, deg"], [[lab, math.degrees(v)] for lab, v in mu]))
     for e in kin.events:
         sec.body.append(_p(f"{e.kind}: {e.message}"))
-    index = int(np.argmin(np.abs(((kin.angles - twelve[position % 12]) + np.pi) % (2 * np.pi) - np.pi)))
-    sec.figures += [
-        run.figure("scheme", figures.draw_scheme(kin, index)),
-        run.figure("positions", figures.draw_positions(kin)),
-        run.figure("velocity_plan", figures.velocity_plan(kin, index)),
-        run.figure("acceleration_plan", figures.acceleration_plan(kin, index)),
-        run.figure("link_angles", figures.link_angles(kin)),
-    ]
+    sec.figures += _drawings(run, kin, kin12, position, dxf)
+    sec.figures.append(run.figure("link_angles", figures.link_angles(kin)))
     moving = [p for _, p in labels if mech.point_link[p] != 0]
     if moving:
         sec.figures.append(run.figure("motion", figures.motion_diagram(kin, mech.point_names[moving[-1]])))
@@ -194,6 +192,32 @@ def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
         _dynamics(run)
     if mech.blow is not None:
         _impact(run)
+
+
+def _drawings(run: _Run, kin: Any, kin12: Any, position: int | str | None, dxf: bool) -> list[str]:
+    """The scheme, the plan of positions and the plans at the positions drawn (the first one's named
+    ``velocity_plan``, the others' ``velocity_plan_9``...), the sheets of all twelve plans for ``"all"``,
+    and (``dxf``) the drawings for CAD."""
+    from linkwork import figures
+    from linkwork.scene.positions import plan_positions
+
+    drawn = plan_positions(run.mech, kin12) if position in (None, "all") else [int(position)]
+    first = drawn[0]
+    names = [
+        run.figure("scheme", figures.draw_scheme(kin12, first, position=first, cycle=kin)),
+        run.figure("positions", figures.draw_positions(kin)),
+    ]
+    for k in drawn:
+        tail = "" if k == first else f"_{k}"
+        names.append(run.figure(f"velocity_plan{tail}", figures.velocity_plan(kin12, k, position=k)))
+        names.append(run.figure(f"acceleration_plan{tail}", figures.acceleration_plan(kin12, k, position=k)))
+    if position == "all":
+        names += [run.figure(f"{kind}_plans", figures.plan_sheet(kin12, kind)) for kind in ("velocity", "acceleration")]
+    if dxf:
+        from linkwork.io.dxf import write_drawings
+
+        write_drawings(kin12, first, run.folder / "figures", cycle=kin)
+    return names
 
 
 def _extreme_rows(ext: list[Any]) -> list[list[Any]]:

@@ -156,6 +156,11 @@ class MechanismBuilder:
         self._data["machine"] = _some(motor=motor, gear=gear, flywheel=flywheel, delta=delta)
         return self
 
+    def drawing(self, positions: list[int]) -> MechanismBuilder:
+        """The positions (0 to 11) whose plans are drawn; see :class:`~linkwork.spec.schema.Drawing`."""
+        self._data["drawing"] = {"positions": list(positions)}
+        return self
+
     def to_dict(self) -> dict[str, Any]:
         """The plain data, as it would stand in a YAML file."""
         return copy.deepcopy(self._data)

@@ -432,6 +432,20 @@ class ImpactSpec(_Strict):
     tool: ToolSpec | None = Field(None, description="the tool, for the working cycle (linkwork impact --cycle)")
 
 
+class Drawing(_Strict):
+    """What the drawings show: the positions whose velocity and acceleration plans are drawn.
+
+    Positions are those of the graphical method, 0 to 11: position 0 where the working slider is at the
+    high end of its stroke (the knives open), then every 30 degrees in the direction of rotation.
+    Without ``positions``, the plans are drawn where the working point moves fastest and every dyad
+    transmits well (never at a dead point).
+    """
+
+    positions: list[Annotated[int, Field(ge=0, le=11)]] = Field(
+        default_factory=list, description="positions (0 to 11) whose velocity and acceleration plans are drawn"
+    )
+
+
 class Spec(_Strict):
     """A planar mechanism: the root of a linkwork mechanism file."""
 
@@ -446,6 +460,7 @@ class Spec(_Strict):
     loads: dict[str, Load] = Field(default_factory=dict, description="external loads by name")
     machine: Machine | None = Field(None, description="motor, gear and flywheel, for machine dynamics")
     impact: ImpactSpec | None = Field(None, description="a blow, for linkwork impact")
+    drawing: Drawing | None = Field(None, description="what the drawings show (the positions of the plans)")
     hints: dict[str, Vec2] = Field(
         default_factory=dict,
         description="approximate global positions of moving points in the assembly pose "

@@ -27,6 +27,13 @@ Layout (``format: linkwork-view/1``):
   full size, before the page scales the drawing to fit its panel; from
   the 1-2-5 series, that draws the longest vector of 95 % of the positions
   at most 100 mm long);
+* ``scene``: the drawing (:mod:`linkwork.scene`), the same the figures and DXF draw: ``items``
+  (``kind``, ``link``, vertices ``xy`` in the link's axes, m, ``closed``, ``radius``, ``name``), the
+  links' ``poses`` (A, N, 3) that place them, ``labels`` (``text``, ``kind``, the text's ``centre``
+  (A, 2), m), ``em`` (the text's height, m), ``extent`` and the ``paths`` drawn (point indices); for
+  each plan, the ``frame`` the page shows it in (mm of the sheet, y up, holding 95 % of the positions),
+  the labels' ``text`` (A, L) (one label for plan points that coincide) and ``centre`` (A, L, 2, mm),
+  their ``em`` and the ``kinds`` of vector with their names, for a legend;
 * ``series``: quantities over the cycle (slider positions, rocker angles,
   driving torque, foundation force...), each with ``label``, ``unit`` and
   ``values`` (A,); torques and moments counter-clockwise positive (a
@@ -42,18 +49,27 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.motion.analysis import coordinate, extremes, guide, outputs
+from linkwork.motion.plans import PlanSeries, _longest, _round_scale, plan_series
+from linkwork.scene.plans import KINDS, plan_scene
+from linkwork.scene.scheme import scheme_scene
 from linkwork.structure.model import PairType, one_crank
+
+if TYPE_CHECKING:
+    from linkwork.motion.kinematics import Kinematics
 
 FORMAT = "linkwork-view/1"
 
 #: Percentile of the positions' longest plan vectors that sets the plans' one scale for the cycle.
 PLAN_PERCENTILE = 95.0
+
+#: Height of the plans' labels on the page, as a fraction of the larger side of the plan's frame.
+PLAN_FONT = 0.045
 
 
 def _json(a: Any, decimals: int | None = None) -> Any:
@@ -104,6 +120,7 @@ def cycle_payload(mech: Any, steps: int = 360) -> dict[str, Any]:
         forces, reason = _forces(mech, steps)
     notes += [str(w.message) for w in caught]
     pts = _with_frame(mech, kin.points())  # (A, P, 2)
+    series = plan_series(kin)
     angles = kin.angles
     speed = float(kin.rates[0, 0])
     out: dict[str, Any] = {
@@ -120,7 +137,8 @@ def cycle_payload(mech: Any, steps: int = 360) -> dict[str, Any]:
         "positions": _json(pts, 9),
         "links": _links(mech),
         "pairs": _pairs(mech, kin),
-        "plans": _plans(kin),
+        "plans": _plans(kin, series),
+        "scene": _scene(kin, series),
         "series": _series(mech, kin, forces),
         "structure": _structure(mech),
         "drives": [
@@ -208,30 +226,88 @@ def _pairs(mech: Any, kin: Any) -> list[dict[str, Any]]:
     return out
 
 
-def _plans(kin: Any) -> dict[str, Any]:
+def _plans(kin: Kinematics, series: tuple[PlanSeries, PlanSeries]) -> dict[str, Any]:
     """The plans of every sample: plan points (pole-relative vectors) and the construction's vectors."""
-    from linkwork.motion.plans import _longest, _round_scale, plan_series
-
     out = {}
-    for series in plan_series(kin):
-        index = {lab: j for j, lab in enumerate(series.labels)}
-        values = np.where(kin.valid[:, None, None], series.values[0], np.nan)  # (A, L, 2), none where not assembled
-        # one scale for the cycle: the longest vector of nearly every position at most 100 mm (the rare
-        # positions near a dead point, where accelerations grow without bound, would shrink all the others)
-        longest = _longest(values[:, : len(series.points)])
-        out[series.kind] = {
-            "kind": series.kind,
-            "unit": "m/s" if series.kind == "velocity" else "m/s^2",
-            "labels": list(series.labels),
-            "absolute": [index[lab] for lab in series.points if lab != "p"],
+    for one in series:
+        index = {lab: j for j, lab in enumerate(one.labels)}
+        values = np.where(kin.valid[:, None, None], one.values[0], np.nan)  # (A, L, 2), none where not assembled
+        out[one.kind] = {
+            "kind": one.kind,
+            "unit": "m/s" if one.kind == "velocity" else "m/s^2",
+            "labels": list(one.labels),
+            "absolute": [index[lab] for lab in one.points if lab != "p"],
             "vectors": [
                 {"from": index[e.start], "to": index[e.end], "kind": e.kind, "group": e.group, "about": e.about}
-                for e in series.edges
+                for e in one.edges
             ],
-            "scale_per_mm": _round_scale(float(np.percentile(longest, PLAN_PERCENTILE)) if len(longest) else 0.0),
+            "scale_per_mm": cycle_scale(one, kin.valid),
             "values": _json(values, _significant(values)),
         }
     return out
+
+
+def cycle_scale(series: PlanSeries, valid: np.ndarray) -> float:
+    """One scale (units per mm) for the plans of the whole cycle: the longest vector of nearly every position
+    at most 100 mm (the rare positions near a dead point, where accelerations grow without bound, would
+    shrink all the others): the :data:`PLAN_PERCENTILE` of the positions' longest vectors."""
+    values = np.where(valid[:, None, None], series.values[0], np.nan)
+    longest = _longest(values[:, : len(series.points)])
+    return _round_scale(float(np.percentile(longest, PLAN_PERCENTILE)) if len(longest) else 0.0)
+
+
+def _scene(kin: Kinematics, series: tuple[PlanSeries, PlanSeries]) -> dict[str, Any]:
+    """The drawing of the cycle (:mod:`linkwork.scene`): the scheme's items in their links' axes, the links'
+    poses and the labels at every sample; for each plan, the frame the page shows and the labels."""
+    scheme = scheme_scene(kin)
+    items = [
+        {"kind": it.kind, "link": it.link, "xy": _json(it.xy, 9), "closed": it.closed, "radius": it.radius,
+         "name": it.name}
+        for it in scheme.items
+    ]  # fmt: skip
+    labels = [
+        {"text": lab.text, "kind": lab.kind, "link": lab.link, "centre": _json(lab.centre, 5)} for lab in scheme.labels
+    ]
+    return {
+        "size": scheme.size,
+        "r": scheme.r,
+        "em": scheme.em,
+        "extent": _json(scheme.extent(), 9),
+        "poses": _json(scheme.poses, 9),
+        "items": items,
+        "labels": labels,
+        "paths": [kin.mechanism.point_names.index(name) for name in scheme.path_names],
+        "plans": {one.kind: _plan_scene(kin, one) for one in series},
+    }
+
+
+def _plan_scene(kin: Kinematics, series: PlanSeries) -> dict[str, Any]:
+    """The labels of a plan at every sample, placed in the frame the page shows it in (:func:`plan_frame`)."""
+    scale = cycle_scale(series, kin.valid)
+    frame = plan_frame(series, kin.valid, scale)
+    em = PLAN_FONT * float(max(frame[2] - frame[0], frame[3] - frame[1]))
+    scene = plan_scene(series, np.arange(len(kin.angles)), scale=scale, em=em, valid=kin.valid)
+    drawn = {kind for i in range(len(kin.angles)) for kind in scene.kinds(i)}
+    return {
+        "frame": _json(frame, 6),
+        "em": em,
+        "kinds": {k: KINDS[k] for k in KINDS if k in drawn},
+        "text": [list(row) for row in scene.text],
+        "centres": _json(scene.centres, 3),
+    }
+
+
+def plan_frame(series: PlanSeries, valid: np.ndarray, scale: float) -> np.ndarray:
+    """``[x0, y0, x1, y1]`` (mm of the sheet, y up) that holds the plans of 95 % of the positions, the pole
+    among them: one frame for the cycle, so that the plan does not jump while the crank turns."""
+    pts = np.where(valid[:, None, None], series.values[0], np.nan) / scale  # (A, L, 2)
+    finite = np.isfinite(pts)
+    lo = np.minimum(np.min(np.where(finite, pts, np.inf), axis=1), 0.0)  # (A, 2)
+    hi = np.maximum(np.max(np.where(finite, pts, -np.inf), axis=1), 0.0)
+    ok = np.asarray(valid, dtype=bool)
+    if not ok.any():
+        return np.array([-1.0, -1.0, 1.0, 1.0])
+    return np.concatenate([np.quantile(lo[ok], 0.025, axis=0), np.quantile(hi[ok], 0.975, axis=0)])
 
 
 def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:

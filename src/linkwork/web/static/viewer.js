@@ -90,56 +90,35 @@
 
   // ------------------------------------------------------------------ the scheme
 
-  function bounds(data) {
-    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
-    for (const pose of data.positions) {
-      for (let p = 0; p < pose.length; p++) {
-        const xy = pose[p];
-        if (!xy || xy[0] === null || data.points[p].virtual) continue;
-        x0 = Math.min(x0, xy[0]); x1 = Math.max(x1, xy[0]);
-        y0 = Math.min(y0, xy[1]); y1 = Math.max(y1, xy[1]);
-      }
-    }
-    if (!isFinite(x0)) { x0 = -1; x1 = 1; y0 = -1; y1 = 1; }
-    return { x0, x1, y0, y1, size: Math.max(x1 - x0, y1 - y0, 1e-6) };
-  }
+  // The drawing comes whole from the payload's scene (linkwork.scene, the one the figures and DXF draw):
+  // items in the axes of their links, placed at the links' poses of the sample shown; labels where the
+  // scene placed them.  Items of the frame (link 0) are drawn once.
+  const GROUP = { path: "paths", hatch: "ground", support: "ground", guide: "ground" };
+  const CLASS = { pivot: "joint" };
 
-  function firstValid(data) {
-    const i = data.valid.indexOf(true);
-    return i < 0 ? 0 : i;
+  function placeAt(pose, xy) {
+    if (!pose || pose[0] === null) return null;
+    const c = Math.cos(pose[2]), s = Math.sin(pose[2]);
+    return xy.map((v) => [pose[0] + c * v[0] - s * v[1], pose[1] + s * v[0] + c * v[1]]);
   }
 
   function buildScheme(data) {
     const root = $("scheme");
     root.replaceChildren();
-    const b = bounds(data);
-    const size = 1000 * b.size; // mm
-    const r = 0.012 * size;
-    const pad = 0.12 * size;
-    const vb = [1000 * b.x0 - pad, -1000 * b.y1 - pad, 1000 * (b.x1 - b.x0) + 2 * pad, 1000 * (b.y1 - b.y0) + 2 * pad];
-    root.setAttribute("viewBox", vb.map((v) => v.toFixed(3)).join(" "));
+    const scene = data.scene;
+    const [x0, y0, x1, y1] = scene.extent;
+    const pad = 2000 * scene.r; // mm: two pivots' radii
+    root.setAttribute("viewBox", [1000 * x0 - pad, -1000 * y1 - pad, 1000 * (x1 - x0) + 2 * pad, 1000 * (y1 - y0) + 2 * pad]
+      .map((v) => v.toFixed(3)).join(" "));
     root.setAttribute("preserveAspectRatio", "xMidYMid meet");
     root.setAttribute("data-transform", "x_svg = 1000 x, y_svg = -1000 y (mm, x and y in m)");
-    const defs = svg("defs", {}, root);
-    const h = 0.7 * r;
-    const pat = svg("pattern", { id: "hatch", patternUnits: "userSpaceOnUse", width: h, height: h }, defs);
-    svg("path", { d: `M0,${h} L${h},0`, stroke: "#000", "stroke-width": (0.12 * h).toFixed(4) }, pat);
-    const fontSize = (0.032 * size).toFixed(3);
-    const gPaths = svg("g", { id: "paths" }, root);
-    const gGround = svg("g", { id: "ground" }, root);
-    const gLinks = svg("g", { id: "links" }, root);
-    const gPairs = svg("g", { id: "pairs" }, root);
-    const gLabels = svg("g", { id: "labels", "font-size": fontSize }, root);
-    const pos = data.positions;
-    const first = firstValid(data);
+    const groups = {};
+    for (const id of ["paths", "ground", "links", "pairs", "labels"]) groups[id] = svg("g", { id: id }, root);
+    groups.labels.setAttribute("font-size", (1000 * scene.em).toFixed(3));
 
     // trajectories of the moving points
-    const drawn = new Set();
-    for (const link of data.links) {
-      if (link.index === 0 || link.virtual) continue;
-      for (const p of link.draw) drawn.add(p);
-    }
-    for (const p of drawn) {
+    const pos = data.positions;
+    for (const p of scene.paths) {
       let d = "", pen = false;
       for (let i = 0; i < pos.length; i++) {
         const xy = pos[i][p];
@@ -147,146 +126,43 @@
         d += (pen ? "L" : "M") + X(xy) + "," + Y(xy);
         pen = true;
       }
-      if (d) svg("path", { class: "path", d: d, "data-point": data.points[p].label }, gPaths);
+      if (d) svg("path", { class: "path", d: d, "data-point": data.points[p].label }, groups.paths);
     }
-
-    // links: a bar through two points, a plate through more
-    for (const link of data.links) {
-      if (link.index === 0 || link.virtual || link.draw.length < 2) continue;
-      let order = link.draw.slice();
-      if (order.length > 2) {
-        const xy = order.map((p) => pos[first][p]);
-        if (xy.every((v) => v && v[0] !== null)) {
-          const cx = xy.reduce((s, v) => s + v[0], 0) / xy.length;
-          const cy = xy.reduce((s, v) => s + v[1], 0) / xy.length;
-          const ang = xy.map((v) => Math.atan2(v[1] - cy, v[0] - cx));
-          order = order.map((p, j) => [ang[j], p]).sort((u, v) => u[0] - v[0]).map((u) => u[1]);
-        }
-      }
-      const shape = order.length === 2
-        ? svg("line", { class: "bar", "data-link": link.name }, gLinks)
-        : svg("polygon", { class: "plate", "data-link": link.name }, gLinks);
-      const num = svg("text", { class: "link-number", "font-size": fontSize }, gLinks);
-      num.textContent = String(link.index);
+    for (const item of scene.items) drawItem(scene, item, groups[GROUP[item.kind] || (item.link === 0 || item.radius ? "pairs" : "links")]);
+    for (const lab of scene.labels) {
+      const t = svg("text", { class: lab.kind === "link" ? "link-number" : "label", "text-anchor": "middle", "dominant-baseline": "central" }, groups.labels);
+      t.textContent = lab.text;
       state.update.push((i) => {
-        const xy = order.map((p) => pos[i][p]);
-        if (xy.some((v) => !v || v[0] === null)) { shape.setAttribute("visibility", "hidden"); num.setAttribute("visibility", "hidden"); return; }
-        shape.setAttribute("visibility", "visible"); num.setAttribute("visibility", "visible");
-        if (order.length === 2) {
-          shape.setAttribute("x1", X(xy[0])); shape.setAttribute("y1", Y(xy[0]));
-          shape.setAttribute("x2", X(xy[1])); shape.setAttribute("y2", Y(xy[1]));
-        } else {
-          shape.setAttribute("points", xy.map((v) => X(v) + "," + Y(v)).join(" "));
-        }
-        const mx = xy.reduce((s, v) => s + v[0], 0) / xy.length, my = xy.reduce((s, v) => s + v[1], 0) / xy.length;
-        num.setAttribute("x", (1000 * mx + 0.8 * r).toFixed(3));
-        num.setAttribute("y", (-1000 * my + 2.2 * r).toFixed(3));
-      });
-    }
-
-    // pairs: pivots, supports, sliders on their guides
-    const seen = new Set();
-    data.pairs.forEach((pair, k) => {
-      const [a] = pair.links;
-      const pb = pair.points[1];
-      if (pair.type === "revolute") {
-        if (pair.frame_point !== null && pair.frame_point !== undefined) {
-          const fixed = pos[first][pair.frame_point];
-          if (fixed && fixed[0] !== null) support(gGround, fixed, r, pair.joint);
-        }
-        const key = pair.joint + "@" + data.points[pb].label;
-        if (seen.has(key)) return;
-        seen.add(key);
-        const c = svg("circle", { class: "joint", r: r.toFixed(4), "data-point": data.points[pb].label, "data-joint": pair.joint }, gPairs);
-        state.update.push((i) => place(c, pos[i][pb]));
-      } else {
-        const block = svg("polygon", { class: "block", "data-joint": pair.joint, "data-point": data.points[pb].label }, gPairs);
-        if (a === 0) guide(gGround, data, pair, r);
-        state.update.push((i) => {
-          const p = pos[i][pb], u = pair.axis[i];
-          if (!p || p[0] === null || !u || u[0] === null) { block.setAttribute("visibility", "hidden"); return; }
-          block.setAttribute("visibility", "visible");
-          const w = [-u[1], u[0]];
-          const s = r / 1000;
-          const corner = (cu, cw) => [p[0] + s * (cu * u[0] + cw * w[0]), p[1] + s * (cu * u[1] + cw * w[1])];
-          const pts = [corner(-2, -1), corner(2, -1), corner(2, 1), corner(-2, 1)];
-          block.setAttribute("points", pts.map((v) => X(v) + "," + Y(v)).join(" "));
-        });
-      }
-    });
-
-    // markers (points no pair uses) and labels
-    data.points.forEach((pt, p) => {
-      if (pt.virtual) return;
-      if (pt.link === 0) {
-        const xy = pos[first][p];
-        if (!xy || xy[0] === null) return;
-        const t = svg("text", { class: "label", x: (1000 * xy[0] + 1.3 * r).toFixed(3), y: (-1000 * xy[1] - 1.3 * r).toFixed(3) }, gLabels);
-        t.textContent = pt.label;
-        return;
-      }
-      if (!pt.joint) {
-        const m = svg("circle", { class: "marker", r: (0.45 * r).toFixed(4), "data-point": pt.label }, gPairs);
-        state.update.push((i) => place(m, pos[i][p]));
-      }
-    });
-    const labelled = new Set();
-    data.points.forEach((pt, p) => {
-      if (pt.virtual || pt.link === 0 || labelled.has(pt.label)) return;
-      labelled.add(pt.label);
-      const t = svg("text", { class: "label" }, gLabels);
-      t.textContent = pt.label.includes(".") ? pt.label.split(".").pop() : pt.label;
-      state.update.push((i) => {
-        const xy = pos[i][p];
-        if (!xy || xy[0] === null) { t.setAttribute("visibility", "hidden"); return; }
+        const c = lab.centre[i];
+        if (!c || c[0] === null) { t.setAttribute("visibility", "hidden"); return; }
         t.setAttribute("visibility", "visible");
-        t.setAttribute("x", (1000 * xy[0] + 1.3 * r).toFixed(3));
-        t.setAttribute("y", (-1000 * xy[1] - 1.3 * r).toFixed(3));
+        t.setAttribute("x", X(c)); t.setAttribute("y", Y(c));
       });
-    });
-    gPaths.setAttribute("visibility", $("show-paths").checked ? "visible" : "hidden");
-  }
-
-  function place(circle, xy) {
-    if (!xy || xy[0] === null) { circle.setAttribute("visibility", "hidden"); return; }
-    circle.setAttribute("visibility", "visible");
-    circle.setAttribute("cx", X(xy));
-    circle.setAttribute("cy", Y(xy));
-  }
-
-  // a hinge on the frame: a triangle below the pivot standing on a hatched base
-  function support(g, p, r, joint) {
-    const cx = 1000 * p[0], cy = -1000 * p[1];
-    const tri = [[cx, cy], [cx - 1.6 * r, cy + 2.8 * r], [cx + 1.6 * r, cy + 2.8 * r]];
-    svg("polygon", { class: "support", "data-joint": joint, points: tri.map((v) => v[0].toFixed(3) + "," + v[1].toFixed(3)).join(" ") }, g);
-    svg("line", { class: "support", x1: (cx - 2.6 * r).toFixed(3), y1: (cy + 2.8 * r).toFixed(3), x2: (cx + 2.6 * r).toFixed(3), y2: (cy + 2.8 * r).toFixed(3) }, g);
-    svg("rect", { class: "ground", fill: "url(#hatch)", x: (cx - 2.6 * r).toFixed(3), y: (cy + 2.8 * r).toFixed(3), width: (5.2 * r).toFixed(3), height: (0.9 * r).toFixed(3) }, g);
-  }
-
-  // a guide on the frame: a line along the stroke of its slider, hatched on one side
-  function guide(g, data, pair, r) {
-    const pb = pair.points[1];
-    let u = null, lo = Infinity, hi = -Infinity, o = null;
-    for (let i = 0; i < data.positions.length; i++) {
-      const p = data.positions[i][pb], a = pair.axis[i];
-      if (!p || p[0] === null || !a || a[0] === null) continue;
-      if (!u) { u = a; o = p; }
-      const s = (p[0] - o[0]) * u[0] + (p[1] - o[1]) * u[1];
-      lo = Math.min(lo, s); hi = Math.max(hi, s);
     }
-    if (!u) return;
-    const w = [-u[1], u[0]];
-    const s0 = 1000 * lo - 3 * r, s1 = 1000 * hi + 3 * r, off = -1.3 * r;
-    const at = (s, d) => [1000 * o[0] + s * u[0] + d * w[0], -(1000 * o[1] + s * u[1] + d * w[1])];
-    const a0 = at(s0, off), a1 = at(s1, off);
-    svg("line", { class: "guide", x1: a0[0].toFixed(3), y1: a0[1].toFixed(3), x2: a1[0].toFixed(3), y2: a1[1].toFixed(3) }, g);
-    const step = 0.8 * r;
-    let d = "";
-    for (let s = s0; s <= s1 + 1e-9; s += step) {
-      const p = at(s, off), q = at(s - 0.6 * r, off - 0.8 * r);
-      d += `M${p[0].toFixed(3)},${p[1].toFixed(3)}L${q[0].toFixed(3)},${q[1].toFixed(3)}`;
-    }
-    svg("path", { class: "guide", d: d }, g);
+    groups.paths.setAttribute("visibility", $("show-paths").checked ? "visible" : "hidden");
+  }
+
+  // one item: a circle (pivot, marker), an outline (polygon), a line or a polyline
+  function drawItem(scene, item, g) {
+    const cls = CLASS[item.kind] || item.kind;
+    const attrs = { class: cls };
+    if (item.kind === "bar" || item.kind === "plate") attrs["data-link"] = item.name;
+    else if (item.radius) { attrs["data-point"] = item.name.split(".").pop(); attrs["data-joint"] = item.name; }
+    else attrs["data-joint"] = item.name;
+    const tag = item.radius ? "circle" : item.closed ? "polygon" : item.xy.length === 2 ? "line" : "polyline";
+    const e = svg(tag, attrs, g);
+    if (item.radius) e.setAttribute("r", (1000 * item.radius).toFixed(4));
+    const put = (xy) => {
+      if (!xy) { e.setAttribute("visibility", "hidden"); return; }
+      e.setAttribute("visibility", "visible");
+      if (item.radius) { e.setAttribute("cx", X(xy[0])); e.setAttribute("cy", Y(xy[0])); }
+      else if (tag === "line") {
+        e.setAttribute("x1", X(xy[0])); e.setAttribute("y1", Y(xy[0]));
+        e.setAttribute("x2", X(xy[1])); e.setAttribute("y2", Y(xy[1]));
+      } else e.setAttribute("points", xy.map((v) => X(v) + "," + Y(v)).join(" "));
+    };
+    if (item.link === 0) put(item.xy);
+    else state.update.push((i) => put(placeAt(scene.poses[i][item.link], item.xy)));
   }
 
   // ------------------------------------------------------------------ the plans
@@ -295,44 +171,28 @@
     const root = $(kind + "-plan");
     root.replaceChildren();
     const plan = data.plans[kind];
+    const look = data.scene.plans[kind];
     const scale = plan.scale_per_mm;
     root.setAttribute("data-scale", String(scale));
     root.setAttribute("data-transform", "x_svg = u_x / scale, y_svg = -u_y / scale (mm of the drawing)");
-    // one frame for the whole cycle, so that the plan does not jump while the crank turns: it holds the
-    // plans of 95 % of the positions (near a dead point accelerations grow without bound)
-    const lo = [[], []], hi = [[], []];
-    for (const row of plan.values) {
-      let a = [0, 0], b = [0, 0];
-      for (const v of row) {
-        if (!v || v[0] === null) continue;
-        const p = [v[0] / scale, -v[1] / scale];
-        a = [Math.min(a[0], p[0]), Math.min(a[1], p[1])];
-        b = [Math.max(b[0], p[0]), Math.max(b[1], p[1])];
-      }
-      for (const k of [0, 1]) { lo[k].push(a[k]); hi[k].push(b[k]); }
-    }
-    const quantile = (xs, q) => {
-      const s = xs.slice().sort((u, v) => u - v);
-      return s.length ? s[Math.min(s.length - 1, Math.max(0, Math.round(q * (s.length - 1))))] : 0;
-    };
-    const x0 = quantile(lo[0], 0.025), y0 = quantile(lo[1], 0.025);
-    const x1 = quantile(hi[0], 0.975), y1 = quantile(hi[1], 0.975);
+    // one frame for the whole cycle, so that the plan does not jump while the crank turns (the scene's:
+    // it holds the plans of 95 % of the positions; near a dead point accelerations grow without bound)
+    const [x0, y0, x1, y1] = look.frame;
     const m = Math.max(x1 - x0, y1 - y0, 1e-9);
     const pad = 0.1 * m;
-    root.setAttribute("viewBox", [x0 - pad, y0 - pad, x1 - x0 + 2 * pad, y1 - y0 + 2 * pad].map((v) => v.toFixed(3)).join(" "));
+    root.setAttribute("viewBox", [x0 - pad, -y1 - pad, x1 - x0 + 2 * pad, y1 - y0 + 2 * pad].map((v) => v.toFixed(3)).join(" "));
     const defs = svg("defs", {}, root);
-    const colours = { absolute: "#000", rotation: "#1f77b4", tangential: "#1f77b4", normal: "#2ca02c", transport: "#9467bd", coriolis: "#d62728", sliding: "#ff7f0e" };
-    for (const k in colours) {
-      const mk = svg("marker", { id: `${kind}-head-${k}`, viewBox: "0 0 10 10", refX: "10", refY: "5", markerWidth: "7", markerHeight: "7", orient: "auto-start-reverse", markerUnits: "userSpaceOnUse" }, defs);
+    for (const k of KINDS) {
+      const mk = svg("marker", { id: `${kind}-head-${k}`, viewBox: "0 0 10 10", refX: "10", refY: "5", orient: "auto-start-reverse", markerUnits: "userSpaceOnUse" }, defs);
       mk.setAttribute("markerWidth", (0.03 * m).toFixed(3));
       mk.setAttribute("markerHeight", (0.03 * m).toFixed(3));
-      svg("path", { d: "M0,0 L10,5 L0,10 z", fill: colours[k] }, mk);
+      svg("path", { d: "M0,0 L10,5 L0,10 z", class: "head " + k }, mk);
     }
     const grid = svg("g", {}, root);
     svg("line", { class: "grid", x1: x0 - pad, y1: 0, x2: x1 + pad, y2: 0 }, grid);
-    svg("line", { class: "grid", x1: 0, y1: y0 - pad, x2: 0, y2: y1 + pad }, grid);
+    svg("line", { class: "grid", x1: 0, y1: -y1 - pad, x2: 0, y2: -y0 + pad }, grid);
     const lines = svg("g", {}, root);
-    const dots = svg("g", { "font-size": (0.045 * m).toFixed(3) }, root);
+    const dots = svg("g", { "font-size": look.em.toFixed(3) }, root);
     const at = (i, j) => {
       const v = plan.values[i][j];
       return v && v[0] !== null ? [v[0] / scale, -v[1] / scale] : null;
@@ -343,14 +203,15 @@
     for (const v of plan.vectors) drawn.push(v);
     const els = drawn.map((v) => svg("line", {
       class: "vec " + v.kind, "data-kind": v.kind, "data-from": plan.labels[v.from], "data-to": plan.labels[v.to],
-      "marker-end": `url(#${kind}-head-${v.kind in colours ? v.kind : "rotation"})`,
+      "marker-end": `url(#${kind}-head-${KINDS.includes(v.kind) ? v.kind : "rotation"})`,
     }, lines));
-    const marks = plan.labels.map((lab) => {
+    const marks = plan.labels.map((lab, j) => {
       const c = svg("circle", { class: "dot", r: (0.012 * m).toFixed(4), "data-label": lab }, dots);
-      const t = svg("text", { class: /^(n_|k'+_)/.test(lab) ? "plabel minor" : "plabel" }, dots);
-      t.textContent = lab;
+      const main = j === pole || plan.absolute.includes(j); // a point of the mechanism, not of the construction
+      const t = svg("text", { class: main ? "plabel" : "plabel minor", "text-anchor": "middle", "dominant-baseline": "central" }, dots);
       return [c, t];
     });
+    legend(root, kind, look.kinds);
     const caption = $(kind + "-caption");
     const unit = plan.unit === "m/s" ? "(m/s)/mm" : "(m/s²)/mm";
     const mu = kind === "velocity" ? "μv" : "μa";
@@ -363,17 +224,17 @@
         e.setAttribute("x1", a[0].toFixed(4)); e.setAttribute("y1", a[1].toFixed(4));
         e.setAttribute("x2", b[0].toFixed(4)); e.setAttribute("y2", b[1].toFixed(4));
       });
-      const placed = [];
       plan.labels.forEach((lab, j) => {
         const p = at(i, j), [c, t] = marks[j];
+        const text = look.text[i][j], centre = look.centres[i][j];
         if (!p) { c.setAttribute("visibility", "hidden"); t.setAttribute("visibility", "hidden"); return; }
-        c.setAttribute("visibility", "visible"); t.setAttribute("visibility", "visible");
+        c.setAttribute("visibility", "visible");
         c.setAttribute("cx", p[0].toFixed(4)); c.setAttribute("cy", p[1].toFixed(4));
-        // labels of coinciding plan points are stacked instead of overwritten
-        const same = placed.filter((q) => Math.hypot(q[0] - p[0], q[1] - p[1]) < 0.03 * m).length;
-        placed.push(p);
-        t.setAttribute("x", (p[0] + 0.025 * m).toFixed(4));
-        t.setAttribute("y", (p[1] - 0.025 * m + same * 0.08 * m).toFixed(4));
+        // points that coincide share one label, the scene's (e.g. "e, knife_upper.edge")
+        if (!text || !centre || centre[0] === null) { t.setAttribute("visibility", "hidden"); return; }
+        t.setAttribute("visibility", "visible");
+        t.textContent = text;
+        t.setAttribute("x", centre[0].toFixed(3)); t.setAttribute("y", (-centre[1]).toFixed(3));
       });
       const parts = plan.absolute.map((j) => {
         const v = plan.values[i][j];
@@ -382,6 +243,22 @@
       caption.textContent = `${kind} plan, pole p, ${mu} = ${scale} ${unit} of the plan drawn full size (shown scaled to fit); ` +
         `|${kind === "velocity" ? "v" : "a"}| in ${plan.unit}: ${parts.join(", ")}`;
     });
+  }
+
+  const KINDS = ["absolute", "rotation", "normal", "tangential", "transport", "coriolis", "sliding"];
+
+  // the kinds of vector the plan draws over the cycle, each a short stroke in its style and its name
+  function legend(root, kind, kinds) {
+    const old = document.getElementById(kind + "-legend");
+    if (old) old.remove();
+    const box = html("div", null, null, { id: kind + "-legend", class: "legend" });
+    root.parentNode.insertBefore(box, root.nextSibling);
+    for (const k in kinds) {
+      const item = html("span", null, box, { class: "legend-item" });
+      const s = svg("svg", { width: "26", height: "8", viewBox: "0 0 26 8" }, item);
+      svg("line", { class: "vec " + k, x1: 1, y1: 4, x2: 25, y2: 4 }, s);
+      item.appendChild(document.createTextNode(" " + kinds[k]));
+    }
   }
 
   // ------------------------------------------------------------------ charts

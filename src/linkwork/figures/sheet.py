@@ -1,0 +1,93 @@
+"""A figure laid out around a drawing of known extent: one axes without frame or ticks, in proportion
+to the drawing, so that lengths of the drawing map to a known number of points and text can be set
+to a size given in the drawing's own units (as the scene places it)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, cast
+
+import numpy as np
+
+from linkwork.scene.style import Style
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+#: Widest and tallest drawing area, inches.
+WIDTH, HEIGHT = 6.4, 7.0
+
+
+@dataclass(frozen=True)
+class Sheet:
+    """A figure, its drawing axes and the points of the figure per unit of the drawing."""
+
+    fig: Figure
+    ax: Axes
+    points_per_unit: float
+
+    def font(self, em: float) -> float:
+        """The font size (points) of text ``em`` units of the drawing high."""
+        return em * self.points_per_unit
+
+    def width(self, style: Style) -> float:
+        """A line width (points) of ``style``."""
+        return style.width
+
+
+def sheet(extent: np.ndarray, top: float = 0.5, bottom: float = 0.2, width: float = WIDTH,
+          height: float = HEIGHT, ax: Axes | None = None, least: float = 5.0) -> Sheet:  # fmt: skip
+    """A figure for a drawing of ``extent`` ``[x0, y0, x1, y1]``, ``top`` and ``bottom`` inches kept for the
+    title and legend; or, with ``ax``, that axes, its limits set to hold the drawing at equal scales.
+
+    The drawing is at most ``width`` by ``height`` inches, the figure at least ``least`` inches wide (for
+    its title); 3 % of the drawing's size is kept clear around it.
+    """
+    x0, y0, x1, y1 = (float(v) for v in extent)
+    pad = 0.03 * max(x1 - x0, y1 - y0, 1e-12)
+    x0, y0, x1, y1 = x0 - pad, y0 - pad, x1 + pad, y1 + pad
+    if ax is not None:
+        return _into(ax, (x0, y0, x1, y1))
+    from matplotlib.figure import Figure
+
+    scale = min(width / (x1 - x0), height / (y1 - y0))  # inches per unit
+    w_in, h_in = (x1 - x0) * scale, (y1 - y0) * scale
+    fig_w, fig_h = max(w_in + 0.3, least), h_in + top + bottom
+    fig = Figure(figsize=(fig_w, fig_h))
+    ax = fig.add_axes((((fig_w - w_in) / 2) / fig_w, bottom / fig_h, w_in / fig_w, h_in / fig_h))
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_axis_off()
+    return Sheet(fig, ax, scale * 72.0)
+
+
+def _into(ax: Axes, box: tuple[float, float, float, float]) -> Sheet:
+    """``ax`` (of a figure laid out elsewhere) holding ``box`` at equal scales."""
+    x0, y0, x1, y1 = box
+    fig = cast("Figure", ax.figure)  # a figure's own axes, not a subfigure's
+    pos = ax.get_position()
+    w_in, h_in = pos.width * fig.get_figwidth(), pos.height * fig.get_figheight()
+    scale = min(w_in / (x1 - x0), h_in / (y1 - y0))
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    ax.set_xlim(cx - w_in / scale / 2, cx + w_in / scale / 2)
+    ax.set_ylim(cy - h_in / scale / 2, cy + h_in / scale / 2)
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_axis_off()
+    return Sheet(fig, ax, scale * 72.0)
+
+
+def round_length(span: float) -> float:
+    """A length from the 1-2-5 series near a fifth of ``span``, for a scale bar."""
+    raw = span / 5
+    exp = np.floor(np.log10(raw))
+    for m in (1, 2, 5, 10):
+        if m * 10**exp >= raw:
+            return float(m * 10**exp)
+    return float(10 ** (exp + 1))
+
+
+def dashes(style: Style) -> Any:
+    """The matplotlib line style of ``style``."""
+    return (0, style.dash) if style.dash else "solid"

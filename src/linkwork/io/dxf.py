@@ -1,0 +1,187 @@
+"""Drawings for CAD: the scenes (:mod:`linkwork.scene`) written as DXF with ezdxf (``pip install "linkwork[cad]"``).
+
+Every kind of item or vector goes on a layer of its own (``LINKS``, ``PIVOTS``, ``SUPPORTS``,
+``HATCHING``, ``GUIDES``, ``BLOCKS``, ``TOOLS``, ``MARKERS``, ``TRAJECTORIES``, ``LABELS``; the plans'
+``ABSOLUTE``, ``ROTATION``, ``NORMAL``, ``TANGENTIAL``, ``TRANSPORT``, ``CORIOLIS``, ``SLIDING``,
+``POINTS``, ``NOTES``), so that an engineer can show, hide and restyle them.  Drawing units are
+millimetres: the scheme and the plan of positions 1:1 (a point at x m is at 1000 x), the plans to their
+stated scale (a vector u is u / scale mm long; the scale is in the ``NOTES`` layer's text and in the
+header's custom property ``LINKWORK_SCALE``).  Each vector of a plan is a LINE with the extended data
+``LINKWORK: "kind:start->end"`` and its arrowhead a SOLID on the same layer.  Files are written
+atomically.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from linkwork.atomic import write_atomic
+from linkwork.motion.kinematics import kinematics
+from linkwork.motion.plans import plan_series
+from linkwork.optional import require
+from linkwork.scene.plans import PlanScene, plan_scene
+from linkwork.scene.positions import PositionsScene, position_angles, positions_scene
+from linkwork.scene.scheme import SchemeScene, scheme_scene
+from linkwork.scene.style import SCHEME, VECTORS, Style
+
+if TYPE_CHECKING:
+    from linkwork.motion.kinematics import Kinematics
+
+#: The application name of the extended data on the plans' vectors.
+APPID = "LINKWORK"
+
+#: Height of capital letters in ems of DejaVu Sans: a DXF text's height is that of its capitals.
+CAP = 0.73
+
+#: AutoCAD colour indices near the styles' colours (7: black on white paper, white on black).
+_ACI = {"#000000": 7, "#1f5fa8": 5, "#1f77b4": 5, "#2ca02c": 3, "#d62728": 1, "#ff7f0e": 30, "#9467bd": 6,
+        "#999999": 8, "#777777": 8}  # fmt: skip
+
+PURPOSE = "the drawings for CAD (linkwork analyze --dxf)"
+
+
+def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinematics | None = None) -> list[Path]:
+    """``scheme.dxf``, ``positions.dxf``, ``velocity_plan.dxf`` and ``acceleration_plan.dxf`` of sample ``index``
+    of ``kin`` into ``folder``; returns the paths.  ``cycle``: a whole turn (the scheme's trajectories and
+    fixed symbols; see :func:`~linkwork.scene.scheme_scene`)."""
+    require("ezdxf", purpose=PURPOSE)
+    folder = Path(folder)
+    mech = kin.mechanism
+    full = cycle if cycle is not None else kinematics(mech, steps=360)
+    out = [write_scheme(scheme_scene(kin, at=[index], cycle=full), index, folder / "scheme.dxf")]
+    twelve = kinematics(mech, position_angles(mech))
+    out.append(write_positions(positions_scene(twelve, cycle=full), folder / "positions.dxf"))
+    valid = np.asarray(kin.valid_all[0])
+    for series in plan_series(kin):
+        out.append(write_plan(plan_scene(series, [index], valid=valid), 0, folder / f"{series.kind}_plan.dxf"))
+    return out
+
+
+def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories: bool = True) -> Path:
+    """The scheme of sample ``index`` of ``scene``, 1:1 in mm, with the trajectories of its points."""
+    doc, msp = _document(SCHEME)
+    if trajectories:
+        _paths(msp, scene.paths)
+    _items(msp, scene, index)
+    for lab in scene.labels:
+        _text(msp, lab.text, lab.centre[index] * 1000, 1000 * scene.em)
+    deg = np.degrees(scene.angles[index]) % 360
+    _note(doc, msp, f"{scene.name}: kinematic scheme, crank at {deg:.1f} deg; 1:1, mm", scene.extent(index) * 1000,
+          1000 * scene.em)  # fmt: skip
+    return _save(doc, path)
+
+
+def write_positions(scene: PositionsScene, path: str | Path) -> Path:
+    """The plan of positions, 1:1 in mm: position 0 whole, the others' links thin, the position numbers."""
+    s = scene.scheme
+    doc, msp = _document(SCHEME)
+    _paths(msp, s.paths)
+    _items(msp, s, 0)
+    for k in range(1, len(s.angles)):
+        _items(msp, s, k, kinds=("bar", "plate", "pivot"), frame=False)
+    for lab in (*s.labels, *scene.numbers):
+        _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
+    _note(doc, msp, f"{s.name}: plan of {len(s.angles)} positions; 1:1, mm", scene.extent() * 1000, 1000 * s.em)
+    return _save(doc, path)
+
+
+def write_plan(scene: PlanScene, index: int, path: str | Path) -> Path:
+    """The plan of position ``index`` of ``scene``, in mm of the sheet at the plan's scale."""
+    doc, msp = _document(VECTORS, extra={"POINTS": 7, "NOTES": 7})
+    doc.header.custom_vars.append("LINKWORK_SCALE", repr(scene.scale))
+    for e in scene.drawn(index):
+        arrow = scene.arrows[e]
+        start, end = scene.ends[index, e]
+        layer = VECTORS.get(arrow.kind, VECTORS["rotation"]).layer
+        line = msp.add_line(tuple(start), tuple(end), dxfattribs={"layer": layer})
+        line.set_xdata(APPID, [(1000, f"{arrow.kind}:{scene.names[arrow.start]}->{scene.names[arrow.end]}")])
+        _head(msp, start, end, 0.55 * scene.em, layer)
+    for j, p in enumerate(scene.points[index]):
+        if np.isfinite(p).all():
+            msp.add_circle(tuple(p), 0.2 * scene.em, dxfattribs={"layer": "POINTS"})
+        text, c = scene.text[index][j], scene.centres[index, j]
+        if text and np.isfinite(c).all():
+            _text(msp, text, c, scene.em * (1.0 if scene.main[j] else 0.8))
+    deg = np.degrees(scene.angles[index]) % 360
+    note = f"{scene.kind} plan at crank {deg:.1f} deg; pole p; {scene.symbol} = {scene.scale:g} {scene.scale_unit}"
+    _note(doc, msp, note, scene.extent(index), scene.em)
+    return _save(doc, path)
+
+
+def _document(styles: dict[str, Style], extra: dict[str, int] | None = None) -> tuple[Any, Any]:
+    """A new DXF document in mm with a layer for every style (and ``LABELS``, ``NOTES``, ``extra``)."""
+    ezdxf = require("ezdxf", purpose=PURPOSE)
+    doc = ezdxf.new("R2010", setup=True)
+    doc.units = ezdxf.units.MM
+    doc.header["$MEASUREMENT"] = 1
+    doc.appids.add(APPID)
+    for style in styles.values():
+        if style.layer not in doc.layers:
+            weight = 50 if style.width >= 2 else 25 if style.width >= 0.9 else 13
+            doc.layers.add(style.layer, color=_ACI.get(style.colour, 7), lineweight=weight)
+    for name, colour in {"LABELS": 7, "NOTES": 7, **(extra or {})}.items():
+        if name not in doc.layers:
+            doc.layers.add(name, color=colour)
+    return doc, doc.modelspace()
+
+
+def _items(msp: Any, scene: SchemeScene, index: int, kinds: tuple[str, ...] | None = None, frame: bool = True) -> None:
+    """The scheme's items at sample ``index`` (of ``kinds``; the frame's only if ``frame``), in mm."""
+    for it in scene.items:
+        if it.kind == "path" or (kinds is not None and it.kind not in kinds) or (it.link == 0 and not frame):
+            continue
+        xy = scene.placed(it, index) * 1000
+        if not np.isfinite(xy).all():
+            continue
+        attrs = {"layer": SCHEME[it.kind].layer}
+        if it.radius:
+            msp.add_circle(tuple(xy[0]), 1000 * it.radius, dxfattribs=attrs)
+        else:
+            msp.add_lwpolyline([tuple(v) for v in xy], close=it.closed, dxfattribs=attrs)
+
+
+def _paths(msp: Any, paths: np.ndarray) -> None:
+    """Trajectories ``(A, Q, 2)`` (m) as polylines in mm, broken where the mechanism does not assemble."""
+    for q in range(paths.shape[1]):
+        xy = paths[:, q] * 1000
+        ok = np.isfinite(xy).all(-1)
+        runs = np.split(np.arange(len(xy)), np.flatnonzero(np.diff(ok.astype(int))) + 1)
+        for run in runs:
+            if ok[run[0]] and len(run) > 1:
+                msp.add_lwpolyline([tuple(v) for v in xy[run]], dxfattribs={"layer": SCHEME["path"].layer})
+
+
+def _text(msp: Any, text: str, centre: np.ndarray, em: float, layer: str = "LABELS") -> None:
+    """``text`` of font size ``em`` centred at ``centre``."""
+    from ezdxf.enums import TextEntityAlignment
+
+    if np.isfinite(centre).all():
+        entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": layer})
+        entity.set_placement(tuple(centre), align=TextEntityAlignment.MIDDLE_CENTER)
+
+
+def _note(doc: Any, msp: Any, text: str, extent: np.ndarray, em: float) -> None:
+    """The drawing's title above it, in the ``NOTES`` layer."""
+    from ezdxf.enums import TextEntityAlignment
+
+    entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": "NOTES"})
+    entity.set_placement((float(extent[0]), float(extent[3]) + 1.5 * em), align=TextEntityAlignment.BOTTOM_LEFT)
+
+
+def _head(msp: Any, start: np.ndarray, end: np.ndarray, size: float, layer: str) -> None:
+    """A filled arrowhead at ``end`` of the vector from ``start``."""
+    d = end - start
+    length = float(np.hypot(*d))
+    size = min(size, 0.35 * length)
+    u = d / length
+    w = np.array([-u[1], u[0]])
+    a, b = end - size * u + 0.3 * size * w, end - size * u - 0.3 * size * w
+    msp.add_solid([tuple(end), tuple(a), tuple(b)], dxfattribs={"layer": layer})
+
+
+def _save(doc: Any, path: str | Path) -> Path:
+    """Write ``doc`` to ``path`` atomically."""
+    return write_atomic(path, lambda tmp: doc.saveas(tmp))

@@ -1,0 +1,107 @@
+"""Plane geometry of the drawings: link axes to the frame's, outlines, and the size of a label's text.
+
+Everything is vectorised over samples: a shape given in a link's own axes ``(K, 2)`` is placed at the
+link's poses ``(A, 3)`` as ``(A, K, 2)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: Advance widths of the printable ASCII characters (32 to 126) in DejaVu Sans, the default font of
+#: matplotlib, in thousandths of the font size (em).
+_ADVANCE = (
+    318, 401, 460, 838, 636, 950, 780, 275, 390, 390, 500, 838, 318, 361, 318, 337, 636, 636, 636, 636, 636,
+    636, 636, 636, 636, 636, 337, 337, 838, 838, 838, 531, 1000, 684, 686, 698, 770, 631, 575, 775, 752, 295,
+    295, 656, 557, 863, 748, 787, 603, 787, 695, 635, 611, 732, 684, 989, 685, 611, 685, 390, 337, 390, 838,
+    500, 500, 613, 635, 550, 635, 615, 352, 635, 634, 278, 279, 579, 278, 974, 634, 611, 635, 635, 412, 521,
+    392, 634, 592, 818, 592, 592, 525, 637, 337, 636, 838,
+)  # fmt: skip
+
+#: Height of a line of text (ascent and descent of DejaVu Sans) in ems.
+LINE = 1.17
+
+#: Width of a character outside printable ASCII (Cyrillic, Greek), in ems: as wide as the widest letters.
+WIDE = 0.8
+
+
+def text_size(text: str, em: float) -> tuple[float, float]:
+    """Width and height of one line of ``text`` set at font size ``em`` (in the units of ``em``).
+
+    The widths are those of DejaVu Sans; characters outside printable ASCII count as :data:`WIDE`,
+    which is wider than most, so that a box made from this size holds the text as drawn.
+    """
+    width = sum(_ADVANCE[ord(c) - 32] / 1000 if 32 <= ord(c) < 127 else WIDE for c in text)
+    return width * em, LINE * em
+
+
+def place(poses: np.ndarray, xy: np.ndarray) -> np.ndarray:
+    """Points given in a link's axes, placed at its poses.
+
+    Parameters
+    ----------
+    poses : ndarray, shape (A, 3)
+        The link's poses (x, y in m, angle in rad).
+    xy : ndarray, shape (K, 2)
+        The points in the link's axes, m.
+
+    Returns
+    -------
+    ndarray, shape (A, K, 2)
+    """
+    c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
+    x, y = xy[None, :, 0], xy[None, :, 1]
+    return np.stack([poses[:, None, 0] + c * x - s * y, poses[:, None, 1] + s * x + c * y], -1)
+
+
+def to_local(pose: np.ndarray, xy: np.ndarray) -> np.ndarray:
+    """Points ``(K, 2)`` of the frame's axes in the axes of a link at ``pose`` ``(3,)`` (the inverse of
+    :func:`place`)."""
+    c, s = np.cos(pose[2]), np.sin(pose[2])
+    d = np.asarray(xy, dtype=float) - pose[:2]
+    return np.stack([c * d[..., 0] + s * d[..., 1], -s * d[..., 0] + c * d[..., 1]], -1)
+
+
+def perp(u: np.ndarray) -> np.ndarray:
+    """``u`` turned a quarter counter-clockwise, ``(..., 2)``."""
+    return np.stack([-u[..., 1], u[..., 0]], -1)
+
+
+def hull(xy: np.ndarray) -> np.ndarray:
+    """Indices of the convex hull of ``xy`` ``(K, 2)``, counter-clockwise (Andrew's monotone chain);
+    points on an edge are left out, so that collinear points give the two ends only."""
+    order = np.lexsort((xy[:, 1], xy[:, 0]))
+
+    def chain(seq: np.ndarray) -> list[int]:
+        out: list[int] = []
+        for i in seq:
+            while len(out) >= 2:
+                a, b = xy[out[-2]], xy[out[-1]]
+                if (b[0] - a[0]) * (xy[i][1] - a[1]) - (b[1] - a[1]) * (xy[i][0] - a[0]) > 1e-12:
+                    break
+                out.pop()
+            out.append(int(i))
+        return out
+
+    lower, upper = chain(order), chain(order[::-1])
+    return np.array(lower[:-1] + upper[:-1] if len(order) > 2 else [int(i) for i in order], dtype=int)
+
+
+def collinear(xy: np.ndarray, tol: float = 1e-3) -> bool:
+    """Whether the points ``(K, 2)`` lie on one line, to ``tol`` of their spread."""
+    if len(xy) < 3:
+        return True
+    centred = xy - xy.mean(0)
+    s = np.linalg.svd(centred, compute_uv=False)
+    return bool(s[1] <= tol * max(s[0], 1e-300))
+
+
+def bounds(*arrays: np.ndarray) -> np.ndarray:
+    """``[x0, y0, x1, y1]`` of the finite points of ``arrays`` ``(..., 2)``; a unit box if there are none."""
+    pts = np.concatenate(
+        [np.asarray(a, dtype=float).reshape(-1, 2) for a in arrays if np.size(a)] or [np.zeros((0, 2))]
+    )
+    pts = pts[np.isfinite(pts).all(-1)]
+    if not len(pts):
+        return np.array([-1.0, -1.0, 1.0, 1.0])
+    return np.concatenate([pts.min(0), pts.max(0)])

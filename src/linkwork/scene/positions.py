@@ -1,0 +1,186 @@
+"""The twelve positions of the graphical method: their crank angles, which of them the plans are drawn
+for, and the plan of positions as a scene.
+
+Position 0 is where the working slider is at the high end of its stroke (the knives open:
+:func:`linkwork.motion.analysis.zero_angle`); the others follow every 30 degrees in the direction of
+rotation.  The plans are drawn for the positions the file names (``drawing: {positions: [9]}``), else
+for the one position where the working point moves fastest with every dyad transmitting well
+(:func:`best_position`): never a dead point, where the plans collapse onto the pole.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from linkwork.motion.analysis import outputs, transmission, zero_angle
+from linkwork.motion.kinematics import kinematics
+from linkwork.scene.geometry import text_size
+from linkwork.scene.labels import Obstacles, place_labels
+from linkwork.scene.scheme import Label, SchemeScene, scheme_scene
+
+if TYPE_CHECKING:
+    from linkwork.motion.kinematics import Kinematics
+    from linkwork.structure.model import Mechanism
+
+#: The positions of the graphical method over one turn.
+COUNT = 12
+
+
+def position_angles(mech: Mechanism, count: int = COUNT) -> np.ndarray:
+    """Crank angles (rad) of the ``count`` positions: position 0 at :func:`~linkwork.motion.analysis.zero_angle`,
+    then equal steps in the direction of rotation, ``(count,)``."""
+    sign = 1.0 if mech.drive_speed[0] >= 0 else -1.0
+    return zero_angle(mech) + sign * 2 * np.pi * np.arange(count) / count
+
+
+def working_point(mech: Mechanism) -> int:
+    """The point whose motion is the machine's work: the first tool of a process load, else the striking
+    point of the blow, else the first slider on a frame guide, else the joint of the last rocker farthest
+    from its pivot, else the last joint of a moving link."""
+    for load in mech.loads:
+        if load.kind == "process" and load.points:
+            return int(load.points[0])
+    if mech.blow is not None:
+        return mech.point_index(mech.blow.at)
+    outs = outputs(mech)
+    for out in outs:
+        if out.kind == "slider":
+            return out.point
+    joints = [int(p) for pair in mech.pair_points for p in pair if p >= 0]
+    for out in reversed(outs):
+        own = [p for p in joints if mech.point_link[p] == out.link]
+        pivot = [int(p) for p in mech.pair_points[out.pair] if p >= 0 and mech.point_link[p] == out.link]
+        if own and pivot:
+            local = np.asarray(mech.point_local)
+            return own[int(np.argmax(np.hypot(*(local[own] - local[pivot[0]]).T)))]
+    moving = [p for p in joints if mech.point_link[p] != 0]
+    return moving[-1] if moving else 0
+
+
+def best_position(kin: Kinematics, point: int | None = None) -> int:
+    """Of the samples of ``kin`` (e.g. the twelve positions), the one where the working point moves fastest
+    relative to how badly the mechanism transmits there: the largest ``|v| sin(mu)``, ``mu`` the least
+    transmission angle of the dyads (0 at a dead point).  The first of equal ones."""
+    mech = kin.mechanism
+    p = working_point(mech) if point is None else point
+    v = np.asarray(kin.velocity(mech.point_names[p]))
+    speed = np.hypot(v[..., 0], v[..., 1]).reshape(-1, len(kin.angles))[0]
+    mu = [np.asarray(m).reshape(-1, len(kin.angles))[0] for m in transmission(kin).values()]
+    quality = np.sin(np.min(mu, axis=0)) if mu else np.ones_like(speed)
+    score = np.where(np.asarray(kin.valid_all[0]), speed * quality, -np.inf)
+    return int(np.argmax(np.nan_to_num(score, nan=-np.inf)))
+
+
+def plan_positions(mech: Mechanism, kin: Kinematics | None = None) -> list[int]:
+    """The positions (of :data:`COUNT`) the plans are drawn for: the file's ``drawing.positions``, else
+    :func:`best_position` of the twelve (``kin``: their kinematics, solved here if not given)."""
+    drawing = getattr(mech.spec, "drawing", None) if mech.spec is not None else None
+    if drawing is not None and drawing.positions:
+        return [int(k) for k in drawing.positions]
+    if kin is None:
+        kin = kinematics(mech, position_angles(mech))
+    return [best_position(kin)]
+
+
+@dataclass(frozen=True)
+class PositionsScene:
+    """The plan of positions: the scheme at every position, thin, with the position numbers.
+
+    Attributes
+    ----------
+    scheme : SchemeScene
+        The scheme at the positions (its samples), its labels the names of the frame's points, its paths
+        the trajectories over the whole turn.
+    numbers : tuple of Label
+        The position numbers at the crank pin and at the working point (``centre`` of shape (1, 2));
+        positions whose points coincide share a label ("5, 7").
+    """
+
+    scheme: SchemeScene
+    numbers: tuple[Label, ...]
+
+    def extent(self) -> np.ndarray:
+        """``[x0, y0, x1, y1]`` of everything drawn, m."""
+        boxes = [self.scheme.extent(paths=True)]
+        for lab in self.numbers:
+            w, h = text_size(lab.text, self.scheme.em)
+            boxes.append(np.concatenate([lab.centre[0] - [w / 2, h / 2], lab.centre[0] + [w / 2, h / 2]]))
+        arr = np.array(boxes)
+        return np.concatenate([arr[:, :2].min(0), arr[:, 2:].max(0)])
+
+
+def positions_scene(kin: Kinematics, cycle: Kinematics | None = None) -> PositionsScene:
+    """The plan of the positions of ``kin`` (its samples, numbered 0, 1, ...), with the trajectories over
+    ``cycle`` (a whole turn; see :func:`~linkwork.scene.scheme_scene`)."""
+    scheme = scheme_scene(kin, at=[0], cycle=cycle)
+    mech = kin.mechanism
+    fixed = {name.split(".", 1)[1] for p, name in enumerate(mech.point_names) if mech.point_link[p] == 0}
+    frame = tuple(lab for lab in scheme.labels if lab.kind == "point" and lab.text in fixed)
+    scheme = dataclasses.replace(scheme, labels=frame)
+    crank = _crank_pin(mech)
+    points = [p for p in dict.fromkeys([crank, working_point(mech)]) if p >= 0]
+    return PositionsScene(scheme, _numbers(scheme, kin.points(), points))
+
+
+def _crank_pin(mech: Mechanism) -> int:
+    """The crank's joint farthest from its pivot; -1 if none."""
+    k = int(mech.drive_pair[0])
+    link = int(mech.pair_links[k, 1] if mech.pair_links[k, 0] == 0 else mech.pair_links[k, 0])
+    joints = [int(p) for pair in mech.pair_points for p in pair if p >= 0 and mech.point_link[p] == link]
+    if not joints:
+        return -1
+    local = np.asarray(mech.point_local)[joints]
+    far = int(np.argmax(np.hypot(*local.T)))
+    return joints[far] if np.hypot(*local[far]) > 0 else -1
+
+
+def _numbers(scheme: SchemeScene, pts: np.ndarray, points: list[int]) -> tuple[Label, ...]:
+    """Position numbers at ``points`` ``(A, P, 2)``, those of coinciding positions together, placed clear of
+    every position's lines and of each other."""
+    em = scheme.em
+    wanted: list[tuple[str, int, np.ndarray]] = []
+    for p in points:
+        xy = pts[:, p]
+        taken = ~np.isfinite(xy).all(-1)
+        for k in range(len(xy)):
+            if taken[k]:
+                continue
+            close = ~taken & (np.hypot(*(xy - xy[k]).T) < 0.6 * em)
+            taken |= close
+            wanted.append((", ".join(str(i) for i in np.flatnonzero(close)), p, xy[k]))
+    if not wanted:
+        return ()
+    anchors = np.array([a for _, _, a in wanted])[None]
+    sizes = np.array([text_size(t, em) for t, _, _ in wanted])
+    centre = scheme.extent()[:2] / 2 + scheme.extent()[2:] / 2
+    away = anchors[0] - centre
+    prefer = away / np.maximum(np.hypot(*away.T), 1e-12)[:, None]
+    taken = np.array([_box(lab, em) for lab in scheme.labels])
+    gaps = np.full(len(wanted), 0.8 * scheme.r)
+    centres = place_labels(anchors, sizes, gaps, _all_positions(scheme), prefer[None], pad=0.15 * em,
+                           taken=taken.reshape(1, -1, 4))  # fmt: skip
+    return tuple(Label(t, "position", 0, a, centres[:, j]) for j, (t, _, a) in enumerate(wanted))
+
+
+def _box(label: Label, em: float) -> np.ndarray:
+    """``[x0, y0, x1, y1]`` of a label's text at its first sample."""
+    half = np.array(text_size(label.text, em)) / 2
+    return np.concatenate([label.centre[0] - half, label.centre[0] + half])
+
+
+def _all_positions(scheme: SchemeScene) -> Obstacles:
+    """The lines and circles of every position, as obstacles of one drawing."""
+    segs, circles = [], []
+    for it in scheme.items:
+        xy = scheme.placed(it)  # (A, K, 2)
+        if it.radius:
+            circles.append(np.concatenate([xy[:, 0], np.full((len(xy), 1), it.radius)], -1))
+        elif it.kind != "hatch":
+            ring = np.concatenate([xy, xy[:, :1]], 1) if it.closed else xy
+            segs.append(np.stack([ring[:, :-1], ring[:, 1:]], 2).reshape(-1, 2, 2))
+    return Obstacles(np.concatenate(segs)[None] if segs else np.zeros((1, 0, 2, 2)),
+                     np.concatenate(circles)[None] if circles else np.zeros((1, 0, 3)))  # fmt: skip

@@ -1,0 +1,325 @@
+"""The drawings of a mechanism from one scene: no text covers another in any figure, the joints are where
+the kinematics puts them in every renderer (matplotlib, the viewer's payload, DXF), the plans are drawn
+to their scale where the mechanism moves, and the drawings for CAD and the animation are written."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import linkwork as lw
+from drawing_checks import overlaps
+from linkwork.errors import SpecError
+from linkwork.examples import names
+from linkwork.examples import text as example_text
+from linkwork.motion.analysis import transmission
+from linkwork.motion.plans import plan_series
+from linkwork.scene import scheme_scene
+from linkwork.scene.plans import plan_scene
+from linkwork.scene.positions import best_position, plan_positions, position_angles, working_point
+from linkwork.structure.model import point_labels
+
+pytest.importorskip("matplotlib")
+
+from matplotlib.figure import Figure  # noqa: E402
+
+from linkwork import figures  # noqa: E402
+from linkwork.figures.animation import Film  # noqa: E402
+
+
+def _solved(name: str, steps: int = 72):
+    mech = lw.compile(lw.example(name))
+    cycle = lw.kinematics(mech, steps=steps)
+    twelve = lw.kinematics(mech, position_angles(mech))
+    return mech, cycle, twelve
+
+
+def test_the_overlap_check_finds_texts_and_axes_that_cover_each_other():
+    fig = Figure(figsize=(4, 3))
+    ax = fig.add_axes((0.1, 0.1, 0.5, 0.5))
+    fig.add_axes((0.4, 0.4, 0.5, 0.5))
+    ax.text(0.5, 0.5, "covered")
+    ax.text(0.52, 0.5, "covering")
+    ax.text(0.1, 0.9, "alone")
+    fig.text(0.95, 0.5, "cut at the edge")
+    found = overlaps(fig)
+    assert "text 'covered' covers 'covering'" in found
+    assert "text 'cut at the edge' is cut by the figure's edge" in found
+    assert any(f.startswith("axes 0") and "axes 1" in f for f in found)
+    assert not any("alone" in f for f in found)
+
+
+@pytest.mark.parametrize("name", names())
+def test_no_text_covers_another_in_any_drawing(name):
+    """The scheme, the plan of positions, both plans, the sheet of twelve plans and frames of the
+    animation of every bundled example, read back through the Agg renderer."""
+    mech, cycle, twelve = _solved(name)
+    k = plan_positions(mech, twelve)[0]
+    drawn = {
+        "scheme": figures.draw_scheme(twelve, k, trajectories=True, position=k, cycle=cycle),
+        "positions": figures.draw_positions(cycle),
+        "velocity plan": figures.velocity_plan(twelve, k, position=k),
+        "acceleration plan": figures.acceleration_plan(twelve, k, position=k),
+        "velocity plans": figures.plan_sheet(twelve, "velocity"),
+    }
+    picks = [0, 18, 36, 54]
+    film = Film(scheme_scene(cycle, at=picks), picks)
+    problems = {what: overlaps(fig) for what, fig in drawn.items()}
+    for i in picks:
+        film.show(i)
+        problems[f"animation frame {i}"] = overlaps(film.fig)
+    assert {what: found for what, found in problems.items() if found} == {}
+
+
+@pytest.mark.parametrize("name", ["double-cut-shears", "four-bar", "percussion-rocker"])
+def test_every_renderer_puts_the_joints_where_the_kinematics_does(name, tmp_path):
+    """The pivots' centres read back from the matplotlib figure, from the viewer's payload (the scene's items
+    placed by its poses) and from the DXF (mm, where ezdxf is installed) are the points' positions the
+    kinematics solves."""
+    from linkwork.web.payload import cycle_payload
+
+    mech, cycle, twelve = _solved(name)
+    k = 7
+    fig = figures.draw_scheme(twelve, k, cycle=cycle)
+    drawn = {a.get_gid().split(":", 1)[1]: np.array(a.center) for a in fig.axes[0].patches
+             if (a.get_gid() or "").startswith("pivot:")}  # fmt: skip
+    revolute = {j for j, t in zip(mech.pair_joint, mech.pair_type, strict=True) if t == 0}
+    assert set(drawn) == revolute
+    for joint, centre in drawn.items():
+        np.testing.assert_allclose(centre, twelve.position(joint)[k], rtol=0, atol=1e-12)
+
+    payload = cycle_payload(mech, steps=36)
+    scene, kin36 = payload["scene"], lw.kinematics(mech, steps=36)
+    for item in (it for it in scene["items"] if it["kind"] == "pivot"):
+        pose = np.array(scene["poses"][20][item["link"]])
+        c, s = math.cos(pose[2]), math.sin(pose[2])
+        x, y = item["xy"][0]
+        np.testing.assert_allclose([pose[0] + c * x - s * y, pose[1] + s * x + c * y],
+                                   kin36.position(item["name"])[20], rtol=0, atol=1e-8)  # fmt: skip
+
+    try:
+        import ezdxf
+    except ImportError:
+        return
+    from linkwork.io.dxf import write_scheme
+
+    path = write_scheme(scheme_scene(twelve, at=[k], cycle=cycle), k, tmp_path / "scheme.dxf")
+    doc = ezdxf.readfile(path)
+    assert doc.units == ezdxf.units.MM
+    circles = [e for e in doc.modelspace().query("CIRCLE") if e.dxf.layer == "PIVOTS"]
+    assert len(circles) == len(revolute)
+    got = sorted((round(e.dxf.center.x, 6), round(e.dxf.center.y, 6)) for e in circles)
+    want = sorted((round(1000 * twelve.position(j)[k][0], 6), round(1000 * twelve.position(j)[k][1], 6))
+                  for j in revolute)  # fmt: skip
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-6)
+
+
+@pytest.mark.parametrize("name", ["double-cut-shears", "watt-six-bar", "percussion-rocker"])
+def test_dxf_plans_are_the_velocities_and_accelerations_drawn_to_their_scale(name, tmp_path):
+    """Every absolute vector of the DXF plans, its length in mm times the stated scale, is the point's speed
+    and acceleration the kinematics computes (to 1e-9); its direction too."""
+    ezdxf = pytest.importorskip("ezdxf")
+    from linkwork.io.dxf import write_drawings
+
+    mech, cycle, twelve = _solved(name)
+    k = plan_positions(mech, twelve)[0]
+    write_drawings(twelve, k, tmp_path, cycle=cycle)
+    by_label = {label.lower(): mech.point_names[p] for label, p in point_labels(mech)}
+    checked = 0
+    for kind, state in (("velocity", twelve.velocity), ("acceleration", twelve.acceleration)):
+        doc = ezdxf.readfile(tmp_path / f"{kind}_plan.dxf")
+        scale = float(doc.header.custom_vars.get("LINKWORK_SCALE"))
+        note = " ".join(e.dxf.text for e in doc.modelspace().query("TEXT") if e.dxf.layer == "NOTES")
+        assert f"= {scale:g} (m/s" in note
+        for line in doc.modelspace().query("LINE"):
+            what = line.get_xdata("LINKWORK")[0].value
+            if not what.startswith("absolute:p->"):
+                continue
+            target = by_label.get(what.split("->", 1)[1])
+            if target is None:
+                continue
+            drawn = np.array([line.dxf.end.x - line.dxf.start.x, line.dxf.end.y - line.dxf.start.y]) * scale
+            want = state(target)[k]
+            np.testing.assert_allclose(drawn, want, rtol=1e-9, atol=1e-9 * np.hypot(*want))
+            assert line.dxf.layer == "ABSOLUTE"
+            checked += 1
+    assert checked >= 4
+    layers = {e.dxf.layer for e in ezdxf.readfile(tmp_path / "scheme.dxf").modelspace()}
+    assert {"LINKS", "PIVOTS", "SUPPORTS", "HATCHING", "LABELS"} <= layers
+    assert {"LINKS", "TRAJECTORIES"} <= {e.dxf.layer for e in ezdxf.readfile(tmp_path / "positions.dxf").modelspace()}
+
+
+def _speeds(kin, index: int) -> np.ndarray:
+    """Speeds of the joints of the moving links at sample ``index``, m/s."""
+    mech = kin.mechanism
+    joints = sorted({int(p) for pair in mech.pair_points for p in pair if p >= 0 and mech.point_link[p] != 0})
+    v = np.array([kin.velocity(mech.point_names[p])[index] for p in joints])
+    return np.hypot(v[:, 0], v[:, 1])
+
+
+@pytest.mark.parametrize("name", names())
+def test_the_plans_are_drawn_where_the_mechanism_moves(name):
+    """Not at a dead point, where the chain beyond the crank stands still and the plan collapses onto the pole:
+    at the position drawn at least half of the moving joints move at a tenth of the fastest one's speed or
+    more, and every dyad transmits at an angle of at least 10 degrees."""
+    mech, cycle, twelve = _solved(name)
+    k = plan_positions(mech, twelve)[0]
+    speeds = _speeds(twelve, k)
+    assert np.mean(speeds >= 0.1 * speeds.max()) >= 0.5, speeds
+    for mu in transmission(twelve).values():
+        assert np.degrees(np.asarray(mu).reshape(-1, 12)[0, k]) >= 10.0
+
+
+def test_the_slider_crank_plans_avoid_the_singular_positions():
+    """The shears of seed 000 (OA = AB): the knife is fastest where B passes O, at crank angles 0 and 180
+    degrees, where the mechanism is singular (the rod along the normal to the guide); the plans are drawn
+    elsewhere, at the next fastest positions."""
+    mech, cycle, twelve = _solved("shears-slider-crank")
+    angles = np.degrees(position_angles(mech)) % 360
+    k = best_position(twelve)
+    assert min(abs(angles[k] - 0) % 180, 180 - abs(angles[k] - 0) % 180) >= 29.0
+    phi = np.radians(angles[k])
+    assert np.hypot(*twelve.velocity("B")[k]) == pytest.approx(2 * 0.15 * 10 * abs(math.cos(phi)), rel=1e-9)
+
+
+def test_the_file_names_the_positions_of_the_plans():
+    mech = lw.compile(lw.example("double-cut-shears"))
+    assert plan_positions(mech) == [9]
+    assert mech.point_names[working_point(mech)] == "knife_upper.edge"
+    text = example_text("four-bar") + "drawing: {positions: [3, 5]}\n"
+    assert plan_positions(lw.compile(lw.loads(text, file="four-bar.yaml"))) == [3, 5]
+    bad = example_text("four-bar") + "drawing: {positions: [12]}\n"
+    with pytest.raises(SpecError, match=r"four-bar.yaml:\d+: drawing.positions\[0\]: expected a number at most 11"):
+        lw.loads(bad, file="four-bar.yaml")
+
+
+def test_points_with_one_vector_share_one_label():
+    """The knife's edge moves with its slide: one label "e, knife_upper.edge"; at position 0 (the knives open,
+    every point of the chain below the crank at rest) the pole's label names every point at rest."""
+    mech, cycle, twelve = _solved("double-cut-shears")
+    vel, _ = plan_series(twelve)
+    scene = plan_scene(vel, list(range(12)))
+    j = scene.names.index("e")
+    edge = scene.names.index("knife_upper.edge")
+    for k in range(1, 12):
+        if scene.text[k][j]:
+            assert scene.text[k][j].split(", ")[:2] == ["e", "knife_upper.edge"]
+            assert scene.text[k][edge] == ""
+    pole = scene.text[0][scene.names.index("p")].split(", ")
+    at_rest = [lab for lab in scene.names[: len(vel.points)] if lab != "p"
+               and np.hypot(*vel.values[0, 0, vel.labels.index(lab)]) < 1e-9]  # fmt: skip
+    assert at_rest and set(at_rest) <= set(pole)
+
+
+def test_every_plan_states_its_scale_and_names_its_vectors():
+    mech, cycle, twelve = _solved("double-cut-shears")
+    for kind, fig in (("velocity", figures.velocity_plan(twelve, 9)),
+                      ("acceleration", figures.acceleration_plan(twelve, 9))):  # fmt: skip
+        texts = " | ".join(t.get_text() for t in fig.findobj(lambda a: hasattr(a, "get_text")))
+        symbol = "μv" if kind == "velocity" else "μa"
+        assert f"{symbol} = " in texts
+        assert "absolute (from the pole)" in texts and "sliding along the guide" in texts
+
+
+def test_the_scene_and_the_viewer_need_no_matplotlib():
+    """The viewer's payload carries the scene; building it imports neither matplotlib nor ezdxf."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, linkwork as lw\n"
+        "from linkwork.web.payload import cycle_payload\n"
+        "d = cycle_payload(lw.compile(lw.example('four-bar')), steps=12)\n"
+        "assert d['scene']['items'] and d['scene']['plans']['velocity']['text']\n"
+        "print(sorted(m for m in ('matplotlib', 'ezdxf') if m in sys.modules))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "[]"
+
+
+def _cli():
+    from typer.testing import CliRunner
+
+    import linkwork.cli.analyze  # noqa: F401  (registers the command)
+    from linkwork.cli.main import app
+
+    return CliRunner(), app
+
+
+def test_analyze_writes_the_drawings_for_cad_and_the_sheets_of_all_twelve_plans(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    runner, app = _cli()
+    out = tmp_path / "r"
+    result = runner.invoke(app, ["analyze", "four-bar", "--out", str(out), "--steps", "36", "--no-animation",
+                                 "--dxf", "--position", "all"])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    for name in ("scheme", "positions", "velocity_plan", "acceleration_plan"):
+        doc = ezdxf.readfile(out / "figures" / f"{name}.dxf")
+        assert doc.units == ezdxf.units.MM and len(doc.modelspace()) > 10
+    for name in ("velocity_plans", "acceleration_plans"):
+        assert (out / "figures" / f"{name}.png").stat().st_size > 10000
+    assert "velocity_plans" in (out / "report.html").read_text()
+
+
+def test_analyze_without_ezdxf_says_what_to_install_before_any_work(tmp_path, monkeypatch):
+    import importlib
+
+    real = importlib.import_module
+
+    def without_ezdxf(name, *args, **kwargs):
+        if name.split(".")[0] == "ezdxf":
+            raise ImportError(name)
+        return real(name, *args, **kwargs)
+
+    monkeypatch.setattr(importlib, "import_module", without_ezdxf)
+    runner, app = _cli()
+    result = runner.invoke(app, ["analyze", "four-bar", "--out", str(tmp_path / "r"), "--dxf"])
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "ezdxf" in lines[0] and 'pip install "linkwork[cad]"' in lines[0]
+    assert not (tmp_path / "r").exists()
+
+
+def test_the_animation_is_720_pixels_wide_and_an_mp4_where_imageio_ffmpeg_is(tmp_path):
+    from PIL import Image
+
+    from linkwork.figures.animation import animate
+
+    mech = lw.compile(lw.example("double-cut-shears"))
+    written = animate(lw.kinematics(mech, steps=72), tmp_path / "a.gif", frames=12)
+    with Image.open(written[0]) as gif:
+        assert gif.size[0] == 720 and gif.n_frames == 12
+    try:
+        import imageio_ffmpeg  # noqa: F401
+    except ImportError:
+        assert written == [tmp_path / "a.gif"]
+    else:
+        assert written[1] == tmp_path / "a.mp4" and written[1].read_bytes()[4:8] == b"ftyp"
+
+
+def test_no_name_lies_on_a_slider_block_a_knife_or_the_hatching():
+    """The double-cut shears at each of the twelve positions, read back through the Agg renderer: no label's
+    box meets the box of a slider block, a knife, a support or a hatching stroke (E and F beside their blocks,
+    the links' numbers off the hatching)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    mech, cycle, twelve = _solved("double-cut-shears")
+    found = []
+    for k in range(12):
+        fig = figures.draw_scheme(twelve, k, cycle=cycle)
+        canvas = FigureCanvasAgg(fig)
+        canvas.draw()
+        renderer = canvas.get_renderer()
+        ax = fig.axes[0]
+        symbols = [a for a in [*ax.patches, *ax.lines]
+                   if (a.get_gid() or "").split(":")[0] in ("block", "tool", "support", "hatch")]  # fmt: skip
+        assert len(symbols) > 40
+        boxes = [(a.get_gid(), a.get_window_extent(renderer)) for a in symbols]
+        for text in ax.texts:
+            if not (text.get_gid() or "").startswith("label:"):
+                continue
+            box = text.get_window_extent(renderer)
+            found += [f"position {k}: {text.get_text()!r} on {gid}" for gid, b in boxes if box.overlaps(b)]
+    assert found == []
