@@ -161,6 +161,6 @@ def test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output(tmp_path
     assert ratios == pytest.approx((rocker.time_ratio, rocker.forward_time_ratio), rel=1e-11)
     report.analyze(mech, tmp_path / "report", steps=steps, animation=False)
     html = (tmp_path / "report" / "report.html").read_text(encoding="utf-8")
-    row = html[html.index("<td>rocker rocker</td>") :].split("</tr>")[0]
+    row = html[html.index("<td>rocker</td>") :].split("</tr>")[0]  # the table of the rockers' swings
     cells = [c.split("</td>")[0] for c in row.split("<td>")[1:]]
     assert cells[-2:] == [f"{rocker.time_ratio:.6g}", f"{rocker.forward_time_ratio:.6g}"]

@@ -22,11 +22,13 @@ def analyze(
     ] = 0,
     pdf: Annotated[bool, typer.Option("--pdf", help="also write report.pdf")] = False,
     animation: Annotated[bool, typer.Option(help="write animation.gif (and .mp4 with ffmpeg)")] = True,
+    lang: Annotated[str, typer.Option(help="language of the report and its figures: en or ru")] = "en",
 ) -> None:
     """Every analysis the mechanism supports: tables, figures, animation and report.html."""
     from rich.progress import Progress, SpinnerColumn, TextColumn
 
     from linkwork.errors import LinkworkError, MissingDependencyError
+    from linkwork.lang import check_lang
     from linkwork.report import analyze as run
     from linkwork.report import require_packages
 
@@ -34,6 +36,10 @@ def analyze(
         fail(LinkworkError(f"--steps: expected at least 12 steps over the turn, got {steps}"))
     if not 0 <= position < 12:
         fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {position}"))
+    try:
+        check_lang(lang)
+    except LinkworkError as exc:
+        fail(exc)
     from linkwork.report.folder import problem
 
     why = problem(out)
@@ -48,7 +54,7 @@ def analyze(
         task = bar.add_task("analysing", total=None)
         try:
             path = run(
-                mech, out, steps=steps, position=position, pdf=pdf, animation=animation,
+                mech, out, steps=steps, position=position, pdf=pdf, animation=animation, lang=lang,
                 progress=lambda what: bar.update(task, description=f"analysing: {what}"),
             )  # fmt: skip
         except LinkworkError as exc:

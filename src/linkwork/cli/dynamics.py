@@ -23,8 +23,9 @@ def dynamics(
 ) -> None:
     """Reduced inertia and loads, the run of the machine unit from rest to its steady cycle, the flywheel."""
     from linkwork.errors import LinkworkError
-    from linkwork.io.dynamics_tables import to_json
+    from linkwork.io.dynamics_tables import CYCLE_COLUMNS, to_json
     from linkwork.machine import dynamics as run
+    from linkwork.motion.kinematics import direction
 
     mech = _compile(file_or_example)
     if delta is not None and not 0 < delta < 1:
@@ -41,7 +42,7 @@ def dynamics(
         from linkwork.io.jsonout import dumps
 
         cycle = data["cycle"]
-        rows = ["psi [deg],t [s],omega [rad/s],motor_torque [N m],motor_power [W]"]
+        rows = [",".join(CYCLE_COLUMNS[key] for key in cycle)]
         rows += [",".join(repr(v) for v in row) for row in zip(*cycle.values(), strict=True)]
         text = dumps(data)
         try:
@@ -75,11 +76,13 @@ def dynamics(
         f"{last.omega_max * rpm:.4g} rpm, delta = {last.delta:.4g}"
         + ("" if result.motion.steady else " (not yet steady)")
     )
-    t, psi, omega = result.motion.cycle()
+    _, psi, omega = result.motion.cycle()
     i = int(np.argmin(omega))
-    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
-    angle = math.degrees(float(mech.drive_start[0]) + sign * float(result.motion.psi[-len(psi) + i])) % 360
-    typer.echo(f"  lowest speed at crank angle {angle:.1f} deg")
+    angle = math.degrees(float(red.angle[0]) + direction(mech) * (result.motion.cycle_start + float(psi[i]))) % 360
+    typer.echo(
+        f"  lowest speed at {data['cycle']['crank_angle_deg'][i]:.1f} deg from position 0 "
+        f"(the crank at {angle:.1f} deg to the x axis)"
+    )
     typer.echo(
         f"  mean power of the motor {result.mean_power:.6g} W at its shaft, of the drive {result.drive_power:.6g} W "
         f"on the crank; start-up {result.startup_time:.3g} s (idle, where the file has process loads)"
