@@ -13,13 +13,14 @@ kinematics.
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
 import numpy as np
 
 from linkwork.kinetostatics.reactions import group_order
-from linkwork.motion.fast import OPTS, PER_THREAD, THREADS, _pool, njit
+from linkwork.motion.fast import OPTS, PER_THREAD, THREADS, _pool
 from linkwork.structure.model import PairType
 
 #: Row kinds.
@@ -29,9 +30,10 @@ SINGULAR = 1e-12
 
 
 def available() -> bool:
+    """Whether the compiled kernel runs (numba there, imported now if it was not, and not turned off)."""
     from linkwork.motion import fast
 
-    return fast.ENABLED
+    return fast.available() and compiled()
 
 
 def encode(mech: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -405,14 +407,21 @@ def _kernel(
                 frame[var, i, d] = total
 
 
-if njit is not None:  # pragma: no branch
-    _opts = OPTS
-    _row_geometry = njit(inline="always", **_opts)(_row_geometry)
-    _rows_at = njit(inline="always", **_opts)(_rows_at)
-    _col = njit(inline="always", **_opts)(_col)
-    _cross = njit(inline="always", **_opts)(_cross)
-    _single = njit(inline="always", **_opts)(_single)
-    _pair_on = njit(inline="always", **_opts)(_pair_on)
-    _dyad = njit(inline="always", **_opts)(_dyad)
-    _rhs = njit(inline="always", **_opts)(_rhs)
-    _kernel = njit(**_opts)(_kernel)
+#: The kernels inlined into the others, and the one called from Python.
+_INLINE = ("_row_geometry", "_rows_at", "_col", "_cross", "_single", "_pair_on", "_dyad", "_rhs")
+_CALLED = ("_kernel",)
+
+
+@functools.cache
+def compiled() -> bool:
+    """Wrap the kernels of this module with numba's ``njit`` (once, as :func:`linkwork.motion.fast.compiled`)."""
+    try:
+        from numba import njit
+    except ImportError:  # pragma: no cover
+        return False
+    space = globals()
+    for name in _INLINE:
+        space[name] = njit(inline="always", **OPTS)(space[name])
+    for name in _CALLED:
+        space[name] = njit(**OPTS)(space[name])
+    return True
