@@ -74,11 +74,18 @@ def solve_group(
         qq[list(subset)] = x.reshape(-1, 3) * [1.0, 1.0, 1.0 / scale]
         return qq
 
+    last: list[tuple[bytes, tuple[np.ndarray, np.ndarray]]] = []
+
+    def both(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # residuals and Jacobian of the last x, once
+        if not last or last[0][0] != x.tobytes():
+            last[:] = [(x.tobytes(), scaled(put(x), mech, rows, scale, drive_values))]
+        return last[0][1]
+
     def fun(x: np.ndarray) -> np.ndarray:
-        return scaled(put(x), mech, rows, scale, drive_values)[0][sel]
+        return both(x)[0][sel]
 
     def jac(x: np.ndarray) -> np.ndarray:
-        return scaled(put(x), mech, rows, scale, drive_values)[1][np.ix_(sel, cols)]
+        return both(x)[1][np.ix_(sel, cols)]
 
     x0 = (q[list(subset)] * [1.0, 1.0, scale]).ravel()
     x = least_squares(fun, jac, x0)
