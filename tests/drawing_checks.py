@@ -32,11 +32,19 @@ def drawn_texts(fig: Any) -> list[Any]:
     return list(seen.values())
 
 
-def _name(text: Any) -> str:
-    where = (
-        "figure" if text.axes is None else f"axes '{text.axes.get_label() or text.axes.get_title() or id(text.axes)}'"
-    )
-    return f"{text.get_text()!r} ({where})"
+def _owners(fig: Any) -> dict[int, Any]:
+    """The axes each text of an axes belongs to (its tick labels, axis labels, title, legend), by id."""
+    from matplotlib.text import Text
+
+    return {id(t): ax for ax in fig.axes for t in ax.findobj(Text)}
+
+
+def _axes_name(ax: Any) -> str:
+    return f"axes '{ax.get_title() or ax.get_ylabel() or ax.get_label()}'"
+
+
+def _name(text: Any, owner: Any) -> str:
+    return f"{text.get_text()!r} ({'figure' if owner is None else _axes_name(owner)})"
 
 
 def _covers(a: Any, b: Any) -> bool:
@@ -62,34 +70,28 @@ def overlaps(fig: Any) -> list[str]:
     """
     texts = drawn_texts(fig)
     renderer = fig.canvas.get_renderer()
+    owners = _owners(fig)
+    owner = [owners.get(id(t)) for t in texts]
+    names = [_name(t, o) for t, o in zip(texts, owner, strict=True)]
     boxes = [t.get_window_extent(renderer) for t in texts]
     axes = [ax for ax in fig.axes if ax.get_visible()]
     frames = [ax.get_window_extent(renderer) for ax in axes]
     legends = [leg for leg in [*fig.legends, *(ax.get_legend() for ax in axes)] if leg is not None]
     out = []
     for i, (a, box) in enumerate(zip(texts, boxes, strict=True)):
-        out += [
-            f"text {_name(a)} covers text {_name(b)}"
-            for b, other in zip(texts[i + 1 :], boxes[i + 1 :], strict=True)
-            if _covers(box, other)
-        ]
+        out += [f"text {names[i]} covers text {names[j]}" for j in range(i + 1, len(texts)) if _covers(box, boxes[j])]
         for ax, frame in zip(axes, frames, strict=True):
-            mine = a.axes is not None and (a.axes is ax or _twins(a.axes, ax))
+            mine = owner[i] is not None and (owner[i] is ax or _twins(owner[i], ax))
             if not mine and _covers(box, frame):
-                out.append(f"text {_name(a)} is under axes '{ax.get_label() or ax.get_title()}'")
+                out.append(f"text {names[i]} is under {_axes_name(ax)}")
         for leg in legends:
             if not _in_legend(a, leg) and _covers(box, leg.get_window_extent(renderer)):
-                out.append(f"text {_name(a)} is under a legend")
+                out.append(f"text {names[i]} is under a legend")
         edge = fig.bbox
-        if (
-            box.x0 < edge.x0 - TOLERANCE
-            or box.y0 < edge.y0 - TOLERANCE
-            or box.x1 > edge.x1 + TOLERANCE
-            or (box.y1 > edge.y1 + TOLERANCE)
-        ):
-            out.append(f"text {_name(a)} reaches beyond the figure")
+        if min(box.x0 - edge.x0, box.y0 - edge.y0, edge.x1 - box.x1, edge.y1 - box.y1) < -TOLERANCE:
+            out.append(f"text {names[i]} reaches beyond the figure")
     for i, (a, fa) in enumerate(zip(axes, frames, strict=True)):
         for b, fb in zip(axes[i + 1 :], frames[i + 1 :], strict=True):
             if not _twins(a, b) and _covers(fa, fb):
-                out.append(f"axes '{a.get_title()}' covers axes '{b.get_title()}'")
+                out.append(f"{_axes_name(a)} covers {_axes_name(b)}")
     return out

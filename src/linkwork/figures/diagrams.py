@@ -41,17 +41,19 @@ def _one(a: np.ndarray, variants: bool) -> np.ndarray:
     return a[0] if variants else a
 
 
-def _abscissa(angles: np.ndarray, zero: float, sign: float) -> tuple[np.ndarray, np.ndarray]:
-    """φ in degrees, ascending, and the order of the samples along it; a whole turn of equal steps is
-    closed at 360° by its first sample again (the cycle is periodic)."""
+def _abscissa(angles: np.ndarray, zero: float, sign: float, whole: bool | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """φ in degrees, ascending, and the order of the samples along it.  The samples of a whole turn
+    (``whole``; by default: equal steps over the turn) are continued periodically by one sample beyond each
+    end, so that a curve spans 0 to 360° whichever sample is nearest position 0."""
     phi = np.degrees(from_position_0(angles, zero, sign))
     order = np.argsort(phi, kind="stable")
-    steps = np.diff(angles)
-    whole = len(angles) > 2 and np.allclose(steps, steps[0]) and abs(abs(steps[0]) * len(angles) - 2 * np.pi) < 1e-9
-    if whole:
-        order = np.append(order, order[0])
-        return np.append(phi[order[:-1]], 360.0), order
-    return phi[order], order
+    if whole is None:
+        steps = np.diff(angles)
+        whole = len(angles) > 2 and np.allclose(steps, steps[0]) and abs(abs(steps[0]) * len(angles) - 2 * np.pi) < 1e-9
+    if not whole:
+        return phi[order], order
+    ext = np.concatenate([order[-1:], order, order[:1]])
+    return np.concatenate([phi[order[-1:]] - 360.0, phi[order], phi[order[:1]] + 360.0]), ext
 
 
 def _crank_axis(ax: Axes, lang: str) -> None:
@@ -356,7 +358,8 @@ def dynamics_diagrams(result: Dynamics, zero: float | None = None, lang: str = "
     inertia, energy = wittenbauer(red)
     e, eunit = _scale(energy, "unit.J", "unit.kJ")
     a4.plot(np.append(inertia, inertia[0]), np.append(energy, energy[0]) * e, lw=1.1)
-    first = order[0]  # the sample nearest position 0
+    turned = np.degrees(from_position_0(red.angle, zero, sign))
+    first = int(np.argmin(np.minimum(turned, 360.0 - turned)))  # the sample nearest position 0
     a4.plot(inertia[first], energy[first] * e, "o", color="tab:red", ms=4, label=t("legend.position_0", lang))
     a4.set_xlabel(t("axis.inertia", lang), fontsize=9)
     a4.set_ylabel(t("axis.energy", lang, unit=t(eunit, lang)), fontsize=9)
@@ -372,11 +375,9 @@ def _speed_panel(ax: Axes, result: Dynamics, zero: float, sign: float, lang: str
     red = result.reduced
     _, psi, omega = result.motion.cycle()
     angles = red.angle[0] + sign * (result.motion.cycle_start + psi)
-    phi = np.degrees(from_position_0(angles, zero, sign))
-    order = np.argsort(phi[:-1], kind="stable")  # the last sample closes the turn: the first again
+    phi, order = _abscissa(angles[:-1], zero, sign, whole=True)  # the last sample closes the turn
     rpm = 30 / np.pi
-    ax.plot(np.append(phi[order], 360.0), np.append(omega[order], omega[order[0]]) * rpm, lw=1.3,
-            label=t("legend.crank_speed", lang))  # fmt: skip
+    ax.plot(phi, omega[order] * rpm, lw=1.3, label=t("legend.crank_speed", lang))
     mean = result.motion.last.omega_mean * rpm
     ax.axhline(mean, color="0.3", lw=0.9, ls="--", label=t("legend.mean_speed", lang, value=f"{mean:.4g}"))
     ax.set_ylabel(t("axis.speed", lang), fontsize=9)
