@@ -120,13 +120,14 @@ def _report_figures(name, lang, folder, monkeypatch):
     from linkwork.report import build
 
     drawn = {}
-    figure = build._Run.figure
+    draw = build._Run._draw
 
-    def keep(self, key, fig, caption):
-        drawn[key] = fig
-        return figure(self, key, fig, caption)
+    def keep(self, key, make):
+        drawn[key] = fig = make()
+        return draw(self, key, lambda: fig)
 
-    monkeypatch.setattr(build._Run, "figure", keep)
+    monkeypatch.setattr(build._Run, "_draw", keep)
+    monkeypatch.setattr(build, "PARALLEL", False)  # every figure drawn in this process
     build.analyze(lw.compile(lw.example(name)), folder, steps=72, animation=False, lang=lang)
     return drawn
 

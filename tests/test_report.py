@@ -207,14 +207,15 @@ def _report(name: str, folder: Path, lang: str = "en", steps: int = 72):
     from linkwork.report import build
 
     drawn = {}
-    figure = build._Run.figure
+    draw = build._Run._draw
 
-    def keep(self, key, fig, caption):
-        drawn[key] = fig
-        return figure(self, key, fig, caption)
+    def keep(self, key, make):
+        drawn[key] = fig = make()
+        return draw(self, key, lambda: fig)
 
     with pytest.MonkeyPatch.context() as m:
-        m.setattr(build._Run, "figure", keep)
+        m.setattr(build._Run, "_draw", keep)
+        m.setattr(build, "PARALLEL", False)  # every figure drawn in this process
         build.analyze(lw.compile(lw.example(name)), folder, steps=steps, animation=False, lang=lang)
     return (folder / "report.html").read_text(encoding="utf-8"), drawn
 
@@ -283,10 +284,10 @@ def test_the_tables_state_their_units_and_measure_the_crank_angle_from_position_
 
 def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0():
     """The double-cut shears slow down while they cut and speed up after: the lowest crank speed of the
-    steady cycle comes where the cutting load ends.  The cut is read off the reduced load moment at its
-    own angles; the lowest speed at ``cycle.crank_angle_deg`` of ``linkwork dynamics --json`` and on the
-    diagram's speed curve, both from position 0 (``cycle.psi_deg`` counts from the start of the steady
-    turn, 180° away)."""
+    steady cycle comes where the cutting load falls below the drive's moment, at the end of the cut.  The
+    cut is read off the reduced load moment at its own angles; the lowest speed at ``cycle.crank_angle_deg``
+    of ``linkwork dynamics --json`` and on the diagram's speed curve, both from position 0
+    (``cycle.psi_deg`` counts from the start of the steady turn, 180° away)."""
     import linkwork as lw
     from linkwork.io.dynamics_tables import to_json
     from linkwork.motion.analysis import from_position_0, zero_angle
@@ -296,12 +297,12 @@ def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0()
     zero = zero_angle(mech)
     red = result.reduced
     phi = np.degrees(from_position_0(red.angle, zero, 1.0))
-    cutting = phi[red.load < 0.5 * red.load.min()]
-    end_of_cut = cutting.max()
+    falling = phi[red.load < 0.5 * red.load.min()].max()  # the load past its half on the way out of the cut
+    ended = phi[red.load < 0.01 * red.load.min()].max()  # and over
     data = to_json(mech, result)
     cycle = data["cycle"]
     lowest = cycle["crank_angle_deg"][int(np.argmin(cycle["omega"]))]
-    assert lowest == pytest.approx(end_of_cut, abs=3.0)
+    assert falling < lowest <= ended + 0.5  # where the drive's moment overcomes the load's
     assert data["position_0_deg"] == pytest.approx(math.degrees(zero))
     fig = figures.dynamics_diagrams(result, zero)
     speed = next(ax for ax in fig.axes if ax.get_ylabel().startswith("crank speed"))

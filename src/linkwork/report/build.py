@@ -14,6 +14,7 @@ and diagrams is the crank angle φ turned from position 0 (0 to 360°,
 from __future__ import annotations
 
 import base64
+import functools
 import html
 import math
 from collections.abc import Callable
@@ -76,30 +77,54 @@ def _deg(x: float) -> str:
 
 
 class _Run:
-    """What a run of :func:`analyze` collects: its sections, figures (and their captions) and language."""
+    """What a run of :func:`analyze` collects: its sections, the captions of its figures, its language, and
+    the jobs that draw the figures (queued, then run beside the analyses or here: :class:`Beside`)."""
 
-    def __init__(self, mech: Mechanism, folder: Path, progress: Callable[[str], None], lang: str) -> None:
+    def __init__(
+        self, mech: Mechanism, folder: Path, progress: Callable[[str], None], lang: str, parallel: bool
+    ) -> None:
+        from linkwork.report.beside import Beside
+
         self.mech = mech
         self.folder = folder
         self.progress = progress
         self.lang = lang
         self.sections: list[Section] = []
-        self.figures: dict[str, Any] = {}
+        self.figures: dict[str, Any] = {}  # those drawn in this process
         self.captions: dict[str, str] = {}
+        self.jobs: list[Callable[[], object]] = []
+        self.beside = Beside(parallel)
         (folder / "figures").mkdir(parents=True)
 
     def t(self, key: str, **values: Any) -> str:
         """The text ``key`` in the report's language."""
         return t(key, self.lang, **values)
 
-    def figure(self, name: str, fig: Any, caption: str) -> str:
-        """Write ``fig`` as ``figures/NAME.svg`` and ``.png``; returns ``name`` for a section's figures."""
+    def figure(self, name: str, make: Callable[[], Any], caption: str) -> str:
+        """Queue the figure ``make()`` draws, to be written as ``figures/NAME.svg`` and ``.png``; returns
+        ``name`` for a section's figures."""
+        self.captions[name] = self.t("caption", number=len(self.captions) + 1, text=caption)
+        self.jobs.append(lambda: self._draw(name, make))
+        return name
+
+    def _draw(self, name: str, make: Callable[[], Any]) -> None:
         from linkwork.report.render import save
 
+        fig = make()
         save(fig, self.folder / "figures" / name)
         self.figures[name] = fig
-        self.captions[name] = self.t("caption", number=len(self.captions) + 1, text=caption)
-        return name
+
+    def run_beside(self) -> None:
+        """Start the jobs queued so far in the second process."""
+        jobs, self.jobs = self.jobs, []
+        self.beside.start(jobs)
+
+    def run_here(self) -> None:
+        """Run the jobs queued since, in this process, and wait for the second one's."""
+        jobs, self.jobs = self.jobs, []
+        for job in jobs:
+            job()
+        self.beside.wait()
 
 
 @dataclass(frozen=True)
@@ -163,12 +188,21 @@ def analyze(
     check_lang(lang)
     require_packages()
     with replacing(out) as work:
-        run = _Run(mech, work, progress or (lambda _: None), lang)
-        _build(run, steps, position, animation)
+        run = _Run(mech, work, progress or (lambda _: None), lang, parallel=PARALLEL and not pdf)
+        try:
+            _build(run, steps, position, animation)
+        finally:
+            run.beside.stop()
         _write_html(run, work / "report.html")
         if pdf:
             _write_pdf(run, work / "report.pdf")
     return Path(out) / "report.html"
+
+
+#: Whether a report draws the figures of its kinematics (and writes its animation and NetCDF table) in a
+#: second process while this one solves the forces and dynamics and draws theirs (on Linux; not with
+#: ``pdf``, whose pages need every figure here).
+PARALLEL = True
 
 
 def require_packages() -> None:
@@ -190,14 +224,16 @@ def _build(run: _Run, steps: int, position: int, animation: bool) -> None:
     if animation:
         from linkwork import figures
 
-        run.progress("animation")
-        figures.animate(cycle.kin, run.folder / "animation.gif")
+        run.jobs.append(lambda: figures.animate(cycle.kin, run.folder / "animation.gif"))
+    run.run_beside()
     if not run.mech.structure.redundant:
         _forces(run, cycle)
     if run.mech.machine is not None:
         _dynamics(run, cycle)
     if run.mech.blow is not None:
         _impact(run)
+    run.progress("figures")
+    run.run_here()
 
 
 def group_kind(kind: str, lang: str) -> str:
@@ -247,26 +283,27 @@ def _kinematics(run: _Run, steps: int, position: int) -> Cycle:
     index = int(np.argmin(np.abs((phi - 30.0 * (position % 12) + 180.0) % 360.0 - 180.0)))
     cycle = Cycle(kin, zero, sign, twelve, index)
     write_csv(kin, run.folder / "kinematics.csv")
-    write_netcdf(kin, run.folder / "kinematics.nc")
+    run.jobs.append(lambda: write_netcdf(kin, run.folder / "kinematics.nc"))
     sec = Section("kinematics", run.t("section.kinematics"))
     sec.body.append(_p(_position_0(run, cycle)))
     where = run.t("at_position", position=position % 12)
     sec.figures += [
-        run.figure("scheme", figures.draw_scheme(kin, index), run.t("caption.scheme") + where),
-        run.figure("positions", figures.draw_positions(kin), run.t("caption.positions")),
+        run.figure("scheme", lambda: figures.draw_scheme(kin, index), run.t("caption.scheme") + where),
+        run.figure("positions", lambda: figures.draw_positions(kin), run.t("caption.positions")),
     ]
     sec.body += _positions_table(run, cycle)
     sec.body += _extremes_tables(run, cycle)
     sec.body += _working_table(run, cycle)
     sec.body += _transmission_table(run, cycle)
     sec.body += [_p(_event(run, cycle, e)) for e in kin.events]
+    lang = run.lang
     sec.figures += [
-        run.figure("kinematic_diagrams", figures.kinematic_diagrams(kin, zero, run.lang),
+        run.figure("kinematic_diagrams", lambda: figures.kinematic_diagrams(kin, zero, lang),
                    run.t("caption.kinematic_diagrams")),
-        run.figure("velocity_plan", figures.velocity_plan(kin, index), run.t("caption.velocity_plan") + where),
-        run.figure("acceleration_plan", figures.acceleration_plan(kin, index),
+        run.figure("velocity_plan", lambda: figures.velocity_plan(kin, index), run.t("caption.velocity_plan") + where),
+        run.figure("acceleration_plan", lambda: figures.acceleration_plan(kin, index),
                    run.t("caption.acceleration_plan") + where),
-        run.figure("link_angles", figures.link_angles(kin, zero, run.lang), run.t("caption.link_angles")),
+        run.figure("link_angles", lambda: figures.link_angles(kin, zero, lang), run.t("caption.link_angles")),
     ]  # fmt: skip
     run.sections.append(sec)
     return cycle
@@ -393,15 +430,16 @@ def _forces(run: _Run, cycle: Cycle) -> None:
     sec.body += _forces_at_positions(run, at12, unit)
     sec.body += _foundation_table(run, cycle, f, unit)
     sec.body += _checks_table(run, f)
-    sec.figures.append(run.figure("driving_torque", figures.torque_diagram(f, cycle.zero, run.lang),
+    zero, lang = cycle.zero, run.lang
+    sec.figures.append(run.figure("driving_torque", lambda: figures.torque_diagram(f, zero, lang),
                                   run.t("caption.driving_torque")))  # fmt: skip
-    sec.figures.append(run.figure("foundation", figures.foundation_diagram(f, cycle.zero, run.lang),
+    sec.figures.append(run.figure("foundation", lambda: figures.foundation_diagram(f, zero, lang),
                                   run.t("caption.foundation")))  # fmt: skip
     for k in range(mech.n_pairs):
         if mech.pair_links[k, 0] == 0 and mech.pair_type[k] == PairType.REVOLUTE:
             joint = str(mech.pair_joint[k])
-            fig = figures.hodograph(f, joint, at=at12, zero=cycle.zero, lang=run.lang)
-            sec.figures.append(run.figure(f"hodograph_{joint}", fig, run.t("caption.hodograph", joint=joint)))
+            make = functools.partial(figures.hodograph, f, joint, at=at12, zero=zero, lang=lang)
+            sec.figures.append(run.figure(f"hodograph_{joint}", make, run.t("caption.hodograph", joint=joint)))
     run.sections.append(sec)
 
 
@@ -504,7 +542,8 @@ def _dynamics(run: _Run, cycle: Cycle) -> None:
         [run.t("dynamics.flywheel", shaft=run.t(f"shaft.{result.drive.flywheel_on}")), result.drive.flywheel],
     ]
     sec.body.append(_table([run.t("dynamics.head.quantity"), run.t("dynamics.head.value")], rows))
-    sec.figures.append(run.figure("dynamics", figures.dynamics_diagrams(result, cycle.zero, run.lang),
+    zero, lang = cycle.zero, run.lang
+    sec.figures.append(run.figure("dynamics", lambda: figures.dynamics_diagrams(result, zero, lang),
                                   run.t("caption.dynamics")))  # fmt: skip
     run.sections.append(sec)
 

@@ -18,7 +18,7 @@ def save(fig: Any, stem: Path) -> tuple[Path, Path]:
     import matplotlib
 
     png, svg = stem.with_suffix(".png"), stem.with_suffix(".svg")
-    fig.savefig(png, dpi=DPI, pil_kwargs={"compress_level": 3})
+    fig.savefig(png, dpi=DPI, pil_kwargs={"compress_level": 1})
     fig.set_layout_engine("none")  # keeps the axes where the layout put them
     with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "linkwork"}):
         fig.savefig(svg, metadata={"Date": None})
