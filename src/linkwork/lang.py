@@ -1,7 +1,8 @@
 """The texts of the report and the drawings, in English and Russian: one table and :func:`t`.
 
 ``t("caption.velocity_plan", "ru")`` is ``"План скоростей"``; a text with fields takes them as
-keywords, ``t("title.hodograph", "en", name="four-bar", joint="O2")``.  The Russian texts follow
+keywords, ``t("title.hodograph", "en", name="four-bar", joint="O2")`` (braces of their own doubled, as
+``str.format`` reads them).  The Russian texts follow
 the notation of the Russian school of the theory of machines and mechanisms (план положений,
 план скоростей, полюс p, масштаб μ_v, кинематическая схема, кинематические диаграммы); names from
 the mechanism's file and the symbols of quantities stay as they are.  Units are written in each
@@ -144,7 +145,7 @@ TEXTS: dict[str, tuple[str, str]] = {
         "The driving torque and the forces in the frame's joints at the 12 positions:",
         "Уравновешивающий момент и реакции в опорах стойки в двенадцати положениях:",
     ),
-    "positions.head.torque": ("driving torque, {unit}", "M_ур, {unit}"),
+    "positions.head.torque": ("driving torque, {unit}", "уравновешивающий момент, {unit}"),
     "positions.head.support": ("|F| in {joint}, {unit}", "|R| в {joint}, {unit}"),
     "foundation.head": ("foundation", "фундамент"),
     "foundation.head.largest": ("largest", "наибольшее значение"),
@@ -251,7 +252,7 @@ TEXTS: dict[str, tuple[str, str]] = {
     "axis.link.omega": ("ω, rad/s", "ω, рад/с"),
     "axis.link.epsilon": ("ε, rad/s²", "ε, рад/с²"),
     "title.link_angles": ("{name}: angles of the links", "{name}: углы звеньев"),
-    "legend.driving_torque": ("driving torque", "уравновешивающий момент M_ур"),
+    "legend.driving_torque": ("driving torque", r"уравновешивающий момент $M_\mathrm{{ур}}$"),
     "legend.power_balance": ("by the power balance", "по балансу мощностей"),
     "legend.mean": ("mean {value}", "среднее {value}"),
     "axis.torque": ("torque, {unit}", "момент, {unit}"),
@@ -270,10 +271,10 @@ TEXTS: dict[str, tuple[str, str]] = {
         "{name}: force in {joint}, positions 0 to 11",
         "{name}: реакция в паре {joint}, положения 0–11",
     ),
-    "legend.reduced_inertia": ("reduced moment of inertia J", "приведённый момент инерции J_пр"),
-    "legend.reduced_load": ("reduced moment of the loads M", "приведённый момент сил M_пр"),
-    "legend.drive_moment": ("constant drive moment", "постоянный движущий момент M_д"),
-    "axis.inertia": ("J, kg·m²", "J_пр, кг·м²"),
+    "legend.reduced_inertia": ("reduced moment of inertia J", r"приведённый момент инерции $J_\mathrm{{пр}}$"),
+    "legend.reduced_load": ("reduced moment of the loads M", r"приведённый момент сил $M_\mathrm{{пр}}$"),
+    "legend.drive_moment": ("constant drive moment", r"постоянный движущий момент $M_\mathrm{{д}}$"),
+    "axis.inertia": ("J, kg·m²", r"$J_\mathrm{{пр}}$, кг·м²"),
     "axis.energy": ("energy ΔT, {unit}", "приращение энергии ΔT, {unit}"),
     "legend.position_0": ("position 0", "положение 0"),
     "title.wittenbauer": ("Wittenbauer's diagram", "Диаграмма энергомасс (Виттенбауэра)"),
@@ -313,5 +314,4 @@ def t(key: str, lang: str = "en", /, **values: Any) -> str:
         For a language it does not have.
     """
     check_lang(lang)
-    text = TEXTS[key][LANGUAGES.index(lang)]
-    return text.format(**values) if values else text
+    return TEXTS[key][LANGUAGES.index(lang)].format(**values)

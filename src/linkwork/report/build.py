@@ -456,7 +456,7 @@ def _torque_text(run: _Run, cycle: Cycle, f: Forces) -> list[str]:
     i = int(np.nanargmax(np.abs(torque)))
     factor, unit = (1e-3, "unit.kNm") if abs(torque[i]) >= 1e4 else (1.0, "unit.Nm")
     return [
-        _p(run.t("forces.torque", peak=f"{torque[i] * factor:.6g}", mean=f"{np.nanmean(torque) * factor:.6g}",
+        _p(run.t("forces.torque", peak=f"{torque[i] * factor:.4g}", mean=f"{np.nanmean(torque) * factor:.4g}",
                  unit=run.t(unit), at=_deg(float(cycle.phi(f.angles[i])))))
     ]  # fmt: skip
 
@@ -583,12 +583,12 @@ def _impact_cycle(run: _Run, sec: Section) -> None:
         sec.body.append(_p(run.t("impact.cycle_failed", reason=str(exc))))
         return
     b = c.last
-    sec.body.append(_p(run.t("impact.cycle", blows=f"{c.blows_per_minute:.6g}")))
+    sec.body.append(_p(run.t("impact.cycle", blows=f"{c.blows_per_minute:.4g}")))
     ns = run.t("unit.Ns")
     rows = [
         [run.t("impact.speed"), b.impact_speed],
-        [run.t("impact.crank_speeds"), f"{b.crank_speed_before:.6g} / {b.crank_speed_after:.6g}"],
-        [run.t("impact.energies"), f"{b.energy_lost:.6g} / {b.energy_to_tool:.6g}"],
+        [run.t("impact.crank_speeds"), f"{b.crank_speed_before:.4g} / {b.crank_speed_after:.4g}"],
+        [run.t("impact.energies"), f"{b.energy_lost:.4g} / {b.energy_to_tool:.4g}"],
         [run.t("impact.impulse_on", at=mech.blow.at), _vector(b.impulse, ns)],
     ]
     rows += [[run.t("impact.joint", joint=j), _vector(v, ns)] for j, v in b.joints.items()]
@@ -602,8 +602,9 @@ def _impact_cycle(run: _Run, sec: Section) -> None:
 
 STYLE = """
 body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}
-table{border-collapse:collapse;margin:0.6em 0;font-size:90%}
-td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}th{background:#f3f3f3}
+table{border-collapse:collapse;margin:0.6em 0;font-size:90%;display:block;overflow-x:auto;max-width:100%}
+td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}th{background:#f3f3f3;min-width:2.5em}
+td{white-space:nowrap}td:first-child,th:first-child{text-align:left}
 figure{margin:1em 0}img{max-width:100%;border:1px solid #eee}figcaption{font-size:90%;color:#444}
 pre{background:#f8f8f8;padding:0.6em;overflow:auto}nav a{margin-right:1em}
 """
