@@ -87,7 +87,7 @@ def registry() -> Any:
     """The shared pint unit registry (built on first use)."""
     import pint
 
-    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    ureg: Any = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     ureg.define("rev = revolution")
     return ureg
 

@@ -11,7 +11,7 @@ cycle, :func:`linkwork.motion.analysis.from_position_0`); ``zero`` is the drive 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -261,7 +261,7 @@ def place_numbers(ax: Axes, points: np.ndarray, numbers: list[int], size: float 
     ok = np.isfinite(points).all(axis=1)
     if not ok.any():
         return []
-    fig = ax.figure
+    fig = cast("Figure", ax.figure)
     canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
     fig.draw_without_rendering()
     renderer = canvas.get_renderer()
@@ -307,7 +307,8 @@ def _number(ax: Axes, point: np.ndarray, away: np.ndarray, label: str, size: flo
     u = away / norm if norm > 1e-9 else np.array([0.7, 0.7])
     ha = "left" if u[0] > 0.3 else "right" if u[0] < -0.3 else "center"
     va = "bottom" if u[1] > 0.3 else "top" if u[1] < -0.3 else "center"
-    return ax.annotate(label, point, xytext=tuple(5 * u), textcoords="offset points", fontsize=size, ha=ha, va=va)
+    at = (float(point[0]), float(point[1]))
+    return ax.annotate(label, at, xytext=(5 * u[0], 5 * u[1]), textcoords="offset points", fontsize=size, ha=ha, va=va)
 
 
 def _runs(numbers: list[int]) -> str:

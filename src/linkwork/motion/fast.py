@@ -134,13 +134,15 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     trouble = np.zeros((n_steps, n_var), dtype=np.bool_)
     singular = np.zeros(1, dtype=np.bool_)
     tol = 1e-12 * (1 + float(np.abs(local).max()))
-    args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, trouble)
-    args += (singular, tol)
+    args: tuple[Any, ...] = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid)
+    args += (near, trouble, singular, tol)
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
+    kernel: Any = _kernel  # the compiled kernel, which compiled() put in the Python function's place
+
     def part(lo: int, hi: int) -> None:
-        _kernel(*args, lo, hi, np.zeros((n_links, 11)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
+        kernel(*args, lo, hi, np.zeros((n_links, 11)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
 
     if len(bounds) == 2:
         part(0, n_ang)
@@ -490,7 +492,7 @@ def _kernel(
 
 
 #: Options of every compiled kernel: no reference counting, the kernels allocate nothing.
-OPTS = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
+OPTS: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
 
 #: The kernels inlined into the others, and those called from Python.
 _INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_locus", "_touching", "_arm_motion",

@@ -465,12 +465,13 @@ def _joint_table(run: _Run, cycle: Cycle, f: Forces, unit: tuple[float, str]) ->
     from linkwork.io.force_tables import pair_labels
 
     mech = run.mech
-    rows = []
+    rows: list[list[Any]] = []
+    members = mech.pair_links if mech.pair_members is None else mech.pair_members  # in the file's order
     for label, k in pair_labels(mech):
         size = np.hypot(*f.pair_force(k)[0].T)
         if np.isfinite(size).any():
             j = int(np.nanargmax(size))
-            a, b = (mech.link_names[int(x)] for x in mech.pair_members[k])
+            a, b = (mech.link_names[int(x)] for x in members[k])
             rows.append([label, f"{a} \u2192 {b}", float(size[j]) * unit[0], _deg(float(cycle.phi(f.angles[j])))])
     for row, text in zip(rows, _fixed([row[2] for row in rows]), strict=True):
         row[2] = text
@@ -532,7 +533,7 @@ def _dynamics(run: _Run, cycle: Cycle) -> None:
     rpm = 30 / math.pi
     last = result.motion.last
     sec = Section("dynamics", run.t("section.dynamics"))
-    rows = [
+    rows: list[list[Any]] = [
         [run.t("dynamics.mean_speed"), last.omega_mean * rpm],
         [run.t("dynamics.speed_range"), f"{last.omega_min * rpm:.4g} \u2026 {last.omega_max * rpm:.4g}"],
         [run.t("dynamics.delta"), last.delta],
@@ -556,7 +557,7 @@ def _impact(run: _Run) -> None:
     run.progress("impact")
     r = impact(mech)
     sec = Section("impact", run.t("section.impact"))
-    rows = [[run.t("impact.impulse_on", at=blow.at), _vector(r.impulse, run.t("unit.Ns"))]]
+    rows: list[list[Any]] = [[run.t("impact.impulse_on", at=blow.at), _vector(r.impulse, run.t("unit.Ns"))]]
     rows += [[run.t("impact.joint", joint=j), _vector(v, run.t("unit.Ns"))] for j, v in r.joints.items()]
     rows += [[run.t("impact.energy_lost"), r.energy_loss]]
     if r.ideal_com is not None:
@@ -585,7 +586,7 @@ def _impact_cycle(run: _Run, sec: Section) -> None:
     b = c.last
     sec.body.append(_p(run.t("impact.cycle", blows=f"{c.blows_per_minute:.4g}")))
     ns = run.t("unit.Ns")
-    rows = [
+    rows: list[list[Any]] = [
         [run.t("impact.speed"), b.impact_speed],
         [run.t("impact.crank_speeds"), f"{b.crank_speed_before:.4g} / {b.crank_speed_after:.4g}"],
         [run.t("impact.energies"), f"{b.energy_lost:.4g} / {b.energy_to_tool:.4g}"],
