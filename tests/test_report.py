@@ -288,7 +288,7 @@ def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0()
     steady cycle comes where the cutting load falls below the drive's moment, at the end of the cut.  The
     cut is read off the reduced load moment at its own angles; the lowest speed at ``cycle.crank_angle_deg``
     of ``linkwork dynamics --json`` and on the diagram's speed curve, both from position 0
-    (``cycle.psi_deg`` counts from the start of the steady turn, 180° away)."""
+    (``cycle.psi_deg`` counts from the start of the steady turn, 281° from it)."""
     import linkwork as lw
     from linkwork.io.dynamics_tables import to_json
     from linkwork.motion.analysis import from_position_0, zero_angle
