@@ -140,20 +140,21 @@ def motion_diagram(kin: Kinematics, point: str, zero: float | None = None, lang:
 
 
 def link_angles(kin: Kinematics, zero: float | None = None, lang: str = "en") -> Figure:
-    """Angle (to the x axis, °), angular velocity and angular acceleration of every moving link but the
-    crank (which turns uniformly)."""
+    """Angle (to the x axis, °), angular velocity and angular acceleration of every moving link that turns,
+    but the crank (which turns uniformly): sliders that keep their angle are left out."""
     from linkwork.io.motion_tables import moving_links
 
     mech = kin.mechanism
     fig, axes = _figure(3)
     phi, order = _abscissa(kin.angles, _zero_of(kin, zero), direction(mech))
-    cranks = {int(sum(mech.pair_links[k])) for k in mech.drive_pair if 0 in mech.pair_links[k]}
+    cranks = {int(b) for k in mech.drive_pair for b in mech.pair_links[k] if b != 0 and 0 in mech.pair_links[k]}
+    speed = float(np.nanmax(np.abs(kin.rates[:, 0]), initial=0.0)) or 1.0  # the crank's
     for name, i in moving_links(mech):
-        if i in cranks:
+        rates = (_one(kin.omega(i), kin.variants)[order], _one(kin.epsilon(i), kin.variants)[order])
+        if i in cranks or not np.nanmax(np.abs(rates[0]), initial=0.0) > 1e-9 * speed:
             continue
         angle = np.degrees(np.unwrap(_one(kin.angle(i), kin.variants)[order]))
         angle -= 360.0 * np.round(angle[0] / 360.0)
-        rates = (_one(kin.omega(i), kin.variants)[order], _one(kin.epsilon(i), kin.variants)[order])
         for ax, y in zip(axes, (angle, *rates), strict=True):
             ax.plot(phi, y, lw=1.1, label=name)
     for ax, key in zip(axes, ("angle", "omega", "epsilon"), strict=True):
