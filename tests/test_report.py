@@ -7,6 +7,7 @@ import math
 import os
 import re
 import shutil
+import sys
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -309,3 +310,20 @@ def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0()
     speed = next(ax for ax in fig.axes if ax.get_ylabel().startswith("crank speed"))
     x, y = speed.get_lines()[0].get_xydata().T
     assert x[np.argmin(y)] == pytest.approx(lowest, abs=0.5)
+
+
+def test_a_figure_that_fails_in_the_second_process_fails_the_report_and_writes_nothing(tmp_path, monkeypatch):
+    """The figures of the kinematics are drawn in a forked process: its error comes back as it was raised,
+    and no report is put in place."""
+    import linkwork as lw
+    from linkwork.report import beside, build
+
+    def broken(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(figures, "draw_positions", broken)
+    mech = lw.compile(lw.example("four-bar"))
+    with pytest.raises(OSError, match="No space left on device"):
+        build.analyze(mech, tmp_path / "r", steps=36, animation=False)
+    assert list(tmp_path.iterdir()) == []
+    assert beside.FORKS == sys.platform.startswith("linux")
