@@ -1,83 +1,97 @@
-"""Checks of a drawn matplotlib figure, read back through the Agg renderer: texts that cover other texts
-or are cut by the figure's edge, axes that cover other axes.
-
-Only what is drawn counts: the figure's and every axes' texts, titles and legends, and the labels and
-tick labels of the axes that show their axis; empty and invisible texts are left out.  Two boxes
-cover each other where they overlap by more than :data:`SLACK` pixels both across and up (anti-aliased
-edges that touch do not count).
-"""
+"""Checks of drawn figures, read back through the Agg renderer: what a reader would see as texts on top of
+each other, a text under another axes or legend, axes on top of axes, a text cut off by the edge."""
 
 from __future__ import annotations
 
-from itertools import combinations
+from typing import Any
 
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
-from matplotlib.text import Text
-from matplotlib.transforms import Bbox
-
-#: Overlap in pixels (at the figure's dpi) below which two boxes are taken as touching, not covering.
-SLACK = 0.5
+#: Pixels by which two boxes must overlap (in both directions) to count as covering each other.
+TOLERANCE = 1.0
 
 
-def drawn_texts(fig: Figure) -> list[Text]:
-    """The texts the figure draws."""
-    texts: list[Text] = list(fig.texts)
-    for legend in fig.legends:
-        texts += legend.get_texts()
-    texts += [t for t in (getattr(fig, "_suptitle", None), getattr(fig, "_supxlabel", None),
-                          getattr(fig, "_supylabel", None)) if t is not None]  # fmt: skip
-    for ax in fig.axes:
-        if not ax.get_visible():
-            continue
-        texts += ax.texts + [ax.title, ax._left_title, ax._right_title]
-        if ax.get_legend() is not None:
-            texts += ax.get_legend().get_texts()
-        if ax.axison:
-            for axis in (ax.xaxis, ax.yaxis):
-                if axis.get_visible():
-                    texts += [axis.label, axis.get_offset_text()] + _shown_ticklabels(ax, axis)
-    unique = list({id(t): t for t in texts}.values())  # a suptitle is among the figure's texts too
-    return [t for t in unique if t.get_visible() and t.get_text().strip()]
+def drawn_texts(fig: Any) -> list[Any]:
+    """The texts that drawing ``fig`` with Agg renders (non-empty, visible, inside their axes' view),
+    in drawing order; the figure is drawn once."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-
-def _shown_ticklabels(ax, axis) -> list[Text]:
-    """Tick labels inside the axis' view (those outside are not drawn)."""
-    lo, hi = sorted(axis.get_view_interval())
-    out = []
-    for tick in axis.get_major_ticks():
-        if lo - 1e-9 * abs(hi - lo) <= tick.get_loc() <= hi + 1e-9 * abs(hi - lo):
-            out += [label for label in (tick.label1, tick.label2) if label.get_visible()]
-    return out
-
-
-def _cover(a: Bbox, b: Bbox) -> bool:
-    return min(a.x1, b.x1) - max(a.x0, b.x0) > SLACK and min(a.y1, b.y1) - max(a.y0, b.y0) > SLACK
-
-
-def overlaps(fig: Figure) -> list[str]:
-    """Every pair of drawn texts whose boxes cover each other, every text the figure's edge cuts and every pair
-    of axes that cover each other, in words (empty for a clean figure)."""
     canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
-    canvas.draw()
     renderer = canvas.get_renderer()
+    seen: dict[int, Any] = {}
+    draw_text = renderer.draw_text
+
+    def record(gc: Any, x: float, y: float, s: str, prop: Any, angle: float, ismath: Any = False, mtext: Any = None):
+        if mtext is not None and s.strip():
+            seen.setdefault(id(mtext), mtext)
+        return draw_text(gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
+
+    renderer.draw_text = record
+    try:
+        fig.draw(renderer)
+    finally:
+        del renderer.draw_text
+    return list(seen.values())
+
+
+def _owners(fig: Any) -> dict[int, Any]:
+    """The axes each text of an axes belongs to (its tick labels, axis labels, title, legend), by id."""
+    from matplotlib.text import Text
+
+    return {id(t): ax for ax in fig.axes for t in ax.findobj(Text)}
+
+
+def _axes_name(ax: Any) -> str:
+    return f"axes '{ax.get_title() or ax.get_ylabel() or ax.get_label()}'"
+
+
+def _name(text: Any, owner: Any) -> str:
+    return f"{text.get_text()!r} ({'figure' if owner is None else _axes_name(owner)})"
+
+
+def _covers(a: Any, b: Any) -> bool:
+    """Whether two display boxes overlap by more than :data:`TOLERANCE` in both directions."""
+    return min(a.x1, b.x1) - max(a.x0, b.x0) > TOLERANCE and min(a.y1, b.y1) - max(a.y0, b.y0) > TOLERANCE
+
+
+def _twins(a: Any, b: Any) -> bool:
+    return a in b._twinned_axes.get_siblings(b)
+
+
+def _in_legend(text: Any, legend: Any) -> bool:
+    return text in legend.get_texts() or text is legend.get_title()
+
+
+def overlaps(fig: Any) -> list[str]:
+    """Every problem a reader would see in ``fig``, one line each (empty when there is none):
+
+    * two texts whose boxes cover each other;
+    * a text covered by an axes that is not its own (nor its twin), or by a legend it is not in;
+    * two axes (not twins) that cover each other;
+    * a text that reaches beyond the figure's edge.
+    """
     texts = drawn_texts(fig)
+    renderer = fig.canvas.get_renderer()
+    owners = _owners(fig)
+    owner = [owners.get(id(t)) for t in texts]
+    names = [_name(t, o) for t, o in zip(texts, owner, strict=True)]
     boxes = [t.get_window_extent(renderer) for t in texts]
-    out = [
-        f"text {texts[i].get_text()!r} covers {texts[j].get_text()!r}"
-        for i, j in combinations(range(len(texts)), 2)
-        if _cover(boxes[i], boxes[j])
-    ]
-    edge = fig.bbox
-    out += [
-        f"text {t.get_text()!r} is cut by the figure's edge"
-        for t, box in zip(texts, boxes, strict=True)
-        if box.x0 < edge.x0 - SLACK or box.y0 < edge.y0 - SLACK or box.x1 > edge.x1 + SLACK or box.y1 > edge.y1 + SLACK
-    ]
     axes = [ax for ax in fig.axes if ax.get_visible()]
-    out += [
-        f"axes {i} ({a.get_title()!r}) covers axes {j} ({b.get_title()!r})"
-        for (i, a), (j, b) in combinations(enumerate(axes), 2)
-        if _cover(a.get_window_extent(renderer), b.get_window_extent(renderer))
-    ]
+    frames = [ax.get_window_extent(renderer) for ax in axes]
+    legends = [leg for leg in [*fig.legends, *(ax.get_legend() for ax in axes)] if leg is not None]
+    out = []
+    for i, (a, box) in enumerate(zip(texts, boxes, strict=True)):
+        out += [f"text {names[i]} covers text {names[j]}" for j in range(i + 1, len(texts)) if _covers(box, boxes[j])]
+        for ax, frame in zip(axes, frames, strict=True):
+            mine = owner[i] is not None and (owner[i] is ax or _twins(owner[i], ax))
+            if not mine and _covers(box, frame):
+                out.append(f"text {names[i]} is under {_axes_name(ax)}")
+        for leg in legends:
+            if not _in_legend(a, leg) and _covers(box, leg.get_window_extent(renderer)):
+                out.append(f"text {names[i]} is under a legend")
+        edge = fig.bbox
+        if min(box.x0 - edge.x0, box.y0 - edge.y0, edge.x1 - box.x1, edge.y1 - box.y1) < -TOLERANCE:
+            out.append(f"text {names[i]} reaches beyond the figure")
+    for i, (a, fa) in enumerate(zip(axes, frames, strict=True)):
+        for b, fb in zip(axes[i + 1 :], frames[i + 1 :], strict=True):
+            if not _twins(a, b) and _covers(fa, fb):
+                out.append(f"{_axes_name(a)} covers {_axes_name(b)}")
     return out

@@ -422,3 +422,17 @@ def test_analyze_takes_one_of_the_12_positions(tmp_path, position):
     assert result.exit_code == 2
     assert result.stderr.strip() == f"error: --position: expected one of the 12 positions, 0 to 11, got {position}"
     assert list(tmp_path.iterdir()) == []
+
+
+def test_check_starts_without_the_packages_it_does_not_need():
+    """``linkwork check`` (and the start of every command) needs neither pint's registry for the common
+    units, nor scipy's optimiser, numba (imported when compiled kernels first run), matplotlib or xarray."""
+    code = (
+        "import sys\nfrom linkwork.cli.main import app\ntry:\n    app(['check', 'double-cut-shears'])\n"
+        "except SystemExit:\n    pass\n"
+        "print(sorted(m for m in ('pint', 'scipy.optimize', 'numba', 'matplotlib', 'xarray') if m in sys.modules))"
+    )
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+    assert "W = 3n - 2p5 - p4 = 3*7 - 2*10 = 1" in out.stdout
+    assert out.stdout.strip().splitlines()[-1] == "[]"

@@ -30,6 +30,7 @@ def test_every_figure_draws_every_example(name, tmp_path):
         figures.velocity_plan(kin, 5),
         figures.acceleration_plan(kin, 5),
         figures.motion_diagram(kin, point),
+        figures.kinematic_diagrams(kin),
         figures.link_angles(kin),
     ]
     if f is not None:
@@ -108,3 +109,88 @@ def test_drawings_match_their_baselines(name, tmp_path):
     if os.environ.get("LINKWORK_NEW_BASELINES"):
         shutil.copy(got, expected)
     assert compare_images(str(expected), str(got), tol=8) is None
+
+
+#: The figures of the scene (scheme, positions, plans), whose drawings the scene's own tests check.
+SCENE = {"scheme", "positions", "velocity_plan", "acceleration_plan"}
+
+
+def _report_figures(name, lang, folder, monkeypatch):
+    """The figures ``analyze`` draws for an example, by name."""
+    from linkwork.report import build
+
+    drawn = {}
+    draw = build._Run._draw
+
+    def keep(self, key, make):
+        drawn[key] = fig = make()
+        return draw(self, key, lambda: fig)
+
+    monkeypatch.setattr(build._Run, "_draw", keep)
+    monkeypatch.setattr(build, "PARALLEL", False)  # every figure drawn in this process
+    build.analyze(lw.compile(lw.example(name)), folder, steps=72, animation=False, lang=lang)
+    return drawn
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+@pytest.mark.parametrize("name", names())
+def test_no_text_of_a_report_figure_covers_another_and_no_axes_cover_axes(name, lang, tmp_path, monkeypatch):
+    """Every diagram ``analyze`` draws, read back through the Agg renderer as it is saved: no text's box
+    covers another's, none lies under other axes or a legend or beyond the edge, no axes cover axes."""
+    from drawing_checks import overlaps
+
+    drawn = _report_figures(name, lang, tmp_path / "r", monkeypatch)
+    assert {"kinematic_diagrams", "link_angles"} <= set(drawn)
+    problems = [f"{key}: {p}" for key, fig in drawn.items() if key not in SCENE for p in overlaps(fig)]
+    assert problems == []
+
+
+def test_the_overlap_checks_can_fail():
+    """Two texts on one spot, a text under another axes and two axes on each other are each found."""
+    from matplotlib.figure import Figure
+
+    from drawing_checks import overlaps
+
+    fig = Figure(figsize=(4, 3))
+    a = fig.add_axes((0.1, 0.1, 0.5, 0.5))
+    fig.add_axes((0.3, 0.3, 0.5, 0.5))
+    a.text(0.5, 0.5, "one")
+    a.text(0.5, 0.5, "two")
+    found = overlaps(fig)
+    assert any("'one'" in p and "'two'" in p for p in found)
+    assert any(p.startswith("axes") for p in found)
+    assert any("is under axes" in p for p in found)
+
+
+def _lines(ax):
+    return {line.get_label(): line.get_xydata() for line in ax.get_lines() if not line.get_label().startswith("_")}
+
+
+@pytest.mark.parametrize("name", names())
+def test_the_kinematic_diagrams_chart_the_working_members_from_position_0(name):
+    """The diagrams read back from the figure: each working member's displacement starts at 0 at position 0
+    (φ = 0), where the first one is at the high end of its stroke; none is a frame pivot's flat line; the
+    velocity is the slope of the drawn displacement times the crank speed, the acceleration the slope of the
+    drawn velocity (central differences of the drawing, to 1e-3 of the largest)."""
+    from linkwork.motion.analysis import working
+
+    mech = lw.compile(lw.example(name))
+    kin = lw.kinematics(mech, steps=720)
+    fig = figures.kinematic_diagrams(kin)
+    disp, vel, acc = (_lines(ax) for ax in fig.axes)
+    members = working(mech)
+    assert len(disp) == len(members) >= 1
+    omega = abs(float(mech.drive_speed[0]))
+    for k, label in enumerate(disp):
+        s, v, a = disp[label], vel[label], acc[label]
+        phi = np.radians(s[:, 0])
+        assert s[0, 0] <= 0.0 and s[-1, 0] >= 360.0  # the whole cycle
+        assert np.ptp(s[:, 1]) > 1.0  # mm or degrees: it moves
+        assert abs(np.interp(0.0, s[:, 0], s[:, 1])) < 1e-4 * np.ptp(s[:, 1])  # from position 0
+        if k == 0:
+            assert s[:, 1].max() <= 1e-4 * np.ptp(s[:, 1])  # position 0 is its high end
+        scale = 1e-3 if members[k].kind == "slider" else np.pi / 180  # drawn in mm or degrees
+        slope = (s[2:, 1] - s[:-2, 1]) * scale / (phi[2:] - phi[:-2]) * omega
+        np.testing.assert_allclose(slope, v[1:-1, 1], atol=1e-3 * np.abs(v[:, 1]).max())  # φ grows with time
+        dv = (v[2:, 1] - v[:-2, 1]) / (phi[2:] - phi[:-2]) * omega
+        np.testing.assert_allclose(dv, a[1:-1, 1], atol=2e-3 * np.abs(a[:, 1]).max())

@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+import html
 import math
 import os
+import re
 import shutil
+import sys
+from html.parser import HTMLParser
 from pathlib import Path
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
@@ -14,6 +19,7 @@ pytest.importorskip("matplotlib")
 
 import linkwork.cli.analyze  # noqa: E402,F401 - registers the command
 import linkwork.cli.motion  # noqa: E402,F401 - registers the command
+from linkwork import figures  # noqa: E402
 from linkwork.cli.main import app  # noqa: E402
 
 runner = CliRunner()
@@ -161,6 +167,163 @@ def test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output(tmp_path
     assert ratios == pytest.approx((rocker.time_ratio, rocker.forward_time_ratio), rel=1e-11)
     report.analyze(mech, tmp_path / "report", steps=steps, animation=False)
     html = (tmp_path / "report" / "report.html").read_text(encoding="utf-8")
-    row = html[html.index("<td>rocker rocker</td>") :].split("</tr>")[0]
+    row = html[html.index("<td>rocker</td>") :].split("</tr>")[0]  # the table of the rockers' swings
     cells = [c.split("</td>")[0] for c in row.split("<td>")[1:]]
     assert cells[-2:] == [f"{rocker.time_ratio:.6g}", f"{rocker.forward_time_ratio:.6g}"]
+
+
+class _Text(HTMLParser):
+    """The text a reader sees in a report page: its data and the images' alternative texts, not the style
+    nor the input file (a <pre> of the file's own words)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.parts: list[str] = []
+        self.skip = 0
+
+    def handle_starttag(self, tag, attrs):
+        self.skip += tag in ("style", "pre", "script")
+        self.parts += [v for k, v in attrs if k == "alt" and v]
+
+    def handle_endtag(self, tag):
+        self.skip -= tag in ("style", "pre", "script")
+
+    def handle_data(self, data):
+        if not self.skip:
+            self.parts.append(data)
+
+
+def _tables(page: str) -> list[list[list[str]]]:
+    """Every table of a report page as rows of cells (the heading first)."""
+    out = []
+    for table in re.findall(r"<table>(.*?)</table>", page, flags=re.S):
+        rows = re.findall(r"<tr>(.*?)</tr>", table, flags=re.S)
+        out.append([[html.unescape(c) for c in re.findall(r"<t[hd]>(.*?)</t[hd]>", row, flags=re.S)] for row in rows])
+    return out
+
+
+def _report(name: str, folder: Path, lang: str = "en", steps: int = 72):
+    """``analyze`` on an example; returns the page and the figures it drew, by name."""
+    import linkwork as lw
+    from linkwork.report import build
+
+    drawn = {}
+    draw = build._Run._draw
+
+    def keep(self, key, make):
+        drawn[key] = fig = make()
+        return draw(self, key, lambda: fig)
+
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(build._Run, "_draw", keep)
+        m.setattr(build, "PARALLEL", False)  # every figure drawn in this process
+        build.analyze(lw.compile(lw.example(name)), folder, steps=steps, animation=False, lang=lang)
+    return (folder / "report.html").read_text(encoding="utf-8"), drawn
+
+
+#: Symbols of quantities and notation written in Latin letters in Russian texts too.
+SYMBOLS = {"Fx", "Fy", "II", "III", "IV", "linkwork"}
+
+
+@pytest.mark.parametrize("name", ["double-cut-shears", "percussion-rocker"])
+def test_no_english_is_left_in_the_russian_report(name, tmp_path):
+    """The page of ``analyze --lang ru`` and the texts of its diagrams hold no word in Latin letters but
+    the names from the mechanism's file and the symbols of quantities (W, n, p5, Fx, II(2,3) ...)."""
+    import linkwork as lw
+    from drawing_checks import drawn_texts
+
+    mech = lw.compile(lw.example(name))
+    names = {mech.name, *mech.link_names, *mech.pair_joint, *(p.split(".", 1)[1] for p in mech.point_names)}
+    allowed = {w for n in names for w in re.findall(r"[A-Za-z]+", n)} | SYMBOLS
+    page, drawn = _report(name, tmp_path / "r", lang="ru")
+    assert "<html lang='ru'>" in page
+    reader = _Text()
+    reader.feed(page)
+    texts = {"report.html": " ".join(reader.parts)}
+    texts |= {key: " ".join(t.get_text() for t in drawn_texts(fig)) for key, fig in drawn.items()
+              if key not in {"scheme", "positions", "velocity_plan", "acceleration_plan"}}  # the scene's own
+    texts = {key: re.sub(r"\\[A-Za-z]+", "", text) for key, text in texts.items()}  # mathtext's commands
+    english = {key: sorted({w for w in re.findall(r"[A-Za-z]{2,}", text) if w not in allowed})
+               for key, text in texts.items()}  # fmt: skip
+    assert {key: words for key, words in english.items() if words} == {}
+    assert "Кинематический анализ" in page and "План скоростей" in page
+
+
+def test_english_is_the_default_and_an_unknown_language_is_refused(tmp_path):
+    page, _ = _report("four-bar", tmp_path / "en", steps=36)
+    assert "<html lang='en'>" in page and "Kinematics" in page
+    out = tmp_path / "de"
+    result = runner.invoke(app, ["analyze", "four-bar", "--out", str(out), "--lang", "de"])
+    assert result.exit_code == 2 and "--lang: expected one of en, ru, got 'de'" in result.stderr
+    assert not out.exists()
+
+
+def test_the_tables_state_their_units_and_measure_the_crank_angle_from_position_0(tmp_path):
+    """The strokes (mm) and the rocker's swing (°) of the double-cut shears as a dense sampling of the
+    motion finds them (0.005° apart), each in a column that names its unit; the 12 positions from
+    position 0, where the upper knife is at its highest, 30° apart."""
+    import linkwork as lw
+    from linkwork.motion.analysis import coordinate, outputs
+
+    mech = lw.compile(lw.example("double-cut-shears"))
+    page, _ = _report("double-cut-shears", tmp_path / "r", steps=360)
+    found = _tables(page)
+    tables = {t[0][1]: t for t in found if len(t[0]) > 1}
+    kin = lw.kinematics(mech, steps=72000)
+    dense = {out.name: coordinate(kin, out)[0][0] for out in outputs(mech)}
+    sliders, rockers = tables["stroke H, mm"], tables["swing β, °"]
+    for row in sliders[1:]:
+        joint = row[0].split("(")[1].rstrip(")")
+        assert float(row[1]) == pytest.approx(np.ptp(dense[joint]) * 1000, abs=0.01)
+    (row,) = rockers[1:]
+    assert row[0] == "rocker" and float(row[1]) == pytest.approx(math.degrees(np.ptp(dense["rocker"])), abs=1e-3)
+    (positions,) = [t for t in found if t[0][1:3] == ["φ, °", "crank to the x axis, °"]]
+    assert [r[1] for r in positions[1:]] == [str(30 * k) for k in range(12)]
+    e = positions[0].index("E")
+    y = [float(r[e].split(", ")[1]) for r in positions[1:]]
+    assert y[0] == max(y) == pytest.approx(1000 * dense["guide_E"].max() + 0.0, abs=0.05)  # guide_E is along y
+
+
+def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0():
+    """The double-cut shears slow down while they cut and speed up after: the lowest crank speed of the
+    steady cycle comes where the cutting load falls below the drive's moment, at the end of the cut.  The
+    cut is read off the reduced load moment at its own angles; the lowest speed at ``cycle.crank_angle_deg``
+    of ``linkwork dynamics --json`` and on the diagram's speed curve, both from position 0
+    (``cycle.psi_deg`` counts from the start of the steady turn, 281° from it)."""
+    import linkwork as lw
+    from linkwork.io.dynamics_tables import to_json
+    from linkwork.motion.analysis import from_position_0, zero_angle
+
+    mech = lw.compile(lw.example("double-cut-shears"))
+    result = lw.dynamics(mech, steps=1440)
+    zero = zero_angle(mech)
+    red = result.reduced
+    phi = np.degrees(from_position_0(red.angle, zero, 1.0))
+    falling = phi[red.load < 0.5 * red.load.min()].max()  # the load past its half on the way out of the cut
+    ended = phi[red.load < 0.01 * red.load.min()].max()  # and over
+    data = to_json(mech, result)
+    cycle = data["cycle"]
+    lowest = cycle["crank_angle_deg"][int(np.argmin(cycle["omega"]))]
+    assert falling < lowest <= ended + 0.5  # where the drive's moment overcomes the load's
+    assert data["position_0_deg"] == pytest.approx(math.degrees(zero))
+    fig = figures.dynamics_diagrams(result, zero)
+    speed = next(ax for ax in fig.axes if ax.get_ylabel().startswith("crank speed"))
+    x, y = speed.get_lines()[0].get_xydata().T
+    assert x[np.argmin(y)] == pytest.approx(lowest, abs=0.5)
+
+
+def test_a_figure_that_fails_in_the_second_process_fails_the_report_and_writes_nothing(tmp_path, monkeypatch):
+    """The figures of the kinematics are drawn in a forked process: its error comes back as it was raised,
+    and no report is put in place."""
+    import linkwork as lw
+    from linkwork.report import beside, build
+
+    def broken(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(figures, "draw_positions", broken)
+    mech = lw.compile(lw.example("four-bar"))
+    with pytest.raises(OSError, match="No space left on device"):
+        build.analyze(mech, tmp_path / "r", steps=36, animation=False)
+    assert list(tmp_path.iterdir()) == []
+    assert beside.FORKS == sys.platform.startswith("linux")

@@ -106,3 +106,12 @@ def test_a_value_is_written_as_the_file_reads_it_back(kind, declared, si, shown)
     out = written(si, kind, declared or {})
     assert out == pytest.approx(shown, rel=1e-12) if isinstance(shown, float) else out == shown
     assert parse_quantity(out, kind, declared) == pytest.approx(si, rel=1e-9)
+
+
+def test_the_common_units_read_without_pint_are_pints_to_the_bit():
+    """The table that spares the common units pint's registry holds pint's own values, exactly."""
+    from linkwork.units import COMMON_UNITS, _pint_factor
+
+    for kind, units in COMMON_UNITS.items():
+        for unit, value in units.items():
+            assert value == _pint_factor(unit, kind), (unit, kind)

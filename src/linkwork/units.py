@@ -155,9 +155,32 @@ def _show_unit(unit: str) -> str:
     return unit.replace("**", "^")
 
 
+#: The SI value of one of the common units of each kind, by kind and the unit as written: read without pint,
+#: whose registry takes about half a second to build (the values are pint's, which a test checks to the bit).
+COMMON_UNITS: dict[str, dict[str, float]] = {
+    "length": {"m": 1.0, "mm": 0.001, "cm": 0.01, "km": 1000.0},
+    "mass": {"kg": 1.0, "g": 0.001, "t": 1000.0},
+    "time": {"s": 1.0, "ms": 0.001, "min": 60.0},
+    "angle": {"deg": 0.017453292519943295, "rad": 1.0},
+    "force": {"N": 1.0, "kN": 1000.0, "MN": 1000000.0},
+    "moment": {"N*m": 1.0, "N m": 1.0, "kN*m": 1000.0, "kN m": 1000.0},
+    "inertia": {"kg*m^2": 1.0, "kg*m**2": 1.0, "kg m^2": 1.0, "kg*mm^2": 1e-06},
+    "speed": {"m/s": 1.0, "mm/s": 0.001},
+    "angular_speed": {"rad/s": 1.0, "rpm": 0.10471975511965977, "deg/s": 0.017453292519943295},
+    "acceleration": {"m/s^2": 1.0, "m/s**2": 1.0},
+    "power": {"W": 1.0, "kW": 1000.0},
+}
+
+
 @lru_cache(maxsize=256)
 def _factor(unit: str, kind: str) -> float:
     """SI value of one ``unit`` of ``kind``; raises UnitParseError."""
+    common = COMMON_UNITS[kind].get(unit)
+    return common if common is not None else _pint_factor(unit, kind)
+
+
+def _pint_factor(unit: str, kind: str) -> float:
+    """SI value of one ``unit`` of ``kind`` by pint; raises UnitParseError."""
     ureg = registry()
     phrase = KINDS[kind][0]
     unknown = f"unknown unit {_quote(unit)}"

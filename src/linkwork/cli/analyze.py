@@ -30,11 +30,13 @@ def analyze(
     dxf: Annotated[
         bool, typer.Option("--dxf", help="also write the drawings for CAD, figures/*.dxf (needs ezdxf)")
     ] = False,
+    lang: Annotated[str, typer.Option(help="language of the report and its figures: en or ru")] = "en",
 ) -> None:
     """Every analysis the mechanism supports: tables, figures, animation and report.html."""
     from rich.progress import Progress, SpinnerColumn, TextColumn
 
     from linkwork.errors import LinkworkError, MissingDependencyError
+    from linkwork.lang import check_lang
     from linkwork.report import analyze as run
     from linkwork.report import require_packages
 
@@ -42,6 +44,10 @@ def analyze(
         fail(LinkworkError(f"--steps: expected at least 12 steps over the turn, got {steps}"))
     if position is not None and position != "all" and not (position.isdigit() and 0 <= int(position) < 12):
         fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {position}"))
+    try:
+        check_lang(lang)
+    except LinkworkError as exc:
+        fail(exc)
     from linkwork.report.folder import problem
 
     why = problem(out)
@@ -59,7 +65,7 @@ def analyze(
         try:
             path = run(
                 mech, out, steps=steps, position=int(position) if position and position.isdigit() else position,
-                pdf=pdf, animation=animation, dxf=dxf,
+                pdf=pdf, animation=animation, dxf=dxf, lang=lang,
                 progress=lambda what: bar.update(task, description=f"analysing: {what}"),
             )  # fmt: skip
         except LinkworkError as exc:

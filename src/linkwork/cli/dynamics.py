@@ -43,7 +43,7 @@ def dynamics(
     if as_json:
         echo_json(data)
         return
-    _print_report(mech, result)
+    _print_report(mech, result, data)
     for path in paths:
         typer.echo(f"  wrote {path}")
 
@@ -51,10 +51,11 @@ def dynamics(
 def _write(out: str, data: dict[str, Any]) -> list[Path]:
     """``dynamics.csv`` (the steady cycle) and ``dynamics.json`` (``data``) in the folder ``out``."""
     from linkwork.atomic import write_atomic
+    from linkwork.io.dynamics_tables import CYCLE_COLUMNS
     from linkwork.io.jsonout import dumps
 
     cycle = data["cycle"]
-    rows = ["psi [deg],t [s],omega [rad/s],motor_torque [N m],motor_power [W]"]
+    rows = [",".join(CYCLE_COLUMNS[key] for key in cycle)]
     rows += [",".join(repr(v) for v in row) for row in zip(*cycle.values(), strict=True)]
     text = dumps(data)
     try:
@@ -67,8 +68,10 @@ def _write(out: str, data: dict[str, Any]) -> list[Path]:
     return paths
 
 
-def _print_report(mech: Mechanism, result: Dynamics) -> None:
-    """The report of ``linkwork dynamics``."""
+def _print_report(mech: Mechanism, result: Dynamics, data: dict[str, Any]) -> None:
+    """The report of ``linkwork dynamics`` (``data``: its JSON record, for the crank angles of the cycle)."""
+    from linkwork.motion.kinematics import direction
+
     rpm = 30 / math.pi
     red = result.reduced
     typer.echo(f"{mech.name}: machine dynamics")
@@ -90,11 +93,13 @@ def _print_report(mech: Mechanism, result: Dynamics) -> None:
         f"{last.omega_max * rpm:.4g} rpm, delta = {last.delta:.4g}"
         + ("" if result.motion.steady else " (not yet steady)")
     )
-    t, psi, omega = result.motion.cycle()
+    _, psi, omega = result.motion.cycle()
     i = int(np.argmin(omega))
-    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
-    angle = math.degrees(float(mech.drive_start[0]) + sign * float(result.motion.psi[-len(psi) + i])) % 360
-    typer.echo(f"  lowest speed at crank angle {angle:.1f} deg")
+    angle = math.degrees(float(red.angle[0]) + direction(mech) * (result.motion.cycle_start + float(psi[i]))) % 360
+    typer.echo(
+        f"  lowest speed at {data['cycle']['crank_angle_deg'][i]:.1f} deg from position 0 "
+        f"(the crank at {angle:.1f} deg to the x axis)"
+    )
     typer.echo(
         f"  mean power of the motor {result.mean_power:.6g} W at its shaft, of the drive {result.drive_power:.6g} W "
         f"on the crank; start-up {result.startup_time:.3g} s (idle, where the file has process loads)"

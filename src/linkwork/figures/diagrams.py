@@ -1,144 +1,385 @@
-"""Diagrams against the crank angle: motion of a point, link angles, driving torque, foundation
-loads, joint-force hodographs, and the machine-dynamics diagrams (reduced inertia, Wittenbauer,
-speed over the cycle)."""
+"""Diagrams over the cycle: the kinematic diagrams of the working members, link angles, driving torque,
+foundation loads, joint-force hodographs, and the machine-dynamics diagrams (reduced inertia and load
+moment, Wittenbauer's diagram, the crank speed over the steady cycle).
+
+Every abscissa is the crank angle φ turned from position 0 (0 to 360°, as the 12 positions number the
+cycle, :func:`linkwork.motion.analysis.from_position_0`); ``zero`` is the drive angle of position 0
+(rad; default :func:`linkwork.motion.analysis.zero_angle`).  ``lang`` is ``"en"`` or ``"ru"``
+(:mod:`linkwork.lang`).  Every function returns a matplotlib ``Figure`` with a constrained layout.
+"""
 
 from __future__ import annotations
 
-from typing import Any
+import math
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
+from linkwork.lang import t
+from linkwork.motion.analysis import Output, coordinate, from_position_0, working, zero_angle
+from linkwork.motion.kinematics import direction
 
-def _figure(rows: int = 1, height: float = 3.0) -> Any:
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(7, height * rows), layout="constrained")
-    return fig, [fig.add_subplot(rows, 1, i + 1) for i in range(rows)]
+    from linkwork.kinetostatics.forces import Forces
+    from linkwork.machine.dynamics import Dynamics
+    from linkwork.motion.kinematics import Kinematics
 
 
-def _deg(kin: Any) -> np.ndarray:
-    return np.degrees(kin.angles)
+def _figure(rows: int = 1, height: float = 2.6, width: float = 7.0) -> tuple[Figure, list[Axes]]:
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width, 0.6 + height * rows), layout="constrained")
+    axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+    return fig, list(axes)
 
 
-def motion_diagram(kin: Any, point: str) -> Any:
-    """Position, velocity and acceleration (x and y components) of ``point`` over the crank angle."""
+def _one(a: np.ndarray, variants: bool) -> np.ndarray:
+    """The first variant of a result with variants; the array itself otherwise."""
+    return a[0] if variants else a
+
+
+def _abscissa(angles: np.ndarray, zero: float, sign: float, whole: bool | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """φ in degrees, ascending, and the order of the samples along it.  The samples of a whole turn
+    (``whole``; by default: equal steps over the turn) are continued periodically by one sample beyond each
+    end, so that a curve spans 0 to 360° whichever sample is nearest position 0."""
+    phi = np.degrees(from_position_0(angles, zero, sign))
+    order = np.argsort(phi, kind="stable")
+    if whole is None:
+        steps = np.diff(angles)
+        whole = len(angles) > 2 and np.allclose(steps, steps[0]) and abs(abs(steps[0]) * len(angles) - 2 * np.pi) < 1e-9
+    if not whole:
+        return phi[order], order
+    ext = np.concatenate([order[-1:], order, order[:1]])
+    return np.concatenate([phi[order[-1:]] - 360.0, phi[order], phi[order[:1]] + 360.0]), ext
+
+
+def _crank_axis(ax: Axes, lang: str) -> None:
+    ax.set_xlim(0, 360)
+    ax.set_xticks(np.arange(0, 361, 30))
+    ax.set_xlabel(t("axis.crank_angle", lang))
+
+
+def _grid(ax: Axes) -> None:
+    ax.grid(True, lw=0.3, alpha=0.7)
+
+
+def _legend(ax: Axes, **kw: Any) -> None:
+    ax.legend(fontsize=8, framealpha=0.85, **kw)
+
+
+def _zero_of(kin: Kinematics, zero: float | None) -> float:
+    return zero_angle(kin.mechanism) if zero is None else zero
+
+
+def _scale(values: np.ndarray, unit: str, kilo: str) -> tuple[float, str]:
+    """Factor and unit to show forces (moments) in: kilo-units where the largest is 10,000 or more."""
+    big = np.nanmax(np.abs(values)) if np.isfinite(values).any() else 0.0
+    return (1e-3, kilo) if big >= 1e4 else (1.0, unit)
+
+
+def member_label(mech: Any, out: Output, lang: str) -> str:
+    """``knife_upper (guide_E)`` for a slider: its link and its joint; ``output`` for a rocker."""
+    link = str(mech.link_names[out.link])
+    return t("member.slider", lang, link=link, joint=out.name) if out.kind == "slider" else link
+
+
+def kinematic_diagrams(kin: Kinematics, zero: float | None = None, lang: str = "en") -> Figure:
+    """Displacement, velocity and acceleration of the working members (:func:`working`) over the cycle: a
+    slider's along its guide's axis from position 0 (mm, m/s, m/s²), a rocker's angle from position 0 (°),
+    angular velocity and acceleration (rad/s, rad/s²)."""
+    mech = kin.mechanism
+    members = working(mech)
     fig, axes = _figure(3)
-    phi = _deg(kin)
-    for ax, (what, data, unit) in zip(
-        axes,
-        (("position", kin.position(point), "m"), ("velocity", kin.velocity(point), "m/s"),
-         ("acceleration", kin.acceleration(point), "m/s²")),
-        strict=True,
-    ):  # fmt: skip
-        d = data[0] if kin.variants else data
+    zero = _zero_of(kin, zero)
+    phi, order = _abscissa(kin.angles, zero, direction(mech))
+    start = _at(mech, zero)
+    for out in members:
+        s, v, a = (x[0, order] for x in coordinate(kin, out))
+        d = s - coordinate(start, out)[0][0, 0]  # from position 0
+        if out.kind == "rocker":
+            d = np.degrees(d - 2 * np.pi * np.round(np.nanmedian(d) / (2 * np.pi)))
+        for ax, y in zip(axes, (d * 1000 if out.kind == "slider" else d, v, a), strict=True):
+            ax.plot(phi, y, lw=1.3, label=member_label(mech, out, lang))
+    kind = members[0].kind if members else "slider"
+    keys = ("s", "v", "a") if kind == "slider" else ("psi", "omega", "epsilon")
+    for ax, key in zip(axes, keys, strict=True):
+        ax.set_ylabel(t(f"axis.member.{key}", lang), fontsize=9)
+        ax.axhline(0.0, color="0.4", lw=0.6)
+        _grid(ax)
+    if members:
+        _legend(axes[0], loc="best")
+    _crank_axis(axes[-1], lang)
+    fig.suptitle(t("title.kinematic_diagrams", lang, name=mech.name), fontsize=11)
+    return fig
+
+
+def _at(mech: Any, angle: float) -> Kinematics:
+    from linkwork.motion.kinematics import kinematics
+
+    return kinematics(mech, np.array([angle]))
+
+
+def motion_diagram(kin: Kinematics, point: str, zero: float | None = None, lang: str = "en") -> Figure:
+    """Position, velocity and acceleration (x and y components) of ``point`` over the cycle."""
+    fig, axes = _figure(3)
+    phi, order = _abscissa(kin.angles, _zero_of(kin, zero), direction(kin.mechanism))
+    series = (kin.position(point) * 1000, kin.velocity(point), kin.acceleration(point))
+    for ax, data, key in zip(axes, series, ("position", "velocity", "acceleration"), strict=True):
+        d = _one(data, kin.variants)[order]
         ax.plot(phi, d[:, 0], label="x")
         ax.plot(phi, d[:, 1], label="y")
-        ax.set_ylabel(f"{what}, {unit}")
-        ax.grid(True, lw=0.3)
-        ax.legend(loc="upper right", fontsize=8)
-    axes[0].set_title(f"{kin.mechanism.name}: point {point}")
-    axes[-1].set_xlabel("crank angle, °")
+        ax.set_ylabel(t(f"axis.point.{key}", lang), fontsize=9)
+        _grid(ax)
+        _legend(ax, loc="best")
+    _crank_axis(axes[-1], lang)
+    fig.suptitle(t("title.point", lang, name=kin.mechanism.name, point=point), fontsize=11)
     return fig
 
 
-def link_angles(kin: Any) -> Any:
-    """Angle, angular velocity and angular acceleration of every moving link."""
+def link_angles(kin: Kinematics, zero: float | None = None, lang: str = "en") -> Figure:
+    """Angle (to the x axis, °), angular velocity and angular acceleration of every moving link that turns,
+    but the crank (which turns uniformly): sliders that keep their angle are left out."""
     from linkwork.io.motion_tables import moving_links
 
+    mech = kin.mechanism
     fig, axes = _figure(3)
-    phi = _deg(kin)
-    for name, i in moving_links(kin.mechanism):
-        for ax, data in zip(axes, (np.degrees(np.unwrap(kin.angle(i))), kin.omega(i), kin.epsilon(i)), strict=True):
-            ax.plot(phi, data[0] if kin.variants else data, label=name)
-    for ax, label in zip(axes, ("angle, °", "ω, rad/s", "ε, rad/s²"), strict=True):
-        ax.set_ylabel(label)
-        ax.grid(True, lw=0.3)
-    axes[0].legend(fontsize=8, ncol=3)
-    axes[-1].set_xlabel("crank angle, °")
+    phi, order = _abscissa(kin.angles, _zero_of(kin, zero), direction(mech))
+    cranks = {int(b) for k in mech.drive_pair for b in mech.pair_links[k] if b != 0 and 0 in mech.pair_links[k]}
+    speed = float(np.nanmax(np.abs(kin.rates[:, 0]), initial=0.0)) or 1.0  # the crank's
+    for name, i in moving_links(mech):
+        rates = (_one(kin.omega(i), kin.variants)[order], _one(kin.epsilon(i), kin.variants)[order])
+        if i in cranks or not np.nanmax(np.abs(rates[0]), initial=0.0) > 1e-9 * speed:
+            continue
+        angle = np.degrees(np.unwrap(_one(kin.angle(i), kin.variants)[order]))
+        angle -= 360.0 * np.round(angle[0] / 360.0)
+        for ax, y in zip(axes, (angle, *rates), strict=True):
+            ax.plot(phi, y, lw=1.1, label=name)
+    for ax, key in zip(axes, ("angle", "omega", "epsilon"), strict=True):
+        ax.set_ylabel(t(f"axis.link.{key}", lang), fontsize=9)
+        _grid(ax)
+    if axes[0].lines:
+        fig.legend(handles=axes[0].lines, loc="outside right upper", fontsize=8)
+    _crank_axis(axes[-1], lang)
+    fig.suptitle(t("title.link_angles", lang, name=mech.name), fontsize=11)
     return fig
 
 
-def torque_diagram(forces: Any) -> Any:
-    """The driving torque over the crank angle, with the power-balance check."""
-    fig, (ax,) = _figure()
-    phi = _deg(forces.kinematics)
-    ax.plot(phi, forces.driving_torque, label="driving torque")
-    check = forces.torque_power_all[0, :, 0] if forces.mechanism.n_drives == 1 else None
+def torque_diagram(forces: Forces, zero: float | None = None, lang: str = "en") -> Figure:
+    """The driving torque over the cycle, its mean, and the power balance's torque beside it."""
+    mech = forces.mechanism
+    fig, (ax,) = _figure(height=3.4)
+    phi, order = _abscissa(forces.angles, _zero_of(forces.kinematics, zero), direction(mech))
+    torque = np.asarray(forces.driving_torque)
+    factor, unit = _scale(torque, "unit.Nm", "unit.kNm")
+    ax.plot(phi, torque[order] * factor, lw=1.4, label=t("legend.driving_torque", lang))
+    check = forces.torque_power_all[0, :, 0] if mech.n_drives == 1 else None
     if check is not None and np.isfinite(check).any():
-        ax.plot(phi, check, ls=":", color="black", label="by the power balance")
-    ax.set_xlabel("crank angle, °")
-    ax.set_ylabel("N m")
-    ax.grid(True, lw=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title(f"{forces.mechanism.name}: driving torque")
+        ax.plot(phi, check[order] * factor, ls=":", color="black", lw=1.2, label=t("legend.power_balance", lang))
+    mean = float(np.nanmean(torque))
+    ax.axhline(
+        mean * factor, color="tab:red", lw=0.9, ls="--", label=t("legend.mean", lang, value=f"{mean * factor:.4g}")
+    )
+    ax.set_ylabel(t("axis.torque", lang, unit=t(unit, lang)))
+    _grid(ax)
+    _legend(ax, loc="best")
+    _crank_axis(ax, lang)
+    ax.set_title(t("title.driving_torque", lang, name=mech.name), fontsize=11)
     return fig
 
 
-def foundation_diagram(forces: Any) -> Any:
-    """Forces (x, y) and moment the machine puts on its foundation, and the shaking force."""
-    fig, (top, bottom) = _figure(2)
-    phi = _deg(forces.kinematics)
-    found = forces.foundation
-    top.plot(phi, found[:, 0], label="Fx (bolt shear)")
-    top.plot(phi, found[:, 1], label="Fy (+ pulls the bolts)")
-    top.plot(phi, np.hypot(*forces.shaking_force.T), ls="--", label="|shaking force|")
-    top.set_ylabel("N")
-    top.legend(fontsize=8)
-    bottom.plot(phi, found[:, 2], label="moment about the origin")
-    bottom.plot(phi, forces.shaking_moment, ls="--", label="shaking moment")
-    bottom.set_ylabel("N m")
-    bottom.legend(fontsize=8)
+def foundation_diagram(forces: Forces, zero: float | None = None, lang: str = "en") -> Figure:
+    """Forces (x, y) and moment the machine puts on its foundation, and the shaking force and moment."""
+    mech = forces.mechanism
+    fig, (top, bottom) = _figure(2, height=2.8)
+    phi, order = _abscissa(forces.angles, _zero_of(forces.kinematics, zero), direction(mech))
+    found = np.asarray(forces.foundation)[order]
+    shaking = np.hypot(*np.asarray(forces.shaking_force)[order].T)
+    f, funit = _scale(np.concatenate([found[:, :2].ravel(), shaking]), "unit.N", "unit.kN")
+    top.plot(phi, found[:, 0] * f, label=t("legend.Fx", lang))
+    top.plot(phi, found[:, 1] * f, label=t("legend.Fy", lang))
+    top.plot(phi, shaking * f, ls="--", label=t("legend.shaking_force", lang))
+    top.set_ylabel(t("axis.force", lang, unit=t(funit, lang)))
+    moment = np.asarray(forces.shaking_moment)[order]
+    m, munit = _scale(np.concatenate([found[:, 2], moment]), "unit.Nm", "unit.kNm")
+    bottom.plot(phi, found[:, 2] * m, label=t("legend.foundation_moment", lang))
+    bottom.plot(phi, moment * m, ls="--", label=t("legend.shaking_moment", lang))
+    bottom.set_ylabel(t("axis.moment", lang, unit=t(munit, lang)))
     for ax in (top, bottom):
-        ax.grid(True, lw=0.3)
-    bottom.set_xlabel("crank angle, °")
-    top.set_title(f"{forces.mechanism.name}: foundation")
+        _grid(ax)
+        _legend(ax, loc="best")
+    _crank_axis(bottom, lang)
+    fig.suptitle(t("title.foundation", lang, name=mech.name), fontsize=11)
     return fig
 
 
-def hodograph(forces: Any, joint: str) -> Any:
-    """Polar diagram of the force in a joint (the first-named link on the second) over the cycle."""
-    fig, (ax,) = _figure(height=6)
-    f = forces.reaction(joint)
-    ax.plot(f[:, 0], f[:, 1], lw=1)
-    ax.plot([0], [0], "k+")
-    for i in np.linspace(0, len(f), 12, endpoint=False).astype(int):
-        ax.annotate(f"{np.degrees(forces.angles[i]) % 360:.0f}°", f[i], fontsize=7)
+def hodograph(
+    forces: Forces, joint: str, at: Forces | None = None, zero: float | None = None, lang: str = "en"
+) -> Figure:
+    """Polar diagram of the force in a joint (the first-named link on the second) over the cycle, with the
+    12 positions marked and numbered: ``at`` is the forces at the 12 positions (position 0 first); without
+    it, the samples of ``forces`` at 0, 30, 60, ... degrees from position 0, where it has them."""
+    mech = forces.mechanism
+    fig, (ax,) = _figure(height=5.4, width=6.4)
+    f = np.asarray(forces.reaction(joint))
+    factor, unit = _scale(f, "unit.N", "unit.kN")
+    phi, order = _abscissa(forces.angles, _zero_of(forces.kinematics, zero), direction(mech))
+    ax.plot(f[order, 0] * factor, f[order, 1] * factor, lw=1.1, color="tab:blue")
+    ax.plot([0], [0], "k+", ms=9)
+    marks = _marks(f, phi, order) if at is None else np.asarray(at.reaction(joint))
+    marks = marks * factor
+    ax.plot(marks[:, 0], marks[:, 1], "o", ms=3.5, color="tab:red", zorder=3)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("Fx, N")
-    ax.set_ylabel("Fy, N")
-    ax.grid(True, lw=0.3)
-    ax.set_title(f"{forces.mechanism.name}: force in {joint}")
+    ax.margins(0.12)
+    ax.set_xlabel(t("axis.Fx", lang, unit=t(unit, lang)))
+    ax.set_ylabel(t("axis.Fy", lang, unit=t(unit, lang)))
+    _grid(ax)
+    ax.set_title(t("title.hodograph", lang, name=mech.name, joint=joint), fontsize=11)
+    place_numbers(ax, marks, list(range(len(marks))))
     return fig
 
 
-def dynamics_diagrams(result: Any) -> Any:
-    """Reduced inertia and load moment, Wittenbauer's diagram, and the crank speed over the steady
-    cycle of a :func:`linkwork.dynamics` result."""
+def _marks(f: np.ndarray, phi: np.ndarray, order: np.ndarray) -> np.ndarray:
+    """The samples of ``f`` at the 12 positions (30° apart from position 0), NaN where none is within
+    0.01°."""
+    out = np.full((12, 2), np.nan)
+    for j in range(12):
+        near = int(np.argmin(np.abs(phi - 30.0 * j)))
+        if abs(phi[near] - 30.0 * j) < 0.01:
+            out[j] = f[order[near]]
+    return out
+
+
+def place_numbers(ax: Axes, points: np.ndarray, numbers: list[int], size: float = 8.0) -> list[Any]:
+    """Number the ``points`` (data coordinates, ``(N, 2)``) so that no two labels cover each other: each
+    label sits beside its point, away from the points' centre; points whose labels would cover each
+    other share one label (``3-5, 8``) at the first of them.  Lays the figure out (without rendering)
+    to measure the labels; returns the texts."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    ok = np.isfinite(points).all(axis=1)
+    if not ok.any():
+        return []
+    fig = cast("Figure", ax.figure)
+    canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
+    fig.draw_without_rendering()
+    renderer = canvas.get_renderer()
+    screen = ax.transData.transform(np.where(ok[:, None], points, 0.0))
+    centre = screen[ok].mean(axis=0)
+    groups: list[list[int]] = []
+    texts: list[Any] = []
+    for i in np.flatnonzero(ok):
+        text = _number(ax, points[i], screen[i] - centre, str(numbers[i]), size)
+        box = text.get_window_extent(renderer)
+        hit = next((g for g, other in enumerate(texts) if box.overlaps(other.get_window_extent(renderer))), None)
+        if hit is None:
+            groups.append([numbers[i]])
+            texts.append(text)
+            continue
+        text.remove()
+        groups[hit].append(numbers[i])
+        texts[hit].set_text(_runs(groups[hit]))
+    return _separate(texts, groups, renderer)
+
+
+def _separate(texts: list[Any], groups: list[list[int]], renderer: Any) -> list[Any]:
+    """Merge labels that cover each other after their texts grew, until none do."""
+    merged = True
+    while merged:
+        merged = False
+        for a in range(len(texts)):
+            for b in range(a + 1, len(texts)):
+                if texts[a].get_window_extent(renderer).overlaps(texts[b].get_window_extent(renderer)):
+                    groups[a] += groups.pop(b)
+                    texts.pop(b).remove()
+                    texts[a].set_text(_runs(groups[a]))
+                    merged = True
+                    break
+            if merged:
+                break
+    return texts
+
+
+def _number(ax: Axes, point: np.ndarray, away: np.ndarray, label: str, size: float) -> Any:
+    """A label beside ``point``, offset away from the centre (``away``: screen direction)."""
+    norm = math.hypot(*away)
+    u = away / norm if norm > 1e-9 else np.array([0.7, 0.7])
+    ha = "left" if u[0] > 0.3 else "right" if u[0] < -0.3 else "center"
+    va = "bottom" if u[1] > 0.3 else "top" if u[1] < -0.3 else "center"
+    at = (float(point[0]), float(point[1]))
+    return ax.annotate(label, at, xytext=(5 * u[0], 5 * u[1]), textcoords="offset points", fontsize=size, ha=ha, va=va)
+
+
+def _runs(numbers: list[int]) -> str:
+    """``[3, 4, 5, 8]`` as ``3-5, 8``."""
+    nums = sorted(set(numbers))
+    out: list[str] = []
+    start = prev = nums[0]
+    for n in [*nums[1:], None]:
+        if n is not None and n == prev + 1:
+            prev = n
+            continue
+        out.append(str(start) if start == prev else f"{start}\u2013{prev}" if prev > start + 1 else f"{start}, {prev}")
+        if n is not None:
+            start = prev = n
+    return ", ".join(out)
+
+
+def dynamics_diagrams(result: Dynamics, zero: float | None = None, lang: str = "en") -> Figure:
+    """Reduced moment of inertia and reduced load moment, the crank speed over the steady cycle (with its
+    mean and δ) of a :func:`linkwork.dynamics` result, over the crank angle from position 0 (``zero``,
+    the drive angle of position 0, rad; default the assembly angle), and Wittenbauer's diagram."""
     from matplotlib.figure import Figure
 
     from linkwork.machine import wittenbauer
 
     red = result.reduced
-    fig = Figure(figsize=(10, 7), layout="constrained")
-    a1, a2 = fig.add_subplot(2, 2, 1), fig.add_subplot(2, 2, 2)
-    a3 = fig.add_subplot(2, 1, 2)
-    psi = np.degrees(red.psi)
-    a1.plot(psi, red.inertia, label="J, kg m²")
-    a1b = a1.twinx()
-    a1b.plot(psi, red.load, color="tab:red", lw=0.8, label="M, N m")
-    a1.set_xlabel("crank turning angle, °")
-    a1.set_ylabel("reduced inertia, kg m²")
-    a1b.set_ylabel("reduced load moment, N m")
-    j, e = wittenbauer(red)
-    a2.plot(j, e, lw=1)
-    a2.set_xlabel("reduced inertia J, kg m²")
-    a2.set_ylabel("energy A, J")
-    a2.set_title("Wittenbauer's diagram")
-    t, turn, omega = result.motion.cycle()
-    a3.plot(np.degrees(turn), omega * 30 / np.pi)
-    a3.set_xlabel("turning angle in the steady cycle, °")
-    a3.set_ylabel("crank speed, rpm")
-    a3.set_title(f"steady cycle: δ = {result.delta:.4g}")
+    sign = 1.0 if len(red.angle) < 2 or red.angle[1] >= red.angle[0] else -1.0
+    zero = float(red.angle[0]) if zero is None else zero
+    fig = Figure(figsize=(10.5, 7.6), layout="constrained")
+    grid = fig.add_gridspec(3, 2, width_ratios=(1.45, 1))
+    a1 = fig.add_subplot(grid[0, 0])
+    a2, a3 = (fig.add_subplot(grid[i, 0], sharex=a1) for i in (1, 2))
+    a4 = fig.add_subplot(grid[:, 1])
+    phi, order = _abscissa(red.angle, zero, sign)
+    a1.plot(phi, red.inertia[order], lw=1.3, label=t("legend.reduced_inertia", lang))
+    a1.set_ylabel(t("axis.inertia", lang), fontsize=9)
+    m, munit = _scale(red.load, "unit.Nm", "unit.kNm")
+    a2.plot(phi, red.load[order] * m, color="tab:red", lw=1.1, label=t("legend.reduced_load", lang))
+    a2.axhline(-red.mean_load * m, color="tab:green", lw=1.0, ls="--", label=t("legend.drive_moment", lang))
+    a2.set_ylabel(t("axis.moment", lang, unit=t(munit, lang)), fontsize=9)
+    _speed_panel(a3, result, zero, sign, lang)
+    for ax in (a1, a2):
+        ax.tick_params(labelbottom=False)
     for ax in (a1, a2, a3):
-        ax.grid(True, lw=0.3)
+        _grid(ax)
+        _legend(ax, loc="best")
+    _crank_axis(a3, lang)
+    inertia, energy = wittenbauer(red)
+    e, eunit = _scale(energy, "unit.J", "unit.kJ")
+    a4.plot(np.append(inertia, inertia[0]), np.append(energy, energy[0]) * e, lw=1.1)
+    turned = np.degrees(from_position_0(red.angle, zero, sign))
+    first = int(np.argmin(np.minimum(turned, 360.0 - turned)))  # the sample nearest position 0
+    a4.plot(inertia[first], energy[first] * e, "o", color="tab:red", ms=4, label=t("legend.position_0", lang))
+    a4.set_xlabel(t("axis.inertia", lang), fontsize=9)
+    a4.set_ylabel(t("axis.energy", lang, unit=t(eunit, lang)), fontsize=9)
+    a4.set_title(t("title.wittenbauer", lang), fontsize=10)
+    _grid(a4)
+    _legend(a4, loc="best")
+    fig.suptitle(t("title.dynamics", lang, delta=f"{result.delta:.4g}"), fontsize=11)
     return fig
+
+
+def _speed_panel(ax: Axes, result: Dynamics, zero: float, sign: float, lang: str) -> None:
+    """The crank speed (rpm) over the steady cycle against the crank angle from position 0."""
+    red = result.reduced
+    _, psi, omega = result.motion.cycle()
+    angles = red.angle[0] + sign * (result.motion.cycle_start + psi)
+    phi, order = _abscissa(angles[:-1], zero, sign, whole=True)  # the last sample closes the turn
+    rpm = 30 / np.pi
+    ax.plot(phi, omega[order] * rpm, lw=1.3, label=t("legend.crank_speed", lang))
+    mean = result.motion.last.omega_mean * rpm
+    ax.axhline(mean, color="0.3", lw=0.9, ls="--", label=t("legend.mean_speed", lang, value=f"{mean:.4g}"))
+    ax.set_ylabel(t("axis.speed", lang), fontsize=9)

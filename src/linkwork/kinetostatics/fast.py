@@ -13,16 +13,16 @@ kinematics.
 
 from __future__ import annotations
 
+import functools
 import math
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 
 from linkwork.kinetostatics.external import Applied
 from linkwork.kinetostatics.geometry import variant_geometry
 from linkwork.kinetostatics.reactions import group_order
-from linkwork.motion import fast as motion_fast
-from linkwork.motion.fast import OPTS, PER_THREAD, THREADS, _pool, njit
+from linkwork.motion.fast import OPTS, PER_THREAD, THREADS, _pool
 from linkwork.motion.kinematics import Kinematics
 from linkwork.structure.model import Mechanism, PairType
 
@@ -33,8 +33,10 @@ SINGULAR = 1e-12
 
 
 def available() -> bool:
-    """Whether the reactions run in machine code (as the kinematics do: :func:`linkwork.motion.fast.available`)."""
-    return motion_fast.ENABLED
+    """Whether the compiled kernel runs (numba there, imported now if it was not, and not turned off)."""
+    from linkwork.motion import fast
+
+    return fast.available() and compiled()
 
 
 class Encoded(NamedTuple):
@@ -468,22 +470,24 @@ def _kernel(
             _frame_loads(rows, on_frame, J, Q, mu, frame, var, i)
 
 
-if njit is not None:  # pragma: no branch
-    _opts: dict[str, Any] = OPTS
-    _row_geometry = njit(inline="always", **_opts)(_row_geometry)
-    _rows_at = njit(inline="always", **_opts)(_rows_at)
-    _col = njit(inline="always", **_opts)(_col)
-    _cross = njit(inline="always", **_opts)(_cross)
-    _single = njit(inline="always", **_opts)(_single)
-    _pair_on = njit(inline="always", **_opts)(_pair_on)
-    _dyad = njit(inline="always", **_opts)(_dyad)
-    _rhs = njit(inline="always", **_opts)(_rhs)
-    _link_loads = njit(inline="always", **_opts)(_link_loads)
-    _external_loads = njit(inline="always", **_opts)(_external_loads)
-    _group_matrix = njit(inline="always", **_opts)(_group_matrix)
-    _eliminate = njit(inline="always", **_opts)(_eliminate)
-    _back_substitute = njit(inline="always", **_opts)(_back_substitute)
-    _general = njit(inline="always", **_opts)(_general)
-    _group = njit(inline="always", **_opts)(_group)
-    _frame_loads = njit(inline="always", **_opts)(_frame_loads)
-    _kernel = njit(**_opts)(_kernel)
+#: The kernels inlined into the others, and the one called from Python.
+_INLINE = (
+    "_row_geometry", "_rows_at", "_col", "_cross", "_single", "_pair_on", "_dyad", "_rhs", "_link_loads",
+    "_external_loads", "_group_matrix", "_eliminate", "_back_substitute", "_general", "_group", "_frame_loads",
+)  # fmt: skip
+_CALLED = ("_kernel",)
+
+
+@functools.cache
+def compiled() -> bool:
+    """Wrap the kernels of this module with numba's ``njit`` (once, as :func:`linkwork.motion.fast.compiled`)."""
+    try:
+        from numba import njit
+    except ImportError:  # pragma: no cover
+        return False
+    space = globals()
+    for name in _INLINE:
+        space[name] = njit(inline="always", **OPTS)(space[name])
+    for name in _CALLED:
+        space[name] = njit(**OPTS)(space[name])
+    return True

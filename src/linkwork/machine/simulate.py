@@ -184,10 +184,18 @@ class Motion:
         return start
 
     def cycle(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The last turn: time from its start, turning angle within the turn (0 to 2 pi), speed."""
+        """The last turn: time from its start, turning angle within the turn (0 to 2 pi, from
+        :attr:`cycle_start`), speed."""
         last = self.last
         sel = (self.t >= last.start) & (self.t <= last.end)
         return self.t[sel] - last.start, self.psi[sel] - self.psi[sel][0], self.omega[sel]
+
+    @property
+    def cycle_start(self) -> float:
+        """Turning angle (rad, from the assembly angle) at the start of the last turn, where the turning
+        angle of :meth:`cycle` is 0: the crank's drive angle there is its assembly angle plus this, in the
+        direction of rotation."""
+        return float(self.psi[np.flatnonzero(self.t >= self.last.start)[0]])
 
 
 def simulate(

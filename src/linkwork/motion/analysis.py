@@ -383,17 +383,48 @@ def extremes(kin: Any, variant: int = 0) -> list[Extremes]:
     return rows
 
 
+def working(mech: Any) -> tuple[Output, ...]:
+    """The working members, whose motion the kinematic diagrams show and whose extreme is position 0: the
+    sliders on frame guides (knives, rams, tools), else the rockers pivoted on the frame in the last Assur
+    group that has one (the output rocker; both legs of a triad that has two); none for a mechanism with
+    neither."""
+    found = outputs(mech)
+    sliders = tuple(out for out in found if out.kind == "slider")
+    if sliders:
+        return sliders
+    group = {link: i for i, g in enumerate(mech.structure.groups) for link in g.links}
+    last = max((group.get(out.link, -1) for out in found), default=-1)
+    return tuple(out for out in found if group.get(out.link, -1) == last)
+
+
 def zero_angle(mech: Any) -> float:
-    """Crank angle of position 0: the first slider on a frame guide at the high end of its stroke
-    (for shears: the knives fully open), else the first rocker at its high extreme, else the assembly angle."""
+    """Crank angle (rad) of position 0: the first working member (:func:`working`) at the high end of its
+    stroke or swing (for shears: the upper knife up, the knives open), else the assembly angle."""
     from linkwork.motion.kinematics import kinematics as solve
 
-    ext = extremes(solve(mech, steps=360))
-    for kind in ("slider", "rocker"):
-        for e in ext:
-            if e.kind == kind:
-                return e.at_high
+    members = working(mech)
+    if members:
+        r = output_range(solve(mech, steps=360), members[0])
+        if np.isfinite(r.at_high[0]) and not r.turns[0]:
+            return float(r.at_high[0])
     return float(mech.drive_start[0])
+
+
+def from_position_0(angles: np.ndarray, zero: float, direction: float) -> np.ndarray:
+    """The crank angle turned from position 0 (drive angle ``zero``, rad) in the drive's direction
+    (``direction`` +1 counter-clockwise, -1 clockwise), rad in [0, 2 pi), the shape of ``angles`` (drive
+    angles, rad).  The abscissa of every diagram over the cycle and the angle of every table of the report,
+    as the 12 positions number the cycle from position 0."""
+    turned = np.mod(direction * (np.asarray(angles, dtype=float) - zero), TWO_PI)
+    return np.where(TWO_PI - turned < 1e-9, 0.0, turned)
+
+
+def position_angles(mech: Any, count: int = 12, zero: float | None = None) -> np.ndarray:
+    """Drive angles (rad) of ``count`` positions evenly over a turn from position 0 (``zero``, default
+    :func:`zero_angle`), in the drive's direction: the positions 0, 1, ... of the plan of positions."""
+    from linkwork.motion.kinematics import cycle
+
+    return cycle(mech, count, start=zero_angle(mech) if zero is None else zero)
 
 
 # ---------------------------------------------------------------- transmission angles, instant centres

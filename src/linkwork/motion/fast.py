@@ -16,6 +16,8 @@ the compiled path off.
 
 from __future__ import annotations
 
+import functools
+import importlib.util
 import math
 import os
 from concurrent.futures import ThreadPoolExecutor
@@ -24,13 +26,6 @@ from typing import Any
 import numpy as np
 
 from linkwork.motion.program import Arm, Step
-
-try:  # pragma: no cover - exercised when numba is installed
-    if os.environ.get("LINKWORK_NUMBA", "1") == "0":
-        raise ImportError
-    from numba import njit
-except ImportError:  # pragma: no cover
-    njit = None
 
 #: Step kinds of the compiled program.
 CRANK, SLIDE, DYAD, RPR, RPP = range(5)
@@ -53,12 +48,14 @@ def _pool() -> ThreadPoolExecutor:
     return _POOL[0]
 
 
-#: Whether kinematics uses the compiled path (numba installed and not turned off).
-ENABLED = njit is not None
+#: Whether kinematics uses the compiled path: numba installed and not turned off (numba itself is imported,
+#: and the kernels compiled or loaded from its cache, when they are first used: :func:`available`).
+ENABLED = os.environ.get("LINKWORK_NUMBA", "1") != "0" and importlib.util.find_spec("numba") is not None
 
 
 def available() -> bool:
-    return ENABLED
+    """Whether the compiled kernels run: numba there (imported now, if it was not) and not turned off."""
+    return ENABLED and compiled()
 
 
 def supports(program: tuple[Step, ...]) -> bool:
@@ -137,13 +134,15 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     trouble = np.zeros((n_steps, n_var), dtype=np.bool_)
     singular = np.zeros(1, dtype=np.bool_)
     tol = 1e-12 * (1 + float(np.abs(local).max()))
-    args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, trouble)
-    args += (singular, tol)
+    args: tuple[Any, ...] = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid)
+    args += (near, trouble, singular, tol)
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
+    kernel: Any = _kernel  # the compiled kernel, which compiled() put in the Python function's place
+
     def part(lo: int, hi: int) -> None:
-        _kernel(*args, lo, hi, np.zeros((n_links, 11)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
+        kernel(*args, lo, hi, np.zeros((n_links, 11)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
 
     if len(bounds) == 2:
         part(0, n_ang)
@@ -493,21 +492,25 @@ def _kernel(
 
 
 #: Options of every compiled kernel: no reference counting, the kernels allocate nothing.
-OPTS = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
+OPTS: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
 
-if njit is not None:  # pragma: no branch
-    _opts = OPTS
-    _point = njit(inline="always", **_opts)(_point)
-    _material = njit(inline="always", **_opts)(_material)
-    _place = njit(inline="always", **_opts)(_place)
-    _place_like = njit(inline="always", **_opts)(_place_like)
-    _loc = njit(inline="always", **_opts)(_loc)
-    _locus = njit(inline="always", **_opts)(_locus)
-    _touching = njit(inline="always", **_opts)(_touching)
-    _arm_motion = njit(inline="always", **_opts)(_arm_motion)
-    _arm_extra = njit(inline="always", **_opts)(_arm_extra)
-    _dyad = njit(inline="always", **_opts)(_dyad)
-    _rpr = njit(inline="always", **_opts)(_rpr)
-    _step = njit(inline="always", **_opts)(_step)
-    _arm_constants = njit(**_opts)(_arm_constants)
-    _kernel = njit(**_opts)(_kernel)
+#: The kernels inlined into the others, and those called from Python.
+_INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_locus", "_touching", "_arm_motion",
+           "_arm_extra", "_dyad", "_rpr", "_step")  # fmt: skip
+_CALLED = ("_arm_constants", "_kernel")
+
+
+@functools.cache
+def compiled() -> bool:
+    """Wrap the kernels of this module with numba's ``njit`` (once; they are compiled on their first call, or
+    loaded from numba's cache); False where numba cannot be imported."""
+    try:
+        from numba import njit
+    except ImportError:  # pragma: no cover
+        return False
+    space = globals()
+    for name in _INLINE:
+        space[name] = njit(inline="always", **OPTS)(space[name])
+    for name in _CALLED:
+        space[name] = njit(**OPTS)(space[name])
+    return True

@@ -177,14 +177,21 @@ def _path(mech: Any, angles: np.ndarray) -> tuple[np.ndarray | None, np.ndarray 
     return path, inverse[: len(angles)]
 
 
-def cycle(mech: Any, steps: int) -> np.ndarray:
-    """Drive coordinates of a uniform cycle of the first drive from its assembly value, in its direction."""
+def direction(mech: Any) -> float:
+    """+1 where the first drive turns counter-clockwise (or forward; also where it has no speed), -1 where
+    it turns clockwise (backward): the sign of the drive coordinate's steps over a cycle."""
+    return -1.0 if mech.drive_speed[0] < 0 else 1.0
+
+
+def cycle(mech: Any, steps: int, start: float | None = None) -> np.ndarray:
+    """Drive coordinates of a uniform cycle of the first drive, in its direction, from ``start`` (rad;
+    default its assembly value)."""
     from linkwork.structure.model import one_crank
 
     if not one_crank(mech):
         raise LinkworkError("steps= needs a mechanism with one revolute drive; give the angles instead")
-    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
-    return mech.drive_start[0] + sign * 2 * np.pi * np.arange(steps) / steps
+    first = mech.drive_start[0] if start is None else start
+    return first + direction(mech) * 2 * np.pi * np.arange(steps) / steps
 
 
 def kinematics(

@@ -4,22 +4,34 @@
 it in place only when everything is written, so an interrupted run never
 leaves a half-written report where a good one was; it replaces only a folder
 that holds a report and nothing else (:mod:`linkwork.report.folder`).
+
+The report is written in English or Russian (``lang``, :mod:`linkwork.lang`): its
+text, table headings and the labels of the diagrams.  Every angle of its tables
+and diagrams is the crank angle φ turned from position 0 (0 to 360°,
+:func:`linkwork.motion.analysis.from_position_0`); every table states its units.
 """
 
 from __future__ import annotations
 
 import base64
+import functools
 import html
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from linkwork.io.jsonout import dumps
+from linkwork.lang import check_lang, t
 from linkwork.structure.model import PairType
+
+if TYPE_CHECKING:
+    from linkwork.kinetostatics.forces import Forces
+    from linkwork.motion.kinematics import Kinematics
+    from linkwork.structure.model import Mechanism
 
 
 @dataclass
@@ -32,14 +44,27 @@ class Section:
     figures: list[str] = field(default_factory=list)
 
 
-def _table(head: list[str], rows: list[list[Any]]) -> str:
-    def cell(x: Any) -> str:
-        if isinstance(x, float):
-            return "-" if not math.isfinite(x) else f"{x:.6g}"
-        return html.escape(str(x))
+def _cell(x: Any) -> str:
+    if isinstance(x, float | np.floating):
+        return "-" if not math.isfinite(x) else f"{x:.4g}"
+    return html.escape(str(x))
 
+
+def _fixed(values: Any, significant: int = 4) -> list[str]:
+    """A column of numbers with one number of decimals: ``significant`` digits of its largest."""
+    a = np.asarray(values, dtype=float)
+    big = float(np.nanmax(np.abs(a))) if np.isfinite(a).any() else 0.0
+    decimals = 0 if big == 0 else max(0, significant - 1 - math.floor(math.log10(big)))
+    return ["-" if not math.isfinite(x) else f"{round(x, decimals) + 0.0:.{decimals}f}" for x in a]
+
+
+def _ratio(x: float) -> str:
+    return "-" if not math.isfinite(x) else f"{x:.6g}"
+
+
+def _table(head: list[str], rows: list[list[Any]]) -> str:
     out = ["<table><thead><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr></thead><tbody>"]
-    out += ["<tr>" + "".join(f"<td>{cell(x)}</td>" for x in row) + "</tr>" for row in rows]
+    out += ["<tr>" + "".join(f"<td>{_cell(x)}</td>" for x in row) + "</tr>" for row in rows]
     return "".join(out) + "</tbody></table>"
 
 
@@ -47,24 +72,94 @@ def _p(text: str) -> str:
     return f"<p>{html.escape(text)}</p>"
 
 
+def _deg(x: float) -> str:
+    return "-" if not math.isfinite(x) else f"{x:.1f}"
+
+
 class _Run:
-    def __init__(self, mech: Any, folder: Path, progress: Callable[[str], None]) -> None:
+    """What a run of :func:`analyze` collects: its sections, the captions of its figures, its language, and
+    the jobs that draw the figures (queued, then run beside the analyses or here: :class:`Beside`)."""
+
+    def __init__(
+        self, mech: Mechanism, folder: Path, progress: Callable[[str], None], lang: str, parallel: bool
+    ) -> None:
+        from linkwork.report.beside import Beside
+
         self.mech = mech
         self.folder = folder
         self.progress = progress
+        self.lang = lang
         self.sections: list[Section] = []
-        self.figures: dict[str, Any] = {}
+        self.figures: dict[str, Any] = {}  # those drawn in this process
+        self.captions: dict[str, str] = {}
+        self.jobs: list[Callable[[], object]] = []
+        self.beside = Beside(parallel)
         (folder / "figures").mkdir(parents=True)
 
-    def figure(self, name: str, fig: Any) -> str:
-        fig.savefig(self.folder / "figures" / f"{name}.svg")
-        fig.savefig(self.folder / "figures" / f"{name}.png", dpi=90)
-        self.figures[name] = fig
+    def t(self, key: str, **values: Any) -> str:
+        """The text ``key`` in the report's language."""
+        return t(key, self.lang, **values)
+
+    def figure(self, name: str, make: Callable[[], Any], caption: str) -> str:
+        """Queue the figure ``make()`` draws, to be written as ``figures/NAME.svg`` and ``.png``; returns
+        ``name`` for a section's figures."""
+        self.captions[name] = self.t("caption", number=len(self.captions) + 1, text=caption)
+        self.jobs.append(lambda: self._draw(name, make))
         return name
+
+    def _draw(self, name: str, make: Callable[[], Any]) -> None:
+        from linkwork.report.render import save
+
+        fig = make()
+        save(fig, self.folder / "figures" / name)
+        self.figures[name] = fig
+
+    def run_beside(self) -> None:
+        """Start the jobs queued so far in the second process."""
+        jobs, self.jobs = self.jobs, []
+        self.beside.start(jobs)
+
+    def run_here(self) -> None:
+        """Run the jobs queued since, in this process, and wait for the second one's."""
+        jobs, self.jobs = self.jobs, []
+        for job in jobs:
+            job()
+        self.beside.wait()
+
+
+@dataclass(frozen=True)
+class Cycle:
+    """The kinematics the report's tables and figures share.
+
+    Attributes
+    ----------
+    kin : Kinematics
+        ``steps`` equal steps of a turn from position 0 in the drive's direction.
+    zero : float
+        Drive angle of position 0, rad.
+    sign : float
+        +1 where the crank turns counter-clockwise, -1 clockwise.
+    twelve : Kinematics
+        The 12 positions, position 0 first.
+    index : int
+        The sample of ``kin`` at the position of the plans.
+    """
+
+    kin: Kinematics
+    zero: float
+    sign: float
+    twelve: Kinematics
+    index: int
+
+    def phi(self, angles: Any) -> np.ndarray:
+        """Crank angles turned from position 0, degrees, of drive angles (rad)."""
+        from linkwork.motion.analysis import from_position_0
+
+        return np.degrees(from_position_0(np.asarray(angles, dtype=float), self.zero, self.sign))
 
 
 def analyze(
-    mech: Any,
+    mech: Mechanism,
     out: str | Path,
     *,
     steps: int = 360,
@@ -72,34 +167,46 @@ def analyze(
     pdf: bool = False,
     animation: bool = True,
     dxf: bool = False,
+    lang: str = "en",
     progress: Callable[[str], None] | None = None,
 ) -> Path:
     """Run every analysis ``mech`` supports and write tables, figures, an animation and
     ``report.html`` (and ``report.pdf``) into the folder ``out``; returns the report's path.
 
-    ``position``: which of the 12 positions (numbered from the working slider's or rocker's high
-    end, as ``linkwork positions`` does) gets the scheme and the velocity and acceleration plans;
-    ``"all"`` adds sheets of the plans of all twelve; default the file's ``drawing.positions``, else
-    where the working point moves fastest (:func:`linkwork.scene.positions.plan_positions`).  ``dxf``:
-    also the drawings for CAD, ``figures/*.dxf`` (needs ezdxf).  Needs matplotlib and xarray
-    (:func:`require_packages`).
+    ``position``: which of the 12 positions (numbered from position 0, the working member's high end,
+    as ``linkwork positions`` does) gets the scheme and the velocity and acceleration plans; ``"all"``
+    adds sheets of the plans of all twelve; default the file's ``drawing.positions``, else where the
+    working point moves fastest (:func:`linkwork.scene.positions.plan_positions`).  ``dxf``: also the
+    drawings for CAD, ``figures/*.dxf`` (needs ezdxf).  ``lang``: ``"en"`` or ``"ru"``.  Needs
+    matplotlib and xarray (:func:`require_packages`).
 
     Raises
     ------
     LinkworkError
         ``out`` is something other than a report folder, an empty folder or a new name: a folder of
-        other files, a file, a symbolic link, a device (see :func:`linkwork.report.folder.problem`).
+        other files, a file, a symbolic link, a device (see :func:`linkwork.report.folder.problem`);
+        or ``lang`` is not a language of the report.
     """
     from linkwork.report.folder import replacing
 
+    check_lang(lang)
     require_packages()
     with replacing(out) as work:
-        run = _Run(mech, work, progress or (lambda _: None))
-        _build(run, steps, position, animation, dxf)
+        run = _Run(mech, work, progress or (lambda _: None), lang, parallel=PARALLEL and not pdf)
+        try:
+            _build(run, steps, position, animation, dxf)
+        finally:
+            run.beside.stop()
         _write_html(run, work / "report.html")
         if pdf:
             _write_pdf(run, work / "report.pdf")
     return Path(out) / "report.html"
+
+
+#: Whether a report draws the figures of its kinematics (and writes its animation and NetCDF table) in a
+#: second process while this one solves the forces and dynamics and draws theirs (on Linux; not with
+#: ``pdf``, whose pages need every figure here).
+PARALLEL = True
 
 
 def require_packages() -> None:
@@ -111,175 +218,342 @@ def require_packages() -> None:
 
 
 def _build(run: _Run, steps: int, position: int | str | None, animation: bool, dxf: bool = False) -> None:
+    from linkwork.structure.model import one_crank
+
+    _structure(run)
+    if not one_crank(run.mech):
+        run.sections.append(Section("kinematics", run.t("section.kinematics"), [_p(run.t("kin.needs_crank"))]))
+        return
+    cycle = _kinematics(run, steps, position, dxf)
+    if animation:
+        from linkwork import figures
+
+        run.jobs.append(lambda: figures.animate(cycle.kin, run.folder / "animation.gif"))
+    run.run_beside()
+    if not run.mech.structure.redundant:
+        _forces(run, cycle)
+    if run.mech.machine is not None:
+        _dynamics(run, cycle)
+    if run.mech.blow is not None:
+        _impact(run)
+    run.progress("figures")
+    run.run_here()
+
+
+def group_kind(kind: str, lang: str) -> str:
+    """An Assur group's kind (``RRP``) in the notation of the language (``ВВП`` in Russian: вращательная,
+    поступательная)."""
+    return kind.translate(str.maketrans("RP", "ВП")) if lang == "ru" else kind
+
+
+def group_label(label: str, lang: str) -> str:
+    """A group's label (``II(4,5) RRP``) with its kind in the notation of the language."""
+    head, _, kind = label.partition(" ")
+    return f"{head} {group_kind(kind, lang)}" if kind else head
+
+
+def _structure(run: _Run) -> None:
+    run.progress("structure")
+    s = run.mech.structure
+    sec = Section("structure", run.t("section.structure"))
+    sec.body.append(
+        _p(run.t("structure.counts", n=s.n_links, p5=s.p5, p4=s.p4, w=s.dof, q=s.redundant, mobility=s.mobility))
+    )
+    head = [run.t(f"structure.head.{k}") for k in ("number", "group", "class", "order", "kind", "links", "joints")]
+    rows = [
+        [i, g.label.split(" ")[0], g.klass, "-" if g.order is None else g.order, group_kind(g.kind, run.lang),
+         ", ".join(g.link_names), ", ".join(g.joints)]
+        for i, g in enumerate(s.groups, 1)
+    ]  # fmt: skip
+    sec.body.append(_table(head, rows))
+    sec.body.append(_p(run.t("structure.formula", formula=s.formula)))
+    run.sections.append(sec)
+
+
+def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) -> Cycle:
     from linkwork import figures
     from linkwork.io.motion_tables import write_csv, write_netcdf
     from linkwork.motion import kinematics
-    from linkwork.motion.analysis import extremes, transmission_angles, zero_angle
-    from linkwork.structure.model import one_crank, point_labels
-
-    mech = run.mech
-    s = mech.structure
-    run.progress("structure")
-    sec = Section("structure", "Structure")
-    sec.body.append(
-        _p(
-            f"Moving links n = {s.n_links}, lower pairs p5 = {s.p5}, higher pairs p4 = {s.p4}: "
-            f"W = 3n - 2p5 - p4 = {s.dof}; redundant constraints q = {s.redundant}, mobility {s.mobility}."
-        )
-    )
-    sec.body.append(
-        _table(
-            ["#", "group", "kind", "links", "joints"],
-            [
-                [i, g.label.split(" ")[0], g.kind, ", ".join(g.link_names), ", ".join(g.joints)]
-                for i, g in enumerate(s.groups, 1)
-            ],
-        )  # fmt: skip
-    )
-    sec.body.append(_p(f"Structural formula: {s.formula}"))
-    run.sections.append(sec)
-
-    if not one_crank(mech):
-        run.sections.append(Section("kinematics", "Kinematics", [_p("Needs one crank (a revolute drive).")]))
-        return
-    run.progress("kinematics")
-    kin = kinematics(mech, steps=steps)
-    write_csv(kin, run.folder / "kinematics.csv")
-    write_netcdf(kin, run.folder / "kinematics.nc")
-    sec = Section("kinematics", "Kinematics")
-    zero = zero_angle(mech)
-    sign = 1.0 if mech.drive_speed[0] >= 0 else -1.0
-    twelve = zero + sign * 2 * np.pi * np.arange(12) / 12
-    kin12 = kinematics(mech, twelve)
-    labels = point_labels(mech)
-    rows = []
-    for k in range(12):
-        row: list[Any] = [k, f"{math.degrees(twelve[k]) % 360:.1f}"]
-        for _, p in labels:
-            x = kin12.position(mech.point_names[p])[k] * 1000
-            row.append("-" if not np.isfinite(x).all() else f"{x[0]:.1f}, {x[1]:.1f}")
-        rows.append(row)
-    sec.body.append(_p("The 12 positions (coordinates in mm), position 0 at the working slider's high end:"))
-    sec.body.append(_table(["pos", "crank, deg", *[label for label, _ in labels]], rows))
-    ext = extremes(kin)
-    if ext:
-        sec.body.append(_table(["", "stroke", "from", "to", "time ratio K", "+ stroke / other"], _extreme_rows(ext)))
-        sec.body.append(
-            _p(
-                "Sliders in mm along their guide's axis, rockers in degrees.  Time ratio K: the longer stroke's "
-                "time over the shorter's at uniform crank speed; + stroke / other: the time of the stroke in the + "
-                "direction of the guide's axis (the rocker turning counter-clockwise) over the other's."
-            )
-        )
-    mu = [(lab, float(np.nanmin(v))) for lab, v in transmission_angles(kin).items() if np.isfinite(v).any()]
-    if mu:
-        sec.body.append(_table(["transmission angle", "least, deg"], [[lab, math.degrees(v)] for lab, v in mu]))
-    for e in kin.events:
-        sec.body.append(_p(f"{e.kind}: {e.message}"))
-    sec.figures += _drawings(run, kin, kin12, position, dxf)
-    sec.figures.append(run.figure("link_angles", figures.link_angles(kin)))
-    moving = [p for _, p in labels if mech.point_link[p] != 0]
-    if moving:
-        sec.figures.append(run.figure("motion", figures.motion_diagram(kin, mech.point_names[moving[-1]])))
-    run.sections.append(sec)
-    if animation:
-        run.progress("animation")
-        figures.animate(kin, run.folder / "animation.gif")
-
-    if not mech.structure.redundant:
-        _forces(run, steps)
-    if mech.machine is not None:
-        _dynamics(run)
-    if mech.blow is not None:
-        _impact(run)
-
-
-def _drawings(run: _Run, kin: Any, kin12: Any, position: int | str | None, dxf: bool) -> list[str]:
-    """The scheme, the plan of positions and the plans at the positions drawn (the first one's named
-    ``velocity_plan``, the others' ``velocity_plan_9``...), the sheets of all twelve plans for ``"all"``,
-    and (``dxf``) the drawings for CAD."""
-    from linkwork import figures
+    from linkwork.motion.analysis import position_angles, zero_angle
+    from linkwork.motion.kinematics import direction
     from linkwork.scene.positions import plan_positions
 
-    drawn = plan_positions(run.mech, kin12) if position in (None, "all") else [int(position)]
+    mech = run.mech
+    run.progress("kinematics")
+    zero = zero_angle(mech)
+    kin = kinematics(mech, position_angles(mech, steps, zero))
+    twelve = kinematics(mech, position_angles(mech, 12, zero))
+    sign = direction(mech)
+    drawn = plan_positions(mech, twelve) if position in (None, "all") else [int(position) % 12]
+    phi = np.degrees(np.arange(steps) * 2 * np.pi / steps)
+    index = int(np.argmin(np.abs((phi - 30.0 * drawn[0] + 180.0) % 360.0 - 180.0)))
+    cycle = Cycle(kin, zero, sign, twelve, index)
+    write_csv(kin, run.folder / "kinematics.csv")
+    run.jobs.append(lambda: write_netcdf(kin, run.folder / "kinematics.nc"))
+    sec = Section("kinematics", run.t("section.kinematics"))
+    sec.body.append(_p(_position_0(run, cycle)))
+    where = run.t("at_position", position=drawn[0])
     first = drawn[0]
-    names = [
-        run.figure("scheme", figures.draw_scheme(kin12, first, position=first, cycle=kin)),
-        run.figure("positions", figures.draw_positions(kin)),
-    ]
-    for k in drawn:
-        tail = "" if k == first else f"_{k}"
-        names.append(run.figure(f"velocity_plan{tail}", figures.velocity_plan(kin12, k, position=k)))
-        names.append(run.figure(f"acceleration_plan{tail}", figures.acceleration_plan(kin12, k, position=k)))
-    if position == "all":
-        names += [run.figure(f"{kind}_plans", figures.plan_sheet(kin12, kind)) for kind in ("velocity", "acceleration")]
+    sec.figures += [
+        run.figure("scheme", lambda: figures.draw_scheme(twelve, first, position=first, cycle=kin),
+                   run.t("caption.scheme") + where),
+        run.figure("positions", lambda: figures.draw_positions(kin), run.t("caption.positions")),
+    ]  # fmt: skip
+    sec.body += _positions_table(run, cycle)
+    sec.body += _extremes_tables(run, cycle)
+    sec.body += _working_table(run, cycle)
+    sec.body += _transmission_table(run, cycle)
+    sec.body += [_p(_event(run, cycle, e)) for e in kin.events]
+    lang = run.lang
+    sec.figures += [
+        run.figure("kinematic_diagrams", lambda: figures.kinematic_diagrams(kin, zero, lang),
+                   run.t("caption.kinematic_diagrams")),
+        *_plans(run, twelve, drawn, position == "all"),
+        run.figure("link_angles", lambda: figures.link_angles(kin, zero, lang), run.t("caption.link_angles")),
+    ]  # fmt: skip
     if dxf:
         from linkwork.io.dxf import write_drawings
 
-        write_drawings(kin12, first, run.folder / "figures", cycle=kin)
+        run.jobs.append(lambda: write_drawings(twelve, first, run.folder / "figures", cycle=kin))
+    run.sections.append(sec)
+    return cycle
+
+
+def _plans(run: _Run, twelve: Kinematics, drawn: list[int], sheets: bool) -> list[str]:
+    """The velocity and acceleration plans at the positions ``drawn`` (the first one's named
+    ``velocity_plan``, the others' ``velocity_plan_9``...) and, with ``sheets``, those of all twelve."""
+    from linkwork import figures
+
+    names = []
+    for k in drawn:
+        tail = "" if k == drawn[0] else f"_{k}"
+        where = run.t("at_position", position=k)
+        names += [
+            run.figure(f"velocity_plan{tail}", lambda k=k: figures.velocity_plan(twelve, k, position=k),
+                       run.t("caption.velocity_plan") + where),
+            run.figure(f"acceleration_plan{tail}", lambda k=k: figures.acceleration_plan(twelve, k, position=k),
+                       run.t("caption.acceleration_plan") + where),
+        ]  # fmt: skip
+    if sheets:
+        for kind in ("velocity", "acceleration"):
+            sheet = run.figure(f"{kind}_plans", lambda kind=kind: figures.plan_sheet(twelve, kind),
+                               run.t(f"caption.{kind}_plan"))  # fmt: skip
+            names.append(sheet)
     return names
 
 
-def _extreme_rows(ext: list[Any]) -> list[list[Any]]:
-    """Rows of the strokes' table: sliders in mm, rockers in degrees."""
+def _position_0(run: _Run, cycle: Cycle) -> str:
+    """What φ and position 0 are, in words."""
+    from linkwork.figures.diagrams import member_label
+    from linkwork.motion.analysis import working
+
+    members = working(run.mech)
+    crank = _deg(math.degrees(cycle.zero) % 360)
+    if not members:
+        return run.t("kin.phi.assembly", crank=crank)
+    kind = "slider" if members[0].kind == "slider" else "rocker"
+    return run.t(f"kin.phi.{kind}", member=member_label(run.mech, members[0], run.lang), crank=crank)
+
+
+def _positions_table(run: _Run, cycle: Cycle) -> list[str]:
+    from linkwork.structure.model import point_labels
+
+    mech, kin12 = run.mech, cycle.twelve
+    labels = point_labels(mech)
     rows = []
-    for e in ext:
-        scale, unit = (1000.0, "mm") if e.kind == "slider" else (180 / math.pi, "deg")
-        cells = [f"{x * scale:.6g} {unit}" if math.isfinite(x) else "-" for x in (e.stroke, e.low, e.high)]
-        rows.append([f"{e.kind} {e.name}", *cells, e.time_ratio, e.forward_time_ratio])
-    return rows
+    for k in range(12):
+        row: list[Any] = [k, f"{30 * k}", _deg(math.degrees(kin12.angles[k]) % 360)]
+        for _, p in labels:
+            x = kin12.position(mech.point_names[p])[k] * 1000
+            row.append("-" if not np.isfinite(x).all() else ", ".join(f"{round(c, 1) + 0.0:.1f}" for c in x))
+        rows.append(row)
+    head = [run.t("head.position"), run.t("head.phi"), run.t("head.crank_to_x"), *[label for label, _ in labels]]
+    return [_p(run.t("kin.positions")), _table(head, rows)]
 
 
-def _forces(run: _Run, steps: int) -> None:
+def _extremes_tables(run: _Run, cycle: Cycle) -> list[str]:
+    """Strokes of the sliders (mm) and swings of the rockers (°), with the φ of their extreme positions."""
+    from linkwork.motion.analysis import extremes
+
+    mech = run.mech
+    out: list[str] = []
+    found = extremes(cycle.kin)
+    for kind, scale in (("slider", 1000.0), ("rocker", 180.0 / math.pi)):
+        ext = [e for e in found if e.kind == kind]
+        values = [_fixed([getattr(e, k) * scale for e in ext], 5) for k in ("stroke", "low", "high")]
+        rows = []
+        for i, e in enumerate(ext):
+            name = e.name if kind == "rocker" else f"{mech.link_names[_slider_link(mech, e.name)]} ({e.name})"
+            at_low, at_high = cycle.phi([e.at_low, e.at_high])
+            rows.append([name, *(v[i] for v in values), _deg(at_low), _deg(at_high), _ratio(e.time_ratio),
+                         _ratio(e.forward_time_ratio)])  # fmt: skip
+        if rows:
+            head = [run.t(f"extremes.head.{kind}.{k}") for k in ("name", "stroke", "low", "high")]
+            head += [run.t(f"extremes.head.{k}") for k in ("phi_low", "phi_high", "k", "forward")]
+            out += [_p(run.t(f"extremes.{kind}")), _table(head, rows)]
+    if out:
+        out.append(_p(run.t("extremes.note")))
+    return out
+
+
+def _slider_link(mech: Mechanism, joint: str) -> int:
+    k = list(mech.pair_joint).index(joint)
+    return int(mech.pair_links[k, 1])
+
+
+def _working_table(run: _Run, cycle: Cycle) -> list[str]:
+    """Displacement, velocity and acceleration of the working members at the 12 positions."""
+    from linkwork.figures.diagrams import member_label
+    from linkwork.motion.analysis import coordinate, working
+
+    mech = run.mech
+    members = working(mech)
+    if not members:
+        return []
+    head = [run.t("head.position"), run.t("head.phi")]
+    columns = []
+    for out in members:
+        s, v, a = (x[0] for x in coordinate(cycle.twelve, out))
+        d = s - s[0]
+        if out.kind == "rocker":
+            d = np.degrees(d - 2 * np.pi * np.round(d / (2 * np.pi)))
+        columns += [d * 1000 if out.kind == "slider" else d, v, a]
+        keys = ("s", "v", "a") if out.kind == "slider" else ("psi", "omega", "epsilon")
+        label = member_label(mech, out, run.lang)
+        head += [run.t(f"working.head.{k}", member=label) for k in keys]
+    shown = [_fixed(c) for c in columns]
+    rows = [[k, f"{30 * k}", *(c[k] for c in shown)] for k in range(12)]
+    return [_p(run.t("working.title")), _table(head, rows)]
+
+
+def _transmission_table(run: _Run, cycle: Cycle) -> list[str]:
+    from linkwork.motion.analysis import transmission_angles
+
+    rows = []
+    for label, mu in transmission_angles(cycle.kin).items():
+        if np.isfinite(mu).any():
+            i = int(np.nanargmin(mu))
+            phi = _deg(float(cycle.phi(cycle.kin.angles[i])))
+            rows.append([group_label(label, run.lang), f"{math.degrees(float(mu[i])):.1f}", phi])
+    if not rows:
+        return []
+    return [_table([run.t("transmission.head.group"), run.t("transmission.head.least"), run.t("head.at_phi")], rows)]
+
+
+def _event(run: _Run, cycle: Cycle, event: Any) -> str:
+    start, end = cycle.phi([event.start, event.end])
+    return run.t(f"event.{event.kind}", group=group_label(event.group, run.lang), start=_deg(start), end=_deg(end))
+
+
+def _forces(run: _Run, cycle: Cycle) -> None:
     from linkwork import figures
-    from linkwork.io.force_tables import groups, pair_labels, to_json, write_csv
+    from linkwork.io.force_tables import to_json, write_csv
     from linkwork.kinetostatics import forces
 
     mech = run.mech
     run.progress("forces")
-    f = forces(mech, steps=steps)
+    f = forces(cycle.kin)
     write_csv(f, run.folder / "forces.csv")
     (run.folder / "forces.json").write_text(dumps(to_json(f)), encoding="utf-8")
-    sec = Section("forces", "Forces (kinetostatics)")
-    phi = f.angles
-    ok = np.isfinite(f.driving_torque)
-    if ok.any():
-        i = int(np.nanargmax(np.abs(f.driving_torque)))
-        at = math.degrees(phi[i]) % 360
-        sec.body.append(_p(f"Driving torque: peak {f.driving_torque[i]:.6g} N m at {at:.1f} deg."))
-    rows = []
+    at12 = forces(cycle.twelve)
+    sec = Section("forces", run.t("section.forces"))
+    unit = _force_unit(f)
+    sec.body += _torque_text(run, cycle, f)
+    sec.body += _joint_table(run, cycle, f, unit)
+    sec.body += _forces_at_positions(run, at12, unit)
+    sec.body += _foundation_table(run, cycle, f, unit)
+    sec.body += _checks_table(run, f)
+    zero, lang = cycle.zero, run.lang
+    sec.figures.append(run.figure("driving_torque", lambda: figures.torque_diagram(f, zero, lang),
+                                  run.t("caption.driving_torque")))  # fmt: skip
+    sec.figures.append(run.figure("foundation", lambda: figures.foundation_diagram(f, zero, lang),
+                                  run.t("caption.foundation")))  # fmt: skip
+    for k in range(mech.n_pairs):
+        if mech.pair_links[k, 0] == 0 and mech.pair_type[k] == PairType.REVOLUTE:
+            joint = str(mech.pair_joint[k])
+            make = functools.partial(figures.hodograph, f, joint, at=at12, zero=zero, lang=lang)
+            sec.figures.append(run.figure(f"hodograph_{joint}", make, run.t("caption.hodograph", joint=joint)))
+    run.sections.append(sec)
+
+
+def _force_unit(f: Forces) -> tuple[float, str]:
+    """kN where the largest joint force is 10 kN or more, else N: (factor from N, unit key)."""
+    big = np.nanmax(np.abs(f.multipliers)) if np.isfinite(f.multipliers).any() else 0.0
+    return (1e-3, "unit.kN") if big >= 1e4 else (1.0, "unit.N")
+
+
+def _torque_text(run: _Run, cycle: Cycle, f: Forces) -> list[str]:
+    torque = np.asarray(f.driving_torque)
+    if not np.isfinite(torque).any():
+        return []
+    i = int(np.nanargmax(np.abs(torque)))
+    factor, unit = (1e-3, "unit.kNm") if abs(torque[i]) >= 1e4 else (1.0, "unit.Nm")
+    return [
+        _p(run.t("forces.torque", peak=f"{torque[i] * factor:.4g}", mean=f"{np.nanmean(torque) * factor:.4g}",
+                 unit=run.t(unit), at=_deg(float(cycle.phi(f.angles[i])))))
+    ]  # fmt: skip
+
+
+def _joint_table(run: _Run, cycle: Cycle, f: Forces, unit: tuple[float, str]) -> list[str]:
+    from linkwork.io.force_tables import pair_labels
+
+    mech = run.mech
+    rows: list[list[Any]] = []
+    members = mech.pair_links if mech.pair_members is None else mech.pair_members  # in the file's order
     for label, k in pair_labels(mech):
         size = np.hypot(*f.pair_force(k)[0].T)
         if np.isfinite(size).any():
             j = int(np.nanargmax(size))
-            a, b = (mech.link_names[int(x)] for x in mech.pair_members[k])
-            rows.append([label, f"{a} on {b}", float(size[j]), f"{math.degrees(phi[j]) % 360:.1f}"])
-    sec.body.append(_table(["joint", "first on second", "largest force, N", "at, deg"], rows))
+            a, b = (mech.link_names[int(x)] for x in members[k])
+            rows.append([label, f"{a} \u2192 {b}", float(size[j]) * unit[0], _deg(float(cycle.phi(f.angles[j])))])
+    for row, text in zip(rows, _fixed([row[2] for row in rows]), strict=True):
+        row[2] = text
+    head = [run.t("joints.head.joint"), run.t("joints.head.links"), run.t("joints.head.largest", unit=run.t(unit[1])),
+            run.t("head.at_phi")]  # fmt: skip
+    return [_table(head, rows)]
+
+
+def _forces_at_positions(run: _Run, f: Forces, unit: tuple[float, str]) -> list[str]:
+    """The driving torque and the forces in the frame's joints at the 12 positions."""
+    mech = run.mech
+    supports = [str(mech.pair_joint[k]) for k in range(mech.n_pairs) if mech.pair_links[k, 0] == 0]
+    supports = list(dict.fromkeys(supports))
+    torque = np.asarray(f.driving_torque)
+    tf, tunit = (1e-3, "unit.kNm") if np.nanmax(np.abs(torque), initial=0.0) >= 1e4 else (1.0, "unit.Nm")
+    columns = [_fixed(torque * tf)] + [_fixed(np.hypot(*np.asarray(f.reaction(j)).T) * unit[0]) for j in supports]
+    rows = [[k, f"{30 * k}", *(c[k] for c in columns)] for k in range(12)]
+    head = [run.t("head.position"), run.t("head.phi"), run.t("positions.head.torque", unit=run.t(tunit))]
+    head += [run.t("positions.head.support", joint=j, unit=run.t(unit[1])) for j in supports]
+    return [_p(run.t("positions.forces")), _table(head, rows)]
+
+
+def _foundation_table(run: _Run, cycle: Cycle, f: Forces, unit: tuple[float, str]) -> list[str]:
     b = f.bolts()
-    sec.body.append(
-        _table(
-            ["foundation", "largest", "at, deg"],
-            [
-                ["horizontal force (bolt shear), N", b.shear, f"{math.degrees(b.shear_angle) % 360:.1f}"],
-                ["pull on the bolts, N", b.pull, f"{math.degrees(b.pull_angle) % 360:.1f}"],
-                ["push on the foundation, N", b.push, f"{math.degrees(b.push_angle) % 360:.1f}"],
-                ["moment about the origin, N m", b.moment, f"{math.degrees(b.moment_angle) % 360:.1f}"],
-            ],
-        )  # fmt: skip
-    )
-    checks = [[k.replace("_", " "), v] for k, v in f.checks.items()]
-    checks += [[f"free body {g['group']}", g["residual"]] for g in groups(f)]
-    sec.body.append(_p("Cross-checks (relative discrepancy of the independent methods):"))
-    sec.body.append(_table(["check", "discrepancy"], checks))
-    sec.figures.append(run.figure("driving_torque", figures.torque_diagram(f)))
-    sec.figures.append(run.figure("foundation", figures.foundation_diagram(f)))
-    for k in range(mech.n_pairs):
-        if mech.pair_links[k, 0] == 0 and mech.pair_type[k] == PairType.REVOLUTE:
-            sec.figures.append(run.figure(f"hodograph_{mech.pair_joint[k]}", figures.hodograph(f, mech.pair_joint[k])))
-    run.sections.append(sec)
+    factor, funit = unit
+    mfactor, munit = (1e-3, "unit.kNm") if abs(b.moment) >= 1e4 else (1.0, "unit.Nm")
+    rows = [
+        [run.t(f"foundation.{name}", unit=run.t(u)), value * k, _deg(float(cycle.phi(angle)))]
+        for name, value, angle, k, u in (
+            ("shear", b.shear, b.shear_angle, factor, funit),
+            ("pull", b.pull, b.pull_angle, factor, funit),
+            ("push", b.push, b.push_angle, factor, funit),
+            ("moment", b.moment, b.moment_angle, mfactor, munit),
+        )
+    ]
+    head = [run.t("foundation.head"), run.t("foundation.head.largest"), run.t("head.at_phi")]
+    return [_table(head, rows)]
 
 
-def _dynamics(run: _Run) -> None:
+def _checks_table(run: _Run, f: Forces) -> list[str]:
+    from linkwork.io.force_tables import groups
+
+    checks: list[list[Any]] = [[run.t(f"check.{k}"), f"{v:.2g}"] for k, v in f.checks.items()]
+    checks += [[run.t("check.free_body", group=group_label(g["group"], run.lang)), f"{g['residual']:.2g}"]
+               for g in groups(f)]  # fmt: skip
+    return [_p(run.t("checks.title")), _table([run.t("checks.head.check"), run.t("checks.head.value")], checks)]
+
+
+def _dynamics(run: _Run, cycle: Cycle) -> None:
     from linkwork import figures
     from linkwork.io.dynamics_tables import to_json
     from linkwork.machine import dynamics
@@ -287,22 +561,24 @@ def _dynamics(run: _Run) -> None:
     mech = run.mech
     run.progress("dynamics")
     result = dynamics(mech, steps=1440)
-    data = to_json(mech, result)
+    data = to_json(mech, result, zero=cycle.zero)
     (run.folder / "dynamics.json").write_text(dumps(data), encoding="utf-8")
     rpm = 30 / math.pi
     last = result.motion.last
-    sec = Section("dynamics", "Machine dynamics")
-    rows = [
-        ["mean crank speed, rpm", last.omega_mean * rpm],
-        ["least and largest crank speed, rpm", f"{last.omega_min * rpm:.4g} to {last.omega_max * rpm:.4g}"],
-        ["coefficient of speed fluctuation", last.delta],
-        ["mean power of the drive on the crank, W", result.drive_power],
-        ["mean power of the motor at its shaft, W", result.mean_power],
-        ["start-up time, s", result.startup_time],
-        ["flywheel, kg m^2 (on the " + result.drive.flywheel_on + " shaft)", result.drive.flywheel],
+    sec = Section("dynamics", run.t("section.dynamics"))
+    rows: list[list[Any]] = [
+        [run.t("dynamics.mean_speed"), last.omega_mean * rpm],
+        [run.t("dynamics.speed_range"), f"{last.omega_min * rpm:.4g} \u2026 {last.omega_max * rpm:.4g}"],
+        [run.t("dynamics.delta"), last.delta],
+        [run.t("dynamics.drive_power"), result.drive_power],
+        [run.t("dynamics.motor_power"), result.mean_power],
+        [run.t("dynamics.startup"), result.startup_time],
+        [run.t("dynamics.flywheel", shaft=run.t(f"shaft.{result.drive.flywheel_on}")), result.drive.flywheel],
     ]
-    sec.body.append(_table(["quantity", "value"], rows))
-    sec.figures.append(run.figure("dynamics", figures.dynamics_diagrams(result)))
+    sec.body.append(_table([run.t("dynamics.head.quantity"), run.t("dynamics.head.value")], rows))
+    zero, lang = cycle.zero, run.lang
+    sec.figures.append(run.figure("dynamics", lambda: figures.dynamics_diagrams(result, zero, lang),
+                                  run.t("caption.dynamics")))  # fmt: skip
     run.sections.append(sec)
 
 
@@ -313,77 +589,93 @@ def _impact(run: _Run) -> None:
     blow = mech.blow
     run.progress("impact")
     r = impact(mech)
-    sec = Section("impact", "Impact")
-    rows = [[f"impulse on {blow.at}", f"({r.impulse[0]:.6g}, {r.impulse[1]:.6g}) N s"]]
-    rows += [[f"joint {j}", f"({v[0]:.6g}, {v[1]:.6g}) N s"] for j, v in r.joints.items()]
-    rows += [["energy lost, J", r.energy_loss]]
+    sec = Section("impact", run.t("section.impact"))
+    rows: list[list[Any]] = [[run.t("impact.impulse_on", at=blow.at), _vector(r.impulse, run.t("unit.Ns"))]]
+    rows += [[run.t("impact.joint", joint=j), _vector(v, run.t("unit.Ns"))] for j, v in r.joints.items()]
+    rows += [[run.t("impact.energy_lost"), r.energy_loss]]
     if r.ideal_com is not None:
-        rows.append(["ideal centre of mass", f"({r.ideal_com[0]:.6g}, {r.ideal_com[1]:.6g}) m"])
-    sec.body.append(_table(["", "value"], rows))
+        rows.append([run.t("impact.ideal_com"), _vector(np.asarray(r.ideal_com) * 1000, run.t("unit.mm"))])
+    sec.body.append(_table([run.t("impact.head.blow"), run.t("dynamics.head.value")], rows))
     if mech.machine is not None and blow.tool is not None:
-        _impact_cycle(sec, mech)
+        _impact_cycle(run, sec)
     run.sections.append(sec)
 
 
-def _impact_cycle(sec: Section, mech: Any) -> None:
+def _vector(v: Any, unit: str) -> str:
+    return f"({v[0]:.4g}, {v[1]:.4g}) {unit}"
+
+
+def _impact_cycle(run: _Run, sec: Section) -> None:
     """The working cycle with the file's drive and tool: the steady cycle's blow and phases."""
     from linkwork.errors import LinkworkError
     from linkwork.impulse import simulate_blows
 
+    mech = run.mech
     try:
         c = simulate_blows(mech)
     except LinkworkError as exc:
-        sec.body.append(_p(f"Working cycle: {exc}"))
+        sec.body.append(_p(run.t("impact.cycle_failed", reason=str(exc))))
         return
     b = c.last
-    sec.body.append(_p(f"Working cycle with the drive and the tool: {c.blows_per_minute:.6g} blows per minute."))
-    rows = [
-        ["impact speed of the striker, m/s", b.impact_speed],
-        ["crank speed before / after, rad/s", f"{b.crank_speed_before:.6g} / {b.crank_speed_after:.6g}"],
-        ["energy lost in the blow / given to the tool, J", f"{b.energy_lost:.6g} / {b.energy_to_tool:.6g}"],
-        [f"impulse on {mech.blow.at}", f"({b.impulse[0]:.6g}, {b.impulse[1]:.6g}) N s"],
+    sec.body.append(_p(run.t("impact.cycle", blows=f"{c.blows_per_minute:.4g}")))
+    ns = run.t("unit.Ns")
+    rows: list[list[Any]] = [
+        [run.t("impact.speed"), b.impact_speed],
+        [run.t("impact.crank_speeds"), f"{b.crank_speed_before:.4g} / {b.crank_speed_after:.4g}"],
+        [run.t("impact.energies"), f"{b.energy_lost:.4g} / {b.energy_to_tool:.4g}"],
+        [run.t("impact.impulse_on", at=mech.blow.at), _vector(b.impulse, ns)],
     ]
-    rows += [[f"joint {j}", f"({v[0]:.6g}, {v[1]:.6g}) N s"] for j, v in b.joints.items()]
-    rows += [["work on the work per cycle, J", b.work_on_work], ["mean motor power, W", c.mean_power]]
-    sec.body.append(_table(["blow of the steady cycle", "value"], rows))
-    phases = [[p.kind, p.freedom, 1000 * (p.start - b.time), 1000 * p.duration] for p in c.cycle_phases()]
-    sec.body.append(_table(["phase", "W", "from the blow, ms", "lasts, ms"], phases))
+    rows += [[run.t("impact.joint", joint=j), _vector(v, ns)] for j, v in b.joints.items()]
+    rows += [[run.t("impact.work"), b.work_on_work], [run.t("impact.motor_power"), c.mean_power]]
+    sec.body.append(_table([run.t("impact.head.steady"), run.t("dynamics.head.value")], rows))
+    phases = [[run.t(f"phase.{p.kind}"), p.freedom, 1000 * (p.start - b.time), 1000 * p.duration]
+              for p in c.cycle_phases()]  # fmt: skip
+    head = [run.t(f"phases.head.{k}") for k in ("phase", "freedom", "from", "lasts")]
+    sec.body.append(_table(head, phases))
 
 
 STYLE = """
 body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}
-table{border-collapse:collapse;margin:0.6em 0;font-size:90%}
-td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}th{background:#f3f3f3}
-img{max-width:100%;border:1px solid #eee;margin:0.4em 0}
+table{border-collapse:collapse;margin:0.6em 0;font-size:90%;display:block;overflow-x:auto;max-width:100%}
+td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}th{background:#f3f3f3;min-width:2.5em}
+td{white-space:nowrap}td:first-child,th:first-child{text-align:left}
+figure{margin:1em 0}img{max-width:100%;border:1px solid #eee}figcaption{font-size:90%;color:#444}
 pre{background:#f8f8f8;padding:0.6em;overflow:auto}nav a{margin-right:1em}
 """
 
 
 def _write_html(run: _Run, path: Path) -> None:
     mech = run.mech
-    title = f"{html.escape(mech.name)}: linkwork report"
-    parts = [f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title>"]
+    title = html.escape(run.t("report.title", name=mech.name))
+    parts = [f"<!DOCTYPE html><html lang='{run.lang}'><head><meta charset='utf-8'><title>{title}</title>"]
     parts.append(f"<style>{STYLE}</style></head><body><h1>{html.escape(mech.name)}</h1>")
     parts.append("<nav>" + "".join(f"<a href='#{s.key}'>{html.escape(s.title)}</a>" for s in run.sections) + "</nav>")
     if mech.source and Path(mech.source).exists():
         text = Path(mech.source).read_text(encoding="utf-8")
-        parts.append(f"<section id='input'><h2>Input</h2><pre>{html.escape(text)}</pre></section>")
+        parts.append(f"<section id='input'><h2>{html.escape(run.t('section.input'))}</h2>")
+        parts.append(f"<pre>{html.escape(text)}</pre></section>")
     for s in run.sections:
         parts.append(f"<section id='{s.key}'><h2>{html.escape(s.title)}</h2>")
         parts += s.body
-        for name in s.figures:
-            data = base64.b64encode((run.folder / "figures" / f"{name}.png").read_bytes()).decode()
-            parts.append(f"<figure><img alt='{html.escape(name)}' src='data:image/png;base64,{data}'></figure>")
+        parts += [_figure_html(run, name) for name in s.figures]
         parts.append("</section>")
     if (run.folder / "animation.gif").exists():
         data = base64.b64encode((run.folder / "animation.gif").read_bytes()).decode()
-        img = f"<img alt='animation' src='data:image/gif;base64,{data}'>"
-        parts.append(f"<section id='animation'><h2>Animation</h2>{img}</section>")
+        img = f"<img alt='{html.escape(run.t('section.animation'))}' src='data:image/gif;base64,{data}'>"
+        parts.append(f"<section id='animation'><h2>{html.escape(run.t('section.animation'))}</h2>{img}</section>")
     if mech.structure.warnings:
         warnings = "".join(_p(w) for w in mech.structure.warnings)
-        parts.append(f"<section id='warnings'><h2>Warnings</h2>{warnings}</section>")
+        parts.append(f"<section id='warnings'><h2>{html.escape(run.t('section.warnings'))}</h2>{warnings}</section>")
     parts.append("</body></html>")
     path.write_text("".join(parts), encoding="utf-8")
+
+
+def _figure_html(run: _Run, name: str) -> str:
+    data = base64.b64encode((run.folder / "figures" / f"{name}.png").read_bytes()).decode()
+    caption = html.escape(run.captions[name])
+    return (
+        f"<figure><img alt='{caption}' src='data:image/png;base64,{data}'><figcaption>{caption}</figcaption></figure>"
+    )
 
 
 def _write_pdf(run: _Run, path: Path) -> None:
@@ -392,8 +684,8 @@ def _write_pdf(run: _Run, path: Path) -> None:
 
     with PdfPages(path) as pdf:
         title = Figure(figsize=(8.27, 11.69))
-        title.text(0.1, 0.9, f"{run.mech.name}: linkwork report", fontsize=18)
-        title.text(0.1, 0.85, f"structural formula {run.mech.structure.formula}", fontsize=11)
+        title.text(0.1, 0.9, run.t("report.title", name=run.mech.name), fontsize=18)
+        title.text(0.1, 0.85, run.t("structure.formula", formula=run.mech.structure.formula), fontsize=11)
         pdf.savefig(title)
         for fig in run.figures.values():
             pdf.savefig(fig)

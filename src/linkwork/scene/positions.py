@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.motion.analysis import outputs, transmission, zero_angle
+from linkwork.motion.analysis import outputs, position_angles, transmission
 from linkwork.motion.kinematics import kinematics
 from linkwork.scene.geometry import text_size
 from linkwork.scene.labels import Obstacles, place_labels
@@ -28,13 +28,6 @@ if TYPE_CHECKING:
 
 #: The positions of the graphical method over one turn.
 COUNT = 12
-
-
-def position_angles(mech: Mechanism, count: int = COUNT) -> np.ndarray:
-    """Crank angles (rad) of the ``count`` positions: position 0 at :func:`~linkwork.motion.analysis.zero_angle`,
-    then equal steps in the direction of rotation, ``(count,)``."""
-    sign = 1.0 if mech.drive_speed[0] >= 0 else -1.0
-    return zero_angle(mech) + sign * 2 * np.pi * np.arange(count) / count
 
 
 def working_point(mech: Mechanism) -> int:

@@ -9,6 +9,7 @@ thus choose the assembly mode of every group.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
@@ -67,8 +68,6 @@ def solve_group(
     drive_values: np.ndarray | None = None,
 ) -> tuple[np.ndarray, float]:
     """Solve one group in place of ``q``; returns the new q and the largest residual (m)."""
-    from scipy.optimize import least_squares
-
     cols = [3 * i + c for i in subset for c in range(3)]
     q = q.copy()
 
@@ -77,16 +76,55 @@ def solve_group(
         qq[list(subset)] = x.reshape(-1, 3) * [1.0, 1.0, 1.0 / scale]
         return qq
 
+    last: list[tuple[bytes, tuple[np.ndarray, np.ndarray]]] = []
+
+    def both(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # residuals and Jacobian of the last x, once
+        if not last or last[0][0] != x.tobytes():
+            last[:] = [(x.tobytes(), scaled(put(x), mech, rows, scale, drive_values))]
+        return last[0][1]
+
     def fun(x: np.ndarray) -> np.ndarray:
-        return scaled(put(x), mech, rows, scale, drive_values)[0][sel]
+        return both(x)[0][sel]
 
     def jac(x: np.ndarray) -> np.ndarray:
-        return scaled(put(x), mech, rows, scale, drive_values)[1][np.ix_(sel, cols)]
+        return both(x)[1][np.ix_(sel, cols)]
 
     x0 = (q[list(subset)] * [1.0, 1.0, scale]).ravel()
-    sol = least_squares(fun, x0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=400)
-    q = put(sol.x)
-    return q, float(np.max(np.abs(fun(sol.x)))) if sel else 0.0
+    x = least_squares(fun, jac, x0)
+    q = put(x)
+    return q, float(np.max(np.abs(fun(x)))) if sel else 0.0
+
+
+def least_squares(
+    fun: Callable[[np.ndarray], np.ndarray], jac: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, steps: int = 400
+) -> np.ndarray:
+    """The ``x`` nearest ``x0`` that minimises ``|fun(x)|``, by the Levenberg-Marquardt method (Marquardt's
+    scaling by the diagonal of ``J^T J``), to the last bit that lowers the residual: ``steps`` evaluations
+    of ``fun`` at the most (as scipy's MINPACK ``lm`` with every tolerance 1e-15; for the few unknowns of an
+    Assur group without the half second of importing ``scipy.optimize``)."""
+    x = np.asarray(x0, dtype=float).copy()
+    r = fun(x)
+    cost, damping = float(r @ r), 1e-3
+    for _ in range(steps):
+        if math.sqrt(cost) <= 1e-16 * (1.0 + float(np.linalg.norm(x))):
+            break  # the residual is down to the rounding of the unknowns
+        j = jac(x)
+        grad, normal = j.T @ r, j.T @ j
+        scale = np.diag(np.maximum(np.diag(normal), 1e-12 * max(float(normal.diagonal().max()), 1e-300)))
+        step = np.linalg.solve(normal + damping * scale, -grad)
+        if -(2 * grad @ step + step @ normal @ step) <= 1e-15 * cost:
+            break  # the linear model promises nothing more: a minimum, to the last bits
+        trial = fun(x + step)
+        new = float(trial @ trial)
+        if new < cost:
+            x, r, cost, damping = x + step, trial, new, max(damping / 10, 1e-15)
+            if np.linalg.norm(step) <= 1e-15 * (1e-15 + np.linalg.norm(x)):
+                break  # the unknowns no longer change
+        elif damping >= 1e16:
+            break  # no step lowers the residual
+        else:
+            damping *= 10
+    return x
 
 
 class Located(NamedTuple):

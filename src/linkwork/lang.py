@@ -1,0 +1,317 @@
+"""The texts of the report and the drawings, in English and Russian: one table and :func:`t`.
+
+``t("caption.velocity_plan", "ru")`` is ``"План скоростей"``; a text with fields takes them as
+keywords, ``t("title.hodograph", "en", name="four-bar", joint="O2")`` (braces of their own doubled, as
+``str.format`` reads them).  The Russian texts follow
+the notation of the Russian school of the theory of machines and mechanisms (план положений,
+план скоростей, полюс p, масштаб μ_v, кинематическая схема, кинематические диаграммы); names from
+the mechanism's file and the symbols of quantities stay as they are.  Units are written in each
+language's designations (mm and мм).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from linkwork.errors import LinkworkError
+
+#: The languages of the texts, the first the default.
+LANGUAGES = ("en", "ru")
+
+#: key: (English, Russian).
+TEXTS: dict[str, tuple[str, str]] = {
+    # ------------------------------------------------------------------ report
+    "report.title": ("{name}: linkwork report", "{name}: отчёт linkwork"),
+    "caption": ("Figure {number}. {text}", "Рис. {number}. {text}"),
+    "at_position": (" at position {position}", " в положении {position}"),
+    "section.input": ("Input", "Исходные данные"),
+    "section.structure": ("Structure", "Структурный анализ"),
+    "section.kinematics": ("Kinematics", "Кинематический анализ"),
+    "section.forces": ("Forces (kinetostatics)", "Силовой (кинетостатический) анализ"),
+    "section.dynamics": ("Machine dynamics", "Динамика машинного агрегата"),
+    "section.impact": ("Impact", "Удар"),
+    "section.animation": ("Animation", "Анимация"),
+    "section.warnings": ("Warnings", "Предупреждения"),
+    "structure.counts": (
+        "Moving links n = {n}, lower pairs p5 = {p5}, higher pairs p4 = {p4}: W = 3n - 2p5 - p4 = {w} "
+        "(Chebyshev); redundant constraints q = {q}, mobility W + q = {mobility}.",
+        "Подвижных звеньев n = {n}, низших пар p5 = {p5}, высших пар p4 = {p4}; степень подвижности по "
+        "формуле Чебышева W = 3n − 2p5 − p4 = {w}; избыточных связей q = {q}, подвижность W + q = {mobility}.",
+    ),
+    "structure.head.number": ("#", "№"),
+    "structure.head.group": ("group", "группа"),
+    "structure.head.class": ("class", "класс"),
+    "structure.head.order": ("order", "порядок"),
+    "structure.head.kind": ("kind", "вид"),
+    "structure.head.links": ("links", "звенья"),
+    "structure.head.joints": ("joints", "кинематические пары"),
+    "structure.formula": ("Structural formula: {formula}", "Формула строения: {formula}"),
+    "kin.needs_crank": ("Needs one crank (a revolute drive).", "Нужен один кривошип (вращательная ведущая пара)."),
+    "kin.phi.slider": (
+        "φ is the crank angle turned from position 0 in the direction of its rotation, 0 to 360°, on every axis "
+        "and in every table. Position 0 is the extreme position of the working member {member} at the high end "
+        "of its stroke along its guide's axis (the crank at {crank}° to the x axis).",
+        "φ — угол поворота кривошипа от положения 0 в направлении его вращения, от 0 до 360°, на всех графиках и "
+        "во всех таблицах. Положение 0 — крайнее положение рабочего звена {member}, в котором его координата "
+        "вдоль оси направляющей наибольшая (кривошип под углом {crank}° к оси x).",
+    ),
+    "kin.phi.rocker": (
+        "φ is the crank angle turned from position 0 in the direction of its rotation, 0 to 360°, on every axis "
+        "and in every table. Position 0 is the extreme position of the output rocker {member} at the "
+        "counter-clockwise end of its swing (the crank at {crank}° to the x axis).",
+        "φ — угол поворота кривошипа от положения 0 в направлении его вращения, от 0 до 360°, на всех графиках и "
+        "во всех таблицах. Положение 0 — крайнее положение выходного коромысла {member}, повёрнутого на "
+        "наибольший угол против часовой стрелки (кривошип под углом {crank}° к оси x).",
+    ),
+    "kin.phi.assembly": (
+        "φ is the crank angle turned from position 0, the assembly position (the crank at {crank}° to the "
+        "x axis), in the direction of its rotation, 0 to 360°, on every axis and in every table.",
+        "φ — угол поворота кривошипа от положения 0, положения сборки (кривошип под углом {crank}° к оси x), "
+        "в направлении его вращения, от 0 до 360°, на всех графиках и во всех таблицах.",
+    ),
+    "head.position": ("position", "положение"),
+    "head.phi": ("φ, °", "φ, °"),
+    "head.crank_to_x": ("crank to the x axis, °", "кривошип к оси x, °"),
+    "head.at_phi": ("at φ, °", "при φ, °"),
+    "kin.positions": (
+        "The 12 positions: coordinates x, y of the points, mm:",
+        "Двенадцать положений механизма: координаты точек x, y, мм:",
+    ),
+    "extremes.slider": ("Strokes of the sliders along their guides' axes:", "Ходы ползунов вдоль осей направляющих:"),
+    "extremes.rocker": ("Swings of the rockers:", "Размахи качания коромысел:"),
+    "extremes.head.slider.name": ("slider (joint)", "ползун (пара)"),
+    "extremes.head.slider.stroke": ("stroke H, mm", "ход H, мм"),
+    "extremes.head.slider.low": ("lowest, mm", "наименьшая координата, мм"),
+    "extremes.head.slider.high": ("highest, mm", "наибольшая координата, мм"),
+    "extremes.head.rocker.name": ("rocker", "коромысло"),
+    "extremes.head.rocker.stroke": ("swing β, °", "размах β, °"),
+    "extremes.head.rocker.low": ("least angle, °", "наименьший угол, °"),
+    "extremes.head.rocker.high": ("largest angle, °", "наибольший угол, °"),
+    "extremes.head.phi_low": ("φ at the least, °", "φ при наименьшем, °"),
+    "extremes.head.phi_high": ("φ at the largest, °", "φ при наибольшем, °"),
+    "extremes.head.k": ("time ratio K", "коэффициент K"),
+    "extremes.head.forward": ("+ stroke / other", "ход в + / обратный"),
+    "extremes.note": (
+        "Time ratio K: the longer stroke's time over the shorter's at uniform crank speed; + stroke / other: the "
+        "time of the stroke in the + direction of the guide's axis (the rocker turning counter-clockwise) over "
+        "the other's.",
+        "K — коэффициент изменения средней скорости: отношение времени более долгого хода ко времени более "
+        "короткого при равномерном вращении кривошипа; «ход в + / обратный» — отношение времени хода в "
+        "положительном направлении оси направляющей (поворота коромысла против часовой стрелки) ко времени "
+        "обратного хода.",
+    ),
+    "working.title": (
+        "The working members at the 12 positions: displacement from position 0, velocity and acceleration:",
+        "Рабочие звенья в двенадцати положениях: перемещение от положения 0, скорость и ускорение:",
+    ),
+    "working.head.s": ("{member}: s, mm", "{member}: s, мм"),
+    "working.head.v": ("{member}: v, m/s", "{member}: v, м/с"),
+    "working.head.a": ("{member}: a, m/s²", "{member}: a, м/с²"),
+    "working.head.psi": ("{member}: ψ, °", "{member}: ψ, °"),
+    "working.head.omega": ("{member}: ω, rad/s", "{member}: ω, рад/с"),
+    "working.head.epsilon": ("{member}: ε, rad/s²", "{member}: ε, рад/с²"),
+    "transmission.head.group": ("transmission angle of group", "угол передачи в группе"),
+    "transmission.head.least": ("least, °", "наименьший, °"),
+    "event.no-assembly": (
+        "Group {group} does not assemble from φ = {start}° to {end}°.",
+        "Группа {group} не собирается при φ от {start}° до {end}°.",
+    ),
+    "event.dead-point": (
+        "Group {group}: limit (dead) position near φ = {start}°.",
+        "Группа {group}: предельное (мёртвое) положение вблизи φ = {start}°.",
+    ),
+    "event.singular": (
+        "Group {group}: singular position (dead point) near φ = {start}°.",
+        "Группа {group}: особое (мёртвое) положение вблизи φ = {start}°.",
+    ),
+    "event.change-point": (
+        "Group {group}: its two assembly modes meet near φ = {start}°; the motion goes on smoothly in the other.",
+        "Группа {group}: две её сборки сходятся вблизи φ = {start}°; движение плавно продолжается в другой.",
+    ),
+    "event.branch-jump": (
+        "Group {group}: the solution jumps between φ = {start}° and {end}°; it may have changed its assembly "
+        "mode there: check with finer steps.",
+        "Группа {group}: решение скачком меняется между φ = {start}° и {end}°, возможно, со сменой сборки: "
+        "проверьте с меньшим шагом.",
+    ),
+    "forces.torque": (
+        "Driving torque on the crank: largest {peak} {unit} at φ = {at}°, mean {mean} {unit}.",
+        "Уравновешивающий момент на кривошипе: наибольший {peak} {unit} при φ = {at}°, средний {mean} {unit}.",
+    ),
+    "joints.head.joint": ("joint", "пара"),
+    "joints.head.links": ("force of the first link on the second", "сила первого звена на второе"),
+    "joints.head.largest": ("largest force, {unit}", "наибольшая сила, {unit}"),
+    "positions.forces": (
+        "The driving torque and the forces in the frame's joints at the 12 positions:",
+        "Уравновешивающий момент и реакции в опорах стойки в двенадцати положениях:",
+    ),
+    "positions.head.torque": ("driving torque, {unit}", "уравновешивающий момент, {unit}"),
+    "positions.head.support": ("|F| in {joint}, {unit}", "|R| в {joint}, {unit}"),
+    "foundation.head": ("foundation", "фундамент"),
+    "foundation.head.largest": ("largest", "наибольшее значение"),
+    "foundation.shear": ("horizontal force (bolt shear), {unit}", "горизонтальная сила (сдвиг болтов), {unit}"),
+    "foundation.pull": ("pull on the bolts, {unit}", "отрывающая сила (растяжение болтов), {unit}"),
+    "foundation.push": ("push on the foundation, {unit}", "давление на фундамент, {unit}"),
+    "foundation.moment": ("moment about the origin, {unit}", "момент относительно начала координат, {unit}"),
+    "checks.title": (
+        "Cross-checks (relative discrepancy of the independent methods):",
+        "Проверки (относительное расхождение независимых методов):",
+    ),
+    "checks.head.check": ("check", "проверка"),
+    "checks.head.value": ("discrepancy", "расхождение"),
+    "check.driving_torque_vs_power_balance": (
+        "driving torque against the power balance",
+        "уравновешивающий момент и баланс мощностей",
+    ),
+    "check.foundation_force_vs_momentum": (
+        "foundation force against the change of momentum",
+        "сила на фундамент и теорема об изменении количества движения",
+    ),
+    "check.foundation_moment_vs_momentum": (
+        "foundation moment against the change of angular momentum",
+        "момент на фундамент и теорема об изменении кинетического момента",
+    ),
+    "check.free_body": ("free body of group {group}", "равновесие группы {group}"),
+    "dynamics.head.quantity": ("quantity", "величина"),
+    "dynamics.head.value": ("value", "значение"),
+    "dynamics.mean_speed": ("mean crank speed, rpm", "средняя частота вращения кривошипа, об/мин"),
+    "dynamics.speed_range": ("least and largest crank speed, rpm", "наименьшая и наибольшая частота вращения, об/мин"),
+    "dynamics.delta": ("coefficient of speed fluctuation δ", "коэффициент неравномерности хода δ"),
+    "dynamics.drive_power": ("mean power of the drive on the crank, W", "средняя мощность привода на кривошипе, Вт"),
+    "dynamics.motor_power": ("mean power of the motor at its shaft, W", "средняя мощность двигателя на его валу, Вт"),
+    "dynamics.startup": ("start-up time, s", "время разгона, с"),
+    "dynamics.flywheel": ("flywheel on the {shaft} shaft, kg·m²", "маховик на валу {shaft}, кг·м²"),
+    "shaft.motor": ("motor", "двигателя"),
+    "shaft.crank": ("crank", "кривошипа"),
+    "impact.head.blow": ("blow", "удар"),
+    "impact.head.steady": ("blow of the steady cycle", "удар в установившемся цикле"),
+    "impact.impulse_on": ("impulse on {at}", "ударный импульс на {at}"),
+    "impact.joint": ("impulse in joint {joint}", "импульс реакции в паре {joint}"),
+    "impact.energy_lost": ("kinetic energy lost, J", "потерянная кинетическая энергия, Дж"),
+    "impact.ideal_com": ("ideal centre of mass", "идеальное положение центра масс"),
+    "impact.cycle_failed": ("Working cycle: {reason}", "Рабочий цикл: {reason}"),
+    "impact.cycle": (
+        "Working cycle with the drive and the tool: {blows} blows per minute.",
+        "Рабочий цикл с приводом и инструментом: {blows} ударов в минуту.",
+    ),
+    "impact.speed": ("impact speed of the striker, m/s", "скорость бойка при ударе, м/с"),
+    "impact.crank_speeds": ("crank speed before / after, rad/s", "угловая скорость кривошипа до / после удара, рад/с"),
+    "impact.energies": (
+        "energy lost in the blow / given to the tool, J",
+        "энергия, потерянная при ударе / переданная инструменту, Дж",
+    ),
+    "impact.work": ("work on the work per cycle, J", "работа над обрабатываемым материалом за цикл, Дж"),
+    "impact.motor_power": ("mean motor power, W", "средняя мощность двигателя, Вт"),
+    "phase.flight": ("striker free", "свободный ход бойка"),
+    "phase.apart": ("striker and tool apart", "боёк и инструмент раздельно"),
+    "phase.contact": ("in contact", "в контакте"),
+    "phases.head.phase": ("phase", "фаза"),
+    "phases.head.freedom": ("W", "W"),
+    "phases.head.from": ("from the blow, ms", "от удара, мс"),
+    "phases.head.lasts": ("lasts, ms", "длительность, мс"),
+    # ------------------------------------------------------------------ captions of the figures
+    "caption.scheme": ("Kinematic scheme", "Кинематическая схема"),
+    "caption.positions": ("Plan of positions (12 positions)", "План положений (12 положений)"),
+    "caption.kinematic_diagrams": (
+        "Kinematic diagrams of the working members",
+        "Кинематические диаграммы рабочих звеньев",
+    ),
+    "caption.velocity_plan": ("Velocity plan", "План скоростей"),
+    "caption.acceleration_plan": ("Acceleration plan", "План ускорений"),
+    "caption.link_angles": (
+        "Angles, angular velocities and angular accelerations of the links",
+        "Углы, угловые скорости и угловые ускорения звеньев",
+    ),
+    "caption.driving_torque": ("Driving torque on the crank", "Уравновешивающий момент на кривошипе"),
+    "caption.foundation": ("Loads on the foundation", "Нагрузки на фундамент"),
+    "caption.hodograph": ("Hodograph of the force in joint {joint}", "Годограф реакции в паре {joint}"),
+    "caption.dynamics": (
+        "Machine dynamics: reduced moment of inertia and moment of the loads, the crank speed over the steady "
+        "cycle, Wittenbauer's diagram",
+        "Динамика машинного агрегата: приведённые момент инерции и момент сил, частота вращения кривошипа в "
+        "установившемся режиме, диаграмма энергомасс (Виттенбауэра)",
+    ),
+    # ------------------------------------------------------------------ diagrams
+    "axis.crank_angle": ("crank angle φ from position 0, °", "угол поворота кривошипа φ от положения 0, °"),
+    "member.slider": ("{link} ({joint})", "{link} ({joint})"),
+    "axis.member.s": ("displacement s, mm", "перемещение s, мм"),
+    "axis.member.v": ("velocity v, m/s", "скорость v, м/с"),
+    "axis.member.a": ("acceleration a, m/s²", "ускорение a, м/с²"),
+    "axis.member.psi": ("angle ψ from position 0, °", "угол ψ от положения 0, °"),
+    "axis.member.omega": ("angular velocity ω, rad/s", "угловая скорость ω, рад/с"),
+    "axis.member.epsilon": ("angular acceleration ε, rad/s²", "угловое ускорение ε, рад/с²"),
+    "title.kinematic_diagrams": (
+        "{name}: kinematic diagrams of the working members",
+        "{name}: кинематические диаграммы рабочих звеньев",
+    ),
+    "axis.point.position": ("position, mm", "координата, мм"),
+    "axis.point.velocity": ("velocity, m/s", "скорость, м/с"),
+    "axis.point.acceleration": ("acceleration, m/s²", "ускорение, м/с²"),
+    "title.point": ("{name}: point {point}", "{name}: точка {point}"),
+    "axis.link.angle": ("angle to the x axis, °", "угол к оси x, °"),
+    "axis.link.omega": ("ω, rad/s", "ω, рад/с"),
+    "axis.link.epsilon": ("ε, rad/s²", "ε, рад/с²"),
+    "title.link_angles": ("{name}: angles of the links", "{name}: углы звеньев"),
+    "legend.driving_torque": ("driving torque", r"уравновешивающий момент $M_\mathrm{{ур}}$"),
+    "legend.power_balance": ("by the power balance", "по балансу мощностей"),
+    "legend.mean": ("mean {value}", "среднее {value}"),
+    "axis.torque": ("torque, {unit}", "момент, {unit}"),
+    "title.driving_torque": ("{name}: driving torque on the crank", "{name}: уравновешивающий момент на кривошипе"),
+    "legend.Fx": ("Fx (bolt shear)", "Fx (сдвиг болтов)"),
+    "legend.Fy": ("Fy (+ pulls the bolts)", "Fy (+ отрывает болты)"),
+    "legend.shaking_force": ("|shaking force|", "|главный вектор сил инерции|"),
+    "legend.foundation_moment": ("moment about the origin", "момент относительно начала координат"),
+    "legend.shaking_moment": ("shaking moment", "главный момент сил инерции"),
+    "axis.force": ("force, {unit}", "сила, {unit}"),
+    "axis.moment": ("moment, {unit}", "момент, {unit}"),
+    "title.foundation": ("{name}: loads on the foundation", "{name}: нагрузки на фундамент"),
+    "axis.Fx": ("Fx, {unit}", "Fx, {unit}"),
+    "axis.Fy": ("Fy, {unit}", "Fy, {unit}"),
+    "title.hodograph": (
+        "{name}: force in {joint}, positions 0 to 11",
+        "{name}: реакция в паре {joint}, положения 0–11",
+    ),
+    "legend.reduced_inertia": ("reduced moment of inertia J", r"приведённый момент инерции $J_\mathrm{{пр}}$"),
+    "legend.reduced_load": ("reduced moment of the loads M", r"приведённый момент сил $M_\mathrm{{пр}}$"),
+    "legend.drive_moment": ("constant drive moment", r"постоянный движущий момент $M_\mathrm{{д}}$"),
+    "axis.inertia": ("J, kg·m²", r"$J_\mathrm{{пр}}$, кг·м²"),
+    "axis.energy": ("energy ΔT, {unit}", "приращение энергии ΔT, {unit}"),
+    "legend.position_0": ("position 0", "положение 0"),
+    "title.wittenbauer": ("Wittenbauer's diagram", "Диаграмма энергомасс (Виттенбауэра)"),
+    "title.dynamics": (
+        "Machine dynamics: steady cycle, δ = {delta}",
+        "Динамика машинного агрегата: установившийся режим, δ = {delta}",
+    ),
+    "legend.crank_speed": ("crank speed", "частота вращения кривошипа"),
+    "legend.mean_speed": ("mean {value} rpm", "средняя {value} об/мин"),
+    "axis.speed": ("crank speed n, rpm", "частота вращения n, об/мин"),
+    # ------------------------------------------------------------------ units
+    "unit.mm": ("mm", "мм"),
+    "unit.N": ("N", "Н"),
+    "unit.kN": ("kN", "кН"),
+    "unit.Nm": ("N·m", "Н·м"),
+    "unit.kNm": ("kN·m", "кН·м"),
+    "unit.J": ("J", "Дж"),
+    "unit.kJ": ("kJ", "кДж"),
+    "unit.Ns": ("N·s", "Н·с"),
+}
+
+
+def check_lang(lang: str) -> None:
+    """Raise :class:`~linkwork.errors.LinkworkError` unless ``lang`` is one of :data:`LANGUAGES`."""
+    if lang not in LANGUAGES:
+        raise LinkworkError(f"--lang: expected one of {', '.join(LANGUAGES)}, got {lang!r}")
+
+
+def t(key: str, lang: str = "en", /, **values: Any) -> str:
+    """The text ``key`` in ``lang`` (``"en"`` or ``"ru"``), its fields filled from ``values``.
+
+    Raises
+    ------
+    KeyError
+        For a key the table does not have.
+    LinkworkError
+        For a language it does not have.
+    """
+    check_lang(lang)
+    return TEXTS[key][LANGUAGES.index(lang)].format(**values)

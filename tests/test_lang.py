@@ -1,0 +1,36 @@
+"""The table of texts in English and Russian (:mod:`linkwork.lang`)."""
+
+from __future__ import annotations
+
+import re
+import string
+
+import pytest
+
+from linkwork.errors import LinkworkError
+from linkwork.lang import LANGUAGES, TEXTS, t
+
+
+def _fields(text: str) -> set[str]:
+    return {name for _, name, _, _ in string.Formatter().parse(text) if name}
+
+
+def test_every_text_has_both_languages_with_the_same_fields():
+    """Each text fills the same fields in both languages, and the Russian one is written in Russian: it has
+    Cyrillic letters unless it is only symbols, units and fields (``φ, °``, ``Fx, {unit}``)."""
+    for key, texts in TEXTS.items():
+        assert len(texts) == len(LANGUAGES) and all(texts), key
+        en, ru = texts
+        assert _fields(en) == _fields(ru), key
+        words = re.sub(r"\{[^{}]*\}|\\[A-Za-z]+|\bF[xy]\b", "", ru)  # fields, mathtext, force components
+        assert re.search("[а-яА-ЯёЁ]", words) or not re.search("[A-Za-z]{2,}", words), key
+        t(key, "ru", **dict.fromkeys(_fields(ru), "x"))  # formats
+
+
+def test_a_text_is_filled_and_an_unknown_language_or_key_refused():
+    assert t("title.hodograph", "ru", name="four-bar", joint="O2") == "four-bar: реакция в паре O2, положения 0–11"
+    assert t("axis.inertia", "ru") == r"$J_\mathrm{пр}$, кг·м²"
+    with pytest.raises(LinkworkError, match="expected one of en, ru, got 'de'"):
+        t("caption.scheme", "de")
+    with pytest.raises(KeyError):
+        t("no.such.text", "en")
