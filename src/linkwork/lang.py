@@ -218,6 +218,14 @@ TEXTS: dict[str, tuple[str, str]] = {
     ),
     "caption.velocity_plan": ("Velocity plan", "План скоростей"),
     "caption.acceleration_plan": ("Acceleration plan", "План ускорений"),
+    "caption.velocity_plans": (
+        "Velocity plans of the twelve positions, to one scale",
+        "Планы скоростей двенадцати положений в одном масштабе",
+    ),
+    "caption.acceleration_plans": (
+        "Acceleration plans of the twelve positions, to one scale",
+        "Планы ускорений двенадцати положений в одном масштабе",
+    ),
     "caption.link_angles": (
         "Angles, angular velocities and angular accelerations of the links",
         "Углы, угловые скорости и угловые ускорения звеньев",

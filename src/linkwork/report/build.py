@@ -337,7 +337,7 @@ def _plans(run: _Run, twelve: Kinematics, drawn: list[int], sheets: bool) -> lis
     if sheets:
         for kind in ("velocity", "acceleration"):
             sheet = run.figure(f"{kind}_plans", lambda kind=kind: figures.plan_sheet(twelve, kind),
-                               run.t(f"caption.{kind}_plan"))  # fmt: skip
+                               run.t(f"caption.{kind}_plans"))  # fmt: skip
             names.append(sheet)
     return names
 
@@ -674,7 +674,8 @@ def _figure_html(run: _Run, name: str) -> str:
     data = base64.b64encode((run.folder / "figures" / f"{name}.png").read_bytes()).decode()
     caption = html.escape(run.captions[name])
     return (
-        f"<figure><img alt='{caption}' src='data:image/png;base64,{data}'><figcaption>{caption}</figcaption></figure>"
+        f"<figure id='{html.escape(name)}'><img alt='{caption}' src='data:image/png;base64,{data}'>"
+        f"<figcaption>{caption}</figcaption></figure>"
     )
 
 
