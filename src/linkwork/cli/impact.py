@@ -7,8 +7,9 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail
+from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, fail
 from linkwork.errors import LinkworkError
+from linkwork.limits import MAX_BLOWS, whole
 
 if TYPE_CHECKING:
     from linkwork.impulse import Blow, Impact, Phase, RockerImpact, WorkingCycle
@@ -40,6 +41,7 @@ def impact(
     With --cycle: the machine's working cycle, blow after blow."""
     if blows is not None and not cycle:
         fail(LinkworkError("--blows: only with --cycle"))
+    check_options(whole(blows, "--blows", 3, MAX_BLOWS, "number of blows") if blows is not None else None)
     mech = _compile(file_or_example)
     if mech.blow is None:
         fail(LinkworkError('the mechanism has no blow: give an "impact:" section (at, normal, omega, restitution)'))
