@@ -16,6 +16,7 @@ tags, several documents, tabs, a byte-order mark, bytes that are not UTF-8).
 from __future__ import annotations
 
 import copy
+import functools
 import json
 import math
 import os
@@ -154,8 +155,8 @@ def _drop(rng: random.Random, data: Any) -> str:
     return f"drop {'.'.join(map(str, path + (key,)))}"
 
 
-_KEYS = ["name", "links", "joints", "drives", "frame", "points", "ends", "length", "mass", "type", "angle",
-         "speed", "loads", "machine", "impact", "hints", "units", "lenght", "Links", "", "0", "<<", "x" * 300]  # fmt: skip
+_KEYS = ["name", "links", "joints", "drives", "frame", "points", "ends", "length", "mass", "type", "angle", "speed",
+         "loads", "machine", "impact", "hints", "units", "lenght", "Links", "", "0", "<<", "x" * 300]  # fmt: skip
 
 
 def _extra(rng: random.Random, data: Any) -> str:
@@ -197,12 +198,17 @@ def _rename(rng: random.Random, data: Any) -> str:
     return f"rename {old} -> {new!r:.20}"
 
 
+#: Names a string is replaced by: Cyrillic, right-to-left and zero-width marks, control characters, lone
+#: surrogates, emoji, a byte-order mark.
+UNICODE_NAMES = ["кривошип", "\u202e" + "O2", "O2\u200d", "\x00", "\x07bell", "a\ud800", "\udfff", "😀😀", "\ufeff"]
+
+
 def _unicode(rng: random.Random, data: Any) -> str:
     strs = [p for p, v in _nodes(data) if isinstance(v, str)]
     if not strs:
         return _retype(rng, data)
     path = rng.choice(strs)
-    value = rng.choice(["кривошип", "\u202e" + "O2", "O2\u200d", "\x00", "\x07bell", "a\ud800", "\udfff", "😀😀", "\ufeff"])
+    value = rng.choice(UNICODE_NAMES)
     _set(data, path, value)
     return f"{'.'.join(map(str, path))}={value!r}"
 
@@ -252,6 +258,7 @@ def _laughs(levels: int, width: int) -> str:
 SLOW_YAML = {"many-nodes", "laughs-in-links", "markers-3000", "big-table"}
 
 
+@functools.cache
 def yaml_cases() -> dict[str, str | bytes]:
     """Texts that attack the YAML reader itself, by name."""
     four = text("four-bar")
@@ -260,11 +267,16 @@ def yaml_cases() -> dict[str, str | bytes]:
     return {
         "laughs-9x9": _laughs(9, 9),
         "laughs-30x2": _laughs(30, 2),
-        "laughs-in-links": four.replace("links:", "bomb: &b0 [x, x, x, x, x, x, x, x]\n" + "\n".join(
-            f"bomb{i}: &b{i} [*b{i - 1}, *b{i - 1}, *b{i - 1}, *b{i - 1}, *b{i - 1}, *b{i - 1}, *b{i - 1}, *b{i - 1}]"
-            for i in range(1, 9)) + "\nlinks:", 1),  # fmt: skip
-        "merge-bomb": "a0: &a0 {k: 1}\n" + "\n".join(
-            f"a{i}: &a{i} {{<<: [{', '.join([f'*a{i - 1}'] * 8)}]}}" for i in range(1, 9)) + "\n",  # fmt: skip
+        "laughs-in-links": four.replace(
+            "links:",
+            "bomb: &b0 [x, x, x, x, x, x, x, x]\n"
+            + "\n".join(f"bomb{i}: &b{i} [{', '.join([f'*b{i - 1}'] * 8)}]" for i in range(1, 9))
+            + "\nlinks:",
+            1,
+        ),  # fmt: skip
+        "merge-bomb": "a0: &a0 {k: 1}\n"
+        + "\n".join(f"a{i}: &a{i} {{<<: [{', '.join([f'*a{i - 1}'] * 8)}]}}" for i in range(1, 9))
+        + "\n",  # fmt: skip
         "self-alias": "a: &a [*a]\nb: &b {x: *b}\n",
         "undefined-alias": "a: *nothing\n",
         "deep-flow": _nested(10_000),
@@ -302,8 +314,9 @@ def yaml_cases() -> dict[str, str | bytes]:
         "duplicate-keys": four.replace("links:", "links: {}\nlinks:", 1),
         "big-table": big_table,
         "markers-3000": four.replace(
-            "points: {M: [175, 80]}", "points: {M: [175, 80], " + ", ".join(f"P{i}: [{i}, 1]" for i in range(3000)) + "}"
-        ),
+            "points: {M: [175, 80]}",
+            "points: {M: [175, 80], " + ", ".join(f"P{i}: [{i}, 1]" for i in range(3000)) + "}",
+        ),  # fmt: skip
         "coincident-markers": four.replace(
             "points: {M: [175, 80]}", "points: {" + ", ".join(f"P{i}: [5, 5]" for i in range(2000)) + "}"
         ),
@@ -313,14 +326,15 @@ def yaml_cases() -> dict[str, str | bytes]:
 # ---------------------------------------------------------------- options at their bounds
 
 
+@functools.cache
 def option_cases() -> list[Case]:
     """Command lines whose options are at, or past, their bounds (one past each bound is refused)."""
     big, huge = str(MAX_ANGLES + 1), "1" + "0" * 30
     out: list[tuple[str, ...]] = []
     for cmd in ("kinematics", "forces"):
         out += [(cmd, "four-bar", "--steps", s) for s in ("0", "-1", "1", "2", big, huge, "1e9", "x")]
-        out += [(cmd, "four-bar", "--angles", a) for a in ("1e308", "-1e308", "nan", "inf", "1e12", "36000",
-                                                          "36001", ",", "", "1,,2", "1;2", "0x10", "1" * 400)]  # fmt: skip
+        angles = ("1e308", "-1e308", "nan", "inf", "1e12", "36000", "36001", ",", "", "1,,2", "1;2", "0x10", "1" * 400)
+        out += [(cmd, "four-bar", "--angles", a) for a in angles]
         out += [(cmd, "four-bar", "--angles", ",".join(["1"] * (MAX_ANGLES + 1)))]
         out += [(cmd, "four-bar", "--steps", "12", "--angles", "0")]
     out += [("forces", "four-bar", "--speed", s) for s in ("1e308 rpm", "-1 rpm", "30", "nan rpm", "30 kg", "")]
@@ -354,8 +368,8 @@ def option_cases() -> list[Case]:
     out += [(*sweep, "{dir}/s.parquet", *grid, "--scheduler", "tcp://127.0.0.1:1", "--connect-timeout", t)
             for t in ("inf", "1e308", "0", "-1", "nan")]  # fmt: skip
     out += [(*sweep, "{dir}/" + "s" * 300 + ".parquet", *grid)]
-    out += [(*sweep, "{dir}/s.parquet", "--vary", v) for v in ("x" * 5000, "links.crank.length=" + "9" * 5000,
-                                                              "links.crank.length=1e308m:1e308m:2", "=", "")]  # fmt: skip
+    varies = ("x" * 5000, "links.crank.length=" + "9" * 5000, "links.crank.length=1e308m:1e308m:2", "=", "")
+    out += [(*sweep, "{dir}/s.parquet", "--vary", v) for v in varies]
     opt = ("optimize", "four-bar", "--vary", "links.crank.length=90mm:110mm", "--objective", "swing")
     out += [(*opt, "--popsize", p) for p in ("0", "-1", "1000000000", huge)]
     out += [(*opt, "--seed", s) for s in ("-1", str(MAX_SEED + 1))]
@@ -375,23 +389,25 @@ def option_cases() -> list[Case]:
 OPTION_FILES: dict[str, str | bytes] = {"sched.json": '{"address": 5}', "notjson": "address: tcp://x:1\n"}
 
 
-def file_cases(count: int, seed: int = 0, slow: bool = False) -> list[Case]:
-    """``count`` mutated files (checked, or solved: every fourth by kinematics, every fourth by forces),
-    and the YAML attacks (with ``slow``, also those of :data:`SLOW_YAML`)."""
-    out = []
-    for i in range(count):
-        what, body = mutated(seed + i)
-        argv: tuple[str, ...] = ("check", "{dir}/m.yaml", "--json")
-        if i % 4 == 1:
-            argv = ("kinematics", "{dir}/m.yaml", "--steps", "24", "--json")
-        elif i % 4 == 3:
-            argv = ("forces", "{dir}/m.yaml", "--steps", "24", "--json")
-        out.append(Case(f"file {seed + i}: {what}", argv, {"m.yaml": body}))
-    for name, body in yaml_cases().items():
-        if name in SLOW_YAML and not slow:
-            continue
-        out.append(Case(f"yaml {name}", ("check", "{dir}/m.yaml", "--json"), {"m.yaml": body}))
-    return out
+def file_case(i: int) -> Case:
+    """The mutated file of seed ``i``: checked, or solved (every fourth by kinematics, every fourth by forces)."""
+    what, body = mutated(i)
+    argv: tuple[str, ...] = ("check", "{dir}/m.yaml", "--json")
+    if i % 4 == 1:
+        argv = ("kinematics", "{dir}/m.yaml", "--steps", "24", "--json")
+    elif i % 4 == 3:
+        argv = ("forces", "{dir}/m.yaml", "--steps", "24", "--json")
+    return Case(f"file {i}: {what}", argv, {"m.yaml": body})
+
+
+def yaml_names(slow: bool = False) -> list[str]:
+    """The names of the YAML attacks (with ``slow``, also those of :data:`SLOW_YAML`)."""
+    return [name for name in yaml_cases() if slow or name not in SLOW_YAML]
+
+
+def yaml_case(name: str) -> Case:
+    """The YAML attack ``name``, checked."""
+    return Case(f"yaml {name}", ("check", "{dir}/m.yaml", "--json"), {"m.yaml": yaml_cases()[name]})
 
 
 # ---------------------------------------------------------------- running a case
@@ -433,7 +449,9 @@ def _limit_memory() -> None:
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
 
 
-def run_in_subprocess(case: Case, folder: Path, limit: float = TIME_LIMIT, env: dict[str, str] | None = None) -> Outcome:
+def run_in_subprocess(
+    case: Case, folder: Path, limit: float = TIME_LIMIT, env: dict[str, str] | None = None
+) -> Outcome:
     """Run ``case`` as ``python -m linkwork.cli`` with at most :data:`MEMORY_LIMIT` of memory and ``limit`` s."""
     case.write(folder)
     argv = [os.fsencode(a) for a in case.args(folder)]

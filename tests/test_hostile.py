@@ -18,35 +18,51 @@ import hostile
 from hostile import Case, option_cases, problems, run_in_process, run_in_subprocess
 
 #: Mutated files in the sample of the normal suite, and in the full run.
-SAMPLE, FULL = 150, 2000
+SAMPLE, FULL = 60, 2000
 
 #: Growth of this process's largest memory in use that a case of the sample may cause.
 MEMORY_GROWTH = 1.5 * (1 << 30)
 
 
-def _folder(tmp_path: Path, case: Case) -> Path:
+def _folder(tmp_path: Path) -> Path:
     for name, content in hostile.OPTION_FILES.items():
         (tmp_path / name).write_text(content) if isinstance(content, str) else (tmp_path / name).write_bytes(content)
     return tmp_path
 
 
-def _cases(count: int, slow: bool) -> list[Case]:
-    return hostile.file_cases(count, slow=slow) + option_cases()
+def _case(kind: str, key: str | int) -> Case:
+    """A case by its kind and key (cases are built when a test runs, so that collecting them is quick)."""
+    if kind == "file":
+        return hostile.file_case(int(key))
+    if kind == "yaml":
+        return hostile.yaml_case(str(key))
+    return option_cases()[int(key)]
 
 
-@pytest.mark.parametrize("case", _cases(SAMPLE, slow=False), ids=lambda c: c.name[:80])
-def test_a_sample_of_hostile_cases_ends_cleanly(case, tmp_path):
+def _keys(files: int, slow: bool) -> list[tuple[str, str | int]]:
+    n_options = len(option_cases())
+    return (
+        [("file", i) for i in range(files)]
+        + [("yaml", name) for name in hostile.yaml_names(slow)]
+        + [("option", i) for i in range(n_options)]
+    )
+
+
+@pytest.mark.parametrize(("kind", "key"), _keys(SAMPLE, slow=False), ids=lambda k: str(k)[:40])
+def test_a_sample_of_hostile_cases_ends_cleanly(kind, key, tmp_path):
+    case = _case(kind, key)
     before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
-    outcome = run_in_process(case, _folder(tmp_path, case))
+    outcome = run_in_process(case, _folder(tmp_path))
     assert problems(case, outcome) == [], (case.name, outcome.stderr[-1000:])
     grown = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024 - before
     assert grown < MEMORY_GROWTH, f"{case.name}: the process grew by {grown / 2**20:.0f} MiB"
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("case", _cases(FULL, slow=True), ids=lambda c: c.name[:80])
-def test_every_hostile_case_ends_cleanly_in_its_own_process(case, tmp_path):
-    outcome = run_in_subprocess(case, _folder(tmp_path, case))
+@pytest.mark.parametrize(("kind", "key"), _keys(FULL, slow=True), ids=lambda k: str(k)[:40])
+def test_every_hostile_case_ends_cleanly_in_its_own_process(kind, key, tmp_path):
+    case = _case(kind, key)
+    outcome = run_in_subprocess(case, _folder(tmp_path))
     assert problems(case, outcome) == [], (case.name, outcome.stderr[-1000:])
 
 
