@@ -381,14 +381,16 @@ class _Builder:
             return ()
         count = max(a.shape[1] if a.ndim == 3 else 1 for *_, a, _ in wanted)
         anchors = np.stack([_alternatives(a, count) for *_, a, _ in wanted], 1)  # (A, L, M, 2)
-        sizes = np.array([text_size(text, self.em) for text, *_ in wanted])
-        gaps = np.array([g for *_, g in wanted])
-        prefer = np.stack([self._prefer(link, local, kind, anchors[:, j, 0]) for j, (_, kind, link, local, _, _) in
-                           enumerate(wanted)], 1)  # fmt: skip
-        obstacles = self._obstacles(items)
         centres = np.full(anchors[:, :, 0].shape, np.nan)
-        centres[at] = place_labels(anchors[at], sizes, gaps, Obstacles(obstacles.segments[at], obstacles.circles[at]),
-                                   prefer[at], pad=0.15 * self.em)  # fmt: skip
+        if at:  # none: the labels' texts and anchors only (the viewer's edits move the labels it has)
+            sizes = np.array([text_size(text, self.em) for text, *_ in wanted])
+            gaps = np.array([g for *_, g in wanted])
+            prefer = np.stack([self._prefer(link, local, kind, anchors[:, j, 0]) for j, (_, kind, link, local, _, _)
+                               in enumerate(wanted)], 1)  # fmt: skip
+            obstacles = self._obstacles(items)
+            centres[at] = place_labels(anchors[at], sizes, gaps,
+                                       Obstacles(obstacles.segments[at], obstacles.circles[at]), prefer[at],
+                                       pad=0.15 * self.em)  # fmt: skip
         return tuple(Label(text, kind, link, local, centres[:, j])
                      for j, (text, kind, link, local, _, _) in enumerate(wanted))  # fmt: skip
 
