@@ -71,6 +71,7 @@
 
   function accept(req, ans, ms) {
     E.accepted = ans.overrides;
+    if (req.typed) for (const input of $("params").querySelectorAll("input[data-typed]")) delete input.dataset.typed;
     const t0 = performance.now();
     const merged = V.merge(state.full, ans);
     const t1 = performance.now();
@@ -147,7 +148,7 @@
     const i = state.index, centre = m.positions.at(i, drive.frame_point);
     const pin = m.positions.at(i, drive.points[0] === drive.frame_point ? drive.points[1] : drive.points[0]);
     if (!centre) return;
-    const r = 1000 * Math.max(pin ? Math.hypot(pin[0] - centre[0], pin[1] - centre[1]) : 0, 4 * m.scene.r);
+    const r = 1000 * Math.max(pin ? Math.hypot(pin[0] - centre[0], pin[1] - centre[1]) : 0, 0.12 * m.scene.size);
     const cx = 1000 * centre[0], cy = -1000 * centre[1];
     for (const e of events.filter((x) => x.kind === "no-assembly")) {
       const a = Math.min(e.start_deg, e.end_deg) * DEG, b = Math.max(e.start_deg, e.end_deg) * DEG;
@@ -157,8 +158,12 @@
         class: "trouble", d: `M${cx.toFixed(3)},${cy.toFixed(3)} L${pt(a)} A${r.toFixed(3)},${r.toFixed(3)} 0 ${sweep > Math.PI ? 1 : 0} 0 ${pt(a + sweep)} Z`,
         "data-from-deg": String(e.start_deg), "data-to-deg": String(e.end_deg),
       }, g);
-      const t = svg("text", { class: "trouble-label", x: pt(a + sweep / 2).split(",")[0], y: pt(a + sweep / 2).split(",")[1], "font-size": (1000 * m.scene.em).toFixed(3) }, g);
-      t.textContent = `no assembly ${fmt(e.start_deg, 4)}° to ${fmt(e.end_deg, 4)}°`;
+      const mid = a + sweep / 2;
+      const t = svg("text", {
+        class: "trouble-label", x: (cx + 0.6 * r * Math.cos(mid)).toFixed(3), y: (cy - 0.6 * r * Math.sin(mid)).toFixed(3),
+        "font-size": (0.8 * 1000 * m.scene.em).toFixed(3), "text-anchor": "middle", "dominant-baseline": "central",
+      }, g);
+      t.textContent = `no assembly ${fmt(e.start_deg, 3)}°–${fmt(e.end_deg, 3)}°`;
     }
   }
 
@@ -221,8 +226,7 @@
     ev.preventDefault();
     const { out, bad } = typed();
     if (bad.length) { V.showError(bad.map((b) => `${b}: enter a number`).join("\n")); return; }
-    for (const input of $("params").querySelectorAll("input[data-typed]")) delete input.dataset.typed;
-    propose(out, { commit: true });
+    propose(out, { commit: true, typed: true });
   }
 
   function reset() {
@@ -327,7 +331,7 @@
     }
     const readout = svg("text", { id: "drag-readout", "font-size": (1000 * m.scene.em).toFixed(3), visibility: "hidden" }, g);
     readout.textContent = "";
-    g.setAttribute("visibility", $("show-handles").checked ? "visible" : "hidden");
+    g.setAttribute("display", $("show-handles").checked ? "inline" : "none");
   }
 
   function placeHandles(i) {
@@ -475,7 +479,7 @@
   $("save").addEventListener("click", save);
   $("show-handles").addEventListener("change", (ev) => {
     const g = $("handles");
-    if (g) g.setAttribute("visibility", ev.target.checked ? "visible" : "hidden");
+    if (g) g.setAttribute("display", ev.target.checked ? "inline" : "none");
   });
   document.addEventListener("keydown", (ev) => {
     if (ev.target.tagName === "INPUT" || !(ev.ctrlKey || ev.metaKey) || !E.editable) return;

@@ -16,8 +16,10 @@
   function layer(m) {
     let g = $("forces");
     if (!g) g = svg("g", { id: "forces" }, $("scheme"));
+    const handles = $("handles");
+    if (handles) $("scheme").insertBefore(g, handles); // under the handles
     g.replaceChildren();
-    g.setAttribute("visibility", $("show-forces").checked ? "visible" : "hidden");
+    g.setAttribute("display", $("show-forces").checked ? "inline" : "none");
     const defs = svg("defs", {}, g);
     const head = (1000 * 1.6 * m.scene.r).toFixed(3);
     for (const kind of KINDS) {
@@ -106,7 +108,7 @@
   V.on("index", (i) => { if (update) update(i); });
   $("show-forces").addEventListener("change", (ev) => {
     const g = $("forces");
-    if (g) g.setAttribute("visibility", ev.target.checked ? "visible" : "hidden");
+    if (g) g.setAttribute("display", ev.target.checked ? "inline" : "none");
     $("forces-caption").hidden = !ev.target.checked || !update;
   });
   $("force-zoom").addEventListener("change", () => {

@@ -326,7 +326,7 @@
         t.setAttribute("x", X(c)); t.setAttribute("y", Y(c));
       });
     }
-    groups.paths.setAttribute("visibility", $("show-paths").checked ? "visible" : "hidden");
+    groups.paths.setAttribute("display", $("show-paths").checked ? "inline" : "none");
   }
 
   // one item: a circle (pivot, marker), an outline (polygon), a line or a polyline
@@ -668,7 +668,7 @@
     $("play").addEventListener("click", () => play(!state.playing));
     $("show-paths").addEventListener("change", (ev) => {
       const g = $("paths");
-      if (g) g.setAttribute("visibility", ev.target.checked ? "visible" : "hidden");
+      if (g) g.setAttribute("display", ev.target.checked ? "inline" : "none");
     });
     $("error-close").addEventListener("click", hideError);
     document.addEventListener("keydown", (ev) => {
