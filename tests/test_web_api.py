@@ -1057,3 +1057,38 @@ def test_crank_steps_do_not_queue_behind_solves_under_load():
             t.join(timeout=180)
     assert busy > 0, "the solves were over before the poses: the test proves nothing"
     assert sorted(waits)[len(waits) // 2] < 1.0, waits
+
+
+def test_small_answers_are_not_held_back_for_the_clients_delayed_ack():
+    """Each small answer (a pose, the parameters) came some 40 ms late: the server's connections kept Nagle's
+    algorithm, which holds the body back until the headers are acknowledged, and clients delay that ACK.  A
+    crank step over HTTP now takes a few milliseconds."""
+    import http.client
+    import statistics
+
+    code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
+    proc = subprocess.Popen(
+        [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+    )
+    try:
+        port = int(re.search(r"http://127\.0\.0\.1:(\d+)/", proc.stdout.readline()).group(1))
+        conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+        waits = {}
+        for path, body in (("/api/parameters", None), ("/api/pose", b'{"angle_deg": 10}')):
+            times = []
+            for _ in range(21):
+                t = time.perf_counter()
+                conn.request("GET" if body is None else "POST", path, body, {"Content-Type": JSON})
+                response = conn.getresponse()
+                response.read()
+                assert response.status == 200
+                times.append(time.perf_counter() - t)
+            waits[path] = statistics.median(times[1:])
+        conn.close()
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
+    assert max(waits.values()) < 0.02, waits

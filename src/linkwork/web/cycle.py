@@ -22,6 +22,11 @@ from linkwork.motion.kinematics import Kinematics, kinematics
 from linkwork.scene.scheme import CYCLE
 from linkwork.structure.model import Mechanism, one_crank
 
+#: Crank angles a dragged value's answer draws the scheme's symbols from (the sides the supports stand on,
+#: the guides' lengths): fewer than :data:`linkwork.scene.scheme.CYCLE`, the whole cycle's, to answer in time;
+#: the whole cycle solved once the drag ends draws them from all of those.
+DRAGGED = 24
+
 
 @dataclass(frozen=True)
 class Cycle:
@@ -76,8 +81,11 @@ class Cycle:
         return out
 
 
-def solve_cycle(mech: Mechanism, steps: int, overrides: dict[str, float] | None = None) -> Cycle:
-    """The cycle of ``mech`` with ``overrides`` (SI, checked by the caller) at ``steps`` crank angles.
+def solve_cycle(
+    mech: Mechanism, steps: int, overrides: dict[str, float] | None = None, symbols: int = CYCLE
+) -> Cycle:
+    """The cycle of ``mech`` with ``overrides`` (SI, checked by the caller) at ``steps`` crank angles, the
+    scheme's symbols drawn from ``symbols`` angles (:data:`DRAGGED` for the answers while a value is dragged).
 
     Raises
     ------
@@ -91,10 +99,10 @@ def solve_cycle(mech: Mechanism, steps: int, overrides: dict[str, float] | None 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         kin = kinematics(mech, steps=steps, variants=variants)
-        symbols = kin if steps == CYCLE else kinematics(mech, steps=CYCLE, variants=variants)
+        drawn = kin if steps == symbols else kinematics(mech, steps=symbols, variants=variants)
         forces, reason = _forces(kin)
     notes = tuple(dict.fromkeys(str(w.message) for w in caught))
-    return Cycle(mech, overrides, kin, symbols, forces, reason, notes)
+    return Cycle(mech, overrides, kin, drawn, forces, reason, notes)
 
 
 def _forces(kin: Kinematics) -> tuple[Forces | None, str]:

@@ -309,10 +309,10 @@ def _scene(cycle: Cycle, series: tuple[PlanSeries, PlanSeries]) -> dict[str, Any
 def scheme_shape(scheme: SchemeScene) -> dict[str, Any]:
     """The scheme's sizes and items (what a dimension changes, but for the poses, the labels and the extent)."""
     items = [
-        {"kind": it.kind, "link": it.link, "xy": _json(it.xy, 9), "closed": it.closed, "radius": it.radius,
-         "name": it.name}
+        {"kind": it.kind, "link": it.link, "xy": np.round(np.asarray(it.xy, dtype=float), 9).tolist(),
+         "closed": it.closed, "radius": it.radius, "name": it.name}
         for it in scheme.items
-    ]  # fmt: skip
+    ]  # fmt: skip (a drawing's vertices are finite)
     return {"size": scheme.size, "r": scheme.r, "em": scheme.em, "items": items}
 
 
@@ -339,14 +339,15 @@ def plan_shape(cycle: Cycle, series: PlanSeries) -> tuple[dict[str, Any], float]
 def plan_frame(series: PlanSeries, valid: np.ndarray, scale: float) -> np.ndarray:
     """``[x0, y0, x1, y1]`` (mm of the sheet, y up) that holds the plans of 95 % of the positions, the pole
     among them: one frame for the cycle, so that the plan does not jump while the crank turns."""
-    pts = np.where(valid[:, None, None], series.values[0], np.nan) / scale  # (A, L, 2)
-    finite = np.isfinite(pts)
-    lo = np.minimum(np.min(np.where(finite, pts, np.inf), axis=1), 0.0)  # (A, 2)
-    hi = np.maximum(np.max(np.where(finite, pts, -np.inf), axis=1), 0.0)
     ok = np.asarray(valid, dtype=bool)
     if not ok.any():
         return np.array([-1.0, -1.0, 1.0, 1.0])
-    return np.concatenate([np.quantile(lo[ok], 0.025, axis=0), np.quantile(hi[ok], 0.975, axis=0)])
+    pts = np.ascontiguousarray(np.moveaxis(series.values[0][ok], 1, -1)) / scale  # (a, 2, L): the points last
+    finite = np.isfinite(pts)
+    lo = np.minimum(np.where(finite, pts, np.inf).min(-1), 0.0)  # (a, 2)
+    hi = np.maximum(np.where(finite, pts, -np.inf).max(-1), 0.0)
+    q = np.quantile(np.concatenate([lo, hi], 1), [0.025, 0.975], axis=0)
+    return np.concatenate([q[0, :2], q[1, 2:]])
 
 
 def _series(cycle: Cycle) -> list[dict[str, Any]]:

@@ -22,9 +22,10 @@ from typing import Any
 import numpy as np
 
 from linkwork.api import mechanism_of
+from linkwork.scene.scheme import CYCLE
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import file_text
-from linkwork.web.cycle import Cycle, check_assembly, solve_cycle
+from linkwork.web.cycle import DRAGGED, Cycle, check_assembly, solve_cycle
 from linkwork.web.edits import editable, validated, variant_parameters
 from linkwork.web.payload import full_payload, pose_payload
 from linkwork.web.update import edit_payload
@@ -114,7 +115,7 @@ class Viewer:
         """
         steps = steps or self.steps
         checked = validated(self.mech, overrides, self._known) if overrides else {}
-        cycle = solve_cycle(self.mech, steps, checked)
+        cycle = solve_cycle(self.mech, steps, checked, DRAGGED if whole_turn else CYCLE)
         check_assembly(cycle, self.whole(steps) if whole_turn else None)
         return cycle
 
@@ -147,8 +148,9 @@ class Viewer:
         """The compact answer (JSON) to the edit ``overrides``: :func:`linkwork.web.update.edit_payload`."""
         found = self.cached_edit(overrides, steps, whole_turn)
         if found is None:
-            # a drag (whole_turn) is answered without the strokes, which take a tenth of the time
-            found = dumps(edit_payload(self.solve(overrides, steps, whole_turn), self._editable, not whole_turn))
+            # a drag (whole_turn) is answered without the strokes and the plans' frames, the scheme's symbols of
+            # DRAGGED angles, to answer in time
+            found = dumps(edit_payload(self.solve(overrides, steps, whole_turn), self._editable, whole_turn))
             self._edits.put(self._edit_key(overrides, steps, whole_turn), found)
         return found
 

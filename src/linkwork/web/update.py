@@ -6,7 +6,8 @@ items and sizes, but not the names, the structure, the labels' texts or the seri
 answer (``format: linkwork-edit/1``) holds, under the payload's own keys, only these: ``valid``,
 ``local`` (the points in their links' axes, from which the page places the points: positions are not
 sent), ``plans`` (each plan's ``scale_per_mm`` and ``values``), ``scene`` (``size``, ``r``, ``em``,
-``items``, ``poses``, the labels' anchors ``label_at`` (Lb, 2), each plan's ``frame`` and ``em``),
+``items``, ``poses``, the labels' anchors ``label_at`` (Lb, 2), each plan's ``frame`` and ``em``, but
+while a value is dragged),
 ``series`` (``keys`` and ``values`` (S, A) in that order), ``forces`` (as in the payload, ``values``
 compact, without the checks of the whole solution), ``parameters`` (the variant's values),
 ``extremes`` (None in a drag's answers), ``events``, ``warnings``, ``overrides`` and ``steps``.  The
@@ -34,6 +35,7 @@ from linkwork.web.edits import variant_parameters
 from linkwork.web.payload import (
     _finite,
     _json,
+    cycle_scale,
     forces_part,
     plan_shape,
     plan_values,
@@ -51,11 +53,12 @@ def compact(a: np.ndarray, dtype: str = "f4") -> dict[str, Any]:
     return {"dtype": dtype, "shape": list(data.shape), "b64": base64.b64encode(data.tobytes()).decode("ascii")}
 
 
-def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, strokes: bool = True) -> dict[str, Any]:
+def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged: bool = False) -> dict[str, Any]:
     """The answer to an edit: what differs from the payload of the mechanism as loaded (module docstring).
 
-    ``editable``: the editable parameters of the mechanism, where the caller has them; without
-    ``strokes`` the ``extremes`` are None (a drag's answers: the page shows them once the drag ends).
+    ``editable``: the editable parameters of the mechanism, where the caller has them.  The answers to a
+    ``dragged`` value leave out the strokes (``extremes`` None) and the frames of the plans, which the page
+    keeps from the last whole cycle until the drag ends.
     """
     kin = cycle.kin
     series = plan_series(kin)
@@ -64,7 +67,10 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, strokes:
     poses = np.array(kin.pose[0])
     poses[..., 2] = np.pi - np.mod(np.pi - poses[..., 2], 2 * np.pi)  # angles in (-pi, pi]
     scene = scheme_shape(scheme)
-    shapes = {one.kind: plan_shape(cycle, one) for one in series}  # (frame and em, scale) of each plan
+    if dragged:  # each plan's scale for the cycle, its frame kept
+        shapes = {one.kind: ({}, cycle_scale(one, cycle.valid)) for one in series}
+    else:  # each plan's frame and labels' size, and its scale
+        shapes = {one.kind: plan_shape(cycle, one) for one in series}
     scene.update({
         "poses": compact(poses),
         "label_at": _json(np.array([lab.at for lab in scheme.labels]).reshape(-1, 2), 12),
@@ -84,7 +90,7 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, strokes:
                    "values": compact(np.array([q[4] for q in quantities]).reshape(len(quantities), -1))},  # fmt: skip
         "forces": forces_part(cycle, scheme.size, compact),
         "parameters": variant_parameters(cycle.mech, cycle.overrides, kin.mass_properties, editable),
-        "extremes": [_finite(e.as_dict()) for e in extremes(kin)] if strokes else None,
+        "extremes": None if dragged else [_finite(e.as_dict()) for e in extremes(kin)],
         "events": [_finite(e.as_dict()) for e in kin.events],
         "warnings": list(cycle.notes),
     }

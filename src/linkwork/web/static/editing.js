@@ -22,6 +22,7 @@
   const E = {
     client: Array.from(crypto.getRandomValues(new Uint8Array(9)), (b) => b.toString(16).padStart(2, "0")).join(""),
     seq: 0,
+    epoch: 0, // answers to edits sent before the last return to the file's values are dropped
     inflight: null,
     pending: null,
     accepted: {}, // the overrides of the mechanism shown
@@ -42,7 +43,7 @@
   // ``overrides``: the whole edit (SI); drag: a dragged value (it must assemble where the file's does);
   // commit: the edit is made (history, the whole cycle placed); record: false for undo and redo
   function propose(overrides, opts) {
-    E.pending = Object.assign({ overrides, drag: false, commit: false, record: true }, opts || {});
+    E.pending = Object.assign({ overrides, drag: false, commit: false, record: true, epoch: E.epoch }, opts || {});
     pump();
   }
 
@@ -52,31 +53,29 @@
     E.pending = null;
     req.seq = ++E.seq;
     const t0 = performance.now();
+    let status = 0, body;
     try {
       const r = await fetch("api/edit", {
         method: "POST", headers: { "Content-Type": "application/json", Accept: "application/json" },
         body: JSON.stringify({ overrides: req.overrides, whole_turn: req.drag, client: E.client, seq: req.seq }),
       });
-      const body = await r.json().catch(() => ({ error: `the server answered ${r.status}` }));
-      if (r.ok) accept(req, body, performance.now() - t0);
-      else if (r.status !== 409) refuse(req, body);
+      status = r.status;
+      body = await r.json().catch(() => ({ error: `the server answered ${r.status}` }));
     } catch (err) {
-      refuse(req, { error: `no answer from the server: ${err.message || err}` });
-    } finally {
-      E.inflight = null;
-      if (req.commit) settle(req);
-      pump();
+      body = { error: `no answer from the server: ${err.message || err}` };
     }
+    E.inflight = null;
+    pump(); // the next value is solved while this answer is drawn
+    if (req.epoch !== E.epoch) return; // sent before the file's values were brought back
+    if (status >= 200 && status < 300) accept(req, body, performance.now() - t0);
+    else if (status !== 409) refuse(req, body);
+    if (req.commit) settle(req);
   }
 
   function accept(req, ans, ms) {
     E.accepted = ans.overrides;
     if (req.typed) for (const input of $("params").querySelectorAll("input[data-typed]")) delete input.dataset.typed;
-    const t0 = performance.now();
-    const merged = V.merge(state.full, ans);
-    const t1 = performance.now();
-    V.show(merged, true);
-    $("scheme").setAttribute("data-page-ms", `${(t1 - t0).toFixed(1)} ${(performance.now() - t1).toFixed(1)}`);
+    V.show(V.merge(state.full, ans), true);
     V.hideError();
     trouble(null);
     $("scheme").setAttribute("data-edit-ms", ms.toFixed(1));
@@ -90,7 +89,7 @@
     if (E.drag) E.drag.handle.el.classList.add("bad");
   }
 
-  // an edit made: into the history, and the whole cycle solved again for its labels
+  // an edit made: into the history, and the whole cycle solved again for its labels (the file's is at hand)
   function settle(req) {
     if (req.record && !same(E.accepted, E.history[E.at])) {
       E.history = E.history.slice(0, E.at + 1);
@@ -99,6 +98,10 @@
     }
     buttons();
     clearRefine();
+    if (!Object.keys(E.accepted).length) {
+      if (state.data !== state.base && !E.inflight && !E.pending) V.show(state.base, false);
+      return;
+    }
     E.refine = setTimeout(refine, 300);
   }
 
@@ -127,8 +130,14 @@
     }
   }
 
-  function undo() { if (E.at > 0) { E.at -= 1; propose(E.history[E.at], { commit: true, record: false }); buttons(); } }
-  function redo() { if (E.at < E.history.length - 1) { E.at += 1; propose(E.history[E.at], { commit: true, record: false }); buttons(); } }
+  function go(at) {
+    E.at = at;
+    if (Object.keys(E.history[at]).length) propose(E.history[at], { commit: true, record: false });
+    else toFile({ record: false });
+    buttons();
+  }
+  function undo() { if (E.at > 0) go(E.at - 1); }
+  function redo() { if (E.at < E.history.length - 1) go(E.at + 1); }
 
   function buttons() {
     $("undo").disabled = !E.editable || E.at === 0;
@@ -205,8 +214,10 @@
     for (const input of $("params").querySelectorAll("input[data-param]")) {
       const p = values[input.getAttribute("data-param")];
       if (!p || input.dataset.typed === "1") continue;
-      input.value = shown(p.value, units(m, p.kind)[1]);
-      input.parentElement.classList.toggle("changed", input.value !== input.defaultValue);
+      const text = shown(p.value, units(m, p.kind)[1]);
+      if (input.value === text) continue;
+      input.value = text;
+      input.parentElement.classList.toggle("changed", text !== input.defaultValue);
     }
   }
 
@@ -229,13 +240,26 @@
     propose(out, { commit: true, typed: true });
   }
 
+  // the file's values: the mechanism as loaded, shown at once
   function reset() {
     for (const input of $("params").querySelectorAll("input[data-param]")) {
       delete input.dataset.typed;
       input.value = input.defaultValue;
       input.parentElement.classList.remove("changed");
     }
-    propose({}, { commit: true });
+    E.pending = null;
+    toFile({ record: true });
+  }
+
+  function toFile(req) {
+    E.epoch += 1;
+    clearRefine();
+    E.accepted = {};
+    V.show(state.base, false);
+    V.hideError();
+    trouble(null);
+    $("edit-status").textContent = "the file's values";
+    settle(Object.assign({ record: true }, req));
   }
 
   async function save() {

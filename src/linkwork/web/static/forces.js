@@ -103,17 +103,26 @@
     };
   }
 
-  let update = null;
-  V.on("show", (m) => { update = build(m); });
+  // drawn only while shown: an edit's answer is not drawn twice
+  let update = null, model = null;
+  function refresh() {
+    update = model && $("show-forces").checked ? build(model) : null;
+    if (!update) {
+      const f = model && model.forces;
+      $("show-forces").disabled = !(f && f.available);
+      $("forces-caption").hidden = true;
+      const g = $("forces");
+      if (g) g.setAttribute("display", $("show-forces").checked ? "inline" : "none");
+    }
+  }
+  V.on("show", (m) => { model = m; refresh(); });
   V.on("index", (i) => { if (update) update(i); });
-  $("show-forces").addEventListener("change", (ev) => {
-    const g = $("forces");
-    if (g) g.setAttribute("display", ev.target.checked ? "inline" : "none");
-    $("forces-caption").hidden = !ev.target.checked || !update;
+  $("show-forces").addEventListener("change", () => {
+    refresh();
+    if (update) update(V.state.index);
   });
   $("force-zoom").addEventListener("change", () => {
-    if (!V.state.data) return;
-    update = build(V.state.data);
+    refresh();
     if (update) update(V.state.index);
   });
 })();

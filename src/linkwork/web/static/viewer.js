@@ -24,8 +24,10 @@
     position: 0, // fractional sample while playing
     last: null,
     chosen: null, // keys of the charted series
-    update: [], // functions (i) -> void run on every change of the crank angle
+    parts: {}, // by part of the page, the functions (i) -> void run on every change of the crank angle
+    keys: {}, // by part, what it was built for
     chartUpdate: [],
+    charts: [],
     hooks: { build: [], show: [], index: [] },
     updates: 0, // edits' answers shown
   };
@@ -75,9 +77,13 @@
       return new Grid(data, shape);
     }
     static compact(c) {
-      const raw = atob(c.b64);
-      const bytes = new Uint8Array(raw.length);
-      for (let i = 0; i < raw.length; i++) bytes[i] = raw.charCodeAt(i);
+      let bytes;
+      if (Uint8Array.fromBase64) bytes = Uint8Array.fromBase64(c.b64);
+      else {
+        const raw = atob(c.b64);
+        bytes = new Uint8Array(raw.length);
+        for (let i = 0; i < raw.length; i++) bytes[i] = raw.charCodeAt(i);
+      }
       const Type = { f4: Float32Array, f8: Float64Array, u1: Uint8Array }[c.dtype];
       return new Grid(new Type(bytes.buffer), c.shape);
     }
@@ -246,13 +252,12 @@
     state.data = m;
     if (!edited) state.full = m;
     else state.updates += 1;
-    state.update = [];
     const n = m.steps;
     $("angle").max = String(n - 1);
     state.index = Math.min(state.index, n - 1);
-    buildScheme(m);
-    buildPlan(m, "velocity");
-    buildPlan(m, "acceleration");
+    // each part is built again only where what it draws changed (an edit changes the values, seldom the parts)
+    drawn("scheme", schemeKey(m), () => buildScheme(m), () => refreshScheme(m));
+    for (const kind of ["velocity", "acceleration"]) drawn(kind, planKey(m, kind), () => buildPlan(m, kind), () => refreshPlan(m, kind));
     drawCharts(m);
     buildStructure(m);
     for (const f of state.hooks.show) f(m, edited);
@@ -260,6 +265,16 @@
     // the labels as the scene placed them, or moved with their points since (an edit's answer)
     $("scheme").setAttribute("data-labels", edited ? "moved" : "placed");
     setIndex(state.index);
+  }
+
+  // build a part of the page where its key changed, else refresh it; its functions (i) -> void of the crank
+  // angle are state.parts[name], built with it
+  function drawn(name, key, build, refresh) {
+    if (state.keys[name] !== key) {
+      state.keys[name] = key;
+      state.parts[name] = [];
+      build();
+    } else refresh();
   }
 
   // ------------------------------------------------------------------ the scheme
@@ -292,45 +307,61 @@
     $("scheme").setAttribute("viewBox", state.view.map((v) => v.toFixed(3)).join(" "));
   }
 
+  // what the scheme's elements are: the items (not where their vertices are), the labels, the trajectories
+  function schemeKey(m) {
+    const items = m.scene.items.map((it) => [it.kind, it.link, it.name, it.closed, it.radius > 0, it.xy.length].join("/"));
+    return JSON.stringify([m.name, items, m.scene.labels.length, m.scene.paths]);
+  }
+
   function buildScheme(m) {
     const root = $("scheme");
     let drawing = $("drawing");
     if (!drawing) drawing = svg("g", { id: "drawing" }, root);
     drawing.replaceChildren();
     root.insertBefore(drawing, root.firstChild);
-    const scene = m.scene;
+    const scene = m.scene, update = state.parts.scheme;
     const groups = {};
     for (const id of ["paths", "ground", "links", "pairs", "labels"]) groups[id] = svg("g", { id: id }, drawing);
-    groups.labels.setAttribute("font-size", (1000 * scene.em).toFixed(3));
-
-    // trajectories of the moving points
-    const pos = m.positions;
-    for (const p of scene.paths) {
-      let d = "", pen = false;
-      for (let i = 0; i < m.steps; i++) {
-        const xy = pos.at(i, p);
-        if (!xy) { pen = false; continue; }
-        d += (pen ? "L" : "M") + (1000 * xy[0]).toFixed(2) + "," + (-1000 * xy[1]).toFixed(2);
-        pen = true;
-      }
-      if (d) svg("path", { class: "path", d: d, "data-point": m.points[p].label }, groups.paths);
-    }
-    for (const item of scene.items) drawItem(m, item, groups[GROUP[item.kind] || (item.link === 0 || item.radius ? "pairs" : "links")]);
-    for (const lab of scene.labels) {
+    state.trajectories = scene.paths.map((p) => [p, svg("path", { class: "path", "data-point": m.points[p].label }, groups.paths)]);
+    state.fixed = [];
+    state.circles = [];
+    scene.items.forEach((item, k) => drawItem(k, item, groups[GROUP[item.kind] || (item.link === 0 || item.radius ? "pairs" : "links")]));
+    scene.labels.forEach((lab, k) => {
       const t = svg("text", { class: lab.kind === "link" ? "link-number" : "label", "text-anchor": "middle", "dominant-baseline": "central" }, groups.labels);
       t.textContent = lab.text;
-      state.update.push((i) => {
-        const c = lab.centre.at(i, 0);
+      update.push((i) => {
+        const c = state.data.scene.labels[k].centre.at(i, 0);
         if (!c) { t.setAttribute("visibility", "hidden"); return; }
         t.setAttribute("visibility", "visible");
         t.setAttribute("x", X(c)); t.setAttribute("y", Y(c));
       });
-    }
+    });
     groups.paths.setAttribute("display", $("show-paths").checked ? "inline" : "none");
+    refreshScheme(m);
   }
 
-  // one item: a circle (pivot, marker), an outline (polygon), a line or a polyline
-  function drawItem(m, item, g) {
+  // what an edit changes that no crank angle does: the trajectories, the frame's items, the sizes of the
+  // pivots and of the text (they follow the drawing's size)
+  function refreshScheme(m) {
+    const pos = m.positions, P = pos.shape[1], d = pos.data;
+    for (const [p, el] of state.trajectories) {
+      const parts = [];
+      let pen = false;
+      for (let i = 0; i < m.steps; i++) {
+        const k = (i * P + p) * 2, x = d[k];
+        if (x !== x) { pen = false; continue; }
+        parts.push((pen ? "L" : "M") + Math.round(1e5 * x) / 100 + "," + Math.round(-1e5 * d[k + 1]) / 100);
+        pen = true;
+      }
+      el.setAttribute("d", parts.join(""));
+    }
+    for (const [k, put] of state.fixed) put(m.scene.items[k].xy);
+    for (const [k, el] of state.circles) el.setAttribute("r", (1000 * m.scene.items[k].radius).toFixed(4));
+    $("labels").setAttribute("font-size", (1000 * m.scene.em).toFixed(3));
+  }
+
+  // one item, the k-th of the scene: a circle (pivot, marker), an outline (polygon), a line or a polyline
+  function drawItem(k, item, g) {
     const cls = CLASS[item.kind] || item.kind;
     const attrs = { class: cls };
     if (item.kind === "bar" || item.kind === "plate") attrs["data-link"] = item.name;
@@ -338,7 +369,7 @@
     else attrs["data-joint"] = item.name;
     const tag = item.radius ? "circle" : item.closed ? "polygon" : item.xy.length === 2 ? "line" : "polyline";
     const e = svg(tag, attrs, g);
-    if (item.radius) e.setAttribute("r", (1000 * item.radius).toFixed(4));
+    if (item.radius) state.circles.push([k, e]);
     const put = (xy) => {
       if (!xy) { e.setAttribute("visibility", "hidden"); return; }
       e.setAttribute("visibility", "visible");
@@ -348,26 +379,34 @@
         e.setAttribute("x2", X(xy[1])); e.setAttribute("y2", Y(xy[1]));
       } else e.setAttribute("points", xy.map((v) => X(v) + "," + Y(v)).join(" "));
     };
-    if (item.link === 0) put(item.xy);
-    else {
-      state.update.push((i) => {
-        const pose = m.valid[i] ? m.poses.at(i, item.link) : null;
-        put(pose ? item.xy.map((v) => place(pose, v)) : null);
-      });
-    }
+    if (item.link === 0) { state.fixed.push([k, put]); return; }
+    state.parts.scheme.push((i) => {
+      const m = state.data, pose = m.valid[i] ? m.poses.at(i, item.link) : null;
+      put(pose ? m.scene.items[k].xy.map((v) => place(pose, v)) : null);
+    });
   }
 
   // ------------------------------------------------------------------ the plans
 
   const KINDS = ["absolute", "rotation", "normal", "tangential", "transport", "coriolis", "sliding"];
 
+  // what a plan's elements are: its points and vectors, its frame and the size of its labels
+  function planKey(m, kind) {
+    const look = m.scene.plans[kind], plan = m.plans[kind];
+    return JSON.stringify([m.name, look.frame, look.em, look.kinds, plan.labels, plan.vectors.length]);
+  }
+
+  // the plan's scale may change with an edit: its elements read it, and the model, when they are placed
+  function refreshPlan(m, kind) {
+    $(kind + "-plan").setAttribute("data-scale", String(m.plans[kind].scale_per_mm));
+  }
+
   function buildPlan(m, kind) {
     const root = $(kind + "-plan");
     root.replaceChildren();
     const plan = m.plans[kind];
     const look = m.scene.plans[kind];
-    const scale = plan.scale_per_mm;
-    root.setAttribute("data-scale", String(scale));
+    refreshPlan(m, kind);
     root.setAttribute("data-transform", "x_svg = u_x / scale, y_svg = -u_y / scale (mm of the drawing)");
     // one frame for the whole cycle, so that the plan does not jump while the crank turns (the scene's:
     // it holds the plans of 95 % of the positions; near a dead point accelerations grow without bound)
@@ -387,9 +426,9 @@
     svg("line", { class: "grid", x1: 0, y1: -y1 - pad, x2: 0, y2: -y0 + pad }, grid);
     const lines = svg("g", {}, root);
     const dots = svg("g", { "font-size": look.em.toFixed(3) }, root);
-    const at = (i, j) => {
-      const v = m.valid[i] ? plan.values.at(i, j) : null;
-      return v ? [v[0] / scale, -v[1] / scale] : null;
+    const at = (now, i, j) => {
+      const v = state.data.valid[i] ? now.values.at(i, j) : null;
+      return v ? [v[0] / now.scale_per_mm, -v[1] / now.scale_per_mm] : null;
     };
     const pole = plan.labels.indexOf("p");
     const drawn = [];
@@ -409,9 +448,10 @@
     const caption = $(kind + "-caption");
     const unit = plan.unit === "m/s" ? "(m/s)/mm" : "(m/s²)/mm";
     const mu = kind === "velocity" ? "μv" : "μa";
-    state.update.push((i) => {
+    state.parts[kind].push((i) => {
+      const now = state.data.plans[kind], shown = state.data.scene.plans[kind];
       drawn.forEach((v, k) => {
-        const a = at(i, v.from), b = at(i, v.to), e = els[k];
+        const a = at(now, i, v.from), b = at(now, i, v.to), e = els[k];
         const zero = a && b && Math.hypot(b[0] - a[0], b[1] - a[1]) < 1e-9 * size;
         if (!a || !b || zero) { e.setAttribute("visibility", "hidden"); return; }
         e.setAttribute("visibility", "visible");
@@ -419,8 +459,8 @@
         e.setAttribute("x2", b[0].toFixed(4)); e.setAttribute("y2", b[1].toFixed(4));
       });
       plan.labels.forEach((lab, j) => {
-        const p = at(i, j), [c, t] = marks[j];
-        const text = look.text[i][j], centre = look.centres.at(i, j);
+        const p = at(now, i, j), [c, t] = marks[j];
+        const text = shown.text[i][j], centre = shown.centres.at(i, j);
         if (!p) { c.setAttribute("visibility", "hidden"); t.setAttribute("visibility", "hidden"); return; }
         c.setAttribute("visibility", "visible");
         c.setAttribute("cx", p[0].toFixed(4)); c.setAttribute("cy", p[1].toFixed(4));
@@ -431,10 +471,10 @@
         t.setAttribute("x", centre[0].toFixed(3)); t.setAttribute("y", (-centre[1]).toFixed(3));
       });
       const parts = plan.absolute.map((j) => {
-        const v = m.valid[i] ? plan.values.at(i, j) : null;
+        const v = state.data.valid[i] ? now.values.at(i, j) : null;
         return v ? `${plan.labels[j]} ${fmt(Math.hypot(v[0], v[1]), 3)}` : `${plan.labels[j]} -`;
       });
-      caption.textContent = `${kind} plan, pole p, ${mu} = ${scale} ${unit} of the plan drawn full size (shown scaled to fit); ` +
+      caption.textContent = `${kind} plan, pole p, ${mu} = ${now.scale_per_mm} ${unit} of the plan drawn full size (shown scaled to fit); ` +
         `|${kind === "velocity" ? "v" : "a"}| in ${plan.unit}: ${parts.join(", ")}`;
     });
   }
@@ -489,17 +529,44 @@
   // a chart's viewBox (W x H) and the margins of its plot (left, right, top, bottom)
   const CHART = { W: 640, H: 150, L: 64, R: 12, T: 20, B: 22 };
 
+  // the charts of the chosen series: built when the choice changes, their curves and axes redrawn per model
   function drawCharts(m) {
+    const key = JSON.stringify([m.name, m.steps, state.chosen]);
+    if (state.chartKey !== key) {
+      state.chartKey = key;
+      buildCharts(m);
+    }
+    for (const chart of state.charts) chart.refresh(m);
+  }
+
+  function buildCharts(m) {
     const root = $("charts");
     root.replaceChildren();
     state.chartUpdate = [];
+    state.charts = [];
+    for (const key of state.chosen) if (m.series.some((x) => x.key === key)) state.charts.push(chart(root, key));
+    const note = html("div", "x: crank angle turned from the first position, deg; click a chart to move the crank there", root);
+    note.className = "note";
+  }
+
+  function chart(root, key) {
     const { W, H, L, R, T, B } = CHART;
-    const n = m.turn_deg.length;
-    const xOf = (i) => L + (W - L - R) * (m.turn_deg[i] / 360);
-    for (const key of state.chosen) {
-      const s = m.series.find((x) => x.key === key);
-      if (!s) continue;
-      const g = svg("svg", { class: "chart", viewBox: `0 0 ${W} ${H}`, preserveAspectRatio: "none", "data-series": key }, root);
+    const xOf = (i) => L + (W - L - R) * (state.data.turn_deg[i] / 360);
+    const g = svg("svg", { class: "chart", viewBox: `0 0 ${W} ${H}`, preserveAspectRatio: "none", "data-series": key }, root);
+    svg("line", { class: "axis", x1: L, y1: H - B, x2: W - R, y2: H - B }, g);
+    svg("line", { class: "axis", x1: L, y1: T, x2: L, y2: H - B }, g);
+    for (const t of [0, 90, 180, 270, 360]) {
+      const x = L + (W - L - R) * t / 360;
+      svg("text", { x: x, y: H - 6, "text-anchor": "middle" }, g).textContent = t + "°";
+    }
+    const axis = svg("g", {}, g), curve = svg("path", { class: "curve" }, g);
+    const title = svg("text", { class: "title", x: L + 4, y: 13 }, g);
+    const cursor = svg("line", { class: "cursor", y1: T, y2: H - B }, g);
+    g.addEventListener("pointerdown", (ev) => pick(ev, g));
+    g.addEventListener("pointermove", (ev) => { if (ev.buttons) pick(ev, g); });
+    const out = { s: null };
+    out.refresh = (m) => {
+      const s = (out.s = m.series.find((x) => x.key === key));
       let lo = Infinity, hi = -Infinity;
       for (const v of s.values) if (v !== null) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
       if (lo === Infinity) { lo = 0; hi = 1; }
@@ -508,39 +575,29 @@
       g.setAttribute("data-lo", String(lo));
       g.setAttribute("data-hi", String(hi));
       g.setAttribute("data-transform", `x = ${L} + ${W - L - R} turn / 360, y = ${T} + ${H - T - B} (hi - v) / (hi - lo)`);
-      svg("line", { class: "axis", x1: L, y1: H - B, x2: W - R, y2: H - B }, g);
-      svg("line", { class: "axis", x1: L, y1: T, x2: L, y2: H - B }, g);
-      if (lo < 0 && hi > 0) svg("line", { class: "zero", x1: L, y1: yOf(0), x2: W - R, y2: yOf(0) }, g);
+      axis.replaceChildren();
+      if (lo < 0 && hi > 0) svg("line", { class: "zero", x1: L, y1: yOf(0), x2: W - R, y2: yOf(0) }, axis);
       for (const t of ticks(lo, hi, 3)) {
         const y = yOf(t);
-        svg("line", { class: "axis", x1: L - 4, y1: y, x2: L, y2: y }, g);
-        svg("text", { x: L - 6, y: y + 4, "text-anchor": "end" }, g).textContent = fmt(t, 3);
-      }
-      for (const t of [0, 90, 180, 270, 360]) {
-        const x = L + (W - L - R) * t / 360;
-        svg("text", { x: x, y: H - 6, "text-anchor": "middle" }, g).textContent = t + "°";
+        svg("line", { class: "axis", x1: L - 4, y1: y, x2: L, y2: y }, axis);
+        svg("text", { x: L - 6, y: y + 4, "text-anchor": "end" }, axis).textContent = fmt(t, 3);
       }
       let d = "", pen = false;
-      for (let i = 0; i < n; i++) {
+      for (let i = 0; i < s.values.length; i++) {
         const v = s.values[i];
         if (v === null) { pen = false; continue; }
         d += (pen ? "L" : "M") + xOf(i).toFixed(2) + "," + yOf(v).toFixed(2);
         pen = true;
       }
-      svg("path", { class: "curve", d: d }, g);
-      const title = svg("text", { class: "title", x: L + 4, y: 13 }, g);
-      const cursor = svg("line", { class: "cursor", y1: T, y2: H - B }, g);
-      g.addEventListener("pointerdown", (ev) => pick(ev, g));
-      g.addEventListener("pointermove", (ev) => { if (ev.buttons) pick(ev, g); });
-      state.chartUpdate.push((i) => {
-        const x = xOf(i).toFixed(2);
-        cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
-        cursor.setAttribute("data-index", String(i));
-        title.textContent = `${s.label}, ${s.unit}: ${fmt(s.values[i])} at ${m.turn_deg[i].toFixed(1)}° turned`;
-      });
-    }
-    const note = html("div", "x: crank angle turned from the first position, deg; click a chart to move the crank there", root);
-    note.className = "note";
+      curve.setAttribute("d", d);
+    };
+    state.chartUpdate.push((i) => {
+      const x = xOf(i).toFixed(2), s = out.s;
+      cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
+      cursor.setAttribute("data-index", String(i));
+      title.textContent = `${s.label}, ${s.unit}: ${fmt(s.values[i])} at ${state.data.turn_deg[i].toFixed(1)}° turned`;
+    });
+    return out;
   }
 
   // the crank angle under the pointer: the pointer mapped into the chart's own coordinates by the SVG's
@@ -562,6 +619,9 @@
 
   function buildStructure(m) {
     const root = $("structure");
+    const said = JSON.stringify([m.name, m.structure.formula, m.extremes, m.stale, m.forces.checks, m.forces.available, m.events, m.warnings]);
+    if (root.getAttribute("data-said") === said) return; // a drag changes none of it often
+    root.setAttribute("data-said", said);
     root.replaceChildren();
     const s = m.structure;
     const tail = s.p4 ? ` - ${s.p4}` : "";
@@ -627,7 +687,7 @@
     state.index = i;
     const slider = $("angle");
     if (Number(slider.value) !== i) slider.value = String(i);
-    for (const f of state.update) f(i);
+    for (const name in state.parts) for (const f of state.parts[name]) f(i);
     for (const f of state.chartUpdate) f(i);
     for (const f of state.hooks.index) f(i, m);
     const deg = m.angles_deg[i];
