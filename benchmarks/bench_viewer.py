@@ -11,6 +11,10 @@ browser part needs Playwright and Debian's ``chromium``; ``--drag 0`` leaves it 
 * The core: ``lw.forces`` of the same mechanism at the same 360 angles (kinematics, loads, reactions,
   foundation) in this process, the best of several runs and the median, and ``lw.compile`` of its file
   (what opening another file costs before the cycle is solved).
+* Opening: the whole cycle's payload (:func:`linkwork.web.cycle_payload`) with its labels placed at the
+  first sample (the page's first answer), at the live page's
+  :data:`~linkwork.web.payload.LIVE_PLACED` samples (the answer that follows), and at every sample (an
+  exported page), best of a few.
 * In Chromium: the crank's length handle dragged back and forth for ``--drag`` seconds, a mouse move every
   16 ms; the page counts the edits' answers it shows (``data-updates`` on the scheme): answers a second,
   and the round trip the page measures for them (``data-edit-ms``, sampled).
@@ -30,6 +34,7 @@ import time
 from timing import best
 
 import linkwork as lw
+from linkwork.web.payload import LIVE_PLACED, cycle_payload
 
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking"]
 
@@ -124,6 +129,8 @@ def main(argv: list[str] | None = None) -> None:
             lw.forces(mech, steps=360)
             runs.append(time.perf_counter() - t)
         compiled = best(lambda: lw.compile(spec))
+        opened = {n: best(lambda n=n: cycle_payload(mech, 360, placed=n), repeat=2, budget=8.0)
+                  for n in (1, LIVE_PLACED, None)}  # fmt: skip
         rate, page_ms = drag(port, name, args.drag) if args.drag > 0 else (float("nan"), [])
     finally:
         proc.terminate()
@@ -135,6 +142,8 @@ def main(argv: list[str] | None = None) -> None:
     print(f"  lw.forces of the cycle: best {1e3 * f_best:.2f} ms, median {1e3 * f_median:.2f} ms")
     print(f"  ratio: median edit / median lw.forces {rt_median / f_median:.1f}, best / best {rt_best / f_best:.1f}")
     print(f"  lw.compile of the file: {1e3 * compiled:.1f} ms")
+    print(f"  the cycle's payload, labels placed at the first sample {1e3 * opened[1]:.0f} ms, at "
+          f"{LIVE_PLACED} samples {1e3 * opened[LIVE_PLACED]:.0f} ms, at all 360 {1e3 * opened[None]:.0f} ms")
     if page_ms:
         shown = [v for v in page_ms if v == v]
         print(f"  dragging in Chromium: {rate:.1f} updates a second, the page's round trip median "

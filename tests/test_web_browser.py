@@ -134,6 +134,8 @@ def test_the_page_loads_without_errors_and_draws_the_mechanism(page, server):
     assert page.locator("#structure table").first.locator("tbody tr").count() == len(mech.structure.groups)
     assert page.locator("#charts svg.chart").count() >= 2
     assert page.locator("#error").is_hidden()
+    # first shown with the labels placed at the sample shown, then along the cycle (every eighth sample)
+    expect(page.locator("#scheme")).to_have_attribute("data-labels-placed", "45")
     assert page.errors == []
     shot(page, "viewer-loaded")
 

@@ -59,7 +59,7 @@ def export_page(spec_or_mech: Any, path: str | Path, steps: int = 360) -> Path:
     Path
         ``path``.
     """
-    viewer = Viewer(spec_or_mech, steps)
+    viewer = Viewer(spec_or_mech, steps, placed=None)  # the labels placed at every sample
     payload = dict(viewer.cycle())
     payload["editable"] = False
     text = render_page(payload)

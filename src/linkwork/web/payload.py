@@ -31,6 +31,8 @@ Layout (``format: linkwork-view/1``):
   full size, before the page scales the drawing to fit its panel; from
   the 1-2-5 series, that draws the longest vector of 95 % of the positions
   at most 100 mm long);
+* ``labels_placed``: how many samples, evenly spread, the labels were placed at (``steps``: every one;
+  in between, each label keeps its offset from what it names, :func:`carried`);
 * ``scene``: the drawing (:mod:`linkwork.scene`), the same the figures and DXF draw: ``items``
   (``kind``, ``link``, vertices ``xy`` in the link's axes, m, ``closed``, ``radius``, ``name``), the
   links' ``poses`` (A, N, 3) that place them, ``labels`` (``text``, ``kind``, ``link``, the labelled
@@ -84,6 +86,11 @@ PLAN_PERCENTILE = 95.0
 #: Height of the plans' labels on the page, as a fraction of the larger side of the plan's frame.
 PLAN_FONT = 0.045
 
+#: Samples of a turn the live viewer places its labels at (about every 8 degrees; placing them costs
+#: some milliseconds a sample): in between, each label keeps its offset from what it names
+#: (:func:`carried`).  The exported page places them at every sample.
+LIVE_PLACED = 45
+
 
 def _json(a: Any, decimals: int | None = None) -> Any:
     """A nested list of Python floats, NaN and infinities as None, optionally rounded."""
@@ -102,7 +109,9 @@ def _significant(a: np.ndarray, digits: int = 9) -> int:
     return digits - (math.ceil(math.log10(top)) if top > 0 else 0)
 
 
-def cycle_payload(mech: Mechanism, steps: int = 360, overrides: dict[str, float] | None = None) -> dict[str, Any]:
+def cycle_payload(
+    mech: Mechanism, steps: int = 360, overrides: dict[str, float] | None = None, placed: int | None = None
+) -> dict[str, Any]:
     """Everything the viewer shows, over a whole turn of the crank at ``steps`` angles.
 
     Parameters
@@ -113,6 +122,9 @@ def cycle_payload(mech: Mechanism, steps: int = 360, overrides: dict[str, float]
         Samples of the turn.
     overrides : dict, optional
         A variant: named values (SI, checked: :func:`linkwork.web.edits.validated`).
+    placed : int, optional
+        Place the labels at about this many samples, evenly spread (:func:`placed_samples`), and carry
+        them along in between; default at every sample.
 
     Returns
     -------
@@ -124,21 +136,24 @@ def cycle_payload(mech: Mechanism, steps: int = 360, overrides: dict[str, float]
     LinkworkError
         For a mechanism without a single crank.
     """
-    return full_payload(solve_cycle(mech, steps, overrides))
+    return full_payload(solve_cycle(mech, steps, overrides), placed)
 
 
-def full_payload(cycle: Cycle) -> dict[str, Any]:
-    """The payload of a solved cycle (:func:`cycle_payload`)."""
+def full_payload(cycle: Cycle, placed: int | None = None) -> dict[str, Any]:
+    """The payload of a solved cycle (:func:`cycle_payload`), its labels placed at about ``placed`` samples
+    (default every one)."""
     mech, kin = cycle.mech, cycle.kin
     series = plan_series(kin)
     angles = kin.angles
     speed = float(kin.rates[0, 0])
-    scene = _scene(cycle, series)
+    at = placed_samples(len(angles), placed)
+    scene = _scene(cycle, series, at)
     out: dict[str, Any] = {
         "format": FORMAT,
         "name": mech.name,
         "source": mech.source,
         "steps": len(angles),
+        "labels_placed": len(at),
         "angles_deg": _json(np.degrees(angles), 9),
         "turn_deg": _json(np.abs(np.degrees(angles - angles[0])), 9),
         "speed": speed,
@@ -287,23 +302,77 @@ def cycle_scale(series: PlanSeries, valid: np.ndarray) -> float:
     return _round_scale(float(np.percentile(longest, PLAN_PERCENTILE)) if len(longest) else 0.0)
 
 
-def _scene(cycle: Cycle, series: tuple[PlanSeries, PlanSeries]) -> dict[str, Any]:
+def placed_samples(n: int, most: int | None) -> np.ndarray:
+    """Indices of the samples (of ``n``) labels are placed at: every one, or one in ``ceil(n / most)``."""
+    return np.arange(0, n, 1 if most is None else max(1, math.ceil(n / most)))
+
+
+def carried(centres: np.ndarray, anchors: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """Labels' centres at every sample from those placed at the samples ``at``: each keeps its offset from
+    its anchor at the nearest sample it was placed at along the turn.
+
+    Parameters
+    ----------
+    centres : ndarray, shape (A, L, 2)
+        NaN but at the samples ``at`` (and where a label is not drawn).
+    anchors : ndarray, shape (A, L, 2)
+        What each label names, at every sample; NaN where it is not drawn.
+    at : ndarray of int, shape (K,)
+        The samples placed, ascending.
+
+    Returns
+    -------
+    ndarray, shape (A, L, 2)
+    """
+    if len(at) == len(centres):
+        return centres
+    nearest = nearest_placed(len(centres), at)
+    out = anchors + (centres[nearest] - anchors[nearest])
+    out[at] = centres[at]
+    return out
+
+
+def nearest_placed(n: int, at: np.ndarray) -> np.ndarray:
+    """For each of ``n`` samples of a turn, the nearest of the samples ``at`` (ascending) along the turn, which
+    closes on itself (the last samples are near the first), ``(n,)``."""
+    ring = np.concatenate([at - n, at, at + n])
+    i = np.arange(n)
+    k = np.clip(np.searchsorted(ring, i), 1, len(ring) - 1)
+    return np.where(i - ring[k - 1] <= ring[k] - i, ring[k - 1], ring[k]) % n
+
+
+def _scene(cycle: Cycle, series: tuple[PlanSeries, PlanSeries], at: np.ndarray) -> dict[str, Any]:
     """The drawing of the cycle (:mod:`linkwork.scene`): the scheme's items in their links' axes, the links'
-    poses and the labels at every sample; for each plan, the frame the page shows and the labels."""
-    scheme = scheme_scene(cycle.kin, cycle=cycle.symbols)
+    poses and the labels, placed at the samples ``at`` (:func:`carried` between); for each plan, the frame the
+    page shows and the labels."""
+    scheme = scheme_scene(cycle.kin, at=[int(i) for i in at], cycle=cycle.symbols)
+    centres = np.stack([lab.centre for lab in scheme.labels], 1) if scheme.labels else np.zeros((len(at), 0, 2))
+    centres = carried(centres, _label_anchors(scheme), at)
     labels = [
-        {"text": lab.text, "kind": lab.kind, "link": lab.link, "at": _json(lab.at, 12), "centre": _json(lab.centre, 5)}
-        for lab in scheme.labels
-    ]
+        {"text": lab.text, "kind": lab.kind, "link": lab.link, "at": _json(lab.at, 12),
+         "centre": _json(centres[:, j], 5)}
+        for j, lab in enumerate(scheme.labels)
+    ]  # fmt: skip
     out = scheme_shape(scheme)
     out.update({
         "extent": _json(scheme.extent(), 9),
         "poses": _json(scheme.poses, 9),
         "labels": labels,
         "paths": [cycle.mech.point_names.index(name) for name in scheme.path_names],
-        "plans": {one.kind: _plan_scene(cycle, one) for one in series},
+        "plans": {one.kind: _plan_scene(cycle, one, at) for one in series},
     })  # fmt: skip
     return out
+
+
+def _label_anchors(scheme: SchemeScene) -> np.ndarray:
+    """Where each of the scheme's labels points at every sample, ``(A, L, 2)``, m: its ``at`` placed by its
+    link's pose (NaN where the mechanism does not assemble)."""
+    at = np.array([lab.at for lab in scheme.labels], dtype=float).reshape(-1, 2)  # (L, 2)
+    pose = scheme.poses[:, [lab.link for lab in scheme.labels]]  # (A, L, 3)
+    c, s = np.cos(pose[..., 2]), np.sin(pose[..., 2])
+    x = pose[..., 0] + c * at[:, 0] - s * at[:, 1]
+    y = pose[..., 1] + s * at[:, 0] + c * at[:, 1]
+    return np.stack([x, y], -1)
 
 
 def scheme_shape(scheme: SchemeScene) -> dict[str, Any]:
@@ -316,15 +385,24 @@ def scheme_shape(scheme: SchemeScene) -> dict[str, Any]:
     return {"size": scheme.size, "r": scheme.r, "em": scheme.em, "items": items}
 
 
-def _plan_scene(cycle: Cycle, series: PlanSeries) -> dict[str, Any]:
-    """The labels of a plan at every sample, placed in the frame the page shows it in (:func:`plan_frame`)."""
+def _plan_scene(cycle: Cycle, series: PlanSeries, at: np.ndarray) -> dict[str, Any]:
+    """The labels of a plan at every sample, placed in the frame the page shows it in (:func:`plan_frame`) at
+    the samples ``at``, and between them carried with their points and their texts kept."""
     out, scale = plan_shape(cycle, series)
     n = len(cycle.valid)
-    scene = plan_scene(series, np.arange(n), scale=scale, em=out["em"], valid=cycle.valid)
-    drawn = {kind for i in range(n) for kind in scene.kinds(i)}
+    scene = plan_scene(series, at, scale=scale, em=out["em"], valid=cycle.valid)
+    drawn = {kind for i in range(len(at)) for kind in scene.kinds(i)}
     out["kinds"] = {k: KINDS[k] for k in KINDS if k in drawn}
-    out["text"] = [list(row) for row in scene.text]
-    out["centres"] = _json(scene.centres, 3)
+    points = plan_values(series, cycle.valid) / scale  # (A, L, 2), mm of the sheet
+    centres = np.full(points.shape, np.nan)
+    centres[at] = scene.centres
+    centres = carried(centres, points, at)
+    text = np.full((n, len(series.labels)), "", dtype=object)
+    text[at] = np.array(scene.text, dtype=object).reshape(len(at), -1)
+    text = text[nearest_placed(n, at)]  # each sample's texts: those of the sample its labels are carried from
+    shown = (text != "") & np.isfinite(centres).all(-1)
+    out["text"] = np.where(shown, text, "").tolist()
+    out["centres"] = _json(np.where(shown[..., None], centres, np.nan), 3)
     return out
 
 

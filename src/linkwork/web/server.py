@@ -4,7 +4,9 @@ Endpoints (all JSON except the page, its files and a saved file):
 
 * ``GET /`` the page; ``GET /static/NAME`` its script and style (:data:`STATIC`);
 * ``GET /api/cycle``: the cycle of the mechanism as it was loaded
-  (:func:`linkwork.web.payload.cycle_payload`, with ``parameters``);
+  (:func:`linkwork.web.payload.cycle_payload`, with ``parameters``); ``?labels=first``: its labels
+  placed at the first sample only, the page's first answer (the page then asks for the labels of the
+  cycle);
 * ``GET /api/parameters``: the editable dimensions and masses;
 * ``POST /api/solve`` ``{"overrides": {name: value}, "steps": n}``: the whole cycle of the edited
   mechanism (values in SI), its labels placed;
@@ -39,7 +41,7 @@ import time
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
 from threading import BoundedSemaphore
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
@@ -224,7 +226,7 @@ def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
     raises its LinkworkError before any server starts.
     """
     viewer = Viewer(spec_or_mech, steps)
-    viewer.cycle()  # fails here, not on the first request
+    viewer.cycle(first=True)  # fails here, not on the first request
 
     app = FastAPI(title="linkwork viewer", docs_url=None, redoc_url=None, openapi_url=None)
     app.state.viewer = viewer
@@ -289,9 +291,9 @@ def _pages(app: FastAPI) -> None:
 
 def _api(app: FastAPI, viewer: Viewer) -> None:
     @app.get("/api/cycle")
-    async def cycle() -> Response:
+    async def cycle(labels: Literal["cycle", "first"] = "cycle") -> Response:
         async with holding(viewer.full_slots, viewer.wait_s):
-            return _json(await run_in_threadpool(viewer.cycle))
+            return _json(await run_in_threadpool(viewer.cycle, None, None, labels == "first"))
 
     @app.get("/api/parameters")
     def parameters() -> Response:

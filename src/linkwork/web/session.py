@@ -1,8 +1,9 @@
 """The mechanism a viewer shows, its edits and what they are solved in; shared by the server and the exported page.
 
 An edit is solved as a variant of the compiled mechanism (:mod:`linkwork.web.cycle`).  Two kinds of
-answer: the whole cycle with its labels placed (:func:`linkwork.web.payload.full_payload`, about a
-second for the double-cut shears, most of it placing labels at every sample), and an edit's compact
+answer: the whole cycle with its labels placed (:func:`linkwork.web.payload.full_payload`, 0.15 s for
+the double-cut shears with its labels placed at the first sample, the page's first answer, and 0.4 s at
+the :data:`~linkwork.web.payload.LIVE_PLACED` samples that follow it), and an edit's compact
 answer (:func:`linkwork.web.update.edit_payload`, some milliseconds), which the page shows while a
 value is dragged.  Each kind has its own solving slots (:attr:`Viewer.full_slots`,
 :attr:`Viewer.edit_slots`), so that placing labels never holds up an edit; a crank step (a pose)
@@ -27,7 +28,7 @@ from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import file_text
 from linkwork.web.cycle import DRAGGED, Cycle, check_assembly, solve_cycle
 from linkwork.web.edits import editable, validated, variant_parameters
-from linkwork.web.payload import full_payload, pose_payload
+from linkwork.web.payload import LIVE_PLACED, full_payload, pose_payload
 from linkwork.web.update import edit_payload
 
 #: The page's scripts, in the order it loads them.
@@ -81,14 +82,18 @@ class Viewer:
         One whole cycle at a time; two edits at a time.
     wait_s : float
         Seconds a request may wait for a slot before it is answered busy.
+    placed : int or None
+        Samples the labels of a whole cycle are placed at (:func:`linkwork.web.payload.full_payload`): about
+        :data:`~linkwork.web.payload.LIVE_PLACED` for the live page, every one (None) for an exported page.
     """
 
-    def __init__(self, spec_or_mech: Any, steps: int = 360, cache: int = 16) -> None:
+    def __init__(self, spec_or_mech: Any, steps: int = 360, cache: int = 16, placed: int | None = LIVE_PLACED) -> None:
         self.mech: Mechanism = mechanism_of(spec_or_mech, "viewer")
         self.spec = self.mech.spec
         self._editable = editable(self.mech)
         self._known = {p.name: p for p in self._editable}
         self.steps = steps
+        self.placed = placed
         self._full = _Cache(cache)
         self._edits = _Cache(EDIT_CACHE)
         self._whole = _Cache(8)
@@ -127,16 +132,18 @@ class Viewer:
             self._whole.put(steps, found)
         return found
 
-    def cycle(self, overrides: dict[str, float] | None = None, steps: int | None = None) -> dict[str, Any]:
+    def cycle(self, overrides: dict[str, float] | None = None, steps: int | None = None,
+              first: bool = False) -> dict[str, Any]:  # fmt: skip
         """The whole payload of the variant ``overrides``, with its ``parameters``, ``editable`` and
-        ``overrides`` (kept: the caller must not change it)."""
+        ``overrides`` (kept: the caller must not change it).  ``first``: its labels placed at the first
+        sample only (carried along the turn from there), to show a page at once."""
         steps = steps or self.steps
-        key = (steps, *sorted((overrides or {}).items()))
+        key = (steps, first, *sorted((overrides or {}).items()))
         found = self._full.get(key)
         if found is not None:
             return found
         cycle = self.solve(overrides, steps)
-        out = full_payload(cycle)
+        out = full_payload(cycle, 1 if first else self.placed)
         out["editable"] = self.spec is not None
         out["overrides"] = dict(cycle.overrides)
         masses = cycle.kin.mass_properties

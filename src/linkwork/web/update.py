@@ -67,6 +67,7 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged:
     poses = np.array(kin.pose[0])
     poses[..., 2] = np.pi - np.mod(np.pi - poses[..., 2], 2 * np.pi)  # angles in (-pi, pi]
     scene = scheme_shape(scheme)
+    shapes: dict[str, tuple[dict[str, Any], float]]
     if dragged:  # each plan's scale for the cycle, its frame kept
         shapes = {one.kind: ({}, cycle_scale(one, cycle.valid)) for one in series}
     else:  # each plan's frame and labels' size, and its scale

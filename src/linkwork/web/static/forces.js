@@ -89,7 +89,7 @@
       torque.setAttribute("data-torque", String(M));
       torqueText.setAttribute("x", (cx + 1.1 * r).toFixed(3));
       torqueText.setAttribute("y", (cy - 1.1 * r).toFixed(3));
-      torqueText.textContent = `M ${fmt(M / 1000, 3)} kN·m`;
+      torqueText.textContent = `M = ${fmt(M, 4)} N·m`; // as the caption and the torque chart say it
       return M;
     }
 

@@ -224,12 +224,29 @@
       return;
     }
     try {
-      const r = await fetch("api/cycle", { headers: { Accept: "application/json" } });
+      // first the cycle with its labels placed at the position shown (at once), then placed along the cycle
+      const r = await fetch("api/cycle?labels=first", { headers: { Accept: "application/json" } });
       const body = await r.json();
       if (!r.ok) throw new Error(body.error || r.statusText);
       load(body);
+      if (body.labels_placed < body.steps) placed();
     } catch (err) {
       showError(String(err.message || err));
+    }
+  }
+
+  // the mechanism as loaded with its labels placed along the cycle: shown where the page still shows it
+  async function placed() {
+    try {
+      const r = await fetch("api/cycle", { headers: { Accept: "application/json" } });
+      if (!r.ok) return;
+      const m = model(await r.json());
+      const shown = state.data === state.base;
+      if (state.full === state.base) state.full = m;
+      state.base = m;
+      if (shown) show(m);
+    } catch (err) {
+      // the server went away: the labels stay where they are
     }
   }
 
@@ -264,6 +281,7 @@
     $("scheme").setAttribute("data-updates", String(state.updates));
     // the labels as the scene placed them, or moved with their points since (an edit's answer)
     $("scheme").setAttribute("data-labels", edited ? "moved" : "placed");
+    $("scheme").setAttribute("data-labels-placed", String(m.labels_placed));
     setIndex(state.index);
   }
 
