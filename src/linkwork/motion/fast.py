@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.motion.kernels import CLOSE, ROUNDING, SINGULAR
 from linkwork.motion.program import Arm, Step
 
 try:  # pragma: no cover - exercised when numba is installed
@@ -39,8 +40,6 @@ ARM = 9
 _CODES = {"crank": CRANK, "slide": SLIDE, "RRR": DYAD, "RRP": DYAD, "PRP": DYAD, "RPR": RPR, "RPP": RPP}
 
 
-#: Normalised Jacobian determinant below which a sample is a singular position.
-SINGULAR = 1e-9
 #: Threads a long batch is split over (the kernels release the GIL), and the least samples per thread.
 THREADS = min(os.cpu_count() or 1, 8)
 PER_THREAD = 5_000
@@ -237,6 +236,14 @@ def _touching(x):
     return 0.0 if -1e-12 < x < 0 else x
 
 
+def _root(h2, slack, dh2, q_v, q_a, rounding):
+    """The half gap between the two modes of a dyad (:func:`linkwork.motion.kernels._root`)."""
+    motion = dh2 * q_v * q_v / (2 * q_a)
+    if abs(h2 - motion) <= rounding:
+        h2 = motion
+    return math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
+
+
 def _arm_motion(L, ops, st, o, P, x, y):
     """Column of the arm's unknown rate in the velocity equation of X, and X's velocity and
     acceleration with that rate left out: about the joint (R), or of the carrier's point at X (P)."""
@@ -265,15 +272,26 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
     gx = gy = 0.0
     if ka_r and kb_r:
         dx, dy = B[0] - A[0], B[1] - A[1]
+        dvx, dvy, dax, day = B[2] - A[2], B[3] - A[3], B[4] - A[4], B[5] - A[5]
         dist2 = dx * dx + dy * dy
-        inv = 1.0 / math.sqrt(dist2)
+        dist = math.sqrt(dist2)
+        inv = 1.0 / dist
         ra, rb = A[6], B[6]
-        t = (ra * ra - rb * rb + dist2) * (0.5 * inv)
-        h2 = ra * ra - t * t
+        k = ra * ra - rb * rb
+        t = (k + dist2) * (0.5 * inv) if dist > 0 else 0.0
         rsum2 = (ra + rb) * (ra + rb)
         slack = _touching(min(rsum2 - dist2, dist2 - (ra - rb) * (ra - rb)) / rsum2)
         ex, ey = dx * inv, dy * inv
-        h = branch * math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
+        if dist <= CLOSE * (ra + rb):  # the outer joints (nearly) together: their direction from their motion
+            tau = (dx * dvx + dy * dvy) / (dvx * dvx + dvy * dvy)
+            wx, wy = dvx - 0.5 * tau * dax, dvy - 0.5 * tau * day
+            sign = (-1.0 if tau < 0 else 1.0) / math.sqrt(wx * wx + wy * wy)
+            if math.isfinite(sign):
+                ex, ey = sign * wx, sign * wy
+        dist_v = (dx * dvx + dy * dvy) / dist
+        dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
+        size = ra * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))
+        h = branch * _root(ra * ra - t * t, slack, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
         x, y = A[0] + t * ex - h * ey, A[1] + t * ey + h * ex
         gx, gy = 2 * h * ey, -2 * h * ex
     elif not ka_r and not kb_r:
@@ -282,15 +300,22 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
         x, y = A[0] + t * A[2], A[1] + t * A[3]
         slack = abs(den)
     else:
-        C, Ln = (A, B) if ka_r else (B, A)
+        C, Ln, ol = (A, B, o2) if ka_r else (B, A, o1)
         wx, wy = C[0] - Ln[0], C[1] - Ln[1]
-        t0 = wx * Ln[2] + wy * Ln[3]
-        hh = Ln[2] * wy - Ln[3] * wx
+        nx, ny = -Ln[3], Ln[2]
+        q = nx * wx + ny * wy  # signed distance of the circle's centre from the line
         r2 = C[6] * C[6]
-        disc = r2 - hh * hh
-        slack = _touching(disc / r2)
-        root = branch * math.sqrt(max(disc, 0.0) if slack >= 0 else disc)
-        x, y = Ln[0] + (t0 + root) * Ln[2], Ln[1] + (t0 + root) * Ln[3]
+        slack = _touching((r2 - q * q) / r2)
+        # q over time: the velocity and acceleration of the centre relative to the line's link
+        g = ops[st, ol + 6]
+        vmx, vmy, amx, amy = _material(L, g, C[0], C[1])
+        rx, ry = C[2] - vmx, C[3] - vmy
+        f = 2 * L[g, 5]
+        cx, cy = (C[4] - amx) - f * -ry, (C[5] - amy) - f * rx
+        size = C[6] * (C[6] + math.sqrt(C[0] * C[0] + C[1] * C[1]) + math.sqrt(Ln[0] * Ln[0] + Ln[1] * Ln[1]))
+        root = branch * _root(r2 - q * q, slack, -2 * q, nx * rx + ny * ry, nx * cx + ny * cy, ROUNDING * size)
+        t0 = wx * Ln[2] + wy * Ln[3]
+        x, y = (Ln[0] + t0 * Ln[2]) + root * Ln[2], (Ln[1] + t0 * Ln[3]) + root * Ln[3]
         gx, gy = -2 * root * Ln[2], -2 * root * Ln[3]
     if slack >= 0 and not (math.isfinite(x) and math.isfinite(y)):
         slack = -1.0
@@ -504,6 +529,7 @@ if njit is not None:  # pragma: no branch
     _loc = njit(inline="always", **_opts)(_loc)
     _locus = njit(inline="always", **_opts)(_locus)
     _touching = njit(inline="always", **_opts)(_touching)
+    _root = njit(inline="always", **_opts)(_root)
     _arm_motion = njit(inline="always", **_opts)(_arm_motion)
     _arm_extra = njit(inline="always", **_opts)(_arm_extra)
     _dyad = njit(inline="always", **_opts)(_dyad)

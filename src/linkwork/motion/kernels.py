@@ -12,9 +12,10 @@ Samples where a group cannot be assembled come out as NaN.
 from __future__ import annotations
 
 import dataclasses
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
+from numpy.polynomial import polynomial as poly
 
 from linkwork.motion.program import Arm, Step
 from linkwork.motion.state import State, Vec, add, cross, dot, norm, perp, rot, scale, solve2, sub
@@ -65,30 +66,124 @@ class _Locus:
         return scale(2 * state.v[self.carrier, 2] * k, perp(self.u))
 
 
-def _intersect(la: _Locus, lb: _Locus, branch: np.ndarray | float) -> tuple[Vec, np.ndarray]:
-    """X where the two loci meet, and the assembly margin (negative where they do not)."""
+#: Normalised Jacobian determinant below which a sample is a singular position.
+SINGULAR = 1e-9
+#: Normalised determinant above which the velocity and acceleration of a dyad are trusted to follow
+#: its motion through a change point (their rounding grows as its inverse and inverse square).
+REGULAR = 1e-4
+#: Nearness to a singular position of a dyad, relative to its size.  Outer joints this near each other
+#: (a rhombus with its crank on the frame) have lost their direction from each other to rounding: it is
+#: taken from their relative velocity and acceleration.  Between two samples the two assembly modes
+#: trade places only where the motion comes this near a singular position.
+CLOSE = 1e-6
+#: Rounding of the squared half gap between the two modes, in units of the dyad's size squared.
+ROUNDING = 64 * np.finfo(float).eps
+
+
+class Singular(NamedTuple):
+    """Where a dyad is singular: a quantity of the motion ``y`` (m components, ``(m, V, A)``) with its
+    first two time derivatives ``v`` and ``a``, reaching ``target`` (``(m, V, 1)``; NaN: never) to
+    within ``tol`` (``(V, 1)``)."""
+
+    y: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    target: np.ndarray
+    tol: np.ndarray
+
+
+class Closure(NamedTuple):
+    """Where the two loci of X meet: ``X = mid + branch * h * n`` in assembly mode ``branch`` (+-1)."""
+
+    mid: Vec
+    n: Vec
+    h: np.ndarray  # NaN where the loci do not meet
+    slack: np.ndarray  # the assembly margin, negative where the loci do not meet
+    apart: np.ndarray  # how far from trading places the two modes are: 2 h, or the outer joints' distance
+    singular: tuple[Singular, ...] = ()  # where the two modes trade places
+
+
+def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
+    """Where the loci of the two arms meet, in either assembly mode."""
     if la.arm.kind == "R" and lb.arm.kind == "R":
-        d = sub(lb.p, la.p)
-        dist2 = dot(d, d)
-        inv = 1.0 / np.sqrt(dist2)
-        a = (la.r * la.r - lb.r * lb.r + dist2) * (0.5 * inv)
-        h2 = la.r * la.r - a * a
-        rsum2 = (la.r + lb.r) ** 2
-        slack = _touching(np.minimum(rsum2 - dist2, dist2 - (la.r - lb.r) ** 2) / rsum2)
-        e = scale(inv, d)
-        h = branch * np.sqrt(np.where(slack >= 0, np.maximum(h2, 0.0), h2))
-        return (la.p[0] + a * e[0] - h * e[1], la.p[1] + a * e[1] + h * e[0]), slack
+        return _circles(la, lb)
     if la.arm.kind == "P" and lb.arm.kind == "P":
         den = cross(la.u, lb.u)
         t = cross(sub(lb.l0, la.l0), lb.u) / den
-        return add(la.l0, scale(t, la.u)), np.abs(den)
+        zero = np.zeros_like(den)
+        return Closure(add(la.l0, scale(t, la.u)), (zero, zero), zero, np.abs(den), zero)  # one mode
     circle, line = (la, lb) if la.arm.kind == "R" else (lb, la)
     w = sub(circle.p, line.l0)
-    t0 = dot(w, line.u)
-    h = cross(line.u, w)
-    disc = circle.r * circle.r - h * h
-    slack = _touching(disc / (circle.r * circle.r))
-    return add(line.l0, scale(t0 + branch * np.sqrt(np.where(slack >= 0, np.maximum(disc, 0.0), disc)), line.u)), slack
+    n = perp(line.u)
+    q = dot(n, w)  # signed distance of the circle's centre from the line
+    r2 = circle.r * circle.r
+    slack = _touching((r2 - q * q) / r2)
+    # q over time: the velocity and acceleration of the centre relative to the line's link
+    v_line, a_line = state.material(line.carrier, circle.p)
+    rel = sub(circle.vp, v_line)
+    acc = sub(sub(circle.ap, a_line), scale(2 * state.v[line.carrier, 2], perp(rel)))
+    size = circle.r * (circle.r + norm(circle.p) + norm(line.l0))
+    q_v, q_a = dot(n, rel), dot(n, acc)
+    h = _root(r2 - q * q, slack, -2 * q, q_v, q_a, ROUNDING * size)
+    tol = CLOSE * circle.r
+    touch = tuple(Singular(q[None], q_v[None], q_a[None], sign * circle.r[None], tol) for sign in (1.0, -1.0))
+    return Closure(add(line.l0, scale(dot(w, line.u), line.u)), line.u, h, slack, 2 * h, touch)
+
+
+def _circles(la: _Locus, lb: _Locus) -> Closure:
+    """Two circles: X at ``a`` along the line of centres from la's and ``h`` across it."""
+    d = sub(lb.p, la.p)
+    dv, da = sub(lb.vp, la.vp), sub(lb.ap, la.ap)  # relative velocity and acceleration of the centres
+    dist2 = dot(d, d)
+    dist = np.sqrt(dist2)
+    inv = 1.0 / dist
+    k = la.r * la.r - lb.r * lb.r
+    a = np.where(dist > 0, (k + dist2) * (0.5 * inv), 0.0)
+    rsum2 = (la.r + lb.r) ** 2
+    slack = _touching(np.minimum(rsum2 - dist2, dist2 - (la.r - lb.r) ** 2) / rsum2)
+    e = scale(inv, d)
+    close = dist <= CLOSE * (la.r + lb.r)
+    if np.any(close):
+        # d = tau (v - acc tau / 2) a time tau after the centres met: its direction from their motion
+        tau = dot(d, dv) / dot(dv, dv)
+        along = sub(dv, scale(0.5 * tau, da))
+        sign = np.where(tau < 0, -1.0, 1.0) / norm(along)
+        e = tuple(np.where(close & np.isfinite(sign), sign * g, x) for g, x in zip(along, e, strict=True))
+    dist_v = dot(d, dv) / dist  # the distance of the centres over time
+    dist_a = (dot(dv, dv) + dot(d, da) - dist_v * dist_v) / dist
+    size = la.r * (la.r + lb.r + norm(la.p) + norm(lb.p))
+    h = _root(la.r * la.r - a * a, slack, -a * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
+    # the modes trade places where the circles touch, or where their centres coincide (then the radii
+    # are equal, and the distance of the centres has a kink: the relative position is followed instead)
+    tol = CLOSE * (la.r + lb.r)
+    inner = np.abs(la.r - lb.r)
+    singular = (
+        Singular(np.stack(d), np.stack(dv), np.stack(da), np.zeros((2,) + tol.shape), tol),
+        Singular(dist[None], dist_v[None], dist_a[None], (la.r + lb.r)[None], tol),
+        Singular(dist[None], dist_v[None], dist_a[None], np.where(inner > tol, inner, np.nan)[None], tol),
+    )
+    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular)
+
+
+def _root(
+    h2: np.ndarray, slack: np.ndarray, dh2: np.ndarray, q_v: np.ndarray, q_a: np.ndarray, rounding: Any
+) -> np.ndarray:
+    """The half gap h between the two modes from its square ``h2``, a function of a distance q.
+
+    Where the two modes meet the motion passes an extremum of q (a change point): there h2 = dh2 (q - q0)
+    and q - q0 = q_v^2 / (2 q_a) about it (``dh2`` = dh2/dq, ``q_v``, ``q_a`` its first two time
+    derivatives).  Where h2 is that to within its ``rounding``, the motion's value is taken: the square
+    root of a rounded h2 would be off by the square root of the rounding, and differ between a
+    mechanism and the same mechanism moved.
+    """
+    motion = dh2 * q_v * q_v / (2 * q_a)
+    h2 = np.where(np.abs(h2 - motion) <= rounding, motion, h2)
+    return np.sqrt(np.where(slack >= 0, np.maximum(h2, 0.0), h2))
+
+
+def _at(closure: Closure, branch: np.ndarray | float) -> Vec:
+    """X in the assembly mode ``branch``."""
+    return add(closure.mid, scale(branch * closure.h, closure.n))
 
 
 def _touching(slack: np.ndarray) -> np.ndarray:
@@ -114,28 +209,21 @@ def dyad(
     xa = _x_local(state, step.x_local[0])
     xb = _x_local(state, step.x_local[1])
     la, lb = _Locus(state, arm_a, xa, point_link), _Locus(state, arm_b, xb, point_link)
+    closure = _closure(state, la, lb)
     flips: list[tuple[int, int, int]] = []
     if branch is None:
         branch_used: Any = step.branch
         if "R" in (arm_a.kind, arm_b.kind):
             full = np.full(state.valid.shape, step.branch)
-            flips = _change_points(state, la, lb, full)
+            flips = _change_points(state, la, lb, closure, full)
             if flips:
                 branch_used = full
     else:
         branch_used = branch
-    x, slack = _intersect(la, lb, branch_used)
+    x, slack = _at(closure, branch_used), closure.slack
     # no single point X although the loci "meet" (coincident circle centres, parallel guides): not assembled
     slack = np.where((slack >= 0) & ~(np.isfinite(x[0]) & np.isfinite(x[1])), -1.0, slack)
-    ca, cb = la.column(x), lb.column(x)
-    va, aa = la.base(state, x)
-    vb, ab = lb.base(state, x)
-    ncb = scale(-1.0, cb)
-    ka, kb, det = solve2(ca, ncb, sub(vb, va))
-    ea, eb = la.accel_extra(state, x, ka), lb.accel_extra(state, x, kb)
-    ka_d, kb_d, _ = solve2(ca, ncb, sub(add(ab, eb), add(aa, ea)))
-    vx = add(va, scale(ka, ca))
-    ax = add(add(aa, scale(ka_d, ca)), ea)
+    (ka, kb), (ka_d, kb_d), vx, ax, det = _motion(state, la, lb, x)
     for arm, loc, k, kd, xl in ((arm_a, la, ka, ka_d, xa), (arm_b, lb, kb, kb_d, xb)):
         if arm.kind == "R":
             d = sub(x, loc.p)
@@ -148,23 +236,48 @@ def dyad(
             state.place(arm.link, theta, k, kd, loc.p, loc.vp, loc.ap, state.loc(arm.own), (c, s))
         else:
             state.place_like(arm.link, arm.carrier, x, vx, ax, xl)
-    _record(state, slack, det / (norm(ca) * norm(cb)), None if np.isscalar(branch_used) else branch_used, flips)
+    _record(state, slack, det, None if np.isscalar(branch_used) else branch_used, flips)
 
 
-def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> list[tuple[int, int, int]]:
+def _motion(state: State, la: _Locus, lb: _Locus, x: Vec) -> tuple[Any, ...]:
+    """Velocity and acceleration of the dyad closed at ``x``, from the two vector equations of X: the
+    rates of its arms (ka, kb) and their derivatives, X's velocity and acceleration, and the
+    normalised determinant of the equations (zero at a singular position)."""
+    ca, cb = la.column(x), lb.column(x)
+    va, aa = la.base(state, x)
+    vb, ab = lb.base(state, x)
+    ncb = scale(-1.0, cb)
+    ka, kb, det = solve2(ca, ncb, sub(vb, va))
+    ea, eb = la.accel_extra(state, x, ka), lb.accel_extra(state, x, kb)
+    ka_d, kb_d, _ = solve2(ca, ncb, sub(add(ab, eb), add(aa, ea)))
+    vx = add(va, scale(ka, ca))
+    ax = add(add(aa, scale(ka_d, ca)), ea)
+    return (ka, kb), (ka_d, kb_d), vx, ax, det / (norm(ca) * norm(cb))
+
+
+def _change_points(
+    state: State, la: _Locus, lb: _Locus, closure: Closure, branch: np.ndarray
+) -> list[tuple[int, int, int]]:
     """Follow the motion through change points, along the angles in the order given.
 
     From the sample nearest the assembly pose, forwards and then backwards,
     each sample where the two assembly modes of the dyad nearly meet (their
-    points X closer together than X moves in a step) takes the mode whose X
-    lies nearer the extrapolation of X from the two samples before it.  So
-    the motion keeps going smoothly where the modes cross (the isosceles
-    slider-crank at 0 and 180 deg, a parallelogram laid flat) and never
-    jumps between modes that are apart.  ``branch`` is changed in place;
-    returns (variant, first sample in the new mode, sample nearest the change point).
+    points X closer together than X moves in a step) takes the mode that
+    keeps the motion of X smooth: the one whose position and velocity lie
+    nearer their Taylor expansion from the last sample before it away from
+    a singular position (where the velocities are lost, a sample decides
+    nothing).  Where the modes cross (the isosceles slider-crank at 0 and
+    180 deg, a parallelogram laid flat) their velocities differ however
+    near the crossing a sample lies, so the motion goes on in the mode that
+    keeps its velocity continuous whatever the samples.  The mode changes
+    only where the dyad may pass a singular position between the two
+    samples (:func:`_passes`): elsewhere X may swing fast (outer joints
+    passing close by) but keeps its mode.  Without the rate of a single
+    drive, X is extrapolated from the two samples before instead.
+    ``branch`` is changed in place; returns (variant, first sample in the
+    new mode, sample nearest the change point).
     """
-    x_p, _ = _intersect(la, lb, branch)
-    x_m, _ = _intersect(la, lb, -branch)
+    x_p, x_m = _at(closure, branch), _at(closure, -branch)
     n = branch.shape[1]
     if n < 3:
         return []
@@ -180,33 +293,98 @@ def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> 
         near = gap <= 2 * move + 1e-12 * (1 + float(np.abs(state.local).max()))
     if not near.any():
         return []
-    xp, xm = np.stack(x_p, -1), np.stack(x_m, -1)
+    rate = state.rate
+    timed = rate is not None and bool(np.all(np.isfinite(rate) & (rate != 0)))
+    both = [_motion(state, la, lb, x) for x in (x_p, x_m)]
+    xs = [np.stack(x, -1) for x in (x_p, x_m)]
+    vs, accs = ([np.stack(m[i], -1) for m in both] for i in (2, 3))
+    det = np.abs(both[0][4])
+    lost = ~(det >= SINGULAR)  # on a singular position: no velocity
+    sure = det >= REGULAR  # velocity and acceleration to trust
     drive = state.drive
     flips = []
     start = state.start_index
     for v in np.unique(np.nonzero(near)[0]):
         flipped = np.zeros(n, dtype=bool)  # samples now in the mode opposite to the first solution
 
-        def at(i: int, other: bool = False, v: int = v, flipped: np.ndarray = flipped) -> np.ndarray:
-            return xm[v, i] if flipped[i] != other else xp[v, i]
+        def pick(arrays: list[np.ndarray], i: int, other: bool = False, v: int = v, f: np.ndarray = flipped):
+            return arrays[1][v, i] if f[i] != other else arrays[0][v, i]
 
         for direction in (1, -1):
             order = np.arange(start, n) if direction > 0 else np.arange(start, -1, -1)
-            for k in range(2, len(order)):
+            last = np.maximum.accumulate(np.where(sure[v, order], np.arange(len(order)), -1))
+            for k in range(1, len(order)):
                 here = order[k]
                 if not near[v, here]:
                     continue
-                p1, p2 = order[k - 1], order[k - 2]
-                span = drive[p1] - drive[p2]
-                t = (drive[here] - drive[p1]) / span if span != 0 else 1.0
-                guess = at(p1) + (at(p1) - at(p2)) * t
-                tol = 1e-12 * (1 + np.abs(guess).max())
-                if np.hypot(*(at(here, True) - guess)) < np.hypot(*(at(here) - guess)) - tol:
+                ref = None
+                if timed:
+                    if last[k - 1] < 0:
+                        continue
+                    ref = order[last[k - 1]]
+                    dt = (drive[here] - drive[ref]) / rate[ref]
+                    v_hat = pick(vs, ref) + pick(accs, ref) * dt
+                    x_hat = pick(xs, ref) + pick(vs, ref) * dt + pick(accs, ref) * (dt * dt / 2)
+                    miss = [
+                        np.hypot(*(pick(xs, here, o) - x_hat))
+                        + (0.0 if lost[v, here] else np.hypot(*(pick(vs, here, o) - v_hat)) * abs(dt))
+                        for o in (False, True)
+                    ]
+                elif k >= 2:
+                    p1, p2 = order[k - 1], order[k - 2]
+                    span = drive[p1] - drive[p2]
+                    t = (drive[here] - drive[p1]) / span if span != 0 else 1.0
+                    guess = pick(xs, p1) + (pick(xs, p1) - pick(xs, p2)) * t
+                    miss = [np.hypot(*(pick(xs, here, o) - guess)) for o in (False, True)]
+                else:
+                    continue
+                tol = 1e-12 * (1 + np.abs(pick(xs, here)).max())
+                if miss[1] < miss[0] - tol and (ref is None or _passes(closure.singular, state, v, ref, here)):
                     branch[v, order[k:]] *= -1
                     flipped[order[k:]] = ~flipped[order[k:]]
-                    touch = int(order[k - 1] if gap[v, order[k - 1]] < gap[v, here] else here)
+                    p1 = order[k - 1]
+                    touch = int(p1 if closure.apart[v, p1] < closure.apart[v, here] else here)
                     flips.append((int(v), int(here), touch))
     return flips
+
+
+def _passes(tests: tuple[Singular, ...], state: State, v: int, i: int, j: int) -> bool:
+    """Whether the dyad may pass a singular position between samples ``i`` and ``j`` of variant ``v``.
+
+    Each quantity of ``tests`` is followed between the two samples by the quintic through its values
+    and first two time derivatives there; the modes can trade places only where one comes within its
+    tolerance of its target.  Elsewhere X may swing fast (outer joints that pass near each other) but
+    stays in its mode.  Without the rates of the drive (several drives) nothing is ruled out.
+    """
+    rate = None if state.rate is None else state.rate[i]
+    if rate is None or not np.isfinite(rate) or rate == 0:
+        return True
+    dt = (state.drive[j] - state.drive[i]) / rate
+    for test in tests:
+        target = test.target[:, v, 0]
+        if np.isnan(target).any():
+            continue  # a position this dyad never takes
+        y0, y1 = test.y[:, v, i] - target, test.y[:, v, j] - target
+        v0, v1 = test.v[:, v, i] * dt, test.v[:, v, j] * dt
+        a0, a1 = test.a[:, v, i] * dt * dt, test.a[:, v, j] * dt * dt
+        if not np.isfinite(np.concatenate([y0, y1, v0, v1, a0, a1])).all():
+            return True
+        # on [0, 1]: y0 + v0 t + a0 t^2 / 2 + c3 t^3 + c4 t^4 + c5 t^5 with the values at 1
+        big_a, big_b, big_c = y1 - y0 - v0 - a0 / 2, v1 - v0 - a0, a1 - a0
+        c3, c4, c5 = (
+            10 * big_a - 4 * big_b + big_c / 2,
+            -15 * big_a + 7 * big_b - big_c,
+            6 * big_a - 3 * big_b + big_c / 2,
+        )
+        square = np.zeros(1)
+        for c in np.stack([y0, v0, a0 / 2, c3, c4, c5], -1):  # |y(t) - target|^2
+            square = poly.polyadd(square, poly.polymul(c, c))
+        slope = poly.polyder(square)
+        t = poly.polyroots(slope).real if np.any(slope) else np.zeros(0)
+        t = np.concatenate([[0.0, 1.0], np.clip(t, 0.0, 1.0)])
+        if np.sqrt(max(poly.polyval(t, square).min(), 0.0)) <= test.tol[v, 0]:
+            return True
+    return False
 
 
 def rpr(step: Step, state: State, point_link: np.ndarray) -> None:

@@ -163,6 +163,7 @@ def _solve(
         offset = values[:, 0] - mech.drive_start[0]
     state.start_index = int(np.argmin(np.abs(offset)))
     state.drive = values[:, 0]
+    state.rate = rates[:, 0] if values.shape[1] == 1 else None
     ones = np.ones((n_var, n_ang))
     for i, step in enumerate(program):
         branch = branches[i] if branches is not None else None

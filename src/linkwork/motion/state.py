@@ -88,6 +88,7 @@ class State:
     placed: set[int] = field(default_factory=lambda: {0})
     start_index: int = 0  # the sample nearest to the assembly pose: continuation starts there
     drive: np.ndarray | None = None  # (A,) drive coordinate of each sample (the first drive)
+    rate: np.ndarray | None = None  # (A,) its time derivative; None where other drives move too
     step_branch: list[np.ndarray | None] = field(default_factory=list)  # per step, the mode used (V, A)
     step_flips: list[list[tuple[int, int, int]]] = field(default_factory=list)  # per step, change points
     step_jumps: list[list[tuple[int, int]]] = field(default_factory=list)  # per step, (variant, sample) jumps
