@@ -119,9 +119,11 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     dyad's two assembly modes come within a step of each other: the NumPy
     path decides the mode there), ``trouble`` (S, V) (True where a step
     fails to assemble, comes within :data:`SINGULAR` of a singular position
-    or its determinant changes sign: only there are events looked for) and
+    or its determinant changes sign: only there are events looked for),
     ``singular`` (whether any assembled sample has a normalised determinant
-    below :data:`SINGULAR`).
+    below :data:`SINGULAR`) and ``joined`` (S, V) (True where the outer
+    joints of a dyad coincide to rounding: the NumPy kernels give the
+    velocities there).
     """
     ops, branch = mech.fast_program
     n_links = mech.n_links_total
@@ -129,6 +131,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     values, rates, accels = (np.ascontiguousarray(x, dtype=float) for x in (values, rates, accels))
     n_var, n_ang, n_steps = local.shape[0], values.shape[0], len(ops)
     out = np.empty((3, n_links, 3, n_var, n_ang))  # one block: q, v, a
+    joined = np.zeros((n_steps, n_var), dtype=np.bool_)
     slack = np.empty((n_steps, n_var, n_ang))
     det = np.empty_like(slack)
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
@@ -137,7 +140,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     singular = np.zeros(1, dtype=np.bool_)
     tol = 1e-12 * (1 + float(np.abs(local).max()))
     args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, trouble)
-    args += (singular, tol)
+    args += (singular, joined, tol)
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
@@ -163,6 +166,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
         "near": near,
         "trouble": trouble,
         "singular": bool(singular[0]),
+        "joined": joined,
     }
 
 
@@ -270,6 +274,7 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
     B = _locus(L, ops, st, o2, pre, local, origin, axis, xbx, xby)
     ka_r, kb_r = ops[st, o1] == 0, ops[st, o2] == 0
     gx = gy = 0.0
+    joined = False
     if ka_r and kb_r:
         dx, dy = B[0] - A[0], B[1] - A[1]
         dvx, dvy, dax, day = B[2] - A[2], B[3] - A[3], B[4] - A[4], B[5] - A[5]
@@ -288,6 +293,10 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
             sign = (-1.0 if tau < 0 else 1.0) / math.sqrt(wx * wx + wy * wy)
             if math.isfinite(sign):
                 ex, ey = sign * wx, sign * wy
+                # together to rounding: the velocities are left to the NumPy kernels
+                joined = dist <= 8 * ROUNDING * (
+                    ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1])
+                )
         dist_v = (dx * dvx + dy * dvy) / dist
         dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
         size = ra * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))
@@ -346,7 +355,7 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
         else:
             lx, ly = _loc(local, xl)
             _place_like(L, link, ops[st, o + 6], x, y, vx, vy, ax, ay, lx, ly)
-    return slack, d / math.sqrt((cax * cax + cay * cay) * (cbx * cbx + cby * cby)), x, y, gx, gy
+    return slack, d / math.sqrt((cax * cax + cay * cay) * (cbx * cbx + cby * cby)), x, y, gx, gy, joined
 
 
 def _rpr(L, ops, st, branch, local, origin, axis):
@@ -380,7 +389,8 @@ def _rpr(L, ops, st, branch, local, origin, axis):
 
 
 def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i):
-    """One step at one sample: (slack, normalised determinant, X, gap vector) (the last two for dyads)."""
+    """One step at one sample: (slack, normalised determinant, X, gap vector, outer joints together)
+    (the last three for dyads)."""
     kind = ops[st, 0]
     if kind == CRANK:
         link, base, src, own, sign, drv = ops[st, 1], ops[st, 2], ops[st, 3], ops[st, 4], ops[st, 5], ops[st, 6]
@@ -390,7 +400,7 @@ def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i
         px, py, vx, vy, ax, ay = _point(L, base, local[src, 0], local[src, 1])
         c, s = math.cos(theta), math.sin(theta)
         _place(L, link, theta, omega, eps, px, py, vx, vy, ax, ay, local[own, 0], local[own, 1], c, s)
-        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0
+        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, False
     if kind == SLIDE:
         link, g, k, sp, drv = ops[st, 1], ops[st, 2], ops[st, 3], ops[st, 4], ops[st, 5]
         c, s = L[g, 9], L[g, 10]
@@ -402,12 +412,12 @@ def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i
         f = 2 * L[g, 5] * ds
         ax, ay = amx + dds * ux - f * uy, amy + dds * uy + f * ux
         _place_like(L, link, g, x, y, vmx + ds * ux, vmy + ds * uy, ax, ay, local[sp, 0], local[sp, 1])
-        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0
+        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, False
     if kind == DYAD:
         return _dyad(L, ops, st, 3, 3 + ARM, ops[st, 1], ops[st, 2], branch, pre, local, origin, axis)
     if kind == RPR:
         slack, det = _rpr(L, ops, st, branch, local, origin, axis)
-        return slack, det, 0.0, 0.0, 0.0, 0.0
+        return slack, det, 0.0, 0.0, 0.0, 0.0, False
     # RPP: the pinned link keeps the guide's angle; then the other link as a dyad of two lines
     o = 3
     g = ops[st, 3 + 2 * ARM + 6]
@@ -449,6 +459,7 @@ def _kernel(
     near,
     trouble,
     singular,
+    joined,
     tol,
     lo,
     hi,
@@ -473,7 +484,9 @@ def _kernel(
             ok = True
             small = False
             for st in range(n_steps):
-                s, d, x, y, gx, gy = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
+                s, d, x, y, gx, gy, jn = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
+                if jn and i >= lo:
+                    joined[st, var] = True
                 ok = ok and s >= 0
                 small = small or abs(d) < SINGULAR
                 if ops[st, 0] >= DYAD:  # cranks and slides always assemble: filled below

@@ -101,6 +101,7 @@ class Closure(NamedTuple):
     slack: np.ndarray  # the assembly margin, negative where the loci do not meet
     apart: np.ndarray  # how far from trading places the two modes are: 2 h, or the outer joints' distance
     singular: tuple[Singular, ...] = ()  # where the two modes trade places
+    joined: Any = 0.0  # (V, A): +-1 where the outer joints coincide to rounding (the side of it), else 0
 
 
 def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
@@ -143,12 +144,16 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
     slack = _touching(np.minimum(rsum2 - dist2, dist2 - (la.r - lb.r) ** 2) / rsum2)
     e = scale(inv, d)
     close = dist <= CLOSE * (la.r + lb.r)
+    joined = 0.0
     if np.any(close):
         # d = tau (v - acc tau / 2) a time tau after the centres met: its direction from their motion
         tau = dot(d, dv) / dot(dv, dv)
         along = sub(dv, scale(0.5 * tau, da))
-        sign = np.where(tau < 0, -1.0, 1.0) / norm(along)
+        side = np.where(tau < 0, -1.0, 1.0)
+        sign = side / norm(along)
         e = tuple(np.where(close & np.isfinite(sign), sign * g, x) for g, x in zip(along, e, strict=True))
+        rounding = 8 * ROUNDING * (la.r + lb.r + norm(la.p) + norm(lb.p))
+        joined = np.where((dist <= rounding) & np.isfinite(sign), side, 0.0)
     dist_v = dot(d, dv) / dist  # the distance of the centres over time
     dist_a = (dot(dv, dv) + dot(d, da) - dist_v * dist_v) / dist
     size = la.r * (la.r + lb.r + norm(la.p) + norm(lb.p))
@@ -162,7 +167,7 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
         Singular(dist[None], dist_v[None], dist_a[None], (la.r + lb.r)[None], tol),
         Singular(dist[None], dist_v[None], dist_a[None], np.where(inner > tol, inner, np.nan)[None], tol),
     )
-    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular)
+    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular, joined)
 
 
 def _root(
@@ -224,6 +229,8 @@ def dyad(
     # no single point X although the loci "meet" (coincident circle centres, parallel guides): not assembled
     slack = np.where((slack >= 0) & ~(np.isfinite(x[0]) & np.isfinite(x[1])), -1.0, slack)
     (ka, kb), (ka_d, kb_d), vx, ax, det = _motion(state, la, lb, x)
+    if np.any(closure.joined):
+        ka, kb = _joined_rates(la, lb, closure, branch_used, x, ka, kb)
     for arm, loc, k, kd, xl in ((arm_a, la, ka, ka_d, xa), (arm_b, lb, kb, kb_d, xb)):
         if arm.kind == "R":
             d = sub(x, loc.p)
@@ -236,7 +243,33 @@ def dyad(
             state.place(arm.link, theta, k, kd, loc.p, loc.vp, loc.ap, state.loc(arm.own), (c, s))
         else:
             state.place_like(arm.link, arm.carrier, x, vx, ax, xl)
-    _record(state, slack, det, None if np.isscalar(branch_used) else branch_used, flips)
+    _record(state, slack, det, None if np.isscalar(branch_used) else branch_used, flips, closure.joined)
+
+
+def _joined_rates(
+    la: _Locus, lb: _Locus, closure: Closure, branch: Any, x: Vec, ka: np.ndarray, kb: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The rates of the two arms where their outer joints coincide (to rounding), which the velocity
+    equations leave open: those of the motion through it.  With equal radii X = P_a + d / 2 + h n about
+    it (d = P_b - P_a), n turning as the direction of d, whose limit is that of its rate d' (turning at
+    the part of d'' / 2 |d'| across it), and h' = 0 there."""
+    d = sub(lb.p, la.p)
+    dv, da = sub(lb.vp, la.vp), sub(lb.ap, la.ap)
+    speed = norm(dv)
+    e = scale(1.0 / speed, dv)
+    turn = scale(1.0 / (2 * speed * speed), perp(e))
+    turn = scale(cross(dv, da), turn)  # d e / dt: da across e over 2 |dv|
+    h_v = -dot(d, dv) / (4 * closure.h)
+    v = add(
+        add(la.vp, scale(0.5, dv)),
+        add(scale(branch * h_v, closure.n), scale(branch * closure.joined * closure.h, perp(turn))),
+    )
+    ra2, rb2 = dot(sub(x, la.p), sub(x, la.p)), dot(sub(x, lb.p), sub(x, lb.p))
+    on = closure.joined != 0
+    return (
+        np.where(on, cross(sub(x, la.p), sub(v, la.vp)) / ra2, ka),
+        np.where(on, cross(sub(x, lb.p), sub(v, lb.vp)) / rb2, kb),
+    )
 
 
 def _motion(state: State, la: _Locus, lb: _Locus, x: Vec) -> tuple[Any, ...]:
@@ -461,6 +494,7 @@ def _record(
     det: np.ndarray,
     branch: np.ndarray | None = None,
     flips: list[tuple[int, int, int]] | None = None,
+    joined: Any = 0.0,
 ) -> None:
     slack = np.broadcast_to(slack, state.valid.shape)
     state.step_slack.append(slack)
@@ -469,6 +503,7 @@ def _record(
     state.step_branch.append(branch)
     state.step_flips.append(flips or [])
     state.step_jumps.append([])
+    state.step_joined.append(np.broadcast_to(joined != 0, state.valid.shape) if np.any(joined) else None)
 
 
 def with_branches(mech: Any, steps: list[Step]) -> list[Step]:

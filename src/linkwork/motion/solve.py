@@ -76,6 +76,12 @@ def run(
     out.step_branch = [
         None if x[0] is None else np.concatenate(x) for x in zip(*(p.step_branch for p in parts), strict=True)
     ]
+    out.step_joined = [
+        None
+        if all(j is None for j in x)
+        else np.concatenate([np.zeros(p.valid.shape, bool) if j is None else j for j, p in zip(x, parts, strict=True)])
+        for x in zip(*(p.step_joined for p in parts), strict=True)
+    ]
     offsets = np.cumsum([0] + [p.valid.shape[0] for p in parts])
     out.step_jumps = [
         [(v + int(o), j) for p, o in zip(parts, offsets, strict=False) for v, j in p.step_jumps[k]]
@@ -93,7 +99,7 @@ def _run_fast(
 ) -> State | None:
     """The compiled closed-form path; None where a dyad passes near a change point (the NumPy path follows it)."""
     res = fast.run(mech, geom, values, rates, accels)
-    if res["near"].any():
+    if res["near"].any() or res["joined"].any():
         return None
     n_steps = len(program)
     state = State(
@@ -114,6 +120,7 @@ def _run_fast(
         list(res["slack"]),
     )
     state.step_branch = [None] * n_steps
+    state.step_joined = [None] * n_steps
     state.step_flips = [[] for _ in range(n_steps)]
     state.step_jumps = [[] for _ in range(n_steps)]
     state.step_trouble = res["trouble"]
@@ -243,11 +250,15 @@ def _repair_singular(
         order[list(step.links)] = i
     affected = order[None, None, :] >= first[..., None]  # (V, a, N)
     mask = singular[:, idx][..., None] & affected
+    # where every singular step is a dyad whose outer joints coincide, its velocities are the motion's
+    joined = np.stack([np.zeros(det.shape[1:], bool) if j is None else j for j in state.step_joined])
+    kept = np.all((det >= SINGULAR) | joined, axis=0)[:, idx]  # (V, a)
     for k, full in enumerate((state.v, state.a)):
         richardson = (4 * means[0][k] - means[1][k]) / 3  # removes the h^2 error of the central mean
         view = np.moveaxis(full, (0, 1), (2, 3))  # (V, A, N, 3)
         block = view[:, idx]
-        block[mask] = np.moveaxis(richardson, (0, 1), (2, 3))[mask]
+        take = mask & ~kept[..., None] if k == 0 else mask
+        block[take] = np.moveaxis(richardson, (0, 1), (2, 3))[take]
         view[:, idx] = block
 
 
@@ -329,6 +340,7 @@ def newton(
     state.step_det.append(sv[..., -1] / np.maximum(sv[..., 0], 1e-300))
     state.step_valid.append(converged)
     state.step_branch.append(None)
+    state.step_joined.append(None)
     state.step_flips.append([])
     state.step_jumps.append(_jumps(state, links, values[:, 0], scale, converged))
 
