@@ -288,15 +288,20 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
         slack = _touching(min(rsum2 - dist2, dist2 - (ra - rb) * (ra - rb)) / rsum2)
         ex, ey = dx * inv, dy * inv
         if dist <= CLOSE * (ra + rb):  # the outer joints (nearly) together: their direction from their motion
-            tau = (dx * dvx + dy * dvy) / (dvx * dvx + dvy * dvy)
+            speed2 = dvx * dvx + dvy * dvy
+            tau = (dx * dvx + dy * dvy) / speed2
             wx, wy = dvx - 0.5 * tau * dax, dvy - 0.5 * tau * day
             sign = (-1.0 if tau < 0 else 1.0) / math.sqrt(wx * wx + wy * wy)
+            rounding = (
+                8 * ROUNDING * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))
+            )
+            miss = abs(dx * dvy - dy * dvx)
+            through = miss <= (rounding + dist2 * math.sqrt(dax * dax + day * day) / speed2) * math.sqrt(speed2)
             if math.isfinite(sign):
-                ex, ey = sign * wx, sign * wy
+                if through:
+                    ex, ey = sign * wx, sign * wy
                 # together to rounding: the velocities are left to the NumPy kernels
-                joined = dist <= 8 * ROUNDING * (
-                    ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1])
-                )
+                joined = dist <= rounding
         dist_v = (dx * dvx + dy * dvy) / dist
         dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
         size = ra * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))

@@ -81,14 +81,14 @@ ROUNDING = 64 * np.finfo(float).eps
 
 
 class Singular(NamedTuple):
-    """Where a dyad is singular: a quantity of the motion ``y`` (m components, ``(m, V, A)``) with its
-    first two time derivatives ``v`` and ``a``, reaching ``target`` (``(m, V, 1)``; NaN: never) to
-    within ``tol`` (``(V, 1)``)."""
+    """Where a dyad is singular: a quantity of the motion ``y`` (a tuple of components, ``(V, A)``
+    each) with its first two time derivatives ``v`` and ``a``, reaching ``target`` (a component
+    ``(V, 1)`` or scalar each; NaN: never) to within ``tol`` (``(V, 1)``)."""
 
-    y: np.ndarray
-    v: np.ndarray
-    a: np.ndarray
-    target: np.ndarray
+    y: tuple[np.ndarray, ...]
+    v: tuple[np.ndarray, ...]
+    a: tuple[np.ndarray, ...]
+    target: tuple[Any, ...]
     tol: np.ndarray
 
 
@@ -127,7 +127,7 @@ def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
     q_v, q_a = dot(n, rel), dot(n, acc)
     h = _root(r2 - q * q, slack, -2 * q, q_v, q_a, ROUNDING * size)
     tol = CLOSE * circle.r
-    touch = tuple(Singular(q[None], q_v[None], q_a[None], sign * circle.r[None], tol) for sign in (1.0, -1.0))
+    touch = tuple(Singular((q,), (q_v,), (q_a,), (sign * circle.r,), tol) for sign in (1.0, -1.0))
     return Closure(add(line.l0, scale(dot(w, line.u), line.u)), line.u, h, slack, 2 * h, touch)
 
 
@@ -146,13 +146,17 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
     close = dist <= CLOSE * (la.r + lb.r)
     joined = 0.0
     if np.any(close):
-        # d = tau (v - acc tau / 2) a time tau after the centres met: its direction from their motion
-        tau = dot(d, dv) / dot(dv, dv)
+        # d = tau (v - acc tau / 2) a time tau after the centres met: its direction from their motion,
+        # where they do pass through each other (off their line of motion by no more than the rounding
+        # and the curvature's share); centres that miss each other keep the direction they have
+        speed2 = dot(dv, dv)
+        tau = dot(d, dv) / speed2
         along = sub(dv, scale(0.5 * tau, da))
         side = np.where(tau < 0, -1.0, 1.0)
         sign = side / norm(along)
-        e = tuple(np.where(close & np.isfinite(sign), sign * g, x) for g, x in zip(along, e, strict=True))
         rounding = 8 * ROUNDING * (la.r + lb.r + norm(la.p) + norm(lb.p))
+        through = np.abs(cross(d, dv)) <= (rounding + dist2 * norm(da) / speed2) * np.sqrt(speed2)
+        e = tuple(np.where(close & through & np.isfinite(sign), sign * g, x) for g, x in zip(along, e, strict=True))
         joined = np.where((dist <= rounding) & np.isfinite(sign), side, 0.0)
     dist_v = dot(d, dv) / dist  # the distance of the centres over time
     dist_a = (dot(dv, dv) + dot(d, da) - dist_v * dist_v) / dist
@@ -163,9 +167,9 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
     tol = CLOSE * (la.r + lb.r)
     inner = np.abs(la.r - lb.r)
     singular = (
-        Singular(np.stack(d), np.stack(dv), np.stack(da), np.zeros((2,) + tol.shape), tol),
-        Singular(dist[None], dist_v[None], dist_a[None], (la.r + lb.r)[None], tol),
-        Singular(dist[None], dist_v[None], dist_a[None], np.where(inner > tol, inner, np.nan)[None], tol),
+        Singular(d, dv, da, (0.0, 0.0), tol),
+        Singular((dist,), (dist_v,), (dist_a,), (la.r + lb.r,), tol),
+        Singular((dist,), (dist_v,), (dist_a,), (np.where(inner > tol, inner, np.nan),), tol),
     )
     return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular, joined)
 
@@ -394,12 +398,13 @@ def _passes(tests: tuple[Singular, ...], state: State, v: int, i: int, j: int) -
         return True
     dt = (state.drive[j] - state.drive[i]) / rate
     for test in tests:
-        target = test.target[:, v, 0]
+        target = np.array([c if np.ndim(c) == 0 else c[v, 0] for c in test.target], dtype=float)
         if np.isnan(target).any():
             continue  # a position this dyad never takes
-        y0, y1 = test.y[:, v, i] - target, test.y[:, v, j] - target
-        v0, v1 = test.v[:, v, i] * dt, test.v[:, v, j] * dt
-        a0, a1 = test.a[:, v, i] * dt * dt, test.a[:, v, j] * dt * dt
+        y, vel, acc = (np.array([[c[v, i], c[v, j]] for c in x]) for x in (test.y, test.v, test.a))
+        y0, y1 = y[:, 0] - target, y[:, 1] - target
+        v0, v1 = vel[:, 0] * dt, vel[:, 1] * dt
+        a0, a1 = acc[:, 0] * dt * dt, acc[:, 1] * dt * dt
         if not np.isfinite(np.concatenate([y0, y1, v0, v1, a0, a1])).all():
             return True
         # on [0, 1]: y0 + v0 t + a0 t^2 / 2 + c3 t^3 + c4 t^4 + c5 t^5 with the values at 1

@@ -97,7 +97,8 @@ def run(
 def _run_fast(
     mech: Any, program: tuple[Step, ...], geom: Geometry, values: np.ndarray, rates: np.ndarray, accels: np.ndarray
 ) -> State | None:
-    """The compiled closed-form path; None where a dyad passes near a change point (the NumPy path follows it)."""
+    """The compiled closed-form path; None where a dyad passes near a change point, or its outer joints
+    coincide (the NumPy path follows the motion there)."""
     res = fast.run(mech, geom, values, rates, accels)
     if res["near"].any() or res["joined"].any():
         return None
