@@ -634,35 +634,39 @@ def test_a_rhombus_moved_rigidly_moves_alike_with_its_crank_on_the_frame(left, t
     _check_motion(mech, runs, expected, atol=1e-12, vtol=1e-12, slope=slope)
 
 
-def _kite_and_moved(left, transform):
-    """The kite O2 A = A B = 0.5, O2 O4 = O4 B = 0.625 assembled at 0.25 rad (``left``: the kite, B the
+def _kite_and_moved(left, transform, c=0.625):
+    """The kite O2 A = A B = 0.5, O2 O4 = O4 B = c assembled at 0.25 rad (``left``: the kite, B the
     mirror image of O2 in A O4; else folded, B on O2), moved rigidly by ``transform``, and the closed
     form of B over the crank angle measured from the frame."""
-    data, _ = four_bar_spec(0.5, 0.5, 0.625, 0.625, 0.25, left, transform)
+    data, _ = four_bar_spec(0.5, 0.5, c, c, 0.25, left, transform)
     dx, dy, rot = transform
-    c, s = math.cos(rot), math.sin(rot)
+    cr, sr = math.cos(rot), math.sin(rot)
 
     def expected(angle):
         phi = angle - rot
         a = 0.5 * np.stack([np.cos(phi), np.sin(phi)], -1)
-        u = np.array([0.625, 0.0]) - a
+        u = np.array([c, 0.0]) - a
         u /= np.linalg.norm(u, axis=-1, keepdims=True)
         b = 2 * (a - np.sum(a * u, -1, keepdims=True) * u) if left else np.zeros_like(a)
-        return np.stack([c * b[:, 0] - s * b[:, 1] + dx, s * b[:, 0] + c * b[:, 1] + dy], -1)
+        return np.stack([cr * b[:, 0] - sr * b[:, 1] + dx, sr * b[:, 0] + cr * b[:, 1] + dy], -1)
 
     return lw.compile(lw.from_dict(data)), expected
 
 
 @KERNELS
+@pytest.mark.parametrize("c", [0.625, 0.5625])
 @pytest.mark.parametrize("transform", [(0.0, 0.0, 0.0), (0.0, 0.0, 0.02), (0.3, -0.2, 1.0)])
 @pytest.mark.parametrize("left", [True, False], ids=["kite", "folded"])
-def test_a_kite_goes_through_its_change_points_alike_however_sampled_and_placed(left, transform, compiled, monkeypatch):
+def test_a_kite_goes_through_its_change_points_alike_however_sampled_and_placed(
+    left, transform, c, compiled, monkeypatch
+):
     """The kite's two modes meet at 0 (A nearest O4) and at pi (farthest): the kite goes on as the
     mirror image, the folded one stays folded, the same one angle at a time, all at once with samples
     on the change points (exactly, or a rounding off them once the frame is turned), or in coarse
-    steps; and the same with the whole mechanism turned and shifted."""
+    steps; and the same with the whole mechanism turned and shifted.  With c = 0.5625 A passes only
+    62.5 mm from O4, and their distance turns sharply there."""
     _kernels(monkeypatch, compiled)
-    mech, expected = _kite_and_moved(left, transform)
+    mech, expected = _kite_and_moved(left, transform, c)
     rot = transform[2]
     angles = rot + np.array([-0.25, 0.0, 0.1, np.pi - 0.1, np.pi, np.pi + 0.1])
     runs = _single_batch_coarse(angles, rot + 0.25 + np.linspace(-0.5, 0.5, 21), rot + 0.05 * np.arange(-60, 71))

@@ -163,13 +163,14 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
     size = la.r * (la.r + lb.r + norm(la.p) + norm(lb.p))
     h = _root(la.r * la.r - a * a, slack, -a * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
     # the modes trade places where the circles touch, or where their centres coincide (then the radii
-    # are equal, and the distance of the centres has a kink: the relative position is followed instead)
+    # are equal); followed are the relative position of the centres and its square, smooth functions
     tol = CLOSE * (la.r + lb.r)
-    inner = np.abs(la.r - lb.r)
+    outer, inner = la.r + lb.r, np.abs(la.r - lb.r)
+    square = ((dist2,), (2 * dot(d, dv),), (2 * (dot(dv, dv) + dot(d, da)),))
     singular = (
         Singular(d, dv, da, (0.0, 0.0), tol),
-        Singular((dist,), (dist_v,), (dist_a,), (la.r + lb.r,), tol),
-        Singular((dist,), (dist_v,), (dist_a,), (np.where(inner > tol, inner, np.nan),), tol),
+        Singular(*square, (outer * outer,), 2 * outer * tol),
+        Singular(*square, (np.where(inner > tol, inner * inner, np.nan),), 2 * inner * tol),
     )
     return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular, joined)
 
@@ -390,8 +391,10 @@ def _passes(tests: tuple[Singular, ...], state: State, v: int, i: int, j: int) -
 
     Each quantity of ``tests`` is followed between the two samples by the quintic through its values
     and first two time derivatives there; the modes can trade places only where one comes within its
-    tolerance of its target.  Elsewhere X may swing fast (outer joints that pass near each other) but
-    stays in its mode.  Without the rates of the drive (several drives) nothing is ruled out.
+    tolerance of its target, widened by how far the quintic is from the cubic through the values and
+    first derivatives (a bound on its own error).  Elsewhere X may swing fast (outer joints that pass
+    near each other) but stays in its mode.  Without the rates of the drive (several drives) nothing
+    is ruled out.
     """
     rate = None if state.rate is None else state.rate[i]
     if rate is None or not np.isfinite(rate) or rate == 0:
@@ -409,18 +412,21 @@ def _passes(tests: tuple[Singular, ...], state: State, v: int, i: int, j: int) -
             return True
         # on [0, 1]: y0 + v0 t + a0 t^2 / 2 + c3 t^3 + c4 t^4 + c5 t^5 with the values at 1
         big_a, big_b, big_c = y1 - y0 - v0 - a0 / 2, v1 - v0 - a0, a1 - a0
-        c3, c4, c5 = (
-            10 * big_a - 4 * big_b + big_c / 2,
-            -15 * big_a + 7 * big_b - big_c,
-            6 * big_a - 3 * big_b + big_c / 2,
+        quintic = np.stack(
+            [y0, v0, a0 / 2, 10 * big_a - 4 * big_b + big_c / 2, -15 * big_a + 7 * big_b - big_c]
+            + [6 * big_a - 3 * big_b + big_c / 2],
+            -1,
         )
+        cubic = np.stack([y0, v0, 3 * (y1 - y0) - 2 * v0 - v1, 2 * (y0 - y1) + v0 + v1, 0 * y0, 0 * y0], -1)
+        grid = np.linspace(0.0, 1.0, 17)
+        error = np.sqrt(sum(poly.polyval(grid, q - c) ** 2 for q, c in zip(quintic, cubic, strict=True))).max()
         square = np.zeros(1)
-        for c in np.stack([y0, v0, a0 / 2, c3, c4, c5], -1):  # |y(t) - target|^2
+        for c in quintic:  # |y(t) - target|^2
             square = poly.polyadd(square, poly.polymul(c, c))
         slope = poly.polyder(square)
         t = poly.polyroots(slope).real if np.any(slope) else np.zeros(0)
         t = np.concatenate([[0.0, 1.0], np.clip(t, 0.0, 1.0)])
-        if np.sqrt(max(poly.polyval(t, square).min(), 0.0)) <= test.tol[v, 0]:
+        if np.sqrt(max(poly.polyval(t, square).min(), 0.0)) <= test.tol[v, 0] + error:
             return True
     return False
 
