@@ -674,6 +674,31 @@ def test_a_kite_goes_through_its_change_points_alike_however_sampled_and_placed(
 
 
 @KERNELS
+@pytest.mark.parametrize("crossed", [True, False], ids=["antiparallelogram", "parallelogram"])
+def test_a_parallelogram_linkage_keeps_its_mode_through_its_flat_position(crossed, compiled, monkeypatch):
+    """Crank and rocker 0.8125, coupler and frame 0.75, assembled at 0.1 rad.  Open, B = A + (0.75, 0);
+    crossed, A O4 B O2 is an isosceles trapezoid and B the mirror image of O2 in the perpendicular
+    bisector of A O4.  At 0 rad (laid flat) the two modes meet; the crossed one sweeps through fast
+    there (B at 20 times the crank's speed), and a sample on the flat position, whose velocity is lost,
+    lies between the samples that decide the mode."""
+    _kernels(monkeypatch, compiled)
+    a, d = 0.8125, 0.75
+    data, _ = four_bar_spec(a, d, a, d, 0.1, not crossed)
+    mech = lw.compile(lw.from_dict(data))
+
+    def expected(phi):
+        pa = a * np.stack([np.cos(phi), np.sin(phi)], -1)
+        if not crossed:
+            return pa + [d, 0.0]
+        mid, u = (pa + [d, 0.0]) / 2, [d, 0.0] - pa
+        u /= np.linalg.norm(u, axis=-1, keepdims=True)
+        return -2 * np.sum(-mid * u, -1, keepdims=True) * u
+
+    runs = _single_batch_coarse(np.array([-0.4, -0.05, 0.0, 0.6]), 0.1 + np.linspace(-0.5, 0.5, 21))
+    _check_motion(mech, runs, expected, atol=1e-12, vtol=1e-6)
+
+
+@KERNELS
 def test_outer_joints_passing_near_each_other_keep_the_mode_however_sampled(compiled, monkeypatch):
     """O2 A = 0.19921875, O2 O4 = 0.203125 and A B = O4 B = 1: A passes 3.9 mm from O4 at 0 rad, and
     the coupler swings round within a few hundredths of a radian; no singular position is passed, so

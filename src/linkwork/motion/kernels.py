@@ -76,7 +76,8 @@ REGULAR = 1e-4
 #: taken from their relative velocity and acceleration.  Between two samples the two assembly modes
 #: trade places only where the motion comes this near a singular position.
 CLOSE = 1e-6
-#: Rounding of the squared half gap between the two modes, in units of the dyad's size squared.
+#: Relative rounding of what a dyad is solved from (positions of its outer joints, squared half gap
+#: between its modes), in units of its size and of the coordinates' magnitude.
 ROUNDING = 64 * np.finfo(float).eps
 
 
@@ -301,13 +302,15 @@ def _change_points(
     From the sample nearest the assembly pose, forwards and then backwards,
     each sample where the two assembly modes of the dyad nearly meet (their
     points X closer together than X moves in a step) takes the mode that
-    keeps the motion of X smooth: the one whose position and velocity lie
-    nearer their Taylor expansion from the last sample before it away from
-    a singular position (where the velocities are lost, a sample decides
-    nothing).  Where the modes cross (the isosceles slider-crank at 0 and
-    180 deg, a parallelogram laid flat) their velocities differ however
-    near the crossing a sample lies, so the motion goes on in the mode that
-    keeps its velocity continuous whatever the samples.  The mode changes
+    keeps the motion of X smooth (:func:`_mismatch`): the one whose position
+    and velocity lie nearer their Taylor expansion from the last sample
+    before it away from a singular position, or whose smooth continuation
+    from there passes the samples between (on the singular position, where
+    the velocities are lost; such a sample decides nothing itself).  Where
+    the modes cross (the isosceles slider-crank at 0 and 180 deg, a
+    parallelogram laid flat) their velocities differ however near the
+    crossing a sample lies, so the motion goes on in the mode that keeps
+    its velocity continuous whatever the samples.  The mode changes
     only where the dyad may pass a singular position between the two
     samples (:func:`_passes`): elsewhere X may swing fast (outer joints
     passing close by) but keeps its mode.  Without the rate of a single
@@ -360,12 +363,17 @@ def _change_points(
                     if last[k - 1] < 0:
                         continue
                     ref = order[last[k - 1]]
+                    between = order[last[k - 1] + 1 : k]  # on or beside a singular position
                     dt = (drive[here] - drive[ref]) / rate[ref]
-                    v_hat = pick(vs, ref) + pick(accs, ref) * dt
-                    x_hat = pick(xs, ref) + pick(vs, ref) * dt + pick(accs, ref) * (dt * dt / 2)
+                    start_of = (pick(xs, ref), pick(vs, ref), pick(accs, ref))
                     miss = [
-                        np.hypot(*(pick(xs, here, o) - x_hat))
-                        + (0.0 if lost[v, here] else np.hypot(*(pick(vs, here, o) - v_hat)) * abs(dt))
+                        _mismatch(
+                            start_of,
+                            dt,
+                            (pick(xs, here, o), None if lost[v, here] else pick(vs, here, o)),
+                            (drive[between] - drive[ref]) / rate[ref],
+                            np.array([pick(xs, i) for i in between]).reshape(-1, 2),
+                        )
                         for o in (False, True)
                     ]
                 elif k >= 2:
@@ -384,6 +392,30 @@ def _change_points(
                     touch = int(p1 if closure.apart[v, p1] < closure.apart[v, here] else here)
                     flips.append((int(v), int(here), touch))
     return flips
+
+
+def _mismatch(
+    start: tuple[np.ndarray, ...], dt: float, end: tuple[Any, Any], times: np.ndarray, xs: np.ndarray
+) -> float:
+    """How far a mode at the end of a step of ``dt`` is from continuing the motion smoothly.
+
+    ``start`` = (X, V, A) at the last sample off singular positions, ``end`` = (X, V) of the mode
+    (V None where lost).  Without samples between: the distance of X and of V dt from their Taylor
+    expansion.  With samples between (``xs`` at ``times``, on or beside the singular position, where
+    X is known but V is not): the distance of their X from the quartic through both ends (a cubic
+    where V at the end is lost).
+    """
+    x0, v0, a0 = start
+    x1, v1 = end
+    near = x0 + v0 * dt + a0 * (dt * dt / 2)
+    if len(times) == 0:
+        return float(np.hypot(*(x1 - near)) + (0.0 if v1 is None else np.hypot(*(v1 - v0 - a0 * dt)) * abs(dt)))
+    rest = x1 - near
+    c4 = 0.0 * rest if v1 is None else ((v1 - v0 - a0 * dt) * dt - 3 * rest) / dt**4
+    c3 = (rest - c4 * dt**4) / dt**3
+    t = times[:, None]
+    path = x0 + v0 * t + a0 * (t * t / 2) + c3 * t**3 + c4 * t**4
+    return float(np.hypot(*(path - xs).T).sum())
 
 
 def _passes(tests: tuple[Singular, ...], state: State, v: int, i: int, j: int) -> bool:
