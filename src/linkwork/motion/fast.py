@@ -240,12 +240,11 @@ def _touching(x):
     return 0.0 if -1e-12 < x < 0 else x
 
 
-def _root(h2, slack, dh2, q_v, q_a, rounding):
-    """The half gap between the two modes of a dyad (:func:`linkwork.motion.kernels._root`)."""
+def _snap(h2, dh2, q_v, q_a, rounding):
+    """The squared half gap between the two modes of a dyad near a change point
+    (:func:`linkwork.motion.kernels._root`)."""
     motion = dh2 * q_v * q_v / (2 * q_a)
-    if abs(h2 - motion) <= rounding:
-        h2 = motion
-    return math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
+    return motion if abs(h2 - motion) <= rounding else h2
 
 
 def _arm_motion(L, ops, st, o, P, x, y):
@@ -302,10 +301,13 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
                     ex, ey = sign * wx, sign * wy
                 # together to rounding: the velocities are left to the NumPy kernels
                 joined = dist <= rounding
-        dist_v = (dx * dvx + dy * dvy) / dist
-        dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
-        size = ra * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))
-        h = branch * _root(ra * ra - t * t, slack, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
+        h2 = ra * ra - t * t
+        if abs(h2) <= CLOSE * (ra * ra):  # near a change point: the motion about it
+            dist_v = (dx * dvx + dy * dvy) / dist
+            dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
+            size = ra * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))
+            h2 = _snap(h2, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
+        h = branch * math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
         x, y = A[0] + t * ex - h * ey, A[1] + t * ey + h * ex
         gx, gy = 2 * h * ey, -2 * h * ex
     elif not ka_r and not kb_r:
@@ -320,14 +322,16 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
         q = nx * wx + ny * wy  # signed distance of the circle's centre from the line
         r2 = C[6] * C[6]
         slack = _touching((r2 - q * q) / r2)
-        # q over time: the velocity and acceleration of the centre relative to the line's link
-        g = ops[st, ol + 6]
-        vmx, vmy, amx, amy = _material(L, g, C[0], C[1])
-        rx, ry = C[2] - vmx, C[3] - vmy
-        f = 2 * L[g, 5]
-        cx, cy = (C[4] - amx) - f * -ry, (C[5] - amy) - f * rx
-        size = C[6] * (C[6] + math.sqrt(C[0] * C[0] + C[1] * C[1]) + math.sqrt(Ln[0] * Ln[0] + Ln[1] * Ln[1]))
-        root = branch * _root(r2 - q * q, slack, -2 * q, nx * rx + ny * ry, nx * cx + ny * cy, ROUNDING * size)
+        disc = r2 - q * q
+        if abs(disc) <= CLOSE * r2:  # near a change point: q over time, relative to the line's link
+            g = ops[st, ol + 6]
+            vmx, vmy, amx, amy = _material(L, g, C[0], C[1])
+            rx, ry = C[2] - vmx, C[3] - vmy
+            f = 2 * L[g, 5]
+            cx, cy = (C[4] - amx) - f * -ry, (C[5] - amy) - f * rx
+            size = C[6] * (C[6] + math.sqrt(C[0] * C[0] + C[1] * C[1]) + math.sqrt(Ln[0] * Ln[0] + Ln[1] * Ln[1]))
+            disc = _snap(disc, -2 * q, nx * rx + ny * ry, nx * cx + ny * cy, ROUNDING * size)
+        root = branch * math.sqrt(max(disc, 0.0) if slack >= 0 else disc)
         t0 = wx * Ln[2] + wy * Ln[3]
         x, y = (Ln[0] + t0 * Ln[2]) + root * Ln[2], (Ln[1] + t0 * Ln[3]) + root * Ln[3]
         gx, gy = -2 * root * Ln[2], -2 * root * Ln[3]
@@ -547,7 +551,7 @@ if njit is not None:  # pragma: no branch
     _loc = njit(inline="always", **_opts)(_loc)
     _locus = njit(inline="always", **_opts)(_locus)
     _touching = njit(inline="always", **_opts)(_touching)
-    _root = njit(inline="always", **_opts)(_root)
+    _snap = njit(inline="always", **_opts)(_snap)
     _arm_motion = njit(inline="always", **_opts)(_arm_motion)
     _arm_extra = njit(inline="always", **_opts)(_arm_extra)
     _dyad = njit(inline="always", **_opts)(_dyad)

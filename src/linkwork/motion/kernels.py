@@ -126,7 +126,7 @@ def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
     acc = sub(sub(circle.ap, a_line), scale(2 * state.v[line.carrier, 2], perp(rel)))
     size = circle.r * (circle.r + norm(circle.p) + norm(line.l0))
     q_v, q_a = dot(n, rel), dot(n, acc)
-    h = _root(r2 - q * q, slack, -2 * q, q_v, q_a, ROUNDING * size)
+    h = _root(r2 - q * q, slack, -2 * q, q_v, q_a, ROUNDING * size, r2)
     tol = CLOSE * circle.r
     touch = tuple(Singular((q,), (q_v,), (q_a,), (sign * circle.r,), tol) for sign in (1.0, -1.0))
     return Closure(add(line.l0, scale(dot(w, line.u), line.u)), line.u, h, slack, 2 * h, touch)
@@ -162,7 +162,7 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
     dist_v = dot(d, dv) / dist  # the distance of the centres over time
     dist_a = (dot(dv, dv) + dot(d, da) - dist_v * dist_v) / dist
     size = la.r * (la.r + lb.r + norm(la.p) + norm(lb.p))
-    h = _root(la.r * la.r - a * a, slack, -a * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
+    h = _root(la.r * la.r - a * a, slack, -a * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size, la.r * la.r)
     # the modes trade places where the circles touch, or where their centres coincide (then the radii
     # are equal); followed are the relative position of the centres and its square, smooth functions
     tol = CLOSE * (la.r + lb.r)
@@ -177,18 +177,24 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
 
 
 def _root(
-    h2: np.ndarray, slack: np.ndarray, dh2: np.ndarray, q_v: np.ndarray, q_a: np.ndarray, rounding: Any
+    h2: np.ndarray,
+    slack: np.ndarray,
+    dh2: np.ndarray,
+    q_v: np.ndarray,
+    q_a: np.ndarray,
+    rounding: Any,
+    r2: Any,
 ) -> np.ndarray:
     """The half gap h between the two modes from its square ``h2``, a function of a distance q.
 
     Where the two modes meet the motion passes an extremum of q (a change point): there h2 = dh2 (q - q0)
     and q - q0 = q_v^2 / (2 q_a) about it (``dh2`` = dh2/dq, ``q_v``, ``q_a`` its first two time
-    derivatives).  Where h2 is that to within its ``rounding``, the motion's value is taken: the square
-    root of a rounded h2 would be off by the square root of the rounding, and differ between a
-    mechanism and the same mechanism moved.
+    derivatives).  Where h2 is within CLOSE of r2 of zero and that to within its ``rounding``, the
+    motion's value is taken: the square root of a rounded h2 would be off by the square root of the
+    rounding, and differ between a mechanism and the same mechanism moved.
     """
     motion = dh2 * q_v * q_v / (2 * q_a)
-    h2 = np.where(np.abs(h2 - motion) <= rounding, motion, h2)
+    h2 = np.where((np.abs(h2) <= CLOSE * r2) & (np.abs(h2 - motion) <= rounding), motion, h2)
     return np.sqrt(np.where(slack >= 0, np.maximum(h2, 0.0), h2))
 
 
