@@ -121,9 +121,9 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     fails to assemble, comes within :data:`SINGULAR` of a singular position
     or its determinant changes sign: only there are events looked for),
     ``singular`` (whether any assembled sample has a normalised determinant
-    below :data:`SINGULAR`) and ``joined`` (S, V) (True where the outer
-    joints of a dyad coincide to rounding: the NumPy kernels give the
-    velocities there).
+    below :data:`SINGULAR`) and ``limit`` (S, V) (True where a dyad lies
+    on a singular position to rounding, its outer joints together or its
+    modes meeting: the NumPy kernels give the velocities there).
     """
     ops, branch = mech.fast_program
     n_links = mech.n_links_total
@@ -131,7 +131,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     values, rates, accels = (np.ascontiguousarray(x, dtype=float) for x in (values, rates, accels))
     n_var, n_ang, n_steps = local.shape[0], values.shape[0], len(ops)
     out = np.empty((3, n_links, 3, n_var, n_ang))  # one block: q, v, a
-    joined = np.zeros((n_steps, n_var), dtype=np.bool_)
+    limit = np.zeros((n_steps, n_var), dtype=np.bool_)
     slack = np.empty((n_steps, n_var, n_ang))
     det = np.empty_like(slack)
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
@@ -140,7 +140,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     singular = np.zeros(1, dtype=np.bool_)
     tol = 1e-12 * (1 + float(np.abs(local).max()))
     args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, trouble)
-    args += (singular, joined, tol)
+    args += (singular, limit, tol)
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
@@ -166,7 +166,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
         "near": near,
         "trouble": trouble,
         "singular": bool(singular[0]),
-        "joined": joined,
+        "limit": limit,
     }
 
 
@@ -273,7 +273,7 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
     B = _locus(L, ops, st, o2, pre, local, origin, axis, xbx, xby)
     ka_r, kb_r = ops[st, o1] == 0, ops[st, o2] == 0
     gx = gy = 0.0
-    joined = False
+    limit = False
     if ka_r and kb_r:
         dx, dy = B[0] - A[0], B[1] - A[1]
         dvx, dvy, dax, day = B[2] - A[2], B[3] - A[3], B[4] - A[4], B[5] - A[5]
@@ -299,14 +299,15 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
             if math.isfinite(sign):
                 if through:
                     ex, ey = sign * wx, sign * wy
-                # together to rounding: the velocities are left to the NumPy kernels
-                joined = dist <= rounding
+                limit = dist <= rounding  # together to rounding
         h2 = ra * ra - t * t
         if abs(h2) <= CLOSE * (ra * ra):  # near a change point: the motion about it
             dist_v = (dx * dvx + dy * dvy) / dist
             dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
-            size = ra * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))
-            h2 = _snap(h2, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
+            size = ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1])
+            h2 = _snap(h2, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * (ra * size))
+            on = 8 * ROUNDING * size
+            limit = limit or (slack >= 0 and dist > on and math.sqrt(max(h2, 0.0)) <= on)  # on the change point
         h = branch * math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
         x, y = A[0] + t * ex - h * ey, A[1] + t * ey + h * ex
         gx, gy = 2 * h * ey, -2 * h * ex
@@ -329,8 +330,9 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
             rx, ry = C[2] - vmx, C[3] - vmy
             f = 2 * L[g, 5]
             cx, cy = (C[4] - amx) - f * -ry, (C[5] - amy) - f * rx
-            size = C[6] * (C[6] + math.sqrt(C[0] * C[0] + C[1] * C[1]) + math.sqrt(Ln[0] * Ln[0] + Ln[1] * Ln[1]))
-            disc = _snap(disc, -2 * q, nx * rx + ny * ry, nx * cx + ny * cy, ROUNDING * size)
+            size = C[6] + math.sqrt(C[0] * C[0] + C[1] * C[1]) + math.sqrt(Ln[0] * Ln[0] + Ln[1] * Ln[1])
+            disc = _snap(disc, -2 * q, nx * rx + ny * ry, nx * cx + ny * cy, ROUNDING * (C[6] * size))
+            limit = slack >= 0 and math.sqrt(max(disc, 0.0)) <= 8 * ROUNDING * size  # on the change point
         root = branch * math.sqrt(max(disc, 0.0) if slack >= 0 else disc)
         t0 = wx * Ln[2] + wy * Ln[3]
         x, y = (Ln[0] + t0 * Ln[2]) + root * Ln[2], (Ln[1] + t0 * Ln[3]) + root * Ln[3]
@@ -364,7 +366,7 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
         else:
             lx, ly = _loc(local, xl)
             _place_like(L, link, ops[st, o + 6], x, y, vx, vy, ax, ay, lx, ly)
-    return slack, d / math.sqrt((cax * cax + cay * cay) * (cbx * cbx + cby * cby)), x, y, gx, gy, joined
+    return slack, d / math.sqrt((cax * cax + cay * cay) * (cbx * cbx + cby * cby)), x, y, gx, gy, limit
 
 
 def _rpr(L, ops, st, branch, local, origin, axis):
@@ -398,8 +400,8 @@ def _rpr(L, ops, st, branch, local, origin, axis):
 
 
 def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i):
-    """One step at one sample: (slack, normalised determinant, X, gap vector, outer joints together)
-    (the last three for dyads)."""
+    """One step at one sample: (slack, normalised determinant, X, gap vector, on a singular position to
+    rounding) (the last three for dyads)."""
     kind = ops[st, 0]
     if kind == CRANK:
         link, base, src, own, sign, drv = ops[st, 1], ops[st, 2], ops[st, 3], ops[st, 4], ops[st, 5], ops[st, 6]
@@ -468,7 +470,7 @@ def _kernel(
     near,
     trouble,
     singular,
-    joined,
+    limit,
     tol,
     lo,
     hi,
@@ -495,7 +497,7 @@ def _kernel(
             for st in range(n_steps):
                 s, d, x, y, gx, gy, jn = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
                 if jn and i >= lo:
-                    joined[st, var] = True
+                    limit[st, var] = True
                 ok = ok and s >= 0
                 small = small or abs(d) < SINGULAR
                 if ops[st, 0] >= DYAD:  # cranks and slides always assemble: filled below

@@ -93,6 +93,32 @@ class Singular(NamedTuple):
     tol: np.ndarray
 
 
+class Limit(NamedTuple):
+    """The velocity of X where a dyad is on a singular position to rounding, which its velocity
+    equations leave open: that of the motion through it, ``base + s * across`` in its mode s (+-1)."""
+
+    on: np.ndarray  # (V, A) bool
+    base: Vec
+    across: Vec
+    own: np.ndarray  # (V, A): s is the sample's branch times this where nonzero, else the mode just after it
+
+
+def _limit(*parts: tuple[np.ndarray, Vec, Vec, Any]) -> Limit | None:
+    """One Limit from parts (on, base, across, own) where samples are on them; None where none is."""
+    parts = tuple(p for p in parts if np.any(p[0]))
+    if not parts:
+        return None
+    on = np.logical_or.reduce([p[0] for p in parts])
+
+    def pick(i: int, j: int | None = None) -> np.ndarray:
+        out = np.zeros(on.shape)
+        for p in parts:
+            out = np.where(p[0], p[i] if j is None else p[i][j], out)
+        return out
+
+    return Limit(on, (pick(1, 0), pick(1, 1)), (pick(2, 0), pick(2, 1)), pick(3))
+
+
 class Closure(NamedTuple):
     """Where the two loci of X meet: ``X = mid + branch * h * n`` in assembly mode ``branch`` (+-1)."""
 
@@ -102,7 +128,7 @@ class Closure(NamedTuple):
     slack: np.ndarray  # the assembly margin, negative where the loci do not meet
     apart: np.ndarray  # how far from trading places the two modes are: 2 h, or the outer joints' distance
     singular: tuple[Singular, ...] = ()  # where the two modes trade places
-    joined: Any = 0.0  # (V, A): +-1 where the outer joints coincide to rounding (the side of it), else 0
+    limit: Limit | None = None  # the velocity of X on a singular position to rounding
 
 
 def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
@@ -129,7 +155,13 @@ def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
     h = _root(r2 - q * q, slack, -2 * q, q_v, q_a, ROUNDING * size, r2)
     tol = CLOSE * circle.r
     touch = tuple(Singular((q,), (q_v,), (q_a,), (sign * circle.r,), tol) for sign in (1.0, -1.0))
-    return Closure(add(line.l0, scale(dot(w, line.u), line.u)), line.u, h, slack, 2 * h, touch)
+    mid = add(line.l0, scale(dot(w, line.u), line.u))
+    on = (slack >= 0) & (h <= 8 * ROUNDING * (circle.r + norm(circle.p) + norm(line.l0)))
+    limit = None
+    if np.any(on):  # on a change point: the middle moves with the line's link and the centre along it
+        mid_v = add(state.material(line.carrier, mid)[0], scale(dot(rel, line.u), line.u))
+        limit = _limit((on, mid_v, scale(np.sqrt(np.maximum(-q * q_a, 0.0)), line.u), 0.0))
+    return Closure(mid, line.u, h, slack, 2 * h, touch, limit)
 
 
 def _circles(la: _Locus, lb: _Locus) -> Closure:
@@ -145,7 +177,8 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
     slack = _touching(np.minimum(rsum2 - dist2, dist2 - (la.r - lb.r) ** 2) / rsum2)
     e = scale(inv, d)
     close = dist <= CLOSE * (la.r + lb.r)
-    joined = 0.0
+    rounding = 8 * ROUNDING * (la.r + lb.r + norm(la.p) + norm(lb.p))
+    joined = np.zeros(dist.shape)
     if np.any(close):
         # d = tau (v - acc tau / 2) a time tau after the centres met: its direction from their motion,
         # where they do pass through each other (off their line of motion by no more than the rounding
@@ -155,7 +188,6 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
         along = sub(dv, scale(0.5 * tau, da))
         side = np.where(tau < 0, -1.0, 1.0)
         sign = side / norm(along)
-        rounding = 8 * ROUNDING * (la.r + lb.r + norm(la.p) + norm(lb.p))
         through = np.abs(cross(d, dv)) <= (rounding + dist2 * norm(da) / speed2) * np.sqrt(speed2)
         e = tuple(np.where(close & through & np.isfinite(sign), sign * g, x) for g, x in zip(along, e, strict=True))
         joined = np.where((dist <= rounding) & np.isfinite(sign), side, 0.0)
@@ -173,7 +205,44 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
         Singular(*square, (outer * outer,), 2 * outer * tol),
         Singular(*square, (np.where(inner > tol, inner * inner, np.nan),), 2 * inner * tol),
     )
-    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular, joined)
+    limit = _limit(*_circles_limit(la, lb, e, a, h, slack, joined, (dv, da), (dist, dist_v, dist_a), rounding))
+    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular, limit)
+
+
+def _circles_limit(
+    la: _Locus,
+    lb: _Locus,
+    e: Vec,
+    a: np.ndarray,
+    h: np.ndarray,
+    slack: np.ndarray,
+    joined: np.ndarray,
+    rel: tuple[Vec, Vec],
+    dist: tuple[np.ndarray, ...],
+    rounding: np.ndarray,
+) -> list[tuple[np.ndarray, Vec, Vec, Any]]:
+    """Velocity of X where two circles are on a singular position to rounding (see :class:`Limit`).
+
+    Centres together (equal radii): X = P_a + d / 2 + h n about it, n turning as the direction of d,
+    whose limit is that of d' (turning at the part of d'' / 2 |d'| across it), and h' = 0 there; s is
+    the sample's branch times the side of it.  Circles touching (the modes meet): the middle moves as
+    P_a + a e, and h at the rate |h'| with h'^2 = (dh2/dq) q'' / 2 about the extremum of the distance q;
+    s is the mode just after the sample.  ``rel``: the velocity and acceleration of P_b - P_a;
+    ``dist``: their distance and its first two time derivatives."""
+    (dv, da), (dist, dist_v, dist_a) = rel, dist
+    parts = []
+    if np.any(joined):
+        speed = norm(dv)
+        turn = scale(cross(dv, da) / (2 * speed**3), perp(dv))  # d e / dt: da across e over 2 |dv|
+        parts.append((joined != 0, add(la.vp, scale(0.5, dv)), scale(h, perp(turn)), joined))
+    k = la.r * la.r - lb.r * lb.r
+    on = (slack >= 0) & (h <= rounding) & (dist > rounding)
+    if np.any(on):
+        e_v = scale(1.0 / dist, sub(dv, scale(dist_v, e)))
+        mid_v = add(la.vp, add(scale((dist * dist - k) / (2 * dist * dist) * dist_v, e), scale(a, e_v)))
+        h_v = np.sqrt(np.maximum(-a * (dist * dist - k) / (dist * dist) * dist_a / 2, 0.0))
+        parts.append((on, mid_v, scale(h_v, perp(e)), 0.0))
+    return parts
 
 
 def _root(
@@ -241,8 +310,16 @@ def dyad(
     # no single point X although the loci "meet" (coincident circle centres, parallel guides): not assembled
     slack = np.where((slack >= 0) & ~(np.isfinite(x[0]) & np.isfinite(x[1])), -1.0, slack)
     (ka, kb), (ka_d, kb_d), vx, ax, det = _motion(state, la, lb, x)
-    if np.any(closure.joined):
-        ka, kb = _joined_rates(la, lb, closure, branch_used, x, ka, kb)
+    lim = closure.limit
+    if lim is not None:  # on a singular position to rounding: the velocity of the motion through it
+        s = np.where(lim.own != 0, branch_used * lim.own, _later_mode(state, branch_used))
+        vx = tuple(np.where(lim.on, g, v) for g, v in zip(add(lim.base, scale(s, lim.across)), vx, strict=True))
+        ka, kb = (
+            np.where(lim.on, cross(sub(x, loc.p), sub(vx, loc.vp)) / dot(sub(x, loc.p), sub(x, loc.p)), k)
+            if loc.arm.kind == "R"
+            else k
+            for loc, k in ((la, ka), (lb, kb))
+        )
     for arm, loc, k, kd, xl in ((arm_a, la, ka, ka_d, xa), (arm_b, lb, kb, kb_d, xb)):
         if arm.kind == "R":
             d = sub(x, loc.p)
@@ -255,33 +332,20 @@ def dyad(
             state.place(arm.link, theta, k, kd, loc.p, loc.vp, loc.ap, state.loc(arm.own), (c, s))
         else:
             state.place_like(arm.link, arm.carrier, x, vx, ax, xl)
-    _record(state, slack, det, None if np.isscalar(branch_used) else branch_used, flips, closure.joined)
+    _record(state, slack, det, None if np.isscalar(branch_used) else branch_used, flips, lim and lim.on)
 
 
-def _joined_rates(
-    la: _Locus, lb: _Locus, closure: Closure, branch: Any, x: Vec, ka: np.ndarray, kb: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """The rates of the two arms where their outer joints coincide (to rounding), which the velocity
-    equations leave open: those of the motion through it.  With equal radii X = P_a + d / 2 + h n about
-    it (d = P_b - P_a), n turning as the direction of d, whose limit is that of its rate d' (turning at
-    the part of d'' / 2 |d'| across it), and h' = 0 there."""
-    d = sub(lb.p, la.p)
-    dv, da = sub(lb.vp, la.vp), sub(lb.ap, la.ap)
-    speed = norm(dv)
-    e = scale(1.0 / speed, dv)
-    turn = scale(1.0 / (2 * speed * speed), perp(e))
-    turn = scale(cross(dv, da), turn)  # d e / dt: da across e over 2 |dv|
-    h_v = -dot(d, dv) / (4 * closure.h)
-    v = add(
-        add(la.vp, scale(0.5, dv)),
-        add(scale(branch * h_v, closure.n), scale(branch * closure.joined * closure.h, perp(turn))),
-    )
-    ra2, rb2 = dot(sub(x, la.p), sub(x, la.p)), dot(sub(x, lb.p), sub(x, lb.p))
-    on = closure.joined != 0
-    return (
-        np.where(on, cross(sub(x, la.p), sub(v, la.vp)) / ra2, ka),
-        np.where(on, cross(sub(x, lb.p), sub(v, lb.vp)) / rb2, kb),
-    )
+def _later_mode(state: State, branch: Any) -> np.ndarray:
+    """The assembly mode (+-1) of the motion just after each sample in time, read off a neighbour:
+    its mode where it comes later, the other where it comes earlier (a singular position between)."""
+    b = np.broadcast_to(branch, state.valid.shape)
+    if b.shape[1] < 2 or state.rate is None:
+        return b
+    later = np.sign(np.diff(state.drive) * state.rate[:-1])  # +1 where the next sample comes later
+    out = np.empty(b.shape)
+    out[:, :-1] = b[:, 1:] * later
+    out[:, -1] = -b[:, -2] * later[-1]
+    return out
 
 
 def _motion(state: State, la: _Locus, lb: _Locus, x: Vec) -> tuple[Any, ...]:
@@ -543,7 +607,7 @@ def _record(
     det: np.ndarray,
     branch: np.ndarray | None = None,
     flips: list[tuple[int, int, int]] | None = None,
-    joined: Any = 0.0,
+    limit: np.ndarray | None = None,
 ) -> None:
     slack = np.broadcast_to(slack, state.valid.shape)
     state.step_slack.append(slack)
@@ -552,7 +616,7 @@ def _record(
     state.step_branch.append(branch)
     state.step_flips.append(flips or [])
     state.step_jumps.append([])
-    state.step_joined.append(np.broadcast_to(joined != 0, state.valid.shape) if np.any(joined) else None)
+    state.step_limit.append(None if limit is None else np.broadcast_to(limit, state.valid.shape))
 
 
 def with_branches(mech: Any, steps: list[Step]) -> list[Step]:

@@ -92,9 +92,9 @@ class State:
     step_branch: list[np.ndarray | None] = field(default_factory=list)  # per step, the mode used (V, A)
     step_flips: list[list[tuple[int, int, int]]] = field(default_factory=list)  # per step, change points
     step_jumps: list[list[tuple[int, int]]] = field(default_factory=list)  # per step, (variant, sample) jumps
-    # per step (V, A), where a dyad's outer joints coincide to rounding: its velocities there are those
-    # of the motion through it (not its accelerations); None: nowhere
-    step_joined: list[np.ndarray | None] = field(default_factory=list)
+    # per step (V, A), where a dyad is on a singular position to rounding: its velocities there are
+    # those of the motion through it (not its accelerations); None: nowhere
+    step_limit: list[np.ndarray | None] = field(default_factory=list)
     # per step (V,), from the compiled path: where a step may have events (no assembly, a singular
     # position, a sign change of its determinant); None: look everywhere
     step_trouble: np.ndarray | None = None
