@@ -129,6 +129,7 @@ class Closure(NamedTuple):
     apart: np.ndarray  # how far from trading places the two modes are: 2 h, or the outer joints' distance
     singular: tuple[Singular, ...] = ()  # where the two modes trade places
     limit: Limit | None = None  # the velocity of X on a singular position to rounding
+    swing: Any = False  # (V, A): outer joints missing each other by less than CLOSE (X mid-swing)
 
 
 def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
@@ -178,7 +179,7 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
     e = scale(inv, d)
     close = dist <= CLOSE * (la.r + lb.r)
     rounding = 8 * ROUNDING * (la.r + lb.r + norm(la.p) + norm(lb.p))
-    joined = np.zeros(dist.shape)
+    joined, swing = np.zeros(dist.shape), np.zeros(dist.shape, bool)
     if np.any(close):
         # d = tau (v - acc tau / 2) a time tau after the centres met: its direction from their motion,
         # where they do pass through each other (off their line of motion by no more than the rounding
@@ -191,6 +192,7 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
         through = np.abs(cross(d, dv)) <= (rounding + dist2 * norm(da) / speed2) * np.sqrt(speed2)
         e = tuple(np.where(close & through & np.isfinite(sign), sign * g, x) for g, x in zip(along, e, strict=True))
         joined = np.where((dist <= rounding) & np.isfinite(sign), side, 0.0)
+        swing = close & ~through & np.isfinite(sign)
     dist_v = dot(d, dv) / dist  # the distance of the centres over time
     dist_a = (dot(dv, dv) + dot(d, da) - dist_v * dist_v) / dist
     size = la.r * (la.r + lb.r + norm(la.p) + norm(lb.p))
@@ -206,7 +208,7 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
         Singular(*square, (np.where(inner > tol, inner * inner, np.nan),), 2 * inner * tol),
     )
     limit = _limit(*_circles_limit(la, lb, e, a, h, slack, joined, (dv, da), (dist, dist_v, dist_a), rounding))
-    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular, limit)
+    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular, limit, swing)
 
 
 def _circles_limit(
@@ -415,6 +417,9 @@ def _change_points(
     drive = state.drive
     flips = []
     start = state.start_index
+    # X mid-swing where outer joints miss each other by less than CLOSE: in neither mode of the motion
+    # through their meeting, which the samples about it follow
+    swing = np.broadcast_to(closure.swing, near.shape)
     for v in np.unique(np.nonzero(near)[0]):
         flipped = np.zeros(n, dtype=bool)  # samples now in the mode opposite to the first solution
 
@@ -426,7 +431,7 @@ def _change_points(
             last = np.maximum.accumulate(np.where(sure[v, order], np.arange(len(order)), -1))
             for k in range(1, len(order)):
                 here = order[k]
-                if not near[v, here]:
+                if not near[v, here] or swing[v, here]:
                     continue
                 ref = None
                 if timed:
@@ -434,6 +439,7 @@ def _change_points(
                         continue
                     ref = order[last[k - 1]]
                     between = order[last[k - 1] + 1 : k]  # on or beside a singular position
+                    between = between[~swing[v, between]]
                     dt = (drive[here] - drive[ref]) / rate[ref]
                     start_of = (pick(xs, ref), pick(vs, ref), pick(accs, ref))
                     miss = [
