@@ -685,16 +685,16 @@ def test_a_kite_goes_through_its_change_points_alike_however_sampled_and_placed(
 
 
 @KERNELS
+@pytest.mark.parametrize("a, d, phi", [(0.8125, 0.75, 0.1), (1.0, 0.9375, 0.25)])
 @pytest.mark.parametrize("crossed", [True, False], ids=["antiparallelogram", "parallelogram"])
-def test_a_parallelogram_linkage_keeps_its_mode_through_its_flat_position(crossed, compiled, monkeypatch):
-    """Crank and rocker 0.8125, coupler and frame 0.75, assembled at 0.1 rad.  Open, B = A + (0.75, 0);
-    crossed, A O4 B O2 is an isosceles trapezoid and B the mirror image of O2 in the perpendicular
-    bisector of A O4.  At 0 rad (laid flat) the two modes meet; the crossed one sweeps through fast
-    there (B at 20 times the crank's speed), and a sample on the flat position, whose velocity is lost,
-    lies between the samples that decide the mode."""
+def test_a_parallelogram_linkage_keeps_its_mode_through_its_flat_position(crossed, a, d, phi, compiled, monkeypatch):
+    """Crank and rocker a, coupler and frame d < a, assembled at phi.  Open, B = A + (d, 0); crossed,
+    A O4 B O2 is an isosceles trapezoid and B the mirror image of O2 in the perpendicular bisector of
+    A O4.  At 0 rad (laid flat) the two modes meet; the crossed one sweeps through fast there (B at
+    a / (a - d) times the crank's speed), too fast for any step to follow its curve: one on the flat
+    position, whose velocity is lost, or a 5-degree path that steps across it."""
     _kernels(monkeypatch, compiled)
-    a, d = 0.8125, 0.75
-    data, _ = four_bar_spec(a, d, a, d, 0.1, not crossed)
+    data, _ = four_bar_spec(a, d, a, d, phi, not crossed)
     mech = lw.compile(lw.from_dict(data))
 
     def expected(phi):
@@ -705,8 +705,36 @@ def test_a_parallelogram_linkage_keeps_its_mode_through_its_flat_position(crosse
         u /= np.linalg.norm(u, axis=-1, keepdims=True)
         return -2 * np.sum(-mid * u, -1, keepdims=True) * u
 
-    runs = _single_batch_coarse(np.array([-0.4, -0.05, 0.0, 0.6]), 0.1 + np.linspace(-0.5, 0.5, 21))
+    runs = _single_batch_coarse(np.array([-0.4, -0.25, -0.05, 0.0, 0.6]), phi + np.linspace(-0.5, 0.5, 21))
     _check_motion(mech, runs, expected, atol=1e-12, vtol=1e-6)
+
+
+@KERNELS
+@pytest.mark.parametrize("left", [True, False])
+def test_a_dead_point_gap_between_samples_is_not_crossed(left, compiled, monkeypatch):
+    """Crank and frame 0.5, coupler 0.09375, rocker 0.09765625: A passes over O4 at 0 rad, but the
+    coupler and rocker cannot reach each other within 0.45 deg of it (|b - c| > |A O4|).  Samples on
+    either side of that gap, whether a batch steps across it, a 5-degree path does, or fine steps go
+    through it (NaN inside), keep B on the side of A O4 the hints gave it."""
+    _kernels(monkeypatch, compiled)
+    a, b, c = 0.5, 0.09375, 0.09765625
+    data, _ = four_bar_spec(a, b, c, a, 0.3125, left)
+    mech = lw.compile(lw.from_dict(data))
+
+    def expected(phi):
+        return np.array([circle_intersection((a * math.cos(x), a * math.sin(x)), b, (a, 0.0), c, left) for x in phi])
+
+    def assembles(phi):  # c - b <= |A O4| <= b + c
+        reach = 2 * a * np.abs(np.sin(np.asarray(phi) / 2))
+        return (reach >= c - b) & (reach <= b + c)
+
+    fine = np.linspace(0.3125, -0.2, 1025)
+    assert not assembles(fine).all()
+    for angles in ([-0.1875], 0.3125 + np.linspace(-0.5, 0.5, 21), fine):
+        kin = lw.kinematics(mech, angles)
+        keep = assembles(angles)
+        assert (kin.valid == keep).all()
+        np.testing.assert_allclose(kin.position("B")[keep], expected(np.asarray(angles)[keep]), atol=1e-12)
 
 
 @KERNELS

@@ -68,9 +68,6 @@ class _Locus:
 
 #: Normalised Jacobian determinant below which a sample is a singular position.
 SINGULAR = 1e-9
-#: Normalised determinant above which the velocity and acceleration of a dyad are trusted to follow
-#: its motion through a change point (their rounding grows as its inverse and inverse square).
-REGULAR = 1e-4
 #: Nearness to a singular position of a dyad, relative to its size.  Outer joints this near each other
 #: (a rhombus with its crank on the frame) have lost their direction from each other to rounding: it is
 #: taken from their relative velocity and acceleration.  Between two samples the two assembly modes
@@ -84,13 +81,16 @@ ROUNDING = 64 * np.finfo(float).eps
 class Singular(NamedTuple):
     """Where a dyad is singular: a quantity of the motion ``y`` (a tuple of components, ``(V, A)``
     each) with its first two time derivatives ``v`` and ``a``, reaching ``target`` (a component
-    ``(V, 1)`` or scalar each; NaN: never) to within ``tol`` (``(V, 1)``)."""
+    ``(V, 1)`` or scalar each; NaN: never) to within ``tol`` (``(V, 1)``).  A scalar reaches it at an
+    extremum (the two modes meet there), and cannot assemble beyond it (``beyond``: +1 above, -1
+    below); a vector (the relative position of outer joints) passes through it."""
 
     y: tuple[np.ndarray, ...]
     v: tuple[np.ndarray, ...]
     a: tuple[np.ndarray, ...]
     target: tuple[Any, ...]
     tol: np.ndarray
+    beyond: float = 0.0
 
 
 class Limit(NamedTuple):
@@ -126,10 +126,8 @@ class Closure(NamedTuple):
     n: Vec
     h: np.ndarray  # NaN where the loci do not meet
     slack: np.ndarray  # the assembly margin, negative where the loci do not meet
-    apart: np.ndarray  # how far from trading places the two modes are: 2 h, or the outer joints' distance
     singular: tuple[Singular, ...] = ()  # where the two modes trade places
     limit: Limit | None = None  # the velocity of X on a singular position to rounding
-    swing: Any = False  # (V, A): outer joints missing each other by less than CLOSE (X mid-swing)
 
 
 def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
@@ -140,7 +138,7 @@ def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
         den = cross(la.u, lb.u)
         t = cross(sub(lb.l0, la.l0), lb.u) / den
         zero = np.zeros_like(den)
-        return Closure(add(la.l0, scale(t, la.u)), (zero, zero), zero, np.abs(den), zero)  # one mode
+        return Closure(add(la.l0, scale(t, la.u)), (zero, zero), zero, np.abs(den))  # one mode
     circle, line = (la, lb) if la.arm.kind == "R" else (lb, la)
     w = sub(circle.p, line.l0)
     n = perp(line.u)
@@ -155,14 +153,14 @@ def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
     q_v, q_a = dot(n, rel), dot(n, acc)
     h = _root(r2 - q * q, slack, -2 * q, q_v, q_a, ROUNDING * size, r2)
     tol = CLOSE * circle.r
-    touch = tuple(Singular((q,), (q_v,), (q_a,), (sign * circle.r,), tol) for sign in (1.0, -1.0))
+    touch = tuple(Singular((q,), (q_v,), (q_a,), (sign * circle.r,), tol, sign) for sign in (1.0, -1.0))
     mid = add(line.l0, scale(dot(w, line.u), line.u))
     on = (slack >= 0) & (h <= 8 * ROUNDING * (circle.r + norm(circle.p) + norm(line.l0)))
     limit = None
     if np.any(on):  # on a change point: the middle moves with the line's link and the centre along it
         mid_v = add(state.material(line.carrier, mid)[0], scale(dot(rel, line.u), line.u))
         limit = _limit((on, mid_v, scale(np.sqrt(np.maximum(-q * q_a, 0.0)), line.u), 0.0))
-    return Closure(mid, line.u, h, slack, 2 * h, touch, limit)
+    return Closure(mid, line.u, h, slack, touch, limit)
 
 
 def _circles(la: _Locus, lb: _Locus) -> Closure:
@@ -179,7 +177,7 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
     e = scale(inv, d)
     close = dist <= CLOSE * (la.r + lb.r)
     rounding = 8 * ROUNDING * (la.r + lb.r + norm(la.p) + norm(lb.p))
-    joined, swing = np.zeros(dist.shape), np.zeros(dist.shape, bool)
+    joined = np.zeros(dist.shape)
     if np.any(close):
         # d = tau (v - acc tau / 2) a time tau after the centres met: its direction from their motion,
         # where they do pass through each other (off their line of motion by no more than the rounding
@@ -192,7 +190,6 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
         through = np.abs(cross(d, dv)) <= (rounding + dist2 * norm(da) / speed2) * np.sqrt(speed2)
         e = tuple(np.where(close & through & np.isfinite(sign), sign * g, x) for g, x in zip(along, e, strict=True))
         joined = np.where((dist <= rounding) & np.isfinite(sign), side, 0.0)
-        swing = close & ~through & np.isfinite(sign)
     dist_v = dot(d, dv) / dist  # the distance of the centres over time
     dist_a = (dot(dv, dv) + dot(d, da) - dist_v * dist_v) / dist
     size = la.r * (la.r + lb.r + norm(la.p) + norm(lb.p))
@@ -204,11 +201,11 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
     square = ((dist2,), (2 * dot(d, dv),), (2 * (dot(dv, dv) + dot(d, da)),))
     singular = (
         Singular(d, dv, da, (0.0, 0.0), tol),
-        Singular(*square, (outer * outer,), 2 * outer * tol),
-        Singular(*square, (np.where(inner > tol, inner * inner, np.nan),), 2 * inner * tol),
+        Singular(*square, (outer * outer,), 2 * outer * tol, 1.0),
+        Singular(*square, (np.where(inner > tol, inner * inner, np.nan),), 2 * inner * tol, -1.0),
     )
     limit = _limit(*_circles_limit(la, lb, e, a, h, slack, joined, (dv, da), (dist, dist_v, dist_a), rounding))
-    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, np.fmin(2 * h, dist), singular, limit, swing)
+    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, singular, limit)
 
 
 def _circles_limit(
@@ -303,7 +300,7 @@ def dyad(
         branch_used: Any = step.branch
         if "R" in (arm_a.kind, arm_b.kind):
             full = np.full(state.valid.shape, step.branch)
-            flips = _change_points(state, la, lb, closure, full)
+            flips = _change_points(state, closure, full)
             if flips:
                 branch_used = full
     else:
@@ -366,29 +363,21 @@ def _motion(state: State, la: _Locus, lb: _Locus, x: Vec) -> tuple[Any, ...]:
     return (ka, kb), (ka_d, kb_d), vx, ax, det / (norm(ca) * norm(cb))
 
 
-def _change_points(
-    state: State, la: _Locus, lb: _Locus, closure: Closure, branch: np.ndarray
-) -> list[tuple[int, int, int]]:
+def _change_points(state: State, closure: Closure, branch: np.ndarray) -> list[tuple[int, int, int]]:
     """Follow the motion through change points, along the angles in the order given.
 
-    From the sample nearest the assembly pose, forwards and then backwards,
-    each sample where the two assembly modes of the dyad nearly meet (their
-    points X closer together than X moves in a step) takes the mode that
-    keeps the motion of X smooth (:func:`_mismatch`): the one whose position
-    and velocity lie nearer their Taylor expansion from the last sample
-    before it away from a singular position, or whose smooth continuation
-    from there passes the samples between (on the singular position, where
-    the velocities are lost; such a sample decides nothing itself).  Where
-    the modes cross (the isosceles slider-crank at 0 and 180 deg, a
-    parallelogram laid flat) their velocities differ however near the
-    crossing a sample lies, so the motion goes on in the mode that keeps
-    its velocity continuous whatever the samples.  The mode changes
-    only where the dyad may pass a singular position between the two
-    samples (:func:`_passes`): elsewhere X may swing fast (outer joints
-    passing close by) but keeps its mode.  Without the rate of a single
-    drive, X is extrapolated from the two samples before instead.
-    ``branch`` is changed in place; returns (variant, first sample in the
-    new mode, sample nearest the change point).
+    Where the two modes of a dyad cross (the isosceles slider-crank at 0 and
+    180 deg, a parallelogram laid flat, a rhombus with its crank on the
+    frame) the mode that keeps the velocities continuous has the other sign
+    on the far side: from the sample nearest the assembly pose, forwards and
+    then backwards, the mode changes between two samples that lie on either
+    side of a crossing, and nowhere else (:func:`_crossings`), however fast X
+    swings and whatever the samples (one on the crossing itself counts on
+    the side its motion gives it).  Without the rate of a single drive, each
+    sample where the modes nearly meet takes the mode whose X lies nearer
+    the extrapolation from the two samples before it instead.  ``branch`` is
+    changed in place; returns (variant, first sample in the new mode,
+    sample nearest the change point).
     """
     x_p, x_m = _at(closure, branch), _at(closure, -branch)
     n = branch.shape[1]
@@ -407,136 +396,125 @@ def _change_points(
     if not near.any():
         return []
     rate = state.rate
-    timed = rate is not None and bool(np.all(np.isfinite(rate) & (rate != 0)))
-    both = [_motion(state, la, lb, x) for x in (x_p, x_m)]
-    xs = [np.stack(x, -1) for x in (x_p, x_m)]
-    vs, accs = ([np.stack(m[i], -1) for m in both] for i in (2, 3))
-    det = np.abs(both[0][4])
-    lost = ~(det >= SINGULAR)  # on a singular position: no velocity
-    sure = det >= REGULAR  # velocity and acceleration to trust
+    if rate is not None and bool(np.all(np.isfinite(rate) & (rate != 0))):
+        return _crossings(state, closure, branch)
+    xp, xm = np.stack(x_p, -1), np.stack(x_m, -1)
     drive = state.drive
     flips = []
     start = state.start_index
-    # X mid-swing where outer joints miss each other by less than CLOSE: in neither mode of the motion
-    # through their meeting, which the samples about it follow
-    swing = np.broadcast_to(closure.swing, near.shape)
     for v in np.unique(np.nonzero(near)[0]):
         flipped = np.zeros(n, dtype=bool)  # samples now in the mode opposite to the first solution
 
-        def pick(arrays: list[np.ndarray], i: int, other: bool = False, v: int = v, f: np.ndarray = flipped):
-            return arrays[1][v, i] if f[i] != other else arrays[0][v, i]
+        def at(i: int, other: bool = False, v: int = v, flipped: np.ndarray = flipped) -> np.ndarray:
+            return xm[v, i] if flipped[i] != other else xp[v, i]
 
         for direction in (1, -1):
             order = np.arange(start, n) if direction > 0 else np.arange(start, -1, -1)
-            last = np.maximum.accumulate(np.where(sure[v, order], np.arange(len(order)), -1))
-            for k in range(1, len(order)):
+            for k in range(2, len(order)):
                 here = order[k]
-                if not near[v, here] or swing[v, here]:
+                if not near[v, here]:
                     continue
-                ref = None
-                if timed:
-                    if last[k - 1] < 0:
-                        continue
-                    ref = order[last[k - 1]]
-                    between = order[last[k - 1] + 1 : k]  # on or beside a singular position
-                    between = between[~swing[v, between]]
-                    dt = (drive[here] - drive[ref]) / rate[ref]
-                    start_of = (pick(xs, ref), pick(vs, ref), pick(accs, ref))
-                    miss = [
-                        _mismatch(
-                            start_of,
-                            dt,
-                            (pick(xs, here, o), None if lost[v, here] else pick(vs, here, o)),
-                            (drive[between] - drive[ref]) / rate[ref],
-                            np.array([pick(xs, i) for i in between]).reshape(-1, 2),
-                        )
-                        for o in (False, True)
-                    ]
-                elif k >= 2:
-                    p1, p2 = order[k - 1], order[k - 2]
-                    span = drive[p1] - drive[p2]
-                    t = (drive[here] - drive[p1]) / span if span != 0 else 1.0
-                    guess = pick(xs, p1) + (pick(xs, p1) - pick(xs, p2)) * t
-                    miss = [np.hypot(*(pick(xs, here, o) - guess)) for o in (False, True)]
-                else:
-                    continue
-                tol = 1e-12 * (1 + np.abs(pick(xs, here)).max())
-                if miss[1] < miss[0] - tol and (ref is None or _passes(closure.singular, state, v, ref, here)):
+                p1, p2 = order[k - 1], order[k - 2]
+                span = drive[p1] - drive[p2]
+                t = (drive[here] - drive[p1]) / span if span != 0 else 1.0
+                guess = at(p1) + (at(p1) - at(p2)) * t
+                tol = 1e-12 * (1 + np.abs(guess).max())
+                if np.hypot(*(at(here, True) - guess)) < np.hypot(*(at(here) - guess)) - tol:
                     branch[v, order[k:]] *= -1
                     flipped[order[k:]] = ~flipped[order[k:]]
-                    p1 = order[k - 1]
-                    touch = int(p1 if closure.apart[v, p1] < closure.apart[v, here] else here)
+                    touch = int(order[k - 1] if gap[v, order[k - 1]] < gap[v, here] else here)
                     flips.append((int(v), int(here), touch))
     return flips
 
 
-def _mismatch(
-    start: tuple[np.ndarray, ...], dt: float, end: tuple[Any, Any], times: np.ndarray, xs: np.ndarray
-) -> float:
-    """How far a mode at the end of a step of ``dt`` is from continuing the motion smoothly.
+def _lead(test: Singular) -> np.ndarray:
+    """Time from the extremum (scalar) or the meeting (vector) of a quantity, to first order: positive
+    after it.  (V, A)"""
+    if len(test.y) == 1:
+        return test.v[0] / test.a[0]
+    return sum(y * v for y, v in zip(test.y, test.v, strict=True)) / sum(v * v for v in test.v)
 
-    ``start`` = (X, V, A) at the last sample off singular positions, ``end`` = (X, V) of the mode
-    (V None where lost).  Without samples between: the distance of X and of V dt from their Taylor
-    expansion.  With samples between (``xs`` at ``times``, on or beside the singular position, where
-    X is known but V is not): the distance of their X from the quartic through both ends (a cubic
-    where V at the end is lost).
+
+def _crossings(state: State, closure: Closure, branch: np.ndarray) -> list[tuple[int, int, int]]:
+    """The mode flips between consecutive samples on either side of a crossing of the two modes.
+
+    Which side of a crossing a sample lies on is the sign of its time from the extremum of the
+    quantity whose target is the singular position (the distance of the outer joints, of a circle's
+    centre from a line), from its first two derivatives there (so also a sample on the crossing, to
+    rounding, is on one side); whether the extremum reaches the target between the samples, or goes
+    beyond it (where the dyad cannot assemble: then nothing is crossed), is :func:`_reach`.
     """
-    x0, v0, a0 = start
-    x1, v1 = end
-    near = x0 + v0 * dt + a0 * (dt * dt / 2)
-    if len(times) == 0:
-        return float(np.hypot(*(x1 - near)) + (0.0 if v1 is None else np.hypot(*(v1 - v0 - a0 * dt)) * abs(dt)))
-    rest = x1 - near
-    c4 = 0.0 * rest if v1 is None else ((v1 - v0 - a0 * dt) * dt - 3 * rest) / dt**4
-    c3 = (rest - c4 * dt**4) / dt**3
-    t = times[:, None]
-    path = x0 + v0 * t + a0 * (t * t / 2) + c3 * t**3 + c4 * t**4
-    return float(np.hypot(*(path - xs).T).sum())
+    drive, rate = state.drive, state.rate
+    start = state.start_index
+    later = np.sign(np.diff(drive) * rate[:-1])  # +1 where the next sample comes later
+    with np.errstate(invalid="ignore", divide="ignore"):
+        times = [_lead(t) for t in closure.singular]
+    # the side of each sample (a time of zero counts as after, as the limit direction of joined joints)
+    leads = [np.where(np.isfinite(t), np.where(t < 0, -1.0, 1.0), 0.0) for t in times]
+    if not leads:
+        return []
+    # where a lead changes sign from one sample to the next: an extremum between (or on one of them)
+    changes = np.logical_or.reduce([(s[:, 1:] != s[:, :-1]) for s in leads])
+    flips = []
+    for v, i in np.argwhere(changes):
+        prev, here = (i, i + 1) if i >= start else (i + 1, i)  # walked away from the assembly pose
+        ahead = later[i] if here > prev else -later[i]  # +1: the walk goes forward in time
+        crossed = [
+            (_reach(test, state, v, prev, here), time)
+            for test, lead, time in zip(closure.singular, leads, times, strict=True)
+            if lead[v, prev] * ahead < 0 < lead[v, here] * ahead  # before at prev, after at here
+        ]
+        if not crossed or any(verdict < 0 for verdict, _ in crossed) or all(verdict == 0 for verdict, _ in crossed):
+            continue  # nothing crossed, or a gap where the dyad cannot assemble
+        branch[v, slice(here, None) if here > prev else slice(None, here + 1)] *= -1
+        time = next(t for verdict, t in crossed if verdict > 0)
+        flips.append((int(v), int(here), int(prev if abs(time[v, prev]) < abs(time[v, here]) else here)))
+    return flips
 
 
-def _passes(tests: tuple[Singular, ...], state: State, v: int, i: int, j: int) -> bool:
-    """Whether the dyad may pass a singular position between samples ``i`` and ``j`` of variant ``v``.
+def _reach(test: Singular, state: State, v: int, i: int, j: int) -> int:
+    """Whether a quantity reaches its singular position between samples ``i`` and ``j``: 1 if it
+    does, -1 if it goes beyond (a scalar whose dyad cannot assemble there), 0 if not.
 
-    Each quantity of ``tests`` is followed between the two samples by the quintic through its values
-    and first two time derivatives there; the modes can trade places only where one comes within its
-    tolerance of its target, widened by how far the quintic is from the cubic through the values and
-    first derivatives (a bound on its own error).  Elsewhere X may swing fast (outer joints that pass
-    near each other) but stays in its mode.  Without the rates of the drive (several drives) nothing
-    is ruled out.
+    The quantity is followed by the quintic through its values and first two time derivatives at
+    both samples, within its tolerance widened by how far the quintic is from the cubic through the
+    values and first derivatives (a bound on its own error).
     """
-    rate = None if state.rate is None else state.rate[i]
-    if rate is None or not np.isfinite(rate) or rate == 0:
-        return True
-    dt = (state.drive[j] - state.drive[i]) / rate
-    for test in tests:
-        target = np.array([c if np.ndim(c) == 0 else c[v, 0] for c in test.target], dtype=float)
-        if np.isnan(target).any():
-            continue  # a position this dyad never takes
-        y, vel, acc = (np.array([[c[v, i], c[v, j]] for c in x]) for x in (test.y, test.v, test.a))
-        y0, y1 = y[:, 0] - target, y[:, 1] - target
-        v0, v1 = vel[:, 0] * dt, vel[:, 1] * dt
-        a0, a1 = acc[:, 0] * dt * dt, acc[:, 1] * dt * dt
-        if not np.isfinite(np.concatenate([y0, y1, v0, v1, a0, a1])).all():
-            return True
-        # on [0, 1]: y0 + v0 t + a0 t^2 / 2 + c3 t^3 + c4 t^4 + c5 t^5 with the values at 1
-        big_a, big_b, big_c = y1 - y0 - v0 - a0 / 2, v1 - v0 - a0, a1 - a0
-        quintic = np.stack(
-            [y0, v0, a0 / 2, 10 * big_a - 4 * big_b + big_c / 2, -15 * big_a + 7 * big_b - big_c]
-            + [6 * big_a - 3 * big_b + big_c / 2],
-            -1,
-        )
-        cubic = np.stack([y0, v0, 3 * (y1 - y0) - 2 * v0 - v1, 2 * (y0 - y1) + v0 + v1, 0 * y0, 0 * y0], -1)
-        grid = np.linspace(0.0, 1.0, 17)
-        error = np.sqrt(sum(poly.polyval(grid, q - c) ** 2 for q, c in zip(quintic, cubic, strict=True))).max()
-        square = np.zeros(1)
-        for c in quintic:  # |y(t) - target|^2
-            square = poly.polyadd(square, poly.polymul(c, c))
-        slope = poly.polyder(square)
+    dt = (state.drive[j] - state.drive[i]) / state.rate[i]
+    target = np.array([c if np.ndim(c) == 0 else c[v, 0] for c in test.target], dtype=float)
+    if np.isnan(target).any():
+        return 0  # a position this dyad never takes
+    y, vel, acc = (np.array([[c[v, i], c[v, j]] for c in x]) for x in (test.y, test.v, test.a))
+    y0, y1 = y[:, 0] - target, y[:, 1] - target
+    v0, v1 = vel[:, 0] * dt, vel[:, 1] * dt
+    a0, a1 = acc[:, 0] * dt * dt, acc[:, 1] * dt * dt
+    if not np.isfinite(np.concatenate([y0, y1, v0, v1, a0, a1])).all():
+        return 0
+    # on [0, 1]: y0 + v0 t + a0 t^2 / 2 + c3 t^3 + c4 t^4 + c5 t^5 with the values at 1
+    big_a, big_b, big_c = y1 - y0 - v0 - a0 / 2, v1 - v0 - a0, a1 - a0
+    quintic = np.stack(
+        [y0, v0, a0 / 2, 10 * big_a - 4 * big_b + big_c / 2, -15 * big_a + 7 * big_b - big_c]
+        + [6 * big_a - 3 * big_b + big_c / 2],
+        -1,
+    )
+    cubic = np.stack([y0, v0, 3 * (y1 - y0) - 2 * v0 - v1, 2 * (y0 - y1) + v0 + v1, 0 * y0, 0 * y0], -1)
+    grid = np.linspace(0.0, 1.0, 17)
+    tol = (
+        test.tol[v, 0] + np.sqrt(sum(poly.polyval(grid, q - c) ** 2 for q, c in zip(quintic, cubic, strict=True))).max()
+    )
+    if len(quintic) == 1:  # the extreme excursion towards (and beyond) the target
+        path = quintic[0] * test.beyond
+        slope = poly.polyder(path)
         t = poly.polyroots(slope).real if np.any(slope) else np.zeros(0)
-        t = np.concatenate([[0.0, 1.0], np.clip(t, 0.0, 1.0)])
-        if np.sqrt(max(poly.polyval(t, square).min(), 0.0)) <= test.tol[v, 0] + error:
-            return True
-    return False
+        top = poly.polyval(np.concatenate([[0.0, 1.0], np.clip(t, 0.0, 1.0)]), path).max()
+        return -1 if top > tol else (1 if top >= -tol else 0)
+    square = np.zeros(1)
+    for c in quintic:  # |y(t) - target|^2
+        square = poly.polyadd(square, poly.polymul(c, c))
+    slope = poly.polyder(square)
+    t = poly.polyroots(slope).real if np.any(slope) else np.zeros(0)
+    low = poly.polyval(np.concatenate([[0.0, 1.0], np.clip(t, 0.0, 1.0)]), square).min()
+    return 1 if np.sqrt(max(low, 0.0)) <= tol else 0
 
 
 def rpr(step: Step, state: State, point_link: np.ndarray) -> None:
