@@ -453,8 +453,12 @@ def _crossings(state: State, closure: Closure, branch: np.ndarray) -> list[tuple
     leads = [np.where(np.isfinite(t), np.where(t < 0, -1.0, 1.0), 0.0) for t in times]
     if not leads:
         return []
-    # where a lead changes sign from one sample to the next: an extremum between (or on one of them)
-    changes = np.logical_or.reduce([(s[:, 1:] != s[:, :-1]) for s in leads])
+    # where a lead changes sign from one sample to the next (an extremum between, or on one of them)
+    # within reach of its target from either end
+    dt = np.abs(np.diff(drive) / rate[:-1])
+    changes = np.logical_or.reduce(
+        [(s[:, 1:] != s[:, :-1]) & _within_reach(t, dt) for s, t in zip(leads, closure.singular, strict=True)]
+    )
     flips = []
     for v, i in np.argwhere(changes):
         prev, here = (i, i + 1) if i >= start else (i + 1, i)  # walked away from the assembly pose
@@ -470,6 +474,21 @@ def _crossings(state: State, closure: Closure, branch: np.ndarray) -> list[tuple
         time = next(t for verdict, t in crossed if verdict > 0)
         flips.append((int(v), int(here), int(prev if abs(time[v, prev]) < abs(time[v, here]) else here)))
     return flips
+
+
+def _within_reach(test: Singular, dt: np.ndarray) -> np.ndarray:
+    """Whether a quantity can come within its tolerance of its target between consecutive samples
+    ``dt`` apart (A - 1,), by twice the first two terms of its Taylor expansion from either end:
+    (V, A - 1)."""
+    with np.errstate(invalid="ignore"):
+        off = np.sqrt(sum((y - t) ** 2 for y, t in zip(test.y, test.target, strict=True)))
+        speed = np.sqrt(sum(v * v for v in test.v))
+        turn = np.sqrt(sum(a * a for a in test.a))
+        ends = [
+            off[:, k] - 2 * (speed[:, k] * dt + turn[:, k] * dt * dt) - test.tol
+            for k in (slice(None, -1), slice(1, None))
+        ]
+        return (ends[0] <= 0) | (ends[1] <= 0)
 
 
 def _reach(test: Singular, state: State, v: int, i: int, j: int) -> int:
