@@ -241,10 +241,10 @@ def _touching(x):
 
 
 def _snap(h2, dh2, q_v, q_a, rounding):
-    """The squared half gap between the two modes of a dyad near a change point
-    (:func:`linkwork.motion.kernels._root`)."""
+    """The squared half gap between the two modes of a dyad near a change point, and whether it is
+    the motion's (:func:`linkwork.motion.kernels._root`)."""
     motion = dh2 * q_v * q_v / (2 * q_a)
-    return motion if abs(h2 - motion) <= rounding else h2
+    return (motion, True) if abs(h2 - motion) <= rounding else (h2, False)
 
 
 def _arm_motion(L, ops, st, o, P, x, y):
@@ -304,10 +304,15 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
         if abs(h2) <= CLOSE * (ra * ra):  # near a change point: the motion about it
             dist_v = (dx * dvx + dy * dvy) / dist
             dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
-            size = ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1])
-            h2 = _snap(h2, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * (ra * size))
-            on = 8 * ROUNDING * size
-            limit = limit or (slack >= 0 and dist > on and math.sqrt(max(h2, 0.0)) <= on)  # on the change point
+            norms = math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1])
+            size = ra * ra + 2 * abs(t) * (
+                abs(dist2 - k) / (2 * dist2) * (norms + dist) + (abs(k) + dist2) / (2 * dist)
+            )
+            h2, snapped = _snap(h2, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
+            rounding = 8 * ROUNDING * (ra + rb + norms)
+            speed = math.sqrt(dvx * dvx + dvy * dvy)
+            on = slack >= 0 and snapped and dist > rounding and abs(dist_v) <= rounding * speed / dist
+            limit = limit or on  # on the change point to rounding
         h = branch * math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
         x, y = A[0] + t * ex - h * ey, A[1] + t * ey + h * ex
         gx, gy = 2 * h * ey, -2 * h * ex
@@ -331,8 +336,10 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
             f = 2 * L[g, 5]
             cx, cy = (C[4] - amx) - f * -ry, (C[5] - amy) - f * rx
             size = C[6] + math.sqrt(C[0] * C[0] + C[1] * C[1]) + math.sqrt(Ln[0] * Ln[0] + Ln[1] * Ln[1])
-            disc = _snap(disc, -2 * q, nx * rx + ny * ry, nx * cx + ny * cy, ROUNDING * (C[6] * size))
-            limit = slack >= 0 and math.sqrt(max(disc, 0.0)) <= 8 * ROUNDING * size  # on the change point
+            q_v = nx * rx + ny * ry
+            disc, snapped = _snap(disc, -2 * q, q_v, nx * cx + ny * cy, ROUNDING * (C[6] * size))
+            speeds = math.sqrt(C[2] * C[2] + C[3] * C[3]) + math.sqrt(vmx * vmx + vmy * vmy)
+            limit = slack >= 0 and snapped and abs(q_v) <= 8 * ROUNDING * speeds  # on the change point
         root = branch * math.sqrt(max(disc, 0.0) if slack >= 0 else disc)
         t0 = wx * Ln[2] + wy * Ln[3]
         x, y = (Ln[0] + t0 * Ln[2]) + root * Ln[2], (Ln[1] + t0 * Ln[3]) + root * Ln[3]

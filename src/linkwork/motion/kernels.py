@@ -74,7 +74,7 @@ SINGULAR = 1e-9
 #: trade places only where the motion comes this near a singular position.
 CLOSE = 1e-6
 #: Relative rounding of what a dyad is solved from (positions of its outer joints, squared half gap
-#: between its modes), in units of its size and of the coordinates' magnitude.
+#: between its modes), in units of its size and of the coordinates' magnitude (64 ulps).
 ROUNDING = 64 * np.finfo(float).eps
 
 
@@ -151,11 +151,12 @@ def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
     acc = sub(sub(circle.ap, a_line), scale(2 * state.v[line.carrier, 2], perp(rel)))
     size = circle.r * (circle.r + norm(circle.p) + norm(line.l0))
     q_v, q_a = dot(n, rel), dot(n, acc)
-    h = _root(r2 - q * q, slack, -2 * q, q_v, q_a, ROUNDING * size, r2)
+    h, snapped = _root(r2 - q * q, slack, -2 * q, q_v, q_a, ROUNDING * size, r2)
     tol = CLOSE * circle.r
     touch = tuple(Singular((q,), (q_v,), (q_a,), (sign * circle.r,), tol, sign) for sign in (1.0, -1.0))
     mid = add(line.l0, scale(dot(w, line.u), line.u))
-    on = (slack >= 0) & (h <= 8 * ROUNDING * (circle.r + norm(circle.p) + norm(line.l0)))
+    # on the change point to rounding: at the extremum of q to within the rounding of its rate
+    on = (slack >= 0) & snapped & (np.abs(q_v) <= 8 * ROUNDING * (norm(circle.vp) + norm(v_line)))
     limit = None
     if np.any(on):  # on a change point: the middle moves with the line's link and the centre along it
         mid_v = add(state.material(line.carrier, mid)[0], scale(dot(rel, line.u), line.u))
@@ -192,8 +193,11 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
         joined = np.where((dist <= rounding) & np.isfinite(sign), side, 0.0)
     dist_v = dot(d, dv) / dist  # the distance of the centres over time
     dist_a = (dot(dv, dv) + dot(d, da) - dist_v * dist_v) / dist
-    size = la.r * (la.r + lb.r + norm(la.p) + norm(lb.p))
-    h = _root(la.r * la.r - a * a, slack, -a * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size, la.r * la.r)
+    # rounding of h2 = ra^2 - a^2: that of the positions (of their magnitude) through a = (k + D^2) / 2 D
+    size = la.r * la.r + 2 * np.abs(a) * (
+        np.abs(dist2 - k) / (2 * dist2) * (norm(la.p) + norm(lb.p) + dist) + (np.abs(k) + dist2) / (2 * dist)
+    )
+    h, snapped = _root(la.r * la.r - a * a, slack, -a * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size, la.r**2)
     # the modes trade places where the circles touch, or where their centres coincide (then the radii
     # are equal); followed are the relative position of the centres and its square, smooth functions
     tol = CLOSE * (la.r + lb.r)
@@ -204,7 +208,9 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
         Singular(*square, (outer * outer,), 2 * outer * tol, 1.0),
         Singular(*square, (np.where(inner > tol, inner * inner, np.nan),), 2 * inner * tol, -1.0),
     )
-    limit = _limit(*_circles_limit(la, lb, e, a, h, slack, joined, (dv, da), (dist, dist_v, dist_a), rounding))
+    # on the change point to rounding: at the extremum of the distance to within the rounding of its rate
+    on = (slack >= 0) & snapped & (dist > rounding) & (np.abs(dist_v) <= rounding * norm(dv) / dist)
+    limit = _limit(*_circles_limit(la, lb, e, a, h, on, joined, (dv, da), (dist, dist_v, dist_a)))
     return Closure(add(la.p, scale(a, e)), perp(e), h, slack, singular, limit)
 
 
@@ -214,11 +220,10 @@ def _circles_limit(
     e: Vec,
     a: np.ndarray,
     h: np.ndarray,
-    slack: np.ndarray,
+    on: np.ndarray,
     joined: np.ndarray,
     rel: tuple[Vec, Vec],
     dist: tuple[np.ndarray, ...],
-    rounding: np.ndarray,
 ) -> list[tuple[np.ndarray, Vec, Vec, Any]]:
     """Velocity of X where two circles are on a singular position to rounding (see :class:`Limit`).
 
@@ -226,8 +231,8 @@ def _circles_limit(
     whose limit is that of d' (turning at the part of d'' / 2 |d'| across it), and h' = 0 there; s is
     the sample's branch times the side of it.  Circles touching (the modes meet): the middle moves as
     P_a + a e, and h at the rate |h'| with h'^2 = (dh2/dq) q'' / 2 about the extremum of the distance q;
-    s is the mode just after the sample.  ``rel``: the velocity and acceleration of P_b - P_a;
-    ``dist``: their distance and its first two time derivatives."""
+    s is the mode just after the sample.  ``on``: there; ``rel``: the velocity and acceleration of
+    P_b - P_a; ``dist``: their distance and its first two time derivatives."""
     (dv, da), (dist, dist_v, dist_a) = rel, dist
     parts = []
     if np.any(joined):
@@ -235,7 +240,6 @@ def _circles_limit(
         turn = scale(cross(dv, da) / (2 * speed**3), perp(dv))  # d e / dt: da across e over 2 |dv|
         parts.append((joined != 0, add(la.vp, scale(0.5, dv)), scale(h, perp(turn)), joined))
     k = la.r * la.r - lb.r * lb.r
-    on = (slack >= 0) & (h <= rounding) & (dist > rounding)
     if np.any(on):
         e_v = scale(1.0 / dist, sub(dv, scale(dist_v, e)))
         mid_v = add(la.vp, add(scale((dist * dist - k) / (2 * dist * dist) * dist_v, e), scale(a, e_v)))
@@ -252,8 +256,9 @@ def _root(
     q_a: np.ndarray,
     rounding: Any,
     r2: Any,
-) -> np.ndarray:
-    """The half gap h between the two modes from its square ``h2``, a function of a distance q.
+) -> tuple[np.ndarray, np.ndarray]:
+    """The half gap h between the two modes from its square ``h2``, a function of a distance q, and
+    where it is taken from the motion about a change point.
 
     Where the two modes meet the motion passes an extremum of q (a change point): there h2 = dh2 (q - q0)
     and q - q0 = q_v^2 / (2 q_a) about it (``dh2`` = dh2/dq, ``q_v``, ``q_a`` its first two time
@@ -262,8 +267,9 @@ def _root(
     rounding, and differ between a mechanism and the same mechanism moved.
     """
     motion = dh2 * q_v * q_v / (2 * q_a)
-    h2 = np.where((np.abs(h2) <= CLOSE * r2) & (np.abs(h2 - motion) <= rounding), motion, h2)
-    return np.sqrt(np.where(slack >= 0, np.maximum(h2, 0.0), h2))
+    snapped = (np.abs(h2) <= CLOSE * r2) & (np.abs(h2 - motion) <= rounding)
+    h2 = np.where(snapped, motion, h2)
+    return np.sqrt(np.where(slack >= 0, np.maximum(h2, 0.0), h2)), snapped
 
 
 def _at(closure: Closure, branch: np.ndarray | float) -> Vec:
