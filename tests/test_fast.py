@@ -12,6 +12,7 @@ from linkwork.motion import fast
 from linkwork.structure.parameters import apply
 from mechanisms import TEXTBOOK, circle_intersection, hydraulic_boom
 from test_kinematics import MECHANISMS, _angles, _mech
+from test_structure import four_bar_spec
 
 pytestmark = pytest.mark.skipif(not fast.available(), reason="numba is not installed")
 
@@ -104,3 +105,19 @@ def test_change_points_go_to_the_numpy_path(monkeypatch):
     compiled, reference = _both(mech, values[:, 0], monkeypatch)
     _same(compiled, reference)
     assert any(e.kind == "change-point" for e in compiled.events)
+
+
+def test_samples_on_a_singular_position_go_to_the_numpy_path(monkeypatch):
+    """A rhombus with its crank on the frame (A on O4) and a kite at its change point, both on a
+    sample: the compiled path reports them and hands over, and the two paths agree."""
+    from test_kinematics import RHOMBUS
+
+    rhombus = lw.compile(lw.loads(RHOMBUS))
+    kite_data, _ = four_bar_spec(0.5, 0.5, 0.625, 0.625, 0.25, True)
+    kite = lw.compile(lw.from_dict(kite_data))
+    for mech, values in ((rhombus, np.radians([0.0, 10.0, 20.0])), (kite, np.array([0.0, 0.1, 0.2]))):
+        res = fast.run(mech, apply(mech)[0], values[:, None], np.ones((3, 1)), np.zeros((3, 1)))
+        assert [step.kind for step in mech.program] == ["crank", "RRR"]
+        assert res["limit"][:, 0].tolist() == [False, True]  # per step
+        compiled, reference = _both(mech, np.linspace(0.3, -0.3, 61), monkeypatch)
+        _same(compiled, reference)
