@@ -14,47 +14,16 @@ import linkwork as lw
 from linkwork.errors import UnassemblableError
 from linkwork.motion.solve import run
 from linkwork.structure.parameters import apply
-from mechanisms import TEXTBOOK, circle_intersection
-from test_structure import _assembles, four_bar_spec, four_bars
-
-MECHANISMS = [
-    ("example", n)
-    for n in [
-        "double-cut-shears",
-        "four-bar",
-        "watt-six-bar",
-        "stephenson-six-bar",
-        "class3-triad",
-        "percussion-rocker",
-        "shears-slider-crank",
-    ]
-] + [
-    ("textbook", n)
-    for n in [
-        "offset slider-crank",
-        "crank-shaper",
-        "scotch yoke",
-        "PRP dyad",
-        "pin in slot",
-        "compound hinge",
-        "class IV",
-        "five-bar",
-        "parallelogram",
-    ]
-]
-
-
-def _mech(kind, name):
-    return lw.compile(lw.example(name) if kind == "example" else TEXTBOOK[name][0]().build())
-
-
-def _angles(mech, n=48, span=2 * np.pi):
-    """Drive values around the assembly pose (a whole turn for cranks)."""
-    start = mech.drive_start
-    offsets = np.linspace(-span / 2, span / 2, n, endpoint=False) + 1e-3
-    if mech.pair_type[mech.drive_pair[0]] == 1:  # linear drive: a few centimetres
-        offsets = np.linspace(-0.05, 0.05, n)
-    return start[None, :] + offsets[:, None]
+from mechanisms import (
+    SOLVED,
+    TEXTBOOK,
+    angles_around,
+    assembles,
+    circle_intersection,
+    compiled,
+    four_bar_spec,
+    four_bars,
+)
 
 
 def _span(kind, name):
@@ -63,11 +32,11 @@ def _span(kind, name):
     return {"five-bar": 0.6, "class IV": 0.8, "shears-slider-crank": 2.7, "parallelogram": 1.9}.get(name, 2 * np.pi)
 
 
-@pytest.mark.parametrize("kind, name", MECHANISMS)
+@pytest.mark.parametrize("kind, name", SOLVED)
 def test_closed_forms_agree_with_the_generic_newton_solver(kind, name):
     """Every kernel against Newton iterations and linear solves on the full constraint equations."""
-    mech = _mech(kind, name)
-    angles = _angles(mech, span=_span(kind, name))
+    mech = compiled(kind, name)
+    angles = angles_around(mech, span=_span(kind, name))
     kin = lw.kinematics(mech, angles)
     program = tuple(dataclasses.replace(s, kind="newton") for s in mech.program)
     values = kin.drive
@@ -85,11 +54,11 @@ def test_closed_forms_agree_with_the_generic_newton_solver(kind, name):
     np.testing.assert_allclose(kin.acc[0][ok], acc, atol=1e-7 * scale_a)
 
 
-@pytest.mark.parametrize("kind, name", MECHANISMS)
+@pytest.mark.parametrize("kind, name", SOLVED)
 def test_velocity_and_acceleration_are_derivatives_of_motion(kind, name):
     """Central finite differences in time: every drive moves at its speed (several drives at once)."""
-    mech = _mech(kind, name)
-    base = _angles(mech, n=12, span=_span(kind, name))
+    mech = compiled(kind, name)
+    base = angles_around(mech, n=12, span=_span(kind, name))
     rates = lw.kinematics(mech, base[:1]).rates[0]
     step = 1e-5 if mech.pair_type[mech.drive_pair[0]] == 0 else 1e-6
     dt = step / np.abs(rates).max()
@@ -287,7 +256,7 @@ def test_dead_points_of_a_crank_rocker_driven_by_its_rocker_are_found():
 @given(four_bars, st.floats(-2, 2), st.floats(-2, 2), st.floats(-math.pi, math.pi))
 def test_random_four_bars_keep_their_lengths_and_move_rigidly_with_the_frame(dims, dx, dy, rot):
     a, b, c, d, phi, left = dims
-    if not _assembles(a, b, c, d, phi):
+    if not assembles(a, b, c, d, phi):
         return
     base, _ = four_bar_spec(a, b, c, d, phi, left)
     moved, _ = four_bar_spec(a, b, c, d, phi, left, (dx, dy, rot))
