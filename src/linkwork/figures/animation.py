@@ -15,6 +15,7 @@ import numpy as np
 
 from linkwork.figures.scheme import draw_item, draw_paths, scale_bar, scheme_extent
 from linkwork.figures.sheet import round_length, sheet
+from linkwork.lang import t
 from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.scene.style import TEXT
 
@@ -25,13 +26,14 @@ if TYPE_CHECKING:
 WIDTH, DPI = 720, 100
 
 
-def animate(kin: Kinematics, path: str | Path, frames: int = 48, fps: int = 16) -> list[Path]:
+def animate(kin: Kinematics, path: str | Path, frames: int = 48, fps: int = 16, lang: str = "en") -> list[Path]:
     """Write a GIF of the cycle to ``path`` (and an MP4 beside it where imageio-ffmpeg is installed);
-    returns the files written.  ``frames`` samples, evenly over the result's angles, ``fps`` a second."""
+    returns the files written.  ``frames`` samples, evenly over the result's angles, ``fps`` a second; the
+    texts in ``lang`` (:mod:`linkwork.lang`)."""
     n = len(kin.angles)
     picks = np.linspace(0, n, min(frames, n), endpoint=False).astype(int)
     scene = scheme_scene(kin, at=[int(i) for i in picks])
-    images = _frames(scene, [int(i) for i in picks])
+    images = _frames(scene, [int(i) for i in picks], lang)
     path = Path(path)
     _gif(images, path, fps)
     written = [path]
@@ -41,9 +43,9 @@ def animate(kin: Kinematics, path: str | Path, frames: int = 48, fps: int = 16) 
     return written
 
 
-def _frames(scene: SchemeScene, picks: list[int]) -> list[np.ndarray]:
+def _frames(scene: SchemeScene, picks: list[int], lang: str) -> list[np.ndarray]:
     """The frames ``(H, W, 3)`` (uint8, even sizes) of the samples ``picks``."""
-    film = Film(scene, picks)
+    film = Film(scene, picks, lang)
     return [film.frame(i) for i in picks]
 
 
@@ -52,10 +54,10 @@ class Film:
     ``picks``: its artists are made once and moved to the sample :meth:`show` is given; what does not move
     (the frame's symbols, the trajectories, the scale bar) is drawn once, under every frame."""
 
-    def __init__(self, scene: SchemeScene, picks: list[int]) -> None:
+    def __init__(self, scene: SchemeScene, picks: list[int], lang: str = "en") -> None:
         from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-        self.scene = scene
+        self.scene, self.lang = scene, lang
         box = scheme_extent(scene, picks)
         bar = round_length(box[2] - box[0])
         box[1] -= 3.0 * scene.em
@@ -64,7 +66,7 @@ class Film:
         self.fig.set_dpi(DPI)
         self.canvas = FigureCanvasAgg(self.fig)
         draw_paths(sh, scene.paths)
-        scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em)
+        scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em, lang)
         self.items = [(it, draw_item(sh.ax, it, scene.placed(it, picks[0]))) for it in scene.items if it.kind != "path"]
         self.texts = [sh.ax.text(0, 0, lab.text, ha="center", va="center", fontsize=sh.font(scene.em),
                                  color=TEXT[lab.kind], zorder=5) for lab in scene.labels]  # fmt: skip
@@ -83,7 +85,8 @@ class Film:
         for lab, text in zip(scene.labels, self.texts, strict=True):
             text.set_position(tuple(lab.centre[i]))
             text.set_visible(bool(np.isfinite(lab.centre[i]).all()))
-        self.title.set_text(f"{scene.name}: crank at {np.degrees(scene.angles[i]) % 360:.0f}°")
+        self.title.set_text(t("animation.crank", self.lang, name=scene.name,
+                              angle=f"{np.degrees(scene.angles[i]) % 360:.0f}"))  # fmt: skip
 
     def frame(self, i: int) -> np.ndarray:
         """The picture ``(H, W, 3)`` (uint8, even sizes) of sample ``i``: the moving artists drawn over the

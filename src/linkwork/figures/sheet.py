@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
+from linkwork.lang import t
 from linkwork.scene.style import Style
 
 if TYPE_CHECKING:
@@ -91,3 +92,11 @@ def round_length(span: float) -> float:
 def dashes(style: Style) -> Any:
     """The matplotlib line style of ``style``."""
     return (0, style.dash) if style.dash else "solid"
+
+
+def where(angle: float, position: int | None, lang: str) -> str:
+    """The line under a drawing's title: ``position 9, crank at 178.8°`` (``crank at 178.8°`` without a
+    ``position``), the crank's drive ``angle`` (rad) to the x axis, in ``lang``."""
+    deg = f"{np.degrees(angle) % 360:.1f}"
+    return t("drawing.crank", lang, angle=deg) if position is None else t("drawing.position", lang, position=position,
+                                                                          angle=deg)  # fmt: skip
