@@ -16,7 +16,6 @@ import numpy as np
 from linkwork.figures.sheet import Sheet, dashes, round_length, sheet, where
 from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
-from linkwork.scene.geometry import bounds
 from linkwork.scene.positions import COUNT, position_angles, positions_scene
 from linkwork.scene.scheme import KINDS, Item, SchemeScene, scheme_scene
 from linkwork.scene.style import SCHEME, TEXT
@@ -149,8 +148,3 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
              angle=f"{np.degrees(angles[0]) % 360:.1f}")  # fmt: skip
     sh.ax.set_title(f"{t('positions.title', lang, name=mech.name, count=count)}\n{turn}", fontsize=11)
     return sh.fig
-
-
-def scheme_extent(scene: SchemeScene, indices: list[int]) -> np.ndarray:
-    """``[x0, y0, x1, y1]`` of the scheme over the samples ``indices`` (for an animation's one frame)."""
-    return bounds(*[np.array([scene.extent(i)[:2], scene.extent(i)[2:]]) for i in indices])
