@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, dashes, sheet, where
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, sheet, where
 from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import plan_series
@@ -112,8 +112,8 @@ def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
         if not np.isfinite(scene.ends[index, e]).all():
             continue
         style = VECTORS.get(arrow.kind, VECTORS["rotation"])
-        (line,) = sh.ax.plot([start[0], end[0]], [start[1], end[1]], color=style.colour, lw=style.width,
-                             ls=dashes(style), zorder=3)  # fmt: skip
+        line = add_line(sh.ax, [start[0], end[0]], [start[1], end[1]], color=style.colour, lw=style.width,
+                        ls=dashes(style), zorder=3)  # fmt: skip
         line.set_gid(f"{arrow.kind}:{names[arrow.start]}->{names[arrow.end]}")  # of no length too: read back
         if e in shown:
             _head(sh, start, end, head, style.colour)
@@ -130,13 +130,16 @@ def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
 
 
 def _head(sh: Sheet, start: np.ndarray, end: np.ndarray, size: float, colour: str) -> None:
+    """A filled arrowhead of ``size`` (mm of the sheet, at most 0.35 of the vector) at ``end``."""
+    from matplotlib.patches import Polygon
+
     d = end - start
     length = float(np.hypot(*d))
     size = min(size, 0.35 * length)
     u = d / length
     w = np.array([-u[1], u[0]])
     tip = np.array([end, end - size * u + 0.3 * size * w, end - size * u - 0.3 * size * w])
-    sh.ax.fill(tip[:, 0], tip[:, 1], color=colour, lw=0, zorder=3)
+    add_patch(sh.ax, Polygon(tip, closed=True, fc=colour, ec="none", lw=0, zorder=3))
 
 
 #: Width of a plan's figure, inches; the size of the legend's text, points.

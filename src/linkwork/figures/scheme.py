@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, dashes, round_length, sheet, where
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, round_length, sheet, where
 from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.scene.positions import COUNT, position_angles, positions_scene
@@ -63,8 +63,8 @@ def draw_paths(sh: Sheet, paths: np.ndarray) -> None:
     """Trajectories ``(A, Q, 2)`` as thin dashed lines."""
     style = SCHEME["path"]
     for q in range(paths.shape[1]):
-        sh.ax.plot(paths[:, q, 0], paths[:, q, 1], color=style.colour, lw=style.width, ls=dashes(style),
-                   zorder=KINDS.index("path"))  # fmt: skip
+        add_line(sh.ax, paths[:, q, 0], paths[:, q, 1], color=style.colour, lw=style.width, ls=dashes(style),
+                 zorder=KINDS.index("path"))  # fmt: skip
 
 
 def draw_items(sh: Sheet, scene: SchemeScene, index: int, frame: bool = True, kinds: tuple[str, ...] = KINDS,
@@ -89,14 +89,14 @@ def draw_item(ax: Axes, it: Item, xy: np.ndarray, thin: float = 1.0) -> Any:
     face = to_rgba(style.fill, style.alpha) if style.fill and (thin == 1.0 or style.alpha == 1.0) else "none"
     artist: Any
     if it.radius:
-        artist = ax.add_patch(Circle(tuple(xy[0]), it.radius * min(1.0, 0.3 + thin), fc=face, ec=style.colour,
-                                     lw=style.width * thin, zorder=z))  # fmt: skip
+        artist = add_patch(ax, Circle(tuple(xy[0]), it.radius * min(1.0, 0.3 + thin), fc=face, ec=style.colour,
+                                      lw=style.width * thin, zorder=z))  # fmt: skip
     elif it.closed:
-        artist = ax.add_patch(Polygon(xy, closed=True, fc=face, ec=style.colour, lw=style.width * thin, zorder=z,
-                                      joinstyle="round"))  # fmt: skip
+        artist = add_patch(ax, Polygon(xy, closed=True, fc=face, ec=style.colour, lw=style.width * thin, zorder=z,
+                                       joinstyle="round"))  # fmt: skip
     else:
-        (artist,) = ax.plot(xy[:, 0], xy[:, 1], color=style.colour, lw=style.width * thin, ls=dashes(style), zorder=z,
-                            solid_capstyle="round")  # fmt: skip
+        artist = add_line(ax, xy[:, 0], xy[:, 1], color=style.colour, lw=style.width * thin, ls=dashes(style),
+                          zorder=z, solid_capstyle="round")  # fmt: skip
     artist.set_gid(f"{it.kind}:{it.name}")
     return artist
 

@@ -211,10 +211,17 @@ PARALLEL = True
 
 def require_packages() -> None:
     """Raise :class:`~linkwork.errors.MissingDependencyError` unless the optional packages of the
-    report are installed: matplotlib (the figures) and xarray (``kinematics.nc``)."""
+    report are installed: matplotlib (the figures) and xarray (``kinematics.nc``).
+
+    They are found, not imported: xarray is imported (with pandas, a quarter of a second) only where
+    ``kinematics.nc`` is written, beside the main line of the report."""
+    from importlib.util import find_spec
+
     from linkwork.optional import require
 
-    require("matplotlib", "xarray", purpose="the report (linkwork analyze)")
+    missing = [name for name in ("matplotlib", "xarray") if find_spec(name) is None]
+    if missing:
+        require(*missing, purpose="the report (linkwork analyze)")  # raises, naming them and the pip command
 
 
 def _build(run: _Run, steps: int, position: int | str | None, animation: bool, dxf: bool = False) -> None:
