@@ -236,6 +236,7 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
         from linkwork import figures
 
         run.jobs.append(lambda: figures.animate(cycle.kin, run.folder / "animation.gif", lang=run.lang))
+    _import_drawing()
     run.run_beside()
     if not run.mech.structure.redundant:
         _forces(run, cycle)
@@ -245,6 +246,13 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
         _impact(run)
     run.progress("figures")
     run.run_here()
+
+
+def _import_drawing() -> None:
+    """Import matplotlib's figure and Agg canvas (a third of a second) once, before the second process forks:
+    both processes draw."""
+    import matplotlib.figure  # noqa: F401
+    from matplotlib.backends import backend_agg  # noqa: F401
 
 
 def group_kind(kind: str, lang: str) -> str:
