@@ -370,3 +370,17 @@ def test_the_drawings_for_cad_speak_the_language_of_the_report(tmp_path):
         assert doc.styles.get(STYLE).dxf.font.lower().endswith(".ttf")
     layers = {e.dxf.layer for e in ezdxf.readfile(tmp_path / "velocity_plan.dxf").modelspace()}
     assert {"ABSOLUTE", "ROTATION", "NOTES"} <= layers
+
+
+@pytest.mark.parametrize("name", names())
+def test_the_working_point_rests_at_position_0(name):
+    """Position 0 is an extreme of the first working member (a slider's stroke, a rocker's swing), so the
+    point the plans follow, which that member carries where the file names no tool or blow, is at rest
+    there: its speed at position 0 is zero to round-off, against its largest speed over the turn."""
+    mech = lw.compile(lw.example(name))
+    if mech.blow is not None or any(load.kind == "process" for load in mech.loads):
+        pytest.skip("the working point is the file's tool or striking point")
+    point = mech.point_names[working_point(mech)]
+    zero = lw.kinematics(mech, position_angles(mech)[:1])
+    cycle = lw.kinematics(mech, steps=360)
+    assert np.hypot(*zero.velocity(point)[0]) <= 1e-9 * np.max(np.hypot(*cycle.velocity(point).T))
