@@ -136,14 +136,18 @@ class SchemeScene:
         xy = place(poses, np.asarray(item.xy, dtype=float))
         return xy if index is None else xy[0]
 
-    def extent(self, index: int | None = None, paths: bool = False) -> np.ndarray:
-        """``[x0, y0, x1, y1]`` of everything drawn (at sample ``index``, or over all), labels' text included."""
-        parts = [self.placed(it, index) for it in self.items if it.kind != "path"]
-        parts += [np.concatenate([self.placed(it, index) - it.radius, self.placed(it, index) + it.radius])
-                  for it in self.items if it.radius]  # fmt: skip
+    def extent(self, index: int | list[int] | None = None, paths: bool = False) -> np.ndarray:
+        """``[x0, y0, x1, y1]`` of everything drawn (at sample ``index``, at the samples of a list, or over all),
+        labels' text included."""
+        at = slice(None) if index is None else np.atleast_1d(np.asarray(index, dtype=int))
+        parts: list[np.ndarray] = []
+        for it in self.items:
+            if it.kind != "path":
+                xy = place(self.poses[at, it.link], np.asarray(it.xy, dtype=float))
+                parts += [xy - it.radius, xy + it.radius] if it.radius else [xy]
         for lab in self.labels:
             w, h = text_size(lab.text, self.em)
-            c = lab.centre if index is None else lab.centre[index : index + 1]
+            c = lab.centre[at]
             parts += [c - [w / 2, h / 2], c + [w / 2, h / 2]]
         if paths:
             parts.append(self.paths)

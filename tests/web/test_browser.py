@@ -32,7 +32,9 @@ from linkwork.examples import text as example_text  # noqa: E402
 from linkwork.kinetostatics.external import evaluate  # noqa: E402
 from linkwork.web import create_app, export_page  # noqa: E402
 
-ARTIFACTS = Path(__file__).resolve().parent.parent / "test-artifacts"
+pytestmark = pytest.mark.browser
+
+ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts"
 FLAGS = [
     "--headless",
     "--no-sandbox",

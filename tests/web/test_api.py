@@ -472,7 +472,7 @@ def test_the_readme_export_command_runs(tmp_path):
     import linkwork.cli.view  # noqa: F401
     from linkwork.cli.main import app
 
-    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
     section = readme.split("## Browser viewer", 1)[1].split("\n## ", 1)[0]
     line = next(x for x in re.findall(r"```\n(.*?)```", section, re.S)[0].splitlines() if "--export" in x)
     args = line.split("#")[0].split()
