@@ -10,7 +10,12 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+from hypothesis import strategies as st
+
+import linkwork as lw
 from linkwork import MechanismBuilder
+from linkwork.structure.model import PairType
 
 
 def circle_intersection(c1, r1, c2, r2, left=True):
@@ -256,3 +261,148 @@ TEXTBOOK = {
     "pin in slot": (pin_in_slot, 2, 2, 1, 1, 0, [(1, None, "R"), (2, 2, "RPR")]),
     "compound hinge": (compound_hinge, 5, 7, 0, 1, 0, [(1, None, "R"), (2, 2, "RRR"), (2, 2, "RRP")]),
 }
+
+
+# ---------------------------------------------------------------- builders shared by the tests
+
+
+def four_bar_spec(a, b, c, d, phi, left, transform=(0.0, 0.0, 0.0)):
+    """A four-bar as plain data, moved rigidly by ``transform`` = (dx, dy, rotation)."""
+    dx, dy, rot = transform
+    cr, sr = math.cos(rot), math.sin(rot)
+
+    def move(p):
+        return [cr * p[0] - sr * p[1] + dx, sr * p[0] + cr * p[1] + dy]
+
+    pa = (a * math.cos(phi), a * math.sin(phi))
+    pb = circle_intersection(pa, b, (d, 0.0), c, left=left)
+    data = {
+        "units": {"angle": "rad"},
+        "frame": {"points": {"O2": move((0, 0)), "O4": move((d, 0))}},
+        "links": {
+            "crank": {"ends": ["O2", "A"], "length": a},
+            "coupler": {"ends": ["A", "B"], "length": b},
+            "rocker": {"ends": ["O4", "B"], "length": c},
+        },
+        "joints": {
+            "O2": {"type": "revolute", "links": ["frame", "crank"]},
+            "A": {"type": "revolute", "links": ["crank", "coupler"]},
+            "B": {"type": "revolute", "links": ["coupler", "rocker"]},
+            "O4": {"type": "revolute", "links": ["frame", "rocker"]},
+        },
+        "drives": [{"joint": "O2", "angle": phi + rot}],  # the drive angle turns with the frame
+        "hints": {"B": move(pb)},
+    }
+    return data, move(pb)
+
+
+four_bars = st.tuples(
+    st.floats(0.05, 1.0),
+    st.floats(0.05, 1.0),
+    st.floats(0.05, 1.0),
+    st.floats(0.05, 1.0),
+    st.floats(-math.pi, math.pi),
+    st.booleans(),
+).filter(lambda t: assembles(*t[:5]))
+
+
+def assembles(a, b, c, d, phi):
+    e = math.hypot(a * math.cos(phi) - d, a * math.sin(phi))
+    # away from the dead points, so that the branch is well defined
+    return abs(b - c) + 0.02 < e < b + c - 0.02 and e > 0.02
+
+
+SOLVED = [
+    ("example", n)
+    for n in [
+        "double-cut-shears",
+        "four-bar",
+        "watt-six-bar",
+        "stephenson-six-bar",
+        "class3-triad",
+        "percussion-rocker",
+        "shears-slider-crank",
+    ]
+] + [
+    ("textbook", n)
+    for n in [
+        "offset slider-crank",
+        "crank-shaper",
+        "scotch yoke",
+        "PRP dyad",
+        "pin in slot",
+        "compound hinge",
+        "class IV",
+        "five-bar",
+        "parallelogram",
+    ]
+]
+
+
+def compiled(kind, name):
+    return lw.compile(lw.example(name) if kind == "example" else TEXTBOOK[name][0]().build())
+
+
+def angles_around(mech, n=48, span=2 * np.pi):
+    """Drive values around the assembly pose (a whole turn for cranks)."""
+    start = mech.drive_start
+    offsets = np.linspace(-span / 2, span / 2, n, endpoint=False) + 1e-3
+    if mech.pair_type[mech.drive_pair[0]] == PairType.PRISMATIC:  # linear drive: a few centimetres
+        offsets = np.linspace(-0.05, 0.05, n)
+    return start[None, :] + offsets[:, None]
+
+
+def assert_free_bodies_balance(f):
+    """Each group, cut free, is in equilibrium under the pair forces read back at their points."""
+    for body in f.free_bodies():
+        scale = max(np.nanmax(np.abs(c.force)) for c in body.external)
+        scale = max(scale, np.nanmax(np.abs(body.loads[..., :2])))
+        arm = np.nanmax(np.abs(np.concatenate([c.point for c in body.external], -1))) + 1.0
+        assert np.nanmax(np.abs(body.residual[..., :2])) < 1e-9 * scale, body.label
+        assert np.nanmax(np.abs(body.residual[..., 2])) < 1e-9 * scale * arm, body.label
+
+
+def heavy_compound_hinge(order):
+    """The four-bar with a slider rod on its compound hinge B (members nearest the frame: the rocker),
+    every link heavy, B written ``links: order``."""
+    data = compound_hinge().to_dict()
+    for name, mass in (("crank", 2.0), ("coupler", 5.0), ("rocker", 4.0), ("rod", 3.0), ("slider", 6.0)):
+        data["links"][name]["mass"] = mass
+    data["joints"]["B"]["links"] = list(order)
+    return lw.compile(lw.from_dict(data))
+
+
+def forces_on_b(f):
+    """The force B puts on each of its members, from the free body of that member alone: m a_C - W less
+    the force of its other joint (reaction of a two-link joint: the first-named link on the second)."""
+    mech, kin = f.mechanism, f.kinematics
+    g = np.array([0.0, -mech.gravity])
+    other = {"coupler": ("A", f.reaction("A")), "rocker": ("O4", f.reaction("O4")), "rod": ("C", -f.reaction("C"))}
+    out = {}
+    for link, (joint, force) in other.items():
+        m = mech.link_mass[mech.link_names.index(link)]
+        a_c = 0.5 * (kin.acceleration("B") + kin.acceleration(joint))  # mid-length of each binary link
+        out[link] = m * a_c - m * g - force
+    return out
+
+
+#: A four-bar with all four sides equal: its parallelogram and folded modes meet at 0 and 180 deg.
+RHOMBUS = """
+name: rhombus
+units: {length: mm, angle: deg}
+frame:
+  points: {O2: [0, 0], O4: [100, 0]}
+links:
+  crank: {ends: [O2, A], length: 100}
+  coupler: {ends: [A, B], length: 100}
+  rocker: {ends: [O4, B], length: 100}
+joints:
+  O2: {type: revolute, links: [frame, crank]}
+  A: {type: revolute, links: [crank, coupler]}
+  B: {type: revolute, links: [coupler, rocker]}
+  O4: {type: revolute, links: [frame, rocker]}
+drives:
+  - {joint: O2, speed: 60 rpm, direction: ccw, angle: 60 deg}
+hints:
+  B: [150, 86.6]
+"""

@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.motion.kernels import CLOSE, ROUNDING, SINGULAR
 from linkwork.motion.program import Arm, Step
 
 #: Step kinds of the compiled program.
@@ -34,8 +35,6 @@ ARM = 9
 _CODES = {"crank": CRANK, "slide": SLIDE, "RRR": DYAD, "RRP": DYAD, "PRP": DYAD, "RPR": RPR, "RPP": RPP}
 
 
-#: Normalised Jacobian determinant below which a sample is a singular position.
-SINGULAR = 1e-9
 #: Threads a long batch is split over (the kernels release the GIL), and the least samples per thread.
 THREADS = min(os.cpu_count() or 1, 8)
 PER_THREAD = 5_000
@@ -117,9 +116,11 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     dyad's two assembly modes come within a step of each other: the NumPy
     path decides the mode there), ``trouble`` (S, V) (True where a step
     fails to assemble, comes within :data:`SINGULAR` of a singular position
-    or its determinant changes sign: only there are events looked for) and
+    or its determinant changes sign: only there are events looked for),
     ``singular`` (whether any assembled sample has a normalised determinant
-    below :data:`SINGULAR`).
+    below :data:`SINGULAR`) and ``limit`` (S, V) (True where a dyad lies
+    on a singular position to rounding, its outer joints together or its
+    modes meeting: the NumPy kernels give the velocities there).
     """
     ops, branch = mech.fast_program
     n_links = mech.n_links_total
@@ -127,6 +128,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     values, rates, accels = (np.ascontiguousarray(x, dtype=float) for x in (values, rates, accels))
     n_var, n_ang, n_steps = local.shape[0], values.shape[0], len(ops)
     out = np.empty((3, n_links, 3, n_var, n_ang))  # one block: q, v, a
+    limit = np.zeros((n_steps, n_var), dtype=np.bool_)
     slack = np.empty((n_steps, n_var, n_ang))
     det = np.empty_like(slack)
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
@@ -135,7 +137,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
     singular = np.zeros(1, dtype=np.bool_)
     tol = 1e-12 * (1 + float(np.abs(local).max()))
     args: tuple[Any, ...] = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid)
-    args += (near, trouble, singular, tol)
+    args += (near, trouble, singular, limit, tol)
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
@@ -163,6 +165,7 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
         "near": near,
         "trouble": trouble,
         "singular": bool(singular[0]),
+        "limit": limit,
     }
 
 
@@ -236,6 +239,13 @@ def _touching(x):
     return 0.0 if -1e-12 < x < 0 else x
 
 
+def _snap(h2, dh2, q_v, q_a, rounding):
+    """The squared half gap between the two modes of a dyad near a change point, and whether it is
+    the motion's (:func:`linkwork.motion.kernels._root`)."""
+    motion = dh2 * q_v * q_v / (2 * q_a)
+    return (motion, True) if abs(h2 - motion) <= rounding else (h2, False)
+
+
 def _arm_motion(L, ops, st, o, P, x, y):
     """Column of the arm's unknown rate in the velocity equation of X, and X's velocity and
     acceleration with that rate left out: about the joint (R), or of the carrier's point at X (P)."""
@@ -262,16 +272,46 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
     B = _locus(L, ops, st, o2, pre, local, origin, axis, xbx, xby)
     ka_r, kb_r = ops[st, o1] == 0, ops[st, o2] == 0
     gx = gy = 0.0
+    limit = False
     if ka_r and kb_r:
         dx, dy = B[0] - A[0], B[1] - A[1]
+        dvx, dvy, dax, day = B[2] - A[2], B[3] - A[3], B[4] - A[4], B[5] - A[5]
         dist2 = dx * dx + dy * dy
-        inv = 1.0 / math.sqrt(dist2)
+        dist = math.sqrt(dist2)
+        inv = 1.0 / dist
         ra, rb = A[6], B[6]
-        t = (ra * ra - rb * rb + dist2) * (0.5 * inv)
-        h2 = ra * ra - t * t
+        k = ra * ra - rb * rb
+        t = (k + dist2) * (0.5 * inv) if dist > 0 else 0.0
         rsum2 = (ra + rb) * (ra + rb)
         slack = _touching(min(rsum2 - dist2, dist2 - (ra - rb) * (ra - rb)) / rsum2)
         ex, ey = dx * inv, dy * inv
+        if dist <= CLOSE * (ra + rb):  # the outer joints (nearly) together: their direction from their motion
+            speed2 = dvx * dvx + dvy * dvy
+            tau = (dx * dvx + dy * dvy) / speed2
+            wx, wy = dvx - 0.5 * tau * dax, dvy - 0.5 * tau * day
+            sign = (-1.0 if tau < 0 else 1.0) / math.sqrt(wx * wx + wy * wy)
+            rounding = (
+                8 * ROUNDING * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))
+            )
+            miss = abs(dx * dvy - dy * dvx)
+            through = miss <= (rounding + dist2 * math.sqrt(dax * dax + day * day) / speed2) * math.sqrt(speed2)
+            if math.isfinite(sign):
+                if through:
+                    ex, ey = sign * wx, sign * wy
+                limit = dist <= rounding  # together to rounding
+        h2 = ra * ra - t * t
+        if abs(h2) <= CLOSE * (ra * ra):  # near a change point: the motion about it
+            dist_v = (dx * dvx + dy * dvy) / dist
+            dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
+            norms = math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1])
+            size = ra * ra + 2 * abs(t) * (
+                abs(dist2 - k) / (2 * dist2) * (norms + dist) + (abs(k) + dist2) / (2 * dist)
+            )
+            h2, snapped = _snap(h2, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
+            rounding = 8 * ROUNDING * (ra + rb + norms)
+            speed = math.sqrt(dvx * dvx + dvy * dvy)
+            on = slack >= 0 and snapped and dist > rounding and abs(dist_v) <= rounding * speed / dist
+            limit = limit or on  # on the change point to rounding
         h = branch * math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
         x, y = A[0] + t * ex - h * ey, A[1] + t * ey + h * ex
         gx, gy = 2 * h * ey, -2 * h * ex
@@ -281,15 +321,27 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
         x, y = A[0] + t * A[2], A[1] + t * A[3]
         slack = abs(den)
     else:
-        C, Ln = (A, B) if ka_r else (B, A)
+        C, Ln, ol = (A, B, o2) if ka_r else (B, A, o1)
         wx, wy = C[0] - Ln[0], C[1] - Ln[1]
-        t0 = wx * Ln[2] + wy * Ln[3]
-        hh = Ln[2] * wy - Ln[3] * wx
+        nx, ny = -Ln[3], Ln[2]
+        q = nx * wx + ny * wy  # signed distance of the circle's centre from the line
         r2 = C[6] * C[6]
-        disc = r2 - hh * hh
-        slack = _touching(disc / r2)
+        slack = _touching((r2 - q * q) / r2)
+        disc = r2 - q * q
+        if abs(disc) <= CLOSE * r2:  # near a change point: q over time, relative to the line's link
+            g = ops[st, ol + 6]
+            vmx, vmy, amx, amy = _material(L, g, C[0], C[1])
+            rx, ry = C[2] - vmx, C[3] - vmy
+            f = 2 * L[g, 5]
+            cx, cy = (C[4] - amx) - f * -ry, (C[5] - amy) - f * rx
+            size = C[6] + math.sqrt(C[0] * C[0] + C[1] * C[1]) + math.sqrt(Ln[0] * Ln[0] + Ln[1] * Ln[1])
+            q_v = nx * rx + ny * ry
+            disc, snapped = _snap(disc, -2 * q, q_v, nx * cx + ny * cy, ROUNDING * (C[6] * size))
+            speeds = math.sqrt(C[2] * C[2] + C[3] * C[3]) + math.sqrt(vmx * vmx + vmy * vmy)
+            limit = slack >= 0 and snapped and abs(q_v) <= 8 * ROUNDING * speeds  # on the change point
         root = branch * math.sqrt(max(disc, 0.0) if slack >= 0 else disc)
-        x, y = Ln[0] + (t0 + root) * Ln[2], Ln[1] + (t0 + root) * Ln[3]
+        t0 = wx * Ln[2] + wy * Ln[3]
+        x, y = (Ln[0] + t0 * Ln[2]) + root * Ln[2], (Ln[1] + t0 * Ln[3]) + root * Ln[3]
         gx, gy = -2 * root * Ln[2], -2 * root * Ln[3]
     if slack >= 0 and not (math.isfinite(x) and math.isfinite(y)):
         slack = -1.0
@@ -320,7 +372,7 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
         else:
             lx, ly = _loc(local, xl)
             _place_like(L, link, ops[st, o + 6], x, y, vx, vy, ax, ay, lx, ly)
-    return slack, d / math.sqrt((cax * cax + cay * cay) * (cbx * cbx + cby * cby)), x, y, gx, gy
+    return slack, d / math.sqrt((cax * cax + cay * cay) * (cbx * cbx + cby * cby)), x, y, gx, gy, limit
 
 
 def _rpr(L, ops, st, branch, local, origin, axis):
@@ -354,7 +406,8 @@ def _rpr(L, ops, st, branch, local, origin, axis):
 
 
 def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i):
-    """One step at one sample: (slack, normalised determinant, X, gap vector) (the last two for dyads)."""
+    """One step at one sample: (slack, normalised determinant, X, gap vector, on a singular position to
+    rounding) (the last three for dyads)."""
     kind = ops[st, 0]
     if kind == CRANK:
         link, base, src, own, sign, drv = ops[st, 1], ops[st, 2], ops[st, 3], ops[st, 4], ops[st, 5], ops[st, 6]
@@ -364,7 +417,7 @@ def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i
         px, py, vx, vy, ax, ay = _point(L, base, local[src, 0], local[src, 1])
         c, s = math.cos(theta), math.sin(theta)
         _place(L, link, theta, omega, eps, px, py, vx, vy, ax, ay, local[own, 0], local[own, 1], c, s)
-        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0
+        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, False
     if kind == SLIDE:
         link, g, k, sp, drv = ops[st, 1], ops[st, 2], ops[st, 3], ops[st, 4], ops[st, 5]
         c, s = L[g, 9], L[g, 10]
@@ -376,12 +429,12 @@ def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i
         f = 2 * L[g, 5] * ds
         ax, ay = amx + dds * ux - f * uy, amy + dds * uy + f * ux
         _place_like(L, link, g, x, y, vmx + ds * ux, vmy + ds * uy, ax, ay, local[sp, 0], local[sp, 1])
-        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0
+        return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, False
     if kind == DYAD:
         return _dyad(L, ops, st, 3, 3 + ARM, ops[st, 1], ops[st, 2], branch, pre, local, origin, axis)
     if kind == RPR:
         slack, det = _rpr(L, ops, st, branch, local, origin, axis)
-        return slack, det, 0.0, 0.0, 0.0, 0.0
+        return slack, det, 0.0, 0.0, 0.0, 0.0, False
     # RPP: the pinned link keeps the guide's angle; then the other link as a dyad of two lines
     o = 3
     g = ops[st, 3 + 2 * ARM + 6]
@@ -423,6 +476,7 @@ def _kernel(
     near,
     trouble,
     singular,
+    limit,
     tol,
     lo,
     hi,
@@ -447,7 +501,9 @@ def _kernel(
             ok = True
             small = False
             for st in range(n_steps):
-                s, d, x, y, gx, gy = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
+                s, d, x, y, gx, gy, jn = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
+                if jn and i >= lo:
+                    limit[st, var] = True
                 ok = ok and s >= 0
                 small = small or abs(d) < SINGULAR
                 if ops[st, 0] >= DYAD:  # cranks and slides always assemble: filled below
@@ -495,8 +551,8 @@ def _kernel(
 OPTS: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
 
 #: The kernels inlined into the others, and those called from Python.
-_INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_locus", "_touching", "_arm_motion",
-           "_arm_extra", "_dyad", "_rpr", "_step")  # fmt: skip
+_INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_locus", "_touching", "_snap",
+           "_arm_motion", "_arm_extra", "_dyad", "_rpr", "_step")  # fmt: skip
 _CALLED = ("_arm_constants", "_kernel")
 
 

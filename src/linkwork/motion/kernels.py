@@ -12,9 +12,10 @@ Samples where a group cannot be assembled come out as NaN.
 from __future__ import annotations
 
 import dataclasses
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
+from numpy.polynomial import polynomial as poly
 
 from linkwork.motion.program import Arm, Step
 from linkwork.motion.state import State, Vec, add, cross, dot, norm, perp, rot, scale, single_state, solve2, sub
@@ -65,30 +66,215 @@ class _Locus:
         return scale(2 * state.v[self.carrier, 2] * k, perp(self.u))
 
 
-def _intersect(la: _Locus, lb: _Locus, branch: np.ndarray | float) -> tuple[Vec, np.ndarray]:
-    """X where the two loci meet, and the assembly margin (negative where they do not)."""
+#: Normalised Jacobian determinant below which a sample is a singular position.
+SINGULAR = 1e-9
+#: Nearness to a singular position of a dyad, relative to its size.  Outer joints this near each other
+#: (a rhombus with its crank on the frame) have lost their direction from each other to rounding: it is
+#: taken from their relative velocity and acceleration.  Between two samples the two assembly modes
+#: trade places only where the motion comes this near a singular position.
+CLOSE = 1e-6
+#: Relative rounding of what a dyad is solved from (positions of its outer joints, squared half gap
+#: between its modes), in units of its size and of the coordinates' magnitude (64 ulps).
+ROUNDING = 64 * np.finfo(float).eps
+
+
+class Singular(NamedTuple):
+    """Where a dyad is singular: a quantity of the motion ``y`` (a tuple of components, ``(V, A)``
+    each) with its first two time derivatives ``v`` and ``a``, reaching ``target`` (a component
+    ``(V, 1)`` or scalar each; NaN: never) to within ``tol`` (``(V, 1)``).  A scalar reaches it at an
+    extremum (the two modes meet there), and cannot assemble beyond it (``beyond``: +1 above, -1
+    below); a vector (the relative position of outer joints) passes through it."""
+
+    y: tuple[np.ndarray, ...]
+    v: tuple[np.ndarray, ...]
+    a: tuple[np.ndarray, ...]
+    target: tuple[Any, ...]
+    tol: np.ndarray
+    beyond: float = 0.0
+
+
+class Limit(NamedTuple):
+    """The velocity of X where a dyad is on a singular position to rounding, which its velocity
+    equations leave open: that of the motion through it, ``base + s * across`` in its mode s (+-1)."""
+
+    on: np.ndarray  # (V, A) bool
+    base: Vec
+    across: Vec
+    own: np.ndarray  # (V, A): s is the sample's branch times this where nonzero, else the mode just after it
+
+
+def _limit(*parts: tuple[np.ndarray, Vec, Vec, Any]) -> Limit | None:
+    """One Limit from parts (on, base, across, own) where samples are on them; None where none is."""
+    parts = tuple(p for p in parts if np.any(p[0]))
+    if not parts:
+        return None
+    on = np.logical_or.reduce([p[0] for p in parts])
+
+    def pick(i: int, j: int | None = None) -> np.ndarray:
+        out = np.zeros(on.shape)
+        for p in parts:
+            out = np.where(p[0], p[i] if j is None else p[i][j], out)
+        return out
+
+    return Limit(on, (pick(1, 0), pick(1, 1)), (pick(2, 0), pick(2, 1)), pick(3))
+
+
+class Closure(NamedTuple):
+    """Where the two loci of X meet: ``X = mid + branch * h * n`` in assembly mode ``branch`` (+-1)."""
+
+    mid: Vec
+    n: Vec
+    h: np.ndarray  # NaN where the loci do not meet
+    slack: np.ndarray  # the assembly margin, negative where the loci do not meet
+    singular: tuple[Singular, ...] = ()  # where the two modes trade places
+    limit: Limit | None = None  # the velocity of X on a singular position to rounding
+
+
+def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
+    """Where the loci of the two arms meet, in either assembly mode."""
     if la.arm.kind == "R" and lb.arm.kind == "R":
-        d = sub(lb.p, la.p)
-        dist2 = dot(d, d)
-        inv = 1.0 / np.sqrt(dist2)
-        a = (la.r * la.r - lb.r * lb.r + dist2) * (0.5 * inv)
-        h2 = la.r * la.r - a * a
-        rsum2 = (la.r + lb.r) ** 2
-        slack = _touching(np.minimum(rsum2 - dist2, dist2 - (la.r - lb.r) ** 2) / rsum2)
-        e = scale(inv, d)
-        h = branch * np.sqrt(np.where(slack >= 0, np.maximum(h2, 0.0), h2))
-        return (la.p[0] + a * e[0] - h * e[1], la.p[1] + a * e[1] + h * e[0]), slack
+        return _circles(la, lb)
     if la.arm.kind == "P" and lb.arm.kind == "P":
         den = cross(la.u, lb.u)
         t = cross(sub(lb.l0, la.l0), lb.u) / den
-        return add(la.l0, scale(t, la.u)), np.abs(den)
+        zero = np.zeros_like(den)
+        return Closure(add(la.l0, scale(t, la.u)), (zero, zero), zero, np.abs(den))  # one mode
     circle, line = (la, lb) if la.arm.kind == "R" else (lb, la)
     w = sub(circle.p, line.l0)
-    t0 = dot(w, line.u)
-    h = cross(line.u, w)
-    disc = circle.r * circle.r - h * h
-    slack = _touching(disc / (circle.r * circle.r))
-    return add(line.l0, scale(t0 + branch * np.sqrt(np.where(slack >= 0, np.maximum(disc, 0.0), disc)), line.u)), slack
+    n = perp(line.u)
+    q = dot(n, w)  # signed distance of the circle's centre from the line
+    r2 = circle.r * circle.r
+    slack = _touching((r2 - q * q) / r2)
+    # q over time: the velocity and acceleration of the centre relative to the line's link
+    v_line, a_line = state.material(line.carrier, circle.p)
+    rel = sub(circle.vp, v_line)
+    acc = sub(sub(circle.ap, a_line), scale(2 * state.v[line.carrier, 2], perp(rel)))
+    size = circle.r * (circle.r + norm(circle.p) + norm(line.l0))
+    q_v, q_a = dot(n, rel), dot(n, acc)
+    h, snapped = _root(r2 - q * q, slack, -2 * q, q_v, q_a, ROUNDING * size, r2)
+    tol = CLOSE * circle.r
+    touch = tuple(Singular((q,), (q_v,), (q_a,), (sign * circle.r,), tol, sign) for sign in (1.0, -1.0))
+    mid = add(line.l0, scale(dot(w, line.u), line.u))
+    # on the change point to rounding: at the extremum of q to within the rounding of its rate
+    on = (slack >= 0) & snapped & (np.abs(q_v) <= 8 * ROUNDING * (norm(circle.vp) + norm(v_line)))
+    limit = None
+    if np.any(on):  # on a change point: the middle moves with the line's link and the centre along it
+        mid_v = add(state.material(line.carrier, mid)[0], scale(dot(rel, line.u), line.u))
+        limit = _limit((on, mid_v, scale(np.sqrt(np.maximum(-q * q_a, 0.0)), line.u), 0.0))
+    return Closure(mid, line.u, h, slack, touch, limit)
+
+
+def _circles(la: _Locus, lb: _Locus) -> Closure:
+    """Two circles: X at ``a`` along the line of centres from la's and ``h`` across it."""
+    d = sub(lb.p, la.p)
+    dv, da = sub(lb.vp, la.vp), sub(lb.ap, la.ap)  # relative velocity and acceleration of the centres
+    dist2 = dot(d, d)
+    dist = np.sqrt(dist2)
+    inv = 1.0 / dist
+    k = la.r * la.r - lb.r * lb.r
+    a = np.where(dist > 0, (k + dist2) * (0.5 * inv), 0.0)
+    rsum2 = (la.r + lb.r) ** 2
+    slack = _touching(np.minimum(rsum2 - dist2, dist2 - (la.r - lb.r) ** 2) / rsum2)
+    e = scale(inv, d)
+    close = dist <= CLOSE * (la.r + lb.r)
+    rounding = 8 * ROUNDING * (la.r + lb.r + norm(la.p) + norm(lb.p))
+    joined = np.zeros(dist.shape)
+    if np.any(close):
+        # d = tau (v - acc tau / 2) a time tau after the centres met: its direction from their motion,
+        # where they do pass through each other (off their line of motion by no more than the rounding
+        # and the curvature's share); centres that miss each other keep the direction they have
+        speed2 = dot(dv, dv)
+        tau = dot(d, dv) / speed2
+        along = sub(dv, scale(0.5 * tau, da))
+        side = np.where(tau < 0, -1.0, 1.0)
+        sign = side / norm(along)
+        through = np.abs(cross(d, dv)) <= (rounding + dist2 * norm(da) / speed2) * np.sqrt(speed2)
+        e = tuple(np.where(close & through & np.isfinite(sign), sign * g, x) for g, x in zip(along, e, strict=True))
+        joined = np.where((dist <= rounding) & np.isfinite(sign), side, 0.0)
+    dist_v = dot(d, dv) / dist  # the distance of the centres over time
+    dist_a = (dot(dv, dv) + dot(d, da) - dist_v * dist_v) / dist
+    # rounding of h2 = ra^2 - a^2: that of the positions (of their magnitude) through a = (k + D^2) / 2 D
+    size = la.r * la.r + 2 * np.abs(a) * (
+        np.abs(dist2 - k) / (2 * dist2) * (norm(la.p) + norm(lb.p) + dist) + (np.abs(k) + dist2) / (2 * dist)
+    )
+    h, snapped = _root(la.r * la.r - a * a, slack, -a * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size, la.r**2)
+    # the modes trade places where the circles touch, or where their centres coincide (then the radii
+    # are equal); followed are the relative position of the centres and its square, smooth functions
+    tol = CLOSE * (la.r + lb.r)
+    outer, inner = la.r + lb.r, np.abs(la.r - lb.r)
+    square = ((dist2,), (2 * dot(d, dv),), (2 * (dot(dv, dv) + dot(d, da)),))
+    singular = (
+        Singular(d, dv, da, (0.0, 0.0), tol),
+        Singular(*square, (outer * outer,), 2 * outer * tol, 1.0),
+        Singular(*square, (np.where(inner > tol, inner * inner, np.nan),), 2 * inner * tol, -1.0),
+    )
+    # on the change point to rounding: at the extremum of the distance to within the rounding of its rate
+    on = (slack >= 0) & snapped & (dist > rounding) & (np.abs(dist_v) <= rounding * norm(dv) / dist)
+    limit = _limit(*_circles_limit(la, lb, e, a, h, on, joined, (dv, da), (dist, dist_v, dist_a)))
+    return Closure(add(la.p, scale(a, e)), perp(e), h, slack, singular, limit)
+
+
+def _circles_limit(
+    la: _Locus,
+    lb: _Locus,
+    e: Vec,
+    a: np.ndarray,
+    h: np.ndarray,
+    on: np.ndarray,
+    joined: np.ndarray,
+    rel: tuple[Vec, Vec],
+    dist: tuple[np.ndarray, ...],
+) -> list[tuple[np.ndarray, Vec, Vec, Any]]:
+    """Velocity of X where two circles are on a singular position to rounding (see :class:`Limit`).
+
+    Centres together (equal radii): X = P_a + d / 2 + h n about it, n turning as the direction of d,
+    whose limit is that of d' (turning at the part of d'' / 2 |d'| across it), and h' = 0 there; s is
+    the sample's branch times the side of it.  Circles touching (the modes meet): the middle moves as
+    P_a + a e, and h at the rate |h'| with h'^2 = (dh2/dq) q'' / 2 about the extremum of the distance q;
+    s is the mode just after the sample.  ``on``: there; ``rel``: the velocity and acceleration of
+    P_b - P_a; ``dist``: their distance and its first two time derivatives."""
+    (dv, da), (dist, dist_v, dist_a) = rel, dist
+    parts = []
+    if np.any(joined):
+        speed = norm(dv)
+        turn = scale(cross(dv, da) / (2 * speed**3), perp(dv))  # d e / dt: da across e over 2 |dv|
+        parts.append((joined != 0, add(la.vp, scale(0.5, dv)), scale(h, perp(turn)), joined))
+    k = la.r * la.r - lb.r * lb.r
+    if np.any(on):
+        e_v = scale(1.0 / dist, sub(dv, scale(dist_v, e)))
+        mid_v = add(la.vp, add(scale((dist * dist - k) / (2 * dist * dist) * dist_v, e), scale(a, e_v)))
+        h_v = np.sqrt(np.maximum(-a * (dist * dist - k) / (dist * dist) * dist_a / 2, 0.0))
+        parts.append((on, mid_v, scale(h_v, perp(e)), 0.0))
+    return parts
+
+
+def _root(
+    h2: np.ndarray,
+    slack: np.ndarray,
+    dh2: np.ndarray,
+    q_v: np.ndarray,
+    q_a: np.ndarray,
+    rounding: Any,
+    r2: Any,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The half gap h between the two modes from its square ``h2``, a function of a distance q, and
+    where it is taken from the motion about a change point.
+
+    Where the two modes meet the motion passes an extremum of q (a change point): there h2 = dh2 (q - q0)
+    and q - q0 = q_v^2 / (2 q_a) about it (``dh2`` = dh2/dq, ``q_v``, ``q_a`` its first two time
+    derivatives).  Where h2 is within CLOSE of r2 of zero and that to within its ``rounding``, the
+    motion's value is taken: the square root of a rounded h2 would be off by the square root of the
+    rounding, and differ between a mechanism and the same mechanism moved.
+    """
+    motion = dh2 * q_v * q_v / (2 * q_a)
+    snapped = (np.abs(h2) <= CLOSE * r2) & (np.abs(h2 - motion) <= rounding)
+    h2 = np.where(snapped, motion, h2)
+    return np.sqrt(np.where(slack >= 0, np.maximum(h2, 0.0), h2)), snapped
+
+
+def _at(closure: Closure, branch: np.ndarray | float) -> Vec:
+    """X in the assembly mode ``branch``."""
+    return add(closure.mid, scale(branch * closure.h, closure.n))
 
 
 def _touching(slack: np.ndarray) -> np.ndarray:
@@ -114,28 +300,31 @@ def dyad(
     xa = _x_local(state, step.x_local[0])
     xb = _x_local(state, step.x_local[1])
     la, lb = _Locus(state, arm_a, xa, point_link), _Locus(state, arm_b, xb, point_link)
+    closure = _closure(state, la, lb)
     flips: list[tuple[int, int, int]] = []
     if branch is None:
         branch_used: Any = step.branch
         if "R" in (arm_a.kind, arm_b.kind):
             full = np.full(state.valid.shape, step.branch)
-            flips = _change_points(state, la, lb, full)
+            flips = _change_points(state, closure, full)
             if flips:
                 branch_used = full
     else:
         branch_used = branch
-    x, slack = _intersect(la, lb, branch_used)
+    x, slack = _at(closure, branch_used), closure.slack
     # no single point X although the loci "meet" (coincident circle centres, parallel guides): not assembled
     slack = np.where((slack >= 0) & ~(np.isfinite(x[0]) & np.isfinite(x[1])), -1.0, slack)
-    ca, cb = la.column(x), lb.column(x)
-    va, aa = la.base(state, x)
-    vb, ab = lb.base(state, x)
-    ncb = scale(-1.0, cb)
-    ka, kb, det = solve2(ca, ncb, sub(vb, va))
-    ea, eb = la.accel_extra(state, x, ka), lb.accel_extra(state, x, kb)
-    ka_d, kb_d, _ = solve2(ca, ncb, sub(add(ab, eb), add(aa, ea)))
-    vx = add(va, scale(ka, ca))
-    ax = add(add(aa, scale(ka_d, ca)), ea)
+    (ka, kb), (ka_d, kb_d), vx, ax, det = _motion(state, la, lb, x)
+    lim = closure.limit
+    if lim is not None:  # on a singular position to rounding: the velocity of the motion through it
+        s = np.where(lim.own != 0, branch_used * lim.own, _later_mode(state, branch_used))
+        vx = tuple(np.where(lim.on, g, v) for g, v in zip(add(lim.base, scale(s, lim.across)), vx, strict=True))
+        ka, kb = (
+            np.where(lim.on, cross(sub(x, loc.p), sub(vx, loc.vp)) / dot(sub(x, loc.p), sub(x, loc.p)), k)
+            if loc.arm.kind == "R"
+            else k
+            for loc, k in ((la, ka), (lb, kb))
+        )
     for arm, loc, k, kd, xl in ((arm_a, la, ka, ka_d, xa), (arm_b, lb, kb, kb_d, xb)):
         if arm.kind == "R":
             d = sub(x, loc.p)
@@ -148,23 +337,55 @@ def dyad(
             state.place(arm.link, theta, k, kd, loc.p, loc.vp, loc.ap, state.loc(arm.own), (c, s))
         else:
             state.place_like(arm.link, arm.carrier, x, vx, ax, xl)
-    _record(state, slack, det / (norm(ca) * norm(cb)), None if np.isscalar(branch_used) else branch_used, flips)
+    _record(state, slack, det, None if np.isscalar(branch_used) else branch_used, flips, lim and lim.on)
 
 
-def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> list[tuple[int, int, int]]:
+def _later_mode(state: State, branch: Any) -> np.ndarray:
+    """The assembly mode (+-1) of the motion just after each sample in time, read off a neighbour:
+    its mode where it comes later, the other where it comes earlier (a singular position between)."""
+    b = np.broadcast_to(branch, state.valid.shape)
+    if b.shape[1] < 2 or state.rate is None:
+        return b
+    later = np.sign(np.diff(state.drive) * state.rate[:-1])  # +1 where the next sample comes later
+    out = np.empty(b.shape)
+    out[:, :-1] = b[:, 1:] * later
+    out[:, -1] = -b[:, -2] * later[-1]
+    return out
+
+
+def _motion(state: State, la: _Locus, lb: _Locus, x: Vec) -> tuple[Any, ...]:
+    """Velocity and acceleration of the dyad closed at ``x``, from the two vector equations of X: the
+    rates of its arms (ka, kb) and their derivatives, X's velocity and acceleration, and the
+    normalised determinant of the equations (zero at a singular position)."""
+    ca, cb = la.column(x), lb.column(x)
+    va, aa = la.base(state, x)
+    vb, ab = lb.base(state, x)
+    ncb = scale(-1.0, cb)
+    ka, kb, det = solve2(ca, ncb, sub(vb, va))
+    ea, eb = la.accel_extra(state, x, ka), lb.accel_extra(state, x, kb)
+    ka_d, kb_d, _ = solve2(ca, ncb, sub(add(ab, eb), add(aa, ea)))
+    vx = add(va, scale(ka, ca))
+    ax = add(add(aa, scale(ka_d, ca)), ea)
+    return (ka, kb), (ka_d, kb_d), vx, ax, det / (norm(ca) * norm(cb))
+
+
+def _change_points(state: State, closure: Closure, branch: np.ndarray) -> list[tuple[int, int, int]]:
     """Follow the motion through change points, along the angles in the order given.
 
-    From the sample nearest the assembly pose, forwards and then backwards,
-    each sample where the two assembly modes of the dyad nearly meet (their
-    points X closer together than X moves in a step) takes the mode whose X
-    lies nearer the extrapolation of X from the two samples before it.  So
-    the motion keeps going smoothly where the modes cross (the isosceles
-    slider-crank at 0 and 180 deg, a parallelogram laid flat) and never
-    jumps between modes that are apart.  ``branch`` is changed in place;
-    returns (variant, first sample in the new mode, sample nearest the change point).
+    Where the two modes of a dyad cross (the isosceles slider-crank at 0 and
+    180 deg, a parallelogram laid flat, a rhombus with its crank on the
+    frame) the mode that keeps the velocities continuous has the other sign
+    on the far side: from the sample nearest the assembly pose, forwards and
+    then backwards, the mode changes between two samples that lie on either
+    side of a crossing, and nowhere else (:func:`_crossings`), however fast X
+    swings and whatever the samples (one on the crossing itself counts on
+    the side its motion gives it).  Without the rate of a single drive, each
+    sample where the modes nearly meet takes the mode whose X lies nearer
+    the extrapolation from the two samples before it instead.  ``branch`` is
+    changed in place; returns (variant, first sample in the new mode,
+    sample nearest the change point).
     """
-    x_p, _ = _intersect(la, lb, branch)
-    x_m, _ = _intersect(la, lb, -branch)
+    x_p, x_m = _at(closure, branch), _at(closure, -branch)
     n = branch.shape[1]
     if n < 3:
         return []
@@ -180,6 +401,9 @@ def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> 
         near = gap <= 2 * move + 1e-12 * (1 + float(np.abs(state.local).max()))
     if not near.any():
         return []
+    rate = state.rate
+    if rate is not None and bool(np.all(np.isfinite(rate) & (rate != 0))):
+        return _crossings(state, closure, branch)
     xp, xm = np.stack(x_p, -1), np.stack(x_m, -1)
     drive = state.drive
     flips = []
@@ -207,6 +431,115 @@ def _change_points(state: State, la: _Locus, lb: _Locus, branch: np.ndarray) -> 
                     touch = int(order[k - 1] if gap[v, order[k - 1]] < gap[v, here] else here)
                     flips.append((int(v), int(here), touch))
     return flips
+
+
+def _lead(test: Singular) -> np.ndarray:
+    """Time from the extremum (scalar) or the meeting (vector) of a quantity, to first order: positive
+    after it.  (V, A)"""
+    if len(test.y) == 1:
+        return test.v[0] / test.a[0]
+    return sum(y * v for y, v in zip(test.y, test.v, strict=True)) / sum(v * v for v in test.v)
+
+
+def _crossings(state: State, closure: Closure, branch: np.ndarray) -> list[tuple[int, int, int]]:
+    """The mode flips between consecutive samples on either side of a crossing of the two modes.
+
+    Which side of a crossing a sample lies on is the sign of its time from the extremum of the
+    quantity whose target is the singular position (the distance of the outer joints, of a circle's
+    centre from a line), from its first two derivatives there (so also a sample on the crossing, to
+    rounding, is on one side); whether the extremum reaches the target between the samples, or goes
+    beyond it (where the dyad cannot assemble: then nothing is crossed), is :func:`_reach`.
+    """
+    drive, rate = state.drive, state.rate
+    start = state.start_index
+    later = np.sign(np.diff(drive) * rate[:-1])  # +1 where the next sample comes later
+    with np.errstate(invalid="ignore", divide="ignore"):
+        times = [_lead(t) for t in closure.singular]
+    # the side of each sample (a time of zero counts as after, as the limit direction of joined joints)
+    leads = [np.where(np.isfinite(t), np.where(t < 0, -1.0, 1.0), 0.0) for t in times]
+    if not leads:
+        return []
+    # where a lead changes sign from one sample to the next (an extremum between, or on one of them)
+    # within reach of its target from either end
+    dt = np.abs(np.diff(drive) / rate[:-1])
+    changes = np.logical_or.reduce(
+        [(s[:, 1:] != s[:, :-1]) & _within_reach(t, dt) for s, t in zip(leads, closure.singular, strict=True)]
+    )
+    flips = []
+    for v, i in np.argwhere(changes):
+        prev, here = (i, i + 1) if i >= start else (i + 1, i)  # walked away from the assembly pose
+        ahead = later[i] if here > prev else -later[i]  # +1: the walk goes forward in time
+        crossed = [
+            (_reach(test, state, v, prev, here), time)
+            for test, lead, time in zip(closure.singular, leads, times, strict=True)
+            if lead[v, prev] * ahead < 0 < lead[v, here] * ahead  # before at prev, after at here
+        ]
+        if not crossed or any(verdict < 0 for verdict, _ in crossed) or all(verdict == 0 for verdict, _ in crossed):
+            continue  # nothing crossed, or a gap where the dyad cannot assemble
+        branch[v, slice(here, None) if here > prev else slice(None, here + 1)] *= -1
+        time = next(t for verdict, t in crossed if verdict > 0)
+        flips.append((int(v), int(here), int(prev if abs(time[v, prev]) < abs(time[v, here]) else here)))
+    return flips
+
+
+def _within_reach(test: Singular, dt: np.ndarray) -> np.ndarray:
+    """Whether a quantity can come within its tolerance of its target between consecutive samples
+    ``dt`` apart (A - 1,), by twice the first two terms of its Taylor expansion from either end:
+    (V, A - 1)."""
+    with np.errstate(invalid="ignore"):
+        off = np.sqrt(sum((y - t) ** 2 for y, t in zip(test.y, test.target, strict=True)))
+        speed = np.sqrt(sum(v * v for v in test.v))
+        turn = np.sqrt(sum(a * a for a in test.a))
+        ends = [
+            off[:, k] - 2 * (speed[:, k] * dt + turn[:, k] * dt * dt) - test.tol
+            for k in (slice(None, -1), slice(1, None))
+        ]
+        return (ends[0] <= 0) | (ends[1] <= 0)
+
+
+def _reach(test: Singular, state: State, v: int, i: int, j: int) -> int:
+    """Whether a quantity reaches its singular position between samples ``i`` and ``j``: 1 if it
+    does, -1 if it goes beyond (a scalar whose dyad cannot assemble there), 0 if not.
+
+    The quantity is followed by the quintic through its values and first two time derivatives at
+    both samples, within its tolerance widened by how far the quintic is from the cubic through the
+    values and first derivatives (a bound on its own error).
+    """
+    dt = (state.drive[j] - state.drive[i]) / state.rate[i]
+    target = np.array([c if np.ndim(c) == 0 else c[v, 0] for c in test.target], dtype=float)
+    if np.isnan(target).any():
+        return 0  # a position this dyad never takes
+    y, vel, acc = (np.array([[c[v, i], c[v, j]] for c in x]) for x in (test.y, test.v, test.a))
+    y0, y1 = y[:, 0] - target, y[:, 1] - target
+    v0, v1 = vel[:, 0] * dt, vel[:, 1] * dt
+    a0, a1 = acc[:, 0] * dt * dt, acc[:, 1] * dt * dt
+    if not np.isfinite(np.concatenate([y0, y1, v0, v1, a0, a1])).all():
+        return 0
+    # on [0, 1]: y0 + v0 t + a0 t^2 / 2 + c3 t^3 + c4 t^4 + c5 t^5 with the values at 1
+    big_a, big_b, big_c = y1 - y0 - v0 - a0 / 2, v1 - v0 - a0, a1 - a0
+    quintic = np.stack(
+        [y0, v0, a0 / 2, 10 * big_a - 4 * big_b + big_c / 2, -15 * big_a + 7 * big_b - big_c]
+        + [6 * big_a - 3 * big_b + big_c / 2],
+        -1,
+    )
+    cubic = np.stack([y0, v0, 3 * (y1 - y0) - 2 * v0 - v1, 2 * (y0 - y1) + v0 + v1, 0 * y0, 0 * y0], -1)
+    grid = np.linspace(0.0, 1.0, 17)
+    tol = (
+        test.tol[v, 0] + np.sqrt(sum(poly.polyval(grid, q - c) ** 2 for q, c in zip(quintic, cubic, strict=True))).max()
+    )
+    if len(quintic) == 1:  # the extreme excursion towards (and beyond) the target
+        path = quintic[0] * test.beyond
+        slope = poly.polyder(path)
+        t = poly.polyroots(slope).real if np.any(slope) else np.zeros(0)
+        top = poly.polyval(np.concatenate([[0.0, 1.0], np.clip(t, 0.0, 1.0)]), path).max()
+        return -1 if top > tol else (1 if top >= -tol else 0)
+    square = np.zeros(1)
+    for c in quintic:  # |y(t) - target|^2
+        square = poly.polyadd(square, poly.polymul(c, c))
+    slope = poly.polyder(square)
+    t = poly.polyroots(slope).real if np.any(slope) else np.zeros(0)
+    low = poly.polyval(np.concatenate([[0.0, 1.0], np.clip(t, 0.0, 1.0)]), square).min()
+    return 1 if np.sqrt(max(low, 0.0)) <= tol else 0
 
 
 def rpr(step: Step, state: State, point_link: np.ndarray) -> None:
@@ -283,6 +616,7 @@ def _record(
     det: np.ndarray,
     branch: np.ndarray | None = None,
     flips: list[tuple[int, int, int]] | None = None,
+    limit: np.ndarray | None = None,
 ) -> None:
     slack = np.broadcast_to(slack, state.valid.shape)
     state.step_slack.append(slack)
@@ -291,6 +625,7 @@ def _record(
     state.step_branch.append(branch)
     state.step_flips.append(flips or [])
     state.step_jumps.append([])
+    state.step_limit.append(None if limit is None else np.broadcast_to(limit, state.valid.shape))
 
 
 def with_branches(mech: Any, steps: list[Step]) -> list[Step]:

@@ -57,6 +57,12 @@ def run(
     out.step_branch = [
         None if x[0] is None else np.concatenate(x) for x in zip(*(p.step_branch for p in parts), strict=True)
     ]
+    out.step_limit = [
+        None
+        if all(j is None for j in x)
+        else np.concatenate([np.zeros(p.valid.shape, bool) if j is None else j for j, p in zip(x, parts, strict=True)])
+        for x in zip(*(p.step_limit for p in parts), strict=True)
+    ]
     offsets = np.cumsum([0] + [p.valid.shape[0] for p in parts])
     out.step_jumps = [
         [(v + int(o), j) for p, o in zip(parts, offsets, strict=False) for v, j in p.step_jumps[k]]
@@ -72,9 +78,10 @@ def run(
 def _run_fast(
     mech: Any, program: tuple[Step, ...], geom: Geometry, values: np.ndarray, rates: np.ndarray, accels: np.ndarray
 ) -> State | None:
-    """The compiled closed-form path; None where a dyad passes near a change point (the NumPy path follows it)."""
+    """The compiled closed-form path; None where a dyad passes near a change point, or lies on a singular
+    position to rounding (the NumPy path follows the motion there)."""
     res = fast.run(mech, geom, values, rates, accels)
-    if res["near"].any():
+    if res["near"].any() or res["limit"].any():
         return None
     n_steps = len(program)
     state = State(
@@ -95,6 +102,7 @@ def _run_fast(
         list(res["slack"]),
     )
     state.step_branch = [None] * n_steps
+    state.step_limit = [None] * n_steps
     state.step_flips = [[] for _ in range(n_steps)]
     state.step_jumps = [[] for _ in range(n_steps)]
     state.step_trouble = res["trouble"]
@@ -144,6 +152,7 @@ def _solve(
         offset = values[:, 0] - mech.drive_start[0]
     state.start_index = int(np.argmin(np.abs(offset)))
     state.drive = values[:, 0]
+    state.rate = rates[:, 0] if values.shape[1] == 1 else None
     ones = np.ones((n_var, n_ang))
     for i, step in enumerate(program):
         branch = branches[i] if branches is not None else None
@@ -223,11 +232,16 @@ def _repair_singular(
         order[list(step.links)] = i
     affected = order[None, None, :] >= first[..., None]  # (V, a, N)
     mask = singular[:, idx][..., None] & affected
+    # where every singular step is a dyad on its singular position to rounding, the velocities are
+    # already those of the motion through it
+    limit = np.stack([np.zeros(det.shape[1:], bool) if j is None else j for j in state.step_limit])
+    kept = np.all((det >= SINGULAR) | limit, axis=0)[:, idx]  # (V, a)
     for k, full in enumerate((state.v, state.a)):
         richardson = (4 * means[0][k] - means[1][k]) / 3  # removes the h^2 error of the central mean
         view = np.moveaxis(full, (0, 1), (2, 3))  # (V, A, N, 3)
         block = view[:, idx]
-        block[mask] = np.moveaxis(richardson, (0, 1), (2, 3))[mask]
+        take = mask & ~kept[..., None] if k == 0 else mask
+        block[take] = np.moveaxis(richardson, (0, 1), (2, 3))[take]
         view[:, idx] = block
 
 
@@ -309,6 +323,7 @@ def newton(
     state.step_det.append(sv[..., -1] / np.maximum(sv[..., 0], 1e-300))
     state.step_valid.append(converged)
     state.step_branch.append(None)
+    state.step_limit.append(None)
     state.step_flips.append([])
     state.step_jumps.append(_jumps(state, links, values[:, 0], scale, converged))
 

@@ -89,9 +89,13 @@ class State:
     placed: set[int] = field(default_factory=lambda: {0})
     start_index: int = 0  # the sample nearest to the assembly pose: continuation starts there
     drive: np.ndarray | None = None  # (A,) drive coordinate of each sample (the first drive)
+    rate: np.ndarray | None = None  # (A,) its time derivative; None where other drives move too
     step_branch: list[np.ndarray | None] = field(default_factory=list)  # per step, the mode used (V, A)
     step_flips: list[list[tuple[int, int, int]]] = field(default_factory=list)  # per step, change points
     step_jumps: list[list[tuple[int, int]]] = field(default_factory=list)  # per step, (variant, sample) jumps
+    # per step (V, A), where a dyad is on a singular position to rounding: its velocities there are
+    # those of the motion through it (not its accelerations); None: nowhere
+    step_limit: list[np.ndarray | None] = field(default_factory=list)
     # per step (V,), from the compiled path: where a step may have events (no assembly, a singular
     # position, a sign change of its determinant); None: look everywhere
     step_trouble: np.ndarray | None = None

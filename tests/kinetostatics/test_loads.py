@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 
 import linkwork as lw
-from mechanisms import TEXTBOOK
-from test_kinetostatics import assert_free_bodies_balance
+from mechanisms import TEXTBOOK, assert_free_bodies_balance
 
 
 def _four_bar_with_loads(moment_table):

@@ -141,11 +141,10 @@ def test_forces_json_of_a_compound_hinge_and_a_pin_in_a_slot():
     free body of each member; a pin in a slot once, as the slot's force on the pin."""
     import linkwork as lw
     from linkwork.io.force_tables import to_json
-    from mechanisms import pin_in_slot
-    from test_kinetostatics import _compound, _on_at_b
+    from mechanisms import forces_on_b, heavy_compound_hinge, pin_in_slot
 
-    f = lw.forces(_compound(("coupler", "rocker", "rod")), steps=12)
-    joints, on = to_json(f)["joints"], _on_at_b(f)
+    f = lw.forces(heavy_compound_hinge(("coupler", "rocker", "rod")), steps=12)
+    joints, on = to_json(f)["joints"], forces_on_b(f)
     assert {k: v["links"] for k, v in joints.items() if k.startswith("B")} == {
         "B:coupler": ["coupler", "rocker"],
         "B:rod": ["rocker", "rod"],

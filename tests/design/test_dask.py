@@ -19,6 +19,8 @@ import pytest
 
 import linkwork as lw
 
+pytestmark = pytest.mark.dask
+
 pytest.importorskip("distributed")
 pytest.importorskip("pyarrow")
 

@@ -10,8 +10,7 @@ import pytest
 import linkwork as lw
 from linkwork.motion import fast
 from linkwork.structure.parameters import apply
-from mechanisms import TEXTBOOK, circle_intersection, hydraulic_boom
-from test_kinematics import MECHANISMS, _angles, _mech
+from mechanisms import SOLVED, TEXTBOOK, angles_around, circle_intersection, compiled, four_bar_spec, hydraulic_boom
 
 pytestmark = pytest.mark.skipif(not fast.available(), reason="numba is not installed")
 
@@ -34,12 +33,12 @@ def _same(compiled, reference, scale=1.0):
     assert [e.message for e in compiled.events] == [e.message for e in reference.events]
 
 
-CLOSED_FORM = [m for m in MECHANISMS if _mech(*m).fast_program is not None] + [("textbook", "boom")]
+CLOSED_FORM = [m for m in SOLVED if compiled(*m).fast_program is not None] + [("textbook", "boom")]
 
 
 def test_every_closed_form_program_is_compiled():
     """Only the groups without a closed form (class III and IV, the redundant link) go to Newton."""
-    assert {name for _, name in MECHANISMS} - {name for _, name in CLOSED_FORM} == {
+    assert {name for _, name in SOLVED} - {name for _, name in CLOSED_FORM} == {
         "class3-triad",
         "class IV",
         "parallelogram",
@@ -49,20 +48,20 @@ def test_every_closed_form_program_is_compiled():
 def _textbook_or_example(kind, name):
     if name == "boom":
         return lw.compile(hydraulic_boom().build())
-    return _mech(kind, name)
+    return compiled(kind, name)
 
 
 @pytest.mark.parametrize("kind, name", CLOSED_FORM)
 def test_compiled_kernels_equal_numpy_kernels(kind, name, monkeypatch):
     mech = _textbook_or_example(kind, name)
-    compiled, reference = _both(mech, _angles(mech, n=181), monkeypatch)
+    compiled, reference = _both(mech, angles_around(mech, n=181), monkeypatch)
     _same(compiled, reference, float(np.abs(mech.point_local).max()))
 
 
 def test_design_variants_that_fail_to_assemble_agree(monkeypatch):
     mech = lw.compile(lw.example("four-bar"))
     crank = np.linspace(0.05, 0.3, 40)  # beyond 0.15 the four-bar is no longer a crank-rocker
-    compiled, reference = _both(mech, _angles(mech, n=90), monkeypatch, variants={"links.crank.length": crank})
+    compiled, reference = _both(mech, angles_around(mech, n=90), monkeypatch, variants={"links.crank.length": crank})
     assert not compiled.valid_all.all() and compiled.valid_all.any()
     _same(compiled, reference)
 
@@ -104,3 +103,19 @@ def test_change_points_go_to_the_numpy_path(monkeypatch):
     compiled, reference = _both(mech, values[:, 0], monkeypatch)
     _same(compiled, reference)
     assert any(e.kind == "change-point" for e in compiled.events)
+
+
+def test_samples_on_a_singular_position_go_to_the_numpy_path(monkeypatch):
+    """A rhombus with its crank on the frame (A on O4) and a kite at its change point, both on a
+    sample: the compiled path reports them and hands over, and the two paths agree."""
+    from mechanisms import RHOMBUS
+
+    rhombus = lw.compile(lw.loads(RHOMBUS))
+    kite_data, _ = four_bar_spec(0.5, 0.5, 0.625, 0.625, 0.25, True)
+    kite = lw.compile(lw.from_dict(kite_data))
+    for mech, values in ((rhombus, np.radians([0.0, 10.0, 20.0])), (kite, np.array([0.0, 0.1, 0.2]))):
+        res = fast.run(mech, apply(mech)[0], values[:, None], np.ones((3, 1)), np.zeros((3, 1)))
+        assert [step.kind for step in mech.program] == ["crank", "RRR"]
+        assert res["limit"][:, 0].tolist() == [False, True]  # per step
+        compiled, reference = _both(mech, np.linspace(0.3, -0.3, 61), monkeypatch)
+        _same(compiled, reference)

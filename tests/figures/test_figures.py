@@ -98,7 +98,7 @@ def _baseline_figures():
 
 @pytest.mark.parametrize("name", ["scheme", "velocity_plan", "acceleration_plan"])
 def test_drawings_match_their_baselines(name, tmp_path):
-    """The drawings as they were checked by eye (tests/baseline, regenerate with
+    """The drawings as they were checked by eye (tests/figures/baseline, regenerate with
     ``LINKWORK_NEW_BASELINES=1``), within a tolerance for rendering differences."""
     from matplotlib.testing.compare import compare_images
 

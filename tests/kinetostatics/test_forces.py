@@ -10,8 +10,15 @@ import sympy as sp
 from hypothesis import given, settings
 
 import linkwork as lw
-from mechanisms import TEXTBOOK
-from test_structure import _assembles, four_bar_spec, four_bars
+from mechanisms import (
+    TEXTBOOK,
+    assembles,
+    assert_free_bodies_balance,
+    forces_on_b,
+    four_bar_spec,
+    four_bars,
+    heavy_compound_hinge,
+)
 
 L, M1, M2, M_HOUSING, OMEGA, G = 0.15, 10.0, 20.0, 500.0, 10.0, 9.81
 
@@ -120,16 +127,6 @@ def test_newtons_second_law_for_the_coupler():
     np.testing.assert_allclose(moment, 0.07 * kin.epsilon(i), rtol=1e-9, atol=1e-9)
 
 
-def assert_free_bodies_balance(f):
-    """Each group, cut free, is in equilibrium under the pair forces read back at their points."""
-    for body in f.free_bodies():
-        scale = max(np.nanmax(np.abs(c.force)) for c in body.external)
-        scale = max(scale, np.nanmax(np.abs(body.loads[..., :2])))
-        arm = np.nanmax(np.abs(np.concatenate([c.point for c in body.external], -1))) + 1.0
-        assert np.nanmax(np.abs(body.residual[..., :2])) < 1e-9 * scale, body.label
-        assert np.nanmax(np.abs(body.residual[..., 2])) < 1e-9 * scale * arm, body.label
-
-
 @pytest.mark.parametrize("name", ["double-cut-shears", "watt-six-bar", "stephenson-six-bar", "class3-triad"])
 def test_power_and_momentum_balances_of_the_examples(name):
     f = lw.forces(lw.compile(lw.example(name)), steps=180)
@@ -141,7 +138,7 @@ def test_power_and_momentum_balances_of_the_examples(name):
 @given(four_bars)
 def test_random_four_bars_balance_power_and_momentum(dims):
     a, b, c, d, phi, left = dims
-    if not _assembles(a, b, c, d, phi):
+    if not assembles(a, b, c, d, phi):
         return
     data, _ = four_bar_spec(a, b, c, d, phi, left)
     for k, name in enumerate(data["links"]):
@@ -291,32 +288,6 @@ def test_the_reaction_of_a_drive_joint_is_the_first_named_links_force_on_the_sec
     np.testing.assert_allclose(b.driving_torque, a.driving_torque, rtol=1e-12)
 
 
-def _compound(order):
-    """The four-bar with a slider rod on its compound hinge B (members nearest the frame: the rocker),
-    every link heavy, B written ``links: order``."""
-    from mechanisms import compound_hinge
-
-    data = compound_hinge().to_dict()
-    for name, mass in (("crank", 2.0), ("coupler", 5.0), ("rocker", 4.0), ("rod", 3.0), ("slider", 6.0)):
-        data["links"][name]["mass"] = mass
-    data["joints"]["B"]["links"] = list(order)
-    return lw.compile(lw.from_dict(data))
-
-
-def _on_at_b(f):
-    """The force B puts on each of its members, from the free body of that member alone: m a_C - W less
-    the force of its other joint (reaction of a two-link joint: the first-named link on the second)."""
-    mech, kin = f.mechanism, f.kinematics
-    g = np.array([0.0, -mech.gravity])
-    other = {"coupler": ("A", f.reaction("A")), "rocker": ("O4", f.reaction("O4")), "rod": ("C", -f.reaction("C"))}
-    out = {}
-    for link, (joint, force) in other.items():
-        m = mech.link_mass[mech.link_names.index(link)]
-        a_c = 0.5 * (kin.acceleration("B") + kin.acceleration(joint))  # mid-length of each binary link
-        out[link] = m * a_c - m * g - force
-    return out
-
-
 @pytest.mark.parametrize(
     ("order", "first", "on"),
     [
@@ -329,8 +300,8 @@ def test_a_compound_hinge_gives_the_force_on_each_of_its_links(order, first, on)
     """B joins the coupler, the rocker and the rod.  ``reaction("B", on=link)`` is the force of the other two
     on that link, equal to what the link's own free body needs; the three sum to zero (the pin carries
     nothing).  ``reaction("B")`` is the pair of the first-named link with the rocker, which carries the pin."""
-    f = lw.forces(_compound(order), steps=36)
-    expected = _on_at_b(f)
+    f = lw.forces(heavy_compound_hinge(order), steps=36)
+    expected = forces_on_b(f)
     scale = max(np.abs(v).max() for v in expected.values())
     assert scale > 50.0
     for link, force in expected.items():
@@ -346,7 +317,7 @@ def test_a_compound_hinge_gives_the_force_on_each_of_its_links(order, first, on)
 
 
 def test_a_link_that_is_not_in_the_joint_is_refused_by_name():
-    f = lw.forces(_compound(("coupler", "rocker", "rod")), steps=4)
+    f = lw.forces(heavy_compound_hinge(("coupler", "rocker", "rod")), steps=4)
     with pytest.raises(KeyError, match='joint "B" joins coupler, rocker, rod, not "crank"'):
         f.reaction("B", on="crank")
     with pytest.raises(KeyError, match='did you mean "rocker"'):

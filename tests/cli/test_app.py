@@ -20,7 +20,7 @@ from linkwork.cli.main import app
 from linkwork.examples import names, text
 
 runner = CliRunner()
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_check_double_cut_shears_json():
@@ -94,22 +94,14 @@ def test_schema_is_json():
     assert json.loads(result.stdout)["title"] == "Spec"
 
 
-def test_readme_quick_start_has_two_commands_and_the_main_job_runs(tmp_path):
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    quick = readme.split("## Quick start", 1)[1].split("\n## ", 1)[0]
-    commands = re.findall(r"```(?:bash|sh)?\n(.*?)```", quick, flags=re.S)
-    lines = [line for block in commands for line in block.strip().splitlines()]
-    assert len(lines) == 2
-    main_job = lines[0].split("&&")[-1].strip().split()
-    assert main_job[:2] == ["linkwork", "analyze"]
-    proc = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli", *main_job[1:]], capture_output=True, text=True, cwd=tmp_path
-    )
-    assert proc.returncode == 0, proc.stderr
-    report = (tmp_path / main_job[main_job.index("--out") + 1] / "report.html").read_text(encoding="utf-8")
+def test_readme_quick_start_has_two_commands_and_the_main_job_runs(main_job):
+    assert len(main_job.commands) == 2
+    assert main_job.args[:2] == ["linkwork", "analyze"]
+    assert main_job.returncode == 0, main_job.stderr
+    report = (main_job.folder / "report.html").read_text(encoding="utf-8")
     assert "I(0,1) -&gt; II(2,3) -&gt; II(4,5) -&gt; II(6,7)" in report
     ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
-    assert lines[1] in ci
+    assert main_job.commands[1] in ci
 
 
 def test_written_files_have_the_mode_of_a_plain_open(tmp_path):

@@ -14,47 +14,17 @@ import linkwork as lw
 from linkwork.errors import UnassemblableError
 from linkwork.motion.solve import run
 from linkwork.structure.parameters import apply
-from mechanisms import TEXTBOOK, circle_intersection
-from test_structure import _assembles, four_bar_spec, four_bars
-
-MECHANISMS = [
-    ("example", n)
-    for n in [
-        "double-cut-shears",
-        "four-bar",
-        "watt-six-bar",
-        "stephenson-six-bar",
-        "class3-triad",
-        "percussion-rocker",
-        "shears-slider-crank",
-    ]
-] + [
-    ("textbook", n)
-    for n in [
-        "offset slider-crank",
-        "crank-shaper",
-        "scotch yoke",
-        "PRP dyad",
-        "pin in slot",
-        "compound hinge",
-        "class IV",
-        "five-bar",
-        "parallelogram",
-    ]
-]
-
-
-def _mech(kind, name):
-    return lw.compile(lw.example(name) if kind == "example" else TEXTBOOK[name][0]().build())
-
-
-def _angles(mech, n=48, span=2 * np.pi):
-    """Drive values around the assembly pose (a whole turn for cranks)."""
-    start = mech.drive_start
-    offsets = np.linspace(-span / 2, span / 2, n, endpoint=False) + 1e-3
-    if mech.pair_type[mech.drive_pair[0]] == 1:  # linear drive: a few centimetres
-        offsets = np.linspace(-0.05, 0.05, n)
-    return start[None, :] + offsets[:, None]
+from mechanisms import (
+    RHOMBUS,
+    SOLVED,
+    TEXTBOOK,
+    angles_around,
+    assembles,
+    circle_intersection,
+    compiled,
+    four_bar_spec,
+    four_bars,
+)
 
 
 def _span(kind, name):
@@ -63,11 +33,11 @@ def _span(kind, name):
     return {"five-bar": 0.6, "class IV": 0.8, "shears-slider-crank": 2.7, "parallelogram": 1.9}.get(name, 2 * np.pi)
 
 
-@pytest.mark.parametrize("kind, name", MECHANISMS)
+@pytest.mark.parametrize("kind, name", SOLVED)
 def test_closed_forms_agree_with_the_generic_newton_solver(kind, name):
     """Every kernel against Newton iterations and linear solves on the full constraint equations."""
-    mech = _mech(kind, name)
-    angles = _angles(mech, span=_span(kind, name))
+    mech = compiled(kind, name)
+    angles = angles_around(mech, span=_span(kind, name))
     kin = lw.kinematics(mech, angles)
     program = tuple(dataclasses.replace(s, kind="newton") for s in mech.program)
     values = kin.drive
@@ -85,11 +55,11 @@ def test_closed_forms_agree_with_the_generic_newton_solver(kind, name):
     np.testing.assert_allclose(kin.acc[0][ok], acc, atol=1e-7 * scale_a)
 
 
-@pytest.mark.parametrize("kind, name", MECHANISMS)
+@pytest.mark.parametrize("kind, name", SOLVED)
 def test_velocity_and_acceleration_are_derivatives_of_motion(kind, name):
     """Central finite differences in time: every drive moves at its speed (several drives at once)."""
-    mech = _mech(kind, name)
-    base = _angles(mech, n=12, span=_span(kind, name))
+    mech = compiled(kind, name)
+    base = angles_around(mech, n=12, span=_span(kind, name))
     rates = lw.kinematics(mech, base[:1]).rates[0]
     step = 1e-5 if mech.pair_type[mech.drive_pair[0]] == 0 else 1e-6
     dt = step / np.abs(rates).max()
@@ -287,7 +257,7 @@ def test_dead_points_of_a_crank_rocker_driven_by_its_rocker_are_found():
 @given(four_bars, st.floats(-2, 2), st.floats(-2, 2), st.floats(-math.pi, math.pi))
 def test_random_four_bars_keep_their_lengths_and_move_rigidly_with_the_frame(dims, dx, dy, rot):
     a, b, c, d, phi, left = dims
-    if not _assembles(a, b, c, d, phi):
+    if not assembles(a, b, c, d, phi):
         return
     base, _ = four_bar_spec(a, b, c, d, phi, left)
     moved, _ = four_bar_spec(a, b, c, d, phi, left, (dx, dy, rot))
@@ -500,27 +470,6 @@ def test_a_drive_on_the_frame_measures_the_crank_angle_whatever_the_order_of_its
 
 
 
-RHOMBUS = """
-name: rhombus
-units: {length: mm, angle: deg}
-frame:
-  points: {O2: [0, 0], O4: [100, 0]}
-links:
-  crank: {ends: [O2, A], length: 100}
-  coupler: {ends: [A, B], length: 100}
-  rocker: {ends: [O4, B], length: 100}
-joints:
-  O2: {type: revolute, links: [frame, crank]}
-  A: {type: revolute, links: [crank, coupler]}
-  B: {type: revolute, links: [coupler, rocker]}
-  O4: {type: revolute, links: [frame, rocker]}
-drives:
-  - {joint: O2, speed: 60 rpm, direction: ccw, angle: 60 deg}
-hints:
-  B: [150, 86.6]
-"""
-
-
 @pytest.mark.parametrize("angle", [0.5, 1.0, 2.0, 4.9])
 def test_a_single_angle_of_a_rhombus_reports_no_event_it_was_not_asked_about(angle):
     """All four sides equal: the parallelogram and the folded (kite) modes meet at 0 and 180 deg.  An
@@ -547,3 +496,236 @@ def test_events_of_asked_angles_lie_within_their_span():
     for e in kin.events:
         assert math.degrees(e.start) == pytest.approx(180.0, abs=1e-6)
         assert math.degrees(e.end) == pytest.approx(180.0, abs=1e-6)
+
+
+KERNELS = pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "numpy"])
+
+
+def _kernels(monkeypatch, compiled):
+    """Solve with the compiled kernels or with NumPy's."""
+    from linkwork.motion import fast
+
+    if compiled and not fast.available():
+        pytest.skip("numba is not installed")
+    monkeypatch.setattr(fast, "ENABLED", compiled)
+
+
+def _check_motion(mech, runs, expected, point="B", atol=1e-12, vtol=1e-8, slope=None):
+    """Every run (angles asked, or steps) assembles everywhere, with ``point`` where ``expected(phi)`` has it
+    and its velocity the closed form's derivative ``slope(phi)`` (default central differences) times the
+    crank's speed."""
+    h = 1e-6
+    slope = slope or (lambda phi: (expected(phi + h) - expected(phi - h)) / (2 * h))
+    for run_kw in runs:
+        kin = lw.kinematics(mech, **run_kw)
+        phi = kin.angles
+        assert kin.valid.all(), run_kw
+        np.testing.assert_allclose(kin.position(point), expected(phi), atol=atol, err_msg=str(run_kw))
+        np.testing.assert_allclose(
+            kin.velocity(point), slope(phi) * kin.omega("crank")[:, None], atol=vtol, err_msg=str(run_kw)
+        )
+
+
+def _single_batch_coarse(angles, *fine):
+    """The angles one at a time, all at once, the fine batches given, and a coarse whole turn."""
+    return [{"angles": [x]} for x in angles] + [{"angles": angles}] + [{"angles": f} for f in fine] + [{"steps": 8}]
+
+
+@KERNELS
+@pytest.mark.parametrize("folded", [False, True], ids=["parallelogram", "folded"])
+def test_a_rhombus_keeps_its_mode_through_its_flat_positions(folded, compiled, monkeypatch):
+    """All sides 100 mm, the frame along x.  Assembled as a parallelogram (60 deg) it stays one,
+    B = A + (100 mm, 0), moving with A; assembled folded (B on O2) it stays folded, B at rest.  At 0 deg
+    A lies on O4 (coupler and rocker could turn together about it; the two modes are 200 mm apart), at
+    180 deg the two modes meet (B on O2): each mode goes on with a continuous velocity.  So it is
+    whether the angles are asked one at a time, all at once with samples on 0 and 180 deg, or in
+    coarse steps whose path from the assembly angle has points on 0 and 180 deg."""
+    _kernels(monkeypatch, compiled)
+    mech = lw.compile(lw.loads(RHOMBUS.replace("B: [150, 86.6]", "B: [0, 0]") if folded else RHOMBUS))
+
+    def expected(phi):
+        a = 0.1 * np.stack([np.cos(phi), np.sin(phi)], -1)
+        return np.zeros_like(a) if folded else a + [0.1, 0.0]
+
+    angles = np.radians([-20.0, -0.5, 0.0, 0.5, 30.0, 175.0, 180.0, 185.0, 270.0])
+    down, up = np.radians(np.arange(65.0, -26.0, -1.0)), np.radians(np.arange(55.0, 200.0, 1.0))
+    _check_motion(mech, _single_batch_coarse(angles, down, up, np.radians(np.arange(-10.0, 11.0, 1.0))), expected)
+    kin = lw.kinematics(mech, down)  # on 0 deg: a singular position, and the modes trade places there
+    assert {e.kind for e in kin.events} == {"singular", "change-point"}
+    for e in kin.events:
+        assert math.degrees(e.start) == pytest.approx(0.0, abs=1e-9)
+
+
+@KERNELS
+@pytest.mark.parametrize("transform", [(0.0, 0.0, 0.02), (0.0, 1.0, 1.0), (2.0, -2.0, 2.5)])
+@pytest.mark.parametrize("left", [True, False], ids=["parallelogram", "folded"])
+def test_a_rhombus_moved_rigidly_moves_alike_with_its_crank_on_the_frame(left, transform, compiled, monkeypatch):
+    """The unit rhombus turned and shifted: samples a rounding off the crank lying on the frame (A on O4)
+    assemble as those exactly on it do, with B where the parallelogram (B = A + the frame's unit vector)
+    or the folded rhombus (B on O2) has it, and its velocity (that of A, or none), the coupler and
+    rocker there following the motion through the position, not anywhere on their common circle."""
+    _kernels(monkeypatch, compiled)
+    dx, dy, rot = transform
+    data, _ = four_bar_spec(1.0, 1.0, 1.0, 1.0, 0.5, left, transform)
+    mech = lw.compile(lw.from_dict(data))
+    frame = np.array([math.cos(rot), math.sin(rot)])
+
+    def expected(angle):
+        a = np.stack([np.cos(angle), np.sin(angle)], -1)
+        return [dx, dy] + (a + frame if left else 0 * a)
+
+    def slope(angle):
+        return np.stack([-np.sin(angle), np.cos(angle)], -1) * (1.0 if left else 0.0)
+
+    offsets = np.linspace(-0.5, 0.5, 21)
+    angles = rot + np.array([0.0, -0.25, 0.75])
+    runs = _single_batch_coarse(angles, rot + 0.5 + offsets, rot + 0.25 + offsets)
+    _check_motion(mech, runs, expected, atol=1e-12, vtol=1e-12, slope=slope)
+
+
+def _kite_and_moved(left, transform, c=0.625):
+    """The kite O2 A = A B = 0.5, O2 O4 = O4 B = c assembled at 0.25 rad (``left``: the kite, B the
+    mirror image of O2 in A O4; else folded, B on O2), moved rigidly by ``transform``, and the closed
+    form of B over the crank angle measured from the frame."""
+    data, _ = four_bar_spec(0.5, 0.5, c, c, 0.25, left, transform)
+    dx, dy, rot = transform
+    cr, sr = math.cos(rot), math.sin(rot)
+
+    def expected(angle):
+        phi = angle - rot
+        a = 0.5 * np.stack([np.cos(phi), np.sin(phi)], -1)
+        u = np.array([c, 0.0]) - a
+        u /= np.linalg.norm(u, axis=-1, keepdims=True)
+        b = 2 * (a - np.sum(a * u, -1, keepdims=True) * u) if left else np.zeros_like(a)
+        return np.stack([cr * b[:, 0] - sr * b[:, 1] + dx, sr * b[:, 0] + cr * b[:, 1] + dy], -1)
+
+    return lw.compile(lw.from_dict(data)), expected
+
+
+@KERNELS
+@pytest.mark.parametrize("c", [0.625, 0.5625])
+@pytest.mark.parametrize("transform", [(0.0, 0.0, 0.0), (0.0, 0.0, 0.02), (0.3, -0.2, 1.0), (0.3, 0.0, 0.0)])
+@pytest.mark.parametrize("left", [True, False], ids=["kite", "folded"])
+def test_a_kite_goes_through_its_change_points_alike_however_sampled_and_placed(
+    left, transform, c, compiled, monkeypatch
+):
+    """The kite's two modes meet at 0 (A nearest O4) and at pi (farthest): the kite goes on as the
+    mirror image, the folded one stays folded, the same one angle at a time, all at once with samples
+    on the change points (exactly, or a rounding off them once the frame is turned), or in coarse
+    steps; and the same with the whole mechanism turned and shifted.  With c = 0.5625 A passes only
+    62.5 mm from O4, and their distance turns sharply there."""
+    _kernels(monkeypatch, compiled)
+    mech, expected = _kite_and_moved(left, transform, c)
+    rot = transform[2]
+    angles = rot + np.array([-0.25, 0.0, 0.1, np.pi - 0.1, np.pi, np.pi + 0.1])
+    offsets = np.linspace(-0.5, 0.5, 21)
+    runs = _single_batch_coarse(angles, rot + 0.25 + offsets, rot + 0.5 + offsets, rot + 0.05 * np.arange(-60, 71))
+    if left:
+        _check_motion(mech, runs, expected, atol=1e-11, vtol=1e-7)
+        return
+    # folded, B rests on O2: its velocity is zero, to rounding on the change points themselves (the
+    # motion's limit there), to the conditioning of the velocity equations beside them
+    _check_motion(mech, runs, expected, atol=1e-11, vtol=1e-10, slope=lambda phi: np.zeros((len(phi), 2)))
+    for phi in (angles, rot + 0.5 + offsets):
+        kin = lw.kinematics(mech, phi)
+        on = np.abs(np.sin(phi - rot)) < 1e-12
+        assert on.any()
+        np.testing.assert_allclose(kin.velocity("B")[on], 0.0, atol=1e-13)
+
+
+@KERNELS
+@pytest.mark.parametrize("a, d, phi", [(0.8125, 0.75, 0.1), (1.0, 0.9375, 0.25)])
+@pytest.mark.parametrize("crossed", [True, False], ids=["antiparallelogram", "parallelogram"])
+def test_a_parallelogram_linkage_keeps_its_mode_through_its_flat_position(crossed, a, d, phi, compiled, monkeypatch):
+    """Crank and rocker a, coupler and frame d < a, assembled at phi.  Open, B = A + (d, 0); crossed,
+    A O4 B O2 is an isosceles trapezoid and B the mirror image of O2 in the perpendicular bisector of
+    A O4.  At 0 rad (laid flat) the two modes meet; the crossed one sweeps through fast there (B at
+    a / (a - d) times the crank's speed), too fast for any step to follow its curve: one on the flat
+    position, whose velocity is lost, or a 5-degree path that steps across it."""
+    _kernels(monkeypatch, compiled)
+    data, _ = four_bar_spec(a, d, a, d, phi, not crossed)
+    mech = lw.compile(lw.from_dict(data))
+
+    def expected(phi):
+        pa = a * np.stack([np.cos(phi), np.sin(phi)], -1)
+        if not crossed:
+            return pa + [d, 0.0]
+        mid, u = (pa + [d, 0.0]) / 2, [d, 0.0] - pa
+        u /= np.linalg.norm(u, axis=-1, keepdims=True)
+        return -2 * np.sum(-mid * u, -1, keepdims=True) * u
+
+    runs = _single_batch_coarse(np.array([-0.4, -0.25, -0.05, 0.0, 0.6]), phi + np.linspace(-0.5, 0.5, 21))
+    _check_motion(mech, runs, expected, atol=1e-12, vtol=1e-6)
+
+
+@KERNELS
+@pytest.mark.parametrize("left", [True, False])
+def test_a_dead_point_gap_between_samples_is_not_crossed(left, compiled, monkeypatch):
+    """Crank and frame 0.5, coupler 0.09375, rocker 0.09765625: A passes over O4 at 0 rad, but the
+    coupler and rocker cannot reach each other within 0.45 deg of it (|b - c| > |A O4|).  Samples on
+    either side of that gap, whether a batch steps across it, a 5-degree path does, or fine steps go
+    through it (NaN inside), keep B on the side of A O4 the hints gave it."""
+    _kernels(monkeypatch, compiled)
+    a, b, c = 0.5, 0.09375, 0.09765625
+    data, _ = four_bar_spec(a, b, c, a, 0.3125, left)
+    mech = lw.compile(lw.from_dict(data))
+
+    def expected(phi):
+        return np.array([circle_intersection((a * math.cos(x), a * math.sin(x)), b, (a, 0.0), c, left) for x in phi])
+
+    def assembles(phi):  # c - b <= |A O4| <= b + c
+        reach = 2 * a * np.abs(np.sin(np.asarray(phi) / 2))
+        return (reach >= c - b) & (reach <= b + c)
+
+    fine = np.linspace(0.3125, -0.2, 1025)
+    assert not assembles(fine).all()
+    for angles in ([-0.1875], 0.3125 + np.linspace(-0.5, 0.5, 21), fine):
+        kin = lw.kinematics(mech, angles)
+        keep = assembles(angles)
+        assert (kin.valid == keep).all()
+        np.testing.assert_allclose(kin.position("B")[keep], expected(np.asarray(angles)[keep]), atol=1e-12)
+
+
+@KERNELS
+def test_outer_joints_passing_near_each_other_keep_the_mode_however_sampled(compiled, monkeypatch):
+    """O2 A = 0.19921875, O2 O4 = 0.203125 and A B = O4 B = 1: A passes 3.9 mm from O4 at 0 rad, and
+    the coupler swings round within a few hundredths of a radian; no singular position is passed, so
+    B stays on the same side of A O4 (a coarse path from the assembly angle must not take the swing
+    for a change point)."""
+    _kernels(monkeypatch, compiled)
+    a, d = 0.19921875, 0.203125
+    data, _ = four_bar_spec(a, 1.0, 1.0, d, 0.25, False)
+    mech = lw.compile(lw.from_dict(data))
+
+    def expected(phi):
+        return np.array(
+            [circle_intersection((a * math.cos(x), a * math.sin(x)), 1.0, (d, 0.0), 1.0, False) for x in phi]
+        )
+
+    runs = _single_batch_coarse(np.array([-0.25, -0.1, 0.5]), 0.25 + np.linspace(-0.5, 0.5, 21))
+    _check_motion(mech, runs, expected, atol=1e-12, vtol=1e-6)
+
+
+@KERNELS
+@pytest.mark.parametrize("turn, dx, dy", [(0.0, 0.0, 0.0), (30.0, 1.0, 1.0), (-70.0, -0.3, 0.2)])
+def test_the_isosceles_slider_crank_turned_and_shifted_keeps_its_change_points(turn, dx, dy, compiled, monkeypatch):
+    """Seed 000 with its frame turned by ``turn`` deg and shifted: B = O + 2 l sin(phi) along the turned
+    guide, with velocity 2 l w cos(phi), also on samples exactly on the change points (phi = 0, 180 deg
+    from the guide's normal), where the margin of the dyad is a rounding off zero."""
+    from linkwork.examples import text
+
+    _kernels(monkeypatch, compiled)
+    r = math.radians(turn)
+    src = (
+        text("shears-slider-crank")
+        .replace("O: [0, 0]\n  mass", f"O: [{dx!r}, {dy!r}]\n  mass")
+        .replace("axis: 90 deg", f"axis: {90 + turn!r} deg")
+        .replace("angle: 90 deg ", f"angle: {90 + turn!r} deg ")
+        .replace("B: [0, 0.30]", f"B: [{dx - 0.3 * math.sin(r)!r}, {dy + 0.3 * math.cos(r)!r}]")
+    )
+    mech = lw.compile(lw.loads(src))
+    phi = np.radians(np.arange(0.0, 360.0, 15.0))
+    kin = lw.kinematics(mech, phi + r)
+    axis = np.array([-math.sin(r), math.cos(r)])
+    np.testing.assert_allclose(kin.position("B"), [dx, dy] + 0.3 * np.sin(phi)[:, None] * axis, atol=1e-12)
+    np.testing.assert_allclose(kin.velocity("B"), 3.0 * np.cos(phi)[:, None] * axis, atol=1e-8)

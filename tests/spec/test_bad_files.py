@@ -1,7 +1,7 @@
 """The corpus of bad mechanism files: each must give exactly its messages, with file:line, and exit code 2.
 
-``tests/bad/NAME.yaml`` is a small four-bar with one mistake;
-``tests/bad/NAME.expected`` lists, one per line, what linkwork must print for
+``tests/spec/bad/NAME.yaml`` is a small four-bar with one mistake;
+``tests/spec/bad/NAME.expected`` lists, one per line, what linkwork must print for
 it after the file name: ``LINE: PATH: MESSAGE``, or just the message for
 errors of the mechanism as a whole (mobility, assembly).
 """

@@ -13,7 +13,14 @@ import linkwork as lw
 from linkwork.errors import StructureError, UnassemblableError
 from linkwork.structure.constraints import residuals_and_jacobian
 from linkwork.structure.model import PairType, global_points
-from mechanisms import TEXTBOOK, circle_intersection, hydraulic_boom, parallelogram_with_redundant_link
+from mechanisms import (
+    TEXTBOOK,
+    circle_intersection,
+    four_bar_spec,
+    four_bars,
+    hydraulic_boom,
+    parallelogram_with_redundant_link,
+)
 
 
 @pytest.mark.parametrize("name", sorted(TEXTBOOK))
@@ -191,52 +198,6 @@ def test_rrp_dyad_that_cannot_reach_its_guide_says_why():
     spec["drives"][0]["angle"] = -90  # A = (0, -100) mm: 150 mm below the guide y = 50 mm
     with pytest.raises(UnassemblableError, match=r"the joint A is 0\.15 m from the line .* more than the 0\.01 m"):
         lw.compile(lw.from_dict(spec))
-
-
-def four_bar_spec(a, b, c, d, phi, left, transform=(0.0, 0.0, 0.0)):
-    """A four-bar as plain data, moved rigidly by ``transform`` = (dx, dy, rotation)."""
-    dx, dy, rot = transform
-    cr, sr = math.cos(rot), math.sin(rot)
-
-    def move(p):
-        return [cr * p[0] - sr * p[1] + dx, sr * p[0] + cr * p[1] + dy]
-
-    pa = (a * math.cos(phi), a * math.sin(phi))
-    pb = circle_intersection(pa, b, (d, 0.0), c, left=left)
-    data = {
-        "units": {"angle": "rad"},
-        "frame": {"points": {"O2": move((0, 0)), "O4": move((d, 0))}},
-        "links": {
-            "crank": {"ends": ["O2", "A"], "length": a},
-            "coupler": {"ends": ["A", "B"], "length": b},
-            "rocker": {"ends": ["O4", "B"], "length": c},
-        },
-        "joints": {
-            "O2": {"type": "revolute", "links": ["frame", "crank"]},
-            "A": {"type": "revolute", "links": ["crank", "coupler"]},
-            "B": {"type": "revolute", "links": ["coupler", "rocker"]},
-            "O4": {"type": "revolute", "links": ["frame", "rocker"]},
-        },
-        "drives": [{"joint": "O2", "angle": phi + rot}],  # the drive angle turns with the frame
-        "hints": {"B": move(pb)},
-    }
-    return data, move(pb)
-
-
-four_bars = st.tuples(
-    st.floats(0.05, 1.0),
-    st.floats(0.05, 1.0),
-    st.floats(0.05, 1.0),
-    st.floats(0.05, 1.0),
-    st.floats(-math.pi, math.pi),
-    st.booleans(),
-).filter(lambda t: _assembles(*t[:5]))
-
-
-def _assembles(a, b, c, d, phi):
-    e = math.hypot(a * math.cos(phi) - d, a * math.sin(phi))
-    # away from the dead points, so that the branch is well defined
-    return abs(b - c) + 0.02 < e < b + c - 0.02 and e > 0.02
 
 
 @settings(max_examples=40, deadline=None)

@@ -572,7 +572,7 @@ def test_an_optimisation_stopped_at_its_generation_limit_says_it_did_not_converg
 
 
 def test_the_readme_design_commands_run(tmp_path):
-    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
     section = readme.split("## Design sweeps and optimisation", 1)[1].split("\n## ", 1)[0]
     block = section.split("```", 2)[1]
     lines = block.replace("\\\n", " ").strip().splitlines()

@@ -3,7 +3,7 @@ message of short lines, within a bounded time and memory, and its ``--json`` is 
 
 The cases come from :mod:`hostile` (mutated bundled examples, attacks on the YAML reader, options at
 and past their bounds).  A sample runs with the suite, each case in this process under a time bound;
-the full run (``pytest -m slow tests/test_hostile.py``) runs many more, each in its own process under
+the full run (``pytest -m slow tests/cli/test_hostile.py``) runs many more, each in its own process under
 a memory bound too.  Then the defects found by such runs, one test each.
 """
 
@@ -18,7 +18,7 @@ import hostile
 from hostile import Case, option_cases, problems, run_in_process, run_in_subprocess
 
 #: Mutated files in the sample of the normal suite, and in the full run.
-SAMPLE, FULL = 60, 2000
+SAMPLE, FULL = 60, 300
 
 #: Growth of this process's largest memory in use that a case of the sample may cause.
 MEMORY_GROWTH = 1.5 * (1 << 30)

@@ -206,7 +206,7 @@ def _readme_four_bar() -> str:
     """The four-bar of the README's section "The mechanism file"."""
     from pathlib import Path
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
     return readme.split("## The mechanism file", 1)[1].split("```yaml\n", 1)[1].split("```", 1)[0]
 
 

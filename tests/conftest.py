@@ -1,0 +1,68 @@
+"""What the tests share: the report of the README's main job, built once, and the markers of the lanes.
+
+Markers (``pyproject.toml``): ``slow`` (long property runs, every figure of every example), ``browser``
+(Debian's chromium through Playwright), ``dask`` (worker processes and schedulers).  The fast lane is
+``pytest -m "not slow and not browser and not dask"``; ``.ci/run`` runs them all.
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@dataclass(frozen=True)
+class MainJob:
+    """The README's Quick start: its two commands, and the report the first one wrote."""
+
+    commands: list[str]
+    args: list[str]
+    returncode: int
+    stderr: str
+    folder: Path
+
+
+def quick_start() -> list[str]:
+    """The command lines of the README's Quick start."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    quick = readme.split("## Quick start", 1)[1].split("\n## ", 1)[0]
+    blocks = re.findall(r"```(?:bash|sh)?\n(.*?)```", quick, flags=re.S)
+    return [line for block in blocks for line in block.strip().splitlines()]
+
+
+@pytest.fixture(scope="session")
+def main_job(tmp_path_factory: pytest.TempPathFactory) -> MainJob:
+    """The README's main job (``linkwork analyze double-cut-shears --out report``) run once, as written, in
+    a fresh folder; the tests of the command line and of the report read what it wrote."""
+    commands = quick_start()
+    args = commands[0].split("&&")[-1].strip().split()
+    cwd = tmp_path_factory.mktemp("main-job")
+    proc = subprocess.run([sys.executable, "-m", "linkwork.cli", *args[1:]], capture_output=True, text=True, cwd=cwd)
+    folder = cwd / args[args.index("--out") + 1] if "--out" in args else cwd
+    return MainJob(commands, args, proc.returncode, proc.stderr, folder)
+
+
+#: Tests of the slow lane (by node id, a parameter's id included): each checks every bundled example where one
+#: example in the fast lane shows the same code at work.
+SLOW = (
+    "figures/test_figures.py::test_no_text_of_a_report_figure_covers_another_and_no_axes_cover_axes[",
+    "figures/test_figures.py::test_every_figure_draws_every_example[",
+    "scene/test_drawings.py::test_no_text_covers_another_in_any_drawing[",
+    "report/test_build.py::test_no_english_is_left_in_the_russian_report[",
+)
+#: The one example of each of them that stays in the fast lane.
+FAST_CASE = ("[double-cut-shears]", "[double-cut-shears-en]", "[double-cut-shears-ru]")
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    for item in items:
+        node = item.nodeid.replace("\\", "/")
+        if any(node.split("tests/", 1)[-1].startswith(s) for s in SLOW) and not node.endswith(FAST_CASE):
+            item.add_marker(pytest.mark.slow)
