@@ -50,8 +50,8 @@ def validate(src: Source) -> Spec:
         problems.append(src.problem((), "a mechanism file is a mapping with links, joints and drives"))
         raise SpecError(problems)
     stranger = _not_a_mechanism(src)
-    if stranger is not None:
-        raise SpecError([*problems, stranger])
+    if stranger is not None:  # what is wrong with its keys and values is no help: one problem
+        raise SpecError([stranger])
     declared = _declared_units(src, problems)
     spec: Spec | None = None
     try:
@@ -73,7 +73,7 @@ def _not_a_mechanism(src: Source) -> Problem | None:
     """One problem for a mapping none of whose keys is, or is close to, a field of a mechanism file (some
     other file: its keys are not listed one by one, which would quote it back whole)."""
     fields = list(Spec.model_fields)
-    keys = list(src.data)
+    keys = src.keys or list(src.data)
     if not keys or any(k in fields or suggest(k, fields) for k in keys[:20]):
         return None
     return src.problem(

@@ -46,12 +46,15 @@ class Source:
         The file name for messages.
     problems : list of Problem
         Duplicate keys found while reading.
+    keys : list of str
+        The keys of the document's mapping as written, those refused (a name too long) included.
     """
 
     data: Any
     lines: dict[Path, int] = field(default_factory=dict)
     file: str | None = None
     problems: list[Problem] = field(default_factory=list)
+    keys: list[str] = field(default_factory=list)
 
     def line(self, path: Path) -> int | None:
         """The line of ``path``, or of its nearest ancestor that has one."""
@@ -266,6 +269,8 @@ def _build(node: Node, path: Path, src: Source, depth: int, count: list[int]) ->
                 src.problems.append(Problem(dotted(path), "keys must be names", src.file, line))
                 continue
             key = str(key)
+            if not path:
+                src.keys.append(key)
             if len(key) > MAX_NAME:
                 why = f"a name of {len(key):,} characters, {quote(key)}: names are at most {MAX_NAME} characters"
                 src.problems.append(Problem(dotted(path), why, src.file, line))
