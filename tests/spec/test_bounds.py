@@ -15,6 +15,7 @@ import pytest
 from ruamel.yaml import YAML
 
 import linkwork as lw
+from hostile import Case, problems, run_in_subprocess
 from linkwork.errors import SpecError, UnitParseError
 from linkwork.examples import text
 from linkwork.spec.load import validate
@@ -58,11 +59,13 @@ def _laughs(levels: int, width: int) -> str:
     ],
     ids=["9x9", "40x2", "merge-keys"],
 )
-def test_nested_aliases_stop_at_the_bound_on_values(yaml_text):
-    with within(20), pytest.raises(SpecError) as err:
-        lw.loads(yaml_text, file="bomb.yaml")
-    assert len(err.value.problems) == 1
-    assert "more than 100,000 values" in str(err.value) or "not a mechanism file" in str(err.value)
+def test_nested_aliases_stop_at_the_bound_on_values(yaml_text, tmp_path):
+    """Each was expanded without a limit (minutes and gigabytes): here in a process of its own, under a
+    bound on its memory."""
+    case = Case("check", ("check", "{dir}/bomb.yaml"), {"bomb.yaml": yaml_text})
+    outcome = run_in_subprocess(case, tmp_path, limit=30)
+    assert outcome.code == 2 and problems(case, outcome) == [], outcome.stderr
+    assert "more than 100,000 values" in outcome.stderr
 
 
 def test_an_alias_that_holds_itself_is_one_problem():
@@ -71,18 +74,19 @@ def test_an_alias_that_holds_itself_is_one_problem():
     assert "nesting too deep" in str(err.value)
 
 
-def test_a_file_larger_than_the_bound_is_refused_unread(tmp_path):
-    path = tmp_path / "large.yaml"
-    path.write_text("name: x\nk:\n" + "- 1\n" * 600_000)  # 2.4 MB of small values
-    with within(10), pytest.raises(SpecError) as err:
-        lw.load(path)
-    assert "larger than 1 MiB" in str(err.value)
-
-
-def test_a_device_is_refused_unread():
-    with within(10), pytest.raises(SpecError) as err:
-        lw.load("/dev/zero")
-    assert "character device" in str(err.value)
+@pytest.mark.parametrize(
+    ("argv", "says"),
+    [
+        (("check", "{dir}/large.yaml"), "larger than 1 MiB"),  # 2.4 MB of small values: read for a minute
+        (("check", "/dev/zero"), "character device"),  # read until memory ran out
+    ],
+    ids=["large", "device"],
+)
+def test_a_file_too_large_or_a_device_is_refused_unread(argv, says, tmp_path):
+    case = Case("check", argv, {"large.yaml": "name: x\nk:\n" + "- 1\n" * 600_000})
+    outcome = run_in_subprocess(case, tmp_path, limit=30)
+    assert outcome.code == 2 and problems(case, outcome) == [], outcome.stderr
+    assert says in outcome.stderr
 
 
 def _with_markers(n: int, spacing: float = 1.0) -> dict:
