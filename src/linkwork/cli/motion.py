@@ -3,18 +3,22 @@
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 import typer
 
 from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, make_console, make_table, needs, show
+from linkwork.errors import LinkworkError
+
+if TYPE_CHECKING:
+    from linkwork.structure.model import Mechanism
 
 
-def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
+def _angles(mech: Mechanism, steps: int | None, angles: str | None) -> dict[str, Any]:
     """Keyword arguments of lw.kinematics from the options; crank angles in degrees, or slider
     positions in mm for a linear drive."""
-    from linkwork.errors import LinkworkError
     from linkwork.structure.model import one_crank
 
     if mech.n_drives != 1:
@@ -58,7 +62,6 @@ def kinematics(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Positions, velocities and accelerations of every point and link over the cycle."""
-    from linkwork.errors import LinkworkError
     from linkwork.io.motion_tables import to_json, write_csv, write_netcdf
     from linkwork.motion import kinematics as solve
     from linkwork.motion.analysis import extremes, transmission_angles
@@ -73,8 +76,6 @@ def kinematics(
     ext = extremes(kin) if angles is None else []
     written = []
     if out is not None:
-        from pathlib import Path
-
         try:
             written.append(write_csv(kin, Path(out) / "kinematics.csv"))
             written.append(write_netcdf(kin, Path(out) / "kinematics.nc"))
@@ -102,8 +103,8 @@ def kinematics(
                 f"  {label}: least transmission angle {math.degrees(mu[i]):.2f} deg at "
                 f"{math.degrees(kin.angles[i]) % 360:.1f} deg"
             )
-    for e in kin.events:
-        typer.echo(f"  {e.kind}: {e.message}")
+    for event in kin.events:
+        typer.echo(f"  {event.kind}: {event.message}")
     for path in written:
         typer.echo(f"  wrote {path}")
 
@@ -127,7 +128,6 @@ def positions(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """The plan of positions: coordinates of the points at COUNT crank positions (mm)."""
-    from linkwork.errors import LinkworkError
     from linkwork.motion import analysis, cycle
     from linkwork.motion import kinematics as solve
     from linkwork.structure.model import point_labels
