@@ -89,11 +89,13 @@ def find(
         lo, hi = within
         records = [r.window(lo, hi) for r in records]
         valid, angles = valid[:, lo : hi + 1], angles[lo : hi + 1]
+    n_var = min(valid.shape[0], max_variants)
+    trouble = state.step_trouble
+    if trouble is not None and not trouble[:, :n_var].any() and not any(r.jumps or r.flips for r in records):
+        return []  # the compiled kernels saw every step assemble everywhere, away from singular positions
     events: list[Event] = []
     scale = _Scale(revolute)
-    n_var = min(valid.shape[0], max_variants)
     before = np.ones(valid.shape, dtype=bool)
-    trouble = state.step_trouble
     for k, (step, record) in enumerate(zip(steps, records, strict=True)):
         if step.kind in ("crank", "slide"):
             continue  # a driving link always assembles and is never singular

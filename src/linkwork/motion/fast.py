@@ -217,15 +217,15 @@ def _in_parts(args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_a
     """Run the kernel on ``args`` over the samples, split into parts of at least :data:`PER_THREAD`
     samples run on up to :data:`THREADS` threads (the calling thread takes the first)."""
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
-    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
     kernel: Any = _kernel  # the compiled kernel, which compiled() put in the Python function's place
 
     def part(lo: int, hi: int) -> None:
         kernel(*args, lo, hi, np.zeros((n_links, STATE)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
 
-    if len(bounds) == 2:
+    if n_threads == 1 or n_ang < n_threads:
         part(0, n_ang)
         return
+    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int)
     rest = [_pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
     part(bounds[0], bounds[1])
     for job in rest:

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+import weakref
+from dataclasses import dataclass, field
 
 import numpy as np
 import numpy.typing as npt
@@ -43,6 +45,10 @@ class Kinematics:
     variants: bool
     step_det: tuple[np.ndarray, ...] = ()  # (V, A) per step of the program, its normalised Jacobian determinant
     masses: Masses | None = None  # mass properties of the variants' links; None: the mechanism's
+    # each point read so far: its link and offset (:meth:`_arm`)
+    _arms: dict[int, tuple[int, np.ndarray, np.ndarray]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
@@ -98,30 +104,60 @@ class Kinematics:
             raise KeyError(f'no link "{link}"{suggest(link, self.mechanism.link_names)}')
         return self.mechanism.link_names.index(link)
 
-    def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _arm(self, point: str) -> tuple[int, np.ndarray, np.ndarray]:
+        """The link of a point and the point's offset from the link's origin in the frame's axes,
+        ``(V, A)`` each: made once per point (the cosine and sine of the link's angle are most of the
+        cost of reading a point) and kept, so that its position, velocity and acceleration share it."""
         p = self.point_index(point)
-        link = int(self.mechanism.point_link[p])
-        q, v, a = self.q[link], self.v[link], self.a[link]
-        lx, ly = self.local[p, 0], self.local[p, 1]
-        c, s = np.cos(q[2]), np.sin(q[2])
-        rx, ry = c * lx - s * ly, s * lx + c * ly
-        w, e = v[2], a[2]
-        pos = np.stack([q[0] + rx, q[1] + ry], -1)
-        vel = np.stack([v[0] - w * ry, v[1] + w * rx], -1)
-        acc = np.stack([a[0] - e * ry - w * w * rx, a[1] + e * rx - w * w * ry], -1)
-        return pos, vel, acc
+        kept = self._arms.get(p)
+        if kept is None:
+            link = int(self.mechanism.point_link[p])
+            c, s = np.cos(self.q[link, 2]), np.sin(self.q[link, 2])
+            lx, ly = self.local[p, 0], self.local[p, 1]
+            kept = self._arms[p] = (link, c * lx - s * ly, s * lx + c * ly)
+        return kept
+
+    def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position, velocity and acceleration of a point, ``(V, A, 2)`` each."""
+        return self._position(point), self._velocity(point), self._acceleration(point)
+
+    def _position(self, point: str) -> np.ndarray:
+        link, rx, ry = self._arm(point)
+        q = self.q[link]
+        out = np.empty(rx.shape + (2,))
+        np.add(q[0], rx, out=out[..., 0])
+        np.add(q[1], ry, out=out[..., 1])
+        return out
+
+    def _velocity(self, point: str) -> np.ndarray:
+        link, rx, ry = self._arm(point)
+        v = self.v[link]
+        w = v[2]
+        out = np.empty(rx.shape + (2,))
+        np.subtract(v[0], w * ry, out=out[..., 0])
+        np.add(v[1], w * rx, out=out[..., 1])
+        return out
+
+    def _acceleration(self, point: str) -> np.ndarray:
+        link, rx, ry = self._arm(point)
+        w, a = self.v[link, 2], self.a[link]
+        e, w2 = a[2], w * w
+        out = np.empty(rx.shape + (2,))
+        np.subtract(a[0] - e * ry, w2 * rx, out=out[..., 0])
+        np.subtract(a[1] + e * rx, w2 * ry, out=out[..., 1])
+        return out
 
     def position(self, point: str) -> np.ndarray:
         """Global position of a point, m: ``(..., n_angles, 2)``."""
-        return self._out(self._point(point)[0])
+        return self._out(self._position(point))
 
     def velocity(self, point: str) -> np.ndarray:
         """Velocity of a point, m/s: ``(..., n_angles, 2)``."""
-        return self._out(self._point(point)[1])
+        return self._out(self._velocity(point))
 
     def acceleration(self, point: str) -> np.ndarray:
         """Acceleration of a point, m/s^2: ``(..., n_angles, 2)``."""
-        return self._out(self._point(point)[2])
+        return self._out(self._acceleration(point))
 
     def angle(self, link: str | int) -> np.ndarray:
         """Angle of a link's local x axis, rad: ``(..., n_angles)``."""
@@ -162,11 +198,13 @@ def _path(mech: Mechanism, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray] 
     if not any(step.kind in ("RRR", "RRP", "PRP") for step in mech.program):
         return None
     start = float(mech.drive_start[0])
-    d = np.diff(angles)
-    monotonic = len(angles) > 1 and (np.all(d > 0) or np.all(d < 0))
     step = PATH_STEP * (1 + 1e-9)
-    if monotonic and np.abs(d).max() <= step and angles.min() - step <= start <= angles.max() + step:
-        return None
+    if len(angles) > 1:  # a path already: monotonic, in steps of at most PATH_STEP, through the start
+        d = angles[1:] - angles[:-1]
+        least, most = float(d.min()), float(d.max())
+        first, last = sorted((float(angles[0]), float(angles[-1])))
+        if (least > 0 or most < 0) and max(most, -least) <= step and first - step <= start <= last + step:
+            return None
     lo, hi = min(angles.min(), start), max(angles.max(), start)
     grid = start + PATH_STEP * np.arange(np.floor((lo - start) / PATH_STEP), np.ceil((hi - start) / PATH_STEP) + 1)
     asked = np.sort(angles)
@@ -233,11 +271,12 @@ def kinematics(
     Kinematics
     """
     values = _drive_values(mech, angles, steps)
-    rates = np.broadcast_to(_speeds(mech, speed), values.shape)
+    rates = np.empty_like(values)
+    rates[:] = _speeds(mech, speed)
     for path, value in (variants or {}).items():
         if np.ndim(value) > 1:
             raise LinkworkError(f'variants["{path}"]: expected a one-dimensional array, got shape {np.shape(value)}')
-    geom, masses = apply(mech, variants)
+    geom, masses = apply(mech, variants) if variants else (file_geometry(mech), None)
     state, events = _solve(mech, geom, values, rates)
     if strict and not state.valid.all():
         first = next(e for e in events if e.kind == "no-assembly")
@@ -245,7 +284,7 @@ def kinematics(
     return Kinematics(
         mechanism=mech,
         drive=values,
-        rates=np.array(rates),
+        rates=rates,
         q=state.q,
         v=state.v,
         a=state.a,
@@ -256,8 +295,27 @@ def kinematics(
         events=events,
         variants=variants is not None and len(variants) > 0,
         step_det=tuple(r.det for r in state.steps),
-        masses=masses if variants else None,
+        masses=masses,
     )
+
+
+#: The geometry of the file's dimensions of the mechanisms solved so far (:func:`file_geometry`), by
+#: the mechanism's id, with a weak reference to it (the entry goes with the mechanism).
+_FILE_GEOMETRY: dict[int, tuple[weakref.ref[Mechanism], Geometry]] = {}
+
+
+def file_geometry(mech: Mechanism) -> Geometry:
+    """The geometry of the file's dimensions (one variant: :func:`~linkwork.structure.parameters.apply`
+    without overrides), made once per mechanism; its arrays are read-only."""
+    key = id(mech)
+    kept = _FILE_GEOMETRY.get(key)
+    if kept is not None and kept[0]() is mech:
+        return kept[1]
+    geom = apply(mech)[0]
+    for array in (geom.point_local, geom.pair_origin, geom.pair_axis):
+        array.flags.writeable = False
+    _FILE_GEOMETRY[key] = (weakref.ref(mech, lambda _, key=key: _FILE_GEOMETRY.pop(key, None)), geom)
+    return geom
 
 
 def _drive_values(mech: Mechanism, angles: npt.ArrayLike | None, steps: int | None) -> np.ndarray:
@@ -280,7 +338,7 @@ def _drive_values(mech: Mechanism, angles: npt.ArrayLike | None, steps: int | No
 def _speeds(mech: Mechanism, speed: npt.ArrayLike | None) -> np.ndarray:
     """The speed of every drive, ``(D,)``: ``speed``, or the file's (1 where it gives none)."""
     if speed is None:
-        return np.where(np.isfinite(mech.drive_speed) & (mech.drive_speed != 0), mech.drive_speed, 1.0)
+        return np.array([x if math.isfinite(x) and x != 0 else 1.0 for x in mech.drive_speed.tolist()])
     speed = np.asarray(speed, dtype=float)
     if speed.size not in (1, mech.n_drives) or not np.isfinite(speed).all():
         raise LinkworkError(f"speed: expected {mech.n_drives} finite value(s), got {speed.tolist()!r}")

@@ -77,10 +77,8 @@ def _run_fast(
     none = np.empty((0, 0, 0))  # no angles kept: the state is not solved further
     state = State(res.q, res.v, res.a, none, none, soa(geom.point_local), soa(geom.pair_origin), soa(geom.pair_axis),
                   res.valid)  # fmt: skip
-    state.steps = [
-        StepRecord(s >= 0 if step.kind not in ("crank", "slide") else np.ones(s.shape, bool), d, s)
-        for s, d, step in zip(res.slack, res.det, program, strict=True)
-    ]
+    assembled = res.slack >= 0  # the kernels give cranks and slides a margin of 1: always assembled
+    state.steps = [StepRecord(ok, d, s) for ok, d, s in zip(assembled, res.det, res.slack, strict=True)]
     state.step_trouble = res.trouble
     if res.singular:
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):

@@ -284,7 +284,7 @@ class State:
 
 def soa(a: np.ndarray) -> np.ndarray:
     """(V, 1, K, 2) geometry arrays -> (K, 2, V, 1)."""
-    return np.ascontiguousarray(np.moveaxis(np.asarray(a, dtype=float), (0, 1), (2, 3)))
+    return np.ascontiguousarray(np.asarray(a, dtype=float).transpose(2, 3, 0, 1))
 
 
 def single_state(mech: Mechanism) -> State:
