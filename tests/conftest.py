@@ -47,3 +47,22 @@ def main_job(tmp_path_factory: pytest.TempPathFactory) -> MainJob:
     proc = subprocess.run([sys.executable, "-m", "linkwork.cli", *args[1:]], capture_output=True, text=True, cwd=cwd)
     folder = cwd / args[args.index("--out") + 1] if "--out" in args else cwd
     return MainJob(commands, args, proc.returncode, proc.stderr, folder)
+
+
+#: Tests of the slow lane (by node id, a parameter's id included): each checks every bundled example where one
+#: example in the fast lane shows the same code at work.
+SLOW = (
+    "figures/test_figures.py::test_no_text_of_a_report_figure_covers_another_and_no_axes_cover_axes[",
+    "figures/test_figures.py::test_every_figure_draws_every_example[",
+    "scene/test_drawings.py::test_no_text_covers_another_in_any_drawing[",
+    "report/test_build.py::test_no_english_is_left_in_the_russian_report[",
+)
+#: The one example of each of them that stays in the fast lane.
+FAST_CASE = ("[double-cut-shears]", "[double-cut-shears-en]", "[double-cut-shears-ru]")
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    for item in items:
+        node = item.nodeid.replace("\\", "/")
+        if any(node.split("tests/", 1)[-1].startswith(s) for s in SLOW) and not node.endswith(FAST_CASE):
+            item.add_marker(pytest.mark.slow)

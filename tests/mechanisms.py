@@ -384,3 +384,25 @@ def forces_on_b(f):
         a_c = 0.5 * (kin.acceleration("B") + kin.acceleration(joint))  # mid-length of each binary link
         out[link] = m * a_c - m * g - force
     return out
+
+
+#: A four-bar with all four sides equal: its parallelogram and folded modes meet at 0 and 180 deg.
+RHOMBUS = """
+name: rhombus
+units: {length: mm, angle: deg}
+frame:
+  points: {O2: [0, 0], O4: [100, 0]}
+links:
+  crank: {ends: [O2, A], length: 100}
+  coupler: {ends: [A, B], length: 100}
+  rocker: {ends: [O4, B], length: 100}
+joints:
+  O2: {type: revolute, links: [frame, crank]}
+  A: {type: revolute, links: [crank, coupler]}
+  B: {type: revolute, links: [coupler, rocker]}
+  O4: {type: revolute, links: [frame, rocker]}
+drives:
+  - {joint: O2, speed: 60 rpm, direction: ccw, angle: 60 deg}
+hints:
+  B: [150, 86.6]
+"""

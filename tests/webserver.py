@@ -15,7 +15,7 @@ def serving(app: Any) -> Iterator[tuple[str, int]]:
     """Serve ``app`` on 127.0.0.1 at a free port while the block runs: yields (host, port)."""
     import uvicorn
 
-    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM, socket.IPPROTO_TCP)  # as linkwork view: no Nagle
     sock.bind(("127.0.0.1", 0))
     srv = uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off"))
     thread = threading.Thread(target=srv.run, kwargs={"sockets": [sock]}, daemon=True)

@@ -108,7 +108,7 @@ def test_change_points_go_to_the_numpy_path(monkeypatch):
 def test_samples_on_a_singular_position_go_to_the_numpy_path(monkeypatch):
     """A rhombus with its crank on the frame (A on O4) and a kite at its change point, both on a
     sample: the compiled path reports them and hands over, and the two paths agree."""
-    from test_kinematics import RHOMBUS
+    from mechanisms import RHOMBUS
 
     rhombus = lw.compile(lw.loads(RHOMBUS))
     kite_data, _ = four_bar_spec(0.5, 0.5, 0.625, 0.625, 0.25, True)

@@ -15,6 +15,7 @@ from linkwork.errors import UnassemblableError
 from linkwork.motion.solve import run
 from linkwork.structure.parameters import apply
 from mechanisms import (
+    RHOMBUS,
     SOLVED,
     TEXTBOOK,
     angles_around,
@@ -467,27 +468,6 @@ def test_a_drive_on_the_frame_measures_the_crank_angle_whatever_the_order_of_its
     np.testing.assert_allclose(fb.driving_torque, fa.driving_torque, rtol=1e-12)
     np.testing.assert_allclose(fb.reaction("O2", on="crank"), fa.reaction("O2", on="crank"), rtol=1e-12)
 
-
-
-RHOMBUS = """
-name: rhombus
-units: {length: mm, angle: deg}
-frame:
-  points: {O2: [0, 0], O4: [100, 0]}
-links:
-  crank: {ends: [O2, A], length: 100}
-  coupler: {ends: [A, B], length: 100}
-  rocker: {ends: [O4, B], length: 100}
-joints:
-  O2: {type: revolute, links: [frame, crank]}
-  A: {type: revolute, links: [crank, coupler]}
-  B: {type: revolute, links: [coupler, rocker]}
-  O4: {type: revolute, links: [frame, rocker]}
-drives:
-  - {joint: O2, speed: 60 rpm, direction: ccw, angle: 60 deg}
-hints:
-  B: [150, 86.6]
-"""
 
 
 @pytest.mark.parametrize("angle", [0.5, 1.0, 2.0, 4.9])

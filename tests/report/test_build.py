@@ -207,7 +207,7 @@ def _tables(page: str) -> list[list[list[str]]]:
     return out
 
 
-def _report(name: str, folder: Path, lang: str = "en", steps: int = 72):
+def _report(name: str, folder: Path, lang: str = "en", steps: int = 72, position: int | str | None = None):
     """``analyze`` on an example; returns the page and the figures it drew, by name."""
     import linkwork as lw
     from linkwork.report import build
@@ -222,7 +222,8 @@ def _report(name: str, folder: Path, lang: str = "en", steps: int = 72):
     with pytest.MonkeyPatch.context() as m:
         m.setattr(build._Run, "_draw", keep)
         m.setattr(build, "PARALLEL", False)  # every figure drawn in this process
-        build.analyze(lw.compile(lw.example(name)), folder, steps=steps, animation=False, lang=lang)
+        build.analyze(lw.compile(lw.example(name)), folder, steps=steps, position=position, animation=False,
+                      lang=lang)  # fmt: skip
     return (folder / "report.html").read_text(encoding="utf-8"), drawn
 
 
@@ -232,21 +233,25 @@ SYMBOLS = {"Fx", "Fy", "II", "III", "IV", "linkwork"}
 
 @pytest.mark.parametrize("name", ["double-cut-shears", "percussion-rocker"])
 def test_no_english_is_left_in_the_russian_report(name, tmp_path):
-    """The page of ``analyze --lang ru`` and the texts of its diagrams hold no word in Latin letters but
-    the names from the mechanism's file and the symbols of quantities (W, n, p5, Fx, II(2,3) ...)."""
+    """The page of ``analyze --lang ru --position all`` and the texts of every figure (the diagrams, the
+    scheme, the plan of positions, the plans and the sheets of twelve plans with their legends) hold no
+    word in Latin letters but the names from the mechanism's file and the symbols of quantities (W, n, p5,
+    Fx, II(2,3) ...)."""
     import linkwork as lw
     from drawing_checks import drawn_texts
+    from linkwork.motion.plans import plan_series
 
     mech = lw.compile(lw.example(name))
     names = {mech.name, *mech.link_names, *mech.pair_joint, *(p.split(".", 1)[1] for p in mech.point_names)}
+    names |= set(plan_series(lw.kinematics(mech, steps=12))[1].labels)  # the plans' points: b, n_ba, k'_e ...
     allowed = {w for n in names for w in re.findall(r"[A-Za-z]+", n)} | SYMBOLS
-    page, drawn = _report(name, tmp_path / "r", lang="ru")
+    page, drawn = _report(name, tmp_path / "r", lang="ru", position="all")
+    assert {"scheme", "positions", "velocity_plan", "acceleration_plan", "velocity_plans"} <= set(drawn)
     assert "<html lang='ru'>" in page
     reader = _Text()
     reader.feed(page)
     texts = {"report.html": " ".join(reader.parts)}
-    texts |= {key: " ".join(t.get_text() for t in drawn_texts(fig)) for key, fig in drawn.items()
-              if key not in {"scheme", "positions", "velocity_plan", "acceleration_plan"}}  # the scene's own
+    texts |= {key: " ".join(t.get_text() for t in drawn_texts(fig)) for key, fig in drawn.items()}
     texts = {key: re.sub(r"\\[A-Za-z]+", "", text) for key, text in texts.items()}  # mathtext's commands
     english = {key: sorted({w for w in re.findall(r"[A-Za-z]{2,}", text) if w not in allowed})
                for key, text in texts.items()}  # fmt: skip

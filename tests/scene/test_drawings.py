@@ -51,21 +51,24 @@ def test_the_overlap_check_finds_texts_and_axes_that_cover_each_other():
     assert not any("alone" in f for f in found)
 
 
+@pytest.mark.parametrize("lang", ["en", "ru"])
 @pytest.mark.parametrize("name", names())
-def test_no_text_covers_another_in_any_drawing(name):
+def test_no_text_covers_another_in_any_drawing(name, lang):
     """The scheme, the plan of positions, both plans, the sheet of twelve plans and frames of the
-    animation of every bundled example, read back through the Agg renderer."""
+    animation of every bundled example, in both languages, read back through the Agg renderer."""
     mech, cycle, twelve = _solved(name)
     k = plan_positions(mech, twelve)[0]
     drawn = {
-        "scheme": figures.draw_scheme(twelve, k, trajectories=True, position=k, cycle=cycle),
-        "positions": figures.draw_positions(cycle),
-        "velocity plan": figures.velocity_plan(twelve, k, position=k),
-        "acceleration plan": figures.acceleration_plan(twelve, k, position=k),
-        "velocity plans": figures.plan_sheet(twelve, "velocity"),
+        "scheme": figures.draw_scheme(twelve, k, trajectories=True, position=k, cycle=cycle, lang=lang),
+        "positions": figures.draw_positions(cycle, lang=lang),
+        "velocity plan": figures.velocity_plan(twelve, k, position=k, lang=lang),
+        "acceleration plan": figures.acceleration_plan(twelve, k, position=k, lang=lang),
+        "velocity plans": figures.plan_sheet(twelve, "velocity", lang=lang),
     }
     picks = [0, 18, 36, 54]
-    film = Film(scheme_scene(cycle, at=picks), picks)
+    film = Film(scheme_scene(cycle, at=picks), picks, lang)
+    for artist in [*film.moving, *film.texts]:
+        artist.set_animated(False)  # drawn with the figure, so that the check reads them back
     problems = {what: overlaps(fig) for what, fig in drawn.items()}
     for i in picks:
         film.show(i)
@@ -282,6 +285,25 @@ def test_analyze_without_ezdxf_says_what_to_install_before_any_work(tmp_path, mo
     assert not (tmp_path / "r").exists()
 
 
+@pytest.mark.parametrize("name", ["double-cut-shears", "watt-six-bar"])
+def test_the_frames_of_the_animation_are_the_scene_drawn_at_their_sample(name):
+    """Each frame (the labels laid over it as pictures drawn once) is, to a unit of rounding in a colour, the
+    figure drawn afresh with every artist at that sample through the Agg renderer."""
+    mech, cycle, twelve = _solved(name, steps=36)
+    picks = [0, 5, 11, 17, 23, 29, 35]
+    film = Film(scheme_scene(cycle, at=picks), picks, "ru")
+    for i in picks:
+        got = film.frame(i).astype(int)
+        film.show(i)
+        for artist in [*film.moving, *film.texts]:
+            artist.set_animated(False)
+        film.canvas.draw()
+        for artist in [*film.moving, *film.texts]:
+            artist.set_animated(True)
+        want = np.asarray(film.canvas.buffer_rgba())[: got.shape[0], : got.shape[1], :3].astype(int)
+        assert np.abs(got - want).max() <= 1, i
+
+
 def test_the_animation_is_720_pixels_wide_and_an_mp4_where_imageio_ffmpeg_is(tmp_path):
     from PIL import Image
 
@@ -323,3 +345,42 @@ def test_no_name_lies_on_a_slider_block_a_knife_or_the_hatching():
             box = text.get_window_extent(renderer)
             found += [f"position {k}: {text.get_text()!r} on {gid}" for gid, b in boxes if box.overlaps(b)]
     assert found == []
+
+
+def test_the_drawings_for_cad_speak_the_language_of_the_report(tmp_path):
+    """With ``lang="ru"`` the notes of the DXF files are Russian (the layers keep their names), and every text is
+    in a TrueType style whose font has the Cyrillic and Greek letters (the default style's SHX font has not)."""
+    ezdxf = pytest.importorskip("ezdxf")
+    from linkwork.io.dxf import STYLE, write_drawings
+
+    mech, cycle, twelve = _solved("double-cut-shears")
+    write_drawings(twelve, 9, tmp_path, cycle=cycle, lang="ru")
+    want = {
+        "scheme": "кинематическая схема, угол кривошипа",
+        "positions": "план 12 положений; 1:1, мм",
+        "velocity_plan": "план скоростей, угол кривошипа",
+        "acceleration_plan": "полюс p,  масштаб μa = ",
+    }
+    for name, words in want.items():
+        doc = ezdxf.readfile(tmp_path / f"{name}.dxf")
+        texts = list(doc.modelspace().query("TEXT"))
+        note = " ".join(e.dxf.text for e in texts if e.dxf.layer == "NOTES")
+        assert words in note
+        assert {e.dxf.style for e in texts} == {STYLE}
+        assert doc.styles.get(STYLE).dxf.font.lower().endswith(".ttf")
+    layers = {e.dxf.layer for e in ezdxf.readfile(tmp_path / "velocity_plan.dxf").modelspace()}
+    assert {"ABSOLUTE", "ROTATION", "NOTES"} <= layers
+
+
+@pytest.mark.parametrize("name", names())
+def test_the_working_point_rests_at_position_0(name):
+    """Position 0 is an extreme of the first working member (a slider's stroke, a rocker's swing), so the
+    point the plans follow, which that member carries where the file names no tool or blow, is at rest
+    there: its speed at position 0 is zero to round-off, against its largest speed over the turn."""
+    mech = lw.compile(lw.example(name))
+    if mech.blow is not None or any(load.kind == "process" for load in mech.loads):
+        pytest.skip("the working point is the file's tool or striking point")
+    point = mech.point_names[working_point(mech)]
+    zero = lw.kinematics(mech, position_angles(mech)[:1])
+    cycle = lw.kinematics(mech, steps=360)
+    assert np.hypot(*zero.velocity(point)[0]) <= 1e-9 * np.max(np.hypot(*cycle.velocity(point).T))

@@ -29,6 +29,7 @@ expect = playwright.expect
 
 import linkwork as lw  # noqa: E402
 from linkwork.examples import text as example_text  # noqa: E402
+from linkwork.kinetostatics.external import evaluate  # noqa: E402
 from linkwork.web import create_app, export_page  # noqa: E402
 
 pytestmark = pytest.mark.browser
@@ -135,6 +136,8 @@ def test_the_page_loads_without_errors_and_draws_the_mechanism(page, server):
     assert page.locator("#structure table").first.locator("tbody tr").count() == len(mech.structure.groups)
     assert page.locator("#charts svg.chart").count() >= 2
     assert page.locator("#error").is_hidden()
+    # first shown with the labels placed at the sample shown, then along the cycle (every eighth sample)
+    expect(page.locator("#scheme")).to_have_attribute("data-labels-placed", "45")
     assert page.errors == []
     shot(page, "viewer-loaded")
 
@@ -359,3 +362,246 @@ def test_a_chart_draws_the_torque_the_forces_compute_and_a_click_turns_the_crank
     expect(page.locator("#scheme")).to_have_attribute("data-index", "300")
     assert page.errors == []
     shot(page, "viewer-chart-click")
+
+
+# ---------------------------------------------------------------------------- dragging, undo, saving, forces
+
+
+CTM = "s => { const m = s.getScreenCTM(); return [m.a, m.b, m.c, m.d, m.e, m.f]; }"
+
+
+def screen_to_model(page, x: float, y: float) -> np.ndarray:
+    """A point of the screen (CSS px) in the mechanism's axes (m): through the scheme's current CTM."""
+    a, b, c, d, e, f = page.eval_on_selector("#scheme", CTM)
+    assert b == 0 and c == 0
+    return np.array([(x - e) / a / 1000, -(y - f) / d / 1000])
+
+
+def model_to_screen(page, p) -> tuple[float, float]:
+    """A point of the mechanism (m) on the screen (CSS px)."""
+    a, _, _, d, e, f = page.eval_on_selector("#scheme", CTM)
+    return e + a * 1000 * p[0], f - d * 1000 * p[1]
+
+
+def handle_at(page, name: str) -> tuple[float, float]:
+    box = page.locator(f'[data-handle="{name}"]').bounding_box()
+    assert box is not None, name
+    return box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+
+
+def drag(page, start, end, steps: int = 12) -> None:
+    page.mouse.move(*start)
+    page.mouse.down()
+    page.mouse.move(*end, steps=steps)
+    page.mouse.up()
+
+
+def settled(page) -> None:
+    """Wait until the page shows the whole cycle of the last edit made (its labels placed again)."""
+    expect(page.locator("#scheme")).to_have_attribute("data-labels", "placed", timeout=60_000)
+
+
+def edited(replacements) -> lw.Mechanism:
+    """The double-cut shears' file edited by hand."""
+    text = example_text(NAME)
+    for old, new in replacements:
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    return lw.compile(lw.loads(text, file=f"{NAME}.yaml"))
+
+
+def assert_drawn(page, mech, angle, tol=1e-6) -> None:
+    kin = lw.kinematics(mech, [angle])
+    for j in JOINTS:
+        assert np.abs(drawn(page, j) - kin.position(j)[0]).max() < tol, j
+
+
+def drag_crank_to(page, length_mm: float, angle: float, L0: float = 0.1) -> float:
+    """Drag the crank's length handle along the crank (at ``angle``) by ``length_mm - L0``; the value the page
+    must take: the pointer's travel along the crank, to the millimetre."""
+    x0, y0 = handle_at(page, "links.crank.length")
+    u = np.array([math.cos(angle), math.sin(angle)])  # the crank's direction, O1 to A
+    p0 = screen_to_model(page, x0, y0)
+    x1, y1 = model_to_screen(page, p0 + (length_mm / 1000 - L0) * u)
+    drag(page, (x0, y0), (x1, y1))
+    travel = (screen_to_model(page, x1, y1) - p0) @ u
+    return round((L0 + travel) * 1000) / 1000
+
+
+def test_dragging_the_crank_length_puts_the_joints_where_the_edited_file_does_and_undo_returns(page, server):
+    """The handle on the crank dragged 12 mm outwards: the crank becomes 112 mm (the panel says so), every joint
+    is drawn where lw.kinematics puts it in the file edited by hand to 112 mm (1e-6 m), also once the whole cycle
+    is placed again; undo returns to the file's values and positions, redo to the edit."""
+    open_viewer(page, server)
+    angle = turn_to(page, 60)
+    length = drag_crank_to(page, 112.0, angle)
+    assert length == pytest.approx(0.112)
+    expect(page.locator('input[data-param="links.crank.length"]')).to_have_value("112")
+    by_hand = edited([("    length: 0.10\n    mass: 40\n", "    length: 0.112\n    mass: 40\n")])
+    assert_drawn(page, by_hand, angle)
+    settled(page)
+    assert_drawn(page, by_hand, angle)
+    assert np.hypot(*(drawn(page, "A") - [0.5, 0.4])) == pytest.approx(0.112, abs=1e-6)
+    shot(page, "viewer-dragged")
+
+    page.click("#undo")
+    expect(page.locator('input[data-param="links.crank.length"]')).to_have_value("100")
+    assert_drawn(page, lw.compile(lw.load(NAME)), angle)
+    expect(page.locator("#params .changed")).to_have_count(0)
+    page.keyboard.press("Control+Shift+Z")
+    expect(page.locator('input[data-param="links.crank.length"]')).to_have_value("112")
+    assert_drawn(page, by_hand, angle)
+    assert page.errors == []
+
+
+def test_the_saved_file_solves_to_what_the_page_shows(page, server, tmp_path):
+    """After a drag, Save gives the file with its comments and the new value, and it solves to the joints drawn."""
+    open_viewer(page, server)
+    angle = turn_to(page, 200)
+    length = drag_crank_to(page, 95.0, angle)
+    expect(page.locator('input[data-param="links.crank.length"]')).to_have_value(f"{1000 * length:g}")
+    with page.expect_download() as info:
+        page.click("#save")
+    download = info.value
+    assert download.suggested_filename == f"{NAME}-edited.yaml"
+    path = tmp_path / download.suggested_filename
+    download.save_as(path)
+    text = path.read_text(encoding="utf-8")
+    assert "# crank pivot" in text and "# rocker pivot" in text and f"length: {length:g}" in text
+    assert_drawn(page, lw.compile(lw.load(str(path))), angle)
+    assert page.errors == []
+
+
+def test_a_drag_into_no_assembly_shows_where_and_recovers(page, server):
+    """Dragged to a crank of 300 mm, the rod and the rocker cannot reach A over part of the turn: the message says
+    where, the arcs of those crank angles are drawn, the last mechanism that assembled stays drawn; dragged back
+    to 110 mm, the message goes and the joints are those of the file edited to 110 mm."""
+    open_viewer(page, server)
+    angle = turn_to(page, 100)
+    x0, y0 = handle_at(page, "links.crank.length")
+    u = np.array([math.cos(angle), math.sin(angle)])
+    p0 = screen_to_model(page, x0, y0)
+    good = model_to_screen(page, p0 + 0.005 * u)
+    far = model_to_screen(page, p0 + 0.2 * u)
+    back = model_to_screen(page, p0 + 0.010 * u)
+    page.mouse.move(x0, y0)
+    page.mouse.down()
+    page.mouse.move(*good, steps=4)
+    expect(page.locator('input[data-param="links.crank.length"]')).to_have_value("105")
+    e_good = drawn(page, "E")
+    page.mouse.move(*far)  # in one move: no value between that assembles
+    page.wait_for_selector("#error", state="visible")
+    message = page.locator("#error-text").text_content()
+    assert "does not assemble over the whole turn" in message and "group II(2,3) RRR" in message
+    assert page.locator("#trouble path.trouble").count() >= 1
+    assert page.locator('[data-handle="links.crank.length"].bad').count() == 1
+    assert np.abs(drawn(page, "E") - e_good).max() < 1e-9  # the last good mechanism stays
+    shot(page, "viewer-drag-no-assembly")
+    page.mouse.move(*back, steps=6)
+    page.wait_for_selector("#error", state="hidden")
+    page.mouse.up()
+    travel = (screen_to_model(page, *back) - p0) @ u
+    length = round((0.1 + travel) * 1000) / 1000
+    assert length == pytest.approx(0.110)
+    expect(page.locator('input[data-param="links.crank.length"]')).to_have_value("110")
+    assert page.locator("#trouble path").count() == 0
+    assert_drawn(page, edited([("    length: 0.10\n    mass: 40\n", "    length: 0.110\n    mass: 40\n")]), angle)
+    assert [e for e in page.errors if "status of 422" not in e] == []
+
+
+def test_dragging_a_frame_pivot_and_a_guide_gives_the_edited_files_mechanism(page, server):
+    """The crank's pivot O1 dragged by (-15, +8) mm, then the upper knife's guide turned about O3 by the angle the
+    pointer sweeps (to 0.1 degree): the joints are those of the file with O1 at (485, 408) mm and the guide's axis
+    edited so."""
+    open_viewer(page, server)
+    angle = turn_to(page, 30)
+    x0, y0 = handle_at(page, "frame.points.O1")
+    p0 = screen_to_model(page, x0, y0)
+    x1, y1 = model_to_screen(page, p0 + np.array([-0.015, 0.008]))
+    drag(page, (x0, y0), (x1, y1))
+    moved = np.round((np.array([0.5, 0.4]) + screen_to_model(page, x1, y1) - p0) * 1000) / 1000
+    expect(page.locator('input[data-param="frame.points.O1.x"]')).to_have_value(f"{1000 * moved[0]:g}")
+    o1 = ("O1: [0.50, 0.40]", f"O1: [{moved[0]:g}, {moved[1]:g}]")
+    assert_drawn(page, edited([o1]), angle)
+
+    x0, y0 = handle_at(page, "joints.guide_E.axis")
+    s0 = screen_to_model(page, x0, y0)  # the guide turns about O3, at the origin
+    turn = math.radians(4.0)
+    s1 = np.array([[math.cos(turn), -math.sin(turn)], [math.sin(turn), math.cos(turn)]]) @ s0
+    x1, y1 = model_to_screen(page, s1)
+    drag(page, (x0, y0), (x1, y1))
+    p1 = screen_to_model(page, x1, y1)
+    swept = math.degrees(math.atan2(p1[1], p1[0]) - math.atan2(s0[1], s0[0]))
+    axis = round((90 + swept) * 10) / 10
+    expect(page.locator('input[data-param="joints.guide_E.axis"]')).to_have_value(f"{axis:g}")
+    guide = ("guide_E: {type: prismatic, links: [frame, knife_upper], point: E, through: O3, axis: 90 deg}",
+             f"guide_E: {{type: prismatic, links: [frame, knife_upper], point: E, through: O3, axis: {axis:g} deg}}")
+    assert_drawn(page, edited([o1, guide]), angle)
+    settled(page)
+    shot(page, "viewer-dragged-frame-and-guide")
+    assert page.errors == []
+
+
+def test_the_force_arrows_are_the_reactions_of_lw_forces_times_the_scale(page, server):
+    """With the forces shown, each joint's arrow, turned back through the scheme's transform and its scale, is the
+    reaction lw.forces gives on its link at the angle shown; the knives' arrows the cutting force; the torque arc
+    the driving torque.  After a drag, the arrows are those of the file edited so."""
+    open_viewer(page, server)
+    page.check("#show-forces")
+    mech = lw.compile(lw.load(NAME))
+
+    def check(mech, index):
+        angle = turn_to(page, index)
+        forces = lw.forces(mech, [angle])
+        scale = float(page.get_attribute("#forces", "data-scale"))  # m of the drawing per N
+        for joint, on in (("O1", "crank"), ("A", "rod"), ("B", "rocker"), ("O3", "rocker"), ("E", "knife_upper"),
+                          ("guide_E", "knife_upper"), ("F", "knife_lower")):  # fmt: skip
+            line = page.locator(f'#forces line.force[data-name="{joint}"]')
+            assert line.get_attribute("data-on") == on
+            x1, y1, x2, y2 = (float(line.get_attribute(a)) for a in ("x1", "y1", "x2", "y2"))
+            arrow = np.array([x2 - x1, y1 - y2]) / 1000  # m
+            expected = forces.reaction(joint, on=on)[0]
+            assert np.abs(arrow / scale - expected).max() < 1e-7 / scale + 1e-6 * np.abs(expected).max(), joint
+            at = drawn(page, {"guide_E": "E"}.get(joint, joint))  # a guide's force acts at its slider's point
+            assert np.abs(np.array([x1, -y1]) / 1000 - at).max() < 1e-6
+        cutting = evaluate(forces.kinematics).magnitude["cutting"][0, 0]  # the load lw.forces applies
+        for k, sign in enumerate((1, -1)):  # up on the upper knife, down on the lower
+            cut = page.locator('#forces line.force[data-kind="load"]').nth(k)
+            if cutting == 0:
+                assert cut.get_attribute("visibility") == "hidden"
+                continue
+            x1, y1, x2, y2 = (float(cut.get_attribute(a)) for a in ("x1", "y1", "x2", "y2"))
+            assert abs(x2 - x1) < 1e-6 and (y1 - y2) / 1000 / scale == pytest.approx(sign * cutting, rel=1e-6)
+        torque = float(page.get_attribute("#forces path.force.torque", "data-torque"))
+        assert torque == pytest.approx(forces.driving_torque[0], rel=1e-6)
+        return cutting
+
+    assert check(mech, 60) == 0
+    cutting = int(np.argmax(np.abs(lw.forces(mech, steps=360).driving_torque)))  # where the knives cut hardest
+    assert check(mech, cutting) > 100e3
+    shot(page, "viewer-forces")
+    angle = turn_to(page, 100)
+    drag_crank_to(page, 108.0, angle)
+    expect(page.locator('input[data-param="links.crank.length"]')).to_have_value("108")
+    check(edited([("    length: 0.10\n    mass: 40\n", "    length: 0.108\n    mass: 40\n")]), cutting)
+    assert page.errors == []
+
+
+def test_a_long_drag_shows_many_answers_and_ends_on_its_last_value(page, server):
+    """Latest wins: forty pointer moves, one edit in flight at a time; the page shows answers as they come and
+    ends on the value of the last move."""
+    open_viewer(page, server)
+    angle = turn_to(page, 10)
+    before = int(page.get_attribute("#scheme", "data-updates"))
+    x0, y0 = handle_at(page, "links.crank.length")
+    u = np.array([math.cos(angle), math.sin(angle)])
+    p0 = screen_to_model(page, x0, y0)
+    page.mouse.move(x0, y0)
+    page.mouse.down()
+    for k in range(1, 41):
+        page.mouse.move(*model_to_screen(page, p0 + 0.0005 * k * u))
+    page.mouse.up()
+    expect(page.locator('input[data-param="links.crank.length"]')).to_have_value("120")
+    assert int(page.get_attribute("#scheme", "data-updates")) - before >= 2
+    assert_drawn(page, edited([("    length: 0.10\n    mass: 40\n", "    length: 0.120\n    mass: 40\n")]), angle)
+    assert page.errors == []

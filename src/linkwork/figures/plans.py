@@ -14,10 +14,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, dashes, sheet
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, sheet, where
+from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import plan_series
-from linkwork.scene.plans import KINDS, PlanScene, plan_scene
+from linkwork.scene.plans import KINDS, PlanScene, kind_name, plan_scene
 from linkwork.scene.positions import COUNT, position_angles
 from linkwork.scene.style import TEXT, VECTORS
 
@@ -29,25 +30,30 @@ if TYPE_CHECKING:
     from linkwork.motion.plans import Plan
 
 
-def velocity_plan(kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None) -> Figure:
-    """The velocity plan of sample ``index`` of a kinematics result (``position``: its number, for the title)."""
-    return _one(kin, index, "velocity", ax, position)
+def velocity_plan(kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None,
+                  lang: str = "en") -> Figure:  # fmt: skip
+    """The velocity plan of sample ``index`` of a kinematics result (``position``: its number, for the title;
+    ``lang``: the language of its texts, :mod:`linkwork.lang`)."""
+    return _one(kin, index, "velocity", ax, position, lang)
 
 
-def acceleration_plan(kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None) -> Figure:
-    """The acceleration plan of sample ``index`` of a kinematics result (``position``: its number, for the title)."""
-    return _one(kin, index, "acceleration", ax, position)
+def acceleration_plan(kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None,
+                      lang: str = "en") -> Figure:  # fmt: skip
+    """The acceleration plan of sample ``index`` of a kinematics result (``position``: its number, for the
+    title; ``lang``: the language of its texts, :mod:`linkwork.lang`)."""
+    return _one(kin, index, "acceleration", ax, position, lang)
 
 
-def _one(kin: Kinematics, index: int, kind: str, ax: Axes | None, position: int | None) -> Figure:
+def _one(kin: Kinematics, index: int, kind: str, ax: Axes | None, position: int | None, lang: str) -> Figure:
     i = int(index) % len(kin.angles)
     series = plan_series(kin)[0 if kind == "velocity" else 1]
     scene = plan_scene(series, [i], valid=np.asarray(kin.valid_all[0]))
-    return render_plan(scene, 0, ax=ax, title=_title(scene, 0, kin.mechanism.name, position))
+    return render_plan(scene, 0, ax=ax, title=_title(scene, 0, kin.mechanism.name, position, lang), lang=lang)
 
 
-def draw_plan(plan: Plan, ax: Axes | None = None) -> Figure:
-    """Draw a :class:`~linkwork.motion.plans.Plan` (one position's plan as data); returns the matplotlib Figure."""
+def draw_plan(plan: Plan, ax: Axes | None = None, lang: str = "en") -> Figure:
+    """Draw a :class:`~linkwork.motion.plans.Plan` (one position's plan as data), its texts in ``lang``;
+    returns the matplotlib Figure."""
     from linkwork.motion.plans import PlanEdge, PlanSeries
 
     labels = list(plan.points)
@@ -66,28 +72,33 @@ def draw_plan(plan: Plan, ax: Axes | None = None) -> Figure:
     points = tuple(plan.points) if "p" in plan.points else ("p", *plan.points)
     series = PlanSeries(plan.kind, np.array([plan.angle]), points, tuple(labels), edges, values, vectors)
     scene = plan_scene(series, [0], scale=plan.scale)
-    return render_plan(scene, 0, ax=ax, title=_title(scene, 0, "", None))
+    return render_plan(scene, 0, ax=ax, title=_title(scene, 0, "", None, lang), lang=lang)
 
 
-def _title(scene: PlanScene, index: int, name: str, position: int | None) -> str:
-    where = f"position {position}, " if position is not None else ""
+def _title(scene: PlanScene, index: int, name: str, position: int | None, lang: str) -> str:
     head = f"{name}: " if name else ""
-    return f"{head}{scene.kind} plan\n{where}crank at {np.degrees(scene.angles[index]) % 360:.1f}°"
+    return f"{head}{t(f'plan.{scene.kind}', lang)}\n{where(float(scene.angles[index]), position, lang)}"
 
 
-def render_plan(scene: PlanScene, index: int, ax: Axes | None = None, title: str = "", legend: bool = True) -> Figure:
-    """Draw position ``index`` of a plan's scene with its scale and (``legend``) the legend of its vectors' kinds."""
+def render_plan(scene: PlanScene, index: int, ax: Axes | None = None, title: str = "", legend: bool = True,
+                lang: str = "en") -> Figure:  # fmt: skip
+    """Draw position ``index`` of a plan's scene with its scale and (``legend``) the legend of its vectors' kinds,
+    the texts in ``lang``."""
     kinds = scene.kinds(index)
-    rows = -(-len(kinds) // 3) if legend else 0
-    sh = sheet(scene.extent(index), top=0.8, bottom=0.25 + 0.24 * rows, width=5.6, height=6.0, ax=ax, least=5.6)
+    names = [kind_name(k, scene.kind, lang) for k in kinds]
+    columns = _columns(names, WIDE * 72)
+    rows = -(-len(kinds) // columns) if legend else 0
+    sh = sheet(scene.extent(index), top=0.8, bottom=0.25 + 0.24 * rows, width=WIDE, height=6.0, ax=ax, least=WIDE)
     draw_vectors(sh, scene, index)
-    note = f"pole p,  {scene.symbol} = {scene.scale:g} {scene.scale_unit}"
+    note = scene.scale_note(lang)
     if title:
-        sh.ax.set_title(f"{title};  {note}", fontsize=10)
+        last = f"{title.rsplit(chr(10), 1)[-1]};  {note}"
+        fits = _width(last, 10) <= 0.95 * sh.fig.get_figwidth() * 72
+        sh.ax.set_title(f"{title}{';  ' if fits else chr(10)}{note}", fontsize=10)  # the note on a line of its own
     else:
         sh.ax.set_title(note, fontsize=9)
     if legend and kinds and ax is None:
-        _legend(sh, kinds)
+        _legend(sh, kinds, names, columns)
     return sh.fig
 
 
@@ -101,8 +112,8 @@ def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
         if not np.isfinite(scene.ends[index, e]).all():
             continue
         style = VECTORS.get(arrow.kind, VECTORS["rotation"])
-        (line,) = sh.ax.plot([start[0], end[0]], [start[1], end[1]], color=style.colour, lw=style.width,
-                             ls=dashes(style), zorder=3)  # fmt: skip
+        line = add_line(sh.ax, [start[0], end[0]], [start[1], end[1]], color=style.colour, lw=style.width,
+                        ls=dashes(style), zorder=3)  # fmt: skip
         line.set_gid(f"{arrow.kind}:{names[arrow.start]}->{names[arrow.end]}")  # of no length too: read back
         if e in shown:
             _head(sh, start, end, head, style.colour)
@@ -119,25 +130,55 @@ def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
 
 
 def _head(sh: Sheet, start: np.ndarray, end: np.ndarray, size: float, colour: str) -> None:
+    """A filled arrowhead of ``size`` (mm of the sheet, at most 0.35 of the vector) at ``end``."""
+    from matplotlib.patches import Polygon
+
     d = end - start
     length = float(np.hypot(*d))
     size = min(size, 0.35 * length)
     u = d / length
     w = np.array([-u[1], u[0]])
     tip = np.array([end, end - size * u + 0.3 * size * w, end - size * u - 0.3 * size * w])
-    sh.ax.fill(tip[:, 0], tip[:, 1], color=colour, lw=0, zorder=3)
+    add_patch(sh.ax, Polygon(tip, closed=True, fc=colour, ec="none", lw=0, zorder=3))
 
 
-def _legend(sh: Sheet, kinds: list[str]) -> None:
+#: Width of a plan's figure, inches; the size of the legend's text, points.
+WIDE, LEGEND = 5.6, 8.5
+
+
+def _width(text: str, size: float, dpi: float = 100.0) -> float:
+    """Width (points) of one line of ``text`` set in matplotlib's font at ``size`` points, as Agg draws it at
+    ``dpi`` (the glyphs' hinting makes text relatively wider at fewer pixels)."""
+    from matplotlib.backends.backend_agg import RendererAgg
+    from matplotlib.font_manager import FontProperties
+
+    pixels = RendererAgg(1, 1, dpi).get_text_width_height_descent(text, FontProperties(size=size), False)[0]
+    return float(pixels) * 72.0 / dpi
+
+
+def _columns(names: list[str], width: float) -> int:
+    """The most columns, three at most, in which a legend of ``names`` is at most ``width`` points wide (its
+    columns filled as matplotlib fills them: the first ones one longer)."""
+    for columns in (3, 2):
+        parts = np.array_split(np.array([_width(n, LEGEND) for n in names] or [0.0]), columns)
+        used = sum(float(p.max()) + 3.0 * LEGEND for p in parts if len(p)) + 1.2 * LEGEND * (len(parts) - 1)
+        if used + 0.8 * LEGEND <= width:
+            return columns
+    return 1
+
+
+def _legend(sh: Sheet, kinds: list[str], names: list[str], columns: int) -> None:
+    """The kinds of vector under the figure, by their ``names``, in ``columns`` columns."""
     from matplotlib.lines import Line2D
 
     handles = [Line2D([], [], color=VECTORS[k].colour, lw=VECTORS[k].width, ls=dashes(VECTORS[k])) for k in kinds]
-    sh.fig.legend(handles, [KINDS[k] for k in kinds], loc="lower center", ncol=min(3, len(kinds)), fontsize=8.5,
-                  frameon=False, handlelength=2.2, columnspacing=1.2)  # fmt: skip
+    sh.fig.legend(handles, names, loc="lower center", ncol=min(columns, len(kinds)), fontsize=LEGEND, frameon=False,
+                  handlelength=2.2, columnspacing=1.2)  # fmt: skip
 
 
-def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT) -> Figure:
-    """The ``kind`` plans of all ``count`` positions on one sheet, to one scale (position 0 first)."""
+def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT, lang: str = "en") -> Figure:
+    """The ``kind`` plans of all ``count`` positions on one sheet, to one scale (position 0 first), the texts in
+    ``lang``."""
     from matplotlib.figure import Figure
 
     mech = kin.mechanism
@@ -161,8 +202,9 @@ def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT) -> F
         centre = (boxes[k, :2] + boxes[k, 2:]) / 2
         sh = sheet(np.concatenate([centre - half, centre + half]), ax=ax)
         draw_vectors(sh, scene, k)
-        ax.set_title(f"{k}: crank {np.degrees(scene.angles[k]) % 360:.0f}°", fontsize=8)
-    fig.suptitle(f"{mech.name}: {kind} plans of the {count} positions;  pole p,  {scene.symbol} = {scene.scale:g} "
-                 f"{scene.scale_unit}", fontsize=11)  # fmt: skip
-    _legend(Sheet(fig, fig.axes[0], 1.0), [k for k in KINDS if any(k in scene.kinds(i) for i in range(count))])
+        ax.set_title(t("plans.cell", lang, position=k, angle=f"{np.degrees(scene.angles[k]) % 360:.0f}"), fontsize=8)
+    fig.suptitle(f"{t(f'plans.{kind}', lang, name=mech.name, count=count)};  {scene.scale_note(lang)}", fontsize=11)
+    kinds = [k for k in KINDS if any(k in scene.kinds(i) for i in range(count))]
+    names = [kind_name(k, kind, lang) for k in kinds]
+    _legend(Sheet(fig, fig.axes[0], 1.0), kinds, names, _columns(names, fig.get_figwidth() * 72))
     return fig

@@ -13,9 +13,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, dashes, round_length, sheet
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, round_length, sheet, where
+from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
-from linkwork.scene.geometry import bounds
 from linkwork.scene.positions import COUNT, position_angles, positions_scene
 from linkwork.scene.scheme import KINDS, Item, SchemeScene, scheme_scene
 from linkwork.scene.style import SCHEME, TEXT
@@ -28,24 +28,23 @@ if TYPE_CHECKING:
 
 
 def draw_scheme(kin: Kinematics, index: int = 0, ax: Axes | None = None, trajectories: bool = False,
-                position: int | None = None, cycle: Kinematics | None = None) -> Figure:  # fmt: skip
+                position: int | None = None, cycle: Kinematics | None = None, lang: str = "en") -> Figure:  # fmt: skip
     """The scheme at sample ``index`` of a kinematics result; returns the matplotlib Figure.
 
     With ``trajectories``, the paths of the points over the whole turn are drawn too; ``position`` (the
     number of the position the sample is) goes into the title; ``cycle``: a whole turn of the mechanism
-    (see :func:`~linkwork.scene.scheme_scene`).
+    (see :func:`~linkwork.scene.scheme_scene`); ``lang``: the language of the texts (:mod:`linkwork.lang`).
     """
     index = int(index) % len(kin.angles)
     scene = scheme_scene(kin, at=[index], cycle=cycle)
-    angle = float(np.degrees(kin.angles[index]) % 360)
-    where = f"position {position}, " if position is not None else ""
-    return render_scheme(scene, index, ax=ax, trajectories=trajectories,
-                         title=f"{scene.name}: kinematic scheme\n{where}crank at {angle:.1f}°")  # fmt: skip
+    title = f"{t('scheme.title', lang, name=scene.name)}\n{where(float(kin.angles[index]), position, lang)}"
+    return render_scheme(scene, index, ax=ax, trajectories=trajectories, title=title, lang=lang)
 
 
 def render_scheme(scene: SchemeScene, index: int, ax: Axes | None = None, trajectories: bool = False,
-                  title: str = "") -> Figure:  # fmt: skip
-    """Draw sample ``index`` of a scheme's scene (with the trajectories of its points), a scale bar under it."""
+                  title: str = "", lang: str = "en") -> Figure:  # fmt: skip
+    """Draw sample ``index`` of a scheme's scene (with the trajectories of its points), a scale bar under it
+    (its length in the units of ``lang``)."""
     box = scene.extent(index, paths=trajectories)
     bar = round_length(box[2] - box[0])
     box[1] -= 3.0 * scene.em  # room for the scale bar
@@ -54,7 +53,7 @@ def render_scheme(scene: SchemeScene, index: int, ax: Axes | None = None, trajec
         draw_paths(sh, scene.paths)
     draw_items(sh, scene, index)
     draw_labels(sh, scene, index)
-    scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em)
+    scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em, lang)
     if title:
         sh.ax.set_title(title, fontsize=11)
     return sh.fig
@@ -64,8 +63,8 @@ def draw_paths(sh: Sheet, paths: np.ndarray) -> None:
     """Trajectories ``(A, Q, 2)`` as thin dashed lines."""
     style = SCHEME["path"]
     for q in range(paths.shape[1]):
-        sh.ax.plot(paths[:, q, 0], paths[:, q, 1], color=style.colour, lw=style.width, ls=dashes(style),
-                   zorder=KINDS.index("path"))  # fmt: skip
+        add_line(sh.ax, paths[:, q, 0], paths[:, q, 1], color=style.colour, lw=style.width, ls=dashes(style),
+                 zorder=KINDS.index("path"))  # fmt: skip
 
 
 def draw_items(sh: Sheet, scene: SchemeScene, index: int, frame: bool = True, kinds: tuple[str, ...] = KINDS,
@@ -90,14 +89,14 @@ def draw_item(ax: Axes, it: Item, xy: np.ndarray, thin: float = 1.0) -> Any:
     face = to_rgba(style.fill, style.alpha) if style.fill and (thin == 1.0 or style.alpha == 1.0) else "none"
     artist: Any
     if it.radius:
-        artist = ax.add_patch(Circle(tuple(xy[0]), it.radius * min(1.0, 0.3 + thin), fc=face, ec=style.colour,
-                                     lw=style.width * thin, zorder=z))  # fmt: skip
+        artist = add_patch(ax, Circle(tuple(xy[0]), it.radius * min(1.0, 0.3 + thin), fc=face, ec=style.colour,
+                                      lw=style.width * thin, zorder=z))  # fmt: skip
     elif it.closed:
-        artist = ax.add_patch(Polygon(xy, closed=True, fc=face, ec=style.colour, lw=style.width * thin, zorder=z,
-                                      joinstyle="round"))  # fmt: skip
+        artist = add_patch(ax, Polygon(xy, closed=True, fc=face, ec=style.colour, lw=style.width * thin, zorder=z,
+                                       joinstyle="round"))  # fmt: skip
     else:
-        (artist,) = ax.plot(xy[:, 0], xy[:, 1], color=style.colour, lw=style.width * thin, ls=dashes(style), zorder=z,
-                            solid_capstyle="round")  # fmt: skip
+        artist = add_line(ax, xy[:, 0], xy[:, 1], color=style.colour, lw=style.width * thin, ls=dashes(style),
+                          zorder=z, solid_capstyle="round")  # fmt: skip
     artist.set_gid(f"{it.kind}:{it.name}")
     return artist
 
@@ -111,22 +110,22 @@ def draw_labels(sh: Sheet, scene: SchemeScene, index: int) -> None:
                        color=TEXT[lab.kind], zorder=5, gid=f"label:{lab.text}")  # fmt: skip
 
 
-def scale_bar(sh: Sheet, at: tuple[float, float], length: float, em: float) -> None:
-    """A bar ``length`` (m) long from ``at``, with ticks at its ends and its length in mm above it."""
+def scale_bar(sh: Sheet, at: tuple[float, float], length: float, em: float, lang: str = "en") -> None:
+    """A bar ``length`` (m) long from ``at``, with ticks at its ends and its length in mm beside it."""
     x, y = at
     ax = sh.ax
     ax.plot([x, x + length], [y, y], color="black", lw=1.0, zorder=5)
     for end in (x, x + length):
         ax.plot([end, end], [y - 0.25 * em, y + 0.25 * em], color="black", lw=1.0, zorder=5)
-    ax.text(x + length + 0.5 * em, y, f"{1000 * length:g} mm", ha="left", va="center",
+    ax.text(x + length + 0.5 * em, y, f"{1000 * length:g} {t('unit.mm', lang)}", ha="left", va="center",
             fontsize=0.8 * sh.font(em), zorder=5)  # fmt: skip
 
 
-def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None) -> Figure:
+def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, lang: str = "en") -> Figure:
     """The plan of positions: the mechanism at ``count`` positions from position 0 (the working slider
     at the high end of its stroke), every ``360 / count`` degrees in the direction of rotation, overlaid
     thin, with the trajectories of its points over ``kin``'s samples and the position numbers at the
-    crank pin and at the working point."""
+    crank pin and at the working point; the texts in ``lang``."""
     mech = kin.mechanism
     angles = position_angles(mech, count)
     scene = positions_scene(kinematics(mech, angles), cycle=kin)
@@ -144,13 +143,8 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None) 
         c = lab.centre[0]
         sh.ax.text(c[0], c[1], lab.text, ha="center", va="center", fontsize=0.85 * sh.font(s.em),
                    color=TEXT["position"], zorder=5)  # fmt: skip
-    scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em)
-    turn = "counter-clockwise" if mech.drive_speed[0] >= 0 else "clockwise"
-    sh.ax.set_title(f"{mech.name}: plan of {count} positions\n0 at crank {np.degrees(angles[0]) % 360:.1f}°, "
-                    f"then {turn}", fontsize=11)  # fmt: skip
+    scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em, lang)
+    turn = t("positions.ccw" if mech.drive_speed[0] >= 0 else "positions.cw", lang,
+             angle=f"{np.degrees(angles[0]) % 360:.1f}")  # fmt: skip
+    sh.ax.set_title(f"{t('positions.title', lang, name=mech.name, count=count)}\n{turn}", fontsize=11)
     return sh.fig
-
-
-def scheme_extent(scene: SchemeScene, indices: list[int]) -> np.ndarray:
-    """``[x0, y0, x1, y1]`` of the scheme over the samples ``indices`` (for an animation's one frame)."""
-    return bounds(*[np.array([scene.extent(i)[:2], scene.extent(i)[2:]]) for i in indices])

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
+from linkwork.lang import t
 from linkwork.scene.style import Style
 
 if TYPE_CHECKING:
@@ -78,6 +79,19 @@ def _into(ax: Axes, box: tuple[float, float, float, float]) -> Sheet:
     return Sheet(fig, ax, scale * 72.0)
 
 
+def add_line(ax: Axes, x: Any, y: Any, **style: Any) -> Any:
+    """A ``Line2D`` through ``x``, ``y`` (data units) of ``style``, added to ``ax`` as it is: a sheet's limits are
+    set, so the axes' data limits are not updated (``ax.plot`` would, at a cost per line)."""
+    from matplotlib.lines import Line2D
+
+    return ax.add_artist(Line2D(x, y, **style))
+
+
+def add_patch(ax: Axes, patch: Any) -> Any:
+    """``patch`` added to ``ax`` without updating the axes' data limits (see :func:`add_line`)."""
+    return ax.add_artist(patch)
+
+
 def round_length(span: float) -> float:
     """A length from the 1-2-5 series near a fifth of ``span``, for a scale bar."""
     raw = span / 5
@@ -91,3 +105,11 @@ def round_length(span: float) -> float:
 def dashes(style: Style) -> Any:
     """The matplotlib line style of ``style``."""
     return (0, style.dash) if style.dash else "solid"
+
+
+def where(angle: float, position: int | None, lang: str) -> str:
+    """The line under a drawing's title: ``position 9, crank at 178.8°`` (``crank at 178.8°`` without a
+    ``position``), the crank's drive ``angle`` (rad) to the x axis, in ``lang``."""
+    deg = f"{np.degrees(angle) % 360:.1f}"
+    return t("drawing.crank", lang, angle=deg) if position is None else t("drawing.position", lang, position=position,
+                                                                          angle=deg)  # fmt: skip

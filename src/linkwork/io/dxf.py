@@ -7,8 +7,10 @@ Every kind of item or vector goes on a layer of its own (``LINKS``, ``PIVOTS``, 
 millimetres: the scheme and the plan of positions 1:1 (a point at x m is at 1000 x), the plans to their
 stated scale (a vector u is u / scale mm long; the scale is in the ``NOTES`` layer's text and in the
 header's custom property ``LINKWORK_SCALE``).  Each vector of a plan is a LINE with the extended data
-``LINKWORK: "kind:start->end"`` and its arrowhead a SOLID on the same layer.  Files are written
-atomically.
+``LINKWORK: "kind:start->end"`` and its arrowhead a SOLID on the same layer.  The notes are written in
+the language of the report (``lang``, :mod:`linkwork.lang`; the layers keep their English names), every
+text in the TrueType text style :data:`STYLE`, whose font has the Cyrillic and Greek letters.  Files are
+written atomically.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.atomic import write_atomic
+from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import plan_series
 from linkwork.optional import require
@@ -36,6 +39,10 @@ APPID = "LINKWORK"
 #: Height of capital letters in ems of DejaVu Sans: a DXF text's height is that of its capitals.
 CAP = 0.73
 
+#: The text style of every text: a TrueType font of ezdxf's standard styles with Cyrillic and Greek letters
+#: (the default style's SHX font has neither).
+STYLE = "OpenSans"
+
 #: AutoCAD colour indices near the styles' colours (7: black on white paper, white on black).
 _ACI = {"#000000": 7, "#1f5fa8": 5, "#1f77b4": 5, "#2ca02c": 3, "#d62728": 1, "#ff7f0e": 30, "#9467bd": 6,
         "#999999": 8, "#777777": 8}  # fmt: skip
@@ -43,39 +50,44 @@ _ACI = {"#000000": 7, "#1f5fa8": 5, "#1f77b4": 5, "#2ca02c": 3, "#d62728": 1, "#
 PURPOSE = "the drawings for CAD (linkwork analyze --dxf)"
 
 
-def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinematics | None = None) -> list[Path]:
+def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinematics | None = None,
+                   lang: str = "en") -> list[Path]:  # fmt: skip
     """``scheme.dxf``, ``positions.dxf``, ``velocity_plan.dxf`` and ``acceleration_plan.dxf`` of sample ``index``
-    of ``kin`` into ``folder``; returns the paths.  ``cycle``: a whole turn (the scheme's trajectories and
-    fixed symbols; see :func:`~linkwork.scene.scheme_scene`)."""
+    of ``kin`` into ``folder``, their notes in ``lang``; returns the paths.  ``cycle``: a whole turn (the
+    scheme's trajectories and fixed symbols; see :func:`~linkwork.scene.scheme_scene`)."""
     require("ezdxf", purpose=PURPOSE)
     folder = Path(folder)
     mech = kin.mechanism
     full = cycle if cycle is not None else kinematics(mech, steps=360)
-    out = [write_scheme(scheme_scene(kin, at=[index], cycle=full), index, folder / "scheme.dxf")]
+    out = [write_scheme(scheme_scene(kin, at=[index], cycle=full), index, folder / "scheme.dxf", lang=lang)]
     twelve = kinematics(mech, position_angles(mech))
-    out.append(write_positions(positions_scene(twelve, cycle=full), folder / "positions.dxf"))
+    out.append(write_positions(positions_scene(twelve, cycle=full), folder / "positions.dxf", lang))
     valid = np.asarray(kin.valid_all[0])
     for series in plan_series(kin):
-        out.append(write_plan(plan_scene(series, [index], valid=valid), 0, folder / f"{series.kind}_plan.dxf"))
+        scene = plan_scene(series, [index], valid=valid)
+        out.append(write_plan(scene, 0, folder / f"{series.kind}_plan.dxf", lang))
     return out
 
 
-def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories: bool = True) -> Path:
-    """The scheme of sample ``index`` of ``scene``, 1:1 in mm, with the trajectories of its points."""
+def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories: bool = True,
+                 lang: str = "en") -> Path:  # fmt: skip
+    """The scheme of sample ``index`` of ``scene``, 1:1 in mm, with the trajectories of its points; its note
+    in ``lang``."""
     doc, msp = _document(SCHEME)
     if trajectories:
         _paths(msp, scene.paths)
     _items(msp, scene, index)
     for lab in scene.labels:
         _text(msp, lab.text, lab.centre[index] * 1000, 1000 * scene.em)
-    deg = np.degrees(scene.angles[index]) % 360
-    _note(doc, msp, f"{scene.name}: kinematic scheme, crank at {deg:.1f} deg; 1:1, mm", scene.extent(index) * 1000,
-          1000 * scene.em)  # fmt: skip
+    crank = t("drawing.crank", lang, angle=f"{np.degrees(scene.angles[index]) % 360:.1f}")
+    note = f"{t('scheme.title', lang, name=scene.name)}, {crank}; 1:1, {t('unit.mm', lang)}"
+    _note(doc, msp, note, scene.extent(index) * 1000, 1000 * scene.em)
     return _save(doc, path)
 
 
-def write_positions(scene: PositionsScene, path: str | Path) -> Path:
-    """The plan of positions, 1:1 in mm: position 0 whole, the others' links thin, the position numbers."""
+def write_positions(scene: PositionsScene, path: str | Path, lang: str = "en") -> Path:
+    """The plan of positions, 1:1 in mm: position 0 whole, the others' links thin, the position numbers; its
+    note in ``lang``."""
     s = scene.scheme
     doc, msp = _document(SCHEME)
     _paths(msp, s.paths)
@@ -84,12 +96,14 @@ def write_positions(scene: PositionsScene, path: str | Path) -> Path:
         _items(msp, s, k, kinds=("bar", "plate", "pivot"), frame=False)
     for lab in (*s.labels, *scene.numbers):
         _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
-    _note(doc, msp, f"{s.name}: plan of {len(s.angles)} positions; 1:1, mm", scene.extent() * 1000, 1000 * s.em)
+    note = f"{t('positions.title', lang, name=s.name, count=len(s.angles))}; 1:1, {t('unit.mm', lang)}"
+    _note(doc, msp, note, scene.extent() * 1000, 1000 * s.em)
     return _save(doc, path)
 
 
-def write_plan(scene: PlanScene, index: int, path: str | Path) -> Path:
-    """The plan of position ``index`` of ``scene``, in mm of the sheet at the plan's scale."""
+def write_plan(scene: PlanScene, index: int, path: str | Path, lang: str = "en") -> Path:
+    """The plan of position ``index`` of ``scene``, in mm of the sheet at the plan's scale; its note in
+    ``lang``."""
     doc, msp = _document(VECTORS, extra={"POINTS": 7, "NOTES": 7})
     doc.header.custom_vars.append("LINKWORK_SCALE", repr(scene.scale))
     for e in scene.drawn(index):
@@ -105,8 +119,8 @@ def write_plan(scene: PlanScene, index: int, path: str | Path) -> Path:
         text, c = scene.text[index][j], scene.centres[index, j]
         if text and np.isfinite(c).all():
             _text(msp, text, c, scene.em * (1.0 if scene.main[j] else 0.8))
-    deg = np.degrees(scene.angles[index]) % 360
-    note = f"{scene.kind} plan at crank {deg:.1f} deg; pole p; {scene.symbol} = {scene.scale:g} {scene.scale_unit}"
+    crank = t("drawing.crank", lang, angle=f"{np.degrees(scene.angles[index]) % 360:.1f}")
+    note = f"{t(f'plan.{scene.kind}', lang)}, {crank}; {scene.scale_note(lang)}"
     _note(doc, msp, note, scene.extent(index), scene.em)
     return _save(doc, path)
 
@@ -159,7 +173,7 @@ def _text(msp: Any, text: str, centre: np.ndarray, em: float, layer: str = "LABE
     from ezdxf.enums import TextEntityAlignment
 
     if np.isfinite(centre).all():
-        entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": layer})
+        entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": layer, "style": STYLE})
         entity.set_placement(tuple(centre), align=TextEntityAlignment.MIDDLE_CENTER)
 
 
@@ -167,7 +181,7 @@ def _note(doc: Any, msp: Any, text: str, extent: np.ndarray, em: float) -> None:
     """The drawing's title above it, in the ``NOTES`` layer."""
     from ezdxf.enums import TextEntityAlignment
 
-    entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": "NOTES"})
+    entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": "NOTES", "style": STYLE})
     entity.set_placement((float(extent[0]), float(extent[3]) + 1.5 * em), align=TextEntityAlignment.BOTTOM_LEFT)
 
 

@@ -59,12 +59,22 @@ class PeriodicSplines:
             coef.append(spline.c.T)  # per interval: cubic, square, linear, constant
         #: per interval, per column: the coefficients of its cubic, constant last
         self.c = [tuple(tuple(map(float, c[i])) for c in coef) for i in range(k)]
+        self.first = np.asarray(coef[0], dtype=float)  # (k, 4): the first column's, for many angles at once
 
     def interval(self, psi: float) -> tuple[int, float]:
         """The grid interval of ``psi`` and the fraction of it that ``psi`` is into."""
         u = (psi % (2 * math.pi)) / self.h
         i = min(int(u), self.k - 1)
         return i, u - i
+
+    def values(self, psi: np.ndarray) -> np.ndarray:
+        """The first column at every turning angle of ``psi`` (rad), the same numbers :meth:`value` gives one
+        at a time."""
+        u = np.mod(psi, 2 * math.pi) / self.h
+        i = np.minimum(u.astype(int), self.k - 1)
+        x = (u - i) * self.h
+        c3, c2, c1, c0 = self.first[i].T
+        return ((c3 * x + c2) * x + c1) * x + c0
 
     def value(self, i: int, f: float) -> float:
         """The first column at the fraction ``f`` into grid interval ``i``."""
@@ -125,6 +135,10 @@ class Model:
         i, f = self.inertia.interval(psi)
         m = self.m[i] + (self.m[i + 1] - self.m[i]) * f
         return _tuple(InertiaAndLoad, (self.inertia.value(i, f) + self.extra, m))
+
+    def inertias(self, psi: np.ndarray) -> np.ndarray:
+        """``J + J_d`` at every turning angle of ``psi`` (rad), as :meth:`at` gives them one at a time."""
+        return self.inertia.values(psi) + self.extra
 
 
 @dataclass(frozen=True)
@@ -303,7 +317,7 @@ class _Unit:
             )
         grid = np.linspace(lo, hi, self.points + 1)
         y = sol.sol(grid)
-        j = np.array([self.model.at(p)[0] for p in grid])
+        j = self.model.inertias(grid)
         w = np.sqrt(2 * np.maximum(y[1], 0.0) / j)
         if from_rest:
             grid, y, w = (

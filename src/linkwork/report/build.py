@@ -211,10 +211,17 @@ PARALLEL = True
 
 def require_packages() -> None:
     """Raise :class:`~linkwork.errors.MissingDependencyError` unless the optional packages of the
-    report are installed: matplotlib (the figures) and xarray (``kinematics.nc``)."""
+    report are installed: matplotlib (the figures) and xarray (``kinematics.nc``).
+
+    They are found, not imported: xarray is imported (with pandas, a quarter of a second) only where
+    ``kinematics.nc`` is written, beside the main line of the report."""
+    from importlib.util import find_spec
+
     from linkwork.optional import require
 
-    require("matplotlib", "xarray", purpose="the report (linkwork analyze)")
+    missing = [name for name in ("matplotlib", "xarray") if find_spec(name) is None]
+    if missing:
+        require(*missing, purpose="the report (linkwork analyze)")  # raises, naming them and the pip command
 
 
 def _build(run: _Run, steps: int, position: int | str | None, animation: bool, dxf: bool = False) -> None:
@@ -228,7 +235,8 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
     if animation:
         from linkwork import figures
 
-        run.jobs.append(lambda: figures.animate(cycle.kin, run.folder / "animation.gif"))
+        run.jobs.append(lambda: figures.animate(cycle.kin, run.folder / "animation.gif", lang=run.lang))
+    _import_drawing()
     run.run_beside()
     if not run.mech.structure.redundant:
         _forces(run, cycle)
@@ -238,6 +246,13 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
         _impact(run)
     run.progress("figures")
     run.run_here()
+
+
+def _import_drawing() -> None:
+    """Import matplotlib's figure and Agg canvas (a third of a second) once, before the second process forks:
+    both processes draw."""
+    import matplotlib.figure  # noqa: F401
+    from matplotlib.backends import backend_agg  # noqa: F401
 
 
 def group_kind(kind: str, lang: str) -> str:
@@ -293,18 +308,17 @@ def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) ->
     sec = Section("kinematics", run.t("section.kinematics"))
     sec.body.append(_p(_position_0(run, cycle)))
     where = run.t("at_position", position=drawn[0])
-    first = drawn[0]
+    first, lang = drawn[0], run.lang
     sec.figures += [
-        run.figure("scheme", lambda: figures.draw_scheme(twelve, first, position=first, cycle=kin),
+        run.figure("scheme", lambda: figures.draw_scheme(twelve, first, position=first, cycle=kin, lang=lang),
                    run.t("caption.scheme") + where),
-        run.figure("positions", lambda: figures.draw_positions(kin), run.t("caption.positions")),
+        run.figure("positions", lambda: figures.draw_positions(kin, lang=lang), run.t("caption.positions")),
     ]  # fmt: skip
     sec.body += _positions_table(run, cycle)
     sec.body += _extremes_tables(run, cycle)
     sec.body += _working_table(run, cycle)
     sec.body += _transmission_table(run, cycle)
     sec.body += [_p(_event(run, cycle, e)) for e in kin.events]
-    lang = run.lang
     sec.figures += [
         run.figure("kinematic_diagrams", lambda: figures.kinematic_diagrams(kin, zero, lang),
                    run.t("caption.kinematic_diagrams")),
@@ -314,7 +328,7 @@ def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) ->
     if dxf:
         from linkwork.io.dxf import write_drawings
 
-        run.jobs.append(lambda: write_drawings(twelve, first, run.folder / "figures", cycle=kin))
+        run.jobs.append(lambda: write_drawings(twelve, first, run.folder / "figures", cycle=kin, lang=lang))
     run.sections.append(sec)
     return cycle
 
@@ -324,19 +338,21 @@ def _plans(run: _Run, twelve: Kinematics, drawn: list[int], sheets: bool) -> lis
     ``velocity_plan``, the others' ``velocity_plan_9``...) and, with ``sheets``, those of all twelve."""
     from linkwork import figures
 
-    names = []
+    names, lang = [], run.lang
     for k in drawn:
         tail = "" if k == drawn[0] else f"_{k}"
         where = run.t("at_position", position=k)
         names += [
-            run.figure(f"velocity_plan{tail}", lambda k=k: figures.velocity_plan(twelve, k, position=k),
+            run.figure(f"velocity_plan{tail}",
+                       functools.partial(figures.velocity_plan, twelve, k, position=k, lang=lang),
                        run.t("caption.velocity_plan") + where),
-            run.figure(f"acceleration_plan{tail}", lambda k=k: figures.acceleration_plan(twelve, k, position=k),
+            run.figure(f"acceleration_plan{tail}",
+                       functools.partial(figures.acceleration_plan, twelve, k, position=k, lang=lang),
                        run.t("caption.acceleration_plan") + where),
         ]  # fmt: skip
     if sheets:
         for kind in ("velocity", "acceleration"):
-            sheet = run.figure(f"{kind}_plans", lambda kind=kind: figures.plan_sheet(twelve, kind),
+            sheet = run.figure(f"{kind}_plans", functools.partial(figures.plan_sheet, twelve, kind, lang=lang),
                                run.t(f"caption.{kind}_plans"))  # fmt: skip
             names.append(sheet)
     return names
@@ -587,6 +603,7 @@ def _impact(run: _Run) -> None:
 
     mech = run.mech
     blow = mech.blow
+    assert blow is not None  # _build calls this only for a mechanism with a blow
     run.progress("impact")
     r = impact(mech)
     sec = Section("impact", run.t("section.impact"))
@@ -611,6 +628,7 @@ def _impact_cycle(run: _Run, sec: Section) -> None:
     from linkwork.impulse import simulate_blows
 
     mech = run.mech
+    assert mech.blow is not None  # _impact calls this only for a mechanism with a blow
     try:
         c = simulate_blows(mech)
     except LinkworkError as exc:

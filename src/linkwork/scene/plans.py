@@ -16,20 +16,28 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from linkwork.lang import t
 from linkwork.motion.plans import PlanSeries, _longest, _round_scale
 from linkwork.scene.geometry import text_size
 from linkwork.scene.labels import Obstacles, place_labels
 
-#: The kinds of vector, in the order of a legend, with their names.
-KINDS = {
-    "absolute": "absolute (from the pole)",
-    "rotation": "rotation about a point",
-    "normal": "normal (centripetal)",
-    "tangential": "tangential",
-    "transport": "transport (the guide's point)",
-    "coriolis": "Coriolis",
-    "sliding": "sliding along the guide",
+#: The kinds of vector of each plan, in the order of a legend.
+PLAN_KINDS = {
+    "velocity": ("absolute", "rotation", "transport", "sliding"),
+    "acceleration": ("absolute", "normal", "tangential", "transport", "coriolis", "sliding"),
 }
+
+
+def kind_name(kind: str, plan: str | None = None, lang: str = "en") -> str:
+    """The name of a kind of vector in the legend of a ``plan`` (``"velocity"`` or ``"acceleration"``; default
+    the first plan that has it), in ``lang`` (:mod:`linkwork.lang`: ``vector.PLAN.KIND``)."""
+    if plan is None or kind not in PLAN_KINDS.get(plan, ()):
+        plan = "velocity" if kind in PLAN_KINDS["velocity"] else "acceleration"
+    return t(f"vector.{plan}.{kind}", lang)
+
+
+#: Every kind of vector, in the order of a legend, with its name in English.
+KINDS = {k: kind_name(k) for k in ("absolute", "rotation", "normal", "tangential", "transport", "coriolis", "sliding")}
 
 #: Height of the labels on the sheet (mm): the drafting standard's 3.5 mm lettering.
 LETTERING = 3.5
@@ -101,10 +109,10 @@ class PlanScene:
         """The scale's name on the sheet: ``μv`` or ``μa``."""
         return "μv" if self.kind == "velocity" else "μa"
 
-    @property
-    def scale_unit(self) -> str:
-        """The scale's unit: ``(m/s)/mm`` or ``(m/s²)/mm``."""
-        return "(m/s)/mm" if self.kind == "velocity" else "(m/s²)/mm"
+    def scale_note(self, lang: str = "en") -> str:
+        """The pole and the scale, as written under the plan: ``pole p,  μv = 0.05 (m/s)/mm``."""
+        unit = t(f"plan.unit.{self.kind}", lang)
+        return t("plan.scale", lang, symbol=self.symbol, scale=f"{self.scale:g}", unit=unit)
 
     def drawn(self, index: int) -> list[int]:
         """The arrows drawn at position ``index``: those of finite, non-zero length."""

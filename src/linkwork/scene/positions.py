@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.motion.analysis import outputs, position_angles, transmission
+from linkwork.motion.analysis import Output, position_angles, transmission, working
 from linkwork.motion.kinematics import kinematics
 from linkwork.scene.geometry import text_size
 from linkwork.scene.labels import Obstacles, place_labels
@@ -32,26 +32,35 @@ COUNT = 12
 
 def working_point(mech: Mechanism) -> int:
     """The point whose motion is the machine's work: the first tool of a process load, else the striking
-    point of the blow, else the first slider on a frame guide, else the joint of the last rocker farthest
-    from its pivot, else the last joint of a moving link."""
+    point of the blow, else the point of the first working member (:func:`linkwork.motion.analysis.working`,
+    the member whose extreme is position 0): a slider's point on its guide, a rocker's joint farthest from
+    its pivot; else the last joint of a moving link."""
     for load in mech.loads:
         if load.kind == "process" and load.points:
             return int(load.points[0])
     if mech.blow is not None:
         return mech.point_index(mech.blow.at)
-    outs = outputs(mech)
-    for out in outs:
-        if out.kind == "slider":
-            return out.point
     joints = [int(p) for pair in mech.pair_points for p in pair if p >= 0]
-    for out in reversed(outs):
-        own = [p for p in joints if mech.point_link[p] == out.link]
-        pivot = [int(p) for p in mech.pair_points[out.pair] if p >= 0 and mech.point_link[p] == out.link]
-        if own and pivot:
-            local = np.asarray(mech.point_local)
-            return own[int(np.argmax(np.hypot(*(local[own] - local[pivot[0]]).T)))]
+    members = working(mech)
+    if members and members[0].kind == "slider":
+        return members[0].point
+    far = _farthest_from_pivot(mech, members[0], joints) if members else None
+    if far is not None:
+        return far
     moving = [p for p in joints if mech.point_link[p] != 0]
     return moving[-1] if moving else 0
+
+
+def _farthest_from_pivot(mech: Mechanism, rocker: Output, joints: list[int]) -> int | None:
+    """Of the joints on ``rocker``'s link, the one farthest from its pivot on the frame (index of a point);
+    None if the link names no point at its pivot."""
+    own = [p for p in joints if mech.point_link[p] == rocker.link]
+    pivot = next((int(p) for p in mech.pair_points[rocker.pair] if p >= 0 and mech.point_link[p] == rocker.link),
+                 None)
+    if pivot is None or not own:
+        return None
+    local = np.asarray(mech.point_local)
+    return own[int(np.argmax(np.hypot(*(local[own] - local[pivot]).T)))]
 
 
 def best_position(kin: Kinematics, point: int | None = None) -> int:

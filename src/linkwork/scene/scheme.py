@@ -136,14 +136,18 @@ class SchemeScene:
         xy = place(poses, np.asarray(item.xy, dtype=float))
         return xy if index is None else xy[0]
 
-    def extent(self, index: int | None = None, paths: bool = False) -> np.ndarray:
-        """``[x0, y0, x1, y1]`` of everything drawn (at sample ``index``, or over all), labels' text included."""
-        parts = [self.placed(it, index) for it in self.items if it.kind != "path"]
-        parts += [np.concatenate([self.placed(it, index) - it.radius, self.placed(it, index) + it.radius])
-                  for it in self.items if it.radius]  # fmt: skip
+    def extent(self, index: int | list[int] | None = None, paths: bool = False) -> np.ndarray:
+        """``[x0, y0, x1, y1]`` of everything drawn (at sample ``index``, at the samples of a list, or over all),
+        labels' text included."""
+        at = slice(None) if index is None else np.atleast_1d(np.asarray(index, dtype=int))
+        parts: list[np.ndarray] = []
+        for it in self.items:
+            if it.kind != "path":
+                xy = place(self.poses[at, it.link], np.asarray(it.xy, dtype=float))
+                parts += [xy - it.radius, xy + it.radius] if it.radius else [xy]
         for lab in self.labels:
             w, h = text_size(lab.text, self.em)
-            c = lab.centre if index is None else lab.centre[index : index + 1]
+            c = lab.centre[at]
             parts += [c - [w / 2, h / 2], c + [w / 2, h / 2]]
         if paths:
             parts.append(self.paths)
@@ -381,14 +385,16 @@ class _Builder:
             return ()
         count = max(a.shape[1] if a.ndim == 3 else 1 for *_, a, _ in wanted)
         anchors = np.stack([_alternatives(a, count) for *_, a, _ in wanted], 1)  # (A, L, M, 2)
-        sizes = np.array([text_size(text, self.em) for text, *_ in wanted])
-        gaps = np.array([g for *_, g in wanted])
-        prefer = np.stack([self._prefer(link, local, kind, anchors[:, j, 0]) for j, (_, kind, link, local, _, _) in
-                           enumerate(wanted)], 1)  # fmt: skip
-        obstacles = self._obstacles(items)
         centres = np.full(anchors[:, :, 0].shape, np.nan)
-        centres[at] = place_labels(anchors[at], sizes, gaps, Obstacles(obstacles.segments[at], obstacles.circles[at]),
-                                   prefer[at], pad=0.15 * self.em)  # fmt: skip
+        if at:  # none: the labels' texts and anchors only (the viewer's edits move the labels it has)
+            sizes = np.array([text_size(text, self.em) for text, *_ in wanted])
+            gaps = np.array([g for *_, g in wanted])
+            prefer = np.stack([self._prefer(link, local, kind, anchors[:, j, 0]) for j, (_, kind, link, local, _, _)
+                               in enumerate(wanted)], 1)  # fmt: skip
+            obstacles = self._obstacles(items)
+            centres[at] = place_labels(anchors[at], sizes, gaps,
+                                       Obstacles(obstacles.segments[at], obstacles.circles[at]), prefer[at],
+                                       pad=0.15 * self.em)  # fmt: skip
         return tuple(Label(text, kind, link, local, centres[:, j])
                      for j, (text, kind, link, local, _, _) in enumerate(wanted))  # fmt: skip
 

@@ -437,16 +437,28 @@ def edited_spec(mechanism: Mechanism, overrides: dict[str, float]) -> Spec:
     return validate(Source(data, src.lines if src is not None else {}, src.file if src is not None else None, []))
 
 
-def write_file(mechanism: Mechanism, values: dict[str, float], out: str | Path) -> Path:
-    """Write the file of the compiled ``mechanism`` with ``values`` (path -> SI) to ``out``, atomically: the
-    original text with its comments and layout, each value in the unit the file writes it in
-    (:func:`set_values`).  A description built in code is written in SI.  Returns the path."""
+def file_text(mechanism: Mechanism, values: dict[str, float]) -> str:
+    """The text of the file of the compiled ``mechanism`` with ``values`` (path -> SI) written in: the original
+    text with its comments and layout, each value in the unit the file writes it in (:func:`set_values`).  A
+    description built in code is written in SI.
+
+    Raises
+    ------
+    ParameterError
+        An unknown name, a value out of its range, or a mechanism without its description.
+    """
     spec, _, kinds = _described(mechanism, values)
     data, declared = _file_data(spec, round_trip=True)
     set_values(data, values, declared, kinds)
     buf = io.StringIO()
     _yaml().dump(data, buf)
-    text = buf.getvalue()
+    return buf.getvalue()
+
+
+def write_file(mechanism: Mechanism, values: dict[str, float], out: str | Path) -> Path:
+    """Write :func:`file_text` of the compiled ``mechanism`` with ``values`` (path -> SI) to ``out``,
+    atomically.  Returns the path."""
+    text = file_text(mechanism, values)
     return write_atomic(out, lambda tmp: tmp.write_text(text, encoding="utf-8"))
 
 

@@ -3,13 +3,13 @@
 An edit is a mapping of named values in SI, the names of
 :func:`linkwork.parameters` (``links.crank.length``, ``frame.points.O1.y``,
 ``joints.guide_E.axis`` in radians, ``links.rod.mass``, ``links.rod.inertia``).
-It means what the same edit of the file means
-(:func:`linkwork.structure.parameters.edited_spec`): the values are written
-into the description and the whole of it is validated and compiled again, so a
-bad value gets the file's own message with its line, and a mechanism that no
-longer assembles gets the compile error that names the group and the crank
-angle.  Nothing is evaluated.  Beyond the rules of each parameter, the viewer
-bounds the size of what it accepts (:data:`LIMITS`).
+It means what the same edit of the file means: the viewer solves it as a
+variant of the compiled mechanism (:mod:`linkwork.web.cycle`), with the mass
+rule of :mod:`linkwork.structure.parameters`; a bad value gets the parameter's
+own message, and a file is written from it by
+:func:`linkwork.structure.parameters.file_text`.  Nothing is evaluated.  Beyond
+the rules of each parameter, the viewer bounds the size of what it accepts
+(:data:`LIMITS`).
 """
 
 from __future__ import annotations
@@ -18,7 +18,8 @@ import math
 from typing import Any
 
 from linkwork.errors import ParameterError
-from linkwork.structure.parameters import Parameter, edited_spec, parameter, parameter_list
+from linkwork.structure.model import Mechanism
+from linkwork.structure.parameters import INERTIA_GIVEN, Masses, Parameter, parameter, parameter_list
 
 #: Most overrides one edit may carry.
 MAX_OVERRIDES = 256
@@ -26,8 +27,11 @@ MAX_OVERRIDES = 256
 #: Largest magnitude of a value the viewer accepts, by kind of quantity (m, rad, kg, kg m^2).
 LIMITS = {"length": 100.0, "angle": 100.0, "mass": 1e6, "inertia": 1e6}
 
+#: The unit the page shows each kind of value in, and the factor from SI to it.
+DISPLAY = {"length": ("mm", 1000.0), "angle": ("deg", 180.0 / math.pi), "mass": ("kg", 1.0), "inertia": ("kg m²", 1.0)}
 
-def editable(mech: Any) -> list[Parameter]:
+
+def editable(mech: Mechanism) -> list[Parameter]:
     """The parameters of ``mech`` an edit may set (those of the description it was compiled from)."""
     return parameter_list(mech) if mech.spec is not None else []
 
@@ -46,21 +50,57 @@ def check_value(p: Parameter, value: float) -> None:
     raise ParameterError(f"{p.name}: expected a value from {low:g} to {limit:g} {p.unit}, got {value:g}")
 
 
-def apply(mech: Any, overrides: dict[str, float]) -> Any:
-    """The description of ``mech`` with ``overrides`` (SI) applied, validated again.
+def validated(
+    mech: Mechanism, overrides: dict[str, float], known: dict[str, Parameter] | None = None
+) -> dict[str, float]:
+    """``overrides`` checked against the parameters of ``mech`` and the viewer's bounds, as floats.
 
     Raises
     ------
     ParameterError
-        An unknown name (with the closest known one), too many overrides, a value out of range.
-    SpecError
-        The edited description fails validation (the file's message, with its line).
+        An unknown name (with the closest known one), too many overrides, a value out of range, a
+        mechanism without its description.  ``known``: the parameters of ``mech`` by name, where the caller
+        has them.
     """
     if len(overrides) > MAX_OVERRIDES:
         raise ParameterError(f"at most {MAX_OVERRIDES} overrides in one edit, got {len(overrides)}")
     if mech.spec is None:
         raise ParameterError("this viewer shows a compiled mechanism without its description: it cannot be edited")
-    known = {p.name: p for p in parameter_list(mech)}
+    known = known if known is not None else {p.name: p for p in parameter_list(mech)}
+    out = {}
     for name, value in overrides.items():
         check_value(parameter(mech, name, known), float(value))
-    return edited_spec(mech, {name: float(v) for name, v in overrides.items() if math.isfinite(float(v))})
+        out[name] = float(value)
+    return out
+
+
+def variant_parameters(
+    mech: Mechanism, overrides: dict[str, float], masses: Masses, known: list[Parameter] | None = None
+) -> list[dict[str, Any]]:
+    """The editable parameters of the variant ``overrides`` of ``mech`` with its values: the file's where not
+    overridden, except the moments of inertia the file leaves to their default (a uniform rod, m L^2 / 12),
+    which follow the variant (``masses``, of :func:`linkwork.structure.parameters.apply`), as they do in the
+    file edited so.  ``known``: :func:`editable` of ``mech``, where the caller has it."""
+    out = []
+    for p in known if known is not None else editable(mech):
+        item = p.as_dict()
+        parts = p.name.split(".")
+        if p.name in overrides:
+            item["value"] = overrides[p.name]
+        elif p.kind == "inertia":
+            link = mech.link_names.index(parts[1])
+            rule = int(mech.link_inertia_rule[link])
+            if rule < 0 and rule != INERTIA_GIVEN:
+                item["value"] = float(masses.inertia[0, link])
+        out.append(item)
+    return out
+
+
+def shown(mech: Mechanism, overrides: dict[str, float]) -> str:
+    """``overrides`` as the page shows them: ``links.crank.length = 300 mm, links.rod.mass = 90 kg``."""
+    kinds = {p.name: p.kind for p in editable(mech)}
+    parts = []
+    for name, value in overrides.items():
+        unit, factor = DISPLAY[kinds.get(name, "length")]
+        parts.append(f"{name} = {value * factor:.6g} {unit}")
+    return ", ".join(parts)

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from linkwork.atomic import write_atomic
+from linkwork.web.session import SCRIPTS, Viewer, static_text
 
 _CSP = (
     "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:; "
@@ -21,20 +22,20 @@ _CSP = (
 
 def render_page(payload: dict[str, Any]) -> str:
     """The viewer's page with ``payload`` (from :func:`~linkwork.web.payload.cycle_payload`) embedded."""
-    from linkwork.web.session import static_text
-
     page = static_text("index.html")
-    css, js = static_text("viewer.css"), static_text("viewer.js")
-    if "</" in css or "</script" in js.lower():
+    css = static_text("viewer.css")
+    scripts = {name: static_text(name) for name in SCRIPTS}
+    if "</" in css or any("</script" in js.lower() for js in scripts.values()):
         raise ValueError("the viewer's files cannot be inlined")  # a packaging error, not a user's
     data = json.dumps(payload, allow_nan=False, separators=(",", ":"))
     data = data.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
     replace = {
         '<link rel="stylesheet" href="static/viewer.css">': f'<meta http-equiv="Content-Security-Policy" '
         f'content="{_CSP}">\n<style>\n{css}</style>',
-        '<script src="static/viewer.js"></script>': f"<script>\n{js}</script>",
         "<!--linkwork-data-->": f'<script type="application/json" id="linkwork-data">{data}</script>',
     }
+    for name, js in scripts.items():
+        replace[f'<script src="static/{name}"></script>'] = f"<script>\n{js}</script>"
     for old, new in replace.items():
         if page.count(old) != 1:
             raise ValueError(f"the viewer's page lacks {old!r}")
@@ -58,9 +59,7 @@ def export_page(spec_or_mech: Any, path: str | Path, steps: int = 360) -> Path:
     Path
         ``path``.
     """
-    from linkwork.web.session import Viewer
-
-    viewer = Viewer(spec_or_mech, steps)
+    viewer = Viewer(spec_or_mech, steps, placed=None)  # the labels placed at every sample
     payload = dict(viewer.cycle())
     payload["editable"] = False
     text = render_page(payload)

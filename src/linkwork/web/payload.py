@@ -2,11 +2,12 @@
 
 One call solves the cycle at ``steps`` crank angles (kinematics, the velocity
 and acceleration plans of every position, and the forces where the
-mechanism has masses or loads), so the page only indexes arrays when the
-crank turns.  Lengths in m, the plans' vectors in m/s and m/s^2, angles of
-the cycle in degrees, the series in the units they name; missing values
-(samples that do not assemble) are ``null``, except the frame's points,
-which are always given.
+mechanism has masses or loads; :mod:`linkwork.web.cycle`), so the page only
+indexes arrays when the crank turns.  Lengths in m, the plans' vectors in m/s
+and m/s^2, angles of the cycle in degrees, forces in N, the series in the
+units they name; missing values (samples that do not assemble) are ``null``,
+except the frame's points, which are always given.  An edit's answer carries
+what an edit changes, in a compact form (:mod:`linkwork.web.update`).
 
 Layout (``format: linkwork-view/1``):
 
@@ -14,10 +15,13 @@ Layout (``format: linkwork-view/1``):
   from +x, from the assembly angle in the direction of rotation;
   ``turn_deg`` (A,): the angle turned from the first sample;
 * ``points`` (P,): ``name`` (``link.point``), ``label``, ``link``,
-  ``joint`` (a point of a pair) and ``positions`` (A, P, 2), m;
-* ``links``: the points each moving link is drawn through; ``pairs``: the
+  ``joint`` (a point of a pair); ``local`` (P, 2), each point in its link's
+  axes, m; ``positions`` (A, P, 2), m;
+* ``links``: the points each moving link is drawn through, and its ``ends``
+  (the points of a link given by its ends and length); ``pairs``: the
   joints (``revolute`` / ``prismatic``, links, points, the guide's global
-  direction ``axis`` (A, 2) for prismatic pairs, and ``frame_point``, the
+  direction ``axis`` (A, 2) for prismatic pairs, the guide's point
+  ``through_point`` where the file names one, and ``frame_point``, the
   frame's point of a pair on the frame whichever side it is named on);
 * ``plans``: for ``velocity`` and ``acceleration``, the labels of the plan
   points (``p``, ``a``, ``b``..., and the construction's intermediate
@@ -27,41 +31,52 @@ Layout (``format: linkwork-view/1``):
   full size, before the page scales the drawing to fit its panel; from
   the 1-2-5 series, that draws the longest vector of 95 % of the positions
   at most 100 mm long);
+* ``labels_placed``: how many samples, evenly spread, the labels were placed at (``steps``: every one;
+  in between, each label keeps its offset from what it names, :func:`carried`);
 * ``scene``: the drawing (:mod:`linkwork.scene`), the same the figures and DXF draw: ``items``
   (``kind``, ``link``, vertices ``xy`` in the link's axes, m, ``closed``, ``radius``, ``name``), the
-  links' ``poses`` (A, N, 3) that place them, ``labels`` (``text``, ``kind``, the text's ``centre``
-  (A, 2), m), ``em`` (the text's height, m), ``extent`` and the ``paths`` drawn (point indices); for
-  each plan, the ``frame`` the page shows it in (mm of the sheet, y up, holding 95 % of the positions),
-  the labels' ``text`` (A, L) (one label for plan points that coincide) and ``centre`` (A, L, 2, mm),
-  their ``em`` and the ``kinds`` of vector with their names, for a legend;
+  links' ``poses`` (A, N, 3) that place them, ``labels`` (``text``, ``kind``, ``link``, the labelled
+  point ``at`` in its link's axes, the text's ``centre`` (A, 2), m), ``em`` (the text's height, m),
+  ``extent`` and the ``paths`` drawn (point indices); for each plan, the ``frame`` the page shows it
+  in (mm of the sheet, y up, holding 95 % of the positions), the labels' ``text`` (A, L) (one label
+  for plan points that coincide) and ``centre`` (A, L, 2, mm), their ``em`` and the ``kinds`` of
+  vector with their names, for a legend;
 * ``series``: quantities over the cycle (slider positions, rocker angles,
   driving torque, foundation force...), each with ``label``, ``unit`` and
   ``values`` (A,); torques and moments counter-clockwise positive (a
   clockwise drive's driving torque is mostly negative), forces x right and
   y up, as the labels say;
+* ``forces``: ``available`` (and the ``reason`` where not), the ``checks``
+  of the reactions, and the arrows the scheme draws (:mod:`linkwork.web.arrows`):
+  ``arrows`` (``kind``, ``name``, ``label``, ``on``, ``by``, the ``point`` it
+  acts at), their forces ``values`` (A, K, 2), N, their ``scale_per_mm`` (N
+  per mm of the mechanism drawn full size) and ``torque_point``, the crank's
+  pivot, where the driving torque is drawn;
 * ``extremes``: every slider on a frame guide and rocker, as
   :func:`linkwork.motion.analysis.extremes` gives them (stroke, extreme
   positions, ``time_ratio`` K and ``forward_time_ratio``);
+* ``units``: the unit the page shows each kind of value in and its factor from SI;
 * ``structure``, ``drives``, ``events``, ``warnings``.
 """
 
 from __future__ import annotations
 
 import math
-import warnings
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
-from linkwork.errors import LinkworkError
+from linkwork.errors import UnassemblableError
 from linkwork.motion.analysis import coordinate, extremes, guide, outputs
+from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import PlanSeries, _longest, _round_scale, plan_series
 from linkwork.scene.plans import KINDS, plan_scene
-from linkwork.scene.scheme import scheme_scene
-from linkwork.structure.model import PairType, one_crank
-
-if TYPE_CHECKING:
-    from linkwork.motion.kinematics import Kinematics
+from linkwork.scene.scheme import SchemeScene, scheme_scene
+from linkwork.structure.model import Mechanism, PairType
+from linkwork.web.arrows import force_arrows
+from linkwork.web.cycle import Cycle, compile_message, solve_cycle
+from linkwork.web.edits import DISPLAY
 
 FORMAT = "linkwork-view/1"
 
@@ -70,6 +85,11 @@ PLAN_PERCENTILE = 95.0
 
 #: Height of the plans' labels on the page, as a fraction of the larger side of the plan's frame.
 PLAN_FONT = 0.045
+
+#: Samples of a turn the live viewer places its labels at (about every 8 degrees; placing them costs
+#: some milliseconds a sample): in between, each label keeps its offset from what it names
+#: (:func:`carried`).  The exported page places them at every sample.
+LIVE_PLACED = 45
 
 
 def _json(a: Any, decimals: int | None = None) -> Any:
@@ -89,7 +109,9 @@ def _significant(a: np.ndarray, digits: int = 9) -> int:
     return digits - (math.ceil(math.log10(top)) if top > 0 else 0)
 
 
-def cycle_payload(mech: Any, steps: int = 360) -> dict[str, Any]:
+def cycle_payload(
+    mech: Mechanism, steps: int = 360, overrides: dict[str, float] | None = None, placed: int | None = None
+) -> dict[str, Any]:
     """Everything the viewer shows, over a whole turn of the crank at ``steps`` angles.
 
     Parameters
@@ -98,6 +120,11 @@ def cycle_payload(mech: Any, steps: int = 360) -> dict[str, Any]:
         From :func:`linkwork.compile`, with one revolute drive.
     steps : int
         Samples of the turn.
+    overrides : dict, optional
+        A variant: named values (SI, checked: :func:`linkwork.web.edits.validated`).
+    placed : int, optional
+        Place the labels at about this many samples, evenly spread (:func:`placed_samples`), and carry
+        them along in between; default at every sample.
 
     Returns
     -------
@@ -109,72 +136,84 @@ def cycle_payload(mech: Any, steps: int = 360) -> dict[str, Any]:
     LinkworkError
         For a mechanism without a single crank.
     """
-    from linkwork.motion import kinematics
+    return full_payload(solve_cycle(mech, steps, overrides), placed)
 
-    if not one_crank(mech):
-        raise LinkworkError("the viewer turns one crank: the mechanism needs exactly one revolute drive")
-    notes: list[str] = []
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        kin = kinematics(mech, steps=steps)
-        forces, reason = _forces(mech, steps)
-    notes += [str(w.message) for w in caught]
-    pts = _with_frame(mech, kin.points())  # (A, P, 2)
+
+def full_payload(cycle: Cycle, placed: int | None = None) -> dict[str, Any]:
+    """The payload of a solved cycle (:func:`cycle_payload`), its labels placed at about ``placed`` samples
+    (default every one)."""
+    mech, kin = cycle.mech, cycle.kin
     series = plan_series(kin)
     angles = kin.angles
     speed = float(kin.rates[0, 0])
+    at = placed_samples(len(angles), placed)
+    scene = _scene(cycle, series, at)
     out: dict[str, Any] = {
         "format": FORMAT,
         "name": mech.name,
         "source": mech.source,
-        "steps": int(steps),
+        "steps": len(angles),
+        "labels_placed": len(at),
         "angles_deg": _json(np.degrees(angles), 9),
         "turn_deg": _json(np.abs(np.degrees(angles - angles[0])), 9),
         "speed": speed,
         "period_s": 2 * math.pi / abs(speed) if speed else None,
-        "valid": [bool(x) for x in kin.valid],
+        "valid": [bool(x) for x in cycle.valid],
         "points": _points(mech),
-        "positions": _json(pts, 9),
+        "local": _json(cycle.local, 12),
+        "positions": _json(cycle.points(), 9),
         "links": _links(mech),
         "pairs": _pairs(mech, kin),
-        "plans": _plans(kin, series),
-        "scene": _scene(kin, series),
-        "series": _series(mech, kin, forces),
+        "plans": _plans(cycle, series),
+        "scene": scene,
+        "series": _series(cycle),
         "structure": _structure(mech),
-        "drives": [
-            {
-                "joint": mech.pair_joint[int(mech.drive_pair[0])],
-                "speed_rad_s": speed,
-                "rpm": abs(speed) * 30 / math.pi,
-                "direction": "ccw" if speed >= 0 else "cw",
-                "start_deg": math.degrees(float(mech.drive_start[0])),
-            }
-        ],
-        "extremes": [_finite(e.as_dict()) for e in extremes(kin)],
-        "events": [_finite(e.as_dict()) for e in kin.events],
-        "forces": {"available": forces is not None, "reason": reason},
-        "warnings": list(dict.fromkeys(notes)),
+        "drives": [_drive(mech, speed)],
+        "units": {kind: list(unit) for kind, unit in DISPLAY.items()},
+        "forces": forces_part(cycle, scene["size"]),
     }
-    if forces is not None:
-        out["forces"]["checks"] = _finite(forces.checks)
+    if cycle.forces is not None:  # the independent checks of the reactions (power and momentum balances)
+        out["forces"]["checks"] = _finite(cycle.forces.checks)
+    out.update(_outcome(cycle))
+    return out
+
+
+def _outcome(cycle: Cycle) -> dict[str, Any]:
+    """The extremes, events and warnings of a cycle."""
+    return {
+        "extremes": [_finite(e.as_dict()) for e in extremes(cycle.kin)],
+        "events": [_finite(e.as_dict()) for e in cycle.kin.events],
+        "warnings": list(cycle.notes),
+    }
+
+
+def _drive(mech: Mechanism, speed: float) -> dict[str, Any]:
+    return {
+        "joint": mech.pair_joint[int(mech.drive_pair[0])],
+        "speed_rad_s": speed,
+        "rpm": abs(speed) * 30 / math.pi,
+        "direction": "ccw" if speed >= 0 else "cw",
+        "start_deg": math.degrees(float(mech.drive_start[0])),
+    }
+
+
+def forces_part(cycle: Cycle, size: float, encode: Callable[[np.ndarray], Any] | None = None) -> dict[str, Any]:
+    """Whether there are forces (and why not), and the arrows of a scheme of ``size`` m
+    (:mod:`linkwork.web.arrows`): what each is, and its force (A, K, 2) in N, as ``encode`` writes an
+    array (default: nested lists of 9 significant digits)."""
+    out: dict[str, Any] = {"available": cycle.forces is not None, "reason": cycle.reason}
+    found = force_arrows(cycle, size)
+    if cycle.forces is None or found is None:
+        return out
+    out["arrows"] = [a.as_dict() for a in found.arrows]
+    out["scale_per_mm"] = found.scale
+    out["torque_point"] = found.torque_point
+    out["values"] = encode(found.values) if encode is not None else _json(found.values, _significant(found.values))
     return out
 
 
 def _finite(d: dict[str, Any]) -> dict[str, Any]:
     return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in d.items()}
-
-
-def _forces(mech: Any, steps: int) -> tuple[Any, str]:
-    from linkwork.kinetostatics import forces
-
-    if mech.structure.redundant:
-        return None, "the mechanism has redundant constraints: its reactions are statically indeterminate"
-    if not (np.asarray(mech.link_mass)[1:] > 0).any() and not mech.loads:
-        return None, "the file gives no masses and no loads"
-    try:
-        return forces(mech, steps=steps), ""
-    except LinkworkError as exc:
-        return None, str(exc)
 
 
 def _points(mech: Any) -> list[dict[str, Any]]:
@@ -201,7 +240,8 @@ def _links(mech: Any) -> list[dict[str, Any]]:
     for i, name in enumerate(mech.link_names):
         own = [p for p in range(len(mech.point_names)) if mech.point_link[p] == i]
         draw = [p for p in own if p in joint] + [p for p in own if p not in joint]
-        out.append({"index": i, "name": name, "virtual": bool(mech.link_virtual[i]), "draw": draw})
+        ends = [int(p) for p in mech.link_ends[i]] if i and mech.link_ends[i][0] >= 0 else None
+        out.append({"index": i, "name": name, "virtual": bool(mech.link_virtual[i]), "draw": draw, "ends": ends})
     return out
 
 
@@ -219,6 +259,8 @@ def _pairs(mech: Any, kin: Any) -> list[dict[str, Any]]:
             "axis": None,
             # the frame's point of the pair (a support is drawn there), whichever side the frame is named on
             "frame_point": int(mech.pair_points[k, 0 if a == 0 else 1]) if 0 in (a, b) else None,
+            # the point of the guide its line passes through, where the file names one
+            "through_point": int(mech.pair_origin_point[k]) if mech.pair_origin_point[k] >= 0 else None,
         }
         if mech.pair_type[k] == PairType.PRISMATIC:
             item["axis"] = _json(guide(kin, k)[1][0], 9)
@@ -226,12 +268,11 @@ def _pairs(mech: Any, kin: Any) -> list[dict[str, Any]]:
     return out
 
 
-def _plans(kin: Kinematics, series: tuple[PlanSeries, PlanSeries]) -> dict[str, Any]:
+def _plans(cycle: Cycle, series: tuple[PlanSeries, PlanSeries]) -> dict[str, Any]:
     """The plans of every sample: plan points (pole-relative vectors) and the construction's vectors."""
     out = {}
     for one in series:
         index = {lab: j for j, lab in enumerate(one.labels)}
-        values = np.where(kin.valid[:, None, None], one.values[0], np.nan)  # (A, L, 2), none where not assembled
         out[one.kind] = {
             "kind": one.kind,
             "unit": "m/s" if one.kind == "velocity" else "m/s^2",
@@ -241,10 +282,15 @@ def _plans(kin: Kinematics, series: tuple[PlanSeries, PlanSeries]) -> dict[str, 
                 {"from": index[e.start], "to": index[e.end], "kind": e.kind, "group": e.group, "about": e.about}
                 for e in one.edges
             ],
-            "scale_per_mm": cycle_scale(one, kin.valid),
-            "values": _json(values, _significant(values)),
+            "scale_per_mm": cycle_scale(one, cycle.valid),
+            "values": _json(plan_values(one, cycle.valid), _significant(plan_values(one, cycle.valid))),
         }
     return out
+
+
+def plan_values(series: PlanSeries, valid: np.ndarray) -> np.ndarray:
+    """The plan points' vectors ``(A, L, 2)`` of the first variant, NaN where the mechanism does not assemble."""
+    return np.where(valid[:, None, None], series.values[0], np.nan)
 
 
 def cycle_scale(series: PlanSeries, valid: np.ndarray) -> float:
@@ -256,68 +302,147 @@ def cycle_scale(series: PlanSeries, valid: np.ndarray) -> float:
     return _round_scale(float(np.percentile(longest, PLAN_PERCENTILE)) if len(longest) else 0.0)
 
 
-def _scene(kin: Kinematics, series: tuple[PlanSeries, PlanSeries]) -> dict[str, Any]:
+def placed_samples(n: int, most: int | None) -> np.ndarray:
+    """Indices of the samples (of ``n``) labels are placed at: every one, or one in ``ceil(n / most)``."""
+    return np.arange(0, n, 1 if most is None else max(1, math.ceil(n / most)))
+
+
+def carried(centres: np.ndarray, anchors: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """Labels' centres at every sample from those placed at the samples ``at``: each keeps its offset from
+    its anchor at the nearest sample it was placed at along the turn.
+
+    Parameters
+    ----------
+    centres : ndarray, shape (A, L, 2)
+        NaN but at the samples ``at`` (and where a label is not drawn).
+    anchors : ndarray, shape (A, L, 2)
+        What each label names, at every sample; NaN where it is not drawn.
+    at : ndarray of int, shape (K,)
+        The samples placed, ascending.
+
+    Returns
+    -------
+    ndarray, shape (A, L, 2)
+    """
+    if len(at) == len(centres):
+        return centres
+    nearest = nearest_placed(len(centres), at)
+    out = anchors + (centres[nearest] - anchors[nearest])
+    out[at] = centres[at]
+    return out
+
+
+def nearest_placed(n: int, at: np.ndarray) -> np.ndarray:
+    """For each of ``n`` samples of a turn, the nearest of the samples ``at`` (ascending) along the turn, which
+    closes on itself (the last samples are near the first), ``(n,)``."""
+    ring = np.concatenate([at - n, at, at + n])
+    i = np.arange(n)
+    k = np.clip(np.searchsorted(ring, i), 1, len(ring) - 1)
+    return np.where(i - ring[k - 1] <= ring[k] - i, ring[k - 1], ring[k]) % n
+
+
+def _scene(cycle: Cycle, series: tuple[PlanSeries, PlanSeries], at: np.ndarray) -> dict[str, Any]:
     """The drawing of the cycle (:mod:`linkwork.scene`): the scheme's items in their links' axes, the links'
-    poses and the labels at every sample; for each plan, the frame the page shows and the labels."""
-    scheme = scheme_scene(kin)
-    items = [
-        {"kind": it.kind, "link": it.link, "xy": _json(it.xy, 9), "closed": it.closed, "radius": it.radius,
-         "name": it.name}
-        for it in scheme.items
-    ]  # fmt: skip
+    poses and the labels, placed at the samples ``at`` (:func:`carried` between); for each plan, the frame the
+    page shows and the labels."""
+    scheme = scheme_scene(cycle.kin, at=[int(i) for i in at], cycle=cycle.symbols)
+    centres = np.stack([lab.centre for lab in scheme.labels], 1) if scheme.labels else np.zeros((len(at), 0, 2))
+    centres = carried(centres, _label_anchors(scheme), at)
     labels = [
-        {"text": lab.text, "kind": lab.kind, "link": lab.link, "centre": _json(lab.centre, 5)} for lab in scheme.labels
-    ]
-    return {
-        "size": scheme.size,
-        "r": scheme.r,
-        "em": scheme.em,
+        {"text": lab.text, "kind": lab.kind, "link": lab.link, "at": _json(lab.at, 12),
+         "centre": _json(centres[:, j], 5)}
+        for j, lab in enumerate(scheme.labels)
+    ]  # fmt: skip
+    out = scheme_shape(scheme)
+    out.update({
         "extent": _json(scheme.extent(), 9),
         "poses": _json(scheme.poses, 9),
-        "items": items,
         "labels": labels,
-        "paths": [kin.mechanism.point_names.index(name) for name in scheme.path_names],
-        "plans": {one.kind: _plan_scene(kin, one) for one in series},
-    }
+        "paths": [cycle.mech.point_names.index(name) for name in scheme.path_names],
+        "plans": {one.kind: _plan_scene(cycle, one, at) for one in series},
+    })  # fmt: skip
+    return out
 
 
-def _plan_scene(kin: Kinematics, series: PlanSeries) -> dict[str, Any]:
-    """The labels of a plan at every sample, placed in the frame the page shows it in (:func:`plan_frame`)."""
-    scale = cycle_scale(series, kin.valid)
-    frame = plan_frame(series, kin.valid, scale)
+def _label_anchors(scheme: SchemeScene) -> np.ndarray:
+    """Where each of the scheme's labels points at every sample, ``(A, L, 2)``, m: its ``at`` placed by its
+    link's pose (NaN where the mechanism does not assemble)."""
+    at = np.array([lab.at for lab in scheme.labels], dtype=float).reshape(-1, 2)  # (L, 2)
+    pose = scheme.poses[:, [lab.link for lab in scheme.labels]]  # (A, L, 3)
+    c, s = np.cos(pose[..., 2]), np.sin(pose[..., 2])
+    x = pose[..., 0] + c * at[:, 0] - s * at[:, 1]
+    y = pose[..., 1] + s * at[:, 0] + c * at[:, 1]
+    return np.stack([x, y], -1)
+
+
+def scheme_shape(scheme: SchemeScene) -> dict[str, Any]:
+    """The scheme's sizes and items (what a dimension changes, but for the poses, the labels and the extent)."""
+    items = [
+        {"kind": it.kind, "link": it.link, "xy": np.round(np.asarray(it.xy, dtype=float), 9).tolist(),
+         "closed": it.closed, "radius": it.radius, "name": it.name}
+        for it in scheme.items
+    ]  # fmt: skip (a drawing's vertices are finite)
+    return {"size": scheme.size, "r": scheme.r, "em": scheme.em, "items": items}
+
+
+def _plan_scene(cycle: Cycle, series: PlanSeries, at: np.ndarray) -> dict[str, Any]:
+    """The labels of a plan at every sample, placed in the frame the page shows it in (:func:`plan_frame`) at
+    the samples ``at``, and between them carried with their points and their texts kept."""
+    out, scale = plan_shape(cycle, series)
+    n = len(cycle.valid)
+    scene = plan_scene(series, at, scale=scale, em=out["em"], valid=cycle.valid)
+    drawn = {kind for i in range(len(at)) for kind in scene.kinds(i)}
+    out["kinds"] = {k: KINDS[k] for k in KINDS if k in drawn}
+    points = plan_values(series, cycle.valid) / scale  # (A, L, 2), mm of the sheet
+    centres = np.full(points.shape, np.nan)
+    centres[at] = scene.centres
+    centres = carried(centres, points, at)
+    text = np.full((n, len(series.labels)), "", dtype=object)
+    text[at] = np.array(scene.text, dtype=object).reshape(len(at), -1)
+    text = text[nearest_placed(n, at)]  # each sample's texts: those of the sample its labels are carried from
+    shown = (text != "") & np.isfinite(centres).all(-1)
+    out["text"] = np.where(shown, text, "").tolist()
+    out["centres"] = _json(np.where(shown[..., None], centres, np.nan), 3)
+    return out
+
+
+def plan_shape(cycle: Cycle, series: PlanSeries) -> tuple[dict[str, Any], float]:
+    """The frame a plan is shown in for the cycle and its labels' size (``frame``, ``em``), and its scale."""
+    scale = cycle_scale(series, cycle.valid)
+    frame = plan_frame(series, cycle.valid, scale)
     em = PLAN_FONT * float(max(frame[2] - frame[0], frame[3] - frame[1]))
-    scene = plan_scene(series, np.arange(len(kin.angles)), scale=scale, em=em, valid=kin.valid)
-    drawn = {kind for i in range(len(kin.angles)) for kind in scene.kinds(i)}
-    return {
-        "frame": _json(frame, 6),
-        "em": em,
-        "kinds": {k: KINDS[k] for k in KINDS if k in drawn},
-        "text": [list(row) for row in scene.text],
-        "centres": _json(scene.centres, 3),
-    }
+    return {"frame": _json(frame, 6), "em": em}, scale
 
 
 def plan_frame(series: PlanSeries, valid: np.ndarray, scale: float) -> np.ndarray:
     """``[x0, y0, x1, y1]`` (mm of the sheet, y up) that holds the plans of 95 % of the positions, the pole
     among them: one frame for the cycle, so that the plan does not jump while the crank turns."""
-    pts = np.where(valid[:, None, None], series.values[0], np.nan) / scale  # (A, L, 2)
-    finite = np.isfinite(pts)
-    lo = np.minimum(np.min(np.where(finite, pts, np.inf), axis=1), 0.0)  # (A, 2)
-    hi = np.maximum(np.max(np.where(finite, pts, -np.inf), axis=1), 0.0)
     ok = np.asarray(valid, dtype=bool)
     if not ok.any():
         return np.array([-1.0, -1.0, 1.0, 1.0])
-    return np.concatenate([np.quantile(lo[ok], 0.025, axis=0), np.quantile(hi[ok], 0.975, axis=0)])
+    pts = np.ascontiguousarray(np.moveaxis(series.values[0][ok], 1, -1)) / scale  # (a, 2, L): the points last
+    finite = np.isfinite(pts)
+    lo = np.minimum(np.where(finite, pts, np.inf).min(-1), 0.0)  # (a, 2)
+    hi = np.maximum(np.where(finite, pts, -np.inf).max(-1), 0.0)
+    q = np.quantile(np.concatenate([lo, hi], 1), [0.025, 0.975], axis=0)
+    return np.concatenate([q[0, :2], q[1, 2:]])
 
 
-def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
+def _series(cycle: Cycle) -> list[dict[str, Any]]:
     """Quantities over the cycle the page can chart."""
-    out: list[dict[str, Any]] = []
+    return [
+        {"key": key, "label": label, "unit": unit, "group": group, "values": _json(values, _significant(values))}
+        for key, label, unit, group, values in series_values(cycle)
+    ]
+
+
+def series_values(cycle: Cycle) -> list[tuple[str, str, str, str, np.ndarray]]:
+    """(key, label, unit, group, values (A,)) of every quantity over the cycle the page can chart."""
+    mech, kin, forces = cycle.mech, cycle.kin, cycle.forces
+    out: list[tuple[str, str, str, str, np.ndarray]] = []
 
     def add(key: str, label: str, unit: str, group: str, values: np.ndarray) -> None:
-        values = np.asarray(values, dtype=float)
-        rounded = _json(values, _significant(values))
-        out.append({"key": key, "label": label, "unit": unit, "group": group, "values": rounded})
+        out.append((key, label, unit, group, np.asarray(values, dtype=float)))
 
     for output in outputs(mech):
         s, v, a = (x[0] for x in coordinate(kin, output))
@@ -333,8 +458,8 @@ def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
     if forces is not None:
         # signs as in linkwork.forces: torques and moments counter-clockwise positive, whatever the direction of
         # rotation (a clockwise crank driven against the load has a negative driving torque); x right, y up
-        add("torque", "driving torque on the crank (ccw +)", "N m", "forces", forces.driving_torque)
-        found = forces.foundation
+        add("torque", "driving torque on the crank (ccw +)", "N m", "forces", cycle.one(forces.driving_torque))
+        found = cycle.one(forces.foundation)
         add("foundation:fx", "force on the foundation, x (right +)", "N", "forces", found[:, 0])
         add("foundation:fy", "force on the foundation, y (up +: pulls the bolts)", "N", "forces", found[:, 1])
         add("foundation:m", "moment on the foundation about the origin (ccw +)", "N m", "forces", found[:, 2])
@@ -344,7 +469,7 @@ def _series(mech: Any, kin: Any, forces: Any) -> list[dict[str, Any]]:
                 # the size of the force the support takes: of all the links it holds in the joint
                 joint = mech.pair_joint[k]
                 seen.add(joint)
-                f = forces.reaction(joint, on=mech.link_names[0])
+                f = cycle.one(forces.reaction(joint, on=mech.link_names[0]))
                 add(f"reaction:{joint}", f"reaction in {joint} (size)", "N", "forces", np.hypot(f[:, 0], f[:, 1]))
     return out
 
@@ -357,26 +482,30 @@ def _structure(mech: Any) -> dict[str, Any]:
     return out
 
 
-def pose_payload(mech: Any, angle_deg: float) -> dict[str, Any]:
+def pose_payload(mech: Mechanism, angle_deg: float, overrides: dict[str, float] | None = None) -> dict[str, Any]:
     """Positions of every point at one crank angle, solved on its own: ``{name: [x, y]}`` in m.
 
-    ``angle_deg`` (degrees) is echoed as given; the frame's points are given where the mechanism does not
-    assemble, as in the cycle.
-    """
-    from linkwork.motion import kinematics
+    ``overrides`` (SI, checked) make it a variant, as for the cycle.  ``angle_deg`` (degrees) is echoed as
+    given; the frame's points are given where the mechanism does not assemble, as in the cycle.
 
-    kin = kinematics(mech, np.array([math.radians(angle_deg)]))
-    pts = _with_frame(mech, kin.points())[0]
+    Raises
+    ------
+    UnassemblableError
+        For a variant that does not assemble at the drive angle of the assembly pose (the file edited so
+        would not compile): the compiler's message.
+    """
+    variants = {name: [value] for name, value in (overrides or {}).items()} or None
+    angles = np.array([float(mech.drive_start[0]), math.radians(angle_deg)])
+    kin = kinematics(mech, angles, variants=variants)
+    if variants and not kin.valid_all[0, 0]:
+        message = compile_message(mech, dict(overrides or {}))
+        raise UnassemblableError(message or "the mechanism does not assemble at the drive angle of its assembly pose")
+    pts = kin.points()
+    pts = np.array(pts[0] if kin.variants else pts)[1]
+    frame = np.asarray(mech.point_link) == 0
+    pts[frame] = kin.local[frame, :, 0, 0]
     return {
         "angle_deg": angle_deg,
-        "valid": bool(kin.valid[0]),
+        "valid": bool(kin.valid_all[0, 1]),
         "points": {name: _json(pts[p]) for p, name in enumerate(mech.point_names)},
     }
-
-
-def _with_frame(mech: Any, pts: np.ndarray) -> np.ndarray:
-    """Positions (A, P, 2) with the frame's points where they are fixed, also at samples that do not assemble."""
-    frame = np.asarray(mech.point_link) == 0
-    out = pts.copy()
-    out[:, frame] = np.asarray(mech.point_local)[frame]
-    return out

@@ -1,44 +1,62 @@
 """The viewer's local server: the page, its static files and a small JSON API.
 
-Endpoints (all JSON except the page and its files):
+Endpoints (all JSON except the page, its files and a saved file):
 
-* ``GET /`` the page; ``GET /static/viewer.js``, ``/static/viewer.css``;
+* ``GET /`` the page; ``GET /static/NAME`` its script and style (:data:`STATIC`);
 * ``GET /api/cycle``: the cycle of the mechanism as it was loaded
-  (:func:`linkwork.web.payload.cycle_payload`, with ``parameters``);
+  (:func:`linkwork.web.payload.cycle_payload`, with ``parameters``); ``?labels=first``: its labels
+  placed at the first sample only, the page's first answer (the page then asks for the labels of the
+  cycle);
 * ``GET /api/parameters``: the editable dimensions and masses;
-* ``POST /api/solve`` ``{"overrides": {name: value}, "steps": n}``: the
-  cycle of the edited mechanism (values in SI);
-* ``POST /api/pose`` ``{"angle_deg": a, "overrides": {...}}``: every
-  point at one crank angle, solved on its own.
+* ``POST /api/solve`` ``{"overrides": {name: value}, "steps": n}``: the whole cycle of the edited
+  mechanism (values in SI), its labels placed;
+* ``POST /api/edit`` ``{"overrides": {...}, "steps": n, "whole_turn": bool, "client": id, "seq": n}``: what
+  the edit changes, compact (:mod:`linkwork.web.update`), in some milliseconds; with ``whole_turn`` a
+  variant that does not assemble where the file's mechanism does is refused (a drag); an edit that
+  waits for a slot while the same ``client`` sends a newer one (a higher ``seq``) is answered 409
+  (superseded) unsolved: the latest wins;
+* ``POST /api/pose`` ``{"angle_deg": a, "overrides": {...}}``: every point at one crank angle, solved on
+  its own; it takes no solving slot, so a crank step never waits for an edit;
+* ``POST /api/save`` ``{"overrides": {...}}``: the mechanism's file with the values written in, its
+  comments and layout kept (:func:`linkwork.structure.parameters.file_text`), as a download.
 
 Bodies are JSON objects of at most :data:`MAX_BODY` bytes, validated by
 pydantic (types, ranges, at most :data:`~linkwork.web.edits.MAX_OVERRIDES`
 overrides); an edit that fails answers 422 with linkwork's message (the
-file's line, the group and crank angle that do not assemble), a malformed
-request 400, 413 or 415, and the server goes on serving.  Requests must
-name the loopback host (``127.0.0.1``, ``localhost``, ``[::1]``, with a port): a page elsewhere
+file's line, the group and crank angles that do not assemble, and for a
+variant out of its range the ``events``), a malformed request 400, 413 or
+415, and the server goes on serving.  A client that goes away before its
+request is read is let go quietly.  Requests must name the loopback host
+(``127.0.0.1``, ``localhost``, ``[::1]``, with a port): a page elsewhere
 cannot reach the server through a rebound DNS name.  Nothing from a
 request is evaluated.
 """
 
 from __future__ import annotations
 
+import asyncio
 import json
 import re
 import time
-from collections.abc import Callable
-from typing import Annotated, Any
+from collections.abc import AsyncIterator, Callable
+from contextlib import asynccontextmanager
+from threading import BoundedSemaphore
+from typing import Annotated, Any, Literal
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import HTMLResponse, JSONResponse, Response
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints, ValidationError
 from starlette.concurrency import run_in_threadpool
+from starlette.datastructures import MutableHeaders
 from starlette.exceptions import HTTPException as StarletteHTTPException
+from starlette.requests import ClientDisconnect
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from linkwork.errors import BusyError, LinkworkError
+from linkwork.web.cycle import OutOfRange
 from linkwork.web.edits import MAX_OVERRIDES
-from linkwork.web.session import Viewer, static_text
+from linkwork.web.session import SCRIPTS, Viewer, dumps, static_text
 
 #: Largest request body, bytes.
 MAX_BODY = 64 * 1024
@@ -46,6 +64,8 @@ MAX_BODY = 64 * 1024
 MIN_STEPS, MAX_STEPS = 12, 1440
 #: The Host headers the server answers to: a loopback name and an optional port, nothing else.
 HOST = re.compile(r"(\[::1\]|127\.0\.0\.1|localhost)(:\d{1,5})?", re.IGNORECASE)
+#: The page's files and their types.
+STATIC = {name: "text/javascript" for name in SCRIPTS} | {"viewer.css": "text/css"}
 
 SECURITY_HEADERS = {
     "Content-Security-Policy": "default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' data:; "
@@ -59,23 +79,39 @@ SECURITY_HEADERS = {
 Name = Annotated[str, StringConstraints(min_length=1, max_length=200)]
 Value = Annotated[float, Field(allow_inf_nan=False)]
 Overrides = Annotated[dict[Name, Value], Field(max_length=MAX_OVERRIDES)]
+Client = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_-]{1,64}$")]
 
 
-class SolveRequest(BaseModel):
-    """``POST /api/solve``: overrides of named dimensions and masses (SI), and the steps of the cycle."""
-
+class _Body(BaseModel):
     model_config = ConfigDict(extra="forbid", strict=True)
+
+
+class SolveRequest(_Body):
+    """``POST /api/solve``: overrides of named dimensions and masses (SI), and the steps of the cycle."""
 
     overrides: Overrides = Field(default_factory=dict)
     steps: int | None = Field(None, ge=MIN_STEPS, le=MAX_STEPS)
 
 
-class PoseRequest(BaseModel):
+class EditRequest(SolveRequest):
+    """``POST /api/edit``: as :class:`SolveRequest`; ``whole_turn``: refuse a variant that does not assemble
+    where the file's mechanism does; ``client`` and ``seq``: the page and the number of its edit (latest wins)."""
+
+    whole_turn: bool = False
+    client: Client | None = None
+    seq: int | None = Field(None, ge=0, le=2**53)
+
+
+class PoseRequest(_Body):
     """``POST /api/pose``: one crank angle (deg) of the mechanism with overrides."""
 
-    model_config = ConfigDict(extra="forbid", strict=True)
-
     angle_deg: Value = Field(ge=-1e6, le=1e6)
+    overrides: Overrides = Field(default_factory=dict)
+
+
+class SaveRequest(_Body):
+    """``POST /api/save``: the values (SI) to write into the mechanism's file."""
+
     overrides: Overrides = Field(default_factory=dict)
 
 
@@ -86,6 +122,10 @@ class Rejected(Exception):
         super().__init__(message)
         self.status = status
         self.message = message
+
+
+class Superseded(Exception):
+    """An edit a newer one of the same page has replaced while it waited for a slot."""
 
 
 async def read_body(request: Request, model: type[BaseModel]) -> Any:
@@ -119,71 +159,141 @@ async def read_body(request: Request, model: type[BaseModel]) -> Any:
         raise Rejected(422, _validation_message(exc)) from None
 
 
+@asynccontextmanager
+async def holding(slots: BoundedSemaphore, wait_s: float, superseded: Callable[[], bool] = bool) -> AsyncIterator[None]:
+    """Hold one of ``slots`` while the block runs, waiting for it without holding a thread.
+
+    Raises
+    ------
+    Superseded
+        Where ``superseded()`` turns true while waiting.
+    BusyError
+        Where none frees within ``wait_s`` seconds.
+    """
+    deadline = time.monotonic() + wait_s
+    delay = 0.002
+    while not slots.acquire(blocking=False):
+        if superseded():
+            raise Superseded
+        if time.monotonic() >= deadline:
+            raise BusyError("the server is busy solving other edits; try again")
+        await asyncio.sleep(delay)
+        delay = min(2 * delay, 0.02)
+    try:
+        yield
+    finally:
+        slots.release()
+
+
+class Guard:
+    """Answers only requests for the loopback host, and puts the security headers on every answer."""
+
+    def __init__(self, app: ASGIApp) -> None:
+        self.app = app
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        hosts = [value.decode("latin-1") for key, value in scope["headers"] if key.lower() == b"host"]
+        if len(hosts) != 1 or not HOST.fullmatch(hosts[0]):
+            shown = hosts[0][:100] if hosts else ""
+            message = f"this server answers only to the loopback host (127.0.0.1), not {shown!r}"
+            await _error(400, message)(scope, receive, send)
+            return
+
+        async def secured(message: Message) -> None:
+            if message["type"] == "http.response.start":
+                headers = MutableHeaders(scope=message)
+                for key, value in SECURITY_HEADERS.items():
+                    headers.setdefault(key, value)
+            await send(message)
+
+        await self.app(scope, receive, secured)
+
+
+def _error(status: int, message: str, **extra: Any) -> JSONResponse:
+    return JSONResponse({"error": message, **extra}, status_code=status, headers=SECURITY_HEADERS)
+
+
 def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
     """The viewer's FastAPI application for a spec, a compiled mechanism, or a file or example name.
 
     With a :class:`~linkwork.spec.schema.Spec` (or a name) the page can edit
     dimensions and masses; with a compiled :class:`~linkwork.structure.model.Mechanism`
-    it only shows it.  The cycle of the mechanism as given is solved here, so
-    a mechanism that fails raises its LinkworkError before any server starts.
+    it edits the description it was compiled from, and shows one without a description.
+    The cycle of the mechanism as given is solved here, so a mechanism that fails
+    raises its LinkworkError before any server starts.
     """
     viewer = Viewer(spec_or_mech, steps)
-    viewer.cycle()  # fails here, not on the first request
+    viewer.cycle(first=True)  # fails here, not on the first request
 
     app = FastAPI(title="linkwork viewer", docs_url=None, redoc_url=None, openapi_url=None)
     app.state.viewer = viewer
+    app.add_middleware(Guard)
+    _handlers(app)
+    _pages(app)
+    _api(app, viewer)
+    return app
 
-    def error(status: int, message: str) -> JSONResponse:
-        return JSONResponse({"error": message}, status_code=status, headers=SECURITY_HEADERS)
 
-    @app.middleware("http")
-    async def guard(request: Request, call_next: Any) -> Any:
-        host = request.headers.get("host") or ""
-        if not HOST.fullmatch(host):
-            return error(400, f"this server answers only to the loopback host (127.0.0.1), not {host[:100]!r}")
-        response = await call_next(request)
-        for key, value in SECURITY_HEADERS.items():
-            response.headers.setdefault(key, value)
-        return response
+def _handlers(app: FastAPI) -> None:
+    """Every failure answers JSON with a message; a client that went away is let go without a trace."""
 
     @app.exception_handler(Rejected)
     async def rejected(request: Request, exc: Rejected) -> JSONResponse:
-        return error(exc.status, exc.message)
+        return _error(exc.status, exc.message)
+
+    @app.exception_handler(OutOfRange)
+    async def out_of_range(request: Request, exc: OutOfRange) -> JSONResponse:
+        return _error(422, str(exc), events=exc.events)
 
     @app.exception_handler(LinkworkError)
     async def failed(request: Request, exc: LinkworkError) -> JSONResponse:
-        return error(422, str(exc))
+        return _error(422, str(exc))
 
     @app.exception_handler(BusyError)
     async def busy(request: Request, exc: BusyError) -> JSONResponse:
-        return error(503, str(exc))
+        return _error(503, str(exc))
+
+    @app.exception_handler(Superseded)
+    async def superseded(request: Request, exc: Superseded) -> JSONResponse:
+        return _error(409, "superseded by a newer edit of the same page")
+
+    @app.exception_handler(ClientDisconnect)
+    async def gone(request: Request, exc: ClientDisconnect) -> Response:
+        return Response(status_code=400)  # nobody reads it
 
     @app.exception_handler(RequestValidationError)
     async def invalid(request: Request, exc: RequestValidationError) -> JSONResponse:
-        return error(422, "; ".join(str(e.get("msg", e)) for e in exc.errors())[:500])
+        return _error(422, "; ".join(str(e.get("msg", e)) for e in exc.errors())[:500])
 
     @app.exception_handler(StarletteHTTPException)
     async def http_error(request: Request, exc: StarletteHTTPException) -> JSONResponse:
-        return error(exc.status_code, str(exc.detail))
+        return _error(exc.status_code, str(exc.detail))
 
     @app.exception_handler(Exception)
     async def crashed(request: Request, exc: Exception) -> JSONResponse:
-        return error(500, f"internal error: {type(exc).__name__}: {str(exc)[:300]}")
+        return _error(500, f"internal error: {type(exc).__name__}: {str(exc)[:300]}")
 
+
+def _pages(app: FastAPI) -> None:
     @app.get("/", response_class=HTMLResponse)
     def index() -> HTMLResponse:
         return HTMLResponse(static_text("index.html"))
 
     @app.get("/static/{name}")
     def static(name: str) -> Response:
-        kinds = {"viewer.js": "text/javascript", "viewer.css": "text/css"}
-        if name not in kinds:
-            return error(404, "no such file")
-        return Response(static_text(name), media_type=kinds[name] + "; charset=utf-8")
+        if name not in STATIC:
+            return _error(404, "no such file")
+        return Response(static_text(name), media_type=STATIC[name] + "; charset=utf-8")
 
+
+def _api(app: FastAPI, viewer: Viewer) -> None:
     @app.get("/api/cycle")
-    async def cycle() -> Response:
-        return _json(await run_in_threadpool(viewer.cycle))
+    async def cycle(labels: Literal["cycle", "first"] = "cycle") -> Response:
+        async with holding(viewer.full_slots, viewer.wait_s):
+            return _json(await run_in_threadpool(viewer.cycle, None, None, labels == "first"))
 
     @app.get("/api/parameters")
     def parameters() -> Response:
@@ -192,25 +302,34 @@ def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
     @app.post("/api/solve")
     async def solve(request: Request) -> Response:
         req = await read_body(request, SolveRequest)
-        return _json(await run_in_threadpool(viewer.cycle, req.overrides, req.steps))
+        async with holding(viewer.full_slots, viewer.wait_s):
+            return _json(await run_in_threadpool(viewer.cycle, req.overrides, req.steps))
+
+    @app.post("/api/edit")
+    async def edit(request: Request) -> Response:
+        req = await read_body(request, EditRequest)
+        viewer.newest(req.client, req.seq)
+        found = viewer.cached_edit(req.overrides, req.steps, req.whole_turn)
+        if found is None:
+            async with holding(viewer.edit_slots, viewer.wait_s, lambda: viewer.superseded(req.client, req.seq)):
+                found = await run_in_threadpool(viewer.edit, req.overrides, req.steps, req.whole_turn)
+        return Response(found, media_type="application/json")
 
     @app.post("/api/pose")
     async def pose(request: Request) -> Response:
-        from linkwork.web.payload import pose_payload
-
         req = await read_body(request, PoseRequest)
+        return _json(await run_in_threadpool(viewer.pose, req.angle_deg, req.overrides))
 
-        def solve_pose() -> dict[str, Any]:
-            with viewer.solving():
-                return pose_payload(viewer.compile(req.overrides), req.angle_deg)
-
-        return _json(await run_in_threadpool(solve_pose))
-
-    return app
+    @app.post("/api/save")
+    async def save(request: Request) -> Response:
+        req = await read_body(request, SaveRequest)
+        text = await run_in_threadpool(viewer.file_text, req.overrides)
+        headers = {"Content-Disposition": f'attachment; filename="{viewer.saved_name()}"'}
+        return Response(text, media_type="application/yaml; charset=utf-8", headers=headers)
 
 
 def _json(data: Any) -> Response:
-    return Response(json.dumps(data, allow_nan=False, separators=(",", ":")), media_type="application/json")
+    return Response(dumps(data), media_type="application/json")
 
 
 def _validation_message(exc: Any) -> str:
@@ -237,7 +356,9 @@ def serve(app: Any, port: int = 8765, ready: Callable[[str], None] | None = None
 
     import uvicorn
 
-    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    # IPPROTO_TCP named: asyncio then turns Nagle's algorithm off on the connections (it does so only for sockets
+    # whose protocol says TCP), so that a small answer is not held back for the client's delayed ACK (40 ms)
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM, socket.IPPROTO_TCP)
     sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
     try:
         sock.bind(("127.0.0.1", port))

@@ -1,87 +1,206 @@
-"""The mechanism a viewer shows and the cycles of its edits, shared by the server and the exported page."""
+"""The mechanism a viewer shows, its edits and what they are solved in; shared by the server and the exported page.
+
+An edit is solved as a variant of the compiled mechanism (:mod:`linkwork.web.cycle`).  Two kinds of
+answer: the whole cycle with its labels placed (:func:`linkwork.web.payload.full_payload`, 0.15 s for
+the double-cut shears with its labels placed at the first sample, the page's first answer, and 0.4 s at
+the :data:`~linkwork.web.payload.LIVE_PLACED` samples that follow it), and an edit's compact
+answer (:func:`linkwork.web.update.edit_payload`, some milliseconds), which the page shows while a
+value is dragged.  Each kind has its own solving slots (:attr:`Viewer.full_slots`,
+:attr:`Viewer.edit_slots`), so that placing labels never holds up an edit; a crank step (a pose)
+takes no slot.  Answers are kept in small caches (an undo returns at once).
+"""
 
 from __future__ import annotations
 
+import json
+import math
+import re
 import threading
 from collections import OrderedDict
-from collections.abc import Iterator
-from contextlib import contextmanager
 from importlib import resources
 from typing import Any
 
-from linkwork.errors import BusyError
+import numpy as np
+
+from linkwork.api import mechanism_of
+from linkwork.scene.scheme import CYCLE
+from linkwork.structure.model import Mechanism
+from linkwork.structure.parameters import file_text
+from linkwork.web.cycle import DRAGGED, Cycle, check_assembly, solve_cycle
+from linkwork.web.edits import editable, validated, variant_parameters
+from linkwork.web.payload import LIVE_PLACED, full_payload, pose_payload
+from linkwork.web.update import edit_payload
+
+#: The page's scripts, in the order it loads them.
+SCRIPTS = ("viewer.js", "forces.js", "editing.js")
+
+#: Edits' answers kept (encoded), and clients whose newest edit is remembered.
+EDIT_CACHE, CLIENTS = 64, 256
 
 
 def static_text(name: str) -> str:
-    """One of the page's files: ``index.html``, ``viewer.js`` or ``viewer.css``."""
+    """One of the page's files: ``index.html``, ``viewer.css`` or one of :data:`SCRIPTS`."""
     return (resources.files("linkwork.web") / "static" / name).read_text(encoding="utf-8")
 
 
-class Viewer:
-    """The mechanism a server shows, and the cycles of its edits (a small cache)."""
+def dumps(data: Any) -> bytes:
+    """Strict JSON (no NaN or infinities), compact."""
+    return json.dumps(data, allow_nan=False, separators=(",", ":")).encode("utf-8")
 
-    def __init__(self, spec_or_mech: Any, steps: int = 360, cache: int = 16) -> None:
-        from linkwork.api import mechanism_of
 
-        self.mech = mechanism_of(spec_or_mech, "viewer")
-        self.spec = self.mech.spec
-        self.steps = steps
-        self._cache: OrderedDict[tuple[Any, ...], dict[str, Any]] = OrderedDict()
-        self._size = cache
+class _Cache:
+    """A small least-recently-used cache, safe across threads."""
+
+    def __init__(self, size: int) -> None:
+        self._items: OrderedDict[Any, Any] = OrderedDict()
+        self._size = size
         self._lock = threading.Lock()
-        self._busy = threading.BoundedSemaphore(2)
-        #: Seconds a request waits for one of the two solving slots before it is answered busy.
+
+    def get(self, key: Any) -> Any:
+        with self._lock:
+            if key in self._items:
+                self._items.move_to_end(key)
+            return self._items.get(key)
+
+    def put(self, key: Any, value: Any) -> None:
+        with self._lock:
+            self._items[key] = value
+            self._items.move_to_end(key)
+            while len(self._items) > self._size:
+                self._items.popitem(last=False)
+
+
+class Viewer:
+    """The mechanism a server shows, its edits' answers, and the slots they are solved in.
+
+    Attributes
+    ----------
+    mech : Mechanism
+    steps : int
+        Crank angles of the cycle.
+    full_slots, edit_slots : threading.BoundedSemaphore
+        One whole cycle at a time; two edits at a time.
+    wait_s : float
+        Seconds a request may wait for a slot before it is answered busy.
+    placed : int or None
+        Samples the labels of a whole cycle are placed at (:func:`linkwork.web.payload.full_payload`): about
+        :data:`~linkwork.web.payload.LIVE_PLACED` for the live page, every one (None) for an exported page.
+    """
+
+    def __init__(self, spec_or_mech: Any, steps: int = 360, cache: int = 16, placed: int | None = LIVE_PLACED) -> None:
+        self.mech: Mechanism = mechanism_of(spec_or_mech, "viewer")
+        self.spec = self.mech.spec
+        self._editable = editable(self.mech)
+        self._known = {p.name: p for p in self._editable}
+        self.steps = steps
+        self.placed = placed
+        self._full = _Cache(cache)
+        self._edits = _Cache(EDIT_CACHE)
+        self._whole = _Cache(8)
+        self.full_slots = threading.BoundedSemaphore(1)
+        self.edit_slots = threading.BoundedSemaphore(2)
         self.wait_s = 30.0
+        self._newest: OrderedDict[str, int] = OrderedDict()
+        self._lock = threading.Lock()
 
-    @contextmanager
-    def solving(self) -> Iterator[None]:
-        """Hold one of the two slots every solve (a cycle, a pose) shares; :class:`BusyError` if none frees."""
-        if not self._busy.acquire(timeout=self.wait_s):
-            raise BusyError("the server is busy solving other edits; try again")
-        try:
-            yield
-        finally:
-            self._busy.release()
+    def parameters(self) -> list[dict[str, Any]]:
+        """The editable values of the mechanism as loaded."""
+        return [p.as_dict() for p in self._editable]
 
-    def parameters(self, mech: Any = None) -> list[dict[str, Any]]:
-        """The editable values of ``mech`` (by default the mechanism as loaded)."""
-        from linkwork.web.edits import editable
+    def solve(self, overrides: dict[str, float] | None, steps: int | None = None, whole_turn: bool = False) -> Cycle:
+        """The cycle of the variant ``overrides`` (SI).
 
-        return [p.as_dict() for p in editable(mech if mech is not None else self.mech)]
-
-    def edit(self, overrides: dict[str, float]) -> tuple[Any, Any]:
-        """The description and the mechanism with ``overrides`` (SI) applied; a LinkworkError when it fails."""
-        from linkwork.api import compile
-        from linkwork.web.edits import apply
-
-        if not overrides:
-            return self.spec, self.mech
-        spec = apply(self.mech, overrides)
-        return spec, compile(spec)
-
-    def compile(self, overrides: dict[str, float]) -> Any:
-        """The mechanism with ``overrides`` (SI) applied; raises a LinkworkError when it fails."""
-        return self.edit(overrides)[1]
-
-    def cycle(self, overrides: dict[str, float] | None = None, steps: int | None = None) -> dict[str, Any]:
-        """The cycle payload of the mechanism with ``overrides``, with ``parameters`` and ``editable``."""
-        from linkwork.web.payload import cycle_payload
-
-        overrides = overrides or {}
+        Raises
+        ------
+        ParameterError
+            A bad name or value, or a mechanism without its description.
+        OutOfRange
+            A variant that does not assemble at the assembly pose, or (``whole_turn``) at a sample where the
+            file's mechanism does.
+        """
         steps = steps or self.steps
-        key = (steps, *sorted(overrides.items()))
-        with self._lock:
-            if key in self._cache:
-                self._cache.move_to_end(key)
-                return self._cache[key]
-        with self.solving():
-            spec, mech = self.edit(overrides)
-            out = cycle_payload(mech, steps)
+        checked = validated(self.mech, overrides, self._known) if overrides else {}
+        cycle = solve_cycle(self.mech, steps, checked, DRAGGED if whole_turn else CYCLE)
+        check_assembly(cycle, self.whole(steps) if whole_turn else None)
+        return cycle
+
+    def whole(self, steps: int) -> np.ndarray:
+        """Where the file's mechanism assembles at ``steps`` angles, ``(steps,)``."""
+        found = self._whole.get(steps)
+        if found is None:
+            found = solve_cycle(self.mech, steps).valid
+            self._whole.put(steps, found)
+        return found
+
+    def cycle(self, overrides: dict[str, float] | None = None, steps: int | None = None,
+              first: bool = False) -> dict[str, Any]:  # fmt: skip
+        """The whole payload of the variant ``overrides``, with its ``parameters``, ``editable`` and
+        ``overrides`` (kept: the caller must not change it).  ``first``: its labels placed at the first
+        sample only (carried along the turn from there), to show a page at once."""
+        steps = steps or self.steps
+        key = (steps, first, *sorted((overrides or {}).items()))
+        found = self._full.get(key)
+        if found is not None:
+            return found
+        cycle = self.solve(overrides, steps)
+        out = full_payload(cycle, 1 if first else self.placed)
         out["editable"] = self.spec is not None
-        out["overrides"] = dict(overrides)
-        out["parameters"] = self.parameters(mech)
-        with self._lock:
-            self._cache[key] = out
-            while len(self._cache) > self._size:
-                self._cache.popitem(last=False)
+        out["overrides"] = dict(cycle.overrides)
+        masses = cycle.kin.mass_properties
+        out["parameters"] = variant_parameters(cycle.mech, cycle.overrides, masses, self._editable)
+        self._full.put(key, out)
         return out
+
+    def edit(self, overrides: dict[str, float], steps: int | None = None, whole_turn: bool = False) -> bytes:
+        """The compact answer (JSON) to the edit ``overrides``: :func:`linkwork.web.update.edit_payload`."""
+        found = self.cached_edit(overrides, steps, whole_turn)
+        if found is None:
+            # a drag (whole_turn) is answered without the strokes and the plans' frames, the scheme's symbols of
+            # DRAGGED angles, to answer in time
+            found = dumps(edit_payload(self.solve(overrides, steps, whole_turn), self._editable, whole_turn))
+            self._edits.put(self._edit_key(overrides, steps, whole_turn), found)
+        return found
+
+    def cached_edit(self, overrides: dict[str, float], steps: int | None, whole_turn: bool) -> bytes | None:
+        """The answer to an edit solved before, or None."""
+        return self._edits.get(self._edit_key(overrides, steps, whole_turn))
+
+    def _edit_key(self, overrides: dict[str, float], steps: int | None, whole_turn: bool) -> tuple[Any, ...]:
+        return (steps or self.steps, whole_turn, *sorted(overrides.items()))
+
+    def saved_name(self) -> str:
+        """The name a saved file is offered under: the file's, ``-edited`` (letters, digits, ``._-`` only)."""
+        source = str(self.mech.source or self.mech.name or "mechanism")
+        stem = re.sub(r"[^A-Za-z0-9._-]+", "-", source.replace("\\", "/").rsplit("/", 1)[-1])
+        stem = re.sub(r"\.ya?ml$", "", stem, flags=re.IGNORECASE).strip(".-") or "mechanism"
+        return f"{stem[:80]}-edited.yaml"
+
+    def pose(self, angle_deg: float, overrides: dict[str, float] | None = None) -> dict[str, Any]:
+        """Every point at one crank angle (deg), of the variant ``overrides``; see :func:`pose_payload`."""
+        checked = validated(self.mech, overrides, self._known) if overrides else {}
+        return pose_payload(self.mech, angle_deg, checked)
+
+    def file_text(self, overrides: dict[str, float]) -> str:
+        """The file of the mechanism with ``overrides`` written in, its comments and layout kept."""
+        return file_text(self.mech, validated(self.mech, overrides))
+
+    def newest(self, client: str | None, seq: int | None) -> bool:
+        """Note edit ``seq`` of ``client``; False where the client has sent a newer one (this one is superseded)."""
+        if client is None or seq is None:
+            return True
+        with self._lock:
+            known = self._newest.get(client, -math.inf)
+            if seq >= known:
+                self._newest[client] = seq
+            self._newest.move_to_end(client)
+            while len(self._newest) > CLIENTS:
+                self._newest.popitem(last=False)
+            return seq >= known
+
+    def superseded(self, client: str | None, seq: int | None) -> bool:
+        """Whether ``client`` has sent an edit newer than ``seq``."""
+        if client is None or seq is None:
+            return False
+        with self._lock:
+            return self._newest.get(client, -math.inf) > seq
+

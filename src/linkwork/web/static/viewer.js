@@ -4,21 +4,32 @@
 // point at (x, y) metres is drawn at (1000 x, -1000 y).  The plans are drawn in millimetres of the
 // sheet: a plan vector u is drawn u / scale mm long (scale in units per mm, data-scale on the svg),
 // with y flipped the same way.  Everything comes from one payload (GET api/cycle, POST api/solve, or
-// the data embedded by linkwork view --export); moving the crank only indexes its arrays.
+// the data embedded by linkwork view --export), turned into a model of typed arrays; an edit's compact
+// answer (POST api/edit) is merged into it.  Moving the crank only indexes its arrays.
+//
+// This file is the core (the model, the scheme, the plans, the charts, the structure, the crank);
+// forces.js draws the forces on the scheme and editing.js the edits (the panel, dragging, undo, saving),
+// each through the hooks of window.linkworkViewer.
 "use strict";
 
 (function () {
   const NS = "http://www.w3.org/2000/svg";
   const state = {
-    data: null, // the payload shown
-    base: null, // the payload of the mechanism as loaded
+    data: null, // the model shown
+    full: null, // the model of the last whole payload (its labels placed): edits are merged into it
+    base: null, // the model of the mechanism as loaded
     embedded: false,
     index: 0,
     playing: false,
     position: 0, // fractional sample while playing
     last: null,
     chosen: null, // keys of the charted series
-    update: [], // functions (i) -> void run on every change of the crank angle
+    parts: {}, // by part of the page, the functions (i) -> void run on every change of the crank angle
+    keys: {}, // by part, what it was built for
+    chartUpdate: [],
+    charts: [],
+    hooks: { build: [], show: [], index: [] },
+    updates: 0, // edits' answers shown
   };
 
   const $ = (id) => document.getElementById(id);
@@ -38,13 +49,168 @@
     return e;
   }
 
-  const X = (p) => (1000 * p[0]).toFixed(3);
-  const Y = (p) => (-1000 * p[1]).toFixed(3);
+  const X = (p) => (1000 * p[0]).toFixed(4);
+  const Y = (p) => (-1000 * p[1]).toFixed(4);
   function fmt(v, digits) {
     if (v === null || v === undefined || !isFinite(v)) return "-";
     const a = Math.abs(v);
     if (a !== 0 && (a >= 1e6 || a < 1e-3)) return Number(v).toExponential((digits || 4) - 1);
     return String(Number(Number(v).toPrecision(digits || 4)));
+  }
+
+  // ------------------------------------------------------------------ the model
+
+  // An array of any rank as flat numbers and a shape; NaN where the payload has null.
+  class Grid {
+    constructor(data, shape) { this.data = data; this.shape = shape; }
+    static nested(list, rank) {
+      const shape = [];
+      let x = list;
+      for (let r = 0; r < rank; r++) { shape.push(x ? x.length : 0); x = x && x.length ? x[0] : null; }
+      const data = new Float64Array(shape.reduce((a, b) => a * b, 1));
+      let k = 0;
+      const walk = (v, r) => {
+        if (r === rank) { data[k++] = v === null ? NaN : v; return; }
+        for (let i = 0; i < shape[r]; i++) walk(v === null ? null : v[i], r + 1);
+      };
+      walk(list, 0);
+      return new Grid(data, shape);
+    }
+    static compact(c) {
+      let bytes;
+      if (Uint8Array.fromBase64) bytes = Uint8Array.fromBase64(c.b64);
+      else {
+        const raw = atob(c.b64);
+        bytes = new Uint8Array(raw.length);
+        for (let i = 0; i < raw.length; i++) bytes[i] = raw.charCodeAt(i);
+      }
+      const Type = { f4: Float32Array, f8: Float64Array, u1: Uint8Array }[c.dtype];
+      return new Grid(new Type(bytes.buffer), c.shape);
+    }
+    static of(x, rank) { return x && x.b64 !== undefined ? Grid.compact(x) : Grid.nested(x, rank); }
+    // the vector of the last axis at leading indices (i, j): an array, or null where it is NaN
+    at(i, j) {
+      const sh = this.shape, d = this.data, n = sh[sh.length - 1];
+      const k = (sh.length === 3 ? i * sh[1] + j : i) * n;
+      const x = d[k];
+      if (x !== x) return null; // NaN
+      return n === 2 ? [x, d[k + 1]] : n === 3 ? [x, d[k + 1], d[k + 2]] : Array.from(d.subarray(k, k + n));
+    }
+    list() { return Array.from(this.data, (v) => (isNaN(v) ? null : v)); }
+  }
+
+  function place(pose, xy) {
+    const c = Math.cos(pose[2]), s = Math.sin(pose[2]);
+    return [pose[0] + c * xy[0] - s * xy[1], pose[1] + s * xy[0] + c * xy[1]];
+  }
+
+  // the model of a whole payload
+  function model(d) {
+    const scene = d.scene;
+    const m = Object.assign({}, d);
+    m.steps = d.angles_deg.length;
+    m.positions = Grid.of(d.positions, 3);
+    m.poses = Grid.of(scene.poses, 3);
+    m.plans = {};
+    for (const kind in d.plans) m.plans[kind] = Object.assign({}, d.plans[kind], { values: Grid.of(d.plans[kind].values, 3) });
+    m.scene = Object.assign({}, scene, { plans: {} });
+    m.scene.labels = scene.labels.map((lab) => Object.assign({}, lab, { centre: Grid.of(lab.centre, 2) }));
+    for (const kind in scene.plans) {
+      m.scene.plans[kind] = Object.assign({}, scene.plans[kind], { centres: Grid.of(scene.plans[kind].centres, 3) });
+    }
+    if (d.forces && d.forces.values) m.forces = Object.assign({}, d.forces, { values: Grid.of(d.forces.values, 3) });
+    return m;
+  }
+
+  // an edit's answer merged into the model of the last whole payload: the labels move with what they name
+  function merge(full, ans) {
+    const m = Object.assign({}, full, {
+      overrides: ans.overrides, parameters: ans.parameters, events: ans.events, warnings: ans.warnings,
+      local: ans.local, extremes: ans.extremes || full.extremes, stale: ans.extremes ? null : "extremes",
+    });
+    m.valid = Array.from(Grid.of(ans.valid, 1).data, (v) => Boolean(v));
+    m.poses = Grid.of(ans.scene.poses, 3);
+    m.positions = positionsOf(m);
+    m.plans = {};
+    m.scene = Object.assign({}, full.scene, {
+      size: ans.scene.size, r: ans.scene.r, em: ans.scene.em, items: ans.scene.items, plans: {},
+    });
+    m.scene.labels = full.scene.labels.map((lab, k) => Object.assign({}, lab, {
+      at: ans.scene.label_at[k], centre: movedLabel(full, m, lab, ans.scene.label_at[k]),
+    }));
+    for (const kind in full.plans) {
+      const old = full.plans[kind];
+      const plan = Object.assign({}, old, { scale_per_mm: ans.plans[kind].scale_per_mm, values: Grid.of(ans.plans[kind].values, 3) });
+      m.plans[kind] = plan;
+      const look = Object.assign({}, full.scene.plans[kind], ans.scene.plans[kind]);
+      look.centres = movedPlanLabels(old, plan, full.scene.plans[kind].centres);
+      m.scene.plans[kind] = look;
+    }
+    const values = Grid.of(ans.series.values, 2);
+    const n = m.steps;
+    m.series = full.series.map((s) => {
+      const k = ans.series.keys.indexOf(s.key);
+      if (k < 0) return Object.assign({}, s, { values: new Array(n).fill(null) });
+      return Object.assign({}, s, { values: Array.from(values.data.subarray(k * n, (k + 1) * n), (v) => (isNaN(v) ? null : v)) });
+    });
+    m.forces = Object.assign({}, ans.forces);
+    if (ans.forces.values) m.forces.values = Grid.of(ans.forces.values, 3);
+    return m;
+  }
+
+  // every point at every sample from the links' poses and the points in their links' axes
+  function positionsOf(m) {
+    const n = m.steps, P = m.points.length, N = m.poses.shape[1], q = m.poses.data;
+    const data = new Float64Array(n * P * 2).fill(NaN);
+    for (let p = 0; p < P; p++) {
+      const link = m.points[p].link, [lx, ly] = m.local[p];
+      for (let i = 0; i < n; i++) {
+        const k = (i * P + p) * 2;
+        if (link === 0) { data[k] = lx; data[k + 1] = ly; continue; }
+        if (!m.valid[i]) continue;
+        const b = (i * N + link) * 3, c = Math.cos(q[b + 2]), s = Math.sin(q[b + 2]);
+        data[k] = q[b] + c * lx - s * ly; data[k + 1] = q[b + 1] + s * lx + c * ly;
+      }
+    }
+    return new Grid(data, [n, P, 2]);
+  }
+
+  // a label's centres, moved as its anchor moves from the placed model to the edited one
+  function movedLabel(full, m, lab, at) {
+    const n = m.steps, out = new Float64Array(2 * n).fill(NaN);
+    const anchor = (mod, i, xy) => {
+      if (lab.link === 0) return xy;
+      const pose = mod.valid[i] ? mod.poses.at(i, lab.link) : null;
+      return pose ? place(pose, xy) : null;
+    };
+    let fallback = null;
+    for (let i = 0; i < n && !fallback; i++) {
+      const c = lab.centre.at(i, 0), a = anchor(full, i, lab.at);
+      if (c && a) fallback = [c[0] - a[0], c[1] - a[1]];
+    }
+    for (let i = 0; i < n; i++) {
+      const a = anchor(m, i, at);
+      if (!a) continue;
+      const c = lab.centre.at(i, 0), a0 = anchor(full, i, lab.at);
+      const off = c && a0 ? [c[0] - a0[0], c[1] - a0[1]] : fallback || [m.scene.em, m.scene.em];
+      out[2 * i] = a[0] + off[0]; out[2 * i + 1] = a[1] + off[1];
+    }
+    return new Grid(out, [n, 2]);
+  }
+
+  function movedPlanLabels(old, plan, centres) {
+    const [n, L] = centres.shape;
+    const out = new Float64Array(n * L * 2).fill(NaN);
+    for (let i = 0; i < n; i++) {
+      for (let j = 0; j < L; j++) {
+        const c = centres.at(i, j), v0 = old.values.at(i, j), v = plan.values.at(i, j);
+        if (!c || !v0 || !v) continue;
+        const k = (i * L + j) * 2;
+        out[k] = v[0] / plan.scale_per_mm + c[0] - v0[0] / old.scale_per_mm;
+        out[k + 1] = v[1] / plan.scale_per_mm + c[1] - v0[1] / old.scale_per_mm;
+      }
+    }
+    return new Grid(out, [n, L, 2]);
   }
 
   // ------------------------------------------------------------------ loading
@@ -54,38 +220,79 @@
     const node = $("linkwork-data");
     if (node && node.textContent.trim()) {
       state.embedded = true;
-      show(JSON.parse(node.textContent), true);
+      load(JSON.parse(node.textContent));
       return;
     }
     try {
-      const r = await fetch("api/cycle", { headers: { Accept: "application/json" } });
+      // first the cycle with its labels placed at the position shown (at once), then placed along the cycle
+      const r = await fetch("api/cycle?labels=first", { headers: { Accept: "application/json" } });
       const body = await r.json();
       if (!r.ok) throw new Error(body.error || r.statusText);
-      show(body, true);
+      load(body);
+      if (body.labels_placed < body.steps) placed();
     } catch (err) {
       showError(String(err.message || err));
     }
   }
 
-  function show(data, isBase) {
-    state.data = data;
-    if (isBase) state.base = data;
+  // the mechanism as loaded with its labels placed along the cycle: shown where the page still shows it
+  async function placed() {
+    try {
+      const r = await fetch("api/cycle", { headers: { Accept: "application/json" } });
+      if (!r.ok) return;
+      const m = model(await r.json());
+      const shown = state.data === state.base;
+      if (state.full === state.base) state.full = m;
+      state.base = m;
+      if (shown) show(m);
+    } catch (err) {
+      // the server went away: the labels stay where they are
+    }
+  }
+
+  // a mechanism's whole payload, as loaded: the page is built for it
+  function load(data) {
+    const m = model(data);
+    state.base = state.full = m;
     $("loading").hidden = true;
-    document.title = data.name + ": linkwork viewer";
-    $("title").textContent = data.name;
-    $("formula").textContent = data.structure.formula;
-    state.update = [];
-    const n = data.angles_deg.length;
-    const slider = $("angle");
-    slider.max = String(n - 1);
+    document.title = m.name + ": linkwork viewer";
+    $("title").textContent = m.name;
+    $("formula").textContent = m.structure.formula;
+    buildChoice(m);
+    fit(m.scene);
+    for (const f of state.hooks.build) f(m);
+    show(m);
+  }
+
+  // a model on the page; ``edited``: an edit's answer (merged), else a whole payload
+  function show(m, edited) {
+    state.data = m;
+    if (!edited) state.full = m;
+    else state.updates += 1;
+    const n = m.steps;
+    $("angle").max = String(n - 1);
     state.index = Math.min(state.index, n - 1);
-    buildScheme(data);
-    buildPlan(data, "velocity");
-    buildPlan(data, "acceleration");
-    buildCharts(data);
-    buildStructure(data);
-    if (isBase) buildParams(data);
+    // each part is built again only where what it draws changed (an edit changes the values, seldom the parts)
+    drawn("scheme", schemeKey(m), () => buildScheme(m), () => refreshScheme(m));
+    for (const kind of ["velocity", "acceleration"]) drawn(kind, planKey(m, kind), () => buildPlan(m, kind), () => refreshPlan(m, kind));
+    drawCharts(m);
+    buildStructure(m);
+    for (const f of state.hooks.show) f(m, edited);
+    $("scheme").setAttribute("data-updates", String(state.updates));
+    // the labels as the scene placed them, or moved with their points since (an edit's answer)
+    $("scheme").setAttribute("data-labels", edited ? "moved" : "placed");
+    $("scheme").setAttribute("data-labels-placed", String(m.labels_placed));
     setIndex(state.index);
+  }
+
+  // build a part of the page where its key changed, else refresh it; its functions (i) -> void of the crank
+  // angle are state.parts[name], built with it
+  function drawn(name, key, build, refresh) {
+    if (state.keys[name] !== key) {
+      state.keys[name] = key;
+      state.parts[name] = [];
+      build();
+    } else refresh();
   }
 
   // ------------------------------------------------------------------ the scheme
@@ -96,54 +303,83 @@
   const GROUP = { path: "paths", hatch: "ground", support: "ground", guide: "ground" };
   const CLASS = { pivot: "joint" };
 
-  function placeAt(pose, xy) {
-    if (!pose || pose[0] === null) return null;
-    const c = Math.cos(pose[2]), s = Math.sin(pose[2]);
-    return xy.map((v) => [pose[0] + c * v[0] - s * v[1], pose[1] + s * v[0] + c * v[1]]);
-  }
-
-  function buildScheme(data) {
-    const root = $("scheme");
-    root.replaceChildren();
-    const scene = data.scene;
+  // the view of the scheme: the scene's extent, two pivots' radii around it
+  function fit(scene) {
     const [x0, y0, x1, y1] = scene.extent;
-    const pad = 2000 * scene.r; // mm: two pivots' radii
-    root.setAttribute("viewBox", [1000 * x0 - pad, -1000 * y1 - pad, 1000 * (x1 - x0) + 2 * pad, 1000 * (y1 - y0) + 2 * pad]
-      .map((v) => v.toFixed(3)).join(" "));
+    const pad = 2000 * scene.r;
+    state.view = [1000 * x0 - pad, -1000 * y1 - pad, 1000 * (x1 - x0) + 2 * pad, 1000 * (y1 - y0) + 2 * pad];
+    const root = $("scheme");
+    root.setAttribute("viewBox", state.view.map((v) => v.toFixed(3)).join(" "));
     root.setAttribute("preserveAspectRatio", "xMidYMid meet");
     root.setAttribute("data-transform", "x_svg = 1000 x, y_svg = -1000 y (mm, x and y in m)");
-    const groups = {};
-    for (const id of ["paths", "ground", "links", "pairs", "labels"]) groups[id] = svg("g", { id: id }, root);
-    groups.labels.setAttribute("font-size", (1000 * scene.em).toFixed(3));
+  }
 
-    // trajectories of the moving points
-    const pos = data.positions;
-    for (const p of scene.paths) {
-      let d = "", pen = false;
-      for (let i = 0; i < pos.length; i++) {
-        const xy = pos[i][p];
-        if (!xy || xy[0] === null) { pen = false; continue; }
-        d += (pen ? "L" : "M") + X(xy) + "," + Y(xy);
-        pen = true;
-      }
-      if (d) svg("path", { class: "path", d: d, "data-point": data.points[p].label }, groups.paths);
-    }
-    for (const item of scene.items) drawItem(scene, item, groups[GROUP[item.kind] || (item.link === 0 || item.radius ? "pairs" : "links")]);
-    for (const lab of scene.labels) {
+  // the view grown to hold the scene's extent (never shrunk under the pointer)
+  function grow(scene) {
+    const [x, y, w, h] = state.view;
+    const old = [x, y, x + w, y + h];
+    fit(scene);
+    const [a, b, c, d] = state.view;
+    const box = [Math.min(old[0], a), Math.min(old[1], b), Math.max(old[2], a + c), Math.max(old[3], b + d)];
+    state.view = [box[0], box[1], box[2] - box[0], box[3] - box[1]];
+    $("scheme").setAttribute("viewBox", state.view.map((v) => v.toFixed(3)).join(" "));
+  }
+
+  // what the scheme's elements are: the items (not where their vertices are), the labels, the trajectories
+  function schemeKey(m) {
+    const items = m.scene.items.map((it) => [it.kind, it.link, it.name, it.closed, it.radius > 0, it.xy.length].join("/"));
+    return JSON.stringify([m.name, items, m.scene.labels.length, m.scene.paths]);
+  }
+
+  function buildScheme(m) {
+    const root = $("scheme");
+    let drawing = $("drawing");
+    if (!drawing) drawing = svg("g", { id: "drawing" }, root);
+    drawing.replaceChildren();
+    root.insertBefore(drawing, root.firstChild);
+    const scene = m.scene, update = state.parts.scheme;
+    const groups = {};
+    for (const id of ["paths", "ground", "links", "pairs", "labels"]) groups[id] = svg("g", { id: id }, drawing);
+    state.trajectories = scene.paths.map((p) => [p, svg("path", { class: "path", "data-point": m.points[p].label }, groups.paths)]);
+    state.fixed = [];
+    state.circles = [];
+    scene.items.forEach((item, k) => drawItem(k, item, groups[GROUP[item.kind] || (item.link === 0 || item.radius ? "pairs" : "links")]));
+    scene.labels.forEach((lab, k) => {
       const t = svg("text", { class: lab.kind === "link" ? "link-number" : "label", "text-anchor": "middle", "dominant-baseline": "central" }, groups.labels);
       t.textContent = lab.text;
-      state.update.push((i) => {
-        const c = lab.centre[i];
-        if (!c || c[0] === null) { t.setAttribute("visibility", "hidden"); return; }
+      update.push((i) => {
+        const c = state.data.scene.labels[k].centre.at(i, 0);
+        if (!c) { t.setAttribute("visibility", "hidden"); return; }
         t.setAttribute("visibility", "visible");
         t.setAttribute("x", X(c)); t.setAttribute("y", Y(c));
       });
-    }
-    groups.paths.setAttribute("visibility", $("show-paths").checked ? "visible" : "hidden");
+    });
+    groups.paths.setAttribute("display", $("show-paths").checked ? "inline" : "none");
+    refreshScheme(m);
   }
 
-  // one item: a circle (pivot, marker), an outline (polygon), a line or a polyline
-  function drawItem(scene, item, g) {
+  // what an edit changes that no crank angle does: the trajectories, the frame's items, the sizes of the
+  // pivots and of the text (they follow the drawing's size)
+  function refreshScheme(m) {
+    const pos = m.positions, P = pos.shape[1], d = pos.data;
+    for (const [p, el] of state.trajectories) {
+      const parts = [];
+      let pen = false;
+      for (let i = 0; i < m.steps; i++) {
+        const k = (i * P + p) * 2, x = d[k];
+        if (x !== x) { pen = false; continue; }
+        parts.push((pen ? "L" : "M") + Math.round(1e5 * x) / 100 + "," + Math.round(-1e5 * d[k + 1]) / 100);
+        pen = true;
+      }
+      el.setAttribute("d", parts.join(""));
+    }
+    for (const [k, put] of state.fixed) put(m.scene.items[k].xy);
+    for (const [k, el] of state.circles) el.setAttribute("r", (1000 * m.scene.items[k].radius).toFixed(4));
+    $("labels").setAttribute("font-size", (1000 * m.scene.em).toFixed(3));
+  }
+
+  // one item, the k-th of the scene: a circle (pivot, marker), an outline (polygon), a line or a polyline
+  function drawItem(k, item, g) {
     const cls = CLASS[item.kind] || item.kind;
     const attrs = { class: cls };
     if (item.kind === "bar" || item.kind === "plate") attrs["data-link"] = item.name;
@@ -151,7 +387,7 @@
     else attrs["data-joint"] = item.name;
     const tag = item.radius ? "circle" : item.closed ? "polygon" : item.xy.length === 2 ? "line" : "polyline";
     const e = svg(tag, attrs, g);
-    if (item.radius) e.setAttribute("r", (1000 * item.radius).toFixed(4));
+    if (item.radius) state.circles.push([k, e]);
     const put = (xy) => {
       if (!xy) { e.setAttribute("visibility", "hidden"); return; }
       e.setAttribute("visibility", "visible");
@@ -161,31 +397,46 @@
         e.setAttribute("x2", X(xy[1])); e.setAttribute("y2", Y(xy[1]));
       } else e.setAttribute("points", xy.map((v) => X(v) + "," + Y(v)).join(" "));
     };
-    if (item.link === 0) put(item.xy);
-    else state.update.push((i) => put(placeAt(scene.poses[i][item.link], item.xy)));
+    if (item.link === 0) { state.fixed.push([k, put]); return; }
+    state.parts.scheme.push((i) => {
+      const m = state.data, pose = m.valid[i] ? m.poses.at(i, item.link) : null;
+      put(pose ? m.scene.items[k].xy.map((v) => place(pose, v)) : null);
+    });
   }
 
   // ------------------------------------------------------------------ the plans
 
-  function buildPlan(data, kind) {
+  const KINDS = ["absolute", "rotation", "normal", "tangential", "transport", "coriolis", "sliding"];
+
+  // what a plan's elements are: its points and vectors, its frame and the size of its labels
+  function planKey(m, kind) {
+    const look = m.scene.plans[kind], plan = m.plans[kind];
+    return JSON.stringify([m.name, look.frame, look.em, look.kinds, plan.labels, plan.vectors.length]);
+  }
+
+  // the plan's scale may change with an edit: its elements read it, and the model, when they are placed
+  function refreshPlan(m, kind) {
+    $(kind + "-plan").setAttribute("data-scale", String(m.plans[kind].scale_per_mm));
+  }
+
+  function buildPlan(m, kind) {
     const root = $(kind + "-plan");
     root.replaceChildren();
-    const plan = data.plans[kind];
-    const look = data.scene.plans[kind];
-    const scale = plan.scale_per_mm;
-    root.setAttribute("data-scale", String(scale));
+    const plan = m.plans[kind];
+    const look = m.scene.plans[kind];
+    refreshPlan(m, kind);
     root.setAttribute("data-transform", "x_svg = u_x / scale, y_svg = -u_y / scale (mm of the drawing)");
     // one frame for the whole cycle, so that the plan does not jump while the crank turns (the scene's:
     // it holds the plans of 95 % of the positions; near a dead point accelerations grow without bound)
     const [x0, y0, x1, y1] = look.frame;
-    const m = Math.max(x1 - x0, y1 - y0, 1e-9);
-    const pad = 0.1 * m;
+    const size = Math.max(x1 - x0, y1 - y0, 1e-9);
+    const pad = 0.1 * size;
     root.setAttribute("viewBox", [x0 - pad, -y1 - pad, x1 - x0 + 2 * pad, y1 - y0 + 2 * pad].map((v) => v.toFixed(3)).join(" "));
     const defs = svg("defs", {}, root);
     for (const k of KINDS) {
       const mk = svg("marker", { id: `${kind}-head-${k}`, viewBox: "0 0 10 10", refX: "10", refY: "5", orient: "auto-start-reverse", markerUnits: "userSpaceOnUse" }, defs);
-      mk.setAttribute("markerWidth", (0.03 * m).toFixed(3));
-      mk.setAttribute("markerHeight", (0.03 * m).toFixed(3));
+      mk.setAttribute("markerWidth", (0.03 * size).toFixed(3));
+      mk.setAttribute("markerHeight", (0.03 * size).toFixed(3));
       svg("path", { d: "M0,0 L10,5 L0,10 z", class: "head " + k }, mk);
     }
     const grid = svg("g", {}, root);
@@ -193,9 +444,9 @@
     svg("line", { class: "grid", x1: 0, y1: -y1 - pad, x2: 0, y2: -y0 + pad }, grid);
     const lines = svg("g", {}, root);
     const dots = svg("g", { "font-size": look.em.toFixed(3) }, root);
-    const at = (i, j) => {
-      const v = plan.values[i][j];
-      return v && v[0] !== null ? [v[0] / scale, -v[1] / scale] : null;
+    const at = (now, i, j) => {
+      const v = state.data.valid[i] ? now.values.at(i, j) : null;
+      return v ? [v[0] / now.scale_per_mm, -v[1] / now.scale_per_mm] : null;
     };
     const pole = plan.labels.indexOf("p");
     const drawn = [];
@@ -206,7 +457,7 @@
       "marker-end": `url(#${kind}-head-${KINDS.includes(v.kind) ? v.kind : "rotation"})`,
     }, lines));
     const marks = plan.labels.map((lab, j) => {
-      const c = svg("circle", { class: "dot", r: (0.012 * m).toFixed(4), "data-label": lab }, dots);
+      const c = svg("circle", { class: "dot", r: (0.012 * size).toFixed(4), "data-label": lab }, dots);
       const main = j === pole || plan.absolute.includes(j); // a point of the mechanism, not of the construction
       const t = svg("text", { class: main ? "plabel" : "plabel minor", "text-anchor": "middle", "dominant-baseline": "central" }, dots);
       return [c, t];
@@ -215,37 +466,36 @@
     const caption = $(kind + "-caption");
     const unit = plan.unit === "m/s" ? "(m/s)/mm" : "(m/s²)/mm";
     const mu = kind === "velocity" ? "μv" : "μa";
-    state.update.push((i) => {
+    state.parts[kind].push((i) => {
+      const now = state.data.plans[kind], shown = state.data.scene.plans[kind];
       drawn.forEach((v, k) => {
-        const a = at(i, v.from), b = at(i, v.to), e = els[k];
-        const zero = a && b && Math.hypot(b[0] - a[0], b[1] - a[1]) < 1e-9 * m;
+        const a = at(now, i, v.from), b = at(now, i, v.to), e = els[k];
+        const zero = a && b && Math.hypot(b[0] - a[0], b[1] - a[1]) < 1e-9 * size;
         if (!a || !b || zero) { e.setAttribute("visibility", "hidden"); return; }
         e.setAttribute("visibility", "visible");
         e.setAttribute("x1", a[0].toFixed(4)); e.setAttribute("y1", a[1].toFixed(4));
         e.setAttribute("x2", b[0].toFixed(4)); e.setAttribute("y2", b[1].toFixed(4));
       });
       plan.labels.forEach((lab, j) => {
-        const p = at(i, j), [c, t] = marks[j];
-        const text = look.text[i][j], centre = look.centres[i][j];
+        const p = at(now, i, j), [c, t] = marks[j];
+        const text = shown.text[i][j], centre = shown.centres.at(i, j);
         if (!p) { c.setAttribute("visibility", "hidden"); t.setAttribute("visibility", "hidden"); return; }
         c.setAttribute("visibility", "visible");
         c.setAttribute("cx", p[0].toFixed(4)); c.setAttribute("cy", p[1].toFixed(4));
         // points that coincide share one label, the scene's (e.g. "e, knife_upper.edge")
-        if (!text || !centre || centre[0] === null) { t.setAttribute("visibility", "hidden"); return; }
+        if (!text || !centre) { t.setAttribute("visibility", "hidden"); return; }
         t.setAttribute("visibility", "visible");
         t.textContent = text;
         t.setAttribute("x", centre[0].toFixed(3)); t.setAttribute("y", (-centre[1]).toFixed(3));
       });
       const parts = plan.absolute.map((j) => {
-        const v = plan.values[i][j];
-        return v && v[0] !== null ? `${plan.labels[j]} ${fmt(Math.hypot(v[0], v[1]), 3)}` : `${plan.labels[j]} -`;
+        const v = state.data.valid[i] ? now.values.at(i, j) : null;
+        return v ? `${plan.labels[j]} ${fmt(Math.hypot(v[0], v[1]), 3)}` : `${plan.labels[j]} -`;
       });
-      caption.textContent = `${kind} plan, pole p, ${mu} = ${scale} ${unit} of the plan drawn full size (shown scaled to fit); ` +
+      caption.textContent = `${kind} plan, pole p, ${mu} = ${now.scale_per_mm} ${unit} of the plan drawn full size (shown scaled to fit); ` +
         `|${kind === "velocity" ? "v" : "a"}| in ${plan.unit}: ${parts.join(", ")}`;
     });
   }
-
-  const KINDS = ["absolute", "rotation", "normal", "tangential", "transport", "coriolis", "sliding"];
 
   // the kinds of vector the plan draws over the cycle, each a short stroke in its style and its name
   function legend(root, kind, kinds) {
@@ -263,16 +513,16 @@
 
   // ------------------------------------------------------------------ charts
 
-  function buildCharts(data) {
+  function buildChoice(m) {
     const choice = $("series-choice");
     choice.replaceChildren();
-    const keys = data.series.map((s) => s.key);
+    const keys = m.series.map((s) => s.key);
     if (!state.chosen || !state.chosen.some((k) => keys.includes(k))) {
       const want = ["torque", keys.find((k) => k.startsWith("slider:") && k.endsWith(":s")), "foundation:fy"];
       state.chosen = want.filter((k) => k && keys.includes(k));
       if (!state.chosen.length) state.chosen = keys.slice(0, 2);
     }
-    for (const s of data.series) {
+    for (const s of m.series) {
       const label = html("label", null, choice);
       const box = html("input", null, label, { type: "checkbox", "data-series": s.key });
       box.checked = state.chosen.includes(s.key);
@@ -283,7 +533,6 @@
         setIndex(state.index);
       });
     }
-    drawCharts(data);
   }
 
   function ticks(lo, hi, count) {
@@ -298,57 +547,75 @@
   // a chart's viewBox (W x H) and the margins of its plot (left, right, top, bottom)
   const CHART = { W: 640, H: 150, L: 64, R: 12, T: 20, B: 22 };
 
-  function drawCharts(data) {
+  // the charts of the chosen series: built when the choice changes, their curves and axes redrawn per model
+  function drawCharts(m) {
+    const key = JSON.stringify([m.name, m.steps, state.chosen]);
+    if (state.chartKey !== key) {
+      state.chartKey = key;
+      buildCharts(m);
+    }
+    for (const chart of state.charts) chart.refresh(m);
+  }
+
+  function buildCharts(m) {
     const root = $("charts");
     root.replaceChildren();
     state.chartUpdate = [];
+    state.charts = [];
+    for (const key of state.chosen) if (m.series.some((x) => x.key === key)) state.charts.push(chart(root, key));
+    const note = html("div", "x: crank angle turned from the first position, deg; click a chart to move the crank there", root);
+    note.className = "note";
+  }
+
+  function chart(root, key) {
     const { W, H, L, R, T, B } = CHART;
-    const n = data.turn_deg.length;
-    const xOf = (i) => L + (W - L - R) * (data.turn_deg[i] / 360);
-    for (const key of state.chosen) {
-      const s = data.series.find((x) => x.key === key);
-      if (!s) continue;
-      const g = svg("svg", { class: "chart", viewBox: `0 0 ${W} ${H}`, preserveAspectRatio: "none", "data-series": key }, root);
-      const vals = s.values.filter((v) => v !== null);
-      let lo = vals.length ? Math.min(...vals) : 0, hi = vals.length ? Math.max(...vals) : 1;
+    const xOf = (i) => L + (W - L - R) * (state.data.turn_deg[i] / 360);
+    const g = svg("svg", { class: "chart", viewBox: `0 0 ${W} ${H}`, preserveAspectRatio: "none", "data-series": key }, root);
+    svg("line", { class: "axis", x1: L, y1: H - B, x2: W - R, y2: H - B }, g);
+    svg("line", { class: "axis", x1: L, y1: T, x2: L, y2: H - B }, g);
+    for (const t of [0, 90, 180, 270, 360]) {
+      const x = L + (W - L - R) * t / 360;
+      svg("text", { x: x, y: H - 6, "text-anchor": "middle" }, g).textContent = t + "°";
+    }
+    const axis = svg("g", {}, g), curve = svg("path", { class: "curve" }, g);
+    const title = svg("text", { class: "title", x: L + 4, y: 13 }, g);
+    const cursor = svg("line", { class: "cursor", y1: T, y2: H - B }, g);
+    g.addEventListener("pointerdown", (ev) => pick(ev, g));
+    g.addEventListener("pointermove", (ev) => { if (ev.buttons) pick(ev, g); });
+    const out = { s: null };
+    out.refresh = (m) => {
+      const s = (out.s = m.series.find((x) => x.key === key));
+      let lo = Infinity, hi = -Infinity;
+      for (const v of s.values) if (v !== null) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+      if (lo === Infinity) { lo = 0; hi = 1; }
       if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
       const yOf = (v) => T + (H - T - B) * (1 - (v - lo) / (hi - lo));
       g.setAttribute("data-lo", String(lo));
       g.setAttribute("data-hi", String(hi));
       g.setAttribute("data-transform", `x = ${L} + ${W - L - R} turn / 360, y = ${T} + ${H - T - B} (hi - v) / (hi - lo)`);
-      svg("line", { class: "axis", x1: L, y1: H - B, x2: W - R, y2: H - B }, g);
-      svg("line", { class: "axis", x1: L, y1: T, x2: L, y2: H - B }, g);
-      if (lo < 0 && hi > 0) svg("line", { class: "zero", x1: L, y1: yOf(0), x2: W - R, y2: yOf(0) }, g);
+      axis.replaceChildren();
+      if (lo < 0 && hi > 0) svg("line", { class: "zero", x1: L, y1: yOf(0), x2: W - R, y2: yOf(0) }, axis);
       for (const t of ticks(lo, hi, 3)) {
         const y = yOf(t);
-        svg("line", { class: "axis", x1: L - 4, y1: y, x2: L, y2: y }, g);
-        svg("text", { x: L - 6, y: y + 4, "text-anchor": "end" }, g).textContent = fmt(t, 3);
-      }
-      for (const t of [0, 90, 180, 270, 360]) {
-        const x = L + (W - L - R) * t / 360;
-        svg("text", { x: x, y: H - 6, "text-anchor": "middle" }, g).textContent = t + "°";
+        svg("line", { class: "axis", x1: L - 4, y1: y, x2: L, y2: y }, axis);
+        svg("text", { x: L - 6, y: y + 4, "text-anchor": "end" }, axis).textContent = fmt(t, 3);
       }
       let d = "", pen = false;
-      for (let i = 0; i < n; i++) {
+      for (let i = 0; i < s.values.length; i++) {
         const v = s.values[i];
         if (v === null) { pen = false; continue; }
         d += (pen ? "L" : "M") + xOf(i).toFixed(2) + "," + yOf(v).toFixed(2);
         pen = true;
       }
-      svg("path", { class: "curve", d: d }, g);
-      const title = svg("text", { class: "title", x: L + 4, y: 13 }, g);
-      const cursor = svg("line", { class: "cursor", y1: T, y2: H - B }, g);
-      g.addEventListener("pointerdown", (ev) => pick(ev, g));
-      g.addEventListener("pointermove", (ev) => { if (ev.buttons) pick(ev, g); });
-      state.chartUpdate.push((i) => {
-        const x = xOf(i).toFixed(2);
-        cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
-        cursor.setAttribute("data-index", String(i));
-        title.textContent = `${s.label}, ${s.unit}: ${fmt(s.values[i])} at ${data.turn_deg[i].toFixed(1)}° turned`;
-      });
-    }
-    const note = html("div", "x: crank angle turned from the first position, deg; click a chart to move the crank there", root);
-    note.className = "note";
+      curve.setAttribute("d", d);
+    };
+    state.chartUpdate.push((i) => {
+      const x = xOf(i).toFixed(2), s = out.s;
+      cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
+      cursor.setAttribute("data-index", String(i));
+      title.textContent = `${s.label}, ${s.unit}: ${fmt(s.values[i])} at ${state.data.turn_deg[i].toFixed(1)}° turned`;
+    });
+    return out;
   }
 
   // the crank angle under the pointer: the pointer mapped into the chart's own coordinates by the SVG's
@@ -368,34 +635,40 @@
 
   // ------------------------------------------------------------------ structure
 
-  function buildStructure(data) {
+  function buildStructure(m) {
     const root = $("structure");
+    const said = JSON.stringify([m.name, m.structure.formula, m.extremes, m.stale, m.forces.checks, m.forces.available, m.events, m.warnings]);
+    if (root.getAttribute("data-said") === said) return; // a drag changes none of it often
+    root.setAttribute("data-said", said);
     root.replaceChildren();
-    const s = data.structure;
+    const s = m.structure;
     const tail = s.p4 ? ` - ${s.p4}` : "";
     html("p", `moving links n = ${s.n_links}, lower pairs p5 = ${s.p5}, higher pairs p4 = ${s.p4}; ` +
       `W = 3n - 2p5 - p4 = 3·${s.n_links} - 2·${s.p5}${tail} = ${s.dof}; redundant constraints q = ${s.redundant}`, root);
-    const drive = data.drives[0];
+    const drive = m.drives[0];
     html("p", `drive: joint ${drive.joint}, ${fmt(drive.rpm, 4)} rpm ${drive.direction}`, root);
     table(root, ["#", "group", "kind", "links", "joints"],
       s.groups.map((g, i) => [i + 1, g.formula_part, g.kind, g.link_names.join(", "), g.joints.join(", ")]));
     html("p", `structural formula: ${s.formula}`, root);
-    if (data.extremes.length) {
-      table(root, ["", "stroke", "time ratio K", "+ stroke / other"], data.extremes.map((e) => [
+    if (m.extremes.length) {
+      table(root, ["", "stroke", "time ratio K", "+ stroke / other"], m.extremes.map((e) => [
         `${e.kind} ${e.name}`,
         e.kind === "slider" ? `${fmt(1000 * e.stroke)} mm` : `${fmt((e.stroke * 180) / Math.PI)}°`,
         fmt(e.time_ratio),
         fmt(e.forward_time_ratio),
-      ]));
+      ])).setAttribute("id", "extremes");
+      if (m.stale === "extremes") html("p", "(strokes of the mechanism before the drag: solved again when it ends)", root, { class: "note" });
     }
-    if (data.forces.available) {
-      const c = data.forces.checks || {};
+    if (m.forces.available && m.forces.checks) {
+      const c = m.forces.checks;
       html("p", `forces: power balance ${fmt(c.driving_torque_vs_power_balance, 2)}, momentum ${fmt(c.foundation_force_vs_momentum, 2)} (relative discrepancy of the cross-checks)`, root);
+    } else if (m.forces.available) {
+      html("p", "forces: the cross-checks come with the whole solution, once the edit is made", root);
     } else {
-      html("p", `forces: not computed (${data.forces.reason})`, root);
+      html("p", `forces: not computed (${m.forces.reason})`, root);
     }
-    for (const e of data.events) html("p", `${e.kind}: ${e.message}`, root, { class: "warn" });
-    for (const w of data.warnings.concat(s.warnings || [])) html("p", w, root, { class: "warn" });
+    for (const e of m.events) html("p", `${e.kind}: ${e.message}`, root, { class: "warn" });
+    for (const w of m.warnings.concat(s.warnings || [])) html("p", w, root, { class: "warn" });
   }
 
   function table(parent, head, rows) {
@@ -407,92 +680,14 @@
       const r = html("tr", null, body);
       for (const c of row) html("td", String(c), r);
     }
+    return t;
   }
 
-  // ------------------------------------------------------------------ edits
-
-  const DISPLAY = {
-    length: ["mm", 1000], angle: ["deg", 180 / Math.PI], mass: ["kg", 1], inertia: ["kg m²", 1],
-  };
-
-  function buildParams(data) {
-    const root = $("params");
-    root.replaceChildren();
-    const note = $("edit-note");
-    const editable = data.editable && !state.embedded;
-    if (state.embedded) note.textContent = "This page was exported with its cycle precomputed; to edit the mechanism, run linkwork view on its file.";
-    else if (!data.editable) note.textContent = "This mechanism was given without its description: it cannot be edited here.";
-    else note.textContent = "Values as in the file (lengths in mm, angles in degrees); Apply solves the mechanism again on the server.";
-    $("apply").disabled = !editable;
-    $("reset").disabled = !editable;
-    let group = null;
-    for (const p of data.parameters || []) {
-      if (p.group !== group) {
-        group = p.group;
-        html("h3", group, root);
-      }
-      const [unit, k] = DISPLAY[p.kind];
-      const row = html("label", null, root, { class: "param" });
-      html("span", p.name + (p.note ? ` (${p.note})` : ""), row, { class: "name", title: p.name });
-      const input = html("input", null, row, { type: "number", step: "any", "data-param": p.name, "data-kind": p.kind });
-      input.value = String(Number((p.value * k).toPrecision(10)));
-      input.defaultValue = input.value;
-      input.disabled = !editable;
-      input.addEventListener("input", () => row.classList.toggle("changed", input.value !== input.defaultValue));
-      html("span", unit, row);
-    }
-  }
-
-  function overrides() {
-    const out = {};
-    const bad = [];
-    for (const input of $("params").querySelectorAll("input[data-param]")) {
-      if (input.value === input.defaultValue) continue;
-      const v = Number(input.value);
-      if (input.value.trim() === "" || !isFinite(v)) { bad.push(input.getAttribute("data-param")); continue; }
-      out[input.getAttribute("data-param")] = v / DISPLAY[input.getAttribute("data-kind")][1];
-    }
-    return { out, bad };
-  }
-
-  async function apply(ev) {
-    ev.preventDefault();
-    const { out, bad } = overrides();
-    if (bad.length) { showError(bad.map((b) => `${b}: enter a number`).join("\n")); return; }
-    $("apply").disabled = true;
-    $("edit-status").textContent = "solving…";
-    try {
-      const r = await fetch("api/solve", {
-        method: "POST", headers: { "Content-Type": "application/json", Accept: "application/json" },
-        body: JSON.stringify({ overrides: out }),
-      });
-      const body = await r.json().catch(() => ({ error: `the server answered ${r.status}` }));
-      if (!r.ok) { showError(body.error || `the server answered ${r.status}`); return; }
-      hideError();
-      show(body, false);
-      $("edit-status").textContent = Object.keys(out).length ? `${Object.keys(out).length} value(s) changed` : "";
-    } catch (err) {
-      showError(`no answer from the server: ${err.message || err}`);
-    } finally {
-      $("apply").disabled = false;
-      if ($("edit-status").textContent === "solving…") $("edit-status").textContent = "";
-    }
-  }
-
-  function reset() {
-    for (const input of $("params").querySelectorAll("input[data-param]")) {
-      input.value = input.defaultValue;
-      input.parentElement.classList.remove("changed");
-    }
-    hideError();
-    $("edit-status").textContent = "";
-    if (state.base) show(state.base, false);
-  }
+  // ------------------------------------------------------------------ messages
 
   function showError(text) {
     $("error-text").textContent = text;
     $("error").hidden = false;
-    $("edit-status").textContent = "";
   }
 
   function hideError() {
@@ -503,29 +698,30 @@
   // ------------------------------------------------------------------ the crank
 
   function setIndex(i) {
-    const data = state.data;
-    if (!data) return;
-    const n = data.angles_deg.length;
+    const m = state.data;
+    if (!m) return;
+    const n = m.steps;
     i = ((Math.round(i) % n) + n) % n;
     state.index = i;
     const slider = $("angle");
     if (Number(slider.value) !== i) slider.value = String(i);
-    for (const f of state.update) f(i);
-    for (const f of state.chartUpdate || []) f(i);
-    const deg = data.angles_deg[i];
+    for (const name in state.parts) for (const f of state.parts[name]) f(i);
+    for (const f of state.chartUpdate) f(i);
+    for (const f of state.hooks.index) f(i, m);
+    const deg = m.angles_deg[i];
     const root = $("scheme");
     root.setAttribute("data-index", String(i));
     root.setAttribute("data-angle-deg", String(deg));
-    $("angle-text").textContent = `crank ${(((deg % 360) + 360) % 360).toFixed(1)}°, turned ${data.turn_deg[i].toFixed(1)}° (sample ${i + 1} of ${n})`;
+    $("angle-text").textContent = `crank ${(((deg % 360) + 360) % 360).toFixed(1)}°, turned ${m.turn_deg[i].toFixed(1)}° (sample ${i + 1} of ${n})`;
     const note = $("pose-note");
-    note.hidden = data.valid[i];
-    note.textContent = data.valid[i] ? "" : "The mechanism does not assemble at this crank angle.";
+    note.hidden = m.valid[i];
+    note.textContent = m.valid[i] ? "" : "The mechanism does not assemble at this crank angle.";
   }
 
   function frame(t) {
     if (!state.playing) { state.last = null; return; }
     if (state.last !== null) {
-      const n = state.data.angles_deg.length;
+      const n = state.data.steps;
       const period = state.data.period_s || 4;
       state.position = (state.position + ((t - state.last) / 1000) * Number($("speed").value) * n / period) % n;
       const i = Math.floor(state.position);
@@ -550,16 +746,24 @@
     $("play").addEventListener("click", () => play(!state.playing));
     $("show-paths").addEventListener("change", (ev) => {
       const g = $("paths");
-      if (g) g.setAttribute("visibility", ev.target.checked ? "visible" : "hidden");
+      if (g) g.setAttribute("display", ev.target.checked ? "inline" : "none");
     });
-    $("edit-form").addEventListener("submit", apply);
-    $("reset").addEventListener("click", reset);
     $("error-close").addEventListener("click", hideError);
     document.addEventListener("keydown", (ev) => {
-      if (ev.target.tagName === "INPUT" || ev.target.tagName === "SELECT") return;
+      if (ev.target.tagName === "INPUT" || ev.target.tagName === "SELECT" || ev.ctrlKey || ev.metaKey) return;
       if (ev.key === " ") { ev.preventDefault(); play(!state.playing); }
+      else if (ev.key === "ArrowRight" || ev.key === "ArrowLeft") {
+        ev.preventDefault();
+        setIndex(state.index + (ev.key === "ArrowRight" ? 1 : -1) * (ev.shiftKey ? 10 : 1));
+        state.position = state.index;
+      }
     });
   }
+
+  window.linkworkViewer = {
+    state, $, svg, html, fmt, X, Y, place, Grid, model, merge, show, load, grow, setIndex, showError, hideError,
+    on: (name, f) => state.hooks[name].push(f),
+  };
 
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);
   else start();

@@ -1,0 +1,154 @@
+"""The viewer's edits: an edit's round trip against ``lw.forces`` of the same cycle, and updates a second while
+a handle is dragged in Chromium.
+
+Run with ``python benchmarks/bench_viewer.py [--name double-cut-shears] [--edits 200] [--drag 6]`` (the
+browser part needs Playwright and Debian's ``chromium``; ``--drag 0`` leaves it out).
+
+* The server is ``linkwork view NAME --port 0 --no-browser`` in its own process, as a user starts it.
+* An edit's round trip: ``POST /api/edit`` with a crank length not asked before (no answer from the
+  cache), over one kept-alive connection on 127.0.0.1, until its answer is read and parsed; the median
+  and the best of ``--edits`` of them.
+* The core: ``lw.forces`` of the same mechanism at the same 360 angles (kinematics, loads, reactions,
+  foundation) in this process, the best of several runs and the median, and ``lw.compile`` of its file
+  (what opening another file costs before the cycle is solved).
+* Opening: the whole cycle's payload (:func:`linkwork.web.cycle_payload`) with its labels placed at the
+  first sample (the page's first answer), at the live page's
+  :data:`~linkwork.web.payload.LIVE_PLACED` samples (the answer that follows), and at every sample (an
+  exported page), best of a few.
+* In Chromium: the crank's length handle dragged back and forth for ``--drag`` seconds, a mouse move every
+  16 ms; the page counts the edits' answers it shows (``data-updates`` on the scheme): answers a second,
+  and the round trip the page measures for them (``data-edit-ms``, sampled).
+"""
+
+from __future__ import annotations
+
+import argparse
+import http.client
+import json
+import re
+import statistics
+import subprocess
+import sys
+import time
+
+from timing import best
+
+import linkwork as lw
+from linkwork.web.payload import LIVE_PLACED, cycle_payload
+
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking"]
+
+
+def start_server(name: str) -> tuple[subprocess.Popen, int]:
+    code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
+    proc = subprocess.Popen([sys.executable, "-c", code, "view", name, "--port", "0", "--no-browser"],
+                            stdout=subprocess.PIPE, text=True)  # fmt: skip
+    line = proc.stdout.readline() if proc.stdout else ""
+    found = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+    if not found:
+        proc.kill()
+        raise SystemExit(f"the viewer did not start: {line!r}")
+    return proc, int(found.group(1))
+
+
+def crank_length(mech: lw.Mechanism) -> str:
+    """The parameter of the crank's length (the driven link's)."""
+    k = int(mech.drive_pair[0])
+    link = mech.link_names[max(int(i) for i in mech.pair_links[k])]
+    return f"links.{link}.length"
+
+
+def round_trips(port: int, name: str, start: float, count: int) -> list[float]:
+    """Seconds from sending an edit to its parsed answer, each a new value."""
+    conn = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
+    out = []
+    for k in range(count + 5):
+        value = start * (1 + 0.05 * ((k * 0.618) % 1 - 0.5))  # within 2.5 % of the file's, all different
+        body = json.dumps({"overrides": {name: value}, "whole_turn": True}).encode()  # one send: no Nagle stall
+        t = time.perf_counter()
+        conn.request("POST", "/api/edit", body, {"Content-Type": "application/json", "Host": "127.0.0.1"})
+        r = conn.getresponse()
+        answer = json.loads(r.read())
+        if r.status != 200:
+            raise SystemExit(f"edit {value}: {r.status} {answer}")
+        if k >= 5:  # the first ones warm the server up
+            out.append(time.perf_counter() - t)
+    conn.close()
+    return out
+
+
+def drag(port: int, name: str, seconds: float) -> tuple[float, list[float]]:
+    """Answers a second shown while the handle of ``name`` is dragged, and the page's round trips (ms)."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=FLAGS)
+        page = browser.new_page(viewport={"width": 1400, "height": 1000})
+        page.goto(f"http://127.0.0.1:{port}/")
+        handle = page.locator(f'[data-handle="{name}"]')
+        handle.wait_for()
+        box = handle.bounding_box()
+        assert box is not None
+        x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+        page.mouse.move(x, y)
+        page.mouse.down()
+        before = int(page.get_attribute("#scheme", "data-updates") or 0)
+        ms: list[float] = []
+        t0 = time.perf_counter()
+        k = 0
+        while time.perf_counter() - t0 < seconds:
+            k += 1
+            page.mouse.move(x + 25 * ((k % 40) / 20 - 1 if (k // 40) % 2 else 1 - (k % 40) / 20), y)
+            page.wait_for_timeout(16)
+            if k % 10 == 0:
+                ms.append(float(page.get_attribute("#scheme", "data-edit-ms") or "nan"))
+        spent = time.perf_counter() - t0
+        shown = int(page.get_attribute("#scheme", "data-updates") or 0) - before
+        page.mouse.up()
+        browser.close()
+    return shown / spent, ms
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--name", default="double-cut-shears")
+    parser.add_argument("--edits", type=int, default=200)
+    parser.add_argument("--drag", type=float, default=6.0, help="seconds of dragging in Chromium (0: none)")
+    args = parser.parse_args(argv)
+    spec = lw.load(args.name)
+    mech = lw.compile(spec)
+    name = crank_length(mech)
+    start = lw.parameters(mech)[name]
+    proc, port = start_server(args.name)
+    try:
+        trips = round_trips(port, name, start, args.edits)
+        forces = [best(lambda: lw.forces(mech, steps=360)) for _ in range(3)]
+        runs = []
+        for _ in range(50):
+            t = time.perf_counter()
+            lw.forces(mech, steps=360)
+            runs.append(time.perf_counter() - t)
+        compiled = best(lambda: lw.compile(spec))
+        opened = {n: best(lambda n=n: cycle_payload(mech, 360, placed=n), repeat=2, budget=8.0)
+                  for n in (1, LIVE_PLACED, None)}  # fmt: skip
+        rate, page_ms = drag(port, name, args.drag) if args.drag > 0 else (float("nan"), [])
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
+    f_best, f_median = min(forces), statistics.median(runs)
+    rt_median, rt_best = statistics.median(trips), min(trips)
+    print(f"{args.name}, 360 angles, {len(trips)} edits of {name}")
+    print(f"  edit round trip (POST /api/edit, parsed): median {1e3 * rt_median:.1f} ms, best {1e3 * rt_best:.1f} ms")
+    print(f"  lw.forces of the cycle: best {1e3 * f_best:.2f} ms, median {1e3 * f_median:.2f} ms")
+    print(f"  ratio: median edit / median lw.forces {rt_median / f_median:.1f}, best / best {rt_best / f_best:.1f}")
+    print(f"  lw.compile of the file: {1e3 * compiled:.1f} ms")
+    print(f"  the cycle's payload, labels placed at the first sample {1e3 * opened[1]:.0f} ms, at "
+          f"{LIVE_PLACED} samples {1e3 * opened[LIVE_PLACED]:.0f} ms, at all 360 {1e3 * opened[None]:.0f} ms")
+    if page_ms:
+        shown = [v for v in page_ms if v == v]
+        print(f"  dragging in Chromium: {rate:.1f} updates a second, the page's round trip median "
+              f"{statistics.median(shown) if shown else float('nan'):.1f} ms")  # fmt: skip
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,150 @@
+"""The forces drawn on the viewer's scheme: the joints' reactions and the external loads, as arrows to one scale.
+
+Every joint gets one arrow, at its point: the force the joint puts on its link of the highest number
+(:meth:`linkwork.kinetostatics.forces.Forces.reaction` with ``on=`` that link), labelled ``R`` with the
+numbers of the links, e.g. ``R12``, the force of link 1 on link 2 (``R03``: of the frame on link 3).  For a
+prismatic pair it acts at the slider's point, normal to the guide.  The external forces of the file's
+loads (a process load on each of its tools, given forces at their points) get an arrow each, labelled with
+the load's name.  One scale for the whole cycle, from the 1-2-5 series: the largest arrow of nearly every
+position (:data:`PERCENTILE`) about :data:`LENGTH` of the drawing's size.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from linkwork.kinetostatics.external import evaluate
+from linkwork.motion.plans import _round_scale
+from linkwork.structure.model import Mechanism, PairType
+from linkwork.web.cycle import Cycle
+
+#: Percentile of the positions' largest arrows that sets the scale.
+PERCENTILE = 95.0
+
+#: The largest arrow of nearly every position, as a fraction of the drawing's size.
+LENGTH = 0.3
+
+
+@dataclass(frozen=True)
+class Arrow:
+    """One arrow: what it is and where it acts.
+
+    Attributes
+    ----------
+    kind : str
+        ``"reaction"`` or ``"load"``.
+    name : str
+        The joint, or the load.
+    label : str
+        ``R12``, or the load's name.
+    on : str
+        The link the force acts on.
+    by : tuple of str
+        The links that exert it (a reaction), or none (a load).
+    point : int
+        The point it acts at.
+    """
+
+    kind: str
+    name: str
+    label: str
+    on: str
+    by: tuple[str, ...]
+    point: int
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "name": self.name, "label": self.label, "on": self.on, "by": list(self.by),
+                "point": self.point}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Arrows:
+    """The arrows of a cycle and their forces.
+
+    Attributes
+    ----------
+    arrows : tuple of Arrow
+    values : ndarray, shape (A, K, 2)
+        Each arrow's force at each sample, N (NaN where the mechanism does not assemble).
+    scale : float
+        N per mm of the mechanism drawn full size (an arrow of force F is ``F / scale`` mm long).
+    torque_point : int
+        The frame's point of the crank's pivot, where the driving torque is drawn.
+    """
+
+    arrows: tuple[Arrow, ...]
+    values: np.ndarray
+    scale: float
+    torque_point: int
+
+
+def force_arrows(cycle: Cycle, size: float) -> Arrows | None:
+    """The arrows of ``cycle`` (None where it has no forces), scaled for a drawing of ``size`` m."""
+    if cycle.forces is None:
+        return None
+    mech = cycle.mech
+    arrows, values = _reactions(cycle)
+    loads, load_values = _loads(cycle)
+    arrows += loads
+    values += load_values
+    stacked = np.stack(values, 1) if values else np.zeros((len(cycle.valid), 0, 2))
+    stacked = np.where(cycle.valid[:, None, None], stacked, np.nan)
+    size_of = np.hypot(stacked[..., 0], stacked[..., 1])
+    largest = np.max(size_of, axis=1, initial=0.0, where=np.isfinite(size_of))
+    top = float(np.percentile(largest[cycle.valid], PERCENTILE)) if cycle.valid.any() else 0.0
+    scale = _round_scale(top * 100.0 / (LENGTH * 1000.0 * size)) if top > 0 else 1.0
+    k = int(mech.drive_pair[0])
+    a = int(mech.pair_links[k, 0])
+    return Arrows(tuple(arrows), stacked, scale, int(mech.pair_points[k, 0 if a == 0 else 1]))
+
+
+def _reactions(cycle: Cycle) -> tuple[list[Arrow], list[np.ndarray]]:
+    """One arrow a joint: the force on its member of the highest number, at its point."""
+    mech, forces = cycle.mech, cycle.forces
+    assert forces is not None
+    arrows, values = [], []
+    for joint in dict.fromkeys(mech.pair_joint):
+        pairs = [k for k, j in enumerate(mech.pair_joint) if j == joint]
+        members = sorted({int(i) for k in pairs for i in mech.pair_links[k] if not mech.link_virtual[int(i)]})
+        if len(members) < 2:
+            continue
+        on = members[-1]
+        by = members[:-1]
+        k = next(k for k in pairs if on in map(int, mech.pair_links[k]))
+        point = _point_of(mech, k, on)
+        label = "R" + (",".join if max(members) >= 10 else "".join)([*(str(b) for b in by), str(on)])
+        arrows.append(Arrow("reaction", str(joint), label, mech.link_names[on],
+                            tuple(mech.link_names[b] for b in by), point))  # fmt: skip
+        values.append(cycle.one(forces.reaction(str(joint), on=mech.link_names[on])))
+    return arrows, values
+
+
+def _point_of(mech: Mechanism, k: int, link: int) -> int:
+    """The point at which pair ``k``'s force on ``link`` acts: its point of ``link``, the slider's for a guide."""
+    if mech.pair_type[k] != PairType.REVOLUTE:
+        return int(mech.pair_points[k, 1])
+    return int(mech.pair_points[k, 0 if int(mech.pair_links[k, 0]) == link else 1])
+
+
+def _loads(cycle: Cycle) -> tuple[list[Arrow], list[np.ndarray]]:
+    """An arrow for each force of the file's loads on a moving link (a process load's on each tool)."""
+    mech, kin = cycle.mech, cycle.kin
+    applied = evaluate(kin).forces
+    positions = cycle.one(kin.points())
+    arrows, values, used = [], [], set()
+    for load in mech.loads:
+        if load.kind not in ("force", "process"):
+            continue
+        for p in load.points:
+            link = int(mech.point_link[p])
+            for i, force in enumerate(applied):
+                same = force.link == link and np.array_equal(force.position[0], positions[:, p], equal_nan=True)
+                if i not in used and same:
+                    used.add(i)
+                    arrows.append(Arrow("load", load.name, load.name, mech.link_names[link], (), int(p)))
+                    values.append(force.force[0])  # (V, A, 2), as evaluate gives every array
+                    break
+    return arrows, values
