@@ -314,7 +314,11 @@ def file_geometry(mech: Mechanism) -> Geometry:
     geom = apply(mech)[0]
     for array in (geom.point_local, geom.pair_origin, geom.pair_axis):
         array.flags.writeable = False
-    _FILE_GEOMETRY[key] = (weakref.ref(mech, lambda _, key=key: _FILE_GEOMETRY.pop(key, None)), geom)
+
+    def forget(_: weakref.ref[Mechanism]) -> None:
+        _FILE_GEOMETRY.pop(key, None)
+
+    _FILE_GEOMETRY[key] = (weakref.ref(mech, forget), geom)
     return geom
 
 
