@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -235,7 +236,7 @@ def kinematics(
     angles: npt.ArrayLike | None = None,
     *,
     steps: int | None = None,
-    variants: dict[str, npt.ArrayLike] | None = None,
+    variants: Mapping[str, npt.ArrayLike] | None = None,
     speed: npt.ArrayLike | None = None,
     strict: bool = False,
 ) -> Kinematics:
