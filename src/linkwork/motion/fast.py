@@ -664,17 +664,23 @@ _INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_src_point",
 _CALLED = ("_arm_constants", "_kernel")
 
 
-@functools.cache
-def compiled() -> bool:
-    """Wrap the kernels of this module with numba's ``njit`` (once; they are compiled on their first call, or
-    loaded from numba's cache); False where numba cannot be imported."""
+def jit_in_place(space: dict[str, object], inline: tuple[str, ...], called: tuple[str, ...]) -> bool:
+    """Replace the functions named ``inline`` and ``called`` in the module namespace ``space`` by numba's
+    ``njit`` of them (the first inlined into their callers); False where numba cannot be imported.  Each
+    module of kernels calls this once, from its cached ``compiled()``."""
     try:
         from numba import njit
     except ImportError:  # pragma: no cover
         return False
-    space = globals()
-    for name in _INLINE:
+    for name in inline:
         space[name] = njit(inline="always", **OPTS)(space[name])
-    for name in _CALLED:
+    for name in called:
         space[name] = njit(**OPTS)(space[name])
     return True
+
+
+@functools.cache
+def compiled() -> bool:
+    """Wrap the kernels of this module with numba's ``njit`` (once; they are compiled on their first call, or
+    loaded from numba's cache); False where numba cannot be imported."""
+    return jit_in_place(globals(), _INLINE, _CALLED)
