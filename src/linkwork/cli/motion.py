@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 import typer
@@ -20,7 +21,11 @@ from linkwork.cli.app import (
     needs,
     show,
 )
+from linkwork.errors import LinkworkError
 from linkwork.limits import MAX_ANGLES, angle_problem, quote, whole
+
+if TYPE_CHECKING:
+    from linkwork.structure.model import Mechanism
 
 #: Why a quantity at an angle has no value (``nulls`` of the ``--json`` records).
 NOT_ASSEMBLED = "the mechanism does not assemble at these angles (valid is false there)"
@@ -38,8 +43,6 @@ def check_angles(steps: int | None, angles: str | None) -> list[float] | None:
     """The bounds of ``--steps`` and ``--angles`` (at most :data:`~linkwork.limits.MAX_ANGLES` angles,
     each within :data:`~linkwork.limits.MAX_TURNS` turns), checked before any work: exit code 2 with one
     line where they are passed.  Returns the numbers of ``--angles``, or None."""
-    from linkwork.errors import LinkworkError
-
     if steps is not None:
         check_options(whole(steps, "--steps", 1, MAX_ANGLES))
     if angles is None:
@@ -53,10 +56,9 @@ def check_angles(steps: int | None, angles: str | None) -> list[float] | None:
     return values
 
 
-def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
+def _angles(mech: Mechanism, steps: int | None, angles: str | None) -> dict[str, Any]:
     """Keyword arguments of lw.kinematics from the options; crank angles in degrees, or slider
     positions in mm for a linear drive."""
-    from linkwork.errors import LinkworkError
     from linkwork.structure.model import one_crank
 
     given = check_angles(steps, angles)
@@ -97,7 +99,6 @@ def kinematics(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Positions, velocities and accelerations of every point and link over the cycle."""
-    from linkwork.errors import LinkworkError
     from linkwork.io.motion_tables import to_json, write_csv, write_netcdf
     from linkwork.motion import kinematics as solve
     from linkwork.motion.analysis import extremes, transmission_angles
@@ -113,8 +114,6 @@ def kinematics(
     ext = extremes(kin) if angles is None else []
     written = []
     if out is not None:
-        from pathlib import Path
-
         try:
             written.append(write_csv(kin, Path(out) / "kinematics.csv"))
             written.append(write_netcdf(kin, Path(out) / "kinematics.nc"))
@@ -142,8 +141,8 @@ def kinematics(
                 f"  {label}: least transmission angle {math.degrees(mu[i]):.2f} deg at "
                 f"{math.degrees(kin.angles[i]) % 360:.1f} deg"
             )
-    for e in kin.events:
-        typer.echo(f"  {e.kind}: {e.message}")
+    for event in kin.events:
+        typer.echo(f"  {event.kind}: {event.message}")
     for path in written:
         typer.echo(f"  wrote {path}")
 
@@ -167,7 +166,6 @@ def positions(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """The plan of positions: coordinates of the points at COUNT crank positions (mm)."""
-    from linkwork.errors import LinkworkError
     from linkwork.motion import analysis, cycle
     from linkwork.motion import kinematics as solve
     from linkwork.structure.model import point_labels
