@@ -115,3 +115,22 @@ def test_the_common_units_read_without_pint_are_pints_to_the_bit():
     for kind, units in COMMON_UNITS.items():
         for unit, value in units.items():
             assert value == _pint_factor(unit, kind), (unit, kind)
+
+
+def test_an_angle_is_shown_in_0_to_360_after_rounding():
+    """Round-off below the shown digits never reads as a whole turn: -1e-9 rad and 2 pi - 1e-9 rad show 0.0,
+    not 360.0; other angles are their degrees wrapped into [0, 360)."""
+    import math
+
+    import numpy as np
+
+    from linkwork.units import turn_deg
+
+    assert f"{turn_deg(-1e-9):.1f}" == "0.0"
+    assert f"{turn_deg(2 * math.pi - 1e-9):.1f}" == "0.0"
+    assert f"{turn_deg(math.radians(359.96)):.1f}" == "0.0"
+    assert f"{turn_deg(math.radians(359.94)):.1f}" == "359.9"
+    assert f"{turn_deg(-1e-9, 3):.3f}" == "0.000"
+    assert turn_deg(math.radians(-90.0)) == 270.0
+    shown = turn_deg(np.radians([-720.25, 30.0, 405.0, -1e-7]))
+    assert np.allclose(shown, [359.8, 30.0, 45.0, 0.0], rtol=0, atol=1e-9)

@@ -23,6 +23,8 @@ import re
 from functools import lru_cache
 from typing import Any
 
+import numpy as np
+
 from linkwork.errors import UnitParseError
 from linkwork.limits import MAX_QUANTITY, quote
 
@@ -335,3 +337,10 @@ def _show(value: Any) -> str:
 
 def _quote(text: str) -> str:
     return quote(text)
+
+
+def turn_deg(angle: Any, digits: int = 1) -> Any:
+    """An angle (rad, a number or an array) as it is shown: degrees in [0, 360), rounded to ``digits``
+    decimals before the turn is wrapped, so that -1e-9 rad reads 0.0 and not 360.0."""
+    deg = np.round(np.degrees(angle), digits) % 360.0
+    return float(deg) if np.ndim(deg) == 0 else deg

@@ -12,6 +12,7 @@ import typer
 from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, explain_nulls, fail
 from linkwork.errors import LinkworkError
 from linkwork.limits import MAX_ANGLES, delta_problem, whole
+from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from linkwork.machine import Dynamics
@@ -95,7 +96,7 @@ def _print_report(mech: Mechanism, result: Dynamics, data: dict[str, Any]) -> No
     )
     _, psi, omega = result.motion.cycle()
     i = int(np.argmin(omega))
-    angle = math.degrees(float(red.angle[0]) + direction(mech) * (result.motion.cycle_start + float(psi[i]))) % 360
+    angle = turn_deg(float(red.angle[0]) + direction(mech) * (result.motion.cycle_start + float(psi[i])))
     typer.echo(
         f"  lowest speed at {data['cycle']['crank_angle_deg'][i]:.1f} deg from position 0 "
         f"(the crank at {angle:.1f} deg to the x axis)"

@@ -23,6 +23,7 @@ from linkwork.cli.app import (
 )
 from linkwork.cli.motion import NOT_ASSEMBLED, _angles, check_angles
 from linkwork.limits import MAX_ANGLES, MAX_NAME, quote, whole
+from linkwork.units import parse_quantity, turn_deg
 
 # what a command needs is imported when it runs, so that the command line starts fast
 if TYPE_CHECKING:
@@ -38,7 +39,6 @@ def _speed(mech: Mechanism, text: str | None) -> float | None:
     """The drive speed of ``--speed`` in SI, in the file's direction of the drive."""
     from linkwork.errors import LinkworkError, UnitParseError
     from linkwork.structure.model import PairType
-    from linkwork.units import parse_quantity
 
     if text is None:
         return None
@@ -80,7 +80,7 @@ BALANCE_NULLS = {
 
 
 def _deg(angle: float) -> str:
-    return f"{math.degrees(angle) % 360:.1f} deg"
+    return f"{turn_deg(angle):.1f} deg"
 
 
 def _peak(values: np.ndarray, angles: np.ndarray) -> tuple[float, float]:
@@ -157,7 +157,6 @@ def _write(f: Forces, data: dict[str, Any], out: str) -> list[Path]:
 def _force(text: str | None) -> float | None:
     """The force of ``--pull`` in SI."""
     from linkwork.errors import LinkworkError, UnitParseError
-    from linkwork.units import parse_quantity
 
     if text is None:
         return None
@@ -196,7 +195,7 @@ def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: l
     ok = np.isfinite(f.driving_torque)
     out.print(f"{escape(mech.name)}: {len(phi)} positions at {speed}, {int(ok.sum())} solved")
     if not ok.all():
-        bad = np.degrees(phi[~ok]) % 360
+        bad = turn_deg(phi[~ok])
         out.print(
             f"  reactions indeterminate (singular or unassembled) at {int((~ok).sum())} positions, "
             f"e.g. {', '.join(f'{a:.1f}' for a in bad[:6])} deg"
@@ -273,7 +272,6 @@ def balance(
     """Counterweights that cancel the shaking force (or its first harmonic), with the figures before and after."""
     from linkwork.errors import LinkworkError, UnitParseError
     from linkwork.kinetostatics import balance as solve
-    from linkwork.units import parse_quantity
 
     names = [n.strip() for n in links.split(",") if n.strip()]
     check_options(

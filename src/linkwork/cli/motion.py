@@ -23,6 +23,7 @@ from linkwork.cli.app import (
 )
 from linkwork.errors import LinkworkError
 from linkwork.limits import MAX_ANGLES, angle_problem, quote, whole
+from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from linkwork.structure.model import Mechanism
@@ -129,8 +130,8 @@ def kinematics(
         if e.kind == "slider":
             typer.echo(
                 f"  slider {e.name}: stroke {e.stroke * 1000:.2f} mm, from {e.low * 1000:.2f} to "
-                f"{e.high * 1000:.2f} mm (at {math.degrees(e.at_low) % 360:.1f} and "
-                f"{math.degrees(e.at_high) % 360:.1f} deg), {ratios}"
+                f"{e.high * 1000:.2f} mm (at {turn_deg(e.at_low):.1f} and "
+                f"{turn_deg(e.at_high):.1f} deg), {ratios}"
             )
         else:
             typer.echo(f"  rocker {e.name}: swing {math.degrees(e.stroke):.3f} deg, {ratios}")
@@ -139,7 +140,7 @@ def kinematics(
             i = int(np.nanargmin(mu))
             typer.echo(
                 f"  {label}: least transmission angle {math.degrees(mu[i]):.2f} deg at "
-                f"{math.degrees(kin.angles[i]) % 360:.1f} deg"
+                f"{turn_deg(kin.angles[i]):.1f} deg"
             )
     for event in kin.events:
         typer.echo(f"  {event.kind}: {event.message}")

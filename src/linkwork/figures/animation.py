@@ -22,6 +22,7 @@ from linkwork.figures.sheet import round_length, sheet
 from linkwork.lang import t
 from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.scene.style import TEXT
+from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from matplotlib.text import Text
@@ -103,7 +104,7 @@ class Film:
         for j, text in enumerate(self.texts):
             text.set_position(tuple(self.centres[i, j]))
             text.set_visible(bool(np.isfinite(self.centres[i, j]).all()))
-        self.title.set_text(f"{np.degrees(scene.angles[i]) % 360:.0f}{self.tail}")
+        self.title.set_text(f"{turn_deg(scene.angles[i], 0):.0f}{self.tail}")
 
     def _title(self) -> tuple[Text, str]:
         """The title, centred over the drawing: its words up to the crank angle are drawn once, with what does

@@ -21,6 +21,7 @@ from linkwork.motion.plans import plan_series
 from linkwork.scene.plans import KINDS, PlanScene, kind_name, plan_scene
 from linkwork.scene.positions import COUNT, position_angles
 from linkwork.scene.style import TEXT, VECTORS
+from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -202,7 +203,7 @@ def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT, lang
         centre = (boxes[k, :2] + boxes[k, 2:]) / 2
         sh = sheet(np.concatenate([centre - half, centre + half]), ax=ax)
         draw_vectors(sh, scene, k)
-        ax.set_title(t("plans.cell", lang, position=k, angle=f"{np.degrees(scene.angles[k]) % 360:.0f}"), fontsize=8)
+        ax.set_title(t("plans.cell", lang, position=k, angle=f"{turn_deg(scene.angles[k], 0):.0f}"), fontsize=8)
     fig.suptitle(f"{t(f'plans.{kind}', lang, name=mech.name, count=count)};  {scene.scale_note(lang)}", fontsize=11)
     kinds = [k for k in KINDS if any(k in scene.kinds(i) for i in range(count))]
     names = [kind_name(k, kind, lang) for k in kinds]

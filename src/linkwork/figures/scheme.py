@@ -19,6 +19,7 @@ from linkwork.motion.kinematics import kinematics
 from linkwork.scene.positions import COUNT, position_angles, positions_scene
 from linkwork.scene.scheme import KINDS, Item, SchemeScene, scheme_scene
 from linkwork.scene.style import SCHEME, TEXT
+from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -145,6 +146,6 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
                    color=TEXT["position"], zorder=5)  # fmt: skip
     scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em, lang)
     turn = t("positions.ccw" if mech.drive_speed[0] >= 0 else "positions.cw", lang,
-             angle=f"{np.degrees(angles[0]) % 360:.1f}")  # fmt: skip
+             angle=f"{turn_deg(angles[0]):.1f}")  # fmt: skip
     sh.ax.set_title(f"{t('positions.title', lang, name=mech.name, count=count)}\n{turn}", fontsize=11)
     return sh.fig

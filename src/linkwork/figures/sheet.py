@@ -11,6 +11,7 @@ import numpy as np
 
 from linkwork.lang import t
 from linkwork.scene.style import Style
+from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -110,6 +111,6 @@ def dashes(style: Style) -> Any:
 def where(angle: float, position: int | None, lang: str) -> str:
     """The line under a drawing's title: ``position 9, crank at 178.8°`` (``crank at 178.8°`` without a
     ``position``), the crank's drive ``angle`` (rad) to the x axis, in ``lang``."""
-    deg = f"{np.degrees(angle) % 360:.1f}"
+    deg = f"{turn_deg(angle):.1f}"
     return t("drawing.crank", lang, angle=deg) if position is None else t("drawing.position", lang, position=position,
                                                                           angle=deg)  # fmt: skip

@@ -29,6 +29,7 @@ from linkwork.impulse.mechanism import impulsive_reactions, joint_links, pose_in
 from linkwork.kinetostatics.forces import Forces
 from linkwork.motion import kinematics
 from linkwork.structure.model import Mechanism
+from linkwork.units import turn_deg
 
 
 @dataclass(frozen=True)
@@ -143,7 +144,7 @@ def strike(
     tang = np.array([n[1], -n[0]])
     kin = kinematics(mech, np.array([angle]), speed=sign)
     if not bool(np.all(kin.valid)):
-        raise LinkworkError(f"the mechanism does not assemble at {math.degrees(angle) % 360:.3f} deg")
+        raise LinkworkError(f"the mechanism does not assemble at {turn_deg(angle, 3):.3f} deg")
     p = kin.point_index(at)
     striker = int(mech.point_link[p])
     link = link if link is not None else mech.link_names[striker]
@@ -183,7 +184,7 @@ def _jump(approach: _Approach, jt: float, inv_mass: float, restitution: float, f
     gphi = sn + phi * st
     if not sn * gphi > 0:
         raise LinkworkError(
-            f"friction f = {friction:g} locks the blow at {math.degrees(angle) % 360:.3f} deg: the impulse "
+            f"friction f = {friction:g} locks the blow at {turn_deg(angle, 3):.3f} deg: the impulse "
             "would pull the striker into the tool"
         )
     big_p = -(1.0 + restitution) * approach.closing / (sn * gphi / jt + inv_mass)
@@ -191,7 +192,7 @@ def _jump(approach: _Approach, jt: float, inv_mass: float, restitution: float, f
     # the sliding of K on the tool (which moves along n only) is st psi': it turns where the crank does
     if friction > 0 and st != 0.0 and w * (w + dw) < 0 and abs(w + dw) > 1e-9 * abs(w):
         raise SlidingReversal(
-            f"the blow at {math.degrees(angle) % 360:.3f} deg would throw the crank back (from {w:.6g} to "
+            f"the blow at {turn_deg(angle, 3):.3f} deg would throw the crank back (from {w:.6g} to "
             f"{w + dw:.6g} rad/s), so the striker's sliding on the tool would reverse within the impact: the "
             f"impact map assumes it slides one way throughout (friction f = {friction:g})"
         )

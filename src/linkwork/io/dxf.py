@@ -29,6 +29,7 @@ from linkwork.scene.plans import PlanScene, plan_scene
 from linkwork.scene.positions import PositionsScene, position_angles, positions_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.scene.style import SCHEME, VECTORS, Style
+from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from linkwork.motion.kinematics import Kinematics
@@ -79,7 +80,7 @@ def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories:
     _items(msp, scene, index)
     for lab in scene.labels:
         _text(msp, lab.text, lab.centre[index] * 1000, 1000 * scene.em)
-    crank = t("drawing.crank", lang, angle=f"{np.degrees(scene.angles[index]) % 360:.1f}")
+    crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
     note = f"{t('scheme.title', lang, name=scene.name)}, {crank}; 1:1, {t('unit.mm', lang)}"
     _note(doc, msp, note, scene.extent(index) * 1000, 1000 * scene.em)
     return _save(doc, path)
@@ -119,7 +120,7 @@ def write_plan(scene: PlanScene, index: int, path: str | Path, lang: str = "en")
         text, c = scene.text[index][j], scene.centres[index, j]
         if text and np.isfinite(c).all():
             _text(msp, text, c, scene.em * (1.0 if scene.main[j] else 0.8))
-    crank = t("drawing.crank", lang, angle=f"{np.degrees(scene.angles[index]) % 360:.1f}")
+    crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
     note = f"{t(f'plan.{scene.kind}', lang)}, {crank}; {scene.scale_note(lang)}"
     _note(doc, msp, note, scene.extent(index), scene.em)
     return _save(doc, path)

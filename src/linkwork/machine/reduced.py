@@ -27,6 +27,7 @@ from linkwork.kinetostatics.external import power as external_power
 from linkwork.kinetostatics.reactions import inertia_and_gravity
 from linkwork.motion import cycle, kinematics
 from linkwork.structure.model import Mechanism, one_crank
+from linkwork.units import turn_deg
 
 
 @dataclass(frozen=True)
@@ -83,7 +84,7 @@ def reduced(mech: Mechanism, steps: int = 3600) -> Reduced:
     angle = cycle(mech, steps)
     kin = kinematics(mech, angle, speed=sign)
     if not np.all(kin.valid):
-        bad = np.degrees(angle[~np.asarray(kin.valid)][0]) % 360
+        bad = turn_deg(angle[~np.asarray(kin.valid)][0])
         raise LinkworkError(f"the mechanism does not assemble over the whole turn (first at {bad:.1f} deg)")
     loads = inertia_and_gravity(kin)
     ms = kin.mass_properties

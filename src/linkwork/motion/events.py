@@ -10,6 +10,7 @@ import numpy as np
 
 from linkwork.motion.program import Step
 from linkwork.motion.state import Flip, Jump, State, StepRecord
+from linkwork.units import turn_deg
 
 
 @dataclass(frozen=True)
@@ -67,7 +68,7 @@ class _Scale:
         self.unit = "deg" if revolute else "m"
 
     def show(self, x: float) -> str:
-        return f"{math.degrees(x) % 360:.1f}" if self.revolute else f"{x:.4g}"
+        return f"{turn_deg(x):.1f}" if self.revolute else f"{x:.4g}"
 
 
 def find(

@@ -27,6 +27,7 @@ import numpy as np
 from linkwork.io.jsonout import dumps
 from linkwork.lang import check_lang, t
 from linkwork.structure.model import PairType
+from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from linkwork.kinetostatics.forces import Forces
@@ -364,7 +365,7 @@ def _position_0(run: _Run, cycle: Cycle) -> str:
     from linkwork.motion.analysis import working
 
     members = working(run.mech)
-    crank = _deg(math.degrees(cycle.zero) % 360)
+    crank = _deg(turn_deg(cycle.zero))
     if not members:
         return run.t("kin.phi.assembly", crank=crank)
     kind = "slider" if members[0].kind == "slider" else "rocker"
@@ -378,7 +379,7 @@ def _positions_table(run: _Run, cycle: Cycle) -> list[str]:
     labels = point_labels(mech)
     rows = []
     for k in range(12):
-        row: list[Any] = [k, f"{30 * k}", _deg(math.degrees(kin12.angles[k]) % 360)]
+        row: list[Any] = [k, f"{30 * k}", _deg(turn_deg(kin12.angles[k]))]
         for _, p in labels:
             x = kin12.position(mech.point_names[p])[k] * 1000
             row.append("-" if not np.isfinite(x).all() else ", ".join(f"{round(c, 1) + 0.0:.1f}" for c in x))
