@@ -2,7 +2,8 @@
 
 Markers (``pyproject.toml``): ``slow`` (long property runs, every figure of every example), ``browser``
 (Debian's chromium through Playwright), ``dask`` (worker processes and schedulers).  The fast lane is
-``pytest -m "not slow and not browser and not dask"``; ``.ci/run`` runs them all.
+``pytest -m "not slow and not browser and not dask"``; ``.ci/run`` runs them all.  The full generated run of
+hostile inputs (marker ``hostile``, hundreds of processes) runs only when asked for: ``pytest --hostile``.
 """
 
 from __future__ import annotations
@@ -61,8 +62,15 @@ SLOW = (
 FAST_CASE = ("[double-cut-shears]", "[double-cut-shears-en]", "[double-cut-shears-ru]")
 
 
+def pytest_addoption(parser: pytest.Parser) -> None:
+    parser.addoption("--hostile", action="store_true", help="also run the full generated run of hostile inputs")
+
+
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    full = pytest.mark.skip(reason="the full generated run of hostile inputs runs with pytest --hostile")
     for item in items:
+        if "hostile" in item.keywords and not config.getoption("--hostile"):
+            item.add_marker(full)
         node = item.nodeid.replace("\\", "/")
         if any(node.split("tests/", 1)[-1].startswith(s) for s in SLOW) and not node.endswith(FAST_CASE):
             item.add_marker(pytest.mark.slow)

@@ -449,12 +449,20 @@ def _limit_memory() -> None:
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
 
 
+#: Linux's bound on one argument of a program (MAX_ARG_STRLEN, 32 pages of 4 KiB).
+ARG_LIMIT = 131072
+
+
 def run_in_subprocess(
     case: Case, folder: Path, limit: float = TIME_LIMIT, env: dict[str, str] | None = None
 ) -> Outcome:
-    """Run ``case`` as ``python -m linkwork.cli`` with at most :data:`MEMORY_LIMIT` of memory and ``limit`` s."""
+    """Run ``case`` as ``python -m linkwork.cli`` with at most :data:`MEMORY_LIMIT` of memory and ``limit`` s.
+    A case with an argument longer than the system passes to a program (:data:`ARG_LIMIT`: no shell could
+    give it either) runs in this process instead."""
     case.write(folder)
     argv = [os.fsencode(a) for a in case.args(folder)]
+    if any(len(a) >= ARG_LIMIT for a in argv):
+        return run_in_process(case, folder, limit)
     source = Path(linkwork.__file__).resolve().parents[1]  # the linkwork this process imported
     environ = {**os.environ, "PYTHONPATH": str(source), **(env or {})}
     start = time.perf_counter()

@@ -3,7 +3,7 @@ message of short lines, within a bounded time and memory, and its ``--json`` is 
 
 The cases come from :mod:`hostile` (mutated bundled examples, attacks on the YAML reader, options at
 and past their bounds).  A sample runs with the suite, each case in this process under a time bound;
-the full run (``pytest -m slow tests/cli/test_hostile.py``) runs many more, each in its own process under
+the full run (``pytest --hostile tests/cli/test_hostile.py``) runs many more, each in its own process under
 a memory bound too.  Then the defects found by such runs, one test each.
 """
 
@@ -58,7 +58,7 @@ def test_a_sample_of_hostile_cases_ends_cleanly(kind, key, tmp_path):
     assert grown < MEMORY_GROWTH, f"{case.name}: the process grew by {grown / 2**20:.0f} MiB"
 
 
-@pytest.mark.slow
+@pytest.mark.hostile
 @pytest.mark.parametrize(("kind", "key"), _keys(FULL, slow=True), ids=lambda k: str(k)[:40])
 def test_every_hostile_case_ends_cleanly_in_its_own_process(kind, key, tmp_path):
     case = _case(kind, key)
