@@ -428,3 +428,33 @@ def test_check_starts_without_the_packages_it_does_not_need():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
     assert "W = 3n - 2p5 - p4 = 3*7 - 2*10 = 1" in out.stdout
     assert out.stdout.strip().splitlines()[-1] == "[]"
+
+
+def test_the_sweep_draws_its_progress_bar_on_a_terminal_only(tmp_path):
+    """Piped to a file, stderr holds no bar (rich's box characters, cursor moves); on a terminal (a
+    pseudo-terminal here) the bar is drawn; the table is the same either way."""
+    import pty
+
+    args = [sys.executable, "-m", "linkwork.cli", *[a for a in SWEEP if a != "--quiet"]]
+    piped = subprocess.run([*args, "--out", str(tmp_path / "a.parquet")], capture_output=True, text=True)
+    assert piped.returncode == 0, piped.stderr
+    assert "━" not in piped.stderr and "\x1b[" not in piped.stderr and "chunks" not in piped.stderr
+    leader, follower = pty.openpty()
+    with subprocess.Popen([*args, "--out", str(tmp_path / "b.parquet")], stdout=subprocess.DEVNULL,
+                          stderr=follower, env={**os.environ, "COLUMNS": "100", "TERM": "xterm"}) as proc:
+        os.close(follower)
+        drawn = b""
+        while True:
+            try:
+                chunk = os.read(leader, 4096)
+            except OSError:
+                break
+            if not chunk:
+                break
+            drawn += chunk
+    os.close(leader)
+    shown = re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", drawn.decode("utf-8", "replace"))
+    assert proc.returncode == 0 and "━" in shown and "1/1 chunks" in shown, shown
+    pq = pytest.importorskip("pyarrow.parquet")
+    a, b = (pq.read_table(tmp_path / n).to_pydict() for n in ("a.parquet", "b.parquet"))
+    assert a["swing"] == b["swing"] and len(a["swing"]) == 3

@@ -625,17 +625,20 @@ def _on_dask(
 
 
 class _Progress:
-    """A progress bar of chunks on stderr (rich), or nothing."""
+    """A progress bar of chunks on stderr (rich) where stderr is a terminal, or nothing (stderr piped to a
+    file or a program is left clean)."""
 
     def __init__(self, total: int, done: int, show: bool):
         self.bar = None
-        if show and total:
-            from rich.console import Console
+        from rich.console import Console
+
+        console = Console(stderr=True)
+        if show and total and console.is_terminal:
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
             self.bar = Progress(
                 TextColumn("sweep"), BarColumn(), MofNCompleteColumn(), TextColumn("chunks"), TimeRemainingColumn(),
-                console=Console(stderr=True),
+                console=console,
             )  # fmt: skip
             self.bar.start()
             self.task = self.bar.add_task("sweep", total=total, completed=done)
