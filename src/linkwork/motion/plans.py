@@ -30,7 +30,6 @@ view of one position.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Any
@@ -182,17 +181,7 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
     if not -n <= index < n:
         raise IndexError(f"sample {index} is out of range: the result has {n} angles")
     i = index % n
-    one = dataclasses.replace(
-        kin,
-        drive=kin.drive[i : i + 1],
-        rates=kin.rates[i : i + 1],
-        q=kin.q[..., i : i + 1],
-        v=kin.v[..., i : i + 1],
-        a=kin.a[..., i : i + 1],
-        valid_all=kin.valid_all[:, i : i + 1],
-        step_det=tuple(d[..., i : i + 1] for d in kin.step_det),
-    )
-    vel, acc = plan_series(one)
+    vel, acc = plan_series(kin.samples(slice(i, i + 1)))
     return vel.at(0, variant), acc.at(0, variant)
 
 
