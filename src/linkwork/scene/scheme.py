@@ -14,8 +14,9 @@ pivots of radius ``r = 0.012 size``, text ``em = 0.032 size`` high.
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -209,29 +210,14 @@ class _Builder:
         self.pts = np.asarray(pts[variant] if kin.variants else pts)  # (A, P, 2)
         self.cycle = np.asarray(turn[min(variant, len(turn) - 1)] if cycle.variants else turn)  # (S, P, 2)
         mech = self.mech
-        self.joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
-        self.moving = [p for p in range(len(mech.point_names)) if self._drawn_link(int(mech.point_link[p]))]
-        self.outline = {link: self._outline(link) for link in range(mech.n_links_total)}
-        sides = [(i, j) for draw in self.outline.values() for i, j in zip(draw, draw[1:], strict=False)]
-        self.sides = np.array(sides, dtype=int).reshape(-1, 2)  # (n, 2): the points of every drawn link's sides
+        self.layout = layout = _layout(mech)
+        self.joint, self.moving, self.outline = layout.joint, layout.moving, layout.outline
+        self.path_points = layout.path_points
         self._segments: np.ndarray | None = None
         box = bounds(self.cycle[:, self.moving], self.local[np.asarray(mech.point_link) == 0])
         self.size = float(max(box[2] - box[0], box[3] - box[1], 1e-9))
         self.r, self.em = PIVOT * self.size, FONT * self.size
         self.first = int(np.argmax(np.asarray(kin.valid_all[variant]))) if len(self.pts) else 0
-        self.path_points = [p for p in self.moving if self.outline[int(mech.point_link[p])]]
-
-    def _drawn_link(self, link: int) -> bool:
-        return link != 0 and not bool(self.mech.link_virtual[link])
-
-    def _outline(self, link: int) -> list[int]:
-        """The points a drawn moving link is drawn through: its joints, then its markers (none for a link of one
-        point, the frame and a virtual link)."""
-        if not self._drawn_link(link):
-            return []
-        own = [p for p in range(len(self.mech.point_names)) if self.mech.point_link[p] == link]
-        draw = [p for p in own if p in self.joint] + [p for p in own if p not in self.joint]
-        return draw if len(draw) >= 2 else []
 
     # ------------------------------------------------------------ items
 
@@ -263,23 +249,12 @@ class _Builder:
 
     def _pivots(self) -> list[Item]:
         """A circle at every revolute joint, one for the links a compound hinge joins."""
-        out, seen = [], set()
-        for k in range(self.mech.n_pairs):
-            joint = str(self.mech.pair_joint[k])
-            if self.mech.pair_type[k] != PairType.REVOLUTE or joint in seen:
-                continue
-            seen.add(joint)
-            p = int(self.mech.pair_points[k, 1])
-            out.append(Item("pivot", int(self.mech.point_link[p]), self.local[p][None], radius=self.r, name=joint))
-        return out
+        return [Item("pivot", link, self.local[p][None], radius=self.r, name=joint)
+                for joint, p, link in self.layout.pivots]  # fmt: skip
 
     def _supports(self) -> list[Item]:
         """A hinge symbol under every revolute joint on the frame, turned towards the freest side."""
-        found: dict[int, str] = {}  # the frame's point of each support, and its joint
-        for k in range(self.mech.n_pairs):
-            a, b = (int(x) for x in self.mech.pair_links[k])
-            if self.mech.pair_type[k] == PairType.REVOLUTE and 0 in (a, b):
-                found.setdefault(int(self.mech.pair_points[k, 0 if a == 0 else 1]), str(self.mech.pair_joint[k]))
+        found = self.layout.supports
         apexes = self.local[list(found)].reshape(-1, 2)
         out = []
         for apex, down, joint in zip(apexes, self._free_sides(apexes), found.values(), strict=True):
@@ -306,7 +281,7 @@ class _Builder:
         """The sides of every drawn link at every sample of the cycle, ``(n, S, 2, 2)`` (NaN where it does not
         assemble)."""
         if self._segments is None:
-            self._segments = np.moveaxis(self.cycle[:, self.sides], 0, 1)  # (S, n, 2, 2) -> (n, S, 2, 2)
+            self._segments = np.moveaxis(self.cycle[:, self.layout.sides], 0, 1)  # (S, n, 2, 2) -> (n, S, 2, 2)
         return self._segments
 
     def _sliders(self) -> list[Item]:
@@ -409,23 +384,8 @@ class _Builder:
     def _point_labels(self) -> list[tuple[str, str, int, np.ndarray, np.ndarray, float]]:
         """(text, kind, link, local anchor, anchors (A, 2), gap) of every named point, each name once:
         the joints (a slider's beyond its block), the markers, the frame's points away from any joint."""
-        short = [name.split(".", 1)[1] for name in self.mech.point_names]
-        sliders = {short[int(self.mech.pair_points[k, 1])] for k in range(self.mech.n_pairs)
-                   if self.mech.pair_type[k] == PairType.PRISMATIC}  # fmt: skip
-        out, seen = [], set()
-        named = [(lab, p) for lab, p in point_labels(self.mech) if not self.mech.link_virtual[self.mech.point_link[p]]]
-        frame = [(self.mech.point_names[p].split(".", 1)[1], p) for p in range(len(self.mech.point_names))
-                 if self.mech.point_link[p] == 0]  # fmt: skip
-        for label, p in named + frame:
-            text = label.rsplit(".", 1)[-1] if p not in self.joint else label
-            key = text if p in self.joint or self.mech.point_link[p] == 0 else p
-            if key in seen:
-                continue
-            seen.add(key)
-            link = int(self.mech.point_link[p])
-            gap = (2.6 if p in self.joint and short[p] in sliders else 1.5) * self.r
-            out.append((text, "point", link, self.local[p], self.pts[:, p], gap))
-        return out
+        return [(text, "point", link, self.local[p], self.pts[:, p], gap * self.r)
+                for text, p, link, gap in self.layout.point_labels]  # fmt: skip
 
     def _link_numbers(self, items: tuple[Item, ...]) -> list[tuple[str, str, int, np.ndarray, np.ndarray, float]]:
         """(text, kind, link, local anchor, alternatives (M, 2) in the link's axes, gap) of a link's number beside
@@ -482,6 +442,104 @@ class _Builder:
             np.concatenate(segs, 1) if segs else np.zeros((n, 0, 2, 2)),
             np.stack(circles, 1) if circles else np.zeros((n, 0, 3)),
         )
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """What of a scheme the structure of its mechanism fixes, whatever its dimensions (the same for every variant).
+
+    Attributes
+    ----------
+    joint : set of int
+        The points of pairs.
+    moving : list of int
+        The points of the drawn moving links.
+    outline : dict
+        For each link, the points it is drawn through: its joints, then its markers (none for a link of one
+        point, the frame and a virtual link).
+    sides : ndarray of int, shape (n, 2)
+        The points of every drawn link's sides.
+    path_points : list of int
+        The moving points whose trajectories are drawn.
+    pivots : list of (str, int, int)
+        Joint, point and link of a pivot's circle at every revolute joint (one a compound hinge).
+    supports : dict
+        The frame's point of every revolute joint on the frame, and the joint.
+    point_labels : list of (str, int, int, float)
+        Text, point, link and gap (in pivot radii) of every named point, each name once: the joints (a
+        slider's beyond its block), the markers, the frame's points away from any joint.
+    """
+
+    joint: set[int]
+    moving: list[int]
+    outline: dict[int, list[int]]
+    sides: np.ndarray
+    path_points: list[int]
+    pivots: list[tuple[str, int, int]]
+    supports: dict[int, str]
+    point_labels: list[tuple[str, int, int, float]]
+
+
+#: The layouts of the mechanisms drawn, by identity (a mechanism is read-only), each dropped with its mechanism.
+_LAYOUTS: dict[int, tuple[weakref.ref, _Layout]] = {}
+
+
+def _layout(mech: Any) -> _Layout:
+    """The :class:`_Layout` of ``mech``, found once a mechanism (the viewer's edits draw one mechanism's variants)."""
+    found = _LAYOUTS.get(id(mech))
+    if found is not None and found[0]() is mech:
+        return found[1]
+    made, key = _make_layout(mech), id(mech)
+
+    def forget(ref: weakref.ref) -> None:
+        if _LAYOUTS.get(key, (None,))[0] is ref:
+            del _LAYOUTS[key]
+
+    _LAYOUTS[key] = (weakref.ref(mech, forget), made)
+    return made
+
+
+def _make_layout(mech: Any) -> _Layout:
+    n_points = len(mech.point_names)
+    joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
+    drawn = [link != 0 and not bool(mech.link_virtual[link]) for link in range(mech.n_links_total)]
+    moving = [p for p in range(n_points) if drawn[int(mech.point_link[p])]]
+    outline = {}
+    for link in range(mech.n_links_total):
+        own = [p for p in range(n_points) if mech.point_link[p] == link] if drawn[link] else []
+        draw = [p for p in own if p in joint] + [p for p in own if p not in joint]
+        outline[link] = draw if len(draw) >= 2 else []
+    sides = [(i, j) for draw in outline.values() for i, j in zip(draw, draw[1:], strict=False)]
+    revolute = [mech.pair_type[k] == PairType.REVOLUTE for k in range(mech.n_pairs)]
+    pivots: dict[str, tuple[str, int, int]] = {}
+    supports: dict[int, str] = {}
+    for k in range(mech.n_pairs):
+        a, b = (int(x) for x in mech.pair_links[k])
+        joint_name, p = str(mech.pair_joint[k]), int(mech.pair_points[k, 1])
+        if revolute[k]:
+            pivots.setdefault(joint_name, (joint_name, p, int(mech.point_link[p])))
+        if revolute[k] and 0 in (a, b):
+            supports.setdefault(int(mech.pair_points[k, 0 if a == 0 else 1]), joint_name)
+    return _Layout(joint, moving, outline, np.array(sides, dtype=int).reshape(-1, 2),
+                   [p for p in moving if outline[int(mech.point_link[p])]], list(pivots.values()), supports,
+                   _named_points(mech, joint, revolute))  # fmt: skip
+
+
+def _named_points(mech: Any, joint: set[int], revolute: list[bool]) -> list[tuple[str, int, int, float]]:
+    """:attr:`_Layout.point_labels` of ``mech``."""
+    short = [name.split(".", 1)[1] for name in mech.point_names]
+    sliders = {short[int(mech.pair_points[k, 1])] for k in range(mech.n_pairs) if not revolute[k]}
+    out, seen = [], set()
+    named = [(lab, p) for lab, p in point_labels(mech) if not mech.link_virtual[mech.point_link[p]]]
+    frame = [(short[p], p) for p in range(len(mech.point_names)) if mech.point_link[p] == 0]
+    for label, p in named + frame:
+        text = label.rsplit(".", 1)[-1] if p not in joint else label
+        key = text if p in joint or mech.point_link[p] == 0 else p
+        if key in seen:
+            continue
+        seen.add(key)
+        out.append((text, p, int(mech.point_link[p]), 2.6 if p in joint and short[p] in sliders else 1.5))
+    return out
 
 
 def _alternatives(anchors: np.ndarray, count: int) -> np.ndarray:
