@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from linkwork.limits import MAX_PROBLEMS
+
 
 @dataclass(frozen=True)
 class Problem:
@@ -50,12 +52,16 @@ class SpecError(LinkworkError, ValueError):
     Attributes
     ----------
     problems : tuple of Problem
-        Every problem found, in file order.
+        Every problem found, in file order (the message lists the first
+        :data:`~linkwork.limits.MAX_PROBLEMS`).
     """
 
     def __init__(self, problems: list[Problem] | tuple[Problem, ...]):
         self.problems = tuple(problems)
-        super().__init__("\n".join(str(p) for p in self.problems))
+        lines = [str(p) for p in self.problems[:MAX_PROBLEMS]]
+        if len(self.problems) > MAX_PROBLEMS:
+            lines.append(f"... and {len(self.problems) - MAX_PROBLEMS:,} more problems (SpecError.problems lists all)")
+        super().__init__("\n".join(lines))
 
 
 class ParameterError(LinkworkError, ValueError):

@@ -14,6 +14,7 @@ from __future__ import annotations
 from typing import Any
 
 from linkwork.errors import LinkworkError
+from linkwork.limits import excerpt
 
 #: The languages of the texts, the first the default.
 LANGUAGES = ("en", "ru")
@@ -344,7 +345,7 @@ TEXTS: dict[str, tuple[str, str]] = {
 def check_lang(lang: str) -> None:
     """Raise :class:`~linkwork.errors.LinkworkError` unless ``lang`` is one of :data:`LANGUAGES`."""
     if lang not in LANGUAGES:
-        raise LinkworkError(f"--lang: expected one of {', '.join(LANGUAGES)}, got {lang!r}")
+        raise LinkworkError(f"--lang: expected one of {', '.join(LANGUAGES)}, got {excerpt(lang)!r}")
 
 
 def t(key: str, lang: str = "en", /, **values: Any) -> str:

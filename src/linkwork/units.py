@@ -24,6 +24,7 @@ from functools import lru_cache
 from typing import Any
 
 from linkwork.errors import UnitParseError
+from linkwork.limits import MAX_QUANTITY, quote
 
 #: Kinds of quantity: (phrase for messages, SI unit, pint dimensionality).
 KINDS: dict[str, tuple[str, str, str]] = {
@@ -181,11 +182,11 @@ def _factor(unit: str, kind: str) -> float:
 
 def _pint_factor(unit: str, kind: str) -> float:
     """SI value of one ``unit`` of ``kind`` by pint; raises UnitParseError."""
-    ureg = registry()
     phrase = KINDS[kind][0]
     unknown = f"unknown unit {_quote(unit)}"
-    if not _UNIT_TEXT.match(unit):
+    if len(unit) > MAX_QUANTITY or not _UNIT_TEXT.match(unit):
         raise UnitParseError(unknown, unknown)
+    ureg = registry()
     try:
         units = ureg.parse_units(unit)
         q = ureg.Quantity(1.0, units)
@@ -199,8 +200,13 @@ def _pint_factor(unit: str, kind: str) -> float:
     return _to_si(q, kind, unit)
 
 
-#: What a unit expression may contain: names, *, /, ^ or ** with small integer powers, spaces.
-_UNIT_TEXT = re.compile(r"^[A-Za-z_][A-Za-z0-9_ ]*(?:\s*(?:\*\*|\^|\*|/)\s*(?:[A-Za-z_][A-Za-z0-9_]*|-?\d))*\s*$")
+#: What a unit expression may contain: names, *, /, ^ or ** with small integer powers, spaces.  Each
+#: quantifier is possessive and no two of them can take the same characters, so that a match takes
+#: time linear in the text, whatever it holds.
+_UNIT_TEXT = re.compile(
+    r"^[A-Za-z_][A-Za-z0-9_]*+(?: ++[A-Za-z_][A-Za-z0-9_]*+)*+"
+    r"(?:\s*+(?:\*\*|\^|\*|/)\s*+(?:[A-Za-z_][A-Za-z0-9_]*+(?: ++[A-Za-z_][A-Za-z0-9_]*+)*+|-?\d))*+\s*+$"
+)
 
 
 def _to_si(q: Any, kind: str, text: str) -> float:
@@ -286,6 +292,10 @@ def _bare(value: float, kind: str, declared: dict[str, str]) -> float:
 def _with_unit(value: str, kind: str) -> float:
     """A number with its unit (``"100 mm"``) of ``kind`` in SI; raises UnitParseError."""
     phrase = KINDS[kind][0]
+    if len(value) > MAX_QUANTITY:
+        raise UnitParseError(
+            f"expected {phrase}, got {_quote(value)} (a number with its unit is at most {MAX_QUANTITY} characters)"
+        )
     match = _NUMBER_UNIT.match(value.strip())
     if match is None:
         raise UnitParseError(f'expected {phrase}, got {_quote(value)} (write a number and a unit, e.g. "100 mm")')
@@ -303,8 +313,9 @@ def _with_unit(value: str, kind: str) -> float:
     return result
 
 
-#: A plain decimal number followed by a unit expression: nothing is evaluated but the unit.
-_NUMBER_UNIT = re.compile(r"^([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z_].*)$")
+#: A plain decimal number followed by a unit expression: nothing is evaluated but the unit.  Possessive,
+#: and the number's digits split one way only, so that a match takes time linear in the text.
+_NUMBER_UNIT = re.compile(r"^([-+]?+(?:\d++(?:\.\d*+)?+|\.\d++)(?:[eE][-+]?+\d++)?+)\s*+([A-Za-z_].*+)$")
 
 #: Units an angle may be written in (pint's canonical names).
 ANGLE_UNITS = {"radian", "degree", "revolution", "turn", "arcminute", "arcsecond", "gradian"}
@@ -323,4 +334,4 @@ def _show(value: Any) -> str:
 
 
 def _quote(text: str) -> str:
-    return '"' + text.replace('"', '\\"') + '"'
+    return quote(text)

@@ -412,7 +412,7 @@ def test_analyze_takes_one_of_the_12_positions(tmp_path, position):
     _commands()
     result = runner.invoke(app, ["analyze", "four-bar", "--out", str(tmp_path / "r"), "--position", position])
     assert result.exit_code == 2
-    assert result.stderr.strip() == f"error: --position: expected one of the 12 positions, 0 to 11, got {position}"
+    assert result.stderr.strip() == f'error: --position: expected one of the 12 positions, 0 to 11, got "{position}"'
     assert list(tmp_path.iterdir()) == []
 
 

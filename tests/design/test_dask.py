@@ -209,3 +209,44 @@ def test_a_worker_killed_mid_sweep_has_its_chunk_retried_and_every_variant_is_co
         pids = [p for cc, p in log if cc == c]
         assert len(pids) == 2 and pids[0] == victim.pid and pids[1] != victim.pid
     _equal(t, lw.sweep("double-cut-shears", VARY, METRICS, steps=360, chunk_size=2, workers=0))
+
+
+def _pages(host: str) -> dict[str, int]:
+    """The HTTP status of a few of Dask's pages on the web servers of the cluster this process is a client of
+    (its scheduler's and its workers'), asked for with the Host header ``host``; 8787 is Dask's own port."""
+    import urllib.error
+    import urllib.request
+
+    from distributed import default_client
+
+    client = default_client()
+    ports = {client.run_on_scheduler(lambda dask_scheduler: dask_scheduler.http_server.port)}
+    ports |= set(client.run(lambda dask_worker: dask_worker.http_server.port).values())
+    status = {}
+    for port in sorted(ports | {8787}):
+        for page in ("/status", "/json/identity.json", "/info/main/workers.html", "/metrics"):
+            request = urllib.request.Request(f"http://127.0.0.1:{port}{page}", headers={"Host": host})
+            try:
+                with urllib.request.urlopen(request, timeout=5) as reply:
+                    status[f"{port}{page}"] = reply.status
+            except urllib.error.HTTPError as exc:
+                status[f"{port}{page}"] = exc.code
+            except OSError:
+                status[f"{port}{page}"] = 0  # nothing listens
+    return status
+
+
+def test_a_local_cluster_serves_no_page_unless_asked_for(tmp_path):
+    """Dask's pages answer whatever host a request names, so that a page in a browser on this machine could
+    read them through a name of its own for 127.0.0.1: a sweep's local cluster serves none."""
+    seen: list[dict[str, int]] = []
+
+    def probe(chunk: int, done: int, total: int) -> None:
+        if not seen:
+            seen.append(_pages("attacker.example"))
+
+    lw.sweep("four-bar", ["links.crank.length=95mm:105mm:2"], ["swing"], steps=12, chunk_size=1, workers=1,
+             on_chunk=probe)  # fmt: skip
+    assert seen and len(seen[0]) >= 8  # the scheduler's, a worker's and 8787
+    served = {page: code for page, code in seen[0].items() if 200 <= code < 400}
+    assert served == {}

@@ -99,7 +99,7 @@ def test_change_points_go_to_the_numpy_path(monkeypatch):
     mech = lw.compile(lw.example("shears-slider-crank"))
     values = mech.drive_start[0] + np.linspace(0, 2 * np.pi, 360, endpoint=False)[:, None]
     res = fast.run(mech, apply(mech)[0], values, np.ones_like(values), np.zeros_like(values))
-    assert res["near"].any()
+    assert res.near.any()
     compiled, reference = _both(mech, values[:, 0], monkeypatch)
     _same(compiled, reference)
     assert any(e.kind == "change-point" for e in compiled.events)
@@ -116,6 +116,6 @@ def test_samples_on_a_singular_position_go_to_the_numpy_path(monkeypatch):
     for mech, values in ((rhombus, np.radians([0.0, 10.0, 20.0])), (kite, np.array([0.0, 0.1, 0.2]))):
         res = fast.run(mech, apply(mech)[0], values[:, None], np.ones((3, 1)), np.zeros((3, 1)))
         assert [step.kind for step in mech.program] == ["crank", "RRR"]
-        assert res["limit"][:, 0].tolist() == [False, True]  # per step
+        assert res.limit[:, 0].tolist() == [False, True]  # per step
         compiled, reference = _both(mech, np.linspace(0.3, -0.3, 61), monkeypatch)
         _same(compiled, reference)

@@ -729,3 +729,17 @@ def test_the_isosceles_slider_crank_turned_and_shifted_keeps_its_change_points(t
     axis = np.array([-math.sin(r), math.cos(r)])
     np.testing.assert_allclose(kin.position("B"), [dx, dy] + 0.3 * np.sin(phi)[:, None] * axis, atol=1e-12)
     np.testing.assert_allclose(kin.velocity("B"), 3.0 * np.cos(phi)[:, None] * axis, atol=1e-8)
+
+
+def test_readings_of_a_point_are_the_callers_own():
+    """A point's position, velocity and acceleration share the offset kept on the result; what they
+    return can be written to without changing the next reading, and they are the crank pin's closed
+    form (the file's crank O2A = 100 mm about O2 at the origin, 60 rpm counter-clockwise)."""
+    kin = lw.kinematics(lw.compile(lw.example("four-bar")), steps=36)
+    kin.position("A")[:] = 0.0
+    kin.velocity("A")[:] = 0.0
+    theta, w, r = kin.angles, 2 * math.pi, 0.100
+    ring = np.stack([np.cos(theta), np.sin(theta)], -1)
+    np.testing.assert_allclose(kin.position("A"), r * ring, atol=1e-15)
+    np.testing.assert_allclose(kin.velocity("A"), w * r * ring[:, ::-1] * [-1, 1], atol=1e-14)
+    np.testing.assert_allclose(kin.acceleration("A"), -w * w * r * ring, atol=1e-13)

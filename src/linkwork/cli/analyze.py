@@ -6,7 +6,8 @@ from typing import Annotated
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, fail, needs
+from linkwork.cli.app import FileOrExample, _compile, app, check_options, fail, needs
+from linkwork.limits import MAX_ANGLES, quote, whole
 
 
 @app.command()
@@ -40,10 +41,9 @@ def analyze(
     from linkwork.report import analyze as run
     from linkwork.report import require_packages
 
-    if steps < 12:
-        fail(LinkworkError(f"--steps: expected at least 12 steps over the turn, got {steps}"))
+    check_options(whole(steps, "--steps", 12, MAX_ANGLES, "number of steps over the turn"))
     if position is not None and position != "all" and not (position.isdigit() and 0 <= int(position) < 12):
-        fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {position}"))
+        fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {quote(position)}"))
     try:
         check_lang(lang)
     except LinkworkError as exc:

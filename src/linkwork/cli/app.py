@@ -44,6 +44,14 @@ def fail(exc: Exception) -> NoReturn:
     raise typer.Exit(2)
 
 
+def check_options(*problems: str | None) -> None:
+    """Exit with code 2 and a line for each problem of the options (the messages of the checks of
+    :mod:`linkwork.limits`; None where an option is right), before any work."""
+    found = [p for p in problems if p is not None]
+    if found:
+        fail(LinkworkError("\n".join(found)))
+
+
 def needs(*modules: str, purpose: str) -> None:
     """Exit with the one-line message of :func:`linkwork.optional.require` unless ``modules`` import."""
     try:
@@ -52,11 +60,63 @@ def needs(*modules: str, purpose: str) -> None:
         fail(exc)
 
 
-def echo_json(data: Any, indent: int | None = None) -> None:
-    """Print ``data`` as JSON by the command line's one writer (rounded numbers, no NaN)."""
+def echo_json(data: Any, indent: int | None = None, why: dict[str, str] | None = None) -> None:
+    """Print ``data`` as JSON by the command line's one writer (rounded numbers, no NaN), a record with
+    its ``nulls`` explained (:func:`explain_nulls`, by ``why``)."""
     from linkwork.io.jsonout import dumps
 
-    typer.echo(dumps(data, indent=indent))
+    typer.echo(dumps(explain_nulls(data, why or {}) if isinstance(data, dict) else data, indent=indent))
+
+
+#: Why a number has no value, where the record's command gives no reason of its own.
+NO_VALUE = "no value: the computation gives none (not a finite number)"
+
+
+def explain_nulls(data: dict[str, Any], why: dict[str, str]) -> dict[str, Any]:
+    """``data`` (a ``--json`` record) with ``nulls``, an object that says why each null stands where a
+    number would be, where it holds any: the one rule of the ``--json`` records.
+
+    ``why`` maps a path in the record (``points.*``, ``events[].time_ratio``; ``*`` one key, ``[]`` the
+    items of a list; a path covers what lies under it) to why its nulls have no value.  Every null or
+    non-finite number under one of those paths is explained by the first that covers it (and listed
+    under that path); every other non-finite number under its own path, as having :data:`NO_VALUE`.
+    Other nulls mean what the record's documentation says (an order of a group of class I, a drive
+    without a speed).
+    """
+    import re
+
+    patterns = [(re.compile(re.escape(p).replace(r"\*", r"[^.\[]+") + r"(?=$|[.\[])"), p) for p in why]
+    nulls: dict[str, str] = {}
+    for path, finite_none in _no_values(data, ""):
+        covering = next((p for regex, p in patterns if regex.match(path)), None)
+        if covering is not None:
+            nulls.setdefault(covering, why[covering])
+        elif not finite_none:
+            nulls.setdefault(path, NO_VALUE)
+    return {**data, "nulls": nulls} if nulls else data
+
+
+def _no_values(x: Any, path: str) -> Any:
+    """``(path, is None)`` of each None and each non-finite number in ``x``, by the path of its key
+    (``[]`` for the items of a list), once per path."""
+    import numpy as np
+
+    if x is None:
+        yield path, True
+    elif isinstance(x, float | np.floating) and not math.isfinite(x):
+        yield path, False
+    elif isinstance(x, np.ndarray) and x.dtype.kind == "f" and not np.isfinite(x).all():
+        yield path + "[]", False
+    elif isinstance(x, dict):
+        for k, v in x.items():
+            yield from _no_values(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(x, list | tuple):
+        seen: set[tuple[str, bool]] = set()
+        for v in x:
+            for found in _no_values(v, path + "[]"):
+                if found not in seen:
+                    seen.add(found)
+                    yield found
 
 
 def make_console() -> Console:

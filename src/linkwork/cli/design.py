@@ -8,8 +8,19 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, needs
+from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, fail, needs
 from linkwork.errors import DesignError, DesignWarning, LinkworkError
+from linkwork.limits import (
+    MAX_ANGLES,
+    MAX_BATCH,
+    MAX_GENERATIONS,
+    MAX_OPTION,
+    MAX_SEED,
+    QUOTE_PATH,
+    excerpt,
+    quote,
+    whole,
+)
 
 if TYPE_CHECKING:
     from linkwork.design.sweep import SweepTable
@@ -23,6 +34,17 @@ Vary = Annotated[
         "repeat for more dimensions",
     ),
 ]
+
+
+def _text_problems(**options: list[str]) -> list[str]:
+    """Each text of the options (``--vary``, ``--metric``, ``--constraint``) longer than
+    :data:`~linkwork.limits.MAX_OPTION` characters: one line each."""
+    return [
+        f"--{name}: expected at most {MAX_OPTION:,} characters, got {quote(text)}"
+        for name, texts in options.items()
+        for text in texts
+        if len(text) > MAX_OPTION
+    ]
 
 
 def _show(value: float, unit: str) -> str:
@@ -87,6 +109,12 @@ def sweep(
     connect_timeout: Annotated[
         float, typer.Option("--connect-timeout", help="seconds to wait for the scheduler of --scheduler")
     ] = 30.0,
+    dashboard: Annotated[
+        bool,
+        typer.Option(
+            "--dashboard", help="serve Dask's dashboard of the local cluster on 127.0.0.1:8787 (by default none)"
+        ),
+    ] = False,
     quiet: Annotated[bool, typer.Option("--quiet", help="no progress bar")] = False,
 ) -> None:
     """Metrics of many design variants, a row per variant, computed in chunks (here or on Dask).
@@ -101,6 +129,9 @@ def sweep(
     from linkwork.design.store import parts_dir
     from linkwork.design.sweep import sweep as run
 
+    check_options(*_text_problems(vary=vary, metric=metric))
+    if dashboard and scheduler is not None:
+        fail(LinkworkError("--dashboard: for the local cluster only; a running cluster serves its own"))
     if scheduler is not None or (workers or 0) > 0:
         needs("distributed", purpose="a sweep on Dask (--workers, --scheduler)")
     try:
@@ -108,7 +139,7 @@ def sweep(
             table = run(
                 file_or_example, vary, metric, sampling=sample, samples=samples, seed=seed, steps=steps,
                 chunk_size=chunk_size, out=out, resume=resume, workers=workers, scheduler=scheduler,
-                progress=not quiet, keep_parts=keep_parts, connect_timeout=connect_timeout,
+                progress=not quiet, keep_parts=keep_parts, connect_timeout=connect_timeout, dashboard=dashboard,
             )  # fmt: skip
     except (DesignError, LinkworkError) as exc:
         fail(exc)
@@ -177,7 +208,21 @@ def optimize(
     from linkwork.design.optimize import optimize as run
 
     if out is not None and not out.endswith((".yaml", ".yml")):
-        fail(LinkworkError(f'--out "{out}": expected a .yaml file'))
+        fail(LinkworkError(f'--out "{excerpt(out, QUOTE_PATH)}": expected a .yaml file'))
+    check_options(
+        *_text_problems(vary=vary, constraint=constraint or [], metric=[objective, *(metric or [])]),
+        whole(steps, "--steps", 3, MAX_ANGLES, "number of crank angles"),
+        whole(seed, "--seed", 0, MAX_SEED),
+        whole(maxiter, "--maxiter", 0, MAX_GENERATIONS, "number of generations"),
+    )
+    most = max(1, MAX_BATCH // (max(1, len(vary)) * steps))  # each generation is solved at once
+    if not 1 <= popsize <= most:
+        fail(
+            LinkworkError(
+                f"--popsize: expected a positive number, at most {most:,} (a generation of popsize x {len(vary)} "
+                f"designs x {steps} crank angles is solved at once, at most {MAX_BATCH:,} samples), got {popsize}"
+            )
+        )
     try:
         with _Warnings():
             best = run(
@@ -187,7 +232,8 @@ def optimize(
     except (DesignError, LinkworkError) as exc:
         fail(exc)
     if as_json:
-        echo_json(best.as_dict())
+        why = "the design does not assemble over the whole turn, or the metric has no value for it"
+        echo_json(best.as_dict(), why={"metrics": why, "initial": why})
         return
     typer.echo(f"{'best design' if best.feasible else 'no design meets every constraint; the nearest'}: "
                f"{best.evaluations} designs evaluated in {best.generations} generations")  # fmt: skip

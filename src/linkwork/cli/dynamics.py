@@ -9,8 +9,9 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail
+from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, explain_nulls, fail
 from linkwork.errors import LinkworkError
+from linkwork.limits import MAX_ANGLES, delta_problem, whole
 
 if TYPE_CHECKING:
     from linkwork.machine import Dynamics
@@ -31,14 +32,13 @@ def dynamics(
     from linkwork.io.dynamics_tables import to_json
     from linkwork.machine import dynamics as run
 
+    check_options(whole(steps, "--steps", 1, MAX_ANGLES), delta_problem(delta, "--delta"))
     mech = _compile(file_or_example)
-    if delta is not None and not 0 < delta < 1:
-        fail(LinkworkError(f"--delta: expected a coefficient of speed fluctuation between 0 and 1, got {delta}"))
     try:
         result = run(mech, delta=delta, steps=steps)
     except LinkworkError as exc:
         fail(exc)
-    data = to_json(mech, result)
+    data = explain_nulls(to_json(mech, result), {})
     paths = _write(out, data) if out is not None else []
     if as_json:
         echo_json(data)

@@ -9,8 +9,20 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, make_console, make_table, show
-from linkwork.cli.motion import _angles
+from linkwork.cli.app import (
+    FileOrExample,
+    _compile,
+    app,
+    check_options,
+    echo_json,
+    explain_nulls,
+    fail,
+    make_console,
+    make_table,
+    show,
+)
+from linkwork.cli.motion import NOT_ASSEMBLED, _angles, check_angles
+from linkwork.limits import MAX_ANGLES, MAX_NAME, quote, whole
 
 # what a command needs is imported when it runs, so that the command line starts fast
 if TYPE_CHECKING:
@@ -48,6 +60,25 @@ def _speed(mech: Mechanism, text: str | None) -> float | None:
     return sign * value
 
 
+#: Why the values of ``linkwork forces --json`` may be null.
+FORCES_NULLS = {
+    "joints": "the reactions of a group are indeterminate at its dead or change points (singular), and have "
+    "no value where the mechanism does not assemble",
+    "driving_torque": NOT_ASSEMBLED,
+    "foundation": NOT_ASSEMBLED,
+    "shaking": NOT_ASSEMBLED,
+    "loads": NOT_ASSEMBLED,
+    "bolts.speed_for_pull_rad_s": "the machine's inertia never pulls the bolts that hard, at any crank speed",
+}
+
+#: Why the values of ``linkwork balance --json`` may be null.
+BALANCE_NULLS = {
+    "before": "the forces of the mechanism have no value at any angle",
+    "after": "the forces of the mechanism with its counterweights have no value at any angle (a counterweight "
+    "too heavy or too far out to compute)",
+}
+
+
 def _deg(angle: float) -> str:
     return f"{math.degrees(angle) % 360:.1f} deg"
 
@@ -75,6 +106,7 @@ def forces(
     from linkwork.io.force_tables import CONVENTION, pair_labels, to_json
     from linkwork.kinetostatics import forces as solve
 
+    check_angles(steps, angles)
     mech = _compile(file_or_example)
     where = _angles(mech, steps, angles)
     rate = _speed(mech, speed)
@@ -88,6 +120,7 @@ def forces(
     if lift is not None:
         data["bolts"]["pull_target"] = target
         data["bolts"]["speed_for_pull_rad_s"] = lift if math.isfinite(lift) else None
+    data = explain_nulls(data, FORCES_NULLS)
     written = _write(f, data, out) if out is not None else []
     if as_json:
         echo_json(data)
@@ -242,6 +275,12 @@ def balance(
     from linkwork.kinetostatics import balance as solve
     from linkwork.units import parse_quantity
 
+    names = [n.strip() for n in links.split(",") if n.strip()]
+    check_options(
+        whole(steps, "--steps", 1, MAX_ANGLES),
+        *(f"--links: no link is named {quote(n)}: names are at most {MAX_NAME} characters" for n in names
+          if len(n) > MAX_NAME),
+    )  # fmt: skip
     mech = _compile(file_or_example)
     r = None
     if radius is not None:
@@ -249,7 +288,6 @@ def balance(
             r = parse_quantity(radius, "length")
         except UnitParseError as exc:
             fail(LinkworkError(f"--radius: {exc}"))
-    names = [n.strip() for n in links.split(",") if n.strip()]
     try:
         result = solve(mech, names, harmonic=1 if first_harmonic else None, radius=r, steps=steps)
     except LinkworkError as exc:
@@ -261,7 +299,7 @@ def balance(
             "counterweights": [w.as_dict() for w in result.counterweights],
             **result.summary(),
         }
-        echo_json(out)
+        echo_json(out, why=BALANCE_NULLS)
         return
     _report_balance(mech.name, result, first_harmonic)
 

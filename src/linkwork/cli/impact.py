@@ -7,11 +7,13 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail
+from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, fail
 from linkwork.errors import LinkworkError
+from linkwork.limits import MAX_BLOWS, whole
 
 if TYPE_CHECKING:
     from linkwork.impulse import Blow, Impact, Phase, RockerImpact, WorkingCycle
+    from linkwork.spec.schema import ImpactSpec
     from linkwork.structure.model import Mechanism
 
 
@@ -40,21 +42,23 @@ def impact(
     With --cycle: the machine's working cycle, blow after blow."""
     if blows is not None and not cycle:
         fail(LinkworkError("--blows: only with --cycle"))
+    check_options(whole(blows, "--blows", 3, MAX_BLOWS, "number of blows") if blows is not None else None)
     mech = _compile(file_or_example)
-    if mech.blow is None:
+    blow = mech.blow
+    if blow is None:
         fail(LinkworkError('the mechanism has no blow: give an "impact:" section (at, normal, omega, restitution)'))
     if cycle:
         _cycle(mech, as_json, blows)
     else:
-        _blow(mech, as_json)
+        _blow(mech, blow, as_json)
 
 
-def _blow(mech: Mechanism, as_json: bool) -> None:
-    """``linkwork impact``: the file's blow on the whole mechanism and on seed 004's reduced model."""
+def _blow(mech: Mechanism, blow: ImpactSpec, as_json: bool) -> None:
+    """``linkwork impact``: the file's blow (``blow``, the mechanism's) on the whole mechanism and on seed 004's
+    reduced model."""
     from linkwork.impulse import impact as solve
     from linkwork.impulse import reduced_model
 
-    blow = mech.blow
     striker = blow.at.split(".", 1)[0]
     try:
         whole = solve(mech)
@@ -73,7 +77,7 @@ def _blow(mech: Mechanism, as_json: bool) -> None:
     if as_json:
         echo_json(out)
     else:
-        _print_blow(mech, whole, out, model)
+        _print_blow(mech, blow, whole, out, model)
 
 
 def _blow_json(mech: Mechanism, whole: Impact, link: str) -> dict[str, Any]:
@@ -101,9 +105,10 @@ def _blow_json(mech: Mechanism, whole: Impact, link: str) -> dict[str, Any]:
     }
 
 
-def _print_blow(mech: Mechanism, whole: Impact, out: dict[str, Any], model: RockerImpact | None) -> None:
-    """The report of ``linkwork impact``, from its JSON object ``out``."""
-    blow = mech.blow
+def _print_blow(
+    mech: Mechanism, blow: ImpactSpec, whole: Impact, out: dict[str, Any], model: RockerImpact | None
+) -> None:
+    """The report of ``linkwork impact`` on the mechanism's blow ``blow``, from its JSON object ``out``."""
     typer.echo(f"{mech.name}: blow of {blow.at}, R = {blow.restitution:g}, f = {blow.friction:g}")
     typer.echo(
         f"  whole mechanism: impulse on the striker ({whole.impulse[0]:.6g}, {whole.impulse[1]:.6g}) N s; "

@@ -3,20 +3,65 @@
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, make_console, make_table, needs, show
+from linkwork.cli.app import (
+    FileOrExample,
+    _compile,
+    app,
+    check_options,
+    echo_json,
+    fail,
+    make_console,
+    make_table,
+    needs,
+    show,
+)
+from linkwork.errors import LinkworkError
+from linkwork.limits import MAX_ANGLES, angle_problem, quote, whole
+
+if TYPE_CHECKING:
+    from linkwork.structure.model import Mechanism
+
+#: Why a quantity at an angle has no value (``nulls`` of the ``--json`` records).
+NOT_ASSEMBLED = "the mechanism does not assemble at these angles (valid is false there)"
+
+#: Why the values of ``linkwork kinematics --json`` may be null.
+KINEMATICS_NULLS = {
+    "points": NOT_ASSEMBLED,
+    "links": NOT_ASSEMBLED,
+    "events": "a stroke, its extreme positions and the time ratios are found over a whole turn only, "
+    "where the mechanism assembles at every angle of it (the angles asked are not one, or it does not)",
+}
 
 
-def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
+def check_angles(steps: int | None, angles: str | None) -> list[float] | None:
+    """The bounds of ``--steps`` and ``--angles`` (at most :data:`~linkwork.limits.MAX_ANGLES` angles,
+    each within :data:`~linkwork.limits.MAX_TURNS` turns), checked before any work: exit code 2 with one
+    line where they are passed.  Returns the numbers of ``--angles``, or None."""
+    if steps is not None:
+        check_options(whole(steps, "--steps", 1, MAX_ANGLES))
+    if angles is None:
+        return None
+    try:
+        values = [float(a) for a in angles.replace(" ", "").split(",") if a]
+    except ValueError:
+        fail(LinkworkError(f"--angles: expected numbers separated by commas, got {quote(angles)}"))
+    if len(values) > MAX_ANGLES:
+        fail(LinkworkError(f"--angles: expected at most {MAX_ANGLES:,} angles, got {len(values):,}"))
+    return values
+
+
+def _angles(mech: Mechanism, steps: int | None, angles: str | None) -> dict[str, Any]:
     """Keyword arguments of lw.kinematics from the options; crank angles in degrees, or slider
     positions in mm for a linear drive."""
-    from linkwork.errors import LinkworkError
     from linkwork.structure.model import one_crank
 
+    given = check_angles(steps, angles)
     if mech.n_drives != 1:
         fail(
             LinkworkError(
@@ -27,19 +72,15 @@ def _angles(mech: Any, steps: int | None, angles: str | None) -> dict[str, Any]:
     revolute = one_crank(mech)
     if steps is not None and angles is not None:
         fail(LinkworkError("give either --steps or --angles, not both"))
-    if angles is not None:
+    if given is not None:
         unit = "degrees" if revolute else "mm"
-        try:
-            values = [float(a) for a in angles.replace(" ", "").split(",") if a]
-        except ValueError:
-            fail(LinkworkError(f'--angles: expected numbers in {unit} separated by commas, got "{angles}"'))
-        if not values:
+        if not given:
             fail(LinkworkError("--angles: no angles given"))
-        if not all(math.isfinite(v) for v in values):
-            fail(LinkworkError(f'--angles: expected finite numbers in {unit}, got "{angles}"'))
-        return {"angles": np.radians(values) if revolute else np.array(values) / 1000}
-    if steps is not None and steps < 1:
-        fail(LinkworkError(f"--steps: expected a positive number of steps, got {steps}"))
+        if not all(math.isfinite(v) for v in given):
+            fail(LinkworkError(f"--angles: expected finite numbers in {unit}, got {quote(angles)}"))
+        if revolute:
+            check_options(angle_problem(max(given, key=abs), "--angles"))
+        return {"angles": np.radians(given) if revolute else np.array(given) / 1000}
     if not revolute:
         fail(
             LinkworkError(
@@ -58,11 +99,11 @@ def kinematics(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Positions, velocities and accelerations of every point and link over the cycle."""
-    from linkwork.errors import LinkworkError
     from linkwork.io.motion_tables import to_json, write_csv, write_netcdf
     from linkwork.motion import kinematics as solve
     from linkwork.motion.analysis import extremes, transmission_angles
 
+    check_angles(steps, angles)
     if out is not None:
         needs("xarray", purpose=f"--out {out}: kinematics.nc (NetCDF)")
     mech = _compile(file_or_example)
@@ -73,15 +114,13 @@ def kinematics(
     ext = extremes(kin) if angles is None else []
     written = []
     if out is not None:
-        from pathlib import Path
-
         try:
             written.append(write_csv(kin, Path(out) / "kinematics.csv"))
             written.append(write_netcdf(kin, Path(out) / "kinematics.nc"))
         except OSError as exc:
             fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     if as_json:
-        echo_json(to_json(kin, ext))
+        echo_json(to_json(kin, ext), why=KINEMATICS_NULLS)
         return
     n_ok = int(np.sum(kin.valid))
     typer.echo(f"{mech.name}: {len(kin.angles)} positions, {n_ok} assembled")
@@ -102,8 +141,8 @@ def kinematics(
                 f"  {label}: least transmission angle {math.degrees(mu[i]):.2f} deg at "
                 f"{math.degrees(kin.angles[i]) % 360:.1f} deg"
             )
-    for e in kin.events:
-        typer.echo(f"  {e.kind}: {e.message}")
+    for event in kin.events:
+        typer.echo(f"  {event.kind}: {event.message}")
     for path in written:
         typer.echo(f"  wrote {path}")
 
@@ -127,16 +166,15 @@ def positions(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """The plan of positions: coordinates of the points at COUNT crank positions (mm)."""
-    from linkwork.errors import LinkworkError
     from linkwork.motion import analysis, cycle
     from linkwork.motion import kinematics as solve
     from linkwork.structure.model import point_labels
 
+    check_options(
+        whole(count, "--count", 1, MAX_ANGLES, "number of positions"),
+        angle_problem(zero, "--zero") if zero is not None else None,
+    )
     mech = _compile(file_or_example)
-    if count < 1:
-        fail(LinkworkError(f"--count: expected a positive number, got {count}"))
-    if zero is not None and not math.isfinite(zero):
-        fail(LinkworkError(f"--zero: expected a crank angle in degrees, got {zero}"))
     try:
         sign = 1.0 if cycle(mech, 2)[1] > cycle(mech, 2)[0] else -1.0  # checks for a crank first
         start = math.radians(zero) if zero is not None else analysis.zero_angle(mech)
@@ -153,7 +191,7 @@ def positions(
             row[label] = [None if not np.isfinite(c) else round(float(c), 3) for c in x]
         rows.append(row)
     if as_json:
-        echo_json({"name": mech.name, "unit": "mm", "positions": rows})
+        echo_json({"name": mech.name, "unit": "mm", "positions": rows}, why={"positions": NOT_ASSEMBLED})
         return
     from rich.markup import escape
 

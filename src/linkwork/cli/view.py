@@ -7,6 +7,7 @@ from typing import Annotated
 import typer
 
 from linkwork.cli.app import FileOrExample, app, fail, needs
+from linkwork.limits import QUOTE_PATH, excerpt
 
 
 @app.command()
@@ -38,12 +39,13 @@ def view(
 
             if not export.strip():
                 fail(LinkworkError("--export: give the name of the page to write, e.g. --export shears.html"))
-            if Path(export).is_dir():
-                fail(LinkworkError(f"--export {export}: is a directory; give the name of the page to write"))
+            shown = excerpt(export, QUOTE_PATH)
             try:
+                if Path(export).is_dir():
+                    fail(LinkworkError(f"--export {shown}: is a directory; give the name of the page to write"))
                 written = export_page(spec, export, steps=steps)
             except OSError as exc:
-                fail(LinkworkError(f"--export {export}: cannot write ({exc.strerror or exc})"))
+                fail(LinkworkError(f"--export {shown}: cannot write ({exc.strerror or exc})"))
             typer.echo(f"wrote {written}")
             return
         from linkwork.web.server import create_app, serve

@@ -8,9 +8,11 @@
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import re
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -38,6 +40,19 @@ from linkwork.design.store import (
 )
 from linkwork.errors import DesignError, LinkworkError, MissingDependencyError
 from linkwork.kinetostatics import fast as kfast
+from linkwork.limits import (
+    MAX_ANGLES,
+    MAX_BATCH,
+    MAX_SEED,
+    MAX_TIMEOUT,
+    MAX_VARIANTS,
+    QUOTE_PATH,
+    WORKERS_PER_CORE,
+    excerpt,
+    max_workers,
+    quote,
+    whole,
+)
 from linkwork.motion import fast as mfast
 from linkwork.optional import require
 from linkwork.structure.model import Mechanism
@@ -160,6 +175,7 @@ def sweep(
     attempts: str | Path | None = None,
     keep_parts: bool = False,
     connect_timeout: float = 30.0,
+    dashboard: bool = False,
 ) -> SweepTable:
     """Metrics of many design variants of one mechanism, a row per variant.
 
@@ -202,6 +218,10 @@ def sweep(
         Keep ``OUT.parts/`` once the table is written (by default it is removed then).
     connect_timeout : float
         Seconds to wait for the scheduler at ``scheduler``.
+    dashboard : bool
+        Serve Dask's dashboard of a local cluster on 127.0.0.1:8787 (its link is written on stderr).
+        Without it the local cluster serves no web page at all: Dask's pages answer requests for any
+        host name, which a web page open in a browser on this machine could use to read them.
 
     Returns
     -------
@@ -214,9 +234,8 @@ def sweep(
         unreadable manifest, or a chunk on disk that changed during the run.
     """
     mech = mechanism_of(mechanism, "mechanism")
-    varies, requests = _checked(
-        mech, vary, metrics, sampling, steps, chunk_size, out, workers, scheduler, connect_timeout
-    )
+    options = _Options(sampling, samples, seed, steps, chunk_size, workers, scheduler, connect_timeout)
+    varies, requests = _checked(mech, vary, metrics, options, out)
     job = _Job.of(mech, make_plan(varies, sampling, samples, seed), requests, steps, chunk_size)
     chunks = _Chunks(job, out, resume, on_chunk, progress)
     log = str(attempts) if attempts is not None else None
@@ -226,7 +245,7 @@ def sweep(
             for c in chunks.todo():
                 chunks.store(*chunk_task(job.task(c), attempts=log))
         elif chunks.todo():
-            _on_dask(job, chunks.todo(), chunks.store, _connect(workers, scheduler, connect_timeout), log)
+            _on_dask(job, chunks.todo(), chunks.store, _connect(workers, scheduler, connect_timeout, dashboard), log)
     except BaseException:
         chunks.abandon()
         raise
@@ -238,36 +257,41 @@ def sweep(
 # ---------------------------------------------------------------- the plan and the options, checked
 
 
+class _Options(NamedTuple):
+    """The options of a sweep besides its ranges, metrics and table (those of :func:`sweep`)."""
+
+    sampling: str
+    samples: int | None
+    seed: int
+    steps: int
+    chunk_size: int | None
+    workers: int | None
+    scheduler: str | None
+    connect_timeout: float
+
+
 def _checked(
-    mech: Mechanism,
-    vary: Ranges,
-    metrics: list[str],
-    sampling: str,
-    steps: int,
-    chunk_size: int | None,
-    out: str | Path | None,
-    workers: int | None,
-    scheduler: str | None,
-    connect_timeout: float,
+    mech: Mechanism, vary: Ranges, metrics: list[str], options: _Options, out: str | Path | None
 ) -> tuple[list[Vary], list[MetricRequest]]:
-    """The ranges and the metrics of a sweep, read; every problem of them and of the options in one
-    :class:`DesignError`."""
+    """The ranges and the metrics of a sweep, read; every problem of them and of the options (their
+    bounds those of :mod:`linkwork.limits`) in one :class:`DesignError`."""
     problems: list[str] = []
     varies: list[Vary] = []
     requests: list[MetricRequest] = []
     try:
-        varies = read_varies(vary, mech, True if sampling == "grid" else None, stacklevel=3)
+        varies = read_varies(vary, mech, True if options.sampling == "grid" else None, stacklevel=3)
     except DesignError as exc:
         problems += exc.problems
     try:
         requests = parse_metrics(list(metrics), mech)
     except DesignError as exc:
         problems += exc.problems
-    problems += _option_problems(steps, workers, chunk_size)
+    problems += _option_problems(options.steps, options.workers, options.chunk_size)
+    problems += _size_problems(varies, options)
     if out is not None:
         problems += _out_problems(out)
-    if scheduler is not None:
-        problems += _scheduler_problems(scheduler, connect_timeout)
+    if options.scheduler is not None:
+        problems += _scheduler_problems(options.scheduler, options.connect_timeout)
     if problems:
         raise DesignError(problems)
     return varies, requests
@@ -275,26 +299,54 @@ def _checked(
 
 def _option_problems(steps: Any, workers: Any, chunk_size: int | None) -> list[str]:
     """What is wrong with the crank steps, the number of workers and the chunk size."""
-    problems = []
-    if isinstance(steps, bool) or not isinstance(steps, int) or steps < 3:
-        problems.append(f"steps: expected a whole number of 3 or more, got {steps!r}")
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
-        problems.append(f"workers: expected 0 or more (0: in this process), got {workers!r}")
+    problems = [whole(steps, "steps", 3, MAX_ANGLES, "number of crank angles")]
+    bad = isinstance(workers, bool) or not isinstance(workers, int) or not 0 <= workers <= max_workers()
+    if workers is not None and bad:
+        problems.append(
+            f"workers: expected 0 or more (0: in this process), at most {max_workers()} ({WORKERS_PER_CORE} per "
+            f"core of this machine), got {workers!r}"
+        )
     if chunk_size is not None and chunk_size < 1:
         problems.append(f"chunk size: expected 1 or more, got {chunk_size}")
-    return problems
+    return [p for p in problems if p is not None]
+
+
+def _size_problems(varies: list[Vary], options: _Options) -> list[str]:
+    """What makes a sweep too large (:data:`~linkwork.limits.MAX_VARIANTS` variants, chunks of at most
+    :data:`~linkwork.limits.MAX_BATCH` samples) or its seed out of range."""
+    problems = [whole(options.seed, "seed", 0, MAX_SEED)]
+    n = options.samples
+    if options.sampling == "grid" and varies and all(v.count for v in varies):
+        n = math.prod(v.count or 1 for v in varies)
+        if n > MAX_VARIANTS:
+            problems.append(
+                f"--vary: the grid has {n:,} variants (the product of the COUNTs), more than the {MAX_VARIANTS:,} "
+                "a sweep may have: split it into sweeps of parts of the ranges"
+            )
+    elif isinstance(n, int) and n > MAX_VARIANTS:
+        problems.append(f"--samples: expected at most {MAX_VARIANTS:,} variants in a sweep, got {n:,}")
+    steps, size = options.steps, options.chunk_size
+    if isinstance(steps, int) and isinstance(size, int) and 0 < steps <= MAX_ANGLES and size > 0:
+        rows = min(size, n) if isinstance(n, int) and n > 0 else size
+        if rows * steps > MAX_BATCH:
+            problems.append(
+                f"chunk size: {rows:,} variants x {steps:,} crank angles is {rows * steps:,} samples a chunk, more "
+                f"than the {MAX_BATCH:,} solved at once: at most {MAX_BATCH // steps:,} variants a chunk"
+            )
+    return [p for p in problems if p is not None]
 
 
 def _out_problems(out: str | Path) -> list[str]:
     """What keeps the table ``out`` from being written: its suffix, its folder, a missing package."""
+    shown = excerpt(out, QUOTE_PATH)
     if Path(out).suffix not in (".parquet", ".nc"):
-        return [f'--out "{out}": expected a .parquet or .nc file']
+        return [f'--out "{shown}": expected a .parquet or .nc file']
     problems = []
     why = cannot_write(out)
     if why:
-        problems.append(f'--out "{out}": {why}')
+        problems.append(f'--out "{shown}": {why}')
     try:
-        require("pyarrow", *(["xarray"] if Path(out).suffix == ".nc" else []), purpose=f'--out "{out}"')
+        require("pyarrow", *(["xarray"] if Path(out).suffix == ".nc" else []), purpose=f'--out "{shown}"')
     except MissingDependencyError as exc:
         problems.append(str(exc))
     return problems
@@ -304,16 +356,54 @@ _ADDRESS = re.compile(r"^([a-z]+://)?[^\s/:]+:\d+$|^[a-z]+://\[[0-9a-fA-F:]+\]:\
 
 
 def _scheduler_problems(scheduler: str, connect_timeout: float) -> list[str]:
-    """What is wrong with a ``--scheduler`` (an address or a scheduler file) before connecting."""
+    """What is wrong with a ``--scheduler`` (an address or a scheduler file) before connecting, and with the
+    time to wait for it."""
     out = []
-    if not Path(scheduler).is_file() and not _ADDRESS.match(scheduler):
+    shown = excerpt(scheduler, QUOTE_PATH)
+    try:
+        is_file = Path(scheduler).is_file()
+    except OSError as exc:
+        is_file = False
+        out.append(f'--scheduler "{shown}": {exc.strerror or exc}')
+    if is_file:
+        why = _not_a_scheduler_file(Path(scheduler))
+        if why is not None:
+            out.append(f'--scheduler "{shown}": not a Dask scheduler file ({why})')
+    elif not _ADDRESS.match(scheduler) and not out:
         if scheduler.endswith(".json") or "/" in scheduler.split("://")[-1]:
-            out.append(f'--scheduler "{scheduler}": no such scheduler file')
+            out.append(f'--scheduler "{shown}": no such scheduler file')
         else:
-            out.append(f'--scheduler "{scheduler}": expected an address tcp://HOST:PORT or a scheduler file')
-    if not (isinstance(connect_timeout, int | float) and connect_timeout > 0):
-        out.append(f"connect timeout: expected a positive number of seconds, got {connect_timeout!r}")
+            out.append(f'--scheduler "{shown}": expected an address tcp://HOST:PORT or a scheduler file')
+    ok = isinstance(connect_timeout, int | float) and math.isfinite(connect_timeout)
+    if not (ok and 0 < connect_timeout <= MAX_TIMEOUT):
+        out.append(
+            f"connect timeout: expected a positive number of seconds, at most {MAX_TIMEOUT:g}, got {connect_timeout!r}"
+        )
     return out
+
+
+#: Bytes of a scheduler file read (Dask writes a few hundred).
+_SCHEDULER_FILE_BYTES = 1 << 16
+
+
+def _not_a_scheduler_file(path: Path) -> str | None:
+    """Why ``path`` is not a Dask scheduler file (a JSON object whose ``address`` is a scheduler's address),
+    or None."""
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read(_SCHEDULER_FILE_BYTES + 1)
+    except OSError as exc:
+        return str(exc.strerror or exc)
+    if len(data) > _SCHEDULER_FILE_BYTES:
+        return f"larger than {_SCHEDULER_FILE_BYTES:,} bytes"
+    try:
+        info = json.loads(data)
+    except (ValueError, RecursionError):
+        return "not JSON"
+    address = info.get("address") if isinstance(info, dict) else None
+    if not isinstance(address, str) or not _ADDRESS.match(address):
+        return f'no "address" of a scheduler in it, got {quote(address) if isinstance(address, str) else "none"}'
+    return None
 
 
 # ---------------------------------------------------------------- the job: its chunks and its table's layout
@@ -441,9 +531,10 @@ class _Chunks:
 # ---------------------------------------------------------------- the chunks on Dask
 
 
-def _connect(workers: int | None, scheduler: str | None, connect_timeout: float) -> tuple[Any, Any]:
+def _connect(workers: int | None, scheduler: str | None, connect_timeout: float, dashboard: bool) -> tuple[Any, Any]:
     """A Dask client of the scheduler at ``scheduler`` (an address or a scheduler file), or of an embedded
-    local cluster of ``workers`` processes of one thread each: ``(client, cluster or None)``.
+    local cluster of ``workers`` processes of one thread each (:func:`_local_cluster`):
+    ``(client, cluster or None)``.
 
     Raises
     ------
@@ -451,13 +542,10 @@ def _connect(workers: int | None, scheduler: str | None, connect_timeout: float)
         The scheduler cannot be reached within ``connect_timeout`` seconds.
     """
     require("distributed", purpose="a sweep on Dask (--workers, --scheduler, or more than 20,000 variants)")
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     if scheduler is None:
-        n = workers or os.cpu_count() or 1
-        cluster = LocalCluster(
-            n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
-        )
+        cluster = _local_cluster(workers or os.cpu_count() or 1, dashboard)
         return Client(cluster), cluster
     try:
         if Path(scheduler).is_file():
@@ -467,6 +555,36 @@ def _connect(workers: int | None, scheduler: str | None, connect_timeout: float)
         raise LinkworkError(
             f"cannot reach the Dask scheduler at {scheduler} within {connect_timeout:g} s: {exc}"
         ) from None
+
+
+#: Dask's settings of the web servers of its scheduler and workers: no pages at all.
+NO_PAGES: dict[str, list[str]] = {"distributed.scheduler.http.routes": [], "distributed.worker.http.routes": []}
+
+
+def _local_cluster(n: int, dashboard: bool) -> Any:
+    """A local Dask cluster of ``n`` worker processes of one thread each, on 127.0.0.1.
+
+    Dask's scheduler and workers always run a web server; its pages (the dashboard, and the JSON and
+    Prometheus pages of the cluster's state) answer a request whatever host it names, so a web page in a
+    browser on this machine could read them through a host name of its own that points to 127.0.0.1.
+    Unless ``dashboard`` is asked for, they serve no page, on a free port (every request gets 404, but for
+    Dask's list of the pages, ``/sitemap.json``, which is then empty).  With
+    ``dashboard``, Dask's dashboard is served on 127.0.0.1:8787 and its link written on stderr.
+    """
+    import dask
+    from distributed import LocalCluster
+
+    if dashboard:
+        cluster = LocalCluster(
+            n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address="127.0.0.1:8787"
+        )
+        sys.stderr.write(f"Dask's dashboard (while the sweep runs): {cluster.dashboard_link}\n")
+        return cluster
+    with dask.config.set(NO_PAGES):
+        return LocalCluster(
+            n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None,
+            scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
+        )  # fmt: skip
 
 
 def _on_dask(

@@ -6,6 +6,7 @@ from importlib import resources
 from pathlib import Path
 
 from linkwork.errors import Problem, SpecError
+from linkwork.limits import QUOTE_PATH, excerpt, quote
 from linkwork.spec.checks import suggest
 from linkwork.spec.load import load, loads
 from linkwork.spec.schema import Spec
@@ -22,7 +23,8 @@ def text(name: str) -> str:
         raise SpecError(
             [
                 Problem(
-                    "", f'no bundled example "{name}"{suggest(name, names())}; the examples are: {", ".join(names())}'
+                    "",
+                    f"no bundled example {quote(name)}{suggest(name, names())}; the examples are: {', '.join(names())}",
                 )
             ]
         )
@@ -44,9 +46,14 @@ def resolve(file_or_example: str | Path) -> Spec:
     """
     path = Path(file_or_example)
     file_or_example = str(file_or_example)
-    if path.exists() or path.suffix in (".yaml", ".yml") or "/" in file_or_example:
-        if not path.exists():
-            raise SpecError([Problem("", "no such file", file_or_example)])
+    try:
+        exists = path.exists()
+    except OSError as exc:  # a name too long, say
+        why = f"cannot read the file: {exc.strerror}"
+        raise SpecError([Problem("", why, excerpt(file_or_example, QUOTE_PATH))]) from None
+    if exists or path.suffix in (".yaml", ".yml") or "/" in file_or_example:
+        if not exists:
+            raise SpecError([Problem("", "no such file", excerpt(file_or_example, QUOTE_PATH))])
         return load(path)
     if file_or_example in names():
         return load_example(file_or_example)
@@ -54,7 +61,7 @@ def resolve(file_or_example: str | Path) -> Spec:
         [
             Problem(
                 "",
-                f'no such file or bundled example "{file_or_example}"'
+                f"no such file or bundled example {quote(file_or_example)}"
                 f"{suggest(file_or_example, names())}; `linkwork examples` lists the examples",
             )
         ]

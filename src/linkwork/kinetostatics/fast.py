@@ -22,7 +22,7 @@ import numpy as np
 from linkwork.kinetostatics.external import Applied
 from linkwork.kinetostatics.geometry import variant_geometry
 from linkwork.kinetostatics.reactions import group_order
-from linkwork.motion.fast import OPTS, PER_THREAD, THREADS, _pool
+from linkwork.motion.fast import PER_THREAD, THREADS, _pool, jit_in_place
 from linkwork.motion.kinematics import Kinematics
 from linkwork.structure.model import Mechanism, PairType
 
@@ -481,13 +481,4 @@ _CALLED = ("_kernel",)
 @functools.cache
 def compiled() -> bool:
     """Wrap the kernels of this module with numba's ``njit`` (once, as :func:`linkwork.motion.fast.compiled`)."""
-    try:
-        from numba import njit
-    except ImportError:  # pragma: no cover
-        return False
-    space = globals()
-    for name in _INLINE:
-        space[name] = njit(inline="always", **OPTS)(space[name])
-    for name in _CALLED:
-        space[name] = njit(**OPTS)(space[name])
-    return True
+    return jit_in_place(globals(), _INLINE, _CALLED)

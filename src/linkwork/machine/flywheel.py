@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.limits import delta_problem
 
 if TYPE_CHECKING:
     from linkwork.machine.reduced import Reduced
@@ -93,8 +94,7 @@ def size_flywheel(
 ) -> Flywheel:
     """The constant inertia that keeps the speed fluctuation at ``delta``, by the energy method (Merkalov);
     ``drive_inertia`` is the drive's own on the crank shaft, ``shaft`` and ``ratio`` say where the flywheel goes."""
-    if not 0 < delta < 1:
-        raise LinkworkError(f"delta: expected a coefficient of speed fluctuation between 0 and 1, got {delta}")
+    _check_delta(delta)
     if not omega_mean > 0:
         raise LinkworkError(f"mean crank speed: expected a positive speed, got {omega_mean}")
     moment = -red.mean_load
@@ -102,6 +102,15 @@ def size_flywheel(
     swing = float(energy.max() - energy.min())
     need = swing / (delta * omega_mean**2)
     return _flywheel(delta, omega_mean, swing, need, drive_inertia, moment, shaft, ratio)
+
+
+def _check_delta(delta: float) -> None:
+    """Raise LinkworkError unless ``delta`` is a coefficient of speed fluctuation from
+    :data:`~linkwork.limits.MIN_DELTA` up to 1 (the inertia grows as 1/delta; below it a flywheel would
+    be as good as infinite, and a tiny ``delta`` makes the tangents of Wittenbauer's diagram one line)."""
+    why = delta_problem(delta, "delta")
+    if why is not None:
+        raise LinkworkError(why)
 
 
 def _flywheel(
@@ -131,8 +140,7 @@ def size_flywheel_wittenbauer(
 ) -> Flywheel:
     """The constant inertia for ``delta`` from the tangents to Wittenbauer's diagram; the arguments as
     for :func:`size_flywheel`."""
-    if not 0 < delta < 1:
-        raise LinkworkError(f"delta: expected a coefficient of speed fluctuation between 0 and 1, got {delta}")
+    _check_delta(delta)
     inertia, energy = wittenbauer(red)
     k_max = 0.5 * (omega_mean * (1 + delta / 2)) ** 2
     k_min = 0.5 * (omega_mean * (1 - delta / 2)) ** 2

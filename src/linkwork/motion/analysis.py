@@ -24,7 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.structure.model import PairType
+from linkwork.motion.kinematics import Kinematics, cycle, kinematics
+from linkwork.structure.model import Mechanism, PairType
 
 TWO_PI = 2 * math.pi
 
@@ -57,7 +58,7 @@ class Output:
     point: int = -1
 
 
-def outputs(mech: Any) -> tuple[Output, ...]:
+def outputs(mech: Mechanism) -> tuple[Output, ...]:
     """The sliders on frame guides and the links pivoted on the frame, in the order of their pairs.
 
     A slider is the moving link of a prismatic pair whose guide is the frame's (the frame named first);
@@ -86,13 +87,13 @@ def outputs(mech: Any) -> tuple[Output, ...]:
     return tuple(out)
 
 
-def _moving(mech: Any, k: int) -> int:
+def _moving(mech: Mechanism, k: int) -> int:
     """The link of pair ``k`` other than the frame (the second one when neither is the frame)."""
     a, b = (int(x) for x in mech.pair_links[k])
     return a if b == 0 else b
 
 
-def find_output(mech: Any, name: str | None, kind: str) -> Output | None:
+def find_output(mech: Mechanism, name: str | None, kind: str) -> Output | None:
     """The output of ``kind`` named ``name`` (a slider's joint or a rocker's link), or the first; None if none."""
     for out in outputs(mech):
         if out.kind == kind and (name is None or out.name == name):
@@ -100,7 +101,7 @@ def find_output(mech: Any, name: str | None, kind: str) -> Output | None:
     return None
 
 
-def guide(kin: Any, k: int) -> tuple[np.ndarray, np.ndarray]:
+def guide(kin: Kinematics, k: int) -> tuple[np.ndarray, np.ndarray]:
     """The guide line of prismatic pair ``k`` of every variant at every angle, in the frame's axes.
 
     Returns
@@ -118,7 +119,7 @@ def guide(kin: Any, k: int) -> tuple[np.ndarray, np.ndarray]:
     return origin, np.stack([c * ux - s * uy, s * ux + c * uy], -1)
 
 
-def coordinate(kin: Any, out: Output) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def coordinate(kin: Kinematics, out: Output) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The coordinate of an output and its first and second time derivatives, ``(V, A)`` each.
 
     A slider's position along its guide's axis from the guide's origin (m, m/s, m/s^2), on the variant's
@@ -219,9 +220,8 @@ def sampled_range(
     """
     values = np.asarray(values, dtype=float)
     angles = np.asarray(angles, dtype=float)
-    d1, d2 = (None, None) if slopes is None else slopes
-    low, at_low = _peak(-values, angles, None if d1 is None else (-d1, -d2))
-    high, at_high = _peak(values, angles, None if d1 is None else (d1, d2))
+    low, at_low = _peak(-values, angles, None if slopes is None else (-slopes[0], -slopes[1]))
+    high, at_high = _peak(values, angles, slopes)
     sign = 1.0 if len(angles) < 2 or angles[1] > angles[0] else -1.0
     whole = np.isfinite(values).all(axis=-1)
     return Range(-low, high, at_low, at_high, whole, sign, np.zeros(values.shape[:-1], dtype=bool))
@@ -279,7 +279,7 @@ def _quintic(
     return np.where(good, value, peak), np.where(good, offset, t)
 
 
-def slopes(kin: Any, rate: np.ndarray, accel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def slopes(kin: Kinematics, rate: np.ndarray, accel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """First and second derivatives ``(V, A)`` with respect to the crank angle of a quantity whose time
     derivatives are ``rate`` and ``accel``, the crank turning uniformly (as :func:`linkwork.kinematics`
     solves a turn)."""
@@ -288,7 +288,7 @@ def slopes(kin: Any, rate: np.ndarray, accel: np.ndarray) -> tuple[np.ndarray, n
         return rate / speed, accel / (speed * speed)
 
 
-def output_range(kin: Any, out: Output) -> Range:
+def output_range(kin: Kinematics, out: Output) -> Range:
     """The extremes of an output over a whole turn (:func:`linkwork.kinematics` with ``steps=``), ``(V,)``:
     a slider's stroke along its variant's guide, a rocker's swing; NaN for a rocker that turns fully."""
     values, rate, accel = coordinate(kin, out)
@@ -366,7 +366,7 @@ class Extremes:
         }
 
 
-def extremes(kin: Any, variant: int = 0) -> list[Extremes]:
+def extremes(kin: Kinematics, variant: int = 0) -> list[Extremes]:
     """Strokes of the sliders on frame guides and swings of the rockers pivoted on the frame, of one variant.
 
     Meaningful for a whole cycle of a crank (``steps=`` or equally spaced angles over a turn); the time
@@ -383,7 +383,7 @@ def extremes(kin: Any, variant: int = 0) -> list[Extremes]:
     return rows
 
 
-def working(mech: Any) -> tuple[Output, ...]:
+def working(mech: Mechanism) -> tuple[Output, ...]:
     """The working members, whose motion the kinematic diagrams show and whose extreme is position 0: the
     sliders on frame guides (knives, rams, tools), else the rockers pivoted on the frame in the last Assur
     group that has one (the output rocker; both legs of a triad that has two); none for a mechanism with
@@ -397,14 +397,12 @@ def working(mech: Any) -> tuple[Output, ...]:
     return tuple(out for out in found if group.get(out.link, -1) == last)
 
 
-def zero_angle(mech: Any) -> float:
+def zero_angle(mech: Mechanism) -> float:
     """Crank angle (rad) of position 0: the first working member (:func:`working`) at the high end of its
     stroke or swing (for shears: the upper knife up, the knives open), else the assembly angle."""
-    from linkwork.motion.kinematics import kinematics as solve
-
     members = working(mech)
     if members:
-        r = output_range(solve(mech, steps=360), members[0])
+        r = output_range(kinematics(mech, steps=360), members[0])
         if np.isfinite(r.at_high[0]) and not r.turns[0]:
             return float(r.at_high[0])
     return float(mech.drive_start[0])
@@ -419,11 +417,9 @@ def from_position_0(angles: np.ndarray, zero: float, direction: float) -> np.nda
     return np.where(TWO_PI - turned < 1e-9, 0.0, turned)
 
 
-def position_angles(mech: Any, count: int = 12, zero: float | None = None) -> np.ndarray:
+def position_angles(mech: Mechanism, count: int = 12, zero: float | None = None) -> np.ndarray:
     """Drive angles (rad) of ``count`` positions evenly over a turn from position 0 (``zero``, default
     :func:`zero_angle`), in the drive's direction: the positions 0, 1, ... of the plan of positions."""
-    from linkwork.motion.kinematics import cycle
-
     return cycle(mech, count, start=zero_angle(mech) if zero is None else zero)
 
 
@@ -434,7 +430,7 @@ def position_angles(mech: Any, count: int = 12, zero: float | None = None) -> np
 DYADS = ("RRR", "RRP", "PRP", "RPR")
 
 
-def transmission(kin: Any) -> dict[str, np.ndarray]:
+def transmission(kin: Kinematics) -> dict[str, np.ndarray]:
     """Transmission angle of every closed-form dyad (RRR, RRP, PRP, RPR), rad in [0, pi/2]: ``(V, A)`` each.
 
     The angle between the directions in which the two links of the dyad would move the joint X where
@@ -449,12 +445,12 @@ def transmission(kin: Any) -> dict[str, np.ndarray]:
     return out
 
 
-def transmission_angles(kin: Any) -> dict[str, np.ndarray]:
+def transmission_angles(kin: Kinematics) -> dict[str, np.ndarray]:
     """:func:`transmission` without the variant axis for a result without variants: ``(..., n_angles)``."""
     return {label: kin._out(mu) for label, mu in transmission(kin).items()}
 
 
-def instant_centre(kin: Any, link: str | int, relative_to: str | int = 0) -> np.ndarray:
+def instant_centre(kin: Kinematics, link: str | int, relative_to: str | int = 0) -> np.ndarray:
     """Instantaneous centre of velocity of ``link`` (relative to another link; default the frame).
 
     The point where both links have the same velocity: ``(..., n_angles, 2)``,

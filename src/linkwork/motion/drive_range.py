@@ -22,7 +22,10 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.structure.model import PairType
+from linkwork.motion.events import Event, find, runs
+from linkwork.motion.solve import run_numpy
+from linkwork.structure.model import Mechanism, PairType
+from linkwork.structure.parameters import apply
 
 #: Samples of the turn that :func:`drive_range` solves (0.5 deg apart).
 STEPS = 720
@@ -148,7 +151,7 @@ def _deg(interval: tuple[float, float]) -> str:
     return f"{math.degrees(interval[0]):.2f} to {math.degrees(interval[1]):.2f} deg"
 
 
-def drive_range(mech: Any, steps: int = STEPS) -> DriveRange | None:
+def drive_range(mech: Mechanism, steps: int = STEPS) -> DriveRange | None:
     """The range of the drive over which ``mech`` assembles; None unless it has one revolute drive.
 
     Parameters
@@ -180,31 +183,25 @@ def drive_range(mech: Any, steps: int = STEPS) -> DriveRange | None:
     return DriveRange(joint, start, False, intervals[0], tuple(intervals[1:]), steps, grashof(mech))
 
 
-def _solve(mech: Any, angles: np.ndarray) -> tuple[np.ndarray, list[Any]]:
+def _solve(mech: Mechanism, angles: np.ndarray) -> tuple[np.ndarray, list[Event]]:
     """Where the mechanism assembles at ``angles`` ``(A,)`` of its drive, and the events along them.
 
     By the NumPy kernels, as ``linkwork.kinematics`` would without numba: for a few hundred angles they
     take milliseconds, less than loading the compiled kernels into a fresh process (``check``'s case).
     """
-    from linkwork.motion.events import find
-    from linkwork.motion.solve import _run_chunk
-    from linkwork.structure.parameters import apply
-
     values = angles[:, None]
-    state = _run_chunk(mech, mech.program, apply(mech)[0], values, np.ones_like(values), np.zeros_like(values))
+    state = run_numpy(mech, mech.program, apply(mech)[0], values, np.ones_like(values), np.zeros_like(values))
     return state.valid[0], find(mech.program, state, angles, True)
 
 
 def _gaps(
-    valid: np.ndarray, travel: np.ndarray, events: list[Any], start: float, sign: float
+    valid: np.ndarray, travel: np.ndarray, events: list[Event], start: float, sign: float
 ) -> list[tuple[float, float]]:
     """Intervals ``(a, b)`` of no assembly, as travel (rad from the assembly pose in the drive's direction).
 
     Each limit is the events' refined one that lies between the last sample that assembles and the first
     that does not (that sample where there is none).
     """
-    from linkwork.motion.events import _runs
-
     limits = np.array([x for e in events for x in (e.start, e.end)], dtype=float)
     limits = sign * (limits - start)  # as travel
 
@@ -216,7 +213,7 @@ def _gaps(
     n = len(travel)
     return [
         (refined(i - 1, i) if i > 0 else 0.0, refined(j + 1, j) if j + 1 < n else float(travel[j]))
-        for i, j in _runs(~valid)
+        for i, j in runs(~valid)
     ]
 
 
@@ -227,7 +224,7 @@ def _interval(a: float, b: float) -> tuple[float, float]:
     return lo - shift, hi - shift
 
 
-def grashof(mech: Any) -> Grashof | None:
+def grashof(mech: Mechanism) -> Grashof | None:
     """Grashof's class of a four-bar (frame and three links, four revolute pairs); None for other mechanisms."""
     four = _four_bar(mech)
     if four is None:
@@ -253,7 +250,7 @@ def grashof(mech: Any) -> Grashof | None:
     return Grashof(links, lengths, sl, pq, kind, cranks, drive_turns)
 
 
-def _four_bar(mech: Any) -> tuple[tuple[str, str, str, str], tuple[float, float, float, float]] | None:
+def _four_bar(mech: Mechanism) -> tuple[tuple[str, str, str, str], tuple[float, float, float, float]] | None:
     """The names (frame, input, coupler, output) and lengths of a four-bar, or None."""
     revolute = bool(np.all(mech.pair_type == PairType.REVOLUTE))
     if len(mech.link_names) != 4 or mech.n_pairs != 4 or mech.n_drives != 1 or not revolute:

@@ -8,6 +8,9 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.motion.program import Step
+from linkwork.motion.state import Flip, Jump, State, StepRecord
+
 
 @dataclass(frozen=True)
 class Event:
@@ -48,43 +51,28 @@ class Event:
         }
 
 
-def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
-    """Index ranges [i, j] of consecutive True entries."""
+def runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Index ranges [i, j] of consecutive True entries of ``mask`` ``(A,)``."""
     if not mask.any():
         return []
     d = np.diff(np.concatenate([[0], mask.astype(int), [0]]))
-    return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1, strict=True))
+    return [(int(i), int(j)) for i, j in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1, strict=True)]
 
 
-@dataclass
-class _Window:
-    """The samples ``lo`` to ``hi`` (inclusive) of a state's records of its steps."""
+class _Scale:
+    """How drive coordinates are written in messages: degrees of a turn (a revolute drive) or metres."""
 
-    step_valid: list[np.ndarray]
-    step_det: list[np.ndarray]
-    step_slack: list[np.ndarray]
-    step_flips: list[list[tuple[int, int, int]]]
-    step_jumps: list[list[tuple[int, int]]]
-    step_trouble: np.ndarray | None
-    valid: np.ndarray
+    def __init__(self, revolute: bool) -> None:
+        self.revolute = revolute
+        self.unit = "deg" if revolute else "m"
 
-    @classmethod
-    def of(cls, state: Any, lo: int, hi: int) -> _Window:
-        cut = slice(lo, hi + 1)
-        return cls(
-            [x[:, cut] for x in state.step_valid],
-            [x[:, cut] for x in state.step_det],
-            [x[:, cut] for x in state.step_slack],
-            [[(v, j, i - lo) for v, j, i in f if lo <= i <= hi] for f in state.step_flips],
-            [[(v, j - lo) for v, j in f if lo <= j < hi] for f in state.step_jumps],
-            state.step_trouble,
-            state.valid[:, cut],
-        )
+    def show(self, x: float) -> str:
+        return f"{math.degrees(x) % 360:.1f}" if self.revolute else f"{x:.4g}"
 
 
 def find(
-    steps: Any,
-    state: Any,
+    steps: tuple[Step, ...],
+    state: State,
     angles: np.ndarray,
     revolute: bool,
     max_variants: int = 20,
@@ -96,139 +84,130 @@ def find(
     the first and last sample to look at (the span of the angles asked for, in a path that reaches
     them from the assembly pose), so that no event is reported outside it; default all.
     """
+    records, valid = state.steps, state.valid
     if within is not None:
         lo, hi = within
-        state, angles = _Window.of(state, lo, hi), angles[lo : hi + 1]
-    events: list[Event] = []
-    unit = "deg" if revolute else "m"
-
-    def show(x: float) -> str:
-        return f"{math.degrees(x) % 360:.1f}" if revolute else f"{x:.4g}"
-
-    n_var = min(state.valid.shape[0], max_variants)
-    before = np.ones(state.valid.shape, dtype=bool)
-    n = len(angles)
+        records = [r.window(lo, hi) for r in records]
+        valid, angles = valid[:, lo : hi + 1], angles[lo : hi + 1]
+    n_var = min(valid.shape[0], max_variants)
     trouble = state.step_trouble
-    for k, (step, ok, det, slack, flips, jumps) in enumerate(
-        zip(steps, state.step_valid, state.step_det, state.step_slack, state.step_flips, state.step_jumps, strict=True)
-    ):
+    if trouble is not None and not trouble[:, :n_var].any() and not any(r.jumps or r.flips for r in records):
+        return []  # the compiled kernels saw every step assemble everywhere, away from singular positions
+    events: list[Event] = []
+    scale = _Scale(revolute)
+    before = np.ones(valid.shape, dtype=bool)
+    for k, (step, record) in enumerate(zip(steps, records, strict=True)):
         if step.kind in ("crank", "slide"):
             continue  # a driving link always assembles and is never singular
-        if trouble is not None and not trouble[k, :n_var].any() and not (jumps or flips):
+        if trouble is not None and not trouble[k, :n_var].any() and not (record.jumps or record.flips):
             continue  # the compiled kernel saw it assemble everywhere, away from singular positions
-        fails = before & ~ok
-        head = det[:n_var]
-        quiet = not (
-            fails[:n_var].any()
-            or jumps
-            or flips
-            or (np.abs(head) < 1e-9).any()
-            or (np.signbit(head[:, 1:]) != np.signbit(head[:, :-1])).any()
-        )
-        for v in range(0 if quiet else n_var):
-            tag = f" (variant {v})" if state.valid.shape[0] > 1 else ""
-
-            def limit(i: int, j: int, margin: np.ndarray = slack[v]) -> float:
-                """Drive value where the assembly margin crosses zero between samples i (valid) and j:
-                a parabola through i, j and the sample beyond i, else a straight line."""
-                s0, s1 = margin[i], margin[j]
-                if not (np.isfinite(s0) and np.isfinite(s1)) or s0 == s1:
-                    return float(angles[j])
-                linear = float(angles[i] + s0 / (s0 - s1) * (angles[j] - angles[i]))
-                k = i - (j - i)
-                if 0 <= k < len(margin) and np.isfinite(margin[k]):
-                    x = np.array([angles[k], angles[i], angles[j]], dtype=float)
-                    c = np.polyfit(x - x[1], [margin[k], s0, s1], 2)
-                    roots = np.roots(c) + x[1] if np.any(c) else []
-                    lo, hi = sorted((float(angles[i]), float(angles[j])))
-                    inside = [float(r.real) for r in roots if abs(r.imag) < 1e-12 and lo <= r.real <= hi]
-                    if inside:
-                        return min(inside, key=lambda r: abs(r - linear))
-                return linear
-
-            for i, j in _runs(fails[v]):
-                a = limit(i - 1, i) if i > 0 and before[v, i - 1] else float(angles[i])
-                b = limit(j + 1, j) if j + 1 < n and before[v, j + 1] else float(angles[j])
-                span = f"{show(a)} {unit}" if i == j else f"{show(a)} to {show(b)} {unit}"
-                events.append(
-                    Event(
-                        "no-assembly",
-                        step.label,
-                        a,
-                        b,
-                        v,
-                        f"group {step.label}: no assembly (no intersection) for crank "
-                        f"{'angle' if i == j else 'angles'} {span}{tag}",
-                    )
-                )
-                for x, inside in ((a, i > 0), (b, j + 1 < n)):
-                    if inside:
-                        events.append(
-                            Event(
-                                "dead-point",
-                                step.label,
-                                x,
-                                x,
-                                v,
-                                f"group {step.label}: limit (dead) position near crank angle {show(x)} {unit}{tag}",
-                            )
-                        )
-            d = np.where(before[v] & ok[v], det[v], np.nan)
-            zero = np.flatnonzero(np.abs(d) < 1e-9)
-            cross = np.flatnonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:]) & (np.sign(d[:-1]) * np.sign(d[1:]) < 0))
-            cross = cross[~np.isin(cross, zero) & ~np.isin(cross + 1, zero)]
-            for i in cross:
-                t = d[i] / (d[i] - d[i + 1])
-                x = angles[i] + t * (angles[i + 1] - angles[i])
-                events.append(
-                    Event(
-                        "singular",
-                        step.label,
-                        x,
-                        x,
-                        v,
-                        f"group {step.label}: singular position (dead point) near crank angle {show(x)} {unit}{tag}",
-                    )
-                )
-            for i in zero:
-                events.append(
-                    Event(
-                        "singular",
-                        step.label,
-                        angles[i],
-                        angles[i],
-                        v,
-                        f"group {step.label}: singular position (dead point) at crank angle "
-                        f"{show(angles[i])} {unit}{tag}",
-                    )
-                )
-            for jv, j in jumps:
-                if jv == v:
-                    events.append(
-                        Event(
-                            "branch-jump",
-                            step.label,
-                            angles[j],
-                            angles[j + 1],
-                            v,
-                            f"group {step.label}: the solution jumps between crank angles "
-                            f"{show(angles[j])} and {show(angles[j + 1])} {unit}: it may have changed "
-                            f"assembly mode there; check with finer steps{tag}",
-                        )
-                    )
-            for fv, _, i in flips:
-                if fv == v:
-                    events.append(
-                        Event(
-                            "change-point",
-                            step.label,
-                            angles[i],
-                            angles[i],
-                            v,
-                            f"group {step.label}: its two assembly modes meet near crank angle "
-                            f"{show(angles[i])} {unit}; the motion goes on smoothly in the other "
-                            f"mode{tag}",
-                        )
-                    )
-        before &= ok
+        fails = before & ~record.valid
+        if not _quiet(record, fails, n_var):
+            for v in range(n_var):
+                tag = f" (variant {v})" if valid.shape[0] > 1 else ""
+                at = _Events(step.label, v, angles, scale, tag)
+                at.no_assembly(fails[v], before[v], record.slack[v])
+                at.singular(np.where(before[v] & record.valid[v], record.det[v], np.nan))
+                at.jumps([j for j in record.jumps if j.variant == v])
+                at.change_points([f for f in record.flips if f.variant == v])
+                events += at.found
+        before &= record.valid
     return events
+
+
+def _quiet(record: StepRecord, fails: np.ndarray, n_var: int) -> bool:
+    """Whether a step has nothing to report for the first ``n_var`` variants: it assembles wherever the
+    steps before it do, has no jumps or change points, and its determinant neither comes near zero
+    nor changes sign."""
+    head = record.det[:n_var]
+    return not (
+        fails[:n_var].any()
+        or record.jumps
+        or record.flips
+        or (np.abs(head) < 1e-9).any()
+        or (np.signbit(head[:, 1:]) != np.signbit(head[:, :-1])).any()
+    )
+
+
+def _limit(angles: np.ndarray, margin: np.ndarray, i: int, j: int) -> float:
+    """Drive value where the assembly margin crosses zero between samples i (valid) and j:
+    a parabola through i, j and the sample beyond i, else a straight line."""
+    s0, s1 = margin[i], margin[j]
+    if not (np.isfinite(s0) and np.isfinite(s1)) or s0 == s1:
+        return float(angles[j])
+    linear = float(angles[i] + s0 / (s0 - s1) * (angles[j] - angles[i]))
+    k = i - (j - i)
+    if 0 <= k < len(margin) and np.isfinite(margin[k]):
+        x = np.array([angles[k], angles[i], angles[j]], dtype=float)
+        c = np.polyfit(x - x[1], [margin[k], s0, s1], 2)
+        roots = np.roots(c) + x[1] if np.any(c) else []
+        lo, hi = sorted((float(angles[i]), float(angles[j])))
+        inside = [float(r.real) for r in roots if abs(r.imag) < 1e-12 and lo <= r.real <= hi]
+        if inside:
+            return min(inside, key=lambda r: abs(r - linear))
+    return linear
+
+
+class _Events:
+    """The events of one group of one variant along the samples at drive coordinates ``angles``."""
+
+    def __init__(self, label: str, variant: int, angles: np.ndarray, scale: _Scale, tag: str) -> None:
+        self.label, self.variant, self.angles, self.tag = label, variant, angles, tag
+        self.show, self.unit = scale.show, scale.unit
+        self.found: list[Event] = []
+
+    def add(self, kind: str, start: float, end: float, message: str) -> None:
+        self.found.append(Event(kind, self.label, start, end, self.variant, f"group {self.label}: {message}{self.tag}"))
+
+    def no_assembly(self, fails: np.ndarray, before: np.ndarray, margin: np.ndarray) -> None:
+        """Ranges where the group does not assemble though the groups before it do (``fails``), and the
+        dead points at their ends inside the samples, refined by the assembly ``margin``."""
+        angles, n, show, unit = self.angles, len(self.angles), self.show, self.unit
+        for i, j in runs(fails):
+            a = _limit(angles, margin, i - 1, i) if i > 0 and before[i - 1] else float(angles[i])
+            b = _limit(angles, margin, j + 1, j) if j + 1 < n and before[j + 1] else float(angles[j])
+            span = f"{show(a)} {unit}" if i == j else f"{show(a)} to {show(b)} {unit}"
+            which = "angle" if i == j else "angles"
+            self.add("no-assembly", a, b, f"no assembly (no intersection) for crank {which} {span}")
+            for x, inside in ((a, i > 0), (b, j + 1 < n)):
+                if inside:
+                    self.add("dead-point", x, x, f"limit (dead) position near crank angle {show(x)} {unit}")
+
+    def singular(self, d: np.ndarray) -> None:
+        """Singular positions: where the determinant ``d`` (NaN where the group is not assembled) changes
+        sign between samples, and samples where it is zero to rounding."""
+        angles = self.angles
+        zero = np.flatnonzero(np.abs(d) < 1e-9)
+        cross = np.flatnonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:]) & (np.sign(d[:-1]) * np.sign(d[1:]) < 0))
+        cross = cross[~np.isin(cross, zero) & ~np.isin(cross + 1, zero)]
+        for i in cross:
+            t = d[i] / (d[i] - d[i + 1])
+            x = angles[i] + t * (angles[i + 1] - angles[i])
+            self.add("singular", x, x, f"singular position (dead point) near crank angle {self.show(x)} {self.unit}")
+        for i in zero:
+            x = angles[i]
+            self.add("singular", x, x, f"singular position (dead point) at crank angle {self.show(x)} {self.unit}")
+
+    def jumps(self, jumps: list[Jump]) -> None:
+        """Jumps of a Newton-solved group between samples."""
+        angles, show = self.angles, self.show
+        for _, j in jumps:
+            self.add(
+                "branch-jump",
+                angles[j],
+                angles[j + 1],
+                f"the solution jumps between crank angles {show(angles[j])} and {show(angles[j + 1])} "
+                f"{self.unit}: it may have changed assembly mode there; check with finer steps",
+            )
+
+    def change_points(self, flips: list[Flip]) -> None:
+        """Change points the motion was followed through."""
+        for _, _, i in flips:
+            x = self.angles[i]
+            self.add(
+                "change-point",
+                x,
+                x,
+                f"its two assembly modes meet near crank angle {self.show(x)} {self.unit}; the motion goes "
+                "on smoothly in the other mode",
+            )

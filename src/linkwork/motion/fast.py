@@ -21,18 +21,81 @@ import importlib.util
 import math
 import os
 from concurrent.futures import ThreadPoolExecutor
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from linkwork.motion.kernels import CLOSE, ROUNDING, SINGULAR
 from linkwork.motion.program import Arm, Step
+from linkwork.structure.model import Mechanism
+from linkwork.structure.parameters import Geometry
 
-#: Step kinds of the compiled program.
+#: Step kinds of the compiled program (column :data:`KIND` of its table).
 CRANK, SLIDE, DYAD, RPR, RPP = range(5)
-#: Fields of an arm in the encoded program.
-ARM = 9
 _CODES = {"crank": CRANK, "slide": SLIDE, "RRR": DYAD, "RRP": DYAD, "PRP": DYAD, "RPR": RPR, "RPP": RPP}
+
+# Columns of a step's row of the compiled program (:func:`encode`): its kind, then by kind
+KIND = 0
+#: crank: the driven link, the placed link it turns on (the base), the base's point at the pivot, the
+#: driven link's point there, the sign of the drive angle (:attr:`Step.sign`), the drive
+CRANK_LINK, CRANK_BASE, CRANK_SRC, CRANK_OWN, CRANK_SIGN, CRANK_DRIVE = range(1, 7)
+#: slide: the slider, the link that carries the guide, the prismatic pair, the slider's point, the drive
+SLIDE_LINK, SLIDE_GUIDE, SLIDE_PAIR, SLIDE_POINT, SLIDE_DRIVE = range(1, 6)
+#: dyad: the point of X on each arm's link (-1: the link's origin); RPR: the inner prismatic pair
+DYAD_XA, DYAD_XB = 1, 2
+RPR_INNER = 1
+#: the first column of the arms, :data:`ARM` columns each (:class:`~linkwork.motion.program.Arm`)
+ARMS = 3
+#: Columns of an arm, from its first: R (0) or P (1), its link, its outer pair, R: its own point at the
+#: outer joint, the placed link's point there and that link; P: the link whose angle it keeps, whether
+#: it is the pair's slider, the slider's point of the pair
+ARM_KIND, ARM_LINK, ARM_PAIR, ARM_OWN, ARM_SRC, ARM_SRC_LINK, ARM_CARRIER, ARM_IS_SLIDER, ARM_SLIDER_POINT = range(9)
+ARM = 9
+
+# Columns of a link's state in the scratch block of a sample: pose, velocity, acceleration, cos and
+# sin of its angle
+S_X, S_Y, S_ANGLE, S_VX, S_VY, S_OMEGA, S_AX, S_AY, S_EPS, S_COS, S_SIN = range(11)
+STATE = 11
+# Columns of the constants of an R arm of a dyad: the radius of X about the outer joint, and the
+# local vector from the joint to X over the radius squared
+PRE_R, PRE_UX, PRE_UY = range(3)
+# Columns of what a dyad left at the sample before: X, the vector to X of its other mode, the determinant
+PREV_X, PREV_Y, PREV_GX, PREV_GY, PREV_DET = range(5)
+
+
+class Solved(NamedTuple):
+    """What the compiled kernels give (:func:`run`).
+
+    Attributes
+    ----------
+    q, v, a : ndarray, shape (N, 3, V, A)
+        Pose, velocity and acceleration of every link.
+    slack, det : ndarray, shape (S, V, A)
+        Assembly margin and normalised Jacobian determinant of every step.
+    valid : ndarray of bool, shape (V, A)
+        Every step assembled.
+    near : ndarray of bool, shape (S, V)
+        A dyad's two assembly modes come within a step of each other: the NumPy path decides the mode.
+    trouble : ndarray of bool, shape (S, V)
+        A step fails to assemble, comes within :data:`SINGULAR` of a singular position or its
+        determinant changes sign: only there are events looked for.
+    singular : bool
+        Some assembled sample has a normalised determinant below :data:`SINGULAR`.
+    limit : ndarray of bool, shape (S, V)
+        A dyad lies on a singular position to rounding (its outer joints together or its modes
+        meeting): the NumPy kernels give the velocities there.
+    """
+
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    slack: np.ndarray
+    det: np.ndarray
+    valid: np.ndarray
+    near: np.ndarray
+    trouble: np.ndarray
+    singular: bool
+    limit: np.ndarray
 
 
 #: Threads a long batch is split over (the kernels release the GIL), and the least samples per thread.
@@ -63,6 +126,7 @@ def supports(program: tuple[Step, ...]) -> bool:
 
 
 def _arm(arm: Arm, point_link: np.ndarray) -> list[int]:
+    """An arm's columns (:data:`ARM_KIND` ...)."""
     src_link = int(point_link[arm.src]) if arm.src >= 0 else -1
     return [
         0 if arm.kind == "R" else 1,
@@ -77,30 +141,43 @@ def _arm(arm: Arm, point_link: np.ndarray) -> list[int]:
     ]
 
 
-def encode(program: tuple[Step, ...], point_link: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+class Program(NamedTuple):
+    """The solve program for the compiled kernels: one row of ``ops`` a step (columns :data:`KIND`,
+    :data:`CRANK_LINK` ..., the arms from :data:`ARMS`), and the assembly mode of each step."""
+
+    ops: np.ndarray  # (S, 3 + 3 ARM) int
+    branch: np.ndarray  # (S,)
+
+
+def encode(program: tuple[Step, ...], point_link: np.ndarray) -> Program:
     """The program as an integer table (one row a step) and the branch of each step."""
-    ops = np.full((len(program), 3 + 3 * ARM), -1, dtype=np.int64)
+    ops = np.full((len(program), ARMS + 3 * ARM), -1, dtype=np.int64)
     for s, step in enumerate(program):
         kind = _CODES[step.kind]
-        ops[s, 0] = kind
+        ops[s, KIND] = kind
         if kind == CRANK:
             arm = step.arms[0]
-            sign = 1 if step.extra["b"] == arm.link else -1
-            ops[s, 1:7] = [arm.link, int(point_link[arm.src]), arm.src, arm.own, sign, step.drive]
+            crank = {CRANK_LINK: arm.link, CRANK_BASE: int(point_link[arm.src]), CRANK_SRC: arm.src,
+                     CRANK_OWN: arm.own, CRANK_SIGN: int(step.sign), CRANK_DRIVE: step.drive}  # fmt: skip
+            for col, value in crank.items():
+                ops[s, col] = value
         elif kind == SLIDE:
             arm = step.arms[0]
-            ops[s, 1:6] = [arm.link, arm.carrier, arm.pair, arm.slider_point, step.drive]
+            slide = {SLIDE_LINK: arm.link, SLIDE_GUIDE: arm.carrier, SLIDE_PAIR: arm.pair,
+                     SLIDE_POINT: arm.slider_point, SLIDE_DRIVE: step.drive}  # fmt: skip
+            for col, value in slide.items():
+                ops[s, col] = value
         else:
             if kind == DYAD:
-                ops[s, 1:3] = step.x_local
+                ops[s, DYAD_XA], ops[s, DYAD_XB] = step.x_local
             elif kind == RPR:
-                ops[s, 1] = step.inner
+                ops[s, RPR_INNER] = step.inner
             for j, arm in enumerate(step.arms):
-                ops[s, 3 + j * ARM : 3 + (j + 1) * ARM] = _arm(arm, point_link)
-    return ops, np.array([step.branch for step in program], dtype=float)
+                ops[s, ARMS + j * ARM : ARMS + (j + 1) * ARM] = _arm(arm, point_link)
+    return Program(ops, np.array([step.branch for step in program], dtype=float))
 
 
-def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.ndarray) -> dict[str, Any]:
+def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, accels: np.ndarray) -> Solved:
     """Solve every sample.
 
     Parameters
@@ -111,100 +188,91 @@ def run(mech: Any, geom: Any, values: np.ndarray, rates: np.ndarray, accels: np.
         Dimensions of the design variants.
     values, rates, accels : (A, D)
 
-    Returns arrays ``q, v, a`` (N, 3, V, A), ``slack, det`` (S, V, A),
-    ``valid`` (V, A) (every step assembled), ``near`` (S, V) (True where a
-    dyad's two assembly modes come within a step of each other: the NumPy
-    path decides the mode there), ``trouble`` (S, V) (True where a step
-    fails to assemble, comes within :data:`SINGULAR` of a singular position
-    or its determinant changes sign: only there are events looked for),
-    ``singular`` (whether any assembled sample has a normalised determinant
-    below :data:`SINGULAR`) and ``limit`` (S, V) (True where a dyad lies
-    on a singular position to rounding, its outer joints together or its
-    modes meeting: the NumPy kernels give the velocities there).
+    Returns
+    -------
+    Solved
     """
+    assert mech.fast_program is not None
     ops, branch = mech.fast_program
-    n_links = mech.n_links_total
     local, origin, axis = geom.point_local[:, 0], geom.pair_origin[:, 0], geom.pair_axis[:, 0]
     values, rates, accels = (np.ascontiguousarray(x, dtype=float) for x in (values, rates, accels))
     n_var, n_ang, n_steps = local.shape[0], values.shape[0], len(ops)
-    out = np.empty((3, n_links, 3, n_var, n_ang))  # one block: q, v, a
-    limit = np.zeros((n_steps, n_var), dtype=np.bool_)
+    out = np.empty((3, mech.n_links_total, 3, n_var, n_ang))  # one block: q, v, a
     slack = np.empty((n_steps, n_var, n_ang))
-    det = np.empty_like(slack)
+    per_step = [np.zeros((n_steps, n_var), dtype=np.bool_) for _ in range(3)]
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
-    near = np.zeros((n_steps, n_var), dtype=np.bool_)
-    trouble = np.zeros((n_steps, n_var), dtype=np.bool_)
+    solved = Solved(out[0], out[1], out[2], slack, np.empty_like(slack), valid, per_step[0], per_step[1], False,
+                    per_step[2])  # fmt: skip
     singular = np.zeros(1, dtype=np.bool_)
     tol = 1e-12 * (1 + float(np.abs(local).max()))
-    args: tuple[Any, ...] = (ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid)
-    args += (near, trouble, singular, limit, tol)
-    n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
-    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
+    args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, solved.det, solved.valid,
+            solved.near, solved.trouble, singular, solved.limit, tol)  # fmt: skip
+    _in_parts(args, mech.n_links_total, n_steps, n_var, n_ang)
+    if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
+        solved.near[:] = False
+    return solved._replace(singular=bool(singular[0]))
 
+
+def _in_parts(args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_ang: int) -> None:
+    """Run the kernel on ``args`` over the samples, split into parts of at least :data:`PER_THREAD`
+    samples run on up to :data:`THREADS` threads (the calling thread takes the first)."""
+    n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     kernel: Any = _kernel  # the compiled kernel, which compiled() put in the Python function's place
 
     def part(lo: int, hi: int) -> None:
-        kernel(*args, lo, hi, np.zeros((n_links, 11)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
+        kernel(*args, lo, hi, np.zeros((n_links, STATE)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
 
-    if len(bounds) == 2:
+    if n_threads == 1 or n_ang < n_threads:
         part(0, n_ang)
-    else:  # the calling thread takes the first part
-        rest = [_pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
-        part(bounds[0], bounds[1])
-        for job in rest:
-            job.result()
-    if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
-        near[:] = False
-    return {
-        "q": out[0],
-        "v": out[1],
-        "a": out[2],
-        "slack": slack,
-        "det": det,
-        "valid": valid,
-        "near": near,
-        "trouble": trouble,
-        "singular": bool(singular[0]),
-        "limit": limit,
-    }
+        return
+    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int)
+    rest = [_pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
+    part(bounds[0], bounds[1])
+    for job in rest:
+        job.result()
 
 
 # ---------------------------------------------------------------------------------------------
-# scalar kernels; a link's state in the scratch block L[i] is
-# x, y, theta, vx, vy, omega, ax, ay, epsilon, cos(theta), sin(theta)
+# scalar kernels; a link's state in the scratch block L[i] is its columns S_X ... S_SIN
 
 
 def _point(L, link, lx, ly):
-    c, s = L[link, 9], L[link, 10]
+    c, s = L[link, S_COS], L[link, S_SIN]
     rx, ry = c * lx - s * ly, s * lx + c * ly
-    w, e = L[link, 5], L[link, 8]
+    w, e = L[link, S_OMEGA], L[link, S_EPS]
     return (
-        L[link, 0] + rx,
-        L[link, 1] + ry,
-        L[link, 3] - w * ry,
-        L[link, 4] + w * rx,
-        L[link, 6] - e * ry - w * w * rx,
-        L[link, 7] + e * rx - w * w * ry,
+        L[link, S_X] + rx,
+        L[link, S_Y] + ry,
+        L[link, S_VX] - w * ry,
+        L[link, S_VY] + w * rx,
+        L[link, S_AX] - e * ry - w * w * rx,
+        L[link, S_AY] + e * rx - w * w * ry,
     )
 
 
 def _material(L, link, x, y):
-    rx, ry = x - L[link, 0], y - L[link, 1]
-    w, e = L[link, 5], L[link, 8]
-    return L[link, 3] - w * ry, L[link, 4] + w * rx, L[link, 6] - e * ry - w * w * rx, L[link, 7] + e * rx - w * w * ry
+    rx, ry = x - L[link, S_X], y - L[link, S_Y]
+    w, e = L[link, S_OMEGA], L[link, S_EPS]
+    return (
+        L[link, S_VX] - w * ry,
+        L[link, S_VY] + w * rx,
+        L[link, S_AX] - e * ry - w * w * rx,
+        L[link, S_AY] + e * rx - w * w * ry,
+    )
 
 
 def _place(L, link, theta, omega, eps, x, y, vx, vy, ax, ay, lx, ly, c, s):
     rx, ry = c * lx - s * ly, s * lx + c * ly
     w2 = omega * omega
-    L[link, 0], L[link, 1], L[link, 2] = x - rx, y - ry, theta
-    L[link, 3], L[link, 4], L[link, 5] = vx + omega * ry, vy - omega * rx, omega
-    L[link, 6], L[link, 7], L[link, 8] = ax + eps * ry + w2 * rx, ay - eps * rx + w2 * ry, eps
-    L[link, 9], L[link, 10] = c, s
+    L[link, S_X], L[link, S_Y], L[link, S_ANGLE] = x - rx, y - ry, theta
+    L[link, S_VX], L[link, S_VY], L[link, S_OMEGA] = vx + omega * ry, vy - omega * rx, omega
+    L[link, S_AX], L[link, S_AY], L[link, S_EPS] = ax + eps * ry + w2 * rx, ay - eps * rx + w2 * ry, eps
+    L[link, S_COS], L[link, S_SIN] = c, s
 
 
 def _place_like(L, link, guide, x, y, vx, vy, ax, ay, lx, ly):
-    _place(L, link, L[guide, 2], L[guide, 5], L[guide, 8], x, y, vx, vy, ax, ay, lx, ly, L[guide, 9], L[guide, 10])
+    _place(L, link, L[guide, S_ANGLE], L[guide, S_OMEGA], L[guide, S_EPS], x, y, vx, vy, ax, ay, lx, ly,
+           L[guide, S_COS], L[guide, S_SIN])  # fmt: skip
 
 
 def _loc(local, p):
@@ -213,23 +281,28 @@ def _loc(local, p):
     return local[p, 0], local[p, 1]
 
 
+def _src_point(L, ops, st, o, local):
+    """Position, velocity and acceleration of the outer joint of the R arm at ``ops[st, o:]``."""
+    src = ops[st, o + ARM_SRC]
+    return _point(L, ops[st, o + ARM_SRC_LINK], local[src, 0], local[src, 1])
+
+
 def _locus(L, ops, st, o, pre, local, origin, axis, xlx, xly):
     """The locus of X of the arm at ``ops[st, o:]``: (px, py, vpx, vpy, apx, apy, r, c0, s0) for an
     R arm (circle about p, the local vector from the joint to X over r^2), (l0x, l0y, ux, uy, 0...) for P."""
-    if ops[st, o] == 0:
-        px, py, vpx, vpy, apx, apy = _point(L, ops[st, o + 5], local[ops[st, o + 4], 0], local[ops[st, o + 4], 1])
-        j = (o - 3) // ARM
-        return px, py, vpx, vpy, apx, apy, pre[st, j, 0], pre[st, j, 1], pre[st, j, 2]
-    g, k = ops[st, o + 6], ops[st, o + 2]
-    c, s = L[g, 9], L[g, 10]
+    if ops[st, o + ARM_KIND] == 0:
+        px, py, vpx, vpy, apx, apy = _src_point(L, ops, st, o, local)
+        j = (o - ARMS) // ARM
+        return px, py, vpx, vpy, apx, apy, pre[st, j, PRE_R], pre[st, j, PRE_UX], pre[st, j, PRE_UY]
+    g, k = ops[st, o + ARM_CARRIER], ops[st, o + ARM_PAIR]
+    c, s = L[g, S_COS], L[g, S_SIN]
     ux, uy = c * axis[k, 0] - s * axis[k, 1], s * axis[k, 0] + c * axis[k, 1]
-    if ops[st, o + 7] == 1:  # the arm's link is the slider: the guide line of the carrier, shifted to X
+    sp = ops[st, o + ARM_SLIDER_POINT]
+    if ops[st, o + ARM_IS_SLIDER] == 1:  # the arm's link is the slider: the guide line of the carrier, shifted to X
         ox, oy = origin[k, 0], origin[k, 1]
-        sp = ops[st, o + 8]
         dx, dy = xlx - local[sp, 0], xly - local[sp, 1]
-        bx, by = L[g, 0] + c * ox - s * oy, L[g, 1] + s * ox + c * oy
+        bx, by = L[g, S_X] + c * ox - s * oy, L[g, S_Y] + s * ox + c * oy
     else:  # the arm's link is the guide: the line through the carrier's slider point
-        sp = ops[st, o + 8]
         bx, by = _point(L, g, local[sp, 0], local[sp, 1])[:2]
         dx, dy = xlx - origin[k, 0], xly - origin[k, 1]
     return bx + c * dx - s * dy, by + s * dx + c * dy, ux, uy, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -249,103 +322,118 @@ def _snap(h2, dh2, q_v, q_a, rounding):
 def _arm_motion(L, ops, st, o, P, x, y):
     """Column of the arm's unknown rate in the velocity equation of X, and X's velocity and
     acceleration with that rate left out: about the joint (R), or of the carrier's point at X (P)."""
-    if ops[st, o] == 0:
+    if ops[st, o + ARM_KIND] == 0:
         return -(y - P[1]), x - P[0], P[2], P[3], P[4], P[5]
-    vx, vy, ax, ay = _material(L, ops[st, o + 6], x, y)
+    vx, vy, ax, ay = _material(L, ops[st, o + ARM_CARRIER], x, y)
     return P[2], P[3], vx, vy, ax, ay
 
 
 def _arm_extra(L, ops, st, o, P, x, y, k):
     """Acceleration terms of X quadratic in the rates: centripetal (R) or Coriolis (P)."""
-    if ops[st, o] == 0:
+    if ops[st, o + ARM_KIND] == 0:
         return -k * k * (x - P[0]), -k * k * (y - P[1])
-    f = 2 * L[ops[st, o + 6], 5] * k
+    f = 2 * L[ops[st, o + ARM_CARRIER], S_OMEGA] * k
     return -f * P[3], f * P[2]
+
+
+def _circles(A, B, branch):
+    """X where the circles of two R arms (their loci ``A``, ``B``) meet in the mode ``branch``: (x, y,
+    the vector to X of the other mode, slack, on a singular position to rounding)."""
+    dx, dy = B[0] - A[0], B[1] - A[1]
+    dvx, dvy, dax, day = B[2] - A[2], B[3] - A[3], B[4] - A[4], B[5] - A[5]
+    dist2 = dx * dx + dy * dy
+    dist = math.sqrt(dist2)
+    inv = 1.0 / dist
+    ra, rb = A[6], B[6]
+    k = ra * ra - rb * rb
+    t = (k + dist2) * (0.5 * inv) if dist > 0 else 0.0
+    rsum2 = (ra + rb) * (ra + rb)
+    slack = _touching(min(rsum2 - dist2, dist2 - (ra - rb) * (ra - rb)) / rsum2)
+    ex, ey = dx * inv, dy * inv
+    limit = False
+    if dist <= CLOSE * (ra + rb):  # the outer joints (nearly) together: their direction from their motion
+        speed2 = dvx * dvx + dvy * dvy
+        tau = (dx * dvx + dy * dvy) / speed2
+        wx, wy = dvx - 0.5 * tau * dax, dvy - 0.5 * tau * day
+        sign = (-1.0 if tau < 0 else 1.0) / math.sqrt(wx * wx + wy * wy)
+        rounding = (
+            8 * ROUNDING * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))
+        )
+        miss = abs(dx * dvy - dy * dvx)
+        through = miss <= (rounding + dist2 * math.sqrt(dax * dax + day * day) / speed2) * math.sqrt(speed2)
+        if math.isfinite(sign):
+            if through:
+                ex, ey = sign * wx, sign * wy
+            limit = dist <= rounding  # together to rounding
+    h2 = ra * ra - t * t
+    if abs(h2) <= CLOSE * (ra * ra):  # near a change point: the motion about it
+        dist_v = (dx * dvx + dy * dvy) / dist
+        dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
+        norms = math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1])
+        size = ra * ra + 2 * abs(t) * (abs(dist2 - k) / (2 * dist2) * (norms + dist) + (abs(k) + dist2) / (2 * dist))
+        h2, snapped = _snap(h2, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
+        rounding = 8 * ROUNDING * (ra + rb + norms)
+        speed = math.sqrt(dvx * dvx + dvy * dvy)
+        on = slack >= 0 and snapped and dist > rounding and abs(dist_v) <= rounding * speed / dist
+        limit = limit or on  # on the change point to rounding
+    h = branch * math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
+    return A[0] + t * ex - h * ey, A[1] + t * ey + h * ex, 2 * h * ey, -2 * h * ex, slack, limit
+
+
+def _circle_line(L, ops, st, C, Ln, ol, branch):
+    """X where the circle ``C`` of an R arm meets the line ``Ln`` of the P arm at ``ops[st, ol:]`` in the
+    mode ``branch``: as :func:`_circles`."""
+    wx, wy = C[0] - Ln[0], C[1] - Ln[1]
+    nx, ny = -Ln[3], Ln[2]
+    q = nx * wx + ny * wy  # signed distance of the circle's centre from the line
+    r2 = C[6] * C[6]
+    slack = _touching((r2 - q * q) / r2)
+    disc = r2 - q * q
+    limit = False
+    if abs(disc) <= CLOSE * r2:  # near a change point: q over time, relative to the line's link
+        g = ops[st, ol + ARM_CARRIER]
+        vmx, vmy, amx, amy = _material(L, g, C[0], C[1])
+        rx, ry = C[2] - vmx, C[3] - vmy
+        f = 2 * L[g, S_OMEGA]
+        cx, cy = (C[4] - amx) - f * -ry, (C[5] - amy) - f * rx
+        size = C[6] + math.sqrt(C[0] * C[0] + C[1] * C[1]) + math.sqrt(Ln[0] * Ln[0] + Ln[1] * Ln[1])
+        q_v = nx * rx + ny * ry
+        disc, snapped = _snap(disc, -2 * q, q_v, nx * cx + ny * cy, ROUNDING * (C[6] * size))
+        speeds = math.sqrt(C[2] * C[2] + C[3] * C[3]) + math.sqrt(vmx * vmx + vmy * vmy)
+        limit = slack >= 0 and snapped and abs(q_v) <= 8 * ROUNDING * speeds  # on the change point
+    root = branch * math.sqrt(max(disc, 0.0) if slack >= 0 else disc)
+    t0 = wx * Ln[2] + wy * Ln[3]
+    x, y = (Ln[0] + t0 * Ln[2]) + root * Ln[2], (Ln[1] + t0 * Ln[3]) + root * Ln[3]
+    return x, y, -2 * root * Ln[2], -2 * root * Ln[3], slack, limit
 
 
 def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
     """A dyad through the loci of its arms at ``ops[st, o1:]`` and ``ops[st, o2:]``: places both links and
-    returns (slack, normalised determinant, X, X of the other mode - X of this one)."""
+    returns (slack, normalised determinant, X, X of the other mode - X of this one, on a singular position
+    to rounding)."""
     xax, xay = _loc(local, xa_i)
     xbx, xby = _loc(local, xb_i)
     A = _locus(L, ops, st, o1, pre, local, origin, axis, xax, xay)
     B = _locus(L, ops, st, o2, pre, local, origin, axis, xbx, xby)
-    ka_r, kb_r = ops[st, o1] == 0, ops[st, o2] == 0
-    gx = gy = 0.0
-    limit = False
+    ka_r, kb_r = ops[st, o1 + ARM_KIND] == 0, ops[st, o2 + ARM_KIND] == 0
     if ka_r and kb_r:
-        dx, dy = B[0] - A[0], B[1] - A[1]
-        dvx, dvy, dax, day = B[2] - A[2], B[3] - A[3], B[4] - A[4], B[5] - A[5]
-        dist2 = dx * dx + dy * dy
-        dist = math.sqrt(dist2)
-        inv = 1.0 / dist
-        ra, rb = A[6], B[6]
-        k = ra * ra - rb * rb
-        t = (k + dist2) * (0.5 * inv) if dist > 0 else 0.0
-        rsum2 = (ra + rb) * (ra + rb)
-        slack = _touching(min(rsum2 - dist2, dist2 - (ra - rb) * (ra - rb)) / rsum2)
-        ex, ey = dx * inv, dy * inv
-        if dist <= CLOSE * (ra + rb):  # the outer joints (nearly) together: their direction from their motion
-            speed2 = dvx * dvx + dvy * dvy
-            tau = (dx * dvx + dy * dvy) / speed2
-            wx, wy = dvx - 0.5 * tau * dax, dvy - 0.5 * tau * day
-            sign = (-1.0 if tau < 0 else 1.0) / math.sqrt(wx * wx + wy * wy)
-            rounding = (
-                8 * ROUNDING * (ra + rb + math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1]))
-            )
-            miss = abs(dx * dvy - dy * dvx)
-            through = miss <= (rounding + dist2 * math.sqrt(dax * dax + day * day) / speed2) * math.sqrt(speed2)
-            if math.isfinite(sign):
-                if through:
-                    ex, ey = sign * wx, sign * wy
-                limit = dist <= rounding  # together to rounding
-        h2 = ra * ra - t * t
-        if abs(h2) <= CLOSE * (ra * ra):  # near a change point: the motion about it
-            dist_v = (dx * dvx + dy * dvy) / dist
-            dist_a = ((dvx * dvx + dvy * dvy) + (dx * dax + dy * day) - dist_v * dist_v) / dist
-            norms = math.sqrt(A[0] * A[0] + A[1] * A[1]) + math.sqrt(B[0] * B[0] + B[1] * B[1])
-            size = ra * ra + 2 * abs(t) * (
-                abs(dist2 - k) / (2 * dist2) * (norms + dist) + (abs(k) + dist2) / (2 * dist)
-            )
-            h2, snapped = _snap(h2, -t * (dist2 - k) / dist2, dist_v, dist_a, ROUNDING * size)
-            rounding = 8 * ROUNDING * (ra + rb + norms)
-            speed = math.sqrt(dvx * dvx + dvy * dvy)
-            on = slack >= 0 and snapped and dist > rounding and abs(dist_v) <= rounding * speed / dist
-            limit = limit or on  # on the change point to rounding
-        h = branch * math.sqrt(max(h2, 0.0) if slack >= 0 else h2)
-        x, y = A[0] + t * ex - h * ey, A[1] + t * ey + h * ex
-        gx, gy = 2 * h * ey, -2 * h * ex
+        x, y, gx, gy, slack, limit = _circles(A, B, branch)
     elif not ka_r and not kb_r:
         den = A[2] * B[3] - A[3] * B[2]
         t = ((B[0] - A[0]) * B[3] - (B[1] - A[1]) * B[2]) / den
-        x, y = A[0] + t * A[2], A[1] + t * A[3]
-        slack = abs(den)
+        x, y, gx, gy, slack, limit = A[0] + t * A[2], A[1] + t * A[3], 0.0, 0.0, abs(den), False
     else:
         C, Ln, ol = (A, B, o2) if ka_r else (B, A, o1)
-        wx, wy = C[0] - Ln[0], C[1] - Ln[1]
-        nx, ny = -Ln[3], Ln[2]
-        q = nx * wx + ny * wy  # signed distance of the circle's centre from the line
-        r2 = C[6] * C[6]
-        slack = _touching((r2 - q * q) / r2)
-        disc = r2 - q * q
-        if abs(disc) <= CLOSE * r2:  # near a change point: q over time, relative to the line's link
-            g = ops[st, ol + 6]
-            vmx, vmy, amx, amy = _material(L, g, C[0], C[1])
-            rx, ry = C[2] - vmx, C[3] - vmy
-            f = 2 * L[g, 5]
-            cx, cy = (C[4] - amx) - f * -ry, (C[5] - amy) - f * rx
-            size = C[6] + math.sqrt(C[0] * C[0] + C[1] * C[1]) + math.sqrt(Ln[0] * Ln[0] + Ln[1] * Ln[1])
-            q_v = nx * rx + ny * ry
-            disc, snapped = _snap(disc, -2 * q, q_v, nx * cx + ny * cy, ROUNDING * (C[6] * size))
-            speeds = math.sqrt(C[2] * C[2] + C[3] * C[3]) + math.sqrt(vmx * vmx + vmy * vmy)
-            limit = slack >= 0 and snapped and abs(q_v) <= 8 * ROUNDING * speeds  # on the change point
-        root = branch * math.sqrt(max(disc, 0.0) if slack >= 0 else disc)
-        t0 = wx * Ln[2] + wy * Ln[3]
-        x, y = (Ln[0] + t0 * Ln[2]) + root * Ln[2], (Ln[1] + t0 * Ln[3]) + root * Ln[3]
-        gx, gy = -2 * root * Ln[2], -2 * root * Ln[3]
+        x, y, gx, gy, slack, limit = _circle_line(L, ops, st, C, Ln, ol, branch)
     if slack >= 0 and not (math.isfinite(x) and math.isfinite(y)):
         slack = -1.0
-    # columns, base velocities and accelerations of X on each arm
+    det = _dyad_motion(L, ops, st, o1, o2, xa_i, xb_i, A, B, x, y, local)
+    return slack, det, x, y, gx, gy, limit
+
+
+def _dyad_motion(L, ops, st, o1, o2, xa_i, xb_i, A, B, x, y, local):
+    """The rates of the arms of a dyad closed at X from the two vector equations of X, and both links
+    placed; returns the normalised determinant of the equations."""
     cax, cay, vax, vay, aax, aay = _arm_motion(L, ops, st, o1, A, x, y)
     cbx, cby, vbx, vby, abx, aby = _arm_motion(L, ops, st, o2, B, x, y)
     nbx, nby = -cbx, -cby
@@ -361,28 +449,29 @@ def _dyad(L, ops, st, o1, o2, xa_i, xb_i, branch, pre, local, origin, axis):
     ax, ay = aax + ka_d * cax + eax, aay + ka_d * cay + eay
     for j in range(2):
         o, P, k, kd, xl = (o1, A, ka, ka_d, xa_i) if j == 0 else (o2, B, kb, kb_d, xb_i)
-        link = ops[st, o + 1]
-        if ops[st, o] == 0:
+        link = ops[st, o + ARM_LINK]
+        if ops[st, o + ARM_KIND] == 0:
             # X is on the circle of radius P[6] about P: its direction from P less the local one
             # (P[7], P[8]: the local one over the radius)
             gx_, gy_ = x - P[0], y - P[1]
             c, s = gx_ * P[7] + gy_ * P[8], gy_ * P[7] - gx_ * P[8]
-            lx, ly = local[ops[st, o + 3], 0], local[ops[st, o + 3], 1]
-            _place(L, link, math.atan2(s, c), k, kd, P[0], P[1], P[2], P[3], P[4], P[5], lx, ly, c, s)
+            own = ops[st, o + ARM_OWN]
+            _place(L, link, math.atan2(s, c), k, kd, P[0], P[1], P[2], P[3], P[4], P[5], local[own, 0],
+                   local[own, 1], c, s)  # fmt: skip
         else:
             lx, ly = _loc(local, xl)
-            _place_like(L, link, ops[st, o + 6], x, y, vx, vy, ax, ay, lx, ly)
-    return slack, d / math.sqrt((cax * cax + cay * cay) * (cbx * cbx + cby * cby)), x, y, gx, gy, limit
+            _place_like(L, link, ops[st, o + ARM_CARRIER], x, y, vx, vy, ax, ay, lx, ly)
+    return d / math.sqrt((cax * cax + cay * cay) * (cbx * cbx + cby * cby))
 
 
 def _rpr(L, ops, st, branch, local, origin, axis):
-    k = ops[st, 1]
-    og, os_ = 3, 3 + ARM
-    pgx, pgy, vgx, vgy, agx, agy = _point(L, ops[st, og + 5], local[ops[st, og + 4], 0], local[ops[st, og + 4], 1])
-    psx, psy, vsx, vsy, asx, asy = _point(L, ops[st, os_ + 5], local[ops[st, os_ + 4], 0], local[ops[st, os_ + 4], 1])
+    k = ops[st, RPR_INNER]
+    og, os_ = ARMS, ARMS + ARM
+    pgx, pgy, vgx, vgy, agx, agy = _src_point(L, ops, st, og, local)
+    psx, psy, vsx, vsy, asx, asy = _src_point(L, ops, st, os_, local)
     ulx, uly = axis[k, 0], axis[k, 1]
     nlx, nly = -uly, ulx
-    sp, own_s, own_g = ops[st, os_ + 8], ops[st, os_ + 3], ops[st, og + 3]
+    sp, own_s, own_g = ops[st, os_ + ARM_SLIDER_POINT], ops[st, os_ + ARM_OWN], ops[st, og + ARM_OWN]
     wx = local[sp, 0] - local[own_s, 0] - (origin[k, 0] - local[own_g, 0])
     wy = local[sp, 1] - local[own_s, 1] - (origin[k, 1] - local[own_g, 1])
     e = nlx * wx + nly * wy
@@ -400,173 +489,198 @@ def _rpr(L, ops, st, branch, local, origin, axis):
     rx = agx - asx + omega * omega * (pgx - psx) - 2 * omega * sdot * uy
     ry = agy - asy + omega * omega * (pgy - psy) + 2 * omega * sdot * ux
     eps = (rx * nuy - ry * nux) / d
-    _place(L, ops[st, og + 1], theta, omega, eps, pgx, pgy, vgx, vgy, agx, agy, local[own_g, 0], local[own_g, 1], c, s)
-    _place(L, ops[st, os_ + 1], theta, omega, eps, psx, psy, vsx, vsy, asx, asy, local[own_s, 0], local[own_s, 1], c, s)
+    lg, ls = ops[st, og + ARM_LINK], ops[st, os_ + ARM_LINK]
+    _place(L, lg, theta, omega, eps, pgx, pgy, vgx, vgy, agx, agy, local[own_g, 0], local[own_g, 1], c, s)
+    _place(L, ls, theta, omega, eps, psx, psy, vsx, vsy, asx, asy, local[own_s, 0], local[own_s, 1], c, s)
     return slack, d / math.sqrt(colx * colx + coly * coly)
+
+
+def _crank(L, ops, st, local, values, rates, accels, i):
+    """A crank at sample ``i``: it turns on its base by the drive angle."""
+    link, base, src, own = ops[st, CRANK_LINK], ops[st, CRANK_BASE], ops[st, CRANK_SRC], ops[st, CRANK_OWN]
+    sign, drv = ops[st, CRANK_SIGN], ops[st, CRANK_DRIVE]
+    theta = L[base, S_ANGLE] + sign * values[i, drv]
+    omega = L[base, S_OMEGA] + sign * rates[i, drv]
+    eps = L[base, S_EPS] + sign * accels[i, drv]
+    px, py, vx, vy, ax, ay = _point(L, base, local[src, 0], local[src, 1])
+    c, s = math.cos(theta), math.sin(theta)
+    _place(L, link, theta, omega, eps, px, py, vx, vy, ax, ay, local[own, 0], local[own, 1], c, s)
+
+
+def _slide(L, ops, st, local, origin, axis, values, rates, accels, i):
+    """A slide at sample ``i``: its slider moves along the guide by the drive coordinate."""
+    link, g, k = ops[st, SLIDE_LINK], ops[st, SLIDE_GUIDE], ops[st, SLIDE_PAIR]
+    sp, drv = ops[st, SLIDE_POINT], ops[st, SLIDE_DRIVE]
+    c, s = L[g, S_COS], L[g, S_SIN]
+    ox, oy = origin[k, 0], origin[k, 1]
+    ux, uy = c * axis[k, 0] - s * axis[k, 1], s * axis[k, 0] + c * axis[k, 1]
+    sv, ds, dds = values[i, drv], rates[i, drv], accels[i, drv]
+    x, y = L[g, S_X] + c * ox - s * oy + sv * ux, L[g, S_Y] + s * ox + c * oy + sv * uy
+    vmx, vmy, amx, amy = _material(L, g, x, y)
+    f = 2 * L[g, S_OMEGA] * ds
+    ax, ay = amx + dds * ux - f * uy, amy + dds * uy + f * ux
+    _place_like(L, link, g, x, y, vmx + ds * ux, vmy + ds * uy, ax, ay, local[sp, 0], local[sp, 1])
 
 
 def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i):
     """One step at one sample: (slack, normalised determinant, X, gap vector, on a singular position to
     rounding) (the last three for dyads)."""
-    kind = ops[st, 0]
+    kind = ops[st, KIND]
     if kind == CRANK:
-        link, base, src, own, sign, drv = ops[st, 1], ops[st, 2], ops[st, 3], ops[st, 4], ops[st, 5], ops[st, 6]
-        theta = L[base, 2] + sign * values[i, drv]
-        omega = L[base, 5] + sign * rates[i, drv]
-        eps = L[base, 8] + sign * accels[i, drv]
-        px, py, vx, vy, ax, ay = _point(L, base, local[src, 0], local[src, 1])
-        c, s = math.cos(theta), math.sin(theta)
-        _place(L, link, theta, omega, eps, px, py, vx, vy, ax, ay, local[own, 0], local[own, 1], c, s)
+        _crank(L, ops, st, local, values, rates, accels, i)
         return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, False
     if kind == SLIDE:
-        link, g, k, sp, drv = ops[st, 1], ops[st, 2], ops[st, 3], ops[st, 4], ops[st, 5]
-        c, s = L[g, 9], L[g, 10]
-        ox, oy = origin[k, 0], origin[k, 1]
-        ux, uy = c * axis[k, 0] - s * axis[k, 1], s * axis[k, 0] + c * axis[k, 1]
-        sv, ds, dds = values[i, drv], rates[i, drv], accels[i, drv]
-        x, y = L[g, 0] + c * ox - s * oy + sv * ux, L[g, 1] + s * ox + c * oy + sv * uy
-        vmx, vmy, amx, amy = _material(L, g, x, y)
-        f = 2 * L[g, 5] * ds
-        ax, ay = amx + dds * ux - f * uy, amy + dds * uy + f * ux
-        _place_like(L, link, g, x, y, vmx + ds * ux, vmy + ds * uy, ax, ay, local[sp, 0], local[sp, 1])
+        _slide(L, ops, st, local, origin, axis, values, rates, accels, i)
         return 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, False
     if kind == DYAD:
-        return _dyad(L, ops, st, 3, 3 + ARM, ops[st, 1], ops[st, 2], branch, pre, local, origin, axis)
+        xa, xb = ops[st, DYAD_XA], ops[st, DYAD_XB]
+        return _dyad(L, ops, st, ARMS, ARMS + ARM, xa, xb, branch, pre, local, origin, axis)
     if kind == RPR:
         slack, det = _rpr(L, ops, st, branch, local, origin, axis)
         return slack, det, 0.0, 0.0, 0.0, 0.0, False
     # RPP: the pinned link keeps the guide's angle; then the other link as a dyad of two lines
-    o = 3
-    g = ops[st, 3 + 2 * ARM + 6]
-    px, py, vx, vy, ax, ay = _point(L, ops[st, o + 5], local[ops[st, o + 4], 0], local[ops[st, o + 4], 1])
-    _place_like(L, ops[st, o + 1], g, px, py, vx, vy, ax, ay, local[ops[st, o + 3], 0], local[ops[st, o + 3], 1])
-    return _dyad(L, ops, st, 3 + ARM, 3 + 2 * ARM, -1, -1, branch, pre, local, origin, axis)
+    o = ARMS
+    g = ops[st, ARMS + 2 * ARM + ARM_CARRIER]
+    px, py, vx, vy, ax, ay = _src_point(L, ops, st, o, local)
+    own = ops[st, o + ARM_OWN]
+    _place_like(L, ops[st, o + ARM_LINK], g, px, py, vx, vy, ax, ay, local[own, 0], local[own, 1])
+    return _dyad(L, ops, st, ARMS + ARM, ARMS + 2 * ARM, -1, -1, branch, pre, local, origin, axis)
 
 
 def _arm_constants(ops, local, pre):
     """Radius of X about the outer joint of every R arm of a dyad (of one variant), and the local
     vector from the joint to X over the radius squared."""
     for st in range(ops.shape[0]):
-        if ops[st, 0] != DYAD:
+        if ops[st, KIND] != DYAD:
             continue
         for j in range(2):
-            o = 3 + j * ARM
-            if ops[st, o] != 0:
+            o = ARMS + j * ARM
+            if ops[st, o + ARM_KIND] != 0:
                 continue
-            xlx, xly = _loc(local, ops[st, 1 + j])
-            dx, dy = xlx - local[ops[st, o + 3], 0], xly - local[ops[st, o + 3], 1]
+            xlx, xly = _loc(local, ops[st, DYAD_XA + j])
+            own = ops[st, o + ARM_OWN]
+            dx, dy = xlx - local[own, 0], xly - local[own, 1]
             r = math.sqrt(dx * dx + dy * dy)
-            pre[st, j, 0] = r
-            pre[st, j, 1], pre[st, j, 2] = (dx / (r * r), dy / (r * r)) if r > 0 else (1.0, 0.0)
+            pre[st, j, PRE_R] = r
+            pre[st, j, PRE_UX], pre[st, j, PRE_UY] = (dx / (r * r), dy / (r * r)) if r > 0 else (1.0, 0.0)
 
 
-def _kernel(
-    ops,
-    branch,
-    local,
-    origin,
-    axis,
-    values,
-    rates,
-    accels,
-    out,
-    slack,
-    det,
-    valid,
-    near,
-    trouble,
-    singular,
-    limit,
-    tol,
-    lo,
-    hi,
-    L,
-    pre,
-    prev,
-):
+def _near(ops, st, prev, x, y, gx, gy, tol):
+    """Whether a dyad's X at this sample or the one before comes within twice the step (in either mode)
+    of its other mode."""
+    dp2 = (x - prev[st, PREV_X]) ** 2 + (y - prev[st, PREV_Y]) ** 2
+    dm2 = (x + gx - prev[st, PREV_X] - prev[st, PREV_GX]) ** 2 + (y + gy - prev[st, PREV_Y] - prev[st, PREV_GY]) ** 2
+    m2 = max(dp2, dm2)
+    if not (m2 == m2):
+        m2 = dp2 if dp2 == dp2 else dm2
+    lim = (2 * math.sqrt(m2) + tol) ** 2
+    return prev[st, PREV_GX] ** 2 + prev[st, PREV_GY] ** 2 <= lim or gx * gx + gy * gy <= lim
+
+
+def _sample(ops, branch, pre, loc, org, axs, values, rates, accels, slack, det, near, trouble, limit, tol,
+            L, prev, var, i, lo, first):  # fmt: skip
+    """Every step at sample ``i`` of variant ``var`` into ``L``, with what the steps found (samples before
+    ``lo`` only to carry on from); returns (every step assembled, some step within SINGULAR of a singular
+    position)."""
+    ok = True
+    small = False
+    for st in range(ops.shape[0]):
+        s, d, x, y, gx, gy, jn = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
+        if jn and i >= lo:
+            limit[st, var] = True
+        ok = ok and s >= 0
+        small = small or abs(d) < SINGULAR
+        if ops[st, KIND] >= DYAD:  # cranks and slides always assemble: filled by _driving_rows
+            if i >= lo:
+                slack[st, var, i] = s
+                det[st, var, i] = d
+            if not (s >= 0 and abs(d) >= SINGULAR) or (i > first and (d < 0) != (prev[st, PREV_DET] < 0)):
+                trouble[st, var] = True
+            prev[st, PREV_DET] = d
+        if ops[st, KIND] == DYAD and (ops[st, ARMS + ARM_KIND] == 0 or ops[st, ARMS + ARM + ARM_KIND] == 0):
+            if i > first and _near(ops, st, prev, x, y, gx, gy, tol):
+                near[st, var] = True
+            prev[st, PREV_X], prev[st, PREV_Y], prev[st, PREV_GX], prev[st, PREV_GY] = x, y, gx, gy
+    return ok, small
+
+
+def _store(L, out, var, i):
+    """The moving links' states at sample ``i`` of variant ``var`` into ``out`` (the frame's are filled
+    by :func:`_driving_rows`)."""
+    for link in range(1, out.shape[1]):
+        for k in range(3):
+            out[0, link, k, var, i] = L[link, k]
+            out[1, link, k, var, i] = L[link, S_VX + k]
+            out[2, link, k, var, i] = L[link, S_AX + k]
+
+
+def _driving_rows(ops, out, slack, det, var, lo, hi):
+    """The frame at rest, its frame the global one, and the driving links assembled and regular,
+    at the samples ``lo:hi`` of variant ``var``."""
+    for t in range(3):
+        for k in range(3):
+            for i in range(lo, hi):
+                out[t, 0, k, var, i] = 0.0
+    for st in range(ops.shape[0]):
+        if ops[st, KIND] < DYAD:
+            for i in range(lo, hi):
+                slack[st, var, i] = 1.0
+            for i in range(lo, hi):
+                det[st, var, i] = 1.0
+
+
+def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, trouble,
+            singular, limit, tol, lo, hi, L, pre, prev):  # fmt: skip
     """Samples ``lo:hi`` of every variant (``near`` also from the step between ``lo - 1`` and ``lo``).
 
-    Scratch: ``L`` (N, 11) the link states of a sample, ``pre`` (S, 2, 3) constants of the R arms
+    Scratch: ``L`` (N, STATE) the link states of a sample, ``pre`` (S, 2, 3) constants of the R arms
     of a variant, ``prev`` (S, 5) X of each dyad, the vector to X of its other mode and the determinant
     at the sample before.
     """
-    n_links, n_var = out.shape[1], out.shape[3]
-    n_steps = ops.shape[0]
-    for var in range(n_var):
+    for var in range(out.shape[3]):
         loc, org, axs = local[var], origin[var], axis[var]
         _arm_constants(ops, loc, pre)
         first = max(lo - 1, 0)
         for i in range(first, hi):
-            L[0, 9] = 1.0
-            ok = True
-            small = False
-            for st in range(n_steps):
-                s, d, x, y, gx, gy, jn = _step(L, ops, st, branch[st], pre, loc, org, axs, values, rates, accels, i)
-                if jn and i >= lo:
-                    limit[st, var] = True
-                ok = ok and s >= 0
-                small = small or abs(d) < SINGULAR
-                if ops[st, 0] >= DYAD:  # cranks and slides always assemble: filled below
-                    if i >= lo:
-                        slack[st, var, i] = s
-                        det[st, var, i] = d
-                    if not (s >= 0 and abs(d) >= SINGULAR) or (i > first and (d < 0) != (prev[st, 4] < 0)):
-                        trouble[st, var] = True
-                    prev[st, 4] = d
-                if ops[st, 0] == DYAD and (ops[st, 3] == 0 or ops[st, 3 + ARM] == 0):
-                    if i > first:
-                        # does either sample come within twice the step (in either mode) of the other mode?
-                        dp2 = (x - prev[st, 0]) ** 2 + (y - prev[st, 1]) ** 2
-                        dm2 = (x + gx - prev[st, 0] - prev[st, 2]) ** 2 + (y + gy - prev[st, 1] - prev[st, 3]) ** 2
-                        m2 = max(dp2, dm2)
-                        if not (m2 == m2):
-                            m2 = dp2 if dp2 == dp2 else dm2
-                        lim = (2 * math.sqrt(m2) + tol) ** 2
-                        if prev[st, 2] ** 2 + prev[st, 3] ** 2 <= lim or gx * gx + gy * gy <= lim:
-                            near[st, var] = True
-                    prev[st, 0], prev[st, 1], prev[st, 2], prev[st, 3] = x, y, gx, gy
+            L[0, S_COS] = 1.0
+            ok, small = _sample(ops, branch, pre, loc, org, axs, values, rates, accels, slack, det, near,
+                                trouble, limit, tol, L, prev, var, i, lo, first)  # fmt: skip
             if i < lo:
                 continue
             valid[var, i] = ok
             if ok and small:
                 singular[0] = True
-            for link in range(1, n_links):  # the frame's rows (at rest) are filled below
-                for k in range(3):
-                    out[0, link, k, var, i] = L[link, k]
-                    out[1, link, k, var, i] = L[link, 3 + k]
-                    out[2, link, k, var, i] = L[link, 6 + k]
-        for t in range(3):  # the frame, at rest, its frame the global one
-            for k in range(3):
-                for i in range(lo, hi):
-                    out[t, 0, k, var, i] = 0.0
-        for st in range(n_steps):
-            if ops[st, 0] < DYAD:  # a driving link always assembles
-                for i in range(lo, hi):
-                    slack[st, var, i] = 1.0
-                for i in range(lo, hi):
-                    det[st, var, i] = 1.0
+            _store(L, out, var, i)
+        _driving_rows(ops, out, slack, det, var, lo, hi)
 
 
 #: Options of every compiled kernel: no reference counting, the kernels allocate nothing.
 OPTS: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
 
 #: The kernels inlined into the others, and those called from Python.
-_INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_locus", "_touching", "_snap",
-           "_arm_motion", "_arm_extra", "_dyad", "_rpr", "_step")  # fmt: skip
+_INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_src_point", "_locus", "_touching", "_snap",
+           "_arm_motion", "_arm_extra", "_circles", "_circle_line", "_dyad", "_dyad_motion", "_rpr", "_crank",
+           "_slide", "_step", "_near", "_sample", "_store", "_driving_rows")  # fmt: skip
 _CALLED = ("_arm_constants", "_kernel")
+
+
+def jit_in_place(space: dict[str, object], inline: tuple[str, ...], called: tuple[str, ...]) -> bool:
+    """Replace the functions named ``inline`` and ``called`` in the module namespace ``space`` by numba's
+    ``njit`` of them (the first inlined into their callers); False where numba cannot be imported.  Each
+    module of kernels calls this once, from its cached ``compiled()``."""
+    try:
+        from numba import njit
+    except ImportError:  # pragma: no cover
+        return False
+    for name in inline:
+        space[name] = njit(inline="always", **OPTS)(space[name])
+    for name in called:
+        space[name] = njit(**OPTS)(space[name])
+    return True
 
 
 @functools.cache
 def compiled() -> bool:
     """Wrap the kernels of this module with numba's ``njit`` (once; they are compiled on their first call, or
     loaded from numba's cache); False where numba cannot be imported."""
-    try:
-        from numba import njit
-    except ImportError:  # pragma: no cover
-        return False
-    space = globals()
-    for name in _INLINE:
-        space[name] = njit(inline="always", **OPTS)(space[name])
-    for name in _CALLED:
-        space[name] = njit(**OPTS)(space[name])
-    return True
+    return jit_in_place(globals(), _INLINE, _CALLED)

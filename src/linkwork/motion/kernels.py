@@ -12,13 +12,30 @@ Samples where a group cannot be assembled come out as NaN.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.polynomial import polynomial as poly
 
 from linkwork.motion.program import Arm, Step
-from linkwork.motion.state import State, Vec, add, cross, dot, norm, perp, rot, scale, single_state, solve2, sub
+from linkwork.motion.state import (
+    Flip,
+    State,
+    StepRecord,
+    Vec,
+    add,
+    cross,
+    dot,
+    norm,
+    perp,
+    rot,
+    scale,
+    single_state,
+    solve2,
+    sub,
+)
+from linkwork.structure.model import Mechanism
 
 
 def _x_local(state: State, idx: int) -> Vec:
@@ -88,7 +105,7 @@ class Singular(NamedTuple):
     y: tuple[np.ndarray, ...]
     v: tuple[np.ndarray, ...]
     a: tuple[np.ndarray, ...]
-    target: tuple[Any, ...]
+    target: tuple[np.ndarray | float, ...]
     tol: np.ndarray
     beyond: float = 0.0
 
@@ -103,20 +120,31 @@ class Limit(NamedTuple):
     own: np.ndarray  # (V, A): s is the sample's branch times this where nonzero, else the mode just after it
 
 
-def _limit(*parts: tuple[np.ndarray, Vec, Vec, Any]) -> Limit | None:
-    """One Limit from parts (on, base, across, own) where samples are on them; None where none is."""
-    parts = tuple(p for p in parts if np.any(p[0]))
+class _OnLimit(NamedTuple):
+    """Samples on one kind of singular position to rounding (``on``), and the velocity of X there: see
+    :class:`Limit`."""
+
+    on: np.ndarray
+    base: Vec
+    across: Vec
+    own: np.ndarray | float
+
+
+def _limit(*parts: _OnLimit) -> Limit | None:
+    """One Limit from parts where samples are on them; None where none is."""
+    parts = tuple(p for p in parts if np.any(p.on))
     if not parts:
         return None
-    on = np.logical_or.reduce([p[0] for p in parts])
+    on = np.logical_or.reduce([p.on for p in parts])
 
-    def pick(i: int, j: int | None = None) -> np.ndarray:
+    def pick(value: Callable[[_OnLimit], np.ndarray | float]) -> np.ndarray:
         out = np.zeros(on.shape)
         for p in parts:
-            out = np.where(p[0], p[i] if j is None else p[i][j], out)
+            out = np.where(p.on, value(p), out)
         return out
 
-    return Limit(on, (pick(1, 0), pick(1, 1)), (pick(2, 0), pick(2, 1)), pick(3))
+    base = (pick(lambda p: p.base[0]), pick(lambda p: p.base[1]))
+    return Limit(on, base, (pick(lambda p: p.across[0]), pick(lambda p: p.across[1])), pick(lambda p: p.own))
 
 
 class Closure(NamedTuple):
@@ -160,7 +188,7 @@ def _closure(state: State, la: _Locus, lb: _Locus) -> Closure:
     limit = None
     if np.any(on):  # on a change point: the middle moves with the line's link and the centre along it
         mid_v = add(state.material(line.carrier, mid)[0], scale(dot(rel, line.u), line.u))
-        limit = _limit((on, mid_v, scale(np.sqrt(np.maximum(-q * q_a, 0.0)), line.u), 0.0))
+        limit = _limit(_OnLimit(on, mid_v, scale(np.sqrt(np.maximum(-q * q_a, 0.0)), line.u), 0.0))
     return Closure(mid, line.u, h, slack, touch, limit)
 
 
@@ -189,7 +217,8 @@ def _circles(la: _Locus, lb: _Locus) -> Closure:
         side = np.where(tau < 0, -1.0, 1.0)
         sign = side / norm(along)
         through = np.abs(cross(d, dv)) <= (rounding + dist2 * norm(da) / speed2) * np.sqrt(speed2)
-        e = tuple(np.where(close & through & np.isfinite(sign), sign * g, x) for g, x in zip(along, e, strict=True))
+        turned = close & through & np.isfinite(sign)
+        e = (np.where(turned, sign * along[0], e[0]), np.where(turned, sign * along[1], e[1]))
         joined = np.where((dist <= rounding) & np.isfinite(sign), side, 0.0)
     dist_v = dot(d, dv) / dist  # the distance of the centres over time
     dist_a = (dot(dv, dv) + dot(d, da) - dist_v * dist_v) / dist
@@ -223,8 +252,8 @@ def _circles_limit(
     on: np.ndarray,
     joined: np.ndarray,
     rel: tuple[Vec, Vec],
-    dist: tuple[np.ndarray, ...],
-) -> list[tuple[np.ndarray, Vec, Vec, Any]]:
+    distance: tuple[np.ndarray, np.ndarray, np.ndarray],
+) -> list[_OnLimit]:
     """Velocity of X where two circles are on a singular position to rounding (see :class:`Limit`).
 
     Centres together (equal radii): X = P_a + d / 2 + h n about it, n turning as the direction of d,
@@ -232,19 +261,19 @@ def _circles_limit(
     the sample's branch times the side of it.  Circles touching (the modes meet): the middle moves as
     P_a + a e, and h at the rate |h'| with h'^2 = (dh2/dq) q'' / 2 about the extremum of the distance q;
     s is the mode just after the sample.  ``on``: there; ``rel``: the velocity and acceleration of
-    P_b - P_a; ``dist``: their distance and its first two time derivatives."""
-    (dv, da), (dist, dist_v, dist_a) = rel, dist
-    parts = []
+    P_b - P_a; ``distance``: their distance and its first two time derivatives."""
+    (dv, da), (dist, dist_v, dist_a) = rel, distance
+    parts: list[_OnLimit] = []
     if np.any(joined):
         speed = norm(dv)
         turn = scale(cross(dv, da) / (2 * speed**3), perp(dv))  # d e / dt: da across e over 2 |dv|
-        parts.append((joined != 0, add(la.vp, scale(0.5, dv)), scale(h, perp(turn)), joined))
+        parts.append(_OnLimit(joined != 0, add(la.vp, scale(0.5, dv)), scale(h, perp(turn)), joined))
     k = la.r * la.r - lb.r * lb.r
     if np.any(on):
         e_v = scale(1.0 / dist, sub(dv, scale(dist_v, e)))
         mid_v = add(la.vp, add(scale((dist * dist - k) / (2 * dist * dist) * dist_v, e), scale(a, e_v)))
         h_v = np.sqrt(np.maximum(-a * (dist * dist - k) / (dist * dist) * dist_a / 2, 0.0))
-        parts.append((on, mid_v, scale(h_v, perp(e)), 0.0))
+        parts.append(_OnLimit(on, mid_v, scale(h_v, perp(e)), 0.0))
     return parts
 
 
@@ -254,8 +283,8 @@ def _root(
     dh2: np.ndarray,
     q_v: np.ndarray,
     q_a: np.ndarray,
-    rounding: Any,
-    r2: Any,
+    rounding: np.ndarray | float,
+    r2: np.ndarray | float,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The half gap h between the two modes from its square ``h2``, a function of a distance q, and
     where it is taken from the motion about a change point.
@@ -301,9 +330,9 @@ def dyad(
     xb = _x_local(state, step.x_local[1])
     la, lb = _Locus(state, arm_a, xa, point_link), _Locus(state, arm_b, xb, point_link)
     closure = _closure(state, la, lb)
-    flips: list[tuple[int, int, int]] = []
+    flips: list[Flip] = []
     if branch is None:
-        branch_used: Any = step.branch
+        branch_used: np.ndarray | float = step.branch
         if "R" in (arm_a.kind, arm_b.kind):
             full = np.full(state.valid.shape, step.branch)
             flips = _change_points(state, closure, full)
@@ -337,10 +366,11 @@ def dyad(
             state.place(arm.link, theta, k, kd, loc.p, loc.vp, loc.ap, state.loc(arm.own), (c, s))
         else:
             state.place_like(arm.link, arm.carrier, x, vx, ax, xl)
-    _record(state, slack, det, None if np.isscalar(branch_used) else branch_used, flips, lim and lim.on)
+    used = branch_used if isinstance(branch_used, np.ndarray) else None
+    _record(state, slack, det, used, flips, None if lim is None else lim.on)
 
 
-def _later_mode(state: State, branch: Any) -> np.ndarray:
+def _later_mode(state: State, branch: np.ndarray | float) -> np.ndarray:
     """The assembly mode (+-1) of the motion just after each sample in time, read off a neighbour:
     its mode where it comes later, the other where it comes earlier (a singular position between)."""
     b = np.broadcast_to(branch, state.valid.shape)
@@ -369,7 +399,7 @@ def _motion(state: State, la: _Locus, lb: _Locus, x: Vec) -> tuple[Any, ...]:
     return (ka, kb), (ka_d, kb_d), vx, ax, det / (norm(ca) * norm(cb))
 
 
-def _change_points(state: State, closure: Closure, branch: np.ndarray) -> list[tuple[int, int, int]]:
+def _change_points(state: State, closure: Closure, branch: np.ndarray) -> list[Flip]:
     """Follow the motion through change points, along the angles in the order given.
 
     Where the two modes of a dyad cross (the isosceles slider-crank at 0 and
@@ -381,15 +411,25 @@ def _change_points(state: State, closure: Closure, branch: np.ndarray) -> list[t
     swings and whatever the samples (one on the crossing itself counts on
     the side its motion gives it).  Without the rate of a single drive, each
     sample where the modes nearly meet takes the mode whose X lies nearer
-    the extrapolation from the two samples before it instead.  ``branch`` is
-    changed in place; returns (variant, first sample in the new mode,
-    sample nearest the change point).
+    the extrapolation from the two samples before it instead
+    (:func:`_extrapolated`).  ``branch`` is changed in place.
     """
     x_p, x_m = _at(closure, branch), _at(closure, -branch)
-    n = branch.shape[1]
-    if n < 3:
+    if branch.shape[1] < 3:
         return []
     gap = norm(sub(x_p, x_m))  # (V, A)
+    near = _modes_near(state, x_p, x_m, gap)
+    if not near.any():
+        return []
+    rate = state.rate
+    if rate is not None and bool(np.all(np.isfinite(rate) & (rate != 0))):
+        return _crossings(state, closure, branch, rate)
+    return _extrapolated(state, np.stack(x_p, -1), np.stack(x_m, -1), near, gap, branch)
+
+
+def _modes_near(state: State, x_p: Vec, x_m: Vec, gap: np.ndarray) -> np.ndarray:
+    """Where the gap between the two modes' X is within twice the step X takes (in either mode) to or
+    from a neighbouring sample: ``(V, A)``."""
     step = np.fmax(
         norm((np.diff(x_p[0], axis=1), np.diff(x_p[1], axis=1))),
         norm((np.diff(x_m[0], axis=1), np.diff(x_m[1], axis=1))),
@@ -398,14 +438,18 @@ def _change_points(state: State, closure: Closure, branch: np.ndarray) -> list[t
     move[:, 0], move[:, -1] = step[:, 0], step[:, -1]
     np.fmax(step[:, :-1], step[:, 1:], out=move[:, 1:-1])
     with np.errstate(invalid="ignore"):
-        near = gap <= 2 * move + 1e-12 * (1 + float(np.abs(state.local).max()))
-    if not near.any():
-        return []
-    rate = state.rate
-    if rate is not None and bool(np.all(np.isfinite(rate) & (rate != 0))):
-        return _crossings(state, closure, branch)
-    xp, xm = np.stack(x_p, -1), np.stack(x_m, -1)
+        near: np.ndarray = gap <= 2 * move + 1e-12 * (1 + float(np.abs(state.local).max()))
+    return near
+
+
+def _extrapolated(
+    state: State, xp: np.ndarray, xm: np.ndarray, near: np.ndarray, gap: np.ndarray, branch: np.ndarray
+) -> list[Flip]:
+    """The mode of each sample where the modes nearly meet (``near``) whose X (``xp`` in the mode
+    ``branch``, ``xm`` in the other, ``(V, A, 2)``) lies nearer the extrapolation from the two samples
+    before it, walking from the sample nearest the assembly pose forwards and then backwards."""
     drive = state.drive
+    n = branch.shape[1]
     flips = []
     start = state.start_index
     for v in np.unique(np.nonzero(near)[0]):
@@ -429,7 +473,7 @@ def _change_points(state: State, closure: Closure, branch: np.ndarray) -> list[t
                     branch[v, order[k:]] *= -1
                     flipped[order[k:]] = ~flipped[order[k:]]
                     touch = int(order[k - 1] if gap[v, order[k - 1]] < gap[v, here] else here)
-                    flips.append((int(v), int(here), touch))
+                    flips.append(Flip(int(v), int(here), touch))
     return flips
 
 
@@ -441,7 +485,7 @@ def _lead(test: Singular) -> np.ndarray:
     return sum(y * v for y, v in zip(test.y, test.v, strict=True)) / sum(v * v for v in test.v)
 
 
-def _crossings(state: State, closure: Closure, branch: np.ndarray) -> list[tuple[int, int, int]]:
+def _crossings(state: State, closure: Closure, branch: np.ndarray, rate: np.ndarray) -> list[Flip]:
     """The mode flips between consecutive samples on either side of a crossing of the two modes.
 
     Which side of a crossing a sample lies on is the sign of its time from the extremum of the
@@ -450,7 +494,7 @@ def _crossings(state: State, closure: Closure, branch: np.ndarray) -> list[tuple
     rounding, is on one side); whether the extremum reaches the target between the samples, or goes
     beyond it (where the dyad cannot assemble: then nothing is crossed), is :func:`_reach`.
     """
-    drive, rate = state.drive, state.rate
+    drive = state.drive
     start = state.start_index
     later = np.sign(np.diff(drive) * rate[:-1])  # +1 where the next sample comes later
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -470,7 +514,7 @@ def _crossings(state: State, closure: Closure, branch: np.ndarray) -> list[tuple
         prev, here = (i, i + 1) if i >= start else (i + 1, i)  # walked away from the assembly pose
         ahead = later[i] if here > prev else -later[i]  # +1: the walk goes forward in time
         crossed = [
-            (_reach(test, state, v, prev, here), time)
+            (_reach(test, drive, rate, v, prev, here), time)
             for test, lead, time in zip(closure.singular, leads, times, strict=True)
             if lead[v, prev] * ahead < 0 < lead[v, here] * ahead  # before at prev, after at here
         ]
@@ -478,7 +522,7 @@ def _crossings(state: State, closure: Closure, branch: np.ndarray) -> list[tuple
             continue  # nothing crossed, or a gap where the dyad cannot assemble
         branch[v, slice(here, None) if here > prev else slice(None, here + 1)] *= -1
         time = next(t for verdict, t in crossed if verdict > 0)
-        flips.append((int(v), int(here), int(prev if abs(time[v, prev]) < abs(time[v, here]) else here)))
+        flips.append(Flip(int(v), int(here), int(prev if abs(time[v, prev]) < abs(time[v, here]) else here)))
     return flips
 
 
@@ -497,7 +541,7 @@ def _within_reach(test: Singular, dt: np.ndarray) -> np.ndarray:
         return (ends[0] <= 0) | (ends[1] <= 0)
 
 
-def _reach(test: Singular, state: State, v: int, i: int, j: int) -> int:
+def _reach(test: Singular, drive: np.ndarray, rate: np.ndarray, v: int, i: int, j: int) -> int:
     """Whether a quantity reaches its singular position between samples ``i`` and ``j``: 1 if it
     does, -1 if it goes beyond (a scalar whose dyad cannot assemble there), 0 if not.
 
@@ -505,8 +549,8 @@ def _reach(test: Singular, state: State, v: int, i: int, j: int) -> int:
     both samples, within its tolerance widened by how far the quintic is from the cubic through the
     values and first derivatives (a bound on its own error).
     """
-    dt = (state.drive[j] - state.drive[i]) / state.rate[i]
-    target = np.array([c if np.ndim(c) == 0 else c[v, 0] for c in test.target], dtype=float)
+    dt = (drive[j] - drive[i]) / rate[i]
+    target = np.array([c[v, 0] if isinstance(c, np.ndarray) and c.ndim else c for c in test.target], dtype=float)
     if np.isnan(target).any():
         return 0  # a position this dyad never takes
     y, vel, acc = (np.array([[c[v, i], c[v, j]] for c in x]) for x in (test.y, test.v, test.a))
@@ -586,10 +630,9 @@ def crank(
     """A link driven by a revolute pair about a placed link."""
     arm = step.arms[0]
     base = int(point_link[arm.src])
-    sign = 1.0 if step.extra["b"] == arm.link else -1.0
-    theta = state.q[base, 2] + sign * phi
-    omega = state.v[base, 2] + sign * dphi
-    eps = state.a[base, 2] + sign * ddphi
+    theta = state.q[base, 2] + step.sign * phi
+    omega = state.v[base, 2] + step.sign * dphi
+    eps = state.a[base, 2] + step.sign * ddphi
     p, vp, ap = state.point(base, arm.src)
     state.place(arm.link, theta, omega, eps, p, vp, ap, state.loc(arm.own))
     one = np.ones(state.valid.shape)
@@ -615,27 +658,30 @@ def _record(
     slack: np.ndarray,
     det: np.ndarray,
     branch: np.ndarray | None = None,
-    flips: list[tuple[int, int, int]] | None = None,
+    flips: list[Flip] | None = None,
     limit: np.ndarray | None = None,
 ) -> None:
-    slack = np.broadcast_to(slack, state.valid.shape)
-    state.step_slack.append(slack)
-    state.step_det.append(np.broadcast_to(det, state.valid.shape))
-    state.step_valid.append(slack >= 0)
-    state.step_branch.append(branch)
-    state.step_flips.append(flips or [])
-    state.step_jumps.append([])
-    state.step_limit.append(None if limit is None else np.broadcast_to(limit, state.valid.shape))
+    shape = state.valid.shape
+    slack = np.broadcast_to(slack, shape)
+    state.steps.append(
+        StepRecord(
+            slack >= 0,
+            np.broadcast_to(det, shape),
+            slack,
+            branch,
+            flips or [],
+            [],
+            None if limit is None else np.broadcast_to(limit, shape),
+        )
+    )
 
 
-def with_branches(mech: Any, steps: list[Step]) -> list[Step]:
+def with_branches(mech: Mechanism, steps: list[Step]) -> list[Step]:
     """Read the branch of every closed-form step off the assembly pose."""
     state = single_state(mech)
     out = []
     for step in steps:
-        if step.kind == "crank":
-            step = dataclasses.replace(step, extra={"b": int(mech.pair_links[step.pair, 1])})
-        elif step.kind in ("RRR", "RRP", "PRP", "RPP"):
+        if step.kind in ("RRR", "RRP", "PRP", "RPP"):
             arms = step.arms if step.kind != "RPP" else step.arms[1:]
             xa = _x_local(state, step.x_local[0])
             xb = _x_local(state, step.x_local[1])

@@ -3,15 +3,22 @@
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+import math
+import weakref
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from linkwork.errors import LinkworkError, UnassemblableError
-from linkwork.motion.events import Event
-from linkwork.structure.model import PairType
-from linkwork.structure.parameters import Masses, apply
+from linkwork.motion.events import Event, find
+from linkwork.motion.solve import run
+from linkwork.motion.state import State
+from linkwork.spec.checks import suggest
+from linkwork.structure.model import Mechanism, PairType, one_crank
+from linkwork.structure.parameters import Geometry, Masses, apply
 
 
 @dataclass(frozen=True)
@@ -27,20 +34,24 @@ class Kinematics:
     does not assemble are NaN and ``valid`` is False there.
     """
 
-    mechanism: Any
+    mechanism: Mechanism
     drive: np.ndarray  # (A, D) drive coordinates
     rates: np.ndarray  # (A, D) drive speeds
     q: np.ndarray  # (N, 3, V, A) link poses, link-major
     v: np.ndarray  # (N, 3, V, A)
     a: np.ndarray  # (N, 3, V, A)
     local: np.ndarray  # (P, 2, V, 1) point coordinates of the variants
+    axis: np.ndarray  # (M, 2, V, 1) guide directions of the variants
+    origin: np.ndarray  # (M, 2, V, 1) guide origins of the variants
     valid_all: np.ndarray  # (V, A)
     events: tuple[Event, ...]
     variants: bool
-    step_det: tuple[np.ndarray, ...] = ()
-    axis: np.ndarray | None = None  # (M, 2, V, 1) guide directions of the variants
-    origin: np.ndarray | None = None  # (M, 2, V, 1) guide origins of the variants
+    step_det: tuple[np.ndarray, ...] = ()  # (V, A) per step of the program, its normalised Jacobian determinant
     masses: Masses | None = None  # mass properties of the variants' links; None: the mechanism's
+    # each point read so far: its link and offset (:meth:`_arm`)
+    _arms: dict[int, tuple[int, np.ndarray, np.ndarray]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
@@ -85,44 +96,71 @@ class Kinematics:
         try:
             return self.mechanism.point_index(point)
         except KeyError:
-            from linkwork.spec.checks import suggest
-
             names = list(self.mechanism.point_names) + list(self.mechanism.joint_names)
             raise KeyError(f'no point "{point}"{suggest(point, names)}') from None
 
     def link_index(self, link: str | int) -> int:
+        """Index of a link given by its name (or its index)."""
         if isinstance(link, int | np.integer):
             return int(link)
         if link not in self.mechanism.link_names:
-            from linkwork.spec.checks import suggest
-
             raise KeyError(f'no link "{link}"{suggest(link, self.mechanism.link_names)}')
         return self.mechanism.link_names.index(link)
 
-    def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _arm(self, point: str) -> tuple[int, np.ndarray, np.ndarray]:
+        """The link of a point and the point's offset from the link's origin in the frame's axes,
+        ``(V, A)`` each: made once per point (the cosine and sine of the link's angle are most of the
+        cost of reading a point) and kept, so that its position, velocity and acceleration share it."""
         p = self.point_index(point)
-        link = int(self.mechanism.point_link[p])
-        q, v, a = self.q[link], self.v[link], self.a[link]
-        lx, ly = self.local[p, 0], self.local[p, 1]
-        c, s = np.cos(q[2]), np.sin(q[2])
-        rx, ry = c * lx - s * ly, s * lx + c * ly
-        w, e = v[2], a[2]
-        pos = np.stack([q[0] + rx, q[1] + ry], -1)
-        vel = np.stack([v[0] - w * ry, v[1] + w * rx], -1)
-        acc = np.stack([a[0] - e * ry - w * w * rx, a[1] + e * rx - w * w * ry], -1)
-        return pos, vel, acc
+        kept = self._arms.get(p)
+        if kept is None:
+            link = int(self.mechanism.point_link[p])
+            c, s = np.cos(self.q[link, 2]), np.sin(self.q[link, 2])
+            lx, ly = self.local[p, 0], self.local[p, 1]
+            kept = self._arms[p] = (link, c * lx - s * ly, s * lx + c * ly)
+        return kept
+
+    def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position, velocity and acceleration of a point, ``(V, A, 2)`` each."""
+        return self._position(point), self._velocity(point), self._acceleration(point)
+
+    def _position(self, point: str) -> np.ndarray:
+        link, rx, ry = self._arm(point)
+        q = self.q[link]
+        out = np.empty(rx.shape + (2,))
+        np.add(q[0], rx, out=out[..., 0])
+        np.add(q[1], ry, out=out[..., 1])
+        return out
+
+    def _velocity(self, point: str) -> np.ndarray:
+        link, rx, ry = self._arm(point)
+        v = self.v[link]
+        w = v[2]
+        out = np.empty(rx.shape + (2,))
+        np.subtract(v[0], w * ry, out=out[..., 0])
+        np.add(v[1], w * rx, out=out[..., 1])
+        return out
+
+    def _acceleration(self, point: str) -> np.ndarray:
+        link, rx, ry = self._arm(point)
+        w, a = self.v[link, 2], self.a[link]
+        e, w2 = a[2], w * w
+        out = np.empty(rx.shape + (2,))
+        np.subtract(a[0] - e * ry, w2 * rx, out=out[..., 0])
+        np.subtract(a[1] + e * rx, w2 * ry, out=out[..., 1])
+        return out
 
     def position(self, point: str) -> np.ndarray:
         """Global position of a point, m: ``(..., n_angles, 2)``."""
-        return self._out(self._point(point)[0])
+        return self._out(self._position(point))
 
     def velocity(self, point: str) -> np.ndarray:
         """Velocity of a point, m/s: ``(..., n_angles, 2)``."""
-        return self._out(self._point(point)[1])
+        return self._out(self._velocity(point))
 
     def acceleration(self, point: str) -> np.ndarray:
         """Acceleration of a point, m/s^2: ``(..., n_angles, 2)``."""
-        return self._out(self._point(point)[2])
+        return self._out(self._acceleration(point))
 
     def angle(self, link: str | int) -> np.ndarray:
         """Angle of a link's local x axis, rad: ``(..., n_angles)``."""
@@ -164,7 +202,7 @@ class Kinematics:
 PATH_STEP = np.radians(5.0)
 
 
-def _path(mech: Any, angles: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
+def _path(mech: Mechanism, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
     """A path of crank angles that reaches every asked angle from the assembly pose.
 
     Change points are followed along the order of the samples, so angles
@@ -172,16 +210,18 @@ def _path(mech: Any, angles: np.ndarray) -> tuple[np.ndarray | None, np.ndarray 
     angles away from the assembly pose) are solved on the sorted union of
     the asked angles and a grid of 5 degrees from the assembly angle; the
     result keeps the asked ones.  Returns (path, indices of the asked
-    angles in it), or (None, None) when the angles are a path already.
+    angles in it), or None when the angles are a path already.
     """
     if not any(step.kind in ("RRR", "RRP", "PRP") for step in mech.program):
-        return None, None
+        return None
     start = float(mech.drive_start[0])
-    d = np.diff(angles)
-    monotonic = len(angles) > 1 and (np.all(d > 0) or np.all(d < 0))
     step = PATH_STEP * (1 + 1e-9)
-    if monotonic and np.abs(d).max() <= step and angles.min() - step <= start <= angles.max() + step:
-        return None, None
+    if len(angles) > 1:  # a path already: monotonic, in steps of at most PATH_STEP, through the start
+        d = angles[1:] - angles[:-1]
+        least, most = float(d.min()), float(d.max())
+        first, last = sorted((float(angles[0]), float(angles[-1])))
+        if (least > 0 or most < 0) and max(most, -least) <= step and first - step <= start <= last + step:
+            return None
     lo, hi = min(angles.min(), start), max(angles.max(), start)
     grid = start + PATH_STEP * np.arange(np.floor((lo - start) / PATH_STEP), np.ceil((hi - start) / PATH_STEP) + 1)
     asked = np.sort(angles)
@@ -192,17 +232,15 @@ def _path(mech: Any, angles: np.ndarray) -> tuple[np.ndarray | None, np.ndarray 
     return path, inverse[: len(angles)]
 
 
-def direction(mech: Any) -> float:
+def direction(mech: Mechanism) -> float:
     """+1 where the first drive turns counter-clockwise (or forward; also where it has no speed), -1 where
     it turns clockwise (backward): the sign of the drive coordinate's steps over a cycle."""
     return -1.0 if mech.drive_speed[0] < 0 else 1.0
 
 
-def cycle(mech: Any, steps: int, start: float | None = None) -> np.ndarray:
+def cycle(mech: Mechanism, steps: int, start: float | None = None) -> np.ndarray:
     """Drive coordinates of a uniform cycle of the first drive, in its direction, from ``start`` (rad;
     default its assembly value)."""
-    from linkwork.structure.model import one_crank
-
     if not one_crank(mech):
         raise LinkworkError("steps= needs a mechanism with one revolute drive; give the angles instead")
     first = mech.drive_start[0] if start is None else start
@@ -210,12 +248,12 @@ def cycle(mech: Any, steps: int, start: float | None = None) -> np.ndarray:
 
 
 def kinematics(
-    mech: Any,
-    angles: Any = None,
+    mech: Mechanism,
+    angles: npt.ArrayLike | None = None,
     *,
     steps: int | None = None,
-    variants: dict[str, Any] | None = None,
-    speed: Any = None,
+    variants: Mapping[str, npt.ArrayLike] | None = None,
+    speed: npt.ArrayLike | None = None,
     strict: bool = False,
 ) -> Kinematics:
     """Positions, velocities and accelerations at the given drive coordinates.
@@ -249,8 +287,60 @@ def kinematics(
     -------
     Kinematics
     """
-    from linkwork.motion.events import find
-    from linkwork.motion.solve import run
+    values = _drive_values(mech, angles, steps)
+    rates = np.empty_like(values)
+    rates[:] = _speeds(mech, speed)
+    for path, value in (variants or {}).items():
+        if np.ndim(value) > 1:
+            raise LinkworkError(f'variants["{path}"]: expected a one-dimensional array, got shape {np.shape(value)}')
+    geom, masses = apply(mech, variants) if variants else (file_geometry(mech), None)
+    state, events = _solve(mech, geom, values, rates)
+    if strict and not state.valid.all():
+        first = next(e for e in events if e.kind == "no-assembly")
+        raise UnassemblableError(first.message, group=first.group, angle=first.start)
+    return Kinematics(
+        mechanism=mech,
+        drive=values,
+        rates=rates,
+        q=state.q,
+        v=state.v,
+        a=state.a,
+        local=state.local,
+        axis=state.axis,
+        origin=state.origin,
+        valid_all=state.valid,
+        events=events,
+        variants=variants is not None and len(variants) > 0,
+        step_det=tuple(r.det for r in state.steps),
+        masses=masses,
+    )
+
+
+#: The geometry of the file's dimensions of the mechanisms solved so far (:func:`file_geometry`), by
+#: the mechanism's id, with a weak reference to it (the entry goes with the mechanism).
+_FILE_GEOMETRY: dict[int, tuple[weakref.ref[Mechanism], Geometry]] = {}
+
+
+def file_geometry(mech: Mechanism) -> Geometry:
+    """The geometry of the file's dimensions (one variant: :func:`~linkwork.structure.parameters.apply`
+    without overrides), made once per mechanism; its arrays are read-only."""
+    key = id(mech)
+    kept = _FILE_GEOMETRY.get(key)
+    if kept is not None and kept[0]() is mech:
+        return kept[1]
+    geom = apply(mech)[0]
+    for array in (geom.point_local, geom.pair_origin, geom.pair_axis):
+        array.flags.writeable = False
+
+    def forget(_: weakref.ref[Mechanism]) -> None:
+        _FILE_GEOMETRY.pop(key, None)
+
+    _FILE_GEOMETRY[key] = (weakref.ref(mech, forget), geom)
+    return geom
+
+
+def _drive_values(mech: Mechanism, angles: npt.ArrayLike | None, steps: int | None) -> np.ndarray:
+    """The drive coordinates asked for, ``(A, D)``; :class:`LinkworkError` for anything else."""
     if (angles is None) == (steps is None):
         raise LinkworkError("give either angles or steps")
     if steps is not None and (isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 1):
@@ -263,48 +353,33 @@ def kinematics(
         raise LinkworkError(f"the mechanism has {mech.n_drives} drives; angles must have shape (n, {mech.n_drives})")
     if not np.isfinite(values).all():
         raise LinkworkError("angles must be finite numbers")
+    return values
+
+
+def _speeds(mech: Mechanism, speed: npt.ArrayLike | None) -> np.ndarray:
+    """The speed of every drive, ``(D,)``: ``speed``, or the file's (1 where it gives none)."""
     if speed is None:
-        rate = np.where(np.isfinite(mech.drive_speed) & (mech.drive_speed != 0), mech.drive_speed, 1.0)
-    else:
-        speed = np.asarray(speed, dtype=float)
-        if speed.size not in (1, mech.n_drives) or not np.isfinite(speed).all():
-            raise LinkworkError(f"speed: expected {mech.n_drives} finite value(s), got {speed.tolist()!r}")
-        rate = np.broadcast_to(speed.ravel(), (mech.n_drives,))
-    for path, value in (variants or {}).items():
-        if np.ndim(value) > 1:
-            raise LinkworkError(f'variants["{path}"]: expected a one-dimensional array, got shape {np.shape(value)}')
-    rates = np.broadcast_to(rate, values.shape)
-    geom, masses = apply(mech, variants)
+        return np.array([x if math.isfinite(x) and x != 0 else 1.0 for x in mech.drive_speed.tolist()])
+    speed = np.asarray(speed, dtype=float)
+    if speed.size not in (1, mech.n_drives) or not np.isfinite(speed).all():
+        raise LinkworkError(f"speed: expected {mech.n_drives} finite value(s), got {speed.tolist()!r}")
+    return np.broadcast_to(speed.ravel(), (mech.n_drives,))
+
+
+def _solve(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray) -> tuple[State, tuple[Event, ...]]:
+    """The state at the drive coordinates ``values`` ``(A, D)`` at the speeds ``rates`` ``(A, D)``, and the
+    events along them.  A single crank is solved along a path from the assembly pose through every angle
+    asked (:func:`_path`), and the asked ones kept."""
     revolute = bool(mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE)
-    path, take = _path(mech, values[:, 0]) if revolute and mech.n_drives == 1 else (None, None)
+    path = _path(mech, values[:, 0]) if revolute and mech.n_drives == 1 else None
     if path is None:
         state = run(mech, mech.program, geom, values, rates, np.zeros_like(values))
-        events = tuple(find(mech.program, state, values[:, 0], revolute))
-    else:
-        # solve along a path from the assembly pose through every asked angle, then keep those
-        state = run(
-            mech, mech.program, geom, path[:, None], np.broadcast_to(rate, (len(path), 1)), np.zeros((len(path), 1))
-        )
-        events = tuple(find(mech.program, state, path, revolute, within=(int(take.min()), int(take.max()))))
-        state.q, state.v, state.a = state.q[..., take], state.v[..., take], state.a[..., take]
-        state.valid = state.valid[:, take]
-        state.step_det = [d[:, take] for d in state.step_det]
-    if strict and not state.valid.all():
-        first = next(e for e in events if e.kind == "no-assembly")
-        raise UnassemblableError(first.message, group=first.group, angle=first.start)
-    return Kinematics(
-        mech,
-        values,
-        np.array(rates),
-        state.q,
-        state.v,
-        state.a,
-        state.local,
-        state.valid,
-        events,
-        variants is not None and len(variants) > 0,
-        tuple(state.step_det),
-        state.axis,
-        state.origin,
-        masses if variants else None,
-    )
+        return state, tuple(find(mech.program, state, values[:, 0], revolute))
+    angles, take = path
+    rate = np.broadcast_to(rates[0], (len(angles), 1))
+    state = run(mech, mech.program, geom, angles[:, None], rate, np.zeros((len(angles), 1)))
+    events = tuple(find(mech.program, state, angles, revolute, within=(int(take.min()), int(take.max()))))
+    state.q, state.v, state.a = state.q[..., take], state.v[..., take], state.a[..., take]
+    state.valid = state.valid[:, take]
+    state.steps = [r.take(take) for r in state.steps]
+    return state, events

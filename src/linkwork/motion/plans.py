@@ -31,12 +31,14 @@ view of one position.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 
-from linkwork.structure.model import PairType
+from linkwork.motion.analysis import guide
+from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.program import Arm, Step
+from linkwork.structure.model import PairType, point_labels
 
 
 @dataclass(frozen=True)
@@ -175,7 +177,7 @@ def _longest(vectors: np.ndarray) -> np.ndarray:
     return np.max(size, axis=-1, initial=0.0, where=np.isfinite(size))
 
 
-def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
+def plans(kin: Kinematics, index: int, variant: int = 0) -> tuple[Plan, Plan]:
     """The velocity and acceleration plans of sample ``index`` (of design variant ``variant``)."""
     n = len(kin.angles)
     if not -n <= index < n:
@@ -185,7 +187,7 @@ def plans(kin: Any, index: int, variant: int = 0) -> tuple[Plan, Plan]:
     return vel.at(0, variant), acc.at(0, variant)
 
 
-def plan_series(kin: Any) -> tuple[PlanSeries, PlanSeries]:
+def plan_series(kin: Kinematics) -> tuple[PlanSeries, PlanSeries]:
     """The velocity and acceleration plans of every sample and variant of a kinematics result, at once.
 
     Returns
@@ -205,9 +207,7 @@ def _perp(r: np.ndarray) -> np.ndarray:
 class _Construction:
     """The graphical construction over ``(V, A)``: every vector an array ``(V, A, 2)``."""
 
-    def __init__(self, kin: Any) -> None:
-        from linkwork.structure.model import point_labels
-
+    def __init__(self, kin: Kinematics) -> None:
         mech = self.mech = kin.mechanism
         self.kin = kin
         self.q, self.v, self.a = kin.pose, kin.vel, kin.acc  # (V, A, N, 3)
@@ -244,7 +244,7 @@ class _Construction:
         for step in self.mech.program:
             self.step(step)
 
-    def step(self, step: Any) -> None:
+    def step(self, step: Step) -> None:
         g, arms = step.label, step.arms
         if step.kind == "crank":
             arm = arms[0]
@@ -265,9 +265,9 @@ class _Construction:
             arm_g, arm_s = arms
             sp = arm_s.slider_point
             self.turn(g, arm_s, sp)
-            self.sliding(g, sp, SimpleNamespace(carrier=arm_g.link, pair=step.inner, link=arm_s.link))
+            self.sliding(g, sp, Arm("P", arm_s.link, step.inner, carrier=arm_g.link))
 
-    def turn(self, group: str, arm: Any, p: int) -> None:
+    def turn(self, group: str, arm: Arm, p: int) -> None:
         """Point ``p`` turning with the arm's link about the arm's outer joint: v = w perp(r);
         a = -w^2 r + e perp(r), r = X - P."""
         start, end, about = self.label[arm.src], self.label[p], self.names[arm.src]
@@ -279,10 +279,8 @@ class _Construction:
         self.avec.append((PlanEdge(start, mid, "normal", group, about), -w * w * r))
         self.avec.append((PlanEdge(mid, end, "tangential", group, about), e * pr))
 
-    def sliding(self, group: str, p: int, arm: Any, prime: str = "'") -> None:
+    def sliding(self, group: str, p: int, arm: Arm, prime: str = "'") -> None:
         """Point ``p`` on a link sliding along a guide of the carrier: transport + (Coriolis) + sliding."""
-        from linkwork.motion.analysis import guide
-
         c, lab, x = arm.carrier, self.label[p], self.pts[..., p, :]
         u = guide(self.kin, arm.pair)[1]
         v_tr, a_tr = self.state_at(c, x)

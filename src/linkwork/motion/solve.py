@@ -2,20 +2,19 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 
 from linkwork.motion import fast, kernels
 from linkwork.motion.program import Step
-from linkwork.motion.state import State, soa
-from linkwork.structure.constraints import residuals_and_jacobian, velocity_products
-from linkwork.structure.model import PairType
+from linkwork.motion.state import Jump, State, StepRecord, soa
+from linkwork.structure.assemble import group_rows
+from linkwork.structure.constraints import build_rows, residuals_and_jacobian, velocity_products
+from linkwork.structure.model import Mechanism, PairType
 from linkwork.structure.parameters import Geometry
 
 
 def run(
-    mech: Any,
+    mech: Mechanism,
     program: tuple[Step, ...],
     geom: Geometry,
     values: np.ndarray,
@@ -39,74 +38,49 @@ def run(
             return state
     size = max(1, CHUNK // max(n_ang, 1))
     if n_var <= size:
-        return _run_chunk(mech, program, geom, values, rates, accels)
+        return run_numpy(mech, program, geom, values, rates, accels)
     parts = []
     for start in range(0, n_var, size):
         part = Geometry(*(g[start : start + size] for g in (geom.point_local, geom.pair_origin, geom.pair_axis)))
-        parts.append(_run_chunk(mech, program, part, values, rates, accels))
+        parts.append(run_numpy(mech, program, part, values, rates, accels))
+    return _concatenate(parts, program)
+
+
+def _concatenate(parts: list[State], program: tuple[Step, ...]) -> State:
+    """The states of consecutive blocks of variants as one."""
     out = parts[0]
     for name in ("q", "v", "a", "cos", "sin", "local", "origin", "axis"):
-        setattr(
-            out,
-            name,
-            np.concatenate([getattr(p, name) for p in parts], axis=2 if name != "cos" and name != "sin" else 1),
-        )
+        axis = 2 if name != "cos" and name != "sin" else 1
+        setattr(out, name, np.concatenate([getattr(p, name) for p in parts], axis=axis))
     out.valid = np.concatenate([p.valid for p in parts])
-    for name in ("step_valid", "step_det", "step_slack"):
-        setattr(out, name, [np.concatenate(x) for x in zip(*(getattr(p, name) for p in parts), strict=True)])
-    out.step_branch = [
-        None if x[0] is None else np.concatenate(x) for x in zip(*(p.step_branch for p in parts), strict=True)
-    ]
-    out.step_limit = [
-        None
-        if all(j is None for j in x)
-        else np.concatenate([np.zeros(p.valid.shape, bool) if j is None else j for j, p in zip(x, parts, strict=True)])
-        for x in zip(*(p.step_limit for p in parts), strict=True)
-    ]
-    offsets = np.cumsum([0] + [p.valid.shape[0] for p in parts])
-    out.step_jumps = [
-        [(v + int(o), j) for p, o in zip(parts, offsets, strict=False) for v, j in p.step_jumps[k]]
-        for k in range(len(program))
-    ]
-    out.step_flips = [
-        [(v + int(o), i, j) for p, o in zip(parts, offsets, strict=False) for v, i, j in p.step_flips[k]]
-        for k in range(len(program))
+    offsets = [int(o) for o in np.cumsum([0] + [p.valid.shape[0] for p in parts])]
+    out.steps = [
+        StepRecord.concatenate(list(records), offsets, step.branch)
+        for step, *records in zip(program, *(p.steps for p in parts), strict=True)
     ]
     return out
 
 
 def _run_fast(
-    mech: Any, program: tuple[Step, ...], geom: Geometry, values: np.ndarray, rates: np.ndarray, accels: np.ndarray
+    mech: Mechanism,
+    program: tuple[Step, ...],
+    geom: Geometry,
+    values: np.ndarray,
+    rates: np.ndarray,
+    accels: np.ndarray,
 ) -> State | None:
     """The compiled closed-form path; None where a dyad passes near a change point, or lies on a singular
     position to rounding (the NumPy path follows the motion there)."""
     res = fast.run(mech, geom, values, rates, accels)
-    if res["near"].any() or res["limit"].any():
+    if res.near.any() or res.limit.any():
         return None
-    n_steps = len(program)
-    state = State(
-        res["q"],
-        res["v"],
-        res["a"],
-        None,
-        None,
-        soa(geom.point_local),
-        soa(geom.pair_origin),
-        soa(geom.pair_axis),
-        res["valid"],
-        [
-            s >= 0 if step.kind not in ("crank", "slide") else np.ones(s.shape, bool)
-            for s, step in zip(res["slack"], program, strict=True)
-        ],
-        list(res["det"]),
-        list(res["slack"]),
-    )
-    state.step_branch = [None] * n_steps
-    state.step_limit = [None] * n_steps
-    state.step_flips = [[] for _ in range(n_steps)]
-    state.step_jumps = [[] for _ in range(n_steps)]
-    state.step_trouble = res["trouble"]
-    if res["singular"]:
+    none = np.empty((0, 0, 0))  # no angles kept: the state is not solved further
+    state = State(res.q, res.v, res.a, none, none, soa(geom.point_local), soa(geom.pair_origin), soa(geom.pair_axis),
+                  res.valid)  # fmt: skip
+    assembled = res.slack >= 0  # the kernels give cranks and slides a margin of 1: always assembled
+    state.steps = [StepRecord(ok, d, s) for ok, d, s in zip(assembled, res.det, res.slack, strict=True)]
+    state.step_trouble = res.trouble
+    if res.singular:
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             _repair_singular(mech, program, geom, values, rates, accels, state)
     if not state.valid.all():
@@ -120,9 +94,16 @@ def _run_fast(
 CHUNK = 1 << 15
 
 
-def _run_chunk(
-    mech: Any, program: tuple[Step, ...], geom: Geometry, values: np.ndarray, rates: np.ndarray, accels: np.ndarray
+def run_numpy(
+    mech: Mechanism,
+    program: tuple[Step, ...],
+    geom: Geometry,
+    values: np.ndarray,
+    rates: np.ndarray,
+    accels: np.ndarray,
 ) -> State:
+    """Solve every step by the NumPy kernels, all variants at once (:func:`run` without the compiled
+    kernels and the chunks of variants)."""
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         state = _solve(mech, program, geom, values, rates, accels)
         _repair_singular(mech, program, geom, values, rates, accels, state)
@@ -137,7 +118,7 @@ SINGULAR = fast.SINGULAR
 
 
 def _solve(
-    mech: Any,
+    mech: Mechanism,
     program: tuple[Step, ...],
     geom: Geometry,
     values: np.ndarray,
@@ -168,13 +149,13 @@ def _solve(
             kernels.rpp(step, state, mech.point_link)
         else:
             newton(mech, step, state, geom, values, rates, accels)
-        state.valid &= state.step_valid[-1]
+        state.valid &= state.steps[-1].valid
         state.placed |= set(step.links)
     return state
 
 
 def _repair_singular(
-    mech: Any,
+    mech: Mechanism,
     program: tuple[Step, ...],
     geom: Geometry,
     values: np.ndarray,
@@ -190,71 +171,92 @@ def _repair_singular(
     linear drive) to either side, each in the assembly mode of its side,
     extrapolated to a zero step (Richardson).
     """
-    det = np.stack([np.abs(d) for d in state.step_det])  # (S, V, A)
+    det = np.stack([np.abs(r.det) for r in state.steps])  # (S, V, A)
     singular = state.valid & np.any(det < SINGULAR, axis=0)
     idx = np.flatnonzero(singular.any(axis=0))
     if len(idx) == 0:
         return
+    sides = _side_modes(mech, program, values, state, det, idx)
     scale = max(float(np.abs(mech.point_local).max()), 1e-3)
     delta = np.where(mech.pair_type[mech.drive_pair] == PairType.REVOLUTE, 1e-3, 1e-3 * scale)
+    means = []
+    for h in (delta, 2 * delta):
+        minus, plus = (
+            _solve(mech, program, geom, values[idx] + sign * h, rates[idx], accels[idx], branches)
+            for sign, branches in zip((-1.0, 1.0), sides, strict=True)
+        )
+        means.append([0.5 * (a + b) for a, b in zip((minus.v, minus.a), (plus.v, plus.a), strict=True)])
+    limits = [(4 * means[0][k] - means[1][k]) / 3 for k in range(2)]  # removes the h^2 error of the central mean
+    _write_limits(mech, program, state, det, singular, idx, limits)
+
+
+def _side_modes(
+    mech: Mechanism, program: tuple[Step, ...], values: np.ndarray, state: State, det: np.ndarray, idx: np.ndarray
+) -> tuple[list[np.ndarray | None], list[np.ndarray | None]]:
+    """The assembly mode of every dyad just below and just above each singular sample ``idx``
+    ``(a,)``: ``(V, a)`` per step (None for other steps).
+
+    The mode on each side is that of the neighbouring sample on that side (whatever the order of the
+    angles); where there is none, a change point is crossed: the other mode than the far side's."""
     n_ang = values.shape[0]
-    # the assembly mode on each side: that of the neighbouring sample on that side (whatever the order
-    # of the angles); where there is none, a change point is crossed: the other mode than the far side's
     below, above = np.maximum(idx - 1, 0), np.minimum(idx + 1, n_ang - 1)
     rising = np.where(below == above, True, values[above, 0] >= values[below, 0])
     near_minus, near_plus = np.where(rising, below, above), np.where(rising, above, below)
-    side_branches = ([], [])
-    for i, step in enumerate(program):
-        b = state.step_branch[i]
+    alone = near_minus == near_plus  # a single sample: the side facing the assembly pose keeps its mode
+    facing_up = values[idx, 0] < mech.drive_start[0]
+    lower: list[np.ndarray | None] = []
+    upper: list[np.ndarray | None] = []
+    for step, record, d in zip(program, state.steps, det, strict=True):
         if step.kind not in ("RRR", "RRP", "PRP"):
-            side_branches[0].append(None)
-            side_branches[1].append(None)
+            lower.append(None)
+            upper.append(None)
             continue
-        full = b if b is not None else np.full(state.valid.shape, step.branch)
-        lone = det[i][:, idx] < SINGULAR
+        full = record.branch if record.branch is not None else np.full(state.valid.shape, step.branch)
+        lone = d[:, idx] < SINGULAR
         minus, plus = full[:, near_minus].copy(), full[:, near_plus].copy()
-        alone = near_minus == near_plus  # a single sample: the side facing the assembly pose keeps its mode
-        facing_up = values[idx, 0] < mech.drive_start[0]
         minus = np.where(lone & (near_minus == idx) & ~(alone & ~facing_up), -plus, minus)
         plus = np.where(lone & (near_plus == idx) & ((near_minus != idx) | (alone & ~facing_up)), -minus, plus)
-        side_branches[0].append(minus)
-        side_branches[1].append(plus)
-    means = []
-    for h in (delta, 2 * delta):
-        sides = []
-        for sign, branches in ((-1.0, side_branches[0]), (1.0, side_branches[1])):
-            sides.append(_solve(mech, program, geom, values[idx] + sign * h, rates[idx], accels[idx], branches))
-        means.append([0.5 * (a + b) for a, b in zip((sides[0].v, sides[0].a), (sides[1].v, sides[1].a), strict=True)])
-    # links of the first singular step and after it: upstream links are regular there
+        lower.append(minus)
+        upper.append(plus)
+    return lower, upper
+
+
+def _write_limits(
+    mech: Mechanism,
+    program: tuple[Step, ...],
+    state: State,
+    det: np.ndarray,
+    singular: np.ndarray,
+    idx: np.ndarray,
+    limits: list[np.ndarray],
+) -> None:
+    """Put the two-sided limits ``limits`` (velocities and accelerations, ``(N, 3, V, a)``) of the
+    singular samples ``idx`` into the state, for the links of the first singular step and after it
+    (upstream links are regular there), except the velocities where every singular step is a dyad on
+    its singular position to rounding (its velocities are those of the motion through it already)."""
     first = np.argmax(det[:, :, idx] < SINGULAR, axis=0)  # (V, a)
     order = np.full(mech.n_links_total, -1)
     for i, step in enumerate(program):
         order[list(step.links)] = i
     affected = order[None, None, :] >= first[..., None]  # (V, a, N)
     mask = singular[:, idx][..., None] & affected
-    # where every singular step is a dyad on its singular position to rounding, the velocities are
-    # already those of the motion through it
-    limit = np.stack([np.zeros(det.shape[1:], bool) if j is None else j for j in state.step_limit])
+    limit = np.stack([np.zeros(det.shape[1:], bool) if r.limit is None else r.limit for r in state.steps])
     kept = np.all((det >= SINGULAR) | limit, axis=0)[:, idx]  # (V, a)
     for k, full in enumerate((state.v, state.a)):
-        richardson = (4 * means[0][k] - means[1][k]) / 3  # removes the h^2 error of the central mean
         view = np.moveaxis(full, (0, 1), (2, 3))  # (V, A, N, 3)
         block = view[:, idx]
         take = mask & ~kept[..., None] if k == 0 else mask
-        block[take] = np.moveaxis(richardson, (0, 1), (2, 3))[take]
+        block[take] = np.moveaxis(limits[k], (0, 1), (2, 3))[take]
         view[:, idx] = block
 
 
-def _rows(mech: Any, links: tuple[int, ...], placed: set[int]) -> list[int]:
+def _rows(mech: Mechanism, links: tuple[int, ...], placed: set[int]) -> list[int]:
     """Constraint rows of a group: those that involve its links and placed links only."""
-    from linkwork.structure.assemble import group_rows
-    from linkwork.structure.constraints import build_rows
-
     return group_rows(build_rows(mech.pair_type, mech.pair_links, mech.drive_pair), placed, set(links))
 
 
 def newton(
-    mech: Any,
+    mech: Mechanism,
     step: Step,
     state: State,
     geom: Geometry,
@@ -272,15 +274,49 @@ def newton(
     along the cycle.  Velocities and accelerations come from the linear
     systems of the differentiated constraints.
     """
-    links = list(step.links)
-    sel = _rows(mech, step.links, state.placed)
-    cols = np.array([3 * i + c for i in links for c in range(3)])
+    group = _Group(mech, step, state)
     n_var, n_ang = state.valid.shape
     drive = np.broadcast_to(values[None], (n_var, n_ang, values.shape[1]))
-    scale = max(float(np.abs(mech.point_local).max()), 1e-3)
     q = np.ascontiguousarray(np.moveaxis(state.q, (0, 1), (2, 3)))  # (V, A, N, 3)
-    q[:, :, links] = np.asarray(mech.pose0)[links]
+    q[:, :, group.links] = np.asarray(mech.pose0)[group.links]
+    converged = _rings(mech, group, q, drive, values, geom, tol, iterations)
+    vel, acc, js = _group_rates(mech, group, state, q, drive, geom, rates, accels)
+    links = group.links
+    for full, view in ((state.q, q), (state.v, vel), (state.a, acc)):
+        full[links] = np.moveaxis(view[:, :, links], (0, 1), (2, 3))
+    state.cos[links], state.sin[links] = np.cos(state.q[links, 2]), np.sin(state.q[links, 2])
+    sv = np.linalg.svd(np.nan_to_num(js), compute_uv=False)
+    det = sv[..., -1] / np.maximum(sv[..., 0], 1e-300)
+    jumps = _jumps(state, links, values[:, 0], group.scale, converged)
+    state.steps.append(StepRecord(converged, det, np.where(converged, 1.0, -1.0), jumps=jumps))
 
+
+class _Group:
+    """A group solved by Newton's method: its links, its constraint rows among the mechanism's
+    (``sel``), the columns of its coordinates in the Jacobian, and the mechanism's size (m)."""
+
+    def __init__(self, mech: Mechanism, step: Step, state: State) -> None:
+        self.links = list(step.links)
+        self.sel = _rows(mech, step.links, state.placed)
+        self.cols = np.array([3 * i + c for i in self.links for c in range(3)])
+        self.scale = max(float(np.abs(mech.point_local).max()), 1e-3)
+
+
+def _rings(
+    mech: Mechanism,
+    group: _Group,
+    q: np.ndarray,
+    drive: np.ndarray,
+    values: np.ndarray,
+    geom: Geometry,
+    tol: float,
+    iterations: int,
+) -> np.ndarray:
+    """Solve the group's poses in ``q`` ``(V, A, N, 3)`` in place, ring by ring of growing distance from
+    the drive values of the assembly pose, each sample started from the nearest one solved; returns
+    where it converged, ``(V, A)``."""
+    links = group.links
+    n_var, n_ang = q.shape[:2]
     offset = (values - mech.drive_start + np.pi) % (2 * np.pi) - np.pi  # (A, D)
     key = offset[:, 0] if values.shape[1] == 1 else np.max(np.abs(offset), axis=1)
     ring = np.floor(np.abs(key) / 0.2).astype(int)
@@ -298,39 +334,46 @@ def newton(
             sub[:, :, links] = q[:, near][:, :, links]
             q[:, idx] = sub
         sub = q[:, idx]
-        converged[:, idx] = _newton_solve(mech, sub, drive[:, idx], links, sel, cols, geom, scale, tol, iterations)
+        converged[:, idx] = _newton_solve(
+            mech, sub, drive[:, idx], links, group.sel, group.cols, geom, group.scale, tol, iterations
+        )
         q[:, idx] = sub
         solved[idx] = True
+    return converged
 
+
+def _group_rates(
+    mech: Mechanism,
+    group: _Group,
+    state: State,
+    q: np.ndarray,
+    drive: np.ndarray,
+    geom: Geometry,
+    rates: np.ndarray,
+    accels: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Velocities and accelerations ``(V, A, N, 3)`` with the group's from the linear systems of the
+    differentiated constraints at the poses ``q``, and the group's block of the Jacobian."""
+    sel, cols = group.sel, group.cols
+    n_var, n_ang = q.shape[:2]
     _, jac = residuals_and_jacobian(q, mech, drive, geom=geom)
     jac = jac[..., sel, :]
     js = jac[..., cols]
     rest = np.setdiff1d(np.arange(jac.shape[-1]), cols)
-    vel = np.ascontiguousarray(np.moveaxis(state.v, (0, 1), (2, 3))).reshape(n_var, n_ang, -1)
-    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], vel[..., rest]) + _drive_rows(mech, sel, rates)
-    vel[..., cols] = _lstsq(js, rhs)
-    vel = vel.reshape(q.shape)
+    flat = np.ascontiguousarray(np.moveaxis(state.v, (0, 1), (2, 3))).reshape(n_var, n_ang, -1)
+    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], flat[..., rest]) + _drive_rows(mech, sel, rates)
+    flat[..., cols] = _lstsq(js, rhs)
+    vel = flat.reshape(q.shape)
     gamma = velocity_products(q, vel, mech, geom=geom)[..., sel]
-    acc = np.ascontiguousarray(np.moveaxis(state.a, (0, 1), (2, 3))).reshape(n_var, n_ang, -1)
-    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], acc[..., rest]) - gamma + _drive_rows(mech, sel, accels)
-    acc[..., cols] = _lstsq(js, rhs)
-    acc = acc.reshape(q.shape)
-    for full, view in ((state.q, q), (state.v, vel), (state.a, acc)):
-        full[links] = np.moveaxis(view[:, :, links], (0, 1), (2, 3))
-    state.cos[links], state.sin[links] = np.cos(state.q[links, 2]), np.sin(state.q[links, 2])
-    sv = np.linalg.svd(np.nan_to_num(js), compute_uv=False)
-    state.step_slack.append(np.where(converged, 1.0, -1.0))
-    state.step_det.append(sv[..., -1] / np.maximum(sv[..., 0], 1e-300))
-    state.step_valid.append(converged)
-    state.step_branch.append(None)
-    state.step_limit.append(None)
-    state.step_flips.append([])
-    state.step_jumps.append(_jumps(state, links, values[:, 0], scale, converged))
+    flat = np.ascontiguousarray(np.moveaxis(state.a, (0, 1), (2, 3))).reshape(n_var, n_ang, -1)
+    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], flat[..., rest]) - gamma + _drive_rows(mech, sel, accels)
+    flat[..., cols] = _lstsq(js, rhs)
+    return vel, flat.reshape(q.shape), js
 
 
 def _jumps(
     state: State, links: list[int], drive: np.ndarray, scale: float = 1.0, ok: np.ndarray | None = None
-) -> list[tuple[int, int]]:
+) -> list[Jump]:
     """Samples where a Newton-solved group moves far more than its neighbours would have it:
     the continuation may have changed the assembly mode there.  Returns (variant, sample) pairs."""
     if len(drive) < 4:
@@ -346,10 +389,10 @@ def _jumps(
     with np.errstate(invalid="ignore"):
         typical = np.nanmedian(moves, axis=1, keepdims=True)
         bad = moves > 20 * typical + 1e-6 * scale / step
-    return [(int(v), int(j)) for v, j in np.argwhere(bad)]
+    return [Jump(int(v), int(j)) for v, j in np.argwhere(bad)]
 
 
-def _drive_rows(mech: Any, sel: list[int], rates: np.ndarray) -> np.ndarray:
+def _drive_rows(mech: Mechanism, sel: list[int], rates: np.ndarray) -> np.ndarray:
     """Right-hand side entries of the drive rows among ``sel``: shape (A, len(sel))."""
     n_pair_rows = 2 * len(mech.pair_type)
     out = np.zeros((rates.shape[0], len(sel)))
@@ -365,13 +408,13 @@ def _lstsq(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def _newton_solve(
-    mech: Any,
+    mech: Mechanism,
     sub: np.ndarray,
     drive: np.ndarray,
     links: list[int],
     sel: list[int],
     cols: np.ndarray,
-    geom: Any,
+    geom: Geometry,
     scale: float,
     tol: float,
     iterations: int,

@@ -10,10 +10,13 @@ Plane vectors are pairs ``(x, y)`` of arrays.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
-from typing import Any
+from typing import NamedTuple
 
 import numpy as np
+
+from linkwork.structure.model import Mechanism
 
 Vec = tuple[np.ndarray, np.ndarray]
 
@@ -36,7 +39,7 @@ def sub(a: Vec, b: Vec) -> Vec:
     return a[0] - b[0], a[1] - b[1]
 
 
-def scale(k: np.ndarray, v: Vec) -> Vec:
+def scale(k: np.ndarray | float, v: Vec) -> Vec:
     return k * v[0], k * v[1]
 
 
@@ -59,6 +62,100 @@ def solve2(c1: Vec, c2: Vec, rhs: Vec) -> tuple[np.ndarray, np.ndarray, np.ndarr
     return cross(rhs, c2) * inv, cross(c1, rhs) * inv, det
 
 
+class Flip(NamedTuple):
+    """A change point a dyad's mode was followed through: the motion goes on in the other mode from
+    sample ``first`` on (in the order walked from the assembly pose); ``near`` is the sample nearest
+    the change point."""
+
+    variant: int
+    first: int
+    near: int
+
+
+class Jump(NamedTuple):
+    """Samples ``sample`` and ``sample + 1`` between which a Newton-solved group jumps."""
+
+    variant: int
+    sample: int
+
+
+@dataclass
+class StepRecord:
+    """What solving one step of the program found at every sample: ``(V, A)`` arrays.
+
+    Attributes
+    ----------
+    valid : ndarray of bool
+        The step assembled.
+    det : ndarray
+        Its normalised Jacobian determinant (zero at a singular position).
+    slack : ndarray
+        Its assembly margin (negative where it does not assemble).
+    branch : ndarray or None
+        The assembly mode used sample by sample; None: the step's own throughout.
+    flips : list of Flip
+        The change points its mode was followed through.
+    jumps : list of Jump
+        Where a Newton-solved group jumps between samples.
+    limit : ndarray of bool or None
+        Where a dyad is on a singular position to rounding: its velocities there are those of the
+        motion through it (not its accelerations); None: nowhere.
+    """
+
+    valid: np.ndarray
+    det: np.ndarray
+    slack: np.ndarray
+    branch: np.ndarray | None = None
+    flips: list[Flip] = field(default_factory=list)
+    jumps: list[Jump] = field(default_factory=list)
+    limit: np.ndarray | None = None
+
+    def window(self, lo: int, hi: int) -> StepRecord:
+        """The samples ``lo`` to ``hi`` (inclusive), renumbered from ``lo``."""
+        cut = slice(lo, hi + 1)
+        return StepRecord(
+            self.valid[:, cut],
+            self.det[:, cut],
+            self.slack[:, cut],
+            None if self.branch is None else self.branch[:, cut],
+            [Flip(v, j - lo, i - lo) for v, j, i in self.flips if lo <= i <= hi],
+            [Jump(v, j - lo) for v, j in self.jumps if lo <= j < hi],
+            None if self.limit is None else self.limit[:, cut],
+        )
+
+    def take(self, samples: np.ndarray) -> StepRecord:
+        """The samples ``samples`` ``(a,)`` of the arrays (the change points and jumps as they are)."""
+        return dataclasses.replace(
+            self,
+            valid=self.valid[:, samples],
+            det=self.det[:, samples],
+            slack=self.slack[:, samples],
+            branch=None if self.branch is None else self.branch[:, samples],
+            limit=None if self.limit is None else self.limit[:, samples],
+        )
+
+    @staticmethod
+    def concatenate(parts: list[StepRecord], offsets: list[int], mode: float) -> StepRecord:
+        """The records of one step over consecutive blocks of variants, the first variant of each at
+        ``offsets``; ``mode``: the step's own assembly mode, of the blocks that kept it throughout."""
+
+        def joined(arrays: list[np.ndarray | None], fill: float | bool) -> np.ndarray | None:
+            if all(x is None for x in arrays):
+                return None
+            blocks = [np.full(p.valid.shape, fill) if x is None else x for x, p in zip(arrays, parts, strict=True)]
+            return np.concatenate(blocks)
+
+        return StepRecord(
+            np.concatenate([p.valid for p in parts]),
+            np.concatenate([p.det for p in parts]),
+            np.concatenate([p.slack for p in parts]),
+            joined([p.branch for p in parts], mode),
+            [Flip(v + o, i, j) for p, o in zip(parts, offsets, strict=False) for v, i, j in p.flips],
+            [Jump(v + o, j) for p, o in zip(parts, offsets, strict=False) for v, j in p.jumps],
+            joined([p.limit for p in parts], False),
+        )
+
+
 @dataclass
 class State:
     """Arrays being filled by the solve program, group by group.
@@ -68,10 +165,15 @@ class State:
     q, v, a : ndarray, shape (N, 3, V, A)
         Pose, velocity and acceleration of every link.
     cos, sin : ndarray, shape (N, V, A)
-        Of each link's angle, kept with the pose.
+        Of each link's angle, kept with the pose while the program is solved (empty in the state
+        the compiled kernels return, which is not solved further).
     local : ndarray, shape (P, 2, V, 1)
     origin, axis : ndarray, shape (M, 2, V, 1)
         Dimensions of the design variants (guide lines of prismatic pairs).
+    valid : ndarray of bool, shape (V, A)
+        Every step so far assembled.
+    steps : list of StepRecord
+        One for each step solved so far.
     """
 
     q: np.ndarray
@@ -83,19 +185,11 @@ class State:
     origin: np.ndarray
     axis: np.ndarray
     valid: np.ndarray  # (V, A) bool
-    step_valid: list[np.ndarray] = field(default_factory=list)  # per step (V, A)
-    step_det: list[np.ndarray] = field(default_factory=list)  # per step, normalised Jacobian determinant
-    step_slack: list[np.ndarray] = field(default_factory=list)  # per step, assembly margin (< 0: no assembly)
+    steps: list[StepRecord] = field(default_factory=list)
     placed: set[int] = field(default_factory=lambda: {0})
     start_index: int = 0  # the sample nearest to the assembly pose: continuation starts there
-    drive: np.ndarray | None = None  # (A,) drive coordinate of each sample (the first drive)
+    drive: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (A,) coordinate of the first drive
     rate: np.ndarray | None = None  # (A,) its time derivative; None where other drives move too
-    step_branch: list[np.ndarray | None] = field(default_factory=list)  # per step, the mode used (V, A)
-    step_flips: list[list[tuple[int, int, int]]] = field(default_factory=list)  # per step, change points
-    step_jumps: list[list[tuple[int, int]]] = field(default_factory=list)  # per step, (variant, sample) jumps
-    # per step (V, A), where a dyad is on a singular position to rounding: its velocities there are
-    # those of the motion through it (not its accelerations); None: nowhere
-    step_limit: list[np.ndarray | None] = field(default_factory=list)
     # per step (V,), from the compiled path: where a step may have events (no assembly, a singular
     # position, a sign change of its determinant); None: look everywhere
     step_trouble: np.ndarray | None = None
@@ -190,10 +284,10 @@ class State:
 
 def soa(a: np.ndarray) -> np.ndarray:
     """(V, 1, K, 2) geometry arrays -> (K, 2, V, 1)."""
-    return np.ascontiguousarray(np.moveaxis(np.asarray(a, dtype=float), (0, 1), (2, 3)))
+    return np.ascontiguousarray(np.asarray(a, dtype=float).transpose(2, 3, 0, 1))
 
 
-def single_state(mech: Any) -> State:
+def single_state(mech: Mechanism) -> State:
     """The assembly pose as a state of one variant at one angle (at rest)."""
     state = State.empty(
         mech.n_links_total,

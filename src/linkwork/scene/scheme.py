@@ -29,6 +29,7 @@ from linkwork.structure.model import PairType, point_labels
 
 if TYPE_CHECKING:
     from linkwork.motion.kinematics import Kinematics
+    from linkwork.spec.schema import ImpactSpec
 
 #: The kinds of item, in drawing order (later on top).
 KINDS = ("path", "hatch", "support", "guide", "bar", "plate", "tool", "edge", "block", "pivot", "marker")
@@ -323,7 +324,7 @@ class _Builder:
             for p in load.points:
                 out += self._blade(int(p), str(load.name))
         if self.mech.blow is not None:
-            out += self._anvil()
+            out += self._anvil(self.mech.blow)
         return out
 
     def _blade(self, p: int, name: str) -> list[Item]:
@@ -337,8 +338,7 @@ class _Builder:
         pname = str(self.mech.point_names[p])
         return [Item("tool", link, body, closed=True, name=pname), Item("edge", link, edge, name=pname)]
 
-    def _anvil(self) -> list[Item]:
-        blow = self.mech.blow
+    def _anvil(self, blow: ImpactSpec) -> list[Item]:
         p = self.mech.point_index(blow.at)
         face = self.mech.points0()[p]
         n = np.array([np.cos(blow.normal), np.sin(blow.normal)])

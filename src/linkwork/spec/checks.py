@@ -10,10 +10,13 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Callable, Iterable
+import threading
+from collections import Counter, defaultdict
+from collections.abc import Callable, Collection
 from typing import Any
 
 from linkwork.errors import Problem, UnitParseError
+from linkwork.limits import MAX_NAME, quote
 from linkwork.spec.schema import direction_word
 from linkwork.spec.yamlsource import Path, Source
 from linkwork.units import parse_quantity
@@ -25,10 +28,23 @@ FRAME = "frame"
 Report = Callable[[Path, str], None]
 
 
-def suggest(word: str, candidates: Iterable[str]) -> str:
-    """`` (did you mean "x"?)`` for the closest candidate, or an empty string."""
+#: Candidates compared for suggestions in one pass of :func:`check`: beyond, no more suggestions, so that
+#: a file of many wrong names against many right ones is checked in near-linear time.
+SUGGESTIONS = 200_000
+
+_budget = threading.local()
+
+
+def suggest(word: str, candidates: Collection[str]) -> str:
+    """`` (did you mean "x"?)`` for the closest candidate, or an empty string (also for a word longer
+    than a name, and once a pass of :func:`check` has compared :data:`SUGGESTIONS` candidates)."""
+    left = getattr(_budget, "left", None)
+    if len(str(word)) > MAX_NAME or (left is not None and left < len(candidates)):
+        return ""
+    if left is not None:
+        _budget.left = left - len(candidates)
     close = difflib.get_close_matches(str(word), [str(c) for c in candidates], n=1, cutoff=0.5)
-    return f' (did you mean "{close[0]}"?)' if close else ""
+    return f" (did you mean {quote(close[0])}?)" if close else ""
 
 
 def _dict(value: Any) -> dict[str, Any]:
@@ -52,6 +68,14 @@ def link_points(links: dict[str, Any], frame: dict[str, Any]) -> dict[str, set[s
 
 def check(src: Source, declared: dict[str, str]) -> list[Problem]:
     """All reference and consistency problems of the raw data in ``src``."""
+    _budget.left = SUGGESTIONS
+    try:
+        return _check(src, declared)
+    finally:
+        _budget.left = None
+
+
+def _check(src: Source, declared: dict[str, str]) -> list[Problem]:
     data = _dict(src.data)
     out: list[Problem] = []
 
@@ -67,13 +91,13 @@ def check(src: Source, declared: dict[str, str]) -> list[Problem]:
         bad(("links",), "a mechanism needs at least one moving link")
     for name in frame.get("points", {}) if isinstance(frame.get("points"), dict) else {}:
         if not NAME.match(name):
-            bad(("frame", "points", name), f'"{name}" is not a valid point name (letters, digits, _)')
+            bad(("frame", "points", name), f"{quote(name)} is not a valid point name (letters, digits, _)")
     for name, link in links.items():
         if isinstance(name, str):
             _check_link(bad, name, _dict(link), points)
     com = frame.get("com")
     if isinstance(com, str) and com not in points[FRAME]:
-        bad(("frame", "com"), f'the frame has no point "{com}"{suggest(com, points[FRAME])}')
+        bad(("frame", "com"), f"the frame has no point {quote(com)}{suggest(com, points[FRAME])}")
 
     known = set(links) | {FRAME}
     for jname, joint in joints.items():
@@ -95,17 +119,17 @@ def _check_link(bad: Report, name: str, link: dict[str, Any], points: dict[str, 
         bad(path, '"frame" is the fixed link; give a moving link another name')
         return
     if not NAME.match(name):
-        bad(path, f'"{name}" is not a valid link name (letters, digits, _, starting with a letter)')
+        bad(path, f"{quote(name)} is not a valid link name (letters, digits, _, starting with a letter)")
     _check_ends(bad, path, link)
     for p in _dict(link.get("points")):
         if not NAME.match(p):
-            bad(path + ("points", p), f'"{p}" is not a valid point name (letters, digits, _)')
+            bad(path + ("points", p), f"{quote(p)} is not a valid point name (letters, digits, _)")
     if not points[name]:
         bad(path, 'a link needs at least one point ("ends" with "length", or "points")')
     for key in ("com", "inertia_about"):
         ref = link.get(key)
         if isinstance(ref, str) and ref not in points[name]:
-            bad(path + (key,), f'link "{name}" has no point "{ref}"{suggest(ref, points[name])}')
+            bad(path + (key,), f"link {quote(name)} has no point {quote(ref)}{suggest(ref, points[name])}")
     if link.get("inertia_about") is not None and link.get("inertia") is None:
         bad(path + ("inertia_about",), '"inertia_about" needs "inertia"')
 
@@ -122,32 +146,32 @@ def _check_ends(bad: Report, path: Path, link: dict[str, Any]) -> None:
     if len(ends) != 2:
         bad(path + ("ends",), f"expected two point names, got {len(ends)}")
     elif ends[0] == ends[1]:
-        bad(path + ("ends",), f'the two ends must differ, got "{ends[0]}" twice')
+        bad(path + ("ends",), f"the two ends must differ, got {quote(ends[0])} twice")
     for e in ends:
         if isinstance(e, str) and e in _dict(link.get("points")):
-            bad(path + ("points", e), f'point "{e}" is already one of the ends')
+            bad(path + ("points", e), f"point {quote(e)} is already one of the ends")
         elif isinstance(e, str) and not NAME.match(e):
-            bad(path + ("ends",), f'"{e}" is not a valid point name')
+            bad(path + ("ends",), f"{quote(e)} is not a valid point name")
 
 
 def _check_joint(bad: Report, jname: str, joint: dict[str, Any], known: set[str], points: dict[str, set[str]]) -> None:
     """A joint's name and links (known, at least two, each once), and its point on each of them."""
     path: Path = ("joints", jname)
     if not NAME.match(jname):
-        bad(path, f'"{jname}" is not a valid joint name (letters, digits, _)')
+        bad(path, f"{quote(jname)} is not a valid joint name (letters, digits, _)")
     names = joint.get("links")
     if not isinstance(names, list):
         return
     kind = joint.get("type")
     for i, ln in enumerate(names):
         if isinstance(ln, str) and ln not in known:
-            bad(path + ("links", i), f'unknown link "{ln}"{suggest(ln, known)}')
+            bad(path + ("links", i), f"unknown link {quote(ln)}{suggest(ln, known)}")
     if len(names) < 2:
         bad(path + ("links",), f"a joint joins at least two links, got {len(names)}")
         return
-    dup = {n for n in names if isinstance(n, str) and names.count(n) > 1}
-    for n in sorted(dup):
-        bad(path + ("links",), f'link "{n}" is listed twice')
+    counts = Counter(n for n in names if isinstance(n, str))
+    for n in sorted(n for n, k in counts.items() if k > 1):
+        bad(path + ("links",), f"link {quote(n)} is listed twice")
     point = joint.get("point") or jname
     if not isinstance(point, str):
         return
@@ -163,11 +187,11 @@ def _check_revolute(
     """A revolute joint: no guide line, and its ``point`` on every link it joins."""
     for key in ("through", "axis"):
         if key in joint:
-            bad(path + (key,), f'"{key}" applies to prismatic and pin-in-slot joints only')
+            bad(path + (key,), f"{quote(key)} applies to prismatic and pin-in-slot joints only")
     for ln in names:
         if isinstance(ln, str) and ln in points and point not in points[ln]:
-            where = "the frame" if ln == FRAME else f'link "{ln}"'
-            bad(path, f'{where} has no point "{point}" for this joint{suggest(point, points[ln])}')
+            where = "the frame" if ln == FRAME else f"link {quote(ln)}"
+            bad(path, f"{where} has no point {quote(point)} for this joint{suggest(point, points[ln])}")
 
 
 def _check_sliding(
@@ -187,26 +211,30 @@ def _check_sliding(
     guide, slider = names
     if isinstance(slider, str) and slider in points and point not in points[slider]:
         role = "slider" if kind == "prismatic" else "pin link"
-        bad(path, f'the {role} "{slider}" has no point "{point}"{suggest(point, points[slider])}')
+        bad(path, f"the {role} {quote(slider)} has no point {quote(point)}{suggest(point, points[slider])}")
     for key, what in (("axis", "direction of the guide line"), ("through", "a point of the guide line")):
         if joint.get(key) is None:
-            bad(path, f'missing field "{key}" ({what})')
+            bad(path, f"missing field {quote(key)} ({what})")
     through = joint.get("through")
     if isinstance(through, str) and isinstance(guide, str) and guide in points and through not in points[guide]:
-        where = "the frame" if guide == FRAME else f'the guide link "{guide}"'
-        bad(path + ("through",), f'{where} has no point "{through}"{suggest(through, points[guide])}')
+        where = "the frame" if guide == FRAME else f"the guide link {quote(guide)}"
+        bad(path + ("through",), f"{where} has no point {quote(through)}{suggest(through, points[guide])}")
     if guide == FRAME and slider == FRAME:
         bad(path + ("links",), "a joint cannot join the frame to itself")
 
 
 def _check_connected(bad: Report, links: dict[str, Any], joints: dict[str, Any], known: set[str]) -> None:
-    adj: dict[str, set[str]] = {n: set() for n in known}
-    for joint in joints.values():
+    """Every moving link reached from the frame through the joints (a search over links and joints, in
+    time linear in the joints' lists)."""
+    adj: dict[Any, set[Any]] = defaultdict(set)  # a link's joints, and a joint's links (keyed by its index)
+    for j, joint in enumerate(joints.values()):
         listed = _dict(joint).get("links")
-        names = [n for n in (listed if isinstance(listed, list) else []) if isinstance(n, str) and n in known]
-        for a in names:
-            adj[a] |= set(names) - {a}
-    seen, stack = {FRAME}, [FRAME]
+        for n in listed if isinstance(listed, list) else []:
+            if isinstance(n, str) and n in known:
+                adj[n].add(j)
+                adj[j].add(n)
+    seen: set[Any] = {FRAME}
+    stack: list[Any] = [FRAME]
     while stack:
         for nxt in adj[stack.pop()] - seen:
             seen.add(nxt)
@@ -231,10 +259,10 @@ def _check_drives(bad: Report, data: dict[str, Any], joints: dict[str, Any], dec
         if not isinstance(jname, str):
             continue
         if jname in seen:
-            bad(path + ("joint",), f'joint "{jname}" is already driven by drives[{seen[jname]}]')
+            bad(path + ("joint",), f"joint {quote(jname)} is already driven by drives[{seen[jname]}]")
         seen[jname] = i
         if jname not in joints:
-            bad(path + ("joint",), f'drive on a missing joint "{jname}"{suggest(jname, joints)}')
+            bad(path + ("joint",), f"drive on a missing joint {quote(jname)}{suggest(jname, joints)}")
             continue
         _check_drive(bad, path, drive, jname, _dict(joints[jname]), declared)
 
@@ -248,22 +276,25 @@ def _check_drive(
     if kind not in ("revolute", "prismatic", "pin-in-slot"):
         return  # the joint's own problem is reported at the joint
     if kind == "pin-in-slot":
-        bad(path + ("joint",), f'"{jname}" is a pin-in-slot pair, which cannot be driven')
+        bad(path + ("joint",), f"{quote(jname)} is a pin-in-slot pair, which cannot be driven")
         return
     listed = joint.get("links")
     nlinks = len(listed) if isinstance(listed, list) else 0
     if kind == "revolute" and nlinks != 2:
-        bad(path + ("joint",), f'a driven revolute joint must join exactly two links, "{jname}" joins {nlinks}')
+        bad(path + ("joint",), f"a driven revolute joint must join exactly two links, {quote(jname)} joins {nlinks}")
     rot = kind == "revolute"
     direction = direction_word(drive.get("direction"))
     if rot and direction in ("forward", "backward"):
-        bad(path + ("direction",), f'a revolute drive turns "ccw" or "cw", got "{direction}"')
+        bad(path + ("direction",), f'a revolute drive turns "ccw" or "cw", got {quote(direction)}')
     if not rot and direction in ("ccw", "cw"):
-        bad(path + ("direction",), f'a prismatic drive moves "forward" or "backward", got "{direction}"')
+        bad(path + ("direction",), f'a prismatic drive moves "forward" or "backward", got {quote(direction)}')
     wrong = "position" if rot else "angle"
     if drive.get(wrong) is not None:
         right = "an angle" if rot else "a position"
-        bad(path + (wrong,), f'a {kind} drive has {right} (the drive coordinate of the assembly pose), not a "{wrong}"')
+        bad(
+            path + (wrong,),
+            f"a {kind} drive has {right} (the drive coordinate of the assembly pose), not a {quote(wrong)}",
+        )
     if drive.get("speed") is not None:
         try:
             parse_quantity(drive["speed"], "angular_speed" if rot else "speed", declared)
@@ -304,22 +335,42 @@ def _check_law(bad: Report, path: Path, law: dict[str, Any], rot: bool, declared
 def _check_hints(bad: Report, data: dict[str, Any], joints: dict[str, Any], points: dict[str, set[str]]) -> None:
     hints = _dict(data.get("hints"))
     names = hint_names(joints, points)
+    owned = _owners(points)
+    by_point = _by_point(names)
     for key in hints:
         if key in names:
             continue
-        owners = sorted(ln for ln, pts in points.items() if key in pts)
+        owners = sorted(owned.get(key, ()))
         if len(owners) > 1:  # a point of several links that no joint joins: the joint is missing, not the hint
             if "joints" not in data:
                 continue  # the missing section is the problem, reported as such
             bad(
                 ("joints",),
-                f'no joint "{key}": {_and(owners)} have a point "{key}" that no joint joins '
-                f'(the hint "{key}" names it as a joint)',
+                f"no joint {quote(key)}: {_and(owners)} have a point {quote(key)} that no joint joins "
+                f"(the hint {quote(key)} names it as a joint)",
             )
             continue
-        same = sorted(n for n in names if n.endswith(f".{key}"))
-        hint = f' (did you mean "{same[0]}"?)' if same else suggest(key, names)
-        bad(("hints", key), f'no moving point "{key}" (give a joint name or link.point){hint}')
+        same = sorted(by_point.get(key, ()))
+        hint = f" (did you mean {quote(same[0])}?)" if same else suggest(key, names)
+        bad(("hints", key), f"no moving point {quote(key)} (give a joint name or link.point){hint}")
+
+
+def _owners(points: dict[str, set[str]]) -> dict[str, list[str]]:
+    """Point name -> the links (and the frame) that have a point of that name."""
+    out: dict[str, list[str]] = defaultdict(list)
+    for link, pts in points.items():
+        for p in pts:
+            out[p].append(link)
+    return out
+
+
+def _by_point(names: Collection[str]) -> dict[str, list[str]]:
+    """Point name -> the ``link.point`` names among ``names`` that end in it."""
+    out: dict[str, list[str]] = defaultdict(list)
+    for n in names:
+        if "." in n:
+            out[n.rsplit(".", 1)[1]].append(n)
+    return out
 
 
 def _and(names: list[str]) -> str:
@@ -353,7 +404,7 @@ def _check_loads(bad: Report, data: dict[str, Any], points: dict[str, set[str]])
     for name, load in loads.items():
         path: Path = ("loads", name)
         if not isinstance(name, str) or not NAME.match(name):
-            bad(path, f'"{name}" is not a valid load name (letters, digits, _)')
+            bad(path, f"{quote(name)} is not a valid load name (letters, digits, _)")
         load = _dict(load)
         kind = load.get("type")
         if not isinstance(kind, str) or kind not in _LOAD_FIELDS:
@@ -366,7 +417,7 @@ def _check_loads(bad: Report, data: dict[str, Any], points: dict[str, set[str]])
         elif kind == "moment":
             on = load.get("on")
             if isinstance(on, str) and on not in points:
-                bad(path + ("on",), f'unknown link "{on}"{suggest(on, points)}')
+                bad(path + ("on",), f"unknown link {quote(on)}{suggest(on, points)}")
             _check_table(bad, path, load, "moment")
         else:
             _check_process(bad, path, load, names)
@@ -376,10 +427,10 @@ def _check_load_fields(bad: Report, path: Path, load: dict[str, Any], kind: str)
     """The fields a load of ``kind`` needs, and those of other kinds of load it has."""
     needed, allowed = _LOAD_FIELDS[kind]
     for key in sorted(needed - set(load)):
-        bad(path, f'missing field "{key}" (a {kind} load needs {", ".join(sorted(needed))})')
+        bad(path, f"missing field {quote(key)} (a {kind} load needs {', '.join(sorted(needed))})")
     for key in sorted(set(load) - allowed - {"type", "description"}):
         if key in {f for _, a in _LOAD_FIELDS.values() for f in a}:
-            bad(path + (key,), f'"{key}" does not apply to a {kind} load')
+            bad(path + (key,), f"{quote(key)} does not apply to a {kind} load")
 
 
 def _load_point(bad: Report, names: set[str], path: Path, ref: Any) -> str | None:
@@ -387,9 +438,9 @@ def _load_point(bad: Report, names: set[str], path: Path, ref: Any) -> str | Non
     if not isinstance(ref, str):
         return None
     if ref not in names:
-        same = sorted(n for n in names if n.endswith(f".{ref}"))
-        hint = f' (did you mean "{same[0]}"?)' if same else suggest(ref, names)
-        bad(path, f'no point "{ref}": give link.point, the link the load acts on and its point{hint}')
+        same = sorted(n for n in names if n.endswith(f".{ref}")) if len(names) <= 1000 else []
+        hint = f" (did you mean {quote(same[0])}?)" if same else suggest(ref, names)
+        bad(path, f"no point {quote(ref)}: give link.point, the link the load acts on and its point{hint}")
         return None
     return ref.split(".", 1)[0]
 
@@ -415,7 +466,7 @@ def _check_friction(bad: Report, path: Path, load: dict[str, Any], joints: dict[
     jtype = _dict(joints.get(jname)).get("type") if isinstance(jname, str) else None
     sliding = jtype in ("prismatic", "pin-in-slot")
     if isinstance(jname, str) and jname not in joints:
-        bad(path + ("joint",), f'unknown joint "{jname}"{suggest(jname, joints)}')
+        bad(path + ("joint",), f"unknown joint {quote(jname)}{suggest(jname, joints)}")
     elif jtype == "revolute" and load.get("moment") is None:
         bad(path, 'missing field "moment" (the friction moment of a revolute joint)')
     elif sliding and load.get("magnitude") is None:
@@ -460,7 +511,7 @@ def _check_table(bad: Report, path: Path, load: dict[str, Any], key: str) -> Non
     if not isinstance(angle, list) or value is None:
         return
     if not isinstance(value, list):
-        bad(path + (key,), f'with "angle", "{key}" is a list of the same length')
+        bad(path + (key,), f'with "angle", {quote(key)} is a list of the same length')
     elif len(value) != len(angle):
         bad(path, f"angle has {len(angle)} entries but {key} has {len(value)}")
     elif len(angle) < 2:
@@ -484,10 +535,10 @@ def _check_machine(bad: Report, data: dict[str, Any]) -> None:
     needed = _MOTOR_FIELDS[kind]
     what = f"{'an' if kind[0] in 'aeiou' else 'a'} {kind} motor"
     for key in sorted(needed - set(motor)):
-        bad(path, f'missing field "{key}" ({what} needs {", ".join(sorted(needed))})')
+        bad(path, f"missing field {quote(key)} ({what} needs {', '.join(sorted(needed))})")
     others = {f for fields in _MOTOR_FIELDS.values() for f in fields} - needed
     for key in sorted(others & set(motor)):
-        bad(path + (key,), f'"{key}" does not apply to {what}')
+        bad(path + (key,), f"{quote(key)} does not apply to {what}")
 
 
 def _check_impact(bad: Report, data: dict[str, Any], points: dict[str, set[str]]) -> None:
@@ -495,11 +546,11 @@ def _check_impact(bad: Report, data: dict[str, Any], points: dict[str, set[str]]
     at = blow.get("at")
     names = {f"{ln}.{p}" for ln, pts in points.items() if ln != FRAME for p in pts}
     if isinstance(at, str) and at not in names:
-        bad(("impact", "at"), f'no point "{at}" of a moving link (give link.point){suggest(at, names)}')
+        bad(("impact", "at"), f"no point {quote(at)} of a moving link (give link.point){suggest(at, names)}")
     link = blow.get("link")
     if isinstance(link, str) and (link not in points or link == FRAME):
-        bad(("impact", "link"), f'unknown link "{link}"{suggest(link, set(points) - {FRAME})}')
+        bad(("impact", "link"), f"unknown link {quote(link)}{suggest(link, set(points) - {FRAME})}")
     joint = blow.get("rod_joint")
     joints = _dict(data.get("joints"))
     if isinstance(joint, str) and joint not in joints:
-        bad(("impact", "rod_joint"), f'unknown joint "{joint}"{suggest(joint, joints)}')
+        bad(("impact", "rod_joint"), f"unknown joint {quote(joint)}{suggest(joint, joints)}")

@@ -11,9 +11,10 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from linkwork.errors import Problem, SpecError, UnitParseError
+from linkwork.limits import quote, shown
 from linkwork.spec.checks import check, suggest
 from linkwork.spec.schema import Spec
-from linkwork.spec.yamlsource import Source, read_yaml
+from linkwork.spec.yamlsource import Source, read_file, read_yaml
 from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, check_unit, parse_quantity
 
 
@@ -23,15 +24,11 @@ def load(path: str | Path) -> Spec:
     Raises
     ------
     SpecError
-        Listing every problem with ``file:line``, the element and what was expected.
+        Listing every problem with ``file:line``, the element and what was expected; or the one reason
+        the file cannot be read (:func:`~linkwork.spec.yamlsource.read_file`: not a regular file, too large,
+        not UTF-8).
     """
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        reason = getattr(exc, "strerror", None) or str(exc)
-        raise SpecError([Problem("", f"cannot read the file: {reason}", str(path))]) from None
-    return loads(text, file=str(path))
+    return loads(read_file(path), file=str(Path(path)))
 
 
 def loads(text: str, file: str | None = None) -> Spec:
@@ -52,6 +49,9 @@ def validate(src: Source) -> Spec:
     if not isinstance(src.data, dict):
         problems.append(src.problem((), "a mechanism file is a mapping with links, joints and drives"))
         raise SpecError(problems)
+    stranger = _not_a_mechanism(src)
+    if stranger is not None:  # what is wrong with its keys and values is no help: one problem
+        raise SpecError([stranger])
     declared = _declared_units(src, problems)
     spec: Spec | None = None
     try:
@@ -67,6 +67,20 @@ def validate(src: Source) -> Spec:
     spec = _finish(spec, declared)
     spec._source = src
     return spec
+
+
+def _not_a_mechanism(src: Source) -> Problem | None:
+    """One problem for a mapping none of whose keys is, or is close to, a field of a mechanism file (some
+    other file: its keys are not listed one by one, which would quote it back whole)."""
+    fields = list(Spec.model_fields)
+    keys = src.keys or list(src.data)
+    if not keys or any(k in fields or suggest(k, fields) for k in keys[:20]):
+        return None
+    return src.problem(
+        (),
+        f"not a mechanism file: none of its {len(keys):,} keys (the first {quote(keys[0])}) is a field of one "
+        f"({', '.join(fields[:6])}, ...)",
+    )
 
 
 def _declared_units(src: Source, problems: list[Problem]) -> dict[str, str]:
@@ -121,7 +135,7 @@ def _convert(src: Source, err: Any) -> Problem:
         if loc[:-1] == ("units",) and loc[-1] == "torque":
             return src.problem(loc, 'unknown key "torque" (the unit of moments and torques is "moment")')
         allowed = _fields_at(loc[:-1])
-        return src.problem(loc, f'unknown key "{loc[-1]}"{suggest(loc[-1], allowed)}')
+        return src.problem(loc, f"unknown key {quote(loc[-1])}{suggest(loc[-1], allowed)}")
     if kind == "missing":
         return src.problem(loc[:-1], f'missing field "{loc[-1]}"')
     if kind == "literal_error":
@@ -156,7 +170,7 @@ def _show(value: Any) -> str:
         return "a list"
     if value is None:
         return "nothing"
-    return f'"{value}"' if isinstance(value, str) else repr(value)
+    return quote(value) if isinstance(value, str) else shown(value)
 
 
 def _fields_at(loc: tuple[Any, ...]) -> list[str]:
@@ -209,12 +223,8 @@ def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
         if link.ends is not None and len(link.ends) == 2 and link.length is not None:
             local = {link.ends[0]: (0.0, 0.0), link.ends[1]: (link.length, 0.0)}
         local.update(link.points)
-        names = list(local)
-        for a in range(len(names)):
-            for b in range(a + 1, len(names)):
-                pa, pb = local[names[a]], local[names[b]]
-                if math.hypot(pa[0] - pb[0], pa[1] - pb[1]) < 1e-12:
-                    out.append(src.problem(("links", name, "points"), f"points {names[a]} and {names[b]} coincide"))
+        for a, b in coincident(local):
+            out.append(src.problem(("links", name, "points"), f"points {a} and {b} coincide"))
         if link.inertia is not None and link.inertia_about in local and link.mass is not None and local:
             com = link.com if link.com is not None else None
             if isinstance(com, str):
@@ -231,6 +241,34 @@ def _geometry_checks(spec: Spec, src: Source) -> list[Problem]:
                         f"m d^2 = {link.mass * d2:.6g} kg m^2 of the centre of mass alone: impossible",
                     )
                 )
+    return out
+
+
+#: Points of a link closer than this (m) coincide.
+COINCIDE = 1e-12
+
+
+def coincident(points: dict[str, tuple[float, float]]) -> list[tuple[str, str]]:
+    """Each point of ``points`` (name -> (x, y), m) that lies within :data:`COINCIDE` of an earlier one,
+    as ``(earlier, later)``, in the order of the later.
+
+    Near-linear: the points go into square cells of that size, and each is compared with the points of
+    its own and the eight neighbouring cells only, until the first that it coincides with.
+    """
+
+    def cell(v: float) -> float:
+        c = v / COINCIDE
+        return math.floor(c) if math.isfinite(c) else v  # beyond 1e296 m a point coincides only with itself
+
+    cells: dict[tuple[float, float], list[str]] = {}
+    out = []
+    for name, (x, y) in points.items():
+        cx, cy = cell(x), cell(y)
+        near = (p for dx in (-1, 0, 1) for dy in (-1, 0, 1) for p in cells.get((cx + dx, cy + dy), ()))
+        first = next((p for p in near if math.hypot(points[p][0] - x, points[p][1] - y) < COINCIDE), None)
+        if first is not None:
+            out.append((first, name))
+        cells.setdefault((cx, cy), []).append(name)
     return out
 
 

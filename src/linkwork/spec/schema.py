@@ -17,6 +17,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr,
 from pydantic_core import PydanticCustomError
 
 from linkwork.errors import UnitParseError
+from linkwork.limits import MIN_DELTA
 from linkwork.units import DEFAULT_UNITS, KINDS, MADE_OF, parse_quantity
 
 
@@ -402,7 +403,9 @@ class Machine(_Strict):
     motor: Motor
     gear: Gear | None = None
     flywheel: FlywheelSpec | None = None
-    delta: float | None = Field(None, gt=0, lt=1, description="coefficient of speed fluctuation to size a flywheel for")
+    delta: float | None = Field(
+        None, ge=MIN_DELTA, lt=1, description="coefficient of speed fluctuation to size a flywheel for"
+    )
 
 
 class ToolSpec(_Strict):

@@ -1,0 +1,133 @@
+"""Bounds on what a file or an option may ask of linkwork, and on what a message quotes back.
+
+Each bound has one home here; the YAML reader, the unit parser, the command line and the design
+options all check against these, with one message that names the bound.  A value within them may
+still be refused for what it means (an angle that does not assemble); one beyond them is refused
+before any work, so that no input can make linkwork run out of memory or run without end.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from typing import Any
+
+#: Bytes of a mechanism file (or of YAML text given to :func:`linkwork.loads`).
+MAX_FILE_BYTES = 1 << 20
+
+#: Characters of a line of a mechanism file (a longer list is written over several lines).
+MAX_LINE = 100_000
+
+#: Values of a mechanism file (keys, list items and scalars), aliases counted each time they are used.
+MAX_NODES = 100_000
+
+#: Nesting of mappings and lists in a mechanism file.
+MAX_DEPTH = 64
+
+#: Characters of a name in a file (a key: a link, a joint, a point, a load).
+MAX_NAME = 100
+
+#: Characters of a number with its unit (``"100 mm"``) or of a unit (``"kg*m^2"``).
+MAX_QUANTITY = 100
+
+#: Characters of the text of an option (a ``--vary``, ``--metric`` or ``--constraint``).
+MAX_OPTION = 1_000
+
+#: Characters of a value a message quotes back (longer ones are cut, with an ellipsis).
+QUOTE = 60
+
+#: Characters of a path a message names (a path is shown whole up to this).
+QUOTE_PATH = 300
+
+#: Problems a message lists; those beyond are counted.
+MAX_PROBLEMS = 100
+
+#: Crank angles of one run: ``--steps``, ``--angles``, ``--count``; also the angles of a sweep's turn.
+MAX_ANGLES = 100_000
+
+#: Turns of the crank either side of its assembly angle that an asked angle may lie within.
+MAX_TURNS = 100
+
+#: Variants of one sweep (a grid's product of counts, or ``--samples``).
+MAX_VARIANTS = 10_000_000
+
+#: Samples (variants x crank angles) solved at once: a chunk of a sweep, a generation of an optimisation.
+MAX_BATCH = 1 << 22
+
+#: Generations of an optimisation.
+MAX_GENERATIONS = 100_000
+
+#: Largest seed of a random sample or of the optimiser.
+MAX_SEED = 2**32 - 1
+
+#: Worker processes of a local Dask cluster, per core of the machine.
+WORKERS_PER_CORE = 4
+
+#: Seconds to wait for a Dask scheduler.
+MAX_TIMEOUT = 3600.0
+
+#: Blows of a working cycle.
+MAX_BLOWS = 10_000
+
+#: Smallest coefficient of speed fluctuation a flywheel is sized for (the inertia grows as 1/delta).
+MIN_DELTA = 1e-4
+
+
+def quote(value: Any, limit: int = QUOTE) -> str:
+    """``value`` as text in double quotes, cut to ``limit`` characters with an ellipsis, its size
+    said where it was cut: ``"root:*:19000:0:..." (2,480 characters)``; see :func:`excerpt`."""
+    text = value if isinstance(value, str) else str(value)
+    cut = excerpt(text[:limit]).replace('"', '\\"')
+    return f'"{cut}"' if len(text) <= limit else f'"{cut}..." ({len(text):,} characters)'
+
+
+def excerpt(value: Any, limit: int = QUOTE) -> str:
+    """``value`` as text for a message, without quotes (a path, with ``limit`` :data:`QUOTE_PATH`): cut
+    to ``limit`` characters with an ellipsis, and control characters and surrogates shown escaped, so
+    that it is always one short line that any terminal can print."""
+    text = value if isinstance(value, str) else str(value)
+    shown = "".join(c if c.isprintable() else repr(c)[1:-1] for c in text[:limit])
+    return shown if len(text) <= limit else f"{shown}... ({len(text):,} characters)"
+
+
+def whole(value: Any, name: str, low: int, high: int, what: str = "number") -> str | None:
+    """Why ``value`` is not a whole number from ``low`` to ``high`` (a message naming ``name`` and
+    saying ``what`` it counts), or None."""
+    if isinstance(value, int) and not isinstance(value, bool) and low <= value <= high:
+        return None
+    if low == 1:
+        return f"{name}: expected a positive {what}, at most {high:,}, got {shown(value)}"
+    return f"{name}: expected a whole {what}, at least {low:,} and at most {high:,}, got {shown(value)}"
+
+
+def shown(value: Any) -> str:
+    """A value for a message: a number or a truth value as Python writes it, other values by
+    :func:`quote`; never longer than about :data:`QUOTE` characters."""
+    if isinstance(value, float | bool):
+        return repr(value)
+    if isinstance(value, int):
+        if abs(value) < 10**QUOTE:
+            return str(value)
+        return f"a whole number of about {len(f'{value:x}') * 1.204:,.0f} digits"
+    return quote(value)
+
+
+def max_workers() -> int:
+    """Worker processes a local Dask cluster may have on this machine."""
+    return WORKERS_PER_CORE * (os.cpu_count() or 1)
+
+
+def angle_problem(degrees: float, name: str) -> str | None:
+    """Why a crank angle (degrees) is out of reach: not finite, or more than :data:`MAX_TURNS` turns."""
+    bound = 360.0 * MAX_TURNS
+    if math.isfinite(degrees) and abs(degrees) <= bound:
+        return None
+    return f"{name}: expected crank angles within {MAX_TURNS} turns ({bound:,.0f} deg) either way, got {degrees:g}"
+
+
+def delta_problem(delta: float | None, name: str) -> str | None:
+    """Why ``delta`` is not a coefficient of speed fluctuation to size a flywheel for (from
+    :data:`MIN_DELTA`, below 1), or None (also for None: the file's, or none)."""
+    if delta is None or (math.isfinite(delta) and MIN_DELTA <= delta < 1):
+        return None
+    return f"{name}: expected a coefficient of speed fluctuation from {MIN_DELTA:g} up to 1, got {shown(delta)}"
