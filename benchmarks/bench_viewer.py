@@ -15,9 +15,11 @@ browser part needs Playwright and Debian's ``chromium``; ``--drag 0`` leaves it 
   first sample (the page's first answer), at the live page's
   :data:`~linkwork.web.payload.LIVE_PLACED` samples (the answer that follows), and at every sample (an
   exported page), best of a few.
-* In Chromium: the crank's length handle dragged back and forth for ``--drag`` seconds, a mouse move every
-  16 ms; the page counts the edits' answers it shows (``data-updates`` on the scheme): answers a second,
-  and the round trip the page measures for them (``data-edit-ms``, sampled).
+* In Chromium: the crank's length handle dragged back and forth for ``--drag`` seconds, a mouse move due
+  every 16 ms (a 60 Hz mouse: each move is sent when it is due, or at once when the browser, which takes a
+  move only at its next frame, is behind); the page counts the edits' answers it shows (``data-updates`` on
+  the scheme): answers a second, the moves a second it took, and the round trip the page measures for the
+  answers (``data-edit-ms``, sampled).
 """
 
 from __future__ import annotations
@@ -77,8 +79,9 @@ def round_trips(port: int, name: str, start: float, count: int) -> list[float]:
     return out
 
 
-def drag(port: int, name: str, seconds: float) -> tuple[float, list[float]]:
-    """Answers a second shown while the handle of ``name`` is dragged, and the page's round trips (ms)."""
+def drag(port: int, name: str, seconds: float) -> tuple[float, float, list[float]]:
+    """Answers a second shown while the handle of ``name`` is dragged, mouse moves a second, and the page's round
+    trips (ms)."""
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as p:
@@ -98,15 +101,17 @@ def drag(port: int, name: str, seconds: float) -> tuple[float, list[float]]:
         k = 0
         while time.perf_counter() - t0 < seconds:
             k += 1
+            ahead = t0 + 0.016 * k - time.perf_counter()
+            if ahead > 0:  # not due yet
+                time.sleep(ahead)
             page.mouse.move(x + 25 * ((k % 40) / 20 - 1 if (k // 40) % 2 else 1 - (k % 40) / 20), y)
-            page.wait_for_timeout(16)
             if k % 10 == 0:
                 ms.append(float(page.get_attribute("#scheme", "data-edit-ms") or "nan"))
         spent = time.perf_counter() - t0
         shown = int(page.get_attribute("#scheme", "data-updates") or 0) - before
         page.mouse.up()
         browser.close()
-    return shown / spent, ms
+    return shown / spent, k / spent, ms
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -131,7 +136,7 @@ def main(argv: list[str] | None = None) -> None:
         compiled = best(lambda: lw.compile(spec))
         opened = {n: best(lambda n=n: cycle_payload(mech, 360, placed=n), repeat=2, budget=8.0)
                   for n in (1, LIVE_PLACED, None)}  # fmt: skip
-        rate, page_ms = drag(port, name, args.drag) if args.drag > 0 else (float("nan"), [])
+        rate, moves, page_ms = drag(port, name, args.drag) if args.drag > 0 else (float("nan"), float("nan"), [])
     finally:
         proc.terminate()
         proc.wait(timeout=10)
@@ -146,8 +151,8 @@ def main(argv: list[str] | None = None) -> None:
           f"{LIVE_PLACED} samples {1e3 * opened[LIVE_PLACED]:.0f} ms, at all 360 {1e3 * opened[None]:.0f} ms")
     if page_ms:
         shown = [v for v in page_ms if v == v]
-        print(f"  dragging in Chromium: {rate:.1f} updates a second, the page's round trip median "
-              f"{statistics.median(shown) if shown else float('nan'):.1f} ms")  # fmt: skip
+        print(f"  dragging in Chromium: {rate:.1f} updates a second ({moves:.1f} mouse moves a second), the page's "
+              f"round trip median {statistics.median(shown) if shown else float('nan'):.1f} ms")  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -826,6 +826,39 @@ def test_an_edit_is_solved_as_a_variant_and_gives_what_the_edited_file_gives(she
     assert answer["overrides"] == SHEARS_EDIT
 
 
+@pytest.mark.parametrize("whole_turn", [False, True])
+def test_an_edits_scheme_is_the_scheme_of_the_file_edited_by_hand(shears, whole_turn):
+    """The scheme of an edit's answer (the supports turned to their free side, the guides' length, every outline, the
+    sizes, the labels' anchors), after another edit that moved the same support elsewhere, is that of the file edited
+    by hand and compiled afresh, drawn from the same number of crank angles of its own turn (the whole cycle's
+    symbols for a typed edit, fewer for a drag), to 1e-9 m; the links' poses to float32."""
+    from linkwork.scene.scheme import CYCLE, scheme_scene
+    from linkwork.web.cycle import DRAGGED
+
+    other = {**SHEARS_EDIT, "frame.points.O3.x": -0.03, "links.crank.length": 0.095}
+    assert shears.post("/api/edit", json={"overrides": other, "whole_turn": whole_turn}).status_code == 200
+    r = shears.post("/api/edit", json={"overrides": SHEARS_EDIT, "whole_turn": whole_turn})
+    assert r.status_code == 200, r.text
+    scene = r.json()["scene"]
+    by_hand = _shears_by_hand()
+    turn = lw.kinematics(by_hand, steps=DRAGGED if whole_turn else CYCLE)
+    expected = scheme_scene(turn, at=[], cycle=turn)
+    assert [(it["kind"], it["link"], it["name"], it["closed"]) for it in scene["items"]] == [
+        (it.kind, it.link, it.name, it.closed) for it in expected.items
+    ]
+    for it, want in zip(scene["items"], expected.items, strict=True):
+        np.testing.assert_allclose(np.array(it["xy"]), want.xy, rtol=0, atol=1e-9, err_msg=f"{it['kind']} {it['name']}")
+        assert it["radius"] == pytest.approx(want.radius, rel=1e-12)
+    assert scene["size"] == pytest.approx(expected.size, rel=1e-12) and scene["em"] == pytest.approx(expected.em)
+    np.testing.assert_allclose(np.array(scene["label_at"]), [lab.at for lab in expected.labels], atol=1e-9)
+    poses = _array(scene["poses"])
+    want = lw.kinematics(by_hand, steps=360).pose[0]
+    ok = np.isfinite(want).all(-1)
+    turned = np.angle(np.exp(1j * (poses[..., 2] - want[..., 2])))  # angles compared modulo a turn
+    np.testing.assert_allclose(poses[..., :2][ok], want[..., :2][ok], atol=1e-6)
+    np.testing.assert_allclose(turned[ok], 0, atol=1e-6)
+
+
 def test_an_edits_answer_carries_only_what_changed_in_compact_arrays(shears, shears_cycle):
     """No names, structure, labels' texts or positions again; the big arrays as base64 of float32; under a third
     of the whole payload's size; strict JSON."""

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import weakref
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -180,6 +182,20 @@ class Kinematics:
         lx, ly = self.local[:, 0], self.local[:, 1]
         out = np.stack([q[:, 0] + c * lx - s * ly, q[:, 1] + s * lx + c * ly], -1)  # (P, V, A, 2)
         return self._out(np.moveaxis(out, 0, 2))
+
+    def samples(self, index: Any) -> Kinematics:
+        """The result at the samples ``index`` only (an int array or a slice of the angles), solved as they were;
+        the events are the whole result's."""
+        return dataclasses.replace(
+            self,
+            drive=self.drive[index],
+            rates=self.rates[index],
+            q=self.q[..., index],
+            v=self.v[..., index],
+            a=self.a[..., index],
+            valid_all=self.valid_all[:, index],
+            step_det=tuple(d[..., index] for d in self.step_det),
+        )
 
 
 #: Largest step (rad) of a path along which change points are followed.

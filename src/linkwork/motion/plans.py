@@ -30,7 +30,6 @@ view of one position.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -184,17 +183,7 @@ def plans(kin: Kinematics, index: int, variant: int = 0) -> tuple[Plan, Plan]:
     if not -n <= index < n:
         raise IndexError(f"sample {index} is out of range: the result has {n} angles")
     i = index % n
-    one = dataclasses.replace(
-        kin,
-        drive=kin.drive[i : i + 1],
-        rates=kin.rates[i : i + 1],
-        q=kin.q[..., i : i + 1],
-        v=kin.v[..., i : i + 1],
-        a=kin.a[..., i : i + 1],
-        valid_all=kin.valid_all[:, i : i + 1],
-        step_det=tuple(d[..., i : i + 1] for d in kin.step_det),
-    )
-    vel, acc = plan_series(one)
+    vel, acc = plan_series(kin.samples(slice(i, i + 1)))
     return vel.at(0, variant), acc.at(0, variant)
 
 
@@ -239,20 +228,20 @@ class _Construction:
         self.vvec: list[tuple[PlanEdge, np.ndarray]] = []
         self.avec: list[tuple[PlanEdge, np.ndarray]] = []
 
-    def state_at(self, link: int, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Velocity and acceleration of the material point of ``link`` at ``x`` (V, A, 2)."""
+    def state_at(self, link: int | np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Velocity and acceleration of the material point of ``link`` at ``x`` (V, A, 2); of each of the links
+        ``(P,)`` at its point ``x`` (V, A, P, 2)."""
         q, v, a = self.q[..., link, :], self.v[..., link, :], self.a[..., link, :]
         r = x - q[..., :2]
         w, e = v[..., 2:3], a[..., 2:3]
         return v[..., :2] + w * _perp(r), a[..., :2] + e * _perp(r) - w * w * r
 
     def build(self) -> None:
-        mech = self.mech
-        for p in range(len(self.names)):
-            vx, ax = self.state_at(int(mech.point_link[p]), self.pts[..., p, :])
-            self.vel_pts.setdefault(self.label[p], vx)
-            self.acc_pts.setdefault(self.label[p], ax)
-        for step in mech.program:
+        vx, ax = self.state_at(np.asarray(self.mech.point_link, dtype=int), self.pts)  # every point at once
+        for p, label in enumerate(self.label):
+            self.vel_pts.setdefault(label, vx[..., p, :])
+            self.acc_pts.setdefault(label, ax[..., p, :])
+        for step in self.mech.program:
             self.step(step)
 
     def step(self, step: Step) -> None:

@@ -14,8 +14,9 @@ pivots of radius ``r = 0.012 size``, text ``em = 0.032 size`` high.
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -205,26 +206,19 @@ class _Builder:
         self.kin, self.mech, self.variant = kin, kin.mechanism, variant
         self.poses = np.array(kin.pose[variant])  # (A, N, 3)
         self.local = np.asarray(kin.local[:, :, variant, 0], dtype=float)  # (P, 2)
-        pts, turn = kin.points(), cycle.points()
+        pts = kin.points()
+        turn = pts if cycle is kin else cycle.points()
         self.pts = np.asarray(pts[variant] if kin.variants else pts)  # (A, P, 2)
         self.cycle = np.asarray(turn[min(variant, len(turn) - 1)] if cycle.variants else turn)  # (S, P, 2)
         mech = self.mech
-        self.joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
-        self.moving = [p for p in range(len(mech.point_names)) if self._drawn_link(int(mech.point_link[p]))]
+        self.layout = layout = _layout(mech)
+        self.joint, self.moving, self.outline = layout.joint, layout.moving, layout.outline
+        self.path_points = layout.path_points
+        self._segments: np.ndarray | None = None
         box = bounds(self.cycle[:, self.moving], self.local[np.asarray(mech.point_link) == 0])
         self.size = float(max(box[2] - box[0], box[3] - box[1], 1e-9))
         self.r, self.em = PIVOT * self.size, FONT * self.size
         self.first = int(np.argmax(np.asarray(kin.valid_all[variant]))) if len(self.pts) else 0
-        self.path_points = [p for p in self.moving if self._outline_points(int(mech.point_link[p]))]
-
-    def _drawn_link(self, link: int) -> bool:
-        return link != 0 and not bool(self.mech.link_virtual[link])
-
-    def _outline_points(self, link: int) -> list[int]:
-        """The points a moving link is drawn through: its joints, then its markers (none for a link of one point)."""
-        own = [p for p in range(len(self.mech.point_names)) if self.mech.point_link[p] == link]
-        draw = [p for p in own if p in self.joint] + [p for p in own if p not in self.joint]
-        return draw if len(draw) >= 2 else []
 
     # ------------------------------------------------------------ items
 
@@ -242,7 +236,7 @@ class _Builder:
         """Each moving link as a bar (its points in one line) or a plate (their convex outline)."""
         out = []
         for link in range(1, self.mech.n_links_total):
-            draw = self._outline_points(link) if self._drawn_link(link) else []
+            draw = self.outline[link]
             if not draw:
                 continue
             xy = self.local[draw]
@@ -256,57 +250,40 @@ class _Builder:
 
     def _pivots(self) -> list[Item]:
         """A circle at every revolute joint, one for the links a compound hinge joins."""
-        out, seen = [], set()
-        for k in range(self.mech.n_pairs):
-            joint = str(self.mech.pair_joint[k])
-            if self.mech.pair_type[k] != PairType.REVOLUTE or joint in seen:
-                continue
-            seen.add(joint)
-            p = int(self.mech.pair_points[k, 1])
-            out.append(Item("pivot", int(self.mech.point_link[p]), self.local[p][None], radius=self.r, name=joint))
-        return out
+        return [Item("pivot", link, self.local[p][None], radius=self.r, name=joint)
+                for joint, p, link in self.layout.pivots]  # fmt: skip
 
     def _supports(self) -> list[Item]:
         """A hinge symbol under every revolute joint on the frame, turned towards the freest side."""
-        out, seen = [], set()
-        for k in range(self.mech.n_pairs):
-            a, b = (int(x) for x in self.mech.pair_links[k])
-            if self.mech.pair_type[k] != PairType.REVOLUTE or 0 not in (a, b):
-                continue
-            p = int(self.mech.pair_points[k, 0 if a == 0 else 1])
-            if p in seen:
-                continue
-            seen.add(p)
-            apex = self.local[p]
-            triangle, base, hatch = symbols.support(apex, self._free_side(apex), self.r)
-            joint = str(self.mech.pair_joint[k])
+        found = self.layout.supports
+        apexes = self.local[list(found)].reshape(-1, 2)
+        out = []
+        for apex, down, joint in zip(apexes, self._free_sides(apexes), found.values(), strict=True):
+            triangle, base, hatch = symbols.support(apex, down, self.r)
             out += [Item("support", 0, triangle, closed=True, name=joint), Item("support", 0, base, name=joint)]
             out += [Item("hatch", 0, h, name=joint) for h in hatch]
         return out
 
-    def _free_side(self, apex: np.ndarray) -> np.ndarray:
-        """Of down, left, right and up, the direction from ``apex`` in which a support's symbol is crossed by the
-        lines of the moving links at the fewest samples of the cycle, down preferred (by :data:`DOWN` of the
-        samples over the sides, twice that over up)."""
+    def _free_sides(self, apexes: np.ndarray) -> np.ndarray:
+        """For each of ``apexes`` ``(K, 2)``, of down, left, right and up, the direction from it in which a support's
+        symbol is crossed by the lines of the moving links at the fewest samples of the cycle, down preferred (by
+        :data:`DOWN` of the samples over the sides, twice that over up): ``(K, 2)``."""
         sides = np.array([[0.0, -1.0], [-1.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
-        segs = self._link_segments() - apex  # (S, n, 2, 2): sides of links, samples
+        segs = self._link_segments()[None] - apexes[:, None, None, None]  # (K, n, S, 2, 2): sides of links, samples
         box = np.array([1.2 * self.r, -2.6 * self.r, 3.6 * self.r, 2.6 * self.r])
-        score = []
-        for d in sides:  # in the axes of the side: along it, across it
-            turned = np.stack([segs @ d, segs @ perp(d)], -1).reshape(-1, 2, 2)
-            hit = segments_hit(box[None, None], turned[None])[0, 0] / max(segs.shape[1], 1)
-            score.append(hit)
-        return sides[int(np.argmin(np.array(score) + DOWN * np.array([0.0, 1.0, 1.0, 2.0])))]
+        # in the axes of each side: along it, across it; (K, 4, n S, 2, 2), one support and side a row
+        turned = np.stack([segs @ sides.T, segs @ perp(sides).T], -1)  # (K, n, S, 2, 4, 2)
+        turned = np.moveaxis(turned, 4, 1).reshape(len(apexes) * len(sides), segs.shape[1] * segs.shape[2], 2, 2)
+        hits = segments_hit(np.broadcast_to(box, (len(turned), 1, 4)), turned)[:, 0].reshape(-1, len(sides))
+        score = hits / max(segs.shape[2], 1) + DOWN * np.array([0.0, 1.0, 1.0, 2.0])
+        return sides[np.argmin(score, axis=1)]
 
     def _link_segments(self) -> np.ndarray:
-        """The sides of every drawn link at every sample of the cycle, ``(S, n, 2, 2)`` (NaN where it does not
+        """The sides of every drawn link at every sample of the cycle, ``(n, S, 2, 2)`` (NaN where it does not
         assemble)."""
-        segs = []
-        for link in range(1, self.mech.n_links_total):
-            draw = self._outline_points(link) if self._drawn_link(link) else []
-            for i, j in zip(draw, draw[1:], strict=False):
-                segs.append(np.stack([self.cycle[:, i], self.cycle[:, j]], 1))
-        return np.stack(segs) if segs else np.zeros((0, len(self.cycle), 2, 2))
+        if self._segments is None:
+            self._segments = np.moveaxis(self.cycle[:, self.layout.sides], 0, 1)  # (S, n, 2, 2) -> (n, S, 2, 2)
+        return self._segments
 
     def _sliders(self) -> list[Item]:
         """A block at every slider, and a hatched guide under those that slide on the frame."""
@@ -383,44 +360,36 @@ class _Builder:
         wanted = self._point_labels() + self._link_numbers(items)
         if not wanted:
             return ()
-        count = max(a.shape[1] if a.ndim == 3 else 1 for *_, a, _ in wanted)
-        anchors = np.stack([_alternatives(a, count) for *_, a, _ in wanted], 1)  # (A, L, M, 2)
-        centres = np.full(anchors[:, :, 0].shape, np.nan)
+        centres = np.full((len(self.poses), len(wanted), 2), np.nan)
         if at:  # none: the labels' texts and anchors only (the viewer's edits move the labels it has)
-            sizes = np.array([text_size(text, self.em) for text, *_ in wanted])
-            gaps = np.array([g for *_, g in wanted])
-            prefer = np.stack([self._prefer(link, local, kind, anchors[:, j, 0]) for j, (_, kind, link, local, _, _)
-                               in enumerate(wanted)], 1)  # fmt: skip
-            obstacles = self._obstacles(items)
-            centres[at] = place_labels(anchors[at], sizes, gaps,
-                                       Obstacles(obstacles.segments[at], obstacles.circles[at]), prefer[at],
-                                       pad=0.15 * self.em)  # fmt: skip
+            centres[at] = self._placed(items, wanted, at)
         return tuple(Label(text, kind, link, local, centres[:, j])
                      for j, (text, kind, link, local, _, _) in enumerate(wanted))  # fmt: skip
+
+    def _placed(self, items: tuple[Item, ...], wanted: list[tuple[str, str, int, np.ndarray, np.ndarray, float]],
+                at: list[int]) -> np.ndarray:  # fmt: skip
+        """The centres ``(len(at), L, 2)`` of the texts of ``wanted`` at the samples ``at``."""
+        # a point's anchor at every sample (A, 2); a link's number's alternatives (M, 2) in its axes, placed
+        found = [a if kind == "point" else place(self.poses[:, link], a) for _, kind, link, _, a, _ in wanted]
+        count = max(a.shape[1] if a.ndim == 3 else 1 for a in found)
+        anchors = np.stack([_alternatives(a, count) for a in found], 1)  # (A, L, M, 2)
+        sizes = np.array([text_size(text, self.em) for text, *_ in wanted])
+        gaps = np.array([g for *_, g in wanted])
+        prefer = np.stack([self._prefer(link, local, kind, anchors[:, j, 0]) for j, (_, kind, link, local, _, _)
+                           in enumerate(wanted)], 1)  # fmt: skip
+        obstacles = self._obstacles(items)
+        return place_labels(anchors[at], sizes, gaps, Obstacles(obstacles.segments[at], obstacles.circles[at]),
+                            prefer[at], pad=0.15 * self.em)  # fmt: skip
 
     def _point_labels(self) -> list[tuple[str, str, int, np.ndarray, np.ndarray, float]]:
         """(text, kind, link, local anchor, anchors (A, 2), gap) of every named point, each name once:
         the joints (a slider's beyond its block), the markers, the frame's points away from any joint."""
-        short = [name.split(".", 1)[1] for name in self.mech.point_names]
-        sliders = {short[int(self.mech.pair_points[k, 1])] for k in range(self.mech.n_pairs)
-                   if self.mech.pair_type[k] == PairType.PRISMATIC}  # fmt: skip
-        out, seen = [], set()
-        named = [(lab, p) for lab, p in point_labels(self.mech) if not self.mech.link_virtual[self.mech.point_link[p]]]
-        frame = [(self.mech.point_names[p].split(".", 1)[1], p) for p in range(len(self.mech.point_names))
-                 if self.mech.point_link[p] == 0]  # fmt: skip
-        for label, p in named + frame:
-            text = label.rsplit(".", 1)[-1] if p not in self.joint else label
-            key = text if p in self.joint or self.mech.point_link[p] == 0 else p
-            if key in seen:
-                continue
-            seen.add(key)
-            link = int(self.mech.point_link[p])
-            gap = (2.6 if p in self.joint and short[p] in sliders else 1.5) * self.r
-            out.append((text, "point", link, self.local[p], self.pts[:, p], gap))
-        return out
+        return [(text, "point", link, self.local[p], self.pts[:, p], gap * self.r)
+                for text, p, link, gap in self.layout.point_labels]  # fmt: skip
 
     def _link_numbers(self, items: tuple[Item, ...]) -> list[tuple[str, str, int, np.ndarray, np.ndarray, float]]:
-        """A link's number beside the middle of its longest side."""
+        """(text, kind, link, local anchor, alternatives (M, 2) in the link's axes, gap) of a link's number beside
+        the middle of its longest side."""
         out = []
         for it in items:
             if it.kind not in ("bar", "plate"):
@@ -431,8 +400,7 @@ class _Builder:
             i = int(np.argmax(sides))
             along = np.array([0.5, 0.32, 0.68, 0.2, 0.8])[:, None]
             at = ring[i] + along * (ring[i + 1] - ring[i])  # the middle first, then towards the ends
-            anchors = place(self.poses[:, it.link], at)  # (A, M, 2)
-            out.append((str(it.link), "link", it.link, at[0], anchors, 0.5 * self.r))
+            out.append((str(it.link), "link", it.link, at[0], at, 0.5 * self.r))
         return out
 
     def _prefer(self, link: int, at: np.ndarray, kind: str, anchors: np.ndarray) -> np.ndarray:
@@ -441,7 +409,7 @@ class _Builder:
         if kind == "link":
             poses = self.poses[:, link]
             mid = place(poses, at[None])[:, 0]
-            centre = place(poses, self.local[self._outline_points(link)].mean(0)[None])[:, 0]
+            centre = place(poses, self.local[self.outline[link]].mean(0)[None])[:, 0]
             away = mid - centre
         else:
             rel = self.pts[:, self.moving] - anchors[:, None, :]  # (A, Q, 2)
@@ -474,6 +442,104 @@ class _Builder:
             np.concatenate(segs, 1) if segs else np.zeros((n, 0, 2, 2)),
             np.stack(circles, 1) if circles else np.zeros((n, 0, 3)),
         )
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """What of a scheme the structure of its mechanism fixes, whatever its dimensions (the same for every variant).
+
+    Attributes
+    ----------
+    joint : set of int
+        The points of pairs.
+    moving : list of int
+        The points of the drawn moving links.
+    outline : dict
+        For each link, the points it is drawn through: its joints, then its markers (none for a link of one
+        point, the frame and a virtual link).
+    sides : ndarray of int, shape (n, 2)
+        The points of every drawn link's sides.
+    path_points : list of int
+        The moving points whose trajectories are drawn.
+    pivots : list of (str, int, int)
+        Joint, point and link of a pivot's circle at every revolute joint (one a compound hinge).
+    supports : dict
+        The frame's point of every revolute joint on the frame, and the joint.
+    point_labels : list of (str, int, int, float)
+        Text, point, link and gap (in pivot radii) of every named point, each name once: the joints (a
+        slider's beyond its block), the markers, the frame's points away from any joint.
+    """
+
+    joint: set[int]
+    moving: list[int]
+    outline: dict[int, list[int]]
+    sides: np.ndarray
+    path_points: list[int]
+    pivots: list[tuple[str, int, int]]
+    supports: dict[int, str]
+    point_labels: list[tuple[str, int, int, float]]
+
+
+#: The layouts of the mechanisms drawn, by identity (a mechanism is read-only), each dropped with its mechanism.
+_LAYOUTS: dict[int, tuple[weakref.ref, _Layout]] = {}
+
+
+def _layout(mech: Any) -> _Layout:
+    """The :class:`_Layout` of ``mech``, found once a mechanism (the viewer's edits draw one mechanism's variants)."""
+    found = _LAYOUTS.get(id(mech))
+    if found is not None and found[0]() is mech:
+        return found[1]
+    made, key = _make_layout(mech), id(mech)
+
+    def forget(ref: weakref.ref) -> None:
+        if _LAYOUTS.get(key, (None,))[0] is ref:
+            del _LAYOUTS[key]
+
+    _LAYOUTS[key] = (weakref.ref(mech, forget), made)
+    return made
+
+
+def _make_layout(mech: Any) -> _Layout:
+    n_points = len(mech.point_names)
+    joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
+    drawn = [link != 0 and not bool(mech.link_virtual[link]) for link in range(mech.n_links_total)]
+    moving = [p for p in range(n_points) if drawn[int(mech.point_link[p])]]
+    outline = {}
+    for link in range(mech.n_links_total):
+        own = [p for p in range(n_points) if mech.point_link[p] == link] if drawn[link] else []
+        draw = [p for p in own if p in joint] + [p for p in own if p not in joint]
+        outline[link] = draw if len(draw) >= 2 else []
+    sides = [(i, j) for draw in outline.values() for i, j in zip(draw, draw[1:], strict=False)]
+    revolute = [mech.pair_type[k] == PairType.REVOLUTE for k in range(mech.n_pairs)]
+    pivots: dict[str, tuple[str, int, int]] = {}
+    supports: dict[int, str] = {}
+    for k in range(mech.n_pairs):
+        a, b = (int(x) for x in mech.pair_links[k])
+        joint_name, p = str(mech.pair_joint[k]), int(mech.pair_points[k, 1])
+        if revolute[k]:
+            pivots.setdefault(joint_name, (joint_name, p, int(mech.point_link[p])))
+        if revolute[k] and 0 in (a, b):
+            supports.setdefault(int(mech.pair_points[k, 0 if a == 0 else 1]), joint_name)
+    return _Layout(joint, moving, outline, np.array(sides, dtype=int).reshape(-1, 2),
+                   [p for p in moving if outline[int(mech.point_link[p])]], list(pivots.values()), supports,
+                   _named_points(mech, joint, revolute))  # fmt: skip
+
+
+def _named_points(mech: Any, joint: set[int], revolute: list[bool]) -> list[tuple[str, int, int, float]]:
+    """:attr:`_Layout.point_labels` of ``mech``."""
+    short = [name.split(".", 1)[1] for name in mech.point_names]
+    sliders = {short[int(mech.pair_points[k, 1])] for k in range(mech.n_pairs) if not revolute[k]}
+    out, seen = [], set()
+    named = [(lab, p) for lab, p in point_labels(mech) if not mech.link_virtual[mech.point_link[p]]]
+    frame = [(short[p], p) for p in range(len(mech.point_names)) if mech.point_link[p] == 0]
+    for label, p in named + frame:
+        text = label.rsplit(".", 1)[-1] if p not in joint else label
+        key = text if p in joint or mech.point_link[p] == 0 else p
+        if key in seen:
+            continue
+        seen.add(key)
+        out.append((text, p, int(mech.point_link[p]), 2.6 if p in joint and short[p] in sliders else 1.5))
+    return out
 
 
 def _alternatives(anchors: np.ndarray, count: int) -> np.ndarray:

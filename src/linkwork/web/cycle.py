@@ -41,8 +41,9 @@ class Cycle:
     kin : Kinematics
         The cycle (with one variant where there are overrides).
     symbols : Kinematics
-        The same at :data:`linkwork.scene.scheme.CYCLE` steps, from which the scheme's fixed symbols are
-        drawn (the sides of the supports, the guides' lengths), alike for every answer of the viewer.
+        :data:`linkwork.scene.scheme.CYCLE` of its samples, evenly spread (:data:`DRAGGED` while a value is
+        dragged), from which the scheme's fixed symbols are drawn (the sides of the supports, the guides'
+        lengths), alike for every answer of the viewer.
     forces : Forces or None
         Where the mechanism has masses or loads and its reactions are statically determinate.
     reason : str
@@ -85,7 +86,8 @@ def solve_cycle(
     mech: Mechanism, steps: int, overrides: dict[str, float] | None = None, symbols: int = CYCLE
 ) -> Cycle:
     """The cycle of ``mech`` with ``overrides`` (SI, checked by the caller) at ``steps`` crank angles, the
-    scheme's symbols drawn from ``symbols`` angles (:data:`DRAGGED` for the answers while a value is dragged).
+    scheme's symbols drawn from ``symbols`` of its angles, evenly spread (:func:`symbol_samples`; the turn solved
+    at ``symbols`` angles where ``steps`` are fewer) (:data:`DRAGGED` for the answers while a value is dragged).
 
     Raises
     ------
@@ -99,10 +101,17 @@ def solve_cycle(
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         kin = kinematics(mech, steps=steps, variants=variants)
-        drawn = kin if steps == symbols else kinematics(mech, steps=symbols, variants=variants)
+        drawn = symbol_samples(kin, symbols) if steps >= symbols else kinematics(mech, steps=symbols, variants=variants)
         forces, reason = _forces(kin)
     notes = tuple(dict.fromkeys(str(w.message) for w in caught))
     return Cycle(mech, overrides, kin, drawn, forces, reason, notes)
+
+
+def symbol_samples(kin: Kinematics, count: int) -> Kinematics:
+    """``count`` samples of the cycle ``kin`` (of at least as many), evenly spread from its first (every fifth of
+    360 for 72): what the scheme's symbols are drawn from, without solving the turn again."""
+    n = len(kin.angles)
+    return kin if n == count else kin.samples(np.round(np.arange(count) * (n / count)).astype(int))
 
 
 def _forces(kin: Kinematics) -> tuple[Forces | None, str]:

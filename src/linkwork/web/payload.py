@@ -377,11 +377,15 @@ def _label_anchors(scheme: SchemeScene) -> np.ndarray:
 
 def scheme_shape(scheme: SchemeScene) -> dict[str, Any]:
     """The scheme's sizes and items (what a dimension changes, but for the poses, the labels and the extent)."""
+    # every item's vertices rounded at once, then cut back into items (a drawing's vertices are finite)
+    xy = [np.asarray(it.xy, dtype=float).reshape(-1, 2) for it in scheme.items]
+    rows = np.round(np.concatenate(xy), 9).tolist() if xy else []
+    ends = np.cumsum([len(a) for a in xy]).tolist()
     items = [
-        {"kind": it.kind, "link": it.link, "xy": np.round(np.asarray(it.xy, dtype=float), 9).tolist(),
-         "closed": it.closed, "radius": it.radius, "name": it.name}
-        for it in scheme.items
-    ]  # fmt: skip (a drawing's vertices are finite)
+        {"kind": it.kind, "link": it.link, "xy": rows[end - len(a) : end], "closed": it.closed, "radius": it.radius,
+         "name": it.name}
+        for it, a, end in zip(scheme.items, xy, ends, strict=True)
+    ]
     return {"size": scheme.size, "r": scheme.r, "em": scheme.em, "items": items}
 
 
