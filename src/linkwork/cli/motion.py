@@ -51,7 +51,7 @@ def check_angles(steps: int | None, angles: str | None) -> list[float] | None:
     try:
         values = [float(a) for a in angles.replace(" ", "").split(",") if a]
     except ValueError:
-        fail(LinkworkError(f"--angles: expected numbers separated by commas, got {quote(angles)}"))
+        fail(LinkworkError(f"--angles: expected numbers in degrees separated by commas, got {quote(angles)}"))
     if len(values) > MAX_ANGLES:
         fail(LinkworkError(f"--angles: expected at most {MAX_ANGLES:,} angles, got {len(values):,}"))
     return values
