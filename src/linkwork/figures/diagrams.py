@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from linkwork.kinetostatics.forces import Forces
     from linkwork.machine.dynamics import Dynamics
     from linkwork.motion.kinematics import Kinematics
+    from linkwork.structure.model import Mechanism
 
 
 def _figure(rows: int = 1, height: float = 2.6, width: float = 7.0) -> tuple[Figure, list[Axes]]:
@@ -80,7 +81,7 @@ def _scale(values: np.ndarray, unit: str, kilo: str) -> tuple[float, str]:
     return (1e-3, kilo) if big >= 1e4 else (1.0, unit)
 
 
-def member_label(mech: Any, out: Output, lang: str) -> str:
+def member_label(mech: Mechanism, out: Output, lang: str) -> str:
     """``knife_upper (guide_E)`` for a slider: its link and its joint; ``output`` for a rocker."""
     link = str(mech.link_names[out.link])
     return t("member.slider", lang, link=link, joint=out.name) if out.kind == "slider" else link
@@ -116,7 +117,7 @@ def kinematic_diagrams(kin: Kinematics, zero: float | None = None, lang: str = "
     return fig
 
 
-def _at(mech: Any, angle: float) -> Kinematics:
+def _at(mech: Mechanism, angle: float) -> Kinematics:
     from linkwork.motion.kinematics import kinematics
 
     return kinematics(mech, np.array([angle]))

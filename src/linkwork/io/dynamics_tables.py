@@ -15,9 +15,13 @@ gear), over the steady cycle, as in :class:`linkwork.machine.Dynamics` and the w
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from linkwork.machine.dynamics import Dynamics
+    from linkwork.structure.model import Mechanism
 
 
 def _list(a: Any) -> list[float | None]:
@@ -35,7 +39,7 @@ CYCLE_COLUMNS = {
 }
 
 
-def to_json(mech: Any, result: Any, zero: float | None = None) -> dict[str, Any]:
+def to_json(mech: Mechanism, result: Dynamics, zero: float | None = None) -> dict[str, Any]:
     """The ``linkwork dynamics --json`` object; ``zero``: the drive angle of position 0 (rad, default
     :func:`linkwork.motion.analysis.zero_angle`)."""
     from linkwork.machine import wittenbauer

@@ -5,12 +5,15 @@ from __future__ import annotations
 import csv
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from linkwork.atomic import write_atomic
 from linkwork.structure.model import PairType
+
+if TYPE_CHECKING:
+    from linkwork.structure.model import Mechanism
 
 CONVENTION = (
     "joints: the force the first-named link exerts on the second, in the order of the file's joint and of "
@@ -21,7 +24,7 @@ CONVENTION = (
 )
 
 
-def pair_labels(mech: Any) -> list[tuple[str, int]]:
+def pair_labels(mech: Mechanism) -> list[tuple[str, int]]:
     """One label per pair a table reports: the joint's name, with ``:link`` for each pair of a compound
     hinge (the link other than the one that carries the pin).  A pin in a slot is reported once, by its
     slot's pair: through the massless block, the pin's pair with the block carries the same force."""
@@ -38,7 +41,7 @@ def pair_labels(mech: Any) -> list[tuple[str, int]]:
     return out
 
 
-def pair_kind(mech: Any, k: int) -> str:
+def pair_kind(mech: Mechanism, k: int) -> str:
     """``revolute``, ``prismatic`` (which carries a moment) or ``pin-in-slot`` (the pairs of its block)."""
     if mech.link_virtual[mech.pair_links[k]].any():
         return "pin-in-slot"

@@ -5,7 +5,7 @@ from __future__ import annotations
 import csv
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -13,19 +13,24 @@ from linkwork.atomic import write_atomic
 from linkwork.optional import require
 from linkwork.structure.model import point_labels
 
+if TYPE_CHECKING:
+    from linkwork.motion.analysis import Extremes
+    from linkwork.motion.kinematics import Kinematics
+    from linkwork.structure.model import Mechanism
 
-def moving_links(mech: Any) -> list[tuple[str, int]]:
+
+def moving_links(mech: Mechanism) -> list[tuple[str, int]]:
     return [(n, i) for i, n in enumerate(mech.link_names) if i > 0 and not mech.link_virtual[i]]
 
 
-def _single(kin: Any) -> None:
+def _single(kin: Kinematics) -> None:
     if kin.variants:
         from linkwork.errors import LinkworkError
 
         raise LinkworkError("this table holds one mechanism; for design variants use to_dataset (NetCDF)")
 
 
-def to_json(kin: Any, extremes: list[Any]) -> dict[str, Any]:
+def to_json(kin: Kinematics, extremes: list[Extremes]) -> dict[str, Any]:
     """The ``linkwork kinematics --json`` object (one mechanism, no variants)."""
     _single(kin)
     mech = kin.mechanism
@@ -70,7 +75,7 @@ def to_json(kin: Any, extremes: list[Any]) -> dict[str, Any]:
     }
 
 
-def write_csv(kin: Any, path: str | Path) -> Path:
+def write_csv(kin: Kinematics, path: str | Path) -> Path:
     """One row per angle, one column per quantity, units in the header (one mechanism, no variants)."""
     _single(kin)
     mech = kin.mechanism
@@ -107,7 +112,7 @@ def write_csv(kin: Any, path: str | Path) -> Path:
     return write_atomic(path, writer)
 
 
-def to_dataset(kin: Any) -> Any:
+def to_dataset(kin: Kinematics) -> Any:
     """An xarray Dataset with dimensions variant x angle x point (and link)."""
     xr = require("xarray", purpose="NetCDF tables of the kinematics")
 
@@ -140,6 +145,6 @@ def to_dataset(kin: Any) -> Any:
     return xr.Dataset(data, coords=coords, attrs={"mechanism": mech.name, "source": "linkwork kinematics"})
 
 
-def write_netcdf(kin: Any, path: str | Path) -> Path:
+def write_netcdf(kin: Kinematics, path: str | Path) -> Path:
     ds = to_dataset(kin)
     return write_atomic(path, lambda tmp: ds.to_netcdf(tmp, engine="scipy"))

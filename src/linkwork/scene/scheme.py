@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,6 +30,7 @@ from linkwork.structure.model import PairType, point_labels
 if TYPE_CHECKING:
     from linkwork.motion.kinematics import Kinematics
     from linkwork.spec.schema import ImpactSpec
+    from linkwork.structure.model import Mechanism
 
 #: The kinds of item, in drawing order (later on top).
 KINDS = ("path", "hatch", "support", "guide", "bar", "plate", "tool", "edge", "block", "pivot", "marker")
@@ -484,7 +485,7 @@ class _Layout:
 _LAYOUTS: dict[int, tuple[weakref.ref, _Layout]] = {}
 
 
-def _layout(mech: Any) -> _Layout:
+def _layout(mech: Mechanism) -> _Layout:
     """The :class:`_Layout` of ``mech``, found once a mechanism (the viewer's edits draw one mechanism's variants)."""
     found = _LAYOUTS.get(id(mech))
     if found is not None and found[0]() is mech:
@@ -499,7 +500,7 @@ def _layout(mech: Any) -> _Layout:
     return made
 
 
-def _make_layout(mech: Any) -> _Layout:
+def _make_layout(mech: Mechanism) -> _Layout:
     n_points = len(mech.point_names)
     joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
     drawn = [link != 0 and not bool(mech.link_virtual[link]) for link in range(mech.n_links_total)]
@@ -525,7 +526,7 @@ def _make_layout(mech: Any) -> _Layout:
                    _named_points(mech, joint, revolute))  # fmt: skip
 
 
-def _named_points(mech: Any, joint: set[int], revolute: list[bool]) -> list[tuple[str, int, int, float]]:
+def _named_points(mech: Mechanism, joint: set[int], revolute: list[bool]) -> list[tuple[str, int, int, float]]:
     """:attr:`_Layout.point_labels` of ``mech``."""
     short = [name.split(".", 1)[1] for name in mech.point_names]
     sliders = {short[int(mech.pair_points[k, 1])] for k in range(mech.n_pairs) if not revolute[k]}

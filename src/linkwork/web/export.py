@@ -9,10 +9,14 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from linkwork.atomic import write_atomic
 from linkwork.web.session import SCRIPTS, Viewer, static_text
+
+if TYPE_CHECKING:
+    from linkwork.spec.schema import Spec
+    from linkwork.structure.model import Mechanism
 
 _CSP = (
     "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:; "
@@ -43,7 +47,7 @@ def render_page(payload: dict[str, Any]) -> str:
     return page
 
 
-def export_page(spec_or_mech: Any, path: str | Path, steps: int = 360) -> Path:
+def export_page(spec_or_mech: Spec | Mechanism | str | Path, path: str | Path, steps: int = 360) -> Path:
     """Write the viewer of a spec, a compiled mechanism, or a file or example name to one HTML file.
 
     Parameters

@@ -63,7 +63,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -77,6 +77,9 @@ from linkwork.structure.model import Mechanism, PairType
 from linkwork.web.arrows import force_arrows
 from linkwork.web.cycle import Cycle, compile_message, solve_cycle
 from linkwork.web.edits import DISPLAY
+
+if TYPE_CHECKING:
+    from linkwork.motion.kinematics import Kinematics
 
 FORMAT = "linkwork-view/1"
 
@@ -216,7 +219,7 @@ def _finite(d: dict[str, Any]) -> dict[str, Any]:
     return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in d.items()}
 
 
-def _points(mech: Any) -> list[dict[str, Any]]:
+def _points(mech: Mechanism) -> list[dict[str, Any]]:
     from linkwork.structure.model import point_labels
 
     labels = dict((p, label) for label, p in point_labels(mech, with_all=True))
@@ -233,7 +236,7 @@ def _points(mech: Any) -> list[dict[str, Any]]:
     ]
 
 
-def _links(mech: Any) -> list[dict[str, Any]]:
+def _links(mech: Mechanism) -> list[dict[str, Any]]:
     """Each link with the points it is drawn through: its joint points, then its markers."""
     joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
     out = []
@@ -245,7 +248,7 @@ def _links(mech: Any) -> list[dict[str, Any]]:
     return out
 
 
-def _pairs(mech: Any, kin: Any) -> list[dict[str, Any]]:
+def _pairs(mech: Mechanism, kin: Kinematics) -> list[dict[str, Any]]:
     driven = {int(k) for k in mech.drive_pair}
     out = []
     for k in range(mech.n_pairs):
@@ -478,7 +481,7 @@ def series_values(cycle: Cycle) -> list[tuple[str, str, str, str, np.ndarray]]:
     return out
 
 
-def _structure(mech: Any) -> dict[str, Any]:
+def _structure(mech: Mechanism) -> dict[str, Any]:
     s = mech.structure
     out = s.as_dict()
     out["groups"] = [{**g.as_dict(), "label": g.label, "formula_part": g.label.split(" ")[0]} for g in s.groups]

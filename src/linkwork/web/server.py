@@ -41,7 +41,7 @@ import time
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
 from threading import BoundedSemaphore
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
@@ -57,6 +57,12 @@ from linkwork.errors import BusyError, LinkworkError
 from linkwork.web.cycle import OutOfRange
 from linkwork.web.edits import MAX_OVERRIDES
 from linkwork.web.session import SCRIPTS, Viewer, dumps, static_text
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from linkwork.spec.schema import Spec
+    from linkwork.structure.model import Mechanism
 
 #: Largest request body, bytes.
 MAX_BODY = 64 * 1024
@@ -216,7 +222,7 @@ def _error(status: int, message: str, **extra: Any) -> JSONResponse:
     return JSONResponse({"error": message, **extra}, status_code=status, headers=SECURITY_HEADERS)
 
 
-def create_app(spec_or_mech: Any, steps: int = 360) -> Any:
+def create_app(spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360) -> Any:
     """The viewer's FastAPI application for a spec, a compiled mechanism, or a file or example name.
 
     With a :class:`~linkwork.spec.schema.Spec` (or a name) the page can edit

@@ -18,7 +18,7 @@ import re
 import threading
 from collections import OrderedDict
 from importlib import resources
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -30,6 +30,11 @@ from linkwork.web.cycle import DRAGGED, Cycle, check_assembly, solve_cycle
 from linkwork.web.edits import editable, validated, variant_parameters
 from linkwork.web.payload import LIVE_PLACED, full_payload, pose_payload
 from linkwork.web.update import edit_payload
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from linkwork.spec.schema import Spec
 
 #: The page's scripts, in the order it loads them.
 SCRIPTS = ("viewer.js", "forces.js", "editing.js")
@@ -87,7 +92,10 @@ class Viewer:
         :data:`~linkwork.web.payload.LIVE_PLACED` for the live page, every one (None) for an exported page.
     """
 
-    def __init__(self, spec_or_mech: Any, steps: int = 360, cache: int = 16, placed: int | None = LIVE_PLACED) -> None:
+    def __init__(
+        self, spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360, cache: int = 16,
+        placed: int | None = LIVE_PLACED,
+    ) -> None:  # fmt: skip
         self.mech: Mechanism = mechanism_of(spec_or_mech, "viewer")
         self.spec = self.mech.spec
         self._editable = editable(self.mech)
