@@ -171,3 +171,33 @@ def test_a_written_file_keeps_the_units_each_value_was_written_in(tmp_path):
     again = lw.parameters(out)
     assert again["links.rocker.length"] == pytest.approx(0.26, rel=1e-12)
     assert again["links.coupler.inertia"] == pytest.approx(0.03, rel=1e-12)
+
+
+def test_what_depends_on_a_mechanism_alone_is_found_once_and_freed_with_it():
+    """``per_mechanism``: one call of the maker per mechanism (told apart by identity, not equality: two
+    compilations of one file are two mechanisms), its result shared and read-only where it is a mapping of
+    parameters, and forgotten once the mechanism is freed."""
+    import gc
+    import weakref
+
+    from linkwork.structure.model import per_mechanism
+    from linkwork.structure.parameters import parameters_by_name
+
+    calls = []
+
+    @per_mechanism
+    def links(mech):
+        calls.append(1)
+        return len(mech.link_names)
+
+    a, b = lw.compile("four-bar"), lw.compile("four-bar")
+    assert [links(a), links(a), links(b)] == [4, 4, 4] and len(calls) == 2
+    known = parameters_by_name(a)
+    assert parameters_by_name(a) is known and parameters_by_name(b) is not known
+    with pytest.raises(TypeError):
+        known["links.crank.length"] = None  # type: ignore[index]
+    gone = weakref.ref(a)
+    del a, known
+    gc.collect()
+    assert gone() is None
+    assert links(lw.compile("four-bar")) == 4 and len(calls) == 3

@@ -23,7 +23,7 @@ from linkwork.errors import DesignError, DesignWarning, UnitParseError
 from linkwork.spec.checks import suggest
 from linkwork.spec.schema import Spec
 from linkwork.structure.model import Mechanism
-from linkwork.structure.parameters import Parameter, parameter_list
+from linkwork.structure.parameters import Parameter, parameter_list, parameters_by_name
 from linkwork.units import DEFAULT_UNITS, SI_UNITS, _factor, parse_quantity, unit_for
 
 #: How a plan samples its ranges.
@@ -118,7 +118,7 @@ def parse_vary(
     if match is None:
         return None, [f'--vary "{text}": expected PATH=START:STOP:COUNT, e.g. "links.crank.length=90mm:110mm:50"']
     path, rest = match.group(1), match.group(2)
-    known = {p.name: p for p in parameter_list(mech)}
+    known = parameters_by_name(mech)
     problems: list[str] = []
     if path not in known:
         hint = suggest(path, known)

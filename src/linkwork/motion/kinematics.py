@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import weakref
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -17,7 +16,7 @@ from linkwork.motion.events import Event, find
 from linkwork.motion.solve import run
 from linkwork.motion.state import State
 from linkwork.spec.checks import suggest
-from linkwork.structure.model import Mechanism, PairType, one_crank
+from linkwork.structure.model import Mechanism, PairType, one_crank, per_mechanism
 from linkwork.structure.parameters import Geometry, Masses, apply
 
 
@@ -318,24 +317,13 @@ def kinematics(
 
 #: The geometry of the file's dimensions of the mechanisms solved so far (:func:`file_geometry`), by
 #: the mechanism's id, with a weak reference to it (the entry goes with the mechanism).
-_FILE_GEOMETRY: dict[int, tuple[weakref.ref[Mechanism], Geometry]] = {}
-
-
+@per_mechanism
 def file_geometry(mech: Mechanism) -> Geometry:
     """The geometry of the file's dimensions (one variant: :func:`~linkwork.structure.parameters.apply`
     without overrides), made once per mechanism; its arrays are read-only."""
-    key = id(mech)
-    kept = _FILE_GEOMETRY.get(key)
-    if kept is not None and kept[0]() is mech:
-        return kept[1]
     geom = apply(mech)[0]
     for array in (geom.point_local, geom.pair_origin, geom.pair_axis):
         array.flags.writeable = False
-
-    def forget(_: weakref.ref[Mechanism]) -> None:
-        _FILE_GEOMETRY.pop(key, None)
-
-    _FILE_GEOMETRY[key] = (weakref.ref(mech, forget), geom)
     return geom
 
 

@@ -14,7 +14,6 @@ pivots of radius ``r = 0.012 size``, text ``em = 0.032 size`` high.
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -25,7 +24,7 @@ from linkwork.motion.kinematics import kinematics
 from linkwork.scene import symbols
 from linkwork.scene.geometry import bounds, collinear, hull, perp, place, text_size, to_local
 from linkwork.scene.labels import Obstacles, place_labels, segments_hit
-from linkwork.structure.model import PairType, point_labels
+from linkwork.structure.model import PairType, per_mechanism, point_labels
 
 if TYPE_CHECKING:
     from linkwork.motion.kinematics import Kinematics
@@ -481,26 +480,9 @@ class _Layout:
     point_labels: list[tuple[str, int, int, float]]
 
 
-#: The layouts of the mechanisms drawn, by identity (a mechanism is read-only), each dropped with its mechanism.
-_LAYOUTS: dict[int, tuple[weakref.ref, _Layout]] = {}
-
-
+@per_mechanism
 def _layout(mech: Mechanism) -> _Layout:
     """The :class:`_Layout` of ``mech``, found once a mechanism (the viewer's edits draw one mechanism's variants)."""
-    found = _LAYOUTS.get(id(mech))
-    if found is not None and found[0]() is mech:
-        return found[1]
-    made, key = _make_layout(mech), id(mech)
-
-    def forget(ref: weakref.ref) -> None:
-        if _LAYOUTS.get(key, (None,))[0] is ref:
-            del _LAYOUTS[key]
-
-    _LAYOUTS[key] = (weakref.ref(mech, forget), made)
-    return made
-
-
-def _make_layout(mech: Mechanism) -> _Layout:
     n_points = len(mech.point_names)
     joint = {int(p) for pair in mech.pair_points for p in pair if p >= 0}
     drawn = [link != 0 and not bool(mech.link_virtual[link]) for link in range(mech.n_links_total)]

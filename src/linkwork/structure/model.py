@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import functools
+import weakref
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from enum import IntEnum
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -21,6 +24,36 @@ class PairType(IntEnum):
 
     REVOLUTE = 0
     PRISMATIC = 1
+
+
+T = TypeVar("T")
+
+
+def per_mechanism(make: Callable[[Mechanism], T]) -> Callable[[Mechanism], T]:
+    """``make`` called once per mechanism, its result kept until the mechanism is freed.
+
+    A compiled :class:`Mechanism` is read-only, so what depends on it alone (its file's geometry, its
+    parameters, the layout of its drawing) is found once and shared by every later call, the viewer's
+    edits of its variants included; the result is shared, and callers must not change it.  Mechanisms
+    are told apart by identity."""
+    kept: dict[int, tuple[weakref.ref[Mechanism], T]] = {}
+
+    @functools.wraps(make)
+    def once(mech: Mechanism) -> T:
+        key = id(mech)
+        found = kept.get(key)
+        if found is not None and found[0]() is mech:
+            return found[1]
+        value = make(mech)
+
+        def forget(ref: weakref.ref[Mechanism]) -> None:
+            if kept.get(key, (None,))[0] is ref:
+                del kept[key]
+
+        kept[key] = (weakref.ref(mech, forget), value)
+        return value
+
+    return once
 
 
 ROMAN = ["0", "I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX", "X"]

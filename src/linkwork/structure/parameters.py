@@ -45,6 +45,7 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from types import MappingProxyType
 from typing import Any
 
 import numpy as np
@@ -57,7 +58,7 @@ from linkwork.spec.checks import suggest
 from linkwork.spec.load import validate
 from linkwork.spec.schema import Spec
 from linkwork.spec.yamlsource import Source
-from linkwork.structure.model import Mechanism, PairType
+from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.units import DEFAULT_UNITS, KINDS, SI_UNITS, _factor, written
 
 #: The centre of mass given in the file's link coordinates: it stays.
@@ -166,10 +167,17 @@ class Parameter:
         return None
 
 
+@per_mechanism
+def parameters_by_name(mech: Mechanism) -> Mapping[str, Parameter]:
+    """The named parameters of ``mech`` by name, in the order of :func:`parameter_list`; found once a
+    mechanism (read-only)."""
+    return MappingProxyType({p.name: p for p in (*_dimensions(mech), *_masses(mech))})
+
+
 def parameter_list(mech: Mechanism) -> list[Parameter]:
     """Every named parameter of ``mech``, with the file's values (SI): the dimensions, then the
     mass and moment of inertia of every moving link."""
-    return [*_dimensions(mech), *_masses(mech)]
+    return list(parameters_by_name(mech).values())
 
 
 def parameter_values(mech: Mechanism) -> dict[str, float]:
@@ -178,9 +186,9 @@ def parameter_values(mech: Mechanism) -> dict[str, float]:
     return {p.name: p.value for p in parameter_list(mech)}
 
 
-def parameter(mech: Mechanism, path: str, known: dict[str, Parameter] | None = None) -> Parameter:
+def parameter(mech: Mechanism, path: str) -> Parameter:
     """The parameter named ``path``; :class:`ParameterError` with the closest name for an unknown one."""
-    known = known if known is not None else {p.name: p for p in parameter_list(mech)}
+    known = parameters_by_name(mech)
     if path in known:
         return known[path]
     raise ParameterError(f'no parameter "{path}"{suggest(path, list(known))}; linkwork.parameters(mech) lists them')
@@ -244,7 +252,6 @@ def apply(mech: Mechanism, overrides: Mapping[str, npt.ArrayLike] | None = None)
         For an unknown path (with the closest known one) or arrays of unequal length.
     """
     overrides = overrides or {}
-    known = {p.name: p for p in parameter_list(mech)} if overrides else {}
     sizes = {np.size(v) for v in overrides.values()} - {1}
     if len(sizes) > 1:
         raise ParameterError(f"override arrays must have one length, got lengths {sorted(sizes)}")
@@ -256,7 +263,7 @@ def apply(mech: Mechanism, overrides: Mapping[str, npt.ArrayLike] | None = None)
     given = np.repeat(np.asarray(mech.link_inertia_given, dtype=float)[None], n, axis=0)
     inertia_rule = np.asarray(mech.link_inertia_rule).copy()
     for path, value in overrides.items():
-        parameter(mech, path, known)
+        parameter(mech, path)
         v = np.broadcast_to(np.asarray(value, dtype=float).ravel(), (n,))
         _set(mech, path.split("."), v, pts, origin, axis, mass, given, inertia_rule)
     follow = np.flatnonzero(mech.pair_origin_point >= 0)
@@ -467,9 +474,9 @@ def _described(mech: Mechanism, values: dict[str, float]) -> tuple[Spec, Mechani
     spec = mech.spec
     if spec is None:
         raise ParameterError("this mechanism was assembled in code without a description: it has no file to edit")
-    known = {p.name: p for p in parameter_list(mech)}
+    known = parameters_by_name(mech)
     for path, value in values.items():
-        wrong = parameter(mech, path, known).check(float(value))
+        wrong = parameter(mech, path).check(float(value))
         if wrong is not None:
             raise ParameterError(wrong)
     return spec, mech, {path: known[path].kind for path in values}

@@ -50,26 +50,22 @@ def check_value(p: Parameter, value: float) -> None:
     raise ParameterError(f"{p.name}: expected a value from {low:g} to {limit:g} {p.unit}, got {value:g}")
 
 
-def validated(
-    mech: Mechanism, overrides: dict[str, float], known: dict[str, Parameter] | None = None
-) -> dict[str, float]:
+def validated(mech: Mechanism, overrides: dict[str, float]) -> dict[str, float]:
     """``overrides`` checked against the parameters of ``mech`` and the viewer's bounds, as floats.
 
     Raises
     ------
     ParameterError
         An unknown name (with the closest known one), too many overrides, a value out of range, a
-        mechanism without its description.  ``known``: the parameters of ``mech`` by name, where the caller
-        has them.
+        mechanism without its description.
     """
     if len(overrides) > MAX_OVERRIDES:
         raise ParameterError(f"at most {MAX_OVERRIDES} overrides in one edit, got {len(overrides)}")
     if mech.spec is None:
         raise ParameterError("this viewer shows a compiled mechanism without its description: it cannot be edited")
-    known = known if known is not None else {p.name: p for p in parameter_list(mech)}
     out = {}
     for name, value in overrides.items():
-        check_value(parameter(mech, name, known), float(value))
+        check_value(parameter(mech, name), float(value))
         out[name] = float(value)
     return out
 

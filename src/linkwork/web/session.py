@@ -99,7 +99,6 @@ class Viewer:
         self.mech: Mechanism = mechanism_of(spec_or_mech, "viewer")
         self.spec = self.mech.spec
         self._editable = editable(self.mech)
-        self._known = {p.name: p for p in self._editable}
         self.steps = steps
         self.placed = placed
         self._full = _Cache(cache)
@@ -127,7 +126,7 @@ class Viewer:
             file's mechanism does.
         """
         steps = steps or self.steps
-        checked = validated(self.mech, overrides, self._known) if overrides else {}
+        checked = validated(self.mech, overrides) if overrides else {}
         cycle = solve_cycle(self.mech, steps, checked, DRAGGED if whole_turn else CYCLE)
         check_assembly(cycle, self.whole(steps) if whole_turn else None)
         return cycle
@@ -185,7 +184,7 @@ class Viewer:
 
     def pose(self, angle_deg: float, overrides: dict[str, float] | None = None) -> dict[str, Any]:
         """Every point at one crank angle (deg), of the variant ``overrides``; see :func:`pose_payload`."""
-        checked = validated(self.mech, overrides, self._known) if overrides else {}
+        checked = validated(self.mech, overrides) if overrides else {}
         return pose_payload(self.mech, angle_deg, checked)
 
     def file_text(self, overrides: dict[str, float]) -> str:
