@@ -458,3 +458,19 @@ def test_the_sweep_draws_its_progress_bar_on_a_terminal_only(tmp_path):
     pq = pytest.importorskip("pyarrow.parquet")
     a, b = (pq.read_table(tmp_path / n).to_pydict() for n in ("a.parquet", "b.parquet"))
     assert a["swing"] == b["swing"] and len(a["swing"]) == 3
+
+
+def test_the_pair_table_shows_a_zero_where_the_json_writes_one():
+    """The knives' guides of the double-cut shears carry no moment (each knife's forces pass through its
+    slider point, on the guide's axis), so the largest moment of each guide is round-off: the table shows 0,
+    as the JSON does, and the largest forces agree with the JSON's to the table's six digits."""
+    args = [sys.executable, "-m", "linkwork.cli", "forces", "double-cut-shears", "--steps", "72"]
+    text = subprocess.run(args, capture_output=True, text=True)
+    data = json.loads(subprocess.run([*args, "--json"], capture_output=True, text=True).stdout)
+    assert text.returncode == 0, text.stderr
+    rows = {line.split()[0]: line.split() for line in text.stdout.splitlines() if line.startswith("  guide_")}
+    assert set(rows) == {"guide_E", "guide_F"}
+    for name, row in rows.items():
+        joint = data["joints"][name]
+        assert row[-1] == "0" and max(map(abs, joint["moment"])) == 0.0, row
+        assert float(row[-4]) == pytest.approx(np.hypot(joint["fx"], joint["fy"]).max(), rel=1e-5)

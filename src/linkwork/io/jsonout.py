@@ -79,6 +79,16 @@ def _clean(x: Any, scale: float) -> Any:
     return x
 
 
+def snap_zeros(a: np.ndarray, scale: float | None = None) -> np.ndarray:
+    """``a`` with the values below :data:`ZERO` times ``scale`` (default: the largest finite magnitude of
+    ``a``) as 0.0, ``-0.0`` included: the zero a column of a text table shows, as the JSON writes it."""
+    a = np.asarray(a, dtype=float)
+    if scale is None:
+        finite = np.abs(a[np.isfinite(a)])
+        scale = float(finite.max()) if finite.size else 0.0
+    return np.where(np.abs(a) < ZERO * scale, 0.0, a) + 0.0
+
+
 def _floats(a: np.ndarray, scale: float) -> list[float | None]:
     """The floats ``a`` (n,) rounded to :data:`DIGITS` significant digits, those below ``ZERO * scale``
     as 0.0, NaN and infinities as None: ``float(f"{v:.12g}")``, but a division by a power of ten
