@@ -94,7 +94,7 @@ def test_every_renderer_puts_the_joints_where_the_kinematics_does(name, tmp_path
         np.testing.assert_allclose(centre, twelve.position(joint)[k], rtol=0, atol=1e-12)
 
     payload = cycle_payload(mech, steps=36)
-    scene, kin36 = payload["scene"], lw.kinematics(mech, steps=36)
+    scene, kin36 = payload["scene"], lw.kinematics(mech, np.radians(payload["angles_deg"]))
     for item in (it for it in scene["items"] if it["kind"] == "pivot"):
         pose = np.array(scene["poses"][20][item["link"]])
         c, s = math.cos(pose[2]), math.sin(pose[2])
