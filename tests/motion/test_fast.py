@@ -119,3 +119,31 @@ def test_samples_on_a_singular_position_go_to_the_numpy_path(monkeypatch):
         assert res.limit[:, 0].tolist() == [False, True]  # per step
         compiled, reference = _both(mech, np.linspace(0.3, -0.3, 61), monkeypatch)
         _same(compiled, reference)
+
+
+def test_the_kernels_say_what_their_arrays_hold(monkeypatch):
+    """``some_near``, ``some_limit`` and ``some_invalid`` of :func:`fast.run` (set by the kernels as they
+    go) are ``near.any()``, ``limit.any()`` and ``not valid.all()``, on one thread and split over three:
+    variants that fail to assemble, change points, a dyad on its singular position, and none of these."""
+    from mechanisms import RHOMBUS
+
+    four, shears = lw.compile(lw.example("four-bar")), lw.compile(lw.example("shears-slider-crank"))
+    rhombus = lw.compile(lw.loads(RHOMBUS))
+    turn = np.linspace(0, 2 * np.pi, 360, endpoint=False)
+    cases = [
+        (four, {"links.crank.length": np.linspace(0.05, 0.3, 40)}, four.drive_start[0] + turn[::4]),
+        (four, None, four.drive_start[0] + turn),
+        (shears, None, shears.drive_start[0] + turn),
+        (rhombus, None, np.radians([0.0, 10.0, 20.0])),
+    ]
+    seen = set()
+    for threads in (1, 3):
+        monkeypatch.setattr(fast, "THREADS", threads)
+        monkeypatch.setattr(fast, "PER_THREAD", 100)
+        for mech, variants, angles in cases:
+            values = angles[:, None]
+            res = fast.run(mech, apply(mech, variants)[0], values, np.ones_like(values), np.zeros_like(values))
+            found = {"near": res.near.any(), "limit": res.limit.any(), "invalid": not res.valid.all()}
+            assert (res.some_near, res.some_limit, res.some_invalid) == tuple(found.values())
+            seen |= {name for name, there in found.items() if there}
+    assert seen == {"near", "limit", "invalid"}

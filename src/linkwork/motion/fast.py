@@ -84,6 +84,8 @@ class Solved(NamedTuple):
     limit : ndarray of bool, shape (S, V)
         A dyad lies on a singular position to rounding (its outer joints together or its modes
         meeting): the NumPy kernels give the velocities there.
+    some_near, some_limit, some_invalid : bool
+        ``near.any()``, ``limit.any()`` and ``not valid.all()``, found by the kernels as they go.
     """
 
     q: np.ndarray
@@ -96,7 +98,14 @@ class Solved(NamedTuple):
     trouble: np.ndarray
     singular: bool
     limit: np.ndarray
+    some_near: bool = False
+    some_limit: bool = False
+    some_invalid: bool = False
 
+
+#: Entries of the flags the kernel sets (:class:`Solved`): some sample singular, some step near a change
+#: point, some step on a singular position to rounding, some sample not assembled.
+F_SINGULAR, F_NEAR, F_LIMIT, F_INVALID = range(4)
 
 #: Threads a long batch is split over (the kernels release the GIL), and the least samples per thread.
 THREADS = min(os.cpu_count() or 1, 8)
@@ -203,14 +212,16 @@ def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, 
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
     solved = Solved(out[0], out[1], out[2], slack, np.empty_like(slack), valid, per_step[0], per_step[1], False,
                     per_step[2])  # fmt: skip
-    singular = np.zeros(1, dtype=np.bool_)
+    flags = np.zeros(4, dtype=np.bool_)
     tol = 1e-12 * (1 + float(np.abs(local).max()))
     args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, solved.det, solved.valid,
-            solved.near, solved.trouble, singular, solved.limit, tol)  # fmt: skip
+            solved.near, solved.trouble, flags, solved.limit, tol)  # fmt: skip
     _in_parts(args, mech.n_links_total, n_steps, n_var, n_ang)
     if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
         solved.near[:] = False
-    return solved._replace(singular=bool(singular[0]))
+        flags[F_NEAR] = False
+    singular, some_near, some_limit, some_invalid = flags.tolist()
+    return solved._replace(singular=singular, some_near=some_near, some_limit=some_limit, some_invalid=some_invalid)
 
 
 def _in_parts(args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_ang: int) -> None:
@@ -630,8 +641,9 @@ def _driving_rows(ops, out, slack, det, var, lo, hi):
 
 
 def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, trouble,
-            singular, limit, tol, lo, hi, L, pre, prev):  # fmt: skip
-    """Samples ``lo:hi`` of every variant (``near`` also from the step between ``lo - 1`` and ``lo``).
+            flags, limit, tol, lo, hi, L, pre, prev):  # fmt: skip
+    """Samples ``lo:hi`` of every variant (``near`` also from the step between ``lo - 1`` and ``lo``);
+    sets ``flags`` (:data:`F_SINGULAR` ...) where something is found.
 
     Scratch: ``L`` (N, STATE) the link states of a sample, ``pre`` (S, 2, 3) constants of the R arms
     of a variant, ``prev`` (S, 5) X of each dyad, the vector to X of its other mode and the determinant
@@ -648,10 +660,17 @@ def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, slack,
             if i < lo:
                 continue
             valid[var, i] = ok
-            if ok and small:
-                singular[0] = True
+            if not ok:
+                flags[F_INVALID] = True
+            elif small:
+                flags[F_SINGULAR] = True
             _store(L, out, var, i)
         _driving_rows(ops, out, slack, det, var, lo, hi)
+        for st in range(ops.shape[0]):
+            if near[st, var]:
+                flags[F_NEAR] = True
+            if limit[st, var]:
+                flags[F_LIMIT] = True
 
 
 #: Options of every compiled kernel: no reference counting, the kernels allocate nothing.

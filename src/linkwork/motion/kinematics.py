@@ -6,7 +6,7 @@ import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -211,14 +211,14 @@ def _path(mech: Mechanism, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray] 
     result keeps the asked ones.  Returns (path, indices of the asked
     angles in it), or None when the angles are a path already.
     """
-    if not any(step.kind in ("RRR", "RRP", "PRP") for step in mech.program):
+    if not _drive_facts(mech).follows:
         return None
     start = float(mech.drive_start[0])
     step = PATH_STEP * (1 + 1e-9)
     if len(angles) > 1:  # a path already: monotonic, in steps of at most PATH_STEP, through the start
         d = angles[1:] - angles[:-1]
-        least, most = float(d.min()), float(d.max())
-        first, last = sorted((float(angles[0]), float(angles[-1])))
+        least, most = d.min(), d.max()
+        first, last = (angles[0], angles[-1]) if angles[0] <= angles[-1] else (angles[-1], angles[0])
         if (least > 0 or most < 0) and max(most, -least) <= step and first - step <= start <= last + step:
             return None
     lo, hi = min(angles.min(), start), max(angles.max(), start)
@@ -344,10 +344,28 @@ def _drive_values(mech: Mechanism, angles: npt.ArrayLike | None, steps: int | No
     return values
 
 
+class _DriveFacts(NamedTuple):
+    """What a call needs to know of a mechanism's drives (:func:`_drive_facts`)."""
+
+    revolute: bool  # the first drive is a revolute pair
+    follows: bool  # one revolute drive and dyads that have change points: solved along a path (:func:`_path`)
+    speeds: np.ndarray  # (D,) the file's speed of every drive, 1 where it gives none; read-only
+
+
+@per_mechanism
+def _drive_facts(mech: Mechanism) -> _DriveFacts:
+    """The facts of the mechanism's drives every call uses, found once per mechanism."""
+    revolute = bool(mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE)
+    dyads = any(step.kind in ("RRR", "RRP", "PRP") for step in mech.program)
+    speeds = np.array([x if math.isfinite(x) and x != 0 else 1.0 for x in mech.drive_speed.tolist()])
+    speeds.flags.writeable = False
+    return _DriveFacts(revolute, revolute and mech.n_drives == 1 and dyads, speeds)
+
+
 def _speeds(mech: Mechanism, speed: npt.ArrayLike | None) -> np.ndarray:
     """The speed of every drive, ``(D,)``: ``speed``, or the file's (1 where it gives none)."""
     if speed is None:
-        return np.array([x if math.isfinite(x) and x != 0 else 1.0 for x in mech.drive_speed.tolist()])
+        return _drive_facts(mech).speeds
     speed = np.asarray(speed, dtype=float)
     if speed.size not in (1, mech.n_drives) or not np.isfinite(speed).all():
         raise LinkworkError(f"speed: expected {mech.n_drives} finite value(s), got {speed.tolist()!r}")
@@ -358,8 +376,8 @@ def _solve(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarra
     """The state at the drive coordinates ``values`` ``(A, D)`` at the speeds ``rates`` ``(A, D)``, and the
     events along them.  A single crank is solved along a path from the assembly pose through every angle
     asked (:func:`_path`), and the asked ones kept."""
-    revolute = bool(mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE)
-    path = _path(mech, values[:, 0]) if revolute and mech.n_drives == 1 else None
+    revolute = _drive_facts(mech).revolute
+    path = _path(mech, values[:, 0])
     if path is None:
         state = run(mech, mech.program, geom, values, rates, np.zeros_like(values))
         return state, tuple(find(mech.program, state, values[:, 0], revolute))

@@ -72,7 +72,7 @@ def _run_fast(
     """The compiled closed-form path; None where a dyad passes near a change point, or lies on a singular
     position to rounding (the NumPy path follows the motion there)."""
     res = fast.run(mech, geom, values, rates, accels)
-    if res.near.any() or res.limit.any():
+    if res.some_near or res.some_limit:
         return None
     none = np.empty((0, 0, 0))  # no angles kept: the state is not solved further
     state = State(res.q, res.v, res.a, none, none, soa(geom.point_local), soa(geom.pair_origin), soa(geom.pair_axis),
@@ -83,7 +83,7 @@ def _run_fast(
     if res.singular:
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             _repair_singular(mech, program, geom, values, rates, accels, state)
-    if not state.valid.all():
+    if res.some_invalid:
         bad = ~state.valid
         for arr in (state.q, state.v, state.a):
             arr[:, :, bad] = np.nan
