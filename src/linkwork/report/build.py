@@ -214,8 +214,8 @@ def require_packages() -> None:
     """Raise :class:`~linkwork.errors.MissingDependencyError` unless the optional packages of the
     report are installed: matplotlib (the figures) and xarray (``kinematics.nc``).
 
-    They are found, not imported: xarray is imported (with pandas, a quarter of a second) only where
-    ``kinematics.nc`` is written, beside the main line of the report."""
+    They are found, not imported: ``kinematics.nc``, the file xarray reads, is written through SciPy
+    (:func:`linkwork.io.motion_tables.write_netcdf`), without importing xarray, pandas or Dask."""
     from importlib.util import find_spec
 
     from linkwork.optional import require
