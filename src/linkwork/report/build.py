@@ -304,7 +304,7 @@ def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) ->
     phi = np.degrees(np.arange(steps) * 2 * np.pi / steps)
     index = int(np.argmin(np.abs((phi - 30.0 * drawn[0] + 180.0) % 360.0 - 180.0)))
     cycle = Cycle(kin, zero, sign, twelve, index)
-    write_csv(kin, run.folder / "kinematics.csv")
+    run.jobs.append(lambda: write_csv(kin, run.folder / "kinematics.csv"))
     run.jobs.append(lambda: write_netcdf(kin, run.folder / "kinematics.nc"))
     sec = Section("kinematics", run.t("section.kinematics"))
     sec.body.append(_p(_position_0(run, cycle)))
