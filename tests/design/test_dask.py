@@ -52,6 +52,8 @@ def cluster(tmp_path_factory):
                     "--port",
                     "0",
                     "--no-dashboard",
+                    "--dashboard-address",  # its other pages (/json, /metrics) off Dask's port 8787, which
+                    "127.0.0.1:0",  # the test of a sweep's own cluster probes
                     "--scheduler-file",
                     str(sched_file),
                 ],

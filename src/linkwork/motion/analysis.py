@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.motion.kinematics import Kinematics, cycle, kinematics
-from linkwork.structure.model import Mechanism, PairType
+from linkwork.structure.model import Mechanism, PairType, per_mechanism
 
 TWO_PI = 2 * math.pi
 
@@ -397,9 +397,11 @@ def working(mech: Mechanism) -> tuple[Output, ...]:
     return tuple(out for out in found if group.get(out.link, -1) == last)
 
 
+@per_mechanism
 def zero_angle(mech: Mechanism) -> float:
     """Crank angle (rad) of position 0: the first working member (:func:`working`) at the high end of its
-    stroke or swing (for shears: the upper knife up, the knives open), else the assembly angle."""
+    stroke or swing (for shears: the upper knife up, the knives open), else the assembly angle.  Found once
+    a mechanism."""
     members = working(mech)
     if members:
         r = output_range(kinematics(mech, steps=360), members[0])

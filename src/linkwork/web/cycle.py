@@ -18,7 +18,8 @@ import numpy as np
 
 from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.kinetostatics.forces import Forces, forces_of
-from linkwork.motion.kinematics import Kinematics, kinematics
+from linkwork.motion.analysis import zero_angle
+from linkwork.motion.kinematics import Kinematics, cycle, kinematics
 from linkwork.scene.scheme import CYCLE
 from linkwork.structure.model import Mechanism, one_crank
 
@@ -100,11 +101,19 @@ def solve_cycle(
     variants = {name: [value] for name, value in overrides.items()} or None
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        kin = kinematics(mech, steps=steps, variants=variants)
-        drawn = symbol_samples(kin, symbols) if steps >= symbols else kinematics(mech, steps=symbols, variants=variants)
+        kin = kinematics(mech, turn(mech, steps), variants=variants)
+        few = steps < symbols
+        drawn = kinematics(mech, turn(mech, symbols), variants=variants) if few else symbol_samples(kin, symbols)
         forces, reason = _forces(kin)
     notes = tuple(dict.fromkeys(str(w.message) for w in caught))
     return Cycle(mech, overrides, kin, drawn, forces, reason, notes)
+
+
+def turn(mech: Mechanism, steps: int) -> np.ndarray:
+    """The crank angles (rad) of the viewer's cycle: ``steps`` equal steps over a turn from position 0
+    (:func:`~linkwork.motion.analysis.zero_angle`, the file's, also for its edits, so that the crank stays
+    where it is while a value is dragged), as the report numbers the cycle."""
+    return cycle(mech, steps, start=zero_angle(mech))
 
 
 def symbol_samples(kin: Kinematics, count: int) -> Kinematics:

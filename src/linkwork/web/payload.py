@@ -12,8 +12,9 @@ what an edit changes, in a compact form (:mod:`linkwork.web.update`).
 Layout (``format: linkwork-view/1``):
 
 * ``angles_deg`` (A,): the drive angle of every sample, counter-clockwise
-  from +x, from the assembly angle in the direction of rotation;
-  ``turn_deg`` (A,): the angle turned from the first sample;
+  from +x, from position 0 in the direction of rotation (the first working
+  member at the high end of its stroke, as the report numbers the cycle);
+  ``turn_deg`` (A,): the angle φ turned from position 0;
 * ``points`` (P,): ``name`` (``link.point``), ``label``, ``link``,
   ``joint`` (a point of a pair); ``local`` (P, 2), each point in its link's
   axes, m; ``positions`` (A, P, 2), m;

@@ -563,7 +563,7 @@
     state.chartUpdate = [];
     state.charts = [];
     for (const key of state.chosen) if (m.series.some((x) => x.key === key)) state.charts.push(chart(root, key));
-    const note = html("div", "x: crank angle turned from the first position, deg; click a chart to move the crank there", root);
+    const note = html("div", "x: crank angle φ turned from position 0, deg; click a chart to move the crank there", root);
     note.className = "note";
   }
 
@@ -613,7 +613,7 @@
       const x = xOf(i).toFixed(2), s = out.s;
       cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
       cursor.setAttribute("data-index", String(i));
-      title.textContent = `${s.label}, ${s.unit}: ${fmt(s.values[i])} at ${state.data.turn_deg[i].toFixed(1)}° turned`;
+      title.textContent = `${s.label}, ${s.unit}: ${fmt(s.values[i])} at φ = ${state.data.turn_deg[i].toFixed(1)}°`;
     });
     return out;
   }
@@ -712,7 +712,7 @@
     const root = $("scheme");
     root.setAttribute("data-index", String(i));
     root.setAttribute("data-angle-deg", String(deg));
-    $("angle-text").textContent = `crank ${(((deg % 360) + 360) % 360).toFixed(1)}°, turned ${m.turn_deg[i].toFixed(1)}° (sample ${i + 1} of ${n})`;
+    $("angle-text").textContent = `φ = ${m.turn_deg[i].toFixed(1)}° from position 0, crank at ${(((deg % 360) + 360) % 360).toFixed(1)}° to x (sample ${i + 1} of ${n})`;
     const note = $("pose-note");
     note.hidden = m.valid[i];
     note.textContent = m.valid[i] ? "" : "The mechanism does not assemble at this crank angle.";
