@@ -15,6 +15,7 @@ from linkwork.machine import (
     ConstantTorque,
     Drive,
     InductionMotor,
+    LinearMotor,
     constant_moment_cycle,
     simulate,
     size_flywheel,
@@ -153,6 +154,25 @@ def test_induction_motor_by_the_kloss_formula():
     assert motor(grid).max() == pytest.approx(2.2 * rated, rel=1e-5)  # the breakdown torque is the peak
     with pytest.raises(lw.errors.LinkworkError, match="synchronous"):
         InductionMotor(5500.0, 1600 * math.pi / 30, 1500 * math.pi / 30)
+
+
+@pytest.mark.parametrize(
+    "motor",
+    [
+        InductionMotor(5500.0, 1450 * math.pi / 30, 1500 * math.pi / 30, 2.2),
+        ConstantTorque(12.5),
+        LinearMotor(40.0, 150.0),
+    ],
+)
+def test_a_drive_gives_one_speed_the_moment_it_gives_an_array_of_speeds(motor):
+    """The simulation asks the drive for the moment at one speed (a Python float) at every step: the same
+    numbers, to the last bit, as at that speed among an array's, on either side of the rated speed."""
+    drive = Drive(motor, ratio=48.33, efficiency=0.9)
+    speeds = np.linspace(0.0, 1500 * math.pi / 30 / 48.33 * 1.01, 97)
+    at_once = drive.moment(speeds)
+    one_by_one = [drive.moment(float(w)) for w in speeds]
+    assert all(type(m) is float for m in one_by_one)
+    np.testing.assert_array_equal(one_by_one, at_once)
 
 
 def test_dynamics_command_on_the_double_cut_shears(tmp_path):

@@ -150,6 +150,32 @@ def test_kinematics_command_json_and_files(tmp_path):
     assert ds["vx"].attrs["units"] == "m/s"
 
 
+@pytest.mark.parametrize("variants", [None, {"links.crank.length": [0.2, 0.22]}])
+def test_netcdf_is_written_as_xarray_writes_it_without_importing_xarray(tmp_path, variants):
+    """kinematics.nc is written by SciPy's NetCDF 3 writer: byte for byte the file xarray writes of
+    to_dataset (with or without variants, a string coordinate, NaN fill values), and neither xarray, pandas
+    nor Dask is imported to write it (checked in a fresh interpreter)."""
+    import subprocess
+    import sys
+
+    xr = pytest.importorskip("xarray")
+    from linkwork.io.motion_tables import to_dataset, write_netcdf
+
+    kin = lw.kinematics(lw.compile(lw.example("four-bar")), steps=36, variants=variants)
+    write_netcdf(kin, tmp_path / "ours.nc")
+    to_dataset(kin).to_netcdf(tmp_path / "xarray.nc", engine="scipy")
+    assert (tmp_path / "ours.nc").read_bytes() == (tmp_path / "xarray.nc").read_bytes()
+    with xr.open_dataset(tmp_path / "ours.nc") as ds:
+        vy = kin.velocity("B")[..., 1].reshape(-1, 36)
+        np.testing.assert_allclose(ds["vy"].sel(point="B").values, vy, rtol=1e-12)
+    fresh = str(tmp_path / "fresh.nc")
+    code = ("import sys, linkwork as lw; from linkwork.io.motion_tables import write_netcdf; "
+            f"write_netcdf(lw.kinematics(lw.compile(lw.example('four-bar')), steps=36), {fresh!r}); "
+            "print(sorted(m for m in ('xarray', 'pandas', 'dask') if m in sys.modules))")  # fmt: skip
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
+
+
 def test_positions_start_with_the_knives_open():
     result = runner.invoke(app, ["positions", "double-cut-shears", "--json"])
     assert result.exit_code == 0, result.output

@@ -112,10 +112,14 @@ def write_csv(kin: Kinematics, path: str | Path) -> Path:
     return write_atomic(path, writer)
 
 
-def to_dataset(kin: Kinematics) -> Any:
-    """An xarray Dataset with dimensions variant x angle x point (and link)."""
-    xr = require("xarray", purpose="NetCDF tables of the kinematics")
+#: A table of NetCDF: its variables, name -> (dimensions, values, attributes), in the file's order.
+Table = dict[str, tuple[tuple[str, ...], np.ndarray, dict[str, str]]]
 
+
+def _table(kin: Kinematics) -> tuple[Table, Table, dict[str, str]]:
+    """The NetCDF table of a result: its data variables (variant x angle x point, and link), its coordinates
+    (angle in degrees, the points' labels, the links' names) and its attributes, for :func:`to_dataset` and
+    :func:`write_netcdf` alike."""
     mech = kin.mechanism
     labels = point_labels(mech)
     links = moving_links(mech)
@@ -125,7 +129,7 @@ def to_dataset(kin: Kinematics) -> Any:
     idx = [i for _, i in links]
     dims3 = ("variant", "angle", "point")
     dimsl = ("variant", "angle", "link")
-    data = {
+    data: Table = {
         "x": (dims3, pos[..., 0], {"units": "m"}),
         "y": (dims3, pos[..., 1], {"units": "m"}),
         "vx": (dims3, vel[..., 0], {"units": "m/s"}),
@@ -137,14 +141,56 @@ def to_dataset(kin: Kinematics) -> Any:
         "epsilon": (dimsl, np.moveaxis(kin.a[idx, 2], 0, -1), {"units": "rad/s^2"}),
         "valid": (("variant", "angle"), kin.valid_all.astype("int8"), {}),
     }
-    coords = {
-        "angle": ("angle", np.degrees(kin.angles), {"units": "deg"}),
-        "point": [label for label, _ in labels],
-        "link": [n for n, _ in links],
+    coords: Table = {
+        "angle": (("angle",), np.degrees(kin.angles), {"units": "deg"}),
+        "point": (("point",), np.array([label for label, _ in labels]), {}),
+        "link": (("link",), np.array([n for n, _ in links]), {}),
     }
-    return xr.Dataset(data, coords=coords, attrs={"mechanism": mech.name, "source": "linkwork kinematics"})
+    return data, coords, {"mechanism": mech.name, "source": "linkwork kinematics"}
+
+
+def to_dataset(kin: Kinematics) -> Any:
+    """An xarray Dataset with dimensions variant x angle x point (and link)."""
+    xr = require("xarray", purpose="NetCDF tables of the kinematics")
+    data, coords, attrs = _table(kin)
+    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def write_netcdf(kin: Kinematics, path: str | Path) -> Path:
-    ds = to_dataset(kin)
-    return write_atomic(path, lambda tmp: ds.to_netcdf(tmp, engine="scipy"))
+    """Write the table of :func:`to_dataset` to ``path`` as NetCDF 3 (64-bit offsets), encoded as xarray
+    encodes it (``xr.open_dataset`` reads it back as that Dataset), through SciPy's writer: xarray and pandas
+    are not imported, nor the Dask that xarray looks for on every write (most of a second in all)."""
+    data, coords, attrs = _table(kin)
+    return write_atomic(path, lambda tmp: _write_netcdf3(tmp, data, coords, attrs))
+
+
+def _write_netcdf3(path: Path, data: Table, coords: Table, attrs: dict[str, str]) -> None:
+    """Data variables, coordinates and global ``attrs`` to a NetCDF 3 file, in xarray's encoding and order:
+    floats with a NaN ``_FillValue``, strings as arrays of characters (UTF-8) over a dimension
+    ``string<longest>``; the coordinates first."""
+    from scipy.io import netcdf_file
+
+    encoded: Table = {}
+    for name, (dims, values, attributes) in {**coords, **data}.items():
+        if values.dtype.kind == "U":
+            chars = np.char.encode(values, "utf-8")
+            width = max(chars.dtype.itemsize, 1)
+            values = chars.astype(f"S{width}").view("S1").reshape(*chars.shape, width)
+            dims, attributes = (*dims, f"string{width}"), {**attributes, "_Encoding": "utf-8"}
+        elif values.dtype.kind == "f":
+            attributes = {**attributes, "_FillValue": np.float64(np.nan)}
+        encoded[name] = (dims, values, attributes)
+    sizes: dict[str, int] = {}
+    for name in [*data, *coords]:  # the data's dimensions, then those of the coordinates' strings
+        dims, values, _ = encoded[name]
+        sizes.update(zip(dims, values.shape, strict=True))
+    with netcdf_file(path, "w", version=2) as f:
+        for key, value in attrs.items():
+            setattr(f, key, value)
+        for dim, size in sizes.items():
+            f.createDimension(dim, size)
+        for name, (dims, values, attributes) in encoded.items():
+            var = f.createVariable(name, values.dtype, dims)
+            var[...] = values
+            for key, value in attributes.items():
+                setattr(var, key, value)

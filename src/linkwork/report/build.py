@@ -214,8 +214,8 @@ def require_packages() -> None:
     """Raise :class:`~linkwork.errors.MissingDependencyError` unless the optional packages of the
     report are installed: matplotlib (the figures) and xarray (``kinematics.nc``).
 
-    They are found, not imported: xarray is imported (with pandas, a quarter of a second) only where
-    ``kinematics.nc`` is written, beside the main line of the report."""
+    They are found, not imported: ``kinematics.nc``, the file xarray reads, is written through SciPy
+    (:func:`linkwork.io.motion_tables.write_netcdf`), without importing xarray, pandas or Dask."""
     from importlib.util import find_spec
 
     from linkwork.optional import require
@@ -304,7 +304,7 @@ def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) ->
     phi = np.degrees(np.arange(steps) * 2 * np.pi / steps)
     index = int(np.argmin(np.abs((phi - 30.0 * drawn[0] + 180.0) % 360.0 - 180.0)))
     cycle = Cycle(kin, zero, sign, twelve, index)
-    write_csv(kin, run.folder / "kinematics.csv")
+    run.jobs.append(lambda: write_csv(kin, run.folder / "kinematics.csv"))
     run.jobs.append(lambda: write_netcdf(kin, run.folder / "kinematics.nc"))
     sec = Section("kinematics", run.t("section.kinematics"))
     sec.body.append(_p(_position_0(run, cycle)))
