@@ -113,7 +113,7 @@ def write_csv(kin: Kinematics, path: str | Path) -> Path:
 
 
 #: A table of NetCDF: its variables, name -> (dimensions, values, attributes), in the file's order.
-Table = dict[str, tuple[tuple[str, ...], np.ndarray, dict[str, str]]]
+Table = dict[str, tuple[tuple[str, ...], np.ndarray, dict[str, str | float]]]
 
 
 def _table(kin: Kinematics) -> tuple[Table, Table, dict[str, str]]:
