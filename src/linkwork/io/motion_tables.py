@@ -192,5 +192,5 @@ def _write_netcdf3(path: Path, data: Table, coords: Table, attrs: dict[str, str]
         for name, (dims, values, attributes) in encoded.items():
             var = f.createVariable(name, values.dtype, dims)
             var[...] = values
-            for key, value in attributes.items():
-                setattr(var, key, value)
+            for key, attribute in attributes.items():
+                setattr(var, key, attribute)
