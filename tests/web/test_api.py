@@ -451,20 +451,27 @@ def test_view_command_exports_and_reports_errors(tmp_path):
     assert result.exit_code == 2 and f"cannot listen on 127.0.0.1:{port}" in result.output
 
 
-def test_view_command_serves_on_loopback_with_a_free_port():
-    import httpx
-
+def _start_view(stderr: int = subprocess.PIPE) -> tuple[subprocess.Popen, re.Match]:
+    """``linkwork view four-bar --port 0 --no-browser --steps 24`` in a process of its own, and the URL it
+    printed (the port it found free); the caller stops the process."""
     code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
     proc = subprocess.Popen(
         [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
+        stdout=subprocess.PIPE, stderr=stderr, text=True,
+    )  # fmt: skip
+    line = proc.stdout.readline()
+    url = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+    if url is None:
+        proc.kill()
+        pytest.fail(line + (proc.stderr.read() if proc.stderr else ""))
+    return proc, url
+
+
+def test_view_command_serves_on_loopback_with_a_free_port():
+    import httpx
+
+    proc, url = _start_view()
     try:
-        line = proc.stdout.readline()
-        url = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
-        assert url, line + proc.stderr.read() if proc.poll() is not None else line
         deadline = time.monotonic() + 20
         while True:
             try:
@@ -1044,15 +1051,9 @@ def test_clients_that_go_away_mid_request_leave_no_traceback():
     log a traceback (it logged one per client); the server goes on answering."""
     import http.client
 
-    code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
-    proc = subprocess.Popen(
-        [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
+    proc, url = _start_view()
     try:
-        port = int(re.search(r"http://127\.0\.0\.1:(\d+)/", proc.stdout.readline()).group(1))
+        port = int(url.group(1))
         head = "POST {} HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n"
         for k in range(40):
             path = ("/api/solve", "/api/edit", "/api/pose")[k % 3]
@@ -1119,15 +1120,9 @@ def test_small_answers_are_not_held_back_for_the_clients_delayed_ack():
     import http.client
     import statistics
 
-    code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
-    proc = subprocess.Popen(
-        [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.DEVNULL,
-        text=True,
-    )
+    proc, url = _start_view(stderr=subprocess.DEVNULL)
     try:
-        port = int(re.search(r"http://127\.0\.0\.1:(\d+)/", proc.stdout.readline()).group(1))
+        port = int(url.group(1))
         conn = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
         waits = {}
         for path, body in (("/api/parameters", None), ("/api/pose", b'{"angle_deg": 10}')):
