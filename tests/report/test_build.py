@@ -18,6 +18,7 @@ from typer.testing import CliRunner
 pytest.importorskip("matplotlib")
 
 import linkwork.cli.analyze  # noqa: E402,F401 - registers the command
+import linkwork.cli.dynamics  # noqa: E402,F401 - registers the command
 import linkwork.cli.motion  # noqa: E402,F401 - registers the command
 from linkwork import figures  # noqa: E402
 from linkwork.cli.main import app  # noqa: E402
@@ -295,6 +296,23 @@ def test_the_tables_state_their_units_and_measure_the_crank_angle_from_position_
     assert y[0] == max(y) == pytest.approx(1000 * dense["guide_E"].max() + 0.0, abs=0.05)  # guide_E is along y
 
 
+def test_the_report_runs_the_machine_unit_as_linkwork_dynamics_does(main_job):
+    """One run of the machine unit behind every entry point: the report's ``dynamics.json`` holds the steady
+    cycle, start-up time and flywheel that ``linkwork dynamics --json`` prints for the same file (a report
+    that sampled the reduced inertia and loads more coarsely would differ in the fifth digit of its speed
+    fluctuation, and take longer: the solver steps over more corners of the load)."""
+    import json
+
+    assert main_job.returncode == 0, main_job.stderr
+    report = json.loads((main_job.folder / "dynamics.json").read_text(encoding="utf-8"))
+    result = runner.invoke(app, ["dynamics", "double-cut-shears", "--json"])
+    assert result.exit_code == 0, result.output
+    cli = json.loads(result.output)
+    keys = ("omega_mean", "omega_min", "omega_max", "delta", "mean_power", "startup_time", "flywheel_inertia")
+    assert {k: report[k] for k in keys} == {k: cli[k] for k in keys}
+    assert report["steady"] and len(report["angles_deg"]) == len(cli["angles_deg"])
+
+
 def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0():
     """The double-cut shears slow down while they cut and speed up after: the lowest crank speed of the
     steady cycle comes where the cutting load falls below the drive's moment, at the end of the cut.  The
@@ -306,7 +324,7 @@ def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0()
     from linkwork.motion.analysis import from_position_0, zero_angle
 
     mech = lw.compile(lw.example("double-cut-shears"))
-    result = lw.dynamics(mech, steps=1440)
+    result = lw.dynamics(mech)
     zero = zero_angle(mech)
     red = result.reduced
     phi = np.degrees(from_position_0(red.angle, zero, 1.0))

@@ -577,7 +577,7 @@ def _dynamics(run: _Run, cycle: Cycle) -> None:
 
     mech = run.mech
     run.progress("dynamics")
-    result = dynamics(mech, steps=1440)
+    result = dynamics(mech)  # as lw.dynamics and linkwork dynamics run it
     data = to_json(mech, result, zero=cycle.zero)
     (run.folder / "dynamics.json").write_text(dumps(data), encoding="utf-8")
     rpm = 30 / math.pi
