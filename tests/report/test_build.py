@@ -341,6 +341,33 @@ def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0()
     assert x[np.argmin(y)] == pytest.approx(lowest, abs=0.5)
 
 
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the second process is forked on Linux only")
+def test_the_two_processes_share_the_jobs_and_each_runs_once(tmp_path):
+    """Whichever process is free takes the next job: the first holds one process for half a second, the other
+    takes the rest meanwhile; every job runs once, and both processes run some."""
+    import time
+
+    from linkwork.report.beside import Beside
+
+    log = tmp_path / "log"
+
+    def job(i):
+        def run():
+            if i == 0:
+                time.sleep(0.5)
+            with open(log, "a", encoding="utf-8") as f:  # one short append per line: lines do not mix
+                f.write(f"{i} {os.getpid()}\n")
+
+        return run
+
+    beside = Beside()
+    beside.start([job(i) for i in range(12)])
+    beside.wait()
+    runs = [line.split() for line in log.read_text(encoding="utf-8").splitlines()]
+    assert sorted(int(i) for i, _ in runs) == list(range(12))
+    assert str(os.getpid()) in {pid for _, pid in runs} and len({pid for _, pid in runs}) == 2
+
+
 def test_a_figure_that_fails_in_the_second_process_fails_the_report_and_writes_nothing(tmp_path, monkeypatch):
     """The figures of the kinematics are drawn in a forked process: its error comes back as it was raised,
     and no report is put in place."""

@@ -1,10 +1,13 @@
 """Work done beside the report's main line, in a second process, so that two processor cores draw at once.
 
 The second process is forked (on Linux): it shares the results computed so far without copying or
-pickling them, runs its jobs (figures, the animation, a table: each writes its own files into the report's
-folder) and exits; :meth:`Beside.wait` raises the first exception a job raised there, so a report is never
-put in place without its files.  Where the platform does not fork safely (macOS, Windows) the jobs run in
-this process when they are given.
+pickling them, takes the jobs it was given one at a time, in order (figures, the animation, a table: each
+writes its own files into the report's folder), and exits when none is left.  When this process has done
+its own work, :meth:`Beside.wait` has it take the jobs the other has not started, then joins it and raises
+the first exception a job raised there, so a report is never put in place without its files and neither
+process waits while the other has figures to draw.  The jobs are handed out as tickets, their numbers read
+from one pipe by both processes (a read of a pipe is atomic: each job is taken once).  Where the platform
+does not fork safely (macOS, Windows) the jobs run in this process when they are given.
 """
 
 from __future__ import annotations
@@ -18,21 +21,28 @@ from collections.abc import Callable
 #: Whether jobs may run in a forked process (Linux).
 FORKS = sys.platform.startswith("linux") and hasattr(os, "fork")
 
+#: The most jobs handed out at once (their tickets fill 4 KiB, the least a pipe holds).
+MOST_JOBS = 2048
+
 
 class Beside:
-    """At most one forked process running jobs; ``wait`` joins it (and is called on every way out)."""
+    """At most one forked process sharing a list of jobs with this one; ``wait`` takes what is left of them
+    and joins it (and is called on every way out)."""
 
     def __init__(self, parallel: bool = True) -> None:
         self.parallel = parallel and FORKS
         self.pid: int | None = None
         self.pipe: int | None = None
+        self.jobs: list[Callable[[], object]] = []
+        self.tickets: int | None = None  # read end of the pipe of the jobs' numbers
 
     def start(self, jobs: list[Callable[[], object]]) -> None:
-        """Run ``jobs`` in order, in a forked process (or here, at once, where there is none)."""
+        """Have a forked process take ``jobs`` in order (or run them here, at once, where there is none)."""
         if not self.parallel or not jobs:
             for job in jobs:
                 job()
             return
+        self.jobs, self.tickets = jobs, _tickets(len(jobs))
         read, write = os.pipe()
         pid = os.fork()
         if pid == 0:  # the child: run the jobs, say how it went, exit without running the parent's exit code
@@ -40,8 +50,7 @@ class Beside:
             _die_with_parent()
             code = 0
             try:
-                for job in jobs:
-                    job()
+                self._take_all()
             except BaseException as exc:  # noqa: BLE001 - every failure goes back to the parent
                 code = 1
                 data = memoryview(_pickled(exc))
@@ -53,8 +62,23 @@ class Beside:
         os.close(write)
         self.pid, self.pipe = pid, read
 
+    def _take_all(self) -> None:
+        """Run the jobs whose tickets this process draws, until none is left."""
+        while self.tickets is not None and (ticket := os.read(self.tickets, 2)):
+            self.jobs[int.from_bytes(ticket, "little")]()
+
     def wait(self) -> None:
-        """Wait for the forked process; raise the exception its jobs raised, if one did."""
+        """Run here the jobs the forked process has not started, wait for it, and raise the exception its
+        jobs raised, if one did."""
+        try:
+            self._take_all()
+        finally:
+            self._join()
+
+    def _join(self) -> None:
+        if self.tickets is not None:
+            os.close(self.tickets)
+            self.tickets = None
         if self.pid is None or self.pipe is None:
             return
         pid, pipe = self.pid, self.pipe
@@ -76,10 +100,23 @@ class Beside:
                 os.kill(self.pid, signal.SIGKILL)
             except ProcessLookupError:  # pragma: no cover - it ended by itself
                 pass
-            try:
-                self.wait()
-            except BaseException:  # noqa: BLE001 - the error that stopped the parent is the one to report
-                pass
+        try:
+            self._join()
+        except BaseException:  # noqa: BLE001 - the error that stopped the parent is the one to report
+            pass
+
+
+def _tickets(count: int) -> int:
+    """The read end of a pipe holding the numbers ``0 .. count - 1``, two bytes each, its write end closed
+    (written whole before anyone reads: at most :data:`MOST_JOBS`, which a pipe's buffer always holds)."""
+    if count > MOST_JOBS:
+        raise ValueError(f"{count} jobs: at most {MOST_JOBS} can be handed out")
+    read, write = os.pipe()
+    data = memoryview(b"".join(i.to_bytes(2, "little") for i in range(count)))
+    while data:
+        data = data[os.write(write, data) :]
+    os.close(write)
+    return read
 
 
 def _die_with_parent() -> None:

@@ -121,7 +121,8 @@ class _Run:
         self.beside.start(jobs)
 
     def run_here(self) -> None:
-        """Run the jobs queued since, in this process, and wait for the second one's."""
+        """Run the jobs queued since, in this process, then those of the second process it has not started, and
+        wait for it."""
         jobs, self.jobs = self.jobs, []
         for job in jobs:
             job()
@@ -236,7 +237,8 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
     if animation:
         from linkwork import figures
 
-        run.jobs.append(lambda: figures.animate(cycle.kin, run.folder / "animation.gif", lang=run.lang))
+        # first: the longest job, not left for last to one process while the other has nothing to draw
+        run.jobs.insert(0, lambda: figures.animate(cycle.kin, run.folder / "animation.gif", lang=run.lang))
     _import_drawing()
     run.run_beside()
     if not run.mech.structure.redundant:
