@@ -12,14 +12,25 @@ DPI = 100
 def save(fig: Any, stem: Path) -> tuple[Path, Path]:
     """Write ``fig`` to ``STEM.png`` and ``STEM.svg``; returns the two paths.
 
-    The PNG is drawn first, with the figure's layout engine; the layout it found is then kept for the
-    SVG and any later output (not computed again).  The SVG's texts are SVG text: selectable, editable,
-    and quicker to write than glyph outlines."""
+    The figure's layout engine is run once, at the PNG's resolution, and then taken off, the axes kept where
+    it put them: each file is then one drawing of the figure.  (Saved with its engine on, a figure is drawn
+    once more, unseen, before each file, for the layout's sake.)  The SVG's texts are SVG text: selectable,
+    editable, and quicker to write than glyph outlines."""
     import matplotlib
 
     png, svg = stem.with_suffix(".png"), stem.with_suffix(".svg")
+    lay_out(fig)
     fig.savefig(png, dpi=DPI, pil_kwargs={"compress_level": 1})
-    fig.set_layout_engine("none")  # keeps the axes where the layout put them
     with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "linkwork"}):
         fig.savefig(svg, metadata={"Date": None})
     return png, svg
+
+
+def lay_out(fig: Any) -> None:
+    """Run ``fig``'s layout engine at :data:`DPI` and take it off, so that the axes stay where it put them."""
+    engine = fig.get_layout_engine()
+    if engine is None:
+        return
+    fig.set_dpi(DPI)
+    engine.execute(fig)
+    fig.set_layout_engine(None)
