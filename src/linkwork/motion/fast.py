@@ -205,16 +205,15 @@ def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, 
     """
     assert mech.fast_program is not None
     ops, branch = mech.fast_program
-    local, origin, axis = geom.point_local[:, 0], geom.pair_origin[:, 0], geom.pair_axis[:, 0]
-    values, rates, accels = (np.ascontiguousarray(x, dtype=float) for x in (values, rates, accels))
-    n_var, n_ang, n_steps, n_links = local.shape[0], values.shape[0], len(ops), mech.n_links_total
+    values, rates, accels = _floats(values), _floats(rates), _floats(accels)
+    n_var, n_ang, n_steps, n_links = geom.point_local.shape[0], values.shape[0], len(ops), mech.n_links_total
     out = np.empty((3, n_links, 3, n_var, n_ang))  # one block: q, v, a
     found = np.empty((2, n_steps, n_var, n_ang))  # slack, det
     marks = np.zeros((3, n_steps, n_var), dtype=np.bool_)  # near, trouble, limit
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
     flags = np.zeros(5, dtype=np.bool_)
-    args = (ops, branch, local, origin, axis, values, rates, accels, out.reshape(9 * n_links, n_var * n_ang),
-            found, valid, marks, flags)  # fmt: skip
+    args = (ops, branch, geom.point_local, geom.pair_origin, geom.pair_axis, values, rates, accels,
+            out.reshape(9 * n_links, n_var * n_ang), found, valid, marks, flags)  # fmt: skip
     _in_parts(args, n_links, n_steps, n_var, n_ang)
     if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
         marks[0] = False
@@ -224,11 +223,16 @@ def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, 
                   limit, invalid, trouble)  # fmt: skip
 
 
+def _floats(x: np.ndarray) -> np.ndarray:
+    """``x`` as a C-ordered array of floats (itself where it is one already)."""
+    return x if x.dtype == np.float64 and x.flags.c_contiguous else np.ascontiguousarray(x, dtype=float)
+
+
 def scan(values: np.ndarray) -> tuple[bool, float, float]:
     """Whether every entry of the drive coordinates ``values`` (A, D) is finite, and the least and the most
     step of the first drive from one sample to the next (inf and -inf for one sample), in one pass."""
     scanned: Any = _scan  # compiled (by compiled()) for C-ordered arrays of floats: others as such first
-    finite, least, most = scanned(np.ascontiguousarray(values, dtype=float))
+    finite, least, most = scanned(_floats(values))
     return bool(finite), float(least), float(most)
 
 
@@ -673,7 +677,7 @@ def _tolerance(local):
     most = 0.0
     for var in range(local.shape[0]):
         for p in range(local.shape[1]):
-            most = max(most, abs(local[var, p, 0]), abs(local[var, p, 1]))
+            most = max(most, abs(local[var, 0, p, 0]), abs(local[var, 0, p, 1]))
     return 1e-12 * (1 + most)
 
 
@@ -691,7 +695,7 @@ def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, found,
     tol = _tolerance(local)
     n_ang = values.shape[0]
     for var in range(local.shape[0]):
-        loc, org, axs = local[var], origin[var], axis[var]
+        loc, org, axs = local[var, 0], origin[var, 0], axis[var, 0]
         _arm_constants(ops, loc, pre)
         first = max(lo - 1, 0)
         for i in range(first, hi):
