@@ -237,6 +237,7 @@ def scan(values: np.ndarray) -> tuple[bool, float, float]:
 
 
 def _scan(values):
+    """:func:`scan` of C-ordered floats."""
     finite = True
     for i in range(values.shape[0]):
         for d in range(values.shape[1]):
@@ -673,10 +674,10 @@ def _driving_rows(ops, out, n_links, slack, det, var, lo, hi):
 
 def _tolerance(local):
     """How close (m) a dyad's two modes may come at the same place: 1e-12 of 1 m plus the largest
-    coordinate of a point of any variant."""
+    coordinate of a point of any variant (``local``: (V, 1, P, 2))."""
     most = 0.0
     for var in range(local.shape[0]):
-        for p in range(local.shape[1]):
+        for p in range(local.shape[2]):
             most = max(most, abs(local[var, 0, p, 0]), abs(local[var, 0, p, 1]))
     return 1e-12 * (1 + most)
 
