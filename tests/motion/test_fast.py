@@ -122,9 +122,10 @@ def test_samples_on_a_singular_position_go_to_the_numpy_path(monkeypatch):
 
 
 def test_the_kernels_say_what_their_arrays_hold(monkeypatch):
-    """``some_near``, ``some_limit`` and ``some_invalid`` of :func:`fast.run` (set by the kernels as they
-    go) are ``near.any()``, ``limit.any()`` and ``not valid.all()``, on one thread and split over three:
-    variants that fail to assemble, change points, a dyad on its singular position, and none of these."""
+    """``some_near``, ``some_limit``, ``some_invalid`` and ``some_trouble`` of :func:`fast.run` (set by the
+    kernels as they go) are ``near.any()``, ``limit.any()``, ``not valid.all()`` and ``trouble.any()``, on
+    one thread and split over three: variants that fail to assemble, change points, a dyad on its
+    singular position, and none of these."""
     from mechanisms import RHOMBUS
 
     four, shears = lw.compile(lw.example("four-bar")), lw.compile(lw.example("shears-slider-crank"))
@@ -143,7 +144,17 @@ def test_the_kernels_say_what_their_arrays_hold(monkeypatch):
         for mech, variants, angles in cases:
             values = angles[:, None]
             res = fast.run(mech, apply(mech, variants)[0], values, np.ones_like(values), np.zeros_like(values))
-            found = {"near": res.near.any(), "limit": res.limit.any(), "invalid": not res.valid.all()}
-            assert (res.some_near, res.some_limit, res.some_invalid) == tuple(found.values())
+            found = {"near": res.near.any(), "limit": res.limit.any(), "invalid": not res.valid.all(),
+                     "trouble": res.trouble.any()}  # fmt: skip
+            assert (res.some_near, res.some_limit, res.some_invalid, res.some_trouble) == tuple(found.values())
             seen |= {name for name, there in found.items() if there}
-    assert seen == {"near", "limit", "invalid"}
+    assert seen == {"near", "limit", "invalid", "trouble"}
+
+
+def test_the_tolerance_of_the_change_point_test_is_of_the_largest_point_of_any_variant():
+    """The kernels find it themselves: 1e-12 of 1 m plus the largest coordinate of any point of any
+    variant (here the crank's end in the last variant)."""
+    mech = lw.compile(lw.example("four-bar"))
+    local = apply(mech, {"links.crank.length": np.linspace(0.05, 2.0, 5)})[0].point_local
+    assert np.abs(local[-1]).max() == 2.0 > np.abs(local[:-1]).max()
+    assert fast._tolerance(local) == 1e-12 * (1 + 2.0)

@@ -743,3 +743,15 @@ def test_readings_of_a_point_are_the_callers_own():
     np.testing.assert_allclose(kin.position("A"), r * ring, atol=1e-15)
     np.testing.assert_allclose(kin.velocity("A"), w * r * ring[:, ::-1] * [-1, 1], atol=1e-14)
     np.testing.assert_allclose(kin.acceleration("A"), -w * w * r * ring, atol=1e-13)
+
+
+def test_a_result_is_made_with_every_field_of_its_class():
+    """The result is made without the dataclass's ``__init__`` (for speed): it holds every field all the
+    same, and one made through ``__init__`` from its fields reads the same."""
+    kin = lw.kinematics(lw.compile(lw.example("four-bar")), steps=12)
+    assert set(vars(kin)) == {f.name for f in dataclasses.fields(lw.Kinematics)}
+    assert kin._arms == {}
+    again = dataclasses.replace(kin)
+    np.testing.assert_array_equal(again.position("B"), kin.position("B"))
+    np.testing.assert_array_equal(again.acceleration("coupler.A"), kin.acceleration("coupler.A"))
+    assert again.events == kin.events

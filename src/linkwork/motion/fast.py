@@ -84,8 +84,9 @@ class Solved(NamedTuple):
     limit : ndarray of bool, shape (S, V)
         A dyad lies on a singular position to rounding (its outer joints together or its modes
         meeting): the NumPy kernels give the velocities there.
-    some_near, some_limit, some_invalid : bool
-        ``near.any()``, ``limit.any()`` and ``not valid.all()``, found by the kernels as they go.
+    some_near, some_limit, some_invalid, some_trouble : bool
+        ``near.any()``, ``limit.any()``, ``not valid.all()`` and ``trouble.any()``, found by the kernels
+        as they go.
     """
 
     q: np.ndarray
@@ -101,11 +102,12 @@ class Solved(NamedTuple):
     some_near: bool = False
     some_limit: bool = False
     some_invalid: bool = False
+    some_trouble: bool = True
 
 
 #: Entries of the flags the kernel sets (:class:`Solved`): some sample singular, some step near a change
-#: point, some step on a singular position to rounding, some sample not assembled.
-F_SINGULAR, F_NEAR, F_LIMIT, F_INVALID = range(4)
+#: point, some step on a singular position to rounding, some sample not assembled, some step in trouble.
+F_SINGULAR, F_NEAR, F_LIMIT, F_INVALID, F_TROUBLE = range(5)
 
 #: Threads a long batch is split over (the kernels release the GIL), and the least samples per thread.
 THREADS = min(os.cpu_count() or 1, 8)
@@ -203,25 +205,48 @@ def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, 
     """
     assert mech.fast_program is not None
     ops, branch = mech.fast_program
-    local, origin, axis = geom.point_local[:, 0], geom.pair_origin[:, 0], geom.pair_axis[:, 0]
-    values, rates, accels = (np.ascontiguousarray(x, dtype=float) for x in (values, rates, accels))
-    n_var, n_ang, n_steps = local.shape[0], values.shape[0], len(ops)
-    out = np.empty((3, mech.n_links_total, 3, n_var, n_ang))  # one block: q, v, a
-    slack = np.empty((n_steps, n_var, n_ang))
-    per_step = [np.zeros((n_steps, n_var), dtype=np.bool_) for _ in range(3)]
+    values, rates, accels = _floats(values), _floats(rates), _floats(accels)
+    n_var, n_ang, n_steps, n_links = geom.point_local.shape[0], values.shape[0], len(ops), mech.n_links_total
+    out = np.empty((3, n_links, 3, n_var, n_ang))  # one block: q, v, a
+    found = np.empty((2, n_steps, n_var, n_ang))  # slack, det
+    marks = np.zeros((3, n_steps, n_var), dtype=np.bool_)  # near, trouble, limit
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
-    solved = Solved(out[0], out[1], out[2], slack, np.empty_like(slack), valid, per_step[0], per_step[1], False,
-                    per_step[2])  # fmt: skip
-    flags = np.zeros(4, dtype=np.bool_)
-    tol = 1e-12 * (1 + float(np.abs(local).max()))
-    args = (ops, branch, local, origin, axis, values, rates, accels, out, slack, solved.det, solved.valid,
-            solved.near, solved.trouble, flags, solved.limit, tol)  # fmt: skip
-    _in_parts(args, mech.n_links_total, n_steps, n_var, n_ang)
+    flags = np.zeros(5, dtype=np.bool_)
+    args = (ops, branch, geom.point_local, geom.pair_origin, geom.pair_axis, values, rates, accels,
+            out.reshape(9 * n_links, n_var * n_ang), found, valid, marks, flags)  # fmt: skip
+    _in_parts(args, n_links, n_steps, n_var, n_ang)
     if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
-        solved.near[:] = False
+        marks[0] = False
         flags[F_NEAR] = False
-    singular, some_near, some_limit, some_invalid = flags.tolist()
-    return solved._replace(singular=singular, some_near=some_near, some_limit=some_limit, some_invalid=some_invalid)
+    singular, near, limit, invalid, trouble = flags.tolist()
+    return Solved(out[0], out[1], out[2], found[0], found[1], valid, marks[0], marks[1], singular, marks[2], near,
+                  limit, invalid, trouble)  # fmt: skip
+
+
+def _floats(x: np.ndarray) -> np.ndarray:
+    """``x`` as a C-ordered array of floats (itself where it is one already)."""
+    return x if x.dtype == np.float64 and x.flags.c_contiguous else np.ascontiguousarray(x, dtype=float)
+
+
+def scan(values: np.ndarray) -> tuple[bool, float, float]:
+    """Whether every entry of the drive coordinates ``values`` (A, D) is finite, and the least and the most
+    step of the first drive from one sample to the next (inf and -inf for one sample), in one pass."""
+    scanned: Any = _scan  # compiled (by compiled()) for C-ordered arrays of floats: others as such first
+    finite, least, most = scanned(_floats(values))
+    return bool(finite), float(least), float(most)
+
+
+def _scan(values):
+    """:func:`scan` of C-ordered floats."""
+    finite = True
+    for i in range(values.shape[0]):
+        for d in range(values.shape[1]):
+            finite = finite and math.isfinite(values[i, d])
+    least, most = math.inf, -math.inf
+    for i in range(1, values.shape[0]):
+        step = values[i, 0] - values[i - 1, 0]
+        least, most = min(least, step), max(most, step)
+    return finite, least, most
 
 
 def _in_parts(args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_ang: int) -> None:
@@ -584,8 +609,13 @@ def _near(ops, st, prev, x, y, gx, gy, tol):
     m2 = max(dp2, dm2)
     if not (m2 == m2):
         m2 = dp2 if dp2 == dp2 else dm2
+    g2_prev, g2 = prev[st, PREV_GX] ** 2 + prev[st, PREV_GY] ** 2, gx * gx + gy * gy
+    # (2 sqrt(m2) + tol)^2 <= 8 m2 + 2 tol^2: both gaps beyond that (with room for rounding) are far
+    bound = (8 * m2 + 2 * tol * tol) * (1 + 1e-9)
+    if g2_prev > bound and g2 > bound:
+        return False
     lim = (2 * math.sqrt(m2) + tol) ** 2
-    return prev[st, PREV_GX] ** 2 + prev[st, PREV_GY] ** 2 <= lim or gx * gx + gy * gy <= lim
+    return g2_prev <= lim or g2 <= lim
 
 
 def _sample(ops, branch, pre, loc, org, axs, values, rates, accels, slack, det, near, trouble, limit, tol,
@@ -615,23 +645,25 @@ def _sample(ops, branch, pre, loc, org, axs, values, rates, accels, slack, det, 
     return ok, small
 
 
-def _store(L, out, var, i):
-    """The moving links' states at sample ``i`` of variant ``var`` into ``out`` (the frame's are filled
-    by :func:`_driving_rows`)."""
-    for link in range(1, out.shape[1]):
+def _store(L, out, col):
+    """The moving links' states at column ``col`` (a variant's sample) of ``out`` (the output block as
+    rows (quantity, link, coordinate), :func:`run`); the frame's are filled by :func:`_driving_rows`."""
+    n = L.shape[0]
+    for link in range(1, n):
         for k in range(3):
-            out[0, link, k, var, i] = L[link, k]
-            out[1, link, k, var, i] = L[link, S_VX + k]
-            out[2, link, k, var, i] = L[link, S_AX + k]
+            out[3 * link + k, col] = L[link, k]
+            out[3 * (n + link) + k, col] = L[link, S_VX + k]
+            out[3 * (2 * n + link) + k, col] = L[link, S_AX + k]
 
 
-def _driving_rows(ops, out, slack, det, var, lo, hi):
+def _driving_rows(ops, out, n_links, slack, det, var, lo, hi):
     """The frame at rest, its frame the global one, and the driving links assembled and regular,
     at the samples ``lo:hi`` of variant ``var``."""
+    n_ang = slack.shape[2]
     for t in range(3):
         for k in range(3):
             for i in range(lo, hi):
-                out[t, 0, k, var, i] = 0.0
+                out[3 * n_links * t + k, var * n_ang + i] = 0.0
     for st in range(ops.shape[0]):
         if ops[st, KIND] < DYAD:
             for i in range(lo, hi):
@@ -640,17 +672,31 @@ def _driving_rows(ops, out, slack, det, var, lo, hi):
                 det[st, var, i] = 1.0
 
 
-def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, slack, det, valid, near, trouble,
-            flags, limit, tol, lo, hi, L, pre, prev):  # fmt: skip
+def _tolerance(local):
+    """How close (m) a dyad's two modes may come at the same place: 1e-12 of 1 m plus the largest
+    coordinate of a point of any variant (``local``: (V, 1, P, 2))."""
+    most = 0.0
+    for var in range(local.shape[0]):
+        for p in range(local.shape[2]):
+            most = max(most, abs(local[var, 0, p, 0]), abs(local[var, 0, p, 1]))
+    return 1e-12 * (1 + most)
+
+
+def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, found, valid, marks, flags, lo, hi, L,
+            pre, prev):  # fmt: skip
     """Samples ``lo:hi`` of every variant (``near`` also from the step between ``lo - 1`` and ``lo``);
     sets ``flags`` (:data:`F_SINGULAR` ...) where something is found.
 
-    Scratch: ``L`` (N, STATE) the link states of a sample, ``pre`` (S, 2, 3) constants of the R arms
-    of a variant, ``prev`` (S, 5) X of each dyad, the vector to X of its other mode and the determinant
-    at the sample before.
+    ``out``: the output block (:func:`run`) as rows (quantity, link, coordinate) and columns (variant,
+    sample); ``found``: slack and det; ``marks``: near, trouble and limit.  Scratch: ``L`` (N, STATE)
+    the link states of a sample, ``pre`` (S, 2, 3) constants of the R arms of a variant, ``prev``
+    (S, 5) X of each dyad, the vector to X of its other mode and the determinant at the sample before.
     """
-    for var in range(out.shape[3]):
-        loc, org, axs = local[var], origin[var], axis[var]
+    slack, det, near, trouble, limit = found[0], found[1], marks[0], marks[1], marks[2]
+    tol = _tolerance(local)
+    n_ang = values.shape[0]
+    for var in range(local.shape[0]):
+        loc, org, axs = local[var, 0], origin[var, 0], axis[var, 0]
         _arm_constants(ops, loc, pre)
         first = max(lo - 1, 0)
         for i in range(first, hi):
@@ -664,13 +710,15 @@ def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, slack,
                 flags[F_INVALID] = True
             elif small:
                 flags[F_SINGULAR] = True
-            _store(L, out, var, i)
-        _driving_rows(ops, out, slack, det, var, lo, hi)
+            _store(L, out, var * n_ang + i)
+        _driving_rows(ops, out, L.shape[0], slack, det, var, lo, hi)
         for st in range(ops.shape[0]):
             if near[st, var]:
                 flags[F_NEAR] = True
             if limit[st, var]:
                 flags[F_LIMIT] = True
+            if trouble[st, var]:
+                flags[F_TROUBLE] = True
 
 
 #: Options of every compiled kernel: no reference counting, the kernels allocate nothing.
@@ -679,8 +727,8 @@ OPTS: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True, "_
 #: The kernels inlined into the others, and those called from Python.
 _INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_src_point", "_locus", "_touching", "_snap",
            "_arm_motion", "_arm_extra", "_circles", "_circle_line", "_dyad", "_dyad_motion", "_rpr", "_crank",
-           "_slide", "_step", "_near", "_sample", "_store", "_driving_rows")  # fmt: skip
-_CALLED = ("_arm_constants", "_kernel")
+           "_slide", "_step", "_near", "_sample", "_store", "_driving_rows", "_tolerance")  # fmt: skip
+_CALLED = ("_arm_constants", "_kernel", "_scan")
 
 
 def jit_in_place(space: dict[str, object], inline: tuple[str, ...], called: tuple[str, ...]) -> bool:

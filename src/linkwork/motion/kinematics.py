@@ -12,6 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from linkwork.errors import LinkworkError, UnassemblableError
+from linkwork.motion import fast
 from linkwork.motion.events import Event, find
 from linkwork.motion.solve import run
 from linkwork.motion.state import State
@@ -51,6 +52,15 @@ class Kinematics:
     _arms: dict[int, tuple[int, np.ndarray, np.ndarray]] = field(
         default_factory=dict, init=False, repr=False, compare=False
     )
+
+    @classmethod
+    def _made(cls, **fields: Any) -> Kinematics:
+        """A result of every field but ``_arms`` (given by name), made without the dataclass's ``__init__``,
+        which sets the fields of a frozen dataclass one at a time (a few microseconds, a tenth of the
+        fixed cost of a short solve)."""
+        out = object.__new__(cls)
+        out.__dict__.update(fields, _arms={})
+        return out
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
@@ -201,7 +211,9 @@ class Kinematics:
 PATH_STEP = np.radians(5.0)
 
 
-def _path(mech: Mechanism, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+def _path(
+    mech: Mechanism, angles: np.ndarray, steps: tuple[float, float] | None = None
+) -> tuple[np.ndarray, np.ndarray] | None:
     """A path of crank angles that reaches every asked angle from the assembly pose.
 
     Change points are followed along the order of the samples, so angles
@@ -209,16 +221,20 @@ def _path(mech: Mechanism, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray] 
     angles away from the assembly pose) are solved on the sorted union of
     the asked angles and a grid of 5 degrees from the assembly angle; the
     result keeps the asked ones.  Returns (path, indices of the asked
-    angles in it), or None when the angles are a path already.
+    angles in it), or None when the angles are a path already.  ``steps``:
+    the least and most step between consecutive angles, where known.
     """
-    if not _drive_facts(mech).follows:
+    facts = _drive_facts(mech)
+    if not facts.follows:
         return None
-    start = float(mech.drive_start[0])
+    start = facts.start
     step = PATH_STEP * (1 + 1e-9)
     if len(angles) > 1:  # a path already: monotonic, in steps of at most PATH_STEP, through the start
-        d = angles[1:] - angles[:-1]
-        least, most = d.min(), d.max()
-        first, last = (angles[0], angles[-1]) if angles[0] <= angles[-1] else (angles[-1], angles[0])
+        if steps is None:
+            d = angles[1:] - angles[:-1]
+            steps = float(d.min()), float(d.max())
+        least, most = steps
+        first, last = sorted((float(angles[0]), float(angles[-1])))
         if (least > 0 or most < 0) and max(most, -least) <= step and first - step <= start <= last + step:
             return None
     lo, hi = min(angles.min(), start), max(angles.max(), start)
@@ -286,18 +302,18 @@ def kinematics(
     -------
     Kinematics
     """
-    values = _drive_values(mech, angles, steps)
+    values, span = _drive_values(mech, angles, steps)
     rates = np.empty_like(values)
     rates[:] = _speeds(mech, speed)
     for path, value in (variants or {}).items():
         if np.ndim(value) > 1:
             raise LinkworkError(f'variants["{path}"]: expected a one-dimensional array, got shape {np.shape(value)}')
     geom, masses = apply(mech, variants) if variants else (file_geometry(mech), None)
-    state, events = _solve(mech, geom, values, rates)
+    state, events = _solve(mech, geom, values, rates, span)
     if strict and not state.valid.all():
         first = next(e for e in events if e.kind == "no-assembly")
         raise UnassemblableError(first.message, group=first.group, angle=first.start)
-    return Kinematics(
+    return Kinematics._made(
         mechanism=mech,
         drive=values,
         rates=rates,
@@ -327,8 +343,12 @@ def file_geometry(mech: Mechanism) -> Geometry:
     return geom
 
 
-def _drive_values(mech: Mechanism, angles: npt.ArrayLike | None, steps: int | None) -> np.ndarray:
-    """The drive coordinates asked for, ``(A, D)``; :class:`LinkworkError` for anything else."""
+def _drive_values(
+    mech: Mechanism, angles: npt.ArrayLike | None, steps: int | None
+) -> tuple[np.ndarray, tuple[float, float] | None]:
+    """The drive coordinates asked for, ``(A, D)``, and the least and most step of the first drive
+    between consecutive samples where the check of the values found them (:func:`fast.scan`, for
+    :func:`_path`); :class:`LinkworkError` for anything else."""
     if (angles is None) == (steps is None):
         raise LinkworkError("give either angles or steps")
     if steps is not None and (isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 1):
@@ -339,9 +359,15 @@ def _drive_values(mech: Mechanism, angles: npt.ArrayLike | None, steps: int | No
     values = values.reshape(len(values), -1) if values.ndim else values.reshape(1, 1)
     if values.shape[1] != mech.n_drives:
         raise LinkworkError(f"the mechanism has {mech.n_drives} drives; angles must have shape (n, {mech.n_drives})")
-    if not np.isfinite(values).all():
+    span = None
+    if values.flags.c_contiguous and fast.available():  # one compiled pass: finite, and the steps
+        finite, least, most = fast.scan(values)
+        span = least, most
+    else:
+        finite = bool(np.isfinite(values).all())
+    if not finite:
         raise LinkworkError("angles must be finite numbers")
-    return values
+    return values, span
 
 
 class _DriveFacts(NamedTuple):
@@ -350,6 +376,7 @@ class _DriveFacts(NamedTuple):
     revolute: bool  # the first drive is a revolute pair
     follows: bool  # one revolute drive and dyads that have change points: solved along a path (:func:`_path`)
     speeds: np.ndarray  # (D,) the file's speed of every drive, 1 where it gives none; read-only
+    start: float  # the first drive's coordinate in the assembly pose
 
 
 @per_mechanism
@@ -359,7 +386,7 @@ def _drive_facts(mech: Mechanism) -> _DriveFacts:
     dyads = any(step.kind in ("RRR", "RRP", "PRP") for step in mech.program)
     speeds = np.array([x if math.isfinite(x) and x != 0 else 1.0 for x in mech.drive_speed.tolist()])
     speeds.flags.writeable = False
-    return _DriveFacts(revolute, revolute and mech.n_drives == 1 and dyads, speeds)
+    return _DriveFacts(revolute, revolute and mech.n_drives == 1 and dyads, speeds, float(mech.drive_start[0]))
 
 
 def _speeds(mech: Mechanism, speed: npt.ArrayLike | None) -> np.ndarray:
@@ -372,14 +399,17 @@ def _speeds(mech: Mechanism, speed: npt.ArrayLike | None) -> np.ndarray:
     return np.broadcast_to(speed.ravel(), (mech.n_drives,))
 
 
-def _solve(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray) -> tuple[State, tuple[Event, ...]]:
+def _solve(
+    mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, span: tuple[float, float] | None = None
+) -> tuple[State, tuple[Event, ...]]:
     """The state at the drive coordinates ``values`` ``(A, D)`` at the speeds ``rates`` ``(A, D)``, and the
     events along them.  A single crank is solved along a path from the assembly pose through every angle
-    asked (:func:`_path`), and the asked ones kept."""
+    asked (:func:`_path`; ``span``: the least and most step of the first drive, where known), and the
+    asked ones kept."""
     revolute = _drive_facts(mech).revolute
-    path = _path(mech, values[:, 0])
+    path = _path(mech, values[:, 0], span)
     if path is None:
-        state = run(mech, mech.program, geom, values, rates, np.zeros_like(values))
+        state = run(mech, mech.program, geom, values, rates, np.zeros(values.shape))
         return state, tuple(find(mech.program, state, values[:, 0], revolute))
     angles, take = path
     rate = np.broadcast_to(rates[0], (len(angles), 1))

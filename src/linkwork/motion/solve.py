@@ -6,7 +6,7 @@ import numpy as np
 
 from linkwork.motion import fast, kernels
 from linkwork.motion.program import Step
-from linkwork.motion.state import Jump, State, StepRecord, soa
+from linkwork.motion.state import Jump, State, StepRecord
 from linkwork.structure.assemble import group_rows
 from linkwork.structure.constraints import build_rows, residuals_and_jacobian, velocity_products
 from linkwork.structure.model import Mechanism, PairType
@@ -75,11 +75,12 @@ def _run_fast(
     if res.some_near or res.some_limit:
         return None
     none = np.empty((0, 0, 0))  # no angles kept: the state is not solved further
-    state = State(res.q, res.v, res.a, none, none, soa(geom.point_local), soa(geom.pair_origin), soa(geom.pair_axis),
-                  res.valid)  # fmt: skip
-    assembled = res.slack >= 0  # the kernels give cranks and slides a margin of 1: always assembled
+    state = State(res.q, res.v, res.a, none, none, *geom.link_major, res.valid)
+    # the kernels give cranks and slides a margin of 1: always assembled; every step wherever every sample is
+    assembled = res.slack >= 0 if res.some_invalid else [res.valid] * len(program)
     state.steps = [StepRecord(ok, d, s) for ok, d, s in zip(assembled, res.det, res.slack, strict=True)]
     state.step_trouble = res.trouble
+    state.quiet = not res.some_trouble
     if res.singular:
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             _repair_singular(mech, program, geom, values, rates, accels, state)
@@ -127,7 +128,7 @@ def _solve(
     branches: list[np.ndarray | None] | None = None,
 ) -> State:
     n_var, n_ang = geom.n_variants, values.shape[0]
-    state = State.empty(mech.n_links_total, soa(geom.point_local), soa(geom.pair_origin), soa(geom.pair_axis), n_ang)
+    state = State.empty(mech.n_links_total, *geom.link_major, n_ang)
     offset = (values[:, 0] - mech.drive_start[0] + np.pi) % (2 * np.pi) - np.pi
     if mech.pair_type[mech.drive_pair[0]] == PairType.PRISMATIC:
         offset = values[:, 0] - mech.drive_start[0]

@@ -17,6 +17,7 @@ from typing import NamedTuple
 import numpy as np
 
 from linkwork.structure.model import Mechanism
+from linkwork.structure.parameters import soa
 
 Vec = tuple[np.ndarray, np.ndarray]
 
@@ -193,6 +194,8 @@ class State:
     # per step (V,), from the compiled path: where a step may have events (no assembly, a singular
     # position, a sign change of its determinant); None: look everywhere
     step_trouble: np.ndarray | None = None
+    # from the compiled path: no step of any variant is in trouble (``step_trouble`` all False)
+    quiet: bool = False
 
     @classmethod
     def empty(cls, n_links: int, local: np.ndarray, origin: np.ndarray, axis: np.ndarray, n_ang: int) -> State:
@@ -280,11 +283,6 @@ class State:
             (v[0] - w * r[1], v[1] + w * r[0]),
             (a[0] - e * r[1] - w * w * r[0], a[1] + e * r[0] - w * w * r[1]),
         )
-
-
-def soa(a: np.ndarray) -> np.ndarray:
-    """(V, 1, K, 2) geometry arrays -> (K, 2, V, 1)."""
-    return np.ascontiguousarray(np.asarray(a, dtype=float).transpose(2, 3, 0, 1))
 
 
 def single_state(mech: Mechanism) -> State:

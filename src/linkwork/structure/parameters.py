@@ -39,6 +39,7 @@ home.
 from __future__ import annotations
 
 import copy
+import functools
 import io
 import math
 import re
@@ -93,6 +94,20 @@ class Geometry:
     @property
     def n_variants(self) -> int:
         return self.point_local.shape[0]
+
+    @functools.cached_property
+    def link_major(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``point_local``, ``pair_origin`` and ``pair_axis`` in the layout of the kinematic state
+        (:func:`soa`), made once per geometry (once per mechanism for its file's); read-only."""
+        arrays = tuple(soa(a) for a in (self.point_local, self.pair_origin, self.pair_axis))
+        for array in arrays:
+            array.flags.writeable = False
+        return arrays  # type: ignore[return-value]
+
+
+def soa(a: np.ndarray) -> np.ndarray:
+    """(V, 1, K, 2) geometry arrays -> (K, 2, V, 1)."""
+    return np.ascontiguousarray(np.asarray(a, dtype=float).transpose(2, 3, 0, 1))
 
 
 @dataclass(frozen=True)
