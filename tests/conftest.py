@@ -51,9 +51,9 @@ def main_job(tmp_path_factory: pytest.TempPathFactory) -> MainJob:
 
 
 #: Tests of the slow lane, by node id without the parameters (``path::name``), each with the parameter ids it
-#: keeps in the fast lane: each checks every bundled example (or both languages, both turning directions)
-#: where the cases kept show the same code at work.  The Russian figures stand for the English ones: their
-#: words are longer, so they are the first to cover one another.
+#: keeps in the fast lane: each checks every bundled example (or both languages, both turning directions, a
+#: list of files) where the cases kept show the same code at work.  The Russian figures stand for the English
+#: ones: their words are longer, so they are the first to cover one another.
 SLOW = {
     "figures/test_figures.py::test_no_text_of_a_report_figure_covers_another_and_no_axes_cover_axes": (
         "double-cut-shears-ru",
@@ -66,6 +66,9 @@ SLOW = {
         "percussion-rocker",  # and the impact section
     ),
     "report/test_build.py::test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output": ("ccw",),
+    # the entry point on a file the YAML reader refuses and on one that cannot be assembled (every file of the
+    # corpus runs through the application in the fast lane)
+    "spec/test_bad_files.py::test_bad_file_through_the_real_command": ("yaml-syntax", "unassemblable"),
 }
 
 

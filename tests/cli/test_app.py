@@ -435,15 +435,16 @@ def test_check_starts_without_the_packages_it_does_not_need():
 
 def test_the_sweep_draws_its_progress_bar_on_a_terminal_only(tmp_path):
     """Piped to a file, stderr holds no bar (rich's box characters, cursor moves); on a terminal (a
-    pseudo-terminal here) the bar is drawn; the table is the same either way."""
+    pseudo-terminal given to a process of its own here) the bar is drawn; the table is the same either way."""
     import pty
 
-    args = [sys.executable, "-m", "linkwork.cli", *[a for a in SWEEP if a != "--quiet"]]
-    piped = subprocess.run([*args, "--out", str(tmp_path / "a.parquet")], capture_output=True, text=True)
+    sweep = [a for a in SWEEP if a != "--quiet"]
+    piped = linkwork(*sweep, "--out", str(tmp_path / "a.parquet"))  # stderr no terminal
     assert piped.returncode == 0, piped.stderr
     assert "━" not in piped.stderr and "\x1b[" not in piped.stderr and "chunks" not in piped.stderr
     leader, follower = pty.openpty()
-    with subprocess.Popen([*args, "--out", str(tmp_path / "b.parquet")], stdout=subprocess.DEVNULL,
+    args = [sys.executable, "-m", "linkwork.cli", *sweep, "--out", str(tmp_path / "b.parquet")]
+    with subprocess.Popen(args, stdout=subprocess.DEVNULL,
                           stderr=follower, env={**os.environ, "COLUMNS": "100", "TERM": "xterm"}) as proc:
         os.close(follower)
         drawn = b""
