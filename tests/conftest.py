@@ -1,9 +1,11 @@
 """What the tests share: the report of the README's main job, built once, and the markers of the lanes.
 
-Markers (``pyproject.toml``): ``slow`` (long property runs, every figure of every example), ``browser``
-(Debian's chromium through Playwright), ``dask`` (worker processes and schedulers).  The fast lane is
-``pytest -m "not slow and not browser and not dask"``; ``.ci/run`` runs them all.  The full generated run of
-hostile inputs (marker ``hostile``, hundreds of processes) runs only when asked for: ``pytest --hostile``.
+Markers (``pyproject.toml``): ``slow`` (the cases of a test beyond those the fast lane keeps of it, listed in
+:data:`SLOW`: every example, both languages, both turning directions, every file; two thirds of the sample of
+hostile inputs), ``browser`` (Debian's chromium through Playwright), ``dask`` (worker processes and
+schedulers).  The fast lane is ``pytest -m "not slow and not browser and not dask"``; ``.ci/run`` runs them
+all.  The full generated run of hostile inputs (marker ``hostile``, hundreds of processes) runs only when
+asked for: ``pytest --hostile``.
 """
 
 from __future__ import annotations
