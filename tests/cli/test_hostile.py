@@ -3,8 +3,9 @@ message of short lines, within a bounded time and memory, and its ``--json`` is 
 
 The cases come from :mod:`hostile` (mutated bundled examples, attacks on the YAML reader, options at
 and past their bounds).  A sample runs with the suite, each case in this process under a time bound (every
-third case of each kind in the fast lane, the others in the slow one); the full run (``pytest --hostile tests/cli/test_hostile.py``) runs many more, each in its own process under
-a memory bound too.  Then the defects found by such runs, one test each.
+third case of each kind in the fast lane, the others in the slow one); the full run
+(``pytest --hostile tests/cli/test_hostile.py``) runs many more, each in its own process under a memory
+bound too.  Then the defects found by such runs, one test each.
 """
 
 from __future__ import annotations

@@ -266,7 +266,12 @@ def test_no_english_is_left_in_the_russian_report(name, tmp_path):
 
 
 def test_english_is_the_default_and_an_unknown_language_is_refused(tmp_path):
-    page, _ = _report("four-bar", tmp_path / "en", steps=36)
+    import linkwork as lw
+    from linkwork import report
+
+    page = report.analyze(lw.compile(lw.example("four-bar")), tmp_path / "en", steps=36, animation=False).read_text(
+        encoding="utf-8"
+    )
     assert "<html lang='en'>" in page and "Kinematics" in page
     out = tmp_path / "de"
     result = runner.invoke(app, ["analyze", "four-bar", "--out", str(out), "--lang", "de"])
