@@ -83,6 +83,12 @@ class Outcome:
 
 
 def _base(name: str) -> dict[str, Any]:
+    """The bundled example ``name`` as plain data, a copy of its own to mutate."""
+    return copy.deepcopy(_read(name))
+
+
+@functools.cache
+def _read(name: str) -> dict[str, Any]:
     return YAML(typ="safe").load(text(name))
 
 

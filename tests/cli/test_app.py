@@ -16,6 +16,7 @@ import pytest
 from typer.testing import CliRunner
 
 import linkwork as lw
+from commandline import linkwork
 from linkwork.cli.main import app
 from linkwork.examples import names, text
 
@@ -354,7 +355,9 @@ def test_the_json_writer_rule():
 
 
 def test_tables_are_plain_text_when_piped():
-    """Piped, `linkwork check` prints what the README shows: no box characters, no trailing blanks."""
+    """Piped, `linkwork check` prints what the README shows: no box characters, no trailing blanks (the
+    command in a process of its own, its stdout a pipe; the tables of the others, whose stdout is no terminal
+    either, in this process)."""
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     shown = readme.split("$ linkwork check double-cut-shears\n", 1)[1].split("```", 1)[0]
     proc = subprocess.run(
@@ -363,7 +366,7 @@ def test_tables_are_plain_text_when_piped():
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout == shown
     for command in (["positions", "four-bar"], ["forces", "four-bar", "--steps", "36"]):
-        proc = subprocess.run([sys.executable, "-m", "linkwork.cli", *command], capture_output=True, text=True)
+        proc = linkwork(*command)
         assert proc.returncode == 0, proc.stderr
         assert proc.stdout.isascii(), command
         assert all(line == line.rstrip() for line in proc.stdout.splitlines())
@@ -432,15 +435,16 @@ def test_check_starts_without_the_packages_it_does_not_need():
 
 def test_the_sweep_draws_its_progress_bar_on_a_terminal_only(tmp_path):
     """Piped to a file, stderr holds no bar (rich's box characters, cursor moves); on a terminal (a
-    pseudo-terminal here) the bar is drawn; the table is the same either way."""
+    pseudo-terminal given to a process of its own here) the bar is drawn; the table is the same either way."""
     import pty
 
-    args = [sys.executable, "-m", "linkwork.cli", *[a for a in SWEEP if a != "--quiet"]]
-    piped = subprocess.run([*args, "--out", str(tmp_path / "a.parquet")], capture_output=True, text=True)
+    sweep = [a for a in SWEEP if a != "--quiet"]
+    piped = linkwork(*sweep, "--out", str(tmp_path / "a.parquet"))  # stderr no terminal
     assert piped.returncode == 0, piped.stderr
     assert "━" not in piped.stderr and "\x1b[" not in piped.stderr and "chunks" not in piped.stderr
     leader, follower = pty.openpty()
-    with subprocess.Popen([*args, "--out", str(tmp_path / "b.parquet")], stdout=subprocess.DEVNULL,
+    args = [sys.executable, "-m", "linkwork.cli", *sweep, "--out", str(tmp_path / "b.parquet")]
+    with subprocess.Popen(args, stdout=subprocess.DEVNULL,
                           stderr=follower, env={**os.environ, "COLUMNS": "100", "TERM": "xterm"}) as proc:
         os.close(follower)
         drawn = b""
@@ -464,9 +468,9 @@ def test_the_pair_table_shows_a_zero_where_the_json_writes_one():
     """The knives' guides of the double-cut shears carry no moment (each knife's forces pass through its
     slider point, on the guide's axis), so the largest moment of each guide is round-off: the table shows 0,
     as the JSON does, and the largest forces agree with the JSON's to the table's six digits."""
-    args = [sys.executable, "-m", "linkwork.cli", "forces", "double-cut-shears", "--steps", "72"]
-    text = subprocess.run(args, capture_output=True, text=True)
-    data = json.loads(subprocess.run([*args, "--json"], capture_output=True, text=True).stdout)
+    args = ["forces", "double-cut-shears", "--steps", "72"]
+    text = linkwork(*args)
+    data = json.loads(linkwork(*args, "--json").stdout)
     assert text.returncode == 0, text.stderr
     rows = {line.split()[0]: line.split() for line in text.stdout.splitlines() if line.startswith("  guide_")}
     assert set(rows) == {"guide_E", "guide_F"}

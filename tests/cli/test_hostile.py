@@ -2,15 +2,18 @@
 message of short lines, within a bounded time and memory, and its ``--json`` is strict JSON.
 
 The cases come from :mod:`hostile` (mutated bundled examples, attacks on the YAML reader, options at
-and past their bounds).  A sample runs with the suite, each case in this process under a time bound;
-the full run (``pytest --hostile tests/cli/test_hostile.py``) runs many more, each in its own process under
-a memory bound too.  Then the defects found by such runs, one test each.
+and past their bounds).  A sample runs with the suite, each case in this process under a time bound (every
+third case of each kind in the fast lane, the others in the slow one); the full run
+(``pytest --hostile tests/cli/test_hostile.py``) runs many more, each in its own process under a memory
+bound too.  Then the defects found by such runs, one test each.
 """
 
 from __future__ import annotations
 
 import resource
+from collections import Counter
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -19,6 +22,9 @@ from hostile import Case, option_cases, problems, run_in_process, run_in_subproc
 
 #: Mutated files in the sample of the normal suite, and in the full run.
 SAMPLE, FULL = 60, 300
+
+#: Of each kind of case in the sample, one in this many runs in the fast lane.
+FAST_EVERY = 3
 
 #: Growth of this process's largest memory in use that a case of the sample may cause.
 MEMORY_GROWTH = 1.5 * (1 << 30)
@@ -48,7 +54,18 @@ def _keys(files: int, slow: bool) -> list[tuple[str, str | int]]:
     )
 
 
-@pytest.mark.parametrize(("kind", "key"), _keys(SAMPLE, slow=False), ids=lambda k: str(k)[:40])
+def _sample() -> list[Any]:
+    """The sample's cases; of each kind, every :data:`FAST_EVERY`-th runs in the fast lane, the others are slow."""
+    seen: Counter[str] = Counter()
+    out = []
+    for kind, key in _keys(SAMPLE, slow=False):
+        marks = () if seen[kind] % FAST_EVERY == 0 else (pytest.mark.slow,)
+        seen[kind] += 1
+        out.append(pytest.param(kind, key, marks=marks, id=f"{kind}-{str(key)[:40]}"))
+    return out
+
+
+@pytest.mark.parametrize(("kind", "key"), _sample())
 def test_a_sample_of_hostile_cases_ends_cleanly(kind, key, tmp_path):
     case = _case(kind, key)
     before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024

@@ -15,6 +15,7 @@ import pytest
 from ruamel.yaml import YAML
 
 import linkwork as lw
+from commandline import linkwork
 from linkwork.design.plan import Vary, make_plan
 from linkwork.errors import DesignError
 from linkwork.examples import text
@@ -169,14 +170,14 @@ def test_peak_forces_of_the_slider_crank_shears_are_finite_where_the_knife_passe
     np.testing.assert_allclose(t["peak_foundation_force"], np.hypot(fx, fy).max(axis=0), rtol=1e-9)
     assert np.all(np.isfinite(t["peak_driving_torque"]))
     out = tmp_path / "x.parquet"
-    r = _cli("sweep", "shears-slider-crank", "--vary", "links.knife.mass=10:40:4", "--metric",
+    r = linkwork("sweep", "shears-slider-crank", "--vary", "links.knife.mass=10:40:4", "--metric",
              "peak_foundation_force", "--metric", "assembles", "--out", str(out), "--quiet")  # fmt: skip
     assert r.returncode == 0, r.stderr
     assert "no variant assembles" not in r.stdout
 
 
 def test_a_metric_with_no_value_is_explained_by_its_cause(tmp_path):
-    r = _cli("sweep", "four-bar", "--vary", "links.crank.length=255:260:2", "--metric", "swing", "--metric",
+    r = linkwork("sweep", "four-bar", "--vary", "links.crank.length=255:260:2", "--metric", "swing", "--metric",
              "assembles", "--out", str(tmp_path / "x.parquet"), "--quiet")  # fmt: skip
     assert r.returncode == 0, r.stderr
     assert "no variant assembles over the whole turn" in r.stdout
@@ -253,7 +254,7 @@ def test_zero_and_negative_lengths_and_masses_are_refused(tmp_path):
     assert any("links.rocker.length=-10mm:250mm:2" in p and "a length must be positive" in p for p in problems)
     assert not any("frame.points.O4.x" in p for p in problems)  # a coordinate may be negative
     out = tmp_path / "z.parquet"
-    r = _cli("sweep", "four-bar", "--vary", "links.crank.length=0:100:3", "--metric", "swing", "--out", str(out))
+    r = linkwork("sweep", "four-bar", "--vary", "links.crank.length=0:100:3", "--metric", "swing", "--out", str(out))
     assert r.returncode == 2 and "Traceback" not in r.stderr and "a length must be positive" in r.stderr
     assert not out.exists() and not (tmp_path / "z.parquet.parts").exists()
     with pytest.raises(DesignError, match="a mass must be positive"):
@@ -269,7 +270,7 @@ def test_random_and_lhs_samples_need_no_count_and_refuse_one():
         lw.sweep("four-bar", ["links.crank.length=90:110:3"], ["swing"], sampling="random", samples=10)
     with pytest.raises(DesignError, match="COUNT missing"):
         lw.sweep("four-bar", ["links.crank.length=90:110"], ["swing"])
-    r = _cli("sweep", "four-bar", "--sample", "lhs", "--samples", "4", "--vary", "links.crank.length=90:110",
+    r = linkwork("sweep", "four-bar", "--sample", "lhs", "--samples", "4", "--vary", "links.crank.length=90:110",
              "--metric", "swing", "--out", "/dev/null/x.parquet")  # fmt: skip
     assert "COUNT" not in r.stderr
 
@@ -278,7 +279,7 @@ def test_a_negative_number_of_workers_is_refused(tmp_path):
     with pytest.raises(DesignError, match="workers: expected 0 or more"):
         lw.sweep("four-bar", ["links.crank.length=90:110:3"], ["swing"], workers=-1)
     out = tmp_path / "w.parquet"
-    r = _cli("sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--workers", "-1",
+    r = linkwork("sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--workers", "-1",
              "--out", str(out), "--quiet")  # fmt: skip
     assert r.returncode == 2 and "Traceback" not in r.stderr and "workers" in r.stderr
     assert not out.exists() and not (tmp_path / "w.parquet.parts").exists()
@@ -300,7 +301,7 @@ def test_mass_paths_are_listed_with_the_geometry():
 def test_parameters_are_listed_in_the_files_units_and_a_range_far_from_them_warns(tmp_path):
     data = YAML(typ="safe").load(text("four-bar"))
     assert data["units"]["length"] == "mm"
-    r = _cli("parameters", "four-bar")
+    r = linkwork("parameters", "four-bar")
     assert r.returncode == 0, r.stderr
     listed = {line.split()[0]: (float(line.split()[1]), line.split()[2]) for line in r.stdout.splitlines()}
     for name, link in data["links"].items():
@@ -309,13 +310,13 @@ def test_parameters_are_listed_in_the_files_units_and_a_range_far_from_them_warn
     assert listed["frame.points.O4.x"] == (pytest.approx(float(data["frame"]["points"]["O4"][0])), "mm")
     out = tmp_path / "u.parquet"
     base = ["sweep", "four-bar", "--metric", "swing", "--out", str(out), "--quiet"]
-    r = _cli(*base, "--vary", "links.crank.length=0.09:0.11:3")  # metres meant, millimetres read
+    r = linkwork(*base, "--vary", "links.crank.length=0.09:0.11:3")  # metres meant, millimetres read
     assert r.returncode == 0, r.stderr
     warned = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
     assert len(warned) == 1 and "below 1/100 of the file's value 100 mm" in warned[0]
     for vary in ("links.crank.length=90:110:3", "links.crank.length=0.09m:0.11m:3"):
         out.unlink()
-        r = _cli(*base, "--vary", vary)
+        r = linkwork(*base, "--vary", vary)
         assert r.returncode == 0 and "warning" not in r.stderr, r.stderr
     from linkwork.errors import DesignWarning
 
@@ -390,7 +391,7 @@ def test_an_unwritable_out_is_refused_before_the_work(tmp_path):
                   "peak_driving_torque", "--out", "/proc/b.yaml"],
                  ["sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out",
                   str(tmp_path / "no" / "x.parquet")]):  # fmt: skip
-        r = _cli(*args)
+        r = linkwork(*args)
         assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
         assert len(r.stderr.strip().splitlines()) == 1 and "--out" in r.stderr
     assert not Path("/proc/x.parquet.parts").exists() and not (tmp_path / "no").exists()
@@ -402,16 +403,16 @@ def test_a_bad_or_unreachable_scheduler_is_one_message_and_blocks_no_later_run(t
     out = tmp_path / "s.parquet"
     base = ["sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out", str(out),
             "--quiet"]  # fmt: skip
-    r = _cli(*base, "--scheduler", str(tmp_path / "nonexistent.json"))
+    r = linkwork(*base, "--scheduler", str(tmp_path / "nonexistent.json"))
     assert r.returncode == 2 and "Traceback" not in r.stderr and "no such scheduler file" in r.stderr
     with socket.socket() as sock:  # a port nobody listens on
         sock.bind(("127.0.0.1", 0))
         port = sock.getsockname()[1]
-    r = _cli(*base, "--scheduler", f"tcp://127.0.0.1:{port}", "--connect-timeout", "1")
+    r = linkwork(*base, "--scheduler", f"tcp://127.0.0.1:{port}", "--connect-timeout", "1")
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert f"cannot reach the Dask scheduler at tcp://127.0.0.1:{port} within 1 s" in r.stderr
     assert not out.exists() and not (tmp_path / "s.parquet.parts").exists()
-    r = _cli(*base)  # the failed connection left nothing that would need --resume
+    r = linkwork(*base)  # the failed connection left nothing that would need --resume
     assert r.returncode == 0, r.stderr
 
 
@@ -458,13 +459,9 @@ def test_every_problem_of_the_options_is_reported_at_once():
     assert len(msg) == 10
 
 
-def _cli(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "linkwork.cli", *args], capture_output=True, text=True, cwd=cwd)
-
-
 def test_cli_sweep_errors_exit_2_with_no_traceback_and_no_file(tmp_path):
     out = tmp_path / "s.parquet"
-    r = _cli("sweep", "four-bar", "--vary", "links.crank.length=110:90:3", "--metric", "knife_clearance",
+    r = linkwork("sweep", "four-bar", "--vary", "links.crank.length=110:90:3", "--metric", "knife_clearance",
              "--out", str(out))  # fmt: skip
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert "START 110 is greater than STOP 90" in r.stderr and "knife_clearance" in r.stderr
@@ -473,7 +470,7 @@ def test_cli_sweep_errors_exit_2_with_no_traceback_and_no_file(tmp_path):
 
 def test_cli_sweep_writes_the_table(tmp_path):
     out = tmp_path / "s.parquet"
-    r = _cli("sweep", "shears-slider-crank", "--vary", "links.crank.length=100mm:140mm:3", "--metric", "stroke",
+    r = linkwork("sweep", "shears-slider-crank", "--vary", "links.crank.length=100mm:140mm:3", "--metric", "stroke",
              "--out", str(out), "--quiet")  # fmt: skip
     assert r.returncode == 0, r.stderr
     import pyarrow.parquet as pq
@@ -536,7 +533,7 @@ def test_double_cut_shears_optimum_is_feasible_better_than_a_sample_and_its_file
 
 def test_cli_optimize_reports_and_writes(tmp_path):
     out = tmp_path / "best.yaml"
-    r = _cli("optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective", "peak_driving_torque",
+    r = linkwork("optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective", "peak_driving_torque",
              "--constraint", "min_transmission_angle>=33deg", "--maxiter", "20", "--out", str(out),
              "--json")  # fmt: skip
     assert r.returncode == 0, r.stderr
@@ -553,7 +550,7 @@ def test_cli_optimize_reports_and_writes(tmp_path):
     mu = [_fold(np.arccos((b * b + c * c - (d - s * a) ** 2) / (2 * b * c))) for s in (1, -1)]
     assert min(mu) == pytest.approx(res["metrics"]["min_transmission_angle"], rel=1e-9)
     assert isinstance(res["converged"], bool) and res["message"]
-    bad = _cli("optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective", "peak_torque",
+    bad = linkwork("optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective", "peak_torque",
                "--constraint", "swing=>3", "--out", str(tmp_path / "x.yaml"))  # fmt: skip
     assert bad.returncode == 2 and "Traceback" not in bad.stderr
     assert 'metric "peak_torque": unknown' in bad.stderr and '--constraint "swing=>3"' in bad.stderr
@@ -565,7 +562,7 @@ def test_an_optimisation_stopped_at_its_generation_limit_says_it_did_not_converg
                        seed=1, maxiter=2, tol=1e-12)  # fmt: skip
     assert best.generations == 2 and best.converged is False and "iterations" in best.message
     assert best.as_dict()["converged"] is False
-    r = _cli("optimize", "four-bar", "--vary", "links.coupler.length=150:300", "--objective",
+    r = linkwork("optimize", "four-bar", "--vary", "links.coupler.length=150:300", "--objective",
              "min_transmission_angle", "--maximize", "--maxiter", "2")  # fmt: skip
     assert r.returncode == 0, r.stderr
     assert "not converged (Maximum number of iterations" in r.stdout
@@ -580,7 +577,7 @@ def test_the_readme_design_commands_run(tmp_path):
     stdout = []
     for line in lines:
         args = shlex.split(line.split("  #")[0])
-        r = _cli(*args[1:], cwd=tmp_path)
+        r = linkwork(*args[1:], cwd=tmp_path)
         assert r.returncode == 0, r.stderr
         stdout.append(r.stdout)
     # the sweep's row of the file's own design (crank 100 mm, B at 500 mm) against lw.forces on the file
@@ -623,7 +620,7 @@ def test_a_sweep_killed_on_the_command_line_resumes_with_its_chunks_untouched(tm
     assert not out.exists()
     before = {p.name: (p.stat().st_ino, p.stat().st_mtime_ns) for p in parts.glob("chunk-*.parquet")}
     assert 3 <= len(before) < 24
-    r = _cli(*args, "--resume", "--keep-parts")
+    r = linkwork(*args, "--resume", "--keep-parts")
     assert r.returncode == 0, r.stderr
     after = {p.name: (p.stat().st_ino, p.stat().st_mtime_ns) for p in parts.glob("chunk-*.parquet")}
     assert len(after) == 24 and all(after[name] == stamp for name, stamp in before.items())

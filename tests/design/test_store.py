@@ -6,14 +6,13 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import subprocess
-import sys
 import warnings
 
 import numpy as np
 import pytest
 
 import linkwork as lw
+from commandline import linkwork
 from linkwork.errors import DesignError, DesignWarning
 
 pq = pytest.importorskip("pyarrow.parquet")
@@ -189,12 +188,9 @@ def test_an_unreadable_or_older_manifest_is_refused_with_a_message(tmp_path, man
         del old["chunks"], old["plan_sha256"]
         manifest = json.dumps({**old, "format": 1})
     (parts / "manifest.json").write_text(manifest)
-    r = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli", "sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
-         *sum((["--metric", m] for m in METRICS), []), "--chunk-size", "4", "--steps", "36", "--out", str(out),
-         "--resume", "--quiet"],
-        capture_output=True, text=True,
-    )  # fmt: skip
+    r = linkwork("sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
+                 *sum((["--metric", m] for m in METRICS), []), "--chunk-size", "4", "--steps", "36", "--out", str(out),
+                 "--resume", "--quiet")  # fmt: skip
     assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
     assert r.stderr.startswith("error: ") and "start afresh" in r.stderr and not out.exists()
 
@@ -203,12 +199,9 @@ def test_the_command_says_which_parts_it_computes_again_one_line_each(tmp_path, 
     out, parts = _parts(tmp_path)
     for name in ("chunk-00000.parquet", "chunk-00004.parquet"):
         (parts / name).write_bytes(b"PAR1 damaged PAR1")
-    r = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli", "sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
-         *sum((["--metric", m] for m in METRICS), []), "--chunk-size", "4", "--steps", "36", "--out", str(out),
-         "--resume", "--quiet"],
-        capture_output=True, text=True,
-    )  # fmt: skip
+    r = linkwork("sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
+                 *sum((["--metric", m] for m in METRICS), []), "--chunk-size", "4", "--steps", "36", "--out", str(out),
+                 "--resume", "--quiet")  # fmt: skip
     assert r.returncode == 0, r.stderr
     lines = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
     assert len(lines) == 2

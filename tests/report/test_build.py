@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import html
 import math
 import os
@@ -33,22 +34,25 @@ SECTIONS = {
 
 @pytest.fixture(scope="module")
 def reports(tmp_path_factory, main_job):
-    """The double-cut shears' report is the README's main job's (built once for the whole run)."""
+    """The folder of an example's report, built when first asked for; the double-cut shears' is the README's
+    main job's (built once for the whole run)."""
     root = tmp_path_factory.mktemp("reports")
     assert main_job.returncode == 0, main_job.stderr
-    out = {"double-cut-shears": main_job.folder}
-    for name in SECTIONS:
-        if name in out:
-            continue
+
+    @functools.cache
+    def report(name: str) -> Path:
+        if name == "double-cut-shears":
+            return main_job.folder
         result = runner.invoke(app, ["analyze", name, "--out", str(root / name), "--steps", "120"])
         assert result.exit_code == 0, result.output
-        out[name] = root / name
-    return out
+        return root / name
+
+    return report
 
 
 @pytest.mark.parametrize("name", list(SECTIONS))
 def test_analyze_writes_tables_figures_and_the_report(reports, name):
-    folder = reports[name]
+    folder = reports(name)
     for f in ("report.html", "kinematics.csv", "forces.csv", "forces.json", "animation.gif"):
         assert (folder / f).stat().st_size > 0, f
     svgs = sorted((folder / "figures").glob("*.svg"))
@@ -78,7 +82,7 @@ def test_the_report_renders_in_a_headless_browser(reports):
             errors: list[str] = []
             page.on("console", lambda msg, e=errors: e.append(msg.text) if msg.type == "error" else None)
             page.on("pageerror", lambda exc, e=errors: e.append(str(exc)))
-            page.goto(Path(reports[name] / "report.html").as_uri())
+            page.goto(Path(reports(name) / "report.html").as_uri())
             assert errors == []
             for key in keys:
                 assert page.locator(f"section#{key} h2").is_visible()
@@ -262,7 +266,12 @@ def test_no_english_is_left_in_the_russian_report(name, tmp_path):
 
 
 def test_english_is_the_default_and_an_unknown_language_is_refused(tmp_path):
-    page, _ = _report("four-bar", tmp_path / "en", steps=36)
+    import linkwork as lw
+    from linkwork import report
+
+    page = report.analyze(lw.compile(lw.example("four-bar")), tmp_path / "en", steps=36, animation=False).read_text(
+        encoding="utf-8"
+    )
     assert "<html lang='en'>" in page and "Kinematics" in page
     out = tmp_path / "de"
     result = runner.invoke(app, ["analyze", "four-bar", "--out", str(out), "--lang", "de"])
@@ -270,15 +279,18 @@ def test_english_is_the_default_and_an_unknown_language_is_refused(tmp_path):
     assert not out.exists()
 
 
-def test_the_tables_state_their_units_and_measure_the_crank_angle_from_position_0(tmp_path):
+def test_the_tables_state_their_units_and_measure_the_crank_angle_from_position_0(main_job):
     """The strokes (mm) and the rocker's swing (°) of the double-cut shears as a dense sampling of the
     motion finds them (0.005° apart), each in a column that names its unit; the 12 positions from
-    position 0, where the upper knife is at its highest, 30° apart."""
+    position 0, where the upper knife is at its highest, 30° apart.  The page is the README's main job's
+    (``analyze`` at its 360 steps)."""
     import linkwork as lw
     from linkwork.motion.analysis import coordinate, outputs
 
+    assert main_job.returncode == 0, main_job.stderr
+    assert main_job.args[2] == "double-cut-shears" and "--steps" not in main_job.args
     mech = lw.compile(lw.example("double-cut-shears"))
-    page, _ = _report("double-cut-shears", tmp_path / "r", steps=360)
+    page = (main_job.folder / "report.html").read_text(encoding="utf-8")
     found = _tables(page)
     tables = {t[0][1]: t for t in found if len(t[0]) > 1}
     kin = lw.kinematics(mech, steps=72000)

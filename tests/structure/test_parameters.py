@@ -135,11 +135,9 @@ def test_default_mass_properties_follow_the_geometry_and_given_ones_stay():
 def test_the_python_listing_and_the_command_line_listing_agree():
     """`linkwork parameters` and lw.parameters name the same parameters, masses and inertias included,
     and lw.kinematics accepts every one of them as a variant."""
-    import subprocess
-    import sys
+    from commandline import linkwork
 
-    out = subprocess.run([sys.executable, "-m", "linkwork.cli", "parameters", "double-cut-shears"],
-                         capture_output=True, text=True)  # fmt: skip
+    out = linkwork("parameters", "double-cut-shears")
     assert out.returncode == 0, out.stderr
     listed = [line.split()[0] for line in out.stdout.splitlines()]
     params = lw.parameters("double-cut-shears")
