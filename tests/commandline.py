@@ -2,7 +2,8 @@
 
 For the tests of what a command prints, writes and exits with: the same application ``python -m linkwork.cli``
 runs, without a second of interpreter start and imports each time.  What only a process of its own shows (a
-kill, a terminal, a memory bound, the modules a fresh start imports) is tested with one.
+kill, a terminal, a memory bound, the modules a fresh start imports) is tested with one.  The hostile cases
+run through the application likewise, under a time bound (:func:`hostile.run_in_process`).
 """
 
 from __future__ import annotations

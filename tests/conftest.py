@@ -62,8 +62,8 @@ SLOW = {
     ),
     "figures/test_figures.py::test_every_figure_draws_every_example": ("double-cut-shears",),
     "scene/test_drawings.py::test_no_text_covers_another_in_any_drawing": ("double-cut-shears-ru",),
-    # the Russian texts of the impact section and the others (the English report of the double-cut shears, the
-    # README's main job, has every section but the impact)
+    # the percussion rocker's Russian report builds the impact section, the one section the README's main job
+    # (the double-cut shears in English, the other test's case) has not
     "report/test_build.py::test_no_english_is_left_in_the_russian_report": ("percussion-rocker",),
     "report/test_build.py::test_analyze_writes_tables_figures_and_the_report": ("double-cut-shears",),
     "report/test_build.py::test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output": ("ccw",),
