@@ -372,6 +372,27 @@ def test_tables_are_plain_text_when_piped():
         assert all(line == line.rstrip() for line in proc.stdout.splitlines())
 
 
+def test_a_process_ends_with_all_its_output_written():
+    """The command's process skips the collector's walk of its objects at shutdown (``main`` freezes them):
+    3.6 MB of JSON piped out of a process of its own still arrive whole, the last sample equal to
+    ``lw.kinematics`` of the same angle solved here."""
+    import linkwork as lw
+
+    proc = subprocess.run(
+        [sys.executable, "-m", "linkwork.cli", "kinematics", "double-cut-shears", "--steps", "3600", "--json"],
+        capture_output=True,
+        text=True,
+    )
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert len(data["angles_deg"]) == 3600
+    kin = lw.kinematics(lw.compile(lw.load("double-cut-shears")), np.radians(data["angles_deg"][-1:]))
+    edge = next(name for name in data["points"] if name.endswith(".edge"))  # a knife's edge
+    xy = kin.position(edge)[-1]
+    assert data["points"][edge]["x"][-1] == pytest.approx(xy[0], abs=1e-12)
+    assert data["points"][edge]["y"][-1] == pytest.approx(xy[1], abs=1e-12)
+
+
 def test_tables_fit_the_terminal():
     """In a terminal 50 columns wide, the table of the 12 positions comes in parts that fit, each with the
     position and the crank angle, no cell cut short."""
