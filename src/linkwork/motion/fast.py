@@ -70,6 +70,8 @@ class Solved(NamedTuple):
     ----------
     q, v, a : ndarray, shape (N, 3, V, A)
         Pose, velocity and acceleration of every link.
+    cos, sin : ndarray, shape (N, V, A)
+        Of every link's angle (as the kernels placed its points).
     slack, det : ndarray, shape (S, V, A)
         Assembly margin and normalised Jacobian determinant of every step.
     valid : ndarray of bool, shape (V, A)
@@ -92,6 +94,8 @@ class Solved(NamedTuple):
     q: np.ndarray
     v: np.ndarray
     a: np.ndarray
+    cos: np.ndarray
+    sin: np.ndarray
     slack: np.ndarray
     det: np.ndarray
     valid: np.ndarray
@@ -207,20 +211,22 @@ def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, 
     ops, branch = mech.fast_program
     values, rates, accels = _floats(values), _floats(rates), _floats(accels)
     n_var, n_ang, n_steps, n_links = geom.point_local.shape[0], values.shape[0], len(ops), mech.n_links_total
-    out = np.empty((3, n_links, 3, n_var, n_ang))  # one block: q, v, a
+    out = np.empty((11 * n_links, n_var * n_ang))  # one block: q, v, a (3 rows a link each), cos, sin
     found = np.empty((2, n_steps, n_var, n_ang))  # slack, det
     marks = np.zeros((3, n_steps, n_var), dtype=np.bool_)  # near, trouble, limit
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
     flags = np.zeros(5, dtype=np.bool_)
     args = (ops, branch, geom.point_local, geom.pair_origin, geom.pair_axis, values, rates, accels,
-            out.reshape(9 * n_links, n_var * n_ang), found, valid, marks, flags)  # fmt: skip
+            out, found, valid, marks, flags)  # fmt: skip
     _in_parts(args, n_links, n_steps, n_var, n_ang)
     if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
         marks[0] = False
         flags[F_NEAR] = False
     singular, near, limit, invalid, trouble = flags.tolist()
-    return Solved(out[0], out[1], out[2], found[0], found[1], valid, marks[0], marks[1], singular, marks[2], near,
-                  limit, invalid, trouble)  # fmt: skip
+    q, v, a = out[: 9 * n_links].reshape(3, n_links, 3, n_var, n_ang)
+    cos, sin = out[9 * n_links :].reshape(2, n_links, n_var, n_ang)
+    return Solved(q, v, a, cos, sin, found[0], found[1], valid, marks[0], marks[1], singular, marks[2], near, limit,
+                  invalid, trouble)  # fmt: skip
 
 
 def _floats(x: np.ndarray) -> np.ndarray:
@@ -266,6 +272,52 @@ def _in_parts(args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_a
     part(bounds[0], bounds[1])
     for job in rest:
         job.result()
+
+
+#: The quantities of a point :func:`point_motion` gives.
+POSITION, VELOCITY, ACCELERATION = range(3)
+
+
+def point_motion(kind: int, q: np.ndarray, v: np.ndarray, a: np.ndarray, cs: tuple[np.ndarray, np.ndarray],
+                 local: np.ndarray) -> np.ndarray:  # fmt: skip
+    """Position, velocity or acceleration (``kind``: :data:`POSITION` ...) ``(V, A, 2)`` of a point at
+    ``local`` ``(2, V)`` in the frame of a link of pose, velocity and acceleration ``q``, ``v``, ``a``
+    ``(3, V, A)``, the cosine and sine of its angle ``cs`` ``(V, A)`` each: in one pass where the kernels
+    run (:func:`available`), by NumPy otherwise (the same arithmetic, in the same order)."""
+    out = np.empty(q.shape[1:] + (2,))
+    if available():
+        kernel: Any = _point_motion
+        kernel(kind, q, v, a, cs[0], cs[1], local[0], local[1], out)
+        return out
+    c, s, lx, ly = cs[0], cs[1], local[0][:, None], local[1][:, None]
+    rx, ry = c * lx - s * ly, s * lx + c * ly
+    if kind == POSITION:
+        out[..., 0], out[..., 1] = q[0] + rx, q[1] + ry
+    elif kind == VELOCITY:
+        out[..., 0], out[..., 1] = v[0] - v[2] * ry, v[1] + v[2] * rx
+    else:
+        w, e = v[2], a[2]
+        out[..., 0], out[..., 1] = a[0] - e * ry - w * w * rx, a[1] + e * rx - w * w * ry
+    return out
+
+
+def _point_motion(kind, q, v, a, cos, sin, lx, ly, out):
+    """:func:`point_motion` compiled."""
+    for var in range(out.shape[0]):
+        for i in range(out.shape[1]):
+            c, s = cos[var, i], sin[var, i]
+            rx, ry = c * lx[var] - s * ly[var], s * lx[var] + c * ly[var]
+            if kind == 0:
+                out[var, i, 0] = q[0, var, i] + rx
+                out[var, i, 1] = q[1, var, i] + ry
+            elif kind == 1:
+                w = v[2, var, i]
+                out[var, i, 0] = v[0, var, i] - w * ry
+                out[var, i, 1] = v[1, var, i] + w * rx
+            else:
+                w, e = v[2, var, i], a[2, var, i]
+                out[var, i, 0] = a[0, var, i] - e * ry - w * w * rx
+                out[var, i, 1] = a[1, var, i] + e * rx - w * w * ry
 
 
 # ---------------------------------------------------------------------------------------------
@@ -647,13 +699,16 @@ def _sample(ops, branch, pre, loc, org, axs, values, rates, accels, slack, det, 
 
 def _store(L, out, col):
     """The moving links' states at column ``col`` (a variant's sample) of ``out`` (the output block as
-    rows (quantity, link, coordinate), :func:`run`); the frame's are filled by :func:`_driving_rows`."""
+    rows (quantity, link, coordinate), then the cosines and the sines of the links' angles, :func:`run`);
+    the frame's are filled by :func:`_driving_rows`."""
     n = L.shape[0]
     for link in range(1, n):
         for k in range(3):
             out[3 * link + k, col] = L[link, k]
             out[3 * (n + link) + k, col] = L[link, S_VX + k]
             out[3 * (2 * n + link) + k, col] = L[link, S_AX + k]
+        out[9 * n + link, col] = L[link, S_COS]
+        out[10 * n + link, col] = L[link, S_SIN]
 
 
 def _driving_rows(ops, out, n_links, slack, det, var, lo, hi):
@@ -664,6 +719,9 @@ def _driving_rows(ops, out, n_links, slack, det, var, lo, hi):
         for k in range(3):
             for i in range(lo, hi):
                 out[3 * n_links * t + k, var * n_ang + i] = 0.0
+    for i in range(lo, hi):
+        out[9 * n_links, var * n_ang + i] = 1.0
+        out[10 * n_links, var * n_ang + i] = 0.0
     for st in range(ops.shape[0]):
         if ops[st, KIND] < DYAD:
             for i in range(lo, hi):
@@ -728,7 +786,7 @@ OPTS: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True, "_
 _INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_src_point", "_locus", "_touching", "_snap",
            "_arm_motion", "_arm_extra", "_circles", "_circle_line", "_dyad", "_dyad_motion", "_rpr", "_crank",
            "_slide", "_step", "_near", "_sample", "_store", "_driving_rows", "_tolerance")  # fmt: skip
-_CALLED = ("_arm_constants", "_kernel", "_scan")
+_CALLED = ("_arm_constants", "_kernel", "_scan", "_point_motion")
 
 
 def jit_in_place(space: dict[str, object], inline: tuple[str, ...], called: tuple[str, ...]) -> bool:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -40,6 +40,8 @@ class Kinematics:
     q: np.ndarray  # (N, 3, V, A) link poses, link-major
     v: np.ndarray  # (N, 3, V, A)
     a: np.ndarray  # (N, 3, V, A)
+    cos: np.ndarray  # (N, V, A) of each link's angle
+    sin: np.ndarray  # (N, V, A)
     local: np.ndarray  # (P, 2, V, 1) point coordinates of the variants
     axis: np.ndarray  # (M, 2, V, 1) guide directions of the variants
     origin: np.ndarray  # (M, 2, V, 1) guide origins of the variants
@@ -48,18 +50,14 @@ class Kinematics:
     variants: bool
     step_det: tuple[np.ndarray, ...] = ()  # (V, A) per step of the program, its normalised Jacobian determinant
     masses: Masses | None = None  # mass properties of the variants' links; None: the mechanism's
-    # each point read so far: its link and offset (:meth:`_arm`)
-    _arms: dict[int, tuple[int, np.ndarray, np.ndarray]] = field(
-        default_factory=dict, init=False, repr=False, compare=False
-    )
 
     @classmethod
     def _made(cls, **fields: Any) -> Kinematics:
-        """A result of every field but ``_arms`` (given by name), made without the dataclass's ``__init__``,
-        which sets the fields of a frozen dataclass one at a time (a few microseconds, a tenth of the
-        fixed cost of a short solve)."""
+        """A result of every field (given by name), made without the dataclass's ``__init__``, which sets
+        the fields of a frozen dataclass one at a time (a few microseconds, a tenth of the fixed cost of a
+        short solve)."""
         out = object.__new__(cls)
-        out.__dict__.update(fields, _arms={})
+        out.__dict__.update(fields)
         return out
 
     def _out(self, a: np.ndarray) -> np.ndarray:
@@ -116,60 +114,29 @@ class Kinematics:
             raise KeyError(f'no link "{link}"{suggest(link, self.mechanism.link_names)}')
         return self.mechanism.link_names.index(link)
 
-    def _arm(self, point: str) -> tuple[int, np.ndarray, np.ndarray]:
-        """The link of a point and the point's offset from the link's origin in the frame's axes,
-        ``(V, A)`` each: made once per point (the cosine and sine of the link's angle are most of the
-        cost of reading a point) and kept, so that its position, velocity and acceleration share it."""
-        p = self.point_index(point)
-        kept = self._arms.get(p)
-        if kept is None:
-            link = int(self.mechanism.point_link[p])
-            c, s = np.cos(self.q[link, 2]), np.sin(self.q[link, 2])
-            lx, ly = self.local[p, 0], self.local[p, 1]
-            kept = self._arms[p] = (link, c * lx - s * ly, s * lx + c * ly)
-        return kept
-
     def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position, velocity and acceleration of a point, ``(V, A, 2)`` each."""
-        return self._position(point), self._velocity(point), self._acceleration(point)
+        return tuple(self._motion(point, kind) for kind in (fast.POSITION, fast.VELOCITY, fast.ACCELERATION))  # type: ignore[return-value]
 
-    def _position(self, point: str) -> np.ndarray:
-        link, rx, ry = self._arm(point)
-        q = self.q[link]
-        out = np.empty(rx.shape + (2,))
-        np.add(q[0], rx, out=out[..., 0])
-        np.add(q[1], ry, out=out[..., 1])
-        return out
-
-    def _velocity(self, point: str) -> np.ndarray:
-        link, rx, ry = self._arm(point)
-        v = self.v[link]
-        w = v[2]
-        out = np.empty(rx.shape + (2,))
-        np.subtract(v[0], w * ry, out=out[..., 0])
-        np.add(v[1], w * rx, out=out[..., 1])
-        return out
-
-    def _acceleration(self, point: str) -> np.ndarray:
-        link, rx, ry = self._arm(point)
-        w, a = self.v[link, 2], self.a[link]
-        e, w2 = a[2], w * w
-        out = np.empty(rx.shape + (2,))
-        np.subtract(a[0] - e * ry, w2 * rx, out=out[..., 0])
-        np.subtract(a[1] + e * rx, w2 * ry, out=out[..., 1])
-        return out
+    def _motion(self, point: str, kind: int) -> np.ndarray:
+        """The position, velocity or acceleration (``kind``) of a point, ``(V, A, 2)``: its link's motion
+        carried to the point (:func:`~linkwork.motion.fast.point_motion`)."""
+        p = self.point_index(point)
+        link = int(self.mechanism.point_link[p])
+        cs = self.cos[link], self.sin[link]
+        return fast.point_motion(kind, self.q[link], self.v[link], self.a[link], cs, self.local[p, :, :, 0])
 
     def position(self, point: str) -> np.ndarray:
         """Global position of a point, m: ``(..., n_angles, 2)``."""
-        return self._out(self._position(point))
+        return self._out(self._motion(point, fast.POSITION))
 
     def velocity(self, point: str) -> np.ndarray:
         """Velocity of a point, m/s: ``(..., n_angles, 2)``."""
-        return self._out(self._velocity(point))
+        return self._out(self._motion(point, fast.VELOCITY))
 
     def acceleration(self, point: str) -> np.ndarray:
         """Acceleration of a point, m/s^2: ``(..., n_angles, 2)``."""
-        return self._out(self._acceleration(point))
+        return self._out(self._motion(point, fast.ACCELERATION))
 
     def angle(self, link: str | int) -> np.ndarray:
         """Angle of a link's local x axis, rad: ``(..., n_angles)``."""
@@ -187,7 +154,7 @@ class Kinematics:
         """Positions of all points, ``(..., n_angles, n_points, 2)`` (order of ``mechanism.point_names``)."""
         m = self.mechanism
         q = self.q[m.point_link]  # (P, 3, V, A)
-        c, s = np.cos(q[:, 2]), np.sin(q[:, 2])
+        c, s = self.cos[m.point_link], self.sin[m.point_link]
         lx, ly = self.local[:, 0], self.local[:, 1]
         out = np.stack([q[:, 0] + c * lx - s * ly, q[:, 1] + s * lx + c * ly], -1)  # (P, V, A, 2)
         return self._out(np.moveaxis(out, 0, 2))
@@ -202,6 +169,8 @@ class Kinematics:
             q=self.q[..., index],
             v=self.v[..., index],
             a=self.a[..., index],
+            cos=self.cos[..., index],
+            sin=self.sin[..., index],
             valid_all=self.valid_all[:, index],
             step_det=tuple(d[..., index] for d in self.step_det),
         )
@@ -320,6 +289,8 @@ def kinematics(
         q=state.q,
         v=state.v,
         a=state.a,
+        cos=state.cos,
+        sin=state.sin,
         local=state.local,
         axis=state.axis,
         origin=state.origin,
@@ -416,6 +387,7 @@ def _solve(
     state = run(mech, mech.program, geom, angles[:, None], rate, np.zeros((len(angles), 1)))
     events = tuple(find(mech.program, state, angles, revolute, within=(int(take.min()), int(take.max()))))
     state.q, state.v, state.a = state.q[..., take], state.v[..., take], state.a[..., take]
+    state.cos, state.sin = state.cos[..., take], state.sin[..., take]
     state.valid = state.valid[:, take]
     state.steps = [r.take(take) for r in state.steps]
     return state, events

@@ -74,8 +74,7 @@ def _run_fast(
     res = fast.run(mech, geom, values, rates, accels)
     if res.some_near or res.some_limit:
         return None
-    none = np.empty((0, 0, 0))  # no angles kept: the state is not solved further
-    state = State(res.q, res.v, res.a, none, none, *geom.link_major, res.valid)
+    state = State(res.q, res.v, res.a, res.cos, res.sin, *geom.link_major, res.valid)
     # the kernels give cranks and slides a margin of 1: always assembled; every step wherever every sample is
     assembled = res.slack >= 0 if res.some_invalid else [res.valid] * len(program)
     state.steps = [StepRecord(ok, d, s) for ok, d, s in zip(assembled, res.det, res.slack, strict=True)]
@@ -85,10 +84,17 @@ def _run_fast(
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             _repair_singular(mech, program, geom, values, rates, accels, state)
     if res.some_invalid:
-        bad = ~state.valid
-        for arr in (state.q, state.v, state.a):
-            arr[:, :, bad] = np.nan
+        _not_assembled(state)
     return state
+
+
+def _not_assembled(state: State) -> None:
+    """NaN in every quantity of the samples where the mechanism does not assemble."""
+    bad = ~state.valid
+    for arr in (state.q, state.v, state.a):
+        arr[:, :, bad] = np.nan
+    for arr in (state.cos, state.sin):
+        arr[:, bad] = np.nan
 
 
 #: Samples per chunk of design variants.
@@ -108,9 +114,7 @@ def run_numpy(
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         state = _solve(mech, program, geom, values, rates, accels)
         _repair_singular(mech, program, geom, values, rates, accels, state)
-    bad = ~state.valid
-    for arr in (state.q, state.v, state.a):
-        arr[:, :, bad] = np.nan
+    _not_assembled(state)
     return state
 
 

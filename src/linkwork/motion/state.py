@@ -166,8 +166,8 @@ class State:
     q, v, a : ndarray, shape (N, 3, V, A)
         Pose, velocity and acceleration of every link.
     cos, sin : ndarray, shape (N, V, A)
-        Of each link's angle, kept with the pose while the program is solved (empty in the state
-        the compiled kernels return, which is not solved further).
+        Of each link's angle, kept with the pose (the accessors of :class:`~linkwork.motion.kinematics.
+        Kinematics` place points with them).
     local : ndarray, shape (P, 2, V, 1)
     origin, axis : ndarray, shape (M, 2, V, 1)
         Dimensions of the design variants (guide lines of prismatic pairs).
