@@ -15,7 +15,7 @@ browser part needs Playwright and Debian's ``chromium``; ``--drag 0`` leaves it 
   first sample (the page's first answer), at the live page's
   :data:`~linkwork.web.payload.LIVE_PLACED` samples (the answer that follows), and at every sample (an
   exported page), best of a few.
-* In Chromium: the crank's length handle dragged back and forth for ``--drag`` seconds, a mouse move due
+* In Chromium: the crank's length handle dragged back and forth along the crank for ``--drag`` seconds, a mouse move due
   every 16 ms (a 60 Hz mouse: each move is sent when it is due, or at once when the browser, which takes a
   move only at its next frame, is behind); the page counts the edits' answers it shows (``data-updates`` on
   the scheme): answers a second, the moves a second it took, and the round trip the page measures for the
@@ -33,6 +33,7 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 from timing import best
 
 import linkwork as lw
@@ -60,6 +61,21 @@ def crank_length(mech: lw.Mechanism) -> str:
     return f"links.{link}.length"
 
 
+def crank_direction(mech: lw.Mechanism) -> tuple[float, float]:
+    """The crank's direction on the screen (from its pivot to its farthest point, y downwards) where the page
+    opens, at position 0: a length handle moves with the pointer's travel along its link only."""
+    from linkwork.motion.analysis import zero_angle
+
+    k = int(mech.drive_pair[0])
+    pivot = mech.point_names[int(mech.pair_points[k, 1])]
+    link = mech.point_link[mech.point_index(pivot)]
+    kin = lw.kinematics(mech, [zero_angle(mech)])
+    ends = [kin.position(p)[0] for p in mech.point_names if mech.point_link[mech.point_index(p)] == link]
+    u = max(ends, key=lambda e: float(np.hypot(*(e - kin.position(pivot)[0])))) - kin.position(pivot)[0]
+    u /= np.hypot(*u)
+    return float(u[0]), float(-u[1])
+
+
 def round_trips(port: int, name: str, start: float, count: int) -> list[float]:
     """Seconds from sending an edit to its parsed answer, each a new value."""
     conn = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
@@ -79,9 +95,9 @@ def round_trips(port: int, name: str, start: float, count: int) -> list[float]:
     return out
 
 
-def drag(port: int, name: str, seconds: float) -> tuple[float, float, list[float]]:
-    """Answers a second shown while the handle of ``name`` is dragged, mouse moves a second, and the page's round
-    trips (ms)."""
+def drag(port: int, name: str, seconds: float, along: tuple[float, float]) -> tuple[float, float, list[float]]:
+    """Answers a second shown while the handle of ``name`` is dragged back and forth ``along`` a direction on
+    the screen, mouse moves a second, and the page's round trips (ms)."""
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as p:
@@ -104,7 +120,8 @@ def drag(port: int, name: str, seconds: float) -> tuple[float, float, list[float
             ahead = t0 + 0.016 * k - time.perf_counter()
             if ahead > 0:  # not due yet
                 time.sleep(ahead)
-            page.mouse.move(x + 25 * ((k % 40) / 20 - 1 if (k // 40) % 2 else 1 - (k % 40) / 20), y)
+            off = 25 * ((k % 40) / 20 - 1 if (k // 40) % 2 else 1 - (k % 40) / 20)  # px, 25 out to 25 in
+            page.mouse.move(x + off * along[0], y + off * along[1])
             if k % 10 == 0:
                 ms.append(float(page.get_attribute("#scheme", "data-edit-ms") or "nan"))
         spent = time.perf_counter() - t0
@@ -136,7 +153,9 @@ def main(argv: list[str] | None = None) -> None:
         compiled = best(lambda: lw.compile(spec))
         opened = {n: best(lambda n=n: cycle_payload(mech, 360, placed=n), repeat=2, budget=8.0)
                   for n in (1, LIVE_PLACED, None)}  # fmt: skip
-        rate, moves, page_ms = drag(port, name, args.drag) if args.drag > 0 else (float("nan"), float("nan"), [])
+        rate, moves, page_ms = float("nan"), float("nan"), list[float]()
+        if args.drag > 0:
+            rate, moves, page_ms = drag(port, name, args.drag, crank_direction(mech))
     finally:
         proc.terminate()
         proc.wait(timeout=10)

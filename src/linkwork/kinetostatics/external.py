@@ -18,6 +18,7 @@ import numpy as np
 from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.motion.kinematics import Kinematics
 from linkwork.spec.schema import Load, Spec
+from linkwork.structure.constraints import perp
 from linkwork.structure.model import Mechanism, PairType
 
 T = TypeVar("T")
@@ -290,7 +291,7 @@ def _friction(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
         pos, vb, _ = kin._point(mech.point_names[int(mech.pair_points[k, 1])])
         q, v = kin.pose[..., a, :], kin.vel[..., a, :]
         r = pos - q[..., :2]
-        va = v[..., :2] + w[..., a, None] * np.stack([-r[..., 1], r[..., 0]], -1)  # a's material point at P
+        va = v[..., :2] + w[..., a, None] * perp(r)  # a's material point at P
         u = guide_direction(kin, k)
         slide = np.sign(np.sum((vb - va) * u, -1))
         f = (-load.value * slide)[..., None] * u

@@ -24,7 +24,7 @@ from linkwork.kinetostatics.geometry import variant_geometry
 from linkwork.kinetostatics.reactions import group_order
 from linkwork.motion.fast import PER_THREAD, THREADS, _pool, jit_in_place
 from linkwork.motion.kinematics import Kinematics
-from linkwork.structure.model import Mechanism, PairType
+from linkwork.structure.model import Mechanism, PairType, per_mechanism
 
 #: Row kinds.
 REV_X, REV_Y, ANGLE, NORMAL, DRIVE_ANGLE, DRIVE_LINE = range(6)
@@ -64,8 +64,10 @@ class Encoded(NamedTuple):
         return (self.groups.shape[1] - 2 - len(self.rows) - 1) // 4
 
 
+@per_mechanism
 def encode(mech: Mechanism) -> Encoded:
-    """The constraint rows and the Assur groups of ``mech`` as the kernel reads them."""
+    """The constraint rows and the Assur groups of ``mech`` as the kernel reads them (found once per
+    mechanism: its structure alone decides them; shared, not to be changed)."""
     rows = []
     for k in range(mech.n_pairs):
         a, b = (int(x) for x in mech.pair_links[k])
@@ -93,6 +95,13 @@ def encode(mech: Mechanism) -> Encoded:
         done += sel
     on_frame = [r for r in range(len(rows)) if rows[r][1] == 0 or rows[r][2] == 0] + [-1]
     return Encoded(np.array(rows, dtype=np.int64).reshape(-1, 6), table, np.array(on_frame, dtype=np.int64))
+
+
+@per_mechanism
+def _shapes_of(mech: Mechanism) -> np.ndarray:
+    """:func:`shapes` of the tables of ``mech``, found once per mechanism."""
+    rows, groups, _ = encode(mech)
+    return shapes(rows, groups)
 
 
 #: Shapes of a group's system: general (Gaussian elimination), one link with three rows, a dyad.
@@ -131,7 +140,7 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
     """
     mech = kin.mechanism
     rows, groups, on_frame = encoded = encode(mech)
-    shape_of = shapes(rows, groups)
+    shape_of = _shapes_of(mech)
     n_var, n_ang = kin.valid_all.shape
     geom = variant_geometry(kin)
     local, origin, axis = (np.ascontiguousarray(g[:, 0]) for g in (geom.point_local, geom.pair_origin, geom.pair_axis))

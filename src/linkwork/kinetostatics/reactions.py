@@ -11,7 +11,7 @@ from linkwork.kinetostatics.external import power as external_power
 from linkwork.kinetostatics.geometry import variant_geometry
 from linkwork.motion.kinematics import Kinematics
 from linkwork.structure.assemble import group_rows
-from linkwork.structure.constraints import build_rows, residuals_and_jacobian
+from linkwork.structure.constraints import build_rows, perp, residuals_and_jacobian
 from linkwork.structure.model import Mechanism
 
 
@@ -54,10 +54,10 @@ def inertia_and_gravity(kin: Kinematics) -> Loads:
     c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
     r = np.stack([c * lx - s * ly, s * lx + c * ly], -1)  # origin -> centre of mass, global
     w, e = v[..., 2:3], a[..., 2:3]
-    perp = np.stack([-r[..., 1], r[..., 0]], -1)
+    turned = perp(r)
     com = q[..., :2] + r
-    vc = v[..., :2] + w * perp
-    ac = a[..., :2] + e * perp - w * w * r
+    vc = v[..., :2] + w * turned
+    ac = a[..., :2] + e * turned - w * w * r
     weight = np.zeros(com.shape)
     weight[..., 1] = -mass * m.gravity
     applied = np.concatenate([weight, _cross(r, weight)[..., None]], -1)

@@ -38,6 +38,7 @@ import numpy as np
 from linkwork.motion.analysis import guide
 from linkwork.motion.kinematics import Kinematics
 from linkwork.motion.program import Arm, Step
+from linkwork.structure.constraints import perp
 from linkwork.structure.model import PairType, point_labels
 
 
@@ -200,10 +201,6 @@ def plan_series(kin: Kinematics) -> tuple[PlanSeries, PlanSeries]:
     return c.series("velocity", c.vel_pts, c.vvec), c.series("acceleration", c.acc_pts, c.avec)
 
 
-def _perp(r: np.ndarray) -> np.ndarray:
-    return np.stack([-r[..., 1], r[..., 0]], -1)
-
-
 class _Construction:
     """The graphical construction over ``(V, A)``: every vector an array ``(V, A, 2)``."""
 
@@ -234,7 +231,7 @@ class _Construction:
         q, v, a = self.q[..., link, :], self.v[..., link, :], self.a[..., link, :]
         r = x - q[..., :2]
         w, e = v[..., 2:3], a[..., 2:3]
-        return v[..., :2] + w * _perp(r), a[..., :2] + e * _perp(r) - w * w * r
+        return v[..., :2] + w * perp(r), a[..., :2] + e * perp(r) - w * w * r
 
     def build(self) -> None:
         vx, ax = self.state_at(np.asarray(self.mech.point_link, dtype=int), self.pts)  # every point at once
@@ -273,7 +270,7 @@ class _Construction:
         start, end, about = self.label[arm.src], self.label[p], self.names[arm.src]
         r = self.pts[..., p, :] - self.pts[..., arm.src, :]
         w, e = self.v[..., arm.link, 2:3], self.a[..., arm.link, 2:3]
-        pr = _perp(r)
+        pr = perp(r)
         self.vvec.append((PlanEdge(start, end, "rotation", group, about), w * pr))
         mid = f"n_{end}{start}"
         self.avec.append((PlanEdge(start, mid, "normal", group, about), -w * w * r))
@@ -286,7 +283,7 @@ class _Construction:
         v_tr, a_tr = self.state_at(c, x)
         v_x, a_x = self.state_at(arm.link, x)
         sdot = np.sum((v_x - v_tr) * u, -1)[..., None]
-        cor = 2 * self.v[..., c, 2:3] * sdot * _perp(u)
+        cor = 2 * self.v[..., c, 2:3] * sdot * perp(u)
         sddot = np.sum((a_x - a_tr - cor) * u, -1)[..., None]
         carrier = "p" if c == 0 else f"{lab}{prime}"
         about = self.mech.link_names[c]

@@ -62,11 +62,6 @@ def to_local(pose: np.ndarray, xy: np.ndarray) -> np.ndarray:
     return np.stack([c * d[..., 0] + s * d[..., 1], -s * d[..., 0] + c * d[..., 1]], -1)
 
 
-def perp(u: np.ndarray) -> np.ndarray:
-    """``u`` turned a quarter counter-clockwise, ``(..., 2)``."""
-    return np.stack([-u[..., 1], u[..., 0]], -1)
-
-
 def hull(xy: np.ndarray) -> np.ndarray:
     """Indices of the convex hull of ``xy`` ``(K, 2)``, counter-clockwise (Andrew's monotone chain);
     points on an edge are left out, so that collinear points give the two ends only."""

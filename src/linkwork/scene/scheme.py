@@ -22,8 +22,9 @@ import numpy as np
 from linkwork.motion.analysis import guide
 from linkwork.motion.kinematics import kinematics
 from linkwork.scene import symbols
-from linkwork.scene.geometry import bounds, collinear, hull, perp, place, text_size, to_local
+from linkwork.scene.geometry import bounds, collinear, hull, place, text_size, to_local
 from linkwork.scene.labels import Obstacles, place_labels, segments_hit
+from linkwork.structure.constraints import perp
 from linkwork.structure.model import PairType, per_mechanism, point_labels
 
 if TYPE_CHECKING:

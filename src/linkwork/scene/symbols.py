@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkwork.scene.geometry import perp
+from linkwork.structure.constraints import perp
 
 
 def support(apex: np.ndarray, down: np.ndarray, r: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -85,8 +85,13 @@ def _rot(theta: np.ndarray, v: np.ndarray) -> np.ndarray:
     return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
 
 
-def _perp(v: np.ndarray) -> np.ndarray:
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+#: The quarter turn of a reversed pair: ``(u_y, u_x) * (-1, 1) = (-u_y, u_x)``.
+_QUARTER = np.array([-1.0, 1.0])
+
+
+def perp(u: np.ndarray) -> np.ndarray:
+    """``u`` turned a quarter counter-clockwise, ``(..., 2)``: ``(-u_y, u_x)`` (one NumPy operation, exact)."""
+    return np.asarray(u)[..., ::-1] * _QUARTER
 
 
 #: The local dimensions the constraints are read with: a mechanism's own, or its variants'.
@@ -110,7 +115,7 @@ class _Poses:
         """Global position ``(..., 2)`` of the point ``p_local`` of ``link`` and its derivative by the link's angle."""
         theta = self.q[..., link, 2]
         rp = _rot(theta, np.broadcast_to(p_local, self.batch + (2,)))
-        return self.q[..., link, :2] + rp, _perp(rp)
+        return self.q[..., link, :2] + rp, perp(rp)
 
 
 def residuals_and_jacobian(
@@ -199,8 +204,8 @@ def _line_row(at: _Poses, mech: Mechanism, k: int, normal: bool) -> tuple[np.nda
     p_b, dpb = at.point(b, at.dims.point_local[..., mech.pair_points[k, 1], :])
     c_a, dc = at.point(a, at.dims.pair_origin[..., k, :])
     u = _rot(at.q[..., a, 2], np.broadcast_to(at.dims.pair_axis[..., k, :], at.batch + (2,)))
-    v = _perp(u) if normal else u
-    dv = _perp(v)  # d(v)/d(theta_a)
+    v = perp(u) if normal else u
+    dv = perp(v)  # d(v)/d(theta_a)
     d = p_b - c_a
     r = np.sum(v * d, axis=-1)
     row = at.zeros()
@@ -227,20 +232,20 @@ def velocity_products(q: np.ndarray, qd: np.ndarray, mech: Mechanism, geom: Geom
         return _rot(q[..., link, 2], np.broadcast_to(p_local, batch + (2,)))
 
     def vel(link: int, r: np.ndarray) -> np.ndarray:
-        return qd[..., link, :2] + qd[..., link, 2, None] * _perp(r)
+        return qd[..., link, :2] + qd[..., link, 2, None] * perp(r)
 
     def line_gamma(k: int, direction: str) -> np.ndarray:
         a, b = mech.pair_links[k]
         r_b = rp(b, dims.point_local[..., mech.pair_points[k, 1], :])
         r_c = rp(a, dims.pair_origin[..., k, :])
         u = rp(a, dims.pair_axis[..., k, :])
-        v = _perp(u) if direction == "n" else u
+        v = perp(u) if direction == "n" else u
         d = q[..., b, :2] + r_b - q[..., a, :2] - r_c
         dd = vel(b, r_b) - vel(a, r_c)
         wa, wb = qd[..., a, 2], qd[..., b, 2]
         return (
             -(wa**2) * np.sum(v * d, -1)
-            + 2 * wa * np.sum(_perp(v) * dd, -1)
+            + 2 * wa * np.sum(perp(v) * dd, -1)
             + np.sum(v * (-(wb[..., None] ** 2) * r_b + wa[..., None] ** 2 * r_c), -1)
         )
 
