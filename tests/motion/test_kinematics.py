@@ -733,7 +733,8 @@ def test_the_isosceles_slider_crank_turned_and_shifted_keeps_its_change_points(t
 
 def test_readings_of_a_point_are_the_callers_own():
     """What a point's position, velocity and acceleration return can be written to without changing the
-    next reading, and they are the crank pin's closed form (the file's crank O2A = 100 mm about O2 at the origin, 60 rpm counter-clockwise)."""
+    next reading, and they are the crank pin's closed form (the file's crank O2A = 100 mm about O2 at the
+    origin, 60 rpm counter-clockwise)."""
     kin = lw.kinematics(lw.compile(lw.example("four-bar")), steps=36)
     kin.position("A")[:] = 0.0
     kin.velocity("A")[:] = 0.0
