@@ -372,18 +372,24 @@ def test_tables_are_plain_text_when_piped():
         assert all(line == line.rstrip() for line in proc.stdout.splitlines())
 
 
-def test_a_process_ends_with_all_its_output_written():
-    """The command's process skips the collector's walk of its objects at shutdown (``main`` freezes them):
-    3.6 MB of JSON piped out of a process of its own still arrive whole, the last sample equal to
+def test_a_process_exits_with_its_objects_frozen_and_all_its_output_written():
+    """The command's process freezes its objects as it exits (after every other exit handler: a handler
+    registered before ``main`` runs after it and finds them frozen), so that the shutdown's collections
+    skip them; 3.6 MB of JSON piped out of it still arrive whole, the last sample equal to
     ``lw.kinematics`` of the same angle solved here."""
     import linkwork as lw
 
-    proc = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli", "kinematics", "double-cut-shears", "--steps", "3600", "--json"],
-        capture_output=True,
-        text=True,
+    code = (
+        "import atexit, gc, sys\n"
+        "atexit.register(lambda: print('frozen', gc.get_freeze_count(), file=sys.stderr))\n"
+        "from linkwork.cli.main import main\n"
+        "sys.argv = ['linkwork', 'kinematics', 'double-cut-shears', '--steps', '3600', '--json']\n"
+        "main()\n"
     )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stderr
+    frozen = re.search(r"^frozen (\d+)$", proc.stderr, re.MULTILINE)
+    assert frozen is not None and int(frozen.group(1)) > 10_000, proc.stderr
     data = json.loads(proc.stdout)
     assert len(data["angles_deg"]) == 3600
     kin = lw.kinematics(lw.compile(lw.load("double-cut-shears")), np.radians(data["angles_deg"][-1:]))

@@ -183,3 +183,28 @@ def test_points_read_by_the_compiled_kernel_are_the_numpy_readings(kind, name, m
             np.testing.assert_array_equal(got, by_numpy, err_msg=p)
             scale = size * (1.0 + np.nanmax(np.abs(want)))
             np.testing.assert_allclose(got[0], np.transpose(want), rtol=0, atol=1e-14 * scale, err_msg=p)
+
+
+def test_points_of_design_variants_and_of_picked_samples_read_as_the_whole(monkeypatch):
+    """Every point of seven design variants of the four-bar (crank 80 to 120 mm), read by the compiled pass:
+    each variant's readings are those of the four-bar solved alone with that crank, the readings of picked
+    samples (an index array, a strided slice: arrays that are not contiguous) are those samples of the
+    whole, and the NumPy readings are the same to the last bit."""
+    mech = lw.compile(lw.example("four-bar"))
+    angles, cranks = angles_around(mech, n=41), np.linspace(0.08, 0.12, 7)
+    kin = lw.kinematics(mech, angles, variants={"links.crank.length": cranks})
+    compiled = {p: kin._point(p) for p in mech.point_names}
+    for k in (0, 4):
+        alone = lw.kinematics(mech, angles, variants={"links.crank.length": cranks[k : k + 1]})
+        for p in mech.point_names:
+            for got, want in zip(compiled[p], alone._point(p), strict=True):
+                np.testing.assert_allclose(got[k], want[0], rtol=0, atol=1e-12, err_msg=p)
+    for index in (np.array([3, 17, 40, 0]), slice(5, 30, 4)):
+        part = kin.samples(index)
+        for p in mech.point_names:
+            for got, whole in zip(part._point(p), compiled[p], strict=True):
+                np.testing.assert_array_equal(got, whole[:, index], err_msg=p)
+    monkeypatch.setattr(fast, "ENABLED", False)
+    for p in mech.point_names:
+        for got, by_numpy in zip(compiled[p], kin._point(p), strict=True):
+            np.testing.assert_array_equal(got, by_numpy, err_msg=p)

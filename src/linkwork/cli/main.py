@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import atexit
 import gc
 import io
 import sys
@@ -22,16 +23,15 @@ def main() -> None:
     """Entry point of the ``linkwork`` script.
 
     Text that is not Unicode (a file name of bytes that are not UTF-8, given on the command line) is
-    written escaped where the output's encoding would otherwise refuse it.  When the command is done, the
-    objects made so far are frozen out of the garbage collector's reach: the process ends there, and the
-    collections of its shutdown would walk every object of NumPy, SciPy, numba and matplotlib (a third of
-    a second after ``linkwork analyze``) only to free memory the operating system takes back anyway.
-    Files are closed where they are written, and exit handlers still run.
+    written escaped where the output's encoding would otherwise refuse it.  When the process exits, after
+    every other exit handler, its objects are frozen out of the garbage collector's reach: the collections
+    of the interpreter's shutdown would walk every object of NumPy, SciPy, numba and matplotlib (a third of
+    a second after ``linkwork analyze``) only to free memory the operating system takes back anyway.  (A
+    caller that runs ``main`` and goes on keeps its collector until it exits; files are closed where they
+    are written, and the standard streams are flushed at exit all the same.)
     """
+    atexit.register(gc.freeze)  # registered first, run last
     for stream in (sys.stdout, sys.stderr):
         if isinstance(stream, io.TextIOWrapper) and stream.errors == "strict":
             stream.reconfigure(errors="backslashreplace")
-    try:
-        app()
-    finally:
-        gc.freeze()
+    app()

@@ -94,14 +94,19 @@ def encode(mech: Mechanism) -> Encoded:
         table[g, 2 + 4 * width : 2 + 4 * width + len(known)] = known
         done += sel
     on_frame = [r for r in range(len(rows)) if rows[r][1] == 0 or rows[r][2] == 0] + [-1]
-    return Encoded(np.array(rows, dtype=np.int64).reshape(-1, 6), table, np.array(on_frame, dtype=np.int64))
+    tables = Encoded(np.array(rows, dtype=np.int64).reshape(-1, 6), table, np.array(on_frame, dtype=np.int64))
+    for t in tables:
+        t.setflags(write=False)  # shared by every later call
+    return tables
 
 
 @per_mechanism
 def _shapes_of(mech: Mechanism) -> np.ndarray:
     """:func:`shapes` of the tables of ``mech``, found once per mechanism."""
     rows, groups, _ = encode(mech)
-    return shapes(rows, groups)
+    out = shapes(rows, groups)
+    out.setflags(write=False)  # shared by every later call
+    return out
 
 
 #: Shapes of a group's system: general (Gaussian elimination), one link with three rows, a dyad.

@@ -307,10 +307,10 @@ def _point_motion(kind, q, v, a, cos, sin, lx, ly, out):
         for i in range(out.shape[1]):
             c, s = cos[var, i], sin[var, i]
             rx, ry = c * lx[var] - s * ly[var], s * lx[var] + c * ly[var]
-            if kind == 0:
+            if kind == POSITION:
                 out[var, i, 0] = q[0, var, i] + rx
                 out[var, i, 1] = q[1, var, i] + ry
-            elif kind == 1:
+            elif kind == VELOCITY:
                 w = v[2, var, i]
                 out[var, i, 0] = v[0, var, i] - w * ry
                 out[var, i, 1] = v[1, var, i] + w * rx
@@ -745,10 +745,11 @@ def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, found,
     """Samples ``lo:hi`` of every variant (``near`` also from the step between ``lo - 1`` and ``lo``);
     sets ``flags`` (:data:`F_SINGULAR` ...) where something is found.
 
-    ``out``: the output block (:func:`run`) as rows (quantity, link, coordinate) and columns (variant,
-    sample); ``found``: slack and det; ``marks``: near, trouble and limit.  Scratch: ``L`` (N, STATE)
-    the link states of a sample, ``pre`` (S, 2, 3) constants of the R arms of a variant, ``prev``
-    (S, 5) X of each dyad, the vector to X of its other mode and the determinant at the sample before.
+    ``out``: the output block (:func:`run`) as rows (quantity, link, coordinate), then the cosine and the
+    sine of each link's angle, and columns (variant, sample); ``found``: slack and det; ``marks``: near,
+    trouble and limit.  Scratch: ``L`` (N, STATE) the link states of a sample, ``pre`` (S, 2, 3) constants
+    of the R arms of a variant, ``prev`` (S, 5) X of each dyad, the vector to X of its other mode and the
+    determinant at the sample before.
     """
     slack, det, near, trouble, limit = found[0], found[1], marks[0], marks[1], marks[2]
     tol = _tolerance(local)

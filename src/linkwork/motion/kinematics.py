@@ -31,7 +31,9 @@ class Kinematics:
     for a sweep.  The state of a link is the pose ``(x, y, theta)`` of its
     local frame, its velocity ``(vx, vy, omega)`` and acceleration
     ``(ax, ay, epsilon)``; SI units, radians.  Samples where the mechanism
-    does not assemble are NaN and ``valid`` is False there.
+    does not assemble are NaN and ``valid`` is False there.  ``cos`` and
+    ``sin`` are those of each link's angle ``q[:, 2]``, as the solve placed
+    the link's points with them; the accessors read points with them.
     """
 
     mechanism: Mechanism
@@ -116,7 +118,11 @@ class Kinematics:
 
     def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position, velocity and acceleration of a point, ``(V, A, 2)`` each."""
-        return tuple(self._motion(point, kind) for kind in (fast.POSITION, fast.VELOCITY, fast.ACCELERATION))  # type: ignore[return-value]
+        return (
+            self._motion(point, fast.POSITION),
+            self._motion(point, fast.VELOCITY),
+            self._motion(point, fast.ACCELERATION),
+        )
 
     def _motion(self, point: str, kind: int) -> np.ndarray:
         """The position, velocity or acceleration (``kind``) of a point, ``(V, A, 2)``: its link's motion
