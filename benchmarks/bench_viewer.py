@@ -67,12 +67,12 @@ def crank_direction(mech: lw.Mechanism) -> tuple[float, float]:
     from linkwork.motion.analysis import zero_angle
 
     k = int(mech.drive_pair[0])
-    pivot = mech.point_names[int(mech.pair_points[k, 1])]
-    link = mech.point_link[mech.point_index(pivot)]
-    kin = lw.kinematics(mech, [zero_angle(mech)])
-    ends = [kin.position(p)[0] for p in mech.point_names if mech.point_link[mech.point_index(p)] == link]
-    u = max(ends, key=lambda e: float(np.hypot(*(e - kin.position(pivot)[0])))) - kin.position(pivot)[0]
-    u /= np.hypot(*u)
+    crank = max(int(i) for i in mech.pair_links[k])  # as crank_length
+    at = lw.kinematics(mech, [zero_angle(mech)]).points()[0]  # (P, 2)
+    pivot = at[int(mech.pair_points[k, 1])]
+    arms = at[np.asarray(mech.point_link) == crank] - pivot
+    u = arms[np.argmax(np.hypot(arms[:, 0], arms[:, 1]))]
+    u = u / np.hypot(*u)
     return float(u[0]), float(-u[1])
 
 

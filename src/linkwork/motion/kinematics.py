@@ -158,12 +158,8 @@ class Kinematics:
 
     def points(self) -> np.ndarray:
         """Positions of all points, ``(..., n_angles, n_points, 2)`` (order of ``mechanism.point_names``)."""
-        m = self.mechanism
-        q = self.q[m.point_link]  # (P, 3, V, A)
-        c, s = self.cos[m.point_link], self.sin[m.point_link]
-        lx, ly = self.local[:, 0], self.local[:, 1]
-        out = np.stack([q[:, 0] + c * lx - s * ly, q[:, 1] + s * lx + c * ly], -1)  # (P, V, A, 2)
-        return self._out(np.moveaxis(out, 0, 2))
+        every = [self._motion(name, fast.POSITION) for name in self.mechanism.point_names]  # (V, A, 2) each
+        return self._out(np.stack(every, 2))
 
     def samples(self, index: Any) -> Kinematics:
         """The result at the samples ``index`` only (an int array or a slice of the angles), solved as they were;
