@@ -205,6 +205,21 @@ def test_bad_options_exit_2_with_a_message(args, message):
     assert "Traceback" not in result.output
 
 
+def test_the_scales_percentile_is_numpys_linear_percentile_exactly():
+    """The percentile the plans' and the force arrows' scales are set by (a partition, no sort): the value of
+    :func:`numpy.percentile` bit for bit, over random arrays of 1 to 400 values with ties, at the quantiles used
+    and at random ones."""
+    from linkwork.motion.plans import percentile
+
+    rng = np.random.default_rng(7)
+    for _ in range(3000):
+        x = rng.normal(size=int(rng.integers(1, 400))) * 10 ** rng.uniform(-5, 5)
+        if rng.random() < 0.3:
+            x = np.round(x, 1)  # ties
+        for q in (95.0, 2.5, 50.0, 100.0, 0.0, float(rng.uniform(0, 100))):
+            assert percentile(x, q) == float(np.percentile(x, q)), (x, q)
+
+
 def test_plans_follow_the_variants_guides_and_keep_names_apart(tmp_path):
     kin = lw.kinematics(lw.compile(lw.example("double-cut-shears")), [0.3], variants={"joints.guide_E.axis": [1.4]})
     vp, _ = plans(kin, 0)

@@ -30,16 +30,15 @@ view of one position.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
-from linkwork.motion.analysis import guide
 from linkwork.motion.kinematics import Kinematics
 from linkwork.motion.program import Arm, Step
-from linkwork.structure.constraints import perp
-from linkwork.structure.model import PairType, point_labels
+from linkwork.structure.model import Mechanism, PairType, per_mechanism, point_labels
 
 
 @dataclass(frozen=True)
@@ -119,6 +118,20 @@ def _round_scale(longest: float) -> float:
     return float(10 ** (exp + 1))
 
 
+def percentile(x: np.ndarray, q: float) -> float:
+    """``np.percentile(x, q)`` of a non-empty 1-D array without NaN: the same interpolation between the same two
+    values of ``x`` in order, found by a partition (without the general function's checks and copies)."""
+    n = len(x)
+    at = (n - 1) * (q / 100)
+    if at >= n - 1:
+        return float(np.max(x))
+    lo = math.floor(at)
+    below, above = np.partition(x, (lo, lo + 1))[lo : lo + 2]
+    t = at - lo
+    step = above - below
+    return float(above - step * (1 - t) if t >= 0.5 else below + step * t)
+
+
 @dataclass(frozen=True)
 class PlanEdge:
     """One vector of the construction, without its values: see :class:`PlanVector`."""
@@ -191,25 +204,223 @@ def plans(kin: Kinematics, index: int, variant: int = 0) -> tuple[Plan, Plan]:
 def plan_series(kin: Kinematics) -> tuple[PlanSeries, PlanSeries]:
     """The velocity and acceleration plans of every sample and variant of a kinematics result, at once.
 
+    The construction of the mechanism (its plan points, its edges, the arrays each edge is read from) is
+    found once per mechanism (:func:`_layout`); a call computes each kind of vector for all the points,
+    turns or slides together, a few NumPy operations in all, on arrays ``(K, 2, V, A)`` (each vector's
+    components, then the variants and the samples; the samples last, so that each operation runs along
+    them).  The arithmetic is the construction's, in its order.
+
     Returns
     -------
     velocity, acceleration : PlanSeries
         Values ``(V, A, L, 2)`` in m/s and m/s^2.
     """
-    c = _Construction(kin)
-    c.build()
-    return c.series("velocity", c.vel_pts, c.vvec), c.series("acceleration", c.acc_pts, c.avec)
+    lay = _layout(kin.mechanism)
+    links = _Links(*(np.ascontiguousarray(x) for x in (kin.q, kin.v, kin.a)))
+    pts = _positions(kin, links, lay.placed, lay.placed_link)
+    rotation, normal, tangential = _turns(links, lay, pts)
+    (v_abs, v_tr, v_x), (a_abs, a_tr, a_x) = _material(links, lay, pts)
+    u = _guides(kin, links, lay.slide_pair)
+    sdot = np.sum((v_x - v_tr) * u, 1, keepdims=True)
+    cor = 2 * links.v.take(lay.slide_carrier, 0)[:, 2:3] * sdot * _perp(u)
+    sddot = np.sum((a_x - a_tr - cor) * u, 1, keepdims=True)
+    vel = np.concatenate([rotation, v_tr, sdot * u])
+    acc = np.concatenate([normal, tangential, a_tr, cor, sddot * u])
+    return _series(kin, lay, lay.velocity, v_abs, vel), _series(kin, lay, lay.acceleration, a_abs, acc)
+
+
+class _Links(NamedTuple):
+    """Poses, velocities and accelerations of the links ``(N, 3, V, A)``, C-contiguous (of :class:`Kinematics`)."""
+
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+
+
+#: The quarter turn of :func:`_perp`.
+_QUARTER = np.array([-1.0, 1.0])[:, None, None]
+
+
+def _perp(u: np.ndarray) -> np.ndarray:
+    """Vectors ``(K, 2, V, A)`` turned a quarter counter-clockwise: :func:`~linkwork.structure.constraints.perp`
+    with the components on the second axis."""
+    return u[:, ::-1] * _QUARTER
+
+
+def _positions(kin: Kinematics, links: _Links, point: np.ndarray, link: np.ndarray) -> np.ndarray:
+    """Positions ``(P, 2, V, A)`` of the points ``point`` ``(P,)``, on their links ``link``: those of
+    :meth:`Kinematics.points` (``x + (c l_x - s l_y)``, ``y + (s l_x + c l_y)``, as exactly), all at once."""
+    c, s, local = kin.cos.take(link, 0)[:, None], kin.sin.take(link, 0)[:, None], kin.local.take(point, 0)
+    return links.q.take(link, 0)[:, :2] + (c * local + s * _perp(local))
+
+
+def _material(links: _Links, lay: _Layout, pts: np.ndarray) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Velocities and accelerations ``(K, 2, V, A)`` of the material points read: the point of each
+    absolute plan point on its link, then each sliding point on its link's carrier, then on its link.
+
+    Of a link ``(x, y, theta)`` at ``X``: ``v + w perp(r)`` and ``a + e perp(r) - w^2 r``, ``r = X - (x, y)``.
+    """
+    q, v, a = (x.take(lay.at_link, 0) for x in links)
+    r = pts.take(lay.at_point, 0) - q[:, :2]
+    w, e, pr = v[:, 2:3], a[:, 2:3], _perp(r)
+    vel, acc = v[:, :2] + w * pr, a[:, :2] + e * pr - w * w * r
+    n, s = len(lay.points), len(lay.slide_pair)
+    return [vel[:n], vel[n : n + s], vel[n + s :]], [acc[:n], acc[n : n + s], acc[n + s :]]
+
+
+def _turns(links: _Links, lay: _Layout, pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each turning point X with its link about the link's outer joint P, ``(T, 2, V, A)`` each:
+    v = w perp(r); a = a^n + a^t, a^n = -w^2 r, a^t = e perp(r); r = X - P."""
+    r = pts.take(lay.turn_point, 0) - pts.take(lay.turn_about, 0)
+    w, e = links.v.take(lay.turn_link, 0)[:, 2:3], links.a.take(lay.turn_link, 0)[:, 2:3]
+    pr = _perp(r)
+    return w * pr, -w * w * r, e * pr
+
+
+def _guides(kin: Kinematics, links: _Links, pair: np.ndarray) -> np.ndarray:
+    """The unit directions ``(S, 2, V, A)`` of the prismatic pairs ``pair``: those of
+    :func:`~linkwork.motion.analysis.guide` (``c u_x - s u_y``, ``s u_x + c u_y``, as exactly), all at once."""
+    theta = links.q.take(kin.mechanism.pair_links[pair, 0], 0)[:, 2:3]
+    axis = kin.axis.take(pair, 0)
+    return np.cos(theta) * axis + np.sin(theta) * _perp(axis)
+
+
+def _series(kin: Kinematics, lay: _Layout, plot: _Plot, absolute: np.ndarray, vectors: np.ndarray) -> PlanSeries:
+    """The plan of a kind from the absolute plan points ``(len(lay.points), 2, V, A)`` and the kind's
+    vectors ``(K, 2, V, A)`` (its arrays of vectors concatenated, see :func:`plan_series`): the edges'
+    vectors, the intermediate points reached along the construction, NaN the others."""
+    vectors = vectors.take(plot.order, 0)
+    values = np.empty((len(plot.labels),) + absolute.shape[1:])
+    values[: len(absolute)], values[len(absolute) :] = absolute, np.nan
+    for end, start, edge in plot.reached:
+        values[end] = values.take(start, 0) + vectors.take(edge, 0)
+    values, vectors = _samples_first(values), _samples_first(vectors)
+    return PlanSeries(plot.kind, kin.angles, lay.points, plot.labels, plot.edges, values, vectors)
+
+
+def _samples_first(x: np.ndarray) -> np.ndarray:
+    """``(K, 2, V, A) -> (V, A, K, 2)``, C-contiguous."""
+    return np.ascontiguousarray(x.transpose(2, 3, 0, 1))
+
+
+class _Plot(NamedTuple):
+    """The plan of one kind of a mechanism, without its values.
+
+    ``order``: where each edge's vector is in the kind's arrays of vectors as :func:`plan_series`
+    concatenates them (:data:`_VECTORS`); ``reached``: the intermediate plan points, each the point an
+    edge starts from plus the edge's vector, in rounds (a round's points start from points known before
+    it), each round index arrays ``(labels reached, labels they start from, edges)``.
+    """
+
+    kind: str
+    labels: tuple[str, ...]
+    edges: tuple[PlanEdge, ...]
+    order: np.ndarray
+    reached: tuple[tuple[np.ndarray, ...], ...]
+
+
+#: The kinds of vectors of each plan, in the order :func:`plan_series` concatenates their arrays.
+_VECTORS = {
+    "velocity": ("rotation", "transport", "sliding"),
+    "acceleration": ("normal", "tangential", "transport", "coriolis", "sliding"),
+}
+
+
+class _Layout(NamedTuple):
+    """The graphical construction of a mechanism, without its values (:func:`_layout`).
+
+    ``placed``: the points whose positions are read, ``placed_link`` their links; ``points``: the
+    absolute plan points' labels; ``turn_*``: each point X turning with a link about a point P
+    (:func:`_turns`); ``slide_*``: each point X on a link sliding along a guide of its carrier, the
+    guide's prismatic pair; ``at_link``, ``at_point``: the material points whose velocities and
+    accelerations are read (:func:`_material`).  Points (but ``placed``) are numbered among ``placed``.
+    """
+
+    placed: np.ndarray
+    placed_link: np.ndarray
+    points: tuple[str, ...]
+    turn_point: np.ndarray
+    turn_about: np.ndarray
+    turn_link: np.ndarray
+    slide_carrier: np.ndarray
+    slide_pair: np.ndarray
+    at_link: np.ndarray
+    at_point: np.ndarray
+    velocity: _Plot
+    acceleration: _Plot
+
+
+@per_mechanism
+def _layout(mech: Mechanism) -> _Layout:
+    """The graphical construction of ``mech`` (found once per mechanism: its structure alone decides it;
+    shared, not to be changed)."""
+    c = _Construction(mech)
+    for step in mech.program:
+        c.step(step)
+    turn = np.array(c.turns, dtype=int).reshape(-1, 3).T
+    slide = np.array(c.slides, dtype=int).reshape(-1, 4).T
+    points = tuple(dict.fromkeys(c.label))
+    first = np.array([c.label.index(lab) for lab in points], dtype=int)
+    at_point = np.concatenate([first, slide[0], slide[0]])
+    placed, among = np.unique(np.concatenate([at_point, turn[0], turn[1]]), return_inverse=True)
+    at_point, turn_point, turn_about = np.split(among, np.cumsum([len(at_point), len(turn[0])]))
+    t, s = len(c.turns), len(c.slides)
+    size = {"rotation": t, "normal": t, "tangential": t, "transport": s, "coriolis": s, "sliding": s}
+    return _Layout(
+        placed=placed,
+        placed_link=np.asarray(mech.point_link, dtype=int)[placed],
+        points=points,
+        turn_point=turn_point,
+        turn_about=turn_about,
+        turn_link=turn[2],
+        slide_carrier=slide[2],
+        slide_pair=slide[3],
+        at_link=np.concatenate([mech.point_link[first], slide[2], slide[1]]).astype(int),
+        at_point=at_point,
+        velocity=_plot("velocity", points, c.vel, size),
+        acceleration=_plot("acceleration", points, c.acc, size),
+    )
+
+
+def _plot(kind: str, points: tuple[str, ...], edges: list[tuple[PlanEdge, int]], size: dict[str, int]) -> _Plot:
+    """The plan of a kind from its edges, each with its number among the vectors of its kind (``size``
+    of them)."""
+    kinds = _VECTORS[kind]
+    offset = dict(zip(kinds, np.cumsum([0] + [size[k] for k in kinds[:-1]]).tolist(), strict=True))
+    labels = list(points)
+    for edge, _ in edges:
+        for lab in (edge.start, edge.end):
+            if lab not in labels:
+                labels.append(lab)
+    plan = tuple(e for e, _ in edges)
+    order = np.array([offset[e.kind] + i for e, i in edges], dtype=int)
+    return _Plot(kind, tuple(labels), plan, order, _reached(labels, points, plan))
+
+
+def _reached(
+    labels: list[str], points: tuple[str, ...], edges: tuple[PlanEdge, ...]
+) -> tuple[tuple[np.ndarray, ...], ...]:
+    """The intermediate plan points along the construction, each reached by the first edge to it from a
+    known point (that point plus the edge's vector), in rounds: index arrays ``(labels reached, labels
+    they start from, edges)`` of each round."""
+    round_of = dict.fromkeys(points, 0)
+    rounds: list[list[tuple[int, int, int]]] = []
+    for j, edge in enumerate(edges):
+        if edge.start in round_of and edge.end not in round_of:
+            n = round_of[edge.end] = round_of[edge.start] + 1
+            if n > len(rounds):
+                rounds.append([])
+            rounds[n - 1].append((labels.index(edge.end), labels.index(edge.start), j))
+    return tuple(tuple(np.array(column, dtype=int) for column in zip(*found, strict=True)) for found in rounds)
 
 
 class _Construction:
-    """The graphical construction over ``(V, A)``: every vector an array ``(V, A, 2)``."""
+    """The graphical construction of a mechanism, step by step in solving order, without its values:
+    the turning and sliding points it draws, and the edges of its velocity and acceleration plans (each
+    with its number among the vectors of its kind)."""
 
-    def __init__(self, kin: Kinematics) -> None:
-        mech = self.mech = kin.mechanism
-        self.kin = kin
-        self.q, self.v, self.a = kin.pose, kin.vel, kin.acc  # (V, A, N, 3)
-        pts = kin.points()
-        self.pts = pts if kin.variants else pts[None]  # (V, A, P, 2)
+    def __init__(self, mech: Mechanism) -> None:
+        self.mech = mech
         self.names = [n.split(".", 1)[1] for n in mech.point_names]
         grounded = {
             int(mech.pair_points[k, 1])
@@ -220,26 +431,10 @@ class _Construction:
         self.label = [
             "p" if mech.point_link[p] == 0 or p in grounded else labels[p] for p in range(len(mech.point_names))
         ]
-        self.vel_pts: dict[str, np.ndarray] = {}
-        self.acc_pts: dict[str, np.ndarray] = {}
-        self.vvec: list[tuple[PlanEdge, np.ndarray]] = []
-        self.avec: list[tuple[PlanEdge, np.ndarray]] = []
-
-    def state_at(self, link: int | np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Velocity and acceleration of the material point of ``link`` at ``x`` (V, A, 2); of each of the links
-        ``(P,)`` at its point ``x`` (V, A, P, 2)."""
-        q, v, a = self.q[..., link, :], self.v[..., link, :], self.a[..., link, :]
-        r = x - q[..., :2]
-        w, e = v[..., 2:3], a[..., 2:3]
-        return v[..., :2] + w * perp(r), a[..., :2] + e * perp(r) - w * w * r
-
-    def build(self) -> None:
-        vx, ax = self.state_at(np.asarray(self.mech.point_link, dtype=int), self.pts)  # every point at once
-        for p, label in enumerate(self.label):
-            self.vel_pts.setdefault(label, vx[..., p, :])
-            self.acc_pts.setdefault(label, ax[..., p, :])
-        for step in self.mech.program:
-            self.step(step)
+        self.turns: list[tuple[int, int, int]] = []  # point, the point it turns about, link
+        self.slides: list[tuple[int, int, int, int]] = []  # point, link, carrier, pair
+        self.vel: list[tuple[PlanEdge, int]] = []
+        self.acc: list[tuple[PlanEdge, int]] = []
 
     def step(self, step: Step) -> None:
         g, arms = step.label, step.arms
@@ -268,46 +463,23 @@ class _Construction:
         """Point ``p`` turning with the arm's link about the arm's outer joint: v = w perp(r);
         a = -w^2 r + e perp(r), r = X - P."""
         start, end, about = self.label[arm.src], self.label[p], self.names[arm.src]
-        r = self.pts[..., p, :] - self.pts[..., arm.src, :]
-        w, e = self.v[..., arm.link, 2:3], self.a[..., arm.link, 2:3]
-        pr = perp(r)
-        self.vvec.append((PlanEdge(start, end, "rotation", group, about), w * pr))
+        i = len(self.turns)
+        self.turns.append((p, arm.src, arm.link))
+        self.vel.append((PlanEdge(start, end, "rotation", group, about), i))
         mid = f"n_{end}{start}"
-        self.avec.append((PlanEdge(start, mid, "normal", group, about), -w * w * r))
-        self.avec.append((PlanEdge(mid, end, "tangential", group, about), e * pr))
+        self.acc.append((PlanEdge(start, mid, "normal", group, about), i))
+        self.acc.append((PlanEdge(mid, end, "tangential", group, about), i))
 
     def sliding(self, group: str, p: int, arm: Arm, prime: str = "'") -> None:
         """Point ``p`` on a link sliding along a guide of the carrier: transport + (Coriolis) + sliding."""
-        c, lab, x = arm.carrier, self.label[p], self.pts[..., p, :]
-        u = guide(self.kin, arm.pair)[1]
-        v_tr, a_tr = self.state_at(c, x)
-        v_x, a_x = self.state_at(arm.link, x)
-        sdot = np.sum((v_x - v_tr) * u, -1)[..., None]
-        cor = 2 * self.v[..., c, 2:3] * sdot * perp(u)
-        sddot = np.sum((a_x - a_tr - cor) * u, -1)[..., None]
+        c, lab = arm.carrier, self.label[p]
+        i = len(self.slides)
+        self.slides.append((p, arm.link, c, arm.pair))
         carrier = "p" if c == 0 else f"{lab}{prime}"
         about = self.mech.link_names[c]
         mid = f"k{prime}_{lab}"
-        self.vvec.append((PlanEdge("p", carrier, "transport", group, about), v_tr))
-        self.vvec.append((PlanEdge(carrier, lab, "sliding", group, about), sdot * u))
-        self.avec.append((PlanEdge("p", carrier, "transport", group, about), a_tr))
-        self.avec.append((PlanEdge(carrier, mid, "coriolis", group, about), cor))
-        self.avec.append((PlanEdge(mid, lab, "sliding", group, about), sddot * u))
-
-    def series(self, kind: str, pts: dict[str, np.ndarray], vecs: list[tuple[PlanEdge, np.ndarray]]) -> PlanSeries:
-        """The plan points (absolute, then each intermediate point reached along the construction)."""
-        known = dict(pts)
-        labels = list(pts)
-        for edge, vec in vecs:
-            for lab in (edge.start, edge.end):
-                if lab not in labels:
-                    labels.append(lab)
-            if edge.start in known and edge.end not in known:
-                known[edge.end] = known[edge.start] + vec
-        shape = self.pts.shape[:2] + (2,)
-        nan = np.full(shape, np.nan)
-        values = np.stack([known.get(lab, nan) for lab in labels], axis=2)
-        vectors = np.stack([vec for _, vec in vecs], axis=2) if vecs else np.zeros(shape[:2] + (0, 2))
-        return PlanSeries(
-            kind, self.kin.angles, tuple(pts), tuple(labels), tuple(e for e, _ in vecs), values, vectors
-        )
+        self.vel.append((PlanEdge("p", carrier, "transport", group, about), i))
+        self.vel.append((PlanEdge(carrier, lab, "sliding", group, about), i))
+        self.acc.append((PlanEdge("p", carrier, "transport", group, about), i))
+        self.acc.append((PlanEdge(carrier, mid, "coriolis", group, about), i))
+        self.acc.append((PlanEdge(mid, lab, "sliding", group, about), i))
