@@ -384,3 +384,49 @@ def test_the_working_point_rests_at_position_0(name):
     zero = lw.kinematics(mech, position_angles(mech)[:1])
     cycle = lw.kinematics(mech, steps=360)
     assert np.hypot(*zero.velocity(point)[0]) <= 1e-9 * np.max(np.hypot(*cycle.velocity(point).T))
+
+
+def test_the_crossings_of_segments_and_boxes_are_counted_pair_by_pair():
+    """``segments_hit`` counts, for each box, the segments that cross or touch it: those whose extents overlap
+    the box's on both axes and whose line does not leave all four corners on one side, as a test of each pair
+    apart finds them (segments inside a box, through it, along its edge, beside it, and NaN ones)."""
+    from linkwork.scene.labels import segments_hit
+
+    rng = np.random.default_rng(7)
+    segments = rng.uniform(-1, 1, (5, 40, 2, 2))
+    segments[:, :3] = [[[-0.1, -0.1], [0.1, 0.1]], [[-2, 0.5], [2, 0.5]], [[0.5, -2], [0.5, 2]]]  # inside, along
+    segments[:, 3] = np.nan
+    lo = rng.uniform(-1, 0.5, (5, 6, 2))
+    boxes = np.concatenate([lo, lo + rng.uniform(0.05, 0.8, (5, 6, 2))], -1)
+    boxes[:, 0] = [-0.5, -0.5, 0.5, 0.5]
+
+    def crosses(seg, box):
+        (px, py), (qx, qy) = seg
+        x0, y0, x1, y1 = box
+        if not (max(px, qx) >= x0 and min(px, qx) <= x1 and max(py, qy) >= y0 and min(py, qy) <= y1):
+            return False
+        sides = [(qx - px) * (cy - py) - (qy - py) * (cx - px) for cx, cy in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
+        return not (all(s > 0 for s in sides) or all(s < 0 for s in sides))
+
+    want = [[sum(crosses(s, b) for s in segments[a]) for b in boxes[a]] for a in range(len(boxes))]
+    got = segments_hit(boxes, segments)
+    assert got.dtype == float and got.tolist() == want
+    assert got[:, 0].min() >= 3  # the three drawn through the first box
+    assert segments_hit(boxes, segments[:, :0]).tolist() == np.zeros((5, 6)).tolist()
+
+
+def test_the_scheme_draws_each_variant_of_a_sweep_where_the_kinematics_puts_its_points():
+    """The scheme of each design variant of a sweep draws the trajectories of the kinematics' points of that
+    variant, exactly, and its links' outlines from that variant's dimensions."""
+    mech = lw.compile(lw.example("double-cut-shears"))
+    key = "links.crank.length"
+    crank = lw.parameters(mech)[key]
+    sweep = lw.kinematics(mech, steps=72, variants={key: [0.97 * crank, crank, 1.03 * crank]})
+    lengths = []
+    for v in range(3):
+        scene = scheme_scene(sweep, variant=v, at=[])
+        want = np.stack([sweep.position(name)[v] for name in scene.path_names], 1)
+        np.testing.assert_array_equal(scene.paths, want)
+        bar = next(it for it in scene.items if it.name == "crank")
+        lengths.append(float(np.hypot(*np.diff(bar.xy, axis=0)[0])))
+    np.testing.assert_allclose(lengths, [0.97 * crank, crank, 1.03 * crank], rtol=1e-12)

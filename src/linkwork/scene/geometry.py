@@ -66,27 +66,29 @@ def hull(xy: np.ndarray) -> np.ndarray:
     """Indices of the convex hull of ``xy`` ``(K, 2)``, counter-clockwise (Andrew's monotone chain);
     points on an edge are left out, so that collinear points give the two ends only."""
     order = np.lexsort((xy[:, 1], xy[:, 0]))
+    pts = xy.tolist()  # the turns weighed in Python's floats (the same arithmetic, without NumPy's cost per call)
 
-    def chain(seq: np.ndarray) -> list[int]:
+    def chain(seq: list[int]) -> list[int]:
         out: list[int] = []
         for i in seq:
             while len(out) >= 2:
-                a, b = xy[out[-2]], xy[out[-1]]
-                if (b[0] - a[0]) * (xy[i][1] - a[1]) - (b[1] - a[1]) * (xy[i][0] - a[0]) > 1e-12:
+                a, b, c = pts[out[-2]], pts[out[-1]], pts[i]
+                if (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 1e-12:
                     break
                 out.pop()
-            out.append(int(i))
+            out.append(i)
         return out
 
-    lower, upper = chain(order), chain(order[::-1])
-    return np.array(lower[:-1] + upper[:-1] if len(order) > 2 else [int(i) for i in order], dtype=int)
+    seq = order.tolist()
+    lower, upper = chain(seq), chain(seq[::-1])
+    return np.array(lower[:-1] + upper[:-1] if len(order) > 2 else seq, dtype=int)
 
 
 def collinear(xy: np.ndarray, tol: float = 1e-3) -> bool:
     """Whether the points ``(K, 2)`` lie on one line, to ``tol`` of their spread."""
     if len(xy) < 3:
         return True
-    centred = xy - xy.mean(0)
+    centred = xy - xy.sum(0) / len(xy)  # minus their mean
     s = np.linalg.svd(centred, compute_uv=False)
     return bool(s[1] <= tol * max(s[0], 1e-300))
 
@@ -96,7 +98,9 @@ def bounds(*arrays: np.ndarray) -> np.ndarray:
     pts = np.concatenate(
         [np.asarray(a, dtype=float).reshape(-1, 2) for a in arrays if np.size(a)] or [np.zeros((0, 2))]
     )
-    pts = pts[np.isfinite(pts).all(-1)]
-    if not len(pts):
+    x, y = pts[:, 0], pts[:, 1]  # each coordinate apart (NumPy is slow over short axes)
+    finite = np.isfinite(x) & np.isfinite(y)
+    if not finite.any():
         return np.array([-1.0, -1.0, 1.0, 1.0])
-    return np.concatenate([pts.min(0), pts.max(0)])
+    x, y = x[finite], y[finite]
+    return np.array([x.min(), y.min(), x.max(), y.max()])

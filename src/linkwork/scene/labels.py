@@ -192,20 +192,26 @@ def segments_hit(boxes: np.ndarray, segments: np.ndarray) -> np.ndarray:
     A segment meets a box where their extents overlap on both axes and the box's corners are not all on
     one side of the segment's line (the separating axes of a segment and a box).
     """
-    if not segments.shape[1]:
+    return ends_hit(boxes, segments.reshape(*segments.shape[:2], 4).transpose(2, 0, 1))
+
+
+def ends_hit(boxes: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """:func:`segments_hit` of the segments given by the coordinates of their ends ``ends`` ``(4, A, S)`` (``x0, y0,
+    x1, y1``), each coordinate weighed apart (NumPy is slow over short axes)."""
+    n_boxes, n_segments = boxes.shape[1], ends.shape[2]
+    if not n_segments:
         return np.zeros(boxes.shape[:2])
-    lo = np.minimum(segments[:, None, :, 0], segments[:, None, :, 1])  # (A, 1, S, 2)
-    hi = np.maximum(segments[:, None, :, 0], segments[:, None, :, 1])
-    overlap = (hi >= boxes[:, :, None, :2]) & (lo <= boxes[:, :, None, 2:])
-    a, k, s = np.nonzero(overlap.all(-1))  # the few pairs whose extents overlap
-    p, q, box = segments[a, s, 0], segments[a, s, 1], boxes[a, k]
-    d = q - p
-    corners = [(box[:, 0], box[:, 1]), (box[:, 2], box[:, 1]), (box[:, 2], box[:, 3]), (box[:, 0], box[:, 3])]
-    sides = np.stack([d[:, 0] * (cy - p[:, 1]) - d[:, 1] * (cx - p[:, 0]) for cx, cy in corners], -1)
-    crossed = ~((sides > 0).all(-1) | (sides < 0).all(-1))
-    out = np.zeros(boxes.shape[:2])
-    np.add.at(out, (a[crossed], k[crossed]), 1.0)
-    return out
+    x0, y0, x1, y1 = ends[:, :, None, :]  # (A, 1, S) each
+    bx0, by0, bx1, by1 = boxes.transpose(2, 0, 1)[..., None]  # (A, K, 1) each
+    overlap = (np.maximum(x0, x1) >= bx0) & (np.minimum(x0, x1) <= bx1)
+    overlap &= (np.maximum(y0, y1) >= by0) & (np.minimum(y0, y1) <= by1)
+    box, s = np.divmod(np.flatnonzero(overlap), n_segments)  # the few pairs whose extents overlap
+    px, py, qx, qy = ends[:, box // n_boxes, s]
+    corners = boxes.reshape(-1, 4)[box].T  # x0, y0, x1, y1 of each pair's box
+    cx, cy = corners[[0, 2, 2, 0]], corners[[1, 1, 3, 3]]  # its corners (x0, y0), (x1, y0), (x1, y1), (x0, y1)
+    sides = (qx - px) * (cy - py) - (qy - py) * (cx - px)  # (4, pairs): which side of the segment's line
+    crossed = box[~((sides.min(0) > 0) | (sides.max(0) < 0))]
+    return np.bincount(crossed, minlength=boxes.shape[0] * n_boxes).reshape(boxes.shape[:2]).astype(float)
 
 
 def _circles_hit(boxes: np.ndarray, circles: np.ndarray) -> np.ndarray:

@@ -15,15 +15,16 @@ pivots of radius ``r = 0.012 size``, text ``em = 0.032 size`` high.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from itertools import compress
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from linkwork.motion.analysis import guide
+from linkwork.motion import fast
 from linkwork.motion.kinematics import kinematics
 from linkwork.scene import symbols
-from linkwork.scene.geometry import bounds, collinear, hull, place, text_size, to_local
-from linkwork.scene.labels import Obstacles, place_labels, segments_hit
+from linkwork.scene.geometry import bounds, collinear, hull, place, text_size
+from linkwork.scene.labels import Obstacles, ends_hit, place_labels
 from linkwork.structure.constraints import perp
 from linkwork.structure.model import PairType, per_mechanism, point_labels
 
@@ -43,6 +44,20 @@ CYCLE = 72
 
 #: A support stands down unless another side is crossed at fewer samples by this fraction of them.
 DOWN = 0.15
+
+#: The sides a support may stand towards: down, left, right, up.
+SIDES = np.array([[0.0, -1.0], [-1.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+
+#: The box ``[x0, y0, x1, y1]`` a support's symbol takes about its apex standing towards each of :data:`SIDES`, in
+#: pivot radii: from 1.2 to 3.6 along the side, 2.6 either side across it (exact: the sides are the axes).
+_NEAR, _FAR = 1.2 * SIDES - 2.6 * perp(SIDES), 3.6 * SIDES + 2.6 * perp(SIDES)  # opposite corners of each
+SUPPORT_BOXES = np.concatenate([np.minimum(_NEAR, _FAR), np.maximum(_NEAR, _FAR)], 1)
+
+#: What a support's standing towards each of :data:`SIDES` costs beyond the fraction of the samples it is crossed at.
+_STANDING = DOWN * np.array([0.0, 1.0, 1.0, 2.0])
+
+#: Where along its longest side a link's number may stand, as fractions of the side: the middle first.
+_ALONG = np.array([0.5, 0.32, 0.68, 0.2, 0.8])[:, None]
 
 
 @dataclass(frozen=True)
@@ -205,18 +220,15 @@ class _Builder:
 
     def __init__(self, kin: Kinematics, variant: int, cycle: Kinematics) -> None:
         self.kin, self.mech, self.variant = kin, kin.mechanism, variant
-        self.poses = np.array(kin.pose[variant])  # (A, N, 3)
-        self.local = np.asarray(kin.local[:, :, variant, 0], dtype=float)  # (P, 2)
-        pts = kin.points()
-        turn = pts if cycle is kin else cycle.points()
-        self.pts = np.asarray(pts[variant] if kin.variants else pts)  # (A, P, 2)
-        self.cycle = np.asarray(turn[min(variant, len(turn) - 1)] if cycle.variants else turn)  # (S, P, 2)
-        mech = self.mech
-        self.layout = layout = _layout(mech)
+        self.layout = layout = _layout(self.mech)
         self.joint, self.moving, self.outline = layout.joint, layout.moving, layout.outline
         self.path_points = layout.path_points
+        self.poses = np.array(kin.pose[variant])  # (A, N, 3)
+        self.local = np.asarray(kin.local[:, :, variant, 0], dtype=float)  # (P, 2)
+        self.pts = _points(kin, variant)  # (A, P, 2)
+        self.cycle = self.pts if cycle is kin else _points(cycle, min(variant, cycle.q.shape[2] - 1))  # (S, P, 2)
         self._segments: np.ndarray | None = None
-        box = bounds(self.cycle[:, self.moving], self.local[np.asarray(mech.point_link) == 0])
+        box = bounds(self.cycle[:, self.moving], self.local[layout.frame_points])
         self.size = float(max(box[2] - box[0], box[3] - box[1], 1e-9))
         self.r, self.em = PIVOT * self.size, FONT * self.size
         self.first = int(np.argmax(np.asarray(kin.valid_all[variant]))) if len(self.pts) else 0
@@ -224,135 +236,174 @@ class _Builder:
     # ------------------------------------------------------------ items
 
     def items(self) -> tuple[Item, ...]:
-        found: list[Item] = []
-        found += self._bodies()
-        found += self._pivots()
-        found += self._supports()
-        found += self._sliders()
-        found += self._tools()
-        found += self._markers()
-        return tuple(sorted(found, key=lambda it: KINDS.index(it.kind)))
+        """Every item, in drawing order."""
+        apexes = self.local[list(self.layout.supports)].reshape(-1, 2)
+        origins, directions = self._guide_lines()
+        on = self.layout.sliders.on_frame  # the guides drawn: those on the frame
+        spans = [self._stroke(p, origin, u) for p, origin, u in
+                 zip(self.layout.sliders.guided, origins[on], directions[on], strict=True)]  # fmt: skip
+        downs, sides = self._free_sides(apexes, origins[on], directions[on], spans)
+        supports, bases = self._supports(apexes, downs)
+        guides, lines = self._guides(origins[on], directions[on], spans, sides)
+        found = self._bodies() + self._pivots() + supports + self._blocks(directions) + guides
+        found += self._tools() + self._markers()
+        found += self._hatches(bases + lines, [*self.layout.supports.values(), *self.layout.sliders.guide_joints])
+        return tuple(sorted(found, key=_drawn_before))
 
     def _bodies(self) -> list[Item]:
         """Each moving link as a bar (its points in one line) or a plate (their convex outline)."""
         out = []
-        for link in range(1, self.mech.n_links_total):
-            draw = self.outline[link]
-            if not draw:
+        at = self.local.tolist()  # a bar of two points: its ends in the order of the hull's (x, then y)
+        pairs = [draw[::-1] if at[draw[1]] < at[draw[0]] else draw
+                 for _, draw, _ in self.layout.bodies if len(draw) == 2]  # fmt: skip
+        ends = iter(self.local[pairs] if pairs else ())
+        for link, draw, name in self.layout.bodies:
+            if len(draw) == 2:
+                out.append(_item("bar", link, next(ends), name=name))
                 continue
             xy = self.local[draw]
-            name = str(self.mech.link_names[link])
             if collinear(xy):
-                ends = hull(xy)
-                out.append(Item("bar", link, xy[ends][:2], name=name))
+                out.append(_item("bar", link, xy[hull(xy)][:2], name=name))
             else:
-                out.append(Item("plate", link, xy[hull(xy)], closed=True, name=name))
+                out.append(_item("plate", link, xy[hull(xy)], closed=True, name=name))
         return out
 
     def _pivots(self) -> list[Item]:
         """A circle at every revolute joint, one for the links a compound hinge joins."""
-        return [Item("pivot", link, self.local[p][None], radius=self.r, name=joint)
+        return [_item("pivot", link, self.local[p][None], radius=self.r, name=joint)
                 for joint, p, link in self.layout.pivots]  # fmt: skip
 
-    def _supports(self) -> list[Item]:
-        """A hinge symbol under every revolute joint on the frame, turned towards the freest side."""
-        found = self.layout.supports
-        apexes = self.local[list(found)].reshape(-1, 2)
+    def _supports(self, apexes: np.ndarray, downs: np.ndarray) -> tuple[list[Item], list[symbols.Hatch]]:
+        """A hinge symbol under every revolute joint on the frame at ``apexes``, turned towards ``downs``, and
+        their bases to hatch."""
+        out, bases = [], []
+        for apex, down, joint in zip(apexes.tolist(), downs.tolist(), self.layout.supports.values(), strict=True):
+            triangle, base = symbols.support(apex, down, self.r)
+            out += [_item("support", 0, triangle, closed=True, name=joint),
+                    _item("support", 0, np.array(base[:2]), name=joint)]  # fmt: skip
+            bases.append(base)
+        return out, bases
+
+    def _hatches(self, lines: list[symbols.Hatch], joints: list[str]) -> list[Item]:
+        """The strokes hatching ``lines``, each named for its joint of ``joints``."""
         out = []
-        for apex, down, joint in zip(apexes, self._free_sides(apexes), found.values(), strict=True):
-            triangle, base, hatch = symbols.support(apex, down, self.r)
-            out += [Item("support", 0, triangle, closed=True, name=joint), Item("support", 0, base, name=joint)]
-            out += [Item("hatch", 0, h, name=joint) for h in hatch]
+        for strokes, joint in zip(symbols.hatches(lines, self.r), joints, strict=True):
+            out += _lines("hatch", strokes, joint)
         return out
 
-    def _free_sides(self, apexes: np.ndarray) -> np.ndarray:
-        """For each of ``apexes`` ``(K, 2)``, of down, left, right and up, the direction from it in which a support's
-        symbol is crossed by the lines of the moving links at the fewest samples of the cycle, down preferred (by
-        :data:`DOWN` of the samples over the sides, twice that over up): ``(K, 2)``."""
-        sides = np.array([[0.0, -1.0], [-1.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
-        segs = self._link_segments()[None] - apexes[:, None, None, None]  # (K, n, S, 2, 2): sides of links, samples
-        box = np.array([1.2 * self.r, -2.6 * self.r, 3.6 * self.r, 2.6 * self.r])
-        # in the axes of each side: along it, across it; (K, 4, n S, 2, 2), one support and side a row
-        turned = np.stack([segs @ sides.T, segs @ perp(sides).T], -1)  # (K, n, S, 2, 4, 2)
-        turned = np.moveaxis(turned, 4, 1).reshape(len(apexes) * len(sides), segs.shape[1] * segs.shape[2], 2, 2)
-        hits = segments_hit(np.broadcast_to(box, (len(turned), 1, 4)), turned)[:, 0].reshape(-1, len(sides))
-        score = hits / max(segs.shape[2], 1) + DOWN * np.array([0.0, 1.0, 1.0, 2.0])
-        return sides[np.argmin(score, axis=1)]
+    def _free_sides(self, apexes: np.ndarray, origins: np.ndarray, directions: np.ndarray,
+                    spans: list[tuple[float, float]]) -> tuple[np.ndarray, list[float]]:  # fmt: skip
+        """The sides the supports stand on and the guides are hatched on, from one count of the crossings of the
+        lines of the moving links over the cycle (:func:`~linkwork.scene.labels.ends_hit`).
+
+        For each of ``apexes`` ``(K, 2)``, of :data:`SIDES`, the direction from it in which a support's symbol is
+        crossed at the fewest samples, down preferred (by :data:`DOWN` of the samples over the sides, twice that over
+        up): ``(K, 2)``; for each guide on the frame through ``origins`` along ``directions`` ``(G, 2)`` over its
+        stroke ``spans``, the side it is hatched on (+1 left of its direction, -1 right): the one with fewer
+        crossings.  The links' sides are taken about each apex (each side's box there, :data:`SUPPORT_BOXES`), and in
+        each guide's axes (a box along it on either side; two boxes that nothing meets make as many as a support's).
+        """
+        segs = self._link_segments()  # (n, S, 2, 2)
+        count, r = len(apexes), self.r
+        ends = np.empty((4, count + len(spans), segs.shape[0] * segs.shape[1]))  # x0, y0, x1, y1 of the sides
+        boxes = np.full((count + len(spans), len(SIDES), 4), np.nan)  # where each support or guide is drawn
+        np.subtract(segs.reshape(-1, 4).T[:, None], apexes[:, [0, 1, 0, 1]].T[..., None], out=ends[:, :count])
+        boxes[:count] = SUPPORT_BOXES * r
+        for row, (origin, u, (lo, hi)) in enumerate(zip(origins, directions, spans, strict=True), count):
+            ends[0::2, row], ends[1::2, row] = (x.T for x in self._along(origin, u))
+            boxes[row, :2] = [[lo, 1.5 * r, hi, 8 * r], [lo, -8 * r, hi, -1.5 * r]]  # left of the guide, right
+        hits = ends_hit(boxes, ends)
+        score = hits[:count] / max(segs.shape[1], 1) + _STANDING
+        return SIDES[np.argmin(score, axis=1)], [1.0 if left <= right else -1.0 for left, right in
+                                                 hits[count:, :2].tolist()]  # fmt: skip
+
+    def _along(self, origin: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The ends of the sides of the links in the axes of the guide through ``origin`` along ``u``: along it and
+        across it (left +), ``(n S, 2)`` each."""
+        segs = (self._link_segments() - origin).reshape(-1, 2, 2)
+        return segs @ u, segs @ perp(u)
 
     def _link_segments(self) -> np.ndarray:
         """The sides of every drawn link at every sample of the cycle, ``(n, S, 2, 2)`` (NaN where it does not
         assemble)."""
-        if self._segments is None:
-            self._segments = np.moveaxis(self.cycle[:, self.layout.sides], 0, 1)  # (S, n, 2, 2) -> (n, S, 2, 2)
+        if self._segments is None:  # (S, n, 2, 2) -> (n, S, 2, 2)
+            self._segments = np.ascontiguousarray(self.cycle[:, self.layout.sides].swapaxes(0, 1))
         return self._segments
 
-    def _sliders(self) -> list[Item]:
-        """A block at every slider, and a hatched guide under those that slide on the frame."""
-        out = []
-        for k in range(self.mech.n_pairs):
-            if self.mech.pair_type[k] != PairType.PRISMATIC:
-                continue
-            a, b = (int(x) for x in self.mech.pair_links[k])
-            p = int(self.mech.pair_points[k, 1])
-            origin, u = (x[self.variant] for x in guide(self.kin, k))  # (A, 2)
-            joint = str(self.mech.pair_joint[k])
-            u_local = to_local(np.array([0.0, 0.0, self.poses[self.first, b, 2]]), u[self.first])
-            out.append(Item("block", b, symbols.block(self.local[p], u_local, self.r), closed=True, name=joint))
-            if a == 0:
-                out += self._guide(joint, p, origin[self.first], u[self.first])
+    def _guide_lines(self) -> tuple[np.ndarray, np.ndarray]:
+        """A point of every slider's guide line and its unit direction, ``(B, 2)`` each (global, m), at the first
+        sample that assembles: those of :func:`~linkwork.motion.analysis.guide`, the same arithmetic at that sample
+        alone (in Python's floats)."""
+        kin, v, i, sliders = self.kin, self.variant, self.first, self.layout.sliders
+        poses = kin.q[sliders.carriers, :, v, i]  # of the links that carry the guides, (B, 3)
+        turns = np.cos(poses[:, 2]).tolist(), np.sin(poses[:, 2]).tolist()
+        axes = kin.origin[sliders.pairs, :, v, 0].tolist(), kin.axis[sliders.pairs, :, v, 0].tolist()
+        origins, directions = [], []
+        for (qx, qy, _), c, s, (ox, oy), (ux, uy) in zip(poses.tolist(), *turns, *axes, strict=True):
+            origins.append((qx + c * ox - s * oy, qy + s * ox + c * oy))
+            directions.append((c * ux - s * uy, s * ux + c * uy))
+        return np.array(origins).reshape(-1, 2), np.array(directions).reshape(-1, 2)
+
+    def _blocks(self, directions: np.ndarray) -> list[Item]:
+        """A block at every slider along its guide's direction of ``directions`` ``(B, 2)``, in its link's axes."""
+        sliders, out = self.layout.sliders, []
+        angles = self.poses[self.first, sliders.links, 2]
+        turns = np.cos(angles).tolist(), np.sin(angles).tolist()
+        centres = self.local[sliders.points].tolist()
+        for link, centre, (ux, uy), c, s, joint in zip(sliders.links, centres, directions.tolist(), *turns,
+                                                       sliders.joints, strict=True):  # fmt: skip
+            u = (c * ux + s * uy, -s * ux + c * uy)  # in the link's axes (the arithmetic of geometry.to_local)
+            out.append(_item("block", link, symbols.block(centre, u, self.r), closed=True, name=joint))
         return out
 
-    def _guide(self, joint: str, p: int, origin: np.ndarray, u: np.ndarray) -> list[Item]:
-        """A frame guide along its slider's stroke (3 r beyond each end), hatched on the side with fewer links."""
-        s = (self.cycle[:, p] - origin) @ u
-        s = s[np.isfinite(s)]
-        span = (float(s.min()) - 3 * self.r, float(s.max()) + 3 * self.r) if len(s) else (-3 * self.r, 3 * self.r)
-        segs = (self._link_segments() - origin).reshape(-1, 2, 2)
-        turned = np.stack([segs @ u, segs @ perp(u)], -1)  # along the guide, across it (left +)
-        left = [span[0], 1.5 * self.r, span[1], 8 * self.r]
-        right = [span[0], -8 * self.r, span[1], -1.5 * self.r]
-        hits = segments_hit(np.array([[left, right]]), turned[None])[0]
-        side = 1.0 if hits[0] <= hits[1] else -1.0
-        line, hatch = symbols.guide(origin, u, span, side, self.r)
-        return [Item("guide", 0, line, name=joint)] + [Item("hatch", 0, h, name=joint) for h in hatch]
+    def _stroke(self, p: int, origin: np.ndarray, u: np.ndarray) -> tuple[float, float]:
+        """Where a guide through ``origin`` along ``u`` runs: the stroke of its slider's point ``p`` over the cycle,
+        3 r beyond each end."""
+        x = (self.cycle[:, p] - origin) @ u
+        x = x[np.isfinite(x)]
+        return (float(x.min()) - 3 * self.r, float(x.max()) + 3 * self.r) if len(x) else (-3 * self.r, 3 * self.r)
+
+    def _guides(self, origins: np.ndarray, directions: np.ndarray, spans: list[tuple[float, float]],
+                sides: list[float]) -> tuple[list[Item], list[symbols.Hatch]]:  # fmt: skip
+        """The guides on the frame through ``origins`` along ``directions`` over ``spans``, and their lines to hatch
+        on ``sides``."""
+        lines = [symbols.guide(origin, u, span, side, self.r) for origin, u, span, side in
+                 zip(origins.tolist(), directions.tolist(), spans, sides, strict=True)]  # fmt: skip
+        joints = self.layout.sliders.guide_joints
+        return [_item("guide", 0, np.array(line[:2]), name=joint)
+                for line, joint in zip(lines, joints, strict=True)], lines  # fmt: skip
 
     def _tools(self) -> list[Item]:
         """The knives and tools of process loads with their working edges, and the body a striker hits."""
         out = []
-        for load in self.mech.loads:
-            if load.kind != "process":
-                continue
-            for p in load.points:
-                out += self._blade(int(p), str(load.name))
+        for p, name, link, joints in self.layout.blades:
+            out += self._blade(p, name, link, joints)
         if self.mech.blow is not None:
             out += self._anvil(self.mech.blow)
         return out
 
-    def _blade(self, p: int, name: str) -> list[Item]:
-        link = int(self.mech.point_link[p])
-        joints = [q for q in range(len(self.mech.point_names)) if self.mech.point_link[q] == link and q in self.joint]
-        root = self.local[joints].mean(0) if joints else self.local[p]
-        d = self.local[p] - root
-        if not np.hypot(*d) > 0:
+    def _blade(self, p: int, name: str, link: int, joints: list[int]) -> list[Item]:
+        """A knife at point ``p`` of a process load, facing away from the mean of ``joints``, those of its link
+        (none where it is at their mean)."""
+        root = self.local[joints].sum(0) / len(joints) if joints else self.local[p]  # their mean
+        (ex, ey), (rx, ry) = self.local[p].tolist(), root.tolist()
+        dx, dy = ex - rx, ey - ry
+        length = float(np.hypot(dx, dy))
+        if not length > 0:
             return []
-        body, edge = symbols.blade(self.local[p], d / np.hypot(*d), self.r)
-        pname = str(self.mech.point_names[p])
-        return [Item("tool", link, body, closed=True, name=pname), Item("edge", link, edge, name=pname)]
+        body, line = symbols.blade((ex, ey), (dx / length, dy / length), self.r)
+        return [_item("tool", link, body, closed=True, name=name), _item("edge", link, line, name=name)]
 
     def _anvil(self, blow: ImpactSpec) -> list[Item]:
         p = self.mech.point_index(blow.at)
         face = self.mech.points0()[p]
         n = np.array([np.cos(blow.normal), np.sin(blow.normal)])
-        return [Item("tool", 0, symbols.anvil(face, n, self.r), closed=True, name="tool")]
+        return [_item("tool", 0, symbols.anvil(face, n, self.r), closed=True, name="tool")]
 
     def _markers(self) -> list[Item]:
         """A dot at every point of a moving link that no pair uses."""
-        return [
-            Item("marker", int(self.mech.point_link[p]), self.local[p][None], radius=0.45 * self.r,
-                 name=str(self.mech.point_names[p]))
-            for p in self.moving
-            if p not in self.joint
-        ]  # fmt: skip
+        return [_item("marker", link, self.local[p][None], radius=0.45 * self.r, name=name)
+                for p, link, name in self.layout.markers]  # fmt: skip
 
     # ------------------------------------------------------------ labels
 
@@ -364,7 +415,7 @@ class _Builder:
         centres = np.full((len(self.poses), len(wanted), 2), np.nan)
         if at:  # none: the labels' texts and anchors only (the viewer's edits move the labels it has)
             centres[at] = self._placed(items, wanted, at)
-        return tuple(Label(text, kind, link, local, centres[:, j])
+        return tuple(_label(text, kind, link, local, centres[:, j])
                      for j, (text, kind, link, local, _, _) in enumerate(wanted))  # fmt: skip
 
     def _placed(self, items: tuple[Item, ...], wanted: list[tuple[str, str, int, np.ndarray, np.ndarray, float]],
@@ -391,16 +442,20 @@ class _Builder:
     def _link_numbers(self, items: tuple[Item, ...]) -> list[tuple[str, str, int, np.ndarray, np.ndarray, float]]:
         """(text, kind, link, local anchor, alternatives (M, 2) in the link's axes, gap) of a link's number beside
         the middle of its longest side."""
+        bars = [it for it in items if it.kind == "bar"]  # two ends each, before the plates
         out = []
+        if bars:
+            ends = np.array([it.xy for it in bars])  # (B, 2, 2)
+            at = ends[:, None, 0] + _ALONG * (ends[:, None, 1] - ends[:, None, 0])  # the middle first, then the ends
+            out += [(str(it.link), "link", it.link, each[0], each, 0.5 * self.r)
+                    for it, each in zip(bars, at, strict=True)]  # fmt: skip
         for it in items:
-            if it.kind not in ("bar", "plate"):
+            if it.kind != "plate":
                 continue
             xy = np.asarray(it.xy)
             ring = np.vstack([xy, xy[:1]]) if it.closed else xy
-            sides = np.hypot(*np.diff(ring, axis=0).T)
-            i = int(np.argmax(sides))
-            along = np.array([0.5, 0.32, 0.68, 0.2, 0.8])[:, None]
-            at = ring[i] + along * (ring[i + 1] - ring[i])  # the middle first, then towards the ends
+            i = int(np.argmax(np.hypot(*np.diff(ring, axis=0).T)))
+            at = ring[i] + _ALONG * (ring[i + 1] - ring[i])  # the middle first, then towards the ends
             out.append((str(it.link), "link", it.link, at[0], at, 0.5 * self.r))
         return out
 
@@ -469,6 +524,18 @@ class _Layout:
     point_labels : list of (str, int, int, float)
         Text, point, link and gap (in pivot radii) of every named point, each name once: the joints (a
         slider's beyond its block), the markers, the frame's points away from any joint.
+    point_link : ndarray of int, shape (P,)
+        The link of every point.
+    frame_points : ndarray of int
+        The frame's points.
+    bodies : list of (int, list of int, str)
+        Link, the points it is drawn through and name of every drawn link.
+    sliders : _SliderLayout
+        The prismatic pairs.
+    blades : list of (int, str, int, list of int)
+        Point, its name, its link and the link's joints of every point of a process load (a knife's edge).
+    markers : list of (int, int, str)
+        Point, link and name of every point of a moving link that no pair uses.
     """
 
     joint: set[int]
@@ -479,6 +546,12 @@ class _Layout:
     pivots: list[tuple[str, int, int]]
     supports: dict[int, str]
     point_labels: list[tuple[str, int, int, float]]
+    point_link: np.ndarray
+    frame_points: np.ndarray
+    bodies: list[tuple[int, list[int], str]]
+    sliders: _SliderLayout
+    blades: list[tuple[int, str, int, list[int]]]
+    markers: list[tuple[int, int, str]]
 
 
 @per_mechanism
@@ -504,9 +577,52 @@ def _layout(mech: Mechanism) -> _Layout:
             pivots.setdefault(joint_name, (joint_name, p, int(mech.point_link[p])))
         if revolute[k] and 0 in (a, b):
             supports.setdefault(int(mech.pair_points[k, 0 if a == 0 else 1]), joint_name)
-    return _Layout(joint, moving, outline, np.array(sides, dtype=int).reshape(-1, 2),
-                   [p for p in moving if outline[int(mech.point_link[p])]], list(pivots.values()), supports,
-                   _named_points(mech, joint, revolute))  # fmt: skip
+    point_link = np.array(mech.point_link, dtype=int)
+    return _Layout(
+        joint, moving, outline, np.array(sides, dtype=int).reshape(-1, 2),
+        [p for p in moving if outline[int(point_link[p])]], list(pivots.values()), supports,
+        _named_points(mech, joint, revolute), point_link, np.flatnonzero(point_link == 0),
+        [(i, draw, str(mech.link_names[i])) for i, draw in outline.items() if i and draw],
+        _sliders(mech, [k for k in range(mech.n_pairs) if not revolute[k]]), _blades(mech, joint),
+        [(p, int(point_link[p]), str(mech.point_names[p])) for p in moving if p not in joint],
+    )  # fmt: skip
+
+
+def _blades(mech: Mechanism, joint: set[int]) -> list[tuple[int, str, int, list[int]]]:
+    """:attr:`_Layout.blades` of ``mech``, whose pairs' points are ``joint``."""
+    out = []
+    for load in mech.loads:
+        if load.kind != "process":
+            continue
+        for p in load.points:
+            link = int(mech.point_link[p])
+            joints = [q for q in range(len(mech.point_names)) if mech.point_link[q] == link and q in joint]
+            out.append((int(p), str(mech.point_names[p]), link, joints))
+    return out
+
+
+class _SliderLayout(NamedTuple):
+    """The prismatic pairs of a mechanism: the pairs, the links that carry their guides, the sliders' links,
+    points and joints, whether each guide is on the frame; the points and joints of the guides on the frame."""
+
+    pairs: np.ndarray
+    carriers: np.ndarray
+    links: list[int]
+    points: list[int]
+    joints: list[str]
+    on_frame: np.ndarray
+    guided: list[int]
+    guide_joints: list[str]
+
+
+def _sliders(mech: Mechanism, pairs: list[int]) -> _SliderLayout:
+    """:attr:`_Layout.sliders` of the prismatic pairs ``pairs`` of ``mech``."""
+    carriers = np.array([int(mech.pair_links[k, 0]) for k in pairs], dtype=int)
+    points = [int(mech.pair_points[k, 1]) for k in pairs]
+    joints = [str(mech.pair_joint[k]) for k in pairs]
+    on = carriers == 0
+    return _SliderLayout(np.array(pairs, dtype=int), carriers, [int(mech.pair_links[k, 1]) for k in pairs], points,
+                         joints, on, list(compress(points, on)), list(compress(joints, on)))  # fmt: skip
 
 
 def _named_points(mech: Mechanism, joint: set[int], revolute: list[bool]) -> list[tuple[str, int, int, float]]:
@@ -524,6 +640,55 @@ def _named_points(mech: Mechanism, joint: set[int], revolute: list[bool]) -> lis
         seen.add(key)
         out.append((text, p, int(mech.point_link[p]), 2.6 if p in joint and short[p] in sliders else 1.5))
     return out
+
+
+def _item(kind: str, link: int, xy: np.ndarray, closed: bool = False, radius: float = 0.0, name: str = "") -> Item:
+    """An :class:`Item`, made without the dataclass's ``__init__``, which sets the fields of a frozen dataclass one
+    at a time (a scheme has some ninety items, and the viewer makes one on every edit)."""
+    out = object.__new__(Item)
+    out.__dict__.update(kind=kind, link=link, xy=xy, closed=closed, radius=radius, name=name)
+    return out
+
+
+def _lines(kind: str, shapes: np.ndarray, name: str) -> list[Item]:
+    """Open lines in the frame's axes, of one ``kind`` and ``name``, an item each of ``shapes`` ``(H, K, 2)`` (a
+    support's or a guide's hatching, some twenty strokes), made as :func:`_item` makes one."""
+    fields = {"kind": kind, "link": 0, "xy": None, "closed": False, "radius": 0.0, "name": name}
+    out = []
+    for xy in shapes:
+        item = object.__new__(Item)
+        item.__dict__.update(fields)
+        item.__dict__["xy"] = xy
+        out.append(item)
+    return out
+
+
+def _label(text: str, kind: str, link: int, at: np.ndarray, centre: np.ndarray) -> Label:
+    """A :class:`Label`, made as :func:`_item` makes an item."""
+    out = object.__new__(Label)
+    out.__dict__.update(text=text, kind=kind, link=link, at=at, centre=centre)
+    return out
+
+
+#: The place of each kind of item in the drawing order.
+_DEPTH = {kind: i for i, kind in enumerate(KINDS)}
+
+
+def _drawn_before(item: Item) -> int:
+    """The key that sorts items in drawing order."""
+    return _DEPTH[item.kind]
+
+
+def _points(kin: Kinematics, variant: int) -> np.ndarray:
+    """Every point of design variant ``variant`` at every sample, ``(A, P, 2)``: ``kin.points()`` of the variant,
+    found in one pass of :func:`~linkwork.motion.fast.point_motion` over the points (each taken as a variant of its
+    link), the same arithmetic."""
+    link = _layout(kin.mechanism).point_link
+    q = np.ascontiguousarray(kin.q[link, :, variant].swapaxes(0, 1))  # (3, P, A)
+    cs = kin.cos[link, variant], kin.sin[link, variant]  # (P, A)
+    local = np.ascontiguousarray(kin.local[:, :, variant, 0].T)  # (2, P)
+    moved = fast.point_motion(fast.POSITION, q, q, q, cs, local)  # (P, A, 2); no velocity or acceleration read
+    return np.ascontiguousarray(moved.swapaxes(0, 1))
 
 
 def _alternatives(anchors: np.ndarray, count: int) -> np.ndarray:
