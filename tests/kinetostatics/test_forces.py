@@ -341,3 +341,28 @@ def test_a_pin_in_a_slot_gives_the_slots_force_on_the_pin():
     np.testing.assert_allclose(f.reaction("slot"), expected, rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(f.reaction("slot", on="crank"), expected, rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(f.reaction("slot", on="rocker"), -expected, rtol=1e-9, atol=1e-9)
+
+
+@pytest.mark.parametrize(
+    "name", ["double-cut-shears", "shears-slider-crank", "stephenson-six-bar", "percussion-rocker"]
+)
+def test_reactions_gathered_at_once_are_each_joints_reaction_bit_for_bit(name):
+    """``Forces.reactions`` (the viewer's arrows and charts: every joint at once) against ``reaction`` of each
+    joint on each of its links, guides and compound hinges included, for two design variants; an unknown link
+    is refused with ``reaction``'s message."""
+    mech = lw.compile(lw.load(name))
+    crank = mech.link_names[max(int(i) for i in mech.pair_links[int(mech.drive_pair[0])])]
+    length = lw.parameters(mech)[f"links.{crank}.length"]
+    f = lw.forces(mech, steps=24, variants={f"links.{crank}.length": [length, 1.02 * length]})
+    asked = [
+        (str(mech.pair_joint[k]), mech.link_names[int(i)])
+        for k in range(mech.n_pairs)
+        for i in mech.pair_links[k]
+        if not mech.link_virtual[int(i)]
+    ]
+    joints, links = zip(*dict.fromkeys(asked), strict=True)
+    assert len(joints) > 6
+    want = np.stack([f.reaction(j, on=link) for j, link in zip(joints, links, strict=True)], -2)
+    assert np.array_equal(f.reactions(joints, links), want, equal_nan=True)
+    with pytest.raises(KeyError, match="did you mean"):
+        f.reactions([joints[0]], [links[0] + "x"])

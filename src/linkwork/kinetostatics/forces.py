@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -12,7 +14,7 @@ import numpy.typing as npt
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics import fast
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
-from linkwork.kinetostatics.external import evaluate
+from linkwork.kinetostatics.external import Applied, evaluate
 from linkwork.kinetostatics.free_body import FreeBody, free_bodies
 from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.kinetostatics.reactions import (
@@ -25,7 +27,7 @@ from linkwork.kinetostatics.reactions import (
 )
 from linkwork.motion.kinematics import Kinematics, kinematics
 from linkwork.spec.checks import suggest
-from linkwork.structure.model import Mechanism, PairType
+from linkwork.structure.model import Mechanism, PairType, per_mechanism
 
 
 @dataclass(frozen=True)
@@ -42,6 +44,9 @@ class Forces:
         The reaction of every constraint row (see :meth:`reaction`).
     loads : Loads
         Applied and inertia loads of every link (computed when first asked for, as are the checks).
+    external : Applied
+        The file's external loads (:func:`~linkwork.kinetostatics.external.evaluate`), those the reactions
+        were solved with.
     """
 
     kinematics: Kinematics
@@ -52,6 +57,12 @@ class Forces:
     def loads(self) -> Loads:
         """Applied (gravity, external) and inertia loads of every link."""
         return inertia_and_gravity(self.kinematics)
+
+    @cached_property
+    def external(self) -> Applied:
+        """The file's external loads, every elementary force and moment (kept where they were evaluated to
+        solve the reactions)."""
+        return evaluate(self.kinematics)
 
     @cached_property
     def foundation_momentum_all(self) -> np.ndarray:
@@ -158,6 +169,48 @@ class Forces:
             if link in (a, b):
                 total = total + (self.pair_force(k) if link == b else -self.pair_force(k))
         return self._out(total)
+
+    def reactions(self, joints: Sequence[str], on: Sequence[str]) -> np.ndarray:
+        """The forces that the ``joints`` put on the links ``on`` (one each), ``(..., n_angles, R, 2)``: each
+        ``reaction(joint, on=link)``, the same numbers, gathered from the forces of all the pairs at once.
+
+        Raises
+        ------
+        KeyError
+            As :meth:`reaction`.
+        """
+        try:
+            plan = _gather(self.mechanism, tuple(joints), tuple(on))
+        except KeyError:
+            for joint, link in zip(joints, on, strict=True):
+                self.reaction(joint, on=link)  # raises the KeyError that says what is wrong
+            raise
+        forces = self._pair_forces(plan.pairs, plan.guides)  # (U, 2, V, A): each component along the angles
+        # each pair's force, its negative, and zero: the terms of the sums
+        signed = np.concatenate([forces, -forces, np.zeros((1,) + forces.shape[1:])])
+        total = np.zeros((len(joints),) + forces.shape[1:])
+        for column in plan.columns:  # the first term of each, then the second, ..., as reaction adds them
+            total = total + signed[column]  # + 0.0 after the last term: changes no sum
+        return self._out(total.transpose(2, 3, 0, 1))  # a view (V, A, R, 2)
+
+    def _pair_forces(self, pairs: np.ndarray, guides: np.ndarray) -> np.ndarray:
+        """:meth:`pair_force` of each of ``pairs``, ``(len(pairs), 2, V, A)``, by the same arithmetic for all at
+        once; ``guides``: the places of the prismatic ones in ``pairs``."""
+        m, kin = self.mechanism, self.kinematics
+        lam = self.multipliers[..., : 2 * m.n_pairs].reshape(self.multipliers.shape[:-1] + (m.n_pairs, 2))
+        lam = np.take(lam.transpose(2, 3, 0, 1), pairs, axis=0)
+        out = -lam
+        if len(guides):
+            assert kin.axis is not None  # kinematics gives it for every result
+            ks = pairs[guides]
+            theta = kin.q[m.pair_links[ks, 0], 2]  # (P, V, A): the angles of the links that carry the guides
+            c, s = np.cos(theta), np.sin(theta)
+            ux, uy = kin.axis[ks, 0], kin.axis[ks, 1]  # (P, V, 1)
+            u0, u1 = c * ux - s * uy, s * ux + c * uy  # as guide_direction
+            normal = lam[guides, 1]
+            out[guides, 0] = -u1 * normal
+            out[guides, 1] = u0 * normal
+        return out
 
     def pair_moment(self, joint: str) -> np.ndarray:
         """Moment (N m) the guide exerts on the slider in a prismatic joint, about the slider's point."""
@@ -280,7 +333,71 @@ def forces_of(kin: Kinematics) -> Forces:
         loads = inertia_and_gravity(kin)
         lam, frame = solve_reactions(kin, loads)
         out = Forces(kin, lam, foundation(kin, frame, loads))
-        object.__setattr__(out, "loads", loads)  # the cached value
+        object.__setattr__(out, "loads", loads)  # the cached values
+        if loads.external is not None:
+            object.__setattr__(out, "external", loads.external)
         return out
-    lam, found = fast.run(kin, evaluate(kin) if mech.loads else None)
-    return Forces(kin, lam, found)
+    external = evaluate(kin) if mech.loads else None
+    lam, found = fast.run(kin, external)
+    out = Forces(kin, lam, found)
+    if external is not None:
+        object.__setattr__(out, "external", external)  # the cached value
+    return out
+
+
+@per_mechanism
+def _reaction_terms(mech: Mechanism) -> dict[tuple[str, str], tuple[tuple[int, bool], ...]]:
+    """For every joint and each of its links: the pairs whose forces add up to the joint's force on that link,
+    in the order :meth:`Forces.reaction` adds them, and whether each is negated (the link is the pair's first)."""
+    out: dict[tuple[str, str], tuple[tuple[int, bool], ...]] = {}
+    for joint in dict.fromkeys(mech.pair_joint):
+        ks = [k for k, j in enumerate(mech.pair_joint) if j == joint]
+        members = {int(i) for k in ks for i in mech.pair_links[k] if not mech.link_virtual[int(i)]}
+        for link in sorted(members):
+            terms = []
+            for k in ks:
+                a, b = (int(x) for x in mech.pair_links[k])
+                if link in (a, b):
+                    terms.append((k, link != b))
+            out[str(joint), mech.link_names[link]] = tuple(terms)
+    return out
+
+
+class _Gather(NamedTuple):
+    """How :meth:`Forces.reactions` adds up several reactions (:func:`_gather`).
+
+    Attributes
+    ----------
+    pairs : ndarray of int
+        The pairs of their terms, ``U`` of them.
+    guides : ndarray of int
+        The places of the prismatic ones in ``pairs``.
+    columns : tuple of ndarray of int
+        The first term of each reaction, then the second, ...: the place of its pair's force (``i``, its place in
+        ``pairs``), of its negative (``U + i``) or of zero (``2 U``, where it has fewer terms).
+    """
+
+    pairs: np.ndarray
+    guides: np.ndarray
+    columns: tuple[np.ndarray, ...]
+
+
+@per_mechanism
+def _gathers(mech: Mechanism) -> dict[tuple[tuple[str, ...], tuple[str, ...]], _Gather]:
+    """The :func:`_gather` of the reactions asked for so far, by their joints and links."""
+    return {}
+
+
+def _gather(mech: Mechanism, joints: tuple[str, ...], on: tuple[str, ...]) -> _Gather:
+    """How to add up the reactions of ``joints`` on the links ``on`` (:func:`_reaction_terms`), found once."""
+    found = _gathers(mech)
+    if (joints, on) not in found:
+        terms = [_reaction_terms(mech)[key] for key in zip(joints, on, strict=True)]
+        pairs = sorted({k for t in terms for k, _ in t})
+        place = {k: i for i, k in enumerate(pairs)}
+        n, width = len(pairs), max((len(t) for t in terms), default=0)
+        places = [[place[k] + n * negated for k, negated in t] + [2 * n] * (width - len(t)) for t in terms]
+        columns = tuple(np.array([p[c] for p in places], dtype=np.intp) for c in range(width))
+        guides = [i for i, k in enumerate(pairs) if mech.pair_type[k] != PairType.REVOLUTE]
+        found[joints, on] = _Gather(np.array(pairs, dtype=np.intp), np.array(guides, dtype=np.intp), columns)
+    return found[joints, on]

@@ -16,9 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.kinetostatics.external import evaluate
-from linkwork.motion.plans import _round_scale
-from linkwork.structure.model import Mechanism, PairType
+from linkwork.motion.plans import _round_scale, percentile
+from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.web.cycle import Cycle
 
 #: Percentile of the positions' largest arrows that sets the scale.
@@ -86,26 +85,21 @@ def force_arrows(cycle: Cycle, size: float) -> Arrows | None:
     if cycle.forces is None:
         return None
     mech = cycle.mech
-    arrows, values = _reactions(cycle)
+    reactions = _reaction_arrows(mech)
     loads, load_values = _loads(cycle)
-    arrows += loads
-    values += load_values
-    stacked = np.stack(values, 1) if values else np.zeros((len(cycle.valid), 0, 2))
-    stacked = np.where(cycle.valid[:, None, None], stacked, np.nan)
-    size_of = np.hypot(stacked[..., 0], stacked[..., 1])
+    values = np.concatenate([_reactions(cycle, reactions), load_values], 1)  # (A, arrows, 2)
+    values = np.where(cycle.valid[:, None, None], values, np.nan)
+    size_of = np.hypot(values[..., 0], values[..., 1])
     largest = np.max(size_of, axis=1, initial=0.0, where=np.isfinite(size_of))
-    top = float(np.percentile(largest[cycle.valid], PERCENTILE)) if cycle.valid.any() else 0.0
+    top = percentile(largest[cycle.valid], PERCENTILE) if cycle.valid.any() else 0.0
     scale = _round_scale(top * 100.0 / (LENGTH * 1000.0 * size)) if top > 0 else 1.0
-    k = int(mech.drive_pair[0])
-    a = int(mech.pair_links[k, 0])
-    return Arrows(tuple(arrows), stacked, scale, int(mech.pair_points[k, 0 if a == 0 else 1]))
+    return Arrows(reactions + loads, values, scale, _torque_point(mech))
 
 
-def _reactions(cycle: Cycle) -> tuple[list[Arrow], list[np.ndarray]]:
+@per_mechanism
+def _reaction_arrows(mech: Mechanism) -> tuple[Arrow, ...]:
     """One arrow a joint: the force on its member of the highest number, at its point."""
-    mech, forces = cycle.mech, cycle.forces
-    assert forces is not None
-    arrows, values = [], []
+    arrows = []
     for joint in dict.fromkeys(mech.pair_joint):
         pairs = [k for k, j in enumerate(mech.pair_joint) if j == joint]
         members = sorted({int(i) for k in pairs for i in mech.pair_links[k] if not mech.link_virtual[int(i)]})
@@ -118,8 +112,14 @@ def _reactions(cycle: Cycle) -> tuple[list[Arrow], list[np.ndarray]]:
         label = "R" + (",".join if max(members) >= 10 else "".join)([*(str(b) for b in by), str(on)])
         arrows.append(Arrow("reaction", str(joint), label, mech.link_names[on],
                             tuple(mech.link_names[b] for b in by), point))  # fmt: skip
-        values.append(cycle.one(forces.reaction(str(joint), on=mech.link_names[on])))
-    return arrows, values
+    return tuple(arrows)
+
+
+def _reactions(cycle: Cycle, arrows: tuple[Arrow, ...]) -> np.ndarray:
+    """The forces of the reactions' ``arrows``, ``(A, R, 2)``."""
+    forces = cycle.forces
+    assert forces is not None
+    return cycle.one(forces.reactions([a.name for a in arrows], [a.on for a in arrows]))
 
 
 def _point_of(mech: Mechanism, k: int, link: int) -> int:
@@ -129,22 +129,42 @@ def _point_of(mech: Mechanism, k: int, link: int) -> int:
     return int(mech.pair_points[k, 0 if int(mech.pair_links[k, 0]) == link else 1])
 
 
-def _loads(cycle: Cycle) -> tuple[list[Arrow], list[np.ndarray]]:
-    """An arrow for each force of the file's loads on a moving link (a process load's on each tool)."""
-    mech, kin = cycle.mech, cycle.kin
-    applied = evaluate(kin).forces
-    positions = cycle.one(kin.points())
+@per_mechanism
+def _load_arrows(mech: Mechanism) -> tuple[Arrow, ...]:
+    """An arrow for each point of the file's forces and process loads (a force's, each tool of a process load)."""
+    return tuple(
+        Arrow("load", load.name, load.name, mech.link_names[int(mech.point_link[p])], (), int(p))
+        for load in mech.loads
+        if load.kind in ("force", "process")
+        for p in load.points
+    )
+
+
+def _loads(cycle: Cycle) -> tuple[tuple[Arrow, ...], np.ndarray]:
+    """An arrow for each force of the file's loads on a moving link (a process load's on each tool), and their
+    forces ``(A, L, 2)``: the elementary force of the external loads on its point's link at its point."""
+    mech, kin, forces = cycle.mech, cycle.kin, cycle.forces
+    candidates = _load_arrows(mech)
+    if not candidates:
+        return (), np.zeros((len(cycle.valid), 0, 2))
+    assert forces is not None
+    applied = forces.external.forces
     arrows, values, used = [], [], set()
-    for load in mech.loads:
-        if load.kind not in ("force", "process"):
-            continue
-        for p in load.points:
-            link = int(mech.point_link[p])
-            for i, force in enumerate(applied):
-                same = force.link == link and np.array_equal(force.position[0], positions[:, p], equal_nan=True)
-                if i not in used and same:
-                    used.add(i)
-                    arrows.append(Arrow("load", load.name, load.name, mech.link_names[link], (), int(p)))
-                    values.append(force.force[0])  # (V, A, 2), as evaluate gives every array
-                    break
-    return arrows, values
+    for arrow in candidates:
+        link = int(mech.point_link[arrow.point])
+        position = cycle.one(kin.position(mech.point_names[arrow.point]))
+        for i, force in enumerate(applied):
+            same = force.link == link and np.array_equal(force.position[0], position, equal_nan=True)
+            if i not in used and same:
+                used.add(i)
+                arrows.append(arrow)
+                values.append(force.force[0])  # (V, A, 2), as evaluate gives every array
+                break
+    return tuple(arrows), np.stack(values, 1) if values else np.zeros((len(cycle.valid), 0, 2))
+
+
+def _torque_point(mech: Mechanism) -> int:
+    """The frame's point of the crank's pivot."""
+    k = int(mech.drive_pair[0])
+    a = int(mech.pair_links[k, 0])
+    return int(mech.pair_points[k, 0 if a == 0 else 1])

@@ -69,12 +69,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.errors import UnassemblableError
-from linkwork.motion.analysis import coordinate, extremes, guide, outputs
+from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs
 from linkwork.motion.kinematics import kinematics
-from linkwork.motion.plans import PlanSeries, _longest, _round_scale, plan_series
+from linkwork.motion.plans import PlanSeries, _longest, _round_scale, percentile, plan_series
 from linkwork.scene.plans import KINDS, plan_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
-from linkwork.structure.model import Mechanism, PairType
+from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.web.arrows import force_arrows
 from linkwork.web.cycle import Cycle, compile_message, solve_cycle
 from linkwork.web.edits import DISPLAY
@@ -303,7 +303,7 @@ def cycle_scale(series: PlanSeries, valid: np.ndarray) -> float:
     shrink all the others): the :data:`PLAN_PERCENTILE` of the positions' longest vectors."""
     values = np.where(valid[:, None, None], series.values[0], np.nan)
     longest = _longest(values[:, : len(series.points)])
-    return _round_scale(float(np.percentile(longest, PLAN_PERCENTILE)) if len(longest) else 0.0)
+    return _round_scale(percentile(longest, PLAN_PERCENTILE) if len(longest) else 0.0)
 
 
 def placed_samples(n: int, most: int | None) -> np.ndarray:
@@ -446,40 +446,124 @@ def _series(cycle: Cycle) -> list[dict[str, Any]]:
 
 def series_values(cycle: Cycle) -> list[tuple[str, str, str, str, np.ndarray]]:
     """(key, label, unit, group, values (A,)) of every quantity over the cycle the page can chart."""
-    mech, kin, forces = cycle.mech, cycle.kin, cycle.forces
-    out: list[tuple[str, str, str, str, np.ndarray]] = []
+    motion, forces = _series_names(cycle.mech)
+    named = list(zip(motion, _motion_values(cycle), strict=True))
+    if cycle.forces is not None:
+        named += zip(forces, _force_values(cycle), strict=True)
+    return [(*name, np.asarray(values, dtype=float)) for name, values in named]
 
-    def add(key: str, label: str, unit: str, group: str, values: np.ndarray) -> None:
-        out.append((key, label, unit, group, np.asarray(values, dtype=float)))
 
-    for output in outputs(mech):
-        s, v, a = (x[0] for x in coordinate(kin, output))
+#: The key, label, unit and group of a series.
+_Name = tuple[str, str, str, str]
+
+
+@per_mechanism
+def _series_names(mech: Mechanism) -> tuple[tuple[_Name, ...], tuple[_Name, ...]]:
+    """The names of the series of ``mech`` the page can chart: of the motion's (:func:`_motion_values`), of the
+    forces' (:func:`_force_values`)."""
+    motion: list[_Name] = []
+    for output in _outputs(mech):
         if output.kind == "slider":
             label, joint = mech.point_names[output.point].split(".", 1)[1], output.name
-            add(f"slider:{joint}:s", f"{label} along {joint}", "mm", "sliders", 1000 * s)
-            add(f"slider:{joint}:v", f"velocity of {label} along {joint}", "m/s", "sliders", v)
-            add(f"slider:{joint}:a", f"acceleration of {label} along {joint}", "m/s²", "sliders", a)
+            motion.append((f"slider:{joint}:s", f"{label} along {joint}", "mm", "sliders"))
+            motion.append((f"slider:{joint}:v", f"velocity of {label} along {joint}", "m/s", "sliders"))
+            motion.append((f"slider:{joint}:a", f"acceleration of {label} along {joint}", "m/s²", "sliders"))
         else:
             lname = output.name
-            add(f"link:{lname}:angle", f"angle of {lname}", "deg", "links", np.degrees(s))
-            add(f"link:{lname}:omega", f"angular velocity of {lname}", "rad/s", "links", v)
-    if forces is not None:
-        # signs as in linkwork.forces: torques and moments counter-clockwise positive, whatever the direction of
-        # rotation (a clockwise crank driven against the load has a negative driving torque); x right, y up
-        add("torque", "driving torque on the crank (ccw +)", "N m", "forces", cycle.one(forces.driving_torque))
-        found = cycle.one(forces.foundation)
-        add("foundation:fx", "force on the foundation, x (right +)", "N", "forces", found[:, 0])
-        add("foundation:fy", "force on the foundation, y (up +: pulls the bolts)", "N", "forces", found[:, 1])
-        add("foundation:m", "moment on the foundation about the origin (ccw +)", "N m", "forces", found[:, 2])
-        seen: set[str] = set()
-        for k in range(mech.n_pairs):
-            if 0 in mech.pair_links[k] and mech.pair_type[k] == PairType.REVOLUTE and mech.pair_joint[k] not in seen:
-                # the size of the force the support takes: of all the links it holds in the joint
-                joint = mech.pair_joint[k]
-                seen.add(joint)
-                f = cycle.one(forces.reaction(joint, on=mech.link_names[0]))
-                add(f"reaction:{joint}", f"reaction in {joint} (size)", "N", "forces", np.hypot(f[:, 0], f[:, 1]))
+            motion.append((f"link:{lname}:angle", f"angle of {lname}", "deg", "links"))
+            motion.append((f"link:{lname}:omega", f"angular velocity of {lname}", "rad/s", "links"))
+    # signs as in linkwork.forces: torques and moments counter-clockwise positive, whatever the direction of
+    # rotation (a clockwise crank driven against the load has a negative driving torque); x right, y up
+    forces = [
+        ("torque", "driving torque on the crank (ccw +)", "N m", "forces"),
+        ("foundation:fx", "force on the foundation, x (right +)", "N", "forces"),
+        ("foundation:fy", "force on the foundation, y (up +: pulls the bolts)", "N", "forces"),
+        ("foundation:m", "moment on the foundation about the origin (ccw +)", "N m", "forces"),
+    ]
+    forces += [(f"reaction:{joint}", f"reaction in {joint} (size)", "N", "forces") for joint in _supports(mech)]
+    return tuple(motion), tuple(forces)
+
+
+def _motion_values(cycle: Cycle) -> list[np.ndarray]:
+    """Each slider's position (mm), velocity and acceleration along its guide, each rocker's angle (deg) and angular
+    velocity, in the order of their pairs."""
+    kin, outs = cycle.kin, _outputs(cycle.mech)
+    sliders = iter(_slider_coordinates(kin)[..., 0, :])  # (S, 3, A)
+    out: list[np.ndarray] = []
+    for output in outs:
+        if output.kind == "slider":
+            s, v, a = next(sliders)
+            out += [1000 * s, v, a]
+        else:
+            s, v, _ = _rocker_coordinate(kin, output)
+            out += [np.degrees(s[0]), v[0]]
     return out
+
+
+def _force_values(cycle: Cycle) -> list[np.ndarray]:
+    """The driving torque, the foundation's forces and moment, and the size of the force each support takes (of all
+    the links it holds in the joint)."""
+    mech, forces = cycle.mech, cycle.forces
+    assert forces is not None
+    found = cycle.one(forces.foundation)
+    supports = _supports(mech)
+    f = cycle.one(forces.reactions(supports, (mech.link_names[0],) * len(supports)))  # (A, S, 2)
+    size = np.hypot(f[..., 0], f[..., 1])
+    return [cycle.one(forces.driving_torque), found[:, 0], found[:, 1], found[:, 2], *size.T]
+
+
+@per_mechanism
+def _outputs(mech: Mechanism) -> tuple[Output, ...]:
+    """The sliders and rockers of ``mech`` (:func:`~linkwork.motion.analysis.outputs`), found once."""
+    return outputs(mech)
+
+
+@per_mechanism
+def _supports(mech: Mechanism) -> tuple[str, ...]:
+    """The joints of ``mech``'s revolute pairs with the frame, each once, in the order of their pairs."""
+    on_frame = (k for k in range(mech.n_pairs) if 0 in mech.pair_links[k] and mech.pair_type[k] == PairType.REVOLUTE)
+    return tuple(dict.fromkeys(mech.pair_joint[k] for k in on_frame))
+
+
+def _rocker_coordinate(kin: Kinematics, output: Output) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`~linkwork.motion.analysis.coordinate` of a rocker; its angle, where every sample assembles, unwrapped
+    by the same arithmetic in fewer steps (nothing to fill)."""
+    angle = kin.q[output.link, 2]
+    if not np.isfinite(angle).all():
+        return coordinate(kin, output)
+    step = angle[..., 1:] - angle[..., :-1]
+    jump = np.where(np.abs(step) >= math.pi, np.mod(step + math.pi, 2 * math.pi) - math.pi - step, 0.0)
+    turns = np.zeros(angle.shape)
+    np.cumsum(jump, axis=-1, out=turns[..., 1:])
+    return angle + turns, kin.v[output.link, 2], kin.a[output.link, 2]
+
+
+def _slider_coordinates(kin: Kinematics) -> np.ndarray:
+    """The coordinate of each slider along its guide and its first and second time derivatives, ``(S, 3, V, A)``:
+    :func:`~linkwork.motion.analysis.coordinate` of each, by the same arithmetic for all at once."""
+    pairs, carriers, points = _sliders(kin.mechanism)
+    if not points:
+        return np.zeros((0, 3) + kin.q.shape[2:])
+    assert kin.origin is not None and kin.axis is not None  # kinematics gives them for every result
+    q = kin.q[carriers]  # (S, 3, V, A)
+    c, s = np.cos(q[:, 2]), np.sin(q[:, 2])
+    ox, oy, ux, uy = kin.origin[pairs, 0], kin.origin[pairs, 1], kin.axis[pairs, 0], kin.axis[pairs, 1]  # (S, V, 1)
+    origin_x, origin_y = q[:, 0] + c * ox - s * oy, q[:, 1] + s * ox + c * oy
+    u_x, u_y = c * ux - s * uy, s * ux + c * uy  # as guide
+    motion = np.array([kin._point(p) for p in points])  # (S, 3, V, A, 2)
+    motion[:, 0, ..., 0] -= origin_x
+    motion[:, 0, ..., 1] -= origin_y
+    # coordinate's np.sum over x and y adds them to 0.0, which makes a -0.0 sum 0.0
+    return motion[..., 0] * u_x[:, None] + motion[..., 1] * u_y[:, None] + 0.0
+
+
+@per_mechanism
+def _sliders(mech: Mechanism) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+    """The sliders of ``mech``'s outputs (:func:`_outputs`): their prismatic pairs, the links that carry their
+    guides and their points."""
+    sliders = [o for o in _outputs(mech) if o.kind == "slider"]
+    pairs = np.array([o.pair for o in sliders], dtype=np.intp)
+    return pairs, mech.pair_links[pairs, 0], tuple(mech.point_names[o.point] for o in sliders)
 
 
 def _structure(mech: Mechanism) -> dict[str, Any]:
