@@ -754,3 +754,26 @@ def test_a_result_is_made_with_every_field_of_its_class():
     np.testing.assert_array_equal(again.position("B"), kin.position("B"))
     np.testing.assert_array_equal(again.acceleration("coupler.A"), kin.acceleration("coupler.A"))
     assert again.events == kin.events
+
+
+@pytest.mark.parametrize("name", ["double-cut-shears", "class3-triad", "shears-slider-crank"])
+@pytest.mark.parametrize("ahead", [1.0, -1.0])
+def test_a_turn_that_does_not_reach_the_assembly_angle_is_the_motion_followed_from_it(name, ahead):
+    """Angles of a turn from elsewhere (the viewer's, from position 0): the same motion, change points, gaps and
+    all, as the samples of one fine path that starts at the assembly angle and runs through them, in either
+    direction, and the same angles backwards; for the slider-crank also with a crank too long for part of the
+    turn."""
+    mech = lw.compile(lw.load(name))
+    crank = mech.link_names[max(int(i) for i in mech.pair_links[int(mech.drive_pair[0])])]
+    length = lw.parameters(mech)[f"links.{crank}.length"]
+    variants = {f"links.{crank}.length": [length, 1.4 * length if name == "shears-slider-crank" else length]}
+    fine = float(mech.drive_start[0]) + ahead * np.radians(np.arange(0.0, 720.0, 0.5))  # from the assembly angle
+    # 250 to 610 degrees on (the assembly angle is not among them), then the same backwards, ending before it
+    whole = lw.kinematics(mech, fine, variants=variants)
+    for taken in (slice(500, 1220), slice(1219, 499, -1)):  # towards the assembly angle's far side, and back to it
+        led = lw.kinematics(mech, fine[taken], variants=variants)
+        np.testing.assert_array_equal(led.valid_all, whole.valid_all[:, taken])
+        for got, want in ((led.pose, whole.pose), (led.vel, whole.vel), (led.acc, whole.acc)):
+            np.testing.assert_allclose(got, want[:, taken], rtol=0, atol=1e-9)
+    if name == "shears-slider-crank":
+        assert not led.valid_all[1].all() and led.valid_all[1].any()  # the second variant has its gaps

@@ -184,16 +184,18 @@ PATH_STEP = np.radians(5.0)
 
 def _path(
     mech: Mechanism, angles: np.ndarray, steps: tuple[float, float] | None = None
-) -> tuple[np.ndarray, np.ndarray] | None:
+) -> tuple[np.ndarray, np.ndarray | slice] | None:
     """A path of crank angles that reaches every asked angle from the assembly pose.
 
     Change points are followed along the order of the samples, so angles
-    that are not such a path already (one angle, unsorted angles, big steps,
-    angles away from the assembly pose) are solved on the sorted union of
-    the asked angles and a grid of 5 degrees from the assembly angle; the
-    result keeps the asked ones.  Returns (path, indices of the asked
-    angles in it), or None when the angles are a path already.  ``steps``:
-    the least and most step between consecutive angles, where known.
+    that are not such a path already (one angle, unsorted angles, big steps)
+    are solved on the sorted union of the asked angles and a grid of 5
+    degrees from the assembly angle, and angles that are a path but do not
+    reach the assembly angle (a turn from elsewhere) after a lead from it on
+    that grid (:func:`_led`); the result keeps the asked ones.  Returns
+    (path, the asked angles' places in it: indices, or a slice), or None
+    when the angles are a path already.  ``steps``: the least and most step
+    between consecutive angles, where known.
     """
     facts = _drive_facts(mech)
     if not facts.follows:
@@ -206,8 +208,8 @@ def _path(
             steps = float(d.min()), float(d.max())
         least, most = steps
         first, last = sorted((float(angles[0]), float(angles[-1])))
-        if (least > 0 or most < 0) and max(most, -least) <= step and first - step <= start <= last + step:
-            return None
+        if (least > 0 or most < 0) and max(most, -least) <= step:
+            return None if first - step <= start <= last + step else _led(angles, start)
     lo, hi = min(angles.min(), start), max(angles.max(), start)
     grid = start + PATH_STEP * np.arange(np.floor((lo - start) / PATH_STEP), np.ceil((hi - start) / PATH_STEP) + 1)
     asked = np.sort(angles)
@@ -216,6 +218,22 @@ def _path(
     grid = grid[gap > 1e-9]  # no grid point beside an asked angle
     path, inverse = np.unique(np.concatenate([angles, grid]), return_inverse=True)
     return path, inverse[: len(angles)]
+
+
+def _led(angles: np.ndarray, start: float) -> tuple[np.ndarray, slice]:
+    """Angles that are a path already (monotonic, in steps of at most :data:`PATH_STEP`) but do not reach
+    the assembly angle ``start`` (a turn from elsewhere): the grid of :data:`PATH_STEP` from ``start`` up
+    to them, then them, in their order of travel (or them, then the grid on to ``start``), and where they
+    are in it.  The motion is followed as along the sorted union of :func:`_path`, without the grid's
+    points among the asked angles, which are near enough to each other."""
+    ahead = 1.0 if angles[-1] > angles[0] else -1.0
+    if (angles[0] - start) * ahead > 0:  # the start lies behind the first angle: a lead-in
+        grid = start + ahead * PATH_STEP * np.arange(math.ceil((angles[0] - start) * ahead / PATH_STEP))
+        grid = grid[(angles[0] - grid) * ahead > 1e-9]
+        return np.concatenate([grid, angles]), slice(len(grid), len(grid) + len(angles))
+    grid = start - ahead * PATH_STEP * np.arange(math.ceil((start - angles[-1]) * ahead / PATH_STEP))[::-1]
+    grid = grid[(grid - angles[-1]) * ahead > 1e-9]
+    return np.concatenate([angles, grid]), slice(0, len(angles))
 
 
 def direction(mech: Mechanism) -> float:
@@ -387,9 +405,13 @@ def _solve(
     angles, take = path
     rate = np.broadcast_to(rates[0], (len(angles), 1))
     state = run(mech, mech.program, geom, angles[:, None], rate, np.zeros((len(angles), 1)))
-    events = tuple(find(mech.program, state, angles, revolute, within=(int(take.min()), int(take.max()))))
-    state.q, state.v, state.a = state.q[..., take], state.v[..., take], state.a[..., take]
-    state.cos, state.sin = state.cos[..., take], state.sin[..., take]
-    state.valid = state.valid[:, take]
+    within = (take.start, take.stop - 1) if isinstance(take, slice) else (int(take.min()), int(take.max()))
+    events = tuple(find(mech.program, state, angles, revolute, within=within))
+
+    def kept(x: np.ndarray) -> np.ndarray:
+        return np.ascontiguousarray(x[..., take])
+
+    state.q, state.v, state.a = kept(state.q), kept(state.v), kept(state.a)
+    state.cos, state.sin, state.valid = kept(state.cos), kept(state.sin), kept(state.valid)
     state.steps = [r.take(take) for r in state.steps]
     return state, events

@@ -124,8 +124,9 @@ class StepRecord:
             None if self.limit is None else self.limit[:, cut],
         )
 
-    def take(self, samples: np.ndarray) -> StepRecord:
-        """The samples ``samples`` ``(a,)`` of the arrays (the change points and jumps as they are)."""
+    def take(self, samples: np.ndarray | slice) -> StepRecord:
+        """The samples ``samples`` (indices ``(a,)``, or a slice) of the arrays (the change points and jumps as they
+        are)."""
         return dataclasses.replace(
             self,
             valid=self.valid[:, samples],
