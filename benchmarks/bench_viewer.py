@@ -6,8 +6,9 @@ browser part needs Playwright and Debian's ``chromium``; ``--drag 0`` leaves it 
 
 * The server is ``linkwork view NAME --port 0 --no-browser`` in its own process, as a user starts it.
 * An edit's round trip: ``POST /api/edit`` with a crank length not asked before (no answer from the
-  cache), over one kept-alive connection on 127.0.0.1, until its answer is read and parsed; the median
-  and the best of ``--edits`` of them.
+  cache), over one kept-alive connection on 127.0.0.1, until its answer is read and parsed (its JSON, its
+  arrays as NumPy arrays over its bytes, as the page reads them); the median and the best of ``--edits``
+  of them.
 * The core: ``lw.forces`` of the same mechanism at the same 360 angles (kinematics, loads, reactions,
   foundation) in this process, the best of several runs and the median, and ``lw.compile`` of its file
   (what opening another file costs before the cycle is solved).
@@ -38,6 +39,7 @@ from timing import best
 
 import linkwork as lw
 from linkwork.web.payload import LIVE_PLACED, cycle_payload
+from linkwork.web.update import decode_edit
 
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking"]
 
@@ -86,9 +88,10 @@ def round_trips(port: int, name: str, start: float, count: int) -> list[float]:
         t = time.perf_counter()
         conn.request("POST", "/api/edit", body, {"Content-Type": "application/json", "Host": "127.0.0.1"})
         r = conn.getresponse()
-        answer = json.loads(r.read())
+        raw = r.read()
         if r.status != 200:
-            raise SystemExit(f"edit {value}: {r.status} {answer}")
+            raise SystemExit(f"edit {value}: {r.status} {raw[:500]!r}")
+        decode_edit(raw)
         if k >= 5:  # the first ones warm the server up
             out.append(time.perf_counter() - t)
     conn.close()

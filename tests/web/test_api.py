@@ -775,11 +775,51 @@ def test_the_support_reaction_of_a_compound_hinge_is_the_force_on_the_frame():
 
 
 def _array(c):
-    """A compact array of an edit's answer: base64 of little-endian values."""
-    import base64
+    """An array of an edit's answer (:func:`_edit`), as float."""
+    return np.asarray(c, dtype=float)
 
-    kind = {"f4": "<f4", "f8": "<f8", "u1": "u1"}[c["dtype"]]
-    return np.frombuffer(base64.b64decode(c["b64"]), dtype=kind).astype(float).reshape(c["shape"])
+
+def test_an_edits_answer_is_its_json_then_its_arrays_bytes_each_where_the_json_says():
+    """The layout the page reads (viewer.js readEdit), read here byte by byte with :mod:`struct`: the JSON's
+    length (uint32, little-endian), the JSON (as :func:`json.dumps` writes the answer, each array
+    ``{"dtype", "shape", "offset"}``), zeros up to a multiple of 8, then each array's little-endian values at
+    its offset, a multiple of 8; NaN is refused as by the strict writer."""
+    import struct
+
+    from linkwork.web.update import compact, decode_edit, encode_edit
+
+    x, ok, empty = np.arange(15.0).reshape(3, 5) / 7, np.array([1, 0, 1]), np.ones((0, 2))
+    data = {"a": compact(x), "label": 'φ \\ "x"', "nested": [{"b": compact(ok, "u1"), "c": compact(x, "f8")}],
+            "n": [1.5, 2], "e": compact(empty)}  # fmt: skip
+    body = encode_edit(data)
+    (n,) = struct.unpack_from("<I", body)
+    head = json.loads(body[4 : 4 + n].decode("utf-8"))
+    base = 4 + n + (-(4 + n) % 8)
+    assert base % 8 == 0 and body[4 + n : base] == bytes(base - 4 - n)
+    assert head["label"] == 'φ \\ "x"' and head["n"] == [1.5, 2]
+    want = {"a": (x, "<f4"), "b": (ok, "u1"), "c": (x, "<f8"), "e": (empty, "<f4")}
+    found = {"a": head["a"], "b": head["nested"][0]["b"], "c": head["nested"][0]["c"], "e": head["e"]}
+    for key, c in found.items():
+        values, kind = want[key]
+        assert c["offset"] % 8 == 0 and c["shape"] == list(values.shape) and c["dtype"] == kind.strip("<")
+        raw = body[base + c["offset"] : base + c["offset"] + values.size * np.dtype(kind).itemsize]
+        assert raw == values.astype(kind).tobytes(), key
+    assert len(body) >= base + found["c"]["offset"] + x.size * 8
+    back = decode_edit(body)
+    assert np.array_equal(back["nested"][0]["c"], x) and back["label"] == data["label"]
+    with pytest.raises(ValueError):
+        encode_edit({"a": compact(x), "x": math.nan})
+    with pytest.raises(TypeError):
+        encode_edit({"x": object()})
+
+
+def _edit(r):
+    """An edit's answer (its JSON, its arrays as NumPy arrays), checked to be of the edit's media type."""
+    from linkwork.web.update import EDIT_MEDIA, decode_edit
+
+    assert r.status_code == 200, r.text
+    assert r.headers["content-type"] == EDIT_MEDIA
+    return decode_edit(r.content)
 
 
 def _positions_of_edit(answer, points):
@@ -823,9 +863,7 @@ def test_an_edit_is_solved_as_a_variant_and_gives_what_the_edited_file_gives(she
         raise AssertionError("an edit compiled the mechanism again")
 
     monkeypatch.setattr(linkwork.api, "compile", no_compile)
-    r = shears.post("/api/edit", json={"overrides": SHEARS_EDIT})
-    assert r.status_code == 200, r.text
-    answer = r.json()
+    answer = _edit(shears.post("/api/edit", json={"overrides": SHEARS_EDIT}))
     monkeypatch.undo()
     by_hand = _shears_by_hand()
     kin = lw.kinematics(by_hand, _turn(by_hand, 360, SHEARS))
@@ -859,16 +897,19 @@ def test_an_edits_scheme_is_the_scheme_of_the_file_edited_by_hand(shears, whole_
 
     other = {**SHEARS_EDIT, "frame.points.O3.x": -0.03, "links.crank.length": 0.095}
     assert shears.post("/api/edit", json={"overrides": other, "whole_turn": whole_turn}).status_code == 200
-    r = shears.post("/api/edit", json={"overrides": SHEARS_EDIT, "whole_turn": whole_turn})
-    assert r.status_code == 200, r.text
-    scene = r.json()["scene"]
+    scene = _edit(shears.post("/api/edit", json={"overrides": SHEARS_EDIT, "whole_turn": whole_turn}))["scene"]
     by_hand = _shears_by_hand()
     turn = lw.kinematics(by_hand, _turn(by_hand, DRAGGED if whole_turn else CYCLE, SHEARS))
     expected = scheme_scene(turn, at=[], cycle=turn)
-    assert [(it["kind"], it["link"], it["name"], it["closed"]) for it in scene["items"]] == [
+    table = scene["item_table"]
+    fields = ("kind", "link", "name", "closed", "radius")
+    items = [dict(zip(fields, row, strict=True)) for row in zip(*(table[key] for key in fields), strict=True)]
+    for it, start, end in zip(items, [0, *table["ends"][:-1]], table["ends"], strict=True):
+        it["xy"] = table["xy"][start:end]
+    assert [(it["kind"], it["link"], it["name"], it["closed"]) for it in items] == [
         (it.kind, it.link, it.name, it.closed) for it in expected.items
     ]
-    for it, want in zip(scene["items"], expected.items, strict=True):
+    for it, want in zip(items, expected.items, strict=True):
         np.testing.assert_allclose(np.array(it["xy"]), want.xy, rtol=0, atol=1e-9, err_msg=f"{it['kind']} {it['name']}")
         assert it["radius"] == pytest.approx(want.radius, rel=1e-12)
     assert scene["size"] == pytest.approx(expected.size, rel=1e-12) and scene["em"] == pytest.approx(expected.em)
@@ -882,16 +923,17 @@ def test_an_edits_scheme_is_the_scheme_of_the_file_edited_by_hand(shears, whole_
 
 
 def test_an_edits_answer_carries_only_what_changed_in_compact_arrays(shears, shears_cycle):
-    """No names, structure, labels' texts or positions again; the big arrays as base64 of float32; under a third
+    """No names, structure, labels' texts or positions again; the big arrays as float32 bytes; under a quarter
     of the whole payload's size; strict JSON."""
     r = shears.post("/api/edit", json={"overrides": {"links.crank.length": 0.105}})
-    assert r.status_code == 200
-    answer = json.loads(r.content, parse_constant=lambda c: pytest.fail(f"bare {c} in the answer"))
+    answer = _edit(r)
+    n = int.from_bytes(r.content[:4], "little")
+    json.loads(r.content[4 : 4 + n], parse_constant=lambda c: pytest.fail(f"bare {c} in the answer"))
     for key in ("points", "positions", "links", "pairs", "structure", "drives", "name"):
         assert key not in answer, key
     assert "labels" not in answer["scene"] and "text" not in answer["scene"]["plans"]["velocity"]
-    assert answer["scene"]["poses"]["dtype"] == "f4" and answer["plans"]["velocity"]["values"]["dtype"] == "f4"
-    assert len(r.content) < len(json.dumps(shears_cycle)) / 3
+    assert answer["scene"]["poses"].dtype == "<f4" and answer["plans"]["velocity"]["values"].dtype == "<f4"
+    assert len(r.content) < len(json.dumps(shears_cycle)) / 4
 
 
 def test_a_drag_out_of_the_files_range_is_refused_with_where_and_a_typed_edit_shows_the_gaps(shears):
@@ -910,7 +952,7 @@ def test_a_drag_out_of_the_files_range_is_refused_with_where_and_a_typed_edit_sh
         assert (got - want + 180) % 360 - 180 == pytest.approx(0, abs=0.02)
     typed = shears.post("/api/edit", json={"overrides": {"links.crank.length": 0.3}})
     assert typed.status_code == 200
-    valid = _array(typed.json()["valid"]).astype(bool)
+    valid = _array(_edit(typed)["valid"]).astype(bool)
     assert 0 < (~valid).sum() < len(valid)
 
 
@@ -954,7 +996,7 @@ def test_an_edit_waiting_for_a_slot_is_superseded_by_a_newer_one_of_its_page():
     viewer.edit_slots.release()
     second.join(timeout=30)
     viewer.edit_slots.release()
-    assert answers[2].status_code == 200 and answers[2].json()["overrides"] == {"links.crank.length": 0.102}
+    assert _edit(answers[2])["overrides"] == {"links.crank.length": 0.102}
 
 
 def test_the_saved_file_keeps_the_files_comments_and_solves_to_the_edit(shears):
@@ -968,7 +1010,7 @@ def test_the_saved_file_keeps_the_files_comments_and_solves_to_the_edit(shears):
     assert "length: 0.12\n" in text and "O3: [0.01, 0.00]" in text.replace("0.01, 0.0]", "0.01, 0.00]")
     saved = lw.kinematics(lw.compile(lw.loads(text, file="saved.yaml")), steps=360)
     np.testing.assert_allclose(saved.points(), lw.kinematics(_shears_by_hand(), steps=360).points(), atol=1e-12)
-    edit = shears.post("/api/edit", json={"overrides": SHEARS_EDIT}).json()
+    edit = _edit(shears.post("/api/edit", json={"overrides": SHEARS_EDIT}))
     torque = _array(edit["series"]["values"])[edit["series"]["keys"].index("torque")]
     np.testing.assert_allclose(torque, lw.forces(saved.mechanism, _turn(saved.mechanism, 360, SHEARS)).driving_torque,
                                rtol=1e-6, atol=1e-3)  # fmt: skip

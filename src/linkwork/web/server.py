@@ -1,6 +1,6 @@
 """The viewer's local server: the page, its static files and a small JSON API.
 
-Endpoints (all JSON except the page, its files and a saved file):
+Endpoints (all JSON except the page, its files, an edit's answer and a saved file):
 
 * ``GET /`` the page; ``GET /static/NAME`` its script and style (:data:`STATIC`);
 * ``GET /api/cycle``: the cycle of the mechanism as it was loaded
@@ -11,7 +11,8 @@ Endpoints (all JSON except the page, its files and a saved file):
 * ``POST /api/solve`` ``{"overrides": {name: value}, "steps": n}``: the whole cycle of the edited
   mechanism (values in SI), its labels placed;
 * ``POST /api/edit`` ``{"overrides": {...}, "steps": n, "whole_turn": bool, "client": id, "seq": n}``: what
-  the edit changes, compact (:mod:`linkwork.web.update`), in some milliseconds; with ``whole_turn`` a
+  the edit changes, compact (:mod:`linkwork.web.update`: its JSON, then its arrays' bytes), in some
+  milliseconds; its failures are JSON as any other's; with ``whole_turn`` a
   variant that does not assemble where the file's mechanism does is refused (a drag); an edit that
   waits for a slot while the same ``client`` sends a newer one (a higher ``seq``) is answered 409
   (superseded) unsolved: the latest wins;
@@ -57,6 +58,7 @@ from linkwork.errors import BusyError, LinkworkError
 from linkwork.web.cycle import OutOfRange
 from linkwork.web.edits import MAX_OVERRIDES
 from linkwork.web.session import SCRIPTS, Viewer, dumps, static_text
+from linkwork.web.update import EDIT_MEDIA
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -318,8 +320,13 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
         found = viewer.cached_edit(req.overrides, req.steps, req.whole_turn)
         if found is None:
             async with holding(viewer.edit_slots, viewer.wait_s, lambda: viewer.superseded(req.client, req.seq)):
-                found = await run_in_threadpool(viewer.edit, req.overrides, req.steps, req.whole_turn)
-        return Response(found, media_type="application/json")
+                if (req.steps or viewer.steps) <= viewer.steps:
+                    # the page's own cycle, some milliseconds: solved here, as handing it to a worker thread (on
+                    # another core, away from what the last edit left in the cache) would add a tenth to it
+                    found = viewer.edit(req.overrides, req.steps, req.whole_turn)
+                else:  # a longer cycle is solved in a worker thread, not to hold up the other requests
+                    found = await run_in_threadpool(viewer.edit, req.overrides, req.steps, req.whole_turn)
+        return Response(found, media_type=EDIT_MEDIA)
 
     @app.post("/api/pose")
     async def pose(request: Request) -> Response:

@@ -29,7 +29,7 @@ from linkwork.structure.parameters import file_text
 from linkwork.web.cycle import DRAGGED, Cycle, check_assembly, solve_cycle
 from linkwork.web.edits import editable, validated, variant_parameters
 from linkwork.web.payload import LIVE_PLACED, full_payload, pose_payload
-from linkwork.web.update import edit_payload
+from linkwork.web.update import edit_payload, encode_edit
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -159,12 +159,13 @@ class Viewer:
         return out
 
     def edit(self, overrides: dict[str, float], steps: int | None = None, whole_turn: bool = False) -> bytes:
-        """The compact answer (JSON) to the edit ``overrides``: :func:`linkwork.web.update.edit_payload`."""
+        """The compact answer to the edit ``overrides`` (:func:`linkwork.web.update.edit_payload`), as it is
+        sent (:func:`linkwork.web.update.encode_edit`)."""
         found = self.cached_edit(overrides, steps, whole_turn)
         if found is None:
             # a drag (whole_turn) is answered without the strokes and the plans' frames, the scheme's symbols of
             # DRAGGED angles, to answer in time
-            found = dumps(edit_payload(self.solve(overrides, steps, whole_turn), self._editable, whole_turn))
+            found = encode_edit(edit_payload(self.solve(overrides, steps, whole_turn), self._editable, whole_turn))
             self._edits.put(self._edit_key(overrides, steps, whole_turn), found)
         return found
 

@@ -56,12 +56,14 @@
     let status = 0, body;
     try {
       const r = await fetch("api/edit", {
-        method: "POST", headers: { "Content-Type": "application/json", Accept: "application/json" },
+        method: "POST", headers: { "Content-Type": "application/json", Accept: "application/vnd.linkwork.edit, application/json" },
         body: JSON.stringify({ overrides: req.overrides, whole_turn: req.drag, client: E.client, seq: req.seq }),
       });
       status = r.status;
-      body = await r.json().catch(() => ({ error: `the server answered ${r.status}` }));
+      if (r.ok) body = V.readEdit(await r.arrayBuffer());
+      else body = await r.json().catch(() => ({ error: `the server answered ${r.status}` }));
     } catch (err) {
+      status = 0;
       body = { error: `no answer from the server: ${err.message || err}` };
     }
     E.inflight = null;

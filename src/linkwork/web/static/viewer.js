@@ -76,18 +76,7 @@
       walk(list, 0);
       return new Grid(data, shape);
     }
-    static compact(c) {
-      let bytes;
-      if (Uint8Array.fromBase64) bytes = Uint8Array.fromBase64(c.b64);
-      else {
-        const raw = atob(c.b64);
-        bytes = new Uint8Array(raw.length);
-        for (let i = 0; i < raw.length; i++) bytes[i] = raw.charCodeAt(i);
-      }
-      const Type = { f4: Float32Array, f8: Float64Array, u1: Uint8Array }[c.dtype];
-      return new Grid(new Type(bytes.buffer), c.shape);
-    }
-    static of(x, rank) { return x && x.b64 !== undefined ? Grid.compact(x) : Grid.nested(x, rank); }
+    static of(x, rank) { return x instanceof Grid ? x : Grid.nested(x, rank); }
     // the vector of the last axis at leading indices (i, j): an array, or null where it is NaN
     at(i, j) {
       const sh = this.shape, d = this.data, n = sh[sh.length - 1];
@@ -97,6 +86,19 @@
       return n === 2 ? [x, d[k + 1]] : n === 3 ? [x, d[k + 1], d[k + 2]] : Array.from(d.subarray(k, k + n));
     }
     list() { return Array.from(this.data, (v) => (isNaN(v) ? null : v)); }
+  }
+
+  // an edit's answer (linkwork.web.update.encode_edit): the length of its JSON (uint32, little-endian), the
+  // JSON, zero bytes up to a multiple of 8, then its arrays' bytes; each array {dtype, shape, offset} in the
+  // JSON becomes a Grid over its bytes where they lie
+  const TYPES = { f4: Float32Array, f8: Float64Array, u1: Uint8Array };
+  function readEdit(buf) {
+    const n = new DataView(buf).getUint32(0, true);
+    const base = 4 + n + ((8 - ((4 + n) % 8)) % 8);
+    return JSON.parse(new TextDecoder().decode(new Uint8Array(buf, 4, n)), (key, v) => {
+      if (!v || typeof v !== "object" || v.offset === undefined || !TYPES[v.dtype] || !v.shape) return v;
+      return new Grid(new TYPES[v.dtype](buf, base + v.offset, v.shape.reduce((a, b) => a * b, 1)), v.shape);
+    });
   }
 
   function place(pose, xy) {
@@ -133,7 +135,7 @@
     m.positions = positionsOf(m);
     m.plans = {};
     m.scene = Object.assign({}, full.scene, {
-      size: ans.scene.size, r: ans.scene.r, em: ans.scene.em, items: ans.scene.items, plans: {},
+      size: ans.scene.size, r: ans.scene.r, em: ans.scene.em, items: itemsOf(ans.scene.item_table), plans: {},
     });
     m.scene.labels = full.scene.labels.map((lab, k) => Object.assign({}, lab, {
       at: ans.scene.label_at[k], centre: movedLabel(full, m, lab, ans.scene.label_at[k]),
@@ -156,6 +158,19 @@
     m.forces = Object.assign({}, ans.forces);
     if (ans.forces.values) m.forces.values = Grid.of(ans.forces.values, 3);
     return m;
+  }
+
+  // the scheme's items of an edit's answer, from its table (linkwork.web.update.item_table): one object an item,
+  // as the whole payload gives them
+  function itemsOf(t) {
+    const xy = t.xy.data;
+    let start = 0;
+    return t.kind.map((kind, k) => {
+      const end = t.ends[k], pts = [];
+      for (let j = start; j < end; j++) pts.push([xy[2 * j], xy[2 * j + 1]]);
+      start = end;
+      return { kind, link: t.link[k], name: t.name[k], closed: t.closed[k], radius: t.radius[k], xy: pts };
+    });
   }
 
   // every point at every sample from the links' poses and the points in their links' axes
@@ -761,7 +776,7 @@
   }
 
   window.linkworkViewer = {
-    state, $, svg, html, fmt, X, Y, place, Grid, model, merge, show, load, grow, setIndex, showError, hideError,
+    state, $, svg, html, fmt, X, Y, place, Grid, readEdit, model, merge, show, load, grow, setIndex, showError, hideError,
     on: (name, f) => state.hooks[name].push(f),
   };
 
