@@ -9,9 +9,10 @@ browser part needs Playwright and Debian's ``chromium``; ``--drag 0`` leaves it 
   cache), over one kept-alive connection on 127.0.0.1, until its answer is read and parsed (its JSON, its
   arrays as NumPy arrays over its bytes, as the page reads them); the median and the best of ``--edits``
   of them.
-* The core: ``lw.forces`` of the same mechanism at the same 360 angles (kinematics, loads, reactions,
-  foundation) in this process, the best of several runs and the median, and ``lw.compile`` of its file
-  (what opening another file costs before the cycle is solved).
+* The core: ``lw.forces`` of the same mechanism at 360 angles of a turn (kinematics, loads, reactions,
+  foundation) in this process, the best of several runs and the median; the same of the viewer's own
+  cycle (360 angles from position 0, the edit as a design variant: what the server solves), the median;
+  and ``lw.compile`` of its file (what opening another file costs before the cycle is solved).
 * Opening: the whole cycle's payload (:func:`linkwork.web.cycle_payload`) with its labels placed at the
   first sample (the page's first answer), at the live page's
   :data:`~linkwork.web.payload.LIVE_PLACED` samples (the answer that follows), and at every sample (an
@@ -38,6 +39,7 @@ import numpy as np
 from timing import best
 
 import linkwork as lw
+from linkwork.web.cycle import turn
 from linkwork.web.payload import LIVE_PLACED, cycle_payload
 from linkwork.web.update import decode_edit
 
@@ -153,6 +155,12 @@ def main(argv: list[str] | None = None) -> None:
             t = time.perf_counter()
             lw.forces(mech, steps=360)
             runs.append(time.perf_counter() - t)
+        own = []  # the viewer's own solve: its turn from position 0, the edit as a variant
+        angles, variant = turn(mech, 360), {name: [1.01 * start]}
+        for _ in range(50):
+            t = time.perf_counter()
+            lw.forces(mech, angles, variants=variant)
+            own.append(time.perf_counter() - t)
         compiled = best(lambda: lw.compile(spec))
         opened = {n: best(lambda n=n: cycle_payload(mech, 360, placed=n), repeat=2, budget=8.0)
                   for n in (1, LIVE_PLACED, None)}  # fmt: skip
@@ -168,6 +176,8 @@ def main(argv: list[str] | None = None) -> None:
     print(f"  edit round trip (POST /api/edit, parsed): median {1e3 * rt_median:.1f} ms, best {1e3 * rt_best:.1f} ms")
     print(f"  lw.forces of the cycle: best {1e3 * f_best:.2f} ms, median {1e3 * f_median:.2f} ms")
     print(f"  ratio: median edit / median lw.forces {rt_median / f_median:.1f}, best / best {rt_best / f_best:.1f}")
+    print(f"  lw.forces of the viewer's own cycle (from position 0, the edit as a variant): median "
+          f"{1e3 * statistics.median(own):.2f} ms")
     print(f"  lw.compile of the file: {1e3 * compiled:.1f} ms")
     print(f"  the cycle's payload, labels placed at the first sample {1e3 * opened[1]:.0f} ms, at "
           f"{LIVE_PLACED} samples {1e3 * opened[LIVE_PLACED]:.0f} ms, at all 360 {1e3 * opened[None]:.0f} ms")

@@ -1,10 +1,10 @@
 """The mechanism a viewer shows, its edits and what they are solved in; shared by the server and the exported page.
 
 An edit is solved as a variant of the compiled mechanism (:mod:`linkwork.web.cycle`).  Two kinds of
-answer: the whole cycle with its labels placed (:func:`linkwork.web.payload.full_payload`, 0.15 s for
-the double-cut shears with its labels placed at the first sample, the page's first answer, and 0.4 s at
+answer: the whole cycle with its labels placed (:func:`linkwork.web.payload.full_payload`, 0.04 s for
+the double-cut shears with its labels placed at the first sample, the page's first answer, and 0.12 s at
 the :data:`~linkwork.web.payload.LIVE_PLACED` samples that follow it), and an edit's compact
-answer (:func:`linkwork.web.update.edit_payload`, some milliseconds), which the page shows while a
+answer (:func:`linkwork.web.update.edit_payload`, 3 to 4 milliseconds), which the page shows while a
 value is dragged.  Each kind has its own solving slots (:attr:`Viewer.full_slots`,
 :attr:`Viewer.edit_slots`), so that placing labels never holds up an edit; a crank step (a pose)
 takes no slot.  Answers are kept in small caches (an undo returns at once).
