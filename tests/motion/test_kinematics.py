@@ -777,3 +777,49 @@ def test_a_turn_that_does_not_reach_the_assembly_angle_is_the_motion_followed_fr
             np.testing.assert_allclose(got, want[:, taken], rtol=0, atol=1e-9)
     if name == "shears-slider-crank":
         assert not led.valid_all[1].all() and led.valid_all[1].any()  # the second variant has its gaps
+
+
+POINTS_AND_GUIDES = ["double-cut-shears", "stephenson-six-bar", "class3-triad", "crank-shaper", "offset slider-crank"]
+
+
+@pytest.mark.parametrize("name", POINTS_AND_GUIDES)
+def test_the_points_read_at_once_are_each_points_position_bit_for_bit(name):
+    """``point_positions`` (the plans', the scheme's and ``points()``'s one pass over every point and variant)
+    against ``position`` of each point, for three design variants and for each of them alone."""
+    from mechanisms import TEXTBOOK
+
+    mech = lw.compile(lw.load(name) if name not in TEXTBOOK else TEXTBOOK[name][0]().build())
+    crank = mech.link_names[max(int(i) for i in mech.pair_links[int(mech.drive_pair[0])])]
+    length = lw.parameters(mech)[f"links.{crank}.length"]
+    kin = lw.kinematics(mech, steps=48, variants={f"links.{crank}.length": [length, 1.1 * length, 0.9 * length]})
+    each = np.stack([kin.position(p) for p in mech.point_names])  # (P, V, A, 2)
+    every = np.arange(len(mech.point_names))
+    assert np.array_equal(kin.point_positions(every), each, equal_nan=True)
+    assert np.array_equal(kin.points(), each.transpose(1, 2, 0, 3), equal_nan=True)
+    for v in range(3):
+        assert np.array_equal(kin.point_positions(every[::-1], v)[:, 0], each[::-1, v], equal_nan=True)
+
+
+GUIDED = ["double-cut-shears", "shears-slider-crank", "crank-shaper", "offset slider-crank", "pin in slot"]
+
+
+@pytest.mark.parametrize("name", GUIDED)
+def test_each_slider_stays_on_its_guide_line(name):
+    """``guide_lines`` (every guide at once, the one home of carrying a guide with its link): a unit direction, and
+    the point of the pair's second link on the line, wherever the mechanism assembles, for two variants."""
+    from linkwork.motion.analysis import guide_lines
+    from linkwork.structure.model import PairType
+    from mechanisms import TEXTBOOK
+
+    mech = lw.compile(lw.load(name) if name not in TEXTBOOK else TEXTBOOK[name][0]().build())
+    crank = mech.link_names[max(int(i) for i in mech.pair_links[int(mech.drive_pair[0])])]
+    length = lw.parameters(mech)[f"links.{crank}.length"]
+    kin = lw.kinematics(mech, steps=72, variants={f"links.{crank}.length": [length, 1.05 * length]})
+    pairs = np.flatnonzero(mech.pair_type == PairType.PRISMATIC)
+    assert len(pairs)
+    origin, u = guide_lines(kin, pairs)  # (K, 2, V, A)
+    ok = kin.valid_all
+    np.testing.assert_allclose(np.hypot(u[:, 0], u[:, 1])[:, ok], 1.0, rtol=0, atol=1e-12)
+    at = kin.point_positions(mech.pair_points[pairs, 1]).transpose(0, 3, 1, 2) - origin  # (K, 2, V, A)
+    off = at[:, 0] * u[:, 1] - at[:, 1] * u[:, 0]  # across the line
+    np.testing.assert_allclose(off[:, ok], 0.0, rtol=0, atol=1e-9)

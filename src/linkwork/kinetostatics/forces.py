@@ -25,6 +25,7 @@ from linkwork.kinetostatics.reactions import (
     power_check,
     solve_reactions,
 )
+from linkwork.motion.analysis import guide_lines
 from linkwork.motion.kinematics import Kinematics, kinematics
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
@@ -201,15 +202,10 @@ class Forces:
         lam = np.take(lam.transpose(2, 3, 0, 1), pairs, axis=0)
         out = -lam
         if len(guides):
-            assert kin.axis is not None  # kinematics gives it for every result
-            ks = pairs[guides]
-            theta = kin.q[m.pair_links[ks, 0], 2]  # (P, V, A): the angles of the links that carry the guides
-            c, s = np.cos(theta), np.sin(theta)
-            ux, uy = kin.axis[ks, 0], kin.axis[ks, 1]  # (P, V, 1)
-            u0, u1 = c * ux - s * uy, s * ux + c * uy  # as guide_direction
+            u = guide_lines(kin, pairs[guides])[1]  # (P, 2, V, A)
             normal = lam[guides, 1]
-            out[guides, 0] = -u1 * normal
-            out[guides, 1] = u0 * normal
+            out[guides, 0] = -u[:, 1] * normal
+            out[guides, 1] = u[:, 0] * normal
         return out
 
     def pair_moment(self, joint: str) -> np.ndarray:

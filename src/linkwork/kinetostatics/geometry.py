@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from linkwork.motion.analysis import guide
 from linkwork.motion.kinematics import Kinematics
 from linkwork.structure.parameters import Geometry
 
@@ -24,9 +25,6 @@ def variant_geometry(kin: Kinematics) -> Geometry:
 
 def guide_direction(kin: Kinematics, k: int) -> np.ndarray:
     """Unit direction ``(V, A, 2)`` of the guide line of prismatic pair ``k`` in the frame's axes: its local
-    direction turned by the angle of the guide (the pair's first link)."""
-    _, axis = _guides(kin)
-    theta = kin.pose[..., int(kin.mechanism.pair_links[k, 0]), 2]
-    ux, uy = axis[k, 0], axis[k, 1]  # (V, 1)
-    c, s = np.cos(theta), np.sin(theta)
-    return np.stack([c * ux - s * uy, s * ux + c * uy], -1)
+    direction turned by the angle of the guide (the pair's first link;
+    :func:`~linkwork.motion.analysis.guide`)."""
+    return guide(kin, k)[1]

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from linkwork.motion.kinematics import Kinematics, cycle, kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
@@ -101,22 +102,36 @@ def find_output(mech: Mechanism, name: str | None, kind: str) -> Output | None:
     return None
 
 
+def guide_lines(kin: Kinematics, pairs: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """The guide lines of the prismatic pairs ``pairs`` ``(K,)`` of every variant at every angle, in the frame's
+    axes: the one home of carrying a guide with the link that carries it (the plans, the scheme, the forces and the
+    viewer's charts read their guides here).
+
+    Returns
+    -------
+    origin, direction : ndarray, shape (K, 2, V, A)
+        A point of each line (m) and its unit direction (the joint's ``origin`` and ``axis``, the variant's,
+        turned and moved with the link that carries the guide, the pair's first).
+    """
+    pairs = np.asarray(pairs, dtype=np.intp)
+    q = kin.q[kin.mechanism.pair_links[pairs, 0]]  # (K, 3, V, A)
+    c, s = np.cos(q[:, 2]), np.sin(q[:, 2])
+    ox, oy, ux, uy = kin.origin[pairs, 0], kin.origin[pairs, 1], kin.axis[pairs, 0], kin.axis[pairs, 1]  # (K, V, 1)
+    origin = np.stack([q[:, 0] + c * ox - s * oy, q[:, 1] + s * ox + c * oy], 1)
+    return origin, np.stack([c * ux - s * uy, s * ux + c * uy], 1)
+
+
 def guide(kin: Kinematics, k: int) -> tuple[np.ndarray, np.ndarray]:
-    """The guide line of prismatic pair ``k`` of every variant at every angle, in the frame's axes.
+    """The guide line of prismatic pair ``k`` of every variant at every angle, in the frame's axes
+    (:func:`guide_lines`).
 
     Returns
     -------
     origin, direction : ndarray, shape (V, A, 2)
-        A point of the line (m) and its unit direction (the joint's ``axis``, the variant's, turned with the
-        link that carries the guide).
+        A point of the line (m) and its unit direction.
     """
-    carrier = int(kin.mechanism.pair_links[k, 0])
-    theta = kin.q[carrier, 2]  # (V, A)
-    c, s = np.cos(theta), np.sin(theta)
-    ox, oy = kin.origin[k, 0], kin.origin[k, 1]  # (V, 1)
-    ux, uy = kin.axis[k, 0], kin.axis[k, 1]
-    origin = np.stack([kin.q[carrier, 0] + c * ox - s * oy, kin.q[carrier, 1] + s * ox + c * oy], -1)
-    return origin, np.stack([c * ux - s * uy, s * ux + c * uy], -1)
+    origin, direction = guide_lines(kin, [k])
+    return np.ascontiguousarray(np.moveaxis(origin[0], 0, -1)), np.ascontiguousarray(np.moveaxis(direction[0], 0, -1))
 
 
 def coordinate(kin: Kinematics, out: Output) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

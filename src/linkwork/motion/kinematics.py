@@ -158,8 +158,22 @@ class Kinematics:
 
     def points(self) -> np.ndarray:
         """Positions of all points, ``(..., n_angles, n_points, 2)`` (order of ``mechanism.point_names``)."""
-        every = [self._motion(name, fast.POSITION) for name in self.mechanism.point_names]  # (V, A, 2) each
-        return self._out(np.stack(every, 2))
+        every = self.point_positions(np.arange(len(self.mechanism.point_names)))  # (P, V, A, 2)
+        return self._out(np.ascontiguousarray(every.transpose(1, 2, 0, 3)))
+
+    def point_positions(self, points: npt.ArrayLike, variant: int | None = None) -> np.ndarray:
+        """Positions ``(K, V, A, 2)`` of the points ``points`` (indices ``(K,)``), the points first, of every
+        variant (of ``variant`` alone: ``V`` = 1): one pass of :func:`~linkwork.motion.fast.point_motion` over
+        them all, each point of each variant taken as a variant of its link (the arithmetic of :meth:`position`)."""
+        points = np.asarray(points, dtype=np.intp)
+        link = np.asarray(self.mechanism.point_link)[points]
+        pick = slice(None) if variant is None else slice(variant, variant + 1)
+        q, cos, sin = self.q[link, :, pick], self.cos[link, pick], self.sin[link, pick]  # (K, 3, V, A), (K, V, A)
+        k, n_var, n_ang = cos.shape
+        flat = np.ascontiguousarray(q.swapaxes(0, 1)).reshape(3, k * n_var, n_ang)
+        local = np.ascontiguousarray(self.local[points, :, pick, 0].swapaxes(0, 1)).reshape(2, k * n_var)
+        cs = cos.reshape(k * n_var, n_ang), sin.reshape(k * n_var, n_ang)
+        return fast.point_motion(fast.POSITION, flat, flat, flat, cs, local).reshape(k, n_var, n_ang, 2)
 
     def samples(self, index: Any) -> Kinematics:
         """The result at the samples ``index`` only (an int array or a slice of the angles), solved as they were;

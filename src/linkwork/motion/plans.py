@@ -36,6 +36,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from linkwork.motion.analysis import guide_lines
 from linkwork.motion.kinematics import Kinematics
 from linkwork.motion.program import Arm, Step
 from linkwork.structure.model import Mechanism, PairType, per_mechanism, point_labels
@@ -217,10 +218,10 @@ def plan_series(kin: Kinematics) -> tuple[PlanSeries, PlanSeries]:
     """
     lay = _layout(kin.mechanism)
     links = _Links(*(np.ascontiguousarray(x) for x in (kin.q, kin.v, kin.a)))
-    pts = _positions(kin, links, lay.placed, lay.placed_link)
+    pts = np.ascontiguousarray(kin.point_positions(lay.placed).transpose(0, 3, 1, 2))  # (P, 2, V, A)
     rotation, normal, tangential = _turns(links, lay, pts)
     (v_abs, v_tr, v_x), (a_abs, a_tr, a_x) = _material(links, lay, pts)
-    u = _guides(kin, links, lay.slide_pair)
+    u = guide_lines(kin, lay.slide_pair)[1]
     sdot = np.sum((v_x - v_tr) * u, 1, keepdims=True)
     cor = 2 * links.v.take(lay.slide_carrier, 0)[:, 2:3] * sdot * _perp(u)
     sddot = np.sum((a_x - a_tr - cor) * u, 1, keepdims=True)
@@ -247,13 +248,6 @@ def _perp(u: np.ndarray) -> np.ndarray:
     return u[:, ::-1] * _QUARTER
 
 
-def _positions(kin: Kinematics, links: _Links, point: np.ndarray, link: np.ndarray) -> np.ndarray:
-    """Positions ``(P, 2, V, A)`` of the points ``point`` ``(P,)``, on their links ``link``: those of
-    :meth:`Kinematics.points` (``x + (c l_x - s l_y)``, ``y + (s l_x + c l_y)``, as exactly), all at once."""
-    c, s, local = kin.cos.take(link, 0)[:, None], kin.sin.take(link, 0)[:, None], kin.local.take(point, 0)
-    return links.q.take(link, 0)[:, :2] + (c * local + s * _perp(local))
-
-
 def _material(links: _Links, lay: _Layout, pts: np.ndarray) -> tuple[list[np.ndarray], list[np.ndarray]]:
     """Velocities and accelerations ``(K, 2, V, A)`` of the material points read: the point of each
     absolute plan point on its link, then each sliding point on its link's carrier, then on its link.
@@ -275,14 +269,6 @@ def _turns(links: _Links, lay: _Layout, pts: np.ndarray) -> tuple[np.ndarray, np
     w, e = links.v.take(lay.turn_link, 0)[:, 2:3], links.a.take(lay.turn_link, 0)[:, 2:3]
     pr = _perp(r)
     return w * pr, -w * w * r, e * pr
-
-
-def _guides(kin: Kinematics, links: _Links, pair: np.ndarray) -> np.ndarray:
-    """The unit directions ``(S, 2, V, A)`` of the prismatic pairs ``pair``: those of
-    :func:`~linkwork.motion.analysis.guide` (``c u_x - s u_y``, ``s u_x + c u_y``, as exactly), all at once."""
-    theta = links.q.take(kin.mechanism.pair_links[pair, 0], 0)[:, 2:3]
-    axis = kin.axis.take(pair, 0)
-    return np.cos(theta) * axis + np.sin(theta) * _perp(axis)
 
 
 def _series(kin: Kinematics, lay: _Layout, plot: _Plot, absolute: np.ndarray, vectors: np.ndarray) -> PlanSeries:
@@ -329,7 +315,7 @@ _VECTORS = {
 class _Layout(NamedTuple):
     """The graphical construction of a mechanism, without its values (:func:`_layout`).
 
-    ``placed``: the points whose positions are read, ``placed_link`` their links; ``points``: the
+    ``placed``: the points whose positions are read; ``points``: the
     absolute plan points' labels; ``turn_*``: each point X turning with a link about a point P
     (:func:`_turns`); ``slide_*``: each point X on a link sliding along a guide of its carrier, the
     guide's prismatic pair; ``at_link``, ``at_point``: the material points whose velocities and
@@ -337,7 +323,6 @@ class _Layout(NamedTuple):
     """
 
     placed: np.ndarray
-    placed_link: np.ndarray
     points: tuple[str, ...]
     turn_point: np.ndarray
     turn_about: np.ndarray
@@ -368,7 +353,6 @@ def _layout(mech: Mechanism) -> _Layout:
     size = {"rotation": t, "normal": t, "tangential": t, "transport": s, "coriolis": s, "sliding": s}
     return _Layout(
         placed=placed,
-        placed_link=np.asarray(mech.point_link, dtype=int)[placed],
         points=points,
         turn_point=turn_point,
         turn_about=turn_about,

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from linkwork.motion import fast
+from linkwork.motion.analysis import guide_lines
 from linkwork.motion.kinematics import kinematics
 from linkwork.scene import symbols
 from linkwork.scene.geometry import bounds, collinear, hull, place, text_size
@@ -332,17 +332,9 @@ class _Builder:
 
     def _guide_lines(self) -> tuple[np.ndarray, np.ndarray]:
         """A point of every slider's guide line and its unit direction, ``(B, 2)`` each (global, m), at the first
-        sample that assembles: those of :func:`~linkwork.motion.analysis.guide`, the same arithmetic at that sample
-        alone (in Python's floats)."""
-        kin, v, i, sliders = self.kin, self.variant, self.first, self.layout.sliders
-        poses = kin.q[sliders.carriers, :, v, i]  # of the links that carry the guides, (B, 3)
-        turns = np.cos(poses[:, 2]).tolist(), np.sin(poses[:, 2]).tolist()
-        axes = kin.origin[sliders.pairs, :, v, 0].tolist(), kin.axis[sliders.pairs, :, v, 0].tolist()
-        origins, directions = [], []
-        for (qx, qy, _), c, s, (ox, oy), (ux, uy) in zip(poses.tolist(), *turns, *axes, strict=True):
-            origins.append((qx + c * ox - s * oy, qy + s * ox + c * oy))
-            directions.append((c * ux - s * uy, s * ux + c * uy))
-        return np.array(origins).reshape(-1, 2), np.array(directions).reshape(-1, 2)
+        sample that assembles (:func:`~linkwork.motion.analysis.guide_lines`)."""
+        origin, direction = guide_lines(self.kin, self.layout.sliders.pairs)  # (B, 2, V, A)
+        return origin[..., self.variant, self.first], direction[..., self.variant, self.first]
 
     def _blocks(self, directions: np.ndarray) -> list[Item]:
         """A block at every slider along its guide's direction of ``directions`` ``(B, 2)``, in its link's axes."""
@@ -680,15 +672,9 @@ def _drawn_before(item: Item) -> int:
 
 
 def _points(kin: Kinematics, variant: int) -> np.ndarray:
-    """Every point of design variant ``variant`` at every sample, ``(A, P, 2)``: ``kin.points()`` of the variant,
-    found in one pass of :func:`~linkwork.motion.fast.point_motion` over the points (each taken as a variant of its
-    link), the same arithmetic."""
-    link = _layout(kin.mechanism).point_link
-    q = np.ascontiguousarray(kin.q[link, :, variant].swapaxes(0, 1))  # (3, P, A)
-    cs = kin.cos[link, variant], kin.sin[link, variant]  # (P, A)
-    local = np.ascontiguousarray(kin.local[:, :, variant, 0].T)  # (2, P)
-    moved = fast.point_motion(fast.POSITION, q, q, q, cs, local)  # (P, A, 2); no velocity or acceleration read
-    return np.ascontiguousarray(moved.swapaxes(0, 1))
+    """Every point of design variant ``variant`` at every sample, ``(A, P, 2)``."""
+    every = kin.point_positions(np.arange(len(kin.mechanism.point_names)), variant)  # (P, 1, A, 2)
+    return np.ascontiguousarray(every[:, 0].swapaxes(0, 1))
 
 
 def _alternatives(anchors: np.ndarray, count: int) -> np.ndarray:

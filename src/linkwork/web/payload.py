@@ -69,7 +69,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.errors import UnassemblableError
-from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs
+from linkwork.motion.analysis import Output, coordinate, extremes, guide, guide_lines, outputs
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import PlanSeries, _longest, _round_scale, percentile, plan_series
 from linkwork.scene.plans import KINDS, plan_scene
@@ -541,29 +541,22 @@ def _rocker_coordinate(kin: Kinematics, output: Output) -> tuple[np.ndarray, np.
 def _slider_coordinates(kin: Kinematics) -> np.ndarray:
     """The coordinate of each slider along its guide and its first and second time derivatives, ``(S, 3, V, A)``:
     :func:`~linkwork.motion.analysis.coordinate` of each, by the same arithmetic for all at once."""
-    pairs, carriers, points = _sliders(kin.mechanism)
+    pairs, points = _sliders(kin.mechanism)
     if not points:
         return np.zeros((0, 3) + kin.q.shape[2:])
-    assert kin.origin is not None and kin.axis is not None  # kinematics gives them for every result
-    q = kin.q[carriers]  # (S, 3, V, A)
-    c, s = np.cos(q[:, 2]), np.sin(q[:, 2])
-    ox, oy, ux, uy = kin.origin[pairs, 0], kin.origin[pairs, 1], kin.axis[pairs, 0], kin.axis[pairs, 1]  # (S, V, 1)
-    origin_x, origin_y = q[:, 0] + c * ox - s * oy, q[:, 1] + s * ox + c * oy
-    u_x, u_y = c * ux - s * uy, s * ux + c * uy  # as guide
+    origin, u = guide_lines(kin, pairs)  # (S, 2, V, A)
     motion = np.array([kin._point(p) for p in points])  # (S, 3, V, A, 2)
-    motion[:, 0, ..., 0] -= origin_x
-    motion[:, 0, ..., 1] -= origin_y
+    motion[:, 0, ..., 0] -= origin[:, 0]
+    motion[:, 0, ..., 1] -= origin[:, 1]
     # coordinate's np.sum over x and y adds them to 0.0, which makes a -0.0 sum 0.0
-    return motion[..., 0] * u_x[:, None] + motion[..., 1] * u_y[:, None] + 0.0
+    return motion[..., 0] * u[:, None, 0] + motion[..., 1] * u[:, None, 1] + 0.0
 
 
 @per_mechanism
-def _sliders(mech: Mechanism) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
-    """The sliders of ``mech``'s outputs (:func:`_outputs`): their prismatic pairs, the links that carry their
-    guides and their points."""
+def _sliders(mech: Mechanism) -> tuple[np.ndarray, tuple[str, ...]]:
+    """The sliders of ``mech``'s outputs (:func:`_outputs`): their prismatic pairs and their points."""
     sliders = [o for o in _outputs(mech) if o.kind == "slider"]
-    pairs = np.array([o.pair for o in sliders], dtype=np.intp)
-    return pairs, mech.pair_links[pairs, 0], tuple(mech.point_names[o.point] for o in sliders)
+    return np.array([o.pair for o in sliders], dtype=np.intp), tuple(mech.point_names[o.point] for o in sliders)
 
 
 def _structure(mech: Mechanism) -> dict[str, Any]:
