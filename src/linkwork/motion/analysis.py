@@ -19,6 +19,7 @@ the extreme positions:
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -138,26 +139,43 @@ def coordinate(kin: Kinematics, out: Output) -> tuple[np.ndarray, np.ndarray, np
     """The coordinate of an output and its first and second time derivatives, ``(V, A)`` each.
 
     A slider's position along its guide's axis from the guide's origin (m, m/s, m/s^2), on the variant's
-    guide; a rocker's angle (rad, unwrapped along the samples that assemble), angular velocity and
-    acceleration.
+    guide (:func:`slider_coordinates`); a rocker's angle (rad, unwrapped along the samples that assemble),
+    angular velocity and acceleration.
     """
     if out.kind == "rocker":
         return _unwrap(kin.q[out.link, 2]), kin.v[out.link, 2], kin.a[out.link, 2]
-    origin, u = guide(kin, out.pair)
-    x, v, a = kin._point(kin.mechanism.point_names[out.point])
-    return np.sum((x - origin) * u, -1), np.sum(v * u, -1), np.sum(a * u, -1)
+    s, v, a = slider_coordinates(kin, [out])[0]
+    return s, v, a
+
+
+def slider_coordinates(kin: Kinematics, sliders: Sequence[Output]) -> np.ndarray:
+    """The coordinate of each of ``sliders`` along its guide (:func:`guide_lines`) from the guide's origin and its
+    first and second time derivatives, ``(S, 3, V, A)`` (m, m/s, m/s^2), all at once."""
+    if not sliders:
+        return np.zeros((0, 3) + kin.q.shape[2:])
+    origin, u = guide_lines(kin, [o.pair for o in sliders])  # (S, 2, V, A)
+    motion = np.array([kin._point(kin.mechanism.point_names[o.point]) for o in sliders])  # (S, 3, V, A, 2)
+    motion[:, 0, ..., 0] -= origin[:, 0]
+    motion[:, 0, ..., 1] -= origin[:, 1]
+    # + 0.0: a sum of x and y that is -0.0 reads 0.0, as a sum along an axis gives it
+    return motion[..., 0] * u[:, None, 0] + motion[..., 1] * u[:, None, 1] + 0.0
 
 
 def _unwrap(angle: np.ndarray) -> np.ndarray:
     """Angles ``(V, A)`` unwrapped along the samples, across the samples that are NaN (kept NaN)."""
     ok = np.isfinite(angle)
-    idx = np.maximum.accumulate(np.where(ok, np.arange(angle.shape[-1]), 0), axis=-1)
-    filled = np.take_along_axis(angle, idx, -1)  # each NaN replaced by the last finite value before it
-    step = np.diff(filled, axis=-1)
+    whole = bool(ok.all())  # nothing to fill
+    if whole:
+        filled = angle
+    else:  # each NaN replaced by the last finite value before it
+        idx = np.maximum.accumulate(np.where(ok, np.arange(angle.shape[-1]), 0), axis=-1)
+        filled = np.take_along_axis(angle, idx, -1)
+    step = filled[..., 1:] - filled[..., :-1]
     with np.errstate(invalid="ignore"):
         jump = np.where(np.abs(step) >= math.pi, np.mod(step + math.pi, TWO_PI) - math.pi - step, 0.0)
-    turns = np.concatenate([np.zeros(angle.shape[:-1] + (1,)), np.cumsum(jump, axis=-1)], -1)
-    return np.where(ok, angle + turns, np.nan)
+    turns = np.zeros(angle.shape)
+    np.cumsum(jump, axis=-1, out=turns[..., 1:])
+    return angle + turns if whole else np.where(ok, angle + turns, np.nan)
 
 
 # ---------------------------------------------------------------- extremes over the turn

@@ -594,11 +594,10 @@ def _blades(mech: Mechanism, joint: set[int]) -> list[tuple[int, str, int, list[
 
 
 class _SliderLayout(NamedTuple):
-    """The prismatic pairs of a mechanism: the pairs, the links that carry their guides, the sliders' links,
-    points and joints, whether each guide is on the frame; the points and joints of the guides on the frame."""
+    """The prismatic pairs of a mechanism: the pairs, the sliders' links, points and joints, whether each guide is
+    on the frame; the points and joints of the guides on the frame."""
 
     pairs: np.ndarray
-    carriers: np.ndarray
     links: list[int]
     points: list[int]
     joints: list[str]
@@ -609,12 +608,11 @@ class _SliderLayout(NamedTuple):
 
 def _sliders(mech: Mechanism, pairs: list[int]) -> _SliderLayout:
     """:attr:`_Layout.sliders` of the prismatic pairs ``pairs`` of ``mech``."""
-    carriers = np.array([int(mech.pair_links[k, 0]) for k in pairs], dtype=int)
     points = [int(mech.pair_points[k, 1]) for k in pairs]
     joints = [str(mech.pair_joint[k]) for k in pairs]
-    on = carriers == 0
-    return _SliderLayout(np.array(pairs, dtype=int), carriers, [int(mech.pair_links[k, 1]) for k in pairs], points,
-                         joints, on, list(compress(points, on)), list(compress(joints, on)))  # fmt: skip
+    on = np.array([int(mech.pair_links[k, 0]) == 0 for k in pairs], dtype=bool)  # the guide is the frame's
+    return _SliderLayout(np.array(pairs, dtype=int), [int(mech.pair_links[k, 1]) for k in pairs], points, joints, on,
+                         list(compress(points, on)), list(compress(joints, on)))  # fmt: skip
 
 
 def _named_points(mech: Mechanism, joint: set[int], revolute: list[bool]) -> list[tuple[str, int, int, float]]:

@@ -69,7 +69,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.errors import UnassemblableError
-from linkwork.motion.analysis import Output, coordinate, extremes, guide, guide_lines, outputs
+from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import PlanSeries, _longest, _round_scale, percentile, plan_series
 from linkwork.scene.plans import KINDS, plan_scene
@@ -488,14 +488,14 @@ def _motion_values(cycle: Cycle) -> list[np.ndarray]:
     """Each slider's position (mm), velocity and acceleration along its guide, each rocker's angle (deg) and angular
     velocity, in the order of their pairs."""
     kin, outs = cycle.kin, _outputs(cycle.mech)
-    sliders = iter(_slider_coordinates(kin)[..., 0, :])  # (S, 3, A)
+    sliders = iter(slider_coordinates(kin, [o for o in outs if o.kind == "slider"])[..., 0, :])  # (S, 3, A)
     out: list[np.ndarray] = []
     for output in outs:
         if output.kind == "slider":
             s, v, a = next(sliders)
             out += [1000 * s, v, a]
         else:
-            s, v, _ = _rocker_coordinate(kin, output)
+            s, v, _ = coordinate(kin, output)
             out += [np.degrees(s[0]), v[0]]
     return out
 
@@ -523,40 +523,6 @@ def _supports(mech: Mechanism) -> tuple[str, ...]:
     """The joints of ``mech``'s revolute pairs with the frame, each once, in the order of their pairs."""
     on_frame = (k for k in range(mech.n_pairs) if 0 in mech.pair_links[k] and mech.pair_type[k] == PairType.REVOLUTE)
     return tuple(dict.fromkeys(mech.pair_joint[k] for k in on_frame))
-
-
-def _rocker_coordinate(kin: Kinematics, output: Output) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`~linkwork.motion.analysis.coordinate` of a rocker; its angle, where every sample assembles, unwrapped
-    by the same arithmetic in fewer steps (nothing to fill)."""
-    angle = kin.q[output.link, 2]
-    if not np.isfinite(angle).all():
-        return coordinate(kin, output)
-    step = angle[..., 1:] - angle[..., :-1]
-    jump = np.where(np.abs(step) >= math.pi, np.mod(step + math.pi, 2 * math.pi) - math.pi - step, 0.0)
-    turns = np.zeros(angle.shape)
-    np.cumsum(jump, axis=-1, out=turns[..., 1:])
-    return angle + turns, kin.v[output.link, 2], kin.a[output.link, 2]
-
-
-def _slider_coordinates(kin: Kinematics) -> np.ndarray:
-    """The coordinate of each slider along its guide and its first and second time derivatives, ``(S, 3, V, A)``:
-    :func:`~linkwork.motion.analysis.coordinate` of each, by the same arithmetic for all at once."""
-    pairs, points = _sliders(kin.mechanism)
-    if not points:
-        return np.zeros((0, 3) + kin.q.shape[2:])
-    origin, u = guide_lines(kin, pairs)  # (S, 2, V, A)
-    motion = np.array([kin._point(p) for p in points])  # (S, 3, V, A, 2)
-    motion[:, 0, ..., 0] -= origin[:, 0]
-    motion[:, 0, ..., 1] -= origin[:, 1]
-    # coordinate's np.sum over x and y adds them to 0.0, which makes a -0.0 sum 0.0
-    return motion[..., 0] * u[:, None, 0] + motion[..., 1] * u[:, None, 1] + 0.0
-
-
-@per_mechanism
-def _sliders(mech: Mechanism) -> tuple[np.ndarray, tuple[str, ...]]:
-    """The sliders of ``mech``'s outputs (:func:`_outputs`): their prismatic pairs and their points."""
-    sliders = [o for o in _outputs(mech) if o.kind == "slider"]
-    return np.array([o.pair for o in sliders], dtype=np.intp), tuple(mech.point_names[o.point] for o in sliders)
 
 
 def _structure(mech: Mechanism) -> dict[str, Any]:
