@@ -340,7 +340,11 @@ def _quote(text: str) -> str:
 
 
 def turn_deg(angle: Any, digits: int = 1) -> Any:
-    """An angle (rad, a number or an array) as it is shown: degrees in [0, 360), rounded to ``digits``
-    decimals before the turn is wrapped, so that -1e-9 rad reads 0.0 and not 360.0."""
-    deg = np.round(np.degrees(angle), digits) % 360.0
+    """An angle (rad, a number or an array) as it is shown or written: degrees in [0, 360), rounded to
+    ``digits`` decimals, and wrapped again after rounding, so that -1e-9 rad reads 0.0 and not 360.0.
+
+    The turn is wrapped before rounding (``fmod`` is exact), so each value is the double nearest a number
+    of ``digits`` decimals: 627.5 deg and -92.5 deg are written ``267.5``, without the noise of a
+    subtraction after the rounding."""
+    deg = np.round(np.degrees(angle) % 360.0, digits) % 360.0
     return float(deg) if np.ndim(deg) == 0 else deg

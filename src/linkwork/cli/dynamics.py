@@ -98,7 +98,7 @@ def _print_report(mech: Mechanism, result: Dynamics, data: dict[str, Any]) -> No
     i = int(np.argmin(omega))
     angle = turn_deg(float(red.angle[0]) + direction(mech) * (result.motion.cycle_start + float(psi[i])))
     typer.echo(
-        f"  lowest speed at {data['cycle']['crank_angle_deg'][i]:.1f} deg from position 0 "
+        f"  lowest speed at {data['cycle']['phi_deg'][i]:.1f} deg from position 0 "
         f"(the crank at {angle:.1f} deg to the x axis)"
     )
     typer.echo(

@@ -21,9 +21,9 @@ from linkwork.cli.app import (
     make_table,
     show,
 )
-from linkwork.cli.motion import NOT_ASSEMBLED, _angles, check_angles
+from linkwork.cli.motion import NOT_ASSEMBLED, _angles, _where, check_angles
 from linkwork.limits import MAX_ANGLES, MAX_NAME, quote, whole
-from linkwork.units import parse_quantity, turn_deg
+from linkwork.units import parse_quantity
 
 # what a command needs is imported when it runs, so that the command line starts fast
 if TYPE_CHECKING:
@@ -77,10 +77,6 @@ BALANCE_NULLS = {
     "after": "the forces of the mechanism with its counterweights have no value at any angle (a counterweight "
     "too heavy or too far out to compute)",
 }
-
-
-def _deg(angle: float) -> str:
-    return f"{turn_deg(angle):.1f} deg"
 
 
 def _peak(values: np.ndarray, angles: np.ndarray) -> tuple[float, float]:
@@ -194,17 +190,17 @@ def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: l
     speed = f"{abs(rate) * 30 / math.pi:.6g} rpm" if revolute else f"{abs(rate):.6g} m/s"
     ok = np.isfinite(f.driving_torque)
     out.print(f"{escape(mech.name)}: {len(phi)} positions at {speed}, {int(ok.sum())} solved")
+    where = _where(mech)
     if not ok.all():
-        bad = turn_deg(phi[~ok])
         out.print(
             f"  reactions indeterminate (singular or unassembled) at {int((~ok).sum())} positions, "
-            f"e.g. {', '.join(f'{a:.1f}' for a in bad[:6])} deg"
+            f"e.g. {', '.join(where(a) for a in phi[~ok][:6])}"
         )
     if not ok.any():
         return
     unit = "N m" if revolute else "N"
     t, at = _peak(f.driving_torque, phi)
-    out.print(f"  driving torque: peak {t:.6g} {unit} at {_deg(at)}")
+    out.print(f"  driving torque: peak {t:.6g} {unit} at {where(at)}")
     show(out, _pair_table(f, labels))
     for g in groups:
         out.print(
@@ -227,6 +223,7 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
     from linkwork.io.jsonout import snap_zeros
 
     mech, phi = f.mechanism, f.angles
+    at = _where(mech)
     tab = make_table("largest pair forces over the cycle")
     for col in ("joint", "first on second", "|F| max, N", "at", "moment max, N m"):
         tab.add_column(col)
@@ -241,23 +238,24 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
     for (label, k), value, (_, where), moment, p in zip(labels, values, peaks, moments, prismatic, strict=True):
         a, b = (mech.link_names[int(i)] for i in mech.pair_members[k])
         shown = f"{moment:.6g}" if p else "-"
-        tab.add_row(escape(label), escape(f"{a} on {b}"), f"{value:.6g}", _deg(where), shown)
+        tab.add_row(escape(label), escape(f"{a} on {b}"), f"{value:.6g}", at(where), shown)
     return tab
 
 
 def _report_foundation(f: Forces, out: Console) -> None:
     """The extremes of the foundation loads and of the shaking force and moment, with their angles."""
     phi = f.angles
+    at = _where(f.mechanism)
     bolts = f.bolts()
-    pull = f"{bolts.pull:.6g} N at {_deg(bolts.pull_angle)}" if bolts.pull > 0 else "none (the machine never lifts)"
-    out.print(f"  foundation: horizontal (bolt shear) max {bolts.shear:.6g} N at {_deg(bolts.shear_angle)}")
+    pull = f"{bolts.pull:.6g} N at {at(bolts.pull_angle)}" if bolts.pull > 0 else "none (the machine never lifts)"
+    out.print(f"  foundation: horizontal (bolt shear) max {bolts.shear:.6g} N at {at(bolts.shear_angle)}")
     out.print(f"              pull on the bolts max {pull}")
-    out.print(f"              push on the foundation max {bolts.push:.6g} N at {_deg(bolts.push_angle)}")
-    out.print(f"              moment about the origin max {bolts.moment:.6g} N m at {_deg(bolts.moment_angle)}")
+    out.print(f"              push on the foundation max {bolts.push:.6g} N at {at(bolts.push_angle)}")
+    out.print(f"              moment about the origin max {bolts.moment:.6g} N m at {at(bolts.moment_angle)}")
     shake = np.hypot(f.shaking_force[:, 0], f.shaking_force[:, 1])
     s, s_at = _peak(shake, phi)
     m, m_at = _peak(f.shaking_moment, phi)
-    out.print(f"  shaking force max {s:.6g} N at {_deg(s_at)}, shaking moment max {abs(m):.6g} N m at {_deg(m_at)}")
+    out.print(f"  shaking force max {s:.6g} N at {at(s_at)}, shaking moment max {abs(m):.6g} N m at {at(m_at)}")
 
 
 @app.command()

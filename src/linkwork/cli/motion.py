@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
@@ -91,6 +92,20 @@ def _angles(mech: Mechanism, steps: int | None, angles: str | None) -> dict[str,
     return {"steps": steps or 360}
 
 
+def _where(mech: Mechanism) -> Callable[[float], str]:
+    """How the command writes where a value is: φ turned from position 0 with one crank (``phi = 102.0 deg``,
+    as the report), else the first drive's coordinate (its angle to x, or a linear drive's mm)."""
+    from linkwork.motion.analysis import CrankAngles
+    from linkwork.structure.model import PairType
+
+    crank = CrankAngles.of(mech)
+    if crank is not None:
+        return lambda angle: f"phi = {crank.phi(angle, 1):.1f} deg"
+    if mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE:
+        return lambda angle: f"{turn_deg(angle):.1f} deg to x"
+    return lambda position: f"{position * 1000:.6g} mm"
+
+
 @app.command()
 def kinematics(
     file_or_example: FileOrExample,
@@ -125,23 +140,21 @@ def kinematics(
         return
     n_ok = int(np.sum(kin.valid))
     typer.echo(f"{mech.name}: {len(kin.angles)} positions, {n_ok} assembled")
+    where = _where(mech)
     for e in ext:
         ratios = f"time ratio K {e.time_ratio:.4f} (+ stroke over the other {e.forward_time_ratio:.4f})"
         if e.kind == "slider":
             typer.echo(
                 f"  slider {e.name}: stroke {e.stroke * 1000:.2f} mm, from {e.low * 1000:.2f} to "
-                f"{e.high * 1000:.2f} mm (at {turn_deg(e.at_low):.1f} and "
-                f"{turn_deg(e.at_high):.1f} deg), {ratios}"
+                f"{e.high * 1000:.2f} mm (at {where(e.at_low)} and {where(e.at_high)}), {ratios}"
             )
         else:
             typer.echo(f"  rocker {e.name}: swing {math.degrees(e.stroke):.3f} deg, {ratios}")
     for label, mu in transmission_angles(kin).items():
         if np.any(np.isfinite(mu)):
             i = int(np.nanargmin(mu))
-            typer.echo(
-                f"  {label}: least transmission angle {math.degrees(mu[i]):.2f} deg at "
-                f"{turn_deg(kin.angles[i]):.1f} deg"
-            )
+            least = math.degrees(mu[i])
+            typer.echo(f"  {label}: least transmission angle {least:.2f} deg at {where(kin.angles[i])}")
     for event in kin.events:
         typer.echo(f"  {event.kind}: {event.message}")
     for path in written:

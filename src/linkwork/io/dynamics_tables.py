@@ -1,11 +1,12 @@
 """The JSON object of a machine-dynamics result (``linkwork dynamics --json``, the report).
 
-Angles, in degrees: ``angles_deg`` is the crank's drive angle (counter-clockwise from the frame's x
-axis) of each sample of the reduced quantities; ``crank_angle_deg`` the crank angle turned from position
-0 (``position_0_deg``, the drive angle where the working member is at its extreme, as ``linkwork
-positions`` numbers the cycle), 0 to 360, the abscissa of the report's diagrams; ``cycle.crank_angle_deg``
-the same for each sample of the steady cycle, and ``cycle.psi_deg`` the angle the crank has turned since
-the start of the steady turn (its first sample), which is not position 0.
+Angles, in degrees in [0, 360) (:class:`linkwork.motion.analysis.CrankAngles`): ``phi_deg`` is φ, the
+crank angle turned from position 0 (``position_0_deg``, the crank's angle to x where the working member is
+at its extreme, as ``linkwork positions`` numbers the cycle) in the drive's ``direction``, the abscissa of
+the report's diagrams, at each sample of the reduced quantities; ``crank_angle_to_x_deg`` the crank's
+angle to the frame's x axis there; ``cycle.phi_deg`` φ at each sample of the steady cycle, and
+``cycle.psi_deg`` the angle the crank has turned since the start of the steady turn (its first sample),
+which is not position 0.
 
 ``mean_power`` is the motor's at its shaft, ``drive_power`` the drive's on the crank (after the
 gear), over the steady cycle, as in :class:`linkwork.machine.Dynamics` and the working cycle of
@@ -35,7 +36,7 @@ CYCLE_COLUMNS = {
     "omega": "omega [rad/s]",
     "motor_torque": "motor_torque [N m]",
     "motor_power": "motor_power [W]",
-    "crank_angle_deg": "crank_angle [deg]",
+    "phi_deg": "phi [deg]",
 }
 
 
@@ -43,14 +44,13 @@ def to_json(mech: Mechanism, result: Dynamics, zero: float | None = None) -> dic
     """The ``linkwork dynamics --json`` object; ``zero``: the drive angle of position 0 (rad, default
     :func:`linkwork.motion.analysis.zero_angle`)."""
     from linkwork.machine import wittenbauer
-    from linkwork.motion.analysis import from_position_0, zero_angle
-    from linkwork.motion.kinematics import direction
+    from linkwork.motion.analysis import CrankAngles, to_x_deg
 
     red, drive, last = result.reduced, result.drive, result.motion.last
     t, psi, omega = result.motion.cycle()
-    zero = zero_angle(mech) if zero is None else zero
-    sign = direction(mech)
-    turn = red.angle[0] + sign * (result.motion.cycle_start + psi)  # drive angles of the steady turn
+    crank = CrankAngles.of(mech, zero)
+    assert crank is not None  # machine dynamics needs one crank
+    turn = red.angle[0] + crank.direction * (result.motion.cycle_start + psi)  # drive angles of the steady turn
     motor_speed = drive.ratio * omega
     motor_torque = drive.motor(motor_speed)
     out: dict[str, Any] = {
@@ -63,9 +63,9 @@ def to_json(mech: Mechanism, result: Dynamics, zero: float | None = None) -> dic
             "power": "W",
             "time": "s",
         },
-        "position_0_deg": math.degrees(zero),
-        "angles_deg": _list(np.degrees(red.angle)),
-        "crank_angle_deg": _list(np.degrees(from_position_0(red.angle, zero, sign))),
+        **crank.record(),
+        "phi_deg": _list(crank.phi(red.angle)),
+        "crank_angle_to_x_deg": _list(to_x_deg(red.angle)),
         "reduced_inertia": _list(red.inertia),
         "reduced_inertia_slope": _list(red.inertia_slope),
         "reduced_load": _list(red.load),
@@ -77,7 +77,7 @@ def to_json(mech: Mechanism, result: Dynamics, zero: float | None = None) -> dic
             "omega": _list(omega),
             "motor_torque": _list(motor_torque),
             "motor_power": _list(motor_torque * motor_speed),
-            "crank_angle_deg": _list(np.degrees(from_position_0(turn, zero, sign))),
+            "phi_deg": _list(crank.phi(turn)),
         },
         "omega": _list(omega),
         "omega_mean": last.omega_mean,

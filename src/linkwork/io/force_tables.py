@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.atomic import write_atomic
+from linkwork.io.motion_tables import crank_keys, drive_columns, drive_record, drive_units
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:
@@ -22,6 +23,10 @@ CONVENTION = (
     "what the drive puts on its driven link, counter-clockwise positive; foundation: the force and "
     "the moment about the origin that the machine puts on its foundation, y up (positive y pulls the bolts)"
 )
+
+
+#: The crank angles of ``bolts`` (degrees), each written as φ and as the angle to x (:func:`crank_keys`).
+_BOLT_ANGLES = tuple(f"{name}_angle_deg" for name in ("shear", "pull", "push", "moment"))
 
 
 def pair_labels(mech: Mechanism) -> list[tuple[str, int]]:
@@ -94,14 +99,14 @@ def to_json(f: Any) -> dict[str, Any]:
     return {
         "name": mech.name,
         "convention": CONVENTION,
-        "units": {"force": "N", "moment": "N m", "driving_torque": "N" if linear else "N m", "angles_deg": "deg"},
-        "angles_deg": _arr(np.degrees(f.angles)),
+        "units": {"force": "N", "moment": "N m", "driving_torque": "N" if linear else "N m", **drive_units(mech)},
+        **{k: _arr(v) if isinstance(v, np.ndarray) else v for k, v in drive_record(mech, f.angles).items()},
         "driving_torque": _arr(torque),
         "joints": joints,
         "foundation": {"fx": _arr(found[:, 0]), "fy": _arr(found[:, 1]), "moment": _arr(found[:, 2])},
         "shaking": {"fx": _arr(shaking[:, 0]), "fy": _arr(shaking[:, 1]), "moment": _arr(f.shaking_moment)},
         "loads": {name: _arr(v[0]) for name, v in f.loads.external.magnitude.items()},
-        "bolts": {k: _clean(v) for k, v in f.bolts().as_dict().items()},
+        "bolts": {k: _clean(v) for k, v in crank_keys(f.bolts().as_dict(), _BOLT_ANGLES, mech).items()},
         "groups": groups(f),
         "checks": {k: _clean(v) for k, v in f.checks.items()},
         "valid": [bool(x) for x in np.asarray(f.kinematics.valid).ravel()],
@@ -137,9 +142,9 @@ def write_csv(f: Any, path: str | Path) -> Path:
     mech = f.mechanism
     unit = "N" if mech.pair_type[mech.drive_pair[0]] != PairType.REVOLUTE else "N m"
     cols: list[tuple[str, np.ndarray]] = [
-        ("angle [deg]", np.degrees(f.angles)),
-        (f"driving_torque [{unit}]", f.driving_torque),
+        (f"{name} [{u}]", values) for name, (u, values) in drive_columns(mech, f.angles).items()
     ]
+    cols.append((f"driving_torque [{unit}]", f.driving_torque))
     for label, k in pair_labels(mech):
         a, b, force = _named(f, k)
         label = f"{label} ({a} on {b})"

@@ -11,7 +11,7 @@ import numpy as np
 
 from linkwork.atomic import write_atomic
 from linkwork.optional import require
-from linkwork.structure.model import point_labels
+from linkwork.structure.model import PairType, point_labels
 
 if TYPE_CHECKING:
     from linkwork.motion.analysis import Extremes
@@ -28,6 +28,66 @@ def _single(kin: Kinematics) -> None:
         from linkwork.errors import LinkworkError
 
         raise LinkworkError("this table holds one mechanism; for design variants use to_dataset (NetCDF)")
+
+
+#: The unit of each kind of drive column: its CSV heading ``name [unit]``, its JSON key ``name_unit``.
+_UNITS = {"deg": "deg", "m": "m"}
+
+
+def drive_columns(mech: Mechanism, angles: np.ndarray) -> dict[str, tuple[str, np.ndarray]]:
+    """The columns that say where each sample of a table is, by name: ``name -> (unit, values)``.
+
+    With one crank, φ turned from position 0 (``phi``, deg in [0, 360),
+    :class:`~linkwork.motion.analysis.CrankAngles`) and the crank's angle to the frame's x axis
+    (``crank_angle_to_x``, deg in [0, 360)); otherwise the first drive's coordinate, ``crank_angle_to_x``
+    (deg) of a revolute drive or ``drive`` (m) of a linear one."""
+    from linkwork.motion.analysis import TO_X, CrankAngles, to_x_deg
+
+    crank = CrankAngles.of(mech)
+    if crank is not None:
+        return {name: ("deg", values) for name, values in crank.columns(angles).items()}
+    if mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE:
+        return {TO_X: ("deg", np.asarray(to_x_deg(angles)))}
+    return {"drive": ("m", np.asarray(angles, dtype=float))}
+
+
+def drive_record(mech: Mechanism, angles: np.ndarray) -> dict[str, Any]:
+    """The JSON keys of :func:`drive_columns` (``phi_deg``, ``crank_angle_to_x_deg``, or ``drive_m``) and,
+    with one crank, ``position_0_deg`` and ``direction``; ``units`` names each key's unit."""
+    from linkwork.motion.analysis import CrankAngles
+
+    cols = drive_columns(mech, angles)
+    out: dict[str, Any] = {f"{name}_{unit}": values for name, (unit, values) in cols.items()}
+    crank = CrankAngles.of(mech)
+    if crank is not None:
+        out.update(crank.record())
+    return out
+
+
+def drive_units(mech: Mechanism) -> dict[str, str]:
+    """The ``units`` entries of :func:`drive_record`'s keys."""
+    return {f"{name}_{unit}": unit for name, (unit, _) in drive_columns(mech, np.zeros(0)).items()}
+
+
+def crank_keys(record: dict[str, Any], keys: tuple[str, ...], mech: Mechanism) -> dict[str, Any]:
+    """``record`` with each of its ``keys`` (``start_deg`` or ``shear_angle_deg``: a drive angle in degrees)
+    given as φ (``start_phi_deg``, ``shear_phi_deg``) and as the angle to x (``start_to_x_deg``), both in
+    [0, 360), where the mechanism has one crank; as it is otherwise."""
+    from linkwork.motion.analysis import CrankAngles, to_x_deg
+
+    crank = CrankAngles.of(mech)
+    if crank is None:
+        return record
+    out = {}
+    for key, value in record.items():
+        if key in keys:
+            stem = key.removesuffix("_deg").removesuffix("_angle")
+            rad = math.radians(value)
+            out[f"{stem}_phi_deg"] = float(crank.phi(rad))
+            out[f"{stem}_to_x_deg"] = float(to_x_deg(rad))
+        else:
+            out[key] = value
+    return out
 
 
 def to_json(kin: Kinematics, extremes: list[Extremes]) -> dict[str, Any]:
@@ -54,8 +114,11 @@ def to_json(kin: Kinematics, extremes: list[Extremes]) -> dict[str, Any]:
         n: {"angle": arr(kin.angle(i)), "omega": arr(kin.omega(i)), "epsilon": arr(kin.epsilon(i))}
         for n, i in moving_links(mech)
     }
-    events = [e.as_dict() for e in kin.events]
-    events += [{**e.as_dict(), "what": e.kind, "kind": "stroke"} for e in extremes]
+    events = [crank_keys(e.as_dict(), ("start_deg", "end_deg"), mech) for e in kin.events]
+    events += [
+        crank_keys({**e.as_dict(), "what": e.kind, "kind": "stroke"}, ("at_low_deg", "at_high_deg"), mech)
+        for e in extremes
+    ]
     return {
         "name": mech.name,
         "units": {
@@ -65,9 +128,9 @@ def to_json(kin: Kinematics, extremes: list[Extremes]) -> dict[str, Any]:
             "angle": "rad",
             "omega": "rad/s",
             "epsilon": "rad/s^2",
-            "angles_deg": "deg",
+            **drive_units(mech),
         },
-        "angles_deg": arr(np.degrees(kin.angles)),
+        **{k: arr(v) if isinstance(v, np.ndarray) else v for k, v in drive_record(mech, kin.angles).items()},
         "points": points,
         "links": links,
         "valid": [bool(x) for x in np.asarray(kin.valid).ravel()],
@@ -80,9 +143,9 @@ def write_csv(kin: Kinematics, path: str | Path) -> Path:
     _single(kin)
     mech = kin.mechanism
     cols: list[tuple[str, np.ndarray]] = [
-        ("angle [deg]", np.degrees(kin.angles)),
-        ("valid", np.asarray(kin.valid, dtype=int)),
+        (f"{name} [{unit}]", values) for name, (unit, values) in drive_columns(mech, kin.angles).items()
     ]
+    cols.append(("valid", np.asarray(kin.valid, dtype=int)))
     for label, p in point_labels(mech):
         name = mech.point_names[p]
         x, v, a = kin.position(name), kin.velocity(name), kin.acceleration(name)
@@ -112,14 +175,22 @@ def write_csv(kin: Kinematics, path: str | Path) -> Path:
     return write_atomic(path, writer)
 
 
+#: What the angles of a NetCDF table are (their ``long_name``).
+_LONG = {
+    "phi": "phi, the crank angle turned from position 0 in the drive's direction",
+    "crank_angle_to_x": "the crank's angle to the frame's x axis, counter-clockwise",
+    "drive": "the drive's coordinate",
+}
+
 #: A table of NetCDF: its variables, name -> (dimensions, values, attributes), in the file's order.
 Table = dict[str, tuple[tuple[str, ...], np.ndarray, dict[str, str | float]]]
 
 
 def _table(kin: Kinematics) -> tuple[Table, Table, dict[str, str]]:
-    """The NetCDF table of a result: its data variables (variant x angle x point, and link), its coordinates
-    (angle in degrees, the points' labels, the links' names) and its attributes, for :func:`to_dataset` and
-    :func:`write_netcdf` alike."""
+    """The NetCDF table of a result: its data variables (variant x angle x point, and link; with one crank
+    ``crank_angle_to_x`` over the angles), its coordinates (``angle``: φ turned from position 0 in degrees
+    with one crank, :func:`drive_columns`; the points' labels, the links' names) and its attributes, for
+    :func:`to_dataset` and :func:`write_netcdf` alike."""
     mech = kin.mechanism
     labels = point_labels(mech)
     links = moving_links(mech)
@@ -141,12 +212,22 @@ def _table(kin: Kinematics) -> tuple[Table, Table, dict[str, str]]:
         "epsilon": (dimsl, np.moveaxis(kin.a[idx, 2], 0, -1), {"units": "rad/s^2"}),
         "valid": (("variant", "angle"), kin.valid_all.astype("int8"), {}),
     }
+    (first, (unit, values)), *others = drive_columns(mech, kin.angles).items()
+    for name, (other_unit, other) in others:  # the angle to x beside phi: a variable over the angles
+        data[name] = (("angle",), other, {"units": other_unit, "long_name": _LONG[name]})
     coords: Table = {
-        "angle": (("angle",), np.degrees(kin.angles), {"units": "deg"}),
+        "angle": (("angle",), values, {"units": unit, "long_name": _LONG[first]}),
         "point": (("point",), np.array([label for label, _ in labels]), {}),
         "link": (("link",), np.array([n for n, _ in links]), {}),
     }
-    return data, coords, {"mechanism": mech.name, "source": "linkwork kinematics"}
+    attrs = {"mechanism": mech.name, "source": "linkwork kinematics"}
+    record = drive_record(mech, kin.angles)
+    if "position_0_deg" in record:
+        attrs["angle"] = (
+            f"phi, turned from position 0 (the crank at {record['position_0_deg']:.9g} deg to the x axis, "
+            f"turning {'counter-clockwise' if record['direction'] > 0 else 'clockwise'}), deg in [0, 360)"
+        )
+    return data, coords, attrs
 
 
 def to_dataset(kin: Kinematics) -> Any:

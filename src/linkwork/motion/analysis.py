@@ -28,6 +28,7 @@ import numpy.typing as npt
 
 from linkwork.motion.kinematics import Kinematics, cycle, kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
+from linkwork.units import turn_deg
 
 TWO_PI = 2 * math.pi
 
@@ -450,6 +451,65 @@ def from_position_0(angles: np.ndarray, zero: float, direction: float) -> np.nda
     as the 12 positions number the cycle from position 0."""
     turned = np.mod(direction * (np.asarray(angles, dtype=float) - zero), TWO_PI)
     return np.where(TWO_PI - turned < 1e-9, 0.0, turned)
+
+
+#: Decimals of the crank angles in degrees that tables and JSON write: 1e-9 deg (2e-11 rad), below any
+#: sampling, and an angle that is a whole or decimal number of degrees is written as that number.
+ANGLE_DECIMALS = 9
+
+#: The names of the crank's two angles in tables (CSV headings, NetCDF coordinates: ``phi [deg]``) and in
+#: JSON (``phi_deg``): φ turned from position 0, and the crank's angle to the frame's x axis.
+PHI, TO_X = "phi", "crank_angle_to_x"
+
+
+def phi_deg(angles: npt.ArrayLike, zero: float, direction: float, digits: int = ANGLE_DECIMALS) -> Any:
+    """φ of drive angles (rad): the crank angle turned from position 0 (drive angle ``zero``, rad) in the
+    drive's ``direction`` (+1 or -1), in degrees in [0, 360) to ``digits`` decimals, as every table, JSON
+    and printed line writes it (:func:`from_position_0`, :func:`~linkwork.units.turn_deg`)."""
+    return turn_deg(from_position_0(np.asarray(angles, dtype=float), zero, direction), digits)
+
+
+def to_x_deg(angles: npt.ArrayLike, digits: int = ANGLE_DECIMALS) -> Any:
+    """The crank's angle to the frame's x axis of drive angles (rad), counter-clockwise, in degrees in
+    [0, 360) to ``digits`` decimals: the angle of the tables' ``crank_angle_to_x`` column."""
+    return turn_deg(np.asarray(angles, dtype=float), digits)
+
+
+@dataclass(frozen=True)
+class CrankAngles:
+    """How the crank angles of a mechanism with one crank are written: φ from position 0 (``zero``, the
+    drive angle of position 0, rad, :func:`zero_angle`; ``direction`` +1 or -1, the drive's) and the angle
+    to x.  Design variants share the mechanism's position 0: φ is one coordinate of the samples."""
+
+    zero: float
+    direction: float
+
+    @classmethod
+    def of(cls, mech: Mechanism, zero: float | None = None) -> CrankAngles | None:
+        """The crank angles of ``mech`` (position 0 at ``zero``, rad, default :func:`zero_angle`); None
+        unless it has one crank (a linear drive, or several drives, have no φ)."""
+        from linkwork.structure.model import one_crank
+
+        if not one_crank(mech):
+            return None
+        from linkwork.motion.kinematics import direction
+
+        return cls(zero_angle(mech) if zero is None else float(zero), direction(mech))
+
+    def phi(self, angles: npt.ArrayLike, digits: int = ANGLE_DECIMALS) -> Any:
+        """φ of drive angles (rad), degrees in [0, 360) (:func:`phi_deg`)."""
+        return phi_deg(angles, self.zero, self.direction, digits)
+
+    def columns(self, angles: npt.ArrayLike) -> dict[str, np.ndarray]:
+        """The two angles of drive angles (rad) as a table's first columns, by their names (:data:`PHI`,
+        :data:`TO_X`), degrees."""
+        a = np.asarray(angles, dtype=float)
+        return {PHI: np.asarray(self.phi(a)), TO_X: np.asarray(to_x_deg(a))}
+
+    def record(self) -> dict[str, float]:
+        """What a JSON record says of position 0: ``position_0_deg`` (the crank's angle to x there) and
+        ``direction`` (+1 counter-clockwise, -1 clockwise)."""
+        return {"position_0_deg": float(to_x_deg(self.zero)), "direction": self.direction}
 
 
 def position_angles(mech: Mechanism, count: int = 12, zero: float | None = None) -> np.ndarray:

@@ -154,10 +154,11 @@ class Cycle:
     index: int
 
     def phi(self, angles: Any) -> np.ndarray:
-        """Crank angles turned from position 0, degrees, of drive angles (rad)."""
-        from linkwork.motion.analysis import from_position_0
+        """Crank angles turned from position 0, degrees in [0, 360), of drive angles (rad), as the tables and
+        JSON files write them (:func:`linkwork.motion.analysis.phi_deg`)."""
+        from linkwork.motion.analysis import phi_deg
 
-        return np.degrees(from_position_0(np.asarray(angles, dtype=float), self.zero, self.sign))
+        return np.asarray(phi_deg(angles, self.zero, self.sign))
 
 
 def analyze(
