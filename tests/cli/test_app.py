@@ -297,8 +297,8 @@ def test_json_numbers_are_rounded_and_zeros_are_zeros():
     result = runner.invoke(app, ["kinematics", "four-bar", "--steps", "12", "--json"])
     assert result.exit_code == 0, result.output
     out = _strict(result.stdout)
-    angles = out["angles_deg"]
-    assert angles == [60.0 + 30 * k for k in range(12)]
+    angles = out["crank_angle_to_x_deg"]
+    assert angles == [(60.0 + 30 * k) % 360 for k in range(12)]
     a = out["points"]["A"]
     for k, angle in enumerate(angles):
         if angle % 180 == 90:
@@ -391,8 +391,8 @@ def test_a_process_exits_with_its_objects_frozen_and_all_its_output_written():
     frozen = re.search(r"^frozen (\d+)$", proc.stderr, re.MULTILINE)
     assert frozen is not None and int(frozen.group(1)) > 10_000, proc.stderr
     data = json.loads(proc.stdout)
-    assert len(data["angles_deg"]) == 3600
-    kin = lw.kinematics(lw.compile(lw.load("double-cut-shears")), np.radians(data["angles_deg"][-1:]))
+    assert len(data["crank_angle_to_x_deg"]) == 3600
+    kin = lw.kinematics(lw.compile(lw.load("double-cut-shears")), np.radians(data["crank_angle_to_x_deg"][-1:]))
     edge = next(name for name in data["points"] if name.endswith(".edge"))  # a knife's edge
     xy = kin.position(edge)[-1]
     assert data["points"][edge]["x"][-1] == pytest.approx(xy[0], abs=1e-12)

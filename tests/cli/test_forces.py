@@ -21,8 +21,8 @@ def test_forces_json_of_the_shears_at_rest_by_hand():
     result = runner.invoke(app, ["forces", "shears-slider-crank", "--angles", "90", "--speed", "0 rpm", "--json"])
     assert result.exit_code == 0, result.output
     out = json.loads(result.stdout)
-    assert set(out) >= {"angles_deg", "driving_torque", "joints", "foundation", "checks", "convention"}
-    assert out["angles_deg"] == [pytest.approx(90.0)]
+    assert set(out) >= {"phi_deg", "crank_angle_to_x_deg", "driving_torque", "joints", "foundation", "checks"}
+    assert out["crank_angle_to_x_deg"] == [90.0]
     g = 9.81
     assert out["joints"]["B"]["links"] == ["rod", "knife"]
     assert out["joints"]["B"]["fy"][0] == pytest.approx(20 * g, rel=1e-12)
@@ -42,11 +42,11 @@ def test_forces_out_writes_csv_and_json(tmp_path):
     with open(tmp_path / "forces.csv", encoding="utf-8") as fh:
         rows = list(csv.reader(fh))
     header = rows[0]
-    assert header[:2] == ["angle [deg]", "driving_torque [N m]"]
+    assert header[:3] == ["phi [deg]", "crank_angle_to_x [deg]", "driving_torque [N m]"]
     assert "O3 (frame on rocker).fx [N]" in header and "load.cutting [N or N m]" in header
     assert len(rows) == 37
     data = json.loads((tmp_path / "forces.json").read_text(encoding="utf-8"))
-    torque = np.array([float(r[1]) for r in rows[1:]])
+    torque = np.array([float(r[2]) for r in rows[1:]])
     np.testing.assert_allclose(torque, data["driving_torque"], rtol=1e-11)  # JSON: 12 significant digits
     assert max(data["loads"]["cutting"]) == pytest.approx(250e3)
     assert all(v < 1e-9 for v in data["checks"].values())
@@ -123,7 +123,7 @@ def test_forces_json_and_csv_give_the_drive_joint_in_the_files_order(tmp_path):
     out = json.loads(result.stdout)
     assert out["joints"]["O2"]["links"] == ["crank", "frame"]
     assert out["joints"]["A"]["links"] == ["crank", "coupler"]
-    phi = np.radians(out["angles_deg"])
+    phi = np.radians(out["crank_angle_to_x_deg"])
     a_c = -((2 * np.pi) ** 2) * 0.05 * np.stack([np.cos(phi), np.sin(phi)], -1)
     crank_on_coupler = np.stack([out["joints"]["A"]["fx"], out["joints"]["A"]["fy"]], -1)
     frame_on_crank = 1.0 * a_c - np.array([0.0, -9.81]) + crank_on_coupler

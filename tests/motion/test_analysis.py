@@ -134,7 +134,7 @@ def test_kinematics_command_json_and_files(tmp_path):
     result = runner.invoke(app, ["kinematics", "double-cut-shears", "--steps", "36", "--json", "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output
     out = json.loads(result.stdout)
-    assert set(out) >= {"angles_deg", "points", "links", "valid", "events"}
+    assert set(out) >= {"phi_deg", "crank_angle_to_x_deg", "points", "links", "valid", "events"}
     assert set(out["points"]["E"]) == {"x", "y", "vx", "vy", "ax", "ay"}
     assert set(out["links"]["rocker"]) == {"angle", "omega", "epsilon"}
     kin = lw.kinematics(lw.compile(lw.example("double-cut-shears")), steps=36)
@@ -185,8 +185,9 @@ def test_positions_start_with_the_knives_open():
     assert e[0] == max(e) and rows[0]["F"][1] == min(r["F"][1] for r in rows)
     kin = lw.kinematics(lw.compile(lw.example("double-cut-shears")), steps=36000)
     assert e[0] == pytest.approx(kin.position("E")[:, 1].max() * 1000, abs=1e-3)
-    step = (rows[1]["angle_deg"] - rows[0]["angle_deg"]) % 360
+    step = (rows[1]["crank_angle_to_x_deg"] - rows[0]["crank_angle_to_x_deg"]) % 360
     assert step == pytest.approx(30)
+    assert [r["phi_deg"] for r in rows] == [30.0 * k for k in range(12)]  # exact: 1e-9 deg rounding
 
 
 @pytest.mark.parametrize(

@@ -322,13 +322,13 @@ def test_the_report_runs_the_machine_unit_as_linkwork_dynamics_does(main_job):
     cli = json.loads(result.output)
     keys = ("omega_mean", "omega_min", "omega_max", "delta", "mean_power", "startup_time", "flywheel_inertia")
     assert {k: report[k] for k in keys} == {k: cli[k] for k in keys}
-    assert report["steady"] and len(report["angles_deg"]) == len(cli["angles_deg"])
+    assert report["steady"] and len(report["phi_deg"]) == len(cli["phi_deg"])
 
 
 def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0():
     """The double-cut shears slow down while they cut and speed up after: the lowest crank speed of the
     steady cycle comes where the cutting load falls below the drive's moment, at the end of the cut.  The
-    cut is read off the reduced load moment at its own angles; the lowest speed at ``cycle.crank_angle_deg``
+    cut is read off the reduced load moment at its own angles; the lowest speed at ``cycle.phi_deg``
     of ``linkwork dynamics --json`` and on the diagram's speed curve, both from position 0
     (``cycle.psi_deg`` counts from the start of the steady turn, 281° from it)."""
     import linkwork as lw
@@ -344,7 +344,7 @@ def test_the_dynamics_diagram_and_json_measure_the_crank_angle_from_position_0()
     ended = phi[red.load < 0.01 * red.load.min()].max()  # and over
     data = to_json(mech, result)
     cycle = data["cycle"]
-    lowest = cycle["crank_angle_deg"][int(np.argmin(cycle["omega"]))]
+    lowest = cycle["phi_deg"][int(np.argmin(cycle["omega"]))]
     assert falling < lowest <= ended + 0.5  # where the drive's moment overcomes the load's
     assert data["position_0_deg"] == pytest.approx(math.degrees(zero))
     fig = figures.dynamics_diagrams(result, zero)

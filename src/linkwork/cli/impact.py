@@ -13,6 +13,7 @@ from linkwork.limits import MAX_BLOWS, whole
 
 if TYPE_CHECKING:
     from linkwork.impulse import Blow, Impact, Phase, RockerImpact, WorkingCycle
+    from linkwork.motion.analysis import CrankAngles
     from linkwork.spec.schema import ImpactSpec
     from linkwork.structure.model import Mechanism
 
@@ -134,10 +135,14 @@ def _print_blow(
         )
 
 
-def _blow_dict(b: Blow) -> dict[str, Any]:
+def _blow_dict(b: Blow, crank: CrankAngles) -> dict[str, Any]:
+    """A blow of the working cycle; its crank angle as φ from position 0 and as the angle to x, deg."""
+    from linkwork.motion.analysis import to_x_deg
+
     return {
         "time": b.time,
-        "crank_angle": math.degrees(b.angle),
+        "phi_deg": float(crank.phi(b.angle)),
+        "crank_angle_to_x_deg": float(to_x_deg(b.angle)),
         "crank_speed_before": b.crank_speed_before,
         "crank_speed_after": b.crank_speed_after,
         "omega_before": b.omega_before,
@@ -207,7 +212,7 @@ def _cycle_json(mech: Mechanism, run: WorkingCycle) -> dict[str, Any]:
         "period": run.period,
         "mean_power": run.mean_power,
         "drive_power": run.drive_power,
-        "blows": [_blow_dict(b) for b in run.blows],
+        "blows": [_blow_dict(b, _crank(mech)) for b in run.blows],
         "phases": [_phase_dict(p, run.last.time) for p in run.cycle_phases()],
         "contact": {
             "force_max": float(loads.force.max()) if len(loads.t) else None,
@@ -220,6 +225,15 @@ def _cycle_json(mech: Mechanism, run: WorkingCycle) -> dict[str, Any]:
     }  # fmt: skip
 
 
+def _crank(mech: Mechanism) -> CrankAngles:
+    """The crank angles of a machine with a working cycle (one crank)."""
+    from linkwork.motion.analysis import CrankAngles
+
+    crank = CrankAngles.of(mech)
+    assert crank is not None  # a working cycle needs one crank
+    return crank
+
+
 def _print_cycle_blow(mech: Mechanism, run: WorkingCycle) -> None:
     """The head of the report of ``linkwork impact --cycle``: the run and its last blow."""
     last, tool = run.last, run.tool
@@ -229,8 +243,9 @@ def _print_cycle_blow(mech: Mechanism, run: WorkingCycle) -> None:
         f"{len(run.blows)} blows); tool {tool.mass:g} kg, feed {tool.feed:g} N, resistance of the work "
         f"{tool.resistance:g} N"
     )
+    crank = _crank(mech)
     typer.echo(
-        f"  the blow at {math.degrees(last.angle):.2f} deg: crank {last.crank_speed_before:.6g} -> "
+        f"  the blow at phi = {crank.phi(last.angle, 2):.2f} deg: crank {last.crank_speed_before:.6g} -> "
         f"{last.crank_speed_after:.6g} rad/s, striker {last.impact_speed:.6g} m/s onto the tool "
         f"(speed {last.striker_speed:.6g} m/s), rocker {last.omega_before:.6g} -> {last.omega_after:.6g} rad/s, "
         f"tool {last.tool_speed:.6g} m/s"

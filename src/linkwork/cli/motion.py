@@ -197,9 +197,14 @@ def positions(
     except LinkworkError as exc:
         fail(exc)
     labels = point_labels(mech)
+    crank = analysis.CrankAngles(start, sign)
     rows = []
     for k in range(count):
-        row: dict[str, Any] = {"position": k, "angle_deg": math.degrees(values[k]) % 360}
+        row: dict[str, Any] = {
+            "position": k,
+            "phi_deg": float(crank.phi(values[k])),
+            "crank_angle_to_x_deg": float(analysis.to_x_deg(values[k])),
+        }
         for label, p in labels:
             x = kin.position(mech.point_names[p])[k] * 1000
             row[label] = [None if not np.isfinite(c) else round(float(c), 3) for c in x]
@@ -211,10 +216,11 @@ def positions(
 
     tab = make_table(f"{escape(mech.name)}: {count} positions (coordinates in mm)")
     tab.add_column("pos")
-    tab.add_column("crank, deg")
+    tab.add_column("phi, deg")
+    tab.add_column("crank to x, deg")
     for label, _ in labels:
         tab.add_column(escape(label))
     for row in rows:
         cells = ["-" if row[label][0] is None else ", ".join(_mm(c) for c in row[label]) for label, _ in labels]
-        tab.add_row(str(row["position"]), f"{row['angle_deg']:.1f}", *cells)
+        tab.add_row(str(row["position"]), f"{row['phi_deg']:.1f}", f"{row['crank_angle_to_x_deg']:.1f}", *cells)
     show(make_console(), tab, keep=2)

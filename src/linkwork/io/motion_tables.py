@@ -248,11 +248,12 @@ def write_netcdf(kin: Kinematics, path: str | Path) -> Path:
 def _write_netcdf3(path: Path, data: Table, coords: Table, attrs: dict[str, str]) -> None:
     """Data variables, coordinates and global ``attrs`` to a NetCDF 3 file, in xarray's encoding and order:
     floats with a NaN ``_FillValue``, strings as arrays of characters (UTF-8) over a dimension
-    ``string<longest>``; the coordinates first."""
+    ``string<longest>``; created as xarray creates them, the data variables first (SciPy writes the larger
+    shapes first, and variables of one shape in the order they were created)."""
     from scipy.io import netcdf_file
 
     encoded: Table = {}
-    for name, (dims, values, attributes) in {**coords, **data}.items():
+    for name, (dims, values, attributes) in {**data, **coords}.items():  # as xarray hands them to SciPy
         if values.dtype.kind == "U":
             chars = np.char.encode(values, "utf-8")
             width = max(chars.dtype.itemsize, 1)
