@@ -221,11 +221,13 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
 
     from linkwork.io.force_tables import pair_kind
     from linkwork.io.jsonout import snap_zeros
+    from linkwork.structure.model import one_crank
 
     mech, phi = f.mechanism, f.angles
-    at = _where(mech)
+    at = _where(mech, named=False)
     tab = make_table("largest pair forces over the cycle")
-    for col in ("joint", "first on second", "|F| max, N", "at", "moment max, N m"):
+    head = "at phi" if one_crank(mech) else "at"
+    for col in ("joint", "first on second", "|F| max, N", head, "moment max, N m"):
         tab.add_column(col)
     peaks = [_peak(np.hypot(*f.pair_force(k)[0].T), phi) for _, k in labels]
     values = snap_zeros(np.array([value for value, _ in peaks]))

@@ -92,15 +92,17 @@ def _angles(mech: Mechanism, steps: int | None, angles: str | None) -> dict[str,
     return {"steps": steps or 360}
 
 
-def _where(mech: Mechanism) -> Callable[[float], str]:
+def _where(mech: Mechanism, named: bool = True) -> Callable[[float], str]:
     """How the command writes where a value is: φ turned from position 0 with one crank (``phi = 102.0 deg``,
-    as the report), else the first drive's coordinate (its angle to x, or a linear drive's mm)."""
+    as the report; ``102.0 deg`` unless ``named``, in a column headed "at phi"), else the first drive's
+    coordinate (its angle to x, or a linear drive's mm)."""
     from linkwork.motion.analysis import CrankAngles
     from linkwork.structure.model import PairType
 
     crank = CrankAngles.of(mech)
     if crank is not None:
-        return lambda angle: f"phi = {crank.phi(angle, 1):.1f} deg"
+        name = "phi = " if named else ""
+        return lambda angle: f"{name}{crank.phi(angle, 1):.1f} deg"
     if mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE:
         return lambda angle: f"{turn_deg(angle):.1f} deg to x"
     return lambda position: f"{position * 1000:.6g} mm"
