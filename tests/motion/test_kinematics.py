@@ -217,9 +217,9 @@ def test_non_grashof_four_bar_reports_where_it_cannot_be_assembled():
     assert np.isnan(kin.position("B")[~kin.valid]).all()
     messages = [e.message for e in kin.events if e.kind in ("no-assembly", "dead-point")]
     assert messages == [
-        "group II(2,3) RRR: no assembly (no intersection) for crank angles 112.0 to 248.0 deg",
-        "group II(2,3) RRR: limit (dead) position near crank angle 112.0 deg",
-        "group II(2,3) RRR: limit (dead) position near crank angle 248.0 deg",
+        "group II(2,3) RRR: no assembly (no intersection) for crank angles 112.0 to 248.0 deg to the x axis",
+        "group II(2,3) RRR: limit (dead) position near crank angle 112.0 deg to the x axis",
+        "group II(2,3) RRR: limit (dead) position near crank angle 248.0 deg to the x axis",
     ]
     limits = [e.start for e in kin.events if e.kind == "dead-point"]
     np.testing.assert_allclose(np.degrees(limits), [limit, 360 - limit], atol=1e-5)

@@ -61,11 +61,12 @@ def runs(mask: np.ndarray) -> list[tuple[int, int]]:
 
 
 class _Scale:
-    """How drive coordinates are written in messages: degrees of a turn (a revolute drive) or metres."""
+    """How drive coordinates are written in messages: degrees of a turn to the x axis (a revolute drive; φ
+    from position 0 is not known here: finding it solves the cycle) or metres."""
 
     def __init__(self, revolute: bool) -> None:
         self.revolute = revolute
-        self.unit = "deg" if revolute else "m"
+        self.unit = "deg to the x axis" if revolute else "m"
 
     def show(self, x: float) -> str:
         return f"{turn_deg(x):.1f}" if self.revolute else f"{x:.4g}"
