@@ -67,6 +67,7 @@ SLOW = {
     "report/test_build.py::test_no_english_is_left_in_the_russian_report": ("percussion-rocker",),
     "report/test_build.py::test_analyze_writes_tables_figures_and_the_report": ("double-cut-shears",),
     "report/test_build.py::test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output": ("ccw",),
+    "report/test_crank_angles.py::test_every_bundled_example_writes_phi_from_position_0": ("four-bar",),
     # the entry point on a file the YAML reader refuses and on one that cannot be assembled (every file of the
     # corpus runs through the application in the fast lane)
     "spec/test_bad_files.py::test_bad_file_through_the_real_command": ("yaml-syntax", "unassemblable"),
