@@ -10,6 +10,7 @@ asked for: ``pytest --hostile``.
 
 from __future__ import annotations
 
+import os
 import re
 import subprocess
 import sys
@@ -19,6 +20,11 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
+
+# The compiled kernels always, compiled when first used (once, into the user's cache), in this process and in
+# every command it runs: the tests compare them with the NumPy kernels, and no command of the suite starts a
+# compile in the background (tests/test_jit.py tests that route with a cache of its own).
+os.environ.setdefault("LINKWORK_NUMBA", "1")
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,9 @@ import os
 from collections.abc import Callable
 from typing import Concatenate, ParamSpec, TypeVar, Union, cast
 
-from linkwork.examples import resolve
+from linkwork import jit
+from linkwork.errors import LinkworkError
+from linkwork.examples import names, resolve
 from linkwork.impulse.cycle import simulate_blows as _simulate_blows
 from linkwork.impulse.mechanism import impact as _impact
 from linkwork.kinetostatics.balancing import balance as _balance
@@ -164,3 +166,35 @@ simulate_blows = resolving(_simulate_blows, "simulate_blows")
 balance = resolving(_balance, "balance")
 bolt_speed = resolving(_bolt_speed, "bolt_speed")
 parameters = resolving(parameter_values, "parameters")
+
+
+def compile_kernels() -> list[str]:
+    """Compile the numba kernels into their cache now (``linkwork warm``; :mod:`linkwork.jit`), then mark
+    the cache ready, so that later processes load them where they pay and none compiles in front of a user.
+
+    Every bundled example is solved with the compiled kernels over a cycle and over a few design variants,
+    its points read, its forces and its dynamics found: the calls every analysis makes, so that each kernel
+    is compiled for the arrays it is called with.  Returns the examples run.
+    """
+    jit.force()
+    done = []
+    for name in names():
+        mech = compile(name)
+        first = parameter_values(mech)
+        runs = [_kinematics(mech, steps=720)]
+        if first:
+            path, value = next(iter(first.items()))
+            runs.append(_kinematics(mech, steps=360, variants={path: [value, value]}))
+        for kin in runs:
+            kin.points()
+            for point in mech.point_names[:1]:
+                kin.velocity(point), kin.acceleration(point)
+            try:
+                _forces(kin)
+            except LinkworkError:  # not statically determinate: no reactions to compile for
+                pass
+        if mech.machine is not None:
+            _dynamics(mech)
+        done.append(name)
+    jit.mark_ready()
+    return done

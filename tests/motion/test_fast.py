@@ -18,7 +18,7 @@ pytestmark = pytest.mark.skipif(not fast.available(), reason="numba is not insta
 def _both(mech, angles, monkeypatch, **kw):
     compiled = lw.kinematics(mech, angles, **kw)
     with monkeypatch.context() as m:
-        m.setattr(fast, "ENABLED", False)
+        m.setenv("LINKWORK_NUMBA", "0")
         reference = lw.kinematics(mech, angles, **kw)
     return compiled, reference
 
@@ -172,7 +172,7 @@ def test_points_read_by_the_compiled_kernel_are_the_numpy_readings(kind, name, m
     mech = _textbook_or_example(kind, name)
     kin = lw.kinematics(mech, angles_around(mech, n=37))
     compiled = {p: kin._point(p) for p in mech.point_names}
-    monkeypatch.setattr(fast, "ENABLED", False)
+    monkeypatch.setenv("LINKWORK_NUMBA", "0")
     for p in mech.point_names:
         link, (lx, ly) = mech.point_link[mech.point_index(p)], mech.point_local[mech.point_index(p)]
         (x, y, theta), (vx, vy, w), (ax, ay, e) = kin.q[link, :, 0], kin.v[link, :, 0], kin.a[link, :, 0]
@@ -204,7 +204,7 @@ def test_points_of_design_variants_and_of_picked_samples_read_as_the_whole(monke
         for p in mech.point_names:
             for got, whole in zip(part._point(p), compiled[p], strict=True):
                 np.testing.assert_array_equal(got, whole[:, index], err_msg=p)
-    monkeypatch.setattr(fast, "ENABLED", False)
+    monkeypatch.setenv("LINKWORK_NUMBA", "0")
     for p in mech.point_names:
         for got, by_numpy in zip(compiled[p], kin._point(p), strict=True):
             np.testing.assert_array_equal(got, by_numpy, err_msg=p)

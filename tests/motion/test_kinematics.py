@@ -507,7 +507,7 @@ def _kernels(monkeypatch, compiled):
 
     if compiled and not fast.available():
         pytest.skip("numba is not installed")
-    monkeypatch.setattr(fast, "ENABLED", compiled)
+    monkeypatch.setenv("LINKWORK_NUMBA", "1" if compiled else "0")
 
 
 def _check_motion(mech, runs, expected, point="B", atol=1e-12, vtol=1e-8, slope=None):

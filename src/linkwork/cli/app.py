@@ -324,6 +324,41 @@ def schema() -> None:
 
 
 @app.command()
+def warm(
+    quiet: Annotated[bool, typer.Option("--quiet", help="print nothing")] = False,
+    background: Annotated[bool, typer.Option("--background", hidden=True)] = False,
+) -> None:
+    """Compile the fast (numba) kernels into their cache now, once: later runs load them where they pay.
+
+    Without this, the first run that finds the cache empty starts the same compile in the background and
+    answers with the NumPy kernels meanwhile.
+    """
+    import os
+
+    from linkwork import jit
+    from linkwork.api import compile_kernels
+
+    if not jit.installed():
+        fail(LinkworkError("numba is not installed: the NumPy kernels run (pip install numba)"))
+    if background and hasattr(os, "nice"):
+        os.nice(19)
+    say = (lambda text: None) if quiet else typer.echo
+    if jit.ready():
+        say(f"the fast kernels are ready in {jit.cache_dir()}")
+        return
+    say(f"compiling the fast kernels into {jit.cache_dir() or 'memory (no writable cache)'} (a minute or two, once)")
+    try:
+        compile_kernels()
+    except BaseException:
+        if background:
+            jit.release(failed=True)
+        raise
+    if background:
+        jit.release()
+    say("done: later runs load them where they pay")
+
+
+@app.command()
 def examples() -> None:
     """List the bundled example mechanisms."""
     from linkwork.examples import load_example, names

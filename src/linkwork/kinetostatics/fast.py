@@ -7,8 +7,8 @@ the reactions of the groups solved before it as known loads.  The inertia and
 gravity loads are formed in the kernel from the link states; external loads
 come in as generalised forces.  A group whose pivots fall below
 :data:`SINGULAR` relative to its matrix gets NaN reactions, and so do the
-groups solved after it.  ``LINKWORK_NUMBA=0`` turns it off, as for the
-kinematics.
+groups solved after it.  It runs where the compiled kinematics ran
+(:func:`linkwork.jit.loaded`).
 """
 
 from __future__ import annotations
@@ -19,10 +19,11 @@ from typing import NamedTuple
 
 import numpy as np
 
+from linkwork import jit
 from linkwork.kinetostatics.external import Applied
 from linkwork.kinetostatics.geometry import variant_geometry
 from linkwork.kinetostatics.reactions import group_order
-from linkwork.motion.fast import PER_THREAD, THREADS, _pool, jit_in_place
+from linkwork.motion.fast import PER_THREAD, THREADS, _pool
 from linkwork.motion.kinematics import Kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 
@@ -495,4 +496,4 @@ _CALLED = ("_kernel",)
 @functools.cache
 def compiled() -> bool:
     """Wrap the kernels of this module with numba's ``njit`` (once, as :func:`linkwork.motion.fast.compiled`)."""
-    return jit_in_place(globals(), _INLINE, _CALLED)
+    return jit.jit_in_place(globals(), _INLINE, _CALLED)

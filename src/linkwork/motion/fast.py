@@ -9,15 +9,15 @@ batch are made, which is what makes NumPy slow on long batches.
 Used for programs made of closed-form steps only (cranks, slides and the
 class II dyads); the NumPy kernels remain the reference and handle the
 rest: Newton groups, samples near change points (where the assembly mode is
-chosen by continuation) and explicit branch overrides.  ``available()``
-says whether numba is there; ``LINKWORK_NUMBA=0`` in the environment turns
-the compiled path off.
+chosen by continuation) and explicit branch overrides.  When they run
+(``LINKWORK_NUMBA``, the cache, the compile in the background) is
+:mod:`linkwork.jit`'s to say: :func:`wanted` for a batch, :func:`available`
+for the pieces that follow a solve.
 """
 
 from __future__ import annotations
 
 import functools
-import importlib.util
 import math
 import os
 from concurrent.futures import ThreadPoolExecutor
@@ -25,6 +25,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from linkwork import jit
 from linkwork.motion.kernels import CLOSE, ROUNDING, SINGULAR
 from linkwork.motion.program import Arm, Step
 from linkwork.structure.model import Mechanism
@@ -125,14 +126,16 @@ def _pool() -> ThreadPoolExecutor:
     return _POOL[0]
 
 
-#: Whether kinematics uses the compiled path: numba installed and not turned off (numba itself is imported,
-#: and the kernels compiled or loaded from its cache, when they are first used: :func:`available`).
-ENABLED = os.environ.get("LINKWORK_NUMBA", "1") != "0" and importlib.util.find_spec("numba") is not None
-
-
 def available() -> bool:
-    """Whether the compiled kernels run: numba there (imported now, if it was not) and not turned off."""
-    return ENABLED and compiled()
+    """Whether the compiled kernels are in use in this process (:func:`linkwork.jit.use`; they are wrapped
+    with numba's ``njit`` now, if they were not)."""
+    return jit.use(0) and compiled()
+
+
+def wanted(samples: int) -> bool:
+    """Whether a batch of ``samples`` samples (variants times angles) is solved by the compiled kernels
+    (:func:`linkwork.jit.use`: loaded where they pay)."""
+    return jit.use(samples) and compiled()
 
 
 def supports(program: tuple[Step, ...]) -> bool:
@@ -780,9 +783,6 @@ def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, found,
                 flags[F_TROUBLE] = True
 
 
-#: Options of every compiled kernel: no reference counting, the kernels allocate nothing.
-OPTS: dict[str, Any] = {"cache": True, "error_model": "numpy", "nogil": True, "_nrt": False}
-
 #: The kernels inlined into the others, and those called from Python.
 _INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_src_point", "_locus", "_touching", "_snap",
            "_arm_motion", "_arm_extra", "_circles", "_circle_line", "_dyad", "_dyad_motion", "_rpr", "_crank",
@@ -790,23 +790,8 @@ _INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_src_point",
 _CALLED = ("_arm_constants", "_kernel", "_scan", "_point_motion")
 
 
-def jit_in_place(space: dict[str, object], inline: tuple[str, ...], called: tuple[str, ...]) -> bool:
-    """Replace the functions named ``inline`` and ``called`` in the module namespace ``space`` by numba's
-    ``njit`` of them (the first inlined into their callers); False where numba cannot be imported.  Each
-    module of kernels calls this once, from its cached ``compiled()``."""
-    try:
-        from numba import njit
-    except ImportError:  # pragma: no cover
-        return False
-    for name in inline:
-        space[name] = njit(inline="always", **OPTS)(space[name])
-    for name in called:
-        space[name] = njit(**OPTS)(space[name])
-    return True
-
-
 @functools.cache
 def compiled() -> bool:
     """Wrap the kernels of this module with numba's ``njit`` (once; they are compiled on their first call, or
     loaded from numba's cache); False where numba cannot be imported."""
-    return jit_in_place(globals(), _INLINE, _CALLED)
+    return jit.jit_in_place(globals(), _INLINE, _CALLED)

@@ -32,7 +32,7 @@ def run(
     that the arrays of a chunk stay in the processor's cache.
     """
     n_var, n_ang = geom.n_variants, values.shape[0]
-    if fast.available() and mech.fast_program is not None and program is mech.program:
+    if mech.fast_program is not None and fast.wanted(n_var * n_ang) and program is mech.program:
         state = _run_fast(mech, program, geom, values, rates, accels)
         if state is not None:
             return state

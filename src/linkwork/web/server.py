@@ -54,6 +54,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from starlette.requests import ClientDisconnect
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from linkwork import jit
 from linkwork.errors import BusyError, LinkworkError
 from linkwork.web.cycle import OutOfRange
 from linkwork.web.edits import MAX_OVERRIDES
@@ -233,6 +234,7 @@ def create_app(spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360) ->
     The cycle of the mechanism as given is solved here, so a mechanism that fails
     raises its LinkworkError before any server starts.
     """
+    jit.prefer()  # many solves to come: the compiled kernels where they are ready (loaded by the first cycle)
     viewer = Viewer(spec_or_mech, steps)
     viewer.cycle(first=True)  # fails here, not on the first request
 
