@@ -17,7 +17,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "linkwork"
 
 #: The packages of the core, bottom to top, and the edge around them.
 CORE = ["spec", "structure", "motion", "kinetostatics", "machine", "impulse"]
-EDGE = ["design", "scene", "io", "figures", "report", "web", "cli"]
+EDGE = ["design", "synthesis", "scene", "io", "figures", "report", "web", "cli"]
 
 
 def _modules() -> dict[str, Path]:
