@@ -4,6 +4,8 @@ requirements that cannot be met exit 2 with one line and no file."""
 from __future__ import annotations
 
 import math
+import shlex
+from pathlib import Path
 
 import pytest
 
@@ -67,3 +69,19 @@ def test_the_message_of_an_impossible_bound_names_both_requirements_and_the_near
     assert run.stderr.strip() == (
         "error: time ratio K = 1.3 needs a largest pressure angle of at least 51 deg; at most 30 deg gives K <= 1.092"
     )
+
+
+def test_the_readme_synthesis_commands_and_python_run(tmp_path, monkeypatch):
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## Synthesis from requirements", 1)[1].split("\n## ", 1)[0]
+    commands, python = section.split("```")[1], section.split("```")[3]
+    for line in commands.strip().splitlines():
+        run = linkwork(*shlex.split(line)[1:], cwd=tmp_path)
+        assert run.returncode == 0, run.stderr
+    (ext,) = extremes(lw.kinematics(str(tmp_path / "press.yaml"), steps=3600))
+    assert ext.stroke == pytest.approx(0.4, rel=1e-9)
+    monkeypatch.chdir(tmp_path)
+    exec(python.removeprefix("python\n"), {})  # noqa: S102 - the README's own example
+    (ext,) = extremes(lw.kinematics(str(tmp_path / "press.yaml"), steps=3600))
+    assert ext.time_ratio == pytest.approx(1.3, rel=1e-9)
+    assert "1.092" in section  # the message quoted is the one the command prints (tested above)
