@@ -85,7 +85,7 @@ def synthesize(  # fmt: skip
     slider-crank: --stroke, --time-ratio, and --rod-ratio or --offset (else the least largest pressure
     angle); --max-pressure-angle a bound.  crank-rocker: --swing, --time-ratio, --rocker or --frame;
     --min-transmission-angle a bound.  Requirements that cannot be met: exit 2, no file."""
-    from linkwork.synthesis import KINDS
+    from linkwork.synthesis import KINDS, QUANTITIES
     from linkwork.synthesis import synthesize as run
 
     if kind not in KINDS:
@@ -102,14 +102,11 @@ def synthesize(  # fmt: skip
                 f"{kind}: --{', --'.join(w.replace('_', '-') for w in wrong)}: requirements of the other kind"
             )
         )
-    kinds = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
-             "max_pressure_angle": "angle", "min_transmission_angle": "angle", "rod_ratio": "ratio",
-             "time_ratio": "ratio"}  # fmt: skip
     texts = {**(given if slider else other), "time_ratio": time_ratio}
     missing = [n for n in ("stroke" if slider else "swing", "time_ratio") if texts[n] is None]
     if missing:
         fail(LinkworkError(f"{kind}: missing --{', --'.join(m.replace('_', '-') for m in missing)}"))
-    requirements = _read({name: (text, kinds[name]) for name, text in texts.items()})
+    requirements = _read({name: (text, QUANTITIES.get(name, "ratio")) for name, text in texts.items()})
     try:
         result = run(kind, **requirements, speed=speed, **_section(section))
         result.write(out)

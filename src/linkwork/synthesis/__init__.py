@@ -22,6 +22,7 @@ KINDS = {"slider-crank": "linkwork.synthesis.slider_crank", "crank-rocker": "lin
 def synthesize(kind: str, **requirements: Any) -> Synthesis:
     """A mechanism of ``kind`` meeting ``requirements`` (SI: m, rad, ratios), verified by the analysis.
 
+    Lengths and angles may also be strings with their unit (``stroke="400 mm"``, ``swing="45 deg"``).
     ``slider-crank``: ``stroke``, ``time_ratio``, and one of ``rod_ratio``, ``offset``; ``max_pressure_angle``
     a bound.  ``crank-rocker``: ``swing``, ``time_ratio``, and one of ``rocker``, ``frame`` (lengths);
     ``min_transmission_angle`` a bound.  Both take ``speed`` (default ``"60 rpm"``), ``section`` (the steel
@@ -46,4 +47,18 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     missing = [name for name in known[:2] if name not in requirements]
     if missing:
         raise SynthesisError(f"{kind}: missing requirement {', '.join(missing)}")
-    return func(**requirements)
+    return func(**{name: _si(name, value) for name, value in requirements.items()})
+
+
+#: The kind of quantity of each requirement that has a unit.
+QUANTITIES = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
+              "max_pressure_angle": "angle", "min_transmission_angle": "angle"}  # fmt: skip
+
+
+def _si(name: str, value: Any) -> Any:
+    """A requirement given as a string with its unit, in SI; anything else as given."""
+    if isinstance(value, str) and name in QUANTITIES:
+        from linkwork.units import parse_quantity
+
+        return parse_quantity(value, QUANTITIES[name])
+    return value
