@@ -25,12 +25,19 @@ def _read(options: dict[str, tuple[str | None, str]]) -> dict[str, Any]:
         if text is None:
             continue
         try:
-            out[name] = float(text) if kind == "ratio" else parse_quantity(text, kind)
+            out[name] = _number(text) if kind == "ratio" else parse_quantity(text, kind)
         except (ValueError, LinkworkError) as exc:
             problems.append(f"--{name.replace('_', '-')}: {exc}")
     if problems:
         fail(LinkworkError("\n".join(problems)))
     return out
+
+
+def _number(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise ValueError(f'expected a number, got "{excerpt(text, QUOTE_PATH)}"') from None
 
 
 def _section(text: str | None) -> dict[str, Any]:

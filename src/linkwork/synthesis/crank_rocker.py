@@ -198,12 +198,20 @@ def synthesize(
     meet.  Links are steel bars of ``section`` and ``density``.  Verified by the analysis of the written file."""
     if not 0 < swing < math.pi:
         raise SynthesisError(f"swing {deg(swing)}: a crank-rocker swings between 0 and 180 deg")
-    if not time_ratio >= 1.0:
+    if not 1.0 <= time_ratio < math.inf:
         raise SynthesisError(
-            f"time ratio K = {time_ratio:g}: expected K >= 1 (the longer stroke's time over the shorter)"
+            f"time ratio K = {time_ratio:g}: expected a finite K >= 1 (the longer stroke's time over the shorter)"
         )
     if (rocker is None) == (frame is None):
         raise SynthesisError("give one of the rocker length and the frame length: it fixes the scale")
+    scale_given = rocker if rocker is not None else frame
+    if not (scale_given is not None and math.isfinite(scale_given) and scale_given > 0):
+        raise SynthesisError(f"{'rocker' if rocker is not None else 'frame'} length {scale_given!r} m: expected a "
+                             "positive length")  # fmt: skip
+    if min_transmission_angle is not None and not 0 < min_transmission_angle < math.pi / 2:
+        raise SynthesisError(
+            f"least transmission angle {deg(min_transmission_angle)}: expected a bound between 0 and 90 deg"
+        )
     theta = crank_angle_between_limits(time_ratio)
     t, side, mu = best(swing, theta) if theta > 0 else central(swing, min_transmission_angle)
     if min_transmission_angle is not None and mu < min_transmission_angle:

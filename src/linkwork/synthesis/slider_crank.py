@@ -153,8 +153,10 @@ def _offset_member(stroke: float, time_ratio: float, theta: float, rod_ratio: fl
 def solve(stroke: float, time_ratio: float, rod_ratio: float | None = None, offset: float | None = None,
           max_pressure_angle: float | None = None) -> tuple[float, float, float, str]:  # fmt: skip
     """(r, l, e, what picked the member) (m) for the requirements (SI); raises :class:`SynthesisError`."""
-    if not stroke > 0:
+    if not 0 < stroke < math.inf:
         raise SynthesisError(f"stroke {stroke!r} m: expected a positive length")
+    if max_pressure_angle is not None and not 0 < max_pressure_angle < math.pi / 2:
+        raise SynthesisError(f"largest pressure angle {deg(max_pressure_angle)}: expected a bound between 0 and 90 deg")
     if rod_ratio is not None and offset is not None:
         raise SynthesisError("give one of the rod ratio and the offset: with H and K either fixes the mechanism")
     theta = _check_ratio(time_ratio)
