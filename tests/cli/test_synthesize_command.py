@@ -52,6 +52,10 @@ def test_the_written_crank_rocker_meets_the_swing(tmp_path):
         ["crank-rocker", "--swing", "60deg", "--time-ratio", "1.5", "--rocker", "1m", "--min-transmission-angle", "45"],
         ["crank-rocker", "--swing", "60deg", "--time-ratio", "1.5", "--stroke", "1m"],
         ["four-bar", "--stroke", "1m", "--time-ratio", "1"],
+        ["slider-crank", "--stroke", "nan", "--time-ratio", "1.1"],
+        ["slider-crank", "--stroke", "1m", "--time-ratio", "abc"],
+        ["crank-rocker", "--swing", "45deg", "--time-ratio", "inf", "--rocker", "1m"],
+        ["crank-rocker", "--swing", "45deg", "--time-ratio", "1.1", "--rocker", "-1m"],
     ],
 )
 def test_requirements_that_cannot_be_met_exit_2_with_one_line_and_no_file(tmp_path, args):
