@@ -103,3 +103,25 @@ def test_an_impossible_bound_names_the_best_angle_and_the_largest_k_that_meets_i
     s = synthesize("crank-rocker", swing=math.radians(60), time_ratio=k * (1 - 1e-6), frame=0.4,
                    min_transmission_angle=math.radians(40))  # fmt: skip
     assert s.measured["least_transmission_angle"] >= math.radians(40) * (1 - 1e-9)
+
+
+def test_a_time_ratio_no_crank_rocker_of_the_swing_reaches_names_the_largest_that_one_does():
+    with pytest.raises(SynthesisError) as err:
+        synthesize("crank-rocker", swing=math.radians(40), time_ratio=5.0, rocker=0.3)
+    text = str(err.value)
+    assert "no crank-rocker has these limit positions; the swing 40 deg gives K <= 4.14" in text
+    from linkwork.synthesis.crank_rocker import best
+
+    theta = math.pi * (4.1 - 1) / (4.1 + 1)
+    t, side, _ = best(math.radians(40), theta)
+    a, b, c, d = (float(members(math.radians(40), theta, np.array([t]), side)[k][0]) for k in
+                  ("crank", "coupler", "rocker", "frame"))  # fmt: skip
+    assert law_of_cosines(a, b, c, d) == pytest.approx((math.radians(40), theta), rel=1e-9)
+
+
+def test_a_measure_off_by_more_than_1e_9_is_refused_and_the_message_says_how_near_a_dead_point():
+    from linkwork.synthesis.common import confirm
+
+    confirm({"time_ratio": 2.9 * (1 + 9e-10)}, {"time_ratio": 2.9}, math.radians(0.25))
+    with pytest.raises(SynthesisError, match="comes within 0.25 deg of a dead point"):
+        confirm({"time_ratio": 2.9 * (1 + 2e-9)}, {"time_ratio": 2.9}, math.radians(0.25))

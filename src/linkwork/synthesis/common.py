@@ -155,10 +155,18 @@ def file_of(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> tuple
     return text, loads(text, "<synthesised>")
 
 
-def close(measured: float, wanted: float, what: str, tol: float = TOLERANCE) -> None:
-    """Raise :class:`SynthesisError` where the analysis measured ``what`` away from what was wanted."""
-    if not abs(measured - wanted) <= tol * max(abs(wanted), 1e-300):
-        raise SynthesisError(f"{what}: the written mechanism measures {measured!r}, expected {wanted!r}")
+def confirm(measured: dict[str, float], predicted: dict[str, float], worst: float, tol: float = TOLERANCE) -> None:
+    """Raise :class:`SynthesisError` where the analysis measured a quantity of ``predicted`` away from it by
+    more than ``tol`` relative; the message says how close to a dead point the mechanism runs (``worst``, its
+    least transmission angle, rad), where the measures are ill-conditioned."""
+    for key, wanted in predicted.items():
+        got = measured[key]
+        if not abs(got - wanted) <= tol * max(abs(wanted), 1e-300):
+            raise SynthesisError(
+                f"{key.replace('_', ' ')}: the written mechanism measures {got!r}, expected {wanted!r}; it comes "
+                f"within {deg(worst)} of a dead point, where the limit positions are ill-conditioned: ask for "
+                "a smaller time ratio"
+            )
 
 
 def measure(spec: Spec, extreme_angles: list[float], angle_of: Callable[[dict[str, np.ndarray]], np.ndarray]) -> dict:

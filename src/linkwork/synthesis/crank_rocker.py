@@ -35,13 +35,14 @@ from linkwork.synthesis.common import (
     Family,
     Synthesis,
     bar_mass,
-    close,
+    confirm,
     crank_angle_between_limits,
     deg,
     degrees,
     file_of,
     measure,
     mm,
+    time_ratio_of,
 )
 
 KIND = "crank-rocker"
@@ -125,12 +126,15 @@ def best(swing: float, theta: float) -> tuple[float, float, float]:
 
             def f(x: float, side: float = side) -> float:
                 mm_ = members(swing, theta, np.array([x]), side)
-                return -float(mm_["least_transmission_angle"][0]) if mm_["valid"][0] else math.inf
+                return -float(mm_["least_transmission_angle"][0]) if mm_["valid"][0] else math.pi
 
             res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": 1e-13 * top})
             found.append((float(res.x), side, -float(res.fun)))
     if not found:
-        raise SynthesisError(f"swing {deg(swing)} with theta {deg(theta)}: no crank-rocker has these limit positions")
+        raise SynthesisError(
+            f"swing {deg(swing)} with time ratio K = {time_ratio_of(theta):.6g} (theta {deg(theta)}): no crank-rocker "
+            f"has these limit positions; the swing {deg(swing)} gives K <= {_feasible_ratio(swing):.4g}"
+        )
     return max(found, key=lambda f: f[2])
 
 
@@ -157,6 +161,20 @@ def central(swing: float, bound: float | None) -> tuple[float, float, float]:
     f = lambda x: float(members(swing, 0.0, np.array([x]), 1.0)["least_transmission_angle"][0]) - bound  # noqa: E731
     x = float(brentq(f, t[ok[0] - 1], t[ok[0]], xtol=1e-15))
     return x, 1.0, bound + f(x)
+
+
+def _feasible_ratio(swing: float) -> float:
+    """The largest K (to 1e-4 of theta) with a crank-rocker of this swing: bisection on the feasibility of
+    the family (the members sampled as :func:`best` samples them)."""
+    lo, hi = 0.0, math.pi
+    while hi - lo > 1e-4:
+        mid = (lo + hi) / 2
+        t = np.linspace(0.0, _top(mid, swing), 2001)[1:-1]
+        if any(members(swing, mid, t, side)["valid"].any() for side in (1.0, -1.0)):
+            lo = mid
+        else:
+            hi = mid
+    return time_ratio_of(lo)
 
 
 def greatest_least_angle(swing: float, time_ratio: float) -> float:
@@ -231,8 +249,7 @@ def synthesize(
     measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))
     measured["swing"] = measured.pop("stroke")
     predicted = {"swing": swing, "time_ratio": time_ratio, "least_transmission_angle": mu}
-    for key, value in predicted.items():
-        close(measured[key], value, key.replace("_", " "))
+    confirm(measured, predicted, mu)
     why = "the greatest least transmission angle" if theta > 0 else "the nearest crank pivot meeting the bound"
     return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, family(swing, time_ratio),
                      f"picked by {why}")  # fmt: skip

@@ -40,7 +40,7 @@ from linkwork.synthesis.common import (
     Family,
     Synthesis,
     bar_mass,
-    close,
+    confirm,
     crank_angle_between_limits,
     deg,
     degrees,
@@ -208,8 +208,7 @@ def synthesize(
     measured = measure(spec, [0.0], lambda mu: next(iter(mu.values())))
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
-    for key, value in predicted.items():
-        close(measured[key], value, key.replace("_", " "))
+    confirm(measured, predicted, math.pi / 2 - alpha)
     return Synthesis(
         KIND, requirements, {"crank": r, "rod": ell, "offset": e}, predicted, measured, spec, text,
         family(stroke, time_ratio) if theta > 0 and rod_ratio is None and offset is None else None,
