@@ -17,7 +17,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "linkwork"
 
 #: The packages of the core, bottom to top, and the edge around them.
 CORE = ["spec", "structure", "motion", "kinetostatics", "machine", "impulse"]
-EDGE = ["design", "scene", "io", "figures", "report", "web", "cli"]
+EDGE = ["design", "synthesis", "scene", "io", "figures", "report", "web", "cli"]
 
 
 def _modules() -> dict[str, Path]:
@@ -141,6 +141,16 @@ def test_the_core_imports_nothing_of_the_edge_and_nothing_above_itself(edges):
             elif pa in CORE and pb in CORE and CORE.index(pb) > CORE.index(pa):
                 wrong.append(f"{a} -> {b}")
     assert wrong == []
+
+
+def test_synthesis_sits_above_the_analyses_and_below_the_drawings_reports_and_command(edges):
+    """It verifies what it writes with the analyses (and may refine through ``design``); nothing it imports
+    draws, reports or parses a command line."""
+    above = {"scene", "io", "figures", "report", "web", "cli"}
+    wrong = [f"{a} -> {b}" for a, targets in edges.items() if _package(a) == "synthesis"
+             for b in targets if _package(b) in above]  # fmt: skip
+    assert wrong == []
+    assert any(_package(b) == "synthesis" for a, t in edges.items() if _package(a) == "cli" for b in t)
 
 
 def test_the_checks_can_fail():

@@ -36,6 +36,7 @@ _LAZY = {
     "simulate_blows": ("linkwork.api", "simulate_blows"),
     "sweep": ("linkwork.design", "sweep"),
     "optimize": ("linkwork.design", "optimize"),
+    "synthesize": ("linkwork.synthesis", "synthesize"),
 }
 
 __all__ = ["__version__", *_LAZY]

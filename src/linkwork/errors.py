@@ -110,6 +110,11 @@ class DesignError(LinkworkError, ValueError):
         super().__init__("\n".join(self.problems))
 
 
+class SynthesisError(LinkworkError, ValueError):
+    """Requirements of a synthesis that cannot be met together, or that are missing: the message names the
+    requirements in conflict and the nearest value that can be met (:mod:`linkwork.synthesis`)."""
+
+
 class SlidingReversal(LinkworkError):
     """The striker's sliding on the tool would reverse within an impact (the crank thrown back)."""
 

@@ -472,6 +472,12 @@ def file_text(mechanism: Mechanism, values: dict[str, float]) -> str:
     spec, _, kinds = _described(mechanism, values)
     data, declared = _file_data(spec, round_trip=True)
     set_values(data, values, declared, kinds)
+    return yaml_text(data)
+
+
+def yaml_text(data: Any) -> str:
+    """The text of a mechanism file's ``data`` (plain or a ruamel round-trip mapping, whose comments, order
+    and flow style it keeps): the one YAML writer of mechanism files, for edited and synthesised ones alike."""
     buf = io.StringIO()
     _yaml().dump(data, buf)
     return buf.getvalue()

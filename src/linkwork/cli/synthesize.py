@@ -1,0 +1,139 @@
+"""``linkwork synthesize``: a mechanism file from requirements (stroke or swing, time ratio, angle bounds)."""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Any
+
+import typer
+
+from linkwork.cli.app import app, echo_json, fail
+from linkwork.errors import LinkworkError
+from linkwork.limits import QUOTE_PATH, excerpt
+
+Quantity = Annotated[str | None, typer.Option()]
+
+
+def _read(options: dict[str, tuple[str | None, str]]) -> dict[str, Any]:
+    """The given options (name -> (text, kind)) in SI (bare lengths in m, bare angles in deg); one line per
+    option that does not read."""
+    from linkwork.units import parse_quantity
+
+    out: dict[str, Any] = {}
+    problems = []
+    for name, (text, kind) in options.items():
+        if text is None:
+            continue
+        try:
+            out[name] = _number(text) if kind == "ratio" else parse_quantity(text, kind)
+        except (ValueError, LinkworkError) as exc:
+            problems.append(f"--{name.replace('_', '-')}: {exc}")
+    if problems:
+        fail(LinkworkError("\n".join(problems)))
+    return out
+
+
+def _number(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise ValueError(f'expected a number, got "{excerpt(text, QUOTE_PATH)}"') from None
+
+
+def _section(text: str | None) -> dict[str, Any]:
+    if text is None:
+        return {}
+    from linkwork.units import parse_quantity
+
+    parts = text.lower().split("x")
+    try:
+        if len(parts) != 2:
+            raise ValueError("expected WIDTHxHEIGHT")
+        return {"section": tuple(parse_quantity(p.strip(), "length") for p in parts)}
+    except (ValueError, LinkworkError) as exc:
+        fail(LinkworkError(f'--section "{excerpt(text, QUOTE_PATH)}": {exc}, e.g. "40mm x 20mm"'))
+
+
+@app.command()
+def synthesize(  # fmt: skip
+    kind: Annotated[str, typer.Argument(help="slider-crank or crank-rocker")],
+    out: Annotated[str, typer.Option("--out", help="the mechanism file to write (.yaml)")],
+    stroke: Annotated[
+        str | None, typer.Option("--stroke", help='slider-crank: the ram\'s stroke, e.g. "400mm"')
+    ] = None,
+    time_ratio: Annotated[
+        str | None, typer.Option("--time-ratio", help="K >= 1: the longer stroke's time over the shorter")
+    ] = None,
+    rod_ratio: Annotated[str | None, typer.Option("--rod-ratio", help="slider-crank: r/l (or --offset)")] = None,
+    offset: Annotated[
+        str | None, typer.Option("--offset", help="slider-crank: the guide's offset from the crank pivot")
+    ] = None,
+    max_pressure_angle: Annotated[
+        str | None, typer.Option("--max-pressure-angle", help='slider-crank: a bound, e.g. "40deg"')
+    ] = None,
+    swing: Annotated[
+        str | None, typer.Option("--swing", help='crank-rocker: the rocker\'s swing, e.g. "45deg"')
+    ] = None,
+    rocker: Annotated[
+        str | None, typer.Option("--rocker", help="crank-rocker: the rocker's length (or --frame)")
+    ] = None,
+    frame: Annotated[str | None, typer.Option("--frame", help="crank-rocker: the frame's length (or --rocker)")] = None,
+    min_transmission_angle: Annotated[
+        str | None, typer.Option("--min-transmission-angle", help="crank-rocker: a bound")
+    ] = None,
+    speed: Annotated[str, typer.Option("--speed", help="the crank's speed written in the file")] = "60 rpm",
+    section: Annotated[
+        str | None, typer.Option("--section", help='the steel bars\' section, "40mm x 20mm" by default')
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+) -> None:
+    """Write a mechanism file that meets the requirements, verified by the kinematic analysis of that file.
+
+    slider-crank: --stroke, --time-ratio, and --rod-ratio or --offset (else the least largest pressure
+    angle); --max-pressure-angle a bound.  crank-rocker: --swing, --time-ratio, --rocker or --frame;
+    --min-transmission-angle a bound.  Requirements that cannot be met: exit 2, no file."""
+    from linkwork.synthesis import KINDS, QUANTITIES
+    from linkwork.synthesis import synthesize as run
+
+    if kind not in KINDS:
+        fail(LinkworkError(f"unknown kind {kind!r}: expected one of {', '.join(KINDS)}"))
+    if not out.endswith((".yaml", ".yml")):
+        fail(LinkworkError(f'--out "{excerpt(out, QUOTE_PATH)}": expected a .yaml file'))
+    slider = kind == "slider-crank"
+    given = {"stroke": stroke, "rod_ratio": rod_ratio, "offset": offset, "max_pressure_angle": max_pressure_angle}
+    other = {"swing": swing, "rocker": rocker, "frame": frame, "min_transmission_angle": min_transmission_angle}
+    wrong = [name for name, text in (other if slider else given).items() if text is not None]
+    if wrong:
+        fail(
+            LinkworkError(
+                f"{kind}: --{', --'.join(w.replace('_', '-') for w in wrong)}: requirements of the other kind"
+            )
+        )
+    texts = {**(given if slider else other), "time_ratio": time_ratio}
+    missing = [n for n in ("stroke" if slider else "swing", "time_ratio") if texts[n] is None]
+    if missing:
+        fail(LinkworkError(f"{kind}: missing --{', --'.join(m.replace('_', '-') for m in missing)}"))
+    requirements = _read({name: (text, QUANTITIES.get(name, "ratio")) for name, text in texts.items()})
+    try:
+        result = run(kind, **requirements, speed=speed, **_section(section))
+        result.write(out)
+    except (LinkworkError, OSError) as exc:
+        fail(exc)
+    _show(result, out, as_json)
+
+
+def _show(result: Any, out: str, as_json: bool) -> None:
+    if as_json:
+        echo_json({"kind": result.kind, "out": out, "requirements": result.requirements,
+                   "dimensions": result.dimensions, "predicted": result.predicted, "measured": result.measured,
+                   "criterion": result.criterion})  # fmt: skip
+        return
+    typer.echo(f"{result.kind}: {result.criterion}")
+    for name, value in result.dimensions.items():
+        typer.echo(f"  {name:10s} {value * 1e3:12.6f} mm")
+    typer.echo("measured by the kinematic analysis of the written file:")
+    for name, value in result.measured.items():
+        shown = f"{value:.12g}" if name == "time_ratio" else (
+            f"{math.degrees(value):.9f} deg" if name != "stroke" else f"{value * 1e3:.9f} mm")  # fmt: skip
+        typer.echo(f"  {name.replace('_', ' '):26s} {shown}")
+    typer.echo(f"written: {out}")

@@ -1,0 +1,64 @@
+"""Synthesis from requirements: a mechanism file for a stroke (or swing), a time ratio and a bound on the
+pressure (transmission) angle.
+
+One module per kind, closed forms first; each returns a :class:`~linkwork.synthesis.common.Synthesis` whose
+text is written through the one YAML writer of mechanism files and whose stroke, time ratio and extreme
+angle the analysis measures on that text before it is returned.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from linkwork.errors import SynthesisError
+from linkwork.synthesis.common import Family, Synthesis
+
+__all__ = ["KINDS", "Family", "Synthesis", "synthesize"]
+
+#: The kinds synthesised, and their modules.
+KINDS = {"slider-crank": "linkwork.synthesis.slider_crank", "crank-rocker": "linkwork.synthesis.crank_rocker"}
+
+
+def synthesize(kind: str, **requirements: Any) -> Synthesis:
+    """A mechanism of ``kind`` meeting ``requirements`` (SI: m, rad, ratios), verified by the analysis.
+
+    Lengths and angles may also be strings with their unit (``stroke="400 mm"``, ``swing="45 deg"``).
+    ``slider-crank``: ``stroke``, ``time_ratio``, and one of ``rod_ratio``, ``offset``; ``max_pressure_angle``
+    a bound.  ``crank-rocker``: ``swing``, ``time_ratio``, and one of ``rocker``, ``frame`` (lengths);
+    ``min_transmission_angle`` a bound.  Both take ``speed`` (default ``"60 rpm"``), ``section`` (the steel
+    bars' width and height, m) and ``density``.
+
+    Raises
+    ------
+    SynthesisError
+        An unknown kind or requirement, or requirements that cannot be met together (the message names
+        them and the nearest value that can be met).
+    """
+    import importlib
+    import inspect
+
+    if kind not in KINDS:
+        raise SynthesisError(f"unknown kind {kind!r}: expected one of {', '.join(KINDS)}")
+    func = importlib.import_module(KINDS[kind]).synthesize
+    known = list(inspect.signature(func).parameters)
+    unknown = [name for name in requirements if name not in known]
+    if unknown:
+        raise SynthesisError(f"{kind}: unknown requirement {', '.join(unknown)}; expected {', '.join(known)}")
+    missing = [name for name in known[:2] if name not in requirements]
+    if missing:
+        raise SynthesisError(f"{kind}: missing requirement {', '.join(missing)}")
+    return func(**{name: _si(name, value) for name, value in requirements.items()})
+
+
+#: The kind of quantity of each requirement that has a unit.
+QUANTITIES = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
+              "max_pressure_angle": "angle", "min_transmission_angle": "angle"}  # fmt: skip
+
+
+def _si(name: str, value: Any) -> Any:
+    """A requirement given as a string with its unit, in SI; anything else as given."""
+    if isinstance(value, str) and name in QUANTITIES:
+        from linkwork.units import parse_quantity
+
+        return parse_quantity(value, QUANTITIES[name])
+    return value

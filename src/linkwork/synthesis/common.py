@@ -1,0 +1,185 @@
+"""What every kind of synthesis shares: the crank's angle between the limit positions, the result, the family,
+the mass rule, the file's text and the verification by the analysis itself."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import SynthesisError
+from linkwork.spec.schema import Spec
+
+#: Relative agreement the written file's measured stroke (swing), time ratio and pressure (transmission)
+#: angle must reach with the requirements and the closed forms.
+TOLERANCE = 1e-9
+
+#: Density of steel (kg/m^3), and the default bar section (m): every link a steel bar of this section.
+STEEL = 7850.0
+BAR = (0.040, 0.020)
+
+#: Crank samples of the verification's turn (the analysis refines extremes between them).
+VERIFY_STEPS = 720
+
+
+def crank_angle_between_limits(time_ratio: float) -> float:
+    """theta (rad): the crank's angle between its two limit positions for the time ratio K >= 1,
+    theta = pi (K - 1) / (K + 1), since the strokes take pi + theta and pi - theta of the turn."""
+    return math.pi * (time_ratio - 1.0) / (time_ratio + 1.0)
+
+
+def time_ratio_of(theta: float) -> float:
+    """K of the crank's angle theta (rad) between the limit positions: (pi + theta) / (pi - theta)."""
+    return (math.pi + theta) / (math.pi - theta)
+
+
+@dataclass(frozen=True)
+class Family:
+    """The one-parameter family the requirements leave: ``values`` of the free ``parameter`` (its ``unit``),
+    and for each the mechanism's ``columns`` (name -> array of the same length, SI); NaN where the
+    mechanism of a value cannot run."""
+
+    parameter: str
+    unit: str
+    values: np.ndarray
+    columns: dict[str, np.ndarray]
+    criterion: str
+
+
+@dataclass(frozen=True)
+class Synthesis:
+    """A synthesised mechanism.
+
+    Attributes
+    ----------
+    kind : str
+        ``"slider-crank"`` or ``"crank-rocker"``.
+    requirements : dict
+        The requirements as given, SI (m, rad, ratios).
+    dimensions : dict
+        The derived dimensions, SI.
+    predicted : dict
+        What the closed forms give the mechanism (stroke or swing, time ratio, extreme pressure or
+        transmission angle), SI.
+    measured : dict
+        The same quantities as :func:`linkwork.kinematics` measures them on the written text.
+    spec : Spec
+        The mechanism, read back from :attr:`text`.
+    text : str
+        The mechanism file, each derived dimension with the requirement it meets as a comment.
+    family : Family or None
+        The family the requirements left, where they left one; the pick is :attr:`criterion`'s.
+    criterion : str
+        How the mechanism was picked from the family (or that the requirements fixed it).
+    """
+
+    kind: str
+    requirements: dict[str, float]
+    dimensions: dict[str, float]
+    predicted: dict[str, float]
+    measured: dict[str, float]
+    spec: Spec
+    text: str
+    family: Family | None = None
+    criterion: str = ""
+    notes: list[str] = field(default_factory=list)
+
+    def write(self, out: str | Path) -> Path:
+        """Write :attr:`text` to ``out`` atomically; returns the path."""
+        from linkwork.atomic import write_atomic
+
+        return write_atomic(out, lambda tmp: tmp.write_text(self.text, encoding="utf-8"))
+
+
+def need(value: float | None, ok: bool, message: str) -> None:
+    """Raise :class:`SynthesisError` with ``message`` unless ``ok`` (for a given ``value``)."""
+    if value is not None and not ok:
+        raise SynthesisError(message)
+
+
+def deg(angle: float) -> str:
+    """An angle (rad) as the messages write it: degrees, 4 significant digits."""
+    return f"{math.degrees(angle):.4g} deg"
+
+
+def bar_mass(length: float, section: tuple[float, float] = BAR, density: float = STEEL) -> float:
+    """The mass rule: a steel bar of ``section`` (width, height; m) and ``length`` (m), kg."""
+    return density * section[0] * section[1] * length
+
+
+def mm(x: float) -> float:
+    """A length (m) in mm as the file writes it: 12 significant digits."""
+    return float(f"{x * 1000.0:.12g}")
+
+
+def degrees(x: float) -> float:
+    """An angle (rad) in degrees as the file writes it: 12 significant digits."""
+    return float(f"{math.degrees(x):.12g}")
+
+
+def commented(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> Any:
+    """``data`` as a ruamel round-trip tree with each ``comments`` key path's comment beside its value."""
+    from ruamel.yaml.comments import CommentedMap, CommentedSeq
+
+    def tree(x: Any) -> Any:
+        if isinstance(x, dict):
+            m = CommentedMap((k, tree(v)) for k, v in x.items())
+            if all(not isinstance(v, dict | list) for v in x.values()) and len(x) <= 6:
+                m.fa.set_flow_style()
+            return m
+        if isinstance(x, list):
+            s = CommentedSeq(tree(v) for v in x)
+            s.fa.set_flow_style()
+            return s
+        return x
+
+    root = tree(data)
+    for path, text in comments.items():
+        node = root
+        for key in path[:-1]:
+            node = node[key]
+        node.yaml_add_eol_comment(text, path[-1])
+    return root
+
+
+def file_of(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> tuple[str, Spec]:
+    """The mechanism file's text (through the one YAML writer) and the Spec read back from it."""
+    from linkwork.spec.load import loads
+    from linkwork.structure.parameters import yaml_text
+
+    text = yaml_text(commented(data, comments))
+    return text, loads(text, "<synthesised>")
+
+
+def confirm(measured: dict[str, float], predicted: dict[str, float], worst: float, tol: float = TOLERANCE) -> None:
+    """Raise :class:`SynthesisError` where the analysis measured a quantity of ``predicted`` away from it by
+    more than ``tol`` relative; the message says how close to a dead point the mechanism runs (``worst``, its
+    least transmission angle, rad), where the measures are ill-conditioned."""
+    for key, wanted in predicted.items():
+        got = measured[key]
+        if not abs(got - wanted) <= tol * max(abs(wanted), 1e-300):
+            raise SynthesisError(
+                f"{key.replace('_', ' ')}: the written mechanism measures {got!r}, expected {wanted!r}; it comes "
+                f"within {deg(worst)} of a dead point, where the limit positions are ill-conditioned: ask for "
+                "a smaller time ratio"
+            )
+
+
+def measure(spec: Spec, extreme_angles: list[float], angle_of: Callable[[dict[str, np.ndarray]], np.ndarray]) -> dict:
+    """Stroke (or swing), time ratio and the least transmission angle of ``spec``'s one output as the
+    analysis measures them: :func:`linkwork.motion.analysis.extremes` over a sampled turn, and
+    :func:`~linkwork.motion.analysis.transmission` over that turn and at ``extreme_angles`` (the drive angles
+    the closed form puts the extremes at; the least over all samples, so a lower value anywhere is found).
+    ``angle_of`` picks the dyad's angles from the transmission's mapping."""
+    from linkwork.api import kinematics
+    from linkwork.motion.analysis import extremes, transmission
+
+    kin = kinematics(spec, steps=VERIFY_STEPS)
+    (out,) = extremes(kin)
+    at = kinematics(spec, np.array(extreme_angles))
+    least = min(float(np.min(angle_of(transmission(kin)))), float(np.min(angle_of(transmission(at)))))
+    return {"stroke": out.stroke, "time_ratio": out.time_ratio, "least_transmission_angle": least}

@@ -1,0 +1,260 @@
+"""Synthesis of an (offset) slider-crank from its stroke H, time ratio K and one more requirement.
+
+The theory (derived here; the classical construction of the limit positions):
+
+* At the limit positions of the ram B the crank and the rod are in line: |OB1| = l + r (stretched) and
+  |OB2| = l - r (folded).  The crank's directions there differ by pi - theta, where theta is the angle
+  B1 O B2, so the strokes take pi + theta and pi - theta of the turn: K = (pi + theta) / (pi - theta).
+* O therefore sees the chord B1 B2 = H under the angle theta: it lies on the circle through B1 and B2 of
+  radius H / (2 sin theta).  With beta the angle O B1 B2 (the free parameter of the family), the law of
+  sines gives l + r = H sin(theta + beta) / sin theta, l - r = H sin(beta) / sin theta and the offset
+  e = (l + r) sin(beta) = H sin(beta) sin(theta + beta) / sin theta.
+* Both limit positions lie on the same side of the foot of the perpendicular from O onto the guide, so the
+  angle at B2 is obtuse: 0 < beta < pi/2 - theta, hence theta < pi/2 and K < 3.  At beta = pi/2 - theta,
+  l - r = e: the folded rod stands square to the guide (a dead point).
+* The pressure angle alpha (between the rod and the guide) has sin(alpha) = (r sin(phi) + e) / l over the
+  crank angle phi from the guide's direction: its largest value is arcsin((r + e) / l), with the crank square
+  to the guide on the side away from the guide.
+* Closed forms for the third requirement: the rod ratio lambda = r / l gives
+  tan(beta) = sin(theta) / ((1 + lambda) / (1 - lambda) - cos(theta)), feasible for
+  tan^2(theta / 2) < lambda < 1; the offset gives cos(theta + 2 beta) = cos(theta) - 2 e sin(theta) / H,
+  feasible for 0 <= e < H cot(theta).  Without either, beta minimises the largest pressure angle (a function of
+  beta and theta only) by Brent's method on the closed form.
+* K = 1 (theta = 0): the central slider-crank, r = H / 2, e = 0, l from the rod ratio or the bound on the
+  pressure angle (l = r / sin(alpha)): the largest pressure angle falls without bound as l grows.
+
+Layout of the file: crank pivot O at the origin, the guide vertical through (-e, 0) pointing down, the crank
+turning counter-clockwise, so the ram's slow (working) stroke is downward.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from linkwork.errors import SynthesisError
+from linkwork.synthesis.common import (
+    BAR,
+    STEEL,
+    Family,
+    Synthesis,
+    bar_mass,
+    confirm,
+    crank_angle_between_limits,
+    deg,
+    degrees,
+    file_of,
+    measure,
+    mm,
+)
+
+KIND = "slider-crank"
+
+#: Largest time ratio of a slider-crank (theta < 90 deg), exclusive.
+K_LIMIT = 3.0
+
+
+def dimensions(stroke: float, theta: float, beta: np.ndarray | float) -> tuple:
+    """(r, l, e) (m) of the family member ``beta`` (rad, the angle O B1 B2) for the stroke and theta."""
+    s = stroke / math.sin(theta)
+    far, near = s * np.sin(theta + beta), s * np.sin(beta)
+    return (far - near) / 2.0, (far + near) / 2.0, far * np.sin(beta)
+
+
+def largest_pressure_angle(r: np.ndarray | float, ell: np.ndarray | float, e: np.ndarray | float) -> np.ndarray:
+    """The largest pressure angle (rad) over the turn of a slider-crank: arcsin((r + |e|) / l); NaN where the
+    crank cannot turn (r + |e| >= l)."""
+    ratio = (np.asarray(r) + np.abs(e)) / np.asarray(ell)
+    with np.errstate(invalid="ignore"):
+        return np.where(ratio < 1.0, np.arcsin(np.minimum(ratio, 1.0)), np.nan)
+
+
+def _alpha(theta: float, beta: float) -> float:
+    return float(np.nan_to_num(largest_pressure_angle(*dimensions(1.0, theta, beta)), nan=math.pi / 2))
+
+
+def best_beta(theta: float) -> float:
+    """beta (rad) of the family's member with the least largest pressure angle (Brent on the closed form)."""
+    from scipy.optimize import minimize_scalar
+
+    top = math.pi / 2 - theta
+    res = minimize_scalar(lambda b: _alpha(theta, b), bounds=(top * 1e-9, top * (1 - 1e-9)), method="bounded",
+                          options={"xatol": 1e-12 * top})  # fmt: skip
+    return float(res.x)
+
+
+def least_pressure_angle(time_ratio: float) -> float:
+    """The least largest pressure angle (rad) any slider-crank of time ratio K has (0 for K = 1)."""
+    theta = crank_angle_between_limits(time_ratio)
+    return 0.0 if theta == 0.0 else _alpha(theta, best_beta(theta))
+
+
+def largest_time_ratio(pressure_angle: float) -> float:
+    """The largest K a slider-crank reaches with its largest pressure angle at most ``pressure_angle`` (rad)."""
+    from scipy.optimize import brentq
+
+    return float(brentq(lambda k: least_pressure_angle(k) - pressure_angle, 1.0, K_LIMIT - 1e-9, xtol=1e-13))
+
+
+def family(stroke: float, time_ratio: float, count: int = 201) -> Family:
+    """The family over beta in (0, pi/2 - theta) with r, l, e and the largest pressure angle."""
+    theta = crank_angle_between_limits(time_ratio)
+    beta = np.linspace(0.0, math.pi / 2 - theta, count + 2)[1:-1]
+    r, ell, e = dimensions(stroke, theta, beta)
+    columns = {"crank": r, "rod": ell, "offset": e, "largest_pressure_angle": largest_pressure_angle(r, ell, e)}
+    return Family("angle O B1 B2", "rad", beta, columns, "least largest pressure angle")
+
+
+def _check_ratio(time_ratio: float) -> float:
+    if not 1.0 <= time_ratio < K_LIMIT:
+        raise SynthesisError(
+            f"time ratio K = {time_ratio:g}: a slider-crank gives 1 <= K < 3 (the crank's angle between the limit "
+            "positions theta = 180 deg (K - 1) / (K + 1) stays under 90 deg)"
+        )
+    return crank_angle_between_limits(time_ratio)
+
+
+def _central(stroke: float, rod_ratio: float | None, offset: float | None, bound: float | None) -> tuple:
+    if offset:
+        raise SynthesisError(f"time ratio K = 1 needs a zero offset; the offset {offset * 1e3:g} mm gives K > 1")
+    r = stroke / 2.0
+    if rod_ratio is not None:
+        return r, r / rod_ratio, 0.0, f"rod ratio r/l = {rod_ratio:g}"
+    if bound is not None:
+        return r, r / math.sin(bound), 0.0, f"the shortest rod with the largest pressure angle {deg(bound)}"
+    raise SynthesisError(
+        "time ratio K = 1 leaves the rod's length free (the pressure angle falls as it grows): give the rod "
+        "ratio or the largest pressure angle"
+    )
+
+
+def _offset_member(stroke: float, time_ratio: float, theta: float, rod_ratio: float | None, offset: float | None):
+    if rod_ratio is not None:
+        low = math.tan(theta / 2) ** 2
+        if not low < rod_ratio < 1.0:
+            raise SynthesisError(
+                f"rod ratio r/l = {rod_ratio:g} with time ratio K = {time_ratio:g}: the rod ratio must lie in "
+                f"({low:.6g}, 1) (tan^2(theta / 2) < r/l < 1)"
+            )
+        g = (1 + rod_ratio) / (1 - rod_ratio)
+        return math.atan2(math.sin(theta), g - math.cos(theta)), f"rod ratio r/l = {rod_ratio:g}"
+    if offset is not None:
+        top = stroke / math.tan(theta)
+        if not 0.0 <= offset < top:
+            raise SynthesisError(
+                f"offset {offset * 1e3:g} mm with stroke {stroke * 1e3:g} mm and time ratio K = {time_ratio:g}: "
+                f"the offset must be under H cot(theta) = {top * 1e3:.6g} mm"
+            )
+        return (math.acos(math.cos(theta) - 2 * offset * math.sin(theta) / stroke) - theta) / 2, "the offset"
+    return best_beta(theta), "the least largest pressure angle"
+
+
+def solve(stroke: float, time_ratio: float, rod_ratio: float | None = None, offset: float | None = None,
+          max_pressure_angle: float | None = None) -> tuple[float, float, float, str]:  # fmt: skip
+    """(r, l, e, what picked the member) (m) for the requirements (SI); raises :class:`SynthesisError`."""
+    if not 0 < stroke < math.inf:
+        raise SynthesisError(f"stroke {stroke!r} m: expected a positive length")
+    if max_pressure_angle is not None and not 0 < max_pressure_angle < math.pi / 2:
+        raise SynthesisError(f"largest pressure angle {deg(max_pressure_angle)}: expected a bound between 0 and 90 deg")
+    if rod_ratio is not None and offset is not None:
+        raise SynthesisError("give one of the rod ratio and the offset: with H and K either fixes the mechanism")
+    theta = _check_ratio(time_ratio)
+    if theta == 0.0:
+        r, ell, e, why = _central(stroke, rod_ratio, offset, max_pressure_angle)
+    else:
+        beta, why = _offset_member(stroke, time_ratio, theta, rod_ratio, offset)
+        r, ell, e = (float(x) for x in dimensions(stroke, theta, beta))
+    alpha = float(largest_pressure_angle(r, ell, e))
+    if max_pressure_angle is not None and not alpha <= max_pressure_angle * (1 + 1e-12):
+        least = least_pressure_angle(time_ratio)
+        if least > max_pressure_angle:
+            raise SynthesisError(
+                f"time ratio K = {time_ratio:g} needs a largest pressure angle of at least {deg(least)}; at most "
+                f"{deg(max_pressure_angle)} gives K <= {largest_time_ratio(max_pressure_angle):.4g}"
+            )
+        raise SynthesisError(
+            f"{why} with K = {time_ratio:g} gives a largest pressure angle of {deg(alpha)}, over the bound "
+            f"{deg(max_pressure_angle)}; the least for K = {time_ratio:g} is {deg(least)} (leave the rod ratio and "
+            "offset out to get it)"
+        )
+    return r, ell, e, why
+
+
+def synthesize(
+    stroke: float,
+    time_ratio: float,
+    rod_ratio: float | None = None,
+    offset: float | None = None,
+    max_pressure_angle: float | None = None,
+    speed: str = "60 rpm",
+    section: tuple[float, float] = BAR,
+    density: float = STEEL,
+    ram_mass: float | None = None,
+) -> Synthesis:
+    """An offset slider-crank for the stroke H (m), time ratio K, and the rod ratio r/l or the offset e (m),
+    else the least largest pressure angle; ``max_pressure_angle`` (rad) a bound it must meet.  Links are
+    steel bars of ``section`` (m x m) and ``density``; the ram's mass is the rod's unless given.  Verified
+    by the analysis of the written file (:func:`~linkwork.synthesis.common.measure`)."""
+    r, ell, e, why = solve(stroke, time_ratio, rod_ratio, offset, max_pressure_angle)
+    theta = crank_angle_between_limits(time_ratio)
+    alpha = float(largest_pressure_angle(r, ell, e))
+    requirements = {"stroke": stroke, "time_ratio": time_ratio}
+    for name, value in (("rod_ratio", rod_ratio), ("offset", offset), ("max_pressure_angle", max_pressure_angle)):
+        if value is not None:
+            requirements[name] = value
+    text, spec = file_of(*_file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass))
+    # the drive angle of the largest pressure angle: the crank square to the guide, away from it (+x)
+    measured = measure(spec, [0.0], lambda mu: next(iter(mu.values())))
+    measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
+    predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
+    confirm(measured, predicted, math.pi / 2 - alpha)
+    return Synthesis(
+        KIND, requirements, {"crank": r, "rod": ell, "offset": e}, predicted, measured, spec, text,
+        family(stroke, time_ratio) if theta > 0 and rod_ratio is None and offset is None else None,
+        f"picked by {why}",
+    )  # fmt: skip
+
+
+def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass) -> tuple:  # noqa: ANN001
+    near = math.sqrt((ell - r) ** 2 - e**2)
+    start = math.pi / 2 - math.asin(e / (ell - r))  # the folded limit position: the ram at the top
+    rod = bar_mass(ell, section, density)
+    data = {
+        "name": "slider-crank",
+        "description": f"Offset slider-crank synthesised for the stroke {stroke * 1e3:.6g} mm and time ratio K = "
+        f"{time_ratio:.6g} (theta = {math.degrees(theta):.6g} deg); {why}.  Masses: steel bars "
+        f"{section[0] * 1e3:g} x {section[1] * 1e3:g} mm, {density:g} kg/m^3.",
+        "units": {"length": "mm", "mass": "kg", "angle": "deg"},
+        "frame": {"points": {"O": [0.0, 0.0]}},
+        "links": {
+            "crank": {"ends": ["O", "A"], "length": mm(r), "mass": float(f"{bar_mass(r, section, density):.6g}")},
+            "rod": {"ends": ["A", "B"], "length": mm(ell), "mass": float(f"{rod:.6g}")},
+            "ram": {
+                "points": {"B": [0.0, 0.0]},
+                "mass": float(f"{ram_mass if ram_mass is not None else rod:.6g}"),
+                "inertia": 0,
+            },
+        },  # fmt: skip
+        "joints": {
+            "O": {"type": "revolute", "links": ["frame", "crank"]},
+            "A": {"type": "revolute", "links": ["crank", "rod"]},
+            "B": {"type": "revolute", "links": ["rod", "ram"]},
+            "guide": {
+                "type": "prismatic",
+                "links": ["frame", "ram"],
+                "point": "B",
+                "through": [mm(-e), 0.0],
+                "axis": -90.0,
+            },
+        },  # fmt: skip
+        "drives": [{"joint": "O", "speed": speed, "direction": "ccw", "angle": degrees(start)}],
+        "hints": {"B": [mm(-e), mm(-near)]},
+    }
+    comments = {
+        ("links", "crank", "length"): f"r = (|OB1| - |OB2|) / 2: stroke H = {stroke * 1e3:.6g} mm",
+        ("links", "rod", "length"): f"l: {why}; largest pressure angle {math.degrees(alpha):.6g} deg",
+        ("joints", "guide", "through"): f"offset e = {e * 1e3:.6g} mm: time ratio K = {time_ratio:.6g}",
+        ("hints", "B"): "the ram below the crank",
+    }
+    return data, comments

@@ -1,0 +1,91 @@
+"""``linkwork synthesize``: the file it writes is taken as it is by check, kinematics, analyze and view;
+requirements that cannot be met exit 2 with one line and no file."""
+
+from __future__ import annotations
+
+import math
+import shlex
+from pathlib import Path
+
+import pytest
+
+import linkwork as lw
+from commandline import linkwork
+from linkwork.motion.analysis import extremes
+
+
+def test_the_written_slider_crank_meets_the_request_and_every_command_takes_it(tmp_path):
+    out = tmp_path / "s.yaml"
+    run = linkwork("synthesize", "slider-crank", "--stroke", "400mm", "--time-ratio", "1.05",
+                   "--max-pressure-angle", "30deg", "--out", str(out))  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    (ext,) = extremes(lw.kinematics(str(out), steps=3600))
+    assert ext.stroke == pytest.approx(0.4, rel=1e-9) and ext.time_ratio == pytest.approx(1.05, rel=1e-9)
+    assert linkwork("check", str(out)).returncode == 0
+    kin = linkwork("kinematics", str(out))
+    assert kin.returncode == 0 and "stroke 400.00 mm" in kin.stdout and "time ratio K 1.0500" in kin.stdout
+    view = linkwork("view", str(out), "--export", str(tmp_path / "v.html"), "--steps", "36")
+    assert view.returncode == 0, view.stderr
+    report = linkwork("analyze", str(out), "--out", str(tmp_path / "r"), "--steps", "36", "--no-animation")
+    assert report.returncode == 0, report.stderr
+
+
+def test_the_written_crank_rocker_meets_the_swing(tmp_path):
+    out = tmp_path / "c.yaml"
+    run = linkwork("synthesize", "crank-rocker", "--swing", "45deg", "--time-ratio", "1.2", "--frame", "300mm",
+                   "--out", str(out), "--json")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    (ext,) = extremes(lw.kinematics(str(out), steps=3600))
+    assert ext.stroke == pytest.approx(math.radians(45), rel=1e-9)
+    assert ext.time_ratio == pytest.approx(1.2, rel=1e-9)
+    assert '"frame": 0.3' in run.stdout
+    assert linkwork("check", str(out)).returncode == 0
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["slider-crank", "--stroke", "400mm", "--time-ratio", "1.3", "--max-pressure-angle", "30deg"],
+        ["slider-crank", "--stroke", "400mm", "--time-ratio", "3.2"],
+        ["slider-crank", "--stroke", "400 kg", "--time-ratio", "1.2"],
+        ["slider-crank", "--time-ratio", "1.2"],
+        ["crank-rocker", "--swing", "60deg", "--time-ratio", "1.5", "--rocker", "1m", "--min-transmission-angle", "45"],
+        ["crank-rocker", "--swing", "60deg", "--time-ratio", "1.5", "--stroke", "1m"],
+        ["four-bar", "--stroke", "1m", "--time-ratio", "1"],
+        ["slider-crank", "--stroke", "nan", "--time-ratio", "1.1"],
+        ["slider-crank", "--stroke", "1m", "--time-ratio", "abc"],
+        ["crank-rocker", "--swing", "45deg", "--time-ratio", "inf", "--rocker", "1m"],
+        ["crank-rocker", "--swing", "45deg", "--time-ratio", "1.1", "--rocker", "-1m"],
+    ],
+)
+def test_requirements_that_cannot_be_met_exit_2_with_one_line_and_no_file(tmp_path, args):
+    out = tmp_path / "x.yaml"
+    run = linkwork("synthesize", *args, "--out", str(out))
+    assert run.returncode == 2
+    assert run.stderr.startswith("error: ") and len(run.stderr.strip().splitlines()) == 1, run.stderr
+    assert "Traceback" not in run.stderr
+    assert not out.exists()
+
+
+def test_the_message_of_an_impossible_bound_names_both_requirements_and_the_nearest_values(tmp_path):
+    run = linkwork("synthesize", "slider-crank", "--stroke", "400mm", "--time-ratio", "1.3",
+                   "--max-pressure-angle", "30deg", "--out", str(tmp_path / "s.yaml"))  # fmt: skip
+    assert run.stderr.strip() == (
+        "error: time ratio K = 1.3 needs a largest pressure angle of at least 51 deg; at most 30 deg gives K <= 1.092"
+    )
+
+
+def test_the_readme_synthesis_commands_and_python_run(tmp_path, monkeypatch):
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## Synthesis from requirements", 1)[1].split("\n## ", 1)[0]
+    commands, python = section.split("```")[1], section.split("```")[3]
+    for line in commands.strip().splitlines():
+        run = linkwork(*shlex.split(line)[1:], cwd=tmp_path)
+        assert run.returncode == 0, run.stderr
+    (ext,) = extremes(lw.kinematics(str(tmp_path / "press.yaml"), steps=3600))
+    assert ext.stroke == pytest.approx(0.4, rel=1e-9)
+    monkeypatch.chdir(tmp_path)
+    exec(python.removeprefix("python\n"), {})  # noqa: S102 - the README's own example
+    (ext,) = extremes(lw.kinematics(str(tmp_path / "press.yaml"), steps=3600))
+    assert ext.time_ratio == pytest.approx(1.3, rel=1e-9)
+    assert "1.092" in section  # the message quoted is the one the command prints (tested above)

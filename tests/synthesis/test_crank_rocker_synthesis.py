@@ -1,0 +1,127 @@
+"""Crank-rocker synthesis: the circle construction holds the bundled four-bar, the written file meets the
+swing and time ratio as the analysis measures them, the pick is the best of the family, and impossible
+bounds say what can be met."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import linkwork as lw
+from linkwork.errors import SynthesisError
+from linkwork.motion.analysis import extremes, transmission
+from linkwork.synthesis import synthesize
+from linkwork.synthesis.crank_rocker import family, largest_time_ratio, members
+
+
+def law_of_cosines(a: float, b: float, c: float, d: float) -> tuple[float, float]:
+    """Swing psi and the crank's angle theta between the limit positions of a crank-rocker (frame d,
+    crank a, coupler b, rocker c) from the two triangles O2 O4 B with O2 B = b +- a."""
+
+    def angle(p: float, q: float, opposite: float) -> float:
+        return math.acos((p * p + q * q - opposite * opposite) / (2 * p * q))
+
+    psi = angle(d, c, b + a) - angle(d, c, b - a)
+    theta = angle(d, b - a, c) - angle(d, b + a, c)
+    return abs(psi), abs(theta)
+
+
+def test_the_bundled_four_bar_is_a_member_of_the_family_of_its_swing_and_time_ratio():
+    a, b, c, d = 0.10, 0.35, 0.25, 0.30
+    psi, theta = law_of_cosines(a, b, c, d)
+    (out,) = extremes(lw.kinematics("four-bar", steps=3600))
+    assert out.stroke == pytest.approx(psi, rel=1e-9)  # the analysis agrees with the hand formulas
+    assert out.time_ratio == pytest.approx((math.pi + theta) / (math.pi - theta), rel=1e-9)
+    found = [members(psi, theta, np.array([(b - a) / c]), side) for side in (1.0, -1.0)]
+    hit = [[float(m[k][0]) * c for k in ("crank", "coupler", "rocker", "frame")] for m in found if m["valid"][0]]
+    assert [a, b, c, d] in [pytest.approx(h, rel=1e-12) for h in hit]
+    for h in hit:  # the other side of the chord, where it is a crank-rocker, has the same swing and theta
+        assert law_of_cosines(*h) == pytest.approx((psi, theta), rel=1e-12)
+
+
+def test_the_least_transmission_angle_closed_form_is_the_analysis_least():
+    a, b, c, d = 0.10, 0.35, 0.25, 0.30
+    from linkwork.synthesis.crank_rocker import least_transmission_angle
+
+    mu = least_transmission_angle(a, b, c, d)
+    # crank along the frame (towards O4 and away): the closed form's angles
+    (at,) = transmission(lw.kinematics("four-bar", np.array([0.0, math.pi]))).values()
+    assert float(np.min(at)) == pytest.approx(float(mu), rel=1e-12)
+    (over,) = transmission(lw.kinematics("four-bar", steps=3600)).values()
+    assert float(np.min(over)) >= float(mu) - 1e-12
+
+
+@settings(max_examples=10, deadline=None)
+@given(
+    swing=st.floats(math.radians(20), math.radians(120)),
+    k=st.floats(1.01, 2.0),
+    scale=st.floats(0.05, 2.0),
+    by=st.sampled_from(["rocker", "frame"]),
+)
+def test_random_feasible_requirements_are_met_as_the_analysis_measures_them(swing, k, scale, by):
+    s = synthesize("crank-rocker", swing=swing, time_ratio=k, **{by: scale})
+    kin = lw.kinematics(s.spec, steps=3600)
+    (out,) = extremes(kin)
+    assert out.stroke == pytest.approx(swing, rel=1e-9)
+    assert out.time_ratio == pytest.approx(k, rel=1e-9)
+    assert s.dimensions[by] == pytest.approx(scale, rel=1e-12)
+    (mu,) = transmission(kin).values()
+    assert float(np.min(mu)) >= s.predicted["least_transmission_angle"] - 1e-9
+    assert s.measured["least_transmission_angle"] == pytest.approx(s.predicted["least_transmission_angle"], rel=1e-9)
+    psi, theta = law_of_cosines(*(s.dimensions[n] for n in ("crank", "coupler", "rocker", "frame")))
+    assert (psi, (math.pi + theta) / (math.pi - theta)) == pytest.approx((swing, k), rel=1e-9)
+
+
+def test_the_pick_has_the_greatest_least_transmission_angle_of_the_family():
+    s = synthesize("crank-rocker", swing=math.radians(60), time_ratio=1.5, rocker=1.0)
+    curve = family(math.radians(60), 1.5, count=4001).columns["least_transmission_angle"]
+    assert np.nanmax(curve) <= s.predicted["least_transmission_angle"] + 1e-12
+    assert np.nanmax(curve) > s.predicted["least_transmission_angle"] - 1e-5
+
+
+def test_k_1_needs_the_bound_and_then_meets_it_with_the_nearest_pivot():
+    with pytest.raises(SynthesisError, match="give the least transmission angle"):
+        synthesize("crank-rocker", swing=math.radians(45), time_ratio=1.0, rocker=0.25)
+    s = synthesize("crank-rocker", swing=math.radians(45), time_ratio=1.0, frame=0.4,
+                   min_transmission_angle=math.radians(50))  # fmt: skip
+    assert s.measured["least_transmission_angle"] == pytest.approx(math.radians(50), rel=1e-9)
+    assert s.measured["time_ratio"] == pytest.approx(1.0, rel=1e-9)
+
+
+def test_an_impossible_bound_names_the_best_angle_and_the_largest_k_that_meets_it():
+    with pytest.raises(SynthesisError) as err:
+        synthesize("crank-rocker", swing=math.radians(60), time_ratio=1.5, frame=0.4,
+                   min_transmission_angle=math.radians(40))  # fmt: skip
+    text = str(err.value)
+    assert "K = 1.5 give a least transmission angle of at most 29.76 deg" in text
+    k = largest_time_ratio(math.radians(60), math.radians(40))
+    assert f"at least 40 deg gives K <= {k:.4g}" in text
+    s = synthesize("crank-rocker", swing=math.radians(60), time_ratio=k * (1 - 1e-6), frame=0.4,
+                   min_transmission_angle=math.radians(40))  # fmt: skip
+    assert s.measured["least_transmission_angle"] >= math.radians(40) * (1 - 1e-9)
+
+
+def test_a_time_ratio_no_crank_rocker_of_the_swing_reaches_names_the_largest_that_one_does():
+    with pytest.raises(SynthesisError) as err:
+        synthesize("crank-rocker", swing=math.radians(40), time_ratio=5.0, rocker=0.3)
+    text = str(err.value)
+    assert "no crank-rocker has these limit positions; the swing 40 deg gives K <= 4.14" in text
+    from linkwork.synthesis.crank_rocker import best
+
+    theta = math.pi * (4.1 - 1) / (4.1 + 1)
+    t, side, _ = best(math.radians(40), theta)
+    a, b, c, d = (float(members(math.radians(40), theta, np.array([t]), side)[k][0]) for k in
+                  ("crank", "coupler", "rocker", "frame"))  # fmt: skip
+    assert law_of_cosines(a, b, c, d) == pytest.approx((math.radians(40), theta), rel=1e-9)
+
+
+def test_a_measure_off_by_more_than_1e_9_is_refused_and_the_message_says_how_near_a_dead_point():
+    from linkwork.synthesis.common import confirm
+
+    confirm({"time_ratio": 2.9 * (1 + 9e-10)}, {"time_ratio": 2.9}, math.radians(0.25))
+    with pytest.raises(SynthesisError, match="comes within 0.25 deg of a dead point"):
+        confirm({"time_ratio": 2.9 * (1 + 2e-9)}, {"time_ratio": 2.9}, math.radians(0.25))
