@@ -244,7 +244,9 @@ class Link(_Strict):
     points: dict[str, Vec2] = Field(default_factory=dict, description="points in the link's own coordinates")
     mass: PositiveMass | None = None
     com: PointOrVec | None = Field(
-        None, description="centre of mass: a point name or local [x, y]; default: centroid of the points"
+        None,
+        description="centre of mass: a point name or local [x, y]; default for a link given by ends and length: "
+        "the middle of its ends (markers are not material), otherwise the centroid of the points",
     )
     inertia: Inertia | None = Field(
         None,
