@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from linkwork.angles import wrap
 from linkwork.motion import fast, kernels
 from linkwork.motion.program import Step
 from linkwork.motion.state import Jump, State, StepRecord
@@ -133,7 +134,7 @@ def _solve(
 ) -> State:
     n_var, n_ang = geom.n_variants, values.shape[0]
     state = State.empty(mech.n_links_total, *geom.link_major, n_ang)
-    offset = (values[:, 0] - mech.drive_start[0] + np.pi) % (2 * np.pi) - np.pi
+    offset = wrap(values[:, 0] - mech.drive_start[0])
     if mech.pair_type[mech.drive_pair[0]] == PairType.PRISMATIC:
         offset = values[:, 0] - mech.drive_start[0]
     state.start_index = int(np.argmin(np.abs(offset)))
@@ -346,7 +347,7 @@ def _rings(
     where it converged, ``(V, A)``."""
     links = group.links
     n_var, n_ang = q.shape[:2]
-    offset = (values - mech.drive_start + np.pi) % (2 * np.pi) - np.pi  # (A, D)
+    offset = wrap(values - mech.drive_start)  # (A, D)
     key = offset[:, 0] if values.shape[1] == 1 else np.max(np.abs(offset), axis=1)
     ring = np.floor(np.abs(key) / 0.2).astype(int)
     converged = np.zeros((n_var, n_ang), dtype=bool)
@@ -411,7 +412,7 @@ def _jumps(
     moves = np.zeros(state.q.shape[2:3] + (len(drive) - 1,))
     for i in links:
         d = np.diff(state.q[i], axis=-1)
-        turn = np.abs((d[2] + np.pi) % (2 * np.pi) - np.pi) * scale
+        turn = np.abs(wrap(d[2])) * scale
         moves = np.maximum(moves, (np.hypot(d[0], d[1]) + turn) / step)
     if ok is not None:
         moves = np.where(ok[:, 1:] & ok[:, :-1], moves, np.nan)
