@@ -1,9 +1,10 @@
 """Angles: the one wrap and the one NaN-aware unwrap every part of linkwork uses.
 
 A wrapped angle lies in ``(-pi, pi]``, the range of ``arctan2``: ``pi`` and ``-pi`` are both written
-``pi``, so two routes to the same direction never differ by a turn.  An unwrapped series of angles is continuous along its samples,
-also across samples where the quantity has no value (NaN, where a mechanism does not assemble): every
-finite sample is kept, turned by whole turns so that it follows the last finite sample before it.
+``pi``, so two routes to the same direction never differ by a turn.  An unwrapped series of angles is
+continuous along its samples, also across samples where the quantity has no value (NaN, where a
+mechanism does not assemble): every finite sample is kept, turned by whole turns so that it follows the
+last finite sample before it.
 """
 
 from __future__ import annotations
