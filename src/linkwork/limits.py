@@ -112,6 +112,26 @@ def shown(value: Any) -> str:
     return quote(value)
 
 
+def echo(value: Any) -> str:
+    """A value read from a mechanism file, for a message, spelled as the file (YAML) writes it: ``true`` and
+    ``false``, ``.inf`` and ``.nan``, numbers as written, text by :func:`quote`, and what has no one spelling
+    said in words (``nothing`` for an empty value, ``a mapping``, ``a list``).  The one way a message of
+    :mod:`linkwork.spec` and :mod:`linkwork.units` echoes a bad value."""
+    if value is None:
+        return "nothing"
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list | tuple):
+        return "a list"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float) and not math.isfinite(value):
+        return ".nan" if math.isnan(value) else (".inf" if value > 0 else "-.inf")
+    if isinstance(value, int | float):
+        return shown(value)
+    return quote(value)
+
+
 def max_workers() -> int:
     """Worker processes a local Dask cluster may have on this machine."""
     return WORKERS_PER_CORE * (os.cpu_count() or 1)

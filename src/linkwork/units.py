@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import UnitParseError
-from linkwork.limits import MAX_QUANTITY, quote
+from linkwork.limits import MAX_QUANTITY, echo, quote
 
 #: Kinds of quantity: (phrase for messages, SI unit, pint dimensionality).
 KINDS: dict[str, tuple[str, str, str]] = {
@@ -259,7 +259,7 @@ def parse_quantity(value: Any, kind: str, declared: dict[str, str] | None = None
     declared = declared or DEFAULT_UNITS
     phrase = KINDS[kind][0]
     if isinstance(value, bool) or value is None or not isinstance(value, int | float | str):
-        raise UnitParseError(f"expected {phrase}, got {_show(value)}")
+        raise UnitParseError(f"expected {phrase}, got {echo(value)}")
     if isinstance(value, int | float):
         return _bare(value, kind, declared)
     number = _number(value)
@@ -282,7 +282,7 @@ def _bare(value: float, kind: str, declared: dict[str, str]) -> float:
     except OverflowError:
         raise UnitParseError(f"expected {phrase}, got a number too large to use") from None
     if not math.isfinite(number):
-        raise UnitParseError(f"expected {phrase}, got {value!r}")
+        raise UnitParseError(f"expected {phrase}, got {echo(value)}")
     unit = bare_unit(kind, declared)
     if unit is None and number == 0:
         return 0.0  # zero in any unit
@@ -321,18 +321,6 @@ _NUMBER_UNIT = re.compile(r"^([-+]?+(?:\d++(?:\.\d*+)?+|\.\d++)(?:[eE][-+]?+\d++
 
 #: Units an angle may be written in (pint's canonical names).
 ANGLE_UNITS = {"radian", "degree", "revolution", "turn", "arcminute", "arcsecond", "gradian"}
-
-
-def _show(value: Any) -> str:
-    if isinstance(value, list):
-        return "a list"
-    if isinstance(value, dict):
-        return "a mapping"
-    if value is None:
-        return "nothing"
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    return repr(value)
 
 
 def _quote(text: str) -> str:

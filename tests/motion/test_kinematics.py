@@ -469,7 +469,6 @@ def test_a_drive_on_the_frame_measures_the_crank_angle_whatever_the_order_of_its
     np.testing.assert_allclose(fb.reaction("O2", on="crank"), fa.reaction("O2", on="crank"), rtol=1e-12)
 
 
-
 @pytest.mark.parametrize("angle", [0.5, 1.0, 2.0, 4.9])
 def test_a_single_angle_of_a_rhombus_reports_no_event_it_was_not_asked_about(angle):
     """All four sides equal: the parallelogram and the folded (kite) modes meet at 0 and 180 deg.  An
@@ -823,3 +822,70 @@ def test_each_slider_stays_on_its_guide_line(name):
     at = kin.point_positions(mech.pair_points[pairs, 1]).transpose(0, 3, 1, 2) - origin  # (K, 2, V, A)
     off = at[:, 0] * u[:, 1] - at[:, 1] * u[:, 0]  # across the line
     np.testing.assert_allclose(off[:, ok], 0.0, rtol=0, atol=1e-9)
+
+
+NEAR_DUPLICATES = [
+    [0.0, 1e-9],
+    [1e-9, 0.0],
+    [0.0, 1e-9, 2e-9],
+    [-1e-9, 0.0, 1e-9],
+    [0.0, 1e-9, 0.1, 0.2],
+    [0.2, 1e-9, 0.0],
+]
+
+
+@pytest.mark.parametrize("base", [0.0, 180.0])
+@pytest.mark.parametrize("offsets", NEAR_DUPLICATES + [[0.0, -1e-9], [-1e-9, 0.0, 1e-9, 1.0]])
+def test_samples_a_rounding_beside_a_change_point_keep_the_motion_through_it(base, offsets):
+    """The isosceles slider-crank (OA = AB = 0.15 m, 10 rad/s) at samples on and a 1e-9 deg beside its change
+    points, in one batch: y_B = 2 l sin(phi), v_B = 2 l w cos(phi), the rod turning at -w, the foundation
+    pushed along x by the crank's and the rod's centripetal share, (m1 + m1) (l / 2) w^2 cos(phi) (150 N)."""
+    phi = np.radians(base + np.array(offsets))
+    kin = lw.kinematics("shears-slider-crank", phi)
+    np.testing.assert_allclose(kin.velocity("B")[:, 1], 3.0 * np.cos(phi), rtol=0, atol=1e-8)
+    np.testing.assert_allclose(kin.omega("rod"), -10.0, rtol=0, atol=1e-8)
+    forces = lw.forces("shears-slider-crank", phi)
+    np.testing.assert_allclose(forces.foundation[:, 0], 150.0 * np.cos(phi), rtol=0, atol=1e-6)
+
+
+@pytest.mark.parametrize("base", [0.0, 180.0])
+@pytest.mark.parametrize("offsets", NEAR_DUPLICATES)
+def test_a_parallelogram_batch_a_rounding_beside_its_flat_position_moves_as_one(base, offsets):
+    """Crank and rocker 0.1 m, coupler and frame 0.3 m, assembled open: B = A + (0.3 m, 0), so the rocker
+    turns with the crank, on its flat positions and a 1e-9 deg beside them alike."""
+    data, _ = four_bar_spec(0.1, 0.3, 0.1, 0.3, 1.0, True)
+    phi = np.radians(base + np.array(offsets))
+    kin = lw.kinematics(lw.compile(lw.from_dict(data)), phi)
+    np.testing.assert_allclose(kin.omega("rocker"), kin.omega("crank"), rtol=0, atol=1e-8)
+    np.testing.assert_allclose(kin.velocity("B"), kin.velocity("A"), rtol=0, atol=1e-9)
+
+
+def _batch_and_alone(mech, phi):
+    kin = lw.kinematics(mech, phi)
+    for i, x in enumerate(phi):
+        one = lw.kinematics(mech, [x])
+        here, alone = kin.pose[:, i], one.pose[:, 0]
+        where = f"{x!r} in {phi}"
+        np.testing.assert_allclose(here[..., :2], alone[..., :2], rtol=0, atol=1e-9, err_msg=where)
+        np.testing.assert_allclose(np.cos(here[..., 2] - alone[..., 2]), 1.0, rtol=0, atol=1e-12, err_msg=where)
+        np.testing.assert_allclose(kin.vel[:, i], one.vel[:, 0], rtol=0, atol=1e-7, err_msg=where)
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    which=st.sampled_from(["shears-slider-crank", "rhombus", "parallelogram"]),
+    base=st.sampled_from([0.0, np.pi, 1.0]),
+    offsets=st.lists(
+        st.sampled_from([0.0, 1e-12, -1e-12, 1e-9, -1e-9, 2e-9, 1e-6, 1e-3, -0.05, 0.1, 0.3]), min_size=2, max_size=5
+    ),
+)
+def test_a_batch_gives_each_sample_what_the_sample_alone_gives(which, base, offsets):
+    """Whatever the other samples of a batch (near duplicates, samples on either side of a change point, in
+    any order), each sample's pose and velocities are those it has asked alone."""
+    if which == "rhombus":
+        mech = lw.compile(lw.loads(RHOMBUS))
+    elif which == "parallelogram":
+        mech = lw.compile(lw.from_dict(four_bar_spec(0.1, 0.3, 0.1, 0.3, 1.0, True)[0]))
+    else:
+        mech = lw.compile(lw.example(which))
+    _batch_and_alone(mech, base + np.asarray(offsets))

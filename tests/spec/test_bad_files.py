@@ -109,3 +109,30 @@ def test_rich_markup_in_names_is_printed_as_is(tmp_path):
     result = CliRunner().invoke(app, ["check", str(path)])
     assert result.exit_code == 0, result.output
     assert "x [/bold] y" in result.stdout
+
+
+def test_a_bad_value_is_echoed_one_way_as_the_file_writes_it():
+    """true as true wherever it is refused (a length, a direction), .inf as .inf, text in double quotes, a
+    list as a list: spelled as YAML writes them, whichever stage of the reading refuses them."""
+    import linkwork as lw
+    from linkwork.errors import SpecError
+    from linkwork.examples import text
+
+    bad = (
+        text("four-bar")
+        .replace("length: 100", "length: true")
+        .replace("direction: ccw", "direction: true")
+        .replace("mass: 1.0", "mass: .inf")
+        .replace("mass: 2.5", "mass: [1, 2]")
+        .replace("type: revolute, links: [frame, crank]", "type: yes, links: [frame, crank]")
+    )
+    with pytest.raises(SpecError) as caught:
+        lw.loads(bad, file="bad.yaml")
+    lines = str(caught.value).splitlines()
+    assert lines == [
+        "bad.yaml:17: links.crank.length: expected a length, got true",
+        "bad.yaml:18: links.crank.mass: expected a mass, got .inf",
+        "bad.yaml:23: links.coupler.mass: expected a mass, got a list",
+        'bad.yaml:30: joints.O2.type: expected one of revolute, prismatic, pin-in-slot, got "yes"',
+        "bad.yaml:36: drives[0].direction: expected one of ccw, cw, forward, backward, got true",
+    ]

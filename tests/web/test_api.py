@@ -1239,3 +1239,20 @@ def test_the_viewer_numbers_the_cycle_from_position_0_as_the_report_does(name):
     phi = np.degrees(np.mod(direction(mech) * (np.radians(payload["angles_deg"]) - zero), 2 * math.pi))
     np.testing.assert_allclose(payload["turn_deg"], phi, atol=1e-6)
     assert payload["turn_deg"][0] == 0
+
+
+def test_the_exported_series_are_written_as_the_command_line_writes_numbers(tmp_path):
+    """The page's series, read back from the exported file, are the driving torque and foundation forces of
+    lw.forces to 12 significant digits (not 9), and the round-off beside a zero (the isosceles slider-crank's
+    torque and foundation at its change points) is the 0 the command line's JSON writes, never -0.0."""
+    from linkwork.io import jsonout
+
+    out = export_page("shears-slider-crank", tmp_path / "page.html", steps=72)
+    data = _embedded(out.read_text(encoding="utf-8"))
+    mech = lw.compile(lw.load("shears-slider-crank"))
+    f = lw.forces(mech, _turn(mech, 72))
+    for key, want in (("torque", f.driving_torque), ("foundation:fx", f.foundation[:, 0])):
+        got = next(s for s in data["series"] if s["key"] == key)["values"]
+        np.testing.assert_allclose(got, want, rtol=1e-11, atol=1e-9 * np.abs(want).max())
+        assert not any(v == 0 and math.copysign(1.0, v) < 0 for v in got)
+        assert got == json.loads(jsonout.dumps(want))  # what --json writes of the same numbers

@@ -4,7 +4,7 @@ The variants go through :func:`linkwork.kinematics` (one compile, many
 parameter sets) and, for the metrics that need them, :func:`linkwork.forces`
 of that kinematics result.  An override means what the same edit of the file
 means, mass properties included: values the file gives stay, defaults (the
-centroid, a uniform rod's ``m L^2 / 12``) follow the variant's geometry and
+middle of a rod's ends or the centroid, a uniform rod's ``m L^2 / 12``) follow the variant's geometry and
 mass (the mass rule of :mod:`linkwork.structure.parameters`).  At a singular
 position (a dead point, where the reactions are indeterminate) the driving
 torque and the foundation loads are still defined, by the power balance and

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
+from linkwork.angles import unwrap
 from linkwork.lang import t
 from linkwork.motion.analysis import Output, coordinate, from_position_0, working, zero_angle
 from linkwork.motion.kinematics import direction
@@ -154,8 +155,8 @@ def link_angles(kin: Kinematics, zero: float | None = None, lang: str = "en") ->
         rates = (_one(kin.omega(i), kin.variants)[order], _one(kin.epsilon(i), kin.variants)[order])
         if i in cranks or not np.nanmax(np.abs(rates[0]), initial=0.0) > 1e-9 * speed:
             continue
-        angle = np.degrees(np.unwrap(_one(kin.angle(i), kin.variants)[order]))
-        angle -= 360.0 * np.round(angle[0] / 360.0)
+        angle = np.degrees(unwrap(_one(kin.angle(i), kin.variants)[order]))
+        angle -= 360.0 * np.round(angle[np.isfinite(angle)][:1].sum() / 360.0)  # the first valid one near 0
         for ax, y in zip(axes, (angle, *rates), strict=True):
             ax.plot(phi, y, lw=1.1, label=name)
     for ax, key in zip(axes, ("angle", "omega", "epsilon"), strict=True):

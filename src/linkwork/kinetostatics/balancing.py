@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from linkwork.angles import wrap
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.forces import Forces, forces
 from linkwork.spec.checks import suggest
@@ -210,7 +211,7 @@ def _counterweight(
         raise LinkworkError(f'radius of the counterweight on "{mech.link_names[j]}": expected a positive length')
     mr = math.hypot(px, py)
     mu = mr / r
-    weight = Counterweight(mech.link_names[j], mech.pair_joint[k], mr, math.atan2(py, px), r, mu)
+    weight = Counterweight(mech.link_names[j], mech.pair_joint[k], mr, wrap(math.atan2(py, px)), r, mu)
     at = pivot_local + np.array([px, py]) / mr * r if mu > 0 else pivot_local
     return weight, at
 

@@ -26,12 +26,10 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from linkwork.angles import TWO_PI, unwrap, wrap
 from linkwork.motion.kinematics import Kinematics, cycle, kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.units import turn_deg
-
-TWO_PI = 2 * math.pi
-
 
 # ---------------------------------------------------------------- the frame's sliders and rockers
 
@@ -144,7 +142,7 @@ def coordinate(kin: Kinematics, out: Output) -> tuple[np.ndarray, np.ndarray, np
     angular velocity and acceleration.
     """
     if out.kind == "rocker":
-        return _unwrap(kin.q[out.link, 2]), kin.v[out.link, 2], kin.a[out.link, 2]
+        return unwrap(kin.q[out.link, 2]), kin.v[out.link, 2], kin.a[out.link, 2]
     s, v, a = slider_coordinates(kin, [out])[0]
     return s, v, a
 
@@ -160,23 +158,6 @@ def slider_coordinates(kin: Kinematics, sliders: Sequence[Output]) -> np.ndarray
     motion[:, 0, ..., 1] -= origin[:, 1]
     # + 0.0: a sum of x and y that is -0.0 reads 0.0, as a sum along an axis gives it
     return motion[..., 0] * u[:, None, 0] + motion[..., 1] * u[:, None, 1] + 0.0
-
-
-def _unwrap(angle: np.ndarray) -> np.ndarray:
-    """Angles ``(V, A)`` unwrapped along the samples, across the samples that are NaN (kept NaN)."""
-    ok = np.isfinite(angle)
-    whole = bool(ok.all())  # nothing to fill
-    if whole:
-        filled = angle
-    else:  # each NaN replaced by the last finite value before it
-        idx = np.maximum.accumulate(np.where(ok, np.arange(angle.shape[-1]), 0), axis=-1)
-        filled = np.take_along_axis(angle, idx, -1)
-    step = filled[..., 1:] - filled[..., :-1]
-    with np.errstate(invalid="ignore"):
-        jump = np.where(np.abs(step) >= math.pi, np.mod(step + math.pi, TWO_PI) - math.pi - step, 0.0)
-    turns = np.zeros(angle.shape)
-    np.cumsum(jump, axis=-1, out=turns[..., 1:])
-    return angle + turns if whole else np.where(ok, angle + turns, np.nan)
 
 
 # ---------------------------------------------------------------- extremes over the turn
@@ -338,7 +319,7 @@ def _turns(angle: np.ndarray, whole: np.ndarray) -> np.ndarray:
     """Whether an unwrapped angle ``(V, A)`` turns fully: over a whole turn of samples, it does not come back
     to its first value; over a part of the turn, it spans a full turn."""
     last_to_first = angle[..., 0] - angle[..., -1]
-    winding = -last_to_first + np.mod(last_to_first + math.pi, TWO_PI) - math.pi
+    winding = wrap(last_to_first) - last_to_first
     ok = np.isfinite(angle)
     with np.errstate(invalid="ignore"):
         span = np.max(np.where(ok, angle, -np.inf), -1) - np.min(np.where(ok, angle, np.inf), -1)

@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.angles import TWO_PI, wrap
 from linkwork.motion.events import Event, find, runs
 from linkwork.motion.solve import run_numpy
 from linkwork.structure.model import Mechanism, PairType
@@ -218,9 +219,10 @@ def _gaps(
 
 
 def _interval(a: float, b: float) -> tuple[float, float]:
-    """The interval between two drive angles, low first, its middle in (-pi, pi]."""
+    """The interval between two drive angles, low first, its middle in (-pi, pi] (:func:`~linkwork.angles.wrap`)."""
     lo, hi = sorted((a, b))
-    shift = math.ceil((lo + hi) / 2 / (2 * np.pi) - 0.5 - 1e-9) * 2 * np.pi  # a middle at -pi goes to pi
+    mid, slack = (lo + hi) / 2, 1e-9 * TWO_PI  # a middle within the limits' refinement above -pi is at pi
+    shift = round((mid - slack - wrap(mid - slack)) / TWO_PI) * TWO_PI  # whole turns
     return lo - shift, hi - shift
 
 

@@ -18,6 +18,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.polynomial import polynomial as poly
 
+from linkwork.angles import wrap
 from linkwork.motion.program import Arm, Step
 from linkwork.motion.state import (
     Flip,
@@ -705,7 +706,7 @@ def with_branches(mech: Mechanism, steps: list[Step]) -> list[Step]:
             n_loc = perp((state.axis[step.inner, 0], state.axis[step.inner, 1]))
             theta = state.q[arm_g.link, 2]
             rel = theta - np.arctan2(d[1], d[0]) + np.arctan2(n_loc[1], n_loc[0])
-            rel = (rel + np.pi) % (2 * np.pi) - np.pi
+            rel = wrap(rel)
             step = dataclasses.replace(step, branch=float(np.sign(np.ravel(rel)[0])) or 1.0)
         out.append(step)
     return out

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from linkwork.angles import wrap
 from linkwork.motion import fast, kernels
 from linkwork.motion.program import Step
 from linkwork.motion.state import Jump, State, StepRecord
@@ -133,7 +134,7 @@ def _solve(
 ) -> State:
     n_var, n_ang = geom.n_variants, values.shape[0]
     state = State.empty(mech.n_links_total, *geom.link_major, n_ang)
-    offset = (values[:, 0] - mech.drive_start[0] + np.pi) % (2 * np.pi) - np.pi
+    offset = wrap(values[:, 0] - mech.drive_start[0])
     if mech.pair_type[mech.drive_pair[0]] == PairType.PRISMATIC:
         offset = values[:, 0] - mech.drive_start[0]
     state.start_index = int(np.argmin(np.abs(offset)))
@@ -202,12 +203,14 @@ def _side_modes(
     ``(a,)``: ``(V, a)`` per step (None for other steps).
 
     The mode on each side is that of the neighbouring sample on that side (whatever the order of the
-    angles); where there is none, a change point is crossed: the other mode than the far side's."""
+    angles).  For a dyad singular at the sample it is that of the nearest sample on that side where the
+    dyad is regular: samples a rounding beside the same singular position say nothing of the side (their
+    own modes are those of either side).  Where there is none on one side, a change point is crossed: the
+    other mode than the far side's; where there is none on either, the side facing the assembly pose
+    keeps the sample's own mode."""
     n_ang = values.shape[0]
     below, above = np.maximum(idx - 1, 0), np.minimum(idx + 1, n_ang - 1)
     rising = np.where(below == above, True, values[above, 0] >= values[below, 0])
-    near_minus, near_plus = np.where(rising, below, above), np.where(rising, above, below)
-    alone = near_minus == near_plus  # a single sample: the side facing the assembly pose keeps its mode
     facing_up = values[idx, 0] < mech.drive_start[0]
     lower: list[np.ndarray | None] = []
     upper: list[np.ndarray | None] = []
@@ -217,13 +220,35 @@ def _side_modes(
             upper.append(None)
             continue
         full = record.branch if record.branch is not None else np.full(state.valid.shape, step.branch)
-        lone = d[:, idx] < SINGULAR
-        minus, plus = full[:, near_minus].copy(), full[:, near_plus].copy()
-        minus = np.where(lone & (near_minus == idx) & ~(alone & ~facing_up), -plus, minus)
-        plus = np.where(lone & (near_plus == idx) & ((near_minus != idx) | (alone & ~facing_up)), -minus, plus)
+        before, after = _nearest_regular(~(d < SINGULAR), idx, below, above)
+        near_minus, near_plus = np.where(rising, before, after), np.where(rising, after, before)  # (V, a)
+        own = full[:, idx]
+        minus, plus = np.take_along_axis(full, near_minus, 1), np.take_along_axis(full, near_plus, 1)
+        has_minus, has_plus = near_minus != idx, near_plus != idx
+        lone = d[:, idx] < SINGULAR  # singular at the sample: a side without a regular neighbour is crossed to
+        minus = np.where(has_minus | ~lone, minus, np.where(has_plus, -plus, np.where(facing_up, -own, own)))
+        plus = np.where(has_plus | ~lone, plus, np.where(has_minus, -minus, np.where(facing_up, own, -own)))
         lower.append(minus)
         upper.append(plus)
     return lower, upper
+
+
+def _nearest_regular(
+    regular: np.ndarray, idx: np.ndarray, below: np.ndarray, above: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """For a dyad singular at samples ``idx`` (``regular``: ``(V, A)``, False there): the nearest sample
+    before and after each in the order given where it is regular, ``(V, a)`` each, the sample itself
+    where there is none; where it is regular at a sample, its neighbours ``below`` and ``above``."""
+    n_var, n_ang = regular.shape
+    at = np.arange(n_ang)
+    prev = np.maximum.accumulate(np.where(regular, at, -1), axis=1)  # last regular at or before
+    succ = np.minimum.accumulate(np.where(regular, at, n_ang)[:, ::-1], axis=1)[:, ::-1]  # first at or after
+    prev = np.concatenate([np.full((n_var, 1), -1), prev[:, :-1]], axis=1)[:, idx]  # strictly before
+    succ = np.concatenate([succ[:, 1:], np.full((n_var, 1), n_ang)], axis=1)[:, idx]  # strictly after
+    lone = ~regular[:, idx]
+    before = np.where(lone, np.where(prev >= 0, prev, idx), below)
+    after = np.where(lone, np.where(succ < n_ang, succ, idx), above)
+    return before, after
 
 
 def _write_limits(
@@ -322,7 +347,7 @@ def _rings(
     where it converged, ``(V, A)``."""
     links = group.links
     n_var, n_ang = q.shape[:2]
-    offset = (values - mech.drive_start + np.pi) % (2 * np.pi) - np.pi  # (A, D)
+    offset = wrap(values - mech.drive_start)  # (A, D)
     key = offset[:, 0] if values.shape[1] == 1 else np.max(np.abs(offset), axis=1)
     ring = np.floor(np.abs(key) / 0.2).astype(int)
     converged = np.zeros((n_var, n_ang), dtype=bool)
@@ -387,7 +412,7 @@ def _jumps(
     moves = np.zeros(state.q.shape[2:3] + (len(drive) - 1,))
     for i in links:
         d = np.diff(state.q[i], axis=-1)
-        turn = np.abs((d[2] + np.pi) % (2 * np.pi) - np.pi) * scale
+        turn = np.abs(wrap(d[2])) * scale
         moves = np.maximum(moves, (np.hypot(d[0], d[1]) + turn) / step)
     if ok is not None:
         moves = np.where(ok[:, 1:] & ok[:, :-1], moves, np.nan)

@@ -11,7 +11,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from linkwork.errors import Problem, SpecError, UnitParseError
-from linkwork.limits import quote, shown
+from linkwork.limits import echo, quote
 from linkwork.spec.checks import check, suggest
 from linkwork.spec.schema import Spec
 from linkwork.spec.yamlsource import Source, read_file, read_yaml
@@ -142,35 +142,25 @@ def _convert(src: Source, err: Any) -> Problem:
         expected = err.get("ctx", {}).get("expected", "")
         options = [o.strip().strip("'") for o in expected.replace(" or ", ", ").split(",")]
         return src.problem(
-            loc, f"expected one of {', '.join(options)}, got {_show(value)}{suggest(str(value), options)}"
+            loc, f"expected one of {', '.join(options)}, got {echo(value)}{suggest(str(value), options)}"
         )
     if kind == "linkwork":
         return src.problem(loc, err["msg"])
     if kind in ("dict_type", "model_type", "model_attributes_type"):
-        return src.problem(loc, f"expected a mapping, got {_show(value)}")
+        return src.problem(loc, f"expected a mapping, got {echo(value)}")
     if kind == "list_type":
-        return src.problem(loc, f"expected a list, got {_show(value)}")
+        return src.problem(loc, f"expected a list, got {echo(value)}")
     if kind == "string_type":
-        return src.problem(loc, f"expected a name or text, got {_show(value)}")
+        return src.problem(loc, f"expected a name or text, got {echo(value)}")
     if kind in ("float_type", "float_parsing"):
-        return src.problem(loc, f"expected a number, got {_show(value)}")
+        return src.problem(loc, f"expected a number, got {echo(value)}")
     bounds = {"greater_than": "greater than", "greater_than_equal": "at least", "less_than": "less than"}
     bounds["less_than_equal"] = "at most"
     if kind in bounds:
         limit = next(iter(err.get("ctx", {}).values()), "")
         limit = f"{limit:g}" if isinstance(limit, int | float) else limit
-        return src.problem(loc, f"expected a number {bounds[kind]} {limit}, got {_show(value)}")
+        return src.problem(loc, f"expected a number {bounds[kind]} {limit}, got {echo(value)}")
     return src.problem(loc, err["msg"])
-
-
-def _show(value: Any) -> str:
-    if isinstance(value, dict):
-        return "a mapping"
-    if isinstance(value, list):
-        return "a list"
-    if value is None:
-        return "nothing"
-    return quote(value) if isinstance(value, str) else shown(value)
 
 
 def _fields_at(loc: tuple[Any, ...]) -> list[str]:

@@ -17,7 +17,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr,
 from pydantic_core import PydanticCustomError
 
 from linkwork.errors import UnitParseError
-from linkwork.limits import MIN_DELTA
+from linkwork.limits import MIN_DELTA, echo
 from linkwork.units import DEFAULT_UNITS, KINDS, MADE_OF, parse_quantity
 
 
@@ -51,30 +51,18 @@ def _scalar(kind: str, value: Any, info: ValidationInfo, sign: str = "") -> floa
         raise _error(str(exc)) from None
     noun = KINDS[kind][0].split(" ", 1)[1]
     if abs(x) > 1e9:
-        raise _error(f"expected {KINDS[kind][0]} of a machine's size, got {_show(value)} (out of range)")
+        raise _error(f"expected {KINDS[kind][0]} of a machine's size, got {echo(value)} (out of range)")
     if sign == "positive" and not x > 0:
-        raise _error(f"expected a positive {noun}, got {_show(value)}")
+        raise _error(f"expected a positive {noun}, got {echo(value)}")
     if sign == "nonnegative" and not x >= 0:
-        raise _error(f"expected a non-negative {noun}, got {_show(value)}")
+        raise _error(f"expected a non-negative {noun}, got {echo(value)}")
     return x
 
 
 def _number_or_text(value: Any) -> Any:
     if value is None or isinstance(value, str) or (isinstance(value, int | float) and not isinstance(value, bool)):
         return value
-    raise _error(f"expected a number or a number with a unit, got {_describe(value)}")
-
-
-def _describe(value: Any) -> str:
-    if isinstance(value, list):
-        return "a list"
-    if isinstance(value, dict):
-        return "a mapping"
-    return _show(value)
-
-
-def _show(value: Any) -> str:
-    return f'"{value}"' if isinstance(value, str) else repr(value)
+    raise _error(f"expected a number or a number with a unit, got {echo(value)}")
 
 
 def _quantity(kind: str, sign: str = "") -> tuple[BeforeValidator, WithJsonSchema, Quantity]:
@@ -162,7 +150,7 @@ MomentOrTable = Annotated[float | list[float], *_one_or_table("moment")]
 
 def _vector(value: Any, info: ValidationInfo) -> tuple[float, float]:
     if not isinstance(value, list | tuple) or len(value) != 2:
-        got = f"{len(value)} values" if isinstance(value, list | tuple) else _show(value)
+        got = f"{len(value)} values" if isinstance(value, list | tuple) else echo(value)
         raise _error(f"expected a point [x, y] of two lengths, got {got}")
     return (_scalar("length", value[0], info), _scalar("length", value[1], info))
 
@@ -244,7 +232,9 @@ class Link(_Strict):
     points: dict[str, Vec2] = Field(default_factory=dict, description="points in the link's own coordinates")
     mass: PositiveMass | None = None
     com: PointOrVec | None = Field(
-        None, description="centre of mass: a point name or local [x, y]; default: centroid of the points"
+        None,
+        description="centre of mass: a point name or local [x, y]; default for a link given by ends and length: "
+        "the middle of its ends (markers are not material), otherwise the centroid of the points",
     )
     inertia: Inertia | None = Field(
         None,

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from linkwork.angles import wrap
 from linkwork.structure.model import Mechanism, PairType
 from linkwork.structure.parameters import Geometry
 
@@ -73,11 +74,6 @@ def build_rows(pair_type: np.ndarray, pair_links: np.ndarray, drive_pair: np.nda
         np.array(links, dtype=int).reshape(-1, 2),
         np.array(angular, dtype=bool),
     )
-
-
-def wrap(angle: np.ndarray) -> np.ndarray:
-    """Angles wrapped to [-pi, pi)."""
-    return (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi
 
 
 def _rot(theta: np.ndarray, v: np.ndarray) -> np.ndarray:

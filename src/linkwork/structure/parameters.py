@@ -21,7 +21,9 @@ leaves to its default follows the new geometry and mass:
 
 - the centre of mass: given as local ``[x, y]``, it stays; named by a point
   (``com: E``), it stays at that point wherever the point goes; not given, it
-  is the centroid of the link's points, of the variant;
+  is the middle of the ends for a link given by ``ends`` (a uniform rod:
+  further points are markers or joints, not material), otherwise the
+  centroid of the link's points, of the variant;
 - the moment of inertia: given about the centre of mass, it stays; given
   about a point (``inertia_about``), the inertia about that point stays, so
   the one about the centre of mass is ``J_P - m |P - C|^2`` of the variant;
@@ -64,7 +66,7 @@ from linkwork.units import DEFAULT_UNITS, KINDS, SI_UNITS, _factor, written
 
 #: The centre of mass given in the file's link coordinates: it stays.
 COM_GIVEN = -2
-#: No centre of mass in the file: the centroid of the link's points.
+#: No centre of mass in the file: the middle of the ends of a link given by ends, else the centroid of its points.
 COM_CENTROID = -1
 
 #: A moment of inertia given about the centre of mass: it stays.
@@ -369,7 +371,8 @@ def mass_properties(
 
 
 def _centres(mech: Mechanism, point_local: np.ndarray) -> np.ndarray:
-    """Centres of mass ``(V, N, 2)`` of the variants by the rule of each link."""
+    """Centres of mass ``(V, N, 2)`` of the variants by the rule of each link (a default one: the middle
+    of the ends of a link given by ``ends``, whatever markers it carries; else the centroid of its points)."""
     n_var, n_links = point_local.shape[0], len(mech.link_names)
     rule = np.asarray(mech.link_com_rule)
     com = np.broadcast_to(np.asarray(mech.link_com, dtype=float), (n_var, n_links, 2)).copy()
@@ -381,6 +384,9 @@ def _centres(mech: Mechanism, point_local: np.ndarray) -> np.ndarray:
         member = owner[None, :] == centroid[:, None]  # (C, P)
         count = np.maximum(member.sum(axis=1), 1)
         com[:, centroid] = np.einsum("cp,vpk->vck", member.astype(float), point_local) / count[None, :, None]
+        ends = np.asarray(mech.link_ends)[centroid]
+        rods = ends[:, 0] >= 0
+        com[:, centroid[rods]] = 0.5 * (point_local[:, ends[rods, 0]] + point_local[:, ends[rods, 1]])
     return com
 
 

@@ -44,9 +44,11 @@ Layout (``format: linkwork-view/1``):
   vector with their names, for a legend;
 * ``series``: quantities over the cycle (slider positions, rocker angles,
   driving torque, foundation force...), each with ``label``, ``unit`` and
-  ``values`` (A,); torques and moments counter-clockwise positive (a
-  clockwise drive's driving torque is mostly negative), forces x right and
-  y up, as the labels say;
+  ``values`` (A,), written as the command line's JSON writes numbers
+  (:mod:`linkwork.io.jsonout`: 12 significant digits, round-off zeros as 0);
+  torques and moments counter-clockwise positive (a clockwise drive's
+  driving torque is mostly negative), forces x right and y up, as the
+  labels say;
 * ``forces``: ``available`` (and the ``reason`` where not), the ``checks``
   of the reactions, and the arrows the scheme draws (:mod:`linkwork.web.arrows`):
   ``arrows`` (``kind``, ``name``, ``label``, ``on``, ``by``, the ``point`` it
@@ -62,6 +64,7 @@ Layout (``format: linkwork-view/1``):
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
@@ -69,6 +72,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.errors import UnassemblableError
+from linkwork.io import jsonout
 from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import PlanSeries, _longest, _round_scale, percentile, plan_series
@@ -439,9 +443,16 @@ def plan_frame(series: PlanSeries, valid: np.ndarray, scale: float) -> np.ndarra
 def _series(cycle: Cycle) -> list[dict[str, Any]]:
     """Quantities over the cycle the page can chart."""
     return [
-        {"key": key, "label": label, "unit": unit, "group": group, "values": _json(values, _significant(values))}
+        {"key": key, "label": label, "unit": unit, "group": group, "values": _written(values)}
         for key, label, unit, group, values in series_values(cycle)
     ]
+
+
+def _written(values: np.ndarray) -> list[float | None]:
+    """The numbers of ``values`` (A,) as the one JSON writer writes them (:func:`linkwork.io.jsonout.dumps`),
+    so that a series the page shows or saves is the one ``--json`` gives."""
+    out: list[float | None] = json.loads(jsonout.dumps(np.asarray(values, dtype=float)))
+    return out
 
 
 def series_values(cycle: Cycle) -> list[tuple[str, str, str, str, np.ndarray]]:

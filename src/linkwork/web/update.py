@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.angles import wrap
 from linkwork.motion.analysis import extremes
 from linkwork.motion.plans import plan_series
 from linkwork.scene.scheme import SchemeScene, scheme_scene
@@ -136,7 +137,7 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged:
     # the scheme's items and the labels' anchors do not depend on the samples drawn: those of the symbols
     scheme = scheme_scene(cycle.symbols, at=[], cycle=cycle.symbols)
     poses = np.array(kin.pose[0])
-    poses[..., 2] = np.pi - np.mod(np.pi - poses[..., 2], 2 * np.pi)  # angles in (-pi, pi]
+    poses[..., 2] = wrap(poses[..., 2])  # angles in (-pi, pi]
     scene: dict[str, Any] = {"size": scheme.size, "r": scheme.r, "em": scheme.em, "item_table": item_table(scheme)}
     shapes: dict[str, tuple[dict[str, Any], float]]
     if dragged:  # each plan's scale for the cycle, its frame kept
