@@ -62,6 +62,27 @@ def test_a_first_run_answers_with_numpy_and_compiles_once_in_the_background(tmp_
     assert not list(tmp_path.glob("ready-*"))
 
 
+@pytest.mark.skipif(not jit.installed() or not Path("/proc/self").exists(), reason="numba is not installed")
+def test_the_viewer_with_an_empty_cache_answers_edits_without_compiling(tmp_path):
+    """The viewer (many solves) asks for the compiled kernels at its start: with an empty cache it starts their
+    compile in the background and answers its first cycle and its edits with the NumPy kernels, numba not
+    even imported (the first drag froze the page for minutes while numba compiled on the event loop)."""
+    script = (
+        "import sys; from linkwork.web.server import create_app; app = create_app('double-cut-shears'); "
+        "viewer = app.state.viewer; answer = viewer.edit({'links.crank.length': 0.21}); "
+        "print(len(answer) > 0, 'numba' in sys.modules)"
+    )
+    env = {k: v for k, v in os.environ.items() if k not in ("LINKWORK_NUMBA", "NUMBA_CACHE_DIR")}
+    env["LINKWORK_CACHE_DIR"] = str(tmp_path)
+    try:
+        out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env, timeout=120)
+        assert out.stdout.split() == ["True", "False"], out.stderr
+        assert out.stderr.count(NOTE) == 1
+    finally:
+        for lock in tmp_path.glob("compiling-*"):
+            _stop(lock)
+
+
 def test_a_cache_that_cannot_be_written_leaves_the_numpy_kernels_said_once(tmp_path):
     """A cache folder that cannot be made (under a file): the NumPy kernels' numbers, one line that says why
     and what to set, no compile started."""
