@@ -48,6 +48,9 @@ class Source:
         Duplicate keys found while reading.
     keys : list of str
         The keys of the document's mapping as written, those refused (a name too long) included.
+    text : str or None
+        The YAML text the data was read from (None for data given as such): what a file written back
+        from this description edits, whatever the file on disk holds now.
     """
 
     data: Any
@@ -55,6 +58,7 @@ class Source:
     file: str | None = None
     problems: list[Problem] = field(default_factory=list)
     keys: list[str] = field(default_factory=list)
+    text: str | None = None
 
     def line(self, path: Path) -> int | None:
         """The line of ``path``, or of its nearest ancestor that has one."""
@@ -192,7 +196,7 @@ def read_yaml(text: str, file: str | None = None) -> Source:
     node, problem = _compose(text, file)
     if problem is not None:
         return Source(None, {}, file, [problem])
-    src = Source(None, {}, file, [])
+    src = Source(None, {}, file, [], text=text)
     if node is None or (getattr(node, "tag", None) and str(getattr(node.tag, "value", node.tag)).endswith("null")):
         return Source(
             None,
