@@ -69,6 +69,15 @@ MAX_TIMEOUT = 3600.0
 #: Blows of a working cycle.
 MAX_BLOWS = 10_000
 
+#: Largest size of a value a mechanism file may give: of a quantity in SI, or of a pure number (a gear ratio, a
+#: friction coefficient).  A machine's are far smaller; beyond, the products and squares of later stages
+#: overflow.
+MAX_MAGNITUDE = 1e9
+
+#: Largest gear ratio (motor speed / crank speed): the simulation of the machine's start takes time in proportion
+#: to it (16 s at 1000 on a 2-core machine, minutes beyond).
+MAX_GEAR_RATIO = 1000.0
+
 #: Smallest coefficient of speed fluctuation a flywheel is sized for (the inertia grows as 1/delta).
 MIN_DELTA = 1e-4
 
