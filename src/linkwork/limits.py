@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from typing import Any
 
 #: Bytes of a mechanism file (or of YAML text given to :func:`linkwork.loads`).
@@ -97,6 +98,19 @@ def excerpt(value: Any, limit: int = QUOTE) -> str:
     text = value if isinstance(value, str) else str(value)
     shown = "".join(c if c.isprintable() else repr(c)[1:-1] for c in text[:limit])
     return shown if len(text) <= limit else f"{shown}... ({len(text):,} characters)"
+
+
+#: The control characters a terminal acts on (C0 but tab and newline, DEL, C1): an escape sequence in a name could
+#: retitle the window or clear the screen.
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f]")
+
+
+def printable(text: str) -> str:
+    """``text`` with every control character but tab and newline escaped (``\\x1b``): what may be printed to a
+    terminal, whatever a file or an option held."""
+    if _CONTROL.search(text) is None:
+        return text
+    return _CONTROL.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), text)
 
 
 def whole(value: Any, name: str, low: int, high: int, what: str = "number") -> str | None:

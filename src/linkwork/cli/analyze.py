@@ -36,6 +36,7 @@ def analyze(
     """Every analysis the mechanism supports: tables, figures, animation and report.html."""
     from rich.progress import Progress, SpinnerColumn, TextColumn
 
+    from linkwork.cli.terminal import console
     from linkwork.errors import LinkworkError, MissingDependencyError
     from linkwork.lang import check_lang
     from linkwork.report import analyze as run
@@ -60,7 +61,7 @@ def analyze(
     if dxf:
         needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
     mech = _compile(file_or_example)
-    with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True) as bar:
+    with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True, console=console()) as bar:
         task = bar.add_task("analysing", total=None)
         try:
             path = run(
