@@ -9,6 +9,7 @@ import math
 import random
 import signal
 import time
+from pathlib import Path
 from collections.abc import Iterator
 
 import pytest
@@ -79,10 +80,14 @@ def test_an_alias_that_holds_itself_is_one_problem():
     [
         (("check", "{dir}/large.yaml"), "larger than 1 MiB"),  # 2.4 MB of small values: read for a minute
         (("check", "/dev/zero"), "character device"),  # read until memory ran out
+        (("check", "/proc/self/mem"), "cannot read the file: Input/output error"),  # its read fails: EIO
+        (("check", "/proc/self/pagemap"), "cannot read the file: Invalid argument"),  # EINVAL
     ],
-    ids=["large", "device"],
+    ids=["large", "device", "eio", "einval"],
 )
 def test_a_file_too_large_or_a_device_is_refused_unread(argv, says, tmp_path):
+    if argv[1].startswith("/proc") and not Path(argv[1]).exists():
+        pytest.skip("needs Linux's /proc")
     case = Case("check", argv, {"large.yaml": "name: x\nk:\n" + "- 1\n" * 600_000})
     outcome = run_in_subprocess(case, tmp_path, limit=30)
     assert outcome.code == 2 and problems(case, outcome) == [], outcome.stderr

@@ -104,6 +104,8 @@ def read_file(path: str | os.PathLike[str]) -> str:
         raise SpecError([Problem("", f"cannot read the file: {exc.strerror or exc}", name)]) from None
     try:
         data = _read_bounded(fd, name)
+    except OSError as exc:  # EIO of /proc/self/mem, EINVAL of /proc/self/pagemap, a failing disk
+        raise SpecError([Problem("", f"cannot read the file: {exc.strerror or exc}", name)]) from None
     finally:
         os.close(fd)
     try:
