@@ -9,8 +9,8 @@ import math
 import random
 import signal
 import time
-from pathlib import Path
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 from ruamel.yaml import YAML
