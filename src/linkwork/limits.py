@@ -113,6 +113,12 @@ def printable(text: str) -> str:
     return _CONTROL.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), text)
 
 
+def digits(text: str) -> bool:
+    """Whether ``text`` is a whole number written in the digits 0 to 9 alone (``str.isdigit`` also takes
+    ``²``, which ``int`` refuses, and the digits of other scripts)."""
+    return text.isascii() and text.isdigit()
+
+
 def whole(value: Any, name: str, low: int, high: int, what: str = "number") -> str | None:
     """Why ``value`` is not a whole number from ``low`` to ``high`` (a message naming ``name`` and
     saying ``what`` it counts), or None."""

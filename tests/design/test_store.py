@@ -220,3 +220,15 @@ def test_the_command_says_which_parts_it_computes_again_one_line_each(tmp_path, 
     assert "chunk-00000.parquet" in lines[0] and "variants 0 to 3" in lines[0]
     assert "chunk-00004.parquet" in lines[1] and "variants 16 to 17" in lines[1]
     assert pq.read_table(out).equals(whole, check_metadata=True)
+
+
+def test_a_manifest_record_under_a_name_of_unicode_digits_is_no_chunk(tmp_path, whole):
+    """``"²"`` passes ``str.isdigit`` and fails ``int``: such a record is no chunk of the plan, and the resume
+    computes the chunk it stands beside again, to the same table."""
+    out, parts = _parts(tmp_path)
+    manifest = json.loads((parts / "manifest.json").read_text())
+    manifest["chunks"]["\u00b2"] = manifest["chunks"].pop("2")
+    (parts / "manifest.json").write_text(json.dumps(manifest))
+    computed, _ = _resume(out, tmp_path)
+    assert computed == [2]
+    assert pq.read_table(out).equals(whole, check_metadata=True)

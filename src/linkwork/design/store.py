@@ -32,6 +32,7 @@ import numpy as np
 
 from linkwork.atomic import target_problem, write_atomic
 from linkwork.errors import DesignError, DesignWarning
+from linkwork.limits import digits
 from linkwork.optional import require
 from linkwork.structure.model import Mechanism
 
@@ -164,7 +165,7 @@ def prepare(out: str | Path, meta: dict[str, Any], resume: bool) -> set[int]:
         for tmp in parts.glob(".*.part"):  # a chunk or the manifest being written when the sweep was killed
             tmp.unlink(missing_ok=True)
         for key, entry in old["chunks"].items():
-            chunk = int(key) if isinstance(key, str) and key.isdigit() else -1
+            chunk = int(key) if isinstance(key, str) and digits(key) else -1
             why = read_part(parts, manifest, chunk, entry)[1]
             if why is None:
                 manifest["chunks"][str(chunk)] = entry
