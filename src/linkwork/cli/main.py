@@ -5,6 +5,7 @@ from __future__ import annotations
 import atexit
 import gc
 import io
+import os
 import sys
 
 import linkwork.cli.analyze  # noqa: F401 - each command module registers its commands on ``app``
@@ -38,6 +39,7 @@ def main() -> None:
         if isinstance(stream, io.TextIOWrapper) and stream.errors == "strict":
             stream.reconfigure(errors="backslashreplace")
     terminal.install()
+    os.environ["MPLBACKEND"] = "agg"  # the report draws on its own canvases, whatever the environment named
     try:
         try:
             app()
