@@ -35,6 +35,14 @@ if TYPE_CHECKING:
     from linkwork.spec.values import ValueRead
     from linkwork.structure.model import Mechanism
 
+@app.callback()
+def _every_command() -> None:
+    """Analysis of planar lever mechanisms: structure, kinematics, forces, dynamics, impact."""
+    from linkwork.cli.terminal import install
+
+    install()  # whatever calls the application (the script, a test's runner): its output escaped
+
+
 FileOrExample = Annotated[str, typer.Argument(help="a mechanism file (.yaml) or the name of a bundled example")]
 
 

@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.atomic import target_problem, write_atomic
+from linkwork.atomic import kind, target_problem, write_atomic
 from linkwork.errors import DesignError, DesignWarning
 from linkwork.limits import digits
 from linkwork.optional import require
@@ -293,13 +293,20 @@ def read_part(parts: Path, manifest: dict[str, Any], chunk: int, entry: Any) -> 
 
 
 def _discard_odd(path: Path) -> None:
-    """Remove ``path`` where it is no regular file of its own (a link, a named pipe): its chunk is written anew
-    in its place, not through it."""
+    """Remove ``path`` where it is no regular file of its own (a link, a named pipe, an empty folder): its chunk is
+    written anew in its place, not through it.  DesignError where it cannot be (a folder that holds files)."""
     try:
-        if not stat.S_ISREG(os.lstat(path).st_mode):
-            path.unlink()
+        mode = os.lstat(path).st_mode
     except FileNotFoundError:
-        pass
+        return
+    if stat.S_ISREG(mode):
+        return
+    try:
+        path.rmdir() if stat.S_ISDIR(mode) else path.unlink()
+    except OSError as exc:
+        raise DesignError(
+            [f"{path}: {kind(mode)} in place of a chunk file, which cannot be removed ({exc.strerror})"]
+        ) from None
 
 
 def _read_regular(path: Path) -> bytes:
