@@ -10,7 +10,12 @@ types (a value replaced by a list, a mapping, a string, a truth value, nothing),
 renamed names, huge, tiny and non-finite numbers, one-element and empty lists, unicode (Cyrillic, control
 characters, a lone surrogate, right-to-left marks), sizes (many links, long names and values, deep
 nesting, long lines, large files), and YAML itself (alias bombs, self-referencing aliases, merge keys,
-tags, several documents, tabs, a byte-order mark, bytes that are not UTF-8).
+tags, several documents, tabs, a byte-order mark, bytes that are not UTF-8); unit expressions that explode
+(``m^9^9^9``), fields of loads, the machine, the impact and the drives left empty or given absurd magnitudes,
+names and descriptions with control characters (no output may print one raw).  Beside the mutated files:
+files whose read fails and digits of other scripts among the options, merge-key bombs, hostile surroundings
+(standard output on ``/dev/full``, ``MPLBACKEND=bogus``), files whose links share an anchor to be written back
+(:func:`shared`) and sweep parts that are no files (:func:`make_odd`).
 """
 
 from __future__ import annotations
