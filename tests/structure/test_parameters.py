@@ -274,3 +274,20 @@ def test_a_value_written_where_the_file_shares_a_node_changes_that_value_alone(v
             assert again[name] == pytest.approx(values.get(name, value), rel=1e-12, abs=1e-15), name
     variant = lw.forces(mech, steps=STEPS, variants={k: [v] for k, v in values.items()}).driving_torque[0]
     np.testing.assert_allclose(lw.forces(out, steps=STEPS).driving_torque, variant, rtol=1e-12, atol=1e-12)
+
+
+def test_the_viewers_save_writes_what_it_solves_whatever_the_folder_and_the_disk_hold(tmp_path, monkeypatch):
+    """The viewer of the bundled four-bar in a folder with a ``four-bar.yaml`` of the user's own, and of a file
+    changed on disk after the viewer read it: Save gives the file the viewer solved, with the edit written in."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "four-bar.yaml").write_text(text("four-bar").replace("length: 350", "length: 360"))
+    source = tmp_path / "mine.yaml"
+    source.write_text(text("four-bar"))
+    viewers = [Viewer(lw.compile("four-bar")), Viewer(lw.compile(source))]
+    source.write_text(text("four-bar").replace("length: 350", "length: 370"))
+    for viewer in viewers:
+        saved = tmp_path / "saved.yaml"
+        saved.write_text(viewer.file_text({"links.crank.length": 0.105}))
+        again = lw.parameters(saved)
+        assert again["links.coupler.length"] == pytest.approx(0.35, rel=1e-12)
+        assert again["links.crank.length"] == pytest.approx(0.105, rel=1e-12)
