@@ -1,8 +1,9 @@
 """Hostile input: whatever a file or an option holds, a command ends in exit code 0, or 2 with a
 message of short lines, within a bounded time and memory, and its ``--json`` is strict JSON.
 
-The cases come from :mod:`hostile` (mutated bundled examples, attacks on the YAML reader, options at
-and past their bounds).  A sample runs with the suite, each case in this process under a time bound (every
+The cases come from :mod:`hostile` (mutated bundled examples, of the first campaign's kinds and of the
+fresh ones, attacks on the YAML reader, options at and past their bounds, hostile surroundings, each of
+those in a process of its own).  A sample runs with the suite, each case in this process under a time bound (every
 third case of each kind in the fast lane, the others in the slow one); the full run
 (``pytest --hostile tests/cli/test_hostile.py``) runs many more, each in its own process under a memory
 bound too.  Then the defects found by such runs, one test each.
@@ -38,8 +39,8 @@ def _folder(tmp_path: Path) -> Path:
 
 def _case(kind: str, key: str | int) -> Case:
     """A case by its kind and key (cases are built when a test runs, so that collecting them is quick)."""
-    if kind == "file":
-        return hostile.file_case(int(key))
+    if kind in ("file", "fresh"):
+        return hostile.file_case(int(key), fresh=kind == "fresh")
     if kind == "yaml":
         return hostile.yaml_case(str(key))
     if kind == "env":
@@ -51,6 +52,7 @@ def _keys(files: int, slow: bool) -> list[tuple[str, str | int]]:
     n_options = len(option_cases())
     return (
         [("file", i) for i in range(files)]
+        + [("fresh", i) for i in range(files // 2)]
         + [("yaml", name) for name in hostile.yaml_names(slow)]
         + [("option", i) for i in range(n_options)]
         + [("env", i) for i in range(len(hostile.environment_cases()))]
@@ -168,10 +170,11 @@ def test_the_generator_makes_what_it_says():
     texts = {hostile.mutated(seed)[1] for seed in range(60)}
     assert len(texts) > 50
     kinds = " ".join(hostile.mutated(seed)[0] for seed in range(300))
+    fresh = " ".join(hostile.mutated(seed, fresh=True)[0] for seed in range(300))
     for word in ("drop", "extra", "rename", "items", "copies", "points", "nan", "inf", "1e+308", "\\ud800"):
         assert word in kinds, word
     for word in ("^9^9", "**9**9", "=None", "1e300 rpm", "\\x1b]0;owned", "description += "):  # the fresh kinds
-        assert word in kinds, word
+        assert word in fresh, word
     assert len(option_cases()) > 150 and len(hostile.yaml_cases()) > 40
     assert len(hostile.environment_cases()) > 10 and all(hostile.shared(i)[1] for i in range(3))
 
