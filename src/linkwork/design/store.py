@@ -302,7 +302,10 @@ def _discard_odd(path: Path) -> None:
     if stat.S_ISREG(mode):
         return
     try:
-        path.rmdir() if stat.S_ISDIR(mode) else path.unlink()
+        if stat.S_ISDIR(mode):
+            path.rmdir()
+        else:
+            path.unlink()
     except OSError as exc:
         raise DesignError(
             [f"{path}: {kind(mode)} in place of a chunk file, which cannot be removed ({exc.strerror})"]

@@ -76,7 +76,7 @@ def validate(src: Source) -> Spec:
 
 def _nulls(data: Any, path: tuple[Any, ...] = ()) -> list[tuple[Any, ...]]:
     """The paths of the keys written without a value (``axis:``, ``ratio: ~``): nothing in a mechanism file
-    is given as nothing."""
+    is given as nothing.  (An empty item of a list is the schema's to refuse: it says what the item is.)"""
     if isinstance(data, list):
         return [p for i, v in enumerate(data) for p in _nulls(v, path + (i,))]
     if not isinstance(data, dict):
