@@ -35,6 +35,7 @@ if TYPE_CHECKING:
     from linkwork.spec.values import ValueRead
     from linkwork.structure.model import Mechanism
 
+
 @app.callback()
 def _every_command() -> None:
     """Analysis of planar lever mechanisms: structure, kinematics, forces, dynamics, impact."""
