@@ -87,7 +87,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     full = pytest.mark.skip(reason="the full generated run of hostile inputs runs with pytest --hostile")
     for item in items:
-        if "hostile" in item.keywords and not config.getoption("--hostile"):
+        if item.get_closest_marker("hostile") is not None and not config.getoption("--hostile"):
             item.add_marker(full)
         test, _, case = item.nodeid.replace("\\", "/").split("tests/", 1)[-1].partition("[")
         if test in SLOW and case[:-1] not in SLOW[test]:

@@ -10,7 +10,12 @@ types (a value replaced by a list, a mapping, a string, a truth value, nothing),
 renamed names, huge, tiny and non-finite numbers, one-element and empty lists, unicode (Cyrillic, control
 characters, a lone surrogate, right-to-left marks), sizes (many links, long names and values, deep
 nesting, long lines, large files), and YAML itself (alias bombs, self-referencing aliases, merge keys,
-tags, several documents, tabs, a byte-order mark, bytes that are not UTF-8).
+tags, several documents, tabs, a byte-order mark, bytes that are not UTF-8); unit expressions that explode
+(``m^9^9^9``), fields of loads, the machine, the impact and the drives left empty or given absurd magnitudes,
+names and descriptions with control characters (no output may print one raw).  Beside the mutated files:
+files whose read fails and digits of other scripts among the options, merge-key bombs, hostile surroundings
+(standard output on ``/dev/full``, ``MPLBACKEND=bogus``), files whose links share an anchor to be written back
+(:func:`shared`) and sweep parts that are no files (:func:`make_odd`).
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ import json
 import math
 import os
 import random
+import re
 import resource
 import signal
 import subprocess
@@ -57,6 +63,8 @@ class Case:
     name: str
     argv: tuple[str, ...]
     files: dict[str, str | bytes] = field(default_factory=dict)
+    env: tuple[tuple[str, str], ...] = ()  # set for the command (a case with them runs in its own process)
+    full: bool = False  # standard output is /dev/full, where no write succeeds
 
     def args(self, folder: Path) -> list[str]:
         return [a.replace("{dir}", str(folder)) for a in self.argv]
@@ -236,22 +244,96 @@ def _grow(rng: random.Random, data: Any) -> str:
     return f"{n} points on {first}"
 
 
+#: Unit expressions that explode when evaluated (a power of a power), or give a number beyond any bound.
+EXPLODING_UNITS = [
+    "1 m^9^9^9", "1 mm**9**9", "2 kg*m^-9^9", "1 m ^ 9 ^ 9", "1e308 m^9", "1e300 km", "1 m" + "*m" * 40,
+    "1 m^99", "3 kN*m^2^2", "1e-320 mm", "1 mm/s^9^9", "9" * 300 + " mm", "1 rpm^9^9", "1 kW**9**9**9",
+]  # fmt: skip
+
+
+def _explode(rng: random.Random, data: Any) -> str:
+    """A quantity (a number, or a string with a unit) written as a unit expression that explodes."""
+    spots = [p for p, v in _nodes(data) if p and (isinstance(v, int | float | str) and not isinstance(v, bool))]
+    spots = [p for p in spots if not isinstance(p[-1], str) or p[-1] not in ("name", "description", "type")]
+    if not spots:
+        return _retype(rng, data)
+    path = rng.choice(spots)
+    value = rng.choice(EXPLODING_UNITS)
+    _set(data, path, value)
+    return f"{'.'.join(map(str, path))}={value!r:.30}"
+
+
+#: The sections whose objects later stages read field by field.
+_OBJECTS = ("loads", "machine", "impact", "drives", "drawing")
+
+#: Values beyond what validation lets through: none at all, infinite, or out of all proportion.
+ABSURD = [None, None, {}, [], math.inf, -math.inf, math.nan, 1e300, -1e300, 1e10, 1e-300, "1e300 rpm", "1e12 kN",
+          "1e300 kW", "1e300 kg*m^2", "-1e300 N*m", 10**400]  # fmt: skip
+
+
+def _empty(rng: random.Random, data: Any) -> str:
+    """A field of an object of :data:`_OBJECTS` (a process load's axis, a motor's breakdown, a gear's ratio,
+    the impact's friction, a drive's speed) left empty or given an absurd magnitude."""
+    spots = [p for p, _ in _nodes(data) if len(p) >= 2 and p[0] in _OBJECTS]
+    if not spots:
+        return _numbers(rng, data)
+    path = rng.choice(spots)
+    value = rng.choice(ABSURD)
+    _set(data, path, copy.deepcopy(value))
+    return f"{'.'.join(map(str, path))}={value!r:.30}"
+
+
+#: Text a terminal would act on: retitle the window, ring, clear the screen, move the cursor, reset.
+CONTROL_TEXTS = ["\x1b]0;owned\x07\x1b[2J", "\x1b[31mred\x1b[0m", "a\rb", "\x9b2J", "\x08\x08\x08x", "\x1bc",
+                 "\x7f", "\x1b]8;;http://x\x1b\\link\x1b]8;;\x1b\\", "\x1b[?1049h", "\x00"]  # fmt: skip
+
+
+def _controls(rng: random.Random, data: Any) -> str:
+    """The mechanism's name, its description or a load's, or a unit, holding control characters."""
+    spots = [p for p, v in _nodes(data) if p and isinstance(v, str)]
+    named = [p for p in spots if p[-1] in ("name", "description")] or [("name",)]
+    path = rng.choice(named if rng.random() < 0.7 else spots or named)
+    value = rng.choice(CONTROL_TEXTS)
+    if isinstance(data, dict):
+        _set(data, path, value if rng.random() < 0.5 else f"{_get(data, path)}{value}")
+    return f"{'.'.join(map(str, path))} += {value!r:.30}"
+
+
+def _get(data: Any, path: tuple[Any, ...]) -> Any:
+    for p in path:
+        data = data[p] if isinstance(data, dict | list) and (isinstance(data, list) or p in data) else ""
+    return data if isinstance(data, str) else ""
+
+
 MUTATIONS: list[Callable[[random.Random, Any], str]] = [
     _retype, _retype, _retype, _drop, _drop, _extra, _one_element, _numbers, _numbers, _rename, _unicode, _grow,
 ]  # fmt: skip
 
+#: The kinds found by the second campaign, drawn on their own (the seeds of :data:`MUTATIONS` stay as they were).
+FRESH_MUTATIONS: list[Callable[[random.Random, Any], str]] = [_explode, _empty, _empty, _controls]
 
-def mutated(seed: int) -> tuple[str, str]:
-    """A bundled example with one to three mutations: ``(description, YAML text)``."""
+
+def mutated(seed: int, fresh: bool = False) -> tuple[str, str]:
+    """A bundled example with one to three mutations (of :data:`FRESH_MUTATIONS` where ``fresh``):
+    ``(description, YAML text)``."""
     rng = random.Random(seed)
     name = rng.choice(names())
     data = _base(name)
-    what = [MUTATIONS[rng.randrange(len(MUTATIONS))](rng, data) for _ in range(rng.choice([1, 1, 2, 3]))]
+    kinds = FRESH_MUTATIONS if fresh else MUTATIONS
+    what = [kinds[rng.randrange(len(kinds))](rng, data) for _ in range(rng.choice([1, 1, 2, 3]))]
     return f"{name}: {'; '.join(what)}", to_yaml(data)
 
 
 def _nested(depth: int) -> str:
     return "name: x\nlinks: " + "[" * depth + "]" * depth + "\n"
+
+
+def merges(keys: int, width: int, levels: int) -> str:
+    """A mapping of ``keys`` keys, then ``levels - 1`` mappings that each merge the one before ``width`` times
+    (``<<: [*a, *a, ...]``): ``keys * width ** (levels - 1)`` merged keys from a few kilobytes."""
+    lines = ["a0: &a0 {" + ", ".join(f"k{i}: {i}" for i in range(keys)) + "}"]
+    lines += [f"a{i}: &a{i} {{<<: [{', '.join([f'*a{i - 1}'] * width)}]}}" for i in range(1, levels)]
+    return "\n".join(lines) + "\n"
 
 
 def _laughs(levels: int, width: int) -> str:
@@ -261,7 +343,7 @@ def _laughs(levels: int, width: int) -> str:
 
 
 #: YAML attacks that take seconds each (many values composed before a bound stops them): the slow run only.
-SLOW_YAML = {"many-nodes", "laughs-in-links", "markers-3000", "big-table"}
+SLOW_YAML = {"many-nodes", "laughs-in-links", "markers-3000", "big-table", "merge-wide"}
 
 
 @functools.cache
@@ -283,6 +365,10 @@ def yaml_cases() -> dict[str, str | bytes]:
         "merge-bomb": "a0: &a0 {k: 1}\n"
         + "\n".join(f"a{i}: &a{i} {{<<: [{', '.join([f'*a{i - 1}'] * 8)}]}}" for i in range(1, 9))
         + "\n",  # fmt: skip
+        "merge-wide": merges(5000, 2000, 3),
+        "merge-empty": merges(0, 60, 6),
+        "merge-in-links": four.replace("links:", merges(300, 300, 3) + "links:", 1),
+        "merge-self": "a: &a {k: 1, <<: *a}\n",
         "self-alias": "a: &a [*a]\nb: &b {x: *b}\n",
         "undefined-alias": "a: *nothing\n",
         "deep-flow": _nested(10_000),
@@ -327,6 +413,70 @@ def yaml_cases() -> dict[str, str | bytes]:
             "points: {M: [175, 80]}", "points: {" + ", ".join(f"P{i}: [5, 5]" for i in range(2000)) + "}"
         ),
     }
+
+
+# ---------------------------------------------------------------- files that are not what they say
+
+#: What a sweep's part may be in place of a file: a named pipe no program writes to, links to devices that never
+#: end or hold nothing, a folder, a link to nowhere, a link to itself, a socket.
+ODD_PARTS = ["fifo", "dev-zero", "dev-urandom", "dev-null", "folder", "dangling", "self-link", "socket"]
+
+
+def make_odd(kind: str, path: Path) -> None:
+    """Put a thing of ``kind`` (one of :data:`ODD_PARTS`) at ``path``, in place of what is there."""
+    import socket
+
+    if path.is_dir() and not path.is_symlink():
+        path.rmdir()
+    else:
+        path.unlink(missing_ok=True)
+    if kind == "fifo":
+        os.mkfifo(path)
+    elif kind.startswith("dev-"):
+        path.symlink_to(f"/dev/{kind[4:]}")
+    elif kind == "folder":
+        path.mkdir()
+    elif kind == "dangling":
+        path.symlink_to(path.with_name("nowhere"))
+    elif kind == "self-link":
+        path.symlink_to(path.name)
+    else:
+        with socket.socket(socket.AF_UNIX) as sock:
+            sock.bind(str(path))
+
+
+def shared(seed: int) -> tuple[str, str, dict[str, float]]:
+    """A bundled example whose links share through a YAML anchor, and overrides to write into it:
+    ``(description, YAML text, overrides in SI)``.  One link's mapping is anchored and a later one merges it
+    (``<<: *a``), leaving out its own mass or inertia, which it inherits now; the overrides change a mass of
+    the anchored link, of the heir, or both."""
+    rng = random.Random(seed)
+    name = rng.choice(names())
+    lines = text(name).split("\n")
+    start = next(i for i, line in enumerate(lines) if line.startswith("links:"))
+    heads = [i for i in range(start + 1, len(lines)) if re.match(r"^  [A-Za-z_]\w*:\s*(#.*)?$", lines[i])]
+    heads = heads[: next((k for k, i in enumerate(heads) if any(re.match(r"^\S", ln) for ln in lines[start + 1 : i])),
+                         len(heads))]  # fmt: skip
+    if len(heads) < 2:
+        return shared(seed + 1000)
+    keys = {n: set(v) if isinstance(v, dict) else set() for n, v in _read(name)["links"].items()}
+    named = [lines[i].split(":")[0].strip() for i in heads]
+    own = {"mass", "inertia", "inertia_about", "description"}
+    n = len(heads)
+    pairs = [(a, h) for a in range(n) for h in range(a + 1, n) if keys[named[a]] - own <= keys[named[h]]]
+    if not pairs:
+        return shared(seed + 1000)
+    first, second = rng.choice(pairs)
+    anchor, heir = named[first], named[second]
+    end = next((i for i in range(heads[second] + 1, len(lines)) if not lines[i].startswith("    ")), len(lines))
+    block = lines[heads[second] + 1 : end]
+    kept = [ln for ln in block if not (re.match(r"^    (mass|inertia|inertia_about):", ln) and rng.random() < 0.8)]
+    lines[heads[second] + 1 : end] = [f"    <<: *{anchor}_", *kept]
+    lines[heads[first]] = lines[heads[first]].replace(f"{anchor}:", f"{anchor}: &{anchor}_", 1)
+    values = {f"links.{anchor}.mass": rng.choice([0.5, 2.0, 3.5])}
+    if rng.random() < 0.5:
+        values[f"links.{heir}.mass"] = rng.choice([0.7, 4.0])
+    return f"{name}: {heir} merges {anchor}", "\n".join(lines), values
 
 
 # ---------------------------------------------------------------- options at their bounds
@@ -388,22 +538,56 @@ def option_cases() -> list[Case]:
     out += [("check", f) for f in ("/dev/zero", "/dev/null", "{dir}", "{dir}/" + "f" * 300 + ".yaml", "/nonexistent",
                                    "x" * 5000, "{dir}/\udcff.yaml")]  # fmt: skip
     out += [("example", "x" * 5000), ("check", "four-bar", "--values", "--json")]
+    out += [("check", f) for f in UNREADABLE if os.path.exists(f)]
+    for digits in UNICODE_DIGITS:  # str.isdigit passes them, int refuses some and reads others
+        out += [("analyze", "four-bar", "--out", "{dir}/r", "--position", digits), ("kinematics", "four-bar",
+                "--steps", digits), ("positions", "four-bar", "--count", digits)]  # fmt: skip
     return [Case(f"option {i}", argv) for i, argv in enumerate(out)]
+
+
+#: Files whose read fails after they open (EIO, EINVAL), or that are no file.
+UNREADABLE = ["/proc/self/mem", "/proc/self/pagemap", "/proc/self/task", "/proc/self/clear_refs", "/dev/full",
+              "/proc/self/fd/0", "/sys/kernel/security"]  # fmt: skip
+
+#: Digits of other scripts and forms: superscript two, Arabic-Indic three, full-width one two, N'Ko one, a
+#: digit with a combining accent, mathematical bold one two.
+UNICODE_DIGITS = ["\u00b2", "\u0663", "\uff11\uff12", "\u07c1", "1\u0301", "\U0001d7cf\U0001d7d0"]
 
 
 #: Files some option cases read: a scheduler file that is none, and one that is not JSON.
 OPTION_FILES: dict[str, str | bytes] = {"sched.json": '{"address": 5}', "notjson": "address: tcp://x:1\n"}
 
 
-def file_case(i: int) -> Case:
-    """The mutated file of seed ``i``: checked, or solved (every fourth by kinematics, every fourth by forces)."""
-    what, body = mutated(i)
+@functools.cache
+def environment_cases() -> list[Case]:
+    """Commands whose surroundings are hostile: standard output on a full disk (``> /dev/full``), a matplotlib
+    backend that does not exist, an ASCII locale with a Cyrillic name, a terminal of no width."""
+    printing = [("check", "four-bar"), ("check", "four-bar", "--json"), ("kinematics", "four-bar", "--steps", "12"),
+                ("forces", "four-bar", "--steps", "12", "--json"), ("parameters", "four-bar"), ("examples",),
+                ("example", "four-bar"), ("positions", "four-bar", "--count", "3"), ("dynamics", "double-cut-shears"),
+                ("impact", "percussion-rocker"), ("balance", "four-bar", "--links", "crank")]  # fmt: skip
+    out = [Case(f"full {' '.join(argv)}", argv, full=True) for argv in printing]
+    cyrillic = {"m.yaml": text("four-bar").replace("name: four-bar", "name: Ножницы")}
+    report = ("analyze", "four-bar", "--out", "{dir}/r", "--steps", "24", "--no-animation")
+    out += [
+        Case("MPLBACKEND=bogus analyze", report, env=(("MPLBACKEND", "bogus"),)),
+        Case("MPLBACKEND=bogus check", ("check", "four-bar"), env=(("MPLBACKEND", "bogus"),)),
+        Case("LANG=C check", ("check", "{dir}/m.yaml"), cyrillic, env=(("LANG", "C"), ("LC_ALL", "C"))),
+        Case("COLUMNS=0 forces", ("forces", "four-bar", "--steps", "12"), env=(("COLUMNS", "0"),)),
+    ]
+    return out
+
+
+def file_case(i: int, fresh: bool = False) -> Case:
+    """The mutated file of seed ``i`` (``fresh``: of the fresh kinds): checked, or solved (every fourth by
+    kinematics, every fourth by forces)."""
+    what, body = mutated(i, fresh)
     argv: tuple[str, ...] = ("check", "{dir}/m.yaml", "--json")
     if i % 4 == 1:
         argv = ("kinematics", "{dir}/m.yaml", "--steps", "24", "--json")
     elif i % 4 == 3:
         argv = ("forces", "{dir}/m.yaml", "--steps", "24", "--json")
-    return Case(f"file {i}: {what}", argv, {"m.yaml": body})
+    return Case(f"{'fresh' if fresh else 'file'} {i}: {what}", argv, {"m.yaml": body})
 
 
 def yaml_names(slow: bool = False) -> list[str]:
@@ -462,6 +646,13 @@ ARG_LIMIT = 131072
 def run_in_subprocess(
     case: Case, folder: Path, limit: float = TIME_LIMIT, env: dict[str, str] | None = None
 ) -> Outcome:
+    if case.full:
+        with open(os.devnull if not os.path.exists("/dev/full") else "/dev/full", "w") as full:
+            return _run_in_subprocess(case, folder, limit, env, full)
+    return _run_in_subprocess(case, folder, limit, env, subprocess.PIPE)
+
+
+def _run_in_subprocess(case: Case, folder: Path, limit: float, env: dict[str, str] | None, stdout: Any) -> Outcome:
     """Run ``case`` as ``python -m linkwork.cli`` with at most :data:`MEMORY_LIMIT` of memory and ``limit`` s.
     A case with an argument longer than the system passes to a program (:data:`ARG_LIMIT`: no shell could
     give it either) runs in this process instead."""
@@ -470,19 +661,26 @@ def run_in_subprocess(
     if any(len(a) >= ARG_LIMIT for a in argv):
         return run_in_process(case, folder, limit)
     source = Path(linkwork.__file__).resolve().parents[1]  # the linkwork this process imported
-    environ = {**os.environ, "PYTHONPATH": str(source), **(env or {})}
+    environ = {**os.environ, "PYTHONPATH": str(source), **(env or {}), **dict(case.env)}
     start = time.perf_counter()
     try:
         proc = subprocess.run(
-            [sys.executable, "-m", "linkwork.cli", *argv], capture_output=True, timeout=limit, env=environ,
-            preexec_fn=_limit_memory, stdin=subprocess.DEVNULL,
+            [sys.executable, "-m", "linkwork.cli", *argv], stdout=stdout, stderr=subprocess.PIPE, timeout=limit,
+            env=environ, preexec_fn=_limit_memory, stdin=subprocess.DEVNULL,
         )  # fmt: skip
     except subprocess.TimeoutExpired:
         return Outcome(None, "", "", time.perf_counter() - start, f"more than {limit:g} s")
     stderr = proc.stderr.decode("utf-8", "backslashreplace")
     crash = "Traceback" if "Traceback" in stderr or proc.returncode not in (0, 2) else None
-    out = proc.stdout.decode("utf-8", "backslashreplace")
+    out = (proc.stdout or b"").decode("utf-8", "backslashreplace")
     return Outcome(proc.returncode, out, stderr, time.perf_counter() - start, crash)
+
+
+#: What a command says whose standard output is a full disk.
+FULL_DISK = "error: cannot write the output: No space left on device\n"
+
+#: A control character a terminal acts on (tab and newline are text).
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f]")
 
 
 def _strict_json(text: str) -> Any:
@@ -510,6 +708,11 @@ def problems(case: Case, outcome: Outcome) -> list[str]:
         long = [line for line in lines if len(line) > LINE_LIMIT]
         if long:
             found.append(f"a message line of {len(long[0])} characters: {long[0][:200]!r}...")
+    raw = sorted({f"{ord(c):#04x}" for c in outcome.stdout + outcome.stderr if _CONTROL.match(c)})
+    if raw:
+        found.append(f"control characters printed raw, which a terminal would act on: {', '.join(raw[:5])}")
+    if case.full and (outcome.code, outcome.stderr) != (2, FULL_DISK):
+        found.append(f"output to a full disk: not the one line that says so, exit 2: {outcome.stderr[-300:]!r}")
     if outcome.code == 0 and "--json" in case.argv:
         try:
             _strict_json(outcome.stdout)

@@ -134,3 +134,15 @@ def test_an_angle_is_shown_in_0_to_360_after_rounding():
     assert turn_deg(math.radians(-90.0)) == 270.0
     shown = turn_deg(np.radians([-720.25, 30.0, 405.0, -1e-7]))
     assert np.allclose(shown, [359.8, 30.0, 45.0, 0.0], rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("text", ["1 m^9^9^9", "1 m**9**9**9", "1 mm ^ 2 ^ 9", "2 kg*m^-9^9"])
+def test_a_power_of_a_power_is_refused_before_it_is_worked_out(text):
+    """m^9^9^9 is m^(9^387420489): refused at once (well under a second) instead of evaluated."""
+    import time
+
+    start = time.perf_counter()
+    with pytest.raises(UnitParseError, match="not a power of a power"):
+        parse_quantity(text, "length" if "kg" not in text else "inertia")
+    assert time.perf_counter() - start < 1.0
+    assert parse_quantity("2 kg*m^2", "inertia") == 2.0 and parse_quantity("3 m^3/m^2", "length") == 3.0

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from typing import Any
 
 #: Bytes of a mechanism file (or of YAML text given to :func:`linkwork.loads`).
@@ -69,6 +70,15 @@ MAX_TIMEOUT = 3600.0
 #: Blows of a working cycle.
 MAX_BLOWS = 10_000
 
+#: Largest size of a value a mechanism file may give: of a quantity in SI, or of a pure number (a gear ratio, a
+#: friction coefficient).  A machine's are far smaller; beyond, the products and squares of later stages
+#: overflow.
+MAX_MAGNITUDE = 1e9
+
+#: Largest gear ratio (motor speed / crank speed): the simulation of the machine's start takes time in proportion
+#: to it (16 s at 1000 on a 2-core machine, minutes beyond).
+MAX_GEAR_RATIO = 1000.0
+
 #: Smallest coefficient of speed fluctuation a flywheel is sized for (the inertia grows as 1/delta).
 MIN_DELTA = 1e-4
 
@@ -88,6 +98,25 @@ def excerpt(value: Any, limit: int = QUOTE) -> str:
     text = value if isinstance(value, str) else str(value)
     shown = "".join(c if c.isprintable() else repr(c)[1:-1] for c in text[:limit])
     return shown if len(text) <= limit else f"{shown}... ({len(text):,} characters)"
+
+
+#: The control characters a terminal acts on (C0 but tab and newline, DEL, C1): an escape sequence in a name could
+#: retitle the window or clear the screen.
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f]")
+
+
+def printable(text: str) -> str:
+    """``text`` with every control character but tab and newline escaped (``\\x1b``): what may be printed to a
+    terminal, whatever a file or an option held."""
+    if _CONTROL.search(text) is None:
+        return text
+    return _CONTROL.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), text)
+
+
+def digits(text: str) -> bool:
+    """Whether ``text`` is a whole number written in the digits 0 to 9 alone (``str.isdigit`` also takes
+    ``²``, which ``int`` refuses, and the digits of other scripts)."""
+    return text.isascii() and text.isdigit()
 
 
 def whole(value: Any, name: str, low: int, high: int, what: str = "number") -> str | None:

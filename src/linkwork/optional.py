@@ -12,6 +12,8 @@ NumPy kernels run (see :mod:`linkwork.motion.fast`).
 from __future__ import annotations
 
 import importlib
+import os
+import sys
 from types import ModuleType
 
 from linkwork.errors import MissingDependencyError
@@ -55,7 +57,7 @@ def require(*modules: str, purpose: str) -> ModuleType:
     loaded, missing = [], []
     for name in modules:
         try:
-            loaded.append(importlib.import_module(name))
+            loaded.append(_import(name))
         except ImportError:
             top = name.split(".", 1)[0]
             missing.append(PACKAGES.get(top, (top, "")))
@@ -64,3 +66,20 @@ def require(*modules: str, purpose: str) -> ModuleType:
         extras = tuple(dict.fromkeys(e for _, e in missing if e))
         raise MissingDependencyError(packages, extras, purpose)
     return loaded[0]
+
+
+def _import(name: str) -> ModuleType:
+    """Import ``name``; matplotlib even where the environment names a backend it does not know (``MPLBACKEND=bogus``,
+    which it refuses at import): linkwork draws on its own Agg canvases, whatever the environment says."""
+    try:
+        return importlib.import_module(name)
+    except ValueError:
+        if not name.startswith("matplotlib") or "MPLBACKEND" not in os.environ:
+            raise
+    for partial in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
+        del sys.modules[partial]  # what the failed import left half-made
+    wrong = os.environ.pop("MPLBACKEND")
+    try:
+        return importlib.import_module(name)
+    finally:
+        os.environ["MPLBACKEND"] = wrong

@@ -188,6 +188,9 @@ def _pint_factor(unit: str, kind: str) -> float:
     unknown = f"unknown unit {_quote(unit)}"
     if len(unit) > MAX_QUANTITY or not _UNIT_TEXT.match(unit):
         raise UnitParseError(unknown, unknown)
+    if _POWER_OF_POWER.search(unit):  # m^9^9^9 is m^(9^387420489): pint would work that number out
+        why = f"{unknown}: one small power per unit (m^2), not a power of a power"
+        raise UnitParseError(why, why)
     ureg = registry()
     try:
         units = ureg.parse_units(unit)
@@ -209,6 +212,10 @@ _UNIT_TEXT = re.compile(
     r"^[A-Za-z_][A-Za-z0-9_]*+(?: ++[A-Za-z_][A-Za-z0-9_]*+)*+"
     r"(?:\s*+(?:\*\*|\^|\*|/)\s*+(?:[A-Za-z_][A-Za-z0-9_]*+(?: ++[A-Za-z_][A-Za-z0-9_]*+)*+|-?\d))*+\s*+$"
 )
+
+
+#: A power raised to a power (``m^9^9``), which :data:`_UNIT_TEXT` lets through and whose size has no bound.
+_POWER_OF_POWER = re.compile(r"(?:\*\*|\^)\s*+-?\d\s*+(?:\*\*|\^)")
 
 
 def _to_si(q: Any, kind: str, text: str) -> float:

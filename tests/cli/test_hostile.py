@@ -1,8 +1,9 @@
 """Hostile input: whatever a file or an option holds, a command ends in exit code 0, or 2 with a
 message of short lines, within a bounded time and memory, and its ``--json`` is strict JSON.
 
-The cases come from :mod:`hostile` (mutated bundled examples, attacks on the YAML reader, options at
-and past their bounds).  A sample runs with the suite, each case in this process under a time bound (every
+The cases come from :mod:`hostile` (mutated bundled examples, of the first campaign's kinds and of the
+fresh ones, attacks on the YAML reader, options at and past their bounds, hostile surroundings, each of
+those in a process of its own).  A sample runs with the suite, each case in this process under a time bound (every
 third case of each kind in the fast lane, the others in the slow one); the full run
 (``pytest --hostile tests/cli/test_hostile.py``) runs many more, each in its own process under a memory
 bound too.  Then the defects found by such runs, one test each.
@@ -38,10 +39,12 @@ def _folder(tmp_path: Path) -> Path:
 
 def _case(kind: str, key: str | int) -> Case:
     """A case by its kind and key (cases are built when a test runs, so that collecting them is quick)."""
-    if kind == "file":
-        return hostile.file_case(int(key))
+    if kind in ("file", "fresh"):
+        return hostile.file_case(int(key), fresh=kind == "fresh")
     if kind == "yaml":
         return hostile.yaml_case(str(key))
+    if kind == "env":
+        return hostile.environment_cases()[int(key)]
     return option_cases()[int(key)]
 
 
@@ -49,8 +52,10 @@ def _keys(files: int, slow: bool) -> list[tuple[str, str | int]]:
     n_options = len(option_cases())
     return (
         [("file", i) for i in range(files)]
+        + [("fresh", i) for i in range(files // 2)]
         + [("yaml", name) for name in hostile.yaml_names(slow)]
         + [("option", i) for i in range(n_options)]
+        + [("env", i) for i in range(len(hostile.environment_cases()))]
     )
 
 
@@ -69,7 +74,8 @@ def _sample() -> list[Any]:
 def test_a_sample_of_hostile_cases_ends_cleanly(kind, key, tmp_path):
     case = _case(kind, key)
     before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
-    outcome = run_in_process(case, _folder(tmp_path))
+    run = run_in_subprocess if kind == "env" else run_in_process  # its own surroundings: its own process
+    outcome = run(case, _folder(tmp_path))
     assert problems(case, outcome) == [], (case.name, outcome.stderr[-1000:])
     grown = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024 - before
     assert grown < MEMORY_GROWTH, f"{case.name}: the process grew by {grown / 2**20:.0f} MiB"
@@ -83,15 +89,94 @@ def test_every_hostile_case_ends_cleanly_in_its_own_process(kind, key, tmp_path)
     assert problems(case, outcome) == [], (case.name, outcome.stderr[-1000:])
 
 
+#: Files with links that share through an anchor, in the sample (in the fast lane, every third).
+SHARED = 12
+
+
+@pytest.mark.parametrize(
+    "seed", [pytest.param(i, marks=() if i % FAST_EVERY == 0 else (pytest.mark.slow,)) for i in range(SHARED)]
+)
+def test_a_file_written_where_links_share_an_anchor_solves_as_the_variant_written(seed, tmp_path):
+    """The written file, read back and solved, gives the driving torque of the variant solved, to 1e-12; each
+    value it was not asked to change, as before (the inertias left to their default follow their masses)."""
+    import numpy as np
+
+    import linkwork as lw
+    from linkwork.structure.parameters import write_file
+
+    what, body, values = hostile.shared(seed)
+    (tmp_path / "m.yaml").write_text(body, encoding="utf-8")
+    mech = lw.compile(tmp_path / "m.yaml")
+    before = lw.parameters(mech)
+    out = write_file(mech, values, tmp_path / "x.yaml")
+    again = lw.parameters(out)
+    for name, value in before.items():
+        if not name.endswith("inertia"):
+            assert again[name] == pytest.approx(values.get(name, value), rel=1e-12, abs=1e-15), (what, name)
+    variant = lw.forces(mech, steps=36, variants={k: [v] for k, v in values.items()}).driving_torque[0]
+    np.testing.assert_allclose(lw.forces(out, steps=36).driving_torque, variant, rtol=1e-12, atol=1e-9, err_msg=what)
+
+
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
+def test_a_resumed_sweep_computes_again_the_parts_that_are_no_files(seed, tmp_path):
+    """Every part of a sweep replaced by a thing of :data:`hostile.ODD_PARTS` (two kinds per seed, all kinds over
+    the seeds): the resume ends within its time bound and its table equals an uninterrupted run's."""
+    import random
+    import warnings
+
+    pq = pytest.importorskip("pyarrow.parquet")
+    import linkwork as lw
+
+    vary, metrics, options = ["links.crank.length=80:110:6"], ["swing"], {"chunk_size": 2, "steps": 24}
+    lw.sweep("four-bar", vary, metrics, out=tmp_path / "w.parquet", **options)
+    out = tmp_path / "s.parquet"
+    lw.sweep("four-bar", vary, metrics, out=out, keep_parts=True, **options)
+    out.unlink()
+    kinds = hostile.ODD_PARTS[4 * seed : 4 * seed + 4]
+    parts = sorted((tmp_path / "s.parquet.parts").glob("chunk-*.parquet"))
+    for part, kind in zip(parts, random.Random(seed).sample(kinds, len(parts)), strict=False):
+        hostile.make_odd(kind, part)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with hostile_time(60):
+            lw.sweep("four-bar", vary, metrics, out=out, resume=True, **options)
+    assert pq.read_table(out).equals(pq.read_table(tmp_path / "w.parquet"), check_metadata=True), kinds
+
+
+def hostile_time(seconds: float) -> Any:
+    """Stop the block (a failure) after ``seconds``."""
+    import contextlib
+    import signal
+
+    @contextlib.contextmanager
+    def bound() -> Any:
+        def stop(signum: int, frame: object) -> None:
+            raise TimeoutError(f"more than {seconds:g} s")
+
+        old = signal.signal(signal.SIGALRM, stop)
+        signal.setitimer(signal.ITIMER_REAL, seconds)
+        try:
+            yield
+        finally:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, old)
+
+    return bound()
+
+
 def test_the_generator_makes_what_it_says():
     """Mutations are reproducible, differ from the example, and cover the kinds the module lists."""
     assert hostile.mutated(7) == hostile.mutated(7)
     texts = {hostile.mutated(seed)[1] for seed in range(60)}
     assert len(texts) > 50
     kinds = " ".join(hostile.mutated(seed)[0] for seed in range(300))
+    fresh = " ".join(hostile.mutated(seed, fresh=True)[0] for seed in range(300))
     for word in ("drop", "extra", "rename", "items", "copies", "points", "nan", "inf", "1e+308", "\\ud800"):
         assert word in kinds, word
+    for word in ("^9^9", "**9**9", "=None", "1e300 rpm", "\\x1b]0;owned", "description += "):  # the fresh kinds
+        assert word in fresh, word
     assert len(option_cases()) > 150 and len(hostile.yaml_cases()) > 40
+    assert len(hostile.environment_cases()) > 10 and all(hostile.shared(i)[1] for i in range(3))
 
 
 def test_the_checks_of_an_outcome_can_fail():

@@ -44,6 +44,9 @@ REFUSED = [
     ((*OPTIMIZE, "--seed", "-1"), "--seed: expected a whole number, at least 0", False),
     (("view", "four-bar", "--export", "{dir}/" + "p" * 300 + ".html"), "File name too long", False),
     (("check", "{dir}/surrogate.yaml"), 'not Unicode text: "a\\ud800b" holds the lone surrogate', False),
+    (("forces", "four-bar", "--speed", "1e300 rpm"), "--speed: expected an angular speed of a machine's size", False),
+    (("analyze", "four-bar", "--out", "{dir}/r", "--position", "\u00b2"), "--position: expected one of the 12", False),
+    (("analyze", "four-bar", "--out", "{dir}/r", "--position", "\u0663"), "--position: expected one of the 12", False),
 ]
 
 

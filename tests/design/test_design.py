@@ -631,3 +631,18 @@ def test_a_sweep_killed_on_the_command_line_resumes_with_its_chunks_untouched(tm
     np.testing.assert_array_equal(t.column("variant").to_numpy(), np.arange(24))
     here = lw.sweep("double-cut-shears", args[3:6:2], ["peak_driving_torque", "knife_overlap"], workers=0)
     np.testing.assert_array_equal(t.column("peak_driving_torque").to_numpy(), here["peak_driving_torque"])
+
+
+def test_cli_optimize_of_an_example_in_a_folder_with_a_file_of_its_name_writes_what_it_solved(tmp_path):
+    """A ``four-bar.yaml`` of the user's own (coupler 360 mm) beside: the written file is the bundled example with
+    the optimised crank, and solving it again gives the peak torque printed."""
+    (tmp_path / "four-bar.yaml").write_text(text("four-bar").replace("length: 350", "length: 360"))
+    r = linkwork("optimize", "four-bar", "--vary", "links.crank.length=90:110", "--objective", "peak_driving_torque",
+                 "--maxiter", "3", "--popsize", "4", "--out", "best.yaml", "--json", cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    res = json.loads(r.stdout)
+    again = lw.parameters(tmp_path / "best.yaml")
+    assert again["links.coupler.length"] == pytest.approx(0.35, rel=1e-12)
+    assert again["links.crank.length"] == pytest.approx(res["values"]["links.crank.length"], rel=1e-11)
+    peak = np.max(np.abs(lw.forces(tmp_path / "best.yaml", steps=360).driving_torque))
+    assert peak == pytest.approx(res["metrics"]["peak_driving_torque"], rel=1e-9)

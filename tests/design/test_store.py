@@ -61,7 +61,7 @@ def _flip_a_value_parquet_does_not_notice(path, value):
     return flipped
 
 
-@pytest.mark.parametrize("damage", ["truncate", "garble", "swap", "copy", "flip", "remove"])
+@pytest.mark.parametrize("damage", ["truncate", "garble", "swap", "copy", "flip", "remove", "fifo", "dev-zero"])
 def test_a_damaged_or_swapped_part_is_computed_again_and_the_table_equals_an_uninterrupted_run(tmp_path, whole, damage):
     out, parts = _parts(tmp_path)
     one, two = parts / "chunk-00001.parquet", parts / "chunk-00002.parquet"
@@ -81,6 +81,12 @@ def test_a_damaged_or_swapped_part_is_computed_again_and_the_table_equals_an_uni
         assert np.sum(after != before) == 1
     elif damage == "remove":
         one.unlink()
+    elif damage == "fifo":  # no program writes to it: reading it would wait for ever
+        one.unlink()
+        os.mkfifo(one)
+    elif damage == "dev-zero":  # reading it would never end
+        one.unlink()
+        one.symlink_to("/dev/zero")
     computed, said = _resume(out, tmp_path)
     again = [1, 2] if damage == "swap" else [1]
     assert computed == again
@@ -180,14 +186,20 @@ def test_the_table_is_checked_to_hold_every_variant_once_before_it_is_written():
         check_table({"variant": np.arange(4), "swing": np.ones(4)}, meta)
 
 
-@pytest.mark.parametrize("manifest", ['{"format": 2, "plan"', "[]", "format 1"])
+@pytest.mark.parametrize("manifest", ['{"format": 2, "plan"', "[]", "format 1", "fifo", "dev-zero"])
 def test_an_unreadable_or_older_manifest_is_refused_with_a_message(tmp_path, manifest):
     out, parts = _parts(tmp_path)
     if manifest == "format 1":
         old = json.loads((parts / "manifest.json").read_text())
         del old["chunks"], old["plan_sha256"]
         manifest = json.dumps({**old, "format": 1})
-    (parts / "manifest.json").write_text(manifest)
+    (parts / "manifest.json").unlink()
+    if manifest == "fifo":
+        os.mkfifo(parts / "manifest.json")
+    elif manifest == "dev-zero":
+        (parts / "manifest.json").symlink_to("/dev/zero")
+    else:
+        (parts / "manifest.json").write_text(manifest)
     r = linkwork("sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
                  *sum((["--metric", m] for m in METRICS), []), "--chunk-size", "4", "--steps", "36", "--out", str(out),
                  "--resume", "--quiet")  # fmt: skip
@@ -207,4 +219,16 @@ def test_the_command_says_which_parts_it_computes_again_one_line_each(tmp_path, 
     assert len(lines) == 2
     assert "chunk-00000.parquet" in lines[0] and "variants 0 to 3" in lines[0]
     assert "chunk-00004.parquet" in lines[1] and "variants 16 to 17" in lines[1]
+    assert pq.read_table(out).equals(whole, check_metadata=True)
+
+
+def test_a_manifest_record_under_a_name_of_unicode_digits_is_no_chunk(tmp_path, whole):
+    """``"²"`` passes ``str.isdigit`` and fails ``int``: such a record is no chunk of the plan, and the resume
+    computes the chunk it stands beside again, to the same table."""
+    out, parts = _parts(tmp_path)
+    manifest = json.loads((parts / "manifest.json").read_text())
+    manifest["chunks"]["\u00b2"] = manifest["chunks"].pop("2")
+    (parts / "manifest.json").write_text(json.dumps(manifest))
+    computed, _ = _resume(out, tmp_path)
+    assert computed == [2]
     assert pq.read_table(out).equals(whole, check_metadata=True)

@@ -47,9 +47,7 @@ def test_bad_file_gives_each_problem_with_its_line_and_exit_code_2(name):
 def test_bad_file_through_the_real_command(name):
     """The installed entry point: exit code 2, messages on stderr, no traceback."""
     path = BAD / f"{name}.yaml"
-    proc = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli", "check", str(path)], capture_output=True, text=True
-    )
+    proc = subprocess.run([sys.executable, "-m", "linkwork.cli", "check", str(path)], capture_output=True, text=True)
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
     assert proc.stdout == ""
@@ -136,3 +134,39 @@ def test_a_bad_value_is_echoed_one_way_as_the_file_writes_it():
         'bad.yaml:30: joints.O2.type: expected one of revolute, prismatic, pin-in-slot, got "yes"',
         "bad.yaml:36: drives[0].direction: expected one of ccw, cw, forward, backward, got true",
     ]
+
+
+def _edited(example: str, old: str, new: str) -> str:
+    from linkwork.examples import text
+
+    body = text(example)
+    assert old in body
+    return body.replace(old, new, 1)
+
+
+@pytest.mark.parametrize(
+    "example, old, new, says",
+    [
+        ("double-cut-shears", "axis: 90 deg          #", "axis:  #", 'loads.cutting.axis: "axis" has no value'),
+        ("double-cut-shears", "force: [0 kN, 250 kN, 250 kN, 0 kN]", "force: ~", "loads.cutting.force: "),
+        ("double-cut-shears", "breakdown: 2.2", "breakdown:", "machine.motor.breakdown: "),
+        ("double-cut-shears", "ratio: 48.33", "ratio: 1e300", "machine.gear.ratio: expected a number at most 1000"),
+        ("percussion-rocker", "friction: 0.15", "friction: .inf", "impact.friction: expected a finite number"),
+        ("percussion-rocker", "breakdown: 2.2", "breakdown: .nan", "machine.motor.breakdown: expected a finite"),
+        ("percussion-rocker", "speed: 300 rpm", "speed: 1e300 rpm", "drives[0].speed: expected an angular speed of"),
+        ("percussion-rocker", "rod_joint: N", "rod_joint:", "impact.rod_joint: "),
+        ("four-bar", "hints:", "gravity:\nhints:", 'gravity: "gravity" has no value'),
+    ],
+    ids=["axis", "force", "breakdown", "ratio", "friction", "nan", "speed", "rod-joint", "gravity"],
+)
+def test_an_empty_value_or_an_absurd_magnitude_is_one_message_with_its_line(tmp_path, example, old, new, says):
+    """Each is one problem, at the line of the edited key (found by counting the lines of the text, not by
+    linkwork), where it used to end in a traceback or in NaN printed as a result."""
+    body = _edited(example, old, new)
+    line = body[: body.index(new)].count("\n") + 1
+    path = tmp_path / "m.yaml"
+    path.write_text(body, encoding="utf-8")
+    result = CliRunner().invoke(app, ["check", str(path)])
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    assert result.stderr.splitlines() == [line for line in result.stderr.splitlines() if says in line]
+    assert result.stderr.startswith(f"error: {path}:{line}: {says}")

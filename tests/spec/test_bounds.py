@@ -10,6 +10,7 @@ import random
 import signal
 import time
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 from ruamel.yaml import YAML
@@ -19,7 +20,7 @@ from hostile import Case, problems, run_in_subprocess
 from linkwork.errors import SpecError, UnitParseError
 from linkwork.examples import text
 from linkwork.spec.load import validate
-from linkwork.spec.yamlsource import Source
+from linkwork.spec.yamlsource import Source, read_yaml
 from linkwork.units import parse_quantity
 
 
@@ -68,6 +69,31 @@ def test_nested_aliases_stop_at_the_bound_on_values(yaml_text, tmp_path):
     assert "more than 100,000 values" in outcome.stderr
 
 
+def _merges(keys: int, width: int, levels: int) -> str:
+    """A mapping of ``keys`` keys, then ``levels - 1`` mappings that each merge the one before ``width`` times:
+    ``keys * width ** (levels - 1)`` merged keys from a few kilobytes."""
+    lines = ["a0: &a0 {" + ", ".join(f"k{i}: {i}" for i in range(keys)) + "}"]
+    lines += [f"a{i}: &a{i} {{<<: [{', '.join([f'*a{i - 1}'] * width)}]}}" for i in range(1, levels)]
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("keys, width, levels", [(5000, 2000, 3), (0, 60, 6), (200, 50, 8)])
+def test_merged_keys_count_against_the_bound_on_values(keys, width, levels):
+    """A merge that a list of aliases repeats was gathered without a bound (33 s for the first, hours for the
+    second: merges of empty mappings that add no key); each merged key and each merged mapping counts now."""
+    with within(10), pytest.raises(SpecError, match="more than 100,000 values"):
+        lw.loads(_merges(keys, width, levels), file="merge.yaml")
+
+
+def test_merge_keys_mean_what_yaml_says_nested_and_in_order():
+    """The values built (with each one's line) equal those of ruamel's own safe loader: a merge's own merges
+    resolved, an earlier mapping of a list overriding a later one, the mapping's own keys overriding both."""
+    body = "a0: &a0 {k: 1, j: 1}\na1: &a1 {<<: *a0, j: 2}\na2: {<<: [*a1, {k: 3, n: 5}], m: 4, k: 6}\n"
+    src = read_yaml(body)
+    assert src.problems == [] and src.data == YAML(typ="safe").load(body)
+    assert src.data["a2"] == {"k": 6, "j": 2, "n": 5, "m": 4}
+
+
 def test_an_alias_that_holds_itself_is_one_problem():
     with within(20), pytest.raises(SpecError) as err:
         lw.loads("name: x\nlinks: &a [*a]\n", file="self.yaml")
@@ -79,10 +105,14 @@ def test_an_alias_that_holds_itself_is_one_problem():
     [
         (("check", "{dir}/large.yaml"), "larger than 1 MiB"),  # 2.4 MB of small values: read for a minute
         (("check", "/dev/zero"), "character device"),  # read until memory ran out
+        (("check", "/proc/self/mem"), "cannot read the file: Input/output error"),  # its read fails: EIO
+        (("check", "/proc/self/pagemap"), "cannot read the file: Invalid argument"),  # EINVAL
     ],
-    ids=["large", "device"],
+    ids=["large", "device", "eio", "einval"],
 )
 def test_a_file_too_large_or_a_device_is_refused_unread(argv, says, tmp_path):
+    if argv[1].startswith("/proc") and not Path(argv[1]).exists():
+        pytest.skip("needs Linux's /proc")
     case = Case("check", argv, {"large.yaml": "name: x\nk:\n" + "- 1\n" * 600_000})
     outcome = run_in_subprocess(case, tmp_path, limit=30)
     assert outcome.code == 2 and problems(case, outcome) == [], outcome.stderr

@@ -32,16 +32,28 @@ CASES = [
     (
         "four-bar",
         {"frame.points.O4.x": 0.32, "links.crank.mass": 1.4, "links.rocker.inertia": 0.012},
-        [(("frame", "points", "O4", 0), 320), (("links", "crank", "mass"), 1.4),
-         (("links", "rocker", "inertia"), "0.012 kg*m^2")],
+        [
+            (("frame", "points", "O4", 0), 320),
+            (("links", "crank", "mass"), 1.4),
+            (("links", "rocker", "inertia"), "0.012 kg*m^2"),
+        ],
     ),  # fmt: skip
     (
         "double-cut-shears",
-        {"joints.guide_E.axis": math.radians(93), "frame.points.O1.y": 0.42, "links.rod.mass": 70.0,
-         "links.rocker.points.C.x": 0.28, "links.crank.length": 0.105},
-        [(("joints", "guide_E", "axis"), "93 deg"), (("frame", "points", "O1", 1), 0.42),
-         (("links", "rod", "mass"), 70), (("links", "rocker", "points", "C", 0), 0.28),
-         (("links", "crank", "length"), 0.105)],
+        {
+            "joints.guide_E.axis": math.radians(93),
+            "frame.points.O1.y": 0.42,
+            "links.rod.mass": 70.0,
+            "links.rocker.points.C.x": 0.28,
+            "links.crank.length": 0.105,
+        },
+        [
+            (("joints", "guide_E", "axis"), "93 deg"),
+            (("frame", "points", "O1", 1), 0.42),
+            (("links", "rod", "mass"), 70),
+            (("links", "rocker", "points", "C", 0), 0.28),
+            (("links", "crank", "length"), 0.105),
+        ],
     ),  # fmt: skip
     ("shears-slider-crank", {"joints.guide.axis": math.radians(100)}, [(("joints", "guide", "axis"), "100 deg")]),
     (
@@ -237,3 +249,78 @@ def test_a_marker_does_not_move_a_rods_centre_of_mass():
     np.testing.assert_allclose(bare.driving_torque, f.driving_torque, rtol=0, atol=1e-12)
     given = lw.compile(lw.loads(src.replace(marker, marker + "    com: M\n")))
     np.testing.assert_allclose(given.link_com[i], [0.175, 0.08], rtol=0, atol=1e-15)
+
+
+def test_a_file_written_from_an_example_edits_the_example_not_a_file_of_that_name_here(tmp_path, monkeypatch):
+    """The bundled four-bar solved in a folder that holds a ``four-bar.yaml`` of the user's own (a coupler of
+    360 mm): the written file is the example (coupler 350 mm, its comment) with the value written in."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "four-bar.yaml").write_text(text("four-bar").replace("length: 350", "length: 360"))
+    out = write_file(lw.compile("four-bar"), {"links.crank.length": 0.105}, tmp_path / "best.yaml")
+    again = lw.parameters(out)
+    assert again["links.coupler.length"] == pytest.approx(0.35, rel=1e-12)
+    assert again["links.crank.length"] == pytest.approx(0.105, rel=1e-12)
+    assert "# coupler point" in out.read_text()
+
+
+def test_a_file_written_from_one_changed_on_disk_since_it_was_read_edits_what_was_read(tmp_path):
+    source = tmp_path / "m.yaml"
+    source.write_text(text("four-bar"))
+    mech = lw.compile(source)
+    source.write_text(text("four-bar").replace("length: 350", "length: 360"))
+    assert lw.parameters(write_file(mech, {"links.crank.length": 0.105}, tmp_path / "x.yaml"))[
+        "links.coupler.length"
+    ] == pytest.approx(0.35, rel=1e-12)
+
+
+_ROCKER = "    ends: [O4, B]\n    length: 250\n"
+
+#: The four-bar with the rocker merging the crank's mapping (its mass inherited) and a coupler point that is
+#: an alias of the frame's O4.
+SHARED = (
+    text("four-bar")
+    .replace("  crank:\n", "  crank: &crank\n")
+    .replace(_ROCKER + "    mass: 1.8\n", "    <<: *crank\n" + _ROCKER)
+    .replace("O4: [300, 0]", "O4: &o4 [300, 0]")
+    .replace("points: {M: [175, 80]}", "points: {M: *o4}")
+)
+
+
+@pytest.mark.parametrize(
+    "values",
+    [{"links.crank.mass": 3.0}, {"links.rocker.mass": 4.0}, {"frame.points.O4.x": 0.31},
+     {"links.coupler.points.M.y": 0.01, "links.crank.length": 0.09}],
+    ids=["anchor", "heir", "aliased-pair", "alias-and-anchor"],
+)  # fmt: skip
+def test_a_value_written_where_the_file_shares_a_node_changes_that_value_alone(values, tmp_path):
+    """Reading the written file back and solving it gives the driving torque of the variant solved (to 1e-12);
+    the masses and points the file shares through its anchors stay as they were elsewhere."""
+    source = tmp_path / "m.yaml"
+    source.write_text(SHARED)
+    mech = lw.compile(source)
+    before = lw.parameters(mech)
+    assert before["links.rocker.mass"] == 1.0 and before["links.coupler.points.M.x"] == pytest.approx(0.3)
+    out = write_file(mech, values, tmp_path / "x.yaml")
+    again = lw.parameters(out)
+    for name, value in before.items():  # the inertias left to their default follow the masses
+        if not name.endswith("inertia"):
+            assert again[name] == pytest.approx(values.get(name, value), rel=1e-12, abs=1e-15), name
+    variant = lw.forces(mech, steps=STEPS, variants={k: [v] for k, v in values.items()}).driving_torque[0]
+    np.testing.assert_allclose(lw.forces(out, steps=STEPS).driving_torque, variant, rtol=1e-12, atol=1e-12)
+
+
+def test_the_viewers_save_writes_what_it_solves_whatever_the_folder_and_the_disk_hold(tmp_path, monkeypatch):
+    """The viewer of the bundled four-bar in a folder with a ``four-bar.yaml`` of the user's own, and of a file
+    changed on disk after the viewer read it: Save gives the file the viewer solved, with the edit written in."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "four-bar.yaml").write_text(text("four-bar").replace("length: 350", "length: 360"))
+    source = tmp_path / "mine.yaml"
+    source.write_text(text("four-bar"))
+    viewers = [Viewer(lw.compile("four-bar")), Viewer(lw.compile(source))]
+    source.write_text(text("four-bar").replace("length: 350", "length: 370"))
+    for viewer in viewers:
+        saved = tmp_path / "saved.yaml"
+        saved.write_text(viewer.file_text({"links.crank.length": 0.105}))
+        again = lw.parameters(saved)
+        assert again["links.coupler.length"] == pytest.approx(0.35, rel=1e-12)
+        assert again["links.crank.length"] == pytest.approx(0.105, rel=1e-12)

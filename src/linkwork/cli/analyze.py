@@ -7,7 +7,7 @@ from typing import Annotated
 import typer
 
 from linkwork.cli.app import FileOrExample, _compile, app, check_options, fail, needs
-from linkwork.limits import MAX_ANGLES, quote, whole
+from linkwork.limits import MAX_ANGLES, digits, quote, whole
 
 
 @app.command()
@@ -36,13 +36,14 @@ def analyze(
     """Every analysis the mechanism supports: tables, figures, animation and report.html."""
     from rich.progress import Progress, SpinnerColumn, TextColumn
 
+    from linkwork.cli.terminal import console
     from linkwork.errors import LinkworkError, MissingDependencyError
     from linkwork.lang import check_lang
     from linkwork.report import analyze as run
     from linkwork.report import require_packages
 
     check_options(whole(steps, "--steps", 12, MAX_ANGLES, "number of steps over the turn"))
-    if position is not None and position != "all" and not (position.isdigit() and 0 <= int(position) < 12):
+    if position is not None and position != "all" and not (digits(position) and 0 <= int(position) < 12):
         fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {quote(position)}"))
     try:
         check_lang(lang)
@@ -60,11 +61,11 @@ def analyze(
     if dxf:
         needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
     mech = _compile(file_or_example)
-    with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True) as bar:
+    with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True, console=console()) as bar:
         task = bar.add_task("analysing", total=None)
         try:
             path = run(
-                mech, out, steps=steps, position=int(position) if position and position.isdigit() else position,
+                mech, out, steps=steps, position=int(position) if position and digits(position) else position,
                 pdf=pdf, animation=animation, dxf=dxf, lang=lang,
                 progress=lambda what: bar.update(task, description=f"analysing: {what}"),
             )  # fmt: skip

@@ -35,6 +35,15 @@ if TYPE_CHECKING:
     from linkwork.spec.values import ValueRead
     from linkwork.structure.model import Mechanism
 
+
+@app.callback()
+def _every_command() -> None:
+    """Analysis of planar lever mechanisms: structure, kinematics, forces, dynamics, impact."""
+    from linkwork.cli.terminal import install
+
+    install()  # whatever calls the application (the script, a test's runner): its output escaped
+
+
 FileOrExample = Annotated[str, typer.Argument(help="a mechanism file (.yaml) or the name of a bundled example")]
 
 
@@ -122,12 +131,12 @@ def _no_values(x: Any, path: str) -> Any:
 def make_console() -> Console:
     """The console of the commands' reports: in a terminal, as wide as it is; piped or redirected,
     plain text whose lines are as long as they need."""
-    from rich.console import Console
+    from linkwork.cli.terminal import console
 
-    out = Console(highlight=False)
+    out = console(highlight=False)
     if out.is_terminal:
         return out
-    return Console(highlight=False, width=_PIPED_WIDTH, no_color=True)
+    return console(highlight=False, width=_PIPED_WIDTH, no_color=True)
 
 
 #: Width of the text of the reports when stdout is not a terminal: lines are not folded.

@@ -22,8 +22,8 @@ from linkwork.cli.app import (
     show,
 )
 from linkwork.cli.motion import NOT_ASSEMBLED, _angles, _where, check_angles
-from linkwork.limits import MAX_ANGLES, MAX_NAME, quote, whole
-from linkwork.units import parse_quantity
+from linkwork.limits import MAX_ANGLES, MAX_MAGNITUDE, MAX_NAME, quote, whole
+from linkwork.units import KINDS, parse_quantity
 
 # what a command needs is imported when it runs, so that the command line starts fast
 if TYPE_CHECKING:
@@ -56,6 +56,12 @@ def _speed(mech: Mechanism, text: str | None) -> float | None:
         fail(LinkworkError(f"--speed: {exc}"))
     if value < 0:
         fail(LinkworkError(f'--speed: the direction comes from the file; give a speed from 0 up, got "{text}"'))
+    if value > MAX_MAGNITUDE:
+        fail(
+            LinkworkError(
+                f"--speed: expected {KINDS[kind][0]} of a machine's size (at most 1e9 in SI), got {quote(text)}"
+            )
+        )
     sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
     return sign * value
 

@@ -23,14 +23,16 @@ import json
 import os
 import re
 import secrets
+import stat
 import warnings
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from linkwork.atomic import target_problem, write_atomic
+from linkwork.atomic import kind, target_problem, write_atomic
 from linkwork.errors import DesignError, DesignWarning
+from linkwork.limits import digits
 from linkwork.optional import require
 from linkwork.structure.model import Mechanism
 
@@ -114,7 +116,7 @@ def _read_manifest(parts: Path) -> dict[str, Any]:
     path = parts / _MANIFEST
     again = f"remove {parts} and start afresh"
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
+        data = json.loads(_read_regular(path).decode("utf-8"))
     except (OSError, ValueError) as exc:
         raise DesignError([f"{path}: cannot read the manifest ({exc}); {again}"]) from None
     if not isinstance(data, dict) or not isinstance(data.get("chunks"), dict):
@@ -163,12 +165,13 @@ def prepare(out: str | Path, meta: dict[str, Any], resume: bool) -> set[int]:
         for tmp in parts.glob(".*.part"):  # a chunk or the manifest being written when the sweep was killed
             tmp.unlink(missing_ok=True)
         for key, entry in old["chunks"].items():
-            chunk = int(key) if isinstance(key, str) and key.isdigit() else -1
+            chunk = int(key) if isinstance(key, str) and digits(key) else -1
             why = read_part(parts, manifest, chunk, entry)[1]
             if why is None:
                 manifest["chunks"][str(chunk)] = entry
             elif 0 <= chunk < int(meta["n_chunks"]):
                 lo, hi = chunk_range(meta, chunk)
+                _discard_odd(chunk_path(parts, chunk))
                 warnings.warn(
                     f"{chunk_path(parts, chunk)}: {why}; computing chunk {chunk} (variants {lo} to {hi - 1}) again",
                     DesignWarning,
@@ -267,7 +270,7 @@ def read_part(parts: Path, manifest: dict[str, Any], chunk: int, entry: Any) -> 
     if not isinstance(entry, dict) or entry.get("first") != first or entry.get("rows") != stop - first:
         return None, f"the manifest's record of it is not of variants {first} to {stop - 1}"
     try:
-        data = chunk_path(parts, chunk).read_bytes()
+        data = _read_regular(chunk_path(parts, chunk))
     except FileNotFoundError:
         return None, "missing"
     except OSError as exc:
@@ -287,6 +290,39 @@ def read_part(parts: Path, manifest: dict[str, Any], chunk: int, entry: Any) -> 
     if not np.array_equal(table.column("variant").to_numpy(), np.arange(first, stop)):
         return None, f"its variants are not {first} to {stop - 1}"
     return table, None
+
+
+def _discard_odd(path: Path) -> None:
+    """Remove ``path`` where it is no regular file of its own (a link, a named pipe, an empty folder): its chunk is
+    written anew in its place, not through it.  DesignError where it cannot be (a folder that holds files)."""
+    try:
+        mode = os.lstat(path).st_mode
+    except FileNotFoundError:
+        return
+    if stat.S_ISREG(mode):
+        return
+    try:
+        if stat.S_ISDIR(mode):
+            path.rmdir()
+        else:
+            path.unlink()
+    except OSError as exc:
+        raise DesignError(
+            [f"{path}: {kind(mode)} in place of a chunk file, which cannot be removed ({exc.strerror})"]
+        ) from None
+
+
+def _read_regular(path: Path) -> bytes:
+    """The bytes of the regular file ``path``; OSError for anything else (a named pipe, which would wait for a
+    writer, a device such as ``/dev/zero``, which never ends, a folder), found without reading it."""
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise OSError(0, "not a regular file")
+        with os.fdopen(fd, "rb", closefd=False) as f:
+            return f.read()
+    finally:
+        os.close(fd)
 
 
 def check_table(columns: dict[str, np.ndarray], meta: dict[str, Any]) -> None:

@@ -632,7 +632,7 @@ class _Progress:
         self.bar = None
         from rich.console import Console
 
-        console = Console(stderr=True)
+        console = Console(stderr=True, file=getattr(sys.stderr, "unescaped", None))  # the bar's moves as they are
         if show and total and console.is_terminal:
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 

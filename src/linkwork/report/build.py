@@ -26,6 +26,7 @@ import numpy as np
 
 from linkwork.io.jsonout import dumps
 from linkwork.lang import check_lang, t
+from linkwork.optional import require
 from linkwork.structure.model import PairType
 from linkwork.units import turn_deg
 
@@ -255,8 +256,7 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
 def _import_drawing() -> None:
     """Import matplotlib's figure and Agg canvas (a third of a second) once, before the second process forks:
     both processes draw."""
-    import matplotlib.figure  # noqa: F401
-    from matplotlib.backends import backend_agg  # noqa: F401
+    require("matplotlib.figure", "matplotlib.backends.backend_agg", purpose="the report's figures")
 
 
 def group_kind(kind: str, lang: str) -> str:

@@ -16,10 +16,10 @@ from collections.abc import Callable, Collection
 from typing import Any
 
 from linkwork.errors import Problem, UnitParseError
-from linkwork.limits import MAX_NAME, quote
+from linkwork.limits import MAX_MAGNITUDE, MAX_NAME, quote, shown
 from linkwork.spec.schema import direction_word
 from linkwork.spec.yamlsource import Path, Source
-from linkwork.units import parse_quantity
+from linkwork.units import KINDS, parse_quantity
 
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_']*$")
 FRAME = "frame"
@@ -296,10 +296,14 @@ def _check_drive(
             f"a {kind} drive has {right} (the drive coordinate of the assembly pose), not a {quote(wrong)}",
         )
     if drive.get("speed") is not None:
+        quantity = "angular_speed" if rot else "speed"
         try:
-            parse_quantity(drive["speed"], "angular_speed" if rot else "speed", declared)
+            speed = parse_quantity(drive["speed"], quantity, declared)
         except UnitParseError as exc:
             bad(path + ("speed",), str(exc))
+            speed = 0.0
+        if not abs(speed) <= MAX_MAGNITUDE:
+            bad(path + ("speed",), f"expected {KINDS[quantity][0]} of a machine's size, got {shown(drive['speed'])}")
     law = _dict(drive.get("law"))
     _check_law(bad, path, law, rot, declared)
     if law and drive.get("speed") is not None:

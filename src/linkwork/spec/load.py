@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 import types
 import typing
 from pathlib import Path
@@ -14,7 +15,7 @@ from linkwork.errors import Problem, SpecError, UnitParseError
 from linkwork.limits import echo, quote
 from linkwork.spec.checks import check, suggest
 from linkwork.spec.schema import Spec
-from linkwork.spec.yamlsource import Source, read_file, read_yaml
+from linkwork.spec.yamlsource import Source, dotted, read_file, read_yaml
 from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, check_unit, parse_quantity
 
 
@@ -53,12 +54,16 @@ def validate(src: Source) -> Spec:
     if stranger is not None:  # what is wrong with its keys and values is no help: one problem
         raise SpecError([stranger])
     declared = _declared_units(src, problems)
+    empty = _nulls(src.data)
+    problems += [src.problem(path, f"{quote(path[-1])} has no value: give one, or leave the key out") for path in empty]
     spec: Spec | None = None
     try:
         spec = Spec.model_validate(src.data, context={"units": declared})
     except ValidationError as exc:
-        problems += [_convert(src, err) for err in exc.errors(include_url=False)]
-    problems += check(src, declared)
+        errors = exc.errors(include_url=False)
+        problems += [_convert(src, e) for e in errors if not (e.get("input") is None and tuple(e["loc"]) in empty)]
+    said = {dotted(p) for p in empty}
+    problems += [p for p in check(src, declared) if not _restates(p, said)]
     if spec is not None:
         problems += _geometry_checks(spec, src) + _load_checks(spec, src) + _machine_checks(spec, src)
     problems = _unique(problems)
@@ -67,6 +72,25 @@ def validate(src: Source) -> Spec:
     spec = _finish(spec, declared)
     spec._source = src
     return spec
+
+
+def _nulls(data: Any, path: tuple[Any, ...] = ()) -> list[tuple[Any, ...]]:
+    """The paths of the keys written without a value (``axis:``, ``ratio: ~``): nothing in a mechanism file
+    is given as nothing.  (An empty item of a list is the schema's to refuse: it says what the item is.)"""
+    if isinstance(data, list):
+        return [p for i, v in enumerate(data) for p in _nulls(v, path + (i,))]
+    if not isinstance(data, dict):
+        return []
+    return [p for k, v in data.items() for p in ([path + (k,)] if v is None else _nulls(v, path + (k,)))]
+
+
+def _restates(problem: Problem, empty: set[str]) -> bool:
+    """Whether ``problem`` says that a field is missing that the file writes without a value (said already);
+    ``empty``: the dotted paths of those."""
+    missing = re.match(r'missing field "([^"]+)"', problem.message)
+    if missing is None:
+        return False
+    return (f"{problem.path}.{missing.group(1)}" if problem.path else missing.group(1)) in empty
 
 
 def _not_a_mechanism(src: Source) -> Problem | None:
@@ -152,6 +176,8 @@ def _convert(src: Source, err: Any) -> Problem:
         return src.problem(loc, f"expected a list, got {echo(value)}")
     if kind == "string_type":
         return src.problem(loc, f"expected a name or text, got {echo(value)}")
+    if kind == "finite_number":
+        return src.problem(loc, f"expected a finite number, got {echo(value)}")
     if kind in ("float_type", "float_parsing"):
         return src.problem(loc, f"expected a number, got {echo(value)}")
     bounds = {"greater_than": "greater than", "greater_than_equal": "at least", "less_than": "less than"}

@@ -17,7 +17,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr,
 from pydantic_core import PydanticCustomError
 
 from linkwork.errors import UnitParseError
-from linkwork.limits import MIN_DELTA, echo
+from linkwork.limits import MAX_GEAR_RATIO, MAX_MAGNITUDE, MIN_DELTA, echo
 from linkwork.units import DEFAULT_UNITS, KINDS, MADE_OF, parse_quantity
 
 
@@ -50,7 +50,7 @@ def _scalar(kind: str, value: Any, info: ValidationInfo, sign: str = "") -> floa
     except UnitParseError as exc:
         raise _error(str(exc)) from None
     noun = KINDS[kind][0].split(" ", 1)[1]
-    if abs(x) > 1e9:
+    if abs(x) > MAX_MAGNITUDE:
         raise _error(f"expected {KINDS[kind][0]} of a machine's size, got {echo(value)} (out of range)")
     if sign == "positive" and not x > 0:
         raise _error(f"expected a positive {noun}, got {echo(value)}")
@@ -87,6 +87,8 @@ _BARE = {
 }
 
 
+#: A pure number (a ratio, a coefficient): finite, and at most :data:`~linkwork.limits.MAX_MAGNITUDE` either way.
+Number = Annotated[float, Field(allow_inf_nan=False, ge=-MAX_MAGNITUDE, le=MAX_MAGNITUDE)]
 Length = Annotated[float, *_quantity("length")]
 PositiveLength = Annotated[float, *_quantity("length", "positive")]
 Angle = Annotated[float, *_quantity("angle")]
@@ -369,14 +371,16 @@ class Motor(_Strict):
     power: PositivePower | None = Field(None, description="induction: rated power")
     speed: PositiveAngularSpeed | None = Field(None, description="induction: rated speed")
     synchronous: PositiveAngularSpeed | None = Field(None, description="induction: synchronous speed")
-    breakdown: float | None = Field(None, description="induction: breakdown torque / rated torque, e.g. 2.2")
+    breakdown: Number | None = Field(None, description="induction: breakdown torque / rated torque, e.g. 2.2")
     inertia: Inertia | None = Field(None, description="moment of inertia of the rotor")
 
 
 class Gear(_Strict):
     """A gear between motor and crank: ``ratio`` = motor speed / crank speed."""
 
-    ratio: float = Field(gt=0, description="motor speed / crank speed")
+    ratio: float = Field(
+        gt=0, le=MAX_GEAR_RATIO, allow_inf_nan=False, description=f"motor / crank speed, at most {MAX_GEAR_RATIO:g}"
+    )
     efficiency: float = Field(1.0, gt=0, le=1, description="of the gear")
 
 
@@ -418,7 +422,7 @@ class ImpactSpec(_Strict):
     )
     link: str | None = Field(None, description="the link whose angular speed `omega` is")
     restitution: float = Field(ge=0, le=1, description="R = -omega_after / omega_before")
-    friction: float = Field(0.0, ge=0, description="f: tangential impulse / normal impulse")
+    friction: Number = Field(0.0, ge=0, description="f: tangential impulse / normal impulse")
     rod_joint: str | None = Field(
         None, description="for the reduced model of seed 004: the joint at which the rod's mass is taken"
     )

@@ -48,6 +48,9 @@ class Source:
         Duplicate keys found while reading.
     keys : list of str
         The keys of the document's mapping as written, those refused (a name too long) included.
+    text : str or None
+        The YAML text the data was read from (None for data given as such): what a file written back
+        from this description edits, whatever the file on disk holds now.
     """
 
     data: Any
@@ -55,6 +58,7 @@ class Source:
     file: str | None = None
     problems: list[Problem] = field(default_factory=list)
     keys: list[str] = field(default_factory=list)
+    text: str | None = None
 
     def line(self, path: Path) -> int | None:
         """The line of ``path``, or of its nearest ancestor that has one."""
@@ -100,6 +104,8 @@ def read_file(path: str | os.PathLike[str]) -> str:
         raise SpecError([Problem("", f"cannot read the file: {exc.strerror or exc}", name)]) from None
     try:
         data = _read_bounded(fd, name)
+    except OSError as exc:  # EIO of /proc/self/mem, EINVAL of /proc/self/pagemap, a failing disk
+        raise SpecError([Problem("", f"cannot read the file: {exc.strerror or exc}", name)]) from None
     finally:
         os.close(fd)
     try:
@@ -192,7 +198,7 @@ def read_yaml(text: str, file: str | None = None) -> Source:
     node, problem = _compose(text, file)
     if problem is not None:
         return Source(None, {}, file, [problem])
-    src = Source(None, {}, file, [])
+    src = Source(None, {}, file, [], text=text)
     if node is None or (getattr(node, "tag", None) and str(getattr(node.tag, "value", node.tag)).endswith("null")):
         return Source(
             None,
@@ -250,19 +256,9 @@ def _build(node: Node, path: Path, src: Source, depth: int, count: list[int]) ->
     if isinstance(node, MappingNode):
         out: dict[str, Any] = {}
         seen: dict[str, int] = {}
-        pairs: list[tuple[Any, Any]] = []
-        n_merged = 0
-        for key_node, value_node in node.value:
-            tag = str(getattr(key_node.tag, "value", key_node.tag))
-            if tag.endswith(":merge"):  # <<: {...} or <<: [*a, *b]: merged keys, which the mapping's own override
-                merged = value_node.value if isinstance(value_node, SequenceNode) else [value_node]
-                for m in merged:
-                    if isinstance(m, MappingNode):
-                        pairs[:0] = list(m.value)
-                        n_merged += len(m.value)
-                continue
-            pairs.append((key_node, value_node))
-        for n, (key_node, value_node) in enumerate(pairs):
+        merged, own = _pairs(node, count, depth)
+        n_merged = len(merged)
+        for n, (key_node, value_node) in enumerate(merged + own):
             key = _scalar(key_node, src) if isinstance(key_node, ScalarNode) else None
             line = key_node.start_mark.line + 1
             if not isinstance(key, str | int | float) or isinstance(key, bool):
@@ -292,6 +288,30 @@ def _build(node: Node, path: Path, src: Source, depth: int, count: list[int]) ->
     if isinstance(node, SequenceNode):
         return [_build(item, path + (i,), src, depth + 1, count) for i, item in enumerate(node.value)]
     return _scalar(node, src)
+
+
+def _pairs(node: MappingNode, count: list[int], depth: int) -> tuple[list[Any], list[Any]]:
+    """The (key, value) nodes of a mapping: those it merges (``<<: *a`` or ``<<: [*a, *b]``, the merged mappings'
+    own merges resolved too; an earlier one overriding a later), and its own (overriding both).  Each merged
+    mapping and each merged key counts as a value against :data:`~linkwork.limits.MAX_NODES`, as each use of
+    an alias does, and merges nest at most :data:`~linkwork.limits.MAX_DEPTH` deep."""
+    own, sources = [], []
+    for key_node, value_node in node.value:
+        if str(getattr(key_node.tag, "value", key_node.tag)).endswith(":merge"):
+            found = value_node.value if isinstance(value_node, SequenceNode) else [value_node]
+            sources += [m for m in found if isinstance(m, MappingNode)]
+        else:
+            own.append((key_node, value_node))
+    merged: list[Any] = []
+    for m in reversed(sources):
+        if depth >= MAX_DEPTH:
+            raise _Bound(m.start_mark.line + 1, False)
+        inner, inner_own = _pairs(m, count, depth + 1)
+        count[0] += 1 + len(inner_own)
+        if count[0] > MAX_NODES:
+            raise _Bound(m.start_mark.line + 1, True)
+        merged += inner + inner_own
+    return merged, own
 
 
 def _scalar(node: Any, src: Source) -> Any:

@@ -54,13 +54,12 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from linkwork import examples
 from linkwork.atomic import write_atomic
 from linkwork.errors import ParameterError
 from linkwork.spec.checks import suggest
 from linkwork.spec.load import validate
 from linkwork.spec.schema import Spec
-from linkwork.spec.yamlsource import Source
+from linkwork.spec.yamlsource import Source, read_yaml
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.units import DEFAULT_UNITS, KINDS, SI_UNITS, _factor, written
 
@@ -466,9 +465,13 @@ def edited_spec(mechanism: Mechanism, overrides: dict[str, float]) -> Spec:
 
 
 def file_text(mechanism: Mechanism, values: dict[str, float]) -> str:
-    """The text of the file of the compiled ``mechanism`` with ``values`` (path -> SI) written in: the original
-    text with its comments and layout, each value in the unit the file writes it in (:func:`set_values`).  A
-    description built in code is written in SI.
+    """The text of the file of the compiled ``mechanism`` with ``values`` (path -> SI) written in: the text
+    the description was read from (never the file on disk again, which may be another or have changed), its
+    comments and layout kept, each value in the unit the file writes it in (:func:`set_values`).  A value
+    in a mapping or list that the file shares through an anchor is written to this place alone.  The text
+    is read back and must give the description with ``values`` written in (as :func:`edited_spec`); where
+    the layout cannot say it, the file is written out plainly, anchors resolved.  A description built in
+    code is written in SI.
 
     Raises
     ------
@@ -476,9 +479,16 @@ def file_text(mechanism: Mechanism, values: dict[str, float]) -> str:
         An unknown name, a value out of its range, or a mechanism without its description.
     """
     spec, _, kinds = _described(mechanism, values)
-    data, declared = _file_data(spec, round_trip=True)
-    set_values(data, values, declared, kinds)
-    return yaml_text(data)
+    plain, declared = _file_data(spec, round_trip=False)
+    set_values(plain, values, declared, kinds)
+    data, _ = _file_data(spec, round_trip=True)
+    if data is not plain:
+        _unshare(data, values)
+        set_values(data, values, declared, kinds)
+        text = yaml_text(data)
+        if read_yaml(text).data == plain:
+            return text
+    return yaml_text(plain)
 
 
 def yaml_text(data: Any) -> str:
@@ -487,6 +497,46 @@ def yaml_text(data: Any) -> str:
     buf = io.StringIO()
     _yaml().dump(data, buf)
     return buf.getvalue()
+
+
+def _unshare(data: Any, values: dict[str, float]) -> None:
+    """Make every mapping and list on the paths of ``values`` this place's own in a round-trip tree: an alias
+    (the same node at another place) is replaced here by a copy, and a mapping that merges (``<<:``) a
+    mapping written to keeps the value it inherits as its own."""
+    uses: dict[int, int] = {}
+    _count(data, uses)
+    for path in values:
+        parts = path.split(".")
+        keys = parts[:-1] if parts[-1] in ("x", "y") else parts
+        node = data
+        for i, key in enumerate(keys):
+            if not isinstance(node, dict) or key not in node:
+                break
+            child = node[key]
+            shared = isinstance(child, dict | list) and uses.get(id(child), 0) > 1
+            if shared or i == len(keys) - 1:
+                _pin(node, key)
+            if shared:
+                child = copy.deepcopy(child)
+                node[key] = child
+            node = child
+
+
+def _pin(node: Any, key: str) -> None:
+    """Each mapping that merges ``node`` (``<<:``) and inherits its ``key`` holds a copy of it as its own."""
+    for heir in getattr(node, "_ref", ()):
+        if key in heir and key not in getattr(heir, "_ok", {key}):
+            heir[key] = copy.deepcopy(heir[key])
+
+
+def _count(node: Any, uses: dict[int, int]) -> None:
+    """How many places of the tree hold each mapping and list (an anchored one, more than one)."""
+    if not isinstance(node, dict | list):
+        return
+    uses[id(node)] = uses.get(id(node), 0) + 1
+    if uses[id(node)] == 1:
+        for child in node.values() if isinstance(node, dict) else node:
+            _count(child, uses)
 
 
 def write_file(mechanism: Mechanism, values: dict[str, float], out: str | Path) -> Path:
@@ -513,7 +563,7 @@ def _file_data(spec: Spec, round_trip: bool) -> tuple[Any, dict[str, str]]:
     """The description's data to write values into, and the units bare numbers are read in: the file
     as written (a ruamel round-trip tree for ``round_trip``, else a deep copy of the loaded data);
     for a description built in code, its values in SI."""
-    text = _source_text(spec) if round_trip else None
+    text = spec.source.text if round_trip and spec.source is not None else None
     if text is not None:
         data = _yaml().load(text)
     elif spec.source is not None and isinstance(spec.source.data, dict):
@@ -523,19 +573,6 @@ def _file_data(spec: Spec, round_trip: bool) -> tuple[Any, dict[str, str]]:
         data["units"] = dict(SI_UNITS)
     units = data.get("units") if isinstance(data, dict) else None
     return data, {**DEFAULT_UNITS, **(dict(units) if isinstance(units, dict) else {})}
-
-
-def _source_text(spec: Spec) -> str | None:
-    """The text of the file or bundled example ``spec`` was read from, when it can be read again."""
-    file = spec.source.file if spec.source is not None else None
-    if not file:
-        return None
-    path = Path(file)
-    if path.is_file():
-        return path.read_text(encoding="utf-8")
-    if file.endswith(".yaml") and file[:-5] in examples.names():
-        return examples.text(file[:-5])
-    return None
 
 
 def _yaml() -> Any:

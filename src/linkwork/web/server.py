@@ -56,6 +56,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from linkwork import jit
 from linkwork.errors import BusyError, LinkworkError
+from linkwork.limits import digits
 from linkwork.web.cycle import OutOfRange
 from linkwork.web.edits import MAX_OVERRIDES
 from linkwork.web.session import SCRIPTS, Viewer, dumps, static_text
@@ -147,7 +148,7 @@ async def read_body(request: Request, model: type[BaseModel]) -> Any:
     if kind != "application/json":
         raise Rejected(415, f"send the body as application/json, not {kind[:100] or 'nothing'!r}")
     length = request.headers.get("content-length")
-    if length is not None and not length.isdigit():
+    if length is not None and not digits(length):
         raise Rejected(400, "the Content-Length header is not a number")
     if length is not None and int(length) > MAX_BODY:
         raise Rejected(413, f"the body is limited to {MAX_BODY} bytes")
