@@ -58,7 +58,7 @@ TEXTS: dict[str, tuple[str, str]] = {
     ),
     "kin.phi.rocker": (
         "φ is the crank angle turned from position 0 in the direction of its rotation, 0 to 360°, on every axis "
-        "and in every table. Position 0 is the extreme position of the output rocker {member} at the "
+        "and in every table. Position 0 is the extreme position of the output {rocker} at the "
         "counter-clockwise end of its swing (the crank at {crank}° to the x axis).",
         "φ — угол поворота кривошипа от положения 0 в направлении его вращения, от 0 до 360°, на всех графиках и "
         "во всех таблицах. Положение 0 — крайнее положение выходного коромысла {member}, повёрнутого на "
@@ -346,6 +346,12 @@ def check_lang(lang: str) -> None:
     """Raise :class:`~linkwork.errors.LinkworkError` unless ``lang`` is one of :data:`LANGUAGES`."""
     if lang not in LANGUAGES:
         raise LinkworkError(f"--lang: expected one of {', '.join(LANGUAGES)}, got {excerpt(lang)!r}")
+
+
+def kind_named(kind: str, name: str) -> str:
+    """``rocker output``: a member's kind and its name, the word once where the name is the kind's word
+    (``rocker``, not ``rocker rocker``)."""
+    return kind if name.strip().lower() == kind.lower() else f"{kind} {name}"
 
 
 def t(key: str, lang: str = "en", /, **values: Any) -> str:

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, check_options, fail, needs
+from linkwork.cli.app import FileOrExample, _compile, app, check_options, fail, names_a_file, needs
 from linkwork.limits import MAX_ANGLES, quote, whole
 
 
@@ -34,6 +35,7 @@ def analyze(
     lang: Annotated[str, typer.Option(help="language of the report and its figures: en or ru")] = "en",
 ) -> None:
     """Every analysis the mechanism supports: tables, figures, animation and report.html."""
+    from rich.console import Console
     from rich.progress import Progress, SpinnerColumn, TextColumn
 
     from linkwork.errors import LinkworkError, MissingDependencyError
@@ -51,6 +53,11 @@ def analyze(
     from linkwork.report.folder import problem
 
     why = problem(out)
+    if why is None and names_a_file(out):
+        why = (
+            f"names a {Path(out).suffix} file; analyze writes a folder (report.html, the tables, the figures): "
+            f"give a folder, e.g. --out {Path(out).with_suffix('')}"
+        )
     if why is not None:
         fail(LinkworkError(f"--out {out}: {why}"))
     try:
@@ -60,7 +67,11 @@ def analyze(
     if dxf:
         needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
     mech = _compile(file_or_example)
-    with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True) as bar:
+    # the spinner on stderr, and only in a terminal: piped or redirected, stdout holds the one line "wrote ..."
+    shown = Console(stderr=True)
+    spinner = Progress(SpinnerColumn(), TextColumn("{task.description}"), console=shown, transient=True,
+                       disable=not shown.is_terminal)  # fmt: skip
+    with spinner as bar:
         task = bar.add_task("analysing", total=None)
         try:
             path = run(

@@ -28,6 +28,8 @@ app = typer.Typer(
 )
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from rich.console import Console
     from rich.table import Table
 
@@ -117,6 +119,41 @@ def _no_values(x: Any, path: str) -> Any:
                 if found not in seen:
                     seen.add(found)
                     yield found
+
+
+def names_a_file(out: str) -> bool:
+    """Whether the path ``out`` of an ``--out`` names a file (:func:`out_files`): it ends in a file
+    suffix and is not an existing folder."""
+    import os
+    import re
+    from pathlib import Path
+
+    return not os.path.isdir(out) and re.fullmatch(r"\.[A-Za-z][A-Za-z0-9]{0,4}", Path(out).suffix) is not None
+
+
+def out_files(out: str, names: tuple[str, ...]) -> list[Path]:
+    """The files a command's ``--out`` asks for, of the files ``names`` it writes (``forces.csv``,
+    ``forces.json``): a path that ends in the suffix of one of them is that file alone; any other path
+    is a folder that gets all of them.  The one rule of ``--out``: a path ending in a file suffix
+    (``.txt``, ``.xlsx``: a dot, a letter and at most four more letters or digits) means a file, so a
+    suffix the command does not write is refused here (exit code 2), before any work, rather than
+    made into a folder of that name; an existing folder stays a folder whatever its name."""
+    from pathlib import Path
+
+    path = Path(out)
+    suffixes = {Path(n).suffix: n for n in names}
+    if not names_a_file(out):
+        return [path / n for n in names]
+    if path.suffix.lower() in suffixes:
+        return [path]
+    files = " and ".join(names)
+    ours = " or ".join(suffixes)
+    fail(
+        LinkworkError(
+            f"--out {out}: names a {path.suffix} file, which this command does not write; give a folder for "
+            f"{files} (e.g. --out {path.with_suffix('')}), or a file ending in {ours} for that table alone"
+        )
+    )
 
 
 def make_console() -> Console:

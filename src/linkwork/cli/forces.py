@@ -19,6 +19,7 @@ from linkwork.cli.app import (
     fail,
     make_console,
     make_table,
+    out_files,
     show,
 )
 from linkwork.cli.motion import NOT_ASSEMBLED, _angles, check_angles
@@ -98,7 +99,10 @@ def forces(
         str | None,
         typer.Option(help='also find the crank speed at which the pull on the bolts reaches this force, e.g. "5 kN"'),
     ] = None,
-    out: Annotated[str | None, typer.Option(help="directory for forces.csv and forces.json")] = None,
+    out: Annotated[
+        str | None,
+        typer.Option(help="folder for forces.csv and forces.json, or a file ending in .csv or .json for it alone"),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Joint reactions, driving torque, foundation and bolt loads over the cycle, with the checks."""
@@ -107,6 +111,7 @@ def forces(
     from linkwork.kinetostatics import forces as solve
 
     check_angles(steps, angles)
+    files = out_files(out, ("forces.csv", "forces.json")) if out is not None else []
     mech = _compile(file_or_example)
     where = _angles(mech, steps, angles)
     rate = _speed(mech, speed)
@@ -121,7 +126,7 @@ def forces(
         data["bolts"]["pull_target"] = target
         data["bolts"]["speed_for_pull_rad_s"] = lift if math.isfinite(lift) else None
     data = explain_nulls(data, FORCES_NULLS)
-    written = _write(f, data, out) if out is not None else []
+    written = _write(f, data, out, files) if out is not None else []
     if as_json:
         echo_json(data)
         return
@@ -137,8 +142,9 @@ def forces(
         typer.echo(f"  wrote {path}")
 
 
-def _write(f: Forces, data: dict[str, Any], out: str) -> list[Path]:
-    """Write ``forces.csv`` and ``forces.json`` (``data``) into the folder ``out``; the paths written."""
+def _write(f: Forces, data: dict[str, Any], out: str, files: list[Path]) -> list[Path]:
+    """Write the ``files`` of ``--out`` (:func:`~linkwork.cli.app.out_files`): ``forces.csv`` and
+    ``forces.json`` (``data``); the paths written."""
     from linkwork.atomic import write_atomic
     from linkwork.errors import LinkworkError
     from linkwork.io.force_tables import write_csv
@@ -146,9 +152,12 @@ def _write(f: Forces, data: dict[str, Any], out: str) -> list[Path]:
 
     written = []
     try:
-        written.append(write_csv(f, Path(out) / "forces.csv"))
-        text = dumps(data)
-        written.append(write_atomic(Path(out) / "forces.json", lambda tmp: tmp.write_text(text, "utf-8")))
+        for path in files:
+            if path.suffix.lower() == ".json":
+                text = dumps(data)
+                written.append(write_atomic(path, lambda tmp, text=text: tmp.write_text(text, "utf-8")))
+            else:
+                written.append(write_csv(f, path))
     except OSError as exc:
         fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     return written

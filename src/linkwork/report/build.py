@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.io.jsonout import dumps
-from linkwork.lang import check_lang, t
+from linkwork.lang import check_lang, kind_named, t
 from linkwork.structure.model import PairType
 from linkwork.units import turn_deg
 
@@ -371,7 +371,8 @@ def _position_0(run: _Run, cycle: Cycle) -> str:
     if not members:
         return run.t("kin.phi.assembly", crank=crank)
     kind = "slider" if members[0].kind == "slider" else "rocker"
-    return run.t(f"kin.phi.{kind}", member=member_label(run.mech, members[0], run.lang), crank=crank)
+    member = member_label(run.mech, members[0], run.lang)
+    return run.t(f"kin.phi.{kind}", member=member, rocker=kind_named("rocker", member), crank=crank)
 
 
 def _positions_table(run: _Run, cycle: Cycle) -> list[str]:
