@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 from pathlib import Path
 
 import numpy as np
@@ -120,3 +121,29 @@ def test_a_slider_without_its_point_is_told_how_to_name_it(tmp_path):
     assert result.returncode == 2
     assert 'the slider "knife" has no point "guide"' in result.stderr
     assert "give the slider's point on the guide line as point:, e.g. point: B" in result.stderr
+
+
+@pytest.mark.parametrize("command", ["kinematics", "forces", "analyze"])
+def test_speed_is_one_option_of_every_command_that_turns_the_crank(command):
+    """``--speed`` has one definition (its help and its checks): the same text in each command."""
+    help_text = linkwork(command, "--help").stdout
+    assert 'uniform drive speed with a unit, e.g. "30 rpm"' in " ".join(help_text.split())
+    bare = linkwork(command, "four-bar", "--speed", "120", "--out", "never")
+    assert bare.returncode == 2 and bare.stderr == 'error: --speed: give the unit, e.g. "30 rpm", got "120"\n'
+
+
+def test_kinematics_and_analyze_at_another_speed(tmp_path):
+    """At 120 rpm the crank pin A of the four-bar (crank 100 mm) moves at omega l = 4 pi 0.1 m/s, and its
+    acceleration is omega^2 l; the report's table has the same."""
+    omega = 120 * math.pi / 30
+    result = linkwork("kinematics", "four-bar", "--angles", "0,90", "--speed", "120 rpm", "--json")
+    assert result.returncode == 0, result.stderr
+    a = json.loads(result.stdout)["points"]["A"]
+    np.testing.assert_allclose(np.hypot(a["vx"], a["vy"]), omega * 0.1, rtol=1e-11)  # JSON: 12 digits
+    np.testing.assert_allclose(np.hypot(a["ax"], a["ay"]), omega**2 * 0.1, rtol=1e-11)
+    done = linkwork("analyze", "four-bar", "--speed", "120 rpm", "--out", "r", "--steps", "36", "--no-animation",
+                    cwd=tmp_path)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    head, rows = _rows(tmp_path / "r" / "kinematics.csv")
+    speed = np.hypot(rows[:, head.index("A.vx [m/s]")], rows[:, head.index("A.vy [m/s]")])
+    np.testing.assert_allclose(speed, omega * 0.1, rtol=1e-12)

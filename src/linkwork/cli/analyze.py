@@ -7,8 +7,8 @@ from typing import Annotated
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, check_options, fail, names_a_file, needs
-from linkwork.limits import MAX_ANGLES, quote, whole
+from linkwork.cli.app import FileOrExample, Speed, _compile, app, at_speed, check_options, fail, names_a_file, needs
+from linkwork.limits import MAX_ANGLES, TURN_STEPS, quote, whole
 
 
 @app.command()
@@ -18,7 +18,8 @@ def analyze(
         str,
         typer.Option(help="folder for the report, tables, figures and animation: new, empty, or an earlier report"),
     ] = "report",
-    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
+    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = TURN_STEPS,
+    speed: Speed = None,
     position: Annotated[
         str | None,
         typer.Option(
@@ -66,7 +67,7 @@ def analyze(
         fail(exc)
     if dxf:
         needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
-    mech = _compile(file_or_example)
+    mech = at_speed(_compile(file_or_example), speed)
     # the spinner on stderr, and only in a terminal: piped or redirected, stdout holds the one line "wrote ..."
     shown = Console(stderr=True)
     spinner = Progress(SpinnerColumn(), TextColumn("{task.description}"), console=shown, transient=True,

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Annotated, Any, NoReturn
 import typer
 
 from linkwork.errors import LinkworkError, MissingDependencyError
+from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
 
 app = typer.Typer(
@@ -39,11 +40,65 @@ if TYPE_CHECKING:
 
 FileOrExample = Annotated[str, typer.Argument(help="a mechanism file (.yaml) or the name of a bundled example")]
 
+#: ``--steps`` of the commands that take either it or ``--angles``.
+Steps = Annotated[
+    int | None, typer.Option(help=f"equal steps over one turn of the crank (default {TURN_STEPS})", show_default=False)
+]
+
+#: ``--angles``: the crank angles in degrees.
+Angles = Annotated[str | None, typer.Option(help="crank angles in degrees, e.g. 0,30,60")]
+
+#: ``--speed``: the drive's uniform speed, in place of the file's (:func:`drive_speed` reads it).
+Speed = Annotated[
+    str | None, typer.Option(help='uniform drive speed with a unit, e.g. "30 rpm" (default: the file\'s drive speed)')
+]
+
 
 def fail(exc: Exception) -> NoReturn:
     """Print a linkwork error to stderr and exit with code 2."""
     sys.stderr.write(f"error: {exc}\n" if "\n" not in str(exc) else f"error:\n{exc}\n")
     raise typer.Exit(2)
+
+
+def drive_speed(mech: Mechanism, text: str | None) -> float | None:
+    """The drive speed of ``--speed`` (:data:`Speed`) in SI, in the file's direction of the drive; None
+    where it is not given (the file's speed).  Exit code 2 with one line for a speed without its unit,
+    of the wrong kind, or below 0."""
+    from linkwork.errors import UnitParseError
+    from linkwork.structure.model import PairType
+    from linkwork.units import parse_quantity
+
+    if text is None:
+        return None
+    revolute = mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE
+    kind, example = ("angular_speed", "30 rpm") if revolute else ("speed", "0.2 m/s")
+    try:
+        float(text)
+    except ValueError:
+        pass
+    else:
+        fail(LinkworkError(f'--speed: give the unit, e.g. "{example}", got "{text}"'))
+    try:
+        value = parse_quantity(text, kind)
+    except UnitParseError as exc:
+        fail(LinkworkError(f"--speed: {exc}"))
+    if value < 0:
+        fail(LinkworkError(f'--speed: the direction comes from the file; give a speed from 0 up, got "{text}"'))
+    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
+    return sign * value
+
+
+def at_speed(mech: Mechanism, text: str | None) -> Mechanism:
+    """``mech`` with its drive at the speed of ``--speed`` (:func:`drive_speed`), or as it is where none is
+    given: for a command whose stages read the drive's speed from the mechanism (``analyze``)."""
+    import dataclasses
+
+    from linkwork.structure.model import frozen
+
+    rate = drive_speed(mech, text)
+    if rate is None:
+        return mech
+    return dataclasses.replace(mech, drive_speed=frozen([rate, *mech.drive_speed[1:]]))
 
 
 def check_options(*problems: str | None) -> None:

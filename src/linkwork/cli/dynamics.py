@@ -76,14 +76,13 @@ def _write(out: str, files: list[Path], data: dict[str, Any]) -> list[Path]:
     text = dumps(data)
     try:
         bodies = {".json": text, ".csv": "\n".join(rows) + "\n"}
-        paths = [write_atomic(p, functools.partial(_write_text, text=bodies[p.suffix.lower()])) for p in files]
+        paths = [
+            write_atomic(p, functools.partial(Path.write_text, data=bodies[p.suffix.lower()], encoding="utf-8"))
+            for p in files
+        ]
     except OSError as exc:
         fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     return paths
-
-
-def _write_text(tmp: Path, text: str) -> None:
-    tmp.write_text(text, "utf-8")
 
 
 def _print_report(mech: Mechanism, result: Dynamics, data: dict[str, Any]) -> None:

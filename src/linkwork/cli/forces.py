@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
@@ -10,10 +11,14 @@ import numpy as np
 import typer
 
 from linkwork.cli.app import (
+    Angles,
     FileOrExample,
+    Speed,
+    Steps,
     _compile,
     app,
     check_options,
+    drive_speed,
     echo_json,
     explain_nulls,
     fail,
@@ -23,7 +28,7 @@ from linkwork.cli.app import (
     show,
 )
 from linkwork.cli.motion import NOT_ASSEMBLED, _angles, check_angles
-from linkwork.limits import MAX_ANGLES, MAX_NAME, quote, whole
+from linkwork.limits import MAX_ANGLES, MAX_NAME, TURN_STEPS, quote, whole
 from linkwork.units import parse_quantity, turn_deg
 
 # what a command needs is imported when it runs, so that the command line starts fast
@@ -34,31 +39,6 @@ if TYPE_CHECKING:
     from linkwork.kinetostatics.balancing import Balance
     from linkwork.kinetostatics.forces import Forces
     from linkwork.structure.model import Mechanism
-
-
-def _speed(mech: Mechanism, text: str | None) -> float | None:
-    """The drive speed of ``--speed`` in SI, in the file's direction of the drive."""
-    from linkwork.errors import LinkworkError, UnitParseError
-    from linkwork.structure.model import PairType
-
-    if text is None:
-        return None
-    revolute = mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE
-    kind, example = ("angular_speed", "30 rpm") if revolute else ("speed", "0.2 m/s")
-    try:
-        float(text)
-    except ValueError:
-        pass
-    else:
-        fail(LinkworkError(f'--speed: give the unit, e.g. "{example}", got "{text}"'))
-    try:
-        value = parse_quantity(text, kind)
-    except UnitParseError as exc:
-        fail(LinkworkError(f"--speed: {exc}"))
-    if value < 0:
-        fail(LinkworkError(f'--speed: the direction comes from the file; give a speed from 0 up, got "{text}"'))
-    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
-    return sign * value
 
 
 #: Why the values of ``linkwork forces --json`` may be null.
@@ -92,9 +72,9 @@ def _peak(values: np.ndarray, angles: np.ndarray) -> tuple[float, float]:
 @app.command()
 def forces(
     file_or_example: FileOrExample,
-    steps: Annotated[int | None, typer.Option(help="equal steps over one turn of the crank (default 360)")] = None,
-    angles: Annotated[str | None, typer.Option(help="crank angles in degrees, e.g. 0,30,60")] = None,
-    speed: Annotated[str | None, typer.Option(help='uniform drive speed with a unit, e.g. "30 rpm"')] = None,
+    steps: Steps = None,
+    angles: Angles = None,
+    speed: Speed = None,
     pull: Annotated[
         str | None,
         typer.Option(help='also find the crank speed at which the pull on the bolts reaches this force, e.g. "5 kN"'),
@@ -114,7 +94,7 @@ def forces(
     files = out_files(out, ("forces.csv", "forces.json")) if out is not None else []
     mech = _compile(file_or_example)
     where = _angles(mech, steps, angles)
-    rate = _speed(mech, speed)
+    rate = drive_speed(mech, speed)
     target = _force(pull)
     try:
         f = solve(mech, **where, speed=rate)
@@ -155,7 +135,7 @@ def _write(f: Forces, data: dict[str, Any], out: str, files: list[Path]) -> list
         for path in files:
             if path.suffix.lower() == ".json":
                 text = dumps(data)
-                written.append(write_atomic(path, lambda tmp, text=text: tmp.write_text(text, "utf-8")))
+                written.append(write_atomic(path, functools.partial(Path.write_text, data=text, encoding="utf-8")))
             else:
                 written.append(write_csv(f, path))
     except OSError as exc:
@@ -279,7 +259,7 @@ def balance(
     radius: Annotated[
         str | None, typer.Option(help='distance of the counterweights from their pivots, e.g. "120 mm"')
     ] = None,
-    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
+    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = TURN_STEPS,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Counterweights that cancel the shaking force (or its first harmonic), with the figures before and after."""

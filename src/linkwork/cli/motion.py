@@ -9,10 +9,14 @@ import numpy as np
 import typer
 
 from linkwork.cli.app import (
+    Angles,
     FileOrExample,
+    Speed,
+    Steps,
     _compile,
     app,
     check_options,
+    drive_speed,
     echo_json,
     fail,
     make_console,
@@ -23,7 +27,7 @@ from linkwork.cli.app import (
 )
 from linkwork.errors import LinkworkError
 from linkwork.lang import kind_named
-from linkwork.limits import MAX_ANGLES, angle_problem, quote, whole
+from linkwork.limits import MAX_ANGLES, TURN_STEPS, angle_problem, quote, whole
 from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
@@ -89,14 +93,15 @@ def _angles(mech: Mechanism, steps: int | None, angles: str | None) -> dict[str,
                 "--steps needs a crank (a revolute drive); for a linear drive give --angles as positions in mm"
             )
         )
-    return {"steps": steps or 360}
+    return {"steps": steps or TURN_STEPS}
 
 
 @app.command()
 def kinematics(
     file_or_example: FileOrExample,
-    steps: Annotated[int | None, typer.Option(help="equal steps over one turn of the crank (default 360)")] = None,
-    angles: Annotated[str | None, typer.Option(help="crank angles in degrees, e.g. 0,30,60")] = None,
+    steps: Steps = None,
+    angles: Angles = None,
+    speed: Speed = None,
     out: Annotated[
         str | None,
         typer.Option(help="folder for kinematics.csv and kinematics.nc, or a file ending in .csv or .nc for it alone"),
@@ -114,7 +119,7 @@ def kinematics(
         needs("xarray", purpose=f"--out {out}: kinematics.nc (NetCDF)")
     mech = _compile(file_or_example)
     try:
-        kin = solve(mech, **_angles(mech, steps, angles))
+        kin = solve(mech, **_angles(mech, steps, angles), speed=drive_speed(mech, speed))
     except LinkworkError as exc:
         fail(exc)
     ext = extremes(kin) if angles is None else []

@@ -26,6 +26,7 @@ import numpy as np
 
 from linkwork.io.jsonout import dumps
 from linkwork.lang import check_lang, kind_named, t
+from linkwork.limits import TURN_STEPS
 from linkwork.structure.model import PairType
 from linkwork.units import turn_deg
 
@@ -164,7 +165,7 @@ def analyze(
     mech: Mechanism,
     out: str | Path,
     *,
-    steps: int = 360,
+    steps: int = TURN_STEPS,
     position: int | str | None = None,
     pdf: bool = False,
     animation: bool = True,
