@@ -109,7 +109,8 @@ def test_a_rocker_named_rocker_is_named_once(tmp_path):
     assert result.returncode == 0, result.stderr
     assert "rocker rocker" not in result.stdout
     assert "\n  rocker: swing " in result.stdout
-    assert linkwork("analyze", "four-bar", "--out", "r", "--steps", "36", "--no-animation", cwd=tmp_path).returncode == 0
+    report = linkwork("analyze", "four-bar", "--out", "r", "--steps", "36", "--no-animation", cwd=tmp_path)
+    assert report.returncode == 0, report.stderr
     page = (tmp_path / "r" / "report.html").read_text()
     assert "rocker rocker" not in page and "extreme position of the output rocker at the" in page
 
