@@ -228,8 +228,10 @@ def require_packages() -> None:
 
 
 def _build(run: _Run, steps: int, position: int | str | None, animation: bool, dxf: bool = False) -> None:
+    from linkwork.report.inputs import input_section
     from linkwork.structure.model import one_crank
 
+    run.sections.append(Section("input", run.t("section.input"), input_section(run.mech, steps, run.t)))
     _structure(run)
     if not one_crank(run.mech):
         run.sections.append(Section("kinematics", run.t("section.kinematics"), [_p(run.t("kin.needs_crank"))]))
@@ -596,7 +598,20 @@ def _dynamics(run: _Run, cycle: Cycle) -> None:
         [run.t("dynamics.startup"), result.startup_time],
         [run.t("dynamics.flywheel", shaft=run.t(f"shaft.{result.drive.flywheel_on}")), result.drive.flywheel],
     ]
+    fly = result.flywheel
+    if fly is not None:
+        rows[2:3] = [
+            [run.t("dynamics.delta_asked"), fly.delta],
+            [run.t("dynamics.delta_true"), last.delta],
+            [run.t("dynamics.energy_swing"), fly.energy_swing],
+            [run.t("dynamics.inertia_needed"), f"{fly.inertia:.6g}"],
+        ]
     sec.body.append(_table([run.t("dynamics.head.quantity"), run.t("dynamics.head.value")], rows))
+    if fly is not None:
+        sec.body.append(
+            _p(run.t("dynamics.why_delta", true=f"{last.delta:.4g}", asked=f"{fly.delta:.4g}",
+                     rpm=f"{fly.omega_mean * rpm:.4g}"))
+        )  # fmt: skip
     zero, lang = cycle.zero, run.lang
     sec.figures.append(run.figure("dynamics", lambda: figures.dynamics_diagrams(result, zero, lang),
                                   run.t("caption.dynamics")))  # fmt: skip
@@ -673,10 +688,6 @@ def _write_html(run: _Run, path: Path) -> None:
     parts = [f"<!DOCTYPE html><html lang='{run.lang}'><head><meta charset='utf-8'><title>{title}</title>"]
     parts.append(f"<style>{STYLE}</style></head><body><h1>{html.escape(mech.name)}</h1>")
     parts.append("<nav>" + "".join(f"<a href='#{s.key}'>{html.escape(s.title)}</a>" for s in run.sections) + "</nav>")
-    if mech.source and Path(mech.source).exists():
-        text = Path(mech.source).read_text(encoding="utf-8")
-        parts.append(f"<section id='input'><h2>{html.escape(run.t('section.input'))}</h2>")
-        parts.append(f"<pre>{html.escape(text)}</pre></section>")
     for s in run.sections:
         parts.append(f"<section id='{s.key}'><h2>{html.escape(s.title)}</h2>")
         parts += s.body
