@@ -109,12 +109,13 @@ TEXTS: dict[str, tuple[str, str]] = {
     ),
     "kin.phi.rocker": (
         "φ is the crank angle turned from position 0 in the direction of its rotation, 0 to 360°, on every axis "
-        "and in every table. Position 0 is the extreme position of the output {rocker} at the "
+        "and in every table. Position 0 is the extreme position of the output {member} at the "
         "counter-clockwise end of its swing (the crank at {crank}° to the x axis).",
         "φ — угол поворота кривошипа от положения 0 в направлении его вращения, от 0 до 360°, на всех графиках и "
-        "во всех таблицах. Положение 0 — крайнее положение выходного коромысла {member}, повёрнутого на "
+        "во всех таблицах. Положение 0 — крайнее положение выходного {member}, повёрнутого на "
         "наибольший угол против часовой стрелки (кривошип под углом {crank}° к оси x).",
     ),
+    "kin.rocker_word": ("rocker", "коромысла"),
     "kin.phi.assembly": (
         "φ is the crank angle turned from position 0, the assembly position (the crank at {crank}° to the "
         "x axis), in the direction of its rotation, 0 to 360°, on every axis and in every table.",

@@ -375,7 +375,9 @@ def _position_0(run: _Run, cycle: Cycle) -> str:
         return run.t("kin.phi.assembly", crank=crank)
     kind = "slider" if members[0].kind == "slider" else "rocker"
     member = member_label(run.mech, members[0], run.lang)
-    return run.t(f"kin.phi.{kind}", member=member, rocker=kind_named("rocker", member), crank=crank)
+    if kind == "rocker":  # "the output rocker", not "the output rocker rocker"
+        member = kind_named(run.t("kin.rocker_word"), member)
+    return run.t(f"kin.phi.{kind}", member=member, crank=crank)
 
 
 def _positions_table(run: _Run, cycle: Cycle) -> list[str]:
