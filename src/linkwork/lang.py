@@ -33,7 +33,7 @@ TEXTS: dict[str, tuple[str, str]] = {
         "declares; the tables and JSON files beside the report are in SI (each column names its unit).",
         "Что рассчитано: {name}, {steps} равных шагов за оборот кривошипа. Длины в мм, углы в градусах, массы в "
         "кг, моменты инерции в кг·м² относительно центра масс, в каких бы единицах ни был задан файл; таблицы и "
-        "JSON-файлы рядом с отчётом — в СИ (единица указана в каждом столбце).",
+        "файлы данных рядом с отчётом — в СИ (единица указана в каждом столбце).",
     ),
     "input.drive": (
         "Drive: joint {joint}, {rpm} rpm ({rad} rad/s) {turn}, uniform; the assembly pose with the crank at "
@@ -237,7 +237,10 @@ TEXTS: dict[str, tuple[str, str]] = {
         "заданный δ (маховик подобран по касательным к диаграмме Виттенбауэра)",
     ),
     "dynamics.delta_true": ("δ of the simulated steady cycle", "δ установившегося режима по расчёту движения"),
-    "dynamics.energy_swing": ("energy swing between the tangents ab, J", "отрезок ab между касательными, Дж"),
+    "dynamics.energy_swing": (
+        "energy swing: the segment ab between the tangents on the energy axis, J",
+        "размах энергии: отрезок между касательными на оси энергии, Дж",
+    ),
     "dynamics.inertia_needed": (
         "constant inertia needed on the crank shaft, kg·m²",
         "необходимый постоянный момент инерции на валу кривошипа, кг·м²",
@@ -361,11 +364,13 @@ TEXTS: dict[str, tuple[str, str]] = {
     "axis.inertia": ("J, kg·m²", r"$J_\mathrm{{пр}}$, кг·м²"),
     "axis.energy": ("energy ΔT, {unit}", "приращение энергии ΔT, {unit}"),
     "legend.position_0": ("position 0", "положение 0"),
-    "legend.tangent_max": ("tangent at ω²max/2", "касательная под ω²max/2"),
-    "legend.tangent_min": ("tangent at ω²min/2", "касательная под ω²min/2"),
+    "legend.tangent_max": (r"tangent at $\omega_{{\max}}^2/2$", r"касательная под $\omega_{{\max}}^2/2$"),
+    "legend.tangent_min": (r"tangent at $\omega_{{\min}}^2/2$", r"касательная под $\omega_{{\min}}^2/2$"),
     "legend.tangent_segment": (
-        "ab = {segment}: constant inertia on the crank\nJ = ab / (ω²max/2 − ω²min/2) = {inertia} kg·m²",
-        "ab = {segment}: постоянный момент инерции\nJ = ab / (ω²max/2 − ω²min/2) = {inertia} кг·м²",
+        "ab = {segment}: constant inertia on the crank\n"
+        r"$J = ab\,/\,(\omega_{{\max}}^2/2 - \omega_{{\min}}^2/2)$ = {inertia} kg·m²",
+        "отрезок $s$ = {segment}: постоянный момент инерции\n"
+        r"$J = s\,/\,(\omega_{{\max}}^2/2 - \omega_{{\min}}^2/2)$ = {inertia} кг·м²",
     ),
     "title.wittenbauer": ("Wittenbauer's diagram", "Диаграмма энергомасс (Виттенбауэра)"),
     "title.dynamics": (

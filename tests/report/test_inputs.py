@@ -31,7 +31,8 @@ def _html(page: str, key: str) -> str:
 
 def _section(page: str, key: str) -> str:
     """The text of a section of the report: each cell, paragraph and row as ``| text |``, entities read."""
-    part = re.sub(r"</?(tr|thead|tbody|table|p|details|summary|h2|section)[^>]*>", "\n", _html(page, key))
+    part = re.sub(r"</?code>", "", _html(page, key))
+    part = re.sub(r"</?(tr|thead|tbody|table|p|details|summary|h2|section)[^>]*>", "\n", part)
     part = re.sub(r"</td><td>", " | ", part)
     return html.unescape(re.sub(r"<[^>]+>", " | ", part))
 
@@ -39,7 +40,7 @@ def _section(page: str, key: str) -> str:
 def _rows(page: str, key: str) -> dict[str, list[str]]:
     """The rows of a section's tables by their first cell."""
     rows = re.findall(r"<tr>(.*?)</tr>", _html(page, key))
-    cells = [[html.unescape(c) for c in re.findall(r"<td>(.*?)</td>", r)] for r in rows]
+    cells = [[html.unescape(re.sub(r"<[^>]+>", "", c)) for c in re.findall(r"<td>(.*?)</td>", r)] for r in rows]
     return {c[0]: c for c in cells if c}
 
 

@@ -23,9 +23,12 @@ if TYPE_CHECKING:
 Rows = list[list[str]]
 
 
-def _table(head: list[str], rows: Rows) -> str:
+def _table(head: list[str], rows: Rows, code: bool = False) -> str:
+    """An HTML table; ``code``: its cells are the file's own words (keys and values as it writes them), set
+    as code."""
     out = ["<table><thead><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr></thead><tbody>"]
-    out += ["<tr>" + "".join(f"<td>{html.escape(x)}</td>" for x in row) + "</tr>" for row in rows]
+    cell = "<td><code>{}</code></td>" if code else "<td>{}</td>"
+    out += ["<tr>" + "".join(cell.format(html.escape(x)) for x in row) + "</tr>" for row in rows]
     return "".join(out) + "</tbody></table>"
 
 
@@ -50,16 +53,17 @@ def input_section(mech: Mechanism, steps: int, t: Any) -> list[str]:
     loads = _grouped(read, "loads.", mech.spec.loads if mech.spec is not None else {})
     if loads:
         head = [t("input.head.load"), t("input.head.type"), t("input.head.given")]
-        body.append(f"<p>{html.escape(t('input.loads'))}</p>" + _table(head, loads))
+        body.append(f"<p>{html.escape(t('input.loads'))}</p>" + _table(head, loads, code=True))
     given = mech.spec.machine if mech.spec is not None else None
     machine = _grouped(read, "machine.", {k: getattr(given, k, None) for k in ("motor", "gear", "flywheel")})
     if machine:
         head = [t("input.head.part"), t("input.head.given")]
         rows = [[name, "; ".join(x for x in (kind, text) if x)] for name, kind, text in machine]
-        body.append(f"<p>{html.escape(t('input.machine'))}</p>" + _table(head, rows))
+        body.append(f"<p>{html.escape(t('input.machine'))}</p>" + _table(head, rows, code=True))
     text = _file_text(mech)
     if text:
-        summary = html.escape(t("input.file", file=mech.source or mech.name))
+        file = f"<code>{html.escape(mech.source or mech.name)}</code>"  # the file's name: its own word
+        summary = html.escape(t("input.file", file="\0")).replace("\0", file)
         body.append(f"<details><summary>{summary}</summary><pre>{html.escape(text)}</pre></details>")
     return body
 
