@@ -133,3 +133,15 @@ def test_the_report_says_why_the_simulated_delta_differs(report):
     assert true == pytest.approx(run.delta, rel=1e-3) and abs(true - 0.05) > 1e-4
     assert f"Why the simulated δ = {run.delta:.4g} differs from the δ = 0.05 asked for" in section
     assert "approximate method" in section and "true δ" in section
+
+
+def test_a_file_in_inches_is_reported_in_mm_and_says_so(tmp_path):
+    """The four-bar with ``length: in``: its crank of 100 in is 2540 mm in the report, which says lengths are
+    in mm whatever the file declares."""
+    (tmp_path / "inch.yaml").write_text(text("four-bar").replace("length: mm", "length: in"))
+    result = linkwork("analyze", "inch.yaml", "--out", "r", "--steps", "36", "--no-animation", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    page = (tmp_path / "r" / "report.html").read_text(encoding="utf-8")
+    assert _rows(page, "input")["crank"][1] == "O2 (0, 0), A (2540, 0)"
+    assert "Lengths in mm, angles in degrees" in _section(page, "input")
+    assert "whatever units the file declares" in _section(page, "input")
