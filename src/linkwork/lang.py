@@ -27,6 +27,57 @@ TEXTS: dict[str, tuple[str, str]] = {
     "at_position": (" at position {position}", " в положении {position}"),
     "section.input": ("Input", "Исходные данные"),
     "section.structure": ("Structure", "Структурный анализ"),
+    "input.intro": (
+        "What was computed: {name}, over {steps} equal steps of the crank's turn. Lengths in mm, angles in "
+        "degrees, masses in kg, moments of inertia in kg·m² about the centre of mass, whatever units the file "
+        "declares; the tables and JSON files beside the report are in SI (each column names its unit).",
+        "Что рассчитано: {name}, {steps} равных шагов за оборот кривошипа. Длины в мм, углы в градусах, массы в "
+        "кг, моменты инерции в кг·м² относительно центра масс, в каких бы единицах ни был задан файл; таблицы и "
+        "файлы данных рядом с отчётом — в СИ (единица указана в каждом столбце).",
+    ),
+    "input.drive": (
+        "Drive: joint {joint}, {rpm} rpm ({rad} rad/s) {turn}, uniform; the assembly pose with the crank at "
+        "{start}° to the x axis.",
+        "Привод: пара {joint}, {rpm} об/мин ({rad} рад/с) {turn}, равномерно; положение сборки — кривошип под "
+        "углом {start}° к оси x.",
+    ),
+    "input.drive.linear": (
+        "Drive: joint {joint}, {speed} m/s, uniform; the assembly pose at {start} mm along the guide.",
+        "Привод: пара {joint}, {speed} м/с, равномерно; положение сборки — {start} мм вдоль направляющей.",
+    ),
+    "input.drive.law": (
+        "Drive: joint {joint}, by the file's motion law; the assembly pose at {start}° to the x axis.",
+        "Привод: пара {joint}, по закону движения из файла; положение сборки — {start}° к оси x.",
+    ),
+    "input.ccw": ("counter-clockwise", "против часовой стрелки"),
+    "input.cw": ("clockwise", "по часовой стрелке"),
+    "input.links": (
+        "Links: their points in the link's own coordinates, mm; mass properties.",
+        "Звенья: точки в собственных координатах звена, мм; массы и моменты инерции.",
+    ),
+    "input.guides": (
+        "Guides: the guide line through a point along an axis, in the guide's coordinates.",
+        "Направляющие: линия направляющей через точку вдоль оси, в координатах направляющего звена.",
+    ),
+    "input.loads": ("External loads, as the file gives them:", "Внешние нагрузки, как они заданы в файле:"),
+    "input.machine": (
+        "The machine unit (motor, gear, flywheel, δ), as the file gives it:",
+        "Машинный агрегат (двигатель, передача, маховик, δ), как он задан в файле:",
+    ),
+    "input.file": ("The file {file}", "Файл {file}"),
+    "input.head.link": ("link", "звено"),
+    "input.head.points": ("points, mm", "точки, мм"),
+    "input.head.mass": ("mass, kg", "масса, кг"),
+    "input.head.com": ("centre of mass, mm", "центр масс, мм"),
+    "input.head.inertia": ("moment of inertia, kg·m²", "момент инерции, кг·м²"),
+    "input.head.joint": ("joint", "пара"),
+    "input.head.guide": ("guide / slider", "направляющая / ползун"),
+    "input.head.through": ("through, mm", "через точку, мм"),
+    "input.head.axis": ("axis, °", "ось, °"),
+    "input.head.load": ("load", "нагрузка"),
+    "input.head.type": ("type", "тип"),
+    "input.head.given": ("given", "задано"),
+    "input.head.part": ("part", "элемент"),
     "section.kinematics": ("Kinematics", "Кинематический анализ"),
     "section.forces": ("Forces (kinetostatics)", "Силовой (кинетостатический) анализ"),
     "section.dynamics": ("Machine dynamics", "Динамика машинного агрегата"),
@@ -58,12 +109,13 @@ TEXTS: dict[str, tuple[str, str]] = {
     ),
     "kin.phi.rocker": (
         "φ is the crank angle turned from position 0 in the direction of its rotation, 0 to 360°, on every axis "
-        "and in every table. Position 0 is the extreme position of the output rocker {member} at the "
+        "and in every table. Position 0 is the extreme position of the output {member} at the "
         "counter-clockwise end of its swing (the crank at {crank}° to the x axis).",
         "φ — угол поворота кривошипа от положения 0 в направлении его вращения, от 0 до 360°, на всех графиках и "
-        "во всех таблицах. Положение 0 — крайнее положение выходного коромысла {member}, повёрнутого на "
+        "во всех таблицах. Положение 0 — крайнее положение выходного {member}, повёрнутого на "
         "наибольший угол против часовой стрелки (кривошип под углом {crank}° к оси x).",
     ),
+    "kin.rocker_word": ("rocker", "коромысла"),
     "kin.phi.assembly": (
         "φ is the crank angle turned from position 0, the assembly position (the crank at {crank}° to the "
         "x axis), in the direction of its rotation, 0 to 360°, on every axis and in every table.",
@@ -180,6 +232,32 @@ TEXTS: dict[str, tuple[str, str]] = {
     "dynamics.delta": ("coefficient of speed fluctuation δ", "коэффициент неравномерности хода δ"),
     "dynamics.drive_power": ("mean power of the drive on the crank, W", "средняя мощность привода на кривошипе, Вт"),
     "dynamics.motor_power": ("mean power of the motor at its shaft, W", "средняя мощность двигателя на его валу, Вт"),
+    "dynamics.delta_asked": (
+        "δ asked for (the flywheel sized for it by Wittenbauer's tangents)",
+        "заданный δ (маховик подобран по касательным к диаграмме Виттенбауэра)",
+    ),
+    "dynamics.delta_true": ("δ of the simulated steady cycle", "δ установившегося режима по расчёту движения"),
+    "dynamics.energy_swing": (
+        "energy swing: the segment ab between the tangents on the energy axis, J",
+        "размах энергии: отрезок между касательными на оси энергии, Дж",
+    ),
+    "dynamics.inertia_needed": (
+        "constant inertia needed on the crank shaft, kg·m²",
+        "необходимый постоянный момент инерции на валу кривошипа, кг·м²",
+    ),
+    "dynamics.why_delta": (
+        "Why the simulated δ = {true} differs from the δ = {asked} asked for: the flywheel is sized by an "
+        "approximate method, the tangents to Wittenbauer's diagram at the mean speed {rpm} rpm, which is exact "
+        "only under a constant drive moment. The simulation integrates the machine unit with the motor's own "
+        "characteristic (its torque changes with its speed over the cycle, and the mean speed settles where the "
+        "motor balances the load), and so gives the true δ of the machine with that flywheel.",
+        "Почему δ = {true} по расчёту движения отличается от заданного δ = {asked}: маховик подобран "
+        "приближённым методом — по касательным к диаграмме Виттенбауэра при средней частоте {rpm} об/мин, точным "
+        "лишь при постоянном движущем моменте. Расчёт движения интегрирует уравнение машинного агрегата с "
+        "механической характеристикой двигателя (его момент меняется со скоростью за цикл, а средняя скорость "
+        "устанавливается там, где двигатель уравновешивает нагрузку), и поэтому даёт истинный δ машины с этим "
+        "маховиком.",
+    ),
     "dynamics.startup": ("start-up time, s", "время разгона, с"),
     "dynamics.flywheel": ("flywheel on the {shaft} shaft, kg·m²", "маховик на валу {shaft}, кг·м²"),
     "shaft.motor": ("motor", "двигателя"),
@@ -286,6 +364,14 @@ TEXTS: dict[str, tuple[str, str]] = {
     "axis.inertia": ("J, kg·m²", r"$J_\mathrm{{пр}}$, кг·м²"),
     "axis.energy": ("energy ΔT, {unit}", "приращение энергии ΔT, {unit}"),
     "legend.position_0": ("position 0", "положение 0"),
+    "legend.tangent_max": (r"tangent at $\omega_{{\max}}^2/2$", r"касательная под $\omega_{{\max}}^2/2$"),
+    "legend.tangent_min": (r"tangent at $\omega_{{\min}}^2/2$", r"касательная под $\omega_{{\min}}^2/2$"),
+    "legend.tangent_segment": (
+        "ab = {segment}: constant inertia on the crank\n"
+        r"$J = ab\,/\,(\omega_{{\max}}^2/2 - \omega_{{\min}}^2/2)$ = {inertia} kg·m²",
+        "отрезок $s$ = {segment}: постоянный момент инерции\n"
+        r"$J = s\,/\,(\omega_{{\max}}^2/2 - \omega_{{\min}}^2/2)$ = {inertia} кг·м²",
+    ),
     "title.wittenbauer": ("Wittenbauer's diagram", "Диаграмма энергомасс (Виттенбауэра)"),
     "title.dynamics": (
         "Machine dynamics: steady cycle, δ = {delta}",
@@ -346,6 +432,12 @@ def check_lang(lang: str) -> None:
     """Raise :class:`~linkwork.errors.LinkworkError` unless ``lang`` is one of :data:`LANGUAGES`."""
     if lang not in LANGUAGES:
         raise LinkworkError(f"--lang: expected one of {', '.join(LANGUAGES)}, got {excerpt(lang)!r}")
+
+
+def kind_named(kind: str, name: str) -> str:
+    """``rocker output``: a member's kind and its name, the word once where the name is the kind's word
+    (``rocker``, not ``rocker rocker``)."""
+    return kind if name.strip().lower() == kind.lower() else f"{kind} {name}"
 
 
 def t(key: str, lang: str = "en", /, **values: Any) -> str:

@@ -13,6 +13,15 @@ import os
 import re
 from typing import Any
 
+#: Steps over a turn of the crank where a function of ``linkwork`` is given neither angles nor ``steps``
+#: (keyword-only everywhere): for the analyses of positions over a turn (``kinematics``, ``forces``,
+#: ``balance``, ``bolt_speed``, ``sweep``, ``optimize``, the report).
+TURN_STEPS = 360
+
+#: The same for machine dynamics (``reduced``, ``dynamics``, ``simulate_blows``): the integrals over the
+#: turn (the work, the energy, the run of the machine unit) need the finer grid.
+DYNAMICS_STEPS = 3600
+
 #: Bytes of a mechanism file (or of YAML text given to :func:`linkwork.loads`).
 MAX_FILE_BYTES = 1 << 20
 

@@ -43,7 +43,7 @@ def test_forces_out_writes_csv_and_json(tmp_path):
         rows = list(csv.reader(fh))
     header = rows[0]
     assert header[:3] == ["phi [deg]", "crank_angle_to_x [deg]", "driving_torque [N m]"]
-    assert "O3 (frame on rocker).fx [N]" in header and "load.cutting [N or N m]" in header
+    assert "O3 (frame on rocker).fx [N]" in header and "load.cutting [N]" in header
     assert len(rows) == 37
     data = json.loads((tmp_path / "forces.json").read_text(encoding="utf-8"))
     torque = np.array([float(r[2]) for r in rows[1:]])

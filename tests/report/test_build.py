@@ -178,14 +178,14 @@ def test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output(tmp_path
     assert ratios == pytest.approx((rocker.time_ratio, rocker.forward_time_ratio), rel=1e-11)
     report.analyze(mech, tmp_path / "report", steps=steps, animation=False)
     html = (tmp_path / "report" / "report.html").read_text(encoding="utf-8")
-    row = html[html.index("<td>rocker</td>") :].split("</tr>")[0]  # the table of the rockers' swings
+    row = html[html.index("<td>rocker</td>", html.index("<section id='kinematics'>")) :].split("</tr>")[0]  # swings
     cells = [c.split("</td>")[0] for c in row.split("<td>")[1:]]
     assert cells[-2:] == [f"{rocker.time_ratio:.6g}", f"{rocker.forward_time_ratio:.6g}"]
 
 
 class _Text(HTMLParser):
     """The text a reader sees in a report page: its data and the images' alternative texts, not the style
-    nor the input file (a <pre> of the file's own words)."""
+    nor the input file's own words (a <pre> of the file, the <code> of its keys and values)."""
 
     def __init__(self) -> None:
         super().__init__()
@@ -193,11 +193,11 @@ class _Text(HTMLParser):
         self.skip = 0
 
     def handle_starttag(self, tag, attrs):
-        self.skip += tag in ("style", "pre", "script")
+        self.skip += tag in ("style", "pre", "script", "code")
         self.parts += [v for k, v in attrs if k == "alt" and v]
 
     def handle_endtag(self, tag):
-        self.skip -= tag in ("style", "pre", "script")
+        self.skip -= tag in ("style", "pre", "script", "code")
 
     def handle_data(self, data):
         if not self.skip:

@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, check_options, fail, needs
-from linkwork.limits import MAX_ANGLES, digits, quote, whole
+from linkwork.cli.app import FileOrExample, Speed, _compile, app, at_speed, check_options, fail, names_a_file, needs
+from linkwork.limits import MAX_ANGLES, TURN_STEPS, digits, quote, whole
 
 
 @app.command()
@@ -17,7 +18,8 @@ def analyze(
         str,
         typer.Option(help="folder for the report, tables, figures and animation: new, empty, or an earlier report"),
     ] = "report",
-    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
+    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = TURN_STEPS,
+    speed: Speed = None,
     position: Annotated[
         str | None,
         typer.Option(
@@ -52,6 +54,11 @@ def analyze(
     from linkwork.report.folder import problem
 
     why = problem(out)
+    if why is None and names_a_file(out):
+        why = (
+            f"names a {Path(out).suffix} file; analyze writes a folder (report.html, the tables, the figures): "
+            f"give a folder, e.g. --out {Path(out).with_suffix('')}"
+        )
     if why is not None:
         fail(LinkworkError(f"--out {out}: {why}"))
     try:
@@ -60,8 +67,12 @@ def analyze(
         fail(exc)
     if dxf:
         needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
-    mech = _compile(file_or_example)
-    with Progress(SpinnerColumn(), TextColumn("{task.description}"), transient=True, console=console()) as bar:
+    mech = at_speed(_compile(file_or_example), speed)
+    # the spinner on stderr, and only in a terminal: piped or redirected, stdout holds the one line "wrote ..."
+    shown = console(stderr=True)
+    spinner = Progress(SpinnerColumn(), TextColumn("{task.description}"), console=shown, transient=True,
+                       disable=not shown.is_terminal)  # fmt: skip
+    with spinner as bar:
         task = bar.add_task("analysing", total=None)
         try:
             path = run(

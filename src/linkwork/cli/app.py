@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Annotated, Any, NoReturn
 import typer
 
 from linkwork.errors import LinkworkError, MissingDependencyError
+from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
 
 app = typer.Typer(
@@ -28,6 +29,8 @@ app = typer.Typer(
 )
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from rich.console import Console
     from rich.table import Table
 
@@ -46,11 +49,69 @@ def _every_command() -> None:
 
 FileOrExample = Annotated[str, typer.Argument(help="a mechanism file (.yaml) or the name of a bundled example")]
 
+#: ``--steps`` of the commands that take either it or ``--angles``.
+Steps = Annotated[
+    int | None, typer.Option(help=f"equal steps over one turn of the crank (default {TURN_STEPS})", show_default=False)
+]
+
+#: ``--angles``: the crank angles in degrees.
+Angles = Annotated[str | None, typer.Option(help="crank angles in degrees, e.g. 0,30,60")]
+
+#: ``--speed``: the drive's uniform speed, in place of the file's (:func:`drive_speed` reads it).
+Speed = Annotated[
+    str | None, typer.Option(help='uniform drive speed with a unit, e.g. "30 rpm" (default: the file\'s drive speed)')
+]
+
 
 def fail(exc: Exception) -> NoReturn:
     """Print a linkwork error to stderr and exit with code 2."""
     sys.stderr.write(f"error: {exc}\n" if "\n" not in str(exc) else f"error:\n{exc}\n")
     raise typer.Exit(2)
+
+
+def drive_speed(mech: Mechanism, text: str | None) -> float | None:
+    """The drive speed of ``--speed`` (:data:`Speed`) in SI, in the file's direction of the drive; None
+    where it is not given (the file's speed).  Exit code 2 with one line for a speed without its unit,
+    of the wrong kind, or below 0."""
+    from linkwork.errors import UnitParseError
+    from linkwork.limits import MAX_MAGNITUDE, quote
+    from linkwork.structure.model import PairType
+    from linkwork.units import KINDS, parse_quantity
+
+    if text is None:
+        return None
+    revolute = mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE
+    kind, example = ("angular_speed", "30 rpm") if revolute else ("speed", "0.2 m/s")
+    try:
+        float(text)
+    except ValueError:
+        pass
+    else:
+        fail(LinkworkError(f'--speed: give the unit, e.g. "{example}", got "{text}"'))
+    try:
+        value = parse_quantity(text, kind)
+    except UnitParseError as exc:
+        fail(LinkworkError(f"--speed: {exc}"))
+    if value < 0:
+        fail(LinkworkError(f'--speed: the direction comes from the file; give a speed from 0 up, got "{text}"'))
+    if value > MAX_MAGNITUDE:
+        size = f"{KINDS[kind][0]} of a machine's size (at most 1e9 in SI)"
+        fail(LinkworkError(f"--speed: expected {size}, got {quote(text)}"))
+    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
+    return sign * value
+
+
+def at_speed(mech: Mechanism, text: str | None) -> Mechanism:
+    """``mech`` with its drive at the speed of ``--speed`` (:func:`drive_speed`), or as it is where none is
+    given: for a command whose stages read the drive's speed from the mechanism (``analyze``)."""
+    import dataclasses
+
+    from linkwork.structure.model import frozen
+
+    rate = drive_speed(mech, text)
+    if rate is None:
+        return mech
+    return dataclasses.replace(mech, drive_speed=frozen([rate, *mech.drive_speed[1:]]))
 
 
 def check_options(*problems: str | None) -> None:
@@ -126,6 +187,41 @@ def _no_values(x: Any, path: str) -> Any:
                 if found not in seen:
                     seen.add(found)
                     yield found
+
+
+def names_a_file(out: str) -> bool:
+    """Whether the path ``out`` of an ``--out`` names a file (:func:`out_files`): it ends in a file
+    suffix and is not an existing folder."""
+    import os
+    import re
+    from pathlib import Path
+
+    return not os.path.isdir(out) and re.fullmatch(r"\.[A-Za-z][A-Za-z0-9]{0,4}", Path(out).suffix) is not None
+
+
+def out_files(out: str, names: tuple[str, ...]) -> list[Path]:
+    """The files a command's ``--out`` asks for, of the files ``names`` it writes (``forces.csv``,
+    ``forces.json``): a path that ends in the suffix of one of them is that file alone; any other path
+    is a folder that gets all of them.  The one rule of ``--out``: a path ending in a file suffix
+    (``.txt``, ``.xlsx``: a dot, a letter and at most four more letters or digits) means a file, so a
+    suffix the command does not write is refused here (exit code 2), before any work, rather than
+    made into a folder of that name; an existing folder stays a folder whatever its name."""
+    from pathlib import Path
+
+    path = Path(out)
+    suffixes = {Path(n).suffix: n for n in names}
+    if not names_a_file(out):
+        return [path / n for n in names]
+    if path.suffix.lower() in suffixes:
+        return [path]
+    files = " and ".join(names)
+    ours = " or ".join(suffixes)
+    fail(
+        LinkworkError(
+            f"--out {out}: names a {path.suffix} file, which this command does not write; give a folder for "
+            f"{files} (e.g. --out {path.with_suffix('')}), or a file ending in {ours} for that table alone"
+        )
+    )
 
 
 def make_console() -> Console:

@@ -59,8 +59,8 @@ def _show(value: float, unit: str) -> str:
 def parameters(file_or_example: FileOrExample) -> None:
     """List the named parameters (dimensions, masses, moments of inertia) a sweep may vary, with the file's
     values in the file's units (the units in which bare numbers of --vary are read)."""
-    from linkwork.design.plan import file_units, in_file_units
-    from linkwork.structure.parameters import parameter_list
+    from linkwork.design.plan import in_file_units
+    from linkwork.structure.parameters import file_units, parameter_list
 
     mech = _compile(file_or_example)
     declared = file_units(mech.spec)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
@@ -9,7 +10,16 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, explain_nulls, fail
+from linkwork.cli.app import (
+    FileOrExample,
+    _compile,
+    app,
+    check_options,
+    echo_json,
+    explain_nulls,
+    fail,
+    out_files,
+)
 from linkwork.errors import LinkworkError
 from linkwork.limits import MAX_ANGLES, delta_problem, whole
 from linkwork.units import turn_deg
@@ -26,7 +36,10 @@ def dynamics(
         float | None, typer.Option(help="size a flywheel for this coefficient of speed fluctuation, e.g. 0.05")
     ] = None,
     steps: Annotated[int, typer.Option(help="crank angles over a turn for the reduced quantities")] = 3600,
-    out: Annotated[str | None, typer.Option(help="directory for dynamics.json and dynamics.csv")] = None,
+    out: Annotated[
+        str | None,
+        typer.Option(help="folder for dynamics.csv and dynamics.json, or a file ending in .csv or .json for it alone"),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Reduced inertia and loads, the run of the machine unit from rest to its steady cycle, the flywheel."""
@@ -34,13 +47,14 @@ def dynamics(
     from linkwork.machine import dynamics as run
 
     check_options(whole(steps, "--steps", 1, MAX_ANGLES), delta_problem(delta, "--delta"))
+    files = out_files(out, ("dynamics.csv", "dynamics.json")) if out is not None else []
     mech = _compile(file_or_example)
     try:
         result = run(mech, delta=delta, steps=steps)
     except LinkworkError as exc:
         fail(exc)
     data = explain_nulls(to_json(mech, result), {})
-    paths = _write(out, data) if out is not None else []
+    paths = _write(out, files, data) if out is not None else []
     if as_json:
         echo_json(data)
         return
@@ -49,8 +63,9 @@ def dynamics(
         typer.echo(f"  wrote {path}")
 
 
-def _write(out: str, data: dict[str, Any]) -> list[Path]:
-    """``dynamics.csv`` (the steady cycle) and ``dynamics.json`` (``data``) in the folder ``out``."""
+def _write(out: str, files: list[Path], data: dict[str, Any]) -> list[Path]:
+    """The ``files`` of ``--out`` (:func:`~linkwork.cli.app.out_files`): ``dynamics.csv`` (the steady
+    cycle) and ``dynamics.json`` (``data``)."""
     from linkwork.atomic import write_atomic
     from linkwork.io.dynamics_tables import CYCLE_COLUMNS
     from linkwork.io.jsonout import dumps
@@ -60,9 +75,10 @@ def _write(out: str, data: dict[str, Any]) -> list[Path]:
     rows += [",".join(repr(v) for v in row) for row in zip(*cycle.values(), strict=True)]
     text = dumps(data)
     try:
+        bodies = {".json": text, ".csv": "\n".join(rows) + "\n"}
         paths = [
-            write_atomic(Path(out) / "dynamics.csv", lambda tmp: tmp.write_text("\n".join(rows) + "\n", "utf-8")),
-            write_atomic(Path(out) / "dynamics.json", lambda tmp: tmp.write_text(text, "utf-8")),
+            write_atomic(p, functools.partial(Path.write_text, data=bodies[p.suffix.lower()], encoding="utf-8"))
+            for p in files
         ]
     except OSError as exc:
         fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))

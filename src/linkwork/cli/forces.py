@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
@@ -10,20 +11,25 @@ import numpy as np
 import typer
 
 from linkwork.cli.app import (
+    Angles,
     FileOrExample,
+    Speed,
+    Steps,
     _compile,
     app,
     check_options,
+    drive_speed,
     echo_json,
     explain_nulls,
     fail,
     make_console,
     make_table,
+    out_files,
     show,
 )
 from linkwork.cli.motion import NOT_ASSEMBLED, _angles, _where, check_angles
-from linkwork.limits import MAX_ANGLES, MAX_MAGNITUDE, MAX_NAME, quote, whole
-from linkwork.units import KINDS, parse_quantity
+from linkwork.limits import MAX_ANGLES, MAX_NAME, TURN_STEPS, quote, whole
+from linkwork.units import parse_quantity
 
 # what a command needs is imported when it runs, so that the command line starts fast
 if TYPE_CHECKING:
@@ -33,37 +39,6 @@ if TYPE_CHECKING:
     from linkwork.kinetostatics.balancing import Balance
     from linkwork.kinetostatics.forces import Forces
     from linkwork.structure.model import Mechanism
-
-
-def _speed(mech: Mechanism, text: str | None) -> float | None:
-    """The drive speed of ``--speed`` in SI, in the file's direction of the drive."""
-    from linkwork.errors import LinkworkError, UnitParseError
-    from linkwork.structure.model import PairType
-
-    if text is None:
-        return None
-    revolute = mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE
-    kind, example = ("angular_speed", "30 rpm") if revolute else ("speed", "0.2 m/s")
-    try:
-        float(text)
-    except ValueError:
-        pass
-    else:
-        fail(LinkworkError(f'--speed: give the unit, e.g. "{example}", got "{text}"'))
-    try:
-        value = parse_quantity(text, kind)
-    except UnitParseError as exc:
-        fail(LinkworkError(f"--speed: {exc}"))
-    if value < 0:
-        fail(LinkworkError(f'--speed: the direction comes from the file; give a speed from 0 up, got "{text}"'))
-    if value > MAX_MAGNITUDE:
-        fail(
-            LinkworkError(
-                f"--speed: expected {KINDS[kind][0]} of a machine's size (at most 1e9 in SI), got {quote(text)}"
-            )
-        )
-    sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
-    return sign * value
 
 
 #: Why the values of ``linkwork forces --json`` may be null.
@@ -93,14 +68,17 @@ def _peak(values: np.ndarray, angles: np.ndarray) -> tuple[float, float]:
 @app.command()
 def forces(
     file_or_example: FileOrExample,
-    steps: Annotated[int | None, typer.Option(help="equal steps over one turn of the crank (default 360)")] = None,
-    angles: Annotated[str | None, typer.Option(help="crank angles in degrees, e.g. 0,30,60")] = None,
-    speed: Annotated[str | None, typer.Option(help='uniform drive speed with a unit, e.g. "30 rpm"')] = None,
+    steps: Steps = None,
+    angles: Angles = None,
+    speed: Speed = None,
     pull: Annotated[
         str | None,
         typer.Option(help='also find the crank speed at which the pull on the bolts reaches this force, e.g. "5 kN"'),
     ] = None,
-    out: Annotated[str | None, typer.Option(help="directory for forces.csv and forces.json")] = None,
+    out: Annotated[
+        str | None,
+        typer.Option(help="folder for forces.csv and forces.json, or a file ending in .csv or .json for it alone"),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Joint reactions, driving torque, foundation and bolt loads over the cycle, with the checks."""
@@ -109,9 +87,10 @@ def forces(
     from linkwork.kinetostatics import forces as solve
 
     check_angles(steps, angles)
+    files = out_files(out, ("forces.csv", "forces.json")) if out is not None else []
     mech = _compile(file_or_example)
     where = _angles(mech, steps, angles)
-    rate = _speed(mech, speed)
+    rate = drive_speed(mech, speed)
     target = _force(pull)
     try:
         f = solve(mech, **where, speed=rate)
@@ -123,7 +102,7 @@ def forces(
         data["bolts"]["pull_target"] = target
         data["bolts"]["speed_for_pull_rad_s"] = lift if math.isfinite(lift) else None
     data = explain_nulls(data, FORCES_NULLS)
-    written = _write(f, data, out) if out is not None else []
+    written = _write(f, data, out, files) if out is not None else []
     if as_json:
         echo_json(data)
         return
@@ -139,8 +118,9 @@ def forces(
         typer.echo(f"  wrote {path}")
 
 
-def _write(f: Forces, data: dict[str, Any], out: str) -> list[Path]:
-    """Write ``forces.csv`` and ``forces.json`` (``data``) into the folder ``out``; the paths written."""
+def _write(f: Forces, data: dict[str, Any], out: str, files: list[Path]) -> list[Path]:
+    """Write the ``files`` of ``--out`` (:func:`~linkwork.cli.app.out_files`): ``forces.csv`` and
+    ``forces.json`` (``data``); the paths written."""
     from linkwork.atomic import write_atomic
     from linkwork.errors import LinkworkError
     from linkwork.io.force_tables import write_csv
@@ -148,9 +128,12 @@ def _write(f: Forces, data: dict[str, Any], out: str) -> list[Path]:
 
     written = []
     try:
-        written.append(write_csv(f, Path(out) / "forces.csv"))
-        text = dumps(data)
-        written.append(write_atomic(Path(out) / "forces.json", lambda tmp: tmp.write_text(text, "utf-8")))
+        for path in files:
+            if path.suffix.lower() == ".json":
+                text = dumps(data)
+                written.append(write_atomic(path, functools.partial(Path.write_text, data=text, encoding="utf-8")))
+            else:
+                written.append(write_csv(f, path))
     except OSError as exc:
         fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     return written
@@ -276,7 +259,7 @@ def balance(
     radius: Annotated[
         str | None, typer.Option(help='distance of the counterweights from their pivots, e.g. "120 mm"')
     ] = None,
-    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = 360,
+    steps: Annotated[int, typer.Option(help="equal steps over one turn of the crank")] = TURN_STEPS,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Counterweights that cancel the shaking force (or its first harmonic), with the figures before and after."""

@@ -4,26 +4,31 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 import typer
 
 from linkwork.cli.app import (
+    Angles,
     FileOrExample,
+    Speed,
+    Steps,
     _compile,
     app,
     check_options,
+    drive_speed,
     echo_json,
     fail,
     make_console,
     make_table,
     needs,
+    out_files,
     show,
 )
 from linkwork.errors import LinkworkError
-from linkwork.limits import MAX_ANGLES, angle_problem, quote, whole
+from linkwork.lang import kind_named
+from linkwork.limits import MAX_ANGLES, TURN_STEPS, angle_problem, quote, whole
 from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
@@ -89,7 +94,7 @@ def _angles(mech: Mechanism, steps: int | None, angles: str | None) -> dict[str,
                 "--steps needs a crank (a revolute drive); for a linear drive give --angles as positions in mm"
             )
         )
-    return {"steps": steps or 360}
+    return {"steps": steps or TURN_STEPS}
 
 
 def _where(mech: Mechanism, named: bool = True) -> Callable[[float], str]:
@@ -111,9 +116,13 @@ def _where(mech: Mechanism, named: bool = True) -> Callable[[float], str]:
 @app.command()
 def kinematics(
     file_or_example: FileOrExample,
-    steps: Annotated[int | None, typer.Option(help="equal steps over one turn of the crank (default 360)")] = None,
-    angles: Annotated[str | None, typer.Option(help="crank angles in degrees, e.g. 0,30,60")] = None,
-    out: Annotated[str | None, typer.Option(help="directory for kinematics.csv and kinematics.nc")] = None,
+    steps: Steps = None,
+    angles: Angles = None,
+    speed: Speed = None,
+    out: Annotated[
+        str | None,
+        typer.Option(help="folder for kinematics.csv and kinematics.nc, or a file ending in .csv or .nc for it alone"),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Positions, velocities and accelerations of every point and link over the cycle."""
@@ -122,19 +131,19 @@ def kinematics(
     from linkwork.motion.analysis import extremes, transmission_angles
 
     check_angles(steps, angles)
-    if out is not None:
+    files = out_files(out, ("kinematics.csv", "kinematics.nc")) if out is not None else []
+    if any(p.suffix.lower() == ".nc" for p in files):
         needs("xarray", purpose=f"--out {out}: kinematics.nc (NetCDF)")
     mech = _compile(file_or_example)
     try:
-        kin = solve(mech, **_angles(mech, steps, angles))
+        kin = solve(mech, **_angles(mech, steps, angles), speed=drive_speed(mech, speed))
     except LinkworkError as exc:
         fail(exc)
     ext = extremes(kin) if angles is None else []
     written = []
-    if out is not None:
+    if files:
         try:
-            written.append(write_csv(kin, Path(out) / "kinematics.csv"))
-            written.append(write_netcdf(kin, Path(out) / "kinematics.nc"))
+            written += [(write_netcdf if p.suffix.lower() == ".nc" else write_csv)(kin, p) for p in files]
         except OSError as exc:
             fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     if as_json:
@@ -147,11 +156,11 @@ def kinematics(
         ratios = f"time ratio K {e.time_ratio:.4f} (+ stroke over the other {e.forward_time_ratio:.4f})"
         if e.kind == "slider":
             typer.echo(
-                f"  slider {e.name}: stroke {e.stroke * 1000:.2f} mm, from {e.low * 1000:.2f} to "
+                f"  {kind_named('slider', e.name)}: stroke {e.stroke * 1000:.2f} mm, from {e.low * 1000:.2f} to "
                 f"{e.high * 1000:.2f} mm (at {where(e.at_low)} and {where(e.at_high)}), {ratios}"
             )
         else:
-            typer.echo(f"  rocker {e.name}: swing {math.degrees(e.stroke):.3f} deg, {ratios}")
+            typer.echo(f"  {kind_named('rocker', e.name)}: swing {math.degrees(e.stroke):.3f} deg, {ratios}")
     for label, mu in transmission_angles(kin).items():
         if np.any(np.isfinite(mu)):
             i = int(np.nanargmin(mu))

@@ -23,12 +23,13 @@ import numpy as np
 from linkwork.api import MechanismLike, mechanism_of
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import METRICS, MetricRequest, parse_metrics
-from linkwork.design.plan import Ranges, Vary, file_units, read_varies
+from linkwork.design.plan import Ranges, Vary, read_varies
 from linkwork.design.store import cannot_write
 from linkwork.design.sweep import Columns, SweepTable
 from linkwork.errors import DesignError, UnitParseError
+from linkwork.limits import TURN_STEPS
 from linkwork.structure.model import Mechanism
-from linkwork.structure.parameters import parameter, write_file
+from linkwork.structure.parameters import file_units, parameter, write_file
 from linkwork.units import KINDS, parse_quantity
 
 
@@ -149,7 +150,7 @@ def optimize(
     *,
     maximize: bool = False,
     metrics: Sequence[str] = (),
-    steps: int = 360,
+    steps: int = TURN_STEPS,
     seed: int = 0,
     popsize: int = 15,
     maxiter: int = 100,

@@ -21,10 +21,9 @@ import numpy as np
 
 from linkwork.errors import DesignError, DesignWarning, UnitParseError
 from linkwork.spec.checks import suggest
-from linkwork.spec.schema import Spec
 from linkwork.structure.model import Mechanism
-from linkwork.structure.parameters import Parameter, parameter_list, parameters_by_name
-from linkwork.units import DEFAULT_UNITS, SI_UNITS, _factor, parse_quantity, unit_for
+from linkwork.structure.parameters import Parameter, file_units, parameter_list, parameters_by_name
+from linkwork.units import _factor, parse_quantity, unit_for
 
 #: How a plan samples its ranges.
 SAMPLINGS = ("grid", "random", "lhs")
@@ -63,13 +62,6 @@ class Vary:
 
     def as_dict(self) -> dict[str, Any]:
         return {"path": self.path, "start": self.start, "stop": self.stop, "count": self.count, "kind": self.kind}
-
-
-def file_units(spec: Spec | None) -> dict[str, str]:
-    """The units bare numbers of the description ``spec`` are read in, by kind (SI without a description)."""
-    if spec is None:
-        return dict(SI_UNITS)
-    return {**DEFAULT_UNITS, **spec.units.model_dump(exclude_none=True)}
 
 
 def in_file_units(value: float, kind: str, declared: dict[str, str]) -> tuple[float, str]:

@@ -361,17 +361,43 @@ def dynamics_diagrams(result: Dynamics, zero: float | None = None, lang: str = "
     _crank_axis(a3, lang)
     inertia, energy = wittenbauer(red)
     e, eunit = _scale(energy, "unit.J", "unit.kJ")
-    a4.plot(np.append(inertia, inertia[0]), np.append(energy, energy[0]) * e, lw=1.1)
+    a4.plot(np.append(inertia, inertia[0]), np.append(energy, energy[0]) * e, lw=1.1, gid="wittenbauer")
     turned = np.degrees(from_position_0(red.angle, zero, sign))
     first = int(np.argmin(np.minimum(turned, 360.0 - turned)))  # the sample nearest position 0
     a4.plot(inertia[first], energy[first] * e, "o", color="tab:red", ms=4, label=t("legend.position_0", lang))
+    if result.flywheel is not None:
+        _tangents(a4, result, e, t(eunit, lang), lang)
+        a4.legend(fontsize=8, framealpha=0.85, loc="lower center")
     a4.set_xlabel(t("axis.inertia", lang), fontsize=9)
     a4.set_ylabel(t("axis.energy", lang, unit=t(eunit, lang)), fontsize=9)
     a4.set_title(t("title.wittenbauer", lang), fontsize=10)
     _grid(a4)
-    _legend(a4, loc="best")
+    if result.flywheel is None:
+        _legend(a4, loc="best")
     fig.suptitle(t("title.dynamics", lang, delta=f"{result.delta:.4g}"), fontsize=11)
     return fig
+
+
+def _tangents(ax: Axes, result: Dynamics, e: float, eunit: str, lang: str) -> None:
+    """The tangents to Wittenbauer's diagram for the flywheel's delta, from the energy axis (inertia 0) across
+    the diagram, the segment ab they cut on that axis, and the constant inertia they give
+    (:func:`linkwork.machine.wittenbauer_tangents`)."""
+    from linkwork.machine import wittenbauer_tangents
+
+    f = result.flywheel
+    assert f is not None
+    red = result.reduced
+    (k_max, b_max), (k_min, b_min) = wittenbauer_tangents(red, f.delta, f.omega_mean)
+    j = np.array([0.0, float(np.max(red.inertia)) * 1.05])
+    for k, b, color, key in ((k_max, b_max, "tab:purple", "max"), (k_min, b_min, "tab:orange", "min")):
+        ax.plot(j, (k * j + b) * e, color=color, lw=0.9, ls="--", label=t(f"legend.tangent_{key}", lang),
+                gid=f"tangent:{key}")  # fmt: skip
+    ax.plot([0.0, 0.0], [b_min * e, b_max * e], color="k", lw=2.2, solid_capstyle="butt", gid="tangent:ab",
+            label=t("legend.tangent_segment", lang, segment=f"{(b_max - b_min) * e:.4g} {eunit}",
+                    inertia=f"{(b_max - b_min) / (k_max - k_min):.5g}"))  # fmt: skip
+    ax.set_xlim(left=-0.03 * j[1])
+    low, high = ax.get_ylim()
+    ax.set_ylim(low - 0.45 * (high - low), high)  # room under the diagram for its legend
 
 
 def _speed_panel(ax: Axes, result: Dynamics, zero: float, sign: float, lang: str) -> None:

@@ -67,6 +67,7 @@ from linkwork.impulse.phases import APART, CONTACT, FLIGHT, FREEDOM, KINDS, Samp
 from linkwork.impulse.strike import Strike, strike
 from linkwork.kinetostatics.forces import Forces
 from linkwork.kinetostatics.reactions import inertia_and_gravity, solve_reactions
+from linkwork.limits import DYNAMICS_STEPS
 from linkwork.machine.drive import Drive
 from linkwork.machine.reduced import reduced
 from linkwork.machine.simulate import PeriodicSplines
@@ -295,7 +296,7 @@ def simulate_blows(
     link: str | None = None,
     omega0: float | None = None,
     blows: int = 200,
-    steps: int = 3600,
+    steps: int = DYNAMICS_STEPS,
     tol: float = 1e-6,
     rtol: float = 1e-10,
 ) -> WorkingCycle:
@@ -376,7 +377,7 @@ def _contact_model(
     tool's face on its seat passes through the striking point in the assembly pose."""
     n = setup.normal
     tang = np.array([n[1], -n[0]])
-    red = reduced(mech, steps)
+    red = reduced(mech, steps=steps)
     sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
     start_angle = float(mech.drive_start[0])
     point = striking_point(kinematics(mech, red.angle, speed=sign), setup.at)

@@ -11,6 +11,7 @@ import numpy as np
 
 from linkwork.atomic import write_atomic
 from linkwork.io.motion_tables import crank_keys, drive_columns, drive_record, drive_units
+from linkwork.kinetostatics.external import magnitude_units
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:
@@ -99,7 +100,13 @@ def to_json(f: Any) -> dict[str, Any]:
     return {
         "name": mech.name,
         "convention": CONVENTION,
-        "units": {"force": "N", "moment": "N m", "driving_torque": "N" if linear else "N m", **drive_units(mech)},
+        "units": {
+            "force": "N",
+            "moment": "N m",
+            "driving_torque": "N" if linear else "N m",
+            "loads": magnitude_units(mech),
+            **drive_units(mech),
+        },
         **{k: _arr(v) if isinstance(v, np.ndarray) else v for k, v in drive_record(mech, f.angles).items()},
         "driving_torque": _arr(torque),
         "joints": joints,
@@ -156,7 +163,8 @@ def write_csv(f: Any, path: str | Path) -> Path:
     cols += [("foundation.moment [N m]", found[:, 2])]
     cols += [("shaking.fx [N]", f.shaking_force[:, 0]), ("shaking.fy [N]", f.shaking_force[:, 1])]
     cols += [("shaking.moment [N m]", f.shaking_moment)]
-    cols += [(f"load.{name} [N or N m]", v[0]) for name, v in f.loads.external.magnitude.items()]
+    units = magnitude_units(mech)
+    cols += [(f"load.{name} [{units[name]}]", v[0]) for name, v in f.loads.external.magnitude.items()]
 
     def writer(tmp: Path) -> None:
         with open(tmp, "w", newline="", encoding="utf-8") as fh:

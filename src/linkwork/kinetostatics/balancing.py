@@ -32,6 +32,7 @@ import numpy.typing as npt
 from linkwork.angles import wrap
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.forces import Forces, forces
+from linkwork.limits import TURN_STEPS
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, frozen, one_crank
 
@@ -120,7 +121,7 @@ def balance(
     *,
     harmonic: int | None = None,
     radius: dict[str, float] | float | None = None,
-    steps: int = 360,
+    steps: int = TURN_STEPS,
     speed: npt.ArrayLike | None = None,
 ) -> Balance:
     """Counterweights on ``links`` that cancel the shaking force (``harmonic=None``) or its first

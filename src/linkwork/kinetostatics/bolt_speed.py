@@ -8,11 +8,13 @@ import math
 import numpy as np
 
 from linkwork.kinetostatics.forces import forces
+from linkwork.limits import TURN_STEPS
 from linkwork.structure.model import Mechanism
 
 
-def bolt_speed(mech: Mechanism, pull: float = 0.0, steps: int = 720) -> float:
-    """Uniform crank speed (rad/s) at which the largest pull on the bolts reaches ``pull`` (N).
+def bolt_speed(mech: Mechanism, pull: float = 0.0, *, steps: int = TURN_STEPS) -> float:
+    """Uniform crank speed (rad/s) at which the largest pull on the bolts reaches ``pull`` (N), over
+    ``steps`` equal steps of the turn.
 
     With the crank turning uniformly, every velocity is proportional to the
     speed and every acceleration to its square, so the vertical foundation

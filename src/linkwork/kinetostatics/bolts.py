@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from linkwork.units import turn_deg
+
 
 @dataclass(frozen=True)
 class Bolts:
@@ -31,6 +33,19 @@ class Bolts:
     push_angle: float
     moment: float
     moment_angle: float
+
+    def __str__(self) -> str:
+        """The extremes as a person reads them, in N, N m and degrees (the crank's angle to the x axis,
+        0 to 360, as :meth:`as_dict` gives it): ``print(f.bolts())``."""
+        d = self.as_dict()
+        units = {"shear": "N", "pull": "N", "push": "N", "moment": "N m"}
+        return (
+            "Bolts("
+            + ", ".join(
+                f"{k} {d[k]:.6g} {u} at {turn_deg(math.radians(d[k + '_angle_deg']))} deg" for k, u in units.items()
+            )
+            + "; crank angles to the x axis)"
+        )
 
     def as_dict(self) -> dict[str, float]:
         out: dict[str, float] = {}

@@ -188,7 +188,8 @@ class Applied:
     forces : list of PointForce
     moments : list of LinkMoment
     magnitude : dict
-        Each load's magnitude (V, A): N for forces and process loads, N m for moments.
+        Each load's magnitude (V, A): N for forces and process loads, N m for moments; friction N m in a
+        revolute joint, N along a guide (:func:`magnitude_units`).
     penetration : dict
         Relative penetration (V, A) of each process load.
     """
@@ -197,6 +198,17 @@ class Applied:
     moments: list[LinkMoment]
     magnitude: dict[str, np.ndarray]
     penetration: dict[str, np.ndarray]
+
+
+def magnitude_units(mech: Mechanism) -> dict[str, str]:
+    """The unit of each external load's magnitude (:attr:`Applied.magnitude`), by its name: ``N m`` for
+    a moment and for friction in a revolute joint, ``N`` for a force, a process load and friction along
+    a guide."""
+    out: dict[str, str] = {}
+    for load in mech.loads:
+        turning = load.kind == "moment" or (load.kind == "friction" and mech.pair_type[load.pair] == PairType.REVOLUTE)
+        out[load.name] = "N m" if turning else "N"
+    return out
 
 
 def _interp(x: np.ndarray, table: tuple[np.ndarray, np.ndarray]) -> np.ndarray:

@@ -17,6 +17,7 @@ from linkwork.machine.flywheel import (
     size_flywheel,
     size_flywheel_wittenbauer,
     wittenbauer,
+    wittenbauer_tangents,
 )
 from linkwork.machine.reduced import Reduced, reduced
 from linkwork.machine.simulate import Motion, Turn, simulate
@@ -39,4 +40,5 @@ __all__ = [
     "size_flywheel",
     "size_flywheel_wittenbauer",
     "wittenbauer",
+    "wittenbauer_tangents",
 ]

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.limits import DYNAMICS_STEPS
 from linkwork.machine.drive import Drive
 from linkwork.machine.flywheel import Flywheel, size_flywheel_wittenbauer
 from linkwork.machine.reduced import Reduced, reduced
@@ -88,7 +89,7 @@ def dynamics(
     *,
     delta: float | None = None,
     speed: float | None = None,
-    steps: int = 3600,
+    steps: int = DYNAMICS_STEPS,
     omega0: float = 0.0,
     start: float | None = None,
     turns: int = 500,
@@ -113,7 +114,7 @@ def dynamics(
         )
     if delta is None:
         delta = mech.delta
-    red = reduced(mech, steps)
+    red = reduced(mech, steps=steps)
     if start is None:
         start = float(red.psi[int(np.argmax(red.load))])
     fly = None
@@ -130,7 +131,7 @@ def dynamics(
         motion = simulate(red, drive, omega0=omega0, start=start, turns=turns)
         return Dynamics(red, drive, motion, fly, motion)
     idle = dataclasses.replace(mech, loads=tuple(load for load in mech.loads if load.kind != "process"))
-    startup = simulate(reduced(idle, steps), drive, omega0=omega0, start=start, turns=turns)
+    startup = simulate(reduced(idle, steps=steps), drive, omega0=omega0, start=start, turns=turns)
     motion = simulate(
         red, drive, omega0=float(startup.omega[-1]), start=start + 2 * np.pi * len(startup.turns), turns=turns
     )

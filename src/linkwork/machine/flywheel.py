@@ -141,13 +141,23 @@ def size_flywheel_wittenbauer(
     """The constant inertia for ``delta`` from the tangents to Wittenbauer's diagram; the arguments as
     for :func:`size_flywheel`."""
     _check_delta(delta)
+    (k_max, b_max), (k_min, b_min) = wittenbauer_tangents(red, delta, omega_mean)
+    need = (b_max - b_min) / (k_max - k_min)
+    return _flywheel(delta, omega_mean, b_max - b_min, need, drive_inertia, -red.mean_load, shaft, ratio)
+
+
+def wittenbauer_tangents(red: Reduced, delta: float, omega_mean: float) -> tuple[tuple[float, float], ...]:
+    """The two tangents to Wittenbauer's diagram (:func:`wittenbauer`) for ``delta`` at ``omega_mean``,
+    each ``(slope, intercept)`` of ``energy = slope * inertia + intercept`` (J, kg m^2): the upper at the
+    slope ``omega_max^2 / 2``, the lower at ``omega_min^2 / 2``.  They meet at the inertia ``-need``, the
+    constant inertia the crank shaft needs: ``need = (b_max - b_min) / (k_max - k_min)``, the segment
+    they cut on the energy axis over the difference of their slopes."""
     inertia, energy = wittenbauer(red)
     k_max = 0.5 * (omega_mean * (1 + delta / 2)) ** 2
     k_min = 0.5 * (omega_mean * (1 - delta / 2)) ** 2
     b_max = float(np.max(energy - k_max * inertia))
     b_min = float(np.min(energy - k_min * inertia))
-    need = (b_max - b_min) / (k_max - k_min)
-    return _flywheel(delta, omega_mean, b_max - b_min, need, drive_inertia, -red.mean_load, shaft, ratio)
+    return (k_max, b_max), (k_min, b_min)
 
 
 def constant_moment_cycle(red: Reduced, inertia: float, omega_mean: float) -> tuple[np.ndarray, float]:

@@ -25,6 +25,7 @@ import numpy as np
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.external import power as external_power
 from linkwork.kinetostatics.reactions import inertia_and_gravity
+from linkwork.limits import DYNAMICS_STEPS
 from linkwork.motion import cycle, kinematics
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.units import turn_deg
@@ -68,8 +69,9 @@ class Reduced:
         return float(np.mean(self.load))
 
 
-def reduced(mech: Mechanism, steps: int = 3600) -> Reduced:
-    """Reduced inertia, its slope and the reduced load moment over one turn of the crank.
+def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
+    """Reduced inertia, its slope and the reduced load moment over ``steps`` equal steps of one turn of
+    the crank.
 
     Raises
     ------

@@ -211,9 +211,11 @@ class Motion:
 
     def cycle(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The last turn: time from its start, turning angle within the turn (0 to 2 pi, from
-        :attr:`cycle_start`), speed."""
+        :attr:`cycle_start`), speed; each sample once (the turns of :attr:`t` share their ends, so a
+        turn's first sample is also the last of the turn before)."""
         last = self.last
-        sel = (self.t >= last.start) & (self.t <= last.end)
+        sel = np.flatnonzero((self.t >= last.start) & (self.t <= last.end))
+        sel = sel[np.r_[True, np.diff(self.t[sel]) > 0]]
         return self.t[sel] - last.start, self.psi[sel] - self.psi[sel][0], self.omega[sel]
 
     @property

@@ -12,6 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from linkwork.errors import LinkworkError, UnassemblableError
+from linkwork.limits import TURN_STEPS
 from linkwork.motion import fast
 from linkwork.motion.events import Event, find
 from linkwork.motion.solve import run
@@ -286,7 +287,8 @@ def kinematics(
         the crank angle in the frame's axes, counter-clockwise from +x.
     steps : int, optional
         Instead of ``angles``: ``steps`` equal steps of a whole turn of the
-        crank from its assembly angle, in its direction of rotation.
+        crank from its assembly angle, in its direction of rotation; without
+        either, :data:`~linkwork.limits.TURN_STEPS` (360).
     variants : dict, optional
         Design variants: arrays of values (SI) of named parameters, all of
         one length V, e.g. ``{"links.crank.length": np.linspace(0.09, 0.11, 100)}``;
@@ -354,8 +356,10 @@ def _drive_values(
     """The drive coordinates asked for, ``(A, D)``, and the least and most step of the first drive
     between consecutive samples where the check of the values found them (:func:`fast.scan`, for
     :func:`_path`); :class:`LinkworkError` for anything else."""
-    if (angles is None) == (steps is None):
-        raise LinkworkError("give either angles or steps")
+    if angles is not None and steps is not None:
+        raise LinkworkError("give either angles or steps, not both")
+    if angles is None and steps is None:
+        steps = TURN_STEPS
     if steps is not None and (isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 1):
         raise LinkworkError(f"steps: expected a positive whole number, got {steps!r}")
     values = cycle(mech, int(steps)) if steps is not None else np.asarray(angles, dtype=float)

@@ -25,7 +25,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.io.jsonout import dumps
-from linkwork.lang import check_lang, t
+from linkwork.lang import check_lang, kind_named, t
+from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
 from linkwork.structure.model import PairType
 from linkwork.units import turn_deg
@@ -166,7 +167,7 @@ def analyze(
     mech: Mechanism,
     out: str | Path,
     *,
-    steps: int = 360,
+    steps: int = TURN_STEPS,
     position: int | str | None = None,
     pdf: bool = False,
     animation: bool = True,
@@ -229,8 +230,10 @@ def require_packages() -> None:
 
 
 def _build(run: _Run, steps: int, position: int | str | None, animation: bool, dxf: bool = False) -> None:
+    from linkwork.report.inputs import input_section
     from linkwork.structure.model import one_crank
 
+    run.sections.append(Section("input", run.t("section.input"), input_section(run.mech, steps, run.t)))
     _structure(run)
     if not one_crank(run.mech):
         run.sections.append(Section("kinematics", run.t("section.kinematics"), [_p(run.t("kin.needs_crank"))]))
@@ -372,7 +375,10 @@ def _position_0(run: _Run, cycle: Cycle) -> str:
     if not members:
         return run.t("kin.phi.assembly", crank=crank)
     kind = "slider" if members[0].kind == "slider" else "rocker"
-    return run.t(f"kin.phi.{kind}", member=member_label(run.mech, members[0], run.lang), crank=crank)
+    member = member_label(run.mech, members[0], run.lang)
+    if kind == "rocker":  # "the output rocker", not "the output rocker rocker"
+        member = kind_named(run.t("kin.rocker_word"), member)
+    return run.t(f"kin.phi.{kind}", member=member, crank=crank)
 
 
 def _positions_table(run: _Run, cycle: Cycle) -> list[str]:
@@ -595,7 +601,20 @@ def _dynamics(run: _Run, cycle: Cycle) -> None:
         [run.t("dynamics.startup"), result.startup_time],
         [run.t("dynamics.flywheel", shaft=run.t(f"shaft.{result.drive.flywheel_on}")), result.drive.flywheel],
     ]
+    fly = result.flywheel
+    if fly is not None:
+        rows[2:3] = [
+            [run.t("dynamics.delta_asked"), fly.delta],
+            [run.t("dynamics.delta_true"), last.delta],
+            [run.t("dynamics.energy_swing"), fly.energy_swing],
+            [run.t("dynamics.inertia_needed"), f"{fly.inertia:.6g}"],
+        ]
     sec.body.append(_table([run.t("dynamics.head.quantity"), run.t("dynamics.head.value")], rows))
+    if fly is not None:
+        sec.body.append(
+            _p(run.t("dynamics.why_delta", true=f"{last.delta:.4g}", asked=f"{fly.delta:.4g}",
+                     rpm=f"{fly.omega_mean * rpm:.4g}"))
+        )  # fmt: skip
     zero, lang = cycle.zero, run.lang
     sec.figures.append(run.figure("dynamics", lambda: figures.dynamics_diagrams(result, zero, lang),
                                   run.t("caption.dynamics")))  # fmt: skip
@@ -672,10 +691,6 @@ def _write_html(run: _Run, path: Path) -> None:
     parts = [f"<!DOCTYPE html><html lang='{run.lang}'><head><meta charset='utf-8'><title>{title}</title>"]
     parts.append(f"<style>{STYLE}</style></head><body><h1>{html.escape(mech.name)}</h1>")
     parts.append("<nav>" + "".join(f"<a href='#{s.key}'>{html.escape(s.title)}</a>" for s in run.sections) + "</nav>")
-    if mech.source and Path(mech.source).exists():
-        text = Path(mech.source).read_text(encoding="utf-8")
-        parts.append(f"<section id='input'><h2>{html.escape(run.t('section.input'))}</h2>")
-        parts.append(f"<pre>{html.escape(text)}</pre></section>")
     for s in run.sections:
         parts.append(f"<section id='{s.key}'><h2>{html.escape(s.title)}</h2>")
         parts += s.body

@@ -211,7 +211,12 @@ def _check_sliding(
     guide, slider = names
     if isinstance(slider, str) and slider in points and point not in points[slider]:
         role = "slider" if kind == "prismatic" else "pin link"
-        bad(path, f"the {role} {quote(slider)} has no point {quote(point)}{suggest(point, points[slider])}")
+        hint = suggest(point, points[slider])
+        if joint.get("point") is None:  # the joint's name stood for the point: say how to name it
+            some = sorted(points[slider])[:1]
+            example = f", e.g. point: {some[0]}" if some else ""
+            hint += f"; give the {role}'s point on the guide line as point:{example}"
+        bad(path, f"the {role} {quote(slider)} has no point {quote(point)}{hint}")
     for key, what in (("axis", "direction of the guide line"), ("through", "a point of the guide line")):
         if joint.get(key) is None:
             bad(path, f"missing field {quote(key)} ({what})")

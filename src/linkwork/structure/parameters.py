@@ -258,6 +258,52 @@ def _masses(mech: Mechanism) -> list[Parameter]:
 # --- the arrays of the variants --------------------------------------------------------------------
 
 
+def file_units(spec: Spec | None) -> dict[str, str]:
+    """The units bare numbers of the description ``spec`` are read in, by kind (SI without a description)."""
+    if spec is None:
+        return dict(SI_UNITS)
+    return {**DEFAULT_UNITS, **spec.units.model_dump(exclude_none=True)}
+
+
+def override_values(mech: Mechanism, path: str, value: Any) -> np.ndarray:
+    """The values of the override ``path`` of ``mech`` in SI, ``(V,)``: numbers are SI; a string is read
+    as ``linkwork sweep`` reads a value (``"90 mm"``; a bare number in the file's unit of the parameter's
+    kind, :func:`file_units`).
+
+    Raises
+    ------
+    ParameterError
+        For an unknown path, or a value that is neither a number nor such a string (one message that
+        names the path, the value and what is expected).
+    """
+    from linkwork.errors import UnitParseError
+    from linkwork.units import parse_quantity
+
+    param = parameter(mech, path)
+    items = np.asarray(value, dtype=object).ravel()
+    if not any(isinstance(x, str) for x in items):
+        try:
+            return np.asarray(value, dtype=float).ravel()
+        except (TypeError, ValueError):
+            pass
+    declared = file_units(mech.spec)
+    out = np.empty(len(items))
+    for i, x in enumerate(items):
+        try:
+            out[i] = parse_quantity(x, param.kind, declared) if isinstance(x, str) else float(x)
+        except (UnitParseError, TypeError, ValueError) as exc:
+            unit = KINDS[param.kind][1]
+            raise ParameterError(
+                f'variants["{path}"]: expected numbers in {unit} or {param.kind}s with a unit such as '
+                f'"{_example(param.kind)}", got {x!r}' + (f" ({exc})" if isinstance(exc, UnitParseError) else "")
+            ) from None
+    return out
+
+
+def _example(kind: str) -> str:
+    return {"length": "90 mm", "angle": "30 deg", "mass": "2 kg", "inertia": "0.1 kg*m^2"}.get(kind, "1")
+
+
 def apply(mech: Mechanism, overrides: Mapping[str, npt.ArrayLike] | None = None) -> tuple[Geometry, Masses]:
     """The geometry and mass properties of the variants that ``overrides`` (path -> SI value or
     ``(V,)`` array of values) describe; one variant, the file's, when there are none.
@@ -279,8 +325,7 @@ def apply(mech: Mechanism, overrides: Mapping[str, npt.ArrayLike] | None = None)
     given = np.repeat(np.asarray(mech.link_inertia_given, dtype=float)[None], n, axis=0)
     inertia_rule = np.asarray(mech.link_inertia_rule).copy()
     for path, value in overrides.items():
-        parameter(mech, path)
-        v = np.broadcast_to(np.asarray(value, dtype=float).ravel(), (n,))
+        v = np.broadcast_to(override_values(mech, path, value), (n,))
         _set(mech, path.split("."), v, pts, origin, axis, mass, given, inertia_rule)
     follow = np.flatnonzero(mech.pair_origin_point >= 0)
     origin[:, follow] = pts[:, mech.pair_origin_point[follow]]
