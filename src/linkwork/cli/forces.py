@@ -88,6 +88,15 @@ def _peak(values: np.ndarray, angles: np.ndarray) -> tuple[float, float]:
     return float(values[i]), float(angles[i])
 
 
+def _torque_peak(f: Forces) -> tuple[float, float]:
+    """The peak driving torque and its drive angle, refined between the samples
+    (:func:`linkwork.kinetostatics.torque_peak`)."""
+    from linkwork.kinetostatics.peaks import torque_peak
+
+    peak = torque_peak(f)
+    return float(peak.value[0]), float(peak.at[0])
+
+
 @app.command()
 def forces(
     file_or_example: FileOrExample,
@@ -203,7 +212,7 @@ def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: l
     if not ok.any():
         return
     unit = "N m" if revolute else "N"
-    t, at = _peak(f.driving_torque, phi)
+    t, at = _torque_peak(f)
     out.print(f"  driving torque: peak {t:.6g} {unit} at {_deg(at)}")
     show(out, _pair_table(f, labels))
     for g in groups:

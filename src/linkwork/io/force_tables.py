@@ -13,6 +13,7 @@ from linkwork.atomic import write_atomic
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:
+    from linkwork.kinetostatics.forces import Forces
     from linkwork.structure.model import Mechanism
 
 CONVENTION = (
@@ -22,6 +23,18 @@ CONVENTION = (
     "what the drive puts on its driven link, counter-clockwise positive; foundation: the force and "
     "the moment about the origin that the machine puts on its foundation, y up (positive y pulls the bolts)"
 )
+
+
+def _torque_peak(f: Forces) -> dict[str, Any] | None:
+    """The peak driving torque (largest size, with its sign) refined between the samples
+    (:func:`linkwork.kinetostatics.torque_peak`) and its drive angle; None with several drives or no finite sample."""
+    from linkwork.kinetostatics.peaks import torque_peak
+
+    if f.mechanism.n_drives != 1:
+        return None
+    peak = torque_peak(f)
+    value, at = float(peak.value[0]), float(peak.at[0])
+    return {"value": value, "angle_deg": math.degrees(at)} if math.isfinite(value) else None
 
 
 def pair_labels(mech: Mechanism) -> list[tuple[str, int]]:
@@ -97,6 +110,7 @@ def to_json(f: Any) -> dict[str, Any]:
         "units": {"force": "N", "moment": "N m", "driving_torque": "N" if linear else "N m", "angles_deg": "deg"},
         "angles_deg": _arr(np.degrees(f.angles)),
         "driving_torque": _arr(torque),
+        "driving_torque_peak": _torque_peak(f),
         "joints": joints,
         "foundation": {"fx": _arr(found[:, 0]), "fy": _arr(found[:, 1]), "moment": _arr(found[:, 2])},
         "shaking": {"fx": _arr(shaking[:, 0]), "fy": _arr(shaking[:, 1]), "moment": _arr(f.shaking_moment)},

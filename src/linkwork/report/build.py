@@ -502,14 +502,17 @@ def _force_unit(f: Forces) -> tuple[float, str]:
 
 
 def _torque_text(run: _Run, cycle: Cycle, f: Forces) -> list[str]:
+    from linkwork.kinetostatics.peaks import torque_peak
+
     torque = np.asarray(f.driving_torque)
     if not np.isfinite(torque).any():
         return []
-    i = int(np.nanargmax(np.abs(torque)))
-    factor, unit = (1e-3, "unit.kNm") if abs(torque[i]) >= 1e4 else (1.0, "unit.Nm")
+    peak = torque_peak(f)  # refined between the samples, as every route gives it
+    top, at = float(peak.value[0]), float(peak.at[0])
+    factor, unit = (1e-3, "unit.kNm") if abs(top) >= 1e4 else (1.0, "unit.Nm")
     return [
-        _p(run.t("forces.torque", peak=f"{torque[i] * factor:.4g}", mean=f"{np.nanmean(torque) * factor:.4g}",
-                 unit=run.t(unit), at=_deg(float(cycle.phi(f.angles[i])))))
+        _p(run.t("forces.torque", peak=f"{top * factor:.4g}", mean=f"{np.nanmean(torque) * factor:.4g}",
+                 unit=run.t(unit), at=_deg(float(cycle.phi(at)))))
     ]  # fmt: skip
 
 
