@@ -40,6 +40,7 @@ from linkwork.web.payload import (
     _json,
     cycle_scale,
     forces_part,
+    peaks,
     plan_shape,
     plan_values,
     series_values,
@@ -163,6 +164,7 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged:
         "forces": forces_part(cycle, scheme.size, compact),
         "parameters": variant_parameters(cycle.mech, cycle.overrides, kin.mass_properties, editable),
         "extremes": None if dragged else [_finite(e.as_dict()) for e in extremes(kin)],
+        "peaks": None if dragged else peaks(cycle),
         "events": [_finite(e.as_dict()) for e in kin.events],
         "warnings": list(cycle.notes),
     }
