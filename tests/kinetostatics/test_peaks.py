@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import linkwork as lw
+from commandline import linkwork
 from linkwork.kinetostatics.peaks import foundation_peak, refine, torque_peak
-from tests.commandline import linkwork
 
 
 @pytest.fixture(scope="module")

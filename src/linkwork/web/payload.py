@@ -408,8 +408,14 @@ def scheme_shape(scheme: SchemeScene) -> dict[str, Any]:
     rows = np.round(np.concatenate(xy), 9).tolist() if xy else []
     ends = np.cumsum([len(a) for a in xy]).tolist()
     items = [
-        {"kind": it.kind, "link": it.link, "xy": rows[end - len(a) : end], "closed": it.closed, "radius": it.radius,
-         "name": it.name}
+        {
+            "kind": it.kind,
+            "link": it.link,
+            "xy": rows[end - len(a) : end],
+            "closed": it.closed,
+            "radius": it.radius,
+            "name": it.name,
+        }
         for it, a, end in zip(scheme.items, xy, ends, strict=True)
     ]
     return {"size": scheme.size, "r": scheme.r, "em": scheme.em, "items": items}
