@@ -234,12 +234,14 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
 
     from linkwork.io.force_tables import pair_kind
     from linkwork.io.jsonout import snap_zeros
+    from linkwork.kinetostatics.peaks import pair_force_peaks
 
     mech, phi = f.mechanism, f.angles
     tab = make_table("largest pair forces over the cycle")
     for col in ("joint", "first on second", "|F| max, N", "at", "moment max, N m"):
         tab.add_column(col)
-    peaks = [_peak(np.hypot(*f.pair_force(k)[0].T), phi) for _, k in labels]
+    refined = pair_force_peaks(f, [k for _, k in labels])  # refined between the samples, as the report gives them
+    peaks = [(float(v), float(a)) for v, a in zip(refined.value, refined.at, strict=True)]
     values = snap_zeros(np.array([value for value, _ in peaks]))
     prismatic = [pair_kind(mech, k) == "prismatic" for _, k in labels]
     # a guide's moment is zero where it is round-off beside the largest force times the mechanism's size

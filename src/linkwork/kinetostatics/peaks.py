@@ -180,3 +180,30 @@ def torque_peak(f: Forces) -> Peak:
 def foundation_peak(f: Forces) -> Peak:
     """The peak size of the force on the foundation of every variant of ``f``, refined: ``(V,)``."""
     return peak_of(f, foundation_force, "max")
+
+
+def peaks_of(f: Forces, pick: Callable[[Forces], np.ndarray], kind: str = "abs") -> Peak:
+    """The refined peaks of several quantities of one mechanism (``f`` without variants) at once: ``pick(forces) ->
+    (Q, A)``, one row a quantity; each row's angles are solved together in one solve a round.  ``(Q,)``."""
+    kin = f.kinematics
+    if kin.variants:
+        raise ValueError("peaks_of: one mechanism (no variants); peak_of refines variants")
+    mech, rate = kin.mechanism, float(kin.rates[0, 0])
+
+    def quantity(at: np.ndarray) -> np.ndarray:
+        rows, k = at.shape
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            values = pick(forces_of(kinematics(mech, at.ravel(), speed=rate)))  # (Q, Q K)
+        return values.reshape(rows, rows, k)[np.arange(rows), np.arange(rows)]
+
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        return refine(pick(f), f.angles, quantity, kind)
+
+
+def pair_force_peaks(f: Forces, pairs: list[int]) -> Peak:
+    """The largest size of the force in each of ``pairs`` (N) of one mechanism and where, refined: ``(len(pairs),)``."""
+
+    def sizes(g: Forces) -> np.ndarray:
+        return np.stack([np.hypot(*g.pair_force(k)[0].T) for k in pairs]) if pairs else np.empty((0, len(g.angles)))
+
+    return peaks_of(f, sizes, "max")
