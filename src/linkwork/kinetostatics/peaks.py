@@ -173,8 +173,13 @@ def foundation_force(f: Forces) -> np.ndarray:
 
 
 def torque_peak(f: Forces) -> Peak:
-    """The peak driving torque (largest size, with its sign) of every variant of ``f``, refined: ``(V,)``."""
-    return peak_of(f, driving_torque)
+    """The peak driving torque (largest size, with its sign) of every variant of ``f``, refined: ``(V,)``; found once
+    per result (the command line, its JSON and the report ask for it more than once)."""
+    found = f.__dict__.get("_torque_peak")
+    if found is None:
+        found = peak_of(f, driving_torque)
+        object.__setattr__(f, "_torque_peak", found)  # frozen: kept as the result's cached values are
+    return found
 
 
 def foundation_peak(f: Forces) -> Peak:
