@@ -9,6 +9,13 @@ grid.  The zoom needs no smoothness: at a kink (a load that stops rising) it con
 at a jump (a load that switches on) to the limit from the high side, the supremum.  A peak of the
 samples at an end of a range that is not a whole turn stays within the range.  Only the neighbourhood
 of the best sample is refined: of two nearly equal maxima more than a step apart, the grid picks one.
+The value is found to about ``TOLERANCE``; the angle of a kink or a jump to about 1e-12 rad, that of a
+smooth maximum only to the square root of the values' precision (about 1e-7 rad), as from any values.
+
+Variants are refined together, each at its own angles, in one solve a round
+(:func:`linkwork.motion.solve.run_each`: the NumPy kernels, the dyads in the modes of the assembly
+pose); a variant whose re-solve does not meet its own best sample (another mode past a change point)
+keeps the peak of its samples, as do variants with a group solved by Newton's method.
 """
 
 from __future__ import annotations
@@ -77,7 +84,7 @@ def refine(
     a, b, ga, gb = _bracket(g, np.asarray(angles, dtype=float), i)
     best, at, value = g[rows, i], np.asarray(angles, dtype=float)[i], samples[rows, i]
     none = ~np.isfinite(best)
-    a, b = np.where(none, at if len(at) else 0.0, a), np.where(none, at if len(at) else 0.0, b)
+    a, b = np.where(none, at, a), np.where(none, at, b)
     points = POINTS[0] if len(g) <= 4 else POINTS[1]
     t = np.arange(1, points + 1) / (points + 1)
     trusted = None
