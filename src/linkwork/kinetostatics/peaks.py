@@ -32,8 +32,8 @@ from linkwork.structure.parameters import Geometry
 
 #: The zoom stops where the values at the ends of the bracket are within this fraction of the peak.
 TOLERANCE = 1e-13
-#: Angles evaluated in each round of the zoom for one or a few variants, and for many (the bracket shrinks by
-#: (points + 1) / 2 a round): few rounds where a round costs a solve's fixed time, few angles where it costs samples.
+#: Angles evaluated in each round of the zoom (the bracket shrinks by (points + 1) / 2 a round): for one mechanism,
+#: and for variants (few rounds where a round costs a solve's fixed time, few angles where it costs samples).
 POINTS = (32, 8)
 #: Rounds at most.
 ROUNDS = 40
@@ -56,7 +56,11 @@ class Peak:
 
 
 def refine(
-    samples: np.ndarray, angles: np.ndarray, quantity: Callable[[np.ndarray], np.ndarray], kind: str = "abs"
+    samples: np.ndarray,
+    angles: np.ndarray,
+    quantity: Callable[[np.ndarray], np.ndarray],
+    kind: str = "abs",
+    points: int = POINTS[1],
 ) -> Peak:
     """The peak of a quantity sampled ``(V, A)`` at the drive angles ``angles`` ``(A,)``, refined.
 
@@ -70,6 +74,9 @@ def refine(
         ``quantity(at) -> (V, K)``: the true value of every variant at its own angles ``at`` ``(V, K)``.
     kind : str
         ``"abs"``: the largest size ``|x|`` (the value returned keeps its sign); ``"max"``; ``"min"``.
+    points : int
+        Angles a round.  A row stops where its values agree; what the other rows do does not change it (a sweep's
+        chunks give the numbers of the whole batch, bit for bit).
     """
     sign = {"abs": 1.0, "max": 1.0, "min": -1.0}[kind]
 
@@ -85,8 +92,8 @@ def refine(
     best, at, value = g[rows, i], np.asarray(angles, dtype=float)[i], samples[rows, i]
     none = ~np.isfinite(best)
     a, b = np.where(none, at, a), np.where(none, at, b)
-    points = POINTS[0] if len(g) <= 4 else POINTS[1]
     t = np.arange(1, points + 1) / (points + 1)
+    done = none.copy()
     trusted = None
     for _ in range(ROUNDS):
         xs = a[:, None] + (b - a)[:, None] * t
@@ -101,14 +108,15 @@ def refine(
         X = np.concatenate([a[:, None], xs, b[:, None]], axis=1)
         G = np.concatenate([ga[:, None], gv, gb[:, None]], axis=1)
         j = np.argmax(G, axis=1)
-        better = (G[rows, j] > best) & (j > 0) & (j < points + 1)
+        better = ~done & (G[rows, j] > best) & (j > 0) & (j < points + 1)
         best = np.where(better, G[rows, j], best)
         at = np.where(better, X[rows, j], at)
         value = np.where(better, raw[rows, np.clip(j - 1, 0, points - 1)], value)
         lo, hi = np.maximum(j - 1, 0), np.minimum(j + 1, points + 1)
-        a, b, ga, gb = X[rows, lo], X[rows, hi], G[rows, lo], G[rows, hi]
-        spread = best - np.minimum(ga, gb)
-        if np.all(~trusted | none | (spread <= TOLERANCE * np.abs(best)) | (np.abs(b - a) <= 1e-15)):
+        a, b = np.where(done, a, X[rows, lo]), np.where(done, b, X[rows, hi])
+        ga, gb = np.where(done, ga, G[rows, lo]), np.where(done, gb, G[rows, hi])
+        done |= ~trusted | (best - np.minimum(ga, gb) <= TOLERANCE * np.abs(best)) | (np.abs(b - a) <= 1e-15)
+        if done.all():
             break
     return Peak(np.where(none, np.nan, value), np.where(none, np.nan, at))
 
@@ -164,8 +172,9 @@ def peak_of(f: Forces, pick: Callable[[Forces], np.ndarray], kind: str = "abs") 
         g = solve(at)
         return np.full(at.shape, np.nan) if g is None else pick(g)
 
+    points = POINTS[1] if f.kinematics.variants else POINTS[0]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return refine(pick(f), f.angles, quantity, kind)
+        return refine(pick(f), f.angles, quantity, kind, points)
 
 
 def driving_torque(f: Forces) -> np.ndarray:
@@ -209,7 +218,7 @@ def peaks_of(f: Forces, pick: Callable[[Forces], np.ndarray], kind: str = "abs")
         return values.reshape(rows, rows, k)[np.arange(rows), np.arange(rows)]
 
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return refine(pick(f), f.angles, quantity, kind)
+        return refine(pick(f), f.angles, quantity, kind, POINTS[0])
 
 
 def pair_force_peaks(f: Forces, pairs: list[int]) -> Peak:
