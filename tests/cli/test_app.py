@@ -494,7 +494,10 @@ def test_the_sweep_draws_its_progress_bar_on_a_terminal_only(tmp_path):
 def test_the_pair_table_shows_a_zero_where_the_json_writes_one():
     """The knives' guides of the double-cut shears carry no moment (each knife's forces pass through its
     slider point, on the guide's axis), so the largest moment of each guide is round-off: the table shows 0,
-    as the JSON does, and the largest forces agree with the JSON's to the table's six digits."""
+    as the JSON does, and the largest forces are those refined between the JSON's samples (never below them) to the
+    table's six digits."""
+    from linkwork.kinetostatics.peaks import pair_force_peaks
+
     args = ["forces", "double-cut-shears", "--steps", "72"]
     text = linkwork(*args)
     data = json.loads(linkwork(*args, "--json").stdout)
@@ -504,4 +507,8 @@ def test_the_pair_table_shows_a_zero_where_the_json_writes_one():
     for name, row in rows.items():
         joint = data["joints"][name]
         assert row[-1] == "0" and max(map(abs, joint["moment"])) == 0.0, row
-        assert float(row[-4]) == pytest.approx(np.hypot(joint["fx"], joint["fy"]).max(), rel=1e-5)
+        mech = lw.compile(lw.load("double-cut-shears"))
+        k = [i for i in range(mech.n_pairs) if mech.pair_joint[i] == name]
+        refined = pair_force_peaks(lw.forces(mech, steps=72), k).value[0]
+        assert float(row[-4]) == pytest.approx(refined, rel=1e-5)
+        assert float(row[-4]) >= np.hypot(joint["fx"], joint["fy"]).max() * (1 - 1e-5)

@@ -151,6 +151,17 @@ def test_the_page_loads_without_errors_and_draws_the_mechanism(page, server):
     shot(page, "viewer-loaded")
 
 
+def test_the_page_shows_the_peak_torque_every_route_gives(page, server):
+    """The peak refined between the samples (:func:`linkwork.kinetostatics.torque_peak`), as the command line, the
+    report and the sweeps give it, whatever the grid (here 360 steps for the reference)."""
+    from linkwork.kinetostatics.peaks import torque_peak
+
+    open_viewer(page, server)
+    reference = torque_peak(lw.forces(lw.compile(lw.load(NAME)), steps=360)).value[0]
+    expect(page.locator("#peak-torque")).to_contain_text(f"peak driving torque {reference:.6g} N m")
+    assert page.errors == []
+
+
 def test_moving_the_slider_draws_the_positions_the_kinematics_computes(page, server):
     open_viewer(page, server)
     mech = lw.compile(lw.load(NAME))

@@ -65,6 +65,15 @@ def _peak(values: np.ndarray, angles: np.ndarray) -> tuple[float, float]:
     return float(values[i]), float(angles[i])
 
 
+def _torque_peak(f: Forces) -> tuple[float, float]:
+    """The peak driving torque and its drive angle, refined between the samples
+    (:func:`linkwork.kinetostatics.torque_peak`)."""
+    from linkwork.kinetostatics.peaks import torque_peak
+
+    peak = torque_peak(f)
+    return float(peak.value[0]), float(peak.at[0])
+
+
 @app.command()
 def forces(
     file_or_example: FileOrExample,
@@ -188,7 +197,7 @@ def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: l
     if not ok.any():
         return
     unit = "N m" if revolute else "N"
-    t, at = _peak(f.driving_torque, phi)
+    t, at = _torque_peak(f)
     out.print(f"  driving torque: peak {t:.6g} {unit} at {where(at)}")
     show(out, _pair_table(f, labels))
     for g in groups:
@@ -210,6 +219,7 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
 
     from linkwork.io.force_tables import pair_kind
     from linkwork.io.jsonout import snap_zeros
+    from linkwork.kinetostatics.peaks import pair_force_peaks
     from linkwork.structure.model import one_crank
 
     mech, phi = f.mechanism, f.angles
@@ -218,7 +228,8 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
     head = "at phi" if one_crank(mech) else "at"
     for col in ("joint", "first on second", "|F| max, N", head, "moment max, N m"):
         tab.add_column(col)
-    peaks = [_peak(np.hypot(*f.pair_force(k)[0].T), phi) for _, k in labels]
+    refined = pair_force_peaks(f, [k for _, k in labels])  # refined between the samples, as the report gives them
+    peaks = [(float(v), float(a)) for v, a in zip(refined.value, refined.at, strict=True)]
     values = snap_zeros(np.array([value for value, _ in peaks]))
     prismatic = [pair_kind(mech, k) == "prismatic" for _, k in labels]
     # a guide's moment is zero where it is round-off beside the largest force times the mechanism's size

@@ -20,6 +20,7 @@ import numpy as np
 from linkwork.design.evaluate import Evaluation
 from linkwork.errors import DesignError
 from linkwork.kinetostatics.external import ExternalLoad
+from linkwork.kinetostatics.peaks import foundation_peak, torque_peak
 from linkwork.motion.analysis import (
     DYADS,
     Output,
@@ -155,20 +156,17 @@ def _applies_transmission(mech: Mechanism, arg: str | None) -> str | None:
 # ---------------------------------------------------------------- forces
 
 
-def _finite_max(values: np.ndarray) -> np.ndarray:
-    """Largest finite value of each row ``(V, A) -> (V,)``; NaN for a row with none."""
-    finite = np.isfinite(values)
-    top = np.max(np.where(finite, values, -np.inf), axis=1)
-    return np.where(finite.any(axis=1), top, np.nan)
-
-
 def _peak_torque(ev: Evaluation, arg: str | None) -> np.ndarray:
-    return _finite_max(np.abs(ev.driving_torque))
+    """The largest size of the driving torque, refined between the samples (:func:`linkwork.kinetostatics.torque_peak`,
+    as every route gives it)."""
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        return np.abs(torque_peak(ev.forces).value)
 
 
 def _peak_foundation(ev: Evaluation, arg: str | None) -> np.ndarray:
-    f = ev.foundation
-    return _finite_max(np.hypot(f[..., 0], f[..., 1]))
+    """The largest size of the force on the foundation, refined between the samples."""
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        return foundation_peak(ev.forces).value
 
 
 def _applies_forces(mech: Mechanism, arg: str | None) -> str | None:
@@ -320,7 +318,7 @@ METRICS: dict[str, Metric] = {
             _peak_torque,
             _applies_forces,
             "Largest absolute driving torque on the crank over the turn, at the file's crank speed, "
-            "with gravity, inertia and the file's loads.",
+            "with gravity, inertia and the file's loads; refined between the samples (the same whatever the steps).",
         ),
         Metric(
             "peak_foundation_force",
@@ -330,7 +328,7 @@ METRICS: dict[str, Metric] = {
             _peak_foundation,
             _applies_forces,
             "Largest magnitude of the force the machine puts on its foundation over the turn "
-            "(the weights, the frame's included, inertia and loads).",
+            "(the weights, the frame's included, inertia and loads); refined between the samples.",
         ),
         Metric(
             "knife_overlap",

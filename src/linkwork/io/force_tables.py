@@ -15,6 +15,7 @@ from linkwork.kinetostatics.external import magnitude_units
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:
+    from linkwork.kinetostatics.forces import Forces
     from linkwork.structure.model import Mechanism
 
 CONVENTION = (
@@ -28,6 +29,25 @@ CONVENTION = (
 
 #: The crank angles of ``bolts`` (degrees), each written as φ and as the angle to x (:func:`crank_keys`).
 _BOLT_ANGLES = tuple(f"{name}_angle_deg" for name in ("shear", "pull", "push", "moment"))
+
+
+def _torque_peak(f: Forces) -> dict[str, Any] | None:
+    """The peak driving torque (largest size, with its sign) refined between the samples
+    (:func:`linkwork.kinetostatics.torque_peak`) and where it is: ``at_phi_deg`` and ``at_to_x_deg`` with one
+    crank (:func:`crank_keys`), else ``at``, the drive's coordinate in SI; None with several drives or no finite
+    sample."""
+    from linkwork.kinetostatics.peaks import torque_peak
+    from linkwork.motion.analysis import CrankAngles
+
+    if f.mechanism.n_drives != 1:
+        return None
+    peak = torque_peak(f)
+    value, at = float(peak.value[0]), float(peak.at[0])
+    if not math.isfinite(value):
+        return None
+    if CrankAngles.of(f.mechanism) is None:  # a linear drive, or a crank that is not driven by the frame
+        return {"value": value, "at": at}
+    return crank_keys({"value": value, "at_deg": math.degrees(at)}, ("at_deg",), f.mechanism)
 
 
 def pair_labels(mech: Mechanism) -> list[tuple[str, int]]:
@@ -109,6 +129,7 @@ def to_json(f: Any) -> dict[str, Any]:
         },
         **{k: _arr(v) if isinstance(v, np.ndarray) else v for k, v in drive_record(mech, f.angles).items()},
         "driving_torque": _arr(torque),
+        "driving_torque_peak": _torque_peak(f),
         "joints": joints,
         "foundation": {"fx": _arr(found[:, 0]), "fy": _arr(found[:, 1]), "moment": _arr(found[:, 2])},
         "shaking": {"fx": _arr(shaking[:, 0]), "fy": _arr(shaking[:, 1]), "moment": _arr(f.shaking_moment)},

@@ -31,6 +31,7 @@ from linkwork.kinetostatics.bolt_speed import bolt_speed
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
 from linkwork.kinetostatics.forces import Forces, forces, forces_of
 from linkwork.kinetostatics.free_body import FreeBody
+from linkwork.kinetostatics.peaks import Peak, foundation_peak, torque_peak
 from linkwork.kinetostatics.reactions import Loads
 
 __all__ = [
@@ -40,9 +41,12 @@ __all__ = [
     "Forces",
     "FreeBody",
     "Loads",
+    "Peak",
     "balance",
     "bolt_loads",
     "bolt_speed",
     "forces",
     "forces_of",
+    "foundation_peak",
+    "torque_peak",
 ]

@@ -339,4 +339,18 @@ class _Unit:
             )  # fmt: skip
         t1, e1 = float(sol.y[0, -1]), float(sol.y[1, -1])
         w1 = math.sqrt(2 * e1 / self.model.at(hi)[0])
-        return y[0], grid, w, Turn(float(y[0][0]) if k else 0.0, t1, float(w.min()), float(w.max()), w1), e1
+        low, high = self._extremes(sol, grid[-self.points - 1 :], w[-self.points - 1 :])
+        low = min(low, float(w.min()))  # a run from rest starts at 0
+        return y[0], grid, w, Turn(float(y[0][0]) if k else 0.0, t1, low, high, w1), e1
+
+    def _extremes(self, sol: Any, grid: np.ndarray, w: np.ndarray) -> tuple[float, float]:
+        """The least and largest speed of a turn, refined between the points kept (``grid``, ``w``) on the solver's
+        dense output by the rule of every peak (:func:`linkwork.kinetostatics.peaks.refine`)."""
+        from linkwork.kinetostatics.peaks import refine
+
+        def speed(at: np.ndarray) -> np.ndarray:
+            psi = np.clip(at[0], grid[0], grid[-1])
+            return np.sqrt(2 * np.maximum(sol.sol(psi)[1], 0.0) / self.model.inertias(psi))[None]
+
+        low, high = (refine(w[None], grid, speed, kind).value[0] for kind in ("min", "max"))
+        return float(low), float(high)

@@ -119,6 +119,26 @@ def run_numpy(
     return state
 
 
+def run_each(mech: Mechanism, geom: Geometry, drive: np.ndarray, rate: float) -> State | None:
+    """Every variant at its own drive coordinates ``drive`` ``(V, A)`` (one drive turning at the uniform
+        ``rate``), by the NumPy kernels in the assembly modes of the program; None where a step is not in closed
+        form (Newton's method starts from shared drive values).  The dyads stay in the assembly modes of the program
+    (no change point followed).  Samples at a singular position are left as the
+        kernels give them (not repaired): NaN where a linear system has no solution.  For refining a quantity
+        between the samples of a solved cycle (:mod:`linkwork.kinetostatics.peaks`), which checks the modes
+        against the cycle's own samples."""
+    if mech.n_drives != 1 or any(step.kind == "newton" for step in mech.program):
+        return None
+    n_ang = drive.shape[1]
+    values = np.ascontiguousarray(drive[0])[:, None]
+    rates, accels = np.full((n_ang, 1), float(rate)), np.zeros((n_ang, 1))
+    fixed = [np.full(drive.shape, s.branch) if s.kind in ("RRR", "RRP", "PRP") else None for s in mech.program]
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        state = _solve(mech, mech.program, geom, values, rates, accels, branches=fixed, each=drive)
+    _not_assembled(state)
+    return state
+
+
 #: Normalised Jacobian determinant below which a sample is a singular position.
 SINGULAR = fast.SINGULAR
 
@@ -131,7 +151,10 @@ def _solve(
     rates: np.ndarray,
     accels: np.ndarray,
     branches: list[np.ndarray | None] | None = None,
+    each: np.ndarray | None = None,
 ) -> State:
+    """Solve every step by the NumPy kernels; ``each``: the drive coordinate of every variant at every sample
+    ``(V, A)`` in place of the shared ``values[:, 0]`` (one drive, closed-form steps only: :func:`run_each`)."""
     n_var, n_ang = geom.n_variants, values.shape[0]
     state = State.empty(mech.n_links_total, *geom.link_major, n_ang)
     offset = wrap(values[:, 0] - mech.drive_start[0])
@@ -145,7 +168,8 @@ def _solve(
         branch = branches[i] if branches is not None else None
         if step.kind in ("crank", "slide"):
             d = step.drive
-            args = (values[:, d] * ones, rates[:, d] * ones, accels[:, d] * ones)
+            drive = values[:, d] * ones if each is None else each
+            args = (drive, rates[:, d] * ones, accels[:, d] * ones)
             (kernels.crank if step.kind == "crank" else kernels.slide)(step, state, mech.point_link, *args)
         elif step.kind in ("RRR", "RRP", "PRP"):
             kernels.dyad(step, state, mech.point_link, branch=branch)

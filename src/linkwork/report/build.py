@@ -509,29 +509,33 @@ def _force_unit(f: Forces) -> tuple[float, str]:
 
 
 def _torque_text(run: _Run, cycle: Cycle, f: Forces) -> list[str]:
+    from linkwork.kinetostatics.peaks import torque_peak
+
     torque = np.asarray(f.driving_torque)
     if not np.isfinite(torque).any():
         return []
-    i = int(np.nanargmax(np.abs(torque)))
-    factor, unit = (1e-3, "unit.kNm") if abs(torque[i]) >= 1e4 else (1.0, "unit.Nm")
+    peak = torque_peak(f)  # refined between the samples, as every route gives it
+    top, at = float(peak.value[0]), float(peak.at[0])
+    factor, unit = (1e-3, "unit.kNm") if abs(top) >= 1e4 else (1.0, "unit.Nm")
     return [
-        _p(run.t("forces.torque", peak=f"{torque[i] * factor:.4g}", mean=f"{np.nanmean(torque) * factor:.4g}",
-                 unit=run.t(unit), at=_deg(float(cycle.phi(f.angles[i])))))
+        _p(run.t("forces.torque", peak=f"{top * factor:.4g}", mean=f"{np.nanmean(torque) * factor:.4g}",
+                 unit=run.t(unit), at=_deg(float(cycle.phi(at)))))
     ]  # fmt: skip
 
 
 def _joint_table(run: _Run, cycle: Cycle, f: Forces, unit: tuple[float, str]) -> list[str]:
     from linkwork.io.force_tables import pair_labels
+    from linkwork.kinetostatics.peaks import pair_force_peaks
 
     mech = run.mech
     rows: list[list[Any]] = []
     members = mech.pair_links if mech.pair_members is None else mech.pair_members  # in the file's order
-    for label, k in pair_labels(mech):
-        size = np.hypot(*f.pair_force(k)[0].T)
-        if np.isfinite(size).any():
-            j = int(np.nanargmax(size))
+    labels = pair_labels(mech)
+    peaks = pair_force_peaks(f, [k for _, k in labels])  # refined between the samples, as every route gives them
+    for (label, k), size, at in zip(labels, peaks.value, peaks.at, strict=True):
+        if np.isfinite(size):
             a, b = (mech.link_names[int(x)] for x in members[k])
-            rows.append([label, f"{a} \u2192 {b}", float(size[j]) * unit[0], _deg(float(cycle.phi(f.angles[j])))])
+            rows.append([label, f"{a} \u2192 {b}", float(size) * unit[0], _deg(float(cycle.phi(at)))])
     for row, text in zip(rows, _fixed([row[2] for row in rows]), strict=True):
         row[2] = text
     head = [run.t("joints.head.joint"), run.t("joints.head.links"), run.t("joints.head.largest", unit=run.t(unit[1])),

@@ -55,6 +55,8 @@ Layout (``format: linkwork-view/1``):
   acts at), their forces ``values`` (A, K, 2), N, their ``scale_per_mm`` (N
   per mm of the mechanism drawn full size) and ``torque_point``, the crank's
   pivot, where the driving torque is drawn;
+* ``peaks``: ``driving_torque`` (``value``, ``turn_deg``), the peak refined between the samples as
+  every route gives it (:func:`peaks`);
 * ``extremes``: every slider on a frame guide and rocker, as
   :func:`linkwork.motion.analysis.extremes` gives them (stroke, extreme
   positions, ``time_ratio`` K and ``forward_time_ratio``);
@@ -190,9 +192,29 @@ def _outcome(cycle: Cycle) -> dict[str, Any]:
     """The extremes, events and warnings of a cycle."""
     return {
         "extremes": [_finite(e.as_dict()) for e in extremes(cycle.kin)],
+        "peaks": peaks(cycle),
         "events": [_finite(e.as_dict()) for e in cycle.kin.events],
         "warnings": list(cycle.notes),
     }
+
+
+def peaks(cycle: Cycle) -> dict[str, Any]:
+    """The peak driving torque of the cycle (largest size, with its sign), refined between the samples as every
+    route gives it (:func:`linkwork.kinetostatics.torque_peak`): ``value`` (N m) and ``turn_deg``, the angle
+    turned from position 0; empty without forces or with several drives."""
+    from linkwork.kinetostatics.peaks import torque_peak
+
+    f = cycle.forces
+    if f is None or cycle.mech.n_drives != 1:
+        return {}
+    peak = torque_peak(f)
+    value, at = float(peak.value[0]), float(peak.at[0])
+    if not math.isfinite(value):
+        return {}
+    angles = f.angles
+    sign = 1.0 if len(angles) < 2 or angles[1] >= angles[0] else -1.0
+    turn = math.degrees((sign * (at - float(angles[0]))) % (2 * math.pi))
+    return {"driving_torque": {"value": value, "turn_deg": turn}}
 
 
 def _drive(mech: Mechanism, speed: float) -> dict[str, Any]:
@@ -390,8 +412,14 @@ def scheme_shape(scheme: SchemeScene) -> dict[str, Any]:
     rows = np.round(np.concatenate(xy), 9).tolist() if xy else []
     ends = np.cumsum([len(a) for a in xy]).tolist()
     items = [
-        {"kind": it.kind, "link": it.link, "xy": rows[end - len(a) : end], "closed": it.closed, "radius": it.radius,
-         "name": it.name}
+        {
+            "kind": it.kind,
+            "link": it.link,
+            "xy": rows[end - len(a) : end],
+            "closed": it.closed,
+            "radius": it.radius,
+            "name": it.name,
+        }
         for it, a, end in zip(scheme.items, xy, ends, strict=True)
     ]
     return {"size": scheme.size, "r": scheme.r, "em": scheme.em, "items": items}

@@ -41,6 +41,7 @@ from linkwork.web.payload import (
     _json,
     cycle_scale,
     forces_part,
+    peaks,
     plan_shape,
     plan_values,
     series_values,
@@ -156,14 +157,19 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged:
         "overrides": dict(cycle.overrides),
         "valid": compact(cycle.valid, "u1"),
         "local": _json(cycle.local, 12),
-        "plans": {one.kind: {"scale_per_mm": shapes[one.kind][1], "values": compact(plan_values(one, cycle.valid))}
-                  for one in series},  # fmt: skip
+        "plans": {
+            one.kind: {"scale_per_mm": shapes[one.kind][1], "values": compact(plan_values(one, cycle.valid))}
+            for one in series
+        },  # fmt: skip
         "scene": scene,
-        "series": {"keys": [q[0] for q in quantities],
-                   "values": compact(np.array([q[4] for q in quantities]).reshape(len(quantities), -1))},  # fmt: skip
+        "series": {
+            "keys": [q[0] for q in quantities],
+            "values": compact(np.array([q[4] for q in quantities]).reshape(len(quantities), -1)),
+        },  # fmt: skip
         "forces": forces_part(cycle, scheme.size, compact),
         "parameters": variant_parameters(cycle.mech, cycle.overrides, kin.mass_properties, editable),
         "extremes": None if dragged else [_finite(e.as_dict()) for e in extremes(kin)],
+        "peaks": None if dragged else peaks(cycle),
         "events": [_finite(e.as_dict()) for e in kin.events],
         "warnings": list(cycle.notes),
     }

@@ -129,6 +129,7 @@
     const m = Object.assign({}, full, {
       overrides: ans.overrides, parameters: ans.parameters, events: ans.events, warnings: ans.warnings,
       local: ans.local, extremes: ans.extremes || full.extremes, stale: ans.extremes ? null : "extremes",
+      peaks: ans.peaks || full.peaks,
     });
     m.valid = Array.from(Grid.of(ans.valid, 1).data, (v) => Boolean(v));
     m.poses = Grid.of(ans.scene.poses, 3);
@@ -652,7 +653,7 @@
 
   function buildStructure(m) {
     const root = $("structure");
-    const said = JSON.stringify([m.name, m.structure.formula, m.extremes, m.stale, m.forces.checks, m.forces.available, m.events, m.warnings]);
+    const said = JSON.stringify([m.name, m.structure.formula, m.extremes, m.peaks, m.stale, m.forces.checks, m.forces.available, m.events, m.warnings]);
     if (root.getAttribute("data-said") === said) return; // a drag changes none of it often
     root.setAttribute("data-said", said);
     root.replaceChildren();
@@ -681,6 +682,11 @@
       html("p", "forces: the cross-checks come with the whole solution, once the edit is made", root);
     } else {
       html("p", `forces: not computed (${m.forces.reason})`, root);
+    }
+    const peak = m.peaks && m.peaks.driving_torque;
+    if (peak) { // refined between the samples: the number the command line, the report and the sweeps give
+      const stale = m.stale === "extremes" ? " (before the drag)" : "";
+      html("p", `peak driving torque ${fmt(peak.value, 6)} N m at φ = ${peak.turn_deg.toFixed(1)}°${stale}`, root, { id: "peak-torque" });
     }
     for (const e of m.events) html("p", `${e.kind}: ${e.message}`, root, { class: "warn" });
     for (const w of m.warnings.concat(s.warnings || [])) html("p", w, root, { class: "warn" });
