@@ -326,8 +326,8 @@ def test_json_has_null_where_a_number_is_not_finite(tmp_path):
 
 
 def test_the_json_writer_rule():
-    """Twelve significant digits; zero below 1e-10 of the largest number beside it (in its array, or
-    among its object's values and their arrays); NaN and infinities as null."""
+    """Twelve significant digits; zero below 1e-10 of the typical magnitude of its quantity (its array, with
+    the other component of its vector: fx with fy); a number alone as it is; NaN and infinities as null."""
     from linkwork.io.jsonout import dumps
 
     data = {
@@ -352,6 +352,88 @@ def test_the_json_writer_rule():
         "count": 12,
         "array": [1.0, 0.0],
     }
+
+
+def _quantity(record: dict[str, Any], key: str) -> list[Any]:
+    """The numbers of ``record[key]`` with those of the other component of the same vector (``x`` with ``y``)."""
+    other = key[:-1] + ("y" if key.endswith("x") else "x") if key[-1:] in ("x", "y") else None
+    group = [record[key]] + ([record[other]] if other in record else [])
+    return [v for g in group for v in (g if isinstance(g, list | tuple | np.ndarray) else [g])]
+
+
+def _round_off(value: float, quantity: list[Any]) -> bool:
+    """Whether ``value`` is a zero of round-off by the README's rule: below 1e-10 of the magnitude below which
+    nine tenths of the non-zero finite numbers of its quantity lie."""
+    m = sorted(abs(float(v)) for v in quantity if v is not None and math.isfinite(float(v)) and v != 0)
+    if not m:
+        return False
+    at = 0.9 * (len(m) - 1)
+    typical = m[int(at)] + (at - int(at)) * (m[min(int(at) + 1, len(m) - 1)] - m[int(at)])
+    return abs(value) < 1e-10 * typical
+
+
+def _twelve_digits(value: float, written: Any) -> bool:
+    """Whether ``written`` is ``value`` to 12 significant digits (a tie of the 13th either way)."""
+    if value == 0.0 or written is None:
+        return written == value
+    unit = 10.0 ** (math.floor(math.log10(abs(value))) - 11)
+    return abs(written - value) <= 0.501 * unit and written == float(f"{written:.12g}")
+
+
+def _disagreements(python: Any, written: Any, path: str = "") -> list[str]:
+    """Each number of the record ``python`` that the JSON ``written`` does not give to 12 significant digits
+    and that is not a zero of round-off of its own quantity (paths)."""
+    wrong: list[str] = []
+    for key, v in python.items() if isinstance(python, dict) else []:
+        items = list(np.ravel(v)) if isinstance(v, np.ndarray) else v
+        if isinstance(v, dict):
+            wrong += _disagreements(v, written[key], f"{path}.{key}")
+        elif isinstance(items, list | tuple) and any(isinstance(x, dict) for x in items):
+            wrong += [e for x, w in zip(items, written[key], strict=True) for e in _disagreements(x, w, path)]
+        elif isinstance(v, float | list | tuple | np.ndarray):
+            pairs = zip(np.ravel(np.asarray(v, dtype=object)), np.ravel(written[key]), strict=True)
+            for i, (p, w) in enumerate(pairs):
+                if not isinstance(p, bool | str | type(None)) and not _agrees(float(p), w, _quantity(python, key)):
+                    wrong.append(f"{path}.{key}[{i}]: {p!r} written {w!r}")
+    return wrong
+
+
+def _agrees(value: float, written: Any, quantity: list[Any]) -> bool:
+    """Whether ``written`` is ``value`` (a float of ``quantity``) as the README says the JSON writes it."""
+    if not math.isfinite(value):
+        return written is None
+    return _twelve_digits(value, written) or (written == 0.0 and _round_off(value, quantity))
+
+
+@pytest.mark.parametrize("example", [*names(), "four-bar stopping on a sample"])
+def test_every_json_number_is_the_value_or_a_zero_of_round_off(example, tmp_path, monkeypatch):
+    """Every number `kinematics --json` and `forces --json` write equals the Python value to 12 significant
+    digits or is a zero of round-off of its own quantity, for every bundled example and a four-bar whose
+    crank stops exactly on the 300 deg sample (O4 at 100 mm: the speeds there have no finite limit, an
+    acceleration of 2.6e23 m/s^2), whose B moves and whose driving torque is not zero at any valid angle."""
+    import linkwork.io.jsonout as jsonout
+
+    _commands()
+    source = example
+    if example not in names():
+        source = str(tmp_path / "stops.yaml")
+        Path(source).write_text(text("four-bar").replace("O4: [300, 0]", "O4: [100, 0]"), encoding="utf-8")
+    seen: list[tuple[Any, str]] = []
+    dumps = jsonout.dumps
+    monkeypatch.setattr(jsonout, "dumps", lambda data, **kw: seen.append((data, dumps(data, **kw))) or seen[-1][1])
+    for command in ("kinematics", "forces"):
+        result = runner.invoke(app, [command, source, "--json"])
+        assert result.exit_code == 0, result.output
+        python, written = seen[-1]
+        assert _strict(written) == _strict(result.stdout)
+        assert _disagreements(python, _strict(written)) == []
+    if example not in names():
+        kin, forces = (_strict(text) for _, text in seen)
+        ok = np.array(kin["valid"])
+        assert 0 < ok.sum() < ok.size
+        for key in ("x", "y", "vx", "vy", "ax", "ay"):
+            assert all(v != 0.0 for v in np.array(kin["points"]["B"][key])[ok]), key
+        assert all(v != 0.0 for v in np.array(forces["driving_torque"])[ok])
 
 
 def test_tables_are_plain_text_when_piped():
@@ -471,8 +553,9 @@ def test_the_sweep_draws_its_progress_bar_on_a_terminal_only(tmp_path):
     assert "━" not in piped.stderr and "\x1b[" not in piped.stderr and "chunks" not in piped.stderr
     leader, follower = pty.openpty()
     args = [sys.executable, "-m", "linkwork.cli", *sweep, "--out", str(tmp_path / "b.parquet")]
-    with subprocess.Popen(args, stdout=subprocess.DEVNULL,
-                          stderr=follower, env={**os.environ, "COLUMNS": "100", "TERM": "xterm"}) as proc:
+    with subprocess.Popen(
+        args, stdout=subprocess.DEVNULL, stderr=follower, env={**os.environ, "COLUMNS": "100", "TERM": "xterm"}
+    ) as proc:
         os.close(follower)
         drawn = b""
         while True:
