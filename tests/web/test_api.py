@@ -1002,7 +1002,9 @@ def test_an_edit_waiting_for_a_slot_is_superseded_by_a_newer_one_of_its_page():
 def test_the_saved_file_keeps_the_files_comments_and_solves_to_the_edit(shears):
     r = shears.post("/api/save", json={"overrides": SHEARS_EDIT})
     assert r.status_code == 200
-    assert r.headers["content-disposition"] == 'attachment; filename="double-cut-shears-edited.yaml"'
+    assert r.headers["content-disposition"] == (
+        "attachment; filename=\"double-cut-shears-edited.yaml\"; filename*=UTF-8''double-cut-shears-edited.yaml"
+    )
     text = r.text
     original = example_text("double-cut-shears")
     comments = [line.split("#", 1)[1] for line in original.splitlines() if "#" in line]

@@ -107,6 +107,8 @@ def _clean(x: Any, scale: float | None) -> Any:
     if isinstance(x, int | np.integer):
         return int(x)
     return x
+
+
 def _floats(a: np.ndarray, scale: float) -> list[float | None]:
     """The floats ``a`` (n,) rounded to :data:`DIGITS` significant digits, those below ``ZERO * scale``
     as 0.0, NaN and infinities as None: ``float(f"{v:.12g}")``, but a division by a power of ten

@@ -337,8 +337,17 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
     async def save(request: Request) -> Response:
         req = await read_body(request, SaveRequest)
         text = await run_in_threadpool(viewer.file_text, req.overrides)
-        headers = {"Content-Disposition": f'attachment; filename="{viewer.saved_name()}"'}
+        headers = {"Content-Disposition": attachment(viewer.saved_name())}
         return Response(text, media_type="application/yaml; charset=utf-8", headers=headers)
+
+
+def attachment(name: str) -> str:
+    """The ``Content-Disposition`` of a file offered under ``name`` (any script): its UTF-8 name in
+    ``filename*`` (RFC 6266, which browsers read), an ASCII stand-in in ``filename`` for the rest."""
+    from urllib.parse import quote as percent
+
+    plain = "".join(c if c.isascii() and c.isprintable() and c not in '"\\' else "_" for c in name)
+    return f"attachment; filename=\"{plain}\"; filename*=UTF-8''{percent(name, safe='')}"
 
 
 def _json(data: Any) -> Response:
