@@ -436,6 +436,44 @@ def test_every_json_number_is_the_value_or_a_zero_of_round_off(example, tmp_path
         assert all(v != 0.0 for v in np.array(forces["driving_torque"])[ok])
 
 
+def test_positions_at_the_bound_take_each_point_once_and_write_what_each_position_gives(monkeypatch):
+    """`positions --count N` reads each point's positions once for all N (not once a position: 100,000 took
+    minutes), and writes for each position the point's coordinates in mm to 0.001 mm, as a pose of the
+    kinematics at that one angle gives them."""
+    from linkwork.motion.kinematics import Kinematics
+
+    _commands()
+    calls = []
+    position = Kinematics.position
+    monkeypatch.setattr(Kinematics, "position", lambda self, name: calls.append(name) or position(self, name))
+    result = runner.invoke(app, ["positions", "four-bar", "--count", "2000", "--json"])
+    assert result.exit_code == 0, result.output
+    rows = _strict(result.stdout)["positions"]
+    assert len(rows) == 2000 and len(calls) == len(rows[0]) - 2
+    mech = lw.compile(lw.example("four-bar"))
+    for row in rows[::397]:
+        one = lw.kinematics(mech, angles=[math.radians(row["angle_deg"])])
+        for label in ("A", "B", "M"):
+            point = "coupler.M" if label == "M" else label
+            assert row[label] == pytest.approx(one.position(point)[0] * 1000, abs=6e-4), (row, label)
+
+
+def test_many_records_are_written_as_each_alone():
+    """The JSON writer's column-by-column path for many records alike writes what it writes of each record
+    alone (numbers, short arrays with their own zeros of round-off, nulls, ints and text)."""
+    from linkwork.io.jsonout import _clean, dumps
+
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        width = int(rng.integers(1, 5))
+        rows = []
+        for k in range(int(rng.integers(9, 30))):
+            point = (rng.standard_normal(width) * 10.0 ** rng.integers(-18, 6, size=width)).tolist()
+            point[int(rng.integers(width))] = [0.0, None, -1e-17, point[0]][int(rng.integers(4))]
+            rows.append({"k": k, "angle": float(rng.standard_normal()), "P": point, "name": "e\u0301"})
+        assert dumps(rows) == json.dumps([_clean(r, None) for r in rows])
+
+
 def test_tables_are_plain_text_when_piped():
     """Piped, `linkwork check` prints what the README shows: no box characters, no trailing blanks (the
     command in a process of its own, its stdout a pipe; the tables of the others, whose stdout is no terminal

@@ -110,13 +110,32 @@ def _no_values(x: Any, path: str) -> Any:
     elif isinstance(x, dict):
         for k, v in x.items():
             yield from _no_values(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(x, list | tuple) and _plain_records(x):
+        return  # objects of plain values and short arrays of finite numbers: nothing to say
     elif isinstance(x, list | tuple):
         seen: set[tuple[str, bool]] = set()
         for v in x:
+            if type(v) in (str, int, bool) or (type(v) is float and math.isfinite(v)):
+                continue  # a plain value: nothing to say, and no generator for it
             for found in _no_values(v, path + "[]"):
                 if found not in seen:
                     seen.add(found)
                     yield found
+
+
+def _plain_records(x: list[Any] | tuple[Any, ...]) -> bool:
+    """Whether ``x`` is a list of objects whose values are ints, strings, finite floats or lists of finite
+    floats (the rows of a table with a value in every cell), told at the cost of one pass."""
+    import numpy as np
+
+    if not x or type(x[0]) is not dict:
+        return False
+    kinds = {type(v) for r in x if type(r) is dict for v in r.values()}
+    if len(kinds) != len(kinds & {int, str, float, list}) or not all(type(r) is dict for r in x):
+        return False
+    floats = [v for r in x for v in r.values() if type(v) is float]
+    floats += [c for r in x for v in r.values() if type(v) is list for c in v]
+    return all(type(c) is float for c in floats) and bool(np.isfinite(np.array(floats, dtype=float)).all())
 
 
 def make_console() -> Console:

@@ -20,6 +20,7 @@ Numbers are written the way an engineer reads them, and always as valid JSON:
 from __future__ import annotations
 
 import json
+import math
 from typing import Any
 
 import numpy as np
@@ -93,6 +94,11 @@ def _clean(x: Any, scale: float | None) -> Any:
     if isinstance(x, dict):
         scales = _components(x)
         return {str(k): _clean(v, scales.get(k)) for k, v in x.items()}
+    if _is_float(x):  # a number alone, or a component of a vector of numbers
+        return _few([float(x)], 0.0 if scale is None else scale)[0]
+    if isinstance(x, list | tuple) and len(x) <= SMALL and all(_is_float(v) or v is None for v in x):
+        if any(v is not None for v in x):  # a point's coordinates: at once in Python, not through NumPy
+            return _few([None if v is None else float(v) for v in x], scale)
     a = _array(x)
     if a is not None:
         own = 0.0 if _is_float(x) else magnitude(a)
@@ -101,7 +107,8 @@ def _clean(x: Any, scale: float | None) -> Any:
     if isinstance(x, np.ndarray):
         x = list(x) if x.ndim > 1 else x.tolist()
     if isinstance(x, list | tuple):
-        return [_clean(v, None) for v in x]
+        alike = _records(x)
+        return alike if alike is not None else [_clean(v, None) for v in x]
     if isinstance(x, bool | np.bool_):
         return bool(x)
     if isinstance(x, int | np.integer):
@@ -109,10 +116,86 @@ def _clean(x: Any, scale: float | None) -> Any:
     return x
 
 
-def _floats(a: np.ndarray, scale: float) -> list[float | None]:
-    """The floats ``a`` (n,) rounded to :data:`DIGITS` significant digits, those below ``ZERO * scale``
-    as 0.0, NaN and infinities as None: ``float(f"{v:.12g}")``, but a division by a power of ten
-    instead of a string where the power is exact (ties may round the other way)."""
+def _records(rows: list[Any] | tuple[Any, ...]) -> list[dict[str, Any]] | None:
+    """``rows`` cleaned column by column, as :func:`_clean` cleans each, where they are many records alike
+    (objects of the same keys, none a component of a vector, each column all numbers, all arrays of a few
+    numbers of one length, or all ints, strings, bools and nulls); else None."""
+    if len(rows) <= SMALL or type(rows[0]) is not dict or _components(rows[0]):
+        return None
+    keys = rows[0].keys()
+    if not all(type(r) is dict and r.keys() == keys for r in rows):
+        return None
+    columns = []
+    for key in keys:
+        column = _column([r[key] for r in rows])
+        if column is None:
+            return None
+        columns.append(column)
+    names = [str(k) for k in keys]
+    return [dict(zip(names, values, strict=True)) for values in zip(*columns, strict=True)]
+
+
+def _column(values: list[Any]) -> list[Any] | None:
+    """One column of :func:`_records` cleaned (numbers alone as they are, rounded; arrays each by its own
+    :func:`magnitude`), or None where it is not of one of its kinds."""
+    kinds = {type(v) for v in values}
+    if kinds <= {str, int, bool, type(None)}:
+        return values
+    if all(issubclass(k, float | np.floating) or k is type(None) for k in kinds):
+        return _floats(np.array([np.nan if v is None else v for v in values], dtype=float), 0.0)
+    if kinds != {list} or not 0 < len(values[0]) <= SMALL or len({len(v) for v in values}) != 1:
+        return None
+    if not {type(c) for v in values for c in v} <= {float, np.float64, type(None)}:
+        return None
+    width = len(values[0])
+    a = np.array(values, dtype=float)  # None as NaN
+    cleaned = _floats(a.ravel(), np.repeat(_row_magnitudes(a), width))
+    return [cleaned[i : i + width] for i in range(0, len(cleaned), width)]
+
+
+def _row_magnitudes(a: np.ndarray) -> np.ndarray:
+    """:func:`magnitude` of each row of ``a`` (n, w), as :func:`_few` finds it."""
+    m = np.abs(a)
+    m[~np.isfinite(m) | (m == 0.0)] = np.nan
+    m = np.sort(m, axis=1)  # NaN last
+    count = np.sum(np.isfinite(m), axis=1)
+    at = SHARE * np.maximum(count - 1, 0)
+    low = np.floor(at).astype(int)
+    high = np.minimum(low + 1, np.maximum(count - 1, 0))
+    rows = np.arange(len(m))
+    lo, hi = m[rows, low], m[rows, high]
+    return np.where(count > 0, lo + (at - low) * (hi - lo), 0.0)
+
+
+#: Arrays of at most this many numbers are written by :func:`_few` (the same numbers, without NumPy's cost).
+SMALL = 8
+
+
+def _few(values: list[float | None], scale: float | None) -> list[float | None]:
+    """:func:`_floats` of a few numbers (None: no value), in Python: the same rounding and snapping, the
+    scale their own :func:`magnitude` unless given."""
+    if scale is None:
+        m = sorted(abs(v) for v in values if v is not None and math.isfinite(v) and v != 0.0)
+        at = SHARE * (len(m) - 1)
+        low = int(at)
+        scale = m[low] + (at - low) * (m[min(low + 1, len(m) - 1)] - m[low]) if m else 0.0
+    out: list[float | None] = []
+    for v in values:
+        if v is None or not math.isfinite(v):
+            out.append(None)
+        elif v == 0.0 or abs(v) < ZERO * scale:
+            out.append(0.0)
+        else:
+            k = DIGITS - 1 - math.floor(math.log10(abs(v)))
+            p = 10.0 ** abs(k)
+            out.append(float(f"{v:.{DIGITS}g}") if abs(k) > 22 else round(v * p) / p if k >= 0 else round(v / p) * p)
+    return out
+
+
+def _floats(a: np.ndarray, scale: float | np.ndarray) -> list[float | None]:
+    """The floats ``a`` (n,) rounded to :data:`DIGITS` significant digits, those below ``ZERO * scale`` (one
+    scale, or one for each) as 0.0, NaN and infinities as None: ``float(f"{v:.12g}")``, but a division by a
+    power of ten instead of a string where the power is exact (ties may round the other way)."""
     finite = np.isfinite(a)
     zero = ~finite | (np.abs(a) < ZERO * scale) | (a == 0.0)
     v = np.where(zero, 1.0, a)
