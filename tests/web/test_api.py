@@ -1241,3 +1241,31 @@ def test_the_viewer_numbers_the_cycle_from_position_0_as_the_report_does(name):
     phi = np.degrees(np.mod(direction(mech) * (np.radians(payload["angles_deg"]) - zero), 2 * math.pi))
     np.testing.assert_allclose(payload["turn_deg"], phi, atol=1e-6)
     assert payload["turn_deg"][0] == 0
+
+
+def test_a_request_whose_head_never_ends_is_closed_and_others_are_answered():
+    """Slow clients (slowloris): a connection that sends half a request's head and then nothing, one that
+    sends nothing, and one that sends half the head of its second request after an answer, are closed
+    within the head timeout (1 s here) and a little; a whole request on another connection meanwhile is
+    answered."""
+    pytest.importorskip("uvicorn")
+    import socket
+    import time
+
+    from webserver import serving
+
+    with serving(create_app("four-bar", steps=36), head_timeout=1.0) as (host, port):
+        request = f"GET /api/parameters HTTP/1.1\r\nHost: {host}\r\n\r\n".encode()
+        slow = [socket.create_connection((host, port), timeout=10) for _ in range(3)]
+        slow[0].sendall(request[:30])
+        slow[2].sendall(request)
+        assert slow[2].recv(4096).startswith(b"HTTP/1.1 200")
+        slow[2].sendall(request[:30])
+        start = time.monotonic()
+        with socket.create_connection((host, port), timeout=10) as good:
+            good.sendall(request)
+            assert good.recv(4096).startswith(b"HTTP/1.1 200")
+        for sock in slow:
+            with sock:
+                assert sock.recv(4096) == b""  # closed by the server
+        assert time.monotonic() - start < 1.0 + 3.0
