@@ -1269,3 +1269,45 @@ def test_a_request_whose_head_never_ends_is_closed_and_others_are_answered():
             with sock:
                 assert sock.recv(4096) == b""  # closed by the server
         assert time.monotonic() - start < 1.0 + 3.0
+
+
+def test_a_pose_is_answered_while_an_edit_is_solved():
+    """An edit that takes long (1 s here, held in the solver) does not hold up a pose sent after it on another
+    connection: the pose is answered while the edit is still being solved (edits are solved off the event
+    loop), and the edit's answer comes after."""
+    pytest.importorskip("uvicorn")
+    import http.client
+    import threading
+    import time
+
+    from webserver import serving
+
+    app = create_app("four-bar", steps=36)
+    viewer = app.state.viewer
+    solve, started = viewer.edit, threading.Event()
+
+    def slow_edit(*args, **kwargs):
+        started.set()
+        time.sleep(1.0)
+        return solve(*args, **kwargs)
+
+    viewer.edit = slow_edit
+    with serving(app) as (host, port):
+        done = {}
+
+        def edit() -> None:
+            conn = http.client.HTTPConnection(host, port, timeout=30)
+            conn.request("POST", "/api/edit", json.dumps({"overrides": {"links.crank.length": 0.101}}),
+                         {"Content-Type": "application/json"})  # fmt: skip
+            done["edit"] = (conn.getresponse().status, time.monotonic())
+
+        thread = threading.Thread(target=edit)
+        thread.start()
+        assert started.wait(10)
+        conn = http.client.HTTPConnection(host, port, timeout=30)
+        conn.request("POST", "/api/pose", json.dumps({"angle_deg": 30.0}), {"Content-Type": "application/json"})
+        r = conn.getresponse()
+        posed = time.monotonic()
+        assert r.status == 200 and "edit" not in done
+        thread.join(30)
+        assert done["edit"][0] == 200 and done["edit"][1] > posed

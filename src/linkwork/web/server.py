@@ -320,12 +320,9 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
         found = viewer.cached_edit(req.overrides, req.steps, req.whole_turn)
         if found is None:
             async with holding(viewer.edit_slots, viewer.wait_s, lambda: viewer.superseded(req.client, req.seq)):
-                if (req.steps or viewer.steps) <= viewer.steps:
-                    # the page's own cycle, some milliseconds: solved here, as handing it to a worker thread (on
-                    # another core, away from what the last edit left in the cache) would add a tenth to it
-                    found = viewer.edit(req.overrides, req.steps, req.whole_turn)
-                else:  # a longer cycle is solved in a worker thread, not to hold up the other requests
-                    found = await run_in_threadpool(viewer.edit, req.overrides, req.steps, req.whole_turn)
+                # in a worker thread, never on the event loop: a pose (or any request) is read and answered while
+                # edits are solved, sharing the interpreter with at most the edits' slots
+                found = await run_in_threadpool(viewer.edit, req.overrides, req.steps, req.whole_turn)
         return Response(found, media_type=EDIT_MEDIA)
 
     @app.post("/api/pose")
