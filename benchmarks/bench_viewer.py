@@ -202,8 +202,9 @@ def main(argv: list[str] | None = None) -> None:
     try:
         poses = {n: poses_while_editing(port, name, start, n, args.poses) for n in map(int, args.editors.split(","))}
         for n, times in poses.items():
+            median, high = 1e3 * statistics.median(times), 1e3 * np.quantile(times, 0.9)
             print(f"  pose round trip (POST /api/pose, parsed) while {n} clients edit back to back: median "
-                  f"{1e3 * statistics.median(times):.1f} ms, 90th percentile {1e3 * np.quantile(times, 0.9):.1f} ms")  # fmt: skip
+                  f"{median:.1f} ms, 90th percentile {high:.1f} ms")  # fmt: skip
         if args.only_poses:
             return
         trips = round_trips(port, name, start, args.edits)
