@@ -474,6 +474,30 @@ def test_many_records_are_written_as_each_alone():
         assert dumps(rows) == json.dumps([_clean(r, None) for r in rows])
 
 
+def test_a_piped_table_is_written_as_rich_lays_it_out(monkeypatch, capsys):
+    """The piped tables are written without rich's layout (100,000 rows of positions took minutes), line for
+    line as rich lays them out: widths of wide (CJK) and combining characters, escaped markup, right-justified
+    columns, an empty cell."""
+    from rich.markup import escape
+
+    import linkwork.cli.app as cli
+
+    def table():
+        tab = cli.make_table(escape("Ножницы [剪刀] e\u0301: positions"))
+        tab.add_column("pos")
+        tab.add_column("连杆, mm", justify="right")
+        tab.add_column(escape("[B]"))
+        for row in (("0", "1.5, 2.0", "x"), ("11", "-", ""), ("2", "刀_下", escape("a[b]\\"))):
+            tab.add_row(*row)
+        return tab
+
+    cli.show(cli.make_console(), table())
+    ours = capsys.readouterr().out
+    monkeypatch.setattr(cli, "_plain_lines", lambda tab: None)
+    cli.show(cli.make_console(), table())
+    assert ours == capsys.readouterr().out and "刀_下" in ours
+
+
 def test_tables_are_plain_text_when_piped():
     """Piped, `linkwork check` prints what the README shows: no box characters, no trailing blanks (the
     command in a process of its own, its stdout a pipe; the tables of the others, whose stdout is no terminal
