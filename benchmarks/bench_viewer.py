@@ -17,6 +17,9 @@ browser part needs Playwright and Debian's ``chromium``; ``--drag 0`` leaves it 
   first sample (the page's first answer), at the live page's
   :data:`~linkwork.web.payload.LIVE_PLACED` samples (the answer that follows), and at every sample (an
   exported page), best of a few.
+* A pose while others edit: ``POST /api/pose`` (one crank angle, a frame apart, as the page sends them while
+  the crank turns) timed while ``--editors`` clients (0, 1, 8 by default) send edits back to back, each on
+  its own connection, none answered from the cache: the median and the 90th percentile of ``--poses``.
 * In Chromium: the crank's length handle dragged back and forth along the crank for ``--drag`` seconds, a mouse move due
   every 16 ms (a 60 Hz mouse: each move is sent when it is due, or at once when the browser, which takes a
   move only at its next frame, is behind); the page counts the edits' answers it shows (``data-updates`` on
@@ -136,11 +139,65 @@ def drag(port: int, name: str, seconds: float, along: tuple[float, float]) -> tu
     return shown / spent, k / spent, ms
 
 
+def poses_while_editing(port: int, name: str, start: float, editors: int, count: int) -> list[float]:
+    """Seconds from sending a pose (``POST /api/pose``, one crank angle of the file's mechanism) to its parsed
+    answer, ``count`` of them one after another, while ``editors`` clients (threads, a kept-alive connection
+    each) send edits back to back, each a value not asked before (no answer from the cache)."""
+    import threading
+
+    stop = threading.Event()
+
+    def edit(client: int) -> None:
+        conn = http.client.HTTPConnection("127.0.0.1", port, timeout=600)
+        for seq in range(10**9):
+            if stop.is_set():
+                break
+            value = start * (1 + 0.04 * ((seq * 0.618 + client * 0.37) % 1 - 0.5) + 1e-7 * client)
+            body = {"overrides": {name: value}, "client": f"editor{client}", "seq": seq}
+            conn.request("POST", "/api/edit", json.dumps(body).encode(), {"Content-Type": "application/json"})
+            conn.getresponse().read()
+        conn.close()
+
+    warm = http.client.HTTPConnection("127.0.0.1", port, timeout=600)  # kernels compiled before any timing
+    warm.request("POST", "/api/edit", json.dumps({"overrides": {name: start * 1.001}}).encode(),
+                 {"Content-Type": "application/json"})  # fmt: skip
+    warm.getresponse().read()
+    warm.close()
+    threads = [threading.Thread(target=edit, args=(c,), daemon=True) for c in range(editors)]
+    for t in threads:
+        t.start()
+    time.sleep(0.5 if editors else 0.0)  # the edits under way
+    conn = http.client.HTTPConnection("127.0.0.1", port, timeout=600)  # the first compiles the kernels
+    out = []
+    try:
+        for k in range(count + 5):
+            body = json.dumps({"angle_deg": (7.3 * k) % 360}).encode()
+            t = time.perf_counter()
+            conn.request("POST", "/api/pose", body, {"Content-Type": "application/json"})
+            r = conn.getresponse()
+            raw = r.read()
+            if r.status != 200:
+                raise SystemExit(f"pose: {r.status} {raw[:500]!r}")
+            json.loads(raw)
+            if k >= 5:
+                out.append(time.perf_counter() - t)
+            time.sleep(0.016)  # a crank step a frame, as the page sends them
+    finally:
+        stop.set()
+        for t in threads:
+            t.join(timeout=60)
+        conn.close()
+    return out
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--name", default="double-cut-shears")
     parser.add_argument("--edits", type=int, default=200)
     parser.add_argument("--drag", type=float, default=6.0, help="seconds of dragging in Chromium (0: none)")
+    parser.add_argument("--poses", type=int, default=100, help="poses timed for each number of --editors")
+    parser.add_argument("--editors", default="0,1,8", help="clients editing while poses are timed, e.g. 0,1,8,32")
+    parser.add_argument("--only-poses", action="store_true", help="time the poses only")
     args = parser.parse_args(argv)
     spec = lw.load(args.name)
     mech = lw.compile(spec)
@@ -148,6 +205,13 @@ def main(argv: list[str] | None = None) -> None:
     start = lw.parameters(mech)[name]
     proc, port = start_server(args.name)
     try:
+        poses = {n: poses_while_editing(port, name, start, n, args.poses) for n in map(int, args.editors.split(","))}
+        for n, times in poses.items():
+            median, high = 1e3 * statistics.median(times), 1e3 * np.quantile(times, 0.9)
+            print(f"  pose round trip (POST /api/pose, parsed) while {n} clients edit back to back: median "
+                  f"{median:.1f} ms, 90th percentile {high:.1f} ms")  # fmt: skip
+        if args.only_poses:
+            return
         trips = round_trips(port, name, start, args.edits)
         forces = [best(lambda: lw.forces(mech, steps=360)) for _ in range(3)]
         runs = []

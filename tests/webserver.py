@@ -11,13 +11,16 @@ from typing import Any
 
 
 @contextmanager
-def serving(app: Any) -> Iterator[tuple[str, int]]:
-    """Serve ``app`` on 127.0.0.1 at a free port while the block runs: yields (host, port)."""
+def serving(app: Any, **config: Any) -> Iterator[tuple[str, int]]:
+    """Serve ``app`` on 127.0.0.1 at a free port while the block runs, configured as `linkwork view` serves it
+    (``config``: :func:`linkwork.web.server.server_config`'s options): yields (host, port)."""
     import uvicorn
+
+    from linkwork.web.server import server_config
 
     sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM, socket.IPPROTO_TCP)  # as linkwork view: no Nagle
     sock.bind(("127.0.0.1", 0))
-    srv = uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off"))
+    srv = uvicorn.Server(server_config(app, **config))
     thread = threading.Thread(target=srv.run, kwargs={"sockets": [sock]}, daemon=True)
     thread.start()
     deadline = time.monotonic() + 30

@@ -326,8 +326,8 @@ def test_json_has_null_where_a_number_is_not_finite(tmp_path):
 
 
 def test_the_json_writer_rule():
-    """Twelve significant digits; zero below 1e-10 of the largest number beside it (in its array, or
-    among its object's values and their arrays); NaN and infinities as null."""
+    """Twelve significant digits; zero below 1e-10 of the typical magnitude of its quantity (its array, with
+    the other component of its vector: fx with fy); a number alone as it is; NaN and infinities as null."""
     from linkwork.io.jsonout import dumps
 
     data = {
@@ -352,6 +352,150 @@ def test_the_json_writer_rule():
         "count": 12,
         "array": [1.0, 0.0],
     }
+
+
+def _quantity(record: dict[str, Any], key: str) -> list[Any]:
+    """The numbers of ``record[key]`` with those of the other component of the same vector (``x`` with ``y``)."""
+    other = key[:-1] + ("y" if key.endswith("x") else "x") if key[-1:] in ("x", "y") else None
+    group = [record[key]] + ([record[other]] if other in record else [])
+    return [v for g in group for v in (g if isinstance(g, list | tuple | np.ndarray) else [g])]
+
+
+def _round_off(value: float, quantity: list[Any]) -> bool:
+    """Whether ``value`` is a zero of round-off by the README's rule: below 1e-10 of the magnitude below which
+    nine tenths of the non-zero finite numbers of its quantity lie."""
+    m = sorted(abs(float(v)) for v in quantity if v is not None and math.isfinite(float(v)) and v != 0)
+    if not m:
+        return False
+    at = 0.9 * (len(m) - 1)
+    typical = m[int(at)] + (at - int(at)) * (m[min(int(at) + 1, len(m) - 1)] - m[int(at)])
+    return abs(value) < 1e-10 * typical
+
+
+def _twelve_digits(value: float, written: Any) -> bool:
+    """Whether ``written`` is ``value`` to 12 significant digits (a tie of the 13th either way)."""
+    if value == 0.0 or written is None:
+        return written == value
+    unit = 10.0 ** (math.floor(math.log10(abs(value))) - 11)
+    return abs(written - value) <= 0.501 * unit and written == float(f"{written:.12g}")
+
+
+def _disagreements(python: Any, written: Any, path: str = "") -> list[str]:
+    """Each number of the record ``python`` that the JSON ``written`` does not give to 12 significant digits
+    and that is not a zero of round-off of its own quantity (paths)."""
+    wrong: list[str] = []
+    for key, v in python.items() if isinstance(python, dict) else []:
+        items = list(np.ravel(v)) if isinstance(v, np.ndarray) else v
+        if isinstance(v, dict):
+            wrong += _disagreements(v, written[key], f"{path}.{key}")
+        elif isinstance(items, list | tuple) and any(isinstance(x, dict) for x in items):
+            wrong += [e for x, w in zip(items, written[key], strict=True) for e in _disagreements(x, w, path)]
+        elif isinstance(v, float | list | tuple | np.ndarray):
+            pairs = zip(np.ravel(np.asarray(v, dtype=object)), np.ravel(written[key]), strict=True)
+            for i, (p, w) in enumerate(pairs):
+                if not isinstance(p, bool | str | type(None)) and not _agrees(float(p), w, _quantity(python, key)):
+                    wrong.append(f"{path}.{key}[{i}]: {p!r} written {w!r}")
+    return wrong
+
+
+def _agrees(value: float, written: Any, quantity: list[Any]) -> bool:
+    """Whether ``written`` is ``value`` (a float of ``quantity``) as the README says the JSON writes it."""
+    if not math.isfinite(value):
+        return written is None
+    return _twelve_digits(value, written) or (written == 0.0 and _round_off(value, quantity))
+
+
+@pytest.mark.parametrize("example", [*names(), "four-bar stopping on a sample"])
+def test_every_json_number_is_the_value_or_a_zero_of_round_off(example, tmp_path, monkeypatch):
+    """Every number `kinematics --json` and `forces --json` write equals the Python value to 12 significant
+    digits or is a zero of round-off of its own quantity, for every bundled example and a four-bar whose
+    crank stops exactly on the 300 deg sample (O4 at 100 mm: the speeds there have no finite limit, an
+    acceleration of 2.6e23 m/s^2), whose B moves and whose driving torque is not zero at any valid angle."""
+    import linkwork.io.jsonout as jsonout
+
+    _commands()
+    source = example
+    if example not in names():
+        source = str(tmp_path / "stops.yaml")
+        Path(source).write_text(text("four-bar").replace("O4: [300, 0]", "O4: [100, 0]"), encoding="utf-8")
+    seen: list[tuple[Any, str]] = []
+    dumps = jsonout.dumps
+    monkeypatch.setattr(jsonout, "dumps", lambda data, **kw: seen.append((data, dumps(data, **kw))) or seen[-1][1])
+    for command in ("kinematics", "forces"):
+        result = runner.invoke(app, [command, source, "--json"])
+        assert result.exit_code == 0, result.output
+        python, written = seen[-1]
+        assert _strict(written) == _strict(result.stdout)
+        assert _disagreements(python, _strict(written)) == []
+    if example not in names():
+        kin, forces = (_strict(text) for _, text in seen)
+        ok = np.array(kin["valid"])
+        assert 0 < ok.sum() < ok.size
+        for key in ("x", "y", "vx", "vy", "ax", "ay"):
+            assert all(v != 0.0 for v in np.array(kin["points"]["B"][key])[ok]), key
+        assert all(v != 0.0 for v in np.array(forces["driving_torque"])[ok])
+
+
+def test_positions_at_the_bound_take_each_point_once_and_write_what_each_position_gives(monkeypatch):
+    """`positions --count N` reads each point's positions once for all N (not once a position: 100,000 took
+    minutes), and writes for each position the point's coordinates in mm to 0.001 mm, as a pose of the
+    kinematics at that one angle gives them."""
+    from linkwork.motion.kinematics import Kinematics
+
+    _commands()
+    calls = []
+    position = Kinematics.position
+    monkeypatch.setattr(Kinematics, "position", lambda self, name: calls.append(name) or position(self, name))
+    result = runner.invoke(app, ["positions", "four-bar", "--count", "2000", "--json"])
+    assert result.exit_code == 0, result.output
+    rows = _strict(result.stdout)["positions"]
+    assert len(rows) == 2000 and len(calls) == len(rows[0]) - 2
+    mech = lw.compile(lw.example("four-bar"))
+    for row in rows[::397]:
+        one = lw.kinematics(mech, angles=[math.radians(row["angle_deg"])])
+        for label in ("A", "B", "M"):
+            point = "coupler.M" if label == "M" else label
+            assert row[label] == pytest.approx(one.position(point)[0] * 1000, abs=6e-4), (row, label)
+
+
+def test_many_records_are_written_as_each_alone():
+    """The JSON writer's column-by-column path for many records alike writes what it writes of each record
+    alone (numbers, short arrays with their own zeros of round-off, nulls, ints and text)."""
+    from linkwork.io.jsonout import _clean, dumps
+
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        width = int(rng.integers(1, 5))
+        rows = []
+        for k in range(int(rng.integers(9, 30))):
+            point = (rng.standard_normal(width) * 10.0 ** rng.integers(-18, 6, size=width)).tolist()
+            point[int(rng.integers(width))] = [0.0, None, -1e-17, point[0]][int(rng.integers(4))]
+            rows.append({"k": k, "angle": float(rng.standard_normal()), "P": point, "name": "e\u0301"})
+        assert dumps(rows) == json.dumps([_clean(r, None) for r in rows])
+
+
+def test_a_piped_table_is_written_as_rich_lays_it_out(monkeypatch, capsys):
+    """The piped tables are written without rich's layout (100,000 rows of positions took minutes), line for
+    line as rich lays them out: widths of wide (CJK) and combining characters, escaped markup, right-justified
+    columns, an empty cell."""
+    from rich.markup import escape
+
+    import linkwork.cli.app as cli
+
+    def table():
+        tab = cli.make_table(escape("Ножницы [剪刀] e\u0301: positions"))
+        tab.add_column("pos")
+        tab.add_column("连杆, mm", justify="right")
+        tab.add_column(escape("[B]"))
+        for row in (("0", "1.5, 2.0", "x"), ("11", "-", ""), ("2", "刀_下", escape("a[b]\\"))):
+            tab.add_row(*row)
+        return tab
+
+    cli.show(cli.make_console(), table())
+    ours = capsys.readouterr().out
+    monkeypatch.setattr(cli, "_plain_lines", lambda tab: None)
+    cli.show(cli.make_console(), table())
+    assert ours == capsys.readouterr().out and "刀_下" in ours
 
 
 def test_tables_are_plain_text_when_piped():
@@ -471,8 +615,9 @@ def test_the_sweep_draws_its_progress_bar_on_a_terminal_only(tmp_path):
     assert "━" not in piped.stderr and "\x1b[" not in piped.stderr and "chunks" not in piped.stderr
     leader, follower = pty.openpty()
     args = [sys.executable, "-m", "linkwork.cli", *sweep, "--out", str(tmp_path / "b.parquet")]
-    with subprocess.Popen(args, stdout=subprocess.DEVNULL,
-                          stderr=follower, env={**os.environ, "COLUMNS": "100", "TERM": "xterm"}) as proc:
+    with subprocess.Popen(
+        args, stdout=subprocess.DEVNULL, stderr=follower, env={**os.environ, "COLUMNS": "100", "TERM": "xterm"}
+    ) as proc:
         os.close(follower)
         drawn = b""
         while True:

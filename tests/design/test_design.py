@@ -410,10 +410,57 @@ def test_a_bad_or_unreachable_scheduler_is_one_message_and_blocks_no_later_run(t
         port = sock.getsockname()[1]
     r = linkwork(*base, "--scheduler", f"tcp://127.0.0.1:{port}", "--connect-timeout", "1")
     assert r.returncode == 2 and "Traceback" not in r.stderr
-    assert f"cannot reach the Dask scheduler at tcp://127.0.0.1:{port} within 1 s" in r.stderr
+    assert f"cannot reach a Dask scheduler at tcp://127.0.0.1:{port} within 1 s" in r.stderr
     assert not out.exists() and not (tmp_path / "s.parquet.parts").exists()
     r = linkwork(*base)  # the failed connection left nothing that would need --resume
     assert r.returncode == 0, r.stderr
+
+
+@pytest.mark.parametrize("service", ["http", "silent", "chatty"])
+def test_a_service_that_is_not_a_dask_scheduler_is_one_message_within_the_timeout(tmp_path, service):
+    """`--scheduler` at a TCP service on 127.0.0.1 that is no Dask scheduler: an HTTP server (Dask's dashboard
+    port given by mistake; Dask would read "HTTP/1.1" as a frame length of exbibytes), one that accepts and
+    never answers (Dask would wait without end) and one that greets in another protocol: one line naming the
+    address and the timeout, exit 2, within the timeout and a little."""
+    import http.server
+    import socket
+    import threading
+    import time
+
+    if service == "http":
+        server = http.server.HTTPServer(("127.0.0.1", 0), http.server.BaseHTTPRequestHandler)
+        threading.Thread(target=server.serve_forever, daemon=True).start()
+        port, stop = server.server_address[1], server.shutdown
+    else:
+        listener = socket.create_server(("127.0.0.1", 0))
+        held = []
+
+        def accept() -> None:
+            while True:
+                try:
+                    conn, _ = listener.accept()
+                except OSError:
+                    return
+                held.append(conn)
+                if service == "chatty":
+                    conn.sendall(b"SSH-2.0-OpenSSH_9.6\r\n")
+
+        threading.Thread(target=accept, daemon=True).start()
+        port, stop = listener.getsockname()[1], listener.close
+    try:
+        out = tmp_path / "s.parquet"
+        start = time.monotonic()
+        where = ["--scheduler", f"tcp://127.0.0.1:{port}", "--connect-timeout", "2"]
+        r = linkwork("sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out",
+                     str(out), "--quiet", *where)  # fmt: skip
+        took = time.monotonic() - start
+    finally:
+        stop()
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"error: cannot reach a Dask scheduler at tcp://127.0.0.1:{port} "
+                                                   "within 2 s: "), r.stderr  # fmt: skip
+    assert took < 2 + 3 and not out.exists() and not (tmp_path / "s.parquet.parts").exists()
 
 
 def test_netcdf_without_xarray_is_refused_up_front(tmp_path, monkeypatch):

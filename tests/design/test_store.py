@@ -232,3 +232,90 @@ def test_a_manifest_record_under_a_name_of_unicode_digits_is_no_chunk(tmp_path, 
     computed, _ = _resume(out, tmp_path)
     assert computed == [2]
     assert pq.read_table(out).equals(whole, check_metadata=True)
+
+
+def _changed(value):
+    """``value`` with one entry changed (the first that can be), of the same kind; None if none can."""
+    import dataclasses
+    import enum
+
+    if isinstance(value, np.ndarray):
+        if value.size == 0:
+            return np.zeros((1, *value.shape[1:]), dtype=value.dtype) if value.dtype != object else None
+        out = value.copy()
+        flat = out.reshape(-1)
+        flat[0] = (not flat[0]) if value.dtype == bool else (flat[0] + 1 if np.isfinite(flat[0]) else 0)
+        return out
+    if dataclasses.is_dataclass(value):
+        for f in dataclasses.fields(value):
+            new = _changed(getattr(value, f.name))
+            if new is not None:
+                return dataclasses.replace(value, **{f.name: new})
+        return None
+    if hasattr(value, "model_copy"):
+        for name in type(value).model_fields:
+            new = _changed(getattr(value, name))
+            if new is not None:
+                return value.model_copy(update={name: new})
+        return None
+    if isinstance(value, tuple | list):
+        for i, item in enumerate(value):
+            new = _changed(item)
+            if new is not None:
+                items = [*value[:i], new, *value[i + 1 :]]
+                return value._make(items) if hasattr(value, "_make") else type(value)(items)
+        return None
+    if isinstance(value, enum.Enum):
+        others = [m for m in type(value) if m != value]
+        return others[0] if others else None
+    if isinstance(value, bool):
+        return not value
+    if isinstance(value, int | float):
+        return value + 1
+    if isinstance(value, str):
+        return value + "'"
+    return None
+
+
+def test_the_mechanism_hash_covers_every_field_of_the_compiled_model():
+    """Each field of a compiled mechanism (but where its file lies and the description it came from), changed
+    once in one bundled example that gives it, changes the hash a resumed sweep compares: no result can be
+    read back from parts computed with another mass rule, load, drive, program or blow."""
+    import dataclasses
+
+    from linkwork.design.store import UNHASHED, mechanism_hash
+    from linkwork.examples import names
+
+    mechs = [lw.compile(lw.example(n)) for n in names()]
+    untested = []
+    for f in dataclasses.fields(mechs[0]):
+        if f.name in UNHASHED:
+            continue
+        for mech in mechs:
+            new = _changed(getattr(mech, f.name))
+            if new is not None:
+                changed = dataclasses.replace(mech, **{f.name: new})
+                assert mechanism_hash(changed) != mechanism_hash(mech), f.name
+                break
+        else:
+            untested.append(f.name)
+    assert untested == []
+    assert mechanism_hash(lw.compile(lw.example("four-bar"))) == mechanism_hash(lw.compile(lw.example("four-bar")))
+
+
+def test_a_resume_over_another_mass_rule_is_refused(tmp_path):
+    """The four-bar with its rocker's default inertia (m L^2 / 12 = 0.009375 kg m^2, following its length)
+    written out as that number (held as the length varies): the same numbers at the nominal mechanism, another
+    mass rule; a sweep over the rocker's length resumed over the other's parts is refused, and nothing written."""
+    text = lw.examples.text("four-bar")
+    given = tmp_path / "given.yaml"
+    given.write_text(text.replace("    mass: 1.8\n", '    mass: 1.8\n    inertia: "0.009375 kg*m^2"\n'))
+    default, held = lw.compile(lw.example("four-bar")), lw.compile(lw.load(given))
+    np.testing.assert_array_equal(default.link_inertia, held.link_inertia)
+    out = tmp_path / "s.parquet"
+    vary = ["links.rocker.length=240:260:3"]
+    lw.sweep("four-bar", vary, ["peak_driving_torque"], out=out, keep_parts=True, chunk_size=1, steps=36)
+    out.unlink()
+    with pytest.raises(DesignError, match="another plan than the one on disk") as caught:
+        lw.sweep(held, vary, ["peak_driving_torque"], out=out, resume=True, chunk_size=1, steps=36)
+    assert "mechanism_sha256" in str(caught.value) and not out.exists()

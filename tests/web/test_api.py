@@ -1002,7 +1002,9 @@ def test_an_edit_waiting_for_a_slot_is_superseded_by_a_newer_one_of_its_page():
 def test_the_saved_file_keeps_the_files_comments_and_solves_to_the_edit(shears):
     r = shears.post("/api/save", json={"overrides": SHEARS_EDIT})
     assert r.status_code == 200
-    assert r.headers["content-disposition"] == 'attachment; filename="double-cut-shears-edited.yaml"'
+    assert r.headers["content-disposition"] == (
+        "attachment; filename=\"double-cut-shears-edited.yaml\"; filename*=UTF-8''double-cut-shears-edited.yaml"
+    )
     text = r.text
     original = example_text("double-cut-shears")
     comments = [line.split("#", 1)[1] for line in original.splitlines() if "#" in line]
@@ -1256,3 +1258,73 @@ def test_the_exported_series_are_written_as_the_command_line_writes_numbers(tmp_
         np.testing.assert_allclose(got, want, rtol=1e-11, atol=1e-9 * np.abs(want).max())
         assert not any(v == 0 and math.copysign(1.0, v) < 0 for v in got)
         assert got == json.loads(jsonout.dumps(want))  # what --json writes of the same numbers
+
+
+def test_a_request_whose_head_never_ends_is_closed_and_others_are_answered():
+    """Slow clients (slowloris): a connection that sends half a request's head and then nothing, one that
+    sends nothing, and one that sends half the head of its second request after an answer, are closed
+    within the head timeout (1 s here) and a little; a whole request on another connection meanwhile is
+    answered."""
+    pytest.importorskip("uvicorn")
+    import socket
+    import time
+
+    from webserver import serving
+
+    with serving(create_app("four-bar", steps=36), head_timeout=1.0) as (host, port):
+        request = f"GET /api/parameters HTTP/1.1\r\nHost: {host}\r\n\r\n".encode()
+        slow = [socket.create_connection((host, port), timeout=10) for _ in range(3)]
+        slow[0].sendall(request[:30])
+        slow[2].sendall(request)
+        assert slow[2].recv(4096).startswith(b"HTTP/1.1 200")
+        slow[2].sendall(request[:30])
+        start = time.monotonic()
+        with socket.create_connection((host, port), timeout=10) as good:
+            good.sendall(request)
+            assert good.recv(4096).startswith(b"HTTP/1.1 200")
+        for sock in slow:
+            with sock:
+                assert sock.recv(4096) == b""  # closed by the server
+        assert time.monotonic() - start < 1.0 + 3.0
+
+
+def test_a_pose_is_answered_while_an_edit_is_solved():
+    """An edit that takes long (1 s here, held in the solver) does not hold up a pose sent after it on another
+    connection: the pose is answered while the edit is still being solved (edits are solved off the event
+    loop), and the edit's answer comes after."""
+    pytest.importorskip("uvicorn")
+    import http.client
+    import threading
+    import time
+
+    from webserver import serving
+
+    app = create_app("four-bar", steps=36)
+    viewer = app.state.viewer
+    solve, started = viewer.edit, threading.Event()
+
+    def slow_edit(*args, **kwargs):
+        started.set()
+        time.sleep(1.0)
+        return solve(*args, **kwargs)
+
+    viewer.edit = slow_edit
+    with serving(app) as (host, port):
+        done = {}
+
+        def edit() -> None:
+            conn = http.client.HTTPConnection(host, port, timeout=30)
+            conn.request("POST", "/api/edit", json.dumps({"overrides": {"links.crank.length": 0.101}}),
+                         {"Content-Type": "application/json"})  # fmt: skip
+            done["edit"] = (conn.getresponse().status, time.monotonic())
+
+        thread = threading.Thread(target=edit)
+        thread.start()
+        assert started.wait(10)
+        conn = http.client.HTTPConnection(host, port, timeout=30)
+        conn.request("POST", "/api/pose", json.dumps({"angle_deg": 30.0}), {"Content-Type": "application/json"})
+        r = conn.getresponse()
+        posed = time.monotonic()
+        assert r.status == 200 and "edit" not in done
+        thread.join(30)
+        assert done["edit"][0] == 200 and done["edit"][1] > posed

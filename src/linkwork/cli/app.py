@@ -180,9 +180,13 @@ def _no_values(x: Any, path: str) -> Any:
     elif isinstance(x, dict):
         for k, v in x.items():
             yield from _no_values(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(x, list | tuple) and _plain_records(x):
+        return  # objects of plain values and short arrays of finite numbers: nothing to say
     elif isinstance(x, list | tuple):
         seen: set[tuple[str, bool]] = set()
         for v in x:
+            if type(v) in (str, int, bool) or (type(v) is float and math.isfinite(v)):
+                continue  # a plain value: nothing to say, and no generator for it
             for found in _no_values(v, path + "[]"):
                 if found not in seen:
                     seen.add(found)
@@ -224,6 +228,21 @@ def out_files(out: str, names: tuple[str, ...]) -> list[Path]:
     )
 
 
+def _plain_records(x: list[Any] | tuple[Any, ...]) -> bool:
+    """Whether ``x`` is a list of objects whose values are ints, strings, finite floats or lists of finite
+    floats (the rows of a table with a value in every cell), told at the cost of one pass."""
+    import numpy as np
+
+    if not x or type(x[0]) is not dict:
+        return False
+    kinds = {type(v) for r in x if type(r) is dict for v in r.values()}
+    if len(kinds) != len(kinds & {int, str, float, list}) or not all(type(r) is dict for r in x):
+        return False
+    floats = [v for r in x for v in r.values() if type(v) is float]
+    floats += [c for r in x for v in r.values() if type(v) is list for c in v]
+    return all(type(c) is float for c in floats) and bool(np.isfinite(np.array(floats, dtype=float)).all())
+
+
 def make_console() -> Console:
     """The console of the commands' reports: in a terminal, as wide as it is; piped or redirected,
     plain text whose lines are as long as they need."""
@@ -256,6 +275,10 @@ def show(out: Console, tab: Table, keep: int = 1) -> None:
         for part in _parts(out, tab, keep):
             out.print(part)
         return
+    lines = _plain_lines(tab)
+    if lines is not None:  # what rich prints of it, without rich's cost a cell (100,000 rows in a second)
+        typer.echo("\n".join(lines))
+        return
     title, tab.title = tab.title, None
     tab.box, tab.pad_edge, tab.padding = None, False, (0, 2, 0, 0)
     with out.capture() as text:
@@ -263,6 +286,42 @@ def show(out: Console, tab: Table, keep: int = 1) -> None:
             out.print(title)
         out.print(Padding(tab, (0, 0, 0, 2)))
     typer.echo("\n".join(line.rstrip() for line in text.get().splitlines()))
+
+
+def _plain_lines(tab: Table) -> list[str] | None:
+    """The lines :func:`show` prints of ``tab`` piped (its title, then its header and rows indented by 2, each
+    cell padded to its column's width and 2 more), written here; None where rich must lay it out (a cell that
+    is not one line of text, a column with width rules of its own, a line wider than the piped width)."""
+    from rich.cells import cell_len
+    from rich.markup import render
+
+    def plain(cell: Any) -> str | None:
+        if not isinstance(cell, str) or "\n" in cell:
+            return None
+        return render(cell).plain if "[" in cell or "\\" in cell else cell
+
+    columns = []
+    for c in tab.columns:
+        rules = (c.width, c.min_width, c.max_width, c.ratio)
+        if c.justify not in ("left", "right") or any(v is not None for v in rules):
+            return None
+        cells = [plain(c.header), *(plain(x) for x in c.cells)]
+        if any(x is None for x in cells):
+            return None
+        columns.append((c.justify, [str(x) for x in cells], max((cell_len(str(x)) for x in cells), default=0)))
+    title = plain(tab.title or "")
+    if title is None or not isinstance(title, str) or not tab.show_header or tab.show_footer or not columns:
+        return None
+    if cell_len(title) > _PIPED_WIDTH or 2 + sum(w + 2 for _, _, w in columns) > _PIPED_WIDTH:
+        return None
+    rows = []
+    for row in zip(*(texts for _, texts, _ in columns), strict=True):
+        parts = []
+        for (justify, _, w), x in zip(columns, row, strict=True):
+            pad = " " * (w - cell_len(x))
+            parts.append((pad + x if justify == "right" else x + pad) + "  ")
+        rows.append(("  " + "".join(parts)).rstrip())
+    return ([title] if title else []) + rows
 
 
 def _parts(out: Console, tab: Table, keep: int) -> list[Table]:

@@ -217,7 +217,7 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
     pair's largest moment."""
     from rich.markup import escape
 
-    from linkwork.io.force_tables import pair_kind
+    from linkwork.io.force_tables import pair_kind, pair_moment
     from linkwork.io.jsonout import snap_zeros
     from linkwork.kinetostatics.peaks import pair_force_peaks
     from linkwork.structure.model import one_crank
@@ -232,11 +232,7 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
     peaks = [(float(v), float(a)) for v, a in zip(refined.value, refined.at, strict=True)]
     values = snap_zeros(np.array([value for value, _ in peaks]))
     prismatic = [pair_kind(mech, k) == "prismatic" for _, k in labels]
-    # a guide's moment is zero where it is round-off beside the largest force times the mechanism's size
-    size = float(np.ptp(np.asarray(mech.points0()), axis=0).max())
-    moments = snap_zeros(np.array([_peak(f.multipliers[0, :, 2 * k], phi)[0] if p else np.nan
-                                   for (_, k), p in zip(labels, prismatic, strict=True)]),
-                         scale=float(np.nanmax(values, initial=0.0)) * size)  # fmt: skip
+    moments = [_peak(pair_moment(f, k), phi)[0] if p else np.nan for (_, k), p in zip(labels, prismatic, strict=True)]
     for (label, k), value, (_, where), moment, p in zip(labels, values, peaks, moments, prismatic, strict=True):
         a, b = (mech.link_names[int(i)] for i in mech.pair_members[k])
         shown = f"{moment:.6g}" if p else "-"

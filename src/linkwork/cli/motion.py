@@ -209,17 +209,17 @@ def positions(
         fail(exc)
     labels = point_labels(mech)
     crank = analysis.CrankAngles(start, sign)
-    rows = []
-    for k in range(count):
-        row: dict[str, Any] = {
-            "position": k,
-            "phi_deg": float(crank.phi(values[k])),
-            "crank_angle_to_x_deg": float(analysis.to_x_deg(values[k])),
-        }
-        for label, p in labels:
-            x = kin.position(mech.point_names[p])[k] * 1000
-            row[label] = [None if not np.isfinite(c) else round(float(c), 3) for c in x]
-        rows.append(row)
+    names = [label for label, _ in labels]
+    mm = [np.round(kin.position(mech.point_names[p]) * 1000, 3) for _, p in labels]
+    phi = np.asarray(crank.phi(values), dtype=float)
+    to_x = np.asarray(analysis.to_x_deg(values), dtype=float)
+    columns = [phi.tolist(), to_x.tolist(), *(c.tolist() for c in mm)]
+    rows: list[dict[str, Any]] = [
+        {"position": k, "phi_deg": a, "crank_angle_to_x_deg": x, **dict(zip(names, points, strict=True))}
+        for k, (a, x, *points) in enumerate(zip(*columns, strict=True))
+    ]
+    for k in np.flatnonzero(np.isnan(np.stack(mm, axis=1)).any(axis=(1, 2))):  # None in the JSON, "-" in the table
+        rows[k].update({n: [None if c != c else c for c in rows[k][n]] for n in names})
     if as_json:
         echo_json({"name": mech.name, "unit": "mm", "positions": rows}, why={"positions": NOT_ASSEMBLED})
         return

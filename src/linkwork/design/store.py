@@ -18,6 +18,8 @@ its first chunk) counts as empty.
 
 from __future__ import annotations
 
+import dataclasses
+import enum
 import hashlib
 import json
 import os
@@ -43,25 +45,57 @@ _CHUNK = re.compile(r"^chunk-(\d{5,})\.parquet$")
 _MANIFEST = "manifest.json"
 
 
+#: The fields of a compiled mechanism its results do not depend on: where its file lies (a file moved or
+#: copied resumes its sweep) and the description it was compiled from (every value of it that a computation
+#: reads is in the other fields).
+UNHASHED = ("source", "spec")
+
+
 def mechanism_hash(mech: Mechanism) -> str:
-    """SHA-256 of what a compiled mechanism computes with: its arrays, names, drives and loads."""
+    """SHA-256 of everything a compiled mechanism computes with: every field but :data:`UNHASHED`, each
+    array by its dtype, shape and bytes, each nested record (loads, the program, the drive, the blow) field
+    by field, so that no field a result depends on (the mass rule, a load's table) can be left out."""
     h = hashlib.sha256()
-    for name in (
-        "link_names", "link_mass", "link_com", "link_inertia", "point_names", "point_link", "point_local",
-        "pair_type", "pair_links", "pair_points", "pair_origin", "pair_axis", "pair_joint", "drive_pair",
-        "drive_speed", "drive_start", "gravity", "pose0", "link_ends", "pair_origin_point",
-    ):  # fmt: skip
-        value = getattr(mech, name)
-        if isinstance(value, np.ndarray):
-            h.update(np.ascontiguousarray(value).tobytes())
-            h.update(str(value.dtype).encode())
-        else:
-            h.update(repr(value).encode())
-    for load in mech.loads:
-        h.update(repr((load.name, load.kind, load.link, load.points, load.vector, load.value, load.workpiece)).encode())
-        if load.table is not None:
-            h.update(np.asarray(load.table[0]).tobytes() + np.asarray(load.table[1]).tobytes())
+    for f in dataclasses.fields(mech):
+        if f.name not in UNHASHED:
+            h.update(f.name.encode() + b"=")
+            _feed(h, getattr(mech, f.name))
     return h.hexdigest()
+
+
+def _feed(h: Any, value: Any) -> None:
+    """Add ``value`` to the hash ``h``, its type and content written so that two values differ in the hash
+    where they differ in any entry (arrays, dataclasses, validated models, mappings, sequences, numbers, text,
+    enums)."""
+    if isinstance(value, np.ndarray | np.generic):
+        a = np.asarray(value)
+        h.update(f"array:{a.dtype.str}:{a.shape}:".encode())
+        h.update(np.ascontiguousarray(a).tobytes() if a.dtype != object else repr(a.tolist()).encode())
+    elif dataclasses.is_dataclass(value) and not isinstance(value, type):
+        h.update(f"{type(value).__qualname__}(".encode())
+        for f in dataclasses.fields(value):
+            h.update(f.name.encode() + b"=")
+            _feed(h, getattr(value, f.name))
+        h.update(b")")
+    elif hasattr(value, "model_dump"):  # a validated section of the file (the blow, its tool)
+        h.update(f"{type(value).__qualname__}:".encode())
+        _feed(h, value.model_dump())
+    elif isinstance(value, dict):
+        h.update(f"dict:{len(value)}:".encode())
+        for key in sorted(value, key=repr):
+            _feed(h, key)
+            _feed(h, value[key])
+    elif isinstance(value, list | tuple | set | frozenset):
+        items = sorted(value, key=repr) if isinstance(value, set | frozenset) else value
+        h.update(f"{type(value).__name__}:{len(items)}:".encode())
+        for item in items:
+            _feed(h, item)
+    elif isinstance(value, enum.Enum):
+        h.update(f"{type(value).__qualname__}.{value.name};".encode())
+    elif value is None or isinstance(value, bool | int | float | complex | str | bytes):
+        h.update(f"{type(value).__name__}:{value.hex() if isinstance(value, float) else value!r};".encode())
+    else:
+        raise TypeError(f"cannot hash a {type(value).__qualname__} of a compiled mechanism")
 
 
 def parts_dir(out: str | Path) -> Path:

@@ -13,6 +13,7 @@ import math
 import os
 import re
 import sys
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -548,14 +549,70 @@ def _connect(workers: int | None, scheduler: str | None, connect_timeout: float,
     if scheduler is None:
         cluster = _local_cluster(workers or os.cpu_count() or 1, dashboard)
         return Client(cluster), cluster
+    deadline = time.monotonic() + connect_timeout
     try:
-        if Path(scheduler).is_file():
-            return Client(scheduler_file=scheduler, timeout=connect_timeout), None
-        return Client(scheduler, timeout=connect_timeout), None
-    except (OSError, ValueError) as exc:
-        raise LinkworkError(
-            f"cannot reach the Dask scheduler at {scheduler} within {connect_timeout:g} s: {exc}"
-        ) from None
+        is_file = Path(scheduler).is_file()
+        address = json.loads(Path(scheduler).read_bytes())["address"] if is_file else scheduler
+        probe_scheduler(address, connect_timeout)
+        left = max(deadline - time.monotonic(), 0.1)
+        if is_file:
+            return Client(scheduler_file=scheduler, timeout=left), None
+        return Client(scheduler, timeout=left), None
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        why = str(exc) or type(exc).__name__
+        within = f"within {connect_timeout:g} s"
+        raise LinkworkError(f"cannot reach a Dask scheduler at {scheduler} {within}: {why}") from None
+
+
+#: The most bytes of the greeting a Dask scheduler sends on a new connection (its handshake: some hundred).
+_GREETING_BYTES = 1 << 16
+
+
+def probe_scheduler(address: str, timeout: float) -> None:
+    """Check that a Dask scheduler answers at the ``tcp://`` ``address`` within ``timeout`` seconds, before
+    Dask's client trusts it: a scheduler greets each new connection with its handshake, one message of
+    Dask's frames (its length, the count of its frames and their lengths, each a little-endian 64-bit
+    number).  A service that sends something else (an HTTP server answering Dask's greeting, which Dask
+    would read as a length of exbibytes) or nothing (which Dask would wait for without end) is refused.
+    Addresses of other protocols are left to Dask.
+
+    Raises
+    ------
+    OSError
+        Nothing listens there, or what answers is no Dask scheduler (why, in words).
+    """
+    import socket
+    import struct
+    from urllib.parse import urlsplit
+
+    if not address.startswith("tcp://"):
+        return
+    where = urlsplit(address)
+    deadline = time.monotonic() + timeout
+    with socket.create_connection((where.hostname, where.port), timeout=timeout) as sock:
+        try:
+            head = _receive(sock, 8, deadline)
+            (size,) = struct.unpack("<Q", head)
+            if not 16 <= size <= _GREETING_BYTES:
+                raise OSError(f"the service there is no Dask scheduler: it began its answer with {head!r}")
+            body = _receive(sock, size, deadline)
+        except TimeoutError:
+            raise OSError("the service there accepted the connection but sent no Dask handshake") from None
+    (frames,) = struct.unpack_from("<Q", body)
+    if not 1 <= frames <= 64 or 8 * (frames + 1) > size:
+        raise OSError("the service there is no Dask scheduler: its greeting is not a message of Dask's frames")
+
+
+def _receive(sock: Any, n: int, deadline: float) -> bytes:
+    """``n`` bytes from ``sock`` by ``deadline`` (time.monotonic); TimeoutError past it, OSError if it closes."""
+    data = b""
+    while len(data) < n:
+        sock.settimeout(max(deadline - time.monotonic(), 1e-3))
+        chunk = sock.recv(n - len(data))
+        if not chunk:
+            raise OSError("the service there closed the connection without a Dask handshake")
+        data += chunk
+    return data
 
 
 #: Dask's settings of the web servers of its scheduler and workers: no pages at all.

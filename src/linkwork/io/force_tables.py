@@ -81,6 +81,18 @@ def _named(f: Any, k: int) -> tuple[str, str, np.ndarray]:
     return first, second, mech.pair_sign[k] * f.pair_force(k)[0]
 
 
+def pair_moment(f: Any, k: int) -> np.ndarray:
+    """The moment (N m, ``(A,)``) of prismatic pair ``k`` on its slider about the slider's point, 0.0 where it
+    is the round-off of a zero: below :data:`~linkwork.io.jsonout.ZERO` times the pair's force at that angle
+    times the mechanism's size (the quantities it is computed from).  What the table, the CSV and the JSON
+    show."""
+    from linkwork.io.jsonout import snap_zeros
+
+    mech = f.mechanism
+    size = float(np.ptp(np.asarray(mech.points0()), axis=0).max())
+    return snap_zeros(f.multipliers[0, :, 2 * k], scale=np.hypot(*f.pair_force(k)[0].T) * size)
+
+
 def _single(f: Any) -> None:
     if f.kinematics.variants:
         from linkwork.errors import LinkworkError
@@ -111,7 +123,7 @@ def to_json(f: Any) -> dict[str, Any]:
             "fy": _arr(force[:, 1]),
         }
         if kind == "prismatic":
-            entry["moment"] = _arr(f.multipliers[0, :, 2 * k])
+            entry["moment"] = _arr(pair_moment(f, k))
         joints[label] = entry
     found = f.foundation
     shaking = f.shaking_force
@@ -178,7 +190,7 @@ def write_csv(f: Any, path: str | Path) -> Path:
         label = f"{label} ({a} on {b})"
         cols += [(f"{label}.fx [N]", force[:, 0]), (f"{label}.fy [N]", force[:, 1])]
         if pair_kind(mech, k) == "prismatic":
-            cols.append((f"{label}.moment [N m]", f.multipliers[0, :, 2 * k]))
+            cols.append((f"{label}.moment [N m]", pair_moment(f, k)))
     found = f.foundation
     cols += [("foundation.fx [N]", found[:, 0]), ("foundation.fy [N]", found[:, 1])]
     cols += [("foundation.moment [N m]", found[:, 2])]

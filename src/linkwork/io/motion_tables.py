@@ -245,6 +245,12 @@ def write_netcdf(kin: Kinematics, path: str | Path) -> Path:
     return write_atomic(path, lambda tmp: _write_netcdf3(tmp, data, coords, attrs))
 
 
+def _attribute(value: Any) -> Any:
+    """An attribute as the NetCDF writer takes it: text as its UTF-8 bytes (NetCDF's characters, which
+    xarray and netCDF4 read back as the text; SciPy's writer would take only ASCII), the rest as it is."""
+    return value.encode("utf-8") if isinstance(value, str) else value
+
+
 def _write_netcdf3(path: Path, data: Table, coords: Table, attrs: dict[str, str]) -> None:
     """Data variables, coordinates and global ``attrs`` to a NetCDF 3 file, in xarray's encoding and order:
     floats with a NaN ``_FillValue``, strings as arrays of characters (UTF-8) over a dimension
@@ -268,11 +274,11 @@ def _write_netcdf3(path: Path, data: Table, coords: Table, attrs: dict[str, str]
         sizes.update(zip(dims, values.shape, strict=True))
     with netcdf_file(path, "w", version=2) as f:
         for key, value in attrs.items():
-            setattr(f, key, value)
+            setattr(f, key, _attribute(value))
         for dim, size in sizes.items():
             f.createDimension(dim, size)
         for name, (dims, values, attributes) in encoded.items():
             var = f.createVariable(name, values.dtype, dims)
             var[...] = values
             for key, attribute in attributes.items():
-                setattr(var, key, attribute)
+                setattr(var, key, _attribute(attribute))

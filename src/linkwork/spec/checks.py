@@ -9,8 +9,8 @@ hints.
 from __future__ import annotations
 
 import difflib
-import re
 import threading
+import unicodedata
 from collections import Counter, defaultdict
 from collections.abc import Callable, Collection
 from typing import Any
@@ -21,7 +21,22 @@ from linkwork.spec.schema import direction_word
 from linkwork.spec.yamlsource import Path, Source
 from linkwork.units import KINDS, parse_quantity
 
-NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_']*$")
+
+class _Name:
+    """The names of points, links, joints and loads: a letter of any script or ``_`` first, then letters,
+    combining marks (accents), digits, ``_`` and ``'`` (``crank``, ``O1``, ``B'``, ``кривошип``, ``μοχλός``,
+    ``连杆``, ``e\u0301``); no space, dot, sign or other punctuation, which paths and references read."""
+
+    def match(self, word: str) -> bool:
+        if not isinstance(word, str) or not word:
+            return False
+        first = unicodedata.category(word[0])
+        return (first[0] == "L" or word[0] == "_") and all(
+            c in "_'" or unicodedata.category(c)[0] in "LMN" for c in word[1:]
+        )
+
+
+NAME = _Name()
 FRAME = "frame"
 
 #: ``bad(path, message)``: report a problem at ``path`` of the file's data.

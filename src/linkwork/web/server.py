@@ -323,12 +323,9 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
         found = viewer.cached_edit(req.overrides, req.steps, req.whole_turn)
         if found is None:
             async with holding(viewer.edit_slots, viewer.wait_s, lambda: viewer.superseded(req.client, req.seq)):
-                if (req.steps or viewer.steps) <= viewer.steps:
-                    # the page's own cycle, some milliseconds: solved here, as handing it to a worker thread (on
-                    # another core, away from what the last edit left in the cache) would add a tenth to it
-                    found = viewer.edit(req.overrides, req.steps, req.whole_turn)
-                else:  # a longer cycle is solved in a worker thread, not to hold up the other requests
-                    found = await run_in_threadpool(viewer.edit, req.overrides, req.steps, req.whole_turn)
+                # in a worker thread, never on the event loop: a pose (or any request) is read and answered while
+                # edits are solved, sharing the interpreter with at most the edits' slots
+                found = await run_in_threadpool(viewer.edit, req.overrides, req.steps, req.whole_turn)
         return Response(found, media_type=EDIT_MEDIA)
 
     @app.post("/api/pose")
@@ -340,8 +337,17 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
     async def save(request: Request) -> Response:
         req = await read_body(request, SaveRequest)
         text = await run_in_threadpool(viewer.file_text, req.overrides)
-        headers = {"Content-Disposition": f'attachment; filename="{viewer.saved_name()}"'}
+        headers = {"Content-Disposition": attachment(viewer.saved_name())}
         return Response(text, media_type="application/yaml; charset=utf-8", headers=headers)
+
+
+def attachment(name: str) -> str:
+    """The ``Content-Disposition`` of a file offered under ``name`` (any script): its UTF-8 name in
+    ``filename*`` (RFC 6266, which browsers read), an ASCII stand-in in ``filename`` for the rest."""
+    from urllib.parse import quote as percent
+
+    plain = "".join(c if c.isascii() and c.isprintable() and c not in '"\\' else "_" for c in name)
+    return f"attachment; filename=\"{plain}\"; filename*=UTF-8''{percent(name, safe='')}"
 
 
 def _json(data: Any) -> Response:
@@ -355,6 +361,59 @@ def _validation_message(exc: Any) -> str:
         where = ".".join(str(x) for x in err.get("loc", ())) or "body"
         lines.append(f"{where}: {err.get('msg', 'invalid')}")
     return "\n".join(lines)
+
+
+#: Seconds a client has to send the head of a request (its line and headers) once connected, or once the
+#: previous answer on its connection is sent; a connection that does not is closed (a slow client holding
+#: connections open, byte by byte, cannot hold the server's file descriptors).
+HEAD_TIMEOUT_S = 10.0
+
+
+def server_config(app: Any, head_timeout: float = HEAD_TIMEOUT_S) -> Any:
+    """The uvicorn configuration the viewer is served with: on a warning level, no access log, and
+    connections whose request's head does not arrive within ``head_timeout`` seconds closed."""
+    import uvicorn
+    from uvicorn.protocols.http.auto import AutoHTTPProtocol
+
+    http = _head_timed(AutoHTTPProtocol, head_timeout)
+    return uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off", http=http)
+
+
+def _head_timed(base: type, head_timeout: float) -> type:
+    """uvicorn's HTTP protocol ``base`` (h11's or httptools') closing a connection that has no request in
+    progress ``head_timeout`` seconds after it was made or after its last answer: uvicorn itself closes an
+    idle connection after its keep-alive time only once it has answered, and never one whose request's head
+    stops half way."""
+
+    class HeadTimed(base):
+        head_timer: asyncio.TimerHandle | None = None
+
+        def connection_made(self, transport: Any) -> None:
+            super().connection_made(transport)
+            self._wait_for_head()
+
+        def on_response_complete(self) -> None:
+            super().on_response_complete()
+            if not self.transport.is_closing():
+                self._wait_for_head()
+
+        def connection_lost(self, exc: Exception | None) -> None:
+            if self.head_timer is not None:
+                self.head_timer.cancel()
+            super().connection_lost(exc)
+
+        def _wait_for_head(self) -> None:
+            if self.head_timer is not None:
+                self.head_timer.cancel()
+            self.head_timer = self.loop.call_later(head_timeout, self._head_late, self.cycle)
+
+        def _head_late(self, cycle: Any) -> None:
+            self.head_timer = None
+            waiting = self.cycle is cycle and (cycle is None or cycle.response_complete)
+            if waiting and not self.transport.is_closing():
+                self.transport.close()
+
+    return HeadTimed
 
 
 def serve(app: Any, port: int = 8765, ready: Callable[[str], None] | None = None) -> None:
@@ -382,7 +441,7 @@ def serve(app: Any, port: int = 8765, ready: Callable[[str], None] | None = None
         sock.close()
         raise LinkworkError(f"cannot listen on 127.0.0.1:{port}: {exc.strerror or exc}; try --port 0") from None
     url = f"http://127.0.0.1:{sock.getsockname()[1]}/"
-    server = uvicorn.Server(uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off"))
+    server = uvicorn.Server(server_config(app))
 
     def announce() -> None:
         while not server.started and not server.should_exit:

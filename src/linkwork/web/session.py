@@ -16,6 +16,7 @@ import json
 import math
 import re
 import threading
+import unicodedata
 from collections import OrderedDict
 from importlib import resources
 from typing import TYPE_CHECKING, Any
@@ -177,9 +178,13 @@ class Viewer:
         return (steps or self.steps, whole_turn, *sorted(overrides.items()))
 
     def saved_name(self) -> str:
-        """The name a saved file is offered under: the file's, ``-edited`` (letters, digits, ``._-`` only)."""
+        """The name a saved file is offered under: the file's, ``-edited`` (letters of any script, their marks,
+        digits and ``._-`` only; a run of anything else as ``-``)."""
         source = str(self.mech.source or self.mech.name or "mechanism")
-        stem = re.sub(r"[^A-Za-z0-9._-]+", "-", source.replace("\\", "/").rsplit("/", 1)[-1])
+        name = source.replace("\\", "/").rsplit("/", 1)[-1]
+        stem = re.sub(
+            r"-+", "-", "".join(c if c in "._-" or unicodedata.category(c)[0] in "LMN" else "-" for c in name)
+        )
         stem = re.sub(r"\.ya?ml$", "", stem, flags=re.IGNORECASE).strip(".-") or "mechanism"
         return f"{stem[:80]}-edited.yaml"
 
@@ -211,4 +216,3 @@ class Viewer:
             return False
         with self._lock:
             return self._newest.get(client, -math.inf) > seq
-

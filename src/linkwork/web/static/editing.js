@@ -270,7 +270,10 @@
         method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ overrides: E.accepted }),
       });
       if (!r.ok) { V.showError((await r.json().catch(() => ({}))).error || `the server answered ${r.status}`); return; }
-      const name = (/filename="([^"]+)"/.exec(r.headers.get("Content-Disposition") || "") || [])[1] || "mechanism-edited.yaml";
+      const disposition = r.headers.get("Content-Disposition") || "";
+      const utf8 = /filename\*=UTF-8''([^;\s]+)/.exec(disposition);  // the name in any script (RFC 6266)
+      const name = utf8 ? decodeURIComponent(utf8[1])
+        : (/filename="([^"]+)"/.exec(disposition) || [])[1] || "mechanism-edited.yaml";
       const url = URL.createObjectURL(await r.blob());
       const a = html("a", null, document.body, { href: url, download: name });
       a.click();
