@@ -16,7 +16,11 @@ from linkwork.synthesis.common import Family, Synthesis
 __all__ = ["KINDS", "Family", "Synthesis", "synthesize"]
 
 #: The kinds synthesised, and their modules.
-KINDS = {"slider-crank": "linkwork.synthesis.slider_crank", "crank-rocker": "linkwork.synthesis.crank_rocker"}
+KINDS = {
+    "slider-crank": "linkwork.synthesis.slider_crank",
+    "crank-rocker": "linkwork.synthesis.crank_rocker",
+    "slotted-lever": "linkwork.synthesis.slotted_lever",
+}
 
 
 def synthesize(kind: str, **requirements: Any) -> Synthesis:
@@ -25,7 +29,9 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     Lengths and angles may also be strings with their unit (``stroke="400 mm"``, ``swing="45 deg"``).
     ``slider-crank``: ``stroke``, ``time_ratio``, and one of ``rod_ratio``, ``offset``; ``max_pressure_angle``
     a bound.  ``crank-rocker``: ``swing``, ``time_ratio``, and one of ``rocker``, ``frame`` (lengths);
-    ``min_transmission_angle`` a bound.  Both take ``speed`` (default ``"60 rpm"``), ``section`` (the steel
+    ``min_transmission_angle`` a bound.  ``slotted-lever``: ``stroke``, ``time_ratio`` (> 1), one of ``frame``,
+    ``crank`` (else the greatest frame), ``rod`` (else the shortest meeting ``max_pressure_angle``, 10 deg by
+    default).  All take ``speed`` (default ``"60 rpm"``), ``section`` (the steel
     bars' width and height, m) and ``density``.
 
     Raises
@@ -52,6 +58,7 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
 
 #: The kind of quantity of each requirement that has a unit.
 QUANTITIES = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
+              "crank": "length", "rod": "length",
               "max_pressure_angle": "angle", "min_transmission_angle": "angle"}  # fmt: skip
 
 
