@@ -2,7 +2,7 @@
 
 Run with ``python benchmarks/bench_synthesis.py``.  Times ``lw``'s synthesis of the slider-crank of the
 README (stroke 400 mm, K = 1.05, largest pressure angle at most 30 deg) and of a crank-rocker (swing 45 deg,
-K = 1.2, rocker 250 mm): the closed forms, the member picked from the family, the file's text through the
+K = 1.2, rocker 250 mm) and of a slotted lever (stroke 600 mm, K = 1.4): the closed forms, the member picked from the family, the file's text through the
 YAML writer, the file read back and its stroke (swing), time ratio and extreme angle measured by
 ``lw.kinematics`` over a turn of 720 samples and checked to 1e-9.  Best of several runs (see ``timing.py``).
 """
@@ -18,6 +18,7 @@ from linkwork.synthesis import synthesize
 CASES = {
     "slider-crank": {"stroke": 0.4, "time_ratio": 1.05, "max_pressure_angle": math.radians(30)},
     "crank-rocker": {"swing": math.radians(45), "time_ratio": 1.2, "rocker": 0.25},
+    "slotted-lever": {"stroke": 0.6, "time_ratio": 1.4},
 }
 
 
