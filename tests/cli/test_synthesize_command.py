@@ -42,7 +42,7 @@ def test_the_written_crank_rocker_meets_the_swing(tmp_path):
     assert linkwork("check", str(out)).returncode == 0
 
 
-def test_the_written_slotted_lever_meets_the_stroke_and_time_ratio_and_check_takes_it(tmp_path):
+def test_the_written_slotted_lever_meets_the_stroke_and_time_ratio_and_check_and_view_take_it(tmp_path):
     out = tmp_path / "shaper.yaml"
     run = linkwork("synthesize", "slotted-lever", "--stroke", "600mm", "--time-ratio", "1.4", "--rod", "300mm",
                    "--out", str(out), "--json")  # fmt: skip
@@ -51,6 +51,8 @@ def test_the_written_slotted_lever_meets_the_stroke_and_time_ratio_and_check_tak
     assert ram.stroke == pytest.approx(0.6, rel=1e-9) and ram.time_ratio == pytest.approx(1.4, rel=1e-9)
     assert '"rod": 0.3' in run.stdout
     assert linkwork("check", str(out)).returncode == 0
+    view = linkwork("view", str(out), "--export", str(tmp_path / "v.html"), "--steps", "36")
+    assert view.returncode == 0, view.stderr
 
 
 @pytest.mark.parametrize(
