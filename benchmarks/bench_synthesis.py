@@ -1,10 +1,11 @@
 """Synthesis benchmark: one mechanism from its requirements, verified by the analysis of the written file.
 
 Run with ``python benchmarks/bench_synthesis.py``.  Times ``lw``'s synthesis of the slider-crank of the
-README (stroke 400 mm, K = 1.05, largest pressure angle at most 30 deg) and of a crank-rocker (swing 45 deg,
-K = 1.2, rocker 250 mm) and of a slotted lever (stroke 600 mm, K = 1.4): the closed forms, the member picked from the family, the file's text through the
-YAML writer, the file read back and its stroke (swing), time ratio and extreme angle measured by
-``lw.kinematics`` over a turn of 720 samples and checked to 1e-9.  Best of several runs (see ``timing.py``).
+README (stroke 400 mm, K = 1.05, largest pressure angle at most 30 deg), of a crank-rocker (swing 45 deg,
+K = 1.2, rocker 250 mm) and of a slotted lever (stroke 600 mm, K = 1.4): the closed forms, the member picked
+from the family, the file's text through the YAML writer, the file read back and its stroke (swing), time
+ratio and extreme angle measured by ``lw.kinematics`` over a turn of 720 samples and checked to 1e-9.  Best
+of several runs (see ``timing.py``).
 """
 
 from __future__ import annotations
