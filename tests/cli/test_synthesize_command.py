@@ -55,6 +55,17 @@ def test_the_written_slotted_lever_meets_the_stroke_and_time_ratio_and_check_and
     assert view.returncode == 0, view.stderr
 
 
+def test_the_written_toggle_press_meets_the_stroke_and_its_forces_give_the_nominal_torque(tmp_path):
+    out = tmp_path / "press.yaml"
+    run = linkwork("synthesize", "toggle-press", "--stroke", "200mm", "--force", "100kN", "--before", "10mm",
+                   "--torque", "5kN*m", "--out", str(out), "--json")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    (ram,) = [e for e in extremes(lw.kinematics(str(out), steps=3600)) if e.kind == "slider"]
+    assert ram.stroke == pytest.approx(0.2, rel=1e-9)
+    assert linkwork("check", str(out)).returncode == 0
+    assert linkwork("forces", str(out)).returncode == 0
+
+
 @pytest.mark.parametrize(
     "args",
     [
@@ -73,6 +84,9 @@ def test_the_written_slotted_lever_meets_the_stroke_and_time_ratio_and_check_and
         ["slotted-lever", "--stroke", "600mm", "--time-ratio", "1.4", "--frame", "2m"],
         ["slotted-lever", "--stroke", "600mm", "--time-ratio", "1.4", "--offset", "10mm"],
         ["slotted-lever", "--time-ratio", "1.4"],
+        ["toggle-press", "--stroke", "200mm", "--force", "100kN", "--before", "10mm", "--torque", "3kN*m"],
+        ["toggle-press", "--stroke", "200mm", "--force", "100kN"],
+        ["toggle-press", "--stroke", "200mm", "--force", "100kN", "--before", "300mm", "--torque", "5kN*m"],
     ],
 )
 def test_requirements_that_cannot_be_met_exit_2_with_one_line_and_no_file(tmp_path, args):
