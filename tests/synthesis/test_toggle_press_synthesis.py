@@ -25,12 +25,13 @@ def ram_stroke(spec) -> float:
 
 
 def torque_by_difference(spec, stroke: float, before: float, force: float, swing: float, k: float) -> float:
-    """F times the ram's descent per radian of the crank at the nominal point, by a central difference of the
-    ram's height that lw.kinematics gives (no velocity analysis)."""
+    """F times the ram's descent per radian of the crank (turning clockwise, the drive angle falling) at the
+    nominal point, by a central difference of the ram's height that lw.kinematics gives (no velocity
+    analysis): the clockwise torque, by virtual work."""
     angle, _ = nominal(geometry(stroke, swing, k), before)
     h = 1e-5
     y = lw.kinematics(spec, np.array([angle - h, angle + h])).position("R")[:, 1]
-    return -force * float(y[1] - y[0]) / (2 * h)
+    return force * float(y[1] - y[0]) / (2 * h)
 
 
 def test_the_toggle_links_are_as_long_as_the_stroke_for_a_swing_of_60_deg():

@@ -15,15 +15,15 @@ The theory (derived here):
   ratio K (its member with the greatest least transmission angle), turned so that its folded limit position
   points straight down.
 * Virtual work: F v_R + T omega = 0 for a load F against the ram's descent, so the driving torque at the
-  nominal point is T = F rho, rho = -v_R / omega = -2 a sin(beta_n) omega_4 / omega with cos(beta_n) =
+  nominal point is |T| = F rho, rho = -v_R / |omega| = 2 a sin(beta_n) omega_4 / |omega| (clockwise) with cos(beta_n) =
   1 - s_n / (2 a) and omega_4 / omega from the four-bar's velocities: (omega_4 k x K) . (K - A) =
   (omega k x (A - O)) . (K - A).  Near the bottom, s ~ (phi - phi_0)^4, so rho ~ s^(3/4): the toggle's gain.
 * What the requirements leave free: psi and K.  They are stated defaults (psi = 60 deg, so a = H; K = 1.2);
   the torque limit is then a bound: T = F rho at most the limit, else the message gives the largest nominal
   force the limit allows.
 
-Layout of the file: P at the origin, the guide vertical through P pointing down, the crank turning
-counter-clockwise (the ram's down stroke takes pi + theta of the turn).
+Layout of the file: P at the origin, the guide vertical through P pointing down, the crank turning clockwise,
+so that the ram's down (working) stroke is the slow one, pi + theta of the turn.
 """
 
 from __future__ import annotations
@@ -77,7 +77,8 @@ def geometry(stroke: float, swing: float, time_ratio: float) -> dict:
 
 
 def nominal(geo: dict, before: float) -> tuple[float, float]:
-    """(drive angle, rho = -v_R / omega (m)) at the nominal point on the ram's way down."""
+    """(drive angle, rho = -v_R / |omega| (m)) at the nominal point on the ram's way down, the crank turning
+    clockwise (omega < 0)."""
     a, o, r, b = geo["toggle"], geo["O"], geo["crank"], geo["rod"]
     beta = math.acos(1 - before / (2 * a))
     k = a * np.array([math.sin(beta), -math.cos(beta)])
@@ -88,7 +89,7 @@ def nominal(geo: dict, before: float) -> tuple[float, float]:
     for s in (1.0, -1.0):
         pin = o + along * u + s * math.sqrt(max(r * r - along * along, 0.0)) * _cross(u)
         w4 = float(np.dot(_cross(pin - o), k - pin) / np.dot(_cross(k), k - pin))
-        rho = -2 * a * math.sin(beta) * w4  # -v_R / omega: y_R = -2 a cos(beta), d(beta)/dt = w4 omega
+        rho = 2 * a * math.sin(beta) * w4  # y_R = -2 a cos(beta), d(beta)/dt = w4 omega, omega = -|omega|
         if rho > 0:
             return math.atan2(pin[1] - o[1], pin[0] - o[0]), rho
     raise SynthesisError("toggle-press: the nominal point is not on the ram's way down")  # pragma: no cover
@@ -130,7 +131,7 @@ def synthesize(
     requirements = given(stroke=stroke, force=force, before=before, torque=torque, swing=swing, time_ratio=time_ratio)
     text, spec = file_of(*_file(geo, stroke, force, before, psi, k, speed, section, density))
     measured = measure(spec, [angle], lambda mu: next(v for key, v in mu.items() if key.endswith("RRP")), "guide")
-    measured = {"stroke": measured["stroke"], "torque_at_nominal": _torque(spec, angle)}
+    measured = {"stroke": measured["stroke"], "torque_at_nominal": -_torque(spec, angle)}  # clockwise
     predicted = {"stroke": stroke, "torque_at_nominal": need}
     confirm(measured, predicted, geo["least_transmission_angle"])
     dims = {key: float(v) for key, v in geo.items() if key != "O" and key != "least_transmission_angle"}
@@ -141,7 +142,8 @@ def synthesize(
 
 def _torque(spec, angle: float) -> float:  # noqa: ANN001
     """The driving torque of the process load alone at the drive ``angle``: lw.forces with the loads less
-    lw.forces without them (forces are linear in the loads; gravity and inertia cancel)."""
+    lw.forces without them (forces are linear in the loads; gravity and inertia cancel); counter-clockwise
+    positive."""
     from linkwork.api import forces
 
     with_load = forces(spec, np.array([angle])).driving_torque
@@ -196,7 +198,7 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
                 "force": [f"{force:.17g} N", f"{force:.17g} N"],
             },
         },  # fmt: skip
-        "drives": [{"joint": "O", "speed": speed, "direction": "ccw", "angle": degrees(start)}],
+        "drives": [{"joint": "O", "speed": speed, "direction": "cw", "angle": degrees(start)}],
         "hints": {"K": [mm(top[0]), mm(top[1])], "R": [0.0, mm(-2 * a * math.cos(psi))]},
     }
     comments = {
