@@ -42,6 +42,30 @@ def test_the_written_crank_rocker_meets_the_swing(tmp_path):
     assert linkwork("check", str(out)).returncode == 0
 
 
+def test_the_written_slotted_lever_meets_the_stroke_and_time_ratio_and_check_and_view_take_it(tmp_path):
+    out = tmp_path / "shaper.yaml"
+    run = linkwork("synthesize", "slotted-lever", "--stroke", "600mm", "--time-ratio", "1.4", "--rod", "300mm",
+                   "--out", str(out), "--json")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    (ram,) = [e for e in extremes(lw.kinematics(str(out), steps=3600)) if e.kind == "slider"]
+    assert ram.stroke == pytest.approx(0.6, rel=1e-9) and ram.time_ratio == pytest.approx(1.4, rel=1e-9)
+    assert '"rod": 0.3' in run.stdout
+    assert linkwork("check", str(out)).returncode == 0
+    view = linkwork("view", str(out), "--export", str(tmp_path / "v.html"), "--steps", "36")
+    assert view.returncode == 0, view.stderr
+
+
+def test_the_written_toggle_press_meets_the_stroke_and_its_forces_give_the_nominal_torque(tmp_path):
+    out = tmp_path / "press.yaml"
+    run = linkwork("synthesize", "toggle-press", "--stroke", "200mm", "--force", "100kN", "--before", "10mm",
+                   "--torque", "5kN*m", "--out", str(out), "--json")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    (ram,) = [e for e in extremes(lw.kinematics(str(out), steps=3600)) if e.kind == "slider"]
+    assert ram.stroke == pytest.approx(0.2, rel=1e-9)
+    assert linkwork("check", str(out)).returncode == 0
+    assert linkwork("forces", str(out)).returncode == 0
+
+
 @pytest.mark.parametrize(
     "args",
     [
@@ -56,6 +80,13 @@ def test_the_written_crank_rocker_meets_the_swing(tmp_path):
         ["slider-crank", "--stroke", "1m", "--time-ratio", "abc"],
         ["crank-rocker", "--swing", "45deg", "--time-ratio", "inf", "--rocker", "1m"],
         ["crank-rocker", "--swing", "45deg", "--time-ratio", "1.1", "--rocker", "-1m"],
+        ["slotted-lever", "--stroke", "600mm", "--time-ratio", "1"],
+        ["slotted-lever", "--stroke", "600mm", "--time-ratio", "1.4", "--frame", "2m"],
+        ["slotted-lever", "--stroke", "600mm", "--time-ratio", "1.4", "--offset", "10mm"],
+        ["slotted-lever", "--time-ratio", "1.4"],
+        ["toggle-press", "--stroke", "200mm", "--force", "100kN", "--before", "10mm", "--torque", "3kN*m"],
+        ["toggle-press", "--stroke", "200mm", "--force", "100kN"],
+        ["toggle-press", "--stroke", "200mm", "--force", "100kN", "--before", "300mm", "--torque", "5kN*m"],
     ],
 )
 def test_requirements_that_cannot_be_met_exit_2_with_one_line_and_no_file(tmp_path, args):

@@ -56,10 +56,10 @@ def _section(text: str | None) -> dict[str, Any]:
 
 @app.command()
 def synthesize(  # fmt: skip
-    kind: Annotated[str, typer.Argument(help="slider-crank or crank-rocker")],
+    kind: Annotated[str, typer.Argument(help="slider-crank, crank-rocker, slotted-lever or toggle-press")],
     out: Annotated[str, typer.Option("--out", help="the mechanism file to write (.yaml)")],
     stroke: Annotated[
-        str | None, typer.Option("--stroke", help='slider-crank: the ram\'s stroke, e.g. "400mm"')
+        str | None, typer.Option("--stroke", help='slider-crank, slotted-lever: the ram\'s stroke, e.g. "400mm"')
     ] = None,
     time_ratio: Annotated[
         str | None, typer.Option("--time-ratio", help="K >= 1: the longer stroke's time over the shorter")
@@ -69,7 +69,7 @@ def synthesize(  # fmt: skip
         str | None, typer.Option("--offset", help="slider-crank: the guide's offset from the crank pivot")
     ] = None,
     max_pressure_angle: Annotated[
-        str | None, typer.Option("--max-pressure-angle", help='slider-crank: a bound, e.g. "40deg"')
+        str | None, typer.Option("--max-pressure-angle", help='slider-crank, slotted-lever: a bound, e.g. "40deg"')
     ] = None,
     swing: Annotated[
         str | None, typer.Option("--swing", help='crank-rocker: the rocker\'s swing, e.g. "45deg"')
@@ -77,9 +77,20 @@ def synthesize(  # fmt: skip
     rocker: Annotated[
         str | None, typer.Option("--rocker", help="crank-rocker: the rocker's length (or --frame)")
     ] = None,
-    frame: Annotated[str | None, typer.Option("--frame", help="crank-rocker: the frame's length (or --rocker)")] = None,
+    frame: Annotated[
+        str | None, typer.Option("--frame", help="crank-rocker (or --rocker), slotted-lever (or --crank): the frame")
+    ] = None,
+    crank: Annotated[str | None, typer.Option("--crank", help="slotted-lever: the crank's length")] = None,
+    rod: Annotated[str | None, typer.Option("--rod", help="slotted-lever: the ram's rod's length")] = None,
     min_transmission_angle: Annotated[
         str | None, typer.Option("--min-transmission-angle", help="crank-rocker: a bound")
+    ] = None,
+    force: Annotated[str | None, typer.Option("--force", help='toggle-press: the nominal force, e.g. "100kN"')] = None,
+    before: Annotated[
+        str | None, typer.Option("--before", help="toggle-press: where it acts, before the bottom dead centre")
+    ] = None,
+    torque: Annotated[
+        str | None, typer.Option("--torque", help='toggle-press: the crank\'s torque limit, e.g. "5kN*m"')
     ] = None,
     speed: Annotated[str, typer.Option("--speed", help="the crank's speed written in the file")] = "60 rpm",
     section: Annotated[
@@ -91,26 +102,30 @@ def synthesize(  # fmt: skip
 
     slider-crank: --stroke, --time-ratio, and --rod-ratio or --offset (else the least largest pressure
     angle); --max-pressure-angle a bound.  crank-rocker: --swing, --time-ratio, --rocker or --frame;
-    --min-transmission-angle a bound.  Requirements that cannot be met: exit 2, no file."""
-    from linkwork.synthesis import KINDS, QUANTITIES
+    --min-transmission-angle a bound.  slotted-lever: --stroke, --time-ratio; --frame or --crank (else the
+    greatest frame), --rod (else the shortest rod meeting --max-pressure-angle, 10 deg by default).
+    toggle-press: --stroke, --force at --before the bottom dead centre, --torque (the crank's limit, N m);
+    --swing and --time-ratio of its four-bar.  Requirements that cannot be met: exit 2, no file."""
+    from linkwork.synthesis import KINDS, QUANTITIES, required
     from linkwork.synthesis import synthesize as run
 
     if kind not in KINDS:
         fail(LinkworkError(f"unknown kind {kind!r}: expected one of {', '.join(KINDS)}"))
     if not out.endswith((".yaml", ".yml")):
         fail(LinkworkError(f'--out "{excerpt(out, QUOTE_PATH)}": expected a .yaml file'))
-    slider = kind == "slider-crank"
-    given = {"stroke": stroke, "rod_ratio": rod_ratio, "offset": offset, "max_pressure_angle": max_pressure_angle}
-    other = {"swing": swing, "rocker": rocker, "frame": frame, "min_transmission_angle": min_transmission_angle}
-    wrong = [name for name, text in (other if slider else given).items() if text is not None]
+    import importlib
+    import inspect
+
+    known = list(inspect.signature(importlib.import_module(KINDS[kind]).synthesize).parameters)
+    texts = {"stroke": stroke, "swing": swing, "time_ratio": time_ratio, "rod_ratio": rod_ratio, "offset": offset,
+             "max_pressure_angle": max_pressure_angle, "rocker": rocker, "frame": frame, "crank": crank, "rod": rod,
+             "min_transmission_angle": min_transmission_angle, "force": force, "before": before,
+             "torque": torque}  # fmt: skip
+    wrong = [name for name, text in texts.items() if text is not None and name not in known]
     if wrong:
-        fail(
-            LinkworkError(
-                f"{kind}: --{', --'.join(w.replace('_', '-') for w in wrong)}: requirements of the other kind"
-            )
-        )
-    texts = {**(given if slider else other), "time_ratio": time_ratio}
-    missing = [n for n in ("stroke" if slider else "swing", "time_ratio") if texts[n] is None]
+        fail(LinkworkError(f"{kind}: --{', --'.join(w.replace('_', '-') for w in wrong)}: not a requirement of {kind}"))
+    texts = {name: text for name, text in texts.items() if name in known}
+    missing = [n for n in required(importlib.import_module(KINDS[kind]).synthesize) if texts[n] is None]
     if missing:
         fail(LinkworkError(f"{kind}: missing --{', --'.join(m.replace('_', '-') for m in missing)}"))
     requirements = _read({name: (text, QUANTITIES.get(name, "ratio")) for name, text in texts.items()})
@@ -131,9 +146,10 @@ def _show(result: Any, out: str, as_json: bool) -> None:
     typer.echo(f"{result.kind}: {result.criterion}")
     for name, value in result.dimensions.items():
         typer.echo(f"  {name:10s} {value * 1e3:12.6f} mm")
-    typer.echo("measured by the kinematic analysis of the written file:")
+    typer.echo("measured by the analysis (kinematics, forces) of the written file:")
     for name, value in result.measured.items():
-        shown = f"{value:.12g}" if name == "time_ratio" else (
+        shown = f"{value:.12g}" + (" N m" if name == "torque_at_nominal" else "") if name in (
+            "time_ratio", "torque_at_nominal") else (
             f"{math.degrees(value):.9f} deg" if name != "stroke" else f"{value * 1e3:.9f} mm")  # fmt: skip
         typer.echo(f"  {name.replace('_', ' '):26s} {shown}")
     typer.echo(f"written: {out}")

@@ -16,7 +16,12 @@ from linkwork.synthesis.common import Family, Synthesis
 __all__ = ["KINDS", "Family", "Synthesis", "synthesize"]
 
 #: The kinds synthesised, and their modules.
-KINDS = {"slider-crank": "linkwork.synthesis.slider_crank", "crank-rocker": "linkwork.synthesis.crank_rocker"}
+KINDS = {
+    "slider-crank": "linkwork.synthesis.slider_crank",
+    "crank-rocker": "linkwork.synthesis.crank_rocker",
+    "slotted-lever": "linkwork.synthesis.slotted_lever",
+    "toggle-press": "linkwork.synthesis.toggle_press",
+}
 
 
 def synthesize(kind: str, **requirements: Any) -> Synthesis:
@@ -25,8 +30,11 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     Lengths and angles may also be strings with their unit (``stroke="400 mm"``, ``swing="45 deg"``).
     ``slider-crank``: ``stroke``, ``time_ratio``, and one of ``rod_ratio``, ``offset``; ``max_pressure_angle``
     a bound.  ``crank-rocker``: ``swing``, ``time_ratio``, and one of ``rocker``, ``frame`` (lengths);
-    ``min_transmission_angle`` a bound.  Both take ``speed`` (default ``"60 rpm"``), ``section`` (the steel
-    bars' width and height, m) and ``density``.
+    ``min_transmission_angle`` a bound.  ``slotted-lever``: ``stroke``, ``time_ratio`` (> 1), one of ``frame``,
+    ``crank`` (else the greatest frame), ``rod`` (else the shortest meeting ``max_pressure_angle``, 10 deg by
+    default).  ``toggle-press``: ``stroke``, ``force`` (N) at ``before`` (m) before the bottom dead centre,
+    ``torque`` (N m, the crank's limit); ``swing`` and ``time_ratio`` of its four-bar.  All take ``speed``
+    (default ``"60 rpm"``), ``section`` (the steel bars' width and height, m) and ``density``.
 
     Raises
     ------
@@ -44,14 +52,22 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     unknown = [name for name in requirements if name not in known]
     if unknown:
         raise SynthesisError(f"{kind}: unknown requirement {', '.join(unknown)}; expected {', '.join(known)}")
-    missing = [name for name in known[:2] if name not in requirements]
+    missing = [name for name in required(func) if name not in requirements]
     if missing:
         raise SynthesisError(f"{kind}: missing requirement {', '.join(missing)}")
     return func(**{name: _si(name, value) for name, value in requirements.items()})
 
 
+def required(func: Any) -> list[str]:
+    """The requirements a kind's ``synthesize`` cannot do without (its parameters without a default)."""
+    import inspect
+
+    return [n for n, p in inspect.signature(func).parameters.items() if p.default is inspect.Parameter.empty]
+
+
 #: The kind of quantity of each requirement that has a unit.
 QUANTITIES = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
+              "crank": "length", "rod": "length", "before": "length", "force": "force", "torque": "moment",
               "max_pressure_angle": "angle", "min_transmission_angle": "angle"}  # fmt: skip
 
 

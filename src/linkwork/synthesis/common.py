@@ -101,6 +101,11 @@ def need(value: float | None, ok: bool, message: str) -> None:
         raise SynthesisError(message)
 
 
+def given(**requirements: float | None) -> dict[str, float]:
+    """The requirements that were given (not None), in the order named."""
+    return {name: value for name, value in requirements.items() if value is not None}
+
+
 def deg(angle: float) -> str:
     """An angle (rad) as the messages write it: degrees, 4 significant digits."""
     return f"{math.degrees(angle):.4g} deg"
@@ -111,9 +116,10 @@ def bar_mass(length: float, section: tuple[float, float] = BAR, density: float =
     return density * section[0] * section[1] * length
 
 
-def mm(x: float) -> float:
-    """A length (m) in mm as the file writes it: 12 significant digits."""
-    return float(f"{x * 1000.0:.12g}")
+def mm(x: float, digits: int = 12) -> float:
+    """A length (m) in mm as the file writes it: 12 significant digits (17, every digit of the float, where
+    a measured quantity is a small difference of large lengths)."""
+    return float(f"{x * 1000.0:.{digits}g}")
 
 
 def degrees(x: float) -> float:
@@ -169,17 +175,23 @@ def confirm(measured: dict[str, float], predicted: dict[str, float], worst: floa
             )
 
 
-def measure(spec: Spec, extreme_angles: list[float], angle_of: Callable[[dict[str, np.ndarray]], np.ndarray]) -> dict:
-    """Stroke (or swing), time ratio and the least transmission angle of ``spec``'s one output as the
-    analysis measures them: :func:`linkwork.motion.analysis.extremes` over a sampled turn, and
-    :func:`~linkwork.motion.analysis.transmission` over that turn and at ``extreme_angles`` (the drive angles
-    the closed form puts the extremes at; the least over all samples, so a lower value anywhere is found).
-    ``angle_of`` picks the dyad's angles from the transmission's mapping."""
+def measure(
+    spec: Spec,
+    extreme_angles: list[float],
+    angle_of: Callable[[dict[str, np.ndarray]], np.ndarray],
+    output: str | None = None,
+) -> dict:
+    """Stroke (or swing), time ratio and the least transmission angle of ``spec``'s output (its one output,
+    or the one named ``output``) as the analysis measures them: :func:`linkwork.motion.analysis.extremes`
+    over a sampled turn, and :func:`~linkwork.motion.analysis.transmission` over that turn and at
+    ``extreme_angles`` (the drive angles the closed form puts the extremes at; the least over all samples, so
+    a lower value anywhere is found).  ``angle_of`` picks the dyad's angles from the transmission's mapping."""
     from linkwork.api import kinematics
     from linkwork.motion.analysis import extremes, transmission
 
     kin = kinematics(spec, steps=VERIFY_STEPS)
-    (out,) = extremes(kin)
+    found = extremes(kin)
+    (out,) = found if output is None else [e for e in found if e.name == output]
     at = kinematics(spec, np.array(extreme_angles))
     least = min(float(np.min(angle_of(transmission(kin)))), float(np.min(angle_of(transmission(at)))))
     return {"stroke": out.stroke, "time_ratio": out.time_ratio, "least_transmission_angle": least}

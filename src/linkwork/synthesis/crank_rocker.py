@@ -40,6 +40,7 @@ from linkwork.synthesis.common import (
     deg,
     degrees,
     file_of,
+    given,
     measure,
     mm,
     time_ratio_of,
@@ -241,10 +242,8 @@ def synthesize(
     m = {k: v[0] for k, v in members(swing, theta, np.array([t]), side).items()}
     scale = rocker if rocker is not None else frame / float(m["frame"])  # type: ignore[operator]
     dims = {k: float(m[k]) * scale for k in ("crank", "coupler", "rocker", "frame")}
-    requirements = {"swing": swing, "time_ratio": time_ratio}
-    for name, value in (("rocker", rocker), ("frame", frame), ("min_transmission_angle", min_transmission_angle)):
-        if value is not None:
-            requirements[name] = value
+    requirements = given(swing=swing, time_ratio=time_ratio, rocker=rocker, frame=frame,
+                         min_transmission_angle=min_transmission_angle)  # fmt: skip
     text, spec = file_of(*_file(dims, m, scale, swing, time_ratio, theta, mu, speed, section, density))
     measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))
     measured["swing"] = measured.pop("stroke")

@@ -45,6 +45,7 @@ from linkwork.synthesis.common import (
     deg,
     degrees,
     file_of,
+    given,
     measure,
     mm,
 )
@@ -199,10 +200,8 @@ def synthesize(
     r, ell, e, why = solve(stroke, time_ratio, rod_ratio, offset, max_pressure_angle)
     theta = crank_angle_between_limits(time_ratio)
     alpha = float(largest_pressure_angle(r, ell, e))
-    requirements = {"stroke": stroke, "time_ratio": time_ratio}
-    for name, value in (("rod_ratio", rod_ratio), ("offset", offset), ("max_pressure_angle", max_pressure_angle)):
-        if value is not None:
-            requirements[name] = value
+    requirements = given(stroke=stroke, time_ratio=time_ratio, rod_ratio=rod_ratio, offset=offset,
+                         max_pressure_angle=max_pressure_angle)  # fmt: skip
     text, spec = file_of(*_file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass))
     # the drive angle of the largest pressure angle: the crank square to the guide, away from it (+x)
     measured = measure(spec, [0.0], lambda mu: next(iter(mu.values())))

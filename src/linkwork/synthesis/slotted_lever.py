@@ -1,0 +1,239 @@
+"""Synthesis of a slotted-lever quick return (crank-shaper) from the ram's stroke H and the time ratio K.
+
+The mechanism: the crank O1 A turns about O1; a block on the crank pin A slides in the slot of the lever O2 C,
+pivoted on the frame at O2 at the distance d below O1; the rod C D drives the ram D along a horizontal guide.
+
+The theory (derived here):
+
+* The lever is at its limit positions where its slot line is tangent to the crank circle (radius r about
+  O1): there the block's distance from O2 is extreme in angle, the crank O1 A stands square to the lever,
+  and sin(psi / 2) = r / d, psi the lever's swing (the angle between the two tangents from O2).
+* The two tangent radii O1 A make the angle pi - psi at O1 (the quadrilateral O2 A' O1 A'' has right angles
+  at the tangent points), so the crank turns pi + psi on one stroke and pi - psi on the other: theta = psi and
+  K = (pi + psi) / (pi - psi), r = d sin(theta / 2); any K > 1 can be met, K = 1 needs r = 0.
+* The lever's tip C (|O2 C| = L) at angle phi from the vertical is at (L sin phi, L cos phi); the ram
+  x_D = L sin phi + sqrt(l^2 - (h - L cos phi)^2) for the rod l and the guide's height h above O2.  Its height
+  term is even in phi, so the ram's stroke is H = 2 L sin(psi / 2) for every h and l, and the ram is at its
+  ends exactly when the lever is (dx_D / dphi = L cos(phi + alpha) / cos(alpha) keeps its sign while
+  |phi| + |alpha| < pi / 2): the ram's K is the lever's.
+* The rod's pressure angle alpha (between the rod and the guide) has sin(alpha) = (h - L cos phi) / l, and
+  L cos phi sweeps [L cos(psi / 2), L] over the swing: the largest |h - L cos phi| is least with the guide
+  halfway down the arc's sagitta, h = L (1 + cos(psi / 2)) / 2, giving sin(alpha_max) = L (1 - cos(psi / 2))
+  / (2 l), reached at both limit positions and with the lever upright.
+* What H and K leave free: the scale d of the crank and frame (the family; the lever's angular motion, hence
+  the driving torque for a given ram force, does not depend on it) and the rod's length l.  The pick: the
+  greatest d that keeps the block on the lever, d + r = L (the block as far from O2 as it can be, for the
+  least force in the slot), unless the crank or the frame is given; the shortest rod whose largest pressure
+  angle is ``max_pressure_angle`` (10 deg unless given), unless the rod is given.
+
+Layout of the file: the lever's pivot O2 at the origin, the crank's pivot O1 at (0, d), the ram's guide at the
+height h pointing along +x, the rod reaching to +x of the lever; the crank turns counter-clockwise, so the slow
+(working) stroke of the ram runs toward -x.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from linkwork.errors import SynthesisError
+from linkwork.synthesis.common import (
+    BAR,
+    STEEL,
+    Family,
+    Synthesis,
+    bar_mass,
+    confirm,
+    crank_angle_between_limits,
+    deg,
+    file_of,
+    given,
+    measure,
+    mm,
+)
+
+KIND = "slotted-lever"
+
+#: Significant digits of the file's lengths: all of them, since the rod's pressure angle is a small difference
+#: of the lever's and the guide's large lengths (h - L cos phi) when K is near 1.
+EXACT = 17
+
+#: The largest pressure angle of the ram's rod when neither it nor the rod is given (rad).
+PRESSURE_ANGLE = math.radians(10.0)
+
+
+def dimensions(stroke: float, theta: float, frame: float | None = None, crank: float | None = None) -> dict:
+    """lever L, frame d, crank r and the guide's height h (m) for the stroke H and the swing theta (rad): the
+    greatest frame (d + r = L) unless ``frame`` or ``crank`` is given."""
+    s, c = math.sin(theta / 2), math.cos(theta / 2)
+    lever = stroke / (2 * s)
+    d = frame if frame is not None else crank / s if crank is not None else lever / (1 + s)
+    return {"lever": lever, "frame": d, "crank": d * s, "guide_height": lever * (1 + c) / 2}
+
+
+def largest_pressure_angle(lever: float, theta: float, rod: float) -> float:
+    """The largest pressure angle (rad) of the ram's rod with the guide at the sagitta's middle."""
+    return math.asin(lever * (1 - math.cos(theta / 2)) / (2 * rod))
+
+
+def family(stroke: float, time_ratio: float, count: int = 201) -> Family:
+    """The family over the frame d in (0, L / (1 + sin(theta / 2))]: crank r and the least distance d - r of
+    the block from the lever's pivot (the greatest force in the slot per lever torque goes as 1 / (d - r))."""
+    theta = crank_angle_between_limits(time_ratio)
+    top = dimensions(stroke, theta)["frame"]
+    d = np.linspace(0.0, top, count + 1)[1:]
+    s = math.sin(theta / 2)
+    columns = {"crank": d * s, "least_block_distance": d * (1 - s)}
+    return Family("frame d", "m", d, columns, "greatest frame d (the block as far from the lever's pivot as it goes)")
+
+
+def _check(stroke: float, time_ratio: float, frame: float | None, crank: float | None, rod: float | None) -> float:
+    if not 0 < stroke < math.inf:
+        raise SynthesisError(f"stroke {stroke!r} m: expected a positive length")
+    if not 1.0 < time_ratio < math.inf:
+        raise SynthesisError(
+            f"time ratio K = {time_ratio:g}: a slotted lever gives any finite K > 1 (K = 1 needs a crank of zero "
+            "length, r = d sin(theta / 2))"
+        )
+    if frame is not None and crank is not None:
+        raise SynthesisError("give one of the frame and the crank: with K either fixes the other")
+    for name, value in (("frame", frame), ("crank", crank), ("rod", rod)):
+        if value is not None and not 0 < value < math.inf:
+            raise SynthesisError(f"{name} {value!r} m: expected a positive length")
+    return crank_angle_between_limits(time_ratio)
+
+
+def solve(stroke: float, time_ratio: float, frame: float | None = None, crank: float | None = None,
+          rod: float | None = None, max_pressure_angle: float | None = None) -> tuple[dict, str]:  # fmt: skip
+    """The dimensions (m; with the rod and the largest pressure angle) and what picked the frame; raises
+    :class:`SynthesisError` for requirements that cannot be met."""
+    theta = _check(stroke, time_ratio, frame, crank, rod)
+    if max_pressure_angle is not None and not 0 < max_pressure_angle < math.pi / 2:
+        raise SynthesisError(f"largest pressure angle {deg(max_pressure_angle)}: expected a bound between 0 and 90 deg")
+    dims = dimensions(stroke, theta, frame, crank)
+    reach = dims["frame"] + dims["crank"]
+    if reach >= dims["lever"] * (1 + 1e-12) and (frame is not None or crank is not None):
+        top = dimensions(stroke, theta)
+        raise SynthesisError(
+            f"{'frame' if frame is not None else 'crank'} {(frame or crank) * 1e3:g} mm with stroke "  # type: ignore[operator]
+            f"{stroke * 1e3:g} mm and time ratio K = {time_ratio:g}: the block leaves the lever "
+            f"(L = {top['lever'] * 1e3:.6g} mm); the frame must be at most {top['frame'] * 1e3:.6g} mm "
+            f"(the crank at most {top['crank'] * 1e3:.6g} mm)"
+        )
+    sag = dims["lever"] * (1 - math.cos(theta / 2)) / 2
+    bound = PRESSURE_ANGLE if max_pressure_angle is None else max_pressure_angle
+    dims["rod"] = rod if rod is not None else sag / math.sin(bound)
+    if dims["rod"] <= sag:
+        raise SynthesisError(f"rod {rod * 1e3:g} mm: the rod must be longer than half the lever tip's sagitta, "  # type: ignore[operator]
+                             f"{sag * 1e3:.6g} mm, to reach the guide")  # fmt: skip
+    dims["largest_pressure_angle"] = largest_pressure_angle(dims["lever"], theta, dims["rod"])
+    if max_pressure_angle is not None and dims["largest_pressure_angle"] > max_pressure_angle * (1 + 1e-12):
+        raise SynthesisError(
+            f"rod {dims['rod'] * 1e3:g} mm gives a largest pressure angle of {deg(dims['largest_pressure_angle'])}, "
+            f"over the bound {deg(max_pressure_angle)}; the bound needs a rod of at least "
+            f"{sag / math.sin(max_pressure_angle) * 1e3:.6g} mm"
+        )
+    alpha = dims["largest_pressure_angle"]
+    if theta / 2 + alpha >= math.pi / 2:
+        raise SynthesisError(
+            f"time ratio K = {time_ratio:g} with a largest pressure angle of {deg(alpha)}: the rod folds against "
+            f"the lever at its limit positions (theta / 2 + alpha >= 90 deg); that angle gives K < "
+            f"{(math.pi - alpha) / alpha:.6g}"
+        )
+    why = "the frame given" if frame is not None else "the crank given" if crank is not None else "the greatest frame"
+    return dims, why
+
+
+def synthesize(
+    stroke: float,
+    time_ratio: float,
+    frame: float | None = None,
+    crank: float | None = None,
+    rod: float | None = None,
+    max_pressure_angle: float | None = None,
+    speed: str = "60 rpm",
+    section: tuple[float, float] = BAR,
+    density: float = STEEL,
+    ram_mass: float | None = None,
+) -> Synthesis:
+    """A slotted-lever quick return (crank-shaper) for the ram's stroke H (m) and time ratio K > 1, with the
+    ``frame`` d or the ``crank`` r (m) else the greatest frame, the ``rod`` (m) else the shortest rod whose
+    largest pressure angle is ``max_pressure_angle`` (rad; 10 deg by default).  Links are steel bars of
+    ``section`` and ``density``; the ram's mass is the rod's unless given.  Verified by the analysis of the
+    written file: the ram's stroke, K and the rod's largest pressure angle."""
+    dims, why = solve(stroke, time_ratio, frame, crank, rod, max_pressure_angle)
+    theta = crank_angle_between_limits(time_ratio)
+    alpha = dims.pop("largest_pressure_angle")
+    requirements = given(stroke=stroke, time_ratio=time_ratio, frame=frame, crank=crank, rod=rod,
+                         max_pressure_angle=max_pressure_angle)  # fmt: skip
+    text, spec = file_of(*_file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass))
+    measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
+    measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
+    predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
+    confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha)  # the rod square to the lever at its limits
+    fam = family(stroke, time_ratio) if frame is None and crank is None else None
+    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, f"picked by {why}")
+
+
+def _rod_dyad(mu: dict[str, np.ndarray]) -> np.ndarray:
+    """The transmission angles of the rod and ram's dyad (the one RRP dyad; the block and lever make an RPR)."""
+    (label,) = [k for k in mu if k.endswith("RRP")]
+    return mu[label]
+
+
+def _extreme_angles(dims: dict, theta: float) -> list[float]:
+    """Drive angles where the rod's pressure angle is largest: the lever upright (crank up and down) and the
+    crank square to the lever at the limit positions (the crank at -theta/2 and pi + theta/2 from +x)."""
+    return [math.pi / 2, 3 * math.pi / 2, -theta / 2, math.pi + theta / 2]
+
+
+def _file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass) -> tuple:  # noqa: ANN001
+    """The file's data and comments: assembled with the crank up and the lever upright."""
+    lever, d, r, h, rod = (dims[k] for k in ("lever", "frame", "crank", "guide_height", "rod"))
+    mass = {k: float(f"{bar_mass(dims[k], section, density):.6g}") for k in ("crank", "lever", "rod")}
+    block = float(f"{bar_mass(section[0], section, density):.6g}")
+    ram = float(f"{ram_mass if ram_mass is not None else mass['rod']:.6g}")
+    reach = math.sqrt(rod**2 - (h - lever) ** 2)
+    data = {
+        "name": "slotted-lever",
+        "description": f"Slotted-lever quick return (crank-shaper) synthesised for the ram's stroke "
+        f"{stroke * 1e3:.6g} mm and time ratio K = {time_ratio:.6g} (theta = lever swing = "
+        f"{math.degrees(theta):.6g} deg); {why}.  Masses: steel bars {section[0] * 1e3:g} x "
+        f"{section[1] * 1e3:g} mm, {density:g} kg/m^3.",
+        "units": {"length": "mm", "mass": "kg", "angle": "deg"},
+        "frame": {"points": {"O2": [0.0, 0.0], "O1": [0.0, mm(d, EXACT)]}},
+        "links": {
+            "crank": {"ends": ["O1", "A"], "length": mm(r, EXACT), "mass": mass["crank"]},
+            "block": {"points": {"A": [0.0, 0.0]}, "mass": block, "inertia": 0},
+            "lever": {"ends": ["O2", "C"], "length": mm(lever, EXACT), "mass": mass["lever"]},
+            "rod": {"ends": ["C", "D"], "length": mm(rod, EXACT), "mass": mass["rod"]},
+            "ram": {"points": {"D": [0.0, 0.0]}, "mass": ram, "inertia": 0},
+        },  # fmt: skip
+        "joints": {
+            "O1": {"type": "revolute", "links": ["frame", "crank"]},
+            "A": {"type": "revolute", "links": ["crank", "block"]},
+            "slot": {"type": "prismatic", "links": ["lever", "block"], "point": "A", "through": "O2", "axis": 0.0},
+            "O2": {"type": "revolute", "links": ["frame", "lever"]},
+            "C": {"type": "revolute", "links": ["lever", "rod"]},
+            "D": {"type": "revolute", "links": ["rod", "ram"]},
+            "guide": {
+                "type": "prismatic",
+                "links": ["frame", "ram"],
+                "point": "D",
+                "through": [0.0, mm(h, EXACT)],
+                "axis": 0.0,
+            },
+        },  # fmt: skip
+        "drives": [{"joint": "O1", "speed": speed, "direction": "ccw", "angle": 90.0}],
+        "hints": {"A": [0.0, mm(d + r)], "C": [0.0, mm(lever)], "D": [mm(reach), mm(h)]},
+    }
+    comments = {
+        ("frame", "points", "O1"): f"frame d: {why}; block reach d + r <= L",
+        ("links", "crank", "length"): f"r = d sin(theta / 2): time ratio K = {time_ratio:.6g}",
+        ("links", "lever", "length"): f"L = H / (2 sin(theta / 2)): stroke H = {stroke * 1e3:.6g} mm",
+        ("links", "rod", "length"): f"l: largest pressure angle {math.degrees(alpha):.6g} deg",
+        ("joints", "guide", "through"): "h = L (1 + cos(theta / 2)) / 2: the least largest pressure angle",
+        ("hints", "D"): "the ram to +x of the lever",
+    }
+    return data, comments
