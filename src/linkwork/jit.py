@@ -2,7 +2,7 @@
 
 The kinematics and the reactions have twin kernels: NumPy (the reference, always there) and numba (the
 same arithmetic compiled to machine code, many times faster on long batches).  Compiling the numba kernels
-takes about a minute and a half of processor time, once per install; loading them from the cache takes
+takes one to three minutes of processor time, once per install; loading them from the cache takes
 about half a second.  A report or a drag in the viewer solves a few hundred angles, which the NumPy kernels
 do in milliseconds, so nobody waits for a compile they did not ask for:
 

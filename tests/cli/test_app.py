@@ -449,10 +449,10 @@ def test_positions_at_the_bound_take_each_point_once_and_write_what_each_positio
     result = runner.invoke(app, ["positions", "four-bar", "--count", "2000", "--json"])
     assert result.exit_code == 0, result.output
     rows = _strict(result.stdout)["positions"]
-    assert len(rows) == 2000 and len(calls) == len(rows[0]) - 2
+    assert len(rows) == 2000 and len(calls) == len(rows[0]) - 3  # position, phi_deg, crank_angle_to_x_deg
     mech = lw.compile(lw.example("four-bar"))
     for row in rows[::397]:
-        one = lw.kinematics(mech, angles=[math.radians(row["angle_deg"])])
+        one = lw.kinematics(mech, angles=[math.radians(row["crank_angle_to_x_deg"])])
         for label in ("A", "B", "M"):
             point = "coupler.M" if label == "M" else label
             assert row[label] == pytest.approx(one.position(point)[0] * 1000, abs=6e-4), (row, label)

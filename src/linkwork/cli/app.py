@@ -510,7 +510,7 @@ def warm(
     if jit.ready():
         say(f"the fast kernels are ready in {jit.cache_dir()}")
         return
-    say(f"compiling the fast kernels into {jit.cache_dir() or 'memory (no writable cache)'} (a minute or two, once)")
+    say(f"compiling the fast kernels into {jit.cache_dir() or 'memory (no writable cache)'} (a few minutes, once)")
     try:
         compile_kernels()
     except BaseException:

@@ -187,8 +187,11 @@ def _few(values: list[float | None], scale: float | None) -> list[float | None]:
             out.append(0.0)
         else:
             k = DIGITS - 1 - math.floor(math.log10(abs(v)))
+            if abs(k) > 22:  # 10**k is no double exactly (or none at all, near 1e308)
+                out.append(float(f"{v:.{DIGITS}g}"))
+                continue
             p = 10.0 ** abs(k)
-            out.append(float(f"{v:.{DIGITS}g}") if abs(k) > 22 else round(v * p) / p if k >= 0 else round(v / p) * p)
+            out.append(round(v * p) / p if k >= 0 else round(v / p) * p)
     return out
 
 
