@@ -1116,7 +1116,7 @@ def test_clients_that_go_away_mid_request_leave_no_traceback():
         time.sleep(0.5)
     finally:
         proc.terminate()
-        _, err = proc.communicate(timeout=10)
+        _, err = proc.communicate(timeout=60)  # a loaded machine: the server's graceful shutdown took over 10 s
     assert "Traceback" not in err and "Exception" not in err, err[-2000:]
 
 
