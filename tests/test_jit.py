@@ -109,6 +109,7 @@ def cache(tmp_path, monkeypatch):
     monkeypatch.setenv("LINKWORK_NUMBA", "auto")
     monkeypatch.setattr(jit, "_spawn", spawned.append)
     monkeypatch.setattr(jit, "_said", set())
+    monkeypatch.setattr(jit, "_preferred", [])
     forget()
     yield spawned
     forget()
@@ -142,6 +143,19 @@ def test_a_ready_cache_serves_long_batches_only(cache, monkeypatch):
     assert jit.use(jit.LONG) and jit.loaded() and jit.use(1)
     monkeypatch.setenv("LINKWORK_NUMBA", "0")
     assert not jit.use(jit.LONG)
+
+
+@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
+def test_a_process_that_prefers_the_kernels_switches_when_the_compile_is_done(cache, monkeypatch):
+    """The viewer asks for the kernels (:func:`jit.prefer`) while the cache is empty: the NumPy kernels answer
+    and reading points never loads numba; once the compile in the background marks the cache ready, its next
+    batch, however short, loads them."""
+    monkeypatch.setattr(jit, "_loaded", [])
+    assert not jit.prefer() and len(cache) == 1
+    assert not jit.use(1) and not jit.active() and not jit.loaded()
+    jit.mark_ready()
+    assert not jit.active()  # a reading of points does not load them
+    assert jit.use(1) and jit.loaded() and jit.active()
 
 
 def test_without_a_cache_the_kernels_compile_in_memory(monkeypatch):

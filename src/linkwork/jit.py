@@ -57,6 +57,7 @@ STALE = 30 * 60.0
 OFF, ALWAYS, AUTO = "off", "always", "auto"
 
 _loaded: list[bool] = []  # [True] once the compiled kernels are in use in this process
+_preferred: list[bool] = []  # [True] once the process asked for them for every batch (:func:`prefer`)
 _said: set[str] = set()  # the notes already written to stderr
 
 
@@ -81,9 +82,18 @@ def loaded() -> bool:
     return bool(_loaded)
 
 
+def active() -> bool:
+    """Whether the pieces that follow a solve (reading points, the reactions) run their compiled twins: the
+    kernels in use (or asked for always); this never loads them where they are not (a reading of points on
+    the viewer's event loop must not wait for numba)."""
+    current = mode()
+    return current != OFF and (bool(_loaded) or (current == ALWAYS and _load()))
+
+
 def use(samples: int) -> bool:
-    """Whether a batch of ``samples`` samples runs on the compiled kernels (loading them, or starting their
-    compile in the background, as the module's rules say)."""
+    """Whether a batch of ``samples`` samples is solved by the compiled kernels (loading them, or starting
+    their compile in the background, as the module's rules say): in a process that :func:`prefer` them, as
+    soon as the compile in the background has put them in the cache."""
     current = mode()
     if current == OFF:
         return False
@@ -92,12 +102,14 @@ def use(samples: int) -> bool:
     if not ready():
         start_compiling()
         return False
-    return samples >= LONG and _load()
+    return (samples >= LONG or bool(_preferred)) and _load()
 
 
 def prefer() -> bool:
-    """Load the compiled kernels now where they are ready (or start their compile): for a process that
-    runs many batches (the viewer); whether they are in use."""
+    """Use the compiled kernels for every batch of this process once they are ready, loading them now where
+    they are (else starting their compile): for a process that runs many batches (the viewer, which thus
+    switches to them when the compile it started is done); whether they are in use."""
+    _preferred.append(True)
     return use(LONG)
 
 

@@ -127,9 +127,9 @@ def _pool() -> ThreadPoolExecutor:
 
 
 def available() -> bool:
-    """Whether the compiled kernels are in use in this process (:func:`linkwork.jit.use`; they are wrapped
+    """Whether the compiled kernels are in use in this process (:func:`linkwork.jit.active`; they are wrapped
     with numba's ``njit`` now, if they were not)."""
-    return jit.use(0) and compiled()
+    return jit.active() and compiled()
 
 
 def wanted(samples: int) -> bool:
