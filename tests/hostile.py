@@ -20,6 +20,7 @@ files whose read fails and digits of other scripts among the options, merge-key 
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import functools
 import json
@@ -719,3 +720,23 @@ def problems(case: Case, outcome: Outcome) -> list[str]:
         except ValueError as exc:  # UnicodeEncodeError is one
             found.append(f"--json output is not strict JSON: {exc!s:.200}")
     return found
+
+
+class TooLong(AssertionError):
+    pass
+
+
+@contextlib.contextmanager
+def within(seconds: float) -> Iterator[None]:
+    """Fail the test where its block takes more than ``seconds`` (it is stopped then, not waited for)."""
+
+    def stop(signum: int, frame: object) -> None:
+        raise TooLong(f"took more than {seconds:g} s")
+
+    old = signal.signal(signal.SIGALRM, stop)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)

@@ -138,30 +138,9 @@ def test_a_resumed_sweep_computes_again_the_parts_that_are_no_files(seed, tmp_pa
         hostile.make_odd(kind, part)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        with hostile_time(60):
+        with hostile.within(60):
             lw.sweep("four-bar", vary, metrics, out=out, resume=True, **options)
     assert pq.read_table(out).equals(pq.read_table(tmp_path / "w.parquet"), check_metadata=True), kinds
-
-
-def hostile_time(seconds: float) -> Any:
-    """Stop the block (a failure) after ``seconds``."""
-    import contextlib
-    import signal
-
-    @contextlib.contextmanager
-    def bound() -> Any:
-        def stop(signum: int, frame: object) -> None:
-            raise TimeoutError(f"more than {seconds:g} s")
-
-        old = signal.signal(signal.SIGALRM, stop)
-        signal.setitimer(signal.ITIMER_REAL, seconds)
-        try:
-            yield
-        finally:
-            signal.setitimer(signal.ITIMER_REAL, 0)
-            signal.signal(signal.SIGALRM, old)
-
-    return bound()
 
 
 def test_the_generator_makes_what_it_says():

@@ -3,45 +3,22 @@ are refused at a bound, or read in near-linear time, with messages that quote a 
 
 from __future__ import annotations
 
-import contextlib
 import itertools
 import math
 import random
-import signal
 import time
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from ruamel.yaml import YAML
 
 import linkwork as lw
-from hostile import Case, problems, run_in_subprocess
+from hostile import Case, problems, run_in_subprocess, within
 from linkwork.errors import SpecError, UnitParseError
 from linkwork.examples import text
 from linkwork.spec.load import validate
 from linkwork.spec.yamlsource import Source, read_yaml
 from linkwork.units import parse_quantity
-
-
-class _TooLong(AssertionError):
-    pass
-
-
-@contextlib.contextmanager
-def within(seconds: float) -> Iterator[None]:
-    """Fail the test where its block takes more than ``seconds`` (it is stopped then, not waited for)."""
-
-    def stop(signum: int, frame: object) -> None:
-        raise _TooLong(f"took more than {seconds:g} s")
-
-    old = signal.signal(signal.SIGALRM, stop)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
 
 
 def _laughs(levels: int, width: int) -> str:
