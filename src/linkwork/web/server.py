@@ -170,21 +170,31 @@ async def read_body(request: Request, model: type[BaseModel]) -> Any:
 
 
 @asynccontextmanager
-async def holding(slots: BoundedSemaphore, wait_s: float, superseded: Callable[[], bool] = bool) -> AsyncIterator[None]:
+async def holding(
+    slots: BoundedSemaphore, wait_s: float, request: Request, superseded: Callable[[], bool] = bool
+) -> AsyncIterator[None]:
     """Hold one of ``slots`` while the block runs, waiting for it without holding a thread.
+
+    The work of a client that has gone (its connection closed while it waited) is not started.
 
     Raises
     ------
     Superseded
         Where ``superseded()`` turns true while waiting.
+    ClientDisconnect
+        Where the client has gone before a slot was had.
     BusyError
         Where none frees within ``wait_s`` seconds.
     """
     deadline = time.monotonic() + wait_s
     delay = 0.002
-    while not slots.acquire(blocking=False):
+    while True:
         if superseded():
             raise Superseded
+        if await request.is_disconnected():
+            raise ClientDisconnect
+        if slots.acquire(blocking=False):
+            break
         if time.monotonic() >= deadline:
             raise BusyError("the server is busy solving other edits; try again")
         await asyncio.sleep(delay)
@@ -302,8 +312,8 @@ def _pages(app: FastAPI) -> None:
 
 def _api(app: FastAPI, viewer: Viewer) -> None:
     @app.get("/api/cycle")
-    async def cycle(labels: Literal["cycle", "first"] = "cycle") -> Response:
-        async with holding(viewer.full_slots, viewer.wait_s):
+    async def cycle(request: Request, labels: Literal["cycle", "first"] = "cycle") -> Response:
+        async with holding(viewer.full_slots, viewer.wait_s, request):
             return _json(await run_in_threadpool(viewer.cycle, None, None, labels == "first"))
 
     @app.get("/api/parameters")
@@ -313,7 +323,7 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
     @app.post("/api/solve")
     async def solve(request: Request) -> Response:
         req = await read_body(request, SolveRequest)
-        async with holding(viewer.full_slots, viewer.wait_s):
+        async with holding(viewer.full_slots, viewer.wait_s, request):
             return _json(await run_in_threadpool(viewer.cycle, req.overrides, req.steps))
 
     @app.post("/api/edit")
@@ -322,7 +332,8 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
         viewer.newest(req.client, req.seq)
         found = viewer.cached_edit(req.overrides, req.steps, req.whole_turn)
         if found is None:
-            async with holding(viewer.edit_slots, viewer.wait_s, lambda: viewer.superseded(req.client, req.seq)):
+            newer = lambda: viewer.superseded(req.client, req.seq)  # noqa: E731
+            async with holding(viewer.edit_slots, viewer.wait_s, request, newer):
                 # in a worker thread, never on the event loop: a pose (or any request) is read and answered while
                 # edits are solved, sharing the interpreter with at most the edits' slots
                 found = await run_in_threadpool(viewer.edit, req.overrides, req.steps, req.whole_turn)
@@ -363,6 +374,10 @@ def _validation_message(exc: Any) -> str:
     return "\n".join(lines)
 
 
+#: Seconds the viewer's shutdown (Ctrl+C, SIGTERM) waits for the answers in progress before it ends: work whose
+#: client has gone is not waited for longer than this.
+SHUTDOWN_WAIT_S = 5
+
 #: Seconds a client has to send the head of a request (its line and headers) once connected, or once the
 #: previous answer on its connection is sent; a connection that does not is closed (a slow client holding
 #: connections open, byte by byte, cannot hold the server's file descriptors).
@@ -376,7 +391,9 @@ def server_config(app: Any, head_timeout: float = HEAD_TIMEOUT_S) -> Any:
     from uvicorn.protocols.http.auto import AutoHTTPProtocol
 
     http = _head_timed(AutoHTTPProtocol, head_timeout)
-    return uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off", http=http)
+    return uvicorn.Config(
+        app, log_level="warning", access_log=False, lifespan="off", http=http, timeout_graceful_shutdown=SHUTDOWN_WAIT_S
+    )
 
 
 def _head_timed(base: type, head_timeout: float) -> type:
