@@ -1,0 +1,280 @@
+"""Sizing: each part against a hand computation, the bearing formula against a bearing maker's worked example,
+the motor choice against a brute force over a catalogue, and the command's bars."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import linkwork as lw
+from commandline import linkwork
+from linkwork.errors import LinkworkError
+from linkwork.machine import Drive, InductionMotor, balance_speed
+from linkwork.sizing import (
+    bundled,
+    equivalent_load,
+    least_diameter,
+    life_hours,
+    opening_forces,
+    parse_catalogue,
+    rating_needed,
+    size_bolts,
+)
+from linkwork.sizing.bearings import Bush, bearings
+from linkwork.sizing.pairs import Pair
+
+# ------------------------------------------------------------------------------------------------ ISO 281
+
+
+def test_a_constant_load_on_a_uniformly_turning_pair_is_its_own_equivalent_load():
+    f = np.full(360, 12_000.0)
+    assert equivalent_load(f, np.full(360, 3.0)) == pytest.approx(12_000.0, rel=1e-12)
+
+
+def test_a_load_over_a_fraction_of_the_turn_is_the_load_times_the_cube_root_of_the_fraction():
+    f = np.where(np.arange(1000) < 250, 8_000.0, 0.0)  # F for a quarter of the turn
+    assert equivalent_load(f, np.full(1000, 1.0)) == pytest.approx(8_000.0 * 0.25 ** (1 / 3), rel=1e-12)
+
+
+def test_the_cubic_mean_weighs_each_load_by_the_turning_done_under_it():
+    # 10 kN while turning at 2 rad/s, 20 kN at 1 rad/s, equal times: P^3 = (1000 * 2 + 8000 * 1) / 3 (kN^3)
+    f = np.array([10e3, 20e3])
+    assert equivalent_load(f, np.array([2.0, -1.0])) == pytest.approx(14.938015821857e3, rel=1e-12)
+
+
+def test_skf_example_1_a_6309_at_3000_rpm_under_10_kn_lives_940_hours():
+    """SKF, Rolling bearings catalogue, "Selecting bearing size, calculation examples", example 1: a 6309 deep
+    groove ball bearing, C = 55.3 kN, 3000 r/min, Fr = 10 kN: L10 = (55.3 / 10)^3 = 169 million revolutions,
+    L10h = 10^6 / (60 * 3000) * 169 = 940 h."""
+    assert life_hours(55.3e3, 10e3, 3000 / 60) == pytest.approx(940, abs=1)
+    assert rating_needed(10e3, 3000 / 60, 940) == pytest.approx(55.3e3, rel=2e-3)
+
+
+def _pair(force, turning, relative):
+    z = np.zeros_like(force)
+    return Pair("X", "revolute", ("a", "b"), force, turning, relative, z, z)
+
+
+def test_a_rocking_pair_turns_as_the_oscillation_rule_says():
+    """theta = gamma sin(w t): the rule's equivalent speed n_osc * 4 gamma / (2 pi) rev/s = gamma w / pi^2."""
+    w, gamma, k = 3.0, 0.2, 3600
+    t = np.arange(k) * (2 * math.pi / w) / k
+    pair = _pair(np.full(k, 5e3), gamma * w * np.cos(w * t), gamma * np.sin(w * t))
+    bush = Bush("b", 10e6, 1.0, 2e6)
+    (j,) = bearings([pair], np.degrees(w * t), w, life_h=1000, bush=bush).joints
+    assert j.motion == "rocks"
+    assert j.swing == pytest.approx(2 * gamma, rel=1e-6)
+    assert j.revs_per_s == pytest.approx(gamma * w / math.pi**2, rel=1e-6)
+    assert j.load == pytest.approx(5e3, rel=1e-12)
+    assert j.rating == pytest.approx(5e3 * (3600 * gamma * w / math.pi**2 * 1000 / 1e6) ** (1 / 3), rel=1e-6)
+
+
+def test_the_least_bush_keeps_the_peak_pressure_and_the_mean_pv_under_their_limits():
+    k = 720
+    force = np.where(np.arange(k) < k // 4, 40e3, 4e3)
+    pair = _pair(force, np.full(k, 2.0), np.linspace(0, 4 * math.pi, k))
+    bush = Bush("b", 10e6, 1.0, 1e6)
+    (j,) = bearings([pair], np.linspace(0, 360, k, endpoint=False), 1.0, bush=bush, width_ratio=1.5).joints
+    # p: 40e3 / (1.5 d^2) <= 10e6 -> d >= 51.64 mm; pv: mean F * w / (2 * 1.5 d) = 13e3 * 2 / (3 d) <= 1e6 -> 8.67 mm
+    assert j.diameter == pytest.approx(math.sqrt(40e3 / 15e6), rel=1e-12)
+    assert j.p_max == pytest.approx(10e6, rel=1e-12)
+    assert j.pv_mean == pytest.approx(13e3 * 2 / (3 * j.diameter), rel=1e-12)
+
+
+def test_a_balanced_crank_carries_its_weight_and_needs_the_rating_for_it():
+    """A crank with its centre of mass on its pivot, at 30 rpm: the pivot carries m g whatever the angle, so P = m g
+    and C = m g (3600 * 0.5 * 20000 / 1e6)^(1/3) = m g 36^(1/3); a pin of 40 x 50 mm has p = m g / (0.04 * 0.05)."""
+    spec = lw.loads(
+        "links: {crank: {ends: [O, A], length: 0.2, mass: 100, com: [0, 0], inertia: 1}}\n"
+        "frame: {points: {O: [0, 0]}}\n"
+        "joints: {O: {type: revolute, links: [frame, crank]}}\n"
+        "drives: [{joint: O, speed: 30 rpm}]\n"
+        "sizing: {pins: {O: {diameter: 40 mm, width: 50 mm}}}\n"
+    )
+    s = lw.size(spec, motor=False, steps=72)
+    (j,) = s.bearings.joints
+    mg = 100 * 9.81
+    assert j.load == pytest.approx(mg, rel=1e-9)
+    assert j.revs_per_s == pytest.approx(0.5, rel=1e-9)
+    assert j.rating == pytest.approx(mg * 36 ** (1 / 3), rel=1e-9)
+    assert j.p_max == pytest.approx(mg / (0.04 * 0.05), rel=1e-9)
+    (pin,) = s.pins.pins
+    assert pin.shear == pytest.approx(2 * mg / (math.pi * 0.04**2), rel=1e-9)
+    assert pin.bending == pytest.approx(4 * mg * 0.05 / (math.pi * 0.04**3), rel=1e-9)
+    assert s.bolts is None and "bolts" in s.missing
+
+
+# ------------------------------------------------------------------------------------------------ pins
+
+
+def test_the_least_pin_in_double_shear_by_hand():
+    # tau_allow 85 MPa: d = sqrt(2 * 100e3 / (pi * 85e6)) = 27.367 mm; bending at b = 2 d, sigma_allow 170 MPa:
+    # d = sqrt(4 * 2 * 100e3 / (pi * 170e6)) = 38.703 mm
+    assert least_diameter(100e3, 85e6, 170e6, 0.5) == pytest.approx(27.3672e-3, rel=1e-5)
+    assert least_diameter(100e3, 85e6, 170e6, 2.0) == pytest.approx(38.7030e-3, rel=1e-5)
+
+
+# ------------------------------------------------------------------------------------------------ bolts
+
+
+def _bolts(foundation, points, **kw):
+    phi = np.arange(len(foundation), dtype=float)
+    return size_bolts(np.asarray(foundation, float), phi, np.asarray(points, float), threads=bundled("threads.csv"),
+                      classes=bundled("bolt_classes.csv"), **kw)  # fmt: skip
+
+
+def test_a_lift_is_shared_by_the_bolts_and_a_moment_by_their_arms():
+    pts = [[-0.5, -1.0], [0.5, -1.0]]
+    # 10 kN up, through the bolts' centre (x = 0): 5 kN each; 1 kN m about the origin: the couple +-1 kN; the
+    # moment of the lift about the centre is zero, a side force at y = 0 is 1 m above the bed: M_c = M - y_c F_x ...
+    f = opening_forces(np.array([[0.0, 10e3, 0.0], [0.0, 0.0, 1e3], [2e3, 0.0, 0.0]]), np.array(pts))
+    assert f[0] == pytest.approx([5e3, 5e3])
+    assert f[1] == pytest.approx([-1e3, 1e3])
+    # (F_x = 2 kN at the origin: about the centre (0, -1) its moment is -(0 * 0 - (-1) * 2e3) = -2 kN m)
+    assert f[2] == pytest.approx([2e3, -2e3])
+
+
+def test_the_preload_holds_the_joint_shut_and_from_sliding_with_the_safety_factor():
+    pts = [[-0.5, 0.0], [0.5, 0.0]]
+    lift = _bolts([[0.0, 10e3, 0.0]], pts, safety=1.5, friction=0.2, load_factor=0.25, bolt_class="5.6",
+                  bolt_safety=1.5)  # fmt: skip
+    # opening: 1.5 * 5 kN = 7.5 kN; sliding: (0 + 10 kN) / 2 = 5 kN
+    assert lift.preload == pytest.approx(7.5e3) and lift.decided_by == "opening"
+    # bolt force 7.5 + 0.25 * 5 = 8.75 kN; A_s >= 1.3 * 8750 * 1.5 / 300 MPa = 56.9 mm^2: M10 (58.0 mm^2)
+    assert lift.bolt_force == pytest.approx(8.75e3)
+    assert lift.area_needed == pytest.approx(56.875e-6)
+    assert lift.thread == "M10"
+    side = _bolts([[4e3, -1e3, 0.0]], pts, safety=1.5, friction=0.2)
+    # sliding: (1.5 * 4 kN / 0.2 - 1 kN) / 2 = 14.5 kN
+    assert side.preload == pytest.approx(14.5e3) and side.decided_by == "sliding"
+
+
+def test_bolts_all_at_one_x_cannot_hold_a_moment():
+    with pytest.raises(LinkworkError, match="different x"):
+        _bolts([[0.0, 1e3, 0.0]], [[0.0, 0.0], [0.0, -1.0]])
+
+
+# ------------------------------------------------------------------------------------------------ catalogues
+
+
+def test_the_bundled_motor_catalogue_covers_the_iec_steps_at_four_speeds_and_says_its_source():
+    cat = bundled("motors.csv")
+    assert len(cat) == 27 * 4
+    assert cat.columns["power"].min() == 250 and cat.columns["power"].max() == 315e3
+    assert sorted(set(np.round(cat.columns["synchronous"] * 30 / math.pi))) == [750, 1000, 1500, 3000]
+    assert np.all(cat.columns["speed"] < cat.columns["synchronous"])
+    assert any("TYPICAL VALUES" in c for c in cat.comments)
+
+
+def test_a_catalogue_without_a_needed_column_or_with_a_bad_value_names_each_problem():
+    text = "name,power [kW],speed [rpm]\nm1,4,x\n"
+    with pytest.raises(LinkworkError) as err:
+        parse_catalogue(text, "mine.csv", {"power": "W", "speed": "rad/s", "breakdown": "1"})
+    assert "mine.csv:1: no column 'breakdown'" in str(err.value)
+    assert "mine.csv:2: column 'speed': expected a number" in str(err.value)
+    with pytest.raises(LinkworkError, match="not a unit of W"):
+        parse_catalogue("name,power [kg]\nm,1\n", "mine.csv", {"power": "W"})
+
+
+# ------------------------------------------------------------------------------------------------ motor
+
+
+def test_the_balance_speed_of_an_induction_motor_geared_far_down_is_on_its_stable_branch():
+    """A 4 kW, 2910 rpm, 3000 rpm motor through 97 : 1 gives its breakdown torque near 30 rpm of the crank, so at
+    1 rad/s its moment still rises; the Kloss formula solved for the slip on the stable branch:
+    s = s_k (M_k / M - sqrt((M_k / M)^2 - 1))."""
+    motor = InductionMotor(4000.0, 2910 * math.pi / 30, 3000 * math.pi / 30, 2.3)
+    drive = Drive(motor, ratio=97.0, efficiency=0.95)
+    want = 1193.7  # N m on the crank
+    m = want / (97 * 0.95)
+    mk = 2.3 * 4000 / (2910 * math.pi / 30)
+    s = motor.critical_slip * (mk / m - math.sqrt((mk / m) ** 2 - 1))
+    assert balance_speed(drive, want) == pytest.approx((1 - s) * 100 * math.pi / 97, rel=1e-9)
+
+
+CATALOGUE = """# three motors for the test
+name,power [kW],synchronous [rpm],speed [rpm],starting [1],breakdown [1],inertia [kg m^2],mass [kg]
+big,7.5,1500,1455,2.1,2.3,0.04,60
+small,4,1500,1430,2.3,2.3,0.02,35
+middle,5.5,1500,1445,2.3,2.3,0.026,47
+"""
+
+
+@pytest.fixture(scope="module")
+def shears_choice(tmp_path_factory):
+    from linkwork.machine import reduced
+    from linkwork.sizing import choose_motor, read_catalogue
+    from linkwork.sizing.motor import MOTOR_COLUMNS
+
+    path = tmp_path_factory.mktemp("cat") / "motors.csv"
+    path.write_text(CATALOGUE)
+    mech = lw.compile("double-cut-shears")
+    cat = read_catalogue(path, MOTOR_COLUMNS)
+    return mech, cat, choose_motor(mech, reduced(mech), 0.05, efficiency=0.95, catalogue=cat)
+
+
+def test_the_motor_chosen_is_the_smallest_that_a_brute_force_run_of_every_motor_accepts(shears_choice):
+    mech, cat, choice = shears_choice
+    crank = math.pi  # 30 rpm
+    passing = []
+    for i in np.argsort(cat.columns["power"]):
+        row = cat.row(int(i))
+        motor = InductionMotor(row["power"], row["speed"], row["synchronous"], row["breakdown"])
+        drive = Drive(motor, ratio=row["speed"] / crank, efficiency=0.95, rotor=row["inertia"], flywheel_on="motor")
+        run = lw.dynamics(mech, drive, delta=0.05)
+        t, _, omega = run.motion.cycle()
+        torque = motor(run.drive.ratio * omega)
+        rms = math.sqrt(np.trapezoid(torque**2, t) / t[-1])
+        rated = row["power"] / row["speed"]
+        ok = torque.max() <= 0.8 * row["breakdown"] * rated and rms <= rated
+        passing.append((cat.names[int(i)], ok))
+    first = next(name for name, ok in passing if ok)
+    assert passing[0] == ("small", False)  # the smallest fails: the test has something to decide
+    assert choice.name == first == "middle"
+    assert [c.name for c in choice.passed] == ["small"]
+
+
+def test_the_run_with_the_chosen_motor_meets_delta_and_stays_under_its_breakdown_torque(shears_choice):
+    _, _, choice = shears_choice
+    assert choice.delta_reached == pytest.approx(0.05, rel=0.05)
+    assert choice.peak_torque < 0.8 * choice.breakdown_torque
+    assert choice.rms_torque < choice.rated_torque
+    assert choice.ratio == pytest.approx(1445 / 30)
+    assert choice.need_power == pytest.approx(7500 / 2 / 0.95, rel=2e-3)  # 7.5 kJ a cut, 30 cuts a minute
+
+
+# ------------------------------------------------------------------------------------------------ command
+
+
+def test_size_double_cut_shears_meets_the_bars_and_writes_the_motor_into_the_file(tmp_path):
+    out = tmp_path / "sized.yaml"
+    result = linkwork("size", "double-cut-shears", "--life", "20000h", "--json", "--synchronous", "1500 rpm",
+                      "--write", str(out))  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)
+    motor = data["motor"]
+    assert motor["motor"]["synchronous_rpm"] == 1500
+    assert motor["run"]["delta"] <= 0.05 * 1.02
+    assert motor["run"]["peak_torque_N_m"] < motor["motor"]["breakdown_torque_N_m"]
+    names = {r["joint"] for r in data["bearings"]["rolling"]}
+    assert names == {"O1", "A", "B", "O3", "D", "E", "C", "F"}
+    assert all(math.isfinite(r["C_needed_kN"]) and r["C_needed_kN"] > 0 for r in data["bearings"]["rolling"])
+    assert data["inputs"]["life_h"] == 20000
+    assert len(data["bolts"]["bolts"]) == 4 and math.isfinite(data["bolts"]["preload_kN"])
+    text = out.read_text()
+    assert "# the billet's resistance" in text  # the comments kept
+    sized = lw.compile(lw.loads(text))
+    assert sized.machine.ratio == pytest.approx(motor["gear"]["ratio"], rel=1e-6)
+    assert sized.machine.flywheel == pytest.approx(motor["flywheel"]["inertia_kg_m2"], rel=1e-5)
+    assert sized.machine.motor.power == pytest.approx(motor["motor"]["power_kW"] * 1e3)
+
+
+def test_size_refuses_bad_options_with_one_line_each():
+    result = linkwork("size", "four-bar", "--kind", "needle", "--reserve", "2", "--write", "x.txt")
+    assert result.returncode == 2
+    for text in ('--kind: "ball" or "roller"', "--reserve", '--write "x.txt"'):
+        assert text in result.stderr
+    assert "Traceback" not in result.stderr
