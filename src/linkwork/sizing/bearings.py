@@ -131,6 +131,12 @@ class Bearings:
     bush: Bush
     width_ratio: float
 
+    def over(self, j: JointBearing) -> str:
+        """What of the bush's limits joint ``j`` exceeds: its peak p, its peak v, its mean pv ("" for none)."""
+        over = [name for name, value, limit in (("p max", j.p_max, self.bush.p), ("v max", j.v_max, self.bush.v),
+                ("pv mean", j.pv_mean, self.bush.pv)) if value > limit * (1 + 1e-9)]  # fmt: skip
+        return ", ".join(over) or "none"
+
     def tables(self) -> list[Table]:
         rows = tuple(
             (j.label, j.motion, math.degrees(j.swing), j.force_max / 1e3, j.force_max_phi, j.force_mean / 1e3,
@@ -148,9 +154,10 @@ class Bearings:
             f"Plain bushes ({self.bush.name}: p <= {self.bush.p / 1e6:g} MPa, v <= {self.bush.v:g} m/s, "
             f"pv <= {self.bush.pv / 1e6:g} MPa m/s; least diameter at b = {self.width_ratio:g} d)",
             ("joint", "d [mm]", "b [mm]", "d given", "p mean [MPa]", "p max [MPa]", "v max [m/s]",
-             "pv mean [MPa m/s]", "pv max [MPa m/s]"),
+             "pv mean [MPa m/s]", "pv max [MPa m/s]", "over the limits"),
             tuple((j.label, j.diameter * 1e3, j.width * 1e3, "yes" if j.diameter_given else "least",
-                   j.p_mean / 1e6, j.p_max / 1e6, j.v_max, j.pv_mean / 1e6, j.pv_max / 1e6) for j in self.joints),
+                   j.p_mean / 1e6, j.p_max / 1e6, j.v_max, j.pv_mean / 1e6, j.pv_max / 1e6, self.over(j))
+                  for j in self.joints),
         )  # fmt: skip
         guides = Table(
             "Guides (prismatic pairs)",
