@@ -278,3 +278,55 @@ def test_size_refuses_bad_options_with_one_line_each():
     for text in ('--kind: "ball" or "roller"', "--reserve", '--write "x.txt"'):
         assert text in result.stderr
     assert "Traceback" not in result.stderr
+
+
+# ------------------------------------------------------------------------------------------------ links
+
+
+def test_a_simply_supported_beam_bends_by_hand_and_a_pulled_bar_is_in_tension():
+    from linkwork.sizing.links import internal_forces
+
+    # ends at x = 0 and 1 m held up by 50 N each, 100 N down at the middle: M = 50 * 0.5 = 25 N m there, 0 past B
+    pts = np.array([[[0.0, 0.0], [1.0, 0.0], [0.5, 0.0]]])
+    forces = np.array([[[0.0, 50.0], [0.0, 50.0], [0.0, -100.0]]])
+    axial, moment, s = internal_forces(pts, forces, np.zeros((1, 3)), (0, 1))
+    assert s[0] == pytest.approx([0.0, 0.5, 1.0])
+    assert np.abs(moment[0]) == pytest.approx([0.0, 25.0, 0.0], abs=1e-12)
+    pulled = np.array([[[-10.0, 0.0], [10.0, 0.0], [0.0, 0.0]]])
+    axial, _, _ = internal_forces(pts, pulled, np.zeros((1, 3)), (0, 1))
+    assert axial[0, :2] == pytest.approx([10.0, 10.0]) and axial[0, 2] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_section_properties_by_hand():
+    from linkwork.sizing.links import section_properties
+
+    # I: h 200, b 100, tw 10, tf 10 mm: A = 2 * 100 * 10 + 10 * 180 = 3800 mm^2,
+    # I = (100 * 200^3 - 90 * 180^3) / 12 = 22.927e6 mm^4, W = I / 100 = 229.27e3 mm^3
+    area, modulus = section_properties("I", {"h": 0.2, "b": 0.1, "tw": 0.01, "tf": 0.01})
+    assert area == pytest.approx(3800e-6) and modulus == pytest.approx(229.27e-6, rel=1e-4)
+    area, modulus = section_properties("rectangle", {"b": 0.02, "h": 0.06})
+    assert area == pytest.approx(1.2e-3) and modulus == pytest.approx(0.02 * 0.06**2 / 6)
+    with pytest.raises(LinkworkError, match="give t"):
+        section_properties("tube", {"d": 0.05})
+
+
+def test_every_link_of_the_shears_is_in_equilibrium_and_the_crank_bends_by_the_driving_torque():
+    """Past the last load of each bar the internal forces vanish (the link's loads balance: an independent check of
+    the reactions, inertia and drive torque gathered); at the crank's pivot the moment is the driving torque."""
+    from linkwork.sizing.links import _loads_on, internal_forces
+
+    f = lw.forces("double-cut-shears", steps=72)
+    mech = f.mechanism
+    for i, name in enumerate(mech.link_names):
+        if i == 0:
+            continue
+        joints, pts, forces, couples = _loads_on(f, i)
+        if np.ptp(pts[0, : len(joints)], axis=0).max() == 0:
+            continue
+        axial, moment, _ = internal_forces(pts, forces, couples, (0, 1))
+        scale = np.abs(forces).max()
+        assert np.abs(moment[:, -1]).max() < 1e-9 * scale, name
+    joints, pts, forces, couples = _loads_on(f, mech.link_names.index("crank"))
+    _, moment, s = internal_forces(pts, forces, couples, (joints.index("O1"), joints.index("A")))
+    at_o1 = moment[np.arange(len(s)), np.argmin(np.abs(s), axis=1)]  # just past the pivot O1 (its couple in)
+    assert np.abs(at_o1) == pytest.approx(np.abs(f.driving_torque), rel=1e-9)

@@ -18,6 +18,7 @@ from linkwork.errors import LinkworkError
 from linkwork.sizing.bearings import Bearings, Bush, bearings
 from linkwork.sizing.bolts import BoltResult, size_bolts
 from linkwork.sizing.common import Catalogue, Table, bundled
+from linkwork.sizing.links import Bars, bars
 from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue
 from linkwork.sizing.pairs import pairs_of
 from linkwork.sizing.pins import Pins, Steel, pins
@@ -43,10 +44,12 @@ class Sizing:
     pins: Pins
     bolts: BoltResult | None
     missing: dict[str, str]
+    links: Bars | None = None
 
     def tables(self) -> list[Table]:
         out = [self.motor.table()] if self.motor is not None else []
         out += self.bearings.tables() + [self.pins.table()]
+        out += [self.links.table()] if self.links is not None else []
         out += self.bolts.tables() if self.bolts is not None else []
         return out
 
@@ -58,6 +61,7 @@ class Sizing:
             "motor": self.motor.record() if self.motor is not None else None,
             "bearings": self.bearings.record(),
             "pins": self.pins.record(),
+            "links": self.links.record() if self.links is not None else None,
             "bolts": self.bolts.record() if self.bolts is not None else None,
             "missing": self.missing,
         }
@@ -113,7 +117,7 @@ def size(
     motor : bool
         Choose the motor (False: bearings, pins and bolts only).
     steel, safety : str, float
-        The pins' steel grade (``steels.csv``) and safety factor on its yield strength.
+        The steel grade of the pins and links (``steels.csv``) and the safety factor on its yield strength.
     bush, width_ratio : str, float
         The plain bush (``bushes.csv``) and the width / diameter of the least pins.
     bolts : array (n, 2)
@@ -162,6 +166,11 @@ def size(
     found = bearings(pairs, phi, crank, life_h=life_h, kind=kind, bush=bush_limits, pins=pin_sizes,
                      width_ratio=width_ratio, guides=guides)  # fmt: skip
     pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
+    given = {
+        name: (sec.shape, {k: v for k, v in sec.model_dump(exclude={"shape"}).items() if v is not None})
+        for name, sec in (file.sections.items() if file is not None else ())
+    }
+    linked = bars(f, phi, grade, safety=safety, sections=given)
     held = None
     if bolts is not None and len(bolts):
         found_loads = np.asarray(f.foundation, dtype=float)
@@ -179,4 +188,4 @@ def size(
         "steps": steps, "crank_rpm": crank * 30 / math.pi,
         "loads": "kinetostatics at the file's uniform crank speed",
     }  # fmt: skip
-    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing)
+    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked)

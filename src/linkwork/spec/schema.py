@@ -450,6 +450,19 @@ class PinSize(_Strict):
     width: PositiveLength
 
 
+class SectionSpec(_Strict):
+    """A link's cross-section, for sizing it as a bar: ``round`` (d), ``rectangle`` (b across, h in the plane of
+    the mechanism), ``tube`` (d outside, t wall), ``I`` (h depth in the plane, b flange width, tw web, tf flange)."""
+
+    shape: Literal["round", "rectangle", "tube", "I"]
+    d: PositiveLength | None = None
+    b: PositiveLength | None = None
+    h: PositiveLength | None = None
+    t: PositiveLength | None = None
+    tw: PositiveLength | None = None
+    tf: PositiveLength | None = None
+
+
 class SizingSpec(_Strict):
     """What ``linkwork size`` needs beyond the loads: the pins the joints have, the guides' lengths, the bolts."""
 
@@ -461,6 +474,7 @@ class SizingSpec(_Strict):
         default_factory=dict, description="length of the guide (shoe) of prismatic joints, by joint name"
     )
     bolts: list[Vec2] = Field(default_factory=list, description="foundation bolts: their positions [x, y] on the bed")
+    sections: dict[str, SectionSpec] = Field(default_factory=dict, description="cross-sections of links, by link name")
 
 
 class Spec(_Strict):
