@@ -149,6 +149,7 @@ class Bearings:
             ("joint", "motion", "swing [deg]", "F max [kN]", "at phi [deg]", "F mean [kN]", "n eq [rpm]",
              "P [kN]", "C needed [kN]"),
             rows,
+            "rolling",
         )  # fmt: skip
         plain = Table(
             f"Plain bushes ({self.bush.name}: p <= {self.bush.p / 1e6:g} MPa, v <= {self.bush.v:g} m/s, "
@@ -158,6 +159,7 @@ class Bearings:
             tuple((j.label, j.diameter * 1e3, j.width * 1e3, "yes" if j.diameter_given else "least",
                    j.p_mean / 1e6, j.p_max / 1e6, j.v_max, j.pv_mean / 1e6, j.pv_max / 1e6, self.over(j))
                   for j in self.joints),
+            "plain",
         )  # fmt: skip
         guides = Table(
             "Guides (prismatic pairs)",
@@ -165,6 +167,7 @@ class Bearings:
              "q max [kN/m]"),
             tuple((g.label, g.force_max / 1e3, g.force_max_phi, g.force_mean / 1e3, g.moment_max / 1e3,
                    g.speed_max, g.length * 1e3, g.pressure_max / 1e3) for g in self.guides),
+            "guides",
         )  # fmt: skip
         return [rolling, plain, guides] if self.guides else [rolling, plain]
 

@@ -56,7 +56,7 @@ class BoltResult:
             for i, ((x, y), f, a) in enumerate(each)
         )
         per = Table("Foundation bolts: the largest force opening the joint at each",
-                    ("bolt", "x [mm]", "y [mm]", "F open max [kN]", "at phi [deg]"), rows)  # fmt: skip
+                    ("bolt", "x [mm]", "y [mm]", "F open max [kN]", "at phi [deg]"), rows, "bolts")  # fmt: skip
         summary = Table(
             f"Foundation bolts: preload (S = {self.safety:g}, friction {self.friction:g}) and size (class "
             f"{self.bolt_class}, S_b = {self.bolt_safety:g}, load factor {self.load_factor:g})",
@@ -65,6 +65,7 @@ class BoltResult:
              ("  at phi", self.decided_phi, "deg"), ("largest bolt force", self.bolt_force / 1e3, "kN"),
              ("stress area needed", self.area_needed * 1e6, "mm^2"), ("thread", self.thread, ""),
              ("its stress area", self.thread_area * 1e6, "mm^2")),
+            "preload",
         )  # fmt: skip
         return [per, summary]
 

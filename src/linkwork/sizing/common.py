@@ -36,6 +36,7 @@ class Table:
     title: str
     columns: tuple[str, ...]
     rows: tuple[tuple[Any, ...], ...]
+    key: str = ""  # which table of the sizing it is (``motor``, ``rolling``, ...): the report's title for it
 
     def record(self) -> list[dict[str, Any]]:
         """The rows as objects keyed by ``name_unit`` (``power_kW``): the JSON record's form."""

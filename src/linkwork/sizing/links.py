@@ -100,12 +100,13 @@ class Bars:
         return Table(
             f"Links as bars ({self.steel.name}: R_e {self.steel.yield_strength / 1e6:g} MPa, R_m "
             f"{self.steel.tensile / 1e6:g} MPa, sigma_-1 {self.steel.endurance / 1e6:g} MPa; S = {self.safety:g})",
-            ("link", "ends", "L [mm]", "section", "M max [kN m]", "at phi [deg]", "at s [mm]", "N there [kN]",
-             "|N| max [kN]", "at phi [deg]", "sigma max [MPa]", "at phi [deg]", "sigma_a [MPa]", "sigma_m [MPa]",
-             "Goodman n"),
+            ("link", "ends", "L [mm]", "section", "M max [kN m]", "M at phi [deg]", "M at s [mm]", "N there [kN]",
+             "N max [kN]", "N at phi [deg]", "sigma max [MPa]", "sigma at phi [deg]", "sigma_a [MPa]",
+             "sigma_m [MPa]", "Goodman n"),
             tuple((b.link, "-".join(b.ends), b.length * 1e3, b.section, b.moment_max / 1e3, b.moment_phi,
                    b.moment_at * 1e3, b.axial_at_moment / 1e3, b.axial_max / 1e3, b.axial_phi, b.stress_max / 1e6,
                    b.stress_phi, b.amplitude / 1e6, b.mean / 1e6, b.fatigue) for b in self.bars),
+            "links",
         )  # fmt: skip
 
     def record(self) -> dict[str, Any]:

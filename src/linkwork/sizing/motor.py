@@ -164,7 +164,7 @@ class MotorChoice:
             ("RMS motor torque (heating)", self.rms_torque, "N m"),
             ("RMS / rated torque (allowed: 1)", self.rms_torque / self.rated_torque, "1"),
         ]
-        return Table("Motor, gear and flywheel", ("quantity", "value", "unit"), tuple(rows))
+        return Table("Motor, gear and flywheel", ("quantity", "value", "unit"), tuple(rows), "motor")
 
     def record(self) -> dict[str, Any]:
         """The JSON record: the motor (catalogue row in the units of the table), the gear, the flywheel,

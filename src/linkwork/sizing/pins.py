@@ -70,6 +70,7 @@ class Pins:
              "p [MPa]"),
             tuple((p.label, p.force / 1e3, p.phi, p.diameter * 1e3, p.width * 1e3, "yes" if p.given else "least",
                    p.shear / 1e6, p.bending / 1e6, p.pressure / 1e6) for p in self.pins),
+            "pins",
         )  # fmt: skip
 
     def record(self) -> dict[str, Any]:

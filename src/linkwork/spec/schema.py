@@ -475,6 +475,7 @@ class SizingSpec(_Strict):
     )
     bolts: list[Vec2] = Field(default_factory=list, description="foundation bolts: their positions [x, y] on the bed")
     sections: dict[str, SectionSpec] = Field(default_factory=dict, description="cross-sections of links, by link name")
+    motor: bool = Field(False, description="the report chooses the motor from the catalogue too (runs the machine)")
 
 
 class Spec(_Strict):
