@@ -330,3 +330,17 @@ def test_every_link_of_the_shears_is_in_equilibrium_and_the_crank_bends_by_the_d
     _, moment, s = internal_forces(pts, forces, couples, (joints.index("O1"), joints.index("A")))
     at_o1 = moment[np.arange(len(s)), np.argmin(np.abs(s), axis=1)]  # just past the pivot O1 (its couple in)
     assert np.abs(at_o1) == pytest.approx(np.abs(f.driving_torque), rel=1e-9)
+
+
+def test_seed_000_shears_lifted_at_30_rad_s_need_the_preload_of_the_paper_s_vertical_force():
+    """Seed 000: the vertical force on the bolts N = (m + 2 m1 + m2) g -+ (m1 + m2) 2 l omega^2 (the paper's, right:
+    its misprint is in the horizontal force, printed 3/4 m1 omega^2 l for m1 omega^2 l).  At 30 rad/s the
+    shears lift: the largest pull 2 (10 + 20) 0.15 * 900 - 540 * 9.81 = 2802.6 N.  Two bolts far apart either
+    side (the moment's share vanishes) and a friction that holds any side force: each holds half of it, with
+    S = 1.5 a preload of 1.5 * 2802.6 / 2 = 2101.95 N."""
+    f = lw.forces("shears-slider-crank", steps=720, speed=30.0)
+    pull = 2 * (10 + 20) * 0.15 * 30.0**2 - (500 + 2 * 10 + 20) * 9.81
+    assert np.nanmax(f.foundation[:, 1]) == pytest.approx(pull, rel=1e-6)
+    bolts = _bolts(f.foundation, [[-1e4, -0.5], [1e4, -0.5]], safety=1.5, friction=1e9)
+    assert bolts.preload == pytest.approx(1.5 * pull / 2, rel=1e-4)
+    assert bolts.decided_by == "opening"
