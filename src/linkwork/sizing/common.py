@@ -61,7 +61,7 @@ def _key(column: str) -> str:
 
 def _cell(v: Any) -> str:
     if isinstance(v, float):
-        return "-" if not math.isfinite(v) else f"{v:.4g}"
+        return "-" if not math.isfinite(v) else f"{v + 0.0:.4g}"
     return str(v)
 
 

@@ -572,9 +572,14 @@ def _merge(node: Any, key: str, value: Any) -> None:
         for k, v in value.items():
             _merge(old, k, v)
         return
+    node[key] = _pruned(value)
+
+
+def _pruned(value: Any) -> Any:
+    """``value`` with the keys whose value is None left out, at every depth."""
     if isinstance(value, dict):
-        value = {k: v for k, v in value.items() if v is not None}
-    node[key] = value
+        return {k: _pruned(v) for k, v in value.items() if v is not None}
+    return value
 
 
 def yaml_text(data: Any) -> str:
