@@ -96,6 +96,8 @@ def size(
         echo_json({**result.record(), **({"written": written} if written else {})})
         return
     typer.echo(f"{result.name}: sizing")
+    shown = (f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}" for k, v in result.inputs.items() if v is not None)
+    typer.echo("  inputs (defaults included): " + ", ".join(shown))
     for table in result.tables():
         typer.echo(table.text())
     for part, why in result.missing.items():
