@@ -362,3 +362,12 @@ def test_the_machine_section_is_written_whole_into_a_file_without_one_and_key_by
     assert written.machine.motor.type == "constant" and written.machine.motor.power is None
     assert written.machine.gear.efficiency == 0.95  # kept: the new section names only the ratio
     assert "# the billet's resistance" in text
+
+
+def test_a_user_catalogue_without_a_column_is_one_message_with_its_line_and_exit_code_2(tmp_path):
+    path = tmp_path / "mine.csv"
+    path.write_text("name,power [kW],synchronous [rpm],speed [rpm],breakdown [1],inertia [kg m^2],mass [kg]\n"
+                    "m,4,1500,1430,2.3,0.02,35\n")  # fmt: skip
+    result = linkwork("size", "four-bar", "--catalogue", str(path))
+    assert result.returncode == 2
+    assert result.stderr.strip() == f"error: {path}:1: no column 'starting' [1]"

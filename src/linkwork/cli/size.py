@@ -100,6 +100,9 @@ def size(
     typer.echo("  inputs (defaults included): " + ", ".join(shown))
     for table in result.tables():
         typer.echo(table.text())
+    if result.motor is not None:
+        for passed in result.motor.passed:
+            typer.echo(f"  passed over: {passed.name}: {passed.why}")
     for part, why in result.missing.items():
         typer.echo(f"  {part}: {why}")
     if written:
