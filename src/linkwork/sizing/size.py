@@ -73,6 +73,19 @@ def _row(cat: Catalogue, name: str, what: str) -> dict[str, float]:
     return cat.row(cat.names.index(name))
 
 
+def _file_parts(file: Any) -> tuple[dict[str, tuple[float, float]], dict[str, float], dict[str, Any]]:
+    """The pins (diameter, width), the guides' lengths and the links' sections (shape, dimensions) of the file's
+    ``sizing:`` section (None: none of them), SI."""
+    if file is None:
+        return {}, {}, {}
+    pins_given = {k: (v.diameter, v.width) for k, v in file.pins.items()}
+    sections = {
+        name: (sec.shape, {k: v for k, v in sec.model_dump(exclude={"shape"}).items() if v is not None})
+        for name, sec in file.sections.items()
+    }
+    return pins_given, dict(file.guides), sections
+
+
 def size(
     mech: Mechanism,
     *,
@@ -141,8 +154,7 @@ def size(
     bush_row = _row(bundled("bushes.csv"), bush, "bush")
     bush_limits = Bush(bush, bush_row["p"], bush_row["v"], bush_row["pv"])
     grade = Steel(steel, steel_row["yield"], steel_row["tensile"], steel_row["endurance"])
-    pin_sizes = {k: (v.diameter, v.width) for k, v in (file.pins.items() if file is not None else ())}
-    guides = dict(file.guides) if file is not None else {}
+    pin_sizes, guides, given = _file_parts(file)
     from linkwork.kinetostatics.forces import forces
     from linkwork.motion.analysis import CrankAngles
 
@@ -154,22 +166,9 @@ def size(
     crank = abs(float(mech.drive_speed[0]))
     pairs = pairs_of(f)
     missing: dict[str, str] = {}
-    choice = None
-    if motor:
-        from linkwork.machine.reduced import reduced
-
-        cat = motor_catalogue(catalogue)
-        choice = choose_motor(mech, reduced(mech), delta, efficiency=efficiency, reserve=reserve, catalogue=cat,
-                              synchronous=synchronous)  # fmt: skip
-    else:
-        missing["motor"] = "not asked"
     found = bearings(pairs, phi, crank, life_h=life_h, kind=kind, bush=bush_limits, pins=pin_sizes,
                      width_ratio=width_ratio, guides=guides)  # fmt: skip
     pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
-    given = {
-        name: (sec.shape, {k: v for k, v in sec.model_dump(exclude={"shape"}).items() if v is not None})
-        for name, sec in (file.sections.items() if file is not None else ())
-    }
     linked = bars(f, phi, grade, safety=safety, sections=given)
     held = None
     if bolts is not None and len(bolts):
@@ -179,6 +178,15 @@ def size(
                           friction=friction, load_factor=load_factor, bolt_safety=bolt_safety)  # fmt: skip
     else:
         missing["bolts"] = "no bolt pattern: give sizing: bolts: [[x, y], ...] in the file"
+    choice = None  # last: the runs of the machine take the longest, and the other parts' problems come first
+    if motor:
+        from linkwork.machine.reduced import reduced
+
+        cat = motor_catalogue(catalogue)
+        choice = choose_motor(mech, reduced(mech), delta, efficiency=efficiency, reserve=reserve, catalogue=cat,
+                              synchronous=synchronous)  # fmt: skip
+    else:
+        missing["motor"] = "not asked"
     inputs = {
         "life_h": life_h, "bearing_kind": kind, "delta": delta, "gear_efficiency": efficiency, "reserve": reserve,
         "catalogue": str(catalogue) if catalogue is not None else "motors.csv (bundled, typical values)",
