@@ -278,6 +278,14 @@ def test_size_refuses_bad_options_with_one_line_each():
     for text in ('--kind: "ball" or "roller"', "--reserve", '--write "x.txt"'):
         assert text in result.stderr
     assert "Traceback" not in result.stderr
+    for args, text in (
+        (("--life", "20000"), '--life: give the unit, e.g. "20000 h", got "20000"'),
+        (("--life", "-5 h"), '--life: expected a positive value, got "-5 h"'),
+        (("--bolt-class", "3.3", "--no-motor"), 'bolt class "3.3": one of 4.6, 5.6, 8.8, 10.9, 12.9'),
+        (("--steel", "S999", "--no-motor"), 'steel "S999": one of S235'),
+    ):
+        result = linkwork("size", "four-bar", *args)
+        assert result.returncode == 2 and text in result.stderr, (args, result.stderr)
 
 
 # ------------------------------------------------------------------------------------------------ links

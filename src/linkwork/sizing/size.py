@@ -152,6 +152,7 @@ def size(
         bolts = np.array(file.bolts, dtype=float)
     steel_row = _row(bundled("steels.csv"), steel, "steel")
     bush_row = _row(bundled("bushes.csv"), bush, "bush")
+    _row(bundled("bolt_classes.csv"), bolt_class, "bolt class")  # a wrong class said even where no bolts are sized
     bush_limits = Bush(bush, bush_row["p"], bush_row["v"], bush_row["pv"])
     grade = Steel(steel, steel_row["yield"], steel_row["tensile"], steel_row["endurance"])
     pin_sizes, guides, given = _file_parts(file)
