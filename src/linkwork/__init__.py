@@ -29,6 +29,7 @@ _LAZY = {
     "Forces": ("linkwork.kinetostatics.forces", "Forces"),
     "bolt_speed": ("linkwork.api", "bolt_speed"),
     "balance": ("linkwork.api", "balance"),
+    "size": ("linkwork.api", "size"),
     "reduced": ("linkwork.api", "reduced"),
     "dynamics": ("linkwork.api", "dynamics"),
     "rocker_impact": ("linkwork.impulse", "rocker_impact"),

@@ -42,6 +42,7 @@ from linkwork.motion.kernels import with_branches
 from linkwork.motion.kinematics import Kinematics
 from linkwork.motion.kinematics import kinematics as _kinematics
 from linkwork.motion.program import build
+from linkwork.sizing.size import size as _size
 from linkwork.spec.schema import Spec
 from linkwork.structure.compile import structural_model
 from linkwork.structure.model import Mechanism
@@ -165,6 +166,7 @@ impact = resolving(_impact, "impact")
 simulate_blows = resolving(_simulate_blows, "simulate_blows")
 balance = resolving(_balance, "balance")
 bolt_speed = resolving(_bolt_speed, "bolt_speed")
+size = resolving(_size, "size")
 parameters = resolving(parameter_values, "parameters")
 
 

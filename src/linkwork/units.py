@@ -163,7 +163,7 @@ def _show_unit(unit: str) -> str:
 COMMON_UNITS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "mm": 0.001, "cm": 0.01, "km": 1000.0},
     "mass": {"kg": 1.0, "g": 0.001, "t": 1000.0},
-    "time": {"s": 1.0, "ms": 0.001, "min": 60.0},
+    "time": {"s": 1.0, "ms": 0.001, "min": 60.0, "h": 3600.0},
     "angle": {"deg": 0.017453292519943295, "rad": 1.0},
     "force": {"N": 1.0, "kN": 1000.0, "MN": 1000000.0},
     "moment": {"N*m": 1.0, "N m": 1.0, "kN*m": 1000.0, "kN m": 1000.0},

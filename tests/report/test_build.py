@@ -26,7 +26,7 @@ from linkwork.cli.main import app  # noqa: E402
 
 runner = CliRunner()
 SECTIONS = {
-    "double-cut-shears": ["structure", "kinematics", "forces", "dynamics", "animation"],
+    "double-cut-shears": ["structure", "kinematics", "forces", "dynamics", "sizing", "animation"],
     "shears-slider-crank": ["structure", "kinematics", "forces", "animation"],
     "percussion-rocker": ["structure", "kinematics", "forces", "impact", "animation"],
 }

@@ -56,7 +56,8 @@ def double_cut_shears_builder():
 def test_builder_and_yaml_give_the_same_spec():
     built = double_cut_shears_builder().build()
     loaded = lw.example("double-cut-shears")
-    assert built.model_dump(exclude={"description"}) == loaded.model_dump(exclude={"description"})
+    # the file's sizing: section (pins, guides, bolts, sections for linkwork size) is data the builder has no call for
+    assert built.model_dump(exclude={"description", "sizing"}) == loaded.model_dump(exclude={"description", "sizing"})
 
 
 def test_builder_and_yaml_compile_to_the_same_model():

@@ -34,6 +34,10 @@ def analyze(
         bool, typer.Option("--dxf", help="also write the drawings for CAD, figures/*.dxf (needs ezdxf)")
     ] = False,
     lang: Annotated[str, typer.Option(help="language of the report and its figures: en or ru")] = "en",
+    sizing: Annotated[
+        bool | None,
+        typer.Option(help="a Sizing section (bearings, pins, links, bolts; default: where the file has sizing:)"),
+    ] = None,
 ) -> None:
     """Every analysis the mechanism supports: tables, figures, animation and report.html."""
     from rich.progress import Progress, SpinnerColumn, TextColumn
@@ -77,7 +81,7 @@ def analyze(
         try:
             path = run(
                 mech, out, steps=steps, position=int(position) if position and digits(position) else position,
-                pdf=pdf, animation=animation, dxf=dxf, lang=lang,
+                pdf=pdf, animation=animation, dxf=dxf, lang=lang, sizing=sizing,
                 progress=lambda what: bar.update(task, description=f"analysing: {what}"),
             )  # fmt: skip
         except LinkworkError as exc:

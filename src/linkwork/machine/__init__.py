@@ -10,7 +10,7 @@
 from __future__ import annotations
 
 from linkwork.machine.drive import ConstantTorque, Drive, InductionMotor, LinearMotor
-from linkwork.machine.dynamics import Dynamics, balance_speed, dynamics
+from linkwork.machine.dynamics import Dynamics, balance_speed, dynamics, with_flywheel_for
 from linkwork.machine.flywheel import (
     Flywheel,
     constant_moment_cycle,
@@ -40,5 +40,6 @@ __all__ = [
     "size_flywheel",
     "size_flywheel_wittenbauer",
     "wittenbauer",
+    "with_flywheel_for",
     "wittenbauer_tangents",
 ]

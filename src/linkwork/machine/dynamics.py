@@ -61,19 +61,26 @@ class Dynamics:
 
 def balance_speed(drive: Drive, moment: float) -> float:
     """The crank speed (rad/s) at which the drive gives ``moment`` on the stable (falling) part of
-    its characteristic, the highest such speed; NaN if there is none (a constant torque)."""
+    its characteristic, the highest such speed; NaN if there is none (a constant torque).
+
+    The speed is doubled from 1 rad/s until the drive's moment there is at most ``moment`` with a speed
+    below it where the moment is at least ``moment`` (a characteristic still rising at 1 rad/s, as an
+    induction motor's geared far down is, is followed past its peak); then bisected between the two."""
+    lo = math.nan
     hi = 1.0
-    while drive.moment(hi) > moment and hi < 1e6:
+    while hi < 2e6:
+        if drive.moment(hi) <= moment:
+            if drive.moment(hi / 2.0) >= moment:
+                lo = hi / 2.0
+                break
+            grid = np.linspace(0.0, hi, 4097)
+            above = np.flatnonzero(drive.moment(grid) >= moment)
+            if len(above):
+                lo = float(grid[above[-1]])
+                break
         hi *= 2.0
-    if not drive.moment(hi) <= moment:
+    if not math.isfinite(lo):
         return float("nan")
-    lo = hi / 2.0 if hi > 1.0 else 0.0
-    if drive.moment(lo) < moment:
-        grid = np.linspace(0.0, hi, 4097)
-        above = np.flatnonzero(drive.moment(grid) >= moment)
-        if len(above) == 0:
-            return float("nan")
-        lo = float(grid[above[-1]])
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         if drive.moment(mid) >= moment:
@@ -81,6 +88,22 @@ def balance_speed(drive: Drive, moment: float) -> float:
         else:
             hi = mid
     return 0.5 * (lo + hi)
+
+
+def with_flywheel_for(
+    red: Reduced, drive: Drive, delta: float, speed: float | None = None, *, fallback: float
+) -> tuple[Drive, Flywheel]:
+    """``drive`` with the flywheel for ``delta`` (Wittenbauer's tangents, :func:`size_flywheel_wittenbauer`)
+    on its ``flywheel_on`` shaft in place of its own, and that sizing.  The mean crank speed ``speed`` (rad/s)
+    defaults to where the drive's moment balances the loads' mean moment (:func:`balance_speed`), or to
+    ``fallback`` for a drive without such a point (a constant torque)."""
+    if speed is None:
+        speed = balance_speed(drive, -red.mean_load)
+    if speed is None or not math.isfinite(speed):
+        speed = fallback
+    base = drive.with_flywheel(0.0)
+    fly = size_flywheel_wittenbauer(red, delta, speed, base.inertia, shaft=drive.flywheel_on, ratio=drive.ratio)
+    return drive.with_flywheel(fly.flywheel), fly
 
 
 def dynamics(
@@ -119,13 +142,7 @@ def dynamics(
         start = float(red.psi[int(np.argmax(red.load))])
     fly = None
     if delta is not None:
-        if speed is None:
-            speed = balance_speed(drive, -red.mean_load)
-        if speed is None or not math.isfinite(speed):
-            speed = abs(float(mech.drive_speed[0]))
-        base = drive.with_flywheel(0.0)
-        fly = size_flywheel_wittenbauer(red, delta, speed, base.inertia, shaft=drive.flywheel_on, ratio=drive.ratio)
-        drive = drive.with_flywheel(fly.flywheel)
+        drive, fly = with_flywheel_for(red, drive, delta, speed, fallback=abs(float(mech.drive_speed[0])))
     process = [load for load in mech.loads if load.kind == "process"]
     if not process:
         motion = simulate(red, drive, omega0=omega0, start=start, turns=turns)

@@ -28,6 +28,7 @@ from linkwork.io.jsonout import dumps
 from linkwork.lang import check_lang, kind_named, t
 from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
+from linkwork.report.sizing import asks_sizing
 from linkwork.structure.model import PairType
 from linkwork.units import turn_deg
 
@@ -92,6 +93,7 @@ class _Run:
         self.folder = folder
         self.progress = progress
         self.lang = lang
+        self.sizing: bool | None = None  # the "Sizing" section: asked, refused, or as the file says (None)
         self.sections: list[Section] = []
         self.figures: dict[str, Any] = {}  # those drawn in this process
         self.captions: dict[str, str] = {}
@@ -174,6 +176,7 @@ def analyze(
     dxf: bool = False,
     lang: str = "en",
     progress: Callable[[str], None] | None = None,
+    sizing: bool | None = None,
 ) -> Path:
     """Run every analysis ``mech`` supports and write tables, figures, an animation and
     ``report.html`` (and ``report.pdf``) into the folder ``out``; returns the report's path.
@@ -182,7 +185,9 @@ def analyze(
     as ``linkwork positions`` does) gets the scheme and the velocity and acceleration plans; ``"all"``
     adds sheets of the plans of all twelve; default the file's ``drawing.positions``, else where the
     working point moves fastest (:func:`linkwork.scene.positions.plan_positions`).  ``dxf``: also the
-    drawings for CAD, ``figures/*.dxf`` (needs ezdxf).  ``lang``: ``"en"`` or ``"ru"``.  Needs
+    drawings for CAD, ``figures/*.dxf`` (needs ezdxf).  ``lang``: ``"en"`` or ``"ru"``.  ``sizing``: the
+    "Sizing" section (:mod:`linkwork.report.sizing`, ``sizing.json``): True, False, or None where the file
+    has a ``sizing:`` section.  Needs
     matplotlib and xarray (:func:`require_packages`).
 
     Raises
@@ -198,6 +203,7 @@ def analyze(
     require_packages()
     with replacing(out) as work:
         run = _Run(mech, work, progress or (lambda _: None), lang, parallel=PARALLEL and not pdf)
+        run.sizing = sizing
         try:
             _build(run, steps, position, animation, dxf)
         finally:
@@ -252,6 +258,8 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
         _dynamics(run, cycle)
     if run.mech.blow is not None:
         _impact(run)
+    if asks_sizing(run.mech, run.sizing):
+        _sizing(run)
     run.progress("figures")
     run.run_here()
 
@@ -623,6 +631,16 @@ def _dynamics(run: _Run, cycle: Cycle) -> None:
     sec.figures.append(run.figure("dynamics", lambda: figures.dynamics_diagrams(result, zero, lang),
                                   run.t("caption.dynamics")))  # fmt: skip
     run.sections.append(sec)
+
+
+def _sizing(run: _Run) -> None:
+    from linkwork.report.sizing import sizing_section
+
+    run.progress("sizing")
+    body, result = sizing_section(run.mech, run.t)
+    if result is not None:
+        (run.folder / "sizing.json").write_text(dumps(result.record()), encoding="utf-8")
+    run.sections.append(Section("sizing", run.t("section.sizing"), body))
 
 
 def _impact(run: _Run) -> None:

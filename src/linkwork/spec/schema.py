@@ -443,6 +443,41 @@ class Drawing(_Strict):
     )
 
 
+class PinSize(_Strict):
+    """The pin of a revolute joint: its diameter and the width of the eye (the bush's length)."""
+
+    diameter: PositiveLength
+    width: PositiveLength
+
+
+class SectionSpec(_Strict):
+    """A link's cross-section, for sizing it as a bar: ``round`` (d), ``rectangle`` (b across, h in the plane of
+    the mechanism), ``tube`` (d outside, t wall), ``I`` (h depth in the plane, b flange width, tw web, tf flange)."""
+
+    shape: Literal["round", "rectangle", "tube", "I"]
+    d: PositiveLength | None = None
+    b: PositiveLength | None = None
+    h: PositiveLength | None = None
+    t: PositiveLength | None = None
+    tw: PositiveLength | None = None
+    tf: PositiveLength | None = None
+
+
+class SizingSpec(_Strict):
+    """What ``linkwork size`` needs beyond the loads: the pins the joints have, the guides' lengths, the bolts."""
+
+    life: Annotated[float, *_quantity("time", "positive")] | None = Field(
+        None, description="basic rating life L10h the rolling bearings are sized for, e.g. 20000 h"
+    )
+    pins: dict[str, PinSize] = Field(default_factory=dict, description="pins of revolute joints, by joint name")
+    guides: dict[str, PositiveLength] = Field(
+        default_factory=dict, description="length of the guide (shoe) of prismatic joints, by joint name"
+    )
+    bolts: list[Vec2] = Field(default_factory=list, description="foundation bolts: their positions [x, y] on the bed")
+    sections: dict[str, SectionSpec] = Field(default_factory=dict, description="cross-sections of links, by link name")
+    motor: bool = Field(False, description="the report chooses the motor from the catalogue too (runs the machine)")
+
+
 class Spec(_Strict):
     """A planar mechanism: the root of a linkwork mechanism file."""
 
@@ -458,6 +493,7 @@ class Spec(_Strict):
     machine: Machine | None = Field(None, description="motor, gear and flywheel, for machine dynamics")
     impact: ImpactSpec | None = Field(None, description="a blow, for linkwork impact")
     drawing: Drawing | None = Field(None, description="what the drawings show (the positions of the plans)")
+    sizing: SizingSpec | None = Field(None, description="pins, guides and foundation bolts, for linkwork size")
     hints: dict[str, Vec2] = Field(
         default_factory=dict,
         description="approximate global positions of moving points in the assembly pose "

@@ -536,6 +536,52 @@ def file_text(mechanism: Mechanism, values: dict[str, float]) -> str:
     return yaml_text(plain)
 
 
+def section_text(mechanism: Mechanism, key: str, values: dict[str, Any]) -> str:
+    """The text of the file of the compiled ``mechanism`` with its top-level section ``key`` set to ``values``:
+    where the file has the section, each value is written in its place (a mapping into a mapping, key by key, so
+    the comments and layout of what stays are kept; a value None removes its key), else the section is added.
+    The text is read back and must validate.
+
+    Raises
+    ------
+    ParameterError
+        A mechanism without its description.
+    SpecError
+        The text written does not validate (the message of the file's check).
+    """
+    from linkwork.spec.load import loads
+
+    spec = mechanism.spec
+    if spec is None:
+        raise ParameterError("this mechanism was assembled in code without a description: it has no file to edit")
+    data, _ = _file_data(spec, round_trip=True)
+    _merge(data, key, values)
+    text = yaml_text(data)
+    loads(text, spec.source.file if spec.source is not None else None)
+    return text
+
+
+def _merge(node: Any, key: str, value: Any) -> None:
+    """Set ``node[key]`` to ``value``, a mapping into an existing mapping key by key; None removes the key."""
+    if value is None:
+        if key in node:
+            del node[key]
+        return
+    old = node.get(key)
+    if isinstance(value, dict) and isinstance(old, dict):
+        for k, v in value.items():
+            _merge(old, k, v)
+        return
+    node[key] = _pruned(value)
+
+
+def _pruned(value: Any) -> Any:
+    """``value`` with the keys whose value is None left out, at every depth."""
+    if isinstance(value, dict):
+        return {k: _pruned(v) for k, v in value.items() if v is not None}
+    return value
+
+
 def yaml_text(data: Any) -> str:
     """The text of a mechanism file's ``data`` (plain or a ruamel round-trip mapping, whose comments, order
     and flow style it keeps): the one YAML writer of mechanism files, for edited and synthesised ones alike."""

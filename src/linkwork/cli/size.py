@@ -1,0 +1,127 @@
+"""``linkwork size``: the motor from a catalogue with its gear and flywheel, bearings, pins and foundation bolts."""
+
+from __future__ import annotations
+
+import re
+from typing import Annotated
+
+import typer
+
+from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, fail
+from linkwork.errors import LinkworkError
+from linkwork.limits import delta_problem
+
+
+def _quantity(text: str | None, kind: str, option: str, example: str) -> float | None:
+    """``text`` with its unit (``20000 h``, ``20000h``) in SI; exit code 2 with one line where it is not one."""
+    from linkwork.errors import UnitParseError
+    from linkwork.units import parse_quantity
+
+    if text is None:
+        return None
+    spaced = re.sub(r"^\s*([-+]?[\d.]+(?:[eE][-+]?\d+)?)\s*([A-Za-z].*)$", r"\1 \2", text)
+    if spaced == text.strip() and not re.search(r"[A-Za-z]", text):
+        fail(LinkworkError(f'{option}: give the unit, e.g. "{example}", got "{text}"'))
+    try:
+        value = parse_quantity(spaced, kind)
+    except UnitParseError as exc:
+        fail(LinkworkError(f"{option}: {exc}"))
+    if not value > 0:
+        fail(LinkworkError(f'{option}: expected a positive value, got "{text}"'))
+    return value
+
+
+@app.command()
+def size(
+    file_or_example: FileOrExample,
+    life: Annotated[
+        str | None,
+        typer.Option(
+            help="basic rating life L10h of the rolling bearings, e.g. 20000h (default: the "
+            "file's sizing: life, else 20000 h)"
+        ),  # fmt: skip
+    ] = None,
+    kind: Annotated[str, typer.Option(help="rolling bearings: ball or roller")] = "ball",
+    delta: Annotated[
+        float | None,
+        typer.Option(
+            help="coefficient of speed fluctuation for the flywheel (default: the file's, else 0.05)"
+        ),  # fmt: skip
+    ] = None,
+    reserve: Annotated[float, typer.Option(help="share of the breakdown torque the peak motor torque may reach")] = 0.8,
+    catalogue: Annotated[
+        str | None, typer.Option(help="a motor catalogue (CSV with the bundled one's columns)")
+    ] = None,
+    synchronous: Annotated[
+        str | None, typer.Option(help='keep to motors of this synchronous speed, e.g. "1500 rpm"')
+    ] = None,
+    motor: Annotated[bool, typer.Option(help="choose the motor (--no-motor: bearings, pins and bolts only)")] = True,
+    steel: Annotated[str, typer.Option(help="steel grade of the pins (steels.csv)")] = "C45 normalised",
+    bush: Annotated[str, typer.Option(help="plain bush (bushes.csv)")] = "tin bronze CuSn12 greased",
+    width_ratio: Annotated[float, typer.Option(help="width / diameter of the pins sized")] = 1.0,
+    bolt_class: Annotated[str, typer.Option(help="property class of the foundation bolts")] = "5.6",
+    write: Annotated[
+        str | None, typer.Option(help="write the mechanism file with the chosen motor, gear and flywheel (.yaml)")
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+) -> None:
+    """Size the machine from its loads: motor, gear and flywheel, rolling and plain bearings, pins, bolts."""
+    from linkwork.sizing import size as run
+
+    problems = [delta_problem(delta, "--delta")]
+    if kind not in ("ball", "roller"):
+        problems.append(f'--kind: "ball" or "roller", got "{kind}"')
+    if not 0 < reserve <= 1:
+        problems.append(f"--reserve: a share of the breakdown torque in (0, 1], got {reserve}")
+    if not width_ratio > 0:
+        problems.append(f"--width-ratio: expected a positive number, got {width_ratio}")
+    if write is not None and not write.endswith((".yaml", ".yml")):
+        problems.append(f'--write "{write}": expected a .yaml file')
+    if write is not None and not motor:
+        problems.append("--write puts the chosen motor into the file: it needs the motor chosen (drop --no-motor)")
+    check_options(*problems)
+    life_s = _quantity(life, "time", "--life", "20000 h")
+    sync = _quantity(synchronous, "angular_speed", "--synchronous", "1500 rpm")
+    mech = _compile(file_or_example)
+    try:
+        result = run(
+            mech, life_h=life_s / 3600 if life_s is not None else None, kind=kind, delta=delta, reserve=reserve,
+            catalogue=catalogue, synchronous=sync, motor=motor, steel=steel, bush=bush, width_ratio=width_ratio,
+            bolt_class=bolt_class,
+        )  # fmt: skip
+        written = _write(mech, result, write) if write is not None else None
+    except LinkworkError as exc:
+        fail(exc)
+    if as_json:
+        echo_json({**result.record(), **({"written": written} if written else {})})
+        return
+    typer.echo(f"{result.name}: sizing")
+    shown = (f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}" for k, v in result.inputs.items() if v is not None)
+    typer.echo("  inputs (defaults included): " + ", ".join(shown))
+    for table in result.tables():
+        typer.echo(table.text())
+    if result.motor is not None:
+        for passed in result.motor.passed:
+            typer.echo(f"  passed over: {passed.name}: {passed.why}")
+    for part, why in result.missing.items():
+        typer.echo(f"  {part}: {why}")
+    if written:
+        typer.echo(f"  wrote {written}")
+
+
+def _write(mech: object, result: object, out: str) -> str:
+    """Write the file of ``mech`` with the chosen motor, gear and flywheel to ``out``, atomically; its path."""
+    from pathlib import Path
+
+    from linkwork.atomic import write_atomic
+    from linkwork.sizing import Sizing
+    from linkwork.structure.model import Mechanism
+    from linkwork.structure.parameters import section_text
+
+    assert isinstance(result, Sizing) and isinstance(mech, Mechanism) and result.motor is not None
+    text = section_text(mech, "machine", result.motor.machine_section())
+    try:
+        path = write_atomic(out, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+    except OSError as exc:
+        raise LinkworkError(f"--write {out}: cannot write ({exc.strerror or exc})") from None
+    return str(Path(path))

@@ -1,0 +1,79 @@
+"""The report's "Sizing" section: the tables of :func:`linkwork.sizing.size` in the report's language, for a file
+with a ``sizing:`` section (or a report asked for it)."""
+
+from __future__ import annotations
+
+import html
+import math
+from typing import TYPE_CHECKING, Any
+
+from linkwork.errors import LinkworkError
+from linkwork.lang import TEXTS
+
+if TYPE_CHECKING:
+    from linkwork.sizing import Sizing, Table
+    from linkwork.structure.model import Mechanism
+
+
+def asks_sizing(mech: Mechanism, asked: bool | None) -> bool:
+    """Whether the report has the section: as ``asked``, else where the file has a ``sizing:`` section."""
+    if asked is not None:
+        return asked
+    return mech.spec is not None and mech.spec.sizing is not None
+
+
+def sizing_section(mech: Mechanism, t: Any) -> tuple[list[str], Sizing | None]:
+    """The HTML of the section (``t(key, **values)``: the report's texts) and the sizing (None where it failed:
+    the section says why).  The motor is chosen where the file's ``sizing: motor`` asks for it (it runs the
+    machine once a motor tried) and the file has a drive speed."""
+    from linkwork.sizing import size
+
+    spec = mech.spec.sizing if mech.spec is not None else None
+    body = [_p(t("sizing.intro"))]
+    try:
+        result = size(mech, motor=bool(spec is not None and spec.motor))
+    except LinkworkError as exc:
+        return [*body, _p(t("sizing.failed", why=str(exc)))], None
+    rows = [[key, "-" if value is None else value] for key, value in result.inputs.items()]
+    body += [_p(t("sizing.inputs")), _html_table([t("sizing.col.quantity"), t("sizing.col.value")], rows)]
+    for table in result.tables():
+        body += [_p(t(f"sizing.table.{table.key}")), _translated(table, t)]
+    body += [_p(t("sizing.missing", part=part, why=why)) for part, why in result.missing.items()]
+    return body, result
+
+
+def _translated(table: Table, t: Any) -> str:
+    """The table with its headings, row names, units and words in the report's language (as they are where the
+    text table has none for them)."""
+    head = [_text(t, "sizing.col.", c) for c in table.columns]
+    rows = []
+    for row in table.rows:
+        cells = []
+        for c, value in enumerate(row):
+            if isinstance(value, str):
+                prefix = "sizing.row." if c == 0 and table.columns[0] == "quantity" else "sizing.word."
+                prefix = "sizing.unit." if table.columns[c] == "unit" else prefix
+                value = _text(t, prefix, value)
+            cells.append(value)
+        rows.append(cells)
+    return _html_table(head, rows)
+
+
+def _text(t: Any, prefix: str, text: str) -> str:
+    return t(prefix + text) if prefix + text in TEXTS else text
+
+
+def _cell(x: Any) -> str:
+    if isinstance(x, float):
+        return "-" if not math.isfinite(x) else f"{x:.4g}"
+    return html.escape(str(x))
+
+
+def _html_table(head: list[str], rows: list[list[Any]]) -> str:
+    out = ["<table><thead><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr></thead><tbody>"]
+    out += ["<tr>" + "".join(f"<td>{_cell(x)}</td>" for x in row) + "</tr>" for row in rows]
+    return "".join(out) + "</tbody></table>"
+
+
+def _p(text: str) -> str:
+    return f"<p>{html.escape(text)}</p>"

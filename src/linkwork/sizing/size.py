@@ -1,0 +1,200 @@
+"""``linkwork.size``: the machine sized from its loads: motor, gear and flywheel, bearings, pins, bolts.
+
+The loads are those of the kinetostatics at the file's uniform crank speed (the steady cycle's speed varies
+within ``delta`` of it); the motor is chosen and run with the machine dynamics (:mod:`linkwork.sizing.motor`).
+Every input with a default is stated in the record (``inputs``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from linkwork.errors import LinkworkError
+from linkwork.sizing.bearings import Bearings, Bush, bearings
+from linkwork.sizing.bolts import BoltResult, size_bolts
+from linkwork.sizing.common import Catalogue, Table, bundled
+from linkwork.sizing.links import Bars, bars
+from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue
+from linkwork.sizing.pairs import pairs_of
+from linkwork.sizing.pins import Pins, Steel, pins
+from linkwork.structure.model import Mechanism
+
+#: The default life of rolling bearings, h.
+LIFE_H = 20000.0
+#: The default coefficient of speed fluctuation where the file gives none.
+DELTA = 0.05
+#: The default gear efficiency where the file gives no gear.
+EFFICIENCY = 0.95
+
+
+@dataclass(frozen=True)
+class Sizing:
+    """The sizing of a machine: each part's result (None where it was not asked or has no data: ``missing``
+    says why), and the inputs it was sized with, defaults included."""
+
+    name: str
+    inputs: dict[str, Any]
+    motor: MotorChoice | None
+    bearings: Bearings
+    pins: Pins
+    bolts: BoltResult | None
+    missing: dict[str, str]
+    links: Bars | None = None
+
+    def tables(self) -> list[Table]:
+        out = [self.motor.table()] if self.motor is not None else []
+        out += self.bearings.tables() + [self.pins.table()]
+        out += [self.links.table()] if self.links is not None else []
+        out += self.bolts.tables() if self.bolts is not None else []
+        return out
+
+    def record(self) -> dict[str, Any]:
+        """The JSON record (write it with :func:`linkwork.io.jsonout.dumps`)."""
+        return {
+            "name": self.name,
+            "inputs": self.inputs,
+            "motor": self.motor.record() if self.motor is not None else None,
+            "bearings": self.bearings.record(),
+            "pins": self.pins.record(),
+            "links": self.links.record() if self.links is not None else None,
+            "bolts": self.bolts.record() if self.bolts is not None else None,
+            "missing": self.missing,
+        }
+
+
+def _row(cat: Catalogue, name: str, what: str) -> dict[str, float]:
+    if name not in cat.names:
+        raise LinkworkError(f'{what} "{name}": one of {", ".join(cat.names)} ({cat.source})')
+    return cat.row(cat.names.index(name))
+
+
+def _file_parts(file: Any) -> tuple[dict[str, tuple[float, float]], dict[str, float], dict[str, Any]]:
+    """The pins (diameter, width), the guides' lengths and the links' sections (shape, dimensions) of the file's
+    ``sizing:`` section (None: none of them), SI."""
+    if file is None:
+        return {}, {}, {}
+    pins_given = {k: (v.diameter, v.width) for k, v in file.pins.items()}
+    sections = {
+        name: (sec.shape, {k: v for k, v in sec.model_dump(exclude={"shape"}).items() if v is not None})
+        for name, sec in file.sections.items()
+    }
+    return pins_given, dict(file.guides), sections
+
+
+def size(
+    mech: Mechanism,
+    *,
+    life_h: float | None = None,
+    kind: str = "ball",
+    delta: float | None = None,
+    efficiency: float | None = None,
+    reserve: float = 0.8,
+    catalogue: str | Path | None = None,
+    synchronous: float | None = None,
+    motor: bool = True,
+    steel: str = "C45 normalised",
+    safety: float = 2.0,
+    bush: str = "tin bronze CuSn12 greased",
+    width_ratio: float = 1.0,
+    bolts: Any = None,
+    bolt_class: str = "5.6",
+    bolt_safety: float = 1.5,
+    joint_safety: float = 1.5,
+    friction: float = 0.2,
+    load_factor: float = 0.25,
+    steps: int = 360,
+) -> Sizing:
+    """Size the machine ``mech`` (``linkwork.size`` also takes a path, an example name or a Spec).
+
+    Parameters
+    ----------
+    life_h : float
+        Basic rating life L10h of the rolling bearings, h (default: the file's ``sizing: life``, else 20000).
+    kind : str
+        ``ball`` or ``roller`` bearings (the life exponent 3 or 10/3).
+    delta : float
+        Coefficient of speed fluctuation the flywheel is sized for (default: the file's, else 0.05).
+    efficiency : float
+        Of the gear (default: the file's gear's, else 0.95).
+    reserve : float
+        The share of the motor's breakdown torque its peak torque may reach.
+    catalogue : path
+        A motor catalogue (CSV, the columns of the bundled ``motors.csv``); default the bundled one.
+    synchronous : float
+        Keep to motors of this synchronous speed, rad/s.
+    motor : bool
+        Choose the motor (False: bearings, pins and bolts only).
+    steel, safety : str, float
+        The steel grade of the pins and links (``steels.csv``) and the safety factor on its yield strength.
+    bush, width_ratio : str, float
+        The plain bush (``bushes.csv``) and the width / diameter of the least pins.
+    bolts : array (n, 2)
+        Foundation bolts' positions, m (default: the file's ``sizing: bolts``); none: no bolt sizing.
+    bolt_class, bolt_safety, joint_safety, friction, load_factor
+        The bolts' property class (``bolt_classes.csv``) and safety on its yield; the joint's safety against
+        opening and sliding, its friction coefficient and load factor.
+    steps : int
+        Crank angles over the turn for the loads.
+    """
+    file = mech.spec.sizing if mech.spec is not None and mech.spec.sizing is not None else None
+    if life_h is None:
+        life_h = file.life / 3600.0 if file is not None and file.life is not None else LIFE_H
+    if delta is None:
+        delta = mech.delta if mech.delta is not None else DELTA
+    if efficiency is None:
+        efficiency = mech.machine.efficiency if mech.machine is not None else EFFICIENCY
+    if bolts is None and file is not None and file.bolts:
+        bolts = np.array(file.bolts, dtype=float)
+    steel_row = _row(bundled("steels.csv"), steel, "steel")
+    bush_row = _row(bundled("bushes.csv"), bush, "bush")
+    _row(bundled("bolt_classes.csv"), bolt_class, "bolt class")  # a wrong class said even where no bolts are sized
+    bush_limits = Bush(bush, bush_row["p"], bush_row["v"], bush_row["pv"])
+    grade = Steel(steel, steel_row["yield"], steel_row["tensile"], steel_row["endurance"])
+    pin_sizes, guides, given = _file_parts(file)
+    from linkwork.kinetostatics.forces import forces
+    from linkwork.motion.analysis import CrankAngles
+
+    f = forces(mech, steps=steps)
+    angles = CrankAngles.of(mech)
+    if angles is None:
+        raise LinkworkError("sizing needs one crank driven by the frame: the cycle is its turn")
+    phi = np.asarray(angles.phi(f.angles), dtype=float)
+    crank = abs(float(mech.drive_speed[0]))
+    pairs = pairs_of(f)
+    missing: dict[str, str] = {}
+    found = bearings(pairs, phi, crank, life_h=life_h, kind=kind, bush=bush_limits, pins=pin_sizes,
+                     width_ratio=width_ratio, guides=guides)  # fmt: skip
+    pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
+    linked = bars(f, phi, grade, safety=safety, sections=given)
+    held = None
+    if bolts is not None and len(bolts):
+        found_loads = np.asarray(f.foundation, dtype=float)
+        held = size_bolts(found_loads, phi, np.asarray(bolts, dtype=float), threads=bundled("threads.csv"),
+                          classes=bundled("bolt_classes.csv"), bolt_class=bolt_class, safety=joint_safety,
+                          friction=friction, load_factor=load_factor, bolt_safety=bolt_safety)  # fmt: skip
+    else:
+        missing["bolts"] = "no bolt pattern: give sizing: bolts: [[x, y], ...] in the file"
+    choice = None  # last: the runs of the machine take the longest, and the other parts' problems come first
+    if motor:
+        from linkwork.machine.reduced import reduced
+
+        cat = motor_catalogue(catalogue)
+        choice = choose_motor(mech, reduced(mech), delta, efficiency=efficiency, reserve=reserve, catalogue=cat,
+                              synchronous=synchronous)  # fmt: skip
+    else:
+        missing["motor"] = "not asked"
+    inputs = {
+        "life_h": life_h, "bearing_kind": kind, "delta": delta, "gear_efficiency": efficiency, "reserve": reserve,
+        "catalogue": str(catalogue) if catalogue is not None else "motors.csv (bundled, typical values)",
+        "synchronous_rpm": synchronous * 30 / math.pi if synchronous is not None else None,
+        "steel": steel, "pin_safety": safety, "bush": bush, "width_ratio": width_ratio, "bolt_class": bolt_class,
+        "bolt_safety": bolt_safety, "joint_safety": joint_safety, "friction": friction, "load_factor": load_factor,
+        "steps": steps, "crank_rpm": crank * 30 / math.pi,
+        "loads": "kinetostatics at the file's uniform crank speed",
+    }  # fmt: skip
+    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked)
