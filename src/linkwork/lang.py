@@ -416,6 +416,26 @@ TEXTS: dict[str, tuple[str, str]] = {
     "vector.acceleration.coriolis": ("Coriolis", "кориолисово"),
     "vector.acceleration.sliding": ("sliding along the guide", "относительное (вдоль направляющей)"),
     "animation.crank": ("{name}: crank at {angle}°", "{name}: угол кривошипа {angle}°"),
+    # ------------------------------------------------------------------ force plans, Zhukovsky's lever
+    "forceplans.title": ("{name}: force plans of the groups", "{name}: планы сил групп"),
+    "forceplans.cell": ("{group}:  μF = {scale} N/mm", "{group}:  μF = {scale} Н/мм"),
+    "forceplans.driving": ("driving link {group}", "начальное звено {group}"),
+    "forceplans.not_solved": (" (closed by the analytic reactions)", " (замкнут реакциями аналитического решения)"),
+    "lever.title": ("{name}: Zhukovsky's lever", "{name}: рычаг Жуковского"),
+    "lever.scale": (
+        "velocity plan turned by 90°, pole p,  μv = {plan} (m/s)/mm;  forces: μF = {scale} N/mm",
+        "план скоростей, повёрнутый на 90°, полюс p,  μv = {plan} (м/с)/мм;  силы: μF = {scale} Н/мм",
+    ),
+    "lever.moment": ("balancing moment M_b = {moment} N·m", "уравновешивающий момент Mу = {moment} Н·м"),
+    "force.weight": ("weight", "сила тяжести"),
+    "force.inertia": ("inertia force", "сила инерции"),
+    "force.load": ("external load", "внешняя нагрузка"),
+    "force.known": ("reaction of a group taken before", "реакция ранее рассмотренной группы"),
+    "force.tangential": ("tangential component", "касательная составляющая"),
+    "force.normal": ("normal component", "нормальная составляющая"),
+    "force.reaction": ("reaction found", "искомая реакция"),
+    "force.internal": ("reaction in the inner joint", "реакция во внутренней паре"),
+    "force.balancing": ("balancing force", "уравновешивающая сила"),
     # ------------------------------------------------------------------ units
     "unit.mm": ("mm", "мм"),
     "unit.N": ("N", "Н"),
@@ -438,6 +458,18 @@ def kind_named(kind: str, name: str) -> str:
     """``rocker output``: a member's kind and its name, the word once where the name is the kind's word
     (``rocker``, not ``rocker rocker``)."""
     return kind if name.strip().lower() == kind.lower() else f"{kind} {name}"
+
+
+def group_kind(kind: str, lang: str) -> str:
+    """An Assur group's kind (``RRP``) in the notation of the language (``ВВП`` in Russian: вращательная,
+    поступательная)."""
+    return kind.translate(str.maketrans("RP", "ВП")) if lang == "ru" else kind
+
+
+def group_label(label: str, lang: str) -> str:
+    """A group's label (``II(4,5) RRP``) with its kind in the notation of the language."""
+    head, _, kind = label.partition(" ")
+    return f"{head} {group_kind(kind, lang)}" if kind else head
 
 
 def t(key: str, lang: str = "en", /, **values: Any) -> str:

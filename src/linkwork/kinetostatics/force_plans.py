@@ -103,11 +103,12 @@ class PlanForce:
 
     def tex(self, lang: str = "en") -> str:
         """The force's name as matplotlib's mathtext writes it: ``$R_{12}^{n}$``, ``$\\Phi_{и2}$``."""
-        part = {"n": "^{n}", "t": r"^{\tau}"}.get(self.part, "")
-        if self.symbol in ("Phi", "MPhi"):
-            head = r"\Phi" if self.symbol == "Phi" else r"M_{\Phi"
-            sub = ("и" if lang == "ru" else "") + self.index
-            return f"${head}_{{{sub}}}}}$" if self.symbol == "MPhi" else f"${head}_{{{sub}}}$"
+        part = {"n": "^{n}", "t": r"^{\tau}", "'": "^{\\prime}", "''": "^{\\prime\\prime}"}.get(self.part, "")
+        sub = ("и" if lang == "ru" else "") + self.index
+        if self.symbol == "Phi":
+            return f"$\\Phi_{{{sub}}}{part}$"
+        if self.symbol == "MPhi":
+            return f"$M_{{\\Phi {sub}}}{part}$"
         return f"${self.symbol}_{{{self.index}}}{part}$"
 
 

@@ -38,7 +38,8 @@ class LeverForce:
     Attributes
     ----------
     force : PlanForce
-        The force (a couple's half: ``part`` ``"'"`` or ``"''"``), N.
+        The force, N; a couple's half: ``part`` ``"'"`` or ``"''"``, ``kind`` ``"inertia"`` for an inertia
+        moment's, ``"load"`` for an external moment's.
     image : ndarray (V, A, 2)
         Where it acts on the lever: the velocity of its point turned by 90 degrees counter-clockwise, m/s.
     label : str
@@ -92,9 +93,10 @@ def _pair_of_forces(couple: PlanForce, a: np.ndarray, b: np.ndarray) -> tuple[Pl
     with np.errstate(invalid="ignore", divide="ignore"):
         f = (couple.moment / length)[..., None] * _perp(e)  # cross(b - a, f) = M
     zero = np.zeros(couple.moment.shape)
+    kind = "inertia" if couple.symbol == "MPhi" else "load"
     return (
-        PlanForce(couple.symbol, couple.index, "'", couple.kind, couple.link, f, b, zero, couple.about),
-        PlanForce(couple.symbol, couple.index, "''", couple.kind, couple.link, -f, a, zero, couple.about),
+        PlanForce(couple.symbol, couple.index, "'", kind, couple.link, f, b, zero, couple.about),
+        PlanForce(couple.symbol, couple.index, "''", kind, couple.link, -f, a, zero, couple.about),
     )
 
 
@@ -144,7 +146,7 @@ def lever(f: Forces) -> Lever:
                 applied += _pair_of_forces(couple, points[..., a, :], points[..., b, :])
         for force in applied:
             image = _perp(_velocity(kin, link, force.point))
-            label = f"s{link}" if force.kind in ("weight", "inertia") else _letter(force, points, names, link, m)
+            label = f"s{link}" if force.symbol in ("G", "Phi") else _letter(force, points, names, link, m)
             out.append(LeverForce(force, image, label, _cross(image, force.vector)))
     total = sum((lf.moment for lf in out), np.zeros(kin.valid_all.shape))
     omega = kin.vel[..., crank, 2]

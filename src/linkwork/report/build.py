@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.io.jsonout import dumps
-from linkwork.lang import check_lang, kind_named, t
+from linkwork.lang import check_lang, group_kind, group_label, kind_named, t
 from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
 from linkwork.structure.model import PairType
@@ -260,18 +260,6 @@ def _import_drawing() -> None:
     """Import matplotlib's figure and Agg canvas (a third of a second) once, before the second process forks:
     both processes draw."""
     require("matplotlib.figure", "matplotlib.backends.backend_agg", purpose="the report's figures")
-
-
-def group_kind(kind: str, lang: str) -> str:
-    """An Assur group's kind (``RRP``) in the notation of the language (``ВВП`` in Russian: вращательная,
-    поступательная)."""
-    return kind.translate(str.maketrans("RP", "ВП")) if lang == "ru" else kind
-
-
-def group_label(label: str, lang: str) -> str:
-    """A group's label (``II(4,5) RRP``) with its kind in the notation of the language."""
-    head, _, kind = label.partition(" ")
-    return f"{head} {group_kind(kind, lang)}" if kind else head
 
 
 def _structure(run: _Run) -> None:
