@@ -427,6 +427,85 @@ TEXTS: dict[str, tuple[str, str]] = {
         "план скоростей, повёрнутый на 90°, полюс p,  μv = {plan} (м/с)/мм;  силы: μF = {scale} Н/мм",
     ),
     "lever.moment": ("balancing moment M_b = {moment} N·m", "уравновешивающий момент Mу = {moment} Н·м"),
+    "caption.force_plans": ("Force plans of the Assur groups", "Планы сил групп Ассура"),
+    "caption.lever": ("Zhukovsky's lever", "Рычаг Жуковского"),
+    "caption.levers": ("Zhukovsky's lever at the 12 positions", "Рычаг Жуковского в 12 положениях"),
+    "levers.title": (
+        "{name}: Zhukovsky's lever at the {count} positions",
+        "{name}: рычаг Жуковского в {count} положениях",
+    ),
+    "levers.cell": (
+        "{position}: M_b = {moment} N·m; μF = {scale} N/mm",
+        "{position}: Mу = {moment} Н·м; μF = {scale} Н/мм",
+    ),
+    "levers.scale": (
+        "velocity plans turned by 90°, pole p,  μv = {plan} (m/s)/mm",
+        "планы скоростей, повёрнутые на 90°, полюс p,  μv = {plan} (м/с)/мм",
+    ),
+    "kgraph.title": (
+        "Kinetostatic analysis by the graphical method, position {position}",
+        "Силовой расчёт графоаналитическим методом, положение {position}",
+    ),
+    "kgraph.intro": (
+        "The groups are taken from the last one to the driving link. Each is cut free and loaded with its weights, "
+        "inertia forces and moments, external loads and the reactions of the groups taken before it. The "
+        "tangential components of the reactions at the outer revolute joints come from each link's moments about "
+        "the inner joint; the force plan then gives the normal components (or a guide's reaction) by its closing. "
+        "Forces in N, moments in N·m, directions in degrees from the x axis counter-clockwise; Rij is the force "
+        "of link i on link j.",
+        "Группы рассматриваются от последней присоединённой к начальному звену. Каждая группа освобождается от "
+        "связей и нагружается силами тяжести, силами и моментами сил инерции, внешними нагрузками и реакциями "
+        "ранее рассмотренных групп. Касательные составляющие реакций во внешних вращательных парах находятся из "
+        "уравнений моментов сил, действующих на каждое звено, относительно внутреннего шарнира; нормальные "
+        "составляющие (или реакция направляющей) — построением плана сил. Силы в Н, моменты в Н·м, направления в "
+        "градусах от оси x против часовой стрелки; Rij — сила действия звена i на звено j.",
+    ),
+    "kgraph.group": ("Group {group} (links {links})", "Группа {group} (звенья {links})"),
+    "kgraph.driving": ("Driving link {group}", "Начальное звено {group}"),
+    "kgraph.forces_on": ("Forces on it:", "Действующие силы:"),
+    "kgraph.couple": ("couple (moment)", "момент пары сил"),
+    "kgraph.not_solved": (
+        "The textbook's split does not apply to this group: its plan is closed by the reactions of the analytic "
+        "solution.",
+        "Для этой группы разложение реакций на составляющие не применяется: план сил замкнут реакциями "
+        "аналитического решения.",
+    ),
+    "kgraph.moment": (
+        "ΣM_{about}(link {link}) = 0: {unknown}·l + {terms} = 0, l = {length} mm, hence {unknown} = {value} N "
+        "(positive: counter-clockwise about {about}).",
+        "ΣM_{about}(звено {link}) = 0: {unknown}·l + {terms} = 0, l = {length} мм, откуда {unknown} = {value} Н "
+        "(положительна против часовой стрелки относительно {about}).",
+    ),
+    "kgraph.couple_eq": (
+        "ΣM_{about}(link {link}) = 0: {terms} + M = 0, hence the guide's couple M = {value} N·m (where {unknown} "
+        "acts).",
+        "ΣM_{about}(звено {link}) = 0: {terms} + M = 0, откуда момент направляющей M = {value} Н·м (точка "
+        "приложения {unknown}).",
+    ),
+    "kgraph.plan": (
+        "Force plan: {equation}, drawn to μF = {scale} N/mm:",
+        "План сил: {equation}, строится в масштабе μF = {scale} Н/мм:",
+    ),
+    "kgraph.found": ("From the plan: {reactions}.", "Из плана сил: {reactions}."),
+    "kgraph.balancing": (
+        "The moments about the pivot give the balancing moment M_b = {value} N·m (counter-clockwise positive).",
+        "Из уравнения моментов относительно оси вращения уравновешивающий момент Mу = {value} Н·м "
+        "(положителен против часовой стрелки).",
+    ),
+    "kgraph.lever": (
+        "Zhukovsky's lever: the balancing moment from the lever's moments about the pole, beside the driving "
+        "torque of the kinetostatic solution (difference relative to the largest torque).",
+        "Рычаг Жуковского: уравновешивающий момент из уравнения моментов относительно полюса повёрнутого плана "
+        "скоростей и момент, найденный силовым расчётом (разность отнесена к наибольшему моменту).",
+    ),
+    "kgraph.head.force": ("force", "сила"),
+    "kgraph.head.what": ("what", "что это"),
+    "kgraph.head.value": ("value, N (N·m)", "величина, Н (Н·м)"),
+    "kgraph.head.length": ("on the plan, mm", "на плане, мм"),
+    "kgraph.head.direction": ("direction, °", "направление, °"),
+    "kgraph.head.lever": ("M_b by the lever, N·m", "Mу по рычагу, Н·м"),
+    "kgraph.head.kinetostatic": ("driving torque, N·m", "момент из силового расчёта, Н·м"),
+    "kgraph.head.difference": ("difference", "разность"),
     "force.weight": ("weight", "сила тяжести"),
     "force.inertia": ("inertia force", "сила инерции"),
     "force.load": ("external load", "внешняя нагрузка"),

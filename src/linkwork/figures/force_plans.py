@@ -122,3 +122,38 @@ def force_figures(f: Forces, index: int, position: int | None = None, lang: str 
 
     return (force_plans_figure(force_plans(f), index, position, lang),
             lever_figure(lever(f), f.kinematics, index, position, lang))  # fmt: skip
+
+
+def lever_sheet(lv: Lever, kin: Kinematics, lang: str = "en") -> Figure:
+    """Zhukovsky's lever ``lv`` at every sample of ``kin`` (the twelve positions, position 0 first) on one sheet, to
+    one velocity scale, each with its force scale and its balancing moment; the texts in ``lang``."""
+    from matplotlib.figure import Figure
+
+    from linkwork.motion.plans import plan_series
+
+    velocity = plan_series(kin)[0]
+    count = len(kin.angles)
+    first = [lever_scene(lv, velocity, k, lang=lang) for k in range(count)]
+    plan_scale = max(s.plan_scale for s in first)
+    cols, rows, cell = 4, -(-count // 4), 2.6
+    rough = [lever_scene(lv, velocity, k, lang=lang, plan_scale=plan_scale) for k in range(count)]
+    span = max(float(np.max(s.extent()[2:] - s.extent()[:2])) for s in rough)
+    em = 7.0 * span / (cell * 72 / 1.2)
+    scenes = [lever_scene(lv, velocity, k, lang=lang, plan_scale=plan_scale, em=em) for k in range(count)]
+    fig = Figure(figsize=(11.0, 2.9 * rows + 1.3))
+    height = fig.get_figheight()
+    grid = fig.add_gridspec(rows, cols, left=0.02, right=0.98, top=1 - 0.75 / height, bottom=0.75 / height,
+                            hspace=0.3, wspace=0.08)  # fmt: skip
+    boxes = np.array([s.extent() for s in scenes])
+    half = np.max(boxes[:, 2:] - boxes[:, :2], axis=0) / 2
+    for k, scene in enumerate(scenes):
+        ax = fig.add_subplot(grid[k // cols, k % cols])
+        centre = (boxes[k, :2] + boxes[k, 2:]) / 2
+        draw_forces(sheet(np.concatenate([centre - half, centre + half]), ax=ax), scene)
+        moment, scale = f"{float(lv.balancing[0, k]):.4g}", f"{scene.scale:g}"
+        ax.set_title(t("levers.cell", lang, position=k, moment=moment, scale=scale), fontsize=8)
+    note = t("levers.scale", lang, plan=f"{plan_scale:g}")
+    fig.suptitle(f"{t('levers.title', lang, name=kin.mechanism.name, count=count)}\n{note}", fontsize=10)
+    kinds = [k for k in FORCE_KINDS if any(k in s.kinds() for s in scenes)]
+    _legend(fig, kinds, lang)
+    return fig

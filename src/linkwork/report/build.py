@@ -147,6 +147,12 @@ class Cycle:
         The 12 positions, position 0 first.
     index : int
         The sample of ``kin`` at the position of the plans.
+    drawn : tuple of int
+        The positions the plans are drawn at (of the twelve).
+    sheets : bool
+        Whether the plans of all twelve positions are drawn too (``--position all``).
+    dxf : bool
+        Whether the drawings are written for CAD too.
     """
 
     kin: Kinematics
@@ -154,6 +160,9 @@ class Cycle:
     sign: float
     twelve: Kinematics
     index: int
+    drawn: tuple[int, ...] = (0,)
+    sheets: bool = False
+    dxf: bool = False
 
     def phi(self, angles: Any) -> np.ndarray:
         """Crank angles turned from position 0, degrees in [0, 360), of drive angles (rad), as the tables and
@@ -297,7 +306,7 @@ def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) ->
     drawn = plan_positions(mech, twelve) if position in (None, "all") else [int(position) % 12]
     phi = np.degrees(np.arange(steps) * 2 * np.pi / steps)
     index = int(np.argmin(np.abs((phi - 30.0 * drawn[0] + 180.0) % 360.0 - 180.0)))
-    cycle = Cycle(kin, zero, sign, twelve, index)
+    cycle = Cycle(kin, zero, sign, twelve, index, tuple(drawn), position == "all", dxf)
     run.jobs.append(lambda: write_csv(kin, run.folder / "kinematics.csv"))
     run.jobs.append(lambda: write_netcdf(kin, run.folder / "kinematics.nc"))
     sec = Section("kinematics", run.t("section.kinematics"))
@@ -463,6 +472,7 @@ def _forces(run: _Run, cycle: Cycle) -> None:
     from linkwork import figures
     from linkwork.io.force_tables import to_json, write_csv
     from linkwork.kinetostatics import forces
+    from linkwork.structure.model import one_crank
 
     mech = run.mech
     run.progress("forces")
@@ -487,6 +497,12 @@ def _forces(run: _Run, cycle: Cycle) -> None:
             joint = str(mech.pair_joint[k])
             make = functools.partial(figures.hodograph, f, joint, at=at12, zero=zero, lang=lang)
             sec.figures.append(run.figure(f"hodograph_{joint}", make, run.t("caption.hodograph", joint=joint)))
+    if one_crank(mech):  # the graphical method: force plans and Zhukovsky's lever at the plans' position
+        from linkwork.report.kinetostatic import sections
+
+        body, names = sections(run, at12, cycle.drawn[0], cycle.sheets, cycle.dxf)
+        sec.body += body
+        sec.figures += names
     run.sections.append(sec)
 
 

@@ -154,12 +154,15 @@ def _between(vertices: np.ndarray, vector: np.ndarray, size: float) -> tuple[np.
 
 
 def lever_scene(lv: Lever, velocity: PlanSeries, index: int, *, lang: str = "en", em: float = LETTERING,
-                variant: int = 0) -> ForceScene:  # fmt: skip
+                variant: int = 0, plan_scale: float | None = None,
+                scale: float | None = None) -> ForceScene:  # fmt: skip
     """Zhukovsky's lever at sample ``index``: the velocity plan ``velocity`` (of the same samples) turned by 90
-    degrees at its own scale μv, every force of ``lv`` at its point's image to a force scale μF that draws the
-    largest 40 mm long, the balancing force at the crank pin's image; names in ``lang``."""
+    degrees at its scale μv (``plan_scale``, (m/s)/mm; default its own), every force of ``lv`` at its point's image
+    to a force scale μF (``scale``, N/mm; default one that draws the largest 40 mm long; those shorter than half
+    the lettering left out), the balancing force at the crank pin's image; names in ``lang``."""
     values = velocity.values[variant, index]  # (L, 2) m/s
-    plan_scale = _round_scale(float(np.nanmax(np.hypot(*values[: len(velocity.points)].T), initial=0.0)))
+    if plan_scale is None:
+        plan_scale = _round_scale(float(np.nanmax(np.hypot(*values[: len(velocity.points)].T), initial=0.0)))
     turn = np.array([[0.0, -1.0], [1.0, 0.0]])  # +90 degrees
     places = (values @ turn.T) / plan_scale
     lines = [np.stack([np.zeros(2), places[j]]) for j in range(1, len(velocity.points))]
@@ -169,10 +172,10 @@ def lever_scene(lv: Lever, velocity: PlanSeries, index: int, *, lang: str = "en"
     forces = [(lf.image[variant, index] / plan_scale, lf.force) for lf in lv.forces]
     vectors = [f.vector[variant, index] for _, f in forces] + [lv.balancing_force[variant, index]]
     largest = max((float(np.hypot(*v)) for v in vectors if np.isfinite(v).all()), default=0.0)
-    scale = _round_scale(largest * 100.0 / 40.0)
+    scale = _round_scale(largest * 100.0 / 40.0) if scale is None else float(scale)
     drafts: list[_Draft] = []
-    for (at, f), v in zip(forces, vectors, strict=False):
-        if _drawn(v, largest) and np.isfinite(at).all():
+    for (at, f), v in zip(forces, vectors, strict=False):  # those too short to see left out (they need not close)
+        if _drawn(v, largest) and np.isfinite(at).all() and np.hypot(*v) / scale > 0.5 * em:
             drafts.append((at, at + v / scale, f, False))
     pin = lv.pin_image[variant, index] / plan_scale
     balancing = PlanForce("F", "b", "", "balancing", 1, lv.balancing_force, lv.pin_image, np.zeros(1))
