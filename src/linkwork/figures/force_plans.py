@@ -88,7 +88,10 @@ def force_plans_figure(plans: ForcePlans, index: int, position: int | None = Non
         if g.balancing is not None:
             label = t("forceplans.driving", lang, group=label)
         title = t("forceplans.cell", lang, group=label, scale=f"{scene.scale:g}")
-        ax.set_title(title + ("" if g.solved else t("forceplans.not_solved", lang)), fontsize=9)
+        title += "" if g.solved else t("forceplans.not_solved", lang)
+        if not scene.arrows:  # nothing finite to draw
+            title += t("forceplans.singular", lang)
+        ax.set_title(title, fontsize=9)
     name = plans.forces.mechanism.name
     fig.suptitle(f"{t('forceplans.title', lang, name=name)}\n{where(angle, position, lang)}", fontsize=11)
     _legend(fig, kinds, lang)

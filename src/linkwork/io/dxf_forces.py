@@ -75,7 +75,8 @@ def write_force_plans(plans: ForcePlans, index: int, path: str | Path, lang: str
         label = group_label(g.label, lang)
         if g.balancing is not None:
             label = t("forceplans.driving", lang, group=label)
-        _note(doc, msp, t("forceplans.cell", lang, group=label, scale=f"{scene.scale:g}"), box + np.r_[offset, offset],
+        note = t("forceplans.cell", lang, group=label, scale=f"{scene.scale:g}").replace("\n", ";  ")
+        _note(doc, msp, note, box + np.r_[offset, offset],
               scene.em)  # fmt: skip
         x += box[2] - box[0] + 20.0
         top = max(top, float(box[3]) + 6 * scene.em)

@@ -14,8 +14,10 @@ A revolute pair at the end of a dyad's link is split as the textbooks split it: 
 inner joint, its normal component ``R12n`` along that line.  A prismatic pair at the end pushes normal
 to its guide.  The two unknowns along known lines close the polygon (two equations, the plan's closing);
 the inner joint's force then comes from one link's equilibrium, and a guide's couple (where the guide's
-force acts) from the slider's moments.  The driving link closes its polygon with the frame's reaction
-``R01``, and its moment equation about the pivot gives the balancing moment (the driving torque).
+force acts) from the slider's moments.  At a dead point (:attr:`Forces.singular`) the two lines are parallel
+and the reactions indeterminate: NaN there, and in the groups taken after.  The driving link closes its
+polygon with the frame's reaction ``R01``, and its moment equation about the pivot gives the balancing
+moment (the driving torque).
 
 These are solved here by their own arithmetic, from the loads and the positions, not read from
 :class:`~linkwork.kinetostatics.forces.Forces`: the two are independent methods and agree (the tests
@@ -432,7 +434,7 @@ class _Group:
         rest = -(known + sum((t.vector for t in tangents), np.zeros(self.shape + (2,))))
         (k1, l1, d1, p1, kind1), (k2, l2, d2, p2, kind2) = lines
         with np.errstate(invalid="ignore", divide="ignore"):
-            det = _cross(d1, d2)
+            det = np.where(self.f.singular_all, np.nan, _cross(d1, d2))  # a dead point: indeterminate
             c1, c2 = _cross(rest, d2) / det, _cross(d1, rest) / det
         unknown = {k1: self.reaction(k1, l1, c1[..., None] * d1, p1, kind1),
                    k2: self.reaction(k2, l2, c2[..., None] * d2, p2, kind2)}  # fmt: skip
