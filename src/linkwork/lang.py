@@ -420,11 +420,11 @@ TEXTS: dict[str, tuple[str, str]] = {
     "forceplans.title": ("{name}: force plans of the groups", "{name}: планы сил групп"),
     "forceplans.cell": ("{group}\nμF = {scale} N/mm", "{group}\nμF = {scale} Н/мм"),
     "forceplans.singular": (
-        " (a dead point: the reactions are indeterminate)",
-        " (мёртвое положение: реакции неопределимы)",
+        "a dead point: the reactions are indeterminate",
+        "мёртвое положение: реакции неопределимы",
     ),
     "forceplans.driving": ("driving link {group}", "начальное звено {group}"),
-    "forceplans.not_solved": ("; closed by the analytic reactions", "; замкнут реакциями аналитического решения"),
+    "forceplans.not_solved": ("closed by the analytic reactions", "замкнут реакциями аналитического решения"),
     "lever.title": ("{name}: Zhukovsky's lever", "{name}: рычаг Жуковского"),
     "lever.scale": (
         "velocity plan turned by 90°, pole p,  μv = {plan} (m/s)/mm;  forces: μF = {scale} N/mm",

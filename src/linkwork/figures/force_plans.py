@@ -53,6 +53,8 @@ def draw_forces(sh: Sheet, scene: ForceScene) -> None:
 def _legend(fig: Figure, kinds: list[str], lang: str) -> None:
     from matplotlib.lines import Line2D
 
+    if not kinds:
+        return
     names = [t(f"force.{k}", lang) for k in kinds]
     handles = [Line2D([], [], color=FORCES[k].colour, lw=FORCES[k].width) for k in kinds]
     columns = _columns(names, 0.9 * fig.get_figwidth() * 72)
@@ -76,21 +78,26 @@ def force_plans_figure(plans: ForcePlans, index: int, position: int | None = Non
     rows = -(-len(scenes) // cols)
     kinds = [k for k in FORCE_KINDS if any(k in s.kinds() for s in scenes)]
     legend = -(-len(kinds) // 2) * 0.22 + 0.2
-    fig = Figure(figsize=(cols * cell + 0.4, rows * (cell + 0.5) + 0.8 + legend))
-    height = fig.get_figheight()
-    grid = fig.add_gridspec(rows, cols, left=0.03, right=0.97, top=1 - 0.95 / height, bottom=(legend + 0.1) / height,
-                            hspace=0.35, wspace=0.1)  # fmt: skip
-    for j, (g, scene) in enumerate(zip(plans.groups, scenes, strict=True)):
-        ax = fig.add_subplot(grid[j // cols, j % cols])
-        sh = sheet(scene.extent(), ax=ax)
-        draw_forces(sh, scene)
+    titles = []
+    for g, scene in zip(plans.groups, scenes, strict=True):
         label = group_label(g.label, lang)
         if g.balancing is not None:
             label = t("forceplans.driving", lang, group=label)
         title = t("forceplans.cell", lang, group=label, scale=f"{scene.scale:g}")
-        title += "" if g.solved else t("forceplans.not_solved", lang)
+        title += "" if g.solved else "\n" + t("forceplans.not_solved", lang)
         if not scene.arrows:  # nothing finite to draw
-            title += t("forceplans.singular", lang)
+            title += "\n" + t("forceplans.singular", lang)
+        titles.append(title)
+    lines = max(title.count("\n") + 1 for title in titles)
+    gap = 0.18 * lines  # inches of a panel's title
+    fig = Figure(figsize=(cols * cell + 0.4, rows * (cell + gap + 0.3) + 0.7 + legend))
+    height = fig.get_figheight()
+    grid = fig.add_gridspec(rows, cols, left=0.03, right=0.97, top=1 - (0.7 + gap) / height,
+                            bottom=(legend + 0.1) / height, hspace=(gap + 0.3) / cell, wspace=0.1)  # fmt: skip
+    for j, (scene, title) in enumerate(zip(scenes, titles, strict=True)):
+        ax = fig.add_subplot(grid[j // cols, j % cols])
+        sh = sheet(scene.extent(), ax=ax)
+        draw_forces(sh, scene)
         ax.set_title(title, fontsize=9)
     name = plans.forces.mechanism.name
     fig.suptitle(f"{t('forceplans.title', lang, name=name)}\n{where(angle, position, lang)}", fontsize=11)

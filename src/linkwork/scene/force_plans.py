@@ -120,12 +120,16 @@ def _drawn(vector: np.ndarray, largest: float) -> bool:
 def force_plan_scene(group: GroupPlan, index: int, *, lang: str = "en", scale: float | None = None,
                      em: float = LETTERING, variant: int = 0, angle: float = float("nan")) -> ForceScene:  # fmt: skip
     """The force plan of ``group`` at sample ``index`` (drive ``angle``, rad, for its title), drawn to ``scale``
-    (N/mm; default :meth:`GroupPlan.scale`), its names in ``lang``."""
+    (N/mm; default :meth:`GroupPlan.scale`), its names in ``lang``; without arrows at a dead point (where the
+    plan's reactions are NaN)."""
     scale = group.scale(index, variant) if scale is None else float(scale)
     vertices = group.vertices(index, variant) / scale
     values = [f.vector[variant, index] for f in group.polygon]
     largest = max((float(np.hypot(*v)) for v in values if np.isfinite(v).all()), default=0.0)
     drafts: list[_Draft] = []
+    if not np.isfinite(vertices).all():  # a dead point: no plan (a part of one would mislead)
+        return _scene("force_plan", group.label, scale, np.nan, em, lang, drafts, np.zeros((0, 2, 2)),
+                      np.zeros((0, 2)), (), angle)  # fmt: skip
     for j, f in enumerate(group.polygon):
         if _drawn(values[j], largest):
             drafts.append((vertices[j], vertices[j + 1], f, False))
