@@ -45,7 +45,7 @@ from linkwork.structure.model import Mechanism, PairType, point_labels
 
 #: How each kind of force is named in each language: symbol -> (English, Russian).
 SYMBOLS = {"R": ("R", "R"), "G": ("G", "G"), "Phi": ("Phi", "Фи"), "F": ("F", "F"), "M": ("M", "M"),
-           "MPhi": ("MPhi", "MФи")}  # fmt: skip
+           "MPhi": ("MPhi", "MФи"), "Fb": ("Fb", "Fу")}  # fmt: skip
 
 #: The kinds of force of a plan, in the order of a legend.
 KINDS = ("weight", "inertia", "load", "known", "tangential", "normal", "reaction", "internal")
@@ -65,7 +65,7 @@ class PlanForce:
     ----------
     symbol : str
         ``R`` (a reaction), ``G`` (a weight), ``Phi`` (an inertia force), ``F`` (an external load), ``MPhi`` or
-        ``M`` (a couple: an inertia moment, an external moment).
+        ``M`` (a couple: an inertia moment, an external moment), ``Fb`` (the lever's balancing force).
     index : str
         The subscript: ``"12"`` (link 1 on link 2) for a reaction, the link's number for the others.
     part : str
@@ -111,6 +111,8 @@ class PlanForce:
             return f"$\\Phi_{{{sub}}}{part}$"
         if self.symbol == "MPhi":
             return f"$M_{{\\Phi {sub}}}{part}$"
+        if self.symbol == "Fb":  # the balancing force: F_b, F_у (уравновешивающая)
+            return f"$F_{{{'у' if lang == 'ru' else 'b'}}}$"
         return f"${self.symbol}_{{{self.index}}}{part}$"
 
 

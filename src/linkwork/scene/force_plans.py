@@ -182,7 +182,7 @@ def lever_scene(lv: Lever, velocity: PlanSeries, index: int, *, lang: str = "en"
         if _drawn(v, largest) and np.isfinite(at).all() and np.hypot(*v) / scale > 0.5 * em:
             drafts.append((at, at + v / scale, f, False))
     pin = lv.pin_image[variant, index] / plan_scale
-    balancing = PlanForce("F", "b", "", "balancing", 1, lv.balancing_force, lv.pin_image, np.zeros(1))
+    balancing = PlanForce("Fb", "", "", "balancing", 1, lv.balancing_force, lv.pin_image, np.zeros(1))
     if _drawn(vectors[-1], largest) and np.isfinite(pin).all():
         drafts.append((pin, pin + vectors[-1] / scale, balancing, False))
     # the pole and the letters of the plan's points where a force acts (and the pin)
