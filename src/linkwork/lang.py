@@ -455,14 +455,14 @@ TEXTS: dict[str, tuple[str, str]] = {
         "inertia forces and moments, external loads and the reactions of the groups taken before it. The "
         "tangential components of the reactions at the outer revolute joints come from each link's moments about "
         "the inner joint; the force plan then gives the normal components (or a guide's reaction) by its closing. "
-        "Forces in N, moments in N·m, directions in degrees from the x axis counter-clockwise; Rij is the force "
-        "of link i on link j.",
+        "Forces in N, moments in N·m, directions in degrees from the x axis counter-clockwise; R12 is the force "
+        "of link 1 on link 2.",
         "Группы рассматриваются от последней присоединённой к начальному звену. Каждая группа освобождается от "
         "связей и нагружается силами тяжести, силами и моментами сил инерции, внешними нагрузками и реакциями "
         "ранее рассмотренных групп. Касательные составляющие реакций во внешних вращательных парах находятся из "
         "уравнений моментов сил, действующих на каждое звено, относительно внутреннего шарнира; нормальные "
         "составляющие (или реакция направляющей) — построением плана сил. Силы в Н, моменты в Н·м, направления в "
-        "градусах от оси x против часовой стрелки; Rij — сила действия звена i на звено j.",
+        "градусах от оси x против часовой стрелки; R12 — сила действия звена 1 на звено 2.",
     ),
     "kgraph.group": ("Group {group} (links {links})", "Группа {group} (звенья {links})"),
     "kgraph.driving": ("Driving link {group}", "Начальное звено {group}"),
