@@ -106,3 +106,50 @@ def test_the_lever_is_the_velocity_plan_turned_by_90_degrees() -> None:
     arm = kin.position("crank.A") - kin.position("crank.O1")
     fb = lv.balancing_force[0]
     assert np.allclose(arm[:, 0] * fb[:, 1] - arm[:, 1] * fb[:, 0], lv.balancing[0], rtol=1e-12, atol=1e-9)
+
+
+SLIDER_CRANK = """
+name: static-slider-crank
+units: {length: m, mass: kg, angle: deg}
+frame: {points: {O: [0, 0]}}
+links:
+  crank: {ends: [O, A], length: 0.1}
+  rod: {ends: [A, B], length: 0.3}
+  knife: {points: {B: [0, 0]}}
+joints:
+  O: {type: revolute, links: [frame, crank]}
+  A: {type: revolute, links: [crank, rod]}
+  B: {type: revolute, links: [rod, knife]}
+  guide: {type: prismatic, links: [frame, knife], point: B, through: O, axis: 0 deg}
+drives: [{joint: O, speed: 10 rad/s, angle: 60 deg}]
+loads:
+  press: {type: force, at: knife.B, force: [-1000 N, 0 N]}
+hints: {B: [0.35, 0]}
+"""
+
+
+def test_a_massless_slider_crank_against_its_closed_form(tmp_path):
+    """Massless links, a force P = 1000 N against the slider along its guide: the rod is a two-force member,
+    S = P / cos(beta) along it, the guide pushes N = P tan(beta) across, the crank needs M = -r S sin(phi + beta)
+    (sin(beta) = r sin(phi) / l); the plans' reactions and the lever's moment, at every angle."""
+    path = tmp_path / "slider-crank.yaml"
+    path.write_text(SLIDER_CRANK, encoding="utf-8")
+    mech = lw.compile(lw.load(str(path)))
+    phi = np.radians(np.arange(5.0, 360.0, 10.0))
+    f = lw.forces(lw.kinematics(mech, phi))
+    r, length, p = 0.1, 0.3, 1000.0
+    beta = np.arcsin(r * np.sin(phi) / length)  # the rod's angle below the guide, B on the +x side
+    along = np.stack([np.cos(beta), -np.sin(beta)], -1)  # unit vector from A to B
+    s = p / np.cos(beta)  # the rod pushes the slider along AB with s
+    plans = force_plans(f)
+    rrp, crank = plans.groups
+    found = {x.name(): x.vector[0] for x in rrp.reactions + crank.reactions}
+    assert np.allclose(found["R32"], -s[:, None] * along, rtol=0, atol=1e-9 * p)  # the knife on the rod, at B
+    assert np.allclose(found["R03"][:, 0], 0.0, atol=1e-9 * p)
+    assert np.allclose(found["R03"][:, 1], p * np.tan(beta), rtol=0, atol=1e-9 * p)  # the guide across
+    assert np.allclose(found["R12"], s[:, None] * along, rtol=0, atol=1e-9 * p)
+    tangential = next(x for x in rrp.polygon if x.part == "t")
+    assert np.abs(tangential.vector[0]).max() <= 1e-9 * p  # a massless rod carries no tangential component
+    torque = -r * s * np.sin(phi + beta)  # the rod's push on the pin turns the crank back: the drive holds it
+    assert np.allclose(plans.balancing[0], torque, rtol=1e-12, atol=1e-9)
+    assert np.allclose(lever(f).balancing[0], torque, rtol=1e-12, atol=1e-9)
