@@ -153,3 +153,56 @@ def test_a_massless_slider_crank_against_its_closed_form(tmp_path):
     torque = -r * s * np.sin(phi + beta)  # the rod's push on the pin turns the crank back: the drive holds it
     assert np.allclose(plans.balancing[0], torque, rtol=1e-12, atol=1e-9)
     assert np.allclose(lever(f).balancing[0], torque, rtol=1e-12, atol=1e-9)
+
+
+def _heavy(kind: str) -> lw.Mechanism:
+    """A PRP dyad (a slotted crank driving a slider: the plan's closing is two guides' normals) or an RPR dyad (a
+    crank-shaper: closed by the analytic reactions), with masses, inertias and a speed."""
+    from linkwork.spec.builder import MechanismBuilder
+
+    b = MechanismBuilder(kind)
+    if kind == "PRP":
+        b = (b.frame(points={"O1": (0, 0), "G": (0, 0.1)})
+             .link("crank", points={"O1": (0, 0), "T": (0.3, 0)}, mass=4, com=(0.1, 0.01), inertia=0.05)
+             .link("block", points={"Q": (0, 0)}, mass=1.5, inertia=0.002)
+             .link("slider", points={"Q": (0, 0)}, mass=6, com=(0.02, -0.03), inertia=0.01)
+             .revolute("O1", "frame", "crank")
+             .prismatic("on_crank", "crank", "block", point="Q", through="O1", axis=0)
+             .revolute("Q", "block", "slider")
+             .prismatic("guide", "frame", "slider", point="Q", through="G", axis=0)
+             .drive("O1", angle=45, speed="200 rpm").hint("Q", 0.1, 0.1))  # fmt: skip
+    else:
+        b = (b.frame(points={"O1": (0, 0.2), "O2": (0, 0)})
+             .link("crank", ends=("O1", "A"), length=0.1, mass=3)
+             .link("block", points={"A": (0, 0)}, mass=1, inertia=0.001)
+             .link("rocker", points={"O2": (0, 0), "T": (0.5, 0)}, mass=8, com=(0.25, 0), inertia=0.2)
+             .revolute("O1", "frame", "crank").revolute("A", "crank", "block")
+             .prismatic("slot", "rocker", "block", point="A", through="O2", axis=0)
+             .revolute("O2", "frame", "rocker")
+             .drive("O1", angle=0, speed="120 rpm").hint("slot", 0.1, 0.2).hint("rocker.T", 0.22, 0.45))  # fmt: skip
+    return lw.compile(b.build())
+
+
+@pytest.mark.parametrize("kind", ["PRP", "RPR"])
+def test_dyads_with_guides_close_their_plans_and_their_levers_give_the_torque(kind):
+    mech = _heavy(kind)
+    f = lw.forces(lw.kinematics(mech, position_angles(mech)))
+    plans = force_plans(f)
+    dyad = plans.groups[0]
+    assert dyad.solved == (kind == "PRP")
+    ok = np.flatnonzero(~f.singular)
+    assert len(ok) >= 10
+    for g in plans.groups:
+        assert max(g.closure(i) for i in ok) <= 1e-12
+        largest = max(float(np.nanmax(np.hypot(*p.vector[0, ok].T))) for p in g.polygon)
+        for r in g.reactions:
+            a, b = (int(x) for x in mech.pair_links[r.pair])
+            expected = f.pair_force(r.pair)[0] * (1 if r.link == b else -1)
+            assert np.abs(r.vector[0, ok] - expected[ok]).max() <= 1e-12 * largest, (g.label, r.name())
+            if mech.pair_type[r.pair] == PairType.PRISMATIC and r.kind != "internal":
+                couple = f.multipliers[0, ok, 2 * r.pair] * (1 if r.link == b else -1)
+                assert np.abs(r.moment[0, ok] - couple).max() <= 1e-12 * largest
+    torque = np.asarray(f.driving_torque)
+    assert np.abs(torque).max() > 1.0
+    assert np.abs(lever(f).balancing[0] - torque).max() <= 1e-9 * np.abs(torque).max()
+    assert np.abs(plans.balancing[0, ok] - torque[ok]).max() <= 1e-9 * np.abs(torque).max()

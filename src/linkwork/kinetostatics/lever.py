@@ -3,7 +3,8 @@
 Every external and inertia force of the mechanism (weights, inertia forces, the file's loads) is applied,
 parallel to itself, at the image of its point on the velocity plan turned by 90 degrees counter-clockwise
 about the pole; a couple (an inertia moment ``M_Phi2 = -J_S2 eps2``, an external moment) is first replaced
-by two equal and opposite forces ``M / l`` at two points of its link, normal to the line between them.
+by two equal and opposite forces ``M / l`` at two points of its link, normal to the line between them (its two
+points farthest apart; a slider block's one point and a point :data:`ARM` from it along the block's axis).
 The plan is then a rigid lever pivoted at the pole: the moment of a force ``F`` at the turned image
 ``perp(v)`` of its point is ``perp(v) x F = -F . v``, minus its power.  The balancing force ``F_b`` at the
 image of the crank pin, normal to the crank, holds the lever in equilibrium, and the balancing moment is
@@ -115,6 +116,21 @@ def _ends(m: Mechanism, link: int, points: np.ndarray) -> tuple[int, int]:
     return pair
 
 
+#: Where a link has one point, the second point of its couples' forces: this far along the link's x axis, m.
+ARM = 0.1
+
+
+def _couple_points(kin: Kinematics, link: int, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two material points ``(V, A, 2)`` of ``link`` for a couple's two forces: its two points farthest apart, or,
+    where it has one (a slider block), that point and the point :data:`ARM` from it along the link's x axis."""
+    a, b = _ends(kin.mechanism, link, points)
+    if a != b:
+        return points[..., a, :], points[..., b, :]
+    q = kin.pose[..., link, :]
+    start = points[..., a, :] if a >= 0 else q[..., :2]
+    return start, start + ARM * np.stack([np.cos(q[..., 2]), np.sin(q[..., 2])], -1)
+
+
 def lever(f: Forces) -> Lever:
     """Zhukovsky's lever of ``f``'s mechanism at every sample (see the module's text).
 
@@ -141,9 +157,7 @@ def lever(f: Forces) -> Lever:
     for link in range(1, len(m.link_names)):
         applied = list(loads.forces[link])
         for couple in loads.couples[link]:
-            a, b = _ends(m, link, points)
-            if a != b:
-                applied += _pair_of_forces(couple, points[..., a, :], points[..., b, :])
+            applied += _pair_of_forces(couple, *_couple_points(kin, link, points))
         for force in applied:
             image = _perp(_velocity(kin, link, force.point))
             label = f"s{link}" if force.symbol in ("G", "Phi") else _letter(force, points, names, link, m)
