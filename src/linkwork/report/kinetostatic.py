@@ -96,13 +96,14 @@ def _equation(run: Any, e: MomentEquation, i: int) -> str:
     for f, moment in e.terms:
         m = float(moment[0, i])
         if f.kind == "couple" or not np.any(f.vector[0, i]):
-            terms.append(f"{f.name(lang)} ({_n(m)})")
+            terms.append(f"{f.name(lang)} ({_n(m)} {run.t('unit.Nm')})")
         else:
             size = float(np.hypot(*f.vector[0, i]))
             arm = m / size if size > 0 else math.nan
             h = _n(arm * 1000 + 0.0, 4)
             h = f"({h})" if h.startswith("-") else h
-            terms.append(f"{f.name(lang)}·h ({_n(size)}·{h} {run.t('unit.mm')} = {_n(m)})")
+            terms.append(f"{f.name(lang)}·h ({_n(size)} {run.t('unit.N')}·{h} {run.t('unit.mm')} = {_n(m)} "
+                         f"{run.t('unit.Nm')})")  # fmt: skip
     u = e.unknown
     link = f"{e.link}"
     if math.isfinite(float(e.arm[0, i])):
