@@ -423,6 +423,11 @@ TEXTS: dict[str, tuple[str, str]] = {
         "a dead point: the reactions are indeterminate",
         "мёртвое положение: реакции неопределимы",
     ),
+    "forceplans.unit": ("N/mm", "Н/мм"),
+    "forceplans.sheet": (
+        "{name}: force plans of {group} at the {count} positions",
+        "{name}: планы сил, {group}, в {count} положениях",
+    ),
     "forceplans.driving": ("driving link {group}", "начальное звено {group}"),
     "forceplans.not_solved": ("closed by the analytic reactions", "замкнут реакциями аналитического решения"),
     "lever.title": ("{name}: Zhukovsky's lever", "{name}: рычаг Жуковского"),
@@ -433,6 +438,10 @@ TEXTS: dict[str, tuple[str, str]] = {
     "lever.moment": ("balancing moment M_b = {moment} N·m", "уравновешивающий момент Mу = {moment} Н·м"),
     "caption.force_plans": ("Force plans of the Assur groups", "Планы сил групп Ассура"),
     "caption.lever": ("Zhukovsky's lever", "Рычаг Жуковского"),
+    "caption.force_plan_sheet": (
+        "Force plans of {group} at the 12 positions",
+        "Планы сил группы {group} в 12 положениях",
+    ),
     "caption.levers": ("Zhukovsky's lever at the 12 positions", "Рычаг Жуковского в 12 положениях"),
     "levers.title": (
         "{name}: Zhukovsky's lever at the {count} positions",

@@ -254,7 +254,7 @@ def test_no_english_is_left_in_the_russian_report(name, tmp_path):
     allowed = {w for n in names for w in re.findall(r"[A-Za-z]+", n)} | SYMBOLS
     page, drawn = _report(name, tmp_path / "r", lang="ru", position="all")
     assert {"scheme", "positions", "velocity_plan", "acceleration_plan", "velocity_plans"} <= set(drawn)
-    assert {"force_plans", "lever", "levers"} <= set(drawn)  # the graphical kinetostatics, the 12 levers
+    assert {"force_plans", "lever", "levers", "force_plans_2_3"} <= set(drawn)  # the graphical kinetostatics
     assert "<html lang='ru'>" in page
     reader = _Text()
     reader.feed(page)

@@ -167,3 +167,39 @@ def lever_sheet(lv: Lever, kin: Kinematics, lang: str = "en") -> Figure:
     kinds = [k for k in FORCE_KINDS if any(k in s.kinds() for s in scenes)]
     _legend(fig, kinds, lang)
     return fig
+
+
+def force_plan_sheet(plans: ForcePlans, group: int, lang: str = "en") -> Figure:
+    """The force plan of group ``group`` (its place in ``plans.groups``) at every sample of ``plans`` (the twelve
+    positions, position 0 first) on one sheet, each to its own scale μF, stated above it; the texts in ``lang``."""
+    from matplotlib.figure import Figure
+
+    from linkwork.units import turn_deg
+
+    g = plans.groups[group]
+    angles = plans.forces.angles
+    count = len(angles)
+    cols, rows, cell = 4, -(-count // 4), 2.6
+    scenes = []
+    for k in range(count):  # the names 7 points high whatever each plan's size
+        rough = force_plan_scene(g, k, lang=lang, angle=float(angles[k]))
+        span = float(np.max(rough.extent()[2:] - rough.extent()[:2]))
+        scenes.append(force_plan_scene(g, k, lang=lang, angle=float(angles[k]), em=7.0 * span / (0.8 * cell * 72)))
+    fig = Figure(figsize=(11.0, 3.1 * rows + 1.4))
+    height = fig.get_figheight()
+    grid = fig.add_gridspec(rows, cols, left=0.02, right=0.98, top=1 - 0.8 / height, bottom=0.75 / height,
+                            hspace=0.45, wspace=0.08)  # fmt: skip
+    for k, scene in enumerate(scenes):
+        ax = fig.add_subplot(grid[k // cols, k % cols])
+        draw_forces(sheet(scene.extent(), ax=ax), scene)
+        title = t("plans.cell", lang, position=k, angle=f"{turn_deg(angles[k], 0):.0f}")
+        title += f"\nμF = {scene.scale:g} {t('forceplans.unit', lang)}" if scene.arrows else ""
+        ax.set_title(title, fontsize=8)
+    label = group_label(g.label, lang)
+    if g.balancing is not None:
+        label = t("forceplans.driving", lang, group=label)
+    name = plans.forces.mechanism.name
+    fig.suptitle(t("forceplans.sheet", lang, name=name, group=label, count=count), fontsize=10)
+    kinds = [k for k in FORCE_KINDS if any(k in s.kinds() for s in scenes)]
+    _legend(fig, kinds, lang)
+    return fig

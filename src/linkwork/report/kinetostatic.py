@@ -46,8 +46,8 @@ def sections(run: Any, at12: Forces, position: int, sheets: bool = False, dxf: b
              ) -> tuple[list[str], list[str]]:  # fmt: skip
     """The body (HTML) and the figures' names of the graphical kinetostatics at ``position`` (of ``at12``, the
     forces at the twelve positions) for the report ``run`` (:class:`linkwork.report.build._Run`); with
-    ``sheets``, the levers of all twelve positions on a sheet too; with ``dxf``, ``figures/force_plans.dxf`` and
-    ``figures/lever.dxf``."""
+    ``sheets``, each group's force plans and the levers of all twelve positions on sheets too; with ``dxf``,
+    ``figures/force_plans.dxf`` and ``figures/lever.dxf``."""
     from linkwork.figures import force_plans as figures
     from linkwork.kinetostatics.force_plans import force_plans
     from linkwork.kinetostatics.lever import lever
@@ -64,6 +64,10 @@ def sections(run: Any, at12: Forces, position: int, sheets: bool = False, dxf: b
     names = [run.figure("force_plans", make_plans, run.t("caption.force_plans") + where),
              run.figure("lever", make_lever, run.t("caption.lever") + where)]  # fmt: skip
     if sheets:
+        for j, g in enumerate(plans.groups):
+            caption = run.t("caption.force_plan_sheet", group=group_label(g.label, lang))
+            name = f"force_plans_{'_'.join(str(k) for k in g.links)}"
+            names.append(run.figure(name, functools.partial(figures.force_plan_sheet, plans, j, lang), caption))
         names.append(run.figure("levers", functools.partial(figures.lever_sheet, lv, at12.kinematics, lang),
                                 run.t("caption.levers")))  # fmt: skip
     if dxf:
