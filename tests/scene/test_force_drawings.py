@@ -104,3 +104,22 @@ def test_the_dxf_force_plans_are_the_forces_to_each_groups_scale(tmp_path, lang)
     }
     lever_doc = ezdxf.readfile(write_lever(lever(f), kin, 9, tmp_path / "lever.dxf", lang))
     assert any("Жуковского" in e.dxf.text or "Zhukovsky" in e.dxf.text for e in lever_doc.modelspace().query("TEXT"))
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_the_sheet_of_a_groups_plans_draws_each_position_to_the_scale_above_it(lang):
+    from linkwork.figures.force_plans import force_plan_sheet
+
+    kin, f = _shears()
+    plans = force_plans(f)
+    g = plans.groups[2]  # II(2,3): R43 and R63 of the two groups taken before it
+    fig = force_plan_sheet(plans, 2, lang)
+    assert len(fig.axes) == 12
+    for k, ax in enumerate(fig.axes):
+        scale = _scale(ax.get_title())
+        lines = {line.get_gid(): np.asarray(line.get_xydata()) for line in ax.lines if line.get_gid()}
+        for p in g.polygon:
+            if np.any(p.vector[0, k]):
+                xy = lines[f"{p.kind}:{p.name(lang)}"]
+                assert np.allclose((xy[1] - xy[0]) * scale, p.vector[0, k], rtol=0, atol=1e-9 * scale)
+    assert overlaps(fig) == []
