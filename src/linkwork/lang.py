@@ -416,6 +416,118 @@ TEXTS: dict[str, tuple[str, str]] = {
     "vector.acceleration.coriolis": ("Coriolis", "кориолисово"),
     "vector.acceleration.sliding": ("sliding along the guide", "относительное (вдоль направляющей)"),
     "animation.crank": ("{name}: crank at {angle}°", "{name}: угол кривошипа {angle}°"),
+    # ------------------------------------------------------------------ force plans, Zhukovsky's lever
+    "forceplans.title": ("{name}: force plans of the groups", "{name}: планы сил групп"),
+    "forceplans.cell": ("{group}\nμF = {scale} N/mm", "{group}\nμF = {scale} Н/мм"),
+    "forceplans.singular": (
+        "a dead point: the reactions are indeterminate",
+        "мёртвое положение: реакции неопределимы",
+    ),
+    "forceplans.unit": ("N/mm", "Н/мм"),
+    "forceplans.sheet": (
+        "{name}: force plans of {group} at the {count} positions",
+        "{name}: планы сил, {group}, в {count} положениях",
+    ),
+    "forceplans.driving": ("driving link {group}", "начальное звено {group}"),
+    "forceplans.not_solved": ("closed by the analytic reactions", "замкнут реакциями аналитического решения"),
+    "lever.title": ("{name}: Zhukovsky's lever", "{name}: рычаг Жуковского"),
+    "lever.scale": (
+        "velocity plan turned by 90°, pole p,  μv = {plan} (m/s)/mm;  forces: μF = {scale} N/mm",
+        "план скоростей, повёрнутый на 90°, полюс p,  μv = {plan} (м/с)/мм;  силы: μF = {scale} Н/мм",
+    ),
+    "lever.moment": ("balancing moment M_b = {moment} N·m", "уравновешивающий момент Mу = {moment} Н·м"),
+    "caption.force_plans": ("Force plans of the Assur groups", "Планы сил групп Ассура"),
+    "caption.lever": ("Zhukovsky's lever", "Рычаг Жуковского"),
+    "caption.force_plan_sheet": (
+        "Force plans of {group} at the 12 positions",
+        "Планы сил группы {group} в 12 положениях",
+    ),
+    "caption.levers": ("Zhukovsky's lever at the 12 positions", "Рычаг Жуковского в 12 положениях"),
+    "levers.title": (
+        "{name}: Zhukovsky's lever at the {count} positions",
+        "{name}: рычаг Жуковского в {count} положениях",
+    ),
+    "levers.cell": (
+        "{position}: M_b = {moment} N·m; μF = {scale} N/mm",
+        "{position}: Mу = {moment} Н·м; μF = {scale} Н/мм",
+    ),
+    "levers.scale": (
+        "velocity plans turned by 90°, pole p,  μv = {plan} (m/s)/mm",
+        "планы скоростей, повёрнутые на 90°, полюс p,  μv = {plan} (м/с)/мм",
+    ),
+    "kgraph.title": (
+        "Kinetostatic analysis by the graphical method, position {position}",
+        "Силовой расчёт графоаналитическим методом, положение {position}",
+    ),
+    "kgraph.intro": (
+        "The groups are taken from the last one to the driving link. Each is cut free and loaded with its weights, "
+        "inertia forces and moments, external loads and the reactions of the groups taken before it. The "
+        "tangential components of the reactions at the outer revolute joints come from each link's moments about "
+        "the inner joint; the force plan then gives the normal components (or a guide's reaction) by its closing. "
+        "Forces in N, moments in N·m, directions in degrees from the x axis counter-clockwise; R12 is the force "
+        "of link 1 on link 2.",
+        "Группы рассматриваются от последней присоединённой к начальному звену. Каждая группа освобождается от "
+        "связей и нагружается силами тяжести, силами и моментами сил инерции, внешними нагрузками и реакциями "
+        "ранее рассмотренных групп. Касательные составляющие реакций во внешних вращательных парах находятся из "
+        "уравнений моментов сил, действующих на каждое звено, относительно внутреннего шарнира; нормальные "
+        "составляющие (или реакция направляющей) — построением плана сил. Силы в Н, моменты в Н·м, направления в "
+        "градусах от оси x против часовой стрелки; R12 — сила действия звена 1 на звено 2.",
+    ),
+    "kgraph.group": ("Group {group} (links {links})", "Группа {group} (звенья {links})"),
+    "kgraph.driving": ("Driving link {group}", "Начальное звено {group}"),
+    "kgraph.forces_on": ("Forces on it:", "Действующие силы:"),
+    "kgraph.couple": ("couple (moment)", "момент пары сил"),
+    "kgraph.not_solved": (
+        "The textbook's split does not apply to this group: its plan is closed by the reactions of the analytic "
+        "solution.",
+        "Для этой группы разложение реакций на составляющие не применяется: план сил замкнут реакциями "
+        "аналитического решения.",
+    ),
+    "kgraph.moment": (
+        "ΣM_{about}(link {link}) = 0: {unknown}·l + {terms} = 0, l = {length} mm, hence {unknown} = {value} N "
+        "(positive: counter-clockwise about {about}).",
+        "ΣM_{about}(звено {link}) = 0: {unknown}·l + {terms} = 0, l = {length} мм, откуда {unknown} = {value} Н "
+        "(положительна против часовой стрелки относительно {about}).",
+    ),
+    "kgraph.couple_eq": (
+        "ΣM_{about}(link {link}) = 0: {terms} + M = 0, hence the guide's couple M = {value} N·m (where {unknown} "
+        "acts).",
+        "ΣM_{about}(звено {link}) = 0: {terms} + M = 0, откуда момент направляющей M = {value} Н·м (точка "
+        "приложения {unknown}).",
+    ),
+    "kgraph.plan": (
+        "Force plan: {equation}, drawn to μF = {scale} N/mm:",
+        "План сил: {equation}, строится в масштабе μF = {scale} Н/мм:",
+    ),
+    "kgraph.found": ("From the plan: {reactions}.", "Из плана сил: {reactions}."),
+    "kgraph.balancing": (
+        "The moments about the pivot give the balancing moment M_b = {value} N·m (counter-clockwise positive).",
+        "Из уравнения моментов относительно оси вращения уравновешивающий момент Mу = {value} Н·м "
+        "(положителен против часовой стрелки).",
+    ),
+    "kgraph.lever": (
+        "Zhukovsky's lever: the balancing moment from the lever's moments about the pole, beside the driving "
+        "torque of the kinetostatic solution (difference relative to the largest torque).",
+        "Рычаг Жуковского: уравновешивающий момент из уравнения моментов относительно полюса повёрнутого плана "
+        "скоростей и момент, найденный силовым расчётом (разность отнесена к наибольшему моменту).",
+    ),
+    "kgraph.head.force": ("force", "сила"),
+    "kgraph.head.what": ("what", "что это"),
+    "kgraph.head.value": ("value, N (N·m)", "величина, Н (Н·м)"),
+    "kgraph.head.length": ("on the plan, mm", "на плане, мм"),
+    "kgraph.head.direction": ("direction, °", "направление, °"),
+    "kgraph.head.lever": ("M_b by the lever, N·m", "Mу по рычагу, Н·м"),
+    "kgraph.head.kinetostatic": ("driving torque, N·m", "момент из силового расчёта, Н·м"),
+    "kgraph.head.difference": ("difference", "разность"),
+    "force.weight": ("weight", "сила тяжести"),
+    "force.inertia": ("inertia force", "сила инерции"),
+    "force.load": ("external load", "внешняя нагрузка"),
+    "force.known": ("reaction of a group taken before", "реакция ранее рассмотренной группы"),
+    "force.tangential": ("tangential component", "касательная составляющая"),
+    "force.normal": ("normal component", "нормальная составляющая"),
+    "force.reaction": ("reaction found", "искомая реакция"),
+    "force.internal": ("reaction in the inner joint", "реакция во внутренней паре"),
+    "force.balancing": ("balancing force", "уравновешивающая сила"),
     # ------------------------------------------------------------------ units
     "unit.mm": ("mm", "мм"),
     "unit.N": ("N", "Н"),
@@ -601,6 +713,18 @@ def kind_named(kind: str, name: str) -> str:
     """``rocker output``: a member's kind and its name, the word once where the name is the kind's word
     (``rocker``, not ``rocker rocker``)."""
     return kind if name.strip().lower() == kind.lower() else f"{kind} {name}"
+
+
+def group_kind(kind: str, lang: str) -> str:
+    """An Assur group's kind (``RRP``) in the notation of the language (``ВВП`` in Russian: вращательная,
+    поступательная)."""
+    return kind.translate(str.maketrans("RP", "ВП")) if lang == "ru" else kind
+
+
+def group_label(label: str, lang: str) -> str:
+    """A group's label (``II(4,5) RRP``) with its kind in the notation of the language."""
+    head, _, kind = label.partition(" ")
+    return f"{head} {group_kind(kind, lang)}" if kind else head
 
 
 def t(key: str, lang: str = "en", /, **values: Any) -> str:

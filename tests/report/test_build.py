@@ -250,9 +250,11 @@ def test_no_english_is_left_in_the_russian_report(name, tmp_path):
     mech = lw.compile(lw.example(name))
     names = {mech.name, *mech.link_names, *mech.pair_joint, *(p.split(".", 1)[1] for p in mech.point_names)}
     names |= set(plan_series(lw.kinematics(mech, steps=12))[1].labels)  # the plans' points: b, n_ba, k'_e ...
+    names |= {load.name for load in mech.loads}  # the file's names of its loads (F5 (cutting) on a force plan)
     allowed = {w for n in names for w in re.findall(r"[A-Za-z]+", n)} | SYMBOLS
     page, drawn = _report(name, tmp_path / "r", lang="ru", position="all")
     assert {"scheme", "positions", "velocity_plan", "acceleration_plan", "velocity_plans"} <= set(drawn)
+    assert {"force_plans", "lever", "levers", "force_plans_2_3"} <= set(drawn)  # the graphical kinetostatics
     assert "<html lang='ru'>" in page
     reader = _Text()
     reader.feed(page)
@@ -263,6 +265,7 @@ def test_no_english_is_left_in_the_russian_report(name, tmp_path):
                for key, text in texts.items()}  # fmt: skip
     assert {key: words for key, words in english.items() if words} == {}
     assert "Кинематический анализ" in page and "План скоростей" in page
+    assert "План сил:" in page and "Рычаг Жуковского" in page and "уравновешивающий момент Mу" in page
 
 
 def test_english_is_the_default_and_an_unknown_language_is_refused(tmp_path):
@@ -395,3 +398,24 @@ def test_a_figure_that_fails_in_the_second_process_fails_the_report_and_writes_n
         build.analyze(mech, tmp_path / "r", steps=36, animation=False)
     assert list(tmp_path.iterdir()) == []
     assert beside.FORKS == sys.platform.startswith("linux")
+
+
+def test_the_report_presents_the_kinetostatics_by_the_graphical_method(main_job):
+    """The README's main job (the double-cut shears at the file's position 9): each group's moment equations and
+    force plan, the force plans and the lever drawn, and the lever's balancing moment beside the kinetostatic
+    driving torque at the twelve positions, equal to the 7 digits written."""
+    import linkwork as lw
+    from linkwork.scene.positions import position_angles
+
+    page = html.unescape((main_job.folder / "report.html").read_text(encoding="utf-8"))
+    assert "id='force_plans'" in page and "id='lever'" in page
+    assert page.count("Force plan: ") == 4  # one for each of the four groups
+    assert "R12τ + G2 + Phi2 + G3 + Phi3 + R43 + R63 + R03τ + R03n + R12n = 0" in page
+    mech = lw.compile(lw.example("double-cut-shears"))
+    torque = lw.forces(lw.kinematics(mech, position_angles(mech))).driving_torque
+    start = page.index("Zhukovsky's lever: the balancing moment")
+    rows = re.findall(r"<tr><td>(\d+)</td><td>\d+</td><td>([^<]+)</td><td>([^<]+)</td>", page[start:])[:12]
+    assert [int(r[0]) for r in rows] == list(range(12))
+    for k, lever_value, kinetostatic in rows:
+        assert float(lever_value) == pytest.approx(torque[int(k)], rel=1e-6)
+        assert lever_value == kinetostatic

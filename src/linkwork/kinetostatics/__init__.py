@@ -29,8 +29,10 @@ from __future__ import annotations
 from linkwork.kinetostatics.balancing import Balance, Counterweight, balance
 from linkwork.kinetostatics.bolt_speed import bolt_speed
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
+from linkwork.kinetostatics.force_plans import ForcePlans, GroupPlan, PlanForce, force_plans
 from linkwork.kinetostatics.forces import Forces, forces, forces_of
 from linkwork.kinetostatics.free_body import FreeBody
+from linkwork.kinetostatics.lever import Lever, lever
 from linkwork.kinetostatics.peaks import Peak, foundation_peak, torque_peak
 from linkwork.kinetostatics.reactions import Loads
 
@@ -38,15 +40,21 @@ __all__ = [
     "Balance",
     "Bolts",
     "Counterweight",
+    "ForcePlans",
     "Forces",
     "FreeBody",
+    "GroupPlan",
+    "Lever",
     "Loads",
     "Peak",
+    "PlanForce",
     "balance",
     "bolt_loads",
     "bolt_speed",
+    "force_plans",
     "forces",
     "forces_of",
     "foundation_peak",
+    "lever",
     "torque_peak",
 ]

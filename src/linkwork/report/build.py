@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.io.jsonout import dumps
-from linkwork.lang import check_lang, kind_named, t
+from linkwork.lang import check_lang, group_kind, group_label, kind_named, t
 from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
 from linkwork.report.sizing import asks_sizing
@@ -149,6 +149,12 @@ class Cycle:
         The 12 positions, position 0 first.
     index : int
         The sample of ``kin`` at the position of the plans.
+    drawn : tuple of int
+        The positions the plans are drawn at (of the twelve).
+    sheets : bool
+        Whether the plans of all twelve positions are drawn too (``--position all``).
+    dxf : bool
+        Whether the drawings are written for CAD too.
     """
 
     kin: Kinematics
@@ -156,6 +162,9 @@ class Cycle:
     sign: float
     twelve: Kinematics
     index: int
+    drawn: tuple[int, ...] = (0,)
+    sheets: bool = False
+    dxf: bool = False
 
     def phi(self, angles: Any) -> np.ndarray:
         """Crank angles turned from position 0, degrees in [0, 360), of drive angles (rad), as the tables and
@@ -270,18 +279,6 @@ def _import_drawing() -> None:
     require("matplotlib.figure", "matplotlib.backends.backend_agg", purpose="the report's figures")
 
 
-def group_kind(kind: str, lang: str) -> str:
-    """An Assur group's kind (``RRP``) in the notation of the language (``ВВП`` in Russian: вращательная,
-    поступательная)."""
-    return kind.translate(str.maketrans("RP", "ВП")) if lang == "ru" else kind
-
-
-def group_label(label: str, lang: str) -> str:
-    """A group's label (``II(4,5) RRP``) with its kind in the notation of the language."""
-    head, _, kind = label.partition(" ")
-    return f"{head} {group_kind(kind, lang)}" if kind else head
-
-
 def _structure(run: _Run) -> None:
     run.progress("structure")
     s = run.mech.structure
@@ -317,7 +314,7 @@ def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) ->
     drawn = plan_positions(mech, twelve) if position in (None, "all") else [int(position) % 12]
     phi = np.degrees(np.arange(steps) * 2 * np.pi / steps)
     index = int(np.argmin(np.abs((phi - 30.0 * drawn[0] + 180.0) % 360.0 - 180.0)))
-    cycle = Cycle(kin, zero, sign, twelve, index)
+    cycle = Cycle(kin, zero, sign, twelve, index, tuple(drawn), position == "all", dxf)
     run.jobs.append(lambda: write_csv(kin, run.folder / "kinematics.csv"))
     run.jobs.append(lambda: write_netcdf(kin, run.folder / "kinematics.nc"))
     sec = Section("kinematics", run.t("section.kinematics"))
@@ -483,6 +480,7 @@ def _forces(run: _Run, cycle: Cycle) -> None:
     from linkwork import figures
     from linkwork.io.force_tables import to_json, write_csv
     from linkwork.kinetostatics import forces
+    from linkwork.structure.model import one_crank
 
     mech = run.mech
     run.progress("forces")
@@ -507,6 +505,12 @@ def _forces(run: _Run, cycle: Cycle) -> None:
             joint = str(mech.pair_joint[k])
             make = functools.partial(figures.hodograph, f, joint, at=at12, zero=zero, lang=lang)
             sec.figures.append(run.figure(f"hodograph_{joint}", make, run.t("caption.hodograph", joint=joint)))
+    if one_crank(mech):  # the graphical method: force plans and Zhukovsky's lever at the plans' position
+        from linkwork.report.kinetostatic import sections
+
+        body, names = sections(run, at12, cycle.drawn[0], cycle.sheets, cycle.dxf)
+        sec.body += body
+        sec.figures += names
     run.sections.append(sec)
 
 

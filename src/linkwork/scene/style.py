@@ -66,3 +66,18 @@ VECTORS = {
 
 #: Colours of the texts: a point's name, a link's number, a construction point of a plan.
 TEXT = {"point": "#111111", "frame": "#111111", "link": BLUE, "position": "#111111", "minor": "#777777"}
+
+#: The force plans' and the lever's arrows (:data:`linkwork.scene.force_plans.FORCE_KINDS`); a reaction read off
+#: a plan is drawn in its kind's colour, dashed.
+FORCES = {
+    "weight": Style("#8c564b", 1.2, layer="WEIGHTS"),
+    "inertia": Style("#d62728", 1.2, layer="INERTIA"),
+    "load": Style("#000000", 1.6, layer="LOADS"),
+    "known": Style("#9467bd", 1.2, layer="KNOWN_REACTIONS"),
+    "tangential": Style("#1f77b4", 1.2, layer="TANGENTIAL_R"),
+    "normal": Style("#2ca02c", 1.2, layer="NORMAL_R"),
+    "reaction": Style("#ff7f0e", 1.4, layer="REACTIONS"),
+    "internal": Style("#17becf", 1.2, dash=(4.0, 2.0), layer="INNER_REACTIONS"),
+    "balancing": Style("#e377c2", 1.6, layer="BALANCING"),
+    "lever": Style("#999999", 0.6, layer="LEVER"),
+}

@@ -1,0 +1,235 @@
+"""Force plans and Zhukovsky's lever as scenes: named force vectors drawn to a stated scale, and labels.
+
+A :class:`ForceScene` is one drawing of one position in millimetres of the sheet:
+
+* a group's **force plan** (:func:`force_plan_scene`): the polygon of its forces head to tail from the
+  origin, a force ``F`` (N) drawn ``F / scale`` mm long (``scale``: μF in N/mm), each named beside its
+  middle (``G2``, ``Фи2``, ``R12τ``...), then the reactions it gives (``R12 = R12n + R12τ``, the inner
+  joint's ``R32``) dashed between the polygon's vertices they join;
+* **Zhukovsky's lever** (:func:`lever_scene`): the velocity plan turned by 90 degrees (its lines thin, its
+  points lettered), at the velocity plan's scale μv, and every force at its point's image, drawn to a
+  force scale of its own, the balancing force at the crank pin's image.
+
+Labels are placed clear of each other and of the lines (:mod:`linkwork.scene.labels`).  The renderers are
+:mod:`linkwork.figures.force_plans` (matplotlib) and :mod:`linkwork.io.dxf_forces` (DXF).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from linkwork.kinetostatics.force_plans import GroupPlan, PlanForce
+from linkwork.kinetostatics.lever import Lever
+from linkwork.motion.plans import PlanSeries, _round_scale
+from linkwork.scene.geometry import text_size
+from linkwork.scene.labels import Obstacles, place_labels
+from linkwork.scene.plans import LETTERING
+
+#: An arrow before its name is placed: start, end (mm), the force, whether it is a reaction read off the plan.
+_Draft = tuple[np.ndarray, np.ndarray, PlanForce, bool]
+
+#: The kinds of arrow of the force drawings, in the order of a legend.
+FORCE_KINDS = ("weight", "inertia", "load", "known", "tangential", "normal", "reaction", "internal", "balancing")
+
+
+@dataclass(frozen=True)
+class ForceArrow:
+    """One arrow: from ``start`` to ``end`` (mm of the sheet), of ``kind``, named ``text`` (``tex``: as
+    mathtext), its name's centre ``centre`` (NaN: unlabelled); ``resultant``: a reaction read off the plan
+    (drawn dashed)."""
+
+    start: np.ndarray
+    end: np.ndarray
+    kind: str
+    text: str
+    tex: str
+    centre: np.ndarray
+    value: float
+    resultant: bool = False
+
+
+@dataclass(frozen=True)
+class ForceScene:
+    """A force plan or a lever at one position, in mm of the sheet.
+
+    Attributes
+    ----------
+    kind : str
+        ``"force_plan"`` or ``"lever"``.
+    label : str
+        The group's label (a force plan) or ``""``.
+    angle : float
+        Drive angle of the position, rad.
+    scale : float
+        μF, N per mm of the arrows.
+    plan_scale : float
+        The lever's μv, (m/s) per mm (NaN for a force plan).
+    em : float
+        Height of the labels' text, mm.
+    arrows : tuple of ForceArrow
+    lines : ndarray (S, 2, 2)
+        The lever's turned velocity plan, end to end (empty for a force plan).
+    dots : ndarray (D, 2)
+        Points marked: the polygon's vertices, the lever's pole and image points.
+    dot_text : tuple of str
+        Each dot's letter (empty for none).
+    dot_centres : ndarray (D, 2)
+    """
+
+    kind: str
+    label: str
+    angle: float
+    scale: float
+    plan_scale: float
+    em: float
+    arrows: tuple[ForceArrow, ...]
+    lines: np.ndarray
+    dots: np.ndarray
+    dot_text: tuple[str, ...]
+    dot_centres: np.ndarray
+
+    def kinds(self) -> list[str]:
+        """The kinds of the arrows drawn, in the order of :data:`FORCE_KINDS`."""
+        present = {a.kind for a in self.arrows}
+        return [k for k in FORCE_KINDS if k in present]
+
+    def extent(self) -> np.ndarray:
+        """``[x0, y0, x1, y1]`` of the drawing, its labels included, mm."""
+        parts = [np.zeros((1, 2)), self.dots.reshape(-1, 2), self.lines.reshape(-1, 2)]
+        for a in self.arrows:
+            parts += [a.start[None], a.end[None]]
+            if a.text and np.isfinite(a.centre).all():
+                w, h = text_size(a.text, self.em)
+                parts += [a.centre[None] - [w / 2, h / 2], a.centre[None] + [w / 2, h / 2]]
+        for text, c in zip(self.dot_text, self.dot_centres, strict=True):
+            if text and np.isfinite(c).all():
+                w, h = text_size(text, self.em)
+                parts += [c[None] - [w / 2, h / 2], c[None] + [w / 2, h / 2]]
+        pts = np.concatenate(parts)
+        pts = pts[np.isfinite(pts).all(-1)]
+        return np.concatenate([pts.min(0), pts.max(0)])
+
+
+def _drawn(vector: np.ndarray, largest: float) -> bool:
+    """Whether a force is drawn: finite and longer than a millionth of the largest."""
+    return bool(np.isfinite(vector).all() and np.hypot(*vector) > 1e-6 * largest)
+
+
+def force_plan_scene(group: GroupPlan, index: int, *, lang: str = "en", scale: float | None = None,
+                     em: float = LETTERING, variant: int = 0, angle: float = float("nan")) -> ForceScene:  # fmt: skip
+    """The force plan of ``group`` at sample ``index`` (drive ``angle``, rad, for its title), drawn to ``scale``
+    (N/mm; default :meth:`GroupPlan.scale`), its names in ``lang``; without arrows at a dead point (where the
+    plan's reactions are NaN)."""
+    scale = group.scale(index, variant) if scale is None else float(scale)
+    vertices = group.vertices(index, variant) / scale
+    values = [f.vector[variant, index] for f in group.polygon]
+    largest = max((float(np.hypot(*v)) for v in values if np.isfinite(v).all()), default=0.0)
+    drafts: list[_Draft] = []
+    if not np.isfinite(vertices).all():  # a dead point: no plan (a part of one would mislead)
+        return _scene("force_plan", group.label, scale, np.nan, em, lang, drafts, np.zeros((0, 2, 2)),
+                      np.zeros((0, 2)), (), angle)  # fmt: skip
+    for j, f in enumerate(group.polygon):
+        if _drawn(values[j], largest):
+            drafts.append((vertices[j], vertices[j + 1], f, False))
+    for r in group.reactions:
+        v = r.vector[variant, index]
+        if r.part or not _drawn(v, largest):
+            continue
+        ends = _between(vertices, v / scale, largest / scale)
+        if ends is not None and not any(f.pair == r.pair and f.link == r.link and not f.part and f.kind != "known"
+                                        for f in group.polygon):  # fmt: skip
+            drafts.append((ends[0], ends[1], r, True))
+    corners = vertices[np.isfinite(vertices).all(-1)]
+    return _scene("force_plan", group.label, scale, np.nan, em, lang, drafts, np.zeros((0, 2, 2)), corners,
+                  ("",) * len(corners), angle)  # fmt: skip
+
+
+def _between(vertices: np.ndarray, vector: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray] | None:
+    """Two vertices of the polygon the ``vector`` joins (from the first to the second), if any."""
+    gap = vertices[None, :] - vertices[:, None] - vector  # (i, j): from i to j
+    miss = np.hypot(gap[..., 0], gap[..., 1])
+    miss = np.where(np.isfinite(miss), miss, np.inf)
+    i, j = np.unravel_index(int(np.argmin(miss)), miss.shape)
+    if miss[i, j] > 1e-6 * max(size, 1e-300):
+        return None
+    return vertices[i], vertices[j]
+
+
+def lever_scene(lv: Lever, velocity: PlanSeries, index: int, *, lang: str = "en", em: float = LETTERING,
+                variant: int = 0, plan_scale: float | None = None,
+                scale: float | None = None) -> ForceScene:  # fmt: skip
+    """Zhukovsky's lever at sample ``index``: the velocity plan ``velocity`` (of the same samples) turned by 90
+    degrees at its scale μv (``plan_scale``, (m/s)/mm; default its own), every force of ``lv`` at its point's image
+    to a force scale μF (``scale``, N/mm; default one that draws the largest 40 mm long; those shorter than half
+    the lettering left out), the balancing force at the crank pin's image; names in ``lang``."""
+    values = velocity.values[variant, index]  # (L, 2) m/s
+    if plan_scale is None:
+        plan_scale = _round_scale(float(np.nanmax(np.hypot(*values[: len(velocity.points)].T), initial=0.0)))
+    turn = np.array([[0.0, -1.0], [1.0, 0.0]])  # +90 degrees
+    places = (values @ turn.T) / plan_scale
+    lines = [np.stack([np.zeros(2), places[j]]) for j in range(1, len(velocity.points))]
+    where = {lab: j for j, lab in enumerate(velocity.labels)}
+    lines += [np.stack([places[where[e.start]], places[where[e.end]]]) for e in velocity.edges]
+    segs = np.array([s for s in lines if np.isfinite(s).all()]).reshape(-1, 2, 2)
+    forces = [(lf.image[variant, index] / plan_scale, lf.force) for lf in lv.forces]
+    vectors = [f.vector[variant, index] for _, f in forces] + [lv.balancing_force[variant, index]]
+    largest = max((float(np.hypot(*v)) for v in vectors if np.isfinite(v).all()), default=0.0)
+    scale = _round_scale(largest * 100.0 / 40.0) if scale is None else float(scale)
+    drafts: list[_Draft] = []
+    for (at, f), v in zip(forces, vectors, strict=False):  # those too short to see left out (they need not close)
+        if _drawn(v, largest) and np.isfinite(at).all() and np.hypot(*v) / scale > 0.5 * em:
+            drafts.append((at, at + v / scale, f, False))
+    pin = lv.pin_image[variant, index] / plan_scale
+    balancing = PlanForce("Fb", "", "", "balancing", 1, lv.balancing_force, lv.pin_image, np.zeros(1))
+    if _drawn(vectors[-1], largest) and np.isfinite(pin).all():
+        drafts.append((pin, pin + vectors[-1] / scale, balancing, False))
+    # the pole and the letters of the plan's points where a force acts (and the pin)
+    shown = dict.fromkeys(["p", lv.pin] + [lf.label for lf in lv.forces])
+    dots, texts = [np.zeros(2)], ["p"]
+    seen = {(0.0, 0.0)}
+    for lf in lv.forces:
+        at = lf.image[variant, index] / plan_scale
+        key = (round(float(at[0]), 6), round(float(at[1]), 6))
+        if lf.label in shown and np.isfinite(at).all() and key not in seen:
+            seen.add(key)
+            dots.append(at)
+            texts.append(lf.label)
+    if np.isfinite(pin).all() and (round(float(pin[0]), 6), round(float(pin[1]), 6)) not in seen:
+        dots.append(pin)
+        texts.append(lv.pin)
+    return _scene("lever", "", scale, plan_scale, em, lang, drafts, segs, np.array(dots),
+                  tuple(texts), angle=float(velocity.angles[index]))  # fmt: skip
+
+
+def _scene(kind: str, label: str, scale: float, plan_scale: float, em: float, lang: str, drafts: list[_Draft],
+           lines: np.ndarray, dots: np.ndarray, dot_text: tuple[str, ...], angle: float) -> ForceScene:  # fmt: skip
+    """The scene of ``drafts`` (start, end, force, resultant) with every name placed."""
+    texts = [_name(f, lang) for _, _, f, _ in drafts]
+    segments = np.array([[s, e] for s, e, _, _ in drafts] + [list(x) for x in lines]).reshape(1, -1, 2, 2)
+    circles = np.concatenate([dots.reshape(-1, 2), np.full((len(dots), 1), 0.25 * em)], -1)[None]
+    mids = np.array([(s + e) / 2 for s, e, _, _ in drafts]).reshape(1, -1, 2)
+    along = np.array([e - s for s, e, _, _ in drafts]).reshape(-1, 2)
+    size = np.hypot(*along.T)[:, None] if len(along) else np.zeros((0, 1))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        left = np.where(size > 0, np.stack([-along[:, 1], along[:, 0]], -1) / size, np.sqrt(0.5))
+    sizes = np.array([text_size(t, em) for t in texts]).reshape(1, -1, 2)
+    obstacles = Obstacles(segments, circles)
+    centres = place_labels(mids, sizes, np.full(len(texts), 0.3 * em), obstacles, left[None], pad=0.1 * em)[0]
+    boxes = np.concatenate([centres - sizes[0] / 2, centres + sizes[0] / 2], -1)[None]
+    dot_sizes = np.array([text_size(t, em) for t in dot_text]).reshape(1, -1, 2)
+    anchors = np.where(np.array([bool(t) for t in dot_text], dtype=bool)[:, None], dots.reshape(-1, 2), np.nan)
+    dot_centres = place_labels(anchors[None], dot_sizes, np.full(len(dot_text), 0.3 * em), obstacles,
+                               pad=0.1 * em, taken=boxes)[0]  # fmt: skip
+    arrows = tuple(
+        ForceArrow(s, e, f.kind, texts[j], f.tex(lang), centres[j], float(np.hypot(*(e - s))) * scale, resultant)
+        for j, (s, e, f, resultant) in enumerate(drafts)
+    )
+    return ForceScene(kind, label, angle, scale, plan_scale, em, arrows, lines.reshape(-1, 2, 2), dots.reshape(-1, 2),
+                      dot_text, dot_centres.reshape(-1, 2))  # fmt: skip
+
+
+def _name(f: PlanForce, lang: str) -> str:
+    """The name written beside a force: ``Fb`` for the balancing force, the force's own name otherwise."""
+    return f.name(lang)

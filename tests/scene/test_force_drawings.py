@@ -1,0 +1,125 @@
+"""Force plans and Zhukovsky's lever drawn: read back from the figures and the DXF, against the data."""
+
+from __future__ import annotations
+
+import functools
+import re
+
+import numpy as np
+import pytest
+
+import linkwork as lw
+from drawing_checks import overlaps
+from linkwork.kinetostatics.force_plans import force_plans
+from linkwork.kinetostatics.lever import lever
+from linkwork.scene.positions import position_angles
+
+pytest.importorskip("matplotlib")
+
+from linkwork.figures.force_plans import force_plans_figure, lever_figure, lever_sheet  # noqa: E402
+
+
+@functools.cache
+def _shears() -> tuple[lw.Kinematics, lw.Forces]:
+    mech = lw.compile(lw.load("double-cut-shears"))
+    kin = lw.kinematics(mech, position_angles(mech))
+    return kin, lw.forces(kin)
+
+
+def _scale(text: str) -> float:
+    """μF (N/mm or Н/мм) read from a drawn text."""
+    found = re.search(r"μF = ([0-9.e+]+)", text)
+    assert found, text
+    return float(found.group(1))
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_each_groups_plan_draws_its_forces_head_to_tail_to_the_scale_in_its_title(lang):
+    kin, f = _shears()
+    plans = force_plans(f)
+    fig = force_plans_figure(plans, 9, 9, lang)
+    assert len(fig.axes) == 4  # the double-cut shears: four groups, the driving link last
+    for ax, g in zip(fig.axes, plans.groups, strict=True):
+        scale = _scale(ax.get_title())
+        lines = {line.get_gid(): np.asarray(line.get_xydata()) for line in ax.lines if line.get_gid()}
+        ends = []
+        for p in g.polygon:
+            if not np.any(p.vector[0, 9]):  # a force of no size (the cutting force before the cut): not drawn
+                assert f"{p.kind}:{p.name(lang)}" not in lines
+                continue
+            xy = lines[f"{p.kind}:{p.name(lang)}"]
+            assert np.hypot(*(xy[1] - xy[0])) * scale == pytest.approx(np.hypot(*p.vector[0, 9]), rel=1e-9)
+            assert np.allclose((xy[1] - xy[0]) * scale, p.vector[0, 9], rtol=0, atol=1e-9 * scale)
+            ends.append(xy)
+        for a, b in zip(ends, ends[1:] + ends[:1], strict=True):  # head to tail, and closed
+            assert np.allclose(a[1], b[0], atol=1e-9)
+    assert overlaps(fig) == []
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_the_lever_puts_each_force_at_its_points_turned_velocity_image(lang):
+    kin, f = _shears()
+    lv = lever(f)
+    fig = lever_figure(lv, kin, 9, 9, lang)
+    ax = fig.axes[0]
+    mu_v = float(re.search(r"μv = ([0-9.e+-]+)", ax.get_title()).group(1))
+    lines = {line.get_gid(): np.asarray(line.get_xydata()) for line in ax.lines if line.get_gid()}
+    v = kin.velocity("rod_DE.E")[9]  # the weight G5 of the upper knife acts at E (its centre of mass)
+    g5 = lines["weight:G5"]
+    assert np.allclose(g5[0] * mu_v, [-v[1], v[0]], rtol=0, atol=1e-12)  # v turned by +90 degrees
+    assert g5[1][1] < g5[0][1] and np.isclose(g5[1][0], g5[0][0])  # pointing down
+    name = "balancing:" + ("Fу" if lang == "ru" else "Fb")
+    pin = kin.velocity("crank.A")[9]
+    assert np.allclose(lines[name][0] * mu_v, [-pin[1], pin[0]], rtol=0, atol=1e-12)
+    assert overlaps(fig) == []
+    assert overlaps(lever_sheet(lv, kin, lang)) == []
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_the_dxf_force_plans_are_the_forces_to_each_groups_scale(tmp_path, lang):
+    ezdxf = pytest.importorskip("ezdxf")
+    from linkwork.io.dxf_forces import write_force_plans, write_lever
+
+    kin, f = _shears()
+    plans = force_plans(f)
+    doc = ezdxf.readfile(write_force_plans(plans, 9, tmp_path / "force_plans.dxf", lang))
+    msp = doc.modelspace()
+    notes = [e.dxf.text for e in msp.query("TEXT") if e.dxf.layer == "NOTES"]
+    scales = [_scale(n) for n in notes if "μF" in n]
+    assert len(scales) == 4
+    assert any(("планы сил" if lang == "ru" else "force plans") in n for n in notes)
+    by_name: dict[str, list[float]] = {}
+    for line in msp.query("LINE"):
+        if line.has_xdata("LINKWORK"):
+            tag = line.get_xdata("LINKWORK")[0].value
+            by_name.setdefault(tag, []).append(float(np.hypot(*(np.array(line.dxf.end) - line.dxf.start)[:2])))
+    for g, scale in zip(plans.groups, scales, strict=True):
+        for p in g.polygon:
+            if not np.any(p.vector[0, 9]):
+                continue
+            drawn = by_name.pop(f"{p.kind}:{p.name(lang)}")[0] * scale
+            assert drawn == pytest.approx(np.hypot(*p.vector[0, 9]), rel=1e-9, abs=1e-6)
+    assert {"WEIGHTS", "INERTIA", "TANGENTIAL_R", "NORMAL_R", "REACTIONS", "KNOWN_REACTIONS"} <= {
+        layer.dxf.name for layer in doc.layers
+    }
+    lever_doc = ezdxf.readfile(write_lever(lever(f), kin, 9, tmp_path / "lever.dxf", lang))
+    assert any("Жуковского" in e.dxf.text or "Zhukovsky" in e.dxf.text for e in lever_doc.modelspace().query("TEXT"))
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_the_sheet_of_a_groups_plans_draws_each_position_to_the_scale_above_it(lang):
+    from linkwork.figures.force_plans import force_plan_sheet
+
+    kin, f = _shears()
+    plans = force_plans(f)
+    g = plans.groups[2]  # II(2,3): R43 and R63 of the two groups taken before it
+    fig = force_plan_sheet(plans, 2, lang)
+    assert len(fig.axes) == 12
+    for k, ax in enumerate(fig.axes):
+        scale = _scale(ax.get_title())
+        lines = {line.get_gid(): np.asarray(line.get_xydata()) for line in ax.lines if line.get_gid()}
+        for p in g.polygon:
+            if np.any(p.vector[0, k]):
+                xy = lines[f"{p.kind}:{p.name(lang)}"]
+                assert np.allclose((xy[1] - xy[0]) * scale, p.vector[0, k], rtol=0, atol=1e-9 * scale)
+    assert overlaps(fig) == []
