@@ -34,21 +34,22 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class Efficiency:
-    """The powers of the balance over (V, A), in W.
+    """The powers of the balance over the samples, in W; shapes as in :class:`~linkwork.kinetostatics.Forces`:
+    ``(V, A, ...)``, the variant axis dropped for a single mechanism (written ``(..., A)`` below).
 
     Attributes
     ----------
-    drive : ndarray (V, A)
+    drive : ndarray (..., A)
         The drives' power: torque times angular speed (force times speed for a linear drive).
-    useful : ndarray (V, A)
+    useful : ndarray (..., A)
         The power the file's loads take (minus their power; friction apart).
     joints : tuple of str
         The joints with friction, in the order of the file.
-    losses : ndarray (V, A, J)
+    losses : ndarray (..., A, J)
         The power lost to friction in each of ``joints`` (all its pairs), >= 0.
-    kinetic : ndarray (V, A)
+    kinetic : ndarray (..., A)
         dT/dt of the links.
-    potential : ndarray (V, A)
+    potential : ndarray (..., A)
         dPi/dt of the links' weights.
     step : ndarray (A,)
         The time each sample stands for, s, in the cycle's works (:meth:`work`).
@@ -64,30 +65,33 @@ class Efficiency:
 
     @property
     def friction(self) -> np.ndarray:
-        """The power lost to friction in all the pairs, W, (V, A)."""
+        """The power lost to friction in all the pairs, W, (..., A)."""
         return np.sum(self.losses, -1)
 
     @property
     def imbalance(self) -> np.ndarray:
-        """``P_drive - P_useful - P_friction - dT/dt - dPi/dt``, W, (V, A): zero but for rounding."""
+        """``P_drive - P_useful - P_friction - dT/dt - dPi/dt``, W, (..., A): zero but for rounding."""
         return self.drive - self.useful - self.friction - self.kinetic - self.potential
 
     @property
     def instantaneous(self) -> np.ndarray:
-        """``1 - P_friction / P_drive`` where the drive gives power, NaN elsewhere, (V, A)."""
+        """``1 - P_friction / P_drive`` where the drive gives power, NaN elsewhere, (..., A)."""
         giving = self.drive > 0
         with np.errstate(invalid="ignore", divide="ignore"):
             return np.where(giving, 1.0 - self.friction / np.where(giving, self.drive, 1.0), np.nan)
 
     def work(self, power: np.ndarray) -> np.ndarray:
-        """The work (J) of ``power`` ``(V, A, ...)`` over the samples: each sample's power times the time it
-        stands for (:attr:`step`), NaN where a sample has none."""
-        step = self.step.reshape((1, -1) + (1,) * (power.ndim - 2))
-        return np.sum(power * step, axis=1)
+        """The work (J) of ``power`` over the samples, ``(...)`` of ``(..., A)`` (``(..., J)`` of the
+        :attr:`losses`): each sample's power times the time it stands for (:attr:`step`), NaN where a sample
+        has none."""
+        axis = -1 if power.ndim == self.drive.ndim else -2
+        step = self.step.reshape((-1,) + (1,) * (-1 - axis))
+        return np.sum(power * step, axis=axis)
 
     @property
     def cycle(self) -> np.ndarray:
-        """The cycle's efficiency ``W_useful / W_drive``, (V,); NaN where the drive does no work."""
+        """The cycle's efficiency ``W_useful / W_drive``, ``(...)`` (a 0-d array for one mechanism); NaN where
+        the drive does no work."""
         drive = self.work(self.drive)
         with np.errstate(invalid="ignore", divide="ignore"):
             return np.where(drive > 0, self.work(self.useful) / np.where(drive > 0, drive, 1.0), np.nan)
@@ -102,7 +106,10 @@ def efficiency(f: Forces) -> Efficiency:
     useful = -(external_power(kin, f.external) + friction)
     kinetic = kinetic_energy_rate(kin, f.loads)
     potential = -gravity_power(kin, f.loads)
-    return Efficiency(drive, useful, joints, losses, kinetic, potential, _steps(kin.angles, kin.rates[:, 0]))
+    out = f._out
+    return Efficiency(
+        out(drive), out(useful), joints, out(losses), out(kinetic), out(potential), _steps(kin.angles, kin.rates[:, 0])
+    )
 
 
 def pair_losses(f: Forces) -> tuple[tuple[str, ...], np.ndarray]:

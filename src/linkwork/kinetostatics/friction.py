@@ -10,10 +10,11 @@ The friction loads are then linear in their sizes ``mu`` (one a pair), and so ar
 ``lambda(mu) = lambda_0 + sum_j mu_j G_j``, where ``lambda_0`` are the reactions without this friction
 and ``G_j`` those of a unit friction in pair ``j`` alone (``K + 1`` solves of the linear kinetostatics, all
 samples at once).  The sizes solve ``mu = c |A lambda(mu)|`` (``c`` the coefficients ``f r`` or ``f``,
-``A`` picks each pair's force): a small non-linear system per sample, solved by successive
-approximation from ``mu = 0`` (the textbook's method), vectorised over the samples, until no size changes
-by more than :data:`TOLERANCE` of the sample's largest.  Where the map does not contract, the friction
-grows without bound: the pair locks (self-locking); where it neither settles nor grows in
+``A`` picks each pair's force): a small non-linear system per sample, solved by Newton's method from
+the friction of the reactions without it, vectorised over the samples, until no size changes by more than
+:data:`TOLERANCE` of the sample's largest.  Where the map does not contract at the solution (the spectral
+radius of its Jacobian is 1 or more), successive approximations would grow without bound: the friction
+feeds itself, and the pair locks (self-locking); where Newton's method does not settle in
 :data:`MAX_ITERATIONS` steps it does not converge.  Both leave NaN reactions there and are reported as a
 :class:`~linkwork.errors.FrictionWarning` with the crank angle.  Where the reactions without friction are
 indeterminate (a dead point) the friction is unknown and taken as zero (also reported).  A last solve
@@ -37,9 +38,11 @@ from linkwork.structure.model import Mechanism, PairType
 
 #: Convergence: the largest change of a friction size in the last step, relative to the sample's largest size.
 TOLERANCE = 1e-12
-#: Steps of the successive approximation at most.
-MAX_ITERATIONS = 200
-#: Growth of the friction sizes over those of the first step that counts as without bound (the pair locks).
+#: Newton steps at most.
+MAX_ITERATIONS = 50
+#: Successive approximations at most, where Newton's method finds no root (to tell a locking pair).
+SUCCESSIVE = 2000
+#: Growth of the friction over that of the reactions without it that counts as without bound (the pair locks).
 UNBOUNDED = 1e6
 
 #: A solve of the linear kinetostatics with given external loads: a tuple whose first item is the
@@ -199,35 +202,76 @@ def solve_friction(kin: Kinematics, base: Applied, solve: Solver) -> tuple[Frict
 def _iterate(
     revolute: np.ndarray, lam0: np.ndarray, gain: np.ndarray, c: np.ndarray
 ) -> tuple[np.ndarray, int, np.ndarray, np.ndarray]:
-    """Successive approximation of ``mu = c |A (lam0 + gain mu)|`` from ``mu = 0`` over all samples at once.
+    """Newton's method for ``mu = T(mu) = c |A (lam0 + gain mu)|`` from ``mu = T(0)`` over all samples at once.
 
     ``revolute`` ``(K,)`` which pairs turn, ``lam0`` ``(V, A, 2K)`` the multipliers of the pairs without this
-    friction, ``gain`` ``(V, A, 2K, K)`` their change with each size.  Returns the sizes ``(V, A, K)``, the
-    steps taken, and where the pairs lock and where the iteration does not converge ``(V, A)``.
+    friction, ``gain`` ``(V, A, 2K, K)`` their change with each size.  A sample is solved once no size changes
+    by more than :data:`TOLERANCE` of its largest; there the pairs lock where the spectral radius of ``dT/dmu``
+    is 1 or more (successive approximations would not settle: the friction feeds itself without bound).
+    Returns the sizes ``(V, A, K)``, the steps taken, and where the pairs lock and where the iteration
+    does not converge ``(V, A)``.
     """
     finite = np.isfinite(lam0).all(-1) & np.isfinite(gain).all((-1, -2))
     lam0 = np.where(finite[..., None], lam0, 0.0)
     gain = np.where(finite[..., None, None], gain, 0.0)
-
-    def step(mu: np.ndarray) -> np.ndarray:
-        return c * _carried(revolute, lam0 + np.einsum("...rk,...k->...r", gain, mu))
-
-    mu = step(np.zeros(lam0.shape[:-1] + (len(c),)))
-    first = np.maximum(np.max(mu, -1), 1e-300)
+    eye = np.eye(len(c))
+    mu = _map(revolute, lam0, gain, c, np.zeros(lam0.shape[:-1] + (len(c),)))[0]
     done = ~finite  # nothing to solve there
-    locked = np.zeros(finite.shape, bool)
-    steps = 1
-    while steps < MAX_ITERATIONS and not (done | locked).all():
+    steps = 0
+    slope = np.zeros(mu.shape + (len(c),))
+    while steps < MAX_ITERATIONS and not done.all():
         steps += 1
-        active = ~(done | locked)
-        new = step(mu)
-        top = np.max(new, -1)
-        grows = active & ~(top <= UNBOUNDED * first)  # NaN or inf: without bound too
-        settled = active & ~grows & (np.max(np.abs(new - mu), -1) <= TOLERANCE * top)
-        mu = np.where((active & ~grows)[..., None], new, mu)
-        done |= settled
+        mapped, slope = _map(revolute, lam0, gain, c, mu)
+        matrix = np.where(done[..., None, None], eye, eye - slope)
+        good = np.abs(np.linalg.det(matrix)) > 1e-12
+        matrix = np.where(good[..., None, None], matrix, eye)
+        change = np.linalg.solve(matrix, (mapped - mu)[..., None])[..., 0]
+        change = np.where((good & ~done)[..., None], change, 0.0)
+        mu = mu + change
+        done |= good & (np.max(np.abs(change), -1) <= TOLERANCE * np.max(np.abs(mu), -1))
+    mapped, slope = _map(revolute, lam0, gain, c, mu)
+    radius = np.max(np.abs(np.linalg.eigvals(np.where(finite[..., None, None], slope, 0.0))), -1)
+    locked = finite & done & ~(radius < 1.0)
+    if not done.all():  # no root found: where successive approximations grow without bound, the pairs lock
+        start = _map(revolute, lam0, gain, c, np.zeros_like(mu))[0]
+        grows, settled, found = _successive(revolute, lam0, gain, c, start, ~done)
+        mu = np.where(settled[..., None], found, mu)
         locked |= grows
-    return mu, steps, locked, ~done & ~locked
+        done |= settled | grows
+    return mu, steps, locked, finite & ~done
+
+
+def _successive(
+    revolute: np.ndarray, lam0: np.ndarray, gain: np.ndarray, c: np.ndarray, mu: np.ndarray, active: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Successive approximations ``mu <- T(mu)`` from ``mu`` where ``active``: where they grow past
+    :data:`UNBOUNDED` times the start, where they settle (to :data:`TOLERANCE`), and the sizes they settle at."""
+    first = np.maximum(np.max(mu, -1), 1e-300)
+    grows = np.zeros(active.shape, bool)
+    settled = np.zeros(active.shape, bool)
+    for _ in range(SUCCESSIVE):
+        new = _map(revolute, lam0, gain, c, mu)[0]
+        top = np.max(new, -1)
+        grows |= active & ~settled & ~(top <= UNBOUNDED * first)  # NaN or inf: without bound too
+        settled |= active & ~grows & (np.max(np.abs(new - mu), -1) <= TOLERANCE * top)
+        mu = np.where((active & ~grows & ~settled)[..., None], new, mu)
+        if (grows | settled | ~active).all():
+            break
+    return grows, settled, mu
+
+
+def _map(
+    revolute: np.ndarray, lam0: np.ndarray, gain: np.ndarray, c: np.ndarray, mu: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """``T(mu) = c |A (lam0 + gain mu)|`` ``(V, A, K)`` and its Jacobian ``(V, A, K, K)`` (:func:`_iterate`)."""
+    lam = lam0 + np.einsum("...rk,...k->...r", gain, mu)
+    first, second = lam[..., 0::2], lam[..., 1::2]
+    size = np.hypot(first, second)
+    safe = np.where(size > 0, size, 1.0)
+    d_first = np.where(revolute, first / safe, 0.0)  # d|A lam| / d lam of each pair's two multipliers
+    d_second = np.where(revolute, second / safe, np.sign(second))
+    slope = c[:, None] * (d_first[..., None] * gain[..., 0::2, :] + d_second[..., None] * gain[..., 1::2, :])
+    return c * _carried(revolute, lam), slope
 
 
 def _problems(
@@ -254,7 +298,7 @@ def _problems(
             name = "phi = " if crank is not None else ""
             what = {
                 "locks": f"friction in {joints} locks the mechanism (self-locking) at {name}{where}{unit}",
-                "does not converge": f"friction in {joints} does not converge in {MAX_ITERATIONS} steps at "
+                "does not converge": f"friction in {joints} does not converge in {MAX_ITERATIONS} Newton steps at "
                 f"{name}{where}{unit}",
                 "indeterminate": f"friction in {joints} is taken as zero at {name}{where}{unit}, where the reactions "
                 "are indeterminate (a dead point)",

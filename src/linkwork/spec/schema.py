@@ -257,7 +257,9 @@ class PairFriction(_Strict):
     pin-in-slot joint: ``f |N|`` in the slot, and ``f radius |R|`` on the pin where ``radius`` is given.
     """
 
-    f: Number = Field(ge=0, description="friction coefficient: tangential force over normal force")
+    f: Annotated[float, Field(allow_inf_nan=False, ge=0, le=MAX_MAGNITUDE)] = Field(
+        description="friction coefficient: tangential force over normal force, from 0 up"
+    )
     radius: NonnegativeLength | None = Field(
         None,
         description="revolute: the radius of the pin (or journal) the pair turns on; f radius is the "
