@@ -243,8 +243,8 @@ def _report_efficiency(f: Forces, out: Console) -> None:
         else "none (the drive never gives power)"
     )
     cycle = float(e.cycle)
-    out.print(f"  efficiency: of the cycle {cycle:.4g} (useful work / drive work); instantaneous {span}"
-              if math.isfinite(cycle) else f"  efficiency: of the cycle none; instantaneous {span}", soft_wrap=True)  # fmt: skip
+    of_cycle = f"{cycle:.4g} (useful work / drive work)" if math.isfinite(cycle) else "none"
+    out.print(f"  efficiency: of the cycle {of_cycle}; instantaneous {span}", soft_wrap=True)
 
 
 def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:

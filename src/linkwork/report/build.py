@@ -517,8 +517,9 @@ def _efficiency_text(run: _Run, f: Forces) -> list[str]:
     e = f.efficiency
     drive, cycle, eta = float(e.work(e.drive)), float(e.cycle), e.instantaneous
     if math.isfinite(cycle) and np.isfinite(eta).any():
-        out.append(_p(run.t("efficiency.text", cycle=f"{cycle:.4f}", useful=f"{float(e.work(e.useful)):.4g}",
-                            drive=f"{drive:.4g}", low=f"{np.nanmin(eta):.3f}", high=f"{np.nanmax(eta):.3f}")))  # fmt: skip
+        useful, low, high = float(e.work(e.useful)), float(np.nanmin(eta)), float(np.nanmax(eta))
+        out.append(_p(run.t("efficiency.text", cycle=f"{cycle:.4f}", useful=f"{useful:.4g}", drive=f"{drive:.4g}",
+                            low=f"{low:.3f}", high=f"{high:.3f}")))  # fmt: skip
     else:
         out.append(_p(run.t("efficiency.none")))
     works = e.work(e.losses)
