@@ -241,3 +241,35 @@ hints:
         lw.loads(fixed.replace("[crank, rod], friction: {f: 0.1", "[crank, rod], friction: {f: -0.1"), file="bad.yaml")
     (problem,) = caught.value.problems
     assert "bad.yaml:11" in str(problem) and "joints.A.friction.f" in str(problem)
+
+
+def test_compiled_reactions_with_friction_equal_the_numpy_solution(monkeypatch):
+    """The friction solve goes through the compiled kernel (its loads are external loads): the same reactions
+    and friction as through the batched NumPy solves."""
+    from linkwork.kinetostatics import fast, forces
+
+    if not fast.available():
+        pytest.skip("numba is not installed")
+    mech = _shears(0.1, 0.020)
+    compiled = lw.forces(mech, steps=360)
+    monkeypatch.setattr(forces.fast, "available", lambda: False)
+    numpy = lw.forces(mech, steps=360)
+    assert compiled.friction is not None and numpy.friction is not None
+    both = np.isfinite(compiled.multipliers) & np.isfinite(numpy.multipliers)
+    assert np.array_equal(both, np.isfinite(numpy.multipliers))
+    scale = np.abs(numpy.multipliers[both]).max()
+    np.testing.assert_allclose(compiled.multipliers[both], numpy.multipliers[both], rtol=0, atol=1e-11 * scale)
+    assert [(p.kind, p.angles) for p in compiled.friction.problems] == [
+        (p.kind, p.angles) for p in numpy.friction.problems
+    ]
+
+
+def test_friction_of_design_variants_equals_each_variant_alone():
+    mech = _slider_crank(masses=True)
+    lengths = [0.33, 0.35, 0.37]
+    f = lw.forces(mech, steps=24, variants={"links.rod.length": lengths})
+    assert f.friction is not None and f.friction.size.shape == (3, 24, 4)
+    for k, value in enumerate(lengths):
+        one = lw.forces(mech, steps=24, variants={"links.rod.length": [value]})
+        np.testing.assert_allclose(f.driving_torque[k], one.driving_torque[0], rtol=1e-12, atol=1e-9)
+        np.testing.assert_allclose(f.efficiency.losses[k], one.efficiency.losses[0], rtol=1e-12, atol=1e-9)
