@@ -273,3 +273,44 @@ def test_friction_of_design_variants_equals_each_variant_alone():
         one = lw.forces(mech, steps=24, variants={"links.rod.length": [value]})
         np.testing.assert_allclose(f.driving_torque[k], one.driving_torque[0], rtol=1e-12, atol=1e-9)
         np.testing.assert_allclose(f.efficiency.losses[k], one.efficiency.losses[0], rtol=1e-12, atol=1e-9)
+
+
+def _write(tmp_path, mech: lw.Mechanism) -> str:
+    import yaml
+
+    path = tmp_path / "friction.yaml"
+    data = mech.spec.model_dump(exclude_none=True) | {"units": {"angle": "rad"}}
+    path.write_text(yaml.safe_dump(data, sort_keys=False))
+    return str(path)
+
+
+def test_forces_command_reports_the_efficiency_and_where_the_pairs_lock(tmp_path):
+    import json
+
+    from commandline import linkwork
+
+    path = _write(tmp_path, _shears(0.1, 0.020))
+    text = linkwork("forces", path, "--steps", "360")
+    assert text.returncode == 0, text.stderr
+    assert "warning: friction in O, A, B, guide locks the mechanism (self-locking) at phi = 83, 84" in text.stdout
+    assert "lost to friction: O " in text.stdout and "efficiency: of the cycle none" in text.stdout
+    light = linkwork("forces", _write(tmp_path, _shears(0.01, 0.010)), "--json", "--out", str(tmp_path / "out"))
+    data = json.loads(light.stdout)["efficiency"]
+    assert 0 < data["cycle"] < 1 and data["balance"] < 1e-9
+    assert list(data["friction_power"]) == ["O", "A", "B", "guide"]
+    assert data["friction"]["joints"]["A"] == {"f": 0.01, "friction_circle_m": pytest.approx(1e-4)}
+    assert [p["kind"] for p in data["friction"]["problems"]] == ["indeterminate"]
+    head = (tmp_path / "out" / "forces.csv").read_text().splitlines()[0].split(",")
+    assert {"drive_power [W]", "friction_power.guide [W]", "efficiency [1]"} <= set(head)
+
+
+def test_check_values_lists_the_friction_in_si(tmp_path):
+    import json
+
+    from commandline import linkwork
+
+    out = json.loads(linkwork("check", _write(tmp_path, _slider_crank()), "--json", "--values").stdout)
+    got = {v["path"]: v for v in out["values"]}
+    assert got["joints.O.friction.radius"]["value"] == pytest.approx(0.02)
+    assert got["joints.O.friction.radius"]["unit"] == "m"
+    assert got["joints.guide.friction.f"]["value"] == pytest.approx(F_GUIDE)
