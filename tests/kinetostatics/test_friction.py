@@ -177,7 +177,8 @@ def test_shears_with_friction_in_every_pair_efficiency_and_power_balance():
     """Light friction (f = 0.01, pins of 10 mm): no sample of the turn locks; the cycle's efficiency lies
     between 0 and 1 and is the share of the drive's work not lost to friction (the kinetic and potential
     energy come back over the turn); the power balance closes at every sample."""
-    f = lw.forces(_shears(0.01, 0.010), steps=360)
+    with pytest.warns(FrictionWarning, match=r"taken as zero at phi = 90, 270 deg, where the reactions are indet"):
+        f = lw.forces(_shears(0.01, 0.010), steps=360)
     fr, e = f.friction, f.efficiency
     assert fr is not None
     assert [p.kind for p in fr.problems] == ["indeterminate"]  # the dead points, phi = 90 and 270 deg
@@ -195,7 +196,10 @@ def test_shears_lock_near_their_dead_points_within_the_friction_angle():
     """At phi = 90 and 270 deg the rod lies across the knife's guide: within about the friction angle
     (atan 0.1 = 5.7 deg, a little more for the pins' friction circles) of those positions no drive moves the
     knife.  The power balance closes wherever it moves."""
-    f = lw.forces(_shears(0.1, 0.020), steps=360)
+    with pytest.warns(FrictionWarning) as caught:
+        f = lw.forces(_shears(0.1, 0.020), steps=360)
+    assert [w.message.kind for w in caught] == ["locks", "indeterminate"]
+    assert "locks the mechanism (self-locking) at phi = 83, 84, 85" in str(caught[0].message)
     fr = f.friction
     assert fr is not None
     kinds = {p.kind: p for p in fr.problems}

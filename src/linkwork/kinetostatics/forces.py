@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
@@ -331,6 +332,10 @@ def forces_of(kin: Kinematics) -> Forces:
     its angles, speeds and variants (with the variants' mass properties), without solving the
     motion again.
 
+    Where friction in proportion to the pairs' forces has no solution (the pairs lock, it does not converge, or
+    the reactions are indeterminate), a :class:`~linkwork.errors.FrictionWarning` for each kind, with the crank
+    angles (also in :attr:`Forces.friction`).
+
     Raises
     ------
     LinkworkError
@@ -345,6 +350,8 @@ def forces_of(kin: Kinematics) -> Forces:
         return _made(Forces(kin, lam, found), external, loads)
     base = evaluate(kin)
     friction, external, (lam, found, loads) = solve_friction(kin, base, lambda a: _solve(kin, a, compiled))
+    for problem in friction.problems:
+        warnings.warn(problem, stacklevel=2)
     return _made(Forces(kin, lam, found, friction), external, loads)
 
 
