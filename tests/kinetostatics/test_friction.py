@@ -247,13 +247,17 @@ hints:
     assert "bad.yaml:11" in str(problem) and "joints.A.friction.f" in str(problem)
 
 
+@pytest.mark.filterwarnings("ignore::linkwork.errors.FrictionWarning")
 def test_compiled_reactions_with_friction_equal_the_numpy_solution(monkeypatch):
     """The friction solve goes through the compiled kernel (its loads are external loads): the same reactions
     and friction as through the batched NumPy solves."""
-    from linkwork.kinetostatics import fast, forces
+    import importlib
+
+    from linkwork.kinetostatics import fast
 
     if not fast.available():
         pytest.skip("numba is not installed")
+    forces = importlib.import_module("linkwork.kinetostatics.forces")
     mech = _shears(0.1, 0.020)
     compiled = lw.forces(mech, steps=360)
     monkeypatch.setattr(forces.fast, "available", lambda: False)
