@@ -517,7 +517,8 @@ def _efficiency_text(run: _Run, f: Forces) -> list[str]:
     e = f.efficiency
     drive, cycle, eta = float(e.work(e.drive)), float(e.cycle), e.instantaneous
     if math.isfinite(cycle) and np.isfinite(eta).any():
-        useful, low, high = float(e.work(e.useful)), float(np.nanmin(eta)), float(np.nanmax(eta))
+        useful = float(e.work(e.useful))
+        low, high = (round(float(x), 3) + 0.0 for x in (np.nanmin(eta), np.nanmax(eta)))  # no "-0.000"
         out.append(_p(run.t("efficiency.text", cycle=f"{cycle:.4f}", useful=f"{useful:.4g}", drive=f"{drive:.4g}",
                             low=f"{low:.3f}", high=f"{high:.3f}")))  # fmt: skip
     else:
