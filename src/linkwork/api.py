@@ -34,6 +34,7 @@ from linkwork.kinetostatics.balancing import balance as _balance
 from linkwork.kinetostatics.bolt_speed import bolt_speed as _bolt_speed
 from linkwork.kinetostatics.external import compile_loads
 from linkwork.kinetostatics.forces import forces as _forces
+from linkwork.kinetostatics.friction import compile_friction
 from linkwork.machine.drive import from_spec
 from linkwork.machine.dynamics import dynamics as _dynamics
 from linkwork.machine.reduced import reduced as _reduced
@@ -107,7 +108,8 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
     redundant constraints), the solve program of its groups (:func:`linkwork.motion.program.build`, the
     branches read off the assembly pose by :func:`linkwork.motion.kernels.with_branches`,
     encoded for the compiled kernels where they cover it), the external loads
-    (:func:`linkwork.kinetostatics.external.compile_loads`) and the machine's drive
+    (:func:`linkwork.kinetostatics.external.compile_loads`), the friction in the pairs
+    (:func:`linkwork.kinetostatics.friction.compile_friction`) and the machine's drive
     (:func:`linkwork.machine.drive.from_spec`).
 
     Raises
@@ -131,8 +133,9 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
     program = tuple(with_branches(mech, build(mech)))
     encoded = fast.encode(program, mech.point_link) if fast.supports(program) else None
     drive = from_spec(spec.machine) if spec.machine is not None else None
+    loads, friction = compile_loads(spec, mech), compile_friction(spec, mech)
     return dataclasses.replace(
-        mech, program=program, fast_program=encoded, loads=compile_loads(spec, mech), machine=drive
+        mech, program=program, fast_program=encoded, loads=loads, friction=friction, machine=drive
     )
 
 

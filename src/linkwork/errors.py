@@ -127,6 +127,29 @@ class LinkworkWarning(UserWarning):
     """Base class of linkwork's warnings."""
 
 
+class FrictionWarning(LinkworkWarning):
+    """Friction in proportion to the pairs' forces that has no solution at some positions: the pair locks
+    (self-locking: the friction grows without bound, no drive moves the mechanism there), the iteration
+    does not converge, or the reactions are indeterminate there (a dead point: the friction is taken as zero).
+
+    Attributes
+    ----------
+    joint : str
+        The joint of the pair.
+    kind : str
+        ``locks``, ``does not converge`` or ``indeterminate``.
+    angles : tuple of float
+        Where: the crank angle phi in degrees (turned from position 0) with one crank, else the first drive's
+        coordinate (rad or m).
+    variant : int
+        The variant index (0 for a single mechanism).
+    """
+
+    def __init__(self, joint: str, kind: str, angles: tuple[float, ...], variant: int, where: str):
+        self.joint, self.kind, self.angles, self.variant = joint, kind, angles, variant
+        super().__init__(where)
+
+
 class DesignWarning(LinkworkWarning):
     """A design option that is valid but probably not what was meant (e.g. a range in the wrong units)."""
 

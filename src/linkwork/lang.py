@@ -198,6 +198,36 @@ TEXTS: dict[str, tuple[str, str]] = {
         "The driving torque and the forces in the frame's joints at the 12 positions:",
         "Уравновешивающий момент и реакции в опорах стойки в двенадцати положениях:",
     ),
+    "efficiency.text": (
+        "Friction in the pairs: the efficiency of the cycle η = {cycle} (work of the useful loads {useful} J of "
+        "the drive's {drive} J); the instantaneous efficiency 1 − P_friction / P_drive lies between {low} and "
+        "{high} where the drive gives power.",
+        "Трение в кинематических парах: КПД за цикл η = {cycle} (работа сил полезного сопротивления {useful} Дж "
+        "из работы движущих сил {drive} Дж); мгновенный КПД 1 − N_тр / N_д — от {low} до {high} там, где "
+        "привод отдаёт мощность.",
+    ),
+    "efficiency.none": (
+        "Friction in the pairs: no efficiency over the cycle (the drive does no work, or the mechanism has no "
+        "solution at some positions).",
+        "Трение в кинематических парах: КПД за цикл не определён (движущие силы не совершают работы или "
+        "в некоторых положениях механизм не имеет решения).",
+    ),
+    "efficiency.head.joint": ("joint", "пара"),
+    "efficiency.head.work": ("work lost to friction, J", "работа сил трения, Дж"),
+    "efficiency.head.share": ("of the drive's work, %", "доля работы движущих сил, %"),
+    "efficiency.head.peak": ("largest power lost, W", "наибольшая мощность трения, Вт"),
+    "friction.locks": (
+        "Friction locks the mechanism (self-locking) at φ = {at}°: no drive moves it there.",
+        "Самоторможение при φ = {at}°: трение в парах не даёт механизму двигаться.",
+    ),
+    "friction.does not converge": (
+        "The friction in proportion to the pairs' forces does not converge at φ = {at}°.",
+        "Силы трения, пропорциональные реакциям, не найдены (итерации не сошлись) при φ = {at}°.",
+    ),
+    "friction.indeterminate": (
+        "Friction is taken as zero at φ = {at}°, where the reactions are indeterminate (a dead point).",
+        "Трение принято равным нулю при φ = {at}°: в мёртвом положении реакции не определены.",
+    ),
     "positions.head.torque": ("driving torque, {unit}", "уравновешивающий момент, {unit}"),
     "positions.head.support": ("|F| in {joint}, {unit}", "|R| в {joint}, {unit}"),
     "foundation.head": ("foundation", "фундамент"),

@@ -42,9 +42,14 @@ if TYPE_CHECKING:
 @app.callback()
 def _every_command() -> None:
     """Analysis of planar lever mechanisms: structure, kinematics, forces, dynamics, impact."""
+    import warnings
+
     from linkwork.cli.terminal import install
+    from linkwork.errors import FrictionWarning
 
     install()  # whatever calls the application (the script, a test's runner): its output escaped
+    # where friction has no solution the commands say so in their own words (forces, the report, dynamics)
+    warnings.filterwarnings("ignore", category=FrictionWarning)
 
 
 FileOrExample = Annotated[str, typer.Argument(help="a mechanism file (.yaml) or the name of a bundled example")]

@@ -207,9 +207,44 @@ def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: l
             + f"; balance of the free body {g['residual']:.1e}"
         )
     _report_foundation(f, out)
+    _report_efficiency(f, out)
     checks = ", ".join(f"{k.replace('_', ' ')} {v:.1e}" for k, v in f.checks.items() if math.isfinite(v))
     out.print(f"  checks (relative discrepancy): {checks}", soft_wrap=True)
     out.print(f"  {escape(convention)}", soft_wrap=True)
+
+
+def _report_efficiency(f: Forces, out: Console) -> None:
+    """With friction in the pairs: how the friction in proportion to the forces was solved and where it has no
+    solution, the power lost in each joint over the samples, the instantaneous and the cycle's efficiency."""
+    from rich.markup import escape
+
+    from linkwork.io.force_tables import has_losses
+    from linkwork.kinetostatics.friction import TOLERANCE
+
+    if not has_losses(f):
+        return
+    if f.friction is not None:
+        fr = f.friction
+        out.print(
+            f"  friction in proportion to the pair forces: solved to {TOLERANCE:.0e} in {fr.iterations} Newton "
+            f"steps (largest residual {fr.residual:.1e})"
+        )
+        for problem in fr.problems:
+            out.print(f"  warning: {escape(str(problem))}", soft_wrap=True)
+    e = f.efficiency
+    drive = float(e.work(e.drive))
+    lost = ", ".join(f"{escape(j)} {float(w):.6g} J" for j, w in zip(e.joints, e.work(e.losses), strict=True))
+    out.print(f"  work over the samples: drive {drive:.6g} J, useful loads {float(e.work(e.useful)):.6g} J; "
+              f"lost to friction: {lost}", soft_wrap=True)  # fmt: skip
+    eta = e.instantaneous
+    span = (
+        f"from {np.nanmin(eta):.4g} to {np.nanmax(eta):.4g} where the drive gives power"
+        if np.isfinite(eta).any()
+        else "none (the drive never gives power)"
+    )
+    cycle = float(e.cycle)
+    of_cycle = f"{cycle:.4g} (useful work / drive work)" if math.isfinite(cycle) else "none"
+    out.print(f"  efficiency: of the cycle {of_cycle}; instantaneous {span}", soft_wrap=True)
 
 
 def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:

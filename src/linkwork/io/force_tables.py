@@ -150,7 +150,65 @@ def to_json(f: Any) -> dict[str, Any]:
         "groups": groups(f),
         "checks": {k: _clean(v) for k, v in f.checks.items()},
         "valid": [bool(x) for x in np.asarray(f.kinematics.valid).ravel()],
+        **({"efficiency": efficiency_record(f)} if has_losses(f) else {}),
     }
+
+
+def has_losses(f: Any) -> bool:
+    """Whether the mechanism of ``f`` has friction in a pair (constant, or in proportion to the force)."""
+    return f.friction is not None or any(load.kind == "friction" for load in f.mechanism.loads)
+
+
+def efficiency_record(f: Any) -> dict[str, Any]:
+    """The ``efficiency`` of ``linkwork forces --json`` (:mod:`linkwork.kinetostatics.efficiency`): the powers
+    of the balance (W) at each angle, the power lost in each joint, the instantaneous efficiency, the works
+    (J) and the efficiency of the cycle; with friction in proportion to the forces, how it was solved."""
+    from linkwork.kinetostatics.friction import MAX_ITERATIONS, TOLERANCE
+
+    e = f.efficiency
+    out: dict[str, Any] = {
+        "units": {"power": "W", "work": "J", "efficiency": "1"},
+        "drive_power": _arr(e.drive),
+        "useful_power": _arr(e.useful),
+        "friction_power": {joint: _arr(e.losses[:, j]) for j, joint in enumerate(e.joints)},
+        "kinetic_energy_rate": _arr(e.kinetic),
+        "potential_energy_rate": _arr(e.potential),
+        "instantaneous": _arr(e.instantaneous),
+        "work": {
+            "drive": _clean(float(e.work(e.drive))),
+            "useful": _clean(float(e.work(e.useful))),
+            "friction": {joint: _clean(float(w)) for joint, w in zip(e.joints, e.work(e.losses), strict=True)},
+        },
+        "cycle": _clean(float(e.cycle)),
+        "balance": _clean(_balance(e)),
+    }
+    if f.friction is not None:
+        fr = f.friction
+
+        def revolute(k: int) -> bool:
+            return bool(f.mechanism.pair_type[k] == PairType.REVOLUTE)
+
+        out["friction"] = {
+            "joints": {p.joint: {"f": p.f, "friction_circle_m": p.coefficient if revolute(p.pair) else None}
+                       for p in fr.pairs},
+            "tolerance": TOLERANCE,
+            "max_iterations": MAX_ITERATIONS,
+            "iterations": fr.iterations,
+            "residual": fr.residual,
+            "problems": [{"joint": w.joint, "kind": w.kind, "at": list(w.angles), "message": str(w)}
+                         for w in fr.problems],
+        }  # fmt: skip
+    return out
+
+
+def _balance(e: Any) -> float:
+    """The largest gap of the power balance (:attr:`~linkwork.kinetostatics.efficiency.Efficiency.imbalance`)
+    relative to the largest drive power; NaN where nothing moves."""
+    gap, drive = np.abs(e.imbalance), np.abs(e.drive)
+    if not np.isfinite(gap).any():
+        return math.nan
+    top = float(np.nanmax(drive))
+    return float(np.nanmax(gap)) / top if top > 0 else float(np.nanmax(gap))
 
 
 def groups(f: Any) -> list[dict[str, Any]]:
@@ -198,6 +256,11 @@ def write_csv(f: Any, path: str | Path) -> Path:
     cols += [("shaking.moment [N m]", f.shaking_moment)]
     units = magnitude_units(mech)
     cols += [(f"load.{name} [{units[name]}]", v[0]) for name, v in f.loads.external.magnitude.items()]
+    if has_losses(f):
+        e = f.efficiency
+        cols += [("drive_power [W]", e.drive), ("useful_power [W]", e.useful)]
+        cols += [(f"friction_power.{joint} [W]", e.losses[:, j]) for j, joint in enumerate(e.joints)]
+        cols += [("efficiency [1]", e.instantaneous)]
 
     def writer(tmp: Path) -> None:
         with open(tmp, "w", newline="", encoding="utf-8") as fh:

@@ -18,6 +18,10 @@ the power of gravity, divided by the drive speed: Zhukovsky's lever in
 analytic form), and the force and moment on the foundation from the theorem
 on the change of momentum (the method of seed paper 000).
 
+A joint's ``friction: {f, radius}`` adds friction in proportion to its pairs' forces, solved with the
+reactions (:mod:`linkwork.kinetostatics.friction`); :attr:`Forces.efficiency` splits the drive's power into
+the useful loads', each pair's friction and the energy rates (:mod:`linkwork.kinetostatics.efficiency`).
+
 >>> import linkwork as lw
 >>> f = lw.forces(lw.compile(lw.load("shears-slider-crank")), steps=72)
 >>> f.foundation.shape
@@ -29,9 +33,11 @@ from __future__ import annotations
 from linkwork.kinetostatics.balancing import Balance, Counterweight, balance
 from linkwork.kinetostatics.bolt_speed import bolt_speed
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
+from linkwork.kinetostatics.efficiency import Efficiency
 from linkwork.kinetostatics.force_plans import ForcePlans, GroupPlan, PlanForce, force_plans
 from linkwork.kinetostatics.forces import Forces, forces, forces_of
 from linkwork.kinetostatics.free_body import FreeBody
+from linkwork.kinetostatics.friction import FrictionSolution, PairFriction
 from linkwork.kinetostatics.lever import Lever, lever
 from linkwork.kinetostatics.peaks import Peak, foundation_peak, torque_peak
 from linkwork.kinetostatics.reactions import Loads
@@ -40,12 +46,15 @@ __all__ = [
     "Balance",
     "Bolts",
     "Counterweight",
+    "Efficiency",
     "ForcePlans",
     "Forces",
     "FreeBody",
+    "FrictionSolution",
     "GroupPlan",
     "Lever",
     "Loads",
+    "PairFriction",
     "Peak",
     "PlanForce",
     "balance",

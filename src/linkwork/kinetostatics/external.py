@@ -291,25 +291,51 @@ def _process_load(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
 
 def _friction(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
     """Coulomb friction of constant size in one pair, against the relative motion (none at rest)."""
+    size = np.full(kin.valid_all.shape, load.value)
+    pair_friction(kin, load.pair, size, out)
+    out.magnitude[load.name] = size
+
+
+def relative_motion(kin: Kinematics, k: int) -> np.ndarray:
+    """The relative motion of pair ``k``, ``(V, A)``: link ``b``'s angular speed less link ``a``'s (rad/s) in a
+    revolute pair, the slider's speed along the guide relative to the guide's material point under it (m/s)
+    in a prismatic one (``a, b = pair_links[k]``)."""
     mech = kin.mechanism
-    k = load.pair
     a, b = (int(x) for x in mech.pair_links[k])
-    w = kin.vel[..., 2]
     if mech.pair_type[k] == PairType.REVOLUTE:
-        turn = np.sign(w[..., b] - w[..., a])
-        out.moments.append(LinkMoment(b, -load.value * turn))
-        out.moments.append(LinkMoment(a, load.value * turn))
-    else:
-        pos, vb, _ = kin._point(mech.point_names[int(mech.pair_points[k, 1])])
-        q, v = kin.pose[..., a, :], kin.vel[..., a, :]
-        r = pos - q[..., :2]
-        va = v[..., :2] + w[..., a, None] * perp(r)  # a's material point at P
-        u = guide_direction(kin, k)
-        slide = np.sign(np.sum((vb - va) * u, -1))
-        f = (-load.value * slide)[..., None] * u
-        out.forces.append(PointForce(b, pos, vb, f))
-        out.forces.append(PointForce(a, pos, va, -f))
-    out.magnitude[load.name] = np.full(kin.valid_all.shape, load.value)
+        return kin.vel[..., b, 2] - kin.vel[..., a, 2]
+    _, va, vb, u = _sliding(kin, k)
+    return np.sum((vb - va) * u, -1)
+
+
+def _sliding(kin: Kinematics, k: int) -> tuple[np.ndarray, ...]:
+    """Prismatic pair ``k``: the slider's point P, the velocities of the guide's material point at P and of
+    the slider's, and the guide's direction, each ``(V, A, 2)``."""
+    mech = kin.mechanism
+    a = int(mech.pair_links[k, 0])
+    pos, vb, _ = kin._point(mech.point_names[int(mech.pair_points[k, 1])])
+    q, v = kin.pose[..., a, :], kin.vel[..., a, :]
+    va = v[..., :2] + kin.vel[..., a, 2, None] * perp(pos - q[..., :2])  # a's material point at P
+    return pos, va, vb, guide_direction(kin, k)
+
+
+def pair_friction(kin: Kinematics, k: int, size: np.ndarray, out: Applied) -> None:
+    """Friction of size ``size`` ``(V, A)`` (N m in a revolute pair, N in a prismatic one) in pair ``k``, against
+    its relative motion (:func:`relative_motion`; none at relative rest), added to ``out``: a moment on
+    each link of a revolute pair, a force along the guide at the slider's point on each link of a prismatic
+    one.  Their power is ``-size |relative motion|``."""
+    mech = kin.mechanism
+    a, b = (int(x) for x in mech.pair_links[k])
+    if mech.pair_type[k] == PairType.REVOLUTE:
+        turn = np.sign(kin.vel[..., b, 2] - kin.vel[..., a, 2])
+        out.moments.append(LinkMoment(b, -size * turn))
+        out.moments.append(LinkMoment(a, size * turn))
+        return
+    pos, va, vb, u = _sliding(kin, k)
+    slide = np.sign(np.sum((vb - va) * u, -1))
+    f = (-size * slide)[..., None] * u
+    out.forces.append(PointForce(b, pos, vb, f))
+    out.forces.append(PointForce(a, pos, va, -f))
 
 
 def generalised(kin: Kinematics, applied: Applied) -> np.ndarray:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
@@ -14,8 +15,10 @@ import numpy.typing as npt
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics import fast
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
+from linkwork.kinetostatics.efficiency import Efficiency, efficiency
 from linkwork.kinetostatics.external import Applied, evaluate
 from linkwork.kinetostatics.free_body import FreeBody, free_bodies
+from linkwork.kinetostatics.friction import FrictionSolution, has_friction, solve_friction
 from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.kinetostatics.reactions import (
     Loads,
@@ -47,17 +50,21 @@ class Forces:
         Applied and inertia loads of every link (computed when first asked for, as are the checks).
     external : Applied
         The file's external loads (:func:`~linkwork.kinetostatics.external.evaluate`), those the reactions
-        were solved with.
+        were solved with (the friction in proportion to the pairs' forces included).
+    friction : FrictionSolution or None
+        The friction in proportion to the pairs' forces (:mod:`linkwork.kinetostatics.friction`), where the
+        file gives one.
     """
 
     kinematics: Kinematics
     multipliers: np.ndarray
     foundation_all: np.ndarray  # (V, A, 3)
+    friction: FrictionSolution | None = None
 
     @cached_property
     def loads(self) -> Loads:
         """Applied (gravity, external) and inertia loads of every link."""
-        return inertia_and_gravity(self.kinematics)
+        return inertia_and_gravity(self.kinematics, self.external)
 
     @cached_property
     def external(self) -> Applied:
@@ -263,6 +270,13 @@ class Forces:
             "foundation_moment_vs_momentum": rel(self.foundation_all[..., 2], self.foundation_momentum_all[..., 2]),
         }
 
+    @cached_property
+    def efficiency(self) -> Efficiency:
+        """The power balance split into the drive's, the useful loads', the friction's in each pair and the
+        rates of kinetic and potential energy; the instantaneous and the cycle's efficiency
+        (:mod:`linkwork.kinetostatics.efficiency`; the variant axis kept)."""
+        return efficiency(self)
+
     def free_bodies(self) -> list[FreeBody]:
         """Every Assur group cut free: the forces of the other links on it, its loads, and the
         sum of them all (the residual, zero for a correct solution); see
@@ -318,6 +332,10 @@ def forces_of(kin: Kinematics) -> Forces:
     its angles, speeds and variants (with the variants' mass properties), without solving the
     motion again.
 
+    Where friction in proportion to the pairs' forces has no solution (the pairs lock, it does not converge, or
+    the reactions are indeterminate), a :class:`~linkwork.errors.FrictionWarning` for each kind, with the crank
+    angles (also in :attr:`Forces.friction`).
+
     Raises
     ------
     LinkworkError
@@ -325,19 +343,35 @@ def forces_of(kin: Kinematics) -> Forces:
     """
     mech = kin.mechanism
     _statically_determinate(mech)
-    if not fast.available():
-        loads = inertia_and_gravity(kin)
-        lam, frame = solve_reactions(kin, loads)
-        out = Forces(kin, lam, foundation(kin, frame, loads))
-        object.__setattr__(out, "loads", loads)  # the cached values
-        if loads.external is not None:
-            object.__setattr__(out, "external", loads.external)
-        return out
-    external = evaluate(kin) if mech.loads else None
-    lam, found = fast.run(kin, external)
-    out = Forces(kin, lam, found)
+    compiled = fast.available()
+    if not has_friction(mech):
+        external = evaluate(kin) if mech.loads or not compiled else None
+        lam, found, loads = _solve(kin, external, compiled)
+        return _made(Forces(kin, lam, found), external, loads)
+    base = evaluate(kin)
+    friction, external, (lam, found, loads) = solve_friction(kin, base, lambda a: _solve(kin, a, compiled))
+    for problem in friction.problems:
+        warnings.warn(problem, stacklevel=2)
+    return _made(Forces(kin, lam, found, friction), external, loads)
+
+
+def _solve(kin: Kinematics, external: Applied | None, compiled: bool) -> tuple[np.ndarray, np.ndarray, Loads | None]:
+    """The multipliers, the foundation loads and (solved in NumPy) the loads of every link, with the
+    external loads ``external``: by the compiled kernel where it runs, else by NumPy."""
+    if compiled:
+        lam, found = fast.run(kin, external)
+        return lam, found, None
+    loads = inertia_and_gravity(kin, external)
+    lam, frame = solve_reactions(kin, loads)
+    return lam, foundation(kin, frame, loads), loads
+
+
+def _made(out: Forces, external: Applied | None, loads: Loads | None) -> Forces:
+    """``out`` with the values it was solved with cached."""
     if external is not None:
-        object.__setattr__(out, "external", external)  # the cached value
+        object.__setattr__(out, "external", external)
+    if loads is not None:
+        object.__setattr__(out, "loads", loads)
     return out
 
 

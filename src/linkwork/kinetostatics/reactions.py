@@ -46,8 +46,9 @@ def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
     return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
 
 
-def inertia_and_gravity(kin: Kinematics) -> Loads:
-    """Gravity, the external loads and the d'Alembert inertia loads of every link."""
+def inertia_and_gravity(kin: Kinematics, external: Applied | None = None) -> Loads:
+    """Gravity, the external loads (``external``, default those of the file:
+    :func:`~linkwork.kinetostatics.external.evaluate`) and the d'Alembert inertia loads of every link."""
     m = kin.mechanism
     mass, lx, ly, j_c = _mass_arrays(kin)
     q, v, a = kin.pose, kin.vel, kin.acc  # (V, A, N, 3)
@@ -61,8 +62,9 @@ def inertia_and_gravity(kin: Kinematics) -> Loads:
     weight = np.zeros(com.shape)
     weight[..., 1] = -mass * m.gravity
     applied = np.concatenate([weight, _cross(r, weight)[..., None]], -1)
-    external = evaluate(kin)
-    if m.loads:
+    if external is None:
+        external = evaluate(kin)
+    if external.forces or external.moments:
         applied = applied + generalised(kin, external)
     f_in = -mass[..., None] * ac
     inertia = np.concatenate([f_in, (_cross(r, f_in) - j_c * a[..., 2])[..., None]], -1)
@@ -136,18 +138,28 @@ def power_check(kin: Kinematics, loads: Loads) -> np.ndarray:
     NaN otherwise.  Shape (V, A, D).
     """
     m = kin.mechanism
-    mass, _, _, j_c = _mass_arrays(kin)
-    v, a = kin.vel, kin.acc
-    kinetic_rate = np.sum(mass * np.sum(loads.com_velocity * loads.com_acceleration, -1), -1) + np.sum(
-        j_c * v[..., 2] * a[..., 2], -1
-    )
-    power = -m.gravity * np.sum(mass * loads.com_velocity[..., 1], -1) + external_power(kin, loads.external)
+    kinetic_rate = kinetic_energy_rate(kin, loads)
+    power = gravity_power(kin, loads) + external_power(kin, loads.external)
     rate = kin.rates[None, :, 0]
     out = np.full(kinetic_rate.shape + (m.n_drives,), np.nan)
     if m.n_drives == 1:
         with np.errstate(invalid="ignore", divide="ignore"):  # at rest the balance says nothing: NaN
             out[..., 0] = (kinetic_rate - power) / rate
     return out
+
+
+def kinetic_energy_rate(kin: Kinematics, loads: Loads) -> np.ndarray:
+    """dT/dt of the links, W, (V, A): the sum of m v_C . a_C + J_C omega epsilon."""
+    mass, _, _, j_c = _mass_arrays(kin)
+    v, a = kin.vel, kin.acc
+    translation = np.sum(mass * np.sum(loads.com_velocity * loads.com_acceleration, -1), -1)
+    return translation + np.sum(j_c * v[..., 2] * a[..., 2], -1)
+
+
+def gravity_power(kin: Kinematics, loads: Loads) -> np.ndarray:
+    """Power of the links' weights, W, (V, A): minus the rate of their potential energy."""
+    mass = _mass_arrays(kin)[0]
+    return -kin.mechanism.gravity * np.sum(mass * loads.com_velocity[..., 1], -1)
 
 
 def foundation(kin: Kinematics, frame: np.ndarray, loads: Loads) -> np.ndarray:

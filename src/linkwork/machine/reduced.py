@@ -11,19 +11,25 @@ the second (``d2 r / d psi2``):
     J(psi)      = sum m_i |v_Ci|^2 + J_Ci omega_i^2
     dJ/dpsi     = 2 sum m_i v_Ci . a_Ci + J_Ci omega_i epsilon_i
     M(psi)      = sum F . v_P + M omega_i        (gravity and the file's loads)
+                  - P_friction / |omega_n|        (friction in proportion to the pairs' forces)
 
-The equation of motion of the machine unit is then
+The friction in proportion to the pairs' forces depends on the speed (the inertia forces load the pairs):
+its power lost is taken from the kinetostatics at the file's nominal crank speed ``omega_n``
+(:mod:`linkwork.kinetostatics.friction`) and reduced to the crank, a moment always against the turning;
+a constant friction is a load like the others.  The equation of motion of the machine unit is then
 ``J(psi) psi'' + J'(psi) psi'^2 / 2 = M(psi) + M_drive``.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.external import power as external_power
+from linkwork.kinetostatics.forces import forces_of
 from linkwork.kinetostatics.reactions import inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.motion import cycle, kinematics
@@ -46,8 +52,11 @@ class Reduced:
     inertia_slope : ndarray (K,)
         ``dJ/dpsi``, kg m^2/rad.
     load : ndarray (K,)
-        Reduced moment of gravity and the external loads, N m; positive where they drive the
-        crank forward (a cutting load gives a negative moment).
+        Reduced moment of gravity, the external loads and the friction in the pairs, N m; positive where
+        they drive the crank forward (a cutting load gives a negative moment).
+    friction : ndarray (K,)
+        The part of ``load`` that the friction in proportion to the pairs' forces takes, N m (>= 0: it is
+        subtracted); zero without it.
     """
 
     psi: np.ndarray
@@ -55,6 +64,7 @@ class Reduced:
     inertia: np.ndarray
     inertia_slope: np.ndarray
     load: np.ndarray
+    friction: np.ndarray | None = None
 
     def work(self) -> np.ndarray:
         """Work of the loads from ``psi = 0`` (J), by the trapezoid rule over the grid, ``(K + 1,)``
@@ -96,6 +106,28 @@ def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
     inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1)
     slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
     gravity = -mech.gravity * np.sum(m * vc[..., 1], -1)
-    load = gravity + external_power(kin, loads.external)[0]
+    friction = friction_moment(mech, angle, sign)
+    load = gravity + external_power(kin, loads.external)[0] - friction
     psi = 2 * np.pi * np.arange(steps) / steps
-    return Reduced(psi, angle, inertia, slope, load)
+    return Reduced(psi, angle, inertia, slope, load, friction)
+
+
+def friction_moment(mech: Mechanism, angle: np.ndarray, sign: float) -> np.ndarray:
+    """The power lost to friction in proportion to the pairs' forces at the crank angles ``angle``, turning
+    at the file's speed (``sign`` its direction), over that speed: N m, ``(K,)``, zero without such friction.
+
+    Raises
+    ------
+    LinkworkError
+        Where the friction has no solution (the pairs lock, or it does not converge).
+    """
+    if not mech.friction:
+        return np.zeros(len(angle))
+    rate = abs(float(mech.drive_speed[0]))
+    rate = rate if math.isfinite(rate) and rate > 0 else 1.0
+    f = forces_of(kinematics(mech, angle, speed=sign * rate))
+    assert f.friction is not None
+    for problem in f.friction.problems:
+        if problem.kind != "indeterminate":
+            raise LinkworkError(f"machine dynamics needs the friction at every angle: {problem}")
+    return np.sum(f.friction.loss[0], -1) / rate

@@ -221,9 +221,7 @@ class Range:
             return self.rising / self.falling
 
 
-def sampled_range(
-    values: np.ndarray, angles: np.ndarray, slopes: tuple[np.ndarray, np.ndarray] | None = None
-) -> Range:
+def sampled_range(values: np.ndarray, angles: np.ndarray, slopes: tuple[np.ndarray, np.ndarray] | None = None) -> Range:
     """Extremes of periodic samples ``(V, A)`` over a whole turn at equally spaced drive angles ``(A,)``.
 
     With ``slopes``, the first and second derivatives of the values with respect to the drive angle

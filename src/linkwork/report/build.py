@@ -494,6 +494,7 @@ def _forces(run: _Run, cycle: Cycle) -> None:
     sec.body += _joint_table(run, cycle, f, unit)
     sec.body += _forces_at_positions(run, at12, unit)
     sec.body += _foundation_table(run, cycle, f, unit)
+    sec.body += _efficiency_text(run, f)
     sec.body += _checks_table(run, f)
     zero, lang = cycle.zero, run.lang
     sec.figures.append(run.figure("driving_torque", lambda: figures.torque_diagram(f, zero, lang),
@@ -512,6 +513,36 @@ def _forces(run: _Run, cycle: Cycle) -> None:
         sec.body += body
         sec.figures += names
     run.sections.append(sec)
+
+
+def _efficiency_text(run: _Run, f: Forces) -> list[str]:
+    """With friction in the pairs: where it has no solution, the efficiency of the cycle and the instantaneous
+    one, and a table of the work lost in each joint (:mod:`linkwork.kinetostatics.efficiency`)."""
+    from linkwork.io.force_tables import has_losses
+
+    if not has_losses(f):
+        return []
+    out = []
+    for problem in f.friction.problems if f.friction is not None else ():
+        at = ", ".join(f"{x:.0f}" for x in problem.angles[:8]) + (" …" if len(problem.angles) > 8 else "")
+        out.append(_p(run.t(f"friction.{problem.kind}", at=at)))
+    e = f.efficiency
+    drive, cycle, eta = float(e.work(e.drive)), float(e.cycle), e.instantaneous
+    if math.isfinite(cycle) and np.isfinite(eta).any():
+        useful = float(e.work(e.useful))
+        low, high = (round(float(x), 3) + 0.0 for x in (np.nanmin(eta), np.nanmax(eta)))  # no "-0.000"
+        out.append(_p(run.t("efficiency.text", cycle=f"{cycle:.4f}", useful=f"{useful:.4g}", drive=f"{drive:.4g}",
+                            low=f"{low:.3f}", high=f"{high:.3f}")))  # fmt: skip
+    else:
+        out.append(_p(run.t("efficiency.none")))
+    works = e.work(e.losses)
+    peaks = [float(np.nanmax(e.losses[:, j])) if np.isfinite(e.losses[:, j]).any() else math.nan
+             for j in range(len(e.joints))]  # fmt: skip
+    share = works / drive * 100 if drive > 0 else np.full(len(works), np.nan)
+    rows = [list(r) for r in zip(e.joints, _fixed(works), _fixed(share), _fixed(peaks), strict=True)]
+    head = [run.t("efficiency.head.joint"), run.t("efficiency.head.work"), run.t("efficiency.head.share"),
+            run.t("efficiency.head.peak")]  # fmt: skip
+    return out + [_table(head, rows)]
 
 
 def _force_unit(f: Forces) -> tuple[float, str]:

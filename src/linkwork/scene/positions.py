@@ -55,8 +55,7 @@ def _farthest_from_pivot(mech: Mechanism, rocker: Output, joints: list[int]) -> 
     """Of the joints on ``rocker``'s link, the one farthest from its pivot on the frame (index of a point);
     None if the link names no point at its pivot."""
     own = [p for p in joints if mech.point_link[p] == rocker.link]
-    pivot = next((int(p) for p in mech.pair_points[rocker.pair] if p >= 0 and mech.point_link[p] == rocker.link),
-                 None)
+    pivot = next((int(p) for p in mech.pair_points[rocker.pair] if p >= 0 and mech.point_link[p] == rocker.link), None)
     if pivot is None or not own:
         return None
     local = np.asarray(mech.point_local)

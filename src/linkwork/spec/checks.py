@@ -194,6 +194,21 @@ def _check_joint(bad: Report, jname: str, joint: dict[str, Any], known: set[str]
         _check_revolute(bad, path, joint, names, point, points)
     elif kind in ("prismatic", "pin-in-slot"):
         _check_sliding(bad, path, joint, kind, names, point, points)
+    _check_pair_friction(bad, path, joint.get("friction"), kind)
+
+
+def _check_pair_friction(bad: Report, path: Path, friction: Any, kind: Any) -> None:
+    """A joint's ``friction``: a pin's ``radius`` in a revolute joint (its friction circle is ``f radius``),
+    none in a prismatic one (its friction force is ``f |N|``)."""
+    if not isinstance(friction, dict):
+        return
+    path = path + ("friction",)
+    if "f" not in friction:
+        bad(path, 'missing field "f" (the friction coefficient)')
+    if kind == "revolute" and "radius" not in friction:
+        bad(path, 'missing field "radius" (the pin\'s radius: the friction moment is f radius |R|)')
+    if kind == "prismatic" and "radius" in friction:
+        bad(path + ("radius",), 'a prismatic joint has no "radius": its friction force is f |N|')
 
 
 def _check_revolute(

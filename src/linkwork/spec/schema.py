@@ -91,6 +91,7 @@ _BARE = {
 Number = Annotated[float, Field(allow_inf_nan=False, ge=-MAX_MAGNITUDE, le=MAX_MAGNITUDE)]
 Length = Annotated[float, *_quantity("length")]
 PositiveLength = Annotated[float, *_quantity("length", "positive")]
+NonnegativeLength = Annotated[float, *_quantity("length", "nonnegative")]
 Angle = Annotated[float, *_quantity("angle")]
 PositiveMass = Annotated[float, *_quantity("mass", "positive")]
 Inertia = Annotated[float, *_quantity("inertia", "nonnegative")]
@@ -247,6 +248,25 @@ class Link(_Strict):
     description: str | None = None
 
 
+class PairFriction(_Strict):
+    """Friction in a joint's pairs in proportion to the force each carries (Coulomb's law).
+
+    A revolute pair's friction moment is ``f radius |R|`` (``R`` the pair's force; ``f radius`` the radius
+    of the friction circle), against the relative turning; a prismatic pair's friction force is ``f |N|``
+    (``N`` the guide's normal force; ``atan f`` the friction angle), against the relative sliding.  A
+    pin-in-slot joint: ``f |N|`` in the slot, and ``f radius |R|`` on the pin where ``radius`` is given.
+    """
+
+    f: Annotated[float, Field(allow_inf_nan=False, ge=0, le=MAX_MAGNITUDE)] = Field(
+        description="friction coefficient: tangential force over normal force, from 0 up"
+    )
+    radius: NonnegativeLength | None = Field(
+        None,
+        description="revolute: the radius of the pin (or journal) the pair turns on; f radius is the "
+        "radius of the friction circle",
+    )
+
+
 class Joint(_Strict):
     """A kinematic pair.
 
@@ -264,6 +284,11 @@ class Joint(_Strict):
     point: str | None = Field(None, description="the point of the pair; default: the joint's name")
     through: PointOrVec | None = Field(None, description="prismatic/pin-in-slot: a point of the guide line")
     axis: Angle | None = Field(None, description="prismatic/pin-in-slot: direction of the guide line")
+    friction: PairFriction | None = Field(
+        None,
+        description="friction in proportion to the pair's force: {f, radius} for a revolute joint, {f} for a "
+        "prismatic one",
+    )
 
 
 class Law(_Strict):

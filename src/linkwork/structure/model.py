@@ -14,6 +14,7 @@ import numpy.typing as npt
 
 if TYPE_CHECKING:  # the stages above the structural model, which fill in its later fields
     from linkwork.kinetostatics.external import ExternalLoad
+    from linkwork.kinetostatics.friction import PairFriction
     from linkwork.machine.drive import Drive
     from linkwork.motion.program import Step
     from linkwork.spec.schema import ImpactSpec, Spec
@@ -244,6 +245,7 @@ class Mechanism:
     # the program encoded for the compiled kernels (linkwork.motion.fast.encode: ops, branches), if it has them
     fast_program: tuple[np.ndarray, np.ndarray] | None = None
     loads: tuple[ExternalLoad, ...] = ()  # the external loads
+    friction: tuple[PairFriction, ...] = ()  # friction in proportion to the pairs' forces
     machine: Drive | None = None  # the drive of the machine unit, if the file gives one
     delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
     blow: ImpactSpec | None = None  # the file's impact: section, SI

@@ -83,9 +83,7 @@ class Cycle:
         return out
 
 
-def solve_cycle(
-    mech: Mechanism, steps: int, overrides: dict[str, float] | None = None, symbols: int = CYCLE
-) -> Cycle:
+def solve_cycle(mech: Mechanism, steps: int, overrides: dict[str, float] | None = None, symbols: int = CYCLE) -> Cycle:
     """The cycle of ``mech`` with ``overrides`` (SI, checked by the caller) at ``steps`` crank angles, the
     scheme's symbols drawn from ``symbols`` of its angles, evenly spread (:func:`symbol_samples`; the turn solved
     at ``symbols`` angles where ``steps`` are fewer) (:data:`DRAGGED` for the answers while a value is dragged).
