@@ -47,23 +47,41 @@ def example_page(name: str) -> str:
     twelve = lw.kinematics(mech, position_angles(mech, 12, zero))
     first = plan_positions(mech, twelve)[0]
     drawings = {
-        "scheme": (f"Kinematic scheme at position {first}",
-                   lambda: figures.draw_scheme(twelve, first, position=first, cycle=kin)),
+        "scheme": (
+            f"Kinematic scheme at position {first}",
+            lambda: figures.draw_scheme(twelve, first, position=first, cycle=kin),
+        ),
         "positions": ("Plan of the twelve positions", lambda: figures.draw_positions(kin)),
-        "velocity_plan": (f"Velocity plan, position {first}",
-                          lambda: figures.velocity_plan(twelve, first, position=first)),
-        "acceleration_plan": (f"Acceleration plan, position {first}",
-                              lambda: figures.acceleration_plan(twelve, first, position=first)),
-        "kinematic_diagrams": ("Kinematic diagrams of the working members",
-                               lambda: figures.kinematic_diagrams(kin, zero)),
-    }  # fmt: skip
+        "velocity_plan": (
+            f"Velocity plan, position {first}",
+            lambda: figures.velocity_plan(twelve, first, position=first),
+        ),
+        "acceleration_plan": (
+            f"Acceleration plan, position {first}",
+            lambda: figures.acceleration_plan(twelve, first, position=first),
+        ),
+        "kinematic_diagrams": (
+            "Kinematic diagrams of the working members",
+            lambda: figures.kinematic_diagrams(kin, zero),
+        ),
+    }
     if not mech.structure.redundant:
         drawings["driving_torque"] = ("Driving torque", lambda: figures.torque_diagram(lw.forces(kin), zero))
     spec = lw.example(name)
-    out = [f"# {name}", "", (spec.description or "").strip(), "",
-           f"`linkwork example {name} > {name}.yaml` writes the file to start your own from; "
-           f"`linkwork analyze {name} --out report` writes its whole report.", "",
-           "## Structure", "", "```", _check(name).rstrip(), "```"]  # fmt: skip
+    out = [
+        f"# {name}",
+        "",
+        (spec.description or "").strip(),
+        "",
+        f"`linkwork example {name} > {name}.yaml` writes the file to start your own from; "
+        f"`linkwork analyze {name} --out report` writes its whole report.",
+        "",
+        "## Structure",
+        "",
+        "```",
+        _check(name).rstrip(),
+        "```",
+    ]
     import matplotlib.pyplot as plt
 
     for key, (caption, draw) in drawings.items():
@@ -86,8 +104,15 @@ def main() -> None:
     import linkwork as lw
     from linkwork import examples
 
-    rows = ["# Gallery", "", "Every bundled example, run through linkwork when this manual was built: its structure,",
-            "scheme, plan of positions, plans, diagrams and animation.", "", "| example | what |", "|---|---|"]  # fmt: skip
+    rows = [
+        "# Gallery",
+        "",
+        "Every bundled example, run through linkwork when this manual was built: its structure,",
+        "scheme, plan of positions, plans, diagrams and animation.",
+        "",
+        "| example | what |",
+        "|---|---|",
+    ]
     for name in examples.names():
         text = example_page(name)
         with mkdocs_gen_files.open(f"gallery/{name}.md", "w") as f:

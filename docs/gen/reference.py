@@ -27,8 +27,13 @@ def cli_page() -> str:
 
     group = typer.main.get_command(app)
     root = click.Context(group, info_name="linkwork")
-    out = ["# Command line", "", "Generated from the application when the manual is built: every command and",
-           "every option, as `linkwork COMMAND --help` prints them.", ""]  # fmt: skip
+    out = [
+        "# Command line",
+        "",
+        "Generated from the application when the manual is built: every command and",
+        "every option, as `linkwork COMMAND --help` prints them.",
+        "",
+    ]
     out += ["| command | what it does |", "|---|---|"]
     for name, cmd in group.commands.items():
         out.append(f"| [`{name}`](#linkwork-{name}) | {_cell((cmd.help or '').split(chr(10))[0])} |")
@@ -85,10 +90,19 @@ def schema_page() -> str:
     from linkwork.spec.schema import Spec
 
     schema = Spec.model_json_schema()
-    out = ["# File format (JSON Schema)", "",
-           "Generated from the JSON Schema that `linkwork schema` prints (for your editor: save it and point",
-           "the YAML language server at it).  [The mechanism file](file-format.md) says the same in prose,",
-           "with an example.", "", "## The file", "", _cell(schema.get("description", "")), "", *_table(schema)]  # fmt: skip
+    out = [
+        "# File format (JSON Schema)",
+        "",
+        "Generated from the JSON Schema that `linkwork schema` prints (for your editor: save it and point",
+        "the YAML language server at it).  [The mechanism file](file-format.md) says the same in prose,",
+        "with an example.",
+        "",
+        "## The file",
+        "",
+        _cell(schema.get("description", "")),
+        "",
+        *_table(schema),
+    ]
     for name, sub in schema.get("$defs", {}).items():
         out += ["", f"## {name}", "", sub.get("description", "").strip(), ""]
         if "properties" in sub:
@@ -103,17 +117,29 @@ def api_pages() -> dict[str, str]:
     import linkwork
 
     pages: dict[str, str] = {}
-    index = ["# Python API", "", "Every public name of `linkwork` (`import linkwork as lw`), each on a page of its",
-             "own generated from its docstring.  The names are loaded when first used, so `import linkwork`",
-             "costs nothing.", "", "| name | defined in |", "|---|---|"]  # fmt: skip
+    index = [
+        "# Python API",
+        "",
+        "Every public name of `linkwork` (`import linkwork as lw`), each on a page of its",
+        "own generated from its docstring.  The names are loaded when first used, so `import linkwork`",
+        "costs nothing.",
+        "",
+        "| name | defined in |",
+        "|---|---|",
+    ]
     for name in linkwork.__all__:
         if name == "__version__":
             continue
         module, attr = linkwork._LAZY[name]
         index.append(f"| [`lw.{name}`]({name}.md) | `{module}.{attr}` |")
-        pages[f"reference/api/{name}.md"] = f"# lw.{name}\n\n::: {module}.{attr}\n    options:\n      show_root_heading: false\n"
-    index += ["", f"`lw.__version__` is `{linkwork.__version__}`.", "",
-              "The figures (matplotlib) are functions of the results in [`linkwork.figures`](figures.md)."]  # fmt: skip
+        options = "    options:\n      show_root_heading: false\n"
+        pages[f"reference/api/{name}.md"] = f"# lw.{name}\n\n::: {module}.{attr}\n{options}"
+    index += [
+        "",
+        f"`lw.__version__` is `{linkwork.__version__}`.",
+        "",
+        "The figures (matplotlib) are functions of the results in [`linkwork.figures`](figures.md).",
+    ]
     pages["reference/api/index.md"] = "\n".join(index) + "\n"
     pages["reference/api/figures.md"] = "# linkwork.figures\n\n::: linkwork.figures\n"
     return pages
