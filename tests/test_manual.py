@@ -155,3 +155,16 @@ def test_the_manual_names_the_point_of_a_sliding_joint():
     from manual import page
 
     assert "`point:` is the slider's point that runs on that line" in " ".join(page("reference/file-format.md").split())
+
+
+def test_every_public_name_has_a_documented_object_for_its_api_page():
+    """docs/gen/reference.py gives each name of ``linkwork.__all__`` a page rendered from the docstring of the
+    object it names (the stage's own function where ``lw.NAME`` wraps it): each has one, with a summary."""
+    import inspect
+
+    import linkwork
+
+    for name in linkwork.__all__:
+        if name != "__version__":
+            target = inspect.unwrap(getattr(linkwork, name))
+            assert (inspect.getdoc(target) or "").strip(), name

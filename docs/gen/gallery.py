@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import io
 import os
+import re
 import tempfile
 from pathlib import Path
 
@@ -24,6 +25,11 @@ def _svg(fig) -> str:
     buf = io.StringIO()
     fig.savefig(buf, format="svg")
     return buf.getvalue()
+
+
+def _prose(text: str) -> str:
+    """A description as plain text in Markdown: one line, its ``*`` and ``_`` (``W = 3*7 - 2*10``) not emphasis."""
+    return re.sub(r"([*_\\])", r"\\\1", " ".join(text.split()))
 
 
 def _check(name: str) -> str:
@@ -71,7 +77,7 @@ def example_page(name: str) -> str:
     out = [
         f"# {name}",
         "",
-        (spec.description or "").strip(),
+        _prose(spec.description or ""),
         "",
         f"`linkwork example {name} > {name}.yaml` writes the file to start your own from; "
         f"`linkwork analyze {name} --out report` writes its whole report.",
@@ -117,7 +123,7 @@ def main() -> None:
         text = example_page(name)
         with mkdocs_gen_files.open(f"gallery/{name}.md", "w") as f:
             f.write(text)
-        first = " ".join((lw.example(name).description or "").split()).split(". ")[0]
+        first = _prose(lw.example(name).description or "").split(". ")[0]
         rows.append(f"| [{name}]({name}.md) | {first} |")
     with mkdocs_gen_files.open("gallery/index.md", "w") as f:
         f.write("\n".join(rows) + "\n")

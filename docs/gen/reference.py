@@ -8,7 +8,9 @@ read here through click's own interface instead (the same help texts and options
 
 from __future__ import annotations
 
+import inspect
 import json
+import re
 from typing import Any
 
 import mkdocs_gen_files
@@ -36,10 +38,12 @@ def cli_page() -> str:
     ]
     out += ["| command | what it does |", "|---|---|"]
     for name, cmd in group.commands.items():
-        out.append(f"| [`{name}`](#linkwork-{name}) | {_cell((cmd.help or '').split(chr(10))[0])} |")
+        summary = (cmd.help or "").strip().split("\n\n")[0]
+        out.append(f"| [`{name}`](#linkwork-{name}) | {_cell(summary)} |")
     for name, cmd in group.commands.items():
         ctx = click.Context(cmd, info_name=name, parent=root)
-        usage = " ".join(["linkwork", name, *cmd.collect_usage_pieces(ctx)])
+        pieces = [re.sub(r"^\{(.*)\}$", lambda m: m.group(1).upper(), s) for s in cmd.collect_usage_pieces(ctx)]
+        usage = " ".join(["linkwork", name, *pieces])
         out += ["", f"## linkwork {name}", "", "```", usage, "```", "", (cmd.help or "").strip(), ""]
         rows = [p.get_help_record(ctx) for p in cmd.get_params(ctx)]
         rows = [r for r in rows if r is not None]
@@ -80,7 +84,8 @@ def _table(schema: dict[str, Any]) -> list[str]:
     required = set(schema.get("required", []))
     rows = ["| key | type | default | meaning |", "|---|---|---|---|"]
     for key, prop in schema.get("properties", {}).items():
-        default = "required" if key in required else json.dumps(prop["default"]) if "default" in prop else ""
+        default = json.dumps(prop["default"]) if prop.get("default") is not None else ""
+        default = "required" if key in required else default
         rows.append(f"| `{key}` | {_cell(_type(prop))} | {_cell(default)} | {_cell(_description(prop))} |")
     return rows
 
@@ -130,10 +135,19 @@ def api_pages() -> dict[str, str]:
     for name in linkwork.__all__:
         if name == "__version__":
             continue
-        module, attr = linkwork._LAZY[name]
-        index.append(f"| [`lw.{name}`]({name}.md) | `{module}.{attr}` |")
+        obj = getattr(linkwork, name)
+        target = inspect.unwrap(obj)  # lw.kinematics and the other analyses wrap their stage's function
+        path = f"{target.__module__}.{target.__qualname__}"
+        index.append(f"| [`lw.{name}`]({name}.md) | `{path}` |")
+        note = ""
+        if target is not obj:
+            note = (
+                f"`lw.{name}` takes its mechanism as a file's path, a bundled example's name, a `Spec` or a "
+                f"compiled `Mechanism` (see [Use linkwork from Python](../../how-to/python.md)), and passes it "
+                f"on to `{path}`:\n\n"
+            )
         options = "    options:\n      show_root_heading: false\n"
-        pages[f"reference/api/{name}.md"] = f"# lw.{name}\n\n::: {module}.{attr}\n{options}"
+        pages[f"reference/api/{name}.md"] = f"# lw.{name}\n\n{note}::: {path}\n{options}"
     index += [
         "",
         f"`lw.__version__` is `{linkwork.__version__}`.",
