@@ -116,15 +116,15 @@ def main() -> None:
         "Every bundled example, run through linkwork when this manual was built: its structure,",
         "scheme, plan of positions, plans, diagrams and animation.",
         "",
-        "| example | what |",
-        "|---|---|",
+        "| example | what | scheme |",
+        "|---|---|---|",
     ]
     for name in examples.names():
         text = example_page(name)
         with mkdocs_gen_files.open(f"gallery/{name}.md", "w") as f:
             f.write(text)
-        first = _prose(lw.example(name).description or "").split(". ")[0]
-        rows.append(f"| [{name}]({name}.md) | {first} |")
+        first = _prose(((lw.example(name).description or "").strip().splitlines() or [""])[0])
+        rows.append(f"| [{name}]({name}.md) | {first} | [![{name}]({name}/scheme.svg){{ width=\"240\" }}]({name}.md) |")
     with mkdocs_gen_files.open("gallery/index.md", "w") as f:
         f.write("\n".join(rows) + "\n")
 
