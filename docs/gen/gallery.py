@@ -73,6 +73,15 @@ def example_page(name: str) -> str:
     }
     if not mech.structure.redundant:
         drawings["driving_torque"] = ("Driving torque", lambda: figures.torque_diagram(lw.forces(kin), zero))
+    # the same in the report's Russian (--lang ru): its notation, the plan's pole p and scale μv
+    drawings["scheme_ru"] = (
+        f"Кинематическая схема, положение {first} (--lang ru)",
+        lambda: figures.draw_scheme(twelve, first, position=first, cycle=kin, lang="ru"),
+    )
+    drawings["velocity_plan_ru"] = (
+        f"План скоростей, положение {first} (--lang ru)",
+        lambda: figures.velocity_plan(twelve, first, position=first, lang="ru"),
+    )
     spec = lw.example(name)
     out = [
         f"# {name}",
@@ -124,7 +133,7 @@ def main() -> None:
         with mkdocs_gen_files.open(f"gallery/{name}.md", "w") as f:
             f.write(text)
         first = _prose(((lw.example(name).description or "").strip().splitlines() or [""])[0])
-        rows.append(f"| [{name}]({name}.md) | {first} | [![{name}]({name}/scheme.svg){{ width=\"240\" }}]({name}.md) |")
+        rows.append(f'| [{name}]({name}.md) | {first} | [![{name}]({name}/scheme.svg){{ width="240" }}]({name}.md) |')
     with mkdocs_gen_files.open("gallery/index.md", "w") as f:
         f.write("\n".join(rows) + "\n")
 
