@@ -1,10 +1,10 @@
 """Synthesis benchmark: one mechanism from its requirements, verified by the analysis of the written file.
 
-Run with ``python benchmarks/bench_synthesis.py``.  Times ``lw``'s synthesis of the slider-crank of the
-README (stroke 400 mm, K = 1.05, largest pressure angle at most 30 deg), of a crank-rocker (swing 45 deg,
-K = 1.2, rocker 250 mm), of a slotted lever (stroke 600 mm, K = 1.4) and of a toggle press (stroke 200 mm,
-100 kN at 10 mm before the bottom, 5 kN m; its torque measured by ``lw.forces``): the closed forms, the member picked
-from the family, the file's text through the YAML writer, the file read back and its stroke (swing), time
+Run with ``python benchmarks/bench_synthesis.py``.  Times ``lw``'s synthesis of the slider-crank of
+docs/how-to/synthesize.md (stroke 400 mm, K = 1.05, largest pressure angle at most 30 deg), of a crank-rocker
+(swing 45 deg, K = 1.2, rocker 250 mm), of a slotted lever (stroke 600 mm, K = 1.4) and of a toggle press (stroke
+200 mm, 100 kN at 10 mm before the bottom, 5 kN m; its torque measured by ``lw.forces``): the closed forms, the member
+picked from the family, the file's text through the YAML writer, the file read back and its stroke (swing), time
 ratio and extreme angle measured by ``lw.kinematics`` over a turn of 720 samples and checked to 1e-9.  Best
 of several runs (see ``timing.py``).
 """

@@ -362,7 +362,7 @@ def _quantity(record: dict[str, Any], key: str) -> list[Any]:
 
 
 def _round_off(value: float, quantity: list[Any]) -> bool:
-    """Whether ``value`` is a zero of round-off by the README's rule: below 1e-10 of the magnitude below which
+    """Whether ``value`` is a zero of round-off by the manual's rule: below 1e-10 of the magnitude below which
     nine tenths of the non-zero finite numbers of its quantity lie."""
     m = sorted(abs(float(v)) for v in quantity if v is not None and math.isfinite(float(v)) and v != 0)
     if not m:
@@ -399,7 +399,7 @@ def _disagreements(python: Any, written: Any, path: str = "") -> list[str]:
 
 
 def _agrees(value: float, written: Any, quantity: list[Any]) -> bool:
-    """Whether ``written`` is ``value`` (a float of ``quantity``) as the README says the JSON writes it."""
+    """Whether ``written`` is ``value`` (a float of ``quantity``) as the manual says the JSON writes it."""
     if not math.isfinite(value):
         return written is None
     return _twelve_digits(value, written) or (written == 0.0 and _round_off(value, quantity))
@@ -499,11 +499,12 @@ def test_a_piped_table_is_written_as_rich_lays_it_out(monkeypatch, capsys):
 
 
 def test_tables_are_plain_text_when_piped():
-    """Piped, `linkwork check` prints what the README shows: no box characters, no trailing blanks (the
+    """Piped, `linkwork check` prints what the manual shows: no box characters, no trailing blanks (the
     command in a process of its own, its stdout a pipe; the tables of the others, whose stdout is no terminal
     either, in this process)."""
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    shown = readme.split("$ linkwork check double-cut-shears\n", 1)[1].split("```", 1)[0]
+    from manual import page
+
+    shown = page("how-to/check.md").split("$ linkwork check double-cut-shears\n", 1)[1].split("```", 1)[0]
     proc = subprocess.run(
         [sys.executable, "-m", "linkwork.cli", "check", "double-cut-shears"], capture_output=True, text=True
     )

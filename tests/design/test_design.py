@@ -615,9 +615,10 @@ def test_an_optimisation_stopped_at_its_generation_limit_says_it_did_not_converg
     assert "not converged (Maximum number of iterations" in r.stdout
 
 
-def test_the_readme_design_commands_run(tmp_path):
-    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
-    section = readme.split("## Design sweeps and optimisation", 1)[1].split("\n## ", 1)[0]
+def test_the_manual_design_commands_run(tmp_path):
+    from manual import page
+
+    section = page("how-to/design.md")
     block = section.split("```", 2)[1]
     lines = block.replace("\\\n", " ").strip().splitlines()
     assert [shlex.split(line)[1] for line in lines] == ["parameters", "sweep", "optimize"]

@@ -205,15 +205,14 @@ def test_schema_states_the_rule_for_bare_numbers():
 
 
 def _readme_four_bar() -> str:
-    """The four-bar of the README's section "The mechanism file"."""
-    from pathlib import Path
+    """The four-bar of the manual's page "The mechanism file"."""
+    from manual import page
 
-    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
-    return readme.split("## The mechanism file", 1)[1].split("```yaml\n", 1)[1].split("```", 1)[0]
+    return page("reference/file-format.md").split("```yaml\n", 1)[1].split("```", 1)[0]
 
 
 def test_a_builder_script_equals_the_file_it_describes(tmp_path):
-    """The README says a file and a builder script give equal specs: ``==`` holds, whatever the spec was
+    """The manual says a file and a builder script give equal specs: ``==`` holds, whatever the spec was
     read from (the file's lines are not part of it), and fails for a spec that differs in one value."""
     path = tmp_path / "four-bar.yaml"
     path.write_text(_readme_four_bar(), encoding="utf-8")

@@ -486,14 +486,12 @@ def test_view_command_serves_on_loopback_with_a_free_port():
         proc.wait(timeout=10)
 
 
-def test_the_readme_export_command_runs(tmp_path):
-    from pathlib import Path
-
+def test_the_manual_export_command_runs(tmp_path):
     import linkwork.cli.view  # noqa: F401
     from linkwork.cli.main import app
+    from manual import page
 
-    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
-    section = readme.split("## Browser viewer", 1)[1].split("\n## ", 1)[0]
+    section = page("how-to/viewer.md")
     line = next(x for x in re.findall(r"```\n(.*?)```", section, re.S)[0].splitlines() if "--export" in x)
     args = line.split("#")[0].split()
     assert args[:2] == ["linkwork", "view"]

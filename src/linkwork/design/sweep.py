@@ -94,6 +94,17 @@ class SweepTable:
     def __getitem__(self, name: str) -> np.ndarray:
         return self.columns[name]
 
+    def _repr_html_(self) -> str:
+        """A notebook's view: the rows, and each column's range with its unit."""
+        from linkwork.display import number, table
+
+        rows: list[tuple[str, object]] = [("variants", len(self))]
+        for name, values in self.columns.items():
+            if name != "variant":
+                low, high = float(np.nanmin(values)), float(np.nanmax(values))
+                rows.append((name, f"{number(low)} to {number(high, self.units.get(name, ''))}"))
+        return table("Sweep", rows)
+
     def to_arrow(self) -> Any:
         """A pyarrow Table (units in each field's metadata)."""
         return to_arrow(self.columns, self.units, self.meta)

@@ -82,6 +82,26 @@ class Forces:
         """The driving torque from the power balance, (V, A, D)."""
         return power_check(self.kinematics, self.loads)
 
+    def _repr_html_(self) -> str:
+        """A notebook's view: the samples, the largest driving torque and foundation force of the samples (not
+        refined: see ``linkwork.kinetostatics.peaks``), the singular samples."""
+        from linkwork.display import number, table
+
+        torque = np.abs(self._torque_all[..., 0])
+        found = self._foundation_filled
+        return table(
+            f"Forces of {self.mechanism.name}",
+            [
+                ("variants x angles", " x ".join(str(n) for n in torque.shape)),
+                ("largest driving torque of the samples", number(float(np.nanmax(torque)), "N m")),
+                (
+                    "largest foundation force of the samples",
+                    number(float(np.nanmax(np.hypot(found[..., 0], found[..., 1]))), "N"),
+                ),
+                ("singular samples (reactions NaN)", int(np.count_nonzero(self.singular_all))),
+            ],
+        )
+
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.kinematics.variants else a[0]
 

@@ -36,6 +36,20 @@ class Dynamics:
     flywheel: Flywheel | None
     startup: Motion
 
+    def _repr_html_(self) -> str:
+        """A notebook's view: the steady cycle's speed fluctuation and powers, the flywheel, the start-up."""
+        from linkwork.display import number, table
+
+        rows = [
+            ("coefficient of speed fluctuation delta", number(self.delta)),
+            ("mean crank speed", number(self.motion.last.omega_mean, "rad/s")),
+            ("mean power of the motor", number(self.mean_power, "W")),
+            ("start-up time", number(self.startup_time, "s")),
+        ]
+        if self.flywheel is not None:
+            rows.append(("flywheel inertia on its shaft", number(self.flywheel.inertia, "kg m^2")))
+        return table("Machine dynamics", rows)
+
     @property
     def startup_time(self) -> float:
         """Time (s) from rest until the mean speed of the turns stays within 2 % of its final value."""

@@ -63,6 +63,22 @@ class Kinematics:
         out.__dict__.update(fields)
         return out
 
+    def _repr_html_(self) -> str:
+        """A notebook's view: the mechanism, the variants, angles, points and links, where it assembles."""
+        from linkwork.display import table
+
+        mech, valid = self.mechanism, np.asarray(self.valid_all)
+        return table(
+            f"Kinematics of {mech.name}",
+            [
+                ("variants x angles", f"{valid.shape[0]} x {valid.shape[1]}"),
+                ("joints", ", ".join(dict.fromkeys(mech.pair_joint))),
+                ("moving links", ", ".join(mech.link_names[1:])),
+                ("assembles at", f"{int(valid.sum())} of {valid.size} samples"),
+                ("events", "; ".join(f"{e.kind} of {e.group}" for e in self.events) or "none"),
+            ],
+        )
+
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
 

@@ -1,0 +1,25 @@
+"""How results show themselves in a notebook: Jupyter shows an object by its ``_repr_html_``, and the results
+of linkwork (:class:`~linkwork.motion.kinematics.Kinematics`, :class:`~linkwork.kinetostatics.forces.Forces`,
+:class:`~linkwork.machine.dynamics.Dynamics`, :class:`~linkwork.design.sweep.SweepTable`) give a short table
+of what they hold, each number with its unit, made here.  Imports nothing of linkwork: the core may use it.
+"""
+
+from __future__ import annotations
+
+import html
+from collections.abc import Iterable
+
+
+def table(title: str, rows: Iterable[tuple[str, object]]) -> str:
+    """A two-column HTML table under a caption: each row a label and its value (as text, escaped)."""
+    body = "".join(
+        f'<tr><th style="text-align:left">{html.escape(label)}</th><td style="text-align:left">'
+        f"{html.escape(str(value))}</td></tr>"
+        for label, value in rows
+    )
+    return f'<table><caption style="text-align:left"><b>{html.escape(title)}</b></caption>{body}</table>'
+
+
+def number(value: float, unit: str = "") -> str:
+    """A value to 6 significant digits with its unit (none for a pure number, unit "1"); "none" for NaN."""
+    return "none" if value != value else f"{value:.6g}{' ' + unit if unit not in ('', '1') else ''}"
