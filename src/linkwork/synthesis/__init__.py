@@ -21,6 +21,7 @@ KINDS = {
     "crank-rocker": "linkwork.synthesis.crank_rocker",
     "slotted-lever": "linkwork.synthesis.slotted_lever",
     "toggle-press": "linkwork.synthesis.toggle_press",
+    "double-cut-shears": "linkwork.synthesis.shears",
 }
 
 
@@ -33,8 +34,13 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     ``min_transmission_angle`` a bound.  ``slotted-lever``: ``stroke``, ``time_ratio`` (> 1), one of ``frame``,
     ``crank`` (else the greatest frame), ``rod`` (else the shortest meeting ``max_pressure_angle``, 10 deg by
     default).  ``toggle-press``: ``stroke``, ``force`` (N) at ``before`` (m) before the bottom dead centre,
-    ``torque`` (N m, the crank's limit); ``swing`` and ``time_ratio`` of its four-bar.  All take ``speed``
+    ``torque`` (N m, the crank's limit); ``swing`` and ``time_ratio`` of its four-bar.  These take ``speed``
     (default ``"60 rpm"``), ``section`` (the steel bars' width and height, m) and ``density``.
+    ``double-cut-shears`` (the bundled file's structure, its masses and loads kept): ``upper_stroke``,
+    ``lower_stroke``, ``time_ratio`` (the knives closing over opening), one of ``overlap`` (when closed),
+    ``opening``; ``crank`` fixes the family's free crank length, else ``criterion`` picks it
+    (``"transmission"``, the default, or ``"torque"``, the least peak driving torque under the file's
+    loads); ``speed`` replaces the file's.
 
     Raises
     ------
@@ -68,7 +74,8 @@ def required(func: Any) -> list[str]:
 #: The kind of quantity of each requirement that has a unit.
 QUANTITIES = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
               "crank": "length", "rod": "length", "before": "length", "force": "force", "torque": "moment",
-              "max_pressure_angle": "angle", "min_transmission_angle": "angle"}  # fmt: skip
+              "max_pressure_angle": "angle", "min_transmission_angle": "angle", "upper_stroke": "length",
+              "lower_stroke": "length", "overlap": "length", "opening": "length"}  # fmt: skip
 
 
 def _si(name: str, value: Any) -> Any:
