@@ -89,7 +89,13 @@ def synthesize(  # fmt: skip
     min_transmission_angle: Annotated[
         str | None, typer.Option("--min-transmission-angle", help="crank-rocker: a bound")
     ] = None,
-    force: Annotated[str | None, typer.Option("--force", help='toggle-press: the nominal force, e.g. "100kN"')] = None,
+    force: Annotated[
+        str | None,
+        typer.Option("--force", help='toggle-press: the nominal force; slider-crank: the working load, e.g. "100kN"'),
+    ] = None,
+    working: Annotated[
+        str | None, typer.Option("--working", help="slider-crank: the load acts over this last part of the stroke")
+    ] = None,
     before: Annotated[
         str | None, typer.Option("--before", help="toggle-press: where it acts, before the bottom dead centre")
     ] = None,
@@ -110,7 +116,10 @@ def synthesize(  # fmt: skip
     ] = None,
     criterion: Annotated[
         str | None,
-        typer.Option("--criterion", help="double-cut-shears: pick the crank by 'transmission' (default) or 'torque'"),
+        typer.Option(
+            "--criterion",
+            help="slider-crank, double-cut-shears: pick from the family by 'pressure' (default) or 'torque'",
+        ),
     ] = None,
     speed: Annotated[
         str | None, typer.Option("--speed", help="the crank's speed written in the file (60 rpm; the shears' own)")
@@ -122,10 +131,11 @@ def synthesize(  # fmt: skip
 ) -> None:
     """Write a mechanism file that meets the requirements, verified by the kinematic analysis of that file.
 
-    slider-crank: --stroke, --time-ratio, and --rod-ratio or --offset (else the least largest pressure
-    angle); --max-pressure-angle a bound.  crank-rocker: --swing, --time-ratio, --rocker or --frame;
-    --min-transmission-angle a bound.  slotted-lever: --stroke, --time-ratio; --frame or --crank (else the
-    greatest frame), --rod (else the shortest rod meeting --max-pressure-angle, 10 deg by default).
+    slider-crank: --stroke, --time-ratio, and --rod-ratio or --offset (else the member picked by --criterion: pressure,
+    the least largest pressure angle, or torque, the least peak driving torque under --force over the last --working of
+    the stroke, within --max-pressure-angle); --max-pressure-angle a bound.  crank-rocker: --swing, --time-ratio,
+    --rocker or --frame; --min-transmission-angle a bound.  slotted-lever: --stroke, --time-ratio; --frame or --crank
+    (else the greatest frame), --rod (else the shortest rod meeting --max-pressure-angle, 10 deg by default).
     toggle-press: --stroke, --force at --before the bottom dead centre, --torque (the crank's limit, N m);
     --swing and --time-ratio of its four-bar.  double-cut-shears (the bundled file's structure): --upper-stroke,
     --lower-stroke, --time-ratio (closing over opening), --overlap or --opening; --crank fixes the crank, else
@@ -145,7 +155,7 @@ def synthesize(  # fmt: skip
              "max_pressure_angle": max_pressure_angle, "rocker": rocker, "frame": frame, "crank": crank, "rod": rod,
              "min_transmission_angle": min_transmission_angle, "force": force, "before": before,
              "torque": torque, "upper_stroke": upper_stroke, "lower_stroke": lower_stroke, "overlap": overlap,
-             "opening": opening, "criterion": criterion}  # fmt: skip
+             "opening": opening, "criterion": criterion, "working": working}  # fmt: skip
     wrong = [name for name, text in texts.items() if text is not None and name not in known]
     if wrong:
         fail(LinkworkError(f"{kind}: --{', --'.join(w.replace('_', '-') for w in wrong)}: not a requirement of {kind}"))

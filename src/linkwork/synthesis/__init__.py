@@ -29,18 +29,20 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     """A mechanism of ``kind`` meeting ``requirements`` (SI: m, rad, ratios), verified by the analysis.
 
     Lengths and angles may also be strings with their unit (``stroke="400 mm"``, ``swing="45 deg"``).
-    ``slider-crank``: ``stroke``, ``time_ratio``, and one of ``rod_ratio``, ``offset``; ``max_pressure_angle``
-    a bound.  ``crank-rocker``: ``swing``, ``time_ratio``, and one of ``rocker``, ``frame`` (lengths);
+    ``slider-crank``: ``stroke``, ``time_ratio``, and one of ``rod_ratio``, ``offset``; ``max_pressure_angle`` a bound;
+    ``force`` (N) a working load over the last ``working`` (m) of the downward stroke; else ``criterion`` picks from the
+    family: ``"pressure"`` (the least largest pressure angle) or ``"torque"`` (the least peak driving torque under the
+    load, within the bound).  ``crank-rocker``: ``swing``, ``time_ratio``, and one of ``rocker``, ``frame`` (lengths);
     ``min_transmission_angle`` a bound.  ``slotted-lever``: ``stroke``, ``time_ratio`` (> 1), one of ``frame``,
     ``crank`` (else the greatest frame), ``rod`` (else the shortest meeting ``max_pressure_angle``, 10 deg by
     default).  ``toggle-press``: ``stroke``, ``force`` (N) at ``before`` (m) before the bottom dead centre,
     ``torque`` (N m, the crank's limit); ``swing`` and ``time_ratio`` of its four-bar.  These take ``speed``
     (default ``"60 rpm"``), ``section`` (the steel bars' width and height, m) and ``density``.
-    ``double-cut-shears`` (the bundled file's structure, its masses and loads kept): ``upper_stroke``,
-    ``lower_stroke``, ``time_ratio`` (the knives closing over opening), one of ``overlap`` (when closed),
-    ``opening``; ``crank`` fixes the family's free crank length, else ``criterion`` picks it
-    (``"transmission"``, the default, or ``"torque"``, the least peak driving torque under the file's
-    loads); ``speed`` replaces the file's.
+    ``double-cut-shears`` (the bundled file's structure, its masses and loads kept): ``upper_stroke``, ``lower_stroke``,
+    ``time_ratio`` (the knives closing over opening), one of ``overlap`` (when closed), ``opening``; ``crank`` fixes the
+    family's free crank length, else ``criterion`` picks it (``"pressure"``, the default: the greatest least
+    transmission angle, or ``"torque"``, the least peak driving torque under the file's loads); ``speed`` replaces the
+    file's.
 
     Raises
     ------
@@ -75,7 +77,7 @@ def required(func: Any) -> list[str]:
 QUANTITIES = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
               "crank": "length", "rod": "length", "before": "length", "force": "force", "torque": "moment",
               "max_pressure_angle": "angle", "min_transmission_angle": "angle", "upper_stroke": "length",
-              "lower_stroke": "length", "overlap": "length", "opening": "length"}  # fmt: skip
+              "lower_stroke": "length", "overlap": "length", "opening": "length", "working": "length"}  # fmt: skip
 
 
 def _si(name: str, value: Any) -> Any:

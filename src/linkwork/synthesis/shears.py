@@ -53,7 +53,7 @@ HOMOTOPY = 8
 
 #: The criteria a member is picked by: metric, sense, words.
 CRITERIA = {
-    "transmission": ("min_transmission_angle", -1.0, "the greatest least transmission angle"),
+    "pressure": ("min_transmission_angle", -1.0, "the greatest least transmission angle"),
     "torque": ("peak_driving_torque", 1.0, "the least peak driving torque under the file's loads"),
 }
 
@@ -149,14 +149,14 @@ def synthesize(
     overlap: float | None = None,
     opening: float | None = None,
     crank: float | None = None,
-    criterion: str = "transmission",
+    criterion: str = "pressure",
     speed: str | None = None,
 ) -> Synthesis:
-    """The bundled double-cut shears with the upper and lower knives' strokes (m), the time ratio K (the knives
-    closing over opening), and the overlap when closed or the opening (m); ``crank`` (m) fixes the family's
-    free crank length, else the member is picked by ``criterion`` (``"transmission"``: the greatest least
-    transmission angle; ``"torque"``: the least peak driving torque under the file's cutting load).  ``speed``
-    replaces the file's crank speed.  Verified by the analysis of the written file."""
+    """The bundled double-cut shears with the upper and lower knives' strokes (m), the time ratio K (the knives closing
+    over opening), and the overlap when closed or the opening (m); ``crank`` (m) fixes the family's free crank length,
+    else the member is picked by ``criterion`` (``"pressure"``: the least largest pressure angle, the greatest least
+    transmission angle; ``"torque"``: the least peak driving torque under the file's cutting load).  ``speed`` replaces
+    the file's crank speed.  Verified by the analysis of the written file."""
     from linkwork.api import mechanism_of
     from linkwork.structure.parameters import parameter_values
 
