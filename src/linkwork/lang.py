@@ -25,6 +25,56 @@ TEXTS: dict[str, tuple[str, str]] = {
     "report.title": ("{name}: linkwork report", "{name}: отчёт linkwork"),
     "caption": ("Figure {number}. {text}", "Рис. {number}. {text}"),
     "at_position": (" at position {position}", " в положении {position}"),
+    "section.requirements": ("Requirements", "Требования"),
+    "requirements.intro": (
+        "This mechanism was synthesised ({kind}) for the requirements below; beside each, what the mechanism "
+        "achieves as the analysis measures it over a turn of the crank (dimensions and loads as the file gives "
+        "them).",
+        "Механизм синтезирован ({kind}) по требованиям, приведённым ниже; рядом с каждым — что механизм "
+        "обеспечивает по результатам анализа за оборот кривошипа (размеры и нагрузки — как заданы в файле).",
+    ),
+    "requirements.head.name": ("Requirement", "Требование"),
+    "requirements.head.asked": ("Asked", "Задано"),
+    "requirements.head.achieved": ("Achieved", "Обеспечено"),
+    "requirements.head.met": ("Met", "Выполнено"),
+    "requirements.sense.at_most": ("at most", "не более"),
+    "requirements.sense.at_least": ("at least", "не менее"),
+    "requirements.as_given": ("as given", "как задано"),
+    "requirements.yes": ("yes", "да"),
+    "requirements.no": ("NO", "НЕТ"),
+    "requirements.theta": (
+        "The crank's limit positions (the output {member} at its extremes) are θ = {theta}° apart from the "
+        "straight line: the strokes take 180° + θ and 180° − θ of the turn, K = (180° + θ) / (180° − θ) = {k}.",
+        "Крайние положения кривошипа (выходное звено {member} в крайних положениях) отстоят от прямой линии на "
+        "угол θ = {theta}°: ходы занимают 180° + θ и 180° − θ оборота, K = (180° + θ) / (180° − θ) = {k}.",
+    ),
+    "caption.limits": (
+        "The limit positions of {member} (the second drawn thin) and the angle θ between the crank's limit positions.",
+        "Крайние положения {member} (второе — тонкими линиями) и угол θ между крайними положениями кривошипа.",
+    ),
+    "limits.title": (
+        "{name}: limit positions of {member}\nθ = {theta}°, K = {k}",
+        "{name}: крайние положения {member}\nθ = {theta}°, K = {k}",
+    ),
+    "requirement.stroke": ("stroke H", "ход H"),
+    "requirement.swing": ("swing of the rocker", "угол качания коромысла"),
+    "requirement.time_ratio": ("time ratio K", "коэффициент изменения средней скорости K"),
+    "requirement.max_pressure_angle": ("largest pressure angle", "наибольший угол давления"),
+    "requirement.min_transmission_angle": ("least transmission angle", "наименьший угол передачи"),
+    "requirement.rod_ratio": ("rod ratio r/l", "отношение r/l"),
+    "requirement.offset": ("offset e", "дезаксиал e"),
+    "requirement.rocker": ("rocker's length", "длина коромысла"),
+    "requirement.frame": ("frame's length", "длина стойки"),
+    "requirement.crank": ("crank's length", "длина кривошипа"),
+    "requirement.rod": ("rod's length", "длина шатуна"),
+    "requirement.force": ("force", "сила"),
+    "requirement.working": ("working length of the stroke", "рабочая часть хода"),
+    "requirement.before": ("distance before the bottom dead centre", "расстояние до нижней мёртвой точки"),
+    "requirement.torque": ("crank's torque limit", "предельный момент на кривошипе"),
+    "requirement.upper_stroke": ("upper knife's stroke", "ход верхнего ножа"),
+    "requirement.lower_stroke": ("lower knife's stroke", "ход нижнего ножа"),
+    "requirement.overlap": ("knives' overlap when closed", "перекрытие ножей"),
+    "requirement.opening": ("opening between the knives", "раствор ножей"),
     "section.input": ("Input", "Исходные данные"),
     "section.structure": ("Structure", "Структурный анализ"),
     "input.intro": (
@@ -418,6 +468,7 @@ TEXTS: dict[str, tuple[str, str]] = {
     "animation.crank": ("{name}: crank at {angle}°", "{name}: угол кривошипа {angle}°"),
     # ------------------------------------------------------------------ units
     "unit.mm": ("mm", "мм"),
+    "unit.deg": ("°", "°"),
     "unit.N": ("N", "Н"),
     "unit.kN": ("kN", "кН"),
     "unit.Nm": ("N·m", "Н·м"),

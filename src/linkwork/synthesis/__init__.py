@@ -11,9 +11,9 @@ from __future__ import annotations
 from typing import Any
 
 from linkwork.errors import SynthesisError
-from linkwork.synthesis.common import Family, Synthesis
+from linkwork.synthesis.common import QUANTITIES, Family, Synthesis
 
-__all__ = ["KINDS", "Family", "Synthesis", "synthesize"]
+__all__ = ["KINDS", "QUANTITIES", "Family", "Synthesis", "synthesize"]
 
 #: The kinds synthesised, and their modules.
 KINDS = {
@@ -63,7 +63,26 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     missing = [name for name in required(func) if name not in requirements]
     if missing:
         raise SynthesisError(f"{kind}: missing requirement {', '.join(missing)}")
-    return func(**{name: _si(name, value) for name, value in requirements.items()})
+    result = func(**{name: _si(name, value) for name, value in requirements.items()})
+    return _carrying(result, {"criterion": requirements["criterion"]} if "criterion" in requirements else {})
+
+
+def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
+    """``result`` whose file carries its requirements (``requirements:``, through the one writer), for the
+    report to state them beside what the mechanism achieves."""
+    import dataclasses
+
+    from linkwork.spec.load import loads
+    from linkwork.structure.parameters import _yaml, yaml_text
+    from linkwork.synthesis.achieved import written
+
+    data = _yaml().load(result.text)
+    data["requirements"] = written(result.kind, result.requirements, extra)
+    data.yaml_set_comment_before_after_key(
+        "requirements", before="what the mechanism was synthesised for; the report states it beside what it achieves"
+    )
+    text = yaml_text(data)
+    return dataclasses.replace(result, text=text, spec=loads(text, "<synthesised>"))
 
 
 def required(func: Any) -> list[str]:
@@ -71,13 +90,6 @@ def required(func: Any) -> list[str]:
     import inspect
 
     return [n for n, p in inspect.signature(func).parameters.items() if p.default is inspect.Parameter.empty]
-
-
-#: The kind of quantity of each requirement that has a unit.
-QUANTITIES = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
-              "crank": "length", "rod": "length", "before": "length", "force": "force", "torque": "moment",
-              "max_pressure_angle": "angle", "min_transmission_angle": "angle", "upper_stroke": "length",
-              "lower_stroke": "length", "overlap": "length", "opening": "length", "working": "length"}  # fmt: skip
 
 
 def _si(name: str, value: Any) -> Any:
