@@ -144,3 +144,15 @@ def test_shears_whose_overlap_and_opening_disagree_exit_2_with_one_line_and_no_f
                    "--time-ratio", "1.05", "--opening", "225mm", "--overlap", "20mm", "--out", str(out))  # fmt: skip
     assert run.returncode == 2 and not out.exists()
     assert run.stderr.strip().count("\n") == 0 and "must equal the strokes together 240 mm" in run.stderr
+
+
+def test_the_summary_speaks_russian_with_lang_ru(tmp_path):
+    out = tmp_path / "c.yaml"
+    run = linkwork("synthesize", "crank-rocker", "--swing", "45deg", "--time-ratio", "1.2", "--frame", "300mm",
+                   "--out", str(out), "--lang", "ru")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert "измерено анализом" in run.stdout and "угол качания               45.000000000 град" in run.stdout
+    assert f"записан: {out}" in run.stdout
+    wrong = linkwork("synthesize", "crank-rocker", "--swing", "45deg", "--time-ratio", "1.2", "--frame", "300mm",
+                     "--out", str(tmp_path / "d.yaml"), "--lang", "de")  # fmt: skip
+    assert wrong.returncode == 2 and not (tmp_path / "d.yaml").exists()

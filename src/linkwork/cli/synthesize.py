@@ -128,6 +128,7 @@ def synthesize(  # fmt: skip
         str | None, typer.Option("--section", help='the steel bars\' section, "40mm x 20mm" by default')
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    lang: Annotated[str, typer.Option(help="language of the printed summary: en or ru")] = "en",
 ) -> None:
     """Write a mechanism file that meets the requirements, verified by the kinematic analysis of that file.
 
@@ -140,9 +141,14 @@ def synthesize(  # fmt: skip
     --swing and --time-ratio of its four-bar.  double-cut-shears (the bundled file's structure): --upper-stroke,
     --lower-stroke, --time-ratio (closing over opening), --overlap or --opening; --crank fixes the crank, else
     --criterion picks it.  Requirements that cannot be met: exit 2, no file."""
+    from linkwork.lang import check_lang
     from linkwork.synthesis import KINDS, QUANTITIES, required
     from linkwork.synthesis import synthesize as run
 
+    try:
+        check_lang(lang)
+    except LinkworkError as exc:
+        fail(exc)
     if kind not in KINDS:
         fail(LinkworkError(f"unknown kind {kind!r}: expected one of {', '.join(KINDS)}"))
     if not out.endswith((".yaml", ".yml")):
@@ -171,34 +177,40 @@ def synthesize(  # fmt: skip
         result.write(out)
     except (LinkworkError, OSError) as exc:
         fail(exc)
-    _show(result, out, as_json)
+    _show(result, out, as_json, lang)
 
 
-def _show(result: Any, out: str, as_json: bool) -> None:
+def _show(result: Any, out: str, as_json: bool, lang: str = "en") -> None:
     if as_json:
         echo_json({"kind": result.kind, "out": out, "requirements": result.requirements,
                    "dimensions": result.dimensions, "predicted": result.predicted, "measured": result.measured,
                    "criterion": result.criterion})  # fmt: skip
         return
+    from linkwork.lang import t
+
+    mm = t("unit.mm", lang)
     typer.echo(f"{result.kind}: {result.criterion}")
     for name, value in result.dimensions.items():
-        typer.echo(f"  {name:10s} {value * 1e3:12.6f} mm")
-    typer.echo("measured by the analysis (kinematics, forces) of the written file:")
+        typer.echo(f"  {name:10s} {value * 1e3:12.6f} {mm}")
+    typer.echo(t("synth.measured", lang))
     for name, value in result.measured.items():
-        typer.echo(f"  {name.replace('_', ' '):26s} {_shown(name, value)}")
-    typer.echo(f"written: {out}")
+        label = name.replace("_", " ") if lang == "en" else t(f"synth.quantity.{name}", lang)
+        typer.echo(f"  {label:26s} {_shown(name, value, lang)}")
+    typer.echo(t("synth.written", lang, out=out))
 
 
 #: The measured quantities that are lengths (the rest: ratios, torques, angles).
 LENGTHS = ("stroke", "upper_stroke", "lower_stroke", "overlap", "opening")
 
 
-def _shown(name: str, value: float) -> str:
-    """A measured quantity as the summary prints it: lengths in mm, angles in degrees."""
+def _shown(name: str, value: float, lang: str = "en") -> str:
+    """A measured quantity as the summary prints it: lengths in mm, angles in degrees (in ``lang``'s units)."""
+    from linkwork.lang import t
+
     if name in LENGTHS:
-        return f"{value * 1e3:.9f} mm"
+        return f"{value * 1e3:.9f} {t('unit.mm', lang)}"
     if name == "time_ratio":
         return f"{value:.12g}"
     if name == "torque_at_nominal":
-        return f"{value:.12g} N m"
-    return f"{math.degrees(value):.9f} deg"
+        return f"{value:.12g} {t('synth.unit.Nm', lang)}"
+    return f"{math.degrees(value):.9f} {t('synth.unit.deg', lang)}"
