@@ -9,6 +9,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 import linkwork as lw
@@ -98,3 +100,19 @@ def test_strokes_the_structure_cannot_reach_name_the_requirements_and_the_bundle
     with pytest.raises(SynthesisError, match=r"upper stroke 900 mm.*no double-cut shears.*the bundled file has 120"):
         synthesize("double-cut-shears", upper_stroke=0.9, lower_stroke=0.12, time_ratio=1.1, overlap=0.02,
                    crank=0.1)  # fmt: skip
+
+
+@pytest.mark.slow
+@settings(max_examples=4, deadline=None)
+@given(
+    upper=st.floats(0.10, 0.16),
+    lower=st.floats(0.10, 0.16),
+    ratio=st.floats(0.97, 1.12),
+    overlap=st.floats(0.005, 0.03),
+)
+def test_random_requirements_near_the_bundled_design_are_met_as_measured_independently(upper, lower, ratio, overlap):
+    s = synthesize("double-cut-shears", upper_stroke=upper, lower_stroke=lower, time_ratio=ratio, overlap=overlap)
+    got = knives(s.spec)
+    assert got["upper"] == pytest.approx(upper, rel=1e-9) and got["lower"] == pytest.approx(lower, rel=1e-9)
+    assert got["time_ratio"] == pytest.approx(ratio, rel=1e-9)
+    assert got["overlap"] == pytest.approx(overlap, abs=1e-9 * (upper + lower))
