@@ -92,9 +92,11 @@ def limits_scene(kin: Kinematics) -> LimitsScene | None:
     t = a0 + sweep * np.linspace(0.0, 1.0, 33)
     arc = o + radius * np.column_stack([np.cos(t), np.sin(t)])
     theta = abs(sweep)
-    mid = a0 + sweep / 2
     text = f"θ = {math.degrees(theta):.2f}°"
-    w = text_size(text, scheme.em)[0]
-    centre = o + (radius + 0.6 * scheme.em + w / 2) * np.array([math.cos(mid), math.sin(mid)])
+    w, h = text_size(text, scheme.em)
+    # beside the arc's end, outside the wedge (clear of both rays however narrow theta is)
+    side = a1 + math.copysign(math.pi / 2, sweep if sweep else 1.0)
+    out = np.array([math.cos(side), math.sin(side)])
+    centre = arc[-1] + out * (0.5 * abs(out[0]) * w + 0.5 * abs(out[1]) * h + 0.5 * scheme.em)
     turned = float(np.ravel(r.rising)[0])
     return LimitsScene(scheme, members[0].name, rays, arc, theta, turned, Label(text, "position", 0, o, centre[None]))
