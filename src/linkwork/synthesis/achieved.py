@@ -126,3 +126,36 @@ def written(kind: str, requirements: dict[str, float], extra: dict[str, str] | N
         else:
             out[name] = float(f"{value:.12g}")
     return out | (extra or {})
+
+
+#: Members of a family the viewer's slider offers.
+FAMILY_MEMBERS = 41
+
+
+def family_members(spec: Any) -> dict[str, Any] | None:
+    """The one-parameter family a synthesised slider-crank's requirements leave (stroke and time ratio without
+    rod ratio or offset), as edits of the file's named parameters, for the viewer's slider: ``parameter`` and
+    ``unit`` of the free parameter, its ``values``, each member's ``overrides`` (SI) and largest pressure angle
+    (``alpha``, deg), and ``picked``, the member nearest the file's crank.  None for any other file."""
+    from linkwork.synthesis.common import crank_angle_between_limits
+    from linkwork.synthesis.slider_crank import family
+    from linkwork.units import parse_quantity
+
+    given = getattr(spec, "requirements", None) if spec is not None else None
+    if not given or given.get("kind") != "slider-crank" or "rod_ratio" in given or "offset" in given:
+        return None
+    stroke = given.get("stroke")
+    stroke = parse_quantity(stroke, "length") if isinstance(stroke, str) else float(stroke)
+    ratio = float(given.get("time_ratio", 1.0))
+    if crank_angle_between_limits(ratio) <= 0:
+        return None
+    f = family(stroke, ratio, count=FAMILY_MEMBERS)
+    c = f.columns
+    ok = np.isfinite(c["largest_pressure_angle"])
+    crank = next((float(link.length) for name, link in spec.links.items() if name == "crank"), math.nan)
+    members = [{"links.crank.length": float(r), "links.rod.length": float(ell), "joints.guide.through.x": -float(e)}
+               for r, ell, e in zip(c["crank"][ok], c["rod"][ok], c["offset"][ok], strict=True)]  # fmt: skip
+    picked = int(np.argmin(np.abs(c["crank"][ok] - crank))) if math.isfinite(crank) else 0
+    return {"parameter": f.parameter, "unit": "deg", "values": np.degrees(f.values[ok]).tolist(),
+            "overrides": members, "alpha": np.degrees(c["largest_pressure_angle"][ok]).tolist(),
+            "picked": picked}  # fmt: skip
