@@ -120,3 +120,39 @@ def test_the_manual_synthesis_commands_and_python_run(tmp_path, monkeypatch):
     (ext,) = extremes(lw.kinematics(str(tmp_path / "press.yaml"), steps=3600))
     assert ext.time_ratio == pytest.approx(1.3, rel=1e-9)
     assert "1.092" in section  # the message quoted is the one the command prints (tested above)
+
+
+def test_the_written_double_cut_shears_meet_the_knives_requirements_and_check_takes_them(tmp_path):
+    out = tmp_path / "shears.yaml"
+    run = linkwork("synthesize", "double-cut-shears", "--upper-stroke", "130mm", "--lower-stroke", "110mm",
+                   "--time-ratio", "1.05", "--opening", "225mm", "--out", str(out))  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert "upper stroke               130.0000000" in run.stdout
+    assert "overlap                    15.0000000" in run.stdout
+    from linkwork.design.evaluate import Evaluation
+    from linkwork.design.metrics import METRICS
+
+    ev = Evaluation(lw.kinematics(str(out), steps=3600))
+    assert float(METRICS["stroke"].compute(ev, "guide_F")[0]) == pytest.approx(0.11, rel=1e-9)
+    assert float(METRICS["knife_clearance"].compute(ev, None)[0]) == pytest.approx(0.225, rel=1e-9)
+    assert linkwork("check", str(out)).returncode == 0
+
+
+def test_shears_whose_overlap_and_opening_disagree_exit_2_with_one_line_and_no_file(tmp_path):
+    out = tmp_path / "shears.yaml"
+    run = linkwork("synthesize", "double-cut-shears", "--upper-stroke", "130mm", "--lower-stroke", "110mm",
+                   "--time-ratio", "1.05", "--opening", "225mm", "--overlap", "20mm", "--out", str(out))  # fmt: skip
+    assert run.returncode == 2 and not out.exists()
+    assert run.stderr.strip().count("\n") == 0 and "must equal the strokes together 240 mm" in run.stderr
+
+
+def test_the_summary_speaks_russian_with_lang_ru(tmp_path):
+    out = tmp_path / "c.yaml"
+    run = linkwork("synthesize", "crank-rocker", "--swing", "45deg", "--time-ratio", "1.2", "--frame", "300mm",
+                   "--out", str(out), "--lang", "ru")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert "измерено анализом" in run.stdout and "угол качания               45.000000000 град" in run.stdout
+    assert f"записан: {out}" in run.stdout
+    wrong = linkwork("synthesize", "crank-rocker", "--swing", "45deg", "--time-ratio", "1.2", "--frame", "300mm",
+                     "--out", str(tmp_path / "d.yaml"), "--lang", "de")  # fmt: skip
+    assert wrong.returncode == 2 and not (tmp_path / "d.yaml").exists()

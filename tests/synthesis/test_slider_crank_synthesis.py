@@ -123,8 +123,9 @@ def test_an_impossible_bound_names_the_least_angle_for_k_and_the_largest_k_for_t
     [
         ({"time_ratio": 3.2}, "1 <= K < 3"),
         ({"time_ratio": 1.3, "rod_ratio": 0.01}, "the rod ratio must lie in (0.04318"),
-        ({"time_ratio": 1.3, "offset": 5.0}, "the offset must be under"),
+        ({"time_ratio": 1.3, "offset": 5.0}, "and under H cot(theta)"),
         ({"time_ratio": 1.0, "offset": 0.1}, "K = 1 needs a zero offset"),
+        ({"time_ratio": 1.3, "offset": 0.0}, "the offset must be over 0 (a central slider-crank has K = 1)"),
         ({"time_ratio": 1.0}, "give the rod ratio or the largest pressure angle"),
         ({"time_ratio": 1.3, "rod_ratio": 0.3, "offset": 0.1}, "give one of the rod ratio and the offset"),
     ],
@@ -142,3 +143,26 @@ def test_the_file_comments_each_derived_dimension_with_the_requirement_it_meets(
     assert "stroke H = 400 mm" in crank
     assert any("through:" in line and "time ratio K = 1.2" in line for line in lines)
     assert lw.loads(s.text).links["rod"].length is not None
+
+
+def test_the_torque_criterion_picks_the_member_with_the_least_peak_torque_within_the_pressure_bound():
+    """Members of the family built one by one by their offsets (up to the pick's), each sampled finely by
+    lw.forces: none has a smaller peak driving torque than the pick, which meets the bound (here at it: the
+    torque falls towards the dead point)."""
+    import linkwork as lw
+
+    req = {"stroke": 0.4, "time_ratio": 1.3, "force": 20e3}
+    pick = synthesize("slider-crank", **req, max_pressure_angle=math.radians(60), criterion="torque")
+    assert pick.measured["largest_pressure_angle"] <= math.radians(60) * (1 + 1e-9)
+    assert pick.measured["stroke"] == pytest.approx(0.4, rel=1e-9)
+    assert "working:" in pick.text and "20000 N" in pick.text
+
+    def sampled(spec) -> float:
+        return float(np.max(np.abs(lw.forces(spec, steps=3600).driving_torque)))
+
+    best = sampled(pick.spec)
+    for offset in np.linspace(0.0, pick.dimensions["offset"], 6)[1:-1]:
+        member = synthesize("slider-crank", **req, offset=float(offset))
+        assert sampled(member.spec) > best
+    with pytest.raises(SynthesisError, match="needs a bound on the largest pressure angle"):
+        synthesize("slider-crank", **req, criterion="torque")

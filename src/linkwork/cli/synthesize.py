@@ -56,7 +56,9 @@ def _section(text: str | None) -> dict[str, Any]:
 
 @app.command()
 def synthesize(  # fmt: skip
-    kind: Annotated[str, typer.Argument(help="slider-crank, crank-rocker, slotted-lever or toggle-press")],
+    kind: Annotated[
+        str, typer.Argument(help="slider-crank, crank-rocker, slotted-lever, toggle-press or double-cut-shears")
+    ],
     out: Annotated[str, typer.Option("--out", help="the mechanism file to write (.yaml)")],
     stroke: Annotated[
         str | None, typer.Option("--stroke", help='slider-crank, slotted-lever: the ram\'s stroke, e.g. "400mm"')
@@ -80,35 +82,73 @@ def synthesize(  # fmt: skip
     frame: Annotated[
         str | None, typer.Option("--frame", help="crank-rocker (or --rocker), slotted-lever (or --crank): the frame")
     ] = None,
-    crank: Annotated[str | None, typer.Option("--crank", help="slotted-lever: the crank's length")] = None,
+    crank: Annotated[
+        str | None, typer.Option("--crank", help="slotted-lever, double-cut-shears: the crank's length")
+    ] = None,
     rod: Annotated[str | None, typer.Option("--rod", help="slotted-lever: the ram's rod's length")] = None,
     min_transmission_angle: Annotated[
         str | None, typer.Option("--min-transmission-angle", help="crank-rocker: a bound")
     ] = None,
-    force: Annotated[str | None, typer.Option("--force", help='toggle-press: the nominal force, e.g. "100kN"')] = None,
+    force: Annotated[
+        str | None,
+        typer.Option("--force", help='toggle-press: the nominal force; slider-crank: the working load, e.g. "100kN"'),
+    ] = None,
+    working: Annotated[
+        str | None, typer.Option("--working", help="slider-crank: the load acts over this last part of the stroke")
+    ] = None,
     before: Annotated[
         str | None, typer.Option("--before", help="toggle-press: where it acts, before the bottom dead centre")
     ] = None,
     torque: Annotated[
         str | None, typer.Option("--torque", help='toggle-press: the crank\'s torque limit, e.g. "5kN*m"')
     ] = None,
-    speed: Annotated[str, typer.Option("--speed", help="the crank's speed written in the file")] = "60 rpm",
+    upper_stroke: Annotated[
+        str | None, typer.Option("--upper-stroke", help="double-cut-shears: the upper knife's stroke")
+    ] = None,
+    lower_stroke: Annotated[
+        str | None, typer.Option("--lower-stroke", help="double-cut-shears: the lower knife's stroke")
+    ] = None,
+    overlap: Annotated[
+        str | None, typer.Option("--overlap", help="double-cut-shears: the knives' overlap when closed (or --opening)")
+    ] = None,
+    opening: Annotated[
+        str | None, typer.Option("--opening", help="double-cut-shears: the gap between the knives when open")
+    ] = None,
+    criterion: Annotated[
+        str | None,
+        typer.Option(
+            "--criterion",
+            help="slider-crank, double-cut-shears: pick from the family by 'pressure' (default) or 'torque'",
+        ),
+    ] = None,
+    speed: Annotated[
+        str | None, typer.Option("--speed", help="the crank's speed written in the file (60 rpm; the shears' own)")
+    ] = None,
     section: Annotated[
         str | None, typer.Option("--section", help='the steel bars\' section, "40mm x 20mm" by default')
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    lang: Annotated[str, typer.Option(help="language of the printed summary: en or ru")] = "en",
 ) -> None:
     """Write a mechanism file that meets the requirements, verified by the kinematic analysis of that file.
 
-    slider-crank: --stroke, --time-ratio, and --rod-ratio or --offset (else the least largest pressure
-    angle); --max-pressure-angle a bound.  crank-rocker: --swing, --time-ratio, --rocker or --frame;
-    --min-transmission-angle a bound.  slotted-lever: --stroke, --time-ratio; --frame or --crank (else the
-    greatest frame), --rod (else the shortest rod meeting --max-pressure-angle, 10 deg by default).
+    slider-crank: --stroke, --time-ratio, and --rod-ratio or --offset (else the member picked by --criterion: pressure,
+    the least largest pressure angle, or torque, the least peak driving torque under --force over the last --working of
+    the stroke, within --max-pressure-angle); --max-pressure-angle a bound.  crank-rocker: --swing, --time-ratio,
+    --rocker or --frame; --min-transmission-angle a bound.  slotted-lever: --stroke, --time-ratio; --frame or --crank
+    (else the greatest frame), --rod (else the shortest rod meeting --max-pressure-angle, 10 deg by default).
     toggle-press: --stroke, --force at --before the bottom dead centre, --torque (the crank's limit, N m);
-    --swing and --time-ratio of its four-bar.  Requirements that cannot be met: exit 2, no file."""
+    --swing and --time-ratio of its four-bar.  double-cut-shears (the bundled file's structure): --upper-stroke,
+    --lower-stroke, --time-ratio (closing over opening), --overlap or --opening; --crank fixes the crank, else
+    --criterion picks it.  Requirements that cannot be met: exit 2, no file."""
+    from linkwork.lang import check_lang
     from linkwork.synthesis import KINDS, QUANTITIES, required
     from linkwork.synthesis import synthesize as run
 
+    try:
+        check_lang(lang)
+    except LinkworkError as exc:
+        fail(exc)
     if kind not in KINDS:
         fail(LinkworkError(f"unknown kind {kind!r}: expected one of {', '.join(KINDS)}"))
     if not out.endswith((".yaml", ".yml")):
@@ -120,7 +160,8 @@ def synthesize(  # fmt: skip
     texts = {"stroke": stroke, "swing": swing, "time_ratio": time_ratio, "rod_ratio": rod_ratio, "offset": offset,
              "max_pressure_angle": max_pressure_angle, "rocker": rocker, "frame": frame, "crank": crank, "rod": rod,
              "min_transmission_angle": min_transmission_angle, "force": force, "before": before,
-             "torque": torque}  # fmt: skip
+             "torque": torque, "upper_stroke": upper_stroke, "lower_stroke": lower_stroke, "overlap": overlap,
+             "opening": opening, "criterion": criterion, "working": working}  # fmt: skip
     wrong = [name for name, text in texts.items() if text is not None and name not in known]
     if wrong:
         fail(LinkworkError(f"{kind}: --{', --'.join(w.replace('_', '-') for w in wrong)}: not a requirement of {kind}"))
@@ -128,28 +169,48 @@ def synthesize(  # fmt: skip
     missing = [n for n in required(importlib.import_module(KINDS[kind]).synthesize) if texts[n] is None]
     if missing:
         fail(LinkworkError(f"{kind}: missing --{', --'.join(m.replace('_', '-') for m in missing)}"))
+    words = {name: texts.pop(name) for name in ("criterion",) if texts.get(name) is not None}
     requirements = _read({name: (text, QUANTITIES.get(name, "ratio")) for name, text in texts.items()})
+    extra = {"speed": speed} if speed is not None else {}
     try:
-        result = run(kind, **requirements, speed=speed, **_section(section))
+        result = run(kind, **requirements, **words, **extra, **_section(section))
         result.write(out)
     except (LinkworkError, OSError) as exc:
         fail(exc)
-    _show(result, out, as_json)
+    _show(result, out, as_json, lang)
 
 
-def _show(result: Any, out: str, as_json: bool) -> None:
+def _show(result: Any, out: str, as_json: bool, lang: str = "en") -> None:
     if as_json:
         echo_json({"kind": result.kind, "out": out, "requirements": result.requirements,
                    "dimensions": result.dimensions, "predicted": result.predicted, "measured": result.measured,
                    "criterion": result.criterion})  # fmt: skip
         return
+    from linkwork.lang import t
+
+    mm = t("unit.mm", lang)
     typer.echo(f"{result.kind}: {result.criterion}")
     for name, value in result.dimensions.items():
-        typer.echo(f"  {name:10s} {value * 1e3:12.6f} mm")
-    typer.echo("measured by the analysis (kinematics, forces) of the written file:")
+        typer.echo(f"  {name:10s} {value * 1e3:12.6f} {mm}")
+    typer.echo(t("synth.measured", lang))
     for name, value in result.measured.items():
-        shown = f"{value:.12g}" + (" N m" if name == "torque_at_nominal" else "") if name in (
-            "time_ratio", "torque_at_nominal") else (
-            f"{math.degrees(value):.9f} deg" if name != "stroke" else f"{value * 1e3:.9f} mm")  # fmt: skip
-        typer.echo(f"  {name.replace('_', ' '):26s} {shown}")
-    typer.echo(f"written: {out}")
+        label = name.replace("_", " ") if lang == "en" else t(f"synth.quantity.{name}", lang)
+        typer.echo(f"  {label:26s} {_shown(name, value, lang)}")
+    typer.echo(t("synth.written", lang, out=out))
+
+
+#: The measured quantities that are lengths (the rest: ratios, torques, angles).
+LENGTHS = ("stroke", "upper_stroke", "lower_stroke", "overlap", "opening")
+
+
+def _shown(name: str, value: float, lang: str = "en") -> str:
+    """A measured quantity as the summary prints it: lengths in mm, angles in degrees (in ``lang``'s units)."""
+    from linkwork.lang import t
+
+    if name in LENGTHS:
+        return f"{value * 1e3:.9f} {t('unit.mm', lang)}"
+    if name == "time_ratio":
+        return f"{value:.12g}"
+    if name == "torque_at_nominal":
+        return f"{value:.12g} {t('synth.unit.Nm', lang)}"
+    return f"{math.degrees(value):.9f} {t('synth.unit.deg', lang)}"

@@ -18,7 +18,7 @@ from linkwork.figures.diagrams import (
     torque_diagram,
 )
 from linkwork.figures.plans import acceleration_plan, draw_plan, plan_sheet, velocity_plan
-from linkwork.figures.scheme import draw_positions, draw_scheme
+from linkwork.figures.scheme import draw_limits, draw_positions, draw_scheme
 from linkwork.optional import require
 
 require("matplotlib", purpose="the drawings (linkwork.figures)")
@@ -27,6 +27,7 @@ __all__ = [
     "acceleration_plan",
     "animate",
     "draw_plan",
+    "draw_limits",
     "draw_positions",
     "draw_scheme",
     "dynamics_diagrams",

@@ -9,6 +9,7 @@ in the drawing's units), and a scale bar.  Every item's artist has the ``gid`` `
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -148,4 +149,36 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
     turn = t("positions.ccw" if mech.drive_speed[0] >= 0 else "positions.cw", lang,
              angle=f"{turn_deg(angles[0]):.1f}")  # fmt: skip
     sh.ax.set_title(f"{t('positions.title', lang, name=mech.name, count=count)}\n{turn}", fontsize=11)
+    return sh.fig
+
+
+def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Figure | None:
+    """The working member's two limit positions over a whole turn ``kin`` (the low extreme whole, the high one
+    thin), with the trajectories, the two lines of theta from the crank's pivot, its arc and value
+    (:func:`~linkwork.scene.limits.limits_scene`); None where there are none."""
+    from linkwork.scene.limits import limits_scene
+
+    scene = limits_scene(kin)
+    if scene is None:
+        return None
+    s = scene.scheme
+    box = scene.extent()
+    bar = round_length(box[2] - box[0])
+    box[1] -= 3.0 * s.em
+    sh = sheet(box, ax=ax, top=0.7)
+    draw_paths(sh, s.paths)
+    draw_items(sh, s, 0)
+    draw_items(sh, s, 1, frame=False, kinds=("bar", "plate", "pivot", "block", "tool"), thin=0.45)
+    draw_labels(sh, s, 0)
+    for ray in scene.rays:
+        add_line(sh.ax, ray[:, 0], ray[:, 1], color=TEXT["position"], lw=0.8, ls=(0, (6, 2, 1, 2)), zorder=4,
+                 gid="limits:ray")  # fmt: skip
+    add_line(sh.ax, scene.arc[:, 0], scene.arc[:, 1], color=TEXT["position"], lw=1.0, zorder=4, gid="limits:arc")
+    c = scene.label.centre[0]
+    sh.ax.text(c[0], c[1], scene.label.text, ha="center", va="center", fontsize=sh.font(s.em),
+               color=TEXT["position"], zorder=5, gid="limits:theta")  # fmt: skip
+    scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em, lang)
+    k = (math.pi + scene.theta) / (math.pi - scene.theta)
+    sh.ax.set_title(t("limits.title", lang, name=s.name, member=scene.member, theta=f"{math.degrees(scene.theta):.2f}",
+                      k=f"{k:.4f}"), fontsize=11)  # fmt: skip
     return sh.fig

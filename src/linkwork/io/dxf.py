@@ -25,6 +25,7 @@ from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import plan_series
 from linkwork.optional import require
+from linkwork.scene.limits import LimitsScene, limits_scene
 from linkwork.scene.plans import PlanScene, plan_scene
 from linkwork.scene.positions import PositionsScene, position_angles, positions_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
@@ -53,7 +54,8 @@ PURPOSE = "the drawings for CAD (linkwork analyze --dxf)"
 
 def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinematics | None = None,
                    lang: str = "en") -> list[Path]:  # fmt: skip
-    """``scheme.dxf``, ``positions.dxf``, ``velocity_plan.dxf`` and ``acceleration_plan.dxf`` of sample ``index``
+    """``scheme.dxf``, ``positions.dxf``, ``limits.dxf`` (a file that carries requirements: a synthesised one),
+    ``velocity_plan.dxf`` and ``acceleration_plan.dxf`` of sample ``index``
     of ``kin`` into ``folder``, their notes in ``lang``; returns the paths.  ``cycle``: a whole turn (the
     scheme's trajectories and fixed symbols; see :func:`~linkwork.scene.scheme_scene`)."""
     require("ezdxf", purpose=PURPOSE)
@@ -63,6 +65,9 @@ def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinem
     out = [write_scheme(scheme_scene(kin, at=[index], cycle=full), index, folder / "scheme.dxf", lang=lang)]
     twelve = kinematics(mech, position_angles(mech))
     out.append(write_positions(positions_scene(twelve, cycle=full), folder / "positions.dxf", lang))
+    limits = limits_scene(full) if getattr(mech.spec, "requirements", None) else None
+    if limits is not None:
+        out.append(write_limits(limits, folder / "limits.dxf", lang))
     valid = np.asarray(kin.valid_all[0])
     for series in plan_series(kin):
         scene = plan_scene(series, [index], valid=valid)
@@ -99,6 +104,25 @@ def write_positions(scene: PositionsScene, path: str | Path, lang: str = "en") -
         _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
     note = f"{t('positions.title', lang, name=s.name, count=len(s.angles))}; 1:1, {t('unit.mm', lang)}"
     _note(doc, msp, note, scene.extent() * 1000, 1000 * s.em)
+    return _save(doc, path)
+
+
+def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path:
+    """The working member's limit positions, 1:1 in mm: the first whole, the second's links thin, the two lines
+    of theta from the crank's pivot (layer ``LIMITS``), its arc and value; its note in ``lang``."""
+    s = scene.scheme
+    doc, msp = _document(SCHEME, extra={"LIMITS": 7})
+    _paths(msp, s.paths)
+    _items(msp, s, 0)
+    _items(msp, s, 1, kinds=("bar", "plate", "pivot", "block", "tool"), frame=False)
+    for line in (*scene.rays, scene.arc):
+        msp.add_lwpolyline([tuple(v) for v in line * 1000], dxfattribs={"layer": "LIMITS"})
+    for lab in (*s.labels, scene.label):
+        _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
+    k = (np.pi + scene.theta) / (np.pi - scene.theta)
+    title = t("limits.title", lang, name=s.name, member=scene.member, theta=f"{np.degrees(scene.theta):.2f}",
+              k=f"{k:.4f}").replace("\n", ", ")  # fmt: skip
+    _note(doc, msp, f"{title}; 1:1, {t('unit.mm', lang)}", scene.extent() * 1000, 1000 * s.em)
     return _save(doc, path)
 
 

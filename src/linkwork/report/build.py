@@ -248,6 +248,7 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
     from linkwork.report.inputs import input_section
     from linkwork.structure.model import one_crank
 
+    _requirements(run)
     run.sections.append(Section("input", run.t("section.input"), input_section(run.mech, steps, run.t)))
     _structure(run)
     if not one_crank(run.mech):
@@ -271,6 +272,54 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
         _sizing(run)
     run.progress("figures")
     run.run_here()
+
+
+def _requirements(run: _Run) -> None:
+    """The section a file that carries requirements (a synthesised one) opens with: each requirement, what the
+    mechanism achieves as the analysis measures it, and the limit positions with theta drawn."""
+    from linkwork.structure.model import one_crank
+    from linkwork.synthesis.achieved import requirement_rows
+
+    if not one_crank(run.mech):
+        return
+    from linkwork import figures
+    from linkwork.motion import kinematics
+    from linkwork.scene.limits import limits_scene
+
+    kin = kinematics(run.mech, steps=360)
+    found = requirement_rows(kin)
+    if found is None:
+        return
+    kind, rows = found
+    sec = Section("requirements", run.t("section.requirements"), [_p(run.t("requirements.intro", kind=kind))])
+    head = [run.t(f"requirements.head.{k}") for k in ("name", "asked", "achieved", "met")]
+    sec.body.append(_table(head, [_requirement_row(run, row) for row in rows]))
+    limits = limits_scene(kin)
+    if limits is not None:
+        theta = math.degrees(limits.theta)
+        k = (180.0 + theta) / (180.0 - theta)
+        sec.body.append(_p(run.t("requirements.theta", theta=f"{theta:.3f}", k=f"{k:.6g}", member=limits.member)))
+        lang = run.lang
+        sec.figures.append(
+            run.figure(
+                "limits", lambda: figures.draw_limits(kin, lang=lang), run.t("caption.limits", member=limits.member)
+            )
+        )
+    run.sections.append(sec)
+
+
+def _requirement_row(run: _Run, row: Any) -> list[str]:
+    """A requirement's name, the value asked (with its sense), what the mechanism achieves, whether it is met."""
+    scale, unit = {"length": (1e3, "unit.mm"), "angle": (180 / math.pi, "unit.deg")}.get(row.kind, (1.0, ""))
+
+    def shown(x: float) -> str:
+        text = f"{x * scale:.10g}"
+        return f"{text}{run.t(unit)}" if unit == "unit.deg" else f"{text} {run.t(unit)}" if unit else text
+
+    sense = "" if row.sense in ("equal", "given") else run.t(f"requirements.sense.{row.sense.replace(' ', '_')}") + " "
+    achieved = run.t("requirements.as_given") if row.achieved is None else shown(row.achieved)
+    met = "" if row.met is None else run.t("requirements.yes" if row.met else "requirements.no")
+    return [run.t(f"requirement.{row.name}"), sense + shown(row.asked), achieved, met]
 
 
 def _import_drawing() -> None:

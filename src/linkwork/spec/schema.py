@@ -519,6 +519,11 @@ class Spec(_Strict):
     impact: ImpactSpec | None = Field(None, description="a blow, for linkwork impact")
     drawing: Drawing | None = Field(None, description="what the drawings show (the positions of the plans)")
     sizing: SizingSpec | None = Field(None, description="pins, guides and foundation bolts, for linkwork size")
+    requirements: dict[str, str | float] | None = Field(
+        None,
+        description="what the mechanism was synthesised for (linkwork synthesize): its kind and requirements, "
+        "quantities with their units; the report states them beside what the analysis measures",
+    )
     hints: dict[str, Vec2] = Field(
         default_factory=dict,
         description="approximate global positions of moving points in the assembly pose "

@@ -11,9 +11,9 @@ from __future__ import annotations
 from typing import Any
 
 from linkwork.errors import SynthesisError
-from linkwork.synthesis.common import Family, Synthesis
+from linkwork.synthesis.common import QUANTITIES, Family, Synthesis
 
-__all__ = ["KINDS", "Family", "Synthesis", "synthesize"]
+__all__ = ["KINDS", "QUANTITIES", "Family", "Synthesis", "synthesize"]
 
 #: The kinds synthesised, and their modules.
 KINDS = {
@@ -21,6 +21,7 @@ KINDS = {
     "crank-rocker": "linkwork.synthesis.crank_rocker",
     "slotted-lever": "linkwork.synthesis.slotted_lever",
     "toggle-press": "linkwork.synthesis.toggle_press",
+    "double-cut-shears": "linkwork.synthesis.shears",
 }
 
 
@@ -28,13 +29,20 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     """A mechanism of ``kind`` meeting ``requirements`` (SI: m, rad, ratios), verified by the analysis.
 
     Lengths and angles may also be strings with their unit (``stroke="400 mm"``, ``swing="45 deg"``).
-    ``slider-crank``: ``stroke``, ``time_ratio``, and one of ``rod_ratio``, ``offset``; ``max_pressure_angle``
-    a bound.  ``crank-rocker``: ``swing``, ``time_ratio``, and one of ``rocker``, ``frame`` (lengths);
+    ``slider-crank``: ``stroke``, ``time_ratio``, and one of ``rod_ratio``, ``offset``; ``max_pressure_angle`` a bound;
+    ``force`` (N) a working load over the last ``working`` (m) of the downward stroke; else ``criterion`` picks from the
+    family: ``"pressure"`` (the least largest pressure angle) or ``"torque"`` (the least peak driving torque under the
+    load, within the bound).  ``crank-rocker``: ``swing``, ``time_ratio``, and one of ``rocker``, ``frame`` (lengths);
     ``min_transmission_angle`` a bound.  ``slotted-lever``: ``stroke``, ``time_ratio`` (> 1), one of ``frame``,
     ``crank`` (else the greatest frame), ``rod`` (else the shortest meeting ``max_pressure_angle``, 10 deg by
     default).  ``toggle-press``: ``stroke``, ``force`` (N) at ``before`` (m) before the bottom dead centre,
-    ``torque`` (N m, the crank's limit); ``swing`` and ``time_ratio`` of its four-bar.  All take ``speed``
+    ``torque`` (N m, the crank's limit); ``swing`` and ``time_ratio`` of its four-bar.  These take ``speed``
     (default ``"60 rpm"``), ``section`` (the steel bars' width and height, m) and ``density``.
+    ``double-cut-shears`` (the bundled file's structure, its masses and loads kept): ``upper_stroke``, ``lower_stroke``,
+    ``time_ratio`` (the knives closing over opening), one of ``overlap`` (when closed), ``opening``; ``crank`` fixes the
+    family's free crank length, else ``criterion`` picks it (``"pressure"``, the default: the greatest least
+    transmission angle, or ``"torque"``, the least peak driving torque under the file's loads); ``speed`` replaces the
+    file's.
 
     Raises
     ------
@@ -55,7 +63,26 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     missing = [name for name in required(func) if name not in requirements]
     if missing:
         raise SynthesisError(f"{kind}: missing requirement {', '.join(missing)}")
-    return func(**{name: _si(name, value) for name, value in requirements.items()})
+    result = func(**{name: _si(name, value) for name, value in requirements.items()})
+    return _carrying(result, {"criterion": requirements["criterion"]} if "criterion" in requirements else {})
+
+
+def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
+    """``result`` whose file carries its requirements (``requirements:``, through the one writer), for the
+    report to state them beside what the mechanism achieves."""
+    import dataclasses
+
+    from linkwork.spec.load import loads
+    from linkwork.structure.parameters import _yaml, yaml_text
+    from linkwork.synthesis.achieved import written
+
+    data = _yaml().load(result.text)
+    data["requirements"] = written(result.kind, result.requirements, extra)
+    data.yaml_set_comment_before_after_key(
+        "requirements", before="what the mechanism was synthesised for; the report states it beside what it achieves"
+    )
+    text = yaml_text(data)
+    return dataclasses.replace(result, text=text, spec=loads(text, "<synthesised>"))
 
 
 def required(func: Any) -> list[str]:
@@ -63,12 +90,6 @@ def required(func: Any) -> list[str]:
     import inspect
 
     return [n for n, p in inspect.signature(func).parameters.items() if p.default is inspect.Parameter.empty]
-
-
-#: The kind of quantity of each requirement that has a unit.
-QUANTITIES = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
-              "crank": "length", "rod": "length", "before": "length", "force": "force", "torque": "moment",
-              "max_pressure_angle": "angle", "min_transmission_angle": "angle"}  # fmt: skip
 
 
 def _si(name: str, value: Any) -> Any:

@@ -52,6 +52,9 @@ from linkwork.synthesis.common import (
 
 KIND = "slider-crank"
 
+#: Members of the family whose peak driving torque is computed before the pick is refined.
+TORQUE_MEMBERS = 24
+
 #: Largest time ratio of a slider-crank (theta < 90 deg), exclusive.
 K_LIMIT = 3.0
 
@@ -142,10 +145,11 @@ def _offset_member(stroke: float, time_ratio: float, theta: float, rod_ratio: fl
         return math.atan2(math.sin(theta), g - math.cos(theta)), f"rod ratio r/l = {rod_ratio:g}"
     if offset is not None:
         top = stroke / math.tan(theta)
-        if not 0.0 <= offset < top:
+        if not 0.0 < offset < top:
             raise SynthesisError(
                 f"offset {offset * 1e3:g} mm with stroke {stroke * 1e3:g} mm and time ratio K = {time_ratio:g}: "
-                f"the offset must be under H cot(theta) = {top * 1e3:.6g} mm"
+                f"the offset must be over 0 (a central slider-crank has K = 1) and under H cot(theta) = "
+                f"{top * 1e3:.6g} mm"
             )
         return (math.acos(math.cos(theta) - 2 * offset * math.sin(theta) / stroke) - theta) / 2, "the offset"
     return best_beta(theta), "the least largest pressure angle"
@@ -192,17 +196,36 @@ def synthesize(
     section: tuple[float, float] = BAR,
     density: float = STEEL,
     ram_mass: float | None = None,
+    force: float | None = None,
+    working: float | None = None,
+    criterion: str = "pressure",
 ) -> Synthesis:
     """An offset slider-crank for the stroke H (m), time ratio K, and the rod ratio r/l or the offset e (m),
-    else the least largest pressure angle; ``max_pressure_angle`` (rad) a bound it must meet.  Links are
+    else the family's member picked by ``criterion``: ``"pressure"``, the least largest pressure angle, or
+    ``"torque"``, the least peak driving torque under the working load (refined between the samples,
+    :func:`linkwork.kinetostatics.torque_peak`) among the members meeting ``max_pressure_angle`` (rad), a bound
+    it must meet.  ``force`` (N): the working load, resisting the ram over the last ``working`` (m; default the
+    whole stroke) of its working (downward) stroke, written in the file as a process load.  Links are
     steel bars of ``section`` (m x m) and ``density``; the ram's mass is the rod's unless given.  Verified
     by the analysis of the written file (:func:`~linkwork.synthesis.common.measure`)."""
+    load = _load(stroke, force, working, criterion)
     r, ell, e, why = solve(stroke, time_ratio, rod_ratio, offset, max_pressure_angle)
     theta = crank_angle_between_limits(time_ratio)
+    free = theta > 0 and rod_ratio is None and offset is None
+    if criterion == "torque" and free:
+        if max_pressure_angle is None:
+            raise SynthesisError(
+                "the least peak driving torque needs a bound on the largest pressure angle: without one it runs to "
+                "the dead point (the crank shrinking as the offset grows); give the largest pressure angle"
+            )
+        beta, why = _least_torque(stroke, time_ratio, max_pressure_angle, load, speed, section, density, ram_mass)
+        r, ell, e = (float(x) for x in dimensions(stroke, theta, beta))
     alpha = float(largest_pressure_angle(r, ell, e))
     requirements = given(stroke=stroke, time_ratio=time_ratio, rod_ratio=rod_ratio, offset=offset,
-                         max_pressure_angle=max_pressure_angle)  # fmt: skip
-    text, spec = file_of(*_file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass))
+                         max_pressure_angle=max_pressure_angle, force=force, working=working)  # fmt: skip
+    text, spec = file_of(
+        *_file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass, load)
+    )
     # the drive angle of the largest pressure angle: the crank square to the guide, away from it (+x)
     measured = measure(spec, [0.0], lambda mu: next(iter(mu.values())))
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
@@ -210,12 +233,69 @@ def synthesize(
     confirm(measured, predicted, math.pi / 2 - alpha)
     return Synthesis(
         KIND, requirements, {"crank": r, "rod": ell, "offset": e}, predicted, measured, spec, text,
-        family(stroke, time_ratio) if theta > 0 and rod_ratio is None and offset is None else None,
+        family(stroke, time_ratio) if free else None,
         f"picked by {why}",
     )  # fmt: skip
 
 
-def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass) -> tuple:  # noqa: ANN001
+def _load(stroke: float, force: float | None, working: float | None, criterion: str) -> tuple[float, float] | None:
+    """(force N, working length m) of the working load, or None; raises where the criterion or load is wrong."""
+    if criterion not in ("pressure", "torque"):
+        raise SynthesisError(f"criterion {criterion!r}: expected pressure or torque")
+    if force is None:
+        if criterion == "torque" or working is not None:
+            raise SynthesisError("the least peak driving torque is under the working load: give the force")
+        return None
+    if not 0 < force < math.inf:
+        raise SynthesisError(f"force {force!r} N: expected a positive force")
+    length = stroke if working is None else working
+    if not 0 < length <= stroke:
+        raise SynthesisError(f"working length {length * 1e3:g} mm: expected more than 0, at most the stroke")
+    return force, length
+
+
+def peak_torques(stroke: float, time_ratio: float, beta: np.ndarray, load: tuple[float, float], speed: str,
+                 section: tuple[float, float], density: float, ram_mass: float | None) -> np.ndarray:  # fmt: skip
+    """The peak driving torque (N m, its size, refined between the samples) of the family's members ``beta``
+    under the working load, each from its own file (its masses by the bar rule)."""
+    from linkwork.api import forces
+    from linkwork.kinetostatics.peaks import torque_peak
+
+    theta = crank_angle_between_limits(time_ratio)
+    out = np.full(np.shape(beta), np.nan)
+    for i, b in enumerate(np.atleast_1d(beta)):
+        r, ell, e = (float(x) for x in dimensions(stroke, theta, b))
+        _, spec = file_of(*_file(r, ell, e, stroke, time_ratio, theta, 0.0, "", speed, section, density, ram_mass,
+                                 load))  # fmt: skip
+        out.flat[i] = abs(float(np.ravel(torque_peak(forces(spec, steps=360)).value)[0]))
+    return out
+
+
+def _least_torque(stroke: float, time_ratio: float, bound: float, load, speed, section, density,  # noqa: ANN001
+                  ram_mass) -> tuple[float, str]:  # noqa: ANN001  # fmt: skip
+    """beta (rad) of the member with the least peak driving torque among those whose largest pressure angle is
+    at most ``bound`` (an interval of beta about the least one's, its ends by Brent on the closed form): the best
+    of a grid over it, refined by Brent's method between its neighbours."""
+    from scipy.optimize import brentq, minimize_scalar
+
+    theta = crank_angle_between_limits(time_ratio)
+    top, middle = math.pi / 2 - theta, best_beta(theta)
+    ends = [top * 1e-9, top * (1 - 1e-9)]
+    for j, end in enumerate(ends):
+        if _alpha(theta, end) > bound:
+            ends[j] = brentq(lambda b: _alpha(theta, b) - bound, *sorted((end, middle)), xtol=1e-15)
+    betas = np.linspace(ends[0], ends[1], TORQUE_MEMBERS)
+    args = (speed, section, density, ram_mass)
+    torques = peak_torques(stroke, time_ratio, betas, load, *args)
+    i = int(np.nanargmin(torques))
+    lo, hi = betas[max(i - 1, 0)], betas[min(i + 1, len(betas) - 1)]
+    res = minimize_scalar(lambda b: float(peak_torques(stroke, time_ratio, np.array([b]), load, *args)[0]),
+                          bounds=(lo, hi), method="bounded", options={"xatol": 1e-7})  # fmt: skip
+    best = float(res.x) if res.fun <= torques[i] else float(betas[i])
+    return best, f"the least peak driving torque under the working load {load[0]:g} N"
+
+
+def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass, load=None) -> tuple:  # noqa: ANN001
     near = math.sqrt((ell - r) ** 2 - e**2)
     start = math.pi / 2 - math.asin(e / (ell - r))  # the folded limit position: the ram at the top
     rod = bar_mass(ell, section, density)
@@ -250,6 +330,11 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
         "drives": [{"joint": "O", "speed": speed, "direction": "ccw", "angle": degrees(start)}],
         "hints": {"B": [mm(-e), mm(-near)]},
     }
+    if load is not None:  # resisting the ram over the last ``load[1]`` of its way down
+        bottom = -math.sqrt((ell + r) ** 2 - e**2)
+        data["loads"] = {"working": {"type": "process", "tools": ["ram.B"], "axis": 90.0,
+                                     "workpiece": [mm(bottom, 17), mm(bottom + load[1], 17)],
+                                     "penetration": [0.0, 1.0], "force": [f"{load[0]:.17g} N"] * 2}}  # fmt: skip
     comments = {
         ("links", "crank", "length"): f"r = (|OB1| - |OB2|) / 2: stroke H = {stroke * 1e3:.6g} mm",
         ("links", "rod", "length"): f"l: {why}; largest pressure angle {math.degrees(alpha):.6g} deg",

@@ -320,6 +320,13 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
     def parameters() -> Response:
         return _json({"editable": viewer.spec is not None, "parameters": viewer.parameters()})
 
+    @app.get("/api/family")
+    def family() -> Response:
+        """The family the file's requirements leave (a synthesised slider-crank), as edits; none otherwise."""
+        from linkwork.synthesis.achieved import family_members
+
+        return _json(family_members(viewer.spec) or {"overrides": []})
+
     @app.post("/api/solve")
     async def solve(request: Request) -> Response:
         req = await read_body(request, SolveRequest)

@@ -496,9 +496,41 @@
     placeHandles(state.index);
   }
 
+  // ------------------------------------------------------------------ the family of a synthesised file
+
+  // a slider along the free parameter of the family the file's requirements leave (GET api/family); each
+  // member is an edit of named parameters, solved and drawn as the slider moves, made when it is let go
+  async function buildFamily() {
+    const old = $("family");
+    if (old) old.remove();
+    if (!E.editable) return;
+    let f;
+    try {
+      const r = await fetch("api/family");
+      if (!r.ok) return;
+      f = await r.json();
+    } catch (e) { return; }
+    if (!f.overrides || !f.overrides.length) return;
+    const box = html("div", null, null, { id: "family", class: "param" });
+    $("params").before(box);
+    html("h3", "Family", box);
+    const text = html("span", null, box, { id: "family-text" });
+    const input = html("input", null, box, { type: "range", min: 0, max: f.overrides.length - 1, step: 1,
+                                             value: f.picked, id: "family-slider" });
+    const say = (i) => {
+      text.textContent = `${f.parameter} ${Number(f.values[i]).toFixed(2)}°, largest pressure angle ` +
+        `${Number(f.alpha[i]).toFixed(2)}°`;
+    };
+    say(f.picked);
+    input.addEventListener("input", () => { const i = Number(input.value); say(i); propose(f.overrides[i]); });
+    input.addEventListener("change", () => propose(f.overrides[Number(input.value)], { commit: true }));
+  }
+
   // ------------------------------------------------------------------ wiring
 
-  V.on("build", (m) => { buildParams(m); buildHandles(m); E.accepted = {}; E.history = [{}]; E.at = 0; buttons(); });
+  V.on("build", (m) => {
+    buildParams(m); buildHandles(m); E.accepted = {}; E.history = [{}]; E.at = 0; buttons(); buildFamily();
+  });
   V.on("show", (m) => { syncParams(m); });
   V.on("index", (i) => placeHandles(i));
   $("edit-form").addEventListener("submit", apply);

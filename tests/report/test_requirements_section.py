@@ -1,0 +1,73 @@
+"""The report of a synthesised file opens with its requirements and what the mechanism achieves, with the
+limit positions drawn and theta marked (the figure, its DXF), in English and Russian."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import pytest
+
+pytest.importorskip("matplotlib")
+
+import linkwork as lw  # noqa: E402
+from linkwork.report import build  # noqa: E402
+from linkwork.scene.limits import limits_scene  # noqa: E402
+from linkwork.synthesis import synthesize  # noqa: E402
+from linkwork.synthesis.achieved import requirement_rows  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def slider_crank(tmp_path_factory):
+    out = tmp_path_factory.mktemp("synth") / "sc.yaml"
+    synthesize("slider-crank", stroke="400 mm", time_ratio=1.3, max_pressure_angle="60 deg").write(out)
+    return out
+
+
+def test_the_file_carries_its_requirements_and_the_analysis_finds_each_met(slider_crank):
+    kin = lw.kinematics(str(slider_crank), steps=720)
+    kind, rows = requirement_rows(kin)
+    assert kind == "slider-crank"
+    got = {r.name: r for r in rows}
+    assert got["stroke"].asked == pytest.approx(0.4, rel=1e-12) and got["stroke"].achieved == pytest.approx(0.4)
+    assert got["time_ratio"].met and got["stroke"].met and got["max_pressure_angle"].met
+    assert got["max_pressure_angle"].sense == "at most" and got["max_pressure_angle"].achieved < math.radians(60)
+
+
+def test_theta_between_the_limit_positions_is_the_closed_forms():
+    """theta = 180 deg (K - 1) / (K + 1), for a slider-crank and a crank-rocker: the angle of the scene's rays."""
+    for kind, req, k in (("slider-crank", {"stroke": 0.3, "max_pressure_angle": math.radians(70)}, 1.6),
+                         ("crank-rocker", {"swing": math.radians(40), "frame": 0.4}, 1.25)):  # fmt: skip
+        s = synthesize(kind, time_ratio=k, **req)
+        scene = limits_scene(lw.kinematics(s.spec, steps=720))
+        assert scene is not None
+        assert scene.theta == pytest.approx(math.pi * (k - 1) / (k + 1), rel=1e-7)
+        (a, b) = (ray[1] - ray[0] for ray in scene.rays)
+        between = math.acos(float(a @ b) / math.hypot(*a) / math.hypot(*b))
+        assert between == pytest.approx(scene.theta, rel=1e-9)
+
+
+@pytest.mark.parametrize(("lang", "title", "yes"), [("en", "Requirements", "yes"), ("ru", "Требования", "да")])
+def test_the_report_opens_with_the_requirements_and_the_limit_positions(slider_crank, tmp_path, lang, title, yes):
+    folder = tmp_path / "report"
+    build.analyze(lw.compile(lw.load(str(slider_crank))), folder, steps=36, animation=False, lang=lang, dxf=True)
+    text = (folder / "report.html").read_text()
+    sections = re.findall(r"<h2[^>]*>(.*?)</h2>", text)
+    assert sections[0] == title
+    start = text.index("<section id='requirements'>")
+    part = text[start : text.index("</section>", start)]
+    assert part.count(f"<td>{yes}</td>") == 3
+    assert "θ = 23.478°" in part  # 180 (1.3 - 1) / (1.3 + 1) = 23.4783 deg
+    if lang == "ru":  # no English but the names from the file (the kind is the mechanism's name)
+        words = set(re.findall(r"[A-Za-z]{2,}", re.sub(r"<[^>]+>|data:[^'\"]+", " ", part)))
+        assert words <= {"slider", "crank", "guide"}
+    assert (folder / "figures" / "limits.svg").exists() and (folder / "figures" / "limits.dxf").exists()
+    import ezdxf
+
+    doc = ezdxf.readfile(folder / "figures" / "limits.dxf")
+    assert len(doc.modelspace().query('LWPOLYLINE[layer=="LIMITS"]')) == 3
+    assert "θ = 23.48°" in [e.dxf.text for e in doc.modelspace().query("TEXT")]
+
+
+def test_a_file_without_requirements_has_no_such_section():
+    assert requirement_rows(lw.kinematics("double-cut-shears", steps=72)) is None

@@ -1,0 +1,118 @@
+"""Double-cut shears synthesis (the bundled structure, numeric): the written file, read back and measured
+independently of the design metrics (the knives' extremes located as roots of their velocities, one pose at a
+time), meets every requirement; the crank is picked from the family by the stated criterion; requirements that
+conflict or cannot be met say so."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.optimize import brentq
+
+import linkwork as lw
+from linkwork.api import mechanism_of
+from linkwork.errors import SynthesisError
+from linkwork.synthesis import synthesize
+
+
+def knives(mechanism) -> dict[str, float]:
+    """Strokes of both knives, the overlap, the opening and K (closing over opening) of the written shears: each
+    extreme where the velocity of a knife's edge (or of the gap) changes sign, by Brent's method on single poses
+    of :func:`linkwork.kinematics` (no sampled refinement)."""
+    mech = mechanism_of(mechanism, "mechanism")
+
+    def rate(quantity: str, phi: float) -> float:
+        k = lw.kinematics(mech, np.array([phi]))
+        up, low = k.velocity("knife_upper.edge")[0, 1], k.velocity("knife_lower.edge")[0, 1]
+        return {"upper": up, "lower": low, "gap": up - low}[quantity]
+
+    def value(quantity: str, phi: float) -> float:
+        k = lw.kinematics(mech, np.array([phi]))
+        up, low = k.position("knife_upper.edge")[0, 1], k.position("knife_lower.edge")[0, 1]
+        return {"upper": up, "lower": low, "gap": up - low}[quantity]
+
+    grid = np.linspace(0.0, 2 * math.pi, 721)
+    out = {}
+    for quantity in ("upper", "lower", "gap"):
+        v = np.array([rate(quantity, p) for p in grid])
+        roots = [brentq(lambda p, q=quantity: rate(q, p), grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15)
+                 for i in np.flatnonzero(np.sign(v[:-1]) != np.sign(v[1:]))]  # fmt: skip
+        assert len(roots) == 2, f"{quantity} has {len(roots)} extremes"
+        values = [value(quantity, p) for p in roots]
+        out[quantity] = max(values) - min(values)
+        if quantity == "gap":
+            at_max, at_min = roots[int(np.argmax(values))], roots[int(np.argmin(values))]
+            closing = (at_min - at_max) % (2 * math.pi)  # the drive turns counter-clockwise
+            out["time_ratio"] = closing / (2 * math.pi - closing)
+            out["overlap"], out["opening"] = -min(values), max(values)
+    return out
+
+
+def test_the_written_shears_meet_every_requirement_and_keep_the_bundled_structure(tmp_path):
+    s = synthesize("double-cut-shears", upper_stroke="140 mm", lower_stroke="120 mm", time_ratio=1.1,
+                   overlap="20 mm")  # fmt: skip
+    path = s.write(tmp_path / "shears.yaml")
+    got = knives(str(path))
+    assert got["upper"] == pytest.approx(0.14, rel=1e-9) and got["lower"] == pytest.approx(0.12, rel=1e-9)
+    assert got["time_ratio"] == pytest.approx(1.1, rel=1e-9)
+    assert got["overlap"] == pytest.approx(0.02, abs=1e-9 * 0.26)
+    assert got["opening"] == pytest.approx(0.24, abs=1e-9 * 0.26)  # overlap + opening = both strokes
+    bundled, written = lw.load("double-cut-shears"), lw.load(str(path))
+    assert list(written.links) == list(bundled.links) and list(written.joints) == list(bundled.joints)
+    assert written.loads == bundled.loads and written.machine == bundled.machine
+    assert "# O1.x: time ratio K = 1.1" in path.read_text()
+    assert s.family is not None and s.criterion == "picked by the greatest least transmission angle"
+    angles = s.family.columns["min_transmission_angle"]
+    assert np.nanmax(angles) == pytest.approx(float(np.min(list(lw.motion.analysis.transmission(
+        lw.kinematics(str(path), steps=3600)).values()), axis=None)), rel=1e-4)  # fmt: skip
+
+
+def test_the_torque_criterion_picks_the_family_member_with_the_least_refined_peak_torque():
+    s = synthesize("double-cut-shears", upper_stroke=0.13, lower_stroke=0.13, time_ratio=1.05, opening=0.24,
+                   criterion="torque")  # fmt: skip
+    torque = s.family.columns["peak_driving_torque"]
+    assert np.isfinite(torque).sum() >= 3
+    coarse = np.abs(lw.forces(s.spec, steps=3600).driving_torque)  # the written file's torque, sampled
+    near = 2 * math.pi * int(np.argmax(coarse)) / 3600 + np.linspace(-0.01, 0.01, 200_001)  # then 1e-7 rad apart
+    sampled = float(np.max(np.abs(lw.forces(s.spec, near).driving_torque)))
+    assert sampled <= np.nanmin(torque) * (1 + 1e-9) and sampled == pytest.approx(np.nanmin(torque), rel=1e-7)
+    assert s.measured["opening"] == pytest.approx(0.24, rel=1e-9)
+
+
+def test_a_fixed_crank_leaves_no_family():
+    s = synthesize("double-cut-shears", upper_stroke=0.12, lower_stroke=0.12, time_ratio=1.0, overlap=0.01,
+                   crank=0.1)  # fmt: skip
+    assert s.family is None and s.dimensions["crank"] == 0.1
+    assert s.measured["time_ratio"] == pytest.approx(1.0, rel=1e-9)
+
+
+def test_an_overlap_and_opening_that_disagree_with_the_strokes_name_the_sum():
+    with pytest.raises(SynthesisError, match=r"overlap 20 mm \+ opening 250 mm must equal the strokes together 260"):
+        synthesize("double-cut-shears", upper_stroke=0.14, lower_stroke=0.12, time_ratio=1.1, overlap=0.02,
+                   opening=0.25)  # fmt: skip
+
+
+def test_strokes_the_structure_cannot_reach_name_the_requirements_and_the_bundled_values():
+    with pytest.raises(SynthesisError, match=r"upper stroke 900 mm.*no double-cut shears.*the bundled file has 120"):
+        synthesize("double-cut-shears", upper_stroke=0.9, lower_stroke=0.12, time_ratio=1.1, overlap=0.02,
+                   crank=0.1)  # fmt: skip
+
+
+@pytest.mark.slow
+@settings(max_examples=4, deadline=None)
+@given(
+    upper=st.floats(0.10, 0.16),
+    lower=st.floats(0.10, 0.16),
+    ratio=st.floats(0.97, 1.12),
+    overlap=st.floats(0.005, 0.03),
+)
+def test_random_requirements_near_the_bundled_design_are_met_as_measured_independently(upper, lower, ratio, overlap):
+    s = synthesize("double-cut-shears", upper_stroke=upper, lower_stroke=lower, time_ratio=ratio, overlap=overlap)
+    got = knives(s.spec)
+    assert got["upper"] == pytest.approx(upper, rel=1e-9) and got["lower"] == pytest.approx(lower, rel=1e-9)
+    assert got["time_ratio"] == pytest.approx(ratio, rel=1e-9)
+    assert got["overlap"] == pytest.approx(overlap, abs=1e-9 * (upper + lower))
