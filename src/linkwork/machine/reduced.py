@@ -24,7 +24,7 @@ import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.external import power as external_power
-from linkwork.kinetostatics.reactions import inertia_and_gravity
+from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.motion import cycle, kinematics
 from linkwork.structure.model import Mechanism, one_crank
@@ -95,7 +95,6 @@ def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
     w, e = kin.vel[0, :, :, 2], kin.acc[0, :, :, 2]
     inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1)
     slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
-    gravity = -mech.gravity * np.sum(m * vc[..., 1], -1)
-    load = gravity + external_power(kin, loads.external)[0]
+    load = (gravity_power(kin, loads.com_velocity) + external_power(kin, loads.external))[0]
     psi = 2 * np.pi * np.arange(steps) / steps
     return Reduced(psi, angle, inertia, slope, load)

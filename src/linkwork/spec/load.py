@@ -14,7 +14,7 @@ from pydantic import BaseModel, ValidationError
 from linkwork.errors import Problem, SpecError, UnitParseError
 from linkwork.limits import echo, quote
 from linkwork.spec.checks import check, suggest
-from linkwork.spec.schema import Spec
+from linkwork.spec.schema import UNION_TAGS, Spec
 from linkwork.spec.yamlsource import Source, dotted, read_file, read_yaml
 from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, check_unit, parse_quantity
 
@@ -60,7 +60,7 @@ def validate(src: Source) -> Spec:
     try:
         spec = Spec.model_validate(src.data, context={"units": declared})
     except ValidationError as exc:
-        errors = exc.errors(include_url=False)
+        errors = [{**e, "loc": tuple(x for x in e["loc"] if x not in UNION_TAGS)} for e in exc.errors(include_url=False)]
         problems += [_convert(src, e) for e in errors if not (e.get("input") is None and tuple(e["loc"]) in empty)]
     said = {dotted(p) for p in empty}
     problems += [p for p in check(src, declared) if not _restates(p, said)]

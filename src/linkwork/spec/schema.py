@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, ValidationInfo, WithJsonSchema
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Discriminator, Field, PrivateAttr, Tag, ValidationInfo, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
 from linkwork.errors import UnitParseError
@@ -94,7 +94,7 @@ PositiveLength = Annotated[float, *_quantity("length", "positive")]
 Angle = Annotated[float, *_quantity("angle")]
 PositiveMass = Annotated[float, *_quantity("mass", "positive")]
 Inertia = Annotated[float, *_quantity("inertia", "nonnegative")]
-PositiveAcceleration = Annotated[float, *_quantity("acceleration", "positive")]
+NonnegativeAcceleration = Annotated[float, *_quantity("acceleration", "nonnegative")]
 Force = Annotated[float, *_quantity("force")]
 PositiveForce = Annotated[float, *_quantity("force", "positive")]
 NonnegativeForce = Annotated[float, *_quantity("force", "nonnegative")]
@@ -443,13 +443,36 @@ class Drawing(_Strict):
     )
 
 
+#: The forms of ``gravity:``, as pydantic tags them (the place of a problem leaves them out).
+UNION_TAGS = ("<gravity with its direction>", "<gravity along -y>")
+
+
+def _gravity_form(value: Any) -> str:
+    """Which form of ``gravity:`` a value is: with its direction (a mapping) or a size along -y."""
+    return UNION_TAGS[0] if isinstance(value, dict | Gravity) else UNION_TAGS[1]
+
+
+class Gravity(_Strict):
+    """Gravity of any size and direction: ``value`` (zero: none) along the global ``direction``
+    (counter-clockwise from +x; 270 deg is -y)."""
+
+    value: NonnegativeAcceleration = Field(description="acceleration of gravity; 0 for none")
+    direction: Angle = Field(-1.5707963267948966, description="direction it acts in, global; default 270 deg (-y)")
+
+
 class Spec(_Strict):
     """A planar mechanism: the root of a linkwork mechanism file."""
 
     name: str | None = None
     description: str | None = None
     units: Units = Field(default_factory=Units)
-    gravity: PositiveAcceleration = Field(9.81, description="acceleration of gravity, acting along -y")
+    gravity: Annotated[
+        Annotated[Gravity, Tag(UNION_TAGS[0])] | Annotated[NonnegativeAcceleration, Tag(UNION_TAGS[1])],
+        Discriminator(_gravity_form),
+    ] = Field(
+        9.81,
+        description="acceleration of gravity along -y (0: none), or {value, direction} for any direction",
+    )
     frame: Frame = Field(default_factory=Frame)
     links: dict[str, Link]
     joints: dict[str, Joint]
