@@ -162,10 +162,12 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
+    gx, gy = (float(x) for x in mech.gravity_vector)
+
     def part(lo: int, hi: int) -> None:
         _kernel(
             rows, groups, shape_of, on_frame, kin.q, kin.v, kin.a, local, origin, axis, mass, com, inertia,
-            float(mech.gravity_vector[0]), float(mech.gravity_vector[1]), f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi,
+            gx, gy, f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi,
             np.empty((mech.n_links_total, 6)), np.empty((m, 6)), np.empty((size, size)), np.empty(size),
             np.empty(m), np.zeros((m, 8)),
         )  # fmt: skip
