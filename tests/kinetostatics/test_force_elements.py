@@ -80,3 +80,91 @@ def test_gravity_is_read_in_every_form():
         np.testing.assert_allclose(mech.gravity_vector, vector, atol=1e-15)
     with pytest.raises(lw.errors.SpecError, match="gravity"):
         lw.from_dict(heavy_four_bar(0.0, -1.0))
+
+
+SPEED = 40 * 2 * math.pi / 60  # rad/s, the drive speed of heavy_four_bar
+
+
+def with_loads(loads: dict, gravity: object = 0) -> lw.Mechanism:
+    data = heavy_four_bar(0.0, gravity)
+    data["loads"] = loads
+    return lw.compile(lw.from_dict(data))
+
+
+def element_torque(loads: dict, steps: int = 48) -> tuple[np.ndarray, np.ndarray]:
+    """The driving torque the elements ``loads`` add (forces are linear in the loads), and the crank angles."""
+    f = lw.forces(with_loads(loads), steps=steps)
+    bare = lw.forces(with_loads({}), steps=steps)
+    return f.driving_torque - bare.driving_torque, f.kinematics.angles
+
+
+def derivative(fn, x: np.ndarray, h: float = 1e-5) -> np.ndarray:
+    return (fn(x + h) - fn(x - h)) / (2 * h)
+
+
+def test_a_springs_torque_is_the_slope_of_its_potential():
+    """The driving torque a spring between the coupler's B and the frame's O2 adds is dV/dphi, V = k (L - L0)^2 / 2
+    from the positions alone (a spring's work is minus its potential's change); the preload form gives the free
+    length L0 = L(assembly) - F0 / k."""
+    k, free = 1500.0, 0.2
+    torque, phi = element_torque({"s": {"type": "spring", "between": ["coupler.B", "O2"], "stiffness": k,
+                                        "free_length": free}})  # fmt: skip
+    mech = with_loads({})
+
+    def energy(x):
+        b = lw.kinematics(mech, x).position("B")
+        return 0.5 * k * (np.hypot(b[:, 0], b[:, 1]) - free) ** 2
+
+    np.testing.assert_allclose(torque, derivative(energy, phi), rtol=1e-6, atol=1e-6)
+    b0 = lw.kinematics(mech, [1.0]).position("B")[0]
+    preload = k * (math.hypot(*b0) - free)
+    same = with_loads({"s": {"type": "spring", "between": ["coupler.B", "O2"], "stiffness": k, "preload": preload}})
+    assert same.loads[0].free == pytest.approx(free, rel=1e-12)
+
+
+def test_a_torsion_springs_torque_is_the_slope_of_its_potential():
+    """A torsion spring in the joint B (coupler, rocker): V = k (theta_rocker - theta_coupler - theta_0)^2 / 2 from
+    the links' angles; and in the drive's own joint O2 (frame, crank) the torque is k (phi - theta_0)."""
+    k, free = 40.0, math.radians(-30.0)
+    torque, phi = element_torque({"t": {"type": "torsion_spring", "joint": "B", "stiffness": f"{k} N*m/rad",
+                                        "free_angle": f"{math.degrees(free)} deg"}})  # fmt: skip
+    mech = with_loads({})
+
+    def energy(x):
+        kin = lw.kinematics(mech, x)
+        turn = np.angle(np.exp(1j * (kin.angle("rocker") - kin.angle("coupler") - free)))
+        return 0.5 * k * turn**2
+
+    np.testing.assert_allclose(torque, derivative(energy, phi), rtol=1e-6, atol=1e-6)
+    torque, phi = element_torque({"t": {"type": "torsion_spring", "joint": "O2", "stiffness": k, "free_angle": 0}})
+    np.testing.assert_allclose(torque, k * phi, rtol=1e-12)
+
+
+def test_a_dampers_torque_dissipates_its_power():
+    """A damper between the crank's A and the frame's O4: the torque it adds is c omega (dL/dphi)^2, its force
+    times the rate of its length over the crank speed, L from the positions alone."""
+    c = 80.0
+    torque, phi = element_torque({"d": {"type": "damper", "between": ["crank.A", "O4"], "damping": f"{c} N*s/m"}})
+    mech = with_loads({})
+
+    def length(x):
+        a = lw.kinematics(mech, x).position("A")
+        return np.hypot(a[:, 0] - 0.3, a[:, 1])
+
+    np.testing.assert_allclose(torque, c * SPEED * derivative(length, phi) ** 2, rtol=1e-6, atol=1e-9)
+
+
+def test_force_elements_are_checked_in_the_file():
+    good = {"type": "spring", "between": ["coupler.B", "O2"], "stiffness": 10.0, "free_length": 0.1}
+    cases = [
+        ({**good, "free_length": None, "preload": None}, "free_length"),
+        ({**good, "preload": 3.0}, "one of them"),
+        ({**good, "between": ["coupler.B", "coupler.A"]}, "on one link"),
+        ({**good, "between": ["coupler.Q", "O2"]}, "no point"),
+        ({"type": "torsion_spring", "joint": "Z", "stiffness": 1.0, "free_angle": 0}, "unknown joint"),
+        ({"type": "damper", "between": ["crank.A", "O4"], "damping": -1.0}, "non-negative"),
+    ]
+    for load, says in cases:
+        load = {k: v for k, v in load.items() if v is not None}
+        with pytest.raises(lw.errors.SpecError, match=says):
+            with_loads({"e": load})

@@ -113,6 +113,27 @@ Moment = Annotated[float, *_quantity("moment")]
 PositivePower = Annotated[float, *_quantity("power", "positive")]
 PositiveAngularSpeed = Annotated[float, *_quantity("angular_speed", "positive")]
 AngularSpeed = Annotated[float, *_quantity("angular_speed")]
+Damping = Annotated[float, *_quantity("damping", "nonnegative")]
+
+
+def _stiffness() -> tuple[BeforeValidator, WithJsonSchema, Quantity]:
+    """The metadata of a spring's ``stiffness``: N/m of a spring, N m/rad of a torsion spring (by the load's
+    ``type``, read before it)."""
+
+    def validate(value: Any, info: ValidationInfo) -> float:
+        return _scalar(stiffness_kind(info.data.get("type")), value, info, "nonnegative")
+
+    schema = {"anyOf": [{"type": "number"}, {"type": "string"}], "description": "non-negative stiffness: N/m of a "
+              "spring, N*m/rad of a torsion spring; " + _BARE[True]}  # fmt: skip
+    return BeforeValidator(validate), WithJsonSchema(schema), Quantity("load_stiffness")
+
+
+def stiffness_kind(load_type: Any) -> str:
+    """The kind of quantity of a load's ``stiffness`` by the load's type."""
+    return "torsion_stiffness" if load_type == "torsion_spring" else "stiffness"
+
+
+Stiffness = Annotated[float, *_stiffness()]
 
 
 def _one_or_table(kind: str) -> tuple[BeforeValidator, WithJsonSchema, Quantity]:
@@ -220,6 +241,9 @@ class Units(_Strict):
     angular_speed: str | None = Field(default=None, description="e.g. rpm or rad/s")
     acceleration: str | None = Field(default=None, description="e.g. m/s^2")
     power: str | None = Field(default=None, description="e.g. W or kW")
+    stiffness: str | None = Field(default=None, description="of springs, e.g. N/m or N/mm")
+    torsion_stiffness: str | None = Field(default=None, description="of torsion springs, e.g. N*m/rad")
+    damping: str | None = Field(default=None, description="of dampers, e.g. N*s/m")
 
 
 class Frame(_Strict):
@@ -346,10 +370,18 @@ class Load(_Strict):
     ``friction``: a constant (Coulomb) friction in the pairs of a ``joint``: a
     ``moment`` against the relative turning of a revolute pair, or a force
     ``magnitude`` against the sliding of a prismatic one.
+
+    Force elements: ``spring``, a linear spring ``between`` two points (``link.point``, a frame point
+    by its name) of ``stiffness`` (N/m) and ``free_length``, or with ``preload`` (its tension in the
+    assembly pose) instead; its force acts along the line of the points, tension positive.
+    ``damper``: between two points, a force ``damping`` times the rate of change of their distance.
+    ``torsion_spring``: in the revolute ``joint``, a moment ``stiffness`` (N m/rad) times the turn of the
+    joint's second link relative to its first, from ``free_angle`` (the second link's angle less the
+    first's, each link's angle that of its local x axis).
     """
 
-    type: Literal["force", "moment", "process", "friction"]
-    joint: str | None = Field(None, description="friction: the joint whose pairs it acts in")
+    type: Literal["force", "moment", "process", "friction", "spring", "damper", "torsion_spring"]
+    joint: str | None = Field(None, description="friction, torsion_spring: the joint whose pairs it acts in")
     at: str | None = Field(None, description="force: the point link.point where it acts")
     on: str | None = Field(None, description="moment: the link it acts on")
     force: list[Force] | None = Field(
@@ -363,6 +395,12 @@ class Load(_Strict):
     axis: Angle | None = Field(None, description="process: global direction along which the first tool is pushed")
     workpiece: list[Length] | None = Field(None, description="process: [low, high] extent along the axis")
     penetration: list[float] | None = Field(None, description="process: relative penetrations of the table")
+    between: list[str] | None = Field(None, description="spring, damper: two points link.point (frame: its name)")
+    stiffness: Stiffness | None = Field(None, description="spring: N/m; torsion_spring: N m/rad")
+    free_length: Length | None = Field(None, description="spring: its length without force")
+    preload: Force | None = Field(None, description="spring: its tension in the assembly pose, for free_length")
+    damping: Damping | None = Field(None, description="damper: force per unit rate of change of the distance")
+    free_angle: Angle | None = Field(None, description="torsion_spring: the joint's relative turn without moment")
     description: str | None = None
 
 
