@@ -31,6 +31,7 @@ _LAZY = {
     "balance": ("linkwork.api", "balance"),
     "reduced": ("linkwork.api", "reduced"),
     "dynamics": ("linkwork.api", "dynamics"),
+    "simulate": ("linkwork.api", "simulate"),
     "rocker_impact": ("linkwork.impulse", "rocker_impact"),
     "impact": ("linkwork.api", "impact"),
     "simulate_blows": ("linkwork.api", "simulate_blows"),

@@ -223,9 +223,10 @@ class Units(_Strict):
 
     A bare length, mass, time or angle is read in the unit declared here for
     its kind (by default m, kg, s and deg).  A bare number of any other kind
-    (force, moment, inertia, speed, angular_speed, acceleration, power) is
-    read in the unit declared here for that kind; where none is declared, in
-    SI (N, N*m, kg*m^2, m/s, rad/s, m/s^2, W) only where the units of what it
+    (force, moment, inertia, speed, angular_speed, acceleration, power,
+    stiffness, torsion_stiffness, damping) is read in the unit declared here for
+    that kind; where none is declared, in SI (N, N*m, kg*m^2, m/s, rad/s,
+    m/s^2, W, N/m, N*m/rad, N*s/m) only where the units of what it
     is made of are SI (m, kg, s, rad, and N where forces are declared);
     otherwise it needs its unit, e.g. "30 rpm" or "2 kg*m^2".
     """
