@@ -168,3 +168,32 @@ def test_andrews_squeezer_reaches_the_reference_state():
     run = lw.simulate(str(path), 0.03, times=[0.03], rtol=1e-8, atol=1e-8)
     assert run.angle[0] == pytest.approx(15.81077119629904, rel=1e-6)
     assert run.speed[0] == pytest.approx(1139.920302151208, rel=1e-6)
+
+
+def test_the_steady_cycle_with_a_damper_spends_the_motors_work_in_it():
+    """``dynamics`` with a damper from the crank's A to the frame: over the steady turn the motor's work equals
+    the damper's, the integral of c (dL/dpsi)^2 omega dpsi with L from the positions alone (without the damper
+    in the run the balance would not close; springs and gravity give nothing over a turn)."""
+    c = 2.0
+    b = MechanismBuilder("damped", units={"angle": "rad"}, gravity=0)
+    b.frame(points={"O": (0, 0), "S": (0.5, 0.2)})
+    b.link("crank", ends=("O", "A"), length=0.1, mass=1.5, inertia="0.004 kg*m^2")
+    b.revolute("O", "frame", "crank").drive("O", angle=0.0, speed="100 rpm")
+    b.damper("d", ("crank.A", "S"), f"{c} N*s/m")
+    b.spring("s", ("crank.A", "S"), "30 N/m", free_length=0.3)
+    b.machine({"type": "linear", "stall": "2 N*m", "no_load": "150 rpm"})
+    mech = lw.compile(b.build())
+    result = lw.dynamics(mech)
+    t, psi, omega = result.motion.cycle()
+    phi = psi + result.motion.cycle_start
+
+    def length(x):
+        return np.hypot(0.1 * np.cos(x) - 0.5, 0.1 * np.sin(x) - 0.2)
+
+    slope = (length(phi + 1e-6) - length(phi - 1e-6)) / 2e-6
+    from scipy.integrate import simpson
+
+    damper = simpson(c * slope**2 * omega, x=psi)
+    motor = simpson(result.drive.moment(omega), x=psi)
+    assert damper > 0.05 * motor
+    assert motor == pytest.approx(damper, rel=1e-5)

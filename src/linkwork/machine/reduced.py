@@ -18,15 +18,19 @@ The equation of motion of the machine unit is then
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.kinetostatics.elements import evaluate_element
+from linkwork.kinetostatics.external import Applied
 from linkwork.kinetostatics.external import power as external_power
 from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.motion import cycle, kinematics
+from linkwork.motion.kinematics import Kinematics
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.units import turn_deg
 
@@ -47,7 +51,10 @@ class Reduced:
         ``dJ/dpsi``, kg m^2/rad.
     load : ndarray (K,)
         Reduced moment of gravity and the external loads, N m; positive where they drive the
-        crank forward (a cutting load gives a negative moment).
+        crank forward (a cutting load gives a negative moment); the dampers' apart.
+    damping : ndarray (K,) or None
+        The dampers' reduced damping coefficient ``B``, N m s/rad: their moment is ``-B psi'``; None
+        without dampers.
     """
 
     psi: np.ndarray
@@ -55,6 +62,14 @@ class Reduced:
     inertia: np.ndarray
     inertia_slope: np.ndarray
     load: np.ndarray
+    damping: np.ndarray | None = None
+
+    def at_speed(self, omega: float) -> Reduced:
+        """The same with the dampers' moment at the crank speed ``omega`` (rad/s) in ``load``: the loads of a
+        machine turning at that speed, for what reads the load moment alone (a flywheel's sizing)."""
+        if self.damping is None:
+            return self
+        return dataclasses.replace(self, load=self.load - self.damping * omega, damping=None)
 
     def work(self) -> np.ndarray:
         """Work of the loads from ``psi = 0`` (J), by the trapezoid rule over the grid, ``(K + 1,)``
@@ -96,5 +111,20 @@ def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
     inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1)
     slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
     load = (gravity_power(kin, loads.com_velocity) + external_power(kin, loads.external))[0]
+    damping = _damping(kin)
+    if damping is not None:
+        load = load + damping  # the dampers' moment at unit speed is -B: kept apart, in B
     psi = 2 * np.pi * np.arange(steps) / steps
-    return Reduced(psi, angle, inertia, slope, load)
+    return Reduced(psi, angle, inertia, slope, load, damping)
+
+
+def _damping(kin: Kinematics) -> np.ndarray | None:
+    """The dampers' reduced damping coefficient ``(K,)`` over ``kin`` at unit crank speed (minus their power
+    there), or None without dampers."""
+    dampers = [load for load in kin.mechanism.loads if load.kind == "damper"]
+    if not dampers:
+        return None
+    applied = Applied([], [], {}, {})
+    for load in dampers:
+        evaluate_element(kin, load, applied)
+    return -external_power(kin, applied)[0]
