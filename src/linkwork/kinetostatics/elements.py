@@ -15,43 +15,53 @@ Potential energy (J) of the springs: :func:`potential`; the power of every load 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
 from linkwork.motion.kinematics import Kinematics
+from linkwork.spec.schema import Load
 from linkwork.structure.model import Mechanism
-
-if TYPE_CHECKING:
-    from linkwork.kinetostatics.external import Applied, ExternalLoad
-    from linkwork.spec.schema import Load
 
 #: Kinds of the force elements among the loads.
 ELEMENTS = ("spring", "damper", "torsion_spring")
 
 
-def compile_element(name: str, load: Load, mech: Mechanism) -> ExternalLoad:
-    """The record of one force element of a validated spec: ``points`` the two points (spring, damper),
-    ``pair`` the revolute pair (torsion spring), ``value`` the stiffness or damping, ``free`` the free length
-    or angle (a preload turned into the free length at the assembly pose ``mech.pose0``)."""
-    from linkwork.kinetostatics.external import ExternalLoad
+class Element(Protocol):
+    """What a compiled force element holds (:class:`~linkwork.kinetostatics.external.ExternalLoad`)."""
 
+    @property
+    def kind(self) -> str: ...
+    @property
+    def points(self) -> tuple[int, ...]: ...
+    @property
+    def value(self) -> float: ...
+    @property
+    def pair(self) -> int: ...
+    @property
+    def free(self) -> float: ...
+
+
+def compile_element(load: Load, mech: Mechanism) -> dict[str, Any]:
+    """The fields of the record of one force element of a validated spec: ``points`` the two points (spring,
+    damper), ``pair`` the revolute pair (torsion spring), ``value`` the stiffness or damping, ``free`` the free
+    length or angle (a preload turned into the free length at the assembly pose ``mech.pose0``)."""
     if load.type == "torsion_spring":
         pair = _joint_pair(mech, str(load.joint))
         free = float(load.free_angle if load.free_angle is not None else 0.0)
-        return ExternalLoad(name, load.type, int(mech.pair_members[pair, 1]), value=float(load.stiffness or 0.0),
-                            pair=pair, free=free)  # fmt: skip
+        link = int(mech.pair_members[pair, 1])
+        return {"kind": load.type, "link": link, "value": float(load.stiffness or 0.0), "pair": pair, "free": free}
     assert load.between is not None  # the checks of linkwork.spec require it
     points = tuple(_point(mech, ref) for ref in load.between)
-    link = int(mech.point_link[points[0]])
+    out = {"kind": load.type, "link": int(mech.point_link[points[0]]), "points": points}
     if load.type == "damper":
-        return ExternalLoad(name, "damper", link, points, value=float(load.damping or 0.0))
+        return {**out, "value": float(load.damping or 0.0)}
     k = float(load.stiffness or 0.0)
     if load.free_length is not None:
-        return ExternalLoad(name, "spring", link, points, value=k, free=float(load.free_length))
+        return {**out, "value": k, "free": float(load.free_length)}
     p = mech.points0()  # the preload is its tension in the assembly pose
     free = float(np.linalg.norm(p[points[1]] - p[points[0]])) - (float(load.preload or 0.0) / k if k > 0 else 0.0)
-    return ExternalLoad(name, "spring", link, points, value=k, free=free)
+    return {**out, "value": k, "free": free}
 
 
 def _point(mech: Mechanism, ref: str) -> int:
@@ -74,20 +84,29 @@ def _joint_pair(mech: Mechanism, joint: str) -> int:
     return first
 
 
-def evaluate_element(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
-    """Add the forces (spring, damper) or moments (torsion spring) of one force element over ``kin`` to
-    ``out``, and its size (N, N m) to ``out.magnitude``; NaN where a spring's two points coincide (its line
-    has no direction)."""
-    from linkwork.kinetostatics.external import LinkMoment, PointForce, _state
+class Action(NamedTuple):
+    """What a force element does over (V, A): ``forces`` ``(link, position, velocity, force)`` at points,
+    ``moments`` ``(link, moment)`` on links, and its ``size`` (N, N m)."""
 
+    forces: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]]
+    moments: list[tuple[int, np.ndarray]]
+    size: np.ndarray
+
+
+def _state(kin: Kinematics, p: int) -> tuple[np.ndarray, np.ndarray]:
+    """Position and velocity ``(V, A, 2)`` of point ``p``."""
+    pos, vel, _ = kin._point(kin.mechanism.point_names[p])
+    return pos, vel
+
+
+def evaluate_element(kin: Kinematics, load: Element) -> Action:
+    """The forces (spring, damper) or moments (torsion spring) of one force element over ``kin`` and its size;
+    NaN where a spring's two points coincide (its line has no direction)."""
     if load.kind == "torsion_spring":
         turn = relative_turn(kin, load)
         m = -load.value * (turn - load.free)
         a, b = (int(x) for x in kin.mechanism.pair_members[load.pair])
-        out.moments.append(LinkMoment(b, m))
-        out.moments.append(LinkMoment(a, -m))
-        out.magnitude[load.name] = m
-        return
+        return Action([], [(b, m), (a, -m)], m)
     (p1, v1), (p2, v2) = (_state(kin, p) for p in load.points)
     d = p2 - p1
     length = np.sqrt(np.sum(d * d, -1))
@@ -98,13 +117,11 @@ def evaluate_element(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
     else:
         tension = load.value * np.sum((v2 - v1) * u, -1)
     f = tension[..., None] * u
-    mech = kin.mechanism
-    out.forces.append(PointForce(int(mech.point_link[load.points[0]]), p1, v1, f))
-    out.forces.append(PointForce(int(mech.point_link[load.points[1]]), p2, v2, -f))
-    out.magnitude[load.name] = np.where(length > 0, tension, np.nan)
+    links = [int(kin.mechanism.point_link[p]) for p in load.points]
+    return Action([(links[0], p1, v1, f), (links[1], p2, v2, -f)], [], np.where(length > 0, tension, np.nan))
 
 
-def relative_turn(kin: Kinematics, load: ExternalLoad) -> np.ndarray:
+def relative_turn(kin: Kinematics, load: Element) -> np.ndarray:
     """The turn (rad) of a torsion spring's joint, its second link's angle less its first's ``(V, A)``; in the
     drive's own joint the drive coordinate counts whole turns, elsewhere it is taken within half a turn of
     the free angle."""
@@ -120,8 +137,6 @@ def relative_turn(kin: Kinematics, load: ExternalLoad) -> np.ndarray:
 def potential(kin: Kinematics) -> np.ndarray:
     """Potential energy (J) of the springs of ``kin.mechanism`` ``(V, A)``: ``k (L - L0)^2 / 2`` and
     ``k (theta - theta_0)^2 / 2``."""
-    from linkwork.kinetostatics.external import _state
-
     total = np.zeros(kin.valid_all.shape)
     for load in kin.mechanism.loads:
         if load.kind == "spring":

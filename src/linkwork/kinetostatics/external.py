@@ -77,7 +77,7 @@ def compile_loads(spec: Spec, mech: Mechanism) -> tuple[ExternalLoad, ...]:
         elif load.type == "moment":
             out.append(_moment(name, load, names))
         elif load.type in ELEMENTS:
-            out.append(compile_element(name, load, mech))
+            out.append(ExternalLoad(name, **compile_element(load, mech)))
         else:
             out.append(_process(name, load, names))
     return tuple(out)
@@ -231,19 +231,30 @@ def _along(x: np.ndarray, u: np.ndarray) -> np.ndarray:
     return x[..., 0] * u[0] + x[..., 1] * u[1]
 
 
-def evaluate(kin: Kinematics) -> Applied:
-    """The external loads of ``kin.mechanism`` over a kinematics result."""
+def evaluate(kin: Kinematics, kinds: tuple[str, ...] | None = None) -> Applied:
+    """The external loads of ``kin.mechanism`` (those of the ``kinds`` given, default all) over a kinematics
+    result."""
     out = Applied([], [], {}, {})
     for load in kin.mechanism.loads:
+        if kinds is not None and load.kind not in kinds:
+            continue
         if load.kind == "friction":
             _friction(kin, load, out)
         elif load.kind in ("force", "moment"):
             _given_load(kin, load, out)
         elif load.kind in ELEMENTS:
-            evaluate_element(kin, load, out)
+            _element(kin, load, out)
         else:
             _process_load(kin, load, out)
     return out
+
+
+def _element(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
+    """A force element's forces or moments (:mod:`linkwork.kinetostatics.elements`)."""
+    action = evaluate_element(kin, load)
+    out.forces.extend(PointForce(*f) for f in action.forces)
+    out.moments.extend(LinkMoment(*m) for m in action.moments)
+    out.magnitude[load.name] = action.size
 
 
 def _state(kin: Kinematics, p: int) -> tuple[np.ndarray, np.ndarray]:

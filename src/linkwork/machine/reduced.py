@@ -24,8 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.kinetostatics.elements import evaluate_element
-from linkwork.kinetostatics.external import Applied
+from linkwork.kinetostatics.external import evaluate
 from linkwork.kinetostatics.external import power as external_power
 from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS
@@ -121,10 +120,6 @@ def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
 def _damping(kin: Kinematics) -> np.ndarray | None:
     """The dampers' reduced damping coefficient ``(K,)`` over ``kin`` at unit crank speed (minus their power
     there), or None without dampers."""
-    dampers = [load for load in kin.mechanism.loads if load.kind == "damper"]
-    if not dampers:
+    if not any(load.kind == "damper" for load in kin.mechanism.loads):
         return None
-    applied = Applied([], [], {}, {})
-    for load in dampers:
-        evaluate_element(kin, load, applied)
-    return -external_power(kin, applied)[0]
+    return -external_power(kin, evaluate(kin, ("damper",)))[0]
