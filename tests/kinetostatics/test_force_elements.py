@@ -182,3 +182,23 @@ def test_a_spring_whose_points_meet_is_one_clear_error():
     data["joints"]["Q"] = data["joints"].pop("O4")
     with pytest.raises(lw.errors.LinkworkError, match=r'load "s".*meet with the crank at 0 deg'):
         lw.forces(lw.compile(lw.from_dict(data)), [0.5, 0.0, -0.5])
+
+
+def test_check_values_reads_each_stiffness_in_its_own_kind():
+    """A spring's stiffness in N/m, a torsion spring's in N m/rad (the same key, by the load's type)."""
+    import yaml
+
+    from linkwork.spec.values import values_read
+
+    data = heavy_four_bar(0.0, 9.81)
+    data["loads"] = {
+        "s": {"type": "spring", "between": ["coupler.B", "O2"], "stiffness": "20 N/mm", "free_length": 0.2},
+        "t": {"type": "torsion_spring", "joint": "B", "stiffness": "2 N*m/deg", "free_angle": "10 deg"},
+        "d": {"type": "damper", "between": ["crank.A", "O4"], "damping": "3 N*s/mm"},
+    }
+    spec = lw.loads(yaml.safe_dump(data))
+    read = {v.path: v for v in values_read(spec)}
+    assert (read["loads.s.stiffness"].value, read["loads.s.stiffness"].unit) == (20000.0, "N/m")
+    assert read["loads.t.stiffness"].value == pytest.approx(2 * 180 / math.pi, rel=1e-12)
+    assert read["loads.t.stiffness"].kind == "torsion_stiffness"
+    assert (read["loads.d.damping"].value, read["loads.d.damping"].unit) == (3000.0, "N*s/m")
