@@ -114,6 +114,7 @@ PositivePower = Annotated[float, *_quantity("power", "positive")]
 PositiveAngularSpeed = Annotated[float, *_quantity("angular_speed", "positive")]
 AngularSpeed = Annotated[float, *_quantity("angular_speed")]
 Damping = Annotated[float, *_quantity("damping", "nonnegative")]
+PositiveTime = Annotated[float, *_quantity("time", "positive")]
 
 
 def _stiffness() -> tuple[BeforeValidator, WithJsonSchema, Quantity]:
@@ -424,6 +425,17 @@ class Motor(_Strict):
     inertia: Inertia | None = Field(None, description="moment of inertia of the rotor")
 
 
+class TimeRun(_Strict):
+    """A run in time for the report (``linkwork simulate``): ``until`` its length, from the crank angle
+    ``angle`` (to the x axis; default the assembly angle) at the speed ``speed`` (counter-clockwise positive;
+    default at rest); ``motor: false`` leaves the file's motor out."""
+
+    until: PositiveTime = Field(description="length of the run")
+    angle: Angle | None = Field(None, description="the crank's angle to the x axis at the start")
+    speed: AngularSpeed | None = Field(None, description="the crank's speed at the start, counter-clockwise +")
+    motor: bool = Field(True, description="with the machine's motor (false: free motion)")
+
+
 class Gear(_Strict):
     """A gear between motor and crank: ``ratio`` = motor speed / crank speed."""
 
@@ -529,6 +541,7 @@ class Spec(_Strict):
     loads: dict[str, Load] = Field(default_factory=dict, description="external loads by name")
     machine: Machine | None = Field(None, description="motor, gear and flywheel, for machine dynamics")
     impact: ImpactSpec | None = Field(None, description="a blow, for linkwork impact")
+    simulate: TimeRun | None = Field(None, description="a run in time, drawn in the report")
     drawing: Drawing | None = Field(None, description="what the drawings show (the positions of the plans)")
     hints: dict[str, Vec2] = Field(
         default_factory=dict,
