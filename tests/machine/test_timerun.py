@@ -168,6 +168,8 @@ def test_andrews_squeezer_reaches_the_reference_state():
     run = lw.simulate(str(path), 0.03, times=[0.03], rtol=1e-8, atol=1e-8)
     assert run.angle[0] == pytest.approx(15.81077119629904, rel=1e-6)
     assert run.speed[0] == pytest.approx(1139.920302151208, rel=1e-6)
+    # the reactions with the run's own acceleration: the crank's pair carries the motor's constant torque
+    assert run.forces().driving_torque[0] == pytest.approx(0.033, rel=1e-9)
 
 
 def test_the_steady_cycle_with_a_damper_spends_the_motors_work_in_it():
@@ -197,3 +199,12 @@ def test_the_steady_cycle_with_a_damper_spends_the_motors_work_in_it():
     motor = simpson(result.drive.moment(omega), x=psi)
     assert damper > 0.05 * motor
     assert motor == pytest.approx(damper, rel=1e-5)
+
+
+def test_a_run_without_inertia_on_the_crank_is_one_clear_error():
+    """A four-bar whose links have no mass: nothing to integrate, and the run says why instead of dividing by 0."""
+    from mechanisms import four_bar_spec
+
+    data, _ = four_bar_spec(0.1, 0.35, 0.25, 0.3, 1.0, False)
+    with pytest.raises(lw.errors.LinkworkError, match="carries no inertia at [\\d.]+ deg to x"):
+        simulate(lw.compile(lw.from_dict(data)), 0.1, speed=30.0)

@@ -30,6 +30,7 @@ from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.reactions import inertia_and_gravity
 from linkwork.motion.kinematics import Kinematics, kinematics_at
 from linkwork.structure.model import Mechanism, one_crank
+from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from linkwork.kinetostatics.forces import Forces
@@ -130,7 +131,7 @@ def reduced_terms(mech: Mechanism, phi: np.ndarray, omega: np.ndarray, extra_ine
     if not kin.valid_all.all():
         bad = float(phi[np.flatnonzero(~kin.valid_all[0, :k] | ~kin.valid_all[0, k:])[0]])
         raise LinkworkError(f"the run reaches a pose where the mechanism does not assemble: crank at "
-                            f"{math.degrees(bad):.6g} deg (a dead point, or past the end of its travel)")  # fmt: skip
+                            f"{turn_deg(bad):.6g} deg to x (a dead point, or past the end of its travel)")  # fmt: skip
     loads = inertia_and_gravity(kin)
     ms = kin.mass_properties
     m, j = ms.mass[0], ms.inertia[0]
@@ -152,9 +153,9 @@ def _no_value(kin: Kinematics, phi: np.ndarray, k: int) -> None:
     for name, size in evaluate(kin).magnitude.items():
         bad = np.flatnonzero(~np.isfinite(size[0, k:]))
         if len(bad):
-            where = math.degrees(phi[bad[0]])
+            where = turn_deg(float(phi[bad[0]]))
             raise LinkworkError(
-                f'load "{name}" has no value with the crank at {where:.6g} deg: '
+                f'load "{name}" has no value with the crank at {where:.6g} deg to x: '
                 "a spring's or damper's two points meet there, and its line has no direction"
             )
     raise LinkworkError("the loads have no value at a pose of the run")
@@ -210,6 +211,11 @@ def simulate(
 
     def rhs(_t: float, y: np.ndarray) -> list[float]:
         terms = reduced_terms(mech, y[:1], y[1:], extra)
+        if not terms.inertia[0] > 0:
+            raise LinkworkError(
+                f"the crank carries no inertia at {turn_deg(float(y[0])):.6g} deg to x: give the links' masses "
+                "(and moments of inertia) for a run in time"
+            )
         eps = (terms.load[0] + float(moment(y[1:])[0]) - 0.5 * terms.slope[0] * y[1] ** 2) / terms.inertia[0]
         return [float(y[1]), float(eps)]
 
