@@ -32,6 +32,7 @@ _LAZY = {
     "size": ("linkwork.api", "size"),
     "reduced": ("linkwork.api", "reduced"),
     "dynamics": ("linkwork.api", "dynamics"),
+    "simulate": ("linkwork.api", "simulate"),
     "rocker_impact": ("linkwork.impulse", "rocker_impact"),
     "impact": ("linkwork.api", "impact"),
     "simulate_blows": ("linkwork.api", "simulate_blows"),

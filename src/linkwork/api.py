@@ -38,6 +38,7 @@ from linkwork.kinetostatics.friction import compile_friction
 from linkwork.machine.drive import from_spec
 from linkwork.machine.dynamics import dynamics as _dynamics
 from linkwork.machine.reduced import reduced as _reduced
+from linkwork.machine.timerun import simulate as _simulate
 from linkwork.motion import fast
 from linkwork.motion.kernels import with_branches
 from linkwork.motion.kinematics import Kinematics
@@ -165,6 +166,7 @@ kinematics = resolving(_kinematics, "kinematics")
 forces = resolving(_forces, "forces", passes=(Kinematics,))
 reduced = resolving(_reduced, "reduced")
 dynamics = resolving(_dynamics, "dynamics")
+simulate = resolving(_simulate, "simulate")
 impact = resolving(_impact, "impact")
 simulate_blows = resolving(_simulate_blows, "simulate_blows")
 balance = resolving(_balance, "balance")

@@ -149,6 +149,7 @@ TEXTS: dict[str, tuple[str, str]] = {
     "section.forces": ("Forces (kinetostatics)", "Силовой (кинетостатический) анализ"),
     "section.dynamics": ("Machine dynamics", "Динамика машинного агрегата"),
     "section.impact": ("Impact", "Удар"),
+    "section.simulate": ("Run in time", "Движение во времени"),
     "section.animation": ("Animation", "Анимация"),
     "section.warnings": ("Warnings", "Предупреждения"),
     "structure.counts": (
@@ -356,6 +357,18 @@ TEXTS: dict[str, tuple[str, str]] = {
         "маховиком.",
     ),
     "dynamics.startup": ("start-up time, s", "время разгона, с"),
+    "simulate.until": ("length of the run, s", "продолжительность, с"),
+    "simulate.start": (
+        "crank at the start: angle to x, °; speed, rad/s",
+        "кривошип в начале: угол к оси x, °; скорость, рад/с",
+    ),
+    "simulate.end": (
+        "crank at the end: angle to x, °; speed, rad/s",
+        "кривошип в конце: угол к оси x, °; скорость, рад/с",
+    ),
+    "simulate.turned": ("angle turned, °", "угол поворота, °"),
+    "simulate.stops": ("the crank stops at, s", "кривошип останавливается в моменты, с"),
+    "simulate.motor": ("motor", "двигатель"),
     "dynamics.flywheel": ("flywheel on the {shaft} shaft, kg·m²", "маховик на валу {shaft}, кг·м²"),
     "shaft.motor": ("motor", "двигателя"),
     "shaft.crank": ("crank", "кривошипа"),
@@ -409,6 +422,12 @@ TEXTS: dict[str, tuple[str, str]] = {
     "caption.driving_torque": ("Driving torque on the crank", "Уравновешивающий момент на кривошипе"),
     "caption.foundation": ("Loads on the foundation", "Нагрузки на фундамент"),
     "caption.hodograph": ("Hodograph of the force in joint {joint}", "Годограф реакции в паре {joint}"),
+    "caption.simulate": (
+        "Run in time: the angle the crank has turned and its speed, integrated with the exact reduced inertia "
+        "and loads at every step (springs and dampers included); its stops marked.",
+        "Движение во времени: угол поворота и угловая скорость кривошипа, рассчитанные с точными приведёнными "
+        "моментом инерции и моментом сил на каждом шаге (с пружинами и демпферами); остановки отмечены.",
+    ),
     "caption.dynamics": (
         "Machine dynamics: reduced moment of inertia and moment of the loads, the crank speed over the steady "
         "cycle, Wittenbauer's diagram",
@@ -477,6 +496,11 @@ TEXTS: dict[str, tuple[str, str]] = {
     "legend.crank_speed": ("crank speed", "частота вращения кривошипа"),
     "legend.mean_speed": ("mean {value} rpm", "средняя {value} об/мин"),
     "axis.speed": ("crank speed n, rpm", "частота вращения n, об/мин"),
+    "axis.time": ("time t, s", "время t, с"),
+    "axis.turned": ("angle turned, °", "угол поворота, °"),
+    "axis.omega": ("crank speed ω, rad/s", "угловая скорость кривошипа ω, рад/с"),
+    "legend.stop": ("the crank stops", "остановка кривошипа"),
+    "title.simulate": ("Run in time from t = 0", "Движение во времени от t = 0"),
     # ------------------------------------------------------------------ the scheme, the positions, the plans
     "scheme.title": ("{name}: kinematic scheme", "{name}: кинематическая схема"),
     "drawing.crank": ("crank at {angle}°", "угол кривошипа {angle}°"),

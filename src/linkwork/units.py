@@ -41,6 +41,9 @@ KINDS: dict[str, tuple[str, str, str]] = {
     "angular_speed": ("an angular speed", "rad/s", "1/[time]"),
     "acceleration": ("an acceleration", "m/s**2", "[length]/[time]**2"),
     "power": ("a power", "W", "[power]"),
+    "stiffness": ("a stiffness", "N/m", "[force]/[length]"),
+    "torsion_stiffness": ("a torsional stiffness", "N*m/rad", "[force]*[length]"),
+    "damping": ("a damping coefficient", "N*s/m", "[force]*[time]/[length]"),
 }
 
 #: Base kinds, read bare in the file's declared unit, and their defaults (angles in degrees).
@@ -63,6 +66,9 @@ MADE_OF: dict[str, tuple[str, ...]] = {
     "angular_speed": ("angle", "time"),
     "acceleration": ("length", "time"),
     "power": ("force", "length", "time"),
+    "stiffness": ("force", "length"),
+    "torsion_stiffness": ("force", "length", "angle"),
+    "damping": ("force", "time", "length"),
 }
 
 #: Kinds whose unit a file may declare in ``units:``: the base kinds and every derived kind.
@@ -77,6 +83,9 @@ _IN_FILE_UNITS = {
     "angular_speed": "{angle}/{time}",
     "acceleration": "{length}/{time}**2",
     "power": "{force}*{length}/{time}",
+    "stiffness": "{force}/{length}",
+    "torsion_stiffness": "{force}*{length}/{angle}",
+    "damping": "{force}*{time}/{length}",
 }
 
 # A unit to propose for a derived kind written without one.
@@ -172,6 +181,9 @@ COMMON_UNITS: dict[str, dict[str, float]] = {
     "angular_speed": {"rad/s": 1.0, "rpm": 0.10471975511965977, "deg/s": 0.017453292519943295},
     "acceleration": {"m/s^2": 1.0, "m/s**2": 1.0},
     "power": {"W": 1.0, "kW": 1000.0},
+    "stiffness": {"N/m": 1.0, "N/mm": 1000.0, "kN/m": 1000.0},
+    "torsion_stiffness": {"N*m/rad": 1.0, "N m/rad": 1.0},
+    "damping": {"N*s/m": 1.0, "N s/m": 1.0},
 }
 
 
@@ -200,7 +212,7 @@ def _pint_factor(unit: str, kind: str) -> float:
     names = set(units._units)
     if kind == "angle" and not names <= ANGLE_UNITS:
         raise UnitParseError(f"expected {phrase}, got {_quote(unit)}", "use deg, rad or rev")
-    if kind not in ("angle", "angular_speed") and names & ANGLE_UNITS:
+    if kind not in ("angle", "angular_speed", "torsion_stiffness") and names & ANGLE_UNITS:
         raise UnitParseError(f"expected {phrase}, got {_quote(unit)}", "an angle unit in it")
     return _to_si(q, kind, unit)
 

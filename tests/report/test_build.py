@@ -419,3 +419,30 @@ def test_the_report_presents_the_kinetostatics_by_the_graphical_method(main_job)
     for k, lever_value, kinetostatic in rows:
         assert float(lever_value) == pytest.approx(torque[int(k)], rel=1e-6)
         assert lever_value == kinetostatic
+
+
+def test_the_report_draws_the_run_in_time_the_file_asks_for(tmp_path):
+    """A pendulum with a torsion spring and ``simulate: {until: 0.5 s, angle: 275 deg}``: the report has the
+    section, its diagram, and simulate.csv whose last row is the run lw.simulate gives."""
+    import csv
+
+    import linkwork as lw
+    from linkwork.report import build as report
+
+    b = lw.MechanismBuilder("pendulum", gravity="9.81 m/s^2")
+    b.frame(points={"O": (0, 0)})
+    b.link("arm", points={"O": (0, 0), "P": (0.4, 0)}, mass=2.0, com=(0.4, 0), inertia="0.05 kg*m^2")
+    b.revolute("O", "frame", "arm").drive("O", angle="270 deg")
+    b.torsion_spring("t", "O", "30 N*m/rad", "270 deg")
+    data = b.to_dict()
+    data["simulate"] = {"until": "0.5 s", "angle": "275 deg"}
+    mech = lw.compile(lw.from_dict(data))
+    out = tmp_path / "r"
+    report.analyze(mech, out, steps=36, animation=False)
+    page = (out / "report.html").read_text(encoding="utf-8")
+    assert "<h2>Run in time</h2>" in page and re.search(r"Figure \d+\. Run in time", page)
+    assert (out / "figures" / "simulate.svg").stat().st_size > 1000
+    with open(out / "simulate.csv", encoding="utf-8") as f:
+        last = list(csv.DictReader(f))[-1]
+    run = lw.simulate(mech, 0.5, angle=math.radians(275), times=[0.5])
+    assert float(last["omega [rad/s]"]) == pytest.approx(run.speed[0], rel=1e-9)

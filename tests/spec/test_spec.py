@@ -197,7 +197,7 @@ def test_schema_states_the_rule_for_bare_numbers():
     units = lw.Spec.model_json_schema()["$defs"]["Units"]
     assert set(units["properties"]) == {
         "length", "mass", "time", "angle", "force", "moment", "inertia", "speed", "angular_speed", "acceleration",
-        "power",
+        "power", "stiffness", "torsion_stiffness", "damping",
     }  # fmt: skip
     assert "otherwise it needs its unit" in units["description"]
     inertia = lw.Spec.model_json_schema()["$defs"]["Link"]["properties"]["inertia"]

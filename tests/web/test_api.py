@@ -1378,3 +1378,20 @@ def test_the_work_of_a_client_that_left_while_it_waited_is_not_started(monkeypat
         assert conn.getresponse().status == 200
         conn.close()
     assert started == [37, 41]
+
+
+def test_a_springs_force_is_an_arrow_of_the_viewer():
+    """A spring from the four-bar's coupler point B to the frame's O2: one load arrow, on the coupler at B, whose
+    value is k (L - L0) along B -> O2 at every angle (L from the positions)."""
+    text = example_text("four-bar").replace(
+        "hints:", "loads:\n  s: {type: spring, between: [coupler.B, O2], stiffness: 2000 N/m, free_length: 200 mm}\n"
+        "hints:", 1)  # fmt: skip
+    mech = lw.compile(lw.loads(text))
+    f = cycle_payload(mech, steps=24)["forces"]
+    cut = [j for j, a in enumerate(f["arrows"]) if a["kind"] == "load"]
+    assert [(f["arrows"][j]["name"], f["arrows"][j]["on"]) for j in cut] == [("s", "coupler")]
+    values = np.array([[[np.nan if v is None else v for v in xy] for xy in row] for row in f["values"]])[:, cut[0]]
+    kin = lw.kinematics(mech, _turn(mech, 24))
+    d = kin.position("O2") - kin.position("B")
+    length = np.hypot(d[:, 0], d[:, 1])
+    np.testing.assert_allclose(values, (2000 * (length - 0.2) / length)[:, None] * d, rtol=1e-6, atol=1e-6)

@@ -14,6 +14,7 @@ import linkwork.cli.dynamics  # noqa: F401
 import linkwork.cli.forces  # noqa: F401
 import linkwork.cli.impact  # noqa: F401
 import linkwork.cli.motion  # noqa: F401
+import linkwork.cli.simulate  # noqa: F401
 import linkwork.cli.size  # noqa: F401
 import linkwork.cli.synthesize  # noqa: F401
 import linkwork.cli.view  # noqa: F401

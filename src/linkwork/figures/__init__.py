@@ -15,6 +15,7 @@ from linkwork.figures.diagrams import (
     kinematic_diagrams,
     link_angles,
     motion_diagram,
+    run_diagram,
     torque_diagram,
 )
 from linkwork.figures.plans import acceleration_plan, draw_plan, plan_sheet, velocity_plan
@@ -31,6 +32,7 @@ __all__ = [
     "draw_positions",
     "draw_scheme",
     "dynamics_diagrams",
+    "run_diagram",
     "foundation_diagram",
     "hodograph",
     "kinematic_diagrams",

@@ -1,6 +1,6 @@
 """Diagrams over the cycle: the kinematic diagrams of the working members, link angles, driving torque,
 foundation loads, joint-force hodographs, and the machine-dynamics diagrams (reduced inertia and load
-moment, Wittenbauer's diagram, the crank speed over the steady cycle).
+moment, Wittenbauer's diagram, the crank speed over the steady cycle); a run in time against time.
 
 Every abscissa is the crank angle φ turned from position 0 (0 to 360°, as the 12 positions number the
 cycle, :func:`linkwork.motion.analysis.from_position_0`); ``zero`` is the drive angle of position 0
@@ -26,6 +26,7 @@ if TYPE_CHECKING:
 
     from linkwork.kinetostatics.forces import Forces
     from linkwork.machine.dynamics import Dynamics
+    from linkwork.machine.timerun import Run
     from linkwork.motion.kinematics import Kinematics
     from linkwork.structure.model import Mechanism
 
@@ -327,6 +328,28 @@ def _runs(numbers: list[int]) -> str:
         if n is not None:
             start = prev = n
     return ", ".join(out)
+
+
+def run_diagram(run: Run, lang: str = "en") -> Figure:
+    """The angle the crank has turned (deg) and its speed (rad/s) against time of a :func:`linkwork.simulate`
+    run, its stops marked."""
+    fig, (a1, a2) = _figure(rows=2, height=2.4)
+    a1.plot(run.time, np.degrees(run.angle - run.angle[0]), lw=1.3)
+    a1.set_ylabel(t("axis.turned", lang), fontsize=9)
+    a2.plot(run.time, run.speed, lw=1.3, color="tab:red")
+    a2.set_ylabel(t("axis.omega", lang), fontsize=9)
+    a2.set_xlabel(t("axis.time", lang), fontsize=9)
+    stops = [e.time for e in run.events if e.kind == "stop"]
+    if stops:
+        turned = np.interp(stops, run.time, np.degrees(run.angle - run.angle[0]))
+        a1.plot(stops, turned, "o", color="tab:green", ms=4, label=t("legend.stop", lang))
+        a2.plot(stops, np.zeros(len(stops)), "o", color="tab:green", ms=4, label=t("legend.stop", lang))
+        _legend(a2, loc="best")
+    for ax in (a1, a2):
+        _grid(ax)
+    a1.tick_params(labelbottom=False)
+    fig.suptitle(t("title.simulate", lang), fontsize=11)
+    return fig
 
 
 def dynamics_diagrams(result: Dynamics, zero: float | None = None, lang: str = "en") -> Figure:

@@ -105,7 +105,7 @@ def efficiency(f: Forces) -> Efficiency:
     friction = np.sum(losses, -1)
     useful = -(external_power(kin, f.external) + friction)
     kinetic = kinetic_energy_rate(kin, f.loads)
-    potential = -gravity_power(kin, f.loads)
+    potential = -gravity_power(kin, f.loads.com_velocity)
     out = f._out
     return Efficiency(
         out(drive), out(useful), joints, out(losses), out(kinetic), out(potential), _steps(kin.angles, kin.rates[:, 0])

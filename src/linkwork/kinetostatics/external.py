@@ -15,6 +15,7 @@ from typing import NamedTuple, TypeVar, cast
 
 import numpy as np
 
+from linkwork.kinetostatics.elements import ELEMENTS, compile_element, evaluate_element
 from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.motion.kinematics import Kinematics
 from linkwork.spec.schema import Load, Spec
@@ -33,7 +34,9 @@ class ExternalLoad:
     name : str
     kind : str
         ``force``, ``moment``, ``process`` or ``friction`` (in the pair ``pair``: a moment for a
-        revolute pair, a force for a prismatic one, of size ``value``).
+        revolute pair, a force for a prismatic one, of size ``value``); or a force element
+        (:mod:`linkwork.kinetostatics.elements`): ``spring`` and ``damper`` between ``points``, of stiffness
+        or damping ``value``, ``torsion_spring`` in the pair ``pair``; ``free`` the free length or angle.
     link : int
         The link a force or moment acts on (for a process load: the first tool's link).
     points : tuple of int
@@ -57,7 +60,8 @@ class ExternalLoad:
     value: float = math.nan
     table: tuple[np.ndarray, np.ndarray] | None = None
     workpiece: tuple[float, float] = (0.0, 0.0)
-    pair: int = -1  # friction: the elementary pair it acts in
+    pair: int = -1  # friction, torsion spring: the elementary pair it acts in
+    free: float = math.nan  # spring: free length (m); torsion spring: free angle (rad)
 
 
 def compile_loads(spec: Spec, mech: Mechanism) -> tuple[ExternalLoad, ...]:
@@ -72,6 +76,8 @@ def compile_loads(spec: Spec, mech: Mechanism) -> tuple[ExternalLoad, ...]:
             out += _friction_loads(name, load, mech)
         elif load.type == "moment":
             out.append(_moment(name, load, names))
+        elif load.type in ELEMENTS:
+            out.append(ExternalLoad(name, **compile_element(load, mech)))
         else:
             out.append(_process(name, load, names))
     return tuple(out)
@@ -206,7 +212,9 @@ def magnitude_units(mech: Mechanism) -> dict[str, str]:
     a guide."""
     out: dict[str, str] = {}
     for load in mech.loads:
-        turning = load.kind == "moment" or (load.kind == "friction" and mech.pair_type[load.pair] == PairType.REVOLUTE)
+        turning = load.kind in ("moment", "torsion_spring") or (
+            load.kind == "friction" and mech.pair_type[load.pair] == PairType.REVOLUTE
+        )
         out[load.name] = "N m" if turning else "N"
     return out
 
@@ -223,17 +231,30 @@ def _along(x: np.ndarray, u: np.ndarray) -> np.ndarray:
     return x[..., 0] * u[0] + x[..., 1] * u[1]
 
 
-def evaluate(kin: Kinematics) -> Applied:
-    """The external loads of ``kin.mechanism`` over a kinematics result."""
+def evaluate(kin: Kinematics, kinds: tuple[str, ...] | None = None) -> Applied:
+    """The external loads of ``kin.mechanism`` (those of the ``kinds`` given, default all) over a kinematics
+    result."""
     out = Applied([], [], {}, {})
     for load in kin.mechanism.loads:
+        if kinds is not None and load.kind not in kinds:
+            continue
         if load.kind == "friction":
             _friction(kin, load, out)
         elif load.kind in ("force", "moment"):
             _given_load(kin, load, out)
+        elif load.kind in ELEMENTS:
+            _element(kin, load, out)
         else:
             _process_load(kin, load, out)
     return out
+
+
+def _element(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
+    """A force element's forces or moments (:mod:`linkwork.kinetostatics.elements`)."""
+    action = evaluate_element(kin, load)
+    out.forces.extend(PointForce(*f) for f in action.forces)
+    out.moments.extend(LinkMoment(*m) for m in action.moments)
+    out.magnitude[load.name] = action.size
 
 
 def _state(kin: Kinematics, p: int) -> tuple[np.ndarray, np.ndarray]:

@@ -162,10 +162,12 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
     n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
+    gx, gy = (float(x) for x in mech.gravity_vector)
+
     def part(lo: int, hi: int) -> None:
         _kernel(
             rows, groups, shape_of, on_frame, kin.q, kin.v, kin.a, local, origin, axis, mass, com, inertia,
-            float(mech.gravity), f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi,
+            gx, gy, f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi,
             np.empty((mech.n_links_total, 6)), np.empty((m, 6)), np.empty((size, size)), np.empty(size),
             np.empty(m), np.zeros((m, 8)),
         )  # fmt: skip
@@ -329,7 +331,7 @@ def _rhs(groups, gi, width, known0, rows, J, Q, mu, x):
                     x[3 * li + d] -= J[r, 3 + d] * lr
 
 
-def _link_loads(q, v, a, mass, com, inertia, g, var, i, Q):
+def _link_loads(q, v, a, mass, com, inertia, gx, gy, var, i, Q):
     """Gravity and d'Alembert inertia loads of every link at sample ``(var, i)``, about the link's origin, into
     ``Q[n, 0:3]``; ``Q[n, 3:6]``: cos and sin of the link's angle, and the angle."""
     Q[0, 3], Q[0, 4] = 1.0, 0.0  # the frame does not move
@@ -342,8 +344,8 @@ def _link_loads(q, v, a, mass, com, inertia, g, var, i, Q):
         ry = s * com[var, n, 0] + c * com[var, n, 1]
         acx = a[n, 0, var, i] - e * ry - w * w * rx
         acy = a[n, 1, var, i] + e * rx - w * w * ry
-        fx = -mass[var, n] * acx
-        fy = -mass[var, n] * acy - mass[var, n] * g
+        fx = -mass[var, n] * acx + mass[var, n] * gx
+        fy = -mass[var, n] * acy + mass[var, n] * gy
         Q[n, 0] = fx
         Q[n, 1] = fy
         Q[n, 2] = rx * fy - ry * fx - inertia[var, n] * e
@@ -458,7 +460,7 @@ def _frame_loads(rows, on_frame, J, Q, mu, frame, var, i):
 
 
 def _kernel(
-    rows, groups, shape_of, on_frame, q, v, a, local, origin, axis, mass, com, inertia, g,
+    rows, groups, shape_of, on_frame, q, v, a, local, origin, axis, mass, com, inertia, gx, gy,
     f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi, Q, J, M, x, mu, G,
 ):  # fmt: skip
     """The reactions ``lam`` and foundation loads ``frame`` of the samples ``lo:hi`` of every variant: at each,
@@ -471,7 +473,7 @@ def _kernel(
         for n in range(q.shape[0]):
             Q[n, 5] = math.nan
         for i in range(lo, hi):
-            _link_loads(q, v, a, mass, com, inertia, g, var, i, Q)
+            _link_loads(q, v, a, mass, com, inertia, gx, gy, var, i, Q)
             _external_loads(q, f_link, f_val, f_pos, m_link, m_val, var, i, Q)
             _rows_at(rows, q, G, var, i, J, Q)
             bad = False

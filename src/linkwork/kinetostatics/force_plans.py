@@ -266,7 +266,7 @@ class _Loads:
         for i in range(1, len(m.link_names)):
             mi = np.broadcast_to(mass[..., i], shape)
             if m.gravity and np.any(mi > 0):
-                weight = np.stack([np.zeros(shape), -mi * m.gravity], -1)
+                weight = mi[..., None] * m.gravity_vector
                 self.forces[i].append(PlanForce("G", str(i), "", "weight", i, weight, com[..., i, :], zero))
             if np.any(mi > 0):
                 phi = -mi[..., None] * acc[..., i, :]

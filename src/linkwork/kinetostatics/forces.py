@@ -336,7 +336,28 @@ def forces(
             raise TypeError("forces(kinematics): the angles, speeds and variants are the kinematics result's")
         return forces_of(mech)
     _statically_determinate(mech)
-    return forces_of(kinematics(mech, angles, steps=steps, speed=speed, variants=variants))
+    out = forces_of(kinematics(mech, angles, steps=steps, speed=speed, variants=variants))
+    if not variants:
+        elements_defined(out)
+    return out
+
+
+def elements_defined(f: Forces) -> None:
+    """Raise where a spring's or damper's two points meet at an assembled sample (its line has no direction):
+    the load, its points and the first crank angle.  (A sweep's variants get NaN there instead.)"""
+    from linkwork.units import turn_deg
+
+    kin, mech = f.kinematics, f.kinematics.mechanism
+    for load in mech.loads:
+        if load.kind not in ("spring", "damper"):
+            continue
+        bad = np.flatnonzero((kin.valid_all & np.isnan(f.external.magnitude[load.name])).any(axis=0))
+        if len(bad):
+            a, b = (mech.point_names[p] for p in load.points)
+            raise LinkworkError(
+                f'load "{load.name}": the {load.kind}\'s points {a} and {b} meet with the crank at '
+                f"{turn_deg(float(kin.angles[bad[0]])):.6g} deg to x, where its line has no direction"
+            )
 
 
 def _statically_determinate(mech: Mechanism) -> None:

@@ -59,8 +59,7 @@ def inertia_and_gravity(kin: Kinematics, external: Applied | None = None) -> Loa
     com = q[..., :2] + r
     vc = v[..., :2] + w * turned
     ac = a[..., :2] + e * turned - w * w * r
-    weight = np.zeros(com.shape)
-    weight[..., 1] = -mass * m.gravity
+    weight = np.broadcast_to(mass[..., None] * m.gravity_vector, com.shape)
     applied = np.concatenate([weight, _cross(r, weight)[..., None]], -1)
     if external is None:
         external = evaluate(kin)
@@ -69,6 +68,13 @@ def inertia_and_gravity(kin: Kinematics, external: Applied | None = None) -> Loa
     f_in = -mass[..., None] * ac
     inertia = np.concatenate([f_in, (_cross(r, f_in) - j_c * a[..., 2])[..., None]], -1)
     return Loads(applied, inertia, com, vc, ac, external)
+
+
+def gravity_power(kin: Kinematics, com_velocity: np.ndarray) -> np.ndarray:
+    """Power (W) of gravity on every link, ``(V, A)``, from the centres' velocities ``(V, A, N, 2)``."""
+    mass = _mass_arrays(kin)[0]
+    g = kin.mechanism.gravity_vector
+    return np.sum(mass * (com_velocity[..., 0] * g[0] + com_velocity[..., 1] * g[1]), -1)
 
 
 def _mass_arrays(kin: Kinematics) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -139,7 +145,7 @@ def power_check(kin: Kinematics, loads: Loads) -> np.ndarray:
     """
     m = kin.mechanism
     kinetic_rate = kinetic_energy_rate(kin, loads)
-    power = gravity_power(kin, loads) + external_power(kin, loads.external)
+    power = gravity_power(kin, loads.com_velocity) + external_power(kin, loads.external)
     rate = kin.rates[None, :, 0]
     out = np.full(kinetic_rate.shape + (m.n_drives,), np.nan)
     if m.n_drives == 1:
@@ -156,12 +162,6 @@ def kinetic_energy_rate(kin: Kinematics, loads: Loads) -> np.ndarray:
     return translation + np.sum(j_c * v[..., 2] * a[..., 2], -1)
 
 
-def gravity_power(kin: Kinematics, loads: Loads) -> np.ndarray:
-    """Power of the links' weights, W, (V, A): minus the rate of their potential energy."""
-    mass = _mass_arrays(kin)[0]
-    return -kin.mechanism.gravity * np.sum(mass * loads.com_velocity[..., 1], -1)
-
-
 def foundation(kin: Kinematics, frame: np.ndarray, loads: Loads) -> np.ndarray:
     """Force (x, y) and moment about the origin the machine puts on its foundation, (V, A, 3):
     the pairs' force on the frame plus the frame's own weight and the loads applied to it."""
@@ -174,9 +174,7 @@ def momentum_check(kin: Kinematics, loads: Loads) -> np.ndarray:
     of their moment of momentum)."""
     m = kin.mechanism
     mass, _, _, j_c = _mass_arrays(kin)
-    weight = np.zeros(loads.com.shape)
-    weight[..., 1] = -mass * m.gravity
-    f = weight - mass[..., None] * loads.com_acceleration
+    f = mass[..., None] * m.gravity_vector - mass[..., None] * loads.com_acceleration
     moment = np.sum(_cross(loads.com, f), -1) - np.sum(j_c * kin.acc[..., 2], -1)
     total = np.concatenate([np.sum(f, axis=-2), moment[..., None]], -1)
     return total + resultant(loads.external, total.shape[:-1])

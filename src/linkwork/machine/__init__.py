@@ -21,6 +21,7 @@ from linkwork.machine.flywheel import (
 )
 from linkwork.machine.reduced import Reduced, reduced
 from linkwork.machine.simulate import Motion, Turn, simulate
+from linkwork.machine.timerun import Run, RunEvent
 
 __all__ = [
     "ConstantTorque",
@@ -31,6 +32,8 @@ __all__ = [
     "LinearMotor",
     "Motion",
     "Reduced",
+    "Run",
+    "RunEvent",
     "Turn",
     "balance_speed",
     "constant_moment_cycle",

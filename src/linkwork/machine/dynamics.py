@@ -63,8 +63,9 @@ class Dynamics:
     @property
     def drive_power(self) -> float:
         """Mean power the drive gives the crank over the steady cycle (after the gear's loss), W: the
-        mean power of the loads, which the periodic cycle's drive work balances."""
-        return -self.reduced.mean_load * self.motion.last.omega_mean
+        mean power of the loads, which the periodic cycle's drive work balances (the dampers' at the mean speed)."""
+        omega = self.motion.last.omega_mean
+        return -self.reduced.at_speed(omega).mean_load * omega
 
     @property
     def mean_power(self) -> float:
@@ -116,7 +117,8 @@ def with_flywheel_for(
     if speed is None or not math.isfinite(speed):
         speed = fallback
     base = drive.with_flywheel(0.0)
-    fly = size_flywheel_wittenbauer(red, delta, speed, base.inertia, shaft=drive.flywheel_on, ratio=drive.ratio)
+    at_speed = red.at_speed(speed)  # the dampers' moment at the mean speed
+    fly = size_flywheel_wittenbauer(at_speed, delta, speed, base.inertia, shaft=drive.flywheel_on, ratio=drive.ratio)
     return drive.with_flywheel(fly.flywheel), fly
 
 

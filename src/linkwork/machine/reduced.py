@@ -22,17 +22,20 @@ a constant friction is a load like the others.  The equation of motion of the ma
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.kinetostatics.external import evaluate
 from linkwork.kinetostatics.external import power as external_power
 from linkwork.kinetostatics.forces import forces_of
-from linkwork.kinetostatics.reactions import inertia_and_gravity
+from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.motion import cycle, kinematics
+from linkwork.motion.kinematics import Kinematics
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.units import turn_deg
 
@@ -53,10 +56,13 @@ class Reduced:
         ``dJ/dpsi``, kg m^2/rad.
     load : ndarray (K,)
         Reduced moment of gravity, the external loads and the friction in the pairs, N m; positive where
-        they drive the crank forward (a cutting load gives a negative moment).
+        they drive the crank forward (a cutting load gives a negative moment); the dampers' apart.
     friction : ndarray (K,)
         The part of ``load`` that the friction in proportion to the pairs' forces takes, N m (>= 0: it is
         subtracted); zero without it.
+    damping : ndarray (K,) or None
+        The dampers' reduced damping coefficient ``B``, N m s/rad: their moment is ``-B psi'``; None
+        without dampers.
     """
 
     psi: np.ndarray
@@ -65,6 +71,14 @@ class Reduced:
     inertia_slope: np.ndarray
     load: np.ndarray
     friction: np.ndarray | None = None
+    damping: np.ndarray | None = None
+
+    def at_speed(self, omega: float) -> Reduced:
+        """The same with the dampers' moment at the crank speed ``omega`` (rad/s) in ``load``: the loads of a
+        machine turning at that speed, for what reads the load moment alone (a flywheel's sizing)."""
+        if self.damping is None:
+            return self
+        return dataclasses.replace(self, load=self.load - self.damping * omega, damping=None)
 
     def work(self) -> np.ndarray:
         """Work of the loads from ``psi = 0`` (J), by the trapezoid rule over the grid, ``(K + 1,)``
@@ -105,11 +119,13 @@ def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
     w, e = kin.vel[0, :, :, 2], kin.acc[0, :, :, 2]
     inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1)
     slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
-    gravity = -mech.gravity * np.sum(m * vc[..., 1], -1)
     friction = friction_moment(mech, angle, sign)
-    load = gravity + external_power(kin, loads.external)[0] - friction
+    load = (gravity_power(kin, loads.com_velocity) + external_power(kin, loads.external))[0] - friction
+    damping = _damping(kin)
+    if damping is not None:
+        load = load + damping  # the dampers' moment at unit speed is -B: kept apart, in B
     psi = 2 * np.pi * np.arange(steps) / steps
-    return Reduced(psi, angle, inertia, slope, load, friction)
+    return Reduced(psi, angle, inertia, slope, load, friction, damping)
 
 
 def friction_moment(mech: Mechanism, angle: np.ndarray, sign: float) -> np.ndarray:
@@ -131,3 +147,11 @@ def friction_moment(mech: Mechanism, angle: np.ndarray, sign: float) -> np.ndarr
         if problem.kind != "indeterminate":
             raise LinkworkError(f"machine dynamics needs the friction at every angle: {problem}")
     return np.sum(f.friction.loss[0], -1) / rate
+
+
+def _damping(kin: Kinematics) -> np.ndarray | None:
+    """The dampers' reduced damping coefficient ``(K,)`` over ``kin`` at unit crank speed (minus their power
+    there), or None without dampers."""
+    if not any(load.kind == "damper" for load in kin.mechanism.loads):
+        return None
+    return -external_power(kin, evaluate(kin, ("damper",)))[0]

@@ -141,6 +141,16 @@ class Model:
         self.inertia = PeriodicSplines(red.psi, [red.inertia])
         self.m = list(map(float, np.append(red.load, red.load[0])))
         self.extra = float(extra_inertia)
+        damping = red.damping
+        #: the dampers' reduced coefficient, linear between the grid points like ``M``; None without dampers
+        self.b = None if damping is None else list(map(float, np.append(damping, damping[0])))
+
+    def damping(self, psi: float) -> float:
+        """The dampers' reduced coefficient ``B`` (N m s/rad) at ``psi``: their moment is ``-B omega``."""
+        if self.b is None:
+            return 0.0
+        i, f = self.inertia.interval(psi)
+        return self.b[i] + (self.b[i + 1] - self.b[i]) * f
 
     def at(self, psi: float) -> InertiaAndLoad:
         """``J + J_d`` and ``M`` at ``psi``."""
@@ -288,6 +298,8 @@ class _Unit:
         j, m = self.model.at(psi)
         e = max(y[1], 1e-300)
         w = math.sqrt(2 * e / j)
+        if self.model.b is not None:
+            m -= self.model.damping(psi) * w
         return [1.0 / w, m + float(self.moment(w))]
 
     def first_step(self, omega0: float) -> tuple[float, float, float]:

@@ -354,6 +354,20 @@ def kinematics(
     )
 
 
+def kinematics_at(mech: Mechanism, angles: np.ndarray, speeds: np.ndarray, accels: np.ndarray) -> Kinematics:
+    """The state at the drive coordinates ``angles`` ``(A, D)`` with the drive speeds ``speeds`` and
+    accelerations ``accels`` (each ``(A, D)``), every sample solved as it is in the file's assembly mode (not
+    along a path from the assembly pose: a run in time keeps to it), without events; the file's dimensions.
+    The accelerations are the true ones of a drive that speeds up: ``a = a_uniform + accel * d r / d phi``."""
+    geom = file_geometry(mech)
+    state = run(mech, mech.program, geom, angles, speeds, accels)
+    return Kinematics._made(
+        mechanism=mech, drive=angles, rates=speeds, q=state.q, v=state.v, a=state.a, cos=state.cos, sin=state.sin,
+        local=state.local, axis=state.axis, origin=state.origin, valid_all=state.valid, events=(), variants=False,
+        step_det=tuple(r.det for r in state.steps), masses=None,
+    )  # fmt: skip
+
+
 #: The geometry of the file's dimensions of the mechanisms solved so far (:func:`file_geometry`), by
 #: the mechanism's id, with a weak reference to it (the entry goes with the mechanism).
 @per_mechanism

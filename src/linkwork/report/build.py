@@ -270,6 +270,8 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
         _impact(run)
     if asks_sizing(run.mech, run.sizing):
         _sizing(run)
+    if run.mech.spec is not None and run.mech.spec.simulate is not None:
+        _time_run(run)
     run.progress("figures")
     run.run_here()
 
@@ -725,6 +727,44 @@ def _sizing(run: _Run) -> None:
     if result is not None:
         (run.folder / "sizing.json").write_text(dumps(result.record()), encoding="utf-8")
     run.sections.append(Section("sizing", run.t("section.sizing"), body))
+
+
+def _time_run(run: _Run) -> None:
+    """The run in time the file asks for (``simulate:``), as ``linkwork simulate`` runs it: a table of its
+    start, end and stops, ``simulate.json`` and ``simulate.csv`` beside the report, and its diagram."""
+    from linkwork import figures
+    from linkwork.errors import LinkworkError
+    from linkwork.io.run_tables import csv_text, to_json
+    from linkwork.machine.timerun import simulate
+    from linkwork.units import turn_deg
+
+    mech = run.mech
+    asked = mech.spec.simulate if mech.spec is not None else None
+    assert asked is not None  # _build calls this only for a file with a run
+    run.progress("simulate")
+    sec = Section("simulate", run.t("section.simulate"))
+    try:
+        result = simulate(mech, asked.until, angle=asked.angle, speed=asked.speed or 0.0, motor=asked.motor)
+    except LinkworkError as exc:
+        sec.body.append(_p(str(exc)))
+        run.sections.append(sec)
+        return
+    (run.folder / "simulate.json").write_text(dumps(to_json(result)), encoding="utf-8")
+    (run.folder / "simulate.csv").write_text(csv_text(result), encoding="utf-8")
+    ends = [f"{turn_deg(float(result.angle[i])):.2f}; {result.speed[i]:.6g}" for i in (0, -1)]
+    rows: list[list[Any]] = [
+        [run.t("simulate.until"), asked.until],
+        [run.t("simulate.start"), ends[0]],
+        [run.t("simulate.end"), ends[1]],
+        [run.t("simulate.turned"), math.degrees(result.angle[-1] - result.angle[0])],
+    ]
+    stops = [f"{e.time:.6g}" for e in result.events if e.kind == "stop"]
+    if stops:
+        rows.append([run.t("simulate.stops"), ", ".join(stops[:12]) + (" \u2026" if len(stops) > 12 else "")])
+    sec.body.append(_table([run.t("dynamics.head.quantity"), run.t("dynamics.head.value")], rows))
+    lang = run.lang
+    sec.figures.append(run.figure("simulate", lambda: figures.run_diagram(result, lang), run.t("caption.simulate")))
+    run.sections.append(sec)
 
 
 def _impact(run: _Run) -> None:

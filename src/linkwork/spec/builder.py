@@ -147,6 +147,28 @@ class MechanismBuilder:
         )
         return self
 
+    def spring(
+        self, name: str, between: tuple[str, str], stiffness: Any, *, free_length: Any = None, preload: Any = None
+    ) -> MechanismBuilder:
+        """A linear spring between two points (``link.point``, a frame point by its name), with its
+        ``free_length`` or its ``preload`` (tension in the assembly pose)."""
+        self._data.setdefault("loads", {})[name] = _some(
+            type="spring", between=list(between), stiffness=stiffness, free_length=free_length, preload=preload
+        )
+        return self
+
+    def damper(self, name: str, between: tuple[str, str], damping: Any) -> MechanismBuilder:
+        """A linear damper between two points: a force ``damping`` times the rate of change of their distance."""
+        self._data.setdefault("loads", {})[name] = _some(type="damper", between=list(between), damping=damping)
+        return self
+
+    def torsion_spring(self, name: str, joint: str, stiffness: Any, free_angle: Any) -> MechanismBuilder:
+        """A torsion spring in a revolute ``joint``, free at the relative turn ``free_angle`` of its links."""
+        self._data.setdefault("loads", {})[name] = _some(
+            type="torsion_spring", joint=joint, stiffness=stiffness, free_angle=free_angle
+        )
+        return self
+
     def machine(
         self, motor: dict[str, Any], *, gear: dict[str, Any] | None = None, flywheel: dict[str, Any] | None = None,
         delta: float | None = None,

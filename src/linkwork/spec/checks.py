@@ -432,6 +432,9 @@ _LOAD_FIELDS = {
         {"tools", "axis", "workpiece", "penetration", "force"},
         {"tools", "axis", "workpiece", "penetration", "force"},
     ),
+    "spring": ({"between", "stiffness"}, {"between", "stiffness", "free_length", "preload"}),
+    "damper": ({"between", "damping"}, {"between", "damping"}),
+    "torsion_spring": ({"joint", "stiffness", "free_angle"}, {"joint", "stiffness", "free_angle"}),
 }
 
 
@@ -458,8 +461,38 @@ def _check_loads(bad: Report, data: dict[str, Any], points: dict[str, set[str]])
             if isinstance(on, str) and on not in points:
                 bad(path + ("on",), f"unknown link {quote(on)}{suggest(on, points)}")
             _check_table(bad, path, load, "moment")
-        else:
+        elif kind == "process":
             _check_process(bad, path, load, names)
+        else:
+            _check_element(bad, path, load, names | frame_points(points), joints)
+
+
+def frame_points(points: dict[str, set[str]]) -> set[str]:
+    """The frame's points by their own names, as a force element may name them."""
+    return set(points.get(FRAME, set()))
+
+
+def _check_element(bad: Report, path: Path, load: dict[str, Any], names: set[str], joints: dict[str, Any]) -> None:
+    """A force element: a spring or damper between two points of different links, with a free length or a
+    preload (not both); a torsion spring in a revolute joint."""
+    if load.get("type") == "torsion_spring":
+        jname = load.get("joint")
+        if isinstance(jname, str) and jname not in joints:
+            bad(path + ("joint",), f"unknown joint {quote(jname)}{suggest(jname, joints)}")
+        elif isinstance(jname, str) and _dict(joints.get(jname)).get("type") != "revolute":
+            bad(path + ("joint",), f"a torsion spring acts in a revolute joint; {quote(jname)} is not one")
+        return
+    between = load.get("between")
+    if not isinstance(between, list) or len(between) != 2 or not all(isinstance(p, str) for p in between):
+        if between is not None:
+            bad(path + ("between",), "expected two points [link.point, link.point] (a frame point by its name)")
+        return
+    links = [_load_point(bad, names, path + ("between", i), p) for i, p in enumerate(between)]
+    links = [FRAME if p in names and "." not in p else ln for p, ln in zip(between, links, strict=True)]
+    if links[0] is not None and links[0] == links[1]:
+        bad(path + ("between",), f"the two points are on one link ({quote(links[0])}): the element does nothing")
+    if load.get("type") == "spring" and ("free_length" in load) == ("preload" in load):
+        bad(path, 'a spring needs its "free_length" or its "preload" (one of them)')
 
 
 def _check_load_fields(bad: Report, path: Path, load: dict[str, Any], kind: str) -> None:

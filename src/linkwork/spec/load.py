@@ -10,11 +10,12 @@ from pathlib import Path
 from typing import Any
 
 from pydantic import BaseModel, ValidationError
+from pydantic_core import ErrorDetails
 
 from linkwork.errors import Problem, SpecError, UnitParseError
 from linkwork.limits import echo, quote
 from linkwork.spec.checks import check, suggest
-from linkwork.spec.schema import Spec
+from linkwork.spec.schema import UNION_TAGS, Spec
 from linkwork.spec.yamlsource import Source, dotted, read_file, read_yaml
 from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, check_unit, parse_quantity
 
@@ -60,7 +61,7 @@ def validate(src: Source) -> Spec:
     try:
         spec = Spec.model_validate(src.data, context={"units": declared})
     except ValidationError as exc:
-        errors = exc.errors(include_url=False)
+        errors = [_untagged(e) for e in exc.errors(include_url=False)]
         problems += [_convert(src, e) for e in errors if not (e.get("input") is None and tuple(e["loc"]) in empty)]
     said = {dotted(p) for p in empty}
     problems += [p for p in check(src, declared) if not _restates(p, said)]
@@ -72,6 +73,11 @@ def validate(src: Source) -> Spec:
     spec = _finish(spec, declared)
     spec._source = src
     return spec
+
+
+def _untagged(error: ErrorDetails) -> ErrorDetails:
+    """A problem placed without the tags of the union it was found in (the form of ``gravity:``)."""
+    return {**error, "loc": tuple(x for x in error["loc"] if x not in UNION_TAGS)}
 
 
 def _nulls(data: Any, path: tuple[Any, ...] = ()) -> list[tuple[Any, ...]]:

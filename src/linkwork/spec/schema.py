@@ -13,7 +13,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, ValidationInfo, WithJsonSchema
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Discriminator,
+    Field,
+    PrivateAttr,
+    Tag,
+    ValidationInfo,
+    WithJsonSchema,
+)
 from pydantic_core import PydanticCustomError
 
 from linkwork.errors import UnitParseError
@@ -95,7 +105,7 @@ NonnegativeLength = Annotated[float, *_quantity("length", "nonnegative")]
 Angle = Annotated[float, *_quantity("angle")]
 PositiveMass = Annotated[float, *_quantity("mass", "positive")]
 Inertia = Annotated[float, *_quantity("inertia", "nonnegative")]
-PositiveAcceleration = Annotated[float, *_quantity("acceleration", "positive")]
+NonnegativeAcceleration = Annotated[float, *_quantity("acceleration", "nonnegative")]
 Force = Annotated[float, *_quantity("force")]
 PositiveForce = Annotated[float, *_quantity("force", "positive")]
 NonnegativeForce = Annotated[float, *_quantity("force", "nonnegative")]
@@ -104,6 +114,28 @@ Moment = Annotated[float, *_quantity("moment")]
 PositivePower = Annotated[float, *_quantity("power", "positive")]
 PositiveAngularSpeed = Annotated[float, *_quantity("angular_speed", "positive")]
 AngularSpeed = Annotated[float, *_quantity("angular_speed")]
+Damping = Annotated[float, *_quantity("damping", "nonnegative")]
+PositiveTime = Annotated[float, *_quantity("time", "positive")]
+
+
+def _stiffness() -> tuple[BeforeValidator, WithJsonSchema, Quantity]:
+    """The metadata of a spring's ``stiffness``: N/m of a spring, N m/rad of a torsion spring (by the load's
+    ``type``, read before it)."""
+
+    def validate(value: Any, info: ValidationInfo) -> float:
+        return _scalar(stiffness_kind(info.data.get("type")), value, info, "nonnegative")
+
+    schema = {"anyOf": [{"type": "number"}, {"type": "string"}], "description": "non-negative stiffness: N/m of a "
+              "spring, N*m/rad of a torsion spring; " + _BARE[True]}  # fmt: skip
+    return BeforeValidator(validate), WithJsonSchema(schema), Quantity("load_stiffness")
+
+
+def stiffness_kind(load_type: Any) -> str:
+    """The kind of quantity of a load's ``stiffness`` by the load's type."""
+    return "torsion_stiffness" if load_type == "torsion_spring" else "stiffness"
+
+
+Stiffness = Annotated[float, *_stiffness()]
 
 
 def _one_or_table(kind: str) -> tuple[BeforeValidator, WithJsonSchema, Quantity]:
@@ -193,9 +225,10 @@ class Units(_Strict):
 
     A bare length, mass, time or angle is read in the unit declared here for
     its kind (by default m, kg, s and deg).  A bare number of any other kind
-    (force, moment, inertia, speed, angular_speed, acceleration, power) is
-    read in the unit declared here for that kind; where none is declared, in
-    SI (N, N*m, kg*m^2, m/s, rad/s, m/s^2, W) only where the units of what it
+    (force, moment, inertia, speed, angular_speed, acceleration, power,
+    stiffness, torsion_stiffness, damping) is read in the unit declared here for
+    that kind; where none is declared, in SI (N, N*m, kg*m^2, m/s, rad/s,
+    m/s^2, W, N/m, N*m/rad, N*s/m) only where the units of what it
     is made of are SI (m, kg, s, rad, and N where forces are declared);
     otherwise it needs its unit, e.g. "30 rpm" or "2 kg*m^2".
     """
@@ -211,6 +244,9 @@ class Units(_Strict):
     angular_speed: str | None = Field(default=None, description="e.g. rpm or rad/s")
     acceleration: str | None = Field(default=None, description="e.g. m/s^2")
     power: str | None = Field(default=None, description="e.g. W or kW")
+    stiffness: str | None = Field(default=None, description="of springs, e.g. N/m or N/mm")
+    torsion_stiffness: str | None = Field(default=None, description="of torsion springs, e.g. N*m/rad")
+    damping: str | None = Field(default=None, description="of dampers, e.g. N*s/m")
 
 
 class Frame(_Strict):
@@ -361,10 +397,18 @@ class Load(_Strict):
     ``friction``: a constant (Coulomb) friction in the pairs of a ``joint``: a
     ``moment`` against the relative turning of a revolute pair, or a force
     ``magnitude`` against the sliding of a prismatic one.
+
+    Force elements: ``spring``, a linear spring ``between`` two points (``link.point``, a frame point
+    by its name) of ``stiffness`` (N/m) and ``free_length``, or with ``preload`` (its tension in the
+    assembly pose) instead; its force acts along the line of the points, tension positive.
+    ``damper``: between two points, a force ``damping`` times the rate of change of their distance.
+    ``torsion_spring``: in the revolute ``joint``, a moment ``stiffness`` (N m/rad) times the turn of the
+    joint's second link relative to its first, from ``free_angle`` (the second link's angle less the
+    first's, each link's angle that of its local x axis).
     """
 
-    type: Literal["force", "moment", "process", "friction"]
-    joint: str | None = Field(None, description="friction: the joint whose pairs it acts in")
+    type: Literal["force", "moment", "process", "friction", "spring", "damper", "torsion_spring"]
+    joint: str | None = Field(None, description="friction, torsion_spring: the joint whose pairs it acts in")
     at: str | None = Field(None, description="force: the point link.point where it acts")
     on: str | None = Field(None, description="moment: the link it acts on")
     force: list[Force] | None = Field(
@@ -378,6 +422,12 @@ class Load(_Strict):
     axis: Angle | None = Field(None, description="process: global direction along which the first tool is pushed")
     workpiece: list[Length] | None = Field(None, description="process: [low, high] extent along the axis")
     penetration: list[float] | None = Field(None, description="process: relative penetrations of the table")
+    between: list[str] | None = Field(None, description="spring, damper: two points link.point (frame: its name)")
+    stiffness: Stiffness | None = Field(None, description="spring: N/m; torsion_spring: N m/rad")
+    free_length: Length | None = Field(None, description="spring: its length without force")
+    preload: Force | None = Field(None, description="spring: its tension in the assembly pose, for free_length")
+    damping: Damping | None = Field(None, description="damper: force per unit rate of change of the distance")
+    free_angle: Angle | None = Field(None, description="torsion_spring: the joint's relative turn without moment")
     description: str | None = None
 
 
@@ -398,6 +448,17 @@ class Motor(_Strict):
     synchronous: PositiveAngularSpeed | None = Field(None, description="induction: synchronous speed")
     breakdown: Number | None = Field(None, description="induction: breakdown torque / rated torque, e.g. 2.2")
     inertia: Inertia | None = Field(None, description="moment of inertia of the rotor")
+
+
+class TimeRun(_Strict):
+    """A run in time for the report (``linkwork simulate``): ``until`` its length, from the crank angle
+    ``angle`` (to the x axis; default the assembly angle) at the speed ``speed`` (counter-clockwise positive;
+    default at rest); ``motor: false`` leaves the file's motor out."""
+
+    until: PositiveTime = Field(description="length of the run")
+    angle: Angle | None = Field(None, description="the crank's angle to the x axis at the start")
+    speed: AngularSpeed | None = Field(None, description="the crank's speed at the start, counter-clockwise +")
+    motor: bool = Field(True, description="with the machine's motor (false: free motion)")
 
 
 class Gear(_Strict):
@@ -503,13 +564,36 @@ class SizingSpec(_Strict):
     motor: bool = Field(False, description="the report chooses the motor from the catalogue too (runs the machine)")
 
 
+#: The forms of ``gravity:``, as pydantic tags them (the place of a problem leaves them out).
+UNION_TAGS = ("<gravity with its direction>", "<gravity along -y>")
+
+
+def _gravity_form(value: Any) -> str:
+    """Which form of ``gravity:`` a value is: with its direction (a mapping) or a size along -y."""
+    return UNION_TAGS[0] if isinstance(value, dict | Gravity) else UNION_TAGS[1]
+
+
+class Gravity(_Strict):
+    """Gravity of any size and direction: ``value`` (zero: none) along the global ``direction``
+    (counter-clockwise from +x; 270 deg is -y)."""
+
+    value: NonnegativeAcceleration = Field(description="acceleration of gravity; 0 for none")
+    direction: Angle = Field(-1.5707963267948966, description="direction it acts in, global; default 270 deg (-y)")
+
+
 class Spec(_Strict):
     """A planar mechanism: the root of a linkwork mechanism file."""
 
     name: str | None = None
     description: str | None = None
     units: Units = Field(default_factory=Units)
-    gravity: PositiveAcceleration = Field(9.81, description="acceleration of gravity, acting along -y")
+    gravity: Annotated[
+        Annotated[Gravity, Tag(UNION_TAGS[0])] | Annotated[NonnegativeAcceleration, Tag(UNION_TAGS[1])],
+        Discriminator(_gravity_form),
+    ] = Field(
+        9.81,
+        description="acceleration of gravity along -y (0: none), or {value, direction} for any direction",
+    )
     frame: Frame = Field(default_factory=Frame)
     links: dict[str, Link]
     joints: dict[str, Joint]
@@ -517,6 +601,7 @@ class Spec(_Strict):
     loads: dict[str, Load] = Field(default_factory=dict, description="external loads by name")
     machine: Machine | None = Field(None, description="motor, gear and flywheel, for machine dynamics")
     impact: ImpactSpec | None = Field(None, description="a blow, for linkwork impact")
+    simulate: TimeRun | None = Field(None, description="a run in time, drawn in the report")
     drawing: Drawing | None = Field(None, description="what the drawings show (the positions of the plans)")
     sizing: SizingSpec | None = Field(None, description="pins, guides and foundation bolts, for linkwork size")
     requirements: dict[str, str | float] | None = Field(

@@ -17,7 +17,7 @@ from typing import Any
 
 from pydantic import BaseModel
 
-from linkwork.spec.schema import Quantity, Spec
+from linkwork.spec.schema import Quantity, Spec, stiffness_kind
 from linkwork.spec.yamlsource import Path, dotted
 from linkwork.units import KINDS, parse_quantity
 
@@ -75,6 +75,8 @@ def values_read(spec: Spec) -> list[ValueRead]:
     for path, raw, kind in _walk(Spec, src.data, ()):
         if kind in ("drive_speed", "drive_coordinate"):
             kind = drive_kinds.get(path[1], ("", ""))[kind == "drive_coordinate"]
+        elif kind == "load_stiffness":
+            kind = stiffness_kind(spec.loads[str(path[1])].type)
         if kind is None:
             value, unit = float(raw), ""
         else:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import math
 import weakref
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -234,7 +235,7 @@ class Mechanism:
     drive_pair: np.ndarray  # (D,) int
     drive_speed: np.ndarray  # (D,) rad/s or m/s, signed; NaN where a law is given
     drive_start: np.ndarray  # (D,) drive coordinate of the assembly pose
-    gravity: float
+    gravity: float  # m/s^2, the size of gravity (0: none), acting along gravity_direction
     pose0: np.ndarray  # (N, 3) assembly pose
     structure: Structure
     link_ends: np.ndarray  # (N, 2) point indices of links given by ends and length; -1 otherwise
@@ -250,6 +251,15 @@ class Mechanism:
     delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
     blow: ImpactSpec | None = None  # the file's impact: section, SI
     spec: Spec | None = field(default=None, repr=False, compare=False)  # the description it was compiled from
+    gravity_direction: float = -math.pi / 2  # rad, global, counter-clockwise from +x: -y by default
+
+    @property
+    def gravity_vector(self) -> np.ndarray:
+        """Gravity's acceleration ``(2,)``, m/s^2: ``gravity`` along ``gravity_direction``; a component a
+        quarter-turn direction leaves at rounding size (cos 270 deg) is exactly zero."""
+        u = np.array([math.cos(self.gravity_direction), math.sin(self.gravity_direction)])
+        u[np.abs(u) < 1e-12] = 0.0
+        return self.gravity * u
 
     @property
     def n_links(self) -> int:

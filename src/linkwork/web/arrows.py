@@ -4,9 +4,10 @@ Every joint gets one arrow, at its point: the force the joint puts on its link o
 (:meth:`linkwork.kinetostatics.forces.Forces.reaction` with ``on=`` that link), labelled ``R`` with the
 numbers of the links, e.g. ``R12``, the force of link 1 on link 2 (``R03``: of the frame on link 3).  For a
 prismatic pair it acts at the slider's point, normal to the guide.  The external forces of the file's
-loads (a process load on each of its tools, given forces at their points) get an arrow each, labelled with
-the load's name.  One scale for the whole cycle, from the 1-2-5 series: the largest arrow of nearly every
-position (:data:`PERCENTILE`) about :data:`LENGTH` of the drawing's size.
+loads (a process load on each of its tools, given forces at their points, springs and dampers at their
+moving ends) get an arrow each, labelled with the load's name.  One scale for the whole cycle, from the
+1-2-5 series: the largest arrow of nearly every position (:data:`PERCENTILE`) about :data:`LENGTH` of the
+drawing's size.
 """
 
 from __future__ import annotations
@@ -131,12 +132,14 @@ def _point_of(mech: Mechanism, k: int, link: int) -> int:
 
 @per_mechanism
 def _load_arrows(mech: Mechanism) -> tuple[Arrow, ...]:
-    """An arrow for each point of the file's forces and process loads (a force's, each tool of a process load)."""
+    """An arrow for each point of the file's forces, process loads, springs and dampers on a moving link (a
+    force's, each tool of a process load, each moving end of a spring or damper)."""
     return tuple(
         Arrow("load", load.name, load.name, mech.link_names[int(mech.point_link[p])], (), int(p))
         for load in mech.loads
-        if load.kind in ("force", "process")
+        if load.kind in ("force", "process", "spring", "damper")
         for p in load.points
+        if mech.point_link[p] != 0
     )
 
 

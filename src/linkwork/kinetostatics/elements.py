@@ -1,0 +1,150 @@
+"""Force elements: linear springs and dampers between two points, torsion springs in revolute joints.
+
+They are loads like the others of :mod:`linkwork.kinetostatics.external`: compiled from the file's
+``loads:`` into :class:`~linkwork.kinetostatics.external.ExternalLoad` records and evaluated over a
+kinematics result into forces at points and moments on links, so every analysis that reads the loads
+(reactions, the reduced load moment, the flywheel, the runs in time, sweeps, the viewer, the report)
+has them.  A spring's or damper's force acts along the line of its two points, tension positive (it
+pulls them together): ``T = k (L - L0)`` and ``T = c dL/dt``; a torsion spring's moment on the joint's
+second link is ``-k (theta_b - theta_a - theta_0)`` and its opposite on the first.
+
+Potential energy (J) of the springs: :func:`potential`; the power of every load is what
+:func:`linkwork.kinetostatics.external.power` gives.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, NamedTuple, Protocol
+
+import numpy as np
+
+from linkwork.motion.kinematics import Kinematics
+from linkwork.spec.schema import Load
+from linkwork.structure.model import Mechanism
+
+#: Kinds of the force elements among the loads.
+ELEMENTS = ("spring", "damper", "torsion_spring")
+
+
+class Element(Protocol):
+    """What a compiled force element holds (:class:`~linkwork.kinetostatics.external.ExternalLoad`)."""
+
+    @property
+    def kind(self) -> str: ...
+    @property
+    def points(self) -> tuple[int, ...]: ...
+    @property
+    def value(self) -> float: ...
+    @property
+    def pair(self) -> int: ...
+    @property
+    def free(self) -> float: ...
+
+
+def compile_element(load: Load, mech: Mechanism) -> dict[str, Any]:
+    """The fields of the record of one force element of a validated spec: ``points`` the two points (spring,
+    damper), ``pair`` the revolute pair (torsion spring), ``value`` the stiffness or damping, ``free`` the free
+    length or angle (a preload turned into the free length at the assembly pose ``mech.pose0``)."""
+    if load.type == "torsion_spring":
+        pair = _joint_pair(mech, str(load.joint))
+        free = float(load.free_angle if load.free_angle is not None else 0.0)
+        link = int(mech.pair_members[pair, 1])
+        return {"kind": load.type, "link": link, "value": float(load.stiffness or 0.0), "pair": pair, "free": free}
+    assert load.between is not None  # the checks of linkwork.spec require it
+    points = tuple(_point(mech, ref) for ref in load.between)
+    out = {"kind": load.type, "link": int(mech.point_link[points[0]]), "points": points}
+    if load.type == "damper":
+        return {**out, "value": float(load.damping or 0.0)}
+    k = float(load.stiffness or 0.0)
+    if load.free_length is not None:
+        return {**out, "value": k, "free": float(load.free_length)}
+    p = mech.points0()  # the preload is its tension in the assembly pose
+    free = float(np.linalg.norm(p[points[1]] - p[points[0]])) - (float(load.preload or 0.0) / k if k > 0 else 0.0)
+    return {**out, "value": k, "free": free}
+
+
+def _point(mech: Mechanism, ref: str) -> int:
+    """Index of the point ``link.point``, or of the frame point named ``ref``."""
+    return mech.point_names.index(ref if "." in ref else f"frame.{ref}")
+
+
+def _joint_pair(mech: Mechanism, joint: str) -> int:
+    """The elementary pair of a revolute joint between its first two links (as the file names them)."""
+    spec = mech.spec
+    first = None
+    for k, name in enumerate(mech.pair_joint):
+        if name != joint:
+            continue
+        first = k if first is None else first
+        members = [mech.link_names[int(i)] for i in mech.pair_members[k]]
+        if spec is not None and members == list(spec.joints[joint].links[:2]):
+            return k
+    assert first is not None
+    return first
+
+
+class Action(NamedTuple):
+    """What a force element does over (V, A): ``forces`` ``(link, position, velocity, force)`` at points,
+    ``moments`` ``(link, moment)`` on links, and its ``size`` (N, N m)."""
+
+    forces: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]]
+    moments: list[tuple[int, np.ndarray]]
+    size: np.ndarray
+
+
+def _state(kin: Kinematics, p: int) -> tuple[np.ndarray, np.ndarray]:
+    """Position and velocity ``(V, A, 2)`` of point ``p``."""
+    pos, vel, _ = kin._point(kin.mechanism.point_names[p])
+    return pos, vel
+
+
+def evaluate_element(kin: Kinematics, load: Element) -> Action:
+    """The forces (spring, damper) or moments (torsion spring) of one force element over ``kin`` and its size;
+    NaN where a spring's two points coincide (its line has no direction)."""
+    if load.kind == "torsion_spring":
+        turn = relative_turn(kin, load)
+        m = -load.value * (turn - load.free)
+        a, b = (int(x) for x in kin.mechanism.pair_members[load.pair])
+        return Action([], [(b, m), (a, -m)], m)
+    (p1, v1), (p2, v2) = (_state(kin, p) for p in load.points)
+    d = p2 - p1
+    length = np.sqrt(np.sum(d * d, -1))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u = np.where((length > 0)[..., None], d / length[..., None], np.nan)
+    if load.kind == "spring":
+        tension = load.value * (length - load.free)
+    else:
+        tension = load.value * np.sum((v2 - v1) * u, -1)
+    f = tension[..., None] * u
+    links = [int(kin.mechanism.point_link[p]) for p in load.points]
+    return Action([(links[0], p1, v1, f), (links[1], p2, v2, -f)], [], np.where(length > 0, tension, np.nan))
+
+
+def relative_turn(kin: Kinematics, load: Element) -> np.ndarray:
+    """The turn (rad) of a torsion spring's joint, its second link's angle less its first's ``(V, A)``; in the
+    drive's own joint the drive coordinate counts whole turns, elsewhere it is taken within half a turn of
+    the free angle."""
+    mech = kin.mechanism
+    a, b = (int(x) for x in mech.pair_members[load.pair])
+    q = kin.pose
+    turn = q[..., b, 2] - q[..., a, 2]
+    if load.pair in mech.drive_pair:
+        return turn
+    return load.free + np.mod(turn - load.free + math.pi, 2 * math.pi) - math.pi
+
+
+def potential(kin: Kinematics) -> np.ndarray:
+    """Potential energy (J) of the springs of ``kin.mechanism`` ``(V, A)``: ``k (L - L0)^2 / 2`` and
+    ``k (theta - theta_0)^2 / 2``."""
+    total = np.zeros(kin.valid_all.shape)
+    for load in kin.mechanism.loads:
+        if load.kind == "spring":
+            (p1, _), (p2, _) = (_state(kin, p) for p in load.points)
+            stretch = np.sqrt(np.sum((p2 - p1) ** 2, -1)) - load.free
+        elif load.kind == "torsion_spring":
+            stretch = relative_turn(kin, load) - load.free
+        else:
+            continue
+        total = total + 0.5 * load.value * stretch**2
+    return total

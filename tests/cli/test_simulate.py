@@ -1,0 +1,51 @@
+"""``linkwork simulate``: the run in time on the command line, its JSON and its table read back."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+
+import numpy as np
+import yaml
+from typer.testing import CliRunner
+
+import linkwork as lw
+from linkwork.cli.main import app
+
+runner = CliRunner()
+
+PENDULUM = {
+    "name": "pendulum",
+    "gravity": {"value": "9.81 m/s^2", "direction": "270 deg"},
+    "frame": {"points": {"O": [0, 0]}},
+    "links": {"arm": {"points": {"O": [0, 0], "P": [0.4, 0]}, "mass": 2.0, "com": [0.4, 0],
+                      "inertia": "0.05 kg*m^2"}},
+    "joints": {"O": {"type": "revolute", "links": ["frame", "arm"]}},
+    "drives": [{"joint": "O", "angle": "270 deg"}],
+    "loads": {"t": {"type": "torsion_spring", "joint": "O", "stiffness": "30 N*m/rad", "free_angle": "270 deg"}},
+}  # fmt: skip
+
+
+def test_simulate_writes_the_run_the_python_call_gives(tmp_path):
+    path = tmp_path / "pendulum.yaml"
+    path.write_text(yaml.safe_dump(PENDULUM), encoding="utf-8")
+    args = ["simulate", str(path), "--until", "400 ms", "--angle", "275 deg", "--samples", "5"]
+    result = runner.invoke(app, [*args, "--json", "--out", str(tmp_path / "run")])
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    run = lw.simulate(str(path), 0.4, angle=math.radians(275), times=np.linspace(0, 0.4, 5))
+    np.testing.assert_allclose(data["samples"]["omega"], run.speed, rtol=1e-9)
+    assert [e["kind"] for e in data["events"]] == ["stop"]
+    with open(tmp_path / "run" / "simulate.csv", encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    assert float(rows[-1]["arm.angle [deg]"]) == np.degrees(run.angle[-1])
+    assert float(rows[0]["t [s]"]) == 0.0 and float(rows[-1]["t [s]"]) == 0.4
+    # the free pendulum's pivot carries its weight and the centripetal force, the drive's pair nothing
+    assert max(abs(x) for x in data["driving_torque"]) < 1e-9
+
+
+def test_simulate_refuses_a_time_without_its_unit():
+    result = runner.invoke(app, ["simulate", "four-bar", "--until", "30"])
+    assert result.exit_code == 2
+    assert "--until: give the unit" in result.stderr and "Traceback" not in result.output
