@@ -54,6 +54,8 @@ def _linkwork(line: str, cwd: Path) -> subprocess.CompletedProcess:
 def _console(code: str, where: str, cwd: Path) -> None:
     for chunk in re.split(r"^\$ ", code, flags=re.M)[1:]:
         command, *shown = chunk.rstrip("\n").split("\n")
+        while command.endswith("\\") and shown:  # a command continued on the next line
+            command = command[:-1] + shown.pop(0)
         proc = _linkwork(command, cwd)
         said = proc.stdout + proc.stderr
         assert proc.returncode == (2 if any("error:" in s for s in shown) else 0), f"{where}: {command}\n{said}"

@@ -287,6 +287,10 @@ def test_the_mechanism_hash_covers_every_field_of_the_compiled_model():
     from linkwork.examples import names
 
     mechs = [lw.compile(lw.example(n)) for n in names()]
+    rubbing = lw.examples.text("four-bar").replace(  # no bundled example has friction in proportion to the forces
+        "links: [coupler, rocker]}", "links: [coupler, rocker], friction: {f: 0.1, radius: 10 mm}}"
+    )
+    mechs.append(lw.compile(lw.loads(rubbing)))
     untested = []
     for f in dataclasses.fields(mechs[0]):
         if f.name in UNHASHED:

@@ -148,8 +148,10 @@ def lever(f: Forces) -> Lever:
     names = point_names(m)
     pivot = points[..., int(m.pair_points[k, 1]), :]
     pins = [int(m.pair_points[j, 1]) for j in range(m.n_pairs) if j != k and crank in m.pair_links[j]]
+    if not pins:  # a crank alone (a pendulum): the balancing force at any other point of it
+        pins = [p for p in range(len(m.point_names)) if int(m.point_link[p]) == crank and p != int(m.pair_points[k, 1])]
     if not pins:
-        raise LinkworkError(f"{m.name}: the crank {m.link_names[crank]} carries no other joint")
+        raise LinkworkError(f"{m.name}: the crank {m.link_names[crank]} has no point but its pivot")
     lengths = [float(np.nanmax(np.hypot(*(points[0, :, p] - pivot[0]).T), initial=0.0)) for p in pins]
     pin = pins[int(np.argmax(lengths))]
     loads = _Loads(f)
