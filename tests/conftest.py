@@ -4,8 +4,9 @@ Markers (``pyproject.toml``): ``slow`` (the cases of a test beyond those the fas
 :data:`SLOW`: every example, both languages, both turning directions, every file; two thirds of the sample of
 hostile inputs), ``browser`` (Debian's chromium through Playwright), ``dask`` (worker processes and
 schedulers).  ``pytest`` (the README's test command) leaves the slow lane out, ``pytest -m slow`` runs it, and
-``.ci/run`` runs both; the fast lane is ``pytest -m "not slow and not browser and not dask"``.  The full generated run of hostile inputs (marker ``hostile``, hundreds of processes) runs only when
-asked for: ``pytest --hostile``.
+``.ci/run`` runs both; the fast lane is ``pytest -m "not slow and not browser and not dask"``.  The full
+generated run of hostile inputs (marker ``hostile``, hundreds of processes) runs only when asked for:
+``pytest --hostile``.
 """
 
 from __future__ import annotations
