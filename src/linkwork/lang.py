@@ -395,7 +395,7 @@ TEXTS: dict[str, tuple[str, str]] = {
     ),
     "plan.velocity": ("velocity plan", "план скоростей"),
     "plan.acceleration": ("acceleration plan", "план ускорений"),
-    "plan.scale": ("pole p,  {symbol} = {scale} {unit}", "полюс p,  масштаб {symbol} = {scale} {unit}"),
+    "plan.scale": ("pole {pole},  {symbol} = {scale} {unit}", "полюс {pole},  масштаб {symbol} = {scale} {unit}"),
     "plan.unit.velocity": ("(m/s)/mm", "(м/с)/мм"),
     "plan.unit.acceleration": ("(m/s²)/mm", "(м/с²)/мм"),
     "plans.velocity": ("{name}: velocity plans of the {count} positions", "{name}: планы скоростей {count} положений"),

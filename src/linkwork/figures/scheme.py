@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, round_length, sheet, where
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, round_length, sheet, where
 from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.scene.positions import COUNT, position_angles, positions_scene
@@ -107,7 +107,7 @@ def draw_labels(sh: Sheet, scene: SchemeScene, index: int) -> None:
     for lab in scene.labels:
         c = lab.centre[index]
         if np.isfinite(c).all():
-            sh.ax.text(c[0], c[1], lab.text, ha="center", va="center", fontsize=sh.font(scene.em),
+            sh.ax.text(c[0], c[1], mathtext(lab.text), ha="center", va="center", fontsize=sh.font(scene.em),
                        color=TEXT[lab.kind], zorder=5, gid=f"label:{lab.text}")  # fmt: skip
 
 

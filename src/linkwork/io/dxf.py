@@ -25,6 +25,7 @@ from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import plan_series
 from linkwork.optional import require
+from linkwork.scene.geometry import text_runs
 from linkwork.scene.plans import PlanScene, plan_scene
 from linkwork.scene.positions import PositionsScene, position_angles, positions_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
@@ -65,7 +66,7 @@ def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinem
     out.append(write_positions(positions_scene(twelve, cycle=full), folder / "positions.dxf", lang))
     valid = np.asarray(kin.valid_all[0])
     for series in plan_series(kin):
-        scene = plan_scene(series, [index], valid=valid)
+        scene = plan_scene(series, [index], valid=valid, lang=lang)
         out.append(write_plan(scene, 0, folder / f"{series.kind}_plan.dxf", lang))
     return out
 
@@ -170,12 +171,23 @@ def _paths(msp: Any, paths: np.ndarray) -> None:
 
 
 def _text(msp: Any, text: str, centre: np.ndarray, em: float, layer: str = "LABELS") -> None:
-    """``text`` of font size ``em`` centred at ``centre``."""
-    from ezdxf.enums import TextEntityAlignment
+    """A label ``text`` of font size ``em`` centred at ``centre``: an MTEXT, its subscripts stacked under an
+    empty numerator (:func:`mtext`)."""
+    from ezdxf.enums import MTextEntityAlignment
 
     if np.isfinite(centre).all():
-        entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": layer, "style": STYLE})
-        entity.set_placement(tuple(centre), align=TextEntityAlignment.MIDDLE_CENTER)
+        entity = msp.add_mtext(mtext(text), dxfattribs={"layer": layer, "style": STYLE, "char_height": CAP * em})
+        entity.set_location(tuple(centre), attachment_point=MTextEntityAlignment.MIDDLE_CENTER)
+
+
+def mtext(text: str) -> str:
+    """A label's text as MTEXT markup: each subscript (:func:`~linkwork.scene.geometry.text_runs`) a stack with
+    an empty upper part (``n_ba`` -> ``n\\S^ ba;``), the markup's own characters escaped."""
+    out = []
+    for run, sub in text_runs(text):
+        run = run.replace("\\", "\\\\").replace("{", "\\{").replace("}", "\\}")
+        out.append(f"\\S^ {run.replace('^', '')};" if sub else run.replace("^", "^ "))
+    return "".join(out)
 
 
 def _note(doc: Any, msp: Any, text: str, extent: np.ndarray, em: float) -> None:

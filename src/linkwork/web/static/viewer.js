@@ -41,6 +41,24 @@
     return e;
   }
 
+  // a label's text in an SVG text element, its subscripts (the scene's rule, the payload's pattern:
+  // "n_ba", "O1") smaller and lowered in tspans, so that no label shows a raw underscore
+  function setLabel(t, text) {
+    if (t.dataset.text === text) return;
+    t.dataset.text = text;
+    t.replaceChildren();
+    const pattern = state.full && state.full.scene.subscripts;
+    const re = pattern ? new RegExp(pattern, "gu") : null;
+    let at = 0;
+    for (const m of re ? text.matchAll(re) : []) {
+      const base = m[1] !== undefined ? m[1] : m[3], sub = m[1] !== undefined ? m[2] : m[4];
+      t.appendChild(document.createTextNode(text.slice(at, m.index) + base));
+      svg("tspan", { "baseline-shift": "sub", "font-size": "70%", class: "sub" }, t).textContent = sub;
+      at = m.index + m[0].length;
+    }
+    if (at < text.length) t.appendChild(document.createTextNode(text.slice(at)));
+  }
+
   function html(tag, text, parent, attrs) {
     const e = document.createElement(tag);
     if (text !== undefined && text !== null) e.textContent = text;
@@ -362,7 +380,7 @@
     scene.items.forEach((item, k) => drawItem(k, item, groups[GROUP[item.kind] || (item.link === 0 || item.radius ? "pairs" : "links")]));
     scene.labels.forEach((lab, k) => {
       const t = svg("text", { class: lab.kind === "link" ? "link-number" : "label", "text-anchor": "middle", "dominant-baseline": "central" }, groups.labels);
-      t.textContent = lab.text;
+      setLabel(t, lab.text);
       update.push((i) => {
         const c = state.data.scene.labels[k].centre.at(i, 0);
         if (!c) { t.setAttribute("visibility", "hidden"); return; }
@@ -501,7 +519,7 @@
         // points that coincide share one label, the scene's (e.g. "e, knife_upper.edge")
         if (!text || !centre) { t.setAttribute("visibility", "hidden"); return; }
         t.setAttribute("visibility", "visible");
-        t.textContent = text;
+        setLabel(t, text);
         t.setAttribute("x", centre[0].toFixed(3)); t.setAttribute("y", (-centre[1]).toFixed(3));
       });
       const parts = plan.absolute.map((j) => {
