@@ -28,6 +28,7 @@ from linkwork.io.jsonout import dumps
 from linkwork.lang import check_lang, kind_named, t
 from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
+from linkwork.report.render import shown_width
 from linkwork.structure.model import PairType
 from linkwork.units import turn_deg
 
@@ -712,10 +713,12 @@ def _write_html(run: _Run, path: Path) -> None:
 
 
 def _figure_html(run: _Run, name: str) -> str:
-    data = base64.b64encode((run.folder / "figures" / f"{name}.png").read_bytes()).decode()
+    png = (run.folder / "figures" / f"{name}.png").read_bytes()
+    data = base64.b64encode(png).decode()
     caption = html.escape(run.captions[name])
     return (
-        f"<figure id='{html.escape(name)}'><img alt='{caption}' src='data:image/png;base64,{data}'>"
+        f"<figure id='{html.escape(name)}'><img alt='{caption}' width='{shown_width(png)}' "
+        f"src='data:image/png;base64,{data}'>"
         f"<figcaption>{caption}</figcaption></figure>"
     )
 
