@@ -53,7 +53,7 @@ def test_the_plans_show_letters_and_no_raw_underscore_in_any_language():
         assert not [t for t in outside if "_" in t], texts
         assert not [t for t in texts if "knife" in t], texts
         # the normal components' ends: n with its subscript in mathtext
-        assert any(re.fullmatch(r"n\$_\{\\mathregular\{[a-z]+\}\}\$", t) for t in texts), texts
+        assert any(re.fullmatch(r"n\$_\{\\mathregular\{[a-z0-9']+\}\}\$", t) for t in texts), texts
 
 
 def test_the_russian_acceleration_plan_has_the_pole_pi():
@@ -81,6 +81,50 @@ def test_dxf_labels_stack_their_subscripts(tmp_path):
     stacks = [d for toks in tokens for k, d in toks if k == TokenType.STACK]
     assert "π" in words and not [w for w in words if "_" in w]
     # each normal component's end n_XY: n, then XY stacked under an empty upper part (a subscript)
-    assert stacks and all(upper == "" and re.fullmatch(r"[a-z]+", lower) for upper, lower, _ in stacks)
+    assert stacks and all(upper == "" and re.fullmatch(r"[a-z0-9']+", lower) for upper, lower, _ in stacks)
     assert len(stacks) == sum(1 for w in words if w.startswith("n"))
     np.testing.assert_equal(len(labels), len(words))
+
+
+def _contrast(aci: int, background: tuple[int, int, int]) -> float:
+    """WCAG contrast ratio of an AutoCAD colour against a background (relative luminance of sRGB)."""
+    from ezdxf.colors import aci2rgb
+
+    def luminance(rgb):
+        c = np.array(rgb, dtype=float) / 255
+        c = np.where(c <= 0.03928, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+        return float(c @ [0.2126, 0.7152, 0.0722])
+
+    a, b = luminance(aci2rgb(aci)), luminance(background)
+    return (max(a, b) + 0.05) / (min(a, b) + 0.05)
+
+
+def test_dxf_layers_tell_the_kinds_apart_on_black_and_white(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    from linkwork.io.dxf import write_drawings
+
+    twelve = _twelve("double-cut-shears")
+    write_drawings(twelve, 9, tmp_path, lang="en")
+    for kind in ("velocity", "acceleration"):
+        doc = ezdxf.readfile(tmp_path / f"{kind}_plan.dxf")
+        looks = {lay.dxf.name: (lay.dxf.color, lay.dxf.linetype) for lay in doc.layers}
+        vectors = ["ABSOLUTE", "ROTATION", "NORMAL", "TANGENTIAL", "TRANSPORT", "CORIOLIS", "SLIDING"]
+        assert len({looks[name] for name in vectors}) == len(vectors), looks
+        assert looks["TANGENTIAL"][1] != "Continuous" and looks["TANGENTIAL"][0] != looks["ROTATION"][0]
+        # the legend: a stroke on the layer of each kind of vector drawn, and its name
+        msp = doc.modelspace()
+        tags = [(line.get_xdata("LINKWORK")[0].value, line.dxf.layer) for line in msp.query("LINE")]
+        legend = {tag.split(":")[1]: layer for tag, layer in tags if tag.startswith("legend:")}
+        drawn = {layer for tag, layer in tags if not tag.startswith("legend:")}
+        assert set(legend.values()) == drawn and len(legend) >= 3
+        notes = " ".join(e.plain_text() for e in msp.query("MTEXT") if e.dxf.layer == "NOTES")
+        assert "tangential" in notes or kind == "velocity"
+    doc = ezdxf.readfile(tmp_path / "scheme.dxf")
+    links = doc.layers.get("LINKS").dxf.color
+    assert _contrast(links, (0, 0, 0)) >= 3 and _contrast(links, (255, 255, 255)) >= 3
+    # the title above everything drawn, the crank pin's circle (a trajectory) included
+    msp = doc.modelspace()
+    top = max(max(y for _, y, *_ in e.get_points()) for e in msp.query("LWPOLYLINE"))
+    top = max(top, max(c.dxf.center.y + c.dxf.radius for c in msp.query("CIRCLE")))
+    (note,) = [e for e in msp.query("TEXT") if e.dxf.layer == "NOTES"]
+    assert note.dxf.align_point.y > top
