@@ -360,11 +360,11 @@ def test_the_drawings_for_cad_speak_the_language_of_the_report(tmp_path):
         "scheme": "кинематическая схема, угол кривошипа",
         "positions": "план 12 положений; 1:1, мм",
         "velocity_plan": "план скоростей, угол кривошипа",
-        "acceleration_plan": "полюс p,  масштаб μa = ",
+        "acceleration_plan": "полюс π,  масштаб μa = ",  # the Russian school's pole of accelerations
     }
     for name, words in want.items():
         doc = ezdxf.readfile(tmp_path / f"{name}.dxf")
-        texts = list(doc.modelspace().query("TEXT"))
+        texts = list(doc.modelspace().query("TEXT MTEXT"))
         note = " ".join(e.dxf.text for e in texts if e.dxf.layer == "NOTES")
         assert words in note
         assert {e.dxf.style for e in texts} == {STYLE}

@@ -140,6 +140,10 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
     for k in range(1, len(angles)):
         draw_items(sh, s, k, frame=False, kinds=("bar", "plate", "pivot"), thin=0.45)
     draw_labels(sh, s, 0)
+    if len(scene.marks):
+        sh.ax.plot(scene.marks[:, 0], scene.marks[:, 1], "o", color=TEXT["position"], ms=2.0, zorder=4)
+    for leader in scene.leaders:
+        sh.ax.plot(leader[:, 0], leader[:, 1], color=TEXT["position"], lw=0.4, zorder=4)
     for lab in scene.numbers:
         c = lab.centre[0]
         sh.ax.text(c[0], c[1], lab.text, ha="center", va="center", fontsize=0.85 * sh.font(s.em),

@@ -98,6 +98,10 @@ def write_positions(scene: PositionsScene, path: str | Path, lang: str = "en") -
         _items(msp, s, k, kinds=("bar", "plate", "pivot"), frame=False)
     for lab in (*s.labels, *scene.numbers):
         _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
+    for mark in scene.marks * 1000:
+        msp.add_circle(tuple(mark), 150 * s.em, dxfattribs={"layer": "MARKERS"})
+    for leader in scene.leaders * 1000:
+        msp.add_line(tuple(leader[0]), tuple(leader[1]), dxfattribs={"layer": "LABELS"})
     note = f"{t('positions.title', lang, name=s.name, count=len(s.angles))}; 1:1, {t('unit.mm', lang)}"
     _note(doc, msp, note, scene.extent() * 1000, 1000 * s.em)
     return _save(doc, path)
