@@ -4,8 +4,9 @@ for, and the plan of positions as a scene.
 Position 0 is where the working slider is at the high end of its stroke (the knives open:
 :func:`linkwork.motion.analysis.zero_angle`); the others follow every 30 degrees in the direction of
 rotation.  The plans are drawn for the positions the file names (``drawing: {positions: [9]}``), else
-for the one position where the working point moves fastest with every dyad transmitting well
-(:func:`best_position`): never a dead point, where the plans collapse onto the pole.
+for the one position of the working stroke where the working point moves fastest with every dyad
+transmitting well and every vector of the plan visible (:func:`best_position`): never a dead point, where
+the plans collapse onto the pole.
 """
 
 from __future__ import annotations
@@ -16,8 +17,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.motion.analysis import Output, position_angles, transmission, working
+from linkwork.motion.analysis import Output, coordinate, output_range, position_angles, transmission, working
 from linkwork.motion.kinematics import kinematics
+from linkwork.motion.plans import plan_series
 from linkwork.scene.geometry import place, text_size
 from linkwork.scene.labels import Obstacles, place_labels
 from linkwork.scene.scheme import Label, SchemeScene, scheme_scene
@@ -64,17 +66,61 @@ def _farthest_from_pivot(mech: Mechanism, rocker: Output, joints: list[int]) -> 
 
 
 def best_position(kin: Kinematics, point: int | None = None) -> int:
-    """Of the samples of ``kin`` (e.g. the twelve positions), the one where the working point moves fastest
-    relative to how badly the mechanism transmits there: the largest ``|v| sin(mu)``, ``mu`` the least
-    transmission angle of the dyads (0 at a dead point).  The first of equal ones."""
+    """Of the samples of ``kin`` (e.g. the twelve positions), the one the plans are best drawn at: on the working
+    stroke (:func:`working_stroke`), with every vector of the velocity plan visible (:func:`plans_clear`), the
+    one where the working point moves fastest relative to how badly the mechanism transmits there: the largest
+    ``|v| sin(mu)``, ``mu`` the least transmission angle of the dyads (0 at a dead point).  The first of equal
+    ones; where no sample is both on the working stroke and clear, a clear one, else one on the stroke."""
     mech = kin.mechanism
     p = working_point(mech) if point is None else point
     v = np.asarray(kin.velocity(mech.point_names[p]))
     speed = np.hypot(v[..., 0], v[..., 1]).reshape(-1, len(kin.angles))[0]
     mu = [np.asarray(m).reshape(-1, len(kin.angles))[0] for m in transmission(kin).values()]
     quality = np.sin(np.min(mu, axis=0)) if mu else np.ones_like(speed)
-    score = np.where(np.asarray(kin.valid_all[0]), speed * quality, -np.inf)
-    return int(np.argmax(np.nan_to_num(score, nan=-np.inf)))
+    score = np.nan_to_num(np.where(np.asarray(kin.valid_all[0]), speed * quality, -np.inf), nan=-np.inf)
+    stroke, clear = working_stroke(kin), plans_clear(kin)
+    for allowed in (stroke & clear, clear, stroke):
+        if np.any(allowed & (score > -np.inf)):
+            return int(np.argmax(np.where(allowed, score, -np.inf)))
+    return int(np.argmax(score))
+
+
+#: The time ratio above which the slower stroke is the working one (a quick return).
+QUICK_RETURN = 1.05
+
+
+def working_stroke(kin: Kinematics) -> np.ndarray:
+    """Which samples of ``kin`` ``(A,)`` are on the working stroke of the first working member
+    (:func:`~linkwork.motion.analysis.working`): the slower stroke of a quick return (time ratio above
+    :data:`QUICK_RETURN`), else the stroke from position 0 (the high end: the knives closing, the ram going
+    down); every sample where the mechanism has no working member."""
+    mech = kin.mechanism
+    members = working(mech)
+    if not members:
+        return np.ones(len(kin.angles), dtype=bool)
+    out = members[0]
+    rate = np.asarray(coordinate(kin, out)[1]).reshape(-1, len(kin.angles))[0]
+    turn = output_range(kinematics(mech, steps=360), out)
+    rising, falling = float(turn.rising[0]), float(turn.falling[0])
+    quick = np.isfinite(rising) and max(rising, falling) > QUICK_RETURN * min(rising, falling)
+    return np.asarray(rate > 0 if quick and rising > falling else rate < 0)
+
+
+#: Where a vector of the velocity plan that moves at all is shorter than this part of the plan's longest, the
+#: plan degenerates (two letters on one point: "a = b").
+VISIBLE = 0.05
+
+
+def plans_clear(kin: Kinematics) -> np.ndarray:
+    """Which samples of ``kin`` ``(A,)`` have a velocity plan whose every vector shows: each absolute and
+    relative vector that is not zero over all the samples at least :data:`VISIBLE` of the longest."""
+    vel = plan_series(kin)[0]
+    absolute = vel.values[0][:, [j for j, lab in enumerate(vel.points) if lab != "p"]]
+    size = np.hypot(*np.moveaxis(np.concatenate([absolute, vel.vectors[0]], 1), -1, 0))  # (A, K)
+    size = np.where(np.isfinite(size), size, 0.0)
+    moving = size.max(0) > 1e-9 * max(float(size.max()), 1e-300)
+    longest = size.max(1, keepdims=True)
+    return np.asarray(np.all((size >= VISIBLE * longest) | ~moving, axis=1) & (longest[:, 0] > 0))
 
 
 def plan_positions(mech: Mechanism, kin: Kinematics | None = None) -> list[int]:
