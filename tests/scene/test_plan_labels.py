@@ -128,3 +128,16 @@ def test_dxf_layers_tell_the_kinds_apart_on_black_and_white(tmp_path):
     top = max(top, max(c.dxf.center.y + c.dxf.radius for c in msp.query("CIRCLE")))
     (note,) = [e for e in msp.query("TEXT") if e.dxf.layer == "NOTES"]
     assert note.dxf.align_point.y > top
+
+
+def test_the_sheets_of_twelve_plans_letter_their_points_readably():
+    """A sheet of the twelve plans (``--position all``) letters its points at 8.5 points or more (as large as
+    the legend: about 24 pixels at the 200 dpi of the report's PNG)."""
+    pytest.importorskip("matplotlib")
+    from linkwork.figures.plans import plan_sheet
+
+    kin = lw.kinematics(lw.compile(lw.example("double-cut-shears")), steps=36)
+    fig = plan_sheet(kin, "velocity", lang="ru")
+    letters = [t for ax in fig.axes for t in ax.texts if t.get_text() and t.get_color() != "#777777"]
+    assert len(letters) >= 12
+    assert min(t.get_fontsize() for t in letters) >= 8.5

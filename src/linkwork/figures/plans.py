@@ -146,6 +146,10 @@ def _head(sh: Sheet, start: np.ndarray, end: np.ndarray, size: float, colour: st
 #: Width of a plan's figure, inches; the size of the legend's text, points.
 WIDE, LEGEND = 5.6, 8.5
 
+#: Height of the points' letters on a sheet of the twelve plans, points (as large as a figure's legend: readable
+#: on a printed A4 sheet).
+SHEET_LETTERS = 9.0
+
 
 def _width(text: str, size: float, dpi: float = 100.0) -> float:
     """Width (points) of one line of ``text`` set in matplotlib's font at ``size`` points, as Agg draws it at
@@ -191,7 +195,7 @@ def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT, lang
     rough = plan_scene(series, list(range(count)), valid=valid)
     ends = rough.ends.reshape(count, -1, 2)
     span = np.nanmax(np.nanmax(ends, axis=1) - np.nanmin(ends, axis=1))
-    em = 7.0 / (cell * 72 / (1.4 * span))  # 7-point letters on the plans drawn that large
+    em = SHEET_LETTERS / (cell * 72 / (1.4 * span))  # letters of SHEET_LETTERS points on the plans drawn that large
     scene = plan_scene(series, list(range(count)), scale=rough.scale, valid=valid, em=em, lang=lang)
     fig = Figure(figsize=(11.0, 2.9 * rows + 0.9))
     grid = fig.add_gridspec(rows, cols, left=0.02, right=0.98, top=1 - 0.55 / fig.get_figheight(),
