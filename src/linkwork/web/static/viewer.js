@@ -464,7 +464,7 @@
     // it holds the plans of 95 % of the positions; near a dead point accelerations grow without bound)
     const [x0, y0, x1, y1] = look.frame;
     const size = Math.max(x1 - x0, y1 - y0, 1e-9);
-    const pad = 0.1 * size;
+    const pad = 0.1 * size + 3 * look.em; // the labels beside the frame's outermost points stay in the panel
     root.setAttribute("viewBox", [x0 - pad, -y1 - pad, x1 - x0 + 2 * pad, y1 - y0 + 2 * pad].map((v) => v.toFixed(3)).join(" "));
     const defs = svg("defs", {}, root);
     for (const k of KINDS) {
