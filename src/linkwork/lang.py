@@ -11,6 +11,7 @@ language's designations (mm and мм).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 from linkwork.errors import LinkworkError
@@ -195,8 +196,8 @@ TEXTS: dict[str, tuple[str, str]] = {
     "head.crank_to_x": ("crank to the x axis, °", "кривошип к оси x, °"),
     "head.at_phi": ("at φ, °", "при φ, °"),
     "kin.positions": (
-        "The 12 positions: coordinates x, y of the points, mm:",
-        "Двенадцать положений механизма: координаты точек x, y, мм:",
+        "The 12 positions: coordinates of the points, mm (x over y):",
+        "Двенадцать положений механизма: координаты точек, мм (x над y):",
     ),
     "extremes.slider": ("Strokes of the sliders along their guides' axes:", "Ходы ползунов вдоль осей направляющих:"),
     "extremes.rocker": ("Swings of the rockers:", "Размахи качания коромысел:"),
@@ -514,9 +515,10 @@ TEXTS: dict[str, tuple[str, str]] = {
         "0 at crank {angle}°, then clockwise",
         "положение 0 при угле кривошипа {angle}°, далее по часовой стрелке",
     ),
+    "link.frame": ("frame", "стойка"),
     "plan.velocity": ("velocity plan", "план скоростей"),
     "plan.acceleration": ("acceleration plan", "план ускорений"),
-    "plan.scale": ("pole p,  {symbol} = {scale} {unit}", "полюс p,  масштаб {symbol} = {scale} {unit}"),
+    "plan.scale": ("pole {pole},  {symbol} = {scale} {unit}", "полюс {pole},  масштаб {symbol} = {scale} {unit}"),
     "plan.unit.velocity": ("(m/s)/mm", "(м/с)/мм"),
     "plan.unit.acceleration": ("(m/s²)/mm", "(м/с²)/мм"),
     "plans.velocity": ("{name}: velocity plans of the {count} positions", "{name}: планы скоростей {count} положений"),
@@ -829,6 +831,12 @@ def check_lang(lang: str) -> None:
     """Raise :class:`~linkwork.errors.LinkworkError` unless ``lang`` is one of :data:`LANGUAGES`."""
     if lang not in LANGUAGES:
         raise LinkworkError(f"--lang: expected one of {', '.join(LANGUAGES)}, got {excerpt(lang)!r}")
+
+
+def link_named(name: str, translate: Callable[[str], str]) -> str:
+    """A link's name as a table writes it: the frame (the link the file calls ``frame``) in the report's language
+    (``translate``: a key to its text, e.g. ``"стойка"``), every other link by its name in the file."""
+    return translate("link.frame") if name == "frame" else name
 
 
 def kind_named(kind: str, name: str) -> str:

@@ -288,8 +288,16 @@ def test_coriolis_in_the_acceleration_plan_of_a_slotted_rocker():
     cor = vec[("a'", "k'_a", "coriolis")]
     np.testing.assert_allclose(cor, 2 * w3 * np.array([-v_rel[1], v_rel[0]]), atol=1e-12)
     assert abs(cor @ u) < 1e-12 and np.hypot(*cor) > 0
-    # closure: a_A' (transport) + Coriolis + relative = a_A
-    chain = vec[("p", "a'", "transport")] + cor + vec[("k'_a", "a", "sliding")]
+    # the rocker's point A' as the construction draws it: normal (towards O2, w3^2 |O2A|) and tangential
+    # (normal to O2A, e3 |O2A|) components about O2 (at the pole)
+    normal, tangential = vec[("p", "n_a'o2", "normal")], vec[("n_a'o2", "a'", "tangential")]
+    e3 = kin.epsilon("rocker")[0]
+    np.testing.assert_allclose(normal, -(w3**2) * a_pos, atol=1e-10)
+    np.testing.assert_allclose(tangential, e3 * np.array([-a_pos[1], a_pos[0]]), atol=1e-10)
+    assert not [v for v in ap.vectors if v.kind == "transport"]
+    np.testing.assert_allclose(vvec[("p", "a'", "rotation")], w3 * np.array([-a_pos[1], a_pos[0]]), atol=1e-12)
+    # closure: a_A' (normal + tangential) + Coriolis + relative = a_A
+    chain = normal + tangential + cor + vec[("k'_a", "a", "sliding")]
     np.testing.assert_allclose(chain, kin.acceleration("A")[0], atol=1e-10)
 
 

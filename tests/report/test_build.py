@@ -307,7 +307,7 @@ def test_the_tables_state_their_units_and_measure_the_crank_angle_from_position_
     (positions,) = [t for t in found if t[0][1:3] == ["φ, °", "crank to the x axis, °"]]
     assert [r[1] for r in positions[1:]] == [str(30 * k) for k in range(12)]
     e = positions[0].index("E")
-    y = [float(r[e].split(", ")[1]) for r in positions[1:]]
+    y = [float(r[e].split("<br>")[1]) for r in positions[1:]]  # a point's x over its y
     assert y[0] == max(y) == pytest.approx(1000 * dense["guide_E"].max() + 0.0, abs=0.05)  # guide_E is along y
 
 

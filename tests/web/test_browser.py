@@ -554,8 +554,10 @@ def test_dragging_a_frame_pivot_and_a_guide_gives_the_edited_files_mechanism(pag
     swept = math.degrees(math.atan2(p1[1], p1[0]) - math.atan2(s0[1], s0[0]))
     axis = round((90 + swept) * 10) / 10
     expect(page.locator('input[data-param="joints.guide_E.axis"]')).to_have_value(f"{axis:g}")
-    guide = ("guide_E: {type: prismatic, links: [frame, knife_upper], point: E, through: O3, axis: 90 deg}",
-             f"guide_E: {{type: prismatic, links: [frame, knife_upper], point: E, through: O3, axis: {axis:g} deg}}")
+    guide = (
+        "guide_E: {type: prismatic, links: [frame, knife_upper], point: E, through: O3, axis: 90 deg}",
+        f"guide_E: {{type: prismatic, links: [frame, knife_upper], point: E, through: O3, axis: {axis:g} deg}}",
+    )
     assert_drawn(page, edited([o1, guide]), angle)
     settled(page)
     shot(page, "viewer-dragged-frame-and-guide")
@@ -569,11 +571,15 @@ def test_the_force_arrows_are_the_reactions_of_lw_forces_times_the_scale(page, s
     open_viewer(page, server)
     page.check("#show-forces")
     mech = lw.compile(lw.load(NAME))
+    from linkwork.web.payload import cycle_payload
+
+    mech_size = cycle_payload(mech, steps=36, placed=1)["scene"]["size"]  # the scheme's size does not move
 
     def check(mech, index):
         angle = turn_to(page, index)
         forces = lw.forces(mech, [angle])
         scale = float(page.get_attribute("#forces", "data-scale"))  # m of the drawing per N
+        size = mech_size  # the scheme's size, m: no arrow is longer than 0.2 of it
         for joint, on in (("O1", "crank"), ("A", "rod"), ("B", "rocker"), ("O3", "rocker"), ("E", "knife_upper"),
                           ("guide_E", "knife_upper"), ("F", "knife_lower")):  # fmt: skip
             line = page.locator(f'#forces line.force[data-name="{joint}"]')
@@ -581,6 +587,12 @@ def test_the_force_arrows_are_the_reactions_of_lw_forces_times_the_scale(page, s
             x1, y1, x2, y2 = (float(line.get_attribute(a)) for a in ("x1", "y1", "x2", "y2"))
             arrow = np.array([x2 - x1, y1 - y2]) / 1000  # m
             expected = forces.reaction(joint, on=on)[0]
+            if line.get_attribute("data-beyond") == "true":  # longer than the panel allows: shortened
+                length, force = np.hypot(*arrow), np.hypot(*expected)
+                assert length < force * scale and length <= 0.2 * size * 1.02  # size: of a coarser turn
+                cross = arrow[0] * expected[1] - arrow[1] * expected[0]
+                assert arrow @ expected > 0 and abs(cross) < 1e-6 * length * force  # its direction kept
+                continue
             assert np.abs(arrow / scale - expected).max() < 1e-7 / scale + 1e-6 * np.abs(expected).max(), joint
             at = drawn(page, {"guide_E": "E"}.get(joint, joint))  # a guide's force acts at its slider's point
             assert np.abs(np.array([x1, -y1]) / 1000 - at).max() < 1e-6
@@ -591,7 +603,12 @@ def test_the_force_arrows_are_the_reactions_of_lw_forces_times_the_scale(page, s
                 assert cut.get_attribute("visibility") == "hidden"
                 continue
             x1, y1, x2, y2 = (float(cut.get_attribute(a)) for a in ("x1", "y1", "x2", "y2"))
-            assert abs(x2 - x1) < 1e-6 and (y1 - y2) / 1000 / scale == pytest.approx(sign * cutting, rel=1e-6)
+            assert abs(x2 - x1) < 1e-6 and sign * (y1 - y2) > 0
+            if cut.get_attribute("data-beyond") == "true":  # the cut's force: drawn as long as the panel allows
+                assert abs(y1 - y2) / 1000 == pytest.approx(0.2 * size, rel=0.02)
+                assert abs(y1 - y2) / 1000 < cutting * scale
+            else:
+                assert (y1 - y2) / 1000 / scale == pytest.approx(sign * cutting, rel=1e-6)
         torque = float(page.get_attribute("#forces path.force.torque", "data-torque"))
         # the charts' series are written to six significant digits of their largest value (about 30 kN m)
         assert torque == pytest.approx(forces.driving_torque[0], rel=1e-6, abs=0.01)
@@ -626,4 +643,38 @@ def test_a_long_drag_shows_many_answers_and_ends_on_its_last_value(page, server)
     expect(page.locator('input[data-param="links.crank.length"]')).to_have_value("120")
     assert int(page.get_attribute("#scheme", "data-updates")) - before >= 2
     assert_drawn(page, edited([("    length: 0.10\n    mass: 40\n", "    length: 0.120\n    mass: 40\n")]), angle)
+    assert page.errors == []
+
+
+def test_the_force_labels_cover_no_other_label_and_the_arrows_stay_in_the_panel(page, server):
+    """Where the knives cut hardest (the largest forces of the turn), each force's label covers no other force's
+    label and no joint's name, and no arrow reaches farther than a fifth of the scheme's size from its point."""
+    open_viewer(page, server)
+    page.check("#show-forces")
+    mech = lw.compile(lw.load(NAME))
+    turn = lw.forces(mech, cycle(mech, 360, start=zero_angle(mech)))
+    turn_to(page, int(np.argmax(np.abs(turn.driving_torque))))
+    forces = page.locator("#forces text.force-label:not(.torque)")
+    boxes = [forces.nth(k).bounding_box() for k in range(forces.count())
+             if forces.nth(k).get_attribute("visibility") == "visible"]  # fmt: skip
+    names = page.locator("#labels text.label")
+    joints = [names.nth(k).bounding_box() for k in range(names.count())]
+    assert len(boxes) >= 8
+
+    def overlap(a, b):
+        return a["x"] < b["x"] + b["width"] and b["x"] < a["x"] + a["width"] and a["y"] < b["y"] + b["height"] and \
+            b["y"] < a["y"] + a["height"]  # fmt: skip
+
+    pairs = [(i, j) for i in range(len(boxes)) for j in range(i) if overlap(boxes[i], boxes[j])]
+    assert pairs == []
+    assert [i for i, b in enumerate(boxes) for j in joints if j and overlap(b, j)] == []
+    from linkwork.web.payload import cycle_payload
+
+    size = cycle_payload(mech, steps=36, placed=1)["scene"]["size"]  # the page's (of 360 samples) within 2 %
+    lines = page.locator("#forces line.force")
+    for k in range(lines.count()):
+        line = lines.nth(k)
+        if line.get_attribute("visibility") == "visible":
+            x1, y1, x2, y2 = (float(line.get_attribute(a)) for a in ("x1", "y1", "x2", "y2"))
+            assert math.hypot(x2 - x1, y2 - y1) / 1000 <= 0.2 * size * 1.02
     assert page.errors == []

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.figures.scheme import draw_item, draw_paths, scale_bar
-from linkwork.figures.sheet import round_length, sheet
+from linkwork.figures.sheet import mathtext, round_length, sheet
 from linkwork.lang import t
 from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.scene.style import TEXT
@@ -75,7 +75,7 @@ class Film:
         draw_paths(sh, scene.paths)
         scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em, lang)
         self.items = [(it, draw_item(sh.ax, it, scene.placed(it, picks[0]))) for it in scene.items if it.kind != "path"]
-        self.texts = [sh.ax.text(0, 0, lab.text, ha="center", va="center", fontsize=sh.font(scene.em),
+        self.texts = [sh.ax.text(0, 0, mathtext(lab.text), ha="center", va="center", fontsize=sh.font(scene.em),
                                  color=TEXT[lab.kind], zorder=5) for lab in scene.labels]  # fmt: skip
         self.title, self.tail = self._title()
         self.where = [scene.placed(it) for it, _ in self.items]  # (A, K, 2) each: every sample at once

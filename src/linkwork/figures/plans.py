@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, sheet, where
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, sheet, where
 from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import plan_series
@@ -48,7 +48,7 @@ def acceleration_plan(kin: Kinematics, index: int, ax: Axes | None = None, posit
 def _one(kin: Kinematics, index: int, kind: str, ax: Axes | None, position: int | None, lang: str) -> Figure:
     i = int(index) % len(kin.angles)
     series = plan_series(kin)[0 if kind == "velocity" else 1]
-    scene = plan_scene(series, [i], valid=np.asarray(kin.valid_all[0]))
+    scene = plan_scene(series, [i], valid=np.asarray(kin.valid_all[0]), lang=lang)
     return render_plan(scene, 0, ax=ax, title=_title(scene, 0, kin.mechanism.name, position, lang), lang=lang)
 
 
@@ -72,7 +72,7 @@ def draw_plan(plan: Plan, ax: Axes | None = None, lang: str = "en") -> Figure:
     vectors = np.array([[[v.vector for v in plan.vectors]]], dtype=float).reshape(1, 1, len(edges), 2)
     points = tuple(plan.points) if "p" in plan.points else ("p", *plan.points)
     series = PlanSeries(plan.kind, np.array([plan.angle]), points, tuple(labels), edges, values, vectors)
-    scene = plan_scene(series, [0], scale=plan.scale)
+    scene = plan_scene(series, [0], scale=plan.scale, lang=lang)
     return render_plan(scene, 0, ax=ax, title=_title(scene, 0, "", None, lang), lang=lang)
 
 
@@ -125,7 +125,7 @@ def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
         c = scene.centres[index, j]
         if text and np.isfinite(c).all():
             main = bool(scene.main[j])
-            sh.ax.text(c[0], c[1], text, ha="center", va="center", zorder=5,
+            sh.ax.text(c[0], c[1], mathtext(text), ha="center", va="center", zorder=5,
                        fontsize=sh.font(scene.em) * (1.0 if main else 0.8),
                        color=TEXT["point" if main else "minor"], style="normal" if main else "italic")  # fmt: skip
 
@@ -145,6 +145,10 @@ def _head(sh: Sheet, start: np.ndarray, end: np.ndarray, size: float, colour: st
 
 #: Width of a plan's figure, inches; the size of the legend's text, points.
 WIDE, LEGEND = 5.6, 8.5
+
+#: Height of the points' letters on a sheet of the twelve plans, points (as large as a figure's legend: readable
+#: on a printed A4 sheet).
+SHEET_LETTERS = 9.0
 
 
 def _width(text: str, size: float, dpi: float = 100.0) -> float:
@@ -191,8 +195,8 @@ def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT, lang
     rough = plan_scene(series, list(range(count)), valid=valid)
     ends = rough.ends.reshape(count, -1, 2)
     span = np.nanmax(np.nanmax(ends, axis=1) - np.nanmin(ends, axis=1))
-    em = 7.0 / (cell * 72 / (1.4 * span))  # 7-point letters on the plans drawn that large
-    scene = plan_scene(series, list(range(count)), scale=rough.scale, valid=valid, em=em)
+    em = SHEET_LETTERS / (cell * 72 / (1.4 * span))  # letters of SHEET_LETTERS points on the plans drawn that large
+    scene = plan_scene(series, list(range(count)), scale=rough.scale, valid=valid, em=em, lang=lang)
     fig = Figure(figsize=(11.0, 2.9 * rows + 0.9))
     grid = fig.add_gridspec(rows, cols, left=0.02, right=0.98, top=1 - 0.55 / fig.get_figheight(),
                             bottom=0.5 / fig.get_figheight(), hspace=0.3, wspace=0.08)  # fmt: skip

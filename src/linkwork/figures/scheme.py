@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, round_length, sheet, where
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, round_length, sheet, where
 from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.scene.positions import COUNT, position_angles, positions_scene
@@ -108,7 +108,7 @@ def draw_labels(sh: Sheet, scene: SchemeScene, index: int) -> None:
     for lab in scene.labels:
         c = lab.centre[index]
         if np.isfinite(c).all():
-            sh.ax.text(c[0], c[1], lab.text, ha="center", va="center", fontsize=sh.font(scene.em),
+            sh.ax.text(c[0], c[1], mathtext(lab.text), ha="center", va="center", fontsize=sh.font(scene.em),
                        color=TEXT[lab.kind], zorder=5, gid=f"label:{lab.text}")  # fmt: skip
 
 
@@ -141,6 +141,10 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
     for k in range(1, len(angles)):
         draw_items(sh, s, k, frame=False, kinds=("bar", "plate", "pivot"), thin=0.45)
     draw_labels(sh, s, 0)
+    if len(scene.marks):
+        sh.ax.plot(scene.marks[:, 0], scene.marks[:, 1], "o", color=TEXT["position"], ms=2.0, zorder=4)
+    for leader in scene.leaders:
+        sh.ax.plot(leader[:, 0], leader[:, 1], color=TEXT["position"], lw=0.4, zorder=4)
     for lab in scene.numbers:
         c = lab.centre[0]
         sh.ax.text(c[0], c[1], lab.text, ha="center", va="center", fontsize=0.85 * sh.font(s.em),

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 
 from linkwork.lang import t
+from linkwork.scene.geometry import text_runs
 from linkwork.scene.style import Style
 from linkwork.units import turn_deg
 
@@ -36,6 +37,17 @@ class Sheet:
     def width(self, style: Style) -> float:
         """A line width (points) of ``style``."""
         return style.width
+
+
+def mathtext(text: str) -> str:
+    """A label's text for matplotlib: its subscripts (:func:`~linkwork.scene.geometry.text_runs`) as mathtext
+    subscripts in the text's own upright font (``n_ba`` -> ``n$_\\mathregular{ba}$``), its dollar signs
+    escaped."""
+    out = []
+    for run, sub in text_runs(text):
+        run = run.replace("$", r"\$")
+        out.append(f"$_{{\\mathregular{{{run}}}}}$" if sub else run)
+    return "".join(out)
 
 
 def sheet(extent: np.ndarray, top: float = 0.5, bottom: float = 0.2, width: float = WIDTH,

@@ -25,8 +25,9 @@ from linkwork.lang import t
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import plan_series
 from linkwork.optional import require
+from linkwork.scene.geometry import text_runs
 from linkwork.scene.limits import LimitsScene, limits_scene
-from linkwork.scene.plans import PlanScene, plan_scene
+from linkwork.scene.plans import PlanScene, kind_name, plan_scene
 from linkwork.scene.positions import PositionsScene, position_angles, positions_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.scene.style import SCHEME, VECTORS, Style
@@ -45,9 +46,9 @@ CAP = 0.73
 #: (the default style's SHX font has neither).
 STYLE = "OpenSans"
 
-#: AutoCAD colour indices near the styles' colours (7: black on white paper, white on black).
-_ACI = {"#000000": 7, "#1f5fa8": 5, "#1f77b4": 5, "#2ca02c": 3, "#d62728": 1, "#ff7f0e": 30, "#9467bd": 6,
-        "#999999": 8, "#777777": 8}  # fmt: skip
+#: The size of the lettering the styles' dashes are drawn for (mm of the sheet): a dash of ``d`` points is
+#: ``d`` mm long on a drawing lettered :data:`~linkwork.scene.plans.LETTERING` mm high ($LTSCALE scales it).
+DASH_EM = 3.5
 
 PURPOSE = "the drawings for CAD (linkwork analyze --dxf)"
 
@@ -70,7 +71,7 @@ def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinem
         out.append(write_limits(limits, folder / "limits.dxf", lang))
     valid = np.asarray(kin.valid_all[0])
     for series in plan_series(kin):
-        scene = plan_scene(series, [index], valid=valid)
+        scene = plan_scene(series, [index], valid=valid, lang=lang)
         out.append(write_plan(scene, 0, folder / f"{series.kind}_plan.dxf", lang))
     return out
 
@@ -79,7 +80,7 @@ def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories:
                  lang: str = "en") -> Path:  # fmt: skip
     """The scheme of sample ``index`` of ``scene``, 1:1 in mm, with the trajectories of its points; its note
     in ``lang``."""
-    doc, msp = _document(SCHEME)
+    doc, msp = _document(SCHEME, em=1000 * scene.em)
     if trajectories:
         _paths(msp, scene.paths)
     _items(msp, scene, index)
@@ -87,7 +88,7 @@ def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories:
         _text(msp, lab.text, lab.centre[index] * 1000, 1000 * scene.em)
     crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
     note = f"{t('scheme.title', lang, name=scene.name)}, {crank}; 1:1, {t('unit.mm', lang)}"
-    _note(doc, msp, note, scene.extent(index) * 1000, 1000 * scene.em)
+    _note(doc, msp, note, scene.extent(index, paths=trajectories) * 1000, 1000 * scene.em)
     return _save(doc, path)
 
 
@@ -95,13 +96,17 @@ def write_positions(scene: PositionsScene, path: str | Path, lang: str = "en") -
     """The plan of positions, 1:1 in mm: position 0 whole, the others' links thin, the position numbers; its
     note in ``lang``."""
     s = scene.scheme
-    doc, msp = _document(SCHEME)
+    doc, msp = _document(SCHEME, em=1000 * s.em)
     _paths(msp, s.paths)
     _items(msp, s, 0)
     for k in range(1, len(s.angles)):
         _items(msp, s, k, kinds=("bar", "plate", "pivot"), frame=False)
     for lab in (*s.labels, *scene.numbers):
         _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
+    for mark in scene.marks * 1000:
+        msp.add_circle(tuple(mark), 150 * s.em, dxfattribs={"layer": "MARKERS"})
+    for leader in scene.leaders * 1000:
+        msp.add_line(tuple(leader[0]), tuple(leader[1]), dxfattribs={"layer": "LABELS"})
     note = f"{t('positions.title', lang, name=s.name, count=len(s.angles))}; 1:1, {t('unit.mm', lang)}"
     _note(doc, msp, note, scene.extent() * 1000, 1000 * s.em)
     return _save(doc, path)
@@ -129,7 +134,7 @@ def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path
 def write_plan(scene: PlanScene, index: int, path: str | Path, lang: str = "en") -> Path:
     """The plan of position ``index`` of ``scene``, in mm of the sheet at the plan's scale; its note in
     ``lang``."""
-    doc, msp = _document(VECTORS, extra={"POINTS": 7, "NOTES": 7})
+    doc, msp = _document(VECTORS, extra={"POINTS": 7, "NOTES": 7}, em=scene.em)
     doc.header.custom_vars.append("LINKWORK_SCALE", repr(scene.scale))
     for e in scene.drawn(index):
         arrow = scene.arrows[e]
@@ -147,24 +152,54 @@ def write_plan(scene: PlanScene, index: int, path: str | Path, lang: str = "en")
     crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
     note = f"{t(f'plan.{scene.kind}', lang)}, {crank}; {scene.scale_note(lang)}"
     _note(doc, msp, note, scene.extent(index), scene.em)
+    _legend(msp, scene, index, lang)
     return _save(doc, path)
 
 
-def _document(styles: dict[str, Style], extra: dict[str, int] | None = None) -> tuple[Any, Any]:
-    """A new DXF document in mm with a layer for every style (and ``LABELS``, ``NOTES``, ``extra``)."""
+def _legend(msp: Any, scene: PlanScene, index: int, lang: str) -> None:
+    """Under the plan, a stroke of each kind of vector drawn, on its layer, and the kind's name in ``lang``."""
+    x0, y0 = scene.extent(index)[:2]
+    em = scene.em
+    for row, kind in enumerate(scene.kinds(index)):
+        y = y0 - (2.5 + 1.6 * row) * em
+        layer = VECTORS[kind].layer
+        line = msp.add_line((x0, y), (x0 + 5 * em, y), dxfattribs={"layer": layer})
+        line.set_xdata(APPID, [(1000, f"legend:{kind}")])
+        _head(msp, np.array([x0, y]), np.array([x0 + 5 * em, y]), 0.55 * em, layer)
+        name = kind_name(kind, scene.kind, lang)
+        _text(msp, name, np.array([x0 + 6 * em, y]), 0.8 * em, layer="NOTES", left=True)
+
+
+def _document(styles: dict[str, Style], extra: dict[str, int] | None = None, em: float = DASH_EM) -> tuple[Any, Any]:
+    """A new DXF document in mm with a layer for every style, in its colour and its line type (a dashed
+    style's dashes, for lettering ``em`` mm high), and ``LABELS``, ``NOTES``, ``extra``."""
     ezdxf = require("ezdxf", purpose=PURPOSE)
     doc = ezdxf.new("R2010", setup=True)
     doc.units = ezdxf.units.MM
     doc.header["$MEASUREMENT"] = 1
+    doc.header["$LTSCALE"] = em / DASH_EM
     doc.appids.add(APPID)
     for style in styles.values():
         if style.layer not in doc.layers:
             weight = 50 if style.width >= 2 else 25 if style.width >= 0.9 else 13
-            doc.layers.add(style.layer, color=_ACI.get(style.colour, 7), lineweight=weight)
+            linetype = _linetype(doc, style)
+            doc.layers.add(style.layer, color=style.aci, lineweight=weight, linetype=linetype)
     for name, colour in {"LABELS": 7, "NOTES": 7, **(extra or {})}.items():
         if name not in doc.layers:
             doc.layers.add(name, color=colour)
     return doc, doc.modelspace()
+
+
+def _linetype(doc: Any, style: Style) -> str:
+    """The line type of ``style``: ``Continuous``, or its dashes (points, drawn as mm: :data:`DASH_EM`) as a line
+    type ``LW_LAYER`` of the document."""
+    if not style.dash:
+        return "Continuous"
+    name = f"LW_{style.layer}"
+    if name not in doc.linetypes:
+        pattern = [float(sum(style.dash))] + [d if k % 2 == 0 else -d for k, d in enumerate(style.dash)]
+        doc.linetypes.add(name, pattern=pattern, description=f"linkwork {style.layer.lower()}")
+    return name
 
 
 def _items(msp: Any, scene: SchemeScene, index: int, kinds: tuple[str, ...] | None = None, frame: bool = True) -> None:
@@ -193,13 +228,25 @@ def _paths(msp: Any, paths: np.ndarray) -> None:
                 msp.add_lwpolyline([tuple(v) for v in xy[run]], dxfattribs={"layer": SCHEME["path"].layer})
 
 
-def _text(msp: Any, text: str, centre: np.ndarray, em: float, layer: str = "LABELS") -> None:
-    """``text`` of font size ``em`` centred at ``centre``."""
-    from ezdxf.enums import TextEntityAlignment
+def _text(msp: Any, text: str, centre: np.ndarray, em: float, layer: str = "LABELS", left: bool = False) -> None:
+    """A label ``text`` of font size ``em`` centred at ``centre`` (``left``: starting there): an MTEXT, its
+    subscripts stacked under an empty numerator (:func:`mtext`)."""
+    from ezdxf.enums import MTextEntityAlignment
 
     if np.isfinite(centre).all():
-        entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": layer, "style": STYLE})
-        entity.set_placement(tuple(centre), align=TextEntityAlignment.MIDDLE_CENTER)
+        entity = msp.add_mtext(mtext(text), dxfattribs={"layer": layer, "style": STYLE, "char_height": CAP * em})
+        at = MTextEntityAlignment.MIDDLE_LEFT if left else MTextEntityAlignment.MIDDLE_CENTER
+        entity.set_location(tuple(centre), attachment_point=at)
+
+
+def mtext(text: str) -> str:
+    """A label's text as MTEXT markup: each subscript (:func:`~linkwork.scene.geometry.text_runs`) a stack with
+    an empty upper part (``n_ba`` -> ``n\\S^ ba;``), the markup's own characters escaped."""
+    out = []
+    for run, sub in text_runs(text):
+        run = run.replace("\\", "\\\\").replace("{", "\\{").replace("}", "\\}")
+        out.append(f"\\S^ {run.replace('^', '')};" if sub else run.replace("^", "^ "))
+    return "".join(out)
 
 
 def _note(doc: Any, msp: Any, text: str, extent: np.ndarray, em: float) -> None:

@@ -434,36 +434,50 @@ class _Construction:
                     self.turn(g, arm, xp)
                 else:
                     primes = "'" * (1 + sum(1 for other in arms[: arms.index(arm)] if other.kind == "P"))
-                    self.sliding(g, xp, arm, primes)
+                    self.sliding(g, xp, arm, self._pivot(arm.carrier, xp), primes)
         elif step.kind == "RPR":
             # the slider turns about its pivot; the guide's coincident point turns about the guide's pivot,
             # and the slider slides along the guide relative to it (with the Coriolis component)
             arm_g, arm_s = arms
             sp = arm_s.slider_point
             self.turn(g, arm_s, sp)
-            self.sliding(g, sp, Arm("P", arm_s.link, step.inner, carrier=arm_g.link))
+            self.sliding(g, sp, Arm("P", arm_s.link, step.inner, carrier=arm_g.link), arm_g.src)
+
+    def _pivot(self, link: int, p: int) -> int:
+        """A point of the placed ``link`` that the coincident point of ``p`` on it turns about in the plans: one
+        at rest if the link has one (its pivot), else its first other point; -1 for the frame."""
+        if link == 0:
+            return -1
+        own = [int(q) for q in np.flatnonzero(self.mech.point_link == link) if q != p]
+        return min(own, key=lambda q: self.label[q] != "p", default=-1)
 
     def turn(self, group: str, arm: Arm, p: int) -> None:
         """Point ``p`` turning with the arm's link about the arm's outer joint: v = w perp(r);
         a = -w^2 r + e perp(r), r = X - P."""
-        start, end, about = self.label[arm.src], self.label[p], self.names[arm.src]
+        self._turn_with(group, p, arm.src, arm.link, self.label[p])
+
+    def _turn_with(self, group: str, p: int, src: int, link: int, end: str) -> None:
+        """The plan point ``end`` of the point of ``link`` at ``p``, turning with it about its point ``src``."""
+        start, about = self.label[src], self.names[src]
         i = len(self.turns)
-        self.turns.append((p, arm.src, arm.link))
+        self.turns.append((p, src, link))
         self.vel.append((PlanEdge(start, end, "rotation", group, about), i))
-        mid = f"n_{end}{start}"
+        mid = f"n_{end}{start if start != 'p' else about.lower()}"  # named by the pivot's letter, not the pole's
         self.acc.append((PlanEdge(start, mid, "normal", group, about), i))
         self.acc.append((PlanEdge(mid, end, "tangential", group, about), i))
 
-    def sliding(self, group: str, p: int, arm: Arm, prime: str = "'") -> None:
-        """Point ``p`` on a link sliding along a guide of the carrier: transport + (Coriolis) + sliding."""
+    def sliding(self, group: str, p: int, arm: Arm, pivot: int, prime: str = "'") -> None:
+        """Point ``p`` on a link sliding along a guide of the carrier: the carrier's coincident point ``x'``, then
+        (Coriolis and) sliding.  ``x'`` turns with the carrier about its point ``pivot`` (rotation; normal and
+        tangential, as the construction draws it); on the frame (``pivot`` -1) it is the pole."""
         c, lab = arm.carrier, self.label[p]
         i = len(self.slides)
         self.slides.append((p, arm.link, c, arm.pair))
-        carrier = "p" if c == 0 else f"{lab}{prime}"
+        carrier = "p" if c == 0 or pivot < 0 else f"{lab}{prime}"
         about = self.mech.link_names[c]
+        if carrier != "p":
+            self._turn_with(group, p, pivot, c, carrier)
         mid = f"k{prime}_{lab}"
-        self.vel.append((PlanEdge("p", carrier, "transport", group, about), i))
         self.vel.append((PlanEdge(carrier, lab, "sliding", group, about), i))
-        self.acc.append((PlanEdge("p", carrier, "transport", group, about), i))
         self.acc.append((PlanEdge(carrier, mid, "coriolis", group, about), i))
         self.acc.append((PlanEdge(mid, lab, "sliding", group, about), i))

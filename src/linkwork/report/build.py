@@ -25,9 +25,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.io.jsonout import dumps
-from linkwork.lang import check_lang, group_kind, group_label, kind_named, t
+from linkwork.lang import check_lang, group_kind, group_label, kind_named, link_named, t
 from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
+from linkwork.report.render import shown_width
 from linkwork.report.sizing import asks_sizing
 from linkwork.structure.model import PairType
 from linkwork.units import turn_deg
@@ -49,6 +50,9 @@ class Section:
 
 
 def _cell(x: Any) -> str:
+    """A table's cell: a number to 4 significant digits, a tuple one line each (a point's x over its y)."""
+    if isinstance(x, tuple):
+        return "<br>".join(_cell(v) for v in x)
     if isinstance(x, float | np.floating):
         return "-" if not math.isfinite(x) else f"{x:.4g}"
     return html.escape(str(x))
@@ -447,7 +451,7 @@ def _positions_table(run: _Run, cycle: Cycle) -> list[str]:
         row: list[Any] = [k, f"{30 * k}", _deg(turn_deg(kin12.angles[k]))]
         for _, p in labels:
             x = kin12.position(mech.point_names[p])[k] * 1000
-            row.append("-" if not np.isfinite(x).all() else ", ".join(f"{round(c, 1) + 0.0:.1f}" for c in x))
+            row.append("-" if not np.isfinite(x).all() else tuple(f"{round(c, 1) + 0.0:.1f}" for c in x))
         rows.append(row)
     head = [run.t("head.position"), run.t("head.phi"), run.t("head.crank_to_x"), *[label for label, _ in labels]]
     return [_p(run.t("kin.positions")), _table(head, rows)]
@@ -465,7 +469,8 @@ def _extremes_tables(run: _Run, cycle: Cycle) -> list[str]:
         values = [_fixed([getattr(e, k) * scale for e in ext], 5) for k in ("stroke", "low", "high")]
         rows = []
         for i, e in enumerate(ext):
-            name = e.name if kind == "rocker" else f"{mech.link_names[_slider_link(mech, e.name)]} ({e.name})"
+            slider = link_named(mech.link_names[_slider_link(mech, e.name)], run.t) if kind == "slider" else ""
+            name = e.name if kind == "rocker" else f"{slider} ({e.name})"
             at_low, at_high = cycle.phi([e.at_low, e.at_high])
             rows.append([name, *(v[i] for v in values), _deg(at_low), _deg(at_high), _ratio(e.time_ratio),
                          _ratio(e.forward_time_ratio)])  # fmt: skip
@@ -628,7 +633,7 @@ def _joint_table(run: _Run, cycle: Cycle, f: Forces, unit: tuple[float, str]) ->
     peaks = pair_force_peaks(f, [k for _, k in labels])  # refined between the samples, as every route gives them
     for (label, k), size, at in zip(labels, peaks.value, peaks.at, strict=True):
         if np.isfinite(size):
-            a, b = (mech.link_names[int(x)] for x in members[k])
+            a, b = (link_named(mech.link_names[int(x)], run.t) for x in members[k])
             rows.append([label, f"{a} \u2192 {b}", float(size) * unit[0], _deg(float(cycle.phi(at)))])
     for row, text in zip(rows, _fixed([row[2] for row in rows]), strict=True):
         row[2] = text
@@ -854,10 +859,12 @@ def _write_html(run: _Run, path: Path) -> None:
 
 
 def _figure_html(run: _Run, name: str) -> str:
-    data = base64.b64encode((run.folder / "figures" / f"{name}.png").read_bytes()).decode()
+    png = (run.folder / "figures" / f"{name}.png").read_bytes()
+    data = base64.b64encode(png).decode()
     caption = html.escape(run.captions[name])
     return (
-        f"<figure id='{html.escape(name)}'><img alt='{caption}' src='data:image/png;base64,{data}'>"
+        f"<figure id='{html.escape(name)}'><img alt='{caption}' width='{shown_width(png)}' "
+        f"src='data:image/png;base64,{data}'>"
         f"<figcaption>{caption}</figcaption></figure>"
     )
 
@@ -866,10 +873,19 @@ def _write_pdf(run: _Run, path: Path) -> None:
     from matplotlib.backends.backend_pdf import PdfPages
     from matplotlib.figure import Figure
 
+    from linkwork.report.pdf import Pages, parts
+
     with PdfPages(path) as pdf:
         title = Figure(figsize=(8.27, 11.69))
         title.text(0.1, 0.9, run.t("report.title", name=run.mech.name), fontsize=18)
         title.text(0.1, 0.85, run.t("structure.formula", formula=run.mech.structure.formula), fontsize=11)
         pdf.savefig(title)
+        pages = Pages()
+        for s in run.sections:
+            pages.heading(s.title)
+            for kind, part in parts(s.body):
+                pages.table(part) if kind == "table" else pages.paragraph(part)
+        for page in pages.pages:
+            pdf.savefig(page)
         for fig in run.figures.values():
             pdf.savefig(fig)

@@ -13,6 +13,7 @@ import math
 from collections import defaultdict
 from typing import TYPE_CHECKING, Any
 
+from linkwork.lang import link_named
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:
@@ -93,7 +94,7 @@ def _links(mech: Mechanism, t: Any) -> str:
         points = [p for p in range(len(mech.point_names)) if mech.point_link[p] == i]
         where = ", ".join(f"{mech.point_names[p].split('.', 1)[1]} {_mm(mech.point_local[p])}" for p in points)
         mass = float(mech.link_mass[i])
-        rows.append([name, where, _g(mass), _mm(mech.link_com[i]) if mass else "-",
+        rows.append([link_named(name, t), where, _g(mass), _mm(mech.link_com[i]) if mass else "-",
                      _g(float(mech.link_inertia[i])) if mass else "-"])  # fmt: skip
     head = [t("input.head.link"), t("input.head.points"), t("input.head.mass"), t("input.head.com"),
             t("input.head.inertia")]  # fmt: skip
@@ -109,8 +110,8 @@ def _guides(mech: Mechanism, t: Any) -> str:
         if mech.pair_type[k] != PairType.PRISMATIC or mech.link_virtual[[guide, slider]].any():
             continue
         axis = math.degrees(math.atan2(float(mech.pair_axis[k, 1]), float(mech.pair_axis[k, 0])))
-        rows.append([mech.pair_joint[k], f"{mech.link_names[guide]} / {mech.link_names[slider]}",
-                     _mm(mech.pair_origin[k]), f"{round(axis, 6) + 0.0:g}"])  # fmt: skip
+        links = " / ".join(link_named(mech.link_names[i], t) for i in (guide, slider))
+        rows.append([mech.pair_joint[k], links, _mm(mech.pair_origin[k]), f"{round(axis, 6) + 0.0:g}"])
     if not rows:
         return ""
     head = [t("input.head.joint"), t("input.head.guide"), t("input.head.through"), t("input.head.axis")]

@@ -5,8 +5,19 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-#: Resolution of the PNG files (the report embeds them), dots per inch.
-DPI = 100
+#: Resolution of the PNG files (the report embeds them, shown at :data:`SCREEN`), dots per inch: fine enough to
+#: print.
+DPI = 200
+
+#: The resolution at which the report shows the PNG files, dots per inch of the figure (a pixel of the page at
+#: 100 dpi, as matplotlib lays a figure out).
+SCREEN = 100
+
+
+def shown_width(png: bytes) -> int:
+    """The width (pixels of the page) at which the report shows a PNG written at :data:`DPI`: its width read
+    from its header, at :data:`SCREEN` dots per inch."""
+    return round(int.from_bytes(png[16:20], "big") * SCREEN / DPI)
 
 
 def save(fig: Any, stem: Path) -> tuple[Path, Path]:

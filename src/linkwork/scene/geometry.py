@@ -6,6 +6,8 @@ link's poses ``(A, 3)`` as ``(A, K, 2)``.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 #: Advance widths of the printable ASCII characters (32 to 126) in DejaVu Sans, the default font of
@@ -25,14 +27,45 @@ LINE = 1.17
 WIDE = 0.8
 
 
+#: Size of a subscript in ems of its label's text.
+SUBSCRIPT = 0.7
+
+#: A word of a label that has a subscript: a letter (with primes) and ``_`` and its subscript (``n_ba``,
+#: ``k'_a``), or a capital letter and its number (``O1``, ``R12``).
+#: The viewer's page reads the pattern from the payload (one rule for every renderer).
+SUBSCRIPTED = r"(?<![0-9A-Za-z])(?:([A-Za-zα-ωπ]'*)_([^\s,_]+)|([A-Z]'*)([0-9]+)(?![0-9A-Za-z_.]))"
+_SUBSCRIPTED = re.compile(SUBSCRIPTED)
+
+
+def text_runs(text: str) -> list[tuple[str, bool]]:
+    """The runs of a label's text, each with whether it is a subscript: ``"a, n_ba"`` is ``[("a, n", False),
+    ("ba", True)]``; ``"O1"`` is ``[("O", False), ("1", True)]``.  Every renderer draws these (matplotlib's
+    mathtext, the viewer's SVG tspans, DXF's MTEXT stacks), so that no label shows a raw underscore."""
+    runs: list[tuple[str, bool]] = []
+    at = 0
+    for m in _SUBSCRIPTED.finditer(text):
+        base, sub = (m.group(1), m.group(2)) if m.group(1) else (m.group(3), m.group(4))
+        runs.append((text[at : m.start()] + base, False))
+        runs.append((sub, True))
+        at = m.end()
+    runs.append((text[at:], False))
+    return [(run, sub) for run, sub in runs if run]
+
+
 def text_size(text: str, em: float) -> tuple[float, float]:
-    """Width and height of one line of ``text`` set at font size ``em`` (in the units of ``em``).
+    """Width and height of one line of ``text`` set at font size ``em`` (in the units of ``em``), its
+    subscripts (:func:`text_runs`) :data:`SUBSCRIPT` as large.
 
     The widths are those of DejaVu Sans; characters outside printable ASCII count as :data:`WIDE`,
     which is wider than most, so that a box made from this size holds the text as drawn.
     """
-    width = sum(_ADVANCE[ord(c) - 32] / 1000 if 32 <= ord(c) < 127 else WIDE for c in text)
+    width = sum(_width(run) * (SUBSCRIPT if sub else 1.0) for run, sub in text_runs(text))
     return width * em, LINE * em
+
+
+def _width(text: str) -> float:
+    """Width of ``text`` in ems of DejaVu Sans."""
+    return sum(_ADVANCE[ord(c) - 32] / 1000 if 32 <= ord(c) < 127 else WIDE for c in text)
 
 
 def place(poses: np.ndarray, xy: np.ndarray) -> np.ndarray:

@@ -54,6 +54,7 @@ def place_labels(
     prefer: np.ndarray | None = None,
     pad: float = 0.0,
     taken: np.ndarray | None = None,
+    directions: np.ndarray = DIRECTIONS,
 ) -> np.ndarray:
     """Centres of the labels' boxes, one label after the other.
 
@@ -75,6 +76,9 @@ def place_labels(
         Clearance kept between two labels' boxes.
     taken : ndarray, shape (A, B, 4), optional
         Boxes ``[x0, y0, x1, y1]`` of texts placed before, to keep clear of as of the labels.
+    directions : ndarray
+        The directions of the candidates, rad (default :data:`DIRECTIONS`; more of them for a crowded drawing
+        of few samples, such as the plan of positions).
 
     Returns
     -------
@@ -90,7 +94,7 @@ def place_labels(
     out = np.full((n_samples, n_labels, 2), np.nan)
     for j in range(n_labels):
         centres, boxes = _place_one(alternatives[:, j], sizes[:, j], float(gaps[j]), prefer[:, j], placed, obstacles,
-                                    pad)  # fmt: skip
+                                    pad, directions)  # fmt: skip
         out[:, j] = centres
         placed = np.concatenate([placed, boxes[:, None]], 1)
     return out
@@ -104,6 +108,7 @@ def _place_one(
     placed: np.ndarray,
     obstacles: Obstacles,
     pad: float,
+    directions: np.ndarray = DIRECTIONS,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The centre ``(A, 2)`` and box ``(A, 4)`` of one label with alternative anchors ``alts`` ``(A, M, 2)``.
 
@@ -111,10 +116,10 @@ def _place_one(
     sample stops being weighed once a candidate covers nothing (the others stay out of its choice).
     """
     n, m = alts.shape[:2]
-    per = len(DIRECTIONS)
-    centres = np.concatenate([_candidates(alts[:, a], size, gap) for a in range(m)], 1)  # (A, M * R * D, 2)
+    per = len(directions)
+    centres = np.concatenate([_candidates(alts[:, a], size, gap, directions) for a in range(m)], 1)  # (A, M*R*D, 2)
     boxes = _boxes(centres, size[:, None, :])
-    base = np.tile(_preference(prefer), m) + np.repeat(SLIDE * np.arange(m), per * len(RINGS))
+    base = np.tile(_preference(prefer, directions), m) + np.repeat(SLIDE * np.arange(m), per * len(RINGS))
     cost = np.full(base.shape, 1e6)
     todo = np.isfinite(alts).all(-1).any(-1)
     for _, a, ring in sorted((ring * FARTHER + a * SLIDE, a, ring) for a in range(m) for ring in range(len(RINGS))):
@@ -132,9 +137,9 @@ def _place_one(
             np.take_along_axis(boxes, pick[:, None, None], 1)[:, 0])  # fmt: skip
 
 
-def _candidates(anchor: np.ndarray, size: np.ndarray, gap: float) -> np.ndarray:
+def _candidates(anchor: np.ndarray, size: np.ndarray, gap: float, directions: np.ndarray = DIRECTIONS) -> np.ndarray:
     """Centres ``(A, K, 2)``: the box's edge ``gap * ring`` from the anchor along each direction."""
-    d = np.stack([np.cos(DIRECTIONS), np.sin(DIRECTIONS)], -1)  # (D, 2)
+    d = np.stack([np.cos(directions), np.sin(directions)], -1)  # (D, 2)
     half = size[:, None, :] / 2  # (A, 1, 2)
     with np.errstate(divide="ignore"):
         to_edge = np.min(half / np.maximum(np.abs(d)[None], 1e-12), axis=-1)  # (A, D)
@@ -161,9 +166,9 @@ def _boxes(centres: np.ndarray, size: np.ndarray) -> np.ndarray:
     return np.concatenate([centres - size / 2, centres + size / 2], -1)
 
 
-def _preference(prefer: np.ndarray) -> np.ndarray:
+def _preference(prefer: np.ndarray, directions: np.ndarray = DIRECTIONS) -> np.ndarray:
     """Cost ``(A, K)`` of distance (ring) and direction away from ``prefer`` ``(A, 2)``."""
-    d = np.stack([np.cos(DIRECTIONS), np.sin(DIRECTIONS)], -1)
+    d = np.stack([np.cos(directions), np.sin(directions)], -1)
     turned = TURNED * (1 - prefer @ d.T) / 2  # (A, D)
     return np.concatenate([turned + FARTHER * i for i in range(len(RINGS))], 1)
 

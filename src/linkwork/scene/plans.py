@@ -12,6 +12,7 @@ mechanism is.  Labels are placed clear of each other and of the vectors (:mod:`l
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -41,6 +42,13 @@ KINDS = {k: kind_name(k) for k in ("absolute", "rotation", "normal", "tangential
 
 #: Height of the labels on the sheet (mm): the drafting standard's 3.5 mm lettering.
 LETTERING = 3.5
+
+#: The textbook's name of a plan point: a letter, with a number or primes (``a``, ``o1``, ``e'``); a point named
+#: otherwise (``knife_upper.edge``) is named only where no such point shares its place.
+_LETTER = re.compile(r"[a-zπ][0-9]*'*")
+
+#: The pole of each plan in each language: the Russian school writes π for the acceleration plan's.
+POLES = {("acceleration", "ru"): "π"}
 
 #: Plan points closer than this (in ems of the labels) share one label.
 TOGETHER = 0.35
@@ -88,6 +96,8 @@ class PlanScene:
         ``(A, L)``: the label at each plan point, empty where another point's label names it.
     centres : ndarray, shape (A, L, 2)
         Centre of each label's text, mm; NaN where there is none.
+    pole : str
+        The pole's letter on the sheet (:data:`POLES`): ``p``, or ``π`` in a Russian acceleration plan.
     """
 
     kind: str
@@ -103,6 +113,7 @@ class PlanScene:
     values: np.ndarray
     text: tuple[tuple[str, ...], ...]
     centres: np.ndarray
+    pole: str = "p"
 
     @property
     def symbol(self) -> str:
@@ -112,7 +123,7 @@ class PlanScene:
     def scale_note(self, lang: str = "en") -> str:
         """The pole and the scale, as written under the plan: ``pole p,  μv = 0.05 (m/s)/mm``."""
         unit = t(f"plan.unit.{self.kind}", lang)
-        return t("plan.scale", lang, symbol=self.symbol, scale=f"{self.scale:g}", unit=unit)
+        return t("plan.scale", lang, pole=self.pole, symbol=self.symbol, scale=f"{self.scale:g}", unit=unit)
 
     def drawn(self, index: int) -> list[int]:
         """The arrows drawn at position ``index``: those of finite, non-zero length."""
@@ -153,6 +164,7 @@ def plan_scene(
     em: float = LETTERING,
     valid: np.ndarray | None = None,
     variant: int = 0,
+    lang: str = "en",
 ) -> PlanScene:
     """The plans of the positions ``indices`` of ``series``, drawn to one scale.
 
@@ -170,6 +182,8 @@ def plan_scene(
         Where the mechanism assembles (elsewhere nothing is drawn); default where the plan is finite.
     variant : int
         Which design variant.
+    lang : str
+        The language of the drawing: it decides the pole's letter (:data:`POLES`).
 
     Returns
     -------
@@ -195,16 +209,21 @@ def plan_scene(
         if a.kind != "absolute":
             starts[:, e] = points[:, a.start]
     ends = np.stack([starts, starts + value / scale], 2)
-    text = _grouped(names, main, points, em)
+    pole = POLES.get((series.kind, lang), "p")
+    text = _grouped(names, main, points, em, pole)
     centres = _placed(text, main, points, ends, em)
     unit = "m/s" if series.kind == "velocity" else "m/s^2"
     angles = np.asarray(series.angles)[idx]
-    return PlanScene(series.kind, unit, scale, em, angles, names, main, points, arrows, ends, value, text, centres)
+    return PlanScene(series.kind, unit, scale, em, angles, names, main, points, arrows, ends, value, text, centres,
+                     pole)  # fmt: skip
 
 
-def _grouped(names: tuple[str, ...], main: np.ndarray, points: np.ndarray, em: float) -> tuple[tuple[str, ...], ...]:
+def _grouped(names: tuple[str, ...], main: np.ndarray, points: np.ndarray, em: float,
+             pole: str = "p") -> tuple[tuple[str, ...], ...]:  # fmt: skip
     """The label of each plan point at each position ``(A, L)``: the names of the points that coincide
-    with it on the sheet, given to the first of them; empty for the others and where it is not drawn."""
+    with it on the sheet (the textbook's letters among them, :data:`_LETTER`; the pole ``p`` written
+    ``pole``), given to the first of them; empty for the others and where it is not drawn."""
+    names = tuple(pole if name == "p" else name for name in names)
     out = []
     for row in points:
         finite = np.isfinite(row).all(-1)
@@ -217,7 +236,8 @@ def _grouped(names: tuple[str, ...], main: np.ndarray, points: np.ndarray, em: f
             taken |= close
             members = [names[i] for i in np.flatnonzero(close)]
             majors = [names[i] for i in np.flatnonzero(close & main)]
-            texts[j] = ", ".join(majors or members)
+            letters = [name for name in majors if _LETTER.fullmatch(name)]
+            texts[j] = ", ".join(letters or majors or members)
         out.append(tuple(texts))
     return tuple(out)
 

@@ -4,8 +4,9 @@ for, and the plan of positions as a scene.
 Position 0 is where the working slider is at the high end of its stroke (the knives open:
 :func:`linkwork.motion.analysis.zero_angle`); the others follow every 30 degrees in the direction of
 rotation.  The plans are drawn for the positions the file names (``drawing: {positions: [9]}``), else
-for the one position where the working point moves fastest with every dyad transmitting well
-(:func:`best_position`): never a dead point, where the plans collapse onto the pole.
+for the one position of the working stroke where the working point moves fastest with every dyad
+transmitting well and every vector of the plan visible (:func:`best_position`): never a dead point, where
+the plans collapse onto the pole.
 """
 
 from __future__ import annotations
@@ -16,9 +17,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.motion.analysis import Output, position_angles, transmission, working
+from linkwork.motion.analysis import Output, coordinate, output_range, position_angles, transmission, working
 from linkwork.motion.kinematics import kinematics
-from linkwork.scene.geometry import text_size
+from linkwork.motion.plans import plan_series
+from linkwork.scene.geometry import place, text_size
 from linkwork.scene.labels import Obstacles, place_labels
 from linkwork.scene.scheme import Label, SchemeScene, scheme_scene
 
@@ -63,17 +65,61 @@ def _farthest_from_pivot(mech: Mechanism, rocker: Output, joints: list[int]) -> 
 
 
 def best_position(kin: Kinematics, point: int | None = None) -> int:
-    """Of the samples of ``kin`` (e.g. the twelve positions), the one where the working point moves fastest
-    relative to how badly the mechanism transmits there: the largest ``|v| sin(mu)``, ``mu`` the least
-    transmission angle of the dyads (0 at a dead point).  The first of equal ones."""
+    """Of the samples of ``kin`` (e.g. the twelve positions), the one the plans are best drawn at: on the working
+    stroke (:func:`working_stroke`), with every vector of the velocity plan visible (:func:`plans_clear`), the
+    one where the working point moves fastest relative to how badly the mechanism transmits there: the largest
+    ``|v| sin(mu)``, ``mu`` the least transmission angle of the dyads (0 at a dead point).  The first of equal
+    ones; where no sample is both on the working stroke and clear, a clear one, else one on the stroke."""
     mech = kin.mechanism
     p = working_point(mech) if point is None else point
     v = np.asarray(kin.velocity(mech.point_names[p]))
     speed = np.hypot(v[..., 0], v[..., 1]).reshape(-1, len(kin.angles))[0]
     mu = [np.asarray(m).reshape(-1, len(kin.angles))[0] for m in transmission(kin).values()]
     quality = np.sin(np.min(mu, axis=0)) if mu else np.ones_like(speed)
-    score = np.where(np.asarray(kin.valid_all[0]), speed * quality, -np.inf)
-    return int(np.argmax(np.nan_to_num(score, nan=-np.inf)))
+    score = np.nan_to_num(np.where(np.asarray(kin.valid_all[0]), speed * quality, -np.inf), nan=-np.inf)
+    stroke, clear = working_stroke(kin), plans_clear(kin)
+    for allowed in (stroke & clear, clear, stroke):
+        if np.any(allowed & (score > -np.inf)):
+            return int(np.argmax(np.where(allowed, score, -np.inf)))
+    return int(np.argmax(score))
+
+
+#: The time ratio above which the slower stroke is the working one (a quick return).
+QUICK_RETURN = 1.05
+
+
+def working_stroke(kin: Kinematics) -> np.ndarray:
+    """Which samples of ``kin`` ``(A,)`` are on the working stroke of the first working member
+    (:func:`~linkwork.motion.analysis.working`): the slower stroke of a quick return (time ratio above
+    :data:`QUICK_RETURN`), else the stroke from position 0 (the high end: the knives closing, the ram going
+    down); every sample where the mechanism has no working member."""
+    mech = kin.mechanism
+    members = working(mech)
+    if not members:
+        return np.ones(len(kin.angles), dtype=bool)
+    out = members[0]
+    rate = np.asarray(coordinate(kin, out)[1]).reshape(-1, len(kin.angles))[0]
+    turn = output_range(kinematics(mech, steps=360), out)
+    rising, falling = float(turn.rising[0]), float(turn.falling[0])
+    quick = np.isfinite(rising) and max(rising, falling) > QUICK_RETURN * min(rising, falling)
+    return np.asarray(rate > 0 if quick and rising > falling else rate < 0)
+
+
+#: Where a vector of the velocity plan that moves at all is shorter than this part of the plan's longest, the
+#: plan degenerates (two letters on one point: "a = b").
+VISIBLE = 0.05
+
+
+def plans_clear(kin: Kinematics) -> np.ndarray:
+    """Which samples of ``kin`` ``(A,)`` have a velocity plan whose every vector shows: each absolute and
+    relative vector that is not zero over all the samples at least :data:`VISIBLE` of the longest."""
+    vel = plan_series(kin)[0]
+    absolute = vel.values[0][:, [j for j, lab in enumerate(vel.points) if lab != "p"]]
+    size = np.hypot(*np.moveaxis(np.concatenate([absolute, vel.vectors[0]], 1), -1, 0))  # (A, K)
+    size = np.where(np.isfinite(size), size, 0.0)
+    moving = size.max(0) > 1e-9 * max(float(size.max()), 1e-300)
+    longest = size.max(1, keepdims=True)
+    return np.asarray(np.all((size >= VISIBLE * longest) | ~moving, axis=1) & (longest[:, 0] > 0))
 
 
 def plan_positions(mech: Mechanism, kin: Kinematics | None = None) -> list[int]:
@@ -98,11 +144,18 @@ class PositionsScene:
         the trajectories over the whole turn.
     numbers : tuple of Label
         The position numbers at the crank pin and at the working point (``centre`` of shape (1, 2));
-        positions whose points coincide share a label ("5, 7").
+        positions whose points coincide share a label ("5, 7").  Along a straight stroke they stand in a
+        column beside it in the order of the points, each joined to its point by a leader.
+    marks : ndarray, shape (M, 2)
+        The numbered points at every position (a dot each), m.
+    leaders : ndarray, shape (K, 2, 2)
+        Thin lines from a point to its number, m.
     """
 
     scheme: SchemeScene
     numbers: tuple[Label, ...]
+    marks: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 2)))
+    leaders: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 2, 2)))
 
     def extent(self) -> np.ndarray:
         """``[x0, y0, x1, y1]`` of everything drawn, m."""
@@ -121,10 +174,25 @@ def positions_scene(kin: Kinematics, cycle: Kinematics | None = None) -> Positio
     mech = kin.mechanism
     fixed = {name.split(".", 1)[1] for p, name in enumerate(mech.point_names) if mech.point_link[p] == 0}
     frame = tuple(lab for lab in scheme.labels if lab.kind == "point" and lab.text in fixed)
-    scheme = dataclasses.replace(scheme, labels=frame)
+    scheme = dataclasses.replace(scheme, labels=_clear_of_every_position(scheme, frame))
     crank = _crank_pin(mech)
     points = [p for p in dict.fromkeys([crank, working_point(mech)]) if p >= 0]
-    return PositionsScene(scheme, _numbers(scheme, kin.points(), points))
+    pts = kin.points()
+    marks = pts[:, points].reshape(-1, 2)
+    numbers, leaders = _numbers(scheme, pts, points)
+    return PositionsScene(scheme, numbers, marks[np.isfinite(marks).all(-1)], leaders)
+
+
+def _clear_of_every_position(scheme: SchemeScene, labels: tuple[Label, ...]) -> tuple[Label, ...]:
+    """The frame's ``labels`` placed again, clear of the lines of every position (not of position 0 alone)."""
+    if not labels:
+        return labels
+    anchors = np.array([place(scheme.poses[:1, lab.link], np.asarray(lab.at, dtype=float)[None])[0, 0]
+                        for lab in labels])[None]  # fmt: skip
+    sizes = np.array([text_size(lab.text, scheme.em) for lab in labels])
+    gaps = np.full(len(labels), max(0.8 * scheme.r, 0.5 * scheme.em))  # out of a small crank's circle if need be
+    centres = place_labels(anchors, sizes, gaps, _all_positions(scheme), pad=0.15 * scheme.em, directions=FINE)
+    return tuple(dataclasses.replace(lab, centre=centres[:, j]) for j, lab in enumerate(labels))
 
 
 def _crank_pin(mech: Mechanism) -> int:
@@ -139,32 +207,109 @@ def _crank_pin(mech: Mechanism) -> int:
     return joints[far] if np.hypot(*local[far]) > 0 else -1
 
 
-def _numbers(scheme: SchemeScene, pts: np.ndarray, points: list[int]) -> tuple[Label, ...]:
-    """Position numbers at ``points`` ``(A, P, 2)``, those of coinciding positions together, placed clear of
-    every position's lines and of each other."""
+#: The directions the plan of positions tries for its labels (one drawing crowded with twelve positions' links:
+#: every 7.5 degrees).
+FINE = np.radians(np.arange(0.0, 360.0, 7.5))
+
+#: Positions whose points are closer than this (ems) share one number; the least distance between two
+#: numbers in a column (ems; more where the numbers are wider than that along it).
+TOGETHER, SPACING = 0.2, 1.35
+
+
+def _numbers(scheme: SchemeScene, pts: np.ndarray, points: list[int]) -> tuple[tuple[Label, ...], np.ndarray]:
+    """Position numbers at ``points`` ``(A, P, 2)`` (those of coinciding positions together) and the leaders to
+    them: along a straight stroke in a column beside it, in order (:func:`_column`); elsewhere (the crank
+    pin's circle) placed clear of every position's lines and of each other."""
     em = scheme.em
-    wanted: list[tuple[str, int, np.ndarray]] = []
-    for p in points:
-        xy = pts[:, p]
-        taken = ~np.isfinite(xy).all(-1)
-        for k in range(len(xy)):
-            if taken[k]:
-                continue
-            close = ~taken & (np.hypot(*(xy - xy[k]).T) < 0.6 * em)
-            taken |= close
-            wanted.append((", ".join(str(i) for i in np.flatnonzero(close)), p, xy[k]))
-    if not wanted:
-        return ()
-    anchors = np.array([a for _, _, a in wanted])[None]
-    sizes = np.array([text_size(t, em) for t, _, _ in wanted])
+    wanted: list[tuple[str, np.ndarray]] = []
+    fixed: list[tuple[str, np.ndarray, np.ndarray]] = []
+    leaders: list[np.ndarray] = []
     centre = scheme.extent()[:2] / 2 + scheme.extent()[2:] / 2
-    away = anchors[0] - centre
-    prefer = away / np.maximum(np.hypot(*away.T), 1e-12)[:, None]
-    taken = np.array([_box(lab, em) for lab in scheme.labels])
-    gaps = np.full(len(wanted), 0.8 * scheme.r)
-    centres = place_labels(anchors, sizes, gaps, _all_positions(scheme), prefer[None], pad=0.15 * em,
-                           taken=taken.reshape(1, -1, 4))  # fmt: skip
-    return tuple(Label(t, "position", 0, a, centres[:, j]) for j, (t, _, a) in enumerate(wanted))
+    for p in points:
+        groups = _coincident(pts[:, p], TOGETHER * em)
+        anchors = np.array([a for _, a in groups]).reshape(-1, 2)
+        column = _column(anchors, [text for text, _ in groups], centre, scheme.r, em) if len(groups) > 2 else None
+        if column is None:
+            wanted += groups
+            continue
+        for (text, anchor), (box_centre, leader) in zip(groups, column, strict=True):
+            fixed.append((text, anchor, box_centre))
+            leaders.append(leader)
+    numbers = [Label(text, "position", 0, a, c[None]) for text, a, c in fixed]
+    taken = np.array([_box(lab, em) for lab in (*scheme.labels, *numbers)]).reshape(1, -1, 4)
+    if wanted:
+        anchors = np.array([a for _, a in wanted])[None]
+        sizes = np.array([text_size(t, em) for t, _ in wanted])
+        away = anchors[0] - centre
+        prefer = away / np.maximum(np.hypot(*away.T), 1e-12)[:, None]
+        gaps = np.full(len(wanted), 0.8 * scheme.r)
+        centres = place_labels(anchors, sizes, gaps, _all_positions(scheme), prefer[None], pad=0.15 * em,
+                               taken=taken, directions=FINE)  # fmt: skip
+        numbers += [Label(t, "position", 0, a, centres[:, j]) for j, (t, a) in enumerate(wanted)]
+        leaders += [_leader(a, centres[0, j], sizes[j], scheme.r, em) for j, (_, a) in enumerate(wanted)
+                    if np.hypot(*(centres[0, j] - a)) > np.hypot(*sizes[j]) / 2 + scheme.r + 1.5 * em]  # fmt: skip
+    return tuple(numbers), np.array(leaders).reshape(-1, 2, 2)
+
+
+def _leader(anchor: np.ndarray, centre: np.ndarray, size: np.ndarray, r: float, em: float) -> np.ndarray:
+    """A line from a point (clear of its dot of radius ``r``) to the edge of its number's box of ``size``."""
+    d = centre - anchor
+    u = d / np.hypot(*d)
+    inside = float(np.min(size / 2 / np.maximum(np.abs(u), 1e-12))) + 0.2 * em  # centre to the box's edge
+    return np.array([anchor + 0.5 * r * u, centre - inside * u])
+
+
+def _coincident(xy: np.ndarray, within: float) -> list[tuple[str, np.ndarray]]:
+    """The positions ``(A, 2)`` grouped where their points coincide (closer than ``within``): each group's
+    numbers, in order, and its first point."""
+    taken = ~np.isfinite(xy).all(-1)
+    out = []
+    for k in range(len(xy)):
+        if not taken[k]:
+            close = ~taken & (np.hypot(*(xy - xy[k]).T) < within)
+            taken |= close
+            out.append((", ".join(str(i) for i in np.flatnonzero(close)), xy[k]))
+    return out
+
+
+def _column(anchors: np.ndarray, texts: list[str], centre: np.ndarray, r: float,
+            em: float) -> list[tuple[np.ndarray, np.ndarray]] | None:  # fmt: skip
+    """Where the numbers of points along a straight line go: in a column beside the line, on the side away from
+    the drawing's ``centre``, in the order of the points along it, each as near its point as the numbers'
+    :data:`SPACING` lets it be (the least squares spread: pool adjacent violators); with each number, its
+    leader from the point.  None where the points are not on a line."""
+    mean = anchors.mean(0)
+    _, spread, axes = np.linalg.svd(anchors - mean, full_matrices=False)
+    if spread[0] <= 0 or spread[-1] > 0.02 * spread[0]:
+        return None
+    u = axes[0]
+    n = np.array([-u[1], u[0]])
+    if (mean - centre) @ n < 0:
+        n = -n
+    along = (anchors - mean) @ u
+    order = np.argsort(along)
+    sizes = np.array([text_size(t, em) for t in texts])
+    slots = _spread(along[order], max(SPACING * em, float(np.max(sizes @ np.abs(u))) + 0.4 * em))
+    reach = sizes @ np.abs(n) / 2  # half of each box across the line
+    side = float(np.max((anchors - mean) @ n)) + r + 2.0 * em
+    out: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+    for slot, i in zip(slots, order, strict=True):
+        box_centre = mean + slot * u + (side + reach[i]) * n
+        out[int(i)] = (box_centre, np.array([anchors[i] + 0.5 * r * n, box_centre - (reach[i] + 0.2 * em) * n]))
+    return [out[i] for i in range(len(texts))]
+
+
+def _spread(targets: np.ndarray, step: float) -> np.ndarray:
+    """Values nearest ``targets`` (ascending) in least squares with each at least ``step`` above the one before."""
+    shifted = targets - step * np.arange(len(targets))
+    blocks: list[list[float]] = []  # [mean, count] of pooled runs, non-decreasing
+    for value in shifted:
+        blocks.append([float(value), 1.0])
+        while len(blocks) > 1 and blocks[-2][0] > blocks[-1][0]:
+            (m2, c2), (m1, c1) = blocks.pop(), blocks.pop()
+            blocks.append([(m1 * c1 + m2 * c2) / (c1 + c2), c1 + c2])
+    fitted = np.concatenate([np.full(int(c), m) for m, c in blocks])
+    return fitted + step * np.arange(len(targets))
 
 
 def _box(label: Label, em: float) -> np.ndarray:

@@ -27,6 +27,9 @@ class Style:
         On and off lengths in points; empty for a solid line.
     layer : str
         The DXF layer.
+    aci : int
+        The DXF layer's colour (AutoCAD colour index), one a CAD program shows on a black screen and on white
+        paper alike (7: black on white, white on black); each plan's kinds of vector apart.
     """
 
     colour: str
@@ -35,33 +38,34 @@ class Style:
     alpha: float = 1.0
     dash: tuple[float, ...] = ()
     layer: str = "0"
+    aci: int = 7
 
 
 #: The scheme's items (:data:`linkwork.scene.scheme.KINDS`).
 SCHEME = {
-    "path": Style("#999999", 0.7, dash=(3.0, 2.0), layer="TRAJECTORIES"),
-    "workpiece": Style("#777777", 0.6, layer="WORKPIECE"),
+    "path": Style("#999999", 0.7, dash=(3.0, 2.0), layer="TRAJECTORIES", aci=8),
+    "workpiece": Style("#777777", 0.6, layer="WORKPIECE", aci=8),
     "hatch": Style("#000000", 0.6, layer="HATCHING"),
     "support": Style("#000000", 0.9, layer="SUPPORTS"),
     "guide": Style("#000000", 0.9, layer="GUIDES"),
-    "bar": Style(BLUE, 2.2, layer="LINKS"),
-    "plate": Style(BLUE, 2.2, fill=BLUE, alpha=0.18, layer="LINKS"),
+    "bar": Style(BLUE, 2.2, layer="LINKS", aci=150),
+    "plate": Style(BLUE, 2.2, fill=BLUE, alpha=0.18, layer="LINKS", aci=150),
     "tool": Style("#000000", 0.9, fill="#d9d9d9", layer="TOOLS"),
     "edge": Style("#000000", 2.0, layer="TOOLS"),
     "block": Style("#000000", 1.1, fill="#ffffff", layer="BLOCKS"),
     "pivot": Style("#000000", 1.1, fill="#ffffff", layer="PIVOTS"),
-    "marker": Style(BLUE, 0.5, fill=BLUE, layer="MARKERS"),
+    "marker": Style(BLUE, 0.5, fill=BLUE, layer="MARKERS", aci=150),
 }
 
 #: The plans' vectors (:data:`linkwork.scene.plans.KINDS`).
 VECTORS = {
     "absolute": Style("#000000", 1.4, layer="ABSOLUTE"),
-    "rotation": Style("#1f77b4", 1.0, layer="ROTATION"),
-    "normal": Style("#2ca02c", 1.0, layer="NORMAL"),
-    "tangential": Style("#1f77b4", 1.0, dash=(4.0, 1.5), layer="TANGENTIAL"),
-    "transport": Style("#9467bd", 1.0, dash=(3.0, 2.0), layer="TRANSPORT"),
-    "coriolis": Style("#d62728", 1.0, layer="CORIOLIS"),
-    "sliding": Style("#ff7f0e", 1.0, layer="SLIDING"),
+    "rotation": Style("#1f77b4", 1.0, layer="ROTATION", aci=150),
+    "normal": Style("#2ca02c", 1.0, layer="NORMAL", aci=3),
+    "tangential": Style("#1f77b4", 1.0, dash=(4.0, 1.5), layer="TANGENTIAL", aci=140),
+    "transport": Style("#9467bd", 1.0, dash=(3.0, 2.0), layer="TRANSPORT", aci=200),
+    "coriolis": Style("#d62728", 1.0, layer="CORIOLIS", aci=1),
+    "sliding": Style("#ff7f0e", 1.0, layer="SLIDING", aci=30),
 }
 
 #: Colours of the texts: a point's name, a link's number, a construction point of a plan.

@@ -78,6 +78,7 @@ from linkwork.io import jsonout
 from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
 from linkwork.motion.kinematics import kinematics
 from linkwork.motion.plans import PlanSeries, _longest, _round_scale, percentile, plan_series
+from linkwork.scene.geometry import SUBSCRIPTED
 from linkwork.scene.plans import KINDS, plan_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
@@ -390,6 +391,7 @@ def _scene(cycle: Cycle, series: tuple[PlanSeries, PlanSeries], at: np.ndarray) 
         "labels": labels,
         "paths": [cycle.mech.point_names.index(name) for name in scheme.path_names],
         "plans": {one.kind: _plan_scene(cycle, one, at) for one in series},
+        "subscripts": SUBSCRIPTED,
     })  # fmt: skip
     return out
 

@@ -5,7 +5,9 @@
 // force F is F / mu_F mm long in the drawing of the mechanism at full size (data-scale on #forces: m per
 // N); and the driving torque, an arc about the crank's pivot turning the way it turns the crank.  Shown
 // while the "forces" box is ticked.  The scale is that of the mechanism as loaded (so that an edit's
-// arrows compare with the file's), divided by the zoom chosen beside the box.
+// arrows compare with the file's), divided by the zoom chosen beside the box.  An arrow longer than a fifth of
+// the scheme (the knives' forces during the cut) is drawn that long and dashed, so that it stays in the panel;
+// the labels of the forces are set clear of each other and of the joints' names.
 "use strict";
 
 (function () {
@@ -61,18 +63,52 @@
     const torqueSeries = m.series.find((s) => s.key === "torque");
     const hide = (...els) => els.forEach((e) => e.setAttribute("visibility", "hidden"));
 
-    function arrow({ a, k, line, text }, i) {
+    // an arrow longer than MOST of the scheme's size (the knives' force during the cut) is drawn that long,
+    // dashed ("beyond": not to scale), so that it stays in the panel; its label still says its force
+    const MOST = 0.2;
+    function arrow({ a, k, line, text }, i, placed) {
       const at = m.positions.at(i, a.point), F = m.valid[i] ? f.values.at(i, k) : null;
       if (!at || !F || !isFinite(F[1])) { hide(line, text); return null; }
-      const x1 = 1000 * at[0], y1 = -1000 * at[1], x2 = x1 + F[0] / scale, y2 = y1 - F[1] / scale;
-      const len = Math.hypot(x2 - x1, y2 - y1);
+      const x1 = 1000 * at[0], y1 = -1000 * at[1];
+      let x2 = x1 + F[0] / scale, y2 = y1 - F[1] / scale;
+      let len = Math.hypot(x2 - x1, y2 - y1);
       if (len < 1e-6 * size) { hide(line, text); return `${a.label} 0`; }
+      const beyond = len > MOST * size;
+      if (beyond) {
+        x2 = x1 + ((x2 - x1) * MOST * size) / len; y2 = y1 + ((y2 - y1) * MOST * size) / len; len = MOST * size;
+      }
+      line.classList.toggle("beyond", beyond);
+      line.setAttribute("data-beyond", String(beyond));
       line.setAttribute("visibility", "visible"); text.setAttribute("visibility", "visible");
       line.setAttribute("x1", x1.toFixed(4)); line.setAttribute("y1", y1.toFixed(4));
       line.setAttribute("x2", x2.toFixed(4)); line.setAttribute("y2", y2.toFixed(4));
-      text.setAttribute("x", (x2 + (0.9 * em * (x2 - x1)) / len).toFixed(3));
-      text.setAttribute("y", (y2 + (0.9 * em * (y2 - y1)) / len).toFixed(3));
-      return `${a.label} ${kN(Math.hypot(F[0], F[1]))}`;
+      const [x, y] = clear(x2, y2, (x2 - x1) / len, (y2 - y1) / len, a.label, placed);
+      text.setAttribute("x", x.toFixed(3)); text.setAttribute("y", y.toFixed(3));
+      return `${a.label} ${kN(Math.hypot(F[0], F[1]))}${beyond ? " (shortened)" : ""}`;
+    }
+
+    // where a force's label goes: beyond its arrow's head, pushed on along the arrow, then to either side of
+    // it, until its box covers no label placed before (the other forces', the joints')
+    function clear(x, y, ux, uy, label, placed) {
+      const w = 0.62 * 0.8 * em * label.length, h = 0.8 * 1.2 * em;
+      const hits = (cx, cy) => placed.some((b) => Math.abs(cx - b[0]) < (w + b[2]) / 2 && Math.abs(cy - b[1]) < (h + b[3]) / 2);
+      const tries = [];
+      for (const along of [0.9, 1.8, 2.7, 3.6]) for (const side of [0, 1.2, -1.2, 2.4, -2.4]) tries.push([along, side]);
+      for (const [along, side] of tries) {
+        const cx = x + along * em * ux - side * em * uy, cy = y + along * em * uy + side * em * ux;
+        if (!hits(cx, cy)) { placed.push([cx, cy, w, h]); return [cx, cy]; }
+      }
+      const cx = x + 0.9 * em * ux, cy = y + 0.9 * em * uy;
+      placed.push([cx, cy, w, h]);
+      return [cx, cy];
+    }
+
+    // the boxes of the scheme's labels at sample i (the joints' names, the links' numbers), in the drawing's mm
+    function schemeLabels(i) {
+      return V.state.data.scene.labels.map((lab) => {
+        const c = lab.centre.at(i, 0);
+        return c ? [1000 * c[0], -1000 * c[1], 0.62 * em * lab.text.length, 1.2 * em] : null;
+      }).filter(Boolean);
     }
 
     // an arc of 270 degrees about the crank's pivot, its head counter-clockwise for a positive torque
@@ -94,7 +130,8 @@
     }
 
     return (i) => {
-      const shown = arrows.map((x) => arrow(x, i)).filter((s) => s !== null);
+      const placed = schemeLabels(i);
+      const shown = arrows.map((x) => arrow(x, i, placed)).filter((s) => s !== null);
       const M = turning(i);
       caption.hidden = !box.checked;
       caption.textContent = `forces at this angle, to scale μF = ${fmt(scale, 3)} N/mm of the mechanism drawn full size ` +

@@ -41,6 +41,24 @@
     return e;
   }
 
+  // a label's text in an SVG text element, its subscripts (the scene's rule, the payload's pattern:
+  // "n_ba", "O1") smaller and lowered in tspans, so that no label shows a raw underscore
+  function setLabel(t, text) {
+    if (t.dataset.text === text) return;
+    t.dataset.text = text;
+    t.replaceChildren();
+    const pattern = state.full && state.full.scene.subscripts;
+    const re = pattern ? new RegExp(pattern, "gu") : null;
+    let at = 0;
+    for (const m of re ? text.matchAll(re) : []) {
+      const base = m[1] !== undefined ? m[1] : m[3], sub = m[1] !== undefined ? m[2] : m[4];
+      t.appendChild(document.createTextNode(text.slice(at, m.index) + base));
+      svg("tspan", { "baseline-shift": "sub", "font-size": "70%", class: "sub" }, t).textContent = sub;
+      at = m.index + m[0].length;
+    }
+    if (at < text.length) t.appendChild(document.createTextNode(text.slice(at)));
+  }
+
   function html(tag, text, parent, attrs) {
     const e = document.createElement(tag);
     if (text !== undefined && text !== null) e.textContent = text;
@@ -362,7 +380,7 @@
     scene.items.forEach((item, k) => drawItem(k, item, groups[GROUP[item.kind] || (item.link === 0 || item.radius ? "pairs" : "links")]));
     scene.labels.forEach((lab, k) => {
       const t = svg("text", { class: lab.kind === "link" ? "link-number" : "label", "text-anchor": "middle", "dominant-baseline": "central" }, groups.labels);
-      t.textContent = lab.text;
+      setLabel(t, lab.text);
       update.push((i) => {
         const c = state.data.scene.labels[k].centre.at(i, 0);
         if (!c) { t.setAttribute("visibility", "hidden"); return; }
@@ -446,7 +464,7 @@
     // it holds the plans of 95 % of the positions; near a dead point accelerations grow without bound)
     const [x0, y0, x1, y1] = look.frame;
     const size = Math.max(x1 - x0, y1 - y0, 1e-9);
-    const pad = 0.1 * size;
+    const pad = 0.1 * size + 3 * look.em; // the labels beside the frame's outermost points stay in the panel
     root.setAttribute("viewBox", [x0 - pad, -y1 - pad, x1 - x0 + 2 * pad, y1 - y0 + 2 * pad].map((v) => v.toFixed(3)).join(" "));
     const defs = svg("defs", {}, root);
     for (const k of KINDS) {
@@ -501,7 +519,7 @@
         // points that coincide share one label, the scene's (e.g. "e, knife_upper.edge")
         if (!text || !centre) { t.setAttribute("visibility", "hidden"); return; }
         t.setAttribute("visibility", "visible");
-        t.textContent = text;
+        setLabel(t, text);
         t.setAttribute("x", centre[0].toFixed(3)); t.setAttribute("y", (-centre[1]).toFixed(3));
       });
       const parts = plan.absolute.map((j) => {

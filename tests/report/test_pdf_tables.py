@@ -1,0 +1,44 @@
+"""``--pdf`` carries the report's tables, set within the width of an A4 page, in the report's language."""
+
+from __future__ import annotations
+
+import pytest
+
+pytest.importorskip("matplotlib")
+
+
+def test_the_pdf_has_the_tables_within_the_page(tmp_path, monkeypatch):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.backends.backend_pdf import PdfPages
+    from typer.testing import CliRunner
+
+    import linkwork.cli.analyze  # noqa: F401  (registers the command)
+    from linkwork.cli.main import app
+
+    pages = []
+    save = PdfPages.savefig
+
+    def keep(self, figure=None, **kwargs):
+        pages.append(figure)
+        return save(self, figure, **kwargs)
+
+    monkeypatch.setattr(PdfPages, "savefig", keep)
+    out = tmp_path / "r"
+    args = ["analyze", "double-cut-shears", "--out", str(out), "--steps", "36", "--no-animation", "--pdf",
+            "--lang", "ru"]  # fmt: skip
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 0, result.output
+    assert (out / "report.pdf").stat().st_size > 10000
+    texts = []
+    for fig in pages:
+        renderer = FigureCanvasAgg(fig).get_renderer()
+        width = fig.get_figwidth() * fig.dpi
+        for t in fig.texts:
+            if t.get_text():
+                box = t.get_window_extent(renderer)
+                assert box.x0 >= 0 and box.x1 <= width + 0.5, t.get_text()  # nothing off the page
+                texts.append(t.get_text())
+    words = "\n".join(texts)
+    # the 12 positions' table (its heading and the crank's angle of position 11), the joints' table in Russian
+    assert "положение" in words and "кривошип" in words
+    assert "стойка → crank" in words and "frame" not in words.replace("knife", "")
