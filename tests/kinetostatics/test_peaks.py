@@ -139,3 +139,154 @@ def test_the_largest_pair_forces_do_not_depend_on_the_grid_and_the_command_print
     np.testing.assert_allclose(coarse.value, sampled, rtol=2e-4)
     text = linkwork("forces", "double-cut-shears").stdout
     assert f"{coarse.value[0]:.6g}" in text and f"{coarse.value[4]:.6g}" in text
+
+
+#: A crank of 2 kg with its centre of mass at (80, 30) mm in its own axes, on a pivot at (40, 30) mm, turning at
+#: 300 rpm; the coupler and the rocker have no mass.  What it puts on its foundation is by hand: with K = m w^2 r_c
+#: and theta the angle of its centre of mass, Fx = K cos(theta), Fy = -m g + K sin(theta), and the moment about the
+#: origin is that of Fy and Fx at the pivot and of the weight's arm r_c cos(theta) (the inertia force passes
+#: through the pivot).
+ROTOR = """\
+name: rotor
+units: {length: mm, mass: kg, angle: deg}
+frame:
+  points: {O2: [40, 30], O4: [300, 0]}
+links:
+  crank: {ends: [O2, A], length: 100, mass: 2.0, com: [80, 30], inertia: 0.01 kg*m^2}
+  coupler: {ends: [A, B], length: 350}
+  rocker: {ends: [O4, B], length: 250}
+joints:
+  O2: {type: revolute, links: [frame, crank]}
+  A: {type: revolute, links: [crank, coupler]}
+  B: {type: revolute, links: [coupler, rocker]}
+  O4: {type: revolute, links: [frame, rocker]}
+drives:
+  - {joint: O2, speed: 300 rpm, direction: ccw, angle: 60 deg}
+hints:
+  B: [330, 240]
+"""
+
+
+def _rotor_bolts() -> dict[str, tuple[float, float]]:
+    """The rotor's largest bolt loads by hand and the crank angle (to x, rad, in 0..2 pi) of each."""
+    mass, g, omega, ox, oy = 2.0, 9.81, 300 * np.pi / 30, 0.04, 0.03
+    r_c, delta = np.hypot(0.08, 0.03), np.arctan2(0.03, 0.08)
+    k = mass * omega**2 * r_c
+    # M(theta) = -ox m g + ox K sin(theta) - (oy K + m g r_c) cos(theta): its least is -ox m g - R
+    a, b = ox * k, -(oy * k + mass * g * r_c)
+    theta_m = np.arctan2(-a, -b)  # where a sin + b cos = -R
+    angle = lambda theta: float(np.mod(theta - delta, 2 * np.pi))  # noqa: E731
+    return {
+        "shear": (k, angle(np.pi)),  # or 0: the grid's best sample picks one of the two equal maxima
+        "pull": (k - mass * g, angle(np.pi / 2)),
+        "push": (k + mass * g, angle(3 * np.pi / 2)),
+        "moment": (ox * mass * g + np.hypot(a, b), angle(theta_m)),
+    }
+
+
+@pytest.mark.parametrize("steps", [7, 360])
+def test_the_bolt_loads_are_the_closed_form_whatever_the_grid(steps, tmp_path):
+    """A rotating mass's shear, pull, push and moment peak between the samples of 7 or 360 steps; refined, Forces.bolts
+    (one mechanism and a variant of it) and forces --json give the closed form to 1e-9, and where, to 1e-6 rad."""
+    path = tmp_path / "rotor.yaml"
+    path.write_text(ROTOR, encoding="utf-8")
+    mech = lw.compile(lw.load(path))
+    expected = _rotor_bolts()
+    one = lw.forces(mech, steps=steps)
+    variant = lw.forces(mech, steps=steps, variants={"links.crank.mass": [2.0]})
+    sampled = np.abs(one.foundation[:, 2]).max()
+    assert sampled < expected["moment"][0] * (1 - 1e-6)  # the grid misses it
+    for bolts in (one.bolts(), variant.bolts()):
+        for name, (value, where) in expected.items():
+            assert getattr(bolts, name) == pytest.approx(value, rel=1e-9), name
+            at = np.mod(getattr(bolts, f"{name}_angle"), 2 * np.pi)
+            if name == "shear":
+                assert min(abs(at - where), abs(abs(at - where) - np.pi)) == pytest.approx(0, abs=1e-6)
+            else:
+                assert min(abs(at - where), 2 * np.pi - abs(at - where)) == pytest.approx(0, abs=1e-6), name
+    run = linkwork("forces", str(path), "--steps", str(steps), "--json")
+    assert run.returncode == 0, run.stderr
+    written = json.loads(run.stdout)["bolts"]
+    for name, (value, _) in expected.items():
+        assert written[name] == pytest.approx(value, rel=1e-9)
+
+
+def _bounded(mech: lw.Mechanism, quantity, steps: int = 7200) -> float:
+    """The largest ``quantity(forces) -> (A,)`` by an independent route: a dense grid, then scipy's bounded scalar
+    search between the neighbours of its best sample, solving single angles."""
+    from scipy.optimize import minimize_scalar
+
+    dense = lw.forces(mech, steps=steps)
+    values, angles = quantity(dense), dense.angles
+    i, step = int(np.nanargmax(values)), angles[1] - angles[0]
+    found = minimize_scalar(
+        lambda x: -float(quantity(lw.forces(mech, angles=np.array([x])))[0]),
+        bounds=(angles[i] - step, angles[i] + step),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
+    return max(-float(found.fun), float(values[i]))
+
+
+def test_bolts_and_shaking_do_not_depend_on_the_grid_and_every_route_prints_them(shears):
+    """The double-cut shears' bolt loads and shaking force and moment: 360 and 720 steps agree to 1e-9; the push and
+    the shaking force agree with a dense grid and a bounded search to 1e-6; forces --json and the printed lines carry
+    them."""
+    from linkwork.kinetostatics.peaks import shaking_peaks
+
+    found = {}
+    for steps in (360, 720):
+        f = lw.forces(shears, steps=steps)
+        b = f.bolts()
+        found[steps] = np.concatenate([[b.shear, b.push, b.moment], shaking_peaks(f).value])
+    np.testing.assert_allclose(found[360], found[720], rtol=1e-9)
+    push, shake, moment = found[360][1], found[360][3], found[360][4]
+    assert push == pytest.approx(_bounded(shears, lambda g: -g.foundation[:, 1]), rel=1e-6)
+    assert shake == pytest.approx(_bounded(shears, lambda g: np.hypot(*g.shaking_force.T)), rel=1e-6)
+    assert abs(moment) == pytest.approx(_bounded(shears, lambda g: np.abs(g.shaking_moment)), rel=1e-6)
+    run = linkwork("forces", "double-cut-shears", "--steps", "720", "--json")
+    assert run.returncode == 0, run.stderr
+    bolts = json.loads(run.stdout)["bolts"]
+    assert [bolts["shear"], bolts["push"], bolts["moment"]] == pytest.approx(list(found[360][:3]), rel=1e-9)
+    text = linkwork("forces", "double-cut-shears").stdout
+    assert f"shaking force max {shake:.6g} N" in text and f"shaking moment max {abs(moment):.6g} N m" in text
+    assert f"push on the foundation max {push:.6g} N" in text
+
+
+def test_a_guides_largest_moment_is_the_closed_form(tmp_path):
+    """The slider-crank shears with the knife's centre of mass 50 mm beside its guide: the guide holds the moment of
+    its weight and inertia force, m d (g - 2 l w^2 sin(phi)) (y_B = 2 l sin(phi)), largest m d (g + 2 l w^2) at
+    phi = 270 deg, between the samples of 7 steps; refined, and the largest moment forces prints."""
+    from linkwork.examples import text
+    from linkwork.kinetostatics.peaks import pair_moment_peaks
+
+    path = tmp_path / "offset-knife.yaml"
+    path.write_text(text("shears-slider-crank").replace("    mass: 20\n", "    mass: 20\n    com: [0.05, 0]\n"))
+    mech = lw.compile(lw.load(path))
+    guide = [mech.pair_joint.index("guide")]
+    expected = 20 * 0.05 * (9.81 + 2 * 0.15 * 10.0**2)
+    f = lw.forces(mech, steps=7)
+    assert np.nanmax(np.abs(f.multipliers[0, :, 2 * guide[0]])) < expected * 0.95
+    found = pair_moment_peaks(f, guide)
+    assert abs(found.value[0]) == pytest.approx(expected, rel=1e-9)
+    assert found.at[0] == pytest.approx(np.radians(270), abs=1e-6)
+    printed = linkwork("forces", str(path), "--steps", "7").stdout
+    assert f"{found.value[0]:.6g}" in printed
+
+
+def test_a_sweep_of_a_mechanism_with_a_group_solved_by_newton_is_refined():
+    """The class III triad (a group solved by Newton's method): the sweep's peak torque and foundation force are those
+    of forces, at 360 and 720 steps, to 1e-9 (its samples miss the torque's peak by 1.3e-6)."""
+    mech = lw.compile("class3-triad")
+    reference = lw.forces(mech, steps=360)
+    torque, force = abs(torque_peak(reference).value[0]), foundation_peak(reference).value[0]
+    assert np.nanmax(np.abs(reference.driving_torque)) < torque * (1 - 1e-7)
+    for steps in (360, 720):
+        t = lw.sweep(
+            mech,
+            {"links.crank.length": ("30 mm", "30 mm", 1)},
+            ["peak_driving_torque", "peak_foundation_force"],
+            steps=steps,
+        )
+        assert t["peak_driving_torque"][0] == pytest.approx(torque, rel=1e-9)
+        assert t["peak_foundation_force"][0] == pytest.approx(force, rel=1e-9)
