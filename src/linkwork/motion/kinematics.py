@@ -245,6 +245,7 @@ class Kinematics:
             valid_all=self.valid_all[:, index],
             step_det=tuple(d[..., index] for d in self.step_det),
             step_branch=tuple(None if b is None else b[..., index] for b in self.step_branch),
+            each=None if self.each is None else self.each[:, index],
         )
 
 
@@ -419,6 +420,7 @@ def kinematics(
         step_det=tuple(r.det for r in state.steps),
         step_branch=tuple(r.branch for r in state.steps),
         masses=masses,
+        each=None,
     )
 
 
