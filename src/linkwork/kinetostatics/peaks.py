@@ -151,7 +151,8 @@ def peaks(
     quantities of every variant at every sample; row ``r`` is quantity ``which[r]`` of variant ``variants[r]``
     (default: the one quantity of every variant).  The rows are solved again together, each at its own angles
     (:meth:`Forces.at <linkwork.kinetostatics.Forces.at>`).  ``(R,)``."""
-    values = np.asarray(pick(f))
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        values = np.asarray(pick(f))
     n_q, n_v, _ = values.shape
     variants = np.arange(n_v) if variants is None else np.asarray(variants, dtype=np.intp)
     which = np.zeros(len(variants), dtype=np.intp) if which is None else np.asarray(which, dtype=np.intp)
