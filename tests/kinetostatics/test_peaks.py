@@ -290,3 +290,20 @@ def test_a_sweep_of_a_mechanism_with_a_group_solved_by_newton_is_refined():
         )
         assert t["peak_driving_torque"][0] == pytest.approx(torque, rel=1e-9)
         assert t["peak_foundation_force"][0] == pytest.approx(force, rel=1e-9)
+
+
+@pytest.mark.parametrize("steps", [7, 360])
+def test_the_speed_at_which_the_bolts_are_pulled_is_the_closed_form_whatever_the_grid(steps, tmp_path):
+    """The rotor's bolts carry a pull P first where its centre of mass is straight up, at m w^2 r_c - m g = P:
+    w = sqrt((P + m g) / (m r_c)), between the samples of 7 or 360 steps (missed by 7e-3 and 1.5e-5); refined,
+    lw.bolt_speed and forces --pull give it to 1e-9."""
+    path = tmp_path / "rotor.yaml"
+    path.write_text(ROTOR, encoding="utf-8")
+    mech = lw.compile(lw.load(path))
+    r_c = np.hypot(0.08, 0.03)
+    for pull in (0.0, 100.0):
+        expected = np.sqrt((pull + 2.0 * 9.81) / (2.0 * r_c))
+        assert lw.bolt_speed(mech, pull=pull, steps=steps) == pytest.approx(expected, rel=1e-9)
+    run = linkwork("forces", str(path), "--steps", str(steps), "--pull", "100 N", "--json")
+    assert run.returncode == 0, run.stderr
+    assert json.loads(run.stdout)["bolts"]["speed_for_pull_rad_s"] == pytest.approx(expected, rel=1e-9)
