@@ -114,12 +114,16 @@ def test_the_simulated_speeds_extremes_do_not_depend_on_the_points_kept(shears):
 
 
 def test_the_report_gives_the_refined_peak_torque(shears, tmp_path):
-    """The report's forces.json and its text carry the peak every route gives (the text to its 4 digits)."""
+    """The report's forces.json and its text carry the peak every route gives (the text to its 4 digits), and the
+    bolt loads forces gives."""
     reference = torque_peak(lw.forces(shears, steps=360)).value[0]
     run = linkwork("analyze", "double-cut-shears", "--no-animation", "--steps", "720", "--out", str(tmp_path / "r"))
     assert run.returncode == 0, run.stderr
     data = json.loads((tmp_path / "r" / "forces.json").read_text(encoding="utf-8"))
     assert data["driving_torque_peak"]["value"] == pytest.approx(reference, rel=1e-9)
+    bolts = lw.forces(shears, steps=360).bolts()  # the bolt loads too, refined: 360 steps here, 720 there
+    for name in ("shear", "push", "moment"):
+        assert data["bolts"][name] == pytest.approx(getattr(bolts, name), rel=1e-9)
     html = (tmp_path / "r" / "report.html").read_text(encoding="utf-8")
     assert f"largest {reference / 1000:.4g} kN" in html
 
