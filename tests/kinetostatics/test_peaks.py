@@ -311,3 +311,31 @@ def test_the_speed_at_which_the_bolts_are_pulled_is_the_closed_form_whatever_the
     run = linkwork("forces", str(path), "--steps", str(steps), "--pull", "100 N", "--json")
     assert run.returncode == 0, run.stderr
     assert json.loads(run.stdout)["bolts"]["speed_for_pull_rad_s"] == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.parametrize("steps", [8, 12, 36])
+def test_a_variant_is_refined_through_a_sample_on_a_change_point(steps):
+    """The slider-crank shears pass change points at phi = 0 and 180 deg, samples of these grids; a sample there has
+    the modes of both sides, so a variant is refined on both (at 8 steps its peak torque lies beside one): the
+    variant's peak torque, foundation force and bolt shear and push are those of the mechanism alone (solved along
+    its path through the change points) to 1e-9, and the peak torque that of the closed form."""
+    mech = lw.compile("shears-slider-crank")
+    one = lw.forces(mech, steps=steps)
+    variant = lw.forces(mech, steps=steps, variants={"links.knife.mass": [20.0]})
+    figures = []
+    for f in (one, variant):
+        b = f.bolts()
+        figures.append([abs(torque_peak(f).value[0]), foundation_peak(f).value[0], b.shear, b.push])
+    np.testing.assert_allclose(figures[1], figures[0], rtol=1e-9)
+    # the torque by hand (tests/kinetostatics/test_singular_positions.py): a s c + b c, its largest size by a dense
+    # grid and a bounded search
+    from scipy.optimize import minimize_scalar
+
+    length, m1, m2, omega, g = 0.15, 10.0, 20.0, 10.0, 9.81
+    a = 0.5 * omega**2 * (m1 * (length**2 / 2 - 9 * length**2 / 2) - 8 * m2 * length**2)
+    size = lambda x: np.abs(a * np.sin(x) * np.cos(x) + g * length * np.cos(x) * (2 * m1 + 2 * m2))  # noqa: E731
+    x = np.linspace(0, 2 * np.pi, 100001)
+    i = int(np.argmax(size(x)))
+    found = minimize_scalar(lambda y: -size(y), bounds=(x[i] - 1e-4, x[i] + 1e-4), method="bounded",
+                            options={"xatol": 1e-12})  # fmt: skip
+    assert figures[1][0] == pytest.approx(-found.fun, rel=1e-9)

@@ -228,9 +228,10 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
     values = snap_zeros(np.array([value for value, _ in peaks]))
     prismatic = [pair_kind(mech, k) == "prismatic" for _, k in labels]
     guides = [k for (_, k), p in zip(labels, prismatic, strict=True) if p]
-    refined_moments = iter(pair_moment_peaks(f, guides).value.tolist())  # refined, as the pair forces are
+    largest = dict(zip(guides, pair_moment_peaks(f, guides).value.tolist(), strict=True))  # refined, as the forces
+    # a moment that is zero at every sample (its round-off snapped to zero) stays a zero
     moments = [
-        (next(refined_moments) if np.any(pair_moment(f, k) != 0) else 0.0) if p else np.nan  # a zero stays a zero
+        (largest[k] if np.any(np.abs(pair_moment(f, k)) > 0) else 0.0) if p else np.nan
         for (_, k), p in zip(labels, prismatic, strict=True)
     ]
     for (label, k), value, (_, where), moment, p in zip(labels, values, peaks, moments, prismatic, strict=True):

@@ -15,7 +15,7 @@ from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.limits import TURN_STEPS
 from linkwork.motion import fast
 from linkwork.motion.events import Event, find
-from linkwork.motion.solve import run, run_each
+from linkwork.motion.solve import SINGULAR, run, run_each
 from linkwork.motion.state import State
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, one_crank, per_mechanism
@@ -111,9 +111,10 @@ class Kinematics:
 
         One mechanism: its ``R K`` angles solved along a path from the assembly pose (:func:`kinematics`), as one
         variant ``(1, R K)``.  Variants: ``(R, K)``, each angle in the assembly modes of the two samples around it
-        and a group solved by Newton's method started from the pose of the nearer one
-        (:func:`~linkwork.motion.solve.run_each`); an angle between two samples in different modes (a change point
-        lies between them, where is not known) is not solved (NaN, not valid).
+        (a sample on a dyad's singular position has the modes of both sides: the other one's) and a group solved by
+        Newton's method started from the pose of the nearer one (:func:`~linkwork.motion.solve.run_each`); an angle
+        between two samples in different modes (a change point lies between them, where is not known) is not
+        solved (NaN, not valid).
         """
         mech = self.mechanism
         if mech.n_drives != 1:
@@ -126,12 +127,17 @@ class Kinematics:
         lo, hi, near = _around(self.angles, angles)
         modes: list[np.ndarray | None] = []
         apart = np.zeros(angles.shape, dtype=bool)
-        for step, branch in zip(mech.program, self.step_branch or (None,) * len(mech.program), strict=True):
+        none = (None,) * len(mech.program)
+        for step, branch, det in zip(mech.program, self.step_branch or none, self.step_det or none, strict=True):
             if branch is None or step.kind not in ("RRR", "RRP", "PRP"):
                 modes.append(None)
                 continue
             own = branch[rows]
             below, above = np.take_along_axis(own, lo, 1), np.take_along_axis(own, hi, 1)
+            if det is not None:  # a sample on the singular position has the modes of both sides: the other end's
+                lone = np.abs(det[rows]) < SINGULAR
+                on_lo, on_hi = np.take_along_axis(lone, lo, 1), np.take_along_axis(lone, hi, 1)
+                below, above = np.where(on_lo & ~on_hi, above, below), np.where(on_hi & ~on_lo, below, above)
             apart |= below != above
             modes.append(np.where(near == lo, below, above))
         arrays = (self.local, self.origin, self.axis)
