@@ -295,7 +295,8 @@ class Forces:
     def at(self, angles: np.ndarray, variants: np.ndarray | None = None) -> Forces | None:
         """The forces of the same mechanism solved again at other drive coordinates, for refining a quantity between
         the samples: at the angles ``(R, K)`` of :meth:`Kinematics.at <linkwork.motion.Kinematics.at>` (row ``r`` for
-        variant ``variants[r]``; one mechanism: as one variant ``(1, R K)``); None where that gives none."""
+        variant ``variants[r]``; for one mechanism, every row for it), as variants ``(R, K)``; None where that gives
+        none."""
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             kin = self.kinematics.at(angles, variants)
             return None if kin is None else forces_of(kin)

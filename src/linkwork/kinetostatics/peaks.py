@@ -12,7 +12,7 @@ of the best sample is refined: of two nearly equal maxima more than a step apart
 The value is found to about ``TOLERANCE``; the angle of a kink or a jump to about 1e-12 rad, that of a
 smooth maximum only to the square root of the values' precision (about 1e-7 rad), as from any values.
 
-Variants are refined together, each at its own angles, in one solve a round
+Variants (and the quantities of one mechanism) are refined together, each at its own angles, in one solve a round
 (:meth:`linkwork.motion.Kinematics.at`: the NumPy kernels, each angle in the assembly modes of the samples
 around it, a group solved by Newton's method started from the nearer sample's pose); between two samples
 in different modes (a change point between them) nothing is solved again, and a variant whose re-solve does
@@ -162,7 +162,7 @@ def peaks(
         g = f.at(at, variants)
         if g is None:
             return np.full(at.shape, np.nan)
-        return np.asarray(pick(g)).reshape(n_q, len(rows), at.shape[1])[which, rows]
+        return np.asarray(pick(g))[which, rows]
 
     points = POINTS[1] if f.kinematics.variants else POINTS[0]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):

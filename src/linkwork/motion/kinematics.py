@@ -107,14 +107,13 @@ class Kinematics:
     def at(self, angles: np.ndarray, variants: np.ndarray | None = None) -> Kinematics | None:
         """The same mechanism solved again at other drive coordinates, for refining a quantity between the samples
         (:mod:`linkwork.kinetostatics.peaks`): row ``r`` of ``angles`` ``(R, K)`` for variant ``variants[r]``
-        (default: row ``r`` for variant ``r``), at the uniform speed of the first sample; one drive only (else None).
+        (default: row ``r`` for variant ``r``; for one mechanism, every row for it), at the uniform speed of the first
+        sample, as variants ``(R, K)``; one drive only (else None).
 
-        One mechanism: its ``R K`` angles solved along a path from the assembly pose (:func:`kinematics`), as one
-        variant ``(1, R K)``.  Variants: ``(R, K)``, each angle in the assembly modes of the two samples around it
-        (a sample on a dyad's singular position has the modes of both sides: the other one's) and a group solved by
-        Newton's method started from the pose of the nearer one (:func:`~linkwork.motion.solve.run_each`); an angle
-        between two samples in different modes (a change point lies between them, where is not known) is not
-        solved (NaN, not valid).
+        Each angle is solved in the assembly modes of the two samples around it (a sample on a dyad's singular
+        position has the modes of both sides: the other one's), and a group solved by Newton's method is started
+        from the pose of the nearer one (:func:`~linkwork.motion.solve.run_each`); an angle between two samples in
+        different modes (a change point lies between them, where is not known) is not solved (NaN, not valid).
         """
         mech = self.mechanism
         if mech.n_drives != 1:
@@ -122,7 +121,7 @@ class Kinematics:
         rate = float(self.rates[0, 0])
         angles = np.asarray(angles, dtype=float)
         if not self.variants:
-            return kinematics(mech, angles.ravel(), speed=rate)
+            variants = np.zeros(len(angles), dtype=np.intp)
         rows = np.arange(len(angles)) if variants is None else np.asarray(variants, dtype=np.intp)
         lo, hi, near = _around(self.angles, angles)
         modes: list[np.ndarray | None] = []
