@@ -18,7 +18,8 @@ from linkwork.units import turn_deg
 
 @dataclass(frozen=True)
 class Bolts:
-    """Extremes of the foundation force over the cycle (of the first variant).
+    """Extremes of the foundation force over the cycle (of the first variant), refined between the samples
+    (:meth:`linkwork.kinetostatics.Forces.bolts`).
 
     ``*_angle`` is the drive coordinate (rad) where the extreme occurs.
     ``pull`` is 0 where the machine never lifts.
