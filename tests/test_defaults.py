@@ -55,6 +55,9 @@ def test_bolts_print_their_angles_in_degrees():
     """The shears' crank (m1 = 1 kg... the housing shear m1 omega^2 l = 150 N) at 180 deg: printed in degrees, as
     the command line prints it; the attributes stay SI."""
     bolts = lw.forces("shears-slider-crank", steps=360).bolts()
-    assert bolts.shear_angle == pytest.approx(math.pi)
+    # refined between the samples; 180 deg is a change point, where the reactions solved beside it are
+    # ill-conditioned: the flat maximum's angle is found to 1e-5 rad (its value to 1e-11)
+    assert bolts.shear_angle == pytest.approx(math.pi, abs=1e-5)
+    assert bolts.shear == pytest.approx(150.0, rel=1e-11)
     assert "shear 150 N at 180.0 deg" in str(bolts)
     assert str(bolts).endswith("; crank angles to the x axis)")

@@ -114,12 +114,16 @@ def test_the_simulated_speeds_extremes_do_not_depend_on_the_points_kept(shears):
 
 
 def test_the_report_gives_the_refined_peak_torque(shears, tmp_path):
-    """The report's forces.json and its text carry the peak every route gives (the text to its 4 digits)."""
+    """The report's forces.json and its text carry the peak every route gives (the text to its 4 digits), and the
+    bolt loads forces gives."""
     reference = torque_peak(lw.forces(shears, steps=360)).value[0]
     run = linkwork("analyze", "double-cut-shears", "--no-animation", "--steps", "720", "--out", str(tmp_path / "r"))
     assert run.returncode == 0, run.stderr
     data = json.loads((tmp_path / "r" / "forces.json").read_text(encoding="utf-8"))
     assert data["driving_torque_peak"]["value"] == pytest.approx(reference, rel=1e-9)
+    bolts = lw.forces(shears, steps=360).bolts()  # the bolt loads too, refined: 360 steps here, 720 there
+    for name in ("shear", "push", "moment"):
+        assert data["bolts"][name] == pytest.approx(getattr(bolts, name), rel=1e-9)
     html = (tmp_path / "r" / "report.html").read_text(encoding="utf-8")
     assert f"largest {reference / 1000:.4g} kN" in html
 
@@ -139,3 +143,199 @@ def test_the_largest_pair_forces_do_not_depend_on_the_grid_and_the_command_print
     np.testing.assert_allclose(coarse.value, sampled, rtol=2e-4)
     text = linkwork("forces", "double-cut-shears").stdout
     assert f"{coarse.value[0]:.6g}" in text and f"{coarse.value[4]:.6g}" in text
+
+
+#: A crank of 2 kg with its centre of mass at (80, 30) mm in its own axes, on a pivot at (40, 30) mm, turning at
+#: 300 rpm; the coupler and the rocker have no mass.  What it puts on its foundation is by hand: with K = m w^2 r_c
+#: and theta the angle of its centre of mass, Fx = K cos(theta), Fy = -m g + K sin(theta), and the moment about the
+#: origin is that of Fy and Fx at the pivot and of the weight's arm r_c cos(theta) (the inertia force passes
+#: through the pivot).
+ROTOR = """\
+name: rotor
+units: {length: mm, mass: kg, angle: deg}
+frame:
+  points: {O2: [40, 30], O4: [300, 0]}
+links:
+  crank: {ends: [O2, A], length: 100, mass: 2.0, com: [80, 30], inertia: 0.01 kg*m^2}
+  coupler: {ends: [A, B], length: 350}
+  rocker: {ends: [O4, B], length: 250}
+joints:
+  O2: {type: revolute, links: [frame, crank]}
+  A: {type: revolute, links: [crank, coupler]}
+  B: {type: revolute, links: [coupler, rocker]}
+  O4: {type: revolute, links: [frame, rocker]}
+drives:
+  - {joint: O2, speed: 300 rpm, direction: ccw, angle: 60 deg}
+hints:
+  B: [330, 240]
+"""
+
+
+def _rotor_bolts() -> dict[str, tuple[float, float]]:
+    """The rotor's largest bolt loads by hand and the crank angle (to x, rad, in 0..2 pi) of each."""
+    mass, g, omega, ox, oy = 2.0, 9.81, 300 * np.pi / 30, 0.04, 0.03
+    r_c, delta = np.hypot(0.08, 0.03), np.arctan2(0.03, 0.08)
+    k = mass * omega**2 * r_c
+    # M(theta) = -ox m g + ox K sin(theta) - (oy K + m g r_c) cos(theta): its least is -ox m g - R
+    a, b = ox * k, -(oy * k + mass * g * r_c)
+    theta_m = np.arctan2(-a, -b)  # where a sin + b cos = -R
+    angle = lambda theta: float(np.mod(theta - delta, 2 * np.pi))  # noqa: E731
+    return {
+        "shear": (k, angle(np.pi)),  # or 0: the grid's best sample picks one of the two equal maxima
+        "pull": (k - mass * g, angle(np.pi / 2)),
+        "push": (k + mass * g, angle(3 * np.pi / 2)),
+        "moment": (ox * mass * g + np.hypot(a, b), angle(theta_m)),
+    }
+
+
+@pytest.mark.parametrize("steps", [7, 360])
+def test_the_bolt_loads_are_the_closed_form_whatever_the_grid(steps, tmp_path):
+    """A rotating mass's shear, pull, push and moment peak between the samples of 7 or 360 steps; refined, Forces.bolts
+    (one mechanism and a variant of it) and forces --json give the closed form to 1e-9, and where, to 1e-6 rad."""
+    path = tmp_path / "rotor.yaml"
+    path.write_text(ROTOR, encoding="utf-8")
+    mech = lw.compile(lw.load(path))
+    expected = _rotor_bolts()
+    one = lw.forces(mech, steps=steps)
+    variant = lw.forces(mech, steps=steps, variants={"links.crank.mass": [2.0]})
+    sampled = np.abs(one.foundation[:, 2]).max()
+    assert sampled < expected["moment"][0] * (1 - 1e-6)  # the grid misses it
+    for bolts in (one.bolts(), variant.bolts()):
+        for name, (value, where) in expected.items():
+            assert getattr(bolts, name) == pytest.approx(value, rel=1e-9), name
+            at = np.mod(getattr(bolts, f"{name}_angle"), 2 * np.pi)
+            if name == "shear":
+                assert min(abs(at - where), abs(abs(at - where) - np.pi)) == pytest.approx(0, abs=1e-6)
+            else:
+                assert min(abs(at - where), 2 * np.pi - abs(at - where)) == pytest.approx(0, abs=1e-6), name
+    run = linkwork("forces", str(path), "--steps", str(steps), "--json")
+    assert run.returncode == 0, run.stderr
+    written = json.loads(run.stdout)["bolts"]
+    for name, (value, _) in expected.items():
+        assert written[name] == pytest.approx(value, rel=1e-9)
+
+
+def _bounded(mech: lw.Mechanism, quantity, steps: int = 7200) -> float:
+    """The largest ``quantity(forces) -> (A,)`` by an independent route: a dense grid, then scipy's bounded scalar
+    search between the neighbours of its best sample, solving single angles."""
+    from scipy.optimize import minimize_scalar
+
+    dense = lw.forces(mech, steps=steps)
+    values, angles = quantity(dense), dense.angles
+    i, step = int(np.nanargmax(values)), angles[1] - angles[0]
+    found = minimize_scalar(
+        lambda x: -float(quantity(lw.forces(mech, angles=np.array([x])))[0]),
+        bounds=(angles[i] - step, angles[i] + step),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
+    return max(-float(found.fun), float(values[i]))
+
+
+def test_bolts_and_shaking_do_not_depend_on_the_grid_and_every_route_prints_them(shears):
+    """The double-cut shears' bolt loads and shaking force and moment: 360 and 720 steps agree to 1e-9; the push and
+    the shaking force agree with a dense grid and a bounded search to 1e-6; forces --json and the printed lines carry
+    them."""
+    from linkwork.kinetostatics.peaks import shaking_peaks
+
+    found = {}
+    for steps in (360, 720):
+        f = lw.forces(shears, steps=steps)
+        b = f.bolts()
+        found[steps] = np.concatenate([[b.shear, b.push, b.moment], shaking_peaks(f).value])
+    np.testing.assert_allclose(found[360], found[720], rtol=1e-9)
+    push, shake, moment = found[360][1], found[360][3], found[360][4]
+    assert push == pytest.approx(_bounded(shears, lambda g: -g.foundation[:, 1]), rel=1e-6)
+    assert shake == pytest.approx(_bounded(shears, lambda g: np.hypot(*g.shaking_force.T)), rel=1e-6)
+    assert abs(moment) == pytest.approx(_bounded(shears, lambda g: np.abs(g.shaking_moment)), rel=1e-6)
+    run = linkwork("forces", "double-cut-shears", "--steps", "720", "--json")
+    assert run.returncode == 0, run.stderr
+    bolts = json.loads(run.stdout)["bolts"]
+    assert [bolts["shear"], bolts["push"], bolts["moment"]] == pytest.approx(list(found[360][:3]), rel=1e-9)
+    text = linkwork("forces", "double-cut-shears").stdout
+    assert f"shaking force max {shake:.6g} N" in text and f"shaking moment max {abs(moment):.6g} N m" in text
+    assert f"push on the foundation max {push:.6g} N" in text
+
+
+def test_a_guides_largest_moment_is_the_closed_form(tmp_path):
+    """The slider-crank shears with the knife's centre of mass 50 mm beside its guide: the guide holds the moment of
+    its weight and inertia force, m d (g - 2 l w^2 sin(phi)) (y_B = 2 l sin(phi)), largest m d (g + 2 l w^2) at
+    phi = 270 deg, between the samples of 7 steps; refined, and the largest moment forces prints."""
+    from linkwork.examples import text
+    from linkwork.kinetostatics.peaks import pair_moment_peaks
+
+    path = tmp_path / "offset-knife.yaml"
+    path.write_text(text("shears-slider-crank").replace("    mass: 20\n", "    mass: 20\n    com: [0.05, 0]\n"))
+    mech = lw.compile(lw.load(path))
+    guide = [mech.pair_joint.index("guide")]
+    expected = 20 * 0.05 * (9.81 + 2 * 0.15 * 10.0**2)
+    f = lw.forces(mech, steps=7)
+    assert np.nanmax(np.abs(f.multipliers[0, :, 2 * guide[0]])) < expected * 0.95
+    found = pair_moment_peaks(f, guide)
+    assert abs(found.value[0]) == pytest.approx(expected, rel=1e-9)
+    assert found.at[0] == pytest.approx(np.radians(270), abs=1e-6)
+    printed = linkwork("forces", str(path), "--steps", "7").stdout
+    assert f"{found.value[0]:.6g}" in printed
+
+
+def test_a_sweep_of_a_mechanism_with_a_group_solved_by_newton_is_refined():
+    """The class III triad (a group solved by Newton's method): the sweep's peak torque and foundation force are those
+    of forces, at 360 and 720 steps, to 1e-9 (its samples miss the torque's peak by 1.3e-6)."""
+    mech = lw.compile("class3-triad")
+    reference = lw.forces(mech, steps=360)
+    torque, force = abs(torque_peak(reference).value[0]), foundation_peak(reference).value[0]
+    assert np.nanmax(np.abs(reference.driving_torque)) < torque * (1 - 1e-7)
+    for steps in (360, 720):
+        t = lw.sweep(
+            mech,
+            {"links.crank.length": ("30 mm", "30 mm", 1)},
+            ["peak_driving_torque", "peak_foundation_force"],
+            steps=steps,
+        )
+        assert t["peak_driving_torque"][0] == pytest.approx(torque, rel=1e-9)
+        assert t["peak_foundation_force"][0] == pytest.approx(force, rel=1e-9)
+
+
+@pytest.mark.parametrize("steps", [7, 360])
+def test_the_speed_at_which_the_bolts_are_pulled_is_the_closed_form_whatever_the_grid(steps, tmp_path):
+    """The rotor's bolts carry a pull P first where its centre of mass is straight up, at m w^2 r_c - m g = P:
+    w = sqrt((P + m g) / (m r_c)), between the samples of 7 or 360 steps (missed by 7e-3 and 1.5e-5); refined,
+    lw.bolt_speed and forces --pull give it to 1e-9."""
+    path = tmp_path / "rotor.yaml"
+    path.write_text(ROTOR, encoding="utf-8")
+    mech = lw.compile(lw.load(path))
+    r_c = np.hypot(0.08, 0.03)
+    for pull in (0.0, 100.0):
+        expected = np.sqrt((pull + 2.0 * 9.81) / (2.0 * r_c))
+        assert lw.bolt_speed(mech, pull=pull, steps=steps) == pytest.approx(expected, rel=1e-9)
+    run = linkwork("forces", str(path), "--steps", str(steps), "--pull", "100 N", "--json")
+    assert run.returncode == 0, run.stderr
+    assert json.loads(run.stdout)["bolts"]["speed_for_pull_rad_s"] == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.parametrize("steps", [8, 12, 36])
+def test_a_variant_is_refined_through_a_sample_on_a_change_point(steps):
+    """The slider-crank shears pass change points at phi = 0 and 180 deg, samples of these grids; a sample there has
+    the modes of both sides, so a variant is refined on both (at 8 steps its peak torque lies beside one): the
+    variant's peak torque, foundation force and bolt shear and push are those of the mechanism alone (solved along
+    its path through the change points) to 1e-9, and the peak torque that of the closed form."""
+    mech = lw.compile("shears-slider-crank")
+    one = lw.forces(mech, steps=steps)
+    variant = lw.forces(mech, steps=steps, variants={"links.knife.mass": [20.0]})
+    figures = []
+    for f in (one, variant):
+        b = f.bolts()
+        figures.append([abs(torque_peak(f).value[0]), foundation_peak(f).value[0], b.shear, b.push])
+    np.testing.assert_allclose(figures[1], figures[0], rtol=1e-9)
+    # the torque by hand (tests/kinetostatics/test_singular_positions.py): a s c + b c, its largest size by a dense
+    # grid and a bounded search
+    from scipy.optimize import minimize_scalar
+
+    length, m1, m2, omega, g = 0.15, 10.0, 20.0, 10.0, 9.81
+    a = 0.5 * omega**2 * (m1 * (length**2 / 2 - 9 * length**2 / 2) - 8 * m2 * length**2)
+    size = lambda x: np.abs(a * np.sin(x) * np.cos(x) + g * length * np.cos(x) * (2 * m1 + 2 * m2))  # noqa: E731
+    x = np.linspace(0, 2 * np.pi, 100001)
+    i = int(np.argmax(size(x)))
+    found = minimize_scalar(lambda y: -size(y), bounds=(x[i] - 1e-4, x[i] + 1e-4), method="bounded",
+                            options={"xatol": 1e-12})  # fmt: skip
+    assert figures[1][0] == pytest.approx(-found.fun, rel=1e-9)

@@ -13,6 +13,7 @@ of everything less the rate of change of momentum.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 import linkwork as lw
 
@@ -38,8 +39,35 @@ def test_torque_and_foundation_are_finite_at_the_change_points_and_equal_the_clo
     np.testing.assert_allclose(f.foundation[:, 1], weight - ma_y, rtol=0, atol=1e-9 * abs(weight))
     # the reactions stay NaN there: they are indeterminate, and saying a number would be a guess
     assert np.isnan(f.reaction("B")[f.singular]).all()
-    # the sweep's metrics are those of Forces (one policy): the largest torque and foundation force
+    # the sweep's metrics are those of Forces (one policy), refined between the samples: the largest torque and
+    # foundation force of the closed forms (past the change point, in the mode the samples there were solved in)
+    from linkwork.kinetostatics.peaks import foundation_peak, torque_peak
+
     t = lw.sweep("shears-slider-crank", {"links.knife.mass": ("20", "20", 1)},
                  ["peak_driving_torque", "peak_foundation_force"], steps=360)  # fmt: skip
-    assert t["peak_driving_torque"][0] == np.max(np.abs(f.driving_torque))
-    assert t["peak_foundation_force"][0] == np.max(np.hypot(f.foundation[:, 0], f.foundation[:, 1]))
+    assert t["peak_driving_torque"][0] == pytest.approx(abs(torque_peak(f).value[0]), rel=1e-12)
+    assert t["peak_foundation_force"][0] == pytest.approx(foundation_peak(f).value[0], rel=1e-12)
+
+    def exact(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        s, c = np.sin(x), np.cos(x)
+        size = np.abs(0.5 * OMEGA**2 * (M1 * (L**2 / 2 - 9 * L**2 / 2) - 8 * M2 * L**2) * s * c
+                      + G * L * c * (M1 / 2 + 3 * M1 / 2 + 2 * M2))  # fmt: skip
+        fx = OMEGA**2 * (M1 * L / 2 + M1 * L / 2) * c
+        fy = weight + OMEGA**2 * (M1 * L / 2 + 3 * M1 * L / 2 + 2 * M2 * L) * s
+        return size, np.hypot(fx, fy)
+
+    for k, metric in enumerate(("peak_driving_torque", "peak_foundation_force")):
+        top = _largest(lambda x, k=k: exact(x)[k])
+        assert t[metric][0] == pytest.approx(top, rel=1e-9)
+    assert np.nanmax(exact(phi)[0]) < _largest(lambda x: exact(x)[0]) * (1 - 1e-9)  # the samples miss the torque's
+
+
+def _largest(fn) -> float:
+    """The largest value of a closed form over a turn: a dense grid, then scipy's bounded search beside its best."""
+    from scipy.optimize import minimize_scalar
+
+    x = np.linspace(0, 2 * np.pi, 100001)
+    i = int(np.argmax(fn(x)))
+    found = minimize_scalar(lambda y: -float(fn(np.array([y]))[0]), bounds=(x[i] - 1e-4, x[i] + 1e-4),
+                            method="bounded", options={"xatol": 1e-12})  # fmt: skip
+    return max(-float(found.fun), float(fn(x)[i]))

@@ -60,11 +60,6 @@ BALANCE_NULLS = {
 }
 
 
-def _peak(values: np.ndarray, angles: np.ndarray) -> tuple[float, float]:
-    i = int(np.nanargmax(np.abs(values)))
-    return float(values[i]), float(angles[i])
-
-
 def _torque_peak(f: Forces) -> tuple[float, float]:
     """The peak driving torque and its drive angle, refined between the samples
     (:func:`linkwork.kinetostatics.torque_peak`)."""
@@ -254,10 +249,10 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
 
     from linkwork.io.force_tables import pair_kind, pair_moment
     from linkwork.io.jsonout import snap_zeros
-    from linkwork.kinetostatics.peaks import pair_force_peaks
+    from linkwork.kinetostatics.peaks import pair_force_peaks, pair_moment_peaks
     from linkwork.structure.model import one_crank
 
-    mech, phi = f.mechanism, f.angles
+    mech = f.mechanism
     at = _where(mech, named=False)
     tab = make_table("largest pair forces over the cycle")
     head = "at phi" if one_crank(mech) else "at"
@@ -267,7 +262,13 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
     peaks = [(float(v), float(a)) for v, a in zip(refined.value, refined.at, strict=True)]
     values = snap_zeros(np.array([value for value, _ in peaks]))
     prismatic = [pair_kind(mech, k) == "prismatic" for _, k in labels]
-    moments = [_peak(pair_moment(f, k), phi)[0] if p else np.nan for (_, k), p in zip(labels, prismatic, strict=True)]
+    guides = [k for (_, k), p in zip(labels, prismatic, strict=True) if p]
+    largest = dict(zip(guides, pair_moment_peaks(f, guides).value.tolist(), strict=True))  # refined, as the forces
+    # a moment that is zero at every sample (its round-off snapped to zero) stays a zero
+    moments = [
+        (largest[k] if np.any(np.abs(pair_moment(f, k)) > 0) else 0.0) if p else np.nan
+        for (_, k), p in zip(labels, prismatic, strict=True)
+    ]
     for (label, k), value, (_, where), moment, p in zip(labels, values, peaks, moments, prismatic, strict=True):
         a, b = (mech.link_names[int(i)] for i in mech.pair_members[k])
         shown = f"{moment:.6g}" if p else "-"
@@ -276,8 +277,10 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
 
 
 def _report_foundation(f: Forces, out: Console) -> None:
-    """The extremes of the foundation loads and of the shaking force and moment, with their angles."""
-    phi = f.angles
+    """The extremes of the foundation loads and of the shaking force and moment, with their angles, refined between
+    the samples (:meth:`~linkwork.kinetostatics.Forces.bolts`, :func:`~linkwork.kinetostatics.peaks.shaking_peaks`)."""
+    from linkwork.kinetostatics.peaks import shaking_peaks
+
     at = _where(f.mechanism)
     bolts = f.bolts()
     pull = f"{bolts.pull:.6g} N at {at(bolts.pull_angle)}" if bolts.pull > 0 else "none (the machine never lifts)"
@@ -285,9 +288,8 @@ def _report_foundation(f: Forces, out: Console) -> None:
     out.print(f"              pull on the bolts max {pull}")
     out.print(f"              push on the foundation max {bolts.push:.6g} N at {at(bolts.push_angle)}")
     out.print(f"              moment about the origin max {bolts.moment:.6g} N m at {at(bolts.moment_angle)}")
-    shake = np.hypot(f.shaking_force[:, 0], f.shaking_force[:, 1])
-    s, s_at = _peak(shake, phi)
-    m, m_at = _peak(f.shaking_moment, phi)
+    shaking = shaking_peaks(f)
+    (s, m), (s_at, m_at) = shaking.value.tolist(), shaking.at.tolist()
     out.print(f"  shaking force max {s:.6g} N at {at(s_at)}, shaking moment max {abs(m):.6g} N m at {at(m_at)}")
 
 

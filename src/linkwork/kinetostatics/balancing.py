@@ -32,6 +32,7 @@ import numpy.typing as npt
 from linkwork.angles import wrap
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.forces import Forces, forces
+from linkwork.kinetostatics.peaks import pair_force_peaks, shaking_peaks, torque_peak
 from linkwork.limits import TURN_STEPS
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, frozen, one_crank
@@ -83,21 +84,19 @@ class Balance:
 
     def summary(self) -> dict[str, dict[str, float]]:
         """Peak and RMS shaking force (N), peak shaking moment (N m), peak driving torque (N m), and
-        the largest force in any revolute pair (N), before and after."""
+        the largest force in any revolute pair (N), before and after; the peaks refined between the samples
+        (:mod:`linkwork.kinetostatics.peaks`), the RMS over the samples."""
 
         def figures(f: Forces) -> dict[str, float]:
             force = np.hypot(*np.moveaxis(f.shaking_force, -1, 0))
-            pairs = [
-                np.nanmax(np.hypot(*np.moveaxis(f.pair_force(k), -1, 0)))
-                for k in range(f.mechanism.n_pairs)
-                if f.mechanism.pair_type[k] == PairType.REVOLUTE
-            ]
+            revolute = [k for k in range(f.mechanism.n_pairs) if f.mechanism.pair_type[k] == PairType.REVOLUTE]
+            shaking = shaking_peaks(f).value
             return {
-                "shaking_force_peak": float(np.nanmax(force)),
+                "shaking_force_peak": float(shaking[0]),
                 "shaking_force_rms": float(np.sqrt(np.nanmean(force**2))),
-                "shaking_moment_peak": float(np.nanmax(np.abs(f.shaking_moment))),
-                "driving_torque_peak": float(np.nanmax(np.abs(f.driving_torque))),
-                "pair_force_peak": float(max(pairs)) if pairs else 0.0,
+                "shaking_moment_peak": float(abs(shaking[1])),
+                "driving_torque_peak": float(abs(torque_peak(f).value[0])),
+                "pair_force_peak": float(np.nanmax(pair_force_peaks(f, revolute).value)) if revolute else 0.0,
             }
 
         return {"before": figures(self.before), "after": figures(self.after)}

@@ -7,7 +7,8 @@ import math
 
 import numpy as np
 
-from linkwork.kinetostatics.forces import forces
+from linkwork.kinetostatics.forces import Forces, forces
+from linkwork.kinetostatics.peaks import POINTS, peak_of, refine
 from linkwork.limits import TURN_STEPS
 from linkwork.structure.model import Mechanism
 
@@ -21,15 +22,24 @@ def bolt_speed(mech: Mechanism, pull: float = 0.0, *, steps: int = TURN_STEPS) -
     force is ``F(phi) = G(phi) + omega^2 I(phi)``: ``G`` from the weights
     (computed at rest) and ``I`` from the inertia (the force at 1 rad/s less
     ``G``).  The pull reaches ``pull`` first at ``omega^2 = min (pull - G) / I``
-    over the angles where ``I > 0``.  Returns ``inf`` if no speed does it,
+    over the angles where ``I > 0``, refined between the samples (and the largest pull at rest) by the rule of
+    every peak (:func:`~linkwork.kinetostatics.peaks.refine`).  Returns ``inf`` if no speed does it,
     0 if the bolts carry that pull at rest already.
     """
-    rest = forces(mech, steps=steps, speed=0.0).foundation[..., 1]
-    one = forces(mech, steps=steps, speed=1.0).foundation[..., 1]
-    inertia = one - rest
-    if np.nanmax(rest) >= pull:
+    at_rest, at_one = forces(mech, steps=steps, speed=0.0), forces(mech, steps=steps, speed=1.0)
+    lifting = peak_of(at_rest, lambda g: g._foundation_filled[..., 1], "max").value[0]
+    if lifting >= pull:
         return 0.0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        need = np.where(inertia > 0, (pull - rest) / inertia, np.inf)
-    best = float(np.nanmin(need))
+
+    def need(rest: Forces, one: Forces) -> np.ndarray:
+        """The square of the speed at which the pull reaches ``pull`` at each sample, ``(V, A)``."""
+        g, inertia = rest._foundation_filled[..., 1], one._foundation_filled[..., 1] - rest._foundation_filled[..., 1]
+        return np.where(inertia > 0, (pull - g) / inertia, np.inf)
+
+    def quantity(at: np.ndarray) -> np.ndarray:
+        rest, one = at_rest.at(at), at_one.at(at)
+        return np.full(at.shape, np.nan) if rest is None or one is None else need(rest, one).reshape(at.shape)
+
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        best = float(refine(need(at_rest, at_one), at_rest.angles, quantity, "min", POINTS[0]).value[0])
     return math.sqrt(best) if math.isfinite(best) else math.inf

@@ -12,14 +12,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
+from linkwork.kinetostatics.peaks import Peak
 from linkwork.units import turn_deg
 
 
 @dataclass(frozen=True)
 class Bolts:
-    """Extremes of the foundation force over the cycle (of the first variant).
+    """Extremes of the foundation force over the cycle (of the first variant), refined between the samples
+    (:meth:`linkwork.kinetostatics.Forces.bolts`).
 
     ``*_angle`` is the drive coordinate (rad) where the extreme occurs.
     ``pull`` is 0 where the machine never lifts.
@@ -55,11 +55,12 @@ class Bolts:
         return out
 
 
-def bolt_loads(foundation: np.ndarray, angles: np.ndarray) -> Bolts:
-    """Extremes of a foundation force ``(V, A, 3)`` (x, y up, moment) over the angles ``(A,)``."""
-    f = foundation[0]
+def bolt_loads(found: Peak, first: float) -> Bolts:
+    """The bolt loads of the peaks ``(4,)`` of the shear ``|Fx|``, the upward force ``Fy``, the downward ``-Fy`` and
+    the size of the moment (:meth:`linkwork.kinetostatics.Forces.bolts`): a pull or push that never occurs is 0, at
+    the drive coordinate ``first`` (the first sample's)."""
     out = []
-    for values in (np.abs(f[:, 0]), np.maximum(f[:, 1], 0.0), np.maximum(-f[:, 1], 0.0), np.abs(f[:, 2])):
-        i = int(np.nanargmax(values)) if np.isfinite(values).any() else 0
-        out += [float(values[i]), float(angles[i])]
+    for k, (value, at) in enumerate(zip(found.value.tolist(), found.at.tolist(), strict=True)):
+        never = k in (1, 2) and not value > 0
+        out += [0.0 if never else value, first if never or not math.isfinite(at) else at]
     return Bolts(*out)

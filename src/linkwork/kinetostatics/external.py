@@ -269,7 +269,7 @@ def _given_load(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
     if load.table is None:
         size = np.full(shape, load.value)
     else:
-        drive = np.broadcast_to(kin.angles, shape)
+        drive = kin.angles_all
         x0 = load.table[0][0]
         size = _interp(x0 + np.mod(drive - x0, 2 * np.pi), load.table)
     out.magnitude[load.name] = size

@@ -20,6 +20,7 @@ from linkwork.kinetostatics.external import Applied, evaluate
 from linkwork.kinetostatics.free_body import FreeBody, free_bodies
 from linkwork.kinetostatics.friction import FrictionSolution, has_friction, solve_friction
 from linkwork.kinetostatics.geometry import guide_direction
+from linkwork.kinetostatics.peaks import peaks
 from linkwork.kinetostatics.reactions import (
     Loads,
     foundation,
@@ -262,14 +263,24 @@ class Forces:
     def shaking_force(self) -> np.ndarray:
         """Resultant of the inertia forces of the links, N: ``(..., n_angles, 2)``; what the
         foundation feels beyond the weights and the external loads."""
-        return self._out(np.sum(self.loads.inertia[..., :2], axis=-2))
+        return self._out(self.shaking_force_all)
+
+    @property
+    def shaking_force_all(self) -> np.ndarray:
+        """:attr:`shaking_force` of every variant, ``(V, A, 2)``."""
+        return np.sum(self.loads.inertia[..., :2], axis=-2)
 
     @property
     def shaking_moment(self) -> np.ndarray:
         """Resultant moment of the inertia loads about the origin, N m: ``(..., n_angles)``."""
+        return self._out(self.shaking_moment_all)
+
+    @property
+    def shaking_moment_all(self) -> np.ndarray:
+        """:attr:`shaking_moment` of every variant, ``(V, A)``."""
         q, f = self.kinematics.pose, self.loads.inertia
         about = f[..., 2] + q[..., 0] * f[..., 1] - q[..., 1] * f[..., 0]
-        return self._out(np.sum(about, axis=-1))
+        return np.sum(about, axis=-1)
 
     @property
     def checks(self) -> dict[str, float]:
@@ -304,9 +315,32 @@ class Forces:
         return free_bodies(self)
 
     def bolts(self) -> Bolts:
-        """Pull, push and shear of the foundation bolts and where their maxima occur (from
-        :attr:`foundation`, defined at singular positions too)."""
-        return bolt_loads(self._foundation_filled, self.angles)
+        """Pull, push and shear of the foundation bolts, the moment, and where their maxima occur (from
+        :attr:`foundation`, defined at singular positions too), of the first variant: refined between the
+        samples by the rule of every peak (:func:`~linkwork.kinetostatics.peaks.refine`), so that they do not
+        depend on the grid.  Found once per result."""
+        found = self.__dict__.get("_bolts")
+        if found is None:
+            loads = peaks(self, _bolt_quantities, "max", which=np.arange(4), variants=np.zeros(4, dtype=np.intp))
+            found = bolt_loads(loads, float(self.angles[0]))
+            object.__setattr__(self, "_bolts", found)  # frozen: kept as the result's cached values are
+        return found
+
+    def at(self, angles: np.ndarray, variants: np.ndarray | None = None) -> Forces | None:
+        """The forces of the same mechanism solved again at other drive coordinates, for refining a quantity between
+        the samples: at the angles ``(R, K)`` of :meth:`Kinematics.at <linkwork.motion.Kinematics.at>` (row ``r`` for
+        variant ``variants[r]``; for one mechanism, every row for it), as variants ``(R, K)``; None where that gives
+        none."""
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            kin = self.kinematics.at(angles, variants)
+            return None if kin is None else forces_of(kin)
+
+
+def _bolt_quantities(f: Forces) -> np.ndarray:
+    """What the bolts carry at each sample, ``(4, V, A)``: the shear ``|Fx|``, the upward force ``Fy`` (a pull where
+    positive), the downward ``-Fy`` (a push where positive) and the size of the moment about the origin."""
+    found = f._foundation_filled
+    return np.stack([np.abs(found[..., 0]), found[..., 1], -found[..., 1], np.abs(found[..., 2])])
 
 
 def forces(

@@ -12,23 +12,25 @@ of the best sample is refined: of two nearly equal maxima more than a step apart
 The value is found to about ``TOLERANCE``; the angle of a kink or a jump to about 1e-12 rad, that of a
 smooth maximum only to the square root of the values' precision (about 1e-7 rad), as from any values.
 
-Variants are refined together, each at its own angles, in one solve a round
-(:func:`linkwork.motion.solve.run_each`: the NumPy kernels, the dyads in the modes of the assembly
-pose); a variant whose re-solve does not meet its own best sample (another mode past a change point)
-keeps the peak of its samples, as do variants with a group solved by Newton's method.
+Variants (and the quantities of one mechanism) are refined together, each at its own angles, in one solve a round
+(:meth:`linkwork.motion.Kinematics.at`: the NumPy kernels, each angle in the assembly modes of the samples
+around it, a group solved by Newton's method started from the nearer sample's pose); between two samples
+in different modes (a change point between them) nothing is solved again, and a variant whose re-solve does
+not meet its own best sample keeps the peak of its samples.  This module solves nothing itself: the forces
+it refines are solved again by :meth:`linkwork.kinetostatics.Forces.at`, so that :class:`Forces` refines
+its own extremes (:meth:`~linkwork.kinetostatics.Forces.bolts`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.kinetostatics.forces import Forces, forces_of
-from linkwork.motion.kinematics import Kinematics, kinematics
-from linkwork.motion.solve import run_each
-from linkwork.structure.parameters import Geometry
+if TYPE_CHECKING:
+    from linkwork.kinetostatics.forces import Forces
 
 #: The zoom stops where the values at the ends of the bracket are within this fraction of the peak.
 TOLERANCE = 1e-13
@@ -138,43 +140,38 @@ def _bracket(g: np.ndarray, angles: np.ndarray, i: np.ndarray) -> tuple[np.ndarr
     return angles[below], angles[above], g[rows, below], g[rows, above]
 
 
-def forces_at(f: Forces) -> Callable[[np.ndarray], Forces | None]:
-    """``solve(at)``: the :class:`~linkwork.kinetostatics.Forces` of the variants of ``f`` at their own drive angles
-    ``at`` ``(V, K)``, at the uniform speed of ``f``: for one mechanism at its angles (:func:`linkwork.kinematics`),
-    for variants in one solve (NumPy kernels, :func:`linkwork.motion.solve.run_each`); None where the variants
-    have a group solved by Newton's method (their peaks then stay those of the samples)."""
-    kin = f.kinematics
-    mech, rate = kin.mechanism, float(kin.rates[0, 0])
+def peaks(
+    f: Forces,
+    pick: Callable[[Forces], np.ndarray],
+    kind: str = "abs",
+    which: np.ndarray | None = None,
+    variants: np.ndarray | None = None,
+) -> Peak:
+    """The refined peaks (see :func:`refine`) of quantities of the forces ``f``: ``pick(forces) -> (Q, V, A)``, the
+    quantities of every variant at every sample; row ``r`` is quantity ``which[r]`` of variant ``variants[r]``
+    (default: the one quantity of every variant).  The rows are solved again together, each at its own angles
+    (:meth:`Forces.at <linkwork.kinetostatics.Forces.at>`).  ``(R,)``."""
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        values = np.asarray(pick(f))
+    n_q, n_v, _ = values.shape
+    variants = np.arange(n_v) if variants is None else np.asarray(variants, dtype=np.intp)
+    which = np.zeros(len(variants), dtype=np.intp) if which is None else np.asarray(which, dtype=np.intp)
+    rows = np.arange(len(which))
 
-    def solve(at: np.ndarray) -> Forces | None:
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            if not kin.variants:
-                return forces_of(kinematics(mech, at[0], speed=rate))
-            geom = Geometry(*(np.ascontiguousarray(x.transpose(2, 3, 0, 1)) for x in (kin.local, kin.origin, kin.axis)))
-            state = run_each(mech, geom, at, rate)
-            if state is None:
-                return None
-            made = Kinematics._made(
-                mechanism=mech, drive=at[0][:, None], rates=np.full((at.shape[1], 1), rate), q=state.q, v=state.v,
-                a=state.a, cos=state.cos, sin=state.sin, local=state.local, axis=state.axis, origin=state.origin,
-                valid_all=state.valid, events=(), variants=True, masses=kin.masses,
-            )  # fmt: skip
-            return forces_of(made)
+    def quantity(at: np.ndarray) -> np.ndarray:
+        g = f.at(at, variants)
+        if g is None:
+            return np.full(at.shape, np.nan)
+        return np.asarray(pick(g))[which, rows]
 
-    return solve
+    points = POINTS[1] if f.kinematics.variants else POINTS[0]
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        return refine(values[which, variants], f.angles, quantity, kind, points)
 
 
 def peak_of(f: Forces, pick: Callable[[Forces], np.ndarray], kind: str = "abs") -> Peak:
     """The refined peak of the quantity ``pick(forces) -> (V, A)`` of every variant of ``f`` (see :func:`refine`)."""
-    solve = forces_at(f)
-
-    def quantity(at: np.ndarray) -> np.ndarray:
-        g = solve(at)
-        return np.full(at.shape, np.nan) if g is None else pick(g)
-
-    points = POINTS[1] if f.kinematics.variants else POINTS[0]
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return refine(pick(f), f.angles, quantity, kind, points)
+    return peaks(f, lambda g: pick(g)[None], kind)
 
 
 def driving_torque(f: Forces) -> np.ndarray:
@@ -203,28 +200,37 @@ def foundation_peak(f: Forces) -> Peak:
     return peak_of(f, foundation_force, "max")
 
 
-def peaks_of(f: Forces, pick: Callable[[Forces], np.ndarray], kind: str = "abs") -> Peak:
-    """The refined peaks of several quantities of one mechanism (``f`` without variants) at once: ``pick(forces) ->
-    (Q, A)``, one row a quantity; each row's angles are solved together in one solve a round.  ``(Q,)``."""
-    kin = f.kinematics
-    if kin.variants:
-        raise ValueError("peaks_of: one mechanism (no variants); peak_of refines variants")
-    mech, rate = kin.mechanism, float(kin.rates[0, 0])
-
-    def quantity(at: np.ndarray) -> np.ndarray:
-        rows, k = at.shape
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            values = pick(forces_of(kinematics(mech, at.ravel(), speed=rate)))  # (Q, Q K)
-        return values.reshape(rows, rows, k)[np.arange(rows), np.arange(rows)]
-
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return refine(pick(f), f.angles, quantity, kind, POINTS[0])
+def _first(f: Forces, pick: Callable[[Forces], np.ndarray], count: int, kind: str) -> Peak:
+    """The refined peaks of ``count`` quantities ``pick(forces) -> (Q, V, A)`` of the first variant of ``f``."""
+    return peaks(f, pick, kind, which=np.arange(count), variants=np.zeros(count, dtype=np.intp))
 
 
 def pair_force_peaks(f: Forces, pairs: list[int]) -> Peak:
-    """The largest size of the force in each of ``pairs`` (N) of one mechanism and where, refined: ``(len(pairs),)``."""
+    """The largest size of the force in each of ``pairs`` (N) of the first variant and where, refined:
+    ``(len(pairs),)``."""
 
     def sizes(g: Forces) -> np.ndarray:
-        return np.stack([np.hypot(*g.pair_force(k)[0].T) for k in pairs]) if pairs else np.empty((0, len(g.angles)))
+        return np.stack([np.hypot(*np.moveaxis(g.pair_force(k), -1, 0)) for k in pairs])
 
-    return peaks_of(f, sizes, "max")
+    return _first(f, sizes, len(pairs), "max") if pairs else Peak(np.empty(0), np.empty(0))
+
+
+def pair_moment_peaks(f: Forces, pairs: list[int]) -> Peak:
+    """The moment of largest size (with its sign, N m) that each of the prismatic ``pairs`` puts on its slider, of
+    the first variant, and where, refined: ``(len(pairs),)``."""
+
+    def moments(g: Forces) -> np.ndarray:
+        return np.stack([g.multipliers[..., 2 * k] for k in pairs])
+
+    return _first(f, moments, len(pairs), "abs") if pairs else Peak(np.empty(0), np.empty(0))
+
+
+def shaking_peaks(f: Forces) -> Peak:
+    """The largest size of the shaking force (N) and the shaking moment of largest size (with its sign, N m) of the
+    first variant, and where, refined: ``(2,)``."""
+
+    def both(g: Forces) -> np.ndarray:
+        force = g.shaking_force_all
+        return np.stack([np.hypot(force[..., 0], force[..., 1]), g.shaking_moment_all])
+
+    return _first(f, both, 2, "abs")  # a size is its own largest size

@@ -15,7 +15,7 @@ from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.limits import TURN_STEPS
 from linkwork.motion import fast
 from linkwork.motion.events import Event, find
-from linkwork.motion.solve import run
+from linkwork.motion.solve import SINGULAR, run, run_each
 from linkwork.motion.state import State
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, one_crank, per_mechanism
@@ -52,7 +52,9 @@ class Kinematics:
     events: tuple[Event, ...]
     variants: bool
     step_det: tuple[np.ndarray, ...] = ()  # (V, A) per step of the program, its normalised Jacobian determinant
+    step_branch: tuple[np.ndarray | None, ...] = ()  # (V, A) per step, the assembly mode used; None: the step's own
     masses: Masses | None = None  # mass properties of the variants' links; None: the mechanism's
+    each: np.ndarray | None = None  # (V, A) the drive coordinate of every variant where each has its own (:meth:`at`)
 
     @classmethod
     def _made(cls, **fields: Any) -> Kinematics:
@@ -111,6 +113,63 @@ class Kinematics:
     def angles(self) -> np.ndarray:
         """Drive coordinate of the (first) drive at each sample, rad (m for a linear drive)."""
         return self.drive[:, 0]
+
+    @property
+    def angles_all(self) -> np.ndarray:
+        """Drive coordinate of the (first) drive of every variant at each sample, ``(V, A)`` (a view): :attr:`angles`
+        for every variant, or each variant's own (:meth:`at`)."""
+        return self.each if self.each is not None else np.broadcast_to(self.angles, self.valid_all.shape)
+
+    def at(self, angles: np.ndarray, variants: np.ndarray | None = None) -> Kinematics | None:
+        """The same mechanism solved again at other drive coordinates, for refining a quantity between the samples
+        (:mod:`linkwork.kinetostatics.peaks`): row ``r`` of ``angles`` ``(R, K)`` for variant ``variants[r]``
+        (default: row ``r`` for variant ``r``; for one mechanism, every row for it), at the uniform speed of the first
+        sample, as variants ``(R, K)``; one drive only (else None).
+
+        Each angle is solved in the assembly modes of the two samples around it (a sample on a dyad's singular
+        position has the modes of both sides: the other one's), and a group solved by Newton's method is started
+        from the pose of the nearer one (:func:`~linkwork.motion.solve.run_each`); an angle between two samples in
+        different modes (a change point lies between them, where is not known) is not solved (NaN, not valid).
+        """
+        mech = self.mechanism
+        if mech.n_drives != 1:
+            return None
+        rate = float(self.rates[0, 0])
+        angles = np.asarray(angles, dtype=float)
+        if not self.variants:
+            variants = np.zeros(len(angles), dtype=np.intp)
+        rows = np.arange(len(angles)) if variants is None else np.asarray(variants, dtype=np.intp)
+        lo, hi, near = _around(self.angles, angles)
+        modes: list[np.ndarray | None] = []
+        apart = np.zeros(angles.shape, dtype=bool)
+        none = (None,) * len(mech.program)
+        for step, branch, det in zip(mech.program, self.step_branch or none, self.step_det or none, strict=True):
+            if branch is None or step.kind not in ("RRR", "RRP", "PRP"):
+                modes.append(None)
+                continue
+            own = branch[rows]
+            below, above = np.take_along_axis(own, lo, 1), np.take_along_axis(own, hi, 1)
+            if det is not None:  # a sample on the singular position has the modes of both sides: the other end's
+                lone = np.abs(det[rows]) < SINGULAR
+                on_lo, on_hi = np.take_along_axis(lone, lo, 1), np.take_along_axis(lone, hi, 1)
+                below, above = np.where(on_lo & ~on_hi, above, below), np.where(on_hi & ~on_lo, below, above)
+            apart |= below != above
+            modes.append(np.where(near == lo, below, above))
+        arrays = (self.local, self.origin, self.axis)
+        geom = Geometry(*(np.ascontiguousarray(x.transpose(2, 3, 0, 1)[rows]) for x in arrays))
+        start = self.q[:, :, rows[:, None], near]  # (N, 3, R, K)
+        each = np.where(apart, np.nan, angles)
+        state = run_each(mech, geom, each, rate, modes=modes, start=start)
+        if state is None:
+            return None
+        m = self.masses
+        masses = None if m is None else Masses(m.mass[rows], m.com[rows], m.inertia[rows])
+        return Kinematics._made(
+            mechanism=mech, drive=angles[0][:, None], rates=np.full((angles.shape[1], 1), rate), q=state.q, v=state.v,
+            a=state.a, cos=state.cos, sin=state.sin, local=state.local, axis=state.axis, origin=state.origin,
+            valid_all=state.valid, events=(), variants=True, step_det=tuple(r.det for r in state.steps),
+            step_branch=tuple(r.branch for r in state.steps), masses=masses, each=each,
+        )  # fmt: skip
 
     @property
     def valid(self) -> np.ndarray:
@@ -206,7 +265,37 @@ class Kinematics:
             sin=self.sin[..., index],
             valid_all=self.valid_all[:, index],
             step_det=tuple(d[..., index] for d in self.step_det),
+            step_branch=tuple(None if b is None else b[..., index] for b in self.step_branch),
+            each=None if self.each is None else self.each[:, index],
         )
+
+
+def _around(samples: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The samples around each drive coordinate ``x`` ``(R, K)`` among ``samples`` ``(A,)`` (equally spaced over a
+    whole turn: its ends are neighbours; else any monotonic range, the ends standing for what lies beyond them):
+    ``(below, above, nearer)`` indices, ``(R, K)`` each; all three the sample itself where ``x`` is one, to
+    rounding."""
+    n = len(samples)
+    if n < 2:
+        zero = np.zeros(x.shape, dtype=np.intp)
+        return zero, zero, zero
+    step = samples[1] - samples[0]
+    if n >= 3 and abs(abs(n * step) - 2 * np.pi) <= 1e-9:
+        k = (x - samples[0]) / step
+        k = np.where(np.abs(k - np.round(k)) <= 1e-9, np.round(k), k)
+        first = np.floor(k)
+        below, above = first.astype(np.intp) % n, (first.astype(np.intp) + 1) % n
+        on = k == first
+        nearer = np.where(k - first <= 0.5, below, above)
+        return below, np.where(on, below, above), nearer
+    order = np.argsort(samples)
+    s = samples[order]
+    tol = 1e-9 * max(1.0, float(np.abs(s).max()))
+    pos = np.clip(np.searchsorted(s, x + tol, side="right") - 1, 0, n - 1)
+    on = (np.abs(x - s[pos]) <= tol) | (x <= s[0]) | (pos == n - 1)
+    up = np.where(on, pos, np.minimum(pos + 1, n - 1))
+    nearer = np.where(np.abs(x - s[pos]) <= np.abs(s[up] - x), pos, up)
+    return order[pos], order[up], order[nearer]
 
 
 #: Largest step (rad) of a path along which change points are followed.
@@ -350,7 +439,9 @@ def kinematics(
         events=events,
         variants=variants is not None and len(variants) > 0,
         step_det=tuple(r.det for r in state.steps),
+        step_branch=tuple(r.branch for r in state.steps),
         masses=masses,
+        each=None,
     )
 
 

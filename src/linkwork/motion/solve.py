@@ -119,22 +119,35 @@ def run_numpy(
     return state
 
 
-def run_each(mech: Mechanism, geom: Geometry, drive: np.ndarray, rate: float) -> State | None:
-    """Every variant at its own drive coordinates ``drive`` ``(V, A)`` (one drive turning at the uniform
-        ``rate``), by the NumPy kernels in the assembly modes of the program; None where a step is not in closed
-        form (Newton's method starts from shared drive values).  The dyads stay in the assembly modes of the program
-    (no change point followed).  Samples at a singular position are left as the
-        kernels give them (not repaired): NaN where a linear system has no solution.  For refining a quantity
-        between the samples of a solved cycle (:mod:`linkwork.kinetostatics.peaks`), which checks the modes
-        against the cycle's own samples."""
-    if mech.n_drives != 1 or any(step.kind == "newton" for step in mech.program):
+def run_each(
+    mech: Mechanism,
+    geom: Geometry,
+    drive: np.ndarray,
+    rate: float,
+    modes: list[np.ndarray | None] | None = None,
+    start: np.ndarray | None = None,
+) -> State | None:
+    """Every variant at its own drive coordinates ``drive`` ``(V, A)`` (one drive turning at the uniform ``rate``), by
+    the NumPy kernels, for refining a quantity between the samples of a solved cycle
+    (:meth:`linkwork.motion.Kinematics.at`).
+
+    ``modes``: per step of the program, the assembly mode of each dyad at each sample ``(V, A)`` (None: the step's
+    own); no change point is followed.  ``start``: the poses ``(N, 3, V, A)`` from which a group solved by Newton's
+    method starts (the nearest sample's; without them such a program gives None).  None with several drives.
+    Samples at a singular position are left as the kernels give them (not repaired): NaN where a linear system has
+    no solution."""
+    newton_steps = any(step.kind == "newton" for step in mech.program)
+    if mech.n_drives != 1 or (newton_steps and start is None):
         return None
     n_ang = drive.shape[1]
     values = np.ascontiguousarray(drive[0])[:, None]
     rates, accels = np.full((n_ang, 1), float(rate)), np.zeros((n_ang, 1))
-    fixed = [np.full(drive.shape, s.branch) if s.kind in ("RRR", "RRP", "PRP") else None for s in mech.program]
+    fixed = [
+        (np.full(drive.shape, s.branch) if m is None else m) if s.kind in ("RRR", "RRP", "PRP") else None
+        for s, m in zip(mech.program, modes or [None] * len(mech.program), strict=True)
+    ]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        state = _solve(mech, mech.program, geom, values, rates, accels, branches=fixed, each=drive)
+        state = _solve(mech, mech.program, geom, values, rates, accels, branches=fixed, each=drive, start=start)
     _not_assembled(state)
     return state
 
@@ -152,9 +165,11 @@ def _solve(
     accels: np.ndarray,
     branches: list[np.ndarray | None] | None = None,
     each: np.ndarray | None = None,
+    start: np.ndarray | None = None,
 ) -> State:
     """Solve every step by the NumPy kernels; ``each``: the drive coordinate of every variant at every sample
-    ``(V, A)`` in place of the shared ``values[:, 0]`` (one drive, closed-form steps only: :func:`run_each`)."""
+    ``(V, A)`` in place of the shared ``values[:, 0]``, with ``start``, the poses ``(N, 3, V, A)`` Newton's method
+    starts from there (one drive: :func:`run_each`)."""
     n_var, n_ang = geom.n_variants, values.shape[0]
     state = State.empty(mech.n_links_total, *geom.link_major, n_ang)
     offset = wrap(values[:, 0] - mech.drive_start[0])
@@ -177,6 +192,8 @@ def _solve(
             kernels.rpr(step, state, mech.point_link)
         elif step.kind == "RPP":
             kernels.rpp(step, state, mech.point_link)
+        elif each is not None and start is not None:
+            newton_from(mech, step, state, geom, each, start, rates, accels)
         else:
             newton(mech, step, state, geom, values, rates, accels)
         state.valid &= state.steps[-1].valid
@@ -334,6 +351,45 @@ def newton(
     q = np.ascontiguousarray(np.moveaxis(state.q, (0, 1), (2, 3)))  # (V, A, N, 3)
     q[:, :, group.links] = np.asarray(mech.pose0)[group.links]
     converged = _rings(mech, group, q, drive, values, geom, tol, iterations)
+    _place(mech, group, state, q, drive, geom, rates, accels, converged, jumps=True)
+
+
+def newton_from(
+    mech: Mechanism,
+    step: Step,
+    state: State,
+    geom: Geometry,
+    each: np.ndarray,
+    start: np.ndarray,
+    rates: np.ndarray,
+    accels: np.ndarray,
+    tol: float = 1e-12,
+    iterations: int = 40,
+) -> None:
+    """A group by Newton's method at every variant's own drive coordinates ``each`` ``(V, A)``, each sample started
+    from its pose in ``start`` ``(N, 3, V, A)`` (a neighbouring solved sample's: :func:`run_each`)."""
+    group = _Group(mech, step, state)
+    drive = np.ascontiguousarray(each[..., None])  # (V, A, 1)
+    q = np.ascontiguousarray(np.moveaxis(state.q, (0, 1), (2, 3)))  # (V, A, N, 3)
+    q[:, :, group.links] = np.moveaxis(start, (0, 1), (2, 3))[:, :, group.links]
+    converged = _newton_solve(mech, q, drive, group.links, group.sel, group.cols, geom, group.scale, tol, iterations)
+    _place(mech, group, state, q, drive, geom, rates, accels, converged, jumps=False)
+
+
+def _place(
+    mech: Mechanism,
+    group: _Group,
+    state: State,
+    q: np.ndarray,
+    drive: np.ndarray,
+    geom: Geometry,
+    rates: np.ndarray,
+    accels: np.ndarray,
+    converged: np.ndarray,
+    jumps: bool,
+) -> None:
+    """Put a Newton-solved group's poses ``q`` ``(V, A, N, 3)``, with its velocities and accelerations, into the
+    state, and record the step (with its :func:`_jumps` where ``jumps``: along shared drive values)."""
     vel, acc, js = _group_rates(mech, group, state, q, drive, geom, rates, accels)
     links = group.links
     for full, view in ((state.q, q), (state.v, vel), (state.a, acc)):
@@ -341,8 +397,8 @@ def newton(
     state.cos[links], state.sin[links] = np.cos(state.q[links, 2]), np.sin(state.q[links, 2])
     sv = np.linalg.svd(np.nan_to_num(js), compute_uv=False)
     det = sv[..., -1] / np.maximum(sv[..., 0], 1e-300)
-    jumps = _jumps(state, links, values[:, 0], group.scale, converged)
-    state.steps.append(StepRecord(converged, det, np.where(converged, 1.0, -1.0), jumps=jumps))
+    found = _jumps(state, links, drive[0, :, 0], group.scale, converged) if jumps else []
+    state.steps.append(StepRecord(converged, det, np.where(converged, 1.0, -1.0), jumps=found))
 
 
 class _Group:
