@@ -208,3 +208,42 @@ def test_a_run_without_inertia_on_the_crank_is_one_clear_error():
     data, _ = four_bar_spec(0.1, 0.35, 0.25, 0.3, 1.0, False)
     with pytest.raises(lw.errors.LinkworkError, match="carries no inertia at [\\d.]+ deg to x"):
         simulate(lw.compile(lw.from_dict(data)), 0.1, speed=30.0)
+
+
+def isosceles_slider_crank() -> lw.Mechanism:
+    """A slider-crank whose rod is as long as its crank (0.1 m), the guide through the crank's pivot: at crank
+    angles 90 and 270 deg the slider meets the pivot, the rod stands across the guide and the dyad's two
+    assembly modes meet (its change points)."""
+    b = MechanismBuilder("isosceles", units={"angle": "rad"}, gravity=0)
+    b.frame(points={"O": (0, 0)})
+    b.link("crank", ends=("O", "A"), length=0.1, mass=1.5, inertia="0.04 kg*m^2")
+    b.link("rod", ends=("A", "B"), length=0.1, mass=0.2)
+    b.link("slider", points={"B": (0, 0)}, mass=0.3)
+    b.revolute("O", "frame", "crank").revolute("A", "crank", "rod").revolute("B", "rod", "slider")
+    b.prismatic("guide", "frame", "slider", point="B", through="O", axis=0)
+    b.drive("O", angle=0.3).hint("B", 0.2 * math.cos(0.3), 0)
+    return lw.compile(b.build())
+
+
+def test_a_run_through_the_change_points_of_an_isosceles_slider_crank_reports_them():
+    """From 0.3 rad at 10 rad/s for 0.5 s the crank passes 90 and 270 deg (the rod across the guide, the
+    closed form of its change points): each is a ``change-point`` event of the RRP dyad, at the run's time of
+    that angle; the dense output's time of the angle agrees."""
+    run = simulate(isosceles_slider_crank(), 0.5, angle=0.3, speed=10.0, motor=False)
+    changes = [e for e in run.events if e.kind == "change-point"]
+    assert [e.group for e in changes] == ["II(2,3) RRP"] * 2
+    np.testing.assert_allclose([e.angle for e in changes], [math.pi / 2, 3 * math.pi / 2], atol=1e-7)
+    times = np.interp([math.pi / 2, 3 * math.pi / 2], run.angle, run.time)  # the samples' angle rises
+    np.testing.assert_allclose([e.time for e in changes], times, atol=2e-4)
+    record = changes[0].as_dict()
+    assert record["group"] == "II(2,3) RRP" and abs(record["angle_deg"] - 90) < 1e-5
+    assert changes[1].describe().startswith("change point of group II(2,3) RRP at ")
+    assert "270.0000 deg to x" in changes[1].describe()
+
+
+def test_a_slider_crank_without_a_change_point_reports_none():
+    """The slider-crank of :func:`slider_crank` (rod 3.5 cranks): its transmission never falls below 73 deg,
+    a full turn reports no change point."""
+    run = simulate(slider_crank(0.0), 0.3, angle=0.3, speed=30.0, motor=False)
+    assert run.angle[-1] - run.angle[0] > 2 * math.pi
+    assert not [e for e in run.events if e.kind == "change-point"]

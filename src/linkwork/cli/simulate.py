@@ -86,7 +86,7 @@ def simulate(
         f"{s['turned'][-1]:.6g} deg, {result.speed[-1]:.9g} rad/s, {result.acceleration[-1]:.6g} rad/s^2"
     )
     for event in result.events:
-        typer.echo(f"  the crank stops at {event.time:.6g} s, at {math.degrees(event.angle) % 360:.4f} deg to x")
+        typer.echo(f"  {event.describe()}")
     for path in paths:
         typer.echo(f"  wrote {path}")
 

@@ -15,6 +15,11 @@ none without a motor.  Integrated by SciPy's ``solve_ivp`` (DOP853) with the tol
 crank may slow down, stop and turn back; its stops are events.  The samples asked for come from the
 solver's dense output, and their kinematics and loads from the true state (speed and angular
 acceleration of the run, not a steady speed).
+
+A change point reached on the way (a dyad whose normalised Jacobian determinant, the sine of its
+transmission angle, comes to zero: its two assembly modes meet there) is an event too: found among the
+solver's steps and their midpoints as a dip of the determinant, and refined on the dense output to where it
+is least; reported where that least value is within :data:`~linkwork.motion.kernels.CLOSE` of zero.
 """
 
 from __future__ import annotations
@@ -42,15 +47,27 @@ RUN_SAMPLES = 201
 
 @dataclass(frozen=True)
 class RunEvent:
-    """Something that happened in a run: ``kind`` ``stop`` (the crank's speed passes zero: it stops and
-    turns back, or stays), at ``time`` (s) and drive angle ``angle`` (rad)."""
+    """Something that happened in a run, at ``time`` (s) and drive angle ``angle`` (rad): ``kind`` ``stop``
+    (the crank's speed passes zero: it stops and turns back, or stays) or ``change-point`` (the dyad
+    ``group``, e.g. ``II(2,3) RRP``, on a singular position: its two assembly modes meet)."""
 
     kind: str
     time: float
     angle: float
+    group: str = ""
 
     def as_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "time_s": self.time, "angle_deg": math.degrees(self.angle)}
+        out: dict[str, Any] = {"kind": self.kind, "time_s": self.time, "angle_deg": math.degrees(self.angle)}
+        if self.group:
+            out["group"] = self.group
+        return out
+
+    def describe(self) -> str:
+        """The event as the CLI prints it (the angle to x in degrees)."""
+        where = f"at {self.time:.6g} s, at {turn_deg(self.angle, 4):.4f} deg to x"
+        if self.kind == "stop":
+            return f"the crank stops {where}"
+        return f"change point of group {self.group} {where}"
 
 
 @dataclass(frozen=True)
@@ -237,5 +254,45 @@ def simulate(
     eps = (terms.load + md - 0.5 * terms.slope * y[1] ** 2) / terms.inertia
     kin = kinematics_at(mech, y[0][:, None], y[1][:, None], eps[:, None])
     starts = [float(t) for t in sol.t_events[0] if t > 0]
-    events = tuple(RunEvent("stop", t, float(sol.sol(t)[0])) for t in starts)
+    stops = [RunEvent("stop", t, float(sol.sol(t)[0])) for t in starts]
+    events = tuple(sorted(stops + _change_points(mech, sol.t, sol.sol), key=lambda e: e.time))
     return Run(grid, y[0], y[1], eps, kin, events, md, rtol, atol, int(sol.nfev))
+
+
+#: A dip of a dyad's determinant among the solver's steps below this is refined (:func:`_change_points`).
+DIP = 0.5
+
+
+def _change_points(mech: Mechanism, steps: np.ndarray, dense: Any) -> list[RunEvent]:
+    """Change points along a run: the solver's ``steps`` (s) and the ``dense`` output ``t -> (phi, omega)``.
+
+    Each dyad's determinant (:attr:`Kinematics.step_det`, zero where its assembly modes meet) is looked at
+    on the steps and their midpoints; each local least value below :data:`DIP` is refined by a bounded
+    minimisation over time between its neighbours, and is a change point where it is within
+    :data:`~linkwork.motion.kernels.CLOSE` of zero."""
+    from scipy.optimize import minimize_scalar
+
+    from linkwork.motion.analysis import DYADS
+    from linkwork.motion.kernels import CLOSE
+
+    dyads = [i for i, step in enumerate(mech.program) if step.kind in DYADS]
+    if not dyads or len(steps) < 2:
+        return []
+
+    def det(t: np.ndarray) -> np.ndarray:
+        phi = dense(t)[0][:, None]
+        kin = kinematics_at(mech, phi, np.ones_like(phi), np.zeros_like(phi))
+        return np.abs(np.stack([kin.step_det[i][0] for i in dyads]))  # (dyads, K)
+
+    t = np.sort(np.concatenate([steps, 0.5 * (steps[1:] + steps[:-1])]))
+    d = det(t)
+    found: list[RunEvent] = []
+    for row, k in zip(d, dyads, strict=True):
+        dips = np.flatnonzero((row[1:-1] <= row[:-2]) & (row[1:-1] <= row[2:]) & (row[1:-1] < DIP)) + 1
+        for i in dips:
+            best = minimize_scalar(lambda x, k=k: float(det(np.array([x]))[dyads.index(k), 0]),
+                                   bounds=(t[i - 1], t[i + 1]), method="bounded", options={"xatol": 1e-14})  # fmt: skip
+            if best.fun < CLOSE and not any(e.group == mech.program[k].label and abs(e.time - best.x) < 1e-9
+                                             for e in found):  # fmt: skip
+                found.append(RunEvent("change-point", float(best.x), float(dense(best.x)[0]), mech.program[k].label))
+    return found
