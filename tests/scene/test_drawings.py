@@ -431,3 +431,71 @@ def test_the_scheme_draws_each_variant_of_a_sweep_where_the_kinematics_puts_its_
         bar = next(it for it in scene.items if it.name == "crank")
         lengths.append(float(np.hypot(*np.diff(bar.xy, axis=0)[0])))
     np.testing.assert_allclose(lengths, [0.97 * crank, crank, 1.03 * crank], rtol=1e-12)
+
+
+def _sprung() -> lw.Mechanism:
+    """Andrews' squeezer (its spring from b3's D to the frame's C) with a damper from b7's H to the frame's B."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "machine" / "andrews-squeezer.yaml").read_text()
+    text = text.replace("free_length: 0.07785}", "free_length: 0.07785}\n  push: {type: damper, between: [b7.H, B], "
+                        "damping: 0.5 N*s/m}")  # fmt: skip
+    return lw.compile(lw.loads(text, file="andrews-squeezer.yaml"))
+
+
+def _check_spring(xy: np.ndarray, a: np.ndarray, b: np.ndarray, tol: float) -> None:
+    """A zigzag from ``a`` to ``b``: it ends on the two points, stays within their span, and crosses their
+    line 7 times (8 teeth alternating sides)."""
+    np.testing.assert_allclose(xy[[0, -1]], [a, b], rtol=0, atol=tol)
+    d = b - a
+    along = (xy - a) @ d / (d @ d)
+    assert along.min() > -1e-9 and along.max() < 1 + 1e-9
+    across = (d[0] * (xy[:, 1] - a[1]) - d[1] * (xy[:, 0] - a[0])) / np.linalg.norm(d)
+    side = np.sign(across[np.abs(across) > 1e-6 * np.linalg.norm(d)])
+    assert len(side) == 8 and np.all(side[1:] == -side[:-1])
+
+
+def test_springs_and_dampers_are_drawn_between_their_points_in_every_renderer(tmp_path):
+    """Andrews' squeezer's spring and an added damper, read back from the matplotlib figure (the lines of gid
+    ``spring:spring``, ``damper:push``), the DXF (layers SPRINGS, DAMPERS, mm) and the viewer's payload (the
+    elements' points placed by the poses): the zigzag's and the dashpot's ends are the points' positions the
+    kinematics solves, at another sample the drawing moves with them."""
+    from linkwork.web.payload import cycle_payload
+
+    mech = _sprung()
+    kin = lw.kinematics(mech, steps=36)
+    c, b = np.array([0.014, 0.072]), np.array([-0.03635, 0.03273])  # the frame's C and B in the file
+    for k in (5, 20):
+        d, h = (kin.position(p)[k] for p in ("b3.D", "b7.H"))
+        fig = figures.draw_scheme(kin, k, cycle=kin)
+        lines = {}
+        for line in fig.axes[0].lines:
+            lines.setdefault(line.get_gid(), []).append(np.asarray(line.get_xydata()))
+        assert len(lines["spring:spring"]) == 1 and len(lines["damper:push"]) == 4
+        _check_spring(lines["spring:spring"][0], d, c, 1e-12)
+        np.testing.assert_allclose([lines["damper:push"][0][0], lines["damper:push"][-1][-1]], [h, b], atol=1e-12)
+
+    payload = cycle_payload(mech, steps=36)
+    kin36 = lw.kinematics(mech, np.radians(payload["angles_deg"]))
+    scene = payload["scene"]
+    assert [(e["kind"], e["name"]) for e in scene["elements"]] == [("spring", "spring"), ("damper", "push")]
+    for element, points in zip(scene["elements"], (("b3.D", "C"), ("b7.H", "B")), strict=True):
+        for j, (link, at) in enumerate(zip(element["links"], element["at"], strict=True)):
+            pose = np.array(scene["poses"][20][link])
+            co, si = math.cos(pose[2]), math.sin(pose[2])
+            want = kin36.position(points[j])[20] if j == 0 else (c if points[1] == "C" else b)
+            np.testing.assert_allclose([pose[0] + co * at[0] - si * at[1], pose[1] + si * at[0] + co * at[1]],
+                                       want, rtol=0, atol=1e-8)  # fmt: skip
+    assert len(scene["elements"][0]["strokes"]) == 1 and len(scene["elements"][1]["strokes"]) == 4
+
+    ezdxf = pytest.importorskip("ezdxf")
+    from linkwork.io.dxf import write_scheme
+
+    k = 20
+    doc = ezdxf.readfile(write_scheme(scheme_scene(kin, at=[k], cycle=kin), k, tmp_path / "scheme.dxf"))
+    polylines = {layer: [np.array([(v[0], v[1]) for v in e.get_points()]) for e in doc.modelspace().query("LWPOLYLINE")
+                         if e.dxf.layer == layer] for layer in ("SPRINGS", "DAMPERS")}  # fmt: skip
+    assert len(polylines["SPRINGS"]) == 1 and len(polylines["DAMPERS"]) == 4
+    d, h = (1000 * kin.position(p)[k] for p in ("b3.D", "b7.H"))
+    _check_spring(polylines["SPRINGS"][0], d, 1000 * c, 1e-6)
+    np.testing.assert_allclose([polylines["DAMPERS"][0][0], polylines["DAMPERS"][-1][-1]], [h, 1000 * b], atol=1e-6)

@@ -678,3 +678,31 @@ def test_the_force_labels_cover_no_other_label_and_the_arrows_stay_in_the_panel(
             x1, y1, x2, y2 = (float(line.get_attribute(a)) for a in ("x1", "y1", "x2", "y2"))
             assert math.hypot(x2 - x1, y2 - y1) / 1000 <= 0.2 * size * 1.02
     assert page.errors == []
+
+
+def test_a_spring_and_a_damper_are_drawn_between_their_points(page, tmp_path):
+    """Andrews' squeezer with a damper added: the spring's zigzag and the damper's strokes (polylines of class
+    ``spring``, ``damper``) end on their points as the kinematics puts them at the angle shown (the drawing's
+    0.001 mm), at two angles of the crank."""
+    text = (Path(__file__).resolve().parents[1] / "machine" / "andrews-squeezer.yaml").read_text()
+    text = text.replace("free_length: 0.07785}", "free_length: 0.07785}\n  push: {type: damper, between: [b7.H, B], "
+                        "damping: 0.5 N*s/m}")  # fmt: skip
+    spec = lw.loads(text, file="andrews-squeezer.yaml")
+    mech = lw.compile(spec)
+    page.goto(export_page(spec, tmp_path / "sprung.html", steps=36).as_uri())
+    page.wait_for_selector('#scheme polyline.spring[data-element="spring"]')
+    c, b = np.array([0.014, 0.072]), np.array([-0.03635, 0.03273])  # the frame's C and B in the file
+    for index in (3, 20):
+        angle = turn_to(page, index)
+        kin = lw.kinematics(mech, [angle])
+
+        def ends(selector: str) -> list[np.ndarray]:
+            found = page.eval_on_selector_all(selector, "els => els.map(e => e.getAttribute('points'))")
+            lines = [np.array([[float(v) for v in xy.split(",")] for xy in p.split(" ")]) for p in found]
+            return [line * [0.001, -0.001] for line in lines]
+
+        spring, damper = ends("#scheme polyline.spring"), ends("#scheme polyline.damper")
+        assert len(spring) == 1 and len(spring[0]) == 12 and len(damper) == 4
+        np.testing.assert_allclose(spring[0][[0, -1]], [kin.position("b3.D")[0], c], rtol=0, atol=2e-6)
+        np.testing.assert_allclose([damper[0][0], damper[-1][-1]], [kin.position("b7.H")[0], b], rtol=0, atol=2e-6)
+    assert page.errors == []

@@ -54,6 +54,7 @@ def render_scheme(scene: SchemeScene, index: int, ax: Axes | None = None, trajec
     if trajectories:
         draw_paths(sh, scene.paths)
     draw_items(sh, scene, index)
+    draw_elements(sh, scene, index)
     draw_labels(sh, scene, index)
     scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em, lang)
     if title:
@@ -79,6 +80,19 @@ def draw_items(sh: Sheet, scene: SchemeScene, index: int, frame: bool = True, ki
         xy = scene.placed(it, index)
         if np.isfinite(xy).all():
             draw_item(sh.ax, it, xy, thin)
+
+
+def draw_elements(sh: Sheet, scene: SchemeScene, index: int) -> None:
+    """The springs and dampers at sample ``index``, between their two points, under the links; each stroke's
+    artist has the gid ``kind:name``."""
+    z = 2 + KINDS.index("bar") * 0.1 - 0.05
+    for element in scene.elements:
+        style = SCHEME[element.kind]
+        for xy in scene.element_strokes(element, index):
+            if np.isfinite(xy).all():
+                line = add_line(sh.ax, xy[:, 0], xy[:, 1], color=style.colour, lw=style.width, zorder=z,
+                                solid_joinstyle="miter")  # fmt: skip
+                line.set_gid(f"{element.kind}:{element.name}")
 
 
 def draw_item(ax: Axes, it: Item, xy: np.ndarray, thin: float = 1.0) -> Any:

@@ -1,8 +1,8 @@
 """Drawings for CAD: the scenes (:mod:`linkwork.scene`) written as DXF with ezdxf (``pip install "linkwork[cad]"``).
 
 Every kind of item or vector goes on a layer of its own (``LINKS``, ``PIVOTS``, ``SUPPORTS``,
-``HATCHING``, ``GUIDES``, ``BLOCKS``, ``TOOLS``, ``MARKERS``, ``TRAJECTORIES``, ``LABELS``; the plans'
-``ABSOLUTE``, ``ROTATION``, ``NORMAL``, ``TANGENTIAL``, ``TRANSPORT``, ``CORIOLIS``, ``SLIDING``,
+``HATCHING``, ``GUIDES``, ``BLOCKS``, ``TOOLS``, ``MARKERS``, ``SPRINGS``, ``DAMPERS``, ``TRAJECTORIES``,
+``LABELS``; the plans' ``ABSOLUTE``, ``ROTATION``, ``NORMAL``, ``TANGENTIAL``, ``TRANSPORT``, ``CORIOLIS``, ``SLIDING``,
 ``POINTS``, ``NOTES``), so that an engineer can show, hide and restyle them.  Drawing units are
 millimetres: the scheme and the plan of positions 1:1 (a point at x m is at 1000 x), the plans to their
 stated scale (a vector u is u / scale mm long; the scale is in the ``NOTES`` layer's text and in the
@@ -84,6 +84,7 @@ def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories:
     if trajectories:
         _paths(msp, scene.paths)
     _items(msp, scene, index)
+    _elements(msp, scene, index)
     for lab in scene.labels:
         _text(msp, lab.text, lab.centre[index] * 1000, 1000 * scene.em)
     crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
@@ -215,6 +216,15 @@ def _items(msp: Any, scene: SchemeScene, index: int, kinds: tuple[str, ...] | No
             msp.add_circle(tuple(xy[0]), 1000 * it.radius, dxfattribs=attrs)
         else:
             msp.add_lwpolyline([tuple(v) for v in xy], close=it.closed, dxfattribs=attrs)
+
+
+def _elements(msp: Any, scene: SchemeScene, index: int) -> None:
+    """The springs and dampers at sample ``index``, a polyline for each stroke of their symbols, in mm, on their
+    kind's layer (``SPRINGS``, ``DAMPERS``)."""
+    for element in scene.elements:
+        for xy in scene.element_strokes(element, index):
+            if np.isfinite(xy).all():
+                msp.add_lwpolyline([tuple(v) for v in xy * 1000], dxfattribs={"layer": SCHEME[element.kind].layer})
 
 
 def _paths(msp: Any, paths: np.ndarray) -> None:

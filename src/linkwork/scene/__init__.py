@@ -19,10 +19,11 @@ from linkwork.scene.positions import (
     positions_scene,
     working_point,
 )
-from linkwork.scene.scheme import Item, Label, SchemeScene, scheme_scene
+from linkwork.scene.scheme import Element, Item, Label, SchemeScene, scheme_scene
 
 __all__ = [
     "Arrow",
+    "Element",
     "Item",
     "Label",
     "PlanScene",

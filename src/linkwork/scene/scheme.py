@@ -89,6 +89,31 @@ class Item:
 
 
 @dataclass(frozen=True)
+class Element:
+    """A spring or a damper between two points of (usually) two links, drawn between them at every pose.
+
+    Attributes
+    ----------
+    kind : str
+        ``"spring"`` (a zigzag) or ``"damper"`` (a dashpot).
+    name : str
+        The load's name in the file.
+    links : tuple of int
+        The links of its two points (0: the frame).
+    at : ndarray, shape (2, 2)
+        The two points, each in its link's axes, m.
+    strokes : tuple of ndarray, shape (K, 3)
+        The symbol's lines as rows ``(f, s, c)`` (:func:`linkwork.scene.symbols.force_element`).
+    """
+
+    kind: str
+    name: str
+    links: tuple[int, int]
+    at: np.ndarray
+    strokes: tuple[np.ndarray, ...]
+
+
+@dataclass(frozen=True)
 class Label:
     """A text of the drawing: a point's name, a link's number.
 
@@ -147,6 +172,26 @@ class SchemeScene:
     size: float
     r: float
     em: float
+    elements: tuple[Element, ...] = ()
+
+    def element_ends(self, element: Element, index: int | None = None) -> np.ndarray:
+        """The element's two points in the global axes: ``(A, 2, 2)``, or ``(2, 2)`` at sample ``index``."""
+        at = slice(None) if index is None else slice(index, index + 1)
+        ends = np.stack([place(self.poses[at, link], element.at[j : j + 1])[:, 0]
+                         for j, link in enumerate(element.links)], 1)  # fmt: skip
+        return ends if index is None else ends[0]
+
+    def element_strokes(self, element: Element, index: int | None = None) -> list[np.ndarray]:
+        """The element's lines in the global axes, each ``(A, K, 2)``, or ``(K, 2)`` at sample ``index``: its
+        symbol's rows ``(f, s, c)`` laid between its two points (NaN where they meet)."""
+        ends = self.element_ends(element, index)
+        a, b = ends[..., 0, :], ends[..., 1, :]
+        d = b - a
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = d / np.linalg.norm(d, axis=-1, keepdims=True)
+        n = perp(u)
+        a, d, u, n = (v[..., None, :] for v in (a, d, u, n))
+        return [a + f[:, None] * d + s[:, None] * u + c[:, None] * n for f, s, c in (x.T for x in element.strokes)]
 
     def placed(self, item: Item, index: int | None = None) -> np.ndarray:
         """The item's vertices in the global axes: ``(A, K, 2)``, or ``(K, 2)`` at sample ``index``."""
@@ -212,6 +257,7 @@ def scheme_scene(kin: Kinematics, variant: int = 0, at: list[int] | None = None,
         size=b.size,
         r=b.r,
         em=b.em,
+        elements=b.elements(),
     )
 
 
@@ -234,6 +280,16 @@ class _Builder:
         self.first = int(np.argmax(np.asarray(kin.valid_all[variant]))) if len(self.pts) else 0
 
     # ------------------------------------------------------------ items
+
+    def elements(self) -> tuple[Element, ...]:
+        """The springs and dampers between two points, in the order of the file's loads."""
+        out = []
+        for load in self.mech.loads:
+            if load.kind in ("spring", "damper"):
+                links = (int(self.mech.point_link[load.points[0]]), int(self.mech.point_link[load.points[1]]))
+                strokes = symbols.force_element(load.kind, self.r)
+                out.append(Element(load.kind, load.name, links, self.local[list(load.points)], strokes))
+        return tuple(out)
 
     def items(self) -> tuple[Item, ...]:
         """Every item, in drawing order."""

@@ -55,6 +55,8 @@ SCHEME = {
     "block": Style("#000000", 1.1, fill="#ffffff", layer="BLOCKS"),
     "pivot": Style("#000000", 1.1, fill="#ffffff", layer="PIVOTS"),
     "marker": Style(BLUE, 0.5, fill=BLUE, layer="MARKERS", aci=150),
+    "spring": Style("#000000", 0.9, layer="SPRINGS"),  # the force elements (:class:`~linkwork.scene.Element`)
+    "damper": Style("#000000", 0.9, layer="DAMPERS"),
 }
 
 #: The plans' vectors (:data:`linkwork.scene.plans.KINDS`).

@@ -126,3 +126,28 @@ def section(corners: np.ndarray, step: float) -> np.ndarray:
         if x1 > x0:
             out.append([[x0, x0 - c], [x1, x1 - c]])
     return np.array(out, dtype=float).reshape(-1, 2, 2)
+
+
+#: Half-teeth of a spring's zigzag, and the share of its length either lead takes.
+TEETH, LEAD = 8, 0.2
+
+
+def force_element(kind: str, r: float) -> tuple[np.ndarray, ...]:
+    """The strokes of a spring (a zigzag between two straight leads) or a damper (a rod and a piston in an open
+    cylinder) between two points ``a`` and ``b``, as rows ``(f, s, c)``: the vertex ``a + f (b - a) + s u + c n``,
+    ``u`` the unit direction from ``a`` to ``b`` and ``n`` it turned a quarter counter-clockwise (``s``, ``c`` in
+    m), so that the ends follow the two points at every pose (:meth:`SchemeScene.element_strokes
+    <linkwork.scene.scheme.SchemeScene.element_strokes>`).  The zigzag is ``1.5 r`` to either side, stretched
+    with the length; the damper's symbol keeps its size, centred."""
+    w = 1.5 * r
+    if kind == "spring":
+        f = LEAD + (1 - 2 * LEAD) * (2 * np.arange(TEETH) + 1) / (2 * TEETH)
+        c = w * np.where(np.arange(TEETH) % 2 == 0, 1.0, -1.0)
+        rows = np.concatenate([[[0, 0, 0], [LEAD, 0, 0]], np.stack([f, 0 * f, c], 1), [[1 - LEAD, 0, 0], [1, 0, 0]]])
+        return (rows,)
+    rod = np.array([[0, 0, 0], [0.5, 0, 0]], dtype=float)
+    piston = np.array([[0.5, 0, -w], [0.5, 0, w]])
+    h, side = 1.5 * r, 1.3 * w
+    cylinder = np.array([[0.5, -h, side], [0.5, h, side], [0.5, h, -side], [0.5, -h, -side]])
+    tail = np.array([[0.5, h, 0], [1, 0, 0]])
+    return rod, piston, cylinder, tail

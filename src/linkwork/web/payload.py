@@ -424,7 +424,18 @@ def scheme_shape(scheme: SchemeScene) -> dict[str, Any]:
         }
         for it, a, end in zip(scheme.items, xy, ends, strict=True)
     ]
-    return {"size": scheme.size, "r": scheme.r, "em": scheme.em, "items": items}
+    return {"size": scheme.size, "r": scheme.r, "em": scheme.em, "items": items, "elements": element_list(scheme)}
+
+
+def element_list(scheme: SchemeScene) -> list[dict[str, Any]]:
+    """The scheme's springs and dampers (:class:`~linkwork.scene.Element`) as the page draws them: ``kind``,
+    ``name``, the ``links`` of its two points, the points ``at`` in their links' axes and the symbol's
+    ``strokes``, rows ``(f, s, c)``: the vertex ``a + f (b - a) + s u + c n`` between its points ``a`` and ``b``."""
+    return [
+        {"kind": e.kind, "name": e.name, "links": list(e.links), "at": _json(e.at, 12),
+         "strokes": [_json(stroke, 9) for stroke in e.strokes]}
+        for e in scheme.elements
+    ]  # fmt: skip
 
 
 def _plan_scene(cycle: Cycle, series: PlanSeries, at: np.ndarray) -> dict[str, Any]:

@@ -40,6 +40,7 @@ from linkwork.web.payload import (
     _finite,
     _json,
     cycle_scale,
+    element_list,
     forces_part,
     peaks,
     plan_shape,
@@ -139,7 +140,13 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged:
     scheme = scheme_scene(cycle.symbols, at=[], cycle=cycle.symbols)
     poses = np.array(kin.pose[0])
     poses[..., 2] = wrap(poses[..., 2])  # angles in (-pi, pi]
-    scene: dict[str, Any] = {"size": scheme.size, "r": scheme.r, "em": scheme.em, "item_table": item_table(scheme)}
+    scene: dict[str, Any] = {
+        "size": scheme.size,
+        "r": scheme.r,
+        "em": scheme.em,
+        "item_table": item_table(scheme),
+        "elements": element_list(scheme),
+    }
     shapes: dict[str, tuple[dict[str, Any], float]]
     if dragged:  # each plan's scale for the cycle, its frame kept
         shapes = {one.kind: ({}, cycle_scale(one, cycle.valid)) for one in series}

@@ -155,6 +155,7 @@
     m.plans = {};
     m.scene = Object.assign({}, full.scene, {
       size: ans.scene.size, r: ans.scene.r, em: ans.scene.em, items: itemsOf(ans.scene.item_table), plans: {},
+      elements: ans.scene.elements || full.scene.elements || [],
     });
     m.scene.labels = full.scene.labels.map((lab, k) => Object.assign({}, lab, {
       at: ans.scene.label_at[k], centre: movedLabel(full, m, lab, ans.scene.label_at[k]),
@@ -362,7 +363,8 @@
   // what the scheme's elements are: the items (not where their vertices are), the labels, the trajectories
   function schemeKey(m) {
     const items = m.scene.items.map((it) => [it.kind, it.link, it.name, it.closed, it.radius > 0, it.xy.length].join("/"));
-    return JSON.stringify([m.name, items, m.scene.labels.length, m.scene.paths]);
+    const elements = (m.scene.elements || []).map((e) => [e.kind, e.name, e.strokes.length].join("/"));
+    return JSON.stringify([m.name, items, elements, m.scene.labels.length, m.scene.paths]);
   }
 
   function buildScheme(m) {
@@ -377,6 +379,7 @@
     state.trajectories = scene.paths.map((p) => [p, svg("path", { class: "path", "data-point": m.points[p].label }, groups.paths)]);
     state.fixed = [];
     state.circles = [];
+    (scene.elements || []).forEach((element, k) => drawElement(k, element, groups.links));
     scene.items.forEach((item, k) => drawItem(k, item, groups[GROUP[item.kind] || (item.link === 0 || item.radius ? "pairs" : "links")]));
     scene.labels.forEach((lab, k) => {
       const t = svg("text", { class: lab.kind === "link" ? "link-number" : "label", "text-anchor": "middle", "dominant-baseline": "central" }, groups.labels);
@@ -435,6 +438,26 @@
     state.parts.scheme.push((i) => {
       const m = state.data, pose = m.valid[i] ? m.poses.at(i, item.link) : null;
       put(pose ? m.scene.items[k].xy.map((v) => place(pose, v)) : null);
+    });
+  }
+
+  // a spring or a damper, the k-th of the scene's elements: a polyline for each stroke of its symbol, rows
+  // (f, s, c) laid between its two points a and b at the sample shown (a + f (b - a) + s u + c n,
+  // linkwork.scene.SchemeScene.element_strokes)
+  function drawElement(k, element, g) {
+    const lines = element.strokes.map(() => svg("polyline", { class: element.kind, "data-element": element.name }, g));
+    state.parts.scheme.push((i) => {
+      const m = state.data, e = m.scene.elements[k];
+      const ends = m.valid[i] ? e.links.map((link, j) => place(m.poses.at(i, link), e.at[j])) : null;
+      const d = ends ? [ends[1][0] - ends[0][0], ends[1][1] - ends[0][1]] : null;
+      const len = d ? Math.hypot(d[0], d[1]) : 0;
+      lines.forEach((line, j) => {
+        if (!(len > 0)) { line.setAttribute("visibility", "hidden"); return; }
+        const u = [d[0] / len, d[1] / len], a = ends[0];
+        const xy = e.strokes[j].map(([f, s, c]) => [a[0] + f * d[0] + s * u[0] - c * u[1], a[1] + f * d[1] + s * u[1] + c * u[0]]);
+        line.setAttribute("visibility", "visible");
+        line.setAttribute("points", xy.map((v) => X(v) + "," + Y(v)).join(" "));
+      });
     });
   }
 
