@@ -49,3 +49,21 @@ def test_simulate_refuses_a_time_without_its_unit():
     result = runner.invoke(app, ["simulate", "four-bar", "--until", "30"])
     assert result.exit_code == 2
     assert "--until: give the unit" in result.stderr and "Traceback" not in result.output
+
+
+def test_simulate_reports_the_change_points_of_the_shears_slider_crank():
+    """The shears' crank and rod are of equal length on a guide through the crank's pivot: the rod stands across
+    the guide (the two assembly modes meet) with the crank at 180 and 360 deg to x.  A free run from 90 deg at
+    10 rad/s passes both: two ``change-point`` events of the RRP dyad at those angles, in the JSON and printed."""
+    args = ["simulate", "shears-slider-crank", "--until", "600 ms", "--speed", "10 rad/s", "--no-motor"]
+    result = runner.invoke(app, [*args, "--samples", "3", "--json"])
+    assert result.exit_code == 0, result.output
+    events = json.loads(result.stdout)["events"]
+    assert [(e["kind"], e["group"]) for e in events] == [("change-point", "II(2,3) RRP")] * 2
+    np.testing.assert_allclose([e["angle_deg"] for e in events], [180.0, 360.0], rtol=0, atol=1e-5)
+    assert events[0]["time_s"] < events[1]["time_s"]
+    printed = runner.invoke(app, [*args, "--samples", "3"])
+    assert printed.exit_code == 0, printed.output
+    lines = [ln.strip() for ln in printed.stdout.splitlines() if "change point" in ln]
+    assert [ln.split(", at ")[1] for ln in lines] == ["180.0000 deg to x", "0.0000 deg to x"]
+    assert all(ln.startswith("change point of group II(2,3) RRP at ") for ln in lines)
