@@ -110,3 +110,16 @@ def test_without_xarray_or_pandas_the_message_names_the_extra(kin, monkeypatch):
         kin.to_xarray()
     with pytest.raises(MissingDependencyError, match=r'needs pandas: pip install "linkwork\[design\]"$'):
         lw.forces("four-bar", steps=12).to_pandas()
+
+
+def test_each_drive_has_its_own_torque():
+    """Two drives: the driving torque over a dimension ``drive`` named by the drives' joints, each the
+    result's own column (not the first drive's alone)."""
+    from mechanisms import five_bar
+
+    mech = lw.compile(five_bar().build())
+    angles = np.radians(np.stack([np.linspace(80, 100, 5), np.linspace(90, 70, 5)], axis=1))
+    f = lw.forces(mech, angles)
+    torque = f.to_xarray()["driving_torque"]
+    assert torque.dims == ("variant", "angle", "drive") and list(torque["drive"].values) == ["O1", "O5"]
+    np.testing.assert_array_equal(torque[0], f.driving_torque)

@@ -113,14 +113,17 @@ def _table(f: Forces) -> tuple[Table, Table, dict[str, str]]:
     nan = np.full(force.shape[:2], np.nan)
     moment = np.stack([pair_moment_all(f, k) if pair_kind(mech, k) == "prismatic" else nan for _, k in pairs], 2)
     members = [[mech.link_names[int(i)] for i in mech.pair_members[k]] for _, k in pairs]
-    torque = f._torque_all[..., 0]
+    over: tuple[str, ...] = ("variant", "angle", "drive")
+    torque = f._torque_all  # (V, A, D): each drive's
+    if mech.n_drives == 1:
+        torque, over = torque[..., 0], over[:2]
     found = f._foundation_filled
     linear = mech.pair_type[mech.drive_pair[0]] != PairType.REVOLUTE
     joint, comp = ("variant", "angle", "joint"), ("variant", "angle", "component")
     data: Table = {
         "force": ((*joint, "component"), force, {"units": "N", "long_name": "the first link's force on the second"}),
         "moment": (joint, moment, {"units": "N m", "long_name": "a prismatic pair's moment on its slider"}),
-        "driving_torque": (("variant", "angle"), torque, {"units": "N" if linear else "N m"}),
+        "driving_torque": (over, torque, {"units": "N" if linear else "N m"}),
         "foundation_force": (comp, found[..., :2], {"units": "N"}),
         "foundation_moment": (("variant", "angle"), found[..., 2], {"units": "N m"}),
         "shaking_force": (comp, f.shaking_force_all, {"units": "N"}),
@@ -138,6 +141,8 @@ def _table(f: Forces) -> tuple[Table, Table, dict[str, str]]:
         "kind": (("joint",), np.array([pair_kind(mech, k) for _, k in pairs]), {}),
         "component": (("component",), np.array(["x", "y"]), {}),
     }
+    if mech.n_drives > 1:
+        coords["drive"] = (("drive",), np.array([mech.pair_joint[k] for k in mech.drive_pair]), {})
     return data, coords, {"mechanism": mech.name, "source": "linkwork forces", "convention": CONVENTION}
 
 
