@@ -176,7 +176,7 @@ def write_csv(kin: Kinematics, path: str | Path) -> Path:
 
 
 #: What the angles of a NetCDF table are (their ``long_name``).
-_LONG = {
+LONG = {
     "phi": "phi, the crank angle turned from position 0 in the drive's direction",
     "crank_angle_to_x": "the crank's angle to the frame's x axis, counter-clockwise",
     "drive": "the drive's coordinate",
@@ -214,9 +214,9 @@ def _table(kin: Kinematics) -> tuple[Table, Table, dict[str, str]]:
     }
     (first, (unit, values)), *others = drive_columns(mech, kin.angles).items()
     for name, (other_unit, other) in others:  # the angle to x beside phi: a variable over the angles
-        data[name] = (("angle",), other, {"units": other_unit, "long_name": _LONG[name]})
+        data[name] = (("angle",), other, {"units": other_unit, "long_name": LONG[name]})
     coords: Table = {
-        "angle": (("angle",), values, {"units": unit, "long_name": _LONG[first]}),
+        "angle": (("angle",), values, {"units": unit, "long_name": LONG[first]}),
         "point": (("point",), np.array([label for label, _ in labels]), {}),
         "link": (("link",), np.array([n for n, _ in links]), {}),
     }
@@ -231,10 +231,40 @@ def _table(kin: Kinematics) -> tuple[Table, Table, dict[str, str]]:
 
 
 def to_dataset(kin: Kinematics) -> Any:
-    """An xarray Dataset with dimensions variant x angle x point (and link)."""
-    xr = require("xarray", purpose="NetCDF tables of the kinematics")
+    """An xarray Dataset with dimensions variant x angle x point (and link): the table
+    :func:`write_netcdf` writes (``Kinematics.to_xarray``)."""
+    xr = require("xarray", purpose="Kinematics.to_xarray (NetCDF tables of the kinematics)")
     data, coords, attrs = _table(kin)
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def to_frame(kin: Kinematics, by: str = "point") -> Any:
+    """The variables of :func:`to_dataset` over ``by`` (``"point"``: x, y, vx, vy, ax, ay; ``"link"``: theta,
+    omega, epsilon) as a pandas DataFrame indexed by variant x angle x ``by``, each variable's unit in
+    ``attrs["units"]`` (``Kinematics.to_pandas``)."""
+    if by not in ("point", "link"):
+        from linkwork.errors import LinkworkError
+
+        raise LinkworkError(f'to_pandas takes by="point" or by="link", not "{by}"')
+    data, coords, attrs = _table(kin)
+    return frame(data, coords, attrs, ("variant", "angle", by), purpose="Kinematics.to_pandas")
+
+
+def frame(data: Table, coords: Table, attrs: dict[str, str], dims: tuple[str, ...], purpose: str) -> Any:
+    """The variables of a table whose dimensions are ``dims`` as a pandas DataFrame: a row per combination of
+    the coordinates (a dimension without one, ``variant``, numbered from 0), a column per variable, the
+    index's levels named after ``dims``; the units of the columns in ``attrs["units"]``, the table's
+    attributes and the angle's ``long_name`` in ``attrs`` too."""
+    pd = require("pandas", purpose=purpose)
+    chosen = {name: values for name, (d, values, _) in data.items() if d == dims}
+    shape = next(iter(chosen.values())).shape
+    levels = [coords[d][1] if d in coords else np.arange(n) for d, n in zip(dims, shape, strict=True)]
+    index = pd.MultiIndex.from_product(levels, names=list(dims))
+    out = pd.DataFrame({name: np.asarray(values).reshape(-1) for name, values in chosen.items()}, index=index)
+    out.attrs.update(attrs)
+    out.attrs["units"] = {name: str(data[name][2].get("units", "1")) for name in chosen}
+    out.attrs["angle_units"] = str(coords["angle"][2].get("units", ""))
+    return out
 
 
 def write_netcdf(kin: Kinematics, path: str | Path) -> Path:

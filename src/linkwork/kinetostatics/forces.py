@@ -7,7 +7,7 @@ import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -102,6 +102,39 @@ class Forces:
                 ("singular samples (reactions NaN)", int(np.count_nonzero(self.singular_all))),
             ],
         )
+
+    def to_xarray(self) -> Any:
+        """The reactions and loads as an xarray Dataset (the ``data`` extra), the numbers of ``forces.csv``.
+
+        ``force`` over ``variant`` x ``angle`` x ``joint`` x ``component`` (x, y): the force the joint's
+        first-named link (coordinate ``first``) exerts on the second (``second``), as :meth:`reaction` gives it;
+        ``moment`` of a prismatic pair on its slider (NaN for the others); ``driving_torque``,
+        ``foundation_force`` (``component``), ``foundation_moment``, ``shaking_force``, ``shaking_moment`` and
+        ``singular`` over ``variant`` x ``angle``.  The coordinate ``angle`` is φ from position 0 in degrees
+        with one crank; each variable's unit in its ``units`` attribute.
+
+        Raises
+        ------
+        MissingDependencyError
+            Without xarray, naming the extra that brings it.
+        """
+        from linkwork.display import export
+
+        return export(self, "xarray")
+
+    def to_pandas(self, by: str = "joint") -> Any:
+        """:meth:`to_xarray` as a pandas DataFrame: ``by="joint"``, indexed by ``variant`` x ``angle`` x
+        ``joint``, the force's ``x`` and ``y`` and the ``moment``; ``by="angle"``, indexed by ``variant`` x
+        ``angle``, the driving torque and the foundation's and shaking loads.  Units in ``attrs["units"]``.
+
+        Raises
+        ------
+        MissingDependencyError
+            Without pandas, naming the extra that brings it.
+        """
+        from linkwork.display import export
+
+        return export(self, "pandas", by)
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.kinematics.variants else a[0]

@@ -81,6 +81,36 @@ class Kinematics:
             ],
         )
 
+    def to_xarray(self) -> Any:
+        """The table ``linkwork kinematics --out F.nc`` writes, as an xarray Dataset (the ``data`` extra).
+
+        Dimensions ``variant`` x ``angle`` x ``point`` (x, y, vx, vy, ax, ay of each labelled point) and
+        ``variant`` x ``angle`` x ``link`` (theta, omega, epsilon of each moving link), ``valid``; the
+        coordinate ``angle`` is φ from position 0 in degrees with one crank (the angle to x beside it,
+        ``crank_angle_to_x``); each variable's unit in its ``units`` attribute.
+
+        Raises
+        ------
+        MissingDependencyError
+            Without xarray, naming the extra that brings it.
+        """
+        from linkwork.display import export
+
+        return export(self, "xarray")
+
+    def to_pandas(self, by: str = "point") -> Any:
+        """The variables of :meth:`to_xarray` over the points (``by="point"``) or the links (``by="link"``) as a
+        pandas DataFrame indexed by ``variant`` x ``angle`` x ``by``; the units in ``attrs["units"]``.
+
+        Raises
+        ------
+        MissingDependencyError
+            Without pandas, naming the extra that brings it.
+        """
+        from linkwork.display import export
+
+        return export(self, "pandas", by)
+
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
 
