@@ -1,6 +1,6 @@
-"""The viewer's family of a synthesised slider-crank (GET /api/family): each member an edit of named parameters
-that the viewer solves, every member with the stroke and time ratio asked for, the member shown that of the
-file; a file without requirements has none."""
+"""The viewer's family of a synthesised file (GET /api/family; slider-crank, crank-rocker, double-cut shears): each
+member an edit of named parameters that the viewer solves, every member, measured on its own, with the
+requirements asked for, the member shown that of the file; a file without requirements has none."""
 
 from __future__ import annotations
 
@@ -100,3 +100,29 @@ def test_each_crank_rocker_member_keeps_the_swing_and_time_ratio_on_the_files_si
         # the slow stroke turns the rocker the same way as the file's: the file's side of the chord
         assert e.forward_time_ratio == pytest.approx(file_e.forward_time_ratio, rel=1e-9)
     assert least == pytest.approx(f["quantity_values"], abs=0.05)
+
+
+@pytest.mark.slow
+def test_each_shears_member_meets_the_knives_requirements(tmp_path):
+    from linkwork.design.evaluate import Evaluation
+    from linkwork.design.metrics import METRICS
+    from linkwork.motion.analysis import extremes
+
+    s = synthesize("double-cut-shears", upper_stroke=0.14, lower_stroke=0.12, time_ratio=1.1, overlap=0.02)
+    path = s.write(tmp_path / "shears.yaml")
+    spec = lw.load(str(path))
+    f = TestClient(create_app(spec), base_url=LOCAL).get("/api/family").json()
+    members = f["overrides"]
+    assert len(members) >= 5 and f["parameter"] == "crank length"
+    assert members[f["picked"]]["links.crank.length"] == pytest.approx(spec.links["crank"].length, rel=1e-9)
+    variants = {k: np.array([m[k] for m in members]) for k in members[0]}
+    kin = lw.kinematics(spec, steps=720, variants=variants)
+    ev = Evaluation(kin)
+    ratio = np.ravel(METRICS["working_time_ratio"].compute(ev, None))
+    overlap = np.ravel(METRICS["knife_overlap"].compute(ev, None))
+    for v in range(len(members)):
+        strokes = {e.name: e.stroke for e in extremes(kin, v)}
+        assert strokes["guide_E"] == pytest.approx(0.14, rel=1e-9)
+        assert strokes["guide_F"] == pytest.approx(0.12, rel=1e-9)
+        assert ratio[v] == pytest.approx(1.1, rel=1e-9) and overlap[v] == pytest.approx(0.02, abs=0.26e-9)
+    assert len({m["links.crank.length"] for m in members}) == len(members)

@@ -9,6 +9,7 @@ dimensions or loads (a rod ratio, an offset, a frame, a force) is stated as the 
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -141,13 +142,16 @@ def family_members(spec: Any) -> dict[str, Any] | None:
     parameters, for the viewer's slider: ``parameter`` and ``unit`` of the free parameter, its ``values``,
     each member's ``overrides`` (SI), ``quantity`` (the criterion's angle) and its ``quantity_values`` (deg),
     ``picked``, the member of the file, and a ``note`` on which members are offered.  A slider-crank whose
-    requirements leave rod ratio and offset free, or a crank-rocker; None for any other file."""
+    requirements leave rod ratio and offset free, a crank-rocker, double-cut shears whose crank is left free
+    (solved again, seconds, once a set of requirements); None for any other file."""
     given: dict[str, Any] = (getattr(spec, "requirements", None) if spec is not None else None) or {}
     kind = given.get("kind")
     if kind == "slider-crank":
         return _slider_crank_family(spec, given)
     if kind == "crank-rocker":
         return _crank_rocker_family(spec, given)
+    if kind == "double-cut-shears":
+        return _shears_family(spec, given)
     return None
 
 
@@ -221,3 +225,37 @@ def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
             "picked": int(np.flatnonzero(t == own)[0]),
             "note": "the crank pivot on the file's side of the chord B_e B_f (the other side's members need the "
             "other assembly mode)"}  # fmt: skip
+
+
+def _shears_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
+    """The double-cut shears' family over the crank length (no ``crank`` requirement): the members the
+    synthesis's continuation solves, as edits of the named parameters it sets."""
+    from linkwork.errors import SynthesisError
+    from linkwork.synthesis.shears import _requirements
+
+    upper, lower = _si(given, "upper_stroke", "length"), _si(given, "lower_stroke", "length")
+    if "crank" in given or upper is None or lower is None or "crank" not in spec.links:
+        return None
+    ratio = float(given.get("time_ratio", 1.0))
+    try:
+        overlap = _requirements(upper, lower, ratio, _si(given, "overlap", "length"), _si(given, "opening", "length"))
+    except SynthesisError:
+        return None
+    cranks, overrides, least = _shears_members(upper, lower, ratio, overlap)
+    if not overrides:
+        return None
+    return {"parameter": "crank length", "unit": "mm", "values": [c * 1e3 for c in cranks], "overrides": overrides,
+            "quantity": "least transmission angle", "quantity_values": least,
+            "picked": int(np.argmin(np.abs(np.array(cranks) - float(spec.links["crank"].length)))),
+            "note": "the members the synthesis's continuation solves"}  # fmt: skip
+
+
+@functools.lru_cache(maxsize=8)
+def _shears_members(upper: float, lower: float, ratio: float, overlap: float) -> tuple[list, list, list]:
+    """(crank lengths, overrides, least transmission angles (deg)) of the solved members of the shears' family."""
+    from linkwork.synthesis.shears import member_values, solved_family
+
+    cranks, unknowns, found = solved_family(upper, lower, ratio, overlap)
+    ok = np.flatnonzero(np.isfinite(unknowns[:, 0]) & np.isfinite(found.get("min_transmission_angle", np.nan)))
+    least = np.degrees(found["min_transmission_angle"][ok]).tolist() if len(ok) else []
+    return cranks[ok].tolist(), member_values(cranks[ok], unknowns[ok]), least
