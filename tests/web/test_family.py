@@ -126,3 +126,17 @@ def test_each_shears_member_meets_the_knives_requirements(tmp_path):
         assert strokes["guide_F"] == pytest.approx(0.12, rel=1e-9)
         assert ratio[v] == pytest.approx(1.1, rel=1e-9) and overlap[v] == pytest.approx(0.02, abs=0.26e-9)
     assert len({m["links.crank.length"] for m in members}) == len(members)
+
+
+def test_a_crank_rocker_edited_off_its_family_still_has_it_with_the_member_nearest_picked(tmp_path):
+    import re
+
+    path = synthesize("crank-rocker", swing=math.radians(50.0), time_ratio=1.3, rocker=0.3).write(tmp_path / "r.yaml")
+    text = re.sub(r"(coupler:\n\s+ends: \[A, B\]\n\s+length: )[0-9.]+", r"\g<1>650", path.read_text())
+    path.write_text(re.sub(r"O4: \[[0-9.]+, 0.0\]", "O4: [600, 0]", text))
+    spec = lw.load(str(path))
+    assert spec.links["coupler"].length == 0.65 and spec.frame.points["O4"][0] == 0.6
+    f = TestClient(create_app(spec), base_url=LOCAL).get("/api/family").json()
+    # |O2 B_f| = b - a = 650 mm - a: beyond the family's crank-rockers of this swing and K (under 0.52 m)
+    t = np.array(f["values"]) / 1e3
+    assert t.max() < 0.65 - spec.links["crank"].length and f["picked"] == len(t) - 1

@@ -215,6 +215,8 @@ def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
     m = members(swing, theta, t, side)
     keep = m["valid"] & ((m["least_transmission_angle"] >= floor) | (t == own))
     t, m = t[keep], {k: v[keep] for k, v in m.items()}
+    if not len(t):
+        return None
     scale = c * np.ones_like(t) if "frame" not in given else d / m["frame"]
     overrides = [{"links.crank.length": float(x * s), "links.coupler.length": float(y * s),
                   "links.rocker.length": float(s), "frame.points.O4.x": float(z * s)}
@@ -222,7 +224,7 @@ def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
     return {"parameter": "|O2 B_f|", "unit": "mm", "values": (t * scale * 1e3).tolist(), "overrides": overrides,
             "quantity": "least transmission angle",
             "quantity_values": np.degrees(m["least_transmission_angle"]).tolist(),
-            "picked": int(np.flatnonzero(t == own)[0]),
+            "picked": int(np.argmin(np.abs(t - own))),
             "note": "the crank pivot on the file's side of the chord B_e B_f (the other side's members need the "
             "other assembly mode)"}  # fmt: skip
 
