@@ -92,6 +92,24 @@ def test_k_1_needs_the_bound_and_then_meets_it_with_the_nearest_pivot():
     assert s.measured["time_ratio"] == pytest.approx(1.0, rel=1e-9)
 
 
+@pytest.mark.parametrize("swing", [40, 50, 60])
+@pytest.mark.parametrize("bound", [20, 30, 35])
+def test_k_1_with_a_bound_it_can_meet_is_met_and_not_refused(swing, bound):
+    # the root of the bound is taken on the side that meets it, not a rounding short of it
+    s = synthesize("crank-rocker", swing=math.radians(swing), time_ratio=1.0, rocker=0.3,
+                   min_transmission_angle=math.radians(bound))  # fmt: skip
+    assert s.predicted["least_transmission_angle"] >= math.radians(bound)
+    assert s.measured["least_transmission_angle"] == pytest.approx(math.radians(bound), rel=1e-9)
+
+
+def test_the_members_for_k_1_have_their_pivot_on_the_chords_line_to_the_last_digits():
+    psi = math.radians(40)
+    t = np.linspace(0.05, 50, 400)
+    m = members(psi, 0.0, t, 1.0)
+    for a, b, d in zip(m["crank"], m["coupler"], m["frame"], strict=True):
+        assert law_of_cosines(a, b, 1.0, d) == pytest.approx((psi, 0.0), rel=1e-12, abs=1e-12)
+
+
 def test_an_impossible_bound_names_the_best_angle_and_the_largest_k_that_meets_it():
     with pytest.raises(SynthesisError) as err:
         synthesize("crank-rocker", swing=math.radians(60), time_ratio=1.5, frame=0.4,

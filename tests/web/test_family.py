@@ -1,6 +1,6 @@
-"""The viewer's family of a synthesised slider-crank (GET /api/family): each member an edit of named parameters
-that the viewer solves, every member with the stroke and time ratio asked for, the member shown that of the
-file; a file without requirements has none."""
+"""The viewer's family of a synthesised file (GET /api/family; slider-crank, crank-rocker, double-cut shears): each
+member an edit of named parameters that the viewer solves, every member, measured on its own, with the
+requirements asked for, the member shown that of the file; a file without requirements has none."""
 
 from __future__ import annotations
 
@@ -53,3 +53,90 @@ def test_each_member_of_the_family_keeps_the_stroke_and_time_ratio_and_the_viewe
 def test_a_file_without_requirements_has_no_family():
     client = TestClient(create_app("four-bar"), base_url=LOCAL)
     assert client.get("/api/family").json() == {"overrides": []}
+
+
+def _closed_form(a: float, b: float, c: float, d: float) -> tuple[float, float]:
+    """(swing, K) of a crank-rocker from its lengths alone: the rocker's angles at the stretched (|O2 B| = b + a)
+    and folded (b - a) positions by the law of cosines in O2 B O4, and the crank's angle theta between them."""
+    at_o4 = [math.acos((c * c + d * d - q * q) / (2 * c * d)) for q in (b + a, b - a)]
+    at_o2 = [math.acos((q * q + d * d - c * c) / (2 * q * d)) for q in (b + a, b - a)]
+    theta = abs(at_o2[0] - at_o2[1])
+    return abs(at_o4[0] - at_o4[1]), (math.pi + theta) / (math.pi - theta)
+
+
+@pytest.mark.parametrize(
+    ("ratio", "given"),
+    [(1.3, {"rocker": 0.3}), (1.3, {"frame": 0.5}), (1.0, {"rocker": 0.3, "min_transmission_angle": math.radians(30)})],
+)
+def test_each_crank_rocker_member_keeps_the_swing_and_time_ratio_on_the_files_side(tmp_path, ratio, given):
+    swing = math.radians(50.0)
+    path = synthesize("crank-rocker", swing=swing, time_ratio=ratio, **given).write(tmp_path / "rocker.yaml")
+    spec = lw.load(str(path))
+    client = TestClient(create_app(spec), base_url=LOCAL)
+    f = client.get("/api/family").json()
+    members = f["overrides"]
+    assert len(members) >= 30 and f["parameter"] == "|O2 B_f|" and "side" in f["note"]
+    own = members[f["picked"]]
+    assert own["links.crank.length"] == pytest.approx(spec.links["crank"].length, rel=1e-9)
+    assert own["frame.points.O4.x"] == pytest.approx(spec.frame.points["O4"][0], rel=1e-9)
+    name, fixed = ("links.rocker.length", 0.3) if "rocker" in given else ("frame.points.O4.x", 0.5)
+    assert all(m[name] == pytest.approx(fixed, rel=1e-12) for m in members)
+    assert min(f["quantity_values"]) >= max(10.0, math.degrees(given.get("min_transmission_angle", 0))) - 1e-6
+    for m, t in zip(members, f["values"], strict=True):
+        a, b, c, d = (m[k] for k in ("links.crank.length", "links.coupler.length", "links.rocker.length",
+                                      "frame.points.O4.x"))  # fmt: skip
+        assert (b - a) * 1e3 == pytest.approx(t, rel=1e-12)
+        assert _closed_form(a, b, c, d) == pytest.approx((swing, ratio), rel=1e-12)
+    assert client.post("/api/solve", json={"overrides": members[-1], "steps": 360}).status_code == 200
+    variants = {k: np.array([m[k] for m in members]) for k in members[0]}
+    kin = lw.kinematics(spec, steps=720, variants=variants)
+    from linkwork.motion.analysis import extremes, transmission
+
+    (file_e,) = extremes(lw.kinematics(spec, steps=720))
+    least = np.degrees(np.nanmin(next(iter(transmission(kin).values())), axis=-1))
+    for v in range(len(members)):
+        (e,) = extremes(kin, v)
+        assert e.stroke == pytest.approx(swing, rel=1e-9) and e.time_ratio == pytest.approx(ratio, rel=1e-9)
+        # the slow stroke turns the rocker the same way as the file's: the file's side of the chord
+        assert e.forward_time_ratio == pytest.approx(file_e.forward_time_ratio, rel=1e-9)
+    assert least == pytest.approx(f["quantity_values"], abs=0.05)
+
+
+@pytest.mark.slow
+def test_each_shears_member_meets_the_knives_requirements(tmp_path):
+    from linkwork.design.evaluate import Evaluation
+    from linkwork.design.metrics import METRICS
+    from linkwork.motion.analysis import extremes
+
+    s = synthesize("double-cut-shears", upper_stroke=0.14, lower_stroke=0.12, time_ratio=1.1, overlap=0.02)
+    path = s.write(tmp_path / "shears.yaml")
+    spec = lw.load(str(path))
+    f = TestClient(create_app(spec), base_url=LOCAL).get("/api/family").json()
+    members = f["overrides"]
+    assert len(members) >= 5 and f["parameter"] == "crank length"
+    assert members[f["picked"]]["links.crank.length"] == pytest.approx(spec.links["crank"].length, rel=1e-9)
+    variants = {k: np.array([m[k] for m in members]) for k in members[0]}
+    kin = lw.kinematics(spec, steps=720, variants=variants)
+    ev = Evaluation(kin)
+    ratio = np.ravel(METRICS["working_time_ratio"].compute(ev, None))
+    overlap = np.ravel(METRICS["knife_overlap"].compute(ev, None))
+    for v in range(len(members)):
+        strokes = {e.name: e.stroke for e in extremes(kin, v)}
+        assert strokes["guide_E"] == pytest.approx(0.14, rel=1e-9)
+        assert strokes["guide_F"] == pytest.approx(0.12, rel=1e-9)
+        assert ratio[v] == pytest.approx(1.1, rel=1e-9) and overlap[v] == pytest.approx(0.02, abs=0.26e-9)
+    assert len({m["links.crank.length"] for m in members}) == len(members)
+
+
+def test_a_crank_rocker_edited_off_its_family_still_has_it_with_the_member_nearest_picked(tmp_path):
+    import re
+
+    path = synthesize("crank-rocker", swing=math.radians(50.0), time_ratio=1.3, rocker=0.3).write(tmp_path / "r.yaml")
+    text = re.sub(r"(coupler:\n\s+ends: \[A, B\]\n\s+length: )[0-9.]+", r"\g<1>650", path.read_text())
+    path.write_text(re.sub(r"O4: \[[0-9.]+, 0.0\]", "O4: [600, 0]", text))
+    spec = lw.load(str(path))
+    assert spec.links["coupler"].length == 0.65 and spec.frame.points["O4"][0] == 0.6
+    f = TestClient(create_app(spec), base_url=LOCAL).get("/api/family").json()
+    # |O2 B_f| = b - a = 650 mm - a: beyond the family's crank-rockers of this swing and K (under 0.52 m)
+    t = np.array(f["values"]) / 1e3
+    assert t.max() < 0.65 - spec.links["crank"].length and f["picked"] == len(t) - 1

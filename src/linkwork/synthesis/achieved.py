@@ -9,6 +9,7 @@ dimensions or loads (a rod ratio, an offset, a frame, a force) is stated as the 
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -131,23 +132,49 @@ def written(kind: str, requirements: dict[str, float], extra: dict[str, str] | N
 #: Members of a family the viewer's slider offers.
 FAMILY_MEMBERS = 41
 
+#: The least transmission angle of a crank-rocker member the slider offers: nearer a dead point the stretched
+#: and folded positions are ill-conditioned and the measured swing and time ratio lose digits.
+LEAST_OFFERED = math.radians(10.0)
+
 
 def family_members(spec: Any) -> dict[str, Any] | None:
-    """The one-parameter family a synthesised slider-crank's requirements leave (stroke and time ratio without
-    rod ratio or offset), as edits of the file's named parameters, for the viewer's slider: ``parameter`` and
-    ``unit`` of the free parameter, its ``values``, each member's ``overrides`` (SI) and largest pressure angle
-    (``alpha``, deg), and ``picked``, the member nearest the file's crank.  None for any other file."""
-    from linkwork.synthesis.common import crank_angle_between_limits
-    from linkwork.synthesis.slider_crank import family
+    """The one-parameter family a synthesised file's requirements leave, as edits of the file's named
+    parameters, for the viewer's slider: ``parameter`` and ``unit`` of the free parameter, its ``values``,
+    each member's ``overrides`` (SI), ``quantity`` (the criterion's angle) and its ``quantity_values`` (deg),
+    ``picked``, the member of the file, and a ``note`` on which members are offered.  A slider-crank whose
+    requirements leave rod ratio and offset free, a crank-rocker, double-cut shears whose crank is left free
+    (solved again, seconds, once a set of requirements); None for any other file."""
+    given: dict[str, Any] = (getattr(spec, "requirements", None) if spec is not None else None) or {}
+    kind = given.get("kind")
+    if kind == "slider-crank":
+        return _slider_crank_family(spec, given)
+    if kind == "crank-rocker":
+        return _crank_rocker_family(spec, given)
+    if kind == "double-cut-shears":
+        return _shears_family(spec, given)
+    return None
+
+
+def _si(given: dict[str, Any], name: str, kind: str) -> float | None:
+    """The requirement ``name`` (SI), None where the file does not give it."""
     from linkwork.units import parse_quantity
 
-    given = getattr(spec, "requirements", None) if spec is not None else None
-    if not given or given.get("kind") != "slider-crank" or "rod_ratio" in given or "offset" in given:
+    value = given.get(name)
+    if value is None:
         return None
-    stroke = given.get("stroke")
-    stroke = parse_quantity(stroke, "length") if isinstance(stroke, str) else float(stroke)
+    return parse_quantity(value, kind) if isinstance(value, str) else float(value)
+
+
+def _slider_crank_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
+    """The slider-crank's family over the angle O B1 B2 (stroke and time ratio without rod ratio or offset)."""
+    from linkwork.synthesis.common import crank_angle_between_limits
+    from linkwork.synthesis.slider_crank import family
+
+    if "rod_ratio" in given or "offset" in given:
+        return None
+    stroke = _si(given, "stroke", "length")
     ratio = float(given.get("time_ratio", 1.0))
-    if crank_angle_between_limits(ratio) <= 0:
+    if stroke is None or crank_angle_between_limits(ratio) <= 0:
         return None
     f = family(stroke, ratio, count=FAMILY_MEMBERS)
     c = f.columns
@@ -157,5 +184,80 @@ def family_members(spec: Any) -> dict[str, Any] | None:
                for r, ell, e in zip(c["crank"][ok], c["rod"][ok], c["offset"][ok], strict=True)]  # fmt: skip
     picked = int(np.argmin(np.abs(c["crank"][ok] - crank))) if math.isfinite(crank) else 0
     return {"parameter": f.parameter, "unit": "deg", "values": np.degrees(f.values[ok]).tolist(),
-            "overrides": members, "alpha": np.degrees(c["largest_pressure_angle"][ok]).tolist(),
-            "picked": picked}  # fmt: skip
+            "overrides": members, "quantity": "largest pressure angle",
+            "quantity_values": np.degrees(c["largest_pressure_angle"][ok]).tolist(), "picked": picked,
+            "note": "every member with the stroke and time ratio asked for"}  # fmt: skip
+
+
+def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
+    """The crank-rocker's family over t = |O2 B_f| on the side of the chord B_e B_f the file's crank pivot is on
+    (the members on the other side run, in the file's assembly mode, the slow stroke the other way: they need
+    the other mode, which no named parameter sets), scaled as the file is (by its rocker or its frame), with a
+    least transmission angle of at least :data:`LEAST_OFFERED` and the file's bound; the file's own member
+    among them."""
+    from linkwork.synthesis.common import crank_angle_between_limits
+    from linkwork.synthesis.crank_rocker import members, top
+
+    swing, ratio = _si(given, "swing", "angle"), float(given.get("time_ratio", 1.0))
+    links = {name: float(link.length) for name, link in spec.links.items() if link.length is not None}
+    if swing is None or not {"crank", "coupler", "rocker"} <= links.keys() or "O4" not in spec.frame.points:
+        return None
+    theta = crank_angle_between_limits(ratio)
+    a, b, c = links["crank"], links["coupler"], links["rocker"]
+    d = float(spec.frame.points["O4"][0])
+    own = (b - a) / c
+    side = min((1.0, -1.0), key=lambda s: abs(float(members(swing, theta, np.array([own]), s)["frame"][0]) - d / c))
+    floor = max(LEAST_OFFERED, _si(given, "min_transmission_angle", "angle") or 0.0)
+    fine = np.linspace(0.0, top(theta, swing), 2001)[1:-1]
+    m = members(swing, theta, fine, side)
+    ok = fine[m["valid"] & (m["least_transmission_angle"] >= floor)]
+    t = np.unique(np.concatenate([np.linspace(ok.min(), ok.max(), FAMILY_MEMBERS) if len(ok) else [], [own]]))
+    m = members(swing, theta, t, side)
+    keep = m["valid"] & ((m["least_transmission_angle"] >= floor) | (t == own))
+    t, m = t[keep], {k: v[keep] for k, v in m.items()}
+    if not len(t):
+        return None
+    scale = c * np.ones_like(t) if "frame" not in given else d / m["frame"]
+    overrides = [{"links.crank.length": float(x * s), "links.coupler.length": float(y * s),
+                  "links.rocker.length": float(s), "frame.points.O4.x": float(z * s)}
+                 for x, y, z, s in zip(m["crank"], m["coupler"], m["frame"], scale, strict=True)]  # fmt: skip
+    return {"parameter": "|O2 B_f|", "unit": "mm", "values": (t * scale * 1e3).tolist(), "overrides": overrides,
+            "quantity": "least transmission angle",
+            "quantity_values": np.degrees(m["least_transmission_angle"]).tolist(),
+            "picked": int(np.argmin(np.abs(t - own))),
+            "note": "the crank pivot on the file's side of the chord B_e B_f (the other side's members need the "
+            "other assembly mode)"}  # fmt: skip
+
+
+def _shears_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
+    """The double-cut shears' family over the crank length (no ``crank`` requirement): the members the
+    synthesis's continuation solves, as edits of the named parameters it sets."""
+    from linkwork.errors import SynthesisError
+    from linkwork.synthesis.shears import _requirements
+
+    upper, lower = _si(given, "upper_stroke", "length"), _si(given, "lower_stroke", "length")
+    if "crank" in given or upper is None or lower is None or "crank" not in spec.links:
+        return None
+    ratio = float(given.get("time_ratio", 1.0))
+    try:
+        overlap = _requirements(upper, lower, ratio, _si(given, "overlap", "length"), _si(given, "opening", "length"))
+    except SynthesisError:
+        return None
+    cranks, overrides, least = _shears_members(upper, lower, ratio, overlap)
+    if not overrides:
+        return None
+    return {"parameter": "crank length", "unit": "mm", "values": [c * 1e3 for c in cranks], "overrides": overrides,
+            "quantity": "least transmission angle", "quantity_values": least,
+            "picked": int(np.argmin(np.abs(np.array(cranks) - float(spec.links["crank"].length)))),
+            "note": "the members the synthesis's continuation solves"}  # fmt: skip
+
+
+@functools.lru_cache(maxsize=8)
+def _shears_members(upper: float, lower: float, ratio: float, overlap: float) -> tuple[list, list, list]:
+    """(crank lengths, overrides, least transmission angles (deg)) of the solved members of the shears' family."""
+    from linkwork.synthesis.shears import member_values, solved_family
+
+    cranks, unknowns, found = solved_family(upper, lower, ratio, overlap)
+    ok = np.flatnonzero(np.isfinite(unknowns[:, 0]) & np.isfinite(found.get("min_transmission_angle", np.nan)))
+    least = np.degrees(found["min_transmission_angle"][ok]).tolist() if len(ok) else []
+    return cranks[ok].tolist(), member_values(cranks[ok], unknowns[ok]), least

@@ -64,12 +64,17 @@ def members(swing: float, theta: float, t: np.ndarray, side: float) -> dict[str,
     be, bf = _limits(swing)
     s = float(np.linalg.norm(be - bf))
     t = np.asarray(t, dtype=float)
-    x = t * math.cos(theta) + np.sqrt(np.maximum(s * s - (t * math.sin(theta)) ** 2, 0.0))  # |O2 B_e|
+    root = np.sqrt(np.maximum(s * s - (t * math.sin(theta)) ** 2, 0.0))
+    x = t * math.cos(theta) + root  # |O2 B_e|
     a, b = (x - t) / 2, (x + t) / 2
-    # O2 at distance t from B_f and x from B_e (circle intersection), on ``side`` of the chord B_f -> B_e
+    # O2 at distance t from B_f and x from B_e (circle intersection), on ``side`` of the chord B_f -> B_e; its
+    # distance from the chord from t^2 - along^2 = (t - along) (t + along), t + along = (t + s - x) (t + s + x)
+    # / 2s written without the difference t + s - x (0 for theta = 0, where the pivot is on the chord's line)
     u = (be - bf) / s
     along = (t * t - x * x + s * s) / (2 * s)
-    off = side * np.sqrt(np.maximum(t * t - along * along, 0.0))
+    near = (t * math.sin(theta)) ** 2 / (s + root) + 2 * t * math.sin(theta / 2) ** 2  # t + s - x
+    across = (x - t + s) * (x + t - s) / (2 * s) * near * (t + s + x) / (2 * s)
+    off = side * np.sqrt(np.maximum(across, 0.0))
     o2 = bf + along[..., None] * u + off[..., None] * np.array([-u[1], u[0]])
     d = np.linalg.norm(o2, axis=-1)
     mu = least_transmission_angle(a, b, 1.0, d)
@@ -91,7 +96,9 @@ def least_transmission_angle(a, b, c, d) -> np.ndarray:  # noqa: ANN001
     return np.minimum(fold(inner), fold(outer))
 
 
-def _top(theta: float, swing: float) -> float:
+def top(theta: float, swing: float) -> float:
+    """The largest t = |O2 B_f| (unit rocker) of the family: the diameter of the circle that sees the chord
+    under theta, :data:`FAR` for theta = 0."""
     s = 2 * math.sin(swing / 2)
     return FAR if theta == 0 else s / (2 * math.sin(theta / 2))
 
@@ -100,7 +107,7 @@ def family(swing: float, time_ratio: float, count: int = 401) -> Family:
     """The family over t = |O2 B_f| (unit rocker) on both sides of the chord: the sides one after the other;
     NaN where a member is not a crank-rocker with these limit positions."""
     theta = crank_angle_between_limits(time_ratio)
-    t = np.linspace(0.0, _top(theta, swing), count + 2)[1:-1]
+    t = np.linspace(0.0, top(theta, swing), count + 2)[1:-1]
     cols: dict[str, list[np.ndarray]] = {}
     for side in (1.0, -1.0):
         m = members(swing, theta, t, side)
@@ -115,8 +122,8 @@ def best(swing: float, theta: float) -> tuple[float, float, float]:
     """(t, side, least transmission angle) of the member with the greatest least transmission angle."""
     from scipy.optimize import minimize_scalar
 
-    top = _top(theta, swing)
-    t = np.linspace(0.0, top, 2001)[1:-1]
+    upper = top(theta, swing)
+    t = np.linspace(0.0, upper, 2001)[1:-1]
     found = []
     for side in (1.0, -1.0):
         m = members(swing, theta, t, side)
@@ -129,7 +136,7 @@ def best(swing: float, theta: float) -> tuple[float, float, float]:
                 mm_ = members(swing, theta, np.array([x]), side)
                 return -float(mm_["least_transmission_angle"][0]) if mm_["valid"][0] else math.pi
 
-            res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": 1e-13 * top})
+            res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": 1e-13 * upper})
             found.append((float(res.x), side, -float(res.fun)))
     if not found:
         raise SynthesisError(
@@ -161,7 +168,17 @@ def central(swing: float, bound: float | None) -> tuple[float, float, float]:
         )
     f = lambda x: float(members(swing, 0.0, np.array([x]), 1.0)["least_transmission_angle"][0]) - bound  # noqa: E731
     x = float(brentq(f, t[ok[0] - 1], t[ok[0]], xtol=1e-15))
+    # the root to the last bit may fall a rounding short of the bound: step onto the side that meets it
+    x = next((y for y in _ulps_up(x, 64) if f(y) >= 0), float(t[ok[0]]))
     return x, 1.0, bound + f(x)
+
+
+def _ulps_up(x: float, count: int) -> list[float]:
+    """``x`` and the ``count`` floats above it."""
+    out = [x]
+    for _ in range(count):
+        out.append(math.nextafter(out[-1], math.inf))
+    return out
 
 
 def _feasible_ratio(swing: float) -> float:
@@ -170,7 +187,7 @@ def _feasible_ratio(swing: float) -> float:
     lo, hi = 0.0, math.pi
     while hi - lo > 1e-4:
         mid = (lo + hi) / 2
-        t = np.linspace(0.0, _top(mid, swing), 2001)[1:-1]
+        t = np.linspace(0.0, top(mid, swing), 2001)[1:-1]
         if any(members(swing, mid, t, side)["valid"].any() for side in (1.0, -1.0)):
             lo = mid
         else:

@@ -137,6 +137,37 @@ def family(mech, targets: dict[str, float], cranks: np.ndarray, metrics: list[st
     return unknowns, found
 
 
+def solved_family(
+    upper_stroke: float, lower_stroke: float, time_ratio: float, overlap: float, crank: float | None = None
+) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    """(crank lengths (M,), unknowns (M, 4), metric columns) of the family for the requirements (SI; the overlap
+    when closed), the members over :data:`SPAN` of the crank that meets the strokes nearest the bundled file's
+    proportions (the one ``crank`` where it is given): :func:`family` on the bundled file."""
+    from linkwork.api import mechanism_of
+    from linkwork.structure.parameters import parameter_values
+
+    mech = mechanism_of(KIND, "mechanism")
+    base = parameter_values(mech)
+    targets = {"working_time_ratio": time_ratio, "stroke:guide_E": upper_stroke, "stroke:guide_F": lower_stroke,
+               "knife_overlap": overlap}  # fmt: skip
+    # the knives' strokes grow with the rocker's swing, nearly as the crank: the family is centred there
+    guess = base[CRANK] * max(upper_stroke / _own(mech, "stroke:guide_E"), lower_stroke / _own(mech, "stroke:guide_F"))
+    cranks = np.array([crank]) if crank is not None else guess * np.geomspace(*SPAN, MEMBERS)
+    unknowns, found = family(mech, targets, cranks, [m for m, _, _ in CRITERIA.values()])
+    return cranks, unknowns, found
+
+
+def member_values(cranks: np.ndarray, unknowns: np.ndarray) -> list[dict[str, float]]:
+    """The values of :data:`PATHS` (SI) of the members ``cranks`` with their ``unknowns``: edits of the bundled
+    file, or of a file synthesised from it."""
+    from linkwork.api import mechanism_of
+    from linkwork.structure.parameters import parameter_values
+
+    base = parameter_values(mechanism_of(KIND, "mechanism"))
+    rows = _values(base, cranks)(unknowns, np.arange(len(cranks)))
+    return [dict(zip(PATHS, row.tolist(), strict=True)) for row in rows]
+
+
 def _last_solved(unknowns: np.ndarray, chain: list[int]) -> np.ndarray:
     """The unknowns of the last solved member of ``chain``."""
     return next(unknowns[i] for i in reversed(chain) if not np.isnan(unknowns[i, 0]))
@@ -158,7 +189,6 @@ def synthesize(
     transmission angle; ``"torque"``: the least peak driving torque under the file's cutting load).  ``speed`` replaces
     the file's crank speed.  Verified by the analysis of the written file."""
     from linkwork.api import mechanism_of
-    from linkwork.structure.parameters import parameter_values
 
     want = _requirements(upper_stroke, lower_stroke, time_ratio, overlap, opening)
     if criterion not in CRITERIA:
@@ -166,20 +196,13 @@ def synthesize(
     if crank is not None and not 0 < crank < math.inf:
         raise SynthesisError(f"crank {crank!r} m: expected a positive length")
     mech = mechanism_of(KIND, "mechanism")
-    base = parameter_values(mech)
-    targets = {"working_time_ratio": time_ratio, "stroke:guide_E": upper_stroke, "stroke:guide_F": lower_stroke,
-               "knife_overlap": want}  # fmt: skip
-    # the knives' strokes grow with the rocker's swing, nearly as the crank: the family is centred there
-    guess = base[CRANK] * max(upper_stroke / _own(mech, "stroke:guide_E"), lower_stroke / _own(mech, "stroke:guide_F"))
-    cranks = np.array([crank]) if crank is not None else guess * np.geomspace(*SPAN, MEMBERS)
+    cranks, unknowns, found = solved_family(upper_stroke, lower_stroke, time_ratio, want, crank)
     metric, sense, words = CRITERIA[criterion]
-    unknowns, found = family(mech, targets, cranks, [m for m, _, _ in CRITERIA.values()])
     score = sense * found.get(metric, np.full(len(cranks), np.nan))
     if not np.isfinite(score).any():
         raise SynthesisError(_infeasible(mech, upper_stroke, lower_stroke, time_ratio, want, crank))
     pick = int(np.nanargmin(score))
-    values = dict(zip(PATHS, _values(base, cranks[[pick]])(unknowns[[pick]], np.zeros(1, int))[0].tolist(),
-                      strict=True))  # fmt: skip
+    (values,) = member_values(cranks[[pick]], unknowns[[pick]])
     why = f"crank {cranks[pick] * 1e3:.6g} mm as given" if crank is not None else f"picked by {words}"
     requirements = given(upper_stroke=upper_stroke, lower_stroke=lower_stroke, time_ratio=time_ratio,
                          overlap=overlap, opening=opening, crank=crank)  # fmt: skip

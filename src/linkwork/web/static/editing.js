@@ -517,10 +517,12 @@
     const text = html("span", null, box, { id: "family-text" });
     const input = html("input", null, box, { type: "range", min: 0, max: f.overrides.length - 1, step: 1,
                                              value: f.picked, id: "family-slider" });
+    const unit = f.unit === "deg" ? "°" : ` ${f.unit}`;
     const say = (i) => {
-      text.textContent = `${f.parameter} ${Number(f.values[i]).toFixed(2)}°, largest pressure angle ` +
-        `${Number(f.alpha[i]).toFixed(2)}°`;
+      text.textContent = `${f.parameter} ${Number(f.values[i]).toFixed(2)}${unit}, ${f.quantity} ` +
+        `${Number(f.quantity_values[i]).toFixed(2)}°`;
     };
+    if (f.note) box.title = f.note;
     say(f.picked);
     input.addEventListener("input", () => { const i = Number(input.value); say(i); propose(f.overrides[i]); });
     input.addEventListener("change", () => propose(f.overrides[Number(input.value)], { commit: true }));
