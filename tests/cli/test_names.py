@@ -110,6 +110,8 @@ def test_the_report_carries_the_names_in_the_c_locale(named, tmp_path):
     pytest.importorskip("ezdxf")
     import ezdxf
 
+    from linkwork.scene.geometry import text_runs
+
     path, n = named
     env = {**os.environ, "LC_ALL": "C", "LANG": "C", "PYTHONPATH": str(ROOT / "src"), "LINKWORK_NUMBA": "0"}
     env.pop("PYTHONIOENCODING", None)
@@ -121,9 +123,12 @@ def test_the_report_carries_the_names_in_the_c_locale(named, tmp_path):
     html = (out / "report.html").read_text(encoding="utf-8")
     assert html.count(n["double-cut-shears"]) >= 2 and n["crank"] in html
     svg = (out / "figures" / "scheme.svg").read_text(encoding="utf-8")
-    texts = {e.dxf.text for e in ezdxf.readfile(out / "figures" / "scheme.dxf").modelspace().query("TEXT")}
+    msp = ezdxf.readfile(out / "figures" / "scheme.dxf").modelspace()
+    texts = {e.dxf.text for e in msp.query("TEXT")} | {e.plain_text() for e in msp.query("MTEXT")}
     for name in (n["O1"], n["A"], n["E"], n["F"], n["edge"]):
-        assert name in svg and name in texts, name
+        runs = text_runs(name)  # a trailing number is drawn as a subscript (O1: O and 1 below): every run is drawn
+        assert all(run in svg for run, _ in runs), name
+        assert "".join(("^" if sub else "") + run for run, sub in runs) in texts, name  # MTEXT's stacked index
     assert any(t.startswith(f"{n['double-cut-shears']}: ") for t in texts)
     assert {p.name for p in (out / "figures").glob("hodograph_*.svg")} == {f"hodograph_{n['O1']}.svg",
                                                                             f"hodograph_{n['O3']}.svg"}  # fmt: skip

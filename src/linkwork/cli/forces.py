@@ -232,6 +232,7 @@ def _report_efficiency(f: Forces, out: Console) -> None:
     out.print(f"  work over the samples: drive {drive:.6g} J, useful loads {float(e.work(e.useful)):.6g} J; "
               f"lost to friction: {lost}", soft_wrap=True)  # fmt: skip
     eta = e.instantaneous
+    eta = np.where(np.abs(eta) < 1e-9, 0.0, eta)  # a drive that gives just the friction's power: 0, not its rounding
     span = (
         f"from {np.nanmin(eta):.4g} to {np.nanmax(eta):.4g} where the drive gives power"
         if np.isfinite(eta).any()
