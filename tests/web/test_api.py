@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import socket
 import subprocess
@@ -457,8 +458,8 @@ def _start_view(stderr: int = subprocess.PIPE) -> tuple[subprocess.Popen, re.Mat
     code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
     proc = subprocess.Popen(
         [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"],
-        stdout=subprocess.PIPE, stderr=stderr, text=True,
-    )  # fmt: skip
+        stdout=subprocess.PIPE, stderr=stderr, text=True, env={**os.environ, "LINKWORK_NUMBA": "0"},
+    )  # fmt: skip  # the NumPy kernels: serving is tested here, and a cold cache would compile for a minute
     line = proc.stdout.readline()
     url = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
     if url is None:
