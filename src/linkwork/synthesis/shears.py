@@ -217,7 +217,7 @@ def synthesize(
         "D.x": unknowns[:, 1],
         "C.x": unknowns[:, 2],
         "edges_lengthened_by": unknowns[:, 3] / 2,
-        **{m: found.get(m) for m, _, _ in CRITERIA.values()},
+        **{m: found[m] for m, _, _ in CRITERIA.values() if m in found},
     }
     fam = None if crank is not None else Family("crank length", "m", cranks, columns, words)
     dims = dict(zip(["crank", "O1.x", "D.x", "C.x", "upper_edge.y", "lower_edge.y"], values.values(), strict=True))
