@@ -140,3 +140,25 @@ def test_a_crank_rocker_edited_off_its_family_still_has_it_with_the_member_neare
     # |O2 B_f| = b - a = 650 mm - a: beyond the family's crank-rockers of this swing and K (under 0.52 m)
     t = np.array(f["values"]) / 1e3
     assert t.max() < 0.65 - spec.links["crank"].length and f["picked"] == len(t) - 1
+
+
+def test_each_slotted_lever_member_keeps_the_stroke_and_time_ratio(tmp_path):
+    """A crank-shaper for H = 500 mm, K = 1.4: the members over the frame d, each with r = d sin(theta / 2)
+    (theta = 180 deg (K - 1) / (K + 1) = 30 deg), solved together as variants of the file, each measured on its
+    own: the ram's stroke and K as asked; the file's own member is the one picked."""
+    from linkwork.motion.analysis import extremes
+
+    path = synthesize("slotted-lever", stroke=0.5, time_ratio=1.4).write(tmp_path / "shaper.yaml")
+    spec = lw.load(str(path))
+    f = TestClient(create_app(spec), base_url=LOCAL).get("/api/family").json()
+    members = f["overrides"]
+    assert len(members) >= 30 and f["quantity_unit"] == " mm"
+    for m in members:
+        assert m["links.crank.length"] == pytest.approx(m["frame.points.O1.y"] * math.sin(math.radians(15)), rel=1e-12)
+    assert members[f["picked"]]["frame.points.O1.y"] == pytest.approx(spec.frame.points["O1"][1], rel=0.03)
+    chosen = members[2::6]
+    variants = {k: np.array([m[k] for m in chosen]) for k in chosen[0]}
+    kin = lw.kinematics(spec, steps=720, variants=variants)
+    for v in range(len(chosen)):
+        (e,) = [x for x in extremes(kin, v) if x.name == "guide"]  # the ram along its guide
+        assert e.stroke == pytest.approx(0.5, rel=1e-9) and e.time_ratio == pytest.approx(1.4, rel=1e-8)

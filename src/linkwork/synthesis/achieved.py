@@ -142,7 +142,8 @@ def family_members(spec: Any) -> dict[str, Any] | None:
     parameters, for the viewer's slider: ``parameter`` and ``unit`` of the free parameter, its ``values``,
     each member's ``overrides`` (SI), ``quantity`` (the criterion's angle) and its ``quantity_values`` (deg),
     ``picked``, the member of the file, and a ``note`` on which members are offered.  A slider-crank whose
-    requirements leave rod ratio and offset free, a crank-rocker, double-cut shears whose crank is left free
+    requirements leave rod ratio and offset free, a crank-rocker, a slotted lever whose frame and crank are left
+    free, double-cut shears whose crank is left free
     (solved again, seconds, once a set of requirements); None for any other file."""
     given: dict[str, Any] = (getattr(spec, "requirements", None) if spec is not None else None) or {}
     kind = given.get("kind")
@@ -152,6 +153,8 @@ def family_members(spec: Any) -> dict[str, Any] | None:
         return _crank_rocker_family(spec, given)
     if kind == "double-cut-shears":
         return _shears_family(spec, given)
+    if kind == "slotted-lever":
+        return _slotted_lever_family(spec, given)
     return None
 
 
@@ -227,6 +230,32 @@ def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
             "picked": int(np.argmin(np.abs(t - own))),
             "note": "the crank pivot on the file's side of the chord B_e B_f (the other side's members need the "
             "other assembly mode)"}  # fmt: skip
+
+
+def _slotted_lever_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
+    """The slotted lever's family over the frame d (stroke and time ratio without frame or crank): the crank
+    r = d sin(theta / 2) with each d, the lever, guide and rod as the file has them (neither the stroke nor K
+    depends on d while the block reaches no further than the lever, d + r <= L)."""
+    from linkwork.synthesis.slotted_lever import family
+
+    stroke, ratio = _si(given, "stroke", "length"), float(given.get("time_ratio", 1.0))
+    if stroke is None or "frame" in given or "crank" in given or "O1" not in spec.frame.points or ratio <= 1:
+        return None
+    f = family(stroke, ratio, count=FAMILY_MEMBERS)
+    d, r = f.values, f.columns["crank"]
+    overrides = [{"frame.points.O1.y": float(x), "links.crank.length": float(y)} for x, y in zip(d, r, strict=True)]
+    own = float(spec.frame.points["O1"][1])
+    return {
+        "parameter": "frame d",
+        "unit": "mm",
+        "values": (d * 1e3).tolist(),
+        "overrides": overrides,
+        "quantity": "least distance of the block from the lever's pivot",
+        "quantity_unit": " mm",
+        "quantity_values": (f.columns["least_block_distance"] * 1e3).tolist(),
+        "picked": int(np.argmin(np.abs(d - own))),
+        "note": "every member with the stroke and time ratio asked for",
+    }
 
 
 def _shears_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:

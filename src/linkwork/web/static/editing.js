@@ -520,7 +520,7 @@
     const unit = f.unit === "deg" ? "°" : ` ${f.unit}`;
     const say = (i) => {
       text.textContent = `${f.parameter} ${Number(f.values[i]).toFixed(2)}${unit}, ${f.quantity} ` +
-        `${Number(f.quantity_values[i]).toFixed(2)}°`;
+        `${Number(f.quantity_values[i]).toFixed(2)}${f.quantity_unit ?? "°"}`;
     };
     if (f.note) box.title = f.note;
     say(f.picked);
