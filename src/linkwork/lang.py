@@ -558,7 +558,7 @@ TEXTS: dict[str, tuple[str, str]] = {
         "velocity plan turned by 90°, pole p,  μv = {plan} (m/s)/mm;  forces: μF = {scale} N/mm",
         "план скоростей, повёрнутый на 90°, полюс p,  μv = {plan} (м/с)/мм;  силы: μF = {scale} Н/мм",
     ),
-    "lever.moment": ("balancing moment M_b = {moment} N·m", "уравновешивающий момент Mу = {moment} Н·м"),
+    "lever.moment": ("balancing moment Mb = {moment} N·m", "уравновешивающий момент Mу = {moment} Н·м"),
     "caption.force_plans": ("Force plans of the Assur groups", "Планы сил групп Ассура"),
     "caption.lever": ("Zhukovsky's lever", "Рычаг Жуковского"),
     "caption.force_plan_sheet": (
@@ -571,7 +571,7 @@ TEXTS: dict[str, tuple[str, str]] = {
         "{name}: рычаг Жуковского в {count} положениях",
     ),
     "levers.cell": (
-        "{position}: M_b = {moment} N·m; μF = {scale} N/mm",
+        "{position}: Mb = {moment} N·m; μF = {scale} N/mm",
         "{position}: Mу = {moment} Н·м; μF = {scale} Н/мм",
     ),
     "levers.scale": (
@@ -624,7 +624,7 @@ TEXTS: dict[str, tuple[str, str]] = {
     ),
     "kgraph.found": ("From the plan: {reactions}.", "Из плана сил: {reactions}."),
     "kgraph.balancing": (
-        "The moments about the pivot give the balancing moment M_b = {value} N·m (counter-clockwise positive).",
+        "The moments about the pivot give the balancing moment Mb = {value} N·m (counter-clockwise positive).",
         "Из уравнения моментов относительно оси вращения уравновешивающий момент Mу = {value} Н·м "
         "(положителен против часовой стрелки).",
     ),
@@ -639,7 +639,7 @@ TEXTS: dict[str, tuple[str, str]] = {
     "kgraph.head.value": ("value, N (N·m)", "величина, Н (Н·м)"),
     "kgraph.head.length": ("on the plan, mm", "на плане, мм"),
     "kgraph.head.direction": ("direction, °", "направление, °"),
-    "kgraph.head.lever": ("M_b by the lever, N·m", "Mу по рычагу, Н·м"),
+    "kgraph.head.lever": ("Mb by the lever, N·m", "Mу по рычагу, Н·м"),
     "kgraph.head.kinetostatic": ("driving torque, N·m", "момент из силового расчёта, Н·м"),
     "kgraph.head.difference": ("difference", "разность"),
     "force.weight": ("weight", "сила тяжести"),
