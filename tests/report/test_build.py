@@ -234,7 +234,7 @@ def _report(name: str, folder: Path, lang: str = "en", steps: int = 72, position
 
 
 #: Symbols of quantities and notation written in Latin letters in Russian texts too.
-SYMBOLS = {"Fx", "Fy", "II", "III", "IV", "linkwork"}
+SYMBOLS = {"Fx", "Fy", "II", "III", "IV", "linkwork", "size", "ISO", "CuSn", "pv"}  # linkwork size; ISO 281; CuSn12
 
 
 @pytest.mark.parametrize("name", ["double-cut-shears", "percussion-rocker"])

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import html
 import math
+import re
 from typing import TYPE_CHECKING, Any
 
 from linkwork.errors import LinkworkError
@@ -34,11 +35,17 @@ def sizing_section(mech: Mechanism, t: Any) -> tuple[list[str], Sizing | None]:
         result = size(mech, motor=bool(spec is not None and spec.motor))
     except LinkworkError as exc:
         return [*body, _p(t("sizing.failed", why=str(exc)))], None
-    rows = [[key, "-" if value is None else value] for key, value in result.inputs.items()]
+    rows = [
+        [_text(t, "sizing.input.", key), "-" if value is None else _text(t, "sizing.word.", value)]
+        for key, value in result.inputs.items()
+    ]
     body += [_p(t("sizing.inputs")), _html_table([t("sizing.col.quantity"), t("sizing.col.value")], rows)]
     for table in result.tables():
         body += [_p(t(f"sizing.table.{table.key}")), _translated(table, t)]
-    body += [_p(t("sizing.missing", part=part, why=why)) for part, why in result.missing.items()]
+    body += [
+        _p(t("sizing.missing", part=_text(t, "sizing.word.", part), why=_text(t, "sizing.word.", why)))
+        for part, why in result.missing.items()
+    ]
     return body, result
 
 
@@ -59,7 +66,14 @@ def _translated(table: Table, t: Any) -> str:
     return _html_table(head, rows)
 
 
-def _text(t: Any, prefix: str, text: str) -> str:
+def _text(t: Any, prefix: str, text: Any) -> Any:
+    """``text`` in the report's language where the texts have it under ``prefix`` (a link's least round section
+    by its pattern); as it is otherwise (names from the file, numbers)."""
+    if not isinstance(text, str):
+        return text
+    least = re.fullmatch(r"least round d (\S+) mm", text)
+    if least:
+        return t("sizing.least_round", d=least.group(1))
     return t(prefix + text) if prefix + text in TEXTS else text
 
 
