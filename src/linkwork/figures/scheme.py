@@ -146,12 +146,7 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
     angles = position_angles(mech, count)
     scene = positions_scene(kinematics(mech, angles), cycle=kin)
     s = scene.scheme
-    box = scene.extent()
-    bar = round_length(box[2] - box[0])
-    box[1] -= 3.0 * s.em
-    sh = sheet(box, ax=ax, top=0.7)
-    draw_paths(sh, s.paths)
-    draw_items(sh, s, 0)
+    sh, box, bar = _overlay_sheet(scene, ax)
     for k in range(1, len(angles)):
         draw_items(sh, s, k, frame=False, kinds=("bar", "plate", "pivot"), thin=0.45)
     draw_labels(sh, s, 0)
@@ -170,6 +165,19 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
     return sh.fig
 
 
+def _overlay_sheet(scene: Any, ax: Axes | None) -> tuple[Any, np.ndarray, float]:
+    """The sheet of a drawing of overlaid poses (the plan of positions, the limit positions), room for its scale
+    bar below, with the trajectories and the first pose drawn: the sheet, its box and the scale bar's length."""
+    s = scene.scheme
+    box = scene.extent()
+    bar = round_length(box[2] - box[0])
+    box[1] -= 3.0 * s.em
+    sh = sheet(box, ax=ax, top=0.7)
+    draw_paths(sh, s.paths)
+    draw_items(sh, s, 0)
+    return sh, box, bar
+
+
 def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Figure | None:
     """The working member's two limit positions over a whole turn ``kin`` (the low extreme whole, the high one
     thin), with the trajectories, the two lines of theta from the crank's pivot, its arc and value
@@ -180,12 +188,7 @@ def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Fi
     if scene is None:
         return None
     s = scene.scheme
-    box = scene.extent()
-    bar = round_length(box[2] - box[0])
-    box[1] -= 3.0 * s.em
-    sh = sheet(box, ax=ax, top=0.7)
-    draw_paths(sh, s.paths)
-    draw_items(sh, s, 0)
+    sh, box, bar = _overlay_sheet(scene, ax)
     draw_items(sh, s, 1, frame=False, kinds=("bar", "plate", "pivot", "block", "tool"), thin=0.45)
     draw_labels(sh, s, 0)
     for ray in scene.rays:
