@@ -78,25 +78,15 @@ def drive_speed(mech: Mechanism, text: str | None) -> float | None:
     """The drive speed of ``--speed`` (:data:`Speed`) in SI, in the file's direction of the drive; None
     where it is not given (the file's speed).  Exit code 2 with one line for a speed without its unit,
     of the wrong kind, or below 0."""
-    from linkwork.errors import UnitParseError
     from linkwork.limits import MAX_MAGNITUDE, quote
     from linkwork.structure.model import PairType
-    from linkwork.units import KINDS, parse_quantity
+    from linkwork.units import KINDS
 
     if text is None:
         return None
     revolute = mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE
     kind, example = ("angular_speed", "30 rpm") if revolute else ("speed", "0.2 m/s")
-    try:
-        float(text)
-    except ValueError:
-        pass
-    else:
-        fail(LinkworkError(f'--speed: give the unit, e.g. "{example}", got "{text}"'))
-    try:
-        value = parse_quantity(text, kind)
-    except UnitParseError as exc:
-        fail(LinkworkError(f"--speed: {exc}"))
+    value = quantity_option(text, kind, "--speed", example)
     if value < 0:
         fail(LinkworkError(f'--speed: the direction comes from the file; give a speed from 0 up, got "{text}"'))
     if value > MAX_MAGNITUDE:
@@ -104,6 +94,24 @@ def drive_speed(mech: Mechanism, text: str | None) -> float | None:
         fail(LinkworkError(f"--speed: expected {size}, got {quote(text)}"))
     sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
     return sign * value
+
+
+def quantity_option(text: str, kind: str, option: str, example: str) -> float:
+    """The value (SI) of the ``option`` that needs its unit (a quantity of ``kind``, as ``example``); exit code 2
+    with one line for a bare number or a text that is not such a quantity."""
+    from linkwork.errors import UnitParseError
+    from linkwork.units import parse_quantity
+
+    try:
+        float(text)
+    except ValueError:
+        pass
+    else:
+        fail(LinkworkError(f'{option}: give the unit, e.g. "{example}", got "{text}"'))
+    try:
+        return parse_quantity(text, kind)
+    except UnitParseError as exc:
+        fail(LinkworkError(f"{option}: {exc}"))
 
 
 def at_speed(mech: Mechanism, text: str | None) -> Mechanism:

@@ -9,27 +9,16 @@ from typing import Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, out_files
+from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, out_files, quantity_option
 from linkwork.errors import LinkworkError
 
 
 def _quantity(text: str | None, kind: str, option: str, example: str) -> float | None:
-    """The value (SI) of an option that needs its unit; exit code 2 with one line otherwise."""
-    from linkwork.errors import UnitParseError
-    from linkwork.units import parse_quantity
-
+    """The value (SI) of an option that needs its unit (:func:`~linkwork.cli.app.quantity_option`) and is of a
+    machine's size; exit code 2 with one line otherwise."""
     if text is None:
         return None
-    try:
-        float(text)
-    except ValueError:
-        pass
-    else:
-        fail(LinkworkError(f'{option}: give the unit, e.g. "{example}", got "{text}"'))
-    try:
-        value = parse_quantity(text, kind)
-    except UnitParseError as exc:
-        fail(LinkworkError(f"{option}: {exc}"))
+    value = quantity_option(text, kind, option, example)
     if not math.isfinite(value) or abs(value) > 1e9:
         fail(LinkworkError(f'{option}: expected a finite value of a machine\'s size, got "{text}"'))
     return value
