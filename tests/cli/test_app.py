@@ -658,3 +658,28 @@ def test_the_pair_table_shows_a_zero_where_the_json_writes_one():
         refined = pair_force_peaks(lw.forces(mech, steps=72), k).value[0]
         assert float(row[-4]) == pytest.approx(refined, rel=1e-5)
         assert float(row[-4]) >= np.hypot(joint["fx"], joint["fy"]).max() * (1 - 1e-5)
+
+
+def test_a_command_that_loaded_arrow_ends_with_its_code_its_output_and_its_exit_handlers(tmp_path):
+    """``run`` (the script's entry point) ends a process that loaded Arrow before the native teardown, which can
+    abort it after its work (apache/arrow#34314): the exit code, every line written (also unflushed, also a
+    ``sys.exit`` message) and Python's exit handlers must survive that ending.  Each case in a process of its
+    own: the code, what stdout and stderr hold, and the file an exit handler writes."""
+    marker = tmp_path / "handler-ran"
+    cases = {
+        "sys.exit(3)": (3, ""),
+        "sys.exit('no such file: x.yaml')": (1, "no such file: x.yaml"),
+        "pass": (0, ""),
+    }
+    for body, (code, message) in cases.items():
+        marker.unlink(missing_ok=True)
+        script = (
+            "import atexit, pathlib, sys\nimport pyarrow\nimport linkwork.cli.main as m\n"
+            f"atexit.register(lambda: pathlib.Path({str(marker)!r}).write_text('ran'))\n"
+            f"def main():\n    print('partial line', end='')\n    {body}\n"
+            "m.main = main\nm.run()\nprint('not reached')\n"
+        )
+        proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+        assert proc.returncode == code, (body, proc.stderr)
+        assert proc.stdout == "partial line" and proc.stderr.strip() == message, (body, proc.stdout, proc.stderr)
+        assert marker.read_text() == "ran", body

@@ -1,5 +1,5 @@
 """``python -m linkwork.cli``: the ``linkwork`` command."""
 
-from linkwork.cli.main import main
+from linkwork.cli.main import run
 
-main()
+run()

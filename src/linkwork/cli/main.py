@@ -21,7 +21,7 @@ import linkwork.cli.view  # noqa: F401
 from linkwork.cli import terminal
 from linkwork.cli.app import app
 
-__all__ = ["app", "main"]
+__all__ = ["app", "exit_before_native_teardown", "main", "run"]
 
 
 def main() -> None:
@@ -51,3 +51,38 @@ def main() -> None:
     except terminal.OutputError as exc:
         terminal.give_up(exc)
         sys.exit(2)
+
+
+def run() -> None:
+    """Entry point of the ``linkwork`` script and of ``python -m linkwork.cli``: :func:`main`, then, where a
+    command loaded Arrow, :func:`exit_before_native_teardown` (a caller of :func:`main` keeps its process)."""
+    code: object = None
+    try:
+        main()
+    except SystemExit as exc:
+        code = exc.code
+        if "pyarrow" not in sys.modules:
+            raise
+    if "pyarrow" in sys.modules:
+        exit_before_native_teardown(code)
+
+
+def exit_before_native_teardown(code: object) -> None:
+    """End the process with ``code`` once the exit handlers of Python have run, without the teardown of the
+    libraries' native parts.
+
+    Arrow's thread pools (``pyarrow``, which writes and reads a sweep's tables) can still be tearing down when
+    the interpreter's C++ destructors run: the process then aborts after its work is done ("terminate called
+    without an active exception", exit -6; apache/arrow#34314), about one exit in a hundred and fifty on a
+    busy machine.  The exit handlers (``atexit``: Dask's clusters, thread pools, the streams) still run; only
+    what the operating system frees anyway is skipped.
+    """
+    if code is not None and not isinstance(code, int):
+        print(code, file=sys.stderr)  # as the interpreter prints ``sys.exit("message")``
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError, terminal.OutputError):
+            pass
+    os._exit(code if isinstance(code, int) else (0 if code is None else 1))

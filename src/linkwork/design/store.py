@@ -312,7 +312,7 @@ def read_part(parts: Path, manifest: dict[str, Any], chunk: int, entry: Any) -> 
     if hashlib.sha256(data).hexdigest() != entry.get("sha256"):
         return None, "its checksum is not the one the manifest recorded (damaged or replaced)"
     try:
-        table = pq.read_table(pa.BufferReader(data))
+        table = pq.read_table(pa.BufferReader(data), use_threads=False)
         own = json.loads((table.schema.metadata or {}).get(b"linkwork", b"null"))
     except (pa.ArrowException, OSError, ValueError) as exc:
         return None, f"not a readable Parquet file ({exc})"
