@@ -123,3 +123,20 @@ def test_the_sheet_of_a_groups_plans_draws_each_position_to_the_scale_above_it(l
                 xy = lines[f"{p.kind}:{p.name(lang)}"]
                 assert np.allclose((xy[1] - xy[0]) * scale, p.vector[0, k], rtol=0, atol=1e-9 * scale)
     assert overlaps(fig) == []
+
+
+def test_a_dead_point_of_the_sheet_says_so_where_its_plan_would_be():
+    """The slider-crank shears (rod as long as the crank, the guide through O): at crank 0 and 180 deg (positions
+    9 and 3) B falls on O and the rod lies across the guide, so the rod's and the knife's reactions are
+    indeterminate: those two cells carry the dead-point note and no arrow, every other cell its plan."""
+    from linkwork.figures.force_plans import force_plan_sheet
+    from linkwork.lang import t
+
+    kin = lw.kinematics("shears-slider-crank", steps=12)
+    plans = force_plans(lw.forces(kin))
+    fig = force_plan_sheet(plans, len(plans.groups) - 1)
+    note = t("forceplans.singular", "en")
+    dead = {k for k, ax in enumerate(fig.axes) if note in ax.get_title()}
+    assert dead == {3, 9}
+    assert all(not [line for line in ax.lines if line.get_gid()] for k, ax in enumerate(fig.axes) if k in dead)
+    assert all([line for line in ax.lines if line.get_gid()] for k, ax in enumerate(fig.axes) if k not in dead)

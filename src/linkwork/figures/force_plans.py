@@ -194,6 +194,7 @@ def force_plan_sheet(plans: ForcePlans, group: int, lang: str = "en") -> Figure:
         draw_forces(sheet(scene.extent(), ax=ax), scene)
         title = t("plans.cell", lang, position=k, angle=f"{turn_deg(angles[k], 0):.0f}")
         title += f"\nμF = {scene.scale:g} {t('forceplans.unit', lang)}" if scene.arrows else ""
+        title += "" if scene.arrows else "\n" + t("forceplans.singular", lang)  # nothing finite to draw
         ax.set_title(title, fontsize=8)
     label = group_label(g.label, lang)
     if g.balancing is not None:
