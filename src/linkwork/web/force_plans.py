@@ -41,9 +41,6 @@ from linkwork.web.payload import PLAN_FONT, _json, plan_shape
 #: Samples of a turn an exported page carries its force plans and lever at (every 10 degrees of 360).
 EXPORTED = 36
 
-#: Decimals of the drawings' coordinates, mm (a plan is at most some hundred mm across).
-DECIMALS = 9
-
 
 @dataclass(frozen=True)
 class Drawn:
@@ -64,7 +61,7 @@ def drawn_of(cycle: Cycle) -> Drawn | None:
         return None
     try:
         lv: Lever | None = lever(cycle.forces)
-    except LinkworkError:
+    except LinkworkError:  # no crank pin: the plans without the lever
         lv = None
     velocity = plan_series(cycle.kin)[0]
     shape, scale = plan_shape(cycle, velocity)
@@ -132,7 +129,7 @@ def _number(x: Any) -> float | None:
 
 def scene_dict(scene: ForceScene) -> dict[str, Any]:
     """A force scene as the page draws it: mm of the sheet, y up (see the module's text)."""
-    d = DECIMALS
+    d = None  # unrounded: a force read back off its arrow and the scale is the force
     return {
         "kind": scene.kind,
         "scale": scene.scale,
