@@ -137,10 +137,17 @@ def scene_dict(scene: ForceScene) -> dict[str, Any]:
         "em": scene.em,
         "extent": _json(scene.extent(), d),
         "arrows": [
-            {"kind": a.kind, "text": a.text, "start": _json(a.start, d), "end": _json(a.end, d),
-             "centre": _json(a.centre, d), "value": _number(a.value), "resultant": a.resultant}
+            {
+                "kind": a.kind,
+                "text": a.text,
+                "start": _json(a.start, d),
+                "end": _json(a.end, d),
+                "centre": _json(a.centre, d),
+                "value": _number(a.value),
+                "resultant": a.resultant,
+            }
             for a in scene.arrows
-        ],  # fmt: skip
+        ],
         "lines": _json(scene.lines, d),
         "dots": _json(scene.dots, d),
         "dot_text": list(scene.dot_text),
@@ -151,4 +158,3 @@ def scene_dict(scene: ForceScene) -> dict[str, Any]:
 def exported_samples(n: int) -> np.ndarray:
     """The samples (of ``n``) an exported page carries its force drawings at: :data:`EXPORTED`, evenly spread."""
     return np.unique(np.round(np.arange(min(n, EXPORTED)) * (n / min(n, EXPORTED))).astype(int))
-

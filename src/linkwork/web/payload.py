@@ -55,8 +55,9 @@ Layout (``format: linkwork-view/1``):
   acts at), their forces ``values`` (A, K, 2), N, their ``scale_per_mm`` (N
   per mm of the mechanism drawn full size) and ``torque_point``, the crank's
   pivot, where the driving torque is drawn;
-* ``force_plans``: the force plans of the groups and Zhukovsky's lever (:mod:`linkwork.web.force_plans`):
-  which there are, and the drawings of the samples it carries (none: the page asks for the sample shown);
+* ``force_plans`` (added by the viewer's session, :meth:`linkwork.web.session.Viewer.cycle`): the force plans
+  of the groups and Zhukovsky's lever (:mod:`linkwork.web.force_plans`): which there are, and the drawings of
+  the samples it carries (none: the live page asks for the sample shown; an exported page carries some);
 * ``peaks``: ``driving_torque`` (``value``, ``turn_deg``), the peak refined between the samples as
   every route gives it (:func:`peaks`);
 * ``extremes``: every slider on a frame guide and rocker, as
@@ -184,20 +185,11 @@ def full_payload(cycle: Cycle, placed: int | None = None) -> dict[str, Any]:
         "drives": [_drive(mech, speed)],
         "units": {kind: list(unit) for kind, unit in DISPLAY.items()},
         "forces": forces_part(cycle, scene["size"]),
-        "force_plans": _force_plans(cycle),
     }
     if cycle.forces is not None:  # the independent checks of the reactions (power and momentum balances)
         out["forces"]["checks"] = _finite(cycle.forces.checks)
     out.update(_outcome(cycle))
     return out
-
-
-def _force_plans(cycle: Cycle) -> dict[str, Any]:
-    """Whether the cycle has force plans and a lever, and of which groups (:mod:`linkwork.web.force_plans`): the
-    page asks for the drawings of the sample it shows (an exported page carries some)."""
-    from linkwork.web.force_plans import force_plans_part
-
-    return force_plans_part(cycle, [])
 
 
 def _outcome(cycle: Cycle) -> dict[str, Any]:

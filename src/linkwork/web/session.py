@@ -30,6 +30,7 @@ from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import file_text
 from linkwork.web.cycle import DRAGGED, Cycle, check_assembly, solve_cycle
 from linkwork.web.edits import editable, validated, variant_parameters
+from linkwork.web.force_plans import drawn_of, force_plans_part
 from linkwork.web.payload import LIVE_PLACED, full_payload, pose_payload
 from linkwork.web.update import edit_payload, encode_edit
 
@@ -155,6 +156,7 @@ class Viewer:
             return found
         cycle = self.solve(overrides, steps)
         out = full_payload(cycle, 1 if first else self.placed)
+        out["force_plans"] = self.force_plans_at([], overrides, steps, cycle)  # which: the page asks for a sample's
         out["editable"] = self.spec is not None
         out["overrides"] = dict(cycle.overrides)
         masses = cycle.kin.mass_properties
@@ -181,16 +183,15 @@ class Viewer:
             self._drawings.put(key, found)
         return found
 
-    def force_plans_at(self, samples: Any, overrides: dict[str, float] | None = None,
-                       steps: int | None = None) -> dict[str, Any]:  # fmt: skip
-        """The force plans and the lever of the variant ``overrides`` at ``samples`` of its cycle."""
-        from linkwork.web.force_plans import drawn_of, force_plans_part
-
+    def force_plans_at(self, samples: Any, overrides: dict[str, float] | None = None, steps: int | None = None,
+                       cycle: Cycle | None = None) -> dict[str, Any]:  # fmt: skip
+        """The force plans and the lever of the variant ``overrides`` (its ``cycle``, where the caller has solved
+        it) at ``samples`` of its cycle (:func:`linkwork.web.force_plans.force_plans_part`)."""
         steps = steps or self.steps
         key = (steps, *sorted((overrides or {}).items()))
         found = self._drawn.get(key)
         if found is None:
-            cycle = self.solve(overrides, steps)
+            cycle = self.solve(overrides, steps) if cycle is None else cycle
             found = (cycle, drawn_of(cycle))
             self._drawn.put(key, found)
         return force_plans_part(found[0], samples, found[1])
