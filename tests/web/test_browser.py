@@ -798,3 +798,22 @@ def test_the_exported_page_shows_the_force_plan_nearest_the_crank(page, tmp_path
     assert "force plan of II(2,3) RRR at φ = 150.0°" in page.locator("#force-plan-caption").text_content()
     assert page.locator("#force-plan line.fvec").count() >= 4
     assert page.errors == []
+
+
+def test_the_lever_of_a_dragged_crank_length_is_the_edited_files(page, server):
+    """The crank dragged to 112 mm: the lever drawn is that of the file edited by hand to 112 mm, its balancing
+    force the driving torque of lw.forces over 0.112 m at the angle shown."""
+    open_viewer(page, server)
+    index = 60
+    angle = turn_to(page, index)
+    show_force_drawing(page, "lever", index)
+    before = [a["force"] for a in force_drawing(page) if a["kind"] == "balancing"]
+    assert drag_crank_to(page, 112.0, angle) == pytest.approx(0.112)
+    settled(page)
+    by_hand = edited([("    length: 0.10\n    mass: 40\n", "    length: 0.112\n    mass: 40\n")])
+    torque = float(lw.forces(by_hand, [angle]).driving_torque[0])
+    expect(page.locator("#force-plan-caption")).to_contain_text(f"Mb = {float(f'{torque:.5g}'):g} N·m")
+    (fb,) = [a for a in force_drawing(page) if a["kind"] == "balancing"]
+    assert fb["force"] == pytest.approx(abs(torque) / 0.112, rel=1e-9)
+    assert [fb["force"]] != before
+    assert page.errors == []

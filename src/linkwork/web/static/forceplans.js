@@ -59,13 +59,12 @@
         method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
       });
       const answer = await r.json();
-      if (r.ok) {
-        F.answers.set(key, answer.at[0]);
-        if (F.answers.size > 400) F.answers.delete(F.answers.keys().next().value);
-      }
+      // a failure is kept as the answer too (said in the caption), so that it is not asked for again and again
+      F.answers.set(key, r.ok ? answer.at[0] : { error: answer.error || r.statusText });
     } catch (err) {
-      // the server went away: the drawing stays as it is
+      F.answers.set(key, { error: "the server does not answer" });
     }
+    if (F.answers.size > 400) F.answers.delete(F.answers.keys().next().value);
     F.asking = false;
     if (F.wanted && F.wanted.key === key) F.wanted = null;
     if (F.wanted) ask();
@@ -89,6 +88,12 @@
     const d = sample && sample.drawings[k];
     root.replaceChildren();
     root.setAttribute("data-group", group.key);
+    if (sample && sample.error) {
+      root.setAttribute("data-index", "");
+      legend(p, null);
+      caption.textContent = `${group.title}: not drawn (${sample.error})`;
+      return;
+    }
     root.setAttribute("data-index", sample ? String(sample.index) : "");
     legend(p, d);
     if (!d || !d.arrows.length) {
