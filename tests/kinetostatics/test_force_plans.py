@@ -206,3 +206,33 @@ def test_dyads_with_guides_close_their_plans_and_their_levers_give_the_torque(ki
     assert np.abs(torque).max() > 1.0
     assert np.abs(lever(f).balancing[0] - torque).max() <= 1e-9 * np.abs(torque).max()
     assert np.abs(plans.balancing[0, ok] - torque[ok]).max() <= 1e-9 * np.abs(torque).max()
+
+
+def test_springs_dampers_and_a_torsion_spring_enter_the_plans_and_the_lever() -> None:
+    """The four-bar with a spring from the coupler's point M to the frame's O4, a damper along the coupler's AB
+    and a torsion spring in B: each element's pair of forces (or moments) is named after it in the plans, each
+    plan closes, its reactions are the analytic ones and the lever's moment is the driving torque (to 1e-9)."""
+    from linkwork.examples import text as example_text
+
+    loads = """loads:
+  pull: {type: spring, between: [coupler.M, O4], stiffness: 2000 N/m, free_length: 150 mm}
+  slow: {type: damper, between: [crank.A, rocker.B], damping: 40 N*s/m}
+  twist: {type: torsion_spring, joint: B, stiffness: 30 N*m/rad, free_angle: 90 deg}
+
+"""
+    text = example_text("four-bar").replace("hints:", loads + "hints:")
+    mech = lw.compile(lw.loads(text, file="four-bar.yaml"))
+    f = lw.forces(lw.kinematics(mech, position_angles(mech)))
+    plans = force_plans(f)
+    named = {p.about for g in plans.groups for p in (*g.polygon, *g.couples) if p.symbol in ("F", "M")}
+    assert named == {"pull", "slow", "twist"}
+    for g in plans.groups:
+        for i in range(len(f.angles)):
+            vectors = np.array([p.vector[0, i] for p in g.polygon])
+            assert np.hypot(*vectors.sum(0)) <= 1e-12 * np.max(np.hypot(*vectors.T)), (g.label, i)
+    for g in plans.groups:  # every joint of the four-bar is one pair
+        for r in g.reactions:
+            expected = f.reaction(r.about, on=mech.link_names[r.link])
+            assert np.abs(r.vector[0] - expected).max() <= 1e-12 * np.abs(expected).max(), (g.label, r.name())
+    torque = np.asarray(f.driving_torque)
+    assert np.abs(lever(f).balancing[0] - torque).max() <= 1e-9 * np.abs(torque).max()

@@ -706,3 +706,114 @@ def test_a_spring_and_a_damper_are_drawn_between_their_points(page, tmp_path):
         np.testing.assert_allclose(spring[0][[0, -1]], [kin.position("b3.D")[0], c], rtol=0, atol=2e-6)
         np.testing.assert_allclose([damper[0][0], damper[-1][-1]], [kin.position("b7.H")[0], b], rtol=0, atol=2e-6)
     assert page.errors == []
+
+
+def force_drawing(page) -> list[dict]:
+    """The arrows of the force plan (or lever) shown: name, kind, whether read off the plan, its ends as drawn
+    (x, -y: mm of the sheet, y up) and the force its length gives at the drawing's ``data-scale`` (N per mm)."""
+    scale = float(page.get_attribute("#force-plan", "data-scale"))
+    found = page.eval_on_selector_all(
+        "#force-plan line.fvec",
+        "els => els.map(e => [e.getAttribute('data-name'), e.getAttribute('data-kind'),"
+        " e.classList.contains('resultant'), ['x1', 'y1', 'x2', 'y2'].map(k => Number(e.getAttribute(k)))])",
+    )
+    return [
+        {"name": name, "kind": kind, "resultant": resultant, "start": np.array([x1, -y1]), "end": np.array([x2, -y2]),
+         "force": math.hypot(x2 - x1, y2 - y1) * scale}
+        for name, kind, resultant, (x1, y1, x2, y2) in found
+    ]  # fmt: skip
+
+
+def show_force_drawing(page, key: str, index: int) -> None:
+    page.select_option("#force-plan-choice", key)
+    expect(page.locator("#force-plan")).to_have_attribute("data-group", key)
+    expect(page.locator("#force-plan")).to_have_attribute("data-index", str(index))
+
+
+def test_the_force_plans_and_the_lever_follow_the_crank_dragged(page, server):
+    """The first group's force plan (the lower knife's dyad II(6,7)): the names of the forces lw's force plans give
+    it at the angle shown, subscripts in tspans, one arrow each (and the reactions read off it), closing head to
+    tail as read back from the SVG; the lever's balancing force is the driving torque of lw.forces over the crank's
+    length; dragging the crank's slider draws another position."""
+    from linkwork.kinetostatics.force_plans import force_plans
+
+    open_viewer(page, server)
+    mech = lw.compile(lw.load(NAME))
+    expect(page.locator("#force-plan-figure")).to_be_visible()
+    seen = {}
+    for index in (90, 250):
+        angle = turn_to(page, index)
+        show_force_drawing(page, "group:0", index)
+        group = force_plans(lw.forces(mech, [angle])).groups[0]
+        assert group.label == "II(6,7) RRP"
+        sizes = {f.name(): float(np.hypot(*f.vector[0, 0])) for f in group.polygon}
+        names = {name for name, size in sizes.items() if size > 1e-6 * max(sizes.values())}
+        arrows = force_drawing(page)
+        polygon = [a for a in arrows if not a["resultant"]]
+        assert {a["name"] for a in polygon} == names and len(polygon) == len(names)
+        assert any(a["resultant"] for a in arrows)  # R36 = R36n + R36τ and the inner joint's R76
+        for a in polygon:  # each to the plan's scale: the force lw's plan has
+            assert a["force"] == pytest.approx(sizes[a["name"]], rel=1e-9)
+        gap = np.sum([a["end"] - a["start"] for a in polygon], axis=0)
+        assert np.hypot(*gap) < 1e-9 * max(np.hypot(*(a["end"] - a["start"])) for a in polygon)
+        labels = page.eval_on_selector_all("#force-plan text.fname", "els => els.map(e => e.getAttribute('data-name'))")
+        assert names <= set(labels)
+        assert page.locator('#force-plan text.fname[data-name="R07"] tspan.sub').text_content() == "07"
+        seen[index] = [(a["name"], tuple(a["end"])) for a in arrows]
+        # the lever at the same angle
+        show_force_drawing(page, "lever", index)
+        torque = float(lw.forces(mech, [angle]).driving_torque[0])
+        kin = lw.kinematics(mech, [angle])
+        crank = float(np.hypot(*(kin.position("A")[0] - kin.position("O1")[0])))
+        (fb,) = [a for a in force_drawing(page) if a["kind"] == "balancing"]
+        assert fb["force"] == pytest.approx(abs(torque) / crank, rel=1e-9)
+        named = page.eval_on_selector_all("#force-plan text.fname", "els => els.map(e => e.getAttribute('data-name'))")
+        assert "Fb" in named and ({"F5", "F7"} <= set(named)) == (index == 90)  # the knives cut at 90
+        assert "balancing moment Mb" in page.locator("#force-plan-caption").text_content()
+    assert seen[90] != seen[250]
+    shot(page, "viewer-lever")
+    # dragging the crank's slider with the mouse draws the plan of the position it stops at
+    show_force_drawing(page, "group:0", 250)
+    box = page.locator("#angle").bounding_box()
+    page.mouse.move(box["x"] + 0.7 * box["width"], box["y"] + box["height"] / 2)
+    page.mouse.down()
+    page.mouse.move(box["x"] + 0.3 * box["width"], box["y"] + box["height"] / 2, steps=8)
+    page.mouse.up()
+    index = int(page.get_attribute("#scheme", "data-index"))
+    assert index != 250
+    expect(page.locator("#force-plan")).to_have_attribute("data-index", str(index))
+    assert [(a["name"], tuple(a["end"])) for a in force_drawing(page)] != seen[250]
+    assert page.errors == []
+    shot(page, "viewer-force-plan")
+
+
+def test_the_exported_page_shows_the_force_plan_nearest_the_crank(page, tmp_path):
+    """An exported page carries the drawings of every tenth of the turn's samples here and shows the one nearest
+    the crank, with no server."""
+    out = export_page("four-bar", tmp_path / "four-bar.html", steps=72)
+    page.goto(out.as_uri())
+    page.wait_for_selector("#force-plan line.fvec")
+    turn_to(page, 31)
+    show_force_drawing(page, "group:0", 30)  # of the 36 samples carried, every second one
+    assert "force plan of II(2,3) RRR at φ = 150.0°" in page.locator("#force-plan-caption").text_content()
+    assert page.locator("#force-plan line.fvec").count() >= 4
+    assert page.errors == []
+
+
+def test_the_lever_of_a_dragged_crank_length_is_the_edited_files(page, server):
+    """The crank dragged to 112 mm: the lever drawn is that of the file edited by hand to 112 mm, its balancing
+    force the driving torque of lw.forces over 0.112 m at the angle shown."""
+    open_viewer(page, server)
+    index = 60
+    angle = turn_to(page, index)
+    show_force_drawing(page, "lever", index)
+    before = [a["force"] for a in force_drawing(page) if a["kind"] == "balancing"]
+    assert drag_crank_to(page, 112.0, angle) == pytest.approx(0.112)
+    settled(page)
+    by_hand = edited([("    length: 0.10\n    mass: 40\n", "    length: 0.112\n    mass: 40\n")])
+    torque = float(lw.forces(by_hand, [angle]).driving_torque[0])
+    expect(page.locator("#force-plan-caption")).to_contain_text(f"Mb = {float(f'{torque:.5g}'):g} N·m")
+    (fb,) = [a for a in force_drawing(page) if a["kind"] == "balancing"]
+    assert fb["force"] == pytest.approx(abs(torque) / 0.112, rel=1e-9)
+    assert [fb["force"]] != before
+    assert page.errors == []

@@ -241,8 +241,10 @@ def load_names(mech: Mechanism) -> tuple[list[str], list[str]]:
             forces.append(load.name)
         elif load.kind == "moment":
             moments.append(load.name)
-        elif load.kind == "process":
+        elif load.kind in ("process", "spring", "damper"):  # one force on each of two links
             forces += [load.name, load.name]
+        elif load.kind == "torsion_spring":  # a moment on each of its two links
+            moments += [load.name, load.name]
         elif mech.pair_type[load.pair] == PairType.REVOLUTE:
             moments += [load.name, load.name]
         else:

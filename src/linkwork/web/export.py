@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from linkwork.atomic import write_atomic
+from linkwork.web.force_plans import exported_samples
 from linkwork.web.session import SCRIPTS, Viewer, static_text
 
 if TYPE_CHECKING:
@@ -66,5 +67,7 @@ def export_page(spec_or_mech: Spec | Mechanism | str | Path, path: str | Path, s
     viewer = Viewer(spec_or_mech, steps, placed=None)  # the labels placed at every sample
     payload = dict(viewer.cycle())
     payload["editable"] = False
+    # the force plans and the lever at some samples (the live page asks its server for the sample shown)
+    payload["force_plans"] = viewer.force_plans_at(exported_samples(viewer.steps))
     text = render_page(payload)
     return write_atomic(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))

@@ -55,6 +55,9 @@ Layout (``format: linkwork-view/1``):
   acts at), their forces ``values`` (A, K, 2), N, their ``scale_per_mm`` (N
   per mm of the mechanism drawn full size) and ``torque_point``, the crank's
   pivot, where the driving torque is drawn;
+* ``force_plans`` (added by the viewer's session, :meth:`linkwork.web.session.Viewer.cycle`): the force plans
+  of the groups and Zhukovsky's lever (:mod:`linkwork.web.force_plans`): which there are, and the drawings of
+  the samples it carries (none: the live page asks for the sample shown; an exported page carries some);
 * ``peaks``: ``driving_torque`` (``value``, ``turn_deg``), the peak refined between the samples as
   every route gives it (:func:`peaks`);
 * ``extremes``: every slider on a frame guide and rocker, as

@@ -18,6 +18,9 @@ Endpoints (all JSON except the page, its files, an edit's answer and a saved fil
   (superseded) unsolved: the latest wins;
 * ``POST /api/pose`` ``{"angle_deg": a, "overrides": {...}}``: every point at one crank angle, solved on
   its own; it takes no solving slot, so a crank step never waits for an edit;
+* ``POST /api/force-plans`` ``{"overrides": {...}, "steps": n, "index": i}``: the force plans of the groups and
+  Zhukovsky's lever at sample ``i`` of the cycle (:mod:`linkwork.web.force_plans`: ``force_plans`` of the
+  payload, with that one sample); it takes no solving slot;
 * ``POST /api/save`` ``{"overrides": {...}}``: the mechanism's file with the values written in, its
   comments and layout kept (:func:`linkwork.structure.parameters.file_text`), as a download.
 
@@ -117,6 +120,12 @@ class PoseRequest(_Body):
 
     angle_deg: Value = Field(ge=-1e6, le=1e6)
     overrides: Overrides = Field(default_factory=dict)
+
+
+class ForcePlansRequest(SolveRequest):
+    """``POST /api/force-plans``: as :class:`SolveRequest`, and the ``index`` of the sample drawn."""
+
+    index: int = Field(ge=0, le=MAX_STEPS)
 
 
 class SaveRequest(_Body):
@@ -350,6 +359,11 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
     async def pose(request: Request) -> Response:
         req = await read_body(request, PoseRequest)
         return _json(await run_in_threadpool(viewer.pose, req.angle_deg, req.overrides))
+
+    @app.post("/api/force-plans")
+    async def force_plans(request: Request) -> Response:
+        req = await read_body(request, ForcePlansRequest)
+        return _json(await run_in_threadpool(viewer.force_plans, req.overrides, req.steps, req.index))
 
     @app.post("/api/save")
     async def save(request: Request) -> Response:

@@ -24,11 +24,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.api import mechanism_of
+from linkwork.errors import ParameterError
 from linkwork.scene.scheme import CYCLE
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import file_text
 from linkwork.web.cycle import DRAGGED, Cycle, check_assembly, solve_cycle
 from linkwork.web.edits import editable, validated, variant_parameters
+from linkwork.web.force_plans import drawn_of, force_plans_part
 from linkwork.web.payload import LIVE_PLACED, full_payload, pose_payload
 from linkwork.web.update import edit_payload, encode_edit
 
@@ -38,7 +40,7 @@ if TYPE_CHECKING:
     from linkwork.spec.schema import Spec
 
 #: The page's scripts, in the order it loads them.
-SCRIPTS = ("viewer.js", "forces.js", "editing.js")
+SCRIPTS = ("viewer.js", "forces.js", "forceplans.js", "editing.js")
 
 #: Edits' answers kept (encoded), and clients whose newest edit is remembered.
 EDIT_CACHE, CLIENTS = 64, 256
@@ -105,6 +107,8 @@ class Viewer:
         self._full = _Cache(cache)
         self._edits = _Cache(EDIT_CACHE)
         self._whole = _Cache(8)
+        self._drawn = _Cache(4)  # the force plans of a variant, and their drawings at a sample
+        self._drawings = _Cache(EDIT_CACHE)
         self.full_slots = threading.BoundedSemaphore(1)
         self.edit_slots = threading.BoundedSemaphore(2)
         self.wait_s = 30.0
@@ -152,12 +156,45 @@ class Viewer:
             return found
         cycle = self.solve(overrides, steps)
         out = full_payload(cycle, 1 if first else self.placed)
+        out["force_plans"] = self.force_plans_at([], overrides, steps, cycle)  # which: the page asks for a sample's
         out["editable"] = self.spec is not None
         out["overrides"] = dict(cycle.overrides)
         masses = cycle.kin.mass_properties
         out["parameters"] = variant_parameters(cycle.mech, cycle.overrides, masses, self._editable)
         self._full.put(key, out)
         return out
+
+    def force_plans(self, overrides: dict[str, float] | None, steps: int | None, index: int) -> dict[str, Any]:
+        """The force plans and the lever of the variant ``overrides`` at sample ``index`` of its cycle
+        (:func:`linkwork.web.force_plans.force_plans_part`).
+
+        Raises
+        ------
+        ParameterError
+            A bad name or value, or ``index`` outside the cycle.
+        """
+        steps = steps or self.steps
+        if not 0 <= index < steps:
+            raise ParameterError(f"sample {index} is outside the cycle of {steps} samples")
+        key = (steps, index, *sorted((overrides or {}).items()))
+        found = self._drawings.get(key)
+        if found is None:
+            found = self.force_plans_at([index], overrides, steps)
+            self._drawings.put(key, found)
+        return found
+
+    def force_plans_at(self, samples: Any, overrides: dict[str, float] | None = None, steps: int | None = None,
+                       cycle: Cycle | None = None) -> dict[str, Any]:  # fmt: skip
+        """The force plans and the lever of the variant ``overrides`` (its ``cycle``, where the caller has solved
+        it) at ``samples`` of its cycle (:func:`linkwork.web.force_plans.force_plans_part`)."""
+        steps = steps or self.steps
+        key = (steps, *sorted((overrides or {}).items()))
+        found = self._drawn.get(key)
+        if found is None:
+            cycle = self.solve(overrides, steps) if cycle is None else cycle
+            found = (cycle, drawn_of(cycle))
+            self._drawn.put(key, found)
+        return force_plans_part(found[0], samples, found[1])
 
     def edit(self, overrides: dict[str, float], steps: int | None = None, whole_turn: bool = False) -> bytes:
         """The compact answer to the edit ``overrides`` (:func:`linkwork.web.update.edit_payload`), as it is

@@ -8,8 +8,8 @@
 // answer (POST api/edit) is merged into it.  Moving the crank only indexes its arrays.
 //
 // This file is the core (the model, the scheme, the plans, the charts, the structure, the crank);
-// forces.js draws the forces on the scheme and editing.js the edits (the panel, dragging, undo, saving),
-// each through the hooks of window.linkworkViewer.
+// forces.js draws the forces on the scheme, forceplans.js the force plans and Zhukovsky's lever, and
+// editing.js the edits (the panel, dragging, undo, saving), each through the hooks of window.linkworkViewer.
 "use strict";
 
 (function () {
@@ -823,7 +823,7 @@
   }
 
   window.linkworkViewer = {
-    state, $, svg, html, fmt, X, Y, place, Grid, readEdit, model, merge, show, load, grow, setIndex, showError, hideError,
+    state, $, svg, html, fmt, setLabel, X, Y, place, Grid, readEdit, model, merge, show, load, grow, setIndex, showError, hideError,
     on: (name, f) => state.hooks[name].push(f),
   };
 
