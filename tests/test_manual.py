@@ -221,3 +221,50 @@ def test_a_cell_that_raises_fails_the_notebook(tmp_path):
     path.write_text(json.dumps(nb), encoding="utf-8")
     with pytest.raises(ZeroDivisionError):
         _notebook_runner().run(path)
+
+
+QUOTED = "<!-- quoted from the Russian report"
+
+
+def _report_rows(html_text: str) -> tuple[list[list[str]], str]:
+    """The rows of a report's tables (each a list of its cells' texts) and its text, spaces collapsed."""
+    import html
+
+    def text(fragment: str) -> str:
+        return " ".join(html.unescape(re.sub(r"<[^>]+>", " ", fragment)).split())
+
+    rows = [
+        [text(c) for c in re.findall(r"<t[dh][^>]*>(.*?)</t[dh]>", row, flags=re.S)]
+        for row in re.findall(r"<tr[^>]*>(.*?)</tr>", html_text, flags=re.S)
+    ]
+    return rows, text(re.sub(r"<(script|style|svg|pre)[^>]*>.*?</\1>", " ", html_text, flags=re.S))
+
+
+def _has_run(row: list[str], rows: list[list[str]]) -> bool:
+    n = len(row)
+    return any(r[i : i + n] == row for r in rows for i in range(len(r) - n + 1))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["shears-slider-crank", "double-cut-shears", "percussion-rocker"])
+def test_the_russian_tutorials_quote_the_russian_report_as_it_is(name, tmp_path):
+    """Each table row and quotation that a Russian tutorial marks as quoted from ``linkwork analyze NAME
+    --lang ru`` is in that report: a row as consecutive cells of one of its tables, a quotation in its text."""
+    from manual import page
+
+    proc = linkwork("analyze", name, "--out", str(tmp_path / "r"), "--lang", "ru", "--no-animation", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    rows, said = _report_rows((tmp_path / "r" / "report.html").read_text(encoding="utf-8"))
+    chunks = page(f"ru/{name}.md").split(QUOTED)[1:]
+    assert chunks, name
+    missing = []
+    for chunk in chunks:
+        lines = chunk.split("-->", 1)[1].strip("\n").split("\n\n", 1)[0].splitlines()
+        for line in lines:
+            if line.startswith("> "):
+                if " ".join(line[2:].split()) not in said:
+                    missing.append(line)
+            elif line.startswith("|") and not line.startswith("|---"):
+                if not _has_run([c.strip() for c in line.strip().strip("|").split("|")], rows):
+                    missing.append(line)
+    assert not missing, "\n".join(missing)
