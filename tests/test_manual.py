@@ -7,6 +7,8 @@
   a line ``...`` stands for lines left out), and a command whose output shows ``error:`` exits with code 2.
 - a block after ``<!-- file: NAME -->`` is written to NAME first; one after ``<!-- not run: why -->`` is left
   out (the reason names the test that runs it).
+The tutorial notebooks (``docs/notebooks/*.ipynb``) run too, every code cell in order, as the site's build
+runs them to show their output (``docs/gen/notebooks.py``).
 Blocks without a language are synopses (``[--steps N]``) and program output; they are not run.
 
 The internal links of the pages and the anchors they name are checked here too, in the Markdown sources
@@ -121,7 +123,7 @@ def test_every_internal_link_of_the_manual_finds_its_page_and_anchor():
             file, _, anchor = target.partition("#")
             dest = (path.parent / file).resolve() if file else path
             rel = dest.relative_to(DOCS).as_posix() if dest.is_relative_to(DOCS) else None
-            if rel in generated or (rel or "").startswith(("gallery/", "reference/api/")):
+            if rel in generated or (rel or "").startswith(("gallery/", "reference/api/", "notebooks/")):
                 continue
             if not dest.exists():
                 broken.append(f"{_name(path)}: {target} (no such file)")
@@ -170,3 +172,99 @@ def test_every_public_name_has_a_documented_object_for_its_api_page():
         if name != "__version__":
             target = inspect.unwrap(getattr(linkwork, name))
             assert (inspect.getdoc(target) or "").strip(), name
+
+
+def _notebook_runner():
+    """``docs/gen/notebooks.py``, which the site's build runs each notebook with."""
+    import importlib.util
+    import sys
+
+    if "manual_notebooks" not in sys.modules:
+        spec = importlib.util.spec_from_file_location("manual_notebooks", DOCS / "gen" / "notebooks.py")
+        assert spec is not None and spec.loader is not None
+        sys.modules["manual_notebooks"] = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(sys.modules["manual_notebooks"])
+    return sys.modules["manual_notebooks"]
+
+
+NOTEBOOKS = sorted((DOCS / "notebooks").glob("*.ipynb"))
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=_name)
+def test_every_cell_of_a_notebook_runs_in_order(path, monkeypatch):
+    """Each code cell runs after the ones before it, in one namespace; a cell that raises fails here.  The
+    first mechanism notebook ends with its results as tables: the rocker's speed in the Dataset is the
+    kinematics' own, and the driving torque's table has its unit."""
+    import numpy as np
+
+    monkeypatch.setenv("MPLBACKEND", "agg")
+    names: dict = {}
+    ran = _notebook_runner().run(path, names)
+    code = [c for c in ran if c.kind == "code"]
+    assert code and all(c.kind in ("markdown", "code") for c in ran)
+    if path.stem == "first-mechanism":
+        printed = "".join(c.printed for c in code)
+        assert "I(0,1) -> II(2,3)" in printed and "W = 1" in printed
+        assert any(c.html.lstrip().startswith(("<?xml", "<svg")) for c in code)  # the figure
+        assert any("Kinematics of four-bar" in c.html for c in code)  # a result shows itself
+        assert "N m" in code[-1].printed and "driving_torque" in code[-1].html
+        rocker = names["ds"]["omega"].sel(link="rocker").isel(variant=0).values
+        np.testing.assert_array_equal(rocker, names["kin"].omega("rocker"))
+        assert names["ds"]["omega"].attrs["units"] == "rad/s"
+
+
+def test_a_cell_that_raises_fails_the_notebook(tmp_path):
+    import json
+
+    nb = {"cells": [{"cell_type": "code", "source": ["x = 1\n"]}, {"cell_type": "code", "source": ["1 / (x - 1)"]}]}
+    path = tmp_path / "broken.ipynb"
+    path.write_text(json.dumps(nb), encoding="utf-8")
+    with pytest.raises(ZeroDivisionError):
+        _notebook_runner().run(path)
+
+
+QUOTED = "<!-- quoted from the Russian report"
+
+
+def _report_rows(html_text: str) -> tuple[list[list[str]], str]:
+    """The rows of a report's tables (each a list of its cells' texts) and its text, spaces collapsed."""
+    import html
+
+    def text(fragment: str) -> str:
+        return " ".join(html.unescape(re.sub(r"<[^>]+>", " ", fragment)).split())
+
+    rows = [
+        [text(c) for c in re.findall(r"<t[dh][^>]*>(.*?)</t[dh]>", row, flags=re.S)]
+        for row in re.findall(r"<tr[^>]*>(.*?)</tr>", html_text, flags=re.S)
+    ]
+    return rows, text(re.sub(r"<(script|style|svg|pre)[^>]*>.*?</\1>", " ", html_text, flags=re.S))
+
+
+def _has_run(row: list[str], rows: list[list[str]]) -> bool:
+    n = len(row)
+    return any(r[i : i + n] == row for r in rows for i in range(len(r) - n + 1))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["shears-slider-crank", "double-cut-shears", "percussion-rocker"])
+def test_the_russian_tutorials_quote_the_russian_report_as_it_is(name, tmp_path):
+    """Each table row and quotation that a Russian tutorial marks as quoted from ``linkwork analyze NAME
+    --lang ru`` is in that report: a row as consecutive cells of one of its tables, a quotation in its text."""
+    from manual import page
+
+    proc = linkwork("analyze", name, "--out", str(tmp_path / "r"), "--lang", "ru", "--no-animation", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    rows, said = _report_rows((tmp_path / "r" / "report.html").read_text(encoding="utf-8"))
+    chunks = page(f"ru/{name}.md").split(QUOTED)[1:]
+    assert chunks, name
+    missing = []
+    for chunk in chunks:
+        lines = chunk.split("-->", 1)[1].strip("\n").split("\n\n", 1)[0].splitlines()
+        for line in lines:
+            if line.startswith("> "):
+                if " ".join(line[2:].split()) not in said:
+                    missing.append(line)
+            elif line.startswith("|") and not line.startswith("|---"):
+                if not _has_run([c.strip() for c in line.strip().strip("|").split("|")], rows):
+                    missing.append(line)
+    assert not missing, "\n".join(missing)

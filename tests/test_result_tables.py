@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 import linkwork as lw
 import linkwork.cli.motion  # noqa: F401 - registers the commands
 from linkwork.cli.main import app
-from linkwork.errors import MissingDependencyError
+from linkwork.errors import LinkworkError, MissingDependencyError
 
 xr = pytest.importorskip("xarray")
 pd = pytest.importorskip("pandas")
@@ -123,3 +123,46 @@ def test_each_drive_has_its_own_torque():
     torque = f.to_xarray()["driving_torque"]
     assert torque.dims == ("variant", "angle", "drive") and list(torque["drive"].values) == ["O1", "O5"]
     np.testing.assert_array_equal(torque[0], f.driving_torque)
+
+
+@pytest.fixture(scope="module")
+def run():
+    return lw.dynamics("double-cut-shears")
+
+
+def test_dynamics_dataset_holds_the_result_s_arrays(run):
+    ds = run.to_xarray()
+    assert ds["inertia"].dims == ("angle",) and ds["omega"].dims == ("time",)
+    np.testing.assert_array_equal(ds["inertia"], run.reduced.inertia)
+    np.testing.assert_array_equal(ds["load"], run.reduced.load)
+    t, psi, omega = run.motion.cycle()
+    np.testing.assert_array_equal(ds["omega"], omega)
+    np.testing.assert_array_equal(ds["time"], t)
+    # the work of the loads over the grid: the trapezoid sum of the load moment, up to each sample
+    step = 2 * np.pi / len(run.reduced.load)
+    work = np.concatenate([[0.0], np.cumsum((run.reduced.load[1:] + run.reduced.load[:-1]) * step / 2)])
+    np.testing.assert_allclose(ds["work"], work, rtol=1e-12, atol=1e-9)
+    assert (ds["load"].attrs["units"], ds["omega"].attrs["units"], ds["time"].attrs["units"]) == ("N m", "rad/s", "s")
+    assert ds.attrs["delta"] == run.delta and ds.attrs["mechanism"] == "double-cut-shears"
+    frame = run.to_pandas("time")
+    assert list(frame.index.names) == ["time"] and frame.attrs["units"]["motor_torque"] == "N m"
+    np.testing.assert_array_equal(frame["omega"], omega)
+    with pytest.raises(LinkworkError, match='by="angle" or by="time"'):
+        run.to_pandas("joint")
+
+
+def test_dynamics_phi_counts_from_the_knives_open_as_the_command_prints_it(run):
+    """Position 0 of the double-cut shears is the upper knife at the top of its stroke (found here on a grid
+    of 0.1 deg of the crank); φ of the reduced grid and of the steady cycle is the crank's turn from there
+    (counter-clockwise), and φ at the cycle's lowest speed is the one ``linkwork dynamics`` prints."""
+    import re
+
+    ds = run.to_xarray()
+    fine = lw.kinematics("double-cut-shears", steps=3600)
+    top = np.degrees(fine.angles[np.argmax(fine.position("knife_upper.E")[..., 1])])
+    turned = np.mod(ds["crank_angle_to_x"].values - top, 360.0)
+    assert np.abs((ds["angle"].values - turned + 180.0) % 360.0 - 180.0).max() < 0.1
+    assert ds.attrs["position_0_deg"] == pytest.approx(top, abs=0.1)
+    out = CliRunner().invoke(app, ["dynamics", "double-cut-shears"]).output
+    printed = float(re.search(r"lowest speed at ([\d.]+) deg from position 0", out).group(1))
+    assert float(ds["phi"][int(np.argmin(ds["omega"].values))]) == pytest.approx(printed, abs=0.05)

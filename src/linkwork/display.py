@@ -38,6 +38,8 @@ EXPORTS = {
     ("Kinematics", "pandas"): ("linkwork.io.motion_tables", "to_frame"),
     ("Forces", "xarray"): ("linkwork.io.force_tables", "to_dataset"),
     ("Forces", "pandas"): ("linkwork.io.force_tables", "to_frame"),
+    ("Dynamics", "xarray"): ("linkwork.io.dynamics_tables", "to_dataset"),
+    ("Dynamics", "pandas"): ("linkwork.io.dynamics_tables", "to_frame"),
 }
 
 

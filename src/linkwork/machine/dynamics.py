@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -15,6 +16,7 @@ from linkwork.machine.drive import Drive
 from linkwork.machine.flywheel import Flywheel, size_flywheel_wittenbauer
 from linkwork.machine.reduced import Reduced, reduced
 from linkwork.machine.simulate import Motion, simulate
+from linkwork.motion.analysis import CrankAngles
 from linkwork.structure.model import Mechanism
 
 
@@ -27,7 +29,8 @@ class Dynamics:
     steady state with the process loads to the steady working cycle.  Without process loads the
     two are the same run.  ``flywheel`` is the sizing (None without ``delta``): its ``flywheel`` is
     the inertia on its own shaft (``drive.flywheel``, the one the run used), ``on_crank`` the same
-    reduced to the crank shaft.
+    reduced to the crank shaft.  ``crank`` says where position 0 is and which way the crank turns (the φ
+    of :meth:`to_xarray`, as ``linkwork dynamics`` and the report give it); ``name`` is the mechanism's.
     """
 
     reduced: Reduced
@@ -35,6 +38,8 @@ class Dynamics:
     motion: Motion
     flywheel: Flywheel | None
     startup: Motion
+    crank: CrankAngles | None = None
+    name: str = ""
 
     def _repr_html_(self) -> str:
         """A notebook's view: the steady cycle's speed fluctuation and powers, the flywheel, the start-up."""
@@ -49,6 +54,38 @@ class Dynamics:
         if self.flywheel is not None:
             rows.append(("flywheel inertia on its shaft", number(self.flywheel.inertia, "kg m^2")))
         return table("Machine dynamics", rows)
+
+    def to_xarray(self) -> Any:
+        """The tables of ``linkwork dynamics --json`` as an xarray Dataset (the ``data`` extra).
+
+        Dimension ``angle`` (the coordinate: φ from position 0, deg; ``crank_angle_to_x`` beside it): the
+        reduced ``inertia``, its ``inertia_slope``, the reduced ``load`` moment and its ``work`` from the first
+        sample; dimension ``time`` (the coordinate: ``t`` in s from the start of the steady cycle): the
+        crank's ``omega``, ``psi`` (turned since the start of the cycle), ``phi``, the motor's torque and
+        power.  Each variable's unit in its ``units`` attribute; delta, the powers and the flywheel in the
+        Dataset's attributes.
+
+        Raises
+        ------
+        MissingDependencyError
+            Without xarray, naming the extra that brings it.
+        """
+        from linkwork.display import export
+
+        return export(self, "xarray")
+
+    def to_pandas(self, by: str = "angle") -> Any:
+        """The variables of :meth:`to_xarray` over the crank angle (``by="angle"``) or over the steady
+        cycle's time (``by="time"``) as a pandas DataFrame; the units in ``attrs["units"]``.
+
+        Raises
+        ------
+        MissingDependencyError
+            Without pandas, naming the extra that brings it.
+        """
+        from linkwork.display import export
+
+        return export(self, "pandas", by)
 
     @property
     def startup_time(self) -> float:
@@ -162,10 +199,10 @@ def dynamics(
     process = [load for load in mech.loads if load.kind == "process"]
     if not process:
         motion = simulate(red, drive, omega0=omega0, start=start, turns=turns)
-        return Dynamics(red, drive, motion, fly, motion)
+        return Dynamics(red, drive, motion, fly, motion, CrankAngles.of(mech), mech.name)
     idle = dataclasses.replace(mech, loads=tuple(load for load in mech.loads if load.kind != "process"))
     startup = simulate(reduced(idle, steps=steps), drive, omega0=omega0, start=start, turns=turns)
     motion = simulate(
         red, drive, omega0=float(startup.omega[-1]), start=start + 2 * np.pi * len(startup.turns), turns=turns
     )
-    return Dynamics(red, drive, motion, fly, startup)
+    return Dynamics(red, drive, motion, fly, startup, CrankAngles.of(mech), mech.name)
