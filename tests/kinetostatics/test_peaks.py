@@ -339,3 +339,26 @@ def test_a_variant_is_refined_through_a_sample_on_a_change_point(steps):
     found = minimize_scalar(lambda y: -size(y), bounds=(x[i] - 1e-4, x[i] + 1e-4), method="bounded",
                             options={"xatol": 1e-12})  # fmt: skip
     assert figures[1][0] == pytest.approx(-found.fun, rel=1e-9)
+
+
+@pytest.mark.parametrize("steps", [36, 50, 72])
+def test_a_peak_beside_a_change_point_strictly_between_samples_is_refined(steps, tmp_path):
+    """The slider-crank shears started at 87 deg: their change points (crank at 0 and 180 deg to x) fall strictly
+    between the samples of 36, 50 and 72 steps, and the two samples around each are in different assembly modes.  The
+    bolts' shear is the horizontal inertia force of the two uniform rods, 2 m1 (l / 2) w^2 cos(theta), largest
+    (150 N) exactly on the change points: each side is solved in its own mode up to the change point located between
+    the samples, so the refined shear is 150 N at every grid, at 0 or 180 deg, and a variant gives the same."""
+    from linkwork.examples import text
+
+    path = tmp_path / "shifted.yaml"
+    path.write_text(text("shears-slider-crank").replace("angle: 90 deg", "angle: 87 deg"), encoding="utf-8")
+    mech = lw.compile(lw.load(path))
+    f = lw.forces(mech, steps=steps)
+    branch = f.kinematics.step_branch[-1][0]
+    assert np.count_nonzero(branch != np.roll(branch, 1)) == 2  # two intervals with a change point inside
+    assert np.abs(f.foundation[:, 0]).max() < 150 * (1 - 1e-5)  # the samples miss it
+    expected = 2 * 10.0 * (0.15 / 2) * 10.0**2
+    for g in (f, lw.forces(mech, steps=steps, variants={"links.knife.mass": [20.0]})):
+        b = g.bolts()
+        assert b.shear == pytest.approx(expected, rel=1e-9)
+        assert np.sin(b.shear_angle) == pytest.approx(0.0, abs=1e-4)
