@@ -362,3 +362,53 @@ def test_a_peak_beside_a_change_point_strictly_between_samples_is_refined(steps,
         b = g.bolts()
         assert b.shear == pytest.approx(expected, rel=1e-9)
         assert np.sin(b.shear_angle) == pytest.approx(0.0, abs=1e-4)
+
+
+@pytest.mark.parametrize("steps", [36, 50, 360])
+def test_a_force_that_grows_without_bound_at_a_change_point_is_unbounded_not_a_peak(steps):
+    """The slider-crank shears at the crank angle theta = 0 to x (A = (l, 0), B = O): the rod lies across the guide.
+    The knife's weight m2 g reaches the rod at B across it, and the moment about A of the rod's own weight adds
+    m1 g / 2: by the rod's balance of moments |F_B| = (m2 + m1 / 2) g / |theta| to first order, 245.25 N rad, without
+    bound (an independent route: forces solved at single angles).  Whatever the grid (36 steps: a sample on the
+    change point; 50: between two), the pairs' largest force is unbounded there, at theta = 0 (phi = 270 deg), as
+    forces prints and writes (null, with the reason and the angle), not the number of the sample that fell nearest."""
+    from linkwork.kinetostatics.peaks import pair_force_peaks
+
+    mech = lw.compile("shears-slider-crank")
+    joint_b = mech.pair_joint.index("B")
+    for delta in (1e-3, 1e-4, 1e-5):
+        near = lw.forces(mech, angles=np.array([delta, 2 * np.pi - delta]))
+        size = np.hypot(*near.pair_force(joint_b).T)
+        np.testing.assert_allclose(size * delta, (20.0 + 10.0 / 2) * 9.81, rtol=5 * delta)
+    found = pair_force_peaks(lw.forces(mech, steps=steps), list(range(mech.n_pairs)))
+    assert found.unbounded.all() and np.all(np.isinf(found.value))
+    np.testing.assert_allclose(np.abs(np.cos(found.at)), 1.0, atol=1e-12)  # theta = 0, or 180 deg: the other one
+    run = linkwork("forces", "shears-slider-crank", "--steps", str(steps), "--json")
+    assert run.returncode == 0, run.stderr
+    largest = json.loads(run.stdout)["joints"]["B"]["largest"]
+    assert largest["value"] is None and largest["unbounded"] is True and "singular position" in largest["reason"]
+    assert abs(np.cos(np.radians(largest["at_to_x_deg"]))) == pytest.approx(1.0, abs=1e-12)
+    text = linkwork("forces", "shears-slider-crank", "--steps", str(steps)).stdout
+    assert "unbounded" in text and "grows without bound" in text and "e+" not in text.split("largest pair")[1][:400]
+
+
+def test_refine_calls_a_peak_unbounded_only_where_it_grows_without_bound_at_a_singular_position():
+    """Closed forms on a grid of 36 steps: 1 / sqrt|x - 0.3| with a singular position at 0.3 grows without bound
+    (as the inverse square root of the distance): unbounded, infinite, at 0.3; the same growth with no singular
+    position, and cos(x - 0.3), bounded, at a singular position, keep their peaks (1 for the cosine)."""
+    angles = np.linspace(0, 2 * np.pi, 36, endpoint=False)
+
+    def spike(x):
+        with np.errstate(divide="ignore"):
+            return 1 / np.sqrt(np.abs(x - 0.3))
+
+    def at_point(x):
+        return np.abs(x - 0.3) <= 1e-9
+
+    found = refine(spike(angles)[None], angles, spike, "max", singular=at_point)
+    assert found.unbounded[0] and found.value[0] == np.inf
+    assert found.at[0] == pytest.approx(0.3, abs=1e-12)
+    nowhere = refine(spike(angles)[None], angles, spike, "max", singular=lambda x: np.zeros(x.shape, bool))
+    assert not nowhere.unbounded[0]
+    smooth = refine(np.cos(angles - 0.3)[None], angles, lambda x: np.cos(x - 0.3), "abs", singular=at_point)
+    assert not smooth.unbounded[0] and smooth.value[0] == pytest.approx(1.0, abs=1e-12)
