@@ -412,3 +412,16 @@ def test_refine_calls_a_peak_unbounded_only_where_it_grows_without_bound_at_a_si
     assert not nowhere.unbounded[0]
     smooth = refine(np.cos(angles - 0.3)[None], angles, lambda x: np.cos(x - 0.3), "abs", singular=at_point)
     assert not smooth.unbounded[0] and smooth.value[0] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_balance_says_the_largest_pin_force_is_unbounded():
+    """The slider-crank shears' pin forces grow without bound at their change points, with counterweights or without:
+    balance prints "unbounded" and its JSON a null with the reason, not inf or the nearest sample's force."""
+    text = linkwork("balance", "shears-slider-crank", "--links", "crank")
+    assert text.returncode == 0, text.stderr
+    assert "largest pin force, N" in text.stdout and "inf" not in text.stdout.split("largest pin force")[1]
+    assert text.stdout.split("largest pin force, N")[1].split() == ["unbounded", "unbounded"]
+    run = linkwork("balance", "shears-slider-crank", "--links", "crank", "--json")
+    data = json.loads(run.stdout)
+    assert data["before"]["pair_force_peak"] is None
+    assert "grows without bound" in data["nulls"]["before.pair_force_peak"]

@@ -339,13 +339,17 @@ def balance(
     except LinkworkError as exc:
         fail(exc)
     if as_json:
+        from linkwork.kinetostatics.peaks import UNBOUNDED
+
+        summary = result.summary()
         out = {
             "name": mech.name,
             "mode": "first harmonic" if first_harmonic else "full",
             "counterweights": [w.as_dict() for w in result.counterweights],
-            **result.summary(),
+            **summary,
         }
-        echo_json(out, why=BALANCE_NULLS)
+        endless = {f"{k}.pair_force_peak": UNBOUNDED for k, v in summary.items() if math.isinf(v["pair_force_peak"])}
+        echo_json(out, why=endless | BALANCE_NULLS)
         return
     _report_balance(mech.name, result, first_harmonic)
 
@@ -369,4 +373,5 @@ def _report_balance(name: str, result: Balance, first_harmonic: bool) -> None:
     ]
     typer.echo(f"  {'':24s} {'before':>14s} {'after':>14s}")
     for text, key, unit in rows:
-        typer.echo(f"  {text + ', ' + unit:24s} {summary['before'][key]:14.6g} {summary['after'][key]:14.6g}")
+        before, after = (_size(summary[k][key]) for k in ("before", "after"))
+        typer.echo(f"  {text + ', ' + unit:24s} {before:>14s} {after:>14s}")
