@@ -14,9 +14,11 @@ smooth maximum only to the square root of the values' precision (about 1e-7 rad)
 
 Variants (and the quantities of one mechanism) are refined together, each at its own angles, in one solve a round
 (:meth:`linkwork.motion.Kinematics.at`: the NumPy kernels, each angle in the assembly modes of the samples
-around it, a group solved by Newton's method started from the nearer sample's pose); between two samples
-in different modes (a change point between them) nothing is solved again, and a variant whose re-solve does
-not meet its own best sample keeps the peak of its samples.  This module solves nothing itself: the forces
+around it, a group solved by Newton's method started from the nearer sample's pose; between two samples in
+different modes, on either side of the change point located between them, in that side's mode), and a variant
+whose re-solve does not meet its own best sample keeps the peak of its samples.  A quantity that grows without
+bound towards a singular position (the reactions next to a change point) has no peak: it is reported as
+unbounded there (:func:`refine`, :attr:`Peak.unbounded`).  This module solves nothing itself: the forces
 it refines are solved again by :meth:`linkwork.kinetostatics.Forces.at`, so that :class:`Forces` refines
 its own extremes (:meth:`~linkwork.kinetostatics.Forces.bolts`).
 """
