@@ -230,11 +230,15 @@ class Kinematics:
         position safeguarded by bisection, to rounding.  The other dyads keep the modes of ``lo``.
         """
         known: dict[tuple[int, int, int], float] = self.__dict__.setdefault("_change_points", {})
-        keys = [(step, int(v), int(i)) for v, i in zip(rows.tolist(), lo.tolist(), strict=True)]
-        todo = sorted({key for key in keys if key not in known})
+        keys = [(step, v, i) for v, i in zip(rows.tolist(), lo.tolist(), strict=True)]
+        first: dict[tuple[int, int, int], int] = {}
+        for place, key in enumerate(keys):
+            if key not in known:
+                first.setdefault(key, place)
+        todo = sorted(first)
         if todo:
             _, v, i = (np.array(x, dtype=np.intp) for x in zip(*todo, strict=True))
-            j = np.array([int(hi[keys.index(key)]) for key in todo], dtype=np.intp)
+            j = np.array([int(hi[first[key]]) for key in todo], dtype=np.intp)
             for key, tau in zip(todo, self._located(step, v, i, j).tolist(), strict=True):
                 known[key] = tau
         return np.array([known[key] for key in keys])
