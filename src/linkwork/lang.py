@@ -263,6 +263,14 @@ TEXTS: dict[str, tuple[str, str]] = {
     "joints.head.joint": ("joint", "пара"),
     "joints.head.links": ("force of the first link on the second", "сила первого звена на второе"),
     "joints.head.largest": ("largest force, {unit}", "наибольшая сила, {unit}"),
+    "joints.unbounded": ("unbounded", "неограничена"),
+    "joints.unbounded.note": (
+        "Unbounded: the force grows without bound as the crank nears the singular position (a dead or change "
+        "point) at the angle given; it has no largest value, and a sample's value there only says how near it fell.",
+        "Неограничена: сила неограниченно растёт при подходе кривошипа к особому положению (мёртвому положению или "
+        "точке смены сборки) при указанном угле; наибольшего значения у неё нет, а значение в точке разбиения "
+        "говорит лишь о том, насколько близко к нему она попала.",
+    ),
     "positions.forces": (
         "The driving torque and the forces in the frame's joints at the 12 positions:",
         "Уравновешивающий момент и реакции в опорах стойки в двенадцати положениях:",

@@ -339,3 +339,89 @@ def test_a_variant_is_refined_through_a_sample_on_a_change_point(steps):
     found = minimize_scalar(lambda y: -size(y), bounds=(x[i] - 1e-4, x[i] + 1e-4), method="bounded",
                             options={"xatol": 1e-12})  # fmt: skip
     assert figures[1][0] == pytest.approx(-found.fun, rel=1e-9)
+
+
+@pytest.mark.parametrize("steps", [36, 50, 72])
+def test_a_peak_beside_a_change_point_strictly_between_samples_is_refined(steps, tmp_path):
+    """The slider-crank shears started at 87 deg: their change points (crank at 0 and 180 deg to x) fall strictly
+    between the samples of 36, 50 and 72 steps, and the two samples around each are in different assembly modes.  The
+    bolts' shear is the horizontal inertia force of the two uniform rods, 2 m1 (l / 2) w^2 cos(theta), largest
+    (150 N) exactly on the change points: each side is solved in its own mode up to the change point located between
+    the samples, so the refined shear is 150 N at every grid, at 0 or 180 deg, and a variant gives the same."""
+    from linkwork.examples import text
+
+    path = tmp_path / "shifted.yaml"
+    path.write_text(text("shears-slider-crank").replace("angle: 90 deg", "angle: 87 deg"), encoding="utf-8")
+    mech = lw.compile(lw.load(path))
+    f = lw.forces(mech, steps=steps)
+    branch = f.kinematics.step_branch[-1][0]
+    assert np.count_nonzero(branch != np.roll(branch, 1)) == 2  # two intervals with a change point inside
+    assert np.abs(f.foundation[:, 0]).max() < 150 * (1 - 1e-5)  # the samples miss it
+    expected = 2 * 10.0 * (0.15 / 2) * 10.0**2
+    for g in (f, lw.forces(mech, steps=steps, variants={"links.knife.mass": [20.0]})):
+        b = g.bolts()
+        assert b.shear == pytest.approx(expected, rel=1e-9)
+        assert np.sin(b.shear_angle) == pytest.approx(0.0, abs=1e-4)
+
+
+@pytest.mark.parametrize("steps", [36, 50, 360])
+def test_a_force_that_grows_without_bound_at_a_change_point_is_unbounded_not_a_peak(steps):
+    """The slider-crank shears at the crank angle theta = 0 to x (A = (l, 0), B = O): the rod lies across the guide.
+    The knife's weight m2 g reaches the rod at B across it, and the moment about A of the rod's own weight adds
+    m1 g / 2: by the rod's balance of moments |F_B| = (m2 + m1 / 2) g / |theta| to first order, 245.25 N rad, without
+    bound (an independent route: forces solved at single angles).  Whatever the grid (36 steps: a sample on the
+    change point; 50: between two), the pairs' largest force is unbounded there, at theta = 0 (phi = 270 deg), as
+    forces prints and writes (null, with the reason and the angle), not the number of the sample that fell nearest."""
+    from linkwork.kinetostatics.peaks import pair_force_peaks
+
+    mech = lw.compile("shears-slider-crank")
+    joint_b = mech.pair_joint.index("B")
+    for delta in (1e-3, 1e-4, 1e-5):
+        near = lw.forces(mech, angles=np.array([delta, 2 * np.pi - delta]))
+        size = np.hypot(*near.pair_force(joint_b).T)
+        np.testing.assert_allclose(size * delta, (20.0 + 10.0 / 2) * 9.81, rtol=5 * delta)
+    found = pair_force_peaks(lw.forces(mech, steps=steps), list(range(mech.n_pairs)))
+    assert found.unbounded.all() and np.all(np.isinf(found.value))
+    np.testing.assert_allclose(np.abs(np.cos(found.at)), 1.0, atol=1e-12)  # theta = 0, or 180 deg: the other one
+    run = linkwork("forces", "shears-slider-crank", "--steps", str(steps), "--json")
+    assert run.returncode == 0, run.stderr
+    largest = json.loads(run.stdout)["joints"]["B"]["largest"]
+    assert largest["value"] is None and largest["unbounded"] is True and "singular position" in largest["reason"]
+    assert abs(np.cos(np.radians(largest["at_to_x_deg"]))) == pytest.approx(1.0, abs=1e-12)
+    text = linkwork("forces", "shears-slider-crank", "--steps", str(steps)).stdout
+    assert "unbounded" in text and "grows without bound" in text and "e+" not in text.split("largest pair")[1][:400]
+
+
+def test_refine_calls_a_peak_unbounded_only_where_it_grows_without_bound_at_a_singular_position():
+    """Closed forms on a grid of 36 steps: 1 / sqrt|x - 0.3| with a singular position at 0.3 grows without bound
+    (as the inverse square root of the distance): unbounded, infinite, at 0.3; the same growth with no singular
+    position, and cos(x - 0.3), bounded, at a singular position, keep their peaks (1 for the cosine)."""
+    angles = np.linspace(0, 2 * np.pi, 36, endpoint=False)
+
+    def spike(x):
+        with np.errstate(divide="ignore"):
+            return 1 / np.sqrt(np.abs(x - 0.3))
+
+    def at_point(x):
+        return np.abs(x - 0.3) <= 1e-9
+
+    found = refine(spike(angles)[None], angles, spike, "max", singular=at_point)
+    assert found.unbounded[0] and found.value[0] == np.inf
+    assert found.at[0] == pytest.approx(0.3, abs=1e-12)
+    nowhere = refine(spike(angles)[None], angles, spike, "max", singular=lambda x: np.zeros(x.shape, bool))
+    assert not nowhere.unbounded[0]
+    smooth = refine(np.cos(angles - 0.3)[None], angles, lambda x: np.cos(x - 0.3), "abs", singular=at_point)
+    assert not smooth.unbounded[0] and smooth.value[0] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_balance_says_the_largest_pin_force_is_unbounded():
+    """The slider-crank shears' pin forces grow without bound at their change points, with counterweights or without:
+    balance prints "unbounded" and its JSON a null with the reason, not inf or the nearest sample's force."""
+    text = linkwork("balance", "shears-slider-crank", "--links", "crank")
+    assert text.returncode == 0, text.stderr
+    assert "largest pin force, N" in text.stdout and "inf" not in text.stdout.split("largest pin force")[1]
+    assert text.stdout.split("largest pin force, N")[1].split() == ["unbounded", "unbounded"]
+    run = linkwork("balance", "shears-slider-crank", "--links", "crank", "--json")
+    data = json.loads(run.stdout)
+    assert data["before"]["pair_force_peak"] is None
+    assert "grows without bound" in data["nulls"]["before.pair_force_peak"]

@@ -194,7 +194,10 @@ def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: l
     unit = "N m" if revolute else "N"
     t, at = _torque_peak(f)
     out.print(f"  driving torque: peak {t:.6g} {unit} at {where(at)}")
-    show(out, _pair_table(f, labels))
+    table, note = _pair_table(f, labels)
+    show(out, table)
+    if note is not None:
+        out.print(note, soft_wrap=True)
     for g in groups:
         out.print(
             f"  {escape(g['group'])}: held by {escape(', '.join(g['external']))}"
@@ -243,14 +246,14 @@ def _report_efficiency(f: Forces, out: Console) -> None:
     out.print(f"  efficiency: of the cycle {of_cycle}; instantaneous {span}", soft_wrap=True)
 
 
-def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
+def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> tuple[Table, str | None]:
     """The largest force of each pair of ``labels`` (label, pair) over the cycle, where it is, and a prismatic
-    pair's largest moment."""
+    pair's largest moment; and a line that says why some are unbounded (None where none is)."""
     from rich.markup import escape
 
     from linkwork.io.force_tables import pair_kind, pair_moment
     from linkwork.io.jsonout import snap_zeros
-    from linkwork.kinetostatics.peaks import pair_force_peaks, pair_moment_peaks
+    from linkwork.kinetostatics.peaks import UNBOUNDED, pair_force_peaks, pair_moment_peaks
     from linkwork.structure.model import one_crank
 
     mech = f.mechanism
@@ -272,9 +275,16 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
     ]
     for (label, k), value, (_, where), moment, p in zip(labels, values, peaks, moments, prismatic, strict=True):
         a, b = (mech.link_names[int(i)] for i in mech.pair_members[k])
-        shown = f"{moment:.6g}" if p else "-"
-        tab.add_row(escape(label), escape(f"{a} on {b}"), f"{value:.6g}", at(where), shown)
-    return tab
+        shown = _size(moment) if p else "-"
+        tab.add_row(escape(label), escape(f"{a} on {b}"), _size(value), at(where), shown)
+    note = f"  {UNBOUNDED}; its angle is given" if np.isinf(values).any() or np.isinf(moments).any() else None
+    return tab, note
+
+
+def _size(value: float) -> str:
+    """A largest force or moment as the table shows it: ``unbounded`` where it grows without bound towards a
+    singular position (:func:`linkwork.kinetostatics.peaks.refine`)."""
+    return "unbounded" if math.isinf(value) else f"{value:.6g}"
 
 
 def _report_foundation(f: Forces, out: Console) -> None:
@@ -329,13 +339,17 @@ def balance(
     except LinkworkError as exc:
         fail(exc)
     if as_json:
+        from linkwork.kinetostatics.peaks import UNBOUNDED
+
+        summary = result.summary()
         out = {
             "name": mech.name,
             "mode": "first harmonic" if first_harmonic else "full",
             "counterweights": [w.as_dict() for w in result.counterweights],
-            **result.summary(),
+            **summary,
         }
-        echo_json(out, why=BALANCE_NULLS)
+        endless = {f"{k}.pair_force_peak": UNBOUNDED for k, v in summary.items() if math.isinf(v["pair_force_peak"])}
+        echo_json(out, why=endless | BALANCE_NULLS)
         return
     _report_balance(mech.name, result, first_harmonic)
 
@@ -359,4 +373,5 @@ def _report_balance(name: str, result: Balance, first_harmonic: bool) -> None:
     ]
     typer.echo(f"  {'':24s} {'before':>14s} {'after':>14s}")
     for text, key, unit in rows:
-        typer.echo(f"  {text + ', ' + unit:24s} {summary['before'][key]:14.6g} {summary['after'][key]:14.6g}")
+        before, after = (_size(summary[k][key]) for k in ("before", "after"))
+        typer.echo(f"  {text + ', ' + unit:24s} {before:>14s} {after:>14s}")

@@ -52,6 +52,25 @@ def _torque_peak(f: Forces) -> dict[str, Any] | None:
     return crank_keys({"value": value, "at_deg": math.degrees(at)}, ("at_deg",), f.mechanism)
 
 
+def _largest(f: Forces, pairs: list[int]) -> list[dict[str, Any]]:
+    """The largest size of the force of each of ``pairs`` refined between the samples
+    (:func:`linkwork.kinetostatics.peaks.pair_force_peaks`) and where it is (as :func:`_torque_peak`): ``value``
+    (N), ``unbounded`` and, where it grows without bound towards a singular position, ``value`` null and the
+    ``reason``, the angle being that position's."""
+    from linkwork.kinetostatics.peaks import UNBOUNDED, pair_force_peaks
+
+    found = pair_force_peaks(f, pairs)
+    out = []
+    for value, at, unbounded in zip(found.value.tolist(), found.at.tolist(), found.unbounded.tolist(), strict=True):
+        record: dict[str, Any] = {"value": _clean(value), "unbounded": unbounded}
+        if unbounded:
+            record["reason"] = UNBOUNDED
+        if math.isfinite(at):
+            record |= crank_keys({"at_deg": math.degrees(at)}, ("at_deg",), f.mechanism)
+        out.append(record)
+    return out
+
+
 def pair_labels(mech: Mechanism) -> list[tuple[str, int]]:
     """One label per pair a table reports: the joint's name, with ``:link`` for each pair of a compound
     hinge (the link other than the one that carries the pin).  A pin in a slot is reported once, by its
@@ -192,7 +211,8 @@ def to_json(f: Any) -> dict[str, Any]:
     _single(f)
     mech = f.mechanism
     joints = {}
-    for label, k in pair_labels(mech):
+    labels = pair_labels(mech)
+    for (label, k), largest in zip(labels, _largest(f, [k for _, k in labels]), strict=True):
         first, second, force = _named(f, k)
         kind = pair_kind(mech, k)
         entry: dict[str, Any] = {
@@ -200,6 +220,7 @@ def to_json(f: Any) -> dict[str, Any]:
             "links": [first, second],
             "fx": _arr(force[:, 0]),
             "fy": _arr(force[:, 1]),
+            "largest": largest,
         }
         if kind == "prismatic":
             entry["moment"] = _arr(pair_moment(f, k))

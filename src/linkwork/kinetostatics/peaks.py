@@ -14,9 +14,11 @@ smooth maximum only to the square root of the values' precision (about 1e-7 rad)
 
 Variants (and the quantities of one mechanism) are refined together, each at its own angles, in one solve a round
 (:meth:`linkwork.motion.Kinematics.at`: the NumPy kernels, each angle in the assembly modes of the samples
-around it, a group solved by Newton's method started from the nearer sample's pose); between two samples
-in different modes (a change point between them) nothing is solved again, and a variant whose re-solve does
-not meet its own best sample keeps the peak of its samples.  This module solves nothing itself: the forces
+around it, a group solved by Newton's method started from the nearer sample's pose; between two samples in
+different modes, on either side of the change point located between them, in that side's mode), and a variant
+whose re-solve does not meet its own best sample keeps the peak of its samples.  A quantity that grows without
+bound towards a singular position (the reactions next to a change point) has no peak: it is reported as
+unbounded there (:func:`refine`, :attr:`Peak.unbounded`).  This module solves nothing itself: the forces
 it refines are solved again by :meth:`linkwork.kinetostatics.Forces.at`, so that :class:`Forces` refines
 its own extremes (:meth:`~linkwork.kinetostatics.Forces.bolts`).
 """
@@ -39,6 +41,15 @@ TOLERANCE = 1e-13
 POINTS = (32, 8)
 #: Rounds at most.
 ROUNDS = 40
+#: Distances (rad) from a refined peak at which the quantity is probed for growth without bound (:func:`refine`).
+PROBES = 10.0 ** -np.arange(2.0, 7.0)
+#: The least growth, decade on decade of those distances, of a quantity that grows without bound: as the distance
+#: to the power -1/4 (a force near a singular position grows as its inverse, or its inverse square root).
+GROWTH = 10.0**0.25
+#: The normalised Jacobian determinant of some group at or below which a position is singular, for that rule.
+NEAR_SINGULAR = 1e-6
+#: Why a peak is unbounded, as the command line, the JSON and the report say it.
+UNBOUNDED = "unbounded: it grows without bound as the crank nears a singular position (a dead or change point)"
 
 
 @dataclass(frozen=True)
@@ -48,13 +59,20 @@ class Peak:
     Attributes
     ----------
     value : ndarray
-        The quantity's value there (with its sign).
+        The quantity's value there (with its sign); infinite where it grows without bound towards a singular
+        position (:attr:`unbounded`).
     at : ndarray
         The drive coordinate (rad) where it occurs.
     """
 
     value: np.ndarray
     at: np.ndarray
+
+    @property
+    def unbounded(self) -> np.ndarray:
+        """Where the quantity grows without bound towards the singular position at :attr:`at` (:func:`refine`):
+        no peak, whatever a grid's samples give, ``(V,)``."""
+        return np.isinf(self.value)
 
 
 def refine(
@@ -63,8 +81,15 @@ def refine(
     quantity: Callable[[np.ndarray], np.ndarray],
     kind: str = "abs",
     points: int = POINTS[1],
+    singular: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> Peak:
     """The peak of a quantity sampled ``(V, A)`` at the drive angles ``angles`` ``(A,)``, refined.
+
+    Next to a singular position some quantities (the reactions in the pairs) grow without bound: the peak of the
+    samples then only says how near to it a sample fell.  Where the refined peak lies at a singular position
+    (``singular``) and the quantity keeps growing as the distance to it shrinks (from the peak, at each of
+    :data:`PROBES`, by :data:`GROWTH` or more from decade to decade), it is unbounded: infinite, with its sign,
+    at that position.
 
     Parameters
     ----------
@@ -79,6 +104,9 @@ def refine(
     points : int
         Angles a round.  A row stops where its values agree; what the other rows do does not change it (a sweep's
         chunks give the numbers of the whole batch, bit for bit).
+    singular : callable, optional
+        ``singular(at) -> (V, K)`` bool: where the mechanism is at a singular position; without it no peak is
+        unbounded.
     """
     sign = {"abs": 1.0, "max": 1.0, "min": -1.0}[kind]
 
@@ -120,7 +148,33 @@ def refine(
         done |= ~trusted | (best - np.minimum(ga, gb) <= TOLERANCE * np.abs(best)) | (np.abs(b - a) <= 1e-15)
         if done.all():
             break
+    if singular is not None:
+        value = np.where(_unbounded(at, best, trusted & ~none, objective, quantity, singular), sign * np.inf, value)
+        value = np.where(np.isinf(value) & (kind == "abs"), np.copysign(np.inf, samples[rows, i]), value)
     return Peak(np.where(none, np.nan, value), np.where(none, np.nan, at))
+
+
+def _unbounded(
+    at: np.ndarray,
+    best: np.ndarray,
+    rows: np.ndarray,
+    objective: Callable[[np.ndarray], np.ndarray],
+    quantity: Callable[[np.ndarray], np.ndarray],
+    singular: Callable[[np.ndarray], np.ndarray],
+) -> np.ndarray:
+    """Where the refined peaks ``at`` (their objective ``best``) of the ``rows`` ``(V,)`` lie at a singular position
+    towards which the quantity grows without bound (:func:`refine`): ``(V,)``."""
+    out = np.zeros(len(at), dtype=bool)
+    if not rows.any():
+        return out
+    there = rows & np.asarray(singular(at[:, None]))[:, 0]
+    if not there.any():
+        return out
+    near = np.concatenate([at[:, None] - PROBES, at[:, None] + PROBES], axis=1)
+    g = objective(np.asarray(quantity(near)))
+    g = np.maximum(g[:, : len(PROBES)], g[:, len(PROBES) :])  # (V, P): the larger side at each distance
+    grows = np.all(g[:, 1:] >= GROWTH * g[:, :-1], axis=1) & np.all(g > 0, axis=1)
+    return there & grows & (best >= g[:, -1])
 
 
 def _bracket(g: np.ndarray, angles: np.ndarray, i: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -164,9 +218,16 @@ def peaks(
             return np.full(at.shape, np.nan)
         return np.asarray(pick(g))[which, rows]
 
+    def singular(at: np.ndarray) -> np.ndarray:
+        kin = f.kinematics.at(at, variants)
+        if kin is None or not kin.step_det:
+            return np.zeros(at.shape, dtype=bool)
+        with np.errstate(invalid="ignore"):
+            return np.any([np.abs(d) <= NEAR_SINGULAR for d in kin.step_det], axis=0)
+
     points = POINTS[1] if f.kinematics.variants else POINTS[0]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return refine(values[which, variants], f.angles, quantity, kind, points)
+        return refine(values[which, variants], f.angles, quantity, kind, points, singular)
 
 
 def peak_of(f: Forces, pick: Callable[[Forces], np.ndarray], kind: str = "abs") -> Peak:

@@ -22,12 +22,14 @@ cycle: ``(J(psi) + J_c) omega^2 / 2 = (J(0) + J_c) omega_0^2 / 2 + A(psi)``.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.kinetostatics.peaks import POINTS, refine
 from linkwork.limits import delta_problem
 
 if TYPE_CHECKING:
@@ -83,6 +85,30 @@ def _work(red: Reduced, moment: float) -> np.ndarray:
     return red.work()[:-1] + moment * red.psi
 
 
+def _extreme(red: Reduced, values: np.ndarray, at: Callable[[np.ndarray], np.ndarray], kind: str) -> float:
+    """The largest (``kind`` ``"max"``) or least (``"min"``) over the turn of a quantity whose values at the grid's
+    points are ``values`` ``(K,)`` and ``at(psi) -> (N,)`` at any turning angles: refined between the points by
+    the rule of every peak (:func:`~linkwork.kinetostatics.peaks.refine`) where the reduced quantities are known
+    between them (:attr:`Reduced.between`), so that it does not depend on the grid; else the grid's."""
+    if red.between is None:
+        return float(values.max() if kind == "max" else values.min())
+    found = refine(values[None], red.psi, lambda x: at(x[0])[None], kind, POINTS[0])
+    return float(found.value[0])
+
+
+def _energy_extreme(red: Reduced, slope: float, kind: str) -> float:
+    """The largest or least (``kind``) over the turn of ``A(psi) - slope * J(psi)``, ``A`` the work of the loads and
+    of the constant drive moment that balances them (:func:`_extreme`)."""
+    moment = -red.mean_load
+
+    def at(psi: np.ndarray) -> np.ndarray:
+        work, inertia = red.work_at(psi)
+        out: np.ndarray = work + moment * psi - slope * inertia
+        return out
+
+    return _extreme(red, _work(red, moment) - slope * red.inertia, at, kind)
+
+
 def size_flywheel(
     red: Reduced,
     delta: float,
@@ -98,8 +124,8 @@ def size_flywheel(
     if not omega_mean > 0:
         raise LinkworkError(f"mean crank speed: expected a positive speed, got {omega_mean}")
     moment = -red.mean_load
-    energy = _work(red, moment) - 0.5 * red.inertia * omega_mean**2
-    swing = float(energy.max() - energy.min())
+    slope = 0.5 * omega_mean**2
+    swing = _energy_extreme(red, slope, "max") - _energy_extreme(red, slope, "min")
     need = swing / (delta * omega_mean**2)
     return _flywheel(delta, omega_mean, swing, need, drive_inertia, moment, shaft, ratio)
 
@@ -152,28 +178,36 @@ def wittenbauer_tangents(red: Reduced, delta: float, omega_mean: float) -> tuple
     slope ``omega_max^2 / 2``, the lower at ``omega_min^2 / 2``.  They meet at the inertia ``-need``, the
     constant inertia the crank shaft needs: ``need = (b_max - b_min) / (k_max - k_min)``, the segment
     they cut on the energy axis over the difference of their slopes."""
-    inertia, energy = wittenbauer(red)
     k_max = 0.5 * (omega_mean * (1 + delta / 2)) ** 2
     k_min = 0.5 * (omega_mean * (1 - delta / 2)) ** 2
-    b_max = float(np.max(energy - k_max * inertia))
-    b_min = float(np.min(energy - k_min * inertia))
-    return (k_max, b_max), (k_min, b_min)
+    return (k_max, _energy_extreme(red, k_max, "max")), (k_min, _energy_extreme(red, k_min, "min"))
 
 
 def constant_moment_cycle(red: Reduced, inertia: float, omega_mean: float) -> tuple[np.ndarray, float]:
     """Exact periodic crank speed over a turn, (K,), under the constant drive moment that balances
     the loads, with a constant ``inertia`` added, the speed at ``psi = 0`` chosen so that
-    ``(max + min) / 2 = omega_mean``; and its coefficient of speed fluctuation."""
-    work = _work(red, -red.mean_load)
+    ``(max + min) / 2 = omega_mean``; and its coefficient of speed fluctuation.  The largest and least
+    speed are refined between the grid's points (:func:`_extreme`)."""
+    moment = -red.mean_load
+    work = _work(red, moment)
     total = red.inertia + inertia
     w0 = omega_mean
     for _ in range(50):
-        energy = 0.5 * total[0] * w0**2 + work
+        start = 0.5 * total[0] * w0**2
+        energy = start + work
         if energy.min() <= 0:
             raise LinkworkError("the crank stops within the turn at this speed: more inertia or more speed needed")
         omega = np.sqrt(2 * energy / total)
-        mid = 0.5 * (omega.max() + omega.min())
+
+        def at(psi: np.ndarray, start: float = start) -> np.ndarray:
+            done, own = red.work_at(psi)
+            with np.errstate(invalid="ignore"):
+                out: np.ndarray = np.sqrt(2 * (start + done + moment * psi) / (own + inertia))
+            return out
+
+        top, low = _extreme(red, omega, at, "max"), _extreme(red, omega, at, "min")
+        mid = 0.5 * (top + low)
         if abs(mid - omega_mean) <= 1e-13 * omega_mean:
             break
         w0 += omega_mean - mid
-    return omega, float((omega.max() - omega.min()) / mid)
+    return omega, float((top - low) / mid)

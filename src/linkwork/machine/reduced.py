@@ -23,8 +23,10 @@ a constant friction is a load like the others.  The equation of motion of the ma
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -35,7 +37,7 @@ from linkwork.kinetostatics.forces import forces_of
 from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.motion import cycle, kinematics
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematics import Kinematics, direction
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.units import turn_deg
 
@@ -63,6 +65,10 @@ class Reduced:
     damping : ndarray (K,) or None
         The dampers' reduced damping coefficient ``B``, N m s/rad: their moment is ``-B psi'``; None
         without dampers.
+    between : callable or None
+        ``between(psi) -> Reduced``: the same quantities at any turning angles ``psi`` ``(N,)`` (the mechanism
+        solved there), for the work of the loads between the points of the grid and the extremes of what
+        depends on it (:meth:`work_at`); None: only the grid's values are known.
     """
 
     psi: np.ndarray
@@ -72,25 +78,99 @@ class Reduced:
     load: np.ndarray
     friction: np.ndarray | None = None
     damping: np.ndarray | None = None
+    between: Callable[[np.ndarray], Reduced] | None = field(default=None, compare=False, repr=False)
 
     def at_speed(self, omega: float) -> Reduced:
         """The same with the dampers' moment at the crank speed ``omega`` (rad/s) in ``load``: the loads of a
         machine turning at that speed, for what reads the load moment alone (a flywheel's sizing)."""
         if self.damping is None:
             return self
-        return dataclasses.replace(self, load=self.load - self.damping * omega, damping=None)
+        inner = self.between
+        return dataclasses.replace(
+            self,
+            load=self.load - self.damping * omega,
+            damping=None,
+            between=None if inner is None else lambda psi: inner(psi).at_speed(omega),
+        )
 
     def work(self) -> np.ndarray:
-        """Work of the loads from ``psi = 0`` (J), by the trapezoid rule over the grid, ``(K + 1,)``
-        (the last value after the whole turn)."""
+        """Work of the loads from ``psi = 0`` (J) at the points of the grid, ``(K + 1,)`` (the last value after the
+        whole turn): over each step by Gauss-Lobatto's rule, halving a step where a load is not smooth in it (the
+        loads evaluated between the points, :attr:`between`: to rounding, whatever the grid; :meth:`_integral`),
+        else by the trapezoid rule.  Found once."""
+        found: np.ndarray | None = self.__dict__.get("_work")
+        if found is None:
+            found = np.concatenate([[0.0], np.cumsum(self._step_work())])
+            self.__dict__["_work"] = found  # frozen: kept as a cached value
+        return found
+
+    def _step_work(self) -> np.ndarray:
+        """The work of the loads over each step of the grid, ``(K,)`` (:meth:`work`)."""
         step = 2 * np.pi / len(self.psi)
-        m = np.append(self.load, self.load[0])
-        return np.concatenate([[0.0], np.cumsum((m[1:] + m[:-1]) * step / 2)])
+        if self.between is None:
+            m = np.append(self.load, self.load[0])
+            out: np.ndarray = (m[1:] + m[:-1]) * step / 2
+            return out
+        return self._integral(self.psi, self.psi + step)
+
+    def _integral(self, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        """The work of the loads from ``lo`` to ``hi`` ``(N,)``, to rounding: Gauss-Lobatto's rule of :data:`NODES`
+        on each span, and on its halves where the two differ by more than :data:`AGREE` of the largest load times
+        the span (a kink or a jump of a load inside it: a knife that meets the workpiece), and so on.  The rule
+        takes the ends of the span, so that a kink between its inner nodes and an end is seen."""
+        assert self.between is not None
+        nodes, weights = NODES
+
+        def rule(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+            x = a[:, None] + (b - a)[:, None] * (1 + nodes) / 2
+            assert self.between is not None
+            out: np.ndarray = self.between(x.ravel()).load.reshape(x.shape) @ weights * (b - a) / 2
+            return out
+
+        scale = AGREE * float(np.max(np.abs(self.load), initial=0.0))
+        total, owner, whole = np.zeros(len(lo)), np.arange(len(lo)), rule(lo, hi)
+        for _ in range(HALVINGS):
+            mid = 0.5 * (lo + hi)
+            halves = rule(np.concatenate([lo, mid]), np.concatenate([mid, hi]))
+            left, right = halves[: len(lo)], halves[len(lo) :]
+            done = ~(np.abs(left + right - whole) > scale * np.abs(hi - lo))  # NaN (no assembly) is done too
+            np.add.at(total, owner[done], (left + right)[done])
+            more = ~done
+            if not more.any():
+                return total
+            lo, hi = np.concatenate([lo[more], mid[more]]), np.concatenate([mid[more], hi[more]])
+            owner, whole = np.tile(owner[more], 2), np.concatenate([left[more], right[more]])
+        np.add.at(total, owner, whole)
+        return total
+
+    def work_at(self, psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The work of the loads from ``psi = 0`` to any turning angles ``psi`` ``(N,)`` (past a turn, the turn's
+        work more: the loads repeat), from the grid's :meth:`work` and the rule of :meth:`work` from the point below,
+        and the reduced inertia there, ``(N,)`` each; needs :attr:`between`."""
+        assert self.between is not None, "the work between the points needs the mechanism (between)"
+        n, work = len(self.psi), self.work()
+        step = 2 * np.pi / n
+        turns = np.floor(psi / (2 * np.pi))
+        rest = psi - 2 * np.pi * turns
+        k = np.clip(np.floor(rest / step).astype(np.intp), 0, n - 1)
+        start = self.psi[k]
+        return work[k] + self._integral(start, rest) + turns * work[-1], self.between(rest).inertia
 
     @property
     def mean_load(self) -> float:
-        """Mean reduced load moment over the turn, N m: the drive must supply its opposite."""
-        return float(np.mean(self.load))
+        """Mean reduced load moment over the turn, N m: the drive must supply its opposite (the work of a turn,
+        :meth:`work`, over the turn)."""
+        return float(self.work()[-1] / (2 * np.pi))
+
+
+#: Gauss-Lobatto's nodes on [-1, 1] and weights with which the work of the loads is integrated over a span
+#: (:meth:`Reduced.work`): exact for a load that is a polynomial of degree 5 over it.
+NODES = (np.array([-1.0, -1 / math.sqrt(5), 1 / math.sqrt(5), 1.0]), np.array([1.0, 5.0, 5.0, 1.0]) / 6)
+#: A span's work is taken where the rule on its halves agrees with it to this fraction of the largest load times
+#: the span (the turn's work is then known to this fraction of the largest load times a turn), else its halves'.
+AGREE = 1e-14
+#: Halvings of a span at most.
+HALVINGS = 60
 
 
 def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
@@ -112,6 +192,21 @@ def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
     if not np.all(kin.valid):
         bad = turn_deg(angle[~np.asarray(kin.valid)][0])
         raise LinkworkError(f"the mechanism does not assemble over the whole turn (first at {bad:.1f} deg)")
+    psi = 2 * np.pi * np.arange(steps) / steps
+    return dataclasses.replace(_reduced_of(kin, psi, sign), between=functools.partial(_between, mech, sign))
+
+
+def _between(mech: Mechanism, sign: float, psi: np.ndarray) -> Reduced:
+    """The reduced quantities at any turning angles ``psi`` ``(N,)`` (:attr:`Reduced.between`): NaN where the
+    mechanism does not assemble."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return _reduced_of(kinematics(mech, mech.drive_start[0] + direction(mech) * psi, speed=sign), psi, sign)
+
+
+def _reduced_of(kin: Kinematics, psi: np.ndarray, sign: float) -> Reduced:
+    """The reduced quantities of the solution ``kin`` at unit crank speed (``sign``: its direction) at the turning
+    angles ``psi``."""
+    mech, angle = kin.mechanism, kin.angles
     loads = inertia_and_gravity(kin)
     ms = kin.mass_properties
     m, j = ms.mass[0], ms.inertia[0]
@@ -124,7 +219,6 @@ def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
     damping = _damping(kin)
     if damping is not None:
         load = load + damping  # the dampers' moment at unit speed is -B: kept apart, in B
-    psi = 2 * np.pi * np.arange(steps) / steps
     return Reduced(psi, angle, inertia, slope, load, friction, damping)
 
 

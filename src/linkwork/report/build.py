@@ -632,14 +632,15 @@ def _joint_table(run: _Run, cycle: Cycle, f: Forces, unit: tuple[float, str]) ->
     labels = pair_labels(mech)
     peaks = pair_force_peaks(f, [k for _, k in labels])  # refined between the samples, as every route gives them
     for (label, k), size, at in zip(labels, peaks.value, peaks.at, strict=True):
-        if np.isfinite(size):
+        if not np.isnan(size):  # infinite where it grows without bound towards a singular position
             a, b = (link_named(mech.link_names[int(x)], run.t) for x in members[k])
             rows.append([label, f"{a} \u2192 {b}", float(size) * unit[0], _deg(float(cycle.phi(at)))])
-    for row, text in zip(rows, _fixed([row[2] for row in rows]), strict=True):
-        row[2] = text
+    sizes = np.array([row[2] for row in rows], dtype=float)
+    for row, text, endless in zip(rows, _fixed(np.where(np.isinf(sizes), np.nan, sizes)), np.isinf(sizes), strict=True):
+        row[2] = run.t("joints.unbounded") if endless else text
     head = [run.t("joints.head.joint"), run.t("joints.head.links"), run.t("joints.head.largest", unit=run.t(unit[1])),
             run.t("head.at_phi")]  # fmt: skip
-    return [_table(head, rows)]
+    return [_table(head, rows)] + ([_p(run.t("joints.unbounded.note"))] if np.isinf(sizes).any() else [])
 
 
 def _forces_at_positions(run: _Run, f: Forces, unit: tuple[float, str]) -> list[str]:
