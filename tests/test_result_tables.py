@@ -138,10 +138,12 @@ def test_dynamics_dataset_holds_the_result_s_arrays(run):
     t, psi, omega = run.motion.cycle()
     np.testing.assert_array_equal(ds["omega"], omega)
     np.testing.assert_array_equal(ds["time"], t)
-    # the work of the loads over the grid: the trapezoid sum of the load moment, up to each sample
+    # the work of the loads up to each sample: the reduced result's own (integrated between the samples), and
+    # within the trapezoid sum's error on this grid (the cut's load has kinks: 1e-5 of the turn's work) of it
+    np.testing.assert_array_equal(ds["work"], run.reduced.work()[:-1])
     step = 2 * np.pi / len(run.reduced.load)
     work = np.concatenate([[0.0], np.cumsum((run.reduced.load[1:] + run.reduced.load[:-1]) * step / 2)])
-    np.testing.assert_allclose(ds["work"], work, rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(ds["work"], work, rtol=0, atol=2e-5 * np.max(np.abs(work)))
     assert (ds["load"].attrs["units"], ds["omega"].attrs["units"], ds["time"].attrs["units"]) == ("N m", "rad/s", "s")
     assert ds.attrs["delta"] == run.delta and ds.attrs["mechanism"] == "double-cut-shears"
     frame = run.to_pandas("time")
