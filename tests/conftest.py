@@ -79,6 +79,12 @@ SLOW = {
     "report/test_build.py::test_analyze_writes_tables_figures_and_the_report": ("double-cut-shears",),
     "report/test_build.py::test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output": ("ccw",),
     "report/test_crank_angles.py::test_every_bundled_example_writes_phi_from_position_0": ("four-bar",),
+    # the README's main job's report in the browser; the other sections (impact) are read in their own tests
+    "report/test_build.py::test_the_report_renders_in_a_headless_browser": ("double-cut-shears",),
+    # the main job's example and the four-bar (a coupler point, the file's own dimensions in mm)
+    "report/test_inputs.py::test_every_report_says_what_it_computed": ("double-cut-shears", "four-bar"),
+    # names of any script in the C locale; plain English names run through the same writer
+    "cli/test_names.py::test_the_report_carries_the_names_in_the_c_locale": ("scripts",),
     # the entry point on a file the YAML reader refuses and on one that cannot be assembled (every file of the
     # corpus runs through the application in the fast lane)
     "spec/test_bad_files.py::test_bad_file_through_the_real_command": ("yaml-syntax", "unassemblable"),

@@ -98,20 +98,27 @@ def test_the_columns_of_the_loads_name_each_unit(tmp_path):
     assert units == {"brake": "N m", "push": "N"}
 
 
-def test_piped_analyze_prints_one_line(tmp_path):
-    result = linkwork("analyze", "four-bar", "--out", "r", "--steps", "36", "--no-animation", cwd=tmp_path)
+@pytest.fixture(scope="module")
+def four_bar_report(tmp_path_factory):
+    """``linkwork analyze four-bar --out r`` (36 steps, no animation), piped, run once for the tests that read it:
+    the process's result and the folder it ran in."""
+    cwd = tmp_path_factory.mktemp("four-bar-report")
+    result = linkwork("analyze", "four-bar", "--out", "r", "--steps", "36", "--no-animation", cwd=cwd)
     assert result.returncode == 0, result.stderr
+    return result, cwd
+
+
+def test_piped_analyze_prints_one_line(four_bar_report):
+    result, _ = four_bar_report
     assert result.stdout == "wrote r/report.html\n"
 
 
-def test_a_rocker_named_rocker_is_named_once(tmp_path):
+def test_a_rocker_named_rocker_is_named_once(four_bar_report):
     result = linkwork("kinematics", "four-bar")
     assert result.returncode == 0, result.stderr
     assert "rocker rocker" not in result.stdout
     assert "\n  rocker: swing " in result.stdout
-    report = linkwork("analyze", "four-bar", "--out", "r", "--steps", "36", "--no-animation", cwd=tmp_path)
-    assert report.returncode == 0, report.stderr
-    page = (tmp_path / "r" / "report.html").read_text()
+    page = (four_bar_report[1] / "r" / "report.html").read_text()
     assert "rocker rocker" not in page and "extreme position of the output rocker at the" in page
 
 

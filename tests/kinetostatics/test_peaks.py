@@ -113,18 +113,18 @@ def test_the_simulated_speeds_extremes_do_not_depend_on_the_points_kept(shears):
     assert coarse.last.delta == pytest.approx(fine.last.delta, rel=1e-7)
 
 
-def test_the_report_gives_the_refined_peak_torque(shears, tmp_path):
+def test_the_report_gives_the_refined_peak_torque(shears, main_job):
     """The report's forces.json and its text carry the peak every route gives (the text to its 4 digits), and the
-    bolt loads forces gives."""
-    reference = torque_peak(lw.forces(shears, steps=360)).value[0]
-    run = linkwork("analyze", "double-cut-shears", "--no-animation", "--steps", "720", "--out", str(tmp_path / "r"))
-    assert run.returncode == 0, run.stderr
-    data = json.loads((tmp_path / "r" / "forces.json").read_text(encoding="utf-8"))
+    bolt loads forces gives: the README's main job's report (360 steps) against forces on another grid."""
+    assert main_job.returncode == 0, main_job.stderr
+    forces = lw.forces(shears, steps=720)
+    reference = torque_peak(forces).value[0]
+    data = json.loads((main_job.folder / "forces.json").read_text(encoding="utf-8"))
     assert data["driving_torque_peak"]["value"] == pytest.approx(reference, rel=1e-9)
-    bolts = lw.forces(shears, steps=360).bolts()  # the bolt loads too, refined: 360 steps here, 720 there
+    bolts = forces.bolts()  # the bolt loads too, refined: 720 steps here, 360 there
     for name in ("shear", "push", "moment"):
         assert data["bolts"][name] == pytest.approx(getattr(bolts, name), rel=1e-9)
-    html = (tmp_path / "r" / "report.html").read_text(encoding="utf-8")
+    html = (main_job.folder / "report.html").read_text(encoding="utf-8")
     assert f"largest {reference / 1000:.4g} kN" in html
 
 
