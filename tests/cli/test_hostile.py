@@ -12,6 +12,8 @@ bound too.  Then the defects found by such runs, one test each.
 from __future__ import annotations
 
 import resource
+import subprocess
+import sys
 from collections import Counter
 from pathlib import Path
 from typing import Any
@@ -87,6 +89,23 @@ def test_every_hostile_case_ends_cleanly_in_its_own_process(kind, key, tmp_path)
     case = _case(kind, key)
     outcome = run_in_subprocess(case, _folder(tmp_path))
     assert problems(case, outcome) == [], (case.name, outcome.stderr[-1000:])
+
+
+def _collected(*options: str) -> str:
+    """What ``pytest --collect-only`` lists of this file's full run, and its summary line."""
+    here = Path(__file__)
+    command = [sys.executable, "-m", "pytest", str(here), "--collect-only", "-q", "-p", "no:cacheprovider", *options]
+    proc = subprocess.run(command, capture_output=True, text=True, cwd=here.parents[2], timeout=120)
+    return proc.stdout
+
+
+def test_the_full_run_is_not_collected_unless_asked_for():
+    """Without ``--hostile`` the full run's cases are deselected, not shown as skips; with it they are all there."""
+    plain, asked = _collected(), _collected("--hostile")
+    name = "test_every_hostile_case_ends_cleanly_in_its_own_process"
+    full = len(_keys(FULL, slow=True))
+    assert plain.count(name) == 0 and "deselected" in plain.splitlines()[-1]
+    assert asked.count(name) == full > 500
 
 
 #: Files with links that share through an anchor, in the sample (in the fast lane, every third).
