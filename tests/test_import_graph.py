@@ -153,6 +153,13 @@ def test_synthesis_sits_above_the_analyses_and_below_the_drawings_reports_and_co
     assert any(_package(b) == "synthesis" for a, t in edges.items() if _package(a) == "cli" for b in t)
 
 
+def test_structure_imports_neither_the_examples_nor_the_file_writer(edges):
+    """Variant arithmetic is structure's; editing and writing a mechanism file is the file format's (``spec``)."""
+    wrong = [f"{a} -> {b}" for a, targets in edges.items() if _package(a) == "structure"
+             for b in targets if b in ("linkwork.examples", "linkwork.atomic")]  # fmt: skip
+    assert wrong == []
+
+
 def test_the_checks_can_fail():
     """A graph with a cycle is found to have one."""
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]

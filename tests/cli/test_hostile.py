@@ -121,13 +121,14 @@ def test_a_file_written_where_links_share_an_anchor_solves_as_the_variant_writte
     import numpy as np
 
     import linkwork as lw
-    from linkwork.structure.parameters import write_file
+    from linkwork.spec.edit import write_text
+    from linkwork.structure.parameters import file_text
 
     what, body, values = hostile.shared(seed)
     (tmp_path / "m.yaml").write_text(body, encoding="utf-8")
     mech = lw.compile(tmp_path / "m.yaml")
     before = lw.parameters(mech)
-    out = write_file(mech, values, tmp_path / "x.yaml")
+    out = write_text(file_text(mech, values), tmp_path / "x.yaml")
     again = lw.parameters(out)
     for name, value in before.items():
         if not name.endswith("inertia"):

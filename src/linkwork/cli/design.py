@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, fail, needs
+from linkwork.cli.app import FileOrExample, app, check_options, compile_or_exit, echo_json, fail, needs
 from linkwork.errors import DesignError, DesignWarning, LinkworkError
 from linkwork.limits import (
     MAX_ANGLES,
@@ -62,7 +62,7 @@ def parameters(file_or_example: FileOrExample) -> None:
     from linkwork.design.plan import in_file_units
     from linkwork.structure.parameters import file_units, parameter_list
 
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     declared = file_units(mech.spec)
     for p in parameter_list(mech):
         shown, unit = in_file_units(p.value, p.kind, declared)

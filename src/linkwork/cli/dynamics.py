@@ -12,9 +12,9 @@ import typer
 
 from linkwork.cli.app import (
     FileOrExample,
-    _compile,
     app,
     check_options,
+    compile_or_exit,
     echo_json,
     explain_nulls,
     fail,
@@ -48,7 +48,7 @@ def dynamics(
 
     check_options(whole(steps, "--steps", 1, MAX_ANGLES), delta_problem(delta, "--delta"))
     files = out_files(out, ("dynamics.csv", "dynamics.json")) if out is not None else []
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     try:
         result = run(mech, delta=delta, steps=steps)
     except LinkworkError as exc:

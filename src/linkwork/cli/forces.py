@@ -15,9 +15,9 @@ from linkwork.cli.app import (
     FileOrExample,
     Speed,
     Steps,
-    _compile,
     app,
     check_options,
+    compile_or_exit,
     drive_speed,
     echo_json,
     explain_nulls,
@@ -92,7 +92,7 @@ def forces(
 
     check_angles(steps, angles)
     files = out_files(out, ("forces.csv", "forces.json")) if out is not None else []
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     where = _angles(mech, steps, angles)
     rate = drive_speed(mech, speed)
     target = _force(pull)
@@ -317,7 +317,7 @@ def balance(
         *(f"--links: no link is named {quote(n)}: names are at most {MAX_NAME} characters" for n in names
           if len(n) > MAX_NAME),
     )  # fmt: skip
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     r = None
     if radius is not None:
         try:

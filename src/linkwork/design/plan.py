@@ -23,7 +23,7 @@ from linkwork.errors import DesignError, DesignWarning, UnitParseError
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import Parameter, file_units, parameter_list, parameters_by_name
-from linkwork.units import _factor, parse_quantity, unit_for
+from linkwork.units import parse_quantity, si_factor, unit_for
 
 #: How a plan samples its ranges.
 SAMPLINGS = ("grid", "random", "lhs")
@@ -67,7 +67,7 @@ class Vary:
 def in_file_units(value: float, kind: str, declared: dict[str, str]) -> tuple[float, str]:
     """An SI value of ``kind`` in the file's unit of that kind: ``(value, unit)``."""
     unit = unit_for(kind, declared)
-    return value / _factor(unit, kind), unit
+    return value / si_factor(unit, kind), unit
 
 
 def scale_warnings(varies: list[Vary], mech: Mechanism, declared: dict[str, str]) -> list[str]:

@@ -235,7 +235,7 @@ def striking_point(kin: Kinematics, at: str) -> StrikingPoint:
     """The point ``at`` (``link.point`` or a joint's name) in ``kin``."""
     mech = kin.mechanism
     p = kin.point_index(at)
-    pos, vel, _ = kin._point(mech.point_names[p])
+    pos, vel, _ = kin.motion_of(mech.point_names[p])
     return StrikingPoint(int(mech.point_link[p]), pos[0], vel[0])
 
 

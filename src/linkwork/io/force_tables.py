@@ -114,10 +114,10 @@ def _table(f: Forces) -> tuple[Table, Table, dict[str, str]]:
     moment = np.stack([pair_moment_all(f, k) if pair_kind(mech, k) == "prismatic" else nan for _, k in pairs], 2)
     members = [[mech.link_names[int(i)] for i in mech.pair_members[k]] for _, k in pairs]
     over: tuple[str, ...] = ("variant", "angle", "drive")
-    torque = f._torque_all  # (V, A, D): each drive's
+    torque = f.driving_torque_all  # (V, A, D): each drive's
     if mech.n_drives == 1:
         torque, over = torque[..., 0], over[:2]
-    found = f._foundation_filled
+    found = f.foundation_filled_all
     linear = mech.pair_type[mech.drive_pair[0]] != PairType.REVOLUTE
     joint, comp = ("variant", "angle", "joint"), ("variant", "angle", "component")
     data: Table = {

@@ -194,9 +194,8 @@ def _table(kin: Kinematics) -> tuple[Table, Table, dict[str, str]]:
     mech = kin.mechanism
     labels = point_labels(mech)
     links = moving_links(mech)
-    pos = np.stack([kin._point(mech.point_names[p])[0] for _, p in labels], axis=2)  # (V, A, P, 2)
-    vel = np.stack([kin._point(mech.point_names[p])[1] for _, p in labels], axis=2)
-    acc = np.stack([kin._point(mech.point_names[p])[2] for _, p in labels], axis=2)
+    motions = [kin.motion_of(mech.point_names[p]) for _, p in labels]  # each point's (V, A, 2) three, once
+    pos, vel, acc = (np.stack(each, axis=2) for each in zip(*motions, strict=True))  # (V, A, P, 2)
     idx = [i for _, i in links]
     dims3 = ("variant", "angle", "point")
     dimsl = ("variant", "angle", "link")

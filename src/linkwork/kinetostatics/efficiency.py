@@ -100,7 +100,7 @@ class Efficiency:
 def efficiency(f: Forces) -> Efficiency:
     """The :class:`Efficiency` of a :class:`~linkwork.kinetostatics.forces.Forces` result."""
     kin = f.kinematics
-    drive = np.sum(f._torque_all * kin.rates[None], -1)
+    drive = np.sum(f.driving_torque_all * kin.rates[None], -1)
     joints, losses = pair_losses(f)
     friction = np.sum(losses, -1)
     useful = -(external_power(kin, f.external) + friction)

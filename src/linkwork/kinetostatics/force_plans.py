@@ -40,7 +40,7 @@ import numpy as np
 
 from linkwork.kinetostatics.forces import Forces
 from linkwork.kinetostatics.geometry import guide_direction
-from linkwork.motion.plans import _round_scale
+from linkwork.motion.plans import drawing_scale
 from linkwork.structure.model import Mechanism, PairType, point_labels
 
 #: How each kind of force is named in each language: symbol -> (English, Russian).
@@ -185,7 +185,7 @@ class GroupPlan:
         v = self.vertices(index, variant)
         v = v[np.isfinite(v).all(-1)]
         span = float(np.max(v.max(0) - v.min(0))) if len(v) else 0.0
-        return _round_scale(span)
+        return drawing_scale(span)
 
 
 @dataclass(frozen=True)

@@ -176,12 +176,12 @@ def peak_of(f: Forces, pick: Callable[[Forces], np.ndarray], kind: str = "abs") 
 
 def driving_torque(f: Forces) -> np.ndarray:
     """The driving torque of the (first) drive, ``(V, A)``, N m (from the power balance at singular samples)."""
-    return f._torque_all[..., 0]
+    return f.driving_torque_all[..., 0]
 
 
 def foundation_force(f: Forces) -> np.ndarray:
     """The size of the force on the foundation, ``(V, A)``, N (from the momentum theorem at singular samples)."""
-    found = f._foundation_filled
+    found = f.foundation_filled_all
     return np.hypot(found[..., 0], found[..., 1])
 
 

@@ -222,8 +222,20 @@ class Kinematics:
             raise KeyError(f'no link "{link}"{suggest(link, self.mechanism.link_names)}')
         return self.mechanism.link_names.index(link)
 
-    def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Position, velocity and acceleration of a point, ``(V, A, 2)`` each."""
+    def motion_of(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position, velocity and acceleration of a point, with the variant axis always.
+
+        Parameters
+        ----------
+        point : str
+            ``link.point`` or a joint name.
+
+        Returns
+        -------
+        position, velocity, acceleration : ndarray
+            ``(V, A, 2)`` each, m, m/s, m/s^2 (one variant: ``V`` = 1, unlike :meth:`position`, which drops the
+            axis); NaN where the mechanism does not assemble.
+        """
         return (
             self._motion(point, fast.POSITION),
             self._motion(point, fast.VELOCITY),

@@ -400,7 +400,7 @@ class _Builder:
         centres = self.local[sliders.points].tolist()
         for link, centre, (ux, uy), c, s, joint in zip(sliders.links, centres, directions.tolist(), *turns,
                                                        sliders.joints, strict=True):  # fmt: skip
-            u = (c * ux + s * uy, -s * ux + c * uy)  # in the link's axes: the frame's direction turned back by the link's angle
+            u = (c * ux + s * uy, -s * ux + c * uy)  # in the link's axes
             out.append(_item("block", link, symbols.block(centre, u, self.r), closed=True, name=joint))
         return out
 
