@@ -1,6 +1,7 @@
 """How results show themselves in a notebook: Jupyter shows an object by its ``_repr_html_``, and the results
-of linkwork (:class:`~linkwork.motion.kinematics.Kinematics`, :class:`~linkwork.kinetostatics.forces.Forces`,
-:class:`~linkwork.machine.dynamics.Dynamics`, :class:`~linkwork.design.sweep.SweepTable`) give a short table
+of linkwork (:class:`~linkwork.motion.kinematic_analysis.Kinematics`,
+:class:`~linkwork.kinetostatics.reaction_forces.Forces`,
+:class:`~linkwork.machine.steady_cycle.Dynamics`, :class:`~linkwork.design.sweeps.SweepTable`) give a short table
 of what they hold, each number with its unit, made here.  Imports nothing of linkwork: the core may use it.
 
 Their ``to_xarray()`` and ``to_pandas()`` are the tables that :mod:`linkwork.io` writes (``kinematics.nc``);

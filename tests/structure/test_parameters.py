@@ -21,7 +21,7 @@ from linkwork.errors import ParameterError
 from linkwork.examples import text
 from linkwork.kinetostatics.peaks import foundation_peak, torque_peak
 from linkwork.motion.analysis import zero_angle
-from linkwork.motion.kinematics import cycle
+from linkwork.motion.kinematic_analysis import cycle
 from linkwork.spec.edit import write_text
 from linkwork.structure.parameters import file_text
 from linkwork.web.session import Viewer

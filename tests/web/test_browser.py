@@ -31,7 +31,7 @@ import linkwork as lw  # noqa: E402
 from linkwork.examples import text as example_text  # noqa: E402
 from linkwork.kinetostatics.external import evaluate  # noqa: E402
 from linkwork.motion.analysis import zero_angle  # noqa: E402
-from linkwork.motion.kinematics import cycle, direction  # noqa: E402
+from linkwork.motion.kinematic_analysis import cycle, direction  # noqa: E402
 from linkwork.web import create_app, export_page  # noqa: E402
 
 pytestmark = pytest.mark.browser

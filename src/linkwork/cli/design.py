@@ -23,7 +23,7 @@ from linkwork.limits import (
 )
 
 if TYPE_CHECKING:
-    from linkwork.design.sweep import SweepTable
+    from linkwork.design.sweeps import SweepTable
 
 Vary = Annotated[
     list[str],
@@ -127,7 +127,7 @@ def sweep(
     turning its own way; working_time_ratio: the knives closing over opening.
     """
     from linkwork.design.store import parts_dir
-    from linkwork.design.sweep import sweep as run
+    from linkwork.design.sweeps import sweep as run
 
     check_options(*_text_problems(vary=vary, metric=metric))
     if dashboard and scheduler is not None:
@@ -205,7 +205,7 @@ def optimize(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """The best design in the ranges (differential evolution over the whole population at once)."""
-    from linkwork.design.optimize import optimize as run
+    from linkwork.design.optimizer import optimize as run
 
     if out is not None and not out.endswith((".yaml", ".yml")):
         fail(LinkworkError(f'--out "{excerpt(out, QUOTE_PATH)}": expected a .yaml file'))

@@ -87,7 +87,7 @@ def _write(out: str, files: list[Path], data: dict[str, Any]) -> list[Path]:
 
 def _print_report(mech: Mechanism, result: Dynamics, data: dict[str, Any]) -> None:
     """The report of ``linkwork dynamics`` (``data``: its JSON record, for the crank angles of the cycle)."""
-    from linkwork.motion.kinematics import direction
+    from linkwork.motion.kinematic_analysis import direction
 
     rpm = 30 / math.pi
     red = result.reduced

@@ -37,7 +37,7 @@ if TYPE_CHECKING:
     from rich.table import Table
 
     from linkwork.kinetostatics.balancing import Balance
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.reaction_forces import Forces
     from linkwork.structure.model import Mechanism
 
 

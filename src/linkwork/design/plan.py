@@ -233,7 +233,7 @@ def read_varies(vary: Ranges, mech: Mechanism, count_required: bool | None = Tru
 
 
 @dataclass(frozen=True)
-class Plan:
+class SweepPlan:
     """The variants of a sweep.
 
     Attributes
@@ -292,8 +292,8 @@ class Plan:
         return lo + (hi - lo) * u
 
 
-def make_plan(varies: list[Vary], sampling: str = "grid", samples: int | None = None, seed: int = 0) -> Plan:
-    """A :class:`Plan`; raises :class:`DesignError` for an unknown sampling or a bad sample count."""
+def make_plan(varies: list[Vary], sampling: str = "grid", samples: int | None = None, seed: int = 0) -> SweepPlan:
+    """A :class:`SweepPlan`; raises :class:`DesignError` for an unknown sampling or a bad sample count."""
     problems = []
     if sampling not in SAMPLINGS:
         problems.append(f'--sample "{sampling}": expected one of {", ".join(SAMPLINGS)}')
@@ -308,4 +308,4 @@ def make_plan(varies: list[Vary], sampling: str = "grid", samples: int | None = 
     if problems:
         raise DesignError(problems)
     n = samples if samples is not None else math.prod(v.count or 1 for v in varies)  # a grid's
-    return Plan(tuple(varies), sampling, int(n), int(seed))
+    return SweepPlan(tuple(varies), sampling, int(n), int(seed))

@@ -28,8 +28,8 @@ import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
 from linkwork.impulse.rocker import RockerImpact, rocker_impact, sliding_direction
-from linkwork.kinetostatics.forces import Forces
 from linkwork.kinetostatics.free_body import contacts
+from linkwork.kinetostatics.reaction_forces import Forces
 from linkwork.kinetostatics.reactions import Loads, inertia_and_gravity, solve_reactions
 from linkwork.motion import Kinematics, kinematics
 from linkwork.structure.model import Mechanism, PairType

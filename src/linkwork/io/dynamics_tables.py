@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:
-    from linkwork.machine.dynamics import Dynamics
+    from linkwork.machine.steady_cycle import Dynamics
     from linkwork.structure.model import Mechanism
 
 

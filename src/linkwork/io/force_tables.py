@@ -17,7 +17,7 @@ from linkwork.optional import require
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.reaction_forces import Forces
     from linkwork.structure.model import Mechanism
 
 CONVENTION = (

@@ -15,7 +15,7 @@ from linkwork.structure.model import PairType, point_labels
 
 if TYPE_CHECKING:
     from linkwork.motion.analysis import Extremes
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.structure.model import Mechanism
 
 

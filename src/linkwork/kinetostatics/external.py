@@ -17,7 +17,7 @@ import numpy as np
 
 from linkwork.kinetostatics.elements import ELEMENTS, compile_element, evaluate_element
 from linkwork.kinetostatics.geometry import guide_direction
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.spec.schema import Load, Spec
 from linkwork.structure.constraints import perp
 from linkwork.structure.model import Mechanism, PairType

@@ -20,7 +20,7 @@ from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:  # the forces module makes the free bodies of its results
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.reaction_forces import Forces
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.reaction_forces import Forces
 
 #: The zoom stops where the values at the ends of the bracket are within this fraction of the peak.
 TOLERANCE = 1e-13

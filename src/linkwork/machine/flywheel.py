@@ -31,7 +31,7 @@ from linkwork.errors import LinkworkError
 from linkwork.limits import delta_problem
 
 if TYPE_CHECKING:
-    from linkwork.machine.reduced import Reduced
+    from linkwork.machine.reduction import Reduced
 
 
 @dataclass(frozen=True)

@@ -27,7 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from linkwork.angles import TWO_PI, unwrap, wrap
-from linkwork.motion.kinematics import Kinematics, cycle, kinematics
+from linkwork.motion.kinematic_analysis import Kinematics, cycle, kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.units import turn_deg
 
@@ -471,7 +471,7 @@ class CrankAngles:
 
         if not one_crank(mech):
             return None
-        from linkwork.motion.kinematics import direction
+        from linkwork.motion.kinematic_analysis import direction
 
         return cls(zero_angle(mech) if zero is None else float(zero), direction(mech))
 

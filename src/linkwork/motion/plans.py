@@ -37,7 +37,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from linkwork.motion.analysis import guide_lines
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.motion.program import Arm, Step
 from linkwork.structure.model import Mechanism, PairType, per_mechanism, point_labels
 

@@ -20,8 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from linkwork.kinetostatics.force_plans import GroupPlan, PlanForce
-from linkwork.kinetostatics.lever import Lever
+from linkwork.kinetostatics.force_polygons import GroupPlan, PlanForce
+from linkwork.kinetostatics.zhukovsky import Lever
 from linkwork.motion.plans import PlanSeries, drawing_scale
 from linkwork.scene.geometry import text_size
 from linkwork.scene.labels import Obstacles, place_labels

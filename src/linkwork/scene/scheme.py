@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from linkwork.motion.analysis import guide_lines
-from linkwork.motion.kinematics import kinematics
+from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.scene import symbols
 from linkwork.scene.geometry import bounds, collinear, hull, place, text_size
 from linkwork.scene.labels import Obstacles, ends_hit, place_labels
@@ -29,7 +29,7 @@ from linkwork.structure.constraints import perp
 from linkwork.structure.model import PairType, per_mechanism, point_labels
 
 if TYPE_CHECKING:
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.spec.schema import ImpactSpec
     from linkwork.structure.model import Mechanism
 

@@ -15,7 +15,7 @@ from typing import Any
 
 from linkwork.atomic import write_atomic
 from linkwork.errors import ParameterError
-from linkwork.spec.load import loads, validate
+from linkwork.spec.reader import loads, validate
 from linkwork.spec.schema import Spec
 from linkwork.spec.yamlsource import Source, read_yaml
 from linkwork.units import DEFAULT_UNITS, SI_UNITS, si_factor, written

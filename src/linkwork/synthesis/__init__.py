@@ -73,7 +73,7 @@ def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
     import dataclasses
 
     from linkwork.spec.edit import round_trip_yaml, yaml_text
-    from linkwork.spec.load import loads
+    from linkwork.spec.reader import loads
     from linkwork.synthesis.achieved import written
 
     data = round_trip_yaml().load(result.text)

@@ -278,7 +278,7 @@ def _file(mech, values: dict[str, float], requirements: dict, want: float, why: 
     """The bundled file's text with ``values`` written in (the one writer), a comment beside each derived
     dimension, and the Spec read back."""
     from linkwork.spec.edit import round_trip_yaml, yaml_text
-    from linkwork.spec.load import loads
+    from linkwork.spec.reader import loads
     from linkwork.structure.parameters import file_text
 
     data = round_trip_yaml().load(file_text(mech, values))

@@ -1,7 +1,7 @@
 """The forces drawn on the viewer's scheme: the joints' reactions and the external loads, as arrows to one scale.
 
 Every joint gets one arrow, at its point: the force the joint puts on its link of the highest number
-(:meth:`linkwork.kinetostatics.forces.Forces.reaction` with ``on=`` that link), labelled ``R`` with the
+(:meth:`linkwork.kinetostatics.reaction_forces.Forces.reaction` with ``on=`` that link), labelled ``R`` with the
 numbers of the links, e.g. ``R12``, the force of link 1 on link 2 (``R03``: of the frame on link 3).  For a
 prismatic pair it acts at the slider's point, normal to the guide.  The external forces of the file's
 loads (a process load on each of its tools, given forces at their points, springs and dampers at their

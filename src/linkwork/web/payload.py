@@ -76,7 +76,7 @@ import numpy as np
 from linkwork.errors import UnassemblableError
 from linkwork.io import jsonout
 from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
-from linkwork.motion.kinematics import kinematics
+from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import PlanSeries, drawing_scale, longest_length, percentile, plan_series
 from linkwork.scene.geometry import SUBSCRIPTED
 from linkwork.scene.plans import KINDS, plan_scene
@@ -87,7 +87,7 @@ from linkwork.web.cycle import Cycle, compile_message, solve_cycle
 from linkwork.web.edits import DISPLAY
 
 if TYPE_CHECKING:
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
 
 FORMAT = "linkwork-view/1"
 

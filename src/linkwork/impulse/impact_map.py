@@ -26,7 +26,7 @@ import numpy.typing as npt
 
 from linkwork.errors import LinkworkError, SlidingReversal
 from linkwork.impulse.mechanism import impulsive_reactions, joint_links, pose_inertia
-from linkwork.kinetostatics.forces import Forces
+from linkwork.kinetostatics.reaction_forces import Forces
 from linkwork.motion import kinematics
 from linkwork.structure.model import Mechanism
 from linkwork.units import turn_deg

@@ -30,7 +30,7 @@ from linkwork.kinetostatics.reactions import (
     solve_reactions,
 )
 from linkwork.motion.analysis import guide_lines
-from linkwork.motion.kinematics import Kinematics, kinematics
+from linkwork.motion.kinematic_analysis import Kinematics, kinematics
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 

@@ -13,8 +13,8 @@ from linkwork.errors import LinkworkError
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.machine.drive import Drive
 from linkwork.machine.flywheel import Flywheel, size_flywheel_wittenbauer
-from linkwork.machine.reduced import Reduced, reduced
-from linkwork.machine.simulate import Motion, simulate
+from linkwork.machine.reduction import Reduced, reduced
+from linkwork.machine.simulation import Motion, simulate
 from linkwork.structure.model import Mechanism
 
 

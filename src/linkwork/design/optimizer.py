@@ -25,7 +25,7 @@ from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import METRICS, MetricRequest, parse_metrics
 from linkwork.design.plan import Ranges, Vary, read_varies
 from linkwork.design.store import cannot_write
-from linkwork.design.sweep import Columns, SweepTable
+from linkwork.design.sweeps import Columns, SweepTable
 from linkwork.errors import DesignError, UnitParseError
 from linkwork.limits import TURN_STEPS
 from linkwork.spec.edit import write_text

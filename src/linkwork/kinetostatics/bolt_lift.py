@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 
-from linkwork.kinetostatics.forces import Forces, forces
 from linkwork.kinetostatics.peaks import POINTS, peak_of, refine
+from linkwork.kinetostatics.reaction_forces import Forces, forces
 from linkwork.limits import TURN_STEPS
 from linkwork.structure.model import Mechanism
 
