@@ -87,8 +87,9 @@ def forces(
 ) -> None:
     """Joint reactions, driving torque, foundation and bolt loads over the cycle, with the checks."""
     from linkwork.errors import LinkworkError
-    from linkwork.io.force_tables import CONVENTION, pair_labels, to_json
+    from linkwork.io.force_tables import to_json
     from linkwork.kinetostatics import forces as solve
+    from linkwork.kinetostatics.tables import CONVENTION, pair_labels
 
     check_angles(steps, angles)
     files = out_files(out, ("forces.csv", "forces.json")) if out is not None else []
@@ -248,10 +249,10 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> Table:
     pair's largest moment."""
     from rich.markup import escape
 
-    from linkwork.io.force_tables import pair_kind, pair_moment
-    from linkwork.io.jsonout import snap_zeros
     from linkwork.kinetostatics.peaks import pair_force_peaks, pair_moment_peaks
+    from linkwork.kinetostatics.tables import pair_kind, pair_moment
     from linkwork.structure.model import one_crank
+    from linkwork.zeros import snap_zeros
 
     mech = f.mechanism
     at = _where(mech, named=False)

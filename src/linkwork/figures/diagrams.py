@@ -145,7 +145,7 @@ def motion_diagram(kin: Kinematics, point: str, zero: float | None = None, lang:
 def link_angles(kin: Kinematics, zero: float | None = None, lang: str = "en") -> Figure:
     """Angle (to the x axis, °), angular velocity and angular acceleration of every moving link that turns,
     but the crank (which turns uniformly): sliders that keep their angle are left out."""
-    from linkwork.io.motion_tables import moving_links
+    from linkwork.motion.tables import moving_links
 
     mech = kin.mechanism
     fig, axes = _figure(3)

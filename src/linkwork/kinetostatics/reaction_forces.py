@@ -118,9 +118,9 @@ class Forces:
         MissingDependencyError
             Without xarray, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.kinetostatics.tables import to_dataset
 
-        return export(self, "xarray")
+        return to_dataset(self)
 
     def to_pandas(self, by: str = "joint") -> Any:
         """:meth:`to_xarray` as a pandas DataFrame: ``by="joint"``, indexed by ``variant`` x ``angle`` x
@@ -132,9 +132,9 @@ class Forces:
         MissingDependencyError
             Without pandas, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.kinetostatics.tables import to_frame
 
-        return export(self, "pandas", by)
+        return to_frame(self, by)
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.kinematics.variants else a[0]

@@ -94,9 +94,9 @@ class Kinematics:
         MissingDependencyError
             Without xarray, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.motion.tables import to_dataset
 
-        return export(self, "xarray")
+        return to_dataset(self)
 
     def to_pandas(self, by: str = "point") -> Any:
         """The variables of :meth:`to_xarray` over the points (``by="point"``) or the links (``by="link"``) as a
@@ -107,9 +107,9 @@ class Kinematics:
         MissingDependencyError
             Without pandas, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.motion.tables import to_frame
 
-        return export(self, "pandas", by)
+        return to_frame(self, by)
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]

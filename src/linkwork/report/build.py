@@ -623,8 +623,8 @@ def _torque_text(run: _Run, cycle: ReportCycle, f: Forces) -> list[str]:
 
 
 def _joint_table(run: _Run, cycle: ReportCycle, f: Forces, unit: tuple[float, str]) -> list[str]:
-    from linkwork.io.force_tables import pair_labels
     from linkwork.kinetostatics.peaks import pair_force_peaks
+    from linkwork.kinetostatics.tables import pair_labels
 
     mech = run.mech
     rows: list[list[Any]] = []
