@@ -5,7 +5,7 @@ runs in one process: the whole run of :func:`linkwork.simulate_blows` from the
 file's speed to the steady cycle (reduced quantities and splines over the
 turn, the integration with its events, every blow's and rebound's impact map
 and impulsive reactions, the contact phase's loads), the same run to a fixed
-number of blows, and one blow's map (:func:`linkwork.impulse.strike`).  The
+number of blows, and one blow's map (:func:`linkwork.impulse.impact_map`).  The
 energy ledger's closure is printed beside: the accuracy the time buys.
 """
 

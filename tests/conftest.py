@@ -96,10 +96,14 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    full = pytest.mark.skip(reason="the full generated run of hostile inputs runs with pytest --hostile")
+    """Leave out the full generated run of hostile inputs unless ``--hostile`` asks for it (deselected, so that the
+    summary's skips are real ones), and mark the cases of :data:`SLOW` beyond those the fast lane keeps."""
+    if not config.getoption("--hostile"):
+        left = [item for item in items if item.get_closest_marker("hostile") is not None]
+        if left:
+            config.hook.pytest_deselected(items=left)
+            items[:] = [item for item in items if item.get_closest_marker("hostile") is None]
     for item in items:
-        if item.get_closest_marker("hostile") is not None and not config.getoption("--hostile"):
-            item.add_marker(full)
         test, _, case = item.nodeid.replace("\\", "/").split("tests/", 1)[-1].partition("[")
         if test in SLOW and case[:-1] not in SLOW[test]:
             item.add_marker(pytest.mark.slow)

@@ -12,8 +12,8 @@ __version__ = "0.1.0"
 
 _LAZY = {
     "load": ("linkwork.examples", "resolve"),
-    "loads": ("linkwork.spec.load", "loads"),
-    "from_dict": ("linkwork.spec.load", "from_dict"),
+    "loads": ("linkwork.spec.reader", "loads"),
+    "from_dict": ("linkwork.spec.reader", "from_dict"),
     "Spec": ("linkwork.spec.schema", "Spec"),
     "MechanismBuilder": ("linkwork.spec.builder", "MechanismBuilder"),
     "compile": ("linkwork.api", "compile"),
@@ -22,11 +22,11 @@ _LAZY = {
     "AssurGroup": ("linkwork.structure.model", "AssurGroup"),
     "example": ("linkwork.examples", "load_example"),
     "kinematics": ("linkwork.api", "kinematics"),
-    "Kinematics": ("linkwork.motion.kinematics", "Kinematics"),
+    "Kinematics": ("linkwork.motion.kinematic_analysis", "Kinematics"),
     "parameters": ("linkwork.api", "parameters"),
     "forces": ("linkwork.api", "forces"),
-    "forces_of": ("linkwork.kinetostatics.forces", "forces_of"),
-    "Forces": ("linkwork.kinetostatics.forces", "Forces"),
+    "forces_of": ("linkwork.kinetostatics.reaction_forces", "forces_of"),
+    "Forces": ("linkwork.kinetostatics.reaction_forces", "Forces"),
     "bolt_speed": ("linkwork.api", "bolt_speed"),
     "balance": ("linkwork.api", "balance"),
     "size": ("linkwork.api", "size"),
@@ -42,6 +42,11 @@ _LAZY = {
 }
 
 __all__ = ["__version__", *_LAZY]
+
+
+def __dir__() -> list[str]:
+    """The package's names, its lazy exports (:data:`__all__`) included, for ``dir(linkwork)`` and completion."""
+    return sorted({*globals(), *__all__})
 
 
 def __getattr__(name: str) -> Any:

@@ -9,8 +9,8 @@ mechanism as any of
 - a compiled :class:`~linkwork.structure.model.Mechanism` (from :func:`linkwork.compile`).
 
 Anything else is a :class:`TypeError` that says what is expected.  The algorithms themselves live in
-the module named for them (:func:`linkwork.motion.kinematics.kinematics`,
-:func:`linkwork.kinetostatics.forces.forces`, ...) and take a compiled mechanism; the functions here
+the module named for them (:func:`linkwork.motion.kinematic_analysis.kinematics`,
+:func:`linkwork.kinetostatics.reaction_forces.forces`, ...) and take a compiled mechanism; the functions here
 are those algorithms with the argument resolved first (:func:`resolving`), with the same signature
 and documentation.  This module sits above the analysis packages and below the design, output,
 viewer and command-line packages, which call :func:`mechanism_of` themselves.
@@ -31,20 +31,20 @@ from linkwork.examples import names, resolve
 from linkwork.impulse.cycle import simulate_blows as _simulate_blows
 from linkwork.impulse.mechanism import impact as _impact
 from linkwork.kinetostatics.balancing import balance as _balance
-from linkwork.kinetostatics.bolt_speed import bolt_speed as _bolt_speed
+from linkwork.kinetostatics.bolt_lift import bolt_speed as _bolt_speed
 from linkwork.kinetostatics.external import compile_loads
-from linkwork.kinetostatics.forces import forces as _forces
 from linkwork.kinetostatics.friction import compile_friction
+from linkwork.kinetostatics.reaction_forces import forces as _forces
 from linkwork.machine.drive import from_spec
-from linkwork.machine.dynamics import dynamics as _dynamics
-from linkwork.machine.reduced import reduced as _reduced
+from linkwork.machine.reduction import reduced as _reduced
+from linkwork.machine.steady_cycle import dynamics as _dynamics
 from linkwork.machine.timerun import simulate as _simulate
 from linkwork.motion import fast
 from linkwork.motion.kernels import with_branches
-from linkwork.motion.kinematics import Kinematics
-from linkwork.motion.kinematics import kinematics as _kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
+from linkwork.motion.kinematic_analysis import kinematics as _kinematics
 from linkwork.motion.program import build
-from linkwork.sizing.size import size as _size
+from linkwork.sizing.machine_sizing import size as _size
 from linkwork.spec.schema import Spec
 from linkwork.structure.compile import structural_model
 from linkwork.structure.model import Mechanism

@@ -1,20 +1,17 @@
 """How results show themselves in a notebook: Jupyter shows an object by its ``_repr_html_``, and the results
-of linkwork (:class:`~linkwork.motion.kinematics.Kinematics`, :class:`~linkwork.kinetostatics.forces.Forces`,
-:class:`~linkwork.machine.dynamics.Dynamics`, :class:`~linkwork.design.sweep.SweepTable`) give a short table
+of linkwork (:class:`~linkwork.motion.kinematic_analysis.Kinematics`,
+:class:`~linkwork.kinetostatics.reaction_forces.Forces`,
+:class:`~linkwork.machine.steady_cycle.Dynamics`, :class:`~linkwork.design.sweeps.SweepTable`) give a short table
 of what they hold, each number with its unit, made here.  Imports nothing of linkwork: the core may use it.
 
-Their ``to_xarray()`` and ``to_pandas()`` are the tables that :mod:`linkwork.io` writes (``kinematics.nc``);
-the results live in the core, which imports nothing of the edge, so they reach those tables through
-:func:`export`, which looks them up by name in :data:`EXPORTS` when called, as the package's ``__init__``
-finds its lazy names.
+Their ``to_xarray()`` and ``to_pandas()`` are built by the core's own table modules
+(:mod:`linkwork.motion.tables`, :mod:`linkwork.kinetostatics.tables`), which :mod:`linkwork.io` writes.
 """
 
 from __future__ import annotations
 
 import html
-import importlib
 from collections.abc import Iterable
-from typing import Any
 
 
 def table(title: str, rows: Iterable[tuple[str, object]]) -> str:
@@ -30,20 +27,3 @@ def table(title: str, rows: Iterable[tuple[str, object]]) -> str:
 def number(value: float, unit: str = "") -> str:
     """A value to 6 significant digits with its unit (none for a pure number, unit "1"); "none" for NaN."""
     return "none" if value != value else f"{value:.6g}{' ' + unit if unit not in ('', '1') else ''}"
-
-
-#: Where each result's tables are made: (class name, "xarray" or "pandas") -> (module, function).
-EXPORTS = {
-    ("Kinematics", "xarray"): ("linkwork.io.motion_tables", "to_dataset"),
-    ("Kinematics", "pandas"): ("linkwork.io.motion_tables", "to_frame"),
-    ("Forces", "xarray"): ("linkwork.io.force_tables", "to_dataset"),
-    ("Forces", "pandas"): ("linkwork.io.force_tables", "to_frame"),
-    ("Dynamics", "xarray"): ("linkwork.io.dynamics_tables", "to_dataset"),
-    ("Dynamics", "pandas"): ("linkwork.io.dynamics_tables", "to_frame"),
-}
-
-
-def export(result: object, kind: str, *args: Any) -> Any:
-    """``result`` as the table of :data:`EXPORTS` (``kind``: ``"xarray"`` or ``"pandas"``), ``args`` passed on."""
-    module, name = EXPORTS[(type(result).__name__, kind)]
-    return getattr(importlib.import_module(module), name)(result, *args)

@@ -131,7 +131,7 @@ def written(si: float, kind: str, declared: dict[str, str], digits: int = 10) ->
     unit = bare_unit(kind, declared)
     if unit is None:
         return f"{si:.{digits}g} {_show_unit(KINDS[kind][1])}"
-    return float(f"{si / _factor(unit, kind):.{digits}g}")
+    return float(f"{si / si_factor(unit, kind):.{digits}g}")
 
 
 def _not_si(kind: str, declared: dict[str, str]) -> list[str]:
@@ -141,7 +141,7 @@ def _not_si(kind: str, declared: dict[str, str]) -> list[str]:
         unit = declared.get(part, DEFAULT_UNITS.get(part))
         if unit is None:
             out += _not_si(part, declared)
-        elif abs(_factor(unit, part) - 1.0) > 1e-12:
+        elif abs(si_factor(unit, part) - 1.0) > 1e-12:
             out.append(f"{_PLURAL[part]} are in {unit}")
     return list(dict.fromkeys(out))
 
@@ -151,7 +151,7 @@ def _needs_unit(number: float, kind: str, declared: dict[str, str]) -> str:
     phrase, si, _ = KINDS[kind]
     text = f"{number:.15g}"
     naive = _IN_FILE_UNITS[kind].format(**{"force": "N", **DEFAULT_UNITS, **declared})
-    factor = _factor(naive, kind)
+    factor = si_factor(naive, kind)
     examples = [f'"{text} {_show_unit(_PROPOSED.get(kind, si))}"']
     if abs(factor - 1.0) > 1e-12:
         examples.append(f'"{text} {_show_unit(naive)}" (= {number * factor:.6g} {_show_unit(si)})')
@@ -188,8 +188,26 @@ COMMON_UNITS: dict[str, dict[str, float]] = {
 
 
 @lru_cache(maxsize=256)
-def _factor(unit: str, kind: str) -> float:
-    """SI value of one ``unit`` of ``kind``; raises UnitParseError."""
+def si_factor(unit: str, kind: str) -> float:
+    """SI value of one ``unit`` of a kind of quantity.
+
+    Parameters
+    ----------
+    unit : str
+        A unit as written in a file or an option (``"mm"``, ``"rpm"``, ``"kN"``).
+    kind : str
+        A kind of :data:`KINDS` (``"length"``, ``"speed"``...).
+
+    Returns
+    -------
+    float
+        The value in SI units of one ``unit`` (``si_factor("mm", "length")`` is 0.001).
+
+    Raises
+    ------
+    UnitParseError
+        Where ``unit`` is unknown or not a unit of ``kind``.
+    """
     common = COMMON_UNITS[kind].get(unit)
     return common if common is not None else _pint_factor(unit, kind)
 
@@ -246,7 +264,7 @@ def _to_si(q: Any, kind: str, text: str) -> float:
 
 def check_unit(unit: str, kind: str) -> None:
     """Raise UnitParseError unless ``unit`` is a unit of ``kind``."""
-    _factor(unit, kind)
+    si_factor(unit, kind)
 
 
 def parse_quantity(value: Any, kind: str, declared: dict[str, str] | None = None) -> float:
@@ -307,7 +325,7 @@ def _bare(value: float, kind: str, declared: dict[str, str]) -> float:
         return 0.0  # zero in any unit
     if unit is None:
         raise UnitParseError(_needs_unit(number, kind, declared))
-    return number * _factor(unit, kind)
+    return number * si_factor(unit, kind)
 
 
 def _with_unit(value: str, kind: str) -> float:
@@ -324,7 +342,7 @@ def _with_unit(value: str, kind: str) -> float:
     if not math.isfinite(number):
         raise UnitParseError(f"expected {phrase}, got {_quote(value)}")
     try:
-        factor = _factor(unit, kind)
+        factor = si_factor(unit, kind)
     except UnitParseError as exc:
         tail = f" ({exc.reason})" if exc.reason else ""
         raise UnitParseError(f"expected {phrase}, got {_quote(value)}{tail}", exc.reason) from None

@@ -237,7 +237,7 @@ def test_a_missing_optional_package_is_one_line_before_any_work(tmp_path, monkey
 def test_the_python_api_names_the_missing_package_too(monkeypatch):
     """``to_pandas`` without pandas, the drawings without matplotlib: a LinkworkError that is also an
     ImportError, with the pip command."""
-    from linkwork.design.sweep import SweepTable
+    from linkwork.design.sweeps import SweepTable
     from linkwork.errors import LinkworkError, MissingDependencyError
 
     table = SweepTable({"variant": np.arange(2), "swing": np.array([0.5, 0.6])}, {"variant": "1", "swing": "rad"})
@@ -440,7 +440,7 @@ def test_positions_at_the_bound_take_each_point_once_and_write_what_each_positio
     """`positions --count N` reads each point's positions once for all N (not once a position: 100,000 took
     minutes), and writes for each position the point's coordinates in mm to 0.001 mm, as a pose of the
     kinematics at that one angle gives them."""
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
 
     _commands()
     calls = []

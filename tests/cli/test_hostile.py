@@ -12,6 +12,8 @@ bound too.  Then the defects found by such runs, one test each.
 from __future__ import annotations
 
 import resource
+import subprocess
+import sys
 from collections import Counter
 from pathlib import Path
 from typing import Any
@@ -89,6 +91,23 @@ def test_every_hostile_case_ends_cleanly_in_its_own_process(kind, key, tmp_path)
     assert problems(case, outcome) == [], (case.name, outcome.stderr[-1000:])
 
 
+def _collected(*options: str) -> str:
+    """What ``pytest --collect-only`` lists of this file's full run, and its summary line."""
+    here = Path(__file__)
+    command = [sys.executable, "-m", "pytest", str(here), "--collect-only", "-q", "-p", "no:cacheprovider", *options]
+    proc = subprocess.run(command, capture_output=True, text=True, cwd=here.parents[2], timeout=120)
+    return proc.stdout
+
+
+def test_the_full_run_is_not_collected_unless_asked_for():
+    """Without ``--hostile`` the full run's cases are deselected, not shown as skips; with it they are all there."""
+    plain, asked = _collected(), _collected("--hostile")
+    name = "test_every_hostile_case_ends_cleanly_in_its_own_process"
+    full = len(_keys(FULL, slow=True))
+    assert plain.count(name) == 0 and "deselected" in plain.splitlines()[-1]
+    assert asked.count(name) == full > 500
+
+
 #: Files with links that share through an anchor, in the sample (in the fast lane, every third).
 SHARED = 12
 
@@ -102,13 +121,14 @@ def test_a_file_written_where_links_share_an_anchor_solves_as_the_variant_writte
     import numpy as np
 
     import linkwork as lw
-    from linkwork.structure.parameters import write_file
+    from linkwork.spec.edit import write_text
+    from linkwork.structure.parameters import file_text
 
     what, body, values = hostile.shared(seed)
     (tmp_path / "m.yaml").write_text(body, encoding="utf-8")
     mech = lw.compile(tmp_path / "m.yaml")
     before = lw.parameters(mech)
-    out = write_file(mech, values, tmp_path / "x.yaml")
+    out = write_text(file_text(mech, values), tmp_path / "x.yaml")
     again = lw.parameters(out)
     for name, value in before.items():
         if not name.endswith("inertia"):

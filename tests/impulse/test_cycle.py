@@ -43,7 +43,7 @@ def _pose(angles):
     slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
     potential = MECH.gravity * np.sum(m * com[..., 1], -1)
     gravity_moment = -MECH.gravity * np.sum(m * vc[..., 1], -1)
-    _, g, h = kin._point("rocker.K")
+    _, g, h = kin.motion_of("rocker.K")
     return inertia, slope, potential, gravity_moment, g[0], h[0]
 
 

@@ -9,8 +9,8 @@ import pytest
 
 import linkwork as lw
 from linkwork.examples import names as example_names
-from linkwork.kinetostatics.force_plans import force_plans
-from linkwork.kinetostatics.lever import lever
+from linkwork.kinetostatics.force_polygons import force_plans
+from linkwork.kinetostatics.zhukovsky import lever
 from linkwork.scene.positions import position_angles
 from linkwork.structure.model import PairType
 

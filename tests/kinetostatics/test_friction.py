@@ -257,7 +257,7 @@ def test_compiled_reactions_with_friction_equal_the_numpy_solution(monkeypatch):
 
     if not fast.available():
         pytest.skip("numba is not installed")
-    forces = importlib.import_module("linkwork.kinetostatics.forces")
+    forces = importlib.import_module("linkwork.kinetostatics.reaction_forces")
     mech = _shears(0.1, 0.020)
     compiled = lw.forces(mech, steps=360)
     monkeypatch.setattr(forces.fast, "available", lambda: False)

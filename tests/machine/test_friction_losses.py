@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 import linkwork as lw
-from linkwork.machine.reduced import reduced
+from linkwork.machine.reduction import reduced
 
 
 def _double_cut_shears(friction: bool) -> lw.Mechanism:

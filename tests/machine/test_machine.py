@@ -20,7 +20,7 @@ from linkwork.machine import (
     simulate,
     size_flywheel,
 )
-from linkwork.machine.simulate import Model
+from linkwork.machine.simulation import Model
 
 
 def _fd_kinetic_and_potential(mech, angle, h=1e-6):
@@ -63,7 +63,7 @@ def test_reduced_load_of_the_shears_does_the_cutting_work():
 def test_periodic_splines_name_each_columns_value_slope_and_curvature():
     """``PeriodicSplines.at`` gives each column, in the order given, as its value and its first and
     second derivatives in the turning angle: against the closed forms of sin(psi) and cos(2 psi)."""
-    from linkwork.machine.simulate import PeriodicSplines
+    from linkwork.machine.simulation import PeriodicSplines
 
     psi = 2 * np.pi * np.arange(720) / 720
     splines = PeriodicSplines(psi, [np.sin(psi), np.cos(2 * psi)])
@@ -85,7 +85,7 @@ def test_periodic_cubic_is_the_periodic_spline_through_the_points(k):
     conditioning of that system (the curvatures of noisy data at 36,000 points are 1e8 times the data)."""
     from scipy.interpolate import CubicSpline
 
-    from linkwork.machine.simulate import periodic_cubic
+    from linkwork.machine.simulation import periodic_cubic
 
     h = 2 * np.pi / k
     psi = h * np.arange(k)
@@ -287,7 +287,7 @@ def test_delta_holds_to_the_integrations_tolerance_whatever_the_last_bits_of_the
     the kernels' difference; the simulated delta stays within 1e-6 (the run's tolerance) of itself."""
     import importlib
 
-    module = importlib.import_module("linkwork.machine.dynamics")
+    module = importlib.import_module("linkwork.machine.steady_cycle")
     mech = lw.compile("double-cut-shears")
     plain = lw.dynamics(mech).delta
     exact = module.reduced

@@ -159,7 +159,8 @@ def test_netcdf_is_written_as_xarray_writes_it_without_importing_xarray(tmp_path
     import sys
 
     xr = pytest.importorskip("xarray")
-    from linkwork.io.motion_tables import to_dataset, write_netcdf
+    from linkwork.io.motion_tables import write_netcdf
+    from linkwork.motion.tables import to_dataset
 
     kin = lw.kinematics(lw.compile(lw.example("four-bar")), steps=36, variants=variants)
     write_netcdf(kin, tmp_path / "ours.nc")

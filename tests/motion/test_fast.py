@@ -171,7 +171,7 @@ def test_points_read_by_the_compiled_kernel_are_the_numpy_readings(kind, name, m
     ``x + r``, ``v + omega k x r``, ``a + epsilon k x r - omega^2 r``."""
     mech = _textbook_or_example(kind, name)
     kin = lw.kinematics(mech, angles_around(mech, n=37))
-    compiled = {p: kin._point(p) for p in mech.point_names}
+    compiled = {p: kin.motion_of(p) for p in mech.point_names}
     monkeypatch.setenv("LINKWORK_NUMBA", "0")
     for p in mech.point_names:
         link, (lx, ly) = mech.point_link[mech.point_index(p)], mech.point_local[mech.point_index(p)]
@@ -179,7 +179,7 @@ def test_points_read_by_the_compiled_kernel_are_the_numpy_readings(kind, name, m
         rx, ry = np.cos(theta) * lx - np.sin(theta) * ly, np.sin(theta) * lx + np.cos(theta) * ly
         closed = ([x + rx, y + ry], [vx - w * ry, vy + w * rx], [ax - e * ry - w * w * rx, ay + e * rx - w * w * ry])
         size = 1.0 + np.abs(mech.point_local).max()
-        for got, want, by_numpy in zip(compiled[p], closed, kin._point(p), strict=True):
+        for got, want, by_numpy in zip(compiled[p], closed, kin.motion_of(p), strict=True):
             np.testing.assert_array_equal(got, by_numpy, err_msg=p)
             scale = size * (1.0 + np.nanmax(np.abs(want)))
             np.testing.assert_allclose(got[0], np.transpose(want), rtol=0, atol=1e-14 * scale, err_msg=p)
@@ -193,18 +193,18 @@ def test_points_of_design_variants_and_of_picked_samples_read_as_the_whole(monke
     mech = lw.compile(lw.example("four-bar"))
     angles, cranks = angles_around(mech, n=41), np.linspace(0.08, 0.12, 7)
     kin = lw.kinematics(mech, angles, variants={"links.crank.length": cranks})
-    compiled = {p: kin._point(p) for p in mech.point_names}
+    compiled = {p: kin.motion_of(p) for p in mech.point_names}
     for k in (0, 4):
         alone = lw.kinematics(mech, angles, variants={"links.crank.length": cranks[k : k + 1]})
         for p in mech.point_names:
-            for got, want in zip(compiled[p], alone._point(p), strict=True):
+            for got, want in zip(compiled[p], alone.motion_of(p), strict=True):
                 np.testing.assert_allclose(got[k], want[0], rtol=0, atol=1e-12, err_msg=p)
     for index in (np.array([3, 17, 40, 0]), slice(5, 30, 4)):
         part = kin.samples(index)
         for p in mech.point_names:
-            for got, whole in zip(part._point(p), compiled[p], strict=True):
+            for got, whole in zip(part.motion_of(p), compiled[p], strict=True):
                 np.testing.assert_array_equal(got, whole[:, index], err_msg=p)
     monkeypatch.setenv("LINKWORK_NUMBA", "0")
     for p in mech.point_names:
-        for got, by_numpy in zip(compiled[p], kin._point(p), strict=True):
+        for got, by_numpy in zip(compiled[p], kin.motion_of(p), strict=True):
             np.testing.assert_array_equal(got, by_numpy, err_msg=p)

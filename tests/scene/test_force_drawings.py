@@ -10,8 +10,8 @@ import pytest
 
 import linkwork as lw
 from drawing_checks import overlaps
-from linkwork.kinetostatics.force_plans import force_plans
-from linkwork.kinetostatics.lever import lever
+from linkwork.kinetostatics.force_polygons import force_plans
+from linkwork.kinetostatics.zhukovsky import lever
 from linkwork.scene.positions import position_angles
 
 pytest.importorskip("matplotlib")

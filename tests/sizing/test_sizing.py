@@ -355,17 +355,17 @@ def test_seed_000_shears_lifted_at_30_rad_s_need_the_preload_of_the_paper_s_vert
 
 
 def test_the_machine_section_is_written_whole_into_a_file_without_one_and_key_by_key_into_one_that_has_it():
-    from linkwork.structure.parameters import section_text
+    from linkwork.spec.edit import text_with_section
 
     section = {"motor": {"type": "constant", "torque": "12 N*m", "power": None}, "gear": {"ratio": 4.0}}
     bare = lw.compile("four-bar")
     assert bare.spec.machine is None
-    text = section_text(bare, "machine", section)
+    text = text_with_section(bare.spec, "machine", section)
     written = lw.loads(text)
     assert written.machine.motor.torque == 12.0 and written.machine.gear.ratio == 4.0
     shears = lw.compile("double-cut-shears")  # an induction motor: its power and speed go, a constant torque comes
     gone = {"power": None, "speed": None, "synchronous": None, "breakdown": None}
-    text = section_text(shears, "machine", {**section, "motor": {**section["motor"], **gone}})
+    text = text_with_section(shears.spec, "machine", {**section, "motor": {**section["motor"], **gone}})
     written = lw.loads(text)
     assert written.machine.motor.type == "constant" and written.machine.motor.power is None
     assert written.machine.gear.efficiency == 0.95  # kept: the new section names only the ratio

@@ -16,7 +16,7 @@ import linkwork as lw
 from hostile import Case, problems, run_in_subprocess, within
 from linkwork.errors import SpecError, UnitParseError
 from linkwork.examples import text
-from linkwork.spec.load import validate
+from linkwork.spec.reader import validate
 from linkwork.spec.yamlsource import Source, read_yaml
 from linkwork.units import parse_quantity
 
@@ -121,7 +121,7 @@ def _brute(points: dict[str, tuple[float, float]], tol: float) -> set[str]:
 
 
 def test_coincident_points_are_those_every_pair_compared_finds():
-    from linkwork.spec.load import COINCIDE, coincident
+    from linkwork.spec.reader import COINCIDE, coincident
 
     rng = random.Random(5)
     base = [(rng.uniform(-1, 1), rng.uniform(-1, 1)) for _ in range(60)]

@@ -21,8 +21,9 @@ from linkwork.errors import ParameterError
 from linkwork.examples import text
 from linkwork.kinetostatics.peaks import foundation_peak, torque_peak
 from linkwork.motion.analysis import zero_angle
-from linkwork.motion.kinematics import cycle
-from linkwork.structure.parameters import write_file
+from linkwork.motion.kinematic_analysis import cycle
+from linkwork.spec.edit import write_text
+from linkwork.structure.parameters import file_text
 from linkwork.web.session import Viewer
 
 STEPS = 360
@@ -65,6 +66,11 @@ CASES = [
 ]
 
 
+def _write_file(mech, values, out):
+    """The file of ``mech`` with ``values`` written in, written to ``out`` (what ``linkwork design --best`` writes)."""
+    return write_text(file_text(mech, values), out)
+
+
 def _edited_by_hand(name, edits):
     yaml = YAML()
     data = yaml.load(text(name))
@@ -104,7 +110,7 @@ def test_overrides_mean_what_the_edited_file_means(name, overrides, edits, tmp_p
     _same(viewed.driving_torque[0], at.driving_torque)
     _same(viewed.foundation[0, :, :2], at.foundation[..., :2])
     # the file the optimiser writes, read back
-    written = lw.forces(lw.load(write_file(mech, overrides, tmp_path / "best.yaml")), steps=STEPS)
+    written = lw.forces(lw.load(_write_file(mech, overrides, tmp_path / "best.yaml")), steps=STEPS)
     _same(written.driving_torque, ref.driving_torque)
     # a sweep's metrics
     vary = {k: (f"{v!r} {_unit(k)}", f"{v!r} {_unit(k)}", 1) for k, v in overrides.items()}
@@ -167,7 +173,7 @@ def test_an_unknown_parameter_or_a_bad_value_is_named():
     with pytest.raises(ParameterError, match='no parameter "links.rod.mas" .did you mean "links.rod.mass"'):
         lw.kinematics("double-cut-shears", [1.0], variants={"links.rod.mas": [1.0]})
     with pytest.raises(ParameterError, match="links.rod.length: expected a positive length"):
-        write_file(lw.compile("double-cut-shears"), {"links.rod.length": -1.0}, "/nonexistent/x.yaml")
+        _write_file(lw.compile("double-cut-shears"), {"links.rod.length": -1.0}, "/nonexistent/x.yaml")
 
 
 def test_a_written_file_keeps_the_units_each_value_was_written_in(tmp_path):
@@ -176,7 +182,7 @@ def test_a_written_file_keeps_the_units_each_value_was_written_in(tmp_path):
     source = tmp_path / "four-bar.yaml"
     source.write_text(text("four-bar").replace("length: 250", 'length: "0.25 m"  # rocker'))
     mech = lw.compile(source)
-    out = write_file(
+    out = _write_file(
         mech,
         {"links.crank.length": 0.105, "links.rocker.length": 0.26, "links.coupler.inertia": 0.03},
         tmp_path / "x.yaml",
@@ -260,7 +266,7 @@ def test_a_file_written_from_an_example_edits_the_example_not_a_file_of_that_nam
     360 mm): the written file is the example (coupler 350 mm, its comment) with the value written in."""
     monkeypatch.chdir(tmp_path)
     (tmp_path / "four-bar.yaml").write_text(text("four-bar").replace("length: 350", "length: 360"))
-    out = write_file(lw.compile("four-bar"), {"links.crank.length": 0.105}, tmp_path / "best.yaml")
+    out = _write_file(lw.compile("four-bar"), {"links.crank.length": 0.105}, tmp_path / "best.yaml")
     again = lw.parameters(out)
     assert again["links.coupler.length"] == pytest.approx(0.35, rel=1e-12)
     assert again["links.crank.length"] == pytest.approx(0.105, rel=1e-12)
@@ -272,7 +278,7 @@ def test_a_file_written_from_one_changed_on_disk_since_it_was_read_edits_what_wa
     source.write_text(text("four-bar"))
     mech = lw.compile(source)
     source.write_text(text("four-bar").replace("length: 350", "length: 360"))
-    assert lw.parameters(write_file(mech, {"links.crank.length": 0.105}, tmp_path / "x.yaml"))[
+    assert lw.parameters(_write_file(mech, {"links.crank.length": 0.105}, tmp_path / "x.yaml"))[
         "links.coupler.length"
     ] == pytest.approx(0.35, rel=1e-12)
 
@@ -304,7 +310,7 @@ def test_a_value_written_where_the_file_shares_a_node_changes_that_value_alone(v
     mech = lw.compile(source)
     before = lw.parameters(mech)
     assert before["links.rocker.mass"] == 1.0 and before["links.coupler.points.M.x"] == pytest.approx(0.3)
-    out = write_file(mech, values, tmp_path / "x.yaml")
+    out = _write_file(mech, values, tmp_path / "x.yaml")
     again = lw.parameters(out)
     for name, value in before.items():  # the inertias left to their default follow the masses
         if not name.endswith("inertia"):

@@ -23,7 +23,7 @@ from fastapi.testclient import TestClient  # noqa: E402
 import linkwork as lw  # noqa: E402
 from linkwork.examples import text as example_text  # noqa: E402
 from linkwork.motion.analysis import guide, working  # noqa: E402
-from linkwork.motion.kinematics import direction  # noqa: E402
+from linkwork.motion.kinematic_analysis import direction  # noqa: E402
 from linkwork.web import create_app, cycle_payload, export_page  # noqa: E402
 from linkwork.web.edits import MAX_OVERRIDES  # noqa: E402
 from linkwork.web.server import MAX_BODY, SHUTDOWN_WAIT_S  # noqa: E402
@@ -47,7 +47,7 @@ def _turn(mech, steps, file=None):
     """The viewer's crank angles: ``steps`` equal steps over a turn from position 0 of ``file`` (the file the
     viewer opened, whose edits ``mech`` may be; ``mech`` itself by default)."""
     from linkwork.motion.analysis import zero_angle
-    from linkwork.motion.kinematics import cycle
+    from linkwork.motion.kinematic_analysis import cycle
 
     return cycle(mech, steps, start=zero_angle(mech if file is None else file))
 

@@ -31,7 +31,7 @@ import linkwork as lw  # noqa: E402
 from linkwork.examples import text as example_text  # noqa: E402
 from linkwork.kinetostatics.external import evaluate  # noqa: E402
 from linkwork.motion.analysis import zero_angle  # noqa: E402
-from linkwork.motion.kinematics import cycle, direction  # noqa: E402
+from linkwork.motion.kinematic_analysis import cycle, direction  # noqa: E402
 from linkwork.web import create_app, export_page  # noqa: E402
 
 pytestmark = pytest.mark.browser
@@ -735,7 +735,7 @@ def test_the_force_plans_and_the_lever_follow_the_crank_dragged(page, server):
     it at the angle shown, subscripts in tspans, one arrow each (and the reactions read off it), closing head to
     tail as read back from the SVG; the lever's balancing force is the driving torque of lw.forces over the crank's
     length; dragging the crank's slider draws another position."""
-    from linkwork.kinetostatics.force_plans import force_plans
+    from linkwork.kinetostatics.force_polygons import force_plans
 
     open_viewer(page, server)
     mech = lw.compile(lw.load(NAME))

@@ -7,7 +7,17 @@ from typing import Annotated
 
 import typer
 
-from linkwork.cli.app import FileOrExample, Speed, _compile, app, at_speed, check_options, fail, names_a_file, needs
+from linkwork.cli.app import (
+    FileOrExample,
+    Speed,
+    app,
+    at_speed,
+    check_options,
+    compile_or_exit,
+    fail,
+    names_a_file,
+    needs,
+)
 from linkwork.limits import MAX_ANGLES, TURN_STEPS, digits, quote, whole
 
 
@@ -71,7 +81,7 @@ def analyze(
         fail(exc)
     if dxf:
         needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
-    mech = at_speed(_compile(file_or_example), speed)
+    mech = at_speed(compile_or_exit(file_or_example), speed)
     # the spinner on stderr, and only in a terminal: piped or redirected, stdout holds the one line "wrote ..."
     shown = console(stderr=True)
     spinner = Progress(SpinnerColumn(), TextColumn("{task.description}"), console=shown, transient=True,

@@ -363,8 +363,24 @@ def _parts(out: Console, tab: Table, keep: int) -> list[Table]:
     return [part(head + cols, tab.title if i == 0 else None) for i, cols in enumerate(parts)]
 
 
-def _compile(file_or_example: str) -> Mechanism:
-    """The compiled mechanism of a file or a bundled example; its problems printed, exit code 2."""
+def compile_or_exit(file_or_example: str) -> Mechanism:
+    """The compiled mechanism of a file or a bundled example, for a command.
+
+    Parameters
+    ----------
+    file_or_example : str
+        A YAML file's path or a bundled example's name.
+
+    Returns
+    -------
+    Mechanism
+        The compiled mechanism.
+
+    Raises
+    ------
+    typer.Exit
+        With exit code 2 where the file cannot be read or compiled, its problems printed (:func:`fail`).
+    """
     from linkwork.api import compile
     from linkwork.examples import resolve
 

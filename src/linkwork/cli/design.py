@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, fail, needs
+from linkwork.cli.app import FileOrExample, app, check_options, compile_or_exit, echo_json, fail, needs
 from linkwork.errors import DesignError, DesignWarning, LinkworkError
 from linkwork.limits import (
     MAX_ANGLES,
@@ -23,7 +23,7 @@ from linkwork.limits import (
 )
 
 if TYPE_CHECKING:
-    from linkwork.design.sweep import SweepTable
+    from linkwork.design.sweeps import SweepTable
 
 Vary = Annotated[
     list[str],
@@ -62,7 +62,7 @@ def parameters(file_or_example: FileOrExample) -> None:
     from linkwork.design.plan import in_file_units
     from linkwork.structure.parameters import file_units, parameter_list
 
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     declared = file_units(mech.spec)
     for p in parameter_list(mech):
         shown, unit = in_file_units(p.value, p.kind, declared)
@@ -127,7 +127,7 @@ def sweep(
     turning its own way; working_time_ratio: the knives closing over opening.
     """
     from linkwork.design.store import parts_dir
-    from linkwork.design.sweep import sweep as run
+    from linkwork.design.sweeps import sweep as run
 
     check_options(*_text_problems(vary=vary, metric=metric))
     if dashboard and scheduler is not None:
@@ -205,7 +205,7 @@ def optimize(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """The best design in the ranges (differential evolution over the whole population at once)."""
-    from linkwork.design.optimize import optimize as run
+    from linkwork.design.optimizer import optimize as run
 
     if out is not None and not out.endswith((".yaml", ".yml")):
         fail(LinkworkError(f'--out "{excerpt(out, QUOTE_PATH)}": expected a .yaml file'))

@@ -12,9 +12,9 @@ import typer
 
 from linkwork.cli.app import (
     FileOrExample,
-    _compile,
     app,
     check_options,
+    compile_or_exit,
     echo_json,
     explain_nulls,
     fail,
@@ -48,7 +48,7 @@ def dynamics(
 
     check_options(whole(steps, "--steps", 1, MAX_ANGLES), delta_problem(delta, "--delta"))
     files = out_files(out, ("dynamics.csv", "dynamics.json")) if out is not None else []
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     try:
         result = run(mech, delta=delta, steps=steps)
     except LinkworkError as exc:
@@ -67,8 +67,8 @@ def _write(out: str, files: list[Path], data: dict[str, Any]) -> list[Path]:
     """The ``files`` of ``--out`` (:func:`~linkwork.cli.app.out_files`): ``dynamics.csv`` (the steady
     cycle) and ``dynamics.json`` (``data``)."""
     from linkwork.atomic import write_atomic
-    from linkwork.io.dynamics_tables import CYCLE_COLUMNS
     from linkwork.io.jsonout import dumps
+    from linkwork.machine.tables import CYCLE_COLUMNS
 
     cycle = data["cycle"]
     rows = [",".join(CYCLE_COLUMNS[key] for key in cycle)]
@@ -87,7 +87,7 @@ def _write(out: str, files: list[Path], data: dict[str, Any]) -> list[Path]:
 
 def _print_report(mech: Mechanism, result: Dynamics, data: dict[str, Any]) -> None:
     """The report of ``linkwork dynamics`` (``data``: its JSON record, for the crank angles of the cycle)."""
-    from linkwork.motion.kinematics import direction
+    from linkwork.motion.kinematic_analysis import direction
 
     rpm = 30 / math.pi
     red = result.reduced

@@ -15,9 +15,9 @@ from linkwork.cli.app import (
     FileOrExample,
     Speed,
     Steps,
-    _compile,
     app,
     check_options,
+    compile_or_exit,
     drive_speed,
     echo_json,
     explain_nulls,
@@ -37,7 +37,7 @@ if TYPE_CHECKING:
     from rich.table import Table
 
     from linkwork.kinetostatics.balancing import Balance
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.reaction_forces import Forces
     from linkwork.structure.model import Mechanism
 
 
@@ -87,12 +87,13 @@ def forces(
 ) -> None:
     """Joint reactions, driving torque, foundation and bolt loads over the cycle, with the checks."""
     from linkwork.errors import LinkworkError
-    from linkwork.io.force_tables import CONVENTION, pair_labels, to_json
+    from linkwork.io.force_tables import to_json
     from linkwork.kinetostatics import forces as solve
+    from linkwork.kinetostatics.tables import CONVENTION, pair_labels
 
     check_angles(steps, angles)
     files = out_files(out, ("forces.csv", "forces.json")) if out is not None else []
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     where = _angles(mech, steps, angles)
     rate = drive_speed(mech, speed)
     target = _force(pull)
@@ -251,10 +252,10 @@ def _pair_table(f: Forces, labels: list[tuple[str, int]]) -> tuple[Table, str | 
     pair's largest moment; and a line that says why some are unbounded (None where none is)."""
     from rich.markup import escape
 
-    from linkwork.io.force_tables import pair_kind, pair_moment
-    from linkwork.io.jsonout import snap_zeros
     from linkwork.kinetostatics.peaks import UNBOUNDED, pair_force_peaks, pair_moment_peaks
+    from linkwork.kinetostatics.tables import pair_kind, pair_moment
     from linkwork.structure.model import one_crank
+    from linkwork.zeros import snap_zeros
 
     mech = f.mechanism
     at = _where(mech, named=False)
@@ -327,7 +328,7 @@ def balance(
         *(f"--links: no link is named {quote(n)}: names are at most {MAX_NAME} characters" for n in names
           if len(n) > MAX_NAME),
     )  # fmt: skip
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     r = None
     if radius is not None:
         try:

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, fail
+from linkwork.cli.app import FileOrExample, app, check_options, compile_or_exit, echo_json, fail
 from linkwork.errors import LinkworkError
 from linkwork.limits import MAX_BLOWS, whole
 
@@ -44,7 +44,7 @@ def impact(
     if blows is not None and not cycle:
         fail(LinkworkError("--blows: only with --cycle"))
     check_options(whole(blows, "--blows", 3, MAX_BLOWS, "number of blows") if blows is not None else None)
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     blow = mech.blow
     if blow is None:
         fail(LinkworkError('the mechanism has no blow: give an "impact:" section (at, normal, omega, restitution)'))

@@ -14,9 +14,9 @@ from linkwork.cli.app import (
     FileOrExample,
     Speed,
     Steps,
-    _compile,
     app,
     check_options,
+    compile_or_exit,
     drive_speed,
     echo_json,
     fail,
@@ -134,7 +134,7 @@ def kinematics(
     files = out_files(out, ("kinematics.csv", "kinematics.nc")) if out is not None else []
     if any(p.suffix.lower() == ".nc" for p in files):
         needs("xarray", purpose=f"--out {out}: kinematics.nc (NetCDF)")
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     try:
         kin = solve(mech, **_angles(mech, steps, angles), speed=drive_speed(mech, speed))
     except LinkworkError as exc:
@@ -199,7 +199,7 @@ def positions(
         whole(count, "--count", 1, MAX_ANGLES, "number of positions"),
         angle_problem(zero, "--zero") if zero is not None else None,
     )
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     try:
         sign = 1.0 if cycle(mech, 2)[1] > cycle(mech, 2)[0] else -1.0  # checks for a crank first
         start = math.radians(zero) if zero is not None else analysis.zero_angle(mech)

@@ -9,7 +9,7 @@ from typing import Annotated, Any
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, echo_json, fail, out_files, quantity_option
+from linkwork.cli.app import FileOrExample, app, compile_or_exit, echo_json, fail, out_files, quantity_option
 from linkwork.errors import LinkworkError
 
 
@@ -57,7 +57,7 @@ def simulate(
     if not 2 <= samples <= 100_000:
         fail(LinkworkError(f"--samples: expected 2 to 100000, got {samples}"))
     files = out_files(out, ("simulate.csv", "simulate.json")) if out is not None else []
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     try:
         result = run(mech, length, angle=start, speed=rate or 0.0, times=np.linspace(0, length, samples),
                      motor=not no_motor)  # fmt: skip

@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from linkwork.cli.app import FileOrExample, _compile, app, check_options, echo_json, fail
+from linkwork.cli.app import FileOrExample, app, check_options, compile_or_exit, echo_json, fail
 from linkwork.errors import LinkworkError
 from linkwork.limits import delta_problem
 
@@ -82,7 +82,7 @@ def size(
     check_options(*problems)
     life_s = _quantity(life, "time", "--life", "20000 h")
     sync = _quantity(synchronous, "angular_speed", "--synchronous", "1500 rpm")
-    mech = _compile(file_or_example)
+    mech = compile_or_exit(file_or_example)
     try:
         result = run(
             mech, life_h=life_s / 3600 if life_s is not None else None, kind=kind, delta=delta, reserve=reserve,
@@ -113,15 +113,14 @@ def _write(mech: object, result: object, out: str) -> str:
     """Write the file of ``mech`` with the chosen motor, gear and flywheel to ``out``, atomically; its path."""
     from pathlib import Path
 
-    from linkwork.atomic import write_atomic
     from linkwork.sizing import Sizing
+    from linkwork.spec.edit import text_with_section, write_text
     from linkwork.structure.model import Mechanism
-    from linkwork.structure.parameters import section_text
 
     assert isinstance(result, Sizing) and isinstance(mech, Mechanism) and result.motor is not None
-    text = section_text(mech, "machine", result.motor.machine_section())
+    text = text_with_section(mech.spec, "machine", result.motor.machine_section())
     try:
-        path = write_atomic(out, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+        path = write_text(text, out)
     except OSError as exc:
         raise LinkworkError(f"--write {out}: cannot write ({exc.strerror or exc})") from None
     return str(Path(path))

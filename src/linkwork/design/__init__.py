@@ -10,9 +10,9 @@ constraints and writes it as a mechanism file.
 from __future__ import annotations
 
 from linkwork.design.metrics import METRICS, Metric
-from linkwork.design.optimize import Optimum, optimize
-from linkwork.design.plan import Plan, Vary
-from linkwork.design.sweep import SweepTable, sweep
+from linkwork.design.optimizer import Optimum, optimize
+from linkwork.design.plan import SweepPlan, Vary
+from linkwork.design.sweeps import SweepTable, sweep
 from linkwork.errors import DesignError
 
 __all__ = [
@@ -20,7 +20,7 @@ __all__ = [
     "DesignError",
     "Metric",
     "Optimum",
-    "Plan",
+    "SweepPlan",
     "SweepTable",
     "Vary",
     "optimize",

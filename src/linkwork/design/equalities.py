@@ -1,6 +1,6 @@
 """Designs that meet metrics exactly: Newton's method on equality constraints over named parameters.
 
-The optimiser (:mod:`linkwork.design.optimize`) bounds metrics by inequalities and stops at its tolerance;
+The optimiser (:mod:`linkwork.design.optimizer`) bounds metrics by inequalities and stops at its tolerance;
 synthesis needs a stroke or a time ratio met to the last digits.  Here ``k`` unknowns map onto the values of
 named parameters, and ``k`` metrics (:data:`~linkwork.design.metrics.METRICS`, the same columns a sweep or an
 optimisation reports) must equal their targets.  Many designs (the members of a family) are solved at once:

@@ -19,8 +19,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.kinetostatics.forces import Forces, forces_of
-from linkwork.motion.kinematics import Kinematics, kinematics
+from linkwork.kinetostatics.reaction_forces import Forces, forces_of
+from linkwork.motion.kinematic_analysis import Kinematics, kinematics
 from linkwork.structure.model import Mechanism
 
 if TYPE_CHECKING:

@@ -196,7 +196,7 @@ def _gap(ev: Evaluation, arg: str | None) -> Range:
     kin = ev.kin
     load = _knives(kin.mechanism, arg)
     assert isinstance(load, ExternalLoad)  # parse_metrics refused the metric otherwise
-    one, two = (kin._point(kin.mechanism.point_names[p]) for p in load.points[:2])
+    one, two = (kin.motion_of(kin.mechanism.point_names[p]) for p in load.points[:2])
     gap, rate, accel = (np.sum((x1 - x2) * np.asarray(load.vector), axis=-1) for x1, x2 in zip(one, two, strict=True))
     return sampled_range(gap, kin.angles, slopes(kin, rate, accel))
 

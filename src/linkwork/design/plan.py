@@ -23,7 +23,7 @@ from linkwork.errors import DesignError, DesignWarning, UnitParseError
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import Parameter, file_units, parameter_list, parameters_by_name
-from linkwork.units import _factor, parse_quantity, unit_for
+from linkwork.units import parse_quantity, si_factor, unit_for
 
 #: How a plan samples its ranges.
 SAMPLINGS = ("grid", "random", "lhs")
@@ -67,7 +67,7 @@ class Vary:
 def in_file_units(value: float, kind: str, declared: dict[str, str]) -> tuple[float, str]:
     """An SI value of ``kind`` in the file's unit of that kind: ``(value, unit)``."""
     unit = unit_for(kind, declared)
-    return value / _factor(unit, kind), unit
+    return value / si_factor(unit, kind), unit
 
 
 def scale_warnings(varies: list[Vary], mech: Mechanism, declared: dict[str, str]) -> list[str]:
@@ -233,7 +233,7 @@ def read_varies(vary: Ranges, mech: Mechanism, count_required: bool | None = Tru
 
 
 @dataclass(frozen=True)
-class Plan:
+class SweepPlan:
     """The variants of a sweep.
 
     Attributes
@@ -292,8 +292,8 @@ class Plan:
         return lo + (hi - lo) * u
 
 
-def make_plan(varies: list[Vary], sampling: str = "grid", samples: int | None = None, seed: int = 0) -> Plan:
-    """A :class:`Plan`; raises :class:`DesignError` for an unknown sampling or a bad sample count."""
+def make_plan(varies: list[Vary], sampling: str = "grid", samples: int | None = None, seed: int = 0) -> SweepPlan:
+    """A :class:`SweepPlan`; raises :class:`DesignError` for an unknown sampling or a bad sample count."""
     problems = []
     if sampling not in SAMPLINGS:
         problems.append(f'--sample "{sampling}": expected one of {", ".join(SAMPLINGS)}')
@@ -308,4 +308,4 @@ def make_plan(varies: list[Vary], sampling: str = "grid", samples: int | None = 
     if problems:
         raise DesignError(problems)
     n = samples if samples is not None else math.prod(v.count or 1 for v in varies)  # a grid's
-    return Plan(tuple(varies), sampling, int(n), int(seed))
+    return SweepPlan(tuple(varies), sampling, int(n), int(seed))

@@ -8,7 +8,7 @@ from pathlib import Path
 from linkwork.errors import Problem, SpecError
 from linkwork.limits import QUOTE_PATH, excerpt, quote
 from linkwork.spec.checks import suggest
-from linkwork.spec.load import load, loads
+from linkwork.spec.reader import load, loads
 from linkwork.spec.schema import Spec
 
 

@@ -27,7 +27,7 @@ from linkwork.units import turn_deg
 if TYPE_CHECKING:
     from matplotlib.text import Text
 
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
 
 #: Width of the frames, pixels, and their resolution (pixels per inch).
 WIDTH, DPI = 720, 100

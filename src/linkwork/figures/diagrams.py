@@ -18,16 +18,16 @@ import numpy as np
 from linkwork.angles import unwrap
 from linkwork.lang import t
 from linkwork.motion.analysis import Output, coordinate, from_position_0, working, zero_angle
-from linkwork.motion.kinematics import direction
+from linkwork.motion.kinematic_analysis import direction
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from linkwork.kinetostatics.forces import Forces
-    from linkwork.machine.dynamics import Dynamics
+    from linkwork.kinetostatics.reaction_forces import Forces
+    from linkwork.machine.steady_cycle import Dynamics
     from linkwork.machine.timerun import Run
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.structure.model import Mechanism
 
 
@@ -120,7 +120,7 @@ def kinematic_diagrams(kin: Kinematics, zero: float | None = None, lang: str = "
 
 
 def _at(mech: Mechanism, angle: float) -> Kinematics:
-    from linkwork.motion.kinematics import kinematics
+    from linkwork.motion.kinematic_analysis import kinematics
 
     return kinematics(mech, np.array([angle]))
 
@@ -145,7 +145,7 @@ def motion_diagram(kin: Kinematics, point: str, zero: float | None = None, lang:
 def link_angles(kin: Kinematics, zero: float | None = None, lang: str = "en") -> Figure:
     """Angle (to the x axis, °), angular velocity and angular acceleration of every moving link that turns,
     but the crank (which turns uniformly): sliders that keep their angle are left out."""
-    from linkwork.io.motion_tables import moving_links
+    from linkwork.motion.tables import moving_links
 
     mech = kin.mechanism
     fig, axes = _figure(3)

@@ -21,10 +21,10 @@ from linkwork.scene.style import FORCES, TEXT
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from linkwork.kinetostatics.force_plans import ForcePlans
-    from linkwork.kinetostatics.forces import Forces
-    from linkwork.kinetostatics.lever import Lever
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.kinetostatics.force_polygons import ForcePlans
+    from linkwork.kinetostatics.reaction_forces import Forces
+    from linkwork.kinetostatics.zhukovsky import Lever
+    from linkwork.motion.kinematic_analysis import Kinematics
 
 
 def draw_forces(sh: Sheet, scene: ForceScene) -> None:
@@ -127,8 +127,8 @@ def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | None = 
 
 def force_figures(f: Forces, index: int, position: int | None = None, lang: str = "en") -> tuple[Figure, Figure]:
     """The force plans and the lever of the kinetostatic result ``f`` at sample ``index``."""
-    from linkwork.kinetostatics.force_plans import force_plans
-    from linkwork.kinetostatics.lever import lever
+    from linkwork.kinetostatics.force_polygons import force_plans
+    from linkwork.kinetostatics.zhukovsky import lever
 
     return (force_plans_figure(force_plans(f), index, position, lang),
             lever_figure(lever(f), f.kinematics, index, position, lang))  # fmt: skip

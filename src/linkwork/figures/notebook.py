@@ -13,9 +13,9 @@ import io
 from typing import Any
 
 from linkwork.figures.scheme import draw_scheme
-from linkwork.io.motion_tables import moving_links
 from linkwork.motion.analysis import position_angles, zero_angle
-from linkwork.motion.kinematics import kinematics
+from linkwork.motion.kinematic_analysis import kinematics
+from linkwork.motion.tables import moving_links
 from linkwork.structure.model import Mechanism
 
 #: How many samples of the turn place the scheme's labels clear of the links' paths (as the report's scheme).

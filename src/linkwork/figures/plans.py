@@ -16,7 +16,7 @@ import numpy as np
 
 from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, sheet, where
 from linkwork.lang import t
-from linkwork.motion.kinematics import kinematics
+from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import plan_series
 from linkwork.scene.plans import KINDS, PlanScene, kind_name, plan_scene
 from linkwork.scene.positions import COUNT, position_angles
@@ -27,7 +27,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.motion.plans import Plan
 
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, round_length, sheet, where
 from linkwork.lang import t
-from linkwork.motion.kinematics import kinematics
+from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.scene.positions import COUNT, position_angles, positions_scene
 from linkwork.scene.scheme import KINDS, Item, SchemeScene, scheme_scene
 from linkwork.scene.style import SCHEME, TEXT
@@ -26,7 +26,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
 
 
 def draw_scheme(kin: Kinematics, index: int = 0, ax: Axes | None = None, trajectories: bool = False,

@@ -12,9 +12,9 @@ from __future__ import annotations
 from linkwork.errors import SlidingReversal
 from linkwork.impulse.contact import Tool
 from linkwork.impulse.cycle import Blow, Phase, WorkingCycle, simulate_blows
+from linkwork.impulse.impact_map import Strike, strike
 from linkwork.impulse.mechanism import Impact, impact, reduced_model
 from linkwork.impulse.rocker import RockerImpact, rocker_impact
-from linkwork.impulse.strike import Strike, strike
 
 __all__ = [
     "Blow",

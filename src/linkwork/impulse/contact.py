@@ -25,7 +25,7 @@ import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.machine.drive import Characteristic
-from linkwork.machine.simulate import Curve, PeriodicSplines
+from linkwork.machine.simulation import Curve, PeriodicSplines
 
 _tuple = tuple.__new__
 

@@ -32,7 +32,7 @@ Between events the motion is the energy-exact equation
 ``s`` and the sliding transfer function are periodic cubic splines through their exact values on
 a grid of the turn (``steps``); the blows use the exact kinematics of their pose.
 
-The blow (``g = 0`` closing) is the impact map of :func:`~linkwork.impulse.strike.strike`, generalised
+The blow (``g = 0`` closing) is the impact map of :func:`~linkwork.impulse.impact_map.strike`, generalised
 from :func:`~linkwork.impulse.impact` to a tool that moves.
 
 The run is put together from its parts: the blow's inputs read from the file
@@ -62,15 +62,15 @@ from linkwork.impulse.contact import (
     FreeTool,
     Tool,
 )
+from linkwork.impulse.impact_map import Strike, strike
 from linkwork.impulse.mechanism import BlowSetup, blow_setup, impulsive_reactions, striking_point
 from linkwork.impulse.phases import APART, CONTACT, FLIGHT, FREEDOM, KINDS, Samples, Segment, fly, part, press
-from linkwork.impulse.strike import Strike, strike
-from linkwork.kinetostatics.forces import Forces
+from linkwork.kinetostatics.reaction_forces import Forces
 from linkwork.kinetostatics.reactions import inertia_and_gravity, solve_reactions
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.machine.drive import Drive
-from linkwork.machine.reduced import reduced
-from linkwork.machine.simulate import PeriodicSplines
+from linkwork.machine.reduction import reduced
+from linkwork.machine.simulation import PeriodicSplines
 from linkwork.motion import kinematics
 from linkwork.structure.model import Mechanism
 

@@ -28,8 +28,8 @@ import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
 from linkwork.impulse.rocker import RockerImpact, rocker_impact, sliding_direction
-from linkwork.kinetostatics.forces import Forces
 from linkwork.kinetostatics.free_body import contacts
+from linkwork.kinetostatics.reaction_forces import Forces
 from linkwork.kinetostatics.reactions import Loads, inertia_and_gravity, solve_reactions
 from linkwork.motion import Kinematics, kinematics
 from linkwork.structure.model import Mechanism, PairType
@@ -235,7 +235,7 @@ def striking_point(kin: Kinematics, at: str) -> StrikingPoint:
     """The point ``at`` (``link.point`` or a joint's name) in ``kin``."""
     mech = kin.mechanism
     p = kin.point_index(at)
-    pos, vel, _ = kin._point(mech.point_names[p])
+    pos, vel, _ = kin.motion_of(mech.point_names[p])
     return StrikingPoint(int(mech.point_link[p]), pos[0], vel[0])
 
 

@@ -26,7 +26,7 @@ import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.impulse.contact import OMEGA, PSI, ContactFlags, ContactModel, FreeTool
-from linkwork.machine.simulate import Event, fired
+from linkwork.machine.simulation import IntegrationEvent, fired
 
 FLIGHT, APART, CONTACT = "flight", "apart", "contact"
 #: The phases, in the order of their codes in the samples (``mode``).
@@ -77,12 +77,12 @@ def _stalled(t: float, y: np.ndarray) -> float:
 
 
 #: The crank stops (or turns back).
-STALLED = Event("stalled", _stalled, -1)
+STALLED = IntegrationEvent("stalled", _stalled, -1)
 
 
 def _integrate(
     kind: str, rates: Callable[[float, np.ndarray], Any], t: float, t_end: float, y: np.ndarray, rtol: float,
-    events: Sequence[Event], **options: Any,
+    events: Sequence[IntegrationEvent], **options: Any,
 ) -> Any:  # fmt: skip
     """``solve_ivp`` (DOP853) from ``(t, y)`` to ``t_end`` or the first terminal event; its failure
     is reported."""
@@ -95,7 +95,12 @@ def _integrate(
 
 
 def _segment(
-    kind: str, t: float, sol: Any, samples: Samples, events: Sequence[Event], flags: ContactFlags | None = None
+    kind: str,
+    t: float,
+    sol: Any,
+    samples: Samples,
+    events: Sequence[IntegrationEvent],
+    flags: ContactFlags | None = None,
 ) -> Segment:
     """The segment of ``kind`` from ``t`` that ``solve_ivp`` solved (``sol``) with ``events``."""
     y_end = sol.y[:, -1].copy()
@@ -116,7 +121,7 @@ def fly(model: ContactModel, t: float, y: np.ndarray, rtol: float, point: str) -
     def reach(t_: float, y_: np.ndarray) -> float:
         return model.curves(y_[PSI]).height.value + SLACK
 
-    events = [Event("reach", reach, -1), STALLED]
+    events = [IntegrationEvent("reach", reach, -1), STALLED]
     horizon = t + 40 * math.pi / max(y[OMEGA], 1e-6)
     sol = _integrate(FLIGHT, model.free_rates, t, horizon, y, rtol, events)
     if sol.status == 0:
@@ -132,7 +137,7 @@ def part(model: ContactModel, t: float, y: np.ndarray, rtol: float, free: FreeTo
     def gap(t_: float, y_: np.ndarray) -> float:
         return model.curves(y_[PSI]).height.value + free.state(t_).travel + SLACK
 
-    events = [Event("gap", gap, -1), STALLED]
+    events = [IntegrationEvent("gap", gap, -1), STALLED]
     span = max(free.t_seat - t, 1e-12)
     if t < fine_until:  # short steps while the two may meet again at once
         t_end, step = min(fine_until, t + span), (fine_until - t) / 32
@@ -168,7 +173,7 @@ def press(model: ContactModel, t: float, y: np.ndarray, rtol: float) -> Segment:
     return _segment(CONTACT, t, sol, samples, events, flags=flags)
 
 
-def _contact_events(model: ContactModel, flags: ContactFlags) -> list[Event]:
+def _contact_events(model: ContactModel, flags: ContactFlags) -> list[IntegrationEvent]:
     """The events that end a contact phase pressing so (``flags``)."""
     j_d, m_t = model.drive_inertia, model.tool.mass
 
@@ -190,9 +195,9 @@ def _contact_events(model: ContactModel, flags: ContactFlags) -> list[Event]:
         return 1.0 + m_t * ds * (ds + flags.phi * gt) / (j + j_d) - 1e-9
 
     events = [
-        Event("separate", separate, -1), Event("seated", seated, -1), Event("turn", turn, -1 if flags.into else 1),
-        STALLED, Event("locking", locking, -1),
+        IntegrationEvent("separate", separate, -1), IntegrationEvent("seated", seated, -1),
+        IntegrationEvent("turn", turn, -1 if flags.into else 1), STALLED, IntegrationEvent("locking", locking, -1),
     ]  # fmt: skip
     if model.friction > 0:
-        events.append(Event("slide", slide, 1 if flags.phi > 0 else -1))
+        events.append(IntegrationEvent("slide", slide, 1 if flags.phi > 0 else -1))
     return events

@@ -22,7 +22,7 @@ import numpy as np
 
 from linkwork.atomic import write_atomic
 from linkwork.lang import t
-from linkwork.motion.kinematics import kinematics
+from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import plan_series
 from linkwork.optional import require
 from linkwork.scene.geometry import text_runs
@@ -34,7 +34,7 @@ from linkwork.scene.style import SCHEME, VECTORS, Style
 from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
 
 #: The application name of the extended data on the plans' vectors.
 APPID = "LINKWORK"

@@ -24,9 +24,9 @@ from linkwork.scene.style import FORCES
 from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
-    from linkwork.kinetostatics.force_plans import ForcePlans
-    from linkwork.kinetostatics.lever import Lever
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.kinetostatics.force_polygons import ForcePlans
+    from linkwork.kinetostatics.zhukovsky import Lever
+    from linkwork.motion.kinematic_analysis import Kinematics
 
 #: AutoCAD colour index of each layer (7: black on white paper, white on black).
 COLOURS = {"WEIGHTS": 34, "INERTIA": 1, "LOADS": 7, "KNOWN_REACTIONS": 6, "TANGENTIAL_R": 5, "NORMAL_R": 3,

@@ -25,36 +25,13 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.zeros import SHARE, ZERO, magnitude
+
 #: Significant digits of the floats written.
 DIGITS = 12
-#: A float below this fraction of the typical magnitude of its quantity is written as zero.
-ZERO = 1e-10
-#: The share of the non-zero numbers of a quantity below its typical magnitude (:func:`magnitude`).
-SHARE = 0.9
-
-
 def dumps(data: Any, *, indent: int | None = None) -> str:
     """``data`` (dicts, lists, tuples, numbers, strings, NumPy arrays and scalars) as JSON text."""
     return json.dumps(_clean(data, None), indent=indent, allow_nan=False)
-
-
-def magnitude(a: Any) -> float:
-    """The typical magnitude of the numbers ``a``: the magnitude below which :data:`SHARE` of its non-zero
-    finite entries lie (linearly between two; 0 if none).  A few values far larger than the rest (a spike
-    at a singular sample) do not move it, nor do the round-off zeros of one component of a vector."""
-    m = np.abs(np.asarray(a, dtype=float).ravel())
-    m = m[np.isfinite(m) & (m > 0.0)]
-    return float(np.quantile(m, SHARE)) if m.size else 0.0
-
-
-def snap_zeros(a: np.ndarray, scale: float | np.ndarray | None = None) -> np.ndarray:
-    """``a`` with the values below :data:`ZERO` times ``scale`` (default: :func:`magnitude` of ``a``; an
-    array: a scale for each entry) as 0.0, ``-0.0`` included: the zero a column of a text table shows, as
-    the JSON writes it."""
-    a = np.asarray(a, dtype=float)
-    if scale is None:
-        scale = magnitude(a)
-    return np.where(np.abs(a) < ZERO * np.asarray(scale, dtype=float), 0.0, a) + 0.0
 
 
 def _is_float(v: Any) -> bool:

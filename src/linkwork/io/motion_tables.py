@@ -1,4 +1,4 @@
-"""Tables of a kinematic result: rows of plain data, CSV, NetCDF (xarray), JSON."""
+"""Files of a kinematic result: CSV, NetCDF and JSON (the tables themselves are :mod:`linkwork.motion.tables`'s)."""
 
 from __future__ import annotations
 
@@ -10,17 +10,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.atomic import write_atomic
-from linkwork.optional import require
-from linkwork.structure.model import PairType, point_labels
+from linkwork.motion.tables import Table, drive_columns, drive_record, drive_units, kinematics_table, moving_links
+from linkwork.structure.model import point_labels
 
 if TYPE_CHECKING:
     from linkwork.motion.analysis import Extremes
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.structure.model import Mechanism
-
-
-def moving_links(mech: Mechanism) -> list[tuple[str, int]]:
-    return [(n, i) for i, n in enumerate(mech.link_names) if i > 0 and not mech.link_virtual[i]]
 
 
 def _single(kin: Kinematics) -> None:
@@ -28,45 +24,6 @@ def _single(kin: Kinematics) -> None:
         from linkwork.errors import LinkworkError
 
         raise LinkworkError("this table holds one mechanism; for design variants use to_dataset (NetCDF)")
-
-
-#: The unit of each kind of drive column: its CSV heading ``name [unit]``, its JSON key ``name_unit``.
-_UNITS = {"deg": "deg", "m": "m"}
-
-
-def drive_columns(mech: Mechanism, angles: np.ndarray) -> dict[str, tuple[str, np.ndarray]]:
-    """The columns that say where each sample of a table is, by name: ``name -> (unit, values)``.
-
-    With one crank, φ turned from position 0 (``phi``, deg in [0, 360),
-    :class:`~linkwork.motion.analysis.CrankAngles`) and the crank's angle to the frame's x axis
-    (``crank_angle_to_x``, deg in [0, 360)); otherwise the first drive's coordinate, ``crank_angle_to_x``
-    (deg) of a revolute drive or ``drive`` (m) of a linear one."""
-    from linkwork.motion.analysis import TO_X, CrankAngles, to_x_deg
-
-    crank = CrankAngles.of(mech)
-    if crank is not None:
-        return {name: ("deg", values) for name, values in crank.columns(angles).items()}
-    if mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE:
-        return {TO_X: ("deg", np.asarray(to_x_deg(angles)))}
-    return {"drive": ("m", np.asarray(angles, dtype=float))}
-
-
-def drive_record(mech: Mechanism, angles: np.ndarray) -> dict[str, Any]:
-    """The JSON keys of :func:`drive_columns` (``phi_deg``, ``crank_angle_to_x_deg``, or ``drive_m``) and,
-    with one crank, ``position_0_deg`` and ``direction``; ``units`` names each key's unit."""
-    from linkwork.motion.analysis import CrankAngles
-
-    cols = drive_columns(mech, angles)
-    out: dict[str, Any] = {f"{name}_{unit}": values for name, (unit, values) in cols.items()}
-    crank = CrankAngles.of(mech)
-    if crank is not None:
-        out.update(crank.record())
-    return out
-
-
-def drive_units(mech: Mechanism) -> dict[str, str]:
-    """The ``units`` entries of :func:`drive_record`'s keys."""
-    return {f"{name}_{unit}": unit for name, (unit, _) in drive_columns(mech, np.zeros(0)).items()}
 
 
 def crank_keys(record: dict[str, Any], keys: tuple[str, ...], mech: Mechanism) -> dict[str, Any]:
@@ -175,103 +132,11 @@ def write_csv(kin: Kinematics, path: str | Path) -> Path:
     return write_atomic(path, writer)
 
 
-#: What the angles of a NetCDF table are (their ``long_name``).
-LONG = {
-    "phi": "phi, the crank angle turned from position 0 in the drive's direction",
-    "crank_angle_to_x": "the crank's angle to the frame's x axis, counter-clockwise",
-    "drive": "the drive's coordinate",
-}
-
-#: A table of NetCDF: its variables, name -> (dimensions, values, attributes), in the file's order.
-Table = dict[str, tuple[tuple[str, ...], np.ndarray, dict[str, str | float]]]
-
-
-def _table(kin: Kinematics) -> tuple[Table, Table, dict[str, str]]:
-    """The NetCDF table of a result: its data variables (variant x angle x point, and link; with one crank
-    ``crank_angle_to_x`` over the angles), its coordinates (``angle``: φ turned from position 0 in degrees
-    with one crank, :func:`drive_columns`; the points' labels, the links' names) and its attributes, for
-    :func:`to_dataset` and :func:`write_netcdf` alike."""
-    mech = kin.mechanism
-    labels = point_labels(mech)
-    links = moving_links(mech)
-    pos = np.stack([kin._point(mech.point_names[p])[0] for _, p in labels], axis=2)  # (V, A, P, 2)
-    vel = np.stack([kin._point(mech.point_names[p])[1] for _, p in labels], axis=2)
-    acc = np.stack([kin._point(mech.point_names[p])[2] for _, p in labels], axis=2)
-    idx = [i for _, i in links]
-    dims3 = ("variant", "angle", "point")
-    dimsl = ("variant", "angle", "link")
-    data: Table = {
-        "x": (dims3, pos[..., 0], {"units": "m"}),
-        "y": (dims3, pos[..., 1], {"units": "m"}),
-        "vx": (dims3, vel[..., 0], {"units": "m/s"}),
-        "vy": (dims3, vel[..., 1], {"units": "m/s"}),
-        "ax": (dims3, acc[..., 0], {"units": "m/s^2"}),
-        "ay": (dims3, acc[..., 1], {"units": "m/s^2"}),
-        "theta": (dimsl, np.moveaxis(kin.q[idx, 2], 0, -1), {"units": "rad"}),
-        "omega": (dimsl, np.moveaxis(kin.v[idx, 2], 0, -1), {"units": "rad/s"}),
-        "epsilon": (dimsl, np.moveaxis(kin.a[idx, 2], 0, -1), {"units": "rad/s^2"}),
-        "valid": (("variant", "angle"), kin.valid_all.astype("int8"), {}),
-    }
-    (first, (unit, values)), *others = drive_columns(mech, kin.angles).items()
-    for name, (other_unit, other) in others:  # the angle to x beside phi: a variable over the angles
-        data[name] = (("angle",), other, {"units": other_unit, "long_name": LONG[name]})
-    coords: Table = {
-        "angle": (("angle",), values, {"units": unit, "long_name": LONG[first]}),
-        "point": (("point",), np.array([label for label, _ in labels]), {}),
-        "link": (("link",), np.array([n for n, _ in links]), {}),
-    }
-    attrs = {"mechanism": mech.name, "source": "linkwork kinematics"}
-    record = drive_record(mech, kin.angles)
-    if "position_0_deg" in record:
-        attrs["angle"] = (
-            f"phi, turned from position 0 (the crank at {record['position_0_deg']:.9g} deg to the x axis, "
-            f"turning {'counter-clockwise' if record['direction'] > 0 else 'clockwise'}), deg in [0, 360)"
-        )
-    return data, coords, attrs
-
-
-def to_dataset(kin: Kinematics) -> Any:
-    """An xarray Dataset with dimensions variant x angle x point (and link): the table
-    :func:`write_netcdf` writes (``Kinematics.to_xarray``)."""
-    xr = require("xarray", purpose="Kinematics.to_xarray (NetCDF tables of the kinematics)")
-    data, coords, attrs = _table(kin)
-    return xr.Dataset(data, coords=coords, attrs=attrs)
-
-
-def to_frame(kin: Kinematics, by: str = "point") -> Any:
-    """The variables of :func:`to_dataset` over ``by`` (``"point"``: x, y, vx, vy, ax, ay; ``"link"``: theta,
-    omega, epsilon) as a pandas DataFrame indexed by variant x angle x ``by``, each variable's unit in
-    ``attrs["units"]`` (``Kinematics.to_pandas``)."""
-    if by not in ("point", "link"):
-        from linkwork.errors import LinkworkError
-
-        raise LinkworkError(f'to_pandas takes by="point" or by="link", not "{by}"')
-    data, coords, attrs = _table(kin)
-    return frame(data, coords, attrs, ("variant", "angle", by), purpose="Kinematics.to_pandas")
-
-
-def frame(data: Table, coords: Table, attrs: dict[str, str], dims: tuple[str, ...], purpose: str) -> Any:
-    """The variables of a table whose dimensions are ``dims`` as a pandas DataFrame: a row per combination of
-    the coordinates (a dimension without one, ``variant``, numbered from 0), a column per variable, the
-    index's levels named after ``dims``; the units of the columns in ``attrs["units"]``, the table's
-    attributes and the angle's ``long_name`` in ``attrs`` too."""
-    pd = require("pandas", purpose=purpose)
-    chosen = {name: values for name, (d, values, _) in data.items() if d == dims}
-    shape = next(iter(chosen.values())).shape
-    levels = [coords[d][1] if d in coords else np.arange(n) for d, n in zip(dims, shape, strict=True)]
-    index = pd.MultiIndex.from_product(levels, names=list(dims))
-    out = pd.DataFrame({name: np.asarray(values).reshape(-1) for name, values in chosen.items()}, index=index)
-    out.attrs.update(attrs)
-    out.attrs["units"] = {name: str(data[name][2].get("units", "1")) for name in chosen}
-    out.attrs["angle_units"] = str(coords["angle"][2].get("units", ""))
-    return out
-
-
 def write_netcdf(kin: Kinematics, path: str | Path) -> Path:
     """Write the table of :func:`to_dataset` to ``path`` as NetCDF 3 (64-bit offsets), encoded as xarray
     encodes it (``xr.open_dataset`` reads it back as that Dataset), through SciPy's writer: xarray and pandas
     are not imported, nor the Dask that xarray looks for on every write (most of a second in all)."""
-    data, coords, attrs = _table(kin)
+    data, coords, attrs = kinematics_table(kin)
     return write_atomic(path, lambda tmp: _write_netcdf3(tmp, data, coords, attrs))
 
 

@@ -31,16 +31,16 @@ the useful loads', each pair's friction and the energy rates (:mod:`linkwork.kin
 from __future__ import annotations
 
 from linkwork.kinetostatics.balancing import Balance, Counterweight, balance
-from linkwork.kinetostatics.bolt_speed import bolt_speed
+from linkwork.kinetostatics.bolt_lift import bolt_speed
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
 from linkwork.kinetostatics.efficiency import Efficiency
-from linkwork.kinetostatics.force_plans import ForcePlans, GroupPlan, PlanForce, force_plans
-from linkwork.kinetostatics.forces import Forces, forces, forces_of
+from linkwork.kinetostatics.force_polygons import ForcePlans, GroupPlan, PlanForce, force_plans
 from linkwork.kinetostatics.free_body import FreeBody
 from linkwork.kinetostatics.friction import FrictionSolution, PairFriction
-from linkwork.kinetostatics.lever import Lever, lever
 from linkwork.kinetostatics.peaks import Peak, foundation_peak, torque_peak
+from linkwork.kinetostatics.reaction_forces import Forces, forces, forces_of
 from linkwork.kinetostatics.reactions import Loads
+from linkwork.kinetostatics.zhukovsky import Lever, lever
 
 __all__ = [
     "Balance",

@@ -1,4 +1,4 @@
-"""What the foundation bolts carry: pull, push, shear (:mod:`linkwork.kinetostatics.bolt_speed`: the speed
+"""What the foundation bolts carry: pull, push, shear (:mod:`linkwork.kinetostatics.bolt_lift`: the speed
 at which they start to be pulled).
 
 The machine stands on its foundation and is held down by bolts; friction

@@ -29,7 +29,7 @@ from linkwork.kinetostatics.external import relative_motion
 from linkwork.kinetostatics.reactions import gravity_power, kinetic_energy_rate
 
 if TYPE_CHECKING:
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.reaction_forces import Forces
 
 
 @dataclass(frozen=True)
@@ -98,9 +98,9 @@ class Efficiency:
 
 
 def efficiency(f: Forces) -> Efficiency:
-    """The :class:`Efficiency` of a :class:`~linkwork.kinetostatics.forces.Forces` result."""
+    """The :class:`Efficiency` of a :class:`~linkwork.kinetostatics.reaction_forces.Forces` result."""
     kin = f.kinematics
-    drive = np.sum(f._torque_all * kin.rates[None], -1)
+    drive = np.sum(f.driving_torque_all * kin.rates[None], -1)
     joints, losses = pair_losses(f)
     friction = np.sum(losses, -1)
     useful = -(external_power(kin, f.external) + friction)

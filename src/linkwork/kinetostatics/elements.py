@@ -19,7 +19,7 @@ from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.spec.schema import Load
 from linkwork.structure.model import Mechanism
 
@@ -95,7 +95,7 @@ class Action(NamedTuple):
 
 def _state(kin: Kinematics, p: int) -> tuple[np.ndarray, np.ndarray]:
     """Position and velocity ``(V, A, 2)`` of point ``p``."""
-    pos, vel, _ = kin._point(kin.mechanism.point_names[p])
+    pos, vel, _ = kin.motion_of(kin.mechanism.point_names[p])
     return pos, vel
 
 

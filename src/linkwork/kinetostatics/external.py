@@ -17,7 +17,7 @@ import numpy as np
 
 from linkwork.kinetostatics.elements import ELEMENTS, compile_element, evaluate_element
 from linkwork.kinetostatics.geometry import guide_direction
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.spec.schema import Load, Spec
 from linkwork.structure.constraints import perp
 from linkwork.structure.model import Mechanism, PairType
@@ -259,7 +259,7 @@ def _element(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
 
 def _state(kin: Kinematics, p: int) -> tuple[np.ndarray, np.ndarray]:
     """Position and velocity ``(V, A, 2)`` of point ``p``."""
-    pos, vel, _ = kin._point(kin.mechanism.point_names[p])
+    pos, vel, _ = kin.motion_of(kin.mechanism.point_names[p])
     return pos, vel
 
 
@@ -334,7 +334,7 @@ def _sliding(kin: Kinematics, k: int) -> tuple[np.ndarray, ...]:
     the slider's, and the guide's direction, each ``(V, A, 2)``."""
     mech = kin.mechanism
     a = int(mech.pair_links[k, 0])
-    pos, vb, _ = kin._point(mech.point_names[int(mech.pair_points[k, 1])])
+    pos, vb, _ = kin.motion_of(mech.point_names[int(mech.pair_points[k, 1])])
     q, v = kin.pose[..., a, :], kin.vel[..., a, :]
     va = v[..., :2] + kin.vel[..., a, 2, None] * perp(pos - q[..., :2])  # a's material point at P
     return pos, va, vb, guide_direction(kin, k)

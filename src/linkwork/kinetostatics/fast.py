@@ -24,7 +24,7 @@ from linkwork.kinetostatics.external import Applied
 from linkwork.kinetostatics.geometry import variant_geometry
 from linkwork.kinetostatics.reactions import group_order
 from linkwork.motion.fast import PER_THREAD, THREADS, _pool
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 
 #: Row kinds.

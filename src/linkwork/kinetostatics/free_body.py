@@ -20,7 +20,7 @@ from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:  # the forces module makes the free bodies of its results
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.reaction_forces import Forces
 
 
 @dataclass(frozen=True)
@@ -82,7 +82,7 @@ def contacts(forces: Forces) -> list[Contact]:
     out: list[Contact] = []
     for k in range(m.n_pairs):
         a, b = (int(x) for x in m.pair_links[k])
-        point = kin._point(m.point_names[int(m.pair_points[k, 1])])[0]
+        point = kin.motion_of(m.point_names[int(m.pair_points[k, 1])])[0]
         f = forces.pair_force(k)
         couple = zero if m.pair_type[k] == PairType.REVOLUTE else lam[..., 2 * k]
         out.append(Contact(m.pair_joint[k], b, a, f, point, couple, pair=k))
@@ -90,7 +90,7 @@ def contacts(forces: Forces) -> list[Contact]:
     for d, k in enumerate(m.drive_pair):
         a, b = (int(x) for x in m.pair_links[k])
         value = lam[..., 2 * m.n_pairs + d]
-        point = kin._point(m.point_names[int(m.pair_points[k, 1])])[0]
+        point = kin.motion_of(m.point_names[int(m.pair_points[k, 1])])[0]
         if m.pair_type[k] == PairType.REVOLUTE:
             f, couple = np.zeros(shape + (2,)), value
         else:

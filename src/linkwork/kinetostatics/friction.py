@@ -32,7 +32,7 @@ import numpy as np
 
 from linkwork.errors import FrictionWarning
 from linkwork.kinetostatics.external import Applied, pair_friction, relative_motion
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.spec.schema import Spec
 from linkwork.structure.model import Mechanism, PairType
 

@@ -5,13 +5,13 @@ from __future__ import annotations
 import numpy as np
 
 from linkwork.motion.analysis import guide
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.structure.parameters import Geometry
 
 
 def _guides(kin: Kinematics) -> tuple[np.ndarray, np.ndarray]:
     """The guides' origins and directions of the variants, ``(M, 2, V, 1)`` each."""
-    # linkwork.motion.kinematics.kinematics gives both for every result
+    # linkwork.motion.kinematic_analysis.kinematics gives both for every result
     assert kin.origin is not None and kin.axis is not None
     return kin.origin, kin.axis
 

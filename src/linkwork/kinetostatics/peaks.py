@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.reaction_forces import Forces
 
 #: The zoom stops where the values at the ends of the bracket are within this fraction of the peak.
 TOLERANCE = 1e-13
@@ -237,12 +237,12 @@ def peak_of(f: Forces, pick: Callable[[Forces], np.ndarray], kind: str = "abs") 
 
 def driving_torque(f: Forces) -> np.ndarray:
     """The driving torque of the (first) drive, ``(V, A)``, N m (from the power balance at singular samples)."""
-    return f._torque_all[..., 0]
+    return f.driving_torque_all[..., 0]
 
 
 def foundation_force(f: Forces) -> np.ndarray:
     """The size of the force on the foundation, ``(V, A)``, N (from the momentum theorem at singular samples)."""
-    found = f._foundation_filled
+    found = f.foundation_filled_all
     return np.hypot(found[..., 0], found[..., 1])
 
 

@@ -9,7 +9,7 @@ import numpy as np
 from linkwork.kinetostatics.external import Applied, evaluate, generalised, resultant
 from linkwork.kinetostatics.external import power as external_power
 from linkwork.kinetostatics.geometry import variant_geometry
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.structure.assemble import group_rows
 from linkwork.structure.constraints import build_rows, perp, residuals_and_jacobian
 from linkwork.structure.model import Mechanism

@@ -10,7 +10,6 @@
 from __future__ import annotations
 
 from linkwork.machine.drive import ConstantTorque, Drive, InductionMotor, LinearMotor
-from linkwork.machine.dynamics import Dynamics, balance_speed, dynamics, with_flywheel_for
 from linkwork.machine.flywheel import (
     Flywheel,
     constant_moment_cycle,
@@ -19,8 +18,9 @@ from linkwork.machine.flywheel import (
     wittenbauer,
     wittenbauer_tangents,
 )
-from linkwork.machine.reduced import Reduced, reduced
-from linkwork.machine.simulate import Motion, Turn, simulate
+from linkwork.machine.reduction import Reduced, reduced
+from linkwork.machine.simulation import Motion, Turn, simulate
+from linkwork.machine.steady_cycle import Dynamics, balance_speed, dynamics, with_flywheel_for
 from linkwork.machine.timerun import Run, RunEvent
 
 __all__ = [

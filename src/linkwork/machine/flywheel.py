@@ -33,7 +33,7 @@ from linkwork.kinetostatics.peaks import POINTS, refine
 from linkwork.limits import delta_problem
 
 if TYPE_CHECKING:
-    from linkwork.machine.reduced import Reduced
+    from linkwork.machine.reduction import Reduced
 
 
 @dataclass(frozen=True)

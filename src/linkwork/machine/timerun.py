@@ -33,12 +33,12 @@ import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.reactions import inertia_and_gravity
-from linkwork.motion.kinematics import Kinematics, kinematics_at
+from linkwork.motion.kinematic_analysis import Kinematics, kinematics_at
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.reaction_forces import Forces
     from linkwork.machine.drive import Drive
 
 #: Samples of a run where no times are asked for.
@@ -110,7 +110,7 @@ class Run:
     def forces(self) -> Forces:
         """Joint reactions and the drive's torque along the run (:func:`linkwork.forces_of`), with the run's
         own speed and angular acceleration at each sample."""
-        from linkwork.kinetostatics.forces import forces_of
+        from linkwork.kinetostatics.reaction_forces import forces_of
 
         return forces_of(self.kinematics)
 

@@ -10,7 +10,7 @@
 from __future__ import annotations
 
 from linkwork.motion.events import Event
-from linkwork.motion.kinematics import Kinematics, cycle, kinematics
+from linkwork.motion.kinematic_analysis import Kinematics, cycle, kinematics
 from linkwork.structure.parameters import Geometry, Masses
 
 __all__ = ["Event", "Geometry", "Kinematics", "Masses", "cycle", "kinematics"]

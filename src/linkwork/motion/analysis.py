@@ -27,7 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from linkwork.angles import TWO_PI, unwrap, wrap
-from linkwork.motion.kinematics import Kinematics, cycle, kinematics
+from linkwork.motion.kinematic_analysis import Kinematics, cycle, kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.units import turn_deg
 
@@ -153,7 +153,7 @@ def slider_coordinates(kin: Kinematics, sliders: Sequence[Output]) -> np.ndarray
     if not sliders:
         return np.zeros((0, 3) + kin.q.shape[2:])
     origin, u = guide_lines(kin, [o.pair for o in sliders])  # (S, 2, V, A)
-    motion = np.array([kin._point(kin.mechanism.point_names[o.point]) for o in sliders])  # (S, 3, V, A, 2)
+    motion = np.array([kin.motion_of(kin.mechanism.point_names[o.point]) for o in sliders])  # (S, 3, V, A, 2)
     motion[:, 0, ..., 0] -= origin[:, 0]
     motion[:, 0, ..., 1] -= origin[:, 1]
     # + 0.0: a sum of x and y that is -0.0 reads 0.0, as a sum along an axis gives it
@@ -471,7 +471,7 @@ class CrankAngles:
 
         if not one_crank(mech):
             return None
-        from linkwork.motion.kinematics import direction
+        from linkwork.motion.kinematic_analysis import direction
 
         return cls(zero_angle(mech) if zero is None else float(zero), direction(mech))
 

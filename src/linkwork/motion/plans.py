@@ -37,7 +37,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from linkwork.motion.analysis import guide_lines
-from linkwork.motion.kinematics import Kinematics
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.motion.program import Arm, Step
 from linkwork.structure.model import Mechanism, PairType, per_mechanism, point_labels
 
@@ -107,8 +107,20 @@ class Plan:
         }
 
 
-def _round_scale(longest: float) -> float:
-    """A drawing scale (units per mm) from the 1-2-5 series, making ``longest`` at most 100 mm."""
+def drawing_scale(longest: float) -> float:
+    """A drawing scale from the 1-2-5 series that draws ``longest`` at most 100 mm long.
+
+    Parameters
+    ----------
+    longest : float
+        The longest vector to draw, in its own unit (m/s, m/s^2, N...).
+
+    Returns
+    -------
+    float
+        Units per millimetre of drawing: the least of 1, 2, 2.5, 5 times a power of ten at least ``longest`` / 100;
+        1.0 where ``longest`` is not positive (or NaN).
+    """
     if not longest > 0:
         return 1.0
     raw = longest / 100.0
@@ -182,12 +194,23 @@ class PlanSeries:
             PlanVector(e.start, e.end, (float(vectors[j, 0]), float(vectors[j, 1])), e.kind, e.group, e.about)
             for j, e in enumerate(self.edges)
         ]
-        longest = float(_longest(values[: len(self.points)]))
-        return Plan(self.kind, float(self.angles[index]), points, vecs, _round_scale(longest))
+        longest = float(longest_length(values[: len(self.points)]))
+        return Plan(self.kind, float(self.angles[index]), points, vecs, drawing_scale(longest))
 
 
-def _longest(vectors: np.ndarray) -> np.ndarray:
-    """Length of the longest finite vector ``(..., K, 2) -> (...)``; 0 where none is finite."""
+def longest_length(vectors: np.ndarray) -> np.ndarray:
+    """Length of the longest finite vector of each set.
+
+    Parameters
+    ----------
+    vectors : ndarray
+        ``(..., K, 2)``: sets of ``K`` vectors.
+
+    Returns
+    -------
+    ndarray
+        ``(...)``: the length of the longest finite vector of each set; 0 where none is finite.
+    """
     size = np.hypot(vectors[..., 0], vectors[..., 1])
     return np.max(size, axis=-1, initial=0.0, where=np.isfinite(size))
 

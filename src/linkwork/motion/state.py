@@ -167,7 +167,7 @@ class State:
     q, v, a : ndarray, shape (N, 3, V, A)
         Pose, velocity and acceleration of every link.
     cos, sin : ndarray, shape (N, V, A)
-        Of each link's angle, kept with the pose (the accessors of :class:`~linkwork.motion.kinematics.
+        Of each link's angle, kept with the pose (the accessors of :class:`~linkwork.motion.kinematic_analysis.
         Kinematics` place points with them).
     local : ndarray, shape (P, 2, V, 1)
     origin, axis : ndarray, shape (M, 2, V, 1)

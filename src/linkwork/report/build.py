@@ -34,8 +34,8 @@ from linkwork.structure.model import PairType
 from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
-    from linkwork.kinetostatics.forces import Forces
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.kinetostatics.reaction_forces import Forces
+    from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.structure.model import Mechanism
 
 
@@ -138,7 +138,7 @@ class _Run:
 
 
 @dataclass(frozen=True)
-class Cycle:
+class ReportCycle:
     """The kinematics the report's tables and figures share.
 
     Attributes
@@ -352,12 +352,12 @@ def _structure(run: _Run) -> None:
     run.sections.append(sec)
 
 
-def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) -> Cycle:
+def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) -> ReportCycle:
     from linkwork import figures
     from linkwork.io.motion_tables import write_csv, write_netcdf
     from linkwork.motion import kinematics
     from linkwork.motion.analysis import position_angles, zero_angle
-    from linkwork.motion.kinematics import direction
+    from linkwork.motion.kinematic_analysis import direction
     from linkwork.scene.positions import plan_positions
 
     mech = run.mech
@@ -369,7 +369,7 @@ def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) ->
     drawn = plan_positions(mech, twelve) if position in (None, "all") else [int(position) % 12]
     phi = np.degrees(np.arange(steps) * 2 * np.pi / steps)
     index = int(np.argmin(np.abs((phi - 30.0 * drawn[0] + 180.0) % 360.0 - 180.0)))
-    cycle = Cycle(kin, zero, sign, twelve, index, tuple(drawn), position == "all", dxf)
+    cycle = ReportCycle(kin, zero, sign, twelve, index, tuple(drawn), position == "all", dxf)
     run.jobs.append(lambda: write_csv(kin, run.folder / "kinematics.csv"))
     run.jobs.append(lambda: write_netcdf(kin, run.folder / "kinematics.nc"))
     sec = Section("kinematics", run.t("section.kinematics"))
@@ -425,7 +425,7 @@ def _plans(run: _Run, twelve: Kinematics, drawn: list[int], sheets: bool) -> lis
     return names
 
 
-def _position_0(run: _Run, cycle: Cycle) -> str:
+def _position_0(run: _Run, cycle: ReportCycle) -> str:
     """What φ and position 0 are, in words."""
     from linkwork.figures.diagrams import member_label
     from linkwork.motion.analysis import working
@@ -441,7 +441,7 @@ def _position_0(run: _Run, cycle: Cycle) -> str:
     return run.t(f"kin.phi.{kind}", member=member, crank=crank)
 
 
-def _positions_table(run: _Run, cycle: Cycle) -> list[str]:
+def _positions_table(run: _Run, cycle: ReportCycle) -> list[str]:
     from linkwork.structure.model import point_labels
 
     mech, kin12 = run.mech, cycle.twelve
@@ -457,7 +457,7 @@ def _positions_table(run: _Run, cycle: Cycle) -> list[str]:
     return [_p(run.t("kin.positions")), _table(head, rows)]
 
 
-def _extremes_tables(run: _Run, cycle: Cycle) -> list[str]:
+def _extremes_tables(run: _Run, cycle: ReportCycle) -> list[str]:
     """Strokes of the sliders (mm) and swings of the rockers (°), with the φ of their extreme positions."""
     from linkwork.motion.analysis import extremes
 
@@ -488,7 +488,7 @@ def _slider_link(mech: Mechanism, joint: str) -> int:
     return int(mech.pair_links[k, 1])
 
 
-def _working_table(run: _Run, cycle: Cycle) -> list[str]:
+def _working_table(run: _Run, cycle: ReportCycle) -> list[str]:
     """Displacement, velocity and acceleration of the working members at the 12 positions."""
     from linkwork.figures.diagrams import member_label
     from linkwork.motion.analysis import coordinate, working
@@ -513,7 +513,7 @@ def _working_table(run: _Run, cycle: Cycle) -> list[str]:
     return [_p(run.t("working.title")), _table(head, rows)]
 
 
-def _transmission_table(run: _Run, cycle: Cycle) -> list[str]:
+def _transmission_table(run: _Run, cycle: ReportCycle) -> list[str]:
     from linkwork.motion.analysis import transmission_angles
 
     rows = []
@@ -527,12 +527,12 @@ def _transmission_table(run: _Run, cycle: Cycle) -> list[str]:
     return [_table([run.t("transmission.head.group"), run.t("transmission.head.least"), run.t("head.at_phi")], rows)]
 
 
-def _event(run: _Run, cycle: Cycle, event: Any) -> str:
+def _event(run: _Run, cycle: ReportCycle, event: Any) -> str:
     start, end = cycle.phi([event.start, event.end])
     return run.t(f"event.{event.kind}", group=group_label(event.group, run.lang), start=_deg(start), end=_deg(end))
 
 
-def _forces(run: _Run, cycle: Cycle) -> None:
+def _forces(run: _Run, cycle: ReportCycle) -> None:
     from linkwork import figures
     from linkwork.io.force_tables import to_json, write_csv
     from linkwork.kinetostatics import forces
@@ -607,7 +607,7 @@ def _force_unit(f: Forces) -> tuple[float, str]:
     return (1e-3, "unit.kN") if big >= 1e4 else (1.0, "unit.N")
 
 
-def _torque_text(run: _Run, cycle: Cycle, f: Forces) -> list[str]:
+def _torque_text(run: _Run, cycle: ReportCycle, f: Forces) -> list[str]:
     from linkwork.kinetostatics.peaks import torque_peak
 
     torque = np.asarray(f.driving_torque)
@@ -622,9 +622,9 @@ def _torque_text(run: _Run, cycle: Cycle, f: Forces) -> list[str]:
     ]  # fmt: skip
 
 
-def _joint_table(run: _Run, cycle: Cycle, f: Forces, unit: tuple[float, str]) -> list[str]:
-    from linkwork.io.force_tables import pair_labels
+def _joint_table(run: _Run, cycle: ReportCycle, f: Forces, unit: tuple[float, str]) -> list[str]:
     from linkwork.kinetostatics.peaks import pair_force_peaks
+    from linkwork.kinetostatics.tables import pair_labels
 
     mech = run.mech
     rows: list[list[Any]] = []
@@ -657,7 +657,7 @@ def _forces_at_positions(run: _Run, f: Forces, unit: tuple[float, str]) -> list[
     return [_p(run.t("positions.forces")), _table(head, rows)]
 
 
-def _foundation_table(run: _Run, cycle: Cycle, f: Forces, unit: tuple[float, str]) -> list[str]:
+def _foundation_table(run: _Run, cycle: ReportCycle, f: Forces, unit: tuple[float, str]) -> list[str]:
     b = f.bolts()
     factor, funit = unit
     mfactor, munit = (1e-3, "unit.kNm") if abs(b.moment) >= 1e4 else (1.0, "unit.Nm")
@@ -683,7 +683,7 @@ def _checks_table(run: _Run, f: Forces) -> list[str]:
     return [_p(run.t("checks.title")), _table([run.t("checks.head.check"), run.t("checks.head.value")], checks)]
 
 
-def _dynamics(run: _Run, cycle: Cycle) -> None:
+def _dynamics(run: _Run, cycle: ReportCycle) -> None:
     from linkwork import figures
     from linkwork.io.dynamics_tables import to_json
     from linkwork.machine import dynamics

@@ -20,8 +20,8 @@ import numpy as np
 from linkwork.lang import group_label
 
 if TYPE_CHECKING:
-    from linkwork.kinetostatics.force_plans import GroupPlan, MomentEquation
-    from linkwork.kinetostatics.forces import Forces
+    from linkwork.kinetostatics.force_polygons import GroupPlan, MomentEquation
+    from linkwork.kinetostatics.reaction_forces import Forces
 
 
 def _n(x: float, digits: int = 4) -> str:
@@ -49,8 +49,8 @@ def sections(run: Any, at12: Forces, position: int, sheets: bool = False, dxf: b
     ``sheets``, each group's force plans and the levers of all twelve positions on sheets too; with ``dxf``,
     ``figures/force_plans.dxf`` and ``figures/lever.dxf``."""
     from linkwork.figures import force_plans as figures
-    from linkwork.kinetostatics.force_plans import force_plans
-    from linkwork.kinetostatics.lever import lever
+    from linkwork.kinetostatics.force_polygons import force_plans
+    from linkwork.kinetostatics.zhukovsky import lever
 
     plans, lv = force_plans(at12), lever(at12)
     lang = run.lang

@@ -20,9 +20,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from linkwork.kinetostatics.force_plans import GroupPlan, PlanForce
-from linkwork.kinetostatics.lever import Lever
-from linkwork.motion.plans import PlanSeries, _round_scale
+from linkwork.kinetostatics.force_polygons import GroupPlan, PlanForce
+from linkwork.kinetostatics.zhukovsky import Lever
+from linkwork.motion.plans import PlanSeries, drawing_scale
 from linkwork.scene.geometry import text_size
 from linkwork.scene.labels import Obstacles, place_labels
 from linkwork.scene.plans import LETTERING
@@ -166,7 +166,7 @@ def lever_scene(lv: Lever, velocity: PlanSeries, index: int, *, lang: str = "en"
     the lettering left out), the balancing force at the crank pin's image; names in ``lang``."""
     values = velocity.values[variant, index]  # (L, 2) m/s
     if plan_scale is None:
-        plan_scale = _round_scale(float(np.nanmax(np.hypot(*values[: len(velocity.points)].T), initial=0.0)))
+        plan_scale = drawing_scale(float(np.nanmax(np.hypot(*values[: len(velocity.points)].T), initial=0.0)))
     turn = np.array([[0.0, -1.0], [1.0, 0.0]])  # +90 degrees
     places = (values @ turn.T) / plan_scale
     lines = [np.stack([np.zeros(2), places[j]]) for j in range(1, len(velocity.points))]
@@ -176,7 +176,7 @@ def lever_scene(lv: Lever, velocity: PlanSeries, index: int, *, lang: str = "en"
     forces = [(lf.image[variant, index] / plan_scale, lf.force) for lf in lv.forces]
     vectors = [f.vector[variant, index] for _, f in forces] + [lv.balancing_force[variant, index]]
     largest = max((float(np.hypot(*v)) for v in vectors if np.isfinite(v).all()), default=0.0)
-    scale = _round_scale(largest * 100.0 / 40.0) if scale is None else float(scale)
+    scale = drawing_scale(largest * 100.0 / 40.0) if scale is None else float(scale)
     drafts: list[_Draft] = []
     for (at, f), v in zip(forces, vectors, strict=False):  # those too short to see left out (they need not close)
         if _drawn(v, largest) and np.isfinite(at).all() and np.hypot(*v) / scale > 0.5 * em:

@@ -87,14 +87,6 @@ def place(poses: np.ndarray, xy: np.ndarray) -> np.ndarray:
     return np.stack([poses[:, None, 0] + c * x - s * y, poses[:, None, 1] + s * x + c * y], -1)
 
 
-def to_local(pose: np.ndarray, xy: np.ndarray) -> np.ndarray:
-    """Points ``(K, 2)`` of the frame's axes in the axes of a link at ``pose`` ``(3,)`` (the inverse of
-    :func:`place`)."""
-    c, s = np.cos(pose[2]), np.sin(pose[2])
-    d = np.asarray(xy, dtype=float) - pose[:2]
-    return np.stack([c * d[..., 0] + s * d[..., 1], -s * d[..., 0] + c * d[..., 1]], -1)
-
-
 def hull(xy: np.ndarray) -> np.ndarray:
     """Indices of the convex hull of ``xy`` ``(K, 2)``, counter-clockwise (Andrew's monotone chain);
     points on an edge are left out, so that collinear points give the two ends only."""

@@ -16,12 +16,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from linkwork.motion.analysis import output_range, working
-from linkwork.motion.kinematics import kinematics
+from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.scene.geometry import bounds, text_size
 from linkwork.scene.scheme import Label, SchemeScene, scheme_scene
 
 if TYPE_CHECKING:
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkwork.lang import t
-from linkwork.motion.plans import PlanSeries, _longest, _round_scale
+from linkwork.motion.plans import PlanSeries, drawing_scale, longest_length
 from linkwork.scene.geometry import text_size
 from linkwork.scene.labels import Obstacles, place_labels
 
@@ -150,10 +150,10 @@ class PlanScene:
 
 def plan_scale(series: PlanSeries, indices: list[int] | np.ndarray, variant: int = 0) -> float:
     """The round scale (units per mm) that draws the longest absolute vector of the positions ``indices``
-    at most 100 mm long (:func:`linkwork.motion.plans._round_scale`)."""
+    at most 100 mm long (:func:`linkwork.motion.plans.drawing_scale`)."""
     values = series.values[variant, np.asarray(indices, dtype=int), : len(series.points)]
-    longest = _longest(values)
-    return _round_scale(float(np.max(longest, initial=0.0)))
+    longest = longest_length(values)
+    return drawing_scale(float(np.max(longest, initial=0.0)))
 
 
 def plan_scene(

@@ -18,14 +18,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from linkwork.motion.analysis import Output, coordinate, output_range, position_angles, transmission, working
-from linkwork.motion.kinematics import kinematics
+from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import plan_series
 from linkwork.scene.geometry import place, text_size
 from linkwork.scene.labels import Obstacles, place_labels
 from linkwork.scene.scheme import Label, SchemeScene, scheme_scene
 
 if TYPE_CHECKING:
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.structure.model import Mechanism
 
 #: The positions of the graphical method over one turn.

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from linkwork.motion.analysis import guide_lines
-from linkwork.motion.kinematics import kinematics
+from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.scene import symbols
 from linkwork.scene.geometry import bounds, collinear, hull, place, text_size
 from linkwork.scene.labels import Obstacles, ends_hit, place_labels
@@ -29,7 +29,7 @@ from linkwork.structure.constraints import perp
 from linkwork.structure.model import PairType, per_mechanism, point_labels
 
 if TYPE_CHECKING:
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.spec.schema import ImpactSpec
     from linkwork.structure.model import Mechanism
 
@@ -400,7 +400,7 @@ class _Builder:
         centres = self.local[sliders.points].tolist()
         for link, centre, (ux, uy), c, s, joint in zip(sliders.links, centres, directions.tolist(), *turns,
                                                        sliders.joints, strict=True):  # fmt: skip
-            u = (c * ux + s * uy, -s * ux + c * uy)  # in the link's axes (the arithmetic of geometry.to_local)
+            u = (c * ux + s * uy, -s * ux + c * uy)  # in the link's axes
             out.append(_item("block", link, symbols.block(centre, u, self.r), closed=True, name=joint))
         return out
 

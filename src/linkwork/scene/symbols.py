@@ -115,19 +115,6 @@ def anvil(face: np.ndarray, normal: np.ndarray, r: float) -> np.ndarray:
     )
 
 
-def section(corners: np.ndarray, step: float) -> np.ndarray:
-    """Section hatching of a rectangle ``(4, 2)`` (corners in order): strokes at 45 degrees ``(H, 2, 2)``
-    ``step`` apart, clipped to it."""
-    lo, hi = corners.min(0), corners.max(0)
-    offsets = np.arange(lo[0] - hi[1], hi[0] - lo[1], step) + step / 2  # lines x - y = c
-    out = []
-    for c in offsets:
-        x0, x1 = max(lo[0], lo[1] + c), min(hi[0], hi[1] + c)
-        if x1 > x0:
-            out.append([[x0, x0 - c], [x1, x1 - c]])
-    return np.array(out, dtype=float).reshape(-1, 2, 2)
-
-
 #: Half-teeth of a spring's zigzag, and the share of its length either lead takes.
 TEETH, LEAD = 8, 0.2
 

@@ -2,8 +2,8 @@
 
 One module per part: :mod:`~linkwork.sizing.motor` (the motor from a catalogue, its gear and flywheel, and the
 run with them), :mod:`~linkwork.sizing.bearings` (rolling bearings by ISO 281, plain bushes, guides),
-:mod:`~linkwork.sizing.pins` (pins in double shear), :mod:`~linkwork.sizing.bolts` (foundation bolts);
-:func:`~linkwork.sizing.size.size` composes them.  The catalogues are CSV files in ``linkwork/sizing/data``
+:mod:`~linkwork.sizing.pin_shear` (pins in double shear), :mod:`~linkwork.sizing.bolts` (foundation bolts);
+:func:`~linkwork.sizing.machine_sizing.size` composes them.  The catalogues are CSV files in ``linkwork/sizing/data``
 with the units in their headings and their sources in their comments.
 """
 
@@ -12,9 +12,9 @@ from __future__ import annotations
 from linkwork.sizing.bearings import Bearings, equivalent_load, life_hours, rating_needed
 from linkwork.sizing.bolts import BoltResult, opening_forces, size_bolts
 from linkwork.sizing.common import Catalogue, Table, bundled, parse_catalogue, read_catalogue
+from linkwork.sizing.machine_sizing import Sizing, size
 from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue
-from linkwork.sizing.pins import Pins, least_diameter, pins
-from linkwork.sizing.size import Sizing, size
+from linkwork.sizing.pin_shear import Pins, least_diameter, pins
 
 __all__ = [
     "Bearings",

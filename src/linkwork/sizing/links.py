@@ -29,9 +29,9 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.kinetostatics.forces import Forces
+from linkwork.kinetostatics.reaction_forces import Forces
 from linkwork.sizing.common import Table
-from linkwork.sizing.pins import Steel
+from linkwork.sizing.pin_shear import Steel
 
 
 def section_properties(shape: str, dims: Mapping[str, float]) -> tuple[float, float]:

@@ -29,9 +29,9 @@ import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.machine.drive import Drive, InductionMotor
-from linkwork.machine.dynamics import Dynamics, dynamics, with_flywheel_for
 from linkwork.machine.flywheel import Flywheel
-from linkwork.machine.reduced import Reduced
+from linkwork.machine.reduction import Reduced
+from linkwork.machine.steady_cycle import Dynamics, dynamics, with_flywheel_for
 from linkwork.sizing.common import Catalogue, Table, bundled, read_catalogue
 from linkwork.structure.model import Mechanism
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from linkwork.kinetostatics.forces import Forces
+from linkwork.kinetostatics.reaction_forces import Forces
 from linkwork.structure.model import PairType
 
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 import copy
 from typing import Any
 
-from linkwork.spec.load import from_dict
+from linkwork.spec.reader import from_dict
 from linkwork.spec.schema import Spec
 
 

@@ -275,10 +275,6 @@ class Mechanism:
         return len(self.pair_type)
 
     @property
-    def n_joints(self) -> int:
-        return len(self.joint_names)
-
-    @property
     def n_drives(self) -> int:
         return len(self.drive_pair)
 

@@ -31,37 +31,32 @@ leaves to its default follows the new geometry and mass:
   variant's length and mass (zero for other links).
 
 :func:`apply` gives the arrays of the variants (:class:`Geometry` and
-:class:`Masses`) for the kinematics and the forces; :func:`set_values`
-writes values into a file's data, keeping its comments, its layout and the
-units it writes each value in.  :func:`compile <linkwork.structure.compile.compile>`
+:class:`Masses`) for the kinematics and the forces; :func:`file_text` and
+:func:`edited_spec` check values against their parameters and have
+:mod:`linkwork.spec.edit` write them into the file, keeping its comments, its
+layout and the units it writes each value in.  :func:`compile <linkwork.structure.compile.compile>`
 uses :func:`mass_properties` for the file's own values, so the rule has one
 home.
 """
 
 from __future__ import annotations
 
-import copy
 import functools
-import io
 import math
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from linkwork.atomic import write_atomic
 from linkwork.errors import ParameterError
+from linkwork.spec import edit
 from linkwork.spec.checks import suggest
-from linkwork.spec.load import validate
 from linkwork.spec.schema import Spec
-from linkwork.spec.yamlsource import Source, read_yaml
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
-from linkwork.units import DEFAULT_UNITS, KINDS, SI_UNITS, _factor, written
+from linkwork.units import DEFAULT_UNITS, KINDS, SI_UNITS
 
 #: The centre of mass given in the file's link coordinates: it stays.
 COM_GIVEN = -2
@@ -434,66 +429,12 @@ def _centres(mech: Mechanism, point_local: np.ndarray) -> np.ndarray:
     return com
 
 
-# --- writing values into a file ---------------------------------------------------------------------
-
-_NUMBER_AND_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*)?$")
-
-
-def set_values(data: Any, values: dict[str, float], declared: dict[str, str], kinds: dict[str, str]) -> None:
-    """Write ``values`` (path -> SI) at their places in a mechanism file's data (a mapping as YAML
-    loads it; a ruamel round-trip mapping keeps its comments and layout).
-
-    Each value is written the way the file writes the one it replaces: a string with a unit in
-    that unit (``"0.25 m"`` -> ``"0.3 m"``), a bare number as a bare number in the unit the file
-    reads it in (its ``units:``).  A value the file leaves out (a moment of inertia left to its
-    default) is written with its SI unit.  ``kinds``: path -> kind of quantity.
-
-    Raises
-    ------
-    ParameterError
-        Where the file has no place for a value (a point not given as ``[x, y]``).
-    """
-    for path, si in values.items():
-        parts = path.split(".")
-        kind = kinds[path]
-        if parts[-1] in ("x", "y"):
-            pair = _node(data, parts[:-1], path)
-            if not isinstance(pair, list) or len(pair) != 2:
-                raise ParameterError(f"{path}: the file does not give this point as [x, y]")
-            c = 0 if parts[-1] == "x" else 1
-            pair[c] = _written(pair[c], si, kind, declared)
-        else:
-            owner = _node(data, parts[:-1], path)
-            owner[parts[-1]] = _written(owner.get(parts[-1]), si, kind, declared)
-
-
-def _node(data: Any, keys: list[str], path: str) -> Any:
-    node = data
-    for key in keys:
-        if not isinstance(node, dict) or key not in node:
-            raise ParameterError(f"{path}: the file gives no such value")
-        node = node[key]
-    return node
-
-
-def _written(old: Any, si: float, kind: str, declared: dict[str, str]) -> Any:
-    """``si`` as the file would write it where it writes ``old``: in the unit of a string with a unit,
-    else as :func:`linkwork.units.written` writes a value for the file (a bare number where the file
-    reads one, else with its SI unit), 12 significant digits."""
-    if isinstance(old, str):
-        match = _NUMBER_AND_UNIT.match(old)
-        if match is not None and match.group(2):
-            unit = match.group(2).strip()
-            return f"{si / _factor(unit, kind):.12g} {unit}"
-    return written(si, kind, declared, digits=12)
-
-
-# --- an edited description ---------------------------------------------------------------------------
+# --- an edited description: the values checked here, the file edited by linkwork.spec.edit -------------------
 
 
 def edited_spec(mechanism: Mechanism, overrides: dict[str, float]) -> Spec:
     """The description of the compiled ``mechanism`` with ``overrides`` (path -> SI) written in, validated again:
-    what a user gets who edits the file by hand.
+    what a user gets who edits the file by hand (:func:`linkwork.spec.edit.with_values`).
 
     Raises
     ------
@@ -502,183 +443,31 @@ def edited_spec(mechanism: Mechanism, overrides: dict[str, float]) -> Spec:
     SpecError
         The edited description fails validation (the file's message, with its line).
     """
-    spec, mech, kinds = _described(mechanism, overrides)
-    data, declared = _file_data(spec, round_trip=False)
-    set_values(data, overrides, declared, kinds)
-    src = spec.source
-    return validate(Source(data, src.lines if src is not None else {}, src.file if src is not None else None, []))
+    spec, kinds = _described(mechanism, overrides)
+    return edit.with_values(spec, overrides, kinds)
 
 
 def file_text(mechanism: Mechanism, values: dict[str, float]) -> str:
-    """The text of the file of the compiled ``mechanism`` with ``values`` (path -> SI) written in: the text
-    the description was read from (never the file on disk again, which may be another or have changed), its
-    comments and layout kept, each value in the unit the file writes it in (:func:`set_values`).  A value
-    in a mapping or list that the file shares through an anchor is written to this place alone.  The text
-    is read back and must give the description with ``values`` written in (as :func:`edited_spec`); where
-    the layout cannot say it, the file is written out plainly, anchors resolved.  A description built in
-    code is written in SI.
+    """The text of the file of the compiled ``mechanism`` with ``values`` (path -> SI) written in, its comments and
+    layout kept, each value in the unit the file writes it in (:func:`linkwork.spec.edit.text_with_values`).
 
     Raises
     ------
     ParameterError
         An unknown name, a value out of its range, or a mechanism without its description.
     """
-    spec, _, kinds = _described(mechanism, values)
-    plain, declared = _file_data(spec, round_trip=False)
-    set_values(plain, values, declared, kinds)
-    data, _ = _file_data(spec, round_trip=True)
-    if data is not plain:
-        _unshare(data, values)
-        set_values(data, values, declared, kinds)
-        text = yaml_text(data)
-        if read_yaml(text).data == plain:
-            return text
-    return yaml_text(plain)
+    spec, kinds = _described(mechanism, values)
+    return edit.text_with_values(spec, values, kinds)
 
 
-def section_text(mechanism: Mechanism, key: str, values: dict[str, Any]) -> str:
-    """The text of the file of the compiled ``mechanism`` with its top-level section ``key`` set to ``values``:
-    where the file has the section, each value is written in its place (a mapping into a mapping, key by key, so
-    the comments and layout of what stays are kept; a value None removes its key), else the section is added.
-    The text is read back and must validate.
-
-    Raises
-    ------
-    ParameterError
-        A mechanism without its description.
-    SpecError
-        The text written does not validate (the message of the file's check).
-    """
-    from linkwork.spec.load import loads
-
-    spec = mechanism.spec
-    if spec is None:
-        raise ParameterError("this mechanism was assembled in code without a description: it has no file to edit")
-    data, _ = _file_data(spec, round_trip=True)
-    _merge(data, key, values)
-    text = yaml_text(data)
-    loads(text, spec.source.file if spec.source is not None else None)
-    return text
-
-
-def _merge(node: Any, key: str, value: Any) -> None:
-    """Set ``node[key]`` to ``value``, a mapping into an existing mapping key by key; None removes the key."""
-    if value is None:
-        if key in node:
-            del node[key]
-        return
-    old = node.get(key)
-    if isinstance(value, dict) and isinstance(old, dict):
-        for k, v in value.items():
-            _merge(old, k, v)
-        return
-    node[key] = _pruned(value)
-
-
-def _pruned(value: Any) -> Any:
-    """``value`` with the keys whose value is None left out, at every depth."""
-    if isinstance(value, dict):
-        return {k: _pruned(v) for k, v in value.items() if v is not None}
-    return value
-
-
-def yaml_text(data: Any) -> str:
-    """The text of a mechanism file's ``data`` (plain or a ruamel round-trip mapping, whose comments, order
-    and flow style it keeps): the one YAML writer of mechanism files, for edited and synthesised ones alike."""
-    buf = io.StringIO()
-    _yaml().dump(data, buf)
-    return buf.getvalue()
-
-
-def _unshare(data: Any, values: dict[str, float]) -> None:
-    """Make every mapping and list on the paths of ``values`` this place's own in a round-trip tree: an alias
-    (the same node at another place) is replaced here by a copy, and a mapping that merges (``<<:``) a
-    mapping written to keeps the value it inherits as its own."""
-    uses: dict[int, int] = {}
-    _count(data, uses)
-    for path in values:
-        parts = path.split(".")
-        keys = parts[:-1] if parts[-1] in ("x", "y") else parts
-        node = data
-        for i, key in enumerate(keys):
-            if not isinstance(node, dict) or key not in node:
-                break
-            child = node[key]
-            shared = isinstance(child, dict | list) and uses.get(id(child), 0) > 1
-            if shared or i == len(keys) - 1:
-                _pin(node, key)
-            if shared:
-                child = copy.deepcopy(child)
-                node[key] = child
-            node = child
-
-
-def _pin(node: Any, key: str) -> None:
-    """Each mapping that merges ``node`` (``<<:``) and inherits its ``key`` holds a copy of it as its own."""
-    for heir in getattr(node, "_ref", ()):
-        if key in heir and key not in getattr(heir, "_ok", {key}):
-            heir[key] = copy.deepcopy(heir[key])
-
-
-def _count(node: Any, uses: dict[int, int]) -> None:
-    """How many places of the tree hold each mapping and list (an anchored one, more than one)."""
-    if not isinstance(node, dict | list):
-        return
-    uses[id(node)] = uses.get(id(node), 0) + 1
-    if uses[id(node)] == 1:
-        for child in node.values() if isinstance(node, dict) else node:
-            _count(child, uses)
-
-
-def write_file(mechanism: Mechanism, values: dict[str, float], out: str | Path) -> Path:
-    """Write :func:`file_text` of the compiled ``mechanism`` with ``values`` (path -> SI) to ``out``,
-    atomically.  Returns the path."""
-    text = file_text(mechanism, values)
-    return write_atomic(out, lambda tmp: tmp.write_text(text, encoding="utf-8"))
-
-
-def _described(mech: Mechanism, values: dict[str, float]) -> tuple[Spec, Mechanism, dict[str, str]]:
-    """(spec, mechanism, kinds of the paths of ``values``), each value checked against its parameter."""
+def _described(mech: Mechanism, values: dict[str, float]) -> tuple[Spec, dict[str, str]]:
+    """(spec, kinds of the paths of ``values``), each value checked against its parameter."""
     spec = mech.spec
     if spec is None:
-        raise ParameterError("this mechanism was assembled in code without a description: it has no file to edit")
+        raise ParameterError(edit.NO_FILE)
     known = parameters_by_name(mech)
     for path, value in values.items():
         wrong = parameter(mech, path).check(float(value))
         if wrong is not None:
             raise ParameterError(wrong)
-    return spec, mech, {path: known[path].kind for path in values}
-
-
-def _file_data(spec: Spec, round_trip: bool) -> tuple[Any, dict[str, str]]:
-    """The description's data to write values into, and the units bare numbers are read in: the file
-    as written (a ruamel round-trip tree for ``round_trip``, else a deep copy of the loaded data);
-    for a description built in code, its values in SI."""
-    text = spec.source.text if round_trip and spec.source is not None else None
-    if text is not None:
-        data = _yaml().load(text)
-    elif spec.source is not None and isinstance(spec.source.data, dict):
-        data = copy.deepcopy(spec.source.data)
-    else:
-        data = _plain(spec.model_dump(mode="python", exclude_none=True))
-        data["units"] = dict(SI_UNITS)
-    units = data.get("units") if isinstance(data, dict) else None
-    return data, {**DEFAULT_UNITS, **(dict(units) if isinstance(units, dict) else {})}
-
-
-def _yaml() -> Any:
-    from ruamel.yaml import YAML
-
-    yaml = YAML()  # round trip: comments, order and flow style kept
-    yaml.preserve_quotes = True
-    yaml.width = 4096  # no folding of long flow mappings
-    yaml.indent(mapping=2, sequence=4, offset=2)
-    return yaml
-
-
-def _plain(x: Any) -> Any:
-    if isinstance(x, dict):
-        return {k: _plain(v) for k, v in x.items()}
-    if isinstance(x, list | tuple):
-        return [_plain(v) for v in x]
-    return x
+    return spec, {path: known[path].kind for path in values}

@@ -72,11 +72,11 @@ def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
     report to state them beside what the mechanism achieves."""
     import dataclasses
 
-    from linkwork.spec.load import loads
-    from linkwork.structure.parameters import _yaml, yaml_text
+    from linkwork.spec.edit import round_trip_yaml, yaml_text
+    from linkwork.spec.reader import loads
     from linkwork.synthesis.achieved import written
 
-    data = _yaml().load(result.text)
+    data = round_trip_yaml().load(result.text)
     data["requirements"] = written(result.kind, result.requirements, extra)
     data.yaml_set_comment_before_after_key(
         "requirements", before="what the mechanism was synthesised for; the report states it beside what it achieves"

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
 
 #: The requirements the analysis measures, and how they are compared: "equal" or a bound.
 MEASURED = {"stroke": "equal", "swing": "equal", "time_ratio": "equal", "max_pressure_angle": "at most",

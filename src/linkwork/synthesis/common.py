@@ -160,8 +160,8 @@ def commented(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> Any
 
 def file_of(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> tuple[str, Spec]:
     """The mechanism file's text (through the one YAML writer) and the Spec read back from it."""
-    from linkwork.spec.load import loads
-    from linkwork.structure.parameters import yaml_text
+    from linkwork.spec.edit import yaml_text
+    from linkwork.spec.reader import loads
 
     text = yaml_text(commented(data, comments))
     return text, loads(text, "<synthesised>")

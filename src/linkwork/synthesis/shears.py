@@ -277,10 +277,11 @@ def confirm(measured: dict[str, float], predicted: dict[str, float]) -> None:
 def _file(mech, values: dict[str, float], requirements: dict, want: float, why: str, speed: str | None) -> tuple:  # noqa: ANN001
     """The bundled file's text with ``values`` written in (the one writer), a comment beside each derived
     dimension, and the Spec read back."""
-    from linkwork.spec.load import loads
-    from linkwork.structure.parameters import _yaml, file_text, yaml_text
+    from linkwork.spec.edit import round_trip_yaml, yaml_text
+    from linkwork.spec.reader import loads
+    from linkwork.structure.parameters import file_text
 
-    data = _yaml().load(file_text(mech, values))
+    data = round_trip_yaml().load(file_text(mech, values))
     k, up, low = requirements["time_ratio"], requirements["upper_stroke"], requirements["lower_stroke"]
     data["description"] = (
         f"Double-cut shears of the bundled structure (seed 002) synthesised for the knives' strokes "

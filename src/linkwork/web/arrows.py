@@ -1,7 +1,7 @@
 """The forces drawn on the viewer's scheme: the joints' reactions and the external loads, as arrows to one scale.
 
 Every joint gets one arrow, at its point: the force the joint puts on its link of the highest number
-(:meth:`linkwork.kinetostatics.forces.Forces.reaction` with ``on=`` that link), labelled ``R`` with the
+(:meth:`linkwork.kinetostatics.reaction_forces.Forces.reaction` with ``on=`` that link), labelled ``R`` with the
 numbers of the links, e.g. ``R12``, the force of link 1 on link 2 (``R03``: of the frame on link 3).  For a
 prismatic pair it acts at the slider's point, normal to the guide.  The external forces of the file's
 loads (a process load on each of its tools, given forces at their points, springs and dampers at their
@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.motion.plans import _round_scale, percentile
+from linkwork.motion.plans import drawing_scale, percentile
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.web.cycle import Cycle
 
@@ -93,7 +93,7 @@ def force_arrows(cycle: Cycle, size: float) -> Arrows | None:
     size_of = np.hypot(values[..., 0], values[..., 1])
     largest = np.max(size_of, axis=1, initial=0.0, where=np.isfinite(size_of))
     top = percentile(largest[cycle.valid], PERCENTILE) if cycle.valid.any() else 0.0
-    scale = _round_scale(top * 100.0 / (LENGTH * 1000.0 * size)) if top > 0 else 1.0
+    scale = drawing_scale(top * 100.0 / (LENGTH * 1000.0 * size)) if top > 0 else 1.0
     return Arrows(reactions + loads, values, scale, _torque_point(mech))
 
 

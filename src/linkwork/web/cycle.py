@@ -17,9 +17,9 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError, UnassemblableError
-from linkwork.kinetostatics.forces import Forces, forces_of
+from linkwork.kinetostatics.reaction_forces import Forces, forces_of
 from linkwork.motion.analysis import zero_angle
-from linkwork.motion.kinematics import Kinematics, cycle, kinematics
+from linkwork.motion.kinematic_analysis import Kinematics, cycle, kinematics
 from linkwork.scene.scheme import CYCLE
 from linkwork.structure.model import Mechanism, one_crank
 

@@ -29,8 +29,8 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.kinetostatics.force_plans import ForcePlans, force_plans
-from linkwork.kinetostatics.lever import Lever, lever
+from linkwork.kinetostatics.force_polygons import ForcePlans, force_plans
+from linkwork.kinetostatics.zhukovsky import Lever, lever
 from linkwork.lang import group_label, t
 from linkwork.motion.plans import PlanSeries, plan_series
 from linkwork.scene.force_plans import FORCE_KINDS, ForceScene, force_plan_scene, lever_scene

@@ -79,8 +79,8 @@ import numpy as np
 from linkwork.errors import UnassemblableError
 from linkwork.io import jsonout
 from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
-from linkwork.motion.kinematics import kinematics
-from linkwork.motion.plans import PlanSeries, _longest, _round_scale, percentile, plan_series
+from linkwork.motion.kinematic_analysis import kinematics
+from linkwork.motion.plans import PlanSeries, drawing_scale, longest_length, percentile, plan_series
 from linkwork.scene.geometry import SUBSCRIPTED
 from linkwork.scene.plans import KINDS, plan_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
@@ -90,7 +90,7 @@ from linkwork.web.cycle import Cycle, compile_message, solve_cycle
 from linkwork.web.edits import DISPLAY
 
 if TYPE_CHECKING:
-    from linkwork.motion.kinematics import Kinematics
+    from linkwork.motion.kinematic_analysis import Kinematics
 
 FORMAT = "linkwork-view/1"
 
@@ -332,8 +332,8 @@ def cycle_scale(series: PlanSeries, valid: np.ndarray) -> float:
     at most 100 mm (the rare positions near a dead point, where accelerations grow without bound, would
     shrink all the others): the :data:`PLAN_PERCENTILE` of the positions' longest vectors."""
     values = np.where(valid[:, None, None], series.values[0], np.nan)
-    longest = _longest(values[:, : len(series.points)])
-    return _round_scale(percentile(longest, PLAN_PERCENTILE) if len(longest) else 0.0)
+    longest = longest_length(values[:, : len(series.points)])
+    return drawing_scale(percentile(longest, PLAN_PERCENTILE) if len(longest) else 0.0)
 
 
 def placed_samples(n: int, most: int | None) -> np.ndarray:

@@ -24,7 +24,7 @@ import numpy as np
 from linkwork.api import MechanismLike, mechanism_of
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import MetricRequest, parse_metrics
-from linkwork.design.plan import Plan, Ranges, Vary, make_plan, read_varies
+from linkwork.design.plan import Ranges, SweepPlan, Vary, make_plan, read_varies
 from linkwork.design.store import (
     FORMAT,
     cannot_write,
@@ -429,7 +429,7 @@ class _Job:
     Attributes
     ----------
     mech : Mechanism
-    plan : Plan
+    plan : SweepPlan
     metrics : list of str
         The metrics' columns.
     steps : int
@@ -439,11 +439,11 @@ class _Job:
         The plan, the metrics, the crank steps, the chunks and the mechanism's content hash: what the
         manifest of the parts records and the table carries.
     unit : ndarray or None
-        The plan's sample in the unit cube (:meth:`Plan.unit_sample`), drawn once.
+        The plan's sample in the unit cube (:meth:`SweepPlan.unit_sample`), drawn once.
     """
 
     mech: Mechanism
-    plan: Plan
+    plan: SweepPlan
     metrics: list[str]
     steps: int
     units: dict[str, str]
@@ -451,7 +451,9 @@ class _Job:
     unit: np.ndarray | None
 
     @classmethod
-    def of(cls, mech: Mechanism, plan: Plan, requests: list[MetricRequest], steps: int, chunk_size: int | None) -> _Job:
+    def of(
+        cls, mech: Mechanism, plan: SweepPlan, requests: list[MetricRequest], steps: int, chunk_size: int | None
+    ) -> _Job:
         size = int(chunk_size or max(1, CHUNK_SAMPLES // steps))
         metrics = [r.column for r in requests]
         units = {"variant": "1"}

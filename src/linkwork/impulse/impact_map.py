@@ -26,7 +26,7 @@ import numpy.typing as npt
 
 from linkwork.errors import LinkworkError, SlidingReversal
 from linkwork.impulse.mechanism import impulsive_reactions, joint_links, pose_inertia
-from linkwork.kinetostatics.forces import Forces
+from linkwork.kinetostatics.reaction_forces import Forces
 from linkwork.motion import kinematics
 from linkwork.structure.model import Mechanism
 from linkwork.units import turn_deg
@@ -148,7 +148,7 @@ def strike(
     p = kin.point_index(at)
     striker = int(mech.point_link[p])
     link = link if link is not None else mech.link_names[striker]
-    pos, g, _ = kin._point(mech.point_names[p])
+    pos, g, _ = kin.motion_of(mech.point_names[p])
     pos, g = pos[0, 0], g[0, 0]
     jt = pose_inertia(kin) + drive_inertia
     w = float(crank_speed)

@@ -30,7 +30,7 @@ from linkwork.kinetostatics.reactions import (
     solve_reactions,
 )
 from linkwork.motion.analysis import guide_lines
-from linkwork.motion.kinematics import Kinematics, kinematics
+from linkwork.motion.kinematic_analysis import Kinematics, kinematics
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 
@@ -88,8 +88,8 @@ class Forces:
         refined: see ``linkwork.kinetostatics.peaks``), the singular samples."""
         from linkwork.display import number, table
 
-        torque = np.abs(self._torque_all[..., 0])
-        found = self._foundation_filled
+        torque = np.abs(self.driving_torque_all[..., 0])
+        found = self.foundation_filled_all
         return table(
             f"Forces of {self.mechanism.name}",
             [
@@ -118,9 +118,9 @@ class Forces:
         MissingDependencyError
             Without xarray, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.kinetostatics.tables import to_dataset
 
-        return export(self, "xarray")
+        return to_dataset(self)
 
     def to_pandas(self, by: str = "joint") -> Any:
         """:meth:`to_xarray` as a pandas DataFrame: ``by="joint"``, indexed by ``variant`` x ``angle`` x
@@ -132,9 +132,9 @@ class Forces:
         MissingDependencyError
             Without pandas, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.kinetostatics.tables import to_frame
 
-        return export(self, "pandas", by)
+        return to_frame(self, by)
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.kinematics.variants else a[0]
@@ -159,7 +159,10 @@ class Forces:
         return self._out(self.singular_all)
 
     @cached_property
-    def _torque_all(self) -> np.ndarray:
+    def driving_torque_all(self) -> np.ndarray:
+        """Torque (N m; N for a linear drive) each drive puts on its driven link, of every variant,
+        ``(V, A, D)``: the reactions' multipliers of the drives, and at a singular position of one drive the power
+        balance's (:attr:`driving_torque` without the variant axis)."""
         m = self.mechanism
         lam = self.multipliers[..., 2 * m.n_pairs :]
         fill = self.singular_all[..., None] & ~np.isfinite(lam)
@@ -174,7 +177,7 @@ class Forces:
 
         At a singular position (:attr:`singular`: a dead or change point, where the reactions are
         indeterminate) the torque of one drive is still defined: there it is the power balance's."""
-        lam = self._torque_all
+        lam = self.driving_torque_all
         return self._out(lam[..., 0] if self.mechanism.n_drives == 1 else lam)
 
     def pairs(self, joint: str) -> list[int]:
@@ -277,7 +280,9 @@ class Forces:
         return self._out(self.multipliers[..., 2 * k])
 
     @cached_property
-    def _foundation_filled(self) -> np.ndarray:
+    def foundation_filled_all(self) -> np.ndarray:
+        """:attr:`foundation_all` of every variant, ``(V, A, 3)`` (N, N, N m), with the theorem on the change of
+        momentum's value at a singular position, where the reactions are NaN (:attr:`foundation`)."""
         fill = self.singular_all[..., None] & ~np.isfinite(self.foundation_all)
         if not fill.any():
             return self.foundation_all
@@ -290,7 +295,7 @@ class Forces:
 
         At a singular position (:attr:`singular`) it is still defined: there it is the theorem on
         the change of momentum's."""
-        return self._out(self._foundation_filled)
+        return self._out(self.foundation_filled_all)
 
     @property
     def shaking_force(self) -> np.ndarray:
@@ -372,7 +377,7 @@ class Forces:
 def _bolt_quantities(f: Forces) -> np.ndarray:
     """What the bolts carry at each sample, ``(4, V, A)``: the shear ``|Fx|``, the upward force ``Fy`` (a pull where
     positive), the downward ``-Fy`` (a push where positive) and the size of the moment about the origin."""
-    found = f._foundation_filled
+    found = f.foundation_filled_all
     return np.stack([np.abs(found[..., 0]), found[..., 1], -found[..., 1], np.abs(found[..., 2])])
 
 

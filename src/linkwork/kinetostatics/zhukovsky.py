@@ -13,7 +13,7 @@ kinetostatic driving torque by a method that uses neither the reactions nor the 
 joints.
 
 >>> import linkwork as lw
->>> from linkwork.kinetostatics.lever import lever
+>>> from linkwork.kinetostatics.zhukovsky import lever
 >>> f = lw.forces(lw.compile(lw.load("four-bar")), steps=12)
 >>> bool(abs(lever(f).balancing - f.driving_torque).max() < 1e-9 * abs(f.driving_torque).max())
 True
@@ -26,9 +26,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.kinetostatics.force_plans import PlanForce, _cross, _Loads, _perp, _unit, point_names
-from linkwork.kinetostatics.forces import Forces
-from linkwork.motion.kinematics import Kinematics
+from linkwork.kinetostatics.force_polygons import PlanForce, _cross, _Loads, _perp, _unit, point_names
+from linkwork.kinetostatics.reaction_forces import Forces
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.structure.model import Mechanism, one_crank
 
 

@@ -94,9 +94,9 @@ class Kinematics:
         MissingDependencyError
             Without xarray, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.motion.tables import to_dataset
 
-        return export(self, "xarray")
+        return to_dataset(self)
 
     def to_pandas(self, by: str = "point") -> Any:
         """The variables of :meth:`to_xarray` over the points (``by="point"``) or the links (``by="link"``) as a
@@ -107,9 +107,9 @@ class Kinematics:
         MissingDependencyError
             Without pandas, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.motion.tables import to_frame
 
-        return export(self, "pandas", by)
+        return to_frame(self, by)
 
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a if self.variants else a[0]
@@ -309,8 +309,20 @@ class Kinematics:
             raise KeyError(f'no link "{link}"{suggest(link, self.mechanism.link_names)}')
         return self.mechanism.link_names.index(link)
 
-    def _point(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Position, velocity and acceleration of a point, ``(V, A, 2)`` each."""
+    def motion_of(self, point: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position, velocity and acceleration of a point, with the variant axis always.
+
+        Parameters
+        ----------
+        point : str
+            ``link.point`` or a joint name.
+
+        Returns
+        -------
+        position, velocity, acceleration : ndarray
+            ``(V, A, 2)`` each, m, m/s, m/s^2 (one variant: ``V`` = 1, unlike :meth:`position`, which drops the
+            axis); NaN where the mechanism does not assemble.
+        """
         return (
             self._motion(point, fast.POSITION),
             self._motion(point, fast.VELOCITY),

@@ -14,8 +14,8 @@ from linkwork.errors import LinkworkError
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.machine.drive import Drive
 from linkwork.machine.flywheel import Flywheel, size_flywheel_wittenbauer
-from linkwork.machine.reduced import Reduced, reduced
-from linkwork.machine.simulate import Motion, simulate
+from linkwork.machine.reduction import Reduced, reduced
+from linkwork.machine.simulation import Motion, simulate
 from linkwork.motion.analysis import CrankAngles
 from linkwork.structure.model import Mechanism
 
@@ -70,9 +70,9 @@ class Dynamics:
         MissingDependencyError
             Without xarray, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.machine.tables import to_dataset
 
-        return export(self, "xarray")
+        return to_dataset(self)
 
     def to_pandas(self, by: str = "angle") -> Any:
         """The variables of :meth:`to_xarray` over the crank angle (``by="angle"``) or over the steady
@@ -83,9 +83,9 @@ class Dynamics:
         MissingDependencyError
             Without pandas, naming the extra that brings it.
         """
-        from linkwork.display import export
+        from linkwork.machine.tables import to_frame
 
-        return export(self, "pandas", by)
+        return to_frame(self, by)
 
     @property
     def startup_time(self) -> float:

@@ -25,11 +25,12 @@ from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import METRICS, MetricRequest, parse_metrics
 from linkwork.design.plan import Ranges, Vary, read_varies
 from linkwork.design.store import cannot_write
-from linkwork.design.sweep import Columns, SweepTable
+from linkwork.design.sweeps import Columns, SweepTable
 from linkwork.errors import DesignError, UnitParseError
 from linkwork.limits import TURN_STEPS
+from linkwork.spec.edit import write_text
 from linkwork.structure.model import Mechanism
-from linkwork.structure.parameters import file_units, parameter, write_file
+from linkwork.structure.parameters import file_text, file_units, parameter
 from linkwork.units import KINDS, parse_quantity
 
 
@@ -410,8 +411,8 @@ def _first(cols: Columns) -> dict[str, float]:
 
 def _write(problem: _Problem, best: np.ndarray, out: str | Path) -> Path:
     """The mechanism file with the values ``best``, written to ``out``
-    (:func:`~linkwork.structure.parameters.write_file`)."""
+    (:func:`~linkwork.structure.parameters.file_text`, :func:`~linkwork.spec.edit.write_text`)."""
     try:
-        return write_file(problem.mech, dict(zip(problem.paths, best.tolist(), strict=True)), out)
+        return write_text(file_text(problem.mech, dict(zip(problem.paths, best.tolist(), strict=True))), out)
     except OSError as exc:
         raise DesignError([f'--out "{out}": cannot write ({exc})']) from None

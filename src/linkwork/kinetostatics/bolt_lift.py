@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 
-from linkwork.kinetostatics.forces import Forces, forces
 from linkwork.kinetostatics.peaks import POINTS, peak_of, refine
+from linkwork.kinetostatics.reaction_forces import Forces, forces
 from linkwork.limits import TURN_STEPS
 from linkwork.structure.model import Mechanism
 
@@ -27,13 +27,14 @@ def bolt_speed(mech: Mechanism, pull: float = 0.0, *, steps: int = TURN_STEPS) -
     0 if the bolts carry that pull at rest already.
     """
     at_rest, at_one = forces(mech, steps=steps, speed=0.0), forces(mech, steps=steps, speed=1.0)
-    lifting = peak_of(at_rest, lambda g: g._foundation_filled[..., 1], "max").value[0]
+    lifting = peak_of(at_rest, lambda g: g.foundation_filled_all[..., 1], "max").value[0]
     if lifting >= pull:
         return 0.0
 
     def need(rest: Forces, one: Forces) -> np.ndarray:
         """The square of the speed at which the pull reaches ``pull`` at each sample, ``(V, A)``."""
-        g, inertia = rest._foundation_filled[..., 1], one._foundation_filled[..., 1] - rest._foundation_filled[..., 1]
+        g = rest.foundation_filled_all[..., 1]
+        inertia = one.foundation_filled_all[..., 1] - g
         return np.where(inertia > 0, (pull - g) / inertia, np.inf)
 
     def quantity(at: np.ndarray) -> np.ndarray:

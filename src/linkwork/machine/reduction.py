@@ -33,11 +33,11 @@ import numpy as np
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.external import evaluate
 from linkwork.kinetostatics.external import power as external_power
-from linkwork.kinetostatics.forces import forces_of
+from linkwork.kinetostatics.reaction_forces import forces_of
 from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.motion import cycle, kinematics
-from linkwork.motion.kinematics import Kinematics, direction
+from linkwork.motion.kinematic_analysis import Kinematics, direction
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.units import turn_deg
 

@@ -21,7 +21,7 @@ from linkwork.sizing.common import Catalogue, Table, bundled
 from linkwork.sizing.links import Bars, bars
 from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue
 from linkwork.sizing.pairs import pairs_of
-from linkwork.sizing.pins import Pins, Steel, pins
+from linkwork.sizing.pin_shear import Pins, Steel, pins
 from linkwork.structure.model import Mechanism
 
 #: The default life of rolling bearings, h.
@@ -156,7 +156,7 @@ def size(
     bush_limits = Bush(bush, bush_row["p"], bush_row["v"], bush_row["pv"])
     grade = Steel(steel, steel_row["yield"], steel_row["tensile"], steel_row["endurance"])
     pin_sizes, guides, given = _file_parts(file)
-    from linkwork.kinetostatics.forces import forces
+    from linkwork.kinetostatics.reaction_forces import forces
     from linkwork.motion.analysis import CrankAngles
 
     f = forces(mech, steps=steps)
@@ -181,7 +181,7 @@ def size(
         missing["bolts"] = "no bolt pattern: give sizing: bolts: [[x, y], ...] in the file"
     choice = None  # last: the runs of the machine take the longest, and the other parts' problems come first
     if motor:
-        from linkwork.machine.reduced import reduced
+        from linkwork.machine.reduction import reduced
 
         cat = motor_catalogue(catalogue)
         choice = choose_motor(mech, reduced(mech), delta, efficiency=efficiency, reserve=reserve, catalogue=cat,

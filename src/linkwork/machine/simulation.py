@@ -28,7 +28,7 @@ from linkwork.errors import LinkworkError
 
 if TYPE_CHECKING:
     from linkwork.machine.drive import Drive
-    from linkwork.machine.reduced import Reduced
+    from linkwork.machine.reduction import Reduced
 
 
 class Curve(NamedTuple):
@@ -107,7 +107,7 @@ class PeriodicSplines:
 
 
 @dataclass(frozen=True)
-class Event:
+class IntegrationEvent:
     """A terminal event of scipy's ``solve_ivp`` with a name: where ``fn(t, y)`` crosses zero in
     ``direction`` (negative: falling, positive: rising, zero: either way)."""
 
@@ -120,7 +120,7 @@ class Event:
         return self.fn(t, y)
 
 
-def fired(events: Sequence[Event], sol: Any) -> frozenset[str]:
+def fired(events: Sequence[IntegrationEvent], sol: Any) -> frozenset[str]:
     """The names of the events that ended (or occurred in) the solution ``sol`` of ``solve_ivp``."""
     return frozenset(event.name for event, times in zip(events, sol.t_events, strict=True) if len(times))
 
@@ -134,7 +134,7 @@ class InertiaAndLoad(NamedTuple):
 
 
 class Model:
-    """``J`` and ``M`` of a :class:`~linkwork.machine.reduced.Reduced` as fast scalar functions: ``J``
+    """``J`` and ``M`` of a :class:`~linkwork.machine.reduction.Reduced` as fast scalar functions: ``J``
     by a periodic cubic spline, ``M`` linear between the grid points (technological loads have corners)."""
 
     def __init__(self, red: Reduced, extra_inertia: float = 0.0) -> None:
@@ -329,7 +329,7 @@ class _Unit:
         from scipy.integrate import solve_ivp
 
         hi = self.psi0 + 2 * np.pi * (k + 1)
-        stalled = Event("stalled", _stalled, -1)
+        stalled = IntegrationEvent("stalled", _stalled, -1)
         sol = solve_ivp(
             self, (lo, hi), [t0, e0], method="DOP853", rtol=self.rtol, atol=[1e-12, 1e-12 * max(e0, 1.0)],
             events=stalled, dense_output=True,

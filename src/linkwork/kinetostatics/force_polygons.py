@@ -20,13 +20,13 @@ polygon with the frame's reaction ``R01``, and its moment equation about the piv
 moment (the driving torque).
 
 These are solved here by their own arithmetic, from the loads and the positions, not read from
-:class:`~linkwork.kinetostatics.forces.Forces`: the two are independent methods and agree (the tests
+:class:`~linkwork.kinetostatics.reaction_forces.Forces`: the two are independent methods and agree (the tests
 compare them).  Groups the textbook method above does not cover (class III and higher, dyads with an
 inner prismatic pair, groups with a slot block) are closed by the reactions of the analytic solution
 (``GroupPlan.solved`` is False for them).
 
 >>> import linkwork as lw
->>> from linkwork.kinetostatics.force_plans import force_plans
+>>> from linkwork.kinetostatics.force_polygons import force_plans
 >>> plans = force_plans(lw.forces(lw.compile(lw.load("four-bar")), steps=12))
 >>> [g.label for g in plans.groups]
 ['II(2,3) RRR', 'I(0,1) R']
@@ -38,9 +38,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkwork.kinetostatics.forces import Forces
 from linkwork.kinetostatics.geometry import guide_direction
-from linkwork.motion.plans import _round_scale
+from linkwork.kinetostatics.reaction_forces import Forces
+from linkwork.motion.plans import drawing_scale
 from linkwork.structure.model import Mechanism, PairType, point_labels
 
 #: How each kind of force is named in each language: symbol -> (English, Russian).
@@ -185,7 +185,7 @@ class GroupPlan:
         v = self.vertices(index, variant)
         v = v[np.isfinite(v).all(-1)]
         span = float(np.max(v.max(0) - v.min(0))) if len(v) else 0.0
-        return _round_scale(span)
+        return drawing_scale(span)
 
 
 @dataclass(frozen=True)
