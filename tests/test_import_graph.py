@@ -1,8 +1,10 @@
 """The import graph of the package reads top-down: no cycles between packages or between modules, the
 imports made inside functions included, and the core never imports the edge.
 
-Built from the source with ``ast`` (every ``import`` and ``from ... import`` anywhere in a module,
-those under ``if TYPE_CHECKING:`` left out, as they never run).
+Built from the source with ``ast`` (every ``import`` and ``from ... import`` anywhere in a module).  Between
+packages every import counts, those under ``if TYPE_CHECKING:`` included: a type a module names is a
+dependency on its package even where the import never runs (the compiled model names no stage above it).
+Between the modules of one package the imports under ``if TYPE_CHECKING:`` are left out, as they never run.
 """
 
 from __future__ import annotations
@@ -37,9 +39,10 @@ def _type_checking_nodes(tree: ast.AST) -> set[int]:
     return skip
 
 
-def _edges(modules: dict[str, Path]) -> dict[str, set[str]]:
+def _edges(modules: dict[str, Path], type_checking: bool = True) -> dict[str, set[str]]:
     """Module -> the linkwork modules it imports (a name imported from a package that is a module of
-    its own counts as that module)."""
+    its own counts as that module); with ``type_checking`` False, those imported only under
+    ``if TYPE_CHECKING:`` left out."""
 
     def known(name: str) -> str:
         while name not in modules and "." in name:
@@ -49,7 +52,7 @@ def _edges(modules: dict[str, Path]) -> dict[str, set[str]]:
     edges: dict[str, set[str]] = defaultdict(set)
     for name, path in modules.items():
         tree = ast.parse(path.read_text(encoding="utf-8"))
-        skip = _type_checking_nodes(tree)
+        skip = set() if type_checking else _type_checking_nodes(tree)
         package = name if path.name == "__init__.py" else name.rsplit(".", 1)[0]
         for node in ast.walk(tree):
             if id(node) in skip:
@@ -114,11 +117,12 @@ def _package(module: str) -> str:
 
 @pytest.fixture(scope="module")
 def edges():
+    """Every import, those under ``if TYPE_CHECKING:`` included."""
     return _edges(_modules())
 
 
-def test_no_module_imports_another_that_imports_it_back(edges):
-    assert _cycles(edges) == []
+def test_no_module_imports_another_that_imports_it_back():
+    assert _cycles(_edges(_modules(), type_checking=False)) == []
 
 
 def test_no_package_imports_another_that_imports_it_back(edges):
@@ -156,3 +160,12 @@ def test_synthesis_sits_above_the_analyses_and_below_the_drawings_reports_and_co
 def test_the_checks_can_fail():
     """A graph with a cycle is found to have one."""
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+def test_an_import_for_type_checking_is_an_edge(tmp_path):
+    """An import under ``if TYPE_CHECKING:`` counts between packages (the model's names of the stages above it
+    were such imports), and is left out where asked."""
+    (tmp_path / "low.py").write_text("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import linkwork.high\n")
+    modules = {"linkwork.low": tmp_path / "low.py", "linkwork.high": tmp_path / "low.py"}
+    assert _edges(modules)["linkwork.low"] == {"linkwork.high"}
+    assert "linkwork.low" not in _edges(modules, type_checking=False)

@@ -37,10 +37,11 @@ from linkwork.kinetostatics.efficiency import Efficiency
 from linkwork.kinetostatics.force_plans import ForcePlans, GroupPlan, PlanForce, force_plans
 from linkwork.kinetostatics.forces import Forces, forces, forces_of
 from linkwork.kinetostatics.free_body import FreeBody
-from linkwork.kinetostatics.friction import FrictionSolution, PairFriction
+from linkwork.kinetostatics.friction import FrictionSolution
 from linkwork.kinetostatics.lever import Lever, lever
 from linkwork.kinetostatics.peaks import Peak, foundation_peak, torque_peak
 from linkwork.kinetostatics.reactions import Loads
+from linkwork.structure.records import PairFriction
 
 __all__ = [
     "Balance",
