@@ -169,3 +169,10 @@ def test_an_import_for_type_checking_is_an_edge(tmp_path):
     modules = {"linkwork.low": tmp_path / "low.py", "linkwork.high": tmp_path / "low.py"}
     assert _edges(modules)["linkwork.low"] == {"linkwork.high"}
     assert "linkwork.low" not in _edges(modules, type_checking=False)
+
+
+def test_no_module_is_named_for_no_one_thing():
+    """A module is named for what it holds: none is called ``fast``, ``utils`` or ``helpers`` (the numba twins
+    of the kernels are ``kernels_numba`` and ``reactions_numba``)."""
+    vague = {"fast", "utils", "helpers"}
+    assert [name for name in _modules() if name.rsplit(".", 1)[-1] in vague] == []

@@ -529,7 +529,7 @@ def test_bad_input_is_refused():
     with pytest.raises(LinkworkError, match="feed"):
         Tool(mass=3.0, feed=0.0)
     with pytest.raises(LinkworkError, match="drive"):
-        simulate_blows(dataclasses.replace(MECH, machine=None))
+        simulate_blows(dataclasses.replace(MECH, motor_gear=None))
     with pytest.raises(LinkworkError, match="tool"):
         simulate_blows(dataclasses.replace(MECH, blow=MECH.blow.model_copy(update={"tool": None})))
     with pytest.raises(LinkworkError, match="stops"):  # a motor far too weak for the work

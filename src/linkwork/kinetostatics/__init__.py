@@ -22,6 +22,10 @@ A joint's ``friction: {f, radius}`` adds friction in proportion to its pairs' fo
 reactions (:mod:`linkwork.kinetostatics.friction`); :attr:`Forces.efficiency` splits the drive's power into
 the useful loads', each pair's friction and the energy rates (:mod:`linkwork.kinetostatics.efficiency`).
 
+The reactions have two twins that give the same numbers: the NumPy solves (:mod:`~linkwork.kinetostatics.reactions`,
+the reference) and the same arithmetic compiled with numba (:mod:`~linkwork.kinetostatics.reactions_numba`), which
+runs where the compiled kinematics ran; adding a kind of group to the twins: :mod:`linkwork.motion`'s docstring.
+
 >>> import linkwork as lw
 >>> f = lw.forces(lw.compile(lw.load("shears-slider-crank")), steps=72)
 >>> f.foundation.shape
