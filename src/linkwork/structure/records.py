@@ -184,14 +184,14 @@ class MotorGear:
 
     @property
     def inertia(self) -> float:
-        """Constant inertia the drive adds on the crank shaft, kg m^2."""
+        """Constant inertia the rotor and the flywheel add on the crank shaft, kg m^2."""
         on_motor = self.rotor + (self.flywheel if self.flywheel_on == "motor" else 0.0)
         return on_motor * self.ratio**2 + (self.flywheel if self.flywheel_on == "crank" else 0.0)
 
     def moment(self, omega: Any) -> Any:
-        """Moment (N m) of the drive on the crank at crank speed ``omega``."""
+        """Moment (N m) of the motor, through the gear, on the crank at crank speed ``omega``."""
         return self.ratio * self.efficiency * self.motor(self.ratio * speeds(omega))
 
     def with_flywheel(self, inertia: float) -> MotorGear:
-        """The same drive with another flywheel (on the same shaft)."""
+        """The same motor and gear with another flywheel (on the same shaft)."""
         return dataclasses.replace(self, flywheel=inertia)
