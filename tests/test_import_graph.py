@@ -2,8 +2,10 @@
 imports made inside functions included, and the core never imports the edge, nor reaches it through another module.
 
 Built from the source with ``ast`` (every ``import`` and ``from ... import`` anywhere in a module, and every
-module named as text to be imported: ``importlib.import_module("...")``, a table of ``(module, name)`` pairs;
-those under ``if TYPE_CHECKING:`` left out, as they never run).
+module named as text to be imported: ``importlib.import_module("...")``, a table of ``(module, name)`` pairs).
+Between packages every import counts, those under ``if TYPE_CHECKING:`` included: a type a module names is a
+dependency on its package even where the import never runs (the compiled model names no stage above it).
+Between the modules of one package the imports under ``if TYPE_CHECKING:`` are left out, as they never run.
 """
 
 from __future__ import annotations
@@ -75,10 +77,13 @@ def _targets(node: ast.AST, package: str, modules: dict[str, Path]) -> list[str]
     return []
 
 
-def _edges(modules: dict[str, Path], deferred: set[tuple[str, str]] | None = None) -> dict[str, set[str]]:
+def _edges(
+    modules: dict[str, Path], deferred: set[tuple[str, str]] | None = None, type_checking: bool = True
+) -> dict[str, set[str]]:
     """Module -> the linkwork modules it imports (a name imported from a package that is a module of
     its own counts as that module), inside functions too; ``deferred`` collects the edges that only a function
-    makes (when it is called, never when the module is imported)."""
+    makes (when it is called, never when the module is imported); with ``type_checking`` False, those imported
+    only under ``if TYPE_CHECKING:`` left out."""
 
     def known(name: str) -> str:
         while name not in modules and "." in name:
@@ -89,7 +94,7 @@ def _edges(modules: dict[str, Path], deferred: set[tuple[str, str]] | None = Non
     at_import: dict[str, set[str]] = defaultdict(set)
     for name, path in modules.items():
         tree = ast.parse(path.read_text(encoding="utf-8"))
-        skip = _type_checking_nodes(tree)
+        skip = set() if type_checking else _type_checking_nodes(tree)
         inside = _function_nodes(tree)
         package = name if path.name == "__init__.py" else name.rsplit(".", 1)[0]
         for node in ast.walk(tree):
@@ -159,19 +164,21 @@ DEFERRED = {("linkwork.motion.kinematic_analysis", "linkwork.motion.tables")}
 @pytest.fixture(scope="module")
 def deferred():
     out: set[tuple[str, str]] = set()
-    _edges(_modules(), out)
+    _edges(_modules(), out, type_checking=False)
     return out
 
 
 @pytest.fixture(scope="module")
 def edges():
+    """Every import, those under ``if TYPE_CHECKING:`` included."""
     return _edges(_modules())
 
 
-def test_no_module_imports_another_that_imports_it_back(edges, deferred):
+def test_no_module_imports_another_that_imports_it_back(deferred):
     assert DEFERRED <= deferred, "each loop let through is an import made inside a function only"
     assert all(_package(a) == _package(b) for a, b in DEFERRED)
-    kept = {a: {b for b in targets if (a, b) not in DEFERRED} for a, targets in edges.items()}
+    running = _edges(_modules(), type_checking=False)
+    kept = {a: {b for b in targets if (a, b) not in DEFERRED} for a, targets in running.items()}
     assert _cycles(kept) == []
 
 
@@ -251,3 +258,19 @@ def test_the_checks_can_fail(tmp_path):
     assert edges == {"linkwork.core": {"linkwork.hub"}, "linkwork.hub": {"linkwork.edge"}}
     assert out == {("linkwork.core", "linkwork.hub")}
     assert _reach(edges, "linkwork.core") == {"linkwork.hub", "linkwork.edge"}
+
+
+def test_an_import_for_type_checking_is_an_edge(tmp_path):
+    """An import under ``if TYPE_CHECKING:`` counts between packages (the model's names of the stages above it
+    were such imports), and is left out where asked."""
+    (tmp_path / "low.py").write_text("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import linkwork.high\n")
+    modules = {"linkwork.low": tmp_path / "low.py", "linkwork.high": tmp_path / "low.py"}
+    assert _edges(modules)["linkwork.low"] == {"linkwork.high"}
+    assert "linkwork.low" not in _edges(modules, type_checking=False)
+
+
+def test_no_module_is_named_for_no_one_thing():
+    """A module is named for what it holds: none is called ``fast``, ``utils`` or ``helpers`` (the numba twins
+    of the kernels are ``kernels_numba`` and ``reactions_numba``)."""
+    vague = {"fast", "utils", "helpers"}
+    assert [name for name in _modules() if name.rsplit(".", 1)[-1] in vague] == []

@@ -183,11 +183,12 @@ def test_warm_compiles_every_kernel_the_analyses_call():
     from numba.core.registry import CPUDispatcher
 
     from linkwork.api import compile_kernels
-    from linkwork.kinetostatics import fast as kfast
-    from linkwork.motion import fast as mfast
+    from linkwork.kinetostatics import reactions_numba
+    from linkwork.motion import kernels_numba
 
     compile_kernels()
-    dispatchers = [f for m in (mfast, kfast) for f in vars(m).values() if isinstance(f, CPUDispatcher)]
+    twins = (kernels_numba, reactions_numba)
+    dispatchers = [f for m in twins for f in vars(m).values() if isinstance(f, CPUDispatcher)]
     before = {d: len(d.signatures) for d in dispatchers}
     for name in lw.examples.names():
         mech = lw.compile(name)
@@ -196,7 +197,7 @@ def test_warm_compiles_every_kernel_the_analyses_call():
                 kin.position(point), kin.velocity(point), kin.acceleration(point)
             if mech.structure.redundant == 0:
                 lw.forces(kin)
-        if mech.machine is not None:
+        if mech.motor_gear is not None:
             lw.dynamics(mech, steps=360)
         params = lw.parameters(mech)
         if params:

@@ -80,13 +80,8 @@ def private_attributes(trees: dict[Path, ast.AST]) -> list[str]:
     return out
 
 
-#: Imports being made public by other work: the numba kernels' thread pool (issue 32, item 2, which renames the
-#: ``fast`` modules); to be emptied when it lands.
-PENDING = {"from linkwork.motion.fast import _pool"}
-
-
 def test_no_private_name_is_imported_from_another_package():
-    assert [line for line in private_imports(_trees()) if line.split(": ", 1)[1] not in PENDING] == []
+    assert private_imports(_trees()) == []
 
 
 def test_no_private_attribute_of_another_package_is_used():

@@ -39,7 +39,7 @@ from linkwork.machine.drive import from_spec
 from linkwork.machine.reduction import reduced as _reduced
 from linkwork.machine.steady_cycle import dynamics as _dynamics
 from linkwork.machine.timerun import simulate as _simulate
-from linkwork.motion import fast
+from linkwork.motion import kernels_numba
 from linkwork.motion.kernels import with_branches
 from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.motion.kinematic_analysis import kinematics as _kinematics
@@ -101,16 +101,17 @@ def mechanism_of(mechanism: object, what: str = "mechanism") -> Mechanism:
 
 
 def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name of the pipeline step
-    """Compile a description into a :class:`~linkwork.structure.model.Mechanism`.
+    """Compile a description into a :class:`~linkwork.structure.model.Mechanism`: the one compile.
 
     ``spec``: a validated Spec, or a mechanism file's path or a bundled example's name (loaded
-    first); a compiled Mechanism is returned as it is.  The stages: the structural model
+    first); a compiled Mechanism is returned as it is.  The stages, each giving data of the model
+    (the records of :mod:`linkwork.structure.records`): the structural model
     (:func:`linkwork.structure.compile.structural_model`: arrays, Assur groups, assembly pose,
     redundant constraints), the solve program of its groups (:func:`linkwork.motion.program.build`, the
-    branches read off the assembly pose by :func:`linkwork.motion.kernels.with_branches`,
-    encoded for the compiled kernels where they cover it), the external loads
-    (:func:`linkwork.kinetostatics.external.compile_loads`), the friction in the pairs
-    (:func:`linkwork.kinetostatics.friction.compile_friction`) and the machine's drive
+    branches read off the assembly pose by :func:`linkwork.motion.kernels.with_branches`, and its table
+    for the compiled kernels where they cover it: :func:`linkwork.motion.kernels_numba.encode`), the
+    external loads (:func:`linkwork.kinetostatics.external.compile_loads`), the friction in the pairs
+    (:func:`linkwork.kinetostatics.friction.compile_friction`) and the machine unit's motor and gear
     (:func:`linkwork.machine.drive.from_spec`).
 
     Raises
@@ -132,11 +133,13 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
         spec = described
     mech = structural_model(spec)
     program = tuple(with_branches(mech, build(mech)))
-    encoded = fast.encode(program, mech.point_link) if fast.supports(program) else None
-    drive = from_spec(spec.machine) if spec.machine is not None else None
-    loads, friction = compile_loads(spec, mech), compile_friction(spec, mech)
     return dataclasses.replace(
-        mech, program=program, fast_program=encoded, loads=loads, friction=friction, machine=drive
+        mech,
+        program=program,
+        program_table=kernels_numba.encode(program, mech.point_link) if kernels_numba.supports(program) else None,
+        loads=compile_loads(spec, mech),
+        friction=compile_friction(spec, mech),
+        motor_gear=from_spec(spec.machine) if spec.machine is not None else None,
     )
 
 
@@ -200,7 +203,7 @@ def compile_kernels() -> list[str]:
                 _forces(kin)
             except LinkworkError:  # not statically determinate: no reactions to compile for
                 pass
-        if mech.machine is not None:
+        if mech.motor_gear is not None:
             _dynamics(mech)
         done.append(name)
     jit.mark_ready()

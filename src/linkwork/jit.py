@@ -43,7 +43,7 @@ from typing import Any
 
 #: The modules whose functions :func:`jit_in_place` compiles, relative to the package (their sources and
 #: times are part of the key of the cache, as numba's own index keys each function's).
-KERNEL_MODULES = ("motion/fast.py", "kinetostatics/fast.py")
+KERNEL_MODULES = ("motion/kernels_numba.py", "kinetostatics/reactions_numba.py")
 
 #: Samples (variants times angles) of a batch from which loading the compiled kernels pays (about half a
 #: second to import numba and load them; the NumPy reactions take about 35 us a sample of the double-cut

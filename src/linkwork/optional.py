@@ -6,7 +6,7 @@ package and the pip command; the command line checks what a command needs before
 work and prints that one line (exit code 2).
 
 numba is not among them: it comes with linkwork where it has wheels, and without it the
-NumPy kernels run (see :mod:`linkwork.motion.fast`).
+NumPy kernels run (see :mod:`linkwork.jit`).
 """
 
 from __future__ import annotations

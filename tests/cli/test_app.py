@@ -277,10 +277,10 @@ def test_numba_comes_with_linkwork_and_pandas_with_its_tables():
     extras = project["optional-dependencies"]
     assert "pandas" in {Requirement(r).name for r in extras["design"]}
     assert not any(Requirement(r).name == "numba" for reqs in extras.values() for r in reqs)
-    from linkwork.motion import fast
+    from linkwork.motion import kernels_numba
 
     if marker.evaluate() and os.environ.get("LINKWORK_NUMBA") == "1":
-        assert fast.available()  # installed with linkwork here, and asked for: the compiled kernels run
+        assert kernels_numba.available()  # installed with linkwork here, and asked for: the compiled kernels run
 
 
 def _strict(text: str) -> Any:

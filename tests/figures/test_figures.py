@@ -35,7 +35,7 @@ def test_every_figure_draws_every_example(name, tmp_path):
     ]
     if f is not None:
         drawn += [figures.torque_diagram(f), figures.foundation_diagram(f), figures.hodograph(f, joint)]
-    if mech.machine is not None:
+    if mech.motor_gear is not None:
         drawn.append(figures.dynamics_diagrams(lw.dynamics(mech, steps=720)))
     for i, fig in enumerate(drawn):
         assert fig.axes, f"figure {i} has no axes"

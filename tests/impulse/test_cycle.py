@@ -14,7 +14,7 @@ from typer.testing import CliRunner
 import linkwork as lw
 from linkwork.errors import LinkworkError
 from linkwork.impulse import SlidingReversal, Tool, simulate_blows, strike
-from linkwork.machine import ConstantTorque, Drive, LinearMotor
+from linkwork.machine import ConstantTorque, LinearMotor, MotorGear
 
 MECH = lw.compile(lw.example("percussion-rocker"))
 UP = (0.0, 1.0)
@@ -57,7 +57,7 @@ def test_energy_is_conserved_between_impacts_without_motor_and_friction():
     """No motor, no friction, no resistance of the work: between the impacts (and the tool's stops
     on its seat) the kinetic energy of mechanism, flywheel and tool, gravity's potential and the
     feed's ``F u`` add up to a constant, evaluated from the exact kinematics."""
-    drive = Drive(ConstantTorque(0.0), flywheel=0.6)
+    drive = MotorGear(ConstantTorque(0.0), flywheel=0.6)
     tool = Tool(mass=3.0, feed=250.0)
     run = simulate_blows(MECH, drive, tool=tool, friction=0.0, blows=3, tol=0.0)
     inertia, _, potential, _, _, _ = _pose(MECH.drive_start[0] + SIGN * run.psi)
@@ -104,7 +104,7 @@ def test_the_motor_works_at_its_own_shaft_and_the_gear_takes_its_share(example):
     from scipy.integrate import simpson
     from scipy.interpolate import CubicSpline
 
-    run, drive = example, MECH.machine
+    run, drive = example, MECH.motor_gear
     motor = 0.0
     for idx in _segments(run):
         t, w = run.t[idx], run.omega[idx]
@@ -175,7 +175,7 @@ def _check_blow_balances(b, tool_mass, drive_inertia, restitution, friction):
 
 
 def test_each_blow_balances_impulse_and_momentum(example):
-    drive = MECH.machine
+    drive = MECH.motor_gear
     for b in example.blows[:2] + example.blows[-1:]:
         _check_blow_balances(b, 3.0, drive.inertia, 0.4, 0.15)
 
@@ -229,7 +229,7 @@ def test_a_rebound_on_a_moving_tool_balances_momentum_and_restitution(tool_speed
     generalised part ``dK/dpsi . S``, the normal closing speed reverses times R, and the friction
     opposes the sliding in the ratio f."""
     angle = float(MECH.drive_start[0])
-    jd, mt, r, f = MECH.machine.inertia, 3.0, 0.4, 0.15
+    jd, mt, r, f = MECH.motor_gear.inertia, 3.0, 0.4, 0.15
     s = strike(
         MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=30.0, restitution=r, friction=f,
         tool_mass=mt, tool_speed=tool_speed, drive_inertia=jd,
@@ -255,7 +255,7 @@ def test_a_rebound_on_a_moving_tool_balances_momentum_and_restitution(tool_speed
 def test_a_crank_thrown_back_by_the_blow_is_reported_as_a_stall(friction):
     """No flywheel and a heavy tool: the elastic blow throws the crank back (the rocker rebounds off
     the 200 kg tool), so the crank never turns through its cycle: an error, not blows per minute."""
-    drive = dataclasses.replace(MECH.machine, flywheel=0.0)
+    drive = dataclasses.replace(MECH.motor_gear, flywheel=0.0)
     tool = Tool(200.0, 250.0, 2000.0)
     # the first blow alone: the crank's speed after it, from the impact map, is negative
     start = MECH.drive_start[0]
@@ -275,7 +275,7 @@ def test_a_heavy_tool_without_flywheel_stops_the_crank_with_a_clear_error(restit
     leaves it so slow that the crank comes to rest while it presses the tool (the tool's speed, tied to
     the crank's in contact, falls to zero with it). Either way: the crank stops, said at once, not a
     run through thousands of empty contact phases to a limit."""
-    drive = dataclasses.replace(MECH.machine, flywheel=0.0)
+    drive = dataclasses.replace(MECH.motor_gear, flywheel=0.0)
     tool = Tool(300.0, 250.0, 2000.0)
     phase = "flight" if restitution is None else "contact"
     with pytest.raises(LinkworkError, match=f"crank stops at .* deg \\(in the {phase} phase") as err:
@@ -325,7 +325,7 @@ def test_elastic_blows_in_the_cycle_lose_no_energy():
     for b in run.blows:
         assert abs(b.energy_lost) < 1e-9 * b.energy_before
         assert abs(b.rebound_loss) < 1e-9 * b.energy_before
-        _check_blow_balances(b, 3.0, MECH.machine.inertia, 1.0, 0.0)
+        _check_blow_balances(b, 3.0, MECH.motor_gear.inertia, 1.0, 0.0)
     assert abs(run.energy["blows"]) < 1e-9 * run.energy["motor"]
     assert abs(run.balance) < 1e-7 * run.energy["motor"]
 
@@ -334,7 +334,7 @@ def test_blows_per_minute_against_the_motor_balance_with_a_large_flywheel():
     """With a flywheel so large that the crank's speed hardly changes, the steady speed is where the
     motor's moment times 2 pi covers the energy the cycle consumes: one blow per turn at that speed."""
     stall, no_load, ratio = 600.0, 160.0, 5.0
-    drive = Drive(LinearMotor(stall=stall, no_load=no_load), ratio=ratio, flywheel=40.0)
+    drive = MotorGear(LinearMotor(stall=stall, no_load=no_load), ratio=ratio, flywheel=40.0)
 
     def balanced(consumed):
         """The crank speed at which ratio * stall * (1 - ratio w / no_load) * 2 pi = consumed."""
@@ -387,8 +387,8 @@ def _free_gap_acceleration(run, k, into):
     angle = MECH.drive_start[0] + SIGN * run.psi[k]
     inertia, slope, _, gravity_moment, g, h = _pose([angle])
     w = run.omega[k]
-    jt = inertia[0] + MECH.machine.inertia
-    acc = (gravity_moment[0] + float(MECH.machine.moment(w)) - 0.5 * slope[0] * w * w) / jt
+    jt = inertia[0] + MECH.motor_gear.inertia
+    acc = (gravity_moment[0] + float(MECH.motor_gear.moment(w)) - 0.5 * slope[0] * w * w) / jt
     striker = g[0, 1] * acc + h[0, 1] * w * w  # g, h: dK/dpsi, d2K/dpsi2
     tool = -(run.tool.feed + (run.tool.resistance if into else 0.0)) / run.tool.mass
     return striker + tool
@@ -449,7 +449,7 @@ def test_the_loads_in_the_contact_phase_balance_every_links_acceleration(example
     the flywheel and rotor take, M_d(psi') - J_d psi''."""
     from linkwork.motion import kinematics
 
-    run, loads, drive = example, example.contact, MECH.machine
+    run, loads, drive = example, example.contact, MECH.motor_gear
     assert len(loads.t) > 10
     t = run.t - run.last.time
     checked = 0
@@ -529,11 +529,11 @@ def test_bad_input_is_refused():
     with pytest.raises(LinkworkError, match="feed"):
         Tool(mass=3.0, feed=0.0)
     with pytest.raises(LinkworkError, match="drive"):
-        simulate_blows(dataclasses.replace(MECH, machine=None))
+        simulate_blows(dataclasses.replace(MECH, motor_gear=None))
     with pytest.raises(LinkworkError, match="tool"):
         simulate_blows(dataclasses.replace(MECH, blow=MECH.blow.model_copy(update={"tool": None})))
     with pytest.raises(LinkworkError, match="stops"):  # a motor far too weak for the work
-        simulate_blows(MECH, Drive(ConstantTorque(1.0), flywheel=0.01), blows=5)
+        simulate_blows(MECH, MotorGear(ConstantTorque(1.0), flywheel=0.01), blows=5)
 
 
 def test_a_bad_tool_section_names_each_problem_with_its_line():

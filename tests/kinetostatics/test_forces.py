@@ -203,10 +203,10 @@ def test_first_harmonic_balancing_of_the_seed_000_shears():
 )
 def test_compiled_reactions_equal_the_numpy_solution(name):
     """The compiled kernel (Gaussian elimination per sample) against the batched NumPy solves."""
-    from linkwork.kinetostatics import fast
+    from linkwork.kinetostatics import reactions_numba
     from linkwork.kinetostatics.reactions import foundation, solve_reactions
 
-    if not fast.available():
+    if not reactions_numba.available():
         pytest.skip("numba is not installed")
     mech = lw.compile(lw.example(name))
     f = lw.forces(mech, steps=360)
@@ -234,15 +234,15 @@ def test_compiled_reactions_of_design_variants():
 def test_compiled_reactions_take_the_structured_solves():
     """Dyads and cranks go through the closed 2 x 2 and 3 x 3 solves, a class III triad through elimination
     (the comparison above with the NumPy solution then covers each kind)."""
-    from linkwork.kinetostatics import fast
+    from linkwork.kinetostatics import reactions_numba as twin
 
     for name, expected in [
-        ("double-cut-shears", [fast.DYAD, fast.DYAD, fast.DYAD, fast.SINGLE]),
-        ("shears-slider-crank", [fast.DYAD, fast.SINGLE]),
-        ("class3-triad", [fast.GENERAL, fast.SINGLE]),
+        ("double-cut-shears", [twin.DYAD, twin.DYAD, twin.DYAD, twin.SINGLE]),
+        ("shears-slider-crank", [twin.DYAD, twin.SINGLE]),
+        ("class3-triad", [twin.GENERAL, twin.SINGLE]),
     ]:
-        rows, groups, _ = fast.encode(lw.compile(lw.example(name)))
-        assert list(fast.shapes(rows, groups)[:, 0]) == expected, name
+        rows, groups, _ = twin.encode(lw.compile(lw.example(name)))
+        assert list(twin.shapes(rows, groups)[:, 0]) == expected, name
 
 
 def _drive_written(order):

@@ -253,14 +253,14 @@ def test_compiled_reactions_with_friction_equal_the_numpy_solution(monkeypatch):
     and friction as through the batched NumPy solves."""
     import importlib
 
-    from linkwork.kinetostatics import fast
+    from linkwork.kinetostatics import reactions_numba
 
-    if not fast.available():
+    if not reactions_numba.available():
         pytest.skip("numba is not installed")
     forces = importlib.import_module("linkwork.kinetostatics.reaction_forces")
     mech = _shears(0.1, 0.020)
     compiled = lw.forces(mech, steps=360)
-    monkeypatch.setattr(forces.fast, "available", lambda: False)
+    monkeypatch.setattr(forces.reactions_numba, "available", lambda: False)
     numpy = lw.forces(mech, steps=360)
     assert compiled.friction is not None and numpy.friction is not None
     both = np.isfinite(compiled.multipliers) & np.isfinite(numpy.multipliers)

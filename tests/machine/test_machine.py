@@ -13,9 +13,9 @@ import pytest
 import linkwork as lw
 from linkwork.machine import (
     ConstantTorque,
-    Drive,
     InductionMotor,
     LinearMotor,
+    MotorGear,
     constant_moment_cycle,
     simulate,
     size_flywheel,
@@ -108,7 +108,7 @@ def test_energy_of_the_free_mechanism_is_conserved():
     """No drive, no loads, no friction: J(psi) omega^2 / 2 stays put (to 1e-8 per turn)."""
     red = lw.reduced(lw.compile(lw.example("four-bar")), steps=720)
     red = dataclasses.replace(red, load=np.zeros_like(red.load))
-    run = simulate(red, Drive(ConstantTorque(0.0)), omega0=5.0, turns=4, tol=0.0, rtol=1e-12)
+    run = simulate(red, MotorGear(ConstantTorque(0.0)), omega0=5.0, turns=4, tol=0.0, rtol=1e-12)
     model = Model(red)
     energy = np.array([0.5 * model.at(p)[0] * w * w for p, w in zip(run.psi, run.omega, strict=True)])
     assert len(run.turns) == 4
@@ -125,7 +125,7 @@ def test_energy_of_the_free_mechanism_is_conserved():
 def test_steady_cycle_mean_drive_power_equals_mean_load_power():
     mech = lw.compile(lw.example("double-cut-shears"))
     motor = InductionMotor(5500.0, 1450 * math.pi / 30, 1500 * math.pi / 30, 2.2)
-    result = lw.dynamics(mech, Drive(motor, ratio=1450 / 30, rotor=0.03, flywheel_on="motor"), delta=0.05)
+    result = lw.dynamics(mech, MotorGear(motor, ratio=1450 / 30, rotor=0.03, flywheel_on="motor"), delta=0.05)
     assert result.motion.steady
     t, psi, omega = result.motion.cycle()
     drive_work = np.trapezoid(result.drive.moment(omega) * omega, t)  # the motor's torque is smooth in time
@@ -148,7 +148,7 @@ def test_flywheel_energy_method_against_the_exact_cycle_and_the_simulation():
     fly = size_flywheel(red, 0.05, omega_m)
     omega, delta = constant_moment_cycle(red, fly.inertia, omega_m)
     assert delta == pytest.approx(0.05, rel=0.05)
-    drive = Drive(ConstantTorque(fly.drive_moment), flywheel=fly.inertia)
+    drive = MotorGear(ConstantTorque(fly.drive_moment), flywheel=fly.inertia)
     run = simulate(red, drive, omega0=float(omega[0]), turns=1, rtol=1e-12)
     exact = np.interp(run.psi, np.append(red.psi, 2 * np.pi), np.append(omega, omega[0]))
     np.testing.assert_allclose(run.omega, exact, rtol=2e-5)
@@ -163,7 +163,7 @@ def test_constant_torque_start_up_with_constant_inertia():
     b.revolute("O", "frame", "crank").drive("O", speed="60 rpm")
     red = lw.reduced(lw.compile(b.build()), steps=64)
     np.testing.assert_allclose(red.inertia, 0.7, rtol=1e-12)
-    run = simulate(red, Drive(ConstantTorque(10.0)), turns=3, tol=0.0)
+    run = simulate(red, MotorGear(ConstantTorque(10.0)), turns=3, tol=0.0)
     for k, turn in enumerate(run.turns, 1):
         t = math.sqrt(4 * math.pi * k * 0.7 / 10.0)
         assert turn.end == pytest.approx(t, rel=1e-9)
@@ -194,7 +194,7 @@ def test_induction_motor_by_the_kloss_formula():
 def test_a_drive_gives_one_speed_the_moment_it_gives_an_array_of_speeds(motor):
     """The simulation asks the drive for the moment at one speed (a Python float) at every step: the same
     numbers, to the last bit, as at that speed among an array's, on either side of the rated speed."""
-    drive = Drive(motor, ratio=48.33, efficiency=0.9)
+    drive = MotorGear(motor, ratio=48.33, efficiency=0.9)
     speeds = np.linspace(0.0, 1500 * math.pi / 30 / 48.33 * 1.01, 97)
     at_once = drive.moment(speeds)
     one_by_one = [drive.moment(float(w)) for w in speeds]
@@ -228,7 +228,7 @@ def test_dynamics_command_on_the_double_cut_shears(tmp_path):
     assert (tmp_path / "dynamics.csv").read_text().startswith("psi [deg],t [s],omega [rad/s]")
     bare = CliRunner().invoke(app, ["dynamics", "four-bar"])
     assert bare.exit_code == 2 and 'give a "machine:" section' in bare.stderr
-    assert "Drive" not in bare.stderr  # nothing the command line cannot give
+    assert "MotorGear" not in bare.stderr  # nothing the command line cannot give
     bad = CliRunner().invoke(app, ["dynamics", "double-cut-shears", "--delta", "2"])
     assert bad.exit_code == 2 and "--delta" in bad.stderr
 
@@ -259,7 +259,7 @@ def test_the_flywheel_is_given_on_its_shaft_and_reduced_to_the_crank():
     assert fly.on_crank == pytest.approx(fly.flywheel * u**2, rel=1e-12)
     assert fly.inertia == pytest.approx(fly.on_crank + 0.03 * u**2, rel=1e-12)
     assert run.drive.inertia == pytest.approx(fly.inertia, rel=1e-12)
-    on_crank = lw.dynamics(mech, Drive(run.drive.motor, u, 0.95, 0.03, flywheel_on="crank"), steps=720)
+    on_crank = lw.dynamics(mech, MotorGear(run.drive.motor, u, 0.95, 0.03, flywheel_on="crank"), steps=720)
     assert on_crank.flywheel.flywheel == pytest.approx(fly.on_crank, rel=1e-12)
     assert on_crank.flywheel.flywheel == on_crank.drive.flywheel
     assert on_crank.delta == pytest.approx(run.delta, rel=1e-6)  # the same constant inertia on the crank

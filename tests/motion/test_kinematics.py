@@ -502,9 +502,9 @@ KERNELS = pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "n
 
 def _kernels(monkeypatch, compiled):
     """Solve with the compiled kernels or with NumPy's."""
-    from linkwork.motion import fast
+    from linkwork.motion import kernels_numba
 
-    if compiled and not fast.available():
+    if compiled and not kernels_numba.available():
         pytest.skip("numba is not installed")
     monkeypatch.setenv("LINKWORK_NUMBA", "1" if compiled else "0")
 

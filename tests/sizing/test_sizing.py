@@ -12,7 +12,7 @@ import pytest
 import linkwork as lw
 from commandline import linkwork
 from linkwork.errors import LinkworkError
-from linkwork.machine import Drive, InductionMotor, balance_speed
+from linkwork.machine import InductionMotor, MotorGear, balance_speed
 from linkwork.sizing import (
     bundled,
     equivalent_load,
@@ -187,7 +187,7 @@ def test_the_balance_speed_of_an_induction_motor_geared_far_down_is_on_its_stabl
     1 rad/s its moment still rises; the Kloss formula solved for the slip on the stable branch:
     s = s_k (M_k / M - sqrt((M_k / M)^2 - 1))."""
     motor = InductionMotor(4000.0, 2910 * math.pi / 30, 3000 * math.pi / 30, 2.3)
-    drive = Drive(motor, ratio=97.0, efficiency=0.95)
+    drive = MotorGear(motor, ratio=97.0, efficiency=0.95)
     want = 1193.7  # N m on the crank
     m = want / (97 * 0.95)
     mk = 2.3 * 4000 / (2910 * math.pi / 30)
@@ -223,7 +223,7 @@ def test_the_motor_chosen_is_the_smallest_that_a_brute_force_run_of_every_motor_
     for i in np.argsort(cat.columns["power"]):
         row = cat.row(int(i))
         motor = InductionMotor(row["power"], row["speed"], row["synchronous"], row["breakdown"])
-        drive = Drive(motor, ratio=row["speed"] / crank, efficiency=0.95, rotor=row["inertia"], flywheel_on="motor")
+        drive = MotorGear(motor, ratio=row["speed"] / crank, efficiency=0.95, rotor=row["inertia"], flywheel_on="motor")
         run = lw.dynamics(mech, drive, delta=0.05)
         t, _, omega = run.motion.cycle()
         torque = motor(run.drive.ratio * omega)
@@ -267,9 +267,9 @@ def test_size_double_cut_shears_meets_the_bars_and_writes_the_motor_into_the_fil
     text = out.read_text()
     assert "# the billet's resistance" in text  # the comments kept
     sized = lw.compile(lw.loads(text))
-    assert sized.machine.ratio == pytest.approx(motor["gear"]["ratio"], rel=1e-6)
-    assert sized.machine.flywheel == pytest.approx(motor["flywheel"]["inertia_kg_m2"], rel=1e-5)
-    assert sized.machine.motor.power == pytest.approx(motor["motor"]["power_kW"] * 1e3)
+    assert sized.motor_gear.ratio == pytest.approx(motor["gear"]["ratio"], rel=1e-6)
+    assert sized.motor_gear.flywheel == pytest.approx(motor["flywheel"]["inertia_kg_m2"], rel=1e-5)
+    assert sized.motor_gear.motor.power == pytest.approx(motor["motor"]["power_kW"] * 1e3)
 
 
 def test_size_refuses_bad_options_with_one_line_each():

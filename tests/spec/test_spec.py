@@ -168,7 +168,7 @@ def test_derived_quantities_in_a_file_in_mm_need_a_unit_or_a_declared_one():
     for mech in (explicit, declared):
         assert mech.link_inertia[mech.link_names.index("crank")] == pytest.approx(2.0, rel=1e-12)
         assert mech.drive_speed[0] == pytest.approx(2 * np.pi, rel=1e-12)
-        assert mech.machine.motor(0.0) == pytest.approx(1.0, rel=1e-12)
+        assert mech.motor_gear.motor(0.0) == pytest.approx(1.0, rel=1e-12)
 
 
 def test_bare_derived_quantities_of_a_file_in_si_are_si():
@@ -179,7 +179,7 @@ def test_bare_derived_quantities_of_a_file_in_si_are_si():
         text = text.replace(old, new)
     mech = lw.compile(lw.loads(text.replace("{length: mm%s}", "{length: m, angle: rad%s}") % ("", 2, 3.5, 12)))
     assert mech.link_inertia[mech.link_names.index("crank")] == 2.0
-    assert mech.drive_speed[0] == 3.5 and mech.machine.motor(0.0) == 12.0
+    assert mech.drive_speed[0] == 3.5 and mech.motor_gear.motor(0.0) == 12.0
     with pytest.raises(SpecError, match=r'drives\[0\].speed: a bare 3.5 is not read as an angular speed where angles'):
         lw.loads(text.replace("{length: mm%s}", "{length: m%s}") % ("", 2, 3.5, 12))
 

@@ -19,7 +19,6 @@ import numpy as np
 
 from linkwork.design.evaluate import Evaluation
 from linkwork.errors import DesignError
-from linkwork.kinetostatics.external import ExternalLoad
 from linkwork.kinetostatics.peaks import foundation_peak, torque_peak
 from linkwork.motion.analysis import (
     DYADS,
@@ -34,6 +33,7 @@ from linkwork.motion.analysis import (
 )
 from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, one_crank
+from linkwork.structure.records import ExternalLoad
 
 
 @dataclass(frozen=True)

@@ -40,7 +40,6 @@ from linkwork.design.store import (
     write_table,
 )
 from linkwork.errors import DesignError, LinkworkError, MissingDependencyError
-from linkwork.kinetostatics import fast as kfast
 from linkwork.limits import (
     MAX_ANGLES,
     MAX_BATCH,
@@ -55,9 +54,9 @@ from linkwork.limits import (
     quote,
     whole,
 )
-from linkwork.motion import fast as mfast
 from linkwork.optional import require
 from linkwork.structure.model import Mechanism
+from linkwork.threads import set_threads
 from linkwork.units import KINDS
 
 #: Samples (variants x crank angles) per chunk by default: the arrays of a chunk stay some hundred MB.
@@ -148,7 +147,7 @@ class ChunkTask(NamedTuple):
 def _set_threads(threads: int) -> None:
     """Threads of the compiled kernels in this process: one in a process of a cluster of one thread each,
     where the kernels' own pool would only compete with the other workers for the cores."""
-    mfast.THREADS = kfast.THREADS = max(1, int(threads))
+    set_threads(threads)
 
 
 def chunk_task(task: ChunkTask, threads: int | None = None, attempts: str | None = None) -> tuple[int, Columns]:

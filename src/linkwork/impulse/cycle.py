@@ -2,7 +2,7 @@
 
 The machine: a one-degree-of-freedom mechanism (turning angle ``psi`` of the crank, reduced
 inertia ``J(psi)``, reduced load moment ``M(psi)`` of gravity and the file's loads) driven by a
-motor through a gear with a flywheel (:class:`~linkwork.machine.Drive`: moment ``M_d(psi')``,
+motor through a gear with a flywheel (:class:`~linkwork.machine.MotorGear`: moment ``M_d(psi')``,
 constant inertia ``J_d``), and the tool, a body of mass ``m_t`` that slides along the normal ``n``
 of its face.  The feed presses the tool with a constant force ``F`` towards the striker onto its
 seat, where its face passes through the striking point K in the pose of the file's blow; the work
@@ -68,11 +68,11 @@ from linkwork.impulse.phases import APART, CONTACT, FLIGHT, FREEDOM, KINDS, Samp
 from linkwork.kinetostatics.reaction_forces import Forces
 from linkwork.kinetostatics.reactions import inertia_and_gravity, solve_reactions
 from linkwork.limits import DYNAMICS_STEPS
-from linkwork.machine.drive import Drive
 from linkwork.machine.reduction import reduced
 from linkwork.machine.simulation import PeriodicSplines
 from linkwork.motion import kinematics
 from linkwork.structure.model import Mechanism
+from linkwork.structure.records import MotorGear
 
 
 @dataclass(frozen=True)
@@ -286,7 +286,7 @@ class WorkingCycle:
 
 def simulate_blows(
     mech: Mechanism,
-    drive: Drive | None = None,
+    drive: MotorGear | None = None,
     *,
     tool: Tool | None = None,
     at: str | None = None,
@@ -308,7 +308,7 @@ def simulate_blows(
         One crank; its file's ``impact:`` section gives the defaults of ``at``, ``normal``
         (a vector, or the angle of the file), ``restitution``, ``friction``, ``link`` and ``tool``
         (its ``tool:``); the tool's face on its seat passes through ``at`` in the assembly pose.
-    drive : Drive, optional
+    drive : MotorGear, optional
         Motor, gear and flywheel (default: the file's ``machine:``).
     omega0 : float, optional
         Crank speed at the start, rad/s (default: the file's drive speed); the run starts where
@@ -344,11 +344,11 @@ def simulate_blows(
     raise LinkworkError("the run did not settle within its limit of phases")
 
 
-def _drive_and_tool(mech: Mechanism, drive: Drive | None, tool: Tool | None) -> tuple[Drive, Tool]:
+def _drive_and_tool(mech: Mechanism, drive: MotorGear | None, tool: Tool | None) -> tuple[MotorGear, Tool]:
     """The drive and the tool given, else the file's."""
     blow_spec = mech.blow
     if drive is None:
-        drive = mech.machine
+        drive = mech.motor_gear
     if drive is None:
         raise LinkworkError('the working cycle needs a drive: give a "machine:" section (motor, gear, flywheel)')
     if tool is None and blow_spec is not None and blow_spec.tool is not None:
@@ -371,7 +371,7 @@ class _Path:
 
 
 def _contact_model(
-    mech: Mechanism, setup: BlowSetup, drive: Drive, tool: Tool, steps: int
+    mech: Mechanism, setup: BlowSetup, drive: MotorGear, tool: Tool, steps: int
 ) -> tuple[ContactModel, _Path]:
     """The machine's curves on ``steps`` turning angles of a turn, with the drive and the tool; the
     tool's face on its seat passes through the striking point in the assembly pose."""

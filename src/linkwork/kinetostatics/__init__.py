@@ -22,6 +22,10 @@ A joint's ``friction: {f, radius}`` adds friction in proportion to its pairs' fo
 reactions (:mod:`linkwork.kinetostatics.friction`); :attr:`Forces.efficiency` splits the drive's power into
 the useful loads', each pair's friction and the energy rates (:mod:`linkwork.kinetostatics.efficiency`).
 
+The reactions have two twins that give the same numbers: the NumPy solves (:mod:`~linkwork.kinetostatics.reactions`,
+the reference) and the same arithmetic compiled with numba (:mod:`~linkwork.kinetostatics.reactions_numba`), which
+runs where the compiled kinematics ran; adding a kind of group to the twins: :mod:`linkwork.motion`'s docstring.
+
 >>> import linkwork as lw
 >>> f = lw.forces(lw.compile(lw.load("shears-slider-crank")), steps=72)
 >>> f.foundation.shape
@@ -36,11 +40,12 @@ from linkwork.kinetostatics.bolts import Bolts, bolt_loads
 from linkwork.kinetostatics.efficiency import Efficiency
 from linkwork.kinetostatics.force_polygons import ForcePlans, GroupPlan, PlanForce, force_plans
 from linkwork.kinetostatics.free_body import FreeBody
-from linkwork.kinetostatics.friction import FrictionSolution, PairFriction
+from linkwork.kinetostatics.friction import FrictionSolution
 from linkwork.kinetostatics.peaks import Peak, foundation_peak, torque_peak
 from linkwork.kinetostatics.reaction_forces import Forces, forces, forces_of
 from linkwork.kinetostatics.reactions import Loads
 from linkwork.kinetostatics.zhukovsky import Lever, lever
+from linkwork.structure.records import PairFriction
 
 __all__ = [
     "Balance",

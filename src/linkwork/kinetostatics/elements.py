@@ -1,7 +1,7 @@
 """Force elements: linear springs and dampers between two points, torsion springs in revolute joints.
 
 They are loads like the others of :mod:`linkwork.kinetostatics.external`: compiled from the file's
-``loads:`` into :class:`~linkwork.kinetostatics.external.ExternalLoad` records and evaluated over a
+``loads:`` into :class:`~linkwork.structure.records.ExternalLoad` records and evaluated over a
 kinematics result into forces at points and moments on links, so every analysis that reads the loads
 (reactions, the reduced load moment, the flywheel, the runs in time, sweeps, the viewer, the report)
 has them.  A spring's or damper's force acts along the line of its two points, tension positive (it
@@ -28,7 +28,7 @@ ELEMENTS = ("spring", "damper", "torsion_spring")
 
 
 class Element(Protocol):
-    """What a compiled force element holds (:class:`~linkwork.kinetostatics.external.ExternalLoad`)."""
+    """What a compiled force element holds (:class:`~linkwork.structure.records.ExternalLoad`)."""
 
     @property
     def kind(self) -> str: ...

@@ -21,47 +21,9 @@ from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.spec.schema import Load, Spec
 from linkwork.structure.constraints import perp
 from linkwork.structure.model import Mechanism, PairType
+from linkwork.structure.records import ExternalLoad
 
 T = TypeVar("T")
-
-
-@dataclass(frozen=True)
-class ExternalLoad:
-    """One external load, compiled.
-
-    Attributes
-    ----------
-    name : str
-    kind : str
-        ``force``, ``moment``, ``process`` or ``friction`` (in the pair ``pair``: a moment for a
-        revolute pair, a force for a prismatic one, of size ``value``); or a force element
-        (:mod:`linkwork.kinetostatics.elements`): ``spring`` and ``damper`` between ``points``, of stiffness
-        or damping ``value``, ``torsion_spring`` in the pair ``pair``; ``free`` the free length or angle.
-    link : int
-        The link a force or moment acts on (for a process load: the first tool's link).
-    points : tuple of int
-        Point indices: the point of a force, the tools of a process load.
-    vector : tuple of float
-        Force: its components (N) when ``value`` is 1, else the unit direction of the magnitude;
-        process: the unit axis.
-    value : float
-        Constant magnitude (N, N m); NaN where a table gives it.
-    table : tuple of ndarray or None
-        ``(x, y)``: drive angles (rad) or relative penetrations, and magnitudes (N or N m).
-    workpiece : tuple of float
-        Process: extent along the axis (m).
-    """
-
-    name: str
-    kind: str
-    link: int
-    points: tuple[int, ...] = ()
-    vector: tuple[float, float] = (0.0, 0.0)
-    value: float = math.nan
-    table: tuple[np.ndarray, np.ndarray] | None = None
-    workpiece: tuple[float, float] = (0.0, 0.0)
-    pair: int = -1  # friction, torsion spring: the elementary pair it acts in
-    free: float = math.nan  # spring: free length (m); torsion spring: free angle (rad)
 
 
 def compile_loads(spec: Spec, mech: Mechanism) -> tuple[ExternalLoad, ...]:

@@ -35,6 +35,7 @@ from linkwork.kinetostatics.external import Applied, pair_friction, relative_mot
 from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.spec.schema import Spec
 from linkwork.structure.model import Mechanism, PairType
+from linkwork.structure.records import PairFriction
 
 #: Convergence: the largest change of a friction size in the last step, relative to the sample's largest size.
 TOLERANCE = 1e-12
@@ -48,28 +49,6 @@ UNBOUNDED = 1e6
 #: A solve of the linear kinetostatics with given external loads: a tuple whose first item is the
 #: multipliers ``(V, A, m)``.
 Solver = Callable[[Applied], tuple[Any, ...]]
-
-
-@dataclass(frozen=True)
-class PairFriction:
-    """The friction law of one elementary pair.
-
-    Attributes
-    ----------
-    joint : str
-        The joint of the pair (a compound hinge's pairs each have their own).
-    pair : int
-        The elementary pair.
-    coefficient : float
-        ``f r`` (m, the radius of the friction circle) in a revolute pair, ``f`` in a prismatic one.
-    f : float
-        The friction coefficient.
-    """
-
-    joint: str
-    pair: int
-    coefficient: float
-    f: float
 
 
 def compile_friction(spec: Spec, mech: Mechanism) -> tuple[PairFriction, ...]:

@@ -13,7 +13,7 @@ import numpy as np
 import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
-from linkwork.kinetostatics import fast
+from linkwork.kinetostatics import reactions_numba
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
 from linkwork.kinetostatics.efficiency import Efficiency, efficiency
 from linkwork.kinetostatics.external import Applied, evaluate
@@ -456,7 +456,7 @@ def forces_of(kin: Kinematics) -> Forces:
     """
     mech = kin.mechanism
     _statically_determinate(mech)
-    compiled = fast.available()
+    compiled = reactions_numba.available()
     if not has_friction(mech):
         external = evaluate(kin) if mech.loads or not compiled else None
         lam, found, loads = _solve(kin, external, compiled)
@@ -472,7 +472,7 @@ def _solve(kin: Kinematics, external: Applied | None, compiled: bool) -> tuple[n
     """The multipliers, the foundation loads and (solved in NumPy) the loads of every link, with the
     external loads ``external``: by the compiled kernel where it runs, else by NumPy."""
     if compiled:
-        lam, found = fast.run(kin, external)
+        lam, found = reactions_numba.run(kin, external)
         return lam, found, None
     loads = inertia_and_gravity(kin, external)
     lam, frame = solve_reactions(kin, loads)

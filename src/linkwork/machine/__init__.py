@@ -1,7 +1,7 @@
 """Machine dynamics: reduced inertia and loads, the drive, forward simulation, flywheel sizing.
 
 >>> import linkwork as lw
->>> from linkwork.machine import ConstantTorque, Drive
+>>> from linkwork.machine import ConstantTorque, MotorGear
 >>> red = lw.reduced(lw.compile(lw.load("four-bar")), steps=360)
 >>> red.inertia.shape
 (360,)
@@ -9,7 +9,7 @@
 
 from __future__ import annotations
 
-from linkwork.machine.drive import ConstantTorque, Drive, InductionMotor, LinearMotor
+from linkwork.machine.drive import ConstantTorque, InductionMotor, LinearMotor
 from linkwork.machine.flywheel import (
     Flywheel,
     constant_moment_cycle,
@@ -22,15 +22,16 @@ from linkwork.machine.reduction import Reduced, reduced
 from linkwork.machine.simulation import Motion, Turn, simulate
 from linkwork.machine.steady_cycle import Dynamics, balance_speed, dynamics, with_flywheel_for
 from linkwork.machine.timerun import Run, RunEvent
+from linkwork.structure.records import MotorGear
 
 __all__ = [
     "ConstantTorque",
-    "Drive",
     "Dynamics",
     "Flywheel",
     "InductionMotor",
     "LinearMotor",
     "Motion",
+    "MotorGear",
     "Reduced",
     "Run",
     "RunEvent",

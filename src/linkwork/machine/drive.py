@@ -1,4 +1,5 @@
-"""The drive of a machine unit: motor characteristic, gear, flywheel.
+"""The motor characteristics of a machine unit, and its motor, gear and flywheel
+(:class:`~linkwork.structure.records.MotorGear`) compiled from a file's ``machine:`` section.
 
 A motor characteristic gives the torque on the motor shaft against its
 speed.  The gear (ratio ``u = omega_motor / omega_crank``, efficiency
@@ -9,16 +10,14 @@ inertia, a flywheel on the crank shaft adds its own inertia.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 from linkwork.errors import LinkworkError
+from linkwork.structure.records import MotorGear, speeds
 
 if TYPE_CHECKING:
     from linkwork.spec.schema import Machine as MachineSpec
@@ -28,13 +27,6 @@ if TYPE_CHECKING:
 Characteristic = Callable[[Any], Any]
 
 
-def _speeds(omega: Any) -> Any:
-    """``omega`` as it is where it is a Python float (the simulation asks for one speed at every step: a
-    float's arithmetic is ten times quicker than a NumPy scalar's, and gives the same numbers), else as a
-    NumPy array of floats."""
-    return omega if type(omega) is float else np.asarray(omega, dtype=float)
-
-
 @dataclass(frozen=True)
 class ConstantTorque:
     """A torque independent of the speed, N m."""
@@ -42,7 +34,7 @@ class ConstantTorque:
     torque: float
 
     def __call__(self, omega: Any) -> Any:
-        return self.torque + 0.0 * _speeds(omega)
+        return self.torque + 0.0 * speeds(omega)
 
 
 @dataclass(frozen=True)
@@ -54,7 +46,7 @@ class LinearMotor:
     no_load: float
 
     def __call__(self, omega: Any) -> Any:
-        return self.stall * (1.0 - _speeds(omega) / self.no_load)
+        return self.stall * (1.0 - speeds(omega) / self.no_load)
 
 
 @dataclass(frozen=True)
@@ -93,70 +85,18 @@ class InductionMotor:
         return s_n * (lam + math.sqrt(lam * lam - 1.0))
 
     def __call__(self, omega: Any) -> Any:
-        s = 1.0 - _speeds(omega) / self.synchronous
+        s = 1.0 - speeds(omega) / self.synchronous
         sk = self.critical_slip
         mk = self.breakdown * self.rated_torque
         return 2 * mk * s * sk / (s * s + sk * sk)
 
 
-@dataclass(frozen=True)
-class Drive:
-    """Motor, gear and flywheel of a machine unit.
-
-    Attributes
-    ----------
-    motor : Characteristic
-        Torque (N m) on the motor shaft against its speed (rad/s).
-    ratio : float
-        ``u = omega_motor / omega_crank``.
-    efficiency : float
-        Of the gear, applied to the motor torque.
-    rotor : float
-        Inertia of the rotor and everything else on the motor shaft, kg m^2.
-    flywheel : float
-        Inertia of a flywheel, kg m^2, on the shaft named by ``flywheel_on``.
-    flywheel_on : str
-        ``"motor"`` or ``"crank"``.
-    """
-
-    motor: Characteristic
-    ratio: float = 1.0
-    efficiency: float = 1.0
-    rotor: float = 0.0
-    flywheel: float = 0.0
-    flywheel_on: str = "crank"
-
-    def __post_init__(self) -> None:
-        if not self.ratio > 0:
-            raise LinkworkError(f"gear ratio: expected a positive number, got {self.ratio}")
-        if not 0 < self.efficiency <= 1:
-            raise LinkworkError(f"gear efficiency: expected a number in (0, 1], got {self.efficiency}")
-        if self.flywheel_on not in ("motor", "crank"):
-            raise LinkworkError(f'flywheel: on "motor" or "crank", got "{self.flywheel_on}"')
-        if self.rotor < 0 or self.flywheel < 0:
-            raise LinkworkError("inertias of rotor and flywheel must not be negative")
-
-    @property
-    def inertia(self) -> float:
-        """Constant inertia the drive adds on the crank shaft, kg m^2."""
-        on_motor = self.rotor + (self.flywheel if self.flywheel_on == "motor" else 0.0)
-        return on_motor * self.ratio**2 + (self.flywheel if self.flywheel_on == "crank" else 0.0)
-
-    def moment(self, omega: Any) -> Any:
-        """Moment (N m) of the drive on the crank at crank speed ``omega``."""
-        return self.ratio * self.efficiency * self.motor(self.ratio * _speeds(omega))
-
-    def with_flywheel(self, inertia: float) -> Drive:
-        """The same drive with another flywheel (on the same shaft)."""
-        return dataclasses.replace(self, flywheel=inertia)
-
-
-def from_spec(machine: MachineSpec) -> Drive:
-    """The :class:`Drive` of a validated ``machine:`` section."""
+def from_spec(machine: MachineSpec) -> MotorGear:
+    """The :class:`~linkwork.structure.records.MotorGear` of a validated ``machine:`` section."""
     m = machine.motor
     gear = machine.gear
     fly = machine.flywheel
-    return Drive(
+    return MotorGear(
         _motor(m),
         ratio=gear.ratio if gear else 1.0,
         efficiency=gear.efficiency if gear else 1.0,

@@ -27,8 +27,8 @@ import numpy as np
 from linkwork.errors import LinkworkError
 
 if TYPE_CHECKING:
-    from linkwork.machine.drive import Drive
     from linkwork.machine.reduction import Reduced
+    from linkwork.structure.records import MotorGear
 
 
 class Curve(NamedTuple):
@@ -238,7 +238,7 @@ class Motion:
 
 def simulate(
     red: Reduced,
-    drive: Drive,
+    drive: MotorGear,
     *,
     omega0: float = 0.0,
     start: float = 0.0,

@@ -12,12 +12,12 @@ import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.limits import DYNAMICS_STEPS
-from linkwork.machine.drive import Drive
 from linkwork.machine.flywheel import Flywheel, size_flywheel_wittenbauer
 from linkwork.machine.reduction import Reduced, reduced
 from linkwork.machine.simulation import Motion, simulate
 from linkwork.motion.analysis import CrankAngles
 from linkwork.structure.model import Mechanism
+from linkwork.structure.records import MotorGear
 
 
 @dataclass(frozen=True)
@@ -34,7 +34,7 @@ class Dynamics:
     """
 
     reduced: Reduced
-    drive: Drive
+    drive: MotorGear
     motion: Motion
     flywheel: Flywheel | None
     startup: Motion
@@ -111,7 +111,7 @@ class Dynamics:
         return self.drive_power / self.drive.efficiency
 
 
-def balance_speed(drive: Drive, moment: float) -> float:
+def balance_speed(drive: MotorGear, moment: float) -> float:
     """The crank speed (rad/s) at which the drive gives ``moment`` on the stable (falling) part of
     its characteristic, the highest such speed; NaN if there is none (a constant torque).
 
@@ -143,8 +143,8 @@ def balance_speed(drive: Drive, moment: float) -> float:
 
 
 def with_flywheel_for(
-    red: Reduced, drive: Drive, delta: float, speed: float | None = None, *, fallback: float
-) -> tuple[Drive, Flywheel]:
+    red: Reduced, drive: MotorGear, delta: float, speed: float | None = None, *, fallback: float
+) -> tuple[MotorGear, Flywheel]:
     """``drive`` with the flywheel for ``delta`` (Wittenbauer's tangents, :func:`size_flywheel_wittenbauer`)
     on its ``flywheel_on`` shaft in place of its own, and that sizing.  The mean crank speed ``speed`` (rad/s)
     defaults to where the drive's moment balances the loads' mean moment (:func:`balance_speed`), or to
@@ -161,7 +161,7 @@ def with_flywheel_for(
 
 def dynamics(
     mech: Mechanism,
-    drive: Drive | None = None,
+    drive: MotorGear | None = None,
     *,
     delta: float | None = None,
     speed: float | None = None,
@@ -182,7 +182,7 @@ def dynamics(
     the loads resist least, e.g. the knives open).
     """
     if drive is None:
-        drive = mech.machine
+        drive = mech.motor_gear
     if drive is None:
         raise LinkworkError(
             'the mechanism has no motor for its dynamics: give a "machine:" section in its file with the motor '

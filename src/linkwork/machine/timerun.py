@@ -10,7 +10,7 @@ reduced inertia and its slope and the reduced moment of the loads (no table, no 
                                                             springs, dampers, friction, process loads)
     J phi'' + J' phi'^2 / 2 = Q(phi, phi') + M_d(phi')
 
-``M_d`` the motor's moment (:class:`~linkwork.machine.drive.Drive`, in the drive's direction of rotation),
+``M_d`` the motor's moment (:class:`~linkwork.structure.records.MotorGear`, in the drive's direction of rotation),
 none without a motor.  Integrated by SciPy's ``solve_ivp`` (DOP853) with the tolerances asked, so the
 crank may slow down, stop and turn back; its stops are events.  The samples asked for come from the
 solver's dense output, and their kinematics and loads from the true state (speed and angular
@@ -39,7 +39,7 @@ from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from linkwork.kinetostatics.reaction_forces import Forces
-    from linkwork.machine.drive import Drive
+    from linkwork.structure.records import MotorGear
 
 #: Samples of a run where no times are asked for.
 RUN_SAMPLES = 201
@@ -185,7 +185,7 @@ def simulate(
     angle: float | None = None,
     speed: float = 0.0,
     times: npt.ArrayLike | None = None,
-    drive: Drive | None = None,
+    drive: MotorGear | None = None,
     motor: bool = True,
     rtol: float = 1e-10,
     atol: float = 1e-10,
@@ -205,7 +205,7 @@ def simulate(
         Its speed at the start, rad/s, counter-clockwise positive; default at rest.
     times : array_like, optional
         Times (s, within ``[0, until]``) of the samples kept; default :data:`RUN_SAMPLES` equal steps.
-    drive : Drive, optional
+    drive : MotorGear, optional
         The motor, gear and flywheel; default the file's ``machine:``.  ``motor=False``: none (free motion
         under the loads and springs).
     rtol, atol : float
@@ -217,7 +217,7 @@ def simulate(
         raise LinkworkError("a run in time needs one crank (a revolute drive)")
     if not (math.isfinite(until) and until > 0):
         raise LinkworkError(f"until: expected a positive time, got {until!r} s")
-    drive = (drive if drive is not None else mech.machine) if motor else None
+    drive = (drive if drive is not None else mech.motor_gear) if motor else None
     sense = -1.0 if mech.drive_speed[0] < 0 else 1.0
     extra = drive.inertia if drive is not None else 0.0
 

@@ -8,8 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.motion.program import Step
 from linkwork.motion.state import Flip, Jump, State, StepRecord
+from linkwork.structure.records import Step
 from linkwork.units import turn_deg
 
 

@@ -7,6 +7,9 @@ point X where the dyad closes (a circle about an outer joint, or a line of a
 guide), velocities and accelerations from the two vector equations of X,
 one 2x2 linear system each (with the Coriolis terms of sliding pairs).
 Samples where a group cannot be assembled come out as NaN.
+
+:mod:`linkwork.motion.kernels_numba` is their twin in machine code (the package's docstring says how the
+two are kept alike).
 """
 
 from __future__ import annotations
@@ -19,7 +22,6 @@ import numpy as np
 from numpy.polynomial import polynomial as poly
 
 from linkwork.angles import wrap
-from linkwork.motion.program import Arm, Step
 from linkwork.motion.state import (
     Flip,
     State,
@@ -37,6 +39,25 @@ from linkwork.motion.state import (
     sub,
 )
 from linkwork.structure.model import Mechanism
+from linkwork.structure.records import Arm, Step
+
+#: The quantities of a point :func:`point_motion_into` gives (:func:`linkwork.motion.points.point_motion`).
+POSITION, VELOCITY, ACCELERATION = range(3)
+
+
+def point_motion_into(kind: int, q: np.ndarray, v: np.ndarray, a: np.ndarray, cos: np.ndarray, sin: np.ndarray,
+                      lx: np.ndarray, ly: np.ndarray, out: np.ndarray) -> None:  # fmt: skip
+    """The position, velocity or acceleration (``kind``: :data:`POSITION` ...) of a point at ``(lx, ly)``
+    ``(V,)`` in the frame of a link of pose, velocity and acceleration ``q``, ``v``, ``a`` ``(3, V, A)`` and
+    angle's cosine and sine ``cos``, ``sin`` ``(V, A)``, written into ``out`` ``(V, A, 2)``."""
+    rx, ry = cos * lx[:, None] - sin * ly[:, None], sin * lx[:, None] + cos * ly[:, None]
+    if kind == POSITION:
+        out[..., 0], out[..., 1] = q[0] + rx, q[1] + ry
+    elif kind == VELOCITY:
+        out[..., 0], out[..., 1] = v[0] - v[2] * ry, v[1] + v[2] * rx
+    else:
+        w, e = v[2], a[2]
+        out[..., 0], out[..., 1] = a[0] - e * ry - w * w * rx, a[1] + e * rx - w * w * ry
 
 
 def _x_local(state: State, idx: int) -> Vec:

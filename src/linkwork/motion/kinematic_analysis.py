@@ -13,8 +13,9 @@ import numpy.typing as npt
 
 from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.limits import TURN_STEPS
-from linkwork.motion import fast
+from linkwork.motion import kernels, kernels_numba
 from linkwork.motion.events import Event, find
+from linkwork.motion.points import point_motion
 from linkwork.motion.solve import SINGULAR, run, run_each
 from linkwork.motion.state import State
 from linkwork.spec.checks import suggest
@@ -324,30 +325,30 @@ class Kinematics:
             axis); NaN where the mechanism does not assemble.
         """
         return (
-            self._motion(point, fast.POSITION),
-            self._motion(point, fast.VELOCITY),
-            self._motion(point, fast.ACCELERATION),
+            self._motion(point, kernels.POSITION),
+            self._motion(point, kernels.VELOCITY),
+            self._motion(point, kernels.ACCELERATION),
         )
 
     def _motion(self, point: str, kind: int) -> np.ndarray:
         """The position, velocity or acceleration (``kind``) of a point, ``(V, A, 2)``: its link's motion
-        carried to the point (:func:`~linkwork.motion.fast.point_motion`)."""
+        carried to the point (:func:`~linkwork.motion.points.point_motion`)."""
         p = self.point_index(point)
         link = int(self.mechanism.point_link[p])
         cs = self.cos[link], self.sin[link]
-        return fast.point_motion(kind, self.q[link], self.v[link], self.a[link], cs, self.local[p, :, :, 0])
+        return point_motion(kind, self.q[link], self.v[link], self.a[link], cs, self.local[p, :, :, 0])
 
     def position(self, point: str) -> np.ndarray:
         """Global position of a point, m: ``(..., n_angles, 2)``."""
-        return self._out(self._motion(point, fast.POSITION))
+        return self._out(self._motion(point, kernels.POSITION))
 
     def velocity(self, point: str) -> np.ndarray:
         """Velocity of a point, m/s: ``(..., n_angles, 2)``."""
-        return self._out(self._motion(point, fast.VELOCITY))
+        return self._out(self._motion(point, kernels.VELOCITY))
 
     def acceleration(self, point: str) -> np.ndarray:
         """Acceleration of a point, m/s^2: ``(..., n_angles, 2)``."""
-        return self._out(self._motion(point, fast.ACCELERATION))
+        return self._out(self._motion(point, kernels.ACCELERATION))
 
     def angle(self, link: str | int) -> np.ndarray:
         """Angle of a link's local x axis, rad: ``(..., n_angles)``."""
@@ -368,7 +369,7 @@ class Kinematics:
 
     def point_positions(self, points: npt.ArrayLike, variant: int | None = None) -> np.ndarray:
         """Positions ``(K, V, A, 2)`` of the points ``points`` (indices ``(K,)``), the points first, of every
-        variant (of ``variant`` alone: ``V`` = 1): one pass of :func:`~linkwork.motion.fast.point_motion` over
+        variant (of ``variant`` alone: ``V`` = 1): one pass of :func:`~linkwork.motion.points.point_motion` over
         them all, each point of each variant taken as a variant of its link (the arithmetic of :meth:`position`)."""
         points = np.asarray(points, dtype=np.intp)
         link = np.asarray(self.mechanism.point_link)[points]
@@ -378,7 +379,7 @@ class Kinematics:
         flat = np.ascontiguousarray(q.swapaxes(0, 1)).reshape(3, k * n_var, n_ang)
         local = np.ascontiguousarray(self.local[points, :, pick, 0].swapaxes(0, 1)).reshape(2, k * n_var)
         cs = cos.reshape(k * n_var, n_ang), sin.reshape(k * n_var, n_ang)
-        return fast.point_motion(fast.POSITION, flat, flat, flat, cs, local).reshape(k, n_var, n_ang, 2)
+        return point_motion(kernels.POSITION, flat, flat, flat, cs, local).reshape(k, n_var, n_ang, 2)
 
     def samples(self, index: Any) -> Kinematics:
         """The result at the samples ``index`` only (an int array or a slice of the angles), solved as they were;
@@ -625,7 +626,7 @@ def _drive_values(
     mech: Mechanism, angles: npt.ArrayLike | None, steps: int | None
 ) -> tuple[np.ndarray, tuple[float, float] | None]:
     """The drive coordinates asked for, ``(A, D)``, and the least and most step of the first drive
-    between consecutive samples where the check of the values found them (:func:`fast.scan`, for
+    between consecutive samples where the check of the values found them (:func:`kernels_numba.scan`, for
     :func:`_path`); :class:`LinkworkError` for anything else."""
     if angles is not None and steps is not None:
         raise LinkworkError("give either angles or steps, not both")
@@ -640,8 +641,8 @@ def _drive_values(
     if values.shape[1] != mech.n_drives:
         raise LinkworkError(f"the mechanism has {mech.n_drives} drives; angles must have shape (n, {mech.n_drives})")
     span = None
-    if values.flags.c_contiguous and fast.available():  # one compiled pass: finite, and the steps
-        finite, least, most = fast.scan(values)
+    if values.flags.c_contiguous and kernels_numba.available():  # one compiled pass: finite, and the steps
+        finite, least, most = kernels_numba.scan(values)
         span = least, most
     else:
         finite = bool(np.isfinite(values).all())

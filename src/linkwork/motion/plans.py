@@ -38,8 +38,8 @@ import numpy as np
 
 from linkwork.motion.analysis import guide_lines
 from linkwork.motion.kinematic_analysis import Kinematics
-from linkwork.motion.program import Arm, Step
 from linkwork.structure.model import Mechanism, PairType, per_mechanism, point_labels
+from linkwork.structure.records import Arm, Step
 
 
 @dataclass(frozen=True)

@@ -12,50 +12,15 @@ off the assembly pose, so the hints of the file decide it.
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 
 from linkwork.structure.model import AssurGroup, Mechanism, PairType
+from linkwork.structure.records import Arm, Step
 
-
-@dataclass(frozen=True)
-class Arm:
-    """How one link of a dyad carries the point X where the dyad closes.
-
-    ``kind`` "R": the link turns about the point ``src`` of a placed link,
-    which is its own point ``own``; "P": the link keeps the angle of the
-    placed link ``carrier`` and X slides along a line of the pair ``pair``.
-    """
-
-    kind: str
-    link: int
-    pair: int
-    own: int = -1  # R: own point at the outer joint
-    src: int = -1  # R: the placed link's point there
-    carrier: int = -1  # P: the placed link whose angle the link keeps
-    own_is_slider: bool = True  # P: the link is the slider of the pair (else the guide)
-    slider_point: int = -1  # P: the slider's point of the pair
-
-
-@dataclass(frozen=True)
-class Step:
-    """One group of the solve program."""
-
-    kind: str
-    group: AssurGroup
-    links: tuple[int, ...]
-    arms: tuple[Arm, ...] = ()
-    x_local: tuple[int, ...] = ()  # point index of X on each arm's link (-1: the link's origin)
-    drive: int = -1
-    pair: int = -1
-    inner: int = -1
-    branch: float = 1.0
-    #: crank: +1 where the driven link is the second of its pair (its angle is the base's plus the
-    #: drive's), -1 where it is the first (the base's minus the drive's)
-    sign: float = 1.0
-
-    @property
-    def label(self) -> str:
-        return self.group.label
+#: The kinds of step solved in closed form: each has a NumPy kernel (:mod:`linkwork.motion.kernels`) and its
+#: twin in machine code (:data:`linkwork.motion.kernels_numba.CODES`).
+CLOSED_FORM = ("crank", "slide", "RRR", "RRP", "PRP", "RPR", "RPP")
+#: Every kind of step: the closed-form ones and ``newton`` (any other group; NumPy only).
+KINDS = (*CLOSED_FORM, "newton")
 
 
 def _other(mech: Mechanism, k: int, link: int) -> int:

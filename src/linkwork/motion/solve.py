@@ -5,13 +5,13 @@ from __future__ import annotations
 import numpy as np
 
 from linkwork.angles import wrap
-from linkwork.motion import fast, kernels
-from linkwork.motion.program import Step
+from linkwork.motion import kernels, kernels_numba
 from linkwork.motion.state import Jump, State, StepRecord
 from linkwork.structure.assemble import group_rows
 from linkwork.structure.constraints import build_rows, residuals_and_jacobian, velocity_products
 from linkwork.structure.model import Mechanism, PairType
 from linkwork.structure.parameters import Geometry
+from linkwork.structure.records import Step
 
 
 def run(
@@ -33,8 +33,8 @@ def run(
     that the arrays of a chunk stay in the processor's cache.
     """
     n_var, n_ang = geom.n_variants, values.shape[0]
-    if mech.fast_program is not None and fast.wanted(n_var * n_ang) and program is mech.program:
-        state = _run_fast(mech, program, geom, values, rates, accels)
+    if mech.program_table is not None and kernels_numba.wanted(n_var * n_ang) and program is mech.program:
+        state = _run_compiled(mech, program, geom, values, rates, accels)
         if state is not None:
             return state
     size = max(1, CHUNK // max(n_ang, 1))
@@ -62,7 +62,7 @@ def _concatenate(parts: list[State], program: tuple[Step, ...]) -> State:
     return out
 
 
-def _run_fast(
+def _run_compiled(
     mech: Mechanism,
     program: tuple[Step, ...],
     geom: Geometry,
@@ -72,7 +72,7 @@ def _run_fast(
 ) -> State | None:
     """The compiled closed-form path; None where a dyad passes near a change point, or lies on a singular
     position to rounding (the NumPy path follows the motion there)."""
-    res = fast.run(mech, geom, values, rates, accels)
+    res = kernels_numba.run(mech, geom, values, rates, accels)
     if res.some_near or res.some_limit:
         return None
     state = State(res.q, res.v, res.a, res.cos, res.sin, *geom.link_major, res.valid)
@@ -153,7 +153,7 @@ def run_each(
 
 
 #: Normalised Jacobian determinant below which a sample is a singular position.
-SINGULAR = fast.SINGULAR
+SINGULAR = kernels.SINGULAR
 
 
 def _solve(

@@ -268,7 +268,7 @@ def _build(run: _Run, steps: int, position: int | str | None, animation: bool, d
     run.run_beside()
     if not run.mech.structure.redundant:
         _forces(run, cycle)
-    if run.mech.machine is not None:
+    if run.mech.motor_gear is not None:
         _dynamics(run, cycle)
     if run.mech.blow is not None:
         _impact(run)
@@ -788,7 +788,7 @@ def _impact(run: _Run) -> None:
     if r.ideal_com is not None:
         rows.append([run.t("impact.ideal_com"), _vector(np.asarray(r.ideal_com) * 1000, run.t("unit.mm"))])
     sec.body.append(_table([run.t("impact.head.blow"), run.t("dynamics.head.value")], rows))
-    if mech.machine is not None and blow.tool is not None:
+    if mech.motor_gear is not None and blow.tool is not None:
         _impact_cycle(run, sec)
     run.sections.append(sec)
 

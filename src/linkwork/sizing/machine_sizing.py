@@ -147,7 +147,7 @@ def size(
     if delta is None:
         delta = mech.delta if mech.delta is not None else DELTA
     if efficiency is None:
-        efficiency = mech.machine.efficiency if mech.machine is not None else EFFICIENCY
+        efficiency = mech.motor_gear.efficiency if mech.motor_gear is not None else EFFICIENCY
     if bolts is None and file is not None and file.bolts:
         bolts = np.array(file.bolts, dtype=float)
     steel_row = _row(bundled("steels.csv"), steel, "steel")

@@ -28,12 +28,13 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.machine.drive import Drive, InductionMotor
+from linkwork.machine.drive import InductionMotor
 from linkwork.machine.flywheel import Flywheel
 from linkwork.machine.reduction import Reduced
 from linkwork.machine.steady_cycle import Dynamics, dynamics, with_flywheel_for
 from linkwork.sizing.common import Catalogue, Table, bundled, read_catalogue
 from linkwork.structure.model import Mechanism
+from linkwork.structure.records import MotorGear
 
 #: The columns of a motor catalogue, by name, with their SI units.
 MOTOR_COLUMNS = {
@@ -229,11 +230,11 @@ class MotorChoice:
         }
 
 
-def drive_of(row: dict[str, float], crank_speed: float, efficiency: float) -> Drive:
+def drive_of(row: dict[str, float], crank_speed: float, efficiency: float) -> MotorGear:
     """The drive of a catalogue row: the induction motor (Kloss), the gear from its rated speed to
     ``crank_speed``, its rotor, no flywheel yet (one goes on the motor shaft)."""
     motor = InductionMotor(row["power"], row["speed"], row["synchronous"], row["breakdown"])
-    return Drive(motor, ratio=row["speed"] / crank_speed, efficiency=efficiency, rotor=row["inertia"],
+    return MotorGear(motor, ratio=row["speed"] / crank_speed, efficiency=efficiency, rotor=row["inertia"],
                  flywheel_on="motor")  # fmt: skip
 
 

@@ -1,8 +1,8 @@
 """The structural model of a description: arrays, structural analysis, assembly pose.
 
-:func:`linkwork.compile` (:mod:`linkwork.api`) composes it with the stages that build on it: the
-solve program (:mod:`linkwork.motion.program`), the external loads
-(:mod:`linkwork.kinetostatics.external`) and the machine's drive (:mod:`linkwork.machine.drive`).
+The first stage of :func:`linkwork.compile` (:mod:`linkwork.api`), the one compile, which adds the records
+of the stages that build on it (:mod:`linkwork.structure.records`): the solve program, the external loads,
+the friction in the pairs and the machine unit's motor and gear.
 """
 
 from __future__ import annotations
@@ -31,8 +31,8 @@ from linkwork.structure.parameters import (
 
 
 def structural_model(spec: Spec) -> Mechanism:
-    """The structural model of a validated spec: a :class:`Mechanism` without its solve program, its
-    loads and its drive (those are added by :func:`linkwork.compile`).
+    """The structural model of a validated spec: a :class:`Mechanism` without the records of the later
+    stages (its solve program, loads, friction, motor and gear: :func:`linkwork.compile` adds them).
 
     Builds the flat arrays, decomposes the mechanism into Assur groups,
     assembles it in the pose chosen by the drives' start values and the

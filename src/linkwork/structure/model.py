@@ -13,11 +13,9 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import numpy as np
 import numpy.typing as npt
 
-if TYPE_CHECKING:  # the stages above the structural model, which fill in its later fields
-    from linkwork.kinetostatics.external import ExternalLoad
-    from linkwork.kinetostatics.friction import PairFriction
-    from linkwork.machine.drive import Drive
-    from linkwork.motion.program import Step
+from linkwork.structure.records import ExternalLoad, MotorGear, PairFriction, Step
+
+if TYPE_CHECKING:  # the description below the model, which it keeps
     from linkwork.spec.schema import ImpactSpec, Spec
 
 
@@ -209,7 +207,8 @@ class Mechanism:
     pin-in-slot a revolute and a prismatic pair of its block.
 
     Shapes: ``N = n_links_total`` links, ``P`` points, ``M`` pairs, ``D``
-    drives.  Lengths in m, angles in rad, SI throughout.
+    drives (``drive_*``: the joints the file drives, each by a speed or a law; the motor that turns the
+    machine is ``motor_gear``).  Lengths in m, angles in rad, SI throughout.
     """
 
     name: str
@@ -242,12 +241,14 @@ class Mechanism:
     pair_origin_point: np.ndarray  # (M,) point whose local coordinates are the guide origin; -1
     pair_members: np.ndarray  # (M, 2) the links of each pair in the order its joint names them
     joint_names: tuple[str, ...] = field(default=())
+    # the records the stages above compile into the model (linkwork.structure.records), by linkwork.compile:
     program: tuple[Step, ...] = ()  # the solve program, in solving order
-    # the program encoded for the compiled kernels (linkwork.motion.fast.encode: ops, branches), if it has them
-    fast_program: tuple[np.ndarray, np.ndarray] | None = None
+    # the program as the compiled kernels read it (linkwork.motion.kernels_numba.encode: ops, branches), if
+    # every step has a compiled kernel
+    program_table: tuple[np.ndarray, np.ndarray] | None = None
     loads: tuple[ExternalLoad, ...] = ()  # the external loads
     friction: tuple[PairFriction, ...] = ()  # friction in proportion to the pairs' forces
-    machine: Drive | None = None  # the drive of the machine unit, if the file gives one
+    motor_gear: MotorGear | None = None  # the machine unit's motor, gear and flywheel, if the file gives them
     delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
     blow: ImpactSpec | None = None  # the file's impact: section, SI
     spec: Spec | None = field(default=None, repr=False, compare=False)  # the description it was compiled from

@@ -1,4 +1,5 @@
-"""The reactions solved one sample at a time in machine code (with numba, when installed).
+"""The reactions solved one sample at a time in machine code (with numba, when installed): the twin of
+:mod:`linkwork.kinetostatics.reactions`.
 
 The same mathematics as :func:`linkwork.kinetostatics.reactions.solve_reactions`:
 the constraint Jacobian's rows of each Assur group, from the last group back,
@@ -19,11 +20,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from linkwork import jit
+from linkwork import jit, threads
 from linkwork.kinetostatics.external import Applied
 from linkwork.kinetostatics.geometry import variant_geometry
 from linkwork.kinetostatics.reactions import group_order
-from linkwork.motion.fast import PER_THREAD, THREADS, _pool
+from linkwork.motion import kernels_numba
 from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 
@@ -35,9 +36,7 @@ SINGULAR = 1e-12
 
 def available() -> bool:
     """Whether the compiled kernel runs (numba there, imported now if it was not, and not turned off)."""
-    from linkwork.motion import fast
-
-    return fast.available() and compiled()
+    return kernels_numba.available() and compiled()
 
 
 class Encoded(NamedTuple):
@@ -159,7 +158,7 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
     lam = np.empty((n_var, n_ang, m))
     frame = np.empty((n_var, n_ang, 3))
     size = 3 * encoded.width
-    n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
+    n_threads = threads.parts(n_var * n_ang)
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
     gx, gy = (float(x) for x in mech.gravity_vector)
@@ -175,7 +174,7 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
     if len(bounds) == 2:
         part(0, n_ang)
     else:
-        list(_pool().map(part, bounds[:-1], bounds[1:]))
+        list(threads.pool().map(part, bounds[:-1], bounds[1:]))
     return lam, frame
 
 
@@ -497,5 +496,6 @@ _CALLED = ("_kernel",)
 
 @functools.cache
 def compiled() -> bool:
-    """Wrap the kernels of this module with numba's ``njit`` (once, as :func:`linkwork.motion.fast.compiled`)."""
+    """Wrap the kernels of this module with numba's ``njit`` (once, as
+    :func:`linkwork.motion.kernels_numba.compiled`)."""
     return jit.jit_in_place(globals(), _INLINE, _CALLED)

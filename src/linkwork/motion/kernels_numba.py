@@ -19,21 +19,20 @@ from __future__ import annotations
 
 import functools
 import math
-import os
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any, NamedTuple
 
 import numpy as np
 
-from linkwork import jit
-from linkwork.motion.kernels import CLOSE, ROUNDING, SINGULAR
-from linkwork.motion.program import Arm, Step
+from linkwork import jit, threads
+from linkwork.motion.kernels import CLOSE, POSITION, ROUNDING, SINGULAR, VELOCITY
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import Geometry
+from linkwork.structure.records import Arm, Step
 
 #: Step kinds of the compiled program (column :data:`KIND` of its table).
 CRANK, SLIDE, DYAD, RPR, RPP = range(5)
-_CODES = {"crank": CRANK, "slide": SLIDE, "RRR": DYAD, "RRP": DYAD, "PRP": DYAD, "RPR": RPR, "RPP": RPP}
+#: The code of each closed-form step kind (:data:`linkwork.motion.program.CLOSED_FORM`).
+CODES = {"crank": CRANK, "slide": SLIDE, "RRR": DYAD, "RRP": DYAD, "PRP": DYAD, "RPR": RPR, "RPP": RPP}
 
 # Columns of a step's row of the compiled program (:func:`encode`): its kind, then by kind
 KIND = 0
@@ -114,17 +113,6 @@ class Solved(NamedTuple):
 #: point, some step on a singular position to rounding, some sample not assembled, some step in trouble.
 F_SINGULAR, F_NEAR, F_LIMIT, F_INVALID, F_TROUBLE = range(5)
 
-#: Threads a long batch is split over (the kernels release the GIL), and the least samples per thread.
-THREADS = min(os.cpu_count() or 1, 8)
-PER_THREAD = 5_000
-_POOL: list[ThreadPoolExecutor] = []
-
-
-def _pool() -> ThreadPoolExecutor:
-    if not _POOL:
-        _POOL.append(ThreadPoolExecutor(THREADS, thread_name_prefix="linkwork"))
-    return _POOL[0]
-
 
 def available() -> bool:
     """Whether the compiled kernels are in use in this process (:func:`linkwork.jit.active`; they are wrapped
@@ -140,7 +128,7 @@ def wanted(samples: int) -> bool:
 
 def supports(program: tuple[Step, ...]) -> bool:
     """Whether every step has a compiled kernel."""
-    return all(step.kind in _CODES for step in program)
+    return all(step.kind in CODES for step in program)
 
 
 def _arm(arm: Arm, point_link: np.ndarray) -> list[int]:
@@ -171,7 +159,7 @@ def encode(program: tuple[Step, ...], point_link: np.ndarray) -> Program:
     """The program as an integer table (one row a step) and the branch of each step."""
     ops = np.full((len(program), ARMS + 3 * ARM), -1, dtype=np.int64)
     for s, step in enumerate(program):
-        kind = _CODES[step.kind]
+        kind = CODES[step.kind]
         ops[s, KIND] = kind
         if kind == CRANK:
             arm = step.arms[0]
@@ -201,7 +189,7 @@ def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, 
     Parameters
     ----------
     mech : Mechanism
-        With a compiled program (``mech.fast_program``).
+        With a compiled program (``mech.program_table``).
     geom : Geometry
         Dimensions of the design variants.
     values, rates, accels : (A, D)
@@ -210,8 +198,8 @@ def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, 
     -------
     Solved
     """
-    assert mech.fast_program is not None
-    ops, branch = mech.fast_program
+    assert mech.program_table is not None
+    ops, branch = mech.program_table
     values, rates, accels = _floats(values), _floats(rates), _floats(accels)
     n_var, n_ang, n_steps, n_links = geom.point_local.shape[0], values.shape[0], len(ops), mech.n_links_total
     out = np.empty((11 * n_links, n_var * n_ang))  # one block: q, v, a (3 rows a link each), cos, sin
@@ -259,9 +247,9 @@ def _scan(values):
 
 
 def _in_parts(args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_ang: int) -> None:
-    """Run the kernel on ``args`` over the samples, split into parts of at least :data:`PER_THREAD`
-    samples run on up to :data:`THREADS` threads (the calling thread takes the first)."""
-    n_threads = min(THREADS, max(1, n_var * n_ang // PER_THREAD))
+    """Run the kernel on ``args`` over the samples, split into parts run on the threads of
+    :func:`linkwork.threads.pool` (:func:`linkwork.threads.parts`; the calling thread takes the first)."""
+    n_threads = threads.parts(n_var * n_ang)
     kernel: Any = _kernel  # the compiled kernel, which compiled() put in the Python function's place
 
     def part(lo: int, hi: int) -> None:
@@ -271,41 +259,17 @@ def _in_parts(args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_a
         part(0, n_ang)
         return
     bounds = np.linspace(0, n_ang, n_threads + 1).astype(int)
-    rest = [_pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
+    rest = [threads.pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
     part(bounds[0], bounds[1])
     for job in rest:
         job.result()
 
 
-#: The quantities of a point :func:`point_motion` gives.
-POSITION, VELOCITY, ACCELERATION = range(3)
-
-
-def point_motion(kind: int, q: np.ndarray, v: np.ndarray, a: np.ndarray, cs: tuple[np.ndarray, np.ndarray],
-                 local: np.ndarray) -> np.ndarray:  # fmt: skip
-    """Position, velocity or acceleration (``kind``: :data:`POSITION` ...) ``(V, A, 2)`` of a point at
-    ``local`` ``(2, V)`` in the frame of a link of pose, velocity and acceleration ``q``, ``v``, ``a``
-    ``(3, V, A)``, the cosine and sine of its angle ``cs`` ``(V, A)`` each: in one pass where the kernels
-    run (:func:`available`), by NumPy otherwise (the same arithmetic, in the same order)."""
-    out = np.empty(q.shape[1:] + (2,))
-    if available():
-        kernel: Any = _point_motion
-        kernel(kind, q, v, a, cs[0], cs[1], local[0], local[1], out)
-        return out
-    c, s, lx, ly = cs[0], cs[1], local[0][:, None], local[1][:, None]
-    rx, ry = c * lx - s * ly, s * lx + c * ly
-    if kind == POSITION:
-        out[..., 0], out[..., 1] = q[0] + rx, q[1] + ry
-    elif kind == VELOCITY:
-        out[..., 0], out[..., 1] = v[0] - v[2] * ry, v[1] + v[2] * rx
-    else:
-        w, e = v[2], a[2]
-        out[..., 0], out[..., 1] = a[0] - e * ry - w * w * rx, a[1] + e * rx - w * w * ry
-    return out
-
-
-def _point_motion(kind, q, v, a, cos, sin, lx, ly, out):
-    """:func:`point_motion` compiled."""
+def point_motion_into(kind, q, v, a, cos, sin, lx, ly, out):
+    """The twin of :func:`linkwork.motion.kernels.point_motion`: the position, velocity or acceleration
+    (``kind``) of a point at ``(lx, ly)`` ``(V,)`` in the frame of a link of pose, velocity and acceleration
+    ``q``, ``v``, ``a`` ``(3, V, A)`` and angle's cosine and sine ``cos``, ``sin`` ``(V, A)``, written into
+    ``out`` ``(V, A, 2)``."""
     for var in range(out.shape[0]):
         for i in range(out.shape[1]):
             c, s = cos[var, i], sin[var, i]
@@ -787,7 +751,7 @@ def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, found,
 _INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_src_point", "_locus", "_touching", "_snap",
            "_arm_motion", "_arm_extra", "_circles", "_circle_line", "_dyad", "_dyad_motion", "_rpr", "_crank",
            "_slide", "_step", "_near", "_sample", "_store", "_driving_rows", "_tolerance")  # fmt: skip
-_CALLED = ("_arm_constants", "_kernel", "_scan", "_point_motion")
+_CALLED = ("_arm_constants", "_kernel", "_scan", "point_motion_into")
 
 
 @functools.cache

@@ -8,11 +8,12 @@ import numpy as np
 import pytest
 
 import linkwork as lw
-from linkwork.motion import fast
+from linkwork import threads
+from linkwork.motion import kernels_numba
 from linkwork.structure.parameters import apply
 from mechanisms import SOLVED, TEXTBOOK, angles_around, circle_intersection, compiled, four_bar_spec, hydraulic_boom
 
-pytestmark = pytest.mark.skipif(not fast.available(), reason="numba is not installed")
+pytestmark = pytest.mark.skipif(not kernels_numba.available(), reason="numba is not installed")
 
 
 def _both(mech, angles, monkeypatch, **kw):
@@ -36,7 +37,7 @@ def _same(compiled, reference, scale=1.0):
     assert [e.message for e in compiled.events] == [e.message for e in reference.events]
 
 
-CLOSED_FORM = [m for m in SOLVED if compiled(*m).fast_program is not None] + [("textbook", "boom")]
+CLOSED_FORM = [m for m in SOLVED if compiled(*m).program_table is not None] + [("textbook", "boom")]
 
 
 def test_every_closed_form_program_is_compiled():
@@ -88,10 +89,10 @@ def test_dead_points_agree(monkeypatch):
 def test_threads_split_the_samples_without_changing_a_bit(monkeypatch):
     mech = lw.compile(lw.example("double-cut-shears"))
     angles = mech.drive_start[0] + np.linspace(0, 2 * np.pi, 5000, endpoint=False)
-    monkeypatch.setattr(fast, "THREADS", 1)
+    monkeypatch.setattr(threads, "THREADS", 1)
     one = lw.kinematics(mech, angles)
-    monkeypatch.setattr(fast, "THREADS", 3)
-    monkeypatch.setattr(fast, "PER_THREAD", 100)
+    monkeypatch.setattr(threads, "THREADS", 3)
+    monkeypatch.setattr(threads, "PER_THREAD", 100)
     three = lw.kinematics(mech, angles)
     for name in ("q", "v", "a"):
         np.testing.assert_array_equal(getattr(one, name), getattr(three, name))
@@ -101,7 +102,7 @@ def test_change_points_go_to_the_numpy_path(monkeypatch):
     """The isosceles slider-crank: the compiled path sees the two modes meet and hands over."""
     mech = lw.compile(lw.example("shears-slider-crank"))
     values = mech.drive_start[0] + np.linspace(0, 2 * np.pi, 360, endpoint=False)[:, None]
-    res = fast.run(mech, apply(mech)[0], values, np.ones_like(values), np.zeros_like(values))
+    res = kernels_numba.run(mech, apply(mech)[0], values, np.ones_like(values), np.zeros_like(values))
     assert res.near.any()
     compiled, reference = _both(mech, values[:, 0], monkeypatch)
     _same(compiled, reference)
@@ -117,7 +118,7 @@ def test_samples_on_a_singular_position_go_to_the_numpy_path(monkeypatch):
     kite_data, _ = four_bar_spec(0.5, 0.5, 0.625, 0.625, 0.25, True)
     kite = lw.compile(lw.from_dict(kite_data))
     for mech, values in ((rhombus, np.radians([0.0, 10.0, 20.0])), (kite, np.array([0.0, 0.1, 0.2]))):
-        res = fast.run(mech, apply(mech)[0], values[:, None], np.ones((3, 1)), np.zeros((3, 1)))
+        res = kernels_numba.run(mech, apply(mech)[0], values[:, None], np.ones((3, 1)), np.zeros((3, 1)))
         assert [step.kind for step in mech.program] == ["crank", "RRR"]
         assert res.limit[:, 0].tolist() == [False, True]  # per step
         compiled, reference = _both(mech, np.linspace(0.3, -0.3, 61), monkeypatch)
@@ -125,7 +126,7 @@ def test_samples_on_a_singular_position_go_to_the_numpy_path(monkeypatch):
 
 
 def test_the_kernels_say_what_their_arrays_hold(monkeypatch):
-    """``some_near``, ``some_limit``, ``some_invalid`` and ``some_trouble`` of :func:`fast.run` (set by the
+    """``some_near``, ``some_limit``, ``some_invalid`` and ``some_trouble`` of :func:`kernels_numba.run` (set by the
     kernels as they go) are ``near.any()``, ``limit.any()``, ``not valid.all()`` and ``trouble.any()``, on
     one thread and split over three: variants that fail to assemble, change points, a dyad on its
     singular position, and none of these."""
@@ -141,12 +142,12 @@ def test_the_kernels_say_what_their_arrays_hold(monkeypatch):
         (rhombus, None, np.radians([0.0, 10.0, 20.0])),
     ]
     seen = set()
-    for threads in (1, 3):
-        monkeypatch.setattr(fast, "THREADS", threads)
-        monkeypatch.setattr(fast, "PER_THREAD", 100)
+    for count in (1, 3):
+        monkeypatch.setattr(threads, "THREADS", count)
+        monkeypatch.setattr(threads, "PER_THREAD", 100)
         for mech, variants, angles in cases:
             values = angles[:, None]
-            res = fast.run(mech, apply(mech, variants)[0], values, np.ones_like(values), np.zeros_like(values))
+            res = kernels_numba.run(mech, apply(mech, variants)[0], values, np.ones_like(values), np.zeros_like(values))
             found = {"near": res.near.any(), "limit": res.limit.any(), "invalid": not res.valid.all(),
                      "trouble": res.trouble.any()}  # fmt: skip
             assert (res.some_near, res.some_limit, res.some_invalid, res.some_trouble) == tuple(found.values())
@@ -160,7 +161,7 @@ def test_the_tolerance_of_the_change_point_test_is_of_the_largest_point_of_any_v
     mech = lw.compile(lw.example("four-bar"))
     local = apply(mech, {"links.crank.length": np.linspace(0.05, 2.0, 5)})[0].point_local
     assert np.abs(local[-1]).max() == 2.0 > np.abs(local[:-1]).max()
-    assert fast._tolerance(local) == 1e-12 * (1 + 2.0)
+    assert kernels_numba._tolerance(local) == 1e-12 * (1 + 2.0)
 
 
 @pytest.mark.parametrize("kind, name", CLOSED_FORM)
