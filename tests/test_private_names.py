@@ -103,20 +103,17 @@ def test_the_checks_can_fail():
     assert [line.split(": ", 1)[1] for line in private_attributes(trees)] == ["kin._point (defined in motion)"]
 
 
-#: Public class names still defined in two packages: the file format's record and the compiled or drawn thing of
-#: the same name (``Drive``: renamed by issue 32, item 1).  No name may join them.
-SHARED_CLASS_NAMES = {"Arrow", "Drive", "Element", "PairFriction"}
-
-
 def test_a_public_class_name_means_one_thing():
     """``Plan`` (a velocity plan, not a sweep's variants: :class:`~linkwork.design.plan.SweepPlan`), ``Cycle`` (the
     viewer's, not the report's: ``ReportCycle``) and ``Event`` (of the motion, not of an integration:
-    :class:`~linkwork.machine.simulation.IntegrationEvent`) are each defined once."""
+    :class:`~linkwork.machine.simulation.IntegrationEvent`), ``Drive`` (a joint's, not the motor and gear:
+    ``MotorGear``), ``Arrow`` (of a plan, not the viewer's ``SchemeForce``), ``Element`` (drawn, not the force
+    element's protocol ``ForceElement``) and ``PairFriction`` (compiled, not the file's ``FrictionLaw``) are each
+    defined once: no public class name is defined twice."""
     where: dict[str, list[str]] = defaultdict(list)
     for path, tree in _trees().items():
         for node in tree.body:  # type: ignore[attr-defined]
             if isinstance(node, ast.ClassDef) and not node.name.startswith("_"):
                 where[node.name].append(str(path.relative_to(SRC)))
     twice = {name: places for name, places in where.items() if len(places) > 1}
-    assert set(twice) <= SHARED_CLASS_NAMES, twice
-    assert {"Plan", "Cycle", "Event"} & set(twice) == set()
+    assert twice == {}

@@ -27,7 +27,7 @@ from linkwork.structure.model import Mechanism
 ELEMENTS = ("spring", "damper", "torsion_spring")
 
 
-class Element(Protocol):
+class ForceElement(Protocol):
     """What a compiled force element holds (:class:`~linkwork.structure.records.ExternalLoad`)."""
 
     @property
@@ -99,7 +99,7 @@ def _state(kin: Kinematics, p: int) -> tuple[np.ndarray, np.ndarray]:
     return pos, vel
 
 
-def evaluate_element(kin: Kinematics, load: Element) -> Action:
+def evaluate_element(kin: Kinematics, load: ForceElement) -> Action:
     """The forces (spring, damper) or moments (torsion spring) of one force element over ``kin`` and its size;
     NaN where a spring's two points coincide (its line has no direction)."""
     if load.kind == "torsion_spring":
@@ -121,7 +121,7 @@ def evaluate_element(kin: Kinematics, load: Element) -> Action:
     return Action([(links[0], p1, v1, f), (links[1], p2, v2, -f)], [], np.where(length > 0, tension, np.nan))
 
 
-def relative_turn(kin: Kinematics, load: Element) -> np.ndarray:
+def relative_turn(kin: Kinematics, load: ForceElement) -> np.ndarray:
     """The turn (rad) of a torsion spring's joint, its second link's angle less its first's ``(V, A)``; in the
     drive's own joint the drive coordinate counts whole turns, elsewhere it is taken within half a turn of
     the free angle."""

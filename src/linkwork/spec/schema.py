@@ -284,7 +284,7 @@ class Link(_Strict):
     description: str | None = None
 
 
-class PairFriction(_Strict):
+class FrictionLaw(_Strict):
     """Friction in a joint's pairs in proportion to the force each carries (Coulomb's law).
 
     A revolute pair's friction moment is ``f radius |R|`` (``R`` the pair's force; ``f radius`` the radius
@@ -320,7 +320,7 @@ class Joint(_Strict):
     point: str | None = Field(None, description="the point of the pair; default: the joint's name")
     through: PointOrVec | None = Field(None, description="prismatic/pin-in-slot: a point of the guide line")
     axis: Angle | None = Field(None, description="prismatic/pin-in-slot: direction of the guide line")
-    friction: PairFriction | None = Field(
+    friction: FrictionLaw | None = Field(
         None,
         description="friction in proportion to the pair's force: {f, radius} for a revolute joint, {f} for a "
         "prismatic one",

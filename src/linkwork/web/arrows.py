@@ -29,8 +29,8 @@ LENGTH = 0.3
 
 
 @dataclass(frozen=True)
-class Arrow:
-    """One arrow: what it is and where it acts.
+class SchemeForce:
+    """One force arrow the viewer draws on the scheme (a reaction at a joint or a load): what it is and where it acts.
 
     Attributes
     ----------
@@ -66,7 +66,7 @@ class Arrows:
 
     Attributes
     ----------
-    arrows : tuple of Arrow
+    arrows : tuple of SchemeForce
     values : ndarray, shape (A, K, 2)
         Each arrow's force at each sample, N (NaN where the mechanism does not assemble).
     scale : float
@@ -75,7 +75,7 @@ class Arrows:
         The frame's point of the crank's pivot, where the driving torque is drawn.
     """
 
-    arrows: tuple[Arrow, ...]
+    arrows: tuple[SchemeForce, ...]
     values: np.ndarray
     scale: float
     torque_point: int
@@ -98,7 +98,7 @@ def force_arrows(cycle: Cycle, size: float) -> Arrows | None:
 
 
 @per_mechanism
-def _reaction_arrows(mech: Mechanism) -> tuple[Arrow, ...]:
+def _reaction_arrows(mech: Mechanism) -> tuple[SchemeForce, ...]:
     """One arrow a joint: the force on its member of the highest number, at its point."""
     arrows = []
     for joint in dict.fromkeys(mech.pair_joint):
@@ -111,12 +111,12 @@ def _reaction_arrows(mech: Mechanism) -> tuple[Arrow, ...]:
         k = next(k for k in pairs if on in map(int, mech.pair_links[k]))
         point = _point_of(mech, k, on)
         label = "R" + (",".join if max(members) >= 10 else "".join)([*(str(b) for b in by), str(on)])
-        arrows.append(Arrow("reaction", str(joint), label, mech.link_names[on],
+        arrows.append(SchemeForce("reaction", str(joint), label, mech.link_names[on],
                             tuple(mech.link_names[b] for b in by), point))  # fmt: skip
     return tuple(arrows)
 
 
-def _reactions(cycle: Cycle, arrows: tuple[Arrow, ...]) -> np.ndarray:
+def _reactions(cycle: Cycle, arrows: tuple[SchemeForce, ...]) -> np.ndarray:
     """The forces of the reactions' ``arrows``, ``(A, R, 2)``."""
     forces = cycle.forces
     assert forces is not None
@@ -131,11 +131,11 @@ def _point_of(mech: Mechanism, k: int, link: int) -> int:
 
 
 @per_mechanism
-def _load_arrows(mech: Mechanism) -> tuple[Arrow, ...]:
+def _load_arrows(mech: Mechanism) -> tuple[SchemeForce, ...]:
     """An arrow for each point of the file's forces, process loads, springs and dampers on a moving link (a
     force's, each tool of a process load, each moving end of a spring or damper)."""
     return tuple(
-        Arrow("load", load.name, load.name, mech.link_names[int(mech.point_link[p])], (), int(p))
+        SchemeForce("load", load.name, load.name, mech.link_names[int(mech.point_link[p])], (), int(p))
         for load in mech.loads
         if load.kind in ("force", "process", "spring", "damper")
         for p in load.points
@@ -143,7 +143,7 @@ def _load_arrows(mech: Mechanism) -> tuple[Arrow, ...]:
     )
 
 
-def _loads(cycle: Cycle) -> tuple[tuple[Arrow, ...], np.ndarray]:
+def _loads(cycle: Cycle) -> tuple[tuple[SchemeForce, ...], np.ndarray]:
     """An arrow for each force of the file's loads on a moving link (a process load's on each tool), and their
     forces ``(A, L, 2)``: the elementary force of the external loads on its point's link at its point."""
     mech, kin, forces = cycle.mech, cycle.kin, cycle.forces
