@@ -42,8 +42,16 @@ def run(n: int, steps: int, workers: int, chunk: int | None):
         with Client(cluster) as client:
             client.wait_for_workers(workers)
         # load the compiled kernels in every worker
-        lw.sweep("four-bar", VARY, METRICS, sampling="lhs", samples=20 * workers, steps=steps, chunk_size=10,
-                 scheduler=cluster.scheduler_address)  # fmt: skip
+        lw.sweep(
+            "four-bar",
+            VARY,
+            METRICS,
+            sampling="lhs",
+            samples=20 * workers,
+            steps=steps,
+            chunk_size=10,
+            scheduler=cluster.scheduler_address,
+        )
         startup = time.perf_counter() - t
         t = time.perf_counter()
         table = lw.sweep("four-bar", VARY, METRICS, scheduler=cluster.scheduler_address, **kw)

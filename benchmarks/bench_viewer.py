@@ -51,8 +51,9 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--dis
 
 def start_server(name: str) -> tuple[subprocess.Popen, int]:
     code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
-    proc = subprocess.Popen([sys.executable, "-c", code, "view", name, "--port", "0", "--no-browser"],
-                            stdout=subprocess.PIPE, text=True)  # fmt: skip
+    proc = subprocess.Popen(
+        [sys.executable, "-c", code, "view", name, "--port", "0", "--no-browser"], stdout=subprocess.PIPE, text=True
+    )
     line = proc.stdout.readline() if proc.stdout else ""
     found = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
     if not found:
@@ -159,8 +160,12 @@ def poses_while_editing(port: int, name: str, start: float, editors: int, count:
         conn.close()
 
     warm = http.client.HTTPConnection("127.0.0.1", port, timeout=600)  # kernels compiled before any timing
-    warm.request("POST", "/api/edit", json.dumps({"overrides": {name: start * 1.001}}).encode(),
-                 {"Content-Type": "application/json"})  # fmt: skip
+    warm.request(
+        "POST",
+        "/api/edit",
+        json.dumps({"overrides": {name: start * 1.001}}).encode(),
+        {"Content-Type": "application/json"},
+    )
     warm.getresponse().read()
     warm.close()
     threads = [threading.Thread(target=edit, args=(c,), daemon=True) for c in range(editors)]
@@ -208,8 +213,10 @@ def main(argv: list[str] | None = None) -> None:
         poses = {n: poses_while_editing(port, name, start, n, args.poses) for n in map(int, args.editors.split(","))}
         for n, times in poses.items():
             median, high = 1e3 * statistics.median(times), 1e3 * np.quantile(times, 0.9)
-            print(f"  pose round trip (POST /api/pose, parsed) while {n} clients edit back to back: median "
-                  f"{median:.1f} ms, 90th percentile {high:.1f} ms")  # fmt: skip
+            print(
+                f"  pose round trip (POST /api/pose, parsed) while {n} clients edit back to back: median "
+                f"{median:.1f} ms, 90th percentile {high:.1f} ms"
+            )
         if args.only_poses:
             return
         trips = round_trips(port, name, start, args.edits)
@@ -226,8 +233,10 @@ def main(argv: list[str] | None = None) -> None:
             lw.forces(mech, angles, variants=variant)
             own.append(time.perf_counter() - t)
         compiled = best(lambda: lw.compile(spec))
-        opened = {n: best(lambda n=n: cycle_payload(mech, 360, placed=n), repeat=2, budget=8.0)
-                  for n in (1, LIVE_PLACED, None)}  # fmt: skip
+        opened = {
+            n: best(lambda n=n: cycle_payload(mech, 360, placed=n), repeat=2, budget=8.0)
+            for n in (1, LIVE_PLACED, None)
+        }
         rate, moves, page_ms = float("nan"), float("nan"), list[float]()
         if args.drag > 0:
             rate, moves, page_ms = drag(port, name, args.drag, crank_direction(mech))
@@ -240,15 +249,21 @@ def main(argv: list[str] | None = None) -> None:
     print(f"  edit round trip (POST /api/edit, parsed): median {1e3 * rt_median:.1f} ms, best {1e3 * rt_best:.1f} ms")
     print(f"  lw.forces of the cycle: best {1e3 * f_best:.2f} ms, median {1e3 * f_median:.2f} ms")
     print(f"  ratio: median edit / median lw.forces {rt_median / f_median:.1f}, best / best {rt_best / f_best:.1f}")
-    print(f"  lw.forces of the viewer's own cycle (from position 0, the edit as a variant): median "
-          f"{1e3 * statistics.median(own):.2f} ms")
+    print(
+        f"  lw.forces of the viewer's own cycle (from position 0, the edit as a variant): median "
+        f"{1e3 * statistics.median(own):.2f} ms"
+    )
     print(f"  lw.compile of the file: {1e3 * compiled:.1f} ms")
-    print(f"  the cycle's payload, labels placed at the first sample {1e3 * opened[1]:.0f} ms, at "
-          f"{LIVE_PLACED} samples {1e3 * opened[LIVE_PLACED]:.0f} ms, at all 360 {1e3 * opened[None]:.0f} ms")
+    print(
+        f"  the cycle's payload, labels placed at the first sample {1e3 * opened[1]:.0f} ms, at "
+        f"{LIVE_PLACED} samples {1e3 * opened[LIVE_PLACED]:.0f} ms, at all 360 {1e3 * opened[None]:.0f} ms"
+    )
     if page_ms:
         shown = [v for v in page_ms if v == v]
-        print(f"  dragging in Chromium: {rate:.1f} updates a second ({moves:.1f} mouse moves a second), the page's "
-              f"round trip median {statistics.median(shown) if shown else float('nan'):.1f} ms")  # fmt: skip
+        print(
+            f"  dragging in Chromium: {rate:.1f} updates a second ({moves:.1f} mouse moves a second), the page's "
+            f"round trip median {statistics.median(shown) if shown else float('nan'):.1f} ms"
+        )
 
 
 if __name__ == "__main__":

@@ -145,13 +145,66 @@ def _set(data: Any, path: tuple[Any, ...], value: Any) -> Any:
 
 #: Values a scalar is replaced by.
 HOSTILE_VALUES: list[Any] = [
-    None, True, False, 0, -1, 1, 0.0, -0.0, 1e308, -1e308, 1e-308, 5e-324, 10**400, -(10**30),
-    math.inf, -math.inf, math.nan, "", " ", "0", "-0", "1e400 mm", "1e-400 mm", "nan mm", "inf m",
-    "100 kg", "12 furlongs", "100 mm mm", "1/0 mm", "10**10**10 mm", "100mm", "0x10 mm", "1_000 mm",
-    "30 rpm", "30 Hz", "-5 deg", "2 kg*m^2", "kg", "m" + " " * 300 + "!", "1" * 400 + "!",
-    "кривошип", "O\u0301", "\u202eevil", "a\u200bb", "\x1b[31mred", "tab\there", "new\nline", "a\ud800b",
-    "😀", "x" * (MAX_NAME + 1), "y" * 5000, [], [1], [1, 2, 3], [[1, 2]], {}, {"x": 1}, [None], ["a", "b"],
-]  # fmt: skip
+    None,
+    True,
+    False,
+    0,
+    -1,
+    1,
+    0.0,
+    -0.0,
+    1e308,
+    -1e308,
+    1e-308,
+    5e-324,
+    10**400,
+    -(10**30),
+    math.inf,
+    -math.inf,
+    math.nan,
+    "",
+    " ",
+    "0",
+    "-0",
+    "1e400 mm",
+    "1e-400 mm",
+    "nan mm",
+    "inf m",
+    "100 kg",
+    "12 furlongs",
+    "100 mm mm",
+    "1/0 mm",
+    "10**10**10 mm",
+    "100mm",
+    "0x10 mm",
+    "1_000 mm",
+    "30 rpm",
+    "30 Hz",
+    "-5 deg",
+    "2 kg*m^2",
+    "kg",
+    "m" + " " * 300 + "!",
+    "1" * 400 + "!",
+    "кривошип",
+    "O\u0301",
+    "\u202eevil",
+    "a\u200bb",
+    "\x1b[31mred",
+    "tab\there",
+    "new\nline",
+    "a\ud800b",
+    "😀",
+    "x" * (MAX_NAME + 1),
+    "y" * 5000,
+    [],
+    [1],
+    [1, 2, 3],
+    [[1, 2]],
+    {},
+    {"x": 1},
+    [None],
+    ["a", "b"],
+]
 
 
 def _retype(rng: random.Random, data: Any) -> str:
@@ -170,8 +223,31 @@ def _drop(rng: random.Random, data: Any) -> str:
     return f"drop {'.'.join(map(str, path + (key,)))}"
 
 
-_KEYS = ["name", "links", "joints", "drives", "frame", "points", "ends", "length", "mass", "type", "angle", "speed",
-         "loads", "machine", "impact", "hints", "units", "lenght", "Links", "", "0", "<<", "x" * 300]  # fmt: skip
+_KEYS = [
+    "name",
+    "links",
+    "joints",
+    "drives",
+    "frame",
+    "points",
+    "ends",
+    "length",
+    "mass",
+    "type",
+    "angle",
+    "speed",
+    "loads",
+    "machine",
+    "impact",
+    "hints",
+    "units",
+    "lenght",
+    "Links",
+    "",
+    "0",
+    "<<",
+    "x" * 300,
+]
 
 
 def _extra(rng: random.Random, data: Any) -> str:
@@ -247,9 +323,21 @@ def _grow(rng: random.Random, data: Any) -> str:
 
 #: Unit expressions that explode when evaluated (a power of a power), or give a number beyond any bound.
 EXPLODING_UNITS = [
-    "1 m^9^9^9", "1 mm**9**9", "2 kg*m^-9^9", "1 m ^ 9 ^ 9", "1e308 m^9", "1e300 km", "1 m" + "*m" * 40,
-    "1 m^99", "3 kN*m^2^2", "1e-320 mm", "1 mm/s^9^9", "9" * 300 + " mm", "1 rpm^9^9", "1 kW**9**9**9",
-]  # fmt: skip
+    "1 m^9^9^9",
+    "1 mm**9**9",
+    "2 kg*m^-9^9",
+    "1 m ^ 9 ^ 9",
+    "1e308 m^9",
+    "1e300 km",
+    "1 m" + "*m" * 40,
+    "1 m^99",
+    "3 kN*m^2^2",
+    "1e-320 mm",
+    "1 mm/s^9^9",
+    "9" * 300 + " mm",
+    "1 rpm^9^9",
+    "1 kW**9**9**9",
+]
 
 
 def _explode(rng: random.Random, data: Any) -> str:
@@ -268,8 +356,25 @@ def _explode(rng: random.Random, data: Any) -> str:
 _OBJECTS = ("loads", "machine", "impact", "drives", "drawing")
 
 #: Values beyond what validation lets through: none at all, infinite, or out of all proportion.
-ABSURD = [None, None, {}, [], math.inf, -math.inf, math.nan, 1e300, -1e300, 1e10, 1e-300, "1e300 rpm", "1e12 kN",
-          "1e300 kW", "1e300 kg*m^2", "-1e300 N*m", 10**400]  # fmt: skip
+ABSURD = [
+    None,
+    None,
+    {},
+    [],
+    math.inf,
+    -math.inf,
+    math.nan,
+    1e300,
+    -1e300,
+    1e10,
+    1e-300,
+    "1e300 rpm",
+    "1e12 kN",
+    "1e300 kW",
+    "1e300 kg*m^2",
+    "-1e300 N*m",
+    10**400,
+]
 
 
 def _empty(rng: random.Random, data: Any) -> str:
@@ -285,8 +390,18 @@ def _empty(rng: random.Random, data: Any) -> str:
 
 
 #: Text a terminal would act on: retitle the window, ring, clear the screen, move the cursor, reset.
-CONTROL_TEXTS = ["\x1b]0;owned\x07\x1b[2J", "\x1b[31mred\x1b[0m", "a\rb", "\x9b2J", "\x08\x08\x08x", "\x1bc",
-                 "\x7f", "\x1b]8;;http://x\x1b\\link\x1b]8;;\x1b\\", "\x1b[?1049h", "\x00"]  # fmt: skip
+CONTROL_TEXTS = [
+    "\x1b]0;owned\x07\x1b[2J",
+    "\x1b[31mred\x1b[0m",
+    "a\rb",
+    "\x9b2J",
+    "\x08\x08\x08x",
+    "\x1bc",
+    "\x7f",
+    "\x1b]8;;http://x\x1b\\link\x1b]8;;\x1b\\",
+    "\x1b[?1049h",
+    "\x00",
+]
 
 
 def _controls(rng: random.Random, data: Any) -> str:
@@ -307,8 +422,19 @@ def _get(data: Any, path: tuple[Any, ...]) -> Any:
 
 
 MUTATIONS: list[Callable[[random.Random, Any], str]] = [
-    _retype, _retype, _retype, _drop, _drop, _extra, _one_element, _numbers, _numbers, _rename, _unicode, _grow,
-]  # fmt: skip
+    _retype,
+    _retype,
+    _retype,
+    _drop,
+    _drop,
+    _extra,
+    _one_element,
+    _numbers,
+    _numbers,
+    _rename,
+    _unicode,
+    _grow,
+]
 
 #: The kinds found by the second campaign, drawn on their own (the seeds of :data:`MUTATIONS` stay as they were).
 FRESH_MUTATIONS: list[Callable[[random.Random, Any], str]] = [_explode, _empty, _empty, _controls]
@@ -362,10 +488,10 @@ def yaml_cases() -> dict[str, str | bytes]:
             + "\n".join(f"bomb{i}: &b{i} [{', '.join([f'*b{i - 1}'] * 8)}]" for i in range(1, 9))
             + "\nlinks:",
             1,
-        ),  # fmt: skip
+        ),
         "merge-bomb": "a0: &a0 {k: 1}\n"
         + "\n".join(f"a{i}: &a{i} {{<<: [{', '.join([f'*a{i - 1}'] * 8)}]}}" for i in range(1, 9))
-        + "\n",  # fmt: skip
+        + "\n",
         "merge-wide": merges(5000, 2000, 3),
         "merge-empty": merges(0, 60, 6),
         "merge-in-links": four.replace("links:", merges(300, 300, 3) + "links:", 1),
@@ -409,7 +535,7 @@ def yaml_cases() -> dict[str, str | bytes]:
         "markers-3000": four.replace(
             "points: {M: [175, 80]}",
             "points: {M: [175, 80], " + ", ".join(f"P{i}: [{i}, 1]" for i in range(3000)) + "}",
-        ),  # fmt: skip
+        ),
         "coincident-markers": four.replace(
             "points: {M: [175, 80]}", "points: {" + ", ".join(f"P{i}: [5, 5]" for i in range(2000)) + "}"
         ),
@@ -456,8 +582,9 @@ def shared(seed: int) -> tuple[str, str, dict[str, float]]:
     lines = text(name).split("\n")
     start = next(i for i, line in enumerate(lines) if line.startswith("links:"))
     heads = [i for i in range(start + 1, len(lines)) if re.match(r"^  [A-Za-z_]\w*:\s*(#.*)?$", lines[i])]
-    heads = heads[: next((k for k, i in enumerate(heads) if any(re.match(r"^\S", ln) for ln in lines[start + 1 : i])),
-                         len(heads))]  # fmt: skip
+    heads = heads[
+        : next((k for k, i in enumerate(heads) if any(re.match(r"^\S", ln) for ln in lines[start + 1 : i])), len(heads))
+    ]
     if len(heads) < 2:
         return shared(seed + 1000)
     keys = {n: set(v) if isinstance(v, dict) else set() for n, v in _read(name)["links"].items()}
@@ -510,20 +637,34 @@ def option_cases() -> list[Case]:
     out += [("analyze", "four-bar", "--out", "{dir}/r", "--lang", lang) for lang in ("xx", "x" * 5000)]
     sweep = ("sweep", "four-bar", "--metric", "swing", "--quiet", "--out")
     grid = ("--vary", "links.crank.length=90mm:110mm:3")
-    out += [(*sweep, "{dir}/s.parquet", "--vary", f"links.crank.length=90mm:110mm:{c}") for c in
-            ("0", "-1", str(MAX_VARIANTS + 1), huge, "1e9", "x")]  # fmt: skip
-    out += [(*sweep, "{dir}/s.parquet", "--vary", "links.crank.length=90mm:110mm:4000",
-             "--vary", "links.rocker.length=200mm:300mm:4000")]  # fmt: skip
+    out += [
+        (*sweep, "{dir}/s.parquet", "--vary", f"links.crank.length=90mm:110mm:{c}")
+        for c in ("0", "-1", str(MAX_VARIANTS + 1), huge, "1e9", "x")
+    ]
+    out += [
+        (
+            *sweep,
+            "{dir}/s.parquet",
+            "--vary",
+            "links.crank.length=90mm:110mm:4000",
+            "--vary",
+            "links.rocker.length=200mm:300mm:4000",
+        )
+    ]
     lhs = ("--vary", "links.crank.length=90mm:110mm", "--sample", "lhs")
     out += [(*sweep, "{dir}/s.parquet", *lhs, "--samples", n) for n in ("0", "-1", str(MAX_VARIANTS + 1), huge)]
     out += [(*sweep, "{dir}/s.parquet", *lhs, "--samples", "3", "--seed", s) for s in ("-1", str(MAX_SEED + 1), huge)]
     out += [(*sweep, "{dir}/s.parquet", *grid, "--steps", s) for s in ("0", "2", big, huge)]
     out += [(*sweep, "{dir}/s.parquet", *grid, "--chunk-size", c) for c in ("0", "-1", "100000", huge)]
     out += [(*sweep, "{dir}/s.parquet", *grid, "--workers", w) for w in ("-1", "100000", huge)]
-    out += [(*sweep, "{dir}/s.parquet", *grid, "--scheduler", s) for s in ("{dir}/sched.json", "{dir}/notjson",
-                                                                          "nowhere", "x" * 5000)]  # fmt: skip
-    out += [(*sweep, "{dir}/s.parquet", *grid, "--scheduler", "tcp://127.0.0.1:1", "--connect-timeout", t)
-            for t in ("inf", "1e308", "0", "-1", "nan")]  # fmt: skip
+    out += [
+        (*sweep, "{dir}/s.parquet", *grid, "--scheduler", s)
+        for s in ("{dir}/sched.json", "{dir}/notjson", "nowhere", "x" * 5000)
+    ]
+    out += [
+        (*sweep, "{dir}/s.parquet", *grid, "--scheduler", "tcp://127.0.0.1:1", "--connect-timeout", t)
+        for t in ("inf", "1e308", "0", "-1", "nan")
+    ]
     out += [(*sweep, "{dir}/" + "s" * 300 + ".parquet", *grid)]
     varies = ("x" * 5000, "links.crank.length=" + "9" * 5000, "links.crank.length=1e308m:1e308m:2", "=", "")
     out += [(*sweep, "{dir}/s.parquet", "--vary", v) for v in varies]
@@ -536,19 +677,39 @@ def option_cases() -> list[Case]:
     out += [(*opt, "--out", o) for o in ("{dir}/" + "o" * 300 + ".yaml", "{dir}/o.txt")]
     out += [("view", "four-bar", "--export", e) for e in ("{dir}/" + "p" * 300 + ".html", "{dir}", "", " ")]
     out += [("view", "four-bar", "--export", "{dir}/p.html", "--steps", s) for s in ("11", "1441")]
-    out += [("check", f) for f in ("/dev/zero", "/dev/null", "{dir}", "{dir}/" + "f" * 300 + ".yaml", "/nonexistent",
-                                   "x" * 5000, "{dir}/\udcff.yaml")]  # fmt: skip
+    out += [
+        ("check", f)
+        for f in (
+            "/dev/zero",
+            "/dev/null",
+            "{dir}",
+            "{dir}/" + "f" * 300 + ".yaml",
+            "/nonexistent",
+            "x" * 5000,
+            "{dir}/\udcff.yaml",
+        )
+    ]
     out += [("example", "x" * 5000), ("check", "four-bar", "--values", "--json")]
     out += [("check", f) for f in UNREADABLE if os.path.exists(f)]
     for digits in UNICODE_DIGITS:  # str.isdigit passes them, int refuses some and reads others
-        out += [("analyze", "four-bar", "--out", "{dir}/r", "--position", digits), ("kinematics", "four-bar",
-                "--steps", digits), ("positions", "four-bar", "--count", digits)]  # fmt: skip
+        out += [
+            ("analyze", "four-bar", "--out", "{dir}/r", "--position", digits),
+            ("kinematics", "four-bar", "--steps", digits),
+            ("positions", "four-bar", "--count", digits),
+        ]
     return [Case(f"option {i}", argv) for i, argv in enumerate(out)]
 
 
 #: Files whose read fails after they open (EIO, EINVAL), or that are no file.
-UNREADABLE = ["/proc/self/mem", "/proc/self/pagemap", "/proc/self/task", "/proc/self/clear_refs", "/dev/full",
-              "/proc/self/fd/0", "/sys/kernel/security"]  # fmt: skip
+UNREADABLE = [
+    "/proc/self/mem",
+    "/proc/self/pagemap",
+    "/proc/self/task",
+    "/proc/self/clear_refs",
+    "/dev/full",
+    "/proc/self/fd/0",
+    "/sys/kernel/security",
+]
 
 #: Digits of other scripts and forms: superscript two, Arabic-Indic three, full-width one two, N'Ko one, a
 #: digit with a combining accent, mathematical bold one two.
@@ -563,10 +724,19 @@ OPTION_FILES: dict[str, str | bytes] = {"sched.json": '{"address": 5}', "notjson
 def environment_cases() -> list[Case]:
     """Commands whose surroundings are hostile: standard output on a full disk (``> /dev/full``), a matplotlib
     backend that does not exist, an ASCII locale with a Cyrillic name, a terminal of no width."""
-    printing = [("check", "four-bar"), ("check", "four-bar", "--json"), ("kinematics", "four-bar", "--steps", "12"),
-                ("forces", "four-bar", "--steps", "12", "--json"), ("parameters", "four-bar"), ("examples",),
-                ("example", "four-bar"), ("positions", "four-bar", "--count", "3"), ("dynamics", "double-cut-shears"),
-                ("impact", "percussion-rocker"), ("balance", "four-bar", "--links", "crank")]  # fmt: skip
+    printing = [
+        ("check", "four-bar"),
+        ("check", "four-bar", "--json"),
+        ("kinematics", "four-bar", "--steps", "12"),
+        ("forces", "four-bar", "--steps", "12", "--json"),
+        ("parameters", "four-bar"),
+        ("examples",),
+        ("example", "four-bar"),
+        ("positions", "four-bar", "--count", "3"),
+        ("dynamics", "double-cut-shears"),
+        ("impact", "percussion-rocker"),
+        ("balance", "four-bar", "--links", "crank"),
+    ]
     out = [Case(f"full {' '.join(argv)}", argv, full=True) for argv in printing]
     cyrillic = {"m.yaml": text("four-bar").replace("name: four-bar", "name: Ножницы")}
     report = ("analyze", "four-bar", "--out", "{dir}/r", "--steps", "24", "--no-animation")
@@ -666,9 +836,14 @@ def _run_in_subprocess(case: Case, folder: Path, limit: float, env: dict[str, st
     start = time.perf_counter()
     try:
         proc = subprocess.run(
-            [sys.executable, "-m", "linkwork.cli", *argv], stdout=stdout, stderr=subprocess.PIPE, timeout=limit,
-            env=environ, preexec_fn=_limit_memory, stdin=subprocess.DEVNULL,
-        )  # fmt: skip
+            [sys.executable, "-m", "linkwork.cli", *argv],
+            stdout=stdout,
+            stderr=subprocess.PIPE,
+            timeout=limit,
+            env=environ,
+            preexec_fn=_limit_memory,
+            stdin=subprocess.DEVNULL,
+        )
     except subprocess.TimeoutExpired:
         return Outcome(None, "", "", time.perf_counter() - start, f"more than {limit:g} s")
     stderr = proc.stderr.decode("utf-8", "backslashreplace")

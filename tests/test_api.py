@@ -58,8 +58,15 @@ def test_parameters_and_sweep_take_every_form(tmp_path):
 
 @pytest.mark.parametrize("bad", [42, None, {"links": {}}, ["four-bar"], b"four-bar"])
 def test_anything_else_is_a_type_error_that_says_what_is_expected(bad):
-    for call in (lw.compile, lambda m: lw.kinematics(m, steps=8), lambda m: lw.forces(m, steps=8), lw.dynamics,
-                 lw.reduced, lw.impact, lw.parameters):  # fmt: skip
+    for call in (
+        lw.compile,
+        lambda m: lw.kinematics(m, steps=8),
+        lambda m: lw.forces(m, steps=8),
+        lw.dynamics,
+        lw.reduced,
+        lw.impact,
+        lw.parameters,
+    ):
         with pytest.raises(TypeError, match="a mechanism file path, the name of a bundled example, a Spec"):
             call(bad)
 

@@ -44,8 +44,11 @@ def test_variants_take_values_with_units_as_sweep_does():
     kin = lw.kinematics("four-bar", steps=4, variants={"links.crank.length": ["90 mm", 0.1, "110"]})
     lengths = np.array([0.09, 0.1, 0.11])
     np.testing.assert_allclose(kin.position("A")[:, 0], lengths[:, None] * [0.5, math.sqrt(3) / 2], rtol=1e-12)
-    with pytest.raises(ParameterError, match=r'variants\["links.crank.length"\]: expected numbers in m or lengths '
-                                             r'with a unit such as "90 mm", got \'90 kg\''):  # fmt: skip
+    with pytest.raises(
+        ParameterError,
+        match=r'variants\["links.crank.length"\]: expected numbers in m or lengths '
+        r'with a unit such as "90 mm", got \'90 kg\'',
+    ):
         lw.kinematics("four-bar", steps=4, variants={"links.crank.length": ["90 kg"]})
     with pytest.raises(ParameterError, match="did you mean"):
         lw.forces("four-bar", steps=4, variants={"links.crank.lenght": ["90 mm"]})

@@ -232,16 +232,26 @@ def test_synthesis_sits_above_the_analyses_and_below_the_drawings_reports_and_co
     """It verifies what it writes with the analyses (and may refine through ``design``); nothing it imports
     draws, reports or parses a command line."""
     above = {"scene", "io", "figures", "report", "web", "cli"}
-    wrong = [f"{a} -> {b}" for a, targets in edges.items() if _package(a) == "synthesis"
-             for b in targets if _package(b) in above]  # fmt: skip
+    wrong = [
+        f"{a} -> {b}"
+        for a, targets in edges.items()
+        if _package(a) == "synthesis"
+        for b in targets
+        if _package(b) in above
+    ]
     assert wrong == []
     assert any(_package(b) == "synthesis" for a, t in edges.items() if _package(a) == "cli" for b in t)
 
 
 def test_structure_imports_neither_the_examples_nor_the_file_writer(edges):
     """Variant arithmetic is structure's; editing and writing a mechanism file is the file format's (``spec``)."""
-    wrong = [f"{a} -> {b}" for a, targets in edges.items() if _package(a) == "structure"
-             for b in targets if b in ("linkwork.examples", "linkwork.atomic")]  # fmt: skip
+    wrong = [
+        f"{a} -> {b}"
+        for a, targets in edges.items()
+        if _package(a) == "structure"
+        for b in targets
+        if b in ("linkwork.examples", "linkwork.atomic")
+    ]
     assert wrong == []
 
 

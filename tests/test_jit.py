@@ -28,8 +28,9 @@ def _run(args: list[str], cache: Path | str, mode: str | None = None) -> subproc
     env["LINKWORK_CACHE_DIR"] = str(cache)
     if mode is not None:
         env["LINKWORK_NUMBA"] = mode
-    return subprocess.run([sys.executable, "-m", "linkwork.cli", *args], capture_output=True, text=True, env=env,
-                          timeout=120)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, "-m", "linkwork.cli", *args], capture_output=True, text=True, env=env, timeout=120
+    )
 
 
 def _stop(lock: Path) -> None:

@@ -258,8 +258,10 @@ def start_compiling() -> bool:
             return False
     except OSError:
         return False
-    note("compiling", f"compiling the fast kernels in the background, once (into {lock.parent}); the NumPy kernels "
-         "answer meanwhile")  # fmt: skip
+    note(
+        "compiling",
+        f"compiling the fast kernels in the background, once (into {lock.parent}); the NumPy kernels answer meanwhile",
+    )
     return True
 
 
@@ -289,8 +291,14 @@ def _spawn(lock: Path) -> int | None:
             options = {"creationflags": subprocess.IDLE_PRIORITY_CLASS | subprocess.CREATE_NEW_PROCESS_GROUP}
         child = subprocess.Popen(
             [sys.executable, "-m", "linkwork.cli", "warm", "--quiet", "--background"],
-            stdin=subprocess.DEVNULL, stdout=log, stderr=log, cwd=lock.parent, env=env, close_fds=True, **options,
-        )  # fmt: skip
+            stdin=subprocess.DEVNULL,
+            stdout=log,
+            stderr=log,
+            cwd=lock.parent,
+            env=env,
+            close_fds=True,
+            **options,
+        )
     return child.pid
 
 

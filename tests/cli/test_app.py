@@ -221,7 +221,7 @@ SWEEP = ["sweep", "four-bar", "--vary", "links.crank.length=90mm:110mm:3", "--me
         (("distributed",), [*SWEEP, "--workers", "1", "--out", "{out}.parquet"], f'distributed: {PIP}[design]"'),
         (("fastapi", "uvicorn"), ["view", "four-bar", "--no-browser"], f'fastapi and uvicorn: {PIP}[web]"'),
     ],
-)  # fmt: skip
+)
 def test_a_missing_optional_package_is_one_line_before_any_work(tmp_path, monkeypatch, hidden, args, missing):
     """Without the package an output needs, the command says which and how to install it, exits 2 and
     has written nothing (no CSV before a NetCDF it cannot write, no report without its NetCDF table)."""
@@ -264,8 +264,12 @@ def test_numba_comes_with_linkwork_and_pandas_with_its_tables():
     marker = core["numba"].marker
 
     def env(python: str, system: str, machine: str, implementation: str = "CPython") -> dict[str, str]:
-        return {"python_version": python, "sys_platform": system, "platform_machine": machine,
-                "platform_python_implementation": implementation}  # fmt: skip
+        return {
+            "python_version": python,
+            "sys_platform": system,
+            "platform_machine": machine,
+            "platform_python_implementation": implementation,
+        }
 
     for python in ("3.11", "3.12", "3.13", "3.14", "3.15"):
         for system, machine in (("linux", "x86_64"), ("linux", "aarch64"), ("win32", "AMD64"), ("darwin", "arm64")):
@@ -557,8 +561,10 @@ def test_tables_fit_the_terminal():
     env = {k: v for k, v in os.environ.items() if k not in ("COLUMNS", "LINES", "FORCE_COLOR", "NO_COLOR")}
     proc = subprocess.Popen(
         [sys.executable, "-m", "linkwork.cli", "positions", "four-bar"],
-        stdout=follower, stderr=follower, env={**env, "TERM": "xterm"},
-    )  # fmt: skip
+        stdout=follower,
+        stderr=follower,
+        env={**env, "TERM": "xterm"},
+    )
     os.close(follower)
     chunks = []
     while True:

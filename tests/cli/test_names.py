@@ -117,8 +117,9 @@ def test_the_report_carries_the_names_in_the_c_locale(named, tmp_path):
     env.pop("PYTHONIOENCODING", None)
     out = tmp_path / "report"
     args = [str(path), "--out", str(out), "--steps", "36", "--no-animation", "--dxf"]
-    done = subprocess.run([sys.executable, "-m", "linkwork.cli", "analyze", *args], env=env, capture_output=True,
-                          timeout=300)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, "-m", "linkwork.cli", "analyze", *args], env=env, capture_output=True, timeout=300
+    )
     assert done.returncode == 0, done.stderr.decode("utf-8", "replace")[-3000:]
     html = (out / "report.html").read_text(encoding="utf-8")
     assert html.count(n["double-cut-shears"]) >= 2 and n["crank"] in html
@@ -130,8 +131,10 @@ def test_the_report_carries_the_names_in_the_c_locale(named, tmp_path):
         assert all(run in svg for run, _ in runs), name
         assert "".join(("^" if sub else "") + run for run, sub in runs) in texts, name  # MTEXT's stacked index
     assert any(t.startswith(f"{n['double-cut-shears']}: ") for t in texts)
-    assert {p.name for p in (out / "figures").glob("hodograph_*.svg")} == {f"hodograph_{n['O1']}.svg",
-                                                                            f"hodograph_{n['O3']}.svg"}  # fmt: skip
+    assert {p.name for p in (out / "figures").glob("hodograph_*.svg")} == {
+        f"hodograph_{n['O1']}.svg",
+        f"hodograph_{n['O3']}.svg",
+    }
 
 
 def test_the_viewer_carries_the_names(named):

@@ -64,8 +64,9 @@ def test_out_with_the_suffix_of_a_table_writes_that_file_alone(tmp_path, command
 
 @pytest.mark.parametrize("command", ["kinematics", "forces", "dynamics", "analyze"])
 def test_out_with_another_file_suffix_is_refused_before_any_work(tmp_path, command):
-    result = linkwork(command, "four-bar" if command != "dynamics" else "double-cut-shears", "--out", "kin.txt",
-                      cwd=tmp_path)  # fmt: skip
+    result = linkwork(
+        command, "four-bar" if command != "dynamics" else "double-cut-shears", "--out", "kin.txt", cwd=tmp_path
+    )
     assert result.returncode == 2
     assert result.stderr.startswith("error: --out kin.txt: names a .txt file")
     assert "--out kin" in result.stderr and "Traceback" not in result.stderr
@@ -149,8 +150,9 @@ def test_kinematics_and_analyze_at_another_speed(tmp_path):
     a = json.loads(result.stdout)["points"]["A"]
     np.testing.assert_allclose(np.hypot(a["vx"], a["vy"]), omega * 0.1, rtol=1e-11)  # JSON: 12 digits
     np.testing.assert_allclose(np.hypot(a["ax"], a["ay"]), omega**2 * 0.1, rtol=1e-11)
-    done = linkwork("analyze", "four-bar", "--speed", "120 rpm", "--out", "r", "--steps", "36", "--no-animation",
-                    cwd=tmp_path)  # fmt: skip
+    done = linkwork(
+        "analyze", "four-bar", "--speed", "120 rpm", "--out", "r", "--steps", "36", "--no-animation", cwd=tmp_path
+    )
     assert done.returncode == 0, done.stderr
     head, rows = _rows(tmp_path / "r" / "kinematics.csv")
     speed = np.hypot(rows[:, head.index("A.vx [m/s]")], rows[:, head.index("A.vy [m/s]")])

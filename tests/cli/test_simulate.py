@@ -19,12 +19,11 @@ PENDULUM = {
     "name": "pendulum",
     "gravity": {"value": "9.81 m/s^2", "direction": "270 deg"},
     "frame": {"points": {"O": [0, 0]}},
-    "links": {"arm": {"points": {"O": [0, 0], "P": [0.4, 0]}, "mass": 2.0, "com": [0.4, 0],
-                      "inertia": "0.05 kg*m^2"}},
+    "links": {"arm": {"points": {"O": [0, 0], "P": [0.4, 0]}, "mass": 2.0, "com": [0.4, 0], "inertia": "0.05 kg*m^2"}},
     "joints": {"O": {"type": "revolute", "links": ["frame", "arm"]}},
     "drives": [{"joint": "O", "angle": "270 deg"}],
     "loads": {"t": {"type": "torsion_spring", "joint": "O", "stiffness": "30 N*m/rad", "free_angle": "270 deg"}},
-}  # fmt: skip
+}
 
 
 def test_simulate_writes_the_run_the_python_call_gives(tmp_path):

@@ -15,8 +15,18 @@ from linkwork.motion.analysis import extremes
 
 def test_the_written_slider_crank_meets_the_request_and_every_command_takes_it(tmp_path):
     out = tmp_path / "s.yaml"
-    run = linkwork("synthesize", "slider-crank", "--stroke", "400mm", "--time-ratio", "1.05",
-                   "--max-pressure-angle", "30deg", "--out", str(out))  # fmt: skip
+    run = linkwork(
+        "synthesize",
+        "slider-crank",
+        "--stroke",
+        "400mm",
+        "--time-ratio",
+        "1.05",
+        "--max-pressure-angle",
+        "30deg",
+        "--out",
+        str(out),
+    )
     assert run.returncode == 0, run.stderr
     (ext,) = extremes(lw.kinematics(str(out), steps=3600))
     assert ext.stroke == pytest.approx(0.4, rel=1e-9) and ext.time_ratio == pytest.approx(1.05, rel=1e-9)
@@ -31,8 +41,19 @@ def test_the_written_slider_crank_meets_the_request_and_every_command_takes_it(t
 
 def test_the_written_crank_rocker_meets_the_swing(tmp_path):
     out = tmp_path / "c.yaml"
-    run = linkwork("synthesize", "crank-rocker", "--swing", "45deg", "--time-ratio", "1.2", "--frame", "300mm",
-                   "--out", str(out), "--json")  # fmt: skip
+    run = linkwork(
+        "synthesize",
+        "crank-rocker",
+        "--swing",
+        "45deg",
+        "--time-ratio",
+        "1.2",
+        "--frame",
+        "300mm",
+        "--out",
+        str(out),
+        "--json",
+    )
     assert run.returncode == 0, run.stderr
     (ext,) = extremes(lw.kinematics(str(out), steps=3600))
     assert ext.stroke == pytest.approx(math.radians(45), rel=1e-9)
@@ -43,8 +64,19 @@ def test_the_written_crank_rocker_meets_the_swing(tmp_path):
 
 def test_the_written_slotted_lever_meets_the_stroke_and_time_ratio_and_check_and_view_take_it(tmp_path):
     out = tmp_path / "shaper.yaml"
-    run = linkwork("synthesize", "slotted-lever", "--stroke", "600mm", "--time-ratio", "1.4", "--rod", "300mm",
-                   "--out", str(out), "--json")  # fmt: skip
+    run = linkwork(
+        "synthesize",
+        "slotted-lever",
+        "--stroke",
+        "600mm",
+        "--time-ratio",
+        "1.4",
+        "--rod",
+        "300mm",
+        "--out",
+        str(out),
+        "--json",
+    )
     assert run.returncode == 0, run.stderr
     (ram,) = [e for e in extremes(lw.kinematics(str(out), steps=3600)) if e.kind == "slider"]
     assert ram.stroke == pytest.approx(0.6, rel=1e-9) and ram.time_ratio == pytest.approx(1.4, rel=1e-9)
@@ -56,8 +88,21 @@ def test_the_written_slotted_lever_meets_the_stroke_and_time_ratio_and_check_and
 
 def test_the_written_toggle_press_meets_the_stroke_and_its_forces_give_the_nominal_torque(tmp_path):
     out = tmp_path / "press.yaml"
-    run = linkwork("synthesize", "toggle-press", "--stroke", "200mm", "--force", "100kN", "--before", "10mm",
-                   "--torque", "5kN*m", "--out", str(out), "--json")  # fmt: skip
+    run = linkwork(
+        "synthesize",
+        "toggle-press",
+        "--stroke",
+        "200mm",
+        "--force",
+        "100kN",
+        "--before",
+        "10mm",
+        "--torque",
+        "5kN*m",
+        "--out",
+        str(out),
+        "--json",
+    )
     assert run.returncode == 0, run.stderr
     (ram,) = [e for e in extremes(lw.kinematics(str(out), steps=3600)) if e.kind == "slider"]
     assert ram.stroke == pytest.approx(0.2, rel=1e-9)
@@ -98,8 +143,18 @@ def test_requirements_that_cannot_be_met_exit_2_with_one_line_and_no_file(tmp_pa
 
 
 def test_the_message_of_an_impossible_bound_names_both_requirements_and_the_nearest_values(tmp_path):
-    run = linkwork("synthesize", "slider-crank", "--stroke", "400mm", "--time-ratio", "1.3",
-                   "--max-pressure-angle", "30deg", "--out", str(tmp_path / "s.yaml"))  # fmt: skip
+    run = linkwork(
+        "synthesize",
+        "slider-crank",
+        "--stroke",
+        "400mm",
+        "--time-ratio",
+        "1.3",
+        "--max-pressure-angle",
+        "30deg",
+        "--out",
+        str(tmp_path / "s.yaml"),
+    )
     assert run.stderr.strip() == (
         "error: time ratio K = 1.3 needs a largest pressure angle of at least 51 deg; at most 30 deg gives K <= 1.092"
     )
@@ -124,8 +179,20 @@ def test_the_manual_synthesis_commands_and_python_run(tmp_path, monkeypatch):
 
 def test_the_written_double_cut_shears_meet_the_knives_requirements_and_check_takes_them(tmp_path):
     out = tmp_path / "shears.yaml"
-    run = linkwork("synthesize", "double-cut-shears", "--upper-stroke", "130mm", "--lower-stroke", "110mm",
-                   "--time-ratio", "1.05", "--opening", "225mm", "--out", str(out))  # fmt: skip
+    run = linkwork(
+        "synthesize",
+        "double-cut-shears",
+        "--upper-stroke",
+        "130mm",
+        "--lower-stroke",
+        "110mm",
+        "--time-ratio",
+        "1.05",
+        "--opening",
+        "225mm",
+        "--out",
+        str(out),
+    )
     assert run.returncode == 0, run.stderr
     assert "upper stroke               130.0000000" in run.stdout
     assert "overlap                    15.0000000" in run.stdout
@@ -140,19 +207,57 @@ def test_the_written_double_cut_shears_meet_the_knives_requirements_and_check_ta
 
 def test_shears_whose_overlap_and_opening_disagree_exit_2_with_one_line_and_no_file(tmp_path):
     out = tmp_path / "shears.yaml"
-    run = linkwork("synthesize", "double-cut-shears", "--upper-stroke", "130mm", "--lower-stroke", "110mm",
-                   "--time-ratio", "1.05", "--opening", "225mm", "--overlap", "20mm", "--out", str(out))  # fmt: skip
+    run = linkwork(
+        "synthesize",
+        "double-cut-shears",
+        "--upper-stroke",
+        "130mm",
+        "--lower-stroke",
+        "110mm",
+        "--time-ratio",
+        "1.05",
+        "--opening",
+        "225mm",
+        "--overlap",
+        "20mm",
+        "--out",
+        str(out),
+    )
     assert run.returncode == 2 and not out.exists()
     assert run.stderr.strip().count("\n") == 0 and "must equal the strokes together 240 mm" in run.stderr
 
 
 def test_the_summary_speaks_russian_with_lang_ru(tmp_path):
     out = tmp_path / "c.yaml"
-    run = linkwork("synthesize", "crank-rocker", "--swing", "45deg", "--time-ratio", "1.2", "--frame", "300mm",
-                   "--out", str(out), "--lang", "ru")  # fmt: skip
+    run = linkwork(
+        "synthesize",
+        "crank-rocker",
+        "--swing",
+        "45deg",
+        "--time-ratio",
+        "1.2",
+        "--frame",
+        "300mm",
+        "--out",
+        str(out),
+        "--lang",
+        "ru",
+    )
     assert run.returncode == 0, run.stderr
     assert "измерено анализом" in run.stdout and "угол качания               45.000000000 град" in run.stdout
     assert f"записан: {out}" in run.stdout
-    wrong = linkwork("synthesize", "crank-rocker", "--swing", "45deg", "--time-ratio", "1.2", "--frame", "300mm",
-                     "--out", str(tmp_path / "d.yaml"), "--lang", "de")  # fmt: skip
+    wrong = linkwork(
+        "synthesize",
+        "crank-rocker",
+        "--swing",
+        "45deg",
+        "--time-ratio",
+        "1.2",
+        "--frame",
+        "300mm",
+        "--out",
+        str(tmp_path / "d.yaml"),
+        "--lang",
+        "de",
+    )
     assert wrong.returncode == 2 and not (tmp_path / "d.yaml").exists()

@@ -55,9 +55,16 @@ def test_an_option_with_escape_sequences_is_quoted_escaped():
 @pytest.mark.skipif(not os.path.exists("/dev/full"), reason="needs /dev/full")
 @pytest.mark.parametrize(
     "argv",
-    [("check", "four-bar"), ("check", "four-bar", "--json"), ("kinematics", "four-bar", "--json"),
-     ("forces", "four-bar", "--steps", "36"), ("parameters", "four-bar"), ("example", "four-bar"), ("examples",)],
-)  # fmt: skip
+    [
+        ("check", "four-bar"),
+        ("check", "four-bar", "--json"),
+        ("kinematics", "four-bar", "--json"),
+        ("forces", "four-bar", "--steps", "36"),
+        ("parameters", "four-bar"),
+        ("example", "four-bar"),
+        ("examples",),
+    ],
+)
 def test_output_that_cannot_be_written_is_one_line_and_exit_code_2(argv):
     with open("/dev/full", "w") as full:
         r = _run(*argv, stdout=full)
@@ -68,9 +75,10 @@ def test_output_that_cannot_be_written_is_one_line_and_exit_code_2(argv):
 def test_a_closed_pipe_ends_quietly():
     proc = subprocess.Popen(
         [sys.executable, "-m", "linkwork.cli", "kinematics", "four-bar", "--json"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
         env={**os.environ, "PYTHONPATH": str(Path(linkwork.__file__).resolve().parents[1]), "LINKWORK_NUMBA": "0"},
-    )  # fmt: skip
+    )
     assert proc.stdout is not None and proc.stdout.read(10)
     proc.stdout.close()
     _, err = proc.communicate(timeout=120)

@@ -58,7 +58,7 @@ def cluster(tmp_path_factory):
                     str(sched_file),
                 ],
                 tmp / "scheduler.log",
-            )  # fmt: skip
+            )
         )
         deadline = time.monotonic() + 60
         while not sched_file.exists():
@@ -84,7 +84,7 @@ def cluster(tmp_path_factory):
                         f"w{i}",
                     ],
                     tmp / f"worker{i}.log",
-                )  # fmt: skip
+                )
             )
         with Client(scheduler_file=str(sched_file), timeout=60) as client:
             client.wait_for_workers(2, timeout=60)
@@ -128,8 +128,16 @@ def test_an_embedded_local_cluster_gives_the_results_of_this_process(tmp_path):
 
 def test_the_cluster_gives_the_results_of_this_process(cluster, tmp_path):
     here = lw.sweep("double-cut-shears", VARY, METRICS, steps=120, chunk_size=5, workers=0)
-    there = lw.sweep("double-cut-shears", VARY, METRICS, steps=120, chunk_size=5, scheduler=cluster["file"],
-                     out=tmp_path / "s.parquet", attempts=tmp_path)  # fmt: skip
+    there = lw.sweep(
+        "double-cut-shears",
+        VARY,
+        METRICS,
+        steps=120,
+        chunk_size=5,
+        scheduler=cluster["file"],
+        out=tmp_path / "s.parquet",
+        attempts=tmp_path,
+    )
     _equal(here, there)
     pids = {pid for _, pid in _attempts(tmp_path)}
     assert len(pids) == 2  # both workers took part
@@ -156,8 +164,15 @@ def test_a_sweep_stopped_part_way_resumes_on_the_cluster(cluster, tmp_path):
     with pytest.raises(Stop):
         lw.sweep("double-cut-shears", VARY, METRICS, on_chunk=stop, attempts=logs[0], **kw)
     assert len(first) == 3 and not out.exists()
-    t = lw.sweep("double-cut-shears", VARY, METRICS, on_chunk=lambda c, d, n: second.append(c), resume=True,
-                 attempts=logs[1], **kw)  # fmt: skip
+    t = lw.sweep(
+        "double-cut-shears",
+        VARY,
+        METRICS,
+        on_chunk=lambda c, d, n: second.append(c),
+        resume=True,
+        attempts=logs[1],
+        **kw,
+    )
     assert sorted(first + second) == list(range(8))  # 24 variants in 8 chunks, each stored once
     redone = [c for c, _ in _attempts(logs[1])]
     assert sorted(redone) == sorted(second)  # the chunks on disk were not computed again
@@ -193,8 +208,18 @@ def test_a_worker_killed_mid_sweep_has_its_chunk_retried_and_every_variant_is_co
             killed.append(victim.pid)
 
     out = tmp_path / "s.parquet"
-    t = lw.sweep("double-cut-shears", VARY, METRICS, steps=360, chunk_size=2, scheduler=cluster["file"], out=out,
-                 attempts=tmp_path, on_chunk=kill_after_two, keep_parts=True)  # fmt: skip
+    t = lw.sweep(
+        "double-cut-shears",
+        VARY,
+        METRICS,
+        steps=360,
+        chunk_size=2,
+        scheduler=cluster["file"],
+        out=out,
+        attempts=tmp_path,
+        on_chunk=kill_after_two,
+        keep_parts=True,
+    )
     assert killed and victim.wait(timeout=10) == -signal.SIGKILL
     np.testing.assert_array_equal(t["variant"], np.arange(24))
     parts = sorted(p.name for p in (tmp_path / "s.parquet.parts").glob("chunk-*.parquet"))
@@ -247,8 +272,9 @@ def test_a_local_cluster_serves_no_page_unless_asked_for(tmp_path):
         if not seen:
             seen.append(_pages("attacker.example"))
 
-    lw.sweep("four-bar", ["links.crank.length=95mm:105mm:2"], ["swing"], steps=12, chunk_size=1, workers=1,
-             on_chunk=probe)  # fmt: skip
+    lw.sweep(
+        "four-bar", ["links.crank.length=95mm:105mm:2"], ["swing"], steps=12, chunk_size=1, workers=1, on_chunk=probe
+    )
     assert seen and len(seen[0]) >= 8  # the scheduler's, a worker's and 8787
     served = {page: code for page, code in seen[0].items() if 200 <= code < 400}
     assert served == {}

@@ -90,12 +90,22 @@ def test_time_ratios_of_an_offset_slider_crank_follow_the_direction_of_rotation(
     mech = (
         offset_slider_crank()
         .drive("O", speed="100 rpm", direction=direction, angle=30)
-        .process("press", ["slider.B", "crank.O"], axis="0 deg", workpiece=[0.3, 0.6], penetration=[0, 1],
-                 force=["0 N", "0 N"])
-    )  # fmt: skip
+        .process(
+            "press",
+            ["slider.B", "crank.O"],
+            axis="0 deg",
+            workpiece=[0.3, 0.6],
+            penetration=[0, 1],
+            force=["0 N", "0 N"],
+        )
+    )
     mech._data["drives"] = mech._data["drives"][-1:]
-    t = lw.sweep(mech.build(), {"links.crank.length": ("80", "120", 3)},
-                 ["time_ratio", "forward_time_ratio", "working_time_ratio"], steps=720)  # fmt: skip
+    t = lw.sweep(
+        mech.build(),
+        {"links.crank.length": ("80", "120", 3)},
+        ["time_ratio", "forward_time_ratio", "working_time_ratio"],
+        steps=720,
+    )
     r, rod, e = t["links.crank.length"], 0.4, 0.05
     alpha = np.arcsin(e / (rod - r)) - np.arcsin(e / (rod + r))
     out = np.pi - alpha if direction == "ccw" else np.pi + alpha
@@ -159,8 +169,11 @@ def test_peak_forces_of_the_slider_crank_shears_are_finite_where_the_knife_passe
     Closed form: the crank (mc, centre l/2) and the rod (mr, centre at (l cos, 3 l sin)/2) move with the knife
     (m2, y = 2 l sin); the foundation carries the weights less the rate of change of momentum:
     Fx = (mc + mr) l/2 w^2 cos(phi), Fy = -M g + (mc/2 + 3 mr/2 + 2 m2) l w^2 sin(phi)."""
-    t = lw.sweep("shears-slider-crank", ["links.crank.mass=5:20:2", "links.knife.mass=10:40:2"],
-                 ["peak_foundation_force", "peak_driving_torque", "assembles"])  # fmt: skip
+    t = lw.sweep(
+        "shears-slider-crank",
+        ["links.crank.mass=5:20:2", "links.knife.mass=10:40:2"],
+        ["peak_foundation_force", "peak_driving_torque", "assembles"],
+    )
     length, w, g, mr, housing = 0.15, 10.0, 9.81, 10.0, 500.0
     phi = np.linspace(0, 2 * np.pi, 720000, endpoint=False)[:, None]  # the peaks are refined between samples
     mc, m2 = t["links.crank.mass"], t["links.knife.mass"]
@@ -170,15 +183,37 @@ def test_peak_forces_of_the_slider_crank_shears_are_finite_where_the_knife_passe
     np.testing.assert_allclose(t["peak_foundation_force"], np.hypot(fx, fy).max(axis=0), rtol=1e-9)
     assert np.all(np.isfinite(t["peak_driving_torque"]))
     out = tmp_path / "x.parquet"
-    r = linkwork("sweep", "shears-slider-crank", "--vary", "links.knife.mass=10:40:4", "--metric",
-             "peak_foundation_force", "--metric", "assembles", "--out", str(out), "--quiet")  # fmt: skip
+    r = linkwork(
+        "sweep",
+        "shears-slider-crank",
+        "--vary",
+        "links.knife.mass=10:40:4",
+        "--metric",
+        "peak_foundation_force",
+        "--metric",
+        "assembles",
+        "--out",
+        str(out),
+        "--quiet",
+    )
     assert r.returncode == 0, r.stderr
     assert "no variant assembles" not in r.stdout
 
 
 def test_a_metric_with_no_value_is_explained_by_its_cause(tmp_path):
-    r = linkwork("sweep", "four-bar", "--vary", "links.crank.length=255:260:2", "--metric", "swing", "--metric",
-             "assembles", "--out", str(tmp_path / "x.parquet"), "--quiet")  # fmt: skip
+    r = linkwork(
+        "sweep",
+        "four-bar",
+        "--vary",
+        "links.crank.length=255:260:2",
+        "--metric",
+        "swing",
+        "--metric",
+        "assembles",
+        "--out",
+        str(tmp_path / "x.parquet"),
+        "--quiet",
+    )
     assert r.returncode == 0, r.stderr
     assert "no variant assembles over the whole turn" in r.stdout
 
@@ -210,8 +245,11 @@ def test_a_named_centre_of_mass_follows_its_point_as_in_the_edited_file():
 def test_a_link_pivoted_on_the_frame_that_turns_fully_has_no_swing():
     """O2O4 = 50 mm, the shortest link, with s + l = 0.05 + 0.28 <= 0.10 + 0.25 (Grashof): a drag link, whose
     'rocker' turns fully with the crank, so it has no swing and no time ratio; the crank-rocker beside it has."""
-    t = lw.sweep("four-bar", ["frame.points.O4.x=50:300:2", "links.coupler.length=280:280:1"],
-                 ["swing", "time_ratio", "assembles"])  # fmt: skip
+    t = lw.sweep(
+        "four-bar",
+        ["frame.points.O4.x=50:300:2", "links.coupler.length=280:280:1"],
+        ["swing", "time_ratio", "assembles"],
+    )
     assert list(t["assembles"]) == [1.0, 1.0]
     assert np.isnan(t["swing"][0]) and np.isnan(t["time_ratio"][0])
     a, b, c, d = 0.1, 0.28, 0.25, 0.3
@@ -247,8 +285,16 @@ def test_latin_hypercube_puts_one_sample_in_every_stratum_and_random_is_seeded()
 
 def test_zero_and_negative_lengths_and_masses_are_refused(tmp_path):
     with pytest.raises(DesignError) as err:
-        lw.sweep("four-bar", ["links.crank.length=0:100:3", "links.rocker.length=-10mm:250mm:2",
-                              "links.coupler.mass=0:1:2", "frame.points.O4.x=-100:300:2"], ["swing"])  # fmt: skip
+        lw.sweep(
+            "four-bar",
+            [
+                "links.crank.length=0:100:3",
+                "links.rocker.length=-10mm:250mm:2",
+                "links.coupler.mass=0:1:2",
+                "frame.points.O4.x=-100:300:2",
+            ],
+            ["swing"],
+        )
     problems = err.value.problems
     assert any("links.crank.length=0:100:3" in p and "a length must be positive" in p for p in problems)
     assert any("links.rocker.length=-10mm:250mm:2" in p and "a length must be positive" in p for p in problems)
@@ -270,8 +316,20 @@ def test_random_and_lhs_samples_need_no_count_and_refuse_one():
         lw.sweep("four-bar", ["links.crank.length=90:110:3"], ["swing"], sampling="random", samples=10)
     with pytest.raises(DesignError, match="COUNT missing"):
         lw.sweep("four-bar", ["links.crank.length=90:110"], ["swing"])
-    r = linkwork("sweep", "four-bar", "--sample", "lhs", "--samples", "4", "--vary", "links.crank.length=90:110",
-             "--metric", "swing", "--out", "/dev/null/x.parquet")  # fmt: skip
+    r = linkwork(
+        "sweep",
+        "four-bar",
+        "--sample",
+        "lhs",
+        "--samples",
+        "4",
+        "--vary",
+        "links.crank.length=90:110",
+        "--metric",
+        "swing",
+        "--out",
+        "/dev/null/x.parquet",
+    )
     assert "COUNT" not in r.stderr
 
 
@@ -279,8 +337,19 @@ def test_a_negative_number_of_workers_is_refused(tmp_path):
     with pytest.raises(DesignError, match="workers: expected 0 or more"):
         lw.sweep("four-bar", ["links.crank.length=90:110:3"], ["swing"], workers=-1)
     out = tmp_path / "w.parquet"
-    r = linkwork("sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--workers", "-1",
-             "--out", str(out), "--quiet")  # fmt: skip
+    r = linkwork(
+        "sweep",
+        "four-bar",
+        "--vary",
+        "links.crank.length=90:110:3",
+        "--metric",
+        "swing",
+        "--workers",
+        "-1",
+        "--out",
+        str(out),
+        "--quiet",
+    )
     assert r.returncode == 2 and "Traceback" not in r.stderr and "workers" in r.stderr
     assert not out.exists() and not (tmp_path / "w.parquet.parts").exists()
 
@@ -354,8 +423,14 @@ def test_an_interrupted_sweep_resumes_and_computes_every_chunk_once(tmp_path):
     with pytest.raises(DesignError, match="--resume"):
         lw.sweep(*args, chunk_size=7, out=out)
     with pytest.raises(DesignError, match="another plan"):
-        lw.sweep("four-bar", ["links.crank.length=80:111:12", "links.rocker.length=240:260:5"], ["swing", "time_ratio"],
-                 chunk_size=7, out=out, resume=True)  # fmt: skip
+        lw.sweep(
+            "four-bar",
+            ["links.crank.length=80:111:12", "links.rocker.length=240:260:5"],
+            ["swing", "time_ratio"],
+            chunk_size=7,
+            out=out,
+            resume=True,
+        )
     t = lw.sweep(*args, chunk_size=7, out=out, attempts=attempts, resume=True, keep_parts=True)
     assert sorted(_log(attempts)) == list(range(9))  # 60 variants in 9 chunks, each evaluated once
     np.testing.assert_array_equal(t["variant"], np.arange(60))
@@ -385,12 +460,29 @@ def test_the_parts_folder_goes_once_the_table_is_written_and_a_run_again_is_not_
 
 
 def test_an_unwritable_out_is_refused_before_the_work(tmp_path):
-    for args in (["sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out",
-                  "/proc/x.parquet"],
-                 ["optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective",
-                  "peak_driving_torque", "--out", "/proc/b.yaml"],
-                 ["sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out",
-                  str(tmp_path / "no" / "x.parquet")]):  # fmt: skip
+    for args in (
+        ["sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out", "/proc/x.parquet"],
+        [
+            "optimize",
+            "four-bar",
+            "--vary",
+            "links.rocker.length=220:280",
+            "--objective",
+            "peak_driving_torque",
+            "--out",
+            "/proc/b.yaml",
+        ],
+        [
+            "sweep",
+            "four-bar",
+            "--vary",
+            "links.crank.length=90:110:3",
+            "--metric",
+            "swing",
+            "--out",
+            str(tmp_path / "no" / "x.parquet"),
+        ],
+    ):
         r = linkwork(*args)
         assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
         assert len(r.stderr.strip().splitlines()) == 1 and "--out" in r.stderr
@@ -401,8 +493,17 @@ def test_a_bad_or_unreachable_scheduler_is_one_message_and_blocks_no_later_run(t
     import socket
 
     out = tmp_path / "s.parquet"
-    base = ["sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out", str(out),
-            "--quiet"]  # fmt: skip
+    base = [
+        "sweep",
+        "four-bar",
+        "--vary",
+        "links.crank.length=90:110:3",
+        "--metric",
+        "swing",
+        "--out",
+        str(out),
+        "--quiet",
+    ]
     r = linkwork(*base, "--scheduler", str(tmp_path / "nonexistent.json"))
     assert r.returncode == 2 and "Traceback" not in r.stderr and "no such scheduler file" in r.stderr
     with socket.socket() as sock:  # a port nobody listens on
@@ -451,15 +552,26 @@ def test_a_service_that_is_not_a_dask_scheduler_is_one_message_within_the_timeou
         out = tmp_path / "s.parquet"
         start = time.monotonic()
         where = ["--scheduler", f"tcp://127.0.0.1:{port}", "--connect-timeout", "2"]
-        r = linkwork("sweep", "four-bar", "--vary", "links.crank.length=90:110:3", "--metric", "swing", "--out",
-                     str(out), "--quiet", *where)  # fmt: skip
+        r = linkwork(
+            "sweep",
+            "four-bar",
+            "--vary",
+            "links.crank.length=90:110:3",
+            "--metric",
+            "swing",
+            "--out",
+            str(out),
+            "--quiet",
+            *where,
+        )
         took = time.monotonic() - start
     finally:
         stop()
     assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
     lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith(f"error: cannot reach a Dask scheduler at tcp://127.0.0.1:{port} "
-                                                   "within 2 s: "), r.stderr  # fmt: skip
+    assert len(lines) == 1 and lines[0].startswith(
+        f"error: cannot reach a Dask scheduler at tcp://127.0.0.1:{port} within 2 s: "
+    ), r.stderr
     assert took < 2 + 3 and not out.exists() and not (tmp_path / "s.parquet.parts").exists()
 
 
@@ -467,8 +579,13 @@ def test_netcdf_without_xarray_is_refused_up_front(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "xarray", None)  # import xarray raises ImportError
     calls = []
     with pytest.raises(DesignError, match=r'pip install "linkwork\[data\]"'):
-        lw.sweep("four-bar", ["links.crank.length=90:110:3"], ["swing"], out=tmp_path / "s.nc",
-                 on_chunk=lambda *a: calls.append(a))  # fmt: skip
+        lw.sweep(
+            "four-bar",
+            ["links.crank.length=90:110:3"],
+            ["swing"],
+            out=tmp_path / "s.nc",
+            on_chunk=lambda *a: calls.append(a),
+        )
     assert not calls and not list(tmp_path.iterdir())
 
 
@@ -488,10 +605,15 @@ def test_every_problem_of_the_options_is_reported_at_once():
     with pytest.raises(DesignError) as err:
         lw.sweep(
             "four-bar",
-            ["links.crank.lenght=90:110:3", "links.rocker.length=260:240:0", "links.coupler.length=abc:1:2",
-             "links.crank.length=1 kg:2 kg:3", "frame.points.O4.x=1:2"],
+            [
+                "links.crank.lenght=90:110:3",
+                "links.rocker.length=260:240:0",
+                "links.coupler.length=abc:1:2",
+                "links.crank.length=1 kg:2 kg:3",
+                "frame.points.O4.x=1:2",
+            ],
             ["knife_overlap", "bogus", "stroke"],
-        )  # fmt: skip
+        )
     msg = str(err.value).splitlines()
     assert 'no parameter "links.crank.lenght" (did you mean "links.crank.length"?)' in msg[0]
     assert any("COUNT must be 1 or more, got 0" in m for m in msg)
@@ -508,8 +630,9 @@ def test_every_problem_of_the_options_is_reported_at_once():
 
 def test_cli_sweep_errors_exit_2_with_no_traceback_and_no_file(tmp_path):
     out = tmp_path / "s.parquet"
-    r = linkwork("sweep", "four-bar", "--vary", "links.crank.length=110:90:3", "--metric", "knife_clearance",
-             "--out", str(out))  # fmt: skip
+    r = linkwork(
+        "sweep", "four-bar", "--vary", "links.crank.length=110:90:3", "--metric", "knife_clearance", "--out", str(out)
+    )
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert "START 110 is greater than STOP 90" in r.stderr and "knife_clearance" in r.stderr
     assert not out.exists() and not (tmp_path / "s.parquet.parts").exists()
@@ -517,8 +640,17 @@ def test_cli_sweep_errors_exit_2_with_no_traceback_and_no_file(tmp_path):
 
 def test_cli_sweep_writes_the_table(tmp_path):
     out = tmp_path / "s.parquet"
-    r = linkwork("sweep", "shears-slider-crank", "--vary", "links.crank.length=100mm:140mm:3", "--metric", "stroke",
-             "--out", str(out), "--quiet")  # fmt: skip
+    r = linkwork(
+        "sweep",
+        "shears-slider-crank",
+        "--vary",
+        "links.crank.length=100mm:140mm:3",
+        "--metric",
+        "stroke",
+        "--out",
+        str(out),
+        "--quiet",
+    )
     assert r.returncode == 0, r.stderr
     import pyarrow.parquet as pq
 
@@ -535,8 +667,16 @@ def test_cli_sweep_writes_the_table(tmp_path):
 def test_optimum_transmission_angle_of_a_four_bar_is_the_closed_form_one():
     """The smallest transmission angle occurs with the crank along the frame line (0 and 180 deg); it is
     largest when the two are supplementary: b^2 + c^2 = a^2 + d^2, so for the coupler b* = sqrt(a^2 + d^2 - c^2)."""
-    best = lw.optimize("four-bar", ["links.coupler.length=150:300"], "min_transmission_angle", maximize=True,
-                       steps=360, seed=1, maxiter=100, tol=1e-12)  # fmt: skip
+    best = lw.optimize(
+        "four-bar",
+        ["links.coupler.length=150:300"],
+        "min_transmission_angle",
+        maximize=True,
+        steps=360,
+        seed=1,
+        maxiter=100,
+        tol=1e-12,
+    )
     a, c, d = 0.1, 0.25, 0.3
     b = math.sqrt(a * a + d * d - c * c)
     assert best.feasible
@@ -546,8 +686,12 @@ def test_optimum_transmission_angle_of_a_four_bar_is_the_closed_form_one():
 
 
 def test_double_cut_shears_optimum_is_feasible_better_than_a_sample_and_its_file_reproduces_it(tmp_path):
-    vary = ["links.crank.length=80mm:120mm", "links.rocker.points.B.x=0.4:0.6",
-            "links.rocker.points.C.x=0.25:0.35", "links.rocker.points.D.x=-0.35:-0.25"]  # fmt: skip
+    vary = [
+        "links.crank.length=80mm:120mm",
+        "links.rocker.points.B.x=0.4:0.6",
+        "links.rocker.points.C.x=0.25:0.35",
+        "links.rocker.points.D.x=-0.35:-0.25",
+    ]
     cons = ["knife_overlap>=5mm", "knife_clearance>=200mm"]
     out = tmp_path / "best.yaml"
     best = lw.optimize("double-cut-shears", vary, "peak_driving_torque", cons, seed=0, maxiter=40, out=out)
@@ -560,8 +704,15 @@ def test_double_cut_shears_optimum_is_feasible_better_than_a_sample_and_its_file
     np.testing.assert_array_equal(ev["violation"] == 0, meets)
     assert ev["peak_driving_torque"][meets].min() == pytest.approx(best.metrics["peak_driving_torque"], rel=1e-12)
     # no design of a random sample in the same ranges that meets the constraints does better
-    sample = lw.sweep("double-cut-shears", vary, ["peak_driving_torque", "knife_overlap",
-                      "knife_clearance"], sampling="random", samples=400, seed=5, steps=180)  # fmt: skip
+    sample = lw.sweep(
+        "double-cut-shears",
+        vary,
+        ["peak_driving_torque", "knife_overlap", "knife_clearance"],
+        sampling="random",
+        samples=400,
+        seed=5,
+        steps=180,
+    )
     ok = (sample["knife_overlap"] >= 0.005) & (sample["knife_clearance"] >= 0.2)
     assert ok.sum() > 10
     assert best.metrics["peak_driving_torque"] <= sample["peak_driving_torque"][ok].min() * (1 + 1e-9)
@@ -580,9 +731,21 @@ def test_double_cut_shears_optimum_is_feasible_better_than_a_sample_and_its_file
 
 def test_cli_optimize_reports_and_writes(tmp_path):
     out = tmp_path / "best.yaml"
-    r = linkwork("optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective", "peak_driving_torque",
-             "--constraint", "min_transmission_angle>=33deg", "--maxiter", "20", "--out", str(out),
-             "--json")  # fmt: skip
+    r = linkwork(
+        "optimize",
+        "four-bar",
+        "--vary",
+        "links.rocker.length=220:280",
+        "--objective",
+        "peak_driving_torque",
+        "--constraint",
+        "min_transmission_angle>=33deg",
+        "--maxiter",
+        "20",
+        "--out",
+        str(out),
+        "--json",
+    )
     assert r.returncode == 0, r.stderr
     res = json.loads(r.stdout)
     assert res["feasible"] and res["metrics"]["min_transmission_angle"] >= math.radians(33)
@@ -597,20 +760,46 @@ def test_cli_optimize_reports_and_writes(tmp_path):
     mu = [_fold(np.arccos((b * b + c * c - (d - s * a) ** 2) / (2 * b * c))) for s in (1, -1)]
     assert min(mu) == pytest.approx(res["metrics"]["min_transmission_angle"], rel=1e-9)
     assert isinstance(res["converged"], bool) and res["message"]
-    bad = linkwork("optimize", "four-bar", "--vary", "links.rocker.length=220:280", "--objective", "peak_torque",
-               "--constraint", "swing=>3", "--out", str(tmp_path / "x.yaml"))  # fmt: skip
+    bad = linkwork(
+        "optimize",
+        "four-bar",
+        "--vary",
+        "links.rocker.length=220:280",
+        "--objective",
+        "peak_torque",
+        "--constraint",
+        "swing=>3",
+        "--out",
+        str(tmp_path / "x.yaml"),
+    )
     assert bad.returncode == 2 and "Traceback" not in bad.stderr
     assert 'metric "peak_torque": unknown' in bad.stderr and '--constraint "swing=>3"' in bad.stderr
     assert not (tmp_path / "x.yaml").exists()
 
 
 def test_an_optimisation_stopped_at_its_generation_limit_says_it_did_not_converge():
-    best = lw.optimize("four-bar", ["links.coupler.length=150:300"], "min_transmission_angle", maximize=True,
-                       seed=1, maxiter=2, tol=1e-12)  # fmt: skip
+    best = lw.optimize(
+        "four-bar",
+        ["links.coupler.length=150:300"],
+        "min_transmission_angle",
+        maximize=True,
+        seed=1,
+        maxiter=2,
+        tol=1e-12,
+    )
     assert best.generations == 2 and best.converged is False and "iterations" in best.message
     assert best.as_dict()["converged"] is False
-    r = linkwork("optimize", "four-bar", "--vary", "links.coupler.length=150:300", "--objective",
-             "min_transmission_angle", "--maximize", "--maxiter", "2")  # fmt: skip
+    r = linkwork(
+        "optimize",
+        "four-bar",
+        "--vary",
+        "links.coupler.length=150:300",
+        "--objective",
+        "min_transmission_angle",
+        "--maximize",
+        "--maxiter",
+        "2",
+    )
     assert r.returncode == 0, r.stderr
     assert "not converged (Maximum number of iterations" in r.stdout
 
@@ -653,9 +842,25 @@ def test_a_sweep_killed_on_the_command_line_resumes_with_its_chunks_untouched(tm
     import time
 
     out = tmp_path / "s.parquet"
-    args = ["sweep", "double-cut-shears", "--vary", "links.crank.length=95mm:105mm:8", "--vary",
-            "links.rod.length=390mm:410mm:3", "--metric", "peak_driving_torque", "--metric", "knife_overlap",
-            "--out", str(out), "--chunk-size", "1", "--workers", "0", "--quiet"]  # fmt: skip
+    args = [
+        "sweep",
+        "double-cut-shears",
+        "--vary",
+        "links.crank.length=95mm:105mm:8",
+        "--vary",
+        "links.rod.length=390mm:410mm:3",
+        "--metric",
+        "peak_driving_torque",
+        "--metric",
+        "knife_overlap",
+        "--out",
+        str(out),
+        "--chunk-size",
+        "1",
+        "--workers",
+        "0",
+        "--quiet",
+    ]
     proc = subprocess.Popen([sys.executable, "-m", "linkwork.cli", *args], stderr=subprocess.PIPE)
     parts = tmp_path / "s.parquet.parts"
     deadline = time.monotonic() + 120
@@ -685,8 +890,22 @@ def test_cli_optimize_of_an_example_in_a_folder_with_a_file_of_its_name_writes_w
     """A ``four-bar.yaml`` of the user's own (coupler 360 mm) beside: the written file is the bundled example with
     the optimised crank, and solving it again gives the peak torque printed."""
     (tmp_path / "four-bar.yaml").write_text(text("four-bar").replace("length: 350", "length: 360"))
-    r = linkwork("optimize", "four-bar", "--vary", "links.crank.length=90:110", "--objective", "peak_driving_torque",
-                 "--maxiter", "3", "--popsize", "4", "--out", "best.yaml", "--json", cwd=tmp_path)  # fmt: skip
+    r = linkwork(
+        "optimize",
+        "four-bar",
+        "--vary",
+        "links.crank.length=90:110",
+        "--objective",
+        "peak_driving_torque",
+        "--maxiter",
+        "3",
+        "--popsize",
+        "4",
+        "--out",
+        "best.yaml",
+        "--json",
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     res = json.loads(r.stdout)
     again = lw.parameters(tmp_path / "best.yaml")

@@ -33,8 +33,15 @@ def test_meet_finds_the_closed_forms_crank_and_rod_for_each_member():
     paths = ["links.crank.length", "links.rod.length"]
     strokes, ratios = np.array([0.45, 0.38]), np.array([1.3, 1.15])
     x0 = np.tile([start.dimensions["crank"], start.dimensions["rod"]], (2, 1))
-    met = meet(mech, paths, lambda u, member: u, x0, {"stroke": strokes, "time_ratio": ratios},
-               scales=np.array([0.1, 0.1]), steps=720)  # fmt: skip
+    met = meet(
+        mech,
+        paths,
+        lambda u, member: u,
+        x0,
+        {"stroke": strokes, "time_ratio": ratios},
+        scales=np.array([0.1, 0.1]),
+        steps=720,
+    )
     assert met.solved.all()
     for i in range(2):
         r, ell = closed_form(strokes[i], ratios[i], offset)
@@ -46,6 +53,14 @@ def test_a_target_out_of_reach_leaves_the_member_unsolved():
     start = synthesize("slider-crank", stroke=0.4, time_ratio=1.2, rod_ratio=0.3)
     mech = mechanism_of(start.spec, "mechanism")
     x0 = np.array([[start.dimensions["crank"], start.dimensions["rod"]]])
-    met = meet(mech, ["links.crank.length", "links.rod.length"], lambda u, member: u, x0,
-               {"stroke": 0.4, "time_ratio": 3.5}, scales=np.array([0.1, 0.1]), steps=360, iterations=15)  # fmt: skip
+    met = meet(
+        mech,
+        ["links.crank.length", "links.rod.length"],
+        lambda u, member: u,
+        x0,
+        {"stroke": 0.4, "time_ratio": 3.5},
+        scales=np.array([0.1, 0.1]),
+        steps=360,
+        iterations=15,
+    )
     assert not met.solved[0] and np.isnan(met.unknowns[0]).all()

@@ -200,9 +200,20 @@ def test_an_unreadable_or_older_manifest_is_refused_with_a_message(tmp_path, man
         (parts / "manifest.json").symlink_to("/dev/zero")
     else:
         (parts / "manifest.json").write_text(manifest)
-    r = linkwork("sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
-                 *sum((["--metric", m] for m in METRICS), []), "--chunk-size", "4", "--steps", "36", "--out", str(out),
-                 "--resume", "--quiet")  # fmt: skip
+    r = linkwork(
+        "sweep",
+        "four-bar",
+        *sum((["--vary", v] for v in VARY), []),
+        *sum((["--metric", m] for m in METRICS), []),
+        "--chunk-size",
+        "4",
+        "--steps",
+        "36",
+        "--out",
+        str(out),
+        "--resume",
+        "--quiet",
+    )
     assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
     assert r.stderr.startswith("error: ") and "start afresh" in r.stderr and not out.exists()
 
@@ -211,9 +222,20 @@ def test_the_command_says_which_parts_it_computes_again_one_line_each(tmp_path, 
     out, parts = _parts(tmp_path)
     for name in ("chunk-00000.parquet", "chunk-00004.parquet"):
         (parts / name).write_bytes(b"PAR1 damaged PAR1")
-    r = linkwork("sweep", "four-bar", *sum((["--vary", v] for v in VARY), []),
-                 *sum((["--metric", m] for m in METRICS), []), "--chunk-size", "4", "--steps", "36", "--out", str(out),
-                 "--resume", "--quiet")  # fmt: skip
+    r = linkwork(
+        "sweep",
+        "four-bar",
+        *sum((["--vary", v] for v in VARY), []),
+        *sum((["--metric", m] for m in METRICS), []),
+        "--chunk-size",
+        "4",
+        "--steps",
+        "36",
+        "--out",
+        str(out),
+        "--resume",
+        "--quiet",
+    )
     assert r.returncode == 0, r.stderr
     lines = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
     assert len(lines) == 2

@@ -73,8 +73,9 @@ def test_plans_are_drawn_to_their_stated_scale(name):
         for vec in plan.vectors:
             line = lines[f"{vec.kind}:{vec.start}->{vec.end}"]
             x, y = line.get_data()
-            np.testing.assert_allclose(np.array([x[1] - x[0], y[1] - y[0]]) * plan.scale, vec.vector, rtol=1e-9,
-                                       atol=1e-12)  # fmt: skip
+            np.testing.assert_allclose(
+                np.array([x[1] - x[0], y[1] - y[0]]) * plan.scale, vec.vector, rtol=1e-9, atol=1e-12
+            )
             origin = np.zeros(2) if vec.start == "p" else np.asarray(plan.points.get(vec.start, (np.nan, np.nan)))
             if np.isfinite(origin).all():
                 np.testing.assert_allclose([x[0], y[0]], origin / plan.scale, rtol=1e-9, atol=1e-9)

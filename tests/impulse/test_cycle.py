@@ -187,13 +187,11 @@ def test_a_tool_that_cannot_move_and_no_drive_inertia_is_the_impact_of_the_whole
     without friction, and plastic with friction (the crank stopped dead, the sliding ending with the
     impact)."""
     angle = float(MECH.drive_start[0])
-    ref = lw.impact(
-        MECH, at="rocker.K", normal=UP, omega_before=-30.0, restitution=restitution, friction=friction
-    )  # fmt: skip
+    ref = lw.impact(MECH, at="rocker.K", normal=UP, omega_before=-30.0, restitution=restitution, friction=friction)
     crank = ref.speed_before * SIGN  # turning speed
     s = strike(
         MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=crank, restitution=restitution, friction=friction
-    )  # fmt: skip
+    )
     np.testing.assert_allclose(s.impulse, ref.impulse, rtol=1e-12)
     assert s.omega_before == pytest.approx(-30.0, rel=1e-12)
     assert s.omega_after == pytest.approx(30.0 * restitution, rel=1e-12, abs=1e-12)
@@ -202,9 +200,16 @@ def test_a_tool_that_cannot_move_and_no_drive_inertia_is_the_impact_of_the_whole
         np.testing.assert_allclose(s.joints[joint], impulse, rtol=0, atol=1e-12 * np.abs(ref.impulse).max())
     # a flywheel on the crank and a tool that gives way make the blow softer, the drive feels it
     soft = strike(
-        MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=crank, restitution=0.4, friction=0.15,
-        tool_mass=3.0, drive_inertia=0.7,
-    )  # fmt: skip
+        MECH,
+        at="rocker.K",
+        normal=UP,
+        angle=angle,
+        crank_speed=crank,
+        restitution=0.4,
+        friction=0.15,
+        tool_mass=3.0,
+        drive_inertia=0.7,
+    )
     assert soft.crank_speed_after > 0 and abs(soft.drive_impulse) > 0
     assert soft.tool_speed_after * 3.0 == pytest.approx(soft.impulse[1], rel=1e-12)
 
@@ -231,9 +236,17 @@ def test_a_rebound_on_a_moving_tool_balances_momentum_and_restitution(tool_speed
     angle = float(MECH.drive_start[0])
     jd, mt, r, f = MECH.motor_gear.inertia, 3.0, 0.4, 0.15
     s = strike(
-        MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=30.0, restitution=r, friction=f,
-        tool_mass=mt, tool_speed=tool_speed, drive_inertia=jd,
-    )  # fmt: skip
+        MECH,
+        at="rocker.K",
+        normal=UP,
+        angle=angle,
+        crank_speed=30.0,
+        restitution=r,
+        friction=f,
+        tool_mass=mt,
+        tool_speed=tool_speed,
+        drive_inertia=jd,
+    )
     inertia, _, _, _, g, _ = _pose([angle])
     g = g[0]  # dK/dpsi: the kinematics at unit turning speed
     jt = inertia[0] + jd
@@ -260,9 +273,16 @@ def test_a_crank_thrown_back_by_the_blow_is_reported_as_a_stall(friction):
     # the first blow alone: the crank's speed after it, from the impact map, is negative
     start = MECH.drive_start[0]
     first = strike(
-        MECH, at="rocker.K", normal=UP, angle=start, crank_speed=30.0, restitution=1.0, friction=0.0,
-        tool_mass=tool.mass, drive_inertia=drive.inertia,
-    )  # fmt: skip
+        MECH,
+        at="rocker.K",
+        normal=UP,
+        angle=start,
+        crank_speed=30.0,
+        restitution=1.0,
+        friction=0.0,
+        tool_mass=tool.mass,
+        drive_inertia=drive.inertia,
+    )
     assert first.crank_speed_after < 0
     blow_angle = f"{math.degrees(start) % 360:.1f}"  # the first blow is in the file's pose
     with pytest.raises(LinkworkError, match=f"crank stops at {blow_angle} deg"):
@@ -291,9 +311,16 @@ def test_a_heavy_tool_without_flywheel_stops_the_crank_with_a_clear_error(restit
     # above any the machine reaches (its motor's synchronous speed over the gear is 32.7 rad/s) bounds E
     fastest = 1.2 * drive.motor.synchronous / drive.ratio
     b = strike(
-        MECH, at="rocker.K", normal=UP, angle=start, crank_speed=fastest, restitution=0.0, friction=0.15,
-        tool_mass=tool.mass, drive_inertia=drive.inertia,
-    )  # fmt: skip
+        MECH,
+        at="rocker.K",
+        normal=UP,
+        angle=start,
+        crank_speed=fastest,
+        restitution=0.0,
+        friction=0.15,
+        tool_mass=tool.mass,
+        drive_inertia=drive.inertia,
+    )
     energy = 0.5 * b.inertia * b.crank_speed_after**2 + 0.5 * tool.mass * b.tool_speed_after**2
     slope = abs(b.closing_speed / b.crank_speed_before)  # |s'| at the blow, m/rad
     push = float(np.max(drive.moment(np.linspace(0.0, 2 * w0, 2001))))
@@ -308,9 +335,16 @@ def test_a_heavy_tool_without_flywheel_stops_the_crank_with_a_clear_error(restit
 def test_elastic_blow_without_friction_loses_no_energy(tool_mass):
     angle = float(MECH.drive_start[0])
     s = strike(
-        MECH, at="rocker.K", normal=UP, angle=angle, crank_speed=30.0, restitution=1.0, friction=0.0,
-        tool_mass=tool_mass, drive_inertia=0.7,
-    )  # fmt: skip
+        MECH,
+        at="rocker.K",
+        normal=UP,
+        angle=angle,
+        crank_speed=30.0,
+        restitution=1.0,
+        friction=0.0,
+        tool_mass=tool_mass,
+        drive_inertia=0.7,
+    )
     kinetic = 0.5 * s.inertia * s.crank_speed_before**2
     assert abs(s.energy_lost) < 1e-13 * kinetic
     after = 0.5 * s.inertia * s.crank_speed_after**2

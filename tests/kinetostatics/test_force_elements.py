@@ -107,8 +107,9 @@ def test_a_springs_torque_is_the_slope_of_its_potential():
     from the positions alone (a spring's work is minus its potential's change); the preload form gives the free
     length L0 = L(assembly) - F0 / k."""
     k, free = 1500.0, 0.2
-    torque, phi = element_torque({"s": {"type": "spring", "between": ["coupler.B", "O2"], "stiffness": k,
-                                        "free_length": free}})  # fmt: skip
+    torque, phi = element_torque(
+        {"s": {"type": "spring", "between": ["coupler.B", "O2"], "stiffness": k, "free_length": free}}
+    )
     mech = with_loads({})
 
     def energy(x):
@@ -126,8 +127,16 @@ def test_a_torsion_springs_torque_is_the_slope_of_its_potential():
     """A torsion spring in the joint B (coupler, rocker): V = k (theta_rocker - theta_coupler - theta_0)^2 / 2 from
     the links' angles; and in the drive's own joint O2 (frame, crank) the torque is k (phi - theta_0)."""
     k, free = 40.0, math.radians(-30.0)
-    torque, phi = element_torque({"t": {"type": "torsion_spring", "joint": "B", "stiffness": f"{k} N*m/rad",
-                                        "free_angle": f"{math.degrees(free)} deg"}})  # fmt: skip
+    torque, phi = element_torque(
+        {
+            "t": {
+                "type": "torsion_spring",
+                "joint": "B",
+                "stiffness": f"{k} N*m/rad",
+                "free_angle": f"{math.degrees(free)} deg",
+            }
+        }
+    )
     mech = with_loads({})
 
     def energy(x):

@@ -162,24 +162,32 @@ def _heavy(kind: str) -> lw.Mechanism:
 
     b = MechanismBuilder(kind)
     if kind == "PRP":
-        b = (b.frame(points={"O1": (0, 0), "G": (0, 0.1)})
-             .link("crank", points={"O1": (0, 0), "T": (0.3, 0)}, mass=4, com=(0.1, 0.01), inertia=0.05)
-             .link("block", points={"Q": (0, 0)}, mass=1.5, inertia=0.002)
-             .link("slider", points={"Q": (0, 0)}, mass=6, com=(0.02, -0.03), inertia=0.01)
-             .revolute("O1", "frame", "crank")
-             .prismatic("on_crank", "crank", "block", point="Q", through="O1", axis=0)
-             .revolute("Q", "block", "slider")
-             .prismatic("guide", "frame", "slider", point="Q", through="G", axis=0)
-             .drive("O1", angle=45, speed="200 rpm").hint("Q", 0.1, 0.1))  # fmt: skip
+        b = (
+            b.frame(points={"O1": (0, 0), "G": (0, 0.1)})
+            .link("crank", points={"O1": (0, 0), "T": (0.3, 0)}, mass=4, com=(0.1, 0.01), inertia=0.05)
+            .link("block", points={"Q": (0, 0)}, mass=1.5, inertia=0.002)
+            .link("slider", points={"Q": (0, 0)}, mass=6, com=(0.02, -0.03), inertia=0.01)
+            .revolute("O1", "frame", "crank")
+            .prismatic("on_crank", "crank", "block", point="Q", through="O1", axis=0)
+            .revolute("Q", "block", "slider")
+            .prismatic("guide", "frame", "slider", point="Q", through="G", axis=0)
+            .drive("O1", angle=45, speed="200 rpm")
+            .hint("Q", 0.1, 0.1)
+        )
     else:
-        b = (b.frame(points={"O1": (0, 0.2), "O2": (0, 0)})
-             .link("crank", ends=("O1", "A"), length=0.1, mass=3)
-             .link("block", points={"A": (0, 0)}, mass=1, inertia=0.001)
-             .link("rocker", points={"O2": (0, 0), "T": (0.5, 0)}, mass=8, com=(0.25, 0), inertia=0.2)
-             .revolute("O1", "frame", "crank").revolute("A", "crank", "block")
-             .prismatic("slot", "rocker", "block", point="A", through="O2", axis=0)
-             .revolute("O2", "frame", "rocker")
-             .drive("O1", angle=0, speed="120 rpm").hint("slot", 0.1, 0.2).hint("rocker.T", 0.22, 0.45))  # fmt: skip
+        b = (
+            b.frame(points={"O1": (0, 0.2), "O2": (0, 0)})
+            .link("crank", ends=("O1", "A"), length=0.1, mass=3)
+            .link("block", points={"A": (0, 0)}, mass=1, inertia=0.001)
+            .link("rocker", points={"O2": (0, 0), "T": (0.5, 0)}, mass=8, com=(0.25, 0), inertia=0.2)
+            .revolute("O1", "frame", "crank")
+            .revolute("A", "crank", "block")
+            .prismatic("slot", "rocker", "block", point="A", through="O2", axis=0)
+            .revolute("O2", "frame", "rocker")
+            .drive("O1", angle=0, speed="120 rpm")
+            .hint("slot", 0.1, 0.2)
+            .hint("rocker.T", 0.22, 0.45)
+        )
     return lw.compile(b.build())
 
 

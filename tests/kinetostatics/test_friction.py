@@ -42,7 +42,7 @@ def _slider_crank(masses: bool = False) -> lw.Mechanism:
                 "axis": 0,
                 "friction": {"f": F_GUIDE},
             },
-        },  # fmt: skip
+        },
         "drives": [{"joint": "O", "speed": "10 rad/s", "direction": "ccw"}],
         "hints": {"B": [0.45, 0]},
         "loads": {"P": {"type": "force", "at": "slider.B", "force": [-LOAD, 0]}},
@@ -168,8 +168,9 @@ def _shears(f: float, radius: float, cut: bool = True) -> lw.Mechanism:
         joint["friction"] = {"f": f} if joint["type"] == "prismatic" else {"f": f, "radius": radius}
     if cut:
         down = [math.radians(100), math.radians(260)]  # the drive angle, from 90 deg: the knife going down
-        data["loads"] = {"cut": {"type": "force", "at": "knife.B", "direction": math.pi / 2, "magnitude": [5e3, 5e3],
-                                 "angle": down}}  # fmt: skip
+        data["loads"] = {
+            "cut": {"type": "force", "at": "knife.B", "direction": math.pi / 2, "magnitude": [5e3, 5e3], "angle": down}
+        }
     return lw.compile(lw.from_dict(data))
 
 

@@ -336,8 +336,9 @@ def test_a_variant_is_refined_through_a_sample_on_a_change_point(steps):
     size = lambda x: np.abs(a * np.sin(x) * np.cos(x) + g * length * np.cos(x) * (2 * m1 + 2 * m2))  # noqa: E731
     x = np.linspace(0, 2 * np.pi, 100001)
     i = int(np.argmax(size(x)))
-    found = minimize_scalar(lambda y: -size(y), bounds=(x[i] - 1e-4, x[i] + 1e-4), method="bounded",
-                            options={"xatol": 1e-12})  # fmt: skip
+    found = minimize_scalar(
+        lambda y: -size(y), bounds=(x[i] - 1e-4, x[i] + 1e-4), method="bounded", options={"xatol": 1e-12}
+    )
     assert figures[1][0] == pytest.approx(-found.fun, rel=1e-9)
 
 

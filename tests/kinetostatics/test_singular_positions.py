@@ -43,15 +43,21 @@ def test_torque_and_foundation_are_finite_at_the_change_points_and_equal_the_clo
     # foundation force of the closed forms (past the change point, in the mode the samples there were solved in)
     from linkwork.kinetostatics.peaks import foundation_peak, torque_peak
 
-    t = lw.sweep("shears-slider-crank", {"links.knife.mass": ("20", "20", 1)},
-                 ["peak_driving_torque", "peak_foundation_force"], steps=360)  # fmt: skip
+    t = lw.sweep(
+        "shears-slider-crank",
+        {"links.knife.mass": ("20", "20", 1)},
+        ["peak_driving_torque", "peak_foundation_force"],
+        steps=360,
+    )
     assert t["peak_driving_torque"][0] == pytest.approx(abs(torque_peak(f).value[0]), rel=1e-12)
     assert t["peak_foundation_force"][0] == pytest.approx(foundation_peak(f).value[0], rel=1e-12)
 
     def exact(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         s, c = np.sin(x), np.cos(x)
-        size = np.abs(0.5 * OMEGA**2 * (M1 * (L**2 / 2 - 9 * L**2 / 2) - 8 * M2 * L**2) * s * c
-                      + G * L * c * (M1 / 2 + 3 * M1 / 2 + 2 * M2))  # fmt: skip
+        size = np.abs(
+            0.5 * OMEGA**2 * (M1 * (L**2 / 2 - 9 * L**2 / 2) - 8 * M2 * L**2) * s * c
+            + G * L * c * (M1 / 2 + 3 * M1 / 2 + 2 * M2)
+        )
         fx = OMEGA**2 * (M1 * L / 2 + M1 * L / 2) * c
         fy = weight + OMEGA**2 * (M1 * L / 2 + 3 * M1 * L / 2 + 2 * M2 * L) * s
         return size, np.hypot(fx, fy)
@@ -68,6 +74,10 @@ def _largest(fn) -> float:
 
     x = np.linspace(0, 2 * np.pi, 100001)
     i = int(np.argmax(fn(x)))
-    found = minimize_scalar(lambda y: -float(fn(np.array([y]))[0]), bounds=(x[i] - 1e-4, x[i] + 1e-4),
-                            method="bounded", options={"xatol": 1e-12})  # fmt: skip
+    found = minimize_scalar(
+        lambda y: -float(fn(np.array([y]))[0]),
+        bounds=(x[i] - 1e-4, x[i] + 1e-4),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
     return max(-float(found.fun), float(fn(x)[i]))

@@ -77,8 +77,15 @@ def test_a_slider_crank_with_a_spring_follows_its_lagrange_model():
     with solve_ivp on the sympy Lagrange equation (rtol 1e-12) to 1e-8."""
     k = 4000.0
     f = lagrange_slider_crank(k)
-    ref = solve_ivp(lambda t, y: [y[1], f(y[0], y[1])], (0, 0.3), [0.3, 5.0], method="DOP853", rtol=1e-12,
-                    atol=1e-12, dense_output=True)  # fmt: skip
+    ref = solve_ivp(
+        lambda t, y: [y[1], f(y[0], y[1])],
+        (0, 0.3),
+        [0.3, 5.0],
+        method="DOP853",
+        rtol=1e-12,
+        atol=1e-12,
+        dense_output=True,
+    )
     times = np.linspace(0, 0.3, 7)
     run = simulate(slider_crank(k), 0.3, speed=5.0, times=times)
     want = ref.sol(times)

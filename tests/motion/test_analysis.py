@@ -170,9 +170,11 @@ def test_netcdf_is_written_as_xarray_writes_it_without_importing_xarray(tmp_path
         vy = kin.velocity("B")[..., 1].reshape(-1, 36)
         np.testing.assert_allclose(ds["vy"].sel(point="B").values, vy, rtol=1e-12)
     fresh = str(tmp_path / "fresh.nc")
-    code = ("import sys, linkwork as lw; from linkwork.io.motion_tables import write_netcdf; "
-            f"write_netcdf(lw.kinematics(lw.compile(lw.example('four-bar')), steps=36), {fresh!r}); "
-            "print(sorted(m for m in ('xarray', 'pandas', 'dask') if m in sys.modules))")  # fmt: skip
+    code = (
+        "import sys, linkwork as lw; from linkwork.io.motion_tables import write_netcdf; "
+        f"write_netcdf(lw.kinematics(lw.compile(lw.example('four-bar')), steps=36), {fresh!r}); "
+        "print(sorted(m for m in ('xarray', 'pandas', 'dask') if m in sys.modules))"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
 
@@ -323,8 +325,11 @@ def test_the_stroke_of_the_seed_000_shears_is_measured_along_the_variants_guide(
 def test_a_link_pivoted_on_the_frame_that_turns_fully_is_no_rocker():
     """A drag link (O2O4 = 50 mm the shortest, 0.05 + 0.28 <= 0.10 + 0.25): its 'rocker' turns fully with the
     crank, so it has no swing to list; the crank-rocker beside it (O2O4 = 300 mm) has."""
-    kin = lw.kinematics(lw.compile(lw.example("four-bar")), steps=360,
-                        variants={"frame.points.O4.x": [0.05, 0.3], "links.coupler.length": [0.28, 0.28]})  # fmt: skip
+    kin = lw.kinematics(
+        lw.compile(lw.example("four-bar")),
+        steps=360,
+        variants={"frame.points.O4.x": [0.05, 0.3], "links.coupler.length": [0.28, 0.28]},
+    )
     assert kin.valid_all.all()
     closed = np.unwrap(np.append(kin.angle("rocker")[0], kin.angle("rocker")[0, 0]))
     assert abs(closed[-1] - closed[0]) == pytest.approx(2 * np.pi)  # it does turn fully
@@ -407,7 +412,8 @@ def test_the_plans_of_every_position_equal_those_of_each_position_solved_alone()
             alone = plans(lw.kinematics(mech, [angle]), 0)
             for s, plan in zip(series, alone, strict=True):
                 assert list(plan.points) == list(s.points) and s.at(i).scale == plan.scale
-                np.testing.assert_allclose([s.at(i).points[k] for k in s.points], list(plan.points.values()),
-                                           rtol=1e-9, atol=1e-12)  # fmt: skip
+                np.testing.assert_allclose(
+                    [s.at(i).points[k] for k in s.points], list(plan.points.values()), rtol=1e-9, atol=1e-12
+                )
                 assert [(v.start, v.end, v.kind) for v in plan.vectors] == [(e.start, e.end, e.kind) for e in s.edges]
                 np.testing.assert_allclose(s.vectors[0, i], [v.vector for v in plan.vectors], rtol=1e-9, atol=1e-12)

@@ -148,8 +148,12 @@ def test_the_kernels_say_what_their_arrays_hold(monkeypatch):
         for mech, variants, angles in cases:
             values = angles[:, None]
             res = kernels_numba.run(mech, apply(mech, variants)[0], values, np.ones_like(values), np.zeros_like(values))
-            found = {"near": res.near.any(), "limit": res.limit.any(), "invalid": not res.valid.all(),
-                     "trouble": res.trouble.any()}  # fmt: skip
+            found = {
+                "near": res.near.any(),
+                "limit": res.limit.any(),
+                "invalid": not res.valid.all(),
+                "trouble": res.trouble.any(),
+            }
             assert (res.some_near, res.some_limit, res.some_invalid, res.some_trouble) == tuple(found.values())
             seen |= {name for name, there in found.items() if there}
     assert seen == {"near", "limit", "invalid", "trouble"}

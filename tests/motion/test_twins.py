@@ -112,9 +112,12 @@ def test_the_twins_of_a_point_motion_agree(quantity):
 @numba
 @pytest.mark.parametrize(
     "shape, name",
-    [(reactions_numba.SINGLE, "four-bar"), (reactions_numba.DYAD, "four-bar"),
-     (reactions_numba.GENERAL, "class3-triad")],
-)  # fmt: skip
+    [
+        (reactions_numba.SINGLE, "four-bar"),
+        (reactions_numba.DYAD, "four-bar"),
+        (reactions_numba.GENERAL, "class3-triad"),
+    ],
+)
 def test_the_twins_of_the_reactions_agree_on_a_random_case(shape, name):
     mech = lw.compile(lw.example(name))
     rows, groups, _ = reactions_numba.encode(mech)

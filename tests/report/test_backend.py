@@ -18,10 +18,23 @@ def _env(**extra: str) -> dict[str, str]:
 
 def test_analyze_writes_its_report_under_a_backend_matplotlib_does_not_know(tmp_path):
     r = subprocess.run(
-        [sys.executable, "-m", "linkwork.cli", "analyze", "four-bar", "--out", str(tmp_path / "r"), "--steps", "36",
-         "--no-animation"],
-        capture_output=True, text=True, env=_env(MPLBACKEND="bogus"), timeout=600,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "linkwork.cli",
+            "analyze",
+            "four-bar",
+            "--out",
+            str(tmp_path / "r"),
+            "--steps",
+            "36",
+            "--no-animation",
+        ],
+        capture_output=True,
+        text=True,
+        env=_env(MPLBACKEND="bogus"),
+        timeout=600,
+    )
     assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr[-2000:]
     report = (tmp_path / "r" / "report.html").read_text(encoding="utf-8")
     assert "<img" in report and (tmp_path / "r" / "figures").is_dir()

@@ -163,8 +163,9 @@ def test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output(tmp_path
     (viewer,) = cycle_payload(mech, steps)["extremes"]  # sampled from position 0: refined from other samples
     assert viewer["time_ratio"] == pytest.approx(rocker.time_ratio, rel=1e-10)
     assert viewer["forward_time_ratio"] == pytest.approx(rocker.forward_time_ratio, rel=1e-10)
-    t = lw.sweep(spec, {"links.crank.length": ("0.13 m", "0.13 m", 1)}, ["time_ratio", "forward_time_ratio"],
-                 steps=steps)  # fmt: skip
+    t = lw.sweep(
+        spec, {"links.crank.length": ("0.13 m", "0.13 m", 1)}, ["time_ratio", "forward_time_ratio"], steps=steps
+    )
     assert (t["time_ratio"][0], t["forward_time_ratio"][0]) == (rocker.time_ratio, rocker.forward_time_ratio)
     path = tmp_path / "shaper.yaml"
     from ruamel.yaml import YAML
@@ -228,8 +229,7 @@ def _report(name: str, folder: Path, lang: str = "en", steps: int = 72, position
     with pytest.MonkeyPatch.context() as m:
         m.setattr(build._Run, "_draw", keep)
         m.setattr(build, "PARALLEL", False)  # every figure drawn in this process
-        build.analyze(lw.compile(lw.example(name)), folder, steps=steps, position=position, animation=False,
-                      lang=lang)  # fmt: skip
+        build.analyze(lw.compile(lw.example(name)), folder, steps=steps, position=position, animation=False, lang=lang)
     return (folder / "report.html").read_text(encoding="utf-8"), drawn
 
 
@@ -261,8 +261,9 @@ def test_no_english_is_left_in_the_russian_report(name, tmp_path):
     texts = {"report.html": " ".join(reader.parts)}
     texts |= {key: " ".join(t.get_text() for t in drawn_texts(fig)) for key, fig in drawn.items()}
     texts = {key: re.sub(r"\\[A-Za-z]+", "", text) for key, text in texts.items()}  # mathtext's commands
-    english = {key: sorted({w for w in re.findall(r"[A-Za-z]{2,}", text) if w not in allowed})
-               for key, text in texts.items()}  # fmt: skip
+    english = {
+        key: sorted({w for w in re.findall(r"[A-Za-z]{2,}", text) if w not in allowed}) for key, text in texts.items()
+    }
     assert {key: words for key, words in english.items() if words} == {}
     assert "Кинематический анализ" in page and "План скоростей" in page
     assert "План сил:" in page and "Рычаг Жуковского" in page and "уравновешивающий момент Mу" in page

@@ -80,9 +80,16 @@ def _setup_target(tmp_path: Path, case: str) -> Path:
 
 
 CASES = [
-    "folder of other files", "report with a file of the user's", "folder with a marker of another program", "file",
-    "symbolic link to a report", "symbolic link to a file", "dangling symbolic link", "fifo", "inside a file",
-]  # fmt: skip
+    "folder of other files",
+    "report with a file of the user's",
+    "folder with a marker of another program",
+    "file",
+    "symbolic link to a report",
+    "symbolic link to a file",
+    "dangling symbolic link",
+    "fifo",
+    "inside a file",
+]
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -299,8 +306,18 @@ def test_a_killed_analyze_leaves_the_old_report_and_the_next_run_no_stray_folder
     out = tmp_path / "r"
     out.mkdir()
     _fake_report(out, "old")
-    cmd = [sys.executable, "-m", "linkwork.cli", "analyze", "four-bar", "--out", str(out), "--steps", "36",
-           "--no-animation"]  # fmt: skip
+    cmd = [
+        sys.executable,
+        "-m",
+        "linkwork.cli",
+        "analyze",
+        "four-bar",
+        "--out",
+        str(out),
+        "--steps",
+        "36",
+        "--no-animation",
+    ]
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and proc.poll() is None:

@@ -24,8 +24,18 @@ def test_the_pdf_has_the_tables_within_the_page(tmp_path, monkeypatch):
 
     monkeypatch.setattr(PdfPages, "savefig", keep)
     out = tmp_path / "r"
-    args = ["analyze", "double-cut-shears", "--out", str(out), "--steps", "36", "--no-animation", "--pdf",
-            "--lang", "ru"]  # fmt: skip
+    args = [
+        "analyze",
+        "double-cut-shears",
+        "--out",
+        str(out),
+        "--steps",
+        "36",
+        "--no-animation",
+        "--pdf",
+        "--lang",
+        "ru",
+    ]
     result = CliRunner().invoke(app, args)
     assert result.exit_code == 0, result.output
     assert (out / "report.pdf").stat().st_size > 10000

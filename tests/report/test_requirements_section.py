@@ -36,8 +36,10 @@ def test_the_file_carries_its_requirements_and_the_analysis_finds_each_met(slide
 
 def test_theta_between_the_limit_positions_is_the_closed_forms():
     """theta = 180 deg (K - 1) / (K + 1), for a slider-crank and a crank-rocker: the angle of the scene's rays."""
-    for kind, req, k in (("slider-crank", {"stroke": 0.3, "max_pressure_angle": math.radians(70)}, 1.6),
-                         ("crank-rocker", {"swing": math.radians(40), "frame": 0.4}, 1.25)):  # fmt: skip
+    for kind, req, k in (
+        ("slider-crank", {"stroke": 0.3, "max_pressure_angle": math.radians(70)}, 1.6),
+        ("crank-rocker", {"swing": math.radians(40), "frame": 0.4}, 1.25),
+    ):
         s = synthesize(kind, time_ratio=k, **req)
         scene = limits_scene(lw.kinematics(s.spec, steps=720))
         assert scene is not None

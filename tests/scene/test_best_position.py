@@ -42,8 +42,9 @@ def test_a_quick_return_is_drawn_on_its_slow_working_stroke(tmp_path):
 @pytest.mark.parametrize("kind", ["toggle-press", "slotted-lever", "four-bar", "percussion-rocker"])
 def test_no_two_letters_of_the_chosen_velocity_plan_coincide(tmp_path, kind):
     if kind == "toggle-press":
-        mech = _synthesized(tmp_path, kind, "--stroke", "100mm", "--force", "100kN", "--before", "5mm",
-                            "--torque", "5kN*m")  # fmt: skip
+        mech = _synthesized(
+            tmp_path, kind, "--stroke", "100mm", "--force", "100kN", "--before", "5mm", "--torque", "5kN*m"
+        )
     elif kind == "slotted-lever":
         mech = _synthesized(tmp_path, kind, "--stroke", "400mm", "--time-ratio", "1.6")
     else:

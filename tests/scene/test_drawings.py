@@ -86,8 +86,11 @@ def test_every_renderer_puts_the_joints_where_the_kinematics_does(name, tmp_path
     mech, cycle, twelve = _solved(name)
     k = 7
     fig = figures.draw_scheme(twelve, k, cycle=cycle)
-    drawn = {a.get_gid().split(":", 1)[1]: np.array(a.center) for a in fig.axes[0].patches
-             if (a.get_gid() or "").startswith("pivot:")}  # fmt: skip
+    drawn = {
+        a.get_gid().split(":", 1)[1]: np.array(a.center)
+        for a in fig.axes[0].patches
+        if (a.get_gid() or "").startswith("pivot:")
+    }
     revolute = {j for j, t in zip(mech.pair_joint, mech.pair_type, strict=True) if t == 0}
     assert set(drawn) == revolute
     for joint, centre in drawn.items():
@@ -99,8 +102,9 @@ def test_every_renderer_puts_the_joints_where_the_kinematics_does(name, tmp_path
         pose = np.array(scene["poses"][20][item["link"]])
         c, s = math.cos(pose[2]), math.sin(pose[2])
         x, y = item["xy"][0]
-        np.testing.assert_allclose([pose[0] + c * x - s * y, pose[1] + s * x + c * y],
-                                   kin36.position(item["name"])[20], rtol=0, atol=1e-8)  # fmt: skip
+        np.testing.assert_allclose(
+            [pose[0] + c * x - s * y, pose[1] + s * x + c * y], kin36.position(item["name"])[20], rtol=0, atol=1e-8
+        )
 
     try:
         import ezdxf
@@ -114,8 +118,9 @@ def test_every_renderer_puts_the_joints_where_the_kinematics_does(name, tmp_path
     circles = [e for e in doc.modelspace().query("CIRCLE") if e.dxf.layer == "PIVOTS"]
     assert len(circles) == len(revolute)
     got = sorted((round(e.dxf.center.x, 6), round(e.dxf.center.y, 6)) for e in circles)
-    want = sorted((round(1000 * twelve.position(j)[k][0], 6), round(1000 * twelve.position(j)[k][1], 6))
-                  for j in revolute)  # fmt: skip
+    want = sorted(
+        (round(1000 * twelve.position(j)[k][0], 6), round(1000 * twelve.position(j)[k][1], 6)) for j in revolute
+    )
     np.testing.assert_allclose(got, want, rtol=0, atol=1e-6)
 
 
@@ -212,15 +217,20 @@ def test_points_with_one_vector_share_one_label():
             assert scene.text[k][j].split(", ")[0] == "e" and "knife_upper.edge" not in scene.text[k][j]
             assert scene.text[k][edge] == ""
     pole = scene.text[0][scene.names.index("p")].split(", ")
-    at_rest = [lab for lab in scene.names[: len(vel.points)] if lab != "p" and "." not in lab
-               and np.hypot(*vel.values[0, 0, vel.labels.index(lab)]) < 1e-9]  # fmt: skip
+    at_rest = [
+        lab
+        for lab in scene.names[: len(vel.points)]
+        if lab != "p" and "." not in lab and np.hypot(*vel.values[0, 0, vel.labels.index(lab)]) < 1e-9
+    ]
     assert at_rest and set(at_rest) <= set(pole)
 
 
 def test_every_plan_states_its_scale_and_names_its_vectors():
     mech, cycle, twelve = _solved("double-cut-shears")
-    for kind, fig in (("velocity", figures.velocity_plan(twelve, 9)),
-                      ("acceleration", figures.acceleration_plan(twelve, 9))):  # fmt: skip
+    for kind, fig in (
+        ("velocity", figures.velocity_plan(twelve, 9)),
+        ("acceleration", figures.acceleration_plan(twelve, 9)),
+    ):
         texts = " | ".join(t.get_text() for t in fig.findobj(lambda a: hasattr(a, "get_text")))
         symbol = "μv" if kind == "velocity" else "μa"
         assert f"{symbol} = " in texts
@@ -256,8 +266,9 @@ def test_analyze_writes_the_drawings_for_cad_and_the_sheets_of_all_twelve_plans(
     ezdxf = pytest.importorskip("ezdxf")
     runner, app = _cli()
     out = tmp_path / "r"
-    result = runner.invoke(app, ["analyze", "four-bar", "--out", str(out), "--steps", "36", "--no-animation",
-                                 "--dxf", "--position", "all"])  # fmt: skip
+    result = runner.invoke(
+        app, ["analyze", "four-bar", "--out", str(out), "--steps", "36", "--no-animation", "--dxf", "--position", "all"]
+    )
     assert result.exit_code == 0, result.output
     for name in ("scheme", "positions", "velocity_plan", "acceleration_plan"):
         doc = ezdxf.readfile(out / "figures" / f"{name}.dxf")
@@ -336,8 +347,11 @@ def test_no_name_lies_on_a_slider_block_a_knife_or_the_hatching():
         canvas.draw()
         renderer = canvas.get_renderer()
         ax = fig.axes[0]
-        symbols = [a for a in [*ax.patches, *ax.lines]
-                   if (a.get_gid() or "").split(":")[0] in ("block", "tool", "support", "hatch")]  # fmt: skip
+        symbols = [
+            a
+            for a in [*ax.patches, *ax.lines]
+            if (a.get_gid() or "").split(":")[0] in ("block", "tool", "support", "hatch")
+        ]
         assert len(symbols) > 40
         boxes = [(a.get_gid(), a.get_window_extent(renderer)) for a in symbols]
         for text in ax.texts:
@@ -438,8 +452,9 @@ def _sprung() -> lw.Mechanism:
     from pathlib import Path
 
     text = (Path(__file__).resolve().parents[1] / "machine" / "andrews-squeezer.yaml").read_text()
-    text = text.replace("free_length: 0.07785}", "free_length: 0.07785}\n  push: {type: damper, between: [b7.H, B], "
-                        "damping: 0.5 N*s/m}")  # fmt: skip
+    text = text.replace(
+        "free_length: 0.07785}", "free_length: 0.07785}\n  push: {type: damper, between: [b7.H, B], damping: 0.5 N*s/m}"
+    )
     return lw.compile(lw.loads(text, file="andrews-squeezer.yaml"))
 
 
@@ -484,8 +499,9 @@ def test_springs_and_dampers_are_drawn_between_their_points_in_every_renderer(tm
             pose = np.array(scene["poses"][20][link])
             co, si = math.cos(pose[2]), math.sin(pose[2])
             want = kin36.position(points[j])[20] if j == 0 else (c if points[1] == "C" else b)
-            np.testing.assert_allclose([pose[0] + co * at[0] - si * at[1], pose[1] + si * at[0] + co * at[1]],
-                                       want, rtol=0, atol=1e-8)  # fmt: skip
+            np.testing.assert_allclose(
+                [pose[0] + co * at[0] - si * at[1], pose[1] + si * at[0] + co * at[1]], want, rtol=0, atol=1e-8
+            )
     assert len(scene["elements"][0]["strokes"]) == 1 and len(scene["elements"][1]["strokes"]) == 4
 
     ezdxf = pytest.importorskip("ezdxf")
@@ -493,8 +509,14 @@ def test_springs_and_dampers_are_drawn_between_their_points_in_every_renderer(tm
 
     k = 20
     doc = ezdxf.readfile(write_scheme(scheme_scene(kin, at=[k], cycle=kin), k, tmp_path / "scheme.dxf"))
-    polylines = {layer: [np.array([(v[0], v[1]) for v in e.get_points()]) for e in doc.modelspace().query("LWPOLYLINE")
-                         if e.dxf.layer == layer] for layer in ("SPRINGS", "DAMPERS")}  # fmt: skip
+    polylines = {
+        layer: [
+            np.array([(v[0], v[1]) for v in e.get_points()])
+            for e in doc.modelspace().query("LWPOLYLINE")
+            if e.dxf.layer == layer
+        ]
+        for layer in ("SPRINGS", "DAMPERS")
+    }
     assert len(polylines["SPRINGS"]) == 1 and len(polylines["DAMPERS"]) == 4
     d, h = (1000 * kin.position(p)[k] for p in ("b3.D", "b7.H"))
     _check_spring(polylines["SPRINGS"][0], d, 1000 * c, 1e-6)

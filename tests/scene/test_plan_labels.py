@@ -21,15 +21,18 @@ def _twelve(name: str):
     return lw.kinematics(mech, position_angles(mech))
 
 
-@pytest.mark.parametrize(("text", "runs"), [
-    ("n_ba", [("n", False), ("ba", True)]),
-    ("k'_e", [("k'", False), ("e", True)]),
-    ("a, n_cb", [("a, n", False), ("cb", True)]),
-    ("O1, O2", [("O", False), ("1", True), (", O", False), ("2", True)]),
-    ("0, 1, 11", [("0, 1, 11", False)]),
-    ("knife_upper.edge", [("knife_upper.edge", False)]),
-    ("π", [("π", False)]),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    ("text", "runs"),
+    [
+        ("n_ba", [("n", False), ("ba", True)]),
+        ("k'_e", [("k'", False), ("e", True)]),
+        ("a, n_cb", [("a, n", False), ("cb", True)]),
+        ("O1, O2", [("O", False), ("1", True), (", O", False), ("2", True)]),
+        ("0, 1, 11", [("0, 1, 11", False)]),
+        ("knife_upper.edge", [("knife_upper.edge", False)]),
+        ("π", [("π", False)]),
+    ],
+)
 def test_a_label_splits_into_its_subscripts(text, runs):
     assert text_runs(text) == runs
     # the subscript is set smaller: the label is narrower than its raw text without the underscore
@@ -74,8 +77,11 @@ def test_dxf_labels_stack_their_subscripts(tmp_path):
 
     twelve = _twelve("double-cut-shears")
     write_drawings(twelve, 9, tmp_path, lang="ru")
-    labels = [e for e in ezdxf.readfile(tmp_path / "acceleration_plan.dxf").modelspace().query("MTEXT")
-              if e.dxf.layer == "LABELS"]  # fmt: skip
+    labels = [
+        e
+        for e in ezdxf.readfile(tmp_path / "acceleration_plan.dxf").modelspace().query("MTEXT")
+        if e.dxf.layer == "LABELS"
+    ]
     tokens = [[(tok.type, tok.data) for tok in MTextParser(e.text)] for e in labels]
     words = ["".join(d for k, d in toks if k == TokenType.WORD) for toks in tokens]
     stacks = [d for toks in tokens for k, d in toks if k == TokenType.STACK]

@@ -21,8 +21,20 @@ def press(tmp_path_factory):
     from linkwork.cli.main import app
 
     path = tmp_path_factory.mktemp("press") / "press.yaml"
-    args = ["synthesize", "toggle-press", "--out", str(path), "--stroke", "100mm", "--force", "100kN",
-            "--before", "5mm", "--torque", "5kN*m"]  # fmt: skip
+    args = [
+        "synthesize",
+        "toggle-press",
+        "--out",
+        str(path),
+        "--stroke",
+        "100mm",
+        "--force",
+        "100kN",
+        "--before",
+        "5mm",
+        "--torque",
+        "5kN*m",
+    ]
     result = CliRunner().invoke(app, args)
     assert result.exit_code == 0, result.output
     return lw.compile(lw.load(path))

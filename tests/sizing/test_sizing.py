@@ -122,8 +122,14 @@ def test_the_least_pin_in_double_shear_by_hand():
 
 def _bolts(foundation, points, **kw):
     phi = np.arange(len(foundation), dtype=float)
-    return size_bolts(np.asarray(foundation, float), phi, np.asarray(points, float), threads=bundled("threads.csv"),
-                      classes=bundled("bolt_classes.csv"), **kw)  # fmt: skip
+    return size_bolts(
+        np.asarray(foundation, float),
+        phi,
+        np.asarray(points, float),
+        threads=bundled("threads.csv"),
+        classes=bundled("bolt_classes.csv"),
+        **kw,
+    )
 
 
 def test_a_lift_is_shared_by_the_bolts_and_a_moment_by_their_arms():
@@ -139,8 +145,9 @@ def test_a_lift_is_shared_by_the_bolts_and_a_moment_by_their_arms():
 
 def test_the_preload_holds_the_joint_shut_and_from_sliding_with_the_safety_factor():
     pts = [[-0.5, 0.0], [0.5, 0.0]]
-    lift = _bolts([[0.0, 10e3, 0.0]], pts, safety=1.5, friction=0.2, load_factor=0.25, bolt_class="5.6",
-                  bolt_safety=1.5)  # fmt: skip
+    lift = _bolts(
+        [[0.0, 10e3, 0.0]], pts, safety=1.5, friction=0.2, load_factor=0.25, bolt_class="5.6", bolt_safety=1.5
+    )
     # opening: 1.5 * 5 kN = 7.5 kN; sliding: (0 + 10 kN) / 2 = 5 kN
     assert lift.preload == pytest.approx(7.5e3) and lift.decided_by == "opening"
     # bolt force 7.5 + 0.25 * 5 = 8.75 kN; A_s >= 1.3 * 8750 * 1.5 / 300 MPa = 56.9 mm^2: M10 (58.0 mm^2)
@@ -251,8 +258,9 @@ def test_the_run_with_the_chosen_motor_meets_delta_and_stays_under_its_breakdown
 
 def test_size_double_cut_shears_meets_the_bars_and_writes_the_motor_into_the_file(tmp_path):
     out = tmp_path / "sized.yaml"
-    result = linkwork("size", "double-cut-shears", "--life", "20000h", "--json", "--synchronous", "1500 rpm",
-                      "--write", str(out))  # fmt: skip
+    result = linkwork(
+        "size", "double-cut-shears", "--life", "20000h", "--json", "--synchronous", "1500 rpm", "--write", str(out)
+    )
     assert result.returncode == 0, result.stderr
     data = json.loads(result.stdout)
     motor = data["motor"]
@@ -374,8 +382,10 @@ def test_the_machine_section_is_written_whole_into_a_file_without_one_and_key_by
 
 def test_a_user_catalogue_without_a_column_is_one_message_with_its_line_and_exit_code_2(tmp_path):
     path = tmp_path / "mine.csv"
-    path.write_text("name,power [kW],synchronous [rpm],speed [rpm],breakdown [1],inertia [kg m^2],mass [kg]\n"
-                    "m,4,1500,1430,2.3,0.02,35\n")  # fmt: skip
+    path.write_text(
+        "name,power [kW],synchronous [rpm],speed [rpm],breakdown [1],inertia [kg m^2],mass [kg]\n"
+        "m,4,1500,1430,2.3,0.02,35\n"
+    )
     result = linkwork("size", "four-bar", "--catalogue", str(path))
     assert result.returncode == 2
     assert result.stderr.strip() == f"error: {path}:1: no column 'starting' [1]"

@@ -133,8 +133,11 @@ def test_coincident_points_are_those_every_pair_compared_finds():
     points = {f"P{i}": p for i, p in enumerate(pts)}
     found = coincident(points)
     assert {b for _, b in found} == _brute(points, COINCIDE)
-    assert all(math.hypot(points[a][0] - points[b][0], points[a][1] - points[b][1]) < COINCIDE for a, b in found
-               if math.isfinite(points[a][0]))  # fmt: skip
+    assert all(
+        math.hypot(points[a][0] - points[b][0], points[a][1] - points[b][1]) < COINCIDE
+        for a, b in found
+        if math.isfinite(points[a][0])
+    )
 
 
 @pytest.mark.parametrize(

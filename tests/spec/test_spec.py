@@ -161,8 +161,10 @@ def test_derived_quantities_in_a_file_in_mm_need_a_unit_or_a_declared_one():
     with pytest.raises(SpecError) as err:
         lw.loads(MM_FILE % ("", 2, 60, 1000))
     assert [(p.line, p.path) for p in err.value.problems] == [
-        (4, "links.crank.inertia"), (13, "drives[0].speed"), (16, "machine.motor.torque")
-    ]  # fmt: skip
+        (4, "links.crank.inertia"),
+        (13, "drives[0].speed"),
+        (16, "machine.motor.torque"),
+    ]
     explicit = lw.compile(lw.loads(MM_FILE % ("", '"2e6 kg*mm^2"', '"60 rpm"', '"1000 N*mm"')))
     declared = lw.compile(lw.loads(MM_FILE % (", inertia: kg*mm^2, angular_speed: rpm, moment: N*mm", 2e6, 60, 1000)))
     for mech in (explicit, declared):
@@ -180,7 +182,7 @@ def test_bare_derived_quantities_of_a_file_in_si_are_si():
     mech = lw.compile(lw.loads(text.replace("{length: mm%s}", "{length: m, angle: rad%s}") % ("", 2, 3.5, 12)))
     assert mech.link_inertia[mech.link_names.index("crank")] == 2.0
     assert mech.drive_speed[0] == 3.5 and mech.motor_gear.motor(0.0) == 12.0
-    with pytest.raises(SpecError, match=r'drives\[0\].speed: a bare 3.5 is not read as an angular speed where angles'):
+    with pytest.raises(SpecError, match=r"drives\[0\].speed: a bare 3.5 is not read as an angular speed where angles"):
         lw.loads(text.replace("{length: mm%s}", "{length: m%s}") % ("", 2, 3.5, 12))
 
 
@@ -196,9 +198,21 @@ def test_a_builder_follows_the_same_rule():
 def test_schema_states_the_rule_for_bare_numbers():
     units = lw.Spec.model_json_schema()["$defs"]["Units"]
     assert set(units["properties"]) == {
-        "length", "mass", "time", "angle", "force", "moment", "inertia", "speed", "angular_speed", "acceleration",
-        "power", "stiffness", "torsion_stiffness", "damping",
-    }  # fmt: skip
+        "length",
+        "mass",
+        "time",
+        "angle",
+        "force",
+        "moment",
+        "inertia",
+        "speed",
+        "angular_speed",
+        "acceleration",
+        "power",
+        "stiffness",
+        "torsion_stiffness",
+        "damping",
+    }
     assert "otherwise it needs its unit" in units["description"]
     inertia = lw.Spec.model_json_schema()["$defs"]["Link"]["properties"]["inertia"]
     assert "in SI where the file's units of what it is made of are SI" in json.dumps(inertia)
@@ -232,9 +246,16 @@ def test_a_builder_script_equals_the_file_it_describes(tmp_path):
 
 @pytest.mark.parametrize(
     ("word", "sign"),
-    [("clockwise", -1), ("Clockwise", -1), ("cw", -1), ("counterclockwise", 1), ("counter-clockwise", 1),
-     ("anticlockwise", 1), ("CCW", 1)],
-)  # fmt: skip
+    [
+        ("clockwise", -1),
+        ("Clockwise", -1),
+        ("cw", -1),
+        ("counterclockwise", 1),
+        ("counter-clockwise", 1),
+        ("anticlockwise", 1),
+        ("CCW", 1),
+    ],
+)
 def test_a_drive_turns_the_way_its_direction_says_in_words(word, sign):
     """``direction: clockwise`` means what ``cw`` means: the crank turns at -60 rpm."""
     src = text("four-bar").replace("direction: ccw", f"direction: {word}")

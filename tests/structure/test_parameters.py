@@ -39,7 +39,7 @@ CASES = [
             (("links", "crank", "mass"), 1.4),
             (("links", "rocker", "inertia"), "0.012 kg*m^2"),
         ],
-    ),  # fmt: skip
+    ),
     (
         "double-cut-shears",
         {
@@ -56,7 +56,7 @@ CASES = [
             (("links", "rocker", "points", "C", 0), 0.28),
             (("links", "crank", "length"), 0.105),
         ],
-    ),  # fmt: skip
+    ),
     ("shears-slider-crank", {"joints.guide.axis": math.radians(100)}, [(("joints", "guide", "axis"), "100 deg")]),
     (
         "percussion-rocker",
@@ -121,9 +121,14 @@ def test_overrides_mean_what_the_edited_file_means(name, overrides, edits, tmp_p
 
 def _unit(path):
     return {"length": "m", "angle": "rad", "mass": "kg", "inertia": "kg*m^2"}[
-        "angle" if path.endswith("axis") else "mass" if path.endswith("mass")
-        else "inertia" if path.endswith("inertia") else "length"
-    ]  # fmt: skip
+        "angle"
+        if path.endswith("axis")
+        else "mass"
+        if path.endswith("mass")
+        else "inertia"
+        if path.endswith("inertia")
+        else "length"
+    ]
 
 
 def test_the_four_bar_with_a_longer_coupler_has_the_edited_files_peak_torque():
@@ -298,10 +303,14 @@ SHARED = (
 
 @pytest.mark.parametrize(
     "values",
-    [{"links.crank.mass": 3.0}, {"links.rocker.mass": 4.0}, {"frame.points.O4.x": 0.31},
-     {"links.coupler.points.M.y": 0.01, "links.crank.length": 0.09}],
+    [
+        {"links.crank.mass": 3.0},
+        {"links.rocker.mass": 4.0},
+        {"frame.points.O4.x": 0.31},
+        {"links.coupler.points.M.y": 0.01, "links.crank.length": 0.09},
+    ],
     ids=["anchor", "heir", "aliased-pair", "alias-and-anchor"],
-)  # fmt: skip
+)
 def test_a_value_written_where_the_file_shares_a_node_changes_that_value_alone(values, tmp_path):
     """Reading the written file back and solving it gives the driving torque of the variant solved (to 1e-12);
     the masses and points the file shares through its anchors stay as they were elsewhere."""

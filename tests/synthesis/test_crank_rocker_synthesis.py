@@ -86,8 +86,9 @@ def test_the_pick_has_the_greatest_least_transmission_angle_of_the_family():
 def test_k_1_needs_the_bound_and_then_meets_it_with_the_nearest_pivot():
     with pytest.raises(SynthesisError, match="give the least transmission angle"):
         synthesize("crank-rocker", swing=math.radians(45), time_ratio=1.0, rocker=0.25)
-    s = synthesize("crank-rocker", swing=math.radians(45), time_ratio=1.0, frame=0.4,
-                   min_transmission_angle=math.radians(50))  # fmt: skip
+    s = synthesize(
+        "crank-rocker", swing=math.radians(45), time_ratio=1.0, frame=0.4, min_transmission_angle=math.radians(50)
+    )
     assert s.measured["least_transmission_angle"] == pytest.approx(math.radians(50), rel=1e-9)
     assert s.measured["time_ratio"] == pytest.approx(1.0, rel=1e-9)
 
@@ -96,8 +97,13 @@ def test_k_1_needs_the_bound_and_then_meets_it_with_the_nearest_pivot():
 @pytest.mark.parametrize("bound", [20, 30, 35])
 def test_k_1_with_a_bound_it_can_meet_is_met_and_not_refused(swing, bound):
     # the root of the bound is taken on the side that meets it, not a rounding short of it
-    s = synthesize("crank-rocker", swing=math.radians(swing), time_ratio=1.0, rocker=0.3,
-                   min_transmission_angle=math.radians(bound))  # fmt: skip
+    s = synthesize(
+        "crank-rocker",
+        swing=math.radians(swing),
+        time_ratio=1.0,
+        rocker=0.3,
+        min_transmission_angle=math.radians(bound),
+    )
     assert s.predicted["least_transmission_angle"] >= math.radians(bound)
     assert s.measured["least_transmission_angle"] == pytest.approx(math.radians(bound), rel=1e-9)
 
@@ -112,14 +118,20 @@ def test_the_members_for_k_1_have_their_pivot_on_the_chords_line_to_the_last_dig
 
 def test_an_impossible_bound_names_the_best_angle_and_the_largest_k_that_meets_it():
     with pytest.raises(SynthesisError) as err:
-        synthesize("crank-rocker", swing=math.radians(60), time_ratio=1.5, frame=0.4,
-                   min_transmission_angle=math.radians(40))  # fmt: skip
+        synthesize(
+            "crank-rocker", swing=math.radians(60), time_ratio=1.5, frame=0.4, min_transmission_angle=math.radians(40)
+        )
     text = str(err.value)
     assert "K = 1.5 give a least transmission angle of at most 29.76 deg" in text
     k = largest_time_ratio(math.radians(60), math.radians(40))
     assert f"at least 40 deg gives K <= {k:.4g}" in text
-    s = synthesize("crank-rocker", swing=math.radians(60), time_ratio=k * (1 - 1e-6), frame=0.4,
-                   min_transmission_angle=math.radians(40))  # fmt: skip
+    s = synthesize(
+        "crank-rocker",
+        swing=math.radians(60),
+        time_ratio=k * (1 - 1e-6),
+        frame=0.4,
+        min_transmission_angle=math.radians(40),
+    )
     assert s.measured["least_transmission_angle"] >= math.radians(40) * (1 - 1e-9)
 
 
@@ -132,8 +144,10 @@ def test_a_time_ratio_no_crank_rocker_of_the_swing_reaches_names_the_largest_tha
 
     theta = math.pi * (4.1 - 1) / (4.1 + 1)
     t, side, _ = best(math.radians(40), theta)
-    a, b, c, d = (float(members(math.radians(40), theta, np.array([t]), side)[k][0]) for k in
-                  ("crank", "coupler", "rocker", "frame"))  # fmt: skip
+    a, b, c, d = (
+        float(members(math.radians(40), theta, np.array([t]), side)[k][0])
+        for k in ("crank", "coupler", "rocker", "frame")
+    )
     assert law_of_cosines(a, b, c, d) == pytest.approx((math.radians(40), theta), rel=1e-9)
 
 

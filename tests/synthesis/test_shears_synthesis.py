@@ -39,8 +39,10 @@ def knives(mechanism) -> dict[str, float]:
     out = {}
     for quantity in ("upper", "lower", "gap"):
         v = np.array([rate(quantity, p) for p in grid])
-        roots = [brentq(lambda p, q=quantity: rate(q, p), grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15)
-                 for i in np.flatnonzero(np.sign(v[:-1]) != np.sign(v[1:]))]  # fmt: skip
+        roots = [
+            brentq(lambda p, q=quantity: rate(q, p), grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15)
+            for i in np.flatnonzero(np.sign(v[:-1]) != np.sign(v[1:]))
+        ]
         assert len(roots) == 2, f"{quantity} has {len(roots)} extremes"
         values = [value(quantity, p) for p in roots]
         out[quantity] = max(values) - min(values)
@@ -53,8 +55,7 @@ def knives(mechanism) -> dict[str, float]:
 
 
 def test_the_written_shears_meet_every_requirement_and_keep_the_bundled_structure(tmp_path):
-    s = synthesize("double-cut-shears", upper_stroke="140 mm", lower_stroke="120 mm", time_ratio=1.1,
-                   overlap="20 mm")  # fmt: skip
+    s = synthesize("double-cut-shears", upper_stroke="140 mm", lower_stroke="120 mm", time_ratio=1.1, overlap="20 mm")
     path = s.write(tmp_path / "shears.yaml")
     got = knives(str(path))
     assert got["upper"] == pytest.approx(0.14, rel=1e-9) and got["lower"] == pytest.approx(0.12, rel=1e-9)
@@ -67,13 +68,16 @@ def test_the_written_shears_meet_every_requirement_and_keep_the_bundled_structur
     assert "# O1.x: time ratio K = 1.1" in path.read_text()
     assert s.family is not None and s.criterion == "picked by the greatest least transmission angle"
     angles = s.family.columns["min_transmission_angle"]
-    assert np.nanmax(angles) == pytest.approx(float(np.min(list(lw.motion.analysis.transmission(
-        lw.kinematics(str(path), steps=3600)).values()), axis=None)), rel=1e-4)  # fmt: skip
+    assert np.nanmax(angles) == pytest.approx(
+        float(np.min(list(lw.motion.analysis.transmission(lw.kinematics(str(path), steps=3600)).values()), axis=None)),
+        rel=1e-4,
+    )
 
 
 def test_the_torque_criterion_picks_the_family_member_with_the_least_refined_peak_torque():
-    s = synthesize("double-cut-shears", upper_stroke=0.13, lower_stroke=0.13, time_ratio=1.05, opening=0.24,
-                   criterion="torque")  # fmt: skip
+    s = synthesize(
+        "double-cut-shears", upper_stroke=0.13, lower_stroke=0.13, time_ratio=1.05, opening=0.24, criterion="torque"
+    )
     torque = s.family.columns["peak_driving_torque"]
     assert np.isfinite(torque).sum() >= 3
     coarse = np.abs(lw.forces(s.spec, steps=3600).driving_torque)  # the written file's torque, sampled
@@ -84,22 +88,21 @@ def test_the_torque_criterion_picks_the_family_member_with_the_least_refined_pea
 
 
 def test_a_fixed_crank_leaves_no_family():
-    s = synthesize("double-cut-shears", upper_stroke=0.12, lower_stroke=0.12, time_ratio=1.0, overlap=0.01,
-                   crank=0.1)  # fmt: skip
+    s = synthesize("double-cut-shears", upper_stroke=0.12, lower_stroke=0.12, time_ratio=1.0, overlap=0.01, crank=0.1)
     assert s.family is None and s.dimensions["crank"] == 0.1
     assert s.measured["time_ratio"] == pytest.approx(1.0, rel=1e-9)
 
 
 def test_an_overlap_and_opening_that_disagree_with_the_strokes_name_the_sum():
     with pytest.raises(SynthesisError, match=r"overlap 20 mm \+ opening 250 mm must equal the strokes together 260"):
-        synthesize("double-cut-shears", upper_stroke=0.14, lower_stroke=0.12, time_ratio=1.1, overlap=0.02,
-                   opening=0.25)  # fmt: skip
+        synthesize(
+            "double-cut-shears", upper_stroke=0.14, lower_stroke=0.12, time_ratio=1.1, overlap=0.02, opening=0.25
+        )
 
 
 def test_strokes_the_structure_cannot_reach_name_the_requirements_and_the_bundled_values():
     with pytest.raises(SynthesisError, match=r"upper stroke 900 mm.*no double-cut shears.*the bundled file has 120"):
-        synthesize("double-cut-shears", upper_stroke=0.9, lower_stroke=0.12, time_ratio=1.1, overlap=0.02,
-                   crank=0.1)  # fmt: skip
+        synthesize("double-cut-shears", upper_stroke=0.9, lower_stroke=0.12, time_ratio=1.1, overlap=0.02, crank=0.1)
 
 
 @pytest.mark.slow

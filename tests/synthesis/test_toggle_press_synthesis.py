@@ -55,8 +55,9 @@ def test_the_toggle_links_are_as_long_as_the_stroke_for_a_swing_of_60_deg():
 def test_random_feasible_requirements_are_met_as_the_analysis_measures_them(stroke, where, force, swing, k):
     before = where * stroke
     _, rho = nominal(geometry(stroke, swing, k), before)
-    s = synthesize("toggle-press", stroke=stroke, force=force, before=before, torque=force * rho * 1.5,
-                   swing=swing, time_ratio=k)  # fmt: skip
+    s = synthesize(
+        "toggle-press", stroke=stroke, force=force, before=before, torque=force * rho * 1.5, swing=swing, time_ratio=k
+    )
     assert ram_stroke(s.spec) == pytest.approx(stroke, rel=1e-9)
     assert s.measured["torque_at_nominal"] == pytest.approx(force * rho, rel=1e-9)
     fd = torque_by_difference(s.spec, stroke, before, force, swing, k)

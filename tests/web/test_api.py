@@ -456,10 +456,10 @@ def _start_view(stderr: int = subprocess.PIPE) -> tuple[subprocess.Popen, re.Mat
     """``linkwork view four-bar --port 0 --no-browser --steps 24`` in a process of its own, and the URL it
     printed (the port it found free); the caller stops the process."""
     code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
-    proc = subprocess.Popen(
-        [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"],
-        stdout=subprocess.PIPE, stderr=stderr, text=True, env={**os.environ, "LINKWORK_NUMBA": "0"},
-    )  # fmt: skip  # the NumPy kernels: serving is tested here, and a cold cache would compile for a minute
+    # the NumPy kernels: serving is tested here, and a cold cache would compile for a minute
+    env = {**os.environ, "LINKWORK_NUMBA": "0"}
+    args = [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"]
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=stderr, text=True, env=env)
     line = proc.stdout.readline()
     url = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
     if url is None:
@@ -788,8 +788,13 @@ def test_an_edits_answer_is_its_json_then_its_arrays_bytes_each_where_the_json_s
     from linkwork.web.update import compact, decode_edit, encode_edit
 
     x, ok, empty = np.arange(15.0).reshape(3, 5) / 7, np.array([1, 0, 1]), np.ones((0, 2))
-    data = {"a": compact(x), "label": 'φ \\ "x"', "nested": [{"b": compact(ok, "u1"), "c": compact(x, "f8")}],
-            "n": [1.5, 2], "e": compact(empty)}  # fmt: skip
+    data = {
+        "a": compact(x),
+        "label": 'φ \\ "x"',
+        "nested": [{"b": compact(ok, "u1"), "c": compact(x, "f8")}],
+        "n": [1.5, 2],
+        "e": compact(empty),
+    }
     body = encode_edit(data)
     (n,) = struct.unpack_from("<I", body)
     head = json.loads(body[4 : 4 + n].decode("utf-8"))
@@ -1013,8 +1018,9 @@ def test_the_saved_file_keeps_the_files_comments_and_solves_to_the_edit(shears):
     np.testing.assert_allclose(saved.points(), lw.kinematics(_shears_by_hand(), steps=360).points(), atol=1e-12)
     edit = _edit(shears.post("/api/edit", json={"overrides": SHEARS_EDIT}))
     torque = _array(edit["series"]["values"])[edit["series"]["keys"].index("torque")]
-    np.testing.assert_allclose(torque, lw.forces(saved.mechanism, _turn(saved.mechanism, 360, SHEARS)).driving_torque,
-                               rtol=1e-6, atol=1e-3)  # fmt: skip
+    np.testing.assert_allclose(
+        torque, lw.forces(saved.mechanism, _turn(saved.mechanism, 360, SHEARS)).driving_torque, rtol=1e-6, atol=1e-3
+    )
 
 
 def test_the_force_arrows_are_the_reactions_and_the_cutting_force(shears_cycle):
@@ -1027,8 +1033,11 @@ def test_the_force_arrows_are_the_reactions_and_the_cutting_force(shears_cycle):
     assert [f["arrows"][arrows["R12"]][k] for k in ("name", "on", "by")] == ["A", "rod", ["crank"]]
     kin = lw.kinematics(SHEARS, _turn(SHEARS, 360))
     a_c = (kin.acceleration("crank.O1") + kin.acceleration("crank.A")) / 2  # the crank's centre, mid-length
-    np.testing.assert_allclose(values[:, arrows["R01"]] - values[:, arrows["R12"]], 40.0 * (a_c - [0, -9.81]),
-                               atol=1e-6 * np.nanmax(np.abs(values)))  # fmt: skip
+    np.testing.assert_allclose(
+        values[:, arrows["R01"]] - values[:, arrows["R12"]],
+        40.0 * (a_c - [0, -9.81]),
+        atol=1e-6 * np.nanmax(np.abs(values)),
+    )
     upper, lower = kin.position("knife_upper.edge")[:, 1], kin.position("knife_lower.edge")[:, 1]
     closing = np.gradient(upper - lower) < 0
     eps = (np.maximum(0.05 - upper, 0) + np.maximum(lower + 0.05, 0)) / 0.1
@@ -1318,8 +1327,12 @@ def test_a_pose_is_answered_while_an_edit_is_solved():
 
         def edit() -> None:
             conn = http.client.HTTPConnection(host, port, timeout=30)
-            conn.request("POST", "/api/edit", json.dumps({"overrides": {"links.crank.length": 0.101}}),
-                         {"Content-Type": "application/json"})  # fmt: skip
+            conn.request(
+                "POST",
+                "/api/edit",
+                json.dumps({"overrides": {"links.crank.length": 0.101}}),
+                {"Content-Type": "application/json"},
+            )
             done["edit"] = (conn.getresponse().status, time.monotonic())
 
         thread = threading.Thread(target=edit)
@@ -1385,8 +1398,10 @@ def test_a_springs_force_is_an_arrow_of_the_viewer():
     """A spring from the four-bar's coupler point B to the frame's O2: one load arrow, on the coupler at B, whose
     value is k (L - L0) along B -> O2 at every angle (L from the positions)."""
     text = example_text("four-bar").replace(
-        "hints:", "loads:\n  s: {type: spring, between: [coupler.B, O2], stiffness: 2000 N/m, free_length: 200 mm}\n"
-        "hints:", 1)  # fmt: skip
+        "hints:",
+        "loads:\n  s: {type: spring, between: [coupler.B, O2], stiffness: 2000 N/m, free_length: 200 mm}\nhints:",
+        1,
+    )
     mech = lw.compile(lw.loads(text))
     f = cycle_payload(mech, steps=24)["forces"]
     cut = [j for j, a in enumerate(f["arrows"]) if a["kind"] == "load"]

@@ -580,8 +580,15 @@ def test_the_force_arrows_are_the_reactions_of_lw_forces_times_the_scale(page, s
         forces = lw.forces(mech, [angle])
         scale = float(page.get_attribute("#forces", "data-scale"))  # m of the drawing per N
         size = mech_size  # the scheme's size, m: no arrow is longer than 0.2 of it
-        for joint, on in (("O1", "crank"), ("A", "rod"), ("B", "rocker"), ("O3", "rocker"), ("E", "knife_upper"),
-                          ("guide_E", "knife_upper"), ("F", "knife_lower")):  # fmt: skip
+        for joint, on in (
+            ("O1", "crank"),
+            ("A", "rod"),
+            ("B", "rocker"),
+            ("O3", "rocker"),
+            ("E", "knife_upper"),
+            ("guide_E", "knife_upper"),
+            ("F", "knife_lower"),
+        ):
             line = page.locator(f'#forces line.force[data-name="{joint}"]')
             assert line.get_attribute("data-on") == on
             x1, y1, x2, y2 = (float(line.get_attribute(a)) for a in ("x1", "y1", "x2", "y2"))
@@ -655,15 +662,22 @@ def test_the_force_labels_cover_no_other_label_and_the_arrows_stay_in_the_panel(
     turn = lw.forces(mech, cycle(mech, 360, start=zero_angle(mech)))
     turn_to(page, int(np.argmax(np.abs(turn.driving_torque))))
     forces = page.locator("#forces text.force-label:not(.torque)")
-    boxes = [forces.nth(k).bounding_box() for k in range(forces.count())
-             if forces.nth(k).get_attribute("visibility") == "visible"]  # fmt: skip
+    boxes = [
+        forces.nth(k).bounding_box()
+        for k in range(forces.count())
+        if forces.nth(k).get_attribute("visibility") == "visible"
+    ]
     names = page.locator("#labels text.label")
     joints = [names.nth(k).bounding_box() for k in range(names.count())]
     assert len(boxes) >= 8
 
     def overlap(a, b):
-        return a["x"] < b["x"] + b["width"] and b["x"] < a["x"] + a["width"] and a["y"] < b["y"] + b["height"] and \
-            b["y"] < a["y"] + a["height"]  # fmt: skip
+        return (
+            a["x"] < b["x"] + b["width"]
+            and b["x"] < a["x"] + a["width"]
+            and a["y"] < b["y"] + b["height"]
+            and b["y"] < a["y"] + a["height"]
+        )
 
     pairs = [(i, j) for i in range(len(boxes)) for j in range(i) if overlap(boxes[i], boxes[j])]
     assert pairs == []
@@ -685,8 +699,9 @@ def test_a_spring_and_a_damper_are_drawn_between_their_points(page, tmp_path):
     ``spring``, ``damper``) end on their points as the kinematics puts them at the angle shown (the drawing's
     0.001 mm), at two angles of the crank."""
     text = (Path(__file__).resolve().parents[1] / "machine" / "andrews-squeezer.yaml").read_text()
-    text = text.replace("free_length: 0.07785}", "free_length: 0.07785}\n  push: {type: damper, between: [b7.H, B], "
-                        "damping: 0.5 N*s/m}")  # fmt: skip
+    text = text.replace(
+        "free_length: 0.07785}", "free_length: 0.07785}\n  push: {type: damper, between: [b7.H, B], damping: 0.5 N*s/m}"
+    )
     spec = lw.loads(text, file="andrews-squeezer.yaml")
     mech = lw.compile(spec)
     page.goto(export_page(spec, tmp_path / "sprung.html", steps=36).as_uri())
@@ -718,10 +733,16 @@ def force_drawing(page) -> list[dict]:
         " e.classList.contains('resultant'), ['x1', 'y1', 'x2', 'y2'].map(k => Number(e.getAttribute(k)))])",
     )
     return [
-        {"name": name, "kind": kind, "resultant": resultant, "start": np.array([x1, -y1]), "end": np.array([x2, -y2]),
-         "force": math.hypot(x2 - x1, y2 - y1) * scale}
+        {
+            "name": name,
+            "kind": kind,
+            "resultant": resultant,
+            "start": np.array([x1, -y1]),
+            "end": np.array([x2, -y2]),
+            "force": math.hypot(x2 - x1, y2 - y1) * scale,
+        }
         for name, kind, resultant, (x1, y1, x2, y2) in found
-    ]  # fmt: skip
+    ]
 
 
 def show_force_drawing(page, key: str, index: int) -> None:

@@ -83,8 +83,9 @@ def test_each_crank_rocker_member_keeps_the_swing_and_time_ratio_on_the_files_si
     assert all(m[name] == pytest.approx(fixed, rel=1e-12) for m in members)
     assert min(f["quantity_values"]) >= max(10.0, math.degrees(given.get("min_transmission_angle", 0))) - 1e-6
     for m, t in zip(members, f["values"], strict=True):
-        a, b, c, d = (m[k] for k in ("links.crank.length", "links.coupler.length", "links.rocker.length",
-                                      "frame.points.O4.x"))  # fmt: skip
+        a, b, c, d = (
+            m[k] for k in ("links.crank.length", "links.coupler.length", "links.rocker.length", "frame.points.O4.x")
+        )
         assert (b - a) * 1e3 == pytest.approx(t, rel=1e-12)
         assert _closed_form(a, b, c, d) == pytest.approx((swing, ratio), rel=1e-12)
     assert client.post("/api/solve", json={"overrides": members[-1], "steps": 360}).status_code == 200

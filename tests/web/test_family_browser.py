@@ -53,7 +53,7 @@ def test_moving_the_family_slider_redraws_the_member(tmp_path, kind, requirement
 
         page.wait_for_function(
             "([w, p]) => { const a = document.querySelector('#scheme circle[data-point=\"A\"]'), "
-            "o = document.querySelector(`#scheme circle[data-point=\"${p}\"]`); "
+            'o = document.querySelector(`#scheme circle[data-point="${p}"]`); '
             "return Math.abs(Math.hypot(a.getAttribute('cx') - o.getAttribute('cx'), "
             "a.getAttribute('cy') - o.getAttribute('cy')) / 1000 - w) < 1e-5; }",
             arg=[want, pivot],

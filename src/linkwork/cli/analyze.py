@@ -84,16 +84,24 @@ def analyze(
     mech = at_speed(compile_or_exit(file_or_example), speed)
     # the spinner on stderr, and only in a terminal: piped or redirected, stdout holds the one line "wrote ..."
     shown = console(stderr=True)
-    spinner = Progress(SpinnerColumn(), TextColumn("{task.description}"), console=shown, transient=True,
-                       disable=not shown.is_terminal)  # fmt: skip
+    spinner = Progress(
+        SpinnerColumn(), TextColumn("{task.description}"), console=shown, transient=True, disable=not shown.is_terminal
+    )
     with spinner as bar:
         task = bar.add_task("analysing", total=None)
         try:
             path = run(
-                mech, out, steps=steps, position=int(position) if position and digits(position) else position,
-                pdf=pdf, animation=animation, dxf=dxf, lang=lang, sizing=sizing,
+                mech,
+                out,
+                steps=steps,
+                position=int(position) if position and digits(position) else position,
+                pdf=pdf,
+                animation=animation,
+                dxf=dxf,
+                lang=lang,
+                sizing=sizing,
                 progress=lambda what: bar.update(task, description=f"analysing: {what}"),
-            )  # fmt: skip
+            )
         except LinkworkError as exc:
             fail(exc)
         except OSError as exc:

@@ -137,10 +137,23 @@ def sweep(
     try:
         with _Warnings():
             table = run(
-                file_or_example, vary, metric, sampling=sample, samples=samples, seed=seed, steps=steps,
-                chunk_size=chunk_size, out=out, resume=resume, workers=workers, scheduler=scheduler,
-                progress=not quiet, keep_parts=keep_parts, connect_timeout=connect_timeout, dashboard=dashboard,
-            )  # fmt: skip
+                file_or_example,
+                vary,
+                metric,
+                sampling=sample,
+                samples=samples,
+                seed=seed,
+                steps=steps,
+                chunk_size=chunk_size,
+                out=out,
+                resume=resume,
+                workers=workers,
+                scheduler=scheduler,
+                progress=not quiet,
+                keep_parts=keep_parts,
+                connect_timeout=connect_timeout,
+                dashboard=dashboard,
+            )
     except (DesignError, LinkworkError) as exc:
         fail(exc)
     except KeyboardInterrupt:
@@ -226,17 +239,28 @@ def optimize(
     try:
         with _Warnings():
             best = run(
-                file_or_example, vary, objective, constraint or [], maximize=maximize, metrics=metric or [],
-                steps=steps, seed=seed, popsize=popsize, maxiter=maxiter, out=out,
-            )  # fmt: skip
+                file_or_example,
+                vary,
+                objective,
+                constraint or [],
+                maximize=maximize,
+                metrics=metric or [],
+                steps=steps,
+                seed=seed,
+                popsize=popsize,
+                maxiter=maxiter,
+                out=out,
+            )
     except (DesignError, LinkworkError) as exc:
         fail(exc)
     if as_json:
         why = "the design does not assemble over the whole turn, or the metric has no value for it"
         echo_json(best.as_dict(), why={"metrics": why, "initial": why})
         return
-    typer.echo(f"{'best design' if best.feasible else 'no design meets every constraint; the nearest'}: "
-               f"{best.evaluations} designs evaluated in {best.generations} generations")  # fmt: skip
+    typer.echo(
+        f"{'best design' if best.feasible else 'no design meets every constraint; the nearest'}: "
+        f"{best.evaluations} designs evaluated in {best.generations} generations"
+    )
     if not best.converged:
         typer.echo(f"  not converged ({best.message}): the best found so far; more --maxiter may do better")
     for path, value in best.values.items():

@@ -233,8 +233,11 @@ def _report_efficiency(f: Forces, out: Console) -> None:
     e = f.efficiency
     drive = float(e.work(e.drive))
     lost = ", ".join(f"{escape(j)} {float(w):.6g} J" for j, w in zip(e.joints, e.work(e.losses), strict=True))
-    out.print(f"  work over the samples: drive {drive:.6g} J, useful loads {float(e.work(e.useful)):.6g} J; "
-              f"lost to friction: {lost}", soft_wrap=True)  # fmt: skip
+    out.print(
+        f"  work over the samples: drive {drive:.6g} J, useful loads {float(e.work(e.useful)):.6g} J; "
+        f"lost to friction: {lost}",
+        soft_wrap=True,
+    )
     eta = e.instantaneous
     eta = np.where(np.abs(eta) < 1e-9, 0.0, eta)  # a drive that gives just the friction's power: 0, not its rounding
     span = (
@@ -325,9 +328,12 @@ def balance(
     names = [n.strip() for n in links.split(",") if n.strip()]
     check_options(
         whole(steps, "--steps", 1, MAX_ANGLES),
-        *(f"--links: no link is named {quote(n)}: names are at most {MAX_NAME} characters" for n in names
-          if len(n) > MAX_NAME),
-    )  # fmt: skip
+        *(
+            f"--links: no link is named {quote(n)}: names are at most {MAX_NAME} characters"
+            for n in names
+            if len(n) > MAX_NAME
+        ),
+    )
     mech = compile_or_exit(file_or_example)
     r = None
     if radius is not None:

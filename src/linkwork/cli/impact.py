@@ -198,8 +198,15 @@ def _cycle_json(mech: Mechanism, run: WorkingCycle) -> dict[str, Any]:
     return {
         "name": mech.name,
         "units": {
-            "time": "s", "angle": "deg", "omega": "rad/s", "speed": "m/s", "impulse": "N s", "energy": "J",
-            "length": "m", "power": "W", "force": "N",
+            "time": "s",
+            "angle": "deg",
+            "omega": "rad/s",
+            "speed": "m/s",
+            "impulse": "N s",
+            "energy": "J",
+            "length": "m",
+            "power": "W",
+            "force": "N",
         },
         "convention": "impulses in global axes; support_impulse: what each joint's first-named link exerts on "
         "the second ('from' on 'on'); crank speeds in the drive's direction; phases of the last cycle, "
@@ -222,7 +229,7 @@ def _cycle_json(mech: Mechanism, run: WorkingCycle) -> dict[str, Any]:
         },
         "cycle_energy": {k: float(v) for k, v in run.cycle_energy.items()},
         "energy": {k: float(v) for k, v in run.energy.items()},
-    }  # fmt: skip
+    }
 
 
 def _crank(mech: Mechanism) -> CrankAngles:

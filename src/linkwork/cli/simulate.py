@@ -59,8 +59,9 @@ def simulate(
     files = out_files(out, ("simulate.csv", "simulate.json")) if out is not None else []
     mech = compile_or_exit(file_or_example)
     try:
-        result = run(mech, length, angle=start, speed=rate or 0.0, times=np.linspace(0, length, samples),
-                     motor=not no_motor)  # fmt: skip
+        result = run(
+            mech, length, angle=start, speed=rate or 0.0, times=np.linspace(0, length, samples), motor=not no_motor
+        )
         data = to_json(result)
     except LinkworkError as exc:
         fail(exc)

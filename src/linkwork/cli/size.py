@@ -39,14 +39,12 @@ def size(
         typer.Option(
             help="basic rating life L10h of the rolling bearings, e.g. 20000h (default: the "
             "file's sizing: life, else 20000 h)"
-        ),  # fmt: skip
+        ),
     ] = None,
     kind: Annotated[str, typer.Option(help="rolling bearings: ball or roller")] = "ball",
     delta: Annotated[
         float | None,
-        typer.Option(
-            help="coefficient of speed fluctuation for the flywheel (default: the file's, else 0.05)"
-        ),  # fmt: skip
+        typer.Option(help="coefficient of speed fluctuation for the flywheel (default: the file's, else 0.05)"),
     ] = None,
     reserve: Annotated[float, typer.Option(help="share of the breakdown torque the peak motor torque may reach")] = 0.8,
     catalogue: Annotated[
@@ -85,10 +83,19 @@ def size(
     mech = compile_or_exit(file_or_example)
     try:
         result = run(
-            mech, life_h=life_s / 3600 if life_s is not None else None, kind=kind, delta=delta, reserve=reserve,
-            catalogue=catalogue, synchronous=sync, motor=motor, steel=steel, bush=bush, width_ratio=width_ratio,
+            mech,
+            life_h=life_s / 3600 if life_s is not None else None,
+            kind=kind,
+            delta=delta,
+            reserve=reserve,
+            catalogue=catalogue,
+            synchronous=sync,
+            motor=motor,
+            steel=steel,
+            bush=bush,
+            width_ratio=width_ratio,
             bolt_class=bolt_class,
-        )  # fmt: skip
+        )
         written = _write(mech, result, write) if write is not None else None
     except LinkworkError as exc:
         fail(exc)

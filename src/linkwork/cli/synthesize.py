@@ -55,7 +55,7 @@ def _section(text: str | None) -> dict[str, Any]:
 
 
 @app.command()
-def synthesize(  # fmt: skip
+def synthesize(
     kind: Annotated[
         str, typer.Argument(help="slider-crank, crank-rocker, slotted-lever, toggle-press or double-cut-shears")
     ],
@@ -157,11 +157,28 @@ def synthesize(  # fmt: skip
     import inspect
 
     known = list(inspect.signature(importlib.import_module(KINDS[kind]).synthesize).parameters)
-    texts = {"stroke": stroke, "swing": swing, "time_ratio": time_ratio, "rod_ratio": rod_ratio, "offset": offset,
-             "max_pressure_angle": max_pressure_angle, "rocker": rocker, "frame": frame, "crank": crank, "rod": rod,
-             "min_transmission_angle": min_transmission_angle, "force": force, "before": before,
-             "torque": torque, "upper_stroke": upper_stroke, "lower_stroke": lower_stroke, "overlap": overlap,
-             "opening": opening, "criterion": criterion, "working": working}  # fmt: skip
+    texts = {
+        "stroke": stroke,
+        "swing": swing,
+        "time_ratio": time_ratio,
+        "rod_ratio": rod_ratio,
+        "offset": offset,
+        "max_pressure_angle": max_pressure_angle,
+        "rocker": rocker,
+        "frame": frame,
+        "crank": crank,
+        "rod": rod,
+        "min_transmission_angle": min_transmission_angle,
+        "force": force,
+        "before": before,
+        "torque": torque,
+        "upper_stroke": upper_stroke,
+        "lower_stroke": lower_stroke,
+        "overlap": overlap,
+        "opening": opening,
+        "criterion": criterion,
+        "working": working,
+    }
     wrong = [name for name, text in texts.items() if text is not None and name not in known]
     if wrong:
         fail(LinkworkError(f"{kind}: --{', --'.join(w.replace('_', '-') for w in wrong)}: not a requirement of {kind}"))
@@ -182,9 +199,17 @@ def synthesize(  # fmt: skip
 
 def _show(result: Any, out: str, as_json: bool, lang: str = "en") -> None:
     if as_json:
-        echo_json({"kind": result.kind, "out": out, "requirements": result.requirements,
-                   "dimensions": result.dimensions, "predicted": result.predicted, "measured": result.measured,
-                   "criterion": result.criterion})  # fmt: skip
+        echo_json(
+            {
+                "kind": result.kind,
+                "out": out,
+                "requirements": result.requirements,
+                "dimensions": result.dimensions,
+                "predicted": result.predicted,
+                "measured": result.measured,
+                "criterion": result.criterion,
+            }
+        )
         return
     from linkwork.lang import t
 

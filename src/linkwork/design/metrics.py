@@ -350,7 +350,7 @@ METRICS: dict[str, Metric] = {
             "The largest gap between the blade edges over the turn (the knives fully open), along the axis of "
             "the process load: what the workpiece must pass through (knife_clearance:LOAD).",
         ),
-    )  # fmt: skip
+    )
 }
 
 

@@ -156,9 +156,11 @@ def _read_manifest(parts: Path) -> dict[str, Any]:
     if not isinstance(data, dict) or not isinstance(data.get("chunks"), dict):
         if isinstance(data, dict) and data.get("format") not in (None, FORMAT):
             raise DesignError(
-                [f"{path}: a manifest of format {data.get('format')!r}, whose chunks this version cannot check "
-                 f"(format {FORMAT}); {again}"]
-            )  # fmt: skip
+                [
+                    f"{path}: a manifest of format {data.get('format')!r}, whose chunks this version cannot check "
+                    f"(format {FORMAT}); {again}"
+                ]
+            )
         raise DesignError([f"{path}: not a manifest of linkwork's sweeps; {again}"])
     return data
 
@@ -193,9 +195,12 @@ def prepare(out: str | Path, meta: dict[str, Any], resume: bool) -> set[int]:
         diff = _differences({k: v for k, v in old.items() if k != "chunks"}, plan)
         if diff:
             raise DesignError(
-                [f"{path}: --resume with another plan than the one on disk; start afresh with another --out, "
-                 "or give the same options:", *(f"  {d}" for d in diff)]
-            )  # fmt: skip
+                [
+                    f"{path}: --resume with another plan than the one on disk; start afresh with another --out, "
+                    "or give the same options:",
+                    *(f"  {d}" for d in diff),
+                ]
+            )
         for tmp in parts.glob(".*.part"):  # a chunk or the manifest being written when the sweep was killed
             tmp.unlink(missing_ok=True)
         for key, entry in old["chunks"].items():

@@ -652,9 +652,13 @@ def _local_cluster(n: int, dashboard: bool) -> Any:
         return cluster
     with dask.config.set(NO_PAGES):
         return LocalCluster(
-            n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None,
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=None,
             scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
-        )  # fmt: skip
+        )
 
 
 def _on_dask(
@@ -707,9 +711,13 @@ class _Progress:
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
             self.bar = Progress(
-                TextColumn("sweep"), BarColumn(), MofNCompleteColumn(), TextColumn("chunks"), TimeRemainingColumn(),
+                TextColumn("sweep"),
+                BarColumn(),
+                MofNCompleteColumn(),
+                TextColumn("chunks"),
+                TimeRemainingColumn(),
                 console=console,
-            )  # fmt: skip
+            )
             self.bar.start()
             self.task = self.bar.add_task("sweep", total=total, completed=done)
 

@@ -75,8 +75,19 @@ class Film:
         draw_paths(sh, scene.paths)
         scale_bar(sh, (box[0] + scene.em, box[1] + 1.2 * scene.em), bar, scene.em, lang)
         self.items = [(it, draw_item(sh.ax, it, scene.placed(it, picks[0]))) for it in scene.items if it.kind != "path"]
-        self.texts = [sh.ax.text(0, 0, mathtext(lab.text), ha="center", va="center", fontsize=sh.font(scene.em),
-                                 color=TEXT[lab.kind], zorder=5) for lab in scene.labels]  # fmt: skip
+        self.texts = [
+            sh.ax.text(
+                0,
+                0,
+                mathtext(lab.text),
+                ha="center",
+                va="center",
+                fontsize=sh.font(scene.em),
+                color=TEXT[lab.kind],
+                zorder=5,
+            )
+            for lab in scene.labels
+        ]
         self.title, self.tail = self._title()
         self.where = [scene.placed(it) for it, _ in self.items]  # (A, K, 2) each: every sample at once
         moving = [a for it, a in self.items if it.link != 0] + [self.title]
@@ -119,8 +130,10 @@ class Film:
         renderer, prop = self.canvas.get_renderer(), words.get_fontproperties()
 
         def width(text: str) -> float:  # with its trailing spaces: measured up to a bar after it
-            return float(renderer.get_text_width_height_descent(text + "|", prop, False)[0]
-                         - renderer.get_text_width_height_descent("|", prop, False)[0])  # fmt: skip
+            return float(
+                renderer.get_text_width_height_descent(text + "|", prop, False)[0]
+                - renderer.get_text_width_height_descent("|", prop, False)[0]
+            )
 
         first, rest = width(head), width(f"360{tail}")
         x0 = 0.5 - (first + rest) / 2 / self.ax.bbox.width
@@ -147,8 +160,9 @@ class Film:
             if np.isfinite(x) and np.isfinite(y):
                 sprite.paste(rgba, (int(x), rgba.shape[0] - int(y)))
         h, w = rgba.shape[0] // 2 * 2, rgba.shape[1] // 2 * 2
-        return np.asarray(Image.frombuffer("RGBA", rgba.shape[1::-1], rgba, "raw", "RGBA", 0, 1).crop((0, 0, w, h))
-                          .convert("RGB"))  # fmt: skip
+        return np.asarray(
+            Image.frombuffer("RGBA", rgba.shape[1::-1], rgba, "raw", "RGBA", 0, 1).crop((0, 0, w, h)).convert("RGB")
+        )
 
     def _sprite(self, text: Text) -> Sprite:
         """The picture of ``text``, drawn alone onto the cleared canvas at the whole pixel nearest the middle of
@@ -230,8 +244,16 @@ def _mp4(images: list[np.ndarray], path: Path, fps: int) -> Path | None:
     except ImportError:
         return None
     h, w = images[0].shape[:2]
-    writer = imageio_ffmpeg.write_frames(str(path), (w, h), fps=fps, codec="libx264", pix_fmt_out="yuv420p",
-                                         macro_block_size=1, ffmpeg_log_level="error", quality=7)  # fmt: skip
+    writer = imageio_ffmpeg.write_frames(
+        str(path),
+        (w, h),
+        fps=fps,
+        codec="libx264",
+        pix_fmt_out="yuv420p",
+        macro_block_size=1,
+        ffmpeg_log_level="error",
+        quality=7,
+    )
     writer.send(None)
     for im in images:
         writer.send(im)

@@ -413,11 +413,29 @@ def _tangents(ax: Axes, result: Dynamics, e: float, eunit: str, lang: str) -> No
     (k_max, b_max), (k_min, b_min) = wittenbauer_tangents(red, f.delta, f.omega_mean)
     j = np.array([0.0, float(np.max(red.inertia)) * 1.05])
     for k, b, color, key in ((k_max, b_max, "tab:purple", "max"), (k_min, b_min, "tab:orange", "min")):
-        ax.plot(j, (k * j + b) * e, color=color, lw=0.9, ls="--", label=t(f"legend.tangent_{key}", lang),
-                gid=f"tangent:{key}")  # fmt: skip
-    ax.plot([0.0, 0.0], [b_min * e, b_max * e], color="k", lw=2.2, solid_capstyle="butt", gid="tangent:ab",
-            label=t("legend.tangent_segment", lang, segment=f"{(b_max - b_min) * e:.4g} {eunit}",
-                    inertia=f"{(b_max - b_min) / (k_max - k_min):.5g}"))  # fmt: skip
+        ax.plot(
+            j,
+            (k * j + b) * e,
+            color=color,
+            lw=0.9,
+            ls="--",
+            label=t(f"legend.tangent_{key}", lang),
+            gid=f"tangent:{key}",
+        )
+    ax.plot(
+        [0.0, 0.0],
+        [b_min * e, b_max * e],
+        color="k",
+        lw=2.2,
+        solid_capstyle="butt",
+        gid="tangent:ab",
+        label=t(
+            "legend.tangent_segment",
+            lang,
+            segment=f"{(b_max - b_min) * e:.4g} {eunit}",
+            inertia=f"{(b_max - b_min) / (k_max - k_min):.5g}",
+        ),
+    )
     ax.set_xlim(left=-0.03 * j[1])
     low, high = ax.get_ylim()
     ax.set_ylim(low - 0.45 * (high - low), high)  # room under the diagram for its legend

@@ -35,19 +35,35 @@ def draw_forces(sh: Sheet, scene: ForceScene) -> None:
     for a in scene.arrows:
         style = FORCES.get(a.kind, FORCES["reaction"])
         dash = (0, (4.0, 2.0)) if a.resultant or style.dash else "solid"
-        line = add_line(sh.ax, [a.start[0], a.end[0]], [a.start[1], a.end[1]], color=style.colour,
-                        lw=style.width * (0.8 if a.resultant else 1.0), ls=dash, zorder=3)  # fmt: skip
+        line = add_line(
+            sh.ax,
+            [a.start[0], a.end[0]],
+            [a.start[1], a.end[1]],
+            color=style.colour,
+            lw=style.width * (0.8 if a.resultant else 1.0),
+            ls=dash,
+            zorder=3,
+        )
         line.set_gid(f"{a.kind}:{a.text}")
         _head(sh, a.start, a.end, 0.55 * scene.em, style.colour)
         if a.text and np.isfinite(a.centre).all():
-            sh.ax.text(a.centre[0], a.centre[1], a.tex, ha="center", va="center", zorder=5,
-                       fontsize=sh.font(scene.em), color=style.colour)  # fmt: skip
+            sh.ax.text(
+                a.centre[0],
+                a.centre[1],
+                a.tex,
+                ha="center",
+                va="center",
+                zorder=5,
+                fontsize=sh.font(scene.em),
+                color=style.colour,
+            )
     if len(scene.dots):
         sh.ax.plot(scene.dots[:, 0], scene.dots[:, 1], "o", color="black", ms=2.0, zorder=4)
     for text, c in zip(scene.dot_text, scene.dot_centres, strict=True):
         if text and np.isfinite(c).all():
-            sh.ax.text(c[0], c[1], text, ha="center", va="center", zorder=5, fontsize=sh.font(scene.em),
-                       color=TEXT["point"])  # fmt: skip
+            sh.ax.text(
+                c[0], c[1], text, ha="center", va="center", zorder=5, fontsize=sh.font(scene.em), color=TEXT["point"]
+            )
 
 
 def _legend(fig: Figure, kinds: list[str], lang: str) -> None:
@@ -58,8 +74,16 @@ def _legend(fig: Figure, kinds: list[str], lang: str) -> None:
     names = [t(f"force.{k}", lang) for k in kinds]
     handles = [Line2D([], [], color=FORCES[k].colour, lw=FORCES[k].width) for k in kinds]
     columns = _columns(names, 0.9 * fig.get_figwidth() * 72)
-    fig.legend(handles, names, loc="lower center", ncol=min(columns, len(kinds)), fontsize=LEGEND, frameon=False,
-               handlelength=2.2, columnspacing=1.2)  # fmt: skip
+    fig.legend(
+        handles,
+        names,
+        loc="lower center",
+        ncol=min(columns, len(kinds)),
+        fontsize=LEGEND,
+        frameon=False,
+        handlelength=2.2,
+        columnspacing=1.2,
+    )
 
 
 def force_plans_figure(plans: ForcePlans, index: int, position: int | None = None, lang: str = "en") -> Figure:
@@ -92,8 +116,16 @@ def force_plans_figure(plans: ForcePlans, index: int, position: int | None = Non
     gap = 0.18 * lines  # inches of a panel's title
     fig = Figure(figsize=(cols * cell + 0.4, rows * (cell + gap + 0.3) + 0.7 + legend))
     height = fig.get_figheight()
-    grid = fig.add_gridspec(rows, cols, left=0.03, right=0.97, top=1 - (0.7 + gap) / height,
-                            bottom=(legend + 0.1) / height, hspace=(gap + 0.3) / cell, wspace=0.1)  # fmt: skip
+    grid = fig.add_gridspec(
+        rows,
+        cols,
+        left=0.03,
+        right=0.97,
+        top=1 - (0.7 + gap) / height,
+        bottom=(legend + 0.1) / height,
+        hspace=(gap + 0.3) / cell,
+        wspace=0.1,
+    )
     for j, (scene, title) in enumerate(zip(scenes, titles, strict=True)):
         ax = fig.add_subplot(grid[j // cols, j % cols])
         sh = sheet(scene.extent(), ax=ax)
@@ -130,8 +162,10 @@ def force_figures(f: Forces, index: int, position: int | None = None, lang: str 
     from linkwork.kinetostatics.force_polygons import force_plans
     from linkwork.kinetostatics.zhukovsky import lever
 
-    return (force_plans_figure(force_plans(f), index, position, lang),
-            lever_figure(lever(f), f.kinematics, index, position, lang))  # fmt: skip
+    return (
+        force_plans_figure(force_plans(f), index, position, lang),
+        lever_figure(lever(f), f.kinematics, index, position, lang),
+    )
 
 
 def lever_sheet(lv: Lever, kin: Kinematics, lang: str = "en") -> Figure:
@@ -152,8 +186,9 @@ def lever_sheet(lv: Lever, kin: Kinematics, lang: str = "en") -> Figure:
     scenes = [lever_scene(lv, velocity, k, lang=lang, plan_scale=plan_scale, em=em) for k in range(count)]
     fig = Figure(figsize=(11.0, 2.9 * rows + 1.3))
     height = fig.get_figheight()
-    grid = fig.add_gridspec(rows, cols, left=0.02, right=0.98, top=1 - 0.75 / height, bottom=0.75 / height,
-                            hspace=0.3, wspace=0.08)  # fmt: skip
+    grid = fig.add_gridspec(
+        rows, cols, left=0.02, right=0.98, top=1 - 0.75 / height, bottom=0.75 / height, hspace=0.3, wspace=0.08
+    )
     boxes = np.array([s.extent() for s in scenes])
     half = np.max(boxes[:, 2:] - boxes[:, :2], axis=0) / 2
     for k, scene in enumerate(scenes):
@@ -187,8 +222,9 @@ def force_plan_sheet(plans: ForcePlans, group: int, lang: str = "en") -> Figure:
         scenes.append(force_plan_scene(g, k, lang=lang, angle=float(angles[k]), em=7.0 * span / (0.8 * cell * 72)))
     fig = Figure(figsize=(11.0, 3.1 * rows + 1.4))
     height = fig.get_figheight()
-    grid = fig.add_gridspec(rows, cols, left=0.02, right=0.98, top=1 - 0.8 / height, bottom=0.75 / height,
-                            hspace=0.45, wspace=0.08)  # fmt: skip
+    grid = fig.add_gridspec(
+        rows, cols, left=0.02, right=0.98, top=1 - 0.8 / height, bottom=0.75 / height, hspace=0.45, wspace=0.08
+    )
     for k, scene in enumerate(scenes):
         ax = fig.add_subplot(grid[k // cols, k % cols])
         draw_forces(sheet(scene.extent(), ax=ax), scene)

@@ -31,15 +31,17 @@ if TYPE_CHECKING:
     from linkwork.motion.plans import Plan
 
 
-def velocity_plan(kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None,
-                  lang: str = "en") -> Figure:  # fmt: skip
+def velocity_plan(
+    kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None, lang: str = "en"
+) -> Figure:
     """The velocity plan of sample ``index`` of a kinematics result (``position``: its number, for the title;
     ``lang``: the language of its texts, :mod:`linkwork.lang`)."""
     return _one(kin, index, "velocity", ax, position, lang)
 
 
-def acceleration_plan(kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None,
-                      lang: str = "en") -> Figure:  # fmt: skip
+def acceleration_plan(
+    kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None, lang: str = "en"
+) -> Figure:
     """The acceleration plan of sample ``index`` of a kinematics result (``position``: its number, for the
     title; ``lang``: the language of its texts, :mod:`linkwork.lang`)."""
     return _one(kin, index, "acceleration", ax, position, lang)
@@ -81,8 +83,9 @@ def _title(scene: PlanScene, index: int, name: str, position: int | None, lang: 
     return f"{head}{t(f'plan.{scene.kind}', lang)}\n{where(float(scene.angles[index]), position, lang)}"
 
 
-def render_plan(scene: PlanScene, index: int, ax: Axes | None = None, title: str = "", legend: bool = True,
-                lang: str = "en") -> Figure:  # fmt: skip
+def render_plan(
+    scene: PlanScene, index: int, ax: Axes | None = None, title: str = "", legend: bool = True, lang: str = "en"
+) -> Figure:
     """Draw position ``index`` of a plan's scene with its scale and (``legend``) the legend of its vectors' kinds,
     the texts in ``lang``."""
     kinds = scene.kinds(index)
@@ -113,8 +116,15 @@ def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
         if not np.isfinite(scene.ends[index, e]).all():
             continue
         style = VECTORS.get(arrow.kind, VECTORS["rotation"])
-        line = add_line(sh.ax, [start[0], end[0]], [start[1], end[1]], color=style.colour, lw=style.width,
-                        ls=dashes(style), zorder=3)  # fmt: skip
+        line = add_line(
+            sh.ax,
+            [start[0], end[0]],
+            [start[1], end[1]],
+            color=style.colour,
+            lw=style.width,
+            ls=dashes(style),
+            zorder=3,
+        )
         line.set_gid(f"{arrow.kind}:{names[arrow.start]}->{names[arrow.end]}")  # of no length too: read back
         if e in shown:
             _head(sh, start, end, head, style.colour)
@@ -125,9 +135,17 @@ def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
         c = scene.centres[index, j]
         if text and np.isfinite(c).all():
             main = bool(scene.main[j])
-            sh.ax.text(c[0], c[1], mathtext(text), ha="center", va="center", zorder=5,
-                       fontsize=sh.font(scene.em) * (1.0 if main else 0.8),
-                       color=TEXT["point" if main else "minor"], style="normal" if main else "italic")  # fmt: skip
+            sh.ax.text(
+                c[0],
+                c[1],
+                mathtext(text),
+                ha="center",
+                va="center",
+                zorder=5,
+                fontsize=sh.font(scene.em) * (1.0 if main else 0.8),
+                color=TEXT["point" if main else "minor"],
+                style="normal" if main else "italic",
+            )
 
 
 def _head(sh: Sheet, start: np.ndarray, end: np.ndarray, size: float, colour: str) -> None:
@@ -177,8 +195,16 @@ def _legend(sh: Sheet, kinds: list[str], names: list[str], columns: int) -> None
     from matplotlib.lines import Line2D
 
     handles = [Line2D([], [], color=VECTORS[k].colour, lw=VECTORS[k].width, ls=dashes(VECTORS[k])) for k in kinds]
-    sh.fig.legend(handles, names, loc="lower center", ncol=min(columns, len(kinds)), fontsize=LEGEND, frameon=False,
-                  handlelength=2.2, columnspacing=1.2)  # fmt: skip
+    sh.fig.legend(
+        handles,
+        names,
+        loc="lower center",
+        ncol=min(columns, len(kinds)),
+        fontsize=LEGEND,
+        frameon=False,
+        handlelength=2.2,
+        columnspacing=1.2,
+    )
 
 
 def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT, lang: str = "en") -> Figure:
@@ -198,8 +224,16 @@ def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT, lang
     em = SHEET_LETTERS / (cell * 72 / (1.4 * span))  # letters of SHEET_LETTERS points on the plans drawn that large
     scene = plan_scene(series, list(range(count)), scale=rough.scale, valid=valid, em=em, lang=lang)
     fig = Figure(figsize=(11.0, 2.9 * rows + 0.9))
-    grid = fig.add_gridspec(rows, cols, left=0.02, right=0.98, top=1 - 0.55 / fig.get_figheight(),
-                            bottom=0.5 / fig.get_figheight(), hspace=0.3, wspace=0.08)  # fmt: skip
+    grid = fig.add_gridspec(
+        rows,
+        cols,
+        left=0.02,
+        right=0.98,
+        top=1 - 0.55 / fig.get_figheight(),
+        bottom=0.5 / fig.get_figheight(),
+        hspace=0.3,
+        wspace=0.08,
+    )
     boxes = np.array([scene.extent(k) for k in range(count)])
     half = np.max(boxes[:, 2:] - boxes[:, :2], axis=0) / 2  # one size for all: one scale on the sheet
     for k in range(count):

@@ -29,8 +29,15 @@ if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
 
 
-def draw_scheme(kin: Kinematics, index: int = 0, ax: Axes | None = None, trajectories: bool = False,
-                position: int | None = None, cycle: Kinematics | None = None, lang: str = "en") -> Figure:  # fmt: skip
+def draw_scheme(
+    kin: Kinematics,
+    index: int = 0,
+    ax: Axes | None = None,
+    trajectories: bool = False,
+    position: int | None = None,
+    cycle: Kinematics | None = None,
+    lang: str = "en",
+) -> Figure:
     """The scheme at sample ``index`` of a kinematics result; returns the matplotlib Figure.
 
     With ``trajectories``, the paths of the points over the whole turn are drawn too; ``position`` (the
@@ -43,8 +50,14 @@ def draw_scheme(kin: Kinematics, index: int = 0, ax: Axes | None = None, traject
     return render_scheme(scene, index, ax=ax, trajectories=trajectories, title=title, lang=lang)
 
 
-def render_scheme(scene: SchemeScene, index: int, ax: Axes | None = None, trajectories: bool = False,
-                  title: str = "", lang: str = "en") -> Figure:  # fmt: skip
+def render_scheme(
+    scene: SchemeScene,
+    index: int,
+    ax: Axes | None = None,
+    trajectories: bool = False,
+    title: str = "",
+    lang: str = "en",
+) -> Figure:
     """Draw sample ``index`` of a scheme's scene (with the trajectories of its points), a scale bar under it
     (its length in the units of ``lang``)."""
     box = scene.extent(index, paths=trajectories)
@@ -66,12 +79,20 @@ def draw_paths(sh: Sheet, paths: np.ndarray) -> None:
     """Trajectories ``(A, Q, 2)`` as thin dashed lines."""
     style = SCHEME["path"]
     for q in range(paths.shape[1]):
-        add_line(sh.ax, paths[:, q, 0], paths[:, q, 1], color=style.colour, lw=style.width, ls=dashes(style),
-                 zorder=KINDS.index("path"))  # fmt: skip
+        add_line(
+            sh.ax,
+            paths[:, q, 0],
+            paths[:, q, 1],
+            color=style.colour,
+            lw=style.width,
+            ls=dashes(style),
+            zorder=KINDS.index("path"),
+        )
 
 
-def draw_items(sh: Sheet, scene: SchemeScene, index: int, frame: bool = True, kinds: tuple[str, ...] = KINDS,
-               thin: float = 1.0) -> None:  # fmt: skip
+def draw_items(
+    sh: Sheet, scene: SchemeScene, index: int, frame: bool = True, kinds: tuple[str, ...] = KINDS, thin: float = 1.0
+) -> None:
     """The items of ``kinds`` at sample ``index``, the frame's too if ``frame``; line widths and circles times
     ``thin``."""
     for it in scene.items:
@@ -90,8 +111,9 @@ def draw_elements(sh: Sheet, scene: SchemeScene, index: int) -> None:
         style = SCHEME[element.kind]
         for xy in scene.element_strokes(element, index):
             if np.isfinite(xy).all():
-                line = add_line(sh.ax, xy[:, 0], xy[:, 1], color=style.colour, lw=style.width, zorder=z,
-                                solid_joinstyle="miter")  # fmt: skip
+                line = add_line(
+                    sh.ax, xy[:, 0], xy[:, 1], color=style.colour, lw=style.width, zorder=z, solid_joinstyle="miter"
+                )
                 line.set_gid(f"{element.kind}:{element.name}")
 
 
@@ -105,14 +127,32 @@ def draw_item(ax: Axes, it: Item, xy: np.ndarray, thin: float = 1.0) -> Any:
     face = to_rgba(style.fill, style.alpha) if style.fill and (thin == 1.0 or style.alpha == 1.0) else "none"
     artist: Any
     if it.radius:
-        artist = add_patch(ax, Circle(tuple(xy[0]), it.radius * min(1.0, 0.3 + thin), fc=face, ec=style.colour,
-                                      lw=style.width * thin, zorder=z))  # fmt: skip
+        artist = add_patch(
+            ax,
+            Circle(
+                tuple(xy[0]),
+                it.radius * min(1.0, 0.3 + thin),
+                fc=face,
+                ec=style.colour,
+                lw=style.width * thin,
+                zorder=z,
+            ),
+        )
     elif it.closed:
-        artist = add_patch(ax, Polygon(xy, closed=True, fc=face, ec=style.colour, lw=style.width * thin, zorder=z,
-                                       joinstyle="round"))  # fmt: skip
+        artist = add_patch(
+            ax, Polygon(xy, closed=True, fc=face, ec=style.colour, lw=style.width * thin, zorder=z, joinstyle="round")
+        )
     else:
-        artist = add_line(ax, xy[:, 0], xy[:, 1], color=style.colour, lw=style.width * thin, ls=dashes(style),
-                          zorder=z, solid_capstyle="round")  # fmt: skip
+        artist = add_line(
+            ax,
+            xy[:, 0],
+            xy[:, 1],
+            color=style.colour,
+            lw=style.width * thin,
+            ls=dashes(style),
+            zorder=z,
+            solid_capstyle="round",
+        )
     artist.set_gid(f"{it.kind}:{it.name}")
     return artist
 
@@ -122,8 +162,17 @@ def draw_labels(sh: Sheet, scene: SchemeScene, index: int) -> None:
     for lab in scene.labels:
         c = lab.centre[index]
         if np.isfinite(c).all():
-            sh.ax.text(c[0], c[1], mathtext(lab.text), ha="center", va="center", fontsize=sh.font(scene.em),
-                       color=TEXT[lab.kind], zorder=5, gid=f"label:{lab.text}")  # fmt: skip
+            sh.ax.text(
+                c[0],
+                c[1],
+                mathtext(lab.text),
+                ha="center",
+                va="center",
+                fontsize=sh.font(scene.em),
+                color=TEXT[lab.kind],
+                zorder=5,
+                gid=f"label:{lab.text}",
+            )
 
 
 def scale_bar(sh: Sheet, at: tuple[float, float], length: float, em: float, lang: str = "en") -> None:
@@ -133,8 +182,15 @@ def scale_bar(sh: Sheet, at: tuple[float, float], length: float, em: float, lang
     ax.plot([x, x + length], [y, y], color="black", lw=1.0, zorder=5)
     for end in (x, x + length):
         ax.plot([end, end], [y - 0.25 * em, y + 0.25 * em], color="black", lw=1.0, zorder=5)
-    ax.text(x + length + 0.5 * em, y, f"{1000 * length:g} {t('unit.mm', lang)}", ha="left", va="center",
-            fontsize=0.8 * sh.font(em), zorder=5)  # fmt: skip
+    ax.text(
+        x + length + 0.5 * em,
+        y,
+        f"{1000 * length:g} {t('unit.mm', lang)}",
+        ha="left",
+        va="center",
+        fontsize=0.8 * sh.font(em),
+        zorder=5,
+    )
 
 
 def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, lang: str = "en") -> Figure:
@@ -156,11 +212,18 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
         sh.ax.plot(leader[:, 0], leader[:, 1], color=TEXT["position"], lw=0.4, zorder=4)
     for lab in scene.numbers:
         c = lab.centre[0]
-        sh.ax.text(c[0], c[1], lab.text, ha="center", va="center", fontsize=0.85 * sh.font(s.em),
-                   color=TEXT["position"], zorder=5)  # fmt: skip
+        sh.ax.text(
+            c[0],
+            c[1],
+            lab.text,
+            ha="center",
+            va="center",
+            fontsize=0.85 * sh.font(s.em),
+            color=TEXT["position"],
+            zorder=5,
+        )
     scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em, lang)
-    turn = t("positions.ccw" if mech.drive_speed[0] >= 0 else "positions.cw", lang,
-             angle=f"{turn_deg(angles[0]):.1f}")  # fmt: skip
+    turn = t("positions.ccw" if mech.drive_speed[0] >= 0 else "positions.cw", lang, angle=f"{turn_deg(angles[0]):.1f}")
     sh.ax.set_title(f"{t('positions.title', lang, name=mech.name, count=count)}\n{turn}", fontsize=11)
     return sh.fig
 
@@ -192,14 +255,40 @@ def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Fi
     draw_items(sh, s, 1, frame=False, kinds=("bar", "plate", "pivot", "block", "tool"), thin=0.45)
     draw_labels(sh, s, 0)
     for ray in scene.rays:
-        add_line(sh.ax, ray[:, 0], ray[:, 1], color=TEXT["position"], lw=0.8, ls=(0, (6, 2, 1, 2)), zorder=4,
-                 gid="limits:ray")  # fmt: skip
+        add_line(
+            sh.ax,
+            ray[:, 0],
+            ray[:, 1],
+            color=TEXT["position"],
+            lw=0.8,
+            ls=(0, (6, 2, 1, 2)),
+            zorder=4,
+            gid="limits:ray",
+        )
     add_line(sh.ax, scene.arc[:, 0], scene.arc[:, 1], color=TEXT["position"], lw=1.0, zorder=4, gid="limits:arc")
     c = scene.label.centre[0]
-    sh.ax.text(c[0], c[1], scene.label.text, ha="center", va="center", fontsize=sh.font(s.em),
-               color=TEXT["position"], zorder=5, gid="limits:theta")  # fmt: skip
+    sh.ax.text(
+        c[0],
+        c[1],
+        scene.label.text,
+        ha="center",
+        va="center",
+        fontsize=sh.font(s.em),
+        color=TEXT["position"],
+        zorder=5,
+        gid="limits:theta",
+    )
     scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em, lang)
     k = (math.pi + scene.theta) / (math.pi - scene.theta)
-    sh.ax.set_title(t("limits.title", lang, name=s.name, member=scene.member, theta=f"{math.degrees(scene.theta):.2f}",
-                      k=f"{k:.4f}"), fontsize=11)  # fmt: skip
+    sh.ax.set_title(
+        t(
+            "limits.title",
+            lang,
+            name=s.name,
+            member=scene.member,
+            theta=f"{math.degrees(scene.theta):.2f}",
+            k=f"{k:.4f}",
+        ),
+        fontsize=11,
+    )
     return sh.fig

@@ -50,8 +50,15 @@ def mathtext(text: str) -> str:
     return "".join(out)
 
 
-def sheet(extent: np.ndarray, top: float = 0.5, bottom: float = 0.2, width: float = WIDTH,
-          height: float = HEIGHT, ax: Axes | None = None, least: float = 5.0) -> Sheet:  # fmt: skip
+def sheet(
+    extent: np.ndarray,
+    top: float = 0.5,
+    bottom: float = 0.2,
+    width: float = WIDTH,
+    height: float = HEIGHT,
+    ax: Axes | None = None,
+    least: float = 5.0,
+) -> Sheet:
     """A figure for a drawing of ``extent`` ``[x0, y0, x1, y1]``, ``top`` and ``bottom`` inches kept for the
     title and legend; or, with ``ax``, that axes, its limits set to hold the drawing at equal scales.
 
@@ -124,5 +131,8 @@ def where(angle: float, position: int | None, lang: str) -> str:
     """The line under a drawing's title: ``position 9, crank at 178.8°`` (``crank at 178.8°`` without a
     ``position``), the crank's drive ``angle`` (rad) to the x axis, in ``lang``."""
     deg = f"{turn_deg(angle):.1f}"
-    return t("drawing.crank", lang, angle=deg) if position is None else t("drawing.position", lang, position=position,
-                                                                          angle=deg)  # fmt: skip
+    return (
+        t("drawing.crank", lang, angle=deg)
+        if position is None
+        else t("drawing.position", lang, position=position, angle=deg)
+    )

@@ -414,11 +414,18 @@ def _ledger(model: ContactModel, y: np.ndarray, losses: _Losses) -> dict[str, fl
     on_crank = float(y[DRIVE_WORK])
     eta = model.efficiency
     return dict(
-        motor=on_crank / eta, gear=on_crank / eta - on_crank, drive=on_crank, loads=float(y[LOAD_WORK]),
-        kinetic=model.kinetic(float(y[PSI]), float(y[OMEGA]), 0.0), feed=0.0,
-        blows=losses.blows, rebounds=losses.rebounds, seat=losses.seat,
-        work=float(y[WORK_DONE]) + losses.work_free, friction=float(y[FRICTION_LOSS]),
-    )  # fmt: skip
+        motor=on_crank / eta,
+        gear=on_crank / eta - on_crank,
+        drive=on_crank,
+        loads=float(y[LOAD_WORK]),
+        kinetic=model.kinetic(float(y[PSI]), float(y[OMEGA]), 0.0),
+        feed=0.0,
+        blows=losses.blows,
+        rebounds=losses.rebounds,
+        seat=losses.seat,
+        work=float(y[WORK_DONE]) + losses.work_free,
+        friction=float(y[FRICTION_LOSS]),
+    )
 
 
 @dataclass
@@ -436,9 +443,17 @@ class _Run:
     flight, the blows so far and what followed each, the energy lost, the samples and the phases."""
 
     def __init__(
-        self, mech: Mechanism, setup: BlowSetup, model: ContactModel, path: _Path, w: float, *, blows: int,
-        tol: float, rtol: float,
-    ) -> None:  # fmt: skip
+        self,
+        mech: Mechanism,
+        setup: BlowSetup,
+        model: ContactModel,
+        path: _Path,
+        w: float,
+        *,
+        blows: int,
+        tol: float,
+        rtol: float,
+    ) -> None:
         self.mech, self.setup, self.model, self.path = mech, setup, model, path
         self.max_blows, self.tol, self.rtol = blows, tol, rtol
         # rebounds slower than this end the chatter (plastic): their height would drown in rounding
@@ -534,11 +549,18 @@ class _Run:
         model, setup = self.model, self.setup
         try:
             b = strike(
-                self.mech, at=setup.at, normal=setup.normal, angle=model.start_angle + model.sign * psi,
-                crank_speed=w, tool_speed=v, restitution=0.0 if plastic else setup.restitution,
-                friction=model.friction, tool_mass=model.tool.mass, drive_inertia=model.drive_inertia,
+                self.mech,
+                at=setup.at,
+                normal=setup.normal,
+                angle=model.start_angle + model.sign * psi,
+                crank_speed=w,
+                tool_speed=v,
+                restitution=0.0 if plastic else setup.restitution,
+                friction=model.friction,
+                tool_mass=model.tool.mass,
+                drive_inertia=model.drive_inertia,
                 link=self.path.link,
-            )  # fmt: skip
+            )
         except SlidingReversal as err:
             raise self.stall(psi, ", thrown back by an impact") from err
         if not b.crank_speed_after > self.w_eps:
@@ -556,13 +578,25 @@ class _Run:
         e1 = model.kinetic(y[PSI], w_a, v_a)
         self.blows.append(
             Blow(
-                time=self.t, psi=float(y[PSI]), angle=b.angle % (2 * math.pi), crank_speed_before=float(y[OMEGA]),
-                crank_speed_after=float(w_a), omega_before=b.omega_before, omega_after=b.omega_after,
-                impact_speed=-b.closing_speed, striker_speed=b.striker_speed, tool_speed=float(v_a),
-                impulse=b.impulse, joints=b.joints, joint_links=b.joint_links, drive_impulse=b.drive_impulse,
-                energy_before=e0, energy_lost=e0 - e1, energy_to_tool=0.5 * model.tool.mass * float(v_a) ** 2,
+                time=self.t,
+                psi=float(y[PSI]),
+                angle=b.angle % (2 * math.pi),
+                crank_speed_before=float(y[OMEGA]),
+                crank_speed_after=float(w_a),
+                omega_before=b.omega_before,
+                omega_after=b.omega_after,
+                impact_speed=-b.closing_speed,
+                striker_speed=b.striker_speed,
+                tool_speed=float(v_a),
+                impulse=b.impulse,
+                joints=b.joints,
+                joint_links=b.joint_links,
+                drive_impulse=b.drive_impulse,
+                energy_before=e0,
+                energy_lost=e0 - e1,
+                energy_to_tool=0.5 * model.tool.mass * float(v_a) ** 2,
             )
-        )  # fmt: skip
+        )
         self.after.append(_Aftermath())
         self.losses.blows += e0 - e1
         self.impacts_since = 0
@@ -664,9 +698,22 @@ class _Run:
         energy = {k: end[k] - self.first[k] for k in end}
         per_cycle = {k: end[k] - self.snapshots[-1][k] for k in end}
         return WorkingCycle(
-            blows, _merged(self.phases), self.end_time - last.time, self.steady,
-            s.t, s.psi, s.omega, s.u, s.v, s.force, s.mode, energy, per_cycle, self.model.tool, contact,
-        )  # fmt: skip
+            blows,
+            _merged(self.phases),
+            self.end_time - last.time,
+            self.steady,
+            s.t,
+            s.psi,
+            s.omega,
+            s.u,
+            s.v,
+            s.force,
+            s.mode,
+            energy,
+            per_cycle,
+            self.model.tool,
+            contact,
+        )
 
 
 def _merged(phases: list[Phase]) -> tuple[Phase, ...]:
@@ -681,9 +728,13 @@ def _merged(phases: list[Phase]) -> tuple[Phase, ...]:
 
 
 def _contact_loads(
-    mech: Mechanism, setup: BlowSetup, model: ContactModel, s: Samples, since: float,
+    mech: Mechanism,
+    setup: BlowSetup,
+    model: ContactModel,
+    s: Samples,
+    since: float,
     links: dict[str, tuple[str, str]],
-) -> ContactLoads:  # fmt: skip
+) -> ContactLoads:
     """The loads of the pairs while striker and tool move together after the time ``since`` (the
     last blow), at the samples ``s`` of the run: the contact force's, gravity's and the inertia's of
     every link at the crank's actual speed and acceleration."""

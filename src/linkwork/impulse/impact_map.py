@@ -166,9 +166,24 @@ def strike(
     if inv_mass:
         lost += 0.5 * tool_mass * (tool_speed**2 - v_after**2)
     return Strike(
-        angle, approach.closing, w, w + dw, tool_speed, v_after, gain * w, gain * (w + dw), approach.gain * abs(w),
-        impulse, phi, jt, lost, joints, joint_links(mech), float(lam[0, 0, 2 * mech.n_pairs]), forces,
-    )  # fmt: skip
+        angle,
+        approach.closing,
+        w,
+        w + dw,
+        tool_speed,
+        v_after,
+        gain * w,
+        gain * (w + dw),
+        approach.gain * abs(w),
+        impulse,
+        phi,
+        jt,
+        lost,
+        joints,
+        joint_links(mech),
+        float(lam[0, 0, 2 * mech.n_pairs]),
+        forces,
+    )
 
 
 def _jump(approach: _Approach, jt: float, inv_mass: float, restitution: float, friction: float, angle: float) -> _Jump:

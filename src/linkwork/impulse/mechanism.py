@@ -216,10 +216,20 @@ def impact(
     before = v * w_before
     ideal = _ideal_com(mech, forces, point.link, impulse, v[point.link, 2] * jump)
     return Impact(
-        impulse, w_before, -restitution * w_before, before, -restitution * before, joints,
-        float(lam[0, 0, 2 * mech.n_pairs]), 0.5 * inertia * w_before**2 * (1 - restitution**2), inertia, phi,
-        forces, ideal, bool(friction > 0 and restitution > 0 and abs(sliding) > tiny),
-    )  # fmt: skip
+        impulse,
+        w_before,
+        -restitution * w_before,
+        before,
+        -restitution * before,
+        joints,
+        float(lam[0, 0, 2 * mech.n_pairs]),
+        0.5 * inertia * w_before**2 * (1 - restitution**2),
+        inertia,
+        phi,
+        forces,
+        ideal,
+        bool(friction > 0 and restitution > 0 and abs(sliding) > tiny),
+    )
 
 
 class StrikingPoint(NamedTuple):
@@ -350,6 +360,12 @@ def reduced_model(mech: Mechanism, *, at: str, rod_joint: str, **kw: Any) -> Roc
     )
     j_o = float(mech.link_inertia[rocker] + mech.link_mass[rocker] * np.sum((com - o) ** 2))
     return rocker_impact(
-        inertia=j_o, mass=float(mech.link_mass[rocker]), com=com, impact_point=k_pt, support=o,
-        rod_mass=float(mech.link_mass[rod[0]]), rod_joint=n_pt, **kw,
-    )  # fmt: skip
+        inertia=j_o,
+        mass=float(mech.link_mass[rocker]),
+        com=com,
+        impact_point=k_pt,
+        support=o,
+        rod_mass=float(mech.link_mass[rod[0]]),
+        rod_joint=n_pt,
+        **kw,
+    )

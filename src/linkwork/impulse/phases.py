@@ -81,9 +81,15 @@ STALLED = IntegrationEvent("stalled", _stalled, -1)
 
 
 def _integrate(
-    kind: str, rates: Callable[[float, np.ndarray], Any], t: float, t_end: float, y: np.ndarray, rtol: float,
-    events: Sequence[IntegrationEvent], **options: Any,
-) -> Any:  # fmt: skip
+    kind: str,
+    rates: Callable[[float, np.ndarray], Any],
+    t: float,
+    t_end: float,
+    y: np.ndarray,
+    rtol: float,
+    events: Sequence[IntegrationEvent],
+    **options: Any,
+) -> Any:
     """``solve_ivp`` (DOP853) from ``(t, y)`` to ``t_end`` or the first terminal event; its failure
     is reported."""
     from scipy.integrate import solve_ivp
@@ -195,9 +201,12 @@ def _contact_events(model: ContactModel, flags: ContactFlags) -> list[Integratio
         return 1.0 + m_t * ds * (ds + flags.phi * gt) / (j + j_d) - 1e-9
 
     events = [
-        IntegrationEvent("separate", separate, -1), IntegrationEvent("seated", seated, -1),
-        IntegrationEvent("turn", turn, -1 if flags.into else 1), STALLED, IntegrationEvent("locking", locking, -1),
-    ]  # fmt: skip
+        IntegrationEvent("separate", separate, -1),
+        IntegrationEvent("seated", seated, -1),
+        IntegrationEvent("turn", turn, -1 if flags.into else 1),
+        STALLED,
+        IntegrationEvent("locking", locking, -1),
+    ]
     if model.friction > 0:
         events.append(IntegrationEvent("slide", slide, 1 if flags.phi > 0 else -1))
     return events

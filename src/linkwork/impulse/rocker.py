@@ -174,9 +174,17 @@ def rocker_impact(
         return o + np.array([need[1], -need[0]]) / mass
 
     return RockerImpact(
-        impulse, support_impulse, float(omega_before), float(-restitution * omega_before),
-        0.5 * j_o * omega_before**2 * (1 - restitution**2), ideal(rod_mass), ideal(0.0), phi, sliding, j_o,
-    )  # fmt: skip
+        impulse,
+        support_impulse,
+        float(omega_before),
+        float(-restitution * omega_before),
+        0.5 * j_o * omega_before**2 * (1 - restitution**2),
+        ideal(rod_mass),
+        ideal(0.0),
+        phi,
+        sliding,
+        j_o,
+    )
 
 
 def sliding_direction(sliding: float, tiny: float, slip: float | None = None) -> float:

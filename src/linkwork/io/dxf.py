@@ -53,8 +53,9 @@ DASH_EM = 3.5
 PURPOSE = "the drawings for CAD (linkwork analyze --dxf)"
 
 
-def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinematics | None = None,
-                   lang: str = "en") -> list[Path]:  # fmt: skip
+def write_drawings(
+    kin: Kinematics, index: int, folder: str | Path, cycle: Kinematics | None = None, lang: str = "en"
+) -> list[Path]:
     """``scheme.dxf``, ``positions.dxf``, ``limits.dxf`` (a file that carries requirements: a synthesised one),
     ``velocity_plan.dxf`` and ``acceleration_plan.dxf`` of sample ``index``
     of ``kin`` into ``folder``, their notes in ``lang``; returns the paths.  ``cycle``: a whole turn (the
@@ -76,8 +77,7 @@ def write_drawings(kin: Kinematics, index: int, folder: str | Path, cycle: Kinem
     return out
 
 
-def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories: bool = True,
-                 lang: str = "en") -> Path:  # fmt: skip
+def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories: bool = True, lang: str = "en") -> Path:
     """The scheme of sample ``index`` of ``scene``, 1:1 in mm, with the trajectories of its points; its note
     in ``lang``."""
     doc, msp = _document(SCHEME, em=1000 * scene.em)
@@ -126,8 +126,9 @@ def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path
     for lab in (*s.labels, scene.label):
         _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
     k = (np.pi + scene.theta) / (np.pi - scene.theta)
-    title = t("limits.title", lang, name=s.name, member=scene.member, theta=f"{np.degrees(scene.theta):.2f}",
-              k=f"{k:.4f}").replace("\n", ", ")  # fmt: skip
+    title = t(
+        "limits.title", lang, name=s.name, member=scene.member, theta=f"{np.degrees(scene.theta):.2f}", k=f"{k:.4f}"
+    ).replace("\n", ", ")
     _note(doc, msp, f"{title}; 1:1, {t('unit.mm', lang)}", scene.extent() * 1000, 1000 * s.em)
     return _save(doc, path)
 

@@ -29,8 +29,18 @@ if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
 
 #: AutoCAD colour index of each layer (7: black on white paper, white on black).
-COLOURS = {"WEIGHTS": 34, "INERTIA": 1, "LOADS": 7, "KNOWN_REACTIONS": 6, "TANGENTIAL_R": 5, "NORMAL_R": 3,
-           "REACTIONS": 30, "INNER_REACTIONS": 4, "BALANCING": 211, "LEVER": 8}  # fmt: skip
+COLOURS = {
+    "WEIGHTS": 34,
+    "INERTIA": 1,
+    "LOADS": 7,
+    "KNOWN_REACTIONS": 6,
+    "TANGENTIAL_R": 5,
+    "NORMAL_R": 3,
+    "REACTIONS": 30,
+    "INNER_REACTIONS": 4,
+    "BALANCING": 211,
+    "LEVER": 8,
+}
 
 
 def _forces_document() -> tuple[Any, Any]:
@@ -76,8 +86,7 @@ def write_force_plans(plans: ForcePlans, index: int, path: str | Path, lang: str
         if g.balancing is not None:
             label = t("forceplans.driving", lang, group=label)
         note = t("forceplans.cell", lang, group=label, scale=f"{scene.scale:g}").replace("\n", ";  ")
-        _note(doc, msp, note, box + np.r_[offset, offset],
-              scene.em)  # fmt: skip
+        _note(doc, msp, note, box + np.r_[offset, offset], scene.em)
         x += box[2] - box[0] + 20.0
         top = max(top, float(box[3]) + 6 * scene.em)
     crank = t("drawing.crank", lang, angle=f"{turn_deg(angle):.1f}")
@@ -96,8 +105,10 @@ def write_lever(lv: Lever, kin: Kinematics, index: int, path: str | Path, lang: 
     _draw(msp, scene, np.zeros(2))
     doc.header.custom_vars.append("LINKWORK_SCALE", repr(scene.scale))
     crank = t("drawing.crank", lang, angle=f"{turn_deg(float(kin.angles[index])):.1f}")
-    note = (f"{t('lever.title', lang, name=kin.mechanism.name)}, {crank}; "
-            f"{t('lever.scale', lang, plan=f'{scene.plan_scale:g}', scale=f'{scene.scale:g}')}; "
-            f"{t('lever.moment', lang, moment=f'{float(lv.balancing[0, index]):.6g}')}")  # fmt: skip
+    note = (
+        f"{t('lever.title', lang, name=kin.mechanism.name)}, {crank}; "
+        f"{t('lever.scale', lang, plan=f'{scene.plan_scale:g}', scale=f'{scene.scale:g}')}; "
+        f"{t('lever.moment', lang, moment=f'{float(lv.balancing[0, index]):.6g}')}"
+    )
     _note(doc, msp, note, scene.extent(), scene.em)
     return _save(doc, path)

@@ -166,15 +166,17 @@ def efficiency_record(f: Any) -> dict[str, Any]:
             return bool(f.mechanism.pair_type[k] == PairType.REVOLUTE)
 
         out["friction"] = {
-            "joints": {p.joint: {"f": p.f, "friction_circle_m": p.coefficient if revolute(p.pair) else None}
-                       for p in fr.pairs},
+            "joints": {
+                p.joint: {"f": p.f, "friction_circle_m": p.coefficient if revolute(p.pair) else None} for p in fr.pairs
+            },
             "tolerance": TOLERANCE,
             "max_iterations": MAX_ITERATIONS,
             "iterations": fr.iterations,
             "residual": fr.residual,
-            "problems": [{"joint": w.joint, "kind": w.kind, "at": list(w.angles), "message": str(w)}
-                         for w in fr.problems],
-        }  # fmt: skip
+            "problems": [
+                {"joint": w.joint, "kind": w.kind, "at": list(w.angles), "message": str(w)} for w in fr.problems
+            ],
+        }
     return out
 
 

@@ -29,6 +29,8 @@ from linkwork.zeros import SHARE, ZERO, magnitude
 
 #: Significant digits of the floats written.
 DIGITS = 12
+
+
 def dumps(data: Any, *, indent: int | None = None) -> str:
     """``data`` (dicts, lists, tuples, numbers, strings, NumPy arrays and scalars) as JSON text."""
     return json.dumps(_clean(data, None), indent=indent, allow_nan=False)

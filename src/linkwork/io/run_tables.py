@@ -89,7 +89,7 @@ def to_json(run: Run) -> dict[str, Any]:
             "moment": "N m",
             "length": "m",
             "force": "N",
-        },  # fmt: skip
+        },
         **crank.record(),
         "rtol": run.rtol,
         "atol": run.atol,

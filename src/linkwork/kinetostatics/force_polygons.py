@@ -44,8 +44,15 @@ from linkwork.motion.plans import drawing_scale
 from linkwork.structure.model import Mechanism, PairType, point_labels
 
 #: How each kind of force is named in each language: symbol -> (English, Russian).
-SYMBOLS = {"R": ("R", "R"), "G": ("G", "G"), "Phi": ("Phi", "Фи"), "F": ("F", "F"), "M": ("M", "M"),
-           "MPhi": ("MPhi", "MФи"), "Fb": ("Fb", "Fу")}  # fmt: skip
+SYMBOLS = {
+    "R": ("R", "R"),
+    "G": ("G", "G"),
+    "Phi": ("Phi", "Фи"),
+    "F": ("F", "F"),
+    "M": ("M", "M"),
+    "MPhi": ("MPhi", "MФи"),
+    "Fb": ("Fb", "Fу"),
+}
 
 #: The kinds of force of a plan, in the order of a legend.
 KINDS = ("weight", "inertia", "load", "known", "tangential", "normal", "reaction", "internal")
@@ -342,8 +349,17 @@ def _opposite(r: PlanForce, on: int) -> PlanForce:
 class _Group:
     """One group's plan, solved (:meth:`solve`)."""
 
-    def __init__(self, f: Forces, label: str, links: tuple[int, ...], earlier: set[int], loads: _Loads,
-                 points: np.ndarray, names: list[str], known: dict[tuple[int, int], PlanForce]) -> None:  # fmt: skip
+    def __init__(
+        self,
+        f: Forces,
+        label: str,
+        links: tuple[int, ...],
+        earlier: set[int],
+        loads: _Loads,
+        points: np.ndarray,
+        names: list[str],
+        known: dict[tuple[int, int], PlanForce],
+    ) -> None:
         m = f.mechanism
         self.f, self.m, self.label, self.links, self.points, self.names = f, m, label, links, points, names
         self.shape = f.kinematics.valid_all.shape
@@ -379,13 +395,21 @@ class _Group:
         return self.closed_by_solution()
 
     # ---------------------------------------------------------------- the forces as data
-    def reaction(self, k: int, link: int, vector: np.ndarray, part: str = "", kind: str = "reaction",
-                 moment: np.ndarray | None = None) -> PlanForce:  # fmt: skip
+    def reaction(
+        self,
+        k: int,
+        link: int,
+        vector: np.ndarray,
+        part: str = "",
+        kind: str = "reaction",
+        moment: np.ndarray | None = None,
+    ) -> PlanForce:
         a, b = (int(x) for x in self.m.pair_links[k])
         other = a if link == b else b
         couple = np.zeros(self.shape) if moment is None else moment
-        return PlanForce("R", pair_index(other, link), part, kind, link, vector, self.point(k), couple,
-                         str(self.m.pair_joint[k]), k)  # fmt: skip
+        return PlanForce(
+            "R", pair_index(other, link), part, kind, link, vector, self.point(k), couple, str(self.m.pair_joint[k]), k
+        )
 
     def moments_about(self, link: int, at: np.ndarray) -> tuple[np.ndarray, list[tuple[PlanForce, np.ndarray]]]:
         """The moment about ``at`` of the known forces and couples on ``link``, and each one's."""
@@ -428,8 +452,9 @@ class _Group:
                 with np.errstate(invalid="ignore", divide="ignore"):
                     t = moment / length  # sum M_B = moment + cross(A - B, t perp(u)) = moment - t |AB| = 0
                 tangent = self.reaction(k, link, t[..., None] * _perp(u), "t", "tangential")
-                equations.append(MomentEquation(link, self.names[int(m.pair_points[inner, 1])], tuple(terms),
-                                                tangent, length))  # fmt: skip
+                equations.append(
+                    MomentEquation(link, self.names[int(m.pair_points[inner, 1])], tuple(terms), tangent, length)
+                )
                 tangents.append(tangent)
                 lines.append((k, link, u, "n", "normal"))
             else:
@@ -440,8 +465,10 @@ class _Group:
         with np.errstate(invalid="ignore", divide="ignore"):
             det = np.where(self.f.singular_all, np.nan, _cross(d1, d2))  # a dead point: indeterminate
             c1, c2 = _cross(rest, d2) / det, _cross(d1, rest) / det
-        unknown = {k1: self.reaction(k1, l1, c1[..., None] * d1, p1, kind1),
-                   k2: self.reaction(k2, l2, c2[..., None] * d2, p2, kind2)}  # fmt: skip
+        unknown = {
+            k1: self.reaction(k1, l1, c1[..., None] * d1, p1, kind1),
+            k2: self.reaction(k2, l2, c2[..., None] * d2, p2, kind2),
+        }
         whole: list[PlanForce] = []
         for k, link, _, part, _ in lines:
             if part:  # R = Rn + Rt
@@ -454,9 +481,15 @@ class _Group:
                 guide = self.reaction(k, link, force, moment=couple)
                 whole.append(guide)
                 nan = np.full(self.shape, np.nan)
-                equations.append(MomentEquation(link, self.names[int(m.pair_points[inner, 1])],
-                                                (*terms, (unknown[k], _cross(self.point(k) - b_point, force))),
-                                                guide, nan))  # fmt: skip
+                equations.append(
+                    MomentEquation(
+                        link,
+                        self.names[int(m.pair_points[inner, 1])],
+                        (*terms, (unknown[k], _cross(self.point(k) - b_point, force))),
+                        guide,
+                        nan,
+                    )
+                )
         first = self.links[0]
         r_first = next(r for r in whole if r.link == first)
         inner_on_first = -(self.total(first) + r_first.vector)

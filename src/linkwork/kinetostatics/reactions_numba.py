@@ -165,11 +165,37 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
 
     def part(lo: int, hi: int) -> None:
         _kernel(
-            rows, groups, shape_of, on_frame, kin.q, kin.v, kin.a, local, origin, axis, mass, com, inertia,
-            gx, gy, f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi,
-            np.empty((mech.n_links_total, 6)), np.empty((m, 6)), np.empty((size, size)), np.empty(size),
-            np.empty(m), np.zeros((m, 8)),
-        )  # fmt: skip
+            rows,
+            groups,
+            shape_of,
+            on_frame,
+            kin.q,
+            kin.v,
+            kin.a,
+            local,
+            origin,
+            axis,
+            mass,
+            com,
+            inertia,
+            gx,
+            gy,
+            f_link,
+            f_val,
+            f_pos,
+            m_link,
+            m_val,
+            lam,
+            frame,
+            lo,
+            hi,
+            np.empty((mech.n_links_total, 6)),
+            np.empty((m, 6)),
+            np.empty((size, size)),
+            np.empty(size),
+            np.empty(m),
+            np.zeros((m, 8)),
+        )
 
     if len(bounds) == 2:
         part(0, n_ang)
@@ -459,9 +485,37 @@ def _frame_loads(rows, on_frame, J, Q, mu, frame, var, i):
 
 
 def _kernel(
-    rows, groups, shape_of, on_frame, q, v, a, local, origin, axis, mass, com, inertia, gx, gy,
-    f_link, f_val, f_pos, m_link, m_val, lam, frame, lo, hi, Q, J, M, x, mu, G,
-):  # fmt: skip
+    rows,
+    groups,
+    shape_of,
+    on_frame,
+    q,
+    v,
+    a,
+    local,
+    origin,
+    axis,
+    mass,
+    com,
+    inertia,
+    gx,
+    gy,
+    f_link,
+    f_val,
+    f_pos,
+    m_link,
+    m_val,
+    lam,
+    frame,
+    lo,
+    hi,
+    Q,
+    J,
+    M,
+    x,
+    mu,
+    G,
+):
     """The reactions ``lam`` and foundation loads ``frame`` of the samples ``lo:hi`` of every variant: at each,
     the links' loads, the rows' Jacobian, then the groups in turn (NaN from a singular group on)."""
     n_rows = rows.shape[0]
@@ -488,9 +542,23 @@ def _kernel(
 
 #: The kernels inlined into the others, and the one called from Python.
 _INLINE = (
-    "_row_geometry", "_rows_at", "_col", "_cross", "_single", "_pair_on", "_dyad", "_rhs", "_link_loads",
-    "_external_loads", "_group_matrix", "_eliminate", "_back_substitute", "_general", "_group", "_frame_loads",
-)  # fmt: skip
+    "_row_geometry",
+    "_rows_at",
+    "_col",
+    "_cross",
+    "_single",
+    "_pair_on",
+    "_dyad",
+    "_rhs",
+    "_link_loads",
+    "_external_loads",
+    "_group_matrix",
+    "_eliminate",
+    "_back_substitute",
+    "_general",
+    "_group",
+    "_frame_loads",
+)
 _CALLED = ("_kernel",)
 
 

@@ -142,5 +142,3 @@ def to_frame(f: Forces, by: str = "joint") -> Any:
     else:
         raise LinkworkError(f'Forces.to_pandas takes by="joint" or by="angle", not "{by}"')
     return frame(data, coords, attrs, dims, purpose="Forces.to_pandas")
-
-

@@ -140,9 +140,15 @@ def _check_delta(delta: float) -> None:
 
 
 def _flywheel(
-    delta: float, omega_mean: float, swing: float, need: float, drive_inertia: float, moment: float, shaft: str,
+    delta: float,
+    omega_mean: float,
+    swing: float,
+    need: float,
+    drive_inertia: float,
+    moment: float,
+    shaft: str,
     ratio: float,
-) -> Flywheel:  # fmt: skip
+) -> Flywheel:
     if shaft not in ("crank", "motor"):
         raise LinkworkError(f'flywheel: on "motor" or "crank", got "{shaft}"')
     on_crank = max(need - drive_inertia, 0.0)

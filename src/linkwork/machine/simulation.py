@@ -331,9 +331,15 @@ class _Unit:
         hi = self.psi0 + 2 * np.pi * (k + 1)
         stalled = IntegrationEvent("stalled", _stalled, -1)
         sol = solve_ivp(
-            self, (lo, hi), [t0, e0], method="DOP853", rtol=self.rtol, atol=[1e-12, 1e-12 * max(e0, 1.0)],
-            events=stalled, dense_output=True,
-        )  # fmt: skip
+            self,
+            (lo, hi),
+            [t0, e0],
+            method="DOP853",
+            rtol=self.rtol,
+            atol=[1e-12, 1e-12 * max(e0, 1.0)],
+            events=stalled,
+            dense_output=True,
+        )
         if sol.status != 0:
             where = float(sol.t[-1]) - self.psi0
             raise LinkworkError(
@@ -347,8 +353,10 @@ class _Unit:
         w = np.sqrt(2 * np.maximum(y[1], 0.0) / j)
         if from_rest:
             grid, y, w = (
-                np.concatenate([[self.psi0], grid]), np.concatenate([[[0.0], [0.0]], y], axis=1), np.append(0.0, w)
-            )  # fmt: skip
+                np.concatenate([[self.psi0], grid]),
+                np.concatenate([[[0.0], [0.0]], y], axis=1),
+                np.append(0.0, w),
+            )
         t1, e1 = float(sol.y[0, -1]), float(sol.y[1, -1])
         w1 = math.sqrt(2 * e1 / self.model.at(hi)[0])
         low, high = self._extremes(sol, grid[-self.points - 1 :], w[-self.points - 1 :])

@@ -87,8 +87,13 @@ def dynamics_table(result: Dynamics) -> tuple[Table, Table, dict[str, Any]]:
         "load": red.load,
         "work": red.work()[:-1],
     }
-    over_time = {"psi": cycle["psi_deg"], "phi": cycle["phi_deg"], "omega": cycle["omega"],
-                 "motor_torque": cycle["motor_torque"], "motor_power": cycle["motor_power"]}  # fmt: skip
+    over_time = {
+        "psi": cycle["psi_deg"],
+        "phi": cycle["phi_deg"],
+        "omega": cycle["omega"],
+        "motor_torque": cycle["motor_torque"],
+        "motor_power": cycle["motor_power"],
+    }
     data: Table = {name: (("angle",), v, {"units": UNITS[name]}) for name, v in over_angle.items()}
     data.update({name: (("time",), v, {"units": UNITS[name]}) for name, v in over_time.items()})
     data["crank_angle_to_x"][2]["long_name"] = LONG["crank_angle_to_x"]

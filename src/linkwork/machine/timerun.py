@@ -147,8 +147,10 @@ def reduced_terms(mech: Mechanism, phi: np.ndarray, omega: np.ndarray, extra_ine
     kin = kinematics_at(mech, angles, speeds, np.zeros((2 * k, 1)))
     if not kin.valid_all.all():
         bad = float(phi[np.flatnonzero(~kin.valid_all[0, :k] | ~kin.valid_all[0, k:])[0]])
-        raise LinkworkError(f"the run reaches a pose where the mechanism does not assemble: crank at "
-                            f"{turn_deg(bad):.6g} deg to x (a dead point, or past the end of its travel)")  # fmt: skip
+        raise LinkworkError(
+            f"the run reaches a pose where the mechanism does not assemble: crank at "
+            f"{turn_deg(bad):.6g} deg to x (a dead point, or past the end of its travel)"
+        )
     loads = inertia_and_gravity(kin)
     ms = kin.mass_properties
     m, j = ms.mass[0], ms.inertia[0]
@@ -243,8 +245,16 @@ def simulate(
     grid = np.linspace(0.0, until, RUN_SAMPLES) if times is None else np.asarray(times, dtype=float).ravel()
     if grid.size == 0 or grid.min() < 0 or grid.max() > until * (1 + 1e-12):
         raise LinkworkError(f"times: expected times within [0, {until:g}] s")
-    sol = solve_ivp(rhs, (0.0, until), [phi0, float(speed)], method="DOP853", rtol=rtol, atol=atol,
-                    events=stopped, dense_output=True)  # fmt: skip
+    sol = solve_ivp(
+        rhs,
+        (0.0, until),
+        [phi0, float(speed)],
+        method="DOP853",
+        rtol=rtol,
+        atol=atol,
+        events=stopped,
+        dense_output=True,
+    )
     if sol.status < 0:
         raise LinkworkError(f"the run in time failed at {float(sol.t[-1]):.6g} s: {sol.message}")
     y = sol.sol(grid)
@@ -290,9 +300,14 @@ def _change_points(mech: Mechanism, steps: np.ndarray, dense: Any) -> list[RunEv
     for row, k in zip(d, dyads, strict=True):
         dips = np.flatnonzero((row[1:-1] <= row[:-2]) & (row[1:-1] <= row[2:]) & (row[1:-1] < DIP)) + 1
         for i in dips:
-            best = minimize_scalar(lambda x, k=k: float(det(np.array([x]))[dyads.index(k), 0]),
-                                   bounds=(t[i - 1], t[i + 1]), method="bounded", options={"xatol": 1e-14})  # fmt: skip
-            if best.fun < CLOSE and not any(e.group == mech.program[k].label and abs(e.time - best.x) < 1e-9
-                                             for e in found):  # fmt: skip
+            best = minimize_scalar(
+                lambda x, k=k: float(det(np.array([x]))[dyads.index(k), 0]),
+                bounds=(t[i - 1], t[i + 1]),
+                method="bounded",
+                options={"xatol": 1e-14},
+            )
+            if best.fun < CLOSE and not any(
+                e.group == mech.program[k].label and abs(e.time - best.x) < 1e-9 for e in found
+            ):
                 found.append(RunEvent("change-point", float(best.x), float(dense(best.x)[0]), mech.program[k].label))
     return found

@@ -390,8 +390,7 @@ def extremes(kin: Kinematics, variant: int = 0) -> list[Extremes]:
         r = output_range(kin, out)
         if r.turns[variant]:
             continue
-        values = (r.low, r.high, r.at_low, r.at_high, r.stroke, r.rising, r.falling, r.time_ratio,
-                  r.forward_time_ratio)  # fmt: skip
+        values = (r.low, r.high, r.at_low, r.at_high, r.stroke, r.rising, r.falling, r.time_ratio, r.forward_time_ratio)
         rows.append(Extremes(out.name, out.kind, *(float(v[variant]) for v in values)))
     return rows
 

@@ -45,8 +45,17 @@ from linkwork.structure.records import Arm, Step
 POSITION, VELOCITY, ACCELERATION = range(3)
 
 
-def point_motion_into(kind: int, q: np.ndarray, v: np.ndarray, a: np.ndarray, cos: np.ndarray, sin: np.ndarray,
-                      lx: np.ndarray, ly: np.ndarray, out: np.ndarray) -> None:  # fmt: skip
+def point_motion_into(
+    kind: int,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    cos: np.ndarray,
+    sin: np.ndarray,
+    lx: np.ndarray,
+    ly: np.ndarray,
+    out: np.ndarray,
+) -> None:
     """The position, velocity or acceleration (``kind``: :data:`POSITION` ...) of a point at ``(lx, ly)``
     ``(V,)`` in the frame of a link of pose, velocity and acceleration ``q``, ``v``, ``a`` ``(3, V, A)`` and
     angle's cosine and sine ``cos``, ``sin`` ``(V, A)``, written into ``out`` ``(V, A, 2)``."""

@@ -163,14 +163,25 @@ def encode(program: tuple[Step, ...], point_link: np.ndarray) -> Program:
         ops[s, KIND] = kind
         if kind == CRANK:
             arm = step.arms[0]
-            crank = {CRANK_LINK: arm.link, CRANK_BASE: int(point_link[arm.src]), CRANK_SRC: arm.src,
-                     CRANK_OWN: arm.own, CRANK_SIGN: int(step.sign), CRANK_DRIVE: step.drive}  # fmt: skip
+            crank = {
+                CRANK_LINK: arm.link,
+                CRANK_BASE: int(point_link[arm.src]),
+                CRANK_SRC: arm.src,
+                CRANK_OWN: arm.own,
+                CRANK_SIGN: int(step.sign),
+                CRANK_DRIVE: step.drive,
+            }
             for col, value in crank.items():
                 ops[s, col] = value
         elif kind == SLIDE:
             arm = step.arms[0]
-            slide = {SLIDE_LINK: arm.link, SLIDE_GUIDE: arm.carrier, SLIDE_PAIR: arm.pair,
-                     SLIDE_POINT: arm.slider_point, SLIDE_DRIVE: step.drive}  # fmt: skip
+            slide = {
+                SLIDE_LINK: arm.link,
+                SLIDE_GUIDE: arm.carrier,
+                SLIDE_PAIR: arm.pair,
+                SLIDE_POINT: arm.slider_point,
+                SLIDE_DRIVE: step.drive,
+            }
             for col, value in slide.items():
                 ops[s, col] = value
         else:
@@ -207,8 +218,21 @@ def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, 
     marks = np.zeros((3, n_steps, n_var), dtype=np.bool_)  # near, trouble, limit
     valid = np.empty((n_var, n_ang), dtype=np.bool_)
     flags = np.zeros(5, dtype=np.bool_)
-    args = (ops, branch, geom.point_local, geom.pair_origin, geom.pair_axis, values, rates, accels,
-            out, found, valid, marks, flags)  # fmt: skip
+    args = (
+        ops,
+        branch,
+        geom.point_local,
+        geom.pair_origin,
+        geom.pair_axis,
+        values,
+        rates,
+        accels,
+        out,
+        found,
+        valid,
+        marks,
+        flags,
+    )
     _in_parts(args, n_links, n_steps, n_var, n_ang)
     if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
         marks[0] = False
@@ -216,8 +240,24 @@ def run(mech: Mechanism, geom: Geometry, values: np.ndarray, rates: np.ndarray, 
     singular, near, limit, invalid, trouble = flags.tolist()
     q, v, a = out[: 9 * n_links].reshape(3, n_links, 3, n_var, n_ang)
     cos, sin = out[9 * n_links :].reshape(2, n_links, n_var, n_ang)
-    return Solved(q, v, a, cos, sin, found[0], found[1], valid, marks[0], marks[1], singular, marks[2], near, limit,
-                  invalid, trouble)  # fmt: skip
+    return Solved(
+        q,
+        v,
+        a,
+        cos,
+        sin,
+        found[0],
+        found[1],
+        valid,
+        marks[0],
+        marks[1],
+        singular,
+        marks[2],
+        near,
+        limit,
+        invalid,
+        trouble,
+    )
 
 
 def _floats(x: np.ndarray) -> np.ndarray:
@@ -326,8 +366,23 @@ def _place(L, link, theta, omega, eps, x, y, vx, vy, ax, ay, lx, ly, c, s):
 
 
 def _place_like(L, link, guide, x, y, vx, vy, ax, ay, lx, ly):
-    _place(L, link, L[guide, S_ANGLE], L[guide, S_OMEGA], L[guide, S_EPS], x, y, vx, vy, ax, ay, lx, ly,
-           L[guide, S_COS], L[guide, S_SIN])  # fmt: skip
+    _place(
+        L,
+        link,
+        L[guide, S_ANGLE],
+        L[guide, S_OMEGA],
+        L[guide, S_EPS],
+        x,
+        y,
+        vx,
+        vy,
+        ax,
+        ay,
+        lx,
+        ly,
+        L[guide, S_COS],
+        L[guide, S_SIN],
+    )
 
 
 def _loc(local, p):
@@ -511,8 +566,9 @@ def _dyad_motion(L, ops, st, o1, o2, xa_i, xb_i, A, B, x, y, local):
             gx_, gy_ = x - P[0], y - P[1]
             c, s = gx_ * P[7] + gy_ * P[8], gy_ * P[7] - gx_ * P[8]
             own = ops[st, o + ARM_OWN]
-            _place(L, link, math.atan2(s, c), k, kd, P[0], P[1], P[2], P[3], P[4], P[5], local[own, 0],
-                   local[own, 1], c, s)  # fmt: skip
+            _place(
+                L, link, math.atan2(s, c), k, kd, P[0], P[1], P[2], P[3], P[4], P[5], local[own, 0], local[own, 1], c, s
+            )
         else:
             lx, ly = _loc(local, xl)
             _place_like(L, link, ops[st, o + ARM_CARRIER], x, y, vx, vy, ax, ay, lx, ly)
@@ -637,8 +693,29 @@ def _near(ops, st, prev, x, y, gx, gy, tol):
     return g2_prev <= lim or g2 <= lim
 
 
-def _sample(ops, branch, pre, loc, org, axs, values, rates, accels, slack, det, near, trouble, limit, tol,
-            L, prev, var, i, lo, first):  # fmt: skip
+def _sample(
+    ops,
+    branch,
+    pre,
+    loc,
+    org,
+    axs,
+    values,
+    rates,
+    accels,
+    slack,
+    det,
+    near,
+    trouble,
+    limit,
+    tol,
+    L,
+    prev,
+    var,
+    i,
+    lo,
+    first,
+):
     """Every step at sample ``i`` of variant ``var`` into ``L``, with what the steps found (samples before
     ``lo`` only to carry on from); returns (every step assembled, some step within SINGULAR of a singular
     position)."""
@@ -707,8 +784,9 @@ def _tolerance(local):
     return 1e-12 * (1 + most)
 
 
-def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, found, valid, marks, flags, lo, hi, L,
-            pre, prev):  # fmt: skip
+def _kernel(
+    ops, branch, local, origin, axis, values, rates, accels, out, found, valid, marks, flags, lo, hi, L, pre, prev
+):
     """Samples ``lo:hi`` of every variant (``near`` also from the step between ``lo - 1`` and ``lo``);
     sets ``flags`` (:data:`F_SINGULAR` ...) where something is found.
 
@@ -727,8 +805,29 @@ def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, found,
         first = max(lo - 1, 0)
         for i in range(first, hi):
             L[0, S_COS] = 1.0
-            ok, small = _sample(ops, branch, pre, loc, org, axs, values, rates, accels, slack, det, near,
-                                trouble, limit, tol, L, prev, var, i, lo, first)  # fmt: skip
+            ok, small = _sample(
+                ops,
+                branch,
+                pre,
+                loc,
+                org,
+                axs,
+                values,
+                rates,
+                accels,
+                slack,
+                det,
+                near,
+                trouble,
+                limit,
+                tol,
+                L,
+                prev,
+                var,
+                i,
+                lo,
+                first,
+            )
             if i < lo:
                 continue
             valid[var, i] = ok
@@ -748,9 +847,32 @@ def _kernel(ops, branch, local, origin, axis, values, rates, accels, out, found,
 
 
 #: The kernels inlined into the others, and those called from Python.
-_INLINE = ("_point", "_material", "_place", "_place_like", "_loc", "_src_point", "_locus", "_touching", "_snap",
-           "_arm_motion", "_arm_extra", "_circles", "_circle_line", "_dyad", "_dyad_motion", "_rpr", "_crank",
-           "_slide", "_step", "_near", "_sample", "_store", "_driving_rows", "_tolerance")  # fmt: skip
+_INLINE = (
+    "_point",
+    "_material",
+    "_place",
+    "_place_like",
+    "_loc",
+    "_src_point",
+    "_locus",
+    "_touching",
+    "_snap",
+    "_arm_motion",
+    "_arm_extra",
+    "_circles",
+    "_circle_line",
+    "_dyad",
+    "_dyad_motion",
+    "_rpr",
+    "_crank",
+    "_slide",
+    "_step",
+    "_near",
+    "_sample",
+    "_store",
+    "_driving_rows",
+    "_tolerance",
+)
 _CALLED = ("_arm_constants", "_kernel", "_scan", "point_motion_into")
 
 

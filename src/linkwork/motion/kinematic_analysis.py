@@ -174,8 +174,9 @@ class Kinematics:
         modes: list[np.ndarray | None] = []
         lost = np.zeros(angles.shape, dtype=bool)
         none = (None,) * len(mech.program)
-        for k, (step, branch, det) in enumerate(zip(mech.program, self.step_branch or none, self.step_det or none,
-                                                    strict=True)):  # fmt: skip
+        for k, (step, branch, det) in enumerate(
+            zip(mech.program, self.step_branch or none, self.step_det or none, strict=True)
+        ):
             if branch is None or step.kind not in ("RRR", "RRP", "PRP"):
                 modes.append(None)
                 continue
@@ -214,11 +215,25 @@ class Kinematics:
         m = self.masses
         masses = None if m is None else Masses(m.mass[rows], m.com[rows], m.inertia[rows])
         return Kinematics._made(
-            mechanism=mech, drive=each[0][:, None], rates=np.full((each.shape[1], 1), rate), q=state.q, v=state.v,
-            a=state.a, cos=state.cos, sin=state.sin, local=state.local, axis=state.axis, origin=state.origin,
-            valid_all=state.valid, events=(), variants=True, step_det=tuple(r.det for r in state.steps),
-            step_branch=tuple(r.branch for r in state.steps), masses=masses, each=each,
-        )  # fmt: skip
+            mechanism=mech,
+            drive=each[0][:, None],
+            rates=np.full((each.shape[1], 1), rate),
+            q=state.q,
+            v=state.v,
+            a=state.a,
+            cos=state.cos,
+            sin=state.sin,
+            local=state.local,
+            axis=state.axis,
+            origin=state.origin,
+            valid_all=state.valid,
+            events=(),
+            variants=True,
+            step_det=tuple(r.det for r in state.steps),
+            step_branch=tuple(r.branch for r in state.steps),
+            masses=masses,
+            each=each,
+        )
 
     def _change_point(self, step: int, rows: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
         """Where the change point of dyad ``step`` lies between the samples ``lo`` and ``hi`` ``(U,)`` (in
@@ -604,10 +619,23 @@ def kinematics_at(mech: Mechanism, angles: np.ndarray, speeds: np.ndarray, accel
     geom = file_geometry(mech)
     state = run(mech, mech.program, geom, angles, speeds, accels)
     return Kinematics._made(
-        mechanism=mech, drive=angles, rates=speeds, q=state.q, v=state.v, a=state.a, cos=state.cos, sin=state.sin,
-        local=state.local, axis=state.axis, origin=state.origin, valid_all=state.valid, events=(), variants=False,
-        step_det=tuple(r.det for r in state.steps), masses=None,
-    )  # fmt: skip
+        mechanism=mech,
+        drive=angles,
+        rates=speeds,
+        q=state.q,
+        v=state.v,
+        a=state.a,
+        cos=state.cos,
+        sin=state.sin,
+        local=state.local,
+        axis=state.axis,
+        origin=state.origin,
+        valid_all=state.valid,
+        events=(),
+        variants=False,
+        step_det=tuple(r.det for r in state.steps),
+        masses=None,
+    )
 
 
 #: The geometry of the file's dimensions of the mechanisms solved so far (:func:`file_geometry`), by

@@ -10,8 +10,9 @@ import numpy as np
 from linkwork.motion import kernels, kernels_numba
 
 
-def point_motion(kind: int, q: np.ndarray, v: np.ndarray, a: np.ndarray, cs: tuple[np.ndarray, np.ndarray],
-                 local: np.ndarray) -> np.ndarray:  # fmt: skip
+def point_motion(
+    kind: int, q: np.ndarray, v: np.ndarray, a: np.ndarray, cs: tuple[np.ndarray, np.ndarray], local: np.ndarray
+) -> np.ndarray:
     """Position, velocity or acceleration (``kind``: :data:`~linkwork.motion.kernels.POSITION` ...) ``(V, A, 2)``
     of a point at ``local`` ``(2, V)`` in the frame of a link of pose, velocity and acceleration ``q``, ``v``,
     ``a`` ``(3, V, A)``, the cosine and sine of its angle ``cs`` ``(V, A)`` each: in one compiled pass where

@@ -148,5 +148,3 @@ def frame(data: Table, coords: Table, attrs: dict[str, str], dims: tuple[str, ..
     out.attrs["units"] = {name: str(data[name][2].get("units", "1")) for name in chosen}
     out.attrs["angle_units"] = str(coords["angle"][2].get("units", ""))
     return out
-
-

@@ -343,10 +343,17 @@ def _structure(run: _Run) -> None:
     )
     head = [run.t(f"structure.head.{k}") for k in ("number", "group", "class", "order", "kind", "links", "joints")]
     rows = [
-        [i, g.label.split(" ")[0], g.klass, "-" if g.order is None else g.order, group_kind(g.kind, run.lang),
-         ", ".join(g.link_names), ", ".join(g.joints)]
+        [
+            i,
+            g.label.split(" ")[0],
+            g.klass,
+            "-" if g.order is None else g.order,
+            group_kind(g.kind, run.lang),
+            ", ".join(g.link_names),
+            ", ".join(g.joints),
+        ]
         for i, g in enumerate(s.groups, 1)
-    ]  # fmt: skip
+    ]
     sec.body.append(_table(head, rows))
     sec.body.append(_p(run.t("structure.formula", formula=s.formula)))
     run.sections.append(sec)
@@ -377,21 +384,27 @@ def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) ->
     where = run.t("at_position", position=drawn[0])
     first, lang = drawn[0], run.lang
     sec.figures += [
-        run.figure("scheme", lambda: figures.draw_scheme(twelve, first, position=first, cycle=kin, lang=lang),
-                   run.t("caption.scheme") + where),
+        run.figure(
+            "scheme",
+            lambda: figures.draw_scheme(twelve, first, position=first, cycle=kin, lang=lang),
+            run.t("caption.scheme") + where,
+        ),
         run.figure("positions", lambda: figures.draw_positions(kin, lang=lang), run.t("caption.positions")),
-    ]  # fmt: skip
+    ]
     sec.body += _positions_table(run, cycle)
     sec.body += _extremes_tables(run, cycle)
     sec.body += _working_table(run, cycle)
     sec.body += _transmission_table(run, cycle)
     sec.body += [_p(_event(run, cycle, e)) for e in kin.events]
     sec.figures += [
-        run.figure("kinematic_diagrams", lambda: figures.kinematic_diagrams(kin, zero, lang),
-                   run.t("caption.kinematic_diagrams")),
+        run.figure(
+            "kinematic_diagrams",
+            lambda: figures.kinematic_diagrams(kin, zero, lang),
+            run.t("caption.kinematic_diagrams"),
+        ),
         *_plans(run, twelve, drawn, position == "all"),
         run.figure("link_angles", lambda: figures.link_angles(kin, zero, lang), run.t("caption.link_angles")),
-    ]  # fmt: skip
+    ]
     if dxf:
         from linkwork.io.dxf import write_drawings
 
@@ -410,17 +423,24 @@ def _plans(run: _Run, twelve: Kinematics, drawn: list[int], sheets: bool) -> lis
         tail = "" if k == drawn[0] else f"_{k}"
         where = run.t("at_position", position=k)
         names += [
-            run.figure(f"velocity_plan{tail}",
-                       functools.partial(figures.velocity_plan, twelve, k, position=k, lang=lang),
-                       run.t("caption.velocity_plan") + where),
-            run.figure(f"acceleration_plan{tail}",
-                       functools.partial(figures.acceleration_plan, twelve, k, position=k, lang=lang),
-                       run.t("caption.acceleration_plan") + where),
-        ]  # fmt: skip
+            run.figure(
+                f"velocity_plan{tail}",
+                functools.partial(figures.velocity_plan, twelve, k, position=k, lang=lang),
+                run.t("caption.velocity_plan") + where,
+            ),
+            run.figure(
+                f"acceleration_plan{tail}",
+                functools.partial(figures.acceleration_plan, twelve, k, position=k, lang=lang),
+                run.t("caption.acceleration_plan") + where,
+            ),
+        ]
     if sheets:
         for kind in ("velocity", "acceleration"):
-            sheet = run.figure(f"{kind}_plans", functools.partial(figures.plan_sheet, twelve, kind, lang=lang),
-                               run.t(f"caption.{kind}_plans"))  # fmt: skip
+            sheet = run.figure(
+                f"{kind}_plans",
+                functools.partial(figures.plan_sheet, twelve, kind, lang=lang),
+                run.t(f"caption.{kind}_plans"),
+            )
             names.append(sheet)
     return names
 
@@ -472,8 +492,16 @@ def _extremes_tables(run: _Run, cycle: ReportCycle) -> list[str]:
             slider = link_named(mech.link_names[_slider_link(mech, e.name)], run.t) if kind == "slider" else ""
             name = e.name if kind == "rocker" else f"{slider} ({e.name})"
             at_low, at_high = cycle.phi([e.at_low, e.at_high])
-            rows.append([name, *(v[i] for v in values), _deg(at_low), _deg(at_high), _ratio(e.time_ratio),
-                         _ratio(e.forward_time_ratio)])  # fmt: skip
+            rows.append(
+                [
+                    name,
+                    *(v[i] for v in values),
+                    _deg(at_low),
+                    _deg(at_high),
+                    _ratio(e.time_ratio),
+                    _ratio(e.forward_time_ratio),
+                ]
+            )
         if rows:
             head = [run.t(f"extremes.head.{kind}.{k}") for k in ("name", "stroke", "low", "high")]
             head += [run.t(f"extremes.head.{k}") for k in ("phi_low", "phi_high", "k", "forward")]
@@ -553,10 +581,12 @@ def _forces(run: _Run, cycle: ReportCycle) -> None:
     sec.body += _efficiency_text(run, f)
     sec.body += _checks_table(run, f)
     zero, lang = cycle.zero, run.lang
-    sec.figures.append(run.figure("driving_torque", lambda: figures.torque_diagram(f, zero, lang),
-                                  run.t("caption.driving_torque")))  # fmt: skip
-    sec.figures.append(run.figure("foundation", lambda: figures.foundation_diagram(f, zero, lang),
-                                  run.t("caption.foundation")))  # fmt: skip
+    sec.figures.append(
+        run.figure("driving_torque", lambda: figures.torque_diagram(f, zero, lang), run.t("caption.driving_torque"))
+    )
+    sec.figures.append(
+        run.figure("foundation", lambda: figures.foundation_diagram(f, zero, lang), run.t("caption.foundation"))
+    )
     for k in range(mech.n_pairs):
         if mech.pair_links[k, 0] == 0 and mech.pair_type[k] == PairType.REVOLUTE:
             joint = str(mech.pair_joint[k])
@@ -587,17 +617,33 @@ def _efficiency_text(run: _Run, f: Forces) -> list[str]:
     if math.isfinite(cycle) and np.isfinite(eta).any():
         useful = float(e.work(e.useful))
         low, high = (round(float(x), 3) + 0.0 for x in (np.nanmin(eta), np.nanmax(eta)))  # no "-0.000"
-        out.append(_p(run.t("efficiency.text", cycle=f"{cycle:.4f}", useful=f"{useful:.4g}", drive=f"{drive:.4g}",
-                            low=f"{low:.3f}", high=f"{high:.3f}")))  # fmt: skip
+        out.append(
+            _p(
+                run.t(
+                    "efficiency.text",
+                    cycle=f"{cycle:.4f}",
+                    useful=f"{useful:.4g}",
+                    drive=f"{drive:.4g}",
+                    low=f"{low:.3f}",
+                    high=f"{high:.3f}",
+                )
+            )
+        )
     else:
         out.append(_p(run.t("efficiency.none")))
     works = e.work(e.losses)
-    peaks = [float(np.nanmax(e.losses[:, j])) if np.isfinite(e.losses[:, j]).any() else math.nan
-             for j in range(len(e.joints))]  # fmt: skip
+    peaks = [
+        float(np.nanmax(e.losses[:, j])) if np.isfinite(e.losses[:, j]).any() else math.nan
+        for j in range(len(e.joints))
+    ]
     share = works / drive * 100 if drive > 0 else np.full(len(works), np.nan)
     rows = [list(r) for r in zip(e.joints, _fixed(works), _fixed(share), _fixed(peaks), strict=True)]
-    head = [run.t("efficiency.head.joint"), run.t("efficiency.head.work"), run.t("efficiency.head.share"),
-            run.t("efficiency.head.peak")]  # fmt: skip
+    head = [
+        run.t("efficiency.head.joint"),
+        run.t("efficiency.head.work"),
+        run.t("efficiency.head.share"),
+        run.t("efficiency.head.peak"),
+    ]
     return out + [_table(head, rows)]
 
 
@@ -617,9 +663,16 @@ def _torque_text(run: _Run, cycle: ReportCycle, f: Forces) -> list[str]:
     top, at = float(peak.value[0]), float(peak.at[0])
     factor, unit = (1e-3, "unit.kNm") if abs(top) >= 1e4 else (1.0, "unit.Nm")
     return [
-        _p(run.t("forces.torque", peak=f"{top * factor:.4g}", mean=f"{np.nanmean(torque) * factor:.4g}",
-                 unit=run.t(unit), at=_deg(float(cycle.phi(at)))))
-    ]  # fmt: skip
+        _p(
+            run.t(
+                "forces.torque",
+                peak=f"{top * factor:.4g}",
+                mean=f"{np.nanmean(torque) * factor:.4g}",
+                unit=run.t(unit),
+                at=_deg(float(cycle.phi(at))),
+            )
+        )
+    ]
 
 
 def _joint_table(run: _Run, cycle: ReportCycle, f: Forces, unit: tuple[float, str]) -> list[str]:
@@ -638,8 +691,12 @@ def _joint_table(run: _Run, cycle: ReportCycle, f: Forces, unit: tuple[float, st
     sizes = np.array([row[2] for row in rows], dtype=float)
     for row, text, endless in zip(rows, _fixed(np.where(np.isinf(sizes), np.nan, sizes)), np.isinf(sizes), strict=True):
         row[2] = run.t("joints.unbounded") if endless else text
-    head = [run.t("joints.head.joint"), run.t("joints.head.links"), run.t("joints.head.largest", unit=run.t(unit[1])),
-            run.t("head.at_phi")]  # fmt: skip
+    head = [
+        run.t("joints.head.joint"),
+        run.t("joints.head.links"),
+        run.t("joints.head.largest", unit=run.t(unit[1])),
+        run.t("head.at_phi"),
+    ]
     return [_table(head, rows)] + ([_p(run.t("joints.unbounded.note"))] if np.isinf(sizes).any() else [])
 
 
@@ -678,8 +735,9 @@ def _checks_table(run: _Run, f: Forces) -> list[str]:
     from linkwork.io.force_tables import groups
 
     checks: list[list[Any]] = [[run.t(f"check.{k}"), f"{v:.2g}"] for k, v in f.checks.items()]
-    checks += [[run.t("check.free_body", group=group_label(g["group"], run.lang)), f"{g['residual']:.2g}"]
-               for g in groups(f)]  # fmt: skip
+    checks += [
+        [run.t("check.free_body", group=group_label(g["group"], run.lang)), f"{g['residual']:.2g}"] for g in groups(f)
+    ]
     return [_p(run.t("checks.title")), _table([run.t("checks.head.check"), run.t("checks.head.value")], checks)]
 
 
@@ -716,12 +774,19 @@ def _dynamics(run: _Run, cycle: ReportCycle) -> None:
     sec.body.append(_table([run.t("dynamics.head.quantity"), run.t("dynamics.head.value")], rows))
     if fly is not None:
         sec.body.append(
-            _p(run.t("dynamics.why_delta", true=f"{last.delta:.4g}", asked=f"{fly.delta:.4g}",
-                     rpm=f"{fly.omega_mean * rpm:.4g}"))
-        )  # fmt: skip
+            _p(
+                run.t(
+                    "dynamics.why_delta",
+                    true=f"{last.delta:.4g}",
+                    asked=f"{fly.delta:.4g}",
+                    rpm=f"{fly.omega_mean * rpm:.4g}",
+                )
+            )
+        )
     zero, lang = cycle.zero, run.lang
-    sec.figures.append(run.figure("dynamics", lambda: figures.dynamics_diagrams(result, zero, lang),
-                                  run.t("caption.dynamics")))  # fmt: skip
+    sec.figures.append(
+        run.figure("dynamics", lambda: figures.dynamics_diagrams(result, zero, lang), run.t("caption.dynamics"))
+    )
     run.sections.append(sec)
 
 
@@ -821,8 +886,9 @@ def _impact_cycle(run: _Run, sec: Section) -> None:
     rows += [[run.t("impact.joint", joint=j), _vector(v, ns)] for j, v in b.joints.items()]
     rows += [[run.t("impact.work"), b.work_on_work], [run.t("impact.motor_power"), c.mean_power]]
     sec.body.append(_table([run.t("impact.head.steady"), run.t("dynamics.head.value")], rows))
-    phases = [[run.t(f"phase.{p.kind}"), p.freedom, 1000 * (p.start - b.time), 1000 * p.duration]
-              for p in c.cycle_phases()]  # fmt: skip
+    phases = [
+        [run.t(f"phase.{p.kind}"), p.freedom, 1000 * (p.start - b.time), 1000 * p.duration] for p in c.cycle_phases()
+    ]
     head = [run.t(f"phases.head.{k}") for k in ("phase", "freedom", "from", "lasts")]
     sec.body.append(_table(head, phases))
 

@@ -80,8 +80,9 @@ def _drive(mech: Mechanism, t: Any) -> str:
         return t("input.drive.law", joint=joint, start=_g(math.degrees(mech.drive_start[0])))
     turn = t("input.ccw" if speed >= 0 else "input.cw")
     rpm = _g(abs(speed) * 30 / math.pi)
-    return t("input.drive", joint=joint, rpm=rpm, rad=_g(abs(speed)), turn=turn,
-             start=_g(math.degrees(mech.drive_start[0])))  # fmt: skip
+    return t(
+        "input.drive", joint=joint, rpm=rpm, rad=_g(abs(speed)), turn=turn, start=_g(math.degrees(mech.drive_start[0]))
+    )
 
 
 def _links(mech: Mechanism, t: Any) -> str:
@@ -94,10 +95,22 @@ def _links(mech: Mechanism, t: Any) -> str:
         points = [p for p in range(len(mech.point_names)) if mech.point_link[p] == i]
         where = ", ".join(f"{mech.point_names[p].split('.', 1)[1]} {_mm(mech.point_local[p])}" for p in points)
         mass = float(mech.link_mass[i])
-        rows.append([link_named(name, t), where, _g(mass), _mm(mech.link_com[i]) if mass else "-",
-                     _g(float(mech.link_inertia[i])) if mass else "-"])  # fmt: skip
-    head = [t("input.head.link"), t("input.head.points"), t("input.head.mass"), t("input.head.com"),
-            t("input.head.inertia")]  # fmt: skip
+        rows.append(
+            [
+                link_named(name, t),
+                where,
+                _g(mass),
+                _mm(mech.link_com[i]) if mass else "-",
+                _g(float(mech.link_inertia[i])) if mass else "-",
+            ]
+        )
+    head = [
+        t("input.head.link"),
+        t("input.head.points"),
+        t("input.head.mass"),
+        t("input.head.com"),
+        t("input.head.inertia"),
+    ]
     return f"<p>{html.escape(t('input.links'))}</p>" + _table(head, rows)
 
 

@@ -82,8 +82,12 @@ class Pages:
         body = rows[1:]
         columns = max(len(r) for r in rows)
         # each column as wide as its widest cell and its heading's longest word (bold: a tenth wider), in ems
-        width = [max([_width(r[c]) for r in body if c < len(r)] + [1.1 * _width(w) for w in rows[0][c].split()])
-                 + 1.0 if c < len(rows[0]) else 1.0 for c in range(columns)]  # fmt: skip
+        width = [
+            max([_width(r[c]) for r in body if c < len(r)] + [1.1 * _width(w) for w in rows[0][c].split()]) + 1.0
+            if c < len(rows[0])
+            else 1.0
+            for c in range(columns)
+        ]
         size = max(min(TABLE, (PAGE[0] - 2 * MARGIN) * 72 / sum(width)), SMALLEST)
         head = [_wrapped(h, width[c] - 1.0) for c, h in enumerate(rows[0])]
         lines = [max(cell.count("\n") + 1 for cell in r) for r in (head, *body)]
@@ -107,8 +111,15 @@ class Pages:
         top = self.y
         for r, row in enumerate(rows):
             for c, cell in enumerate(row):
-                fig.text((edges[c] + 0.4 * size / 72) / PAGE[0], (self.y - 0.95 * size / 72) / PAGE[1], cell,
-                         fontsize=size, va="top", linespacing=1.25, weight="bold" if r == 0 else "normal")  # fmt: skip
+                fig.text(
+                    (edges[c] + 0.4 * size / 72) / PAGE[0],
+                    (self.y - 0.95 * size / 72) / PAGE[1],
+                    cell,
+                    fontsize=size,
+                    va="top",
+                    linespacing=1.25,
+                    weight="bold" if r == 0 else "normal",
+                )
             self.y -= step * lines[r]
             fig.add_artist(_rule(edges[0], edges[-1], self.y, 0.8 if r == 0 else 0.3))
         fig.add_artist(_rule(edges[0], edges[-1], top, 0.8))

@@ -117,8 +117,16 @@ def _drawn(vector: np.ndarray, largest: float) -> bool:
     return bool(np.isfinite(vector).all() and np.hypot(*vector) > 1e-6 * largest)
 
 
-def force_plan_scene(group: GroupPlan, index: int, *, lang: str = "en", scale: float | None = None,
-                     em: float = LETTERING, variant: int = 0, angle: float = float("nan")) -> ForceScene:  # fmt: skip
+def force_plan_scene(
+    group: GroupPlan,
+    index: int,
+    *,
+    lang: str = "en",
+    scale: float | None = None,
+    em: float = LETTERING,
+    variant: int = 0,
+    angle: float = float("nan"),
+) -> ForceScene:
     """The force plan of ``group`` at sample ``index`` (drive ``angle``, rad, for its title), drawn to ``scale``
     (N/mm; default :meth:`GroupPlan.scale`), its names in ``lang``; without arrows at a dead point (where the
     plan's reactions are NaN)."""
@@ -128,8 +136,9 @@ def force_plan_scene(group: GroupPlan, index: int, *, lang: str = "en", scale: f
     largest = max((float(np.hypot(*v)) for v in values if np.isfinite(v).all()), default=0.0)
     drafts: list[_Draft] = []
     if not np.isfinite(vertices).all():  # a dead point: no plan (a part of one would mislead)
-        return _scene("force_plan", group.label, scale, np.nan, em, lang, drafts, np.zeros((0, 2, 2)),
-                      np.zeros((0, 2)), (), angle)  # fmt: skip
+        return _scene(
+            "force_plan", group.label, scale, np.nan, em, lang, drafts, np.zeros((0, 2, 2)), np.zeros((0, 2)), (), angle
+        )
     for j, f in enumerate(group.polygon):
         if _drawn(values[j], largest):
             drafts.append((vertices[j], vertices[j + 1], f, False))
@@ -138,12 +147,24 @@ def force_plan_scene(group: GroupPlan, index: int, *, lang: str = "en", scale: f
         if r.part or not _drawn(v, largest):
             continue
         ends = _between(vertices, v / scale, largest / scale)
-        if ends is not None and not any(f.pair == r.pair and f.link == r.link and not f.part and f.kind != "known"
-                                        for f in group.polygon):  # fmt: skip
+        if ends is not None and not any(
+            f.pair == r.pair and f.link == r.link and not f.part and f.kind != "known" for f in group.polygon
+        ):
             drafts.append((ends[0], ends[1], r, True))
     corners = vertices[np.isfinite(vertices).all(-1)]
-    return _scene("force_plan", group.label, scale, np.nan, em, lang, drafts, np.zeros((0, 2, 2)), corners,
-                  ("",) * len(corners), angle)  # fmt: skip
+    return _scene(
+        "force_plan",
+        group.label,
+        scale,
+        np.nan,
+        em,
+        lang,
+        drafts,
+        np.zeros((0, 2, 2)),
+        corners,
+        ("",) * len(corners),
+        angle,
+    )
 
 
 def _between(vertices: np.ndarray, vector: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray] | None:
@@ -157,9 +178,17 @@ def _between(vertices: np.ndarray, vector: np.ndarray, size: float) -> tuple[np.
     return vertices[i], vertices[j]
 
 
-def lever_scene(lv: Lever, velocity: PlanSeries, index: int, *, lang: str = "en", em: float = LETTERING,
-                variant: int = 0, plan_scale: float | None = None,
-                scale: float | None = None) -> ForceScene:  # fmt: skip
+def lever_scene(
+    lv: Lever,
+    velocity: PlanSeries,
+    index: int,
+    *,
+    lang: str = "en",
+    em: float = LETTERING,
+    variant: int = 0,
+    plan_scale: float | None = None,
+    scale: float | None = None,
+) -> ForceScene:
     """Zhukovsky's lever at sample ``index``: the velocity plan ``velocity`` (of the same samples) turned by 90
     degrees at its scale μv (``plan_scale``, (m/s)/mm; default its own), every force of ``lv`` at its point's image
     to a force scale μF (``scale``, N/mm; default one that draws the largest 40 mm long; those shorter than half
@@ -199,12 +228,34 @@ def lever_scene(lv: Lever, velocity: PlanSeries, index: int, *, lang: str = "en"
     if np.isfinite(pin).all() and (round(float(pin[0]), 6), round(float(pin[1]), 6)) not in seen:
         dots.append(pin)
         texts.append(lv.pin)
-    return _scene("lever", "", scale, plan_scale, em, lang, drafts, segs, np.array(dots),
-                  tuple(texts), angle=float(velocity.angles[index]))  # fmt: skip
+    return _scene(
+        "lever",
+        "",
+        scale,
+        plan_scale,
+        em,
+        lang,
+        drafts,
+        segs,
+        np.array(dots),
+        tuple(texts),
+        angle=float(velocity.angles[index]),
+    )
 
 
-def _scene(kind: str, label: str, scale: float, plan_scale: float, em: float, lang: str, drafts: list[_Draft],
-           lines: np.ndarray, dots: np.ndarray, dot_text: tuple[str, ...], angle: float) -> ForceScene:  # fmt: skip
+def _scene(
+    kind: str,
+    label: str,
+    scale: float,
+    plan_scale: float,
+    em: float,
+    lang: str,
+    drafts: list[_Draft],
+    lines: np.ndarray,
+    dots: np.ndarray,
+    dot_text: tuple[str, ...],
+    angle: float,
+) -> ForceScene:
     """The scene of ``drafts`` (start, end, force, resultant) with every name placed."""
     texts = [_name(f, lang) for _, _, f, _ in drafts]
     segments = np.array([[s, e] for s, e, _, _ in drafts] + [list(x) for x in lines]).reshape(1, -1, 2, 2)
@@ -220,14 +271,26 @@ def _scene(kind: str, label: str, scale: float, plan_scale: float, em: float, la
     boxes = np.concatenate([centres - sizes[0] / 2, centres + sizes[0] / 2], -1)[None]
     dot_sizes = np.array([text_size(t, em) for t in dot_text]).reshape(1, -1, 2)
     anchors = np.where(np.array([bool(t) for t in dot_text], dtype=bool)[:, None], dots.reshape(-1, 2), np.nan)
-    dot_centres = place_labels(anchors[None], dot_sizes, np.full(len(dot_text), 0.3 * em), obstacles,
-                               pad=0.1 * em, taken=boxes)[0]  # fmt: skip
+    dot_centres = place_labels(
+        anchors[None], dot_sizes, np.full(len(dot_text), 0.3 * em), obstacles, pad=0.1 * em, taken=boxes
+    )[0]
     arrows = tuple(
         ForceArrow(s, e, f.kind, texts[j], f.tex(lang), centres[j], float(np.hypot(*(e - s))) * scale, resultant)
         for j, (s, e, f, resultant) in enumerate(drafts)
     )
-    return ForceScene(kind, label, angle, scale, plan_scale, em, arrows, lines.reshape(-1, 2, 2), dots.reshape(-1, 2),
-                      dot_text, dot_centres.reshape(-1, 2))  # fmt: skip
+    return ForceScene(
+        kind,
+        label,
+        angle,
+        scale,
+        plan_scale,
+        em,
+        arrows,
+        lines.reshape(-1, 2, 2),
+        dots.reshape(-1, 2),
+        dot_text,
+        dot_centres.reshape(-1, 2),
+    )
 
 
 def _name(f: PlanForce, lang: str) -> str:

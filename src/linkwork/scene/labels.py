@@ -93,8 +93,9 @@ def place_labels(
     placed = np.full((n_samples, 0, 4), np.nan) if taken is None else np.asarray(taken, dtype=float)
     out = np.full((n_samples, n_labels, 2), np.nan)
     for j in range(n_labels):
-        centres, boxes = _place_one(alternatives[:, j], sizes[:, j], float(gaps[j]), prefer[:, j], placed, obstacles,
-                                    pad, directions)  # fmt: skip
+        centres, boxes = _place_one(
+            alternatives[:, j], sizes[:, j], float(gaps[j]), prefer[:, j], placed, obstacles, pad, directions
+        )
         out[:, j] = centres
         placed = np.concatenate([placed, boxes[:, None]], 1)
     return out
@@ -133,8 +134,10 @@ def _place_one(
         cost[rows, cols] = covered + base[rows, cols]
         todo[rows] &= ~(covered.min(1) == 0)
     pick = _smooth(np.where(np.isfinite(cost), cost, 1e9))
-    return (np.take_along_axis(centres, pick[:, None, None], 1)[:, 0],
-            np.take_along_axis(boxes, pick[:, None, None], 1)[:, 0])  # fmt: skip
+    return (
+        np.take_along_axis(centres, pick[:, None, None], 1)[:, 0],
+        np.take_along_axis(boxes, pick[:, None, None], 1)[:, 0],
+    )
 
 
 def _candidates(anchor: np.ndarray, size: np.ndarray, gap: float, directions: np.ndarray = DIRECTIONS) -> np.ndarray:

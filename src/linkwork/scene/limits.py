@@ -58,8 +58,12 @@ class LimitsScene:
         """``[x0, y0, x1, y1]`` of everything drawn, m."""
         w, h = text_size(self.label.text, self.scheme.em)
         c = self.label.centre[0]
-        return bounds(self.scheme.extent(paths=True)[None], self.rays.reshape(-1, 2), self.arc,
-                      np.array([c - [w / 2, h / 2], c + [w / 2, h / 2]]))  # fmt: skip
+        return bounds(
+            self.scheme.extent(paths=True)[None],
+            self.rays.reshape(-1, 2),
+            self.arc,
+            np.array([c - [w / 2, h / 2], c + [w / 2, h / 2]]),
+        )
 
 
 def limits_scene(kin: Kinematics) -> LimitsScene | None:

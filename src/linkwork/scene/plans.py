@@ -214,12 +214,14 @@ def plan_scene(
     centres = _placed(text, main, points, ends, em)
     unit = "m/s" if series.kind == "velocity" else "m/s^2"
     angles = np.asarray(series.angles)[idx]
-    return PlanScene(series.kind, unit, scale, em, angles, names, main, points, arrows, ends, value, text, centres,
-                     pole)  # fmt: skip
+    return PlanScene(
+        series.kind, unit, scale, em, angles, names, main, points, arrows, ends, value, text, centres, pole
+    )
 
 
-def _grouped(names: tuple[str, ...], main: np.ndarray, points: np.ndarray, em: float,
-             pole: str = "p") -> tuple[tuple[str, ...], ...]:  # fmt: skip
+def _grouped(
+    names: tuple[str, ...], main: np.ndarray, points: np.ndarray, em: float, pole: str = "p"
+) -> tuple[tuple[str, ...], ...]:
     """The label of each plan point at each position ``(A, L)``: the names of the points that coincide
     with it on the sheet (the textbook's letters among them, :data:`_LETTER`; the pole ``p`` written
     ``pole``), given to the first of them; empty for the others and where it is not drawn."""
@@ -242,8 +244,9 @@ def _grouped(names: tuple[str, ...], main: np.ndarray, points: np.ndarray, em: f
     return tuple(out)
 
 
-def _placed(text: tuple[tuple[str, ...], ...], main: np.ndarray, points: np.ndarray, ends: np.ndarray,
-            em: float) -> np.ndarray:  # fmt: skip
+def _placed(
+    text: tuple[tuple[str, ...], ...], main: np.ndarray, points: np.ndarray, ends: np.ndarray, em: float
+) -> np.ndarray:
     """Centres ``(A, L, 2)`` of the labels, clear of each other, of the arrows and of the dots."""
     n, count = points.shape[:2]
     shown = np.array([[bool(t) for t in row] for row in text]).reshape(n, count)
@@ -252,8 +255,14 @@ def _placed(text: tuple[tuple[str, ...], ...], main: np.ndarray, points: np.ndar
     dots = np.concatenate([points, np.full((n, count, 1), 0.25 * em)], -1)
     prefer = _away(points, ends)
     order = list(np.flatnonzero(main)) + list(np.flatnonzero(~main))
-    centres = place_labels(anchors[:, order], size.reshape(n, count, 2)[:, order], np.full(count, 0.3 * em),
-                           Obstacles(ends, dots), prefer[:, order], pad=0.1 * em)  # fmt: skip
+    centres = place_labels(
+        anchors[:, order],
+        size.reshape(n, count, 2)[:, order],
+        np.full(count, 0.3 * em),
+        Obstacles(ends, dots),
+        prefer[:, order],
+        pad=0.1 * em,
+    )
     out = np.full_like(centres, np.nan)
     out[:, order] = centres
     return out

@@ -187,8 +187,9 @@ def _clear_of_every_position(scheme: SchemeScene, labels: tuple[Label, ...]) -> 
     """The frame's ``labels`` placed again, clear of the lines of every position (not of position 0 alone)."""
     if not labels:
         return labels
-    anchors = np.array([place(scheme.poses[:1, lab.link], np.asarray(lab.at, dtype=float)[None])[0, 0]
-                        for lab in labels])[None]  # fmt: skip
+    anchors = np.array(
+        [place(scheme.poses[:1, lab.link], np.asarray(lab.at, dtype=float)[None])[0, 0] for lab in labels]
+    )[None]
     sizes = np.array([text_size(lab.text, scheme.em) for lab in labels])
     gaps = np.full(len(labels), max(0.8 * scheme.r, 0.5 * scheme.em))  # out of a small crank's circle if need be
     centres = place_labels(anchors, sizes, gaps, _all_positions(scheme), pad=0.15 * scheme.em, directions=FINE)
@@ -243,11 +244,15 @@ def _numbers(scheme: SchemeScene, pts: np.ndarray, points: list[int]) -> tuple[t
         away = anchors[0] - centre
         prefer = away / np.maximum(np.hypot(*away.T), 1e-12)[:, None]
         gaps = np.full(len(wanted), 0.8 * scheme.r)
-        centres = place_labels(anchors, sizes, gaps, _all_positions(scheme), prefer[None], pad=0.15 * em,
-                               taken=taken, directions=FINE)  # fmt: skip
+        centres = place_labels(
+            anchors, sizes, gaps, _all_positions(scheme), prefer[None], pad=0.15 * em, taken=taken, directions=FINE
+        )
         numbers += [Label(t, "position", 0, a, centres[:, j]) for j, (t, a) in enumerate(wanted)]
-        leaders += [_leader(a, centres[0, j], sizes[j], scheme.r, em) for j, (_, a) in enumerate(wanted)
-                    if np.hypot(*(centres[0, j] - a)) > np.hypot(*sizes[j]) / 2 + scheme.r + 1.5 * em]  # fmt: skip
+        leaders += [
+            _leader(a, centres[0, j], sizes[j], scheme.r, em)
+            for j, (_, a) in enumerate(wanted)
+            if np.hypot(*(centres[0, j] - a)) > np.hypot(*sizes[j]) / 2 + scheme.r + 1.5 * em
+        ]
     return tuple(numbers), np.array(leaders).reshape(-1, 2, 2)
 
 
@@ -272,8 +277,9 @@ def _coincident(xy: np.ndarray, within: float) -> list[tuple[str, np.ndarray]]:
     return out
 
 
-def _column(anchors: np.ndarray, texts: list[str], centre: np.ndarray, r: float,
-            em: float) -> list[tuple[np.ndarray, np.ndarray]] | None:  # fmt: skip
+def _column(
+    anchors: np.ndarray, texts: list[str], centre: np.ndarray, r: float, em: float
+) -> list[tuple[np.ndarray, np.ndarray]] | None:
     """Where the numbers of points along a straight line go: in a column beside the line, on the side away from
     the drawing's ``centre``, in the order of the points along it, each as near its point as the numbers'
     :data:`SPACING` lets it be (the least squares spread: pool adjacent violators); with each number, its
@@ -328,5 +334,7 @@ def _all_positions(scheme: SchemeScene) -> Obstacles:
         elif it.kind != "hatch":
             ring = np.concatenate([xy, xy[:, :1]], 1) if it.closed else xy
             segs.append(np.stack([ring[:, :-1], ring[:, 1:]], 2).reshape(-1, 2, 2))
-    return Obstacles(np.concatenate(segs)[None] if segs else np.zeros((1, 0, 2, 2)),
-                     np.concatenate(circles)[None] if circles else np.zeros((1, 0, 3)))  # fmt: skip
+    return Obstacles(
+        np.concatenate(segs)[None] if segs else np.zeros((1, 0, 2, 2)),
+        np.concatenate(circles)[None] if circles else np.zeros((1, 0, 3)),
+    )

@@ -177,8 +177,9 @@ class SchemeScene:
     def element_ends(self, element: Element, index: int | None = None) -> np.ndarray:
         """The element's two points in the global axes: ``(A, 2, 2)``, or ``(2, 2)`` at sample ``index``."""
         at = slice(None) if index is None else slice(index, index + 1)
-        ends = np.stack([place(self.poses[at, link], element.at[j : j + 1])[:, 0]
-                         for j, link in enumerate(element.links)], 1)  # fmt: skip
+        ends = np.stack(
+            [place(self.poses[at, link], element.at[j : j + 1])[:, 0] for j, link in enumerate(element.links)], 1
+        )
         return ends if index is None else ends[0]
 
     def element_strokes(self, element: Element, index: int | None = None) -> list[np.ndarray]:
@@ -217,8 +218,9 @@ class SchemeScene:
         return bounds(*parts)
 
 
-def scheme_scene(kin: Kinematics, variant: int = 0, at: list[int] | None = None,
-                 cycle: Kinematics | None = None) -> SchemeScene:  # fmt: skip
+def scheme_scene(
+    kin: Kinematics, variant: int = 0, at: list[int] | None = None, cycle: Kinematics | None = None
+) -> SchemeScene:
     """The scheme of every sample of ``kin`` (of design variant ``variant``).
 
     What does not move (the sides the supports stand on and the guides are hatched on, the guides'
@@ -296,8 +298,10 @@ class _Builder:
         apexes = self.local[list(self.layout.supports)].reshape(-1, 2)
         origins, directions = self._guide_lines()
         on = self.layout.sliders.on_frame  # the guides drawn: those on the frame
-        spans = [self._stroke(p, origin, u) for p, origin, u in
-                 zip(self.layout.sliders.guided, origins[on], directions[on], strict=True)]  # fmt: skip
+        spans = [
+            self._stroke(p, origin, u)
+            for p, origin, u in zip(self.layout.sliders.guided, origins[on], directions[on], strict=True)
+        ]
         downs, sides = self._free_sides(apexes, origins[on], directions[on], spans)
         supports, bases = self._supports(apexes, downs)
         guides, lines = self._guides(origins[on], directions[on], spans, sides)
@@ -310,8 +314,9 @@ class _Builder:
         """Each moving link as a bar (its points in one line) or a plate (their convex outline)."""
         out = []
         at = self.local.tolist()  # a bar of two points: its ends in the order of the hull's (x, then y)
-        pairs = [draw[::-1] if at[draw[1]] < at[draw[0]] else draw
-                 for _, draw, _ in self.layout.bodies if len(draw) == 2]  # fmt: skip
+        pairs = [
+            draw[::-1] if at[draw[1]] < at[draw[0]] else draw for _, draw, _ in self.layout.bodies if len(draw) == 2
+        ]
         ends = iter(self.local[pairs] if pairs else ())
         for link, draw, name in self.layout.bodies:
             if len(draw) == 2:
@@ -326,8 +331,10 @@ class _Builder:
 
     def _pivots(self) -> list[Item]:
         """A circle at every revolute joint, one for the links a compound hinge joins."""
-        return [_item("pivot", link, self.local[p][None], radius=self.r, name=joint)
-                for joint, p, link in self.layout.pivots]  # fmt: skip
+        return [
+            _item("pivot", link, self.local[p][None], radius=self.r, name=joint)
+            for joint, p, link in self.layout.pivots
+        ]
 
     def _supports(self, apexes: np.ndarray, downs: np.ndarray) -> tuple[list[Item], list[symbols.Hatch]]:
         """A hinge symbol under every revolute joint on the frame at ``apexes``, turned towards ``downs``, and
@@ -335,8 +342,10 @@ class _Builder:
         out, bases = [], []
         for apex, down, joint in zip(apexes.tolist(), downs.tolist(), self.layout.supports.values(), strict=True):
             triangle, base = symbols.support(apex, down, self.r)
-            out += [_item("support", 0, triangle, closed=True, name=joint),
-                    _item("support", 0, np.array(base[:2]), name=joint)]  # fmt: skip
+            out += [
+                _item("support", 0, triangle, closed=True, name=joint),
+                _item("support", 0, np.array(base[:2]), name=joint),
+            ]
             bases.append(base)
         return out, bases
 
@@ -347,8 +356,9 @@ class _Builder:
             out += _lines("hatch", strokes, joint)
         return out
 
-    def _free_sides(self, apexes: np.ndarray, origins: np.ndarray, directions: np.ndarray,
-                    spans: list[tuple[float, float]]) -> tuple[np.ndarray, list[float]]:  # fmt: skip
+    def _free_sides(
+        self, apexes: np.ndarray, origins: np.ndarray, directions: np.ndarray, spans: list[tuple[float, float]]
+    ) -> tuple[np.ndarray, list[float]]:
         """The sides the supports stand on and the guides are hatched on, from one count of the crossings of the
         lines of the moving links over the cycle (:func:`~linkwork.scene.labels.ends_hit`).
 
@@ -370,8 +380,9 @@ class _Builder:
             boxes[row, :2] = [[lo, 1.5 * r, hi, 8 * r], [lo, -8 * r, hi, -1.5 * r]]  # left of the guide, right
         hits = ends_hit(boxes, ends)
         score = hits[:count] / max(segs.shape[1], 1) + _STANDING
-        return SIDES[np.argmin(score, axis=1)], [1.0 if left <= right else -1.0 for left, right in
-                                                 hits[count:, :2].tolist()]  # fmt: skip
+        return SIDES[np.argmin(score, axis=1)], [
+            1.0 if left <= right else -1.0 for left, right in hits[count:, :2].tolist()
+        ]
 
     def _along(self, origin: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The ends of the sides of the links in the axes of the guide through ``origin`` along ``u``: along it and
@@ -398,8 +409,9 @@ class _Builder:
         angles = self.poses[self.first, sliders.links, 2]
         turns = np.cos(angles).tolist(), np.sin(angles).tolist()
         centres = self.local[sliders.points].tolist()
-        for link, centre, (ux, uy), c, s, joint in zip(sliders.links, centres, directions.tolist(), *turns,
-                                                       sliders.joints, strict=True):  # fmt: skip
+        for link, centre, (ux, uy), c, s, joint in zip(
+            sliders.links, centres, directions.tolist(), *turns, sliders.joints, strict=True
+        ):
             u = (c * ux + s * uy, -s * ux + c * uy)  # in the link's axes
             out.append(_item("block", link, symbols.block(centre, u, self.r), closed=True, name=joint))
         return out
@@ -411,15 +423,19 @@ class _Builder:
         x = x[np.isfinite(x)]
         return (float(x.min()) - 3 * self.r, float(x.max()) + 3 * self.r) if len(x) else (-3 * self.r, 3 * self.r)
 
-    def _guides(self, origins: np.ndarray, directions: np.ndarray, spans: list[tuple[float, float]],
-                sides: list[float]) -> tuple[list[Item], list[symbols.Hatch]]:  # fmt: skip
+    def _guides(
+        self, origins: np.ndarray, directions: np.ndarray, spans: list[tuple[float, float]], sides: list[float]
+    ) -> tuple[list[Item], list[symbols.Hatch]]:
         """The guides on the frame through ``origins`` along ``directions`` over ``spans``, and their lines to hatch
         on ``sides``."""
-        lines = [symbols.guide(origin, u, span, side, self.r) for origin, u, span, side in
-                 zip(origins.tolist(), directions.tolist(), spans, sides, strict=True)]  # fmt: skip
+        lines = [
+            symbols.guide(origin, u, span, side, self.r)
+            for origin, u, span, side in zip(origins.tolist(), directions.tolist(), spans, sides, strict=True)
+        ]
         joints = self.layout.sliders.guide_joints
-        return [_item("guide", 0, np.array(line[:2]), name=joint)
-                for line, joint in zip(lines, joints, strict=True)], lines  # fmt: skip
+        return [
+            _item("guide", 0, np.array(line[:2]), name=joint) for line, joint in zip(lines, joints, strict=True)
+        ], lines
 
     def _tools(self) -> list[Item]:
         """The knives and tools of process loads with their working edges, and the body a striker hits."""
@@ -450,8 +466,10 @@ class _Builder:
 
     def _markers(self) -> list[Item]:
         """A dot at every point of a moving link that no pair uses."""
-        return [_item("marker", link, self.local[p][None], radius=0.45 * self.r, name=name)
-                for p, link, name in self.layout.markers]  # fmt: skip
+        return [
+            _item("marker", link, self.local[p][None], radius=0.45 * self.r, name=name)
+            for p, link, name in self.layout.markers
+        ]
 
     # ------------------------------------------------------------ labels
 
@@ -463,11 +481,13 @@ class _Builder:
         centres = np.full((len(self.poses), len(wanted), 2), np.nan)
         if at:  # none: the labels' texts and anchors only (the viewer's edits move the labels it has)
             centres[at] = self._placed(items, wanted, at)
-        return tuple(_label(text, kind, link, local, centres[:, j])
-                     for j, (text, kind, link, local, _, _) in enumerate(wanted))  # fmt: skip
+        return tuple(
+            _label(text, kind, link, local, centres[:, j]) for j, (text, kind, link, local, _, _) in enumerate(wanted)
+        )
 
-    def _placed(self, items: tuple[Item, ...], wanted: list[tuple[str, str, int, np.ndarray, np.ndarray, float]],
-                at: list[int]) -> np.ndarray:  # fmt: skip
+    def _placed(
+        self, items: tuple[Item, ...], wanted: list[tuple[str, str, int, np.ndarray, np.ndarray, float]], at: list[int]
+    ) -> np.ndarray:
         """The centres ``(len(at), L, 2)`` of the texts of ``wanted`` at the samples ``at``."""
         # a point's anchor at every sample (A, 2); a link's number's alternatives (M, 2) in its axes, placed
         found = [a if kind == "point" else place(self.poses[:, link], a) for _, kind, link, _, a, _ in wanted]
@@ -475,17 +495,30 @@ class _Builder:
         anchors = np.stack([_alternatives(a, count) for a in found], 1)  # (A, L, M, 2)
         sizes = np.array([text_size(text, self.em) for text, *_ in wanted])
         gaps = np.array([g for *_, g in wanted])
-        prefer = np.stack([self._prefer(link, local, kind, anchors[:, j, 0]) for j, (_, kind, link, local, _, _)
-                           in enumerate(wanted)], 1)  # fmt: skip
+        prefer = np.stack(
+            [
+                self._prefer(link, local, kind, anchors[:, j, 0])
+                for j, (_, kind, link, local, _, _) in enumerate(wanted)
+            ],
+            1,
+        )
         obstacles = self._obstacles(items)
-        return place_labels(anchors[at], sizes, gaps, Obstacles(obstacles.segments[at], obstacles.circles[at]),
-                            prefer[at], pad=0.15 * self.em)  # fmt: skip
+        return place_labels(
+            anchors[at],
+            sizes,
+            gaps,
+            Obstacles(obstacles.segments[at], obstacles.circles[at]),
+            prefer[at],
+            pad=0.15 * self.em,
+        )
 
     def _point_labels(self) -> list[tuple[str, str, int, np.ndarray, np.ndarray, float]]:
         """(text, kind, link, local anchor, anchors (A, 2), gap) of every named point, each name once:
         the joints (a slider's beyond its block), the markers, the frame's points away from any joint."""
-        return [(text, "point", link, self.local[p], self.pts[:, p], gap * self.r)
-                for text, p, link, gap in self.layout.point_labels]  # fmt: skip
+        return [
+            (text, "point", link, self.local[p], self.pts[:, p], gap * self.r)
+            for text, p, link, gap in self.layout.point_labels
+        ]
 
     def _link_numbers(self, items: tuple[Item, ...]) -> list[tuple[str, str, int, np.ndarray, np.ndarray, float]]:
         """(text, kind, link, local anchor, alternatives (M, 2) in the link's axes, gap) of a link's number beside
@@ -495,8 +528,9 @@ class _Builder:
         if bars:
             ends = np.array([it.xy for it in bars])  # (B, 2, 2)
             at = ends[:, None, 0] + _ALONG * (ends[:, None, 1] - ends[:, None, 0])  # the middle first, then the ends
-            out += [(str(it.link), "link", it.link, each[0], each, 0.5 * self.r)
-                    for it, each in zip(bars, at, strict=True)]  # fmt: skip
+            out += [
+                (str(it.link), "link", it.link, each[0], each, 0.5 * self.r) for it, each in zip(bars, at, strict=True)
+            ]
         for it in items:
             if it.kind != "plate":
                 continue
@@ -627,13 +661,21 @@ def _layout(mech: Mechanism) -> _Layout:
             supports.setdefault(int(mech.pair_points[k, 0 if a == 0 else 1]), joint_name)
     point_link = np.array(mech.point_link, dtype=int)
     return _Layout(
-        joint, moving, outline, np.array(sides, dtype=int).reshape(-1, 2),
-        [p for p in moving if outline[int(point_link[p])]], list(pivots.values()), supports,
-        _named_points(mech, joint, revolute), point_link, np.flatnonzero(point_link == 0),
+        joint,
+        moving,
+        outline,
+        np.array(sides, dtype=int).reshape(-1, 2),
+        [p for p in moving if outline[int(point_link[p])]],
+        list(pivots.values()),
+        supports,
+        _named_points(mech, joint, revolute),
+        point_link,
+        np.flatnonzero(point_link == 0),
         [(i, draw, str(mech.link_names[i])) for i, draw in outline.items() if i and draw],
-        _sliders(mech, [k for k in range(mech.n_pairs) if not revolute[k]]), _blades(mech, joint),
+        _sliders(mech, [k for k in range(mech.n_pairs) if not revolute[k]]),
+        _blades(mech, joint),
         [(p, int(point_link[p]), str(mech.point_names[p])) for p in moving if p not in joint],
-    )  # fmt: skip
+    )
 
 
 def _blades(mech: Mechanism, joint: set[int]) -> list[tuple[int, str, int, list[int]]]:
@@ -667,8 +709,15 @@ def _sliders(mech: Mechanism, pairs: list[int]) -> _SliderLayout:
     points = [int(mech.pair_points[k, 1]) for k in pairs]
     joints = [str(mech.pair_joint[k]) for k in pairs]
     on = np.array([int(mech.pair_links[k, 0]) == 0 for k in pairs], dtype=bool)  # the guide is the frame's
-    return _SliderLayout(np.array(pairs, dtype=int), [int(mech.pair_links[k, 1]) for k in pairs], points, joints, on,
-                         list(compress(points, on)), list(compress(joints, on)))  # fmt: skip
+    return _SliderLayout(
+        np.array(pairs, dtype=int),
+        [int(mech.pair_links[k, 1]) for k in pairs],
+        points,
+        joints,
+        on,
+        list(compress(points, on)),
+        list(compress(joints, on)),
+    )
 
 
 def _named_points(mech: Mechanism, joint: set[int], revolute: list[bool]) -> list[tuple[str, int, int, float]]:

@@ -76,8 +76,14 @@ def block(centre: XY, u: XY, r: float) -> np.ndarray:
     """A slider block ``(4, 2)`` about ``centre``, 4 r long along the unit direction ``u`` and 2 r across."""
     (cx, cy), (ux, uy) = centre, u
     lx, ly, wx, wy = 2 * r * ux, 2 * r * uy, r * -uy, r * ux  # half its length along u, half its width across
-    return np.array([[cx - lx - wx, cy - ly - wy], [cx + lx - wx, cy + ly - wy], [cx + lx + wx, cy + ly + wy],
-                     [cx - lx + wx, cy - ly + wy]])  # fmt: skip
+    return np.array(
+        [
+            [cx - lx - wx, cy - ly - wy],
+            [cx + lx - wx, cy + ly - wy],
+            [cx + lx + wx, cy + ly + wy],
+            [cx - lx + wx, cy - ly + wy],
+        ]
+    )
 
 
 def guide(origin: XY, u: XY, span: XY, side: float, r: float) -> Hatch:

@@ -133,42 +133,108 @@ class Bearings:
 
     def over(self, j: JointBearing) -> str:
         """What of the bush's limits joint ``j`` exceeds: its peak p, its peak v, its mean pv ("" for none)."""
-        over = [name for name, value, limit in (("p max", j.p_max, self.bush.p), ("v max", j.v_max, self.bush.v),
-                ("pv mean", j.pv_mean, self.bush.pv)) if value > limit * (1 + 1e-9)]  # fmt: skip
+        over = [
+            name
+            for name, value, limit in (
+                ("p max", j.p_max, self.bush.p),
+                ("v max", j.v_max, self.bush.v),
+                ("pv mean", j.pv_mean, self.bush.pv),
+            )
+            if value > limit * (1 + 1e-9)
+        ]
         return ", ".join(over) or "none"
 
     def tables(self) -> list[Table]:
         rows = tuple(
-            (j.label, j.motion, math.degrees(j.swing), j.force_max / 1e3, j.force_max_phi, j.force_mean / 1e3,
-             j.revs_per_s * 60, j.load / 1e3, j.rating / 1e3)
+            (
+                j.label,
+                j.motion,
+                math.degrees(j.swing),
+                j.force_max / 1e3,
+                j.force_max_phi,
+                j.force_mean / 1e3,
+                j.revs_per_s * 60,
+                j.load / 1e3,
+                j.rating / 1e3,
+            )
             for j in self.joints
-        )  # fmt: skip
+        )
         rolling = Table(
             f"Rolling bearings (ISO 281, {self.kind}: p = {EXPONENT[self.kind]:.4g}) for L10h = {self.life_h:g} h "
             f"at {self.crank_rpm:.4g} rpm of the crank",
-            ("joint", "motion", "swing [deg]", "F max [kN]", "at phi [deg]", "F mean [kN]", "n eq [rpm]",
-             "P [kN]", "C needed [kN]"),
+            (
+                "joint",
+                "motion",
+                "swing [deg]",
+                "F max [kN]",
+                "at phi [deg]",
+                "F mean [kN]",
+                "n eq [rpm]",
+                "P [kN]",
+                "C needed [kN]",
+            ),
             rows,
             "rolling",
-        )  # fmt: skip
+        )
         plain = Table(
             f"Plain bushes ({self.bush.name}: p <= {self.bush.p / 1e6:g} MPa, v <= {self.bush.v:g} m/s, "
             f"pv <= {self.bush.pv / 1e6:g} MPa m/s; least diameter at b = {self.width_ratio:g} d)",
-            ("joint", "d [mm]", "b [mm]", "d given", "p mean [MPa]", "p max [MPa]", "v max [m/s]",
-             "pv mean [MPa m/s]", "pv max [MPa m/s]", "over the limits"),
-            tuple((j.label, j.diameter * 1e3, j.width * 1e3, "yes" if j.diameter_given else "least",
-                   j.p_mean / 1e6, j.p_max / 1e6, j.v_max, j.pv_mean / 1e6, j.pv_max / 1e6, self.over(j))
-                  for j in self.joints),
+            (
+                "joint",
+                "d [mm]",
+                "b [mm]",
+                "d given",
+                "p mean [MPa]",
+                "p max [MPa]",
+                "v max [m/s]",
+                "pv mean [MPa m/s]",
+                "pv max [MPa m/s]",
+                "over the limits",
+            ),
+            tuple(
+                (
+                    j.label,
+                    j.diameter * 1e3,
+                    j.width * 1e3,
+                    "yes" if j.diameter_given else "least",
+                    j.p_mean / 1e6,
+                    j.p_max / 1e6,
+                    j.v_max,
+                    j.pv_mean / 1e6,
+                    j.pv_max / 1e6,
+                    self.over(j),
+                )
+                for j in self.joints
+            ),
             "plain",
-        )  # fmt: skip
+        )
         guides = Table(
             "Guides (prismatic pairs)",
-            ("joint", "N max [kN]", "at phi [deg]", "N mean [kN]", "M max [kN m]", "v max [m/s]", "L [mm]",
-             "q max [kN/m]"),
-            tuple((g.label, g.force_max / 1e3, g.force_max_phi, g.force_mean / 1e3, g.moment_max / 1e3,
-                   g.speed_max, g.length * 1e3, g.pressure_max / 1e3) for g in self.guides),
+            (
+                "joint",
+                "N max [kN]",
+                "at phi [deg]",
+                "N mean [kN]",
+                "M max [kN m]",
+                "v max [m/s]",
+                "L [mm]",
+                "q max [kN/m]",
+            ),
+            tuple(
+                (
+                    g.label,
+                    g.force_max / 1e3,
+                    g.force_max_phi,
+                    g.force_mean / 1e3,
+                    g.moment_max / 1e3,
+                    g.speed_max,
+                    g.length * 1e3,
+                    g.pressure_max / 1e3,
+                )
+                for g in self.guides
+            ),
             "guides",
-        )  # fmt: skip
+        )
         return [rolling, plain, guides] if self.guides else [rolling, plain]
 
     def record(self) -> dict[str, Any]:
@@ -183,7 +249,7 @@ class Bearings:
                 "p_MPa": self.bush.p / 1e6,
                 "v_m_s": self.bush.v,
                 "pv_MPa_m_s": self.bush.pv / 1e6,
-            },  # fmt: skip
+            },
             "width_ratio": self.width_ratio,
             "rolling": tables[0].record(),
             "plain": tables[1].record(),
@@ -221,16 +287,20 @@ def bearings(
         raise LinkworkError(f"life and width ratio must be positive, got {life_h} h and {width_ratio}")
     pins, guides = dict(pins or {}), dict(guides or {})
     labels = {p.label: p.kind for p in pairs}
-    wrong = [f'pin "{n}": no revolute joint of that name ({", ".join(k for k, v in labels.items() if v == "revolute")})'
-             for n in pins if labels.get(n) != "revolute"]  # fmt: skip
+    wrong = [
+        f'pin "{n}": no revolute joint of that name ({", ".join(k for k, v in labels.items() if v == "revolute")})'
+        for n in pins
+        if labels.get(n) != "revolute"
+    ]
     wrong += [f'guide "{n}": no prismatic joint of that name' for n in guides if labels.get(n) != "prismatic"]
     if wrong:
         raise LinkworkError("\n".join(wrong))
     p = EXPONENT[kind]
     joints = tuple(
-        _joint(pair, phi, life_h, p, bush, pins.get(pair.label), width_ratio) for pair in pairs
+        _joint(pair, phi, life_h, p, bush, pins.get(pair.label), width_ratio)
+        for pair in pairs
         if pair.kind == "revolute"
-    )  # fmt: skip
+    )
     figures = tuple(_guide(pair, phi, guides.get(pair.label, math.nan)) for pair in pairs if pair.kind == "prismatic")
     return Bearings(joints, figures, life_h, kind, crank_speed * 30 / math.pi, bush, width_ratio)
 
@@ -253,11 +323,25 @@ def _joint(
     pressure = f / (d * b)
     speed = w * d / 2
     return JointBearing(
-        pair.label, pair.links, motion, swing, float(f[i]), float(phi[i]), float(np.mean(f)), revs, load,
-        rating_needed(load, revs, life_h, p), d, b, pin is not None, float(np.mean(pressure)),
-        float(np.max(pressure)), float(np.max(speed)), float(np.mean(pressure * speed)),
+        pair.label,
+        pair.links,
+        motion,
+        swing,
+        float(f[i]),
+        float(phi[i]),
+        float(np.mean(f)),
+        revs,
+        load,
+        rating_needed(load, revs, life_h, p),
+        d,
+        b,
+        pin is not None,
+        float(np.mean(pressure)),
+        float(np.max(pressure)),
+        float(np.max(speed)),
+        float(np.mean(pressure * speed)),
         float(np.max(pressure * speed)),
-    )  # fmt: skip
+    )
 
 
 def _guide(pair: Pair, phi: np.ndarray, length: float) -> GuideFigures:
@@ -265,6 +349,13 @@ def _guide(pair: Pair, phi: np.ndarray, length: float) -> GuideFigures:
     i = worst(f)
     q = f / length + 6 * m / length**2 if math.isfinite(length) else np.full_like(f, math.nan)
     return GuideFigures(
-        pair.label, pair.links, float(f[i]), float(phi[i]), float(np.mean(f)), float(np.max(m)),
-        float(np.max(pair.sliding)), length, float(np.max(q)),
-    )  # fmt: skip
+        pair.label,
+        pair.links,
+        float(f[i]),
+        float(phi[i]),
+        float(np.mean(f)),
+        float(np.max(m)),
+        float(np.max(pair.sliding)),
+        length,
+        float(np.max(q)),
+    )

@@ -55,18 +55,27 @@ class BoltResult:
             (f"{i + 1}", float(x * 1e3), float(y * 1e3), float(f / 1e3), float(a))
             for i, ((x, y), f, a) in enumerate(each)
         )
-        per = Table("Foundation bolts: the largest force opening the joint at each",
-                    ("bolt", "x [mm]", "y [mm]", "F open max [kN]", "at phi [deg]"), rows, "bolts")  # fmt: skip
+        per = Table(
+            "Foundation bolts: the largest force opening the joint at each",
+            ("bolt", "x [mm]", "y [mm]", "F open max [kN]", "at phi [deg]"),
+            rows,
+            "bolts",
+        )
         summary = Table(
             f"Foundation bolts: preload (S = {self.safety:g}, friction {self.friction:g}) and size (class "
             f"{self.bolt_class}, S_b = {self.bolt_safety:g}, load factor {self.load_factor:g})",
             ("quantity", "value", "unit"),
-            (("preload per bolt", self.preload / 1e3, "kN"), ("decided by", self.decided_by, ""),
-             ("  at phi", self.decided_phi, "deg"), ("largest bolt force", self.bolt_force / 1e3, "kN"),
-             ("stress area needed", self.area_needed * 1e6, "mm^2"), ("thread", self.thread, ""),
-             ("its stress area", self.thread_area * 1e6, "mm^2")),
+            (
+                ("preload per bolt", self.preload / 1e3, "kN"),
+                ("decided by", self.decided_by, ""),
+                ("  at phi", self.decided_phi, "deg"),
+                ("largest bolt force", self.bolt_force / 1e3, "kN"),
+                ("stress area needed", self.area_needed * 1e6, "mm^2"),
+                ("thread", self.thread, ""),
+                ("its stress area", self.thread_area * 1e6, "mm^2"),
+            ),
             "preload",
-        )  # fmt: skip
+        )
         return [per, summary]
 
     def record(self) -> dict[str, Any]:
@@ -159,5 +168,20 @@ def size_bolts(
             f"{threads.source} ({areas.max() * 1e6:.4g} mm^2): more bolts, or a stronger class"
         )
     j = int(fits[np.argmin(areas[fits])])
-    return BoltResult(pts, opening, phi[k], preload, decided, float(phi[i]), bolt_force, area, threads.names[j],
-                      float(areas[j]), bolt_class, safety, friction, load_factor, bolt_safety)  # fmt: skip
+    return BoltResult(
+        pts,
+        opening,
+        phi[k],
+        preload,
+        decided,
+        float(phi[i]),
+        bolt_force,
+        area,
+        threads.names[j],
+        float(areas[j]),
+        bolt_class,
+        safety,
+        friction,
+        load_factor,
+        bolt_safety,
+    )

@@ -100,14 +100,45 @@ class Bars:
         return Table(
             f"Links as bars ({self.steel.name}: R_e {self.steel.yield_strength / 1e6:g} MPa, R_m "
             f"{self.steel.tensile / 1e6:g} MPa, sigma_-1 {self.steel.endurance / 1e6:g} MPa; S = {self.safety:g})",
-            ("link", "ends", "L [mm]", "section", "M max [kN m]", "M at phi [deg]", "M at s [mm]", "N there [kN]",
-             "N max [kN]", "N at phi [deg]", "sigma max [MPa]", "sigma at phi [deg]", "sigma_a [MPa]",
-             "sigma_m [MPa]", "Goodman n"),
-            tuple((b.link, "-".join(b.ends), b.length * 1e3, b.section, b.moment_max / 1e3, b.moment_phi,
-                   b.moment_at * 1e3, b.axial_at_moment / 1e3, b.axial_max / 1e3, b.axial_phi, b.stress_max / 1e6,
-                   b.stress_phi, b.amplitude / 1e6, b.mean / 1e6, b.fatigue) for b in self.bars),
+            (
+                "link",
+                "ends",
+                "L [mm]",
+                "section",
+                "M max [kN m]",
+                "M at phi [deg]",
+                "M at s [mm]",
+                "N there [kN]",
+                "N max [kN]",
+                "N at phi [deg]",
+                "sigma max [MPa]",
+                "sigma at phi [deg]",
+                "sigma_a [MPa]",
+                "sigma_m [MPa]",
+                "Goodman n",
+            ),
+            tuple(
+                (
+                    b.link,
+                    "-".join(b.ends),
+                    b.length * 1e3,
+                    b.section,
+                    b.moment_max / 1e3,
+                    b.moment_phi,
+                    b.moment_at * 1e3,
+                    b.axial_at_moment / 1e3,
+                    b.axial_max / 1e3,
+                    b.axial_phi,
+                    b.stress_max / 1e6,
+                    b.stress_phi,
+                    b.amplitude / 1e6,
+                    b.mean / 1e6,
+                    b.fatigue,
+                )
+                for b in self.bars
+            ),
             "links",
-        )  # fmt: skip
+        )
 
     def record(self) -> dict[str, Any]:
         return {"steel": self.steel.name, "safety": self.safety, "links": self.table().record()}
@@ -176,9 +207,13 @@ def internal_forces(points: np.ndarray, forces: np.ndarray, couples: np.ndarray,
 
 
 def bars(
-    f: Forces, phi: np.ndarray, steel: Steel, *, safety: float = 2.0,
+    f: Forces,
+    phi: np.ndarray,
+    steel: Steel,
+    *,
+    safety: float = 2.0,
     sections: Mapping[str, tuple[str, Mapping[str, float]]] | None = None,
-) -> Bars:  # fmt: skip
+) -> Bars:
     """Every moving link with two or more joints as a bar (see the module); ``sections``: a link's section
     (shape, dimensions in m), else the least round bar."""
     mech = f.mechanism
@@ -200,8 +235,20 @@ def bars(
         if not span[a, b] > 0:  # its joints at one point (a slide's pin and guide): no bar
             continue
         axial, moment, s = internal_forces(pts, forces, couples, (int(a), int(b)))
-        out.append(_bar(name, (joints[a], joints[b]), float(span[a, b]), axial, moment, s, phi, steel, safety,
-                        sections.get(name)))  # fmt: skip
+        out.append(
+            _bar(
+                name,
+                (joints[a], joints[b]),
+                float(span[a, b]),
+                axial,
+                moment,
+                s,
+                phi,
+                steel,
+                safety,
+                sections.get(name),
+            )
+        )
     return Bars(tuple(out), steel, safety)
 
 
@@ -223,9 +270,17 @@ def _least_round(axial: np.ndarray, moment: np.ndarray, allowed: float) -> float
 
 
 def _bar(
-    name: str, ends: tuple[str, str], length: float, axial: np.ndarray, moment: np.ndarray, s: np.ndarray,
-    phi: np.ndarray, steel: Steel, safety: float, given: tuple[str, Mapping[str, float]] | None,
-) -> Bar:  # fmt: skip
+    name: str,
+    ends: tuple[str, str],
+    length: float,
+    axial: np.ndarray,
+    moment: np.ndarray,
+    s: np.ndarray,
+    phi: np.ndarray,
+    steel: Steel,
+    safety: float,
+    given: tuple[str, Mapping[str, float]] | None,
+) -> Bar:
     if given is not None:
         shape, dims = given
         area, modulus = section_properties(shape, dims)
@@ -246,6 +301,23 @@ def _bar(
     e2, k2 = np.unravel_index(int(np.nanargmax(usage)), usage.shape)
     fatigue = 1.0 / float(usage[e2, k2]) if usage[e2, k2] > 0 else math.inf
     peak = float(abs(sigma[ea, sa, sk]))
-    return Bar(name, ends, length, label, area, modulus, given is not None, float(am[ia, ik]), float(phi[ia]),
-               float(s[ia, ik]), float(axial[ia, ik]), float(na.max()), float(phi[ja]), peak, float(phi[sa]),
-               float(amp[e2, k2]), float(mean[e2, k2]), fatigue)  # fmt: skip
+    return Bar(
+        name,
+        ends,
+        length,
+        label,
+        area,
+        modulus,
+        given is not None,
+        float(am[ia, ik]),
+        float(phi[ia]),
+        float(s[ia, ik]),
+        float(axial[ia, ik]),
+        float(na.max()),
+        float(phi[ja]),
+        peak,
+        float(phi[sa]),
+        float(amp[e2, k2]),
+        float(mean[e2, k2]),
+        fatigue,
+    )

@@ -167,16 +167,34 @@ def size(
     crank = abs(float(mech.drive_speed[0]))
     pairs = pairs_of(f)
     missing: dict[str, str] = {}
-    found = bearings(pairs, phi, crank, life_h=life_h, kind=kind, bush=bush_limits, pins=pin_sizes,
-                     width_ratio=width_ratio, guides=guides)  # fmt: skip
+    found = bearings(
+        pairs,
+        phi,
+        crank,
+        life_h=life_h,
+        kind=kind,
+        bush=bush_limits,
+        pins=pin_sizes,
+        width_ratio=width_ratio,
+        guides=guides,
+    )
     pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
     linked = bars(f, phi, grade, safety=safety, sections=given)
     held = None
     if bolts is not None and len(bolts):
         found_loads = np.asarray(f.foundation, dtype=float)
-        held = size_bolts(found_loads, phi, np.asarray(bolts, dtype=float), threads=bundled("threads.csv"),
-                          classes=bundled("bolt_classes.csv"), bolt_class=bolt_class, safety=joint_safety,
-                          friction=friction, load_factor=load_factor, bolt_safety=bolt_safety)  # fmt: skip
+        held = size_bolts(
+            found_loads,
+            phi,
+            np.asarray(bolts, dtype=float),
+            threads=bundled("threads.csv"),
+            classes=bundled("bolt_classes.csv"),
+            bolt_class=bolt_class,
+            safety=joint_safety,
+            friction=friction,
+            load_factor=load_factor,
+            bolt_safety=bolt_safety,
+        )
     else:
         missing["bolts"] = "no bolt pattern: give sizing: bolts: [[x, y], ...] in the file"
     choice = None  # last: the runs of the machine take the longest, and the other parts' problems come first
@@ -184,17 +202,30 @@ def size(
         from linkwork.machine.reduction import reduced
 
         cat = motor_catalogue(catalogue)
-        choice = choose_motor(mech, reduced(mech), delta, efficiency=efficiency, reserve=reserve, catalogue=cat,
-                              synchronous=synchronous)  # fmt: skip
+        choice = choose_motor(
+            mech, reduced(mech), delta, efficiency=efficiency, reserve=reserve, catalogue=cat, synchronous=synchronous
+        )
     else:
         missing["motor"] = "not asked"
     inputs = {
-        "life_h": life_h, "bearing_kind": kind, "delta": delta, "gear_efficiency": efficiency, "reserve": reserve,
+        "life_h": life_h,
+        "bearing_kind": kind,
+        "delta": delta,
+        "gear_efficiency": efficiency,
+        "reserve": reserve,
         "catalogue": str(catalogue) if catalogue is not None else "motors.csv (bundled, typical values)",
         "synchronous_rpm": synchronous * 30 / math.pi if synchronous is not None else None,
-        "steel": steel, "pin_safety": safety, "bush": bush, "width_ratio": width_ratio, "bolt_class": bolt_class,
-        "bolt_safety": bolt_safety, "joint_safety": joint_safety, "friction": friction, "load_factor": load_factor,
-        "steps": steps, "crank_rpm": crank * 30 / math.pi,
+        "steel": steel,
+        "pin_safety": safety,
+        "bush": bush,
+        "width_ratio": width_ratio,
+        "bolt_class": bolt_class,
+        "bolt_safety": bolt_safety,
+        "joint_safety": joint_safety,
+        "friction": friction,
+        "load_factor": load_factor,
+        "steps": steps,
+        "crank_rpm": crank * 30 / math.pi,
         "loads": "kinetostatics at the file's uniform crank speed",
-    }  # fmt: skip
+    }
     return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked)

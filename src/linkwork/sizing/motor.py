@@ -192,7 +192,7 @@ class MotorChoice:
                 "inertia_kg_m2": self.flywheel.flywheel,
                 "on": "motor",
                 "on_crank_kg_m2": self.flywheel.on_crank,
-            },  # fmt: skip
+            },
             "delta": self.delta,
             "reserve": self.reserve,
             "run": {
@@ -234,14 +234,20 @@ def drive_of(row: dict[str, float], crank_speed: float, efficiency: float) -> Mo
     """The drive of a catalogue row: the induction motor (Kloss), the gear from its rated speed to
     ``crank_speed``, its rotor, no flywheel yet (one goes on the motor shaft)."""
     motor = InductionMotor(row["power"], row["speed"], row["synchronous"], row["breakdown"])
-    return MotorGear(motor, ratio=row["speed"] / crank_speed, efficiency=efficiency, rotor=row["inertia"],
-                 flywheel_on="motor")  # fmt: skip
+    return MotorGear(
+        motor, ratio=row["speed"] / crank_speed, efficiency=efficiency, rotor=row["inertia"], flywheel_on="motor"
+    )
 
 
 def screen(
-    red: Reduced, row: dict[str, float], crank_speed: float, efficiency: float, delta: float, reserve: float,
+    red: Reduced,
+    row: dict[str, float],
+    crank_speed: float,
+    efficiency: float,
+    delta: float,
+    reserve: float,
     need: float,
-) -> str:  # fmt: skip
+) -> str:
     """Why the motor of ``row`` cannot drive the machine by the estimate of step 2 of the module ("" where it
     can): its rated power under ``need``, no speed where it balances the mean load, or its torque at the lowest
     speed of the cycle above ``reserve`` of its breakdown torque."""
@@ -340,9 +346,16 @@ def _fails(choice: MotorChoice) -> str:
 
 
 def _run(
-    mech: Mechanism, row: dict[str, float], name: str, crank: float, efficiency: float, delta: float, reserve: float,
-    need: float, steps: int | None,
-) -> MotorChoice:  # fmt: skip
+    mech: Mechanism,
+    row: dict[str, float],
+    name: str,
+    crank: float,
+    efficiency: float,
+    delta: float,
+    reserve: float,
+    need: float,
+    steps: int | None,
+) -> MotorChoice:
     """Run the machine with the motor of ``row`` and its flywheel for ``delta``, and read the run."""
     from linkwork.limits import DYNAMICS_STEPS
     from linkwork.motion.analysis import CrankAngles

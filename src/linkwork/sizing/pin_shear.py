@@ -66,12 +66,33 @@ class Pins:
         return Table(
             f"Pins in double shear ({self.steel.name}, S = {self.safety:g}: tau <= {self.shear_allowed / 1e6:.4g} MPa, "
             f"sigma <= {self.bending_allowed / 1e6:.4g} MPa; least diameter at b = {self.width_ratio:g} d)",
-            ("joint", "F max [kN]", "at phi [deg]", "d [mm]", "b [mm]", "d given", "tau [MPa]", "sigma bending [MPa]",
-             "p [MPa]"),
-            tuple((p.label, p.force / 1e3, p.phi, p.diameter * 1e3, p.width * 1e3, "yes" if p.given else "least",
-                   p.shear / 1e6, p.bending / 1e6, p.pressure / 1e6) for p in self.pins),
+            (
+                "joint",
+                "F max [kN]",
+                "at phi [deg]",
+                "d [mm]",
+                "b [mm]",
+                "d given",
+                "tau [MPa]",
+                "sigma bending [MPa]",
+                "p [MPa]",
+            ),
+            tuple(
+                (
+                    p.label,
+                    p.force / 1e3,
+                    p.phi,
+                    p.diameter * 1e3,
+                    p.width * 1e3,
+                    "yes" if p.given else "least",
+                    p.shear / 1e6,
+                    p.bending / 1e6,
+                    p.pressure / 1e6,
+                )
+                for p in self.pins
+            ),
             "pins",
-        )  # fmt: skip
+        )
 
     def record(self) -> dict[str, Any]:
         return {
@@ -115,6 +136,17 @@ def pins(
         d, b = sizes[pair.label] if given else (least_diameter(f, tau, sigma, width_ratio), math.nan)
         if not given:
             b = width_ratio * d
-        out.append(Pin(pair.label, f, float(phi[i]), d, b, given, 2 * f / (math.pi * d**2),
-                       4 * f * b / (math.pi * d**3), f / (d * b)))  # fmt: skip
+        out.append(
+            Pin(
+                pair.label,
+                f,
+                float(phi[i]),
+                d,
+                b,
+                given,
+                2 * f / (math.pi * d**2),
+                4 * f * b / (math.pi * d**3),
+                f / (d * b),
+            )
+        )
     return Pins(tuple(out), steel, safety, width_ratio)

@@ -170,9 +170,13 @@ class MechanismBuilder:
         return self
 
     def machine(
-        self, motor: dict[str, Any], *, gear: dict[str, Any] | None = None, flywheel: dict[str, Any] | None = None,
+        self,
+        motor: dict[str, Any],
+        *,
+        gear: dict[str, Any] | None = None,
+        flywheel: dict[str, Any] | None = None,
         delta: float | None = None,
-    ) -> MechanismBuilder:  # fmt: skip
+    ) -> MechanismBuilder:
         """The drive for machine dynamics: ``motor`` (``type`` and its fields), ``gear`` (``ratio``,
         ``efficiency``), ``flywheel`` (``inertia``, ``on``); see :class:`~linkwork.spec.schema.Machine`."""
         self._data["machine"] = _some(motor=motor, gear=gear, flywheel=flywheel, delta=delta)

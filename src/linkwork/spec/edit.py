@@ -72,7 +72,6 @@ def _written(old: Any, si: float, kind: str, declared: dict[str, str]) -> Any:
     return written(si, kind, declared, digits=12)
 
 
-
 # --- an edited description ---------------------------------------------------------------------------
 
 

@@ -125,8 +125,10 @@ def _stiffness() -> tuple[BeforeValidator, WithJsonSchema, Quantity]:
     def validate(value: Any, info: ValidationInfo) -> float:
         return _scalar(stiffness_kind(info.data.get("type")), value, info, "nonnegative")
 
-    schema = {"anyOf": [{"type": "number"}, {"type": "string"}], "description": "non-negative stiffness: N/m of a "
-              "spring, N*m/rad of a torsion spring; " + _BARE[True]}  # fmt: skip
+    schema = {
+        "anyOf": [{"type": "number"}, {"type": "string"}],
+        "description": "non-negative stiffness: N/m of a spring, N*m/rad of a torsion spring; " + _BARE[True],
+    }
     return BeforeValidator(validate), WithJsonSchema(schema), Quantity("load_stiffness")
 
 

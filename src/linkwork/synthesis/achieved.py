@@ -20,9 +20,17 @@ if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
 
 #: The requirements the analysis measures, and how they are compared: "equal" or a bound.
-MEASURED = {"stroke": "equal", "swing": "equal", "time_ratio": "equal", "max_pressure_angle": "at most",
-            "min_transmission_angle": "at least", "upper_stroke": "equal", "lower_stroke": "equal",
-            "overlap": "equal", "opening": "equal"}  # fmt: skip
+MEASURED = {
+    "stroke": "equal",
+    "swing": "equal",
+    "time_ratio": "equal",
+    "max_pressure_angle": "at most",
+    "min_transmission_angle": "at least",
+    "upper_stroke": "equal",
+    "lower_stroke": "equal",
+    "overlap": "equal",
+    "opening": "equal",
+}
 
 #: Relative agreement of an equality the report calls met.
 MET = 1e-6
@@ -107,9 +115,13 @@ def _knives(kin: Kinematics) -> dict[str, float]:
     def one(name: str, arg: str | None = None) -> float:
         return float(np.squeeze(METRICS[name].compute(ev, arg)))
 
-    return {"upper_stroke": one("stroke", "guide_E"), "lower_stroke": one("stroke", "guide_F"),
-            "time_ratio": one("working_time_ratio"), "overlap": one("knife_overlap"),
-            "opening": one("knife_clearance")}  # fmt: skip
+    return {
+        "upper_stroke": one("stroke", "guide_E"),
+        "lower_stroke": one("stroke", "guide_F"),
+        "time_ratio": one("working_time_ratio"),
+        "overlap": one("knife_overlap"),
+        "opening": one("knife_clearance"),
+    }
 
 
 def written(kind: str, requirements: dict[str, float], extra: dict[str, str] | None = None) -> dict[str, Any]:
@@ -183,13 +195,21 @@ def _slider_crank_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
     c = f.columns
     ok = np.isfinite(c["largest_pressure_angle"])
     crank = next((float(link.length) for name, link in spec.links.items() if name == "crank"), math.nan)
-    members = [{"links.crank.length": float(r), "links.rod.length": float(ell), "joints.guide.through.x": -float(e)}
-               for r, ell, e in zip(c["crank"][ok], c["rod"][ok], c["offset"][ok], strict=True)]  # fmt: skip
+    members = [
+        {"links.crank.length": float(r), "links.rod.length": float(ell), "joints.guide.through.x": -float(e)}
+        for r, ell, e in zip(c["crank"][ok], c["rod"][ok], c["offset"][ok], strict=True)
+    ]
     picked = int(np.argmin(np.abs(c["crank"][ok] - crank))) if math.isfinite(crank) else 0
-    return {"parameter": f.parameter, "unit": "deg", "values": np.degrees(f.values[ok]).tolist(),
-            "overrides": members, "quantity": "largest pressure angle",
-            "quantity_values": np.degrees(c["largest_pressure_angle"][ok]).tolist(), "picked": picked,
-            "note": "every member with the stroke and time ratio asked for"}  # fmt: skip
+    return {
+        "parameter": f.parameter,
+        "unit": "deg",
+        "values": np.degrees(f.values[ok]).tolist(),
+        "overrides": members,
+        "quantity": "largest pressure angle",
+        "quantity_values": np.degrees(c["largest_pressure_angle"][ok]).tolist(),
+        "picked": picked,
+        "note": "every member with the stroke and time ratio asked for",
+    }
 
 
 def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
@@ -221,15 +241,26 @@ def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
     if not len(t):
         return None
     scale = c * np.ones_like(t) if "frame" not in given else d / m["frame"]
-    overrides = [{"links.crank.length": float(x * s), "links.coupler.length": float(y * s),
-                  "links.rocker.length": float(s), "frame.points.O4.x": float(z * s)}
-                 for x, y, z, s in zip(m["crank"], m["coupler"], m["frame"], scale, strict=True)]  # fmt: skip
-    return {"parameter": "|O2 B_f|", "unit": "mm", "values": (t * scale * 1e3).tolist(), "overrides": overrides,
-            "quantity": "least transmission angle",
-            "quantity_values": np.degrees(m["least_transmission_angle"]).tolist(),
-            "picked": int(np.argmin(np.abs(t - own))),
-            "note": "the crank pivot on the file's side of the chord B_e B_f (the other side's members need the "
-            "other assembly mode)"}  # fmt: skip
+    overrides = [
+        {
+            "links.crank.length": float(x * s),
+            "links.coupler.length": float(y * s),
+            "links.rocker.length": float(s),
+            "frame.points.O4.x": float(z * s),
+        }
+        for x, y, z, s in zip(m["crank"], m["coupler"], m["frame"], scale, strict=True)
+    ]
+    return {
+        "parameter": "|O2 B_f|",
+        "unit": "mm",
+        "values": (t * scale * 1e3).tolist(),
+        "overrides": overrides,
+        "quantity": "least transmission angle",
+        "quantity_values": np.degrees(m["least_transmission_angle"]).tolist(),
+        "picked": int(np.argmin(np.abs(t - own))),
+        "note": "the crank pivot on the file's side of the chord B_e B_f (the other side's members need the "
+        "other assembly mode)",
+    }
 
 
 def _slotted_lever_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
@@ -275,10 +306,16 @@ def _shears_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
     cranks, overrides, least = _shears_members(upper, lower, ratio, overlap)
     if not overrides:
         return None
-    return {"parameter": "crank length", "unit": "mm", "values": [c * 1e3 for c in cranks], "overrides": overrides,
-            "quantity": "least transmission angle", "quantity_values": least,
-            "picked": int(np.argmin(np.abs(np.array(cranks) - float(spec.links["crank"].length)))),
-            "note": "the members the synthesis's continuation solves"}  # fmt: skip
+    return {
+        "parameter": "crank length",
+        "unit": "mm",
+        "values": [c * 1e3 for c in cranks],
+        "overrides": overrides,
+        "quantity": "least transmission angle",
+        "quantity_values": least,
+        "picked": int(np.argmin(np.abs(np.array(cranks) - float(spec.links["crank"].length)))),
+        "note": "the members the synthesis's continuation solves",
+    }
 
 
 @functools.lru_cache(maxsize=8)

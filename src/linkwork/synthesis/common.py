@@ -23,10 +23,25 @@ STEEL = 7850.0
 BAR = (0.040, 0.020)
 
 #: The kind of quantity of each requirement that has a unit.
-QUANTITIES = {"stroke": "length", "offset": "length", "rocker": "length", "frame": "length", "swing": "angle",
-              "crank": "length", "rod": "length", "before": "length", "force": "force", "torque": "moment",
-              "max_pressure_angle": "angle", "min_transmission_angle": "angle", "upper_stroke": "length",
-              "lower_stroke": "length", "overlap": "length", "opening": "length", "working": "length"}  # fmt: skip
+QUANTITIES = {
+    "stroke": "length",
+    "offset": "length",
+    "rocker": "length",
+    "frame": "length",
+    "swing": "angle",
+    "crank": "length",
+    "rod": "length",
+    "before": "length",
+    "force": "force",
+    "torque": "moment",
+    "max_pressure_angle": "angle",
+    "min_transmission_angle": "angle",
+    "upper_stroke": "length",
+    "lower_stroke": "length",
+    "overlap": "length",
+    "opening": "length",
+    "working": "length",
+}
 
 #: Crank samples of the verification's turn (the analysis refines extremes between them).
 VERIFY_STEPS = 720

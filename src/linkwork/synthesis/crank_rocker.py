@@ -83,8 +83,15 @@ def members(swing: float, theta: float, t: np.ndarray, side: float) -> dict[str,
     grashof = (a < lengths[1:].min(axis=0)) & (a + longest < lengths.sum(axis=0) - a - longest)
     # B_e and B_f on one side of the line O4 -> O2 (O4 at the origin)
     same = (o2[..., 0] * be[1] - o2[..., 1] * be[0]) * (o2[..., 0] * bf[1] - o2[..., 1] * bf[0]) > 0
-    return {"crank": a, "coupler": b, "rocker": np.ones_like(a), "frame": d, "O2": o2, "least_transmission_angle":
-            mu, "valid": grashof & same & (t > 0) & (x > t)}  # fmt: skip
+    return {
+        "crank": a,
+        "coupler": b,
+        "rocker": np.ones_like(a),
+        "frame": d,
+        "O2": o2,
+        "least_transmission_angle": mu,
+        "valid": grashof & same & (t > 0) & (x > t),
+    }
 
 
 def least_transmission_angle(a, b, c, d) -> np.ndarray:  # noqa: ANN001
@@ -242,8 +249,9 @@ def synthesize(
         raise SynthesisError("give one of the rocker length and the frame length: it fixes the scale")
     scale_given = rocker if rocker is not None else frame
     if not (scale_given is not None and math.isfinite(scale_given) and scale_given > 0):
-        raise SynthesisError(f"{'rocker' if rocker is not None else 'frame'} length {scale_given!r} m: expected a "
-                             "positive length")  # fmt: skip
+        raise SynthesisError(
+            f"{'rocker' if rocker is not None else 'frame'} length {scale_given!r} m: expected a positive length"
+        )
     if min_transmission_angle is not None and not 0 < min_transmission_angle < math.pi / 2:
         raise SynthesisError(
             f"least transmission angle {deg(min_transmission_angle)}: expected a bound between 0 and 90 deg"
@@ -259,16 +267,18 @@ def synthesize(
     m = {k: v[0] for k, v in members(swing, theta, np.array([t]), side).items()}
     scale = rocker if rocker is not None else frame / float(m["frame"])  # type: ignore[operator]
     dims = {k: float(m[k]) * scale for k in ("crank", "coupler", "rocker", "frame")}
-    requirements = given(swing=swing, time_ratio=time_ratio, rocker=rocker, frame=frame,
-                         min_transmission_angle=min_transmission_angle)  # fmt: skip
+    requirements = given(
+        swing=swing, time_ratio=time_ratio, rocker=rocker, frame=frame, min_transmission_angle=min_transmission_angle
+    )
     text, spec = file_of(*_file(dims, m, scale, swing, time_ratio, theta, mu, speed, section, density))
     measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))
     measured["swing"] = measured.pop("stroke")
     predicted = {"swing": swing, "time_ratio": time_ratio, "least_transmission_angle": mu}
     confirm(measured, predicted, mu)
     why = "the greatest least transmission angle" if theta > 0 else "the nearest crank pivot meeting the bound"
-    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, family(swing, time_ratio),
-                     f"picked by {why}")  # fmt: skip
+    return Synthesis(
+        KIND, requirements, dims, predicted, measured, spec, text, family(swing, time_ratio), f"picked by {why}"
+    )
 
 
 def _file(dims, m, scale, swing, time_ratio, theta, mu, speed, section, density) -> tuple:  # noqa: ANN001

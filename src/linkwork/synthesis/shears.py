@@ -37,12 +37,22 @@ KIND = "double-cut-shears"
 
 #: The named parameters the unknowns and the family's crank length set.
 CRANK = "links.crank.length"
-PATHS = [CRANK, "frame.points.O1.x", "links.rocker.points.D.x", "links.rocker.points.C.x",
-         "links.knife_upper.points.edge.y", "links.knife_lower.points.edge.y"]  # fmt: skip
+PATHS = [
+    CRANK,
+    "frame.points.O1.x",
+    "links.rocker.points.D.x",
+    "links.rocker.points.C.x",
+    "links.knife_upper.points.edge.y",
+    "links.knife_lower.points.edge.y",
+]
 
 #: The metrics each unknown meets, in the unknowns' order (the requirements' names beside them).
-EQUALITIES = {"working_time_ratio": "time_ratio", "stroke:guide_E": "upper_stroke",
-              "stroke:guide_F": "lower_stroke", "knife_overlap": "overlap"}  # fmt: skip
+EQUALITIES = {
+    "working_time_ratio": "time_ratio",
+    "stroke:guide_E": "upper_stroke",
+    "stroke:guide_F": "lower_stroke",
+    "knife_overlap": "overlap",
+}
 
 #: The family's crank lengths, relative to the bundled crank.
 SPAN = (0.5, 2.0)
@@ -116,8 +126,13 @@ def family(mech, targets: dict[str, float], cranks: np.ndarray, metrics: list[st
     # the first member: from the bundled file's own metrics to the requirements in steps (a homotopy)
     first = len(cranks) // 2
     start = np.array([base[p] for p in PATHS[1:4]] + [0.0])
-    own = evaluate(mech, PATHS, _values(base, cranks[[first]])(start[None], np.zeros(1, int)),
-                   parse_metrics(list(targets), mech), 360)  # fmt: skip
+    own = evaluate(
+        mech,
+        PATHS,
+        _values(base, cranks[[first]])(start[None], np.zeros(1, int)),
+        parse_metrics(list(targets), mech),
+        360,
+    )
     for t in np.linspace(0.0, 1.0, HOMOTOPY + 1)[1:]:
         solve([first], [start], {c: (1 - t) * own[c][0] + t * v for c, v in targets.items()})
         if np.isnan(unknowns[first, 0]):
@@ -148,8 +163,12 @@ def solved_family(
 
     mech = mechanism_of(KIND, "mechanism")
     base = parameter_values(mech)
-    targets = {"working_time_ratio": time_ratio, "stroke:guide_E": upper_stroke, "stroke:guide_F": lower_stroke,
-               "knife_overlap": overlap}  # fmt: skip
+    targets = {
+        "working_time_ratio": time_ratio,
+        "stroke:guide_E": upper_stroke,
+        "stroke:guide_F": lower_stroke,
+        "knife_overlap": overlap,
+    }
     # the knives' strokes grow with the rocker's swing, nearly as the crank: the family is centred there
     guess = base[CRANK] * max(upper_stroke / _own(mech, "stroke:guide_E"), lower_stroke / _own(mech, "stroke:guide_F"))
     cranks = np.array([crank]) if crank is not None else guess * np.geomspace(*SPAN, MEMBERS)
@@ -204,12 +223,23 @@ def synthesize(
     pick = int(np.nanargmin(score))
     (values,) = member_values(cranks[[pick]], unknowns[[pick]])
     why = f"crank {cranks[pick] * 1e3:.6g} mm as given" if crank is not None else f"picked by {words}"
-    requirements = given(upper_stroke=upper_stroke, lower_stroke=lower_stroke, time_ratio=time_ratio,
-                         overlap=overlap, opening=opening, crank=crank)  # fmt: skip
+    requirements = given(
+        upper_stroke=upper_stroke,
+        lower_stroke=lower_stroke,
+        time_ratio=time_ratio,
+        overlap=overlap,
+        opening=opening,
+        crank=crank,
+    )
     text, spec = _file(mech, values, requirements, want, why, speed)
     measured = measure(spec)
-    predicted = {"upper_stroke": upper_stroke, "lower_stroke": lower_stroke, "time_ratio": time_ratio,
-                 "overlap": want, "opening": upper_stroke + lower_stroke - want}  # fmt: skip
+    predicted = {
+        "upper_stroke": upper_stroke,
+        "lower_stroke": lower_stroke,
+        "time_ratio": time_ratio,
+        "overlap": want,
+        "opening": upper_stroke + lower_stroke - want,
+    }
     confirm(measured, predicted)
     columns = {
         "crank": cranks,
@@ -257,9 +287,13 @@ def measure(spec) -> dict[str, float]:  # noqa: ANN001
     def one(name: str, arg: str | None = None) -> float:
         return float(np.squeeze(METRICS[name].compute(ev, arg)))
 
-    return {"upper_stroke": one("stroke", "guide_E"), "lower_stroke": one("stroke", "guide_F"),
-            "time_ratio": one("working_time_ratio"), "overlap": one("knife_overlap"),
-            "opening": one("knife_clearance")}  # fmt: skip
+    return {
+        "upper_stroke": one("stroke", "guide_E"),
+        "lower_stroke": one("stroke", "guide_F"),
+        "time_ratio": one("working_time_ratio"),
+        "overlap": one("knife_overlap"),
+        "opening": one("knife_clearance"),
+    }
 
 
 def confirm(measured: dict[str, float], predicted: dict[str, float]) -> None:

@@ -83,8 +83,12 @@ def best_beta(theta: float) -> float:
     from scipy.optimize import minimize_scalar
 
     top = math.pi / 2 - theta
-    res = minimize_scalar(lambda b: _alpha(theta, b), bounds=(top * 1e-9, top * (1 - 1e-9)), method="bounded",
-                          options={"xatol": 1e-12 * top})  # fmt: skip
+    res = minimize_scalar(
+        lambda b: _alpha(theta, b),
+        bounds=(top * 1e-9, top * (1 - 1e-9)),
+        method="bounded",
+        options={"xatol": 1e-12 * top},
+    )
     return float(res.x)
 
 
@@ -155,8 +159,13 @@ def _offset_member(stroke: float, time_ratio: float, theta: float, rod_ratio: fl
     return best_beta(theta), "the least largest pressure angle"
 
 
-def solve(stroke: float, time_ratio: float, rod_ratio: float | None = None, offset: float | None = None,
-          max_pressure_angle: float | None = None) -> tuple[float, float, float, str]:  # fmt: skip
+def solve(
+    stroke: float,
+    time_ratio: float,
+    rod_ratio: float | None = None,
+    offset: float | None = None,
+    max_pressure_angle: float | None = None,
+) -> tuple[float, float, float, str]:
     """(r, l, e, what picked the member) (m) for the requirements (SI); raises :class:`SynthesisError`."""
     if not 0 < stroke < math.inf:
         raise SynthesisError(f"stroke {stroke!r} m: expected a positive length")
@@ -221,8 +230,15 @@ def synthesize(
         beta, why = _least_torque(stroke, time_ratio, max_pressure_angle, load, speed, section, density, ram_mass)
         r, ell, e = (float(x) for x in dimensions(stroke, theta, beta))
     alpha = float(largest_pressure_angle(r, ell, e))
-    requirements = given(stroke=stroke, time_ratio=time_ratio, rod_ratio=rod_ratio, offset=offset,
-                         max_pressure_angle=max_pressure_angle, force=force, working=working)  # fmt: skip
+    requirements = given(
+        stroke=stroke,
+        time_ratio=time_ratio,
+        rod_ratio=rod_ratio,
+        offset=offset,
+        max_pressure_angle=max_pressure_angle,
+        force=force,
+        working=working,
+    )
     text, spec = file_of(
         *_file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass, load)
     )
@@ -232,10 +248,16 @@ def synthesize(
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
     confirm(measured, predicted, math.pi / 2 - alpha)
     return Synthesis(
-        KIND, requirements, {"crank": r, "rod": ell, "offset": e}, predicted, measured, spec, text,
+        KIND,
+        requirements,
+        {"crank": r, "rod": ell, "offset": e},
+        predicted,
+        measured,
+        spec,
+        text,
         family(stroke, time_ratio) if free else None,
         f"picked by {why}",
-    )  # fmt: skip
+    )
 
 
 def _load(stroke: float, force: float | None, working: float | None, criterion: str) -> tuple[float, float] | None:
@@ -254,8 +276,16 @@ def _load(stroke: float, force: float | None, working: float | None, criterion: 
     return force, length
 
 
-def peak_torques(stroke: float, time_ratio: float, beta: np.ndarray, load: tuple[float, float], speed: str,
-                 section: tuple[float, float], density: float, ram_mass: float | None) -> np.ndarray:  # fmt: skip
+def peak_torques(
+    stroke: float,
+    time_ratio: float,
+    beta: np.ndarray,
+    load: tuple[float, float],
+    speed: str,
+    section: tuple[float, float],
+    density: float,
+    ram_mass: float | None,
+) -> np.ndarray:
     """The peak driving torque (N m, its size, refined between the samples) of the family's members ``beta``
     under the working load, each from its own file (its masses by the bar rule)."""
     from linkwork.api import forces
@@ -265,14 +295,23 @@ def peak_torques(stroke: float, time_ratio: float, beta: np.ndarray, load: tuple
     out = np.full(np.shape(beta), np.nan)
     for i, b in enumerate(np.atleast_1d(beta)):
         r, ell, e = (float(x) for x in dimensions(stroke, theta, b))
-        _, spec = file_of(*_file(r, ell, e, stroke, time_ratio, theta, 0.0, "", speed, section, density, ram_mass,
-                                 load))  # fmt: skip
+        _, spec = file_of(
+            *_file(r, ell, e, stroke, time_ratio, theta, 0.0, "", speed, section, density, ram_mass, load)
+        )
         out.flat[i] = abs(float(np.ravel(torque_peak(forces(spec, steps=360)).value)[0]))
     return out
 
 
-def _least_torque(stroke: float, time_ratio: float, bound: float, load, speed, section, density,  # noqa: ANN001
-                  ram_mass) -> tuple[float, str]:  # noqa: ANN001  # fmt: skip
+def _least_torque(
+    stroke: float,
+    time_ratio: float,
+    bound: float,
+    load,
+    speed,
+    section,
+    density,  # noqa: ANN001
+    ram_mass,
+) -> tuple[float, str]:  # noqa: ANN001
     """beta (rad) of the member with the least peak driving torque among those whose largest pressure angle is
     at most ``bound`` (an interval of beta about the least one's, its ends by Brent on the closed form): the best
     of a grid over it, refined by Brent's method between its neighbours."""
@@ -289,8 +328,12 @@ def _least_torque(stroke: float, time_ratio: float, bound: float, load, speed, s
     torques = peak_torques(stroke, time_ratio, betas, load, *args)
     i = int(np.nanargmin(torques))
     lo, hi = betas[max(i - 1, 0)], betas[min(i + 1, len(betas) - 1)]
-    res = minimize_scalar(lambda b: float(peak_torques(stroke, time_ratio, np.array([b]), load, *args)[0]),
-                          bounds=(lo, hi), method="bounded", options={"xatol": 1e-7})  # fmt: skip
+    res = minimize_scalar(
+        lambda b: float(peak_torques(stroke, time_ratio, np.array([b]), load, *args)[0]),
+        bounds=(lo, hi),
+        method="bounded",
+        options={"xatol": 1e-7},
+    )
     best = float(res.x) if res.fun <= torques[i] else float(betas[i])
     return best, f"the least peak driving torque under the working load {load[0]:g} N"
 
@@ -314,7 +357,7 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
                 "mass": float(f"{ram_mass if ram_mass is not None else rod:.6g}"),
                 "inertia": 0,
             },
-        },  # fmt: skip
+        },
         "joints": {
             "O": {"type": "revolute", "links": ["frame", "crank"]},
             "A": {"type": "revolute", "links": ["crank", "rod"]},
@@ -326,15 +369,22 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
                 "through": [mm(-e), 0.0],
                 "axis": -90.0,
             },
-        },  # fmt: skip
+        },
         "drives": [{"joint": "O", "speed": speed, "direction": "ccw", "angle": degrees(start)}],
         "hints": {"B": [mm(-e), mm(-near)]},
     }
     if load is not None:  # resisting the ram over the last ``load[1]`` of its way down
         bottom = -math.sqrt((ell + r) ** 2 - e**2)
-        data["loads"] = {"working": {"type": "process", "tools": ["ram.B"], "axis": 90.0,
-                                     "workpiece": [mm(bottom, 17), mm(bottom + load[1], 17)],
-                                     "penetration": [0.0, 1.0], "force": [f"{load[0]:.17g} N"] * 2}}  # fmt: skip
+        data["loads"] = {
+            "working": {
+                "type": "process",
+                "tools": ["ram.B"],
+                "axis": 90.0,
+                "workpiece": [mm(bottom, 17), mm(bottom + load[1], 17)],
+                "penetration": [0.0, 1.0],
+                "force": [f"{load[0]:.17g} N"] * 2,
+            }
+        }
     comments = {
         ("links", "crank", "length"): f"r = (|OB1| - |OB2|) / 2: stroke H = {stroke * 1e3:.6g} mm",
         ("links", "rod", "length"): f"l: {why}; largest pressure angle {math.degrees(alpha):.6g} deg",

@@ -104,8 +104,14 @@ def _check(stroke: float, time_ratio: float, frame: float | None, crank: float |
     return crank_angle_between_limits(time_ratio)
 
 
-def solve(stroke: float, time_ratio: float, frame: float | None = None, crank: float | None = None,
-          rod: float | None = None, max_pressure_angle: float | None = None) -> tuple[dict, str]:  # fmt: skip
+def solve(
+    stroke: float,
+    time_ratio: float,
+    frame: float | None = None,
+    crank: float | None = None,
+    rod: float | None = None,
+    max_pressure_angle: float | None = None,
+) -> tuple[dict, str]:
     """The dimensions (m; with the rod and the largest pressure angle) and what picked the frame; raises
     :class:`SynthesisError` for requirements that cannot be met."""
     theta = _check(stroke, time_ratio, frame, crank, rod)
@@ -125,8 +131,10 @@ def solve(stroke: float, time_ratio: float, frame: float | None = None, crank: f
     bound = PRESSURE_ANGLE if max_pressure_angle is None else max_pressure_angle
     dims["rod"] = rod if rod is not None else sag / math.sin(bound)
     if dims["rod"] <= sag:
-        raise SynthesisError(f"rod {rod * 1e3:g} mm: the rod must be longer than half the lever tip's sagitta, "  # type: ignore[operator]
-                             f"{sag * 1e3:.6g} mm, to reach the guide")  # fmt: skip
+        raise SynthesisError(
+            f"rod {rod * 1e3:g} mm: the rod must be longer than half the lever tip's sagitta, "  # type: ignore[operator]
+            f"{sag * 1e3:.6g} mm, to reach the guide"
+        )
     dims["largest_pressure_angle"] = largest_pressure_angle(dims["lever"], theta, dims["rod"])
     if max_pressure_angle is not None and dims["largest_pressure_angle"] > max_pressure_angle * (1 + 1e-12):
         raise SynthesisError(
@@ -165,8 +173,9 @@ def synthesize(
     dims, why = solve(stroke, time_ratio, frame, crank, rod, max_pressure_angle)
     theta = crank_angle_between_limits(time_ratio)
     alpha = dims.pop("largest_pressure_angle")
-    requirements = given(stroke=stroke, time_ratio=time_ratio, frame=frame, crank=crank, rod=rod,
-                         max_pressure_angle=max_pressure_angle)  # fmt: skip
+    requirements = given(
+        stroke=stroke, time_ratio=time_ratio, frame=frame, crank=crank, rod=rod, max_pressure_angle=max_pressure_angle
+    )
     text, spec = file_of(*_file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass))
     measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
@@ -209,7 +218,7 @@ def _file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, 
             "lever": {"ends": ["O2", "C"], "length": mm(lever, EXACT), "mass": mass["lever"]},
             "rod": {"ends": ["C", "D"], "length": mm(rod, EXACT), "mass": mass["rod"]},
             "ram": {"points": {"D": [0.0, 0.0]}, "mass": ram, "inertia": 0},
-        },  # fmt: skip
+        },
         "joints": {
             "O1": {"type": "revolute", "links": ["frame", "crank"]},
             "A": {"type": "revolute", "links": ["crank", "block"]},
@@ -224,7 +233,7 @@ def _file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, 
                 "through": [0.0, mm(h, EXACT)],
                 "axis": 0.0,
             },
-        },  # fmt: skip
+        },
         "drives": [{"joint": "O1", "speed": speed, "direction": "ccw", "angle": 90.0}],
         "hints": {"A": [0.0, mm(d + r)], "C": [0.0, mm(lever)], "D": [mm(reach), mm(h)]},
     }

@@ -72,8 +72,13 @@ def geometry(stroke: float, swing: float, time_ratio: float) -> dict:
     half = swing / 2  # the unit rocker's limits are symmetric about -y: turn B_f onto -y
     turn = np.array([[math.cos(half), -math.sin(half)], [math.sin(half), math.cos(half)]])
     a = stroke / (2 * (1 - math.cos(swing)))
-    return {"toggle": a, "O": turn @ m["O2"] * a, "crank": float(m["crank"]) * a,
-            "rod": float(m["coupler"]) * a, "least_transmission_angle": float(mu)}  # fmt: skip
+    return {
+        "toggle": a,
+        "O": turn @ m["O2"] * a,
+        "crank": float(m["crank"]) * a,
+        "rod": float(m["coupler"]) * a,
+        "least_transmission_angle": float(mu),
+    }
 
 
 def nominal(geo: dict, before: float) -> tuple[float, float]:
@@ -114,8 +119,9 @@ def synthesize(
         if not 0 < value < math.inf:
             raise SynthesisError(f"toggle-press: {name} {value!r}: expected a positive finite value (SI)")
     if not before < stroke:
-        raise SynthesisError(f"nominal point {before * 1e3:g} mm before the bottom: it must lie within the stroke "
-                             f"{stroke * 1e3:g} mm")  # fmt: skip
+        raise SynthesisError(
+            f"nominal point {before * 1e3:g} mm before the bottom: it must lie within the stroke {stroke * 1e3:g} mm"
+        )
     psi = SWING if swing is None else swing
     k = TIME_RATIO if time_ratio is None else time_ratio
     if not 0 < psi < math.pi / 2:
@@ -136,8 +142,17 @@ def synthesize(
     confirm(measured, predicted, geo["least_transmission_angle"])
     dims = {key: float(v) for key, v in geo.items() if key != "O" and key != "least_transmission_angle"}
     dims.update(frame_x=float(geo["O"][0]), frame_y=float(geo["O"][1]))
-    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, None,
-                     f"picked by the stated swing {deg(psi)} and time ratio K = {k:g}")  # fmt: skip
+    return Synthesis(
+        KIND,
+        requirements,
+        dims,
+        predicted,
+        measured,
+        spec,
+        text,
+        None,
+        f"picked by the stated swing {deg(psi)} and time ratio K = {k:g}",
+    )
 
 
 def _torque(spec, angle: float) -> float:  # noqa: ANN001
@@ -187,7 +202,7 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
                 "through": [0.0, 0.0],
                 "axis": -90.0,
             },
-        },  # fmt: skip
+        },
         "loads": {
             "pressing": {
                 "type": "process",
@@ -197,7 +212,7 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
                 "penetration": [0.0, 1.0],
                 "force": [f"{force:.17g} N", f"{force:.17g} N"],
             },
-        },  # fmt: skip
+        },
         "drives": [{"joint": "O", "speed": speed, "direction": "cw", "angle": degrees(start)}],
         "hints": {"K": [mm(top[0]), mm(top[1])], "R": [0.0, mm(-2 * a * math.cos(psi))]},
     }

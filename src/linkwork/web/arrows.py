@@ -56,8 +56,14 @@ class SchemeForce:
     point: int
 
     def as_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "name": self.name, "label": self.label, "on": self.on, "by": list(self.by),
-                "point": self.point}  # fmt: skip
+        return {
+            "kind": self.kind,
+            "name": self.name,
+            "label": self.label,
+            "on": self.on,
+            "by": list(self.by),
+            "point": self.point,
+        }
 
 
 @dataclass(frozen=True)
@@ -111,8 +117,11 @@ def _reaction_arrows(mech: Mechanism) -> tuple[SchemeForce, ...]:
         k = next(k for k in pairs if on in map(int, mech.pair_links[k]))
         point = _point_of(mech, k, on)
         label = "R" + (",".join if max(members) >= 10 else "".join)([*(str(b) for b in by), str(on)])
-        arrows.append(SchemeForce("reaction", str(joint), label, mech.link_names[on],
-                            tuple(mech.link_names[b] for b in by), point))  # fmt: skip
+        arrows.append(
+            SchemeForce(
+                "reaction", str(joint), label, mech.link_names[on], tuple(mech.link_names[b] for b in by), point
+            )
+        )
     return tuple(arrows)
 
 

@@ -383,19 +383,26 @@ def _scene(cycle: Cycle, series: tuple[PlanSeries, PlanSeries], at: np.ndarray) 
     centres = np.stack([lab.centre for lab in scheme.labels], 1) if scheme.labels else np.zeros((len(at), 0, 2))
     centres = carried(centres, _label_anchors(scheme), at)
     labels = [
-        {"text": lab.text, "kind": lab.kind, "link": lab.link, "at": _json(lab.at, 12),
-         "centre": _json(centres[:, j], 5)}
+        {
+            "text": lab.text,
+            "kind": lab.kind,
+            "link": lab.link,
+            "at": _json(lab.at, 12),
+            "centre": _json(centres[:, j], 5),
+        }
         for j, lab in enumerate(scheme.labels)
-    ]  # fmt: skip
+    ]
     out = scheme_shape(scheme)
-    out.update({
-        "extent": _json(scheme.extent(), 9),
-        "poses": _json(scheme.poses, 9),
-        "labels": labels,
-        "paths": [cycle.mech.point_names.index(name) for name in scheme.path_names],
-        "plans": {one.kind: _plan_scene(cycle, one, at) for one in series},
-        "subscripts": SUBSCRIPTED,
-    })  # fmt: skip
+    out.update(
+        {
+            "extent": _json(scheme.extent(), 9),
+            "poses": _json(scheme.poses, 9),
+            "labels": labels,
+            "paths": [cycle.mech.point_names.index(name) for name in scheme.path_names],
+            "plans": {one.kind: _plan_scene(cycle, one, at) for one in series},
+            "subscripts": SUBSCRIPTED,
+        }
+    )
     return out
 
 
@@ -435,10 +442,15 @@ def element_list(scheme: SchemeScene) -> list[dict[str, Any]]:
     ``name``, the ``links`` of its two points, the points ``at`` in their links' axes and the symbol's
     ``strokes``, rows ``(f, s, c)``: the vertex ``a + f (b - a) + s u + c n`` between its points ``a`` and ``b``."""
     return [
-        {"kind": e.kind, "name": e.name, "links": list(e.links), "at": _json(e.at, 12),
-         "strokes": [_json(stroke, 9) for stroke in e.strokes]}
+        {
+            "kind": e.kind,
+            "name": e.name,
+            "links": list(e.links),
+            "at": _json(e.at, 12),
+            "strokes": [_json(stroke, 9) for stroke in e.strokes],
+        }
         for e in scheme.elements
-    ]  # fmt: skip
+    ]
 
 
 def _plan_scene(cycle: Cycle, series: PlanSeries, at: np.ndarray) -> dict[str, Any]:

@@ -96,9 +96,12 @@ class Viewer:
     """
 
     def __init__(
-        self, spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360, cache: int = 16,
+        self,
+        spec_or_mech: Spec | Mechanism | str | Path,
+        steps: int = 360,
+        cache: int = 16,
         placed: int | None = LIVE_PLACED,
-    ) -> None:  # fmt: skip
+    ) -> None:
         self.mech: Mechanism = mechanism_of(spec_or_mech, "viewer")
         self.spec = self.mech.spec
         self._editable = editable(self.mech)
@@ -144,8 +147,9 @@ class Viewer:
             self._whole.put(steps, found)
         return found
 
-    def cycle(self, overrides: dict[str, float] | None = None, steps: int | None = None,
-              first: bool = False) -> dict[str, Any]:  # fmt: skip
+    def cycle(
+        self, overrides: dict[str, float] | None = None, steps: int | None = None, first: bool = False
+    ) -> dict[str, Any]:
         """The whole payload of the variant ``overrides``, with its ``parameters``, ``editable`` and
         ``overrides`` (kept: the caller must not change it).  ``first``: its labels placed at the first
         sample only (carried along the turn from there), to show a page at once."""
@@ -183,8 +187,13 @@ class Viewer:
             self._drawings.put(key, found)
         return found
 
-    def force_plans_at(self, samples: Any, overrides: dict[str, float] | None = None, steps: int | None = None,
-                       cycle: Cycle | None = None) -> dict[str, Any]:  # fmt: skip
+    def force_plans_at(
+        self,
+        samples: Any,
+        overrides: dict[str, float] | None = None,
+        steps: int | None = None,
+        cycle: Cycle | None = None,
+    ) -> dict[str, Any]:
         """The force plans and the lever of the variant ``overrides`` (its ``cycle``, where the caller has solved
         it) at ``samples`` of its cycle (:func:`linkwork.web.force_plans.force_plans_part`)."""
         steps = steps or self.steps

@@ -152,11 +152,13 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged:
         shapes = {one.kind: ({}, cycle_scale(one, cycle.valid)) for one in series}
     else:  # each plan's frame and labels' size, and its scale
         shapes = {one.kind: plan_shape(cycle, one) for one in series}
-    scene.update({
-        "poses": compact(poses),
-        "label_at": _json(np.array([lab.at for lab in scheme.labels]).reshape(-1, 2), 12),
-        "plans": {kind: shape for kind, (shape, _) in shapes.items()},
-    })  # fmt: skip
+    scene.update(
+        {
+            "poses": compact(poses),
+            "label_at": _json(np.array([lab.at for lab in scheme.labels]).reshape(-1, 2), 12),
+            "plans": {kind: shape for kind, (shape, _) in shapes.items()},
+        }
+    )
     quantities = series_values(cycle)
     out: dict[str, Any] = {
         "format": EDIT_FORMAT,
@@ -167,12 +169,12 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged:
         "plans": {
             one.kind: {"scale_per_mm": shapes[one.kind][1], "values": compact(plan_values(one, cycle.valid))}
             for one in series
-        },  # fmt: skip
+        },
         "scene": scene,
         "series": {
             "keys": [q[0] for q in quantities],
             "values": compact(np.array([q[4] for q in quantities]).reshape(len(quantities), -1)),
-        },  # fmt: skip
+        },
         "forces": forces_part(cycle, scheme.size, compact),
         "parameters": variant_parameters(cycle.mech, cycle.overrides, kin.mass_properties, editable),
         "extremes": None if dragged else [_finite(e.as_dict()) for e in extremes(kin)],
