@@ -207,7 +207,7 @@ def test_compiled_reactions_equal_the_numpy_solution(name):
     from linkwork.kinetostatics.reactions import foundation, solve_reactions
 
     if not reactions_numba.available():
-        pytest.skip("numba is not installed")
+        pytest.skip("the compiled kernels are off (numba missing, or LINKWORK_NUMBA=0)")
     mech = lw.compile(lw.example(name))
     f = lw.forces(mech, steps=360)
     lam, frame = solve_reactions(f.kinematics, f.loads)

@@ -257,7 +257,7 @@ def test_compiled_reactions_with_friction_equal_the_numpy_solution(monkeypatch):
     from linkwork.kinetostatics import reactions_numba
 
     if not reactions_numba.available():
-        pytest.skip("numba is not installed")
+        pytest.skip("the compiled kernels are off (numba missing, or LINKWORK_NUMBA=0)")
     forces = importlib.import_module("linkwork.kinetostatics.reaction_forces")
     mech = _shears(0.1, 0.020)
     compiled = lw.forces(mech, steps=360)

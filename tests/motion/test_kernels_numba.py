@@ -13,7 +13,9 @@ from linkwork.motion import kernels_numba
 from linkwork.structure.parameters import apply
 from mechanisms import SOLVED, TEXTBOOK, angles_around, circle_intersection, compiled, four_bar_spec, hydraulic_boom
 
-pytestmark = pytest.mark.skipif(not kernels_numba.available(), reason="numba is not installed")
+pytestmark = pytest.mark.skipif(
+    not kernels_numba.available(), reason="the compiled kernels are off (numba missing, or LINKWORK_NUMBA=0)"
+)
 
 
 def _both(mech, angles, monkeypatch, **kw):

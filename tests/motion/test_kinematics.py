@@ -505,7 +505,7 @@ def _kernels(monkeypatch, compiled):
     from linkwork.motion import kernels_numba
 
     if compiled and not kernels_numba.available():
-        pytest.skip("numba is not installed")
+        pytest.skip("the compiled kernels are off (numba missing, or LINKWORK_NUMBA=0)")
     monkeypatch.setenv("LINKWORK_NUMBA", "1" if compiled else "0")
 
 
