@@ -21,9 +21,9 @@ import numpy as np
 from timing import best
 
 import linkwork as lw
-from linkwork.kinetostatics import fast
+from linkwork import threads as threads_
+from linkwork.kinetostatics import reactions_numba
 from linkwork.kinetostatics.reactions import inertia_and_gravity, solve_reactions
-from linkwork.motion import fast as motion_fast
 from linkwork.structure.constraints import residuals_and_jacobian
 from linkwork.structure.parameters import Geometry
 
@@ -53,9 +53,9 @@ def main() -> None:
     rows = []
 
     def run(label, fn, threads=None):
-        saved = (fast.THREADS, motion_fast.THREADS)
+        saved = threads_.THREADS
         if threads is not None:
-            fast.THREADS = motion_fast.THREADS = threads
+            threads_.set_threads(threads)
         try:
             torque = fn()
             ok = np.isfinite(reference) & np.isfinite(torque)
@@ -64,11 +64,11 @@ def main() -> None:
                 sys.exit(f"{label}: driving torque differs from linkwork's by {err:.1e} (relative)")
             t = best(fn, budget=5.0)
         finally:
-            fast.THREADS, motion_fast.THREADS = saved
+            threads_.set_threads(saved)
         rows.append((label, t, err))
 
-    if fast.available():
-        run(f"linkwork ({fast.THREADS} threads)", lambda: lw.forces(mech, phi).driving_torque)
+    if reactions_numba.available():
+        run(f"linkwork ({threads_.THREADS} threads)", lambda: lw.forces(mech, phi).driving_torque)
         run("linkwork-1 (one thread)", lambda: lw.forces(mech, phi).driving_torque, threads=1)
     else:
         print("numba is not installed: linkwork runs its NumPy path (pip install '.[bench]')")

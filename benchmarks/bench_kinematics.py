@@ -31,7 +31,8 @@ import numpy as np
 from timing import best
 
 import linkwork as lw
-from linkwork.motion import fast
+from linkwork import threads
+from linkwork.motion import kernels_numba
 
 A, B, C, D = 0.10, 0.35, 0.25, 0.30
 W = 2 * math.pi  # 60 rpm
@@ -112,13 +113,13 @@ def solve_and_read(mech, phi):
 def kernel_only(mech, phi):
     """The compiled kernel alone on ``phi`` (no argument handling, events or result objects), or None
     without numba."""
-    if not fast.available():
+    if not kernels_numba.available():
         return None
     from linkwork.structure.parameters import apply
 
     geom, values = apply(mech)[0], phi[:, None]
     rates, accels = np.full_like(values, mech.drive_speed[0]), np.zeros_like(values)
-    return lambda: fast.run(mech, geom, values, rates, accels)
+    return lambda: kernels_numba.run(mech, geom, values, rates, accels)
 
 
 def main() -> None:
@@ -133,10 +134,10 @@ def main() -> None:
         ref = kin.position("B")
         t_lw = best(lambda phi=phi: solve_and_read(mech, phi))
         t_solve = best(lambda phi=phi: lw.kinematics(mech, phi))
-        threads = fast.THREADS
-        fast.THREADS = 1
+        saved = threads.THREADS
+        threads.set_threads(1)
         t_lw1 = best(lambda phi=phi: solve_and_read(mech, phi))
-        fast.THREADS = threads
+        threads.set_threads(saved)
         kernel = kernel_only(mech, phi)
         t_kernel = best(kernel) if kernel is not None else float("nan")
         npy = numpy_closed_form(phi, sigma_c)
@@ -169,13 +170,15 @@ def main() -> None:
     variants = {"links.crank.length": np.linspace(0.09, 0.11, 10_000)}
     phi = mech.drive_start[0] + 2 * np.pi * np.arange(360) / 360
     t_var = best(lambda: lw.kinematics(mech, phi, variants=variants), repeat=3, budget=20)
-    compiled = f"compiled kernels, up to {fast.THREADS} threads" if fast.available() else "NumPy kernels (no numba)"
+    compiled = "NumPy kernels (no numba)"
+    if kernels_numba.available():
+        compiled = f"compiled kernels, up to {threads.THREADS} threads"
     print(f"python {sys.version.split()[0]}, numpy {np.__version__}; linkwork: {compiled}; linkwork-1: one thread")
     print("c: the closed form for B and the two angular rates (10 numbers a sample); c-full: the same closed")
     print("form giving what linkwork gives, every moving link's pose, velocity and acceleration (27 numbers);")
     print("its last column is the largest difference from linkwork's relative to the largest value;")
     print("linkwork: lw.kinematics and reading B's position, velocity and acceleration; solve: lw.kinematics")
-    print("alone; kernel: the compiled kernels alone (fast.run)")
+    print("alone; kernel: the compiled kernels alone (kernels_numba.run)")
     print(
         f"{'case':28s} {'peer':10s} {'time, ms':>10s} {'configs/s':>12s} {'vs C':>7s} {'vs C-full':>9s} "
         f"{'max |dB|, m':>12s}"

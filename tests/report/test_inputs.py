@@ -111,7 +111,9 @@ def test_wittenbauer_tangents_give_the_flywheel_in_the_figure():
         (x0, y0), (x1, y1) = lines[f"tangent:{key}"]
         assert x0 == 0.0 and (y1 - y0) / (x1 - x0) == pytest.approx(slopes[key] * scale, rel=1e-12)
         gap = sign * (y0 + slopes[key] * scale * j - energy)  # the line minus the diagram, outward
-        assert gap.min() == pytest.approx(0.0, abs=1e-9 * np.ptp(energy))  # touches
+        # it touches the diagram between the samples (the energy's extreme refined there): no sample beyond
+        # it, the nearest within the sampling's reach (the diagram's change over a step, 3e-4 of its range)
+        assert -1e-9 * np.ptp(energy) <= gap.min() <= 1e-3 * np.ptp(energy)
         intercept[key] = y0 / scale
     ab = lines["tangent:ab"][:, 1] / scale
     assert sorted(ab) == pytest.approx(sorted(intercept.values()), rel=1e-12)
