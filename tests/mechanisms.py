@@ -406,3 +406,28 @@ drives:
 hints:
   B: [150, 86.6]
 """
+
+
+def rotor(angle_deg: float) -> str:
+    """The file of a rotor: a crank of 2 kg with its centre of mass at (80, 30) mm in its own axes (off its line)
+    and its own inertia 0.01 kg m^2, driving a massless coupler and rocker at 300 rpm from ``angle_deg``.  Its
+    reduced inertia is constant and every load on its frame is a closed form of the crank's angle."""
+    return """\
+name: rotor
+units: {length: mm, mass: kg, angle: deg}
+frame:
+  points: {O2: [40, 30], O4: [300, 0]}
+links:
+  crank: {ends: [O2, A], length: 100, mass: 2.0, com: [80, 30], inertia: 0.01 kg*m^2}
+  coupler: {ends: [A, B], length: 350}
+  rocker: {ends: [O4, B], length: 250}
+joints:
+  O2: {type: revolute, links: [frame, crank]}
+  A: {type: revolute, links: [crank, coupler]}
+  B: {type: revolute, links: [coupler, rocker]}
+  O4: {type: revolute, links: [frame, rocker]}
+drives:
+  - {joint: O2, speed: 300 rpm, direction: ccw, angle: ANGLE deg}
+hints:
+  B: [330, 240]
+""".replace("ANGLE", f"{angle_deg:g}")

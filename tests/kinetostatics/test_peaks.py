@@ -10,6 +10,7 @@ import pytest
 import linkwork as lw
 from commandline import linkwork
 from linkwork.kinetostatics.peaks import foundation_peak, refine, torque_peak
+from mechanisms import rotor
 
 
 @pytest.fixture(scope="module")
@@ -150,25 +151,7 @@ def test_the_largest_pair_forces_do_not_depend_on_the_grid_and_the_command_print
 #: and theta the angle of its centre of mass, Fx = K cos(theta), Fy = -m g + K sin(theta), and the moment about the
 #: origin is that of Fy and Fx at the pivot and of the weight's arm r_c cos(theta) (the inertia force passes
 #: through the pivot).
-ROTOR = """\
-name: rotor
-units: {length: mm, mass: kg, angle: deg}
-frame:
-  points: {O2: [40, 30], O4: [300, 0]}
-links:
-  crank: {ends: [O2, A], length: 100, mass: 2.0, com: [80, 30], inertia: 0.01 kg*m^2}
-  coupler: {ends: [A, B], length: 350}
-  rocker: {ends: [O4, B], length: 250}
-joints:
-  O2: {type: revolute, links: [frame, crank]}
-  A: {type: revolute, links: [crank, coupler]}
-  B: {type: revolute, links: [coupler, rocker]}
-  O4: {type: revolute, links: [frame, rocker]}
-drives:
-  - {joint: O2, speed: 300 rpm, direction: ccw, angle: 60 deg}
-hints:
-  B: [330, 240]
-"""
+ROTOR = rotor(60)
 
 
 def _rotor_bolts() -> dict[str, tuple[float, float]]:

@@ -21,6 +21,7 @@ from linkwork.machine import (
     size_flywheel,
 )
 from linkwork.machine.simulation import Model
+from mechanisms import rotor
 
 
 def _fd_kinetic_and_potential(mech, angle, h=1e-6):
@@ -307,25 +308,7 @@ def test_delta_holds_to_the_integrations_tolerance_whatever_the_last_bits_of_the
 #: and its weight's work over the turn is zero: the energy swings between +-m g r_c about its mean, dE = 2 m g r_c,
 #: and the energy method's flywheel for delta at omega is J_c = 2 m g r_c / (delta omega^2) (the tangents' one is that
 #: less J, the mechanism's own).
-ROTOR = """\
-name: rotor
-units: {length: mm, mass: kg, angle: deg}
-frame:
-  points: {O2: [40, 30], O4: [300, 0]}
-links:
-  crank: {ends: [O2, A], length: 100, mass: 2.0, com: [80, 30], inertia: 0.01 kg*m^2}
-  coupler: {ends: [A, B], length: 350}
-  rocker: {ends: [O4, B], length: 250}
-joints:
-  O2: {type: revolute, links: [frame, crank]}
-  A: {type: revolute, links: [crank, coupler]}
-  B: {type: revolute, links: [coupler, rocker]}
-  O4: {type: revolute, links: [frame, rocker]}
-drives:
-  - {joint: O2, speed: 300 rpm, direction: ccw, angle: 63 deg}
-hints:
-  B: [330, 240]
-"""
+ROTOR = rotor(63)
 
 
 @pytest.mark.parametrize("steps", [360, 720])
