@@ -1,20 +1,30 @@
-"""What the tests share: the report of the README's main job, built once, and the markers of the lanes.
+"""What the tests share: the reports they read, each built once for the whole run (both xdist workers), the
+kernels they run, the lanes and the time budget of a test.
 
-Markers (``pyproject.toml``): ``slow`` (the cases of a test beyond those the fast lane keeps of it, listed in
-:data:`SLOW`: every example, both languages, both turning directions, every file; two thirds of the sample of
-hostile inputs), ``browser`` (Debian's chromium through Playwright), ``dask`` (worker processes and
-schedulers).  ``pytest`` (the README's test command) leaves the slow lane out, ``pytest -m slow`` runs it, and
-``.ci/run`` runs both; the fast lane is ``pytest -m "not slow and not browser and not dask"``.  The full
-generated run of hostile inputs (marker ``hostile``, hundreds of processes) runs only when asked for:
-``pytest --hostile``.
+The lanes (markers in ``pyproject.toml``; the README's test command ``pytest`` runs the default lane, on both
+cores through pytest-xdist, and ``.ci/run`` runs every lane after it):
+
+- default: everything not marked below, on the NumPy kernels (``LINKWORK_NUMBA=0`` for this process and every
+  command it runs), each test within :data:`BUDGET` seconds;
+- ``slow``: the cases of a test beyond those the default lane keeps of it (:data:`SLOW`: every example, both
+  languages, both turning directions, every file; most of the sample of hostile inputs), and tests that build
+  whole reports of several examples: ``pytest -m slow``;
+- ``numba``: the compiled kernels, compared with the NumPy ones; each such test turns them on for itself
+  (:func:`compiled_kernels`): ``linkwork warm && pytest -m numba``;
+- ``browser``: Debian's chromium through Playwright: ``pytest -m browser``;
+- ``dask``: Dask schedulers and worker processes: ``pytest -m dask``;
+- ``hostile``: the full generated run of hostile inputs (hundreds of processes), only with ``pytest --hostile``.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import re
+import shutil
 import subprocess
 import sys
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -22,10 +32,16 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
-# The compiled kernels always, compiled when first used (once, into the user's cache), in this process and in
-# every command it runs: the tests compare them with the NumPy kernels, and no command of the suite starts a
-# compile in the background (tests/test_jit.py tests that route with a cache of its own).
-os.environ.setdefault("LINKWORK_NUMBA", "1")
+# The NumPy kernels in this process and in every command it runs, as a newcomer's first commands have them: a
+# fresh clone's cache is empty, and compiling the numba kernels costs minutes of processor time.  The tests of
+# the compiled kernels (marker ``numba``) turn them on for themselves (:func:`compiled_kernels`), and no command
+# of the suite starts a compile in the background (tests/test_jit.py tests that route with a cache of its own).
+os.environ.setdefault("LINKWORK_NUMBA", "0")
+
+#: Seconds of wall time the call of a test of the default lane may take, and its setup (where a shared report
+#: is built by the first test that asks for it), on a 2-core machine running both xdist workers: a test that
+#: needs longer belongs to a lane of its own.  ``LINKWORK_NO_BUDGET=1`` lifts the budget (a debugger, a profiler).
+BUDGET, SETUP_BUDGET = 20.0, 60.0
 
 
 @dataclass(frozen=True)
@@ -47,20 +63,129 @@ def quick_start() -> list[str]:
     return [line for block in blocks for line in block.strip().splitlines()]
 
 
+def shared_folder(factory: pytest.TempPathFactory, key: str, make: Callable[[Path], None]) -> Path:
+    """The folder ``key`` of the whole run, made by ``make(folder)`` once whichever xdist worker asks first (the
+    others wait for it under a file lock); a make that raised is made again by the next caller."""
+    from filelock import FileLock
+
+    root = factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent  # the workers' base folders are siblings
+    folder = root / "shared" / re.sub(r"[^\w.=-]+", "_", key)
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    with FileLock(str(folder) + ".lock"):
+        if not (folder.parent / f"{folder.name}.done").exists():
+            shutil.rmtree(folder, ignore_errors=True)
+            folder.mkdir()
+            make(folder)
+            (folder.parent / f"{folder.name}.done").touch()
+    return folder
+
+
 @pytest.fixture(scope="session")
 def main_job(tmp_path_factory: pytest.TempPathFactory) -> MainJob:
-    """The README's main job (``linkwork analyze double-cut-shears --out report``) run once, as written, in
-    a fresh folder; the tests of the command line and of the report read what it wrote."""
+    """The README's main job (``linkwork analyze double-cut-shears --out report``) run once for the whole run,
+    as written, in a fresh folder, with the NumPy kernels as a newcomer's first run has them; the tests of the
+    command line and of the report read what it wrote."""
     commands = quick_start()
     args = commands[0].split("&&")[-1].strip().split()
-    cwd = tmp_path_factory.mktemp("main-job")
-    # with the NumPy kernels, as a newcomer's first run (the compiled kernels are compared with them elsewhere;
-    # a child that compiled them again would cost a minute of the suite where the cache is cold)
-    env = {**os.environ, "LINKWORK_NUMBA": "0"}
-    command = [sys.executable, "-m", "linkwork.cli", *args[1:]]
-    proc = subprocess.run(command, capture_output=True, text=True, cwd=cwd, env=env)
+
+    def run(cwd: Path) -> None:
+        command = [sys.executable, "-m", "linkwork.cli", *args[1:]]
+        proc = subprocess.run(command, capture_output=True, text=True, cwd=cwd, env=os.environ)
+        (cwd.parent / f"{cwd.name}.json").write_text(json.dumps([proc.returncode, proc.stderr]), encoding="utf-8")
+
+    cwd = shared_folder(tmp_path_factory, "main-job", run)
+    code, stderr = json.loads((cwd.parent / f"{cwd.name}.json").read_text(encoding="utf-8"))
     folder = cwd / args[args.index("--out") + 1] if "--out" in args else cwd
-    return MainJob(commands, args, proc.returncode, proc.stderr, folder)
+    return MainJob(commands, args, code, stderr, folder)
+
+
+@pytest.fixture(scope="session")
+def report(tmp_path_factory: pytest.TempPathFactory) -> Callable[..., Path]:
+    """``report(name, **options)``: the folder of a bundled example's (or a file's) report written by
+    :func:`linkwork.report.analyze` with these options (default 36 steps and no animation, the least that
+    draws every section), built once for the whole run; tests that read a report only read it."""
+
+    def get(name: str, **options: object) -> Path:
+        options = {"steps": 36, "animation": False, **options}
+        key = "report-" + Path(name).name + "-" + "-".join(f"{k}={v}" for k, v in sorted(options.items()))
+
+        def make(folder: Path) -> None:
+            import linkwork as lw
+            from linkwork import report as build
+
+            build.analyze(lw.compile(lw.load(name)), folder / "r", **options)  # type: ignore[arg-type]
+
+        return shared_folder(tmp_path_factory, key, make) / "r"
+
+    return get
+
+
+def _png(width: int, height: int) -> bytes:
+    """A blank PNG of ``width`` x ``height`` pixels (grey, 8 bits)."""
+    import struct
+    import zlib
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    rows = b"".join(b"\0" + b"\xff" * width for _ in range(height))
+    head = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", head) + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b"")
+
+
+@pytest.fixture
+def sketched_figures(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A report's figures written as blank pictures, not drawn (in this process, no second one): for the tests of
+    what a report's folder, tables and page hold, whose figures other tests draw and read."""
+    from linkwork.report import build
+
+    png = _png(20, 10)
+
+    def sketch(self: object, name: str, make: Callable[[], object]) -> None:
+        stem = self.folder / "figures" / name  # type: ignore[attr-defined]
+        stem.with_suffix(".png").write_bytes(png)
+        stem.with_suffix(".svg").write_text("<svg xmlns='http://www.w3.org/2000/svg'/>", encoding="utf-8")
+
+    monkeypatch.setattr(build._Run, "_draw", sketch)
+    monkeypatch.setattr(build, "PARALLEL", False)
+
+
+@pytest.fixture(autouse=True)
+def compiled_kernels(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    """A test marked ``numba`` runs with the compiled kernels (``LINKWORK_NUMBA=1``, compiled into the cache when
+    first used; ``linkwork warm`` compiles them before the lane), and fails where they do not load where numba
+    is installed: a comparison of the twins never compares the NumPy kernels with themselves."""
+    if request.node.get_closest_marker("numba") is None:
+        yield
+        return
+    from linkwork import jit
+
+    if not jit.installed():
+        pytest.skip("numba is not installed on this platform (the NumPy kernels are the only ones)")
+    monkeypatch.setenv("LINKWORK_NUMBA", "1")
+    assert jit.active(), "the compiled kernels did not load"
+    yield
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) -> Iterator[None]:
+    """Fail a test of the default lane whose call took more than :data:`BUDGET` seconds, or whose setup took more
+    than :data:`SETUP_BUDGET` (a shared report it was the first to ask for included): the lane's time is a budget,
+    and a test over it goes to a lane of its own (``slow``, ``browser``, ``dask``, ``numba``)."""
+    outcome = yield
+    rep = outcome.get_result()
+    limit = {"call": BUDGET, "setup": SETUP_BUDGET}.get(call.when)
+    lanes = ("slow", "browser", "dask", "numba", "hostile")
+    if limit is None or not rep.passed or any(item.get_closest_marker(m) for m in lanes):
+        return
+    if call.duration > limit and not os.environ.get("LINKWORK_NO_BUDGET"):
+        rep.outcome = "failed"
+        rep.longrepr = (
+            f"{item.nodeid}: its {call.when} took {call.duration:.1f} s, over the default lane's budget of "
+            f"{limit:.0f} s (tests/conftest.py: BUDGET); move it to a lane of its own or make it cheaper"
+        )
 
 
 #: Tests of the slow lane, by node id without the parameters (``path::name``), each with the parameter ids it
@@ -91,6 +216,14 @@ SLOW = {
 }
 
 
+#: Cases of a test that the slow lane runs, by node id without the parameters, where the test's other cases stay
+#: in the default lane: each takes more than the default lane's budget on the NumPy kernels.
+SLOW_CASES = {
+    # the synthesis guide's Python synthesises and checks four kinds of mechanism (about 17 s of processor time)
+    "test_manual.py::test_the_code_of_a_page_runs_as_written": ("docs/guide/synthesis.md",),
+}
+
+
 def pytest_addoption(parser: pytest.Parser) -> None:
     parser.addoption("--hostile", action="store_true", help="also run the full generated run of hostile inputs")
 
@@ -105,5 +238,5 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
             items[:] = [item for item in items if item.get_closest_marker("hostile") is None]
     for item in items:
         test, _, case = item.nodeid.replace("\\", "/").split("tests/", 1)[-1].partition("[")
-        if test in SLOW and case[:-1] not in SLOW[test]:
+        if (test in SLOW and case[:-1] not in SLOW[test]) or case[:-1] in SLOW_CASES.get(test, ()):
             item.add_marker(pytest.mark.slow)

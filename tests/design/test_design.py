@@ -685,6 +685,8 @@ def test_optimum_transmission_angle_of_a_four_bar_is_the_closed_form_one():
     assert best.metrics["min_transmission_angle"] == pytest.approx(mu, rel=1e-6)
 
 
+# about a minute of processor time on the NumPy kernels: the four-bar's optimum above stands for it in the default lane
+@pytest.mark.slow
 def test_double_cut_shears_optimum_is_feasible_better_than_a_sample_and_its_file_reproduces_it(tmp_path):
     vary = [
         "links.crank.length=80mm:120mm",

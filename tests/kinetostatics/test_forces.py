@@ -198,6 +198,7 @@ def test_first_harmonic_balancing_of_the_seed_000_shears():
     np.testing.assert_allclose(after, (y_axis - x_axis) / 2 * OMEGA**2, rtol=1e-9)
 
 
+@pytest.mark.numba
 @pytest.mark.parametrize(
     "name", ["double-cut-shears", "shears-slider-crank", "watt-six-bar", "stephenson-six-bar", "class3-triad"]
 )
@@ -206,8 +207,7 @@ def test_compiled_reactions_equal_the_numpy_solution(name):
     from linkwork.kinetostatics import reactions_numba
     from linkwork.kinetostatics.reactions import foundation, solve_reactions
 
-    if not reactions_numba.available():
-        pytest.skip("the compiled kernels are off (numba missing, or LINKWORK_NUMBA=0)")
+    assert reactions_numba.available()  # the lane's fixture turned them on
     mech = lw.compile(lw.example(name))
     f = lw.forces(mech, steps=360)
     lam, frame = solve_reactions(f.kinematics, f.loads)

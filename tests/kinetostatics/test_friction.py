@@ -248,6 +248,7 @@ hints:
     assert "bad.yaml:11" in str(problem) and "joints.A.friction.f" in str(problem)
 
 
+@pytest.mark.numba
 @pytest.mark.filterwarnings("ignore::linkwork.errors.FrictionWarning")
 def test_compiled_reactions_with_friction_equal_the_numpy_solution(monkeypatch):
     """The friction solve goes through the compiled kernel (its loads are external loads): the same reactions
@@ -256,8 +257,7 @@ def test_compiled_reactions_with_friction_equal_the_numpy_solution(monkeypatch):
 
     from linkwork.kinetostatics import reactions_numba
 
-    if not reactions_numba.available():
-        pytest.skip("the compiled kernels are off (numba missing, or LINKWORK_NUMBA=0)")
+    assert reactions_numba.available()  # the lane's fixture turned them on
     forces = importlib.import_module("linkwork.kinetostatics.reaction_forces")
     mech = _shears(0.1, 0.020)
     compiled = lw.forces(mech, steps=360)

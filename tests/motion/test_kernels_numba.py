@@ -13,9 +13,7 @@ from linkwork.motion import kernels_numba
 from linkwork.structure.parameters import apply
 from mechanisms import SOLVED, TEXTBOOK, angles_around, circle_intersection, compiled, four_bar_spec, hydraulic_boom
 
-pytestmark = pytest.mark.skipif(
-    not kernels_numba.available(), reason="the compiled kernels are off (numba missing, or LINKWORK_NUMBA=0)"
-)
+pytestmark = pytest.mark.numba  # the compiled kernels' lane: each test runs them (tests/conftest.py)
 
 
 def _both(mech, angles, monkeypatch, **kw):

@@ -17,7 +17,7 @@ from linkwork.structure.model import PairType
 from linkwork.structure.parameters import apply
 from mechanisms import SOLVED, compiled
 
-numba = pytest.mark.skipif(not kernels_numba.available(), reason="the compiled kernels do not run (LINKWORK_NUMBA)")
+numba = pytest.mark.numba  # the compiled kernels' lane: each test runs them (tests/conftest.py)
 
 
 def pushed_rocker():

@@ -92,7 +92,7 @@ def test_the_report_renders_in_a_headless_browser(reports, name):
         browser.close()
 
 
-def test_a_rerun_replaces_the_report_and_a_failed_run_leaves_the_old_one(tmp_path, monkeypatch):
+def test_a_rerun_replaces_the_report_and_a_failed_run_leaves_the_old_one(tmp_path, monkeypatch, sketched_figures):
     import linkwork as lw
     from linkwork.report import build as report
 

@@ -24,6 +24,9 @@ from linkwork.cli.main import app  # noqa: E402
 runner = CliRunner()
 MARKER = ".linkwork-report"
 
+# what the folder holds and how it is replaced is tested here; the figures are drawn and read elsewhere
+pytestmark = pytest.mark.usefixtures("sketched_figures")
+
 
 def _snapshot(root: Path) -> dict[str, tuple]:
     """Everything under ``root`` (links not followed): kind, inode, mode, size, mtime and a file's bytes."""

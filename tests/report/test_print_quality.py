@@ -11,16 +11,10 @@ import pytest
 pytest.importorskip("matplotlib")
 
 
-def test_the_report_figures_are_written_at_print_resolution(tmp_path):
+def test_the_report_figures_are_written_at_print_resolution(report):
     from PIL import Image
-    from typer.testing import CliRunner
 
-    import linkwork.cli.analyze  # noqa: F401  (registers the command)
-    from linkwork.cli.main import app
-
-    out = tmp_path / "r"
-    result = CliRunner().invoke(app, ["analyze", "four-bar", "--out", str(out), "--steps", "36", "--no-animation"])
-    assert result.exit_code == 0, result.output
+    out = report("four-bar")  # 36 steps, no animation
     with Image.open(out / "figures" / "velocity_plan.png") as im:
         dpi = im.info["dpi"][0]
         pixels = im.size[0]

@@ -262,14 +262,9 @@ def _cli():
     return CliRunner(), app
 
 
-def test_analyze_writes_the_drawings_for_cad_and_the_sheets_of_all_twelve_plans(tmp_path):
+def test_analyze_writes_the_drawings_for_cad_and_the_sheets_of_all_twelve_plans(report):
     ezdxf = pytest.importorskip("ezdxf")
-    runner, app = _cli()
-    out = tmp_path / "r"
-    result = runner.invoke(
-        app, ["analyze", "four-bar", "--out", str(out), "--steps", "36", "--no-animation", "--dxf", "--position", "all"]
-    )
-    assert result.exit_code == 0, result.output
+    out = report("four-bar", dxf=True, position="all")  # 36 steps, no animation
     for name in ("scheme", "positions", "velocity_plan", "acceleration_plan"):
         doc = ezdxf.readfile(out / "figures" / f"{name}.dxf")
         assert doc.units == ezdxf.units.MM and len(doc.modelspace()) > 10
