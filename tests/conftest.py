@@ -193,21 +193,20 @@ def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) ->
 #: list of files) where the cases kept show the same code at work.  The Russian figures stand for the English
 #: ones: their words are longer, so they are the first to cover one another.
 SLOW = {
-    "figures/test_figures.py::test_no_text_of_a_report_figure_covers_another_and_no_axes_cover_axes": (
-        "double-cut-shears-ru",
-    ),
-    "figures/test_figures.py::test_every_figure_draws_every_example": ("double-cut-shears",),
+    # a whole Russian report drawn in this process (17 s of processor time): the slow lane's; the default lane
+    # reads the Russian drawings' texts in scene/test_drawings.py
+    "figures/test_figures.py::test_no_text_of_a_report_figure_covers_another_and_no_axes_cover_axes": (),
+    "figures/test_figures.py::test_every_figure_draws_every_example": ("four-bar",),
     "scene/test_drawings.py::test_no_text_covers_another_in_any_drawing": ("double-cut-shears-ru",),
-    # the percussion rocker's Russian report builds the impact section, the one section the README's main job
-    # (the double-cut shears in English, the other test's case) has not
-    "report/test_build.py::test_no_english_is_left_in_the_russian_report": ("percussion-rocker",),
+    # a whole Russian report with the plans of all twelve positions (28 s of processor time): the slow lane's
+    "report/test_build.py::test_no_english_is_left_in_the_russian_report": (),
     "report/test_build.py::test_analyze_writes_tables_figures_and_the_report": ("double-cut-shears",),
     "report/test_build.py::test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output": ("ccw",),
     "report/test_crank_angles.py::test_every_bundled_example_writes_phi_from_position_0": ("four-bar",),
     # the README's main job's report in the browser; the other sections (impact) are read in their own tests
     "report/test_build.py::test_the_report_renders_in_a_headless_browser": ("double-cut-shears",),
-    # the main job's example and the four-bar (a coupler point, the file's own dimensions in mm)
-    "report/test_inputs.py::test_every_report_says_what_it_computed": ("double-cut-shears", "four-bar"),
+    # the four-bar (a coupler point, the file's own dimensions in mm); the main job's example in the slow lane
+    "report/test_inputs.py::test_every_report_says_what_it_computed": ("four-bar",),
     # names of any script in the C locale; plain English names run through the same writer
     "cli/test_names.py::test_the_report_carries_the_names_in_the_c_locale": ("scripts",),
     # the entry point on a file the YAML reader refuses and on one that cannot be assembled (every file of the

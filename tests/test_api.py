@@ -32,6 +32,7 @@ def test_compile_and_kinematics_take_every_form(tmp_path):
     assert lw.compile(mech) is mech
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_forces_dynamics_reduced_balance_and_bolts_take_every_form(tmp_path):
     forms = _forms("double-cut-shears", tmp_path)
     torques = [lw.forces(arg, steps=72).driving_torque for arg in forms.values()]

@@ -109,6 +109,7 @@ def four_bar_report(tmp_path_factory):
     return result, cwd
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_piped_analyze_prints_one_line(four_bar_report):
     result, _ = four_bar_report
     assert result.stdout == "wrote r/report.html\n"
@@ -141,6 +142,7 @@ def test_speed_is_one_option_of_every_command_that_turns_the_crank(command):
     assert bare.returncode == 2 and bare.stderr == 'error: --speed: give the unit, e.g. "30 rpm", got "120"\n'
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_kinematics_and_analyze_at_another_speed(tmp_path):
     """At 120 rpm the crank pin A of the four-bar (crank 100 mm) moves at omega l = 4 pi 0.1 m/s, and its
     acceleration is omega^2 l; the report's table has the same."""

@@ -806,6 +806,7 @@ def test_an_optimisation_stopped_at_its_generation_limit_says_it_did_not_converg
     assert "not converged (Maximum number of iterations" in r.stdout
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_the_manual_design_commands_run(tmp_path):
     from manual import page
 
@@ -838,6 +839,7 @@ def test_the_manual_design_commands_run(tmp_path):
     assert -gap.min() >= 0.005 - 2e-6 and gap.max() >= 0.2 - 2e-6
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_a_sweep_killed_on_the_command_line_resumes_with_its_chunks_untouched(tmp_path):
     import os
     import signal

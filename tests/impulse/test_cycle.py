@@ -364,6 +364,7 @@ def test_elastic_blows_in_the_cycle_lose_no_energy():
     assert abs(run.balance) < 1e-7 * run.energy["motor"]
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_blows_per_minute_against_the_motor_balance_with_a_large_flywheel():
     """With a flywheel so large that the crank's speed hardly changes, the steady speed is where the
     motor's moment times 2 pi covers the energy the cycle consumes: one blow per turn at that speed."""

@@ -293,6 +293,7 @@ def _write(tmp_path, mech: lw.Mechanism) -> str:
     return str(path)
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_forces_command_reports_the_efficiency_and_where_the_pairs_lock(tmp_path):
     import json
 

@@ -248,6 +248,7 @@ def test_wittenbauer_tangents_are_exact_under_a_constant_drive_moment(name, spee
         assert approx.inertia == pytest.approx(exact.inertia, rel=0.05)
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_the_flywheel_is_given_on_its_shaft_and_reduced_to_the_crank():
     """The double-cut shears size a flywheel for the motor shaft (gear 48.33): ``run.flywheel.flywheel`` is
     the inertia on that shaft, the one the run turned; reduced to the crank it is u^2 times as much, and
@@ -329,6 +330,7 @@ def test_the_flywheel_is_the_closed_form_whatever_the_grid(steps, tmp_path):
     assert size_flywheel_wittenbauer(red, delta, omega).inertia == pytest.approx(expected - own, rel=1e-9)
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_the_flywheel_of_the_shears_does_not_depend_on_the_grid():
     """The double-cut shears' knives meet the billet between the points of any grid (a kink of the load): the flywheel
     for delta 0.05 at pi rad/s from 360 and 720 steps differed by 1.9e-3 (14302.2 and 14329.3 kg m^2); integrated

@@ -136,7 +136,7 @@ def _crank_shaper(crank: float, direction: str):
 
 
 @pytest.mark.parametrize("direction", ["ccw", "cw"])
-def test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output(tmp_path, direction):
+def test_the_time_ratio_of_a_crank_shaper_is_one_number_in_every_output(tmp_path, direction, sketched_figures):
     """The rocker's extremes are where the slot is tangent to the crank circle (O2A normal to O1A): the crank
     turns pi + 2 asin(r / d) during one stroke and pi - 2 asin(r / d) during the other (d = O1O2), so
     K = (pi + 2 asin(r / d)) / (pi - 2 asin(r / d)), whichever way it turns.  The long stroke passes the crank
@@ -269,7 +269,7 @@ def test_no_english_is_left_in_the_russian_report(name, tmp_path):
     assert "План сил:" in page and "Рычаг Жуковского" in page and "уравновешивающий момент Mу" in page
 
 
-def test_english_is_the_default_and_an_unknown_language_is_refused(tmp_path):
+def test_english_is_the_default_and_an_unknown_language_is_refused(tmp_path, sketched_figures):
     import linkwork as lw
     from linkwork import report
 
@@ -387,6 +387,7 @@ def test_the_two_processes_share_the_jobs_and_each_runs_once(tmp_path):
     assert str(os.getpid()) in {pid for _, pid in runs} and len({pid for _, pid in runs}) == 2
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_a_figure_that_fails_in_the_second_process_fails_the_report_and_writes_nothing(tmp_path, monkeypatch):
     """The figures of the kinematics are drawn in a forked process: its error comes back as it was raised,
     and no report is put in place."""

@@ -301,6 +301,7 @@ def test_the_next_run_leaves_folders_in_use_and_folders_not_its_own(tmp_path):
         os.close(lock)
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_a_killed_analyze_leaves_the_old_report_and_the_next_run_no_stray_folder(tmp_path):
     """The command itself, killed while it builds; its hidden folder is cleared by the next run."""
     import linkwork as lw

@@ -82,6 +82,7 @@ def test_every_report_says_what_it_computed(report, name):
         assert f"power {motor['power']}" in section
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_the_input_section_gives_dimensions_in_mm_and_the_speed_solved(report):
     """The four-bar's crank of 100 mm, coupler point M at (175, 80) mm, its rocker of 0.25 m as 250 mm, at
     the 120 rpm of --speed (not the file's 60)."""
@@ -92,6 +93,7 @@ def test_the_input_section_gives_dimensions_in_mm_and_the_speed_solved(report):
     assert f"120 rpm ({4 * math.pi:.6g} rad/s) counter-clockwise" in section
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_wittenbauer_tangents_give_the_flywheel_in_the_figure():
     """The two tangents drawn touch the diagram from above and below; the segment ab they cut on the energy
     axis over the difference of their slopes (omega_max^2/2 - omega_min^2/2, from the delta asked) is the

@@ -262,6 +262,7 @@ def _cli():
     return CliRunner(), app
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_analyze_writes_the_drawings_for_cad_and_the_sheets_of_all_twelve_plans(report):
     ezdxf = pytest.importorskip("ezdxf")
     out = report("four-bar", dxf=True, position="all")  # 36 steps, no animation
