@@ -24,6 +24,7 @@ import re
 import shutil
 import subprocess
 import sys
+import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -38,10 +39,12 @@ ROOT = Path(__file__).resolve().parents[1]
 # of the suite starts a compile in the background (tests/test_jit.py tests that route with a cache of its own).
 os.environ.setdefault("LINKWORK_NUMBA", "0")
 
-#: Seconds of wall time the call of a test of the default lane may take, and its setup (where a shared report
-#: is built by the first test that asks for it), on a 2-core machine running both xdist workers: a test that
-#: needs longer belongs to a lane of its own.  ``LINKWORK_NO_BUDGET=1`` lifts the budget (a debugger, a profiler).
-BUDGET, SETUP_BUDGET = 20.0, 60.0
+#: Seconds of processor time (this process's and its children's) the call of a test of the default lane may
+#: take, and its setup (where a shared report is built by the first test that asks for it); and seconds of wall
+#: time either may take (a test that waits for nothing should not wait that long, however loaded the machine).  A
+#: test that needs more belongs to a lane of its own.  ``LINKWORK_NO_BUDGET=1`` lifts the budget (a debugger, a
+#: profiler).  Processor time, not wall time: the budget is the same on a busy machine.
+BUDGET, SETUP_BUDGET, WALL = 10.0, 30.0, 300.0
 
 
 @dataclass(frozen=True)
@@ -169,22 +172,55 @@ def compiled_kernels(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyP
     yield
 
 
+def processor_seconds() -> float:
+    """Seconds of processor time of this process and of its children that have ended (where the platform counts
+    them): what a test costs whatever else the machine is doing."""
+    try:
+        import resource
+    except ImportError:  # Windows: this process only
+        return time.process_time()
+    own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+_SPENT = pytest.StashKey[dict[str, float]]()
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_setup(item: pytest.Item) -> Iterator[None]:
+    start = processor_seconds()
+    yield
+    item.stash.setdefault(_SPENT, {})["setup"] = processor_seconds() - start
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_call(item: pytest.Item) -> Iterator[None]:
+    start = processor_seconds()
+    yield
+    item.stash.setdefault(_SPENT, {})["call"] = processor_seconds() - start
+
+
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) -> Iterator[None]:
-    """Fail a test of the default lane whose call took more than :data:`BUDGET` seconds, or whose setup took more
-    than :data:`SETUP_BUDGET` (a shared report it was the first to ask for included): the lane's time is a budget,
-    and a test over it goes to a lane of its own (``slow``, ``browser``, ``dask``, ``numba``)."""
+    """Fail a test of the default lane whose call took more than :data:`BUDGET` seconds of processor time, or
+    whose setup took more than :data:`SETUP_BUDGET` (a shared report it was the first to ask for included), or
+    either more than :data:`WALL` seconds of wall time: the lane's time is a budget, and a test over it goes to a
+    lane of its own (``slow``, ``browser``, ``dask``, ``numba``)."""
     outcome = yield
     rep = outcome.get_result()
     limit = {"call": BUDGET, "setup": SETUP_BUDGET}.get(call.when)
     lanes = ("slow", "browser", "dask", "numba", "hostile")
     if limit is None or not rep.passed or any(item.get_closest_marker(m) for m in lanes):
         return
-    if call.duration > limit and not os.environ.get("LINKWORK_NO_BUDGET"):
+    if os.environ.get("LINKWORK_NO_BUDGET"):
+        return
+    spent = item.stash.get(_SPENT, {}).get(call.when, 0.0)
+    if spent > limit or call.duration > WALL:
         rep.outcome = "failed"
         rep.longrepr = (
-            f"{item.nodeid}: its {call.when} took {call.duration:.1f} s, over the default lane's budget of "
-            f"{limit:.0f} s (tests/conftest.py: BUDGET); move it to a lane of its own or make it cheaper"
+            f"{item.nodeid}: its {call.when} took {spent:.1f} s of processor time and {call.duration:.1f} s of wall "
+            f"time, over the default lane's budget of {limit:.0f} s and {WALL:.0f} s (tests/conftest.py: BUDGET); "
+            "move it to a lane of its own or make it cheaper"
         )
 
 
