@@ -1143,11 +1143,11 @@ def _ended(proc: subprocess.Popen, sig: int) -> str:
 
 
 def test_ctrl_c_ends_the_viewer_whatever_work_the_gone_clients_left():
-    """Three clients ask for a crank step and leave while it is solved; each step takes a minute here (as long as
-    numba compiling its kernels for a new kind of batch: the viewer the suite ran on the compiled kernels went on
-    for minutes after SIGTERM).  Ctrl+C ends the viewer at once, without a traceback: it used to wait for every
-    piece of work in its threads (asyncio's runner for each request it cancelled, the interpreter's exit for
-    every worker thread), however long."""
+    """Three clients ask for a crank step and leave while it is solved; each step takes a minute here (as numba
+    compiling its kernels for a new kind of batch: the viewer this suite ran on the compiled kernels still ran
+    90 s after SIGTERM, compiling for the poses of gone clients).  Ctrl+C ends the viewer at once, without a
+    traceback: it used to wait for every piece of work in its threads (asyncio's runner for each request it
+    cancelled, the interpreter's exit for every worker thread), however long."""
     slow = "import time; from linkwork.web.session import Viewer; Viewer.pose = lambda *a: time.sleep(60); "
     proc, url = _start_view(before=slow)
     try:
