@@ -6,6 +6,7 @@ import json
 import math
 import os
 import re
+import signal
 import socket
 import subprocess
 import sys
@@ -452,10 +453,10 @@ def test_view_command_exports_and_reports_errors(tmp_path):
     assert result.exit_code == 2 and f"cannot listen on 127.0.0.1:{port}" in result.output
 
 
-def _start_view(stderr: int = subprocess.PIPE) -> tuple[subprocess.Popen, re.Match]:
-    """``linkwork view four-bar --port 0 --no-browser --steps 24`` in a process of its own, and the URL it
-    printed (the port it found free); the caller stops the process."""
-    code = "import sys; from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
+def _start_view(stderr: int = subprocess.PIPE, before: str = "") -> tuple[subprocess.Popen, re.Match]:
+    """``linkwork view four-bar --port 0 --no-browser --steps 24`` in a process of its own (the Python statements
+    ``before`` run first), and the URL it printed (the port it found free); the caller stops the process."""
+    code = f"import sys; {before}from linkwork.cli.main import main; sys.argv = ['linkwork'] + sys.argv[1:]; main()"
     # the NumPy kernels: serving is tested here, and a cold cache would compile for a minute
     env = {**os.environ, "LINKWORK_NUMBA": "0"}
     args = [sys.executable, "-c", code, "view", "four-bar", "--port", "0", "--no-browser", "--steps", "24"]
@@ -1123,14 +1124,47 @@ def test_clients_that_go_away_mid_request_leave_no_traceback():
         conn.close()
         time.sleep(0.5)
     finally:
-        proc.terminate()
-        try:  # the work of the clients that left is not started; the shutdown waits SHUTDOWN_WAIT_S at most
-            _, err = proc.communicate(timeout=SHUTDOWN_WAIT_S + 25)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            _, err = proc.communicate(timeout=20)
-            raise AssertionError(f"the viewer did not end within {SHUTDOWN_WAIT_S + 25} s of SIGTERM") from None
+        err = _ended(proc, signal.SIGTERM)
     assert "Traceback" not in err and "Exception" not in err, err[-2000:]
+
+
+def _ended(proc: subprocess.Popen, sig: int) -> str:
+    """Send ``sig`` to the viewer ``proc``; what it wrote on stderr once it has ended, by that signal, within
+    :data:`SHUTDOWN_WAIT_S` + 5 s (the answers in progress get SHUTDOWN_WAIT_S; 5 s for a loaded machine)."""
+    proc.send_signal(sig)
+    try:
+        _, err = proc.communicate(timeout=SHUTDOWN_WAIT_S + 5)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        _, err = proc.communicate(timeout=20)
+        raise AssertionError(f"the viewer did not end within {SHUTDOWN_WAIT_S + 5} s of {sig!r}") from None
+    assert proc.returncode == -sig, err[-2000:]
+    return err
+
+
+def test_ctrl_c_ends_the_viewer_whatever_work_the_gone_clients_left():
+    """Three clients ask for a crank step and leave while it is solved; each step takes a minute here (as numba
+    compiling its kernels for a new kind of batch: the viewer this suite ran on the compiled kernels still ran
+    90 s after SIGTERM, compiling for the poses of gone clients).  Ctrl+C ends the viewer at once, without a
+    traceback: it used to wait for every piece of work in its threads (asyncio's runner for each request it
+    cancelled, the interpreter's exit for every worker thread), however long."""
+    slow = "import time; from linkwork.web.session import Viewer; Viewer.pose = lambda *a: time.sleep(60); "
+    proc, url = _start_view(before=slow)
+    try:
+        port = int(url.group(1))
+        body = b'{"angle_deg": 1.0}'
+        head = "POST /api/pose HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+        for _ in range(3):
+            with socket.create_connection(("127.0.0.1", port)) as s:
+                s.sendall(f"{head}Content-Length: {len(body)}\r\n\r\n".encode() + body)
+                time.sleep(0.2)  # read, and its step started in a worker thread; then the client leaves
+        time.sleep(0.5)
+    finally:
+        start = time.monotonic()
+        err = _ended(proc, signal.SIGINT)
+    # no answer was in progress: nothing to wait for, nothing cancelled ("Cancel 3 running task(s)")
+    assert time.monotonic() - start < SHUTDOWN_WAIT_S, err[-2000:]
+    assert "Traceback" not in err and "Exception" not in err and "Cancel" not in err, err[-2000:]
 
 
 def test_crank_steps_do_not_queue_behind_solves_under_load():

@@ -30,7 +30,9 @@ overrides); an edit that fails answers 422 with linkwork's message (the
 file's line, the group and crank angles that do not assemble, and for a
 variant out of its range the ``events``), a malformed request 400, 413 or
 415, and the server goes on serving.  A client that goes away before its
-request is read is let go quietly.  Requests must name the loopback host
+request is read is let go quietly; one that goes while its request's work
+runs is not waited for (:func:`answer`), nor is that work when the server
+stops (:func:`serve`).  Requests must name the loopback host
 (``127.0.0.1``, ``localhost``, ``[::1]``, with a port): a page elsewhere
 cannot reach the server through a rebound DNS name.  Nothing from a
 request is evaluated.
@@ -41,9 +43,11 @@ from __future__ import annotations
 import asyncio
 import json
 import re
+import signal
+import threading
 import time
-from collections.abc import AsyncIterator, Callable
-from contextlib import asynccontextmanager
+from collections.abc import AsyncIterator, Callable, Iterator
+from contextlib import asynccontextmanager, contextmanager
 from threading import BoundedSemaphore
 from typing import TYPE_CHECKING, Annotated, Any, Literal
 
@@ -178,11 +182,28 @@ async def read_body(request: Request, model: type[BaseModel]) -> Any:
         raise Rejected(422, _validation_message(exc)) from None
 
 
+class Hold:
+    """One of a set of slots, held by a request and by the work it hands to a worker thread (:func:`answer`):
+    freed when the last of them lets go, so that work whose client has gone still counts until it ends."""
+
+    def __init__(self, slots: BoundedSemaphore) -> None:
+        self.slots, self.holders = slots, 1
+
+    def take(self) -> None:
+        self.holders += 1
+
+    def let_go(self) -> None:
+        self.holders -= 1
+        if self.holders == 0:
+            self.slots.release()
+
+
 @asynccontextmanager
 async def holding(
     slots: BoundedSemaphore, wait_s: float, request: Request, superseded: Callable[[], bool] = bool
-) -> AsyncIterator[None]:
-    """Hold one of ``slots`` while the block runs, waiting for it without holding a thread.
+) -> AsyncIterator[Hold]:
+    """Hold one of ``slots`` while the block runs (and while the work it hands to :func:`answer` runs), waiting
+    for it without holding a thread.
 
     The work of a client that has gone (its connection closed while it waited) is not started.
 
@@ -208,10 +229,49 @@ async def holding(
             raise BusyError("the server is busy solving other edits; try again")
         await asyncio.sleep(delay)
         delay = min(2 * delay, 0.02)
+    hold = Hold(slots)
     try:
-        yield
+        yield hold
     finally:
-        slots.release()
+        hold.let_go()
+
+
+#: Seconds between two looks at whether the client of a request whose work runs in a worker thread is still there.
+LOOK_S = 0.05
+#: The work handed to worker threads and not ended (kept referenced while no request waits for it).
+_RUNNING: set[asyncio.Future[Any]] = set()
+
+
+async def answer(request: Request, work: Callable[..., Any], *args: Any, hold: Hold | None = None) -> Any:
+    """``work(*args)`` run in a worker thread, while the request waits for it and looks every :data:`LOOK_S`
+    seconds at whether its client is still there.
+
+    A thread's work cannot be stopped: where the client goes first, the request ends at once and the work runs
+    on to its end unread, holding ``hold`` (its slot) until then.  So neither the request nor the server's
+    shutdown waits for the work of a client that has gone.
+
+    Raises
+    ------
+    ClientDisconnect
+        Where the client goes before the work ends.
+    """
+    job = asyncio.ensure_future(run_in_threadpool(work, *args))
+    _RUNNING.add(job)
+    job.add_done_callback(_ended)
+    if hold is not None:
+        hold.take()
+        job.add_done_callback(lambda _: hold.let_go())
+    while not job.done():
+        await asyncio.wait({job}, timeout=LOOK_S)
+        if not job.done() and await request.is_disconnected():
+            raise ClientDisconnect
+    return job.result()
+
+
+def _ended(job: asyncio.Future[Any]) -> None:
+    _RUNNING.discard(job)
+    if not job.cancelled():
+        job.exception()  # read: the failure of work nobody waits for any more is not reported as unread
 
 
 class Guard:
@@ -322,8 +382,8 @@ def _pages(app: FastAPI) -> None:
 def _api(app: FastAPI, viewer: Viewer) -> None:
     @app.get("/api/cycle")
     async def cycle(request: Request, labels: Literal["cycle", "first"] = "cycle") -> Response:
-        async with holding(viewer.full_slots, viewer.wait_s, request):
-            return _json(await run_in_threadpool(viewer.cycle, None, None, labels == "first"))
+        async with holding(viewer.full_slots, viewer.wait_s, request) as hold:
+            return _json(await answer(request, viewer.cycle, None, None, labels == "first", hold=hold))
 
     @app.get("/api/parameters")
     def parameters() -> Response:
@@ -339,8 +399,8 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
     @app.post("/api/solve")
     async def solve(request: Request) -> Response:
         req = await read_body(request, SolveRequest)
-        async with holding(viewer.full_slots, viewer.wait_s, request):
-            return _json(await run_in_threadpool(viewer.cycle, req.overrides, req.steps))
+        async with holding(viewer.full_slots, viewer.wait_s, request) as hold:
+            return _json(await answer(request, viewer.cycle, req.overrides, req.steps, hold=hold))
 
     @app.post("/api/edit")
     async def edit(request: Request) -> Response:
@@ -349,26 +409,26 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
         found = viewer.cached_edit(req.overrides, req.steps, req.whole_turn)
         if found is None:
             newer = lambda: viewer.superseded(req.client, req.seq)  # noqa: E731
-            async with holding(viewer.edit_slots, viewer.wait_s, request, newer):
+            async with holding(viewer.edit_slots, viewer.wait_s, request, newer) as hold:
                 # in a worker thread, never on the event loop: a pose (or any request) is read and answered while
                 # edits are solved, sharing the interpreter with at most the edits' slots
-                found = await run_in_threadpool(viewer.edit, req.overrides, req.steps, req.whole_turn)
+                found = await answer(request, viewer.edit, req.overrides, req.steps, req.whole_turn, hold=hold)
         return Response(found, media_type=EDIT_MEDIA)
 
     @app.post("/api/pose")
     async def pose(request: Request) -> Response:
         req = await read_body(request, PoseRequest)
-        return _json(await run_in_threadpool(viewer.pose, req.angle_deg, req.overrides))
+        return _json(await answer(request, viewer.pose, req.angle_deg, req.overrides))
 
     @app.post("/api/force-plans")
     async def force_plans(request: Request) -> Response:
         req = await read_body(request, ForcePlansRequest)
-        return _json(await run_in_threadpool(viewer.force_plans, req.overrides, req.steps, req.index))
+        return _json(await answer(request, viewer.force_plans, req.overrides, req.steps, req.index))
 
     @app.post("/api/save")
     async def save(request: Request) -> Response:
         req = await read_body(request, SaveRequest)
-        text = await run_in_threadpool(viewer.file_text, req.overrides)
+        text = await answer(request, viewer.file_text, req.overrides)
         headers = {"Content-Disposition": attachment(viewer.saved_name())}
         return Response(text, media_type="application/yaml; charset=utf-8", headers=headers)
 
@@ -457,7 +517,9 @@ def _head_timed(base: type, head_timeout: float) -> type:
 def serve(app: Any, port: int = 8765, ready: Callable[[str], None] | None = None) -> None:
     """Serve ``app`` on 127.0.0.1 (``port`` 0: a free port) until interrupted.
 
-    ``ready(url)`` is called (from another thread) once the server listens.
+    ``ready(url)`` is called (from another thread) once the server listens.  Ctrl+C (SIGINT) or SIGTERM stops
+    the server: the answers in progress get :data:`SHUTDOWN_WAIT_S` seconds, and then the signal ends the
+    process (:func:`ended_by_signal`), whatever work is still running in its threads.
 
     Raises
     ------
@@ -465,7 +527,6 @@ def serve(app: Any, port: int = 8765, ready: Callable[[str], None] | None = None
         When the port cannot be had (in use, or privileged).
     """
     import socket
-    import threading
 
     import uvicorn
 
@@ -490,7 +551,30 @@ def serve(app: Any, port: int = 8765, ready: Callable[[str], None] | None = None
     watcher = threading.Thread(target=announce, daemon=True)
     watcher.start()
     try:
-        server.run(sockets=[sock])
+        with ended_by_signal():
+            server.run(sockets=[sock])
     finally:
         server.should_exit = True
         sock.close()
+
+
+@contextmanager
+def ended_by_signal() -> Iterator[None]:
+    """While the block runs, SIGINT (Ctrl+C) and SIGTERM take their default action, which ends the process:
+    uvicorn catches either while it serves and raises it again once its shutdown is over.
+
+    Work that a request left in a worker thread cannot be cancelled (a solve, or numba compiling the kernels
+    for a new kind of batch: a minute).  Where Ctrl+C raised :class:`KeyboardInterrupt` instead, asyncio's
+    runner waited for every request the shutdown had cancelled to get its thread's result, and the
+    interpreter's exit joined every worker thread: the viewer ran on, for minutes, the work of clients long
+    gone.  Outside the main thread, where no signal is handled, nothing changes.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {sig: signal.signal(sig, signal.SIG_DFL) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
