@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
+from linkwork import jit
 from linkwork.angles import wrap
 from linkwork.motion import kernels, kernels_numba
 from linkwork.motion.state import Jump, State, StepRecord
@@ -37,14 +40,18 @@ def run(
         state = _run_compiled(mech, program, geom, values, rates, accels)
         if state is not None:
             return state
+    start = time.perf_counter()
     size = max(1, CHUNK // max(n_ang, 1))
     if n_var <= size:
-        return run_numpy(mech, program, geom, values, rates, accels)
-    parts = []
-    for start in range(0, n_var, size):
-        part = Geometry(*(g[start : start + size] for g in (geom.point_local, geom.pair_origin, geom.pair_axis)))
-        parts.append(run_numpy(mech, program, part, values, rates, accels))
-    return _concatenate(parts, program)
+        state = run_numpy(mech, program, geom, values, rates, accels)
+    else:
+        parts = []
+        for first in range(0, n_var, size):
+            part = Geometry(*(g[first : first + size] for g in (geom.point_local, geom.pair_origin, geom.pair_axis)))
+            parts.append(run_numpy(mech, program, part, values, rates, accels))
+        state = _concatenate(parts, program)
+    jit.spent(time.perf_counter() - start)  # time a compiled twin would save: what pays for loading it
+    return state
 
 
 def _concatenate(parts: list[State], program: tuple[Step, ...]) -> State:
