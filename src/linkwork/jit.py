@@ -1,7 +1,7 @@
 """When the compiled (numba) kernels run, where they are cached, and their compile in the background.
 
 The kinematics and the reactions have twin kernels: NumPy (the reference, always there) and numba (the
-same arithmetic compiled to machine code, 10 to 30 times faster).  Compiling the numba kernels takes one to
+same arithmetic compiled to machine code, 5 to 30 times faster).  Compiling the numba kernels takes one to
 three minutes of processor time, once per install; loading them from the cache (importing numba, reading
 the compiled code) costs about :data:`LOAD_COST` seconds, more than a one-shot command spends in its
 batches.  So the kernels are tiered, as a JIT runtime tiers its code:
@@ -12,7 +12,7 @@ batches.  So the kernels are tiered, as a JIT runtime tiers its code:
   (:data:`LOAD_COST`), a thread of the process loads them in the background (:func:`load_in_background`:
   no caller waits) and the process switches to them: from then on every call, whatever its size, runs
   compiled.  A process that stops before has paid nothing for them; one that goes on pays for the load at
-  most what it had spent already, and then runs 10 to 30 times faster.  Two shortcuts: a batch of at least
+  most what it had spent already, and then runs 5 to 30 times faster.  Two shortcuts: a batch of at least
   :data:`LONG` samples (a sweep, a long cycle) pays for the load alone, and loads them in front; a process
   that asks for them (:func:`prefer`: the viewer) loads them in the background as soon as they are ready.
   A process that finds the cache empty starts the compile in a process of its own (:func:`start_compiling`:
