@@ -7,6 +7,7 @@ is used for long batches; ``linkwork warm`` compiles every kernel the analyses c
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -320,6 +321,33 @@ def test_the_numpy_kernels_alone_never_import_numba(tmp_path):
     assert out == {"0": ["False", "False"], "auto": ["True", "True"]}
 
 
+def test_a_command_loads_nothing_for_its_time_but_the_viewer_does(fake):
+    """A process of the command line (:func:`jit.one_shot`) keeps the NumPy kernels however long they took (it
+    ends before a load would pay); the viewer, which prefers them, loads them in the background all the same."""
+    clock, loads, _ = fake
+    jit.mark_ready()
+    jit.one_shot()
+    jit.spent(10 * jit.LOAD_COST)
+    assert jit._state.loader is None and not jit.use(1)
+    jit.prefer()
+    assert _joined() and loads == ["background"] and jit.use(1)
+
+
+@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
+def test_the_command_line_answers_with_numpy_with_the_cache_ready(tmp_path):
+    """``linkwork forces`` with the cache ready and no cost to pay for a load: numba is not imported (the
+    exit would wait for a load the command has no time left to use)."""
+    script = (
+        "import sys, atexit; from linkwork import jit; jit.mark_ready(); jit.LOAD_COST = 0.0; "
+        "atexit.register(lambda: print('numba' in sys.modules, file=sys.stderr)); "
+        "from linkwork.cli.main import main; sys.argv = ['linkwork', 'forces', 'four-bar']; main()"
+    )
+    env = {k: v for k, v in os.environ.items() if k not in ("LINKWORK_NUMBA", "NUMBA_CACHE_DIR")}
+    env["LINKWORK_CACHE_DIR"] = str(tmp_path)
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env)
+    assert run.returncode == 0 and run.stderr.split() == ["False"], run.stderr
+
+
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork")
 def test_a_fork_waits_for_the_load_under_way(fake, monkeypatch):
     """A process forked while the kernels load in the background (the report's second process) is forked once
@@ -332,6 +360,60 @@ def test_a_fork_waits_for_the_load_under_way(fake, monkeypatch):
         os._exit(0 if done else 1)
     _, status = os.waitpid(pid, 0)
     assert os.waitstatus_to_exitcode(status) == 0
+
+
+#: A process on the default settings that loads the compiled kernels after its first calls (no cost to pay:
+#: ``LOAD_COST`` 0), then solves with them: what it read from the cache, what it compiled, and its numbers.
+LONG_LIVED = """
+import json, time
+import numpy as np
+import linkwork as lw
+from linkwork import jit
+from numba.core.registry import CPUDispatcher
+from linkwork.kinetostatics import reactions_numba
+from linkwork.motion import kernels_numba
+jit.LOAD_COST = 0.0
+m = lw.compile("double-cut-shears")
+numpy = lw.forces(m, steps=360).driving_torque
+calls = 1
+while not jit.loaded() and calls < 1000:
+    lw.forces(m, steps=360)
+    calls += 1
+    time.sleep(0.01)
+kernels = [f for mod in (kernels_numba, reactions_numba) for f in vars(mod).values() if isinstance(f, CPUDispatcher)]
+before = sum(len(f.signatures) for f in kernels)
+compiled = lw.forces(m, steps=360).driving_torque
+lw.kinematics(m, steps=360).position("B")
+print(json.dumps({
+    "loaded": jit.loaded(), "took": jit.load_seconds(), "before": before,
+    "read": sum(sum(f.stats.cache_hits.values()) for f in kernels),
+    "compiled": sum(sum(f.stats.cache_misses.values()) for f in kernels),
+    "error": float(np.max(np.abs(compiled - numpy)) / np.max(np.abs(numpy))),
+}))
+"""
+
+
+@pytest.mark.numba
+@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
+def test_a_long_lived_process_switches_to_the_kernels_read_from_the_cache(tmp_path):
+    """A cache filled by calls of ``lw.forces`` and ``lw.kinematics`` with ``LINKWORK_NUMBA=1``: a process on the
+    default settings loads its kernels in the background, every one read from the cache before a call needs it
+    (none compiled, none read in front of a call), and its later calls run them, with the NumPy kernels'
+    numbers to rounding."""
+    env = {k: v for k, v in os.environ.items() if k not in ("LINKWORK_NUMBA", "NUMBA_CACHE_DIR")}
+    env["LINKWORK_CACHE_DIR"] = str(tmp_path)
+    fill = (
+        "import linkwork as lw; from linkwork import jit; m = lw.compile('double-cut-shears'); "
+        "lw.forces(m, steps=360); lw.kinematics(m, steps=360).position('B'); jit.mark_ready()"
+    )
+    done = subprocess.run([sys.executable, "-c", fill], env={**env, "LINKWORK_NUMBA": "1"}, capture_output=True)
+    assert done.returncode == 0, done.stderr
+    run = subprocess.run([sys.executable, "-c", LONG_LIVED], env=env, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    found = json.loads(run.stdout)
+    assert found["loaded"] and found["took"] > 0
+    assert found["before"] == found["read"] >= 3 and found["compiled"] == 0  # read before any call needed them
+    assert found["error"] < 1e-12
 
 
 @pytest.mark.numba

@@ -15,6 +15,7 @@ batches.  So the kernels are tiered, as a JIT runtime tiers its code:
   most what it had spent already, and then runs 5 to 30 times faster.  Two shortcuts: a batch of at least
   :data:`LONG` samples (a sweep, a long cycle) pays for the load alone, and loads them in front; a process
   that asks for them (:func:`prefer`: the viewer) loads them in the background as soon as they are ready.
+  A command of the command line (:func:`one_shot`) has only those two: it ends before a load would pay.
   A process that finds the cache empty starts the compile in a process of its own (:func:`start_compiling`:
   once, at the lowest priority, into :func:`cache_dir`), says so once on stderr, and goes on with the
   NumPy kernels (switching as above once the compile is done).  ``linkwork warm`` compiles them in front,
@@ -92,6 +93,7 @@ class _State:
 
     loaded: bool = False  # the compiled kernels are in use
     preferred: bool = False  # the process asked for them (:func:`prefer`)
+    one_shot: bool = False  # the process answers one command and ends (:func:`one_shot`)
     spent: float = 0.0  # seconds spent in the NumPy twins (:func:`spent`; a lost update between threads is harmless)
     looked: float = -math.inf  # when the cache was last looked at (:data:`_clock`)
     found: bool = False  # whether it was ready then
@@ -194,7 +196,9 @@ def spent(seconds: float) -> None:
     compiled kernels ready, load them in the background."""
     state = _state
     state.spent += seconds
-    if state.spent >= LOAD_COST and not state.loaded and state.loader is None and mode() == AUTO and _ready():
+    if state.spent < LOAD_COST or state.loaded or state.loader is not None or state.one_shot:
+        return
+    if mode() == AUTO and _ready():
         load_in_background()
 
 
@@ -204,6 +208,14 @@ def prefer() -> bool:
     viewer, which thus switches to them when the compile it started is done); whether they are in use."""
     _state.preferred = True
     return use(0)
+
+
+def one_shot() -> None:
+    """Say that this process answers one command and ends (the command line): it loads no compiled kernels
+    for the time it spent in the NumPy ones, as its exit would wait for a load it had no time left to use
+    (a batch of :data:`LONG` samples still loads them in front, and a process that :func:`prefer` them, the
+    viewer, in the background)."""
+    _state.one_shot = True
 
 
 def force() -> None:
