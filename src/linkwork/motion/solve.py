@@ -36,7 +36,8 @@ def run(
     that the arrays of a chunk stay in the processor's cache.
     """
     n_var, n_ang = geom.n_variants, values.shape[0]
-    if mech.program_table is not None and kernels_numba.wanted(n_var * n_ang) and program is mech.program:
+    twin = mech.program_table is not None and program is mech.program  # the compiled kernels cover it
+    if twin and kernels_numba.wanted(n_var * n_ang):
         state = _run_compiled(mech, program, geom, values, rates, accels)
         if state is not None:
             return state
@@ -50,7 +51,8 @@ def run(
             part = Geometry(*(g[first : first + size] for g in (geom.point_local, geom.pair_origin, geom.pair_axis)))
             parts.append(run_numpy(mech, program, part, values, rates, accels))
         state = _concatenate(parts, program)
-    jit.spent(time.perf_counter() - start)  # time a compiled twin would save: what pays for loading it
+    if twin:  # time the compiled twin would save: what pays for loading it
+        jit.spent(time.perf_counter() - start)
     return state
 
 
