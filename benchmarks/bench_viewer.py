@@ -84,11 +84,12 @@ def crank_direction(mech: lw.Mechanism) -> tuple[float, float]:
     return float(u[0]), float(-u[1])
 
 
-def round_trips(port: int, name: str, start: float, count: int) -> list[float]:
-    """Seconds from sending an edit to its parsed answer, each a new value."""
+def round_trips(port: int, name: str, start: float, count: int, warm: int = 5) -> list[float]:
+    """Seconds from sending an edit to its parsed answer, each a new value, ``count`` of them after ``warm``
+    not timed (they warm the server up)."""
     conn = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
     out = []
-    for k in range(count + 5):
+    for k in range(count + warm):
         value = start * (1 + 0.05 * ((k * 0.618) % 1 - 0.5))  # within 2.5 % of the file's, all different
         body = json.dumps({"overrides": {name: value}, "whole_turn": True}).encode()  # one send: no Nagle stall
         t = time.perf_counter()
@@ -98,7 +99,7 @@ def round_trips(port: int, name: str, start: float, count: int) -> list[float]:
         if r.status != 200:
             raise SystemExit(f"edit {value}: {r.status} {raw[:500]!r}")
         decode_edit(raw)
-        if k >= 5:  # the first ones warm the server up
+        if k >= warm:
             out.append(time.perf_counter() - t)
     conn.close()
     return out

@@ -7,6 +7,7 @@ is used for long batches; ``linkwork warm`` compiles every kernel the analyses c
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -110,55 +111,314 @@ def cache(tmp_path, monkeypatch):
     monkeypatch.setenv("LINKWORK_NUMBA", "auto")
     monkeypatch.setattr(jit, "_spawn", spawned.append)
     monkeypatch.setattr(jit, "_said", set())
-    monkeypatch.setattr(jit, "_preferred", [])
+    monkeypatch.setattr(jit, "_state", jit._State())
     forget()
     yield spawned
     forget()
 
 
-@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
-def test_the_lock_keeps_a_second_compile_from_starting_until_it_is_stale(cache, tmp_path):
-    """A held lock: no second compile; one older than :data:`jit.STALE` (its holder died): taken over; a
-    compile that failed: not started again."""
-    lock = tmp_path / f"compiling-{jit.key()}"
-    lock.write_text("1 0\n")
-    assert jit.start_compiling() and cache == []
-    jit.start_compiling.cache_clear()
-    old = time.time() - jit.STALE - 10
-    os.utime(lock, (old, old))
-    assert jit.start_compiling() and cache == [lock] and lock.read_text().split()[0] == str(os.getpid())
-    jit.start_compiling.cache_clear()
-    jit.release(failed=True)
-    assert not lock.exists() and not jit.start_compiling() and cache == [lock]
+class Clock:
+    """A clock that moves only when told (for :func:`linkwork.jit._ready`)."""
+
+    def __init__(self) -> None:
+        self.now = 1000.0
+
+    def __call__(self) -> float:
+        return self.now
 
 
-@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
-def test_a_ready_cache_serves_long_batches_only(cache, monkeypatch):
-    """Ready: a batch of :data:`jit.LONG` samples loads the compiled kernels, a short one does not (the NumPy
-    kernels answer before numba would have loaded); not ready: neither, and the compile starts."""
-    monkeypatch.setattr(jit, "_loaded", [])
-    assert not jit.use(jit.LONG) and len(cache) == 1
+@pytest.fixture
+def fake(cache, monkeypatch):
+    """:func:`cache`, with a clock of the test's and loads that import nothing: a load in front records
+    itself, a load in the background records itself and switches (``loads``, the clock, the spawns)."""
+    clock = Clock()
+    loads: list[str] = []
+
+    def fetch():
+        loads.append("background")
+        jit._state.loaded = True
+
+    monkeypatch.setattr(jit, "_clock", clock)
+    monkeypatch.setattr(jit, "_import_numba", lambda: loads.append("front"))
+    monkeypatch.setattr(jit, "_fetch", fetch)
+    monkeypatch.setattr(jit, "installed", lambda: True)
+    return clock, loads, cache
+
+
+def _joined() -> bool:
+    """Whether a load in the background was started (waited for here)."""
+    loader = jit._state.loader
+    if loader is not None:
+        loader.join(timeout=10)
+    return loader is not None
+
+
+def test_a_ready_cache_loads_in_front_for_a_long_batch_only(fake):
+    """Not ready: no batch loads them, and the compile starts; ready: a batch of :data:`jit.LONG` samples loads
+    them in front, a shorter one does not; then every batch runs them.  ``LINKWORK_NUMBA=0``: none does."""
+    clock, loads, spawned = fake
+    assert not jit.use(jit.LONG) and len(spawned) == 1
     jit.mark_ready()
-    assert jit.ready()
-    assert not jit.use(jit.LONG - 1) and not jit.loaded()
-    assert jit.use(jit.LONG) and jit.loaded() and jit.use(1)
-    monkeypatch.setenv("LINKWORK_NUMBA", "0")
+    clock.now += jit.RECHECK
+    assert not jit.use(jit.LONG - 1) and not jit.loaded() and loads == []
+    assert jit.use(jit.LONG) and jit.loaded() and loads == ["front"] and jit.use(1)
+    os.environ["LINKWORK_NUMBA"] = "0"
     assert not jit.use(jit.LONG)
 
 
-@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
-def test_a_process_that_prefers_the_kernels_switches_when_the_compile_is_done(cache, monkeypatch):
+def test_the_switch_comes_once_the_numpy_kernels_took_what_the_load_costs(fake):
+    """With the cache ready, the kernels load in the background once the time reported from the NumPy kernels
+    reaches :data:`jit.LOAD_COST`, not before; then every call, however short, runs them."""
+    clock, loads, _ = fake
+    jit.mark_ready()
+    jit.spent(0.45 * jit.LOAD_COST)
+    jit.spent(0.45 * jit.LOAD_COST)
+    assert not jit.use(1) and not jit.active() and jit._state.loader is None
+    jit.spent(0.11 * jit.LOAD_COST)
+    assert _joined() and loads == ["background"]
+    assert jit.use(1) and jit.active()
+
+
+def test_an_empty_cache_keeps_the_numpy_kernels_whatever_they_took(fake):
+    """The compile in the background not done: however long the NumPy kernels took, nothing loads (the cache
+    looked at again after :data:`jit.RECHECK` seconds); once it is done, the next look loads them."""
+    clock, loads, spawned = fake
+    assert not jit.use(1) and len(spawned) == 1
+    jit.spent(10 * jit.LOAD_COST)
+    jit.mark_ready()  # the compile ends, and is not looked for until RECHECK has passed
+    jit.spent(1.0)
+    assert jit._state.loader is None and not jit.use(1)
+    clock.now += jit.RECHECK
+    jit.spent(1e-6)
+    assert _joined() and jit.use(1)
+
+
+def test_the_cache_is_looked_at_once_every_few_seconds(fake, monkeypatch):
+    """However many batches a process runs, the cache's file is looked at once every :data:`jit.RECHECK`
+    seconds at most, and the compile started once."""
+    clock, _, spawned = fake
+    looks: list[float] = []
+    monkeypatch.setattr(jit, "ready", lambda: looks.append(clock.now) is not None and False)
+    for _ in range(1000):
+        jit.use(360)
+        jit.spent(0.01)
+    assert len(looks) == 1
+    clock.now += 0.99 * jit.RECHECK
+    jit.use(360)
+    assert len(looks) == 1
+    clock.now += 0.02 * jit.RECHECK
+    jit.use(360)
+    assert len(looks) == 2 and len(spawned) == 1
+
+
+def test_a_process_that_prefers_the_kernels_switches_when_the_compile_is_done(fake):
     """The viewer asks for the kernels (:func:`jit.prefer`) while the cache is empty: the NumPy kernels answer
     and reading points never loads numba; once the compile in the background marks the cache ready, its next
-    batch, however short, loads them."""
-    monkeypatch.setattr(jit, "_loaded", [])
-    assert not jit.prefer() and len(cache) == 1
+    look loads them in the background (never in front), and the calls after run them."""
+    clock, loads, spawned = fake
+    assert not jit.prefer() and len(spawned) == 1
     assert not jit.use(1) and not jit.active() and not jit.loaded()
     jit.mark_ready()
+    clock.now += jit.RECHECK
     assert not jit.active()  # a reading of points does not load them
-    assert jit.use(1) and jit.loaded() and jit.active()
+    assert not jit.use(1)  # the load starts behind this batch, which runs on NumPy
+    assert _joined() and loads == ["background"] and jit.use(1) and jit.active()
 
 
+def test_a_call_decides_its_kernels_once(fake):
+    """The switch while a call runs is for the calls that start after it: the call (and any call within it)
+    keeps the NumPy kernels, however short or long its batches; a batch of :data:`jit.LONG` samples, with the
+    cache ready, loads them in front and takes the rest of its call along."""
+
+    @jit.deciding
+    def inner():
+        return jit.active(), jit.use(1)
+
+    @jit.deciding
+    def outer(switch):
+        before = jit.active(), jit.use(1)
+        switch()
+        return before, (jit.active(), jit.use(1)), inner()
+
+    def done():
+        jit._state.loaded = True
+
+    assert outer(done) == ((False, False), (False, False), (False, False))
+    assert outer(lambda: None) == ((True, True), (True, True), (True, True))
+    jit._state.loaded = False
+    clock, loads, _ = fake
+    jit.mark_ready()
+    clock.now += jit.RECHECK
+    assert outer(lambda: jit.use(jit.LONG)) == ((False, False), (True, True), (True, True))
+
+
+@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
+def test_a_call_in_flight_keeps_the_numpy_kernels_when_the_switch_comes(cache, monkeypatch):
+    """``lw.forces`` on the NumPy kernels: the load finishes as its kinematics are solved (the first time the
+    NumPy kernels report to :func:`jit.spent`); its reactions still run on NumPy, and the next call runs the
+    compiled kernels (stand-ins that say so: nothing is compiled)."""
+    from linkwork.kinetostatics import reactions_numba
+    from linkwork.motion import kernels_numba
+
+    class Compiled(Exception):
+        pass
+
+    def compiled(*args):
+        raise Compiled
+
+    for module in (reactions_numba, kernels_numba):
+        monkeypatch.setattr(module, "compiled", lambda: True)
+        monkeypatch.setattr(module, "run", compiled)
+    monkeypatch.setattr(jit, "spent", lambda seconds: setattr(jit._state, "loaded", True))
+    mech = lw.compile("double-cut-shears")
+    forces = lw.forces(mech, steps=12)
+    assert jit.loaded() and np.isfinite(forces.driving_torque).all()
+    with pytest.raises(Compiled):
+        lw.forces(mech, steps=12)
+
+
+def test_the_numpy_kernels_report_their_time(fake, monkeypatch):
+    """Calls of ``lw.forces`` on the NumPy kernels (timed here, around each call) start the load in the
+    background once they have taken :data:`jit.LOAD_COST` (here 0.05 s), not before (the kernels take part
+    of each call's time) and not much after (they take most of it: the kinematics and the reactions)."""
+    clock = fake[0]
+    mech = lw.compile("double-cut-shears")
+    lw.forces(mech, steps=36)  # imports and caches warmed, the cache not ready yet: nothing loads
+    monkeypatch.setattr(jit, "LOAD_COST", 0.05)
+    started: list[float] = []
+    monkeypatch.setattr(jit, "_fetch", lambda: started.append(jit._state.spent))
+    jit.mark_ready()
+    clock.now += jit.RECHECK
+    jit._state.spent = 0.0
+    took, before = 0.0, 0.0  # seconds of the calls before the one that started the load
+    while not started and before < 10 * jit.LOAD_COST:
+        t = time.perf_counter()
+        lw.forces(mech, steps=360)
+        took = time.perf_counter() - t
+        if not _joined():
+            before += took
+    assert started and started[0] >= jit.LOAD_COST
+    assert before + took >= jit.LOAD_COST and before < 2 * jit.LOAD_COST
+
+
+@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
+def test_the_numpy_kernels_alone_never_import_numba(tmp_path):
+    """``LINKWORK_NUMBA=0``: a process that spends far more than :data:`jit.LOAD_COST` in the kernels, with the
+    cache ready, never imports numba; the same process on the default settings loads it (in the background:
+    nothing is compiled, the cache holds no kernel)."""
+    script = (
+        "import sys; import linkwork as lw; from linkwork import jit; jit.mark_ready(); jit.LOAD_COST = 0.0; "
+        "m = lw.compile('double-cut-shears'); [lw.forces(m, steps=36).driving_torque for _ in range(3)]; "
+        "jit._state.loader and jit._state.loader.join(); print('numba' in sys.modules, jit.loaded())"
+    )
+    env = {k: v for k, v in os.environ.items() if k not in ("LINKWORK_NUMBA", "NUMBA_CACHE_DIR")}
+    env["LINKWORK_CACHE_DIR"] = str(tmp_path)
+    out = {}
+    for mode in ("0", "auto"):
+        run = subprocess.run(
+            [sys.executable, "-c", script], capture_output=True, text=True, env={**env, "LINKWORK_NUMBA": mode}
+        )
+        out[mode] = run.stdout.split()
+        assert run.returncode == 0, run.stderr
+    assert out == {"0": ["False", "False"], "auto": ["True", "True"]}
+
+
+def test_a_command_loads_nothing_for_its_time_but_the_viewer_does(fake):
+    """A process of the command line (:func:`jit.one_shot`) keeps the NumPy kernels however long they took (it
+    ends before a load would pay); the viewer, which prefers them, loads them in the background all the same."""
+    clock, loads, _ = fake
+    jit.mark_ready()
+    jit.one_shot()
+    jit.spent(10 * jit.LOAD_COST)
+    assert jit._state.loader is None and not jit.use(1)
+    jit.prefer()
+    assert _joined() and loads == ["background"] and jit.use(1)
+
+
+@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
+def test_the_command_line_answers_with_numpy_with_the_cache_ready(tmp_path):
+    """``linkwork forces`` with the cache ready and no cost to pay for a load: numba is not imported (the
+    exit would wait for a load the command has no time left to use)."""
+    script = (
+        "import sys, atexit; from linkwork import jit; jit.mark_ready(); jit.LOAD_COST = 0.0; "
+        "atexit.register(lambda: print('numba' in sys.modules, file=sys.stderr)); "
+        "from linkwork.cli.main import main; sys.argv = ['linkwork', 'forces', 'four-bar']; main()"
+    )
+    env = {k: v for k, v in os.environ.items() if k not in ("LINKWORK_NUMBA", "NUMBA_CACHE_DIR")}
+    env["LINKWORK_CACHE_DIR"] = str(tmp_path)
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env)
+    assert run.returncode == 0 and run.stderr.split() == ["False"], run.stderr
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork")
+def test_a_fork_waits_for_the_load_under_way(fake, monkeypatch):
+    """A process forked while the kernels load in the background (the report's second process) is forked once
+    the load is done: a thread caught mid-import would leave the child an import lock it never gets."""
+    done: list[bool] = []
+    monkeypatch.setattr(jit, "_fetch", lambda: time.sleep(0.3) or done.append(True))
+    jit.load_in_background()
+    pid = os.fork()
+    if pid == 0:  # the child: was the load done before the fork?
+        os._exit(0 if done else 1)
+    _, status = os.waitpid(pid, 0)
+    assert os.waitstatus_to_exitcode(status) == 0
+
+
+#: A process on the default settings that loads the compiled kernels after its first calls (no cost to pay:
+#: ``LOAD_COST`` 0), then solves with them: what it read from the cache, what it compiled, and its numbers.
+LONG_LIVED = """
+import json, time
+import numpy as np
+import linkwork as lw
+from linkwork import jit
+from numba.core.registry import CPUDispatcher
+from linkwork.kinetostatics import reactions_numba
+from linkwork.motion import kernels_numba
+jit.LOAD_COST = 0.0
+m = lw.compile("double-cut-shears")
+numpy = lw.forces(m, steps=360).driving_torque
+calls = 1
+while not jit.loaded() and calls < 1000:
+    lw.forces(m, steps=360)
+    calls += 1
+    time.sleep(0.01)
+kernels = [f for mod in (kernels_numba, reactions_numba) for f in vars(mod).values() if isinstance(f, CPUDispatcher)]
+before = sum(len(f.signatures) for f in kernels)
+compiled = lw.forces(m, steps=360).driving_torque
+lw.kinematics(m, steps=360).position("B")
+print(json.dumps({
+    "loaded": jit.loaded(), "took": jit.load_seconds(), "before": before,
+    "read": sum(sum(f.stats.cache_hits.values()) for f in kernels),
+    "compiled": sum(sum(f.stats.cache_misses.values()) for f in kernels),
+    "error": float(np.max(np.abs(compiled - numpy)) / np.max(np.abs(numpy))),
+}))
+"""
+
+
+@pytest.mark.numba
+@pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
+def test_a_long_lived_process_switches_to_the_kernels_read_from_the_cache(tmp_path):
+    """A cache filled by calls of ``lw.forces`` and ``lw.kinematics`` with ``LINKWORK_NUMBA=1``: a process on the
+    default settings loads its kernels in the background, every one read from the cache before a call needs it
+    (none compiled, none read in front of a call), and its later calls run them, with the NumPy kernels'
+    numbers to rounding."""
+    env = {k: v for k, v in os.environ.items() if k not in ("LINKWORK_NUMBA", "NUMBA_CACHE_DIR")}
+    env["LINKWORK_CACHE_DIR"] = str(tmp_path)
+    fill = (
+        "import linkwork as lw; from linkwork import jit; m = lw.compile('double-cut-shears'); "
+        "lw.forces(m, steps=360); lw.kinematics(m, steps=360).position('B'); jit.mark_ready()"
+    )
+    done = subprocess.run([sys.executable, "-c", fill], env={**env, "LINKWORK_NUMBA": "1"}, capture_output=True)
+    assert done.returncode == 0, done.stderr
+    run = subprocess.run([sys.executable, "-c", LONG_LIVED], env=env, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    found = json.loads(run.stdout)
+    assert found["loaded"] and found["took"] > 0
+    assert found["before"] == found["read"] >= 3 and found["compiled"] == 0  # read before any call needed them
+    assert found["error"] < 1e-12
+
+
+@pytest.mark.numba
 def test_without_a_cache_the_kernels_compile_in_memory(monkeypatch):
     """No folder to write: numba's dispatchers get no cache (they would fail with "cannot cache function")."""
     pytest.importorskip("numba")
@@ -176,6 +436,7 @@ def test_every_module_of_kernels_is_in_the_key():
     assert users == set(jit.KERNEL_MODULES)
 
 
+@pytest.mark.numba
 @pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
 def test_warm_compiles_every_kernel_the_analyses_call():
     """After ``linkwork warm`` (:func:`linkwork.api.compile_kernels`) the analyses of every example (a cycle,

@@ -151,6 +151,7 @@ def resolving(
     arguments of the types ``passes`` go to it as they are.  Anything else is a :class:`TypeError`
     when it is called."""
 
+    @jit.deciding
     @functools.wraps(algorithm)
     def entry(mechanism: object, /, *args: P.args, **kwargs: P.kwargs) -> R:
         if isinstance(mechanism, passes):  # a type the algorithm takes as it is (forces: a Kinematics)

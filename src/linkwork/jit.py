@@ -1,54 +1,81 @@
 """When the compiled (numba) kernels run, where they are cached, and their compile in the background.
 
 The kinematics and the reactions have twin kernels: NumPy (the reference, always there) and numba (the
-same arithmetic compiled to machine code, many times faster on long batches).  Compiling the numba kernels
-takes one to three minutes of processor time, once per install; loading them from the cache takes
-about half a second.  A report or a drag in the viewer solves a few hundred angles, which the NumPy kernels
-do in milliseconds, so nobody waits for a compile they did not ask for:
+same arithmetic compiled to machine code, 5 to 30 times faster).  Compiling the numba kernels takes one to
+three minutes of processor time, once per install; loading them from the cache (importing numba, reading
+the compiled code) costs about :data:`LOAD_COST` seconds, more than a one-shot command spends in its
+batches.  So the kernels are tiered, as a JIT runtime tiers its code:
 
-- ``LINKWORK_NUMBA`` unset (or ``auto``): the compiled kernels run once they are in the cache
-  (:func:`ready`), for a batch of at least :data:`LONG` samples (a sweep, a long cycle) or in a process
-  that asked for them (:func:`prefer`: the viewer); shorter batches run on the NumPy kernels, which answer
-  before numba would have loaded.  A process that finds the cache empty starts the compile in a process of
-  its own (:func:`start_compiling`: once, at the lowest priority, into :func:`cache_dir`), says so once on
-  stderr, and goes on with the NumPy kernels.  ``linkwork warm`` compiles them in front, for those who
-  want them ready.
+- ``LINKWORK_NUMBA`` unset (or ``auto``): a process starts on the NumPy kernels and counts the time it
+  spends in them (:func:`spent`).  Once the compiled kernels are in the cache (:func:`ready`, looked at
+  once every :data:`RECHECK` seconds at most) and that time exceeds their loading's cost
+  (:data:`LOAD_COST`), a thread of the process loads them in the background (:func:`load_in_background`:
+  no caller waits) and the process switches to them: from then on every call, whatever its size, runs
+  compiled.  A process that stops before has paid nothing for them; one that goes on pays for the load at
+  most what it had spent already, and then runs 5 to 30 times faster.  Two shortcuts: a batch of at least
+  :data:`LONG` samples (a sweep, a long cycle) pays for the load alone, and loads them in front; a process
+  that asks for them (:func:`prefer`: the viewer) loads them in the background as soon as they are ready.
+  A command of the command line (:func:`one_shot`) has only those two: it ends before a load would pay.
+  A process that finds the cache empty starts the compile in a process of its own (:func:`start_compiling`:
+  once, at the lowest priority, into :func:`cache_dir`), says so once on stderr, and goes on with the
+  NumPy kernels (switching as above once the compile is done).  ``linkwork warm`` compiles them in front,
+  for those who want them ready.
 - ``LINKWORK_NUMBA=1``: the compiled kernels always, compiled when first used (benchmarks, and the tests
   that compare the twins).
-- ``LINKWORK_NUMBA=0``: the NumPy kernels always.
+- ``LINKWORK_NUMBA=0``: the NumPy kernels always; numba is not even imported.
 
-Both give the same numbers (to rounding).  The cache is the user's (``$XDG_CACHE_HOME/linkwork/kernels``,
-``~/Library/Caches/linkwork/kernels``, ``%LOCALAPPDATA%\\linkwork\\cache\\kernels``), or
-``LINKWORK_CACHE_DIR`` (or numba's own ``NUMBA_CACHE_DIR``) when set, so a read-only install compiles into
-a folder it can write.  Where no folder can be written, the NumPy kernels run (or, with
-``LINKWORK_NUMBA=1``, the kernels compile without a cache), and that is said once.
+A call decides once (:func:`deciding`): every batch of a call runs on the kernels in use as it started,
+even where the switch happens while it runs; the one exception is a batch of :data:`LONG` samples, which
+loads them in front and takes the rest of its call along.  Both give the same numbers (to rounding).
+
+The cache is the user's (``$XDG_CACHE_HOME/linkwork/kernels``, ``~/Library/Caches/linkwork/kernels``,
+``%LOCALAPPDATA%\\linkwork\\cache\\kernels``), or ``LINKWORK_CACHE_DIR`` (or numba's own
+``NUMBA_CACHE_DIR``) when set, so a read-only install compiles into a folder it can write.  Where no folder
+can be written, the NumPy kernels run (or, with ``LINKWORK_NUMBA=1``, the kernels compile without a cache),
+and that is said once.
 
 The modules of compiled kernels (:data:`KERNEL_MODULES`) wrap their functions with :func:`jit_in_place`
-and ask :func:`use` or :func:`loaded` before they run.
+and ask :func:`use` or :func:`active` before they run; their NumPy twins report their time to :func:`spent`.
 """
 
 from __future__ import annotations
 
+import atexit
+import contextvars
+import dataclasses
 import functools
 import hashlib
+import importlib
 import importlib.util
+import math
 import os
 import platform
 import subprocess
 import sys
 import tempfile
+import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, ParamSpec, TypeVar
 
 #: The modules whose functions :func:`jit_in_place` compiles, relative to the package (their sources and
 #: times are part of the key of the cache, as numba's own index keys each function's).
 KERNEL_MODULES = ("motion/kernels_numba.py", "kinetostatics/reactions_numba.py")
 
-#: Samples (variants times angles) of a batch from which loading the compiled kernels pays (about half a
-#: second to import numba and load them; the NumPy reactions take about 35 us a sample of the double-cut
-#: shears, the compiled ones about 2).
+#: Samples (variants times angles) of a batch that pays for loading the compiled kernels in front (about
+#: :data:`LOAD_COST`; the NumPy reactions take about 35 us a sample of the double-cut shears, the compiled
+#: ones about 2).
 LONG = 20_000
+
+#: Seconds of processor time loading the compiled kernels costs (importing numba, whose first read of a
+#: kernel imports its NumPy support and SciPy's BLAS, and reading every kernel from the cache), measured in
+#: the thread that loads them (:func:`load_seconds`) on the 2-core virtual machine of the benchmarks page:
+#: the time in the NumPy kernels after which they load.
+LOAD_COST = 1.0
+
+#: Seconds between two looks at the cache (:func:`ready`) while the compiled kernels are not in use.
+RECHECK = 5.0
 
 #: How long a compile in the background may hold its lock before another process may start one again.
 STALE = 30 * 60.0
@@ -56,9 +83,31 @@ STALE = 30 * 60.0
 #: Values of ``LINKWORK_NUMBA``.
 OFF, ALWAYS, AUTO = "off", "always", "auto"
 
-_loaded: list[bool] = []  # [True] once the compiled kernels are in use in this process
-_preferred: list[bool] = []  # [True] once the process asked for them for every batch (:func:`prefer`)
+P = ParamSpec("P")
+R = TypeVar("R")
+
+
+@dataclasses.dataclass
+class _State:
+    """What this process knows of its kernels (one per process: :data:`_state`)."""
+
+    loaded: bool = False  # the compiled kernels are in use
+    preferred: bool = False  # the process asked for them (:func:`prefer`)
+    one_shot: bool = False  # the process answers one command and ends (:func:`one_shot`)
+    spent: float = 0.0  # seconds spent in the NumPy twins (:func:`spent`; a lost update between threads is harmless)
+    looked: float = -math.inf  # when the cache was last looked at (:data:`_clock`)
+    found: bool = False  # whether it was ready then
+    loader: threading.Thread | None = None  # the thread that loads them in the background, once started
+    stop: threading.Event = dataclasses.field(default_factory=threading.Event)  # the process ends: load no more
+    took: float | None = None  # processor seconds the load took (:func:`load_seconds`)
+
+
+_state = _State()
+_loading = threading.Lock()  # one import of numba at a time, in front or in the background
+_starting = threading.Lock()  # one thread of :func:`load_in_background`
+_call: contextvars.ContextVar[list[bool] | None] = contextvars.ContextVar("linkwork_kernels", default=None)
 _said: set[str] = set()  # the notes already written to stderr
+_clock = time.monotonic  # what :func:`_ready` reads the time from
 
 
 def mode() -> str:
@@ -77,40 +126,96 @@ def installed() -> bool:
 
 
 def loaded() -> bool:
-    """Whether the compiled kernels are in use in this process (then every kernel that has a compiled twin
-    runs it)."""
-    return bool(_loaded)
+    """Whether the compiled kernels are in use in this process (then every call that starts runs them)."""
+    return _state.loaded
+
+
+def load_seconds() -> float | None:
+    """Seconds of processor time the load of the compiled kernels in the background took in this process
+    (None before)."""
+    return _state.took
+
+
+def deciding(function: Callable[P, R]) -> Callable[P, R]:
+    """``function`` as a call that decides its kernels once, as it starts (:func:`active`, :func:`use`): a
+    switch to the compiled kernels while it runs is for the calls that start after it.  A call within
+    another keeps the outer one's decision."""
+
+    @functools.wraps(function)
+    def call(*args: P.args, **kwargs: P.kwargs) -> R:
+        if _call.get() is not None:
+            return function(*args, **kwargs)
+        token = _call.set([_now()])
+        try:
+            return function(*args, **kwargs)
+        finally:
+            _call.reset(token)
+
+    return call
+
+
+def _now() -> bool:
+    """Whether a call that starts now runs the compiled kernels (loading them where they run always)."""
+    current = mode()
+    return current != OFF and (_state.loaded or (current == ALWAYS and _load()))
 
 
 def active() -> bool:
-    """Whether the pieces that follow a solve (reading points, the reactions) run their compiled twins: the
-    kernels in use (or asked for always); this never loads them where they are not (a reading of points on
-    the viewer's event loop must not wait for numba)."""
-    current = mode()
-    return current != OFF and (bool(_loaded) or (current == ALWAYS and _load()))
+    """Whether the pieces that follow a solve (reading points, the reactions) run their compiled twins: as
+    the call decided (:func:`deciding`), else as the process runs now; this never loads them where they are
+    not in use (a reading of points on the viewer's event loop must not wait for numba)."""
+    decided = _call.get()
+    return decided[0] if decided is not None else _now()
 
 
 def use(samples: int) -> bool:
-    """Whether a batch of ``samples`` samples is solved by the compiled kernels (loading them, or starting
-    their compile in the background, as the module's rules say): in a process that :func:`prefer` them, as
-    soon as the compile in the background has put them in the cache."""
-    current = mode()
-    if current == OFF:
+    """Whether a batch of ``samples`` samples is solved by the compiled kernels: as :func:`active`; else,
+    with the kernels ready, a batch of :data:`LONG` samples loads them in front (and its call runs them
+    from there on), and a process that :func:`prefer` them starts their load in the background; with the
+    cache empty, their compile starts in the background."""
+    decided = _call.get()
+    if decided[0] if decided is not None else _now():
+        return True
+    if mode() != AUTO:
         return False
-    if _loaded or current == ALWAYS:
-        return _load()
-    if not ready():
+    if not _ready():
         start_compiling()
         return False
-    return (samples >= LONG or bool(_preferred)) and _load()
+    if _state.preferred:
+        load_in_background()
+    if samples < LONG:
+        return False
+    _load()
+    if decided is not None:
+        decided[0] = True
+    return True
+
+
+def spent(seconds: float) -> None:
+    """Count ``seconds`` spent in a NumPy twin of a compiled kernel; once past :data:`LOAD_COST`, with the
+    compiled kernels ready, load them in the background."""
+    state = _state
+    state.spent += seconds
+    if state.spent < LOAD_COST or state.loaded or state.loader is not None or state.one_shot:
+        return
+    if mode() == AUTO and _ready():
+        load_in_background()
 
 
 def prefer() -> bool:
-    """Use the compiled kernels for every batch of this process once they are ready, loading them now where
-    they are (else starting their compile): for a process that runs many batches (the viewer, which thus
-    switches to them when the compile it started is done); whether they are in use."""
-    _preferred.append(True)
-    return use(LONG)
+    """Use the compiled kernels for every call of this process as soon as they are ready, loading them in
+    the background where they are (else starting their compile): for a process that runs many batches (the
+    viewer, which thus switches to them when the compile it started is done); whether they are in use."""
+    _state.preferred = True
+    return use(0)
+
+
+def one_shot() -> None:
+    """Say that this process answers one command and ends (the command line): it loads no compiled kernels
+    for the time it spent in the NumPy ones, as its exit would wait for a load it had no time left to use
+    (a batch of :data:`LONG` samples still loads them in front, and a process that :func:`prefer` them, the
+    viewer, in the background)."""
+    _state.one_shot = True
 
 
 def force() -> None:
@@ -120,19 +225,110 @@ def force() -> None:
     _load()
 
 
-def _load() -> bool:
-    if not _loaded:
-        folder = cache_dir()
-        if folder is not None:  # read by numba as it is imported (and kept if it reloads its settings)
-            os.environ["NUMBA_CACHE_DIR"] = str(folder)
-        import numba
+def _ready() -> bool:
+    """:func:`ready`, looked at once every :data:`RECHECK` seconds at most (the answer kept between)."""
+    state = _state
+    now = _clock()
+    if now - state.looked >= RECHECK:
+        state.found, state.looked = ready(), now
+    return state.found
 
-        if folder is not None:
-            numba.config.CACHE_DIR = str(folder)  # type: ignore[attr-defined]
-        else:
-            note("no-cache", f"the compiled kernels compile without a cache: {_unwritable()}")
-        _loaded.append(True)
+
+def load_in_background() -> None:
+    """Load the compiled kernels in a thread of their own (once per process), then switch to them."""
+    if _state.loaded or _state.loader is not None:  # the usual answer, without waiting for a lock
+        return
+    with _starting:
+        if _state.loaded or _state.loader is not None:
+            return
+        _state.loader = threading.Thread(target=_fetch, name="linkwork-kernels", daemon=True)
+        _state.loader.start()
+
+
+def _fetch() -> None:
+    """Import numba, wrap every kernel and read every one the cache holds, then switch (what the thread of
+    :func:`load_in_background` does)."""
+    start = time.thread_time()
+    try:
+        with _loading:
+            if _state.loaded:  # loaded in front meanwhile (a long batch)
+                return
+            _import_numba()
+            for name in KERNEL_MODULES:
+                module = importlib.import_module("linkwork." + name.removesuffix(".py").replace("/", "."))
+                if _state.stop.is_set() or not module.compiled() or not _read_cache(vars(module)):
+                    return
+    except Exception as exc:  # pragma: no cover - a broken numba: the NumPy kernels go on
+        note("load", f"the NumPy kernels run: the compiled kernels could not be loaded ({exc})")
+        return
+    _state.took = time.thread_time() - start
+    _state.loaded = True
+
+
+def _read_cache(space: dict[str, Any]) -> bool:
+    """Load into each numba dispatcher of the module namespace ``space`` every signature the cache holds
+    compiled from these sources (numba's cache index, read as its dispatchers read it), so that no call
+    waits for a read (where numba's internals differ, each kernel is read on its first call instead);
+    False where the process ends meanwhile."""
+    from numba.core.registry import CPUDispatcher
+
+    dispatchers: list[Any] = [f for f in list(space.values()) if isinstance(f, CPUDispatcher)]
+    for function in dispatchers:
+        try:
+            cache = function._cache
+            codegen = function.targetctx.codegen()
+            keys = list(cache._cache_file._load_index())
+        except AttributeError:  # pragma: no cover - another numba
+            return True
+        for key in keys:
+            if _state.stop.is_set():
+                return False
+            if cache._index_key(key[0], codegen) == key:  # these sources, this machine
+                function.compile(key[0])
     return True
+
+
+def _settle() -> None:
+    """Wait for a load in the background to end (before a fork: a thread caught mid-import would leave the
+    child process an import lock it can never take)."""
+    loader = _state.loader
+    if loader is not None and loader is not threading.current_thread():
+        loader.join()
+
+
+def _end() -> None:
+    """At the process's exit: stop a load in the background at its next step, and wait for it (numba's
+    native parts must not be torn down under it)."""
+    _state.stop.set()
+    _settle()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(before=_settle)
+atexit.register(_end)
+
+
+def _load() -> bool:
+    """Switch to the compiled kernels now (a load in the background under way is waited for); True."""
+    _settle()
+    if not _state.loaded:
+        with _loading:
+            _import_numba()
+            _state.loaded = True
+    return True
+
+
+def _import_numba() -> None:
+    """Import numba with the cache folder of :func:`cache_dir` (said once where there is none)."""
+    folder = cache_dir()
+    if folder is not None:  # read by numba as it is imported (and kept if it reloads its settings)
+        os.environ["NUMBA_CACHE_DIR"] = str(folder)
+    import numba
+
+    if folder is not None:
+        numba.config.CACHE_DIR = str(folder)  # type: ignore[attr-defined]
+    else:
+        note("no-cache", f"the compiled kernels compile without a cache: {_unwritable()}")
 
 
 def jit_in_place(space: dict[str, object], inline: tuple[str, ...], called: tuple[str, ...]) -> bool:

@@ -18,6 +18,7 @@ import linkwork.cli.simulate  # noqa: F401
 import linkwork.cli.size  # noqa: F401
 import linkwork.cli.synthesize  # noqa: F401
 import linkwork.cli.view  # noqa: F401
+from linkwork import jit
 from linkwork.cli import terminal
 from linkwork.cli.app import app
 
@@ -38,6 +39,7 @@ def main() -> None:
     are written, and the standard streams are flushed at exit all the same.)
     """
     atexit.register(gc.freeze)  # registered first, run last
+    jit.one_shot()  # one command, then the exit: the compiled kernels only where they pay at once
     for stream in (sys.stdout, sys.stderr):
         if isinstance(stream, io.TextIOWrapper) and stream.errors == "strict":
             stream.reconfigure(errors="backslashreplace")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import time
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -12,6 +13,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import numpy.typing as npt
 
+from linkwork import jit
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics import reactions_numba
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
@@ -381,6 +383,7 @@ def _bolt_quantities(f: Forces) -> np.ndarray:
     return np.stack([np.abs(found[..., 0]), found[..., 1], -found[..., 1], np.abs(found[..., 2])])
 
 
+@jit.deciding
 def forces(
     mech: Mechanism | Kinematics,
     angles: npt.ArrayLike | None = None,
@@ -440,6 +443,7 @@ def _statically_determinate(mech: Mechanism) -> None:
         )
 
 
+@jit.deciding
 def forces_of(kin: Kinematics) -> Forces:
     """The :class:`Forces` of a kinematics result: reactions, driving torque and foundation loads at
     its angles, speeds and variants (with the variants' mass properties), without solving the
@@ -474,9 +478,12 @@ def _solve(kin: Kinematics, external: Applied | None, compiled: bool) -> tuple[n
     if compiled:
         lam, found = reactions_numba.run(kin, external)
         return lam, found, None
+    start = time.perf_counter()
     loads = inertia_and_gravity(kin, external)
     lam, frame = solve_reactions(kin, loads)
-    return lam, foundation(kin, frame, loads), loads
+    found = foundation(kin, frame, loads)
+    jit.spent(time.perf_counter() - start)  # what the compiled kernel would save (:mod:`linkwork.jit`)
+    return lam, found, loads
 
 
 def _made(out: Forces, external: Applied | None, loads: Loads | None) -> Forces:

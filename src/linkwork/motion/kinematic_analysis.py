@@ -11,6 +11,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import numpy.typing as npt
 
+from linkwork import jit
 from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.limits import TURN_STEPS
 from linkwork.motion import kernels, kernels_numba
@@ -537,6 +538,7 @@ def cycle(mech: Mechanism, steps: int, start: float | None = None) -> np.ndarray
     return first + direction(mech) * 2 * np.pi * np.arange(steps) / steps
 
 
+@jit.deciding
 def kinematics(
     mech: Mechanism,
     angles: npt.ArrayLike | None = None,
@@ -611,6 +613,7 @@ def kinematics(
     )
 
 
+@jit.deciding
 def kinematics_at(mech: Mechanism, angles: np.ndarray, speeds: np.ndarray, accels: np.ndarray) -> Kinematics:
     """The state at the drive coordinates ``angles`` ``(A, D)`` with the drive speeds ``speeds`` and
     accelerations ``accels`` (each ``(A, D)``), every sample solved as it is in the file's assembly mode (not

@@ -3,10 +3,11 @@ acceleration calls, with or without the compiled kernels."""
 
 from __future__ import annotations
 
-from typing import Any
+import time
 
 import numpy as np
 
+from linkwork import jit
 from linkwork.motion import kernels, kernels_numba
 
 
@@ -19,6 +20,10 @@ def point_motion(
     the compiled kernels run (:func:`linkwork.motion.kernels_numba.available`), by NumPy otherwise (the same
     arithmetic, in the same order: :func:`linkwork.motion.kernels.point_motion_into` and its twin)."""
     out = np.empty(q.shape[1:] + (2,))
-    twin: Any = kernels_numba.point_motion_into if kernels_numba.available() else kernels.point_motion_into
-    twin(kind, q, v, a, cs[0], cs[1], local[0], local[1], out)
+    if kernels_numba.available():
+        kernels_numba.point_motion_into(kind, q, v, a, cs[0], cs[1], local[0], local[1], out)
+        return out
+    start = time.perf_counter()
+    kernels.point_motion_into(kind, q, v, a, cs[0], cs[1], local[0], local[1], out)
+    jit.spent(time.perf_counter() - start)  # what the compiled twin would save (:mod:`linkwork.jit`)
     return out

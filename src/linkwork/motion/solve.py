@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
+from linkwork import jit
 from linkwork.angles import wrap
 from linkwork.motion import kernels, kernels_numba
 from linkwork.motion.state import Jump, State, StepRecord
@@ -33,18 +36,24 @@ def run(
     that the arrays of a chunk stay in the processor's cache.
     """
     n_var, n_ang = geom.n_variants, values.shape[0]
-    if mech.program_table is not None and kernels_numba.wanted(n_var * n_ang) and program is mech.program:
+    twin = mech.program_table is not None and program is mech.program  # the compiled kernels cover it
+    if twin and kernels_numba.wanted(n_var * n_ang):
         state = _run_compiled(mech, program, geom, values, rates, accels)
         if state is not None:
             return state
+    start = time.perf_counter()
     size = max(1, CHUNK // max(n_ang, 1))
     if n_var <= size:
-        return run_numpy(mech, program, geom, values, rates, accels)
-    parts = []
-    for start in range(0, n_var, size):
-        part = Geometry(*(g[start : start + size] for g in (geom.point_local, geom.pair_origin, geom.pair_axis)))
-        parts.append(run_numpy(mech, program, part, values, rates, accels))
-    return _concatenate(parts, program)
+        state = run_numpy(mech, program, geom, values, rates, accels)
+    else:
+        parts = []
+        for first in range(0, n_var, size):
+            part = Geometry(*(g[first : first + size] for g in (geom.point_local, geom.pair_origin, geom.pair_axis)))
+            parts.append(run_numpy(mech, program, part, values, rates, accels))
+        state = _concatenate(parts, program)
+    if twin:  # time the compiled twin would save: what pays for loading it
+        jit.spent(time.perf_counter() - start)
+    return state
 
 
 def _concatenate(parts: list[State], program: tuple[Step, ...]) -> State:

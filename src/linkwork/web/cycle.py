@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from linkwork import jit
 from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.kinetostatics.reaction_forces import Forces, forces_of
 from linkwork.motion.analysis import zero_angle
@@ -83,6 +84,7 @@ class Cycle:
         return out
 
 
+@jit.deciding
 def solve_cycle(mech: Mechanism, steps: int, overrides: dict[str, float] | None = None, symbols: int = CYCLE) -> Cycle:
     """The cycle of ``mech`` with ``overrides`` (SI, checked by the caller) at ``steps`` crank angles, the
     scheme's symbols drawn from ``symbols`` of its angles, evenly spread (:func:`symbol_samples`; the turn solved

@@ -314,7 +314,7 @@ def create_app(spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360) ->
     The cycle of the mechanism as given is solved here, so a mechanism that fails
     raises its LinkworkError before any server starts.
     """
-    jit.prefer()  # many solves to come: the compiled kernels where they are ready (loaded by the first cycle)
+    jit.prefer()  # many solves to come: the compiled kernels as soon as they are ready (loaded in the background)
     viewer = Viewer(spec_or_mech, steps)
     viewer.cycle(first=True)  # fails here, not on the first request
 
