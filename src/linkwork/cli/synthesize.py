@@ -236,6 +236,6 @@ def _shown(name: str, value: float, lang: str = "en") -> str:
         return f"{value * 1e3:.9f} {t('unit.mm', lang)}"
     if name == "time_ratio":
         return f"{value:.12g}"
-    if name == "torque_at_nominal":
+    if name in ("torque_at_nominal", "peak_torque"):
         return f"{value:.12g} {t('synth.unit.Nm', lang)}"
     return f"{math.degrees(value):.9f} {t('synth.unit.deg', lang)}"

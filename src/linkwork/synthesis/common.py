@@ -132,6 +132,24 @@ def deg(angle: float) -> str:
     return f"{math.degrees(angle):.4g} deg"
 
 
+def up(x: float, digits: int = 4) -> str:
+    """``x`` rounded up to ``digits`` significant digits, as a message writes a least value that can be met (a
+    rounded bound must itself be feasible: rounding to the nearest may fall on the wrong side)."""
+    return _safe(x, digits, math.ceil)
+
+
+def down(x: float, digits: int = 4) -> str:
+    """``x`` rounded down to ``digits`` significant digits, as a message writes a largest value that can be met."""
+    return _safe(x, digits, math.floor)
+
+
+def _safe(x: float, digits: int, step: Callable[[float], int]) -> str:
+    if not math.isfinite(x) or x == 0:
+        return f"{x:g}"
+    scale = 10.0 ** (math.floor(math.log10(abs(x))) - digits + 1)
+    return f"{step(x / scale) * scale:.{digits}g}"
+
+
 def bar_mass(length: float, section: tuple[float, float] = BAR, density: float = STEEL) -> float:
     """The mass rule: a steel bar of ``section`` (width, height; m) and ``length`` (m), kg."""
     return density * section[0] * section[1] * length
