@@ -156,7 +156,8 @@ def test_the_message_of_an_impossible_bound_names_both_requirements_and_the_near
         str(tmp_path / "s.yaml"),
     )
     assert run.stderr.strip() == (
-        "error: time ratio K = 1.3 needs a largest pressure angle of at least 51 deg; at most 30 deg gives K <= 1.092"
+        "error: time ratio K = 1.3 needs a largest pressure angle of at least 51.01 deg; at most 30 deg gives "
+        "K <= 1.092"
     )
 
 

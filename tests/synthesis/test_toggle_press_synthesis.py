@@ -18,6 +18,10 @@ from linkwork.motion.analysis import extremes
 from linkwork.synthesis import synthesize
 from linkwork.synthesis.toggle_press import geometry, nominal
 
+#: A bound on the least transmission angle low enough that the geometry alone decides (the design rule's 40 deg
+#: refuses some of the random requests, which these tests make for the geometry).
+FREE = 1e-6
+
 
 def ram_stroke(spec) -> float:
     (ram,) = [e for e in extremes(lw.kinematics(spec, steps=3600)) if e.kind == "slider"]
@@ -34,14 +38,34 @@ def torque_by_difference(spec, stroke: float, before: float, force: float, swing
     return force * float(y[1] - y[0]) / (2 * h)
 
 
-def test_the_toggle_links_are_as_long_as_the_stroke_for_a_swing_of_60_deg():
-    """H = 2 a (1 - cos 60 deg) = a."""
+def test_the_default_swing_of_45_deg_gives_toggle_links_of_h_over_2_minus_root_2():
+    """H = 2 a (1 - cos 45 deg) = a (2 - sqrt 2); the lower link at 45 deg to the guide at the top, within the
+    40 deg rule."""
     s = synthesize("toggle-press", stroke=0.2, force=1e5, before=0.01, torque=5e3)
-    assert s.dimensions["toggle"] == pytest.approx(0.2, rel=1e-12)
+    assert s.dimensions["toggle"] == pytest.approx(0.2 / (2 - math.sqrt(2)), rel=1e-12)
     assert ram_stroke(s.spec) == pytest.approx(0.2, rel=1e-9)
     assert s.measured["torque_at_nominal"] == pytest.approx(s.predicted["torque_at_nominal"], rel=1e-9)
-    fd = torque_by_difference(s.spec, 0.2, 0.01, 1e5, math.radians(60), 1.2)
+    fd = torque_by_difference(s.spec, 0.2, 0.01, 1e5, math.radians(45), 1.2)
     assert s.measured["torque_at_nominal"] == pytest.approx(fd, rel=1e-6)
+    mu = lw.motion.analysis.transmission(lw.kinematics(s.spec, steps=3600))
+    assert min(float(np.min(v)) for v in mu.values()) == pytest.approx(math.radians(44.58), abs=math.radians(0.01))
+
+
+def test_a_60_deg_swing_is_refused_by_the_rule_and_accepted_below_it():
+    """The lower link at 60 deg to the ram's guide at the top: 30 deg of transmission, under the rule's 40; the
+    message names the largest swing (50 deg), and a bound of 30 deg lets it through with a = H."""
+    with pytest.raises(SynthesisError, match=r"least transmission angle of 30 deg.*a swing of at most 50 deg"):
+        synthesize("toggle-press", stroke=0.2, force=1e5, before=0.01, torque=5e3, swing=math.radians(60))
+    s = synthesize(
+        "toggle-press",
+        stroke=0.2,
+        force=1e5,
+        before=0.01,
+        torque=5e3,
+        swing=math.radians(60),
+        min_transmission_angle=math.radians(30) * (1 - 1e-9),
+    )
+    assert s.dimensions["toggle"] == pytest.approx(0.2, rel=1e-12)
 
 
 @settings(max_examples=8, deadline=None)
@@ -56,7 +80,14 @@ def test_random_feasible_requirements_are_met_as_the_analysis_measures_them(stro
     before = where * stroke
     _, rho = nominal(geometry(stroke, swing, k), before)
     s = synthesize(
-        "toggle-press", stroke=stroke, force=force, before=before, torque=force * rho * 1.5, swing=swing, time_ratio=k
+        "toggle-press",
+        stroke=stroke,
+        force=force,
+        before=before,
+        torque=force * rho * 1.5,
+        swing=swing,
+        time_ratio=k,
+        min_transmission_angle=FREE,
     )
     assert ram_stroke(s.spec) == pytest.approx(stroke, rel=1e-9)
     assert s.measured["torque_at_nominal"] == pytest.approx(force * rho, rel=1e-9)

@@ -87,7 +87,11 @@ def synthesize(
     ] = None,
     rod: Annotated[str | None, typer.Option("--rod", help="slotted-lever: the ram's rod's length")] = None,
     min_transmission_angle: Annotated[
-        str | None, typer.Option("--min-transmission-angle", help="crank-rocker: a bound")
+        str | None,
+        typer.Option(
+            "--min-transmission-angle",
+            help="every kind: the least transmission angle of every dyad over the turn (the design rule, 40deg)",
+        ),
     ] = None,
     force: Annotated[
         str | None,
@@ -140,7 +144,8 @@ def synthesize(
     toggle-press: --stroke, --force at --before the bottom dead centre, --torque (the crank's limit, N m);
     --swing and --time-ratio of its four-bar.  double-cut-shears (the bundled file's structure): --upper-stroke,
     --lower-stroke, --time-ratio (closing over opening), --overlap or --opening; --crank fixes the crank, else
-    --criterion picks it.  Requirements that cannot be met: exit 2, no file."""
+    --criterion picks it.  Every kind keeps the design rule: the least transmission angle of every dyad over the
+    turn at least 40 deg (--min-transmission-angle lowers it).  Requirements that cannot be met: exit 2, no file."""
     from linkwork.lang import check_lang
     from linkwork.synthesis import KINDS, QUANTITIES, required
     from linkwork.synthesis import synthesize as run

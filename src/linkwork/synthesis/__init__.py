@@ -8,6 +8,7 @@ angle the analysis measures on that text before it is returned.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from linkwork.errors import SynthesisError
@@ -42,7 +43,9 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     ``time_ratio`` (the knives closing over opening), one of ``overlap`` (when closed), ``opening``; ``crank`` fixes the
     family's free crank length, else ``criterion`` picks it (``"pressure"``, the default: the greatest least
     transmission angle, or ``"torque"``, the least peak driving torque under the file's loads); ``speed`` replaces the
-    file's.
+    file's.  Every kind keeps the design rule ``min_transmission_angle`` (rad): the least transmission angle of every
+    dyad over the turn, 40 deg unless given (:data:`~linkwork.synthesis.common.LEAST_TRANSMISSION`), measured on
+    the written file; the file's ``requirements:`` carries it.
 
     Raises
     ------
@@ -72,12 +75,21 @@ def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
     report to state them beside what the mechanism achieves."""
     import dataclasses
 
+    from ruamel.yaml.comments import CommentedMap
+
     from linkwork.spec.edit import round_trip_yaml, yaml_text
     from linkwork.spec.reader import loads
     from linkwork.synthesis.achieved import written
+    from linkwork.synthesis.common import LEAST_TRANSMISSION
 
     data = round_trip_yaml().load(result.text)
-    data["requirements"] = written(result.kind, result.requirements, extra)
+    data["requirements"] = CommentedMap(written(result.kind, result.requirements, extra))
+    if "min_transmission_angle" in data["requirements"]:
+        data["requirements"].yaml_add_eol_comment(
+            f"the design rule: every dyad's transmission angle over the turn at least this ("
+            f"{math.degrees(LEAST_TRANSMISSION):g} deg unless --min-transmission-angle lowers it)",
+            "min_transmission_angle",
+        )
     data.yaml_set_comment_before_after_key(
         "requirements", before="what the mechanism was synthesised for; the report states it beside what it achieves"
     )

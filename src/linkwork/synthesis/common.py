@@ -43,6 +43,13 @@ QUANTITIES = {
     "working": "length",
 }
 
+#: The design rule every kind keeps unless the request lowers it (``min_transmission_angle``): the least
+#: transmission angle of every dyad of the written file over the turn, at least 40 deg (rad).  Nearer a dead point
+#: the force in a dyad grows as 1 / sin(mu) for the force it passes on (1.56 times at 40 deg, 31 times at
+#: 1.86 deg), and friction in the pairs can jam it; 40 deg is the classical bound for a linkage of
+#: general machinery.
+LEAST_TRANSMISSION = math.radians(40.0)
+
 #: Crank samples of the verification's turn (the analysis refines extremes between them).
 VERIFY_STEPS = 720
 
@@ -114,6 +121,46 @@ class Synthesis:
         from linkwork.atomic import write_atomic
 
         return write_atomic(out, lambda tmp: tmp.write_text(self.text, encoding="utf-8"))
+
+
+def least_allowed(min_transmission_angle: float | None) -> float:
+    """The least transmission angle (rad) the written mechanism must keep: the one asked for, else the rule
+    :data:`LEAST_TRANSMISSION`; raises :class:`SynthesisError` for a bound outside (0, 90) deg."""
+    if min_transmission_angle is None:
+        return LEAST_TRANSMISSION
+    if not 0 < min_transmission_angle < math.pi / 2:
+        raise SynthesisError(
+            f"least transmission angle {deg(min_transmission_angle)}: expected a bound between 0 and 90 deg"
+        )
+    return min_transmission_angle
+
+
+def below_rule(what: str, least: float, bound: float, nearest: str) -> SynthesisError:
+    """The refusal of a mechanism whose least transmission angle ``least`` (rad) is under ``bound``: what gives
+    it, the bound (the rule's or the one asked), the ``nearest`` request that meets it, and the bound that would
+    accept this one (rounded down, so that it does)."""
+    rule = "the design rule" if bound == LEAST_TRANSMISSION else "the bound asked"
+    return SynthesisError(
+        f"{what} gives a least transmission angle of {down(math.degrees(least))} deg, under {rule}'s "
+        f"{math.degrees(bound):.4g} deg; {nearest} (or lower --min-transmission-angle to "
+        f"{down(math.degrees(least))} deg)"
+    )
+
+
+def keep_rule(spec: Spec, bound: float) -> float:
+    """The least transmission angle (rad) of every dyad of ``spec`` over the turn, as :func:`linkwork.kinematics`
+    and :func:`~linkwork.motion.analysis.transmission` measure the written file; raises
+    :class:`SynthesisError` where it is under ``bound`` (a closed form let through what the file does not keep)."""
+    from linkwork.api import kinematics
+    from linkwork.motion.analysis import transmission
+
+    least = min(float(np.nanmin(v)) for v in transmission(kinematics(spec, steps=VERIFY_STEPS)).values())
+    if least < bound * (1 - 1e-9):
+        raise SynthesisError(
+            f"the written mechanism measures a least transmission angle of {down(math.degrees(least))} deg, under "
+            f"{math.degrees(bound):.4g} deg"
+        )
+    return least
 
 
 def need(value: float | None, ok: bool, message: str) -> None:

@@ -32,7 +32,16 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import SynthesisError
-from linkwork.synthesis.common import TOLERANCE, VERIFY_STEPS, Family, Synthesis, given
+from linkwork.synthesis.common import (
+    TOLERANCE,
+    VERIFY_STEPS,
+    Family,
+    Synthesis,
+    below_rule,
+    given,
+    keep_rule,
+    least_allowed,
+)
 
 KIND = "double-cut-shears"
 
@@ -201,6 +210,7 @@ def synthesize(
     opening: float | None = None,
     crank: float | None = None,
     criterion: str = "pressure",
+    min_transmission_angle: float | None = None,
     speed: str | None = None,
 ) -> Synthesis:
     """The bundled double-cut shears with the upper and lower knives' strokes (m), the time ratio K (the knives closing
@@ -211,6 +221,7 @@ def synthesize(
     from linkwork.api import mechanism_of
 
     want = _requirements(upper_stroke, lower_stroke, time_ratio, overlap, opening)
+    floor = least_allowed(min_transmission_angle)
     if criterion not in CRITERIA:
         raise SynthesisError(f"criterion {criterion!r}: expected one of {', '.join(CRITERIA)}")
     if crank is not None and not 0 < crank < math.inf:
@@ -224,13 +235,16 @@ def synthesize(
         overlap=overlap,
         opening=opening,
         crank=crank,
+        min_transmission_angle=floor,
     )
+    _keeps_rule(found, cranks, floor)
     if criterion == "torque":  # each member's own file: its billet where its knives meet it
         found["peak_driving_torque"] = _member_torques(mech, cranks, unknowns, requirements, want, speed)
     else:
         found.pop("peak_driving_torque", None)  # the metric's runs keep the bundled billet
     metric, sense, words = CRITERIA[criterion]
     score = sense * found.get(metric, np.full(len(cranks), np.nan))
+    score[~(found.get("min_transmission_angle", np.full(len(cranks), np.nan)) >= floor)] = np.nan
     if not np.isfinite(score).any():
         raise SynthesisError(_infeasible(mech, upper_stroke, lower_stroke, time_ratio, want, crank))
     pick = int(np.nanargmin(score))
@@ -246,6 +260,7 @@ def synthesize(
         "opening": upper_stroke + lower_stroke - want,
     }
     confirm(measured, predicted)
+    keep_rule(spec, floor)
     columns = {
         "crank": cranks,
         "O1.x": unknowns[:, 0],
@@ -260,6 +275,19 @@ def synthesize(
     if "peak_driving_torque" not in found:
         notes.append(f"peak_driving_torque: {_peak_torque(spec):.6g}")
     return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, why, notes)
+
+
+def _keeps_rule(found: dict[str, np.ndarray], cranks: np.ndarray, floor: float) -> None:
+    """Raise where no solved member's least transmission angle (every dyad over the turn) reaches ``floor``."""
+    least = found.get("min_transmission_angle", np.full(len(cranks), np.nan))
+    if np.isfinite(least).any() and not np.nanmax(least) >= floor:
+        i = int(np.nanargmax(least))
+        raise below_rule(
+            f"the family's best member (crank {cranks[i] * 1e3:.4g} mm)",
+            float(least[i]),
+            floor,
+            "strokes, K and overlap nearer the bundled file's may meet it",
+        )
 
 
 def _peak_torque(spec) -> float:  # noqa: ANN001

@@ -44,13 +44,17 @@ from linkwork.synthesis.common import (
     Family,
     Synthesis,
     bar_mass,
+    below_rule,
     confirm,
     crank_angle_between_limits,
     deg,
     file_of,
     given,
+    keep_rule,
+    least_allowed,
     measure,
     mm,
+    up,
 )
 
 KIND = "slotted-lever"
@@ -160,6 +164,7 @@ def synthesize(
     crank: float | None = None,
     rod: float | None = None,
     max_pressure_angle: float | None = None,
+    min_transmission_angle: float | None = None,
     speed: str = "60 rpm",
     section: tuple[float, float] = BAR,
     density: float = STEEL,
@@ -170,17 +175,33 @@ def synthesize(
     largest pressure angle is ``max_pressure_angle`` (rad; 10 deg by default).  Links are steel bars of
     ``section`` and ``density``; the ram's mass is the rod's unless given.  Verified by the analysis of the
     written file: the ram's stroke, K and the rod's largest pressure angle."""
+    floor = least_allowed(min_transmission_angle)
     dims, why = solve(stroke, time_ratio, frame, crank, rod, max_pressure_angle)
     theta = crank_angle_between_limits(time_ratio)
     alpha = dims.pop("largest_pressure_angle")
+    if math.pi / 2 - alpha < floor:  # the rod's dyad; the block's (RPR) transmits square to the slot throughout
+        sag = dims["lever"] * (1 - math.cos(theta / 2)) / 2
+        raise below_rule(
+            f"the rod {dims['rod'] * 1e3:.6g} mm (its largest pressure angle {deg(alpha)})",
+            math.pi / 2 - alpha,
+            floor,
+            f"a rod of at least {up(sag / math.cos(floor) * 1e3)} mm meets it",
+        )
     requirements = given(
-        stroke=stroke, time_ratio=time_ratio, frame=frame, crank=crank, rod=rod, max_pressure_angle=max_pressure_angle
+        stroke=stroke,
+        time_ratio=time_ratio,
+        frame=frame,
+        crank=crank,
+        rod=rod,
+        max_pressure_angle=max_pressure_angle,
+        min_transmission_angle=floor,
     )
     text, spec = file_of(*_file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass))
     measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
     confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha)  # the rod square to the lever at its limits
+    keep_rule(spec, floor)
     fam = family(stroke, time_ratio) if frame is None and crank is None else None
     return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, f"picked by {why}")
 

@@ -18,7 +18,9 @@ The theory (derived here):
   nominal point is |T| = F rho, rho = -v_R / |omega| = 2 a sin(beta_n) omega_4 / |omega| (clockwise) with cos(beta_n) =
   1 - s_n / (2 a) and omega_4 / omega from the four-bar's velocities: (omega_4 k x K) . (K - A) =
   (omega k x (A - O)) . (K - A).  Near the bottom, s ~ (phi - phi_0)^4, so rho ~ s^(3/4): the toggle's gain.
-* What the requirements leave free: psi and K.  They are stated defaults (psi = 60 deg, so a = H; K = 1.2);
+* What the requirements leave free: psi and K.  They are stated defaults (psi = 45 deg, so a = H / (2 - sqrt 2),
+  1.707 H, the lower link at most 45 deg to the ram's guide and the four-bar's least transmission angle 44.6 deg,
+  both within the 40 deg design rule; K = 1.2);
   the torque limit is then a bound: T = F rho at most the limit, else the message gives the largest nominal
   force the limit allows.
 
@@ -40,6 +42,7 @@ from linkwork.synthesis.common import (
     VERIFY_STEPS,
     Synthesis,
     bar_mass,
+    below_rule,
     confirm,
     crank_angle_between_limits,
     deg,
@@ -47,6 +50,8 @@ from linkwork.synthesis.common import (
     down,
     file_of,
     given,
+    keep_rule,
+    least_allowed,
     measure,
     mm,
     up,
@@ -55,7 +60,7 @@ from linkwork.synthesis.common import (
 KIND = "toggle-press"
 
 #: The upper link's swing and the four-bar's time ratio unless given.
-SWING = math.radians(60.0)
+SWING = math.radians(45.0)
 TIME_RATIO = 1.2
 
 
@@ -110,12 +115,13 @@ def synthesize(
     torque: float,
     swing: float | None = None,
     time_ratio: float | None = None,
+    min_transmission_angle: float | None = None,
     speed: str = "60 rpm",
     section: tuple[float, float] = BAR,
     density: float = STEEL,
 ) -> Synthesis:
     """A knuckle-joint press for the ram's stroke (m), the nominal ``force`` (N) at ``before`` (m) before the
-    bottom dead centre and the crank's ``torque`` limit (N m); the upper link's ``swing`` (rad, 60 deg) and the
+    bottom dead centre and the crank's ``torque`` limit (N m); the upper link's ``swing`` (rad, 45 deg) and the
     four-bar's ``time_ratio`` (1.2) unless given.  The file carries the nominal force as a process load; the
     stroke and the torque at the nominal point are verified by ``lw.kinematics`` and ``lw.forces``."""
     for name, value in (("stroke", stroke), ("force", force), ("before", before), ("torque", torque)):
@@ -129,14 +135,38 @@ def synthesize(
     k = TIME_RATIO if time_ratio is None else time_ratio
     if not 0 < psi < math.pi / 2:
         raise SynthesisError(f"toggle swing {deg(psi)}: expected between 0 and 90 deg")
+    floor = least_allowed(min_transmission_angle)
+    if math.pi / 2 - psi < floor:  # the lower link and the ram's guide at the top
+        raise below_rule(
+            f"toggle swing {deg(psi)} (the lower link at {deg(psi)} to the ram's guide at the top)",
+            math.pi / 2 - psi,
+            floor,
+            f"a swing of at most {down(90 - math.degrees(floor))} deg meets it",
+        )
     geo = geometry(stroke, psi, k)
+    if geo["least_transmission_angle"] < floor:
+        raise below_rule(
+            f"the four-bar of swing {deg(psi)} and time ratio K = {k:g}",
+            geo["least_transmission_angle"],
+            floor,
+            crank_rocker.nearest(psi, k, floor),
+        )
     angle, rho = nominal(geo, before)
-    requirements = given(stroke=stroke, force=force, before=before, torque=torque, swing=swing, time_ratio=time_ratio)
+    requirements = given(
+        stroke=stroke,
+        force=force,
+        before=before,
+        torque=torque,
+        swing=swing,
+        time_ratio=time_ratio,
+        min_transmission_angle=floor,
+    )
     text, spec = file_of(*_file(geo, stroke, force, before, psi, k, speed, section, density))
     measured = measure(spec, [angle], lambda mu: next(v for key, v in mu.items() if key.endswith("RRP")), "guide")
     measured = {"stroke": measured["stroke"], "torque_at_nominal": -_torque(spec, angle)}  # clockwise
     predicted = {"stroke": stroke, "torque_at_nominal": force * rho}
     confirm(measured, predicted, geo["least_transmission_angle"])
+    keep_rule(spec, floor)
     measured["peak_torque"] = _within_limit(spec, angle, force, before, torque)
     dims = {key: float(v) for key, v in geo.items() if key != "O" and key != "least_transmission_angle"}
     dims.update(frame_x=float(geo["O"][0]), frame_y=float(geo["O"][1]))
