@@ -91,7 +91,15 @@ def test_the_torque_criterion_picks_the_family_member_with_the_least_refined_pea
 
 
 def test_a_fixed_crank_leaves_no_family():
-    s = synthesize("double-cut-shears", upper_stroke=0.12, lower_stroke=0.12, time_ratio=1.0, overlap=0.01, crank=0.1)
+    s = synthesize(
+        "double-cut-shears",
+        upper_stroke=0.12,
+        lower_stroke=0.12,
+        time_ratio=1.0,
+        overlap=0.01,
+        crank=0.1,
+        min_transmission_angle=math.radians(30),  # the bundled proportions: 31 deg, under the 40 deg rule
+    )
     assert s.family is None and s.dimensions["crank"] == 0.1
     assert s.measured["time_ratio"] == pytest.approx(1.0, rel=1e-9)
 

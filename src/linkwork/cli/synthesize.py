@@ -15,8 +15,8 @@ Quantity = Annotated[str | None, typer.Option()]
 
 
 def _read(options: dict[str, tuple[str | None, str]]) -> dict[str, Any]:
-    """The given options (name -> (text, kind)) in SI (bare lengths in m, bare angles in deg); one line per
-    option that does not read."""
+    """The given options (name -> (text, kind)) in SI; one line per option that does not read, or that is a
+    quantity given without its unit (refused: a bare 160 read as metres would build a press of 160 m)."""
     from linkwork.units import parse_quantity
 
     out: dict[str, Any] = {}
@@ -24,13 +24,31 @@ def _read(options: dict[str, tuple[str | None, str]]) -> dict[str, Any]:
     for name, (text, kind) in options.items():
         if text is None:
             continue
+        option = f"--{name.replace('_', '-')}"
+        if kind != "ratio" and _bare(text):  # a bare length is no length: 160 is not 160 m to a press designer
+            shown = excerpt(text.strip(), QUOTE_PATH)
+            problems.append(f'{option} "{shown}": give the unit, e.g. "{shown} {EXAMPLE_UNITS[kind]}"')
+            continue
         try:
             out[name] = _number(text) if kind == "ratio" else parse_quantity(text, kind)
         except (ValueError, LinkworkError) as exc:
-            problems.append(f"--{name.replace('_', '-')}: {exc}")
+            problems.append(f"{option}: {exc}")
     if problems:
         fail(LinkworkError("\n".join(problems)))
     return out
+
+
+#: The unit a refusal of a bare number suggests, by kind of quantity.
+EXAMPLE_UNITS = {"length": "mm", "angle": "deg", "force": "kN", "moment": "N*m"}
+
+
+def _bare(text: str) -> bool:
+    """Whether ``text`` is a number without a unit."""
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def _number(text: str) -> float:

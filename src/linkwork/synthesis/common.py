@@ -18,6 +18,18 @@ from linkwork.spec.schema import Spec
 #: angle must reach with the requirements and the closed forms.
 TOLERANCE = 1e-9
 
+#: The lengths a request may give (m): from a micrometre to a kilometre (beyond, the products of the closed forms
+#: overflow, and no mechanism a press or shears designer asks for comes near).
+LENGTHS = (1e-6, 1e3)
+
+#: The largest time ratio a request may give: the return stroke then takes 360 / 101 = 3.6 deg of the turn.
+TIME_RATIOS = 100.0
+
+#: The largest ratio of a synthesised mechanism's longest length to its shortest (its links, offsets, the
+#: stroke): beyond, the analysis cannot tell the short ones from a point at the long ones' scale (its tolerances
+#: are relative to the mechanism's size), and no shop makes a link a thousandth of its neighbour.
+PROPORTION = 1e3
+
 #: Density of steel (kg/m^3), and the default bar section (m): every link a steel bar of this section.
 STEEL = 7850.0
 BAR = (0.040, 0.020)
@@ -123,6 +135,23 @@ class Synthesis:
         return write_atomic(out, lambda tmp: tmp.write_text(self.text, encoding="utf-8"))
 
 
+def proportions(kind: str, lengths: dict[str, float], nearest: str = "") -> None:
+    """Raise :class:`SynthesisError` where the longest of ``lengths`` (m, by name; zeros ignored) is more than
+    :data:`PROPORTION` times the shortest, or any is not finite: naming both, and the ``nearest`` request that
+    keeps them in proportion where the kind knows it."""
+    sizes = {name: abs(float(v)) for name, v in lengths.items() if v != 0}
+    bad = [name for name, v in sizes.items() if not math.isfinite(v)]
+    if bad:
+        raise SynthesisError(f"{kind}: the request gives an infinite {bad[0]}{'; ' + nearest if nearest else ''}")
+    long, short = max(sizes, key=sizes.__getitem__), min(sizes, key=sizes.__getitem__)
+    if sizes[long] > PROPORTION * sizes[short]:
+        raise SynthesisError(
+            f"{kind}: the request gives a {long} of {sizes[long] * 1e3:.4g} mm and a {short} of "
+            f"{sizes[short] * 1e3:.4g} mm, more than {PROPORTION:g} times apart: no mechanism to make or analyse"
+            f"{'; ' + nearest if nearest else ''}"
+        )
+
+
 def least_allowed(min_transmission_angle: float | None) -> float:
     """The least transmission angle (rad) the written mechanism must keep: the one asked for, else the rule
     :data:`LEAST_TRANSMISSION`; raises :class:`SynthesisError` for a bound outside (0, 90) deg."""
@@ -202,15 +231,25 @@ def bar_mass(length: float, section: tuple[float, float] = BAR, density: float =
     return density * section[0] * section[1] * length
 
 
-def mm(x: float, digits: int = 12) -> float:
-    """A length (m) in mm as the file writes it: 12 significant digits (17, every digit of the float, where
-    a measured quantity is a small difference of large lengths)."""
-    return float(f"{x * 1000.0:.{digits}g}")
+def mm(x: float) -> float:
+    """A length (m) in mm as every synthesised file writes it: the one rule of the files' writer
+    (:func:`linkwork.units.written`, 12 significant digits, as :mod:`linkwork.spec.edit` writes an edit), and no
+    ``-0.0``."""
+    from linkwork.units import written
+
+    return float(written(x, "length", {"length": "mm"}, digits=12)) + 0.0
 
 
 def degrees(x: float) -> float:
-    """An angle (rad) in degrees as the file writes it: 12 significant digits."""
-    return float(f"{math.degrees(x):.12g}")
+    """An angle (rad) in degrees as the file writes it: the same rule as :func:`mm`."""
+    from linkwork.units import written
+
+    return float(written(x, "angle", {"angle": "deg"}, digits=12)) + 0.0
+
+
+def newtons(x: float) -> str:
+    """A force (N) as the file writes it: the same rule, with its unit."""
+    return f"{x:.12g} N"
 
 
 def commented(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> Any:

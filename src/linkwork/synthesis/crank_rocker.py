@@ -47,6 +47,7 @@ from linkwork.synthesis.common import (
     least_allowed,
     measure,
     mm,
+    proportions,
     time_ratio_of,
 )
 
@@ -287,6 +288,7 @@ def synthesize(
     m = {k: v[0] for k, v in members(swing, theta, np.array([t]), side).items()}
     scale = rocker if rocker is not None else frame / float(m["frame"])  # type: ignore[operator]
     dims = {k: float(m[k]) * scale for k in ("crank", "coupler", "rocker", "frame")}
+    proportions(KIND, dims)
     requirements = given(swing=swing, time_ratio=time_ratio, rocker=rocker, frame=frame, min_transmission_angle=bound)
     text, spec = file_of(*_file(dims, m, scale, swing, time_ratio, theta, mu, speed, section, density))
     measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))

@@ -286,7 +286,9 @@ def _keeps_rule(found: dict[str, np.ndarray], cranks: np.ndarray, floor: float) 
             f"the family's best member (crank {cranks[i] * 1e3:.4g} mm)",
             float(least[i]),
             floor,
-            "strokes, K and overlap nearer the bundled file's may meet it",
+            "leave the crank free, its family's best may meet it"
+            if len(cranks) == 1
+            else "other strokes, K or overlap",
         )
 
 

@@ -53,6 +53,8 @@ from linkwork.synthesis.common import (
     least_allowed,
     measure,
     mm,
+    newtons,
+    proportions,
     up,
 )
 
@@ -237,6 +239,7 @@ def synthesize(
     load = _load(stroke, force, working, criterion)
     floor = least_allowed(min_transmission_angle)
     r, ell, e, why = solve(stroke, time_ratio, rod_ratio, offset, max_pressure_angle, floor)
+    proportions(KIND, {"stroke": stroke, "crank": r, "rod": ell, "offset": e})
     theta = crank_angle_between_limits(time_ratio)
     free = theta > 0 and rod_ratio is None and offset is None
     _keeps_rule(r, ell, e, time_ratio, floor, why)
@@ -377,7 +380,8 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
     rod = bar_mass(ell, section, density)
     data = {
         "name": "slider-crank",
-        "description": f"Offset slider-crank synthesised for the stroke {stroke * 1e3:.6g} mm and time ratio K = "
+        "description": f"{'Central' if e == 0 else 'Offset'} slider-crank synthesised for the stroke "
+        f"{stroke * 1e3:.6g} mm and time ratio K = "
         f"{time_ratio:.6g} (theta = {math.degrees(theta):.6g} deg); {why}.  Masses: steel bars "
         f"{section[0] * 1e3:g} x {section[1] * 1e3:g} mm, {density:g} kg/m^3.",
         "units": {"length": "mm", "mass": "kg", "angle": "deg"},
@@ -413,9 +417,9 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
                 "type": "process",
                 "tools": ["ram.B"],
                 "axis": 90.0,
-                "workpiece": [mm(bottom, 17), mm(bottom + load[1], 17)],
+                "workpiece": [mm(bottom), mm(bottom + load[1])],
                 "penetration": [0.0, 1.0],
-                "force": [f"{load[0]:.17g} N"] * 2,
+                "force": [newtons(load[0])] * 2,
             }
         }
     comments = {
@@ -424,4 +428,8 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
         ("joints", "guide", "through"): f"offset e = {e * 1e3:.6g} mm: time ratio K = {time_ratio:.6g}",
         ("hints", "B"): "the ram below the crank",
     }
+    if load is not None:
+        comments[("loads", "working", "workpiece")] = (
+            f"the last {load[1] * 1e3:.6g} mm of the ram's way down, from the bottom dead centre"
+        )
     return data, comments

@@ -38,6 +38,7 @@ from linkwork.errors import SynthesisError
 from linkwork.synthesis import crank_rocker
 from linkwork.synthesis.common import (
     BAR,
+    PROPORTION,
     STEEL,
     VERIFY_STEPS,
     Synthesis,
@@ -54,6 +55,8 @@ from linkwork.synthesis.common import (
     least_allowed,
     measure,
     mm,
+    newtons,
+    proportions,
     up,
 )
 
@@ -135,6 +138,11 @@ def synthesize(
     k = TIME_RATIO if time_ratio is None else time_ratio
     if not 0 < psi < math.pi / 2:
         raise SynthesisError(f"toggle swing {deg(psi)}: expected between 0 and 90 deg")
+    if 1 - math.cos(psi) < 1 / (2 * PROPORTION):  # a = H / (2 (1 - cos psi)) more than PROPORTION strokes long
+        raise SynthesisError(
+            f"toggle swing {deg(psi)} gives toggle links over {PROPORTION:g} times the stroke: a swing of at least "
+            f"{up(math.degrees(math.acos(1 - 1 / (2 * PROPORTION))))} deg keeps them in proportion"
+        )
     floor = least_allowed(min_transmission_angle)
     if math.pi / 2 - psi < floor:  # the lower link and the ram's guide at the top
         raise below_rule(
@@ -144,6 +152,7 @@ def synthesize(
             f"a swing of at most {down(90 - math.degrees(floor))} deg meets it",
         )
     geo = geometry(stroke, psi, k)
+    proportions(KIND, {"stroke": stroke, "before": before, **{n: geo[n] for n in ("toggle", "crank", "rod")}})
     if geo["least_transmission_angle"] < floor:
         raise below_rule(
             f"the four-bar of swing {deg(psi)} and time ratio K = {k:g}",
@@ -203,6 +212,12 @@ def _within_limit(spec, angle: float, force: float, before: float, torque: float
     for _ in range(60):
         mid = (lo + hi) / 2
         lo, hi = (mid, hi) if np.max(np.abs(mid * load + idle)) <= torque else (lo, mid)
+    if lo == 0.0:
+        raise SynthesisError(
+            f"the press's own links (their weight and inertia at the file's speed) need a crank torque of "
+            f"{up(float(np.max(np.abs(idle))))} N m before any force: the limit {torque:g} N m allows none; raise "
+            "--torque, or lower --speed or --section"
+        )
     raise SynthesisError(
         f"nominal force {force / 1e3:g} kN from {before * 1e3:g} mm before the bottom needs a crank torque of "
         f"{up(value)} N m at its peak over the turn (the forces analysis of the file); the limit "
@@ -239,12 +254,12 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
         f"{math.degrees(psi):.6g} deg, four-bar K = {k:.6g}).  Masses: steel bars {section[0] * 1e3:g} x "
         f"{section[1] * 1e3:g} mm, {density:g} kg/m^3.",
         "units": {"length": "mm", "mass": "kg", "angle": "deg"},
-        "frame": {"points": {"P": [0.0, 0.0], "O": [mm(o[0], 17), mm(o[1], 17)]}},
+        "frame": {"points": {"P": [0.0, 0.0], "O": [mm(o[0]), mm(o[1])]}},
         "links": {
-            "crank": {"ends": ["O", "A"], "length": mm(r, 17), "mass": mass["crank"]},
-            "rod": {"ends": ["A", "K"], "length": mm(b, 17), "mass": mass["rod"]},
-            "upper": {"ends": ["P", "K"], "length": mm(a, 17), "mass": mass["toggle"]},
-            "lower": {"ends": ["K", "R"], "length": mm(a, 17), "mass": mass["toggle"]},
+            "crank": {"ends": ["O", "A"], "length": mm(r), "mass": mass["crank"]},
+            "rod": {"ends": ["A", "K"], "length": mm(b), "mass": mass["rod"]},
+            "upper": {"ends": ["P", "K"], "length": mm(a), "mass": mass["toggle"]},
+            "lower": {"ends": ["K", "R"], "length": mm(a), "mass": mass["toggle"]},
             "ram": {"points": {"R": [0.0, 0.0]}, "mass": mass["toggle"], "inertia": 0},
         },
         "joints": {
@@ -266,9 +281,9 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
                 "type": "process",
                 "tools": ["ram.R"],
                 "axis": 90.0,
-                "workpiece": [mm(low, 17), mm(low + before, 17)],
+                "workpiece": [mm(low), mm(low + before)],
                 "penetration": [0.0, 1.0],
-                "force": [f"{force:.17g} N", f"{force:.17g} N"],
+                "force": [newtons(force)] * 2,
             },
         },
         "drives": [{"joint": "O", "speed": speed, "direction": "cw", "angle": degrees(start)}],
@@ -278,5 +293,9 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
         ("links", "upper", "length"): f"a = H / (2 (1 - cos psi)): stroke H = {stroke * 1e3:.6g} mm",
         ("links", "crank", "length"): f"the crank-rocker for the swing {math.degrees(psi):.6g} deg, K = {k:.6g}",
         ("loads", "pressing", "workpiece"): f"the nominal force from {before * 1e3:.6g} mm before the bottom",
+        ("links", "rod", "length"): "the crank-rocker's coupler, the same member",
+        ("links", "lower", "length"): "a, as the upper: the symmetric toggle",
+        ("frame", "points", "O"): "the crank pivot: the four-bar turned so its folded limit holds the toggle straight",
+        ("hints", "K"): "the knuckle at the top, the upper link at the swing from the vertical",
     }
     return data, comments
