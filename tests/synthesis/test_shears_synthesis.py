@@ -168,3 +168,9 @@ def test_shears_from_their_strokes_cut_the_bundled_billet_with_its_work_and_chec
     text = out.read_text()
     assert "position 9, as in the paper" not in text and "billet of height h = 100 mm" in text
     assert "3.75 kW (7.5 kJ a cut)" in text  # 7.5 kJ at 30 cuts a minute
+
+
+def test_an_opening_under_the_billets_height_is_refused_before_any_solving():
+    """60 + 50 - 20 = 90 mm of opening against the bundled billet's 100 mm: the billet would not enter."""
+    with pytest.raises(SynthesisError, match=r"opening 90 mm: the billet .* 100 mm high"):
+        synthesize("double-cut-shears", upper_stroke=0.06, lower_stroke=0.05, time_ratio=1.05, overlap=0.02)

@@ -227,6 +227,7 @@ def synthesize(
     if crank is not None and not 0 < crank < math.inf:
         raise SynthesisError(f"crank {crank!r} m: expected a positive length")
     mech = mechanism_of(KIND, "mechanism")
+    _billet_fits(mech, upper_stroke + lower_stroke - want)
     cranks, unknowns, found = solved_family(upper_stroke, lower_stroke, time_ratio, want, crank)
     requirements = given(
         upper_stroke=upper_stroke,
@@ -275,6 +276,18 @@ def synthesize(
     if "peak_driving_torque" not in found:
         notes.append(f"peak_driving_torque: {_peak_torque(spec):.6g}")
     return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, why, notes)
+
+
+def _billet_fits(mech, opening: float) -> None:  # noqa: ANN001
+    """Raise where the knives' opening is not over the height of the file's billet (a two-tool process load's
+    workpiece): the billet would not enter between them."""
+    for load in mech.loads:
+        height = load.workpiece[1] - load.workpiece[0] if load.kind == "process" and len(load.points) == 2 else 0
+        if opening <= height:
+            raise SynthesisError(
+                f"opening {opening * 1e3:.6g} mm: the billet of the file's load {load.name!r} is {height * 1e3:.4g} mm "
+                "high and would not enter between the knives; ask for a larger opening (or a smaller overlap)"
+            )
 
 
 def _keeps_rule(found: dict[str, np.ndarray], cranks: np.ndarray, floor: float) -> None:
@@ -404,6 +417,12 @@ def _regenerate(data, spec) -> None:  # noqa: ANN001
     mech = compile(spec)
     unit = _length_unit(data)
     placed = billets(mech)
+    for load in mech.loads:
+        if load.kind == "process" and len(load.points) == 2 and load.name not in placed:
+            raise SynthesisError(
+                f"the knives never open to the height of the billet of load {load.name!r}, "
+                f"{(load.workpiece[1] - load.workpiece[0]) * 1e3:.4g} mm: ask for an opening of at least that"
+            )
     for name, (lo, hi, work) in placed.items():
         load = data["loads"][name]
         low = _rounded(lo / unit)
