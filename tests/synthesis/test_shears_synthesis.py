@@ -174,3 +174,17 @@ def test_an_opening_under_the_billets_height_is_refused_before_any_solving():
     """60 + 50 - 20 = 90 mm of opening against the bundled billet's 100 mm: the billet would not enter."""
     with pytest.raises(SynthesisError, match=r"opening 90 mm: the billet .* 100 mm high"):
         synthesize("double-cut-shears", upper_stroke=0.06, lower_stroke=0.05, time_ratio=1.05, overlap=0.02)
+
+
+@pytest.mark.slow  # a synthesis of the shears, about 20 s
+def test_a_new_speed_regenerates_the_gear_and_the_machines_comments(tmp_path):
+    """At 60 cuts a minute the gear's ratio is the motor's 1450 rpm over 60 rpm, 24.17 (to 4 digits), and the
+    comments say 60 cuts a minute and a mean power of 7.5 kJ x 1/s = 7.5 kW at the crank."""
+    s = synthesize(
+        "double-cut-shears", upper_stroke=0.15, lower_stroke=0.11, time_ratio=1.05, overlap=0.015, speed="60 rpm"
+    )
+    path = s.write(tmp_path / "shears.yaml")
+    spec = lw.load(path)
+    assert spec.machine.gear.ratio == pytest.approx(1450 / 60, rel=1e-3)
+    text = path.read_text()
+    assert "60 cuts a minute" in text and "1450 rpm -> 60 rpm" in text and "7.5 kW (7.5 kJ a cut)" in text

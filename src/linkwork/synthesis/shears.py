@@ -494,7 +494,7 @@ def _machine_comments(data, spec, mech, work: float) -> None:  # noqa: ANN001
         ratio = float(f"{motor / per_minute:.4g}")
         if abs(ratio - gear.ratio) > 1e-3 * gear.ratio:
             machine["gear"]["ratio"] = ratio
-        _recomment(machine, "gear", f"{motor:.4g} rpm -> {motor / machine['gear']['ratio']:.4g} rpm")
+        _recomment(machine, "gear", f"{motor:.4g} rpm -> {per_minute:.4g} rpm")
     _recomment(data, "machine", f"the drive, for machine dynamics: {per_minute:.4g} cuts a minute")
     if "motor" in machine:
         power = work * per_minute / 60
