@@ -153,7 +153,7 @@ def best(swing: float, theta: float) -> tuple[float, float, float]:
     if not found:
         raise SynthesisError(
             f"swing {deg(swing)} with time ratio K = {time_ratio_of(theta):.6g} (theta {deg(theta)}): no crank-rocker "
-            f"has these limit positions; the swing {deg(swing)} gives K <= {_feasible_ratio(swing):.4g}"
+            f"has these limit positions; the swing {deg(swing)} gives K <= {down(_feasible_ratio(swing))}"
         )
     return max(found, key=lambda f: f[2])
 

@@ -49,6 +49,7 @@ from linkwork.synthesis.common import (
     confirm,
     crank_angle_between_limits,
     deg,
+    down,
     file_of,
     given,
     keep_rule,
@@ -131,8 +132,8 @@ def solve(
         raise SynthesisError(
             f"{'frame' if frame is not None else 'crank'} {(frame or crank) * 1e3:g} mm with stroke "  # type: ignore[operator]
             f"{stroke * 1e3:g} mm and time ratio K = {time_ratio:g}: the block leaves the lever "
-            f"(L = {top['lever'] * 1e3:.6g} mm); the frame must be at most {top['frame'] * 1e3:.6g} mm "
-            f"(the crank at most {top['crank'] * 1e3:.6g} mm)"
+            f"(L = {top['lever'] * 1e3:.6g} mm); the frame must be at most {down(top['frame'] * 1e3, 6)} mm "
+            f"(the crank at most {down(top['crank'] * 1e3, 6)} mm)"
         )
     sag = dims["lever"] * (1 - math.cos(theta / 2)) / 2
     bound = min(PRESSURE_ANGLE if max_pressure_angle is None else max_pressure_angle, math.pi / 2 - floor)
@@ -152,14 +153,14 @@ def solve(
         raise SynthesisError(
             f"rod {dims['rod'] * 1e3:g} mm gives a largest pressure angle of {deg(dims['largest_pressure_angle'])}, "
             f"over the bound {deg(max_pressure_angle)}; the bound needs a rod of at least "
-            f"{sag / math.sin(max_pressure_angle) * 1e3:.6g} mm"
+            f"{up(sag / math.sin(max_pressure_angle) * 1e3, 6)} mm"
         )
     alpha = dims["largest_pressure_angle"]
     if theta / 2 + alpha >= math.pi / 2:
         raise SynthesisError(
             f"time ratio K = {time_ratio:g} with a largest pressure angle of {deg(alpha)}: the rod folds against "
             f"the lever at its limit positions (theta / 2 + alpha >= 90 deg); that angle gives K < "
-            f"{(math.pi - alpha) / alpha:.6g}"
+            f"{down((math.pi - alpha) / alpha, 6)}"
         )
     why = "the frame given" if frame is not None else "the crank given" if crank is not None else "the greatest frame"
     return dims, why
