@@ -85,7 +85,7 @@ VALUES: dict[str, tuple[str, ...]] = {
     "force": ("0 N", "-1 kN", "1e-300 N", "1e300 N", "inf N", "100"),
     "moment": ("0 N*m", "-1 N*m", "1e-300 N*m", "1e300 N*m", "inf N*m", "8000"),
     "speed": ("-30 rpm", "0 rpm", "1e300 rpm", "nan rpm", "30", "30 kg"),
-    "section": ("0mm x 20mm", "-40mm x 20mm", "1e300mm x 20mm", "40mm", "nan mm x 20 mm"),
+    "section": ("0mm x 20mm", "-40mm x 20mm", "1e300mm x 20mm", "1000m x 1000m", "40mm", "nan mm x 20 mm"),
 }
 
 #: Values whose cases the shears would solve in full (their continuation takes tens of seconds): left to the

@@ -283,6 +283,7 @@ FAULTS = [
     "toggle-press --stroke 40mm --force 100kN --before 2mm --torque 8kN*m --swing '1e-12 deg'",
     "toggle-press --stroke 40mm --force 100kN --before 2mm --torque 8kN*m --time-ratio -1",
     "toggle-press --stroke 40mm --force 100kN --before 2mm --torque 8kN*m --time-ratio 1e300",
+    "slider-crank --stroke 400mm --time-ratio 1.2 --section '1000m x 1000m'",  # masses over the files' bound
 ]
 
 

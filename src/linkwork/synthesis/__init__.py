@@ -138,7 +138,10 @@ def _si_text(value: float, kind: str) -> str:
 
 def _request(si: dict[str, Any]) -> str:
     """The requirements as the user gave them (SI), in words: the options, not the file they give."""
-    return ", ".join(f"{name.replace('_', ' ')} {value:.6g}" for name, value in si.items() if isinstance(value, float))
+    from linkwork.synthesis.achieved import written
+
+    given = written("", {name: v for name, v in si.items() if isinstance(v, float | int) and not isinstance(v, bool)})
+    return ", ".join(f"{name.replace('_', ' ')} {value}" for name, value in given.items() if name != "kind")
 
 
 def _own(exc: Exception) -> str:
