@@ -42,6 +42,7 @@ from ruamel.yaml import YAML
 from typer.testing import CliRunner
 
 import linkwork
+from hostile_synthesis import synthesis_argvs
 from linkwork.examples import names, text
 from linkwork.limits import MAX_ANGLES, MAX_BLOWS, MAX_FILE_BYTES, MAX_NAME, MAX_NODES, MAX_SEED, MAX_VARIANTS
 
@@ -697,6 +698,7 @@ def option_cases() -> list[Case]:
             ("kinematics", "four-bar", "--steps", digits),
             ("positions", "four-bar", "--count", digits),
         ]
+    out += synthesis_argvs()  # every synthesize option of every kind at and past its bounds
     return [Case(f"option {i}", argv) for i, argv in enumerate(out)]
 
 

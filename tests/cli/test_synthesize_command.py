@@ -4,6 +4,7 @@ requirements that cannot be met exit 2 with one line and no file."""
 from __future__ import annotations
 
 import math
+import re
 import shlex
 
 import pytest
@@ -156,7 +157,8 @@ def test_the_message_of_an_impossible_bound_names_both_requirements_and_the_near
         str(tmp_path / "s.yaml"),
     )
     assert run.stderr.strip() == (
-        "error: time ratio K = 1.3 needs a largest pressure angle of at least 51 deg; at most 30 deg gives K <= 1.092"
+        "error: time ratio K = 1.3 needs a largest pressure angle of at least 51.01 deg; at most 30 deg gives "
+        "K <= 1.092"
     )
 
 
@@ -261,3 +263,72 @@ def test_the_summary_speaks_russian_with_lang_ru(tmp_path):
         "de",
     )
     assert wrong.returncode == 2 and not (tmp_path / "d.yaml").exists()
+
+
+#: The requests of the reports that ended in a traceback, a message that contradicted itself or cited a file the
+#: user never sees, or a file written with a value other commands refuse.
+FAULTS = [
+    "slider-crank --stroke 400mm --time-ratio 1 --rod-ratio 1",
+    "slider-crank --stroke 400mm --time-ratio 1 --rod-ratio 1.5",
+    "slider-crank --stroke 160 --time-ratio 1.2",
+    "slider-crank --stroke '1e300 mm' --time-ratio 1.2",
+    "slider-crank --stroke 400mm --time-ratio 1.2 --speed '-30 rpm'",
+    "slotted-lever --stroke 400mm --time-ratio 1.001",
+    "slotted-lever --stroke '1e300 mm' --time-ratio 1.5",
+    "slotted-lever --stroke 400mm --time-ratio 1.0000000001",
+    "slotted-lever --stroke 400mm --time-ratio 1.5 --max-pressure-angle '1e-300 deg'",
+    "crank-rocker --swing 45deg --rocker 250mm --time-ratio 1.0000000001",
+    "crank-rocker --swing 45deg --rocker 250mm --time-ratio 1e300",
+    "crank-rocker --swing 170deg --rocker 100mm --time-ratio 1.2",
+    "toggle-press --stroke 40mm --force 100kN --before 2mm --torque 8kN*m --swing '1e-12 deg'",
+    "toggle-press --stroke 40mm --force 100kN --before 2mm --torque 8kN*m --time-ratio -1",
+    "toggle-press --stroke 40mm --force 100kN --before 2mm --torque 8kN*m --time-ratio 1e300",
+    "slider-crank --stroke 400mm --time-ratio 1.2 --section '1000m x 1000m'",  # masses over the files' bound
+]
+
+
+@pytest.mark.parametrize("request_", FAULTS)
+def test_each_reported_fault_is_refused_with_one_line_of_the_users_own_words(tmp_path, request_):
+    out = tmp_path / "s.yaml"
+    run = linkwork("synthesize", *shlex.split(request_), "--out", str(out))
+    assert run.returncode == 2 and not out.exists(), run.stderr
+    lines = run.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ") and "Traceback" not in run.stderr
+    assert "<synthesised>" not in run.stderr and "nan" not in run.stderr.replace("nanometre", "")
+
+
+def test_a_bare_length_is_refused_with_the_unit_to_give(tmp_path):
+    run = linkwork(
+        "synthesize", "slider-crank", "--stroke", "160", "--time-ratio", "1.2", "--out", str(tmp_path / "s.yaml")
+    )
+    assert run.returncode == 2 and run.stderr.strip() == 'error: --stroke "160": give the unit, e.g. "160 mm"'
+
+
+def test_the_slotted_levers_refusal_near_k_1_names_a_time_ratio_that_is_met(tmp_path):
+    """K = 1.001 gave a lever of 255 m and a rod of 0.23 mm (and a structural message); the refusal names the
+    least K whose lengths stay within 1000:1, and that K is met."""
+    run = linkwork(
+        "synthesize", "slotted-lever", "--stroke", "400mm", "--time-ratio", "1.001", "--out", str(tmp_path / "a.yaml")
+    )
+    k = run.stderr.split("a time ratio K >= ")[1].split(" ")[0]
+    ok = linkwork(
+        "synthesize", "slotted-lever", "--stroke", "400mm", "--time-ratio", k, "--out", str(tmp_path / "b.yaml")
+    )
+    assert ok.returncode == 0, ok.stderr
+    lengths = [float(v) for v in re.findall(r"length: ([0-9.e+-]+)", (tmp_path / "b.yaml").read_text())]
+    assert max(lengths) <= 1000 * min(lengths)
+
+
+def test_a_central_press_file_an_engineer_keeps(tmp_path):
+    """Described as central, no -0.0, every length to the files' one rule (12 significant digits), a comment on
+    each derived length."""
+    out = tmp_path / "press.yaml"
+    args = ["--stroke", "400mm", "--time-ratio", "1", "--rod-ratio", "0.25", "--force", "50kN", "--working", "40mm"]
+    assert linkwork("synthesize", "slider-crank", *args, "--out", str(out)).returncode == 0
+    text = out.read_text()
+    assert text.count("Central slider-crank") == 1 and "Offset" not in text and "-0.0" not in text
+    for number in re.findall(r"-?\d+\.\d+(?:e[+-]?\d+)?", text.split("requirements:")[0]):
+        assert len(number.lstrip("-").replace(".", "").lstrip("0")) <= 12, number
+    for line in text.splitlines():
+        if line.strip().startswith(("length:", "workpiece:", "through:")):
+            assert "#" in line, line

@@ -20,7 +20,9 @@ from linkwork.synthesis.achieved import requirement_rows  # noqa: E402
 @pytest.fixture(scope="module")
 def slider_crank(tmp_path_factory):
     out = tmp_path_factory.mktemp("synth") / "sc.yaml"
-    synthesize("slider-crank", stroke="400 mm", time_ratio=1.3, max_pressure_angle="60 deg").write(out)
+    synthesize(
+        "slider-crank", stroke="400 mm", time_ratio=1.3, max_pressure_angle="60 deg", min_transmission_angle="30 deg"
+    ).write(out)
     return out
 
 
@@ -37,7 +39,7 @@ def test_the_file_carries_its_requirements_and_the_analysis_finds_each_met(slide
 def test_theta_between_the_limit_positions_is_the_closed_forms():
     """theta = 180 deg (K - 1) / (K + 1), for a slider-crank and a crank-rocker: the angle of the scene's rays."""
     for kind, req, k in (
-        ("slider-crank", {"stroke": 0.3, "max_pressure_angle": math.radians(70)}, 1.6),
+        ("slider-crank", {"stroke": 0.3, "max_pressure_angle": math.radians(70), "min_transmission_angle": 0.3}, 1.6),
         ("crank-rocker", {"swing": math.radians(40), "frame": 0.4}, 1.25),
     ):
         s = synthesize(kind, time_ratio=k, **req)
@@ -58,7 +60,7 @@ def test_the_report_opens_with_the_requirements_and_the_limit_positions(slider_c
     assert sections[0] == title
     start = text.index("<section id='requirements'>")
     part = text[start : text.index("</section>", start)]
-    assert part.count(f"<td>{yes}</td>") == 3
+    assert part.count(f"<td>{yes}</td>") == 4  # stroke, time ratio, pressure angle, the transmission rule
     assert "θ = 23.478°" in part  # 180 (1.3 - 1) / (1.3 + 1) = 23.4783 deg
     if lang == "ru":  # no English but the names from the file (the kind is the mechanism's name)
         words = set(re.findall(r"[A-Za-z]{2,}", re.sub(r"<[^>]+>|data:[^'\"]+", " ", part)))

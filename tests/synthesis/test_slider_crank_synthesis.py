@@ -17,6 +17,10 @@ from linkwork.motion.analysis import extremes, transmission
 from linkwork.synthesis import synthesize
 from linkwork.synthesis.slider_crank import largest_time_ratio, least_pressure_angle
 
+#: A bound on the least transmission angle low enough that the geometry alone decides (the design rule's 40 deg
+#: refuses some of the random requests, which these tests make for the geometry).
+FREE = 1e-6
+
 
 def forward(r: float, ell: float, e: float) -> tuple[float, float, float]:
     """Stroke, K and the largest pressure angle of an offset slider-crank by the textbook forward formulas:
@@ -70,9 +74,8 @@ def test_the_default_pick_has_the_least_largest_pressure_angle_of_all_slider_cra
     least = least_pressure_angle(1.3)
     found = alpha[k >= 1.3].min()
     assert least <= found + 1e-12 and found - least < math.radians(0.3)
-    assert synthesize("slider-crank", stroke=0.4, time_ratio=1.3).predicted["largest_pressure_angle"] == pytest.approx(
-        least, rel=1e-12
-    )
+    s = synthesize("slider-crank", stroke=0.4, time_ratio=1.3, min_transmission_angle=FREE)
+    assert s.predicted["largest_pressure_angle"] == pytest.approx(least, rel=1e-12)
 
 
 @settings(max_examples=12, deadline=None)
@@ -90,7 +93,7 @@ def test_random_feasible_requirements_are_met_as_the_analysis_measures_them(stro
     elif by == "rod_ratio" or theta == 0:
         low = math.tan(theta / 2) ** 2
         extra["rod_ratio"] = low + where * (1 - low)
-    s = synthesize("slider-crank", stroke=stroke, time_ratio=k, **extra)
+    s = synthesize("slider-crank", stroke=stroke, time_ratio=k, **extra, min_transmission_angle=FREE)
     measured_stroke, measured_k, alpha = analysed(s.spec)
     assert measured_stroke == pytest.approx(stroke, rel=1e-9)
     assert measured_k == pytest.approx(k, rel=1e-9)
@@ -108,7 +111,7 @@ def test_an_impossible_bound_names_the_least_angle_for_k_and_the_largest_k_for_t
     with pytest.raises(SynthesisError) as err:
         synthesize("slider-crank", stroke=0.4, time_ratio=1.3, max_pressure_angle=math.radians(30))
     text = str(err.value)
-    assert "K = 1.3 needs a largest pressure angle of at least 51 deg" in text
+    assert "K = 1.3 needs a largest pressure angle of at least 51.01 deg" in text  # 51.0015 rounded up
     assert "at most 30 deg gives K <= 1.092" in text
     # the nearest feasible value is feasible: just under it the bound is met
     k = largest_time_ratio(math.radians(30))
@@ -151,7 +154,7 @@ def test_the_torque_criterion_picks_the_member_with_the_least_peak_torque_within
     torque falls towards the dead point)."""
     import linkwork as lw
 
-    req = {"stroke": 0.4, "time_ratio": 1.3, "force": 20e3}
+    req = {"stroke": 0.4, "time_ratio": 1.3, "force": 20e3, "min_transmission_angle": math.radians(30)}
     pick = synthesize("slider-crank", **req, max_pressure_angle=math.radians(60), criterion="torque")
     assert pick.measured["largest_pressure_angle"] <= math.radians(60) * (1 + 1e-9)
     assert pick.measured["stroke"] == pytest.approx(0.4, rel=1e-9)
@@ -164,5 +167,34 @@ def test_the_torque_criterion_picks_the_member_with_the_least_peak_torque_within
     for offset in np.linspace(0.0, pick.dimensions["offset"], 6)[1:-1]:
         member = synthesize("slider-crank", **req, offset=float(offset))
         assert sampled(member.spec) > best
-    with pytest.raises(SynthesisError, match="needs a bound on the largest pressure angle"):
-        synthesize("slider-crank", **req, criterion="torque")
+    assert pick.measured["largest_pressure_angle"] == pytest.approx(math.radians(60), rel=1e-6)  # at the bound
+
+
+def test_rounded_numbers_of_a_refusal_do_not_contradict_it():
+    """At the edge (K 1.3 needs 51.0015 deg): the least angle is rounded up and the largest K down, so the message
+    no longer reads "needs at least 51 deg; at most 51 deg gives K <= 1.3", and each number it gives is feasible."""
+    with pytest.raises(SynthesisError) as err:
+        synthesize("slider-crank", stroke=0.4, time_ratio=1.3, max_pressure_angle=math.radians(51))
+    text = str(err.value)
+    least = float(text.split("at least ")[1].split(" deg")[0])
+    k = float(text.split("K <= ")[1])
+    assert least > 51 and k < 1.3
+    assert least_pressure_angle(1.3) <= math.radians(least) and k <= largest_time_ratio(math.radians(51))
+    free = {"stroke": 0.4, "min_transmission_angle": FREE}
+    synthesize("slider-crank", **free, time_ratio=1.3, max_pressure_angle=math.radians(least))
+    synthesize("slider-crank", **free, time_ratio=k, max_pressure_angle=math.radians(51))
+
+
+@pytest.mark.parametrize("ratio", ["1", "1.5", "1e300", "0", "-1"])
+def test_a_central_rod_as_long_as_the_crank_or_shorter_is_refused(tmp_path, ratio):
+    """K = 1, r/l >= 1 (or not positive): the rod cannot follow the crank round (r/l = 1 divided by zero, 1.5
+    was measured within "nan deg of a dead point"): exit 2, one line, no file, the rod ratio the rule allows,
+    cos 40 deg = 0.766 rounded down."""
+    from commandline import linkwork
+
+    out = tmp_path / "s.yaml"
+    run = linkwork(
+        "synthesize", "slider-crank", "--stroke", "400mm", "--time-ratio", "1", "--rod-ratio", ratio, "--out", str(out)
+    )
+    assert run.returncode == 2 and not out.exists() and len(run.stderr.splitlines()) == 1, run.stderr
+    assert "r/l <= 0.766" in run.stderr and "nan" not in run.stderr

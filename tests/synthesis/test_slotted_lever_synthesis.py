@@ -16,6 +16,10 @@ from linkwork.errors import SynthesisError
 from linkwork.motion.analysis import extremes, transmission
 from linkwork.synthesis import synthesize
 
+#: A bound on the least transmission angle low enough that the geometry alone decides (the design rule's 40 deg
+#: refuses some of the random requests, which these tests make for the geometry).
+FREE = 1e-6
+
 
 def brute_force(d: float, r: float, lever: float, h: float, rod: float, n: int = 400_001) -> tuple:
     """Ram stroke, time ratio and largest rod pressure angle of the shaper swept over a dense turn of the
@@ -89,7 +93,7 @@ def test_random_feasible_requirements_are_met_as_the_analysis_measures_them(stro
         "rod": {"rod": sag * (1 + 10 * where)},
         "max_pressure_angle": {"max_pressure_angle": math.radians(5) + where * (steepest - math.radians(5))},
     }[by]
-    s = synthesize("slotted-lever", stroke=stroke, time_ratio=k, **extra)
+    s = synthesize("slotted-lever", stroke=stroke, time_ratio=k, **extra, min_transmission_angle=FREE)
     measured_stroke, measured_k, alpha = analysed(s.spec)
     assert measured_stroke == pytest.approx(stroke, rel=1e-9)
     assert measured_k == pytest.approx(k, rel=1e-9)
@@ -114,7 +118,7 @@ def test_the_default_pick_is_the_greatest_frame_of_the_family():
     [
         ({"time_ratio": 1.0}, "a slotted lever gives any finite K > 1"),
         ({"time_ratio": 1.4, "frame": 2.0}, "the frame must be at most 920.792 mm"),
-        ({"time_ratio": 1.4, "crank": 0.3}, "the crank at most 238.319 mm"),
+        ({"time_ratio": 1.4, "crank": 0.3}, "the crank at most 238.318 mm"),  # 238.3186 rounded down: at most
         ({"time_ratio": 1.4, "frame": 0.5, "crank": 0.1}, "give one of the frame and the crank"),
         ({"time_ratio": 1.4, "rod": 0.1, "max_pressure_angle": math.radians(5)}, "needs a rod of at least"),
         ({"time_ratio": 1.4, "rod": 0.01}, "the rod must be longer than half the lever tip's sagitta"),

@@ -22,7 +22,9 @@ LOCAL = "http://127.0.0.1"
 
 
 def test_each_member_of_the_family_keeps_the_stroke_and_time_ratio_and_the_viewer_solves_it(tmp_path):
-    path = synthesize("slider-crank", stroke=0.4, time_ratio=1.3).write(tmp_path / "press.yaml")
+    path = synthesize("slider-crank", stroke=0.4, time_ratio=1.3, min_transmission_angle=math.radians(30)).write(
+        tmp_path / "press.yaml"
+    )
     client = TestClient(create_app(lw.load(str(path))), base_url=LOCAL)
     r = client.get("/api/family")
     assert r.status_code == 200, r.text
@@ -66,7 +68,11 @@ def _closed_form(a: float, b: float, c: float, d: float) -> tuple[float, float]:
 
 @pytest.mark.parametrize(
     ("ratio", "given"),
-    [(1.3, {"rocker": 0.3}), (1.3, {"frame": 0.5}), (1.0, {"rocker": 0.3, "min_transmission_angle": math.radians(30)})],
+    [
+        (1.3, {"rocker": 0.3, "min_transmission_angle": math.radians(10)}),
+        (1.3, {"frame": 0.5, "min_transmission_angle": math.radians(10)}),
+        (1.0, {"rocker": 0.3, "min_transmission_angle": math.radians(30)}),
+    ],
 )
 def test_each_crank_rocker_member_keeps_the_swing_and_time_ratio_on_the_files_side(tmp_path, ratio, given):
     swing = math.radians(50.0)
@@ -132,7 +138,9 @@ def test_each_shears_member_meets_the_knives_requirements(tmp_path):
 def test_a_crank_rocker_edited_off_its_family_still_has_it_with_the_member_nearest_picked(tmp_path):
     import re
 
-    path = synthesize("crank-rocker", swing=math.radians(50.0), time_ratio=1.3, rocker=0.3).write(tmp_path / "r.yaml")
+    path = synthesize(
+        "crank-rocker", swing=math.radians(50.0), time_ratio=1.3, rocker=0.3, min_transmission_angle=0.2
+    ).write(tmp_path / "r.yaml")
     text = re.sub(r"(coupler:\n\s+ends: \[A, B\]\n\s+length: )[0-9.]+", r"\g<1>650", path.read_text())
     path.write_text(re.sub(r"O4: \[[0-9.]+, 0.0\]", "O4: [600, 0]", text))
     spec = lw.load(str(path))

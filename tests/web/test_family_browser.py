@@ -21,8 +21,13 @@ pytestmark = pytest.mark.browser
 @pytest.mark.parametrize(
     ("kind", "requirements", "pivot", "shown"),
     [
-        ("slider-crank", {"stroke": 0.4, "time_ratio": 1.3}, "O", "largest pressure angle"),
-        ("crank-rocker", {"swing": math.radians(50), "time_ratio": 1.3, "rocker": 0.3}, "O2", "least transmission"),
+        ("slider-crank", {"stroke": 0.4, "time_ratio": 1.3, "min_transmission_angle": 0.5}, "O", "largest pressure"),
+        (
+            "crank-rocker",
+            {"swing": math.radians(50), "time_ratio": 1.3, "rocker": 0.3, "min_transmission_angle": 0.2},
+            "O2",
+            "least transmission",
+        ),
     ],
 )
 def test_moving_the_family_slider_redraws_the_member(tmp_path, kind, requirements, pivot, shown):

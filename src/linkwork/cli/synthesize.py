@@ -15,8 +15,8 @@ Quantity = Annotated[str | None, typer.Option()]
 
 
 def _read(options: dict[str, tuple[str | None, str]]) -> dict[str, Any]:
-    """The given options (name -> (text, kind)) in SI (bare lengths in m, bare angles in deg); one line per
-    option that does not read."""
+    """The given options (name -> (text, kind)) in SI; one line per option that does not read, or that is a
+    quantity given without its unit (refused: a bare 160 read as metres would build a press of 160 m)."""
     from linkwork.units import parse_quantity
 
     out: dict[str, Any] = {}
@@ -24,13 +24,31 @@ def _read(options: dict[str, tuple[str | None, str]]) -> dict[str, Any]:
     for name, (text, kind) in options.items():
         if text is None:
             continue
+        option = f"--{name.replace('_', '-')}"
+        if kind != "ratio" and _bare(text):  # a bare length is no length: 160 is not 160 m to a press designer
+            shown = excerpt(text.strip(), QUOTE_PATH)
+            problems.append(f'{option} "{shown}": give the unit, e.g. "{shown} {EXAMPLE_UNITS[kind]}"')
+            continue
         try:
             out[name] = _number(text) if kind == "ratio" else parse_quantity(text, kind)
         except (ValueError, LinkworkError) as exc:
-            problems.append(f"--{name.replace('_', '-')}: {exc}")
+            problems.append(f"{option}: {exc}")
     if problems:
         fail(LinkworkError("\n".join(problems)))
     return out
+
+
+#: The unit a refusal of a bare number suggests, by kind of quantity.
+EXAMPLE_UNITS = {"length": "mm", "angle": "deg", "force": "kN", "moment": "N*m"}
+
+
+def _bare(text: str) -> bool:
+    """Whether ``text`` is a number without a unit."""
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def _number(text: str) -> float:
@@ -87,7 +105,11 @@ def synthesize(
     ] = None,
     rod: Annotated[str | None, typer.Option("--rod", help="slotted-lever: the ram's rod's length")] = None,
     min_transmission_angle: Annotated[
-        str | None, typer.Option("--min-transmission-angle", help="crank-rocker: a bound")
+        str | None,
+        typer.Option(
+            "--min-transmission-angle",
+            help="every kind: the least transmission angle of every dyad over the turn (the design rule, 40deg)",
+        ),
     ] = None,
     force: Annotated[
         str | None,
@@ -140,7 +162,8 @@ def synthesize(
     toggle-press: --stroke, --force at --before the bottom dead centre, --torque (the crank's limit, N m);
     --swing and --time-ratio of its four-bar.  double-cut-shears (the bundled file's structure): --upper-stroke,
     --lower-stroke, --time-ratio (closing over opening), --overlap or --opening; --crank fixes the crank, else
-    --criterion picks it.  Requirements that cannot be met: exit 2, no file."""
+    --criterion picks it.  Every kind keeps the design rule: the least transmission angle of every dyad over the
+    turn at least 40 deg (--min-transmission-angle lowers it).  Requirements that cannot be met: exit 2, no file."""
     from linkwork.lang import check_lang
     from linkwork.synthesis import KINDS, QUANTITIES, required
     from linkwork.synthesis import synthesize as run
@@ -236,6 +259,6 @@ def _shown(name: str, value: float, lang: str = "en") -> str:
         return f"{value * 1e3:.9f} {t('unit.mm', lang)}"
     if name == "time_ratio":
         return f"{value:.12g}"
-    if name == "torque_at_nominal":
+    if name in ("torque_at_nominal", "peak_torque"):
         return f"{value:.12g} {t('synth.unit.Nm', lang)}"
     return f"{math.degrees(value):.9f} {t('synth.unit.deg', lang)}"

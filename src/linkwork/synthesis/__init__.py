@@ -8,9 +8,10 @@ angle the analysis measures on that text before it is returned.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
-from linkwork.errors import SynthesisError
+from linkwork.errors import LinkworkError, SynthesisError
 from linkwork.synthesis.common import QUANTITIES, Family, Synthesis
 
 __all__ = ["KINDS", "QUANTITIES", "Family", "Synthesis", "synthesize"]
@@ -42,7 +43,9 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     ``time_ratio`` (the knives closing over opening), one of ``overlap`` (when closed), ``opening``; ``crank`` fixes the
     family's free crank length, else ``criterion`` picks it (``"pressure"``, the default: the greatest least
     transmission angle, or ``"torque"``, the least peak driving torque under the file's loads); ``speed`` replaces the
-    file's.
+    file's.  Every kind keeps the design rule ``min_transmission_angle`` (rad): the least transmission angle of every
+    dyad over the turn, 40 deg unless given (:data:`~linkwork.synthesis.common.LEAST_TRANSMISSION`), measured on
+    the written file; the file's ``requirements:`` carries it.
 
     Raises
     ------
@@ -63,8 +66,90 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     missing = [name for name in required(func) if name not in requirements]
     if missing:
         raise SynthesisError(f"{kind}: missing requirement {', '.join(missing)}")
-    result = func(**{name: _si(name, value) for name, value in requirements.items()})
-    return _carrying(result, {"criterion": requirements["criterion"]} if "criterion" in requirements else {})
+    si = {name: _si(name, value) for name, value in requirements.items()}
+    in_range(si)
+    import numpy as np
+
+    try:
+        with np.errstate(all="ignore"):  # the closed forms' NaN and inf are refused by the checks that follow them
+            result = func(**si)
+        return _carrying(result, {"criterion": requirements["criterion"]} if "criterion" in requirements else {})
+    except SynthesisError:
+        raise
+    except LinkworkError as exc:  # the written mechanism, which the user never sees, cannot be read or analysed
+        raise SynthesisError(f"{kind}: {_request(si)} give a mechanism the analysis cannot take: {_own(exc)}") from None
+
+
+def in_range(si: dict[str, Any]) -> None:
+    """Raise :class:`SynthesisError` for a requirement (SI) no mechanism can be made to: a length, force or moment
+    that is not finite or beyond :data:`~linkwork.synthesis.common.LENGTHS` (
+    :data:`~linkwork.limits.MAX_MAGNITUDE` for forces and moments), a time ratio not in (0, :data:`TIME_RATIOS`],
+    an angle not finite, a speed that is not a positive angular speed within the file's bound, a section out of the
+    lengths' range.  Signs and each kind's own bounds are the kinds' to check, with their words."""
+    from linkwork.limits import MAX_MAGNITUDE
+    from linkwork.synthesis.common import LENGTHS, TIME_RATIOS
+
+    for name, value in si.items():
+        kind = QUANTITIES.get(name, "ratio" if name.endswith("ratio") else None)
+        if kind is None or not isinstance(value, float | int):
+            continue
+        words = name.replace("_", " ")
+        if not math.isfinite(value):
+            raise SynthesisError(f"{words} {value!r}: expected a finite value")
+        top = LENGTHS[1] if kind == "length" else MAX_MAGNITUDE
+        if kind in ("length", "force", "moment") and abs(value) > top:
+            raise SynthesisError(f"{words} {_si_text(value, kind)}: expected at most {_si_text(top, kind)}")
+        if kind == "length" and 0 < value < LENGTHS[0]:
+            raise SynthesisError(f"{words} {value:g} m: expected at least {LENGTHS[0] * 1e6:g} um")
+        if name == "time_ratio" and not 0 < value <= TIME_RATIOS:
+            raise SynthesisError(
+                f"time ratio K = {value:g}: expected a K over 0 and at most {TIME_RATIOS:g} (the return stroke "
+                f"then takes {360 / (1 + TIME_RATIOS):.3g} deg of the turn)"
+            )
+    if "speed" in si:
+        _speed(si["speed"])
+    for size in si.get("section", ()):
+        if not LENGTHS[0] <= size <= LENGTHS[1]:
+            raise SynthesisError(
+                f"section {size!r} m: expected the bars' width and height from {LENGTHS[0] * 1e6:g} um to "
+                f"{LENGTHS[1]:g} m"
+            )
+
+
+def _speed(text: Any) -> None:
+    """Raise where the speed written in the file is not a positive angular speed the file can hold."""
+    from linkwork.limits import MAX_MAGNITUDE
+    from linkwork.units import parse_quantity
+
+    try:
+        w = parse_quantity(text, "angular_speed")
+    except LinkworkError as exc:
+        raise SynthesisError(f"speed: {exc}") from None
+    if not 0 < w <= MAX_MAGNITUDE:
+        raise SynthesisError(
+            f"speed {text!s:.40}: expected a positive speed of at most {MAX_MAGNITUDE:g} rad/s (the file gives the "
+            "direction of turning)"
+        )
+
+
+def _si_text(value: float, kind: str) -> str:
+    return f"{value:g} {dict(length='m', force='N', moment='N*m').get(kind, '')}".rstrip()
+
+
+def _request(si: dict[str, Any]) -> str:
+    """The requirements as the user gave them (SI), in words: the options, not the file they give."""
+    from linkwork.synthesis.achieved import written
+
+    given = written("", {name: v for name, v in si.items() if isinstance(v, float | int) and not isinstance(v, bool)})
+    return ", ".join(f"{name.replace('_', ' ')} {value}" for name, value in given.items() if name != "kind")
+
+
+def _own(exc: Exception) -> str:
+    """``exc``'s first line without the written file's name and line (a file the user never sees)."""
+    import re
+
+    first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    return re.sub(r"<synthesised>(:\d+)*:?\s*", "", first)
 
 
 def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
@@ -72,12 +157,21 @@ def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
     report to state them beside what the mechanism achieves."""
     import dataclasses
 
+    from ruamel.yaml.comments import CommentedMap
+
     from linkwork.spec.edit import round_trip_yaml, yaml_text
     from linkwork.spec.reader import loads
     from linkwork.synthesis.achieved import written
+    from linkwork.synthesis.common import LEAST_TRANSMISSION
 
     data = round_trip_yaml().load(result.text)
-    data["requirements"] = written(result.kind, result.requirements, extra)
+    data["requirements"] = CommentedMap(written(result.kind, result.requirements, extra))
+    if "min_transmission_angle" in data["requirements"]:
+        data["requirements"].yaml_add_eol_comment(
+            f"the design rule: every dyad's transmission angle over the turn at least this ("
+            f"{math.degrees(LEAST_TRANSMISSION):g} deg unless --min-transmission-angle lowers it)",
+            "min_transmission_angle",
+        )
     data.yaml_set_comment_before_after_key(
         "requirements", before="what the mechanism was synthesised for; the report states it beside what it achieves"
     )

@@ -18,6 +18,18 @@ from linkwork.spec.schema import Spec
 #: angle must reach with the requirements and the closed forms.
 TOLERANCE = 1e-9
 
+#: The lengths a request may give (m): from a micrometre to a kilometre (beyond, the products of the closed forms
+#: overflow, and no mechanism a press or shears designer asks for comes near).
+LENGTHS = (1e-6, 1e3)
+
+#: The largest time ratio a request may give: the return stroke then takes 360 / 101 = 3.6 deg of the turn.
+TIME_RATIOS = 100.0
+
+#: The largest ratio of a synthesised mechanism's longest length to its shortest (its links, offsets, the
+#: stroke): beyond, the analysis cannot tell the short ones from a point at the long ones' scale (its tolerances
+#: are relative to the mechanism's size), and no shop makes a link a thousandth of its neighbour.
+PROPORTION = 1e3
+
 #: Density of steel (kg/m^3), and the default bar section (m): every link a steel bar of this section.
 STEEL = 7850.0
 BAR = (0.040, 0.020)
@@ -42,6 +54,13 @@ QUANTITIES = {
     "opening": "length",
     "working": "length",
 }
+
+#: The design rule every kind keeps unless the request lowers it (``min_transmission_angle``): the least
+#: transmission angle of every dyad of the written file over the turn, at least 40 deg (rad).  Nearer a dead point
+#: the force in a dyad grows as 1 / sin(mu) for the force it passes on (1.56 times at 40 deg, 31 times at
+#: 1.86 deg), and friction in the pairs can jam it; 40 deg is the classical bound for a linkage of
+#: general machinery.
+LEAST_TRANSMISSION = math.radians(40.0)
 
 #: Crank samples of the verification's turn (the analysis refines extremes between them).
 VERIFY_STEPS = 720
@@ -116,6 +135,63 @@ class Synthesis:
         return write_atomic(out, lambda tmp: tmp.write_text(self.text, encoding="utf-8"))
 
 
+def proportions(kind: str, lengths: dict[str, float], nearest: str = "") -> None:
+    """Raise :class:`SynthesisError` where the longest of ``lengths`` (m, by name; zeros ignored) is more than
+    :data:`PROPORTION` times the shortest, or any is not finite: naming both, and the ``nearest`` request that
+    keeps them in proportion where the kind knows it."""
+    sizes = {name: abs(float(v)) for name, v in lengths.items() if v != 0}
+    bad = [name for name, v in sizes.items() if not math.isfinite(v)]
+    if bad:
+        raise SynthesisError(f"{kind}: the request gives an infinite {bad[0]}{'; ' + nearest if nearest else ''}")
+    long, short = max(sizes, key=sizes.__getitem__), min(sizes, key=sizes.__getitem__)
+    if sizes[long] > PROPORTION * sizes[short]:
+        raise SynthesisError(
+            f"{kind}: the request gives a {long} of {sizes[long] * 1e3:.4g} mm and a {short} of "
+            f"{sizes[short] * 1e3:.4g} mm, more than {PROPORTION:g} times apart: no mechanism to make or analyse"
+            f"{'; ' + nearest if nearest else ''}"
+        )
+
+
+def least_allowed(min_transmission_angle: float | None) -> float:
+    """The least transmission angle (rad) the written mechanism must keep: the one asked for, else the rule
+    :data:`LEAST_TRANSMISSION`; raises :class:`SynthesisError` for a bound outside (0, 90) deg."""
+    if min_transmission_angle is None:
+        return LEAST_TRANSMISSION
+    if not 0 < min_transmission_angle < math.pi / 2:
+        raise SynthesisError(
+            f"least transmission angle {deg(min_transmission_angle)}: expected a bound between 0 and 90 deg"
+        )
+    return min_transmission_angle
+
+
+def below_rule(what: str, least: float, bound: float, nearest: str) -> SynthesisError:
+    """The refusal of a mechanism whose least transmission angle ``least`` (rad) is under ``bound``: what gives
+    it, the bound (the rule's or the one asked), the ``nearest`` request that meets it, and the bound that would
+    accept this one (rounded down, so that it does)."""
+    rule = "the design rule" if bound == LEAST_TRANSMISSION else "the bound asked"
+    return SynthesisError(
+        f"{what} gives a least transmission angle of {down(math.degrees(least))} deg, under {rule}'s "
+        f"{math.degrees(bound):.4g} deg; {nearest} (or lower --min-transmission-angle to "
+        f"{down(math.degrees(least))} deg)"
+    )
+
+
+def keep_rule(spec: Spec, bound: float) -> float:
+    """The least transmission angle (rad) of every dyad of ``spec`` over the turn, as :func:`linkwork.kinematics`
+    and :func:`~linkwork.motion.analysis.transmission` measure the written file; raises
+    :class:`SynthesisError` where it is under ``bound`` (a closed form let through what the file does not keep)."""
+    from linkwork.api import kinematics
+    from linkwork.motion.analysis import transmission
+
+    least = min(float(np.nanmin(v)) for v in transmission(kinematics(spec, steps=VERIFY_STEPS)).values())
+    if least < bound * (1 - 1e-9):
+        raise SynthesisError(
+            f"the written mechanism measures a least transmission angle of {down(math.degrees(least))} deg, under "
+            f"{math.degrees(bound):.4g} deg"
+        )
+    return least
+
+
 def need(value: float | None, ok: bool, message: str) -> None:
     """Raise :class:`SynthesisError` with ``message`` unless ``ok`` (for a given ``value``)."""
     if value is not None and not ok:
@@ -132,20 +208,48 @@ def deg(angle: float) -> str:
     return f"{math.degrees(angle):.4g} deg"
 
 
+def up(x: float, digits: int = 4) -> str:
+    """``x`` rounded up to ``digits`` significant digits, as a message writes a least value that can be met (a
+    rounded bound must itself be feasible: rounding to the nearest may fall on the wrong side)."""
+    return _safe(x, digits, math.ceil)
+
+
+def down(x: float, digits: int = 4) -> str:
+    """``x`` rounded down to ``digits`` significant digits, as a message writes a largest value that can be met."""
+    return _safe(x, digits, math.floor)
+
+
+def _safe(x: float, digits: int, step: Callable[[float], int]) -> str:
+    if not math.isfinite(x) or x == 0:
+        return f"{x:g}"
+    scale = 10.0 ** (math.floor(math.log10(abs(x))) - digits + 1)
+    return f"{step(x / scale) * scale:.{digits}g}"
+
+
 def bar_mass(length: float, section: tuple[float, float] = BAR, density: float = STEEL) -> float:
     """The mass rule: a steel bar of ``section`` (width, height; m) and ``length`` (m), kg."""
     return density * section[0] * section[1] * length
 
 
-def mm(x: float, digits: int = 12) -> float:
-    """A length (m) in mm as the file writes it: 12 significant digits (17, every digit of the float, where
-    a measured quantity is a small difference of large lengths)."""
-    return float(f"{x * 1000.0:.{digits}g}")
+def mm(x: float) -> float:
+    """A length (m) in mm as every synthesised file writes it: the one rule of the files' writer
+    (:func:`linkwork.units.written`, 12 significant digits, as :mod:`linkwork.spec.edit` writes an edit), and no
+    ``-0.0``."""
+    from linkwork.units import written
+
+    return float(written(x, "length", {"length": "mm"}, digits=12)) + 0.0
 
 
 def degrees(x: float) -> float:
-    """An angle (rad) in degrees as the file writes it: 12 significant digits."""
-    return float(f"{math.degrees(x):.12g}")
+    """An angle (rad) in degrees as the file writes it: the same rule as :func:`mm`."""
+    from linkwork.units import written
+
+    return float(written(x, "angle", {"angle": "deg"}, digits=12)) + 0.0
+
+
+def newtons(x: float) -> str:
+    """A force (N) as the file writes it: the same rule, with its unit."""
+    return f"{x:.12g} N"
 
 
 def commented(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> Any:

@@ -35,14 +35,19 @@ from linkwork.synthesis.common import (
     Family,
     Synthesis,
     bar_mass,
+    below_rule,
     confirm,
     crank_angle_between_limits,
     deg,
     degrees,
+    down,
     file_of,
     given,
+    keep_rule,
+    least_allowed,
     measure,
     mm,
+    proportions,
     time_ratio_of,
 )
 
@@ -148,7 +153,7 @@ def best(swing: float, theta: float) -> tuple[float, float, float]:
     if not found:
         raise SynthesisError(
             f"swing {deg(swing)} with time ratio K = {time_ratio_of(theta):.6g} (theta {deg(theta)}): no crank-rocker "
-            f"has these limit positions; the swing {deg(swing)} gives K <= {_feasible_ratio(swing):.4g}"
+            f"has these limit positions; the swing {deg(swing)} gives K <= {down(_feasible_ratio(swing))}"
         )
     return max(found, key=lambda f: f[2])
 
@@ -226,6 +231,18 @@ def largest_time_ratio(swing: float, angle: float) -> float:
     return float(brentq(lambda k: greatest_least_angle(swing, k) - angle, 1.0, hi, xtol=1e-12))
 
 
+def nearest(swing: float, time_ratio: float, bound: float) -> str:
+    """The nearest request with a least transmission angle of at least ``bound``: the largest time ratio for this
+    swing, else the largest swing for this time ratio (bisection on :func:`greatest_least_angle`, rounded down)."""
+    if greatest_least_angle(swing, 1.0) > bound:
+        return f"K <= {down(largest_time_ratio(swing, bound))} meets it with this swing"
+    lo, hi = 0.0, swing
+    for _ in range(50):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if greatest_least_angle(mid, time_ratio) > bound else (lo, mid)
+    return f"a swing of at most {down(math.degrees(lo))} deg meets it with K = {time_ratio:g}"
+
+
 def synthesize(
     swing: float,
     time_ratio: float,
@@ -252,29 +269,33 @@ def synthesize(
         raise SynthesisError(
             f"{'rocker' if rocker is not None else 'frame'} length {scale_given!r} m: expected a positive length"
         )
-    if min_transmission_angle is not None and not 0 < min_transmission_angle < math.pi / 2:
-        raise SynthesisError(
-            f"least transmission angle {deg(min_transmission_angle)}: expected a bound between 0 and 90 deg"
-        )
+    bound = least_allowed(min_transmission_angle)
     theta = crank_angle_between_limits(time_ratio)
-    t, side, mu = best(swing, theta) if theta > 0 else central(swing, min_transmission_angle)
-    if min_transmission_angle is not None and mu < min_transmission_angle:
-        raise SynthesisError(
-            f"swing {deg(swing)} and time ratio K = {time_ratio:g} give a least transmission angle of at most "
-            f"{deg(mu)}; at least {deg(min_transmission_angle)} gives K <= "
-            f"{largest_time_ratio(swing, min_transmission_angle):.4g}"
+    if theta > 0:
+        t, side, mu = best(swing, theta)
+    elif greatest_least_angle(swing, 1.0) > bound:
+        t, side, mu = central(swing, bound)
+    else:
+        t, side, mu = 0.0, 1.0, greatest_least_angle(swing, 1.0)
+    if mu < bound:
+        raise below_rule(
+            f"swing {deg(swing)} with time ratio K = {time_ratio:g}"
+            + (" (the crank pivot far away)" if not theta else ""),
+            mu,
+            bound,
+            nearest(swing, time_ratio, bound),
         )
     m = {k: v[0] for k, v in members(swing, theta, np.array([t]), side).items()}
     scale = rocker if rocker is not None else frame / float(m["frame"])  # type: ignore[operator]
     dims = {k: float(m[k]) * scale for k in ("crank", "coupler", "rocker", "frame")}
-    requirements = given(
-        swing=swing, time_ratio=time_ratio, rocker=rocker, frame=frame, min_transmission_angle=min_transmission_angle
-    )
+    proportions(KIND, dims)
+    requirements = given(swing=swing, time_ratio=time_ratio, rocker=rocker, frame=frame, min_transmission_angle=bound)
     text, spec = file_of(*_file(dims, m, scale, swing, time_ratio, theta, mu, speed, section, density))
     measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))
     measured["swing"] = measured.pop("stroke")
     predicted = {"swing": swing, "time_ratio": time_ratio, "least_transmission_angle": mu}
     confirm(measured, predicted, mu)
+    keep_rule(spec, bound)
     why = "the greatest least transmission angle" if theta > 0 else "the nearest crank pivot meeting the bound"
     return Synthesis(
         KIND, requirements, dims, predicted, measured, spec, text, family(swing, time_ratio), f"picked by {why}"

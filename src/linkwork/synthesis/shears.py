@@ -27,11 +27,21 @@ Masses, inertias, loads and the drive are the bundled file's (an override keeps 
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
 from linkwork.errors import SynthesisError
-from linkwork.synthesis.common import TOLERANCE, VERIFY_STEPS, Family, Synthesis, given
+from linkwork.synthesis.common import (
+    TOLERANCE,
+    VERIFY_STEPS,
+    Family,
+    Synthesis,
+    below_rule,
+    given,
+    keep_rule,
+    least_allowed,
+)
 
 KIND = "double-cut-shears"
 
@@ -200,6 +210,7 @@ def synthesize(
     opening: float | None = None,
     crank: float | None = None,
     criterion: str = "pressure",
+    min_transmission_angle: float | None = None,
     speed: str | None = None,
 ) -> Synthesis:
     """The bundled double-cut shears with the upper and lower knives' strokes (m), the time ratio K (the knives closing
@@ -210,19 +221,14 @@ def synthesize(
     from linkwork.api import mechanism_of
 
     want = _requirements(upper_stroke, lower_stroke, time_ratio, overlap, opening)
+    floor = least_allowed(min_transmission_angle)
     if criterion not in CRITERIA:
         raise SynthesisError(f"criterion {criterion!r}: expected one of {', '.join(CRITERIA)}")
     if crank is not None and not 0 < crank < math.inf:
         raise SynthesisError(f"crank {crank!r} m: expected a positive length")
     mech = mechanism_of(KIND, "mechanism")
+    _billet_fits(mech, upper_stroke + lower_stroke - want)
     cranks, unknowns, found = solved_family(upper_stroke, lower_stroke, time_ratio, want, crank)
-    metric, sense, words = CRITERIA[criterion]
-    score = sense * found.get(metric, np.full(len(cranks), np.nan))
-    if not np.isfinite(score).any():
-        raise SynthesisError(_infeasible(mech, upper_stroke, lower_stroke, time_ratio, want, crank))
-    pick = int(np.nanargmin(score))
-    (values,) = member_values(cranks[[pick]], unknowns[[pick]])
-    why = f"crank {cranks[pick] * 1e3:.6g} mm as given" if crank is not None else f"picked by {words}"
     requirements = given(
         upper_stroke=upper_stroke,
         lower_stroke=lower_stroke,
@@ -230,7 +236,21 @@ def synthesize(
         overlap=overlap,
         opening=opening,
         crank=crank,
+        min_transmission_angle=floor,
     )
+    _keeps_rule(found, cranks, floor)
+    if criterion == "torque":  # each member's own file: its billet where its knives meet it
+        found["peak_driving_torque"] = _member_torques(mech, cranks, unknowns, requirements, want, speed)
+    else:
+        found.pop("peak_driving_torque", None)  # the metric's runs keep the bundled billet
+    metric, sense, words = CRITERIA[criterion]
+    score = sense * found.get(metric, np.full(len(cranks), np.nan))
+    score[~(found.get("min_transmission_angle", np.full(len(cranks), np.nan)) >= floor)] = np.nan
+    if not np.isfinite(score).any():
+        raise SynthesisError(_infeasible(mech, upper_stroke, lower_stroke, time_ratio, want, crank))
+    pick = int(np.nanargmin(score))
+    (values,) = member_values(cranks[[pick]], unknowns[[pick]])
+    why = f"crank {cranks[pick] * 1e3:.6g} mm as given" if crank is not None else f"picked by {words}"
     text, spec = _file(mech, values, requirements, want, why, speed)
     measured = measure(spec)
     predicted = {
@@ -241,6 +261,7 @@ def synthesize(
         "opening": upper_stroke + lower_stroke - want,
     }
     confirm(measured, predicted)
+    keep_rule(spec, floor)
     columns = {
         "crank": cranks,
         "O1.x": unknowns[:, 0],
@@ -252,7 +273,54 @@ def synthesize(
     fam = None if crank is not None else Family("crank length", "m", cranks, columns, words)
     dims = dict(zip(["crank", "O1.x", "D.x", "C.x", "upper_edge.y", "lower_edge.y"], values.values(), strict=True))
     notes = [f"{m}: {found[m][pick]:.6g}" for m, _, _ in CRITERIA.values() if m in found]
+    if "peak_driving_torque" not in found:
+        notes.append(f"peak_driving_torque: {_peak_torque(spec):.6g}")
     return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, why, notes)
+
+
+def _billet_fits(mech, opening: float) -> None:  # noqa: ANN001
+    """Raise where the knives' opening is not over the height of the file's billet (a two-tool process load's
+    workpiece): the billet would not enter between them."""
+    for load in mech.loads:
+        height = load.workpiece[1] - load.workpiece[0] if load.kind == "process" and len(load.points) == 2 else 0
+        if opening <= height:
+            raise SynthesisError(
+                f"opening {opening * 1e3:.6g} mm: the billet of the file's load {load.name!r} is {height * 1e3:.4g} mm "
+                "high and would not enter between the knives; ask for a larger opening (or a smaller overlap)"
+            )
+
+
+def _keeps_rule(found: dict[str, np.ndarray], cranks: np.ndarray, floor: float) -> None:
+    """Raise where no solved member's least transmission angle (every dyad over the turn) reaches ``floor``."""
+    least = found.get("min_transmission_angle", np.full(len(cranks), np.nan))
+    if np.isfinite(least).any() and not np.nanmax(least) >= floor:
+        i = int(np.nanargmax(least))
+        raise below_rule(
+            f"the family's best member (crank {cranks[i] * 1e3:.4g} mm)",
+            float(least[i]),
+            floor,
+            "leave the crank free, its family's best may meet it"
+            if len(cranks) == 1
+            else "other strokes, K or overlap",
+        )
+
+
+def _peak_torque(spec) -> float:  # noqa: ANN001
+    """The peak size of the driving torque (N m) of ``spec`` over the turn, refined between the samples."""
+    from linkwork.api import forces
+    from linkwork.kinetostatics.peaks import torque_peak
+
+    return abs(float(torque_peak(forces(spec, steps=360)).value[0]))
+
+
+def _member_torques(mech, cranks, unknowns, requirements: dict, want: float, speed: str | None) -> np.ndarray:  # noqa: ANN001
+    """The peak driving torque (N m) of each solved member, each from its own file (:func:`_file`: its billet
+    placed where its knives meet it); NaN for the members not solved."""
+    out = np.full(len(cranks), np.nan)
+    for i in np.flatnonzero(np.isfinite(unknowns[:, 0])):
+        (values,) = member_values(cranks[[i]], unknowns[[i]])
+        out[i] = _peak_torque(_file(mech, values, requirements, want, "", speed)[1])
+    return out
 
 
 def _own(mech, metric: str) -> float:  # noqa: ANN001
@@ -309,8 +377,9 @@ def confirm(measured: dict[str, float], predicted: dict[str, float]) -> None:
 
 
 def _file(mech, values: dict[str, float], requirements: dict, want: float, why: str, speed: str | None) -> tuple:  # noqa: ANN001
-    """The bundled file's text with ``values`` written in (the one writer), a comment beside each derived
-    dimension, and the Spec read back."""
+    """The bundled file's text with ``values`` written in (the one writer), its cutting load's workpiece placed
+    where the new knives meet it, its hints and the comments that speak of the geometry or the speed regenerated,
+    a comment beside each derived dimension; and the Spec read back."""
     from linkwork.spec.edit import round_trip_yaml, yaml_text
     from linkwork.spec.reader import loads
     from linkwork.structure.parameters import file_text
@@ -321,7 +390,8 @@ def _file(mech, values: dict[str, float], requirements: dict, want: float, why: 
         f"Double-cut shears of the bundled structure (seed 002) synthesised for the knives' strokes "
         f"{up * 1e3:.6g} mm (upper) and {low * 1e3:.6g} mm (lower), overlap {want * 1e3:.6g} mm when closed "
         f"(opening {(up + low - want) * 1e3:.6g} mm) and time ratio K = {k:.6g} (closing over opening); the "
-        f"crank's length {why}.  Masses, loads and drive as in the bundled file.\n"
+        f"crank's length {why}.  Masses, the cutting table and the motor as in the bundled file; the billet "
+        "placed where the knives meet it.\n"
     )
     data["links"]["crank"].yaml_add_eol_comment(f"# the family's free length: {why}", "length")
     data["frame"]["points"].yaml_add_eol_comment(f"# O1.x: time ratio K = {k:.6g}", "O1")
@@ -332,5 +402,133 @@ def _file(mech, values: dict[str, float], requirements: dict, want: float, why: 
         data["links"][knife].yaml_add_eol_comment(f"# edge: overlap {want * 1e3:.6g} mm when closed", "points")
     if speed is not None:
         data["drives"][0]["speed"] = speed
+    spec = loads(yaml_text(data), "<synthesised>")
+    _regenerate(data, spec)
     text = yaml_text(data)
     return text, loads(text, "<synthesised>")
+
+
+def _regenerate(data, spec) -> None:  # noqa: ANN001
+    """Write into ``data`` what follows from the new geometry of ``spec`` (the same file): each two-tool process
+    load's workpiece where both tools touch it at once (:func:`billets`), the hints at the assembly pose, and the
+    comments on the work a cut, the speed and the drawing."""
+    from linkwork.api import compile, kinematics
+
+    mech = compile(spec)
+    unit = _length_unit(data)
+    placed = billets(mech)
+    for load in mech.loads:
+        if load.kind == "process" and len(load.points) == 2 and load.name not in placed:
+            raise SynthesisError(
+                f"the knives never open to the height of the billet of load {load.name!r}, "
+                f"{(load.workpiece[1] - load.workpiece[0]) * 1e3:.4g} mm: ask for an opening of at least that"
+            )
+    for name, (lo, hi, work) in placed.items():
+        load = data["loads"][name]
+        low = _rounded(lo / unit)
+        load["workpiece"][0], load["workpiece"][1] = low, round(low + (hi - lo) / unit, 12)
+        _recomment(
+            load,
+            "workpiece",
+            f"billet of height h = {(hi - lo) * 1e3:.4g} mm where both knives touch it at once (closing); "
+            f"{work / 1e3:.4g} kJ a cut",
+        )
+    pose = kinematics(mech, np.array([float(mech.drive_start[0])]))
+    for point in list(data.get("hints") or {}):
+        x, y = np.ravel(pose.position(point))
+        data["hints"][point] = _flow([_rounded(x / unit), _rounded(y / unit)])
+    _machine_comments(data, spec, mech, sum(w for _, _, w in placed.values()))
+    if "drawing" in data:
+        _recomment(data, "drawing", "the plans of velocities and accelerations for these positions")
+
+
+def billets(mech) -> dict[str, tuple[float, float, float]]:  # noqa: ANN001
+    """Each process load with two tools: (low, high) of its workpiece (m, along its axis, its height kept) placed
+    so that both tools touch it at the same crank angle on the closing stroke (where their gap equals the
+    height), and the work of its table a cut (J): the height times the table's integral over the penetration the
+    tools reach.  With the tools entering one after the other, the one not yet in the work would be pushed by
+    the load (the penetration counts each tool from its own face)."""
+    from scipy.optimize import brentq
+
+    from linkwork.api import kinematics
+
+    out = {}
+    kin = kinematics(mech, steps=VERIFY_STEPS)
+    angles = np.ravel(kin.angles)
+    for load in mech.loads:
+        if load.kind != "process" or len(load.points) != 2:
+            continue
+        u, names = np.asarray(load.vector), [mech.point_names[p] for p in load.points]
+        height = load.workpiece[1] - load.workpiece[0]
+
+        def gap(k, names=names, u=u) -> np.ndarray:  # noqa: ANN001
+            return np.reshape((k.position(names[0]) - k.position(names[1])) @ u, -1)
+
+        g = gap(kin)
+        closing = np.reshape((kin.velocity(names[1]) - kin.velocity(names[0])) @ u, -1) > 0
+        nxt = np.roll(np.arange(len(g)), -1)
+        (hits,) = np.nonzero(((g - height) * (g[nxt] - height) <= 0) & closing & closing[nxt])
+        if not len(hits):
+            continue
+        i = int(hits[0])
+        a, b = angles[i], angles[i] + (angles[nxt[i]] - angles[i]) % (2 * np.pi)
+        at = brentq(lambda x, h=height: float(gap(kinematics(mech, np.array([x])))[0]) - h, a, b, xtol=1e-13)
+        low = float(np.ravel(kinematics(mech, np.array([at])).position(names[1]) @ u)[0])
+        reach = min((height - float(np.min(g))) / height, float(load.table[0][-1]))
+        eps = np.linspace(0.0, reach, 20001)
+        out[load.name] = (low, low + height, height * float(np.trapezoid(np.interp(eps, *load.table), eps)))
+    return out
+
+
+def _machine_comments(data, spec, mech, work: float) -> None:  # noqa: ANN001
+    """The machine's comments regenerated from the file: the cuts a minute, the work and mean power a cut (the
+    process loads' :func:`billets` work), the gear's speeds (its ratio from the motor's speed to the crank's
+    where ``--speed`` changed the crank's)."""
+    machine = data.get("machine")
+    if machine is None or spec.machine is None:
+        return
+    per_minute = abs(float(mech.drive_speed[0])) * 60 / (2 * math.pi)
+    gear = spec.machine.gear
+    motor = float(spec.machine.motor.speed) * 60 / (2 * math.pi)
+    if gear is not None and "gear" in machine:
+        ratio = float(f"{motor / per_minute:.4g}")
+        if abs(ratio - gear.ratio) > 1e-3 * gear.ratio:
+            machine["gear"]["ratio"] = ratio
+        _recomment(machine, "gear", f"{motor:.4g} rpm -> {per_minute:.4g} rpm")
+    _recomment(data, "machine", f"the drive, for machine dynamics: {per_minute:.4g} cuts a minute")
+    if "motor" in machine:
+        power = work * per_minute / 60
+        efficiency = gear.efficiency if gear is not None else 1.0
+        _recomment(
+            machine,
+            "motor",
+            f"mean power at the crank {power / 1e3:.3g} kW ({work / 1e3:.3g} kJ a cut), "
+            f"{power / efficiency / 1e3:.3g} kW at the motor",
+        )
+
+
+def _recomment(node, key: str, text: str) -> None:  # noqa: ANN001
+    """Replace the end-of-line comment of ``key`` in ``node`` (a ruamel mapping) with ``text``."""
+    node.ca.items.pop(key, None)
+    node.yaml_add_eol_comment(f"# {text}", key)
+
+
+def _flow(values: list[float]) -> Any:
+    """``values`` as a YAML sequence written on one line."""
+    from ruamel.yaml.comments import CommentedSeq
+
+    seq = CommentedSeq(values)
+    seq.fa.set_flow_style()
+    return seq
+
+
+def _length_unit(data) -> float:  # noqa: ANN001
+    """Metres in one of the file's length unit."""
+    from linkwork.units import parse_quantity
+
+    return float(parse_quantity(f"1 {(data.get('units') or {}).get('length', 'm')}", "length"))
+
+
+def _rounded(x: float) -> float:
+    """A length of the file in its unit to the digits the file writes (the shears' file is in metres: 0.1 mm)."""
+    return round(float(x), 4) + 0.0

@@ -36,18 +36,26 @@ import numpy as np
 from linkwork.errors import SynthesisError
 from linkwork.synthesis.common import (
     BAR,
+    LEAST_TRANSMISSION,
     STEEL,
     Family,
     Synthesis,
     bar_mass,
+    below_rule,
     confirm,
     crank_angle_between_limits,
     deg,
     degrees,
+    down,
     file_of,
     given,
+    keep_rule,
+    least_allowed,
     measure,
     mm,
+    newtons,
+    proportions,
+    up,
 )
 
 KIND = "slider-crank"
@@ -123,11 +131,19 @@ def _check_ratio(time_ratio: float) -> float:
     return crank_angle_between_limits(time_ratio)
 
 
-def _central(stroke: float, rod_ratio: float | None, offset: float | None, bound: float | None) -> tuple:
+def _central(
+    stroke: float, rod_ratio: float | None, offset: float | None, bound: float | None, floor: float = LEAST_TRANSMISSION
+) -> tuple:
     if offset:
         raise SynthesisError(f"time ratio K = 1 needs a zero offset; the offset {offset * 1e3:g} mm gives K > 1")
     r = stroke / 2.0
     if rod_ratio is not None:
+        if not 0 < rod_ratio < 1:
+            raise SynthesisError(
+                f"rod ratio r/l = {rod_ratio:g}: a rod as long as the crank or shorter cannot follow it round (the "
+                f"crank turns for r/l under 1; a least transmission angle of {math.degrees(floor):.4g} deg needs "
+                f"r/l <= {down(math.cos(floor))})"
+            )
         return r, r / rod_ratio, 0.0, f"rod ratio r/l = {rod_ratio:g}"
     if bound is not None:
         return r, r / math.sin(bound), 0.0, f"the shortest rod with the largest pressure angle {deg(bound)}"
@@ -165,6 +181,7 @@ def solve(
     rod_ratio: float | None = None,
     offset: float | None = None,
     max_pressure_angle: float | None = None,
+    floor: float = LEAST_TRANSMISSION,
 ) -> tuple[float, float, float, str]:
     """(r, l, e, what picked the member) (m) for the requirements (SI); raises :class:`SynthesisError`."""
     if not 0 < stroke < math.inf:
@@ -175,7 +192,7 @@ def solve(
         raise SynthesisError("give one of the rod ratio and the offset: with H and K either fixes the mechanism")
     theta = _check_ratio(time_ratio)
     if theta == 0.0:
-        r, ell, e, why = _central(stroke, rod_ratio, offset, max_pressure_angle)
+        r, ell, e, why = _central(stroke, rod_ratio, offset, max_pressure_angle, floor)
     else:
         beta, why = _offset_member(stroke, time_ratio, theta, rod_ratio, offset)
         r, ell, e = (float(x) for x in dimensions(stroke, theta, beta))
@@ -184,13 +201,14 @@ def solve(
         least = least_pressure_angle(time_ratio)
         if least > max_pressure_angle:
             raise SynthesisError(
-                f"time ratio K = {time_ratio:g} needs a largest pressure angle of at least {deg(least)}; at most "
-                f"{deg(max_pressure_angle)} gives K <= {largest_time_ratio(max_pressure_angle):.4g}"
+                f"time ratio K = {time_ratio:g} needs a largest pressure angle of at least "
+                f"{up(math.degrees(least))} deg; at most {deg(max_pressure_angle)} gives K <= "
+                f"{down(largest_time_ratio(max_pressure_angle))}"
             )
         raise SynthesisError(
             f"{why} with K = {time_ratio:g} gives a largest pressure angle of {deg(alpha)}, over the bound "
-            f"{deg(max_pressure_angle)}; the least for K = {time_ratio:g} is {deg(least)} (leave the rod ratio and "
-            "offset out to get it)"
+            f"{deg(max_pressure_angle)}; the least for K = {time_ratio:g} is {up(math.degrees(least))} deg (leave the "
+            "rod ratio and offset out to get it)"
         )
     return r, ell, e, why
 
@@ -201,6 +219,7 @@ def synthesize(
     rod_ratio: float | None = None,
     offset: float | None = None,
     max_pressure_angle: float | None = None,
+    min_transmission_angle: float | None = None,
     speed: str = "60 rpm",
     section: tuple[float, float] = BAR,
     density: float = STEEL,
@@ -218,16 +237,15 @@ def synthesize(
     steel bars of ``section`` (m x m) and ``density``; the ram's mass is the rod's unless given.  Verified
     by the analysis of the written file (:func:`~linkwork.synthesis.common.measure`)."""
     load = _load(stroke, force, working, criterion)
-    r, ell, e, why = solve(stroke, time_ratio, rod_ratio, offset, max_pressure_angle)
+    floor = least_allowed(min_transmission_angle)
+    r, ell, e, why = solve(stroke, time_ratio, rod_ratio, offset, max_pressure_angle, floor)
+    proportions(KIND, {"stroke": stroke, "crank": r, "rod": ell, "offset": e})
     theta = crank_angle_between_limits(time_ratio)
     free = theta > 0 and rod_ratio is None and offset is None
-    if criterion == "torque" and free:
-        if max_pressure_angle is None:
-            raise SynthesisError(
-                "the least peak driving torque needs a bound on the largest pressure angle: without one it runs to "
-                "the dead point (the crank shrinking as the offset grows); give the largest pressure angle"
-            )
-        beta, why = _least_torque(stroke, time_ratio, max_pressure_angle, load, speed, section, density, ram_mass)
+    _keeps_rule(r, ell, e, time_ratio, floor, why)
+    if criterion == "torque" and free:  # within the bound asked and the rule's: the least torque runs to a dead point
+        bound = min(max_pressure_angle or math.pi / 2, math.pi / 2 - floor)
+        beta, why = _least_torque(stroke, time_ratio, bound, load, speed, section, density, ram_mass)
         r, ell, e = (float(x) for x in dimensions(stroke, theta, beta))
     alpha = float(largest_pressure_angle(r, ell, e))
     requirements = given(
@@ -236,6 +254,7 @@ def synthesize(
         rod_ratio=rod_ratio,
         offset=offset,
         max_pressure_angle=max_pressure_angle,
+        min_transmission_angle=floor,
         force=force,
         working=working,
     )
@@ -247,6 +266,7 @@ def synthesize(
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
     confirm(measured, predicted, math.pi / 2 - alpha)
+    keep_rule(spec, floor)
     return Synthesis(
         KIND,
         requirements,
@@ -258,6 +278,22 @@ def synthesize(
         family(stroke, time_ratio) if free else None,
         f"picked by {why}",
     )
+
+
+def _keeps_rule(r: float, ell: float, e: float, time_ratio: float, floor: float, why: str) -> None:
+    """Raise where the slider-crank's least transmission angle, 90 deg less its largest pressure angle, is under
+    ``floor`` (rad), with the nearest request that meets it (``why``: what picked the member)."""
+    least = math.pi / 2 - float(largest_pressure_angle(r, ell, e))
+    if least >= floor:
+        return
+    best = math.pi / 2 - least_pressure_angle(time_ratio)
+    if e == 0.0:  # central: the rod's length alone
+        nearest = f"a rod ratio r/l <= {down(math.cos(floor))} meets it"
+    elif best >= floor:
+        nearest = f"leave the rod ratio and offset out: K = {time_ratio:g} reaches {down(math.degrees(best))} deg"
+    else:
+        nearest = f"K <= {down(largest_time_ratio(math.pi / 2 - floor))} meets it"
+    raise below_rule(f"time ratio K = {time_ratio:g} with {why}", least, floor, nearest)
 
 
 def _load(stroke: float, force: float | None, working: float | None, criterion: str) -> tuple[float, float] | None:
@@ -344,7 +380,8 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
     rod = bar_mass(ell, section, density)
     data = {
         "name": "slider-crank",
-        "description": f"Offset slider-crank synthesised for the stroke {stroke * 1e3:.6g} mm and time ratio K = "
+        "description": f"{'Central' if e == 0 else 'Offset'} slider-crank synthesised for the stroke "
+        f"{stroke * 1e3:.6g} mm and time ratio K = "
         f"{time_ratio:.6g} (theta = {math.degrees(theta):.6g} deg); {why}.  Masses: steel bars "
         f"{section[0] * 1e3:g} x {section[1] * 1e3:g} mm, {density:g} kg/m^3.",
         "units": {"length": "mm", "mass": "kg", "angle": "deg"},
@@ -380,9 +417,9 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
                 "type": "process",
                 "tools": ["ram.B"],
                 "axis": 90.0,
-                "workpiece": [mm(bottom, 17), mm(bottom + load[1], 17)],
+                "workpiece": [mm(bottom), mm(bottom + load[1])],
                 "penetration": [0.0, 1.0],
-                "force": [f"{load[0]:.17g} N"] * 2,
+                "force": [newtons(load[0])] * 2,
             }
         }
     comments = {
@@ -391,4 +428,8 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
         ("joints", "guide", "through"): f"offset e = {e * 1e3:.6g} mm: time ratio K = {time_ratio:.6g}",
         ("hints", "B"): "the ram below the crank",
     }
+    if load is not None:
+        comments[("loads", "working", "workpiece")] = (
+            f"the last {load[1] * 1e3:.6g} mm of the ram's way down, from the bottom dead centre"
+        )
     return data, comments

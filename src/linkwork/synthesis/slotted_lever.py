@@ -40,24 +40,27 @@ import numpy as np
 from linkwork.errors import SynthesisError
 from linkwork.synthesis.common import (
     BAR,
+    LEAST_TRANSMISSION,
     STEEL,
     Family,
     Synthesis,
     bar_mass,
+    below_rule,
     confirm,
     crank_angle_between_limits,
     deg,
+    down,
     file_of,
     given,
+    keep_rule,
+    least_allowed,
     measure,
     mm,
+    proportions,
+    up,
 )
 
 KIND = "slotted-lever"
-
-#: Significant digits of the file's lengths: all of them, since the rod's pressure angle is a small difference
-#: of the lever's and the guide's large lengths (h - L cos phi) when K is near 1.
-EXACT = 17
 
 #: The largest pressure angle of the ram's rod when neither it nor the rod is given (rad).
 PRESSURE_ANGLE = math.radians(10.0)
@@ -111,46 +114,81 @@ def solve(
     crank: float | None = None,
     rod: float | None = None,
     max_pressure_angle: float | None = None,
+    floor: float = LEAST_TRANSMISSION,
 ) -> tuple[dict, str]:
     """The dimensions (m; with the rod and the largest pressure angle) and what picked the frame; raises
-    :class:`SynthesisError` for requirements that cannot be met."""
+    :class:`SynthesisError` for requirements that cannot be met.  The rod unless given: the shortest whose largest
+    pressure angle meets ``max_pressure_angle`` (10 deg unless given) and leaves the transmission angle ``floor``
+    (rad)."""
     theta = _check(stroke, time_ratio, frame, crank, rod)
     if max_pressure_angle is not None and not 0 < max_pressure_angle < math.pi / 2:
         raise SynthesisError(f"largest pressure angle {deg(max_pressure_angle)}: expected a bound between 0 and 90 deg")
     dims = dimensions(stroke, theta, frame, crank)
+    nearer = _nearer(stroke, time_ratio, frame, crank, rod, max_pressure_angle)
+    proportions(KIND, {"stroke": stroke, **{k: dims[k] for k in ("lever", "frame", "crank")}}, nearer)
     reach = dims["frame"] + dims["crank"]
     if reach >= dims["lever"] * (1 + 1e-12) and (frame is not None or crank is not None):
         top = dimensions(stroke, theta)
         raise SynthesisError(
             f"{'frame' if frame is not None else 'crank'} {(frame or crank) * 1e3:g} mm with stroke "  # type: ignore[operator]
             f"{stroke * 1e3:g} mm and time ratio K = {time_ratio:g}: the block leaves the lever "
-            f"(L = {top['lever'] * 1e3:.6g} mm); the frame must be at most {top['frame'] * 1e3:.6g} mm "
-            f"(the crank at most {top['crank'] * 1e3:.6g} mm)"
+            f"(L = {top['lever'] * 1e3:.6g} mm); the frame must be at most {down(top['frame'] * 1e3, 6)} mm "
+            f"(the crank at most {down(top['crank'] * 1e3, 6)} mm)"
         )
     sag = dims["lever"] * (1 - math.cos(theta / 2)) / 2
-    bound = PRESSURE_ANGLE if max_pressure_angle is None else max_pressure_angle
+    bound = min(PRESSURE_ANGLE if max_pressure_angle is None else max_pressure_angle, math.pi / 2 - floor)
     dims["rod"] = rod if rod is not None else sag / math.sin(bound)
-    if dims["rod"] <= sag:
+    if dims["rod"] <= sag:  # a rod given too short, or a bound so near 90 deg that the rod rounds to the sagitta
         raise SynthesisError(
-            f"rod {rod * 1e3:g} mm: the rod must be longer than half the lever tip's sagitta, "  # type: ignore[operator]
+            f"rod {dims['rod'] * 1e3:.6g} mm: the rod must be longer than half the lever tip's sagitta, "
             f"{sag * 1e3:.6g} mm, to reach the guide"
         )
+    proportions(
+        KIND,
+        {"stroke": stroke, **{k: dims[k] for k in ("lever", "frame", "crank", "rod")}},
+        nearer,
+    )
     dims["largest_pressure_angle"] = largest_pressure_angle(dims["lever"], theta, dims["rod"])
     if max_pressure_angle is not None and dims["largest_pressure_angle"] > max_pressure_angle * (1 + 1e-12):
         raise SynthesisError(
             f"rod {dims['rod'] * 1e3:g} mm gives a largest pressure angle of {deg(dims['largest_pressure_angle'])}, "
             f"over the bound {deg(max_pressure_angle)}; the bound needs a rod of at least "
-            f"{sag / math.sin(max_pressure_angle) * 1e3:.6g} mm"
+            f"{up(sag / math.sin(max_pressure_angle) * 1e3, 6)} mm"
         )
     alpha = dims["largest_pressure_angle"]
     if theta / 2 + alpha >= math.pi / 2:
         raise SynthesisError(
             f"time ratio K = {time_ratio:g} with a largest pressure angle of {deg(alpha)}: the rod folds against "
             f"the lever at its limit positions (theta / 2 + alpha >= 90 deg); that angle gives K < "
-            f"{(math.pi - alpha) / alpha:.6g}"
+            f"{down((math.pi - alpha) / alpha, 6)}"
         )
     why = "the frame given" if frame is not None else "the crank given" if crank is not None else "the greatest frame"
     return dims, why
+
+
+def _nearer(stroke: float, time_ratio: float, frame, crank, rod, bound) -> str:  # noqa: ANN001
+    """The time ratio nearest ``time_ratio`` whose mechanism (the rest of the request kept) keeps its lengths in
+    proportion, where one is found above it (bisection; the lever shrinks and the rod grows with K)."""
+    from linkwork.synthesis.common import PROPORTION
+
+    def fits(k: float) -> bool:
+        try:
+            dims = dimensions(stroke, crank_angle_between_limits(k), frame, crank)
+        except (ZeroDivisionError, OverflowError, TypeError):
+            return False
+        theta = crank_angle_between_limits(k)
+        sag = dims["lever"] * (1 - math.cos(theta / 2)) / 2
+        dims["rod"] = rod if rod is not None else sag / math.sin(bound or PRESSURE_ANGLE)
+        sizes = [stroke, dims["lever"], dims["frame"], dims["crank"], dims["rod"]]
+        return max(sizes) <= PROPORTION * min(sizes)
+
+    if not fits(3.0):
+        return "ask for other lengths"
+    lo, hi = time_ratio, 3.0
+    for _ in range(60):
+        mid = (lo + hi) / 2
+        lo, hi = (lo, mid) if fits(mid) else (mid, hi)
+    return f"a time ratio K >= {up(hi)} keeps them in proportion"
 
 
 def synthesize(
@@ -160,6 +198,7 @@ def synthesize(
     crank: float | None = None,
     rod: float | None = None,
     max_pressure_angle: float | None = None,
+    min_transmission_angle: float | None = None,
     speed: str = "60 rpm",
     section: tuple[float, float] = BAR,
     density: float = STEEL,
@@ -170,19 +209,50 @@ def synthesize(
     largest pressure angle is ``max_pressure_angle`` (rad; 10 deg by default).  Links are steel bars of
     ``section`` and ``density``; the ram's mass is the rod's unless given.  Verified by the analysis of the
     written file: the ram's stroke, K and the rod's largest pressure angle."""
-    dims, why = solve(stroke, time_ratio, frame, crank, rod, max_pressure_angle)
+    floor = least_allowed(min_transmission_angle)
+    dims, why = solve(stroke, time_ratio, frame, crank, rod, max_pressure_angle, floor)
     theta = crank_angle_between_limits(time_ratio)
     alpha = dims.pop("largest_pressure_angle")
+    if math.pi / 2 - alpha < floor:  # the rod's dyad; the block's (RPR) transmits square to the slot throughout
+        sag = dims["lever"] * (1 - math.cos(theta / 2)) / 2
+        raise below_rule(
+            f"the rod {dims['rod'] * 1e3:.6g} mm (its largest pressure angle {deg(alpha)})",
+            math.pi / 2 - alpha,
+            floor,
+            f"a rod of at least {up(sag / math.cos(floor) * 1e3)} mm meets it",
+        )
     requirements = given(
-        stroke=stroke, time_ratio=time_ratio, frame=frame, crank=crank, rod=rod, max_pressure_angle=max_pressure_angle
+        stroke=stroke,
+        time_ratio=time_ratio,
+        frame=frame,
+        crank=crank,
+        rod=rod,
+        max_pressure_angle=max_pressure_angle,
+        min_transmission_angle=floor,
     )
     text, spec = file_of(*_file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass))
     measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
-    predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
+    predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": _written_alpha(spec)}
     confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha)  # the rod square to the lever at its limits
+    keep_rule(spec, floor)
     fam = family(stroke, time_ratio) if frame is None and crank is None else None
     return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, f"picked by {why}")
+
+
+def _written_alpha(spec) -> float:  # noqa: ANN001
+    """The rod's largest pressure angle (rad) of the lengths as the file writes them (12 digits each): near K = 1
+    it is a small difference of large lengths, h - L cos(phi), which the rounding moves by more than the
+    verification's 1e-9; the closed form on the written lengths is what the analysis must measure.  Over the swing
+    L cos(phi) sweeps [L cos(theta / 2), L], sin(theta / 2) = r / d."""
+    lever, rod = float(spec.links["lever"].length), float(spec.links["rod"].length)
+    h, d, r = (
+        float(spec.joints["guide"].through[1]),
+        float(spec.frame.points["O1"][1]),
+        float(spec.links["crank"].length),
+    )
+    low = lever * math.sqrt(1 - (r / d) ** 2)
+    return math.asin(max(abs(h - lever), abs(h - low)) / rod)
 
 
 def _rod_dyad(mu: dict[str, np.ndarray]) -> np.ndarray:
@@ -211,12 +281,12 @@ def _file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, 
         f"{math.degrees(theta):.6g} deg); {why}.  Masses: steel bars {section[0] * 1e3:g} x "
         f"{section[1] * 1e3:g} mm, {density:g} kg/m^3.",
         "units": {"length": "mm", "mass": "kg", "angle": "deg"},
-        "frame": {"points": {"O2": [0.0, 0.0], "O1": [0.0, mm(d, EXACT)]}},
+        "frame": {"points": {"O2": [0.0, 0.0], "O1": [0.0, mm(d)]}},
         "links": {
-            "crank": {"ends": ["O1", "A"], "length": mm(r, EXACT), "mass": mass["crank"]},
+            "crank": {"ends": ["O1", "A"], "length": mm(r), "mass": mass["crank"]},
             "block": {"points": {"A": [0.0, 0.0]}, "mass": block, "inertia": 0},
-            "lever": {"ends": ["O2", "C"], "length": mm(lever, EXACT), "mass": mass["lever"]},
-            "rod": {"ends": ["C", "D"], "length": mm(rod, EXACT), "mass": mass["rod"]},
+            "lever": {"ends": ["O2", "C"], "length": mm(lever), "mass": mass["lever"]},
+            "rod": {"ends": ["C", "D"], "length": mm(rod), "mass": mass["rod"]},
             "ram": {"points": {"D": [0.0, 0.0]}, "mass": ram, "inertia": 0},
         },
         "joints": {
@@ -230,7 +300,7 @@ def _file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, 
                 "type": "prismatic",
                 "links": ["frame", "ram"],
                 "point": "D",
-                "through": [0.0, mm(h, EXACT)],
+                "through": [0.0, mm(h)],
                 "axis": 0.0,
             },
         },

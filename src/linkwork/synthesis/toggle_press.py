@@ -18,7 +18,9 @@ The theory (derived here):
   nominal point is |T| = F rho, rho = -v_R / |omega| = 2 a sin(beta_n) omega_4 / |omega| (clockwise) with cos(beta_n) =
   1 - s_n / (2 a) and omega_4 / omega from the four-bar's velocities: (omega_4 k x K) . (K - A) =
   (omega k x (A - O)) . (K - A).  Near the bottom, s ~ (phi - phi_0)^4, so rho ~ s^(3/4): the toggle's gain.
-* What the requirements leave free: psi and K.  They are stated defaults (psi = 60 deg, so a = H; K = 1.2);
+* What the requirements leave free: psi and K.  They are stated defaults (psi = 45 deg, so a = H / (2 - sqrt 2),
+  1.707 H, the lower link at most 45 deg to the ram's guide and the four-bar's least transmission angle 44.6 deg,
+  both within the 40 deg design rule; K = 1.2);
   the torque limit is then a bound: T = F rho at most the limit, else the message gives the largest nominal
   force the limit allows.
 
@@ -36,23 +38,32 @@ from linkwork.errors import SynthesisError
 from linkwork.synthesis import crank_rocker
 from linkwork.synthesis.common import (
     BAR,
+    PROPORTION,
     STEEL,
+    VERIFY_STEPS,
     Synthesis,
     bar_mass,
+    below_rule,
     confirm,
     crank_angle_between_limits,
     deg,
     degrees,
+    down,
     file_of,
     given,
+    keep_rule,
+    least_allowed,
     measure,
     mm,
+    newtons,
+    proportions,
+    up,
 )
 
 KIND = "toggle-press"
 
 #: The upper link's swing and the four-bar's time ratio unless given.
-SWING = math.radians(60.0)
+SWING = math.radians(45.0)
 TIME_RATIO = 1.2
 
 
@@ -107,12 +118,13 @@ def synthesize(
     torque: float,
     swing: float | None = None,
     time_ratio: float | None = None,
+    min_transmission_angle: float | None = None,
     speed: str = "60 rpm",
     section: tuple[float, float] = BAR,
     density: float = STEEL,
 ) -> Synthesis:
     """A knuckle-joint press for the ram's stroke (m), the nominal ``force`` (N) at ``before`` (m) before the
-    bottom dead centre and the crank's ``torque`` limit (N m); the upper link's ``swing`` (rad, 60 deg) and the
+    bottom dead centre and the crank's ``torque`` limit (N m); the upper link's ``swing`` (rad, 45 deg) and the
     four-bar's ``time_ratio`` (1.2) unless given.  The file carries the nominal force as a process load; the
     stroke and the torque at the nominal point are verified by ``lw.kinematics`` and ``lw.forces``."""
     for name, value in (("stroke", stroke), ("force", force), ("before", before), ("torque", torque)):
@@ -126,20 +138,45 @@ def synthesize(
     k = TIME_RATIO if time_ratio is None else time_ratio
     if not 0 < psi < math.pi / 2:
         raise SynthesisError(f"toggle swing {deg(psi)}: expected between 0 and 90 deg")
-    geo = geometry(stroke, psi, k)
-    angle, rho = nominal(geo, before)
-    need = force * rho
-    if need > torque * (1 + 1e-12):
+    if 1 - math.cos(psi) < 1 / (2 * PROPORTION):  # a = H / (2 (1 - cos psi)) more than PROPORTION strokes long
         raise SynthesisError(
-            f"nominal force {force / 1e3:g} kN at {before * 1e3:g} mm before the bottom needs a crank torque of "
-            f"{need:.6g} N m; the limit {torque:g} N m gives at most {torque / rho / 1e3:.6g} kN there"
+            f"toggle swing {deg(psi)} gives toggle links over {PROPORTION:g} times the stroke: a swing of at least "
+            f"{up(math.degrees(math.acos(1 - 1 / (2 * PROPORTION))))} deg keeps them in proportion"
         )
-    requirements = given(stroke=stroke, force=force, before=before, torque=torque, swing=swing, time_ratio=time_ratio)
+    floor = least_allowed(min_transmission_angle)
+    if math.pi / 2 - psi < floor:  # the lower link and the ram's guide at the top
+        raise below_rule(
+            f"toggle swing {deg(psi)} (the lower link at {deg(psi)} to the ram's guide at the top)",
+            math.pi / 2 - psi,
+            floor,
+            f"a swing of at most {down(90 - math.degrees(floor))} deg meets it",
+        )
+    geo = geometry(stroke, psi, k)
+    proportions(KIND, {"stroke": stroke, "before": before, **{n: geo[n] for n in ("toggle", "crank", "rod")}})
+    if geo["least_transmission_angle"] < floor:
+        raise below_rule(
+            f"the four-bar of swing {deg(psi)} and time ratio K = {k:g}",
+            geo["least_transmission_angle"],
+            floor,
+            crank_rocker.nearest(psi, k, floor),
+        )
+    angle, rho = nominal(geo, before)
+    requirements = given(
+        stroke=stroke,
+        force=force,
+        before=before,
+        torque=torque,
+        swing=swing,
+        time_ratio=time_ratio,
+        min_transmission_angle=floor,
+    )
     text, spec = file_of(*_file(geo, stroke, force, before, psi, k, speed, section, density))
     measured = measure(spec, [angle], lambda mu: next(v for key, v in mu.items() if key.endswith("RRP")), "guide")
     measured = {"stroke": measured["stroke"], "torque_at_nominal": -_torque(spec, angle)}  # clockwise
-    predicted = {"stroke": stroke, "torque_at_nominal": need}
+    predicted = {"stroke": stroke, "torque_at_nominal": force * rho}
     confirm(measured, predicted, geo["least_transmission_angle"])
+    keep_rule(spec, floor)
+    measured["peak_torque"] = _within_limit(spec, angle, force, before, torque)
     dims = {key: float(v) for key, v in geo.items() if key != "O" and key != "least_transmission_angle"}
     dims.update(frame_x=float(geo["O"][0]), frame_y=float(geo["O"][1]))
     return Synthesis(
@@ -155,12 +192,49 @@ def synthesize(
     )
 
 
+def _within_limit(spec, angle: float, force: float, before: float, torque: float) -> float:  # noqa: ANN001
+    """The peak size of the driving torque (N m) over the turn as :func:`linkwork.forces` measures it on the written
+    file (the process load, gravity and inertia; refined between the samples), checked against the ``torque``
+    limit; over it, a :class:`SynthesisError` naming the limit the request needs and the largest nominal force the
+    limit allows (forces are linear in the loads: the file's torque with the force scaled, searched on the samples
+    and the angle where the load takes hold, rounded down)."""
+    from linkwork.api import forces
+    from linkwork.kinetostatics.peaks import torque_peak
+
+    peak = torque_peak(forces(spec, steps=VERIFY_STEPS))
+    value = abs(float(peak.value[0]))
+    if value <= torque * (1 + 1e-12):
+        return value
+    angles = np.concatenate([np.linspace(0.0, 2 * math.pi, VERIFY_STEPS, endpoint=False), [angle - 1e-9]])
+    idle = np.ravel(forces(spec.model_copy(update={"loads": {}}), angles).driving_torque)
+    load = np.ravel(forces(spec, angles).driving_torque) - idle
+    lo, hi = 0.0, 1.0
+    for _ in range(60):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if np.max(np.abs(mid * load + idle)) <= torque else (lo, mid)
+    if lo == 0.0:
+        raise SynthesisError(
+            f"the press's own links (their weight and inertia at the file's speed) need a crank torque of "
+            f"{up(float(np.max(np.abs(idle))))} N m before any force: the limit {torque:g} N m allows none; raise "
+            "--torque, or lower --speed or --section"
+        )
+    raise SynthesisError(
+        f"nominal force {force / 1e3:g} kN from {before * 1e3:g} mm before the bottom needs a crank torque of "
+        f"{up(value)} N m at its peak over the turn (the forces analysis of the file); the limit "
+        f"{torque:g} N m allows at most {down(force * lo * (1 - 1e-6) / 1e3)} kN: raise --torque or lower --force"
+    )
+
+
 def _torque(spec, angle: float) -> float:  # noqa: ANN001
-    """The driving torque of the process load alone at the drive ``angle``: lw.forces with the loads less
-    lw.forces without them (forces are linear in the loads; gravity and inertia cancel); counter-clockwise
-    positive."""
+    """The driving torque of the process load alone at the drive ``angle``, the nominal point, where the file's
+    load takes hold: lw.forces with the load's workpiece reaching over the whole stroke (the force is the
+    table's one value inside it) less lw.forces without loads (forces are linear in the loads; gravity and
+    inertia cancel); counter-clockwise positive."""
     from linkwork.api import forces
 
+    (name, load), stroke = next(iter(spec.loads.items())), -2 * float(spec.links["upper"].length)
+    deeper = load.model_copy(update={"workpiece": [stroke, 0.0]})
+    spec = spec.model_copy(update={"loads": {name: deeper}})
     with_load = forces(spec, np.array([angle])).driving_torque
     idle = forces(spec.model_copy(update={"loads": {}}), np.array([angle])).driving_torque
     return float(np.ravel(with_load)[0] - np.ravel(idle)[0])
@@ -173,7 +247,6 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
     start = math.atan2(*(top - o)[::-1])
     mass = {key: float(f"{bar_mass(geo[key], section, density):.6g}") for key in ("crank", "rod", "toggle")}
     low = -2 * a
-    width = min(2 * before, stroke)
     data = {
         "name": "toggle-press",
         "description": f"Knuckle-joint press synthesised for the stroke {stroke * 1e3:.6g} mm and the nominal force "
@@ -181,12 +254,12 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
         f"{math.degrees(psi):.6g} deg, four-bar K = {k:.6g}).  Masses: steel bars {section[0] * 1e3:g} x "
         f"{section[1] * 1e3:g} mm, {density:g} kg/m^3.",
         "units": {"length": "mm", "mass": "kg", "angle": "deg"},
-        "frame": {"points": {"P": [0.0, 0.0], "O": [mm(o[0], 17), mm(o[1], 17)]}},
+        "frame": {"points": {"P": [0.0, 0.0], "O": [mm(o[0]), mm(o[1])]}},
         "links": {
-            "crank": {"ends": ["O", "A"], "length": mm(r, 17), "mass": mass["crank"]},
-            "rod": {"ends": ["A", "K"], "length": mm(b, 17), "mass": mass["rod"]},
-            "upper": {"ends": ["P", "K"], "length": mm(a, 17), "mass": mass["toggle"]},
-            "lower": {"ends": ["K", "R"], "length": mm(a, 17), "mass": mass["toggle"]},
+            "crank": {"ends": ["O", "A"], "length": mm(r), "mass": mass["crank"]},
+            "rod": {"ends": ["A", "K"], "length": mm(b), "mass": mass["rod"]},
+            "upper": {"ends": ["P", "K"], "length": mm(a), "mass": mass["toggle"]},
+            "lower": {"ends": ["K", "R"], "length": mm(a), "mass": mass["toggle"]},
             "ram": {"points": {"R": [0.0, 0.0]}, "mass": mass["toggle"], "inertia": 0},
         },
         "joints": {
@@ -208,9 +281,9 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
                 "type": "process",
                 "tools": ["ram.R"],
                 "axis": 90.0,
-                "workpiece": [mm(low, 17), mm(low + width, 17)],
+                "workpiece": [mm(low), mm(low + before)],
                 "penetration": [0.0, 1.0],
-                "force": [f"{force:.17g} N", f"{force:.17g} N"],
+                "force": [newtons(force)] * 2,
             },
         },
         "drives": [{"joint": "O", "speed": speed, "direction": "cw", "angle": degrees(start)}],
@@ -220,5 +293,9 @@ def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:
         ("links", "upper", "length"): f"a = H / (2 (1 - cos psi)): stroke H = {stroke * 1e3:.6g} mm",
         ("links", "crank", "length"): f"the crank-rocker for the swing {math.degrees(psi):.6g} deg, K = {k:.6g}",
         ("loads", "pressing", "workpiece"): f"the nominal force from {before * 1e3:.6g} mm before the bottom",
+        ("links", "rod", "length"): "the crank-rocker's coupler, the same member",
+        ("links", "lower", "length"): "a, as the upper: the symmetric toggle",
+        ("frame", "points", "O"): "the crank pivot: the four-bar turned so its folded limit holds the toggle straight",
+        ("hints", "K"): "the knuckle at the top, the upper link at the swing from the vertical",
     }
     return data, comments
