@@ -168,7 +168,7 @@ def compiled_kernels(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyP
     if not jit.installed():
         pytest.skip("numba is not installed on this platform (the NumPy kernels are the only ones)")
     monkeypatch.setenv("LINKWORK_NUMBA", "1")
-    assert jit.active(), "the compiled kernels did not load"
+    assert jit.mode() == jit.ALWAYS  # each kernel with a compiled twin runs it (compiled or read from the cache)
     yield
 
 

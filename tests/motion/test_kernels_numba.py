@@ -17,6 +17,7 @@ pytestmark = pytest.mark.numba  # the compiled kernels' lane: each test runs the
 
 
 def _both(mech, angles, monkeypatch, **kw):
+    assert kernels_numba.available()  # the lane's fixture turned them on: no comparison of NumPy with itself
     compiled = lw.kinematics(mech, angles, **kw)
     with monkeypatch.context() as m:
         m.setenv("LINKWORK_NUMBA", "0")
