@@ -492,12 +492,16 @@ def _refuse_stiff(unit: _Unit, phi: float, speed: float, until: float, rtol: flo
     if need <= MAX_RUN_EVALUATIONS:
         return
     elements = [load.name for load in unit.mech.loads if load.kind in ("spring", "damper", "torsion_spring")]
-    named = f" (its force elements: {', '.join(elements)})" if elements else ""
+    if abs(speed) > rate:
+        why, other = f"the speed at the start, {abs(speed):.4g} rad/s,", "a lower speed"
+    else:
+        named = f" (its force elements: {', '.join(elements)})" if elements else ""
+        where = f"{rate:.4g} rad/s (at {turn_deg(at):.4g} deg to x)"
+        why = f"the loads{named} reduced to the crank make its fastest motion {where},"
+        other = "a softer spring or damper"
     raise LinkworkError(
-        f"a run of {until:.6g} s is past the bound on a run's work: the loads{named} reduced to the crank make its "
-        f"fastest motion {max(rate, abs(speed)):.4g} rad/s (at {turn_deg(at):.4g} deg to x), about {need:,.0f} exact "
-        f"poses to follow, more than {MAX_RUN_EVALUATIONS:,}; ask for at most "
-        f"{MAX_RUN_EVALUATIONS / per_second:.3g} s, or a softer spring or damper"
+        f"a run of {until:.6g} s is past the bound on a run's work: {why} about {need:,.0f} exact poses to follow, "
+        f"more than {MAX_RUN_EVALUATIONS:,}; ask for at most {MAX_RUN_EVALUATIONS / per_second:.3g} s, or {other}"
     )
 
 
