@@ -363,3 +363,16 @@ def test_a_run_longer_than_the_bound_is_refused():
     for until in (MAX_RUN_TIME * 1.0001, 1e9, math.inf, math.nan, 0.0, -1.0):
         with pytest.raises(lw.errors.LinkworkError, match="until: expected a run of more than 0 s and at most"):
             simulate(pendulum(), until)
+
+
+def test_a_pendulum_at_rest_hanging_down_stays_there_for_the_longest_run():
+    """At rest in its equilibrium the loads balance to rounding (4.8e-16 N m of gravity's cos(-pi/2)): the crank is
+    held, the run of MAX_RUN_TIME costs no integration; 1 nrad off it swings (at 0.1 s, 1e-9 cos(omega_n 0.1))."""
+    from linkwork.limits import MAX_RUN_TIME
+
+    held = simulate(pendulum(), MAX_RUN_TIME, angle=-math.pi / 2)
+    assert [e.kind for e in held.events] == ["held"] and held.evaluations == 0
+    assert held.events[0].describe().endswith("they balance there")
+    wn = math.sqrt((K + M * G * L) / (JC + M * L * L))
+    off = simulate(pendulum(), 0.1, angle=-math.pi / 2 + 1e-9, times=[0.1])
+    assert off.angle[0] + math.pi / 2 == pytest.approx(1e-9 * math.cos(wn * 0.1), rel=1e-6)

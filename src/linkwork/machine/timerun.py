@@ -273,6 +273,7 @@ def simulate(
         raise LinkworkError(problem)
     drive = (drive if drive is not None else mech.motor_gear) if motor else None
     unit = _Unit(mech, drive, until, progress)
+    unit.atol = atol
     phi0 = float(mech.drive_start[0]) if angle is None else float(angle)
     grid = np.linspace(0.0, until, RUN_SAMPLES) if times is None else np.asarray(times, dtype=float).ravel()
     if grid.size == 0 or grid.min() < 0 or grid.max() > until * (1 + 1e-12):
@@ -301,6 +302,7 @@ class _Unit:
         self, mech: Mechanism, drive: MotorGear | None, until: float, progress: Callable[[float], None] | None
     ) -> None:
         self.mech, self.drive, self.until, self.progress = mech, drive, until, progress
+        self.atol = 1e-10  # rad: the run's (:func:`simulate` sets it)
         self.sense = -1.0 if mech.drive_speed[0] < 0 else 1.0
         self.extra = drive.inertia if drive is not None else 0.0
         self.evaluations = 0
@@ -349,11 +351,16 @@ class _Unit:
         """Which way the crank at rest at ``phi`` moves: +1 where the moment of the motor at rest and of the loads
         moving forward turns it forward, -1 where that of moving back turns it back, 0 where neither (the loads
         that resist motion, a process load or a friction, hold it: at rest they take what the others give, up
-        to their size); with those two moments (N m)."""
-        pose = np.array([phi, phi])
+        to their size; or it is in equilibrium); with those two moments (N m).  An acceleration that would not
+        move the crank by :attr:`atol` (rad) over the whole run (``a T^2 / 2``), or that is within 1e-12 of those
+        the loads give 0.01 rad either side, is none: the rounding of a balance (a pendulum hanging down) starts
+        nothing."""
+        pose = np.array([phi, phi, phi - 0.01, phi + 0.01])
+        forward, back, *near = self.acceleration(pose, np.zeros(4), np.array([1.0, -1.0, 1.0, 1.0]))
+        least = max(2 * self.atol / self.until**2, 1e-12 * max(abs(near[0]), abs(near[1])))
         j = reduced_terms(self.mech, pose[:1], np.zeros(1), self.extra).inertia[0]
-        forward, back = self.acceleration(pose, np.zeros(2), np.array([1.0, -1.0])) * j
-        return (1 if forward > 0 else -1 if back < 0 else 0), float(forward), float(back)
+        way = 1 if forward > least else -1 if back < -least else 0
+        return way, float(forward * j), float(back * j)
 
 
 @dataclass(frozen=True)
@@ -438,8 +445,9 @@ def _held(unit: _Unit, t: float, phi: float) -> RunEvent:
     stall = float(unit.moment(np.zeros(1))[0])
     why = (
         f"with the motor's moment at rest ({stall:.6g} N m) the loads leave {forward:.6g} N m to move it forward and "
-        f"{back:.6g} N m to move it back: what resists motion (a process load, a friction) holds it"
+        f"{back:.6g} N m to move it back: "
     )
+    why += "what resists motion (a process load, a friction) holds it" if forward < 0 < back else "they balance there"
     return RunEvent("held", t, phi, detail=why)
 
 
