@@ -699,7 +699,9 @@ def option_cases() -> list[Case]:
             ("positions", "four-bar", "--count", digits),
         ]
     out += synthesis_argvs()  # every synthesize option of every kind at and past its bounds
-    return [Case(f"option {i}", argv) for i, argv in enumerate(out)]
+    import hostile_simulate  # simulate's options, requirements in files (it imports Case from here)
+
+    return [Case(f"option {i}", argv) for i, argv in enumerate(out)] + hostile_simulate.cases()
 
 
 #: Files whose read fails after they open (EIO, EINVAL), or that are no file.

@@ -189,3 +189,19 @@ def delta_problem(delta: float | None, name: str) -> str | None:
     if delta is None or (math.isfinite(delta) and MIN_DELTA <= delta < 1):
         return None
     return f"{name}: expected a coefficient of speed fluctuation from {MIN_DELTA:g} up to 1, got {shown(delta)}"
+
+
+#: Longest run in time (``linkwork simulate --until``, ``simulate: until:``), s: ten minutes of a machine's
+#: life, some hundreds of turns of a crank (a run's work grows with its length).
+MAX_RUN_TIME = 600.0
+
+#: Evaluations of the equation of motion in one run in time, each one exact pose of the mechanism (about
+#: 5 ms each with the NumPy kernels): about four minutes of work on a 2-core machine.
+MAX_RUN_EVALUATIONS = 50_000
+
+
+def run_time_problem(seconds: float, name: str) -> str | None:
+    """Why ``seconds`` is not the length of a run in time (positive, at most :data:`MAX_RUN_TIME`), or None."""
+    if math.isfinite(seconds) and 0 < seconds <= MAX_RUN_TIME:
+        return None
+    return f"{name}: expected a run of more than 0 s and at most {MAX_RUN_TIME:g} s, got {seconds:g} s"

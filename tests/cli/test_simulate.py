@@ -66,3 +66,38 @@ def test_simulate_reports_the_change_points_of_the_shears_slider_crank():
     lines = [ln.strip() for ln in printed.stdout.splitlines() if "change point" in ln]
     assert [ln.split(", at ")[1] for ln in lines] == ["180.0000 deg to x", "0.0000 deg to x"]
     assert all(ln.startswith("change point of group II(2,3) RRP at ") for ln in lines)
+
+
+def test_the_shears_started_in_the_cut_finish_and_say_they_are_held():
+    """The flagship example with its own motor from rest at its assembly angle (in the billet): the run of 100 ms
+    ends at once, at rest, saying why (it used to step on without end at the stop)."""
+    result = runner.invoke(app, ["simulate", "double-cut-shears", "--until", "100 ms", "--json"])
+    assert result.exit_code == 0, result.output
+    events = json.loads(result.stdout)["events"]
+    assert [e["kind"] for e in events] == ["held"]
+    assert "holds it" in events[0]["detail"]
+    printed = runner.invoke(app, ["simulate", "double-cut-shears", "--until", "1 ms"])
+    assert printed.exit_code == 0 and "the crank is held at rest from 0 s on" in printed.stdout
+
+
+def test_simulate_refuses_every_length_past_its_one_bound_in_one_line():
+    """``--until`` from 0 s to MAX_RUN_TIME (600 s): 1e9 s, an hour and a hundred years alike refused, with the
+    bound named, before any work; the file's ``simulate: until:`` the same."""
+    for text in ("1e9 s", "1 h", "100 years", "600.001 s", "0 s", "-1 ms"):
+        result = runner.invoke(app, ["simulate", "four-bar", "--until", text])
+        assert result.exit_code == 2, (text, result.output)
+        assert result.stderr.count("\n") == 1 and "at most 600 s" in result.stderr and "Traceback" not in result.output
+
+
+def test_the_progress_bar_shows_on_a_terminal_only(monkeypatch):
+    """With stderr a terminal (FORCE_COLOR makes rich take it for one) a run that takes longer than the bar's
+    delay draws it; piped, stderr stays empty."""
+    from linkwork.cli import simulate as command
+
+    monkeypatch.setattr(command._Bar, "AFTER", 0.0)
+    args = ["simulate", "shears-slider-crank", "--until", "50 ms", "--speed", "10 rad/s", "--no-motor"]
+    piped = runner.invoke(app, args)
+    assert piped.exit_code == 0 and piped.stderr == ""
+    monkeypatch.setenv("FORCE_COLOR", "1")
+    shown = runner.invoke(app, args)
+    assert shown.exit_code == 0 and "simulate" in shown.stderr and "of 0.05 s" in shown.stderr

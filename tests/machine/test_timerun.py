@@ -254,3 +254,125 @@ def test_a_slider_crank_without_a_change_point_reports_none():
     run = simulate(slider_crank(0.0), 0.3, angle=0.3, speed=30.0, motor=False)
     assert run.angle[-1] - run.angle[0] > 2 * math.pi
     assert not [e for e in run.events if e.kind == "change-point"]
+
+
+def braked_rotor(torque: float, friction: float = 3.0, j: float = 0.05) -> lw.Mechanism:
+    """A balanced rotor (its centre of mass on its pivot, own inertia ``j`` kg m^2, no gravity) with a Coulomb
+    friction moment ``friction`` N m in its pivot and a motor of constant ``torque`` N m."""
+    data = {
+        "name": "braked-rotor",
+        "gravity": 0,
+        "frame": {"points": {"O": [0, 0]}},
+        "links": {"rotor": {"points": {"O": [0, 0], "A": [0.1, 0]}, "mass": 1.0, "com": "O", "inertia": f"{j} kg*m^2"}},
+        "joints": {"O": {"type": "revolute", "links": ["frame", "rotor"]}},
+        "drives": [{"joint": "O", "angle": "0 deg", "speed": "30 rpm"}],
+        "loads": {"brake": {"type": "friction", "joint": "O", "moment": f"{friction} N*m"}},
+        "machine": {"motor": {"type": "constant", "torque": f"{torque} N*m"}},
+    }
+    return lw.compile(lw.from_dict(data))
+
+
+def test_a_rotor_whose_motor_is_weaker_than_its_friction_stops_where_the_energy_says_and_stays():
+    """Started at 10 rad/s with 1 N m against 3 N m of friction: it slows at (1 - 3) / J, stops at t = 10 J / 2
+    having turned 100 J / 4 rad, and stays there (moving either way the friction would take more than the motor
+    gives): a ``stop`` and a ``held`` event, the rest of the run at rest with the motor at its 1 N m."""
+    j = 0.05
+    run = simulate(braked_rotor(1.0, j=j), 1.0, speed=10.0, times=np.linspace(0, 1, 101))
+    t_stop = 10.0 * j / 2.0
+    assert [e.kind for e in run.events] == ["stop", "held"]
+    assert run.events[0].time == pytest.approx(t_stop, rel=1e-9)
+    assert run.events[0].angle == pytest.approx(100 * j / 4, rel=1e-9)
+    after = run.time > t_stop
+    np.testing.assert_array_equal(run.speed[after], 0.0)
+    np.testing.assert_array_equal(run.acceleration[after], 0.0)
+    np.testing.assert_allclose(run.angle[after], 100 * j / 4, rtol=1e-9)
+    before = run.time < t_stop
+    np.testing.assert_allclose(run.speed[before], 10.0 - 2.0 / j * run.time[before], rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(run.drive_moment, 1.0)
+    assert "leave -2 N m to move it forward and 4 N m to move it back" in run.events[1].describe()
+
+
+def test_a_rotor_held_by_its_friction_from_rest_costs_no_work_and_a_stronger_motor_starts_it():
+    """From rest, 2.9 N m against 3 N m of friction: held at once (no integration); 3.5 N m: it turns with the
+    constant acceleration (3.5 - 3) / J, phi = a t^2 / 2."""
+    held = simulate(braked_rotor(2.9), 600.0)
+    assert [e.kind for e in held.events] == ["held"] and held.evaluations == 0
+    assert "-0.1 N m to move it forward" in held.events[0].describe()
+    run = simulate(braked_rotor(3.5), 0.2, times=[0.0, 0.1, 0.2])
+    np.testing.assert_allclose(run.angle, 0.5 * (0.5 / 0.05) * np.array([0.0, 0.1, 0.2]) ** 2, rtol=1e-9, atol=1e-12)
+    assert not run.events
+
+
+def test_a_motor_pushing_back_harder_than_the_friction_turns_the_rotor_back_after_its_stop():
+    """-5 N m of motor against a rotor started forward at 4 rad/s with 3 N m of friction: forward it slows at
+    (-5 - 3) / J, stops at 4 J / 8, then turns back at (-5 + 3) / J (the friction now against the motion back)."""
+    j = 0.05
+    run = simulate(braked_rotor(-5.0, j=j), 0.1, speed=4.0, times=[0.1])
+    t1 = 4.0 * j / 8.0
+    assert [e.kind for e in run.events] == ["stop"] and run.events[0].time == pytest.approx(t1, rel=1e-9)
+    assert run.speed[0] == pytest.approx(-2.0 / j * (0.1 - t1), rel=1e-9)
+    assert run.angle[0] == pytest.approx(4.0 * t1 / 2 - 1.0 / j * (0.1 - t1) ** 2, rel=1e-9)
+
+
+def test_the_shears_started_in_the_cut_are_held_and_from_30_rpm_stop_in_it():
+    """The double-cut shears at their assembly angle stand in the billet: from rest the motor's stall moment at the
+    crank (the Kloss torque at slip 1 through the gear, far below the cut's 29 kN m) cannot start them, and from
+    30 rpm the rotor's energy is spent in the cut.  Each run of 100 ms ends (the integrator used to step on at the
+    stop with the time not advancing), held at rest to the end."""
+    shears = lw.compile("double-cut-shears")
+    drive = shears.motor_gear
+    assert drive is not None
+    motor = drive.motor
+    s, sk = 1.0, motor.critical_slip
+    stall = drive.ratio * drive.efficiency * 2 * motor.breakdown * motor.rated_torque * s * sk / (s * s + sk * sk)
+    rest = simulate(shears, 0.1)
+    assert [e.kind for e in rest.events] == ["held"] and rest.evaluations == 0
+    np.testing.assert_allclose(rest.drive_moment, stall, rtol=1e-12)
+    run = simulate(shears, 0.1, speed=math.pi)
+    assert [e.kind for e in run.events] == ["stop", "held"]
+    assert run.speed[-1] == 0.0 and 0 < run.events[0].time < 0.1
+
+
+def test_the_fastest_rate_of_a_pendulum_is_its_closed_form_natural_frequency():
+    """The pendulum with a torsion spring: small swings about hanging down at omega_n^2 = (k + m g l) / (J_C + m l^2),
+    the fastest over the turn (gravity's stiffness m g l cos is greatest hanging down)."""
+    from linkwork.machine.timerun import fastest_rate
+
+    k = 1e6
+    rate, at = fastest_rate(pendulum(k), -math.pi / 2)
+    assert rate == pytest.approx(math.sqrt((k + M * G * L) / (JC + M * L * L)), rel=1e-6)
+    assert abs(math.remainder(at + math.pi / 2, 2 * math.pi)) < 1e-12
+
+
+def test_a_run_past_the_bound_on_its_work_is_refused_before_it_starts():
+    """A 1e9 N/m spring (an allowed value) on the slider-crank swings the crank at some 3e4 rad/s: 200 ms of that
+    is refused at once, naming the spring and the longest run within the bound."""
+    import time
+
+    began = time.monotonic()
+    with pytest.raises(lw.errors.LinkworkError, match=r"past the bound on a run's work.*force elements: s\)") as info:
+        simulate(slider_crank(1e9), 0.2, angle=0.3)
+    assert time.monotonic() - began < 5
+    longest = float(str(info.value).split("ask for at most ")[1].split(" s")[0])
+    assert 0.001 < longest < 0.2
+
+
+def test_a_run_longer_than_the_bound_is_refused():
+    from linkwork.limits import MAX_RUN_TIME
+
+    for until in (MAX_RUN_TIME * 1.0001, 1e9, math.inf, math.nan, 0.0, -1.0):
+        with pytest.raises(lw.errors.LinkworkError, match="until: expected a run of more than 0 s and at most"):
+            simulate(pendulum(), until)
+
+
+def test_a_pendulum_at_rest_hanging_down_stays_there_for_the_longest_run():
+    """At rest in its equilibrium the loads balance to rounding (4.8e-16 N m of gravity's cos(-pi/2)): the crank is
+    held, the run of MAX_RUN_TIME costs no integration; 1 nrad off it swings (at 0.1 s, 1e-9 cos(omega_n 0.1))."""
+    from linkwork.limits import MAX_RUN_TIME
+
+    held = simulate(pendulum(), MAX_RUN_TIME, angle=-math.pi / 2)
+    assert [e.kind for e in held.events] == ["held"] and held.evaluations == 0
+    assert held.events[0].describe().endswith("they balance there")
+    wn = math.sqrt((K + M * G * L) / (JC + M * L * L))
+    off = simulate(pendulum(), 0.1, angle=-math.pi / 2 + 1e-9, times=[0.1])
+    assert off.angle[0] + math.pi / 2 == pytest.approx(1e-9 * math.cos(wn * 0.1), rel=1e-6)

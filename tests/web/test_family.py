@@ -171,3 +171,78 @@ def test_each_slotted_lever_member_keeps_the_stroke_and_time_ratio(tmp_path):
     for v in range(len(chosen)):
         (e,) = [x for x in extremes(kin, v) if x.name == "guide"]  # the ram along its guide
         assert e.stroke == pytest.approx(0.5, rel=1e-9) and e.time_ratio == pytest.approx(1.4, rel=1e-8)
+
+
+def test_simultaneous_first_calls_of_the_family_wait_for_one_computation(tmp_path, monkeypatch):
+    """20 requests at once on a real server, before any answer: the family is computed once (counted), every
+    answer the same, and the wall time that of about one computation (each held 0.5 s), not twenty."""
+    import http.client
+    import json
+    import threading
+    import time
+
+    from linkwork.synthesis import achieved
+    from webserver import serving
+
+    path = synthesize("slider-crank", stroke=0.4, time_ratio=1.3).write(tmp_path / "press.yaml")
+    app = create_app(lw.load(str(path)))
+    calls = []
+    real = achieved.family_members
+
+    def counted(spec):
+        calls.append(threading.get_ident())
+        time.sleep(0.5)
+        return real(spec)
+
+    monkeypatch.setattr(achieved, "family_members", counted)
+    answers: list[tuple[int, str]] = []
+    with serving(app) as (host, port):
+
+        def ask() -> None:
+            conn = http.client.HTTPConnection(host, port, timeout=60)
+            conn.request("GET", "/api/family")
+            r = conn.getresponse()
+            answers.append((r.status, r.read().decode()))
+            conn.close()
+
+        threads = [threading.Thread(target=ask) for _ in range(20)]
+        began = time.monotonic()
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join(60)
+        took = time.monotonic() - began
+    assert len(calls) == 1
+    assert len(answers) == 20 and {status for status, _ in answers} == {200}
+    assert len({text for _, text in answers}) == 1 and json.loads(answers[0][1])["overrides"]
+    assert took < 5.0
+
+
+def test_a_failed_family_is_not_kept_and_every_waiter_hears_of_it():
+    """The once-per-key cache: a computation that raises raises for the callers waiting on it and is tried again
+    by the next call."""
+    import threading
+    import time
+
+    from linkwork.web.session import _Cache
+
+    cache, tries, errors = _Cache(1), [], []
+
+    def failing():
+        tries.append(1)
+        time.sleep(0.2)
+        raise lw.errors.LinkworkError("no family")
+
+    def ask():
+        try:
+            cache.once("k", failing)
+        except lw.errors.LinkworkError as exc:
+            errors.append(str(exc))
+
+    threads = [threading.Thread(target=ask) for _ in range(5)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(10)
+    assert len(tries) == 1 and errors == ["no family"] * 5
+    assert cache.once("k", lambda: 42) == 42 and cache.once("k", failing) == 42

@@ -18,9 +18,15 @@ def _quantity(text: str | None, kind: str, option: str, example: str) -> float |
     machine's size; exit code 2 with one line otherwise."""
     if text is None:
         return None
+    from linkwork.limits import MAX_MAGNITUDE, angle_problem
+
     value = quantity_option(text, kind, option, example)
-    if not math.isfinite(value) or abs(value) > 1e9:
-        fail(LinkworkError(f'{option}: expected a finite value of a machine\'s size, got "{text}"'))
+    problem = angle_problem(math.degrees(value), option) if kind == "angle" else None
+    if problem:
+        fail(LinkworkError(problem))
+    if not math.isfinite(value) or abs(value) > MAX_MAGNITUDE:
+        size = f"a finite value of a machine's size (at most {MAX_MAGNITUDE:g} in SI)"
+        fail(LinkworkError(f'{option}: expected {size}, got "{text}"'))
     return value
 
 
@@ -46,25 +52,35 @@ def simulate(
     import numpy as np
 
     from linkwork.io.run_tables import csv_text, to_json
+    from linkwork.limits import run_time_problem
     from linkwork.machine.timerun import simulate as run
 
-    length = _quantity(until, "time", "--until", "30 ms")
-    assert length is not None
-    if not length > 0:
-        fail(LinkworkError(f'--until: expected a positive time, got "{until}"'))
+    length = quantity_option(until, "time", "--until", "30 ms")
+    problem = run_time_problem(length, "--until")
+    if problem:
+        fail(LinkworkError(problem))
     start = _quantity(angle, "angle", "--angle", "30 deg")
     rate = _quantity(speed, "angular_speed", "--speed", "50 rpm")
     if not 2 <= samples <= 100_000:
         fail(LinkworkError(f"--samples: expected 2 to 100000, got {samples}"))
     files = out_files(out, ("simulate.csv", "simulate.json")) if out is not None else []
     mech = compile_or_exit(file_or_example)
+    bar = _Bar(length)
     try:
         result = run(
-            mech, length, angle=start, speed=rate or 0.0, times=np.linspace(0, length, samples), motor=not no_motor
+            mech,
+            length,
+            angle=start,
+            speed=rate or 0.0,
+            times=np.linspace(0, length, samples),
+            motor=not no_motor,
+            progress=bar.show,
         )
         data = to_json(result)
     except LinkworkError as exc:
+        bar.close()
         fail(exc)
+    bar.close()
     paths = _write(out, files, data, csv_text(result)) if out is not None else []
     if as_json:
         echo_json(data)
@@ -94,3 +110,46 @@ def _write(out: str, files: list[Path], data: dict[str, Any], csv: str) -> list[
         ]
     except OSError as exc:
         fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
+
+
+class _Bar:
+    """A progress bar of the simulated time on stderr where stderr is a terminal (rich), shown once the run has
+    taken :data:`AFTER` seconds; nothing where stderr goes to a file or a program."""
+
+    #: Seconds of work before the bar shows: a short run prints nothing more.
+    AFTER = 1.0
+
+    def __init__(self, until: float) -> None:
+        import time
+
+        from linkwork.cli.terminal import console
+
+        self.until, self.begun = until, time.monotonic()
+        self.bar: Any = None
+        self.console = console(stderr=True)
+        self.task: Any = None
+
+    def show(self, t: float) -> None:
+        """The run has reached ``t`` (s)."""
+        import time
+
+        if self.bar is None:
+            if not self.console.is_terminal or time.monotonic() - self.begun < self.AFTER:
+                return
+            from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+            self.bar = Progress(
+                TextColumn("simulate"),
+                BarColumn(),
+                TextColumn("{task.completed:.4g} of {task.total:.4g} s"),
+                TimeRemainingColumn(),
+                console=self.console,
+                transient=True,
+            )
+            self.bar.start()
+            self.task = self.bar.add_task("simulate", total=self.until)
+        self.bar.update(self.task, completed=t)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()

@@ -16,6 +16,27 @@ crank may slow down, stop and turn back; its stops are events.  The samples aske
 solver's dense output, and their kinematics and loads from the true state (speed and angular
 acceleration of the run, not a steady speed).
 
+What happens at a stop.  The loads that resist motion, a Coulomb friction and a process load while its
+tools close on the workpiece, change with the sense of the speed: ``Q(phi, 0+) = Q0 + R+`` and
+``Q(phi, 0-) = Q0 + R-`` with ``R+ <= 0 <= R-`` (``Q0`` gravity, springs and the position's loads).  At rest
+they are reactions that take what the rest gives, up to their size (static friction, a knife standing in the
+billet).  So with ``M0 = M_d(0)`` the motor's stall moment, a crank at rest at ``phi``
+
+- moves forward where ``Q0 + R+ + M0 > 0`` (the drive overcomes the resistance of moving forward),
+- moves back where ``Q0 + R- + M0 < 0``,
+- and otherwise stays at rest: ``phi'' = 0`` is the only motion the loads allow (a speed of either sign would
+  be braked at once).  Nothing in the equation depends on time, so it stays at rest to the end of the run
+  (the ``held`` event), the motor stalled at ``M0``.  The double-cut shears started in the cut from rest is
+  such a case: 995 N m at the crank from the motor at rest against 29,000 N m of the cut.
+
+Each stretch between stops is integrated with the loads of its own sense of motion (their limit at rest
+from that side where the integrator's trial speed passes zero), up to the next stop as a terminal event.
+
+The run is bounded (:mod:`linkwork.limits`): its length by ``MAX_RUN_TIME``, its work by
+``MAX_RUN_EVALUATIONS`` exact poses, counted as it goes and estimated before it starts from the fastest rate of
+the loads (:func:`fastest_rate`: a stiff spring or damper makes the crank's motion fast, and an explicit
+integrator follows it); a run that would pass the bound is refused with that reason before the work.
+
 A change point reached on the way (a dyad whose normalised Jacobian determinant, the sine of its
 transmission angle, comes to zero: its two assembly modes meet there) is an event too: found among the
 solver's steps and their midpoints as a dip of the determinant, and refined on the dense output to where it
@@ -25,7 +46,8 @@ is least; reported where that least value is within :data:`~linkwork.motion.kern
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -48,18 +70,22 @@ RUN_SAMPLES = 201
 @dataclass(frozen=True)
 class RunEvent:
     """Something that happened in a run, at ``time`` (s) and drive angle ``angle`` (rad): ``kind`` ``stop``
-    (the crank's speed passes zero: it stops and turns back, or stays) or ``change-point`` (the dyad
-    ``group``, e.g. ``II(2,3) RRP``, on a singular position: its two assembly modes meet)."""
+    (the crank's speed passes zero: it stops and turns back, or goes on the same way), ``held`` (at rest, the
+    crank stays there to the end of the run: ``detail`` says why) or ``change-point`` (the dyad ``group``, e.g.
+    ``II(2,3) RRP``, on a singular position: its two assembly modes meet)."""
 
     kind: str
     time: float
     angle: float
     group: str = ""
+    detail: str = ""
 
     def as_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"kind": self.kind, "time_s": self.time, "angle_deg": math.degrees(self.angle)}
         if self.group:
             out["group"] = self.group
+        if self.detail:
+            out["detail"] = self.detail
         return out
 
     def describe(self) -> str:
@@ -67,6 +93,9 @@ class RunEvent:
         where = f"at {self.time:.6g} s, at {turn_deg(self.angle, 4):.4f} deg to x"
         if self.kind == "stop":
             return f"the crank stops {where}"
+        if self.kind == "held":
+            at = f"{turn_deg(self.angle, 4):.4f} deg to x"
+            return f"the crank is held at rest from {self.time:.6g} s on, at {at}: {self.detail}"
         return f"change point of group {self.group} {where}"
 
 
@@ -142,15 +171,29 @@ def reduced_terms(mech: Mechanism, phi: np.ndarray, omega: np.ndarray, extra_ine
         Where a pose does not assemble, or a load has no value there (a spring whose points meet).
     """
     k = len(phi)
-    angles = np.concatenate([phi, phi])[:, None]
-    speeds = np.concatenate([np.ones(k), omega])[:, None]
-    kin = kinematics_at(mech, angles, speeds, np.zeros((2 * k, 1)))
+    kin = _both(mech, phi, omega)
     if not kin.valid_all.all():
         bad = float(phi[np.flatnonzero(~kin.valid_all[0, :k] | ~kin.valid_all[0, k:])[0]])
         raise LinkworkError(
             f"the run reaches a pose where the mechanism does not assemble: crank at "
             f"{turn_deg(bad):.6g} deg to x (a dead point, or past the end of its travel)"
         )
+    terms = _terms(kin, k, extra_inertia)
+    if not np.isfinite(terms.load).all():
+        _no_value(kin, phi, k)
+    return terms
+
+
+def _both(mech: Mechanism, phi: np.ndarray, omega: np.ndarray) -> Kinematics:
+    """The poses ``phi`` ``(K,)`` at unit speed, then at the speeds ``omega``: ``2K`` samples at rest's acceleration."""
+    k = len(phi)
+    angles = np.concatenate([phi, phi])[:, None]
+    speeds = np.concatenate([np.ones(k), omega])[:, None]
+    return kinematics_at(mech, angles, speeds, np.zeros((2 * k, 1)))
+
+
+def _terms(kin: Kinematics, k: int, extra_inertia: float) -> _Terms:
+    """:func:`reduced_terms` of the ``2K`` samples of :func:`_both` (NaN where a pose does not assemble)."""
     loads = inertia_and_gravity(kin)
     ms = kin.mass_properties
     m, j = ms.mass[0], ms.inertia[0]
@@ -159,8 +202,6 @@ def reduced_terms(mech: Mechanism, phi: np.ndarray, omega: np.ndarray, extra_ine
     inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1) + extra_inertia
     slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
     load = np.sum(loads.applied[0, k:] * kin.vel[0, :k], axis=(-1, -2))
-    if not np.isfinite(load).all():
-        _no_value(kin, phi, k)
     return _Terms(inertia, slope, load)
 
 
@@ -191,6 +232,7 @@ def simulate(
     motor: bool = True,
     rtol: float = 1e-10,
     atol: float = 1e-10,
+    progress: Callable[[float], None] | None = None,
 ) -> Run:
     """Run the machine unit from the state ``(angle, speed)`` for ``until`` seconds.
 
@@ -199,7 +241,7 @@ def simulate(
     mech : Mechanism
         One crank (a revolute drive); ``linkwork.simulate`` also takes a path, an example name or a Spec.
     until : float
-        Length of the run, s.
+        Length of the run, s, at most :data:`~linkwork.limits.MAX_RUN_TIME`.
     angle : float, optional
         The crank's drive angle at the start, rad (the file's convention: counter-clockwise from +x);
         default its assembly angle.
@@ -212,61 +254,277 @@ def simulate(
         under the loads and springs).
     rtol, atol : float
         The integrator's tolerances (``atol`` in rad and rad/s).
+    progress : callable, optional
+        Called with the time (s) the run has reached as it goes, for a progress bar.
+
+    Raises
+    ------
+    LinkworkError
+        For a run past the bounds of :mod:`linkwork.limits`: its length; its work, estimated from the loads'
+        stiffness before it starts (:func:`fastest_rate`) and counted as it goes.  Where the run reaches a pose
+        that does not assemble.
     """
-    from scipy.integrate import solve_ivp
+    from linkwork.limits import run_time_problem
 
     if not one_crank(mech):
         raise LinkworkError("a run in time needs one crank (a revolute drive)")
-    if not (math.isfinite(until) and until > 0):
-        raise LinkworkError(f"until: expected a positive time, got {until!r} s")
+    problem = run_time_problem(until, "until")
+    if problem:
+        raise LinkworkError(problem)
     drive = (drive if drive is not None else mech.motor_gear) if motor else None
-    sense = -1.0 if mech.drive_speed[0] < 0 else 1.0
-    extra = drive.inertia if drive is not None else 0.0
-
-    def moment(omega: np.ndarray) -> np.ndarray:
-        if drive is None:
-            return np.zeros_like(omega)
-        return sense * np.asarray(drive.moment(sense * omega), dtype=float)
-
-    def rhs(_t: float, y: np.ndarray) -> list[float]:
-        terms = reduced_terms(mech, y[:1], y[1:], extra)
-        if not terms.inertia[0] > 0:
-            raise LinkworkError(
-                f"the crank carries no inertia at {turn_deg(float(y[0])):.6g} deg to x: give the links' masses "
-                "(and moments of inertia) for a run in time"
-            )
-        eps = (terms.load[0] + float(moment(y[1:])[0]) - 0.5 * terms.slope[0] * y[1] ** 2) / terms.inertia[0]
-        return [float(y[1]), float(eps)]
-
-    def stopped(_t: float, y: np.ndarray) -> float:
-        return float(y[1])
-
+    unit = _Unit(mech, drive, until, progress)
+    unit.atol = atol
     phi0 = float(mech.drive_start[0]) if angle is None else float(angle)
     grid = np.linspace(0.0, until, RUN_SAMPLES) if times is None else np.asarray(times, dtype=float).ravel()
     if grid.size == 0 or grid.min() < 0 or grid.max() > until * (1 + 1e-12):
         raise LinkworkError(f"times: expected times within [0, {until:g}] s")
-    sol = solve_ivp(
-        rhs,
-        (0.0, until),
-        [phi0, float(speed)],
-        method="DOP853",
-        rtol=rtol,
-        atol=atol,
-        events=stopped,
-        dense_output=True,
-    )
-    if sol.status < 0:
-        raise LinkworkError(f"the run in time failed at {float(sol.t[-1]):.6g} s: {sol.message}")
-    y = sol.sol(grid)
-    y[:, grid == until] = sol.y[:, -1:]  # the end from the solver's last step, not the interpolant
-    terms = reduced_terms(mech, y[0], y[1], extra)
-    md = moment(y[1])
-    eps = (terms.load + md - 0.5 * terms.slope * y[1] ** 2) / terms.inertia
+    if speed or unit.at_rest(phi0)[0]:  # a crank held at rest from the start costs nothing
+        _refuse_stiff(unit, phi0, float(speed), until, rtol)
+    pieces, stops = _integrate(unit, phi0, float(speed), rtol, atol)
+    y, eps, md = _samples(unit, pieces, grid)
     kin = kinematics_at(mech, y[0][:, None], y[1][:, None], eps[:, None])
-    starts = [float(t) for t in sol.t_events[0] if t > 0]
-    stops = [RunEvent("stop", t, float(sol.sol(t)[0])) for t in starts]
-    events = tuple(sorted(stops + _change_points(mech, sol.t, sol.sol), key=lambda e: e.time))
-    return Run(grid, y[0], y[1], eps, kin, events, md, rtol, atol, int(sol.nfev))
+    steps = np.unique(np.concatenate([p.steps for p in pieces]))
+    events = tuple(sorted(stops + _change_points(mech, steps, _Dense(pieces)), key=lambda e: e.time))
+    return Run(grid, y[0], y[1], eps, kin, events, md, rtol, atol, unit.evaluations)
+
+
+#: Speed (rad/s) at which the loads of one direction of motion are taken at rest: their limit as the speed goes
+#: to zero from that side (the sense of a friction, whether a process load's tools close), a damper's share
+#: 1e-150 of its coefficient.
+CREEP = 1e-150
+
+
+class _Unit:
+    """The machine unit's equation of motion ``J phi'' + J' phi'^2 / 2 = Q(phi, phi') + M_d(phi')`` with the loads
+    of one direction of motion at a time, and the work it has done (the evaluations, each one exact pose)."""
+
+    def __init__(
+        self, mech: Mechanism, drive: MotorGear | None, until: float, progress: Callable[[float], None] | None
+    ) -> None:
+        self.mech, self.drive, self.until, self.progress = mech, drive, until, progress
+        self.atol = 1e-10  # rad: the run's (:func:`simulate` sets it)
+        self.sense = -1.0 if mech.drive_speed[0] < 0 else 1.0
+        self.extra = drive.inertia if drive is not None else 0.0
+        self.evaluations = 0
+        self.shown = 0.0
+
+    def moment(self, omega: np.ndarray) -> np.ndarray:
+        """The motor's moment on the crank (N m) at the speeds ``omega`` (rad/s), zero without one."""
+        if self.drive is None:
+            return np.zeros_like(omega)
+        return self.sense * np.asarray(self.drive.moment(self.sense * omega), dtype=float)
+
+    def acceleration(self, phi: np.ndarray, omega: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        """``phi''`` (rad/s^2) at the states ``(phi, omega)`` ``(K,)`` moving in ``direction`` (+1 or -1): the loads
+        at the speed itself where it goes that way, else at their limit at rest from that side (:data:`CREEP`)."""
+        terms = reduced_terms(self.mech, phi, np.where(direction * omega > 0, omega, direction * CREEP), self.extra)
+        if not (terms.inertia > 0).all():
+            where = turn_deg(float(phi[np.flatnonzero(~(terms.inertia > 0))[0]]))
+            raise LinkworkError(
+                f"the crank carries no inertia at {where:.6g} deg to x: give the links' masses "
+                "(and moments of inertia) for a run in time"
+            )
+        return (terms.load + self.moment(omega) - 0.5 * terms.slope * omega**2) / terms.inertia
+
+    def rhs(self, direction: int) -> Callable[[float, np.ndarray], list[float]]:
+        """The right-hand side of ``(phi, omega)`` moving in ``direction``, counting its work against
+        :data:`~linkwork.limits.MAX_RUN_EVALUATIONS`."""
+        from linkwork.limits import MAX_RUN_EVALUATIONS
+
+        way = np.array([float(direction)])
+
+        def f(t: float, y: np.ndarray) -> list[float]:
+            self.evaluations += 1
+            if self.evaluations > MAX_RUN_EVALUATIONS:
+                raise LinkworkError(
+                    f"the run in time stops at {t:.6g} s of {self.until:.6g} s: it has taken {MAX_RUN_EVALUATIONS:,} "
+                    "exact poses, the bound on a run's work; ask for a shorter run"
+                )
+            if self.progress is not None and t > self.shown + 0.002 * self.until:
+                self.shown = t
+                self.progress(t)
+            return [float(y[1]), float(self.acceleration(y[:1], y[1:], way)[0])]
+
+        return f
+
+    def at_rest(self, phi: float) -> tuple[int, float, float]:
+        """Which way the crank at rest at ``phi`` moves: +1 where the moment of the motor at rest and of the loads
+        moving forward turns it forward, -1 where that of moving back turns it back, 0 where neither (the loads
+        that resist motion, a process load or a friction, hold it: at rest they take what the others give, up
+        to their size; or it is in equilibrium); with those two moments (N m).  An acceleration that would not
+        move the crank by :attr:`atol` (rad) over the whole run (``a T^2 / 2``), or that is within 1e-12 of those
+        the loads give 0.01 rad either side, is none: the rounding of a balance (a pendulum hanging down) starts
+        nothing."""
+        pose = np.array([phi, phi, phi - 0.01, phi + 0.01])
+        forward, back, *near = self.acceleration(pose, np.zeros(4), np.array([1.0, -1.0, 1.0, 1.0]))
+        least = max(2 * self.atol / self.until**2, 1e-12 * max(abs(near[0]), abs(near[1])))
+        j = reduced_terms(self.mech, pose[:1], np.zeros(1), self.extra).inertia[0]
+        way = 1 if forward > least else -1 if back < -least else 0
+        return way, float(forward * j), float(back * j)
+
+
+@dataclass(frozen=True)
+class _Piece:
+    """A stretch of the run from ``start`` to ``end`` (s): moving in ``direction`` (+1, -1) by the solver's dense
+    output ``dense`` with its ``steps`` (s) and its last state ``final`` from its last step; or held at rest
+    (``direction`` 0) at the angle ``final[0]``."""
+
+    start: float
+    end: float
+    direction: int
+    final: np.ndarray
+    dense: Any = None
+    steps: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def state(self, t: np.ndarray) -> np.ndarray:
+        """``(phi, omega)`` ``(2, K)`` at the times ``t`` ``(K,)`` within the piece, its end from the solver's step."""
+        if self.dense is None:
+            return np.stack([np.full(len(t), self.final[0]), np.zeros(len(t))])
+        y = np.asarray(self.dense(t), dtype=float).reshape(2, -1)
+        y[:, t >= self.end] = self.final[:, None]
+        return y
+
+
+class _Dense:
+    """The state of a run of several pieces at any time (``(2,)`` for a scalar, ``(2, K)`` for ``K`` times)."""
+
+    def __init__(self, pieces: list[_Piece]) -> None:
+        self.pieces = pieces
+        self.starts = np.array([p.start for p in pieces])
+
+    def __call__(self, t: Any) -> np.ndarray:
+        times = np.atleast_1d(np.asarray(t, dtype=float))
+        which = np.clip(np.searchsorted(self.starts, times, side="right") - 1, 0, len(self.pieces) - 1)
+        out = np.empty((2, len(times)))
+        for i in np.unique(which):
+            sel = which == i
+            out[:, sel] = self.pieces[i].state(times[sel])
+        return out[:, 0] if np.ndim(t) == 0 else out
+
+
+def _integrate(unit: _Unit, phi: float, omega: float, rtol: float, atol: float) -> tuple[list[_Piece], list[RunEvent]]:
+    """The run as pieces between the crank's stops, and the stops.
+
+    The loads that resist motion (a friction, a process load while its tools close) change with the sense of the
+    speed, so the equation has no solution through a stop as one smooth right-hand side (an integrator steps on
+    there with shrinking steps and the time does not advance).  So each piece moves one way, with the loads of
+    that way, up to the next stop (a terminal event); at a stop :meth:`_Unit.at_rest` says which way the next goes,
+    or that the crank stays at rest for the rest of the run: nothing in the equation depends on time, so a crank
+    held at rest once is held to the end (an ``held`` event saying by how much the drive falls short)."""
+    from scipy.integrate import solve_ivp
+
+    from linkwork.machine.simulation import IntegrationEvent
+
+    pieces: list[_Piece] = []
+    stops: list[RunEvent] = []
+    t = 0.0
+    while t < unit.until:
+        direction = (1 if omega > 0 else -1) if omega != 0 else unit.at_rest(phi)[0]
+        if direction == 0:
+            pieces.append(_Piece(t, unit.until, 0, np.array([phi, 0.0]), steps=np.array([t])))
+            stops.append(_held(unit, t, phi))
+            break
+        stop = IntegrationEvent("stop", lambda _t, y: float(y[1]), -direction)
+        sol = solve_ivp(
+            unit.rhs(direction), (t, unit.until), [phi, omega], method="DOP853", rtol=rtol, atol=atol, events=stop,
+            dense_output=True,
+        )  # fmt: skip
+        if sol.status < 0:
+            raise LinkworkError(f"the run in time failed at {float(sol.t[-1]):.6g} s: {sol.message}")
+        pieces.append(_Piece(t, float(sol.t[-1]), direction, sol.y[:, -1].copy(), sol.sol, sol.t))
+        if sol.status != 1:
+            break
+        t, phi, omega = float(sol.t[-1]), float(sol.y[0, -1]), 0.0
+        stops.append(RunEvent("stop", t, phi))
+    return pieces, stops
+
+
+def _held(unit: _Unit, t: float, phi: float) -> RunEvent:
+    """The event of a crank held at rest from ``t`` at ``phi``, saying the moments that fall short."""
+    _, forward, back = unit.at_rest(phi)
+    stall = float(unit.moment(np.zeros(1))[0])
+    why = (
+        f"with the motor's moment at rest ({stall:.6g} N m) the loads leave {forward:.6g} N m to move it forward and "
+        f"{back:.6g} N m to move it back: "
+    )
+    why += "what resists motion (a process load, a friction) holds it" if forward < 0 < back else "they balance there"
+    return RunEvent("held", t, phi, detail=why)
+
+
+#: Evaluations of the equation of motion per radian of phase of the run's fastest motion at ``rtol`` 1e-10 (DOP853:
+#: measured 55 to 63 on a pendulum's swings and on a slider-crank's against springs of 4e3 to 1e6 N/m; they grow
+#: as ``rtol ** (-1 / 8)``, the order of the method).
+PER_RADIAN = 60.0
+
+
+def fastest_rate(mech: Mechanism, phi: float, extra_inertia: float = 0.0) -> tuple[float, float]:
+    """The fastest rate (1/s) of small motions of the machine unit over a turn of the crank from ``phi`` (rad), and
+    the drive angle (rad) where it is: ``sqrt(|k| / J)`` with ``k = -dQ/dphi`` the stiffness of the loads at rest
+    reduced to the crank (N m/rad: springs, gravity, the position's loads; not a process load nor a friction, which
+    only take energy), and ``c / J`` with ``c = -dQ/domega`` the dampers' (N m s/rad); poses that do not assemble
+    are left out."""
+    n = 72
+    phis = phi + np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    h = 1e-5
+    angles = np.concatenate([phis - h, phis + h, phis, phis])
+    speeds = np.repeat([0.0, 0.0, 1.0, 2.0], n)  # the stiffness at rest: a resistance to motion springs nothing back
+    kin = _both(mech, angles, speeds)
+    with np.errstate(all="ignore"):
+        terms = _terms(kin, 4 * n, extra_inertia)
+        q = terms.load.reshape(4, n)
+        j = terms.inertia.reshape(4, n)[2]
+        k = -(q[1] - q[0]) / (2 * h)
+        c = -(q[3] - q[2])
+        rate = np.maximum(np.sqrt(np.abs(k) / j), np.abs(c) / j)
+    ok = kin.valid_all[0, : 4 * n].reshape(4, n).all(0) & kin.valid_all[0, 4 * n :].reshape(4, n).all(0)
+    ok &= np.isfinite(rate) & (j > 0)
+    if not ok.any():
+        return 0.0, phi
+    i = int(np.argmax(np.where(ok, rate, -1.0)))
+    return float(rate[i]), float(phis[i])
+
+
+def _refuse_stiff(unit: _Unit, phi: float, speed: float, until: float, rtol: float) -> None:
+    """Refuse, before the work, a run whose fastest motion (:func:`fastest_rate`, or the speed at the start) would
+    take more than :data:`~linkwork.limits.MAX_RUN_EVALUATIONS` exact poses to follow for ``until`` s.
+
+    A stiff spring is no stiff equation here: the crank's one degree of freedom is what it moves, so its fast
+    motion is the run itself, and an implicit (stiff) method would have to follow it to the tolerances just the
+    same, or damp it away, which would be wrong.  So such a run is refused, naming the bound and the longest run
+    within it."""
+    from linkwork.limits import MAX_RUN_EVALUATIONS
+
+    rate, at = fastest_rate(unit.mech, phi, unit.extra)
+    per_second = max(rate, abs(speed)) * PER_RADIAN * (1e-10 / min(rtol, 1e-10)) ** 0.125
+    need = until * per_second
+    if need <= MAX_RUN_EVALUATIONS:
+        return
+    elements = [load.name for load in unit.mech.loads if load.kind in ("spring", "damper", "torsion_spring")]
+    if abs(speed) > rate:
+        why, other = f"the speed at the start, {abs(speed):.4g} rad/s,", "a lower speed"
+    else:
+        named = f" (its force elements: {', '.join(elements)})" if elements else ""
+        where = f"{rate:.4g} rad/s (at {turn_deg(at):.4g} deg to x)"
+        why = f"the loads{named} reduced to the crank make its fastest motion {where},"
+        other = "a softer spring or damper"
+    raise LinkworkError(
+        f"a run of {until:.6g} s is past the bound on a run's work: {why} about {need:,.0f} exact poses to follow, "
+        f"more than {MAX_RUN_EVALUATIONS:,}; ask for at most {MAX_RUN_EVALUATIONS / per_second:.3g} s, or {other}"
+    )
+
+
+def _samples(unit: _Unit, pieces: list[_Piece], grid: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The state ``(2, K)``, the angular acceleration ``(K,)`` (rad/s^2; zero where held) and the motor's moment
+    ``(K,)`` (N m) at the times ``grid``; a sample at a stop belongs to the piece after it."""
+    y = _Dense(pieces)(grid)
+    way = np.array([p.direction for p in pieces], dtype=float)[
+        np.clip(np.searchsorted([p.start for p in pieces], grid, side="right") - 1, 0, len(pieces) - 1)
+    ]
+    eps = np.zeros(len(grid))
+    moving = way != 0
+    if moving.any():
+        eps[moving] = unit.acceleration(y[0, moving], y[1, moving], way[moving])
+    return y, eps, unit.moment(y[1])
 
 
 #: A dip of a dyad's determinant among the solver's steps below this is refined (:func:`_change_points`).

@@ -17,6 +17,7 @@ from typing import Any
 
 from linkwork.errors import Problem, UnitParseError
 from linkwork.limits import MAX_MAGNITUDE, MAX_NAME, quote, shown
+from linkwork.spec.requirements import check_requirements
 from linkwork.spec.schema import direction_word
 from linkwork.spec.yamlsource import Path, Source
 from linkwork.units import KINDS, parse_quantity
@@ -124,6 +125,7 @@ def _check(src: Source, declared: dict[str, str]) -> list[Problem]:
     _check_loads(bad, data, points)
     _check_machine(bad, data)
     _check_impact(bad, data, points)
+    check_requirements(bad, data)
     return out
 
 

@@ -27,7 +27,7 @@ from pydantic import (
 from pydantic_core import PydanticCustomError
 
 from linkwork.errors import UnitParseError
-from linkwork.limits import MAX_GEAR_RATIO, MAX_MAGNITUDE, MIN_DELTA, echo
+from linkwork.limits import MAX_GEAR_RATIO, MAX_MAGNITUDE, MAX_RUN_TIME, MIN_DELTA, echo
 from linkwork.units import DEFAULT_UNITS, KINDS, MADE_OF, parse_quantity
 
 
@@ -457,7 +457,7 @@ class TimeRun(_Strict):
     ``angle`` (to the x axis; default the assembly angle) at the speed ``speed`` (counter-clockwise positive;
     default at rest); ``motor: false`` leaves the file's motor out."""
 
-    until: PositiveTime = Field(description="length of the run")
+    until: PositiveTime = Field(le=MAX_RUN_TIME, description=f"length of the run, at most {MAX_RUN_TIME:g} s")
     angle: Angle | None = Field(None, description="the crank's angle to the x axis at the start")
     speed: AngularSpeed | None = Field(None, description="the crank's speed at the start, counter-clockwise +")
     motor: bool = Field(True, description="with the machine's motor (false: free motion)")

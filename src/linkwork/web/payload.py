@@ -600,8 +600,26 @@ def _structure(mech: Mechanism) -> dict[str, Any]:
     return out
 
 
+#: Largest crank step (rad) of :func:`way`.
+WAY_STEP = math.radians(1.0)
+
+
+def way(mech: Mechanism, angle: float) -> np.ndarray:
+    """The crank angles (rad) from the assembly pose to ``angle`` as the viewer's cycle (a turn from position 0 in
+    the drive's direction, :func:`linkwork.web.cycle.turn`) reaches it from there: forward where it lies later in
+    that turn, back where earlier, in steps of at most :data:`WAY_STEP`; the last is ``angle`` (to whole turns)."""
+    from linkwork.motion.analysis import zero_angle
+    from linkwork.motion.kinematic_analysis import direction
+
+    sense, zero, start = direction(mech), zero_angle(mech), float(mech.drive_start[0])
+    u0, u = (((a - zero) * sense) % (2 * math.pi) for a in (start, angle))
+    return start + sense * np.linspace(0.0, u - u0, max(3, math.ceil(abs(u - u0) / WAY_STEP) + 1))
+
+
 def pose_payload(mech: Mechanism, angle_deg: float, overrides: dict[str, float] | None = None) -> dict[str, Any]:
-    """Positions of every point at one crank angle, solved on its own: ``{name: [x, y]}`` in m.
+    """Positions of every point at one crank angle: ``{name: [x, y]}`` in m, in the assembly mode the cycle has
+    there (solved along :func:`way`: past a change point, where the motion goes on in the other mode, as the cycle
+    and ``linkwork kinematics`` show it, not in the file's mode as a pose solved on its own would be).
 
     ``overrides`` (SI, checked) make it a variant, as for the cycle.  ``angle_deg`` (degrees) is echoed as
     given; the frame's points are given where the mechanism does not assemble, as in the cycle.
@@ -613,17 +631,16 @@ def pose_payload(mech: Mechanism, angle_deg: float, overrides: dict[str, float] 
         would not compile): the compiler's message.
     """
     variants = {name: [value] for name, value in (overrides or {}).items()} or None
-    angles = np.array([float(mech.drive_start[0]), math.radians(angle_deg)])
-    kin = kinematics(mech, angles, variants=variants)
+    kin = kinematics(mech, way(mech, math.radians(angle_deg)), variants=variants)
     if variants and not kin.valid_all[0, 0]:
         message = compile_message(mech, dict(overrides or {}))
         raise UnassemblableError(message or "the mechanism does not assemble at the drive angle of its assembly pose")
     pts = kin.points()
-    pts = np.array(pts[0] if kin.variants else pts)[1]
+    pts = np.array(pts[0] if kin.variants else pts)[-1]
     frame = np.asarray(mech.point_link) == 0
     pts[frame] = kin.local[frame, :, 0, 0]
     return {
         "angle_deg": angle_deg,
-        "valid": bool(kin.valid_all[0, 1]),
+        "valid": bool(kin.valid_all[0, -1]),
         "points": {name: _json(pts[p]) for p, name in enumerate(mech.point_names)},
     }

@@ -392,9 +392,7 @@ def _api(app: FastAPI, viewer: Viewer) -> None:
     @app.get("/api/family")
     def family() -> Response:
         """The family the file's requirements leave (a synthesised slider-crank), as edits; none otherwise."""
-        from linkwork.synthesis.achieved import family_members
-
-        return _json(family_members(viewer.spec) or {"overrides": []})
+        return _json(viewer.family())
 
     @app.post("/api/solve")
     async def solve(request: Request) -> Response:

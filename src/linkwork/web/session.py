@@ -18,6 +18,7 @@ import re
 import threading
 import unicodedata
 from collections import OrderedDict
+from collections.abc import Callable
 from importlib import resources
 from typing import TYPE_CHECKING, Any
 
@@ -63,6 +64,7 @@ class _Cache:
         self._items: OrderedDict[Any, Any] = OrderedDict()
         self._size = size
         self._lock = threading.Lock()
+        self._pending: dict[Any, Any] = {}  # the computations under way (:meth:`once`), by key
 
     def get(self, key: Any) -> Any:
         with self._lock:
@@ -76,6 +78,36 @@ class _Cache:
             self._items.move_to_end(key)
             while len(self._items) > self._size:
                 self._items.popitem(last=False)
+
+    def once(self, key: Any, compute: Callable[[], Any]) -> Any:
+        """The value of ``key``, computed by ``compute()`` where it is not kept: the first call computes it and
+        calls for the same key meanwhile wait for that one computation (a failure is theirs too, and not kept)."""
+        from concurrent.futures import Future
+
+        with self._lock:
+            if key in self._items:
+                self._items.move_to_end(key)
+                return self._items[key]
+            pending = self._pending.get(key)
+            if pending is None:
+                pending = self._pending[key] = Future()
+                mine = True
+            else:
+                mine = False
+        if not mine:
+            return pending.result()
+        try:
+            value = compute()
+        except BaseException as exc:
+            pending.set_exception(exc)
+            raise
+        else:
+            self.put(key, value)
+            pending.set_result(value)
+            return value
+        finally:
+            with self._lock:
+                self._pending.pop(key, None)
 
 
 class Viewer:
@@ -112,6 +144,7 @@ class Viewer:
         self._whole = _Cache(8)
         self._drawn = _Cache(4)  # the force plans of a variant, and their drawings at a sample
         self._drawings = _Cache(EDIT_CACHE)
+        self._family = _Cache(1)
         self.full_slots = threading.BoundedSemaphore(1)
         self.edit_slots = threading.BoundedSemaphore(2)
         self.wait_s = 30.0
@@ -121,6 +154,13 @@ class Viewer:
     def parameters(self) -> list[dict[str, Any]]:
         """The editable values of the mechanism as loaded."""
         return [p.as_dict() for p in self._editable]
+
+    def family(self) -> dict[str, Any]:
+        """The family the file's requirements leave (:func:`~linkwork.synthesis.achieved.family_members`), as
+        edits; none otherwise.  Solved once (seconds for the shears): requests meanwhile wait for that answer."""
+        from linkwork.synthesis.achieved import family_members
+
+        return self._family.once("family", lambda: family_members(self.spec) or {"overrides": []})
 
     def solve(self, overrides: dict[str, float] | None, steps: int | None = None, whole_turn: bool = False) -> Cycle:
         """The cycle of the variant ``overrides`` (SI).
