@@ -26,11 +26,28 @@ from linkwork.limits import MAX_MAGNITUDE, echo, quote
 #: The requirements each kind carries (those ``linkwork synthesize`` writes for it), besides ``kind`` and
 #: ``criterion``.
 KINDS: dict[str, tuple[str, ...]] = {
-    "slider-crank": ("stroke", "time_ratio", "rod_ratio", "offset", "max_pressure_angle", "force", "working"),
+    "slider-crank": (
+        "stroke",
+        "time_ratio",
+        "rod_ratio",
+        "offset",
+        "max_pressure_angle",
+        "force",
+        "working",
+        "min_transmission_angle",
+    ),
     "crank-rocker": ("swing", "time_ratio", "rocker", "frame", "min_transmission_angle"),
-    "slotted-lever": ("stroke", "time_ratio", "frame", "crank", "rod", "max_pressure_angle"),
-    "toggle-press": ("stroke", "force", "before", "torque", "swing", "time_ratio"),
-    "double-cut-shears": ("upper_stroke", "lower_stroke", "time_ratio", "overlap", "opening", "crank"),
+    "slotted-lever": ("stroke", "time_ratio", "frame", "crank", "rod", "max_pressure_angle", "min_transmission_angle"),
+    "toggle-press": ("stroke", "force", "before", "torque", "swing", "time_ratio", "min_transmission_angle"),
+    "double-cut-shears": (
+        "upper_stroke",
+        "lower_stroke",
+        "time_ratio",
+        "overlap",
+        "opening",
+        "crank",
+        "min_transmission_angle",
+    ),
 }
 
 #: How a family is picked (``criterion``): the least largest pressure angle, or the least peak driving torque.
