@@ -46,6 +46,16 @@ from linkwork.sizing.pairs import Pair
 
 #: The life exponent of ISO 281 by the kind of rolling bearing.
 EXPONENT = {"ball": 3.0, "roller": 10.0 / 3.0}
+#: The width / diameter of a pin or bush sized: from a thin disc to a long sleeve (common designs: 0.5 to 1.5).
+WIDTH_RATIOS = (0.1, 10.0)
+
+
+def width_ratio_problem(ratio: float, name: str) -> str | None:
+    """Why ``ratio`` is not a width / diameter of a pin or bush (:data:`WIDTH_RATIOS`), or None."""
+    low, high = WIDTH_RATIOS
+    if low <= ratio <= high:
+        return None
+    return f"{name}: the width / diameter of the pins and bushes, from {low:g} to {high:g}, got {ratio:g}"
 
 
 def equivalent_load(force: np.ndarray, turning: np.ndarray, p: float = 3.0) -> float:
@@ -132,7 +142,11 @@ class Bearings:
     width_ratio: float
 
     def over(self, j: JointBearing) -> str:
-        """What of the bush's limits joint ``j`` exceeds: its peak p, its peak v, its mean pv ("" for none)."""
+        """What of the bush's limits joint ``j`` exceeds: its peak p, its peak v, its mean pv ("none" for none); "not
+        known" where a figure is not (a load that is not finite over the cycle: a singular position)."""
+        figures = (j.p_max, j.v_max, j.pv_mean)
+        if not all(math.isfinite(v) for v in figures):
+            return "not known: the load is not finite over the cycle"
         over = [
             name
             for name, value, limit in (
@@ -283,8 +297,11 @@ def bearings(
     """
     if kind not in EXPONENT:
         raise LinkworkError(f'bearing kind: "ball" or "roller", got "{kind}"')
-    if not life_h > 0 or not width_ratio > 0:
-        raise LinkworkError(f"life and width ratio must be positive, got {life_h} h and {width_ratio}")
+    if not 0 < life_h < math.inf:
+        raise LinkworkError(f"life: expected a positive number of hours, got {life_h} h")
+    why = width_ratio_problem(width_ratio, "width ratio")
+    if why is not None:
+        raise LinkworkError(why)
     pins, guides = dict(pins or {}), dict(guides or {})
     labels = {p.label: p.kind for p in pairs}
     wrong = [

@@ -8,6 +8,7 @@ Every input with a default is stated in the record (``inputs``).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -19,7 +20,7 @@ from linkwork.sizing.bearings import Bearings, Bush, bearings
 from linkwork.sizing.bolts import BoltResult, size_bolts
 from linkwork.sizing.common import Catalogue, Table, bundled
 from linkwork.sizing.links import Bars, bars
-from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue
+from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue, synchronous_problem
 from linkwork.sizing.pairs import pairs_of
 from linkwork.sizing.pin_shear import Pins, Steel, pins
 from linkwork.structure.model import Mechanism
@@ -94,7 +95,7 @@ def size(
     delta: float | None = None,
     efficiency: float | None = None,
     reserve: float = 0.8,
-    catalogue: str | Path | None = None,
+    catalogue: str | Path | Catalogue | None = None,
     synchronous: float | None = None,
     motor: bool = True,
     steel: str = "C45 normalised",
@@ -108,6 +109,7 @@ def size(
     friction: float = 0.2,
     load_factor: float = 0.25,
     steps: int = 360,
+    progress: Callable[[int, int], None] | None = None,
 ) -> Sizing:
     """Size the machine ``mech`` (``linkwork.size`` also takes a path, an example name or a Spec).
 
@@ -123,8 +125,9 @@ def size(
         Of the gear (default: the file's gear's, else 0.95).
     reserve : float
         The share of the motor's breakdown torque its peak torque may reach.
-    catalogue : path
-        A motor catalogue (CSV, the columns of the bundled ``motors.csv``); default the bundled one.
+    catalogue : path or Catalogue
+        A motor catalogue (CSV, the columns of the bundled ``motors.csv``, or one read already); default the bundled
+        one.
     synchronous : float
         Keep to motors of this synchronous speed, rad/s.
     motor : bool
@@ -140,6 +143,8 @@ def size(
         opening and sliding, its friction coefficient and load factor.
     steps : int
         Crank angles over the turn for the loads.
+    progress : callable, optional
+        ``progress(k, n)``: told of each motor ``k`` of the ``n`` of the catalogue the choice looks at.
     """
     file = mech.spec.sizing if mech.spec is not None and mech.spec.sizing is not None else None
     if life_h is None:
@@ -150,6 +155,11 @@ def size(
         efficiency = mech.motor_gear.efficiency if mech.motor_gear is not None else EFFICIENCY
     if bolts is None and file is not None and file.bolts:
         bolts = np.array(file.bolts, dtype=float)
+    cat = motor_catalogue(catalogue) if motor else None  # read, and its speeds checked, before any computing
+    if cat is not None and synchronous is not None:
+        why = synchronous_problem(cat, synchronous)
+        if why is not None:
+            raise LinkworkError(why)
     steel_row = _row(bundled("steels.csv"), steel, "steel")
     bush_row = _row(bundled("bushes.csv"), bush, "bush")
     _row(bundled("bolt_classes.csv"), bolt_class, "bolt class")  # a wrong class said even where no bolts are sized
@@ -201,20 +211,31 @@ def size(
     if motor:
         from linkwork.machine.reduction import reduced
 
-        cat = motor_catalogue(catalogue)
         choice = choose_motor(
-            mech, reduced(mech), delta, efficiency=efficiency, reserve=reserve, catalogue=cat, synchronous=synchronous
+            mech,
+            reduced(mech),
+            delta,
+            efficiency=efficiency,
+            reserve=reserve,
+            catalogue=cat,
+            synchronous=synchronous,
+            progress=progress,
         )
     else:
-        missing["motor"] = "not asked"
-    inputs = {
-        "life_h": life_h,
-        "bearing_kind": kind,
+        missing["motor"] = "not sized (not asked): no motor, gear or flywheel chosen, none written"
+    chosen = {
         "delta": delta,
         "gear_efficiency": efficiency,
         "reserve": reserve,
-        "catalogue": str(catalogue) if catalogue is not None else "motors.csv (bundled, typical values)",
+        "catalogue": cat.source
+        if cat is not None and catalogue is not None
+        else "motors.csv (bundled, typical values)",
         "synchronous_rpm": synchronous * 30 / math.pi if synchronous is not None else None,
+    }
+    inputs = {
+        "life_h": life_h,
+        "bearing_kind": kind,
+        **(chosen if motor else {}),
         "steel": steel,
         "pin_safety": safety,
         "bush": bush,
