@@ -697,7 +697,7 @@ def option_cases() -> list[Case]:
             ("kinematics", "four-bar", "--steps", digits),
             ("positions", "four-bar", "--count", digits),
         ]
-    return [Case(f"option {i}", argv) for i, argv in enumerate(out)]
+    return [Case(f"option {i}", argv) for i, argv in enumerate(out)] + __import__("hostile_sizing").cases()
 
 
 #: Files whose read fails after they open (EIO, EINVAL), or that are no file.
