@@ -190,3 +190,36 @@ def test_a_bush_whose_load_is_not_finite_is_not_said_to_be_within_its_limits():
     j = JointBearing("O", ("frame", "crank"), "turns", 6.3, nan, 0, nan, 1, nan, nan, nan, nan, False, *[nan] * 5)
     b = Bearings((j,), (), 20000, "ball", 30, Bush("bronze", 15e6, 1, 2.5e6), 1.0)
     assert b.over(j).startswith("not known")
+
+
+# ---------------------------------------------------------------------------------------------- --write text
+
+
+def _outside(text: str, key: str) -> list[str]:
+    """The lines of ``text`` outside its top-level section ``key`` (to the next top-level key)."""
+    out, inside = [], False
+    for line in text.splitlines():
+        if line and not line[0].isspace() and not line.startswith("#"):
+            inside = line.startswith(f"{key}:")
+        if not inside:
+            out.append(line)
+    return out
+
+
+@pytest.mark.parametrize("example", ["double-cut-shears", "four-bar"])
+def test_the_machine_section_written_keeps_every_other_byte_comments_after_anchors_and_aliases_too(example, tmp_path):
+    from linkwork.spec.edit import text_with_section
+
+    original = text(example).replace("length: 0.10", "length: &L 0.10   # the crank's length", 1)
+    original = original.replace("length: 100\n", "length: &L 100   # the crank's length\n", 1)
+    original = original.replace("length: 250\n", "length: *L  # as the crank\n", 1)
+    original = original.replace("    guide_F: 0.40", "    guide_F: *L  # as the crank", 1)
+    assert "*L  # as the crank" in original
+    path = tmp_path / "m.yaml"
+    path.write_text(original)
+    section = {"delta": 0.05, "flywheel": {"inertia": "1 kg*m^2", "on": "motor"}}
+    motor = {"type": "induction", "power": "7.5 kW", "speed": "1450 rpm", "synchronous": "1500 rpm", "breakdown": 2.2}
+    section["motor"] = {**motor, "inertia": "0.05 kg*m^2", "torque": None, "stall": None, "no_load": None}
+    written = text_with_section(lw.load(path), "machine", section)
+    assert _outside(written, "machine") == _outside(original, "machine")
+    assert lw.loads(written).machine.flywheel.inertia == pytest.approx(1.0)
