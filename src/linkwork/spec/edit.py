@@ -179,8 +179,8 @@ def _sections(text: str) -> dict[str, tuple[int, int]] | None:
     """The lines ``[start, end)`` of each top-level key's section of ``text`` (to the next key's line), or None
     where the top is not a block mapping whose keys start their lines."""
     data = round_trip_yaml().load(text)
-    lc = getattr(data, "lc", None)
-    if not isinstance(data, dict) or lc is None or getattr(data, "fa", None) is None or data.fa.flow_style():
+    lc, fa = getattr(data, "lc", None), getattr(data, "fa", None)
+    if not isinstance(data, dict) or lc is None or fa is None or fa.flow_style():
         return None
     starts = sorted((lc.key(k)[0], str(k)) for k in data)
     if any(lc.key(k)[1] != 0 for k in data):
