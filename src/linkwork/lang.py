@@ -705,6 +705,26 @@ TEXTS: dict[str, tuple[str, str]] = {
         "Guides: normal force and pressure per length",
         "Направляющие: нормальная сила и погонная нагрузка",
     ),
+    "sizing.table.joints": (
+        "Joints: what governs each: the pin and its bush are one diameter (the larger of their least), or a rolling "
+        "bearing of the rating C instead of the bush, where the joint turns far enough for one",
+        "Шарниры: что определяет размер каждого: ось и её втулка — один диаметр (больший из наименьших), или "
+        "подшипник качения с грузоподъёмностью C вместо втулки, где шарнир поворачивается достаточно для него",
+    ),
+    "sizing.col.pin d [mm]": ("pin d [mm]", "d оси, мм"),
+    "sizing.col.pin by": ("pin by", "ось по"),
+    "sizing.col.bush d [mm]": ("bush d [mm]", "d втулки, мм"),
+    "sizing.col.bush by": ("bush by", "втулка по"),
+    "sizing.col.d to make [mm]": ("d to make [mm]", "d к исполнению, мм"),
+    "sizing.col.governs": ("governs", "определяет"),
+    "sizing.col.rolling C [kN]": ("rolling C [kN]", "C подшипника качения, кН"),
+    "sizing.col.rolling bearing": ("rolling bearing", "подшипник качения"),
+    "sizing.word.pin bending": ("pin bending", "изгиб оси"),
+    "sizing.word.pin shear": ("pin shear", "срез оси"),
+    "sizing.word.bush p": ("bush p", "p втулки"),
+    "sizing.word.bush pv": ("bush pv", "pv втулки"),
+    "sizing.word.given": ("given", "задан"),
+    "sizing.word.ok": ("ok", "годится"),
     "sizing.table.pins": (
         "Pins in double shear",
         "Оси (пальцы) при двухсрезном соединении",
@@ -873,6 +893,19 @@ TEXTS: dict[str, tuple[str, str]] = {
     "sizing.word.motor": ("motor", "двигатель"),
     "sizing.word.not asked": ("not asked", "не запрошен"),
     "sizing.least_round": ("least round d {d} mm", "наименьший круглый d {d} мм"),
+    "sizing.rolling_no": (
+        "no: swings {swing} < {pitch} deg between its elements",
+        "нет: размах {swing}° меньше {pitch}° между телами качения",
+    ),
+    "sizing.joints": ("joints {joints}", "шарниры {joints}"),
+    "sizing.unbounded": (
+        "the force grows without bound as the crank nears the singular position at phi {phi} deg: no pin, bush or "
+        "bearing holds it",
+        "сила неограниченно растёт при подходе кривошипа к особому положению при φ = {phi}°: её не выдержит ни "
+        "ось, ни втулка, ни подшипник",
+    ),
+    "sizing.word.given too small": ("given too small", "задан слишком малым"),
+    "sizing.word.not sized: unbounded": ("not sized: unbounded", "не рассчитан: сила неограничена"),
     "sizing.unit.deg": ("deg", "°"),
     "sizing.unit.kN": ("kN", "кН"),
     "sizing.unit.mm^2": ("mm^2", "мм²"),

@@ -164,7 +164,7 @@ def size(
         for passed in result.motor.passed:
             typer.echo(f"  passed over: {passed.name}: {passed.why}")
     for part, why in result.missing.items():
-        typer.echo(f"  {part}: {why}")
+        typer.echo(f"  not sized: {part}: {why}")
     if written:
         typer.echo(f"  wrote {written}")
 

@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.sizing.common import Table, worst
+from linkwork.sizing.common import Table
 from linkwork.sizing.pairs import Pair
 
 #: The life exponent of ISO 281 by the kind of rolling bearing.
@@ -313,12 +313,15 @@ def bearings(
     if wrong:
         raise LinkworkError("\n".join(wrong))
     p = EXPONENT[kind]
-    joints = tuple(
-        _joint(pair, phi, life_h, p, bush, pins.get(pair.label), width_ratio)
-        for pair in pairs
-        if pair.kind == "revolute"
-    )
-    figures = tuple(_guide(pair, phi, guides.get(pair.label, math.nan)) for pair in pairs if pair.kind == "prismatic")
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):  # an unbounded force: its figures inf, NaN
+        joints = tuple(
+            _joint(pair, phi, life_h, p, bush, pins.get(pair.label), width_ratio)
+            for pair in pairs
+            if pair.kind == "revolute"
+        )
+        figures = tuple(
+            _guide(pair, phi, guides.get(pair.label, math.nan)) for pair in pairs if pair.kind == "prismatic"
+        )
     return Bearings(joints, figures, life_h, kind, crank_speed * 30 / math.pi, bush, width_ratio)
 
 
@@ -326,7 +329,7 @@ def _joint(
     pair: Pair, phi: np.ndarray, life_h: float, p: float, bush: Bush, pin: tuple[float, float] | None, ratio: float
 ) -> JointBearing:
     f, w = pair.force, np.abs(pair.turning)
-    i = worst(f)
+    peak, at = pair.force_max(phi)
     load = equivalent_load(f, w, p)
     revs = float(np.mean(w)) / (2 * math.pi)
     net = abs(float(np.mean(pair.turning)))
@@ -335,7 +338,7 @@ def _joint(
     if pin is not None:
         d, b = pin
     else:
-        d = max(math.sqrt(float(np.max(f)) / (ratio * bush.p)), float(np.mean(f * w)) / (2 * ratio * bush.pv))
+        d = max(math.sqrt(peak / (ratio * bush.p)), float(np.mean(f * w)) / (2 * ratio * bush.pv))
         b = ratio * d
     pressure = f / (d * b)
     speed = w * d / 2
@@ -344,8 +347,8 @@ def _joint(
         pair.links,
         motion,
         swing,
-        float(f[i]),
-        float(phi[i]),
+        peak,
+        at,
         float(np.mean(f)),
         revs,
         load,
@@ -354,7 +357,7 @@ def _joint(
         b,
         pin is not None,
         float(np.mean(pressure)),
-        float(np.max(pressure)),
+        max(float(np.max(pressure)), peak / (d * b)),
         float(np.max(speed)),
         float(np.mean(pressure * speed)),
         float(np.max(pressure * speed)),
@@ -363,13 +366,14 @@ def _joint(
 
 def _guide(pair: Pair, phi: np.ndarray, length: float) -> GuideFigures:
     f, m = pair.force, np.abs(pair.moment)
-    i = worst(f)
+    peak, at = pair.force_max(phi)
     q = f / length + 6 * m / length**2 if math.isfinite(length) else np.full_like(f, math.nan)
+    q = np.append(q, peak / length + 6 * float(np.max(m)) / length**2)  # the refined peak with the largest moment
     return GuideFigures(
         pair.label,
         pair.links,
-        float(f[i]),
-        float(phi[i]),
+        peak,
+        at,
         float(np.mean(f)),
         float(np.max(m)),
         float(np.max(pair.sliding)),

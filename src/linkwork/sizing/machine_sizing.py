@@ -19,6 +19,7 @@ from linkwork.errors import LinkworkError
 from linkwork.sizing.bearings import Bearings, Bush, bearings
 from linkwork.sizing.bolts import BoltResult, size_bolts
 from linkwork.sizing.common import Catalogue, Table, bundled
+from linkwork.sizing.governing import governing_table
 from linkwork.sizing.links import Bars, bars
 from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue, synchronous_problem
 from linkwork.sizing.pairs import pairs_of
@@ -49,6 +50,7 @@ class Sizing:
 
     def tables(self) -> list[Table]:
         out = [self.motor.table()] if self.motor is not None else []
+        out += [governing_table(self.pins, self.bearings)]
         out += self.bearings.tables() + [self.pins.table()]
         out += [self.links.table()] if self.links is not None else []
         out += self.bolts.tables() if self.bolts is not None else []
@@ -62,6 +64,7 @@ class Sizing:
             "motor": self.motor.record() if self.motor is not None else None,
             "bearings": self.bearings.record(),
             "pins": self.pins.record(),
+            "joints": governing_table(self.pins, self.bearings).record(),
             "links": self.links.record() if self.links is not None else None,
             "bolts": self.bolts.record() if self.bolts is not None else None,
             "missing": self.missing,
@@ -190,6 +193,12 @@ def size(
     )
     pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
     linked = bars(f, phi, grade, safety=safety, sections=given)
+    unbounded = [p for p in pairs if math.isinf(p.peak)]
+    if unbounded:
+        missing[f"joints {', '.join(p.label for p in unbounded)}"] = (
+            f"the force grows without bound as the crank nears the singular position at phi "
+            f"{unbounded[0].peak_phi:.4g} deg: no pin, bush or bearing holds it"
+        )
     held = None
     if bolts is not None and len(bolts):
         found_loads = np.asarray(f.foundation, dtype=float)
@@ -222,7 +231,7 @@ def size(
             progress=progress,
         )
     else:
-        missing["motor"] = "not sized (not asked): no motor, gear or flywheel chosen, none written"
+        missing["motor"] = "not asked"
     chosen = {
         "delta": delta,
         "gear_efficiency": efficiency,
