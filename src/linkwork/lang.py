@@ -711,6 +711,28 @@ TEXTS: dict[str, tuple[str, str]] = {
         "Шарниры: что определяет размер каждого: ось и её втулка — один диаметр (больший из наименьших), или "
         "подшипник качения с грузоподъёмностью C вместо втулки, где шарнир поворачивается достаточно для него",
     ),
+    "sizing.table.shaft": (
+        "The crank's main shaft on two bearings: each bearing's share of the force and the shaft's bending",
+        "Главный вал кривошипа на двух подшипниках: доля силы на каждый подшипник и изгиб вала",
+    ),
+    "sizing.row.bearings' spacing": ("bearings' spacing", "расстояние между подшипниками"),
+    "sizing.row.crank's overhang outside bearing 1 (- : midway)": (
+        "crank's overhang outside bearing 1 (- : midway)",
+        "вылет кривошипа за подшипник 1 (- : посередине)",
+    ),
+    "sizing.row.spacing and overhang from the file": (
+        "spacing and overhang from the file",
+        "расстояние и вылет из файла",
+    ),
+    "sizing.row.share of the force on bearing 1": ("share of the force on bearing 1", "доля силы на подшипник 1"),
+    "sizing.row.share of the force on bearing 2": ("share of the force on bearing 2", "доля силы на подшипник 2"),
+    "sizing.row.peak force of the crank's pivot": (
+        "peak force of the crank's pivot",
+        "наибольшая сила в опоре кривошипа",
+    ),
+    "sizing.row.largest bending moment": ("largest bending moment", "наибольший изгибающий момент"),
+    "sizing.row.least solid shaft for bending": ("least solid shaft for bending", "наименьший сплошной вал по изгибу"),
+    "sizing.word.no": ("no", "нет"),
     "sizing.col.pin d [mm]": ("pin d [mm]", "d оси, мм"),
     "sizing.col.pin by": ("pin by", "ось по"),
     "sizing.col.bush d [mm]": ("bush d [mm]", "d втулки, мм"),

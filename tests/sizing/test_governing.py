@@ -68,4 +68,46 @@ def test_joints_whose_force_is_unbounded_at_a_singular_position_are_said_and_not
     result = linkwork("size", "shears-slider-crank", "--no-motor")
     assert result.returncode == 0, result.stderr
     assert "not sized: joints O, A, B, guide: the force grows without bound" in result.stdout
-    assert result.stdout.count("not sized: unbounded") == 3
+    assert result.stdout.count("not sized: unbounded") == 4  # O on its two bearings, A, B
+
+
+# ---------------------------------------------------------------------------------------------- main shaft
+
+
+def test_the_shaft_shares_of_a_beam_on_two_supports():
+    """Midway: F/2 each; overhung by c outside the nearer of two supports s apart: F (s + c)/s and F c/s (their
+    difference is F: the moments about the nearer support balance)."""
+    from linkwork.sizing.shaft import shares
+
+    assert shares(0.4, None) == (0.5, 0.5)
+    near, far = shares(0.4, 0.1)
+    assert near == pytest.approx(1.25) and far == pytest.approx(0.25) and near - far == pytest.approx(1.0)
+
+
+def test_the_main_shaft_runs_in_two_bearings_from_the_file(tmp_path):
+    """The double-cut shears' O1 with the shaft 500 mm between bearings and the crank 150 mm outside: bearing 1
+    carries 1.3 F, bearing 2 0.3 F; the shaft bends by F c at bearing 1, d = (32 F c / (pi 170 MPa))^(1/3)."""
+    from linkwork.examples import text
+
+    path = tmp_path / "m.yaml"
+    path.write_text(
+        text("double-cut-shears").replace(
+            "    guide_F: 0.40\n", "    guide_F: 0.40\n  shaft: {spacing: 500 mm, overhang: 150 mm}\n", 1
+        )
+    )
+    sized = lw.size(path, motor=False)
+    shaft = sized.shaft
+    assert shaft.joint == "O1" and shaft.given and shaft.shares == pytest.approx((1.3, 0.3))
+    rows = {j.label: j for j in sized.bearings.joints}
+    assert "O1" not in rows
+    assert rows["O1/1"].force_max == pytest.approx(1.3 * shaft.force, rel=1e-12)
+    assert rows["O1/2"].force_max == pytest.approx(0.3 * shaft.force, rel=1e-12)
+    assert rows["O1/1"].diameter == pytest.approx(0.16)  # the file's pin of O1 is the journal in both
+    assert shaft.diameter == pytest.approx((32 * shaft.force * 0.15 / (math.pi * 170e6)) ** (1 / 3), rel=1e-12)
+
+
+def test_without_a_shaft_in_the_file_the_crank_sits_midway_and_the_default_is_said():
+    sized = lw.size("double-cut-shears", motor=False)
+    assert sized.shaft.shares == (0.5, 0.5) and not sized.shaft.given
+    assert sized.shaft.spacing == pytest.approx(3 * 0.16)  # three journal diameters
+    assert sized.shaft.moment == pytest.approx(sized.shaft.force * sized.shaft.spacing / 4)

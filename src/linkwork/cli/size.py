@@ -138,7 +138,7 @@ def size(
             kind=kind,
             delta=delta,
             reserve=reserve,
-            catalogue=cat,
+            catalogue=cat if catalogue is not None else None,  # the bundled one said as such
             synchronous=sync,
             motor=motor,
             steel=steel,

@@ -62,7 +62,7 @@ def governing_table(pins: Pins, bearings: Bearings) -> Table:
     by_label = {p.label: p for p in pins.pins}
     rows = []
     for j in bearings.joints:
-        pin = by_label.get(j.label)
+        pin = by_label.get(j.label, by_label.get(j.label.rsplit("/", 1)[0]))  # a shaft's bearing: its journal
         if pin is None:
             continue
         d_pin, pin_by = pin_rule(pin, pins)

@@ -22,8 +22,9 @@ from linkwork.sizing.common import Catalogue, Table, bundled
 from linkwork.sizing.governing import governing_table
 from linkwork.sizing.links import Bars, bars
 from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue, synchronous_problem
-from linkwork.sizing.pairs import pairs_of
+from linkwork.sizing.pairs import Pair, pairs_of
 from linkwork.sizing.pin_shear import Pins, Steel, pins
+from linkwork.sizing.shaft import Shaft, main_shaft, split
 from linkwork.structure.model import Mechanism
 
 #: The default life of rolling bearings, h.
@@ -47,10 +48,12 @@ class Sizing:
     bolts: BoltResult | None
     missing: dict[str, str]
     links: Bars | None = None
+    shaft: Shaft | None = None
 
     def tables(self) -> list[Table]:
         out = [self.motor.table()] if self.motor is not None else []
         out += [governing_table(self.pins, self.bearings)]
+        out += [self.shaft.table()] if self.shaft is not None else []
         out += self.bearings.tables() + [self.pins.table()]
         out += [self.links.table()] if self.links is not None else []
         out += self.bolts.tables() if self.bolts is not None else []
@@ -65,6 +68,7 @@ class Sizing:
             "bearings": self.bearings.record(),
             "pins": self.pins.record(),
             "joints": governing_table(self.pins, self.bearings).record(),
+            "shaft": self.shaft.record() if self.shaft is not None else None,
             "links": self.links.record() if self.links is not None else None,
             "bolts": self.bolts.record() if self.bolts is not None else None,
             "missing": self.missing,
@@ -180,6 +184,16 @@ def size(
     crank = abs(float(mech.drive_speed[0]))
     pairs = pairs_of(f)
     missing: dict[str, str] = {}
+    pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
+    shaft = _shaft(mech, pairs, pinned, file)
+    pairs_of_joints = pairs  # as the joints are, before the main shaft's two bearings
+    if shaft is not None:
+        pairs = split(pairs, shaft.joint, shaft.shares)
+        pin_sizes = {
+            **pin_sizes,
+            **{f"{shaft.joint}/{n}": pin_sizes[shaft.joint] for n in (1, 2) if shaft.joint in pin_sizes},
+        }
+        pin_sizes.pop(shaft.joint, None)
     found = bearings(
         pairs,
         phi,
@@ -191,9 +205,8 @@ def size(
         width_ratio=width_ratio,
         guides=guides,
     )
-    pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
     linked = bars(f, phi, grade, safety=safety, sections=given)
-    unbounded = [p for p in pairs if math.isinf(p.peak)]
+    unbounded = [p for p in pairs_of_joints if math.isinf(p.peak)]
     if unbounded:
         missing[f"joints {', '.join(p.label for p in unbounded)}"] = (
             f"the force grows without bound as the crank nears the singular position at phi "
@@ -258,4 +271,14 @@ def size(
         "crank_rpm": crank * 30 / math.pi,
         "loads": "kinetostatics at the file's uniform crank speed",
     }
-    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked)
+    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked, shaft)
+
+
+def _shaft(mech: Mechanism, pairs: list[Pair], pinned: Pins, file: Any) -> Shaft | None:
+    """The main shaft of the crank's pivot (the first drive's joint with the frame), or None (no such pair)."""
+    joint = mech.spec.drives[0].joint if mech.spec is not None and mech.spec.drives else None
+    pair = next((p for p in pairs if p.label == joint and p.kind == "revolute" and "frame" in p.links), None)
+    pin = next((p for p in pinned.pins if p.label == joint), None)
+    if pair is None or pin is None:
+        return None
+    return main_shaft(pair, file.shaft if file is not None else None, pin.diameter, pinned, pin.force)
