@@ -105,9 +105,17 @@ def size(
     write: Annotated[
         str | None, typer.Option(help="write the mechanism file with the chosen motor, gear and flywheel (.yaml)")
     ] = None,
+    masses: Annotated[
+        str,
+        typer.Option(
+            help='"file": the links\' masses as the file gives them; "sized": from their sized steel sections, '
+            "iterated with the loads to a fixed point (--write writes them too)"
+        ),
+    ] = "file",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Size the machine from its loads: motor, gear and flywheel, rolling and plain bearings, pins, bolts."""
+    from linkwork.api import compile as compile_spec
     from linkwork.sizing import size as run
     from linkwork.sizing.bearings import width_ratio_problem
 
@@ -117,6 +125,8 @@ def size(
     if not 0 < reserve <= 1:
         problems.append(f"--reserve: a share of the breakdown torque in (0, 1], got {reserve}")
     problems.append(width_ratio_problem(width_ratio, "--width-ratio"))
+    if masses not in ("file", "sized"):
+        problems.append(f'--masses: "file" or "sized", got "{masses}"')
     if write is not None and not write.endswith((".yaml", ".yml")):
         problems.append(f'--write "{write}": expected a .yaml file')
     if write is not None and not motor:
@@ -146,6 +156,8 @@ def size(
             width_ratio=width_ratio,
             bolt_class=bolt_class,
             progress=bar,
+            masses=masses,
+            compile_spec=compile_spec,
         )
         written = _write(mech, result, write) if write is not None else None
     except LinkworkError as exc:
@@ -205,7 +217,14 @@ def _write(mech: object, result: object, out: str) -> str:
     from linkwork.structure.model import Mechanism
 
     assert isinstance(result, Sizing) and isinstance(mech, Mechanism) and result.motor is not None
-    text = text_with_section(mech.spec, "machine", result.motor.machine_section())
+    spec = mech.spec
+    if result.masses is not None and spec is not None:  # the masses it was sized with, written first
+        from linkwork.spec.reader import loads
+        from linkwork.structure.parameters import file_text
+
+        sized = {f"links.{k}.mass": v for k, v in result.masses.masses.items()}
+        spec = loads(file_text(mech, sized), spec.source.file if spec.source is not None else None)
+    text = text_with_section(spec, "machine", result.motor.machine_section())
     try:
         path = write_text(text, out)
     except OSError as exc:

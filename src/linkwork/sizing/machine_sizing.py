@@ -21,6 +21,7 @@ from linkwork.sizing.bolts import BoltResult, size_bolts
 from linkwork.sizing.common import Catalogue, Table, bundled
 from linkwork.sizing.governing import governing_table
 from linkwork.sizing.links import Bars, bars
+from linkwork.sizing.masses import SizedMasses, sized_masses
 from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue, synchronous_problem
 from linkwork.sizing.pairs import Pair, pairs_of
 from linkwork.sizing.pin_shear import Pins, Steel, pins
@@ -49,6 +50,7 @@ class Sizing:
     missing: dict[str, str]
     links: Bars | None = None
     shaft: Shaft | None = None
+    masses: SizedMasses | None = None  # the links' masses sized to a fixed point (masses="sized"), else None
 
     def tables(self) -> list[Table]:
         out = [self.motor.table()] if self.motor is not None else []
@@ -69,6 +71,7 @@ class Sizing:
             "pins": self.pins.record(),
             "joints": governing_table(self.pins, self.bearings).record(),
             "shaft": self.shaft.record() if self.shaft is not None else None,
+            "masses_kg": self.masses.masses if self.masses is not None else None,
             "links": self.links.record() if self.links is not None else None,
             "bolts": self.bolts.record() if self.bolts is not None else None,
             "missing": self.missing,
@@ -117,6 +120,8 @@ def size(
     load_factor: float = 0.25,
     steps: int = 360,
     progress: Callable[[int, int], None] | None = None,
+    masses: str = "file",
+    compile_spec: Callable[[Any], Mechanism] | None = None,
 ) -> Sizing:
     """Size the machine ``mech`` (``linkwork.size`` also takes a path, an example name or a Spec).
 
@@ -152,6 +157,11 @@ def size(
         Crank angles over the turn for the loads.
     progress : callable, optional
         ``progress(k, n)``: told of each motor ``k`` of the ``n`` of the catalogue the choice looks at.
+    masses : str
+        ``"file"``: the links' masses as the file gives them (or its default rule); ``"sized"``: the bars' masses
+        from their sized steel sections, iterated with the loads to a fixed point (:mod:`linkwork.sizing.masses`).
+    compile_spec : callable
+        How an edited file is compiled, for ``masses="sized"`` (``linkwork.size`` passes :func:`linkwork.compile`).
     """
     file = mech.spec.sizing if mech.spec is not None and mech.spec.sizing is not None else None
     if life_h is None:
@@ -176,10 +186,21 @@ def size(
     from linkwork.kinetostatics.reaction_forces import forces
     from linkwork.motion.analysis import CrankAngles
 
-    f = forces(mech, steps=steps)
+    if masses not in ("file", "sized"):
+        raise LinkworkError(f'masses: "file" or "sized", got "{masses}"')
     angles = CrankAngles.of(mech)
     if angles is None:
         raise LinkworkError("sizing needs one crank driven by the frame: the cycle is its turn")
+
+    def bars_of(m: Mechanism) -> Bars:
+        fm = forces(m, steps=steps)
+        return bars(fm, np.asarray(angles.phi(fm.angles), dtype=float), grade, safety=safety, sections=given)
+
+    if masses == "sized" and compile_spec is None:
+        raise LinkworkError('masses="sized" compiles the file with each round\'s masses: call linkwork.size')
+    sized = sized_masses(mech, bars_of, compile_spec) if masses == "sized" and compile_spec is not None else None
+    mech = sized.mechanism if sized is not None else mech
+    f = forces(mech, steps=steps)
     phi = np.asarray(angles.phi(f.angles), dtype=float)
     crank = abs(float(mech.drive_speed[0]))
     pairs = pairs_of(f)
@@ -270,8 +291,9 @@ def size(
         "steps": steps,
         "crank_rpm": crank * 30 / math.pi,
         "loads": "kinetostatics at the file's uniform crank speed",
+        "masses": sized.said() if sized is not None else "the file's (or its default rule)",
     }
-    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked, shaft)
+    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked, shaft, sized)
 
 
 def _shaft(mech: Mechanism, pairs: list[Pair], pinned: Pins, file: Any) -> Shaft | None:
