@@ -25,11 +25,13 @@ def option_cases() -> list[Case]:
     speeds = ("1234 rpm", "1e300 rpm", "0 rpm", "1500 kg", "1500", "nan rpm", "1500 об/мин")
     out += [("size", "double-cut-shears", "--synchronous", s) for s in speeds]
     out += [("size", "double-cut-shears", "--reserve", r) for r in ("0", "1.0001", "nan", "-1", "1e300")]
+    out += [("size", "four-bar", "--no-motor", "--masses", m) for m in ("sized", "guess", "", "SIZED")]
     return [Case(f"size option {i}", argv) for i, argv in enumerate(out)]
 
 
 def part_cases() -> list[Case]:
-    """Pins, guides and sections of every magnitude and of parts that do not fit, checked and sized."""
+    """Pins, guides, sections and the main shaft of every magnitude and of parts that do not fit, checked and
+    sized."""
     sections = [f"{{shape: round, d: {m}}}" for m in MAGNITUDES]
     sections += [
         "{shape: tube, d: 0.05, t: 0.025}",
@@ -46,6 +48,8 @@ def part_cases() -> list[Case]:
     pin = "O1: {diameter: 0.16, width: 0.16}"
     files += [SHEARS.replace(pin, f"O1: {{diameter: {m}, width: {m}}}") for m in MAGNITUDES]
     files += [SHEARS.replace("guide_E: 0.40", f"guide_E: {m}") for m in MAGNITUDES]
+    shafts = [f"{{spacing: {m}}}" for m in MAGNITUDES] + [f"{{spacing: 0.5, overhang: {m}}}" for m in MAGNITUDES]
+    files += [SHEARS.replace("    guide_F: 0.40\n", f"    guide_F: 0.40\n  shaft: {sh}\n") for sh in shafts]
     out = []
     for i, body in enumerate(files):
         command = ("check", "{dir}/m.yaml") if i % 2 else ("size", "{dir}/m.yaml", "--no-motor", "--json")

@@ -48,6 +48,9 @@ def part_checks(spec: Spec, src: Source) -> list[Problem]:
     for name, length in spec.sizing.guides.items():
         if length < MIN_PART:
             out.append(src.problem(("sizing", "guides", name), _small("a guide's length", length)))
+    shaft = spec.sizing.shaft
+    if shaft is not None and shaft.spacing < MIN_PART:
+        out.append(src.problem(("sizing", "shaft", "spacing"), _small("the bearings' spacing", shaft.spacing)))
     for link, section in spec.sizing.sections.items():
         out += [src.problem(("sizing", "sections", link, key), why) for key, why in section_problems(section)]
     return out
