@@ -223,3 +223,24 @@ def test_the_machine_section_written_keeps_every_other_byte_comments_after_ancho
     written = text_with_section(lw.load(path), "machine", section)
     assert _outside(written, "machine") == _outside(original, "machine")
     assert lw.loads(written).machine.flywheel.inertia == pytest.approx(1.0)
+
+
+def test_a_terminal_is_shown_the_motors_looked_at_and_the_line_is_cleared(monkeypatch):
+    import io
+    import sys
+
+    from linkwork.cli.size import _cleared, _progress
+
+    class Terminal(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    screen = Terminal()
+    monkeypatch.setattr(sys, "stderr", screen)
+    show = _progress()
+    assert show is not None
+    show(41, 1000)
+    _cleared(show)
+    assert screen.getvalue() == "\r\033[K  motor 42 of 1,000 looked at\r\033[K"
+    monkeypatch.setattr(sys, "stderr", io.StringIO())  # a file or a pipe: nothing
+    assert _progress() is None
