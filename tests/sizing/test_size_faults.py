@@ -244,3 +244,14 @@ def test_a_terminal_is_shown_the_motors_looked_at_and_the_line_is_cleared(monkey
     assert screen.getvalue() == "\r\033[K  motor 42 of 1,000 looked at\r\033[K"
     monkeypatch.setattr(sys, "stderr", io.StringIO())  # a file or a pipe: nothing
     assert _progress() is None
+
+
+@pytest.mark.slow
+def test_a_catalogue_of_motors_that_fail_the_run_is_bounded_and_says_what_it_did_not_try(tmp_path):
+    """60 motors of 10 kW whose breakdown ratio 1.05 fails every run: 12 runs, then the other 48 named."""
+    path = tmp_path / "motors.csv"
+    path.write_text(HEADING + "".join(f"m{i},{10 + i * 0.001},1500,1400,2,1.05,0.001,5\n" for i in range(60)))
+    start = time.perf_counter()
+    result = linkwork("size", "double-cut-shears", "--catalogue", str(path))
+    _refused(result, "48 larger motors of the catalogue not tried: 12 runs of the machine is the most")
+    assert time.perf_counter() - start < 180
