@@ -111,3 +111,15 @@ def test_without_a_shaft_in_the_file_the_crank_sits_midway_and_the_default_is_sa
     assert sized.shaft.shares == (0.5, 0.5) and not sized.shaft.given
     assert sized.shaft.spacing == pytest.approx(3 * 0.16)  # three journal diameters
     assert sized.shaft.moment == pytest.approx(sized.shaft.force * sized.shaft.spacing / 4)
+
+
+def test_a_given_pin_below_either_least_diameter_is_said_too_small():
+    """F = 100 kN: the bush's least d = sqrt(100 kN / 15 MPa) = 81.6 mm; a given 60 mm pin is too small, a given
+    90 mm one is the diameter to make."""
+    pair, phi = _rocking(100e3, math.radians(40))
+    for d, says in ((0.060, "given too small"), (0.090, "given")):
+        sizes = {"J": (d, d)}
+        found = bearings([pair], phi, 3.0, life_h=20000, bush=BRONZE, pins=sizes)
+        (row,) = governing_table(pins([pair], phi, C45, safety=2.0, sizes=sizes), found).record()
+        assert row["governs"] == says and row["d_to_make_mm"] == pytest.approx(d * 1e3)
+        assert row["bush_d_mm"] == pytest.approx(1e3 * math.sqrt(100e3 / 15e6), rel=1e-12)
