@@ -699,9 +699,12 @@ def option_cases() -> list[Case]:
             ("positions", "four-bar", "--count", digits),
         ]
     out += synthesis_argvs()  # every synthesize option of every kind at and past its bounds
-    import hostile_simulate  # simulate's options, requirements in files (it imports Case from here)
+    # simulate's options and requirements in files; sizing's options, parts, springs and catalogues (each module
+    # imports Case from here)
+    import hostile_simulate
+    import hostile_sizing
 
-    return [Case(f"option {i}", argv) for i, argv in enumerate(out)] + hostile_simulate.cases()
+    return [Case(f"option {i}", argv) for i, argv in enumerate(out)] + hostile_simulate.cases() + hostile_sizing.cases()
 
 
 #: Files whose read fails after they open (EIO, EINVAL), or that are no file.

@@ -23,7 +23,7 @@ import functools
 import inspect
 import os
 from collections.abc import Callable
-from typing import Concatenate, ParamSpec, TypeVar, Union, cast
+from typing import Any, Concatenate, ParamSpec, TypeVar, Union, cast
 
 from linkwork import jit
 from linkwork.errors import LinkworkError
@@ -143,6 +143,18 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
     )
 
 
+def _with_compile(algorithm: Callable[..., R]) -> Callable[..., R]:
+    """``algorithm`` with :func:`compile` given as its ``compile_spec`` (a stage below this module that compiles
+    edited files), its name, documentation and signature kept."""
+
+    @functools.wraps(algorithm)
+    def entry(*args: Any, **kwargs: Any) -> R:
+        kwargs.setdefault("compile_spec", compile)
+        return algorithm(*args, **kwargs)
+
+    return entry
+
+
 def resolving(
     algorithm: Callable[Concatenate[Mechanism, P], R], what: str, passes: tuple[type, ...] = ()
 ) -> Callable[Concatenate[object, P], R]:
@@ -175,7 +187,7 @@ impact = resolving(_impact, "impact")
 simulate_blows = resolving(_simulate_blows, "simulate_blows")
 balance = resolving(_balance, "balance")
 bolt_speed = resolving(_bolt_speed, "bolt_speed")
-size = resolving(_size, "size")
+size = resolving(_with_compile(_size), "size")  # sizing's masses="sized" compiles each round's file
 parameters = resolving(parameter_values, "parameters")
 
 

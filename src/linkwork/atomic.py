@@ -33,20 +33,39 @@ def kind(mode: int) -> str:
 
 
 def target_problem(path: str | Path) -> str | None:
-    """Why ``path`` cannot be replaced by a file written whole, or None (it is a file, a link to one, or new)."""
+    """Why ``path`` cannot be replaced by a file written whole, or None (it is a file, a link to one, or new): not
+    a regular file, a read-only file (its owner's choice is kept: it is not replaced), or a folder above it that is
+    a file or cannot be written in.  Checked before any work, so that a bad destination is said at once."""
     path = Path(path)
     try:
         st = os.stat(path)
     except FileNotFoundError:
         if os.path.islink(path):
             return f"is a symbolic link to {os.readlink(path)}, which does not exist; not writing through it"
-        return None
+        return _folder_problem(path)
+    except NotADirectoryError:
+        return _folder_problem(path)
     except OSError:
         return None  # the write itself says what is wrong
     if stat.S_ISREG(st.st_mode):
-        return None
+        if not st.st_mode & 0o222:
+            return f"is read-only (mode {stat.S_IMODE(st.st_mode):04o}); not replacing it (make it writable first)"
+        return _folder_problem(Path(os.path.realpath(path)))
     via = " (through a symbolic link)" if os.path.islink(path) else ""
     return f"is {kind(st.st_mode)}{via}, not a regular file; linkwork writes only files, replacing them whole"
+
+
+def _folder_problem(path: Path) -> str | None:
+    """Why no file can be made at ``path`` (a new one, or one replaced through a file beside it), or None: the
+    nearest folder above it that exists is a file, or cannot be written in."""
+    folder = path.absolute().parent
+    while not os.path.lexists(folder) and folder != folder.parent:
+        folder = folder.parent
+    if not os.path.isdir(folder):
+        return f"cannot be made: {folder} is {kind(os.lstat(folder).st_mode)}, not a folder"
+    if not os.access(folder, os.W_OK | os.X_OK):
+        return f"cannot be made: the folder {folder} cannot be written in (permission denied)"
+    return None
 
 
 def write_atomic(path: str | Path, writer: Callable[[Path], object]) -> Path:

@@ -88,6 +88,17 @@ MAX_MAGNITUDE = 1e9
 #: to it (16 s at 1000 on a 2-core machine, minutes beyond).
 MAX_GEAR_RATIO = 1000.0
 
+#: Loads of a mechanism file: each is evaluated at every crank angle of an analysis (28,800 at once in machine
+#: dynamics, about 3 MB a spring), so the memory of an analysis grows with their number.
+MAX_LOADS = 100
+
+#: Smallest dimension of a part the sizing reads (a pin, a section, a guide), m: below it the stresses overflow.
+MIN_PART = 1e-6
+
+#: Bytes of a catalogue file (a motor catalogue), and rows of it: every row is screened against the machine.
+MAX_CATALOGUE_BYTES = 1 << 20
+MAX_CATALOGUE_ROWS = 1_000
+
 #: Smallest coefficient of speed fluctuation a flywheel is sized for (the inertia grows as 1/delta).
 MIN_DELTA = 1e-4
 

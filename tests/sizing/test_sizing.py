@@ -85,8 +85,10 @@ def test_the_least_bush_keeps_the_peak_pressure_and_the_mean_pv_under_their_limi
 
 
 def test_a_balanced_crank_carries_its_weight_and_needs_the_rating_for_it():
-    """A crank with its centre of mass on its pivot, at 30 rpm: the pivot carries m g whatever the angle, so P = m g
-    and C = m g (3600 * 0.5 * 20000 / 1e6)^(1/3) = m g 36^(1/3); a pin of 40 x 50 mm has p = m g / (0.04 * 0.05)."""
+    """A crank with its centre of mass on its pivot, at 30 rpm: the pivot carries m g whatever the angle, shared by
+    the shaft's two bearings with the crank midway (m g / 2 each), so P = m g / 2 and
+    C = m g / 2 (3600 * 0.5 * 20000 / 1e6)^(1/3) = m g / 2 36^(1/3); a journal of 40 x 50 mm in each has
+    p = m g / 2 / (0.04 * 0.05); the pin's strength is that of the whole force."""
     spec = lw.loads(
         "links: {crank: {ends: [O, A], length: 0.2, mass: 100, com: [0, 0], inertia: 1}}\n"
         "frame: {points: {O: [0, 0]}}\n"
@@ -95,12 +97,13 @@ def test_a_balanced_crank_carries_its_weight_and_needs_the_rating_for_it():
         "sizing: {pins: {O: {diameter: 40 mm, width: 50 mm}}}\n"
     )
     s = lw.size(spec, motor=False, steps=72)
-    (j,) = s.bearings.joints
     mg = 100 * 9.81
-    assert j.load == pytest.approx(mg, rel=1e-9)
-    assert j.revs_per_s == pytest.approx(0.5, rel=1e-9)
-    assert j.rating == pytest.approx(mg * 36 ** (1 / 3), rel=1e-9)
-    assert j.p_max == pytest.approx(mg / (0.04 * 0.05), rel=1e-9)
+    assert [j.label for j in s.bearings.joints] == ["O/1", "O/2"]
+    for j in s.bearings.joints:
+        assert j.load == pytest.approx(mg / 2, rel=1e-9)
+        assert j.revs_per_s == pytest.approx(0.5, rel=1e-9)
+        assert j.rating == pytest.approx(mg / 2 * 36 ** (1 / 3), rel=1e-9)
+        assert j.p_max == pytest.approx(mg / 2 / (0.04 * 0.05), rel=1e-9)
     (pin,) = s.pins.pins
     assert pin.shear == pytest.approx(2 * mg / (math.pi * 0.04**2), rel=1e-9)
     assert pin.bending == pytest.approx(4 * mg * 0.05 / (math.pi * 0.04**3), rel=1e-9)
@@ -268,7 +271,7 @@ def test_size_double_cut_shears_meets_the_bars_and_writes_the_motor_into_the_fil
     assert motor["run"]["delta"] <= 0.05 * 1.02
     assert motor["run"]["peak_torque_N_m"] < motor["motor"]["breakdown_torque_N_m"]
     names = {r["joint"] for r in data["bearings"]["rolling"]}
-    assert names == {"O1", "A", "B", "O3", "D", "E", "C", "F"}
+    assert names == {"O1/1", "O1/2", "A", "B", "O3", "D", "E", "C", "F"}  # the main shaft on two bearings
     assert all(math.isfinite(r["C_needed_kN"]) and r["C_needed_kN"] > 0 for r in data["bearings"]["rolling"])
     assert data["inputs"]["life_h"] == 20000
     assert len(data["bolts"]["bolts"]) == 4 and math.isfinite(data["bolts"]["preload_kN"])

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import re
-from typing import Annotated
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
@@ -11,24 +12,67 @@ from linkwork.cli.app import FileOrExample, app, check_options, compile_or_exit,
 from linkwork.errors import LinkworkError
 from linkwork.limits import delta_problem
 
+if TYPE_CHECKING:
+    from linkwork.sizing.common import Catalogue
+
 
 def _quantity(text: str | None, kind: str, option: str, example: str) -> float | None:
-    """``text`` with its unit (``20000 h``, ``20000h``) in SI; exit code 2 with one line where it is not one."""
+    """``text`` with its unit (``20000 h``, ``20000h``) in SI; exit code 2 with one line where it is not one: no
+    unit, a unit that is not one (``20000 ч``) or of another kind, or not a positive value."""
     from linkwork.errors import UnitParseError
+    from linkwork.limits import quote
     from linkwork.units import parse_quantity
 
     if text is None:
         return None
-    spaced = re.sub(r"^\s*([-+]?[\d.]+(?:[eE][-+]?\d+)?)\s*([A-Za-z].*)$", r"\1 \2", text)
-    if spaced == text.strip() and not re.search(r"[A-Za-z]", text):
-        fail(LinkworkError(f'{option}: give the unit, e.g. "{example}", got "{text}"'))
+    match = re.match(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$", text)
+    if match is None:
+        fail(LinkworkError(f"{option}: expected a number and its unit, e.g. {quote(example)}, got {quote(text)}"))
+    number, unit = match.groups()
+    if not unit:
+        fail(LinkworkError(f"{option}: give the unit, e.g. {quote(example)}, got {quote(text)}"))
     try:
-        value = parse_quantity(spaced, kind)
-    except UnitParseError as exc:
-        fail(LinkworkError(f"{option}: {exc}"))
+        value = parse_quantity(f"{number} {unit}", kind)
+    except UnitParseError:
+        why = "is not a unit linkwork knows" if not _is_unit(unit) else "is a unit of another kind"
+        fail(LinkworkError(f"{option}: {quote(unit)} {why}; expected e.g. {quote(example)}, got {quote(text)}"))
     if not value > 0:
-        fail(LinkworkError(f'{option}: expected a positive value, got "{text}"'))
+        fail(LinkworkError(f"{option}: expected a positive value, got {quote(text)}"))
     return value
+
+
+def _is_unit(unit: str) -> bool:
+    """Whether pint reads ``unit`` as a unit (of any kind)."""
+    from linkwork.units import registry
+
+    try:
+        registry().parse_units(unit.replace("^", "**"))
+    except Exception:  # pint raises several types for what is not a unit
+        return False
+    return True
+
+
+def _before_work(catalogue: str | None, synchronous: float | None, write: str | None, motor: bool) -> Catalogue | None:
+    """The motor catalogue read and the ``--write`` destination checked before any computing: the catalogue
+    (None: the bundled one), or exit code 2 with the reason."""
+    from linkwork.atomic import target_problem
+    from linkwork.sizing.motor import motor_catalogue, synchronous_problem
+
+    if write is not None:
+        why = target_problem(write)
+        if why is not None:
+            fail(LinkworkError(f"--write {write}: {why}"))
+    if not motor:
+        return None
+    try:
+        cat = motor_catalogue(catalogue)
+    except LinkworkError as exc:
+        fail(exc)
+    if synchronous is not None:
+        why = synchronous_problem(cat, synchronous)
+        if why is not None:
+            fail(LinkworkError(f"--synchronous: {why}"))
+    return cat
 
 
 @app.command()
@@ -61,26 +105,42 @@ def size(
     write: Annotated[
         str | None, typer.Option(help="write the mechanism file with the chosen motor, gear and flywheel (.yaml)")
     ] = None,
+    masses: Annotated[
+        str,
+        typer.Option(
+            help='"file": the links\' masses as the file gives them; "sized": from their sized steel sections, '
+            "iterated with the loads to a fixed point (--write writes them too)"
+        ),
+    ] = "file",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Size the machine from its loads: motor, gear and flywheel, rolling and plain bearings, pins, bolts."""
+    from linkwork.api import compile as compile_spec
     from linkwork.sizing import size as run
+    from linkwork.sizing.bearings import width_ratio_problem
 
     problems = [delta_problem(delta, "--delta")]
     if kind not in ("ball", "roller"):
         problems.append(f'--kind: "ball" or "roller", got "{kind}"')
     if not 0 < reserve <= 1:
         problems.append(f"--reserve: a share of the breakdown torque in (0, 1], got {reserve}")
-    if not width_ratio > 0:
-        problems.append(f"--width-ratio: expected a positive number, got {width_ratio}")
+    problems.append(width_ratio_problem(width_ratio, "--width-ratio"))
+    if masses not in ("file", "sized"):
+        problems.append(f'--masses: "file" or "sized", got "{masses}"')
     if write is not None and not write.endswith((".yaml", ".yml")):
         problems.append(f'--write "{write}": expected a .yaml file')
     if write is not None and not motor:
         problems.append("--write puts the chosen motor into the file: it needs the motor chosen (drop --no-motor)")
+    if catalogue is not None and not motor:
+        problems.append("--catalogue is the motors' catalogue: it needs the motor chosen (drop --no-motor)")
+    if synchronous is not None and not motor:
+        problems.append("--synchronous keeps to motors of that speed: it needs the motor chosen (drop --no-motor)")
     check_options(*problems)
     life_s = _quantity(life, "time", "--life", "20000 h")
     sync = _quantity(synchronous, "angular_speed", "--synchronous", "1500 rpm")
+    cat = _before_work(catalogue, sync, write, motor)
     mech = compile_or_exit(file_or_example)
+    bar = _progress()
     try:
         result = run(
             mech,
@@ -88,17 +148,22 @@ def size(
             kind=kind,
             delta=delta,
             reserve=reserve,
-            catalogue=catalogue,
+            catalogue=cat if catalogue is not None else None,  # the bundled one said as such
             synchronous=sync,
             motor=motor,
             steel=steel,
             bush=bush,
             width_ratio=width_ratio,
             bolt_class=bolt_class,
+            progress=bar,
+            masses=masses,
+            compile_spec=compile_spec,
         )
         written = _write(mech, result, write) if write is not None else None
     except LinkworkError as exc:
+        _cleared(bar)
         fail(exc)
+    _cleared(bar)
     if as_json:
         echo_json({**result.record(), **({"written": written} if written else {})})
         return
@@ -111,9 +176,36 @@ def size(
         for passed in result.motor.passed:
             typer.echo(f"  passed over: {passed.name}: {passed.why}")
     for part, why in result.missing.items():
-        typer.echo(f"  {part}: {why}")
+        typer.echo(f"  not sized: {part}: {why}")
     if written:
         typer.echo(f"  wrote {written}")
+
+
+def _progress() -> Callable[[int, int], None] | None:
+    """Where standard error is a terminal: a line that counts the motors of the catalogue looked at (the choice of
+    a large catalogue takes a while), rewritten in place; :func:`_cleared` clears it.  Else None."""
+    import sys
+
+    raw = getattr(sys.stderr, "unescaped", sys.stderr)  # the line's own carriage return and erase, as they are
+    if not raw.isatty():
+        return None
+
+    def show(k: int, n: int) -> None:
+        if n >= 20:
+            raw.write(f"\r\033[K  motor {k + 1:,} of {n:,} looked at")
+            raw.flush()
+
+    return show
+
+
+def _cleared(progress: Callable[[int, int], None] | None) -> None:
+    """Clear the line of :func:`_progress` (where there is one)."""
+    import sys
+
+    if progress is not None:
+        raw = getattr(sys.stderr, "unescaped", sys.stderr)
+        raw.write("\r\033[K")
+        raw.flush()
 
 
 def _write(mech: object, result: object, out: str) -> str:
@@ -125,7 +217,14 @@ def _write(mech: object, result: object, out: str) -> str:
     from linkwork.structure.model import Mechanism
 
     assert isinstance(result, Sizing) and isinstance(mech, Mechanism) and result.motor is not None
-    text = text_with_section(mech.spec, "machine", result.motor.machine_section())
+    spec = mech.spec
+    if result.masses is not None and spec is not None:  # the masses it was sized with, written first
+        from linkwork.spec.reader import loads
+        from linkwork.structure.parameters import file_text
+
+        sized = {f"links.{k}.mass": v for k, v in result.masses.masses.items()}
+        spec = loads(file_text(mech, sized), spec.source.file if spec.source is not None else None)
+    text = text_with_section(spec, "machine", result.motor.machine_section())
     try:
         path = write_text(text, out)
     except OSError as exc:

@@ -19,6 +19,7 @@ from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
+from linkwork.errors import Problem, SpecError
 from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.spec.schema import Load
 from linkwork.structure.model import Mechanism
@@ -42,10 +43,16 @@ class ForceElement(Protocol):
     def free(self) -> float: ...
 
 
-def compile_element(load: Load, mech: Mechanism) -> dict[str, Any]:
-    """The fields of the record of one force element of a validated spec: ``points`` the two points (spring,
-    damper), ``pair`` the revolute pair (torsion spring), ``value`` the stiffness or damping, ``free`` the free
-    length or angle (a preload turned into the free length at the assembly pose ``mech.pose0``)."""
+def compile_element(load: Load, mech: Mechanism, name: str = "") -> dict[str, Any]:
+    """The fields of the record of one force element ``name`` of a validated spec: ``points`` the two points
+    (spring, damper), ``pair`` the revolute pair (torsion spring), ``value`` the stiffness or damping, ``free`` the
+    free length or angle (a preload turned into the free length at the assembly pose ``mech.pose0``).
+
+    Raises
+    ------
+    SpecError
+        A preload that would need a negative free length (at the preload's line of the file).
+    """
     if load.type == "torsion_spring":
         pair = _joint_pair(mech, str(load.joint))
         free = float(load.free_angle if load.free_angle is not None else 0.0)
@@ -60,8 +67,25 @@ def compile_element(load: Load, mech: Mechanism) -> dict[str, Any]:
     if load.free_length is not None:
         return {**out, "value": k, "free": float(load.free_length)}
     p = mech.points0()  # the preload is its tension in the assembly pose
-    free = float(np.linalg.norm(p[points[1]] - p[points[0]])) - (float(load.preload or 0.0) / k if k > 0 else 0.0)
+    length = float(np.linalg.norm(p[points[1]] - p[points[0]]))
+    free = length - (float(load.preload or 0.0) / k if k > 0 else 0.0)
+    if free < 0:
+        raise _problem(
+            mech,
+            ("loads", name, "preload"),
+            f"a spring's preload of {float(load.preload or 0.0):g} N stretches it by {length - free:g} m at "
+            f"{k:g} N/m, more than its length of {length:g} m in the assembly pose: its free length would be "
+            f"negative; at most {k * length:g} N",
+        )
     return {**out, "value": k, "free": free}
+
+
+def _problem(mech: Mechanism, path: tuple[str, ...], message: str) -> SpecError:
+    """A :class:`SpecError` of one problem at ``path`` of the mechanism's file (its line, where it was read)."""
+    source = mech.spec.source if mech.spec is not None else None
+    if source is not None:
+        return SpecError([source.problem(path, message)])
+    return SpecError([Problem(".".join(path), message)])
 
 
 def _point(mech: Mechanism, ref: str) -> int:

@@ -39,7 +39,7 @@ def compile_loads(spec: Spec, mech: Mechanism) -> tuple[ExternalLoad, ...]:
         elif load.type == "moment":
             out.append(_moment(name, load, names))
         elif load.type in ELEMENTS:
-            out.append(ExternalLoad(name, **compile_element(load, mech)))
+            out.append(ExternalLoad(name, **compile_element(load, mech, name)))
         else:
             out.append(_process(name, load, names))
     return tuple(out)

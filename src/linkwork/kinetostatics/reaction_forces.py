@@ -325,20 +325,29 @@ class Forces:
     @property
     def checks(self) -> dict[str, float]:
         """Largest discrepancy of the independent checks, relative to the largest value checked
-        (NaN where a check has nothing to compare: the power balance at rest)."""
+        (NaN where a check has nothing to compare: the power balance at rest).  The foundation's moment is
+        measured against the larger of its own largest value and its force's largest times the mechanism's reach
+        (the farthest link origin from the frame's origin): a moment that is zero but for rounding (every force
+        through the origin) is then not noise divided by noise."""
 
-        def rel(a: np.ndarray, b: np.ndarray) -> float:
+        def rel(a: np.ndarray, b: np.ndarray, floor: float = 0.0) -> float:
             if not np.isfinite(a - b).any():
                 return math.nan  # nothing to compare: at rest, or every position singular
-            scale = np.nanmax(np.abs(b)) if np.isfinite(b).any() else 0.0
+            scale = max(float(np.nanmax(np.abs(b))) if np.isfinite(b).any() else 0.0, floor)
             return float(np.nanmax(np.abs(a - b)) / scale) if scale > 0 else float(np.nanmax(np.abs(a - b)))
 
         m = self.mechanism
         lam = self.multipliers[..., 2 * m.n_pairs :]
+        found, momentum = self.foundation_all, self.foundation_momentum_all
+        with np.errstate(invalid="ignore"):
+            reach = np.hypot(self.kinematics.pose[..., 0], self.kinematics.pose[..., 1])
+            force = np.hypot(found[..., 0], found[..., 1])
+        arm = float(np.nanmax(reach)) if np.isfinite(reach).any() else 0.0
+        moment_scale = arm * (float(np.nanmax(force)) if np.isfinite(force).any() else 0.0)
         return {
             "driving_torque_vs_power_balance": rel(lam, self.torque_power_all),
-            "foundation_force_vs_momentum": rel(self.foundation_all[..., :2], self.foundation_momentum_all[..., :2]),
-            "foundation_moment_vs_momentum": rel(self.foundation_all[..., 2], self.foundation_momentum_all[..., 2]),
+            "foundation_force_vs_momentum": rel(found[..., :2], momentum[..., :2]),
+            "foundation_moment_vs_momentum": rel(found[..., 2], momentum[..., 2], moment_scale),
         }
 
     @cached_property

@@ -117,7 +117,14 @@ class Reduced:
         """The work of the loads from ``lo`` to ``hi`` ``(N,)``, to rounding: Gauss-Lobatto's rule of :data:`NODES`
         on each span, and on its halves where the two differ by more than :data:`AGREE` of the largest load times
         the span (a kink or a jump of a load inside it: a knife that meets the workpiece), and so on.  The rule
-        takes the ends of the span, so that a kink between its inner nodes and an end is seen."""
+        takes the ends of the span, so that a kink between its inner nodes and an end is seen.
+
+        Bounded in time and memory whatever the loads: at most ``N /`` :data:`SPANS` spans (at least
+        :data:`SPANS_LEAST`) are halved a round, those whose halves disagree most for their length (a jump of a load
+        is halved to the rounding of the angle, a kink nearly so), so that the loads are evaluated at most
+        ``12 N + 16`` :data:`HALVINGS` ``max(N / SPANS, SPANS_LEAST)`` times.  A load known only to a few units of
+        rounding (near a singular position, where its halves never agree to :data:`AGREE`) is then not halved for
+        ever: a span left open takes its halves' sum, within their disagreement of the true work."""
         assert self.between is not None
         nodes, weights = NODES
 
@@ -128,12 +135,16 @@ class Reduced:
             return out
 
         scale = AGREE * float(np.max(np.abs(self.load), initial=0.0))
+        cap = max(len(lo) // SPANS, SPANS_LEAST)
         total, owner, whole = np.zeros(len(lo)), np.arange(len(lo)), rule(lo, hi)
         for _ in range(HALVINGS):
             mid = 0.5 * (lo + hi)
             halves = rule(np.concatenate([lo, mid]), np.concatenate([mid, hi]))
             left, right = halves[: len(lo)], halves[len(lo) :]
-            done = ~(np.abs(left + right - whole) > scale * np.abs(hi - lo))  # NaN (no assembly) is done too
+            gap = np.abs(left + right - whole) / np.maximum(np.abs(hi - lo), np.finfo(float).tiny)
+            done = ~(gap > scale)  # NaN (no assembly) is done too
+            if np.count_nonzero(~done) > cap:  # the worst for their length go on; the rest take their halves' sum
+                done[np.argsort(np.where(done, np.inf, -gap), kind="stable")[cap:]] = True
             np.add.at(total, owner[done], (left + right)[done])
             more = ~done
             if not more.any():
@@ -171,6 +182,9 @@ NODES = (np.array([-1.0, -1 / math.sqrt(5), 1 / math.sqrt(5), 1.0]), np.array([1
 AGREE = 1e-14
 #: Halvings of a span at most.
 HALVINGS = 60
+#: Spans halved in a round at most (:meth:`Reduced._integral`): one in this many of the spans asked, and at least
+#: :data:`SPANS_LEAST` (a jump of a load keeps two spans open a round).
+SPANS, SPANS_LEAST = 16, 64
 
 
 def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:

@@ -74,6 +74,15 @@ def _text(t: Any, prefix: str, text: Any) -> Any:
     least = re.fullmatch(r"least round d (\S+) mm", text)
     if least:
         return t("sizing.least_round", d=least.group(1))
+    rolling = re.fullmatch(r"no: swings (\S+) < (\S+) deg between its elements", text)
+    if rolling:
+        return t("sizing.rolling_no", swing=rolling.group(1), pitch=rolling.group(2))
+    joints = re.fullmatch(r"joints (.+)", text)
+    if joints:
+        return t("sizing.joints", joints=joints.group(1))
+    unbounded = re.fullmatch(r"the force grows without bound .* at phi (\S+) deg: .*", text)
+    if unbounded:
+        return t("sizing.unbounded", phi=unbounded.group(1))
     return t(prefix + text) if prefix + text in TEXTS else text
 
 

@@ -41,11 +41,21 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.sizing.common import Table, worst
+from linkwork.sizing.common import Table
 from linkwork.sizing.pairs import Pair
 
 #: The life exponent of ISO 281 by the kind of rolling bearing.
 EXPONENT = {"ball": 3.0, "roller": 10.0 / 3.0}
+#: The width / diameter of a pin or bush sized: from a thin disc to a long sleeve (common designs: 0.5 to 1.5).
+WIDTH_RATIOS = (0.1, 10.0)
+
+
+def width_ratio_problem(ratio: float, name: str) -> str | None:
+    """Why ``ratio`` is not a width / diameter of a pin or bush (:data:`WIDTH_RATIOS`), or None."""
+    low, high = WIDTH_RATIOS
+    if low <= ratio <= high:
+        return None
+    return f"{name}: the width / diameter of the pins and bushes, from {low:g} to {high:g}, got {ratio:g}"
 
 
 def equivalent_load(force: np.ndarray, turning: np.ndarray, p: float = 3.0) -> float:
@@ -132,7 +142,11 @@ class Bearings:
     width_ratio: float
 
     def over(self, j: JointBearing) -> str:
-        """What of the bush's limits joint ``j`` exceeds: its peak p, its peak v, its mean pv ("" for none)."""
+        """What of the bush's limits joint ``j`` exceeds: its peak p, its peak v, its mean pv ("none" for none); "not
+        known" where a figure is not (a load that is not finite over the cycle: a singular position)."""
+        figures = (j.p_max, j.v_max, j.pv_mean)
+        if not all(math.isfinite(v) for v in figures):
+            return "not known: the load is not finite over the cycle"
         over = [
             name
             for name, value, limit in (
@@ -283,8 +297,11 @@ def bearings(
     """
     if kind not in EXPONENT:
         raise LinkworkError(f'bearing kind: "ball" or "roller", got "{kind}"')
-    if not life_h > 0 or not width_ratio > 0:
-        raise LinkworkError(f"life and width ratio must be positive, got {life_h} h and {width_ratio}")
+    if not 0 < life_h < math.inf:
+        raise LinkworkError(f"life: expected a positive number of hours, got {life_h} h")
+    why = width_ratio_problem(width_ratio, "width ratio")
+    if why is not None:
+        raise LinkworkError(why)
     pins, guides = dict(pins or {}), dict(guides or {})
     labels = {p.label: p.kind for p in pairs}
     wrong = [
@@ -296,12 +313,15 @@ def bearings(
     if wrong:
         raise LinkworkError("\n".join(wrong))
     p = EXPONENT[kind]
-    joints = tuple(
-        _joint(pair, phi, life_h, p, bush, pins.get(pair.label), width_ratio)
-        for pair in pairs
-        if pair.kind == "revolute"
-    )
-    figures = tuple(_guide(pair, phi, guides.get(pair.label, math.nan)) for pair in pairs if pair.kind == "prismatic")
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):  # an unbounded force: its figures inf, NaN
+        joints = tuple(
+            _joint(pair, phi, life_h, p, bush, pins.get(pair.label), width_ratio)
+            for pair in pairs
+            if pair.kind == "revolute"
+        )
+        figures = tuple(
+            _guide(pair, phi, guides.get(pair.label, math.nan)) for pair in pairs if pair.kind == "prismatic"
+        )
     return Bearings(joints, figures, life_h, kind, crank_speed * 30 / math.pi, bush, width_ratio)
 
 
@@ -309,7 +329,7 @@ def _joint(
     pair: Pair, phi: np.ndarray, life_h: float, p: float, bush: Bush, pin: tuple[float, float] | None, ratio: float
 ) -> JointBearing:
     f, w = pair.force, np.abs(pair.turning)
-    i = worst(f)
+    peak, at = pair.force_max(phi)
     load = equivalent_load(f, w, p)
     revs = float(np.mean(w)) / (2 * math.pi)
     net = abs(float(np.mean(pair.turning)))
@@ -318,7 +338,7 @@ def _joint(
     if pin is not None:
         d, b = pin
     else:
-        d = max(math.sqrt(float(np.max(f)) / (ratio * bush.p)), float(np.mean(f * w)) / (2 * ratio * bush.pv))
+        d = max(math.sqrt(peak / (ratio * bush.p)), float(np.mean(f * w)) / (2 * ratio * bush.pv))
         b = ratio * d
     pressure = f / (d * b)
     speed = w * d / 2
@@ -327,8 +347,8 @@ def _joint(
         pair.links,
         motion,
         swing,
-        float(f[i]),
-        float(phi[i]),
+        peak,
+        at,
         float(np.mean(f)),
         revs,
         load,
@@ -337,7 +357,7 @@ def _joint(
         b,
         pin is not None,
         float(np.mean(pressure)),
-        float(np.max(pressure)),
+        max(float(np.max(pressure)), peak / (d * b)),
         float(np.max(speed)),
         float(np.mean(pressure * speed)),
         float(np.max(pressure * speed)),
@@ -346,13 +366,14 @@ def _joint(
 
 def _guide(pair: Pair, phi: np.ndarray, length: float) -> GuideFigures:
     f, m = pair.force, np.abs(pair.moment)
-    i = worst(f)
+    peak, at = pair.force_max(phi)
     q = f / length + 6 * m / length**2 if math.isfinite(length) else np.full_like(f, math.nan)
+    q = np.append(q, peak / length + 6 * float(np.max(m)) / length**2)  # the refined peak with the largest moment
     return GuideFigures(
         pair.label,
         pair.links,
-        float(f[i]),
-        float(phi[i]),
+        peak,
+        at,
         float(np.mean(f)),
         float(np.max(m)),
         float(np.max(pair.sliding)),

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.limits import MAX_CATALOGUE_ROWS, MAX_PROBLEMS, QUOTE_PATH
 
 #: A column heading: its name and, in brackets, its unit.
 _HEADING = re.compile(r"^\s*([^\[\]]*?)\s*\[([^\[\]]*)\]\s*$")
@@ -97,11 +98,34 @@ def read_catalogue(path: str | Path, need: dict[str, str]) -> Catalogue:
         The file cannot be read, a needed column is missing or has a unit of another kind, a value is
         not a finite number (each problem with its line).
     """
+    return parse_catalogue(_catalogue_text(path), str(path), need)
+
+
+def _catalogue_text(path: str | Path) -> str:
+    """The text of the catalogue file ``path``: a regular file (a device, a fifo or a folder is refused before it is
+    opened: it could be endless or block for ever) of at most :data:`~linkwork.limits.MAX_CATALOGUE_BYTES`, UTF-8."""
+    import os
+    import stat
+
+    from linkwork.atomic import kind
+    from linkwork.limits import MAX_CATALOGUE_BYTES, excerpt
+
+    shown = excerpt(os.fspath(path), QUOTE_PATH)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        info = os.stat(path)
+        if not stat.S_ISREG(info.st_mode):
+            raise LinkworkError(f"catalogue {shown}: it is {kind(info.st_mode)}, not a regular file (a CSV file)")
+        if info.st_size > MAX_CATALOGUE_BYTES:
+            raise LinkworkError(
+                f"catalogue {shown}: {info.st_size:,} bytes; a catalogue is at most {MAX_CATALOGUE_BYTES:,} bytes"
+            )
+        with open(path, "rb") as stream:  # a regular file, read no further than the bound
+            data = stream.read(MAX_CATALOGUE_BYTES + 1)
+        if len(data) > MAX_CATALOGUE_BYTES:
+            raise LinkworkError(f"catalogue {shown}: larger than {MAX_CATALOGUE_BYTES:,} bytes, the most it may be")
+        return data.decode("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
-        raise LinkworkError(f"catalogue {path}: cannot read it ({getattr(exc, 'strerror', None) or exc})") from None
-    return parse_catalogue(text, str(path), need)
+        raise LinkworkError(f"catalogue {shown}: cannot read it ({getattr(exc, 'strerror', None) or exc})") from None
 
 
 def parse_catalogue(text: str, source: str, need: dict[str, str]) -> Catalogue:
@@ -132,6 +156,13 @@ def parse_catalogue(text: str, source: str, need: dict[str, str]) -> Catalogue:
         except LinkworkError as exc:
             problems.append(f"{source}:{heading_line}: column {name!r}: {exc}")
     names, values = [], []
+    rows = len(body) - 1
+    if rows > MAX_CATALOGUE_ROWS:
+        problems.append(
+            f"{source}: {rows:,} rows; a catalogue has at most {MAX_CATALOGUE_ROWS:,} (each is screened "
+            "against the machine, and a run of the machine takes seconds): keep the motors that may serve"
+        )
+        body = body[:1]
     for n, line in body[1:]:
         cells = next(csv.reader(io.StringIO(line)))
         row = []
@@ -145,10 +176,12 @@ def parse_catalogue(text: str, source: str, need: dict[str, str]) -> Catalogue:
             row.append(v * factors.get(name, 1.0))
         names.append(cells[0].strip())
         values.append(row)
-    if not names:
+    if not rows:
         problems.append(f"{source}: no rows under the heading")
     if problems:
-        raise LinkworkError("\n".join(problems))
+        more = len(problems) - MAX_PROBLEMS
+        shown = problems[:MAX_PROBLEMS] + ([f"... and {more:,} more problems"] if more > 0 else [])
+        raise LinkworkError("\n".join(shown))
     table = np.array(values, dtype=float).reshape(len(names), len(units))
     return Catalogue(source, comments, tuple(names), {k: table[:, i] for i, k in enumerate(units)})
 

@@ -32,6 +32,7 @@ from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.reaction_forces import Forces
 from linkwork.sizing.common import Table
 from linkwork.sizing.pin_shear import Steel
+from linkwork.spec.part_checks import SECTION_DIMENSIONS
 
 
 def section_properties(shape: str, dims: Mapping[str, float]) -> tuple[float, float]:
@@ -44,7 +45,7 @@ def section_properties(shape: str, dims: Mapping[str, float]) -> tuple[float, fl
     LinkworkError
         An unknown shape or a missing dimension.
     """
-    need = {"round": ("d",), "rectangle": ("b", "h"), "tube": ("d", "t"), "I": ("h", "b", "tw", "tf")}
+    need = SECTION_DIMENSIONS  # the file's sections are checked where it is read (linkwork.spec.part_checks)
     if shape not in need:
         raise LinkworkError(f'section: one of {", ".join(need)}, got "{shape}"')
     lack = [k for k in need[shape] if not dims.get(k)]

@@ -8,6 +8,7 @@ Every input with a default is stated in the record (``inputs``).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -18,10 +19,13 @@ from linkwork.errors import LinkworkError
 from linkwork.sizing.bearings import Bearings, Bush, bearings
 from linkwork.sizing.bolts import BoltResult, size_bolts
 from linkwork.sizing.common import Catalogue, Table, bundled
+from linkwork.sizing.governing import governing_table
 from linkwork.sizing.links import Bars, bars
-from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue
-from linkwork.sizing.pairs import pairs_of
+from linkwork.sizing.masses import SizedMasses, sized_masses
+from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue, synchronous_problem
+from linkwork.sizing.pairs import Pair, pairs_of
 from linkwork.sizing.pin_shear import Pins, Steel, pins
+from linkwork.sizing.shaft import Shaft, main_shaft, split
 from linkwork.structure.model import Mechanism
 
 #: The default life of rolling bearings, h.
@@ -45,9 +49,13 @@ class Sizing:
     bolts: BoltResult | None
     missing: dict[str, str]
     links: Bars | None = None
+    shaft: Shaft | None = None
+    masses: SizedMasses | None = None  # the links' masses sized to a fixed point (masses="sized"), else None
 
     def tables(self) -> list[Table]:
         out = [self.motor.table()] if self.motor is not None else []
+        out += [governing_table(self.pins, self.bearings)]
+        out += [self.shaft.table()] if self.shaft is not None else []
         out += self.bearings.tables() + [self.pins.table()]
         out += [self.links.table()] if self.links is not None else []
         out += self.bolts.tables() if self.bolts is not None else []
@@ -61,6 +69,9 @@ class Sizing:
             "motor": self.motor.record() if self.motor is not None else None,
             "bearings": self.bearings.record(),
             "pins": self.pins.record(),
+            "joints": governing_table(self.pins, self.bearings).record(),
+            "shaft": self.shaft.record() if self.shaft is not None else None,
+            "masses_kg": self.masses.masses if self.masses is not None else None,
             "links": self.links.record() if self.links is not None else None,
             "bolts": self.bolts.record() if self.bolts is not None else None,
             "missing": self.missing,
@@ -94,7 +105,7 @@ def size(
     delta: float | None = None,
     efficiency: float | None = None,
     reserve: float = 0.8,
-    catalogue: str | Path | None = None,
+    catalogue: str | Path | Catalogue | None = None,
     synchronous: float | None = None,
     motor: bool = True,
     steel: str = "C45 normalised",
@@ -108,6 +119,9 @@ def size(
     friction: float = 0.2,
     load_factor: float = 0.25,
     steps: int = 360,
+    progress: Callable[[int, int], None] | None = None,
+    masses: str = "file",
+    compile_spec: Callable[[Any], Mechanism] | None = None,
 ) -> Sizing:
     """Size the machine ``mech`` (``linkwork.size`` also takes a path, an example name or a Spec).
 
@@ -123,8 +137,9 @@ def size(
         Of the gear (default: the file's gear's, else 0.95).
     reserve : float
         The share of the motor's breakdown torque its peak torque may reach.
-    catalogue : path
-        A motor catalogue (CSV, the columns of the bundled ``motors.csv``); default the bundled one.
+    catalogue : path or Catalogue
+        A motor catalogue (CSV, the columns of the bundled ``motors.csv``, or one read already); default the bundled
+        one.
     synchronous : float
         Keep to motors of this synchronous speed, rad/s.
     motor : bool
@@ -140,6 +155,13 @@ def size(
         opening and sliding, its friction coefficient and load factor.
     steps : int
         Crank angles over the turn for the loads.
+    progress : callable, optional
+        ``progress(k, n)``: told of each motor ``k`` of the ``n`` of the catalogue the choice looks at.
+    masses : str
+        ``"file"``: the links' masses as the file gives them (or its default rule); ``"sized"``: the bars' masses
+        from their sized steel sections, iterated with the loads to a fixed point (:mod:`linkwork.sizing.masses`).
+    compile_spec : callable
+        How an edited file is compiled, for ``masses="sized"`` (``linkwork.size`` passes :func:`linkwork.compile`).
     """
     file = mech.spec.sizing if mech.spec is not None and mech.spec.sizing is not None else None
     if life_h is None:
@@ -150,6 +172,11 @@ def size(
         efficiency = mech.motor_gear.efficiency if mech.motor_gear is not None else EFFICIENCY
     if bolts is None and file is not None and file.bolts:
         bolts = np.array(file.bolts, dtype=float)
+    cat = motor_catalogue(catalogue) if motor else None  # read, and its speeds checked, before any computing
+    if cat is not None and synchronous is not None:
+        why = synchronous_problem(cat, synchronous)
+        if why is not None:
+            raise LinkworkError(why)
     steel_row = _row(bundled("steels.csv"), steel, "steel")
     bush_row = _row(bundled("bushes.csv"), bush, "bush")
     _row(bundled("bolt_classes.csv"), bolt_class, "bolt class")  # a wrong class said even where no bolts are sized
@@ -159,14 +186,35 @@ def size(
     from linkwork.kinetostatics.reaction_forces import forces
     from linkwork.motion.analysis import CrankAngles
 
-    f = forces(mech, steps=steps)
+    if masses not in ("file", "sized"):
+        raise LinkworkError(f'masses: "file" or "sized", got "{masses}"')
     angles = CrankAngles.of(mech)
     if angles is None:
         raise LinkworkError("sizing needs one crank driven by the frame: the cycle is its turn")
+
+    def bars_of(m: Mechanism) -> Bars:
+        fm = forces(m, steps=steps)
+        return bars(fm, np.asarray(angles.phi(fm.angles), dtype=float), grade, safety=safety, sections=given)
+
+    if masses == "sized" and compile_spec is None:
+        raise LinkworkError('masses="sized" compiles the file with each round\'s masses: call linkwork.size')
+    sized = sized_masses(mech, bars_of, compile_spec) if masses == "sized" and compile_spec is not None else None
+    mech = sized.mechanism if sized is not None else mech
+    f = forces(mech, steps=steps)
     phi = np.asarray(angles.phi(f.angles), dtype=float)
     crank = abs(float(mech.drive_speed[0]))
     pairs = pairs_of(f)
     missing: dict[str, str] = {}
+    pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
+    shaft = _shaft(mech, pairs, pinned, file)
+    pairs_of_joints = pairs  # as the joints are, before the main shaft's two bearings
+    if shaft is not None:
+        pairs = split(pairs, shaft.joint, shaft.shares)
+        pin_sizes = {
+            **pin_sizes,
+            **{f"{shaft.joint}/{n}": pin_sizes[shaft.joint] for n in (1, 2) if shaft.joint in pin_sizes},
+        }
+        pin_sizes.pop(shaft.joint, None)
     found = bearings(
         pairs,
         phi,
@@ -178,8 +226,13 @@ def size(
         width_ratio=width_ratio,
         guides=guides,
     )
-    pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
     linked = bars(f, phi, grade, safety=safety, sections=given)
+    unbounded = [p for p in pairs_of_joints if math.isinf(p.peak)]
+    if unbounded:
+        missing[f"joints {', '.join(p.label for p in unbounded)}"] = (
+            f"the force grows without bound as the crank nears the singular position at phi "
+            f"{unbounded[0].peak_phi:.4g} deg: no pin, bush or bearing holds it"
+        )
     held = None
     if bolts is not None and len(bolts):
         found_loads = np.asarray(f.foundation, dtype=float)
@@ -201,20 +254,31 @@ def size(
     if motor:
         from linkwork.machine.reduction import reduced
 
-        cat = motor_catalogue(catalogue)
         choice = choose_motor(
-            mech, reduced(mech), delta, efficiency=efficiency, reserve=reserve, catalogue=cat, synchronous=synchronous
+            mech,
+            reduced(mech),
+            delta,
+            efficiency=efficiency,
+            reserve=reserve,
+            catalogue=cat,
+            synchronous=synchronous,
+            progress=progress,
         )
     else:
         missing["motor"] = "not asked"
-    inputs = {
-        "life_h": life_h,
-        "bearing_kind": kind,
+    chosen = {
         "delta": delta,
         "gear_efficiency": efficiency,
         "reserve": reserve,
-        "catalogue": str(catalogue) if catalogue is not None else "motors.csv (bundled, typical values)",
+        "catalogue": cat.source
+        if cat is not None and catalogue is not None
+        else "motors.csv (bundled, typical values)",
         "synchronous_rpm": synchronous * 30 / math.pi if synchronous is not None else None,
+    }
+    inputs = {
+        "life_h": life_h,
+        "bearing_kind": kind,
+        **(chosen if motor else {}),
         "steel": steel,
         "pin_safety": safety,
         "bush": bush,
@@ -227,5 +291,16 @@ def size(
         "steps": steps,
         "crank_rpm": crank * 30 / math.pi,
         "loads": "kinetostatics at the file's uniform crank speed",
+        "masses": sized.said() if sized is not None else "the file's (or its default rule)",
     }
-    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked)
+    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked, shaft, sized)
+
+
+def _shaft(mech: Mechanism, pairs: list[Pair], pinned: Pins, file: Any) -> Shaft | None:
+    """The main shaft of the crank's pivot (the first drive's joint with the frame), or None (no such pair)."""
+    joint = mech.spec.drives[0].joint if mech.spec is not None and mech.spec.drives else None
+    pair = next((p for p in pairs if p.label == joint and p.kind == "revolute" and "frame" in p.links), None)
+    pin = next((p for p in pinned.pins if p.label == joint), None)
+    if pair is None or pin is None:
+        return None
+    return main_shaft(pair, file.shaft if file is not None else None, pin.diameter, pinned, pin.force)

@@ -15,12 +15,14 @@ The choice, for the crank speed ``omega_c`` of the file and a gear of efficiency
 3. the machine is then run with the motor (:func:`linkwork.machine.dynamics`: from rest to the steady
    cycle), and the run decides: the peak motor torque of the steady cycle under ``reserve M_k`` and the
    RMS torque over the cycle (the motor's heating, the equivalent-torque method) under the rated torque.
-   A motor that fails the run gives way to the next in the order.
+   A motor that fails the run gives way to the next in the order.  A choice is bounded: it runs the machine
+   at most ``tries`` times and sizes at most :data:`SCREENS` flywheels (the motors beyond are named, not tried).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -50,12 +52,27 @@ MOTOR_COLUMNS = {
 RPM = 30 / math.pi
 
 
-def motor_catalogue(path: str | Path | None = None) -> Catalogue:
+def motor_catalogue(path: str | Path | Catalogue | None = None) -> Catalogue:
     """The bundled motor catalogue (``motors.csv``: typical values, see its comments), or a user's CSV file
-    with the same columns (:data:`MOTOR_COLUMNS`, any units of the same kinds)."""
+    with the same columns (:data:`MOTOR_COLUMNS`, any units of the same kinds); a catalogue read already as it is."""
+    if isinstance(path, Catalogue):
+        return path
     if path is None:
         return bundled("motors.csv")
     return read_catalogue(path, MOTOR_COLUMNS)
+
+
+def synchronous_problem(cat: Catalogue, synchronous: float) -> str | None:
+    """Why no motor of ``cat`` has the synchronous speed ``synchronous`` (rad/s; as the choice matches it, to
+    1e-3), naming the speeds it has; None where one has."""
+    speeds = cat.columns["synchronous"]
+    if np.any(np.isclose(speeds, synchronous, rtol=1e-3)):
+        return None
+    have = ", ".join(f"{v:.6g}" for v in np.unique(np.round(speeds * RPM, 6))[:20])
+    return (
+        f"no motor of the catalogue {cat.source} has a synchronous speed of {synchronous * RPM:.6g} rpm "
+        f"(it has {have} rpm)"
+    )
 
 
 @dataclass(frozen=True)
@@ -239,6 +256,25 @@ def drive_of(row: dict[str, float], crank_speed: float, efficiency: float) -> Mo
     )
 
 
+def quick_screen(
+    red: Reduced, row: dict[str, float], crank_speed: float, efficiency: float, reserve: float, need: float
+) -> str:
+    """Why the motor of ``row`` cannot drive the machine, by what needs no flywheel ("" where that does not tell):
+    its rated power under ``need``, or the mean torque of the load at its shaft (at its rated speed, the gear's
+    ratio) over its rated torque or over ``reserve`` of its breakdown torque (the peak and the RMS torque are at
+    least the mean)."""
+    if row["power"] < need:
+        return f"rated power {row['power'] / 1e3:.4g} kW under the mean power {need / 1e3:.4g} kW"
+    mean = -red.mean_load / (row["speed"] / crank_speed * efficiency)
+    rated = row["power"] / row["speed"]
+    if mean > reserve * row["breakdown"] * rated:
+        limit = reserve * row["breakdown"] * rated
+        return f"its mean torque {mean:.4g} N m is over {reserve:g} x breakdown {limit:.4g} N m"
+    if mean > rated:
+        return f"its mean torque {mean:.4g} N m (a lower bound of the RMS torque) is over the rated {rated:.4g} N m"
+    return ""
+
+
 def screen(
     red: Reduced,
     row: dict[str, float],
@@ -251,8 +287,9 @@ def screen(
     """Why the motor of ``row`` cannot drive the machine by the estimate of step 2 of the module ("" where it
     can): its rated power under ``need``, no speed where it balances the mean load, or its torque at the lowest
     speed of the cycle above ``reserve`` of its breakdown torque."""
-    if row["power"] < need:
-        return f"rated power {row['power'] / 1e3:.4g} kW under the mean power {need / 1e3:.4g} kW"
+    why = quick_screen(red, row, crank_speed, efficiency, reserve, need)
+    if why:
+        return why
     drive = drive_of(row, crank_speed, efficiency)
     try:
         drive, fly = with_flywheel_for(red, drive, delta, fallback=math.nan)
@@ -268,10 +305,6 @@ def screen(
         return "at the lowest speed of the cycle it is past its breakdown torque"
     if torque > limit:
         return f"torque at the lowest speed {torque:.4g} N m over {reserve:g} x breakdown {limit:.4g} N m"
-    mean = -red.mean_load / (drive.ratio * efficiency)
-    rated = row["power"] / row["speed"]
-    if mean > rated:
-        return f"its mean torque {mean:.4g} N m (a lower bound of the RMS torque) is over the rated {rated:.4g} N m"
     return ""
 
 
@@ -286,10 +319,12 @@ def choose_motor(
     synchronous: float | None = None,
     steps: int | None = None,
     tries: int = 12,
+    progress: Callable[[int, int], None] | None = None,
 ) -> MotorChoice:
     """The smallest motor of ``catalogue`` (default: the bundled one) that drives ``mech`` (reduced
     quantities ``red``) with a flywheel for ``delta`` (see the module); ``synchronous`` (rad/s) keeps to
-    motors of that synchronous speed.  At most ``tries`` runs of the machine.
+    motors of that synchronous speed.  At most ``tries`` runs of the machine and :data:`SCREENS` flywheels sized;
+    ``progress(k, n)`` is told of each motor ``k`` of the ``n`` looked at.
 
     Raises
     ------
@@ -308,24 +343,50 @@ def choose_motor(
     if synchronous is not None:
         order = order[np.isclose(cols["synchronous"][order], synchronous, rtol=1e-3)]
     passed: list[Candidate] = []
-    runs = 0
-    for i in map(int, order):
+    runs = screened = 0
+    for k, i in enumerate(map(int, order)):
+        if progress is not None:
+            progress(k, len(order))
         row = cat.row(i)
-        why = screen(red, row, crank, efficiency, delta, reserve, need)
-        if why == "" and runs < tries:
+        why = quick_screen(red, row, crank, efficiency, reserve, need)
+        if why == "" and (runs >= tries or screened >= SCREENS):
+            left = len(order) - k
+            raise LinkworkError(_none_drives(cat, need, delta, reserve, passed, left, tries if runs >= tries else None))
+        if why == "":
+            screened += 1
+            why = screen(red, row, crank, efficiency, delta, reserve, need)
+        if why == "":
             runs += 1
             choice = _run(mech, row, cat.names[i], crank, efficiency, delta, reserve, need, steps)
             why = _fails(choice)
             if why == "":
                 return _with(choice, tuple(passed), cat.source)
-        if why == "":
-            why = f"not run: {tries} runs tried already"
         if row["power"] >= need:
             passed.append(Candidate(cat.names[i], row["power"], why))
+    raise LinkworkError(_none_drives(cat, need, delta, reserve, passed, 0, None))
+
+
+#: Motors screened with their flywheel at most in one choice (each takes about a second): those beyond are named.
+SCREENS = 40
+
+
+def _none_drives(
+    cat: Catalogue, need: float, delta: float, reserve: float, passed: list[Candidate], left: int, tries: int | None
+) -> str:
+    """Why no motor of ``cat`` was chosen: the first of those passed over with their reasons, and how many were
+    left unscreened (``left``) because ``tries`` runs, or :data:`SCREENS` screens, were spent."""
     reasons = "\n".join(f"  {c.name}: {c.why}" for c in passed[:12])
-    raise LinkworkError(
+    more = f"\n  ... and {len(passed) - 12:,} more passed over" if len(passed) > 12 else ""
+    if left:
+        spent = f"{tries} runs of the machine" if tries is not None else f"{SCREENS} motors screened with a flywheel"
+        more += (
+            f"\n  {left:,} larger motors of the catalogue not tried: {spent} is the most a choice makes "
+            "(narrow the catalogue, or keep to one speed with --synchronous)"
+        )
+    return (
         f"no motor of the catalogue {cat.source} drives the machine (mean power {need / 1e3:.4g} kW at the motor "
-        f"shaft, delta {delta:g}, peak torque at most {reserve:g} x breakdown)" + (f":\n{reasons}" if reasons else "")
+        f"shaft, delta {delta:g}, peak torque at most {reserve:g} x breakdown)"
+        + (f":\n{reasons}{more}" if passed or left else "")
     )
 
 

@@ -3,11 +3,13 @@ cycle, each prismatic pair's normal force and moment, at the samples of a forces
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from linkwork.kinetostatics.reaction_forces import Forces
+from linkwork.sizing.common import worst
 from linkwork.structure.model import PairType
 
 
@@ -33,6 +35,10 @@ class Pair:
         The guide's moment on the slider, N m (prismatic); 0 for a revolute pair.
     sliding : ndarray (A,)
         The slider's speed along the guide, m/s (prismatic); 0 for a revolute pair.
+    peak, peak_phi : float
+        The largest force over the cycle refined between the samples (:func:`linkwork.kinetostatics.peaks.refine`,
+        the one rule of every route), N, and the crank angle phi there, deg; ``inf`` where the force grows without
+        bound towards a singular position (no part holds it); NaN where not known (the samples' peak is used).
     """
 
     label: str
@@ -43,11 +49,27 @@ class Pair:
     relative: np.ndarray
     moment: np.ndarray
     sliding: np.ndarray
+    peak: float = math.nan
+    peak_phi: float = math.nan
+
+    def force_max(self, phi: np.ndarray) -> tuple[float, float]:
+        """The largest force (N) and the crank angle phi (deg) where it is: the refined peak (:attr:`peak`), else
+        the largest sample's (``phi`` the samples' angles, deg)."""
+        if math.isnan(self.peak):
+            i = worst(self.force)
+            return float(self.force[i]), float(phi[i])
+        return self.peak, self.peak_phi
 
 
 def pairs_of(f: Forces) -> list[Pair]:
-    """Every revolute and prismatic pair of ``f``'s mechanism (a pin in a slot left out), first variant."""
+    """Every revolute and prismatic pair of ``f``'s mechanism (a pin in a slot left out), first variant, with the
+    peak of its force refined (:func:`~linkwork.kinetostatics.peaks.pair_force_peaks`)."""
+    from linkwork.kinetostatics.peaks import pair_force_peaks
+    from linkwork.motion.analysis import CrankAngles
+
     mech, kin = f.mechanism, f.kinematics
+    refined = pair_force_peaks(f, list(range(mech.n_pairs)))
+    angles = CrankAngles.of(mech)
     joints = [mech.pair_joint[k] for k in range(mech.n_pairs)]
     out = []
     for k in range(mech.n_pairs):
@@ -59,15 +81,17 @@ def pairs_of(f: Forces) -> list[Pair]:
         force = np.hypot(*np.moveaxis(f.pair_force(k)[0], -1, 0))
         zero = np.zeros_like(force)
         names = (mech.link_names[a], mech.link_names[b])
+        peak = float(refined.value[k])
+        at = float(angles.phi(refined.at[k])) if angles is not None and math.isfinite(refined.at[k]) else math.nan
         if mech.pair_type[k] == PairType.REVOLUTE:
             q, v = kin.pose[0], kin.vel[0]
             turning = v[:, a, 2] - v[:, b, 2]
             relative = np.unwrap(q[:, a, 2] - q[:, b, 2])
-            out.append(Pair(label, "revolute", names, force, turning, relative, zero, zero))
+            out.append(Pair(label, "revolute", names, force, turning, relative, zero, zero, peak, at))
         else:
             moment = np.asarray(f.multipliers[0, :, 2 * k], dtype=float)
             sliding = _sliding(f, k)
-            out.append(Pair(label, "prismatic", names, force, zero, zero, moment, sliding))
+            out.append(Pair(label, "prismatic", names, force, zero, zero, moment, sliding, peak, at))
     return out
 
 

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from linkwork.sizing.common import Table, worst
+from linkwork.sizing.common import Table
 from linkwork.sizing.pairs import Pair
 
 
@@ -130,8 +130,7 @@ def pins(
     for pair in pairs:
         if pair.kind != "revolute":
             continue
-        i = worst(pair.force)
-        f = float(pair.force[i])
+        f, at = pair.force_max(phi)
         given = pair.label in sizes
         d, b = sizes[pair.label] if given else (least_diameter(f, tau, sigma, width_ratio), math.nan)
         if not given:
@@ -140,7 +139,7 @@ def pins(
             Pin(
                 pair.label,
                 f,
-                float(phi[i]),
+                at,
                 d,
                 b,
                 given,

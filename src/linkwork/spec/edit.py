@@ -150,8 +150,49 @@ def text_with_section(spec: Spec | None, key: str, values: dict[str, Any]) -> st
     data, _ = _file_data(spec, round_trip=True)
     _merge(data, key, values)
     text = yaml_text(data)
+    original = spec.source.text if spec.source is not None else None
+    spliced = _spliced(original, text, key) if original is not None else None
+    text = spliced if spliced is not None and _reads_as(spliced, text) else text
     loads(text, spec.source.file if spec.source is not None else None)
     return text
+
+
+def _spliced(original: str, written: str, key: str) -> str | None:
+    """``original`` with its top-level section ``key`` replaced by (or, where it has none, followed by) that
+    section as ``written`` has it: every byte outside the section as the file had it (the YAML writer moves a
+    comment after an alias onto a line of its own); None where either is not a block mapping at the top."""
+    spans = [_sections(t) for t in (original, written)]
+    if spans[0] is None or spans[1] is None or key not in spans[1]:
+        return None
+    lines, new = original.splitlines(keepends=True), written.splitlines(keepends=True)
+    a, b = spans[1][key]
+    section = "".join(new[a:b])
+    section += "" if section.endswith("\n") else "\n"
+    if key in spans[0]:
+        start, end = spans[0][key]
+        return "".join(lines[:start]) + section + "".join(lines[end:])
+    head = "".join(lines)
+    return head + ("" if head.endswith("\n") or not head else "\n") + section
+
+
+def _sections(text: str) -> dict[str, tuple[int, int]] | None:
+    """The lines ``[start, end)`` of each top-level key's section of ``text`` (to the next key's line), or None
+    where the top is not a block mapping whose keys start their lines."""
+    data = round_trip_yaml().load(text)
+    lc, fa = getattr(data, "lc", None), getattr(data, "fa", None)
+    if not isinstance(data, dict) or lc is None or fa is None or fa.flow_style():
+        return None
+    starts = sorted((lc.key(k)[0], str(k)) for k in data)
+    if any(lc.key(k)[1] != 0 for k in data):
+        return None
+    n = len(text.splitlines())
+    return {k: (line, starts[i + 1][0] if i + 1 < len(starts) else n) for i, (line, k) in enumerate(starts)}
+
+
+def _reads_as(text: str, written: str) -> bool:
+    """Whether ``text`` holds the same data as ``written`` (a splice that changed nothing but comments)."""
+    yaml = round_trip_yaml()
+    return bool(_plain(yaml.load(text)) == _plain(yaml.load(written)))
 
 
 #: Why a mechanism assembled in code has no file to edit.

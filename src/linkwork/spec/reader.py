@@ -15,6 +15,7 @@ from pydantic_core import ErrorDetails
 from linkwork.errors import Problem, SpecError, UnitParseError
 from linkwork.limits import echo, quote
 from linkwork.spec.checks import check, suggest
+from linkwork.spec.part_checks import part_checks
 from linkwork.spec.schema import UNION_TAGS, Spec
 from linkwork.spec.yamlsource import Source, dotted, read_file, read_yaml
 from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, check_unit, parse_quantity
@@ -67,6 +68,7 @@ def validate(src: Source) -> Spec:
     problems += [p for p in check(src, declared) if not _restates(p, said)]
     if spec is not None:
         problems += _geometry_checks(spec, src) + _load_checks(spec, src) + _machine_checks(spec, src)
+        problems += part_checks(spec, src)
     problems = _unique(problems)
     if problems or spec is None:
         raise SpecError(problems)

@@ -551,6 +551,17 @@ class SectionSpec(_Strict):
     tf: PositiveLength | None = None
 
 
+class ShaftSpec(_Strict):
+    """The crank's main shaft on two bearings: their ``spacing`` (between their middles) and the crank's
+    ``overhang`` outside the nearer one (its plane's distance from it); without ``overhang``, the crank midway
+    between the two."""
+
+    spacing: PositiveLength = Field(description="between the middles of the shaft's two bearings")
+    overhang: NonnegativeLength | None = Field(
+        None, description="the crank's plane outside the nearer bearing, from it (none: the crank midway)"
+    )
+
+
 class SizingSpec(_Strict):
     """What ``linkwork size`` needs beyond the loads: the pins the joints have, the guides' lengths, the bolts."""
 
@@ -563,6 +574,7 @@ class SizingSpec(_Strict):
     )
     bolts: list[Vec2] = Field(default_factory=list, description="foundation bolts: their positions [x, y] on the bed")
     sections: dict[str, SectionSpec] = Field(default_factory=dict, description="cross-sections of links, by link name")
+    shaft: ShaftSpec | None = Field(None, description="the crank's main shaft on two bearings (default: crank midway)")
     motor: bool = Field(False, description="the report chooses the motor from the catalogue too (runs the machine)")
 
 
