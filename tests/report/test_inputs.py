@@ -127,6 +127,7 @@ def test_wittenbauer_tangents_give_the_flywheel_in_the_figure():
     assert exact == pytest.approx(delta, rel=2e-3)
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_the_report_says_why_the_simulated_delta_differs(report):
     """Both deltas, the one asked for (the file's 0.05) and the simulation's (dynamics.json's), with the why."""
     page = report("double-cut-shears")

@@ -7,6 +7,7 @@ import pytest
 pytest.importorskip("matplotlib")
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_the_pdf_has_the_tables_within_the_page(tmp_path, monkeypatch):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.backends.backend_pdf import PdfPages

@@ -54,6 +54,7 @@ def knives(mechanism) -> dict[str, float]:
     return out
 
 
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
 def test_the_written_shears_meet_every_requirement_and_keep_the_bundled_structure(tmp_path):
     s = synthesize("double-cut-shears", upper_stroke="140 mm", lower_stroke="120 mm", time_ratio=1.1, overlap="20 mm")
     path = s.write(tmp_path / "shears.yaml")

@@ -184,7 +184,7 @@ def test_simultaneous_first_calls_of_the_family_wait_for_one_computation(tmp_pat
     from linkwork.synthesis import achieved
     from webserver import serving
 
-    path = synthesize("slider-crank", stroke=0.4, time_ratio=1.3).write(tmp_path / "press.yaml")
+    path = synthesize("slider-crank", stroke=0.4, time_ratio=1.25).write(tmp_path / "press.yaml")
     app = create_app(lw.load(str(path)))
     calls = []
     real = achieved.family_members
