@@ -44,7 +44,7 @@ os.environ.setdefault("LINKWORK_NUMBA", "0")
 #: time either may take (a test that waits for nothing should not wait that long, however loaded the machine).  A
 #: test that needs more belongs to a lane of its own.  ``LINKWORK_NO_BUDGET=1`` lifts the budget (a debugger, a
 #: profiler).  Processor time, not wall time: the budget is the same on a busy machine.
-BUDGET, SETUP_BUDGET, WALL = 10.0, 30.0, 300.0
+BUDGET, SETUP_BUDGET, WALL = 5.0, 30.0, 300.0
 
 
 @dataclass(frozen=True)
@@ -220,7 +220,7 @@ def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) ->
         rep.longrepr = (
             f"{item.nodeid}: its {call.when} took {spent:.1f} s of processor time and {call.duration:.1f} s of wall "
             f"time, over the default lane's budget of {limit:.0f} s and {WALL:.0f} s (tests/conftest.py: BUDGET); "
-            "move it to a lane of its own or make it cheaper"
+            "make it cheaper, or put it in the slow lane (tests/slow-tests.txt)"
         )
 
 
@@ -260,6 +260,14 @@ SLOW_CASES = {
 }
 
 
+#: Tests over the default lane's budget, by node id (``tests/slow-tests.txt``): the slow lane runs them.
+SLOW_TESTS = frozenset(
+    line.strip()
+    for line in (ROOT / "tests" / "slow-tests.txt").read_text(encoding="utf-8").splitlines()
+    if line.strip() and not line.startswith("#")
+)
+
+
 def pytest_addoption(parser: pytest.Parser) -> None:
     parser.addoption("--hostile", action="store_true", help="also run the full generated run of hostile inputs")
 
@@ -275,4 +283,6 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     for item in items:
         test, _, case = item.nodeid.replace("\\", "/").split("tests/", 1)[-1].partition("[")
         if (test in SLOW and case[:-1] not in SLOW[test]) or case[:-1] in SLOW_CASES.get(test, ()):
+            item.add_marker(pytest.mark.slow)
+        elif item.nodeid.replace("\\", "/") in SLOW_TESTS:
             item.add_marker(pytest.mark.slow)
