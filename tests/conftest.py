@@ -284,5 +284,5 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
         test, _, case = item.nodeid.replace("\\", "/").split("tests/", 1)[-1].partition("[")
         if (test in SLOW and case[:-1] not in SLOW[test]) or case[:-1] in SLOW_CASES.get(test, ()):
             item.add_marker(pytest.mark.slow)
-        elif item.nodeid.replace("\\", "/") in SLOW_TESTS:
+        elif item.nodeid in SLOW_TESTS:
             item.add_marker(pytest.mark.slow)
