@@ -322,14 +322,15 @@ def test_a_killed_analyze_leaves_the_old_report_and_the_next_run_no_stray_folder
         "36",
         "--no-animation",
     ]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    # in a process group of its own, killed whole as a shell kills a job (the report's second process with it)
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and proc.poll() is None:
         if any(len(list(p.glob("figures/*"))) >= 2 for p in tmp_path.glob(".r.*")):
             break
         time.sleep(0.02)
     assert proc.poll() is None, "the run ended before it could be killed"
-    proc.send_signal(signal.SIGKILL)
+    os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
     assert _complete_report(out) == "old"
     assert list(tmp_path.glob(".r.*"))  # what the killed run left

@@ -357,7 +357,8 @@ class _Unit:
         nothing."""
         pose = np.array([phi, phi, phi - 0.01, phi + 0.01])
         forward, back, *near = self.acceleration(pose, np.zeros(4), np.array([1.0, -1.0, 1.0, 1.0]))
-        least = max(2 * self.atol / self.until**2, 1e-12 * max(abs(near[0]), abs(near[1])))
+        span = max(self.until, 1e-100)  # a run shorter than that (1e-300 s) moves nothing; its square is no zero
+        least = max(2 * self.atol / span**2, 1e-12 * max(abs(near[0]), abs(near[1])))
         j = reduced_terms(self.mech, pose[:1], np.zeros(1), self.extra).inertia[0]
         way = 1 if forward > least else -1 if back < -least else 0
         return way, float(forward * j), float(back * j)
