@@ -252,14 +252,6 @@ SLOW = {
 }
 
 
-#: Cases of a test that the slow lane runs, by node id without the parameters, where the test's other cases stay
-#: in the default lane: each takes more than the default lane's budget on the NumPy kernels.
-SLOW_CASES = {
-    # the synthesis guide's Python synthesises and checks four kinds of mechanism (about 17 s of processor time)
-    "test_manual.py::test_the_code_of_a_page_runs_as_written": ("docs/guide/synthesis.md",),
-}
-
-
 #: Tests over the default lane's budget, by node id (``tests/slow-tests.txt``): the slow lane runs them.
 SLOW_TESTS = frozenset(
     line.strip()
@@ -282,7 +274,5 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
             items[:] = [item for item in items if item.get_closest_marker("hostile") is None]
     for item in items:
         test, _, case = item.nodeid.replace("\\", "/").split("tests/", 1)[-1].partition("[")
-        if (test in SLOW and case[:-1] not in SLOW[test]) or case[:-1] in SLOW_CASES.get(test, ()):
-            item.add_marker(pytest.mark.slow)
-        elif item.nodeid in SLOW_TESTS:
+        if (test in SLOW and case[:-1] not in SLOW[test]) or item.nodeid in SLOW_TESTS:
             item.add_marker(pytest.mark.slow)
