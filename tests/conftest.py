@@ -8,7 +8,7 @@ cores through pytest-xdist, and ``.ci/run`` runs every lane after it):
   command it runs), each test within :data:`BUDGET` seconds;
 - ``slow``: the cases of a test beyond those the default lane keeps of it (:data:`SLOW`: every example, both
   languages, both turning directions, every file; most of the sample of hostile inputs), and tests that build
-  whole reports of several examples: ``pytest -m slow``;
+  whole reports of several examples: ``pytest -m slow --dist worksteal`` (a test to the next worker free);
 - ``numba``: the compiled kernels, compared with the NumPy ones; each such test turns them on for itself
   (:func:`compiled_kernels`): ``linkwork warm && pytest -m numba``;
 - ``browser``: Debian's chromium through Playwright: ``pytest -m browser``;

@@ -441,7 +441,10 @@ def test_every_module_of_kernels_is_in_the_key():
 def test_warm_compiles_every_kernel_the_analyses_call():
     """After ``linkwork warm`` (:func:`linkwork.api.compile_kernels`) the analyses of every example (a cycle,
     angles given, design variants, points, forces, dynamics, a sweep) call no kernel with arrays it was not
-    compiled for: a later process loads them all from the cache and compiles nothing."""
+    compiled for: a later process loads them all from the cache and compiles nothing.  And each kernel is
+    compiled once, for one set of argument types: the file's geometry (read-only) and a design variant's
+    (made anew) reach it alike (:func:`linkwork.jit.read_only`), as a second compile of the kinematics kernel
+    costs as much as the first."""
     from numba.core.registry import CPUDispatcher
 
     from linkwork.api import compile_kernels
@@ -452,6 +455,7 @@ def test_warm_compiles_every_kernel_the_analyses_call():
     twins = (kernels_numba, reactions_numba)
     dispatchers = [f for m in twins for f in vars(m).values() if isinstance(f, CPUDispatcher)]
     before = {d: len(d.signatures) for d in dispatchers}
+    assert {d.__name__: n for d, n in before.items() if n != 1} == {}
     for name in lw.examples.names():
         mech = lw.compile(name)
         for kin in (lw.kinematics(mech, steps=100), lw.kinematics(mech, np.linspace(0.1, 0.2, 7))):

@@ -331,6 +331,16 @@ def _import_numba() -> None:
         note("no-cache", f"the compiled kernels compile without a cache: {_unwritable()}")
 
 
+def read_only(array: Any) -> Any:
+    """``array`` as a read-only view, as the compiled kernels take every array they only read: numba compiles a
+    kernel once for each set of argument types, and types a read-only array apart from a writable one, so
+    that a kernel called with the file's geometry (kept read-only) and then with a design variant's (made
+    writable) would compile twice (the kinematics kernel takes about two minutes of processor time each)."""
+    view = array.view()
+    view.flags.writeable = False
+    return view
+
+
 def jit_in_place(space: dict[str, object], inline: tuple[str, ...], called: tuple[str, ...]) -> bool:
     """Replace the functions named ``inline`` and ``called`` in the module namespace ``space`` by numba's
     ``njit`` of them (the first inlined into their callers; no reference counting: the kernels allocate

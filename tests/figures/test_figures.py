@@ -116,31 +116,35 @@ def test_drawings_match_their_baselines(name, tmp_path):
 SCENE = {"scheme", "positions", "velocity_plan", "acceleration_plan"}
 
 
-def _report_figures(name, lang, folder, monkeypatch):
-    """The figures ``analyze`` draws for an example, by name."""
+def _report_figures(name, lang, folder, monkeypatch, sketched_figures):
+    """The figures ``analyze`` draws for an example, by name, each laid out as :func:`render.save` lays it out
+    before it writes the files (the files themselves sketched: writing them is not what is checked here)."""
     from linkwork.report import build
+    from linkwork.report.render import lay_out
 
     drawn = {}
-    draw = build._Run._draw
+    sketch = build._Run._draw  # the sketched_figures fixture's
 
     def keep(self, key, make):
         drawn[key] = fig = make()
-        return draw(self, key, lambda: fig)
+        lay_out(fig)
+        return sketch(self, key, lambda: fig)
 
     monkeypatch.setattr(build._Run, "_draw", keep)
-    monkeypatch.setattr(build, "PARALLEL", False)  # every figure drawn in this process
     build.analyze(lw.compile(lw.example(name)), folder, steps=72, animation=False, lang=lang)
     return drawn
 
 
 @pytest.mark.parametrize("lang", ["en", "ru"])
 @pytest.mark.parametrize("name", names())
-def test_no_text_of_a_report_figure_covers_another_and_no_axes_cover_axes(name, lang, tmp_path, monkeypatch):
-    """Every diagram ``analyze`` draws, read back through the Agg renderer as it is saved: no text's box
-    covers another's, none lies under other axes or a legend or beyond the edge, no axes cover axes."""
+def test_no_text_of_a_report_figure_covers_another_and_no_axes_cover_axes(
+    name, lang, tmp_path, monkeypatch, sketched_figures
+):
+    """Every diagram ``analyze`` draws, laid out as it is saved and read back through the Agg renderer: no
+    text's box covers another's, none lies under other axes or a legend or beyond the edge, no axes cover axes."""
     from drawing_checks import overlaps
 
-    drawn = _report_figures(name, lang, tmp_path / "r", monkeypatch)
+    drawn = _report_figures(name, lang, tmp_path / "r", monkeypatch, sketched_figures)
     assert {"kinematic_diagrams", "link_angles"} <= set(drawn)
     problems = [f"{key}: {p}" for key, fig in drawn.items() if key not in SCENE for p in overlaps(fig)]
     assert problems == []

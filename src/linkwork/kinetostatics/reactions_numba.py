@@ -148,7 +148,9 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
     shape_of = _shapes_of(mech)
     n_var, n_ang = kin.valid_all.shape
     geom = variant_geometry(kin)
-    local, origin, axis = (np.ascontiguousarray(g[:, 0]) for g in (geom.point_local, geom.pair_origin, geom.pair_axis))
+    local, origin, axis = (
+        jit.read_only(np.ascontiguousarray(g[:, 0])) for g in (geom.point_local, geom.pair_origin, geom.pair_axis)
+    )
     f_link, f_val, f_pos, m_link, m_val = _external(applied, (n_var, n_ang))
     ms = kin.mass_properties  # (V or 1, N)
     mass = np.ascontiguousarray(np.broadcast_to(ms.mass, (n_var, mech.n_links_total)), dtype=float)

@@ -21,7 +21,8 @@ def point_motion(
     arithmetic, in the same order: :func:`linkwork.motion.kernels.point_motion_into` and its twin)."""
     out = np.empty(q.shape[1:] + (2,))
     if kernels_numba.available():
-        kernels_numba.point_motion_into(kind, q, v, a, cs[0], cs[1], local[0], local[1], out)
+        lx, ly = jit.read_only(local[0]), jit.read_only(local[1])
+        kernels_numba.point_motion_into(kind, q, v, a, cs[0], cs[1], lx, ly, out)
         return out
     start = time.perf_counter()
     kernels.point_motion_into(kind, q, v, a, cs[0], cs[1], local[0], local[1], out)
