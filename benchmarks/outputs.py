@@ -8,7 +8,8 @@ A refactoring must not move a number.  Run ``write`` on the tree before the chan
     python benchmarks/outputs.py compare /tmp/before /tmp/after
 
 ``write`` keeps, for each bundled example: the ``--json`` output of ``kinematics``, ``forces``, ``dynamics``,
-``size``, ``impact``, ``balance`` and a ``simulate`` run (or the command's message and exit code where it
+``size`` (of a file with
+``sizing:``), ``impact``, ``balance`` and a ``simulate`` run (or the command's message and exit code where it
 refuses), the viewer's payload of the cycle, and the folder ``linkwork analyze --no-animation`` writes (its
 JSON and CSV tables, and ``report.html`` without its pictures).  ``compare`` holds numbers to a relative
 1e-12 (or an absolute 1e-9 of the largest magnitude of their array, for numbers that cancel to zero) and text
@@ -47,16 +48,18 @@ def write(out: Path) -> None:
 
     import linkwork.cli.main  # noqa: F401 - registers the commands
     from linkwork.cli.app import app
-    from linkwork.examples import names
+    from linkwork.examples import names, text
 
     runner = CliRunner()
     for name in names():
         folder = out / name
         folder.mkdir(parents=True, exist_ok=True)
         for command, options in COMMANDS.items():
+            if command == "size" and "\nsizing:" not in text(name):
+                continue  # without a sizing: section it takes minutes
             res = runner.invoke(app, [command, name, "--json", *options])
-            text = res.stdout if res.exit_code == 0 else f"exit {res.exit_code}\n{res.output}"
-            (folder / f"{command}.txt").write_text(text, encoding="utf-8")
+            said = res.stdout if res.exit_code == 0 else f"exit {res.exit_code}\n{res.output}"
+            (folder / f"{command}.txt").write_text(said, encoding="utf-8")
         _viewer(name, folder)
         report = folder / "report"
         res = runner.invoke(app, ["analyze", name, "--out", str(report), "--no-animation"])

@@ -119,15 +119,16 @@ SCENE = {"scheme", "positions", "velocity_plan", "acceleration_plan"}
 def _report_figures(name, lang, folder, monkeypatch):
     """The figures ``analyze`` draws for an example, by name."""
     from linkwork.report import build
+    from linkwork.report import run as report_run
 
     drawn = {}
-    draw = build._Run._draw
+    draw = report_run.ReportRun._draw
 
     def keep(self, key, make):
         drawn[key] = fig = make()
         return draw(self, key, lambda: fig)
 
-    monkeypatch.setattr(build._Run, "_draw", keep)
+    monkeypatch.setattr(report_run.ReportRun, "_draw", keep)
     monkeypatch.setattr(build, "PARALLEL", False)  # every figure drawn in this process
     build.analyze(lw.compile(lw.example(name)), folder, steps=72, animation=False, lang=lang)
     return drawn

@@ -12,8 +12,10 @@ from linkwork.errors import LinkworkError
 from linkwork.lang import TEXTS
 
 if TYPE_CHECKING:
+    from linkwork.report.run import ReportRun
     from linkwork.sizing import Sizing, Table
     from linkwork.structure.model import Mechanism
+    from linkwork.study import Study
 
 
 def asks_sizing(mech: Mechanism, asked: bool | None) -> bool:
@@ -23,16 +25,25 @@ def asks_sizing(mech: Mechanism, asked: bool | None) -> bool:
     return mech.spec is not None and mech.spec.sizing is not None
 
 
-def sizing_section(mech: Mechanism, t: Any) -> tuple[list[str], Sizing | None]:
-    """The HTML of the section (``t(key, **values)``: the report's texts) and the sizing (None where it failed:
-    the section says why).  The motor is chosen where the file's ``sizing: motor`` asks for it (it runs the
-    machine once a motor tried) and the file has a drive speed."""
-    from linkwork.sizing import size
+def sizing_section(run: ReportRun) -> None:
+    """The section, and ``sizing.json`` beside the report where the sizing succeeded."""
+    from linkwork.io.jsonout import dumps
+    from linkwork.report.html import Section
 
-    spec = mech.spec.sizing if mech.spec is not None else None
+    run.progress("sizing")
+    body, result = sizing_body(run.study, run.t)
+    if result is not None:
+        (run.folder / "sizing.json").write_text(dumps(result.record()), encoding="utf-8")
+    run.sections.append(Section("sizing", run.t("section.sizing"), body))
+
+
+def sizing_body(study: Study, t: Any) -> tuple[list[str], Sizing | None]:
+    """The HTML of the section (``t(key, **values)``: the report's texts) and the sizing (None where it failed:
+    the section says why): :attr:`linkwork.study.Study.sizing`, the motor chosen where the file's ``sizing:
+    motor`` asks for it (it runs the machine once a motor tried) and the file has a drive speed."""
     body = [_p(t("sizing.intro"))]
     try:
-        result = size(mech, motor=bool(spec is not None and spec.motor))
+        result = study.sizing
     except LinkworkError as exc:
         return [*body, _p(t("sizing.failed", why=str(exc)))], None
     rows = [
