@@ -3,9 +3,9 @@
 :func:`linkwork.compile` (:mod:`linkwork.api`) is the one compile: the structural model
 (:func:`linkwork.structure.compile.structural_model`), then the solve program (:class:`Step`, by
 :func:`linkwork.motion.program.build`), the external loads (:class:`ExternalLoad`, by
-:func:`linkwork.kinetostatics.external.compile_loads`), the friction in the pairs (:class:`PairFriction`, by
-:func:`linkwork.kinetostatics.friction.compile_friction`) and the machine unit's motor and gear
-(:class:`MotorGear`, by :func:`linkwork.machine.drive.from_spec`).  They are small frozen records of numbers
+:func:`linkwork.stage_records.compile_loads`), the friction in the pairs (:class:`PairFriction`, by
+:func:`linkwork.stage_records.compile_friction`) and the machine unit's motor and gear
+(:class:`MotorGear`, by :func:`linkwork.stage_records.from_spec`).  They are small frozen records of numbers
 and indices into the model's arrays, defined here so that the model names no package above its own; the
 stages that compile them are those that read them.
 """
@@ -146,7 +146,7 @@ def speeds(omega: Any) -> Any:
 @dataclass(frozen=True)
 class MotorGear:
     """The motor, gear and flywheel of a machine unit (``Mechanism.motor_gear``), compiled by
-    :func:`linkwork.machine.drive.from_spec`.
+    :func:`linkwork.stage_records.from_spec`.
 
     Attributes
     ----------
