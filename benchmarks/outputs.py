@@ -3,7 +3,7 @@
 A refactoring must not move a number.  Run ``write`` on the tree before the change and on the tree after it
 (each with its own ``PYTHONPATH``), then ``compare``::
 
-    PYTHONPATH=/old/src LINKWORK_NUMBA=0 python benchmarks/outputs.py write /tmp/before
+    PYTHONPATH=/old/src LINKWORK_NUMBA=0 python benchmarks/outputs.py write /tmp/before [EXAMPLE ...]
     PYTHONPATH=src LINKWORK_NUMBA=0 python benchmarks/outputs.py write /tmp/after
     python benchmarks/outputs.py compare /tmp/before /tmp/after
 
@@ -39,8 +39,8 @@ COMMANDS = {
 }
 
 
-def write(out: Path) -> None:
-    """Every example's outputs into ``out``."""
+def write(out: Path, only: list[str] | None = None) -> None:
+    """Every example's outputs (or those of the examples ``only``) into ``out``."""
     import os
 
     os.environ.setdefault("LINKWORK_NUMBA", "0")
@@ -51,7 +51,7 @@ def write(out: Path) -> None:
     from linkwork.examples import names, text
 
     runner = CliRunner()
-    for name in names():
+    for name in only or names():
         folder = out / name
         folder.mkdir(parents=True, exist_ok=True)
         for command, options in COMMANDS.items():
@@ -170,8 +170,8 @@ def _same(a: Any, b: Any, where: str, problems: list[str], scale: float = 0.0) -
 
 
 def main(argv: list[str]) -> int:
-    if len(argv) == 2 and argv[0] == "write":
-        write(Path(argv[1]))
+    if len(argv) >= 2 and argv[0] == "write":
+        write(Path(argv[1]), argv[2:])
         return 0
     if len(argv) == 3 and argv[0] == "compare":
         problems = compare(Path(argv[1]), Path(argv[2]))
