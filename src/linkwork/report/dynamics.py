@@ -6,20 +6,22 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from linkwork import figures
+from linkwork.errors import LinkworkError
+from linkwork.io import dynamics_tables, run_tables
 from linkwork.io.jsonout import dumps
 from linkwork.report.html import Section, paragraph, table
 from linkwork.report.kinematics import ReportCycle
 from linkwork.report.run import ReportRun
+from linkwork.units import turn_deg
 
 
 def dynamics_section(run: ReportRun, cycle: ReportCycle) -> None:
-    from linkwork import figures
-    from linkwork.io.dynamics_tables import to_json
 
     mech = run.mech
     run.progress("dynamics")
     result = run.study.dynamics  # as lw.dynamics and linkwork dynamics run it
-    data = to_json(mech, result, zero=cycle.zero)
+    data = dynamics_tables.to_json(mech, result, zero=cycle.zero)
     (run.folder / "dynamics.json").write_text(dumps(data), encoding="utf-8")
     rpm = 30 / math.pi
     last = result.motion.last
@@ -63,10 +65,6 @@ def dynamics_section(run: ReportRun, cycle: ReportCycle) -> None:
 def simulate_section(run: ReportRun) -> None:
     """The run in time the file asks for (``simulate:``), as ``linkwork simulate`` runs it: a table of its
     start, end and stops, ``simulate.json`` and ``simulate.csv`` beside the report, and its diagram."""
-    from linkwork import figures
-    from linkwork.errors import LinkworkError
-    from linkwork.io.run_tables import csv_text, to_json
-    from linkwork.units import turn_deg
 
     mech = run.mech
     asked = mech.spec.simulate if mech.spec is not None else None
@@ -79,8 +77,8 @@ def simulate_section(run: ReportRun) -> None:
         sec.body.append(paragraph(str(exc)))
         run.sections.append(sec)
         return
-    (run.folder / "simulate.json").write_text(dumps(to_json(result)), encoding="utf-8")
-    (run.folder / "simulate.csv").write_text(csv_text(result), encoding="utf-8")
+    (run.folder / "simulate.json").write_text(dumps(run_tables.to_json(result)), encoding="utf-8")
+    (run.folder / "simulate.csv").write_text(run_tables.csv_text(result), encoding="utf-8")
     ends = [f"{turn_deg(float(result.angle[i])):.2f}; {result.speed[i]:.6g}" for i in (0, -1)]
     rows: list[list[Any]] = [
         [run.t("simulate.until"), asked.until],

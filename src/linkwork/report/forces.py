@@ -10,21 +10,22 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from linkwork import figures
+from linkwork.io.force_tables import groups, has_losses, to_json, write_csv
 from linkwork.io.jsonout import dumps
+from linkwork.kinetostatics.peaks import pair_force_peaks, torque_peak
+from linkwork.kinetostatics.tables import pair_labels
 from linkwork.lang import group_label, link_named
 from linkwork.report.html import Section, deg, fixed, paragraph, table
 from linkwork.report.kinematics import ReportCycle
 from linkwork.report.run import ReportRun
-from linkwork.structure.model import PairType
+from linkwork.structure.model import PairType, one_crank
 
 if TYPE_CHECKING:
     from linkwork.kinetostatics.reaction_forces import Forces
 
 
 def forces_section(run: ReportRun, cycle: ReportCycle) -> None:
-    from linkwork import figures
-    from linkwork.io.force_tables import to_json, write_csv
-    from linkwork.structure.model import one_crank
 
     mech = run.mech
     run.progress("forces")
@@ -64,7 +65,6 @@ def forces_section(run: ReportRun, cycle: ReportCycle) -> None:
 def _efficiency_text(run: ReportRun, f: Forces) -> list[str]:
     """With friction in the pairs: where it has no solution, the efficiency of the cycle and the instantaneous
     one, and a table of the work lost in each joint (:mod:`linkwork.kinetostatics.efficiency`)."""
-    from linkwork.io.force_tables import has_losses
 
     if not has_losses(f):
         return []
@@ -114,7 +114,6 @@ def _force_unit(f: Forces) -> tuple[float, str]:
 
 
 def _torque_text(run: ReportRun, cycle: ReportCycle, f: Forces) -> list[str]:
-    from linkwork.kinetostatics.peaks import torque_peak
 
     torque = np.asarray(f.driving_torque)
     if not np.isfinite(torque).any():
@@ -136,8 +135,6 @@ def _torque_text(run: ReportRun, cycle: ReportCycle, f: Forces) -> list[str]:
 
 
 def _joint_table(run: ReportRun, cycle: ReportCycle, f: Forces, unit: tuple[float, str]) -> list[str]:
-    from linkwork.kinetostatics.peaks import pair_force_peaks
-    from linkwork.kinetostatics.tables import pair_labels
 
     mech = run.mech
     rows: list[list[Any]] = []
@@ -192,7 +189,6 @@ def _foundation_table(run: ReportRun, cycle: ReportCycle, f: Forces, unit: tuple
 
 
 def _checks_table(run: ReportRun, f: Forces) -> list[str]:
-    from linkwork.io.force_tables import groups
 
     checks: list[list[Any]] = [[run.t(f"check.{k}"), f"{v:.2g}"] for k, v in f.checks.items()]
     checks += [

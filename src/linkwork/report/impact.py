@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.errors import LinkworkError
 from linkwork.report.html import Section, paragraph, table
 from linkwork.report.run import ReportRun
 
@@ -35,7 +36,6 @@ def _vector(v: Any, unit: str) -> str:
 
 def _impact_cycle(run: ReportRun, sec: Section) -> None:
     """The working cycle with the file's drive and tool: the steady cycle's blow and phases."""
-    from linkwork.errors import LinkworkError
 
     mech = run.mech
     assert mech.blow is not None  # _impact calls this only for a mechanism with a blow

@@ -10,9 +10,15 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from linkwork import figures
+from linkwork.figures.diagrams import member_label
+from linkwork.io.motion_tables import write_csv, write_netcdf
 from linkwork.lang import group_label, kind_named, link_named
+from linkwork.motion.analysis import coordinate, extremes, transmission_angles, working
 from linkwork.report.html import Section, deg, fixed, paragraph, ratio, table
 from linkwork.report.run import ReportRun
+from linkwork.scene.positions import plan_positions
+from linkwork.structure.model import point_labels
 from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
@@ -70,9 +76,6 @@ class ReportCycle:
 
 def kinematics_section(run: ReportRun, position: int | str | None, dxf: bool) -> ReportCycle:
     """The section of the kinematics; returns the cycle the later sections share."""
-    from linkwork import figures
-    from linkwork.io.motion_tables import write_csv, write_netcdf
-    from linkwork.scene.positions import plan_positions
 
     mech, study = run.mech, run.study
     run.progress("kinematics")
@@ -120,7 +123,6 @@ def kinematics_section(run: ReportRun, position: int | str | None, dxf: bool) ->
 def _plans(run: ReportRun, twelve: Kinematics, drawn: list[int], sheets: bool) -> list[str]:
     """The velocity and acceleration plans at the positions ``drawn`` (the first one's named
     ``velocity_plan``, the others' ``velocity_plan_9``...) and, with ``sheets``, those of all twelve."""
-    from linkwork import figures
 
     names, lang = [], run.lang
     for k in drawn:
@@ -151,8 +153,6 @@ def _plans(run: ReportRun, twelve: Kinematics, drawn: list[int], sheets: bool) -
 
 def _position_0(run: ReportRun, cycle: ReportCycle) -> str:
     """What φ and position 0 are, in words."""
-    from linkwork.figures.diagrams import member_label
-    from linkwork.motion.analysis import working
 
     members = working(run.mech)
     crank = deg(turn_deg(cycle.zero))
@@ -166,7 +166,6 @@ def _position_0(run: ReportRun, cycle: ReportCycle) -> str:
 
 
 def _positions_table(run: ReportRun, cycle: ReportCycle) -> list[str]:
-    from linkwork.structure.model import point_labels
 
     mech, kin12 = run.mech, cycle.twelve
     labels = point_labels(mech)
@@ -183,7 +182,6 @@ def _positions_table(run: ReportRun, cycle: ReportCycle) -> list[str]:
 
 def _extremes_tables(run: ReportRun, cycle: ReportCycle) -> list[str]:
     """Strokes of the sliders (mm) and swings of the rockers (°), with the φ of their extreme positions."""
-    from linkwork.motion.analysis import extremes
 
     mech = run.mech
     out: list[str] = []
@@ -222,8 +220,6 @@ def _slider_link(mech: Mechanism, joint: str) -> int:
 
 def _working_table(run: ReportRun, cycle: ReportCycle) -> list[str]:
     """Displacement, velocity and acceleration of the working members at the 12 positions."""
-    from linkwork.figures.diagrams import member_label
-    from linkwork.motion.analysis import coordinate, working
 
     mech = run.mech
     members = working(mech)
@@ -246,7 +242,6 @@ def _working_table(run: ReportRun, cycle: ReportCycle) -> list[str]:
 
 
 def _transmission_table(run: ReportRun, cycle: ReportCycle) -> list[str]:
-    from linkwork.motion.analysis import transmission_angles
 
     rows = []
     for label, mu in transmission_angles(cycle.kin).items():

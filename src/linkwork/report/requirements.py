@@ -5,19 +5,19 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from linkwork import figures
 from linkwork.report.html import Section, paragraph, table
 from linkwork.report.run import ReportRun
+from linkwork.scene.limits import limits_scene
+from linkwork.structure.model import one_crank
 
 
 def requirements_section(run: ReportRun) -> None:
     """The section a file that carries requirements (a synthesised one) opens with: each requirement, what the
     mechanism achieves as the analysis measures it, and the limit positions with theta drawn."""
-    from linkwork.structure.model import one_crank
 
     if not one_crank(run.mech):
         return
-    from linkwork import figures
-    from linkwork.scene.limits import limits_scene
 
     kin = run.study.requirements_kin
     found = run.study.requirements
