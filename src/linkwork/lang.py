@@ -14,7 +14,7 @@ language's designations (mm and мм).
 
 from __future__ import annotations
 
-import tomllib
+import functools
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -31,6 +31,8 @@ CATALOGUES = Path(__file__).resolve().parent / "texts"
 
 def catalogue(lang: str) -> dict[str, str]:
     """The texts of ``lang``, key -> text, read from its catalogue (``texts/<lang>.toml``)."""
+    import tomllib  # here: ``linkwork --help`` imports this module, and reads no text
+
     with (CATALOGUES / f"{lang}.toml").open("rb") as f:
         return tomllib.load(f)
 
@@ -42,8 +44,17 @@ def _table() -> dict[str, tuple[str, ...]]:
     return {key: tuple(each[key] for each in texts) for key in texts[0]}
 
 
-#: key: (English, Russian), from the catalogues.
-TEXTS: dict[str, tuple[str, ...]] = _table()
+@functools.cache
+def texts() -> dict[str, tuple[str, ...]]:
+    """key: (English, Russian), from the catalogues, read when first asked for (not when ``linkwork --help``
+    imports this module)."""
+    return _table()
+
+
+def __getattr__(name: str) -> Any:
+    if name == "TEXTS":  # the table, as ``from linkwork.lang import TEXTS`` names it
+        return texts()
+    raise AttributeError(f"module 'linkwork.lang' has no attribute {name!r}")
 
 
 def check_lang(lang: str) -> None:
@@ -87,4 +98,4 @@ def t(key: str, lang: str = "en", /, **values: Any) -> str:
         For a language it does not have.
     """
     check_lang(lang)
-    return TEXTS[key][LANGUAGES.index(lang)].format(**values)
+    return texts()[key][LANGUAGES.index(lang)].format(**values)
