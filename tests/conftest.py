@@ -143,6 +143,7 @@ def sketched_figures(monkeypatch: pytest.MonkeyPatch) -> None:
     """A report's figures written as blank pictures, not drawn (in this process, no second one): for the tests of
     what a report's folder, tables and page hold, whose figures other tests draw and read."""
     from linkwork.report import build
+    from linkwork.report.run import ReportRun
 
     png = _png(20, 10)
 
@@ -151,7 +152,7 @@ def sketched_figures(monkeypatch: pytest.MonkeyPatch) -> None:
         stem.with_suffix(".png").write_bytes(png)
         stem.with_suffix(".svg").write_text("<svg xmlns='http://www.w3.org/2000/svg'/>", encoding="utf-8")
 
-    monkeypatch.setattr(build._Run, "_draw", sketch)
+    monkeypatch.setattr(ReportRun, "_draw", sketch)
     monkeypatch.setattr(build, "PARALLEL", False)
 
 

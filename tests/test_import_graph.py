@@ -284,3 +284,18 @@ def test_no_module_is_named_for_no_one_thing():
     of the kernels are ``kernels_numba`` and ``reactions_numba``)."""
     vague = {"fast", "utils", "helpers"}
     assert [name for name in _modules() if name.rsplit(".", 1)[-1] in vague] == []
+
+
+def test_the_analyses_do_not_import_the_file_format(edges):
+    """Motion, kinetostatics, machine and impulse read the compiled records, never the file's objects: what turns
+    the file into records is the compile's (``linkwork.stage_records``), and did-you-mean lives below both
+    (``linkwork.did_you_mean``)."""
+    analyses = {"motion", "kinetostatics", "machine", "impulse"}
+    wrong = [
+        f"{a} -> {b}"
+        for a, targets in edges.items()
+        if _package(a) in analyses
+        for b in targets
+        if _package(b) == "spec"
+    ]
+    assert wrong == []

@@ -1,4 +1,4 @@
-"""The table of texts in English and Russian (:mod:`linkwork.lang`)."""
+"""The texts in English and Russian (:mod:`linkwork.lang`, a catalogue a language in ``texts/``)."""
 
 from __future__ import annotations
 
@@ -34,3 +34,33 @@ def test_a_text_is_filled_and_an_unknown_language_or_key_refused():
         t("caption.scheme", "de")
     with pytest.raises(KeyError):
         t("no.such.text", "en")
+
+
+def test_each_language_is_one_catalogue_with_every_key_and_nothing_else():
+    """A catalogue a language (``texts/<lang>.toml``), each with the keys of every other and the same fields in
+    each text; the folder holds no catalogue of a language the package does not list."""
+    from linkwork.lang import CATALOGUES, catalogue
+
+    assert sorted(p.stem for p in CATALOGUES.glob("*.toml")) == sorted(LANGUAGES)
+    texts = {lang: catalogue(lang) for lang in LANGUAGES}
+    keys = set(texts[LANGUAGES[0]])
+    for lang, each in texts.items():
+        assert set(each) == keys, (lang, sorted(keys ^ set(each)))
+        assert all(isinstance(v, str) and v for v in each.values()), lang
+    for key in keys:
+        assert len({frozenset(_fields(texts[lang][key])) for lang in LANGUAGES}) == 1, key
+
+
+def test_a_catalogue_missing_a_key_is_found(tmp_path, monkeypatch):
+    """The check above fails on a catalogue that lacks a key the others have."""
+    import linkwork.lang as lang
+
+    for name in LANGUAGES:
+        text = (lang.CATALOGUES / f"{name}.toml").read_text(encoding="utf-8")
+        if name == "ru":
+            text = "\n".join(line for line in text.splitlines() if not line.startswith('"caption.scheme"'))
+        (tmp_path / f"{name}.toml").write_text(text, encoding="utf-8")
+    monkeypatch.setattr(lang, "CATALOGUES", tmp_path)
+    assert "caption.scheme" in lang.catalogue("en") and "caption.scheme" not in lang.catalogue("ru")
+    with pytest.raises(KeyError, match="caption.scheme"):
+        lang._table()

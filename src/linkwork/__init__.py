@@ -45,8 +45,9 @@ __all__ = ["__version__", *_LAZY]
 
 
 def __dir__() -> list[str]:
-    """The package's names, its lazy exports (:data:`__all__`) included, for ``dir(linkwork)`` and completion."""
-    return sorted({*globals(), *__all__})
+    """The package's public names (:data:`__all__`), for ``dir(linkwork)`` and completion; their types are in
+    ``__init__.pyi``, which type checkers read in place of this module."""
+    return sorted(__all__)
 
 
 def __getattr__(name: str) -> Any:

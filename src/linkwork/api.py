@@ -32,10 +32,7 @@ from linkwork.impulse.cycle import simulate_blows as _simulate_blows
 from linkwork.impulse.mechanism import impact as _impact
 from linkwork.kinetostatics.balancing import balance as _balance
 from linkwork.kinetostatics.bolt_lift import bolt_speed as _bolt_speed
-from linkwork.kinetostatics.external import compile_loads
-from linkwork.kinetostatics.friction import compile_friction
 from linkwork.kinetostatics.reaction_forces import forces as _forces
-from linkwork.machine.drive import from_spec
 from linkwork.machine.reduction import reduced as _reduced
 from linkwork.machine.steady_cycle import dynamics as _dynamics
 from linkwork.machine.timerun import simulate as _simulate
@@ -46,6 +43,7 @@ from linkwork.motion.kinematic_analysis import kinematics as _kinematics
 from linkwork.motion.program import build
 from linkwork.sizing.machine_sizing import size as _size
 from linkwork.spec.schema import Spec
+from linkwork.stage_records import compile_friction, compile_loads, from_spec
 from linkwork.structure.compile import structural_model
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import parameter_values
@@ -110,9 +108,9 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
     redundant constraints), the solve program of its groups (:func:`linkwork.motion.program.build`, the
     branches read off the assembly pose by :func:`linkwork.motion.kernels.with_branches`, and its table
     for the compiled kernels where they cover it: :func:`linkwork.motion.kernels_numba.encode`), the
-    external loads (:func:`linkwork.kinetostatics.external.compile_loads`), the friction in the pairs
-    (:func:`linkwork.kinetostatics.friction.compile_friction`) and the machine unit's motor and gear
-    (:func:`linkwork.machine.drive.from_spec`).
+    external loads (:func:`linkwork.stage_records.compile_loads`), the friction in the pairs
+    (:func:`linkwork.stage_records.compile_friction`) and the machine unit's motor and gear
+    (:func:`linkwork.stage_records.from_spec`).
 
     Raises
     ------

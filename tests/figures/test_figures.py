@@ -120,17 +120,18 @@ def _report_figures(name, lang, folder, monkeypatch, sketched_figures):
     """The figures ``analyze`` draws for an example, by name, each laid out as :func:`render.save` lays it out
     before it writes the files (the files themselves sketched: writing them is not what is checked here)."""
     from linkwork.report import build
+    from linkwork.report import run as report_run
     from linkwork.report.render import lay_out
 
     drawn = {}
-    sketch = build._Run._draw  # the sketched_figures fixture's
+    sketch = report_run.ReportRun._draw  # the sketched_figures fixture's
 
     def keep(self, key, make):
         drawn[key] = fig = make()
         lay_out(fig)
         return sketch(self, key, lambda: fig)
 
-    monkeypatch.setattr(build._Run, "_draw", keep)
+    monkeypatch.setattr(report_run.ReportRun, "_draw", keep)
     build.analyze(lw.compile(lw.example(name)), folder, steps=72, animation=False, lang=lang)
     return drawn
 

@@ -99,11 +99,11 @@ def test_refine_finds_a_smooth_maximum_a_kink_and_the_high_side_of_a_jump():
 def test_the_simulated_speeds_extremes_do_not_depend_on_the_points_kept(shears):
     """The steady turn of the double-cut shears with a flywheel for delta 0.03: its least and largest speed from 720
     points a turn, refined on the solver's dense output, equal those read off 200 000 points of the same run."""
-    from linkwork.machine.simulation import simulate
+    from linkwork.machine.simulation import run_turns
 
     run = lw.dynamics(shears, delta=0.03)
     start, omega0 = float(run.motion.psi[0]), float(run.motion.omega[0])
-    coarse, fine = (simulate(run.reduced, run.drive, omega0=omega0, start=start, points=n) for n in (720, 200000))
+    coarse, fine = (run_turns(run.reduced, run.drive, omega0=omega0, start=start, points=n) for n in (720, 200000))
     last = fine.last
     sel = (fine.t >= last.start) & (fine.t <= last.end)
     for refined, dense in (

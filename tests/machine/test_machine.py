@@ -17,7 +17,7 @@ from linkwork.machine import (
     LinearMotor,
     MotorGear,
     constant_moment_cycle,
-    simulate,
+    run_turns,
     size_flywheel,
 )
 from linkwork.machine.simulation import Model
@@ -109,7 +109,7 @@ def test_energy_of_the_free_mechanism_is_conserved():
     """No drive, no loads, no friction: J(psi) omega^2 / 2 stays put (to 1e-8 per turn)."""
     red = lw.reduced(lw.compile(lw.example("four-bar")), steps=720)
     red = dataclasses.replace(red, load=np.zeros_like(red.load))
-    run = simulate(red, MotorGear(ConstantTorque(0.0)), omega0=5.0, turns=4, tol=0.0, rtol=1e-12)
+    run = run_turns(red, MotorGear(ConstantTorque(0.0)), omega0=5.0, turns=4, tol=0.0, rtol=1e-12)
     model = Model(red)
     energy = np.array([0.5 * model.at(p)[0] * w * w for p, w in zip(run.psi, run.omega, strict=True)])
     assert len(run.turns) == 4
@@ -150,7 +150,7 @@ def test_flywheel_energy_method_against_the_exact_cycle_and_the_simulation():
     omega, delta = constant_moment_cycle(red, fly.inertia, omega_m)
     assert delta == pytest.approx(0.05, rel=0.05)
     drive = MotorGear(ConstantTorque(fly.drive_moment), flywheel=fly.inertia)
-    run = simulate(red, drive, omega0=float(omega[0]), turns=1, rtol=1e-12)
+    run = run_turns(red, drive, omega0=float(omega[0]), turns=1, rtol=1e-12)
     exact = np.interp(run.psi, np.append(red.psi, 2 * np.pi), np.append(omega, omega[0]))
     np.testing.assert_allclose(run.omega, exact, rtol=2e-5)
     assert fly.drive_power == pytest.approx(-red.mean_load * omega_m)
@@ -164,7 +164,7 @@ def test_constant_torque_start_up_with_constant_inertia():
     b.revolute("O", "frame", "crank").drive("O", speed="60 rpm")
     red = lw.reduced(lw.compile(b.build()), steps=64)
     np.testing.assert_allclose(red.inertia, 0.7, rtol=1e-12)
-    run = simulate(red, MotorGear(ConstantTorque(10.0)), turns=3, tol=0.0)
+    run = run_turns(red, MotorGear(ConstantTorque(10.0)), turns=3, tol=0.0)
     for k, turn in enumerate(run.turns, 1):
         t = math.sqrt(4 * math.pi * k * 0.7 / 10.0)
         assert turn.end == pytest.approx(t, rel=1e-9)

@@ -107,7 +107,7 @@ def test_a_rerun_replaces_the_report_and_a_failed_run_leaves_the_old_one(tmp_pat
     def broken(*args, **kwargs):
         raise RuntimeError("interrupted")
 
-    monkeypatch.setattr(report, "_write_html", broken)
+    monkeypatch.setattr(report, "write_html", broken)
     with pytest.raises(RuntimeError):
         report.analyze(mech, out, steps=36, animation=False)
     assert (out / "report.html").read_bytes() == good
@@ -218,16 +218,17 @@ def _report(name: str, folder: Path, lang: str = "en", steps: int = 72, position
     """``analyze`` on an example; returns the page and the figures it drew, by name."""
     import linkwork as lw
     from linkwork.report import build
+    from linkwork.report import run as report_run
 
     drawn = {}
-    draw = build._Run._draw
+    draw = report_run.ReportRun._draw
 
     def keep(self, key, make):
         drawn[key] = fig = make()
         return draw(self, key, lambda: fig)
 
     with pytest.MonkeyPatch.context() as m:
-        m.setattr(build._Run, "_draw", keep)
+        m.setattr(report_run.ReportRun, "_draw", keep)
         m.setattr(build, "PARALLEL", False)  # every figure drawn in this process
         build.analyze(lw.compile(lw.example(name)), folder, steps=steps, position=position, animation=False, lang=lang)
     return (folder / "report.html").read_text(encoding="utf-8"), drawn

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import linkwork as lw
 from linkwork.lang import t
-from linkwork.report.sizing import asks_sizing, sizing_section
+from linkwork.report.sizing import asks_sizing, sizing_body
+from linkwork.study import Study
 
 CRANK = (
     "links: {crank: {ends: [O, A], length: 0.2, mass: 100, com: [0, 0], inertia: 1}}\n"
@@ -23,7 +24,7 @@ def test_the_file_s_sizing_section_asks_for_the_report_s_and_an_option_overrides
 
 def test_the_section_is_written_in_russian_with_the_figures_of_the_sizing():
     mech = lw.compile(lw.loads(CRANK + "sizing: {pins: {O: {diameter: 40 mm, width: 50 mm}}}\n"))
-    body, result = sizing_section(mech, lambda key, **values: t(key, "ru", **values))
+    body, result = sizing_body(Study(mech), lambda key, **values: t(key, "ru", **values))
     text = "".join(body)
     assert result is not None
     for words in ("Подшипники качения по ISO 281", "C треб, кН", "вращается", "Оси (пальцы)", "Не рассчитано"):

@@ -14,8 +14,8 @@ from linkwork.limits import MAX_BLOWS, whole
 if TYPE_CHECKING:
     from linkwork.impulse import Blow, Impact, Phase, RockerImpact, WorkingCycle
     from linkwork.motion.analysis import CrankAngles
-    from linkwork.spec.schema import ImpactSpec
     from linkwork.structure.model import Mechanism
+    from linkwork.structure.records import ImpactRecord
 
 
 def _xy(v: Any) -> dict[str, float]:
@@ -54,7 +54,7 @@ def impact(
         _blow(mech, blow, as_json)
 
 
-def _blow(mech: Mechanism, blow: ImpactSpec, as_json: bool) -> None:
+def _blow(mech: Mechanism, blow: ImpactRecord, as_json: bool) -> None:
     """``linkwork impact``: the file's blow (``blow``, the mechanism's) on the whole mechanism and on seed 004's
     reduced model."""
     from linkwork.impulse import impact as solve
@@ -107,7 +107,7 @@ def _blow_json(mech: Mechanism, whole: Impact, link: str) -> dict[str, Any]:
 
 
 def _print_blow(
-    mech: Mechanism, blow: ImpactSpec, whole: Impact, out: dict[str, Any], model: RockerImpact | None
+    mech: Mechanism, blow: ImpactRecord, whole: Impact, out: dict[str, Any], model: RockerImpact | None
 ) -> None:
     """The report of ``linkwork impact`` on the mechanism's blow ``blow``, from its JSON object ``out``."""
     typer.echo(f"{mech.name}: blow of {blow.at}, R = {blow.restitution:g}, f = {blow.friction:g}")

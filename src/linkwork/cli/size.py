@@ -13,6 +13,7 @@ from linkwork.errors import LinkworkError
 from linkwork.limits import delta_problem
 
 if TYPE_CHECKING:
+    from linkwork.sizing import Sizing
     from linkwork.sizing.common import Catalogue
 
 
@@ -167,6 +168,12 @@ def size(
     if as_json:
         echo_json({**result.record(), **({"written": written} if written else {})})
         return
+    _print(result, written)
+
+
+def _print(result: Sizing, written: str | None) -> None:
+    """The sizing on the terminal: its inputs, its tables, the motors passed over, what was not sized, the file
+    written."""
     typer.echo(f"{result.name}: sizing")
     shown = (f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}" for k, v in result.inputs.items() if v is not None)
     typer.echo("  inputs (defaults included): " + ", ".join(shown))

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkwork.design.evaluate import Evaluation
+from linkwork.did_you_mean import suggest
 from linkwork.errors import DesignError
 from linkwork.kinetostatics.peaks import foundation_peak, torque_peak
 from linkwork.motion.analysis import (
@@ -31,7 +32,6 @@ from linkwork.motion.analysis import (
     slopes,
     transmission,
 )
-from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.structure.records import ExternalLoad
 

@@ -19,8 +19,8 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.did_you_mean import suggest
 from linkwork.errors import DesignError, DesignWarning, UnitParseError
-from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import Parameter, file_units, parameter_list, parameters_by_name
 from linkwork.units import parse_quantity, si_factor, unit_for

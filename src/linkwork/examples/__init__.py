@@ -5,9 +5,9 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
+from linkwork.did_you_mean import suggest
 from linkwork.errors import Problem, SpecError
 from linkwork.limits import QUOTE_PATH, excerpt, quote
-from linkwork.spec.checks import suggest
 from linkwork.spec.reader import load, loads
 from linkwork.spec.schema import Spec
 

@@ -26,7 +26,7 @@ import numpy as np
 
 from linkwork.errors import LinkworkError
 from linkwork.impulse.contact import OMEGA, PSI, ContactFlags, ContactModel, FreeTool
-from linkwork.machine.simulation import IntegrationEvent, fired
+from linkwork.machine.integration import IntegrationEvent, fired, integrate
 
 FLIGHT, APART, CONTACT = "flight", "apart", "contact"
 #: The phases, in the order of their codes in the samples (``mode``).
@@ -90,11 +90,10 @@ def _integrate(
     events: Sequence[IntegrationEvent],
     **options: Any,
 ) -> Any:
-    """``solve_ivp`` (DOP853) from ``(t, y)`` to ``t_end`` or the first terminal event; its failure
-    is reported."""
-    from scipy.integrate import solve_ivp
-
-    sol = solve_ivp(rates, (t, t_end), y, method="DOP853", rtol=rtol, atol=1e-12, events=list(events), **options)
+    """The machine's integrator (:func:`linkwork.machine.integration.integrate`, DOP853) from ``(t, y)`` to
+    ``t_end`` or the first terminal event; its failure is reported."""
+    dense = bool(options.pop("dense_output", False))
+    sol = integrate(rates, (t, t_end), y, rtol=rtol, atol=1e-12, events=list(events), dense=dense, **options)
     if sol.status == -1:
         raise LinkworkError(f"the integrator failed in the {kind} phase: {sol.message}")
     return sol

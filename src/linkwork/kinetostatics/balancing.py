@@ -30,11 +30,11 @@ import numpy as np
 import numpy.typing as npt
 
 from linkwork.angles import wrap
+from linkwork.did_you_mean import suggest
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.peaks import pair_force_peaks, shaking_peaks, torque_peak
 from linkwork.kinetostatics.reaction_forces import Forces, forces
 from linkwork.limits import TURN_STEPS
-from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, frozen, one_crank
 
 

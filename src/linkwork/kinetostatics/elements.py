@@ -15,14 +15,11 @@ Potential energy (J) of the springs: :func:`potential`; the power of every load 
 from __future__ import annotations
 
 import math
-from typing import Any, NamedTuple, Protocol
+from typing import NamedTuple, Protocol
 
 import numpy as np
 
-from linkwork.errors import Problem, SpecError
 from linkwork.motion.kinematic_analysis import Kinematics
-from linkwork.spec.schema import Load
-from linkwork.structure.model import Mechanism
 
 #: Kinds of the force elements among the loads.
 ELEMENTS = ("spring", "damper", "torsion_spring")
@@ -41,71 +38,6 @@ class ForceElement(Protocol):
     def pair(self) -> int: ...
     @property
     def free(self) -> float: ...
-
-
-def compile_element(load: Load, mech: Mechanism, name: str = "") -> dict[str, Any]:
-    """The fields of the record of one force element ``name`` of a validated spec: ``points`` the two points
-    (spring, damper), ``pair`` the revolute pair (torsion spring), ``value`` the stiffness or damping, ``free`` the
-    free length or angle (a preload turned into the free length at the assembly pose ``mech.pose0``).
-
-    Raises
-    ------
-    SpecError
-        A preload that would need a negative free length (at the preload's line of the file).
-    """
-    if load.type == "torsion_spring":
-        pair = _joint_pair(mech, str(load.joint))
-        free = float(load.free_angle if load.free_angle is not None else 0.0)
-        link = int(mech.pair_members[pair, 1])
-        return {"kind": load.type, "link": link, "value": float(load.stiffness or 0.0), "pair": pair, "free": free}
-    assert load.between is not None  # the checks of linkwork.spec require it
-    points = tuple(_point(mech, ref) for ref in load.between)
-    out = {"kind": load.type, "link": int(mech.point_link[points[0]]), "points": points}
-    if load.type == "damper":
-        return {**out, "value": float(load.damping or 0.0)}
-    k = float(load.stiffness or 0.0)
-    if load.free_length is not None:
-        return {**out, "value": k, "free": float(load.free_length)}
-    p = mech.points0()  # the preload is its tension in the assembly pose
-    length = float(np.linalg.norm(p[points[1]] - p[points[0]]))
-    free = length - (float(load.preload or 0.0) / k if k > 0 else 0.0)
-    if free < 0:
-        raise _problem(
-            mech,
-            ("loads", name, "preload"),
-            f"a spring's preload of {float(load.preload or 0.0):g} N stretches it by {length - free:g} m at "
-            f"{k:g} N/m, more than its length of {length:g} m in the assembly pose: its free length would be "
-            f"negative; at most {k * length:g} N",
-        )
-    return {**out, "value": k, "free": free}
-
-
-def _problem(mech: Mechanism, path: tuple[str, ...], message: str) -> SpecError:
-    """A :class:`SpecError` of one problem at ``path`` of the mechanism's file (its line, where it was read)."""
-    source = mech.spec.source if mech.spec is not None else None
-    if source is not None:
-        return SpecError([source.problem(path, message)])
-    return SpecError([Problem(".".join(path), message)])
-
-
-def _point(mech: Mechanism, ref: str) -> int:
-    """Index of the point ``link.point``, or of the frame point named ``ref``."""
-    return mech.point_names.index(ref if "." in ref else f"frame.{ref}")
-
-
-def _joint_pair(mech: Mechanism, joint: str) -> int:
-    """The elementary pair of a revolute joint between its first two links (as the file names them)."""
-    spec = mech.spec
-    first = None
-    for k, name in enumerate(mech.pair_joint):
-        if name != joint:
-            continue
-        first = k if first is None else first
-        members = [mech.link_names[int(i)] for i in mech.pair_members[k]]
-        if spec is not None and members == list(spec.joints[joint].links[:2]):
-            return k
-    assert first is not None
-    return first
 
 
 class Action(NamedTuple):

@@ -1,6 +1,6 @@
 """External loads of a mechanism file: forces at points, moments on links, process loads.
 
-:func:`compile_loads` turns the ``loads:`` of a spec into :class:`ExternalLoad`
+:func:`linkwork.stage_records.compile_loads` turns the ``loads:`` of a spec into :class:`ExternalLoad`
 records (SI, indices); :func:`evaluate` gives, over a kinematics result, every
 elementary force (its link, point of application, the point's velocity) and
 moment, from which the reactions, the power balance and the momentum check
@@ -9,125 +9,17 @@ are all built.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
-from typing import NamedTuple, TypeVar, cast
+from typing import NamedTuple
 
 import numpy as np
 
-from linkwork.kinetostatics.elements import ELEMENTS, compile_element, evaluate_element
+from linkwork.kinetostatics.elements import ELEMENTS, evaluate_element
 from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.motion.kinematic_analysis import Kinematics
-from linkwork.spec.schema import Load, Spec
 from linkwork.structure.constraints import perp
 from linkwork.structure.model import Mechanism, PairType
 from linkwork.structure.records import ExternalLoad
-
-T = TypeVar("T")
-
-
-def compile_loads(spec: Spec, mech: Mechanism) -> tuple[ExternalLoad, ...]:
-    """The :class:`ExternalLoad` records of a validated spec, for its structural model ``mech``
-    (:func:`linkwork.structure.compile.structural_model`: its links, points and elementary pairs)."""
-    names = _Names(mech)
-    out: list[ExternalLoad] = []
-    for name, load in spec.loads.items():
-        if load.type == "force":
-            out.append(_force(name, load, names))
-        elif load.type == "friction":
-            out += _friction_loads(name, load, mech)
-        elif load.type == "moment":
-            out.append(_moment(name, load, names))
-        elif load.type in ELEMENTS:
-            out.append(ExternalLoad(name, **compile_element(load, mech, name)))
-        else:
-            out.append(_process(name, load, names))
-    return tuple(out)
-
-
-class _Names:
-    """The links and points of a structural model by the names a file gives them."""
-
-    def __init__(self, mech: Mechanism) -> None:
-        self.links = {name: i for i, name in enumerate(mech.link_names)}
-        self.points = {(int(mech.point_link[p]), name.split(".", 1)[1]): p for p, name in enumerate(mech.point_names)}
-
-    def point(self, ref: str) -> int:
-        """Index of the point ``link.point``."""
-        ln, p = ref.split(".", 1)
-        return self.points[(self.links[ln], p)]
-
-    def link(self, ref: str) -> int:
-        """Index of the link of the point ``link.point``."""
-        return self.links[ref.split(".", 1)[0]]
-
-
-def _given(value: T | None) -> T:
-    """A field of a load that :mod:`linkwork.spec.checks` requires for its type."""
-    assert value is not None
-    return value
-
-
-def _number(value: object) -> float:
-    """A load's value that the checks of :mod:`linkwork.spec` make one number where it is read (no table)."""
-    return float(cast(float, value))
-
-
-def _table(x: list[float], y: object) -> tuple[np.ndarray, np.ndarray]:
-    """A table's arguments ``x`` and values ``y``."""
-    return np.array(x, dtype=float), np.array(y, dtype=float)
-
-
-def _force(name: str, load: Load, names: _Names) -> ExternalLoad:
-    """A force at a point: given by its components, or by a magnitude (constant or a table over the crank
-    angle) along a direction."""
-    at = _given(load.at)
-    p, link = names.point(at), names.link(at)
-    if load.force is not None:
-        return ExternalLoad(name, "force", link, (p,), (load.force[0], load.force[1]), 1.0)
-    direction = _number(load.direction)
-    u = (math.cos(direction), math.sin(direction))
-    if load.angle is None:
-        return ExternalLoad(name, "force", link, (p,), u, _number(load.magnitude))
-    return ExternalLoad(name, "force", link, (p,), u, table=_table(load.angle, load.magnitude))
-
-
-def _friction_loads(name: str, load: Load, mech: Mechanism) -> list[ExternalLoad]:
-    """Friction in every elementary pair of a joint: a moment in a revolute pair, a force in a prismatic one."""
-    out: list[ExternalLoad] = []
-    pairs = zip(mech.pair_joint, mech.pair_type, mech.pair_links, strict=True)
-    for k, (joint, kind, (_, b)) in enumerate(pairs):
-        if joint != load.joint:
-            continue
-        if kind == PairType.REVOLUTE and load.moment is not None:
-            out.append(ExternalLoad(name, "friction", int(b), value=_number(load.moment), pair=k))
-        elif kind == PairType.PRISMATIC and load.magnitude is not None:
-            out.append(ExternalLoad(name, "friction", int(b), value=_number(load.magnitude), pair=k))
-    return out
-
-
-def _moment(name: str, load: Load, names: _Names) -> ExternalLoad:
-    """A moment on a link: constant, or a table over the crank angle."""
-    link = names.links[_given(load.on)]
-    if load.angle is None:
-        return ExternalLoad(name, "moment", link, value=_number(load.moment))
-    return ExternalLoad(name, "moment", link, table=_table(load.angle, load.moment))
-
-
-def _process(name: str, load: Load, names: _Names) -> ExternalLoad:
-    """A process load: a table of force against the tools' relative penetration into a workpiece."""
-    tools = _given(load.tools)
-    axis = _number(load.axis)
-    lo, hi = _given(load.workpiece)
-    return ExternalLoad(
-        name,
-        "process",
-        names.link(tools[0]),
-        tuple(names.point(t) for t in tools),
-        (math.cos(axis), math.sin(axis)),
-        table=_table(_given(load.penetration), load.force),
-        workpiece=(lo, hi),
-    )
 
 
 class PointForce(NamedTuple):

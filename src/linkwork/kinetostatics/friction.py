@@ -33,7 +33,6 @@ import numpy as np
 from linkwork.errors import FrictionWarning
 from linkwork.kinetostatics.external import Applied, pair_friction, relative_motion
 from linkwork.motion.kinematic_analysis import Kinematics
-from linkwork.spec.schema import Spec
 from linkwork.structure.model import Mechanism, PairType
 from linkwork.structure.records import PairFriction
 
@@ -49,22 +48,6 @@ UNBOUNDED = 1e6
 #: A solve of the linear kinetostatics with given external loads: a tuple whose first item is the
 #: multipliers ``(V, A, m)``.
 Solver = Callable[[Applied], tuple[Any, ...]]
-
-
-def compile_friction(spec: Spec, mech: Mechanism) -> tuple[PairFriction, ...]:
-    """The :class:`PairFriction` of every elementary pair of the joints whose ``friction`` the validated
-    ``spec`` gives, for its structural model ``mech``: a revolute pair's where the joint gives a ``radius``
-    (a pin-in-slot's pin), every prismatic pair's."""
-    out: list[PairFriction] = []
-    for k, joint in enumerate(mech.pair_joint):
-        law = spec.joints[joint].friction if joint in spec.joints else None
-        if law is None:
-            continue
-        if mech.pair_type[k] == PairType.PRISMATIC:
-            out.append(PairFriction(joint, k, float(law.f), float(law.f)))
-        elif law.radius is not None:
-            out.append(PairFriction(joint, k, float(law.f * law.radius), float(law.f)))
-    return tuple(out)
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from linkwork import jit
+from linkwork.did_you_mean import suggest
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics import reactions_numba
 from linkwork.kinetostatics.bolts import Bolts, bolt_loads
@@ -33,7 +34,6 @@ from linkwork.kinetostatics.reactions import (
 )
 from linkwork.motion.analysis import guide_lines
 from linkwork.motion.kinematic_analysis import Kinematics, kinematics
-from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 
 

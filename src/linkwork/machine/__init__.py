@@ -1,5 +1,10 @@
 """Machine dynamics: reduced inertia and loads, the drive, forward simulation, flywheel sizing.
 
+One equation of motion: its reduced terms are :mod:`linkwork.machine.reduction`'s, and every run integrates it
+through :func:`linkwork.machine.integration.integrate`.  :func:`simulate` is the run in time from a crank angle
+and speed (as :func:`linkwork.simulate`); :func:`run_turns` the run turn by turn to the steady cycle that
+:func:`dynamics` starts from.
+
 >>> import linkwork as lw
 >>> from linkwork.machine import ConstantTorque, MotorGear
 >>> red = lw.reduced(lw.compile(lw.load("four-bar")), steps=360)
@@ -19,9 +24,9 @@ from linkwork.machine.flywheel import (
     wittenbauer_tangents,
 )
 from linkwork.machine.reduction import Reduced, reduced
-from linkwork.machine.simulation import Motion, Turn, simulate
+from linkwork.machine.simulation import Motion, Turn, run_turns
 from linkwork.machine.steady_cycle import Dynamics, balance_speed, dynamics, with_flywheel_for
-from linkwork.machine.timerun import Run, RunEvent
+from linkwork.machine.timerun import Run, RunEvent, simulate
 from linkwork.structure.records import MotorGear
 
 __all__ = [
@@ -40,6 +45,7 @@ __all__ = [
     "constant_moment_cycle",
     "dynamics",
     "reduced",
+    "run_turns",
     "simulate",
     "size_flywheel",
     "size_flywheel_wittenbauer",

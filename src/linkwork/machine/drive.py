@@ -1,5 +1,6 @@
 """The motor characteristics of a machine unit, and its motor, gear and flywheel
-(:class:`~linkwork.structure.records.MotorGear`) compiled from a file's ``machine:`` section.
+(:class:`~linkwork.structure.records.MotorGear`, compiled from a file's ``machine:`` section by
+:func:`linkwork.stage_records.from_spec`).
 
 A motor characteristic gives the torque on the motor shaft against its
 speed.  The gear (ratio ``u = omega_motor / omega_crank``, efficiency
@@ -14,14 +15,10 @@ import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from linkwork.errors import LinkworkError
-from linkwork.structure.records import MotorGear, speeds
-
-if TYPE_CHECKING:
-    from linkwork.spec.schema import Machine as MachineSpec
-    from linkwork.spec.schema import Motor as MotorSpec
+from linkwork.structure.records import speeds
 
 #: A motor's characteristic: torque (N m) on its shaft against its speed (rad/s), scalars or arrays.
 Characteristic = Callable[[Any], Any]
@@ -89,30 +86,3 @@ class InductionMotor:
         sk = self.critical_slip
         mk = self.breakdown * self.rated_torque
         return 2 * mk * s * sk / (s * s + sk * sk)
-
-
-def from_spec(machine: MachineSpec) -> MotorGear:
-    """The :class:`~linkwork.structure.records.MotorGear` of a validated ``machine:`` section."""
-    m = machine.motor
-    gear = machine.gear
-    fly = machine.flywheel
-    return MotorGear(
-        _motor(m),
-        ratio=gear.ratio if gear else 1.0,
-        efficiency=gear.efficiency if gear else 1.0,
-        rotor=m.inertia or 0.0,
-        flywheel=fly.inertia if fly else 0.0,
-        flywheel_on=fly.on if fly else "motor",
-    )
-
-
-def _motor(m: MotorSpec) -> Characteristic:
-    """The characteristic of a validated ``motor:`` (its type's values are there)."""
-    if m.type == "constant":
-        assert m.torque is not None
-        return ConstantTorque(m.torque)
-    if m.type == "linear":
-        assert m.stall is not None and m.no_load is not None
-        return LinearMotor(m.stall, m.no_load)
-    assert m.power is not None and m.speed is not None and m.synchronous is not None and m.breakdown is not None
-    return InductionMotor(m.power, m.speed, m.synchronous, m.breakdown)

@@ -27,6 +27,7 @@ import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -37,7 +38,7 @@ from linkwork.kinetostatics.reaction_forces import forces_of
 from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.motion import cycle, kinematics
-from linkwork.motion.kinematic_analysis import Kinematics, direction
+from linkwork.motion.kinematic_analysis import Kinematics, direction, kinematics_at
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.units import turn_deg
 
@@ -217,17 +218,26 @@ def _between(mech: Mechanism, sign: float, psi: np.ndarray) -> Reduced:
         return _reduced_of(kinematics(mech, mech.drive_start[0] + direction(mech) * psi, speed=sign), psi, sign)
 
 
+def inertia_terms(kin: Kinematics, loads: Any, rows: slice = slice(None)) -> tuple[np.ndarray, np.ndarray]:
+    """The reduced inertia ``J = sum(m vc.vc + J_s w^2)`` (kg m^2) and its slope ``dJ/dphi = 2 sum(m vc.ac +
+    J_s w e)`` (kg m^2/rad) of the samples ``rows`` of ``kin`` solved at unit crank speed and rest's acceleration
+    (the transfer functions), ``loads`` its :func:`~linkwork.kinetostatics.reactions.inertia_and_gravity`: each
+    ``(K,)``.  The one place the machine's reduced inertia is computed."""
+    ms = kin.mass_properties
+    m, j = ms.mass[0], ms.inertia[0]
+    vc, ac = loads.com_velocity[0, rows], loads.com_acceleration[0, rows]
+    w, e = kin.vel[0, rows, :, 2], kin.acc[0, rows, :, 2]
+    inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1)
+    slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
+    return inertia, slope
+
+
 def _reduced_of(kin: Kinematics, psi: np.ndarray, sign: float) -> Reduced:
     """The reduced quantities of the solution ``kin`` at unit crank speed (``sign``: its direction) at the turning
     angles ``psi``."""
     mech, angle = kin.mechanism, kin.angles
     loads = inertia_and_gravity(kin)
-    ms = kin.mass_properties
-    m, j = ms.mass[0], ms.inertia[0]
-    vc, ac = loads.com_velocity[0], loads.com_acceleration[0]
-    w, e = kin.vel[0, :, :, 2], kin.acc[0, :, :, 2]
-    inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1)
-    slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
+    inertia, slope = inertia_terms(kin, loads)
     friction = friction_moment(mech, angle, sign)
     load = (gravity_power(kin, loads.com_velocity) + external_power(kin, loads.external))[0] - friction
     damping = _damping(kin)
@@ -263,3 +273,71 @@ def _damping(kin: Kinematics) -> np.ndarray | None:
     if not any(load.kind == "damper" for load in kin.mechanism.loads):
         return None
     return -external_power(kin, evaluate(kin, ("damper",)))[0]
+
+
+# --- the terms at any states (phi, omega) of a run in time (linkwork.machine.timerun) ---------------------
+
+
+@dataclass(frozen=True)
+class ReducedTerms:
+    """``J`` (kg m^2, the drive's included), ``J'`` (kg m^2/rad) and ``Q`` (N m), each ``(K,)``."""
+
+    inertia: np.ndarray
+    slope: np.ndarray
+    load: np.ndarray
+
+
+def reduced_terms(mech: Mechanism, phi: np.ndarray, omega: np.ndarray, extra_inertia: float = 0.0) -> ReducedTerms:
+    """The reduced inertia, its slope and the loads' reduced moment at the states ``(phi, omega)`` ``(K,)``,
+    from one kinematic solution of the 2K samples: each pose at unit speed (the transfer functions) and at
+    its true speed (the loads: a damper's force, a friction's sense).
+
+    Raises
+    ------
+    LinkworkError
+        Where a pose does not assemble, or a load has no value there (a spring whose points meet).
+    """
+    k = len(phi)
+    kin = unit_and_true_speeds(mech, phi, omega)
+    if not kin.valid_all.all():
+        bad = float(phi[np.flatnonzero(~kin.valid_all[0, :k] | ~kin.valid_all[0, k:])[0]])
+        raise LinkworkError(
+            f"the run reaches a pose where the mechanism does not assemble: crank at "
+            f"{turn_deg(bad):.6g} deg to x (a dead point, or past the end of its travel)"
+        )
+    terms = terms_of_both(kin, k, extra_inertia)
+    if not np.isfinite(terms.load).all():
+        _no_value(kin, phi, k)
+    return terms
+
+
+def unit_and_true_speeds(mech: Mechanism, phi: np.ndarray, omega: np.ndarray) -> Kinematics:
+    """The poses ``phi`` ``(K,)`` at unit speed, then at the speeds ``omega``: ``2K`` samples at rest's acceleration."""
+    k = len(phi)
+    angles = np.concatenate([phi, phi])[:, None]
+    speeds = np.concatenate([np.ones(k), omega])[:, None]
+    return kinematics_at(mech, angles, speeds, np.zeros((2 * k, 1)))
+
+
+def terms_of_both(kin: Kinematics, k: int, extra_inertia: float) -> ReducedTerms:
+    """:func:`reduced_terms` of the ``2K`` samples of :func:`unit_and_true_speeds` (NaN where a pose does not
+    assemble)."""
+    loads = inertia_and_gravity(kin)
+    inertia, slope = inertia_terms(kin, loads, slice(0, k))
+    inertia = inertia + extra_inertia
+    load = np.sum(loads.applied[0, k:] * kin.vel[0, :k], axis=(-1, -2))
+    return ReducedTerms(inertia, slope, load)
+
+
+def _no_value(kin: Kinematics, phi: np.ndarray, k: int) -> None:
+    """Raise for the first load without a value at the run's poses (a spring whose two points meet)."""
+    assert kin.mechanism.loads
+    for name, size in evaluate(kin).magnitude.items():
+        bad = np.flatnonzero(~np.isfinite(size[0, k:]))
+        if len(bad):
+            where = turn_deg(float(phi[bad[0]]))
+            raise LinkworkError(
+                f'load "{name}" has no value with the crank at {where:.6g} deg to x: '
+                "a spring's or damper's two points meet there, and its line has no direction"
+            )
+    raise LinkworkError("the loads have no value at a pose of the run")

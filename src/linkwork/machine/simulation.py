@@ -10,7 +10,8 @@ derivative of the energy equation, which is integrated instead, with the crank's
 through its exact values, ``J_d`` the drive's constant inertia, ``M`` the reduced load moment,
 linear between the grid points: technological loads have corners).  Without loads and drive the
 energy stays exactly constant, and the turns are the natural steps: each is integrated from
-``2 pi k`` to ``2 pi (k + 1)`` with scipy's ``solve_ivp`` (DOP853).  The crank must keep turning
+``2 pi k`` to ``2 pi (k + 1)`` by the machine's integrator (:func:`linkwork.machine.integration.integrate`,
+DOP853).  The crank must keep turning
 forward: a drive too weak to carry it through a turn is reported.  From rest the first
 micro-radian is taken in closed form (constant moment), where ``dt/dpsi`` is infinite.
 """
@@ -25,6 +26,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.machine.integration import IntegrationEvent, integrate
 
 if TYPE_CHECKING:
     from linkwork.machine.reduction import Reduced
@@ -104,25 +106,6 @@ class PeriodicSplines:
                 _tuple(Curve, (((c3 * x + c2) * x + c1) * x + c0, (3 * c3 * x + 2 * c2) * x + c1, 6 * c3 * x + 2 * c2))
             )
         return tuple(out)
-
-
-@dataclass(frozen=True)
-class IntegrationEvent:
-    """A terminal event of scipy's ``solve_ivp`` with a name: where ``fn(t, y)`` crosses zero in
-    ``direction`` (negative: falling, positive: rising, zero: either way)."""
-
-    name: str
-    fn: Callable[[float, np.ndarray], float]
-    direction: float = 0.0
-    terminal: bool = True
-
-    def __call__(self, t: float, y: np.ndarray) -> float:
-        return self.fn(t, y)
-
-
-def fired(events: Sequence[IntegrationEvent], sol: Any) -> frozenset[str]:
-    """The names of the events that ended (or occurred in) the solution ``sol`` of ``solve_ivp``."""
-    return frozenset(event.name for event, times in zip(events, sol.t_events, strict=True) if len(times))
 
 
 class InertiaAndLoad(NamedTuple):
@@ -236,7 +219,7 @@ class Motion:
         return float(self.psi[np.flatnonzero(self.t >= self.last.start)[0]])
 
 
-def simulate(
+def run_turns(
     red: Reduced,
     drive: MotorGear,
     *,
@@ -326,20 +309,9 @@ class _Unit:
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, Turn, float]:
         """Turn ``k`` from the turning angle ``lo`` at time ``t0`` with kinetic energy ``e0``: its
         samples (time, turning angle, speed), the :class:`Turn` and the kinetic energy at its end."""
-        from scipy.integrate import solve_ivp
-
         hi = self.psi0 + 2 * np.pi * (k + 1)
         stalled = IntegrationEvent("stalled", _stalled, -1)
-        sol = solve_ivp(
-            self,
-            (lo, hi),
-            [t0, e0],
-            method="DOP853",
-            rtol=self.rtol,
-            atol=[1e-12, 1e-12 * max(e0, 1.0)],
-            events=stalled,
-            dense_output=True,
-        )
+        sol = integrate(self, (lo, hi), [t0, e0], rtol=self.rtol, atol=[1e-12, 1e-12 * max(e0, 1.0)], events=stalled)
         if sol.status != 0:
             where = float(sol.t[-1]) - self.psi0
             raise LinkworkError(

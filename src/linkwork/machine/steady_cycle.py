@@ -14,7 +14,7 @@ from linkwork.errors import LinkworkError
 from linkwork.limits import DYNAMICS_STEPS
 from linkwork.machine.flywheel import Flywheel, size_flywheel_wittenbauer
 from linkwork.machine.reduction import Reduced, reduced
-from linkwork.machine.simulation import Motion, simulate
+from linkwork.machine.simulation import Motion, run_turns
 from linkwork.motion.analysis import CrankAngles
 from linkwork.structure.model import Mechanism
 from linkwork.structure.records import MotorGear
@@ -198,11 +198,11 @@ def dynamics(
         drive, fly = with_flywheel_for(red, drive, delta, speed, fallback=abs(float(mech.drive_speed[0])))
     process = [load for load in mech.loads if load.kind == "process"]
     if not process:
-        motion = simulate(red, drive, omega0=omega0, start=start, turns=turns)
+        motion = run_turns(red, drive, omega0=omega0, start=start, turns=turns)
         return Dynamics(red, drive, motion, fly, motion, CrankAngles.of(mech), mech.name)
     idle = dataclasses.replace(mech, loads=tuple(load for load in mech.loads if load.kind != "process"))
-    startup = simulate(reduced(idle, steps=steps), drive, omega0=omega0, start=start, turns=turns)
-    motion = simulate(
+    startup = run_turns(reduced(idle, steps=steps), drive, omega0=omega0, start=start, turns=turns)
+    motion = run_turns(
         red, drive, omega0=float(startup.omega[-1]), start=start + 2 * np.pi * len(startup.turns), turns=turns
     )
     return Dynamics(red, drive, motion, fly, startup, CrankAngles.of(mech), mech.name)

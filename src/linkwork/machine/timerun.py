@@ -55,6 +55,8 @@ import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.reactions import inertia_and_gravity
+from linkwork.machine.integration import IntegrationEvent, integrate
+from linkwork.machine.reduction import reduced_terms, terms_of_both, unit_and_true_speeds
 from linkwork.motion.kinematic_analysis import Kinematics, kinematics_at
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.units import turn_deg
@@ -149,76 +151,6 @@ class Run:
         ms = self.kinematics.mass_properties
         vc, w = loads.com_velocity[0], self.kinematics.vel[0, :, :, 2]
         return 0.5 * np.sum(ms.mass[0] * np.sum(vc * vc, -1) + ms.inertia[0] * w * w, -1)
-
-
-@dataclass(frozen=True)
-class _Terms:
-    """``J`` (kg m^2, the drive's included), ``J'`` (kg m^2/rad) and ``Q`` (N m), each ``(K,)``."""
-
-    inertia: np.ndarray
-    slope: np.ndarray
-    load: np.ndarray
-
-
-def reduced_terms(mech: Mechanism, phi: np.ndarray, omega: np.ndarray, extra_inertia: float = 0.0) -> _Terms:
-    """The reduced inertia, its slope and the loads' reduced moment at the states ``(phi, omega)`` ``(K,)``,
-    from one kinematic solution of the 2K samples: each pose at unit speed (the transfer functions) and at
-    its true speed (the loads: a damper's force, a friction's sense).
-
-    Raises
-    ------
-    LinkworkError
-        Where a pose does not assemble, or a load has no value there (a spring whose points meet).
-    """
-    k = len(phi)
-    kin = _both(mech, phi, omega)
-    if not kin.valid_all.all():
-        bad = float(phi[np.flatnonzero(~kin.valid_all[0, :k] | ~kin.valid_all[0, k:])[0]])
-        raise LinkworkError(
-            f"the run reaches a pose where the mechanism does not assemble: crank at "
-            f"{turn_deg(bad):.6g} deg to x (a dead point, or past the end of its travel)"
-        )
-    terms = _terms(kin, k, extra_inertia)
-    if not np.isfinite(terms.load).all():
-        _no_value(kin, phi, k)
-    return terms
-
-
-def _both(mech: Mechanism, phi: np.ndarray, omega: np.ndarray) -> Kinematics:
-    """The poses ``phi`` ``(K,)`` at unit speed, then at the speeds ``omega``: ``2K`` samples at rest's acceleration."""
-    k = len(phi)
-    angles = np.concatenate([phi, phi])[:, None]
-    speeds = np.concatenate([np.ones(k), omega])[:, None]
-    return kinematics_at(mech, angles, speeds, np.zeros((2 * k, 1)))
-
-
-def _terms(kin: Kinematics, k: int, extra_inertia: float) -> _Terms:
-    """:func:`reduced_terms` of the ``2K`` samples of :func:`_both` (NaN where a pose does not assemble)."""
-    loads = inertia_and_gravity(kin)
-    ms = kin.mass_properties
-    m, j = ms.mass[0], ms.inertia[0]
-    vc, ac = loads.com_velocity[0, :k], loads.com_acceleration[0, :k]
-    w, e = kin.vel[0, :k, :, 2], kin.acc[0, :k, :, 2]
-    inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1) + extra_inertia
-    slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
-    load = np.sum(loads.applied[0, k:] * kin.vel[0, :k], axis=(-1, -2))
-    return _Terms(inertia, slope, load)
-
-
-def _no_value(kin: Kinematics, phi: np.ndarray, k: int) -> None:
-    """Raise for the first load without a value at the run's poses (a spring whose two points meet)."""
-    assert kin.mechanism.loads
-    from linkwork.kinetostatics.external import evaluate
-
-    for name, size in evaluate(kin).magnitude.items():
-        bad = np.flatnonzero(~np.isfinite(size[0, k:]))
-        if len(bad):
-            where = turn_deg(float(phi[bad[0]]))
-            raise LinkworkError(
-                f'load "{name}" has no value with the crank at {where:.6g} deg to x: '
-                "a spring's or damper's two points meet there, and its line has no direction"
-            )
-    raise LinkworkError("the loads have no value at a pose of the run")
 
 
 def simulate(
@@ -412,10 +344,6 @@ def _integrate(unit: _Unit, phi: float, omega: float, rtol: float, atol: float) 
     that way, up to the next stop (a terminal event); at a stop :meth:`_Unit.at_rest` says which way the next goes,
     or that the crank stays at rest for the rest of the run: nothing in the equation depends on time, so a crank
     held at rest once is held to the end (an ``held`` event saying by how much the drive falls short)."""
-    from scipy.integrate import solve_ivp
-
-    from linkwork.machine.simulation import IntegrationEvent
-
     pieces: list[_Piece] = []
     stops: list[RunEvent] = []
     t = 0.0
@@ -426,10 +354,7 @@ def _integrate(unit: _Unit, phi: float, omega: float, rtol: float, atol: float) 
             stops.append(_held(unit, t, phi))
             break
         stop = IntegrationEvent("stop", lambda _t, y: float(y[1]), -direction)
-        sol = solve_ivp(
-            unit.rhs(direction), (t, unit.until), [phi, omega], method="DOP853", rtol=rtol, atol=atol, events=stop,
-            dense_output=True,
-        )  # fmt: skip
+        sol = integrate(unit.rhs(direction), (t, unit.until), [phi, omega], rtol=rtol, atol=atol, events=stop)
         if sol.status < 0:
             raise LinkworkError(f"the run in time failed at {float(sol.t[-1]):.6g} s: {sol.message}")
         pieces.append(_Piece(t, float(sol.t[-1]), direction, sol.y[:, -1].copy(), sol.sol, sol.t))
@@ -469,9 +394,9 @@ def fastest_rate(mech: Mechanism, phi: float, extra_inertia: float = 0.0) -> tup
     h = 1e-5
     angles = np.concatenate([phis - h, phis + h, phis, phis])
     speeds = np.repeat([0.0, 0.0, 1.0, 2.0], n)  # the stiffness at rest: a resistance to motion springs nothing back
-    kin = _both(mech, angles, speeds)
+    kin = unit_and_true_speeds(mech, angles, speeds)
     with np.errstate(all="ignore"):
-        terms = _terms(kin, 4 * n, extra_inertia)
+        terms = terms_of_both(kin, 4 * n, extra_inertia)
         q = terms.load.reshape(4, n)
         j = terms.inertia.reshape(4, n)[2]
         k = -(q[1] - q[0]) / (2 * h)

@@ -12,6 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from linkwork import jit
+from linkwork.did_you_mean import suggest
 from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.limits import TURN_STEPS
 from linkwork.motion import kernels, kernels_numba
@@ -19,7 +20,6 @@ from linkwork.motion.events import Event, find
 from linkwork.motion.points import point_motion
 from linkwork.motion.solve import SINGULAR, run, run_each
 from linkwork.motion.state import State
-from linkwork.spec.checks import suggest
 from linkwork.structure.model import Mechanism, PairType, one_crank, per_mechanism
 from linkwork.structure.parameters import Geometry, Masses, apply
 

@@ -3,17 +3,19 @@ with a ``sizing:`` section (or a report asked for it)."""
 
 from __future__ import annotations
 
-import html
-import math
 import re
 from typing import TYPE_CHECKING, Any
 
 from linkwork.errors import LinkworkError
 from linkwork.lang import TEXTS
+from linkwork.report.html import Section, paragraph
+from linkwork.report.html import table as html_table
 
 if TYPE_CHECKING:
+    from linkwork.report.run import ReportRun
     from linkwork.sizing import Sizing, Table
     from linkwork.structure.model import Mechanism
+    from linkwork.study import Study
 
 
 def asks_sizing(mech: Mechanism, asked: bool | None) -> bool:
@@ -23,27 +25,35 @@ def asks_sizing(mech: Mechanism, asked: bool | None) -> bool:
     return mech.spec is not None and mech.spec.sizing is not None
 
 
-def sizing_section(mech: Mechanism, t: Any) -> tuple[list[str], Sizing | None]:
-    """The HTML of the section (``t(key, **values)``: the report's texts) and the sizing (None where it failed:
-    the section says why).  The motor is chosen where the file's ``sizing: motor`` asks for it (it runs the
-    machine once a motor tried) and the file has a drive speed."""
-    from linkwork.sizing import size
+def sizing_section(run: ReportRun) -> None:
+    """The section, and ``sizing.json`` beside the report where the sizing succeeded."""
+    from linkwork.io.jsonout import dumps
 
-    spec = mech.spec.sizing if mech.spec is not None else None
-    body = [_p(t("sizing.intro"))]
+    run.progress("sizing")
+    body, result = sizing_body(run.study, run.t)
+    if result is not None:
+        (run.folder / "sizing.json").write_text(dumps(result.record()), encoding="utf-8")
+    run.sections.append(Section("sizing", run.t("section.sizing"), body))
+
+
+def sizing_body(study: Study, t: Any) -> tuple[list[str], Sizing | None]:
+    """The HTML of the section (``t(key, **values)``: the report's texts) and the sizing (None where it failed:
+    the section says why): :attr:`linkwork.study.Study.sizing`, the motor chosen where the file's ``sizing:
+    motor`` asks for it (it runs the machine once a motor tried) and the file has a drive speed."""
+    body = [paragraph(t("sizing.intro"))]
     try:
-        result = size(mech, motor=bool(spec is not None and spec.motor))
+        result = study.sizing
     except LinkworkError as exc:
-        return [*body, _p(t("sizing.failed", why=str(exc)))], None
+        return [*body, paragraph(t("sizing.failed", why=str(exc)))], None
     rows = [
         [_text(t, "sizing.input.", key), "-" if value is None else _text(t, "sizing.word.", value)]
         for key, value in result.inputs.items()
     ]
-    body += [_p(t("sizing.inputs")), _html_table([t("sizing.col.quantity"), t("sizing.col.value")], rows)]
+    body += [paragraph(t("sizing.inputs")), html_table([t("sizing.col.quantity"), t("sizing.col.value")], rows)]
     for table in result.tables():
-        body += [_p(t(f"sizing.table.{table.key}")), _translated(table, t)]
+        body += [paragraph(t(f"sizing.table.{table.key}")), _translated(table, t)]
     body += [
-        _p(t("sizing.missing", part=_text(t, "sizing.word.", part), why=_text(t, "sizing.word.", why)))
+        paragraph(t("sizing.missing", part=_text(t, "sizing.word.", part), why=_text(t, "sizing.word.", why)))
         for part, why in result.missing.items()
     ]
     return body, result
@@ -63,7 +73,7 @@ def _translated(table: Table, t: Any) -> str:
                 value = _text(t, prefix, value)
             cells.append(value)
         rows.append(cells)
-    return _html_table(head, rows)
+    return html_table(head, rows)
 
 
 def _text(t: Any, prefix: str, text: Any) -> Any:
@@ -84,19 +94,3 @@ def _text(t: Any, prefix: str, text: Any) -> Any:
     if unbounded:
         return t("sizing.unbounded", phi=unbounded.group(1))
     return t(prefix + text) if prefix + text in TEXTS else text
-
-
-def _cell(x: Any) -> str:
-    if isinstance(x, float):
-        return "-" if not math.isfinite(x) else f"{x:.4g}"
-    return html.escape(str(x))
-
-
-def _html_table(head: list[str], rows: list[list[Any]]) -> str:
-    out = ["<table><thead><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in head) + "</tr></thead><tbody>"]
-    out += ["<tr>" + "".join(f"<td>{_cell(x)}</td>" for x in row) + "</tr>" for row in rows]
-    return "".join(out) + "</tbody></table>"
-
-
-def _p(text: str) -> str:
-    return f"<p>{html.escape(text)}</p>"

@@ -30,8 +30,8 @@ from linkwork.structure.model import PairType, per_mechanism, point_labels
 
 if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
-    from linkwork.spec.schema import ImpactSpec
     from linkwork.structure.model import Mechanism
+    from linkwork.structure.records import ImpactRecord
 
 #: The kinds of item, in drawing order (later on top).
 KINDS = ("path", "hatch", "support", "guide", "bar", "plate", "tool", "edge", "block", "pivot", "marker")
@@ -458,7 +458,7 @@ class _Builder:
         body, line = symbols.blade((ex, ey), (dx / length, dy / length), self.r)
         return [_item("tool", link, body, closed=True, name=name), _item("edge", link, line, name=name)]
 
-    def _anvil(self, blow: ImpactSpec) -> list[Item]:
+    def _anvil(self, blow: ImpactRecord) -> list[Item]:
         p = self.mech.point_index(blow.at)
         face = self.mech.points0()[p]
         n = np.array([np.cos(blow.normal), np.sin(blow.normal)])

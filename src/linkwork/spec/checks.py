@@ -8,15 +8,14 @@ hints.
 
 from __future__ import annotations
 
-import difflib
-import threading
 import unicodedata
 from collections import Counter, defaultdict
 from collections.abc import Callable, Collection
 from typing import Any
 
+from linkwork.did_you_mean import budget, suggest
 from linkwork.errors import Problem, UnitParseError
-from linkwork.limits import MAX_MAGNITUDE, MAX_NAME, quote, shown
+from linkwork.limits import MAX_MAGNITUDE, quote, shown
 from linkwork.spec.requirements import check_requirements
 from linkwork.spec.schema import direction_word
 from linkwork.spec.yamlsource import Path, Source
@@ -44,25 +43,6 @@ FRAME = "frame"
 Report = Callable[[Path, str], None]
 
 
-#: Candidates compared for suggestions in one pass of :func:`check`: beyond, no more suggestions, so that
-#: a file of many wrong names against many right ones is checked in near-linear time.
-SUGGESTIONS = 200_000
-
-_budget = threading.local()
-
-
-def suggest(word: str, candidates: Collection[str]) -> str:
-    """`` (did you mean "x"?)`` for the closest candidate, or an empty string (also for a word longer
-    than a name, and once a pass of :func:`check` has compared :data:`SUGGESTIONS` candidates)."""
-    left = getattr(_budget, "left", None)
-    if len(str(word)) > MAX_NAME or (left is not None and left < len(candidates)):
-        return ""
-    if left is not None:
-        _budget.left = left - len(candidates)
-    close = difflib.get_close_matches(str(word), [str(c) for c in candidates], n=1, cutoff=0.5)
-    return f" (did you mean {quote(close[0])}?)" if close else ""
-
-
 def _dict(value: Any) -> dict[str, Any]:
     return value if isinstance(value, dict) else {}
 
@@ -84,11 +64,8 @@ def link_points(links: dict[str, Any], frame: dict[str, Any]) -> dict[str, set[s
 
 def check(src: Source, declared: dict[str, str]) -> list[Problem]:
     """All reference and consistency problems of the raw data in ``src``."""
-    _budget.left = SUGGESTIONS
-    try:
+    with budget():
         return _check(src, declared)
-    finally:
-        _budget.left = None
 
 
 def _check(src: Source, declared: dict[str, str]) -> list[Problem]:

@@ -12,9 +12,10 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 from pydantic_core import ErrorDetails
 
+from linkwork.did_you_mean import suggest
 from linkwork.errors import Problem, SpecError, UnitParseError
 from linkwork.limits import echo, quote
-from linkwork.spec.checks import check, suggest
+from linkwork.spec.checks import check
 from linkwork.spec.part_checks import part_checks
 from linkwork.spec.schema import UNION_TAGS, Spec
 from linkwork.spec.yamlsource import Source, dotted, read_file, read_yaml

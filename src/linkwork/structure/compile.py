@@ -15,7 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from linkwork.errors import Problem, SpecError, StructureError, UnassemblableError
-from linkwork.spec.schema import Joint, Spec
+from linkwork.spec.schema import ImpactSpec, Joint, Spec
 from linkwork.structure.assemble import assemble, scaled, solve_group, unfixed_links
 from linkwork.structure.assur import decompose, rank
 from linkwork.structure.constraints import Rows, build_rows
@@ -28,6 +28,7 @@ from linkwork.structure.parameters import (
     INERTIA_ROD,
     mass_properties,
 )
+from linkwork.structure.records import ImpactRecord, ToolRecord
 
 
 def structural_model(spec: Spec) -> Mechanism:
@@ -582,7 +583,7 @@ def _model(spec: Spec, points: _Points, rules: _MassRules, pairs: _Pairs, drives
         link_ends=frozen(points.ends, int).reshape(-1, 2),
         pair_origin_point=frozen(pairs.origin_point, int),
         delta=spec.machine.delta if spec.machine is not None else None,
-        blow=spec.impact,
+        blow=impact_record(spec.impact),
         spec=spec,
     )
     com, inertia = mass_properties(
@@ -608,3 +609,21 @@ def _depths(spec: Spec, index: dict[str, int]) -> dict[int, int]:
                     nxt.append(j)
         frontier = nxt
     return {i: depth.get(i, 1 << 30) for i in index.values()}
+
+
+def impact_record(impact: ImpactSpec | None) -> ImpactRecord | None:
+    """The :class:`~linkwork.structure.records.ImpactRecord` of a validated ``impact:`` section (SI already), or
+    None: the compiled model carries numbers and names, not the file's objects."""
+    if impact is None:
+        return None
+    tool = impact.tool
+    return ImpactRecord(
+        at=impact.at,
+        normal=impact.normal,
+        omega=impact.omega,
+        link=impact.link,
+        restitution=impact.restitution,
+        friction=impact.friction,
+        rod_joint=impact.rod_joint,
+        tool=None if tool is None else ToolRecord(tool.mass, tool.feed, tool.resistance),
+    )

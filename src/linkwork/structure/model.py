@@ -13,10 +13,10 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import numpy as np
 import numpy.typing as npt
 
-from linkwork.structure.records import ExternalLoad, MotorGear, PairFriction, Step
+from linkwork.structure.records import ExternalLoad, ImpactRecord, MotorGear, PairFriction, Step
 
 if TYPE_CHECKING:  # the description below the model, which it keeps
-    from linkwork.spec.schema import ImpactSpec, Spec
+    from linkwork.spec.schema import Spec
 
 
 class PairType(IntEnum):
@@ -250,7 +250,7 @@ class Mechanism:
     friction: tuple[PairFriction, ...] = ()  # friction in proportion to the pairs' forces
     motor_gear: MotorGear | None = None  # the machine unit's motor, gear and flywheel, if the file gives them
     delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
-    blow: ImpactSpec | None = None  # the file's impact: section, SI
+    blow: ImpactRecord | None = None  # the file's impact: section, SI, as a record
     spec: Spec | None = field(default=None, repr=False, compare=False)  # the description it was compiled from
     gravity_direction: float = -math.pi / 2  # rad, global, counter-clockwise from +x: -y by default
 

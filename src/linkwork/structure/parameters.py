@@ -51,9 +51,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from linkwork.did_you_mean import suggest
 from linkwork.errors import ParameterError
 from linkwork.spec import edit
-from linkwork.spec.checks import suggest
 from linkwork.spec.schema import Spec
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.units import DEFAULT_UNITS, KINDS, SI_UNITS

@@ -3,9 +3,9 @@
 :func:`linkwork.compile` (:mod:`linkwork.api`) is the one compile: the structural model
 (:func:`linkwork.structure.compile.structural_model`), then the solve program (:class:`Step`, by
 :func:`linkwork.motion.program.build`), the external loads (:class:`ExternalLoad`, by
-:func:`linkwork.kinetostatics.external.compile_loads`), the friction in the pairs (:class:`PairFriction`, by
-:func:`linkwork.kinetostatics.friction.compile_friction`) and the machine unit's motor and gear
-(:class:`MotorGear`, by :func:`linkwork.machine.drive.from_spec`).  They are small frozen records of numbers
+:func:`linkwork.stage_records.compile_loads`), the friction in the pairs (:class:`PairFriction`, by
+:func:`linkwork.stage_records.compile_friction`) and the machine unit's motor and gear
+(:class:`MotorGear`, by :func:`linkwork.stage_records.from_spec`).  They are small frozen records of numbers
 and indices into the model's arrays, defined here so that the model names no package above its own; the
 stages that compile them are those that read them.
 """
@@ -146,7 +146,7 @@ def speeds(omega: Any) -> Any:
 @dataclass(frozen=True)
 class MotorGear:
     """The motor, gear and flywheel of a machine unit (``Mechanism.motor_gear``), compiled by
-    :func:`linkwork.machine.drive.from_spec`.
+    :func:`linkwork.stage_records.from_spec`.
 
     Attributes
     ----------
@@ -195,3 +195,48 @@ class MotorGear:
     def with_flywheel(self, inertia: float) -> MotorGear:
         """The same motor and gear with another flywheel (on the same shaft)."""
         return dataclasses.replace(self, flywheel=inertia)
+
+
+@dataclass(frozen=True)
+class ToolRecord:
+    """The tool the striker hits, for the working cycle (the file's ``impact: tool:``, SI): its ``mass`` (kg),
+    the ``feed`` pressing it onto its seat (N) and the work's ``resistance`` to its motion into it (N)."""
+
+    mass: float
+    feed: float
+    resistance: float = 0.0
+
+
+@dataclass(frozen=True)
+class ImpactRecord:
+    """A blow of the point ``at`` (``link.point``) on a surface at rest, in the assembly pose (the file's
+    ``impact:`` section, SI; compiled by :func:`linkwork.structure.compile.structural_model`).
+
+    Attributes
+    ----------
+    at : str
+        The striking point.
+    normal : float
+        Direction of the surface's normal, out of it (towards the striker), rad.
+    omega : float
+        Angular speed of the striking link (or of ``link``) before the blow, rad/s, counter-clockwise positive.
+    link : str or None
+        The link whose angular speed ``omega`` is.
+    restitution : float
+        ``R = -omega_after / omega_before``.
+    friction : float
+        Tangential impulse over normal impulse.
+    rod_joint : str or None
+        For the reduced model of seed 004: the joint at which the rod's mass is taken.
+    tool : ToolRecord or None
+        The tool, for the working cycle.
+    """
+
+    at: str
+    normal: float
+    omega: float
+    link: str | None = None
+    restitution: float = 0.0
+    friction: float = 0.0
+    rod_joint: str | None = None
+    tool: ToolRecord | None = None

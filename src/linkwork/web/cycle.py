@@ -1,6 +1,7 @@
 """A mechanism, or a variant of it, solved over a whole turn of its crank: what the viewer's answers are built from.
 
-An edit of dimensions or masses does not change the structure, so it is solved as a variant of the
+The cycle and its forces are a :class:`linkwork.study.Study`'s, as the report's are.  An edit of dimensions or
+masses does not change the structure, so it is solved as a variant of the
 compiled mechanism (:func:`linkwork.kinematics` with ``variants``, the mass rule of
 :mod:`linkwork.structure.parameters` included): no new description, no compile.  What a variant
 means is what the same edit of the file means; where the file edited so would not compile (a group
@@ -18,11 +19,11 @@ import numpy as np
 
 from linkwork import jit
 from linkwork.errors import LinkworkError, UnassemblableError
-from linkwork.kinetostatics.reaction_forces import Forces, forces_of
-from linkwork.motion.analysis import zero_angle
-from linkwork.motion.kinematic_analysis import Kinematics, cycle, kinematics
+from linkwork.kinetostatics.reaction_forces import Forces
+from linkwork.motion.kinematic_analysis import Kinematics, kinematics
 from linkwork.scene.scheme import CYCLE
 from linkwork.structure.model import Mechanism, one_crank
+from linkwork.study import Study
 
 #: Crank angles a dragged value's answer draws the scheme's symbols from (the sides the supports stand on,
 #: the guides' lengths): fewer than :data:`linkwork.scene.scheme.CYCLE`, the whole cycle's, to answer in time;
@@ -97,23 +98,15 @@ def solve_cycle(mech: Mechanism, steps: int, overrides: dict[str, float] | None 
     """
     if not one_crank(mech):
         raise LinkworkError("the viewer turns one crank: the mechanism needs exactly one revolute drive")
-    overrides = dict(overrides or {})
-    variants = {name: [value] for name, value in overrides.items()} or None
+    study = Study(mech, steps, overrides)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        kin = kinematics(mech, turn(mech, steps), variants=variants)
+        kin = study.kin
         few = steps < symbols
-        drawn = kinematics(mech, turn(mech, symbols), variants=variants) if few else symbol_samples(kin, symbols)
-        forces, reason = _forces(kin)
+        drawn = kinematics(mech, study.turn(symbols), variants=study.variants) if few else symbol_samples(kin, symbols)
+        forces, reason = study.forces_or_reason
     notes = tuple(dict.fromkeys(str(w.message) for w in caught))
-    return Cycle(mech, overrides, kin, drawn, forces, reason, notes)
-
-
-def turn(mech: Mechanism, steps: int) -> np.ndarray:
-    """The crank angles (rad) of the viewer's cycle: ``steps`` equal steps over a turn from position 0
-    (:func:`~linkwork.motion.analysis.zero_angle`, the file's, also for its edits, so that the crank stays
-    where it is while a value is dragged), as the report numbers the cycle."""
-    return cycle(mech, steps, start=zero_angle(mech))
+    return Cycle(mech, study.overrides, kin, drawn, forces, reason, notes)
 
 
 def symbol_samples(kin: Kinematics, count: int) -> Kinematics:
@@ -121,18 +114,6 @@ def symbol_samples(kin: Kinematics, count: int) -> Kinematics:
     360 for 72): what the scheme's symbols are drawn from, without solving the turn again."""
     n = len(kin.angles)
     return kin if n == count else kin.samples(np.round(np.arange(count) * (n / count)).astype(int))
-
-
-def _forces(kin: Kinematics) -> tuple[Forces | None, str]:
-    mech = kin.mechanism
-    if mech.structure.redundant:
-        return None, "the mechanism has redundant constraints: its reactions are statically indeterminate"
-    if not (np.asarray(kin.mass_properties.mass)[0, 1:] > 0).any() and not mech.loads:
-        return None, "the file gives no masses and no loads"
-    try:
-        return forces_of(kin), ""
-    except LinkworkError as exc:
-        return None, str(exc)
 
 
 class OutOfRange(UnassemblableError):

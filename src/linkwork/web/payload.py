@@ -606,7 +606,7 @@ WAY_STEP = math.radians(1.0)
 
 def way(mech: Mechanism, angle: float) -> np.ndarray:
     """The crank angles (rad) from the assembly pose to ``angle`` as the viewer's cycle (a turn from position 0 in
-    the drive's direction, :func:`linkwork.web.cycle.turn`) reaches it from there: forward where it lies later in
+    the drive's direction, :meth:`linkwork.study.Study.turn`) reaches it from there: forward where it lies later in
     that turn, back where earlier, in steps of at most :data:`WAY_STEP`; the last is ``angle`` (to whole turns)."""
     from linkwork.motion.analysis import zero_angle
     from linkwork.motion.kinematic_analysis import direction
