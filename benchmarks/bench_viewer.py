@@ -42,7 +42,7 @@ import numpy as np
 from timing import best
 
 import linkwork as lw
-from linkwork.web.cycle import turn
+from linkwork.study import Study
 from linkwork.web.payload import LIVE_PLACED, cycle_payload
 from linkwork.web.update import decode_edit
 
@@ -228,7 +228,7 @@ def main(argv: list[str] | None = None) -> None:
             lw.forces(mech, steps=360)
             runs.append(time.perf_counter() - t)
         own = []  # the viewer's own solve: its turn from position 0, the edit as a variant
-        angles, variant = turn(mech, 360), {name: [1.01 * start]}
+        angles, variant = Study(mech).turn(360), {name: [1.01 * start]}
         for _ in range(50):
             t = time.perf_counter()
             lw.forces(mech, angles, variants=variant)
