@@ -31,8 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.kinetostatics.external import evaluate
-from linkwork.kinetostatics.external import power as external_power
+from linkwork.kinetostatics.external import Applied, power_of_loads
 from linkwork.kinetostatics.reaction_forces import forces_of
 from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS
@@ -221,7 +220,7 @@ def _reduced_of(kin: Kinematics, psi: np.ndarray, sign: float) -> Reduced:
     """The reduced quantities of the solution ``kin`` at unit crank speed (``sign``: its direction) at the turning
     angles ``psi``."""
     mech, angle = kin.mechanism, kin.angles
-    loads = inertia_and_gravity(kin)
+    loads = inertia_and_gravity(kin, Applied([], [], {}, {}))  # the external loads' power: one at a time, below
     ms = kin.mass_properties
     m, j = ms.mass[0], ms.inertia[0]
     vc, ac = loads.com_velocity[0], loads.com_acceleration[0]
@@ -229,7 +228,7 @@ def _reduced_of(kin: Kinematics, psi: np.ndarray, sign: float) -> Reduced:
     inertia = np.sum(m * np.sum(vc * vc, -1) + j * w * w, -1)
     slope = 2 * np.sum(m * np.sum(vc * ac, -1) + j * w * e, -1)
     friction = friction_moment(mech, angle, sign)
-    load = (gravity_power(kin, loads.com_velocity) + external_power(kin, loads.external))[0] - friction
+    load = (gravity_power(kin, loads.com_velocity) + power_of_loads(kin))[0] - friction
     damping = _damping(kin)
     if damping is not None:
         load = load + damping  # the dampers' moment at unit speed is -B: kept apart, in B
@@ -262,4 +261,4 @@ def _damping(kin: Kinematics) -> np.ndarray | None:
     there), or None without dampers."""
     if not any(load.kind == "damper" for load in kin.mechanism.loads):
         return None
-    return -external_power(kin, evaluate(kin, ("damper",)))[0]
+    return -power_of_loads(kin, ("damper",))[0]
