@@ -118,11 +118,13 @@ def run_numpy(
     values: np.ndarray,
     rates: np.ndarray,
     accels: np.ndarray,
+    branches: list[np.ndarray | None] | None = None,
 ) -> State:
     """Solve every step by the NumPy kernels, all variants at once (:func:`run` without the compiled
-    kernels and the chunks of variants)."""
+    kernels and the chunks of variants); ``branches``: the assembly mode of each dyad at each sample ``(V, A)``,
+    per step of the program (None: followed from the assembly pose)."""
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        state = _solve(mech, program, geom, values, rates, accels)
+        state = _solve(mech, program, geom, values, rates, accels, branches)
         _repair_singular(mech, program, geom, values, rates, accels, state)
     _not_assembled(state)
     return state
