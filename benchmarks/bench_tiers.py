@@ -8,8 +8,9 @@ filled here first, which takes minutes); every run gets its own ``LINKWORK_CACHE
 empty one for the cold rows.
 
 * A long-lived process: ``--calls`` calls each of ``lw.forces(m, steps=360)`` and ``lw.kinematics(m, steps=360)``
-  of the double-cut shears, in turn, in a fresh process; the median of the last 20 of each, and the call at
-  which the default switched to the compiled kernels (with the processor time the load took).
+  of the double-cut shears, in turn, in a fresh process; the median of the last 20 of each, the time of all the
+  calls, and the call at which the default switched to the compiled kernels (with the processor time the load
+  took).
   Bar: the default within 1.5 times ``LINKWORK_NUMBA=1``.
 * A one-shot command: ``linkwork forces double-cut-shears`` in a fresh process, the median of ``--repeat``;
   the default with the warm cache and with an empty one (a fresh install's first command: the compile starts
@@ -51,7 +52,8 @@ for i in range(calls):
     if switched is None and jit.loaded():
         switched = i + 1
 print(json.dumps({"forces": statistics.median(forces[-20:]), "kinematics": statistics.median(kinematics[-20:]),
-                  "switched": switched, "load": jit.load_seconds(), "ready": jit.ready()}))
+                  "total": sum(forces) + sum(kinematics), "switched": switched, "load": jit.load_seconds(),
+                  "ready": jit.ready()}))
 """
 
 
@@ -150,7 +152,7 @@ def main(argv: list[str] | None = None) -> None:
             switched = f", switched after call {r['switched']} (load {r['load']:.2f} s)" if r["load"] else ""
             print(
                 f"  {label:8s} lw.forces {1e3 * r['forces']:7.2f} ms   lw.kinematics {1e3 * r['kinematics']:6.2f} ms"
-                f"{switched}"
+                f"   all calls {r['total']:6.2f} s{switched}"
             )
         print(f"one-shot: linkwork forces double-cut-shears, median of {args.repeat}")
         for label, mode in MODES.items():

@@ -431,3 +431,22 @@ drives:
 hints:
   B: [330, 240]
 """.replace("ANGLE", f"{angle_deg:g}")
+
+
+def kinetic_and_potential_by_differences(mech, angle, h=1e-6):
+    """Reduced inertia from the positions alone: velocities of the centres of mass and angular
+    velocities by central differences in the crank angle; the potential energy too."""
+    plus, minus = lw.kinematics(mech, angle + h), lw.kinematics(mech, angle - h)
+
+    def com(k):
+        q = k.pose[0]
+        c, s = np.cos(q[..., 2]), np.sin(q[..., 2])
+        lx, ly = mech.link_com[:, 0], mech.link_com[:, 1]
+        return np.stack([q[..., 0] + c * lx - s * ly, q[..., 1] + s * lx + c * ly], -1), q[..., 2]
+
+    (cp, tp), (cm, tm) = com(plus), com(minus)
+    v = (cp - cm) / (2 * h)
+    w = (np.unwrap(np.stack([tm, tp]), axis=0)[1] - np.unwrap(np.stack([tm, tp]), axis=0)[0]) / (2 * h)
+    inertia = np.sum(mech.link_mass * np.sum(v * v, -1) + mech.link_inertia * w * w, -1)
+    potential = lambda c: np.sum(mech.link_mass * mech.gravity * c[..., 1], -1)  # noqa: E731
+    return inertia, (potential(cp) - potential(cm)) / (2 * h)

@@ -3,18 +3,20 @@
 The kinematics and the reactions have twin kernels: NumPy (the reference, always there) and numba (the
 same arithmetic compiled to machine code, 5 to 30 times faster).  Compiling the numba kernels takes one to
 three minutes of processor time, once per install; loading them from the cache (importing numba, reading
-the compiled code) costs about :data:`LOAD_COST` seconds, more than a one-shot command spends in its
-batches.  So the kernels are tiered, as a JIT runtime tiers its code:
+the compiled code) costs about :data:`LOAD_COST` seconds of processor time, more than a one-shot command spends
+in its batches.  So the kernels are tiered, as a JIT runtime tiers its code:
 
-- ``LINKWORK_NUMBA`` unset (or ``auto``): a process starts on the NumPy kernels and counts the time it
-  spends in them (:func:`spent`).  Once the compiled kernels are in the cache (:func:`ready`, looked at
-  once every :data:`RECHECK` seconds at most) and that time exceeds their loading's cost
-  (:data:`LOAD_COST`), a thread of the process loads them in the background (:func:`load_in_background`:
-  no caller waits) and the process switches to them: from then on every call, whatever its size, runs
-  compiled.  A process that stops before has paid nothing for them; one that goes on pays for the load at
-  most what it had spent already, and then runs 5 to 30 times faster.  Two shortcuts: a batch of at least
-  :data:`LONG` samples (a sweep, a long cycle) pays for the load alone, and loads them in front; a process
-  that asks for them (:func:`prefer`: the viewer) loads them in the background as soon as they are ready.
+- ``LINKWORK_NUMBA`` unset (or ``auto``): a process starts on the NumPy kernels and counts the processor time
+  it spends in them (:func:`spent`).  Once the compiled kernels are in the cache (:func:`ready`, looked at
+  once every :data:`RECHECK` seconds at most) and that time exceeds what their loading would cost the
+  process (:func:`load_cost`: :data:`LOAD_COST` of processor time, less what it has imported already), a
+  thread of the process loads them in the background (:func:`load_in_background`: no caller waits for it,
+  though the calls meanwhile share the interpreter with it) and the process switches to them: from then on
+  every call, whatever its size, runs compiled.  A process that stops before has paid nothing for them; one
+  that goes on pays for the load at most what it had spent already, and then runs 5 to 30 times faster.  Two
+  shortcuts: a batch of at least :data:`LONG` samples (a sweep, a long cycle) pays for the load alone, and
+  loads them in front; a process that asks for them (:func:`prefer`: the viewer) loads them in the background
+  as soon as they are ready.
   A command of the command line (:func:`one_shot`) has only those two: it ends before a load would pay.
   A process that finds the cache empty starts the compile in a process of its own (:func:`start_compiling`:
   once, at the lowest priority, into :func:`cache_dir`), says so once on stderr, and goes on with the
@@ -68,11 +70,20 @@ KERNEL_MODULES = ("motion/kernels_numba.py", "kinetostatics/reactions_numba.py")
 #: ones about 2).
 LONG = 20_000
 
-#: Seconds of processor time loading the compiled kernels costs (importing numba, whose first read of a
-#: kernel imports its NumPy support and SciPy's BLAS, and reading every kernel from the cache), measured in
-#: the thread that loads them (:func:`load_seconds`) on the 2-core virtual machine of the benchmarks page:
-#: the time in the NumPy kernels after which they load.
+#: Seconds of processor time loading the compiled kernels costs a process that has none of :data:`SUNK`, measured
+#: in the thread that loads them (:func:`load_seconds`; 0.76 to 1.21 s on the 2-core virtual machine of the benchmarks
+#: page): importing numba (0.23 to 0.34 s); its NumPy support (0.22 to 0.35 s, of which SciPy's linear algebra 0.14 to
+#: 0.26 s: numba's ``np.arraymath`` imports ``scipy.linalg.cython_blas`` as it is loaded, whatever the kernels use,
+#: and ours use no linear algebra of NumPy's); its compiler's first set-up and the reading of the nine compiled
+#: signatures (0.31 to 0.53 s).  A load in the background costs the calls of the process about as much of their own
+#: processor time (measured 68 to 105 % of it: importing holds the interpreter's lock, so the load and the calls take
+#: turns, even on two cores), so that is the price of the switch: :func:`load_cost`.
 LOAD_COST = 1.0
+
+#: The parts of :data:`LOAD_COST` that a module imports, as fractions of it: a process that has imported the module
+#: already (SciPy's linear algebra for a run in time or a user's own SciPy, numba for a user's own kernels) does not
+#: pay that part again (:func:`load_cost`).
+SUNK = {"numba": 0.3, "scipy.linalg": 0.2}
 
 #: Seconds between two looks at the cache (:func:`ready`) while the compiled kernels are not in use.
 RECHECK = 5.0
@@ -191,12 +202,24 @@ def use(samples: int) -> bool:
     return True
 
 
+def load_cost() -> float:
+    """Seconds of processor time loading the compiled kernels would cost this process now: :data:`LOAD_COST` less
+    the parts of :data:`SUNK` whose modules it has imported already."""
+    return LOAD_COST * (1.0 - sum(part for name, part in SUNK.items() if name in sys.modules))
+
+
 def spent(seconds: float) -> None:
-    """Count ``seconds`` spent in a NumPy twin of a compiled kernel; once past :data:`LOAD_COST`, with the
-    compiled kernels ready, load them in the background."""
+    """Count ``seconds`` of processor time spent in a NumPy twin of a compiled kernel; once past :func:`load_cost`,
+    with the compiled kernels ready, load them in the background.
+
+    Both sides are processor time of this process: what the NumPy kernels took, and what the load will take from
+    its calls (they wait for the interpreter's lock while it imports).  On a loaded machine the wall time of both
+    grows alike, so the switch comes after the same number of calls; waiting until the kernels have taken what the
+    switch costs before paying for it keeps a process's total within twice the least it could have taken, whether
+    it stops early or goes on (the ski-rental rule)."""
     state = _state
     state.spent += seconds
-    if state.spent < LOAD_COST or state.loaded or state.loader is not None or state.one_shot:
+    if state.loaded or state.loader is not None or state.one_shot or state.spent < load_cost():
         return
     if mode() == AUTO and _ready():
         load_in_background()

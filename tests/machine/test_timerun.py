@@ -12,6 +12,7 @@ from scipy.integrate import solve_ivp
 import linkwork as lw
 from linkwork import MechanismBuilder
 from linkwork.machine.timerun import simulate
+from mechanisms import kinetic_and_potential_by_differences
 
 M, L, JC, K, G = 2.0, 0.4, 0.05, 30.0, 9.81
 
@@ -376,3 +377,23 @@ def test_a_pendulum_at_rest_hanging_down_stays_there_for_the_longest_run():
     wn = math.sqrt((K + M * G * L) / (JC + M * L * L))
     off = simulate(pendulum(), 0.1, angle=-math.pi / 2 + 1e-9, times=[0.1])
     assert off.angle[0] + math.pi / 2 == pytest.approx(1e-9 * math.cos(wn * 0.1), rel=1e-6)
+
+
+def test_a_run_past_a_change_point_goes_on_in_the_mode_of_the_cycle():
+    """The isosceles slider-crank (OA = AB) passes change points at 0 and 180 deg, past which its cycle goes on in
+    the other mode (the knife keeps moving, y_B = 2 l sin(phi)); the run in time solves each of its poses alone,
+    and must take them in the cycle's modes: its reduced inertia at single angles all round the turn (a few off the
+    change points) equals the one from finite differences of the cycle's positions, sum m |dr_C/dphi|^2 + J_C
+    (dtheta/dphi)^2; and a run through 180 deg has the knife where the closed form puts it."""
+    from linkwork.machine.timerun import cycle_of, reduced_terms
+
+    mech = lw.compile(lw.example("shears-slider-crank"))
+    cycle = cycle_of(mech)
+    start = float(mech.drive_start[0])
+    angles = start + np.radians(np.arange(0.0, 360.0, 7.3))
+    expected = kinetic_and_potential_by_differences(mech, angles)[0]
+    got = [reduced_terms(mech, np.array([a]), np.ones(1), 0.0, cycle).inertia[0] for a in angles]
+    np.testing.assert_allclose(got, expected, rtol=1e-6)
+    run = simulate(mech, 0.4, speed=10.0, motor=False, times=np.linspace(0.0, 0.4, 21))
+    assert run.angle[-1] > math.pi + 0.5  # through 180 deg
+    np.testing.assert_allclose(run.kinematics.position("B")[:, 1], 2 * 0.15 * np.sin(run.angle), atol=1e-9)

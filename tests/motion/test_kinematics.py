@@ -890,3 +890,21 @@ def test_a_batch_gives_each_sample_what_the_sample_alone_gives(which, base, offs
     else:
         mech = lw.compile(lw.example(which))
     _batch_and_alone(mech, base + np.asarray(offsets))
+
+
+@pytest.mark.parametrize("steps", [360, 24, 7])
+def test_a_flat_touch_of_the_two_modes_is_no_change_point(steps):
+    """A toggle press whose upper link ends its 89.9999 deg swing on the line of the ram's guide (the assembly pose):
+    the ram's dyad's modes come within 35 nm there, but the upper link is itself at rest (the distance of the knee
+    from the guide goes as tau^4), so the motion keeps its mode whatever the steps: with upper and lower links of
+    equal length the ram is at twice the knee's height (the other mode would leave it at the pivot P), and its
+    stroke is the file's 20 mm; no change point is reported."""
+    from pathlib import Path
+
+    mech = lw.compile(str(Path(__file__).parents[1] / "web" / "toggle-at-dead-centre.yaml"))
+    kin = lw.kinematics(mech, steps=steps)
+    knee, ram = kin.position("K"), kin.position("R")
+    np.testing.assert_allclose(ram[:, 1], 2 * knee[:, 1], atol=1e-12)
+    assert not [e for e in kin.events if e.kind == "change-point"]
+    if steps == 360:
+        assert ram[:, 1].min() == pytest.approx(-0.020, abs=1e-6)

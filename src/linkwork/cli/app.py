@@ -411,8 +411,7 @@ def check(
     except LinkworkError as exc:
         fail(exc)
     reach = drive_range(mech)
-    note = reach.warning() if reach is not None else None
-    warnings = [*mech.structure.warnings, *([note] if note else [])]
+    warnings = [*mech.structure.warnings, *(reach.warnings() if reach is not None else [])]
     read = values_read(spec) if values else None
     if as_json:
         out = {"name": mech.name, **mech.structure.as_dict(), "drives": _drives(mech)}

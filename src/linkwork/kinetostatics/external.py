@@ -90,17 +90,35 @@ def evaluate(kin: Kinematics, kinds: tuple[str, ...] | None = None) -> Applied:
     result."""
     out = Applied([], [], {}, {})
     for load in kin.mechanism.loads:
-        if kinds is not None and load.kind not in kinds:
-            continue
-        if load.kind == "friction":
-            _friction(kin, load, out)
-        elif load.kind in ("force", "moment"):
-            _given_load(kin, load, out)
-        elif load.kind in ELEMENTS:
-            _element(kin, load, out)
-        else:
-            _process_load(kin, load, out)
+        if kinds is None or load.kind in kinds:
+            _add(kin, load, out)
     return out
+
+
+def _add(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
+    """The forces and moments of one load over ``kin``, added to ``out``."""
+    if load.kind == "friction":
+        _friction(kin, load, out)
+    elif load.kind in ("force", "moment"):
+        _given_load(kin, load, out)
+    elif load.kind in ELEMENTS:
+        _element(kin, load, out)
+    else:
+        _process_load(kin, load, out)
+
+
+def power_of_loads(kin: Kinematics, kinds: tuple[str, ...] | None = None) -> np.ndarray:
+    """Power (W) of the external loads of ``kin.mechanism`` (those of the ``kinds`` given, default all), ``(V, A)``:
+    :func:`power` of :func:`evaluate`, each load evaluated and its power added before the next is evaluated, so
+    the memory taken is the sum ``(V, A)`` and one load's arrays (about 13 floats a sample for a spring: its two
+    points' positions and velocities and its two forces), whatever the number of loads."""
+    total = np.zeros(kin.valid_all.shape)
+    for load in kin.mechanism.loads:
+        if kinds is None or load.kind in kinds:
+            one = Applied([], [], {}, {})
+            _add(kin, load, one)
+            total += power(kin, one)
+    return total
 
 
 def _element(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:

@@ -32,11 +32,10 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.kinetostatics.external import evaluate
-from linkwork.kinetostatics.external import power as external_power
+from linkwork.kinetostatics.external import Applied, evaluate, power_of_loads
 from linkwork.kinetostatics.reaction_forces import forces_of
 from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
-from linkwork.limits import DYNAMICS_STEPS
+from linkwork.limits import DYNAMICS_STEPS, TURN_STEPS
 from linkwork.motion import cycle, kinematics
 from linkwork.motion.kinematic_analysis import Kinematics, direction, kinematics_at
 from linkwork.structure.model import Mechanism, one_crank
@@ -236,10 +235,10 @@ def _reduced_of(kin: Kinematics, psi: np.ndarray, sign: float) -> Reduced:
     """The reduced quantities of the solution ``kin`` at unit crank speed (``sign``: its direction) at the turning
     angles ``psi``."""
     mech, angle = kin.mechanism, kin.angles
-    loads = inertia_and_gravity(kin)
+    loads = inertia_and_gravity(kin, Applied([], [], {}, {}))  # the external loads' power: one at a time, below
     inertia, slope = inertia_terms(kin, loads)
     friction = friction_moment(mech, angle, sign)
-    load = (gravity_power(kin, loads.com_velocity) + external_power(kin, loads.external))[0] - friction
+    load = (gravity_power(kin, loads.com_velocity) + power_of_loads(kin))[0] - friction
     damping = _damping(kin)
     if damping is not None:
         load = load + damping  # the dampers' moment at unit speed is -B: kept apart, in B
@@ -272,7 +271,7 @@ def _damping(kin: Kinematics) -> np.ndarray | None:
     there), or None without dampers."""
     if not any(load.kind == "damper" for load in kin.mechanism.loads):
         return None
-    return -external_power(kin, evaluate(kin, ("damper",)))[0]
+    return -power_of_loads(kin, ("damper",))[0]
 
 
 # --- the terms at any states (phi, omega) of a run in time (linkwork.machine.timerun) ---------------------
@@ -287,10 +286,17 @@ class ReducedTerms:
     load: np.ndarray
 
 
-def reduced_terms(mech: Mechanism, phi: np.ndarray, omega: np.ndarray, extra_inertia: float = 0.0) -> ReducedTerms:
+def reduced_terms(
+    mech: Mechanism,
+    phi: np.ndarray,
+    omega: np.ndarray,
+    extra_inertia: float = 0.0,
+    along: Kinematics | None = None,
+) -> ReducedTerms:
     """The reduced inertia, its slope and the loads' reduced moment at the states ``(phi, omega)`` ``(K,)``,
     from one kinematic solution of the 2K samples: each pose at unit speed (the transfer functions) and at
-    its true speed (the loads: a damper's force, a friction's sense).
+    its true speed (the loads: a damper's force, a friction's sense), in the assembly modes the mechanism's
+    cycle ``along`` (default :func:`cycle_of`) has at those angles (:func:`poses`).
 
     Raises
     ------
@@ -298,7 +304,7 @@ def reduced_terms(mech: Mechanism, phi: np.ndarray, omega: np.ndarray, extra_ine
         Where a pose does not assemble, or a load has no value there (a spring whose points meet).
     """
     k = len(phi)
-    kin = unit_and_true_speeds(mech, phi, omega)
+    kin = unit_and_true_speeds(mech, phi, omega, along)
     if not kin.valid_all.all():
         bad = float(phi[np.flatnonzero(~kin.valid_all[0, :k] | ~kin.valid_all[0, k:])[0]])
         raise LinkworkError(
@@ -311,12 +317,29 @@ def reduced_terms(mech: Mechanism, phi: np.ndarray, omega: np.ndarray, extra_ine
     return terms
 
 
-def unit_and_true_speeds(mech: Mechanism, phi: np.ndarray, omega: np.ndarray) -> Kinematics:
-    """The poses ``phi`` ``(K,)`` at unit speed, then at the speeds ``omega``: ``2K`` samples at rest's acceleration."""
+def unit_and_true_speeds(
+    mech: Mechanism, phi: np.ndarray, omega: np.ndarray, along: Kinematics | None = None
+) -> Kinematics:
+    """The poses ``phi`` ``(K,)`` at unit speed, then at the speeds ``omega``: ``2K`` samples at rest's acceleration,
+    in the assembly modes of the cycle ``along`` (default :func:`cycle_of`)."""
     k = len(phi)
     angles = np.concatenate([phi, phi])[:, None]
     speeds = np.concatenate([np.ones(k), omega])[:, None]
-    return kinematics_at(mech, angles, speeds, np.zeros((2 * k, 1)))
+    return poses(along if along is not None else cycle_of(mech), angles, speeds, np.zeros((2 * k, 1)))
+
+
+def poses(along: Kinematics, angles: np.ndarray, speeds: np.ndarray, accels: np.ndarray) -> Kinematics:
+    """:func:`~linkwork.motion.kinematic_analysis.kinematics_at` of the mechanism of the cycle ``along``
+    (:func:`cycle_of`) in the assembly modes that cycle has at each angle: where the crank passes a change point,
+    the motion goes on in the other mode, as in ``linkwork kinematics`` and the viewer, whatever the order or
+    number of the poses asked."""
+    return kinematics_at(along.mechanism, angles, speeds, accels, along=along)
+
+
+def cycle_of(mech: Mechanism) -> Kinematics:
+    """The mechanism's cycle over a turn from its assembly pose (:func:`~linkwork.motion.kinematics` of
+    :data:`~linkwork.limits.TURN_STEPS` angles), whose assembly modes a run in time keeps to (:func:`poses`)."""
+    return kinematics(mech, steps=TURN_STEPS)
 
 
 def terms_of_both(kin: Kinematics, k: int, extra_inertia: float) -> ReducedTerms:

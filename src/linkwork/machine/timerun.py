@@ -56,8 +56,8 @@ import numpy.typing as npt
 from linkwork.errors import LinkworkError
 from linkwork.kinetostatics.reactions import inertia_and_gravity
 from linkwork.machine.integration import IntegrationEvent, integrate
-from linkwork.machine.reduction import reduced_terms, terms_of_both, unit_and_true_speeds
-from linkwork.motion.kinematic_analysis import Kinematics, kinematics_at
+from linkwork.machine.reduction import cycle_of, poses, reduced_terms, terms_of_both, unit_and_true_speeds
+from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.units import turn_deg
 
@@ -204,7 +204,7 @@ def simulate(
     if problem:
         raise LinkworkError(problem)
     drive = (drive if drive is not None else mech.motor_gear) if motor else None
-    unit = _Unit(mech, drive, until, progress)
+    unit = _Unit(mech, drive, until, progress, cycle_of(mech))
     unit.atol = atol
     phi0 = float(mech.drive_start[0]) if angle is None else float(angle)
     grid = np.linspace(0.0, until, RUN_SAMPLES) if times is None else np.asarray(times, dtype=float).ravel()
@@ -214,9 +214,9 @@ def simulate(
         _refuse_stiff(unit, phi0, float(speed), until, rtol)
     pieces, stops = _integrate(unit, phi0, float(speed), rtol, atol)
     y, eps, md = _samples(unit, pieces, grid)
-    kin = kinematics_at(mech, y[0][:, None], y[1][:, None], eps[:, None])
+    kin = poses(unit.cycle, y[0][:, None], y[1][:, None], eps[:, None])
     steps = np.unique(np.concatenate([p.steps for p in pieces]))
-    events = tuple(sorted(stops + _change_points(mech, steps, _Dense(pieces)), key=lambda e: e.time))
+    events = tuple(sorted(stops + _change_points(unit.cycle, steps, _Dense(pieces)), key=lambda e: e.time))
     return Run(grid, y[0], y[1], eps, kin, events, md, rtol, atol, unit.evaluations)
 
 
@@ -231,9 +231,15 @@ class _Unit:
     of one direction of motion at a time, and the work it has done (the evaluations, each one exact pose)."""
 
     def __init__(
-        self, mech: Mechanism, drive: MotorGear | None, until: float, progress: Callable[[float], None] | None
+        self,
+        mech: Mechanism,
+        drive: MotorGear | None,
+        until: float,
+        progress: Callable[[float], None] | None,
+        cycle: Kinematics,
     ) -> None:
         self.mech, self.drive, self.until, self.progress = mech, drive, until, progress
+        self.cycle = cycle  # whose assembly modes the run keeps to (:func:`poses`)
         self.atol = 1e-10  # rad: the run's (:func:`simulate` sets it)
         self.sense = -1.0 if mech.drive_speed[0] < 0 else 1.0
         self.extra = drive.inertia if drive is not None else 0.0
@@ -249,7 +255,8 @@ class _Unit:
     def acceleration(self, phi: np.ndarray, omega: np.ndarray, direction: np.ndarray) -> np.ndarray:
         """``phi''`` (rad/s^2) at the states ``(phi, omega)`` ``(K,)`` moving in ``direction`` (+1 or -1): the loads
         at the speed itself where it goes that way, else at their limit at rest from that side (:data:`CREEP`)."""
-        terms = reduced_terms(self.mech, phi, np.where(direction * omega > 0, omega, direction * CREEP), self.extra)
+        speed = np.where(direction * omega > 0, omega, direction * CREEP)
+        terms = reduced_terms(self.mech, phi, speed, self.extra, self.cycle)
         if not (terms.inertia > 0).all():
             where = turn_deg(float(phi[np.flatnonzero(~(terms.inertia > 0))[0]]))
             raise LinkworkError(
@@ -291,7 +298,7 @@ class _Unit:
         forward, back, *near = self.acceleration(pose, np.zeros(4), np.array([1.0, -1.0, 1.0, 1.0]))
         span = max(self.until, 1e-100)  # a run shorter than that (1e-300 s) moves nothing; its square is no zero
         least = max(2 * self.atol / span**2, 1e-12 * max(abs(near[0]), abs(near[1])))
-        j = reduced_terms(self.mech, pose[:1], np.zeros(1), self.extra).inertia[0]
+        j = reduced_terms(self.mech, pose[:1], np.zeros(1), self.extra, self.cycle).inertia[0]
         way = 1 if forward > least else -1 if back < -least else 0
         return way, float(forward * j), float(back * j)
 
@@ -383,7 +390,9 @@ def _held(unit: _Unit, t: float, phi: float) -> RunEvent:
 PER_RADIAN = 60.0
 
 
-def fastest_rate(mech: Mechanism, phi: float, extra_inertia: float = 0.0) -> tuple[float, float]:
+def fastest_rate(
+    mech: Mechanism, phi: float, extra_inertia: float = 0.0, cycle: Kinematics | None = None
+) -> tuple[float, float]:
     """The fastest rate (1/s) of small motions of the machine unit over a turn of the crank from ``phi`` (rad), and
     the drive angle (rad) where it is: ``sqrt(|k| / J)`` with ``k = -dQ/dphi`` the stiffness of the loads at rest
     reduced to the crank (N m/rad: springs, gravity, the position's loads; not a process load nor a friction, which
@@ -394,7 +403,7 @@ def fastest_rate(mech: Mechanism, phi: float, extra_inertia: float = 0.0) -> tup
     h = 1e-5
     angles = np.concatenate([phis - h, phis + h, phis, phis])
     speeds = np.repeat([0.0, 0.0, 1.0, 2.0], n)  # the stiffness at rest: a resistance to motion springs nothing back
-    kin = unit_and_true_speeds(mech, angles, speeds)
+    kin = unit_and_true_speeds(mech, angles, speeds, cycle)
     with np.errstate(all="ignore"):
         terms = terms_of_both(kin, 4 * n, extra_inertia)
         q = terms.load.reshape(4, n)
@@ -420,7 +429,7 @@ def _refuse_stiff(unit: _Unit, phi: float, speed: float, until: float, rtol: flo
     within it."""
     from linkwork.limits import MAX_RUN_EVALUATIONS
 
-    rate, at = fastest_rate(unit.mech, phi, unit.extra)
+    rate, at = fastest_rate(unit.mech, phi, unit.extra, unit.cycle)
     per_second = max(rate, abs(speed)) * PER_RADIAN * (1e-10 / min(rtol, 1e-10)) ** 0.125
     need = until * per_second
     if need <= MAX_RUN_EVALUATIONS:
@@ -457,8 +466,9 @@ def _samples(unit: _Unit, pieces: list[_Piece], grid: np.ndarray) -> tuple[np.nd
 DIP = 0.5
 
 
-def _change_points(mech: Mechanism, steps: np.ndarray, dense: Any) -> list[RunEvent]:
-    """Change points along a run: the solver's ``steps`` (s) and the ``dense`` output ``t -> (phi, omega)``.
+def _change_points(cycle: Kinematics, steps: np.ndarray, dense: Any) -> list[RunEvent]:
+    """Change points along a run of the mechanism of ``cycle`` (:func:`poses`): the solver's ``steps`` (s) and the
+    ``dense`` output ``t -> (phi, omega)``.
 
     Each dyad's determinant (:attr:`Kinematics.step_det`, zero where its assembly modes meet) is looked at
     on the steps and their midpoints; each local least value below :data:`DIP` is refined by a bounded
@@ -469,13 +479,14 @@ def _change_points(mech: Mechanism, steps: np.ndarray, dense: Any) -> list[RunEv
     from linkwork.motion.analysis import DYADS
     from linkwork.motion.kernels import CLOSE
 
+    mech = cycle.mechanism
     dyads = [i for i, step in enumerate(mech.program) if step.kind in DYADS]
     if not dyads or len(steps) < 2:
         return []
 
     def det(t: np.ndarray) -> np.ndarray:
         phi = dense(t)[0][:, None]
-        kin = kinematics_at(mech, phi, np.ones_like(phi), np.zeros_like(phi))
+        kin = poses(cycle, phi, np.ones_like(phi), np.zeros_like(phi))
         return np.abs(np.stack([kin.step_det[i][0] for i in dyads]))  # (dyads, K)
 
     t = np.sort(np.concatenate([steps, 0.5 * (steps[1:] + steps[:-1])]))

@@ -121,6 +121,7 @@ class DriveRange:
     others: tuple[tuple[float, float], ...]
     steps: int
     grashof: Grashof | None = None
+    singular: str | None = None  # a dyad on a singular position in the assembly pose (:func:`singular_start`)
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -147,6 +148,10 @@ class DriveRange:
             return None
         return f"{self.joint} cannot make a full turn: it moves from {_deg(self.reach)} only"
 
+    def warnings(self) -> list[str]:
+        """Every warning of ``check`` on the drive's range: :meth:`warning` and :attr:`singular`."""
+        return [w for w in (self.warning(), self.singular) if w]
+
 
 def _deg(interval: tuple[float, float]) -> str:
     return f"{math.degrees(interval[0]):.2f} to {math.degrees(interval[1]):.2f} deg"
@@ -171,28 +176,68 @@ def drive_range(mech: Mechanism, steps: int = STEPS) -> DriveRange | None:
     sign = -1.0 if mech.drive_speed[0] < 0 else 1.0
     start = float(mech.drive_start[0])
     travel = 2 * np.pi * np.arange(steps + 1) / steps  # the last sample is the first, a turn later
-    valid, events = _solve(mech, start + sign * travel)
+    valid, events, dets = _solve(mech, start + sign * travel)
     gaps = _gaps(valid, travel, [e for e in events if e.kind == "no-assembly"], start, sign)
     joint = mech.pair_joint[mech.drive_pair[0]]
+    near = singular_start(mech, start + sign * travel, dets)
     if not gaps:
         turn = (start, start + 2 * np.pi) if sign > 0 else (start - 2 * np.pi, start)
-        return DriveRange(joint, start, True, turn, (), steps, grashof(mech))
+        return DriveRange(joint, start, True, turn, (), steps, grashof(mech), near)
     ends = [b for _, b in gaps]
     begins = [a for a, _ in gaps]
     spans = [(ends[-1] - 2 * np.pi, begins[0])] + list(zip(ends[:-1], begins[1:], strict=True))
     intervals = [_interval(start + sign * a, start + sign * b) for a, b in spans]
-    return DriveRange(joint, start, False, intervals[0], tuple(intervals[1:]), steps, grashof(mech))
+    return DriveRange(joint, start, False, intervals[0], tuple(intervals[1:]), steps, grashof(mech), near)
 
 
-def _solve(mech: Mechanism, angles: np.ndarray) -> tuple[np.ndarray, list[Event]]:
-    """Where the mechanism assembles at ``angles`` ``(A,)`` of its drive, and the events along them.
+def _solve(mech: Mechanism, angles: np.ndarray) -> tuple[np.ndarray, list[Event], np.ndarray]:
+    """Where the mechanism assembles at ``angles`` ``(A,)`` of its drive, the events along them, and the absolute
+    normalised Jacobian determinant of each step of the program there ``(S, A)`` (zero on a singular position).
 
     By the NumPy kernels, as ``linkwork.kinematics`` would without numba: for a few hundred angles they
     take milliseconds, less than loading the compiled kernels into a fresh process (``check``'s case).
     """
     values = angles[:, None]
     state = run_numpy(mech, mech.program, apply(mech)[0], values, np.ones_like(values), np.zeros_like(values))
-    return state.valid[0], find(mech.program, state, angles, True)
+    dets = np.stack([np.abs(np.broadcast_to(r.det, state.valid.shape)[0]) for r in state.steps])
+    return state.valid[0], find(mech.program, state, angles, True), dets
+
+
+#: A dyad whose normalised Jacobian determinant (the sine of its transmission angle) is below this in the assembly
+#: pose is on a singular position for ``check`` (:func:`singular_start`): its two assembly modes are there within
+#: about a thousandth of its size of each other.
+CLEAR = 1e-3
+
+
+def singular_start(mech: Mechanism, angles: np.ndarray, dets: np.ndarray) -> str | None:
+    """The warning for a dyad on (or within :data:`CLEAR` of) a singular position in the assembly pose, or None.
+
+    There its two assembly modes (nearly) meet: which one the file means rests on a rounding of its hints, and a
+    change point may lie at the very start of the motion.  The warning names the group, the crank angle and the
+    transmission angle, and the nearest of ``angles`` ``(A,)`` (the first the assembly angle) where every dyad is
+    ten times clear of it: an assembly angle to give instead.  ``dets``: :func:`_solve`'s ``(S, A)``.
+    """
+    dyads = [k for k, step in enumerate(mech.program) if step.kind in ("RRR", "RRP", "PRP")]
+    on = [k for k in dyads if dets[k, 0] < CLEAR]
+    if not on:
+        return None
+    k = on[0]
+    clear = np.all(dets[dyads] >= 10 * CLEAR, axis=0)
+    offset = np.abs(wrap(angles - angles[0]))
+    text = (
+        f"group {mech.program[k].label} is on a singular position in the assembly pose (crank at "
+        f"{math.degrees(wrap(angles[0])):.4f} deg to the x axis): its transmission angle is "
+        f"{math.degrees(math.asin(min(dets[k, 0], 1.0))):.2g} deg, so its two assembly modes are within a rounding "
+        "of each other there and the mode the file means rests on the hints"
+    )
+    if clear.any():
+        i = int(np.argmin(np.where(clear, offset, np.inf)))
+        text += (
+            f"; give the drive an assembly angle clear of it, such as {math.degrees(wrap(angles[i])):.2f} deg to "
+            f"the x axis (transmission angle {math.degrees(math.asin(min(dets[k, i], 1.0))):.2g} deg there), "
+            "with hints in the mode meant"
+        )
+    return text
 
 
 def _gaps(

@@ -548,6 +548,7 @@ def _crossings(state: State, closure: Closure, branch: np.ndarray, rate: np.ndar
             (_reach(test, drive, rate, v, prev, here), time)
             for test, lead, time in zip(closure.singular, leads, times, strict=True)
             if lead[v, prev] * ahead < 0 < lead[v, here] * ahead  # before at prev, after at here
+            and not _flat_touch(test, v, prev, here)
         ]
         if not crossed or any(verdict < 0 for verdict, _ in crossed) or all(verdict == 0 for verdict, _ in crossed):
             continue  # nothing crossed, or a gap where the dyad cannot assemble
@@ -555,6 +556,34 @@ def _crossings(state: State, closure: Closure, branch: np.ndarray, rate: np.ndar
         time = next(t for verdict, t in crossed if verdict > 0)
         flips.append(Flip(int(v), int(here), int(prev if abs(time[v, prev]) < abs(time[v, here]) else here)))
     return flips
+
+
+#: :func:`_flat_touch`: the order ratio ``u u'' / u'^2`` above which a touch is flat (1/2 at a change point, 3/4 at a
+#: flat touch).
+FLAT = 5 / 8
+
+
+def _flat_touch(test: Singular, v: int, i: int, j: int) -> bool:
+    """Whether a scalar quantity touches its target between samples ``i`` and ``j`` at an extremum of higher order
+    (its distance from the target ``u ~ tau^4`` about it, ``tau`` the time from it), where no mode is crossed.
+
+    At a change point ``u ~ tau^2``: the half gap between the two modes, ``h ~ sqrt(u) ~ |tau|``, goes on as
+    ``h ~ tau`` through it, the other mode.  Where the dyad's outer joints themselves come to rest there (a toggle
+    press whose upper link ends its swing on the line of the guide: the rocker's dead point on the dyad's change
+    point) ``u ~ tau^4``, ``h ~ tau^2`` keeps its sign, and the motion keeps its mode (and, where the extremum
+    falls short of the target or passes it by a rounding, the modes do not meet or meet twice: the same mode after
+    either way).  The order is read off the sample farther from the target, from ``u u'' / u'^2 = (m - 1) / m``
+    for ``u ~ tau^m``: 1/2 or 3/4, told apart at :data:`FLAT`."""
+    if len(test.y) != 1:
+        return False
+    target = test.target[0]
+    goal = float(target[v, 0]) if isinstance(target, np.ndarray) and target.ndim else float(target)
+    u = [goal - test.y[0][v, k] for k in (i, j)]
+    k = (i, j)[int(abs(u[1]) > abs(u[0]))]
+    rate, turn = test.v[0][v, k], test.a[0][v, k]
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        ratio = np.float64(-(goal - test.y[0][v, k]) * turn) / np.float64(rate * rate)
+    return bool(np.isfinite(ratio) and ratio > FLAT)
 
 
 def _within_reach(test: Singular, dt: np.ndarray) -> np.ndarray:

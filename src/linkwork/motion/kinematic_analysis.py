@@ -18,7 +18,7 @@ from linkwork.limits import TURN_STEPS
 from linkwork.motion import kernels, kernels_numba
 from linkwork.motion.events import Event, find
 from linkwork.motion.points import point_motion
-from linkwork.motion.solve import SINGULAR, run, run_each
+from linkwork.motion.solve import SINGULAR, run, run_each, run_numpy
 from linkwork.motion.state import State
 from linkwork.structure.model import Mechanism, PairType, one_crank, per_mechanism
 from linkwork.structure.parameters import Geometry, Masses, apply
@@ -164,6 +164,16 @@ class Kinematics:
         modes a change point lies: it is located (:meth:`_change_point`) and an angle is solved in the mode of the
         sample on its side of it (NaN, not valid, where it cannot be located).
         """
+        found = self.modes_at(angles, variants)
+        return None if found is None else self._solved(*found)
+
+    def modes_at(
+        self, angles: np.ndarray, variants: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray, list[np.ndarray | None], np.ndarray] | None:
+        """The assembly modes this result has at other drive coordinates ``angles`` ``(R, K)``, as :meth:`at` solves
+        them: the variant of each row ``(R,)``, the angles (NaN where a change point between the samples around one
+        cannot be located), each dyad's mode ``(R, K)`` (None for the other steps) and the sample nearer each angle
+        ``(R, K)``; None but for one drive.  On a whole turn the angles are taken to whole turns."""
         mech = self.mechanism
         if mech.n_drives != 1:
             return None
@@ -171,9 +181,9 @@ class Kinematics:
         if not self.variants:
             variants = np.zeros(len(angles), dtype=np.intp)
         rows = np.arange(len(angles)) if variants is None else np.asarray(variants, dtype=np.intp)
-        lo, hi, near, frac = _around(self.angles, angles)
+        lost = ~np.isfinite(angles)  # no angle (a trial of an integrator): not solved
+        lo, hi, near, frac = _around(self.angles, np.where(lost, self.angles[0], angles))
         modes: list[np.ndarray | None] = []
-        lost = np.zeros(angles.shape, dtype=bool)
         none = (None,) * len(mech.program)
         for k, (step, branch, det) in enumerate(
             zip(mech.program, self.step_branch or none, self.step_det or none, strict=True)
@@ -197,7 +207,7 @@ class Kinematics:
             lost |= apart & np.isnan(tau)
             near = np.where(apart, np.where(first, lo, hi), near)
             modes.append(np.where(apart, np.where(first, below, above), np.where(near == lo, below, above)))
-        return self._solved(rows, np.where(lost, np.nan, angles), modes, near)
+        return rows, np.where(lost, np.nan, angles), modes, near
 
     def _solved(
         self, rows: np.ndarray, each: np.ndarray, modes: list[np.ndarray | None], near: np.ndarray
@@ -427,7 +437,7 @@ def _around(samples: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray,
         return zero, zero, zero, np.zeros(x.shape)
     step = samples[1] - samples[0]
     if n >= 3 and abs(abs(n * step) - 2 * np.pi) <= 1e-9:
-        k = (x - samples[0]) / step
+        k = np.mod(x - samples[0], n * step) / step  # within the turn (an integrator's trial may be far off)
         k = np.where(np.abs(k - np.round(k)) <= 1e-9, np.round(k), k)
         first = np.floor(k)
         below, above = first.astype(np.intp) % n, (first.astype(np.intp) + 1) % n
@@ -614,13 +624,30 @@ def kinematics(
 
 
 @jit.deciding
-def kinematics_at(mech: Mechanism, angles: np.ndarray, speeds: np.ndarray, accels: np.ndarray) -> Kinematics:
+def kinematics_at(
+    mech: Mechanism, angles: np.ndarray, speeds: np.ndarray, accels: np.ndarray, *, along: Kinematics | None = None
+) -> Kinematics:
     """The state at the drive coordinates ``angles`` ``(A, D)`` with the drive speeds ``speeds`` and
-    accelerations ``accels`` (each ``(A, D)``), every sample solved as it is in the file's assembly mode (not
-    along a path from the assembly pose: a run in time keeps to it), without events; the file's dimensions.
-    The accelerations are the true ones of a drive that speeds up: ``a = a_uniform + accel * d r / d phi``."""
+    accelerations ``accels`` (each ``(A, D)``), without events; the file's dimensions.  The accelerations are the
+    true ones of a drive that speeds up: ``a = a_uniform + accel * d r / d phi``.
+
+    ``along``: a cycle of the mechanism (one drive); each sample is solved in the assembly modes that cycle has at
+    its angle (:meth:`Kinematics.modes_at`: past a change point, the other mode), as the cycle, the viewer and a
+    run in time show it.  Without it the samples are taken as a motion in their order from the one nearest the
+    assembly pose (the modes change at the change points between them; fewer than three samples keep the file's
+    modes)."""
     geom = file_geometry(mech)
-    state = run(mech, mech.program, geom, angles, speeds, accels)
+    found = None if along is None else along.modes_at(angles[:, 0][None, :])
+    if found is None:
+        state = run(mech, mech.program, geom, angles, speeds, accels)
+    else:
+        _, each, found_modes, _ = found
+        modes = [
+            np.full(each.shape, step.branch) if m is None and step.kind in ("RRR", "RRP", "PRP") else m
+            for step, m in zip(mech.program, found_modes, strict=True)
+        ]
+        angles = np.where(np.isnan(each[0])[:, None], np.nan, angles)
+        state = run_numpy(mech, mech.program, geom, angles, speeds, accels, branches=modes)
     return Kinematics._made(
         mechanism=mech,
         drive=angles,

@@ -41,7 +41,7 @@ def run(
         state = _run_compiled(mech, program, geom, values, rates, accels)
         if state is not None:
             return state
-    start = time.perf_counter()
+    start = time.thread_time()
     size = max(1, CHUNK // max(n_ang, 1))
     if n_var <= size:
         state = run_numpy(mech, program, geom, values, rates, accels)
@@ -52,7 +52,7 @@ def run(
             parts.append(run_numpy(mech, program, part, values, rates, accels))
         state = _concatenate(parts, program)
     if twin:  # time the compiled twin would save: what pays for loading it
-        jit.spent(time.perf_counter() - start)
+        jit.spent(time.thread_time() - start)
     return state
 
 
@@ -118,11 +118,13 @@ def run_numpy(
     values: np.ndarray,
     rates: np.ndarray,
     accels: np.ndarray,
+    branches: list[np.ndarray | None] | None = None,
 ) -> State:
     """Solve every step by the NumPy kernels, all variants at once (:func:`run` without the compiled
-    kernels and the chunks of variants)."""
+    kernels and the chunks of variants); ``branches``: the assembly mode of each dyad at each sample ``(V, A)``,
+    per step of the program (None: followed from the assembly pose)."""
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        state = _solve(mech, program, geom, values, rates, accels)
+        state = _solve(mech, program, geom, values, rates, accels, branches)
         _repair_singular(mech, program, geom, values, rates, accels, state)
     _not_assembled(state)
     return state
