@@ -30,9 +30,12 @@ TEXTS: dict[str, tuple[str, str]] = {
     "requirements.intro": (
         "This mechanism was synthesised ({kind}) for the requirements below; beside each, what the mechanism "
         "achieves as the analysis measures it over a turn of the crank (dimensions and loads as the file gives "
-        "them).",
+        "them); met within the tolerance beside it, the one its lengths written to 0.1 mm imply (else 1e-6 of the "
+        "requirement).",
         "Механизм синтезирован ({kind}) по требованиям, приведённым ниже; рядом с каждым — что механизм "
-        "обеспечивает по результатам анализа за оборот кривошипа (размеры и нагрузки — как заданы в файле).",
+        "обеспечивает по результатам анализа за оборот кривошипа (размеры и нагрузки — как заданы в файле); "
+        "требование выполнено в пределах указанного допуска, следующего из округления длин до 0,1 мм (без допуска "
+        "— 1e-6 требования).",
     ),
     "requirements.head.name": ("Requirement", "Требование"),
     "requirements.head.asked": ("Asked", "Задано"),

@@ -161,11 +161,16 @@ def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
 
     from linkwork.spec.edit import round_trip_yaml, yaml_text
     from linkwork.spec.reader import loads
-    from linkwork.synthesis.achieved import written
+    from linkwork.synthesis.achieved import SUFFIX, written
     from linkwork.synthesis.common import LEAST_TRANSMISSION
 
     data = round_trip_yaml().load(result.text)
-    data["requirements"] = CommentedMap(written(result.kind, result.requirements, extra))
+    data["requirements"] = CommentedMap(written(result.kind, result.requirements, extra, result.tolerances))
+    for name in data["requirements"]:
+        if name.endswith(SUFFIX):
+            data["requirements"].yaml_add_eol_comment(
+                "what the lengths written to 0.1 mm allow: the first-order bound of each length's +-0.05 mm", name
+            )
     if "min_transmission_angle" in data["requirements"]:
         data["requirements"].yaml_add_eol_comment(
             f"the design rule: every dyad's transmission angle over the turn at least this ("

@@ -57,6 +57,8 @@ from linkwork.synthesis.common import (
     measure,
     mm,
     proportions,
+    rounded,
+    tolerances_of,
     up,
 )
 
@@ -234,10 +236,11 @@ def synthesize(
     measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": _written_alpha(spec)}
-    confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha)  # the rod square to the lever at its limits
-    keep_rule(spec, floor)
+    tol = tolerances_of(spec, KIND)
+    confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha, tol)  # the rod square to the lever at its limits
+    keep_rule(spec, floor, tol["min_transmission_angle"])
     fam = family(stroke, time_ratio) if frame is None and crank is None else None
-    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, f"picked by {why}")
+    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, f"picked by {why}", tolerances=tol)
 
 
 def _written_alpha(spec) -> float:  # noqa: ANN001
@@ -269,7 +272,7 @@ def _extreme_angles(dims: dict, theta: float) -> list[float]:
 
 def _file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass) -> tuple:  # noqa: ANN001
     """The file's data and comments: assembled with the crank up and the lever upright."""
-    lever, d, r, h, rod = (dims[k] for k in ("lever", "frame", "crank", "guide_height", "rod"))
+    lever, d, r, h, rod = (rounded(dims[k]) for k in ("lever", "frame", "crank", "guide_height", "rod"))
     mass = {k: float(f"{bar_mass(dims[k], section, density):.6g}") for k in ("crank", "lever", "rod")}
     block = float(f"{bar_mass(section[0], section, density):.6g}")
     ram = float(f"{ram_mass if ram_mass is not None else mass['rod']:.6g}")
