@@ -19,7 +19,7 @@ import math
 
 from linkwork.sizing.bearings import Bearings, JointBearing
 from linkwork.sizing.common import Table
-from linkwork.sizing.pin_shear import Pin, Pins
+from linkwork.sizing.pin_shear import Pin, Pins, Steel, least_diameter
 
 #: Rolling elements in a bearing of the common series, by kind (the angle between two is 360 deg / Z).
 ROLLING_ELEMENTS = {"ball": 10, "roller": 14}
@@ -36,6 +36,15 @@ def pin_rule(pin: Pin, pins: Pins) -> tuple[float, str]:
     shear = math.sqrt(2 * pin.force / (math.pi * pins.shear_allowed))
     bending = math.sqrt(4 * k * pin.force / (math.pi * pins.bending_allowed))
     return (bending, "pin bending") if bending >= shear else (shear, "pin shear")
+
+
+def governing_diameter(force: float, steel: Steel, safety: float, width_ratio: float, bush_pressure: float) -> float:
+    """The diameter (m) a pin carrying ``force`` (N) is made to: the larger of its least for strength (double
+    shear and bending, :func:`~linkwork.sizing.pin_shear.least_diameter`) and its plain bush's least for the
+    pressure ``bush_pressure`` (Pa), ``sqrt(F / (k p))``, at the width ratio ``k`` (the bush's ``pv`` rule needs
+    the joint's motion and is left to the joints' table)."""
+    tau, sigma = steel.yield_strength / (2 * safety), steel.yield_strength / safety
+    return max(least_diameter(force, tau, sigma, width_ratio), math.sqrt(force / (width_ratio * bush_pressure)))
 
 
 def bush_rule(j: JointBearing, bearings: Bearings) -> tuple[float, str]:

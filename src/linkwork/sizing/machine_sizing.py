@@ -19,9 +19,9 @@ from linkwork.errors import LinkworkError
 from linkwork.sizing.bearings import Bearings, Bush, bearings
 from linkwork.sizing.bolts import BoltResult, size_bolts
 from linkwork.sizing.common import Catalogue, Table, bundled
-from linkwork.sizing.governing import governing_table
+from linkwork.sizing.governing import governing_diameter, governing_table
 from linkwork.sizing.links import Bars, bars
-from linkwork.sizing.masses import SizedMasses, sized_masses
+from linkwork.sizing.masses import SizedMasses, block_masses, sized_masses
 from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue, synchronous_problem
 from linkwork.sizing.pairs import Pair, pairs_of
 from linkwork.sizing.pin_shear import Pins, Steel, pins
@@ -198,7 +198,18 @@ def size(
 
     if masses == "sized" and compile_spec is None:
         raise LinkworkError('masses="sized" compiles the file with each round\'s masses: call linkwork.size')
-    sized = sized_masses(mech, bars_of, compile_spec) if masses == "sized" and compile_spec is not None else None
+
+    def blocks_of(m: Mechanism, bars_: Bars) -> dict[str, float]:
+        def pin_of(force: float) -> float:
+            return governing_diameter(force, grade, safety, width_ratio, bush_limits.p)
+
+        return block_masses(pairs_of(forces(m, steps=steps)), bars_, pin_of, width_ratio, bush_limits.p)
+
+    sized = (
+        sized_masses(mech, bars_of, compile_spec, blocks_of=blocks_of)
+        if masses == "sized" and compile_spec is not None
+        else None
+    )
     mech = sized.mechanism if sized is not None else mech
     f = forces(mech, steps=steps)
     phi = np.asarray(angles.phi(f.angles), dtype=float)

@@ -339,7 +339,7 @@ def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
 def _slotted_lever_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
     """The slotted lever's family over the frame d (stroke and time ratio without frame or crank): the crank
     r = d sin(theta / 2) with each d, the lever, guide and rod as the file has them (neither the stroke nor K
-    depends on d while the block reaches no further than the lever, d + r <= L)."""
+    depends on d while the block reaches no further than the rule allows, d + r <= 0.9 L)."""
     from linkwork.synthesis.slotted_lever import family
 
     stroke, ratio = _si(given, "stroke", "length"), float(given.get("time_ratio", 1.0))
