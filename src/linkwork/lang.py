@@ -922,6 +922,46 @@ TEXTS: dict[str, tuple[str, str]] = {
     ),
     "sizing.word.motor": ("motor", "двигатель"),
     "sizing.word.not asked": ("not asked", "не запрошен"),
+    "sizing.table.proportions": (
+        "Proportions: each pin in an eye of 2 d, each link's shank at least d deep, each block within its slot; "
+        "which size governs",
+        "Пропорции: каждая ось в проушине 2 d, стержень звена не тоньше d, каждый камень в пределах своей кулисы; "
+        "какой размер определяющий",
+    ),
+    "sizing.col.part": ("part", "деталь"),
+    "sizing.col.rule": ("rule", "правило"),
+    "sizing.col.has [mm]": ("has [mm]", "есть, мм"),
+    "sizing.col.needs [mm]": ("needs [mm]", "нужно, мм"),
+    "sizing.col.fits": ("fits", "умещается"),
+    "sizing.word.pins": ("pins", "оси"),
+    "sizing.word.pin": ("pin", "ось"),
+    "sizing.word.stress": ("stress", "напряжения"),
+    "sizing.word.block length": ("block length", "длина камня"),
+    "sizing.word.NO": ("NO", "НЕТ"),
+    "sizing.word.made to it": ("made to it", "выполнен по нему"),
+    "sizing.word.shank depth": ("shank depth", "высота стержня"),
+    "sizing.word.slot far end": ("slot far end", "дальний конец кулисы"),
+    "sizing.word.slot near end": ("slot near end", "ближний конец кулисы"),
+    "sizing.eyes": ("eyes {a}-{b} apart", "проушины {a}-{b}: расстояние"),
+    "sizing.in_slot": ("{block} in {slot}", "{block} в {slot}"),
+    "sizing.warning": (
+        "Does not fit: {part}: {rule} {has} mm, needs {needs} mm ({governs} governs)",
+        "Не умещается: {part}: {rule} {has} мм, нужно {needs} мм (определяет: {governs})",
+    ),
+    "sizing.masses_sized": (
+        "links' masses from their sized steel sections (at least a round bar of L/d = {slender}), to a fixed point "
+        "in {rounds} rounds",
+        "массы звеньев по рассчитанным стальным сечениям (не меньше круглого стержня L/d = {slender}), до "
+        "неподвижной точки за {rounds} итераций",
+    ),
+    "sizing.masses_blocks": (
+        "; {blocks}: steel blocks carrying their governing pin (2d x kd) over the length their guide's bush pressure "
+        "asks",
+        "; {blocks}: стальные камни (ползуны) с определяющей осью (2d x kd) длиной по допускаемому давлению в "
+        "направляющей",
+    ),
+    "sizing.masses_unsettled": (" (not settled)", " (не сошлось)"),
+    "sizing.masses_kept": ("; the file's for {kept}", "; из файла для {kept}"),
     "sizing.least_round": ("least round d {d} mm", "наименьший круглый d {d} мм"),
     "sizing.rolling_no": (
         "no: swings {swing} < {pitch} deg between its elements",

@@ -27,12 +27,13 @@ def sizing_section(mech: Mechanism, t: Any) -> tuple[list[str], Sizing | None]:
     """The HTML of the section (``t(key, **values)``: the report's texts) and the sizing (None where it failed:
     the section says why).  The motor is chosen where the file's ``sizing: motor`` asks for it (it runs the
     machine once a motor tried) and the file has a drive speed."""
+    from linkwork.api import compile as compile_spec
     from linkwork.sizing import size
 
     spec = mech.spec.sizing if mech.spec is not None else None
     body = [_p(t("sizing.intro"))]
-    try:
-        result = size(mech, motor=bool(spec is not None and spec.motor))
+    try:  # the masses as linkwork size sizes them by default: from the sized parts, to a fixed point
+        result = size(mech, motor=bool(spec is not None and spec.motor), compile_spec=compile_spec)
     except LinkworkError as exc:
         return [*body, _p(t("sizing.failed", why=str(exc)))], None
     rows = [
@@ -45,6 +46,21 @@ def sizing_section(mech: Mechanism, t: Any) -> tuple[list[str], Sizing | None]:
     body += [
         _p(t("sizing.missing", part=_text(t, "sizing.word.", part), why=_text(t, "sizing.word.", why)))
         for part, why in result.missing.items()
+    ]
+    checks = result.proportions.checks if result.proportions is not None else ()
+    body += [
+        _p(
+            t(
+                "sizing.warning",
+                part=_text(t, "sizing.word.", c.part),
+                rule=_text(t, "sizing.word.", c.rule),
+                has=f"{c.has * 1e3:.4g}",
+                needs=f"{c.needs * 1e3:.4g}",
+                governs=_text(t, "sizing.word.", c.governs),
+            )
+        )
+        for c in checks
+        if not c.fits
     ]
     return body, result
 
@@ -77,6 +93,24 @@ def _text(t: Any, prefix: str, text: Any) -> Any:
     rolling = re.fullmatch(r"no: swings (\S+) < (\S+) deg between its elements", text)
     if rolling:
         return t("sizing.rolling_no", swing=rolling.group(1), pitch=rolling.group(2))
+    sized = re.fullmatch(
+        r"links' masses from their sized steel sections \(at least a round bar of L/d = (\S+)\)"
+        r"(?:; (.+) steel blocks carrying .+ asks)?, (?:to a fixed point in (\d+) rounds|not settled in (\d+) rounds)"
+        r"(?:; the file's for (.+) \(no bars, no blocks\))?",
+        text,
+    )
+    if sized:
+        slender, blocks, done, not_done, kept = sized.groups()
+        out = t("sizing.masses_sized", slender=slender, rounds=done or not_done)
+        out += t("sizing.masses_blocks", blocks=blocks) if blocks else ""
+        out += t("sizing.masses_unsettled") if not_done else ""
+        return out + (t("sizing.masses_kept", kept=kept) if kept else "")
+    eyes = re.fullmatch(r"eyes (\S+)-(\S+) apart", text)
+    if eyes:
+        return t("sizing.eyes", a=eyes.group(1), b=eyes.group(2))
+    slot = re.fullmatch(r"(\S+) in (\S+)", text)
+    if slot:
+        return t("sizing.in_slot", block=slot.group(1), slot=slot.group(2))
     joints = re.fullmatch(r"joints (.+)", text)
     if joints:
         return t("sizing.joints", joints=joints.group(1))

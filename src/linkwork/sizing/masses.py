@@ -55,22 +55,49 @@ def bar_mass(area: float, length: float) -> float:
     return STEEL * max(area, least) * length
 
 
-def block_mass(pin: float, width_ratio: float, normal: float, moment: float, pressure: float) -> float:
-    """The mass (kg) of a steel block carrying a pin of diameter ``pin`` (m) at the width ``width_ratio`` x ``pin``
-    and bearing on its guide at ``pressure`` (Pa) under the guide's largest ``normal`` force (N) and ``moment``
-    (N m): ``rho w t l`` with ``w = 2 d``, ``t = k d`` and the bearing length ``l`` of the module, at least ``w``."""
+@dataclass(frozen=True)
+class Block:
+    """A block of the module's rule (SI): its pin's diameter, its width across the guide, thickness and length
+    along the guide (m), and its mass (kg)."""
+
+    pin: float
+    width: float
+    thickness: float
+    length: float
+
+    @property
+    def mass(self) -> float:
+        return STEEL * self.width * self.thickness * self.length
+
+
+def block_of(pin: float, width_ratio: float, normal: float, moment: float, pressure: float) -> Block:
+    """The steel block carrying a pin of diameter ``pin`` (m) at the width ``width_ratio`` x ``pin`` and bearing on
+    its guide at ``pressure`` (Pa) under the guide's largest ``normal`` force (N) and ``moment`` (N m): ``w = 2 d``,
+    ``t = k d`` and the bearing length ``l`` of the module, at least ``w``."""
     w, t = 2 * pin, width_ratio * pin
     a = pressure * t
     length = max(w, (normal + math.sqrt(normal**2 + 24 * abs(moment) * a)) / (2 * a))
-    return STEEL * w * t * length
+    return Block(pin, w, t, length)
+
+
+def block_mass(pin: float, width_ratio: float, normal: float, moment: float, pressure: float) -> float:
+    """The mass (kg) of :func:`block_of`'s block: ``rho w t l``."""
+    return block_of(pin, width_ratio, normal, moment, pressure).mass
 
 
 def block_masses(
     pairs: list[Pair], bars: Bars, pin_of: Callable[[float], float], width_ratio: float, pressure: float
 ) -> dict[str, float]:
-    """The mass (kg) of each link of ``pairs`` that is no bar of ``bars`` and has one revolute pair and a sliding
-    one (a block, see the module): its pin ``pin_of(F)`` (m) for its joint's peak force ``F`` (N), its guide's
-    largest normal force and moment; a joint whose force has no bound leaves the link out."""
+    """The mass (kg) of each block of :func:`blocks`."""
+    return {link: b.mass for link, b in blocks(pairs, bars, pin_of, width_ratio, pressure).items()}
+
+
+def blocks(
+    pairs: list[Pair], bars: Bars, pin_of: Callable[[float], float], width_ratio: float, pressure: float
+) -> dict[str, Block]:
+    """The block of each link of ``pairs`` that is no bar of ``bars`` and has one revolute pair and a sliding
+    one (see the module): its pin ``pin_of(F)`` (m) for its joint's peak force ``F`` (N), its guide's largest
+    normal force and moment; a joint whose force has no bound leaves the link out."""
     bar_links = {b.link for b in bars.bars}
     thick = {b.link: math.sqrt(4 * max(b.area, math.pi * (b.length / SLENDER) ** 2 / 4) / math.pi) for b in bars.bars}
     by_link: dict[str, list[Pair]] = {}
@@ -90,7 +117,7 @@ def block_masses(
         if math.isfinite(force) and math.isfinite(normal):
             pin = max([pin_of(force), *carried])
             if pin > 0:
-                out[link] = block_mass(pin, width_ratio, normal, moment, pressure)
+                out[link] = block_of(pin, width_ratio, normal, moment, pressure)
     return out
 
 
