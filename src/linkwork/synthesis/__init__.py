@@ -169,7 +169,7 @@ def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
     for name in data["requirements"]:
         if name.endswith(SUFFIX):
             data["requirements"].yaml_add_eol_comment(
-                "what the lengths written to 0.1 mm allow: the first-order bound of each length's +-0.05 mm", name
+                "what the lengths written to 0.1 mm allow: the first-order bound of each within 0.05 mm", name
             )
     if "min_transmission_angle" in data["requirements"]:
         data["requirements"].yaml_add_eol_comment(
