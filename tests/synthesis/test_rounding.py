@@ -37,7 +37,8 @@ def press():
 
 
 def test_every_written_length_is_a_whole_number_of_tenths_of_a_millimetre(press):
-    for kind, req in [("slider-crank", None), ("crank-rocker", dict(swing=math.radians(45), time_ratio=1.2, rocker=0.3))]:
+    rocker = {"swing": math.radians(45), "time_ratio": 1.2, "rocker": 0.3}
+    for kind, req in [("slider-crank", None), ("crank-rocker", rocker)]:
         s = press if req is None else synthesize(kind, **req)
         for name, value in lengths(s.spec).items():
             tenths = value / 1e-4

@@ -92,8 +92,9 @@ def largest_pressure_angle(lever: float, theta: float, rod: float) -> float:
 
 
 def family(stroke: float, time_ratio: float, count: int = 201) -> Family:
-    """The family over the frame d in (0, (1 - BLOCK_MARGIN) L / (1 + sin(theta / 2))]: crank r and the least distance d - r of
-    the block from the lever's pivot (the greatest force in the slot per lever torque goes as 1 / (d - r))."""
+    """The family over the frame d in (0, (1 - BLOCK_MARGIN) L / (1 + sin(theta / 2))]: crank r and the least
+    distance d - r of the block from the lever's pivot (the greatest force in the slot per lever torque goes as
+    1 / (d - r))."""
     theta = crank_angle_between_limits(time_ratio)
     top = dimensions(stroke, theta)["frame"]
     d = np.linspace(0.0, top, count + 1)[1:]
