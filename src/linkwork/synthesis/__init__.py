@@ -70,14 +70,23 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     in_range(si)
     import numpy as np
 
+    from linkwork.synthesis.common import dimensioned
+
+    scale = [float(si[name]) for name in SCALE if isinstance(si.get(name), float | int)]
     try:
-        with np.errstate(all="ignore"):  # the closed forms' NaN and inf are refused by the checks that follow them
+        # the closed forms' NaN and inf are refused by the checks that follow them; the file dimensioned to 0.1 mm
+        with np.errstate(all="ignore"), dimensioned(*scale):
             result = func(**si)
         return _carrying(result, {"criterion": requirements["criterion"]} if "criterion" in requirements else {})
     except SynthesisError:
         raise
     except LinkworkError as exc:  # the written mechanism, which the user never sees, cannot be read or analysed
         raise SynthesisError(f"{kind}: {_request(si)} give a mechanism the analysis cannot take: {_own(exc)}") from None
+
+
+#: The requirements that set a mechanism's scale, and so the step its file is dimensioned to
+#: (:func:`~linkwork.synthesis.common.dimensioned`: 0.1 mm from 10 mm up).
+SCALE = ("stroke", "rocker", "frame", "upper_stroke", "lower_stroke")
 
 
 def in_range(si: dict[str, Any]) -> None:

@@ -99,10 +99,10 @@ def _met(sense: str, asked: float, got: float, tolerance: float | None = None) -
 
 def rounding_tolerances(mech: Any, kind: str, paths: list[str] | None = None) -> dict[str, float]:
     """The tolerance (SI) of each requirement the analysis measures on a file whose lengths are written to the
-    step :data:`~linkwork.synthesis.common.STEP` (0.1 mm).
+    step :func:`~linkwork.synthesis.common.step` (0.1 mm, :data:`~linkwork.synthesis.common.STEP`).
 
     Each written length (``paths``, named parameters; by default every nonzero length of ``mech``) is within
-    delta = STEP / 2 of the exact one, so to first order a requirement q measured on the file is within
+    delta = step / 2 of the exact one, so to first order a requirement q measured on the file is within
     ``sum_i |dq/dx_i| delta`` of its exact value.  Each term is the central difference
     ``|q(x + delta e_i) - q(x - delta e_i)| / 2`` as the analysis measures it on the file (exact where q is
     quadratic in x_i); the second-order remainder, ``1/2 sum_ij |d2q/dx_i dx_j| delta^2``, is about delta / L of the
@@ -125,9 +125,9 @@ def rounding_tolerances(mech: Any, kind: str, paths: list[str] | None = None) ->
     """
     from linkwork.api import kinematics
     from linkwork.structure.parameters import parameter_list
-    from linkwork.synthesis.common import STEP, TOLERANCE, VERIFY_STEPS
+    from linkwork.synthesis.common import TOLERANCE, VERIFY_STEPS, step
 
-    delta = STEP / 2
+    delta = step() / 2
     lengths = {p.name: p.value for p in parameter_list(mech) if p.kind == "length" and p.value != 0}
     names = list(lengths) if paths is None else list(paths)
     variants = {name: np.full(2 * len(names) + 1, lengths[name]) for name in names}

@@ -4,7 +4,9 @@ the mass rule, the file's text and the verification by the analysis itself."""
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -21,8 +23,31 @@ TOLERANCE = 1e-9
 
 #: The step every synthesised file writes its lengths and point coordinates to (m): 0.1 mm, as a designer
 #: dimensions a machine's drawing.  A written length is within STEP / 2 of the exact one; the tolerance of each
-#: requirement follows from it (:func:`~linkwork.synthesis.achieved.rounding_tolerances`).
+#: requirement follows from it (:func:`~linkwork.synthesis.achieved.rounding_tolerances`).  A mechanism whose
+#: scale (its stroke, rocker or frame asked) is under 100 steps (10 mm) is dimensioned to the power of ten that
+#: keeps 100 steps on it (:func:`dimensioned`), as a drawing of an instrument's linkage is.
 STEP = 1e-4
+
+_STEP: ContextVar[float] = ContextVar("step", default=STEP)
+
+
+def step() -> float:
+    """The step (m) the file being written is dimensioned to (:data:`STEP` unless :func:`dimensioned` says)."""
+    return _STEP.get()
+
+
+@contextmanager
+def dimensioned(*lengths: float) -> Iterator[float]:
+    """Write the files within to :data:`STEP`, or to the power of ten at most a hundredth of the shortest nonzero
+    of ``lengths`` (m, the requirements that set the scale) where that is finer; yields the step."""
+    shortest = min((abs(x) for x in lengths if x and math.isfinite(x)), default=1.0)
+    fine = STEP if shortest >= 100 * STEP else 10.0 ** math.floor(math.log10(shortest / 100))
+    token = _STEP.set(fine)
+    try:
+        yield fine
+    finally:
+        _STEP.reset(token)
+
 
 #: The names the kinds' closed forms give the quantities of the requirements they predict.
 ALIASES = {"largest_pressure_angle": "max_pressure_angle", "least_transmission_angle": "min_transmission_angle"}
@@ -257,13 +282,15 @@ def bar_mass(length: float, section: tuple[float, float] = BAR, density: float =
 
 
 def mm(x: float) -> float:
-    """A length (m) in mm as every synthesised file writes it: rounded to :data:`STEP` (0.1 mm), and no ``-0.0``."""
-    return float(f"{rounded(x) * 1e3:.1f}") + 0.0
+    """A length (m) in mm as every synthesised file writes it: rounded to the :func:`step` (0.1 mm), and no
+    ``-0.0``."""
+    decimals = max(0, -math.floor(math.log10(step() * 1e3) + 1e-9))
+    return float(f"{rounded(x) * 1e3:.{decimals}f}") + 0.0
 
 
 def rounded(x: float) -> float:
-    """A length (m) rounded to :data:`STEP`, as the files write it (m)."""
-    return round(x / STEP) * STEP + 0.0
+    """A length (m) rounded to the :func:`step`, as the files write it (m)."""
+    return round(x / step()) * step() + 0.0
 
 
 def degrees(x: float) -> float:

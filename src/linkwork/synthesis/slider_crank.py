@@ -38,7 +38,6 @@ from linkwork.synthesis.common import (
     BAR,
     LEAST_TRANSMISSION,
     STEEL,
-    STEP,
     Family,
     Synthesis,
     bar_mass,
@@ -57,6 +56,7 @@ from linkwork.synthesis.common import (
     newtons,
     proportions,
     rounded,
+    step,
     tolerances_of,
     up,
 )
@@ -314,6 +314,10 @@ def _load(stroke: float, force: float | None, working: float | None, criterion: 
     length = stroke if working is None else working
     if not 0 < length <= stroke:
         raise SynthesisError(f"working length {length * 1e3:g} mm: expected more than 0, at most the stroke")
+    if length < step():
+        raise SynthesisError(
+            f"working length {length * 1e3:g} mm: the file is dimensioned to {step() * 1e3:g} mm; give at least that"
+        )
     return force, length
 
 
@@ -417,13 +421,13 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
         "hints": {"B": [mm(-e), mm(-near)]},
     }
     if load is not None:  # resisting the ram over the last ``load[1]`` of its way down, from a step below the bottom
-        bottom = math.floor(-math.sqrt((ell + r) ** 2 - e**2) / STEP) * STEP
+        bottom = math.floor(-math.sqrt((ell + r) ** 2 - e**2) / step()) * step()
         data["loads"] = {
             "working": {
                 "type": "process",
                 "tools": ["ram.B"],
                 "axis": 90.0,
-                "workpiece": [mm(bottom), mm(bottom + load[1])],
+                "workpiece": [mm(bottom), mm(bottom + rounded(load[1]))],
                 "penetration": [0.0, 1.0],
                 "force": [newtons(load[0])] * 2,
             }

@@ -41,7 +41,6 @@ from linkwork.synthesis.common import (
     BAR,
     PROPORTION,
     STEEL,
-    STEP,
     TOLERANCE,
     VERIFY_STEPS,
     Synthesis,
@@ -61,6 +60,7 @@ from linkwork.synthesis.common import (
     newtons,
     proportions,
     rounded,
+    step,
     tolerances_of,
     up,
 )
@@ -140,6 +140,11 @@ def synthesize(
         raise SynthesisError(
             f"nominal point {before * 1e3:g} mm before the bottom: it must lie within the stroke {stroke * 1e3:g} mm"
         )
+    if before < step():
+        raise SynthesisError(
+            f"nominal point {before * 1e3:g} mm before the bottom: the file is dimensioned to {step() * 1e3:g} mm; "
+            "give at least that"
+        )
     psi = SWING if swing is None else swing
     k = TIME_RATIO if time_ratio is None else time_ratio
     if not 0 < psi < math.pi / 2:
@@ -203,7 +208,7 @@ def synthesize(
 def _nominal_spread(spec, angle: float) -> float:  # noqa: ANN001
     """The tolerance (N m) of the torque at the nominal point the lengths written to 0.1 mm imply: the first-order
     bound of :func:`~linkwork.synthesis.achieved.rounding_tolerances`, each length's term the central difference
-    of :func:`_torque` over +-STEP / 2 (variants of the file's named lengths)."""
+    of :func:`_torque` over +-step / 2 (variants of the file's named lengths)."""
     from linkwork.api import mechanism_of
     from linkwork.structure.parameters import parameter_list
     from linkwork.synthesis.achieved import MARGIN
@@ -211,7 +216,7 @@ def _nominal_spread(spec, angle: float) -> float:  # noqa: ANN001
     names = {p.name: p.value for p in parameter_list(mechanism_of(spec)) if p.kind == "length" and p.value != 0}
     variants = {name: np.full(2 * len(names) + 1, value) for name, value in names.items()}
     for i, name in enumerate(names):
-        variants[name][2 * i + 1 : 2 * i + 3] += (STEP / 2, -STEP / 2)
+        variants[name][2 * i + 1 : 2 * i + 3] += (step() / 2, -step() / 2)
     torque = _torque(spec, angle, variants)
     first = float(np.sum(np.abs(torque[1::2] - torque[2::2]))) / 2
     return MARGIN * first + TOLERANCE * abs(float(torque[0]))
