@@ -935,6 +935,7 @@ TEXTS: dict[str, tuple[str, str]] = {
     "sizing.col.fits": ("fits", "умещается"),
     "sizing.word.pins": ("pins", "оси"),
     "sizing.word.pin": ("pin", "ось"),
+    "sizing.word.pins: an eccentric": ("pins: an eccentric", "оси: эксцентрик"),
     "sizing.word.stress": ("stress", "напряжения"),
     "sizing.word.block length": ("block length", "длина камня"),
     "sizing.word.NO": ("NO", "НЕТ"),
@@ -945,7 +946,7 @@ TEXTS: dict[str, tuple[str, str]] = {
     "sizing.eyes": ("eyes {a}-{b} apart", "проушины {a}-{b}: расстояние"),
     "sizing.in_slot": ("{block} in {slot}", "{block} в {slot}"),
     "sizing.warning": (
-        "Does not fit: {part}: {rule} {has} mm, needs {needs} mm ({governs} governs)",
+        "Does not fit: {part}: {rule} {has} mm, needs {needs} mm (governs: {governs})",
         "Не умещается: {part}: {rule} {has} мм, нужно {needs} мм (определяет: {governs})",
     ),
     "sizing.masses_sized": (

@@ -7,7 +7,9 @@ each a row of the table with what the part has, what it needs and which size gov
 
 1. **The eyes fit their link**: two joints of one link are at least ``d1 + d2`` apart (their eyes' radii);
    nearer, the eyes overlap and the link cannot be made: the pins govern, and the fix is a longer link (the
-   geometry) or smaller forces.
+   geometry) or smaller forces; a crank (the link the drive turns) whose eyes overlap is made as an eccentric on
+   its shaft instead, whose rod's eye then encloses the shaft and the throw (``pins: an eccentric``): the rod's
+   bush is larger than the joints' table sizes, which the warning says.
 2. **A link no thinner than its pin**: a bar's section is at least as deep in the mechanism's plane as the
    largest pin it carries (the eye of ``2 d`` blends into a shank of at least ``d``): the depth of the least
    round bar for its stresses, or of the file's section (round and tube ``d``, rectangle and I ``h``).  Where
@@ -64,7 +66,7 @@ class Check:
         """The sentence ``size`` prints for a part that does not fit."""
         return (
             f"{self.part}: {self.rule} {self.has * 1e3:.4g} mm, needs {self.needs * 1e3:.4g} mm "
-            f"({self.governs} governs)"
+            f"(governs: {self.governs})"
         )
 
 
@@ -102,12 +104,14 @@ def proportions(
     each joint's pin is made to (by the sizing's label), ``bars`` the links as bars, ``depths`` each bar's section
     depth in the plane (m), ``blocks`` each block's length along its guide (m)."""
     checks: list[Check] = []
+    cranks = {int(i) for k in mech.drive_pair for i in mech.pair_links[int(k)] if int(i) != 0}
     for bar in bars.bars:
         link = mech.link_names.index(bar.link)
         eyes = _eyes(mech, link, made)
         for (p, d1, n1), (q, d2, n2) in _pairs_of(eyes):
             gap = float(np.hypot(*(mech.point_local[p] - mech.point_local[q])))
-            checks.append(Check(bar.link, f"eyes {n1}-{n2} apart", gap, d1 + d2, "pins"))
+            by = "pins: an eccentric" if link in cranks and gap < d1 + d2 else "pins"
+            checks.append(Check(bar.link, f"eyes {n1}-{n2} apart", gap, d1 + d2, by))
         if eyes and bar.link in depths:
             pin = max(d for _, d, _ in eyes)
             depth = depths[bar.link]
