@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 import linkwork as lw
@@ -30,6 +31,7 @@ def press_40t(tmp_path_factory):
     return path
 
 
+@pytest.mark.slow  # a sizing to the fixed point, about 6 s
 def test_the_ram_of_a_40_t_press_carries_its_pin_not_the_mass_of_a_40_x_20_mm_bar(press_40t):
     s = lw.size(press_40t, motor=False)  # masses sized by default
     assert s.masses is not None and "ram" in s.masses.blocks
@@ -43,6 +45,7 @@ def test_the_ram_of_a_40_t_press_carries_its_pin_not_the_mass_of_a_40_x_20_mm_ba
     assert s.masses.masses["ram"] > 100.0  # 1.9 kg by the bar rule
 
 
+@pytest.mark.slow  # a synthesis and a sizing, about 10 s
 def test_toggle_links_shorter_than_their_pins_eyes_are_warned_with_the_length_they_need(tmp_path):
     from commandline import linkwork
 
@@ -60,6 +63,7 @@ def test_toggle_links_shorter_than_their_pins_eyes_are_warned_with_the_length_th
     assert run.returncode == 0 and "warning: does not fit: crank: eyes O-A apart" in run.stdout
 
 
+@pytest.mark.slow  # a synthesis and a sizing, about 8 s
 def test_the_shapers_block_stays_in_its_slot_and_says_so(tmp_path):
     path = tmp_path / "shaper.yaml"
     synthesize("slotted-lever", stroke=0.5, time_ratio=1.6).write(path)
@@ -77,3 +81,26 @@ def test_the_shapers_block_stays_in_its_slot_and_says_so(tmp_path):
     half = block_of(d, 1.0, guide.force_max, guide.moment_max, 15e6).length / 2
     assert far.needs == pytest.approx(reach + half, rel=1e-6)
     assert far.needs <= 0.9 * spec.links["lever"].length + 1e-4 + half  # the synthesis's margin holds it
+
+
+def test_each_pair_of_a_bars_eyes_is_checked_against_the_sum_of_its_pins_diameters():
+    """The four-bar (crank 100, coupler 350, rocker 250 mm) with pins chosen by hand: an eye fits where the joints
+    are at least d1 + d2 apart; a shank needs the largest pin of its bar; the crank's overlap is an eccentric's."""
+    from linkwork.sizing.links import bars
+    from linkwork.sizing.pin_shear import Steel
+    from linkwork.sizing.proportions import proportions
+
+    f = lw.forces("four-bar", steps=36)
+    linked = bars(f, np.degrees(np.ravel(f.angles)), Steel("C45", 340e6, 620e6, 280e6))
+    made = {"O2": 0.06, "A": 0.05, "B": 0.02, "O4": 0.03}  # m
+    depths = {b.link: 0.04 for b in linked.bars}
+    checked = {(c.part, c.rule): c for c in proportions(f.mechanism, f.kinematics, made, linked, depths, {}).checks}
+    crank = checked[("crank", "eyes O2-A apart")]
+    assert crank.has == pytest.approx(0.1) and crank.needs == pytest.approx(0.11) and not crank.fits
+    assert crank.governs == "pins: an eccentric"  # the link the drive turns
+    coupler = checked[("coupler", "eyes A-B apart")]
+    assert coupler.needs == pytest.approx(0.07) and coupler.fits and coupler.governs == "pins"
+    assert checked[("rocker", "eyes B-O4 apart")].needs == pytest.approx(0.05)
+    shank = checked[("crank", "shank depth")]
+    assert shank.needs == pytest.approx(0.06) and shank.governs == "pin" and shank.verdict == "made to it"
+    assert checked[("rocker", "shank depth")].verdict == "yes"  # 40 mm deep for a 30 mm pin: stress governs
