@@ -58,9 +58,11 @@ def test_toggle_links_shorter_than_their_pins_eyes_are_warned_with_the_length_th
     assert crank < main + made["A"]  # the eyes of 2 d overlap: by hand from the joints' table
     eyes = next(c for c in s.proportions.checks if c.part == "crank" and c.rule.startswith("eyes"))
     assert not eyes.fits and eyes.needs == pytest.approx(main + made["A"], rel=1e-12)
-    assert eyes.has == pytest.approx(crank, rel=1e-12) and eyes.governs == "pins"
+    assert eyes.has == pytest.approx(crank, rel=1e-12) and eyes.governs == "pins: an eccentric"  # the driven crank
+    rod = next(c for c in s.proportions.checks if c.part == "rod" and c.rule.startswith("eyes"))
+    assert not rod.fits and rod.governs == "pins"
     run = linkwork("size", str(path), "--no-motor")
-    assert run.returncode == 0 and "warning: does not fit: crank: eyes O-A apart" in run.stdout
+    assert run.returncode == 0 and "warning: does not fit: rod: eyes A-K apart" in run.stdout
 
 
 @pytest.mark.slow  # a synthesis and a sizing, about 8 s
