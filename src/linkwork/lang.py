@@ -956,9 +956,9 @@ TEXTS: dict[str, tuple[str, str]] = {
         "неподвижной точки за {rounds} итераций",
     ),
     "sizing.masses_blocks": (
-        "; {blocks}: steel blocks carrying their governing pin (2d x kd) over the length their guide's bush pressure "
+        "; {blocks}: steel blocks carrying their governing pin (2d x k d) over the length their guide's bush pressure "
         "asks",
-        "; {blocks}: стальные камни (ползуны) с определяющей осью (2d x kd) длиной по допускаемому давлению в "
+        "; {blocks}: стальные камни (ползуны) с определяющей осью (2d x k d) длиной по допускаемому давлению в "
         "направляющей",
     ),
     "sizing.masses_unsettled": (" (not settled)", " (не сошлось)"),

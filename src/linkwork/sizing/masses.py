@@ -141,7 +141,7 @@ class SizedMasses:
         """The sentence of the sizing's inputs that says where the masses come from."""
         how = f"to a fixed point in {self.rounds} rounds" if self.converged else f"not settled in {self.rounds} rounds"
         blocks = (
-            f"; {', '.join(self.blocks)} steel blocks carrying their governing pin (2d x kd) over the length their "
+            f"; {', '.join(self.blocks)} steel blocks carrying their governing pin (2d x k d) over the length their "
             "guide's bush pressure asks"
             if self.blocks
             else ""
