@@ -91,3 +91,20 @@ def test_the_shears_read_back_meet_their_knives_requirements_within_the_toleranc
         if row.name in asked:
             assert row.tolerance is not None and abs(row.achieved - asked[row.name]) <= row.tolerance
             assert row.met
+
+
+@pytest.mark.parametrize(
+    ("line", "words"),
+    [
+        ("  stroke_tolerance: 0.145", 'give the unit, e.g. "400 mm"'),
+        ("  stroke_tolerance: -1 mm", "expected a finite value in [0, "),
+        ("  swing_tolerance: 1 deg", '"swing_tolerance" is no requirement of a slider-crank'),
+    ],
+)
+def test_a_tolerance_edited_by_hand_is_checked_where_the_file_is_read(press, line, words):
+    from linkwork.errors import SpecError
+
+    text = "\n".join(line if raw.startswith("  stroke_tolerance:") else raw for raw in press.text.splitlines())
+    with pytest.raises(SpecError) as err:
+        lw.loads(text + "\n")
+    assert words in str(err.value)
