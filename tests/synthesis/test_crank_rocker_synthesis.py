@@ -70,12 +70,14 @@ def test_random_feasible_requirements_are_met_as_the_analysis_measures_them(swin
     s = synthesize("crank-rocker", swing=swing, time_ratio=k, **{by: scale}, min_transmission_angle=FREE)
     kin = lw.kinematics(s.spec, steps=3600)
     (out,) = extremes(kin)
-    assert out.stroke == pytest.approx(swing, rel=1e-9)
-    assert out.time_ratio == pytest.approx(k, rel=1e-9)
+    tol = s.tolerances  # the lengths written to 0.1 mm (the closed form's exact lengths are checked below)
+    assert out.stroke == pytest.approx(swing, abs=tol["swing"])
+    assert out.time_ratio == pytest.approx(k, abs=tol["time_ratio"])
     assert s.dimensions[by] == pytest.approx(scale, rel=1e-12)
     (mu,) = transmission(kin).values()
-    assert float(np.min(mu)) >= s.predicted["least_transmission_angle"] - 1e-9
-    assert s.measured["least_transmission_angle"] == pytest.approx(s.predicted["least_transmission_angle"], rel=1e-9)
+    least = s.predicted["least_transmission_angle"]
+    assert float(np.min(mu)) >= least - tol["min_transmission_angle"]
+    assert s.measured["least_transmission_angle"] == pytest.approx(least, abs=tol["min_transmission_angle"])
     psi, theta = law_of_cosines(*(s.dimensions[n] for n in ("crank", "coupler", "rocker", "frame")))
     assert (psi, (math.pi + theta) / (math.pi - theta)) == pytest.approx((swing, k), rel=1e-9)
 

@@ -85,7 +85,7 @@ def test_the_guide_at_the_middle_of_the_sagitta_has_the_least_largest_pressure_a
 def test_random_feasible_requirements_are_met_as_the_analysis_measures_them(stroke, k, by, where):
     half = math.pi * (k - 1) / (k + 1) / 2
     lever = stroke / (2 * math.sin(half))
-    top = lever / (1 + math.sin(half))
+    top = 0.9 * lever / (1 + math.sin(half))  # the block a tenth of the lever from its end
     sag = lever * (1 - math.cos(half)) / 2
     # a pressure angle below 90 deg - theta/2 (at theta/2 + alpha = 90 deg the rod folds against the lever at its
     # limit positions: K = 3.5 leaves 40 deg), kept 1 deg clear of it
@@ -99,12 +99,17 @@ def test_random_feasible_requirements_are_met_as_the_analysis_measures_them(stro
     }[by]
     s = synthesize("slotted-lever", stroke=stroke, time_ratio=k, **extra, min_transmission_angle=FREE)
     measured_stroke, measured_k, alpha = analysed(s.spec)
-    assert measured_stroke == pytest.approx(stroke, rel=1e-9)
-    assert measured_k == pytest.approx(k, rel=1e-9)
-    assert alpha <= s.predicted["largest_pressure_angle"] * (1 + 1e-9)
-    assert s.measured["largest_pressure_angle"] == pytest.approx(s.predicted["largest_pressure_angle"], rel=1e-9)
+    tol = s.tolerances  # the lengths written to 0.1 mm
+    assert measured_stroke == pytest.approx(stroke, abs=tol["stroke"])
+    assert measured_k == pytest.approx(k, abs=tol["time_ratio"])
+    assert alpha <= s.predicted["largest_pressure_angle"] + tol["max_pressure_angle"]
+    assert s.measured["largest_pressure_angle"] == pytest.approx(
+        s.predicted["largest_pressure_angle"], abs=tol["max_pressure_angle"]
+    )
     if "max_pressure_angle" in extra:
-        assert s.measured["largest_pressure_angle"] == pytest.approx(extra["max_pressure_angle"], rel=1e-9)
+        assert s.measured["largest_pressure_angle"] == pytest.approx(
+            extra["max_pressure_angle"], abs=tol["max_pressure_angle"]
+        )
     for name in ("frame", "crank", "rod"):
         if name in extra:
             assert s.dimensions[name] == pytest.approx(extra[name], rel=1e-12)
