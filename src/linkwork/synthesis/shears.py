@@ -318,12 +318,14 @@ def _peak_torque(spec) -> float:  # noqa: ANN001
 
 
 def _member_torques(mech, cranks, unknowns, requirements: dict, want: float, speed: str | None) -> np.ndarray:  # noqa: ANN001
-    """The peak driving torque (N m) of each solved member, each from its own file (:func:`_file`: its billet
-    placed where its knives meet it); NaN for the members not solved."""
+    """The peak driving torque (N m) of each solved member, each from its own file as it would be written
+    (:func:`_file`: its lengths to 0.1 mm, its billet placed where its knives meet it); NaN for the members not
+    solved."""
     out = np.full(len(cranks), np.nan)
     for i in np.flatnonzero(np.isfinite(unknowns[:, 0])):
         (values,) = member_values(cranks[[i]], unknowns[[i]])
-        out[i] = _peak_torque(_file(mech, values, requirements, want, "", speed)[1])
+        written = {path: rounded(v) for path, v in values.items()}  # as its file would be written
+        out[i] = _peak_torque(_file(mech, written, requirements, want, "", speed)[1])
     return out
 
 
