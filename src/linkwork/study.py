@@ -172,11 +172,13 @@ class Study:
     @cached_property
     def sizing(self) -> Sizing:
         """Motor, gear, flywheel, bearings, pins and bolts sized from the loads (:func:`linkwork.size`); the motor
-        chosen where the file's ``sizing: motor`` asks for it."""
+        chosen where the file's ``sizing: motor`` asks for it; the links' masses as ``linkwork size`` sizes them by
+        default, from the sized parts, to a fixed point."""
+        from linkwork.api import compile as compile_spec
         from linkwork.sizing import size
 
         spec = self.mech.spec.sizing if self.mech.spec is not None else None
-        return size(self.mech, motor=bool(spec is not None and spec.motor))
+        return size(self.mech, motor=bool(spec is not None and spec.motor), compile_spec=compile_spec)
 
     # ------------------------------------------------------------------ impact
 

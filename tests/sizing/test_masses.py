@@ -22,7 +22,8 @@ def test_the_sized_masses_are_the_steel_of_the_sections_their_loads_ask():
     crank = next(b for b in sized.links.bars if b.link == "crank")  # d from the table: rho pi d^2 / 4 L by hand
     d = float(crank.section.split()[3]) / 1e3
     assert sized.masses.masses["crank"] == pytest.approx(STEEL * math.pi * d**2 / 4 * 0.1, rel=1e-2)
-    assert sized.masses.kept == ("knife_upper", "knife_lower")  # sliders: the file's 300 kg each
+    # the knives slide: steel blocks carrying their pins (the file gave 300 kg each), nothing kept
+    assert sized.masses.blocks == ("knife_upper", "knife_lower") and sized.masses.kept == ()
     assert "to a fixed point" in sized.inputs["masses"]
 
 

@@ -93,12 +93,23 @@ def test_random_feasible_requirements_are_met_as_the_analysis_measures_them(stro
     elif by == "rod_ratio" or theta == 0:
         low = math.tan(theta / 2) ** 2
         extra["rod_ratio"] = low + where * (1 - low)
-    s = synthesize("slider-crank", stroke=stroke, time_ratio=k, **extra, min_transmission_angle=FREE)
+    from linkwork.synthesis.slider_crank import largest_pressure_angle, solve
+
+    r, ell, e, _ = solve(stroke, k, extra.get("rod_ratio"), extra.get("offset"), None, FREE)
+    try:
+        s = synthesize("slider-crank", stroke=stroke, time_ratio=k, **extra, min_transmission_angle=FREE)
+    except SynthesisError as err:  # a file to 0.1 mm cannot hold K this near a dead point: refused, and said so
+        assert math.pi / 2 - float(largest_pressure_angle(r, ell, e)) < math.radians(10)
+        assert "of a dead point" in str(err)
+        return
     measured_stroke, measured_k, alpha = analysed(s.spec)
-    assert measured_stroke == pytest.approx(stroke, rel=1e-9)
-    assert measured_k == pytest.approx(k, rel=1e-9)
-    assert alpha <= s.predicted["largest_pressure_angle"] + 1e-9
-    assert s.measured["largest_pressure_angle"] == pytest.approx(s.predicted["largest_pressure_angle"], rel=1e-9)
+    tol = s.tolerances  # the lengths written to 0.1 mm (the closed form's exact lengths are checked below)
+    assert measured_stroke == pytest.approx(stroke, abs=tol["stroke"])
+    assert measured_k == pytest.approx(k, abs=tol["time_ratio"])
+    assert alpha <= s.predicted["largest_pressure_angle"] + tol["max_pressure_angle"]
+    assert s.measured["largest_pressure_angle"] == pytest.approx(
+        s.predicted["largest_pressure_angle"], abs=tol["max_pressure_angle"]
+    )
     r, ell, e = (s.dimensions[n] for n in ("crank", "rod", "offset"))
     assert forward(r, ell, e)[:2] == pytest.approx((stroke, k), rel=1e-9)
     if "rod_ratio" in extra:
@@ -116,7 +127,7 @@ def test_an_impossible_bound_names_the_least_angle_for_k_and_the_largest_k_for_t
     # the nearest feasible value is feasible: just under it the bound is met
     k = largest_time_ratio(math.radians(30))
     s = synthesize("slider-crank", stroke=0.4, time_ratio=k * (1 - 1e-9), max_pressure_angle=math.radians(30))
-    assert s.measured["largest_pressure_angle"] <= math.radians(30) * (1 + 1e-9)
+    assert s.measured["largest_pressure_angle"] <= math.radians(30) + s.tolerances["max_pressure_angle"]
     # the r = 1, l = 4, e = 1 mechanism has exactly 30 deg: its K cannot be over the largest
     assert forward(1.0, 4.0, 1.0)[1] <= k
 
@@ -156,8 +167,9 @@ def test_the_torque_criterion_picks_the_member_with_the_least_peak_torque_within
 
     req = {"stroke": 0.4, "time_ratio": 1.3, "force": 20e3, "min_transmission_angle": math.radians(30)}
     pick = synthesize("slider-crank", **req, max_pressure_angle=math.radians(60), criterion="torque")
-    assert pick.measured["largest_pressure_angle"] <= math.radians(60) * (1 + 1e-9)
-    assert pick.measured["stroke"] == pytest.approx(0.4, rel=1e-9)
+    tol = pick.tolerances  # the lengths written to 0.1 mm
+    assert pick.measured["largest_pressure_angle"] <= math.radians(60) + tol["max_pressure_angle"]
+    assert pick.measured["stroke"] == pytest.approx(0.4, abs=tol["stroke"])
     assert "working:" in pick.text and "20000 N" in pick.text
 
     def sampled(spec) -> float:
@@ -167,7 +179,7 @@ def test_the_torque_criterion_picks_the_member_with_the_least_peak_torque_within
     for offset in np.linspace(0.0, pick.dimensions["offset"], 6)[1:-1]:
         member = synthesize("slider-crank", **req, offset=float(offset))
         assert sampled(member.spec) > best
-    assert pick.measured["largest_pressure_angle"] == pytest.approx(math.radians(60), rel=1e-6)  # at the bound
+    assert pick.measured["largest_pressure_angle"] == pytest.approx(math.radians(60), abs=tol["max_pressure_angle"])
 
 
 def test_rounded_numbers_of_a_refusal_do_not_contradict_it():

@@ -109,10 +109,10 @@ def size(
     masses: Annotated[
         str,
         typer.Option(
-            help='"file": the links\' masses as the file gives them; "sized": from their sized steel sections, '
-            "iterated with the loads to a fixed point (--write writes them too)"
+            help='"sized" (the default): from their sized steel sections (bars) and pins and guides (blocks), '
+            'iterated with the loads to a fixed point (--write writes them too); "file": as the file gives them'
         ),
-    ] = "file",
+    ] = "sized",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Size the machine from its loads: motor, gear and flywheel, rolling and plain bearings, pins, bolts."""
@@ -184,6 +184,8 @@ def _print(result: Sizing, written: str | None) -> None:
             typer.echo(f"  passed over: {passed.name}: {passed.why}")
     for part, why in result.missing.items():
         typer.echo(f"  not sized: {part}: {why}")
+    for warning in result.warnings():
+        typer.echo(f"  warning: does not fit: {warning}")
     if written:
         typer.echo(f"  wrote {written}")
 

@@ -230,6 +230,7 @@ def _show(result: Any, out: str, as_json: bool, lang: str = "en") -> None:
                 "dimensions": result.dimensions,
                 "predicted": result.predicted,
                 "measured": result.measured,
+                "tolerances": result.tolerances,
                 "criterion": result.criterion,
             }
         )
@@ -239,11 +240,15 @@ def _show(result: Any, out: str, as_json: bool, lang: str = "en") -> None:
     mm = t("unit.mm", lang)
     typer.echo(f"{result.kind}: {result.criterion}")
     for name, value in result.dimensions.items():
-        typer.echo(f"  {name:10s} {value * 1e3:12.6f} {mm}")
+        typer.echo(f"  {name:12s} {value * 1e3:12.1f} {mm}")  # as written: to 0.1 mm
     typer.echo(t("synth.measured", lang))
+    from linkwork.synthesis.common import ALIASES
+
     for name, value in result.measured.items():
         label = name.replace("_", " ") if lang == "en" else t(f"synth.quantity.{name}", lang)
-        typer.echo(f"  {label:26s} {_shown(name, value, lang)}")
+        tol = result.tolerances.get(ALIASES.get(name, name))
+        within = f"  +- {_shown(name, tol, lang)}" if tol is not None else ""
+        typer.echo(f"  {label:26s} {_shown(name, value, lang)}{within}")
     typer.echo(t("synth.written", lang, out=out))
 
 

@@ -54,4 +54,5 @@ def _requirement_row(run: ReportRun, row: Any) -> list[str]:
     sense = "" if row.sense in ("equal", "given") else run.t(f"requirements.sense.{row.sense.replace(' ', '_')}") + " "
     achieved = run.t("requirements.as_given") if row.achieved is None else shown(row.achieved)
     met = "" if row.met is None else run.t("requirements.yes" if row.met else "requirements.no")
-    return [run.t(f"requirement.{row.name}"), sense + shown(row.asked), achieved, met]
+    within = "" if row.tolerance is None else f" \u00b1 {shown(row.tolerance)}"  # the file's stated tolerance
+    return [run.t(f"requirement.{row.name}"), sense + shown(row.asked) + within, achieved, met]

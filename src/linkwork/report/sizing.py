@@ -56,6 +56,21 @@ def sizing_body(study: Study, t: Any) -> tuple[list[str], Sizing | None]:
         paragraph(t("sizing.missing", part=_text(t, "sizing.word.", part), why=_text(t, "sizing.word.", why)))
         for part, why in result.missing.items()
     ]
+    checks = result.proportions.checks if result.proportions is not None else ()
+    body += [
+        paragraph(
+            t(
+                "sizing.warning",
+                part=_text(t, "sizing.word.", c.part),
+                rule=_text(t, "sizing.word.", c.rule),
+                has=f"{c.has * 1e3:.4g}",
+                needs=f"{c.needs * 1e3:.4g}",
+                governs=_text(t, "sizing.word.", c.governs),
+            )
+        )
+        for c in checks
+        if not c.fits
+    ]
     return body, result
 
 
@@ -87,6 +102,24 @@ def _text(t: Any, prefix: str, text: Any) -> Any:
     rolling = re.fullmatch(r"no: swings (\S+) < (\S+) deg between its elements", text)
     if rolling:
         return t("sizing.rolling_no", swing=rolling.group(1), pitch=rolling.group(2))
+    sized = re.fullmatch(
+        r"links' masses from their sized steel sections \(at least a round bar of L/d = (\S+)\)"
+        r"(?:; (.+) steel blocks carrying .+ asks)?, (?:to a fixed point in (\d+) rounds|not settled in (\d+) rounds)"
+        r"(?:; the file's for (.+) \(no bars, no blocks\))?",
+        text,
+    )
+    if sized:
+        slender, blocks, done, not_done, kept = sized.groups()
+        out = t("sizing.masses_sized", slender=slender, rounds=done or not_done)
+        out += t("sizing.masses_blocks", blocks=blocks) if blocks else ""
+        out += t("sizing.masses_unsettled") if not_done else ""
+        return out + (t("sizing.masses_kept", kept=kept) if kept else "")
+    eyes = re.fullmatch(r"eyes (\S+)-(\S+) apart", text)
+    if eyes:
+        return t("sizing.eyes", a=eyes.group(1), b=eyes.group(2))
+    slot = re.fullmatch(r"(\S+) in (\S+)", text)
+    if slot:
+        return t("sizing.in_slot", block=slot.group(1), slot=slot.group(2))
     joints = re.fullmatch(r"joints (.+)", text)
     if joints:
         return t("sizing.joints", joints=joints.group(1))

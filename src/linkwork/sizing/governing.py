@@ -19,7 +19,7 @@ import math
 
 from linkwork.sizing.bearings import Bearings, JointBearing
 from linkwork.sizing.common import Table
-from linkwork.sizing.pin_shear import Pin, Pins
+from linkwork.sizing.pin_shear import Pin, Pins, Steel, least_diameter
 
 #: Rolling elements in a bearing of the common series, by kind (the angle between two is 360 deg / Z).
 ROLLING_ELEMENTS = {"ball": 10, "roller": 14}
@@ -36,6 +36,15 @@ def pin_rule(pin: Pin, pins: Pins) -> tuple[float, str]:
     shear = math.sqrt(2 * pin.force / (math.pi * pins.shear_allowed))
     bending = math.sqrt(4 * k * pin.force / (math.pi * pins.bending_allowed))
     return (bending, "pin bending") if bending >= shear else (shear, "pin shear")
+
+
+def governing_diameter(force: float, steel: Steel, safety: float, width_ratio: float, bush_pressure: float) -> float:
+    """The diameter (m) a pin carrying ``force`` (N) is made to: the larger of its least for strength (double
+    shear and bending, :func:`~linkwork.sizing.pin_shear.least_diameter`) and its plain bush's least for the
+    pressure ``bush_pressure`` (Pa), ``sqrt(F / (k p))``, at the width ratio ``k`` (the bush's ``pv`` rule needs
+    the joint's motion and is left to the joints' table)."""
+    tau, sigma = steel.yield_strength / (2 * safety), steel.yield_strength / safety
+    return max(least_diameter(force, tau, sigma, width_ratio), math.sqrt(force / (width_ratio * bush_pressure)))
 
 
 def bush_rule(j: JointBearing, bearings: Bearings) -> tuple[float, str]:
@@ -55,10 +64,39 @@ def rolling_note(j: JointBearing, kind: str) -> str:
     return "ok"
 
 
+def made_diameters(pins: Pins, bearings: Bearings) -> dict[str, float]:
+    """The diameter (m) each joint's pin is made to (by the bearings' label: a shaft's bearings ``joint/1``,
+    ``joint/2``): the governing one of :func:`governing_table`; NaN where its force has no bound."""
+    return {row[0]: row[7] / 1e3 if math.isfinite(row[1]) else math.nan for row in _rows(pins, bearings)}
+
+
 def governing_table(pins: Pins, bearings: Bearings) -> Table:
     """One row a revolute joint: the force, the pin's and the bush's least diameters with their rules, the
     diameter to make and what governs it (the file's diameter where it gives one, checked against both), the
     rolling bearing's rating and whether one can serve."""
+    rows = _rows(pins, bearings)
+    return Table(
+        f"Joints: what governs (the pin and its bush are one diameter d at b = {bearings.width_ratio:g} d; "
+        f"a {bearings.kind} bearing of C for L10h = {bearings.life_h:g} h instead of the bush)",
+        (
+            "joint",
+            "F max [kN]",
+            "at phi [deg]",
+            "pin d [mm]",
+            "pin by",
+            "bush d [mm]",
+            "bush by",
+            "d to make [mm]",
+            "governs",
+            "rolling C [kN]",
+            "rolling bearing",
+        ),
+        tuple(rows),
+        "joints",
+    )
+
+
+def _rows(pins: Pins, bearings: Bearings) -> list[tuple]:
     by_label = {p.label: p for p in pins.pins}
     rows = []
     for j in bearings.joints:
@@ -88,22 +126,4 @@ def governing_table(pins: Pins, bearings: Bearings) -> Table:
                 rolling_note(j, bearings.kind),
             )
         )
-    return Table(
-        f"Joints: what governs (the pin and its bush are one diameter d at b = {bearings.width_ratio:g} d; "
-        f"a {bearings.kind} bearing of C for L10h = {bearings.life_h:g} h instead of the bush)",
-        (
-            "joint",
-            "F max [kN]",
-            "at phi [deg]",
-            "pin d [mm]",
-            "pin by",
-            "bush d [mm]",
-            "bush by",
-            "d to make [mm]",
-            "governs",
-            "rolling C [kN]",
-            "rolling bearing",
-        ),
-        tuple(rows),
-        "joints",
-    )
+    return rows

@@ -19,12 +19,13 @@ from linkwork.errors import LinkworkError
 from linkwork.sizing.bearings import Bearings, Bush, bearings
 from linkwork.sizing.bolts import BoltResult, size_bolts
 from linkwork.sizing.common import Catalogue, Table, bundled
-from linkwork.sizing.governing import governing_table
+from linkwork.sizing.governing import governing_diameter, governing_table, made_diameters
 from linkwork.sizing.links import Bars, bars
-from linkwork.sizing.masses import SizedMasses, sized_masses
+from linkwork.sizing.masses import SizedMasses, block_masses, blocks, sized_masses
 from linkwork.sizing.motor import MotorChoice, choose_motor, motor_catalogue, synchronous_problem
 from linkwork.sizing.pairs import Pair, pairs_of
 from linkwork.sizing.pin_shear import Pins, Steel, pins
+from linkwork.sizing.proportions import Proportions, proportions
 from linkwork.sizing.shaft import Shaft, main_shaft, split
 from linkwork.structure.model import Mechanism
 
@@ -51,6 +52,11 @@ class Sizing:
     links: Bars | None = None
     shaft: Shaft | None = None
     masses: SizedMasses | None = None  # the links' masses sized to a fixed point (masses="sized"), else None
+    proportions: Proportions | None = None  # the sized parts against each other and the geometry
+
+    def warnings(self) -> list[str]:
+        """The parts that do not fit (:mod:`~linkwork.sizing.proportions`), a sentence each."""
+        return self.proportions.warnings() if self.proportions is not None else []
 
     def tables(self) -> list[Table]:
         out = [self.motor.table()] if self.motor is not None else []
@@ -58,6 +64,7 @@ class Sizing:
         out += [self.shaft.table()] if self.shaft is not None else []
         out += self.bearings.tables() + [self.pins.table()]
         out += [self.links.table()] if self.links is not None else []
+        out += [self.proportions.table()] if self.proportions is not None else []
         out += self.bolts.tables() if self.bolts is not None else []
         return out
 
@@ -73,6 +80,7 @@ class Sizing:
             "shaft": self.shaft.record() if self.shaft is not None else None,
             "masses_kg": self.masses.masses if self.masses is not None else None,
             "links": self.links.record() if self.links is not None else None,
+            "proportions": self.proportions.record() if self.proportions is not None else None,
             "bolts": self.bolts.record() if self.bolts is not None else None,
             "missing": self.missing,
         }
@@ -120,7 +128,7 @@ def size(
     load_factor: float = 0.25,
     steps: int = 360,
     progress: Callable[[int, int], None] | None = None,
-    masses: str = "file",
+    masses: str | None = None,
     compile_spec: Callable[[Any], Mechanism] | None = None,
 ) -> Sizing:
     """Size the machine ``mech`` (``linkwork.size`` also takes a path, an example name or a Spec).
@@ -158,8 +166,10 @@ def size(
     progress : callable, optional
         ``progress(k, n)``: told of each motor ``k`` of the ``n`` of the catalogue the choice looks at.
     masses : str
-        ``"file"``: the links' masses as the file gives them (or its default rule); ``"sized"``: the bars' masses
-        from their sized steel sections, iterated with the loads to a fixed point (:mod:`linkwork.sizing.masses`).
+        ``"sized"`` (the default where the mechanism has its file and ``compile_spec`` is given, as
+        ``linkwork.size`` gives it): the bars' masses from their sized steel sections and the blocks' from their
+        pins and guides, iterated with the loads to a fixed point (:mod:`linkwork.sizing.masses`); ``"file"``: the
+        links' masses as the file gives them (or its default rule), the default otherwise.
     compile_spec : callable
         How an edited file is compiled, for ``masses="sized"`` (``linkwork.size`` passes :func:`linkwork.compile`).
     """
@@ -186,6 +196,8 @@ def size(
     from linkwork.kinetostatics.reaction_forces import forces
     from linkwork.motion.analysis import CrankAngles
 
+    if masses is None:
+        masses = "sized" if mech.spec is not None and compile_spec is not None else "file"
     if masses not in ("file", "sized"):
         raise LinkworkError(f'masses: "file" or "sized", got "{masses}"')
     angles = CrankAngles.of(mech)
@@ -198,7 +210,18 @@ def size(
 
     if masses == "sized" and compile_spec is None:
         raise LinkworkError('masses="sized" compiles the file with each round\'s masses: call linkwork.size')
-    sized = sized_masses(mech, bars_of, compile_spec) if masses == "sized" and compile_spec is not None else None
+
+    def pin_of(force: float) -> float:
+        return governing_diameter(force, grade, safety, width_ratio, bush_limits.p)
+
+    def blocks_of(m: Mechanism, bars_: Bars) -> dict[str, float]:
+        return block_masses(pairs_of(forces(m, steps=steps)), bars_, pin_of, width_ratio, bush_limits.p)
+
+    sized = (
+        sized_masses(mech, bars_of, compile_spec, blocks_of=blocks_of)
+        if masses == "sized" and compile_spec is not None
+        else None
+    )
     mech = sized.mechanism if sized is not None else mech
     f = forces(mech, steps=steps)
     phi = np.asarray(angles.phi(f.angles), dtype=float)
@@ -227,6 +250,10 @@ def size(
         guides=guides,
     )
     linked = bars(f, phi, grade, safety=safety, sections=given)
+    slid = blocks(pairs_of_joints, linked, pin_of, width_ratio, bush_limits.p)
+    depths = {b.link: _depth(b, given) for b in linked.bars}
+    made = made_diameters(pinned, found)
+    checked = proportions(mech, f.kinematics, made, linked, depths, {k: b.length for k, b in slid.items()})
     unbounded = [p for p in pairs_of_joints if math.isinf(p.peak)]
     if unbounded:
         missing[f"joints {', '.join(p.label for p in unbounded)}"] = (
@@ -293,7 +320,16 @@ def size(
         "loads": "kinetostatics at the file's uniform crank speed",
         "masses": sized.said() if sized is not None else "the file's (or its default rule)",
     }
-    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked, shaft, sized)
+    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked, shaft, sized, checked)
+
+
+def _depth(bar: Any, given: dict[str, Any]) -> float:
+    """The depth (m) of a bar's section in the mechanism's plane: the file's section's (round and tube ``d``,
+    rectangle and I ``h``), else the least round bar's."""
+    if bar.link in given:
+        shape, dims = given[bar.link]
+        return float(dims["d"] if shape in ("round", "tube") else dims["h"])
+    return math.sqrt(4 * bar.area / math.pi)
 
 
 def _shaft(mech: Mechanism, pairs: list[Pair], pinned: Pins, file: Any) -> Shaft | None:

@@ -9,6 +9,9 @@ that what reads it later has nothing to fail on:
 - every other key a requirement of that kind (:data:`KINDS`), or ``criterion`` (:data:`CRITERIA`);
 - a length, an angle, a force or a moment with its unit (``"400 mm"``, ``"60 deg"``): a bare number would be read
   in a unit nobody said; a ratio a plain number;
+- ``<name>_tolerance`` (``stroke_tolerance: "0.021 mm"``): how far the analysis may measure the requirement
+  ``name`` from it and the report still call it met, in its unit, at least zero (a synthesised file states the
+  one the rounding of its lengths implies); without it, 1e-6 of the requirement;
 - every value finite and within its range (:data:`RANGES`, :data:`KIND_RANGES`): a stroke is positive, a
   pressure angle below 90 deg, a time ratio at least 1 (the slower stroke's time over the faster; a
   slider-crank's below 3), at most :data:`~linkwork.limits.MAX_MAGNITUDE` in SI.
@@ -49,6 +52,9 @@ KINDS: dict[str, tuple[str, ...]] = {
         "min_transmission_angle",
     ),
 }
+
+#: The suffix of a requirement's tolerance (``stroke_tolerance``).
+TOLERANCE = "_tolerance"
 
 #: How a family is picked (``criterion``): the least largest pressure angle, or the least peak driving torque.
 CRITERIA = ("pressure", "torque")
@@ -130,6 +136,10 @@ def check_requirements(bad: Report, data: dict[str, Any]) -> None:
         if name == "criterion":
             if value not in CRITERIA:
                 bad(where, f"expected one of {', '.join(CRITERIA)}, got {echo(value)}")
+        elif name.endswith(TOLERANCE) and name.removesuffix(TOLERANCE) in KINDS[kind]:
+            problem = requirement_problem(kind, name, value)
+            if problem:
+                bad(where, problem)
         elif name not in KINDS[kind]:
             bad(where, f"{quote(name)} is no requirement of a {kind}; expected {', '.join(KINDS[kind])}, criterion")
         else:
@@ -139,17 +149,21 @@ def check_requirements(bad: Report, data: dict[str, Any]) -> None:
 
 
 def requirement_problem(kind: str, name: str, value: Any) -> str | None:
-    """Why ``value`` is not the requirement ``name`` of a ``kind`` as a file gives it, or None."""
-    got = requirement_value(name, value)
+    """Why ``value`` is not the requirement ``name`` (or its ``<name>_tolerance``) of a ``kind`` as a file gives
+    it, or None."""
+    base = name.removesuffix(TOLERANCE)
+    got = requirement_value(base, value)
     if isinstance(got, str):
         return got
-    low, high, with_low, with_high = KIND_RANGES.get((kind, name)) or RANGES.get(
-        name, (-MAX_MAGNITUDE, MAX_MAGNITUDE, True, True)
+    low, high, with_low, with_high = (
+        (0.0, MAX_MAGNITUDE, True, True)
+        if base != name
+        else KIND_RANGES.get((kind, name)) or RANGES.get(name, (-MAX_MAGNITUDE, MAX_MAGNITUDE, True, True))
     )
     inside = (low < got or (with_low and low == got)) and (got < high or (with_high and got == high))
     if math.isfinite(got) and inside:
         return None
-    unit, scale = (" deg", 1 / _DEG) if QUANTITY.get(name) == "angle" else (_si_unit(name), 1.0)
+    unit, scale = (" deg", 1 / _DEG) if QUANTITY.get(base) == "angle" else (_si_unit(base), 1.0)
     span = f"{'[' if with_low else '('}{low * scale:g}, {high * scale:g}{']' if with_high else ')'}"
     return f"expected a finite value in {span}{unit}, got {echo(value)}"
 

@@ -621,7 +621,8 @@ class Spec(_Strict):
     requirements: dict[str, str | float] | None = Field(
         None,
         description="what the mechanism was synthesised for (linkwork synthesize): its kind and requirements, "
-        "quantities with their units; the report states them beside what the analysis measures",
+        "quantities with their units, each measured one with its <name>_tolerance (what its lengths written to "
+        "0.1 mm allow); the report states them beside what the analysis measures",
     )
     hints: dict[str, Vec2] = Field(
         default_factory=dict,

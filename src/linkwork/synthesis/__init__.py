@@ -70,14 +70,23 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     in_range(si)
     import numpy as np
 
+    from linkwork.synthesis.common import dimensioned
+
+    scale = [float(si[name]) for name in SCALE if isinstance(si.get(name), float | int)]
     try:
-        with np.errstate(all="ignore"):  # the closed forms' NaN and inf are refused by the checks that follow them
+        # the closed forms' NaN and inf are refused by the checks that follow them; the file dimensioned to 0.1 mm
+        with np.errstate(all="ignore"), dimensioned(*scale):
             result = func(**si)
         return _carrying(result, {"criterion": requirements["criterion"]} if "criterion" in requirements else {})
     except SynthesisError:
         raise
     except LinkworkError as exc:  # the written mechanism, which the user never sees, cannot be read or analysed
         raise SynthesisError(f"{kind}: {_request(si)} give a mechanism the analysis cannot take: {_own(exc)}") from None
+
+
+#: The requirements that set a mechanism's scale, and so the step its file is dimensioned to
+#: (:func:`~linkwork.synthesis.common.dimensioned`: 0.1 mm from 10 mm up).
+SCALE = ("stroke", "rocker", "frame", "upper_stroke", "lower_stroke")
 
 
 def in_range(si: dict[str, Any]) -> None:
@@ -161,11 +170,16 @@ def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
 
     from linkwork.spec.edit import round_trip_yaml, yaml_text
     from linkwork.spec.reader import loads
-    from linkwork.synthesis.achieved import written
+    from linkwork.synthesis.achieved import SUFFIX, written
     from linkwork.synthesis.common import LEAST_TRANSMISSION
 
     data = round_trip_yaml().load(result.text)
-    data["requirements"] = CommentedMap(written(result.kind, result.requirements, extra))
+    data["requirements"] = CommentedMap(written(result.kind, result.requirements, extra, result.tolerances))
+    for name in data["requirements"]:
+        if name.endswith(SUFFIX):
+            data["requirements"].yaml_add_eol_comment(
+                "what the lengths written to 0.1 mm allow: the first-order bound of each within 0.05 mm", name
+            )
     if "min_transmission_angle" in data["requirements"]:
         data["requirements"].yaml_add_eol_comment(
             f"the design rule: every dyad's transmission angle over the turn at least this ("

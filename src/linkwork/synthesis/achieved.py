@@ -32,8 +32,15 @@ MEASURED = {
     "opening": "equal",
 }
 
-#: Relative agreement of an equality the report calls met.
+#: Relative agreement of an equality the report calls met, for a file that states no tolerance of its own (a
+#: synthesised file states the one its lengths' rounding implies: :func:`rounding_tolerances`).
 MET = 1e-6
+
+#: Headroom over the first-order bound of :func:`rounding_tolerances` for its second-order remainder.
+MARGIN = 1.1
+
+#: The suffix of a requirement's tolerance in a file's ``requirements:`` (``stroke_tolerance: "0.012 mm"``).
+SUFFIX = "_tolerance"
 
 
 @dataclass(frozen=True)
@@ -48,6 +55,7 @@ class Row:
     kind: str
     sense: str
     met: bool | None
+    tolerance: float | None = None
 
 
 def requirement_rows(kin: Kinematics) -> tuple[str, list[Row]] | None:
@@ -63,57 +71,109 @@ def requirement_rows(kin: Kinematics) -> tuple[str, list[Row]] | None:
     kind = str(given.get("kind", ""))
     measured = _measured(kin, kind)
     rows = []
+
+    def si(name: str, value: Any) -> float:
+        quantity = QUANTITIES.get(name.removesuffix(SUFFIX), "ratio")
+        return float(value) if quantity == "ratio" or not isinstance(value, str) else parse_quantity(value, quantity)
+
     for name, value in given.items():
-        if name == "kind" or name == "criterion":
+        if name in ("kind", "criterion") or name.endswith(SUFFIX):
             continue
-        quantity = QUANTITIES.get(name, "ratio")
-        asked = float(value) if quantity == "ratio" or not isinstance(value, str) else parse_quantity(value, quantity)
-        got = measured.get(name)
+        asked, got = si(name, value), measured.get(name)
+        tol = si(name + SUFFIX, given[name + SUFFIX]) if name + SUFFIX in given else None
         sense = MEASURED.get(name, "given") if got is not None else "given"
-        rows.append(Row(name, asked, got, quantity, sense, None if got is None else _met(sense, asked, got)))
+        met = None if got is None else _met(sense, asked, got, tol)
+        rows.append(Row(name, asked, got, QUANTITIES.get(name, "ratio"), sense, met, tol))
     return kind, rows
 
 
-def _met(sense: str, asked: float, got: float) -> bool:
+def _met(sense: str, asked: float, got: float, tolerance: float | None = None) -> bool:
+    """Whether ``got`` meets ``asked`` in ``sense`` within ``tolerance`` (SI; else :data:`MET` relative)."""
+    tol = MET * max(abs(asked), 1e-12) if tolerance is None else tolerance
     if sense == "at most":
-        return got <= asked * (1 + MET)
+        return got <= asked + tol
     if sense == "at least":
-        return got >= asked * (1 - MET)
-    return abs(got - asked) <= MET * max(abs(asked), 1e-12)
+        return got >= asked - tol
+    return abs(got - asked) <= tol
 
 
-def _measured(kin: Kinematics, kind: str) -> dict[str, float]:
-    """What the analysis measures of the working member over ``kin``: stroke or swing, time ratio, the largest
-    pressure angle (of the dyads driving a slider, else of all) and the least transmission angle; the knives'
-    quantities for the shears."""
+def rounding_tolerances(mech: Any, kind: str, paths: list[str] | None = None) -> dict[str, float]:
+    """The tolerance (SI) of each requirement the analysis measures on a file whose lengths are written to the
+    step :func:`~linkwork.synthesis.common.step` (0.1 mm, :data:`~linkwork.synthesis.common.STEP`).
+
+    Each written length (``paths``, named parameters; by default every nonzero length of ``mech``) is within
+    delta = step / 2 of the exact one, so to first order a requirement q measured on the file is within
+    ``sum_i |dq/dx_i| delta`` of its exact value.  Each term is the central difference
+    ``|q(x + delta e_i) - q(x - delta e_i)| / 2`` as the analysis measures it on the file (exact where q is
+    quadratic in x_i); the second-order remainder, ``1/2 sum_ij |d2q/dx_i dx_j| delta^2``, is about delta / L of the
+    first-order term for lengths L (under 1e-3 for lengths over 50 mm), so the tolerance is the first-order bound
+    times :data:`MARGIN`, plus the analysis's own resolution (:data:`~linkwork.synthesis.common.TOLERANCE` of q).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The written file, compiled.
+    kind : str
+        The kind synthesised (what :func:`requirement_rows` measures of it).
+    paths : list of str, optional
+        The lengths the file rounds.
+
+    Returns
+    -------
+    dict
+        Requirement name -> tolerance (m, rad or a ratio), for each measured quantity.
+    """
+    from linkwork.api import kinematics
+    from linkwork.structure.parameters import parameter_list
+    from linkwork.synthesis.common import TOLERANCE, VERIFY_STEPS, step
+
+    delta = step() / 2
+    lengths = {p.name: p.value for p in parameter_list(mech) if p.kind == "length" and p.value != 0}
+    names = list(lengths) if paths is None else list(paths)
+    variants = {name: np.full(2 * len(names) + 1, lengths[name]) for name in names}
+    for i, name in enumerate(names):
+        variants[name][2 * i + 1 : 2 * i + 3] += (delta, -delta)
+    kin = kinematics(mech, steps=VERIFY_STEPS, variants=variants)
+    runs = [_measured(kin, kind, v) for v in range(2 * len(names) + 1)]
+    out = {}
+    for key, own in runs[0].items():
+        first = sum(abs(runs[2 * i + 1][key] - runs[2 * i + 2][key]) / 2 for i in range(len(names)))
+        out[key] = MARGIN * first + TOLERANCE * abs(own)
+    return out
+
+
+def _measured(kin: Kinematics, kind: str, variant: int = 0) -> dict[str, float]:
+    """What the analysis measures of the working member over ``kin`` (its ``variant``): stroke or swing, time
+    ratio, the largest pressure angle (of the dyads driving a slider, else of all) and the least transmission
+    angle; the knives' quantities for the shears."""
     from linkwork.motion.analysis import extremes, transmission, working
 
     out: dict[str, float] = {}
     members = working(kin.mechanism)
-    found = {e.name: e for e in extremes(kin)}
+    found = {e.name: e for e in extremes(kin, variant)}
     if members and members[0].name in found:
         e = found[members[0].name]
         out["stroke" if e.kind == "slider" else "swing"] = e.stroke
         out["time_ratio"] = e.time_ratio
     angles = transmission(kin)
     if angles:
-        least = {k: float(np.nanmin(v)) for k, v in angles.items()}
+        least = {k: float(np.nanmin(np.atleast_2d(v)[variant])) for k, v in angles.items()}
         sliding = [v for k, v in least.items() if k.endswith("RRP")] or list(least.values())
         out["max_pressure_angle"] = math.pi / 2 - min(sliding)
         out["min_transmission_angle"] = min(least.values())
     if kind == "double-cut-shears":
-        out.update(_knives(kin))
+        out.update(_knives(kin, variant))
     return out
 
 
-def _knives(kin: Kinematics) -> dict[str, float]:
+def _knives(kin: Kinematics, variant: int = 0) -> dict[str, float]:
     from linkwork.design.evaluate import Evaluation
     from linkwork.design.metrics import METRICS
 
     ev = Evaluation(kin)
 
     def one(name: str, arg: str | None = None) -> float:
-        return float(np.squeeze(METRICS[name].compute(ev, arg)))
+        return float(np.ravel(METRICS[name].compute(ev, arg))[variant])
 
     return {
         "upper_stroke": one("stroke", "guide_E"),
@@ -124,20 +184,33 @@ def _knives(kin: Kinematics) -> dict[str, float]:
     }
 
 
-def written(kind: str, requirements: dict[str, float], extra: dict[str, str] | None = None) -> dict[str, Any]:
+def written(
+    kind: str,
+    requirements: dict[str, float],
+    extra: dict[str, str] | None = None,
+    tolerances: dict[str, float] | None = None,
+) -> dict[str, Any]:
     """The ``requirements:`` mapping a synthesised file carries: its kind, then each requirement (SI) in the
-    unit people read it in (mm, deg, N, N*m; ratios bare), 12 significant digits."""
-    from linkwork.synthesis.common import QUANTITIES
+    unit people read it in (mm, deg, N, N*m; ratios bare), 12 significant digits, each measured one followed by
+    its ``<name>_tolerance`` from ``tolerances`` (SI) where given, 3 significant digits rounded up."""
+    from linkwork.synthesis.common import QUANTITIES, up
 
     units = {"length": (1e3, "mm"), "angle": (180 / math.pi, "deg"), "force": (1.0, "N"), "moment": (1.0, "N*m")}
     out: dict[str, Any] = {"kind": kind}
-    for name, value in requirements.items():
+
+    def text(name: str, value: float, digits: int = 12) -> Any:
         quantity = QUANTITIES.get(name)
+        shown = f"{value:.{digits}g}" if digits == 12 else up(value, digits)
         if quantity in units:
             factor, unit = units[quantity]
-            out[name] = f"{value * factor:.12g} {unit}"
-        else:
-            out[name] = float(f"{value:.12g}")
+            shown = f"{value * factor:.12g}" if digits == 12 else up(value * factor, digits)
+            return f"{shown} {unit}"
+        return float(shown)
+
+    for name, value in requirements.items():
+        out[name] = text(name, value)
+        if tolerances and name in tolerances and name in MEASURED:
+            out[name + SUFFIX] = text(name, tolerances[name], 3)
     return out | (extra or {})
 
 
@@ -266,7 +339,7 @@ def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
 def _slotted_lever_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
     """The slotted lever's family over the frame d (stroke and time ratio without frame or crank): the crank
     r = d sin(theta / 2) with each d, the lever, guide and rod as the file has them (neither the stroke nor K
-    depends on d while the block reaches no further than the lever, d + r <= L)."""
+    depends on d while the block reaches no further than the rule allows, d + r <= 0.9 L)."""
     from linkwork.synthesis.slotted_lever import family
 
     stroke, ratio = _si(given, "stroke", "length"), float(given.get("time_ratio", 1.0))

@@ -4,7 +4,9 @@ the mass rule, the file's text and the verification by the analysis itself."""
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -14,9 +16,41 @@ import numpy as np
 from linkwork.errors import SynthesisError
 from linkwork.spec.schema import Spec
 
-#: Relative agreement the written file's measured stroke (swing), time ratio and pressure (transmission)
-#: angle must reach with the requirements and the closed forms.
+#: The analysis's own resolution, relative: added to the tolerance the rounding of the lengths implies
+#: (:func:`~linkwork.synthesis.achieved.rounding_tolerances`), which the written file's measured stroke (swing),
+#: time ratio and pressure (transmission) angle must reach with the requirements and the closed forms.
 TOLERANCE = 1e-9
+
+#: The step every synthesised file writes its lengths and point coordinates to (m): 0.1 mm, as a designer
+#: dimensions a machine's drawing.  A written length is within STEP / 2 of the exact one; the tolerance of each
+#: requirement follows from it (:func:`~linkwork.synthesis.achieved.rounding_tolerances`).  A mechanism whose
+#: scale (its stroke, rocker or frame asked) is under 100 steps (10 mm) is dimensioned to the power of ten that
+#: keeps 100 steps on it (:func:`dimensioned`), as a drawing of an instrument's linkage is.
+STEP = 1e-4
+
+_STEP: ContextVar[float] = ContextVar("step", default=STEP)
+
+
+def step() -> float:
+    """The step (m) the file being written is dimensioned to (:data:`STEP` unless :func:`dimensioned` says)."""
+    return _STEP.get()
+
+
+@contextmanager
+def dimensioned(*lengths: float) -> Iterator[float]:
+    """Write the files within to :data:`STEP`, or to the power of ten at most a hundredth of the shortest nonzero
+    of ``lengths`` (m, the requirements that set the scale) where that is finer; yields the step."""
+    shortest = min((abs(x) for x in lengths if x and math.isfinite(x)), default=1.0)
+    fine = STEP if shortest >= 100 * STEP else 10.0 ** math.floor(math.log10(shortest / 100))
+    token = _STEP.set(fine)
+    try:
+        yield fine
+    finally:
+        _STEP.reset(token)
+
+
+#: The names the kinds' closed forms give the quantities of the requirements they predict.
+ALIASES = {"largest_pressure_angle": "max_pressure_angle", "least_transmission_angle": "min_transmission_angle"}
 
 #: The lengths a request may give (m): from a micrometre to a kilometre (beyond, the products of the closed forms
 #: overflow, and no mechanism a press or shears designer asks for comes near).
@@ -90,6 +124,15 @@ class Family:
     criterion: str
 
 
+def tolerances_of(spec: Spec, kind: str, paths: list[str] | None = None) -> dict[str, float]:
+    """The tolerances the rounding of ``spec``'s lengths (``paths``, else every nonzero one) implies for the
+    requirements of ``kind`` (:func:`~linkwork.synthesis.achieved.rounding_tolerances`)."""
+    from linkwork.api import mechanism_of
+    from linkwork.synthesis.achieved import rounding_tolerances
+
+    return rounding_tolerances(mechanism_of(spec), kind, paths)
+
+
 @dataclass(frozen=True)
 class Synthesis:
     """A synthesised mechanism.
@@ -115,6 +158,11 @@ class Synthesis:
         The family the requirements left, where they left one; the pick is :attr:`criterion`'s.
     criterion : str
         How the mechanism was picked from the family (or that the requirements fixed it).
+    notes : list of str
+        What else the synthesis found (the criteria of the pick).
+    tolerances : dict
+        The tolerance (SI) of each requirement the analysis measures, implied by the lengths written to
+        :data:`STEP` (:func:`~linkwork.synthesis.achieved.rounding_tolerances`).
     """
 
     kind: str
@@ -127,6 +175,7 @@ class Synthesis:
     family: Family | None = None
     criterion: str = ""
     notes: list[str] = field(default_factory=list)
+    tolerances: dict[str, float] = field(default_factory=dict)
 
     def write(self, out: str | Path) -> Path:
         """Write :attr:`text` to ``out`` atomically; returns the path."""
@@ -176,15 +225,16 @@ def below_rule(what: str, least: float, bound: float, nearest: str) -> Synthesis
     )
 
 
-def keep_rule(spec: Spec, bound: float) -> float:
+def keep_rule(spec: Spec, bound: float, tolerance: float | None = None) -> float:
     """The least transmission angle (rad) of every dyad of ``spec`` over the turn, as :func:`linkwork.kinematics`
     and :func:`~linkwork.motion.analysis.transmission` measure the written file; raises
-    :class:`SynthesisError` where it is under ``bound`` (a closed form let through what the file does not keep)."""
+    :class:`SynthesisError` where it is under ``bound`` by more than ``tolerance`` (rad; what the lengths'
+    rounding implies, else :data:`TOLERANCE` relative): a closed form let through what the file does not keep."""
     from linkwork.api import kinematics
     from linkwork.motion.analysis import transmission
 
     least = min(float(np.nanmin(v)) for v in transmission(kinematics(spec, steps=VERIFY_STEPS)).values())
-    if least < bound * (1 - 1e-9):
+    if least < bound - (TOLERANCE * bound if tolerance is None else tolerance):
         raise SynthesisError(
             f"the written mechanism measures a least transmission angle of {down(math.degrees(least))} deg, under "
             f"{math.degrees(bound):.4g} deg"
@@ -232,12 +282,15 @@ def bar_mass(length: float, section: tuple[float, float] = BAR, density: float =
 
 
 def mm(x: float) -> float:
-    """A length (m) in mm as every synthesised file writes it: the one rule of the files' writer
-    (:func:`linkwork.units.written`, 12 significant digits, as :mod:`linkwork.spec.edit` writes an edit), and no
+    """A length (m) in mm as every synthesised file writes it: rounded to the :func:`step` (0.1 mm), and no
     ``-0.0``."""
-    from linkwork.units import written
+    decimals = max(0, -math.floor(math.log10(step() * 1e3) + 1e-9))
+    return float(f"{rounded(x) * 1e3:.{decimals}f}") + 0.0
 
-    return float(written(x, "length", {"length": "mm"}, digits=12)) + 0.0
+
+def rounded(x: float) -> float:
+    """A length (m) rounded to the :func:`step`, as the files write it (m)."""
+    return round(x / step()) * step() + 0.0
 
 
 def degrees(x: float) -> float:
@@ -286,13 +339,17 @@ def file_of(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> tuple
     return text, loads(text, "<synthesised>")
 
 
-def confirm(measured: dict[str, float], predicted: dict[str, float], worst: float, tol: float = TOLERANCE) -> None:
+def confirm(
+    measured: dict[str, float], predicted: dict[str, float], worst: float, tolerances: dict[str, float]
+) -> None:
     """Raise :class:`SynthesisError` where the analysis measured a quantity of ``predicted`` away from it by
-    more than ``tol`` relative; the message says how close to a dead point the mechanism runs (``worst``, its
-    least transmission angle, rad), where the measures are ill-conditioned."""
+    more than its ``tolerances`` (SI, by requirement name or :data:`ALIASES`: what the lengths' rounding implies,
+    :func:`~linkwork.synthesis.achieved.rounding_tolerances`); the message says how close to a dead point the
+    mechanism runs (``worst``, its least transmission angle, rad), where the measures are ill-conditioned."""
     for key, wanted in predicted.items():
         got = measured[key]
-        if not abs(got - wanted) <= tol * max(abs(wanted), 1e-300):
+        tol = tolerances.get(ALIASES.get(key, key), TOLERANCE * max(abs(wanted), 1e-300))
+        if not abs(got - wanted) <= tol:
             raise SynthesisError(
                 f"{key.replace('_', ' ')}: the written mechanism measures {got!r}, expected {wanted!r}; it comes "
                 f"within {deg(worst)} of a dead point, where the limit positions are ill-conditioned: ask for "

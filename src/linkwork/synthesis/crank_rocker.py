@@ -49,6 +49,7 @@ from linkwork.synthesis.common import (
     mm,
     proportions,
     time_ratio_of,
+    tolerances_of,
 )
 
 KIND = "crank-rocker"
@@ -294,11 +295,21 @@ def synthesize(
     measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))
     measured["swing"] = measured.pop("stroke")
     predicted = {"swing": swing, "time_ratio": time_ratio, "least_transmission_angle": mu}
-    confirm(measured, predicted, mu)
-    keep_rule(spec, bound)
+    tol = tolerances_of(spec, KIND)
+    confirm(measured, predicted, mu, tol)
+    keep_rule(spec, bound, tol["min_transmission_angle"])
     why = "the greatest least transmission angle" if theta > 0 else "the nearest crank pivot meeting the bound"
     return Synthesis(
-        KIND, requirements, dims, predicted, measured, spec, text, family(swing, time_ratio), f"picked by {why}"
+        KIND,
+        requirements,
+        dims,
+        predicted,
+        measured,
+        spec,
+        text,
+        family(swing, time_ratio),
+        f"picked by {why}",
+        tolerances=tol,
     )
 
 

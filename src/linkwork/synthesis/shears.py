@@ -41,6 +41,8 @@ from linkwork.synthesis.common import (
     given,
     keep_rule,
     least_allowed,
+    rounded,
+    tolerances_of,
 )
 
 KIND = "double-cut-shears"
@@ -249,8 +251,9 @@ def synthesize(
     if not np.isfinite(score).any():
         raise SynthesisError(_infeasible(mech, upper_stroke, lower_stroke, time_ratio, want, crank))
     pick = int(np.nanargmin(score))
-    (values,) = member_values(cranks[[pick]], unknowns[[pick]])
-    why = f"crank {cranks[pick] * 1e3:.6g} mm as given" if crank is not None else f"picked by {words}"
+    (exact,) = member_values(cranks[[pick]], unknowns[[pick]])
+    values = {path: rounded(v) for path, v in exact.items()}  # written to 0.1 mm, as a drawing dimensions them
+    why = f"crank {values[CRANK] * 1e3:.6g} mm as given" if crank is not None else f"picked by {words}"
     text, spec = _file(mech, values, requirements, want, why, speed)
     measured = measure(spec)
     predicted = {
@@ -260,8 +263,9 @@ def synthesize(
         "overlap": want,
         "opening": upper_stroke + lower_stroke - want,
     }
-    confirm(measured, predicted)
-    keep_rule(spec, floor)
+    tol = tolerances_of(spec, KIND, PATHS)
+    confirm(measured, predicted, tol)
+    keep_rule(spec, floor, tol["min_transmission_angle"])
     columns = {
         "crank": cranks,
         "O1.x": unknowns[:, 0],
@@ -275,7 +279,7 @@ def synthesize(
     notes = [f"{m}: {found[m][pick]:.6g}" for m, _, _ in CRITERIA.values() if m in found]
     if "peak_driving_torque" not in found:
         notes.append(f"peak_driving_torque: {_peak_torque(spec):.6g}")
-    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, why, notes)
+    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, why, notes, tol)
 
 
 def _billet_fits(mech, opening: float) -> None:  # noqa: ANN001
@@ -314,12 +318,14 @@ def _peak_torque(spec) -> float:  # noqa: ANN001
 
 
 def _member_torques(mech, cranks, unknowns, requirements: dict, want: float, speed: str | None) -> np.ndarray:  # noqa: ANN001
-    """The peak driving torque (N m) of each solved member, each from its own file (:func:`_file`: its billet
-    placed where its knives meet it); NaN for the members not solved."""
+    """The peak driving torque (N m) of each solved member, each from its own file as it would be written
+    (:func:`_file`: its lengths to 0.1 mm, its billet placed where its knives meet it); NaN for the members not
+    solved."""
     out = np.full(len(cranks), np.nan)
     for i in np.flatnonzero(np.isfinite(unknowns[:, 0])):
         (values,) = member_values(cranks[[i]], unknowns[[i]])
-        out[i] = _peak_torque(_file(mech, values, requirements, want, "", speed)[1])
+        written = {path: rounded(v) for path, v in values.items()}  # as its file would be written
+        out[i] = _peak_torque(_file(mech, written, requirements, want, "", speed)[1])
     return out
 
 
@@ -364,15 +370,14 @@ def measure(spec) -> dict[str, float]:  # noqa: ANN001
     }
 
 
-def confirm(measured: dict[str, float], predicted: dict[str, float]) -> None:
-    """Raise where the written file measures a requirement away from it by more than :data:`TOLERANCE`
-    (relative to the strokes for the overlap and opening)."""
-    scale = predicted["upper_stroke"] + predicted["lower_stroke"]
+def confirm(measured: dict[str, float], predicted: dict[str, float], tolerances: dict[str, float]) -> None:
+    """Raise where the written file measures a requirement away from it by more than its ``tolerances`` (SI: what
+    the lengths written to 0.1 mm imply, :func:`~linkwork.synthesis.achieved.rounding_tolerances`)."""
     for key, wanted in predicted.items():
-        size = scale if key in ("overlap", "opening") else abs(wanted)
-        if not abs(measured[key] - wanted) <= TOLERANCE * size:
+        if not abs(measured[key] - wanted) <= tolerances[key]:
             raise SynthesisError(
-                f"{key.replace('_', ' ')}: the written shears measure {measured[key]!r}, expected {wanted!r}"
+                f"{key.replace('_', ' ')}: the written shears measure {measured[key]!r}, expected {wanted!r} within "
+                f"{tolerances[key]:.3g} (the lengths written to 0.1 mm)"
             )
 
 
@@ -490,7 +495,7 @@ def _machine_comments(data, spec, mech, work: float) -> None:  # noqa: ANN001
     per_minute = abs(float(mech.drive_speed[0])) * 60 / (2 * math.pi)
     gear = spec.machine.gear
     motor = float(spec.machine.motor.speed) * 60 / (2 * math.pi)
-    if gear is not None and "gear" in machine:
+    if gear is not None and "gear" in machine and "motor" not in machine:
         ratio = float(f"{motor / per_minute:.4g}")
         if abs(ratio - gear.ratio) > 1e-3 * gear.ratio:
             machine["gear"]["ratio"] = ratio
@@ -499,12 +504,59 @@ def _machine_comments(data, spec, mech, work: float) -> None:  # noqa: ANN001
     if "motor" in machine:
         power = work * per_minute / 60
         efficiency = gear.efficiency if gear is not None else 1.0
+        name = _motor(machine, spec, power / efficiency)
+        if gear is not None and "gear" in machine and "speed" in machine["motor"]:  # from the motor's rated speed
+            from linkwork.units import parse_quantity
+
+            speed = parse_quantity(machine["motor"]["speed"], "angular_speed")
+            machine["gear"]["ratio"] = float(f"{speed * 60 / (2 * math.pi) / per_minute:.4g}")
+            _recomment(machine, "gear", f"{speed * 60 / (2 * math.pi):.4g} rpm -> {per_minute:.4g} rpm")
         _recomment(
             machine,
             "motor",
             f"mean power at the crank {power / 1e3:.3g} kW ({work / 1e3:.3g} kJ a cut), "
-            f"{power / efficiency / 1e3:.3g} kW at the motor",
+            f"{power / efficiency / 1e3:.3g} kW at the motor; x {SERVICE:g} (service factor) = "
+            f"{SERVICE * power / efficiency / 1e3:.3g} kW: {name}",
         )
+
+
+#: The service factor of the shears' motor over the mean power at its shaft: a motor rated at least this many
+#: times the mean (the moderate shocks of a machine whose flywheel takes the cut's peak; the motor's heating and
+#: breakdown torque are then checked by ``linkwork size``, which runs the machine with it).
+SERVICE = 1.25
+
+
+def _motor(machine, spec, need: float) -> str:  # noqa: ANN001
+    """Write into ``machine`` (the file's ``machine:``) the motor rated at least :data:`SERVICE` x ``need`` (W):
+    the file's own where its rating is the catalogue's least that does (its data kept), else the bundled
+    catalogue's least of the file's synchronous speed (its rated power, speed, breakdown ratio and rotor); says
+    which."""
+    from linkwork.sizing.motor import motor_catalogue
+
+    cat, own = motor_catalogue(), spec.machine.motor
+    if own.type != "induction" or own.power is None:
+        return f"the file's {own.type} motor"
+    cols = cat.columns
+    same = np.isclose(cols["synchronous"], float(own.synchronous or cols["synchronous"][0]), rtol=1e-3)
+    fits = np.flatnonzero(same & (cols["power"] >= SERVICE * need))
+    if not len(fits):
+        raise SynthesisError(
+            f"the knives' cut needs {need / 1e3:.3g} kW at the motor, x {SERVICE:g} = {SERVICE * need / 1e3:.3g} kW: "
+            f"more than the largest motor of the catalogue {cat.source} of its synchronous speed; ask for a lower "
+            "--speed"
+        )
+    i = int(fits[np.argmin(cols["power"][fits])])
+    row = cat.row(i)
+    if math.isclose(row["power"], float(own.power), rel_tol=1e-6):
+        return f"the file's {own.power / 1e3:g} kW motor, the least of the catalogue that covers it"
+    motor = machine["motor"]
+    motor["power"] = f"{row['power'] / 1e3:g} kW"
+    motor["speed"] = f"{row['speed'] * 60 / (2 * math.pi):.6g} rpm"
+    motor["breakdown"] = float(f"{row['breakdown']:.6g}")
+    if "inertia" in motor:
+        motor["inertia"] = f"{row['inertia']:.6g} kg*m^2"
+        _recomment(motor, "inertia", "rotor, from the catalogue")
+    return f"the catalogue's {cat.names[i]} ({cat.source})"
 
 
 def _recomment(node, key: str, text: str) -> None:  # noqa: ANN001

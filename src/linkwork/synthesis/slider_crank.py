@@ -55,6 +55,9 @@ from linkwork.synthesis.common import (
     mm,
     newtons,
     proportions,
+    rounded,
+    step,
+    tolerances_of,
     up,
 )
 
@@ -265,8 +268,9 @@ def synthesize(
     measured = measure(spec, [0.0], lambda mu: next(iter(mu.values())))
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
-    confirm(measured, predicted, math.pi / 2 - alpha)
-    keep_rule(spec, floor)
+    tol = tolerances_of(spec, KIND)
+    confirm(measured, predicted, math.pi / 2 - alpha, tol)
+    keep_rule(spec, floor, tol["min_transmission_angle"])
     return Synthesis(
         KIND,
         requirements,
@@ -277,6 +281,7 @@ def synthesize(
         text,
         family(stroke, time_ratio) if free else None,
         f"picked by {why}",
+        tolerances=tol,
     )
 
 
@@ -309,6 +314,10 @@ def _load(stroke: float, force: float | None, working: float | None, criterion: 
     length = stroke if working is None else working
     if not 0 < length <= stroke:
         raise SynthesisError(f"working length {length * 1e3:g} mm: expected more than 0, at most the stroke")
+    if length < step():
+        raise SynthesisError(
+            f"working length {length * 1e3:g} mm: the file is dimensioned to {step() * 1e3:g} mm; give at least that"
+        )
     return force, length
 
 
@@ -375,6 +384,7 @@ def _least_torque(
 
 
 def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass, load=None) -> tuple:  # noqa: ANN001
+    r, ell, e = rounded(r), rounded(ell), rounded(e)  # as written: what follows is of the written lengths
     near = math.sqrt((ell - r) ** 2 - e**2)
     start = math.pi / 2 - math.asin(e / (ell - r))  # the folded limit position: the ram at the top
     rod = bar_mass(ell, section, density)
@@ -410,14 +420,14 @@ def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, dens
         "drives": [{"joint": "O", "speed": speed, "direction": "ccw", "angle": degrees(start)}],
         "hints": {"B": [mm(-e), mm(-near)]},
     }
-    if load is not None:  # resisting the ram over the last ``load[1]`` of its way down
-        bottom = -math.sqrt((ell + r) ** 2 - e**2)
+    if load is not None:  # resisting the ram over the last ``load[1]`` of its way down, from a step below the bottom
+        bottom = math.floor(-math.sqrt((ell + r) ** 2 - e**2) / step()) * step()
         data["loads"] = {
             "working": {
                 "type": "process",
                 "tools": ["ram.B"],
                 "axis": 90.0,
-                "workpiece": [mm(bottom), mm(bottom + load[1])],
+                "workpiece": [mm(bottom), mm(bottom + rounded(load[1]))],
                 "penetration": [0.0, 1.0],
                 "force": [newtons(load[0])] * 2,
             }

@@ -22,8 +22,9 @@ The theory (derived here):
   / (2 l), reached at both limit positions and with the lever upright.
 * What H and K leave free: the scale d of the crank and frame (the family; the lever's angular motion, hence
   the driving torque for a given ram force, does not depend on it) and the rod's length l.  The pick: the
-  greatest d that keeps the block on the lever, d + r = L (the block as far from O2 as it can be, for the
-  least force in the slot), unless the crank or the frame is given; the shortest rod whose largest pressure
+  greatest d that keeps the block's pin a tenth of the lever from its end, d + r = 0.9 L (:data:`BLOCK_MARGIN`:
+  the block as far from O2 as the slot holds it, for the least force in the slot), unless the crank or the frame
+  is given (then refused past 0.9 L); the shortest rod whose largest pressure
   angle is ``max_pressure_angle`` (10 deg unless given), unless the rod is given.
 
 Layout of the file: the lever's pivot O2 at the origin, the crank's pivot O1 at (0, d), the ram's guide at the
@@ -57,6 +58,8 @@ from linkwork.synthesis.common import (
     measure,
     mm,
     proportions,
+    rounded,
+    tolerances_of,
     up,
 )
 
@@ -66,12 +69,20 @@ KIND = "slotted-lever"
 PRESSURE_ANGLE = math.radians(10.0)
 
 
+#: The design rule of the block's reach: its pin comes no nearer the lever's end than this share of the lever,
+#: d + r <= (1 - BLOCK_MARGIN) L.  The block is half its length beyond its pin and the lever's end carries the
+#: pin C of the rod; with the block's pin at the tip (d + r = L) the block would run off the slot and into C.  A
+#: tenth of the lever leaves a slot end of 0.1 L (70 mm on a 700 mm lever) past the block's pin at its reach.
+BLOCK_MARGIN = 0.1
+
+
 def dimensions(stroke: float, theta: float, frame: float | None = None, crank: float | None = None) -> dict:
     """lever L, frame d, crank r and the guide's height h (m) for the stroke H and the swing theta (rad): the
-    greatest frame (d + r = L) unless ``frame`` or ``crank`` is given."""
+    greatest frame whose block keeps :data:`BLOCK_MARGIN` of the lever beyond its pin (d + r = (1 - BLOCK_MARGIN) L)
+    unless ``frame`` or ``crank`` is given."""
     s, c = math.sin(theta / 2), math.cos(theta / 2)
     lever = stroke / (2 * s)
-    d = frame if frame is not None else crank / s if crank is not None else lever / (1 + s)
+    d = frame if frame is not None else crank / s if crank is not None else (1 - BLOCK_MARGIN) * lever / (1 + s)
     return {"lever": lever, "frame": d, "crank": d * s, "guide_height": lever * (1 + c) / 2}
 
 
@@ -81,8 +92,9 @@ def largest_pressure_angle(lever: float, theta: float, rod: float) -> float:
 
 
 def family(stroke: float, time_ratio: float, count: int = 201) -> Family:
-    """The family over the frame d in (0, L / (1 + sin(theta / 2))]: crank r and the least distance d - r of
-    the block from the lever's pivot (the greatest force in the slot per lever torque goes as 1 / (d - r))."""
+    """The family over the frame d in (0, (1 - BLOCK_MARGIN) L / (1 + sin(theta / 2))]: crank r and the least
+    distance d - r of the block from the lever's pivot (the greatest force in the slot per lever torque goes as
+    1 / (d - r))."""
     theta = crank_angle_between_limits(time_ratio)
     top = dimensions(stroke, theta)["frame"]
     d = np.linspace(0.0, top, count + 1)[1:]
@@ -127,12 +139,13 @@ def solve(
     nearer = _nearer(stroke, time_ratio, frame, crank, rod, max_pressure_angle)
     proportions(KIND, {"stroke": stroke, **{k: dims[k] for k in ("lever", "frame", "crank")}}, nearer)
     reach = dims["frame"] + dims["crank"]
-    if reach >= dims["lever"] * (1 + 1e-12) and (frame is not None or crank is not None):
+    if reach >= (1 - BLOCK_MARGIN) * dims["lever"] * (1 + 1e-12) and (frame is not None or crank is not None):
         top = dimensions(stroke, theta)
         raise SynthesisError(
             f"{'frame' if frame is not None else 'crank'} {(frame or crank) * 1e3:g} mm with stroke "  # type: ignore[operator]
-            f"{stroke * 1e3:g} mm and time ratio K = {time_ratio:g}: the block leaves the lever "
-            f"(L = {top['lever'] * 1e3:.6g} mm); the frame must be at most {down(top['frame'] * 1e3, 6)} mm "
+            f"{stroke * 1e3:g} mm and time ratio K = {time_ratio:g}: the block's pin reaches {reach * 1e3:.6g} mm "
+            f"along the lever of {top['lever'] * 1e3:.6g} mm, past the rule's {(1 - BLOCK_MARGIN) * 100:g} % of it "
+            f"(the block would leave the slot); the frame must be at most {down(top['frame'] * 1e3, 6)} mm "
             f"(the crank at most {down(top['crank'] * 1e3, 6)} mm)"
         )
     sag = dims["lever"] * (1 - math.cos(theta / 2)) / 2
@@ -234,10 +247,11 @@ def synthesize(
     measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": _written_alpha(spec)}
-    confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha)  # the rod square to the lever at its limits
-    keep_rule(spec, floor)
+    tol = tolerances_of(spec, KIND)
+    confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha, tol)  # the rod square to the lever at its limits
+    keep_rule(spec, floor, tol["min_transmission_angle"])
     fam = family(stroke, time_ratio) if frame is None and crank is None else None
-    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, f"picked by {why}")
+    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, f"picked by {why}", tolerances=tol)
 
 
 def _written_alpha(spec) -> float:  # noqa: ANN001
@@ -269,7 +283,7 @@ def _extreme_angles(dims: dict, theta: float) -> list[float]:
 
 def _file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass) -> tuple:  # noqa: ANN001
     """The file's data and comments: assembled with the crank up and the lever upright."""
-    lever, d, r, h, rod = (dims[k] for k in ("lever", "frame", "crank", "guide_height", "rod"))
+    lever, d, r, h, rod = (rounded(dims[k]) for k in ("lever", "frame", "crank", "guide_height", "rod"))
     mass = {k: float(f"{bar_mass(dims[k], section, density):.6g}") for k in ("crank", "lever", "rod")}
     block = float(f"{bar_mass(section[0], section, density):.6g}")
     ram = float(f"{ram_mass if ram_mass is not None else mass['rod']:.6g}")
@@ -308,7 +322,7 @@ def _file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, 
         "hints": {"A": [0.0, mm(d + r)], "C": [0.0, mm(lever)], "D": [mm(reach), mm(h)]},
     }
     comments = {
-        ("frame", "points", "O1"): f"frame d: {why}; block reach d + r <= L",
+        ("frame", "points", "O1"): f"frame d: {why}; block reach d + r <= {1 - BLOCK_MARGIN:g} L",
         ("links", "crank", "length"): f"r = d sin(theta / 2): time ratio K = {time_ratio:.6g}",
         ("links", "lever", "length"): f"L = H / (2 sin(theta / 2)): stroke H = {stroke * 1e3:.6g} mm",
         ("links", "rod", "length"): f"l: largest pressure angle {math.degrees(alpha):.6g} deg",

@@ -31,6 +31,7 @@ so that the ram's down (working) stroke is the slow one, pi + theta of the turn.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -40,6 +41,7 @@ from linkwork.synthesis.common import (
     BAR,
     PROPORTION,
     STEEL,
+    TOLERANCE,
     VERIFY_STEPS,
     Synthesis,
     bar_mass,
@@ -57,6 +59,9 @@ from linkwork.synthesis.common import (
     mm,
     newtons,
     proportions,
+    rounded,
+    step,
+    tolerances_of,
     up,
 )
 
@@ -95,7 +100,8 @@ def geometry(stroke: float, swing: float, time_ratio: float) -> dict:
 def nominal(geo: dict, before: float) -> tuple[float, float]:
     """(drive angle, rho = -v_R / |omega| (m)) at the nominal point on the ram's way down, the crank turning
     clockwise (omega < 0)."""
-    a, o, r, b = geo["toggle"], geo["O"], geo["crank"], geo["rod"]
+    a, r, b = rounded(geo["toggle"]), rounded(geo["crank"]), rounded(geo["rod"])
+    o = np.array([rounded(float(x)) for x in geo["O"]])
     beta = math.acos(1 - before / (2 * a))
     k = a * np.array([math.sin(beta), -math.cos(beta)])
     d = k - o
@@ -133,6 +139,11 @@ def synthesize(
     if not before < stroke:
         raise SynthesisError(
             f"nominal point {before * 1e3:g} mm before the bottom: it must lie within the stroke {stroke * 1e3:g} mm"
+        )
+    if before < step():
+        raise SynthesisError(
+            f"nominal point {before * 1e3:g} mm before the bottom: the file is dimensioned to {step() * 1e3:g} mm; "
+            "give at least that"
         )
     psi = SWING if swing is None else swing
     k = TIME_RATIO if time_ratio is None else time_ratio
@@ -174,8 +185,9 @@ def synthesize(
     measured = measure(spec, [angle], lambda mu: next(v for key, v in mu.items() if key.endswith("RRP")), "guide")
     measured = {"stroke": measured["stroke"], "torque_at_nominal": -_torque(spec, angle)}  # clockwise
     predicted = {"stroke": stroke, "torque_at_nominal": force * rho}
-    confirm(measured, predicted, geo["least_transmission_angle"])
-    keep_rule(spec, floor)
+    tol = tolerances_of(spec, KIND) | {"torque_at_nominal": _nominal_spread(spec, angle)}
+    confirm(measured, predicted, geo["least_transmission_angle"], tol)
+    keep_rule(spec, floor, tol["min_transmission_angle"])
     measured["peak_torque"] = _within_limit(spec, angle, force, before, torque)
     dims = {key: float(v) for key, v in geo.items() if key != "O" and key != "least_transmission_angle"}
     dims.update(frame_x=float(geo["O"][0]), frame_y=float(geo["O"][1]))
@@ -189,7 +201,25 @@ def synthesize(
         text,
         None,
         f"picked by the stated swing {deg(psi)} and time ratio K = {k:g}",
+        tolerances=tol,
     )
+
+
+def _nominal_spread(spec, angle: float) -> float:  # noqa: ANN001
+    """The tolerance (N m) of the torque at the nominal point the lengths written to 0.1 mm imply: the first-order
+    bound of :func:`~linkwork.synthesis.achieved.rounding_tolerances`, each length's term the central difference
+    of :func:`_torque` over +-step / 2 (variants of the file's named lengths)."""
+    from linkwork.api import mechanism_of
+    from linkwork.structure.parameters import parameter_list
+    from linkwork.synthesis.achieved import MARGIN
+
+    names = {p.name: p.value for p in parameter_list(mechanism_of(spec)) if p.kind == "length" and p.value != 0}
+    variants = {name: np.full(2 * len(names) + 1, value) for name, value in names.items()}
+    for i, name in enumerate(names):
+        variants[name][2 * i + 1 : 2 * i + 3] += (step() / 2, -step() / 2)
+    torque = _torque(spec, angle, variants)
+    first = float(np.sum(np.abs(torque[1::2] - torque[2::2]))) / 2
+    return MARGIN * first + TOLERANCE * abs(float(torque[0]))
 
 
 def _within_limit(spec, angle: float, force: float, before: float, torque: float) -> float:  # noqa: ANN001
@@ -225,28 +255,31 @@ def _within_limit(spec, angle: float, force: float, before: float, torque: float
     )
 
 
-def _torque(spec, angle: float) -> float:  # noqa: ANN001
+def _torque(spec, angle: float, variants: dict | None = None) -> Any:  # noqa: ANN001
     """The driving torque of the process load alone at the drive ``angle``, the nominal point, where the file's
     load takes hold: lw.forces with the load's workpiece reaching over the whole stroke (the force is the
     table's one value inside it) less lw.forces without loads (forces are linear in the loads; gravity and
-    inertia cancel); counter-clockwise positive."""
+    inertia cancel); counter-clockwise positive.  With ``variants`` (named parameters, as
+    :func:`linkwork.kinematics` takes them): the array of the variants' torques."""
     from linkwork.api import forces
 
     (name, load), stroke = next(iter(spec.loads.items())), -2 * float(spec.links["upper"].length)
     deeper = load.model_copy(update={"workpiece": [stroke, 0.0]})
     spec = spec.model_copy(update={"loads": {name: deeper}})
-    with_load = forces(spec, np.array([angle])).driving_torque
-    idle = forces(spec.model_copy(update={"loads": {}}), np.array([angle])).driving_torque
-    return float(np.ravel(with_load)[0] - np.ravel(idle)[0])
+    with_load = forces(spec, np.array([angle]), variants=variants).driving_torque
+    idle = forces(spec.model_copy(update={"loads": {}}), np.array([angle]), variants=variants).driving_torque
+    torque = np.ravel(with_load) - np.ravel(idle)
+    return torque if variants is not None else float(torque[0])
 
 
 def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:  # noqa: ANN001
     """The file's data and comments, assembled at the top (the four-bar stretched)."""
-    a, o, r, b = geo["toggle"], geo["O"], geo["crank"], geo["rod"]
+    a, r, b = rounded(geo["toggle"]), rounded(geo["crank"]), rounded(geo["rod"])
+    o = np.array([rounded(float(x)) for x in geo["O"]])
     top = a * np.array([math.sin(psi), -math.cos(psi)])
     start = math.atan2(*(top - o)[::-1])
     mass = {key: float(f"{bar_mass(geo[key], section, density):.6g}") for key in ("crank", "rod", "toggle")}
-    low = -2 * a
+    low, before = -2 * a, rounded(before)
     data = {
         "name": "toggle-press",
         "description": f"Knuckle-joint press synthesised for the stroke {stroke * 1e3:.6g} mm and the nominal force "
