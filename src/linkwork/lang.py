@@ -590,6 +590,18 @@ TEXTS: dict[str, tuple[str, str]] = {
         "Kinetostatic analysis by the graphical method, position {position}",
         "Силовой расчёт графоаналитическим методом, положение {position}",
     ),
+    "kgraph.where.peak": (
+        "Taken where the machine works hardest: the largest driving torque on the working stroke, "
+        "Md = {torque} N·m, with {loads} acting (the twelve positions are compared below, this one marked *).",
+        "Положение выбрано там, где машина нагружена больше всего: наибольший движущий момент на рабочем ходе, "
+        "Мд = {torque} Н·м, при нагрузке: {loads} (ниже это положение сравнивается с двенадцатью и отмечено *).",
+    ),
+    "kgraph.where.asked": ("The position asked for (--position).", "Положение задано пользователем (--position)."),
+    "kgraph.where.angle": (
+        "The crank angle asked for (--position).",
+        "Угол кривошипа задан пользователем (--position).",
+    ),
+    "kgraph.where.no_load": ("no process load", "технологическая нагрузка не действует"),
     "kgraph.intro": (
         "The groups are taken from the last one to the driving link. Each is cut free and loaded with its weights, "
         "inertia forces and moments, external loads and the reactions of the groups taken before it. The "

@@ -406,7 +406,7 @@ def test_a_figure_that_fails_in_the_second_process_fails_the_report_and_writes_n
 
 
 def test_the_report_presents_the_kinetostatics_by_the_graphical_method(main_job):
-    """The README's main job (the double-cut shears at the file's position 9): each group's moment equations and
+    """The README's main job (the double-cut shears, under the cutting load): each group's moment equations and
     force plan, the force plans and the lever drawn, and the lever's balancing moment beside the kinetostatic
     driving torque at the twelve positions, equal to the 7 digits written."""
     import linkwork as lw

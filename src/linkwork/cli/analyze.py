@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -33,9 +34,11 @@ def analyze(
     position: Annotated[
         str | None,
         typer.Option(
-            help="which of the 12 positions (0 to 11) gets the scheme and the velocity and acceleration plans, "
-            "or all (also sheets of the twelve plans); default: the file's drawing.positions, else where the "
-            "working point moves fastest"
+            help="which of the 12 positions (0 to 11) gets the scheme, the velocity and acceleration plans and "
+            "the force analysis, or all (also sheets of the twelve plans), or a crank angle phi from position 0 "
+            "with its unit (87deg) for the force analysis; default: the plans at the file's drawing.positions, "
+            "else where the working point moves fastest, the force analysis where the driving torque of the "
+            "working stroke is largest"
         ),
     ] = None,
     pdf: Annotated[bool, typer.Option("--pdf", help="also write report.pdf")] = False,
@@ -59,8 +62,7 @@ def analyze(
     from linkwork.report import require_packages
 
     check_options(whole(steps, "--steps", 12, MAX_ANGLES, "number of steps over the turn"))
-    if position is not None and position != "all" and not (digits(position) and 0 <= int(position) < 12):
-        fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {quote(position)}"))
+    asked = _position(position)
     try:
         check_lang(lang)
     except LinkworkError as exc:
@@ -94,7 +96,7 @@ def analyze(
                 mech,
                 out,
                 steps=steps,
-                position=int(position) if position and digits(position) else position,
+                position=asked,
                 pdf=pdf,
                 animation=animation,
                 dxf=dxf,
@@ -107,3 +109,29 @@ def analyze(
         except OSError as exc:
             fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     typer.echo(f"wrote {path}")
+
+
+def _position(text: str | None) -> int | float | str | None:
+    """``--position``: one of the 12 positions (int), ``all``, a crank angle φ from position 0 with its unit
+    (``87deg``: rad, float, in [0, 2 pi)), or None; exits with one message (exit code 2) for anything else."""
+    from linkwork.errors import LinkworkError
+    from linkwork.units import parse_quantity
+
+    if text is None or text == "all":
+        return text
+    if digits(text):
+        if 0 <= int(text) < 12:
+            return int(text)
+    elif any(c.isalpha() for c in text):
+        try:
+            phi = parse_quantity(text, "angle")
+        except (LinkworkError, ValueError):
+            phi = math.nan
+        if 0 <= phi < 2 * math.pi:
+            return float(phi)
+    fail(
+        LinkworkError(
+            f"--position: expected one of the 12 positions, 0 to 11, all, or a crank angle from position 0 "
+            f"with its unit, 0 to 360 deg (e.g. 87deg), got {quote(text)}"
+        )
+    )

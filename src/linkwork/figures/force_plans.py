@@ -86,7 +86,7 @@ def _legend(fig: Figure, kinds: list[str], lang: str) -> None:
     )
 
 
-def force_plans_figure(plans: ForcePlans, index: int, position: int | None = None, lang: str = "en") -> Figure:
+def force_plans_figure(plans: ForcePlans, index: int, position: int | str | None = None, lang: str = "en") -> Figure:
     """The force plan of every group of ``plans`` at sample ``index`` (``position``: its number, for the title),
     a panel each, the texts in ``lang``."""
     from matplotlib.figure import Figure
@@ -137,7 +137,7 @@ def force_plans_figure(plans: ForcePlans, index: int, position: int | None = Non
     return fig
 
 
-def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | None = None, lang: str = "en") -> Figure:
+def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | str | None = None, lang: str = "en") -> Figure:
     """Zhukovsky's lever ``lv`` of the kinematics ``kin`` (the same samples) at sample ``index``, the texts in
     ``lang``."""
     from linkwork.motion.plans import plan_series

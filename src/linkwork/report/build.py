@@ -159,6 +159,9 @@ class ReportCycle:
         Whether the plans of all twelve positions are drawn too (``--position all``).
     dxf : bool
         Whether the drawings are written for CAD too.
+    asked : int or float or None
+        Where ``--position`` asks for the force analysis: a position of the twelve (int), φ (rad, float), or None
+        (the largest driving torque on the working stroke, :mod:`linkwork.report.kinetostatic`).
     """
 
     kin: Kinematics
@@ -169,6 +172,7 @@ class ReportCycle:
     drawn: tuple[int, ...] = (0,)
     sheets: bool = False
     dxf: bool = False
+    asked: int | float | None = None
 
     def phi(self, angles: Any) -> np.ndarray:
         """Crank angles turned from position 0, degrees in [0, 360), of drive angles (rad), as the tables and
@@ -183,7 +187,7 @@ def analyze(
     out: str | Path,
     *,
     steps: int = TURN_STEPS,
-    position: int | str | None = None,
+    position: int | float | str | None = None,
     pdf: bool = False,
     animation: bool = True,
     dxf: bool = False,
@@ -195,9 +199,11 @@ def analyze(
     ``report.html`` (and ``report.pdf``) into the folder ``out``; returns the report's path.
 
     ``position``: which of the 12 positions (numbered from position 0, the working member's high end,
-    as ``linkwork positions`` does) gets the scheme and the velocity and acceleration plans; ``"all"``
-    adds sheets of the plans of all twelve; default the file's ``drawing.positions``, else where the
-    working point moves fastest (:func:`linkwork.scene.positions.plan_positions`).  ``dxf``: also the
+    as ``linkwork positions`` does) gets the scheme, the velocity and acceleration plans and the force
+    analysis; ``"all"`` adds sheets of the plans of all twelve; a float: φ (rad from position 0) of the force
+    analysis (its plans drawn there too); default the file's ``drawing.positions``, else where the
+    working point moves fastest (:func:`linkwork.scene.positions.plan_positions`), and the force analysis
+    where the driving torque of the working stroke is largest (:mod:`linkwork.report.kinetostatic`).  ``dxf``: also the
     drawings for CAD, ``figures/*.dxf`` (needs ezdxf).  ``lang``: ``"en"`` or ``"ru"``.  ``sizing``: the
     "Sizing" section (:mod:`linkwork.report.sizing`, ``sizing.json``): True, False, or None where the file
     has a ``sizing:`` section.  Needs
@@ -248,7 +254,7 @@ def require_packages() -> None:
         require(*missing, purpose="the report (linkwork analyze)")  # raises, naming them and the pip command
 
 
-def _build(run: _Run, steps: int, position: int | str | None, animation: bool, dxf: bool = False) -> None:
+def _build(run: _Run, steps: int, position: int | float | str | None, animation: bool, dxf: bool = False) -> None:
     from linkwork.report.inputs import input_section
     from linkwork.structure.model import one_crank
 
@@ -359,7 +365,7 @@ def _structure(run: _Run) -> None:
     run.sections.append(sec)
 
 
-def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) -> ReportCycle:
+def _kinematics(run: _Run, steps: int, position: int | float | str | None, dxf: bool) -> ReportCycle:
     from linkwork import figures
     from linkwork.io.motion_tables import write_csv, write_netcdf
     from linkwork.motion import kinematics
@@ -373,10 +379,11 @@ def _kinematics(run: _Run, steps: int, position: int | str | None, dxf: bool) ->
     kin = kinematics(mech, position_angles(mech, steps, zero))
     twelve = kinematics(mech, position_angles(mech, 12, zero))
     sign = direction(mech)
-    drawn = plan_positions(mech, twelve) if position in (None, "all") else [int(position) % 12]
+    drawn = [int(position) % 12] if isinstance(position, int) else plan_positions(mech, twelve)
     phi = np.degrees(np.arange(steps) * 2 * np.pi / steps)
     index = int(np.argmin(np.abs((phi - 30.0 * drawn[0] + 180.0) % 360.0 - 180.0)))
-    cycle = ReportCycle(kin, zero, sign, twelve, index, tuple(drawn), position == "all", dxf)
+    asked = position if isinstance(position, int | float) else None
+    cycle = ReportCycle(kin, zero, sign, twelve, index, tuple(drawn), position == "all", dxf, asked)
     run.jobs.append(lambda: write_csv(kin, run.folder / "kinematics.csv"))
     run.jobs.append(lambda: write_netcdf(kin, run.folder / "kinematics.nc"))
     sec = Section("kinematics", run.t("section.kinematics"))
@@ -592,10 +599,10 @@ def _forces(run: _Run, cycle: ReportCycle) -> None:
             joint = str(mech.pair_joint[k])
             make = functools.partial(figures.hodograph, f, joint, at=at12, zero=zero, lang=lang)
             sec.figures.append(run.figure(f"hodograph_{joint}", make, run.t("caption.hodograph", joint=joint)))
-    if one_crank(mech):  # the graphical method: force plans and Zhukovsky's lever at the plans' position
+    if one_crank(mech):  # the graphical method: force plans and Zhukovsky's lever where the load acts
         from linkwork.report.kinetostatic import sections
 
-        body, names = sections(run, at12, cycle.drawn[0], cycle.sheets, cycle.dxf)
+        body, names = sections(run, at12, cycle, f)
         sec.body += body
         sec.figures += names
     run.sections.append(sec)
