@@ -548,6 +548,16 @@ TEXTS: dict[str, tuple[str, str]] = {
     "vector.acceleration.sliding": ("sliding along the guide", "относительное (вдоль направляющей)"),
     "animation.crank": ("{name}: crank at {angle}°", "{name}: угол кривошипа {angle}°"),
     # ------------------------------------------------------------------ force plans, Zhukovsky's lever
+    "sheet.m_per_mm": ("m/mm", "м/мм"),
+    "sheet.n_per_mm": ("N/mm", "Н/мм"),
+    "sheet.positions": ("Plan of {count} positions", "План {count} положений"),
+    "sheet.velocity": ("Velocity plan", "План скоростей"),
+    "sheet.acceleration": ("Acceleration plan", "План ускорений"),
+    "sheet.scheme": ("Kinematic scheme", "Кинематическая схема"),
+    "sheet.force_plan": ("Force plan: {group}", "План сил: {group}"),
+    "sheet.lever": ("Zhukovsky's lever", "Рычаг Жуковского"),
+    "sheet.kinematics": ("Kinematic analysis", "Кинематический анализ"),
+    "sheet.kinetostatics": ("Kinetostatic analysis", "Силовой анализ"),
     "forceplans.title": ("{name}: force plans of the groups", "{name}: планы сил групп"),
     "forceplans.cell": ("{group}\nμF = {scale} N/mm", "{group}\nμF = {scale} Н/мм"),
     "forceplans.singular": (

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -46,6 +46,17 @@ def analyze(
     dxf: Annotated[
         bool, typer.Option("--dxf", help="also write the drawings for CAD, figures/*.dxf (needs ezdxf)")
     ] = False,
+    sheet: Annotated[
+        str | None,
+        typer.Option(help="format of the drawing sheets --dxf writes: A1, A2, A3 or A4 (default: the file's, else A1)"),
+    ] = None,
+    title_block: Annotated[
+        list[str] | None,
+        typer.Option(
+            help="a field of the sheets' title block, KEY=VALUE, as the file's drawing.title_block has them "
+            "(title, designation, organisation, developer, checker, norm_control, approved, date, litera); repeat it"
+        ),
+    ] = None,
     lang: Annotated[str, typer.Option(help="language of the report and its figures: en or ru")] = "en",
     sizing: Annotated[
         bool | None,
@@ -83,7 +94,7 @@ def analyze(
         fail(exc)
     if dxf:
         needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
-    mech = at_speed(compile_or_exit(file_or_example), speed)
+    mech = _with_sheets(at_speed(compile_or_exit(file_or_example), speed), sheet, title_block or [], dxf)
     # the spinner on stderr, and only in a terminal: piped or redirected, stdout holds the one line "wrote ..."
     shown = console(stderr=True)
     spinner = Progress(
@@ -135,3 +146,38 @@ def _position(text: str | None) -> int | float | str | None:
             f"with its unit, 0 to 360 deg (e.g. 87deg), got {quote(text)}"
         )
     )
+
+
+def _with_sheets(mech: Any, sheet: str | None, fields: list[str], dxf: bool) -> Any:
+    """``mech`` with the format and the title block's fields given by ``--sheet`` and ``--title-block`` in its
+    file's ``drawing:`` section, as the same edit of the file would give; exits with a line for each wrong one
+    (exit code 2)."""
+    import dataclasses
+
+    from linkwork.errors import LinkworkError
+    from linkwork.spec.schema import Drawing, TitleBlockSpec
+
+    if sheet is None and not fields:
+        return mech
+    problems = []
+    if not dxf:
+        problems.append("--sheet and --title-block: the sheets are written with --dxf; add it")
+    if sheet is not None and sheet.upper() not in ("A1", "A2", "A3", "A4"):
+        problems.append(f"--sheet: expected A1, A2, A3 or A4, got {quote(sheet)}")
+    known = tuple(TitleBlockSpec.model_fields)
+    given: dict[str, str] = {}
+    for item in fields:
+        key, eq, value = item.partition("=")
+        if not eq or key.strip() not in known:
+            problems.append(f"--title-block: expected KEY=VALUE, KEY one of {', '.join(known)}; got {quote(item)}")
+        else:
+            given[key.strip()] = value.strip()
+    if problems:
+        fail(LinkworkError("\n".join(problems)))
+    spec = mech.spec
+    if spec is None:
+        return mech
+    drawing = spec.drawing or Drawing()
+    block = drawing.title_block.model_copy(update=given)
+    drawing = drawing.model_copy(update={"title_block": block, **({"sheet": sheet.upper()} if sheet else {})})
+    return dataclasses.replace(mech, spec=spec.model_copy(update={"drawing": drawing}))

@@ -158,7 +158,19 @@ def sections(run: Any, at12: Forces, cycle: Any, f: Forces) -> tuple[list[str], 
         kin = at.forces.kinematics
         run.jobs.append(lambda: write_force_plans(plans, i, folder / "force_plans.dxf", lang))
         run.jobs.append(lambda: write_lever(lv, kin, i, folder / "lever.dxf", lang))
+        run.jobs.append(lambda: _sheets(run, cycle, plans, lv, at))
     return body, names
+
+
+def _sheets(run: Any, cycle: Any, plans: Any, lv: Any, at: Where) -> None:
+    """The drawing sheets of the course project (:mod:`linkwork.io.dxf_sheet`), ``figures/sheet_1.dxf`` (the
+    kinematics at the plans' position) and ``sheet_2.dxf`` (the kinetostatics at ``at``)."""
+    from linkwork.io.dxf_sheet import sheet_options, write_sheets
+
+    fmt, block = sheet_options(run.mech)
+    folder = run.folder / "figures"
+    twelve, first, named = cycle.twelve, cycle.drawn[0], at.name(run)
+    write_sheets(twelve, first, cycle.kin, plans, lv, at.index, named, folder, run.lang, fmt, block)
 
 
 def _kinematic_plans(run: Any, at: Where, where: str) -> list[str]:
