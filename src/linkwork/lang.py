@@ -556,6 +556,8 @@ TEXTS: dict[str, tuple[str, str]] = {
     "sheet.scheme": ("Kinematic scheme", "Кинематическая схема"),
     "sheet.force_plan": ("Force plan: {group}", "План сил: {group}"),
     "sheet.lever": ("Zhukovsky's lever", "Рычаг Жуковского"),
+    "sheet.read_off": (", read off the plan", " (по плану сил)"),
+    "sheet.legend": ("The arrows of the force plans", "Обозначения на планах сил"),
     "sheet.kinematics": ("Kinematic analysis", "Кинематический анализ"),
     "sheet.kinetostatics": ("Kinetostatic analysis", "Силовой анализ"),
     "forceplans.title": ("{name}: force plans of the groups", "{name}: планы сил групп"),

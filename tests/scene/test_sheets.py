@@ -112,10 +112,10 @@ def _shears_sheets(folder: str, fmt: str) -> tuple[list, float]:
 @pytest.mark.parametrize("fmt", ["A1", "A3"])
 def test_each_drawing_of_the_course_project_has_a_place_of_its_own_and_states_its_scales(fmt, tmp_path):
     """Sheet 1 (the plan of positions, the velocity and acceleration plans) and sheet 2 (the scheme under the
-    cutting load, the four groups' force plans, the lever): each drawing a block whose box (ezdxf's, text
-    included) overlaps no other, nor the title block, and lies inside the frame; every text at least 2.5 mm
-    high; each drawing states its scales as μl = 0,004 м/мм does; the Russian notes hold no English word; the
-    knives' cutting force drawn on its layer F / μF long."""
+    cutting load, the four groups' force plans, the lever, the legend of the arrows): each drawing a block whose
+    box (ezdxf's, text included) overlaps no other, nor the title block, and lies inside the frame; every text at
+    least 2.5 mm high; each drawing states its scales as μl = 0,004 м/мм does; the Russian notes hold no English
+    word; the knives' cutting force drawn on its layer F / μF long."""
     docs, cutting = _shears_sheets(str(tmp_path), fmt)
     width, height = FORMATS[fmt]
     block = np.array([width - 5 - 185, 5, width - 5, 60])
@@ -136,7 +136,7 @@ def test_each_drawing_of_the_course_project_has_a_place_of_its_own_and_states_it
         assert min(_height(e) for e in texts) >= 2.5
         notes.append([_content(e) for e in texts if e.dxf.layer == "NOTES"])
     first, second = notes
-    assert len(docs[0].modelspace().query("INSERT")) == 3 and len(docs[1].modelspace().query("INSERT")) == 6
+    assert len(docs[0].modelspace().query("INSERT")) == 3 and len(docs[1].modelspace().query("INSERT")) == 7
     assert any(re.fullmatch(r"μl = 0,0\d+ м/мм", s) for s in first)
     assert any(re.fullmatch(r"μv = [\d,]+ \(м/с\)/мм", s) for s in first)
     assert any(re.fullmatch(r"μa = [\d,]+ \(м/с²\)/мм", s) for s in first)
@@ -153,3 +153,38 @@ def test_each_drawing_of_the_course_project_has_a_place_of_its_own_and_states_it
                 loads.append((e.dxf.start - e.dxf.end).magnitude * mu)
     assert cutting == pytest.approx(250e3)
     assert loads and loads == pytest.approx([cutting] * len(loads), rel=1e-9)
+
+
+def test_the_options_fill_the_title_block_as_the_file_would():
+    """``--sheet a3 --title-block developer=...`` give the sheets what ``drawing: {sheet: A3, title_block:
+    {developer: ...}}`` in the file gives; the file's positions stay."""
+    from linkwork.cli.analyze import _with_sheets
+    from linkwork.io.dxf_sheet import sheet_options
+
+    mech = lw.compile(lw.example("double-cut-shears"))
+    assert sheet_options(mech) == ("A1", TitleBlock())
+    edited = _with_sheets(mech, "a3", ["developer=Иванов И. И.", "litera = У"], True)
+    assert sheet_options(edited) == ("A3", TitleBlock(developer="Иванов И. И.", litera="У"))
+    assert edited.spec.drawing.positions == [9]
+
+
+@pytest.mark.parametrize(
+    ("argv", "says"),
+    [
+        (["--dxf", "--sheet", "A0"], '--sheet: expected A1, A2, A3 or A4, got "A0"'),
+        (["--dxf", "--title-block", "author=X"], "--title-block: expected KEY=VALUE, KEY one of title, designation"),
+        (["--sheet", "A3"], "--sheet and --title-block: the sheets are written with --dxf; add it"),
+    ],
+)
+def test_a_wrong_sheet_option_is_refused_in_one_line_before_any_work(argv, says, tmp_path):
+    from typer.testing import CliRunner
+
+    import linkwork.cli.analyze  # noqa: F401 - registers the command
+    from linkwork.cli.main import app
+
+    result = CliRunner().invoke(app, ["analyze", "double-cut-shears", "--out", str(tmp_path / "r"), *argv])
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert lines[-1].startswith("error: " + says) or lines[-1].startswith(says), lines
+    assert len(lines) <= 2 and "Traceback" not in result.output
+    assert not (tmp_path / "r").exists()

@@ -52,8 +52,9 @@ DASH_EM = 3.5
 
 PURPOSE = "the drawings for CAD (linkwork analyze --dxf)"
 
-#: Line weights (0.01 mm) of ГОСТ 2.303: the main line s = 0.7 mm (links, vectors), the thin lines s / 2 and
-#: s / 3 (0.35 and 0.25 mm: the construction, the trajectories, the hatching).
+#: Line weights (0.01 mm) of ГОСТ 2.303: the main line s = 0.7 mm (links, the absolute vectors, the forces), the
+#: thin lines s / 2 and s / 3 (0.35 mm: pivots, guides, the plans' relative vectors; 0.25 mm: the trajectories,
+#: the hatching).
 MAIN, THIN, FINE = 70, 35, 25
 
 
@@ -212,7 +213,7 @@ def _document(styles: dict[str, Style], extra: dict[str, int] | None = None, em:
     doc.appids.add(APPID)
     for style in styles.values():
         if style.layer not in doc.layers:
-            weight = MAIN if style.width >= 2 else THIN if style.width >= 0.9 else FINE
+            weight = MAIN if style.width >= 1.2 else THIN if style.width >= 0.9 else FINE
             linetype = _linetype(doc, style)
             doc.layers.add(style.layer, color=style.aci, lineweight=weight, linetype=linetype)
     for name, colour in {"LABELS": 7, "NOTES": 7, **(extra or {})}.items():

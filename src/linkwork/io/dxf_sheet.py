@@ -257,58 +257,68 @@ class Sheet:
         for line, v in zip(lines, (27.5 + 0.8 * size, 27.5 - 0.8 * size), strict=True):
             self._word(line, (100.0, v), size, 70.0)
 
-    def cells(self, drawings: Sequence[Drawing]) -> list[Cell]:
-        """A cell for each drawing, none overlapping another or the title block: a ``big`` drawing first in a
-        column of the field's full height (half its width, on a landscape sheet), the others in a grid beside it
-        down to the top of the title block (on an upright sheet every drawing above the title block)."""
-        x0, y0, x1, y1 = self.field + np.array([GAP, GAP, -GAP, -GAP])
-        top_of_block = float(self.block_box[3]) + GAP
-        out: list[Cell] = []
-        rest = list(drawings)
-        landscape = self.width > self.height
-        if rest and rest[0].big and landscape and len(rest) > 1:
-            split = x0 + 0.5 * (x1 - x0)
-            out.append(Cell(np.array([x0, y0, split - GAP / 2, y1])))
-            x0 = split + GAP / 2
-            rest = rest[1:]
-        if not rest:
-            return out
-        if not landscape or out:
-            y0 = top_of_block
-        cols = 1 if len(rest) <= 2 or not landscape else 2
-        rows = -(-len(rest) // cols)
+    def _grid(self, region: np.ndarray, count: int, cols: int) -> list[Cell]:
+        """``count`` cells in ``cols`` columns over ``region`` ``[x0, y0, x1, y1]`` (mm), row by row from the top,
+        ``GAP`` apart; a cell that would reach into the title block stops above it."""
+        x0, y0, x1, y1 = region
+        rows = -(-count // cols)
         w, h = (x1 - x0 + GAP) / cols, (y1 - y0 + GAP) / rows
-        for k in range(len(rest)):
+        top_of_block = float(self.block_box[3]) + GAP
+        out = []
+        for k in range(count):
             r, c = divmod(k, cols)
-            top = y1 - r * h
-            box = np.array([x0 + c * w, top - h + GAP, x0 + (c + 1) * w - GAP, top])
-            if not out and not landscape:
-                pass
-            elif box[1] < top_of_block and box[2] > self.block_box[0] - GAP:
+            box = np.array([x0 + c * w, y1 - (r + 1) * h + GAP, x0 + (c + 1) * w - GAP, y1 - r * h])
+            if box[1] < top_of_block and box[2] > self.block_box[0] - GAP:
                 box[1] = top_of_block
             out.append(Cell(box))
         return out
 
     def place(self, drawings: Sequence[Drawing]) -> None:
-        """Each drawing into a block of its own, the largest that fits its cell (its box measured by ezdxf, its
-        texts included), with its title and its scales above it, inserted centred in its cell."""
-        for k, (d, cell) in enumerate(zip(drawings, self.cells(drawings), strict=True), start=len(self.placed) + 1):
-            name = f"DRAWING_{k}"
-            w, h = cell.size
-            shrink = 1.0
-            for _ in range(4):
-                if name in self.doc.blocks:
-                    self.doc.blocks.delete_block(name, safe=False)
-                block = self.doc.blocks.new(name=name)
-                box = self._drawn(block, d, shrink * w, shrink * h)
-                ratio = max((box[2] - box[0]) / w, (box[3] - box[1]) / h)
-                if ratio <= 1:
-                    break
-                shrink *= 0.98 / ratio
-            centre = (cell.box[:2] + cell.box[2:]) / 2 - (box[:2] + box[2:]) / 2
-            shift = np.array([centre[0], cell.box[3] - box[3]])  # up against the cell's top
-            self.msp.add_blockref(name, tuple(shift), dxfattribs={"layer": "0"})
-            self.placed.append(Placed(name, box + np.r_[shift, shift]))
+        """Each drawing in a cell of its own, none overlapping another or the title block.  On a landscape sheet a
+        ``big`` first drawing (a scheme) at the top of the field's left half, the last third of the others below
+        it where it leaves a third of the height, the rest in a grid over the right half down to the title
+        block; on an upright sheet every drawing in a column above the title block."""
+        rest = list(drawings)
+        x0, y0, x1, y1 = self.field + np.array([GAP, GAP, -GAP, -GAP])
+        top_of_block = float(self.block_box[3]) + GAP
+        if not rest:
+            return
+        if self.width > self.height and rest[0].big and len(rest) > 1:
+            split = x0 + 0.5 * (x1 - x0)
+            box = self._put(rest[0], Cell(np.array([x0, y0, split - GAP / 2, y1])))
+            rest = rest[1:]
+            below = np.array([x0, y0, split - GAP / 2, box[1] - GAP])
+            n = max(1, len(rest) // 3) if len(rest) >= 2 and below[3] - below[1] >= (y1 - y0) / 3 else 0
+            for d, cell in zip(rest[len(rest) - n :], self._grid(below, n, 1), strict=True):
+                self._put(d, cell)
+            rest = rest[: len(rest) - n]
+            region = np.array([split + GAP / 2, top_of_block, x1, y1])
+            cols = 1 if len(rest) <= 2 else 2
+        else:
+            region = np.array([x0, top_of_block, x1, y1])
+            cols = 1 if len(rest) <= 2 or self.width < self.height else 2
+        for d, cell in zip(rest, self._grid(region, len(rest), cols), strict=True):
+            self._put(d, cell)
+
+    def _put(self, d: Drawing, cell: Cell) -> np.ndarray:
+        """Draw ``d`` into a block of its own, the largest that fits ``cell`` (its box measured by ezdxf, its texts
+        included), and insert it centred across the cell, at its top; returns its box on the sheet, mm."""
+        name = f"DRAWING_{len(self.placed) + 1}"
+        w, h = cell.size
+        shrink = 1.0
+        for _ in range(4):
+            if name in self.doc.blocks:
+                self.doc.blocks.delete_block(name, safe=False)
+            block = self.doc.blocks.new(name=name)
+            box = self._drawn(block, d, shrink * w, shrink * h)
+            ratio = max((box[2] - box[0]) / w, (box[3] - box[1]) / h)
+            if ratio <= 1:
+                break
+            shrink *= 0.98 / ratio
+        shift = np.array([(cell.box[0] + cell.box[2]) / 2 - (box[0] + box[2]) / 2, cell.box[3] - box[3]])
+        self.msp.add_blockref(name, tuple(shift), dxfattribs={"layer": "0"})
+        self.placed.append(Placed(name, box + np.r_[shift, shift]))
+        return self.placed[-1].box
 
     def _drawn(self, block: Any, d: Drawing, w: float, h: float) -> np.ndarray:
         """Draw ``d`` into ``block`` within ``w`` x ``h`` mm with its heading; returns its box as ezdxf measures it."""
@@ -316,7 +326,10 @@ class Sheet:
 
         box, scales = d.draw(block, w, h - HEADING)
         left, top = float(box[0]), float(box[3]) + 2.0
-        add_text(block, scales, (left, top + LABEL / 2), LABEL, "NOTES", left=True, squeeze=_squeeze(scales, LABEL, w))
+        if scales:
+            add_text(
+                block, scales, (left, top + LABEL / 2), LABEL, "NOTES", left=True, squeeze=_squeeze(scales, LABEL, w)
+            )
         size = TITLE if text_size(d.title, TITLE / CAP)[0] <= w else LABEL  # a narrow cell's title smaller
         at = (left, top + LABEL + 2.0 + size / 2)
         add_text(block, d.title, at, size, "NOTES", left=True, squeeze=_squeeze(d.title, size, w))
@@ -460,6 +473,43 @@ def lever_drawing(lv: Lever, kin: Kinematics, index: int, title: str, lang: str)
     return Drawing(title, fit)
 
 
+def legend_drawing(plans: ForcePlans, index: int, lang: str) -> Drawing:
+    """The legend of the force plans at sample ``index``: for each kind of arrow drawn, a stroke on its layer (the
+    reactions read off a plan dashed, as drawn), its name and the names of the arrows of that kind (a process
+    load also by the file's name of it), so that no meaning rests on colour alone."""
+    from linkwork.io.dxf import _head
+    from linkwork.lang import t as text
+    from linkwork.scene.force_plans import FORCE_KINDS, force_plan_scene
+
+    names: dict[tuple[str, bool], list[str]] = {}  # (kind, dashed): the arrows' names
+    for g in plans.groups:
+        for a in force_plan_scene(g, index, lang=lang).arrows:
+            key = (a.kind, a.resultant or a.kind == "internal")
+            if a.text and a.text not in names.setdefault(key, []):
+                names[key].append(a.text)
+    loads = [ld.name for ld in plans.forces.mechanism.loads if ld.kind == "process"]
+
+    def fit(layout: Any, w: float, h: float) -> tuple[np.ndarray, str]:
+        rows = [k for kind in FORCE_KINDS for k in ((kind, False), (kind, True)) if k in names]
+        lines = []
+        for row, (kind, dashed) in enumerate(rows):
+            y = -row * 2.2 * LABEL
+            layer = FORCES[kind].layer
+            layout.add_line(
+                (0.0, y), (15.0, y), dxfattribs={"layer": layer, **({"linetype": "DASHED"} if dashed else {})}
+            )
+            _head(layout, np.array([0.0, y]), np.array([15.0, y]), 3.0, layer)
+            what = text(f"force.{kind}", lang) + (f" ({', '.join(loads)})" if kind == "load" and loads else "")
+            if dashed and kind != "internal":
+                what += text("sheet.read_off", lang)
+            lines.append(f"{what}: {', '.join(names[(kind, dashed)])}")
+            add_text(layout, lines[-1], (20.0, y), LABEL, "LABELS", left=True)
+        wide = max((text_size(line, LABEL / CAP)[0] for line in lines), default=0.0)
+        return np.array([0.0, -(len(rows) - 1) * 2.2 * LABEL - LABEL, 20.0 + wide, LABEL]), ""
+
+    return Drawing(t("sheet.legend", lang), fit)
+
+
 def kinematics_sheet(
     twelve: Kinematics, position: int, cycle: Kinematics, lang: str, fmt: str, block: TitleBlock, sheets: int = 2
 ) -> Sheet:
@@ -517,6 +567,7 @@ def kinetostatics_sheet(
         title = t("forceplans.driving", lang, group=label) if g.balancing is not None else label
         drawings.append(force_plan_drawing(plans, j, index, t("sheet.force_plan", lang, group=title), lang))
     drawings.append(lever_drawing(lv, kin, index, t("sheet.lever", lang), lang))
+    drawings.append(legend_drawing(plans, index, lang))
     sheet = Sheet(fmt, _titled(block, kin.mechanism.name, t("sheet.kinetostatics", lang)), 2, sheets, lang)
     sheet.place(drawings)
     return sheet
