@@ -998,6 +998,77 @@ def group_label(label: str, lang: str) -> str:
     return f"{head} {group_kind(kind, lang)}" if kind else head
 
 
+#: The keys and words of a file's loads and machine as the report's input section shows them, in Russian (in
+#: English they stay as the file writes them).
+FILE_WORDS_RU = {
+    "tools": "инструменты",
+    "at": "точка",
+    "on": "звено",
+    "joint": "пара",
+    "axis": "ось",
+    "workpiece": "заготовка",
+    "penetration": "относительное внедрение",
+    "force": "сила",
+    "moment": "момент",
+    "value": "величина",
+    "power": "мощность",
+    "speed": "частота вращения",
+    "synchronous": "синхронная частота вращения",
+    "breakdown": "кратность максимального момента",
+    "inertia": "момент инерции",
+    "ratio": "передаточное отношение",
+    "efficiency": "КПД",
+    "process": "технологическая",
+    "induction": "асинхронный",
+    "motor": "двигатель",
+    "gear": "передача",
+    "flywheel": "маховик",
+    "type": "тип",
+}
+
+#: Units as a file writes them, in Russian.
+FILE_UNITS_RU = {
+    "kg*m^2": "кг·м²",
+    "N*m": "Н·м",
+    "kN*m": "кН·м",
+    "rad/s": "рад/с",
+    "rpm": "об/мин",
+    "kN": "кН",
+    "kW": "кВт",
+    "deg": "°",
+    "mm": "мм",
+    "kg": "кг",
+    "m": "м",
+    "N": "Н",
+    "W": "Вт",
+    "s": "с",
+    "h": "ч",
+}
+
+
+def file_word(word: str, lang: str) -> str:
+    """A key or word of a file (``power``, ``process``) in ``lang``: itself in English, in Russian its Russian
+    (:data:`FILE_WORDS_RU`), a name of the file's own as it is."""
+    return FILE_WORDS_RU.get(word, word) if lang == "ru" else word
+
+
+def file_value(text: str, lang: str) -> str:
+    """A value as a file writes it (``250 kN``, ``0.03 kg*m^2``, ``90 deg``) in ``lang``: in Russian its units in
+    Russian and a decimal comma (``250 кН``, ``0,03 кг·м²``, ``90°``); in English as written."""
+    import re
+
+    if lang != "ru":
+        return text
+    units = "|".join(re.escape(u) for u in FILE_UNITS_RU)
+
+    def one(m: re.Match[str]) -> str:
+        number, unit = m.group(1).replace(".", ","), FILE_UNITS_RU[m.group(2)]
+        return f"{number}{unit}" if unit == "°" else f"{number} {unit}"
+
+    out = re.sub(rf"(-?\d+(?:\.\d+)?(?:e[-+]?\d+)?)\s*({units})(?![\w*^/])", one, text)
+    return re.sub(r"(?<![\w.])(-?\d+)\.(\d+)(?![\w.])", r"\1,\2", out)
+
+
 def t(key: str, lang: str = "en", /, **values: Any) -> str:
     """The text ``key`` in ``lang`` (``"en"`` or ``"ru"``), its fields filled from ``values``.
 
