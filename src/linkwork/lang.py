@@ -1069,6 +1069,31 @@ def file_value(text: str, lang: str) -> str:
     return re.sub(r"(?<![\w.])(-?\d+)\.(\d+)(?![\w.])", r"\1,\2", out)
 
 
+_SUPERSCRIPT = str.maketrans("-+0123456789", "⁻⁺⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def russian_numbers(text: str) -> str:
+    """The numbers of a text as Russian writes them: a decimal comma (``294.3`` -> ``294,3``) and a power of ten
+    for an exponent (``2.5e+05`` -> ``2,5·10⁵``); a number glued to a name (``O1.x``, ``v1.2``) as it is."""
+    import re
+
+    def power(m: re.Match[str]) -> str:
+        exponent = str(int(m.group(2)))
+        return f"{m.group(1)}·10{exponent.translate(_SUPERSCRIPT)}"
+
+    out = re.sub(r"(?<![\w.])(-?\d+(?:\.\d+)?)e([-+]?\d+)(?![\w.])", power, text)
+    return re.sub(r"(?<![\w.,])(-?\d+)\.(\d+)(?![\w.])", r"\1,\2", out)
+
+
+def russian_html(page: str) -> str:
+    """:func:`russian_numbers` on the text of an HTML page, not on its tags, styles, scripts and ``<pre>`` blocks
+    (a file's own text)."""
+    import re
+
+    parts = re.split(r"(<pre.*?</pre>|<style.*?</style>|<script.*?</script>|<[^>]*>)", page, flags=re.S)
+    return "".join(p if k % 2 else russian_numbers(p) for k, p in enumerate(parts))
+
+
 def t(key: str, lang: str = "en", /, **values: Any) -> str:
     """The text ``key`` in ``lang`` (``"en"`` or ``"ru"``), its fields filled from ``values``.
 

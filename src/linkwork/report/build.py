@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.io.jsonout import dumps
-from linkwork.lang import check_lang, group_kind, group_label, kind_named, link_named, t
+from linkwork.lang import check_lang, group_kind, group_label, kind_named, link_named, russian_html, t
 from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
 from linkwork.report.render import shown_width
@@ -929,7 +929,8 @@ def _write_html(run: _Run, path: Path) -> None:
         warnings = "".join(_p(w) for w in mech.structure.warnings)
         parts.append(f"<section id='warnings'><h2>{html.escape(run.t('section.warnings'))}</h2>{warnings}</section>")
     parts.append("</body></html>")
-    path.write_text("".join(parts), encoding="utf-8")
+    page = "".join(parts)  # in Russian its numbers with decimal commas and powers of ten (lang.russian_html)
+    path.write_text(russian_html(page) if run.lang == "ru" else page, encoding="utf-8")
 
 
 def _figure_html(run: _Run, name: str) -> str:

@@ -26,6 +26,9 @@ if TYPE_CHECKING:
 
 
 def _n(x: float, digits: int = 4) -> str:
+    """``x`` to ``digits`` significant digits; ``0`` below 1e-9 (a rounding's residue: an arm of 8e-15 mm)."""
+    if math.isfinite(x) and abs(x) < 1e-9:
+        return "0"
     return "-" if not math.isfinite(x) else f"{float(f'{x:.{digits}g}') + 0.0:.{digits}g}"  # no "-0"
 
 
