@@ -560,6 +560,10 @@ TEXTS: dict[str, tuple[str, str]] = {
     "sheet.legend": ("The arrows of the force plans", "Обозначения на планах сил"),
     "sheet.kinematics": ("Kinematic analysis", "Кинематический анализ"),
     "sheet.kinetostatics": ("Kinetostatic analysis", "Силовой анализ"),
+    "forceplans.short": (
+        "shorter than {size} mm, named here: {forces}",
+        "короче {size} мм, подписаны здесь: {forces}",
+    ),
     "forceplans.title": ("{name}: force plans of the groups", "{name}: планы сил групп"),
     "forceplans.cell": ("{group}\nμF = {scale} N/mm", "{group}\nμF = {scale} Н/мм"),
     "forceplans.singular": (

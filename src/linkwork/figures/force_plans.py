@@ -8,6 +8,7 @@ back); a reaction read off a plan is dashed.
 
 from __future__ import annotations
 
+import textwrap
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -15,7 +16,7 @@ import numpy as np
 from linkwork.figures.plans import LEGEND, _columns, _head
 from linkwork.figures.sheet import Sheet, add_line, sheet, where
 from linkwork.lang import group_label, t
-from linkwork.scene.force_plans import FORCE_KINDS, ForceScene, force_plan_scene, lever_scene
+from linkwork.scene.force_plans import FORCE_KINDS, ForceScene, force_plan_scene, lever_scene, short_note
 from linkwork.scene.style import FORCES, TEXT
 
 if TYPE_CHECKING:
@@ -111,6 +112,9 @@ def force_plans_figure(plans: ForcePlans, index: int, position: int | str | None
         title += "" if g.solved else "\n" + t("forceplans.not_solved", lang)
         if not scene.arrows:  # nothing finite to draw
             title += "\n" + t("forceplans.singular", lang)
+        note = short_note(scene, lang)
+        if note:  # the names of the arrows too short to carry them, under the group's title
+            title += "\n" + "\n".join(textwrap.wrap(note, 44))
         titles.append(title)
     lines = max(title.count("\n") + 1 for title in titles)
     gap = 0.18 * lines  # inches of a panel's title

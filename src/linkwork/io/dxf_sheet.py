@@ -434,7 +434,7 @@ def plan_drawing(kin: Kinematics, index: int, kind: str, title: str, lang: str) 
 
 def force_plan_drawing(plans: ForcePlans, group: int, index: int, title: str, lang: str) -> Drawing:
     """The force plan of the ``group``-th group of ``plans`` at sample ``index``."""
-    from linkwork.io.dxf_forces import _draw
+    from linkwork.io.dxf_forces import _draw, _short
     from linkwork.scene.force_plans import force_plan_scene
 
     g = plans.groups[group]
@@ -444,8 +444,9 @@ def force_plan_drawing(plans: ForcePlans, group: int, index: int, title: str, la
         def build(scale: float) -> Any:
             return force_plan_scene(g, index, lang=lang, scale=scale, em=LABEL / CAP, angle=angle)
 
-        scene = _fitted(build, lambda s: s.extent(), g.scale(index), w, h)
+        scene = _fitted(build, lambda s: s.extent(), g.scale(index), w, h - 2 * LABEL)
         _draw(layout, scene, np.zeros(2))
+        _short(layout, scene, np.zeros(2), lang, width=w - 2.0)
         return scene.extent(), f"μF = {number(scene.scale, lang)} {t('sheet.n_per_mm', lang)}"
 
     return Drawing(title, fit)

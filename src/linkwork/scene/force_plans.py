@@ -30,6 +30,11 @@ from linkwork.scene.plans import LETTERING
 #: An arrow before its name is placed: start, end (mm), the force, whether it is a reaction read off the plan.
 _Draft = tuple[np.ndarray, np.ndarray, PlanForce, bool]
 
+#: A force whose arrow on a force plan is shorter than this many ems (the height of its name) is not named beside
+#: it, where the names of several such arrows would pile up at one vertex: its name and value are listed under
+#: the plan (:func:`short_note`), and the report's table gives its length on the plan.
+SHORT = 1.0
+
 #: The kinds of arrow of the force drawings, in the order of a legend.
 FORCE_KINDS = ("weight", "inertia", "load", "known", "tangential", "normal", "reaction", "internal", "balancing")
 
@@ -89,6 +94,10 @@ class ForceScene:
     dots: np.ndarray
     dot_text: tuple[str, ...]
     dot_centres: np.ndarray
+
+    def short(self) -> list[ForceArrow]:
+        """The named arrows whose names are not drawn beside them (shorter than :data:`SHORT` ems on a plan)."""
+        return [a for a in self.arrows if a.text and not np.isfinite(a.centre).all()]
 
     def kinds(self) -> list[str]:
         """The kinds of the arrows drawn, in the order of :data:`FORCE_KINDS`."""
@@ -263,6 +272,8 @@ def _scene(
     mids = np.array([(s + e) / 2 for s, e, _, _ in drafts]).reshape(1, -1, 2)
     along = np.array([e - s for s, e, _, _ in drafts]).reshape(-1, 2)
     size = np.hypot(*along.T)[:, None] if len(along) else np.zeros((0, 1))
+    if kind == "force_plan":  # a short arrow's name goes under the plan (short_note)
+        mids[0, size[:, 0] < SHORT * em] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         left = np.where(size > 0, np.stack([-along[:, 1], along[:, 0]], -1) / size, np.sqrt(0.5))
     sizes = np.array([text_size(t, em) for t in texts]).reshape(1, -1, 2)
@@ -291,6 +302,19 @@ def _scene(
         dot_text,
         dot_centres.reshape(-1, 2),
     )
+
+
+def short_note(scene: ForceScene, lang: str = "en") -> str:
+    """The line under a force plan naming its short arrows (:data:`SHORT`) with their values:
+    ``shorter than 3.5 mm: G6 = 294.3 N, Фи6 = 5.53 N`` (decimal commas in Russian); empty where none is."""
+    from linkwork.lang import russian_numbers, t
+
+    found = scene.short()
+    if not found:
+        return ""
+    listed = ", ".join(f"{a.text}\u00a0=\u00a0{a.value:.4g}\u00a0{t('unit.N', lang)}" for a in found)
+    text = t("forceplans.short", lang, size=f"{SHORT * scene.em:.1f}", forces=listed)
+    return russian_numbers(text) if lang == "ru" else text
 
 
 def _name(f: PlanForce, lang: str) -> str:
