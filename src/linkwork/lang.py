@@ -689,6 +689,47 @@ TEXTS: dict[str, tuple[str, str]] = {
     "force.balancing": ("balancing force", "уравновешивающая сила"),
     # ------------------------------------------------------------------ units
     "unit.mm": ("mm", "мм"),
+    "unit.m_s": ("m/s", "м/с"),
+    "unit.m_s2": ("m/s²", "м/с²"),
+    "kplan.title": (
+        "The velocity and acceleration plans worked out, position {position}",
+        "Построение планов скоростей и ускорений, положение {position}",
+    ),
+    "kplan.velocity": (
+        "Velocity plan: pole {pole}, μv = {scale} (m/s)/mm",
+        "План скоростей: полюс {pole}, μv = {scale} (м/с)/мм",
+    ),
+    "kplan.acceleration": (
+        "Acceleration plan: pole {pole}, μa = {scale} (m/s²)/mm",
+        "План ускорений: полюс {pole}, μa = {scale} (м/с²)/мм",
+    ),
+    "kplan.rotation": (
+        "{name} ⊥ {line}: {name} = {value} {unit}, {segment}; {w} = {name} / l{line} = {value} / {l} m = {omega} rad/s",
+        "{name} ⊥ {line}: {name} = {value} {unit}, {segment}; {w} = {name} / l{line} = {value} / {l} м = {omega} рад/с",
+    ),
+    "kplan.normal": (
+        "{name} ∥ {line}, from {point} to {about}: {name} = {w}²·l{line} = {omega}²·{l} m = {value} {unit}, {segment}",
+        "{name} ∥ {line}, от {point} к {about}: {name} = {w}²·l{line} = {omega}²·{l} м = {value} {unit}, {segment}",
+    ),
+    "kplan.tangential": (
+        "{name} ⊥ {line}, measured on the plan: {segment}, {name} = {mm}·{scale} = {value} {unit}; "
+        "{e} = {name} / l{line} = {eps} rad/s²",
+        "{name} ⊥ {line}, измерено на плане: {segment}, {name} = {mm}·{scale} = {value} {unit}; "
+        "{e} = {name} / l{line} = {eps} рад/с²",
+    ),
+    "kplan.coriolis": (
+        "{name} = 2·ω·v_r (ω of the guide): {name} = {value} {unit}, {segment}",
+        "{name} = 2·ω·v_r (ω направляющей): {name} = {value} {unit}, {segment}",
+    ),
+    "kplan.sliding": (
+        "{name} ∥ the guide, measured on the plan: {segment}, {name} = {value} {unit}",
+        "{name} ∥ направляющей, измерено на плане: {segment}, {name} = {value} {unit}",
+    ),
+    "kplan.transport": (
+        "{name}, of the guide's coincident point: {name} = {value} {unit}, {segment}",
+        "{name}, точки направляющей, совпадающей с ползуном: {name} = {value} {unit}, {segment}",
+    ),
+    "kplan.absolute": ("The points' absolute vectors, from the pole:", "Абсолютные векторы точек, от полюса:"),
     "unit.deg": ("°", "°"),
     "unit.N": ("N", "Н"),
     "unit.kN": ("kN", "кН"),

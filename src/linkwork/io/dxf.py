@@ -42,6 +42,10 @@ APPID = "LINKWORK"
 #: Height of capital letters in ems of DejaVu Sans: a DXF text's height is that of its capitals.
 CAP = 0.73
 
+#: The least height of a text on paper, mm (ГОСТ 2.304): a plan's construction letters and its legend are no
+#: smaller on a drawing in mm of the sheet.
+SMALLEST = 2.5
+
 #: The text style of every text: a TrueType font of ezdxf's standard styles with Cyrillic and Greek letters
 #: (the default style's SHX font has neither).
 STYLE = "OpenSans"
@@ -184,7 +188,7 @@ def draw_plan(msp: Any, scene: PlanScene, index: int) -> np.ndarray:
             msp.add_circle(tuple(p), 0.2 * scene.em, dxfattribs={"layer": "POINTS"})
         text, c = scene.text[index][j], scene.centres[index, j]
         if text and np.isfinite(c).all():
-            _text(msp, text, c, scene.em * (1.0 if scene.main[j] else 0.8))
+            _text(msp, text, c, scene.em if scene.main[j] else max(0.8 * scene.em, SMALLEST / CAP))
     return scene.extent(index)
 
 
@@ -199,7 +203,7 @@ def _legend(msp: Any, scene: PlanScene, index: int, lang: str) -> None:
         line.set_xdata(APPID, [(1000, f"legend:{kind}")])
         _head(msp, np.array([x0, y]), np.array([x0 + 5 * em, y]), 0.55 * em, layer)
         name = kind_name(kind, scene.kind, lang)
-        _text(msp, name, np.array([x0 + 6 * em, y]), 0.8 * em, layer="NOTES", left=True)
+        _text(msp, name, np.array([x0 + 6 * em, y]), max(0.8 * em, SMALLEST / CAP), layer="NOTES", left=True)
 
 
 def _document(styles: dict[str, Style], extra: dict[str, int] | None = None, em: float = DASH_EM) -> tuple[Any, Any]:

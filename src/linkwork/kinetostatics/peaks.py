@@ -295,30 +295,3 @@ def shaking_peaks(f: Forces) -> Peak:
         return np.stack([np.hypot(force[..., 0], force[..., 1]), g.shaking_moment_all])
 
     return _first(f, both, 2, "abs")  # a size is its own largest size
-
-
-def working_torque_peak(f: Forces) -> Peak:
-    """Where the force analysis of a course project is done: the largest driving torque (by size, with its sign)
-    on the working stroke (:func:`linkwork.scene.positions.working_stroke`: the knives closing, the ram going
-    down; every sample of a mechanism without a working member), of the first variant of ``f``, ``(1,)``.
-
-    The refined peak of the whole turn (:func:`torque_peak`) where its nearest sample is on the working stroke;
-    else the largest sample on it (a torque that peaks on the idle stroke, where a heavy link swings back,
-    is not where the machine works).  NaN where no sample on the stroke is finite.
-    """
-    from linkwork.scene.positions import working_stroke
-
-    kin = f.kinematics
-    angles = np.asarray(kin.angles, dtype=float)
-    torque = np.asarray(driving_torque(f))[0]
-    stroke = working_stroke(kin) & np.isfinite(torque)
-    if not stroke.any():
-        return Peak(np.array([np.nan]), np.array([np.nan]))
-    peak = torque_peak(f)
-    at = float(peak.at[0])
-    gap = np.abs(np.angle(np.exp(1j * (angles - at))))
-    nearest = int(np.argmin(gap))
-    if np.isfinite(peak.value[0]) and stroke[nearest]:
-        return Peak(peak.value[:1].copy(), peak.at[:1].copy())
-    best = int(np.argmax(np.where(stroke, np.abs(torque), -np.inf)))
-    return Peak(np.array([torque[best]]), np.array([angles[best]]))

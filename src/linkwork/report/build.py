@@ -28,6 +28,7 @@ from linkwork.io.jsonout import dumps
 from linkwork.lang import check_lang, group_kind, group_label, kind_named, link_named, russian_html, t
 from linkwork.limits import TURN_STEPS
 from linkwork.optional import require
+from linkwork.report.kinematic_plans import worked_plans
 from linkwork.report.render import shown_width
 from linkwork.report.sizing import asks_sizing
 from linkwork.structure.model import PairType
@@ -403,6 +404,7 @@ def _kinematics(run: _Run, steps: int, position: int | float | str | None, dxf: 
     sec.body += _working_table(run, cycle)
     sec.body += _transmission_table(run, cycle)
     sec.body += [_p(_event(run, cycle, e)) for e in kin.events]
+    sec.body += worked_plans(run, twelve, first, str(first))  # the plans worked out (report/kinematic_plans.py)
     sec.figures += [
         run.figure(
             "kinematic_diagrams",

@@ -22,6 +22,7 @@ from linkwork.lang import group_label
 
 if TYPE_CHECKING:
     from linkwork.kinetostatics.force_polygons import GroupPlan, MomentEquation
+    from linkwork.kinetostatics.peaks import Peak
     from linkwork.kinetostatics.reaction_forces import Forces
 
 
@@ -73,10 +74,9 @@ def decimal(text: str, lang: str) -> str:
 def where_forces(run: Any, at12: Forces, cycle: Any, f: Forces) -> Where:
     """Where the force plans and the lever are drawn: the position ``--position`` asked (a number of the
     twelve, or φ in rad), else the largest driving torque on the working stroke
-    (:func:`~linkwork.kinetostatics.peaks.working_torque_peak`), solved there (a position between the twelve
+    (:func:`working_torque_peak`), solved there (a position between the twelve
     as one sample of its own)."""
     from linkwork.kinetostatics import forces
-    from linkwork.kinetostatics.peaks import working_torque_peak
     from linkwork.motion import kinematics
 
     asked = cycle.asked
@@ -98,6 +98,34 @@ def where_forces(run: Any, at12: Forces, cycle: Any, f: Forces) -> Where:
     if asked is None:
         text = run.t("kgraph.where.peak", torque=decimal(f"{torque:.0f}", run.lang), loads=loads)
     return Where(one, 0, None, phi, text)
+
+
+def working_torque_peak(f: Forces) -> Peak:
+    """Where the force analysis of a course project is done: the largest driving torque (by size, with its sign)
+    on the working stroke (:func:`linkwork.scene.positions.working_stroke`: the knives closing, the ram going
+    down; every sample of a mechanism without a working member), of the first variant of ``f``, ``(1,)``.
+
+    The refined peak of the whole turn (:func:`torque_peak`) where its nearest sample is on the working stroke;
+    else the largest sample on it (a torque that peaks on the idle stroke, where a heavy link swings back,
+    is not where the machine works).  NaN where no sample on the stroke is finite.
+    """
+    from linkwork.kinetostatics.peaks import Peak, driving_torque, torque_peak
+    from linkwork.scene.positions import working_stroke
+
+    kin = f.kinematics
+    angles = np.asarray(kin.angles, dtype=float)
+    torque = np.asarray(driving_torque(f))[0]
+    stroke = working_stroke(kin) & np.isfinite(torque)
+    if not stroke.any():
+        return Peak(np.array([np.nan]), np.array([np.nan]))
+    peak = torque_peak(f)
+    at = float(peak.at[0])
+    gap = np.abs(np.angle(np.exp(1j * (angles - at))))
+    nearest = int(np.argmin(gap))
+    if np.isfinite(peak.value[0]) and stroke[nearest]:
+        return Peak(peak.value[:1].copy(), peak.at[:1].copy())
+    best = int(np.argmax(np.where(stroke, np.abs(torque), -np.inf)))
+    return Peak(np.array([torque[best]]), np.array([angles[best]]))
 
 
 def _loads_text(run: Any, f: Forces) -> str:
@@ -127,6 +155,10 @@ def sections(run: Any, at12: Forces, cycle: Any, f: Forces) -> tuple[list[str], 
     lang, i, named = run.lang, at.index, at.name(run)
     body = [f"<h3>{_esc(run.t('kgraph.title', position=named))}</h3>"]
     body += [f"<p>{_esc(at.why)}</p>"] if at.why else []
+    if at.position is None:  # the plans the inertia forces come from, worked out at this angle
+        from linkwork.report.kinematic_plans import worked_plans
+
+        body += worked_plans(run, at.forces.kinematics, at.index, named)
     body.append(f"<p>{_esc(run.t('kgraph.intro'))}</p>")
     for g in plans.groups:
         body += _group(run, g, i)
