@@ -1126,8 +1126,9 @@ def russian_numbers(text: str) -> str:
         exponent = str(int(m.group(2)))
         return f"{m.group(1)}·10{exponent.translate(_SUPERSCRIPT)}"
 
-    out = re.sub(r"(?<![\w.])(-?\d+(?:\.\d+)?)e([-+]?\d+)(?![\w.])", power, text)
-    return re.sub(r"(?<![\w.,])(-?\d+)\.(\d+)(?![\w.])", r"\1,\2", out)
+    after = r"(?![A-Za-zА-Яа-яЁё_0-9.])"  # not glued to a name ("²" may follow: 3.142² -> 3,142²)
+    out = re.sub(rf"(?<![\w.])(-?\d+(?:\.\d+)?)e([-+]?\d+){after}", power, text)
+    return re.sub(rf"(?<![\w.,])(-?\d+)\.(\d+){after}", r"\1,\2", out)
 
 
 def russian_html(page: str) -> str:
