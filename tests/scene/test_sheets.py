@@ -109,14 +109,19 @@ def _shears_sheets(folder: str, fmt: str) -> tuple[list, float]:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("fmt", ["A1", "A3"])
-def test_each_drawing_of_the_course_project_has_a_place_of_its_own_and_states_its_scales(fmt, tmp_path):
+@pytest.mark.parametrize(("fmt", "count"), [("A1", 2), ("A3", 3), ("A4", 6)])
+def test_each_drawing_of_the_course_project_has_a_place_of_its_own_and_states_its_scales(fmt, count, tmp_path):
     """Sheet 1 (the plan of positions, the velocity and acceleration plans) and sheet 2 (the scheme under the
     cutting load, the four groups' force plans, the lever, the legend of the arrows): each drawing a block whose
     box (ezdxf's, text included) overlaps no other, nor the title block, and lies inside the frame; every text at
     least 2.5 mm high; each drawing states its scales as μl = 0,004 м/мм does; the Russian notes hold no English
-    word; the knives' cutting force drawn on its layer F / μF long."""
+    word; the knives' cutting force drawn on its layer F / μF long.  The 10 drawings on 2 sheets of A1, 3 of A3
+    (four drawings a sheet), 6 of A4 (two), each numbered in its title block."""
     docs, cutting = _shears_sheets(str(tmp_path), fmt)
+    assert len(docs) == count
+    for k, doc in enumerate(docs, start=1):
+        words = {e.dxf.text for e in doc.modelspace().query("TEXT")}
+        assert {f"Лист {k}", f"Листов {count}"} <= words
     width, height = FORMATS[fmt]
     block = np.array([width - 5 - 185, 5, width - 5, 60])
     notes = []
@@ -135,17 +140,16 @@ def test_each_drawing_of_the_course_project_has_a_place_of_its_own_and_states_it
         texts = list(_texts(msp))
         assert min(_height(e) for e in texts) >= 2.5
         notes.append([_content(e) for e in texts if e.dxf.layer == "NOTES"])
-    first, second = notes
-    assert len(docs[0].modelspace().query("INSERT")) == 3 and len(docs[1].modelspace().query("INSERT")) == 7
-    assert any(re.fullmatch(r"μl = 0,0\d+ м/мм", s) for s in first)
-    assert any(re.fullmatch(r"μv = [\d,]+ \(м/с\)/мм", s) for s in first)
-    assert any(re.fullmatch(r"μa = [\d,]+ \(м/с²\)/мм", s) for s in first)
-    assert any(re.fullmatch(r"μl = 0,0\d+ м/мм", s) for s in second)
-    assert sum(bool(re.fullmatch(r"μF = [\d,]+ Н/мм", s)) for s in second) == 4
-    assert any(re.fullmatch(r"μv = [\d,]+ \(м/с\)/мм;  μF = [\d,]+ Н/мм", s) for s in second)
-    assert not [s for s in first + second if re.search(r"[A-Za-z]{3,}", s)]
+    every = [s for sheet in notes for s in sheet]
+    assert sum(len(doc.modelspace().query("INSERT")) for doc in docs) == 10
+    assert sum(bool(re.fullmatch(r"μl = 0,\d+ м/мм", s)) for s in every) == 2  # the positions, the scheme
+    assert sum(bool(re.fullmatch(r"μv = [\d,]+ \(м/с\)/мм", s)) for s in every) == 1
+    assert sum(bool(re.fullmatch(r"μa = [\d,]+ \(м/с²\)/мм", s)) for s in every) == 1
+    assert sum(bool(re.fullmatch(r"μF = [\d,]+ Н/мм", s)) for s in every) == 4
+    assert sum(bool(re.fullmatch(r"μv = [\d,]+ \(м/с\)/мм;  μF = [\d,]+ Н/мм", s)) for s in every) == 1
+    assert not [s for s in every if re.search(r"[A-Za-z]{3,}", s)]
     loads = []
-    for insert in docs[1].modelspace().query("INSERT"):
+    for insert in (i for doc in docs for i in doc.modelspace().query("INSERT")):
         scale = [_content(e) for e in _texts(insert.virtual_entities()) if _content(e).startswith("μF = ")]
         for e in insert.virtual_entities():
             if e.dxftype() == "LINE" and e.dxf.layer == "LOADS" and scale:

@@ -14,7 +14,8 @@ the thin ones 0.25 to 0.35 mm (ГОСТ 2.303).
 
 :func:`write_sheets` writes the sheets of the course project: ``sheet_1.dxf``, the kinematic analysis (the plan
 of positions, the velocity and acceleration plans) and ``sheet_2.dxf``, the kinetostatic analysis (the scheme at
-the position of the force analysis, the force plans of the groups, Zhukovsky's lever).
+the position of the force analysis, the force plans of the groups, Zhukovsky's lever, the legend of the
+arrows); on A3 and A4, which hold fewer drawings (:data:`CAPACITY`), the rest on the next sheets.
 """
 
 from __future__ import annotations
@@ -50,6 +51,8 @@ SMALLEST, LABEL, TITLE, LARGE = 2.5, 3.5, 5.0, 7.0
 THICK, THIN = 70, 35
 #: Reductions 1:N of ГОСТ 2.302 a scheme is drawn at.
 REDUCTIONS = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0, 15.0, 20.0, 25.0, 40.0, 50.0, 75.0, 100.0, 200.0, 400.0, 500.0, 1000.0)
+#: How many drawings a sheet of each format holds; more go on the next sheet (A4: two, one above the other).
+CAPACITY = {"A1": 8, "A2": 8, "A3": 4, "A4": 2}
 #: Gap between two cells and between a cell and the frame, mm.
 GAP = 5.0
 #: Height of a drawing's heading (its title and its scales), mm.
@@ -305,16 +308,17 @@ class Sheet:
         included), and insert it centred across the cell, at its top; returns its box on the sheet, mm."""
         name = f"DRAWING_{len(self.placed) + 1}"
         w, h = cell.size
-        shrink = 1.0
-        for _ in range(4):
+        across, down = 1.0, 1.0  # each shrunk where the drawing overflows: its texts do not shrink with it
+        for _ in range(8):
             if name in self.doc.blocks:
                 self.doc.blocks.delete_block(name, safe=False)
             block = self.doc.blocks.new(name=name)
-            box = self._drawn(block, d, shrink * w, shrink * h)
-            ratio = max((box[2] - box[0]) / w, (box[3] - box[1]) / h)
-            if ratio <= 1:
+            box = self._drawn(block, d, across * w, down * h)
+            wide, tall = (box[2] - box[0]) / w, (box[3] - box[1]) / h
+            if max(wide, tall) <= 1:
                 break
-            shrink *= 0.98 / ratio
+            across *= 0.97 / wide if wide > 1 else 1.0
+            down *= 0.97 / tall if tall > 1 else 1.0
         shift = np.array([(cell.box[0] + cell.box[2]) / 2 - (box[0] + box[2]) / 2, cell.box[3] - box[3]])
         self.msp.add_blockref(name, tuple(shift), dxfattribs={"layer": "0"})
         self.placed.append(Placed(name, box + np.r_[shift, shift]))
@@ -511,14 +515,11 @@ def legend_drawing(plans: ForcePlans, index: int, lang: str) -> Drawing:
     return Drawing(t("sheet.legend", lang), fit)
 
 
-def kinematics_sheet(
-    twelve: Kinematics, position: int, cycle: Kinematics, lang: str, fmt: str, block: TitleBlock, sheets: int = 2
-) -> Sheet:
-    """Sheet 1, the kinematic analysis: the plan of the twelve positions, the velocity and acceleration plans of
-    ``position``."""
+def kinematics_drawings(twelve: Kinematics, position: int, cycle: Kinematics, lang: str) -> list[Drawing]:
+    """The drawings of the kinematic analysis: the plan of the twelve positions, the velocity and acceleration
+    plans of ``position``."""
     from linkwork.scene.positions import positions_scene
 
-    name = twelve.mechanism.name
     scene = positions_scene(twelve, cycle=cycle)
     where = t("at_position", lang, position=position)
     drawings = [
@@ -531,24 +532,14 @@ def kinematics_sheet(
         plan_drawing(twelve, position, "velocity", t("sheet.velocity", lang) + where, lang),
         plan_drawing(twelve, position, "acceleration", t("sheet.acceleration", lang) + where, lang),
     ]
-    sheet = Sheet(fmt, _titled(block, name, t("sheet.kinematics", lang)), 1, sheets, lang)
-    sheet.place(drawings)
-    return sheet
+    return drawings
 
 
-def kinetostatics_sheet(
-    plans: ForcePlans,
-    lv: Lever,
-    index: int,
-    named: str,
-    cycle: Kinematics,
-    lang: str,
-    fmt: str,
-    block: TitleBlock,
-    sheets: int = 2,
-) -> Sheet:
-    """Sheet 2, the kinetostatic analysis at sample ``index`` of ``plans`` (``named``: its position, for the
-    titles): the scheme there, each group's force plan, Zhukovsky's lever."""
+def kinetostatics_drawings(
+    plans: ForcePlans, lv: Lever, index: int, named: str, cycle: Kinematics, lang: str
+) -> list[Drawing]:
+    """The drawings of the kinetostatic analysis at sample ``index`` of ``plans`` (``named``: its position, for
+    the titles): the scheme there, each group's force plan, Zhukovsky's lever, the legend of the arrows."""
     from linkwork.lang import group_label
     from linkwork.scene.scheme import scheme_scene
 
@@ -569,9 +560,7 @@ def kinetostatics_sheet(
         drawings.append(force_plan_drawing(plans, j, index, t("sheet.force_plan", lang, group=title), lang))
     drawings.append(lever_drawing(lv, kin, index, t("sheet.lever", lang), lang))
     drawings.append(legend_drawing(plans, index, lang))
-    sheet = Sheet(fmt, _titled(block, kin.mechanism.name, t("sheet.kinetostatics", lang)), 2, sheets, lang)
-    sheet.place(drawings)
-    return sheet
+    return drawings
 
 
 def _titled(block: TitleBlock, name: str, what: str) -> TitleBlock:
@@ -603,12 +592,21 @@ def write_sheets(
     fmt: str = "A1",
     block: TitleBlock | None = None,
 ) -> list[Path]:
-    """``sheet_1.dxf`` (the kinematic analysis at ``position`` of ``twelve``) and ``sheet_2.dxf`` (the kinetostatic
-    analysis at sample ``index`` of ``plans`` and ``lever``, ``named`` in the titles) on format ``fmt`` with the
-    title block ``block``, into ``folder``; returns their paths."""
+    """The sheets of the kinematic analysis at ``position`` of ``twelve`` and of the kinetostatic analysis at sample
+    ``index`` of ``plans`` and ``lever`` (``named`` in the titles) on format ``fmt`` with the title block ``block``,
+    ``sheet_1.dxf``, ``sheet_2.dxf``... into ``folder`` (on A1 and A2 one sheet each, on A3 four drawings a sheet,
+    on A4 two: :data:`CAPACITY`), numbered in their title blocks; returns their paths."""
     require("ezdxf", purpose=PURPOSE)
     block = block or TitleBlock()
-    folder = Path(folder)
-    first = kinematics_sheet(twelve, position, cycle, lang, fmt, block)
-    second = kinetostatics_sheet(plans, lever, index, named, cycle, lang, fmt, block)
-    return [first.save(folder / "sheet_1.dxf"), second.save(folder / "sheet_2.dxf")]
+    name = twelve.mechanism.name
+    parts = [
+        (t("sheet.kinematics", lang), kinematics_drawings(twelve, position, cycle, lang)),
+        (t("sheet.kinetostatics", lang), kinetostatics_drawings(plans, lever, index, named, cycle, lang)),
+    ]
+    pages = [(what, d[k : k + CAPACITY[fmt]]) for what, d in parts for k in range(0, len(d), CAPACITY[fmt])]
+    out = []
+    for number_, (what, drawings) in enumerate(pages, start=1):
+        sheet = Sheet(fmt, _titled(block, name, what), number_, len(pages), lang)
+        sheet.place(drawings)
+        out.append(sheet.save(Path(folder) / f"sheet_{number_}.dxf"))
+    return out

@@ -199,7 +199,7 @@ def sections(run: Any, at12: Forces, cycle: Any, f: Forces) -> tuple[list[str], 
 
 def _sheets(run: Any, cycle: Any, plans: Any, lv: Any, at: Where) -> None:
     """The drawing sheets of the course project (:mod:`linkwork.io.dxf_sheet`), ``figures/sheet_1.dxf`` (the
-    kinematics at the plans' position) and ``sheet_2.dxf`` (the kinetostatics at ``at``)."""
+    kinematics at the plans' position), ``sheet_2.dxf`` (the kinetostatics at ``at``), more on A3 and A4."""
     from linkwork.io.dxf_sheet import sheet_options, write_sheets
 
     fmt, block = sheet_options(run.mech)
