@@ -564,6 +564,10 @@ TEXTS: dict[str, tuple[str, str]] = {
         "shorter than {size} mm, named here: {forces}",
         "короче {size} мм, подписаны здесь: {forces}",
     ),
+    "forceplans.left_out": (
+        "shorter than {size} mm at this scale, not drawn: {forces}",
+        "короче {size} мм в этом масштабе, не показаны: {forces}",
+    ),
     "forceplans.title": ("{name}: force plans of the groups", "{name}: планы сил групп"),
     "forceplans.cell": ("{group}\nμF = {scale} N/mm", "{group}\nμF = {scale} Н/мм"),
     "forceplans.singular": (

@@ -175,3 +175,28 @@ def test_a_short_arrow_is_named_under_the_plan_and_no_two_names_cover_each_other
         for (s, a0, a1), (u, b0, b1) in itertools.combinations(boxes, 2):
             assert (a1 <= b0).any() or (b1 <= a0).any(), (s, u)
     assert listed >= 10  # G and Φ of every link but the knives' cutting force
+
+
+def test_every_force_of_the_lever_is_drawn_or_listed_under_it_with_its_value():
+    """Under the cutting load the lever's inertia forces and weights (5 to 3000 N beside 250 kN) are too short to
+    draw at the lever's force scale: each is listed under the lever with its value, none is lost."""
+    from linkwork.kinetostatics.zhukovsky import lever
+    from linkwork.motion.analysis import zero_angle
+    from linkwork.motion.plans import plan_series
+    from linkwork.scene.force_plans import lever_scene, short_note
+
+    mech = lw.compile(lw.load("double-cut-shears"))
+    one = lw.forces(lw.kinematics(mech, [zero_angle(mech) + np.radians(86.6)]))
+    lv = lever(one)
+    scene = lever_scene(lv, plan_series(one.kinematics)[0], 0, lang="ru")
+    drawn = {a.text for a in scene.arrows}
+    left = dict(scene.left_out)
+    note = short_note(scene, "ru").replace("\u00a0", " ")
+    for lf in lv.forces:
+        name, size = lf.force.name("ru"), float(np.hypot(*lf.force.vector[0, 0]))
+        if size > 0:
+            assert (name in drawn) != (name in left), name
+        if name in left:
+            assert left[name] == pytest.approx(size, rel=1e-12)
+            assert f"{name} = {size:.4g} Н".replace(".", ",") in note
+    assert any(name.startswith("Фи") for name in left)

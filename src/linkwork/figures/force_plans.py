@@ -149,14 +149,19 @@ def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | str | N
     scene = lever_scene(lv, plan_series(kin)[0], index, lang=lang)
     kinds = scene.kinds()
     rows = -(-len(kinds) // 3)
-    sh = sheet(scene.extent(), top=1.1, bottom=0.3 + 0.24 * rows, width=5.6, height=6.0, least=5.6)
-    draw_forces(sh, scene)
     moment = float(lv.balancing[0, index])
     name = kin.mechanism.name
-    note = t("lever.scale", lang, plan=f"{scene.plan_scale:g}", scale=f"{scene.scale:g}")
+    note = "\n".join(textwrap.wrap(t("lever.scale", lang, plan=f"{scene.plan_scale:g}", scale=f"{scene.scale:g}"), 64))
     note += "\n" + t("lever.moment", lang, moment=f"{moment:.6g}")
+    left = short_note(scene, lang)
+    if left:  # the forces too short to draw at this scale, with their values
+        note += "\n" + "\n".join(textwrap.wrap(left, 64))
     angle = float(kin.angles[index])
-    sh.ax.set_title(f"{t('lever.title', lang, name=name)}\n{where(angle, position, lang)}\n{note}", fontsize=9)
+    title = f"{t('lever.title', lang, name=name)}\n{where(angle, position, lang)}\n{note}"
+    top = max(1.1, 0.3 + 0.17 * (title.count("\n") + 1))  # inches: the title's lines
+    sh = sheet(scene.extent(), top=top, bottom=0.3 + 0.24 * rows, width=5.6, height=6.0 + top - 1.1, least=5.6)
+    draw_forces(sh, scene)
+    sh.ax.set_title(title, fontsize=9)
     _legend(sh.fig, kinds, lang)
     return sh.fig
 

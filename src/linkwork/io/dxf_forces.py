@@ -70,27 +70,30 @@ def _draw(msp: Any, scene: ForceScene, offset: np.ndarray) -> None:
             _text(msp, text, c + offset, scene.em)
 
 
-def _short(msp: Any, scene: ForceScene, offset: np.ndarray, lang: str, width: float | None = None) -> None:
+def _short(
+    msp: Any, scene: ForceScene, offset: np.ndarray, lang: str, width: float | None = None, em: float | None = None
+) -> None:
     """Under a force plan, the names and values of its arrows too short to carry their names
     (:func:`~linkwork.scene.force_plans.short_note`), in ``NOTES``, in lines no wider than ``width`` mm (default
-    the plan's, at least 60 mm)."""
+    the plan's, at least 60 mm), ``em`` mm high (default the scene's)."""
     from linkwork.scene.geometry import text_size
 
     note = short_note(scene, lang)
     if not note:
         return
+    em = scene.em if em is None else em
     box = scene.extent() + np.r_[offset, offset]
     width = max(60.0, float(box[2] - box[0])) if width is None else width
     lines = [""]
     for part in note.split(", "):
         joined = f"{lines[-1]}, {part}" if lines[-1] else part
-        if lines[-1] and text_size(joined, scene.em)[0] > width:
+        if lines[-1] and text_size(joined, em)[0] > width:
             lines.append(part)
         else:
             lines[-1] = joined
     for k, line in enumerate(lines):
-        at = np.array([box[0], box[1] - (1.2 + 1.5 * k) * scene.em])
-        _text(msp, line, at, scene.em, layer="NOTES", left=True)
+        at = np.array([box[0], box[1] - (1.2 * scene.em + 1.5 * k * em)])
+        _text(msp, line, at, em, layer="NOTES", left=True)
 
 
 def write_force_plans(plans: ForcePlans, index: int, path: str | Path, lang: str = "en") -> Path:
@@ -127,6 +130,7 @@ def write_lever(lv: Lever, kin: Kinematics, index: int, path: str | Path, lang: 
     doc, msp = _forces_document()
     scene = lever_scene(lv, plan_series(kin)[0], index, lang=lang)
     _draw(msp, scene, np.zeros(2))
+    _short(msp, scene, np.zeros(2), lang)
     doc.header.custom_vars.append("LINKWORK_SCALE", repr(scene.scale))
     crank = t("drawing.crank", lang, angle=f"{turn_deg(float(kin.angles[index])):.1f}")
     note = (

@@ -450,7 +450,7 @@ def force_plan_drawing(plans: ForcePlans, group: int, index: int, title: str, la
 
         scene = _fitted(build, lambda s: s.extent(), g.scale(index), w, h - 2 * LABEL)
         _draw(layout, scene, np.zeros(2))
-        _short(layout, scene, np.zeros(2), lang, width=w - 2.0)
+        _short(layout, scene, np.zeros(2), lang, width=0.85 * (w - 2.0), em=SMALLEST / CAP)  # room for the font
         return scene.extent(), f"μF = {number(scene.scale, lang)} {t('sheet.n_per_mm', lang)}"
 
     return Drawing(title, fit)
@@ -458,7 +458,7 @@ def force_plan_drawing(plans: ForcePlans, group: int, index: int, title: str, la
 
 def lever_drawing(lv: Lever, kin: Kinematics, index: int, title: str, lang: str) -> Drawing:
     """Zhukovsky's lever at sample ``index`` of ``kin``: the turned velocity plan at a scale μv that fits."""
-    from linkwork.io.dxf_forces import _draw
+    from linkwork.io.dxf_forces import _draw, _short
     from linkwork.motion.plans import plan_series
     from linkwork.scene.force_plans import lever_scene
     from linkwork.scene.plans import plan_scale
@@ -466,11 +466,17 @@ def lever_drawing(lv: Lever, kin: Kinematics, index: int, title: str, lang: str)
     series = plan_series(kin)[0]
 
     def fit(layout: Any, w: float, h: float) -> tuple[np.ndarray, str]:
-        def build(scale: float) -> Any:
-            return lever_scene(lv, series, index, lang=lang, em=LABEL / CAP, plan_scale=scale)
+        first = lever_scene(lv, series, index, lang=lang, em=LABEL / CAP)
+        ratio = first.scale / first.plan_scale  # the forces shrink with the plan: (N/mm) / ((m/s)/mm)
 
-        scene = _fitted(build, lambda s: s.extent(), plan_scale(series, [index]), w, h)
+        def build(scale: float) -> Any:
+            return lever_scene(
+                lv, series, index, lang=lang, em=LABEL / CAP, plan_scale=scale, scale=nice_up(ratio * scale)
+            )
+
+        scene = _fitted(build, lambda s: s.extent(), plan_scale(series, [index]), w, h - 2 * LABEL)
         _draw(layout, scene, np.zeros(2))
+        _short(layout, scene, np.zeros(2), lang, width=0.85 * (w - 2.0), em=SMALLEST / CAP)  # room for the font
         unit = t("plan.unit.velocity", lang)
         scales = f"μv = {number(scene.plan_scale, lang)} {unit};  μF = {number(scene.scale, lang)} "
         return scene.extent(), scales + t("sheet.n_per_mm", lang)

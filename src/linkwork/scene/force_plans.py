@@ -16,6 +16,7 @@ Labels are placed clear of each other and of the lines (:mod:`linkwork.scene.lab
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -94,6 +95,7 @@ class ForceScene:
     dots: np.ndarray
     dot_text: tuple[str, ...]
     dot_centres: np.ndarray
+    left_out: tuple[tuple[str, float], ...] = ()  # a lever's forces too short to draw: (name, value N)
 
     def short(self) -> list[ForceArrow]:
         """The named arrows whose names are not drawn beside them (shorter than :data:`SHORT` ems on a plan)."""
@@ -216,9 +218,12 @@ def lever_scene(
     largest = max((float(np.hypot(*v)) for v in vectors if np.isfinite(v).all()), default=0.0)
     scale = drawing_scale(largest * 100.0 / 40.0) if scale is None else float(scale)
     drafts: list[_Draft] = []
+    left_out: list[tuple[str, float]] = []
     for (at, f), v in zip(forces, vectors, strict=False):  # those too short to see left out (they need not close)
         if _drawn(v, largest) and np.isfinite(at).all() and np.hypot(*v) / scale > 0.5 * em:
             drafts.append((at, at + v / scale, f, False))
+        elif np.isfinite(v).all() and np.hypot(*v) > 0:
+            left_out.append((_name(f, lang), float(np.hypot(*v))))
     pin = lv.pin_image[variant, index] / plan_scale
     balancing = PlanForce("Fb", "", "", "balancing", 1, lv.balancing_force, lv.pin_image, np.zeros(1))
     if _drawn(vectors[-1], largest) and np.isfinite(pin).all():
@@ -237,7 +242,7 @@ def lever_scene(
     if np.isfinite(pin).all() and (round(float(pin[0]), 6), round(float(pin[1]), 6)) not in seen:
         dots.append(pin)
         texts.append(lv.pin)
-    return _scene(
+    scene = _scene(
         "lever",
         "",
         scale,
@@ -250,6 +255,7 @@ def lever_scene(
         tuple(texts),
         angle=float(velocity.angles[index]),
     )
+    return dataclasses.replace(scene, left_out=tuple(left_out))
 
 
 def _scene(
@@ -309,11 +315,15 @@ def short_note(scene: ForceScene, lang: str = "en") -> str:
     ``shorter than 3.5 mm: G6 = 294.3 N, Фи6 = 5.53 N`` (decimal commas in Russian); empty where none is."""
     from linkwork.lang import russian_numbers, t
 
-    found = scene.short()
-    if not found:
-        return ""
-    listed = ", ".join(f"{a.text}\u00a0=\u00a0{a.value:.4g}\u00a0{t('unit.N', lang)}" for a in found)
-    text = t("forceplans.short", lang, size=f"{SHORT * scene.em:.1f}", forces=listed)
+    def listed(pairs: list[tuple[str, float]]) -> str:
+        return ", ".join(f"{name}\u00a0=\u00a0{value:.4g}\u00a0{t('unit.N', lang)}" for name, value in pairs)
+
+    found = [(a.text, a.value) for a in scene.short()]
+    parts = [t("forceplans.short", lang, size=f"{SHORT * scene.em:.1f}", forces=listed(found))] if found else []
+    if scene.left_out:
+        size = f"{0.5 * scene.em:.1f}"
+        parts.append(t("forceplans.left_out", lang, size=size, forces=listed(list(scene.left_out))))
+    text = "; ".join(parts)
     return russian_numbers(text) if lang == "ru" else text
 
 
