@@ -44,5 +44,9 @@ def test_russian_numbers_take_a_decimal_comma_and_a_power_of_ten_but_names_stay(
     )
     assert russian_numbers("II(2,3), O1.x, v1.2.3, ISO 281, -150") == "II(2,3), O1.x, v1.2.3, ISO 281, -150"
     assert russian_numbers("ω2²·l = 3.142²·0.4 м") == "ω2²·l = 3,142²·0,4 м"
+    assert (
+        russian_numbers("(7.465, 49.77) Н·с; 0, 0.15, 0.3; звенья 6, 7")
+        == "(7,465; 49,77) Н·с; 0; 0,15; 0,3; звенья 6, 7"
+    )
     page = "<style>td{padding:0.5em}</style><p>0.05 м</p><pre>length: 0.10</pre><img src='data:x/y;base64,A1.2'>"
     assert russian_html(page) == page.replace("<p>0.05 м</p>", "<p>0,05 м</p>")

@@ -733,6 +733,7 @@ TEXTS: dict[str, tuple[str, str]] = {
         "{name}, of the guide's coincident point: {name} = {value} {unit}, {segment}",
         "{name}, точки направляющей, совпадающей с ползуном: {name} = {value} {unit}, {segment}",
     ),
+    "kplan.vector": ("{name} = {value} {unit}, {segment}", "{name} = {value} {unit}, {segment}"),
     "kplan.absolute": ("The points' absolute vectors, from the pole:", "Абсолютные векторы точек, от полюса:"),
     "unit.deg": ("°", "°"),
     "unit.N": ("N", "Н"),
@@ -1122,14 +1123,19 @@ _SUPERSCRIPT = str.maketrans("-+0123456789", "⁻⁺⁰¹²³⁴⁵⁶⁷⁸⁹"
 
 
 def russian_numbers(text: str) -> str:
-    """The numbers of a text as Russian writes them: a decimal comma (``294.3`` -> ``294,3``) and a power of ten
-    for an exponent (``2.5e+05`` -> ``2,5·10⁵``); a number glued to a name (``O1.x``, ``v1.2``) as it is."""
+    """The numbers of a text as Russian writes them: a decimal comma (``294.3`` -> ``294,3``), a power of ten
+    for an exponent (``2.5e+05`` -> ``2,5·10⁵``), numbers with decimals listed apart by semicolons
+    (``(7.465, 49.77)`` -> ``(7,465; 49,77)``); a number glued to a name (``O1.x``, ``v1.2``) as it is."""
     import re
 
     def power(m: re.Match[str]) -> str:
         exponent = str(int(m.group(2)))
         return f"{m.group(1)}·10{exponent.translate(_SUPERSCRIPT)}"
 
+    def apart(m: re.Match[str]) -> str:  # numbers with decimals listed apart by semicolons: (7,465; 49,77)
+        return m.group(1) + ("; " if "." in m.group(1) + m.group(2) else ", ")
+
+    text = re.sub(r"(?<![\w.])(-?\d+(?:\.\d+)?), (?=(-?\d+(?:\.\d+)?)(?![\w.]))", apart, text)
     after = r"(?![A-Za-zА-Яа-яЁё_0-9.])"  # not glued to a name ("²" may follow: 3.142² -> 3,142²)
     out = re.sub(rf"(?<![\w.])(-?\d+(?:\.\d+)?)e([-+]?\d+){after}", power, text)
     return re.sub(rf"(?<![\w.,])(-?\d+)\.(\d+){after}", r"\1,\2", out)

@@ -74,3 +74,18 @@ def test_every_vector_of_the_construction_has_its_line(lang):
     mm = "mm" if lang == "en" else "мм"
     segments = re.findall(rf"\b[\wπ']+ = [\d.e-]+ {mm}", text)
     assert len(segments) >= 7 + 14
+
+
+@pytest.mark.parametrize("name", ["four-bar", "shears-slider-crank", "percussion-rocker", "stephenson-six-bar"])
+def test_every_plan_of_a_bundled_example_is_worked_out_at_every_position(name):
+    """No position of the twelve (dead points, a guide's coincident point at zero distance) stops the text: each
+    has a line for each vector of the construction and each point."""
+    from linkwork.motion.plans import plan_series
+
+    mech = lw.compile(lw.example(name))
+    kin = lw.kinematics(mech, position_angles(mech))
+    velocity, acceleration = plan_series(kin)
+    for k in range(12):
+        page = "".join(worked_plans(_Run("ru"), kin, k, str(k)))
+        lines = page.count("<br>") + 2
+        assert lines >= len(velocity.edges) + len(acceleration.edges), (name, k)

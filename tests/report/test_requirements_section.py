@@ -72,7 +72,8 @@ def test_the_report_opens_with_the_requirements_and_the_limit_positions(slider_c
     doc = ezdxf.readfile(folder / "figures" / "limits.dxf")
     assert len(doc.modelspace().query('LWPOLYLINE[layer=="LIMITS"]')) == 3
     msp = doc.modelspace()
-    assert "θ = 23.48°" in [e.dxf.text for e in msp.query("TEXT")] + [e.plain_text() for e in msp.query("MTEXT")]
+    theta = "θ = 23,48°" if lang == "ru" else "θ = 23.48°"  # a decimal comma in Russian
+    assert theta in [e.dxf.text for e in msp.query("TEXT")] + [e.plain_text() for e in msp.query("MTEXT")]
 
 
 def test_a_file_without_requirements_has_no_such_section():

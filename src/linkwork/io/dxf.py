@@ -93,7 +93,7 @@ def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories:
     draw_scheme(msp, scene, index, trajectories)
     crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
     note = f"{t('scheme.title', lang, name=scene.name)}, {crank}; 1:1, {t('unit.mm', lang)}"
-    _note(doc, msp, note, scene.extent(index, paths=trajectories) * 1000, 1000 * scene.em)
+    _note(doc, msp, note, scene.extent(index, paths=trajectories) * 1000, 1000 * scene.em, lang)
     return _save(doc, path)
 
 
@@ -118,7 +118,7 @@ def write_positions(scene: PositionsScene, path: str | Path, lang: str = "en") -
     doc, msp = _document(SCHEME, em=1000 * s.em)
     draw_positions(msp, scene)
     note = f"{t('positions.title', lang, name=s.name, count=len(s.angles))}; 1:1, {t('unit.mm', lang)}"
-    _note(doc, msp, note, scene.extent() * 1000, 1000 * s.em)
+    _note(doc, msp, note, scene.extent() * 1000, 1000 * s.em, lang)
     return _save(doc, path)
 
 
@@ -156,7 +156,7 @@ def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path
     title = t(
         "limits.title", lang, name=s.name, member=scene.member, theta=f"{np.degrees(scene.theta):.2f}", k=f"{k:.4f}"
     ).replace("\n", ", ")
-    _note(doc, msp, f"{title}; 1:1, {t('unit.mm', lang)}", scene.extent() * 1000, 1000 * s.em)
+    _note(doc, msp, f"{title}; 1:1, {t('unit.mm', lang)}", scene.extent() * 1000, 1000 * s.em, lang)
     return _save(doc, path)
 
 
@@ -168,7 +168,7 @@ def write_plan(scene: PlanScene, index: int, path: str | Path, lang: str = "en")
     draw_plan(msp, scene, index)
     crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
     note = f"{t(f'plan.{scene.kind}', lang)}, {crank}; {scene.scale_note(lang)}"
-    _note(doc, msp, note, scene.extent(index), scene.em)
+    _note(doc, msp, note, scene.extent(index), scene.em, lang)
     _legend(msp, scene, index, lang)
     return _save(doc, path)
 
@@ -302,9 +302,13 @@ def mtext(text: str) -> str:
     return "".join(out)
 
 
-def _note(doc: Any, msp: Any, text: str, extent: np.ndarray, em: float) -> None:
-    """The drawing's title above it, in the ``NOTES`` layer."""
+def _note(doc: Any, msp: Any, text: str, extent: np.ndarray, em: float, lang: str = "en") -> None:
+    """The drawing's title above it, in the ``NOTES`` layer (its numbers with decimal commas in Russian)."""
     from ezdxf.enums import TextEntityAlignment
+
+    from linkwork.lang import russian_numbers
+
+    text = russian_numbers(text) if lang == "ru" else text
 
     entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": "NOTES", "style": STYLE})
     entity.set_placement((float(extent[0]), float(extent[3]) + 1.5 * em), align=TextEntityAlignment.BOTTOM_LEFT)

@@ -113,12 +113,12 @@ def write_force_plans(plans: ForcePlans, index: int, path: str | Path, lang: str
         if g.balancing is not None:
             label = t("forceplans.driving", lang, group=label)
         note = t("forceplans.cell", lang, group=label, scale=f"{scene.scale:g}").replace("\n", ";  ")
-        _note(doc, msp, note, box + np.r_[offset, offset], scene.em)
+        _note(doc, msp, note, box + np.r_[offset, offset], scene.em, lang)
         x += box[2] - box[0] + 20.0
         top = max(top, float(box[3]) + 6 * scene.em)
     crank = t("drawing.crank", lang, angle=f"{turn_deg(angle):.1f}")
     note = f"{t('forceplans.title', lang, name=plans.forces.mechanism.name)}, {crank}"
-    _note(doc, msp, note, np.array([0.0, 0.0, x, top]), 1.4 * 3.5)
+    _note(doc, msp, note, np.array([0.0, 0.0, x, top]), 1.4 * 3.5, lang)
     return _save(doc, path)
 
 
@@ -138,5 +138,5 @@ def write_lever(lv: Lever, kin: Kinematics, index: int, path: str | Path, lang: 
         f"{t('lever.scale', lang, plan=f'{scene.plan_scale:g}', scale=f'{scene.scale:g}')}; "
         f"{t('lever.moment', lang, moment=f'{float(lv.balancing[0, index]):.6g}')}"
     )
-    _note(doc, msp, note, scene.extent(), scene.em)
+    _note(doc, msp, note, scene.extent(), scene.em, lang)
     return _save(doc, path)

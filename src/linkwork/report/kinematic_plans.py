@@ -133,8 +133,10 @@ def _vector(
     name = f"{_symbol(e.kind, series.kind)}_{point}{_about(e, point)}"
     unit = run.t("unit.m_s" if series.kind == "velocity" else "unit.m_s2")
     segment = f"{start}{e.end} = {_n(mm)} {run.t('unit.mm')}"
+    length = math.nan
     if e.kind in ("rotation", "normal", "tangential") and e.about != "frame":
         length = float(np.hypot(*(kin.position(point)[index] - kin.position(e.about)[index])))
+    if length > 0:  # a point turning about another one: its ω or ε (not a guide's coincident point, l = 0)
         k = _link(kin, point, e.about)
         key = {"rotation": "kplan.rotation", "normal": "kplan.normal", "tangential": "kplan.tangential"}[e.kind]
         omega = value / length if e.kind == "rotation" else math.sqrt(value / length)
@@ -157,7 +159,8 @@ def _vector(
                 scale=f"{scale:g}",
             )
         )
-    return html.escape(run.t(f"kplan.{e.kind}", name=name, value=_n(value), unit=unit, segment=segment))
+    key = f"kplan.{e.kind}" if e.kind in ("sliding", "coriolis", "transport") else "kplan.vector"
+    return html.escape(run.t(key, name=name, value=_n(value), unit=unit, segment=segment))
 
 
 def _absolute(run: Any, series: PlanSeries, kin: Kinematics, index: int, scale: float, pole: str) -> list[str]:
