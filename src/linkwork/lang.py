@@ -820,6 +820,12 @@ TEXTS: dict[str, tuple[str, str]] = {
     "sizing.word.bush p": ("bush p", "p втулки"),
     "sizing.word.bush pv": ("bush pv", "pv втулки"),
     "sizing.word.given": ("given", "задан"),
+    "sizing.motor_given": (
+        "The motor is the file's (machine.motor): it is taken as given, not chosen from the catalogue (sizing: "
+        "{{motor: true}} chooses one).",
+        "Двигатель задан в файле (machine.motor): он принят как задан, из каталога не подбирается (подбор — "
+        "sizing: {{motor: true}}).",
+    ),
     "sizing.word.ok": ("ok", "годится"),
     "sizing.table.pins": (
         "Pins in double shear",

@@ -42,10 +42,12 @@ def sizing_section(mech: Mechanism, t: Any) -> tuple[list[str], Sizing | None]:
     body += [_p(t("sizing.inputs")), _html_table([t("sizing.col.quantity"), t("sizing.col.value")], rows)]
     for table in result.tables():
         body += [_p(t(f"sizing.table.{table.key}")), _translated(table, t)]
-    body += [
-        _p(t("sizing.missing", part=_text(t, "sizing.word.", part), why=_text(t, "sizing.word.", why)))
-        for part, why in result.missing.items()
-    ]
+    given = mech.spec is not None and mech.spec.machine is not None and mech.spec.machine.motor is not None
+    for part, why in result.missing.items():
+        if part == "motor" and why == "not asked" and given:  # the file's own motor: nothing to choose
+            body.append(_p(t("sizing.motor_given")))
+        else:
+            body.append(_p(t("sizing.missing", part=_text(t, "sizing.word.", part), why=_text(t, "sizing.word.", why))))
     return body, result
 
 
