@@ -1080,6 +1080,7 @@ FILE_WORDS_RU = {
     "gear": "передача",
     "flywheel": "маховик",
     "type": "тип",
+    "delta": "δ",
 }
 
 #: Units as a file writes them, in Russian.
