@@ -512,8 +512,11 @@ TEXTS: dict[str, tuple[str, str]] = {
     "title.simulate": ("Run in time from t = 0", "Движение во времени от t = 0"),
     # ------------------------------------------------------------------ the scheme, the positions, the plans
     "scheme.title": ("{name}: kinematic scheme", "{name}: кинематическая схема"),
-    "drawing.crank": ("crank at {angle}°", "угол кривошипа {angle}°"),
-    "drawing.position": ("position {position}, crank at {angle}°", "положение {position}, угол кривошипа {angle}°"),
+    "drawing.crank": ("crank at {angle}° to x", "угол кривошипа {angle}° к оси x"),
+    "drawing.position": (
+        "position {position}, crank at {angle}° to x",
+        "положение {position}, угол кривошипа {angle}° к оси x",
+    ),
     "positions.title": ("{name}: plan of {count} positions", "{name}: план {count} положений"),
     "positions.ccw": (
         "0 at crank {angle}°, then counter-clockwise",
