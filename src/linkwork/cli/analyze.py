@@ -44,7 +44,12 @@ def analyze(
     pdf: Annotated[bool, typer.Option("--pdf", help="also write report.pdf")] = False,
     animation: Annotated[bool, typer.Option(help="write animation.gif (and .mp4 with imageio-ffmpeg)")] = True,
     dxf: Annotated[
-        bool, typer.Option("--dxf", help="also write the drawings for CAD, figures/*.dxf (needs ezdxf)")
+        bool,
+        typer.Option(
+            "--dxf",
+            help="also write the drawings for CAD, figures/*.dxf, and the drawing sheets to GOST, "
+            "figures/sheet_*.dxf (needs ezdxf)",
+        ),
     ] = False,
     sheet: Annotated[
         str | None,
