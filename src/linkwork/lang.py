@@ -826,8 +826,8 @@ TEXTS: dict[str, tuple[str, str]] = {
     "sizing.motor_given": (
         "The motor is the file's (machine.motor): it is taken as given, not chosen from the catalogue (sizing: "
         "{{motor: true}} chooses one).",
-        "Двигатель задан в файле (machine.motor): он принят как задан, из каталога не подбирается (подбор — "
-        "sizing: {{motor: true}}).",
+        "Двигатель задан в файле: он принят как задан, из каталога не подбирается (подбор двигателя задаётся "
+        "в разделе подбора деталей файла).",
     ),
     "sizing.word.ok": ("ok", "годится"),
     "sizing.table.pins": (
