@@ -64,3 +64,19 @@ def test_a_catalogue_missing_a_key_is_found(tmp_path, monkeypatch):
     assert "caption.scheme" in lang.catalogue("en") and "caption.scheme" not in lang.catalogue("ru")
     with pytest.raises(KeyError, match="caption.scheme"):
         lang._table()
+
+
+def test_russian_numbers_take_a_decimal_comma_and_a_power_of_ten_but_names_stay():
+    from linkwork.lang import russian_html, russian_numbers
+
+    assert russian_numbers("G6 294.3 Н; R36 = 4.912e+05 Н; h = 8.266e-15 мм; φ = 86.6°") == (
+        "G6 294,3 Н; R36 = 4,912·10⁵ Н; h = 8,266·10⁻¹⁵ мм; φ = 86,6°"
+    )
+    assert russian_numbers("II(2,3), O1.x, v1.2.3, ISO 281, -150") == "II(2,3), O1.x, v1.2.3, ISO 281, -150"
+    assert russian_numbers("ω2²·l = 3.142²·0.4 м") == "ω2²·l = 3,142²·0,4 м"
+    assert (
+        russian_numbers("(7.465, 49.77) Н·с; 0, 0.15, 0.3; звенья 6, 7")
+        == "(7,465; 49,77) Н·с; 0; 0,15; 0,3; звенья 6, 7"
+    )
+    page = "<style>td{padding:0.5em}</style><p>0.05 м</p><pre>length: 0.10</pre><img src='data:x/y;base64,A1.2'>"
+    assert russian_html(page) == page.replace("<p>0.05 м</p>", "<p>0,05 м</p>")

@@ -87,6 +87,109 @@ def group_label(label: str, lang: str) -> str:
     return f"{head} {group_kind(kind, lang)}" if kind else head
 
 
+#: The keys and words of a file's loads and machine as the report's input section shows them, in Russian (in
+#: English they stay as the file writes them).
+FILE_WORDS_RU = {
+    "tools": "инструменты",
+    "at": "точка",
+    "on": "звено",
+    "joint": "пара",
+    "axis": "ось",
+    "workpiece": "заготовка",
+    "penetration": "относительное внедрение",
+    "force": "сила",
+    "moment": "момент",
+    "value": "величина",
+    "power": "мощность",
+    "speed": "частота вращения",
+    "synchronous": "синхронная частота вращения",
+    "breakdown": "кратность максимального момента",
+    "inertia": "момент инерции",
+    "ratio": "передаточное отношение",
+    "efficiency": "КПД",
+    "process": "технологическая",
+    "induction": "асинхронный",
+    "motor": "двигатель",
+    "gear": "передача",
+    "flywheel": "маховик",
+    "type": "тип",
+    "delta": "δ",
+}
+
+#: Units as a file writes them, in Russian.
+FILE_UNITS_RU = {
+    "kg*m^2": "кг·м²",
+    "N*m": "Н·м",
+    "kN*m": "кН·м",
+    "rad/s": "рад/с",
+    "rpm": "об/мин",
+    "kN": "кН",
+    "kW": "кВт",
+    "deg": "°",
+    "mm": "мм",
+    "kg": "кг",
+    "m": "м",
+    "N": "Н",
+    "W": "Вт",
+    "s": "с",
+    "h": "ч",
+}
+
+
+def file_word(word: str, lang: str) -> str:
+    """A key or word of a file (``power``, ``process``) in ``lang``: itself in English, in Russian its Russian
+    (:data:`FILE_WORDS_RU`), a name of the file's own as it is."""
+    return FILE_WORDS_RU.get(word, word) if lang == "ru" else word
+
+
+def file_value(text: str, lang: str) -> str:
+    """A value as a file writes it (``250 kN``, ``0.03 kg*m^2``, ``90 deg``) in ``lang``: in Russian its units in
+    Russian and a decimal comma (``250 кН``, ``0,03 кг·м²``, ``90°``); in English as written."""
+    import re
+
+    if lang != "ru":
+        return text
+    units = "|".join(re.escape(u) for u in FILE_UNITS_RU)
+
+    def one(m: re.Match[str]) -> str:
+        number, unit = m.group(1).replace(".", ","), FILE_UNITS_RU[m.group(2)]
+        return f"{number}{unit}" if unit == "°" else f"{number} {unit}"
+
+    out = re.sub(rf"(-?\d+(?:\.\d+)?(?:e[-+]?\d+)?)\s*({units})(?![\w*^/])", one, text)
+    return re.sub(r"(?<![\w.])(-?\d+)\.(\d+)(?![\w.])", r"\1,\2", out)
+
+
+_SUPERSCRIPT = str.maketrans("-+0123456789", "⁻⁺⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def russian_numbers(text: str) -> str:
+    """The numbers of a text as Russian writes them: a decimal comma (``294.3`` -> ``294,3``), a power of ten
+    for an exponent (``2.5e+05`` -> ``2,5·10⁵``), numbers with decimals listed apart by semicolons
+    (``(7.465, 49.77)`` -> ``(7,465; 49,77)``); a number glued to a name (``O1.x``, ``v1.2``) as it is."""
+    import re
+
+    def power(m: re.Match[str]) -> str:
+        exponent = str(int(m.group(2)))
+        return f"{m.group(1)}·10{exponent.translate(_SUPERSCRIPT)}"
+
+    def apart(m: re.Match[str]) -> str:  # numbers with decimals listed apart by semicolons: (7,465; 49,77)
+        return m.group(1) + ("; " if "." in m.group(1) + m.group(2) else ", ")
+
+    text = re.sub(r"(?<![\w.])(-?\d+(?:\.\d+)?), (?=(-?\d+(?:\.\d+)?)(?![\w.]))", apart, text)
+    after = r"(?![A-Za-zА-Яа-яЁё_0-9.])"  # not glued to a name ("²" may follow: 3.142² -> 3,142²)
+    out = re.sub(rf"(?<![\w.])(-?\d+(?:\.\d+)?)e([-+]?\d+){after}", power, text)
+    return re.sub(rf"(?<![\w.,])(-?\d+)\.(\d+){after}", r"\1,\2", out)
+
+
+def russian_html(page: str) -> str:
+    """:func:`russian_numbers` on the text of an HTML page, not on its tags, styles, scripts and ``<pre>`` blocks
+    (a file's own text)."""
+    import re
+
+    parts = re.split(r"(<pre.*?</pre>|<style.*?</style>|<script.*?</script>|<[^>]*>)", page, flags=re.S)
+    return "".join(p if k % 2 else russian_numbers(p) for k, p in enumerate(parts))
+
+
 def t(key: str, lang: str = "en", /, **values: Any) -> str:
     """The text ``key`` in ``lang`` (``"en"`` or ``"ru"``), its fields filled from ``values``.
 

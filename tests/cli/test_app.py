@@ -593,7 +593,10 @@ def test_analyze_takes_one_of_the_12_positions(tmp_path, position):
     _commands()
     result = runner.invoke(app, ["analyze", "four-bar", "--out", str(tmp_path / "r"), "--position", position])
     assert result.exit_code == 2
-    assert result.stderr.strip() == f'error: --position: expected one of the 12 positions, 0 to 11, got "{position}"'
+    assert result.stderr.strip() == (
+        "error: --position: expected one of the 12 positions, 0 to 11, all, or a crank angle from position 0 with "
+        f'its unit, 0 to 360 deg (e.g. 87deg), got "{position}"'
+    )
     assert list(tmp_path.iterdir()) == []
 
 

@@ -252,6 +252,11 @@ def test_no_english_is_left_in_the_russian_report(name, tmp_path):
     names = {mech.name, *mech.link_names, *mech.pair_joint, *(p.split(".", 1)[1] for p in mech.point_names)}
     names |= set(plan_series(lw.kinematics(mech, steps=12))[1].labels)  # the plans' points: b, n_ba, k'_e ...
     names |= {load.name for load in mech.loads}  # the file's names of its loads (F5 (cutting) on a force plan)
+    # the plans worked out: vectors and lengths of point pairs (v_BA, lBA, aⁿ_BO3), segments of the plans (ab, n_bab)
+    points = {p.split(".", 1)[1] for p in mech.point_names}
+    labels = [*plan_series(lw.kinematics(mech, steps=12))[1].labels, "p"]
+    names |= {f"l{a}{b}" for a in points for b in points} | {a + b for a in [*points, *labels] for b in points}
+    names |= {a + b for a in labels for b in labels}
     allowed = {w for n in names for w in re.findall(r"[A-Za-z]+", n)} | SYMBOLS
     page, drawn = _report(name, tmp_path / "r", lang="ru", position="all")
     assert {"scheme", "positions", "velocity_plan", "acceleration_plan", "velocity_plans"} <= set(drawn)
@@ -407,7 +412,7 @@ def test_a_figure_that_fails_in_the_second_process_fails_the_report_and_writes_n
 
 
 def test_the_report_presents_the_kinetostatics_by_the_graphical_method(main_job):
-    """The README's main job (the double-cut shears at the file's position 9): each group's moment equations and
+    """The README's main job (the double-cut shears, under the cutting load): each group's moment equations and
     force plan, the force plans and the lever drawn, and the lever's balancing moment beside the kinetostatic
     driving torque at the twelve positions, equal to the 7 digits written."""
     import linkwork as lw

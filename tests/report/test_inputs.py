@@ -150,3 +150,32 @@ def test_a_file_in_inches_is_reported_in_mm_and_says_so(tmp_path):
     assert _rows(page, "input")["crank"][1] == "O2 (0, 0), A (2540, 0)"
     assert "Lengths in mm, angles in degrees" in _section(page, "input")
     assert "whatever units the file declares" in _section(page, "input")
+
+
+def test_the_russian_input_section_writes_the_files_loads_and_machine_in_russian():
+    """The double-cut shears' loads and machine as the file gives them, in Russian: the keys and units in
+    Russian (кН, кВт, об/мин, кг·м², °), decimal commas, the values of a list apart by semicolons; the file's
+    own names (cutting, knife_upper.edge) as they are; in English as the file writes them."""
+    import re
+
+    import linkwork as lw
+    from linkwork.lang import t
+    from linkwork.report.inputs import input_section
+
+    class Run:
+        def __init__(self, lang: str) -> None:
+            self.lang = lang
+
+        def t(self, key: str, **values: object) -> str:
+            return t(key, self.lang, **values)
+
+    mech = lw.compile(lw.example("double-cut-shears"))
+    ru = " ".join(input_section(mech, 72, Run("ru").t)).split("<details>")[0]  # the file's own text apart
+    for word in ("rpm", "kN", "kW", "deg", "kg*m^2", "power", "speed", "penetration", "process", "induction"):
+        assert not re.search(rf"(?<![\w.]){re.escape(word)}(?![\w])", ru), word
+    assert "относительное внедрение 0; 0,15; 0,3; 0,45" in ru
+    assert "сила 0 кН; 250 кН; 250 кН; 0 кН" in ru and "ось 90°" in ru
+    assert "мощность 5,5 кВт" in ru and "частота вращения 1450 об/мин" in ru and "0,03 кг·м²" in ru
+    assert "cutting" in ru and "knife_upper.edge" in ru
+    en = " ".join(input_section(mech, 72, Run("en").t))
+    assert "penetration 0, 0.15, 0.3, 0.45" in en and "speed 1450 rpm" in en

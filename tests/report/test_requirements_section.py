@@ -66,8 +66,11 @@ def test_the_report_opens_with_the_requirements_and_the_limit_positions(slider_c
     start = text.index("<section id='requirements'>")
     part = text[start : text.index("</section>", start)]
     assert part.count(f"<td>{yes}</td>") == 4  # stroke, time ratio, pressure angle, the transmission rule
-    # 180 (1.3 - 1) / (1.3 + 1) = 23.4783 deg, within what the file's K tolerance allows: 2 pi / 2.3^2 tol_K
-    theta = float(re.search(r"θ = (\S+)°", part).group(1))
+    # 180 (1.3 - 1) / (1.3 + 1) = 23.4783 deg, within what the file's K tolerance allows: 2 pi / 2.3^2 tol_K; a
+    # decimal comma in Russian
+    shown = re.search(r"θ = (\S+)°", part).group(1)
+    assert ("," in shown) == (lang == "ru")
+    theta = float(shown.replace(",", "."))
     k_tol = float(lw.load(str(slider_crank)).requirements["time_ratio_tolerance"])
     assert abs(theta - 23.4783) <= math.degrees(2 * math.pi / 2.3**2 * k_tol) + 5e-4
     if lang == "ru":  # no English but the names from the file (the kind is the mechanism's name)
@@ -80,7 +83,8 @@ def test_the_report_opens_with_the_requirements_and_the_limit_positions(slider_c
     assert len(doc.modelspace().query('LWPOLYLINE[layer=="LIMITS"]')) == 3
     msp = doc.modelspace()
     texts = [e.dxf.text for e in msp.query("TEXT")] + [e.plain_text() for e in msp.query("MTEXT")]
-    assert f"θ = {theta:.2f}°" in texts
+    drawn = f"θ = {theta:.2f}°"
+    assert (drawn.replace(".", ",") if lang == "ru" else drawn) in texts  # a decimal comma in Russian
 
 
 def test_a_file_without_requirements_has_no_such_section():

@@ -31,3 +31,13 @@ def test_the_section_is_written_in_russian_with_the_figures_of_the_sizing():
         assert words in text, words
     rating = result.bearings.joints[0].rating / 1e3
     assert f"<td>{rating:.4g}</td>" in text  # C needed, kN, as the table of linkwork size gives it
+
+
+def test_a_file_that_gives_its_motor_is_not_told_the_motor_was_not_asked():
+    """The double-cut shears' file gives its motor (machine.motor) and does not ask sizing to choose one: the
+    section says the motor is the file's, not "Not sized: motor: not asked"."""
+    study = Study(lw.compile(lw.example("double-cut-shears")))  # sized once, read in both languages
+    for lang, said in (("en", "The motor is the file&#x27;s (machine.motor)"), ("ru", "Двигатель задан в файле")):
+        body, _ = sizing_body(study, lambda key, **values: t(key, lang, **values))  # noqa: B023
+        text = "".join(body)
+        assert said in text and "not asked" not in text and "не запрошен" not in text

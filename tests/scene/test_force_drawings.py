@@ -140,3 +140,63 @@ def test_a_dead_point_of_the_sheet_says_so_where_its_plan_would_be():
     assert dead == {3, 9}
     assert all(not [line for line in ax.lines if line.get_gid()] for k, ax in enumerate(fig.axes) if k in dead)
     assert all([line for line in ax.lines if line.get_gid()] for k, ax in enumerate(fig.axes) if k not in dead)
+
+
+def test_a_short_arrow_is_named_under_the_plan_and_no_two_names_cover_each_other():
+    """The double-cut shears under the cutting load (φ = 86.6°): weights and inertia forces of 5 to 3000 N
+    beside reactions of 490 kN, a few tenths of a millimetre on the plans.  Every arrow shorter than the names'
+    height carries no name beside it and is listed under its plan with its value (to 4 digits of the force the
+    kinetostatics gives); every longer one is named beside it, no two names' boxes overlapping."""
+    import itertools
+
+    from linkwork.motion.analysis import zero_angle
+    from linkwork.scene.force_plans import SHORT, force_plan_scene, short_note
+    from linkwork.scene.geometry import text_size
+
+    mech = lw.compile(lw.load("double-cut-shears"))
+    one = lw.forces(lw.kinematics(mech, [zero_angle(mech) + np.radians(86.6)]))
+    listed = 0
+    for g in force_plans(one).groups:
+        scene = force_plan_scene(g, 0, lang="en", em=3.5)
+        note = short_note(scene, "en").replace("\u00a0", " ")
+        sizes = {f.name("en"): float(np.hypot(*f.vector[0, 0])) for f in (*g.polygon, *g.reactions)}
+        boxes = []
+        for a in scene.arrows:
+            length = float(np.hypot(*(a.end - a.start)))
+            if length < SHORT * 3.5:
+                assert not np.isfinite(a.centre).all(), a.text
+                found = re.search(rf"(?<![\w]){re.escape(a.text)} = ([\d.]+) N", note)
+                assert found and float(found.group(1)) == pytest.approx(sizes[a.text], rel=6e-4), (a.text, note)
+                listed += 1
+            else:
+                assert np.isfinite(a.centre).all(), a.text
+                w, h = text_size(a.text, 3.5)
+                boxes.append((a.text, a.centre - [w / 2, h / 2], a.centre + [w / 2, h / 2]))
+        for (s, a0, a1), (u, b0, b1) in itertools.combinations(boxes, 2):
+            assert (a1 <= b0).any() or (b1 <= a0).any(), (s, u)
+    assert listed >= 10  # G and Φ of every link but the knives' cutting force
+
+
+def test_every_force_of_the_lever_is_drawn_or_listed_under_it_with_its_value():
+    """Under the cutting load the lever's inertia forces and weights (5 to 3000 N beside 250 kN) are too short to
+    draw at the lever's force scale: each is listed under the lever with its value, none is lost."""
+    from linkwork.kinetostatics.zhukovsky import lever
+    from linkwork.motion.analysis import zero_angle
+    from linkwork.motion.plans import plan_series
+    from linkwork.scene.force_plans import lever_scene, short_note
+
+    mech = lw.compile(lw.load("double-cut-shears"))
+    one = lw.forces(lw.kinematics(mech, [zero_angle(mech) + np.radians(86.6)]))
+    lv = lever(one)
+    scene = lever_scene(lv, plan_series(one.kinematics)[0], 0, lang="ru")
+    drawn = {a.text for a in scene.arrows}
+    left = dict(scene.left_out)
+    note = short_note(scene, "ru").replace("\u00a0", " ")
+    for lf in lv.forces:
+        name, size = lf.force.name("ru"), float(np.hypot(*lf.force.vector[0, 0]))
+        if size > 0:
+            assert (name in drawn) != (name in left), name
+        if name in left:
+            assert left[name] == pytest.approx(size, rel=1e-12)
+            assert f"{name} = {size:.4g} Н".replace(".", ",") in note
+    assert any(name.startswith("Фи") for name in left)

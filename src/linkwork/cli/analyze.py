@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -33,16 +34,34 @@ def analyze(
     position: Annotated[
         str | None,
         typer.Option(
-            help="which of the 12 positions (0 to 11) gets the scheme and the velocity and acceleration plans, "
-            "or all (also sheets of the twelve plans); default: the file's drawing.positions, else where the "
-            "working point moves fastest"
+            help="which of the 12 positions (0 to 11) gets the scheme, the velocity and acceleration plans and "
+            "the force analysis, or all (also sheets of the twelve plans), or a crank angle phi from position 0 "
+            "with its unit (87deg) for the force analysis; default: the plans at the file's drawing.positions, "
+            "else where the working point moves fastest, the force analysis where the driving torque of the "
+            "working stroke is largest"
         ),
     ] = None,
     pdf: Annotated[bool, typer.Option("--pdf", help="also write report.pdf")] = False,
     animation: Annotated[bool, typer.Option(help="write animation.gif (and .mp4 with imageio-ffmpeg)")] = True,
     dxf: Annotated[
-        bool, typer.Option("--dxf", help="also write the drawings for CAD, figures/*.dxf (needs ezdxf)")
+        bool,
+        typer.Option(
+            "--dxf",
+            help="also write the drawings for CAD, figures/*.dxf, and the drawing sheets to GOST, "
+            "figures/sheet_*.dxf (needs ezdxf)",
+        ),
     ] = False,
+    sheet: Annotated[
+        str | None,
+        typer.Option(help="format of the drawing sheets --dxf writes: A1, A2, A3 or A4 (default: the file's, else A1)"),
+    ] = None,
+    title_block: Annotated[
+        list[str] | None,
+        typer.Option(
+            help="a field of the sheets' title block, KEY=VALUE, as the file's drawing.title_block has them "
+            "(title, designation, organisation, developer, checker, norm_control, approved, date, litera); repeat it"
+        ),
+    ] = None,
     lang: Annotated[str, typer.Option(help="language of the report and its figures: en or ru")] = "en",
     sizing: Annotated[
         bool | None,
@@ -59,8 +78,7 @@ def analyze(
     from linkwork.report import require_packages
 
     check_options(whole(steps, "--steps", 12, MAX_ANGLES, "number of steps over the turn"))
-    if position is not None and position != "all" and not (digits(position) and 0 <= int(position) < 12):
-        fail(LinkworkError(f"--position: expected one of the 12 positions, 0 to 11, got {quote(position)}"))
+    asked = _position(position)
     try:
         check_lang(lang)
     except LinkworkError as exc:
@@ -81,7 +99,7 @@ def analyze(
         fail(exc)
     if dxf:
         needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
-    mech = at_speed(compile_or_exit(file_or_example), speed)
+    mech = _with_sheets(at_speed(compile_or_exit(file_or_example), speed), sheet, title_block or [], dxf)
     # the spinner on stderr, and only in a terminal: piped or redirected, stdout holds the one line "wrote ..."
     shown = console(stderr=True)
     spinner = Progress(
@@ -94,7 +112,7 @@ def analyze(
                 mech,
                 out,
                 steps=steps,
-                position=int(position) if position and digits(position) else position,
+                position=asked,
                 pdf=pdf,
                 animation=animation,
                 dxf=dxf,
@@ -107,3 +125,64 @@ def analyze(
         except OSError as exc:
             fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     typer.echo(f"wrote {path}")
+
+
+def _position(text: str | None) -> int | float | str | None:
+    """``--position``: one of the 12 positions (int), ``all``, a crank angle φ from position 0 with its unit
+    (``87deg``: rad, float, in [0, 2 pi)), or None; exits with one message (exit code 2) for anything else."""
+    from linkwork.errors import LinkworkError
+    from linkwork.units import parse_quantity
+
+    if text is None or text == "all":
+        return text
+    if digits(text):
+        if 0 <= int(text) < 12:
+            return int(text)
+    elif any(c.isalpha() for c in text):
+        try:
+            phi = parse_quantity(text, "angle")
+        except (LinkworkError, ValueError):
+            phi = math.nan
+        if 0 <= phi < 2 * math.pi:
+            return float(phi)
+    fail(
+        LinkworkError(
+            f"--position: expected one of the 12 positions, 0 to 11, all, or a crank angle from position 0 "
+            f"with its unit, 0 to 360 deg (e.g. 87deg), got {quote(text)}"
+        )
+    )
+
+
+def _with_sheets(mech: Any, sheet: str | None, fields: list[str], dxf: bool) -> Any:
+    """``mech`` with the format and the title block's fields given by ``--sheet`` and ``--title-block`` in its
+    file's ``drawing:`` section, as the same edit of the file would give; exits with a line for each wrong one
+    (exit code 2)."""
+    import dataclasses
+
+    from linkwork.errors import LinkworkError
+    from linkwork.spec.schema import Drawing, TitleBlockSpec
+
+    if sheet is None and not fields:
+        return mech
+    problems = []
+    if not dxf:
+        problems.append("--sheet and --title-block: the sheets are written with --dxf; add it")
+    if sheet is not None and sheet.upper() not in ("A1", "A2", "A3", "A4"):
+        problems.append(f"--sheet: expected A1, A2, A3 or A4, got {quote(sheet)}")
+    known = tuple(TitleBlockSpec.model_fields)
+    given: dict[str, str] = {}
+    for item in fields:
+        key, eq, value = item.partition("=")
+        if not eq or key.strip() not in known:
+            problems.append(f"--title-block: expected KEY=VALUE, KEY one of {', '.join(known)}; got {quote(item)}")
+        else:
+            given[key.strip()] = value.strip()
+    if problems:
+        fail(LinkworkError("\n".join(problems)))
+    spec = mech.spec
+    if spec is None:
+        return mech
+    drawing = spec.drawing or Drawing()
+    block = drawing.title_block.model_copy(update=given)
+    drawing = drawing.model_copy(update={"title_block": block, **({"sheet": sheet.upper()} if sheet else {})})
+    return dataclasses.replace(mech, spec=spec.model_copy(update={"drawing": drawing}))

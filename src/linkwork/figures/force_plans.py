@@ -8,6 +8,7 @@ back); a reaction read off a plan is dashed.
 
 from __future__ import annotations
 
+import textwrap
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -15,7 +16,7 @@ import numpy as np
 from linkwork.figures.plans import LEGEND, _columns, _head
 from linkwork.figures.sheet import Sheet, add_line, sheet, where
 from linkwork.lang import group_label, t
-from linkwork.scene.force_plans import FORCE_KINDS, ForceScene, force_plan_scene, lever_scene
+from linkwork.scene.force_plans import FORCE_KINDS, ForceScene, force_plan_scene, lever_scene, short_note
 from linkwork.scene.style import FORCES, TEXT
 
 if TYPE_CHECKING:
@@ -86,7 +87,7 @@ def _legend(fig: Figure, kinds: list[str], lang: str) -> None:
     )
 
 
-def force_plans_figure(plans: ForcePlans, index: int, position: int | None = None, lang: str = "en") -> Figure:
+def force_plans_figure(plans: ForcePlans, index: int, position: int | str | None = None, lang: str = "en") -> Figure:
     """The force plan of every group of ``plans`` at sample ``index`` (``position``: its number, for the title),
     a panel each, the texts in ``lang``."""
     from matplotlib.figure import Figure
@@ -111,6 +112,9 @@ def force_plans_figure(plans: ForcePlans, index: int, position: int | None = Non
         title += "" if g.solved else "\n" + t("forceplans.not_solved", lang)
         if not scene.arrows:  # nothing finite to draw
             title += "\n" + t("forceplans.singular", lang)
+        note = short_note(scene, lang)
+        if note:  # the names of the arrows too short to carry them, under the group's title
+            title += "\n" + "\n".join(textwrap.wrap(note, 44))
         titles.append(title)
     lines = max(title.count("\n") + 1 for title in titles)
     gap = 0.18 * lines  # inches of a panel's title
@@ -137,7 +141,7 @@ def force_plans_figure(plans: ForcePlans, index: int, position: int | None = Non
     return fig
 
 
-def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | None = None, lang: str = "en") -> Figure:
+def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | str | None = None, lang: str = "en") -> Figure:
     """Zhukovsky's lever ``lv`` of the kinematics ``kin`` (the same samples) at sample ``index``, the texts in
     ``lang``."""
     from linkwork.motion.plans import plan_series
@@ -145,14 +149,19 @@ def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | None = 
     scene = lever_scene(lv, plan_series(kin)[0], index, lang=lang)
     kinds = scene.kinds()
     rows = -(-len(kinds) // 3)
-    sh = sheet(scene.extent(), top=1.1, bottom=0.3 + 0.24 * rows, width=5.6, height=6.0, least=5.6)
-    draw_forces(sh, scene)
     moment = float(lv.balancing[0, index])
     name = kin.mechanism.name
-    note = t("lever.scale", lang, plan=f"{scene.plan_scale:g}", scale=f"{scene.scale:g}")
+    note = "\n".join(textwrap.wrap(t("lever.scale", lang, plan=f"{scene.plan_scale:g}", scale=f"{scene.scale:g}"), 64))
     note += "\n" + t("lever.moment", lang, moment=f"{moment:.6g}")
+    left = short_note(scene, lang)
+    if left:  # the forces too short to draw at this scale, with their values
+        note += "\n" + "\n".join(textwrap.wrap(left, 64))
     angle = float(kin.angles[index])
-    sh.ax.set_title(f"{t('lever.title', lang, name=name)}\n{where(angle, position, lang)}\n{note}", fontsize=9)
+    title = f"{t('lever.title', lang, name=name)}\n{where(angle, position, lang)}\n{note}"
+    top = max(1.1, 0.3 + 0.17 * (title.count("\n") + 1))  # inches: the title's lines
+    sh = sheet(scene.extent(), top=top, bottom=0.3 + 0.24 * rows, width=5.6, height=6.0 + top - 1.1, least=5.6)
+    draw_forces(sh, scene)
+    sh.ax.set_title(title, fontsize=9)
     _legend(sh.fig, kinds, lang)
     return sh.fig
 

@@ -32,7 +32,7 @@ if TYPE_CHECKING:
 
 
 def velocity_plan(
-    kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None, lang: str = "en"
+    kin: Kinematics, index: int, ax: Axes | None = None, position: int | str | None = None, lang: str = "en"
 ) -> Figure:
     """The velocity plan of sample ``index`` of a kinematics result (``position``: its number, for the title;
     ``lang``: the language of its texts, :mod:`linkwork.lang`)."""
@@ -40,14 +40,14 @@ def velocity_plan(
 
 
 def acceleration_plan(
-    kin: Kinematics, index: int, ax: Axes | None = None, position: int | None = None, lang: str = "en"
+    kin: Kinematics, index: int, ax: Axes | None = None, position: int | str | None = None, lang: str = "en"
 ) -> Figure:
     """The acceleration plan of sample ``index`` of a kinematics result (``position``: its number, for the
     title; ``lang``: the language of its texts, :mod:`linkwork.lang`)."""
     return _one(kin, index, "acceleration", ax, position, lang)
 
 
-def _one(kin: Kinematics, index: int, kind: str, ax: Axes | None, position: int | None, lang: str) -> Figure:
+def _one(kin: Kinematics, index: int, kind: str, ax: Axes | None, position: int | str | None, lang: str) -> Figure:
     i = int(index) % len(kin.angles)
     series = plan_series(kin)[0 if kind == "velocity" else 1]
     scene = plan_scene(series, [i], valid=np.asarray(kin.valid_all[0]), lang=lang)
@@ -78,7 +78,7 @@ def draw_plan(plan: Plan, ax: Axes | None = None, lang: str = "en") -> Figure:
     return render_plan(scene, 0, ax=ax, title=_title(scene, 0, "", None, lang), lang=lang)
 
 
-def _title(scene: PlanScene, index: int, name: str, position: int | None, lang: str) -> str:
+def _title(scene: PlanScene, index: int, name: str, position: int | str | None, lang: str) -> str:
     head = f"{name}: " if name else ""
     return f"{head}{t(f'plan.{scene.kind}', lang)}\n{where(float(scene.angles[index]), position, lang)}"
 

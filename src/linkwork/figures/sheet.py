@@ -127,10 +127,10 @@ def dashes(style: Style) -> Any:
     return (0, style.dash) if style.dash else "solid"
 
 
-def where(angle: float, position: int | None, lang: str) -> str:
+def where(angle: float, position: int | str | None, lang: str) -> str:
     """The line under a drawing's title: ``position 9, crank at 178.8°`` (``crank at 178.8°`` without a
     ``position``), the crank's drive ``angle`` (rad) to the x axis, in ``lang``."""
-    deg = f"{turn_deg(angle):.1f}"
+    deg = f"{turn_deg(angle):.1f}".replace(".", "," if lang == "ru" else ".")
     return (
         t("drawing.crank", lang, angle=deg)
         if position is None

@@ -42,6 +42,10 @@ APPID = "LINKWORK"
 #: Height of capital letters in ems of DejaVu Sans: a DXF text's height is that of its capitals.
 CAP = 0.73
 
+#: The least height of a text on paper, mm (ГОСТ 2.304): a plan's construction letters and its legend are no
+#: smaller on a drawing in mm of the sheet.
+SMALLEST = 2.5
+
 #: The text style of every text: a TrueType font of ezdxf's standard styles with Cyrillic and Greek letters
 #: (the default style's SHX font has neither).
 STYLE = "OpenSans"
@@ -51,6 +55,11 @@ STYLE = "OpenSans"
 DASH_EM = 3.5
 
 PURPOSE = "the drawings for CAD (linkwork analyze --dxf)"
+
+#: Line weights (0.01 mm) of ГОСТ 2.303: the main line s = 0.7 mm (links, the absolute vectors, the forces), the
+#: thin lines s / 2 and s / 3 (0.35 mm: pivots, guides, the plans' relative vectors; 0.25 mm: the trajectories,
+#: the hatching).
+MAIN, THIN, FINE = 70, 35, 25
 
 
 def write_drawings(
@@ -81,16 +90,25 @@ def write_scheme(scene: SchemeScene, index: int, path: str | Path, trajectories:
     """The scheme of sample ``index`` of ``scene``, 1:1 in mm, with the trajectories of its points; its note
     in ``lang``."""
     doc, msp = _document(SCHEME, em=1000 * scene.em)
-    if trajectories:
-        _paths(msp, scene.paths)
-    _items(msp, scene, index)
-    _elements(msp, scene, index)
-    for lab in scene.labels:
-        _text(msp, lab.text, lab.centre[index] * 1000, 1000 * scene.em)
+    draw_scheme(msp, scene, index, trajectories)
     crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
     note = f"{t('scheme.title', lang, name=scene.name)}, {crank}; 1:1, {t('unit.mm', lang)}"
-    _note(doc, msp, note, scene.extent(index, paths=trajectories) * 1000, 1000 * scene.em)
+    _note(doc, msp, note, scene.extent(index, paths=trajectories) * 1000, 1000 * scene.em, lang)
     return _save(doc, path)
+
+
+def draw_scheme(
+    layout: Any, scene: SchemeScene, index: int, trajectories: bool = True, mm: float = 1000.0, em: float | None = None
+) -> np.ndarray:
+    """Draw the scheme of sample ``index`` into ``layout`` (a modelspace or a block), ``mm`` mm a metre, its
+    labels ``em`` mm (default the scene's); returns its extent ``[x0, y0, x1, y1]``, mm."""
+    if trajectories:
+        _paths(layout, scene.paths, mm)
+    _items(layout, scene, index, mm=mm)
+    _elements(layout, scene, index, mm)
+    for lab in scene.labels:
+        _text(layout, lab.text, lab.centre[index] * mm, mm * scene.em if em is None else em)
+    return np.asarray(scene.extent(index, paths=trajectories) * mm)
 
 
 def write_positions(scene: PositionsScene, path: str | Path, lang: str = "en") -> Path:
@@ -98,19 +116,28 @@ def write_positions(scene: PositionsScene, path: str | Path, lang: str = "en") -
     note in ``lang``."""
     s = scene.scheme
     doc, msp = _document(SCHEME, em=1000 * s.em)
-    _paths(msp, s.paths)
-    _items(msp, s, 0)
-    for k in range(1, len(s.angles)):
-        _items(msp, s, k, kinds=("bar", "plate", "pivot"), frame=False)
-    for lab in (*s.labels, *scene.numbers):
-        _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
-    for mark in scene.marks * 1000:
-        msp.add_circle(tuple(mark), 150 * s.em, dxfattribs={"layer": "MARKERS"})
-    for leader in scene.leaders * 1000:
-        msp.add_line(tuple(leader[0]), tuple(leader[1]), dxfattribs={"layer": "LABELS"})
+    draw_positions(msp, scene)
     note = f"{t('positions.title', lang, name=s.name, count=len(s.angles))}; 1:1, {t('unit.mm', lang)}"
-    _note(doc, msp, note, scene.extent() * 1000, 1000 * s.em)
+    _note(doc, msp, note, scene.extent() * 1000, 1000 * s.em, lang)
     return _save(doc, path)
+
+
+def draw_positions(layout: Any, scene: PositionsScene, mm: float = 1000.0, em: float | None = None) -> np.ndarray:
+    """Draw the plan of positions into ``layout``, ``mm`` mm a metre, its labels ``em`` mm (default the
+    scene's); returns its extent ``[x0, y0, x1, y1]``, mm."""
+    s = scene.scheme
+    em = mm * s.em if em is None else em
+    _paths(layout, s.paths, mm)
+    _items(layout, s, 0, mm=mm)
+    for k in range(1, len(s.angles)):
+        _items(layout, s, k, kinds=("bar", "plate", "pivot"), frame=False, mm=mm)
+    for lab in (*s.labels, *scene.numbers):
+        _text(layout, lab.text, lab.centre[0] * mm, em)
+    for mark in scene.marks * mm:
+        layout.add_circle(tuple(mark), 0.15 * em, dxfattribs={"layer": "MARKERS"})
+    for leader in scene.leaders * mm:
+        layout.add_line(tuple(leader[0]), tuple(leader[1]), dxfattribs={"layer": "LABELS"})
+    return np.asarray(scene.extent() * mm)
 
 
 def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path:
@@ -129,7 +156,7 @@ def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path
     title = t(
         "limits.title", lang, name=s.name, member=scene.member, theta=f"{np.degrees(scene.theta):.2f}", k=f"{k:.4f}"
     ).replace("\n", ", ")
-    _note(doc, msp, f"{title}; 1:1, {t('unit.mm', lang)}", scene.extent() * 1000, 1000 * s.em)
+    _note(doc, msp, f"{title}; 1:1, {t('unit.mm', lang)}", scene.extent() * 1000, 1000 * s.em, lang)
     return _save(doc, path)
 
 
@@ -138,6 +165,17 @@ def write_plan(scene: PlanScene, index: int, path: str | Path, lang: str = "en")
     ``lang``."""
     doc, msp = _document(VECTORS, extra={"POINTS": 7, "NOTES": 7}, em=scene.em)
     doc.header.custom_vars.append("LINKWORK_SCALE", repr(scene.scale))
+    draw_plan(msp, scene, index)
+    crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
+    note = f"{t(f'plan.{scene.kind}', lang)}, {crank}; {scene.scale_note(lang)}"
+    _note(doc, msp, note, scene.extent(index), scene.em, lang)
+    _legend(msp, scene, index, lang)
+    return _save(doc, path)
+
+
+def draw_plan(msp: Any, scene: PlanScene, index: int) -> np.ndarray:
+    """Draw the plan of position ``index`` of ``scene`` into ``msp`` (a modelspace or a block), in mm of the sheet;
+    returns its extent ``[x0, y0, x1, y1]``, mm."""
     for e in scene.drawn(index):
         arrow = scene.arrows[e]
         start, end = scene.ends[index, e]
@@ -150,12 +188,8 @@ def write_plan(scene: PlanScene, index: int, path: str | Path, lang: str = "en")
             msp.add_circle(tuple(p), 0.2 * scene.em, dxfattribs={"layer": "POINTS"})
         text, c = scene.text[index][j], scene.centres[index, j]
         if text and np.isfinite(c).all():
-            _text(msp, text, c, scene.em * (1.0 if scene.main[j] else 0.8))
-    crank = t("drawing.crank", lang, angle=f"{turn_deg(scene.angles[index]):.1f}")
-    note = f"{t(f'plan.{scene.kind}', lang)}, {crank}; {scene.scale_note(lang)}"
-    _note(doc, msp, note, scene.extent(index), scene.em)
-    _legend(msp, scene, index, lang)
-    return _save(doc, path)
+            _text(msp, text, c, scene.em if scene.main[j] else max(0.8 * scene.em, SMALLEST / CAP))
+    return scene.extent(index)
 
 
 def _legend(msp: Any, scene: PlanScene, index: int, lang: str) -> None:
@@ -169,7 +203,7 @@ def _legend(msp: Any, scene: PlanScene, index: int, lang: str) -> None:
         line.set_xdata(APPID, [(1000, f"legend:{kind}")])
         _head(msp, np.array([x0, y]), np.array([x0 + 5 * em, y]), 0.55 * em, layer)
         name = kind_name(kind, scene.kind, lang)
-        _text(msp, name, np.array([x0 + 6 * em, y]), 0.8 * em, layer="NOTES", left=True)
+        _text(msp, name, np.array([x0 + 6 * em, y]), max(0.8 * em, SMALLEST / CAP), layer="NOTES", left=True)
 
 
 def _document(styles: dict[str, Style], extra: dict[str, int] | None = None, em: float = DASH_EM) -> tuple[Any, Any]:
@@ -183,7 +217,7 @@ def _document(styles: dict[str, Style], extra: dict[str, int] | None = None, em:
     doc.appids.add(APPID)
     for style in styles.values():
         if style.layer not in doc.layers:
-            weight = 50 if style.width >= 2 else 25 if style.width >= 0.9 else 13
+            weight = MAIN if style.width >= 1.2 else THIN if style.width >= 0.9 else FINE
             linetype = _linetype(doc, style)
             doc.layers.add(style.layer, color=style.aci, lineweight=weight, linetype=linetype)
     for name, colour in {"LABELS": 7, "NOTES": 7, **(extra or {})}.items():
@@ -204,35 +238,43 @@ def _linetype(doc: Any, style: Style) -> str:
     return name
 
 
-def _items(msp: Any, scene: SchemeScene, index: int, kinds: tuple[str, ...] | None = None, frame: bool = True) -> None:
-    """The scheme's items at sample ``index`` (of ``kinds``; the frame's only if ``frame``), in mm."""
+def _items(
+    msp: Any,
+    scene: SchemeScene,
+    index: int,
+    kinds: tuple[str, ...] | None = None,
+    frame: bool = True,
+    mm: float = 1000.0,
+) -> None:
+    """The scheme's items at sample ``index`` (of ``kinds``; the frame's only if ``frame``), ``mm`` mm a metre."""
     for it in scene.items:
         if it.kind == "path" or (kinds is not None and it.kind not in kinds) or (it.link == 0 and not frame):
             continue
-        xy = scene.placed(it, index) * 1000
+        xy = scene.placed(it, index) * mm
         if not np.isfinite(xy).all():
             continue
         attrs = {"layer": SCHEME[it.kind].layer}
         if it.radius:
-            msp.add_circle(tuple(xy[0]), 1000 * it.radius, dxfattribs=attrs)
+            msp.add_circle(tuple(xy[0]), mm * it.radius, dxfattribs=attrs)
         else:
             msp.add_lwpolyline([tuple(v) for v in xy], close=it.closed, dxfattribs=attrs)
 
 
-def _elements(msp: Any, scene: SchemeScene, index: int) -> None:
+def _elements(msp: Any, scene: SchemeScene, index: int, mm: float = 1000.0) -> None:
     """The springs and dampers at sample ``index``, a polyline for each stroke of their symbols, in mm, on their
     kind's layer (``SPRINGS``, ``DAMPERS``)."""
     for element in scene.elements:
         for xy in scene.element_strokes(element, index):
             if np.isfinite(xy).all():
-                msp.add_lwpolyline([tuple(v) for v in xy * 1000], dxfattribs={"layer": SCHEME[element.kind].layer})
+                msp.add_lwpolyline([tuple(v) for v in xy * mm], dxfattribs={"layer": SCHEME[element.kind].layer})
 
 
-def _paths(msp: Any, paths: np.ndarray) -> None:
-    """Trajectories ``(A, Q, 2)`` (m) as polylines in mm, broken where the mechanism does not assemble."""
+def _paths(msp: Any, paths: np.ndarray, mm: float = 1000.0) -> None:
+    """Trajectories ``(A, Q, 2)`` (m) as polylines, ``mm`` mm a metre, broken where the mechanism does not
+    assemble."""
     for q in range(paths.shape[1]):
-        xy = paths[:, q] * 1000
-        ok = np.isfinite(xy).all(-1)
+        xy = np.asarray(paths[:, q], dtype=float) * mm
+        ok = np.asarray(np.isfinite(xy).all(-1))
         runs = np.split(np.arange(len(xy)), np.flatnonzero(np.diff(ok.astype(int))) + 1)
         for run in runs:
             if ok[run[0]] and len(run) > 1:
@@ -260,9 +302,13 @@ def mtext(text: str) -> str:
     return "".join(out)
 
 
-def _note(doc: Any, msp: Any, text: str, extent: np.ndarray, em: float) -> None:
-    """The drawing's title above it, in the ``NOTES`` layer."""
+def _note(doc: Any, msp: Any, text: str, extent: np.ndarray, em: float, lang: str = "en") -> None:
+    """The drawing's title above it, in the ``NOTES`` layer (its numbers with decimal commas in Russian)."""
     from ezdxf.enums import TextEntityAlignment
+
+    from linkwork.lang import russian_numbers
+
+    text = russian_numbers(text) if lang == "ru" else text
 
     entity = msp.add_text(text, height=CAP * em, dxfattribs={"layer": "NOTES", "style": STYLE})
     entity.set_placement((float(extent[0]), float(extent[3]) + 1.5 * em), align=TextEntityAlignment.BOTTOM_LEFT)

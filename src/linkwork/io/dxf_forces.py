@@ -19,7 +19,7 @@ import numpy as np
 from linkwork.io.dxf import APPID, PURPOSE, _document, _head, _note, _save, _text
 from linkwork.lang import group_label, t
 from linkwork.optional import require
-from linkwork.scene.force_plans import ForceScene, force_plan_scene, lever_scene
+from linkwork.scene.force_plans import ForceScene, force_plan_scene, lever_scene, short_note
 from linkwork.scene.style import FORCES
 from linkwork.units import turn_deg
 
@@ -70,6 +70,32 @@ def _draw(msp: Any, scene: ForceScene, offset: np.ndarray) -> None:
             _text(msp, text, c + offset, scene.em)
 
 
+def _short(
+    msp: Any, scene: ForceScene, offset: np.ndarray, lang: str, width: float | None = None, em: float | None = None
+) -> None:
+    """Under a force plan, the names and values of its arrows too short to carry their names
+    (:func:`~linkwork.scene.force_plans.short_note`), in ``NOTES``, in lines no wider than ``width`` mm (default
+    the plan's, at least 60 mm), ``em`` mm high (default the scene's)."""
+    from linkwork.scene.geometry import text_size
+
+    note = short_note(scene, lang)
+    if not note:
+        return
+    em = scene.em if em is None else em
+    box = scene.extent() + np.r_[offset, offset]
+    width = max(60.0, float(box[2] - box[0])) if width is None else width
+    lines = [""]
+    for part in note.split(", "):
+        joined = f"{lines[-1]}, {part}" if lines[-1] else part
+        if lines[-1] and text_size(joined, em)[0] > width:
+            lines.append(part)
+        else:
+            lines[-1] = joined
+    for k, line in enumerate(lines):
+        at = np.array([box[0], box[1] - (1.2 * scene.em + 1.5 * k * em)])
+        _text(msp, line, at, em, layer="NOTES", left=True)
+
+
 def write_force_plans(plans: ForcePlans, index: int, path: str | Path, lang: str = "en") -> Path:
     """Every group's force plan at sample ``index`` side by side, each with its note (group, μF) in ``lang``."""
     require("ezdxf", purpose=PURPOSE)
@@ -82,16 +108,17 @@ def write_force_plans(plans: ForcePlans, index: int, path: str | Path, lang: str
         box = scene.extent()
         offset = np.array([x - box[0], 0.0])
         _draw(msp, scene, offset)
+        _short(msp, scene, offset, lang)
         label = group_label(g.label, lang)
         if g.balancing is not None:
             label = t("forceplans.driving", lang, group=label)
         note = t("forceplans.cell", lang, group=label, scale=f"{scene.scale:g}").replace("\n", ";  ")
-        _note(doc, msp, note, box + np.r_[offset, offset], scene.em)
+        _note(doc, msp, note, box + np.r_[offset, offset], scene.em, lang)
         x += box[2] - box[0] + 20.0
         top = max(top, float(box[3]) + 6 * scene.em)
     crank = t("drawing.crank", lang, angle=f"{turn_deg(angle):.1f}")
     note = f"{t('forceplans.title', lang, name=plans.forces.mechanism.name)}, {crank}"
-    _note(doc, msp, note, np.array([0.0, 0.0, x, top]), 1.4 * 3.5)
+    _note(doc, msp, note, np.array([0.0, 0.0, x, top]), 1.4 * 3.5, lang)
     return _save(doc, path)
 
 
@@ -103,6 +130,7 @@ def write_lever(lv: Lever, kin: Kinematics, index: int, path: str | Path, lang: 
     doc, msp = _forces_document()
     scene = lever_scene(lv, plan_series(kin)[0], index, lang=lang)
     _draw(msp, scene, np.zeros(2))
+    _short(msp, scene, np.zeros(2), lang)
     doc.header.custom_vars.append("LINKWORK_SCALE", repr(scene.scale))
     crank = t("drawing.crank", lang, angle=f"{turn_deg(float(kin.angles[index])):.1f}")
     note = (
@@ -110,5 +138,5 @@ def write_lever(lv: Lever, kin: Kinematics, index: int, path: str | Path, lang: 
         f"{t('lever.scale', lang, plan=f'{scene.plan_scale:g}', scale=f'{scene.scale:g}')}; "
         f"{t('lever.moment', lang, moment=f'{float(lv.balancing[0, index]):.6g}')}"
     )
-    _note(doc, msp, note, scene.extent(), scene.em)
+    _note(doc, msp, note, scene.extent(), scene.em, lang)
     return _save(doc, path)

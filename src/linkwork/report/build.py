@@ -47,7 +47,7 @@ def analyze(
     out: str | Path,
     *,
     steps: int = TURN_STEPS,
-    position: int | str | None = None,
+    position: int | float | str | None = None,
     pdf: bool = False,
     animation: bool = True,
     dxf: bool = False,
@@ -59,9 +59,11 @@ def analyze(
     ``report.html`` (and ``report.pdf``) into the folder ``out``; returns the report's path.
 
     ``position``: which of the 12 positions (numbered from position 0, the working member's high end,
-    as ``linkwork positions`` does) gets the scheme and the velocity and acceleration plans; ``"all"``
-    adds sheets of the plans of all twelve; default the file's ``drawing.positions``, else where the
-    working point moves fastest (:func:`linkwork.scene.positions.plan_positions`).  ``dxf``: also the
+    as ``linkwork positions`` does) gets the scheme, the velocity and acceleration plans and the force
+    analysis; ``"all"`` adds sheets of the plans of all twelve; a float: φ (rad from position 0) of the force
+    analysis (its plans drawn there too); default the file's ``drawing.positions``, else where the
+    working point moves fastest (:func:`linkwork.scene.positions.plan_positions`), and the force analysis
+    where the driving torque of the working stroke is largest (:mod:`linkwork.report.kinetostatic`).  ``dxf``: also the
     drawings for CAD, ``figures/*.dxf`` (needs ezdxf).  ``lang``: ``"en"`` or ``"ru"``.  ``sizing``: the
     "Sizing" section (:mod:`linkwork.report.sizing`, ``sizing.json``): True, False, or None where the file
     has a ``sizing:`` section.  Needs
@@ -113,7 +115,7 @@ def require_packages() -> None:
         require(*missing, purpose="the report (linkwork analyze)")  # raises, naming them and the pip command
 
 
-def _build(run: ReportRun, position: int | str | None, animation: bool, dxf: bool = False) -> None:
+def _build(run: ReportRun, position: int | float | str | None, animation: bool, dxf: bool = False) -> None:
     """The sections in the page's order, the figures queued as each is written (those of the kinematics drawn
     in the second process while this one goes on)."""
     requirements_section(run)

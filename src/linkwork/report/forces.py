@@ -53,10 +53,10 @@ def forces_section(run: ReportRun, cycle: ReportCycle) -> None:
             joint = str(mech.pair_joint[k])
             make = functools.partial(figures.hodograph, f, joint, at=at12, zero=zero, lang=lang)
             sec.figures.append(run.figure(f"hodograph_{joint}", make, run.t("caption.hodograph", joint=joint)))
-    if one_crank(mech):  # the graphical method: force plans and Zhukovsky's lever at the plans' position
+    if one_crank(mech):  # the graphical method: force plans and Zhukovsky's lever where the load acts
         from linkwork.report.kinetostatic import sections
 
-        body, names = sections(run, at12, cycle.drawn[0], cycle.sheets, cycle.dxf)
+        body, names = sections(run, at12, cycle, f)
         sec.body += body
         sec.figures += names
     run.sections.append(sec)

@@ -13,7 +13,7 @@ import math
 from collections import defaultdict
 from typing import TYPE_CHECKING, Any
 
-from linkwork.lang import link_named
+from linkwork.lang import file_value, file_word, link_named
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:
@@ -51,15 +51,16 @@ def input_section(mech: Mechanism, steps: int, t: Any) -> list[str]:
     if guides:
         body.append(guides)
     read = _values(mech)
-    loads = _grouped(read, "loads.", mech.spec.loads if mech.spec is not None else {})
+    lang = _lang(t)
+    loads = _grouped(read, "loads.", mech.spec.loads if mech.spec is not None else {}, lang)
     if loads:
         head = [t("input.head.load"), t("input.head.type"), t("input.head.given")]
         body.append(f"<p>{html.escape(t('input.loads'))}</p>" + _table(head, loads, code=True))
     given = mech.spec.machine if mech.spec is not None else None
-    machine = _grouped(read, "machine.", {k: getattr(given, k, None) for k in ("motor", "gear", "flywheel")})
+    machine = _grouped(read, "machine.", {k: getattr(given, k, None) for k in ("motor", "gear", "flywheel")}, lang)
     if machine:
         head = [t("input.head.part"), t("input.head.given")]
-        rows = [[name, "; ".join(x for x in (kind, text) if x)] for name, kind, text in machine]
+        rows = [[file_word(name, lang), "; ".join(x for x in (kind, text) if x)] for name, kind, text in machine]
         body.append(f"<p>{html.escape(t('input.machine'))}</p>" + _table(head, rows, code=True))
     text = _file_text(mech)
     if text:
@@ -137,7 +138,12 @@ def _values(mech: Mechanism) -> list[ValueRead]:
     return values_read(mech.spec) if mech.spec is not None else []
 
 
-def _grouped(read: list[ValueRead], prefix: str, kinds: Any) -> Rows:
+def _lang(t: Any) -> str:
+    """The language of the report's texts ``t`` (a report run's ``t``, whose run has a ``lang``; else English)."""
+    return str(getattr(getattr(t, "__self__", None), "lang", "en"))
+
+
+def _grouped(read: list[ValueRead], prefix: str, kinds: Any, lang: str = "en") -> Rows:
     """The values under ``prefix`` (``loads.``, ``machine.``) by their first name: ``[name, type, "axis 90
     deg; workpiece -0.05 m, 0.05 m"]``; the file's text where it has a unit, else the SI value with its."""
     fields: dict[str, dict[str, list[str]]] = defaultdict(lambda: defaultdict(list))
@@ -149,15 +155,21 @@ def _grouped(read: list[ValueRead], prefix: str, kinds: Any) -> Rows:
         shown = v.text if isinstance(v.text, str) else f"{v.value:g} {v.unit}".strip()
         fields[name][key].append(str(shown))
     rows = []
+    each, field = ("; ", " | ") if lang == "ru" else (", ", "; ")  # a decimal comma: values apart by semicolons
     for name, given in fields.items():
-        kind = str(getattr(kinds.get(name), "type", None) or "")
-        where = _placed(kinds.get(name))
-        text = "; ".join(", ".join(vals) if k == name else f"{k} {', '.join(vals)}" for k, vals in given.items())
-        rows.append([name, kind, "; ".join(x for x in (where, text) if x)])
+        kind = file_word(str(getattr(kinds.get(name), "type", None) or ""), lang)
+        where = _placed(kinds.get(name), lang, field)
+        text = field.join(
+            file_value(each.join(vals), lang)
+            if k == name
+            else f"{file_word(k, lang)} {file_value(each.join(vals), lang)}"
+            for k, vals in given.items()
+        )
+        rows.append([name, kind, field.join(x for x in (where, text) if x)])
     return rows
 
 
-def _placed(load: Any) -> str:
+def _placed(load: Any, lang: str = "en", field: str = "; ") -> str:
     """Where a load acts: ``tools knife_upper.edge, knife_lower.edge``, ``at coupler.M``, ``on rocker``."""
     if load is None:
         return ""
@@ -165,8 +177,8 @@ def _placed(load: Any) -> str:
     for key in ("tools", "at", "on", "joint"):
         value = getattr(load, key, None)
         if value:
-            out.append(f"{key} {', '.join(value) if isinstance(value, list) else value}")
-    return "; ".join(out)
+            out.append(f"{file_word(key, lang)} {', '.join(value) if isinstance(value, list) else value}")
+    return field.join(out)
 
 
 def _file_text(mech: Mechanism) -> str | None:

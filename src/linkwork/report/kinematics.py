@@ -16,6 +16,7 @@ from linkwork.io.motion_tables import write_csv, write_netcdf
 from linkwork.lang import group_label, kind_named, link_named
 from linkwork.motion.analysis import coordinate, extremes, transmission_angles, working
 from linkwork.report.html import Section, deg, fixed, paragraph, ratio, table
+from linkwork.report.kinematic_plans import worked_plans
 from linkwork.report.run import ReportRun
 from linkwork.scene.positions import plan_positions
 from linkwork.structure.model import point_labels
@@ -45,6 +46,9 @@ class ReportCycle:
         Whether the plans of all twelve positions are drawn too (``--position all``).
     dxf : bool
         Whether the drawings are written for CAD too.
+    asked : int or float or None
+        Where ``--position`` asks for the force analysis: a position of the twelve (int), φ (rad, float), or None
+        (the largest driving torque on the working stroke, :mod:`linkwork.report.kinetostatic`).
     """
 
     study: Study
@@ -52,6 +56,7 @@ class ReportCycle:
     drawn: tuple[int, ...] = (0,)
     sheets: bool = False
     dxf: bool = False
+    asked: int | float | None = None
 
     @property
     def kin(self) -> Kinematics:
@@ -74,16 +79,17 @@ class ReportCycle:
         return self.study.phi(angles)
 
 
-def kinematics_section(run: ReportRun, position: int | str | None, dxf: bool) -> ReportCycle:
+def kinematics_section(run: ReportRun, position: int | float | str | None, dxf: bool) -> ReportCycle:
     """The section of the kinematics; returns the cycle the later sections share."""
 
     mech, study = run.mech, run.study
     run.progress("kinematics")
     kin, twelve, zero, steps = study.kin, study.twelve, study.zero, study.steps
-    drawn = plan_positions(mech, twelve) if position in (None, "all") else [int(position) % 12]
+    drawn = [int(position) % 12] if isinstance(position, int) else plan_positions(mech, twelve)
     phi = np.degrees(np.arange(steps) * 2 * np.pi / steps)
     index = int(np.argmin(np.abs((phi - 30.0 * drawn[0] + 180.0) % 360.0 - 180.0)))
-    cycle = ReportCycle(study, index, tuple(drawn), position == "all", dxf)
+    asked = position if isinstance(position, int | float) else None
+    cycle = ReportCycle(study, index, tuple(drawn), position == "all", dxf, asked)
     run.jobs.append(lambda: write_csv(kin, run.folder / "kinematics.csv"))
     run.jobs.append(lambda: write_netcdf(kin, run.folder / "kinematics.nc"))
     sec = Section("kinematics", run.t("section.kinematics"))
@@ -103,6 +109,7 @@ def kinematics_section(run: ReportRun, position: int | str | None, dxf: bool) ->
     sec.body += _working_table(run, cycle)
     sec.body += _transmission_table(run, cycle)
     sec.body += [paragraph(_event(run, cycle, e)) for e in kin.events]
+    sec.body += worked_plans(run, twelve, first, str(first))  # the plans worked out (report/kinematic_plans.py)
     sec.figures += [
         run.figure(
             "kinematic_diagrams",

@@ -13,6 +13,7 @@ from __future__ import annotations
 import functools
 import html
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -21,10 +22,14 @@ from linkwork.lang import group_label
 
 if TYPE_CHECKING:
     from linkwork.kinetostatics.force_polygons import GroupPlan, MomentEquation
+    from linkwork.kinetostatics.peaks import Peak
     from linkwork.kinetostatics.reaction_forces import Forces
 
 
 def _n(x: float, digits: int = 4) -> str:
+    """``x`` to ``digits`` significant digits; ``0`` below 1e-9 (a rounding's residue: an arm of 8e-15 mm)."""
+    if math.isfinite(x) and abs(x) < 1e-9:
+        return "0"
     return "-" if not math.isfinite(x) else f"{float(f'{x:.{digits}g}') + 0.0:.{digits}g}"  # no "-0"
 
 
@@ -42,47 +47,180 @@ def _angle(v: np.ndarray) -> str:
     return f"{math.degrees(math.atan2(float(v[1]), float(v[0]))) % 360:.1f}"
 
 
-def sections(
-    run: Any, at12: Forces, position: int, sheets: bool = False, dxf: bool = False
-) -> tuple[list[str], list[str]]:
-    """The body (HTML) and the figures' names of the graphical kinetostatics at ``position`` (of ``at12``, the
-    forces at the twelve positions) for the report ``run`` (:class:`linkwork.report.build._Run`); with
-    ``sheets``, each group's force plans and the levers of all twelve positions on sheets too; with ``dxf``,
+@dataclass(frozen=True)
+class Where:
+    """The position of the graphical kinetostatics: ``index`` of the samples of ``forces``, its number of the
+    twelve (``position``; None for an angle between them), φ from position 0 (``phi``, degrees), and why it was
+    taken (``why``, a paragraph in the report's language)."""
+
+    forces: Forces
+    index: int
+    position: int | None
+    phi: float
+    why: str
+
+    def name(self, run: Any) -> str:
+        """``9`` for a position of the twelve, ``φ = 86.6°`` (decimal comma in Russian) for an angle."""
+        if self.position is not None:
+            return str(self.position)
+        return "φ = " + decimal(f"{self.phi:.1f}", run.lang) + "°"
+
+
+def decimal(text: str, lang: str) -> str:
+    """A number as ``lang`` writes it: a decimal comma in Russian."""
+    return text.replace(".", ",") if lang == "ru" else text
+
+
+def where_forces(run: Any, at12: Forces, cycle: Any, f: Forces) -> Where:
+    """Where the force plans and the lever are drawn: the position ``--position`` asked (a number of the
+    twelve, or φ in rad), else the largest driving torque on the working stroke
+    (:func:`working_torque_peak`), solved there (a position between the twelve
+    as one sample of its own)."""
+    from linkwork.kinetostatics import forces
+    from linkwork.motion import kinematics
+
+    asked = cycle.asked
+    if isinstance(asked, int):
+        return Where(at12, asked % 12, asked % 12, 30.0 * (asked % 12), run.t("kgraph.where.asked"))
+    if asked is None:
+        peak = working_torque_peak(f)
+        if not np.isfinite(peak.at[0]):
+            k = cycle.drawn[0]
+            return Where(at12, k, k, 30.0 * k, "")
+        drive = float(peak.at[0])
+    else:
+        drive = cycle.zero + cycle.sign * float(asked)
+    phi = float(cycle.phi(drive))
+    one = forces(kinematics(run.mech, np.array([drive])))
+    torque = float(np.asarray(one.driving_torque)[0])
+    loads = _loads_text(run, one)
+    text = "" if asked is None else run.t("kgraph.where.angle")
+    if asked is None:
+        text = run.t("kgraph.where.peak", torque=decimal(f"{torque:.0f}", run.lang), loads=loads)
+    return Where(one, 0, None, phi, text)
+
+
+def working_torque_peak(f: Forces) -> Peak:
+    """Where the force analysis of a course project is done: the largest driving torque (by size, with its sign)
+    on the working stroke (:func:`linkwork.scene.positions.working_stroke`: the knives closing, the ram going
+    down; every sample of a mechanism without a working member), of the first variant of ``f``, ``(1,)``.
+
+    The refined peak of the whole turn (:func:`torque_peak`) where its nearest sample is on the working stroke;
+    else the largest sample on it (a torque that peaks on the idle stroke, where a heavy link swings back,
+    is not where the machine works).  NaN where no sample on the stroke is finite.
+    """
+    from linkwork.kinetostatics.peaks import Peak, driving_torque, torque_peak
+    from linkwork.scene.positions import working_stroke
+
+    kin = f.kinematics
+    angles = np.asarray(kin.angles, dtype=float)
+    torque = np.asarray(driving_torque(f))[0]
+    stroke = working_stroke(kin) & np.isfinite(torque)
+    if not stroke.any():
+        return Peak(np.array([np.nan]), np.array([np.nan]))
+    peak = torque_peak(f)
+    at = float(peak.at[0])
+    gap = np.abs(np.angle(np.exp(1j * (angles - at))))
+    nearest = int(np.argmin(gap))
+    if np.isfinite(peak.value[0]) and stroke[nearest]:
+        return Peak(peak.value[:1].copy(), peak.at[:1].copy())
+    best = int(np.argmax(np.where(stroke, np.abs(torque), -np.inf)))
+    return Peak(np.array([torque[best]]), np.array([angles[best]]))
+
+
+def _loads_text(run: Any, f: Forces) -> str:
+    """The process loads acting at the first sample of ``f``, ``cutting 250 kN`` each, in the report's language
+    (``no process load`` where none acts)."""
+    found = []
+    for name, size in f.external.magnitude.items():
+        kind = next((ld.kind for ld in run.mech.loads if ld.name == name), "")
+        value = float(np.asarray(size).reshape(-1)[0])
+        if kind == "process" and math.isfinite(value):
+            found.append(f"{name} {decimal(_n(value / 1000), run.lang)} {run.t('unit.kN')}")
+    return ", ".join(found) if found else run.t("kgraph.where.no_load")
+
+
+def sections(run: Any, at12: Forces, cycle: Any, f: Forces) -> tuple[list[str], list[str]]:
+    """The body (HTML) and the figures' names of the graphical kinetostatics for the report ``run``
+    (:class:`linkwork.report.run.ReportRun`) at :func:`where_forces` (``at12``: the forces at the twelve positions,
+    ``f`` over the report's cycle ``cycle``, :class:`~linkwork.report.kinematics.ReportCycle`); with ``cycle.sheets``,
+    each group's force plans and the levers of all twelve positions on sheets too; with ``cycle.dxf``,
     ``figures/force_plans.dxf`` and ``figures/lever.dxf``."""
     from linkwork.figures import force_plans as figures
     from linkwork.kinetostatics.force_polygons import force_plans
     from linkwork.kinetostatics.zhukovsky import lever
 
-    plans, lv = force_plans(at12), lever(at12)
-    lang = run.lang
-    body = [f"<h3>{_esc(run.t('kgraph.title', position=position))}</h3>", f"<p>{_esc(run.t('kgraph.intro'))}</p>"]
+    at = where_forces(run, at12, cycle, f)
+    plans, lv = force_plans(at.forces), lever(at.forces)
+    lang, i, named = run.lang, at.index, at.name(run)
+    body = [f"<h3>{_esc(run.t('kgraph.title', position=named))}</h3>"]
+    body += [f"<p>{_esc(at.why)}</p>"] if at.why else []
+    if at.position is None:  # the plans the inertia forces come from, worked out at this angle
+        from linkwork.report.kinematic_plans import worked_plans
+
+        body += worked_plans(run, at.forces.kinematics, at.index, named)
+    body.append(f"<p>{_esc(run.t('kgraph.intro'))}</p>")
     for g in plans.groups:
-        body += _group(run, g, position)
-    body += _lever_table(run, at12, lv.balancing[0])
-    make_plans = functools.partial(figures.force_plans_figure, plans, position, position, lang)
-    make_lever = functools.partial(figures.lever_figure, lv, at12.kinematics, position, position, lang)
-    where = run.t("at_position", position=position)
-    names = [
+        body += _group(run, g, i)
+    body += _lever_table(run, at12, lever(at12).balancing[0], at if at.position is None else None)
+    make_plans = functools.partial(figures.force_plans_figure, plans, i, named, lang)
+    make_lever = functools.partial(figures.lever_figure, lv, at.forces.kinematics, i, named, lang)
+    where = run.t("at_position", position=named)
+    names = []
+    if at.position is None:  # the plans the inertia forces come from, at this position
+        names += _kinematic_plans(run, at, where)
+    names += [
         run.figure("force_plans", make_plans, run.t("caption.force_plans") + where),
         run.figure("lever", make_lever, run.t("caption.lever") + where),
     ]
-    if sheets:
-        for j, g in enumerate(plans.groups):
+    if cycle.sheets:
+        all12 = force_plans(at12)
+        for j, g in enumerate(all12.groups):
             caption = run.t("caption.force_plan_sheet", group=group_label(g.label, lang))
             name = f"force_plans_{'_'.join(str(k) for k in g.links)}"
-            names.append(run.figure(name, functools.partial(figures.force_plan_sheet, plans, j, lang), caption))
+            names.append(run.figure(name, functools.partial(figures.force_plan_sheet, all12, j, lang), caption))
         names.append(
             run.figure(
-                "levers", functools.partial(figures.lever_sheet, lv, at12.kinematics, lang), run.t("caption.levers")
+                "levers",
+                functools.partial(figures.lever_sheet, lever(at12), at12.kinematics, lang),
+                run.t("caption.levers"),
             )
         )
-    if dxf:
+    if cycle.dxf:
         from linkwork.io.dxf_forces import write_force_plans, write_lever
 
         folder = run.folder / "figures"
-        run.jobs.append(lambda: write_force_plans(plans, position, folder / "force_plans.dxf", lang))
-        run.jobs.append(lambda: write_lever(lv, at12.kinematics, position, folder / "lever.dxf", lang))
+        kin = at.forces.kinematics
+        run.jobs.append(lambda: write_force_plans(plans, i, folder / "force_plans.dxf", lang))
+        run.jobs.append(lambda: write_lever(lv, kin, i, folder / "lever.dxf", lang))
+        run.jobs.append(lambda: _sheets(run, cycle, plans, lv, at))
     return body, names
+
+
+def _sheets(run: Any, cycle: Any, plans: Any, lv: Any, at: Where) -> None:
+    """The drawing sheets of the course project (:mod:`linkwork.io.dxf_sheet`), ``figures/sheet_1.dxf`` (the
+    kinematics at the plans' position), ``sheet_2.dxf`` (the kinetostatics at ``at``), more on A3 and A4."""
+    from linkwork.io.dxf_sheet import sheet_options, write_sheets
+
+    fmt, block = sheet_options(run.mech)
+    folder = run.folder / "figures"
+    twelve, first, named = cycle.twelve, cycle.drawn[0], at.name(run)
+    write_sheets(twelve, first, cycle.kin, plans, lv, at.index, named, folder, run.lang, fmt, block)
+
+
+def _kinematic_plans(run: Any, at: Where, where: str) -> list[str]:
+    """The velocity and acceleration plans at ``at``, a position between the twelve."""
+    from linkwork import figures
+
+    kin, lang = at.forces.kinematics, run.lang
+    return [
+        run.figure(
+            f"{kind}_plan_forces",
+            functools.partial(getattr(figures, f"{kind}_plan"), kin, at.index, position=at.name(run), lang=lang),
+            run.t(f"caption.{kind}_plan") + where,
+        )
+        for kind in ("velocity", "acceleration")
+    ]
 
 
 def _forces_on(run: Any, g: GroupPlan, i: int) -> list[str]:
@@ -196,13 +334,22 @@ def _group(run: Any, g: GroupPlan, i: int) -> list[str]:
     return out
 
 
-def _lever_table(run: Any, at12: Forces, balancing: np.ndarray) -> list[str]:
+def _lever_table(run: Any, at12: Forces, balancing: np.ndarray, extra: Where | None = None) -> list[str]:
+    """The lever's balancing moment beside the kinetostatic driving torque at the twelve positions, and at
+    ``extra`` (a position between them: the force analysis's) in a row of its own, marked ``*``."""
+    from linkwork.kinetostatics.zhukovsky import lever
+
     torque = np.asarray(at12.driving_torque)
     big = float(np.nanmax(np.abs(torque), initial=0.0))
+    cases = [(str(k), 30.0 * k, float(balancing[k]), float(torque[k])) for k in range(len(torque))]
+    if extra is not None:
+        moment = float(lever(extra.forces).balancing[0][extra.index])
+        cases.append(("*", extra.phi, moment, float(np.asarray(extra.forces.driving_torque)[extra.index])))
+        cases.sort(key=lambda c: c[1])
     rows = []
-    for k in range(len(torque)):
-        diff = abs(float(balancing[k]) - float(torque[k])) / big if big > 0 else math.nan
-        rows.append([k, f"{30 * k}", _n(float(balancing[k]), 7), _n(float(torque[k]), 7), f"{diff:.1e}"])
+    for name, phi, mb, md in cases:
+        diff = abs(mb - md) / big if big > 0 else math.nan
+        rows.append([name, decimal(f"{phi:g}", run.lang), _n(mb, 7), _n(md, 7), f"{diff:.1e}"])
     head = [
         run.t("head.position"),
         run.t("head.phi"),

@@ -6,6 +6,7 @@ import base64
 import html
 from pathlib import Path
 
+from linkwork.lang import russian_html
 from linkwork.report.html import paragraph
 from linkwork.report.render import shown_width
 from linkwork.report.run import ReportRun
@@ -39,7 +40,8 @@ def write_html(run: ReportRun, path: Path) -> None:
         warnings = "".join(paragraph(w) for w in mech.structure.warnings)
         parts.append(f"<section id='warnings'><h2>{html.escape(run.t('section.warnings'))}</h2>{warnings}</section>")
     parts.append("</body></html>")
-    path.write_text("".join(parts), encoding="utf-8")
+    page = "".join(parts)  # in Russian its numbers with decimal commas and powers of ten (lang.russian_html)
+    path.write_text(russian_html(page) if run.lang == "ru" else page, encoding="utf-8")
 
 
 def figure_html(run: ReportRun, name: str) -> str:

@@ -52,10 +52,15 @@ def sizing_body(study: Study, t: Any) -> tuple[list[str], Sizing | None]:
     body += [paragraph(t("sizing.inputs")), html_table([t("sizing.col.quantity"), t("sizing.col.value")], rows)]
     for table in result.tables():
         body += [paragraph(t(f"sizing.table.{table.key}")), _translated(table, t)]
-    body += [
-        paragraph(t("sizing.missing", part=_text(t, "sizing.word.", part), why=_text(t, "sizing.word.", why)))
-        for part, why in result.missing.items()
-    ]
+    mech = study.mech
+    given = mech.spec is not None and mech.spec.machine is not None and mech.spec.machine.motor is not None
+    for part, why in result.missing.items():
+        if part == "motor" and why == "not asked" and given:  # the file's own motor: nothing to choose
+            body.append(paragraph(t("sizing.motor_given")))
+        else:
+            body.append(
+                paragraph(t("sizing.missing", part=_text(t, "sizing.word.", part), why=_text(t, "sizing.word.", why)))
+            )
     checks = result.proportions.checks if result.proportions is not None else ()
     body += [
         paragraph(

@@ -16,6 +16,7 @@ Labels are placed clear of each other and of the lines (:mod:`linkwork.scene.lab
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,6 +30,11 @@ from linkwork.scene.plans import LETTERING
 
 #: An arrow before its name is placed: start, end (mm), the force, whether it is a reaction read off the plan.
 _Draft = tuple[np.ndarray, np.ndarray, PlanForce, bool]
+
+#: A force whose arrow on a force plan is shorter than this many ems (the height of its name) is not named beside
+#: it, where the names of several such arrows would pile up at one vertex: its name and value are listed under
+#: the plan (:func:`short_note`), and the report's table gives its length on the plan.
+SHORT = 1.0
 
 #: The kinds of arrow of the force drawings, in the order of a legend.
 FORCE_KINDS = ("weight", "inertia", "load", "known", "tangential", "normal", "reaction", "internal", "balancing")
@@ -89,6 +95,11 @@ class ForceScene:
     dots: np.ndarray
     dot_text: tuple[str, ...]
     dot_centres: np.ndarray
+    left_out: tuple[tuple[str, float], ...] = ()  # a lever's forces too short to draw: (name, value N)
+
+    def short(self) -> list[ForceArrow]:
+        """The named arrows whose names are not drawn beside them (shorter than :data:`SHORT` ems on a plan)."""
+        return [a for a in self.arrows if a.text and not np.isfinite(a.centre).all()]
 
     def kinds(self) -> list[str]:
         """The kinds of the arrows drawn, in the order of :data:`FORCE_KINDS`."""
@@ -207,9 +218,12 @@ def lever_scene(
     largest = max((float(np.hypot(*v)) for v in vectors if np.isfinite(v).all()), default=0.0)
     scale = drawing_scale(largest * 100.0 / 40.0) if scale is None else float(scale)
     drafts: list[_Draft] = []
+    left_out: list[tuple[str, float]] = []
     for (at, f), v in zip(forces, vectors, strict=False):  # those too short to see left out (they need not close)
         if _drawn(v, largest) and np.isfinite(at).all() and np.hypot(*v) / scale > 0.5 * em:
             drafts.append((at, at + v / scale, f, False))
+        elif np.isfinite(v).all() and np.hypot(*v) > 0:
+            left_out.append((_name(f, lang), float(np.hypot(*v))))
     pin = lv.pin_image[variant, index] / plan_scale
     balancing = PlanForce("Fb", "", "", "balancing", 1, lv.balancing_force, lv.pin_image, np.zeros(1))
     if _drawn(vectors[-1], largest) and np.isfinite(pin).all():
@@ -228,7 +242,7 @@ def lever_scene(
     if np.isfinite(pin).all() and (round(float(pin[0]), 6), round(float(pin[1]), 6)) not in seen:
         dots.append(pin)
         texts.append(lv.pin)
-    return _scene(
+    scene = _scene(
         "lever",
         "",
         scale,
@@ -241,6 +255,7 @@ def lever_scene(
         tuple(texts),
         angle=float(velocity.angles[index]),
     )
+    return dataclasses.replace(scene, left_out=tuple(left_out))
 
 
 def _scene(
@@ -263,6 +278,8 @@ def _scene(
     mids = np.array([(s + e) / 2 for s, e, _, _ in drafts]).reshape(1, -1, 2)
     along = np.array([e - s for s, e, _, _ in drafts]).reshape(-1, 2)
     size = np.hypot(*along.T)[:, None] if len(along) else np.zeros((0, 1))
+    if kind == "force_plan":  # a short arrow's name goes under the plan (short_note)
+        mids[0, size[:, 0] < SHORT * em] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         left = np.where(size > 0, np.stack([-along[:, 1], along[:, 0]], -1) / size, np.sqrt(0.5))
     sizes = np.array([text_size(t, em) for t in texts]).reshape(1, -1, 2)
@@ -291,6 +308,23 @@ def _scene(
         dot_text,
         dot_centres.reshape(-1, 2),
     )
+
+
+def short_note(scene: ForceScene, lang: str = "en") -> str:
+    """The line under a force plan naming its short arrows (:data:`SHORT`) with their values:
+    ``shorter than 3.5 mm: G6 = 294.3 N, Фи6 = 5.53 N`` (decimal commas in Russian); empty where none is."""
+    from linkwork.lang import russian_numbers, t
+
+    def listed(pairs: list[tuple[str, float]]) -> str:
+        return ", ".join(f"{name}\u00a0=\u00a0{value:.4g}\u00a0{t('unit.N', lang)}" for name, value in pairs)
+
+    found = [(a.text, a.value) for a in scene.short()]
+    parts = [t("forceplans.short", lang, size=f"{SHORT * scene.em:.1f}", forces=listed(found))] if found else []
+    if scene.left_out:
+        size = f"{0.5 * scene.em:.1f}"
+        parts.append(t("forceplans.left_out", lang, size=size, forces=listed(list(scene.left_out))))
+    text = "; ".join(parts)
+    return russian_numbers(text) if lang == "ru" else text
 
 
 def _name(f: PlanForce, lang: str) -> str:

@@ -517,17 +517,36 @@ class ImpactSpec(_Strict):
     tool: ToolSpec | None = Field(None, description="the tool, for the working cycle (linkwork impact --cycle)")
 
 
+class TitleBlockSpec(_Strict):
+    """The fields of the drawing sheets' title block (основная надпись, ГОСТ 2.104 form 1), each as written."""
+
+    title: str = Field(default="", description="graph 1, the product's name (default: the mechanism's name)")
+    designation: str = Field(default="", description="graph 2, the document's designation, e.g. ТММ.КП.01.00.00")
+    organisation: str = Field(default="", description="graph 9, the organisation (the school and the group)")
+    developer: str = Field(default="", description="who drew the sheets (Разраб.)")
+    checker: str = Field(default="", description="who checked them (Пров.)")
+    norm_control: str = Field(default="", description="who checked the norms (Н.контр.)")
+    approved: str = Field(default="", description="who approved them (Утв.)")
+    date: str = Field(default="", description="the date beside the developer's name")
+    litera: str = Field(default="", description="the document's letter (У: a student's work)")
+
+
 class Drawing(_Strict):
-    """What the drawings show: the positions whose velocity and acceleration plans are drawn.
+    """What the drawings show: the positions whose velocity and acceleration plans are drawn, and the sheets.
 
     Positions are those of the graphical method, 0 to 11: position 0 where the working slider is at the
     high end of its stroke (the knives open), then every 30 degrees in the direction of rotation.
     Without ``positions``, the plans are drawn where the working point moves fastest and every dyad
-    transmits well (never at a dead point).
+    transmits well (never at a dead point).  ``sheet`` and ``title_block``: the format (ГОСТ 2.301) and the
+    title block of the drawing sheets ``analyze --dxf`` writes.
     """
 
     positions: list[Annotated[int, Field(ge=0, le=11)]] = Field(
         default_factory=list, description="positions (0 to 11) whose velocity and acceleration plans are drawn"
+    )
+    sheet: Literal["A1", "A2", "A3", "A4"] = Field(default="A1", description="the format of the drawing sheets")
+    title_block: TitleBlockSpec = Field(
+        default=TitleBlockSpec(), description="the fields of the sheets' title block (ГОСТ 2.104)"
     )
 
 
