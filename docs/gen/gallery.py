@@ -123,17 +123,19 @@ def main() -> None:
         "# Gallery",
         "",
         "Every bundled example, run through linkwork when this manual was built: its structure,",
-        "scheme, plan of positions, plans, diagrams and animation.",
+        "scheme, plan of positions, plans, diagrams and animation.  The force plans, the lever, the",
+        "dynamics and the synthesised mechanisms are among [the pictures of the manual](../pictures/index.md).",
         "",
-        "| example | what | scheme |",
-        "|---|---|---|",
+        "| example | what | scheme | the command that draws it |",
+        "|---|---|---|---|",
     ]
     for name in examples.names():
         text = example_page(name)
         with mkdocs_gen_files.open(f"gallery/{name}.md", "w") as f:
             f.write(text)
         first = _prose(((lw.example(name).description or "").strip().splitlines() or [""])[0])
-        rows.append(f'| [{name}]({name}.md) | {first} | [![{name}]({name}/scheme.svg){{ width="240" }}]({name}.md) |')
+        thumb = f'[![{name}]({name}/scheme.svg){{ width="360" }}]({name}.md)'
+        rows.append(f"| [{name}]({name}.md) | {first} | {thumb} | `linkwork analyze {name} --out report` |")
     with mkdocs_gen_files.open("gallery/index.md", "w") as f:
         f.write("\n".join(rows) + "\n")
 
