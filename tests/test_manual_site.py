@@ -129,3 +129,16 @@ def test_half_the_pages_that_explain_show_a_picture_drawn_from_the_code():
 def test_no_page_cites_a_file_that_does_not_exist():
     for path in [ROOT / "README.md", *DOCS.rglob("*.md")]:
         assert "example-data.md" not in path.read_text(encoding="utf-8"), path
+
+
+def test_the_user_pages_cite_no_test_or_source_file_as_evidence():
+    """A reader checks a figure by the method the page gives, not by a test's name or a source path (the pages
+    for developers, and the install page's command for the test suite, aside; HTML comments are not shown)."""
+    aside = {"development.md", "benchmarks.md", "changelog.md", "getting-started/install.md"}
+    cited = []
+    for path in DOCS.rglob("*.md"):
+        if path.relative_to(DOCS).as_posix() in aside:
+            continue
+        text = re.sub(r"<!--.*?-->", "", path.read_text(encoding="utf-8"), flags=re.S)
+        cited += [f"{path.name}: {m}" for m in re.findall(r"\btest_\w+|tests/[\w/]+\.py|src/linkwork/[\w/.]+", text)]
+    assert cited == []
