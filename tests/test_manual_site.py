@@ -142,3 +142,13 @@ def test_the_user_pages_cite_no_test_or_source_file_as_evidence():
         text = re.sub(r"<!--.*?-->", "", path.read_text(encoding="utf-8"), flags=re.S)
         cited += [f"{path.name}: {m}" for m in re.findall(r"\btest_\w+|tests/[\w/]+\.py|src/linkwork/[\w/.]+", text)]
     assert cited == []
+
+
+def test_the_search_stems_the_word_a_reader_types():
+    """The search box queries each term as a prefix (``маховика*``), which lunr's parser keeps out of the stemmers:
+    the theme's lunr.ru is replaced by one that stems such a term, and the stemmers are in the pipeline."""
+    plugins = _plugins(_config())
+    assert "stemmer" in plugins["search"]["pipeline"]
+    override = ROOT / _config()["theme"]["custom_dir"] / "assets/javascripts/lunr/min/lunr.ru.min.js"
+    text = override.read_text(encoding="utf-8")
+    assert "QueryParser.prototype.nextClause" in text and 'registeredFunctions["stemmer-ru"]' in text
