@@ -126,16 +126,21 @@ def main() -> None:
         "scheme, plan of positions, plans, diagrams and animation.  The force plans, the lever, the",
         "dynamics and the synthesised mechanisms are among [the pictures of the manual](../pictures/index.md).",
         "",
-        "| example | what | scheme | the command that draws it |",
-        "|---|---|---|---|",
+        "",
     ]
     for name in examples.names():
         text = example_page(name)
         with mkdocs_gen_files.open(f"gallery/{name}.md", "w") as f:
             f.write(text)
         first = _prose(((lw.example(name).description or "").strip().splitlines() or [""])[0])
-        thumb = f'[![{name}]({name}/scheme.svg){{ width="360" }}]({name}.md)'
-        rows.append(f"| [{name}]({name}.md) | {first} | {thumb} | `linkwork analyze {name} --out report` |")
+        rows += [
+            f"## [{name}]({name}.md)",
+            "",
+            f"{first}  Drawn by `linkwork analyze {name} --out report`.",
+            "",
+            f'[![the scheme of {name}]({name}/scheme.svg){{ width="520" }}]({name}.md)',
+            "",
+        ]
     with mkdocs_gen_files.open("gallery/index.md", "w") as f:
         f.write("\n".join(rows) + "\n")
 

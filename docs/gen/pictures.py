@@ -228,15 +228,14 @@ def main() -> None:
         "Every picture of the guides, drawn when this manual was built by the functions the report draws",
         "with, and the command whose report (or table) holds the same figure.",
         "",
-        "| picture | what | command |",
-        "|---|---|---|",
     ]
     for name, (caption, draw, command) in PICTURES.items():
         fig = draw()
         with mkdocs_gen_files.open(f"pictures/{name}.svg", "w") as f:
             f.write(_svg(fig))
         plt.close(fig)
-        rows.append(f'| [![{caption}]({name}.svg){{ width="320" }}]({name}.svg) | {caption} | `{command}` |')
+        image = f'[![{caption}]({name}.svg){{ width="520" }}]({name}.svg)'
+        rows += [f"## {caption}", "", f"`{command}`", "", image, ""]
     with mkdocs_gen_files.open("pictures/index.md", "w") as f:
         f.write("\n".join(rows) + "\n")
 
