@@ -136,7 +136,7 @@ def main() -> None:
         rows += [
             f"## [{name}]({name}.md)",
             "",
-            f"{first}  Drawn by `linkwork analyze {name} --out report`.",
+            f"{first.rstrip('.')}.  Drawn by `linkwork analyze {name} --out report`.",
             "",
             f'[![the scheme of {name}]({name}/scheme.svg){{ width="520" }}]({name}.md)',
             "",

@@ -229,7 +229,8 @@ def _summary(path: str) -> str:
     package = griffe.load("linkwork", search_paths=["src"], resolve_aliases=True)
     obj = package[path.removeprefix("linkwork.")]
     text = " ".join((obj.docstring.value if obj.docstring else "").split("\n\n")[0].split())
-    first = re.split(r"(?<=[.:;])\s", text, maxsplit=1)[0]
+    first = re.split(r"(?<=[.:;])\s", text, maxsplit=1)[0].rstrip(":;")
+    first = first if first.endswith(".") else first + "."
     return _cell(re.sub(r":\w+:`~?([^`]+)`", r"`\1`", first))
 
 

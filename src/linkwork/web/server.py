@@ -555,6 +555,12 @@ def serve(app: Any, port: int = 8765, ready: Callable[[str], None] | None = None
     ------
     LinkworkError
         When the port cannot be had (in use, or privileged).
+
+    Examples
+    --------
+    >>> from linkwork.web import create_app, serve
+    >>> serve(create_app("four-bar"), port=0, ready=print)  # doctest: +SKIP
+    http://127.0.0.1:...
     """
     import socket
 
