@@ -123,17 +123,24 @@ def main() -> None:
         "# Gallery",
         "",
         "Every bundled example, run through linkwork when this manual was built: its structure,",
-        "scheme, plan of positions, plans, diagrams and animation.",
+        "scheme, plan of positions, plans, diagrams and animation.  The force plans, the lever, the",
+        "dynamics and the synthesised mechanisms are among [the pictures of the manual](../pictures/index.md).",
         "",
-        "| example | what | scheme |",
-        "|---|---|---|",
+        "",
     ]
     for name in examples.names():
         text = example_page(name)
         with mkdocs_gen_files.open(f"gallery/{name}.md", "w") as f:
             f.write(text)
         first = _prose(((lw.example(name).description or "").strip().splitlines() or [""])[0])
-        rows.append(f'| [{name}]({name}.md) | {first} | [![{name}]({name}/scheme.svg){{ width="240" }}]({name}.md) |')
+        rows += [
+            f"## [{name}]({name}.md)",
+            "",
+            f"{first.rstrip('.')}.  Drawn by `linkwork analyze {name} --out report`.",
+            "",
+            f'[![the scheme of {name}]({name}/scheme.svg){{ width="520" }}]({name}.md)',
+            "",
+        ]
     with mkdocs_gen_files.open("gallery/index.md", "w") as f:
         f.write("\n".join(rows) + "\n")
 

@@ -117,45 +117,157 @@ def schema_page() -> str:
     return "\n".join(out) + "\n"
 
 
+#: The Python reference by task: (title, what the group is for, its entries).  An entry is a public name of
+#: ``linkwork`` (``lw.NAME``, a page of its own) or the dotted path of another public object (``linkwork.web.serve``),
+#: or ``(label, page)`` for an entry that points to another group's page.
+GROUPS: list[tuple[str, str, list[str | tuple[str, str]]]] = [
+    (
+        "Load and build",
+        "Read a mechanism from a file, a bundled example or Python, and compile it.",
+        [
+            "load",
+            "loads",
+            "from_dict",
+            "example",
+            "Spec",
+            "MechanismBuilder",
+            "compile",
+            "Mechanism",
+            "Structure",
+            "AssurGroup",
+            "parameters",
+        ],
+    ),
+    (
+        "Analyse",
+        "Kinematics, forces, machine dynamics and impact of a compiled mechanism.",
+        [
+            "kinematics",
+            "Kinematics",
+            "forces",
+            "forces_of",
+            "Forces",
+            "bolt_speed",
+            "balance",
+            "reduced",
+            "dynamics",
+            "simulate",
+            "rocker_impact",
+            "impact",
+            "simulate_blows",
+        ],
+    ),
+    (
+        "Design and synthesise",
+        "Find dimensions from requirements, sweep variants, optimise.",
+        ["synthesize", "sweep", "optimize"],
+    ),
+    ("Size", "Sections, pins, bearings, motor and flywheel from the forces.", ["size"]),
+    (
+        "Draw and report",
+        "Figures of the results (matplotlib) and the whole report folder.",
+        ["linkwork.report.analyze", "linkwork.figures"],
+    ),
+    (
+        "Viewer",
+        "The interactive page in a browser: served live, or written to one file.",
+        ["linkwork.web.export_page", "linkwork.web.create_app", "linkwork.web.serve"],
+    ),
+    (
+        "Design on Dask",
+        "A sweep's chunks on a local or a running Dask cluster: the `workers` and `scheduler` of "
+        "[`lw.sweep`](sweep.md); [Sweeps on a Dask cluster](../../how-to/dask.md) shows them at work.",
+        [("lw.sweep(..., workers=N)", "sweep.md"), ("lw.sweep(..., scheduler=ADDRESS)", "sweep.md")],
+    ),
+]
+
+
+#: Where the objects that a package loads when first used (its ``__getattr__``, which the pages' reader cannot
+#: follow) are defined.
+DEFINED = {
+    "linkwork.web.export_page": "linkwork.web.export.export_page",
+    "linkwork.web.create_app": "linkwork.web.server.create_app",
+    "linkwork.web.serve": "linkwork.web.server.serve",
+}
+
+
+def _page_name(entry: str) -> str:
+    """The page of an entry: ``forces.md`` for ``lw.forces``, ``analyze.md`` for ``linkwork.report.analyze``,
+    ``figures.md`` for the module ``linkwork.figures``."""
+    return entry.rsplit(".", 1)[-1] + ".md"
+
+
+def _entry_page(entry: str) -> tuple[str, str, str]:
+    """(label, dotted path of the documented object, page text) of one entry."""
+
+    import linkwork
+
+    if "." not in entry:
+        obj = getattr(linkwork, entry)
+        target = inspect.unwrap(obj)  # lw.kinematics and the other analyses wrap their stage's function
+        path = f"{target.__module__}.{target.__qualname__}"
+        note = ""
+        if target is not obj:
+            note = (
+                f"`lw.{entry}` takes its mechanism as a file's path, a bundled example's name, a `Spec` or a "
+                f"compiled `Mechanism` (see [Use linkwork from Python](../../how-to/python.md)) in place of the "
+                f"compiled mechanism of the signature below, and passes it on to `{path}`.\n\n"
+            )
+        return f"lw.{entry}", path, f"# lw.{entry}\n\n{note}::: {path}\n"
+    if entry == "linkwork.figures":  # a module: its functions, each with its signature
+        body = f"::: {entry}\n    options:\n      show_root_heading: false\n      members_order: alphabetical\n"
+        return entry, entry, f"# {entry}\n\n{body}"
+    path = DEFINED.get(entry, entry)
+    return entry, path, f"# {entry}\n\n::: {path}\n"
+
+
+def _summary(path: str) -> str:
+    """The first sentence of the docstring of the object at ``path``, read from the source (griffe, as the pages
+    are: the viewer's server needs no FastAPI to be listed)."""
+    import griffe
+
+    package = griffe.load("linkwork", search_paths=["src"], resolve_aliases=True)
+    obj = package[path.removeprefix("linkwork.")]
+    text = " ".join((obj.docstring.value if obj.docstring else "").split("\n\n")[0].split())
+    first = re.split(r"(?<=[.:;])\s", text, maxsplit=1)[0].rstrip(":;")
+    first = first if first.endswith(".") else first + "."
+    return _cell(re.sub(r":\w+:`~?([^`]+)`", r"`\1`", first))
+
+
 def api_pages() -> dict[str, str]:
-    """One page per public name of ``linkwork`` (``lw.NAME``), from the docstring of the object it names."""
+    """The Python reference: an index by task and a page per entry of :data:`GROUPS`, rendered from the
+    docstring of the object it names (with its signature), and its navigation (``reference/api/SUMMARY.md``)."""
     import linkwork
 
     pages: dict[str, str] = {}
     index = [
         "# Python API",
         "",
-        "Every public name of `linkwork` (`import linkwork as lw`), each on a page of its",
-        "own generated from its docstring.  The names are loaded when first used, so `import linkwork`",
-        "costs nothing.",
+        "Every public function and class of `linkwork` (`import linkwork as lw`), by task; each on a page",
+        "of its own, generated from its docstring: signature, parameters with their units, what it returns",
+        "and raises, and an example (the examples run with the tests).  The names are loaded when first",
+        "used, so `import linkwork` costs nothing.",
         "",
-        "| name | defined in |",
-        "|---|---|",
     ]
-    for name in linkwork.__all__:
-        if name == "__version__":
-            continue
-        obj = getattr(linkwork, name)
-        target = inspect.unwrap(obj)  # lw.kinematics and the other analyses wrap their stage's function
-        path = f"{target.__module__}.{target.__qualname__}"
-        index.append(f"| [`lw.{name}`]({name}.md) | `{path}` |")
-        note = ""
-        if target is not obj:
-            note = (
-                f"`lw.{name}` takes its mechanism as a file's path, a bundled example's name, a `Spec` or a "
-                f"compiled `Mechanism` (see [Use linkwork from Python](../../how-to/python.md)), and passes it "
-                f"on to `{path}`:\n\n"
-            )
-        options = "    options:\n      show_root_heading: false\n"
-        pages[f"reference/api/{name}.md"] = f"# lw.{name}\n\n{note}::: {path}\n{options}"
-    index += [
-        "",
-        f"`lw.__version__` is `{linkwork.__version__}`.",
-        "",
-        "The figures (matplotlib) are functions of the results in [`linkwork.figures`](figures.md).",
-    ]
+    nav = ["* [Python API](index.md)"]
+    for title, about, entries in GROUPS:
+        index += [f"## {title}", "", about, "", "| name | what it does |", "|---|---|"]
+        if any(isinstance(entry, str) for entry in entries):  # a section of pages in the navigation
+            nav.append(f"* {title}")
+        for entry in entries:
+            if isinstance(entry, tuple):
+                label, page = entry
+                index.append(f"| [`{label}`]({page}) | see [`lw.sweep`]({page}) |")
+                continue
+            label, path, text = _entry_page(entry)
+            page = _page_name(entry)
+            pages[f"reference/api/{page}"] = text
+            index.append(f"| [`{label}`]({page}) | {_summary(path)} |")
+            nav.append(f"    * [{label}]({page})")
+        index.append("")
+    index.append(f"`lw.__version__` is `{linkwork.__version__}`.")
     pages["reference/api/index.md"] = "\n".join(index) + "\n"
-    pages["reference/api/figures.md"] = "# linkwork.figures\n\n::: linkwork.figures\n"
+    pages["reference/api/SUMMARY.md"] = "\n".join(nav) + "\n"
     return pages
 
 

@@ -112,6 +112,16 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
     (:func:`linkwork.stage_records.compile_friction`) and the machine unit's motor and gear
     (:func:`linkwork.stage_records.from_spec`).
 
+    Parameters
+    ----------
+    spec : Spec, Mechanism, str or Path
+        A validated description, a mechanism file's path or a bundled example's name.
+
+    Returns
+    -------
+    Mechanism
+        The compiled model: frozen arrays, its structure (Assur groups), assembly pose and solve program.
+
     Raises
     ------
     TypeError
@@ -122,6 +132,12 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
         The mobility does not match the drives.
     UnassemblableError
         The assembly pose does not exist.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> lw.compile("four-bar").structure.formula
+    'I(0,1) -> II(2,3)'
     """
     if isinstance(spec, Mechanism):
         return spec

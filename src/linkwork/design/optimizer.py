@@ -183,6 +183,12 @@ def optimize(
     out : str or Path, optional
         Write the mechanism file with the best values here (the original file, its comments kept).
 
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> best = lw.optimize("four-bar", {"links.crank.length": ("90 mm", "110 mm")}, "swing",
+    ...                    maximize=True, steps=36, maxiter=3, popsize=4)  # doctest: +SKIP
+
     Returns
     -------
     Optimum

@@ -244,6 +244,13 @@ def sweep(
     DesignError
         Bad ranges, paths or metrics (every problem in one message), a resume of another plan or of an
         unreadable manifest, or a chunk on disk that changed during the run.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> table = lw.sweep("four-bar", {"links.crank.length": ("90 mm", "110 mm", 3)}, ["swing"], steps=36)
+    >>> table.to_pandas()["swing"].round(3).tolist()  # rad
+    [0.879, 0.983, 1.09]
     """
     mech = mechanism_of(mechanism, "mechanism")
     options = _Options(sampling, samples, seed, steps, chunk_size, workers, scheduler, connect_timeout)

@@ -32,17 +32,56 @@ def text(name: str) -> str:
 
 
 def load_example(name: str) -> Spec:
-    """The validated spec of a bundled example."""
+    """The validated spec of a bundled example (``linkwork.example``).
+
+    Parameters
+    ----------
+    name : str
+        The example's name, as ``linkwork examples`` lists them (``"four-bar"``, ``"double-cut-shears"``).
+
+    Returns
+    -------
+    Spec
+        The example's description, validated.
+
+    Raises
+    ------
+    SpecError
+        For a name that is no bundled example (the message lists them).
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> lw.example("four-bar").name
+    'four-bar'
+    """
     return loads(text(name), file=f"{name}.yaml")
 
 
 def resolve(file_or_example: str | Path) -> Spec:
     """Load and validate a mechanism file, or a bundled example by name (``linkwork.load``).
 
+    Parameters
+    ----------
+    file_or_example : str or Path
+        A mechanism file (``.yaml`` or ``.yml``) or the name of a bundled example.
+
+    Returns
+    -------
+    Spec
+        The description, validated, in SI units whatever the file's units.
+
     Raises
     ------
     SpecError
         Listing every problem with ``file:line``, the element and what was expected.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> spec = lw.load("four-bar")
+    >>> list(spec.links)
+    ['crank', 'coupler', 'rocker']
     """
     path = Path(file_or_example)
     file_or_example = str(file_or_example)

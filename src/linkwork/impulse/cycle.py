@@ -326,6 +326,16 @@ def simulate_blows(
     LinkworkError
         Without a drive or a tool; if the striker never reaches the tool, the crank stops (also when
         an impact throws it back, or stops it dead), or friction would lock the blow.
+
+    Returns
+    -------
+    WorkingCycle
+        The blows until the cycle repeats: each blow's speeds, impulses and energy, and the steady cycle's.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> cycle = lw.simulate_blows("percussion-rocker", blows=20, steps=360)  # doctest: +SKIP
     """
     drive, tool = _drive_and_tool(mech, drive, tool)
     setup = blow_setup(

@@ -178,6 +178,39 @@ def impact(
 ) -> Impact:
     """The impact of point ``at`` (``link.point``) on a surface at rest with outward ``normal``.
 
+    Parameters
+    ----------
+    mech : Mechanism
+        A compiled mechanism (``linkwork.impact`` also takes a path, an example name or a Spec).
+    at : str, optional
+        The point that strikes, ``link.point``; default the file's.
+    normal : array_like or float, optional
+        The surface's outward normal, a vector or an angle, rad.
+    omega_before : float, optional
+        The angular speed of ``link`` before the impact, rad/s.
+    restitution : float, optional
+        Newton's coefficient of restitution R, 0 to 1.
+    friction : float, optional
+        The coefficient of friction f at the point of impact.
+    link : str, optional
+        The link whose speed ``omega_before`` gives; default the link of ``at``.
+    angle : float, optional
+        The crank angle of the pose, rad; default the assembly pose.
+    slip : float, optional
+        As in :func:`~linkwork.impulse.rocker_impact`.
+
+    Returns
+    -------
+    Impact
+        The impulses (N s) at the point and in every pair, the speeds before and after, the energy lost (J).
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> hit = lw.impact("percussion-rocker")
+    >>> round(float(hit.speed_after), 2)
+    40.97
+
     ``mech``: a compiled Mechanism (``linkwork.impact`` also takes a path, an example name or a
     Spec: :mod:`linkwork.api`).  Every
     argument of the blow not given is the file's (its ``impact:`` section; see :func:`blow_setup`):

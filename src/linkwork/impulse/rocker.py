@@ -140,6 +140,21 @@ def rocker_impact(
         impulse is indeterminate (it depends on the clearance in the support); default -1, which
         with the paper's axes (the tool below, ``normal = (0, 1)``, the rocker turning clockwise)
         is the choice of its equation (10), the limit of ``y_K -> 0`` from below.
+
+    Returns
+    -------
+    RockerImpact
+        The impulse at the tool (N s), the impulse in the support, the rocker's speed after (rad/s), the
+        energy lost (J) and the centre of percussion that would free the support.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> r = lw.rocker_impact(inertia=0.30, mass=6.0, com=(0.16, 0.01), impact_point=(0.30, -0.02),
+    ...                      omega_before=-30.0, restitution=0.4, friction=0.15,
+    ...                      rod_mass=1.2, rod_joint=(0.10, 0.02), normal=(0.0, 1.0))
+    >>> round(float(r.omega_after), 3)  # rad/s: R = 0.4 of the 30 rad/s
+    12.0
     """
     o, c, k, nj = (np.asarray(v, dtype=float) for v in (support, com, impact_point, rod_joint))
     n = np.asarray(normal, dtype=float)

@@ -126,9 +126,34 @@ def balance(
     """Counterweights on ``links`` that cancel the shaking force (``harmonic=None``) or its first
     harmonic in the crank angle (``harmonic=1``).
 
-    ``radius``: the distance (m) of each counterweight from its pivot (one value, or one per link);
-    default: the distance of the link's farthest point.  The solution is at ``steps`` crank
-    angles over a turn of the file's uniform drive (or ``speed``).
+    Parameters
+    ----------
+    mech : Mechanism
+        A compiled mechanism (``linkwork.balance`` also takes a path, an example name or a Spec).
+    links : list of str
+        The links that carry a counterweight, each turning about a frame pivot.
+    harmonic : int, optional
+        None: the whole shaking force, by least squares over the turn; 1: its first harmonic.
+    radius : float or dict of str to float, optional
+        The distance of each counterweight from its pivot, m (one value, or one per link); default the
+        distance of the link's farthest point.
+    steps : int
+        Crank angles over one turn; default 360.
+    speed : array_like, optional
+        The drive's uniform angular speed, rad/s; default the file's.
+
+    Returns
+    -------
+    Balance
+        The counterweights (mass, kg; radius, m; angle, rad on the link) and the shaking force, moment,
+        driving torque and pair forces before and after (``summary``).
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> b = lw.balance("four-bar", ["crank"], steps=36)
+    >>> b.counterweights[0].link, round(b.counterweights[0].radius, 3)
+    ('crank', 0.1)
     """
     index = _links(mech, links, harmonic, steps)
     before = forces(mech, steps=steps, speed=speed)

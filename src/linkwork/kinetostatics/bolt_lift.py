@@ -17,6 +17,26 @@ def bolt_speed(mech: Mechanism, pull: float = 0.0, *, steps: int = TURN_STEPS) -
     """Uniform crank speed (rad/s) at which the largest pull on the bolts reaches ``pull`` (N), over
     ``steps`` equal steps of the turn.
 
+    Parameters
+    ----------
+    mech : Mechanism
+        A compiled mechanism (``linkwork.bolt_speed`` also takes a path, an example name or a Spec).
+    pull : float
+        The pull on the bolts, N (upward foundation force); default 0, the speed at which the frame lifts.
+    steps : int
+        Equal steps of one turn; default 360.
+
+    Returns
+    -------
+    float
+        The crank speed, rad/s; ``inf`` if no speed reaches the pull, 0 if the bolts carry it at rest.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> round(lw.bolt_speed("four-bar", steps=36), 1)  # rad/s
+    13.9
+
     With the crank turning uniformly, every velocity is proportional to the
     speed and every acceleration to its square, so the vertical foundation
     force is ``F(phi) = G(phi) + omega^2 I(phi)``: ``G`` from the weights

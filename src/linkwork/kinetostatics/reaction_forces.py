@@ -401,19 +401,44 @@ def forces(
     speed: npt.ArrayLike | None = None,
     variants: dict[str, npt.ArrayLike] | None = None,
 ) -> Forces:
-    """Reactions in every pair, the driving torque and the foundation loads.
+    """Reactions in every pair, the driving torque and the foundation loads (kinetostatics: the
+    inertia forces of the links by d'Alembert's principle, the file's loads, friction where declared).
 
-    ``mech``: a compiled Mechanism (``linkwork.forces`` also takes a path, an example name or a
-    Spec: :mod:`linkwork.api`), or a :class:`~linkwork.motion.Kinematics` result (then without other
-    arguments: its angles, speeds and variants are the result's; the same as :func:`forces_of`).
-    Other parameters as for :func:`linkwork.kinematics`; the drive turns at a uniform ``speed``
-    (default: the file's).
+    Parameters
+    ----------
+    mech : Mechanism or Kinematics
+        A compiled mechanism (``linkwork.forces`` also takes a path, an example name or a Spec), or a
+        :class:`~linkwork.motion.Kinematics` result: then without the other arguments, its angles, speeds
+        and variants are the result's (the same as :func:`forces_of`).
+    angles : array_like, optional
+        Crank angles, rad from the assembly pose, shape ``(n,)`` (``(n, drives)`` for several drives).
+        Default: ``steps`` equal steps of one turn.
+    steps : int, optional
+        Equal steps of one turn when ``angles`` is not given; default 360 (:data:`linkwork.limits.TURN_STEPS`).
+    speed : array_like, optional
+        The drive's uniform angular speed, rad/s (one value, or one per variant); default the file's.
+    variants : dict of str to array_like, optional
+        Named parameters (:func:`linkwork.parameters`) each with one value per variant, SI units, shape
+        ``(v,)``: the forces of ``v`` design variants at once.
+
+    Returns
+    -------
+    Forces
+        Reactions per joint, driving torque (N m) and foundation loads (N, N m) at each angle (and variant).
 
     Raises
     ------
     LinkworkError
-        For a mechanism with redundant constraints: its reactions are
-        statically indeterminate.
+        For a mechanism with redundant constraints: its reactions are statically indeterminate.
+    UnassemblableError
+        An angle at which the mechanism does not assemble.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> f = lw.forces("four-bar", steps=12)
+    >>> f.driving_torque.shape  # N m, one per crank angle
+    (12,)
     """
     if isinstance(mech, Kinematics):
         if angles is not None or steps is not None or speed is not None or variants is not None:
@@ -462,10 +487,27 @@ def forces_of(kin: Kinematics) -> Forces:
     the reactions are indeterminate), a :class:`~linkwork.errors.FrictionWarning` for each kind, with the crank
     angles (also in :attr:`Forces.friction`).
 
+    Parameters
+    ----------
+    kin : Kinematics
+        A result of :func:`linkwork.kinematics`: its mechanism, angles, speed and variants are used.
+
+    Returns
+    -------
+    Forces
+        Reactions per joint, driving torque (N m) and foundation loads at the result's angles.
+
     Raises
     ------
     LinkworkError
         For a mechanism with redundant constraints.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> kin = lw.kinematics("four-bar", steps=12)
+    >>> lw.forces_of(kin).driving_torque.shape
+    (12,)
     """
     mech = kin.mechanism
     _statically_determinate(mech)

@@ -189,12 +189,32 @@ SPANS, SPANS_LEAST = 16, 64
 
 def reduced(mech: Mechanism, *, steps: int = DYNAMICS_STEPS) -> Reduced:
     """Reduced inertia, its slope and the reduced load moment over ``steps`` equal steps of one turn of
-    the crank.
+    the crank (the dynamic model of the machine: kinetic energy and power brought to the crank).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        A compiled mechanism (``linkwork.reduced`` also takes a path, an example name or a Spec).
+    steps : int
+        Equal steps of one turn; default 3600 (:data:`linkwork.limits.DYNAMICS_STEPS`).
+
+    Returns
+    -------
+    Reduced
+        ``inertia`` (kg m^2) and ``inertia_slope`` (kg m^2/rad) at each angle, the reduced ``load`` moment
+        (N m) and its ``mean_load``.
 
     Raises
     ------
     LinkworkError
         Unless the mechanism has one crank (a revolute drive) and assembles over the whole turn.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> r = lw.reduced("double-cut-shears", steps=360)
+    >>> r.inertia.shape
+    (360,)
     """
     if not one_crank(mech):
         raise LinkworkError("machine dynamics needs one crank (a revolute drive)")

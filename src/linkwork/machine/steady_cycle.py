@@ -180,6 +180,43 @@ def dynamics(
     drive without such a point), and put on the drive's ``flywheel_on`` shaft; the run then checks
     it.  The run starts at the turning angle ``start`` (rad from the assembly angle; default: where
     the loads resist least, e.g. the knives open).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        A compiled mechanism with one crank (``linkwork.dynamics`` also takes a path, an example name or a Spec).
+    drive : MotorGear, optional
+        The motor and gear; default the file's ``machine:`` section.
+    delta : float, optional
+        The coefficient of speed fluctuation the flywheel is sized for, (max - min) / mean; default the file's.
+    speed : float, optional
+        The mean crank speed for the flywheel's size, rad/s.
+    steps : int
+        Equal steps of one turn of the reduced model; default 3600.
+    omega0 : float
+        The crank's angular speed at the start, rad/s; default 0 (a start from rest).
+    start : float, optional
+        The crank angle at the start, rad from the assembly angle.
+    turns : int
+        The most turns run to reach the steady cycle; default 500.
+
+    Returns
+    -------
+    Dynamics
+        The flywheel (inertia, kg m^2, on which shaft), the start-up and steady motion of the crank in time
+        (angle, rad; speed, rad/s), the reached ``delta``, the mean and drive power (W).
+
+    Raises
+    ------
+    LinkworkError
+        Without a ``machine:`` section or ``drive``, or for a mechanism without one crank.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> run = lw.dynamics("double-cut-shears", steps=360, turns=10)  # doctest: +SKIP
+    >>> round(run.delta, 3)  # doctest: +SKIP
+    0.05
     """
     if drive is None:
         drive = mech.motor_gear

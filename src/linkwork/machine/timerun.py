@@ -189,12 +189,25 @@ def simulate(
     progress : callable, optional
         Called with the time (s) the run has reached as it goes, for a progress bar.
 
+    Returns
+    -------
+    Run
+        ``time`` (s), the crank's ``angle`` (rad) and ``speed`` (rad/s) at each step, and the ``events``
+        (stops, reversals) on the way.
+
     Raises
     ------
     LinkworkError
         For a run past the bounds of :mod:`linkwork.limits`: its length; its work, estimated from the loads'
         stiffness before it starts (:func:`fastest_rate`) and counted as it goes.  Where the run reaches a pose
         that does not assemble.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> run = lw.simulate("four-bar", 0.5)  # doctest: +SKIP
+    >>> float(run.time[-1])  # doctest: +SKIP
+    0.5
     """
     from linkwork.limits import run_time_problem
 

@@ -589,6 +589,15 @@ def kinematics(
     Returns
     -------
     Kinematics
+        Positions (m), velocities (m/s) and accelerations (m/s^2) of every labelled point, angles (rad),
+        angular speeds and accelerations of every link, at each angle and variant; the events on the way.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> kin = lw.kinematics("four-bar", steps=12)
+    >>> kin.position("B").shape  # m, (angles, x and y)
+    (12, 2)
     """
     values, span = _drive_values(mech, angles, steps)
     rates = np.empty_like(values)

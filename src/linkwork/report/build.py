@@ -69,12 +69,47 @@ def analyze(
     has a ``sizing:`` section.  Needs
     matplotlib and xarray (:func:`require_packages`).
 
+    Parameters
+    ----------
+    mech : Mechanism
+        A compiled mechanism (:func:`linkwork.compile`).
+    out : str or Path
+        The report's folder: a new name, an empty folder or an earlier report (replaced whole).
+    steps : int
+        Crank angles over the turn for the tables and diagrams; default 360.
+    position : int or str, optional
+        The position drawn (0 to 11), or ``"all"``.
+    pdf : bool
+        Also ``report.pdf``.
+    animation : bool
+        Write ``animation.gif``; default True.
+    dxf : bool
+        Also the drawings for CAD, ``figures/*.dxf``.
+    lang : str
+        ``"en"`` or ``"ru"``.
+    progress : callable, optional
+        ``progress(stage)`` as each stage begins.
+    sizing : bool, optional
+        The "Sizing" section: True, False, or None where the file has a ``sizing:`` section.
+
+    Returns
+    -------
+    Path
+        ``out/report.html``.
+
     Raises
     ------
     LinkworkError
         ``out`` is something other than a report folder, an empty folder or a new name: a folder of
         other files, a file, a symbolic link, a device (see :func:`linkwork.report.folder.problem`);
         or ``lang`` is not a language of the report.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> from linkwork.report import analyze
+    >>> analyze(lw.compile("four-bar"), "report", steps=72)  # doctest: +SKIP
+    PosixPath('report/report.html')
     """
     from linkwork.report.folder import replacing
 

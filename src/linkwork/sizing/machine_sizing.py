@@ -172,6 +172,18 @@ def size(
         links' masses as the file gives them (or its default rule), the default otherwise.
     compile_spec : callable
         How an edited file is compiled, for ``masses="sized"`` (``linkwork.size`` passes :func:`linkwork.compile`).
+
+    Returns
+    -------
+    Sizing
+        The links' sections, the pins, the bearings (rating, life), the bolts, the motor, gear and flywheel
+        chosen, each with the load that governs it, and the inputs and defaults used (``inputs``).
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> sized = lw.size("double-cut-shears", steps=72)  # doctest: +SKIP
+    >>> sized.motor  # doctest: +SKIP
     """
     file = mech.spec.sizing if mech.spec is not None and mech.spec.sizing is not None else None
     if life_h is None:

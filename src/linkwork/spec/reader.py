@@ -36,12 +36,65 @@ def load(path: str | Path) -> Spec:
 
 
 def loads(text: str, file: str | None = None) -> Spec:
-    """Validate a mechanism given as YAML text."""
+    """Validate a mechanism given as YAML text (``linkwork.loads``).
+
+    Parameters
+    ----------
+    text : str
+        The mechanism file's text.
+    file : str, optional
+        The name that messages give the text (``file:line``); default none.
+
+    Returns
+    -------
+    Spec
+        The description, validated, in SI units.
+
+    Raises
+    ------
+    SpecError
+        Every problem of the text at once, each with its line, the element and what was expected.
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> from linkwork import examples
+    >>> lw.loads(examples.text("four-bar")).name
+    'four-bar'
+    """
     return validate(read_yaml(text, file))
 
 
 def from_dict(data: dict[str, Any], file: str | None = None) -> Spec:
-    """Validate a mechanism given as plain data (the builder's route)."""
+    """Validate a mechanism given as plain data, the file's keys as a dict (``linkwork.from_dict``; the
+    builder's route).
+
+    Parameters
+    ----------
+    data : dict
+        The mapping a mechanism file holds (``name``, ``units``, ``links``, ``joints``, ``drives``, ...).
+    file : str, optional
+        The name that messages give the data; default none.
+
+    Returns
+    -------
+    Spec
+        The description, validated, in SI units.
+
+    Raises
+    ------
+    SpecError
+        Every problem of the data at once, each with the element and what was expected.
+
+    Examples
+    --------
+    >>> import yaml
+    >>> import linkwork as lw
+    >>> from linkwork import examples
+    >>> data = yaml.safe_load(examples.text("four-bar"))
+    >>> lw.from_dict(data) == lw.load("four-bar")
+    True
+    """
     return validate(Source(data, {}, file, []))
 
 

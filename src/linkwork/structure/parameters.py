@@ -192,8 +192,25 @@ def parameter_list(mech: Mechanism) -> list[Parameter]:
 
 
 def parameter_values(mech: Mechanism) -> dict[str, float]:
-    """The named parameters an override may set, with their values (SI) (``linkwork.parameters``,
-    which also takes a path, an example name or a Spec: :mod:`linkwork.api`)."""
+    """The named parameters an override may set, with their values (``linkwork.parameters``).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        A compiled mechanism (``linkwork.parameters`` also takes a path, an example name or a Spec).
+
+    Returns
+    -------
+    dict of str to float
+        Each parameter's name (``links.crank.length``, ``frame.points.O4.x``, a link's mass and moment of
+        inertia) and its value in SI units (m, kg, kg m^2).
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> lw.parameters("four-bar")["frame.points.O4.x"]  # m
+    0.3
+    """
     return {p.name: p.value for p in parameter_list(mech)}
 
 

@@ -47,11 +47,33 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     dyad over the turn, 40 deg unless given (:data:`~linkwork.synthesis.common.LEAST_TRANSMISSION`), measured on
     the written file; the file's ``requirements:`` carries it.
 
+    Parameters
+    ----------
+    kind : str
+        ``"slider-crank"``, ``"crank-rocker"``, ``"slotted-lever"``, ``"toggle-press"`` or
+        ``"double-cut-shears"``.
+    **requirements
+        The kind's requirements named above: lengths in m, angles in rad, forces in N, torques in N m,
+        speeds in rad/s, or strings with their unit.
+
+    Returns
+    -------
+    Synthesis
+        The dimensions found, the values the closed forms predict beside those measured on the written
+        mechanism file (``predicted``, ``measured``), the file's ``text`` and its ``spec``.
+
     Raises
     ------
     SynthesisError
         An unknown kind or requirement, or requirements that cannot be met together (the message names
         them and the nearest value that can be met).
+
+    Examples
+    --------
+    >>> import linkwork as lw
+    >>> s = lw.synthesize("crank-rocker", swing="45 deg", time_ratio=1.2, rocker=0.3)
+    >>> round(s.measured["time_ratio"], 3)
+    1.2
     """
     import importlib
     import inspect

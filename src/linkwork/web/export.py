@@ -54,6 +54,7 @@ def export_page(spec_or_mech: Spec | Mechanism | str | Path, path: str | Path, s
     Parameters
     ----------
     spec_or_mech : Spec, Mechanism or str
+        The mechanism: a description, a compiled mechanism, a file's path or an example's name.
     path : str or Path
         The page to write (replaced atomically).
     steps : int
@@ -63,6 +64,15 @@ def export_page(spec_or_mech: Spec | Mechanism | str | Path, path: str | Path, s
     -------
     Path
         ``path``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from linkwork.web import export_page
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     page = export_page("four-bar", pathlib.Path(tmp) / "four-bar.html", steps=36)
+    ...     page.name, page.stat().st_size > 10_000
+    ('four-bar.html', True)
     """
     viewer = Viewer(spec_or_mech, steps, placed=None)  # the labels placed at every sample
     payload = dict(viewer.cycle())

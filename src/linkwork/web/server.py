@@ -313,6 +313,29 @@ def create_app(spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360) ->
     it edits the description it was compiled from, and shows one without a description.
     The cycle of the mechanism as given is solved here, so a mechanism that fails
     raises its LinkworkError before any server starts.
+
+    Parameters
+    ----------
+    spec_or_mech : Spec, Mechanism, str or Path
+        The mechanism: a description, a compiled mechanism, a file's path or an example's name.
+    steps : int
+        Crank angles of the cycle the page plays; default 360.
+
+    Returns
+    -------
+    fastapi.FastAPI
+        The application, to pass to :func:`serve` (``pip install "linkwork[web]"``).
+
+    Raises
+    ------
+    LinkworkError
+        The mechanism does not compile or assemble over its cycle.
+
+    Examples
+    --------
+    >>> from linkwork.web import create_app, serve
+    >>> serve(create_app("four-bar"), port=0, ready=print)  # doctest: +SKIP
+    http://127.0.0.1:...
     """
     jit.prefer()  # many solves to come: the compiled kernels as soon as they are ready (loaded in the background)
     viewer = Viewer(spec_or_mech, steps)
@@ -519,10 +542,25 @@ def serve(app: Any, port: int = 8765, ready: Callable[[str], None] | None = None
     the server: the answers in progress get :data:`SHUTDOWN_WAIT_S` seconds, and then the signal ends the
     process (:func:`ended_by_signal`), whatever work is still running in its threads.
 
+    Parameters
+    ----------
+    app : fastapi.FastAPI
+        The viewer's application, from :func:`create_app`.
+    port : int
+        The port on 127.0.0.1; 0 takes a free one; default 8765.
+    ready : callable, optional
+        ``ready(url)``, called with the page's address once the server listens.
+
     Raises
     ------
     LinkworkError
         When the port cannot be had (in use, or privileged).
+
+    Examples
+    --------
+    >>> from linkwork.web import create_app, serve
+    >>> serve(create_app("four-bar"), port=0, ready=print)  # doctest: +SKIP
+    http://127.0.0.1:...
     """
     import socket
 
