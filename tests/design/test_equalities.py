@@ -28,7 +28,7 @@ def closed_form(stroke: float, k: float, offset: float) -> tuple[float, float]:
 
 def test_meet_finds_the_closed_forms_crank_and_rod_for_each_member():
     start = synthesize("slider-crank", stroke=0.4, time_ratio=1.2, rod_ratio=0.3)
-    offset = start.dimensions["offset"]
+    offset = abs(start.spec.joints["guide"].through[0])  # the guide as written (to 0.1 mm), which the members keep
     mech = mechanism_of(start.spec, "mechanism")
     paths = ["links.crank.length", "links.rod.length"]
     strokes, ratios = np.array([0.45, 0.38]), np.array([1.3, 1.15])

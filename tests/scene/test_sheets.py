@@ -18,7 +18,7 @@ pytest.importorskip("matplotlib")
 
 from ezdxf import bbox  # noqa: E402
 
-from linkwork.io.dxf_sheet import FORMATS, Sheet, TitleBlock, number, reduction, write_sheets  # noqa: E402
+from linkwork.io.dxf_sheet import FORMATS, GostSheet, TitleBlock, number, reduction, write_sheets  # noqa: E402
 
 BLOCK = TitleBlock(
     title="Ножницы",
@@ -53,7 +53,7 @@ def test_a_sheet_is_its_format_with_the_frame_and_the_title_block_of_form_1(fmt,
     and 5 mm from the others, the title block 185 x 55 mm in the frame's lower right corner with the words of
     form 1 and the fields given in it, no text lower than 2.5 mm."""
     width, height = {"A1": (841, 594), "A2": (594, 420), "A3": (420, 297), "A4": (210, 297)}[fmt]
-    path = Sheet(fmt, BLOCK, 1, 2, "ru").save(tmp_path / "s.dxf")
+    path = GostSheet(fmt, BLOCK, 1, 2, "ru").save(tmp_path / "s.dxf")
     doc = ezdxf.readfile(path)
     msp = doc.modelspace()
     box = bbox.extents(msp)

@@ -102,7 +102,7 @@ class Cell:
 
 
 @dataclass
-class Drawing:
+class SheetDrawing:
     """One drawing of a sheet: ``draw(layout, width, height)`` draws it into a block, fitting ``width`` x
     ``height`` mm, and returns its extent (mm) and its scales' line (``μl = 0,004 м/мм``); ``title`` above it."""
 
@@ -149,7 +149,7 @@ def reduction(metres: float) -> float:
     return nice_up(metres * 1000)
 
 
-class Sheet:
+class GostSheet:
     """A DXF sheet of ``fmt`` with its frame and title block; :meth:`place` puts drawings in its field."""
 
     def __init__(self, fmt: str, block: TitleBlock, sheet: int, sheets: int, lang: str) -> None:
@@ -276,7 +276,7 @@ class Sheet:
             out.append(Cell(box))
         return out
 
-    def place(self, drawings: Sequence[Drawing]) -> None:
+    def place(self, drawings: Sequence[SheetDrawing]) -> None:
         """Each drawing in a cell of its own, none overlapping another or the title block.  On a landscape sheet a
         ``big`` first drawing (a scheme) at the top of the field's left half, the last third of the others below
         it where it leaves a third of the height, the rest in a grid over the right half down to the title
@@ -303,7 +303,7 @@ class Sheet:
         for d, cell in zip(rest, self._grid(region, len(rest), cols), strict=True):
             self._put(d, cell)
 
-    def _put(self, d: Drawing, cell: Cell) -> np.ndarray:
+    def _put(self, d: SheetDrawing, cell: Cell) -> np.ndarray:
         """Draw ``d`` into a block of its own, the largest that fits ``cell`` (its box measured by ezdxf, its texts
         included), and insert it centred across the cell, at its top; returns its box on the sheet, mm."""
         name = f"DRAWING_{len(self.placed) + 1}"
@@ -324,7 +324,7 @@ class Sheet:
         self.placed.append(Placed(name, box + np.r_[shift, shift]))
         return self.placed[-1].box
 
-    def _drawn(self, block: Any, d: Drawing, w: float, h: float) -> np.ndarray:
+    def _drawn(self, block: Any, d: SheetDrawing, w: float, h: float) -> np.ndarray:
         """Draw ``d`` into ``block`` within ``w`` x ``h`` mm with its heading; returns its box as ezdxf measures it."""
         from ezdxf import bbox
 
@@ -375,7 +375,7 @@ def _metres(lang: str) -> str:
     return t("sheet.m_per_mm", lang)
 
 
-def scheme_drawing(title: str, draw: Callable[..., np.ndarray], extent: np.ndarray, lang: str) -> Drawing:
+def scheme_drawing(title: str, draw: Callable[..., np.ndarray], extent: np.ndarray, lang: str) -> SheetDrawing:
     """A drawing of a scheme of ``extent`` (m, ``[x0, y0, x1, y1]``) drawn by ``draw(layout, mm=, em=)`` at the
     largest reduction of ГОСТ 2.302 that fits."""
     span = np.asarray(extent[2:] - extent[:2], dtype=float)
@@ -385,7 +385,7 @@ def scheme_drawing(title: str, draw: Callable[..., np.ndarray], extent: np.ndarr
         box = draw(layout, mm=1000.0 / n, em=LABEL / CAP)
         return box, f"μl = {number(n / 1000, lang)} {_metres(lang)}"
 
-    return Drawing(title, fit, big=True)
+    return SheetDrawing(title, fit, big=True)
 
 
 def _fitted(
@@ -416,7 +416,7 @@ def _ratio(box: np.ndarray, w: float, h: float) -> float:
     return float(max((box[2] - box[0]) / w, (box[3] - box[1]) / h))
 
 
-def plan_drawing(kin: Kinematics, index: int, kind: str, title: str, lang: str) -> Drawing:
+def plan_drawing(kin: Kinematics, index: int, kind: str, title: str, lang: str) -> SheetDrawing:
     """The velocity (``kind`` ``"velocity"``) or acceleration plan of sample ``index`` of ``kin``."""
     from linkwork.motion.plans import plan_series
     from linkwork.scene.plans import plan_scale, plan_scene
@@ -433,10 +433,10 @@ def plan_drawing(kin: Kinematics, index: int, kind: str, title: str, lang: str) 
         unit = t(f"plan.unit.{kind}", lang)
         return box, f"{scene.symbol} = {number(scene.scale, lang)} {unit}"
 
-    return Drawing(title, fit)
+    return SheetDrawing(title, fit)
 
 
-def force_plan_drawing(plans: ForcePlans, group: int, index: int, title: str, lang: str) -> Drawing:
+def force_plan_drawing(plans: ForcePlans, group: int, index: int, title: str, lang: str) -> SheetDrawing:
     """The force plan of the ``group``-th group of ``plans`` at sample ``index``."""
     from linkwork.io.dxf_forces import _draw, _short
     from linkwork.scene.force_plans import force_plan_scene
@@ -453,10 +453,10 @@ def force_plan_drawing(plans: ForcePlans, group: int, index: int, title: str, la
         _short(layout, scene, np.zeros(2), lang, width=0.85 * (w - 2.0), em=SMALLEST / CAP)  # room for the font
         return scene.extent(), f"μF = {number(scene.scale, lang)} {t('sheet.n_per_mm', lang)}"
 
-    return Drawing(title, fit)
+    return SheetDrawing(title, fit)
 
 
-def lever_drawing(lv: Lever, kin: Kinematics, index: int, title: str, lang: str) -> Drawing:
+def lever_drawing(lv: Lever, kin: Kinematics, index: int, title: str, lang: str) -> SheetDrawing:
     """Zhukovsky's lever at sample ``index`` of ``kin``: the turned velocity plan at a scale μv that fits."""
     from linkwork.io.dxf_forces import _draw, _short
     from linkwork.motion.plans import plan_series
@@ -481,10 +481,10 @@ def lever_drawing(lv: Lever, kin: Kinematics, index: int, title: str, lang: str)
         scales = f"μv = {number(scene.plan_scale, lang)} {unit};  μF = {number(scene.scale, lang)} "
         return scene.extent(), scales + t("sheet.n_per_mm", lang)
 
-    return Drawing(title, fit)
+    return SheetDrawing(title, fit)
 
 
-def legend_drawing(plans: ForcePlans, index: int, lang: str) -> Drawing:
+def legend_drawing(plans: ForcePlans, index: int, lang: str) -> SheetDrawing:
     """The legend of the force plans at sample ``index``: for each kind of arrow drawn, a stroke on its layer (the
     reactions read off a plan dashed, as drawn), its name and the names of the arrows of that kind (a process
     load also by the file's name of it), so that no meaning rests on colour alone."""
@@ -518,10 +518,10 @@ def legend_drawing(plans: ForcePlans, index: int, lang: str) -> Drawing:
         wide = max((text_size(line, LABEL / CAP)[0] for line in lines), default=0.0)
         return np.array([0.0, -(len(rows) - 1) * 2.2 * LABEL - LABEL, 20.0 + wide, LABEL]), ""
 
-    return Drawing(t("sheet.legend", lang), fit)
+    return SheetDrawing(t("sheet.legend", lang), fit)
 
 
-def kinematics_drawings(twelve: Kinematics, position: int, cycle: Kinematics, lang: str) -> list[Drawing]:
+def kinematics_drawings(twelve: Kinematics, position: int, cycle: Kinematics, lang: str) -> list[SheetDrawing]:
     """The drawings of the kinematic analysis: the plan of the twelve positions, the velocity and acceleration
     plans of ``position``."""
     from linkwork.scene.positions import positions_scene
@@ -543,7 +543,7 @@ def kinematics_drawings(twelve: Kinematics, position: int, cycle: Kinematics, la
 
 def kinetostatics_drawings(
     plans: ForcePlans, lv: Lever, index: int, named: str, cycle: Kinematics, lang: str
-) -> list[Drawing]:
+) -> list[SheetDrawing]:
     """The drawings of the kinetostatic analysis at sample ``index`` of ``plans`` (``named``: its position, for
     the titles): the scheme there, each group's force plan, Zhukovsky's lever, the legend of the arrows."""
     from linkwork.lang import group_label
@@ -612,7 +612,7 @@ def write_sheets(
     pages = [(what, d[k : k + CAPACITY[fmt]]) for what, d in parts for k in range(0, len(d), CAPACITY[fmt])]
     out = []
     for number_, (what, drawings) in enumerate(pages, start=1):
-        sheet = Sheet(fmt, _titled(block, name, what), number_, len(pages), lang)
+        sheet = GostSheet(fmt, _titled(block, name, what), number_, len(pages), lang)
         sheet.place(drawings)
         out.append(sheet.save(Path(folder) / f"sheet_{number_}.dxf"))
     return out
