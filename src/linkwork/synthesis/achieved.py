@@ -16,6 +16,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from linkwork.synthesis.rounding import measure
+
 if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
 
@@ -33,11 +35,9 @@ MEASURED = {
 }
 
 #: Relative agreement of an equality the report calls met, for a file that states no tolerance of its own (a
-#: synthesised file states the one its lengths' rounding implies: :func:`rounding_tolerances`).
+#: synthesised file states the one its lengths' rounding implies:
+#: :func:`~linkwork.synthesis.rounding.rounding_tolerances`).
 MET = 1e-6
-
-#: Headroom over the first-order bound of :func:`rounding_tolerances` for its second-order remainder.
-MARGIN = 1.1
 
 #: The suffix of a requirement's tolerance in a file's ``requirements:`` (``stroke_tolerance: "0.012 mm"``).
 SUFFIX = "_tolerance"
@@ -69,7 +69,7 @@ def requirement_rows(kin: Kinematics) -> tuple[str, list[Row]] | None:
     if not given:
         return None
     kind = str(given.get("kind", ""))
-    measured = _measured(kin, kind)
+    measured = measure(kin, kind)
     rows = []
 
     def si(name: str, value: Any) -> float:
@@ -95,93 +95,6 @@ def _met(sense: str, asked: float, got: float, tolerance: float | None = None) -
     if sense == "at least":
         return got >= asked - tol
     return abs(got - asked) <= tol
-
-
-def rounding_tolerances(mech: Any, kind: str, paths: list[str] | None = None) -> dict[str, float]:
-    """The tolerance (SI) of each requirement the analysis measures on a file whose lengths are written to the
-    step :func:`~linkwork.synthesis.common.step` (0.1 mm, :data:`~linkwork.synthesis.common.STEP`).
-
-    Each written length (``paths``, named parameters; by default every nonzero length of ``mech``) is within
-    delta = step / 2 of the exact one, so to first order a requirement q measured on the file is within
-    ``sum_i |dq/dx_i| delta`` of its exact value.  Each term is the central difference
-    ``|q(x + delta e_i) - q(x - delta e_i)| / 2`` as the analysis measures it on the file (exact where q is
-    quadratic in x_i); the second-order remainder, ``1/2 sum_ij |d2q/dx_i dx_j| delta^2``, is about delta / L of the
-    first-order term for lengths L (under 1e-3 for lengths over 50 mm), so the tolerance is the first-order bound
-    times :data:`MARGIN`, plus the analysis's own resolution (:data:`~linkwork.synthesis.common.TOLERANCE` of q).
-
-    Parameters
-    ----------
-    mech : Mechanism
-        The written file, compiled.
-    kind : str
-        The kind synthesised (what :func:`requirement_rows` measures of it).
-    paths : list of str, optional
-        The lengths the file rounds.
-
-    Returns
-    -------
-    dict
-        Requirement name -> tolerance (m, rad or a ratio), for each measured quantity.
-    """
-    from linkwork.api import kinematics
-    from linkwork.structure.parameters import parameter_list
-    from linkwork.synthesis.common import TOLERANCE, VERIFY_STEPS, step
-
-    delta = step() / 2
-    lengths = {p.name: p.value for p in parameter_list(mech) if p.kind == "length" and p.value != 0}
-    names = list(lengths) if paths is None else list(paths)
-    variants = {name: np.full(2 * len(names) + 1, lengths[name]) for name in names}
-    for i, name in enumerate(names):
-        variants[name][2 * i + 1 : 2 * i + 3] += (delta, -delta)
-    kin = kinematics(mech, steps=VERIFY_STEPS, variants=variants)
-    runs = [_measured(kin, kind, v) for v in range(2 * len(names) + 1)]
-    out = {}
-    for key, own in runs[0].items():
-        first = sum(abs(runs[2 * i + 1][key] - runs[2 * i + 2][key]) / 2 for i in range(len(names)))
-        out[key] = MARGIN * first + TOLERANCE * abs(own)
-    return out
-
-
-def _measured(kin: Kinematics, kind: str, variant: int = 0) -> dict[str, float]:
-    """What the analysis measures of the working member over ``kin`` (its ``variant``): stroke or swing, time
-    ratio, the largest pressure angle (of the dyads driving a slider, else of all) and the least transmission
-    angle; the knives' quantities for the shears."""
-    from linkwork.motion.analysis import extremes, transmission, working
-
-    out: dict[str, float] = {}
-    members = working(kin.mechanism)
-    found = {e.name: e for e in extremes(kin, variant)}
-    if members and members[0].name in found:
-        e = found[members[0].name]
-        out["stroke" if e.kind == "slider" else "swing"] = e.stroke
-        out["time_ratio"] = e.time_ratio
-    angles = transmission(kin)
-    if angles:
-        least = {k: float(np.nanmin(np.atleast_2d(v)[variant])) for k, v in angles.items()}
-        sliding = [v for k, v in least.items() if k.endswith("RRP")] or list(least.values())
-        out["max_pressure_angle"] = math.pi / 2 - min(sliding)
-        out["min_transmission_angle"] = min(least.values())
-    if kind == "double-cut-shears":
-        out.update(_knives(kin, variant))
-    return out
-
-
-def _knives(kin: Kinematics, variant: int = 0) -> dict[str, float]:
-    from linkwork.design.evaluate import Evaluation
-    from linkwork.design.metrics import METRICS
-
-    ev = Evaluation(kin)
-
-    def one(name: str, arg: str | None = None) -> float:
-        return float(np.ravel(METRICS[name].compute(ev, arg))[variant])
-
-    return {
-        "upper_stroke": one("stroke", "guide_E"),
-        "lower_stroke": one("stroke", "guide_F"),
-        "time_ratio": one("working_time_ratio"),
-        "overlap": one("knife_overlap"),
-        "opening": one("knife_clearance"),
-    }
 
 
 def written(

@@ -17,13 +17,13 @@ from linkwork.errors import SynthesisError
 from linkwork.spec.schema import Spec
 
 #: The analysis's own resolution, relative: added to the tolerance the rounding of the lengths implies
-#: (:func:`~linkwork.synthesis.achieved.rounding_tolerances`), which the written file's measured stroke (swing),
+#: (:func:`~linkwork.synthesis.rounding.rounding_tolerances`), which the written file's measured stroke (swing),
 #: time ratio and pressure (transmission) angle must reach with the requirements and the closed forms.
 TOLERANCE = 1e-9
 
 #: The step every synthesised file writes its lengths and point coordinates to (m): 0.1 mm, as a designer
 #: dimensions a machine's drawing.  A written length is within STEP / 2 of the exact one; the tolerance of each
-#: requirement follows from it (:func:`~linkwork.synthesis.achieved.rounding_tolerances`).  A mechanism whose
+#: requirement follows from it (:func:`~linkwork.synthesis.rounding.rounding_tolerances`).  A mechanism whose
 #: scale (its stroke, rocker or frame asked) is under 100 steps (10 mm) is dimensioned to the power of ten that
 #: keeps 100 steps on it (:func:`dimensioned`), as a drawing of an instrument's linkage is.
 STEP = 1e-4
@@ -124,15 +124,6 @@ class Family:
     criterion: str
 
 
-def tolerances_of(spec: Spec, kind: str, paths: list[str] | None = None) -> dict[str, float]:
-    """The tolerances the rounding of ``spec``'s lengths (``paths``, else every nonzero one) implies for the
-    requirements of ``kind`` (:func:`~linkwork.synthesis.achieved.rounding_tolerances`)."""
-    from linkwork.api import mechanism_of
-    from linkwork.synthesis.achieved import rounding_tolerances
-
-    return rounding_tolerances(mechanism_of(spec), kind, paths)
-
-
 @dataclass(frozen=True)
 class Synthesis:
     """A synthesised mechanism.
@@ -162,7 +153,7 @@ class Synthesis:
         What else the synthesis found (the criteria of the pick).
     tolerances : dict
         The tolerance (SI) of each requirement the analysis measures, implied by the lengths written to
-        :data:`STEP` (:func:`~linkwork.synthesis.achieved.rounding_tolerances`).
+        :data:`STEP` (:func:`~linkwork.synthesis.rounding.rounding_tolerances`).
     """
 
     kind: str
@@ -344,7 +335,7 @@ def confirm(
 ) -> None:
     """Raise :class:`SynthesisError` where the analysis measured a quantity of ``predicted`` away from it by
     more than its ``tolerances`` (SI, by requirement name or :data:`ALIASES`: what the lengths' rounding implies,
-    :func:`~linkwork.synthesis.achieved.rounding_tolerances`); the message says how close to a dead point the
+    :func:`~linkwork.synthesis.rounding.rounding_tolerances`); the message says how close to a dead point the
     mechanism runs (``worst``, its least transmission angle, rad), where the measures are ill-conditioned."""
     for key, wanted in predicted.items():
         got = measured[key]

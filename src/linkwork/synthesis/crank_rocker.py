@@ -49,8 +49,8 @@ from linkwork.synthesis.common import (
     mm,
     proportions,
     time_ratio_of,
-    tolerances_of,
 )
+from linkwork.synthesis.rounding import tolerances_of
 
 KIND = "crank-rocker"
 

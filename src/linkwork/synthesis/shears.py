@@ -42,8 +42,8 @@ from linkwork.synthesis.common import (
     keep_rule,
     least_allowed,
     rounded,
-    tolerances_of,
 )
+from linkwork.synthesis.rounding import tolerances_of
 
 KIND = "double-cut-shears"
 
@@ -372,7 +372,7 @@ def measure(spec) -> dict[str, float]:  # noqa: ANN001
 
 def confirm(measured: dict[str, float], predicted: dict[str, float], tolerances: dict[str, float]) -> None:
     """Raise where the written file measures a requirement away from it by more than its ``tolerances`` (SI: what
-    the lengths written to 0.1 mm imply, :func:`~linkwork.synthesis.achieved.rounding_tolerances`)."""
+    the lengths written to 0.1 mm imply, :func:`~linkwork.synthesis.rounding.rounding_tolerances`)."""
     for key, wanted in predicted.items():
         if not abs(measured[key] - wanted) <= tolerances[key]:
             raise SynthesisError(

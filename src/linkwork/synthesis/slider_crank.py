@@ -57,9 +57,9 @@ from linkwork.synthesis.common import (
     proportions,
     rounded,
     step,
-    tolerances_of,
     up,
 )
+from linkwork.synthesis.rounding import tolerances_of
 
 KIND = "slider-crank"
 

@@ -59,9 +59,9 @@ from linkwork.synthesis.common import (
     mm,
     proportions,
     rounded,
-    tolerances_of,
     up,
 )
+from linkwork.synthesis.rounding import tolerances_of
 
 KIND = "slotted-lever"
 

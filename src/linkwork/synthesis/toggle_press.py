@@ -61,9 +61,9 @@ from linkwork.synthesis.common import (
     proportions,
     rounded,
     step,
-    tolerances_of,
     up,
 )
+from linkwork.synthesis.rounding import tolerances_of
 
 KIND = "toggle-press"
 
@@ -207,11 +207,11 @@ def synthesize(
 
 def _nominal_spread(spec, angle: float) -> float:  # noqa: ANN001
     """The tolerance (N m) of the torque at the nominal point the lengths written to 0.1 mm imply: the first-order
-    bound of :func:`~linkwork.synthesis.achieved.rounding_tolerances`, each length's term the central difference
+    bound of :func:`~linkwork.synthesis.rounding.rounding_tolerances`, each length's term the central difference
     of :func:`_torque` over +-step / 2 (variants of the file's named lengths)."""
     from linkwork.api import mechanism_of
     from linkwork.structure.parameters import parameter_list
-    from linkwork.synthesis.achieved import MARGIN
+    from linkwork.synthesis.rounding import MARGIN
 
     names = {p.name: p.value for p in parameter_list(mechanism_of(spec)) if p.kind == "length" and p.value != 0}
     variants = {name: np.full(2 * len(names) + 1, value) for name, value in names.items()}
