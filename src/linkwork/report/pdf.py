@@ -19,6 +19,10 @@ if TYPE_CHECKING:
 #: A4, inches; the margins, inches; the text's size, points; a table's largest font and the least it shrinks to.
 PAGE, MARGIN, TEXT, TABLE, SMALLEST = (8.27, 11.69), 0.6, 9.0, 8.0, 5.0
 
+#: The widest a table's cell of running text is set, in ems of its font (wider ones are wrapped): at the smallest
+#: size a column of it and a column of names fit across the page.
+CELL = 60.0
+
 _PART = re.compile(r"<p>(.*?)</p>|<table>(.*?)</table>|<h3>(.*?)</h3>", re.S)
 _ROW = re.compile(r"<tr>(.*?)</tr>", re.S)
 _CELL = re.compile(r"<t[hd][^>]*>(.*?)</t[hd]>", re.S)
@@ -79,7 +83,9 @@ class Pages:
         self.y -= 0.5 * step
 
     def table(self, rows: list[list[str]]) -> None:
-        body = rows[1:]
+        # a cell of running text (a sentence of the sizing's inputs) in lines of at most CELL ems, not one line
+        # wider than the page
+        body = [[cell if _width(cell) <= CELL else _wrapped(cell, CELL, bold=False) for cell in r] for r in rows[1:]]
         columns = max(len(r) for r in rows)
         # each column as wide as its widest cell and its heading's longest word (bold: a tenth wider), in ems
         width = [
@@ -126,11 +132,13 @@ class Pages:
         self.y -= 0.15
 
 
-def _wrapped(text: str, ems: float) -> str:
-    """A heading's words in lines at most ``ems`` wide (bold), a word longer than that on a line of its own."""
+def _wrapped(text: str, ems: float, bold: bool = True) -> str:
+    """A heading's (``bold``: a tenth wider) or a cell's words in lines at most ``ems`` wide, a word longer than
+    that on a line of its own."""
     lines: list[str] = []
+    wider = 1.1 if bold else 1.0
     for word in text.split():
-        if lines and 1.1 * _width(f"{lines[-1]} {word}") <= ems:
+        if lines and wider * _width(f"{lines[-1]} {word}") <= ems:
             lines[-1] = f"{lines[-1]} {word}"
         else:
             lines.append(word)
