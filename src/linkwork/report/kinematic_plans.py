@@ -134,9 +134,11 @@ def _vector(
     unit = run.t("unit.m_s" if series.kind == "velocity" else "unit.m_s2")
     segment = f"{start}{e.end} = {_n(mm)} {run.t('unit.mm')}"
     length = math.nan
-    points = kin.mechanism.point_names
-    if e.kind in ("rotation", "normal", "tangential") and e.about in points and point in points:
-        length = float(np.hypot(*(kin.position(point)[index] - kin.position(e.about)[index])))
+    if e.kind in ("rotation", "normal", "tangential") and e.about != "frame":
+        try:
+            length = float(np.hypot(*(kin.position(point)[index] - kin.position(e.about)[index])))
+        except KeyError:  # a plan's point the solution does not name (a tool's): its vector alone
+            length = math.nan
     if length > 0:  # a point turning about another one: its ω or ε (not a guide's coincident point, l = 0)
         k = _link(kin, point, e.about)
         key = {"rotation": "kplan.rotation", "normal": "kplan.normal", "tangential": "kplan.tangential"}[e.kind]
