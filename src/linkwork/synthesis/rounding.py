@@ -92,11 +92,13 @@ def measure(kin: Kinematics, kind: str, variant: int = 0) -> dict[str, float]:
         out["max_pressure_angle"] = math.pi / 2 - min(sliding)
         out["min_transmission_angle"] = min(least.values())
     if kind == "double-cut-shears":
-        out.update(_knives(kin, variant))
+        out.update(knives(kin, variant))
     return out
 
 
-def _knives(kin: Kinematics, variant: int = 0) -> dict[str, float]:
+def knives(kin: Kinematics, variant: int = 0) -> dict[str, float]:
+    """The knives' strokes, K, overlap and opening of the shears solved in ``kin`` (its ``variant``) as the design
+    metrics measure them."""
     from linkwork.design.evaluate import Evaluation
     from linkwork.design.metrics import METRICS
 

@@ -43,7 +43,7 @@ from linkwork.synthesis.common import (
     least_allowed,
     rounded,
 )
-from linkwork.synthesis.rounding import tolerances_of
+from linkwork.synthesis.rounding import knives, tolerances_of
 
 KIND = "double-cut-shears"
 
@@ -351,23 +351,10 @@ def _infeasible(mech, upper: float, lower: float, ratio: float, want: float, cra
 
 def measure(spec) -> dict[str, float]:  # noqa: ANN001
     """The knives' strokes, K, overlap and opening of ``spec`` as :func:`linkwork.kinematics` and the design
-    metrics of that result measure them."""
+    metrics of that result measure them (:func:`~linkwork.synthesis.rounding.knives`)."""
     from linkwork.api import kinematics
-    from linkwork.design.evaluate import Evaluation
-    from linkwork.design.metrics import METRICS
 
-    ev = Evaluation(kinematics(spec, steps=VERIFY_STEPS))
-
-    def one(name: str, arg: str | None = None) -> float:
-        return float(np.squeeze(METRICS[name].compute(ev, arg)))
-
-    return {
-        "upper_stroke": one("stroke", "guide_E"),
-        "lower_stroke": one("stroke", "guide_F"),
-        "time_ratio": one("working_time_ratio"),
-        "overlap": one("knife_overlap"),
-        "opening": one("knife_clearance"),
-    }
+    return knives(kinematics(spec, steps=VERIFY_STEPS))
 
 
 def confirm(measured: dict[str, float], predicted: dict[str, float], tolerances: dict[str, float]) -> None:
