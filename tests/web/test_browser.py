@@ -778,7 +778,15 @@ def test_the_force_plans_and_the_lever_follow_the_crank_dragged(page, server):
         gap = np.sum([a["end"] - a["start"] for a in polygon], axis=0)
         assert np.hypot(*gap) < 1e-9 * max(np.hypot(*(a["end"] - a["start"])) for a in polygon)
         labels = page.eval_on_selector_all("#force-plan text.fname", "els => els.map(e => e.getAttribute('data-name'))")
-        assert names <= set(labels)
+        drawn = page.eval_on_selector_all(
+            "#force-plan line.fvec",
+            "els => els.map(e => [e.getAttribute('data-name'), Math.hypot(e.x2.baseVal.value - e.x1.baseVal.value, "
+            "e.y2.baseVal.value - e.y1.baseVal.value)])",
+        )
+        length = {name: size for name, size in drawn}
+        assert names <= set(length)  # every force drawn; named at it, or (shorter than its name) listed, not placed
+        unnamed = names - set(labels)
+        assert all(length[n] < min(length[m] for m in names & set(labels)) for n in unnamed)
         assert page.locator('#force-plan text.fname[data-name="R07"] tspan.sub').text_content() == "07"
         seen[index] = [(a["name"], tuple(a["end"])) for a in arrows]
         # the lever at the same angle

@@ -125,7 +125,7 @@
       };
       if (a.resultant || style.dash.length) attrs["stroke-dasharray"] = "5 3";
       svg("line", attrs, arrows);
-      if (a.text && a.centre) {
+      if (a.text && a.centre && a.centre[0] !== null) {  // a name too long for its arrow is listed, not placed
         const t = svg("text", { class: "fname", fill: style.colour, x: a.centre[0].toFixed(3), y: (-a.centre[1]).toFixed(3), "text-anchor": "middle", "dominant-baseline": "central", "data-name": a.text }, texts);
         V.setLabel(t, a.text);
       }
@@ -133,7 +133,7 @@
     d.dots.forEach((c, j) => {
       svg("circle", { class: "dot", cx: c[0], cy: -c[1], r: (0.12 * d.em).toFixed(3), "data-label": d.dot_text[j] }, texts);
       const at = d.dot_centres[j];
-      if (d.dot_text[j] && at) {
+      if (d.dot_text[j] && at && at[0] !== null) {
         const t = svg("text", { class: "plabel", x: at[0].toFixed(3), y: (-at[1]).toFixed(3), "text-anchor": "middle", "dominant-baseline": "central" }, texts);
         V.setLabel(t, d.dot_text[j]);
       }
