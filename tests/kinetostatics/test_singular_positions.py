@@ -81,3 +81,24 @@ def _largest(fn) -> float:
         options={"xatol": 1e-12},
     )
     return max(-float(found.fun), float(fn(x)[i]))
+
+
+def test_a_group_is_solvable_by_its_norms_exactly_where_its_singular_values_say_so():
+    """:func:`solvable` with the inverse decides by the Frobenius norms and falls back on the singular values
+    only in between: on matrices built as U diag(s) V with condition numbers on both sides of 1 / RATIO (within
+    0.1 %, where the norms leave it open, and far off) it gives what the singular values of each say."""
+    from linkwork.kinetostatics.reactions import RATIO, solvable
+
+    rng = np.random.default_rng(7)
+    kappas = np.concatenate([[1.0, 1e3, 1e7, 1e11, 1e14], np.array([0.999, 1.001, 2.0, 5.0, 0.5]) / RATIO])
+    for n in (3, 6, 12):
+        mats = []
+        for kappa in kappas:
+            u, _ = np.linalg.qr(rng.normal(size=(n, n)))
+            v, _ = np.linalg.qr(rng.normal(size=(n, n)))
+            s = np.geomspace(1.0, 1.0 / kappa, n) * 10.0 ** rng.uniform(-3, 3)
+            mats.append(u @ np.diag(s) @ v)
+        a = np.array(mats)
+        expected = 1.0 / kappas > RATIO * (1 + 1e-6)
+        np.testing.assert_array_equal(solvable(a), expected)
+        np.testing.assert_array_equal(solvable(a, np.linalg.inv(a)), expected)

@@ -110,31 +110,60 @@ def solve_reactions(kin: Kinematics, loads: Loads) -> tuple[np.ndarray, np.ndarr
     lam = np.full(jac.shape[:-1], np.nan)
     done: list[int] = []
     for links, sel in reversed(owned):
-        cols = [3 * i + k for i in links for k in range(3)]
+        cols = np.array([3 * i + k for i in links for k in range(3)])
         rhs = rhs_all[..., cols]
-        if done:
-            rhs = rhs - np.einsum("...rc,...r->...c", jac[..., done, :][..., cols], lam[..., done])
-        mat = np.swapaxes(jac[..., sel, :][..., cols], -1, -2)  # (V, A, 3n, 3n): a column per row
+        if done:  # the reactions known, as loads: (V, A, 1, r) @ (V, A, r, 3n)
+            rows = np.array(done)
+            rhs = rhs - np.matmul(lam[..., None, rows], jac[..., rows[:, None], cols])[..., 0, :]
+        mat = np.swapaxes(jac[..., np.array(sel)[:, None], cols], -1, -2)  # (V, A, 3n, 3n): a column per row
         lam[..., sel] = _solve(mat, rhs)
         done += sel
-    frame = np.einsum("...rc,...r->...c", jac[..., :3], lam)
+    frame = np.matmul(lam[..., None, :], jac[..., :3])[..., 0, :]
     return lam, frame
 
 
+#: Smallest ratio of a group matrix's least singular value to its largest of a solvable group.
+RATIO = 1e-9
+
+
 def _solve(mat: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """Batched square solves; NaN where a matrix is singular or not finite."""
+    """Batched square solves; NaN where a matrix is singular (:func:`solvable`) or not finite."""
     good = np.isfinite(mat).all(axis=(-1, -2)) & np.isfinite(rhs).all(axis=-1)
     out = np.full(rhs.shape, np.nan)
     if not good.any():
         return out
     a, b = mat[good], rhs[good]
-    sv = np.linalg.svd(a, compute_uv=False)
-    ok = sv[..., -1] > 1e-9 * np.maximum(sv[..., 0], 1e-300)
+    n = a.shape[-1]
+    try:  # the solution and the inverse from one factorisation
+        both = np.linalg.solve(a, np.concatenate([b[..., None], np.broadcast_to(np.eye(n), a.shape)], axis=-1))
+    except np.linalg.LinAlgError:  # an exactly singular matrix in the batch
+        both = None
+    ok = solvable(a, None if both is None else both[..., 1:])
     x = np.full(b.shape, np.nan)
-    if ok.any():
+    if both is not None:
+        x[ok] = both[ok, :, 0]
+    elif ok.any():
         x[ok] = np.linalg.solve(a[ok], b[ok][..., None])[..., 0]
     out[good] = x
     return out
+
+
+def solvable(a: np.ndarray, inverse: np.ndarray | None = None) -> np.ndarray:
+    """Whether each matrix of ``a`` ``(..., n, n)`` is solvable: its least singular value over its largest above
+    :data:`RATIO`.  With its ``inverse`` the singular values are needed only where the Frobenius norms leave it
+    open: the condition number k lies between ``|A|_F |A^-1|_F / n`` and ``|A|_F |A^-1|_F``, so a product
+    under ``1 / RATIO`` is solvable and one of ``n / RATIO`` or over is not (a factorisation costs a seventh of a
+    decomposition into singular values)."""
+    if inverse is None:
+        sv = np.linalg.svd(a, compute_uv=False)
+        return sv[..., -1] > RATIO * np.maximum(sv[..., 0], 1e-300)
+    with np.errstate(over="ignore", invalid="ignore"):
+        product = np.linalg.norm(a, axis=(-2, -1)) * np.linalg.norm(inverse, axis=(-2, -1))
+    ok = product < 1.0 / RATIO
+    open_ = ~ok & ~(product >= a.shape[-1] / RATIO)  # NaN (an overflowed inverse) is open too
+    if open_.any():
+        ok[open_] = solvable(a[open_])
+    return ok
 
 
 def power_check(kin: Kinematics, loads: Loads) -> np.ndarray:

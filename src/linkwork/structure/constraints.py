@@ -20,7 +20,7 @@ All functions broadcast over leading dimensions of ``q``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -102,10 +102,14 @@ class _Poses:
     q: np.ndarray
     dims: Dimensions
     batch: tuple[int, ...]
+    jac: np.ndarray  # (..., m, 3 N): the Jacobian, filled a row at a time
+    filled: list[int] = field(default_factory=lambda: [0])
 
     def zeros(self) -> np.ndarray:
-        """A Jacobian row of zeros, ``(..., 3 N)``."""
-        return np.zeros(self.batch + (3 * self.q.shape[-2],))
+        """The Jacobian's next row, of zeros, ``(..., 3 N)`` (a view: the rows are asked for in their order)."""
+        i = self.filled[0]
+        self.filled[0] = i + 1
+        return self.jac[..., i, :]
 
     def point(self, link: int, p_local: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Global position ``(..., 2)`` of the point ``p_local`` of ``link`` and its derivative by the link's angle."""
@@ -141,7 +145,8 @@ def residuals_and_jacobian(
     q = np.asarray(q, dtype=float)
     dims: Dimensions = mech if geom is None else geom
     batch = np.broadcast_shapes(q.shape[:-2], np.shape(dims.point_local)[:-2])
-    at = _Poses(np.broadcast_to(q, batch + q.shape[-2:]), dims, batch)
+    m = 2 * len(mech.pair_type) + (len(mech.drive_pair) if with_drives else 0)
+    at = _Poses(np.broadcast_to(q, batch + q.shape[-2:]), dims, batch, np.zeros(batch + (m, 3 * q.shape[-2])))
     rows: list[tuple[np.ndarray, np.ndarray]] = []
     for k, kind in enumerate(mech.pair_type):
         rows += _revolute_rows(at, mech, k) if kind == PairType.REVOLUTE else _prismatic_rows(at, mech, k)
@@ -151,7 +156,8 @@ def residuals_and_jacobian(
         rows += [_drive_row(at, mech, k, values[..., d]) for d, k in enumerate(mech.drive_pair)]
     if not rows:
         return np.zeros(batch + (0,)), np.zeros(batch + (0, 3 * q.shape[-2]))
-    return np.stack([r for r, _ in rows], axis=-1), np.stack([row for _, row in rows], axis=-2)
+    assert at.filled[0] == m == len(rows)
+    return np.stack([r for r, _ in rows], axis=-1), at.jac
 
 
 def _revolute_rows(at: _Poses, mech: Mechanism, k: int) -> list[tuple[np.ndarray, np.ndarray]]:
