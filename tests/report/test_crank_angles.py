@@ -230,26 +230,24 @@ def test_tables_write_the_crank_angle_to_x_wrapped_and_exact():
 
 
 @pytest.mark.parametrize("name", names())
-def test_every_bundled_example_writes_phi_from_position_0(tmp_path, name):
+def test_every_bundled_example_writes_phi_from_position_0(report, name):
     """Every bundled example's report: φ in every table and JSON file is in [0, 360), starts at position 0
     and steps by 360 / steps exactly, and is the angle turned from ``position_0_deg`` to the crank link's
     written angle (``crank.angle [rad]``: a drive sets the driven link's angle, so it is the drive angle), in
     the drive's direction; ``crank_angle_to_x`` is that link angle wrapped."""
     pytest.importorskip("matplotlib")
     pytest.importorskip("xarray")
-    from linkwork import report
-
     mech = lw.compile(lw.example(name))
-    report.analyze(mech, tmp_path / "r", steps=36, animation=False)
+    folder = report(name)  # the run's shared report of the example: 36 steps, no animation
     crank = mech.link_names[int(mech.pair_links[mech.drive_pair[0], 1])]
-    kin = _columns(tmp_path / "r" / "kinematics.csv")
+    kin = _columns(folder / "kinematics.csv")
     to_x = np.degrees(kin[f"{crank}.angle [rad]"])
     _close(kin["crank_angle_to_x [deg]"], to_x, 1e-7)
     files = [kin]
     zero, sign = to_x[0], -1.0 if mech.drive_speed[0] < 0 else 1.0  # the report's turn starts at position 0
-    if (tmp_path / "r" / "forces.csv").exists():
-        files.append(_columns(tmp_path / "r" / "forces.csv"))
-        forces = json.loads((tmp_path / "r" / "forces.json").read_text(encoding="utf-8"))
+    if (folder / "forces.csv").exists():
+        files.append(_columns(folder / "forces.csv"))
+        forces = json.loads((folder / "forces.json").read_text(encoding="utf-8"))
         _close(np.array([forces["position_0_deg"]]), np.array([zero]), 1e-7)
         assert forces["direction"] == sign and forces["phi_deg"] == kin["phi [deg]"].tolist()
         for key in ("shear", "push", "moment"):
@@ -259,8 +257,8 @@ def test_every_bundled_example_writes_phi_from_position_0(tmp_path, name):
         _in_turn(table["crank_angle_to_x [deg]"])
         assert table["phi [deg]"].tolist() == [10.0 * k for k in range(36)]
         _close(table["phi [deg]"], _turned(to_x, zero, sign), 1e-7)
-    if (tmp_path / "r" / "dynamics.json").exists():
-        dyn = json.loads((tmp_path / "r" / "dynamics.json").read_text(encoding="utf-8"))
+    if (folder / "dynamics.json").exists():
+        dyn = json.loads((folder / "dynamics.json").read_text(encoding="utf-8"))
         _in_turn(np.array(dyn["phi_deg"]))
         _in_turn(np.array(dyn["cycle"]["phi_deg"]))
         _close(np.array(dyn["phi_deg"]), _turned(np.array(dyn["crank_angle_to_x_deg"]), zero, sign), 1e-7)

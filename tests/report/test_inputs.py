@@ -45,10 +45,14 @@ def _rows(page: str, key: str) -> dict[str, list[str]]:
 
 
 @pytest.fixture(scope="module")
-def report(tmp_path_factory):
+def report(report, tmp_path_factory):
+    """The page of a bundled example's report: without options the run's shared one (tests/conftest.py), with
+    options written by the command in a process of its own."""
     root = tmp_path_factory.mktemp("inputs")
 
     def make(name: str, *extra: str) -> str:
+        if not extra:
+            return (report(name) / "report.html").read_text(encoding="utf-8")
         out = root / f"{name}{len(extra)}"
         result = linkwork("analyze", name, "--out", str(out), "--steps", "36", "--no-animation", *extra)
         assert result.returncode == 0, result.stderr
