@@ -402,9 +402,15 @@ def test_a_long_lived_process_switches_to_the_kernels_read_from_the_cache(tmp_pa
     """A cache filled by calls of ``lw.forces`` and ``lw.kinematics`` with ``LINKWORK_NUMBA=1``: a process on the
     default settings loads its kernels in the background, every one read from the cache before a call needs it
     (none compiled, none read in front of a call), and its later calls run them, with the NumPy kernels'
-    numbers to rounding."""
+    numbers to rounding.  The cache is a copy of this run's (which ``linkwork warm`` filled before the lane: the
+    calls then read what they need, where they would compile it for minutes), so that the test owns its copy."""
+    import shutil
+
     env = {k: v for k, v in os.environ.items() if k not in ("LINKWORK_NUMBA", "NUMBA_CACHE_DIR")}
-    env["LINKWORK_CACHE_DIR"] = str(tmp_path)
+    env["LINKWORK_CACHE_DIR"] = str(tmp_path / "kernels")
+    warmed = jit.cache_dir()
+    if warmed is not None:
+        shutil.copytree(warmed, tmp_path / "kernels", ignore=shutil.ignore_patterns("compiling-*", "*.log"))
     fill = (
         "import linkwork as lw; from linkwork import jit; m = lw.compile('double-cut-shears'); "
         "lw.forces(m, steps=360); lw.kinematics(m, steps=360).position('B'); jit.mark_ready()"
