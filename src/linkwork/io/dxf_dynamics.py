@@ -22,7 +22,18 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork.io.dxf import CAP
-from linkwork.io.dxf_sheet import AXES, CURVES, LABEL, SMALLEST, TANGENTS, SheetDrawing, add_text, nice_up, number
+from linkwork.io.dxf_sheet import (
+    AXES,
+    CURVES,
+    LABEL,
+    SMALLEST,
+    TANGENTS,
+    THIN,
+    SheetDrawing,
+    add_text,
+    nice_up,
+    number,
+)
 from linkwork.lang import t
 from linkwork.scene.geometry import text_size
 
@@ -31,6 +42,8 @@ if TYPE_CHECKING:
 
 #: The least distance between two ticks of an axis, mm.
 TICK_GAP = 15.0
+#: The most points of a curve drawn (a turn in half-degree steps): more samples are thinned, their extremes kept.
+POINTS = 721
 #: Steps of the φ axis, degrees.
 DEGREES = (15.0, 30.0, 45.0, 60.0, 90.0, 180.0)
 
@@ -165,10 +178,17 @@ def _axes(
 
 
 def _curve(layout: Any, u: np.ndarray, v: np.ndarray, layer: str, dashed: bool) -> None:
-    """A polyline through the finite points ``(u, v)`` (mm), broken where they are not."""
+    """A polyline through the finite points ``(u, v)`` (mm), broken where they are not; of more than
+    :data:`POINTS`, every k-th, the first, the last and the largest and least ``v`` drawn."""
+    if len(u) > POINTS:
+        keep = np.arange(0, len(u), -(-len(u) // POINTS))
+        if np.isfinite(v).any():
+            keep = np.append(keep, [np.nanargmax(v), np.nanargmin(v)])
+        keep = np.unique(np.append(keep, len(u) - 1))
+        u, v = u[keep], v[keep]
     ok = np.isfinite(u) & np.isfinite(v)
     runs = np.split(np.arange(len(u)), np.flatnonzero(np.diff(ok.astype(int))) + 1)
-    attrs = {"layer": layer, **({"linetype": "DASHED"} if dashed else {})}
+    attrs = {"layer": layer, **({"linetype": "DASHED", "lineweight": THIN} if dashed else {})}  # a thin line
     for run in runs:
         if ok[run[0]] and len(run) > 1:
             layout.add_lwpolyline(list(zip(u[run].tolist(), v[run].tolist(), strict=True)), dxfattribs=attrs)
@@ -214,7 +234,7 @@ def dynamics_drawings(result: Dynamics, lang: str) -> list[SheetDrawing]:
     red = result.reduced
     inertia, energy = wittenbauer(red)
     phi, order = _phi(result, red.angle)
-    start = float(energy[order[0]])  # ΔT from position 0 on both diagrams of it
+    start = float(np.interp(0.0, phi, energy[order], period=360.0))  # ΔT from position 0 on both diagrams
     energy = energy - start
     phi, j, m, e = _closed(phi, red.inertia[order], red.load[order], energy[order])
     deg = Axis("φ", t("unit.deg", lang), DEGREES)

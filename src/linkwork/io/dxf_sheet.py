@@ -166,7 +166,10 @@ class GostSheet:
     def __init__(self, fmt: str, block: TitleBlock, sheet: int, sheets: int, lang: str) -> None:
         self.width, self.height = FORMATS[fmt]
         self.fmt, self.lang = fmt, lang
-        styles = {**SCHEME, **VECTORS, **FORCES}
+        # keyed apart: the plans' and the force plans' kinds share names ("normal", "tangential"), not layers
+        styles = {
+            f"{what}.{kind}": s for what, d in (("s", SCHEME), ("v", VECTORS), ("f", FORCES)) for kind, s in d.items()
+        }
         layers = ("FORMAT", "FRAME", "TITLE_BLOCK", "POINTS", CURVES, AXES, TANGENTS)
         self.doc, self.msp = _document(styles, extra=dict.fromkeys(layers, 7))
         self.doc.header["$LWDISPLAY"] = 1
@@ -402,7 +405,7 @@ def drawn_box(entities: Any) -> np.ndarray:
 
 def gost_lines(doc: Any) -> None:
     """The lines of ГОСТ 2.303 in ``doc``: the line types :data:`LINETYPES`, every dashed layer in the dashed line,
-    :data:`CENTRE_LINES` in the dash-dot line, a layer that gives no weight the thin line's."""
+    :data:`CENTRE_LINES` in the dash-dot line, these and a layer that gives no weight the thin line's."""
     for name, pattern in LINETYPES.items():
         if name in doc.linetypes:
             doc.linetypes.remove(name)
@@ -413,8 +416,8 @@ def gost_lines(doc: Any) -> None:
             layer.dxf.linetype = "DASHDOT"
         elif layer.dxf.linetype.startswith("LW_"):
             layer.dxf.linetype = "DASHED"
-        if layer.dxf.lineweight < 0:
-            layer.dxf.lineweight = THIN
+        if layer.dxf.lineweight < 0 or layer.dxf.linetype != "Continuous":  # a broken line is a thin one
+            layer.dxf.lineweight = min(THIN, layer.dxf.lineweight) if layer.dxf.lineweight > 0 else THIN
     for name in [lt.dxf.name for lt in doc.linetypes if lt.dxf.name.startswith("LW_")]:
         doc.linetypes.remove(name)
 
@@ -450,15 +453,19 @@ def _metres(lang: str) -> str:
     return t("sheet.m_per_mm", lang)
 
 
-def scheme_drawing(title: str, draw: Callable[..., np.ndarray], extent: np.ndarray, lang: str) -> SheetDrawing:
+def scheme_drawing(
+    title: str, draw: Callable[..., np.ndarray], extent: np.ndarray, lang: str, em: float
+) -> SheetDrawing:
     """A drawing of a scheme of ``extent`` (m, ``[x0, y0, x1, y1]``) drawn by ``draw(layout, mm=, em=)`` at the
-    largest reduction of ГОСТ 2.302 that fits."""
+    largest reduction of ГОСТ 2.302 that fits; its labels :data:`LABEL` mm high, or lower, down to
+    :data:`SMALLEST`, where the reduction draws the font size ``em`` (m) their places were found for smaller."""
     span = np.asarray(extent[2:] - extent[:2], dtype=float)
     drawing = SheetDrawing(title, lambda layout, w, h: (np.zeros(4), ""), big=True)
 
     def fit(layout: Any, w: float, h: float) -> tuple[np.ndarray, str]:
         n = reduction(max(span[0] / w, span[1] / h) * 1.08)
-        box = draw(layout, mm=1000.0 / n, em=LABEL / CAP)
+        size = min(LABEL, max(SMALLEST, CAP * em * 1000.0 / n))  # the labels as large as their places allow
+        box = draw(layout, mm=1000.0 / n, em=size / CAP)
         drawing.scale = f"1:{number(n, lang)}"
         return box, f"μl = {number(n / 1000, lang)} {_metres(lang)}"
 
@@ -585,7 +592,9 @@ def legend_drawing(plans: ForcePlans, index: int, lang: str) -> SheetDrawing:
             y = -row * 2.2 * LABEL
             layer = FORCES[kind].layer
             layout.add_line(
-                (0.0, y), (15.0, y), dxfattribs={"layer": layer, **({"linetype": "DASHED"} if dashed else {})}
+                (0.0, y),
+                (15.0, y),
+                dxfattribs={"layer": layer, **({"linetype": "DASHED", "lineweight": THIN} if dashed else {})},
             )
             _head(layout, np.array([0.0, y]), np.array([15.0, y]), 3.0, layer)
             what = text(f"force.{kind}", lang) + (f" ({', '.join(loads)})" if kind == "load" and loads else "")
@@ -614,6 +623,7 @@ def kinematics_drawings(twelve: Kinematics, position: int, cycle: Kinematics, la
             lambda layout, mm, em: draw_positions(layout, scene, mm=mm, em=em),
             scene.extent(),
             lang,
+            scene.scheme.em,
         ),
         plan_drawing(twelve, position, "velocity", t("sheet.velocity", lang) + where, lang),
         plan_drawing(twelve, position, "acceleration", t("sheet.acceleration", lang) + where, lang),
@@ -622,6 +632,7 @@ def kinematics_drawings(twelve: Kinematics, position: int, cycle: Kinematics, la
             lambda layout, mm, em: draw_scheme(layout, at, position, trajectories=False, mm=mm, em=em),
             at.extent(position),
             lang,
+            at.em,
         ),
     ]
     return drawings
@@ -644,6 +655,7 @@ def kinetostatics_drawings(
             lambda layout, mm, em: draw_scheme(layout, scene, index, trajectories=False, mm=mm, em=em),
             scene.extent(index),
             lang,
+            scene.em,
         )
     ]
     for j, g in enumerate(plans.groups):
