@@ -8,14 +8,18 @@ The sheet is drawn 1:1 in millimetres of paper: the format's trimming line from 
 of its own (``DRAWING_1``...) inserted at scale 1 in a cell of the field above and beside the title block, no
 two cells overlapping: a scheme at a length scale μl of the series of ГОСТ 2.302 (1:1, 1:2, 1:2.5, 1:4, 1:5,
 1:10...), a plan at a scale μ of the 1-2-2.5-5 series, each the largest that fits its cell, its title and its
-scales written above it (``μl = 0,004 м/мм``; decimal commas in Russian).  Text heights are those of ГОСТ
-2.304 (2.5, 3.5, 5, 7 mm; the labels :data:`LABEL` mm, none under 2.5 mm on paper); the main lines 0.7 mm thick,
-the thin ones 0.25 to 0.35 mm (ГОСТ 2.303).
+scales written above it (``μl = 0,004 м/мм``; decimal commas in Russian); the title block's «Масштаб» the first
+scheme's 1:N.  Text heights are those of ГОСТ 2.304 (2.5, 3.5, 5, 7 mm; the labels :data:`LABEL` mm, none under
+2.5 mm on paper; no two texts covering each other, each measured on one line: :func:`text_box`); the lines those
+of ГОСТ 2.303 (:func:`gost_lines`): the main lines 0.7 mm thick, the thin ones 0.25 to 0.35 mm, the dashed and
+the dash-dot line thin, their strokes in mm of paper.
 
 :func:`write_sheets` writes the sheets of the course project: ``sheet_1.dxf``, the kinematic analysis (the plan
-of positions, the velocity and acceleration plans) and ``sheet_2.dxf``, the kinetostatic analysis (the scheme at
-the position of the force analysis, the force plans of the groups, Zhukovsky's lever, the legend of the
-arrows); on A3 and A4, which hold fewer drawings (:data:`CAPACITY`), the rest on the next sheets.
+of positions, the velocity and acceleration plans, the scheme there), ``sheet_2.dxf``, the kinetostatic analysis
+(the scheme at the position of the force analysis, the force plans of the groups, Zhukovsky's lever, the legend
+of the arrows) and, for a machine, ``sheet_3.dxf``, its dynamics (:mod:`linkwork.io.dxf_dynamics`); on A3 and A4,
+which hold fewer drawings (:data:`CAPACITY`), the rest on the next sheets; and ``sheets.pdf``, the same sheets
+drawn from their DXF documents (:mod:`linkwork.io.sheet_pdf`).
 """
 
 from __future__ import annotations
