@@ -48,7 +48,7 @@ def analyze(
         typer.Option(
             "--dxf",
             help="also write the drawings for CAD, figures/*.dxf, and the drawing sheets to GOST, "
-            "figures/sheet_*.dxf (needs ezdxf)",
+            "figures/sheet_*.dxf and figures/sheets.pdf (needs ezdxf)",
         ),
     ] = False,
     sheet: Annotated[

@@ -443,9 +443,7 @@ def _tangents(ax: Axes, result: Dynamics, e: float, eunit: str, lang: str) -> No
 
 def _speed_panel(ax: Axes, result: Dynamics, zero: float, sign: float, lang: str) -> None:
     """The crank speed (rpm) over the steady cycle against the crank angle from position 0."""
-    red = result.reduced
-    _, psi, omega = result.motion.cycle()
-    angles = red.angle[0] + sign * (result.motion.cycle_start + psi)
+    angles, omega = result.cycle_speed(sign)
     phi, order = _abscissa(angles[:-1], zero, sign, whole=True)  # the last sample closes the turn
     rpm = 30 / np.pi
     ax.plot(phi, omega[order] * rpm, lw=1.3, label=t("legend.crank_speed", lang))

@@ -129,8 +129,8 @@ def draw_positions(layout: Any, scene: PositionsScene, mm: float = 1000.0, em: f
     em = mm * s.em if em is None else em
     _paths(layout, s.paths, mm)
     _items(layout, s, 0, mm=mm)
-    for k in range(1, len(s.angles)):
-        _items(layout, s, k, kinds=("bar", "plate", "pivot"), frame=False, mm=mm)
+    for k in range(1, len(s.angles)):  # the other positions in thin lines (ГОСТ 2.303)
+        _items(layout, s, k, kinds=("bar", "plate", "pivot"), frame=False, mm=mm, weight=THIN)
     for lab in (*s.labels, *scene.numbers):
         _text(layout, lab.text, lab.centre[0] * mm, em)
     for mark in scene.marks * mm:
@@ -245,15 +245,19 @@ def _items(
     kinds: tuple[str, ...] | None = None,
     frame: bool = True,
     mm: float = 1000.0,
+    weight: int | None = None,
 ) -> None:
-    """The scheme's items at sample ``index`` (of ``kinds``; the frame's only if ``frame``), ``mm`` mm a metre."""
+    """The scheme's items at sample ``index`` (of ``kinds``; the frame's only if ``frame``), ``mm`` mm a metre;
+    ``weight`` (0.01 mm) instead of their layer's line weight."""
     for it in scene.items:
         if it.kind == "path" or (kinds is not None and it.kind not in kinds) or (it.link == 0 and not frame):
             continue
         xy = scene.placed(it, index) * mm
         if not np.isfinite(xy).all():
             continue
-        attrs = {"layer": SCHEME[it.kind].layer}
+        attrs: dict[str, Any] = {"layer": SCHEME[it.kind].layer}
+        if weight is not None:
+            attrs["lineweight"] = weight
         if it.radius:
             msp.add_circle(tuple(xy[0]), mm * it.radius, dxfattribs=attrs)
         else:

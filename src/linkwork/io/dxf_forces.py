@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from linkwork.io.dxf import APPID, PURPOSE, _document, _head, _note, _save, _text
+from linkwork.io.dxf import APPID, PURPOSE, THIN, _document, _head, _note, _save, _text
 from linkwork.lang import group_label, t
 from linkwork.optional import require
 from linkwork.scene.force_plans import ForceScene, force_plan_scene, lever_scene, short_note
@@ -57,7 +57,7 @@ def _draw(msp: Any, scene: ForceScene, offset: np.ndarray) -> None:
         msp.add_line(tuple(s + offset), tuple(e + offset), dxfattribs={"layer": FORCES["lever"].layer})
     for a in scene.arrows:
         layer = FORCES.get(a.kind, FORCES["reaction"]).layer
-        attrs = {"layer": layer, **({"linetype": "DASHED"} if a.resultant else {})}
+        attrs = {"layer": layer, **({"linetype": "DASHED", "lineweight": THIN} if a.resultant else {})}  # thin
         line = msp.add_line(tuple(a.start + offset), tuple(a.end + offset), dxfattribs=attrs)
         line.set_xdata(APPID, [(1000, f"{a.kind}:{a.text}")])
         _head(msp, a.start + offset, a.end + offset, 0.55 * scene.em, layer)

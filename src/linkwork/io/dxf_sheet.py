@@ -8,14 +8,18 @@ The sheet is drawn 1:1 in millimetres of paper: the format's trimming line from 
 of its own (``DRAWING_1``...) inserted at scale 1 in a cell of the field above and beside the title block, no
 two cells overlapping: a scheme at a length scale μl of the series of ГОСТ 2.302 (1:1, 1:2, 1:2.5, 1:4, 1:5,
 1:10...), a plan at a scale μ of the 1-2-2.5-5 series, each the largest that fits its cell, its title and its
-scales written above it (``μl = 0,004 м/мм``; decimal commas in Russian).  Text heights are those of ГОСТ
-2.304 (2.5, 3.5, 5, 7 mm; the labels :data:`LABEL` mm, none under 2.5 mm on paper); the main lines 0.7 mm thick,
-the thin ones 0.25 to 0.35 mm (ГОСТ 2.303).
+scales written above it (``μl = 0,004 м/мм``; decimal commas in Russian); the title block's «Масштаб» the first
+scheme's 1:N.  Text heights are those of ГОСТ 2.304 (2.5, 3.5, 5, 7 mm; the labels :data:`LABEL` mm, none under
+2.5 mm on paper; no two texts covering each other, each measured on one line: :func:`text_box`); the lines those
+of ГОСТ 2.303 (:func:`gost_lines`): the main lines 0.7 mm thick, the thin ones 0.25 to 0.35 mm, the dashed and
+the dash-dot line thin, their strokes in mm of paper.
 
 :func:`write_sheets` writes the sheets of the course project: ``sheet_1.dxf``, the kinematic analysis (the plan
-of positions, the velocity and acceleration plans) and ``sheet_2.dxf``, the kinetostatic analysis (the scheme at
-the position of the force analysis, the force plans of the groups, Zhukovsky's lever, the legend of the
-arrows); on A3 and A4, which hold fewer drawings (:data:`CAPACITY`), the rest on the next sheets.
+of positions, the velocity and acceleration plans, the scheme there), ``sheet_2.dxf``, the kinetostatic analysis
+(the scheme at the position of the force analysis, the force plans of the groups, Zhukovsky's lever, the legend
+of the arrows) and, for a machine, ``sheet_3.dxf``, its dynamics (:mod:`linkwork.io.dxf_dynamics`); on A3 and A4,
+which hold fewer drawings (:data:`CAPACITY`), the rest on the next sheets; and ``sheets.pdf``, the same sheets
+drawn from their DXF documents (:mod:`linkwork.io.sheet_pdf`).
 """
 
 from __future__ import annotations
@@ -37,6 +41,7 @@ from linkwork.scene.style import FORCES, SCHEME, VECTORS
 if TYPE_CHECKING:
     from linkwork.kinetostatics.force_polygons import ForcePlans
     from linkwork.kinetostatics.zhukovsky import Lever
+    from linkwork.machine.steady_cycle import Dynamics
     from linkwork.motion.kinematic_analysis import Kinematics
 
 #: Formats of ГОСТ 2.301, width x height in mm as the sheet is drawn (A4 upright, the others landscape).
@@ -49,6 +54,15 @@ BLOCK = (185.0, 55.0)
 SMALLEST, LABEL, TITLE, LARGE = 2.5, 3.5, 5.0, 7.0
 #: Line weights (0.01 mm) of ГОСТ 2.303: the main line s = 0.7 mm, the thin line about s / 2.
 THICK, THIN = 70, 35
+#: ГОСТ 2.303's broken lines as DXF line types, on and off lengths in mm of paper ($LTSCALE 1), each replacing
+#: ezdxf's line type of that name (drawn for inches, 1.27 mm strokes): the dashed line, strokes 2-8 mm long 1-2 mm
+#: apart; the thin dash-dot line of axes and centres, strokes 5-30 mm long 3-5 mm apart with a dot midway.
+LINETYPES = {"DASHED": (5.0, -1.5), "DASHDOT": (15.0, -1.5, 0.0, -1.5)}
+#: The layers of the dynamics sheet's diagrams (:mod:`linkwork.io.dxf_dynamics`): the curves in the main line, the
+#: axes and the tangents thin (the tangents dashed).
+CURVES, AXES, TANGENTS = "DIAGRAMS", "AXES", "TANGENTS"
+#: The layers in the thin dash-dot line: the paths of the joints' centres (the crank pin's circle is a centre line).
+CENTRE_LINES = ("TRAJECTORIES",)
 #: Reductions 1:N of ГОСТ 2.302 a scheme is drawn at.
 REDUCTIONS = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0, 15.0, 20.0, 25.0, 40.0, 50.0, 75.0, 100.0, 200.0, 400.0, 500.0, 1000.0)
 #: How many drawings a sheet of each format holds; more go on the next sheet (A4: two, one above the other).
@@ -109,6 +123,7 @@ class SheetDrawing:
     title: str
     draw: Callable[[Any, float, float], tuple[np.ndarray, str]]
     big: bool = False
+    scale: str = ""  # a scheme's 1:N, for the title block's «Масштаб», set when it is drawn
 
 
 @dataclass
@@ -155,12 +170,18 @@ class GostSheet:
     def __init__(self, fmt: str, block: TitleBlock, sheet: int, sheets: int, lang: str) -> None:
         self.width, self.height = FORMATS[fmt]
         self.fmt, self.lang = fmt, lang
-        styles = {**SCHEME, **VECTORS, **FORCES}
-        self.doc, self.msp = _document(styles, extra={"FORMAT": 7, "FRAME": 7, "TITLE_BLOCK": 7, "POINTS": 7})
+        # keyed apart: the plans' and the force plans' kinds share names ("normal", "tangential"), not layers
+        styles = {
+            f"{what}.{kind}": s for what, d in (("s", SCHEME), ("v", VECTORS), ("f", FORCES)) for kind, s in d.items()
+        }
+        layers = ("FORMAT", "FRAME", "TITLE_BLOCK", "POINTS", CURVES, AXES, TANGENTS)
+        self.doc, self.msp = _document(styles, extra=dict.fromkeys(layers, 7))
         self.doc.header["$LWDISPLAY"] = 1
         self.doc.header["$LTSCALE"] = 1.0
-        for name, weight in (("FORMAT", THIN), ("FRAME", THICK), ("TITLE_BLOCK", THICK)):
+        for name, weight in (("FORMAT", THIN), ("FRAME", THICK), ("TITLE_BLOCK", THICK), (CURVES, THICK)):
             self.doc.layers.get(name).dxf.lineweight = weight
+        gost_lines(self.doc)
+        self.doc.layers.get(TANGENTS).dxf.linetype = "DASHED"
         self.placed: list[Placed] = []
         self._frame()
         self._title_block(block, sheet, sheets)
@@ -263,6 +284,8 @@ class GostSheet:
     def _grid(self, region: np.ndarray, count: int, cols: int) -> list[Cell]:
         """``count`` cells in ``cols`` columns over ``region`` ``[x0, y0, x1, y1]`` (mm), row by row from the top,
         ``GAP`` apart; a cell that would reach into the title block stops above it."""
+        if count == 0:
+            return []
         x0, y0, x1, y1 = region
         rows = -(-count // cols)
         w, h = (x1 - x0 + GAP) / cols, (y1 - y0 + GAP) / rows
@@ -280,7 +303,8 @@ class GostSheet:
         """Each drawing in a cell of its own, none overlapping another or the title block.  On a landscape sheet a
         ``big`` first drawing (a scheme) at the top of the field's left half, the last third of the others below
         it where it leaves a third of the height, the rest in a grid over the right half down to the title
-        block; on an upright sheet every drawing in a column above the title block."""
+        block; on an upright sheet every drawing in a column above the title block.  The title block's «Масштаб»
+        is the first scheme's reduction (1:5)."""
         rest = list(drawings)
         x0, y0, x1, y1 = self.field + np.array([GAP, GAP, -GAP, -GAP])
         top_of_block = float(self.block_box[3]) + GAP
@@ -302,6 +326,7 @@ class GostSheet:
             cols = 1 if len(rest) <= 2 or self.width < self.height else 2
         for d, cell in zip(rest, self._grid(region, len(rest), cols), strict=True):
             self._put(d, cell)
+        self._word(next((d.scale for d in drawings if d.scale), ""), (176.0, 27.5), LABEL, 18.0)
 
     def _put(self, d: SheetDrawing, cell: Cell) -> np.ndarray:
         """Draw ``d`` into a block of its own, the largest that fits ``cell`` (its box measured by ezdxf, its texts
@@ -325,9 +350,7 @@ class GostSheet:
         return self.placed[-1].box
 
     def _drawn(self, block: Any, d: SheetDrawing, w: float, h: float) -> np.ndarray:
-        """Draw ``d`` into ``block`` within ``w`` x ``h`` mm with its heading; returns its box as ezdxf measures it."""
-        from ezdxf import bbox
-
+        """Draw ``d`` into ``block`` within ``w`` x ``h`` mm with its heading; returns its box (:func:`drawn_box`)."""
         box, scales = d.draw(block, w, h - HEADING)
         left, top = float(box[0]), float(box[3]) + 2.0
         if scales:
@@ -337,11 +360,70 @@ class GostSheet:
         size = TITLE if text_size(d.title, TITLE / CAP)[0] <= w else LABEL  # a narrow cell's title smaller
         at = (left, top + LABEL + 2.0 + size / 2)
         add_text(block, d.title, at, size, "NOTES", left=True, squeeze=_squeeze(d.title, size, w))
-        found = bbox.extents(block)
-        return np.array([found.extmin.x, found.extmin.y, found.extmax.x, found.extmax.y])
+        return drawn_box(block)
 
     def save(self, path: str | Path) -> Path:
         return _save(self.doc, path)
+
+
+#: MTEXT's attachment points (1 top left ... 9 bottom right) as the alignments of a TEXT.
+ATTACHMENT = dict(
+    enumerate(("TOP_LEFT", "TOP_CENTER", "TOP_RIGHT", "MIDDLE_LEFT", "MIDDLE_CENTER", "MIDDLE_RIGHT"), start=1)
+) | {7: "BOTTOM_LEFT", 8: "BOTTOM_CENTER", 9: "BOTTOM_RIGHT"}
+
+
+def text_box(entity: Any) -> np.ndarray:
+    """The box ``[x0, y0, x1, y1]`` (mm) of a TEXT or a one-line MTEXT as drawn: an MTEXT measured as the TEXT of
+    its plain text (its subscripts inline) in its style, height and place (ezdxf measures an MTEXT without a column
+    width as though it broke the line at every space, which a CAD program does not)."""
+    from ezdxf import bbox
+    from ezdxf.entities import Text
+    from ezdxf.enums import TextEntityAlignment
+
+    if entity.dxftype() == "MTEXT":
+        dxf = entity.dxf
+        text = Text.new(dxfattribs={"style": dxf.style, "height": dxf.char_height, "layer": dxf.layer})
+        text.doc = entity.doc
+        text.dxf.text = entity.plain_text(split=False).replace("^", "")
+        align = TextEntityAlignment[ATTACHMENT.get(dxf.attachment_point, "TOP_LEFT")]
+        text.set_placement(dxf.insert, align=align)
+        entity = text
+    found = bbox.extents([entity], fast=False)
+    return np.array([found.extmin.x, found.extmin.y, found.extmax.x, found.extmax.y])
+
+
+def drawn_box(entities: Any) -> np.ndarray:
+    """The box ``[x0, y0, x1, y1]`` (mm) of ``entities`` (a block, a layout), each text as :func:`text_box`."""
+    from ezdxf import bbox
+
+    items = list(entities)
+    lines = [e for e in items if e.dxftype() not in ("TEXT", "MTEXT")]
+    boxes = [text_box(e) for e in items if e.dxftype() in ("TEXT", "MTEXT")]
+    if lines:
+        found = bbox.extents(lines)
+        if found.has_data:
+            boxes.append(np.array([found.extmin.x, found.extmin.y, found.extmax.x, found.extmax.y]))
+    every = np.array(boxes)
+    return np.r_[every[:, :2].min(0), every[:, 2:].max(0)]
+
+
+def gost_lines(doc: Any) -> None:
+    """The lines of ГОСТ 2.303 in ``doc``: the line types :data:`LINETYPES`, every dashed layer in the dashed line,
+    :data:`CENTRE_LINES` in the dash-dot line, these and a layer that gives no weight the thin line's."""
+    for name, pattern in LINETYPES.items():
+        if name in doc.linetypes:
+            doc.linetypes.remove(name)
+        total = float(sum(abs(x) for x in pattern))
+        doc.linetypes.add(name, pattern=[total, *pattern], description=f"ГОСТ 2.303 {name.lower()}")
+    for layer in doc.layers:
+        if layer.dxf.name in CENTRE_LINES:
+            layer.dxf.linetype = "DASHDOT"
+        elif layer.dxf.linetype.startswith("LW_"):
+            layer.dxf.linetype = "DASHED"
+        if layer.dxf.lineweight < 0 or layer.dxf.linetype != "Continuous":  # a broken line is a thin one
+            layer.dxf.lineweight = min(THIN, layer.dxf.lineweight) if layer.dxf.lineweight > 0 else THIN
+    for name in [lt.dxf.name for lt in doc.linetypes if lt.dxf.name.startswith("LW_")]:
+        doc.linetypes.remove(name)
 
 
 def add_text(
@@ -375,17 +457,24 @@ def _metres(lang: str) -> str:
     return t("sheet.m_per_mm", lang)
 
 
-def scheme_drawing(title: str, draw: Callable[..., np.ndarray], extent: np.ndarray, lang: str) -> SheetDrawing:
+def scheme_drawing(
+    title: str, draw: Callable[..., np.ndarray], extent: np.ndarray, lang: str, em: float
+) -> SheetDrawing:
     """A drawing of a scheme of ``extent`` (m, ``[x0, y0, x1, y1]``) drawn by ``draw(layout, mm=, em=)`` at the
-    largest reduction of ГОСТ 2.302 that fits."""
+    largest reduction of ГОСТ 2.302 that fits; its labels :data:`LABEL` mm high, or lower, down to
+    :data:`SMALLEST`, where the reduction draws the font size ``em`` (m) their places were found for smaller."""
     span = np.asarray(extent[2:] - extent[:2], dtype=float)
+    drawing = SheetDrawing(title, lambda layout, w, h: (np.zeros(4), ""), big=True)
 
     def fit(layout: Any, w: float, h: float) -> tuple[np.ndarray, str]:
         n = reduction(max(span[0] / w, span[1] / h) * 1.08)
-        box = draw(layout, mm=1000.0 / n, em=LABEL / CAP)
+        size = min(LABEL, max(SMALLEST, CAP * em * 1000.0 / n))  # the labels as large as their places allow
+        box = draw(layout, mm=1000.0 / n, em=size / CAP)
+        drawing.scale = f"1:{number(n, lang)}"
         return box, f"μl = {number(n / 1000, lang)} {_metres(lang)}"
 
-    return SheetDrawing(title, fit, big=True)
+    drawing.draw = fit
+    return drawing
 
 
 def _fitted(
@@ -507,7 +596,9 @@ def legend_drawing(plans: ForcePlans, index: int, lang: str) -> SheetDrawing:
             y = -row * 2.2 * LABEL
             layer = FORCES[kind].layer
             layout.add_line(
-                (0.0, y), (15.0, y), dxfattribs={"layer": layer, **({"linetype": "DASHED"} if dashed else {})}
+                (0.0, y),
+                (15.0, y),
+                dxfattribs={"layer": layer, **({"linetype": "DASHED", "lineweight": THIN} if dashed else {})},
             )
             _head(layout, np.array([0.0, y]), np.array([15.0, y]), 3.0, layer)
             what = text(f"force.{kind}", lang) + (f" ({', '.join(loads)})" if kind == "load" and loads else "")
@@ -523,10 +614,12 @@ def legend_drawing(plans: ForcePlans, index: int, lang: str) -> SheetDrawing:
 
 def kinematics_drawings(twelve: Kinematics, position: int, cycle: Kinematics, lang: str) -> list[SheetDrawing]:
     """The drawings of the kinematic analysis: the plan of the twelve positions, the velocity and acceleration
-    plans of ``position``."""
+    plans of ``position`` and the kinematic scheme there (on a landscape sheet under the plan of positions)."""
     from linkwork.scene.positions import positions_scene
+    from linkwork.scene.scheme import scheme_scene
 
     scene = positions_scene(twelve, cycle=cycle)
+    at = scheme_scene(twelve, at=[position], cycle=cycle)
     where = t("at_position", lang, position=position)
     drawings = [
         scheme_drawing(
@@ -534,9 +627,17 @@ def kinematics_drawings(twelve: Kinematics, position: int, cycle: Kinematics, la
             lambda layout, mm, em: draw_positions(layout, scene, mm=mm, em=em),
             scene.extent(),
             lang,
+            scene.scheme.em,
         ),
         plan_drawing(twelve, position, "velocity", t("sheet.velocity", lang) + where, lang),
         plan_drawing(twelve, position, "acceleration", t("sheet.acceleration", lang) + where, lang),
+        scheme_drawing(
+            t("sheet.scheme", lang) + where,
+            lambda layout, mm, em: draw_scheme(layout, at, position, trajectories=False, mm=mm, em=em),
+            at.extent(position),
+            lang,
+            at.em,
+        ),
     ]
     return drawings
 
@@ -558,6 +659,7 @@ def kinetostatics_drawings(
             lambda layout, mm, em: draw_scheme(layout, scene, index, trajectories=False, mm=mm, em=em),
             scene.extent(index),
             lang,
+            scene.em,
         )
     ]
     for j, g in enumerate(plans.groups):
@@ -597,11 +699,15 @@ def write_sheets(
     lang: str = "en",
     fmt: str = "A1",
     block: TitleBlock | None = None,
+    dynamics: Dynamics | None = None,
+    pdf: bool = True,
 ) -> list[Path]:
-    """The sheets of the kinematic analysis at ``position`` of ``twelve`` and of the kinetostatic analysis at sample
-    ``index`` of ``plans`` and ``lever`` (``named`` in the titles) on format ``fmt`` with the title block ``block``,
-    ``sheet_1.dxf``, ``sheet_2.dxf``... into ``folder`` (on A1 and A2 one sheet each, on A3 four drawings a sheet,
-    on A4 two: :data:`CAPACITY`), numbered in their title blocks; returns their paths."""
+    """The sheets of the kinematic analysis at ``position`` of ``twelve``, of the kinetostatic analysis at sample
+    ``index`` of ``plans`` and ``lever`` (``named`` in the titles) and of the ``dynamics`` (where given: the
+    steady cycle of :func:`linkwork.dynamics`) on format ``fmt`` with the title block ``block``, ``sheet_1.dxf``,
+    ``sheet_2.dxf``... into ``folder`` (on A1 and A2 one sheet each, on A3 four drawings a sheet, on A4 two:
+    :data:`CAPACITY`), numbered in their title blocks, and (``pdf``) the same sheets drawn as the pages of
+    ``sheets.pdf`` (:func:`linkwork.io.sheet_pdf.write_pdf`); returns their paths."""
     require("ezdxf", purpose=PURPOSE)
     block = block or TitleBlock()
     name = twelve.mechanism.name
@@ -609,10 +715,19 @@ def write_sheets(
         (t("sheet.kinematics", lang), kinematics_drawings(twelve, position, cycle, lang)),
         (t("sheet.kinetostatics", lang), kinetostatics_drawings(plans, lever, index, named, cycle, lang)),
     ]
+    if dynamics is not None:
+        from linkwork.io.dxf_dynamics import dynamics_drawings
+
+        parts.append((t("sheet.dynamics", lang), dynamics_drawings(dynamics, lang)))
     pages = [(what, d[k : k + CAPACITY[fmt]]) for what, d in parts for k in range(0, len(d), CAPACITY[fmt])]
-    out = []
+    sheets, out = [], []
     for number_, (what, drawings) in enumerate(pages, start=1):
         sheet = GostSheet(fmt, _titled(block, name, what), number_, len(pages), lang)
         sheet.place(drawings)
+        sheets.append(sheet)
         out.append(sheet.save(Path(folder) / f"sheet_{number_}.dxf"))
+    if pdf:
+        from linkwork.io.sheet_pdf import write_pdf
+
+        out.append(write_pdf(sheets, Path(folder) / "sheets.pdf"))
     return out

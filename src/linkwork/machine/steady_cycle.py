@@ -92,6 +92,12 @@ class Dynamics:
         """Time (s) from rest until the mean speed of the turns stays within 2 % of its final value."""
         return self.startup.startup_time()
 
+    def cycle_speed(self, sign: float) -> tuple[np.ndarray, np.ndarray]:
+        """The crank's drive angles (rad) and speed (rad/s) over the steady cycle, ``(N,)`` each, the last sample
+        closing the turn; ``sign`` +1 where the crank turns counter-clockwise, -1 clockwise."""
+        _, psi, omega = self.motion.cycle()
+        return self.reduced.angle[0] + sign * (self.motion.cycle_start + psi), omega
+
     @property
     def delta(self) -> float:
         """Coefficient of speed fluctuation of the steady cycle."""

@@ -199,13 +199,22 @@ def sections(run: Any, at12: Forces, cycle: Any, f: Forces) -> tuple[list[str], 
 
 def _sheets(run: Any, cycle: Any, plans: Any, lv: Any, at: Where) -> None:
     """The drawing sheets of the course project (:mod:`linkwork.io.dxf_sheet`), ``figures/sheet_1.dxf`` (the
-    kinematics at the plans' position), ``sheet_2.dxf`` (the kinetostatics at ``at``), more on A3 and A4."""
+    kinematics at the plans' position), ``sheet_2.dxf`` (the kinetostatics at ``at``), ``sheet_3.dxf`` (the
+    dynamics of a file with a machine, as the dynamics section found them), more on A3 and A4, and
+    ``figures/sheets.pdf``, the same sheets."""
+    from linkwork.errors import LinkworkError
     from linkwork.io.dxf_sheet import sheet_options, write_sheets
 
     fmt, block = sheet_options(run.mech)
     folder = run.folder / "figures"
     twelve, first, named = cycle.twelve, cycle.drawn[0], at.name(run)
-    write_sheets(twelve, first, cycle.kin, plans, lv, at.index, named, folder, run.lang, fmt, block)
+    dynamics = None
+    if run.mech.motor_gear is not None:
+        try:
+            dynamics = run.study.dynamics  # found once, by the dynamics section
+        except LinkworkError:
+            dynamics = None  # the dynamics section says why
+    write_sheets(twelve, first, cycle.kin, plans, lv, at.index, named, folder, run.lang, fmt, block, dynamics)
 
 
 def _kinematic_plans(run: Any, at: Where, where: str) -> list[str]:
