@@ -49,7 +49,7 @@ DEGREES = (15.0, 30.0, 45.0, 60.0, 90.0, 180.0)
 
 
 @dataclass(frozen=True)
-class Curve:
+class DiagramCurve:
     """A curve of a diagram: ``y`` over the diagram's ``x`` ``(N,)``; ``name`` in the legend; ``dashed``."""
 
     y: np.ndarray
@@ -103,7 +103,7 @@ def _width(text: str, height: float = SMALLEST) -> float:
 def diagram_drawing(
     title: str,
     x: np.ndarray,
-    curves: Sequence[Curve],
+    curves: Sequence[DiagramCurve],
     xaxis: Axis,
     yaxis: Axis,
     lang: str,
@@ -194,7 +194,7 @@ def _curve(layout: Any, u: np.ndarray, v: np.ndarray, layer: str, dashed: bool) 
             layout.add_lwpolyline(list(zip(u[run].tolist(), v[run].tolist(), strict=True)), dxfattribs=attrs)
 
 
-def _legend(layout: Any, curves: Sequence[Curve], top: float) -> None:
+def _legend(layout: Any, curves: Sequence[DiagramCurve], top: float) -> None:
     """Under the diagram, a stroke of each curve (dashed as drawn) and its name."""
     for row, c in enumerate(curves):
         y = top - (row + 0.5) * 2.2 * LABEL
@@ -240,17 +240,20 @@ def dynamics_drawings(result: Dynamics, lang: str) -> list[SheetDrawing]:
     deg = Axis("φ", t("unit.deg", lang), DEGREES)
     kgm2, nm, joule = t("sheet.unit.inertia", lang), t("unit.Nm", lang), t("unit.J", lang)
     drive = np.full_like(m, -red.mean_load)
-    moments = [Curve(m, t("sheet.dyn.load", lang)), Curve(drive, t("sheet.dyn.drive", lang), dashed=True)]
+    moments = [DiagramCurve(m, t("sheet.dyn.load", lang)), DiagramCurve(drive, t("sheet.dyn.drive", lang), dashed=True)]
     angles, omega = result.cycle_speed(_sign(result))
     at, along = _phi(result, angles[:-1])
     at, w = _closed(at, omega[:-1][along])
     mean = np.full_like(w, result.motion.last.omega_mean)
-    speeds = [Curve(w, t("sheet.dyn.omega", lang)), Curve(mean, t("sheet.dyn.omega_mean", lang), dashed=True)]
+    speeds = [
+        DiagramCurve(w, t("sheet.dyn.omega", lang)),
+        DiagramCurve(mean, t("sheet.dyn.omega_mean", lang), dashed=True),
+    ]
     drawings = [
         wittenbauer_drawing(result, inertia, energy, start, lang),
-        diagram_drawing(t("sheet.dyn.inertia_title", lang), phi, [Curve(j)], deg, Axis("J", kgm2), lang),
+        diagram_drawing(t("sheet.dyn.inertia_title", lang), phi, [DiagramCurve(j)], deg, Axis("J", kgm2), lang),
         diagram_drawing(t("sheet.dyn.moments_title", lang), phi, moments, deg, Axis("M", nm), lang),
-        diagram_drawing(t("sheet.dyn.energy_title", lang), phi, [Curve(e)], deg, Axis("ΔT", joule), lang),
+        diagram_drawing(t("sheet.dyn.energy_title", lang), phi, [DiagramCurve(e)], deg, Axis("ΔT", joule), lang),
         diagram_drawing(
             t("sheet.dyn.omega_title", lang), at, speeds, deg, Axis("ω", t("sheet.unit.rad_s", lang), zero=False), lang
         ),
@@ -266,7 +269,7 @@ def wittenbauer_drawing(
     (:func:`linkwork.machine.wittenbauer_tangents`, less ``start``) and the segment ab they cut on it."""
     from linkwork.machine import wittenbauer_tangents
 
-    curve = Curve(np.append(energy, energy[0]))
+    curve = DiagramCurve(np.append(energy, energy[0]))
     x = np.append(inertia, inertia[0])
     lines: list[tuple[np.ndarray, np.ndarray, str]] = []
     span = segment = None
