@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, sheet, where
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, sheet, text_width, where
 from linkwork.lang import t
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import plan_series
@@ -97,7 +97,7 @@ def render_plan(
     note = scene.scale_note(lang)
     if title:
         last = f"{title.rsplit(chr(10), 1)[-1]};  {note}"
-        fits = _width(last, 10) <= 0.95 * sh.fig.get_figwidth() * 72
+        fits = text_width(last, 10) <= 0.95 * sh.fig.get_figwidth() * 72
         sh.ax.set_title(f"{title}{';  ' if fits else chr(10)}{note}", fontsize=10)  # the note on a line of its own
     else:
         sh.ax.set_title(note, fontsize=9)
@@ -169,21 +169,11 @@ WIDE, LEGEND = 5.6, 8.5
 SHEET_LETTERS = 9.0
 
 
-def _width(text: str, size: float, dpi: float = 100.0) -> float:
-    """Width (points) of one line of ``text`` set in matplotlib's font at ``size`` points, as Agg draws it at
-    ``dpi`` (the glyphs' hinting makes text relatively wider at fewer pixels)."""
-    from matplotlib.backends.backend_agg import RendererAgg
-    from matplotlib.font_manager import FontProperties
-
-    pixels = RendererAgg(1, 1, dpi).get_text_width_height_descent(text, FontProperties(size=size), False)[0]
-    return float(pixels) * 72.0 / dpi
-
-
 def _columns(names: list[str], width: float) -> int:
     """The most columns, three at most, in which a legend of ``names`` is at most ``width`` points wide (its
     columns filled as matplotlib fills them: the first ones one longer)."""
     for columns in (3, 2):
-        parts = np.array_split(np.array([_width(n, LEGEND) for n in names] or [0.0]), columns)
+        parts = np.array_split(np.array([text_width(n, LEGEND) for n in names] or [0.0]), columns)
         used = sum(float(p.max()) + 3.0 * LEGEND for p in parts if len(p)) + 1.2 * LEGEND * (len(parts) - 1)
         if used + 0.8 * LEGEND <= width:
             return columns

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
-from linkwork.lang import t
+from linkwork.lang import russian_numbers, t
 from linkwork.scene.geometry import text_runs
 from linkwork.scene.style import Style
 from linkwork.units import turn_deg
@@ -127,10 +127,25 @@ def dashes(style: Style) -> Any:
     return (0, style.dash) if style.dash else "solid"
 
 
+def text_width(text: str, size: float, dpi: float = 100.0) -> float:
+    """Width (points) of one line of ``text`` set in matplotlib's font at ``size`` points, as Agg draws it at
+    ``dpi`` (the glyphs' hinting makes text relatively wider at fewer pixels)."""
+    from matplotlib.backends.backend_agg import RendererAgg
+    from matplotlib.font_manager import FontProperties
+
+    pixels = RendererAgg(1, 1, dpi).get_text_width_height_descent(text, FontProperties(size=size), False)[0]
+    return float(pixels) * 72.0 / dpi
+
+
+def numbers(text: str, lang: str) -> str:
+    """``text`` with its numbers as ``lang`` writes them (:func:`linkwork.lang.russian_numbers` in Russian)."""
+    return russian_numbers(text) if lang == "ru" else text
+
+
 def where(angle: float, position: int | str | None, lang: str) -> str:
     """The line under a drawing's title: ``position 9, crank at 178.8°`` (``crank at 178.8°`` without a
     ``position``), the crank's drive ``angle`` (rad) to the x axis, in ``lang``."""
-    deg = f"{turn_deg(angle):.1f}".replace(".", "," if lang == "ru" else ".")
+    deg = numbers(f"{turn_deg(angle):.1f}", lang)
     return (
         t("drawing.crank", lang, angle=deg)
         if position is None
