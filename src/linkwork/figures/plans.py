@@ -92,7 +92,8 @@ def render_plan(
     names = [kind_name(k, scene.kind, lang) for k in kinds]
     columns = _columns(names, WIDE * 72)
     rows = -(-len(kinds) // columns) if legend else 0
-    sh = sheet(scene.extent(index), top=0.8, bottom=0.25 + 0.24 * rows, width=WIDE, height=6.0, ax=ax, least=WIDE)
+    width, height = _room(scene, index)
+    sh = sheet(scene.extent(index), top=0.8, bottom=0.25 + 0.24 * rows, width=width, height=height, ax=ax, least=WIDE)
     draw_vectors(sh, scene, index)
     note = scene.scale_note(lang)
     if title:
@@ -104,6 +105,36 @@ def render_plan(
     if legend and kinds and ax is None:
         _legend(sh, kinds, names, columns)
     return sh.fig
+
+
+#: A plan's figure is made larger than :data:`WIDE` by :data:`HIGH` inches, up to :data:`LARGEST`, as far as its
+#: short side (across the plan's longest direction) needs to print :data:`SHORT` inches wide: a thin plan's
+#: vectors from the pole apart.
+HIGH, LARGEST, SHORT = 6.0, (7.5, 10.0), 10.0 / 25.4
+
+
+def _room(scene: PlanScene, index: int) -> tuple[float, float]:
+    """The widest and tallest (inches) the drawing of the plan of position ``index`` may take: :data:`WIDE` by
+    :data:`HIGH`, more (up to :data:`LARGEST`) where its short side would print under :data:`SHORT`."""
+    box = scene.extent(index)
+    span = box[2:] - box[:2]
+    need = SHORT / max(_short_side(scene, index), 1e-12)  # inches per mm of the sheet
+    base = min(WIDE / span[0], HIGH / span[1]) if np.all(span > 0) else 0.0
+    if not need > base:
+        return WIDE, HIGH
+    return float(np.clip(span[0] * need, WIDE, LARGEST[0])), float(np.clip(span[1] * need, HIGH, LARGEST[1]))
+
+
+def _short_side(scene: PlanScene, index: int) -> float:
+    """The plan's extent across its longest direction (mm of the sheet): the smaller side of the least rectangle
+    along its principal axes that holds every end of its vectors."""
+    pts = scene.ends[index].reshape(-1, 2)
+    pts = pts[np.isfinite(pts).all(-1)]
+    if len(pts) < 2:
+        return 0.0
+    axes = np.linalg.svd(pts - pts.mean(0), full_matrices=False)[2]
+    along = (pts - pts.mean(0)) @ axes.T
+    return float(np.min(along.max(0) - along.min(0)))
 
 
 def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
