@@ -199,4 +199,4 @@ def test_every_force_of_the_lever_is_drawn_or_listed_under_it_with_its_value():
         if name in left:
             assert left[name] == pytest.approx(size, rel=1e-12)
             assert f"{name} = {size:.4g} Н".replace(".", ",") in note
-    assert any(name.startswith("Фи") for name in left)
+    assert any(name.startswith("Φ") for name in left)

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, sheet, text_width, where
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, room, sheet, text_width, where
 from linkwork.lang import t
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import plan_series
@@ -107,34 +107,14 @@ def render_plan(
     return sh.fig
 
 
-#: A plan's figure is made larger than :data:`WIDE` by :data:`HIGH` inches, up to :data:`LARGEST`, as far as its
-#: short side (across the plan's longest direction) needs to print :data:`SHORT` inches wide: a thin plan's
-#: vectors from the pole apart.
-HIGH, LARGEST, SHORT = 6.0, (7.5, 10.0), 10.0 / 25.4
+#: The height of a plan's drawing, inches (larger for a thin plan: :func:`~linkwork.figures.sheet.room`).
+HIGH = 6.0
 
 
 def _room(scene: PlanScene, index: int) -> tuple[float, float]:
-    """The widest and tallest (inches) the drawing of the plan of position ``index`` may take: :data:`WIDE` by
-    :data:`HIGH`, more (up to :data:`LARGEST`) where its short side would print under :data:`SHORT`."""
-    box = scene.extent(index)
-    span = box[2:] - box[:2]
-    need = SHORT / max(_short_side(scene, index), 1e-12)  # inches per mm of the sheet
-    base = min(WIDE / span[0], HIGH / span[1]) if np.all(span > 0) else 0.0
-    if not need > base:
-        return WIDE, HIGH
-    return float(np.clip(span[0] * need, WIDE, LARGEST[0])), float(np.clip(span[1] * need, HIGH, LARGEST[1]))
-
-
-def _short_side(scene: PlanScene, index: int) -> float:
-    """The plan's extent across its longest direction (mm of the sheet): the smaller side of the least rectangle
-    along its principal axes that holds every end of its vectors."""
-    pts = scene.ends[index].reshape(-1, 2)
-    pts = pts[np.isfinite(pts).all(-1)]
-    if len(pts) < 2:
-        return 0.0
-    axes = np.linalg.svd(pts - pts.mean(0), full_matrices=False)[2]
-    along = (pts - pts.mean(0)) @ axes.T
-    return float(np.min(along.max(0) - along.min(0)))
+    """The widest and tallest (inches) the drawing of the plan of position ``index`` may take
+    (:func:`~linkwork.figures.sheet.room` of the ends of its vectors)."""
+    return room(scene.extent(index), scene.ends[index].reshape(-1, 2), (WIDE, HIGH))
 
 
 def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:

@@ -99,6 +99,36 @@ def _into(ax: Axes, box: tuple[float, float, float, float]) -> Sheet:
     return Sheet(fig, ax, scale * 72.0)
 
 
+#: A thin drawing (a plan, a lever nearly in one line) is made larger than its usual size, up to :data:`LARGEST`
+#: inches, as far as its short side (across its longest direction) needs to print :data:`SHORT` inches wide.
+LARGEST, SHORT = (7.5, 10.0), 10.0 / 25.4
+
+
+def room(extent: np.ndarray, points: np.ndarray, usual: tuple[float, float]) -> tuple[float, float]:
+    """The widest and tallest (inches) a drawing of ``extent`` ``[x0, y0, x1, y1]`` may take: ``usual``, more (up
+    to :data:`LARGEST`) where the short side of its ``points`` ``(K, 2)`` (:func:`short_side`) would print under
+    :data:`SHORT`."""
+    span = np.asarray(extent[2:], dtype=float) - np.asarray(extent[:2], dtype=float)
+    need = SHORT / max(short_side(points), 1e-12)  # inches per unit of the drawing
+    base = min(usual[0] / span[0], usual[1] / span[1]) if np.all(span > 0) else 0.0
+    if not need > base:
+        return usual
+    wide = float(np.clip(span[0] * need, usual[0], max(LARGEST[0], usual[0])))
+    return wide, float(np.clip(span[1] * need, usual[1], max(LARGEST[1], usual[1])))
+
+
+def short_side(points: np.ndarray) -> float:
+    """The extent of ``points`` ``(K, 2)`` across their longest direction: the smaller side of the least rectangle
+    along their principal axes that holds the finite ones."""
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    pts = pts[np.isfinite(pts).all(-1)]
+    if len(pts) < 2:
+        return 0.0
+    centred = pts - pts.mean(0)
+    along = centred @ np.linalg.svd(centred, full_matrices=False)[2].T
+    return float(np.min(along.max(0) - along.min(0)))
+
+
 def add_line(ax: Axes, x: Any, y: Any, **style: Any) -> Any:
     """A ``Line2D`` through ``x``, ``y`` (data units) of ``style``, added to ``ax`` as it is: a sheet's limits are
     set, so the axes' data limits are not updated (``ax.plot`` would, at a cost per line)."""
