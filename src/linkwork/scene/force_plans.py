@@ -166,6 +166,7 @@ def force_plan_scene(
     for j, f in enumerate(group.polygon):
         if _drawn(values[j], largest):
             drafts.append((vertices[j], vertices[j + 1], f, False))
+    drafts, links = _apart(drafts, em)
     for r in group.reactions:
         v = r.vector[variant, index]
         if r.part or not _drawn(v, largest):
@@ -184,11 +185,36 @@ def force_plan_scene(
         em,
         lang,
         drafts,
-        np.zeros((0, 2, 2)),
+        links,
         corners,
         ("",) * len(corners),
         angle,
     )
+
+
+#: Two arrows of a force plan one after the other along one line, the second back over the first (within
+#: :data:`COLLINEAR` rad), would cover each other: the second is drawn :data:`APART` ems beside its place, joined
+#: to the polygon's vertices by thin lines (``G3`` down and ``Φ3`` up at a slider on a vertical guide).
+COLLINEAR, APART = np.radians(3.0), 0.8
+
+
+def _apart(drafts: list[_Draft], em: float) -> tuple[list[_Draft], np.ndarray]:
+    """``drafts`` of a polygon with each arrow that runs back over the one before it (:data:`COLLINEAR`) moved
+    :data:`APART` ems to the right of that one (their names, each to its left, fall outside), and the thin lines
+    ``(K, 2, 2)`` that join it to its vertices."""
+    out: list[_Draft] = []
+    links: list[np.ndarray] = []
+    for s, e, f, resultant in drafts:
+        if out and not resultant and not out[-1][3] and np.allclose(out[-1][1], s):
+            a, b = out[-1][1] - out[-1][0], e - s
+            la, lb = float(np.hypot(*a)), float(np.hypot(*b))
+            if la > 0 and lb > 0 and a @ b < 0 and abs(a[0] * b[1] - a[1] * b[0]) < np.sin(COLLINEAR) * la * lb:
+                shift = APART * em * np.array([a[1], -a[0]]) / la  # to the right of the first: each name outside
+                links += [np.array([s, s + shift]), np.array([e + shift, e])]
+                out.append((s + shift, e + shift, f, resultant))
+                continue
+        out.append((s, e, f, resultant))
+    return out, np.array(links).reshape(-1, 2, 2)
 
 
 def _between(vertices: np.ndarray, vector: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray] | None:
