@@ -4,6 +4,7 @@ to a size given in the drawing's own units (as the scene places it)."""
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, cast
 
@@ -170,6 +171,61 @@ def text_width(text: str, size: float, dpi: float = 100.0) -> float:
 def numbers(text: str, lang: str) -> str:
     """``text`` with its numbers as ``lang`` writes them (:func:`linkwork.lang.russian_numbers` in Russian)."""
     return russian_numbers(text) if lang == "ru" else text
+
+
+def decimal_commas(fig: Figure, lang: str) -> Figure:
+    """``fig`` with the tick labels of every axes (and their offsets) written with the decimal sign of ``lang``: a
+    comma in Russian (``0,5``; ``0{,}5`` in mathtext, which would space a bare comma), as they are in English."""
+    if lang != "ru":
+        return fig
+    commas = _commas()
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if not isinstance(axis.get_major_formatter(), commas):
+                axis.set_major_formatter(commas(axis.get_major_formatter()))
+            if not isinstance(axis.get_minor_formatter(), commas):
+                axis.set_minor_formatter(commas(axis.get_minor_formatter()))
+    return fig
+
+
+def _comma(text: str) -> str:
+    """``text`` with a decimal comma between digits (``{,}`` inside mathtext)."""
+    import re
+
+    return re.sub(r"(?<=\d)\.(?=\d)", "{,}" if "$" in text else ",", text)
+
+
+@functools.cache
+def _commas() -> type:
+    """The tick formatter that writes what another writes with decimal commas (:func:`_comma`), made once
+    matplotlib is imported."""
+    from matplotlib.ticker import Formatter
+
+    class Commas(Formatter):
+        def __init__(self, inner: Any) -> None:
+            self.inner = inner
+
+        def __call__(self, x: float, pos: int | None = None) -> str:
+            return _comma(self.inner(x, pos))
+
+        def set_axis(self, axis: Any) -> None:
+            super().set_axis(axis)
+            self.inner.set_axis(axis)
+
+        def set_locs(self, locs: Any) -> None:
+            self.inner.set_locs(locs)
+
+        def get_offset(self) -> str:
+            return _comma(self.inner.get_offset())
+
+        def format_ticks(self, values: Any) -> list[str]:
+            self.set_locs(values)
+            return [_comma(v) for v in self.inner.format_ticks(values)]
+
+        def format_data_short(self, value: float) -> str:
+            return _comma(self.inner.format_data_short(value))
+
+    return Commas
 
 
 def where(angle: float, position: int | str | None, lang: str) -> str:
