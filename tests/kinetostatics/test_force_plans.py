@@ -79,7 +79,7 @@ def test_the_double_cut_shears_at_position_9_have_a_plan_by_the_method_for_each_
     names = {g.label: [p.name("ru") for p in g.polygon] for g in plans.groups}
     assert names["II(2,3) RRR"][0] == "R12τ" and names["II(2,3) RRR"][-2:] == ["R03n", "R12n"]
     assert names["II(4,5) RRP"][0] == "R34τ" and names["II(4,5) RRP"][-2:] == ["R05", "R34n"]
-    assert {"G4", "Фи4", "G5", "Фи5", "F5"} <= set(names["II(4,5) RRP"])
+    assert {"G4", "Φ4", "G5", "Φ5", "F5"} <= set(names["II(4,5) RRP"])
     assert {"R43", "R63"} <= set(names["II(2,3) RRR"])  # the reactions of the groups taken before it
     assert all(g.closure(9) <= 1e-12 for g in plans.groups)
 

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 
 from linkwork.angles import unwrap
+from linkwork.figures.sheet import decimal_commas
 from linkwork.lang import t
 from linkwork.motion.analysis import Output, coordinate, from_position_0, working, zero_angle
 from linkwork.motion.kinematic_analysis import direction
@@ -116,7 +117,7 @@ def kinematic_diagrams(kin: Kinematics, zero: float | None = None, lang: str = "
         _legend(axes[0], loc="best")
     _crank_axis(axes[-1], lang)
     fig.suptitle(t("title.kinematic_diagrams", lang, name=mech.name), fontsize=11)
-    return fig
+    return decimal_commas(fig, lang)
 
 
 def _at(mech: Mechanism, angle: float) -> Kinematics:
@@ -139,7 +140,7 @@ def motion_diagram(kin: Kinematics, point: str, zero: float | None = None, lang:
         _legend(ax, loc="best")
     _crank_axis(axes[-1], lang)
     fig.suptitle(t("title.point", lang, name=kin.mechanism.name, point=point), fontsize=11)
-    return fig
+    return decimal_commas(fig, lang)
 
 
 def link_angles(kin: Kinematics, zero: float | None = None, lang: str = "en") -> Figure:
@@ -167,7 +168,7 @@ def link_angles(kin: Kinematics, zero: float | None = None, lang: str = "en") ->
         fig.legend(handles=axes[0].lines, loc="outside right upper", fontsize=8)
     _crank_axis(axes[-1], lang)
     fig.suptitle(t("title.link_angles", lang, name=mech.name), fontsize=11)
-    return fig
+    return decimal_commas(fig, lang)
 
 
 def torque_diagram(forces: Forces, zero: float | None = None, lang: str = "en") -> Figure:
@@ -190,7 +191,7 @@ def torque_diagram(forces: Forces, zero: float | None = None, lang: str = "en") 
     _legend(ax, loc="best")
     _crank_axis(ax, lang)
     ax.set_title(t("title.driving_torque", lang, name=mech.name), fontsize=11)
-    return fig
+    return decimal_commas(fig, lang)
 
 
 def foundation_diagram(forces: Forces, zero: float | None = None, lang: str = "en") -> Figure:
@@ -215,7 +216,7 @@ def foundation_diagram(forces: Forces, zero: float | None = None, lang: str = "e
         _legend(ax, loc="best")
     _crank_axis(bottom, lang)
     fig.suptitle(t("title.foundation", lang, name=mech.name), fontsize=11)
-    return fig
+    return decimal_commas(fig, lang)
 
 
 def hodograph(
@@ -241,7 +242,7 @@ def hodograph(
     _grid(ax)
     ax.set_title(t("title.hodograph", lang, name=mech.name, joint=joint), fontsize=11)
     place_numbers(ax, marks, list(range(len(marks))))
-    return fig
+    return decimal_commas(fig, lang)
 
 
 def _marks(f: np.ndarray, phi: np.ndarray, order: np.ndarray) -> np.ndarray:
@@ -349,7 +350,7 @@ def run_diagram(run: Run, lang: str = "en") -> Figure:
         _grid(ax)
     a1.tick_params(labelbottom=False)
     fig.suptitle(t("title.simulate", lang), fontsize=11)
-    return fig
+    return decimal_commas(fig, lang)
 
 
 def dynamics_diagrams(result: Dynamics, zero: float | None = None, lang: str = "en") -> Figure:
@@ -398,7 +399,7 @@ def dynamics_diagrams(result: Dynamics, zero: float | None = None, lang: str = "
     if result.flywheel is None:
         _legend(a4, loc="best")
     fig.suptitle(t("title.dynamics", lang, delta=f"{result.delta:.4g}"), fontsize=11)
-    return fig
+    return decimal_commas(fig, lang)
 
 
 def _tangents(ax: Axes, result: Dynamics, e: float, eunit: str, lang: str) -> None:

@@ -14,9 +14,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from linkwork.figures.plans import LEGEND, _columns, _head
-from linkwork.figures.sheet import Sheet, add_line, sheet, where
+from linkwork.figures.sheet import Sheet, add_line, numbers, room, sheet, where
 from linkwork.lang import group_label, t
-from linkwork.scene.force_plans import FORCE_KINDS, ForceScene, force_plan_scene, lever_scene, short_note
+from linkwork.scene.force_plans import FORCE_KINDS, SMALL, ForceScene, force_plan_scene, lever_scene, short_note
 from linkwork.scene.style import FORCES, TEXT
 
 if TYPE_CHECKING:
@@ -35,7 +35,7 @@ def draw_forces(sh: Sheet, scene: ForceScene) -> None:
         add_line(sh.ax, [s[0], e[0]], [s[1], e[1]], color=lever.colour, lw=lever.width, zorder=2)
     for a in scene.arrows:
         style = FORCES.get(a.kind, FORCES["reaction"])
-        dash = (0, (4.0, 2.0)) if a.resultant or style.dash else "solid"
+        dash = SECOND if a.second else (0, (4.0, 2.0)) if a.resultant or style.dash else "solid"
         line = add_line(
             sh.ax,
             [a.start[0], a.end[0]],
@@ -67,13 +67,22 @@ def draw_forces(sh: Sheet, scene: ForceScene) -> None:
             )
 
 
-def _legend(fig: Figure, kinds: list[str], lang: str) -> None:
+#: The line of an arrow drawn to a lever's second scale μF2: dash-dotted.
+SECOND = (0, (6.0, 2.0, 1.0, 2.0))
+
+
+def _legend(fig: Figure, kinds: list[str], lang: str, seconds: dict[str, str] | None = None) -> None:
+    """The kinds of arrow under the figure; a kind drawn to a lever's scale of its own (``seconds``: the kind's
+    scale, or the words for each cell's) dash-dotted, with it."""
     from matplotlib.lines import Line2D
 
     if not kinds:
         return
     names = [t(f"force.{k}", lang) for k in kinds]
     handles = [Line2D([], [], color=FORCES[k].colour, lw=FORCES[k].width) for k in kinds]
+    for kind, scale in (seconds or {}).items():
+        names.append(f"{t(f'force.{kind}', lang)}, {scale}")
+        handles.append(Line2D([], [], color=FORCES[kind].colour, lw=FORCES[kind].width, ls=SECOND))
     columns = _columns(names, 0.9 * fig.get_figwidth() * 72)
     fig.legend(
         handles,
@@ -147,11 +156,15 @@ def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | str | N
     from linkwork.motion.plans import plan_series
 
     scene = lever_scene(lv, plan_series(kin)[0], index, lang=lang)
-    kinds = scene.kinds()
-    rows = -(-len(kinds) // 3)
+    kinds = [k for k in scene.kinds() if any(a.kind == k and not a.second for a in scene.arrows)]  # solid ones
+    rows = -(-(len(kinds) + len(scene.second_scales)) // 2)
     moment = float(lv.balancing[0, index])
     name = kin.mechanism.name
     note = "\n".join(textwrap.wrap(t("lever.scale", lang, plan=f"{scene.plan_scale:g}", scale=f"{scene.scale:g}"), 64))
+    if scene.second_scales:
+        size = f"{SMALL * scene.em:.1f}"
+        second = t("lever.second_note", lang, size=size, scales=scene.second_note(lang))
+        note += "\n" + "\n".join(textwrap.wrap(second, 64))
     note += "\n" + t("lever.moment", lang, moment=f"{moment:.6g}")
     left = short_note(scene, lang)
     if left:  # the forces too short to draw at this scale, with their values
@@ -159,10 +172,11 @@ def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | str | N
     angle = float(kin.angles[index])
     title = f"{t('lever.title', lang, name=name)}\n{where(angle, position, lang)}\n{note}"
     top = max(1.1, 0.3 + 0.17 * (title.count("\n") + 1))  # inches: the title's lines
-    sh = sheet(scene.extent(), top=top, bottom=0.3 + 0.24 * rows, width=5.6, height=6.0 + top - 1.1, least=5.6)
+    width, height = room(scene.extent(), scene.lines.reshape(-1, 2), (5.6, 6.0))
+    sh = sheet(scene.extent(), top=top, bottom=0.3 + 0.24 * rows, width=width, height=height + top - 1.1, least=5.6)
     draw_forces(sh, scene)
-    sh.ax.set_title(title, fontsize=9)
-    _legend(sh.fig, kinds, lang)
+    sh.ax.set_title(numbers(title, lang), fontsize=9)
+    _legend(sh.fig, kinds, lang, scene.kind_scales(lang))
     return sh.fig
 
 
@@ -205,11 +219,14 @@ def lever_sheet(lv: Lever, kin: Kinematics, lang: str = "en") -> Figure:
         centre = (boxes[k, :2] + boxes[k, 2:]) / 2
         draw_forces(sheet(np.concatenate([centre - half, centre + half]), ax=ax), scene)
         moment, scale = f"{float(lv.balancing[0, k]):.4g}", f"{scene.scale:g}"
-        ax.set_title(t("levers.cell", lang, position=k, moment=moment, scale=scale), fontsize=8)
+        title = t("levers.cell", lang, position=k, moment=moment, scale=scale)
+        title += f"\n{scene.second_note(lang)}" if scene.second_scales else ""
+        ax.set_title(numbers(title, lang), fontsize=8)
     note = t("levers.scale", lang, plan=f"{plan_scale:g}")
     fig.suptitle(f"{t('levers.title', lang, name=kin.mechanism.name, count=count)}\n{note}", fontsize=10)
     kinds = [k for k in FORCE_KINDS if any(k in s.kinds() for s in scenes)]
-    _legend(fig, kinds, lang)
+    seconds = {k: t("levers.second", lang) for s in scenes for k, _ in s.second_scales}
+    _legend(fig, kinds, lang, seconds)
     return fig
 
 

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, sheet, where
+from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, room, sheet, text_width, where
 from linkwork.lang import t
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import plan_series
@@ -92,18 +92,29 @@ def render_plan(
     names = [kind_name(k, scene.kind, lang) for k in kinds]
     columns = _columns(names, WIDE * 72)
     rows = -(-len(kinds) // columns) if legend else 0
-    sh = sheet(scene.extent(index), top=0.8, bottom=0.25 + 0.24 * rows, width=WIDE, height=6.0, ax=ax, least=WIDE)
+    width, height = _room(scene, index)
+    sh = sheet(scene.extent(index), top=0.8, bottom=0.25 + 0.24 * rows, width=width, height=height, ax=ax, least=WIDE)
     draw_vectors(sh, scene, index)
     note = scene.scale_note(lang)
     if title:
         last = f"{title.rsplit(chr(10), 1)[-1]};  {note}"
-        fits = _width(last, 10) <= 0.95 * sh.fig.get_figwidth() * 72
+        fits = text_width(last, 10) <= 0.95 * sh.fig.get_figwidth() * 72
         sh.ax.set_title(f"{title}{';  ' if fits else chr(10)}{note}", fontsize=10)  # the note on a line of its own
     else:
         sh.ax.set_title(note, fontsize=9)
     if legend and kinds and ax is None:
         _legend(sh, kinds, names, columns)
     return sh.fig
+
+
+#: The height of a plan's drawing, inches (larger for a thin plan: :func:`~linkwork.figures.sheet.room`).
+HIGH = 6.0
+
+
+def _room(scene: PlanScene, index: int) -> tuple[float, float]:
+    """The widest and tallest (inches) the drawing of the plan of position ``index`` may take
+    (:func:`~linkwork.figures.sheet.room` of the ends of its vectors)."""
+    return room(scene.extent(index), scene.ends[index].reshape(-1, 2), (WIDE, HIGH))
 
 
 def draw_vectors(sh: Sheet, scene: PlanScene, index: int) -> None:
@@ -169,21 +180,11 @@ WIDE, LEGEND = 5.6, 8.5
 SHEET_LETTERS = 9.0
 
 
-def _width(text: str, size: float, dpi: float = 100.0) -> float:
-    """Width (points) of one line of ``text`` set in matplotlib's font at ``size`` points, as Agg draws it at
-    ``dpi`` (the glyphs' hinting makes text relatively wider at fewer pixels)."""
-    from matplotlib.backends.backend_agg import RendererAgg
-    from matplotlib.font_manager import FontProperties
-
-    pixels = RendererAgg(1, 1, dpi).get_text_width_height_descent(text, FontProperties(size=size), False)[0]
-    return float(pixels) * 72.0 / dpi
-
-
 def _columns(names: list[str], width: float) -> int:
     """The most columns, three at most, in which a legend of ``names`` is at most ``width`` points wide (its
     columns filled as matplotlib fills them: the first ones one longer)."""
     for columns in (3, 2):
-        parts = np.array_split(np.array([_width(n, LEGEND) for n in names] or [0.0]), columns)
+        parts = np.array_split(np.array([text_width(n, LEGEND) for n in names] or [0.0]), columns)
         used = sum(float(p.max()) + 3.0 * LEGEND for p in parts if len(p)) + 1.2 * LEGEND * (len(parts) - 1)
         if used + 0.8 * LEGEND <= width:
             return columns

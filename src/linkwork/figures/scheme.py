@@ -14,10 +14,21 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from linkwork.figures.sheet import Sheet, add_line, add_patch, dashes, mathtext, round_length, sheet, where
+from linkwork.figures.sheet import (
+    Sheet,
+    add_line,
+    add_patch,
+    dashes,
+    mathtext,
+    numbers,
+    round_length,
+    sheet,
+    text_width,
+    where,
+)
 from linkwork.lang import t
 from linkwork.motion.kinematic_analysis import kinematics
-from linkwork.scene.positions import COUNT, position_angles, positions_scene
+from linkwork.scene.positions import COUNT, PositionsScene, position_angles, positions_scene
 from linkwork.scene.scheme import KINDS, Item, SchemeScene, scheme_scene
 from linkwork.scene.style import SCHEME, TEXT
 from linkwork.units import turn_deg
@@ -197,12 +208,17 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
     """The plan of positions: the mechanism at ``count`` positions from position 0 (the working slider
     at the high end of its stroke), every ``360 / count`` degrees in the direction of rotation, overlaid
     thin, with the trajectories of its points over ``kin``'s samples and the position numbers at the
-    crank pin and at the working point; the texts in ``lang``."""
+    crank pin and at the working point; the second extreme of the working member dashed where it is none of
+    the positions, both extremes lettered, the crank's turns over the working and idle strokes marked at its
+    pivot; the texts in ``lang``."""
     mech = kin.mechanism
     angles = position_angles(mech, count)
-    scene = positions_scene(kinematics(mech, angles), cycle=kin)
+    scene = positions_scene(kinematics(mech, angles), cycle=kin, lang=lang)
     s = scene.scheme
-    sh, box, bar = _overlay_sheet(scene, ax)
+    start = f"{turn_deg(angles[0]):.1f}"
+    turn = t("positions.ccw" if mech.drive_speed[0] >= 0 else "positions.cw", lang, angle=numbers(start, lang))
+    title = f"{t('positions.title', lang, name=mech.name, count=count)}\n{turn}"
+    sh, box, bar = _overlay_sheet(scene, ax, title)
     for k in range(1, len(angles)):
         draw_items(sh, s, k, frame=False, kinds=("bar", "plate", "pivot"), thin=0.45)
     draw_labels(sh, s, 0)
@@ -210,32 +226,59 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
         sh.ax.plot(scene.marks[:, 0], scene.marks[:, 1], "o", color=TEXT["position"], ms=2.0, zorder=4)
     for leader in scene.leaders:
         sh.ax.plot(leader[:, 0], leader[:, 1], color=TEXT["position"], lw=0.4, zorder=4)
-    for lab in scene.numbers:
+    _draw_extremes(sh, scene)
+    for lab in (*scene.numbers, *scene.letters, *scene.strokes):
         c = lab.centre[0]
         sh.ax.text(
             c[0],
             c[1],
-            lab.text,
+            mathtext(lab.text),
             ha="center",
             va="center",
             fontsize=0.85 * sh.font(s.em),
             color=TEXT["position"],
             zorder=5,
+            gid=f"position:{lab.text}",
         )
     scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em, lang)
-    turn = t("positions.ccw" if mech.drive_speed[0] >= 0 else "positions.cw", lang, angle=f"{turn_deg(angles[0]):.1f}")
-    sh.ax.set_title(f"{t('positions.title', lang, name=mech.name, count=count)}\n{turn}", fontsize=11)
+    sh.ax.set_title(title, fontsize=TITLE)
     return sh.fig
 
 
-def _overlay_sheet(scene: Any, ax: Axes | None) -> tuple[Any, np.ndarray, float]:
+#: The dashes of the second extreme's links where it is none of the positions, and of the idle stroke's arc.
+EXTREME_DASH = (0, (5, 2))
+
+
+def _draw_extremes(sh: Sheet, scene: PositionsScene) -> None:
+    """The second extreme's links dashed (where it is a pose of its own) and the arcs of the working stroke (solid)
+    and the idle one (dashed); gids ``extreme:kind:name`` and ``stroke:working``, ``stroke:idle``."""
+    s = scene.scheme
+    if scene.extreme >= scene.positions:
+        for it in s.items:
+            if it.link and it.kind in ("bar", "plate", "pivot"):
+                xy = s.placed(it, scene.extreme)
+                if np.isfinite(xy).all():
+                    artist = draw_item(sh.ax, it, xy, thin=0.6)
+                    artist.set_linestyle(EXTREME_DASH)
+                    artist.set_gid(f"extreme:{it.kind}:{it.name}")
+    for arc, kind, ls in zip(scene.arcs, ("working", "idle"), ("solid", EXTREME_DASH), strict=False):
+        add_line(sh.ax, arc[:, 0], arc[:, 1], color=TEXT["position"], lw=1.0, ls=ls, zorder=4, gid=f"stroke:{kind}")
+
+
+#: The size of a drawing's title, points.
+TITLE = 11.0
+
+
+def _overlay_sheet(scene: Any, ax: Axes | None, title: str = "") -> tuple[Any, np.ndarray, float]:
     """The sheet of a drawing of overlaid poses (the plan of positions, the limit positions), room for its scale
-    bar below, with the trajectories and the first pose drawn: the sheet, its box and the scale bar's length."""
+    bar below, with the trajectories and the first pose drawn: the sheet (wide enough for the lines of its
+    ``title``), its box and the scale bar's length."""
     s = scene.scheme
     box = scene.extent()
     bar = round_length(box[2] - box[0])
     box[1] -= 3.0 * s.em
-    sh = sheet(box, ax=ax, top=0.7)
+    least = max([5.0] + [text_width(line, TITLE) / 72 + 0.3 for line in title.split("\n")])
+    sh = sheet(box, ax=ax, top=0.7, least=least)
     draw_paths(sh, s.paths)
     draw_items(sh, s, 0)
     return sh, box, bar
@@ -247,11 +290,14 @@ def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Fi
     (:func:`~linkwork.scene.limits.limits_scene`); None where there are none."""
     from linkwork.scene.limits import limits_scene
 
-    scene = limits_scene(kin)
+    scene = limits_scene(kin, lang)
     if scene is None:
         return None
     s = scene.scheme
-    sh, box, bar = _overlay_sheet(scene, ax)
+    k = (math.pi + scene.theta) / (math.pi - scene.theta)
+    theta = numbers(f"{math.degrees(scene.theta):.2f}", lang)
+    title = t("limits.title", lang, name=s.name, member=scene.member, theta=theta, k=numbers(f"{k:.4f}", lang))
+    sh, box, bar = _overlay_sheet(scene, ax, title)
     draw_items(sh, s, 1, frame=False, kinds=("bar", "plate", "pivot", "block", "tool"), thin=0.45)
     draw_labels(sh, s, 0)
     for ray in scene.rays:
@@ -266,29 +312,39 @@ def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Fi
             gid="limits:ray",
         )
     add_line(sh.ax, scene.arc[:, 0], scene.arc[:, 1], color=TEXT["position"], lw=1.0, zorder=4, gid="limits:arc")
-    c = scene.label.centre[0]
-    sh.ax.text(
-        c[0],
-        c[1],
-        scene.label.text,
-        ha="center",
-        va="center",
-        fontsize=sh.font(s.em),
-        color=TEXT["position"],
-        zorder=5,
-        gid="limits:theta",
-    )
+    _draw_dimension(sh, scene.dimension, s.em)
+    texts = [(scene.label, "limits:theta"), *((lab, f"limits:{lab.text}") for lab in scene.letters)]
+    texts += [(scene.stroke, "limits:stroke")] if scene.stroke is not None else []
+    for lab, gid in texts:
+        c = lab.centre[0]
+        sh.ax.text(
+            c[0],
+            c[1],
+            mathtext(lab.text),
+            ha="center",
+            va="center",
+            fontsize=sh.font(s.em),
+            color=TEXT["position"],
+            zorder=5,
+            gid=gid,
+        )
     scale_bar(sh, (box[0] + s.em, box[1] + 1.2 * s.em), bar, s.em, lang)
-    k = (math.pi + scene.theta) / (math.pi - scene.theta)
-    sh.ax.set_title(
-        t(
-            "limits.title",
-            lang,
-            name=s.name,
-            member=scene.member,
-            theta=f"{math.degrees(scene.theta):.2f}",
-            k=f"{k:.4f}",
-        ),
-        fontsize=11,
-    )
+    sh.ax.set_title(title, fontsize=TITLE)
     return sh.fig
+
+
+def _draw_dimension(sh: Sheet, lines: np.ndarray, em: float) -> None:
+    """A dimension's extension lines and its dimension line (the last of ``lines`` ``(K, 2, 2)``) with an
+    arrowhead at each end, thin (gid ``limits:dimension``)."""
+    from matplotlib.patches import Polygon
+
+    for line in lines:
+        add_line(sh.ax, line[:, 0], line[:, 1], color="black", lw=0.6, zorder=4, gid="limits:dimension")
+    if len(lines):
+        a, b = lines[-1]
+        u = (b - a) / max(float(np.hypot(*(b - a))), 1e-300)
+        w = np.array([-u[1], u[0]])
+        size = min(0.8 * em, 0.3 * float(np.hypot(*(b - a))))
+        for tip, d in ((a, u), (b, -u)):
+            head = np.array([tip, tip + size * d + 0.25 * size * w, tip + size * d - 0.25 * size * w])
+            add_patch(sh.ax, Polygon(head, closed=True, fc="black", ec="none", zorder=4))

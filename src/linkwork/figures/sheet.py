@@ -4,12 +4,13 @@ to a size given in the drawing's own units (as the scene places it)."""
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
-from linkwork.lang import t
+from linkwork.lang import russian_numbers, t
 from linkwork.scene.geometry import text_runs
 from linkwork.scene.style import Style
 from linkwork.units import turn_deg
@@ -99,6 +100,36 @@ def _into(ax: Axes, box: tuple[float, float, float, float]) -> Sheet:
     return Sheet(fig, ax, scale * 72.0)
 
 
+#: A thin drawing (a plan, a lever nearly in one line) is made larger than its usual size, up to :data:`LARGEST`
+#: inches, as far as its short side (across its longest direction) needs to print :data:`SHORT` inches wide.
+LARGEST, SHORT = (7.5, 10.0), 10.0 / 25.4
+
+
+def room(extent: np.ndarray, points: np.ndarray, usual: tuple[float, float]) -> tuple[float, float]:
+    """The widest and tallest (inches) a drawing of ``extent`` ``[x0, y0, x1, y1]`` may take: ``usual``, more (up
+    to :data:`LARGEST`) where the short side of its ``points`` ``(K, 2)`` (:func:`short_side`) would print under
+    :data:`SHORT`."""
+    span = np.asarray(extent[2:], dtype=float) - np.asarray(extent[:2], dtype=float)
+    need = SHORT / max(short_side(points), 1e-12)  # inches per unit of the drawing
+    base = min(usual[0] / span[0], usual[1] / span[1]) if np.all(span > 0) else 0.0
+    if not need > base:
+        return usual
+    wide = float(np.clip(span[0] * need, usual[0], max(LARGEST[0], usual[0])))
+    return wide, float(np.clip(span[1] * need, usual[1], max(LARGEST[1], usual[1])))
+
+
+def short_side(points: np.ndarray) -> float:
+    """The extent of ``points`` ``(K, 2)`` across their longest direction: the smaller side of the least rectangle
+    along their principal axes that holds the finite ones."""
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    pts = pts[np.isfinite(pts).all(-1)]
+    if len(pts) < 2:
+        return 0.0
+    centred = pts - pts.mean(0)
+    along = centred @ np.linalg.svd(centred, full_matrices=False)[2].T
+    return float(np.min(along.max(0) - along.min(0)))
+
+
 def add_line(ax: Axes, x: Any, y: Any, **style: Any) -> Any:
     """A ``Line2D`` through ``x``, ``y`` (data units) of ``style``, added to ``ax`` as it is: a sheet's limits are
     set, so the axes' data limits are not updated (``ax.plot`` would, at a cost per line)."""
@@ -127,10 +158,80 @@ def dashes(style: Style) -> Any:
     return (0, style.dash) if style.dash else "solid"
 
 
+def text_width(text: str, size: float, dpi: float = 100.0) -> float:
+    """Width (points) of one line of ``text`` set in matplotlib's font at ``size`` points, as Agg draws it at
+    ``dpi`` (the glyphs' hinting makes text relatively wider at fewer pixels)."""
+    from matplotlib.backends.backend_agg import RendererAgg
+    from matplotlib.font_manager import FontProperties
+
+    pixels = RendererAgg(1, 1, dpi).get_text_width_height_descent(text, FontProperties(size=size), False)[0]
+    return float(pixels) * 72.0 / dpi
+
+
+def numbers(text: str, lang: str) -> str:
+    """``text`` with its numbers as ``lang`` writes them (:func:`linkwork.lang.russian_numbers` in Russian)."""
+    return russian_numbers(text) if lang == "ru" else text
+
+
+def decimal_commas(fig: Figure, lang: str) -> Figure:
+    """``fig`` with the tick labels of every axes (and their offsets) written with the decimal sign of ``lang``: a
+    comma in Russian (``0,5``; ``0{,}5`` in mathtext, which would space a bare comma), as they are in English."""
+    if lang != "ru":
+        return fig
+    commas = _commas()
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if not isinstance(axis.get_major_formatter(), commas):
+                axis.set_major_formatter(commas(axis.get_major_formatter()))
+            if not isinstance(axis.get_minor_formatter(), commas):
+                axis.set_minor_formatter(commas(axis.get_minor_formatter()))
+    return fig
+
+
+def _comma(text: str) -> str:
+    """``text`` with a decimal comma between digits (``{,}`` inside mathtext)."""
+    import re
+
+    return re.sub(r"(?<=\d)\.(?=\d)", "{,}" if "$" in text else ",", text)
+
+
+@functools.cache
+def _commas() -> type:
+    """The tick formatter that writes what another writes with decimal commas (:func:`_comma`), made once
+    matplotlib is imported."""
+    from matplotlib.ticker import Formatter
+
+    class Commas(Formatter):
+        def __init__(self, inner: Any) -> None:
+            self.inner = inner
+
+        def __call__(self, x: float, pos: int | None = None) -> str:
+            return _comma(self.inner(x, pos))
+
+        def set_axis(self, axis: Any) -> None:
+            super().set_axis(axis)
+            self.inner.set_axis(axis)
+
+        def set_locs(self, locs: Any) -> None:
+            self.inner.set_locs(locs)
+
+        def get_offset(self) -> str:
+            return _comma(self.inner.get_offset())
+
+        def format_ticks(self, values: Any) -> list[str]:
+            self.set_locs(values)
+            return [_comma(v) for v in self.inner.format_ticks(values)]
+
+        def format_data_short(self, value: float) -> str:
+            return _comma(self.inner.format_data_short(value))
+
+    return Commas
+
+
 def where(angle: float, position: int | str | None, lang: str) -> str:
     """The line under a drawing's title: ``position 9, crank at 178.8°`` (``crank at 178.8°`` without a
     ``position``), the crank's drive ``angle`` (rad) to the x axis, in ``lang``."""
-    deg = f"{turn_deg(angle):.1f}".replace(".", "," if lang == "ru" else ".")
+    deg = numbers(f"{turn_deg(angle):.1f}", lang)
     return (
         t("drawing.crank", lang, angle=deg)
         if position is None

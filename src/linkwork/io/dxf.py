@@ -75,8 +75,8 @@ def write_drawings(
     full = cycle if cycle is not None else kinematics(mech, steps=360)
     out = [write_scheme(scheme_scene(kin, at=[index], cycle=full), index, folder / "scheme.dxf", lang=lang)]
     twelve = kinematics(mech, position_angles(mech))
-    out.append(write_positions(positions_scene(twelve, cycle=full), folder / "positions.dxf", lang))
-    limits = limits_scene(full) if getattr(mech.spec, "requirements", None) else None
+    out.append(write_positions(positions_scene(twelve, cycle=full, lang=lang), folder / "positions.dxf", lang))
+    limits = limits_scene(full, lang) if getattr(mech.spec, "requirements", None) else None
     if limits is not None:
         out.append(write_limits(limits, folder / "limits.dxf", lang))
     valid = np.asarray(kin.valid_all[0])
@@ -117,7 +117,7 @@ def write_positions(scene: PositionsScene, path: str | Path, lang: str = "en") -
     s = scene.scheme
     doc, msp = _document(SCHEME, em=1000 * s.em)
     draw_positions(msp, scene)
-    note = f"{t('positions.title', lang, name=s.name, count=len(s.angles))}; 1:1, {t('unit.mm', lang)}"
+    note = f"{t('positions.title', lang, name=s.name, count=scene.positions)}; 1:1, {t('unit.mm', lang)}"
     _note(doc, msp, note, scene.extent() * 1000, 1000 * s.em, lang)
     return _save(doc, path)
 
@@ -131,8 +131,10 @@ def draw_positions(layout: Any, scene: PositionsScene, mm: float = 1000.0, em: f
     _items(layout, s, 0, mm=mm)
     for k in range(1, len(s.angles)):  # the other positions in thin lines (ГОСТ 2.303)
         _items(layout, s, k, kinds=("bar", "plate", "pivot"), frame=False, mm=mm, weight=THIN)
-    for lab in (*s.labels, *scene.numbers):
+    for lab in (*s.labels, *scene.numbers, *scene.letters, *scene.strokes):
         _text(layout, lab.text, lab.centre[0] * mm, em)
+    for arc in scene.arcs:
+        layout.add_lwpolyline([tuple(v) for v in arc * mm], dxfattribs={"layer": "LABELS"})
     for mark in scene.marks * mm:
         layout.add_circle(tuple(mark), 0.15 * em, dxfattribs={"layer": "MARKERS"})
     for leader in scene.leaders * mm:
@@ -148,9 +150,9 @@ def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path
     _paths(msp, s.paths)
     _items(msp, s, 0)
     _items(msp, s, 1, kinds=("bar", "plate", "pivot", "block", "tool"), frame=False)
-    for line in (*scene.rays, scene.arc):
+    for line in (*scene.rays, scene.arc, *scene.dimension):
         msp.add_lwpolyline([tuple(v) for v in line * 1000], dxfattribs={"layer": "LIMITS"})
-    for lab in (*s.labels, scene.label):
+    for lab in (*s.labels, scene.label, *scene.letters, *([scene.stroke] if scene.stroke else [])):
         _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
     k = (np.pi + scene.theta) / (np.pi - scene.theta)
     title = t(

@@ -3,7 +3,7 @@
 The graphical method takes the groups from the one farthest from the drive back to the driving link
 (the reverse of the order the positions are solved in).  Each group is cut free; the forces on it are
 
-* the weights ``G2`` at the centres of mass, the inertia forces ``Phi2 = -m2 a_S2`` (``Фи2``) there, and
+* the weights ``G2`` at the centres of mass, the inertia forces ``Phi2 = -m2 a_S2`` (``Φ2`` in Russian) there, and
   the inertia moments ``M_Phi2 = -J_S2 eps2`` (couples: they enter the moment equations, not the polygon);
 * the file's external loads on its links (``F5``, named after the load);
 * the reactions of the groups solved before it (``R43``: the force of link 4 on link 3), known now;
@@ -47,10 +47,10 @@ from linkwork.structure.model import Mechanism, PairType, point_labels
 SYMBOLS = {
     "R": ("R", "R"),
     "G": ("G", "G"),
-    "Phi": ("Phi", "Фи"),
+    "Phi": ("Phi", "Φ"),
     "F": ("F", "F"),
     "M": ("M", "M"),
-    "MPhi": ("MPhi", "MФи"),
+    "MPhi": ("MPhi", "MΦ"),
     "Fb": ("Fb", "Fу"),
 }
 
@@ -106,14 +106,14 @@ class PlanForce:
     pair: int = -1
 
     def name(self, lang: str = "en") -> str:
-        """The force's name in plain text: ``R12``, ``R12n``, ``R12τ``, ``G2``, ``Phi2`` (``Фи2`` in Russian)."""
+        """The force's name in plain text: ``R12``, ``R12n``, ``R12τ``, ``G2``, ``Phi2`` (``Φ2`` in Russian)."""
         symbol = SYMBOLS[self.symbol][1 if lang == "ru" else 0]
         return f"{symbol}{self.index}{'τ' if self.part == 't' else self.part}"
 
     def tex(self, lang: str = "en") -> str:
-        """The force's name as matplotlib's mathtext writes it: ``$R_{12}^{n}$``, ``$\\Phi_{и2}$``."""
+        """The force's name as matplotlib's mathtext writes it: ``$R_{12}^{n}$``, ``$\\Phi_{2}$``."""
         part = {"n": "^{n}", "t": r"^{\tau}", "'": "^{\\prime}", "''": "^{\\prime\\prime}"}.get(self.part, "")
-        sub = ("и" if lang == "ru" else "") + self.index
+        sub = self.index
         if self.symbol == "Phi":
             return f"$\\Phi_{{{sub}}}{part}$"
         if self.symbol == "MPhi":

@@ -4,7 +4,7 @@ A :class:`ForceScene` is one drawing of one position in millimetres of the sheet
 
 * a group's **force plan** (:func:`force_plan_scene`): the polygon of its forces head to tail from the
   origin, a force ``F`` (N) drawn ``F / scale`` mm long (``scale``: μF in N/mm), each named beside its
-  middle (``G2``, ``Фи2``, ``R12τ``...), then the reactions it gives (``R12 = R12n + R12τ``, the inner
+  middle (``G2``, ``Φ2``, ``R12τ``...), then the reactions it gives (``R12 = R12n + R12τ``, the inner
   joint's ``R32``) dashed between the polygon's vertices they join;
 * **Zhukovsky's lever** (:func:`lever_scene`): the velocity plan turned by 90 degrees (its lines thin, its
   points lettered), at the velocity plan's scale μv, and every force at its point's image, drawn to a
@@ -54,6 +54,7 @@ class ForceArrow:
     centre: np.ndarray
     value: float
     resultant: bool = False
+    second: bool = False  # drawn to the lever's scale of its kind (:attr:`ForceScene.second_scales`)
 
 
 @dataclass(frozen=True)
@@ -96,6 +97,18 @@ class ForceScene:
     dot_text: tuple[str, ...]
     dot_centres: np.ndarray
     left_out: tuple[tuple[str, float], ...] = ()  # a lever's forces too short to draw: (name, value N)
+    second_scales: tuple[tuple[str, float], ...] = ()  # a lever's kinds too short at μF: (kind, its scale N/mm)
+
+    def kind_scales(self, lang: str = "en") -> dict[str, str]:
+        """The lever's scales of the kinds too short at μF, each as written: ``{"inertia": "μΦ = 5 N/mm"}``."""
+        from linkwork.lang import t
+
+        unit = t("unit.N", lang) + "/" + t("unit.mm", lang)
+        return {k: f"μ{KIND_SYMBOL.get(k, 'F')} = {v:g} {unit}" for k, v in self.second_scales}
+
+    def second_note(self, lang: str = "en") -> str:
+        """The lever's scales of the kinds too short at μF: ``μG = 200 N/mm, μΦ = 5 N/mm``; empty where none is."""
+        return ", ".join(self.kind_scales(lang).values())
 
     def short(self) -> list[ForceArrow]:
         """The named arrows whose names are not drawn beside them (shorter than :data:`SHORT` ems on a plan)."""
@@ -153,6 +166,7 @@ def force_plan_scene(
     for j, f in enumerate(group.polygon):
         if _drawn(values[j], largest):
             drafts.append((vertices[j], vertices[j + 1], f, False))
+    drafts, links = _apart(drafts, em)
     for r in group.reactions:
         v = r.vector[variant, index]
         if r.part or not _drawn(v, largest):
@@ -171,11 +185,36 @@ def force_plan_scene(
         em,
         lang,
         drafts,
-        np.zeros((0, 2, 2)),
+        links,
         corners,
         ("",) * len(corners),
         angle,
     )
+
+
+#: Two arrows of a force plan one after the other along one line, the second back over the first (within
+#: :data:`COLLINEAR` rad), would cover each other: the second is drawn :data:`APART` ems beside its place, joined
+#: to the polygon's vertices by thin lines (``G3`` down and ``Φ3`` up at a slider on a vertical guide).
+COLLINEAR, APART = np.radians(3.0), 0.8
+
+
+def _apart(drafts: list[_Draft], em: float) -> tuple[list[_Draft], np.ndarray]:
+    """``drafts`` of a polygon with each arrow that runs back over the one before it (:data:`COLLINEAR`) moved
+    :data:`APART` ems to the right of that one (their names, each to its left, fall outside), and the thin lines
+    ``(K, 2, 2)`` that join it to its vertices."""
+    out: list[_Draft] = []
+    links: list[np.ndarray] = []
+    for s, e, f, resultant in drafts:
+        if out and not resultant and not out[-1][3] and np.allclose(out[-1][1], s):
+            a, b = out[-1][1] - out[-1][0], e - s
+            la, lb = float(np.hypot(*a)), float(np.hypot(*b))
+            if la > 0 and lb > 0 and a @ b < 0 and abs(a[0] * b[1] - a[1] * b[0]) < np.sin(COLLINEAR) * la * lb:
+                shift = APART * em * np.array([a[1], -a[0]]) / la  # to the right of the first: each name outside
+                links += [np.array([s, s + shift]), np.array([e + shift, e])]
+                out.append((s + shift, e + shift, f, resultant))
+                continue
+        out.append((s, e, f, resultant))
+    return out, np.array(links).reshape(-1, 2, 2)
 
 
 def _between(vertices: np.ndarray, vector: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray] | None:
@@ -217,17 +256,23 @@ def lever_scene(
     vectors = [f.vector[variant, index] for _, f in forces] + [lv.balancing_force[variant, index]]
     largest = max((float(np.hypot(*v)) for v in vectors if np.isfinite(v).all()), default=0.0)
     scale = drawing_scale(largest * 100.0 / 40.0) if scale is None else float(scale)
+    seconds = _second_scales([f.kind for _, f in forces], vectors[:-1], scale, em)
     drafts: list[_Draft] = []
+    scales: list[float] = []
     left_out: list[tuple[str, float]] = []
     for (at, f), v in zip(forces, vectors, strict=False):  # those too short to see left out (they need not close)
-        if _drawn(v, largest) and np.isfinite(at).all() and np.hypot(*v) / scale > 0.5 * em:
-            drafts.append((at, at + v / scale, f, False))
-        elif np.isfinite(v).all() and np.hypot(*v) > 0:
-            left_out.append((_name(f, lang), float(np.hypot(*v))))
+        size = float(np.hypot(*v)) if np.isfinite(v).all() else 0.0
+        each = scale if size / scale >= SMALL * em else seconds.get(f.kind, scale)
+        if _drawn(v, largest) and np.isfinite(at).all() and size / each > 0.5 * em:
+            drafts.append((at, at + v / each, f, False))
+            scales.append(each)
+        elif size > 0:
+            left_out.append((_name(f, lang), size))
     pin = lv.pin_image[variant, index] / plan_scale
     balancing = PlanForce("Fb", "", "", "balancing", 1, lv.balancing_force, lv.pin_image, np.zeros(1))
     if _drawn(vectors[-1], largest) and np.isfinite(pin).all():
         drafts.append((pin, pin + vectors[-1] / scale, balancing, False))
+        scales.append(scale)
     # the pole and the letters of the plan's points where a force acts (and the pin)
     shown = dict.fromkeys(["p", lv.pin] + [lf.label for lf in lv.forces])
     dots, texts = [np.zeros(2)], ["p"]
@@ -255,7 +300,36 @@ def lever_scene(
         tuple(texts),
         angle=float(velocity.angles[index]),
     )
-    return dataclasses.replace(scene, left_out=tuple(left_out))
+    arrows = tuple(
+        dataclasses.replace(a, value=a.value / scale * each, second=True) if each != scale else a
+        for a, each in zip(scene.arrows, scales, strict=True)
+    )
+    used = tuple((k, v) for k, v in seconds.items() if any(a.second and a.kind == k for a in arrows))
+    return dataclasses.replace(scene, arrows=arrows, left_out=tuple(left_out), second_scales=used)
+
+
+#: On a lever, a force shorter than this many ems at its scale μF is drawn to a scale of its kind (where that is at
+#: least :data:`FINER` times finer), which draws the largest of the kind's short ones :data:`SECOND_LENGTH` mm long:
+#: the weights and the inertia forces beside a cutting force a thousand times larger.  Only the moments of the
+#: forces about the pole balance on a lever, so each force may be drawn to any scale that is stated.
+SMALL, FINER, SECOND_LENGTH = 2.0, 4.0, 12.0
+
+#: The letter of a scale of a kind of force on a lever: μG of the weights, μΦ of the inertia forces.
+KIND_SYMBOL = {"weight": "G", "inertia": "Φ"}
+
+
+def _second_scales(kinds: list[str], vectors: list[np.ndarray], scale: float, em: float) -> dict[str, float]:
+    """The lever's scale (N/mm) of each kind of force of ``kinds`` whose ``vectors`` include some shorter than
+    :data:`SMALL` ems at ``scale``, where it is :data:`FINER` times finer, in the order of :data:`FORCE_KINDS`."""
+    out: dict[str, float] = {}
+    for kind in FORCE_KINDS:
+        sizes = np.array([float(np.hypot(*v)) for k, v in zip(kinds, vectors, strict=True) if k == kind])
+        small = sizes[np.isfinite(sizes) & (sizes > 0) & (sizes / scale < SMALL * em)]
+        if len(small):
+            second = drawing_scale(float(small.max()) * 100.0 / SECOND_LENGTH)
+            if second * FINER <= scale:
+                out[kind] = second
+    return out
 
 
 def _scene(
@@ -312,7 +386,7 @@ def _scene(
 
 def short_note(scene: ForceScene, lang: str = "en") -> str:
     """The line under a force plan naming its short arrows (:data:`SHORT`) with their values:
-    ``shorter than 3.5 mm: G6 = 294.3 N, Фи6 = 5.53 N`` (decimal commas in Russian); empty where none is."""
+    ``shorter than 3.5 mm: G6 = 294.3 N, Φ6 = 5.53 N`` (decimal commas in Russian); empty where none is."""
     from linkwork.lang import russian_numbers, t
 
     def listed(pairs: list[tuple[str, float]]) -> str:

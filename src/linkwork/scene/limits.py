@@ -10,14 +10,16 @@ and O B2 of the classical construction), the arc of theta between them and its v
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from linkwork.lang import russian_numbers, t
 from linkwork.motion.analysis import output_range, working
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.scene.geometry import bounds, text_size
+from linkwork.scene.labels import Obstacles, place_labels
 from linkwork.scene.scheme import Label, SchemeScene, scheme_scene
 
 if TYPE_CHECKING:
@@ -44,6 +46,14 @@ class LimitsScene:
         The crank's turn from the low extreme to the high one (rad, in its direction).
     label : Label
         ``theta = ...°`` beside the arc (``centre`` of shape (1, 2)).
+    letters : tuple of Label
+        The crank pin and the working member's point lettered at both extremes: primed at the high one (position
+        0 of the plan of positions, ``B′``), double-primed at the low one (``B″``).
+    dimension : ndarray, shape (K, 2, 2)
+        A slider's stroke H dimensioned: its two extension lines from the slider's point at the extremes, then
+        the dimension line between them (arrowheads at its ends); none for a rocker.
+    stroke : Label or None
+        ``H = ... mm`` beside the dimension line.
     """
 
     scheme: SchemeScene
@@ -53,22 +63,30 @@ class LimitsScene:
     theta: float
     turned: float
     label: Label
+    letters: tuple[Label, ...] = ()
+    dimension: np.ndarray = field(default_factory=lambda: np.zeros((0, 2, 2)))
+    stroke: Label | None = None
 
     def extent(self) -> np.ndarray:
         """``[x0, y0, x1, y1]`` of everything drawn, m."""
-        w, h = text_size(self.label.text, self.scheme.em)
-        c = self.label.centre[0]
+        boxes = []
+        for lab in (self.label, *self.letters, *([self.stroke] if self.stroke else [])):
+            w, h = text_size(lab.text, self.scheme.em)
+            c = lab.centre[0]
+            boxes.append(np.array([c - [w / 2, h / 2], c + [w / 2, h / 2]]))
         return bounds(
             self.scheme.extent(paths=True)[None],
             self.rays.reshape(-1, 2),
             self.arc,
-            np.array([c - [w / 2, h / 2], c + [w / 2, h / 2]]),
+            self.dimension.reshape(-1, 2),
+            *boxes,
         )
 
 
-def limits_scene(kin: Kinematics) -> LimitsScene | None:
+def limits_scene(kin: Kinematics, lang: str = "en") -> LimitsScene | None:
     """The limit positions of the first working member (:func:`linkwork.motion.analysis.working`) of a whole
-    turn ``kin``; None where the mechanism has no such member with two extremes, or no crank pin."""
+    turn ``kin``, a slider's stroke dimensioned (its text in ``lang``); None where the mechanism has no such
+    member with two extremes, or no crank pin."""
     from linkwork.scene.positions import _crank_pin
 
     mech = kin.mechanism
@@ -82,6 +100,7 @@ def limits_scene(kin: Kinematics) -> LimitsScene | None:
         return None
     both = kinematics(mech, np.array([low, high]))
     scheme = scheme_scene(both, at=[0], cycle=kin)
+    names = [str(n).split(".", 1)[1] for n in mech.point_names]
     k = int(mech.drive_pair[0])
     pivot = next(int(p) for p in mech.pair_points[k] if p >= 0 and mech.point_link[p] == 0)
     pts = both.points()
@@ -96,11 +115,73 @@ def limits_scene(kin: Kinematics) -> LimitsScene | None:
     t = a0 + sweep * np.linspace(0.0, 1.0, 33)
     arc = o + radius * np.column_stack([np.cos(t), np.sin(t)])
     theta = abs(sweep)
-    text = f"θ = {math.degrees(theta):.2f}°"
+    text = f"θ = {_number(math.degrees(theta), 2, lang)}°"
     w, h = text_size(text, scheme.em)
     # beside the arc's end, outside the wedge (clear of both rays however narrow theta is)
     side = a1 + math.copysign(math.pi / 2, sweep if sweep else 1.0)
     out = np.array([math.cos(side), math.sin(side)])
     centre = arc[-1] + out * (0.5 * abs(out[0]) * w + 0.5 * abs(out[1]) * h + 0.5 * scheme.em)
     turned = float(np.ravel(r.rising)[0])
-    return LimitsScene(scheme, members[0].name, rays, arc, theta, turned, Label(text, "position", 0, o, centre[None]))
+    scene = LimitsScene(scheme, members[0].name, rays, arc, theta, turned, Label(text, "position", 0, o, centre[None]))
+    if members[0].kind == "slider":
+        scene = _dimensioned(scene, pts[:, members[0].point], float(np.ravel(r.stroke)[0]), lang)
+    return _lettered(scene, pts, [pin, members[0].point], names)
+
+
+def _dimensioned(scene: LimitsScene, ends: np.ndarray, stroke: float, lang: str) -> LimitsScene:
+    """``scene`` with a slider's ``stroke`` (m) dimensioned between its point at the low and high extremes
+    ``ends`` ``(2, 2)``: the extension lines and the dimension line beside the stroke, away from the drawing's
+    middle, :data:`OFFSET` ems beyond the slider's block; the value above the line's middle."""
+    s = scene.scheme
+    d = ends[1] - ends[0]
+    length = float(np.hypot(*d))
+    if not length > 0:
+        return scene
+    u = d / length
+    n = np.array([-u[1], u[0]])
+    box = s.extent(paths=True)
+    if (ends.mean(0) - (box[:2] + box[2:]) / 2) @ n < 0:
+        n = -n
+    off = 3.0 * s.r + OFFSET * s.em
+    reach = off + 0.6 * s.em
+    lines = [np.array([e + 1.5 * s.r * n, e + reach * n]) for e in ends] + [ends + off * n]
+    text = t("limits.stroke", lang, value=_number(1000 * stroke, 1, lang))
+    w, h = text_size(text, s.em)
+    middle = ends.mean(0) + off * n
+    centre = middle + n * (0.5 * abs(n[0]) * w + 0.5 * abs(n[1]) * h + 0.4 * s.em)
+    return replace(scene, dimension=np.array(lines), stroke=Label(text, "position", 0, middle, centre[None]))
+
+
+#: Ems from a slider's block to the dimension line of its stroke.
+OFFSET = 2.0
+
+
+def _number(value: float, decimals: int, lang: str) -> str:
+    """``value`` to ``decimals`` places, with the decimal sign of ``lang``."""
+    text = f"{value:.{decimals}f}"
+    return russian_numbers(text) if lang == "ru" else text
+
+
+def _lettered(scene: LimitsScene, pts: np.ndarray, points: list[int], names: list[str]) -> LimitsScene:
+    """``scene`` with ``points`` (the crank pin, the slider's point; ``names`` of every point) lettered at the
+    high extreme (sample 1 of ``pts`` ``(2, P, 2)``: primed) and the low one (sample 0: double-primed), clear of
+    both poses' lines and of the texts placed before."""
+    from linkwork.scene.positions import FINE, _all_positions, _box
+
+    s = scene.scheme
+    wanted = [(f"{names[p]}{mark}", pts[k, p]) for p in points if p >= 0 for k, mark in ((1, "′"), (0, "″"))]
+    if not wanted:
+        return scene
+    named = {names[p] for p in points if p >= 0}  # lettered here: their plain names go
+    kept = tuple(lab for lab in s.labels if lab.text not in named)
+    earlier = [*kept, scene.label, *([scene.stroke] if scene.stroke else [])]
+    taken = np.array([_box(lab, s.em) for lab in earlier]).reshape(1, -1, 4)
+    anchors = np.array([a for _, a in wanted])[None]
+    sizes = np.array([text_size(text, s.em) for text, _ in wanted])
+    obstacles = _all_positions(s)
+    if len(scene.dimension):
+        obstacles = Obstacles(np.concatenate([obstacles.segments, scene.dimension[None]], 1), obstacles.circles)
+    gaps = np.full(len(wanted), 0.8 * s.r)
+    placed = place_labels(anchors, sizes, gaps, obstacles, pad=0.15 * s.em, taken=taken, directions=FINE)[0]
+    letters = tuple(Label(text, "position", 0, a, placed[j][None]) for j, (text, a) in enumerate(wanted))
+    return replace(scene, letters=letters, scheme=replace(s, labels=kept))

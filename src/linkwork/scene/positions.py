@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
+from linkwork.lang import russian_numbers, t
 from linkwork.motion.analysis import Output, coordinate, output_range, position_angles, transmission, working
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import plan_series
@@ -88,21 +89,56 @@ def best_position(kin: Kinematics, point: int | None = None) -> int:
 QUICK_RETURN = 1.05
 
 
+class StrokeAngles(NamedTuple):
+    """The crank's turns over the two strokes of the first working member (:func:`stroke_angles`).
+
+    Attributes
+    ----------
+    high, low : float
+        Drive angles (rad) at the high extreme (position 0) and at the low one.
+    working, idle : float
+        The crank's turn over the working stroke and over the idle one (rad, in the drive's direction; they
+        make a whole turn).
+    rising : bool
+        The working stroke runs from the low extreme to the high one (the slower stroke of a quick return that
+        rises); else from the high one (position 0) to the low one.
+    """
+
+    high: float
+    low: float
+    working: float
+    idle: float
+    rising: bool
+
+
+def stroke_angles(mech: Mechanism) -> StrokeAngles | None:
+    """The working and idle strokes of ``mech``'s first working member (:func:`~linkwork.motion.analysis.working`)
+    over a turn of 360 steps, its extremes refined between them: the slower stroke of a quick return (time ratio
+    above :data:`QUICK_RETURN`), else the stroke from position 0 (the high end: the knives closing, the ram going
+    down).  None where there is no working member with two extremes (a rocker that turns fully)."""
+    members = working(mech)
+    if not members:
+        return None
+    turn = output_range(kinematics(mech, steps=360), members[0])
+    rising, falling = float(turn.rising[0]), float(turn.falling[0])
+    if not (np.isfinite(rising) and np.isfinite(falling)):
+        return None
+    up = max(rising, falling) > QUICK_RETURN * min(rising, falling) and rising > falling
+    work, idle = (rising, falling) if up else (falling, rising)
+    return StrokeAngles(float(turn.at_high[0]), float(turn.at_low[0]), work, idle, up)
+
+
 def working_stroke(kin: Kinematics) -> np.ndarray:
     """Which samples of ``kin`` ``(A,)`` are on the working stroke of the first working member
-    (:func:`~linkwork.motion.analysis.working`): the slower stroke of a quick return (time ratio above
-    :data:`QUICK_RETURN`), else the stroke from position 0 (the high end: the knives closing, the ram going
-    down); every sample where the mechanism has no working member."""
+    (:func:`stroke_angles`; the falling one of a member without two extremes); every sample where the mechanism
+    has no working member."""
     mech = kin.mechanism
     members = working(mech)
     if not members:
         return np.ones(len(kin.angles), dtype=bool)
-    out = members[0]
-    rate = np.asarray(coordinate(kin, out)[1]).reshape(-1, len(kin.angles))[0]
-    turn = output_range(kinematics(mech, steps=360), out)
-    rising, falling = float(turn.rising[0]), float(turn.falling[0])
-    quick = np.isfinite(rising) and max(rising, falling) > QUICK_RETURN * min(rising, falling)
-    return np.asarray(rate > 0 if quick and rising > falling else rate < 0)
+    strokes = stroke_angles(mech)
+    rate = np.asarray(coordinate(kin, members[0])[1]).reshape(-1, len(kin.angles))[0]
+    return np.asarray(rate > 0 if strokes is not None and strokes.rising else rate < 0)
 
 
 #: Where a vector of the velocity plan that moves at all is shorter than this part of the plan's longest, the
@@ -135,13 +171,14 @@ def plan_positions(mech: Mechanism, kin: Kinematics | None = None) -> list[int]:
 
 @dataclass(frozen=True)
 class PositionsScene:
-    """The plan of positions: the scheme at every position, thin, with the position numbers.
+    """The plan of positions: the scheme at every position, thin, with the position numbers; the two extremes of
+    the working member lettered, and the crank's turns over its working and idle strokes marked at its pivot.
 
     Attributes
     ----------
     scheme : SchemeScene
         The scheme at the positions (its samples), its labels the names of the frame's points, its paths
-        the trajectories over the whole turn.
+        the trajectories over the whole turn; a last sample the second extreme where it is none of the positions.
     numbers : tuple of Label
         The position numbers at the crank pin and at the working point (``centre`` of shape (1, 2));
         positions whose points coincide share a label ("5, 7").  Along a straight stroke they stand in a
@@ -149,38 +186,167 @@ class PositionsScene:
     marks : ndarray, shape (M, 2)
         The numbered points at every position (a dot each), m.
     leaders : ndarray, shape (K, 2, 2)
-        Thin lines from a point to its number, m.
+        Thin lines from a point to its number (or to the value of a stroke's angle), m.
+    count : int
+        The numbered positions (the scheme's first samples); 0: all of the scheme's samples.
+    extreme : int
+        The scheme's sample at the second extreme of the working member (position 0 is the first); -1 where the
+        mechanism has no working member with two extremes.
+    letters : tuple of Label
+        The crank pin and the working member's point lettered at both extremes: primed at position 0 (``A′``),
+        double-primed at the other (``A″``).
+    arcs : tuple of ndarray, shape (K, 2)
+        The working stroke's arc and the idle stroke's, about the crank's pivot between its two extreme
+        positions, in the drive's direction, m.
+    strokes : tuple of Label
+        Their values beside them: ``φ_w = 186.4°`` and ``φ_i = 173.6°`` (``φ_р.х``, ``φ_х.х`` in Russian).
     """
 
     scheme: SchemeScene
     numbers: tuple[Label, ...]
     marks: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 2)))
     leaders: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 2, 2)))
+    count: int = 0
+    extreme: int = -1
+    letters: tuple[Label, ...] = ()
+    arcs: tuple[np.ndarray, ...] = ()
+    strokes: tuple[Label, ...] = ()
+
+    @property
+    def positions(self) -> int:
+        """How many positions are numbered."""
+        return self.count or len(self.scheme.angles)
 
     def extent(self) -> np.ndarray:
         """``[x0, y0, x1, y1]`` of everything drawn, m."""
         boxes = [self.scheme.extent(paths=True)]
-        for lab in self.numbers:
+        for lab in (*self.numbers, *self.letters, *self.strokes):
             w, h = text_size(lab.text, self.scheme.em)
             boxes.append(np.concatenate([lab.centre[0] - [w / 2, h / 2], lab.centre[0] + [w / 2, h / 2]]))
+        boxes += [np.concatenate([arc.min(0), arc.max(0)]) for arc in self.arcs]
         arr = np.array(boxes)
         return np.concatenate([arr[:, :2].min(0), arr[:, 2:].max(0)])
 
 
-def positions_scene(kin: Kinematics, cycle: Kinematics | None = None) -> PositionsScene:
+def positions_scene(kin: Kinematics, cycle: Kinematics | None = None, lang: str = "en") -> PositionsScene:
     """The plan of the positions of ``kin`` (its samples, numbered 0, 1, ...), with the trajectories over
-    ``cycle`` (a whole turn; see :func:`~linkwork.scene.scheme_scene`)."""
-    scheme = scheme_scene(kin, at=[0], cycle=cycle)
+    ``cycle`` (a whole turn; see :func:`~linkwork.scene.scheme_scene`), the extremes of the working member and
+    its strokes' angles (:func:`stroke_angles`) marked, their texts in ``lang``."""
     mech = kin.mechanism
+    count = len(kin.angles)
+    strokes = stroke_angles(mech)
+    extreme = -1 if strokes is None else _sample_at(kin.angles, strokes.low)
+    if extreme == count:
+        kin = kinematics(mech, np.append(np.asarray(kin.angles, dtype=float), strokes.low))  # type: ignore[union-attr]
+    scheme = scheme_scene(kin, at=[0], cycle=cycle)
     fixed = {name.split(".", 1)[1] for p, name in enumerate(mech.point_names) if mech.point_link[p] == 0}
     frame = tuple(lab for lab in scheme.labels if lab.kind == "point" and lab.text in fixed)
     scheme = dataclasses.replace(scheme, labels=_clear_of_every_position(scheme, frame))
     crank = _crank_pin(mech)
     points = [p for p in dict.fromkeys([crank, working_point(mech)]) if p >= 0]
     pts = kin.points()
-    marks = pts[:, points].reshape(-1, 2)
-    numbers, leaders = _numbers(scheme, pts, points)
-    return PositionsScene(scheme, numbers, marks[np.isfinite(marks).all(-1)], leaders)
+    marks = pts[:count, points].reshape(-1, 2)
+    numbers, leaders = _numbers(scheme, pts[:count], points)
+    out = PositionsScene(scheme, numbers, marks[np.isfinite(marks).all(-1)], leaders, count)
+    if strokes is None or crank < 0:
+        return out
+    return _extremes(out, mech, pts, extreme, strokes, lang)
+
+
+def _sample_at(angles: np.ndarray, angle: float) -> int:
+    """The sample of ``angles`` (drive angles, rad) within :data:`SAME` of ``angle``; their count if none is."""
+    off = np.abs((np.asarray(angles, dtype=float) - angle + np.pi) % (2 * np.pi) - np.pi)
+    return int(np.argmin(off)) if len(off) and off.min() < SAME else len(off)
+
+
+#: Drive angles closer than this (rad; a quarter of a degree) are one position.
+SAME = np.radians(0.25)
+
+
+def _member_point(mech: Mechanism) -> int:
+    """The point lettered at the working member's extremes: a slider's point on its guide, a rocker's joint
+    farthest from its pivot; -1 if none."""
+    members = working(mech)
+    if not members:
+        return -1
+    if members[0].kind == "slider":
+        return members[0].point
+    joints = [int(p) for pair in mech.pair_points for p in pair if p >= 0]
+    far = _farthest_from_pivot(mech, members[0], joints)
+    return -1 if far is None else far
+
+
+def _extremes(
+    scene: PositionsScene, mech: Mechanism, pts: np.ndarray, extreme: int, strokes: StrokeAngles, lang: str
+) -> PositionsScene:
+    """``scene`` with the crank pin and the working member's point lettered at both extremes (samples 0 and
+    ``extreme`` of ``pts`` ``(A, P, 2)``) and the arcs of the strokes' angles at the crank's pivot."""
+    scheme, em = scene.scheme, scene.scheme.em
+    lettered = [p for p in dict.fromkeys([_crank_pin(mech), _member_point(mech)]) if p >= 0]
+    short = [str(name).split(".", 1)[1] for name in mech.point_names]
+    wanted = [(f"{short[p]}{mark}", pts[k, p]) for p in lettered for k, mark in ((0, "′"), (extreme, "″"))]
+    arcs, values, middles = _stroke_arcs(mech, pts, extreme, strokes, lang)
+    taken = np.array([_box(lab, em) for lab in (*scheme.labels, *scene.numbers)]).reshape(1, -1, 4)
+    anchors = np.array([a for _, a in wanted] + middles)[None]
+    texts = [text for text, _ in wanted] + values
+    sizes = np.array([text_size(text, em) for text in texts])
+    centre = (scene.extent()[:2] + scene.extent()[2:]) / 2
+    away = anchors[0] - centre
+    prefer = away / np.maximum(np.hypot(*away.T), 1e-12)[:, None]
+    gaps = np.array([0.8 * scheme.r] * len(wanted) + [0.5 * em] * len(values))
+    placed = place_labels(
+        anchors, sizes, gaps, _all_positions(scheme), prefer[None], pad=0.15 * em, taken=taken, directions=FINE
+    )[0]
+    labels = [Label(text, "position", 0, anchors[0, j], placed[j][None]) for j, text in enumerate(texts)]
+    leaders = [
+        _leader(anchors[0, j], placed[j], sizes[j], scheme.r, em)
+        for j in range(len(texts))
+        if np.hypot(*(placed[j] - anchors[0, j])) > np.hypot(*sizes[j]) / 2 + scheme.r + 1.5 * em
+    ]
+    return dataclasses.replace(
+        scene,
+        extreme=extreme,
+        letters=tuple(labels[: len(wanted)]),
+        arcs=arcs,
+        strokes=tuple(labels[len(wanted) :]),
+        leaders=np.concatenate([scene.leaders, np.array(leaders).reshape(-1, 2, 2)]),
+    )
+
+
+#: Radius of the strokes' arcs about the crank's pivot, in crank lengths.
+ARC = 0.6
+
+
+def _stroke_arcs(
+    mech: Mechanism, pts: np.ndarray, extreme: int, strokes: StrokeAngles, lang: str
+) -> tuple[tuple[np.ndarray, ...], list[str], list[np.ndarray]]:
+    """The arcs of the working stroke and of the idle one about the crank's pivot, from the crank at one extreme
+    to the crank at the other in the drive's direction (the working one from position 0 unless it rises); their
+    values' texts in ``lang`` and the middles of the arcs."""
+    k = int(mech.drive_pair[0])
+    pivot = next(int(p) for p in mech.pair_points[k] if p >= 0 and mech.point_link[p] == 0)
+    o = pts[0, pivot]
+    arm = pts[0, _crank_pin(mech)] - o
+    radius = ARC * float(np.hypot(*arm))
+    sign = 1.0 if mech.drive_speed[0] >= 0 else -1.0
+    at_high = float(np.arctan2(arm[1], arm[0]))
+    first = at_high if not strokes.rising else at_high + sign * strokes.idle  # where the working stroke starts
+    arcs, middles = [], []
+    for start, turn in ((first, strokes.working), (first + sign * strokes.working, strokes.idle)):
+        t_ = start + sign * turn * np.linspace(0.0, 1.0, 1 + max(8, int(np.degrees(turn) // 4)))
+        arcs.append(o + radius * np.column_stack([np.cos(t_), np.sin(t_)]))
+        middles.append(arcs[-1][len(t_) // 2])
+    values = [
+        t(f"positions.{kind}", lang, angle=_degrees(turn, lang))
+        for kind, turn in (("working", strokes.working), ("idle", strokes.idle))
+    ]
+    return tuple(arcs), values, middles
+
+
+def _degrees(angle: float, lang: str) -> str:
+    """An angle (rad) in degrees to 0.1, with the decimal sign of ``lang``."""
+    text = f"{np.degrees(angle):.1f}"
+    return russian_numbers(text) if lang == "ru" else text
 
 
 def _clear_of_every_position(scheme: SchemeScene, labels: tuple[Label, ...]) -> tuple[Label, ...]:

@@ -1,0 +1,31 @@
+"""The Russian diagrams write their tick labels with a decimal comma (0,5), the English ones with a point; read back
+from the labels the figure draws."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+import linkwork as lw
+from drawing_checks import drawn_texts
+
+pytest.importorskip("matplotlib")
+
+from linkwork import figures  # noqa: E402
+
+
+def _ticks(fig):
+    texts = drawn_texts(fig)  # drawn: the tick labels are those of the axes' final limits
+    ticks = {id(t) for ax in fig.axes for t in (*ax.get_xticklabels(), *ax.get_yticklabels())}
+    return [re.sub(r"[${}]|\\mathdefault", "", t.get_text()) for t in texts if id(t) in ticks]
+
+
+@pytest.mark.parametrize(("lang", "sign", "other"), [("ru", ",", "."), ("en", ".", ",")])
+def test_the_tick_labels_write_the_decimal_sign_of_the_language(lang, sign, other):
+    kin = lw.kinematics("shears-slider-crank", steps=72)
+    ticks = _ticks(figures.link_angles(kin, lang=lang))
+    decimals = [s for s in ticks if re.search(r"\d[.,]\d", s)]
+    assert decimals, ticks  # the links' angular velocities have ticks with decimals
+    assert all(re.search(rf"\d{re.escape(sign)}\d", s) for s in decimals), decimals
+    assert not any(re.search(rf"\d{re.escape(other)}\d", s) for s in ticks), ticks

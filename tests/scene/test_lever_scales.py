@@ -1,0 +1,61 @@
+"""Zhukovsky's lever of the double-cut shears at position 3, under the 250 kN cut: the inertia forces and weights,
+thousands of times smaller than the cutting forces, drawn dash-dotted to a scale of their kind (μΦ, μG) stated in
+the legend and the title, each arrow as long as its force at that scale (read back from the drawing); the legend
+names every line style drawn; nothing overlaps."""
+
+from __future__ import annotations
+
+import functools
+import re
+
+import numpy as np
+import pytest
+
+import linkwork as lw
+from drawing_checks import drawn_texts, overlaps
+from linkwork.kinetostatics.zhukovsky import lever
+from linkwork.scene.positions import position_angles
+
+pytest.importorskip("matplotlib")
+
+from linkwork.figures.force_plans import SECOND, lever_figure  # noqa: E402
+
+
+@functools.cache
+def _shears():
+    mech = lw.compile(lw.load("double-cut-shears"))
+    kin = lw.kinematics(mech, position_angles(mech))
+    return kin, lever(lw.forces(kin))
+
+
+@pytest.mark.slow  # the shears' forces at the twelve positions: 5 to 20 s on the NumPy kernels
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_the_levers_small_forces_are_drawn_to_a_scale_of_their_kind(lang):
+    kin, lv = _shears()
+    fig = lever_figure(lv, kin, 3, 3, lang)
+    assert overlaps(fig) == []
+    texts = [t.get_text() for t in drawn_texts(fig)]
+    legend = [t.get_text() for t in fig.legends[0].get_texts()]
+    scales = {
+        m.group(1): float(m.group(2).replace(",", "."))
+        for s in legend
+        if (m := re.search(r"μ([GΦ]) = ([0-9.,]+) (?:N|Н)/(?:mm|мм)", s))
+    }
+    assert "Φ" in scales and "G" in scales, legend  # the inertia forces are on the lever, and in its legend
+    assert any("μΦ" in s for s in texts)  # and in the title
+    ax = fig.axes[0]
+    drawn = {line.get_gid(): line for line in ax.lines if line.get_gid()}
+    checked = 0
+    for lf in lv.forces:
+        f = lf.force
+        if f.kind not in ("inertia", "weight"):
+            continue
+        line = drawn.get(f"{f.kind}:{f.name(lang)}")
+        if line is None:
+            continue
+        xy = np.asarray(line.get_xydata())
+        scale = scales["Φ" if f.kind == "inertia" else "G"]
+        assert np.allclose((xy[1] - xy[0]) * scale, f.vector[0, 3], rtol=1e-9, atol=1e-9)
+        assert line._unscaled_dash_pattern == SECOND  # dash-dotted, as the legend says
+        checked += f.kind == "inertia"
+    assert checked >= 3  # Φ1, Φ2, Φ5, Φ7 drawn (the ones under 1.75 mm even at μΦ are listed in the title)
