@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import re
 
+import numpy as np
 import pytest
 
 pytest.importorskip("matplotlib")
@@ -80,8 +81,10 @@ def test_the_report_opens_with_the_requirements_and_the_limit_positions(slider_c
     import ezdxf
 
     doc = ezdxf.readfile(folder / "figures" / "limits.dxf")
-    assert len(doc.modelspace().query('LWPOLYLINE[layer=="LIMITS"]')) == 3
+    assert len(doc.modelspace().query('LWPOLYLINE[layer=="LIMITS"]')) == 3  # the two rays of theta and its arc
     msp = doc.modelspace()
+    stroke = [np.asarray(e.get_points("xy")) for e in msp.query('LWPOLYLINE[layer=="DIMENSIONS"]')]
+    assert stroke  # the slider's stroke H dimensioned: its extension lines and dimension line
     texts = [e.dxf.text for e in msp.query("TEXT")] + [e.plain_text() for e in msp.query("MTEXT")]
     drawn = f"θ = {theta:.2f}°"
     drawn = drawn.replace(".", ",") if lang == "ru" else drawn  # a decimal comma in Russian

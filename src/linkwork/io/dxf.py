@@ -144,14 +144,17 @@ def draw_positions(layout: Any, scene: PositionsScene, mm: float = 1000.0, em: f
 
 def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path:
     """The working member's limit positions, 1:1 in mm: the first whole, the second's links thin, the two lines
-    of theta from the crank's pivot (layer ``LIMITS``), its arc and value; its note in ``lang``."""
+    of theta from the crank's pivot (layer ``LIMITS``), its arc and value, a slider's stroke H dimensioned (layer
+    ``DIMENSIONS``); its note in ``lang``."""
     s = scene.scheme
-    doc, msp = _document(SCHEME, extra={"LIMITS": 7})
+    doc, msp = _document(SCHEME, extra={"LIMITS": 7, "DIMENSIONS": 7})
     _paths(msp, s.paths)
     _items(msp, s, 0)
     _items(msp, s, 1, kinds=("bar", "plate", "pivot", "block", "tool"), frame=False)
-    for line in (*scene.rays, scene.arc, *scene.dimension):
+    for line in (*scene.rays, scene.arc):
         msp.add_lwpolyline([tuple(v) for v in line * 1000], dxfattribs={"layer": "LIMITS"})
+    for line in scene.dimension:  # the stroke H: its extension lines, its dimension line and arrowheads
+        msp.add_lwpolyline([tuple(v) for v in line * 1000], dxfattribs={"layer": "DIMENSIONS"})
     for lab in (*s.labels, scene.label, *scene.letters, *([scene.stroke] if scene.stroke else [])):
         _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
     k = (np.pi + scene.theta) / (np.pi - scene.theta)

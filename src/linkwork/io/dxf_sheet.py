@@ -618,7 +618,7 @@ def kinematics_drawings(twelve: Kinematics, position: int, cycle: Kinematics, la
     from linkwork.scene.positions import positions_scene
     from linkwork.scene.scheme import scheme_scene
 
-    scene = positions_scene(twelve, cycle=cycle)
+    scene = positions_scene(twelve, cycle=cycle, lang=lang)
     at = scheme_scene(twelve, at=[position], cycle=cycle)
     where = t("at_position", lang, position=position)
     drawings = [
