@@ -53,6 +53,14 @@ def _is_unit(unit: str) -> bool:
     return True
 
 
+def _default(field: str) -> str:
+    """`` (default: the file's sizing: FIELD, else VALUE)`` for an option's help, from the one home of the defaults
+    (:class:`~linkwork.spec.schema.SizingSpec`)."""
+    from linkwork.spec.schema import SizingSpec
+
+    return f" (default: the file's sizing: {field}, else {SizingSpec.model_fields[field].default})"
+
+
 def _before_work(catalogue: str | None, synchronous: float | None, write: str | None, motor: bool) -> Catalogue | None:
     """The motor catalogue read and the ``--write`` destination checked before any computing: the catalogue
     (None: the bundled one), or exit code 2 with the reason."""
@@ -86,12 +94,15 @@ def size(
             "file's sizing: life, else 20000 h)"
         ),
     ] = None,
-    kind: Annotated[str, typer.Option(help="rolling bearings: ball or roller")] = "ball",
+    kind: Annotated[str | None, typer.Option(help=f"rolling bearings: ball or roller{_default('bearings')}")] = None,
     delta: Annotated[
         float | None,
         typer.Option(help="coefficient of speed fluctuation for the flywheel (default: the file's, else 0.05)"),
     ] = None,
-    reserve: Annotated[float, typer.Option(help="share of the breakdown torque the peak motor torque may reach")] = 0.8,
+    reserve: Annotated[
+        float | None,
+        typer.Option(help=f"share of the breakdown torque the peak motor torque may reach{_default('reserve')}"),
+    ] = None,
     catalogue: Annotated[
         str | None, typer.Option(help="a motor catalogue (CSV with the bundled one's columns)")
     ] = None,
@@ -99,20 +110,25 @@ def size(
         str | None, typer.Option(help='keep to motors of this synchronous speed, e.g. "1500 rpm"')
     ] = None,
     motor: Annotated[bool, typer.Option(help="choose the motor (--no-motor: bearings, pins and bolts only)")] = True,
-    steel: Annotated[str, typer.Option(help="steel grade of the pins (steels.csv)")] = "C45 normalised",
-    bush: Annotated[str, typer.Option(help="plain bush (bushes.csv)")] = "tin bronze CuSn12 greased",
-    width_ratio: Annotated[float, typer.Option(help="width / diameter of the pins sized")] = 1.0,
-    bolt_class: Annotated[str, typer.Option(help="property class of the foundation bolts")] = "5.6",
+    steel: Annotated[str | None, typer.Option(help=f"steel grade of the pins (steels.csv){_default('steel')}")] = None,
+    bush: Annotated[str | None, typer.Option(help=f"plain bush (bushes.csv){_default('bush')}")] = None,
+    width_ratio: Annotated[
+        float | None, typer.Option(help=f"width / diameter of the pins sized{_default('width_ratio')}")
+    ] = None,
+    bolt_class: Annotated[
+        str | None, typer.Option(help=f"property class of the foundation bolts{_default('bolt_class')}")
+    ] = None,
     write: Annotated[
         str | None, typer.Option(help="write the mechanism file with the chosen motor, gear and flywheel (.yaml)")
     ] = None,
     masses: Annotated[
-        str,
+        str | None,
         typer.Option(
-            help='"sized" (the default): from their sized steel sections (bars) and pins and guides (blocks), '
-            'iterated with the loads to a fixed point (--write writes them too); "file": as the file gives them'
+            help='"sized" (the default, unless the file\'s sizing: masses says "file"): from their sized steel '
+            "sections (bars) and pins and guides (blocks), iterated with the loads to a fixed point (--write writes "
+            'them too); "file": as the file gives them'
         ),
-    ] = "sized",
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Size the machine from its loads: motor, gear and flywheel, rolling and plain bearings, pins, bolts."""
@@ -121,12 +137,13 @@ def size(
     from linkwork.sizing.bearings import width_ratio_problem
 
     problems = [delta_problem(delta, "--delta")]
-    if kind not in ("ball", "roller"):
+    if kind is not None and kind not in ("ball", "roller"):
         problems.append(f'--kind: "ball" or "roller", got "{kind}"')
-    if not 0 < reserve <= 1:
+    if reserve is not None and not 0 < reserve <= 1:
         problems.append(f"--reserve: a share of the breakdown torque in (0, 1], got {reserve}")
-    problems.append(width_ratio_problem(width_ratio, "--width-ratio"))
-    if masses not in ("file", "sized"):
+    if width_ratio is not None:
+        problems.append(width_ratio_problem(width_ratio, "--width-ratio"))
+    if masses is not None and masses not in ("file", "sized"):
         problems.append(f'--masses: "file" or "sized", got "{masses}"')
     if write is not None and not write.endswith((".yaml", ".yml")):
         problems.append(f'--write "{write}": expected a .yaml file')
@@ -143,21 +160,24 @@ def size(
     mech = compile_or_exit(file_or_example)
     bar = _progress()
     try:
+        given = {
+            "life": life_s,
+            "bearings": kind,
+            "delta": delta,
+            "reserve": reserve,
+            "synchronous": sync,
+            "steel": steel,
+            "bush": bush,
+            "width_ratio": width_ratio,
+            "bolt_class": bolt_class,
+            "masses": masses,
+        }  # over the file's sizing: section, whose schema holds the defaults
         result = run(
             mech,
-            life_h=life_s / 3600 if life_s is not None else None,
-            kind=kind,
-            delta=delta,
-            reserve=reserve,
-            catalogue=cat if catalogue is not None else None,  # the bundled one said as such
-            synchronous=sync,
+            sizing={k: v for k, v in given.items() if v is not None},
             motor=motor,
-            steel=steel,
-            bush=bush,
-            width_ratio=width_ratio,
-            bolt_class=bolt_class,
+            catalogue=cat if catalogue is not None else None,  # the bundled one said as such
             progress=bar,
-            masses=masses,
             compile_spec=compile_spec,
         )
         written = _write(mech, result, write) if write is not None else None

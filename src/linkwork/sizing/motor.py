@@ -34,20 +34,12 @@ from linkwork.machine.drive import InductionMotor
 from linkwork.machine.flywheel import Flywheel
 from linkwork.machine.reduction import Reduced
 from linkwork.machine.steady_cycle import Dynamics, dynamics, with_flywheel_for
-from linkwork.sizing.common import Catalogue, Table, bundled, read_catalogue
+from linkwork.sizing.common import COLUMNS, Catalogue, Table, bundled, read_catalogue
 from linkwork.structure.model import Mechanism
 from linkwork.structure.records import MotorGear
 
 #: The columns of a motor catalogue, by name, with their SI units.
-MOTOR_COLUMNS = {
-    "power": "W",
-    "synchronous": "rad/s",
-    "speed": "rad/s",
-    "starting": "1",
-    "breakdown": "1",
-    "inertia": "kg*m^2",
-    "mass": "kg",
-}
+MOTOR_COLUMNS = COLUMNS["motors.csv"]
 
 RPM = 30 / math.pi
 
