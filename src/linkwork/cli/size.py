@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -134,9 +134,45 @@ def size(
     """Size the machine from its loads: motor, gear and flywheel, rolling and plain bearings, pins, bolts."""
     from linkwork.api import compile as compile_spec
     from linkwork.sizing import size as run
+
+    given = {"bearings": kind, "delta": delta, "reserve": reserve, "width_ratio": width_ratio, "masses": masses}
+    problems = _option_problems(given, write, motor, catalogue=catalogue, synchronous=synchronous)
+    check_options(*problems)
+    life_s = _quantity(life, "time", "--life", "20000 h")
+    sync = _quantity(synchronous, "angular_speed", "--synchronous", "1500 rpm")
+    cat = _before_work(catalogue, sync, write, motor)
+    mech = compile_or_exit(file_or_example)
+    bar = _progress()
+    try:
+        given |= {"life": life_s, "synchronous": sync, "steel": steel, "bush": bush, "bolt_class": bolt_class}
+        result = run(
+            mech,
+            sizing={k: v for k, v in given.items() if v is not None},  # over the file's sizing: section
+            motor=motor,
+            catalogue=cat if catalogue is not None else None,  # the bundled one said as such
+            progress=bar,
+            compile_spec=compile_spec,
+        )
+        written = _write(mech, result, write) if write is not None else None
+    except LinkworkError as exc:
+        _cleared(bar)
+        fail(exc)
+    _cleared(bar)
+    if as_json:
+        echo_json({**result.record(), **({"written": written} if written else {})})
+        return
+    _print(result, written)
+
+
+def _option_problems(
+    given: dict[str, Any], write: str | None, motor: bool, *, catalogue: str | None, synchronous: str | None
+) -> list[str | None]:
+    """What is wrong with the options of ``linkwork size``: the inputs ``given`` (the record's fields, None where
+    not given), the ``--write`` destination's name and the motor's options without the motor chosen."""
     from linkwork.sizing.bearings import width_ratio_problem
 
-    problems = [delta_problem(delta, "--delta")]
+    kind, reserve, width_ratio, masses = (given[k] for k in ("bearings", "reserve", "width_ratio", "masses"))
+    problems = [delta_problem(given["delta"], "--delta")]
     if kind is not None and kind not in ("ball", "roller"):
         problems.append(f'--kind: "ball" or "roller", got "{kind}"')
     if reserve is not None and not 0 < reserve <= 1:
@@ -153,42 +189,7 @@ def size(
         problems.append("--catalogue is the motors' catalogue: it needs the motor chosen (drop --no-motor)")
     if synchronous is not None and not motor:
         problems.append("--synchronous keeps to motors of that speed: it needs the motor chosen (drop --no-motor)")
-    check_options(*problems)
-    life_s = _quantity(life, "time", "--life", "20000 h")
-    sync = _quantity(synchronous, "angular_speed", "--synchronous", "1500 rpm")
-    cat = _before_work(catalogue, sync, write, motor)
-    mech = compile_or_exit(file_or_example)
-    bar = _progress()
-    try:
-        given = {
-            "life": life_s,
-            "bearings": kind,
-            "delta": delta,
-            "reserve": reserve,
-            "synchronous": sync,
-            "steel": steel,
-            "bush": bush,
-            "width_ratio": width_ratio,
-            "bolt_class": bolt_class,
-            "masses": masses,
-        }  # over the file's sizing: section, whose schema holds the defaults
-        result = run(
-            mech,
-            sizing={k: v for k, v in given.items() if v is not None},
-            motor=motor,
-            catalogue=cat if catalogue is not None else None,  # the bundled one said as such
-            progress=bar,
-            compile_spec=compile_spec,
-        )
-        written = _write(mech, result, write) if write is not None else None
-    except LinkworkError as exc:
-        _cleared(bar)
-        fail(exc)
-    _cleared(bar)
-    if as_json:
-        echo_json({**result.record(), **({"written": written} if written else {})})
-        return
-    _print(result, written)
+    return problems
 
 
 def _print(result: Sizing, written: str | None) -> None:

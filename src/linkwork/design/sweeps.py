@@ -253,14 +253,8 @@ def sweep(
     varies, requests = _checked(mech, vary, metrics, options, out)
     job = _Job.of(mech, make_plan(varies, sampling, samples, seed), requests, steps, chunk_size)
     chunks = _Chunks(job, out, resume, on_chunk, progress)
-    log = str(attempts) if attempts is not None else None
-    in_process = scheduler is None and (workers == 0 or (workers is None and job.plan.n_variants <= IN_PROCESS))
     try:
-        if in_process:
-            for c in chunks.todo():
-                chunks.store(*chunk_task(job.task(c), attempts=log))
-        elif chunks.todo():
-            _on_dask(job, chunks.todo(), chunks.store, connect(workers, scheduler, connect_timeout, dashboard), log)
+        _run_chunks(job, chunks, options, str(attempts) if attempts is not None else None, dashboard)
     except BaseException:
         chunks.abandon()
         raise
@@ -492,6 +486,17 @@ class _Chunks:
 
 
 # ---------------------------------------------------------------- the chunks on Dask
+
+
+def _run_chunks(job: _Job, chunks: _Chunks, options: _Options, log: str | None, dashboard: bool) -> None:
+    """The chunks left to do, in this process (up to :data:`IN_PROCESS` variants by default, or ``workers=0``) or
+    on Dask (a local cluster, or the scheduler of ``options``), each stored as it comes back."""
+    workers, scheduler = options.workers, options.scheduler
+    if scheduler is None and (workers == 0 or (workers is None and job.plan.n_variants <= IN_PROCESS)):
+        for c in chunks.todo():
+            chunks.store(*chunk_task(job.task(c), attempts=log))
+    elif chunks.todo():
+        _on_dask(job, chunks.todo(), chunks.store, connect(workers, scheduler, options.connect_timeout, dashboard), log)
 
 
 def _on_dask(

@@ -253,21 +253,8 @@ def size(
     sized = _sized_masses(mech, rules, steps, compile_spec)
     mech = sized.mechanism if sized is not None else mech
     parts = _parts(mech, rules, steps)
-    choice = None  # last: the runs of the machine take the longest, and the other parts' problems come first
-    if motor:
-        from linkwork.machine.reduction import reduced
-
-        choice = choose_motor(
-            mech,
-            reduced(mech),
-            delta,
-            efficiency=efficiency,
-            reserve=inp.reserve,
-            catalogue=cat,
-            synchronous=inp.synchronous,
-            progress=progress,
-        )
-    else:
+    choice = _motor(mech, inp, delta, efficiency, cat, progress) if motor else None  # last: the runs take longest
+    if not motor:
         parts.missing["motor"] = "not asked"
     chosen = {
         "delta": delta,
@@ -279,18 +266,42 @@ def size(
         "synchronous_rpm": inp.synchronous * 30 / math.pi if inp.synchronous is not None else None,
     }
     inputs = _inputs_record(inp, chosen if motor else {}, steps, parts.crank, sized)
+    p = parts
     return Sizing(
         mech.name or "mechanism",
         inputs,
         choice,
-        parts.bearings,
-        parts.pins,
-        parts.bolts,
-        parts.missing,
-        parts.links,
-        parts.shaft,
+        p.bearings,
+        p.pins,
+        p.bolts,
+        p.missing,
+        p.links,
+        p.shaft,
         sized,
-        parts.proportions,
+        p.proportions,
+    )
+
+
+def _motor(
+    mech: Mechanism,
+    inp: SizingSpec,
+    delta: float,
+    efficiency: float,
+    cat: Catalogue | None,
+    progress: Callable[[int, int], None] | None,
+) -> MotorChoice:
+    """The motor, gear and flywheel chosen from the catalogue ``cat`` for ``mech`` (:func:`choose_motor`)."""
+    from linkwork.machine.reduction import reduced
+
+    return choose_motor(
+        mech,
+        reduced(mech),
+        delta,
+        efficiency=efficiency,
+        reserve=inp.reserve,
+        catalogue=cat,
+        synchronous=inp.synchronous,
+        progress=progress,
     )
 
 
