@@ -104,6 +104,9 @@ MAX_CATALOGUE_ROWS = 1_000
 #: Smallest coefficient of speed fluctuation a flywheel is sized for (the inertia grows as 1/delta).
 MIN_DELTA = 1e-4
 
+#: The width / diameter of a pin or bush sized: from a thin disc to a long sleeve (common designs: 0.5 to 1.5).
+WIDTH_RATIOS = (0.1, 10.0)
+
 
 def quote(value: Any, limit: int = QUOTE) -> str:
     """``value`` as text in double quotes, cut to ``limit`` characters with an ellipsis, its size

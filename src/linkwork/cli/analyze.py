@@ -83,16 +83,7 @@ def analyze(
         check_lang(lang)
     except LinkworkError as exc:
         fail(exc)
-    from linkwork.report.folder import problem
-
-    why = problem(out)
-    if why is None and names_a_file(out):
-        why = (
-            f"names a {Path(out).suffix} file; analyze writes a folder (report.html, the tables, the figures): "
-            f"give a folder, e.g. --out {Path(out).with_suffix('')}"
-        )
-    if why is not None:
-        fail(LinkworkError(f"--out {out}: {why}"))
+    _check_out(out)
     try:
         require_packages()
     except MissingDependencyError as exc:
@@ -125,6 +116,21 @@ def analyze(
         except OSError as exc:
             fail(LinkworkError(f"--out {out}: cannot write ({exc.strerror or exc})"))
     typer.echo(f"wrote {path}")
+
+
+def _check_out(out: str) -> None:
+    """Exit code 2 with the reason where ``--out`` is no folder analyze can write its report into."""
+    from linkwork.errors import LinkworkError
+    from linkwork.report.folder import problem
+
+    why = problem(out)
+    if why is None and names_a_file(out):
+        why = (
+            f"names a {Path(out).suffix} file; analyze writes a folder (report.html, the tables, the figures): "
+            f"give a folder, e.g. --out {Path(out).with_suffix('')}"
+        )
+    if why is not None:
+        fail(LinkworkError(f"--out {out}: {why}"))
 
 
 def _position(text: str | None) -> int | float | str | None:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -53,6 +53,14 @@ def _is_unit(unit: str) -> bool:
     return True
 
 
+def _default(field: str) -> str:
+    """`` (default: the file's sizing: FIELD, else VALUE)`` for an option's help, from the one home of the defaults
+    (:class:`~linkwork.spec.schema.SizingSpec`)."""
+    from linkwork.spec.schema import SizingSpec
+
+    return f" (default: the file's sizing: {field}, else {SizingSpec.model_fields[field].default})"
+
+
 def _before_work(catalogue: str | None, synchronous: float | None, write: str | None, motor: bool) -> Catalogue | None:
     """The motor catalogue read and the ``--write`` destination checked before any computing: the catalogue
     (None: the bundled one), or exit code 2 with the reason."""
@@ -86,12 +94,15 @@ def size(
             "file's sizing: life, else 20000 h)"
         ),
     ] = None,
-    kind: Annotated[str, typer.Option(help="rolling bearings: ball or roller")] = "ball",
+    kind: Annotated[str | None, typer.Option(help=f"rolling bearings: ball or roller{_default('bearings')}")] = None,
     delta: Annotated[
         float | None,
         typer.Option(help="coefficient of speed fluctuation for the flywheel (default: the file's, else 0.05)"),
     ] = None,
-    reserve: Annotated[float, typer.Option(help="share of the breakdown torque the peak motor torque may reach")] = 0.8,
+    reserve: Annotated[
+        float | None,
+        typer.Option(help=f"share of the breakdown torque the peak motor torque may reach{_default('reserve')}"),
+    ] = None,
     catalogue: Annotated[
         str | None, typer.Option(help="a motor catalogue (CSV with the bundled one's columns)")
     ] = None,
@@ -99,43 +110,33 @@ def size(
         str | None, typer.Option(help='keep to motors of this synchronous speed, e.g. "1500 rpm"')
     ] = None,
     motor: Annotated[bool, typer.Option(help="choose the motor (--no-motor: bearings, pins and bolts only)")] = True,
-    steel: Annotated[str, typer.Option(help="steel grade of the pins (steels.csv)")] = "C45 normalised",
-    bush: Annotated[str, typer.Option(help="plain bush (bushes.csv)")] = "tin bronze CuSn12 greased",
-    width_ratio: Annotated[float, typer.Option(help="width / diameter of the pins sized")] = 1.0,
-    bolt_class: Annotated[str, typer.Option(help="property class of the foundation bolts")] = "5.6",
+    steel: Annotated[str | None, typer.Option(help=f"steel grade of the pins (steels.csv){_default('steel')}")] = None,
+    bush: Annotated[str | None, typer.Option(help=f"plain bush (bushes.csv){_default('bush')}")] = None,
+    width_ratio: Annotated[
+        float | None, typer.Option(help=f"width / diameter of the pins sized{_default('width_ratio')}")
+    ] = None,
+    bolt_class: Annotated[
+        str | None, typer.Option(help=f"property class of the foundation bolts{_default('bolt_class')}")
+    ] = None,
     write: Annotated[
         str | None, typer.Option(help="write the mechanism file with the chosen motor, gear and flywheel (.yaml)")
     ] = None,
     masses: Annotated[
-        str,
+        str | None,
         typer.Option(
-            help='"sized" (the default): from their sized steel sections (bars) and pins and guides (blocks), '
-            'iterated with the loads to a fixed point (--write writes them too); "file": as the file gives them'
+            help='"sized" (the default, unless the file\'s sizing: masses says "file"): from their sized steel '
+            "sections (bars) and pins and guides (blocks), iterated with the loads to a fixed point (--write writes "
+            'them too); "file": as the file gives them'
         ),
-    ] = "sized",
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Size the machine from its loads: motor, gear and flywheel, rolling and plain bearings, pins, bolts."""
     from linkwork.api import compile as compile_spec
     from linkwork.sizing import size as run
-    from linkwork.sizing.bearings import width_ratio_problem
 
-    problems = [delta_problem(delta, "--delta")]
-    if kind not in ("ball", "roller"):
-        problems.append(f'--kind: "ball" or "roller", got "{kind}"')
-    if not 0 < reserve <= 1:
-        problems.append(f"--reserve: a share of the breakdown torque in (0, 1], got {reserve}")
-    problems.append(width_ratio_problem(width_ratio, "--width-ratio"))
-    if masses not in ("file", "sized"):
-        problems.append(f'--masses: "file" or "sized", got "{masses}"')
-    if write is not None and not write.endswith((".yaml", ".yml")):
-        problems.append(f'--write "{write}": expected a .yaml file')
-    if write is not None and not motor:
-        problems.append("--write puts the chosen motor into the file: it needs the motor chosen (drop --no-motor)")
-    if catalogue is not None and not motor:
-        problems.append("--catalogue is the motors' catalogue: it needs the motor chosen (drop --no-motor)")
-    if synchronous is not None and not motor:
-        problems.append("--synchronous keeps to motors of that speed: it needs the motor chosen (drop --no-motor)")
+    given = {"bearings": kind, "delta": delta, "reserve": reserve, "width_ratio": width_ratio, "masses": masses}
+    problems = _option_problems(given, write, motor, catalogue=catalogue, synchronous=synchronous)
     check_options(*problems)
     life_s = _quantity(life, "time", "--life", "20000 h")
     sync = _quantity(synchronous, "angular_speed", "--synchronous", "1500 rpm")
@@ -143,21 +144,13 @@ def size(
     mech = compile_or_exit(file_or_example)
     bar = _progress()
     try:
+        given |= {"life": life_s, "synchronous": sync, "steel": steel, "bush": bush, "bolt_class": bolt_class}
         result = run(
             mech,
-            life_h=life_s / 3600 if life_s is not None else None,
-            kind=kind,
-            delta=delta,
-            reserve=reserve,
-            catalogue=cat if catalogue is not None else None,  # the bundled one said as such
-            synchronous=sync,
+            sizing={k: v for k, v in given.items() if v is not None},  # over the file's sizing: section
             motor=motor,
-            steel=steel,
-            bush=bush,
-            width_ratio=width_ratio,
-            bolt_class=bolt_class,
+            catalogue=cat if catalogue is not None else None,  # the bundled one said as such
             progress=bar,
-            masses=masses,
             compile_spec=compile_spec,
         )
         written = _write(mech, result, write) if write is not None else None
@@ -169,6 +162,34 @@ def size(
         echo_json({**result.record(), **({"written": written} if written else {})})
         return
     _print(result, written)
+
+
+def _option_problems(
+    given: dict[str, Any], write: str | None, motor: bool, *, catalogue: str | None, synchronous: str | None
+) -> list[str | None]:
+    """What is wrong with the options of ``linkwork size``: the inputs ``given`` (the record's fields, None where
+    not given), the ``--write`` destination's name and the motor's options without the motor chosen."""
+    from linkwork.sizing.bearings import width_ratio_problem
+
+    kind, reserve, width_ratio, masses = (given[k] for k in ("bearings", "reserve", "width_ratio", "masses"))
+    problems = [delta_problem(given["delta"], "--delta")]
+    if kind is not None and kind not in ("ball", "roller"):
+        problems.append(f'--kind: "ball" or "roller", got "{kind}"')
+    if reserve is not None and not 0 < reserve <= 1:
+        problems.append(f"--reserve: a share of the breakdown torque in (0, 1], got {reserve}")
+    if width_ratio is not None:
+        problems.append(width_ratio_problem(width_ratio, "--width-ratio"))
+    if masses is not None and masses not in ("file", "sized"):
+        problems.append(f'--masses: "file" or "sized", got "{masses}"')
+    if write is not None and not write.endswith((".yaml", ".yml")):
+        problems.append(f'--write "{write}": expected a .yaml file')
+    if write is not None and not motor:
+        problems.append("--write puts the chosen motor into the file: it needs the motor chosen (drop --no-motor)")
+    if catalogue is not None and not motor:
+        problems.append("--catalogue is the motors' catalogue: it needs the motor chosen (drop --no-motor)")
+    if synchronous is not None and not motor:
+        problems.append("--synchronous keeps to motors of that speed: it needs the motor chosen (drop --no-motor)")
+    return problems
 
 
 def _print(result: Sizing, written: str | None) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import math
 from typing import Annotated, Any
 
@@ -72,77 +73,38 @@ def _section(text: str | None) -> dict[str, Any]:
         fail(LinkworkError(f'--section "{excerpt(text, QUOTE_PATH)}": {exc}, e.g. "40mm x 20mm"'))
 
 
-@app.command()
+#: The requirement options of ``linkwork synthesize`` (each a text: a quantity with its unit, a ratio or a word), in
+#: the order of its help, with their help: the table its ``--NAME`` options are generated from (:func:`_signature`).
+REQUIREMENTS = {
+    "stroke": 'slider-crank, slotted-lever: the ram\'s stroke, e.g. "400mm"',
+    "time_ratio": "K >= 1: the longer stroke's time over the shorter",
+    "rod_ratio": "slider-crank: r/l (or --offset)",
+    "offset": "slider-crank: the guide's offset from the crank pivot",
+    "max_pressure_angle": 'slider-crank, slotted-lever: a bound, e.g. "40deg"',
+    "swing": 'crank-rocker: the rocker\'s swing, e.g. "45deg"',
+    "rocker": "crank-rocker: the rocker's length (or --frame)",
+    "frame": "crank-rocker (or --rocker), slotted-lever (or --crank): the frame",
+    "crank": "slotted-lever, double-cut-shears: the crank's length",
+    "rod": "slotted-lever: the ram's rod's length",
+    "min_transmission_angle": "every kind: the least transmission angle of every dyad over the turn (the design rule, "
+    "40deg)",
+    "force": 'toggle-press: the nominal force; slider-crank: the working load, e.g. "100kN"',
+    "working": "slider-crank: the load acts over this last part of the stroke",
+    "before": "toggle-press: where it acts, before the bottom dead centre",
+    "torque": 'toggle-press: the crank\'s torque limit, e.g. "5kN*m"',
+    "upper_stroke": "double-cut-shears: the upper knife's stroke",
+    "lower_stroke": "double-cut-shears: the lower knife's stroke",
+    "overlap": "double-cut-shears: the knives' overlap when closed (or --opening)",
+    "opening": "double-cut-shears: the gap between the knives when open",
+    "criterion": "slider-crank, double-cut-shears: pick from the family by 'pressure' (default) or 'torque'",
+}
+
+
 def synthesize(
     kind: Annotated[
         str, typer.Argument(help="slider-crank, crank-rocker, slotted-lever, toggle-press or double-cut-shears")
     ],
     out: Annotated[str, typer.Option("--out", help="the mechanism file to write (.yaml)")],
-    stroke: Annotated[
-        str | None, typer.Option("--stroke", help='slider-crank, slotted-lever: the ram\'s stroke, e.g. "400mm"')
-    ] = None,
-    time_ratio: Annotated[
-        str | None, typer.Option("--time-ratio", help="K >= 1: the longer stroke's time over the shorter")
-    ] = None,
-    rod_ratio: Annotated[str | None, typer.Option("--rod-ratio", help="slider-crank: r/l (or --offset)")] = None,
-    offset: Annotated[
-        str | None, typer.Option("--offset", help="slider-crank: the guide's offset from the crank pivot")
-    ] = None,
-    max_pressure_angle: Annotated[
-        str | None, typer.Option("--max-pressure-angle", help='slider-crank, slotted-lever: a bound, e.g. "40deg"')
-    ] = None,
-    swing: Annotated[
-        str | None, typer.Option("--swing", help='crank-rocker: the rocker\'s swing, e.g. "45deg"')
-    ] = None,
-    rocker: Annotated[
-        str | None, typer.Option("--rocker", help="crank-rocker: the rocker's length (or --frame)")
-    ] = None,
-    frame: Annotated[
-        str | None, typer.Option("--frame", help="crank-rocker (or --rocker), slotted-lever (or --crank): the frame")
-    ] = None,
-    crank: Annotated[
-        str | None, typer.Option("--crank", help="slotted-lever, double-cut-shears: the crank's length")
-    ] = None,
-    rod: Annotated[str | None, typer.Option("--rod", help="slotted-lever: the ram's rod's length")] = None,
-    min_transmission_angle: Annotated[
-        str | None,
-        typer.Option(
-            "--min-transmission-angle",
-            help="every kind: the least transmission angle of every dyad over the turn (the design rule, 40deg)",
-        ),
-    ] = None,
-    force: Annotated[
-        str | None,
-        typer.Option("--force", help='toggle-press: the nominal force; slider-crank: the working load, e.g. "100kN"'),
-    ] = None,
-    working: Annotated[
-        str | None, typer.Option("--working", help="slider-crank: the load acts over this last part of the stroke")
-    ] = None,
-    before: Annotated[
-        str | None, typer.Option("--before", help="toggle-press: where it acts, before the bottom dead centre")
-    ] = None,
-    torque: Annotated[
-        str | None, typer.Option("--torque", help='toggle-press: the crank\'s torque limit, e.g. "5kN*m"')
-    ] = None,
-    upper_stroke: Annotated[
-        str | None, typer.Option("--upper-stroke", help="double-cut-shears: the upper knife's stroke")
-    ] = None,
-    lower_stroke: Annotated[
-        str | None, typer.Option("--lower-stroke", help="double-cut-shears: the lower knife's stroke")
-    ] = None,
-    overlap: Annotated[
-        str | None, typer.Option("--overlap", help="double-cut-shears: the knives' overlap when closed (or --opening)")
-    ] = None,
-    opening: Annotated[
-        str | None, typer.Option("--opening", help="double-cut-shears: the gap between the knives when open")
-    ] = None,
-    criterion: Annotated[
-        str | None,
-        typer.Option(
-            "--criterion",
-            help="slider-crank, double-cut-shears: pick from the family by 'pressure' (default) or 'torque'",
-        ),
-    ] = None,
     speed: Annotated[
         str | None, typer.Option("--speed", help="the crank's speed written in the file (60 rpm; the shears' own)")
     ] = None,
@@ -151,6 +113,7 @@ def synthesize(
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     lang: Annotated[str, typer.Option(help="language of the printed summary: en or ru")] = "en",
+    **given: str | None,
 ) -> None:
     """Write a mechanism file that meets the requirements, verified by the kinematic analysis of that file.
 
@@ -177,31 +140,9 @@ def synthesize(
     if not out.endswith((".yaml", ".yml")):
         fail(LinkworkError(f'--out "{excerpt(out, QUOTE_PATH)}": expected a .yaml file'))
     import importlib
-    import inspect
 
     known = list(inspect.signature(importlib.import_module(KINDS[kind]).synthesize).parameters)
-    texts = {
-        "stroke": stroke,
-        "swing": swing,
-        "time_ratio": time_ratio,
-        "rod_ratio": rod_ratio,
-        "offset": offset,
-        "max_pressure_angle": max_pressure_angle,
-        "rocker": rocker,
-        "frame": frame,
-        "crank": crank,
-        "rod": rod,
-        "min_transmission_angle": min_transmission_angle,
-        "force": force,
-        "before": before,
-        "torque": torque,
-        "upper_stroke": upper_stroke,
-        "lower_stroke": lower_stroke,
-        "overlap": overlap,
-        "opening": opening,
-        "criterion": criterion,
-        "working": working,
-    }
+    texts = {name: given.get(name) for name in REQUIREMENTS}
     wrong = [name for name, text in texts.items() if text is not None and name not in known]
     if wrong:
         fail(LinkworkError(f"{kind}: --{', --'.join(w.replace('_', '-') for w in wrong)}: not a requirement of {kind}"))
@@ -218,6 +159,26 @@ def synthesize(
     except (LinkworkError, OSError) as exc:
         fail(exc)
     _show(result, out, as_json, lang)
+
+
+def _signature() -> inspect.Signature:
+    """The options typer reads off :func:`synthesize`: ``KIND`` and ``--out``, then one ``--NAME`` option of text per
+    entry of :data:`REQUIREMENTS` (the table they are generated from), then its own."""
+    own = list(inspect.signature(synthesize, eval_str=True).parameters.values())[:-1]
+    generated = [
+        inspect.Parameter(
+            name,
+            inspect.Parameter.POSITIONAL_OR_KEYWORD,
+            default=None,
+            annotation=Annotated[str | None, typer.Option(f"--{name.replace('_', '-')}", help=text)],
+        )
+        for name, text in REQUIREMENTS.items()
+    ]
+    return inspect.Signature([*own[:2], *generated, *own[2:]], return_annotation=None)
+
+
+synthesize.__signature__ = _signature()  # type: ignore[attr-defined]
+app.command()(synthesize)
 
 
 def _show(result: Any, out: str, as_json: bool, lang: str = "en") -> None:

@@ -12,11 +12,12 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from linkwork.design.evaluate import evaluate
-from linkwork.design.metrics import parse_metrics
+from linkwork.design.metrics import MetricRequest, parse_metrics
 from linkwork.structure.model import Mechanism
 
 #: Relative residual at which a member counts as solved.
@@ -98,6 +99,7 @@ def meet(
     target = np.stack([np.broadcast_to(np.asarray(equalities[c], dtype=float), (m,)) for c in columns], axis=1)
     size = np.maximum(np.abs(target), 1e-300)
     scales = np.asarray(scales, dtype=float)
+    problem = _Problem(mech, paths, values_of, scales, requests, steps)
     u = start.copy()
     last = np.full_like(u, np.nan)  # the last point that assembled, and the step taken from it
     step = np.zeros_like(u)
@@ -107,7 +109,7 @@ def meet(
         rows = np.flatnonzero(active)
         if not len(rows):
             break
-        r, jac = _linearised(mech, paths, values_of, u[rows], rows, target[rows], size[rows], scales, requests, steps)
+        r, jac = _linearised(problem, u[rows], rows, target[rows], size[rows])
         residual[rows] = r
         done = np.all(np.abs(r) <= SOLVED, axis=1)
         bad = ~np.all(np.isfinite(jac), axis=(1, 2)) | ~np.all(np.isfinite(r), axis=1)
@@ -132,9 +134,22 @@ def meet(
     return Met(u, values, final, worst, solved)
 
 
-def _linearised(mech, paths, values_of, u, rows, target, size, scales, requests, steps) -> tuple:  # noqa: ANN001
+class _Problem(NamedTuple):
+    """What every linearisation of :func:`meet` evaluates: the mechanism, the paths of the unknowns, how their
+    values make variants, their scales, the metrics asked and the crank angles of a turn."""
+
+    mech: Mechanism
+    paths: Sequence[str]
+    values_of: Callable[[np.ndarray, np.ndarray], np.ndarray]
+    scales: np.ndarray
+    requests: list[MetricRequest]
+    steps: int
+
+
+def _linearised(problem: _Problem, u, rows, target, size) -> tuple:  # noqa: ANN001
     """The relative residuals ``(n, k)`` of the members ``rows`` at ``u`` and their Jacobian ``(n, k, k)``
     by forward differences: every member and its ``k`` neighbours in one batch of variants."""
+    mech, paths, values_of, scales, requests, steps = problem
     n, k = u.shape
     probe = np.repeat(u, k + 1, axis=0).reshape(n, k + 1, k)
     probe[:, 1:, :] += np.eye(k) * scales * 1e-7

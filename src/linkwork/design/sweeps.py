@@ -8,12 +8,9 @@
 
 from __future__ import annotations
 
-import json
 import math
 import os
-import re
 import sys
-import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,6 +19,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from linkwork.api import MechanismLike, mechanism_of
+from linkwork.design.cluster import NO_PAGES, connect, probe_scheduler, scheduler_problems  # noqa: F401 - read here
 from linkwork.design.evaluate import evaluate
 from linkwork.design.metrics import MetricRequest, parse_metrics
 from linkwork.design.plan import Ranges, SweepPlan, Vary, make_plan, read_varies
@@ -39,19 +37,17 @@ from linkwork.design.store import (
     write_chunk,
     write_table,
 )
-from linkwork.errors import DesignError, LinkworkError, MissingDependencyError
+from linkwork.errors import DesignError, MissingDependencyError
 from linkwork.limits import (
     MAX_ANGLES,
     MAX_BATCH,
     MAX_SEED,
-    MAX_TIMEOUT,
     MAX_VARIANTS,
     QUOTE_PATH,
     TURN_STEPS,
     WORKERS_PER_CORE,
     excerpt,
     max_workers,
-    quote,
     whole,
 )
 from linkwork.optional import require
@@ -257,14 +253,8 @@ def sweep(
     varies, requests = _checked(mech, vary, metrics, options, out)
     job = _Job.of(mech, make_plan(varies, sampling, samples, seed), requests, steps, chunk_size)
     chunks = _Chunks(job, out, resume, on_chunk, progress)
-    log = str(attempts) if attempts is not None else None
-    in_process = scheduler is None and (workers == 0 or (workers is None and job.plan.n_variants <= IN_PROCESS))
     try:
-        if in_process:
-            for c in chunks.todo():
-                chunks.store(*chunk_task(job.task(c), attempts=log))
-        elif chunks.todo():
-            _on_dask(job, chunks.todo(), chunks.store, _connect(workers, scheduler, connect_timeout, dashboard), log)
+        _run_chunks(job, chunks, options, str(attempts) if attempts is not None else None, dashboard)
     except BaseException:
         chunks.abandon()
         raise
@@ -310,7 +300,7 @@ def _checked(
     if out is not None:
         problems += _out_problems(out)
     if options.scheduler is not None:
-        problems += _scheduler_problems(options.scheduler, options.connect_timeout)
+        problems += scheduler_problems(options.scheduler, options.connect_timeout)
     if problems:
         raise DesignError(problems)
     return varies, requests
@@ -369,60 +359,6 @@ def _out_problems(out: str | Path) -> list[str]:
     except MissingDependencyError as exc:
         problems.append(str(exc))
     return problems
-
-
-_ADDRESS = re.compile(r"^([a-z]+://)?[^\s/:]+:\d+$|^[a-z]+://\[[0-9a-fA-F:]+\]:\d+$")
-
-
-def _scheduler_problems(scheduler: str, connect_timeout: float) -> list[str]:
-    """What is wrong with a ``--scheduler`` (an address or a scheduler file) before connecting, and with the
-    time to wait for it."""
-    out = []
-    shown = excerpt(scheduler, QUOTE_PATH)
-    try:
-        is_file = Path(scheduler).is_file()
-    except OSError as exc:
-        is_file = False
-        out.append(f'--scheduler "{shown}": {exc.strerror or exc}')
-    if is_file:
-        why = _not_a_scheduler_file(Path(scheduler))
-        if why is not None:
-            out.append(f'--scheduler "{shown}": not a Dask scheduler file ({why})')
-    elif not _ADDRESS.match(scheduler) and not out:
-        if scheduler.endswith(".json") or "/" in scheduler.split("://")[-1]:
-            out.append(f'--scheduler "{shown}": no such scheduler file')
-        else:
-            out.append(f'--scheduler "{shown}": expected an address tcp://HOST:PORT or a scheduler file')
-    ok = isinstance(connect_timeout, int | float) and math.isfinite(connect_timeout)
-    if not (ok and 0 < connect_timeout <= MAX_TIMEOUT):
-        out.append(
-            f"connect timeout: expected a positive number of seconds, at most {MAX_TIMEOUT:g}, got {connect_timeout!r}"
-        )
-    return out
-
-
-#: Bytes of a scheduler file read (Dask writes a few hundred).
-_SCHEDULER_FILE_BYTES = 1 << 16
-
-
-def _not_a_scheduler_file(path: Path) -> str | None:
-    """Why ``path`` is not a Dask scheduler file (a JSON object whose ``address`` is a scheduler's address),
-    or None."""
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read(_SCHEDULER_FILE_BYTES + 1)
-    except OSError as exc:
-        return str(exc.strerror or exc)
-    if len(data) > _SCHEDULER_FILE_BYTES:
-        return f"larger than {_SCHEDULER_FILE_BYTES:,} bytes"
-    try:
-        info = json.loads(data)
-    except (ValueError, RecursionError):
-        return "not JSON"
-    address = info.get("address") if isinstance(info, dict) else None
-    if not isinstance(address, str) or not _ADDRESS.match(address):
-        return f'no "address" of a scheduler in it, got {quote(address) if isinstance(address, str) else "none"}'
-    return None
 
 
 # ---------------------------------------------------------------- the job: its chunks and its table's layout
@@ -552,120 +488,15 @@ class _Chunks:
 # ---------------------------------------------------------------- the chunks on Dask
 
 
-def _connect(workers: int | None, scheduler: str | None, connect_timeout: float, dashboard: bool) -> tuple[Any, Any]:
-    """A Dask client of the scheduler at ``scheduler`` (an address or a scheduler file), or of an embedded
-    local cluster of ``workers`` processes of one thread each (:func:`_local_cluster`):
-    ``(client, cluster or None)``.
-
-    Raises
-    ------
-    LinkworkError
-        The scheduler cannot be reached within ``connect_timeout`` seconds.
-    """
-    require("distributed", purpose="a sweep on Dask (--workers, --scheduler, or more than 20,000 variants)")
-    from distributed import Client
-
-    if scheduler is None:
-        cluster = _local_cluster(workers or os.cpu_count() or 1, dashboard)
-        return Client(cluster), cluster
-    deadline = time.monotonic() + connect_timeout
-    try:
-        is_file = Path(scheduler).is_file()
-        address = json.loads(Path(scheduler).read_bytes())["address"] if is_file else scheduler
-        probe_scheduler(address, connect_timeout)
-        left = max(deadline - time.monotonic(), 0.1)
-        if is_file:
-            return Client(scheduler_file=scheduler, timeout=left), None
-        return Client(scheduler, timeout=left), None
-    except (OSError, ValueError, KeyError, TypeError) as exc:
-        why = str(exc) or type(exc).__name__
-        within = f"within {connect_timeout:g} s"
-        raise LinkworkError(f"cannot reach a Dask scheduler at {scheduler} {within}: {why}") from None
-
-
-#: The most bytes of the greeting a Dask scheduler sends on a new connection (its handshake: some hundred).
-_GREETING_BYTES = 1 << 16
-
-
-def probe_scheduler(address: str, timeout: float) -> None:
-    """Check that a Dask scheduler answers at the ``tcp://`` ``address`` within ``timeout`` seconds, before
-    Dask's client trusts it: a scheduler greets each new connection with its handshake, one message of
-    Dask's frames (its length, the count of its frames and their lengths, each a little-endian 64-bit
-    number).  A service that sends something else (an HTTP server answering Dask's greeting, which Dask
-    would read as a length of exbibytes) or nothing (which Dask would wait for without end) is refused.
-    Addresses of other protocols are left to Dask.
-
-    Raises
-    ------
-    OSError
-        Nothing listens there, or what answers is no Dask scheduler (why, in words).
-    """
-    import socket
-    import struct
-    from urllib.parse import urlsplit
-
-    if not address.startswith("tcp://"):
-        return
-    where = urlsplit(address)
-    deadline = time.monotonic() + timeout
-    with socket.create_connection((where.hostname, where.port), timeout=timeout) as sock:
-        try:
-            head = _receive(sock, 8, deadline)
-            (size,) = struct.unpack("<Q", head)
-            if not 16 <= size <= _GREETING_BYTES:
-                raise OSError(f"the service there is no Dask scheduler: it began its answer with {head!r}")
-            body = _receive(sock, size, deadline)
-        except TimeoutError:
-            raise OSError("the service there accepted the connection but sent no Dask handshake") from None
-    (frames,) = struct.unpack_from("<Q", body)
-    if not 1 <= frames <= 64 or 8 * (frames + 1) > size:
-        raise OSError("the service there is no Dask scheduler: its greeting is not a message of Dask's frames")
-
-
-def _receive(sock: Any, n: int, deadline: float) -> bytes:
-    """``n`` bytes from ``sock`` by ``deadline`` (time.monotonic); TimeoutError past it, OSError if it closes."""
-    data = b""
-    while len(data) < n:
-        sock.settimeout(max(deadline - time.monotonic(), 1e-3))
-        chunk = sock.recv(n - len(data))
-        if not chunk:
-            raise OSError("the service there closed the connection without a Dask handshake")
-        data += chunk
-    return data
-
-
-#: Dask's settings of the web servers of its scheduler and workers: no pages at all.
-NO_PAGES: dict[str, list[str]] = {"distributed.scheduler.http.routes": [], "distributed.worker.http.routes": []}
-
-
-def _local_cluster(n: int, dashboard: bool) -> Any:
-    """A local Dask cluster of ``n`` worker processes of one thread each, on 127.0.0.1.
-
-    Dask's scheduler and workers always run a web server; its pages (the dashboard, and the JSON and
-    Prometheus pages of the cluster's state) answer a request whatever host it names, so a web page in a
-    browser on this machine could read them through a host name of its own that points to 127.0.0.1.
-    Unless ``dashboard`` is asked for, they serve no page, on a free port (every request gets 404, but for
-    Dask's list of the pages, ``/sitemap.json``, which is then empty).  With
-    ``dashboard``, Dask's dashboard is served on 127.0.0.1:8787 and its link written on stderr.
-    """
-    import dask
-    from distributed import LocalCluster
-
-    if dashboard:
-        cluster = LocalCluster(
-            n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address="127.0.0.1:8787"
-        )
-        sys.stderr.write(f"Dask's dashboard (while the sweep runs): {cluster.dashboard_link}\n")
-        return cluster
-    with dask.config.set(NO_PAGES):
-        return LocalCluster(
-            n_workers=n,
-            threads_per_worker=1,
-            processes=True,
-            host="127.0.0.1",
-            dashboard_address=None,
-            scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
-        )
+def _run_chunks(job: _Job, chunks: _Chunks, options: _Options, log: str | None, dashboard: bool) -> None:
+    """The chunks left to do, in this process (up to :data:`IN_PROCESS` variants by default, or ``workers=0``) or
+    on Dask (a local cluster, or the scheduler of ``options``), each stored as it comes back."""
+    workers, scheduler = options.workers, options.scheduler
+    if scheduler is None and (workers == 0 or (workers is None and job.plan.n_variants <= IN_PROCESS)):
+        for c in chunks.todo():
+            chunks.store(*chunk_task(job.task(c), attempts=log))
+    elif chunks.todo():
+        _on_dask(job, chunks.todo(), chunks.store, connect(workers, scheduler, options.connect_timeout, dashboard), log)
 
 
 def _on_dask(
@@ -675,8 +506,8 @@ def _on_dask(
     connection: tuple[Any, Any],
     attempts: str | None,
 ) -> None:
-    """Run the chunks ``todo`` on the Dask cluster of ``connection`` (:func:`_connect`), which is closed
-    at the end.
+    """Run the chunks ``todo`` on the Dask cluster of ``connection`` (:func:`~linkwork.design.cluster.connect`),
+    which is closed at the end.
 
     A chunk whose worker dies is given to another worker by the scheduler; each result is stored
     by this process as it comes back, so nothing done is lost if this process stops.  Workers of one

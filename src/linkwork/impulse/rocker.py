@@ -157,10 +157,7 @@ def rocker_impact(
     12.0
     """
     o, c, k, nj = (np.asarray(v, dtype=float) for v in (support, com, impact_point, rod_joint))
-    n = np.asarray(normal, dtype=float)
-    if not np.linalg.norm(n) > 0:
-        raise LinkworkError("normal: expected a non-zero vector")
-    n = n / np.linalg.norm(n)
+    n = _unit(normal)
     t = np.array([n[1], -n[0]])
     if not (inertia > 0 and mass > 0 and rod_mass >= 0 and friction >= 0 and 0 <= restitution <= 1):
         raise LinkworkError("expected inertia > 0, mass > 0, rod mass >= 0, friction >= 0 and 0 <= R <= 1")
@@ -200,6 +197,15 @@ def rocker_impact(
         sliding,
         j_o,
     )
+
+
+def _unit(normal: npt.ArrayLike) -> np.ndarray:
+    """The unit vector along ``normal`` ``(2,)``."""
+    n = np.asarray(normal, dtype=float)
+    if not np.linalg.norm(n) > 0:
+        raise LinkworkError("normal: expected a non-zero vector")
+    out: np.ndarray = n / np.linalg.norm(n)
+    return out
 
 
 def sliding_direction(sliding: float, tiny: float, slip: float | None = None) -> float:

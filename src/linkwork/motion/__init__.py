@@ -19,11 +19,13 @@ Adding a kind of group solved in closed form, to both twins:
    (links, arms, the points where it closes).
 2. :mod:`~linkwork.motion.kernels`: its NumPy kernel (positions, velocities, accelerations and the
    step's record of assembly margin and determinant); ``with_branches`` reads its assembly mode off
-   the assembly pose, if it has two.
+   the assembly pose, if it has two.  A dyad's loci and where they meet are
+   :mod:`~linkwork.motion.closure`'s, where its mode flips along the samples
+   :mod:`~linkwork.motion.change_points`'.
 3. :mod:`~linkwork.motion.solve`: ``run_numpy`` calls that kernel for the kind.
-4. :mod:`~linkwork.motion.kernels_numba`: a code in ``CODES``, its columns of the program's table and
-   ``encode``; its scalar kernel called from ``_step`` (the same arithmetic, in the same order), every
-   new scalar function named in ``_INLINE``.
+4. :mod:`~linkwork.motion.compiled_program`: a code in ``CODES``, its columns of the program's table and
+   ``encode``; :mod:`~linkwork.motion.kernels_numba`: its scalar kernel called from ``_step`` (the same
+   arithmetic, in the same order), every new scalar function named in ``_INLINE``.
 5. :mod:`~linkwork.motion.plans`: its velocity and acceleration plans, where the report draws them.
 6. The reactions need nothing: both twins solve any statically determinate group from its constraint
    rows (:mod:`linkwork.kinetostatics.reactions_numba` has closed solves for one link and a dyad,

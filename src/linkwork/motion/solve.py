@@ -383,7 +383,7 @@ def newton_from(
     drive = np.ascontiguousarray(each[..., None])  # (V, A, 1)
     q = np.ascontiguousarray(np.moveaxis(state.q, (0, 1), (2, 3)))  # (V, A, N, 3)
     q[:, :, group.links] = np.moveaxis(start, (0, 1), (2, 3))[:, :, group.links]
-    converged = _newton_solve(mech, q, drive, group.links, group.sel, group.cols, geom, group.scale, tol, iterations)
+    converged = _newton_solve(mech, q, drive, group, geom, tol, iterations)
     _place(mech, group, state, q, drive, geom, rates, accels, converged, jumps=False)
 
 
@@ -455,9 +455,7 @@ def _rings(
             sub[:, :, links] = q[:, near][:, :, links]
             q[:, idx] = sub
         sub = q[:, idx]
-        converged[:, idx] = _newton_solve(
-            mech, sub, drive[:, idx], links, group.sel, group.cols, geom, group.scale, tol, iterations
-        )
+        converged[:, idx] = _newton_solve(mech, sub, drive[:, idx], group, geom, tol, iterations)
         q[:, idx] = sub
         solved[idx] = True
     return converged
@@ -529,18 +527,11 @@ def _lstsq(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def _newton_solve(
-    mech: Mechanism,
-    sub: np.ndarray,
-    drive: np.ndarray,
-    links: list[int],
-    sel: list[int],
-    cols: np.ndarray,
-    geom: Geometry,
-    scale: float,
-    tol: float,
-    iterations: int,
+    mech: Mechanism, sub: np.ndarray, drive: np.ndarray, group: _Group, geom: Geometry, tol: float, iterations: int
 ) -> np.ndarray:
-    """Newton iterations in place on ``sub`` (V, a, N, 3); returns the convergence mask."""
+    """Newton iterations in place on ``sub`` (V, a, N, 3) over the rows and columns of ``group`` (its residuals
+    within ``tol`` of its scale); returns the convergence mask."""
+    sel, cols, scale = group.sel, group.cols, group.scale
     ok = np.zeros(sub.shape[:2], dtype=bool)
     flat = sub.reshape(sub.shape[0], sub.shape[1], -1)
     for _ in range(iterations):

@@ -41,13 +41,12 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
+from linkwork.limits import WIDTH_RATIOS
 from linkwork.sizing.common import Table
 from linkwork.sizing.pairs import Pair
 
 #: The life exponent of ISO 281 by the kind of rolling bearing.
 EXPONENT = {"ball": 3.0, "roller": 10.0 / 3.0}
-#: The width / diameter of a pin or bush sized: from a thin disc to a long sleeve (common designs: 0.5 to 1.5).
-WIDTH_RATIOS = (0.1, 10.0)
 
 
 def width_ratio_problem(ratio: float, name: str) -> str | None:

@@ -3,7 +3,8 @@
 A catalogue is a CSV file in ``linkwork/sizing/data/`` (or the user's, with the same columns): lines
 starting with ``#`` are comments (the source of its values), the first other line names the columns,
 each with its unit in brackets (``power [kW]``, ``inertia [kg m^2]``, ``[1]`` for a ratio); the values
-are read into SI.
+are read into SI.  Every bundled catalogue declares its columns and their units (:data:`COLUMNS`) and is
+checked against them when it is read.
 """
 
 from __future__ import annotations
@@ -83,10 +84,39 @@ class Catalogue:
         return {k: float(v[i]) for k, v in self.columns.items()}
 
 
+#: The columns every bundled catalogue declares, each with its SI unit (``"1"``: a ratio): its heading must name
+#: each, in a unit of that kind (any of them; the values are read into SI), and every row give each a number.
+COLUMNS: dict[str, dict[str, str]] = {
+    "motors.csv": {
+        "power": "W",
+        "synchronous": "rad/s",
+        "speed": "rad/s",
+        "starting": "1",
+        "breakdown": "1",
+        "inertia": "kg*m^2",
+        "mass": "kg",
+    },
+    "steels.csv": {"yield": "Pa", "tensile": "Pa", "endurance": "Pa"},
+    "bushes.csv": {"p": "Pa", "v": "m/s", "pv": "Pa*m/s"},
+    "bolt_classes.csv": {"yield": "Pa"},
+    "threads.csv": {"diameter": "m", "pitch": "m", "stress area": "m^2"},
+}
+
+
 def bundled(name: str) -> Catalogue:
-    """The catalogue ``name`` (``motors.csv``, ...) bundled with linkwork."""
+    """The catalogue ``name`` (one of :data:`COLUMNS`) bundled with linkwork, checked on load against the columns
+    it declares.
+
+    Raises
+    ------
+    LinkworkError
+        No such catalogue; or, one line a problem, a declared column missing or in a unit of another kind, a value
+        that is not a finite number.
+    """
+    if name not in COLUMNS:
+        raise LinkworkError(f"no bundled catalogue {name!r}: one of {', '.join(COLUMNS)}")
     text = resources.files("linkwork.sizing").joinpath("data").joinpath(name).read_text(encoding="utf-8")
-    return parse_catalogue(text, name, {})
+    return parse_catalogue(text, name, COLUMNS[name])
 
 
 def read_catalogue(path: str | Path, need: dict[str, str]) -> Catalogue:

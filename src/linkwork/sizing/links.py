@@ -235,15 +235,12 @@ def bars(
         a, b = np.unravel_index(int(np.argmax(span)), span.shape)
         if not span[a, b] > 0:  # its joints at one point (a slide's pin and guide): no bar
             continue
-        axial, moment, s = internal_forces(pts, forces, couples, (int(a), int(b)))
         out.append(
             _bar(
                 name,
                 (joints[a], joints[b]),
                 float(span[a, b]),
-                axial,
-                moment,
-                s,
+                internal_forces(pts, forces, couples, (int(a), int(b))),
                 phi,
                 steel,
                 safety,
@@ -274,14 +271,15 @@ def _bar(
     name: str,
     ends: tuple[str, str],
     length: float,
-    axial: np.ndarray,
-    moment: np.ndarray,
-    s: np.ndarray,
+    internal: tuple[np.ndarray, np.ndarray, np.ndarray],
     phi: np.ndarray,
     steel: Steel,
     safety: float,
     given: tuple[str, Mapping[str, float]] | None,
 ) -> Bar:
+    """The bar ``name`` between its ``ends`` under its ``internal`` forces (:func:`internal_forces`: axial force,
+    bending moment, and where along it), sized of ``steel`` at ``safety``, or the file's section ``given``."""
+    axial, moment, s = internal
     if given is not None:
         shape, dims = given
         area, modulus = section_properties(shape, dims)

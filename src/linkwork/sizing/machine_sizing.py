@@ -2,13 +2,14 @@
 
 The loads are those of the kinetostatics at the file's uniform crank speed (the steady cycle's speed varies
 within ``delta`` of it); the motor is chosen and run with the machine dynamics (:mod:`linkwork.sizing.motor`).
-Every input with a default is stated in the record (``inputs``).
+Its inputs are one record, the schema of the file's ``sizing:`` section (:class:`~linkwork.spec.schema.SizingSpec`,
+the one home of their defaults); every input is stated in the result (``inputs``).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -27,10 +28,11 @@ from linkwork.sizing.pairs import Pair, pairs_of
 from linkwork.sizing.pin_shear import Pins, Steel, pins
 from linkwork.sizing.proportions import Proportions, proportions
 from linkwork.sizing.shaft import Shaft, main_shaft, split
+from linkwork.spec.schema import SizingSpec
 from linkwork.structure.model import Mechanism
 
-#: The default life of rolling bearings, h.
-LIFE_H = 20000.0
+#: The default life of rolling bearings, h (:class:`~linkwork.spec.schema.SizingSpec`'s ``life``).
+LIFE_H = SizingSpec.model_fields["life"].default / 3600.0
 #: The default coefficient of speed fluctuation where the file gives none.
 DELTA = 0.05
 #: The default gear efficiency where the file gives no gear.
@@ -92,86 +94,138 @@ def _row(cat: Catalogue, name: str, what: str) -> dict[str, float]:
     return cat.row(cat.names.index(name))
 
 
-def _file_parts(file: Any) -> tuple[dict[str, tuple[float, float]], dict[str, float], dict[str, Any]]:
-    """The pins (diameter, width), the guides' lengths and the links' sections (shape, dimensions) of the file's
-    ``sizing:`` section (None: none of them), SI."""
-    if file is None:
-        return {}, {}, {}
-    pins_given = {k: (v.diameter, v.width) for k, v in file.pins.items()}
-    sections = {
-        name: (sec.shape, {k: v for k, v in sec.model_dump(exclude={"shape"}).items() if v is not None})
-        for name, sec in file.sections.items()
-    }
-    return pins_given, dict(file.guides), sections
+#: The keyword options of :func:`size` named otherwise in the record (:class:`~linkwork.spec.schema.SizingSpec`):
+#: the field each gives and the factor to its SI value.
+RENAMED = {"life_h": ("life", 3600.0), "kind": ("bearings", 1.0)}
+#: Fields of the record that are no keyword option of :func:`size` (``motor`` is its own argument).
+NOT_OPTIONS = ("motor",)
+
+
+def sizing_inputs(
+    mech: Mechanism, sizing: SizingSpec | Mapping[str, Any] | None = None, options: Mapping[str, Any] | None = None
+) -> SizingSpec:
+    """The record the machine ``mech`` is sized with: its file's ``sizing:`` section (or the defaults of
+    :class:`~linkwork.spec.schema.SizingSpec`, their one home), with the fields of ``sizing`` (a record, or a
+    mapping of its fields; bare numbers in SI) over it and the keyword ``options`` of :func:`size` over those
+    (None: not given).
+
+    Raises
+    ------
+    TypeError
+        An option that is no field of the record (with the field it may have meant).
+    SpecError
+        A value out of its range, one problem per field (``sizing.reserve: ...``).
+    """
+    from pydantic import ValidationError
+
+    from linkwork.did_you_mean import suggest
+    from linkwork.errors import Problem, SpecError
+    from linkwork.units import SI_UNITS
+
+    base = mech.spec.sizing if mech.spec is not None and mech.spec.sizing is not None else SizingSpec()
+    if isinstance(sizing, SizingSpec):
+        given = {k: getattr(sizing, k) for k in sizing.model_fields_set}
+    else:
+        given = dict(sizing or {})
+    known = [k for k in (*SizingSpec.model_fields, *RENAMED) if k not in NOT_OPTIONS]
+    for key, value in (options or {}).items():
+        if key not in known:
+            hint = suggest(key, known)
+            raise TypeError(f"size() got an unexpected keyword argument {key!r}" + (f" ({hint})" if hint else ""))
+        if value is not None:
+            name, factor = RENAMED.get(key, (key, 1.0))
+            given[name] = value * factor if factor != 1.0 else value
+    given = {k: v.tolist() if isinstance(v, np.ndarray) else v for k, v in given.items()}
+    try:
+        checked = SizingSpec.model_validate(given, context={"units": SI_UNITS})
+    except ValidationError as exc:
+        problems = [
+            Problem("sizing." + ".".join(str(x) for x in e["loc"]), e["msg"]) for e in exc.errors(include_url=False)
+        ]
+        raise SpecError(problems) from None
+    return base.model_copy(update={k: getattr(checked, k) for k in checked.model_fields_set})
+
+
+@dataclass(frozen=True)
+class _Rules:
+    """What every part is sized by: the inputs, the steel of the pins and links and the plain bush (read from the
+    bundled catalogues), and the file's pins (diameter, width), guides' lengths and links' sections, SI."""
+
+    inputs: SizingSpec
+    grade: Steel
+    bush: Bush
+    pins: dict[str, tuple[float, float]]
+    guides: dict[str, float]
+    sections: dict[str, Any]
+
+    @classmethod
+    def of(cls, inp: SizingSpec) -> _Rules:
+        steel_row = _row(bundled("steels.csv"), inp.steel, "steel")
+        bush_row = _row(bundled("bushes.csv"), inp.bush, "bush")
+        _row(bundled("bolt_classes.csv"), inp.bolt_class, "bolt class")  # said even where no bolts are sized
+        sections = {
+            name: (sec.shape, {k: v for k, v in sec.model_dump(exclude={"shape"}).items() if v is not None})
+            for name, sec in inp.sections.items()
+        }
+        return cls(
+            inp,
+            Steel(inp.steel, steel_row["yield"], steel_row["tensile"], steel_row["endurance"]),
+            Bush(inp.bush, bush_row["p"], bush_row["v"], bush_row["pv"]),
+            {k: (v.diameter, v.width) for k, v in inp.pins.items()},
+            dict(inp.guides),
+            sections,
+        )
+
+    def pin_of(self, force: float) -> float:
+        """The diameter of the pin and bush that carry ``force`` (N), m."""
+        return governing_diameter(force, self.grade, self.inputs.safety, self.inputs.width_ratio, self.bush.p)
+
+    def bars(self, f: Any, phi: np.ndarray) -> Bars:
+        """The links as bars under the forces ``f`` at the crank angles ``phi`` (deg)."""
+        return bars(f, phi, self.grade, safety=self.inputs.safety, sections=self.sections)
 
 
 def size(
     mech: Mechanism,
+    sizing: SizingSpec | Mapping[str, Any] | None = None,
     *,
-    life_h: float | None = None,
-    kind: str = "ball",
-    delta: float | None = None,
-    efficiency: float | None = None,
-    reserve: float = 0.8,
-    catalogue: str | Path | Catalogue | None = None,
-    synchronous: float | None = None,
     motor: bool = True,
-    steel: str = "C45 normalised",
-    safety: float = 2.0,
-    bush: str = "tin bronze CuSn12 greased",
-    width_ratio: float = 1.0,
-    bolts: Any = None,
-    bolt_class: str = "5.6",
-    bolt_safety: float = 1.5,
-    joint_safety: float = 1.5,
-    friction: float = 0.2,
-    load_factor: float = 0.25,
+    catalogue: str | Path | Catalogue | None = None,
     steps: int = 360,
     progress: Callable[[int, int], None] | None = None,
-    masses: str | None = None,
     compile_spec: Callable[[Any], Mechanism] | None = None,
+    **options: Any,
 ) -> Sizing:
     """Size the machine ``mech`` (``linkwork.size`` also takes a path, an example name or a Spec).
 
     Parameters
     ----------
-    life_h : float
-        Basic rating life L10h of the rolling bearings, h (default: the file's ``sizing: life``, else 20000).
-    kind : str
-        ``ball`` or ``roller`` bearings (the life exponent 3 or 10/3).
-    delta : float
-        Coefficient of speed fluctuation the flywheel is sized for (default: the file's, else 0.05).
-    efficiency : float
-        Of the gear (default: the file's gear's, else 0.95).
-    reserve : float
-        The share of the motor's breakdown torque its peak torque may reach.
+    sizing : SizingSpec or mapping, optional
+        The inputs of the sizing (:class:`~linkwork.spec.schema.SizingSpec`, the schema of the file's ``sizing:``
+        section, whose defaults are the defaults here): the bearings' ``life`` (s, or ``"20000 h"``) and kind
+        (``bearings``: ball or roller), ``delta`` (default: the file's, else 0.05), the gear's ``efficiency``
+        (default: the file's gear's, else 0.95), the ``reserve`` of the motor's breakdown torque, a
+        ``synchronous`` speed to keep to, the ``steel`` of the pins and links (``steels.csv``) and its
+        ``safety``, the plain ``bush`` (``bushes.csv``) and the pins' ``width_ratio``, the foundation ``bolts``
+        (positions, m), their ``bolt_class`` (``bolt_classes.csv``), ``bolt_safety``, ``joint_safety``,
+        ``friction`` and ``load_factor``, and ``masses``.  Given over the file's section, field by field.
+    motor : bool
+        Choose the motor (False: bearings, pins and bolts only).
     catalogue : path or Catalogue
         A motor catalogue (CSV, the columns of the bundled ``motors.csv``, or one read already); default the bundled
         one.
-    synchronous : float
-        Keep to motors of this synchronous speed, rad/s.
-    motor : bool
-        Choose the motor (False: bearings, pins and bolts only).
-    steel, safety : str, float
-        The steel grade of the pins and links (``steels.csv``) and the safety factor on its yield strength.
-    bush, width_ratio : str, float
-        The plain bush (``bushes.csv``) and the width / diameter of the least pins.
-    bolts : array (n, 2)
-        Foundation bolts' positions, m (default: the file's ``sizing: bolts``); none: no bolt sizing.
-    bolt_class, bolt_safety, joint_safety, friction, load_factor
-        The bolts' property class (``bolt_classes.csv``) and safety on its yield; the joint's safety against
-        opening and sliding, its friction coefficient and load factor.
     steps : int
         Crank angles over the turn for the loads.
     progress : callable, optional
         ``progress(k, n)``: told of each motor ``k`` of the ``n`` of the catalogue the choice looks at.
-    masses : str
-        ``"sized"`` (the default where the mechanism has its file and ``compile_spec`` is given, as
-        ``linkwork.size`` gives it): the bars' masses from their sized steel sections and the blocks' from their
-        pins and guides, iterated with the loads to a fixed point (:mod:`linkwork.sizing.masses`); ``"file"``: the
-        links' masses as the file gives them (or its default rule), the default otherwise.
     compile_spec : callable
         How an edited file is compiled, for ``masses="sized"`` (``linkwork.size`` passes :func:`linkwork.compile`).
+        ``masses`` is ``"sized"`` by default where the mechanism has its file and ``compile_spec`` is given: the
+        bars' masses from their sized steel sections and the blocks' from their pins and guides, iterated with
+        the loads to a fixed point (:mod:`linkwork.sizing.masses`); ``"file"`` otherwise.
+    **options
+        Any field of ``sizing`` as a keyword (over ``sizing``), and ``life_h`` (the life in hours) and ``kind``
+        (``bearings``) as before.
 
     Returns
     -------
@@ -182,157 +236,208 @@ def size(
     Examples
     --------
     >>> import linkwork as lw
-    >>> sized = lw.size("double-cut-shears", steps=72)  # doctest: +SKIP
+    >>> sized = lw.size("double-cut-shears", sizing={"life": "30000 h"}, steps=72)  # doctest: +SKIP
     >>> sized.motor  # doctest: +SKIP
     """
-    file = mech.spec.sizing if mech.spec is not None and mech.spec.sizing is not None else None
-    if life_h is None:
-        life_h = file.life / 3600.0 if file is not None and file.life is not None else LIFE_H
-    if delta is None:
-        delta = mech.delta if mech.delta is not None else DELTA
+    inp = sizing_inputs(mech, sizing, options)
+    delta = inp.delta if inp.delta is not None else (mech.delta if mech.delta is not None else DELTA)
+    efficiency = inp.efficiency
     if efficiency is None:
         efficiency = mech.motor_gear.efficiency if mech.motor_gear is not None else EFFICIENCY
-    if bolts is None and file is not None and file.bolts:
-        bolts = np.array(file.bolts, dtype=float)
     cat = motor_catalogue(catalogue) if motor else None  # read, and its speeds checked, before any computing
-    if cat is not None and synchronous is not None:
-        why = synchronous_problem(cat, synchronous)
+    if cat is not None and inp.synchronous is not None:
+        why = synchronous_problem(cat, inp.synchronous)
         if why is not None:
             raise LinkworkError(why)
-    steel_row = _row(bundled("steels.csv"), steel, "steel")
-    bush_row = _row(bundled("bushes.csv"), bush, "bush")
-    _row(bundled("bolt_classes.csv"), bolt_class, "bolt class")  # a wrong class said even where no bolts are sized
-    bush_limits = Bush(bush, bush_row["p"], bush_row["v"], bush_row["pv"])
-    grade = Steel(steel, steel_row["yield"], steel_row["tensile"], steel_row["endurance"])
-    pin_sizes, guides, given = _file_parts(file)
+    rules = _Rules.of(inp)
+    sized = _sized_masses(mech, rules, steps, compile_spec)
+    mech = sized.mechanism if sized is not None else mech
+    parts = _parts(mech, rules, steps)
+    choice = _motor(mech, inp, delta, efficiency, cat, progress) if motor else None  # last: the runs take longest
+    if not motor:
+        parts.missing["motor"] = "not asked"
+    chosen = {
+        "delta": delta,
+        "gear_efficiency": efficiency,
+        "reserve": inp.reserve,
+        "catalogue": cat.source
+        if cat is not None and catalogue is not None
+        else "motors.csv (bundled, typical values)",
+        "synchronous_rpm": inp.synchronous * 30 / math.pi if inp.synchronous is not None else None,
+    }
+    inputs = _inputs_record(inp, chosen if motor else {}, steps, parts.crank, sized)
+    p = parts
+    return Sizing(
+        mech.name or "mechanism",
+        inputs,
+        choice,
+        p.bearings,
+        p.pins,
+        p.bolts,
+        p.missing,
+        p.links,
+        p.shaft,
+        sized,
+        p.proportions,
+    )
+
+
+def _motor(
+    mech: Mechanism,
+    inp: SizingSpec,
+    delta: float,
+    efficiency: float,
+    cat: Catalogue | None,
+    progress: Callable[[int, int], None] | None,
+) -> MotorChoice:
+    """The motor, gear and flywheel chosen from the catalogue ``cat`` for ``mech`` (:func:`choose_motor`)."""
+    from linkwork.machine.reduction import reduced
+
+    return choose_motor(
+        mech,
+        reduced(mech),
+        delta,
+        efficiency=efficiency,
+        reserve=inp.reserve,
+        catalogue=cat,
+        synchronous=inp.synchronous,
+        progress=progress,
+    )
+
+
+def _sized_masses(
+    mech: Mechanism, rules: _Rules, steps: int, compile_spec: Callable[[Any], Mechanism] | None
+) -> SizedMasses | None:
+    """The links' masses sized to a fixed point with the loads (``masses="sized"``), or None (``"file"``)."""
     from linkwork.kinetostatics.reaction_forces import forces
     from linkwork.motion.analysis import CrankAngles
 
+    masses = rules.inputs.masses
     if masses is None:
         masses = "sized" if mech.spec is not None and compile_spec is not None else "file"
-    if masses not in ("file", "sized"):
-        raise LinkworkError(f'masses: "file" or "sized", got "{masses}"')
     angles = CrankAngles.of(mech)
     if angles is None:
         raise LinkworkError("sizing needs one crank driven by the frame: the cycle is its turn")
+    if masses == "sized" and compile_spec is None:
+        raise LinkworkError('masses="sized" compiles the file with each round\'s masses: call linkwork.size')
+    if masses != "sized" or compile_spec is None:
+        return None
 
     def bars_of(m: Mechanism) -> Bars:
         fm = forces(m, steps=steps)
-        return bars(fm, np.asarray(angles.phi(fm.angles), dtype=float), grade, safety=safety, sections=given)
-
-    if masses == "sized" and compile_spec is None:
-        raise LinkworkError('masses="sized" compiles the file with each round\'s masses: call linkwork.size')
-
-    def pin_of(force: float) -> float:
-        return governing_diameter(force, grade, safety, width_ratio, bush_limits.p)
+        return rules.bars(fm, np.asarray(angles.phi(fm.angles), dtype=float))
 
     def blocks_of(m: Mechanism, bars_: Bars) -> dict[str, float]:
-        return block_masses(pairs_of(forces(m, steps=steps)), bars_, pin_of, width_ratio, bush_limits.p)
+        width = rules.inputs.width_ratio
+        return block_masses(pairs_of(forces(m, steps=steps)), bars_, rules.pin_of, width, rules.bush.p)
 
-    sized = (
-        sized_masses(mech, bars_of, compile_spec, blocks_of=blocks_of)
-        if masses == "sized" and compile_spec is not None
-        else None
-    )
-    mech = sized.mechanism if sized is not None else mech
+    return sized_masses(mech, bars_of, compile_spec, blocks_of=blocks_of)
+
+
+@dataclass
+class _Parts:
+    """The parts sized from the loads of one mechanism, and what was not sized and why."""
+
+    crank: float
+    pins: Pins
+    shaft: Shaft | None
+    bearings: Bearings
+    links: Bars
+    proportions: Proportions
+    bolts: BoltResult | None
+    missing: dict[str, str]
+
+
+def _parts(mech: Mechanism, rules: _Rules, steps: int) -> _Parts:
+    """Pins, the main shaft, bearings, links, their proportions and the bolts of ``mech`` under its loads."""
+    from linkwork.kinetostatics.reaction_forces import forces
+    from linkwork.motion.analysis import CrankAngles
+
+    inp = rules.inputs
+    angles = CrankAngles.of(mech)
+    assert angles is not None  # checked before the masses were sized
     f = forces(mech, steps=steps)
     phi = np.asarray(angles.phi(f.angles), dtype=float)
-    crank = abs(float(mech.drive_speed[0]))
     pairs = pairs_of(f)
-    missing: dict[str, str] = {}
-    pinned = pins(pairs, phi, grade, safety=safety, sizes=pin_sizes, width_ratio=width_ratio)
-    shaft = _shaft(mech, pairs, pinned, file)
-    pairs_of_joints = pairs  # as the joints are, before the main shaft's two bearings
+    pin_sizes = rules.pins
+    pinned = pins(pairs, phi, rules.grade, safety=inp.safety, sizes=pin_sizes, width_ratio=inp.width_ratio)
+    shaft = _shaft(mech, pairs, pinned, inp)
+    split_pairs = pairs  # the joints as they are, and (below) the main shaft's two bearings in its joint's place
     if shaft is not None:
-        pairs = split(pairs, shaft.joint, shaft.shares)
-        pin_sizes = {
-            **pin_sizes,
-            **{f"{shaft.joint}/{n}": pin_sizes[shaft.joint] for n in (1, 2) if shaft.joint in pin_sizes},
-        }
-        pin_sizes.pop(shaft.joint, None)
+        split_pairs = split(pairs, shaft.joint, shaft.shares)
+        journal = {f"{shaft.joint}/{n}": pin_sizes[shaft.joint] for n in (1, 2) if shaft.joint in pin_sizes}
+        pin_sizes = {**{k: v for k, v in pin_sizes.items() if k != shaft.joint}, **journal}
+    crank = abs(float(mech.drive_speed[0]))
     found = bearings(
-        pairs,
+        split_pairs,
         phi,
         crank,
-        life_h=life_h,
-        kind=kind,
-        bush=bush_limits,
+        life_h=inp.life / 3600.0,
+        kind=inp.bearings,
+        bush=rules.bush,
         pins=pin_sizes,
-        width_ratio=width_ratio,
-        guides=guides,
+        width_ratio=inp.width_ratio,
+        guides=rules.guides,
     )
-    linked = bars(f, phi, grade, safety=safety, sections=given)
-    slid = blocks(pairs_of_joints, linked, pin_of, width_ratio, bush_limits.p)
-    depths = {b.link: _depth(b, given) for b in linked.bars}
+    linked = rules.bars(f, phi)
+    slid = blocks(pairs, linked, rules.pin_of, inp.width_ratio, rules.bush.p)
+    depths = {b.link: _depth(b, rules.sections) for b in linked.bars}
     made = made_diameters(pinned, found)
     checked = proportions(mech, f.kinematics, made, linked, depths, {k: b.length for k, b in slid.items()})
-    unbounded = [p for p in pairs_of_joints if math.isinf(p.peak)]
+    missing: dict[str, str] = {}
+    unbounded = [p for p in pairs if math.isinf(p.peak)]
     if unbounded:
         missing[f"joints {', '.join(p.label for p in unbounded)}"] = (
             f"the force grows without bound as the crank nears the singular position at phi "
             f"{unbounded[0].peak_phi:.4g} deg: no pin, bush or bearing holds it"
         )
-    held = None
-    if bolts is not None and len(bolts):
-        found_loads = np.asarray(f.foundation, dtype=float)
-        held = size_bolts(
-            found_loads,
-            phi,
-            np.asarray(bolts, dtype=float),
-            threads=bundled("threads.csv"),
-            classes=bundled("bolt_classes.csv"),
-            bolt_class=bolt_class,
-            safety=joint_safety,
-            friction=friction,
-            load_factor=load_factor,
-            bolt_safety=bolt_safety,
-        )
-    else:
+    held = _bolts(np.asarray(f.foundation, dtype=float), phi, inp)
+    if held is None:
         missing["bolts"] = "no bolt pattern: give sizing: bolts: [[x, y], ...] in the file"
-    choice = None  # last: the runs of the machine take the longest, and the other parts' problems come first
-    if motor:
-        from linkwork.machine.reduction import reduced
+    return _Parts(crank, pinned, shaft, found, linked, checked, held, missing)
 
-        choice = choose_motor(
-            mech,
-            reduced(mech),
-            delta,
-            efficiency=efficiency,
-            reserve=reserve,
-            catalogue=cat,
-            synchronous=synchronous,
-            progress=progress,
-        )
-    else:
-        missing["motor"] = "not asked"
-    chosen = {
-        "delta": delta,
-        "gear_efficiency": efficiency,
-        "reserve": reserve,
-        "catalogue": cat.source
-        if cat is not None and catalogue is not None
-        else "motors.csv (bundled, typical values)",
-        "synchronous_rpm": synchronous * 30 / math.pi if synchronous is not None else None,
-    }
-    inputs = {
-        "life_h": life_h,
-        "bearing_kind": kind,
-        **(chosen if motor else {}),
-        "steel": steel,
-        "pin_safety": safety,
-        "bush": bush,
-        "width_ratio": width_ratio,
-        "bolt_class": bolt_class,
-        "bolt_safety": bolt_safety,
-        "joint_safety": joint_safety,
-        "friction": friction,
-        "load_factor": load_factor,
+
+def _bolts(foundation: np.ndarray, phi: np.ndarray, inp: SizingSpec) -> BoltResult | None:
+    """The foundation bolts of ``inp.bolts`` under the foundation's loads ``(A, 3)``; None without bolts."""
+    if not inp.bolts:
+        return None
+    return size_bolts(
+        foundation,
+        phi,
+        np.asarray(inp.bolts, dtype=float),
+        threads=bundled("threads.csv"),
+        classes=bundled("bolt_classes.csv"),
+        bolt_class=inp.bolt_class,
+        safety=inp.joint_safety,
+        friction=inp.friction,
+        load_factor=inp.load_factor,
+        bolt_safety=inp.bolt_safety,
+    )
+
+
+def _inputs_record(
+    inp: SizingSpec, chosen: dict[str, Any], steps: int, crank: float, sized: SizedMasses | None
+) -> dict[str, Any]:
+    """The inputs the machine was sized with, defaults included (:attr:`Sizing.inputs`); ``chosen``: the motor's
+    (none where it was not chosen)."""
+    return {
+        "life_h": inp.life / 3600.0,
+        "bearing_kind": inp.bearings,
+        **chosen,
+        "steel": inp.steel,
+        "pin_safety": inp.safety,
+        "bush": inp.bush,
+        "width_ratio": inp.width_ratio,
+        "bolt_class": inp.bolt_class,
+        "bolt_safety": inp.bolt_safety,
+        "joint_safety": inp.joint_safety,
+        "friction": inp.friction,
+        "load_factor": inp.load_factor,
         "steps": steps,
         "crank_rpm": crank * 30 / math.pi,
         "loads": "kinetostatics at the file's uniform crank speed",
         "masses": sized.said() if sized is not None else "the file's (or its default rule)",
     }
-    return Sizing(mech.name or "mechanism", inputs, choice, found, pinned, held, missing, linked, shaft, sized, checked)
 
 
 def _depth(bar: Any, given: dict[str, Any]) -> float:
@@ -344,11 +449,11 @@ def _depth(bar: Any, given: dict[str, Any]) -> float:
     return math.sqrt(4 * bar.area / math.pi)
 
 
-def _shaft(mech: Mechanism, pairs: list[Pair], pinned: Pins, file: Any) -> Shaft | None:
+def _shaft(mech: Mechanism, pairs: list[Pair], pinned: Pins, inp: SizingSpec) -> Shaft | None:
     """The main shaft of the crank's pivot (the first drive's joint with the frame), or None (no such pair)."""
     joint = mech.spec.drives[0].joint if mech.spec is not None and mech.spec.drives else None
     pair = next((p for p in pairs if p.label == joint and p.kind == "revolute" and "frame" in p.links), None)
     pin = next((p for p in pinned.pins if p.label == joint), None)
     if pair is None or pin is None:
         return None
-    return main_shaft(pair, file.shaft if file is not None else None, pin.diameter, pinned, pin.force)
+    return main_shaft(pair, inp.shaft, pin.diameter, pinned, pin.force)

@@ -25,7 +25,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -34,20 +34,12 @@ from linkwork.machine.drive import InductionMotor
 from linkwork.machine.flywheel import Flywheel
 from linkwork.machine.reduction import Reduced
 from linkwork.machine.steady_cycle import Dynamics, dynamics, with_flywheel_for
-from linkwork.sizing.common import Catalogue, Table, bundled, read_catalogue
+from linkwork.sizing.common import COLUMNS, Catalogue, Table, bundled, read_catalogue
 from linkwork.structure.model import Mechanism
 from linkwork.structure.records import MotorGear
 
 #: The columns of a motor catalogue, by name, with their SI units.
-MOTOR_COLUMNS = {
-    "power": "W",
-    "synchronous": "rad/s",
-    "speed": "rad/s",
-    "starting": "1",
-    "breakdown": "1",
-    "inertia": "kg*m^2",
-    "mass": "kg",
-}
+MOTOR_COLUMNS = COLUMNS["motors.csv"]
 
 RPM = 30 / math.pi
 
@@ -357,7 +349,7 @@ def choose_motor(
             why = screen(red, row, crank, efficiency, delta, reserve, need)
         if why == "":
             runs += 1
-            choice = _run(mech, row, cat.names[i], crank, efficiency, delta, reserve, need, steps)
+            choice = _run(mech, row, cat.names[i], _Duty(crank, efficiency, delta, reserve, need, steps))
             why = _fails(choice)
             if why == "":
                 return _with(choice, tuple(passed), cat.source)
@@ -406,18 +398,22 @@ def _fails(choice: MotorChoice) -> str:
     return ""
 
 
-def _run(
-    mech: Mechanism,
-    row: dict[str, float],
-    name: str,
-    crank: float,
-    efficiency: float,
-    delta: float,
-    reserve: float,
-    need: float,
-    steps: int | None,
-) -> MotorChoice:
-    """Run the machine with the motor of ``row`` and its flywheel for ``delta``, and read the run."""
+class _Duty(NamedTuple):
+    """What the choice asks of every motor it runs: the crank's speed (rad/s), the gear's efficiency, the
+    coefficient of speed fluctuation, the reserve of the breakdown torque, the mean power needed (W) and the
+    steps of the run (None: the default)."""
+
+    crank: float
+    efficiency: float
+    delta: float
+    reserve: float
+    need: float
+    steps: int | None
+
+
+def _run(mech: Mechanism, row: dict[str, float], name: str, duty: _Duty) -> MotorChoice:
+    """Run the machine with the motor of ``row`` and its flywheel for the duty's ``delta``, and read the run."""
+    crank, efficiency, delta, reserve, need, steps = duty
     from linkwork.limits import DYNAMICS_STEPS
     from linkwork.motion.analysis import CrankAngles
 

@@ -27,7 +27,7 @@ from pydantic import (
 from pydantic_core import PydanticCustomError
 
 from linkwork.errors import UnitParseError
-from linkwork.limits import MAX_GEAR_RATIO, MAX_MAGNITUDE, MAX_RUN_TIME, MIN_DELTA, echo
+from linkwork.limits import MAX_GEAR_RATIO, MAX_MAGNITUDE, MAX_RUN_TIME, MIN_DELTA, WIDTH_RATIOS, echo
 from linkwork.units import DEFAULT_UNITS, KINDS, MADE_OF, parse_quantity
 
 
@@ -581,20 +581,44 @@ class ShaftSpec(_Strict):
     )
 
 
-class SizingSpec(_Strict):
-    """What ``linkwork size`` needs beyond the loads: the pins the joints have, the guides' lengths, the bolts."""
+#: A positive factor (a safety, a coefficient of friction) and a share of a whole, in (0, 1].
+Factor = Annotated[float, Field(gt=0, allow_inf_nan=False)]
+Share = Annotated[float, Field(gt=0, le=1)]
 
-    life: Annotated[float, *_quantity("time", "positive")] | None = Field(
-        None, description="basic rating life L10h the rolling bearings are sized for, e.g. 20000 h"
+
+class SizingSpec(_Strict):
+    """What ``linkwork size`` needs beyond the loads: the pins the joints have, the guides' lengths, the bolts,
+    and the inputs of the sizing (the bearings' life, the materials, the safety factors) with their defaults:
+    their one home (``linkwork.size(mech, sizing=...)`` and ``linkwork size`` give theirs over the file's)."""
+
+    life: Annotated[float, *_quantity("time", "positive")] = Field(
+        default=72_000_000.0, description="basic rating life L10h the rolling bearings are sized for (default 20000 h)"
     )
     pins: dict[str, PinSize] = Field(default_factory=dict, description="pins of revolute joints, by joint name")
-    guides: dict[str, PositiveLength] = Field(
-        default_factory=dict, description="length of the guide (shoe) of prismatic joints, by joint name"
-    )
+    guides: dict[str, PositiveLength] = Field(default_factory=dict, description="guides' lengths, by prismatic joint")
     bolts: list[Vec2] = Field(default_factory=list, description="foundation bolts: their positions [x, y] on the bed")
     sections: dict[str, SectionSpec] = Field(default_factory=dict, description="cross-sections of links, by link name")
-    shaft: ShaftSpec | None = Field(None, description="the crank's main shaft on two bearings (default: crank midway)")
-    motor: bool = Field(False, description="the report chooses the motor from the catalogue too (runs the machine)")
+    shaft: ShaftSpec | None = Field(default=None, description="the crank's main shaft (default: the crank midway)")
+    motor: bool = Field(default=False, description="the report chooses the motor too (runs the machine)")
+    bearings: Literal["ball", "roller"] = Field(default="ball", description="rolling bearings: ball or roller")
+    delta: float | None = Field(default=None, ge=MIN_DELTA, lt=1, description="speed fluctuation (default: machine's)")
+    efficiency: Share | None = Field(default=None, description="of the gear (default: the gear's, else 0.95)")
+    reserve: Share = Field(default=0.8, description="share of the breakdown torque the peak motor torque may reach")
+    synchronous: Annotated[float, *_quantity("angular_speed", "positive")] | None = Field(
+        default=None, description='keep to motors of this synchronous speed, e.g. "1500 rpm"'
+    )
+    steel: str = Field(default="C45 normalised", description="steel grade of the pins and links (steels.csv)")
+    safety: Factor = Field(default=2.0, description="safety factor of the pins and links on the yield strength")
+    bush: str = Field(default="tin bronze CuSn12 greased", description="plain bush (bushes.csv)")
+    width_ratio: float = Field(default=1.0, ge=WIDTH_RATIOS[0], le=WIDTH_RATIOS[1], description="pins' width / d")
+    bolt_class: str = Field(default="5.6", description="property class of the foundation bolts (bolt_classes.csv)")
+    bolt_safety: Factor = Field(default=1.5, description="safety of the bolts on their yield strength")
+    joint_safety: Factor = Field(default=1.5, description="safety of the bolted joint against opening and sliding")
+    friction: Factor = Field(default=0.2, description="friction coefficient of the bolted joint")
+    load_factor: float = Field(default=0.25, ge=0, lt=1, description="share of the working load the bolts take")
+    masses: Literal["sized", "file"] | None = Field(
+        default=None, description='the links\' masses: "sized" from their sections (the default), or the "file"\'s'
+    )
 
 
 #: The forms of ``gravity:``, as pydantic tags them (the place of a problem leaves them out).

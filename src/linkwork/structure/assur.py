@@ -13,6 +13,7 @@ not depend on counting rules that special dimensions could fool.
 from __future__ import annotations
 
 from itertools import combinations
+from typing import NamedTuple
 
 import numpy as np
 
@@ -55,6 +56,7 @@ def decompose(
         Links that no drive determines (empty when the decomposition is complete).
     """
     placed = {0}
+    pairs = _Pairs(pair_type, pair_links, pair_joint, link_names)
     remaining = list(range(1, n_total))
     groups: list[AssurGroup] = []
     row_links = [set(map(int, rl)) for rl in rows.links]
@@ -63,7 +65,7 @@ def decompose(
         if found is None:
             return groups, remaining
         subset, sel, redundant = found
-        groups.append(_classify(subset, sel, redundant, rows, pair_type, pair_links, pair_joint, link_names, placed))
+        groups.append(_classify(subset, sel, redundant, rows, pairs))
         placed |= set(subset)
         remaining = [i for i in remaining if i not in subset]
     return groups, []
@@ -89,17 +91,19 @@ def _smallest_group(
     return None
 
 
-def _classify(
-    subset: tuple[int, ...],
-    sel: list[int],
-    redundant: int,
-    rows: Rows,
-    pair_type: np.ndarray,
-    pair_links: np.ndarray,
-    pair_joint: tuple[str, ...],
-    link_names: tuple[str, ...],
-    placed: set[int],
-) -> AssurGroup:
+class _Pairs(NamedTuple):
+    """The kinematic pairs of a mechanism as the decomposition reads them: each pair's type, its two links and its
+    joint's name, and the links' names."""
+
+    pair_type: np.ndarray
+    pair_links: np.ndarray
+    pair_joint: tuple[str, ...]
+    link_names: tuple[str, ...]
+
+
+def _classify(subset: tuple[int, ...], sel: list[int], redundant: int, rows: Rows, of: _Pairs) -> AssurGroup:
+    """The Assur group (or driven group) of the links ``subset`` closed by the constraint rows ``sel``."""
+    pair_type, pair_links, pair_joint, link_names = of
     s = set(subset)
     pairs = sorted({int(rows.pair[i]) for i in sel if rows.pair[i] >= 0})
     # a pair repeated between the same links at the same points only adds redundant constraints

@@ -9,7 +9,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -265,6 +265,15 @@ def _safe(x: float, digits: int, step: Callable[[float], int]) -> str:
         return f"{x:g}"
     scale = 10.0 ** (math.floor(math.log10(abs(x))) - digits + 1)
     return f"{step(x / scale) * scale:.{digits}g}"
+
+
+class Making(NamedTuple):
+    """How a written file makes its mechanism: the crank's ``speed`` as written (``"60 rpm"``), and the steel bars'
+    ``section`` (width and height, m) and ``density`` (kg/m^3) its links' masses are of."""
+
+    speed: str
+    section: tuple[float, float]
+    density: float
 
 
 def bar_mass(length: float, section: tuple[float, float] = BAR, density: float = STEEL) -> float:

@@ -33,6 +33,7 @@ from linkwork.synthesis.common import (
     BAR,
     STEEL,
     Family,
+    Making,
     Synthesis,
     bar_mass,
     below_rule,
@@ -291,7 +292,7 @@ def synthesize(
     dims = {k: float(m[k]) * scale for k in ("crank", "coupler", "rocker", "frame")}
     proportions(KIND, dims)
     requirements = given(swing=swing, time_ratio=time_ratio, rocker=rocker, frame=frame, min_transmission_angle=bound)
-    text, spec = file_of(*_file(dims, m, scale, swing, time_ratio, theta, mu, speed, section, density))
+    text, spec = file_of(*_file(dims, m, scale, swing, time_ratio, theta, mu, Making(speed, section, density)))
     measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))
     measured["swing"] = measured.pop("stroke")
     predicted = {"swing": swing, "time_ratio": time_ratio, "least_transmission_angle": mu}
@@ -313,8 +314,9 @@ def synthesize(
     )
 
 
-def _file(dims, m, scale, swing, time_ratio, theta, mu, speed, section, density) -> tuple:  # noqa: ANN001
+def _file(dims, m, scale, swing, time_ratio, theta, mu, making: Making) -> tuple:  # noqa: ANN001
     """The file's data and comments: O2 at the origin, O4 on +x, assembled in the stretched position."""
+    speed, section, density = making
     o2 = m["O2"]
     be, _ = _limits(swing)
     ex = -o2 / np.linalg.norm(o2)  # the frame's x axis: O2 -> O4

@@ -44,6 +44,7 @@ from linkwork.synthesis.common import (
     LEAST_TRANSMISSION,
     STEEL,
     Family,
+    Making,
     Synthesis,
     bar_mass,
     below_rule,
@@ -243,7 +244,7 @@ def synthesize(
         max_pressure_angle=max_pressure_angle,
         min_transmission_angle=floor,
     )
-    text, spec = file_of(*_file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass))
+    text, spec = file_of(*_file(dims, stroke, time_ratio, theta, alpha, why, Making(speed, section, density), ram_mass))
     measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": _written_alpha(spec)}
@@ -281,8 +282,9 @@ def _extreme_angles(dims: dict, theta: float) -> list[float]:
     return [math.pi / 2, 3 * math.pi / 2, -theta / 2, math.pi + theta / 2]
 
 
-def _file(dims, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass) -> tuple:  # noqa: ANN001
+def _file(dims, stroke, time_ratio, theta, alpha, why, making: Making, ram_mass) -> tuple:  # noqa: ANN001
     """The file's data and comments: assembled with the crank up and the lever upright."""
+    speed, section, density = making
     lever, d, r, h, rod = (rounded(dims[k]) for k in ("lever", "frame", "crank", "guide_height", "rod"))
     mass = {k: float(f"{bar_mass(dims[k], section, density):.6g}") for k in ("crank", "lever", "rod")}
     block = float(f"{bar_mass(section[0], section, density):.6g}")

@@ -43,6 +43,7 @@ from linkwork.synthesis.common import (
     STEEL,
     TOLERANCE,
     VERIFY_STEPS,
+    Making,
     Synthesis,
     bar_mass,
     below_rule,
@@ -181,7 +182,7 @@ def synthesize(
         time_ratio=time_ratio,
         min_transmission_angle=floor,
     )
-    text, spec = file_of(*_file(geo, stroke, force, before, psi, k, speed, section, density))
+    text, spec = file_of(*_file(geo, stroke, force, before, psi, k, Making(speed, section, density)))
     measured = measure(spec, [angle], lambda mu: next(v for key, v in mu.items() if key.endswith("RRP")), "guide")
     measured = {"stroke": measured["stroke"], "torque_at_nominal": -_torque(spec, angle)}  # clockwise
     predicted = {"stroke": stroke, "torque_at_nominal": force * rho}
@@ -272,8 +273,9 @@ def _torque(spec, angle: float, variants: dict | None = None) -> Any:  # noqa: A
     return torque if variants is not None else float(torque[0])
 
 
-def _file(geo, stroke, force, before, psi, k, speed, section, density) -> tuple:  # noqa: ANN001
+def _file(geo, stroke, force, before, psi, k, making: Making) -> tuple:  # noqa: ANN001
     """The file's data and comments, assembled at the top (the four-bar stretched)."""
+    speed, section, density = making
     a, r, b = rounded(geo["toggle"]), rounded(geo["crank"]), rounded(geo["rod"])
     o = np.array([rounded(float(x)) for x in geo["O"]])
     top = a * np.array([math.sin(psi), -math.cos(psi)])

@@ -1,0 +1,249 @@
+"""The solve program as the compiled kernels read it, and the batch that runs them.
+
+:func:`encode` writes the closed-form steps of a program as an integer table (one row a step: its kind,
+then columns by kind and the arms, :data:`KIND` ...); :func:`run_program` runs a compiled kernel of
+:mod:`linkwork.motion.kernels_numba` over every sample of a batch, in parts on the threads of
+:func:`linkwork.threads.pool`, and gives what it found (:class:`Solved`).  The scalar kernels themselves,
+in machine code, are :mod:`linkwork.motion.kernels_numba`'s, which reads the columns and flags from here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from linkwork import jit, threads
+from linkwork.structure.model import Mechanism
+from linkwork.structure.parameters import Geometry
+from linkwork.structure.records import Arm, Step
+
+#: Step kinds of the compiled program (column :data:`KIND` of its table).
+CRANK, SLIDE, DYAD, RPR, RPP = range(5)
+#: The code of each closed-form step kind (:data:`linkwork.motion.program.CLOSED_FORM`).
+CODES = {"crank": CRANK, "slide": SLIDE, "RRR": DYAD, "RRP": DYAD, "PRP": DYAD, "RPR": RPR, "RPP": RPP}
+
+# Columns of a step's row of the compiled program (:func:`encode`): its kind, then by kind
+KIND = 0
+#: crank: the driven link, the placed link it turns on (the base), the base's point at the pivot, the
+#: driven link's point there, the sign of the drive angle (:attr:`Step.sign`), the drive
+CRANK_LINK, CRANK_BASE, CRANK_SRC, CRANK_OWN, CRANK_SIGN, CRANK_DRIVE = range(1, 7)
+#: slide: the slider, the link that carries the guide, the prismatic pair, the slider's point, the drive
+SLIDE_LINK, SLIDE_GUIDE, SLIDE_PAIR, SLIDE_POINT, SLIDE_DRIVE = range(1, 6)
+#: dyad: the point of X on each arm's link (-1: the link's origin); RPR: the inner prismatic pair
+DYAD_XA, DYAD_XB = 1, 2
+RPR_INNER = 1
+#: the first column of the arms, :data:`ARM` columns each (:class:`~linkwork.motion.program.Arm`)
+ARMS = 3
+#: Columns of an arm, from its first: R (0) or P (1), its link, its outer pair, R: its own point at the
+#: outer joint, the placed link's point there and that link; P: the link whose angle it keeps, whether
+#: it is the pair's slider, the slider's point of the pair
+ARM_KIND, ARM_LINK, ARM_PAIR, ARM_OWN, ARM_SRC, ARM_SRC_LINK, ARM_CARRIER, ARM_IS_SLIDER, ARM_SLIDER_POINT = range(9)
+ARM = 9
+
+#: Columns of a link's state in the scratch block of a sample (:data:`linkwork.motion.kernels_numba.S_X` ...)
+STATE = 11
+
+
+class Solved(NamedTuple):
+    """What the compiled kernels give (:func:`run`).
+
+    Attributes
+    ----------
+    q, v, a : ndarray, shape (N, 3, V, A)
+        Pose, velocity and acceleration of every link.
+    cos, sin : ndarray, shape (N, V, A)
+        Of every link's angle (as the kernels placed its points).
+    slack, det : ndarray, shape (S, V, A)
+        Assembly margin and normalised Jacobian determinant of every step.
+    valid : ndarray of bool, shape (V, A)
+        Every step assembled.
+    near : ndarray of bool, shape (S, V)
+        A dyad's two assembly modes come within a step of each other: the NumPy path decides the mode.
+    trouble : ndarray of bool, shape (S, V)
+        A step fails to assemble, comes within :data:`SINGULAR` of a singular position or its
+        determinant changes sign: only there are events looked for.
+    singular : bool
+        Some assembled sample has a normalised determinant below :data:`SINGULAR`.
+    limit : ndarray of bool, shape (S, V)
+        A dyad lies on a singular position to rounding (its outer joints together or its modes
+        meeting): the NumPy kernels give the velocities there.
+    some_near, some_limit, some_invalid, some_trouble : bool
+        ``near.any()``, ``limit.any()``, ``not valid.all()`` and ``trouble.any()``, found by the kernels
+        as they go.
+    """
+
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    cos: np.ndarray
+    sin: np.ndarray
+    slack: np.ndarray
+    det: np.ndarray
+    valid: np.ndarray
+    near: np.ndarray
+    trouble: np.ndarray
+    singular: bool
+    limit: np.ndarray
+    some_near: bool = False
+    some_limit: bool = False
+    some_invalid: bool = False
+    some_trouble: bool = True
+
+
+#: Entries of the flags the kernel sets (:class:`Solved`): some sample singular, some step near a change
+#: point, some step on a singular position to rounding, some sample not assembled, some step in trouble.
+F_SINGULAR, F_NEAR, F_LIMIT, F_INVALID, F_TROUBLE = range(5)
+
+
+def supports(program: tuple[Step, ...]) -> bool:
+    """Whether every step has a compiled kernel."""
+    return all(step.kind in CODES for step in program)
+
+
+def _arm(arm: Arm, point_link: np.ndarray) -> list[int]:
+    """An arm's columns (:data:`ARM_KIND` ...)."""
+    src_link = int(point_link[arm.src]) if arm.src >= 0 else -1
+    return [
+        0 if arm.kind == "R" else 1,
+        arm.link,
+        arm.pair,
+        arm.own,
+        arm.src,
+        src_link,
+        arm.carrier,
+        int(arm.own_is_slider),
+        arm.slider_point,
+    ]
+
+
+class Program(NamedTuple):
+    """The solve program for the compiled kernels: one row of ``ops`` a step (columns :data:`KIND`,
+    :data:`CRANK_LINK` ..., the arms from :data:`ARMS`), and the assembly mode of each step."""
+
+    ops: np.ndarray  # (S, 3 + 3 ARM) int
+    branch: np.ndarray  # (S,)
+
+
+def encode(program: tuple[Step, ...], point_link: np.ndarray) -> Program:
+    """The program as an integer table (one row a step) and the branch of each step."""
+    ops = np.full((len(program), ARMS + 3 * ARM), -1, dtype=np.int64)
+    for s, step in enumerate(program):
+        kind = CODES[step.kind]
+        ops[s, KIND] = kind
+        if kind == CRANK:
+            arm = step.arms[0]
+            crank = {
+                CRANK_LINK: arm.link,
+                CRANK_BASE: int(point_link[arm.src]),
+                CRANK_SRC: arm.src,
+                CRANK_OWN: arm.own,
+                CRANK_SIGN: int(step.sign),
+                CRANK_DRIVE: step.drive,
+            }
+            for col, value in crank.items():
+                ops[s, col] = value
+        elif kind == SLIDE:
+            arm = step.arms[0]
+            slide = {
+                SLIDE_LINK: arm.link,
+                SLIDE_GUIDE: arm.carrier,
+                SLIDE_PAIR: arm.pair,
+                SLIDE_POINT: arm.slider_point,
+                SLIDE_DRIVE: step.drive,
+            }
+            for col, value in slide.items():
+                ops[s, col] = value
+        else:
+            if kind == DYAD:
+                ops[s, DYAD_XA], ops[s, DYAD_XB] = step.x_local
+            elif kind == RPR:
+                ops[s, RPR_INNER] = step.inner
+            for j, arm in enumerate(step.arms):
+                ops[s, ARMS + j * ARM : ARMS + (j + 1) * ARM] = _arm(arm, point_link)
+    return Program(ops, np.array([step.branch for step in program], dtype=float))
+
+
+def run_program(
+    kernel: Callable[..., None],
+    mech: Mechanism,
+    geom: Geometry,
+    values: np.ndarray,
+    rates: np.ndarray,
+    accels: np.ndarray,
+) -> Solved:
+    """Solve every sample with the compiled ``kernel`` (:func:`linkwork.motion.kernels_numba.run`).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        With a compiled program (``mech.program_table``).
+    geom : Geometry
+        Dimensions of the design variants.
+    values, rates, accels : (A, D)
+
+    Returns
+    -------
+    Solved
+    """
+    assert mech.program_table is not None
+    ops, branch = mech.program_table
+    values, rates, accels = floats(values), floats(rates), floats(accels)
+    n_var, n_ang, n_steps, n_links = geom.point_local.shape[0], values.shape[0], len(ops), mech.n_links_total
+    out = np.empty((11 * n_links, n_var * n_ang))  # one block: q, v, a (3 rows a link each), cos, sin
+    found = np.empty((2, n_steps, n_var, n_ang))  # slack, det
+    marks = np.zeros((3, n_steps, n_var), dtype=np.bool_)  # near, trouble, limit
+    valid = np.empty((n_var, n_ang), dtype=np.bool_)
+    flags = np.zeros(5, dtype=np.bool_)
+    args = (
+        ops,
+        branch,
+        jit.read_only(geom.point_local),
+        jit.read_only(geom.pair_origin),
+        jit.read_only(geom.pair_axis),
+        values,
+        rates,
+        accels,
+        out,
+        found,
+        valid,
+        marks,
+        flags,
+    )
+    _in_parts(kernel, args, n_links, n_steps, n_var, n_ang)
+    if n_ang < 3:  # too few samples to follow a change point: the mode of the assembly pose throughout
+        marks[0] = False
+        flags[F_NEAR] = False
+    singular, near, limit, invalid, trouble = flags.tolist()
+    q, v, a = out[: 9 * n_links].reshape(3, n_links, 3, n_var, n_ang)
+    cos, sin = out[9 * n_links :].reshape(2, n_links, n_var, n_ang)
+    slack, det = found
+    return Solved(
+        q, v, a, cos, sin, slack, det, valid, marks[0], marks[1], singular, marks[2], near, limit, invalid, trouble
+    )
+
+
+def floats(x: np.ndarray) -> np.ndarray:
+    """``x`` as a C-ordered array of floats (itself where it is one already)."""
+    return x if x.dtype == np.float64 and x.flags.c_contiguous else np.ascontiguousarray(x, dtype=float)
+
+
+def _in_parts(
+    kernel: Callable[..., None], args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_ang: int
+) -> None:
+    """Run the kernel on ``args`` over the samples, split into parts run on the threads of
+    :func:`linkwork.threads.pool` (:func:`linkwork.threads.parts`; the calling thread takes the first)."""
+    n_threads = threads.parts(n_var * n_ang)
+
+    def part(lo: int, hi: int) -> None:
+        kernel(*args, lo, hi, np.zeros((n_links, STATE)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
+
+    if n_threads == 1 or n_ang < n_threads:
+        part(0, n_ang)
+        return
+    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int)
+    rest = [threads.pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
+    part(bounds[0], bounds[1])
+    for job in rest:
+        job.result()
