@@ -18,7 +18,8 @@ pytest.importorskip("matplotlib")
 
 from ezdxf import bbox  # noqa: E402
 
-from linkwork.io.dxf_sheet import FORMATS, GostSheet, TitleBlock, number, reduction, write_sheets  # noqa: E402
+from linkwork.io.dxf_sheet import FORMATS, GostSheet, TitleBlock, number, reduction  # noqa: E402
+from linkwork.io.sheet_drawings import SheetAnalyses, write_sheets  # noqa: E402
 
 BLOCK = TitleBlock(
     title="Ножницы",
@@ -104,7 +105,8 @@ def _shears_sheets(folder: str, fmt: str) -> tuple[list, float]:
     cycle = lw.kinematics(mech, position_angles(mech, 72, zero))
     at = zero + np.radians(86.6)  # under the cutting load
     one = lw.forces(lw.kinematics(mech, [at]))
-    paths = write_sheets(twelve, 9, cycle, force_plans(one), lever(one), 0, "φ = 86,6°", folder, "ru", fmt, BLOCK)
+    analyses = SheetAnalyses(twelve, 9, cycle, force_plans(one), lever(one), 0, "φ = 86,6°")
+    paths = write_sheets(analyses, folder, "ru", fmt, BLOCK)
     assert paths[-1].name == "sheets.pdf" and paths[-1].read_bytes().count(b"/Type /Page") - 1 == len(paths) - 1
     return [ezdxf.readfile(p) for p in paths[:-1]], float(one.external.magnitude["cutting"][0, 0])
 
@@ -164,7 +166,7 @@ def test_the_options_fill_the_title_block_as_the_file_would():
     """``--sheet a3 --title-block developer=...`` give the sheets what ``drawing: {sheet: A3, title_block:
     {developer: ...}}`` in the file gives; the file's positions stay."""
     from linkwork.cli.analyze import _with_sheets
-    from linkwork.io.dxf_sheet import sheet_options
+    from linkwork.io.sheet_drawings import sheet_options
 
     mech = lw.compile(lw.example("double-cut-shears"))
     assert sheet_options(mech) == ("A1", TitleBlock())
@@ -341,9 +343,8 @@ def shears():
 
 def _all_sheets(shears, folder, fmt, lang):
     twelve, cycle, plans, lv = shears
-    paths = write_sheets(
-        twelve, 3, cycle, plans, lv, 0, "φ = 86,6°", folder, lang, fmt, BLOCK, dynamics=_dynamics(), pdf=False
-    )
+    analyses = SheetAnalyses(twelve, 3, cycle, plans, lv, 0, "φ = 86,6°", _dynamics())
+    paths = write_sheets(analyses, folder, lang, fmt, BLOCK, pdf=False)
     return [ezdxf.readfile(p) for p in paths]
 
 

@@ -203,7 +203,7 @@ def _sheets(run: Any, cycle: Any, plans: Any, lv: Any, at: Where) -> None:
     dynamics of a file with a machine, as the dynamics section found them), more on A3 and A4, and
     ``figures/sheets.pdf``, the same sheets."""
     from linkwork.errors import LinkworkError
-    from linkwork.io.dxf_sheet import sheet_options, write_sheets
+    from linkwork.io.sheet_drawings import SheetAnalyses, sheet_options, write_sheets
 
     fmt, block = sheet_options(run.mech)
     folder = run.folder / "figures"
@@ -214,7 +214,8 @@ def _sheets(run: Any, cycle: Any, plans: Any, lv: Any, at: Where) -> None:
             dynamics = run.study.dynamics  # found once, by the dynamics section
         except LinkworkError:
             dynamics = None  # the dynamics section says why
-    write_sheets(twelve, first, cycle.kin, plans, lv, at.index, named, folder, run.lang, fmt, block, dynamics)
+    analyses = SheetAnalyses(twelve, first, cycle.kin, plans, lv, at.index, named, dynamics)
+    write_sheets(analyses, folder, run.lang, fmt, block)
 
 
 def _kinematic_plans(run: Any, at: Where, where: str) -> list[str]:
