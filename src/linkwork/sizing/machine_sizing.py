@@ -135,6 +135,8 @@ def size(
 
     Parameters
     ----------
+    mech : Mechanism
+        The compiled machine (one crank).
     life_h : float
         Basic rating life L10h of the rolling bearings, h (default: the file's ``sizing: life``, else 20000).
     kind : str
