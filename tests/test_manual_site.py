@@ -231,3 +231,19 @@ def test_the_commands_a_new_reader_copies_fit_a_narrow_screen():
             if lang == "bash":
                 long = [c for c in code.splitlines() if len(c) > 90]
                 assert long == [], f"{path.name}:{line}: {long}"
+
+
+def test_no_paragraph_of_the_user_pages_runs_on_for_more_than_fifteen_lines():
+    """Prose in paragraphs a reader takes in at a glance: the pages had paragraphs of 20 to 35 lines (lists,
+    tables, code and the pages for developers aside; 8 lines is the aim, a few run to 15)."""
+    aside = {"development.md", "benchmarks.md", "changelog.md"}
+    long = []
+    for path in sorted(DOCS.rglob("*.md")):
+        if path.relative_to(DOCS).as_posix() in aside:
+            continue
+        text = re.sub(r"^```.*?^```|<!--.*?-->", "", path.read_text(encoding="utf-8"), flags=re.S | re.M)
+        for para in re.split(r"\n\s*\n", text):
+            lines = para.strip("\n").splitlines()
+            if len(lines) > 15 and not para.lstrip().startswith(("|", "-", "*", "1.", "#", "$$")):
+                long.append(f"{path.relative_to(DOCS)}: {len(lines)} lines from {lines[0][:40]!r}")
+    assert long == []
