@@ -52,7 +52,7 @@ def test_a_math_renderer_is_shipped_and_the_theory_pages_use_it():
     assert any(s.name.startswith("tex-") and s.stat().st_size > 1_000_000 for s in scripts), "MathJax's bundle"
     extensions = {next(iter(e)) if isinstance(e, dict) else e for e in config["markdown_extensions"]}
     assert "pymdownx.arithmatex" in extensions
-    for name in ("guide/synthesis.md", "guide/sizing.md", "guide/force-plans.md", "how-to/dynamics.md"):
+    for name in ("how-to/synthesize.md", "guide/sizing.md", "guide/force-plans.md", "how-to/dynamics.md"):
         assert "$$" in page(name), f"{name}: its formulas as LaTeX"
 
 
