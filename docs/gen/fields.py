@@ -7,6 +7,7 @@ them in the page's signature and Parameters (griffe reads the source, where a mo
 
 from __future__ import annotations
 
+import re
 import types
 import typing
 from typing import Any
@@ -44,8 +45,9 @@ PLAIN = {
 def _meaning(name: str, field: Any) -> str:
     """A field's description, else the first line of its type's docstring (``Link``: "A rigid body ..."), else
     :data:`PLAIN`'s."""
-    if field.description:
-        return field.description[0].upper() + field.description[1:]
+    if field.description:  # a placeholder (``<name>_tolerance``) as code, not an HTML tag
+        text = re.sub(r"(\S*<\w+>\S*)", r"`\1`", field.description)
+        return text[0].upper() + text[1:]
     kinds = [field.annotation, *typing.get_args(field.annotation)]
     for tp in [t for k in kinds for t in (k, *typing.get_args(k))]:
         if isinstance(tp, type) and tp.__module__.startswith("linkwork") and tp.__doc__:

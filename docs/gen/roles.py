@@ -35,6 +35,12 @@ def _fields() -> Any:
     return module
 
 
+def _python(words: str) -> str:
+    """A type in words as the signature writes it: ``Gravity or float or str (an acceleration)`` is
+    ``Gravity | float | str``."""
+    return re.sub(r" \([^)]*\)", "", words).replace(" or ", " | ")
+
+
 class ModelFields(griffe.Extension):
     """A pydantic model's page (``lw.Spec``): its keyword-only signature and its Parameters, one per field."""
 
@@ -50,7 +56,7 @@ class ModelFields(griffe.Extension):
             return
         rows = self.fields.model_parameters(model)
         keyword = griffe.ParameterKind.keyword_only
-        params = [griffe.Parameter(n, annotation=k, kind=keyword, default=d) for n, k, d, _ in rows]
+        params = [griffe.Parameter(n, annotation=_python(k), kind=keyword, default=d) for n, k, d, _ in rows]
         self_ = griffe.Parameter("self", kind=griffe.ParameterKind.positional_or_keyword)
         init = griffe.Function("__init__", parameters=griffe.Parameters(self_, *params), returns="None", parent=cls)
         cls.set_member("__init__", init)
