@@ -52,7 +52,7 @@ def test_a_math_renderer_is_shipped_and_the_theory_pages_use_it():
     assert any(s.name.startswith("tex-") and s.stat().st_size > 1_000_000 for s in scripts), "MathJax's bundle"
     extensions = {next(iter(e)) if isinstance(e, dict) else e for e in config["markdown_extensions"]}
     assert "pymdownx.arithmatex" in extensions
-    for name in ("guide/synthesis.md", "guide/sizing.md", "guide/force-plans.md", "how-to/dynamics.md"):
+    for name in ("how-to/synthesize.md", "guide/sizing.md", "guide/force-plans.md", "how-to/dynamics.md"):
         assert "$$" in page(name), f"{name}: its formulas as LaTeX"
 
 
@@ -100,6 +100,62 @@ def test_every_function_of_the_reference_has_parameters_returns_and_an_example()
     assert missing == []
 
 
+def _documented(doc: str) -> list[str] | None:
+    """The names a numpydoc Parameters section documents (``p5, p4 : int`` documents two), None without one."""
+    m = re.search(r"^Parameters\n-{3,}\n(.*?)(?=^\w[\w ]*\n-{3,}$|\Z)", doc, re.S | re.M)
+    if m is None:
+        return None
+    heads = [re.match(r"^([*\w]+(?:, [*\w]+)*)\s*(?::|$)", line) for line in m.group(1).splitlines()]
+    return [name.strip("*") for h in heads if h for name in h.group(1).split(", ")]
+
+
+def _options() -> dict:
+    return _plugins(_config())["mkdocstrings"]["handlers"]["python"]["options"]
+
+
+def test_every_page_of_the_reference_shows_the_signature_and_documents_each_parameter():
+    """A function's or a class's Parameters name exactly the parameters of its signature (a class's: its
+    constructor's, shown on its page with the class, ``merge_init_into_class``); a pydantic model's page has them
+    from the model's fields (``docs/gen/fields.py``), as its constructor takes them."""
+    import linkwork
+
+    options = _options()
+    assert options.get("show_signature", True) and options["merge_init_into_class"] is True
+    assert "docs/gen/roles.py:ModelFields" in options["extensions"]
+    wrong = []
+    for name in sorted(set(linkwork.__all__) - {"__version__"}):
+        obj = inspect.unwrap(getattr(linkwork, name))
+        if hasattr(obj, "model_fields"):  # lw.Spec: its fields are its keyword-only parameters
+            assert list(inspect.signature(obj).parameters) == list(obj.model_fields), name
+            continue
+        signature = [p for p in inspect.signature(obj).parameters if p != "self"]
+        documented = _documented(inspect.getdoc(obj) or "")
+        if documented is None or sorted(documented) != sorted(signature):
+            wrong.append(f"lw.{name}: documents {documented}, its signature has {signature}")
+    assert wrong == []
+
+
+def test_a_model_page_has_every_field_with_its_type_default_and_meaning():
+    """``lw.Spec``'s page: the Parameters that ``docs/gen/fields.py`` reads from the model, each field with the
+    type a file takes, its default where it has one, and a sentence; ``roles.py``'s ``ModelFields`` shows them."""
+    import importlib.util
+
+    import linkwork as lw
+
+    spec = importlib.util.spec_from_file_location("fields", DOCS / "gen" / "fields.py")
+    fields = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(fields)
+    rows = {name: (kind, default, meaning) for name, kind, default, meaning in fields.model_parameters(lw.Spec)}
+    assert list(rows) == list(lw.Spec.model_fields)
+    assert rows["gravity"][:2] == ("Gravity or float or str (an acceleration)", "9.81")
+    assert rows["links"][:2] == ("dict[str, Link]", None)  # required
+    assert rows["units"][1] == "Units()" and rows["machine"][:2] == ("Machine or None", "None")
+    assert all(len(meaning.split()) >= 3 for _, _, meaning in rows.values()), rows
+    section = fields.parameters_section(list(fields.model_parameters(lw.Spec)))
+    assert _documented(section) == list(lw.Spec.model_fields)
+    assert "class ModelFields(griffe.Extension)" in (DOCS / "gen" / "roles.py").read_text(encoding="utf-8")
+
+
 def test_forces_lists_its_own_parameters():
     import linkwork as lw
 
@@ -112,7 +168,7 @@ def test_forces_lists_its_own_parameters():
 
 def _pictures() -> set[str]:
     text = (DOCS / "gen" / "pictures.py").read_text(encoding="utf-8")
-    return set(re.findall(r'^    "([\w-]+)": \(', text, re.M))
+    return set(re.findall(r'^    "([\w-]+)": \(', text, re.M)) | set(re.findall(r'"pictures/([\w-]+)\.png"', text))
 
 
 def test_half_the_pages_that_explain_show_a_picture_drawn_from_the_code():
@@ -152,3 +208,44 @@ def test_the_search_stems_the_word_a_reader_types():
     override = ROOT / _config()["theme"]["custom_dir"] / "assets/javascripts/lunr/min/lunr.ru.min.js"
     text = override.read_text(encoding="utf-8")
     assert "QueryParser.prototype.nextClause" in text and 'registeredFunctions["stemmer-ru"]' in text
+
+
+def test_the_bundled_examples_name_their_papers_by_authors_and_title():
+    """``linkwork examples`` and the reports quote a file's description: a paper is named as a reader finds it,
+    not by a number of the project's own."""
+    from linkwork.examples import load_example, names
+
+    for name in names():
+        description = load_example(name).description or ""
+        assert not re.search(r"\bseed\b", description, re.I), name
+    assert "Klyushnik" in (load_example("double-cut-shears").description or "")
+
+
+def test_the_commands_a_new_reader_copies_fit_a_narrow_screen():
+    """The install page's commands are split with ``\\`` so that no line runs past a phone's code box (about 40
+    characters of code fit at 400 px): the one-liner was cut at ``&& lin...``.  The other pages' commands, one
+    a line (the tests run each), stay within a laptop's half screen."""
+    from manual import blocks
+
+    for path in sorted((DOCS / "getting-started").glob("*.md")):
+        width = 40 if path.name == "install.md" else 60
+        for lang, code, line in blocks(path.read_text(encoding="utf-8")):
+            if lang == "bash":
+                long = [c for c in code.splitlines() if len(c) > width]
+                assert long == [], f"{path.name}:{line}: {long}"
+
+
+def test_no_paragraph_of_the_user_pages_runs_on_for_more_than_fifteen_lines():
+    """Prose in paragraphs a reader takes in at a glance: the pages had paragraphs of 20 to 35 lines (lists,
+    tables, code and the pages for developers aside; 8 lines is the aim, a few run to 15)."""
+    aside = {"development.md", "benchmarks.md", "changelog.md"}
+    long = []
+    for path in sorted(DOCS.rglob("*.md")):
+        if path.relative_to(DOCS).as_posix() in aside:
+            continue
+        text = re.sub(r"^```.*?^```|<!--.*?-->", "", path.read_text(encoding="utf-8"), flags=re.S | re.M)
+        for para in re.split(r"\n\s*\n", text):
+            lines = para.strip("\n").splitlines()
+            if len(lines) > 15 and not para.lstrip().startswith(("|", "-", "*", "1.", "#", "$$")):
+                long.append(f"{path.relative_to(DOCS)}: {len(lines)} lines from {lines[0][:40]!r}")
+    assert long == []

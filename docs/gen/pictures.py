@@ -10,8 +10,13 @@ from __future__ import annotations
 
 import functools
 import io
+import json
 import os
+import shutil
+import sys
+import tempfile
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import mkdocs_gen_files
@@ -131,6 +136,116 @@ def _sweep() -> Any:
     return fig
 
 
+#: The viewer's picture: the double-cut shears' exported page at 120 crank angles, the slider at position 9 of the
+#: twelve (sample 90), in a window of 1200 x 760 px.
+VIEWER_STEPS, VIEWER_SAMPLE, VIEWER_WINDOW = 120, 90, (1200, 760)
+
+
+def _viewer_page(folder: Path) -> Path:
+    from linkwork.web import export_page
+
+    return export_page(SHEARS, folder / "viewer.html", steps=VIEWER_STEPS)
+
+
+def _screenshot(page: Path) -> bytes | None:
+    """The page in headless Chromium (Debian's, driven by Playwright) at :data:`VIEWER_SAMPLE`; None where either
+    is missing."""
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        return None
+    if chromium is None:
+        return None
+    width, height = VIEWER_WINDOW
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=chromium, args=["--headless", "--no-sandbox", "--disable-gpu"])
+        try:
+            tab = browser.new_page(viewport={"width": width, "height": height})
+            tab.goto(page.as_uri())
+            tab.wait_for_selector('#scheme circle.joint[data-point="E"]')
+            tab.locator("#angle").fill(str(VIEWER_SAMPLE))
+            tab.wait_for_timeout(500)
+            return tab.screenshot()
+        finally:
+            browser.close()
+
+
+def _payload(page: Path) -> dict[str, Any]:
+    """The data the exported page reads (its ``linkwork-data`` script)."""
+    text = page.read_text(encoding="utf-8")
+    start = text.index('id="linkwork-data">') + len('id="linkwork-data">')
+    return json.loads(text[start : text.index("</script>", start)])
+
+
+def _placed(xy: Any, pose: Any) -> Any:
+    import numpy as np
+
+    c, s = np.cos(pose[2]), np.sin(pose[2])
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    return np.column_stack([pose[0] + c * xy[:, 0] - s * xy[:, 1], pose[1] + s * xy[:, 0] + c * xy[:, 1]])
+
+
+def _payload_figure(data: dict[str, Any], k: int) -> Any:
+    """Without a browser: what the page shows at sample ``k``, drawn with matplotlib from the same data: the
+    scheme's items placed by the links' poses, its labels, and the two plans' vectors from the pole."""
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    scene = data["scene"]
+    poses = np.asarray(scene["poses"][k], dtype=float)
+    fig, axes = plt.subplots(1, 3, figsize=(12, 4.6), width_ratios=[2, 1, 1], layout="constrained")
+    for item in scene["items"]:
+        xy = _placed(item["xy"], poses[item["link"]])
+        if item.get("radius"):
+            axes[0].add_patch(plt.Circle(xy[0], item["radius"], fill=False, lw=0.8))
+        else:
+            xy = np.vstack([xy, xy[:1]]) if item.get("closed") else xy
+            axes[0].plot(xy[:, 0], xy[:, 1], color="#1f4e8c" if item["link"] else "0.3", lw=1.2)
+    for label in scene["labels"]:
+        if label["centre"][k] is not None:
+            axes[0].text(*label["centre"][k], label["text"], ha="center", va="center", fontsize=8)
+    axes[0].set_title(f"{data['name']}: turned {data['turn_deg'][k]:.0f} deg from position 0", fontsize=9)
+    for ax, kind in zip(axes[1:], ("velocity", "acceleration"), strict=True):
+        plan = data["plans"][kind]
+        values = np.asarray([v if v is not None else [np.nan, np.nan] for v in plan["values"][k]], dtype=float)
+        for vector in plan["vectors"]:
+            a, b = values[vector["from"]], values[vector["to"]]
+            ax.annotate("", b, a, arrowprops={"arrowstyle": "->", "lw": 0.8})
+        ax.plot(values[:, 0], values[:, 1], ".", color="0.2", ms=3)
+        for name, xy in zip(plan["labels"], values, strict=True):
+            ax.text(*xy, name.split(".")[0], fontsize=7)
+        ax.set_title(f"{kind} plan, pole p ({plan['unit']})", fontsize=9)
+    for ax in axes:
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.autoscale()
+        ax.axis("off")
+    return fig
+
+
+def viewer() -> None:
+    """``pictures/viewer.png`` (the page in Chromium, or drawn from its data without a browser) and the page
+    itself, ``pictures/viewer-double-cut-shears.html``, which the how-to links to."""
+    import matplotlib.pyplot as plt
+
+    with tempfile.TemporaryDirectory() as tmp:
+        page = _viewer_page(Path(tmp))
+        png = _screenshot(page)
+        if png is None:
+            print(
+                "pictures.py: no chromium or Playwright; the viewer's picture is drawn from its data", file=sys.stderr
+            )
+            fig = _payload_figure(_payload(page), VIEWER_SAMPLE)
+            buf = io.BytesIO()
+            fig.savefig(buf, format="png", dpi=100)
+            plt.close(fig)
+            png = buf.getvalue()
+        with mkdocs_gen_files.open("pictures/viewer.png", "wb") as f:
+            f.write(png)
+        with mkdocs_gen_files.open(f"pictures/viewer-{SHEARS}.html", "w") as f:
+            f.write(page.read_text(encoding="utf-8"))
+
+
 #: name -> (caption, drawing, the command whose report draws the same figure)
 PICTURES: dict[str, tuple[str, Callable[[], Any], str]] = {
     "scheme-shears": (
@@ -236,6 +351,11 @@ def main() -> None:
         plt.close(fig)
         image = f'[![{caption}]({name}.svg){{ width="520" }}]({name}.svg)'
         rows += [f"## {caption}", "", f"`{command}`", "", image, ""]
+    viewer()
+    caption = "The viewer of the double-cut shears at position 9"
+    command = f"linkwork view {SHEARS} --export shears.html --steps {VIEWER_STEPS}"
+    image = f'[![{caption}](viewer.png){{ width="520" }}](viewer-{SHEARS}.html)'
+    rows += [f"## {caption}", "", f"`{command}` (click the picture: the page itself)", "", image, ""]
     with mkdocs_gen_files.open("pictures/index.md", "w") as f:
         f.write("\n".join(rows) + "\n")
 

@@ -191,10 +191,20 @@ DEFINED = {
 }
 
 
+#: What a page says before its docstring.
+NOTES = {
+    "Spec": "Its parameters are the keys of a mechanism file ([the file format](../schema.md) gives every key "
+    "of the sections below it); [`lw.load`](load.md) reads one from a file, [`lw.MechanismBuilder`]"
+    "(MechanismBuilder-class.md) builds one in Python.\n\n",
+}
+
+
 def _page_name(entry: str) -> str:
-    """The page of an entry: ``forces.md`` for ``lw.forces``, ``analyze.md`` for ``linkwork.report.analyze``,
-    ``figures.md`` for the module ``linkwork.figures``."""
-    return entry.rsplit(".", 1)[-1] + ".md"
+    """The page of an entry: ``forces.md`` for ``lw.forces``, ``Forces-class.md`` for the class ``lw.Forces``
+    (``Forces.md`` and ``forces.md`` are one file on the file systems of macOS and Windows), ``analyze.md`` for
+    ``linkwork.report.analyze``, ``figures.md`` for the module ``linkwork.figures``."""
+    name = entry.rsplit(".", 1)[-1]
+    return f"{name}-class.md" if name[:1].isupper() else f"{name}.md"
 
 
 def _entry_page(entry: str) -> tuple[str, str, str]:
@@ -206,7 +216,7 @@ def _entry_page(entry: str) -> tuple[str, str, str]:
         obj = getattr(linkwork, entry)
         target = inspect.unwrap(obj)  # lw.kinematics and the other analyses wrap their stage's function
         path = f"{target.__module__}.{target.__qualname__}"
-        note = ""
+        note = NOTES.get(entry, "")
         if target is not obj:
             note = (
                 f"`lw.{entry}` takes its mechanism as a file's path, a bundled example's name, a `Spec` or a "

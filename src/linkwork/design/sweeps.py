@@ -199,6 +199,10 @@ def sweep(
     sampling : {"grid", "random", "lhs"}
         Every combination of the ranges' values, or a uniform random or Latin-hypercube sample of
         ``samples`` variants from ``seed`` (the ranges then without a count).
+    samples : int, optional
+        Variants of a ``random`` or ``lhs`` sampling (a grid's count is its ranges').
+    seed : int, default 0
+        Seed of the random generator of a ``random`` or ``lhs`` sampling: the same seed, the same variants.
     steps : int
         Crank angles over the turn.
     chunk_size : int, optional

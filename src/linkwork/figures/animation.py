@@ -36,7 +36,21 @@ WIDTH, DPI = 720, 100
 def animate(kin: Kinematics, path: str | Path, frames: int = 48, fps: int = 16, lang: str = "en") -> list[Path]:
     """Write a GIF of the cycle to ``path`` (and an MP4 beside it where imageio-ffmpeg is installed);
     returns the files written.  ``frames`` samples, evenly over the result's angles, ``fps`` a second; the
-    texts in ``lang`` (:mod:`linkwork.lang`)."""
+    texts in ``lang`` (:mod:`linkwork.lang`).
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    path : str or Path
+        The GIF to write.
+    frames : int, default 48
+        Frames, evenly over the result's angles.
+    fps : int, default 16
+        Frames a second.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     n = len(kin.angles)
     picks = np.linspace(0, n, min(frames, n), endpoint=False).astype(int)
     scene = scheme_scene(kin, at=[int(i) for i in picks])

@@ -93,7 +93,18 @@ def member_label(mech: Mechanism, out: Output, lang: str) -> str:
 def kinematic_diagrams(kin: Kinematics, zero: float | None = None, lang: str = "en") -> Figure:
     """Displacement, velocity and acceleration of the working members (:func:`working`) over the cycle: a
     slider's along its guide's axis from position 0 (mm, m/s, m/s²), a rocker's angle from position 0 (°),
-    angular velocity and acceleration (rad/s, rad/s²)."""
+    angular velocity and acceleration (rad/s, rad/s²).
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    zero : float, optional
+        The drive angle of position 0, rad, the origin of the diagrams' angle; default position 0 as the
+        report numbers it (the working member at the high end of its stroke).
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     mech = kin.mechanism
     members = working(mech)
     fig, axes = _figure(3)
@@ -127,7 +138,20 @@ def _at(mech: Mechanism, angle: float) -> Kinematics:
 
 
 def motion_diagram(kin: Kinematics, point: str, zero: float | None = None, lang: str = "en") -> Figure:
-    """Position, velocity and acceleration (x and y components) of ``point`` over the cycle."""
+    """Position, velocity and acceleration (x and y components) of ``point`` over the cycle.
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    point : str
+        The point, a joint's name or ``link.point``.
+    zero : float, optional
+        The drive angle of position 0, rad, the origin of the diagrams' angle; default position 0 as the
+        report numbers it (the working member at the high end of its stroke).
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     fig, axes = _figure(3)
     phi, order = _abscissa(kin.angles, _zero_of(kin, zero), direction(kin.mechanism))
     series = (kin.position(point) * 1000, kin.velocity(point), kin.acceleration(point))
@@ -145,7 +169,18 @@ def motion_diagram(kin: Kinematics, point: str, zero: float | None = None, lang:
 
 def link_angles(kin: Kinematics, zero: float | None = None, lang: str = "en") -> Figure:
     """Angle (to the x axis, °), angular velocity and angular acceleration of every moving link that turns,
-    but the crank (which turns uniformly): sliders that keep their angle are left out."""
+    but the crank (which turns uniformly): sliders that keep their angle are left out.
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    zero : float, optional
+        The drive angle of position 0, rad, the origin of the diagrams' angle; default position 0 as the
+        report numbers it (the working member at the high end of its stroke).
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     from linkwork.motion.tables import moving_links
 
     mech = kin.mechanism
@@ -172,7 +207,18 @@ def link_angles(kin: Kinematics, zero: float | None = None, lang: str = "en") ->
 
 
 def torque_diagram(forces: Forces, zero: float | None = None, lang: str = "en") -> Figure:
-    """The driving torque over the cycle, its mean, and the power balance's torque beside it."""
+    """The driving torque over the cycle, its mean, and the power balance's torque beside it.
+
+    Parameters
+    ----------
+    forces : Forces
+        A :func:`linkwork.forces` result over a turn.
+    zero : float, optional
+        The drive angle of position 0, rad, the origin of the diagrams' angle; default position 0 as the
+        report numbers it (the working member at the high end of its stroke).
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     mech = forces.mechanism
     fig, (ax,) = _figure(height=3.4)
     phi, order = _abscissa(forces.angles, _zero_of(forces.kinematics, zero), direction(mech))
@@ -195,7 +241,18 @@ def torque_diagram(forces: Forces, zero: float | None = None, lang: str = "en") 
 
 
 def foundation_diagram(forces: Forces, zero: float | None = None, lang: str = "en") -> Figure:
-    """Forces (x, y) and moment the machine puts on its foundation, and the shaking force and moment."""
+    """Forces (x, y) and moment the machine puts on its foundation, and the shaking force and moment.
+
+    Parameters
+    ----------
+    forces : Forces
+        A :func:`linkwork.forces` result over a turn.
+    zero : float, optional
+        The drive angle of position 0, rad, the origin of the diagrams' angle; default position 0 as the
+        report numbers it (the working member at the high end of its stroke).
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     mech = forces.mechanism
     fig, (top, bottom) = _figure(2, height=2.8)
     phi, order = _abscissa(forces.angles, _zero_of(forces.kinematics, zero), direction(mech))
@@ -224,7 +281,22 @@ def hodograph(
 ) -> Figure:
     """Polar diagram of the force in a joint (the first-named link on the second) over the cycle, with the
     12 positions marked and numbered: ``at`` is the forces at the 12 positions (position 0 first); without
-    it, the samples of ``forces`` at 0, 30, 60, ... degrees from position 0, where it has them."""
+    it, the samples of ``forces`` at 0, 30, 60, ... degrees from position 0, where it has them.
+
+    Parameters
+    ----------
+    forces : Forces
+        A :func:`linkwork.forces` result over a turn.
+    joint : str
+        The joint, by its name in the file.
+    at : Forces, optional
+        The forces at the twelve positions, position 0 first.
+    zero : float, optional
+        The drive angle of position 0, rad, the origin of the diagrams' angle; default position 0 as the
+        report numbers it (the working member at the high end of its stroke).
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     mech = forces.mechanism
     fig, (ax,) = _figure(height=5.4, width=6.4)
     f = np.asarray(forces.reaction(joint))
@@ -333,7 +405,15 @@ def _runs(numbers: list[int]) -> str:
 
 def run_diagram(run: Run, lang: str = "en") -> Figure:
     """The angle the crank has turned (deg) and its speed (rad/s) against time of a :func:`linkwork.simulate`
-    run, its stops marked."""
+    run, its stops marked.
+
+    Parameters
+    ----------
+    run : Run
+        A :func:`linkwork.simulate` run.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     fig, (a1, a2) = _figure(rows=2, height=2.4)
     a1.plot(run.time, np.degrees(run.angle - run.angle[0]), lw=1.3)
     a1.set_ylabel(t("axis.turned", lang), fontsize=9)
@@ -356,7 +436,18 @@ def run_diagram(run: Run, lang: str = "en") -> Figure:
 def dynamics_diagrams(result: Dynamics, zero: float | None = None, lang: str = "en") -> Figure:
     """Reduced moment of inertia and reduced load moment, the crank speed over the steady cycle (with its
     mean and δ) of a :func:`linkwork.dynamics` result, over the crank angle from position 0 (``zero``,
-    the drive angle of position 0, rad; default the assembly angle), and Wittenbauer's diagram."""
+    the drive angle of position 0, rad; default the assembly angle), and Wittenbauer's diagram.
+
+    Parameters
+    ----------
+    result : Dynamics
+        A :func:`linkwork.dynamics` result.
+    zero : float, optional
+        The drive angle of position 0, rad, the origin of the diagrams' angle; default the result's first
+        angle, its assembly angle.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     from matplotlib.figure import Figure
 
     from linkwork.machine import wittenbauer

@@ -35,7 +35,21 @@ def velocity_plan(
     kin: Kinematics, index: int, ax: Axes | None = None, position: int | str | None = None, lang: str = "en"
 ) -> Figure:
     """The velocity plan of sample ``index`` of a kinematics result (``position``: its number, for the title;
-    ``lang``: the language of its texts, :mod:`linkwork.lang`)."""
+    ``lang``: the language of its texts, :mod:`linkwork.lang`).
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    index : int
+        The sample drawn, an index of ``kin``'s angles.
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on; default a figure of its own.
+    position : int or str, optional
+        The number of the position the sample is, for the title.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     return _one(kin, index, "velocity", ax, position, lang)
 
 
@@ -43,7 +57,21 @@ def acceleration_plan(
     kin: Kinematics, index: int, ax: Axes | None = None, position: int | str | None = None, lang: str = "en"
 ) -> Figure:
     """The acceleration plan of sample ``index`` of a kinematics result (``position``: its number, for the
-    title; ``lang``: the language of its texts, :mod:`linkwork.lang`)."""
+    title; ``lang``: the language of its texts, :mod:`linkwork.lang`).
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    index : int
+        The sample drawn, an index of ``kin``'s angles.
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on; default a figure of its own.
+    position : int or str, optional
+        The number of the position the sample is, for the title.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     return _one(kin, index, "acceleration", ax, position, lang)
 
 
@@ -56,7 +84,17 @@ def _one(kin: Kinematics, index: int, kind: str, ax: Axes | None, position: int 
 
 def draw_plan(plan: Plan, ax: Axes | None = None, lang: str = "en") -> Figure:
     """Draw a :class:`~linkwork.motion.plans.Plan` (one position's plan as data), its texts in ``lang``;
-    returns the matplotlib Figure."""
+    returns the matplotlib Figure.
+
+    Parameters
+    ----------
+    plan : Plan
+        One position's plan as data (:mod:`linkwork.motion.plans`).
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on; default a figure of its own.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     from linkwork.motion.plans import PlanEdge, PlanSeries
 
     labels = list(plan.points)
@@ -210,7 +248,19 @@ def _legend(sh: Sheet, kinds: list[str], names: list[str], columns: int) -> None
 
 def plan_sheet(kin: Kinematics, kind: str = "velocity", count: int = COUNT, lang: str = "en") -> Figure:
     """The ``kind`` plans of all ``count`` positions on one sheet, to one scale (position 0 first), the texts in
-    ``lang``."""
+    ``lang``.
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    kind : str, default "velocity"
+        ``"velocity"`` or ``"acceleration"``.
+    count : int, default 12
+        Positions over the turn, from position 0.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     from matplotlib.figure import Figure
 
     mech = kin.mechanism

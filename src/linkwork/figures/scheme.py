@@ -54,6 +54,23 @@ def draw_scheme(
     With ``trajectories``, the paths of the points over the whole turn are drawn too; ``position`` (the
     number of the position the sample is) goes into the title; ``cycle``: a whole turn of the mechanism
     (see :func:`~linkwork.scene.scheme_scene`); ``lang``: the language of the texts (:mod:`linkwork.lang`).
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    index : int
+        The sample drawn, an index of ``kin``'s angles.
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on; default a figure of its own.
+    trajectories : bool, default False
+        Also draw the paths of the points over the whole turn.
+    position : int or str, optional
+        The number of the position the sample is, for the title.
+    cycle : Kinematics, optional
+        A whole turn of the mechanism, for the trajectories and the drawing's extent.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
     """
     index = int(index) % len(kin.angles)
     scene = scheme_scene(kin, at=[index], cycle=cycle)
@@ -210,7 +227,19 @@ def draw_positions(kin: Kinematics, count: int = COUNT, ax: Axes | None = None, 
     thin, with the trajectories of its points over ``kin``'s samples and the position numbers at the
     crank pin and at the working point; the second extreme of the working member dashed where it is none of
     the positions, both extremes lettered, the crank's turns over the working and idle strokes marked at its
-    pivot; the texts in ``lang``."""
+    pivot; the texts in ``lang``.
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    count : int, default 12
+        Positions over the turn, from position 0.
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on; default a figure of its own.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     mech = kin.mechanism
     angles = position_angles(mech, count)
     scene = positions_scene(kinematics(mech, angles), cycle=kin, lang=lang)
@@ -287,7 +316,17 @@ def _overlay_sheet(scene: Any, ax: Axes | None, title: str = "") -> tuple[Any, n
 def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Figure | None:
     """The working member's two limit positions over a whole turn ``kin`` (the low extreme whole, the high one
     thin), with the trajectories, the two lines of theta from the crank's pivot, its arc and value
-    (:func:`~linkwork.scene.limits.limits_scene`); None where there are none."""
+    (:func:`~linkwork.scene.limits.limits_scene`); None where there are none.
+
+    Parameters
+    ----------
+    kin : Kinematics
+        A kinematics result (:func:`linkwork.kinematics`).
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on; default a figure of its own.
+    lang : str, default "en"
+        The language of the texts, ``"en"`` or ``"ru"`` (:mod:`linkwork.lang`).
+    """
     from linkwork.scene.limits import limits_scene
 
     scene = limits_scene(kin, lang)

@@ -103,11 +103,27 @@ def simulate_blows(
         (its ``tool:``); the tool's face on its seat passes through ``at`` in the assembly pose.
     drive : MotorGear, optional
         Motor, gear and flywheel (default: the file's ``machine:``).
+    tool : Tool, optional
+        The tool struck: its mass (kg), the feed force returning it to its seat (N) and the work's resistance
+        (N); default the file's ``impact: tool:``.
+    at : str, optional
+        The point that strikes, ``link.point``; default the file's.
+    normal : array_like or float, optional
+        The tool face's outward normal, a vector or an angle, rad; default the file's.
+    restitution : float, optional
+        Newton's coefficient of restitution R, 0 to 1; default the file's.
+    friction : float, optional
+        The coefficient of friction f at the point of impact; default the file's.
+    link : str, optional
+        The link that strikes; default the link of ``at``.
     omega0 : float, optional
         Crank speed at the start, rad/s (default: the file's drive speed); the run starts where
         the striker is farthest from the tool.
     blows : int
         At most this many blows.
+    steps : int
+        Turning angles over a turn at which the machine's reduced inertia, loads and striker's path are
+        sampled (periodic splines between them).
     tol : float
         The cycle is steady when two blow-to-blow periods in a row and the crank speeds before
         the blows agree within ``tol`` (relative).

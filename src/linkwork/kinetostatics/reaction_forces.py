@@ -43,20 +43,28 @@ class Forces:
 
     Shapes as in :class:`~linkwork.motion.Kinematics`: ``(n_variants, n_angles, ...)``
     with the variant axis dropped for a single mechanism.  SI units.
+    :func:`linkwork.forces` makes it; read it through its accessors.
+
+    Parameters
+    ----------
+    kinematics : Kinematics
+        The motion the forces were solved for.
+    multipliers : ndarray, shape (V, A, m)
+        The reaction of every constraint row (see :meth:`reaction`), N or N m.
+    foundation_all : ndarray, shape (V, A, 3)
+        Force ``(x, y)``, N, and moment about the origin, N m, on the foundation at every sample (NaN at a
+        singular position; :attr:`foundation` fills those).
+    friction : FrictionSolution or None, default None
+        The friction in proportion to the pairs' forces (:mod:`linkwork.kinetostatics.friction`), where the
+        file gives one.
 
     Attributes
     ----------
-    kinematics : Kinematics
-    multipliers : ndarray (V, A, m)
-        The reaction of every constraint row (see :meth:`reaction`).
     loads : Loads
         Applied and inertia loads of every link (computed when first asked for, as are the checks).
     external : Applied
         The file's external loads (:func:`~linkwork.kinetostatics.external.evaluate`), those the reactions
         were solved with (the friction in proportion to the pairs' forces included).
-    friction : FrictionSolution or None
-        The friction in proportion to the pairs' forces (:mod:`linkwork.kinetostatics.friction`), where the
-        file gives one.
     """
 
     kinematics: Kinematics

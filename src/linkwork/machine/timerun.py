@@ -184,6 +184,9 @@ def simulate(
     drive : MotorGear, optional
         The motor, gear and flywheel; default the file's ``machine:``.  ``motor=False``: none (free motion
         under the loads and springs).
+    motor : bool, default True
+        Drive the crank by the motor (``drive`` or the file's); False: the machine moves freely under its loads
+        and springs from ``(angle, speed)``.
     rtol, atol : float
         The integrator's tolerances (``atol`` in rad and rad/s).
     progress : callable, optional

@@ -37,6 +37,47 @@ class Kinematics:
     does not assemble are NaN and ``valid`` is False there.  ``cos`` and
     ``sin`` are those of each link's angle ``q[:, 2]``, as the solve placed
     the link's points with them; the accessors read points with them.
+
+    :func:`linkwork.kinematics` makes it; read it through its accessors.
+    Shapes below: ``A`` crank angles, ``V`` variants (1 for one mechanism),
+    ``N`` links, ``P`` points, ``M`` pairs, ``D`` drives of the mechanism.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        The compiled mechanism it was solved for.
+    drive : ndarray, shape (A, D)
+        The drives' coordinates at each sample, rad or m.
+    rates : ndarray, shape (A, D)
+        The drives' speeds at each sample, rad/s or m/s.
+    q : ndarray, shape (N, 3, V, A)
+        The pose ``(x, y, theta)`` of every link, m and rad.
+    v : ndarray, shape (N, 3, V, A)
+        Its velocity ``(vx, vy, omega)``, m/s and rad/s.
+    a : ndarray, shape (N, 3, V, A)
+        Its acceleration ``(ax, ay, epsilon)``, m/s^2 and rad/s^2.
+    cos, sin : ndarray, shape (N, V, A)
+        Cosine and sine of each link's angle.
+    local : ndarray, shape (P, 2, V, 1)
+        The points' local coordinates in each variant, m.
+    axis : ndarray, shape (M, 2, V, 1)
+        The guides' directions in each variant (unit vectors).
+    origin : ndarray, shape (M, 2, V, 1)
+        The guides' origins in each variant, m.
+    valid_all : ndarray of bool, shape (V, A)
+        Where the mechanism assembles.
+    events : tuple of Event
+        Dead points, singular positions and ranges that do not assemble.
+    variants : bool
+        Whether variants were asked for (the accessors keep the variant axis).
+    step_det : tuple of ndarray, default ()
+        ``(V, A)`` for each step of the program: its normalised Jacobian determinant.
+    step_branch : tuple of (ndarray or None), default ()
+        ``(V, A)`` for each step: the assembly mode used; None where it is the step's own.
+    masses : Masses or None, default None
+        Mass properties of the variants' links; None: the mechanism's.
+    each : ndarray or None, default None
+        ``(V, A)``: the drive coordinate of every variant where each has its own (:meth:`at`), rad or m.
     """
 
     mechanism: Mechanism

@@ -200,6 +200,8 @@ def size(
 
     Parameters
     ----------
+    mech : Mechanism
+        The compiled machine (one crank).
     sizing : SizingSpec or mapping, optional
         The inputs of the sizing (:class:`~linkwork.spec.schema.SizingSpec`, the schema of the file's ``sizing:``
         section, whose defaults are the defaults here): the bearings' ``life`` (s, or ``"20000 h"``) and kind

@@ -42,6 +42,33 @@ class MechanismBuilder:
 
     Every value may be a number (in the declared ``units``) or a string with
     a unit, exactly as in a file.
+
+    Parameters
+    ----------
+    name : str or None, default None
+        The mechanism's name (the file's ``name:``).
+    units : dict of str to str or None, default None
+        The units of bare numbers by kind, as the file's ``units:`` (``{"length": "mm"}``); SI where not given.
+    description : str or None, default None
+        A sentence on what the mechanism is.
+    gravity : float or str or None, default None
+        The acceleration of gravity along -y (a number in the declared units, or ``"9.81 m/s^2"``); None: the
+        file's default, 9.81 m/s^2.
+
+    Examples
+    --------
+    A four-bar in millimetres, the same description as a file gives:
+
+    >>> import linkwork as lw
+    >>> b = lw.MechanismBuilder("four-bar", units={"length": "mm"})
+    >>> b = b.frame(points={"O": (0, 0), "D": (300, 0)})
+    >>> b = b.link("crank", ends=("O", "A"), length=100).link("coupler", ends=("A", "B"), length=350)
+    >>> b = b.link("rocker", ends=("D", "B"), length=250)
+    >>> b = b.revolute("O", "frame", "crank").revolute("A", "crank", "coupler")
+    >>> b = b.revolute("B", "coupler", "rocker").revolute("D", "frame", "rocker")
+    >>> spec = b.drive("O", speed="60 rpm").hint("B", 280, 240).build()
+    >>> lw.compile(spec).structure.formula
+    'I(0,1) -> II(2,3)'
     """
 
     def __init__(

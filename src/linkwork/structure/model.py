@@ -65,9 +65,9 @@ def roman(n: int) -> str:
 
 @dataclass(frozen=True)
 class AssurGroup:
-    """One step of the structural decomposition, in solving order.
+    """One step of the structural decomposition, in solving order (``Structure.groups``).
 
-    Attributes
+    Parameters
     ----------
     klass : int
         Class after Artobolevsky: 1 for a driving link (or a group that
@@ -83,15 +83,16 @@ class AssurGroup:
     links : tuple of int
         Link numbers (frame = 0) of the group.
     link_names : tuple of str
+        The file's names of those links.
     joints : tuple of str
         Names of the joints of the group (internal and external).
     internal : tuple of str
         Names of the joints between links of the group.
     pairs : tuple of int
         Indices of the pairs (rows of ``Mechanism.pair_*``) of the group.
-    redundant : int
+    redundant : int, default 0
         Redundant constraints inside the group.
-    driven : bool
+    driven : bool, default False
         The group carries a drive.
     """
 
@@ -132,9 +133,9 @@ class AssurGroup:
 
 @dataclass(frozen=True)
 class Structure:
-    """Structural analysis of a mechanism.
+    """Structural analysis of a mechanism (``Mechanism.structure``; :func:`linkwork.compile` finds it).
 
-    Attributes
+    Parameters
     ----------
     n_links : int
         Moving links n (the frame and slot blocks not counted).
@@ -152,7 +153,7 @@ class Structure:
         The decomposition, in solving order.
     formula : str
         The structural formula, e.g. ``I(0,1) -> II(2,3) -> II(4,5)``.
-    warnings : tuple of str
+    warnings : tuple of str, default ()
         Singular assembly pose, hints far from the assembled points, ...
     """
 
@@ -209,6 +210,90 @@ class Mechanism:
     Shapes: ``N = n_links_total`` links, ``P`` points, ``M`` pairs, ``D``
     drives (``drive_*``: the joints the file drives, each by a speed or a law; the motor that turns the
     machine is ``motor_gear``).  Lengths in m, angles in rad, SI throughout.
+
+    :func:`linkwork.compile` makes it from a description; nobody writes these arrays by hand.
+
+    Parameters
+    ----------
+    name : str
+        The mechanism's name: the file's ``name:``, else the file's name, else ``"mechanism"``.
+    source : str or None
+        The file it was read from, or None.
+    link_names : tuple of str
+        ``(N,)``: ``"frame"``, the moving links in the file's order, then the slot blocks.
+    link_virtual : ndarray of bool, shape (N,)
+        True for a pin-in-slot's massless block.
+    link_mass : ndarray, shape (N,)
+        Mass of each link, kg.
+    link_com : ndarray, shape (N, 2)
+        Centre of mass in the link's local frame, m.
+    link_inertia : ndarray, shape (N,)
+        Moment of inertia about the centre of mass, kg m^2.
+    link_com_rule : ndarray of int, shape (N,)
+        How the file gives the centre of mass: ``COM_GIVEN`` (-2), ``COM_CENTROID`` (-1), or the index of the
+        point it is at (:mod:`linkwork.structure.parameters`; the mass rule of the variants).
+    link_inertia_rule : ndarray of int, shape (N,)
+        How the file gives the inertia: ``INERTIA_GIVEN`` (-3), ``INERTIA_ROD`` (-2), ``INERTIA_NONE`` (-1),
+        or the index of the point it is given about.
+    link_inertia_given : ndarray, shape (N,)
+        The file's inertia about the rule's point, kg m^2; 0 where the file gives none.
+    point_names : tuple of str
+        ``(P,)``: ``"link.point"`` of every point.
+    point_link : ndarray of int, shape (P,)
+        The link each point is on.
+    point_local : ndarray, shape (P, 2)
+        Each point in its link's local frame, m.
+    pair_type : ndarray of int, shape (M,)
+        ``PairType`` of each pair: 0 revolute, 1 prismatic.
+    pair_links : ndarray of int, shape (M, 2)
+        The two links of each pair ``[a, b]``; a prismatic pair's ``[guide, slider]``.
+    pair_points : ndarray of int, shape (M, 2)
+        The point of each link at the pair; -1 where there is none.
+    pair_origin : ndarray, shape (M, 2)
+        A prismatic pair's point of the guide line, local to its guide, m.
+    pair_axis : ndarray, shape (M, 2)
+        A prismatic pair's guide direction (a unit vector), local to its guide.
+    pair_joint : tuple of str
+        ``(M,)``: the file's joint each pair comes from.
+    drive_pair : ndarray of int, shape (D,)
+        The pair each drive turns or pushes.
+    drive_speed : ndarray, shape (D,)
+        Each drive's speed, rad/s or m/s, signed; NaN where the file gives a law.
+    drive_start : ndarray, shape (D,)
+        Each drive's coordinate in the assembly pose, rad or m.
+    gravity : float
+        The size of gravity's acceleration, m/s^2 (0: none), along ``gravity_direction``.
+    pose0 : ndarray, shape (N, 3)
+        The assembly pose ``(x, y, theta)`` of every link, m and rad.
+    structure : Structure
+        The structural analysis: Chebyshev's formula and the Assur groups.
+    link_ends : ndarray of int, shape (N, 2)
+        The end points of a link the file gives by its ends and length; -1 otherwise.
+    pair_origin_point : ndarray of int, shape (M,)
+        The point whose local coordinates are a guide's origin; -1 where none is.
+    pair_members : ndarray of int, shape (M, 2)
+        The links of each pair in the order its joint names them in the file (see ``pair_sign``).
+    joint_names : tuple of str, default ()
+        The file's joints, in its order.
+    program : tuple of Step, default ()
+        The solve program, one step per group, in solving order.
+    program_table : tuple of (ndarray, ndarray) or None, default None
+        The program as the compiled kernels read it (operations, branches), where every step has a compiled
+        kernel.
+    loads : tuple of ExternalLoad, default ()
+        The file's external loads.
+    friction : tuple of PairFriction, default ()
+        The friction in proportion to the pairs' forces.
+    motor_gear : MotorGear or None, default None
+        The machine unit's motor, gear and flywheel, if the file gives them.
+    delta : float or None, default None
+        The coefficient of speed fluctuation the file asks a flywheel for.
+    blow : ImpactRecord or None, default None
+        The file's ``impact:`` section in SI.
+    spec : Spec or None, default None
+        The description it was compiled from.
+    gravity_direction : float, default -pi/2
+        The direction gravity acts in, rad, global, counter-clockwise from +x (-y by default).
     """
 
     name: str
