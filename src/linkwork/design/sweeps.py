@@ -231,9 +231,8 @@ def sweep(
     connect_timeout : float
         Seconds to wait for the scheduler at ``scheduler``.
     dashboard : bool
-        Serve Dask's dashboard of a local cluster on 127.0.0.1:8787 (its link is written on stderr).
-        Without it the local cluster serves no web page at all: Dask's pages answer requests for any
-        host name, which a web page open in a browser on this machine could use to read them.
+        Serve Dask's dashboard of a local cluster on 127.0.0.1:8787 (its link on stderr); without it none of its
+        pages is served (they answer any host name: a page open in a browser on this machine could read them).
 
     Returns
     -------
