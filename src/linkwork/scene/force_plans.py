@@ -366,7 +366,13 @@ def _scene(
     dot_sizes = np.array([text_size(t, em) for t in dot_text]).reshape(1, -1, 2)
     anchors = np.where(np.array([bool(t) for t in dot_text], dtype=bool)[:, None], dots.reshape(-1, 2), np.nan)
     dot_centres = place_labels(
-        anchors[None], dot_sizes, np.full(len(dot_text), 0.3 * em), obstacles, pad=0.1 * em, taken=boxes, directions=fine
+        anchors[None],
+        dot_sizes,
+        np.full(len(dot_text), 0.3 * em),
+        obstacles,
+        pad=0.1 * em,
+        taken=boxes,
+        directions=fine,
     )[0]
     arrows = tuple(
         ForceArrow(s, e, f.kind, texts[j], f.tex(lang), centres[j], float(np.hypot(*(e - s))) * scale, resultant)
