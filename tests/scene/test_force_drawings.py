@@ -67,7 +67,8 @@ def test_the_lever_puts_each_force_at_its_points_turned_velocity_image(lang):
     lv = lever(f)
     fig = lever_figure(lv, kin, 9, 9, lang)
     ax = fig.axes[0]
-    mu_v = float(re.search(r"μv = ([0-9.e+-]+)", ax.get_title()).group(1))
+    # the Russian title writes decimal commas (0,005)
+    mu_v = float(re.search(r"μv = ([0-9.,e+-]+)", ax.get_title()).group(1).replace(",", "."))
     lines = {line.get_gid(): np.asarray(line.get_xydata()) for line in ax.lines if line.get_gid()}
     v = kin.velocity("rod_DE.E")[9]  # the weight G5 of the upper knife acts at E (its centre of mass)
     g5 = lines["weight:G5"]

@@ -207,10 +207,11 @@ def lever_sheet(lv: Lever, kin: Kinematics, lang: str = "en") -> Figure:
     span = max(float(np.max(s.extent()[2:] - s.extent()[:2])) for s in rough)
     em = 7.0 * span / (cell * 72 / 1.2)
     scenes = [lever_scene(lv, velocity, k, lang=lang, plan_scale=plan_scale, em=em) for k in range(count)]
-    fig = Figure(figsize=(11.0, 2.9 * rows + 1.3))
+    top = 0.75 + (0.15 if any(s.second_scales for s in scenes) else 0.0)  # inches: a cell's title of two lines
+    fig = Figure(figsize=(11.0, 2.9 * rows + 0.55 + top))
     height = fig.get_figheight()
     grid = fig.add_gridspec(
-        rows, cols, left=0.02, right=0.98, top=1 - 0.75 / height, bottom=0.75 / height, hspace=0.3, wspace=0.08
+        rows, cols, left=0.02, right=0.98, top=1 - top / height, bottom=0.75 / height, hspace=0.3, wspace=0.08
     )
     boxes = np.array([s.extent() for s in scenes])
     half = np.max(boxes[:, 2:] - boxes[:, :2], axis=0) / 2

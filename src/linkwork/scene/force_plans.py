@@ -25,8 +25,9 @@ from linkwork.kinetostatics.force_polygons import GroupPlan, PlanForce
 from linkwork.kinetostatics.zhukovsky import Lever
 from linkwork.motion.plans import PlanSeries, drawing_scale
 from linkwork.scene.geometry import text_size
-from linkwork.scene.labels import Obstacles, place_labels
+from linkwork.scene.labels import DIRECTIONS, Obstacles, place_labels
 from linkwork.scene.plans import LETTERING
+from linkwork.scene.positions import FINE
 
 #: An arrow before its name is placed: start, end (mm), the force, whether it is a reaction read off the plan.
 _Draft = tuple[np.ndarray, np.ndarray, PlanForce, bool]
@@ -356,14 +357,22 @@ def _scene(
         mids[0, size[:, 0] < SHORT * em] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         left = np.where(size > 0, np.stack([-along[:, 1], along[:, 0]], -1) / size, np.sqrt(0.5))
-    sizes = np.array([text_size(t, em) for t in texts]).reshape(1, -1, 2)
+    sizes = np.array([text_size(_as_drawn(t), em) for t in texts]).reshape(1, -1, 2)
     obstacles = Obstacles(segments, circles)
-    centres = place_labels(mids, sizes, np.full(len(texts), 0.3 * em), obstacles, left[None], pad=0.1 * em)[0]
+    fine = FINE if kind == "lever" else DIRECTIONS  # a lever's names crowd about its pole
+    gaps = np.full(len(texts), 0.3 * em)
+    centres = place_labels(mids, sizes, gaps, obstacles, left[None], pad=0.1 * em, directions=fine)[0]
     boxes = np.concatenate([centres - sizes[0] / 2, centres + sizes[0] / 2], -1)[None]
     dot_sizes = np.array([text_size(t, em) for t in dot_text]).reshape(1, -1, 2)
     anchors = np.where(np.array([bool(t) for t in dot_text], dtype=bool)[:, None], dots.reshape(-1, 2), np.nan)
     dot_centres = place_labels(
-        anchors[None], dot_sizes, np.full(len(dot_text), 0.3 * em), obstacles, pad=0.1 * em, taken=boxes
+        anchors[None],
+        dot_sizes,
+        np.full(len(dot_text), 0.3 * em),
+        obstacles,
+        pad=0.1 * em,
+        taken=boxes,
+        directions=fine,
     )[0]
     arrows = tuple(
         ForceArrow(s, e, f.kind, texts[j], f.tex(lang), centres[j], float(np.hypot(*(e - s))) * scale, resultant)
@@ -399,6 +408,12 @@ def short_note(scene: ForceScene, lang: str = "en") -> str:
         parts.append(t("forceplans.left_out", lang, size=size, forces=listed(list(scene.left_out))))
     text = "; ".join(parts)
     return russian_numbers(text) if lang == "ru" else text
+
+
+def _as_drawn(name: str) -> str:
+    """A force's ``name`` as its label is measured: the letters ``Phi`` as the one Greek capital drawn (``Φ5``), so
+    that the box of an inertia force's name is as wide as the name drawn, not as the three letters."""
+    return name.replace("Phi", "Φ")
 
 
 def _name(f: PlanForce, lang: str) -> str:
