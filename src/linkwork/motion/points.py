@@ -21,8 +21,9 @@ def point_motion(
     arithmetic, in the same order: :func:`linkwork.motion.kernels.point_motion_into` and its twin)."""
     out = np.empty(q.shape[1:] + (2,))
     if kernels_numba.available():
-        lx, ly = jit.read_only(local[0]), jit.read_only(local[1])
-        kernels_numba.point_motion_into(kind, q, v, a, cs[0], cs[1], lx, ly, out)
+        # every input a read-only view: a frozen result's arrays and a re-solve's new ones reach one compile
+        q, v, a, c, s, lx, ly = (jit.read_only(x) for x in (q, v, a, cs[0], cs[1], local[0], local[1]))
+        kernels_numba.point_motion_into(kind, q, v, a, c, s, lx, ly, out)
         return out
     start = time.thread_time()
     kernels.point_motion_into(kind, q, v, a, cs[0], cs[1], local[0], local[1], out)
