@@ -247,9 +247,10 @@ def _has_run(row: list[str], rows: list[list[str]]) -> bool:
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["shears-slider-crank", "double-cut-shears", "percussion-rocker"])
-def test_the_russian_tutorials_quote_the_russian_report_as_it_is(name, tmp_path):
+def test_the_russian_tutorials_quote_the_russian_report_as_it_is(name, tmp_path, sketched_figures):
     """Each table row and quotation that a Russian tutorial marks as quoted from ``linkwork analyze NAME
-    --lang ru`` is in that report: a row as consecutive cells of one of its tables, a quotation in its text."""
+    --lang ru`` is in that report: a row as consecutive cells of one of its tables, a quotation in its text (the
+    page read, its figures not drawn)."""
     from manual import page
 
     proc = linkwork("analyze", name, "--out", str(tmp_path / "r"), "--lang", "ru", "--no-animation", cwd=tmp_path)

@@ -8,6 +8,7 @@ read here through click's own interface instead (the same help texts and options
 
 from __future__ import annotations
 
+import functools
 import inspect
 import json
 import re
@@ -231,13 +232,18 @@ def _entry_page(entry: str) -> tuple[str, str, str]:
     return entry, path, f"# {entry}\n\n::: {path}\n"
 
 
-def _summary(path: str) -> str:
-    """The first sentence of the docstring of the object at ``path``, read from the source (griffe, as the pages
-    are: the viewer's server needs no FastAPI to be listed)."""
+@functools.cache
+def _package() -> Any:
+    """The package as griffe reads it from the source, as the pages are (the viewer's server needs no FastAPI to
+    be listed); loaded once for the whole index (each load parses every module: 6 s)."""
     import griffe
 
-    package = griffe.load("linkwork", search_paths=["src"], resolve_aliases=True)
-    obj = package[path.removeprefix("linkwork.")]
+    return griffe.load("linkwork", search_paths=["src"], resolve_aliases=True)
+
+
+def _summary(path: str) -> str:
+    """The first sentence of the docstring of the object at ``path``, read from the source (:func:`_package`)."""
+    obj = _package()[path.removeprefix("linkwork.")]
     text = " ".join((obj.docstring.value if obj.docstring else "").split("\n\n")[0].split())
     first = re.split(r"(?<=[.:;])\s", text, maxsplit=1)[0].rstrip(":;")
     first = first if first.endswith(".") else first + "."

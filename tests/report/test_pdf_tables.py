@@ -8,7 +8,7 @@ pytest.importorskip("matplotlib")
 
 
 @pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
-def test_the_pdf_has_the_tables_within_the_page(tmp_path, monkeypatch):
+def test_the_pdf_has_the_tables_within_the_page(tmp_path, monkeypatch, sketched_figures):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.backends.backend_pdf import PdfPages
     from typer.testing import CliRunner

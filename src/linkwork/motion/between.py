@@ -79,26 +79,8 @@ def solved(
         return None
     m = kin.masses
     masses = None if m is None else Masses(m.mass[rows], m.com[rows], m.inertia[rows])
-    return type(kin)._made(
-        mechanism=mech,
-        drive=each[0][:, None],
-        rates=np.full((each.shape[1], 1), rate),
-        q=state.q,
-        v=state.v,
-        a=state.a,
-        cos=state.cos,
-        sin=state.sin,
-        local=state.local,
-        axis=state.axis,
-        origin=state.origin,
-        valid_all=state.valid,
-        events=(),
-        variants=True,
-        step_det=tuple(r.det for r in state.steps),
-        step_branch=tuple(r.branch for r in state.steps),
-        masses=masses,
-        each=each,
-    )
+    rates = np.full((each.shape[1], 1), rate)
+    return type(kin)._of_state(mech, state, each[0][:, None], rates, variants=True, masses=masses, each=each)
 
 
 def _change_point(kin: Kinematics, step: int, rows: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:

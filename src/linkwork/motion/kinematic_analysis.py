@@ -108,6 +108,42 @@ class Kinematics:
         out.__dict__.update(fields)
         return out
 
+    @classmethod
+    def _of_state(
+        cls,
+        mech: Mechanism,
+        state: State,
+        drive: np.ndarray,
+        rates: np.ndarray,
+        *,
+        events: tuple[Event, ...] = (),
+        variants: bool = False,
+        masses: Masses | None = None,
+        each: np.ndarray | None = None,
+    ) -> Kinematics:
+        """The result of a solved state (the kernels' ``run``): its poses, rates, frames and each step's
+        determinant and assembly mode, with the drive ``(A, D)`` and its speeds."""
+        return cls._made(
+            mechanism=mech,
+            drive=drive,
+            rates=rates,
+            q=state.q,
+            v=state.v,
+            a=state.a,
+            cos=state.cos,
+            sin=state.sin,
+            local=state.local,
+            axis=state.axis,
+            origin=state.origin,
+            valid_all=state.valid,
+            events=events,
+            variants=variants,
+            step_det=tuple(r.det for r in state.steps),
+            step_branch=tuple(r.branch for r in state.steps),
+            masses=masses,
+            each=each,
+        )
+
     def _repr_html_(self) -> str:
         """A notebook's view: the mechanism, the variants, angles, points and links, where it assembles."""
         from linkwork.display import table
@@ -460,25 +496,8 @@ def kinematics(
     if strict and not state.valid.all():
         first = next(e for e in events if e.kind == "no-assembly")
         raise UnassemblableError(first.message, group=first.group, angle=first.start)
-    return Kinematics._made(
-        mechanism=mech,
-        drive=values,
-        rates=rates,
-        q=state.q,
-        v=state.v,
-        a=state.a,
-        cos=state.cos,
-        sin=state.sin,
-        local=state.local,
-        axis=state.axis,
-        origin=state.origin,
-        valid_all=state.valid,
-        events=events,
-        variants=variants is not None and len(variants) > 0,
-        step_det=tuple(r.det for r in state.steps),
-        step_branch=tuple(r.branch for r in state.steps),
-        masses=masses,
-        each=None,
+    return Kinematics._of_state(
+        mech, state, values, rates, events=events, variants=variants is not None and len(variants) > 0, masses=masses
     )
 
 
@@ -507,24 +526,7 @@ def kinematics_at(
         ]
         angles = np.where(np.isnan(each[0])[:, None], np.nan, angles)
         state = run_numpy(mech, mech.program, geom, angles, speeds, accels, branches=modes)
-    return Kinematics._made(
-        mechanism=mech,
-        drive=angles,
-        rates=speeds,
-        q=state.q,
-        v=state.v,
-        a=state.a,
-        cos=state.cos,
-        sin=state.sin,
-        local=state.local,
-        axis=state.axis,
-        origin=state.origin,
-        valid_all=state.valid,
-        events=(),
-        variants=False,
-        step_det=tuple(r.det for r in state.steps),
-        masses=None,
-    )
+    return Kinematics._of_state(mech, state, angles, speeds)
 
 
 #: The geometry of the file's dimensions of the mechanisms solved so far (:func:`file_geometry`), by
