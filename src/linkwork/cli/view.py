@@ -19,6 +19,7 @@ def view(
         str | None, typer.Option("--export", metavar="PAGE.html", help="write one self-contained page and exit")
     ] = None,
     steps: Annotated[int, typer.Option("--steps", min=12, max=1440, help="crank angles of the cycle")] = 360,
+    lang: Annotated[str, typer.Option(help="language of the page: en or ru")] = "en",
 ) -> None:
     """Show the mechanism in the browser: crank slider, plans, charts, structure, edits.
 
@@ -27,7 +28,12 @@ def view(
     """
     from linkwork.errors import LinkworkError
     from linkwork.examples import resolve
+    from linkwork.lang import check_lang
 
+    try:
+        check_lang(lang)
+    except LinkworkError as exc:
+        fail(exc)
     if export is None:
         needs("fastapi", "uvicorn", purpose="the viewer's server (linkwork view)")
     try:
@@ -43,14 +49,14 @@ def view(
             try:
                 if Path(export).is_dir():
                     fail(LinkworkError(f"--export {shown}: is a directory; give the name of the page to write"))
-                written = export_page(spec, export, steps=steps)
+                written = export_page(spec, export, steps=steps, lang=lang)
             except OSError as exc:
                 fail(LinkworkError(f"--export {shown}: cannot write ({exc.strerror or exc})"))
             typer.echo(f"wrote {written}")
             return
         from linkwork.web.server import create_app, serve
 
-        app_ = create_app(spec, steps=steps)
+        app_ = create_app(spec, steps=steps, lang=lang)
     except LinkworkError as exc:
         fail(exc)
 

@@ -18,6 +18,7 @@ import math
 from typing import Any
 
 from linkwork.errors import ParameterError
+from linkwork.lang import t
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import INERTIA_GIVEN, Masses, Parameter, parameter, parameter_list
 
@@ -71,12 +72,17 @@ def validated(mech: Mechanism, overrides: dict[str, float]) -> dict[str, float]:
 
 
 def variant_parameters(
-    mech: Mechanism, overrides: dict[str, float], masses: Masses, known: list[Parameter] | None = None
+    mech: Mechanism,
+    overrides: dict[str, float],
+    masses: Masses,
+    known: list[Parameter] | None = None,
+    lang: str = "en",
 ) -> list[dict[str, Any]]:
     """The editable parameters of the variant ``overrides`` of ``mech`` with its values: the file's where not
     overridden, except the moments of inertia the file leaves to their default (a uniform rod, m L^2 / 12),
     which follow the variant (``masses``, of :func:`linkwork.structure.parameters.apply`), as they do in the
-    file edited so.  ``known``: :func:`editable` of ``mech``, where the caller has it."""
+    file edited so.  ``known``: :func:`editable` of ``mech``, where the caller has it; the notes in ``lang``
+    (:func:`note_in`)."""
     out = []
     for p in known if known is not None else editable(mech):
         item = p.as_dict()
@@ -88,8 +94,19 @@ def variant_parameters(
             rule = int(mech.link_inertia_rule[link])
             if rule < 0 and rule != INERTIA_GIVEN:
                 item["value"] = float(masses.inertia[0, link])
+        item["note"] = note_in(item.get("note"), lang)
         out.append(item)
     return out
+
+
+def note_in(note: str | None, lang: str) -> str | None:
+    """A parameter's note (what a moment of inertia is taken about: ``about the centre of mass``, ``about O1``) in
+    ``lang``."""
+    if not note or lang == "en":
+        return note
+    if note == "about the centre of mass":
+        return t("view.about_centre", lang)
+    return t("view.about", lang, point=note.removeprefix("about ")) if note.startswith("about ") else note
 
 
 def shown(mech: Mechanism, overrides: dict[str, float]) -> str:

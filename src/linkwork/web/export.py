@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 from linkwork.atomic import write_atomic
 from linkwork.web.force_plans import exported_samples
-from linkwork.web.session import SCRIPTS, Viewer, static_text
+from linkwork.web.session import SCRIPTS, Viewer, page_html, static_text
 
 if TYPE_CHECKING:
     from linkwork.spec.schema import Spec
@@ -27,7 +27,7 @@ _CSP = (
 
 def render_page(payload: dict[str, Any]) -> str:
     """The viewer's page with ``payload`` (from :func:`~linkwork.web.payload.cycle_payload`) embedded."""
-    page = static_text("index.html")
+    page = page_html(payload.get("lang", "en"))
     css = static_text("viewer.css")
     scripts = {name: static_text(name) for name in SCRIPTS}
     if "</" in css or any("</script" in js.lower() for js in scripts.values()):
@@ -48,7 +48,9 @@ def render_page(payload: dict[str, Any]) -> str:
     return page
 
 
-def export_page(spec_or_mech: Spec | Mechanism | str | Path, path: str | Path, steps: int = 360) -> Path:
+def export_page(
+    spec_or_mech: Spec | Mechanism | str | Path, path: str | Path, steps: int = 360, lang: str = "en"
+) -> Path:
     """Write the viewer of a spec, a compiled mechanism, or a file or example name to one HTML file.
 
     Parameters
@@ -59,6 +61,8 @@ def export_page(spec_or_mech: Spec | Mechanism | str | Path, path: str | Path, s
         The page to write (replaced atomically).
     steps : int
         Crank angles of the precomputed cycle.
+    lang : str
+        The language of the page (``en`` or ``ru``, :data:`linkwork.lang.LANGUAGES`).
 
     Returns
     -------
@@ -74,7 +78,7 @@ def export_page(spec_or_mech: Spec | Mechanism | str | Path, path: str | Path, s
     ...     page.name, page.stat().st_size > 10_000
     ('four-bar.html', True)
     """
-    viewer = Viewer(spec_or_mech, steps, placed=None)  # the labels placed at every sample
+    viewer = Viewer(spec_or_mech, steps, placed=None, lang=lang)  # the labels placed at every sample
     payload = dict(viewer.cycle())
     payload["editable"] = False
     # the force plans and the lever at some samples (the live page asks its server for the sample shown)

@@ -23,6 +23,7 @@ asks the server for the sample it shows (:func:`force_plans_at`) and an exported
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from typing import Any
 
@@ -68,36 +69,38 @@ def drawn_of(cycle: Cycle) -> Drawn | None:
     return Drawn(cycle, force_plans(cycle.forces), lv, velocity, scale, float(shape["em"]))
 
 
-def force_plans_part(cycle: Cycle, samples: list[int] | np.ndarray, drawn: Drawn | None = None) -> dict[str, Any]:
-    """The force plans and the lever of ``cycle`` at ``samples`` (see the module's text)."""
+def force_plans_part(
+    cycle: Cycle, samples: list[int] | np.ndarray, drawn: Drawn | None = None, lang: str = "en"
+) -> dict[str, Any]:
+    """The force plans and the lever of ``cycle`` at ``samples`` (see the module's text), their names in ``lang``."""
     drawn = drawn_of(cycle) if drawn is None else drawn
     if drawn is None:
         return {"available": False, "reason": cycle.reason or "no forces", "groups": [], "samples": [], "at": []}
-    groups = [_group(g, k) for k, g in enumerate(drawn.plans.groups)]
+    groups = [_group(g, k, lang) for k, g in enumerate(drawn.plans.groups)]
     if drawn.lever is not None:
-        groups.append({"key": "lever", "title": "Zhukovsky's lever", "solved": True})
-    at = [sample_drawings(drawn, int(i)) for i in samples]
+        groups.append({"key": "lever", "title": t("caption.lever", lang), "solved": True})
+    at = [sample_drawings(drawn, int(i), lang) for i in samples]
     return {
         "available": True,
         "reason": "",
         "groups": groups,
-        "kinds": {k: t(f"force.{k}", "en") for k in FORCE_KINDS},
+        "kinds": {k: t(f"force.{k}", lang) for k in FORCE_KINDS},
         "styles": {k: {"colour": FORCES[k].colour, "dash": list(FORCES[k].dash)} for k in (*FORCE_KINDS, "lever")},
         "samples": [int(i) for i in samples],
         "at": at,
     }
 
 
-def _group(g: Any, k: int) -> dict[str, Any]:
-    title = group_label(g.label, "en")
+def _group(g: Any, k: int, lang: str = "en") -> dict[str, Any]:
+    title = group_label(g.label, lang)
     if g.balancing is not None:
-        title = t("forceplans.driving", "en", group=title)
+        title = t("forceplans.driving", lang, group=title)
     return {"key": f"group:{k}", "title": title, "solved": bool(g.solved)}
 
 
-def sample_drawings(drawn: Drawn, index: int) -> dict[str, Any]:
+def sample_drawings(drawn: Drawn, index: int, lang: str = "en") -> dict[str, Any]:
     """The drawings of every group and the lever at sample ``index`` of the cycle (none where it does not
-    assemble)."""
+    assemble), the forces named in ``lang``."""
     cycle = drawn.cycle
     angles = cycle.kin.angles
     turn = abs(math.degrees(float(angles[index] - angles[0])))
@@ -111,11 +114,12 @@ def sample_drawings(drawn: Drawn, index: int) -> dict[str, Any]:
         finite = vertices[np.isfinite(vertices).all(-1)]
         span = float(np.max(finite.max(0) - finite.min(0))) if len(finite) else 100.0
         em = PLAN_FONT * max(span, 10.0)  # as high on the panel as the plans' labels
-        out["drawings"].append(scene_dict(force_plan_scene(g, index, scale=scale, em=em, angle=angle)))
+        scene = force_plan_scene(g, index, scale=scale, em=em, angle=angle, lang=lang)
+        out["drawings"].append(scene_dict(scene))
     if drawn.lever is not None:
         lv = drawn.lever
-        scene = lever_scene(lv, drawn.velocity, index, em=drawn.plan_em, plan_scale=drawn.plan_scale)
-        one = scene_dict(scene)
+        lever_drawn = lever_scene(lv, drawn.velocity, index, em=drawn.plan_em, plan_scale=drawn.plan_scale, lang=lang)
+        one = scene_dict(lever_drawn)
         one["balancing"] = _number(lv.balancing[0, index])
         one["crank"] = _number(np.asarray(lv.crank).reshape(-1)[0])
         out["drawings"].append(one)
@@ -140,6 +144,7 @@ def scene_dict(scene: ForceScene) -> dict[str, Any]:
             {
                 "kind": a.kind,
                 "text": a.text,
+                "runs": tex_runs(a.tex),
                 "start": _json(a.start, d),
                 "end": _json(a.end, d),
                 "centre": _json(a.centre, d),
@@ -153,6 +158,27 @@ def scene_dict(scene: ForceScene) -> dict[str, Any]:
         "dot_text": list(scene.dot_text),
         "dot_centres": _json(scene.dot_centres, d),
     }
+
+
+#: A force's name as mathtext writes it (:meth:`~linkwork.kinetostatics.force_polygons.PlanForce.tex`): a base,
+#: its subscript and its superscript, each in braces.
+_TEX = re.compile(r"^\$(?P<base>[^_^$]+)(?:_\{(?P<sub>[^}]*)\})?(?:\^\{(?P<sup>[^}]*)\})?\$$")
+
+#: The mathtext commands of the forces' names and their letters.
+_TEX_LETTERS = {r"\Phi ": "Φ", r"\Phi": "Φ", r"\tau": "τ", r"\prime": "′"}
+
+
+def tex_runs(tex: str) -> list[list[str]]:
+    """A force's name as the figures write it (``$R_{12}^{n}$``, ``$\\Phi_{2}$``) in runs the page sets: ``[text,
+    ""]`` on the line, ``[text, "sub"]`` lowered, ``[text, "sup"]`` raised (``[["R", ""], ["12", "sub"], ["n",
+    "sup"]]``); a name of another form as one run of its text."""
+    for command, letter in _TEX_LETTERS.items():
+        tex = tex.replace(command, letter)
+    m = _TEX.match(tex)
+    if m is None:
+        return [[tex.strip("$"), ""]]
+    runs = [[m["base"], ""], [m["sub"] or "", "sub"], [m["sup"] or "", "sup"]]
+    return [run for run in runs if run[0]]
 
 
 def exported_samples(n: int) -> np.ndarray:

@@ -78,11 +78,12 @@ import numpy as np
 
 from linkwork.errors import UnassemblableError
 from linkwork.io import jsonout
+from linkwork.lang import LANGUAGES, check_lang, group_kind, t, texts
 from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import PlanSeries, drawing_scale, longest_length, percentile, plan_series
 from linkwork.scene.geometry import SUBSCRIPTED
-from linkwork.scene.plans import KINDS, plan_scene
+from linkwork.scene.plans import KINDS, kind_name, plan_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.web.arrows import force_arrows
@@ -124,7 +125,11 @@ def _significant(a: np.ndarray, digits: int = 9) -> int:
 
 
 def cycle_payload(
-    mech: Mechanism, steps: int = 360, overrides: dict[str, float] | None = None, placed: int | None = None
+    mech: Mechanism,
+    steps: int = 360,
+    overrides: dict[str, float] | None = None,
+    placed: int | None = None,
+    lang: str = "en",
 ) -> dict[str, Any]:
     """Everything the viewer shows, over a whole turn of the crank at ``steps`` angles.
 
@@ -139,6 +144,8 @@ def cycle_payload(
     placed : int, optional
         Place the labels at about this many samples, evenly spread (:func:`placed_samples`), and carry
         them along in between; default at every sample.
+    lang : str
+        The language of the page's texts (:data:`linkwork.lang.LANGUAGES`).
 
     Returns
     -------
@@ -150,18 +157,18 @@ def cycle_payload(
     LinkworkError
         For a mechanism without a single crank.
     """
-    return full_payload(solve_cycle(mech, steps, overrides), placed)
+    return full_payload(solve_cycle(mech, steps, overrides), placed, lang)
 
 
-def full_payload(cycle: Cycle, placed: int | None = None) -> dict[str, Any]:
+def full_payload(cycle: Cycle, placed: int | None = None, lang: str = "en") -> dict[str, Any]:
     """The payload of a solved cycle (:func:`cycle_payload`), its labels placed at about ``placed`` samples
-    (default every one)."""
+    (default every one), its texts in ``lang``."""
     mech, kin = cycle.mech, cycle.kin
     series = plan_series(kin)
     angles = kin.angles
     speed = float(kin.rates[0, 0])
     at = placed_samples(len(angles), placed)
-    scene = _scene(cycle, series, at)
+    scene = _scene(cycle, series, at, lang)
     out: dict[str, Any] = {
         "format": FORMAT,
         "name": mech.name,
@@ -180,16 +187,48 @@ def full_payload(cycle: Cycle, placed: int | None = None) -> dict[str, Any]:
         "pairs": _pairs(mech, kin),
         "plans": _plans(cycle, series),
         "scene": scene,
-        "series": _series(cycle),
-        "structure": _structure(mech),
+        "series": _series(cycle, lang),
+        "structure": _structure(mech, lang),
         "drives": [_drive(mech, speed)],
-        "units": {kind: list(unit) for kind, unit in DISPLAY.items()},
+        "units": display_units(lang),
+        "lang": lang,
+        "texts": page_texts(lang),
         "forces": forces_part(cycle, scene["size"]),
     }
     if cycle.forces is not None:  # the independent checks of the reactions (power and momentum balances)
         out["forces"]["checks"] = _finite(cycle.forces.checks)
     out.update(_outcome(cycle))
     return out
+
+
+#: The texts of the catalogues (:mod:`linkwork.lang`) the page shows besides its own (``view.*``): the plans'
+#: names and units, and the units of forces.
+SHARED_TEXTS = (
+    "plan.velocity",
+    "plan.acceleration",
+    "plan.unit.velocity",
+    "plan.unit.acceleration",
+    "unit.N",
+    "unit.kN",
+    "unit.Nm",
+)
+
+#: The unit key (``view.unit.*``) of each kind of editable value of :data:`linkwork.web.edits.DISPLAY`.
+DISPLAY_UNITS = {"length": "mm", "angle": "deg", "mass": "kg", "inertia": "kgm2"}
+
+
+def page_texts(lang: str) -> dict[str, str]:
+    """Every text the page writes, key: its text in ``lang`` (fields in braces, filled by the page): the
+    ``view.*`` texts of the catalogues and :data:`SHARED_TEXTS`."""
+    check_lang(lang)
+    row = LANGUAGES.index(lang)
+    table = texts()
+    return {key: table[key][row] for key in [key for key in table if key.startswith("view.")] + list(SHARED_TEXTS)}
+
+
+def display_units(lang: str) -> dict[str, list[Any]]:
+    """The unit the page shows each kind of editable value in, in ``lang``, and its factor from SI."""
+    return {kind: [t(f"view.unit.{DISPLAY_UNITS[kind]}", lang), factor] for kind, (_, factor) in DISPLAY.items()}
 
 
 def _outcome(cycle: Cycle) -> dict[str, Any]:
@@ -375,7 +414,7 @@ def nearest_placed(n: int, at: np.ndarray) -> np.ndarray:
     return np.where(i - ring[k - 1] <= ring[k] - i, ring[k - 1], ring[k]) % n
 
 
-def _scene(cycle: Cycle, series: tuple[PlanSeries, PlanSeries], at: np.ndarray) -> dict[str, Any]:
+def _scene(cycle: Cycle, series: tuple[PlanSeries, PlanSeries], at: np.ndarray, lang: str = "en") -> dict[str, Any]:
     """The drawing of the cycle (:mod:`linkwork.scene`): the scheme's items in their links' axes, the links'
     poses and the labels, placed at the samples ``at`` (:func:`carried` between); for each plan, the frame the
     page shows and the labels."""
@@ -399,7 +438,7 @@ def _scene(cycle: Cycle, series: tuple[PlanSeries, PlanSeries], at: np.ndarray) 
             "poses": _json(scheme.poses, 9),
             "labels": labels,
             "paths": [cycle.mech.point_names.index(name) for name in scheme.path_names],
-            "plans": {one.kind: _plan_scene(cycle, one, at) for one in series},
+            "plans": {one.kind: _plan_scene(cycle, one, at, lang) for one in series},
             "subscripts": SUBSCRIPTED,
         }
     )
@@ -453,14 +492,16 @@ def element_list(scheme: SchemeScene) -> list[dict[str, Any]]:
     ]
 
 
-def _plan_scene(cycle: Cycle, series: PlanSeries, at: np.ndarray) -> dict[str, Any]:
+def _plan_scene(cycle: Cycle, series: PlanSeries, at: np.ndarray, lang: str = "en") -> dict[str, Any]:
     """The labels of a plan at every sample, placed in the frame the page shows it in (:func:`plan_frame`) at
-    the samples ``at``, and between them carried with their points and their texts kept."""
+    the samples ``at``, and between them carried with their points and their texts kept; its pole's letter
+    (``pole``: π on a Russian acceleration plan) and the names of its kinds of vector in ``lang``."""
     out, scale = plan_shape(cycle, series)
     n = len(cycle.valid)
-    scene = plan_scene(series, at, scale=scale, em=out["em"], valid=cycle.valid)
+    scene = plan_scene(series, at, scale=scale, em=out["em"], valid=cycle.valid, lang=lang)
     drawn = {kind for i in range(len(at)) for kind in scene.kinds(i)}
-    out["kinds"] = {k: KINDS[k] for k in KINDS if k in drawn}
+    out["kinds"] = {k: kind_name(k, series.kind, lang) for k in KINDS if k in drawn}
+    out["pole"] = scene.pole
     points = plan_values(series, cycle.valid) / scale  # (A, L, 2), mm of the sheet
     centres = np.full(points.shape, np.nan)
     centres[at] = scene.centres
@@ -496,11 +537,11 @@ def plan_frame(series: PlanSeries, valid: np.ndarray, scale: float) -> np.ndarra
     return np.concatenate([q[0, :2], q[1, 2:]])
 
 
-def _series(cycle: Cycle) -> list[dict[str, Any]]:
-    """Quantities over the cycle the page can chart."""
+def _series(cycle: Cycle, lang: str = "en") -> list[dict[str, Any]]:
+    """Quantities over the cycle the page can chart, their labels and units in ``lang``."""
     return [
         {"key": key, "label": label, "unit": unit, "group": group, "values": _written(values)}
-        for key, label, unit, group, values in series_values(cycle)
+        for key, label, unit, group, values in series_values(cycle, lang)
     ]
 
 
@@ -511,17 +552,22 @@ def _written(values: np.ndarray) -> list[float | None]:
     return out
 
 
-def series_values(cycle: Cycle) -> list[tuple[str, str, str, str, np.ndarray]]:
-    """(key, label, unit, group, values (A,)) of every quantity over the cycle the page can chart."""
+def series_values(cycle: Cycle, lang: str = "en") -> list[tuple[str, str, str, str, np.ndarray]]:
+    """(key, label, unit, group, values (A,)) of every quantity over the cycle the page can chart, the labels and
+    units in ``lang``."""
     motion, forces = _series_names(cycle.mech)
     named = list(zip(motion, _motion_values(cycle), strict=True))
     if cycle.forces is not None:
         named += zip(forces, _force_values(cycle), strict=True)
-    return [(*name, np.asarray(values, dtype=float)) for name, values in named]
+    return [
+        (key, t(f"view.series.{text}", lang, **fields), t(f"view.unit.{unit}", lang), group, np.asarray(v, float))
+        for (key, text, fields, unit, group), v in named
+    ]
 
 
-#: The key, label, unit and group of a series.
-_Name = tuple[str, str, str, str]
+#: The key of a series, the key of its label's text (``view.series.*`` of :mod:`linkwork.lang`) and its fields,
+#: the key of its unit's (``view.unit.*``) and its group.
+_Name = tuple[str, str, dict[str, str], str, str]
 
 
 @per_mechanism
@@ -531,23 +577,23 @@ def _series_names(mech: Mechanism) -> tuple[tuple[_Name, ...], tuple[_Name, ...]
     motion: list[_Name] = []
     for output in _outputs(mech):
         if output.kind == "slider":
-            label, joint = mech.point_names[output.point].split(".", 1)[1], output.name
-            motion.append((f"slider:{joint}:s", f"{label} along {joint}", "mm", "sliders"))
-            motion.append((f"slider:{joint}:v", f"velocity of {label} along {joint}", "m/s", "sliders"))
-            motion.append((f"slider:{joint}:a", f"acceleration of {label} along {joint}", "m/s²", "sliders"))
+            at = {"point": mech.point_names[output.point].split(".", 1)[1], "joint": output.name}
+            motion.append((f"slider:{output.name}:s", "slider_s", at, "mm", "sliders"))
+            motion.append((f"slider:{output.name}:v", "slider_v", at, "m_s", "sliders"))
+            motion.append((f"slider:{output.name}:a", "slider_a", at, "m_s2", "sliders"))
         else:
-            lname = output.name
-            motion.append((f"link:{lname}:angle", f"angle of {lname}", "deg", "links"))
-            motion.append((f"link:{lname}:omega", f"angular velocity of {lname}", "rad/s", "links"))
+            link = {"link": output.name}
+            motion.append((f"link:{output.name}:angle", "angle", link, "deg", "links"))
+            motion.append((f"link:{output.name}:omega", "omega", link, "rad_s", "links"))
     # signs as in linkwork.forces: torques and moments counter-clockwise positive, whatever the direction of
     # rotation (a clockwise crank driven against the load has a negative driving torque); x right, y up
-    forces = [
-        ("torque", "driving torque on the crank (ccw +)", "N m", "forces"),
-        ("foundation:fx", "force on the foundation, x (right +)", "N", "forces"),
-        ("foundation:fy", "force on the foundation, y (up +: pulls the bolts)", "N", "forces"),
-        ("foundation:m", "moment on the foundation about the origin (ccw +)", "N m", "forces"),
+    forces: list[_Name] = [
+        ("torque", "torque", {}, "Nm", "forces"),
+        ("foundation:fx", "fx", {}, "N", "forces"),
+        ("foundation:fy", "fy", {}, "N", "forces"),
+        ("foundation:m", "m", {}, "Nm", "forces"),
     ]
-    forces += [(f"reaction:{joint}", f"reaction in {joint} (size)", "N", "forces") for joint in _supports(mech)]
+    forces += [(f"reaction:{joint}", "reaction", {"joint": joint}, "N", "forces") for joint in _supports(mech)]
     return tuple(motion), tuple(forces)
 
 
@@ -592,10 +638,14 @@ def _supports(mech: Mechanism) -> tuple[str, ...]:
     return tuple(dict.fromkeys(mech.pair_joint[k] for k in on_frame))
 
 
-def _structure(mech: Mechanism) -> dict[str, Any]:
+def _structure(mech: Mechanism, lang: str = "en") -> dict[str, Any]:
+    """The structure of ``mech``; each group's kind also as ``lang`` writes it (``kind_shown``: ВВП in Russian)."""
     s = mech.structure
     out = s.as_dict()
-    out["groups"] = [{**g.as_dict(), "label": g.label, "formula_part": g.label.split(" ")[0]} for g in s.groups]
+    out["groups"] = [
+        {**g.as_dict(), "label": g.label, "formula_part": g.label.split(" ")[0], "kind_shown": group_kind(g.kind, lang)}
+        for g in s.groups
+    ]
     out["link_names"] = list(mech.link_names)
     return out
 

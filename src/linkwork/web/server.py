@@ -66,7 +66,7 @@ from linkwork.errors import BusyError, LinkworkError
 from linkwork.limits import digits
 from linkwork.web.cycle import OutOfRange
 from linkwork.web.edits import MAX_OVERRIDES
-from linkwork.web.session import SCRIPTS, Viewer, dumps, static_text
+from linkwork.web.session import SCRIPTS, Viewer, dumps, page_html, static_text
 from linkwork.web.update import EDIT_MEDIA
 
 if TYPE_CHECKING:
@@ -305,7 +305,7 @@ def _error(status: int, message: str, **extra: Any) -> JSONResponse:
     return JSONResponse({"error": message, **extra}, status_code=status, headers=SECURITY_HEADERS)
 
 
-def create_app(spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360) -> Any:
+def create_app(spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360, lang: str = "en") -> Any:
     """The viewer's FastAPI application for a spec, a compiled mechanism, or a file or example name.
 
     With a :class:`~linkwork.spec.schema.Spec` (or a name) the page can edit
@@ -320,6 +320,8 @@ def create_app(spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360) ->
         The mechanism: a description, a compiled mechanism, a file's path or an example's name.
     steps : int
         Crank angles of the cycle the page plays; default 360.
+    lang : str
+        The language of the page (``en`` or ``ru``, :data:`linkwork.lang.LANGUAGES`).
 
     Returns
     -------
@@ -329,7 +331,7 @@ def create_app(spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360) ->
     Raises
     ------
     LinkworkError
-        The mechanism does not compile or assemble over its cycle.
+        The mechanism does not compile or assemble over its cycle, or ``lang`` is not a language of the texts.
 
     Examples
     --------
@@ -338,14 +340,14 @@ def create_app(spec_or_mech: Spec | Mechanism | str | Path, steps: int = 360) ->
     http://127.0.0.1:...
     """
     jit.prefer()  # many solves to come: the compiled kernels as soon as they are ready (loaded in the background)
-    viewer = Viewer(spec_or_mech, steps)
+    viewer = Viewer(spec_or_mech, steps, lang=lang)
     viewer.cycle(first=True)  # fails here, not on the first request
 
     app = FastAPI(title="linkwork viewer", docs_url=None, redoc_url=None, openapi_url=None)
     app.state.viewer = viewer
     app.add_middleware(Guard)
     _handlers(app)
-    _pages(app)
+    _pages(app, viewer.lang)
     _api(app, viewer)
     return app
 
@@ -390,10 +392,10 @@ def _handlers(app: FastAPI) -> None:
         return _error(500, f"internal error: {type(exc).__name__}: {str(exc)[:300]}")
 
 
-def _pages(app: FastAPI) -> None:
+def _pages(app: FastAPI, lang: str = "en") -> None:
     @app.get("/", response_class=HTMLResponse)
     def index() -> HTMLResponse:
-        return HTMLResponse(static_text("index.html"))
+        return HTMLResponse(page_html(lang))
 
     @app.get("/static/{name}")
     def static(name: str) -> Response:

@@ -26,6 +26,7 @@ import numpy as np
 
 from linkwork.api import mechanism_of
 from linkwork.errors import ParameterError
+from linkwork.lang import check_lang
 from linkwork.scene.scheme import CYCLE
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import file_text
@@ -50,6 +51,27 @@ EDIT_CACHE, CLIENTS = 64, 256
 def static_text(name: str) -> str:
     """One of the page's files: ``index.html``, ``viewer.css`` or one of :data:`SCRIPTS`."""
     return (resources.files("linkwork.web") / "static" / name).read_text(encoding="utf-8")
+
+
+def page_html(lang: str = "en") -> str:
+    """The page (``index.html``) with its texts in ``lang``: an element's ``data-t="KEY"`` gives its text, a
+    ``data-t-ATTR="KEY"`` its attribute ``ATTR``, from the catalogues (:func:`linkwork.lang.t`)."""
+    from html import escape
+
+    from linkwork.lang import t
+
+    def attributes(m: re.Match[str]) -> str:
+        tag = m.group(0)
+        for attr, key in re.findall(r'\sdata-t-([a-z-]+)="([^"]+)"', tag):
+            start = tag.index(f' {attr}="') + len(attr) + 3
+            tag = tag[:start] + escape(t(key, lang), quote=True) + tag[tag.index('"', start) :]
+        return tag
+
+    page = re.sub(r"<[^>]*\sdata-t-[^>]*>", attributes, static_text("index.html"))
+    page = re.sub(
+        r'(<[^>]*\sdata-t="([^"]+)"[^>]*>)[^<]*', lambda m: m.group(1) + escape(t(m.group(2), lang), False), page
+    )
+    return page.replace('<html lang="en">', f'<html lang="{lang}">', 1)
 
 
 def dumps(data: Any) -> bytes:
@@ -125,6 +147,13 @@ class Viewer:
     placed : int or None
         Samples the labels of a whole cycle are placed at (:func:`linkwork.web.payload.full_payload`): about
         :data:`~linkwork.web.payload.LIVE_PLACED` for the live page, every one (None) for an exported page.
+    lang : str
+        The language of the page's texts and drawings (:data:`linkwork.lang.LANGUAGES`).
+
+    Raises
+    ------
+    LinkworkError
+        For a language there is no catalogue of (:func:`linkwork.lang.check_lang`).
     """
 
     def __init__(
@@ -133,7 +162,10 @@ class Viewer:
         steps: int = 360,
         cache: int = 16,
         placed: int | None = LIVE_PLACED,
+        lang: str = "en",
     ) -> None:
+        check_lang(lang)
+        self.lang = lang
         self.mech: Mechanism = mechanism_of(spec_or_mech, "viewer")
         self.spec = self.mech.spec
         self._editable = editable(self.mech)
@@ -199,12 +231,12 @@ class Viewer:
         if found is not None:
             return found
         cycle = self.solve(overrides, steps)
-        out = full_payload(cycle, 1 if first else self.placed)
+        out = full_payload(cycle, 1 if first else self.placed, self.lang)
         out["force_plans"] = self.force_plans_at([], overrides, steps, cycle)  # which: the page asks for a sample's
         out["editable"] = self.spec is not None
         out["overrides"] = dict(cycle.overrides)
         masses = cycle.kin.mass_properties
-        out["parameters"] = variant_parameters(cycle.mech, cycle.overrides, masses, self._editable)
+        out["parameters"] = variant_parameters(cycle.mech, cycle.overrides, masses, self._editable, self.lang)
         self._full.put(key, out)
         return out
 
@@ -243,7 +275,7 @@ class Viewer:
             cycle = self.solve(overrides, steps) if cycle is None else cycle
             found = (cycle, drawn_of(cycle))
             self._drawn.put(key, found)
-        return force_plans_part(found[0], samples, found[1])
+        return force_plans_part(found[0], samples, found[1], self.lang)
 
     def edit(self, overrides: dict[str, float], steps: int | None = None, whole_turn: bool = False) -> bytes:
         """The compact answer to the edit ``overrides`` (:func:`linkwork.web.update.edit_payload`), as it is
@@ -252,7 +284,8 @@ class Viewer:
         if found is None:
             # a drag (whole_turn) is answered without the strokes and the plans' frames, the scheme's symbols of
             # DRAGGED angles, to answer in time
-            found = encode_edit(edit_payload(self.solve(overrides, steps, whole_turn), self._editable, whole_turn))
+            cycle = self.solve(overrides, steps, whole_turn)
+            found = encode_edit(edit_payload(cycle, self._editable, whole_turn, self.lang))
             self._edits.put(self._edit_key(overrides, steps, whole_turn), found)
         return found
 

@@ -127,12 +127,14 @@ def item_table(scheme: SchemeScene) -> dict[str, Any]:
     }
 
 
-def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged: bool = False) -> dict[str, Any]:
+def edit_payload(
+    cycle: Cycle, editable: list[Parameter] | None = None, dragged: bool = False, lang: str = "en"
+) -> dict[str, Any]:
     """The answer to an edit: what differs from the payload of the mechanism as loaded (module docstring).
 
     ``editable``: the editable parameters of the mechanism, where the caller has them.  The answers to a
     ``dragged`` value leave out the strokes (``extremes`` None) and the frames of the plans, which the page
-    keeps from the last whole cycle until the drag ends.
+    keeps from the last whole cycle until the drag ends.  The parameters' notes in ``lang``.
     """
     kin = cycle.kin
     series = plan_series(kin)
@@ -176,7 +178,7 @@ def edit_payload(cycle: Cycle, editable: list[Parameter] | None = None, dragged:
             "values": compact(np.array([q[4] for q in quantities]).reshape(len(quantities), -1)),
         },
         "forces": forces_part(cycle, scheme.size, compact),
-        "parameters": variant_parameters(cycle.mech, cycle.overrides, kin.mass_properties, editable),
+        "parameters": variant_parameters(cycle.mech, cycle.overrides, kin.mass_properties, editable, lang),
         "extremes": None if dragged else [_finite(e.as_dict()) for e in extremes(kin)],
         "peaks": None if dragged else peaks(cycle),
         "events": [_finite(e.as_dict()) for e in kin.events],

@@ -18,7 +18,7 @@
 
 (function () {
   const V = window.linkworkViewer;
-  const { $, svg, html, fmt, state } = V;
+  const { $, svg, html, fmt, state, T } = V;
   const E = {
     client: Array.from(crypto.getRandomValues(new Uint8Array(9)), (b) => b.toString(16).padStart(2, "0")).join(""),
     seq: 0,
@@ -61,10 +61,10 @@
       });
       status = r.status;
       if (r.ok) body = V.readEdit(await r.arrayBuffer());
-      else body = await r.json().catch(() => ({ error: `the server answered ${r.status}` }));
+      else body = await r.json().catch(() => ({ error: T("view.server_answered", { status: r.status }) }));
     } catch (err) {
       status = 0;
-      body = { error: `no answer from the server: ${err.message || err}` };
+      body = { error: T("view.no_answer", { error: err.message || err }) };
     }
     E.inflight = null;
     pump(); // the next value is solved while this answer is drawn
@@ -82,11 +82,11 @@
     trouble(null);
     $("scheme").setAttribute("data-edit-ms", ms.toFixed(1));
     const n = Object.keys(E.accepted).length;
-    $("edit-status").textContent = n ? `${n} value(s) changed` : "the file's values";
+    $("edit-status").textContent = n ? T("view.changed", { n }) : T("view.file_values");
   }
 
   function refuse(req, body) {
-    V.showError(body.error || "the edit failed");
+    V.showError(body.error || T("view.edit_failed"));
     trouble(body.events || null);
     if (E.drag) E.drag.handle.el.classList.add("bad");
   }
@@ -174,7 +174,7 @@
         class: "trouble-label", x: (cx + 0.6 * r * Math.cos(mid)).toFixed(3), y: (cy - 0.6 * r * Math.sin(mid)).toFixed(3),
         "font-size": (0.8 * 1000 * m.scene.em).toFixed(3), "text-anchor": "middle", "dominant-baseline": "central",
       }, g);
-      t.textContent = `no assembly ${fmt(e.start_deg, 3)}°–${fmt(e.end_deg, 3)}°`;
+      t.textContent = T("view.no_assembly", { start: fmt(e.start_deg, 3), end: fmt(e.end_deg, 3) });
     }
   }
 
@@ -185,16 +185,16 @@
     root.replaceChildren();
     const note = $("edit-note");
     E.editable = m.editable && !state.embedded;
-    if (state.embedded) note.textContent = "This page was exported with its cycle precomputed; to edit the mechanism, run linkwork view on its file.";
-    else if (!m.editable) note.textContent = "This mechanism was given without its description: it cannot be edited here.";
-    else note.textContent = "Values as in the file (lengths in mm, angles in degrees). Drag the handles on the scheme, or type values and apply; Ctrl+Z undoes.";
+    if (state.embedded) note.textContent = T("view.exported");
+    else if (!m.editable) note.textContent = T("view.not_editable");
+    else note.textContent = T("view.edit_help");
     for (const id of ["apply", "reset", "save"]) $(id).disabled = !E.editable;
     buttons();
     let group = null;
     for (const p of m.parameters || []) {
       if (p.group !== group) {
         group = p.group;
-        html("h3", group, root);
+        html("h3", T(`view.group.${group}`), root);
       }
       const [unit, k] = units(m, p.kind);
       const row = html("label", null, root, { class: "param" });
@@ -238,7 +238,7 @@
   function apply(ev) {
     ev.preventDefault();
     const { out, bad } = typed();
-    if (bad.length) { V.showError(bad.map((b) => `${b}: enter a number`).join("\n")); return; }
+    if (bad.length) { V.showError(bad.map((b) => T("view.enter_number", { name: b })).join("\n")); return; }
     propose(out, { commit: true, typed: true });
   }
 
@@ -260,7 +260,7 @@
     V.show(state.base, false);
     V.hideError();
     trouble(null);
-    $("edit-status").textContent = "the file's values";
+    $("edit-status").textContent = T("view.file_values");
     settle(Object.assign({ record: true }, req));
   }
 
@@ -269,7 +269,7 @@
       const r = await fetch("api/save", {
         method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ overrides: E.accepted }),
       });
-      if (!r.ok) { V.showError((await r.json().catch(() => ({}))).error || `the server answered ${r.status}`); return; }
+      if (!r.ok) { V.showError((await r.json().catch(() => ({}))).error || T("view.server_answered", { status: r.status })); return; }
       const disposition = r.headers.get("Content-Disposition") || "";
       const utf8 = /filename\*=UTF-8''([^;\s]+)/.exec(disposition);  // the name in any script (RFC 6266)
       const name = utf8 ? decodeURIComponent(utf8[1])
@@ -279,9 +279,9 @@
       a.click();
       a.remove();
       setTimeout(() => URL.revokeObjectURL(url), 1000);
-      $("edit-status").textContent = `saved as ${name}`;
+      $("edit-status").textContent = T("view.saved", { name });
     } catch (err) {
-      V.showError(`no answer from the server: ${err.message || err}`);
+      V.showError(T("view.no_answer", { error: err.message || err }));
     }
   }
 
@@ -298,18 +298,18 @@
       const [link, name] = pt.name.split(".");
       const base = pt.link === 0 ? `frame.points.${name}` : `links.${link}.points.${name}`;
       if (!names.has(base + ".x")) return;
-      if (pt.link === 0) out.push({ kind: "frame", id: base, x: base + ".x", y: base + ".y", point: p, what: `the frame's point ${name}` });
-      else if (!onFrame(p)) out.push({ kind: "point", id: base, x: base + ".x", y: base + ".y", point: p, link: pt.link, what: `point ${name} of ${link}` });
+      if (pt.link === 0) out.push({ kind: "frame", id: base, x: base + ".x", y: base + ".y", point: p, what: T("view.what.frame_point", { name }) });
+      else if (!onFrame(p)) out.push({ kind: "point", id: base, x: base + ".x", y: base + ".y", point: p, link: pt.link, what: T("view.what.point", { name, link }) });
     });
     for (const link of m.links) {
       const id = `links.${link.name}.length`;
-      if (link.ends && names.has(id)) out.push({ kind: "length", id, param: id, ends: link.ends, what: `the length of ${link.name}` });
+      if (link.ends && names.has(id)) out.push({ kind: "length", id, param: id, ends: link.ends, what: T("view.what.length", { link: link.name }) });
     }
     for (const pair of m.pairs) {
       if (pair.type !== "prismatic" || pair.links[0] !== 0) continue;
       const axis = `joints.${pair.joint}.axis`, through = `joints.${pair.joint}.through`;
-      if (names.has(through + ".x")) out.push({ kind: "frame", id: through, x: through + ".x", y: through + ".y", pair, what: `the point of guide ${pair.joint}` });
-      if (names.has(axis)) out.push({ kind: "axis", id: axis, param: axis, pair, what: `the direction of guide ${pair.joint}` });
+      if (names.has(through + ".x")) out.push({ kind: "frame", id: through, x: through + ".x", y: through + ".y", pair, what: T("view.what.guide_point", { joint: pair.joint }) });
+      if (names.has(axis)) out.push({ kind: "axis", id: axis, param: axis, pair, what: T("view.what.guide_axis", { joint: pair.joint }) });
     }
     return out;
   }
@@ -355,7 +355,7 @@
       else if (h.kind === "frame") h.el = svg("rect", Object.assign(attrs, { width: (2.4 * r).toFixed(3), height: (2.4 * r).toFixed(3) }), g);
       else h.el = svg("circle", Object.assign(attrs, { r: ((h.kind === "axis" ? 1.1 : 1.4) * r).toFixed(3) }), g);
       h.size = Number(h.el.getAttribute("width") || 0);
-      svg("title", {}, h.el).textContent = `drag: ${h.what} (${h.id})`;
+      svg("title", {}, h.el).textContent = T("view.drag", { what: h.what, id: h.id });
       h.el.addEventListener("pointerdown", (ev) => grab(ev, h));
     }
     const readout = svg("text", { id: "drag-readout", "font-size": (1000 * m.scene.em).toFixed(3), visibility: "hidden" }, g);
@@ -513,7 +513,7 @@
     if (!f.overrides || !f.overrides.length) return;
     const box = html("div", null, null, { id: "family", class: "param" });
     $("params").before(box);
-    html("h3", "Family", box);
+    html("h3", T("view.family"), box);
     const text = html("span", null, box, { id: "family-text" });
     const input = html("input", null, box, { type: "range", min: 0, max: f.overrides.length - 1, step: 1,
                                              value: f.picked, id: "family-slider" });

@@ -10,12 +10,28 @@
 
 (function () {
   const V = window.linkworkViewer;
-  const { $, svg, html, fmt } = V;
+  const { $, svg, html, fmt, T } = V;
   const F = { answers: new Map(), wanted: null, asking: false, shown: null };
 
   function part() { return V.state.data && V.state.data.force_plans; }
 
-  function kN(v) { return Math.abs(v) >= 1000 ? `${fmt(v / 1000, 4)} kN` : `${fmt(v, 4)} N`; }
+  function kN(v) { return Math.abs(v) >= 1000 ? `${fmt(v / 1000, 4)} ${T("unit.kN")}` : `${fmt(v, 4)} ${T("unit.N")}`; }
+
+  // the text ``key`` into ``el``, its ``fields`` filled; a field given in ``lists`` is written "\u0001name\u0001"
+  // in the fields and drawn as the arrows' names (their sub- and superscripts) with their forces
+  const MARK = "\u0001";
+  function say(el, key, fields, lists) {
+    el.replaceChildren();
+    T(key, fields).split(MARK).forEach((part, j) => {
+      if (j % 2 === 0) { if (part) el.appendChild(document.createTextNode(part)); return; }
+      lists[part].forEach((a, k) => {
+        if (k) el.appendChild(document.createTextNode(V.listed(["", ""])));
+        V.setRuns(html("span", null, el, { class: "fname", "data-name": a.text }), a.runs || [[a.text, ""]]);
+        el.appendChild(document.createTextNode(` ${kN(a.value)}`));
+      });
+    });
+  }
+  const mark = (name) => MARK + name + MARK;
 
   // the group (or the lever) chosen, and the choice rebuilt where the mechanism's groups changed
   function choice(p) {
@@ -62,7 +78,7 @@
       // a failure is kept as the answer too (said in the caption), so that it is not asked for again and again
       F.answers.set(key, r.ok ? answer.at[0] : { error: answer.error || r.statusText });
     } catch (err) {
-      F.answers.set(key, { error: "the server does not answer" });
+      F.answers.set(key, { error: T("view.no_server") });
     }
     if (F.answers.size > 400) F.answers.delete(F.answers.keys().next().value);
     F.asking = false;
@@ -91,14 +107,14 @@
     if (sample && sample.error) {
       root.setAttribute("data-index", "");
       legend(p, null);
-      caption.textContent = `${group.title}: not drawn (${sample.error})`;
+      caption.textContent = T("view.fp_error", { title: group.title, error: sample.error });
       return;
     }
     root.setAttribute("data-index", sample ? String(sample.index) : "");
     legend(p, d);
     if (!d || !d.arrows.length) {
       root.setAttribute("data-scale", "");
-      caption.textContent = `${group.title}: ${sample && !d ? "the mechanism does not assemble at this angle" : "no plan at this angle (a dead point: the reactions are indeterminate)"}`;
+      caption.textContent = T(sample && !d ? "view.fp_no_pose" : "view.fp_dead", { title: group.title });
       return;
     }
     root.setAttribute("data-scale", String(d.scale));
@@ -127,7 +143,7 @@
       svg("line", attrs, arrows);
       if (a.text && a.centre && a.centre[0] !== null) {  // a name too long for its arrow is listed, not placed
         const t = svg("text", { class: "fname", fill: style.colour, x: a.centre[0].toFixed(3), y: (-a.centre[1]).toFixed(3), "text-anchor": "middle", "dominant-baseline": "central", "data-name": a.text }, texts);
-        V.setLabel(t, a.text);
+        V.setRuns(t, a.runs || [[a.text, ""]]);
       }
     }
     d.dots.forEach((c, j) => {
@@ -138,16 +154,18 @@
         V.setLabel(t, d.dot_text[j]);
       }
     });
-    const angle = `at φ = ${sample.turn_deg.toFixed(1)}°`;
-    const forces = d.arrows.filter((a) => !a.resultant).map((a) => `${a.text} ${kN(a.value)}`).join(", ");
-    const found = d.arrows.filter((a) => a.resultant).map((a) => `${a.text} ${kN(a.value)}`).join(", ");
+    const angle = T("view.fp_at", { phi: V.fixed(sample.turn_deg, 1) });
+    const lists = { forces: d.arrows.filter((a) => !a.resultant), found: d.arrows.filter((a) => a.resultant) };
     if (d.kind === "lever") {
-      caption.textContent = `Zhukovsky's lever ${angle}: the velocity plan turned by 90°, μv = ${d.plan_scale} (m/s)/mm, ` +
-        `forces μF = ${d.scale} N/mm; balancing moment Mb = ${fmt(d.balancing, 5)} N·m (counter-clockwise +), ` +
-        `Fb = Mb / l = ${kN(Math.abs(d.balancing) / d.crank)} at the crank pin; ${forces}`;
+      say(caption, "view.lever_caption", {
+        at: angle, mu: V.written(d.plan_scale), scale: V.written(d.scale), mb: fmt(d.balancing, 5),
+        fb: kN(Math.abs(d.balancing) / d.crank), forces: mark("forces"),
+      }, lists);
     } else {
-      caption.textContent = `force plan of ${group.title} ${angle}, μF = ${d.scale} N/mm` +
-        `${group.solved ? "" : " (closed by the analytic reactions)"}: ${forces}${found ? `; read off the plan: ${found}` : ""}`;
+      say(caption, "view.fp_caption", {
+        title: group.title, at: angle, scale: V.written(d.scale), closed: group.solved ? "" : T("view.fp_closed"),
+        forces: mark("forces"), found: lists.found.length ? T("view.fp_found", { found: mark("found") }) : "",
+      }, lists);
     }
   }
 

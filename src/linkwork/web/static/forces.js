@@ -12,7 +12,7 @@
 
 (function () {
   const V = window.linkworkViewer;
-  const { $, svg, fmt } = V;
+  const { $, svg, fmt, T } = V;
   const KINDS = ["reaction", "load", "torque"];
 
   function layer(m) {
@@ -34,7 +34,7 @@
     return g;
   }
 
-  function kN(v) { return Math.abs(v) >= 1000 ? `${fmt(v / 1000, 3)} kN` : `${fmt(v, 3)} N`; }
+  function kN(v) { return Math.abs(v) >= 1000 ? `${fmt(v / 1000, 3)} ${T("unit.kN")}` : `${fmt(v, 3)} ${T("unit.N")}`; }
 
   // the arrows of a model; returns the function that places them at a sample
   function build(m) {
@@ -42,7 +42,7 @@
     const box = $("show-forces"), caption = $("forces-caption");
     const f = m.forces;
     box.disabled = !f.available;
-    box.parentElement.title = f.available ? "" : `forces not computed: ${f.reason}`;
+    box.parentElement.title = f.available ? "" : T("view.forces_off", { reason: f.reason });
     if (!f.available || !f.arrows) { caption.hidden = true; return null; }
     const loaded = V.state.base.forces.scale_per_mm || f.scale_per_mm;
     const scale = loaded / Number($("force-zoom").value); // N per mm of the drawing at full size
@@ -84,7 +84,7 @@
       line.setAttribute("x2", x2.toFixed(4)); line.setAttribute("y2", y2.toFixed(4));
       const [x, y] = clear(x2, y2, (x2 - x1) / len, (y2 - y1) / len, a.label, placed);
       text.setAttribute("x", x.toFixed(3)); text.setAttribute("y", y.toFixed(3));
-      return `${a.label} ${kN(Math.hypot(F[0], F[1]))}${beyond ? " (shortened)" : ""}`;
+      return `${a.label} ${kN(Math.hypot(F[0], F[1]))}${beyond ? T("view.shortened") : ""}`;
     }
 
     // where a force's label goes: beyond its arrow's head, pushed on along the arrow, then to either side of
@@ -125,7 +125,7 @@
       torque.setAttribute("data-torque", String(M));
       torqueText.setAttribute("x", (cx + 1.1 * r).toFixed(3));
       torqueText.setAttribute("y", (cy - 1.1 * r).toFixed(3));
-      torqueText.textContent = `M = ${fmt(M, 4)} N·m`; // as the caption and the torque chart say it
+      torqueText.textContent = T("view.torque", { value: fmt(M, 4) }); // as the caption and the torque chart say it
       return M;
     }
 
@@ -134,9 +134,8 @@
       const shown = arrows.map((x) => arrow(x, i, placed)).filter((s) => s !== null);
       const M = turning(i);
       caption.hidden = !box.checked;
-      caption.textContent = `forces at this angle, to scale μF = ${fmt(scale, 3)} N/mm of the mechanism drawn full size ` +
-        `(Rij: the force of link i on link j in their joint): ${shown.join(", ")}` +
-        `${M === null ? "" : `; driving torque M = ${fmt(M, 4)} N·m (counter-clockwise +)`}`;
+      caption.textContent = T("view.forces_caption", { scale: fmt(scale, 3), forces: V.listed(shown) }) +
+        (M === null ? "" : T("view.forces_torque", { value: fmt(M, 4) }));
     };
   }
 

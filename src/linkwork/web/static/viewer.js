@@ -67,13 +67,55 @@
     return e;
   }
 
+  // the page's texts in its language: the payload's ``texts`` (linkwork.lang's catalogues, key -> text), the
+  // fields in braces filled from ``fields`` (a doubled brace is the brace itself)
+  function T(key, fields) {
+    const text = ((state.full || state.base || {}).texts || {})[key];
+    if (text === undefined) return key;
+    return text.replace(/\{\{|\}\}|\{(\w+)\}/g, (m, name) => {
+      if (!name) return m[0];
+      return fields && fields[name] !== undefined && fields[name] !== null ? String(fields[name]) : m;
+    });
+  }
+
+  const russian = () => ((state.full || state.base || {}).lang || "en") === "ru";
+  const POWER = { "-": "⁻", 0: "⁰", 1: "¹", 2: "²", 3: "³", 4: "⁴", 5: "⁵", 6: "⁶", 7: "⁷", 8: "⁸", 9: "⁹" };
+
+  // a number written as the page's language writes it (linkwork.lang.russian_numbers): in Russian a decimal
+  // comma, and a power of ten for an exponent (2.5e+5 as 2,5·10⁵)
+  function written(text) {
+    text = String(text);
+    if (!russian()) return text;
+    const m = /^(-?[0-9.]+)e([-+]?[0-9]+)$/.exec(text);
+    if (m) return m[1].replace(".", ",") + "·10" + String(Number(m[2])).replace(/./g, (c) => POWER[c]);
+    return text.replace(".", ",");
+  }
+
+  // ``v`` with ``digits`` decimals, as the page's language writes it
+  const fixed = (v, digits) => written(Number(v).toFixed(digits));
+
+  // items of a list: "a 1.5, b 2" in English, "a 1,5; b 2" in Russian (its decimal commas stay apart)
+  const listed = (items) => items.join(russian() ? "; " : ", ");
+
+  // a name in runs (linkwork.web.force_plans.tex_runs: [text, "" | "sub" | "sup"]) into an SVG text, its subscripts
+  // and superscripts smaller in tspans; into an HTML element as <sub> and <sup>
+  function setRuns(t, runs) {
+    t.replaceChildren();
+    const inSvg = t.namespaceURI === NS;
+    for (const [text, kind] of runs) {
+      if (!kind) t.appendChild(document.createTextNode(text));
+      else if (inSvg) svg("tspan", { "baseline-shift": kind === "sub" ? "sub" : "super", "font-size": "70%", class: kind }, t).textContent = text;
+      else html(kind, text, t);
+    }
+  }
+
   const X = (p) => (1000 * p[0]).toFixed(4);
   const Y = (p) => (-1000 * p[1]).toFixed(4);
   function fmt(v, digits) {
     if (v === null || v === undefined || !isFinite(v)) return "-";
     const a = Math.abs(v);
-    if (a !== 0 && (a >= 1e6 || a < 1e-3)) return Number(v).toExponential((digits || 4) - 1);
-    return String(Number(Number(v).toPrecision(digits || 4)));
+    if (a !== 0 && (a >= 1e6 || a < 1e-3)) return written(Number(v).toExponential((digits || 4) - 1));
+    return written(String(Number(Number(v).toPrecision(digits || 4))));
   }
 
   // ------------------------------------------------------------------ the model
@@ -290,7 +332,8 @@
     const m = model(data);
     state.base = state.full = m;
     $("loading").hidden = true;
-    document.title = m.name + ": linkwork viewer";
+    document.title = m.name + ": " + T("view.title");
+    if (russian()) for (const o of document.querySelectorAll("#speed option, #force-zoom option")) o.textContent = written(o.textContent);
     $("title").textContent = m.name;
     $("formula").textContent = m.structure.formula;
     buildChoice(m);
@@ -505,7 +548,7 @@
       const v = state.data.valid[i] ? now.values.at(i, j) : null;
       return v ? [v[0] / now.scale_per_mm, -v[1] / now.scale_per_mm] : null;
     };
-    const pole = plan.labels.indexOf("p");
+    const pole = plan.labels.indexOf("p"); // the pole's point (its letter on the plan: look.pole, π on a Russian acceleration plan)
     const drawn = [];
     for (const j of plan.absolute) drawn.push({ from: pole, to: j, kind: "absolute" });
     for (const v of plan.vectors) drawn.push(v);
@@ -521,8 +564,9 @@
     });
     legend(root, kind, look.kinds);
     const caption = $(kind + "-caption");
-    const unit = plan.unit === "m/s" ? "(m/s)/mm" : "(m/s²)/mm";
+    const unit = T(`plan.unit.${kind}`);
     const mu = kind === "velocity" ? "μv" : "μa";
+    const units = T(kind === "velocity" ? "view.unit.m_s" : "view.unit.m_s2");
     state.parts[kind].push((i) => {
       const now = state.data.plans[kind], shown = state.data.scene.plans[kind];
       drawn.forEach((v, k) => {
@@ -549,8 +593,10 @@
         const v = state.data.valid[i] ? now.values.at(i, j) : null;
         return v ? `${plan.labels[j]} ${fmt(Math.hypot(v[0], v[1]), 3)}` : `${plan.labels[j]} -`;
       });
-      caption.textContent = `${kind} plan, pole p, ${mu} = ${now.scale_per_mm} ${unit} of the plan drawn full size (shown scaled to fit); ` +
-        `|${kind === "velocity" ? "v" : "a"}| in ${plan.unit}: ${parts.join(", ")}`;
+      caption.textContent = T("view.plan_caption", {
+        plan: T(`plan.${kind}`), pole: look.pole || "p", mu, scale: written(now.scale_per_mm), unit,
+        v: kind === "velocity" ? "v" : "a", units, values: listed(parts),
+      });
     });
   }
 
@@ -620,23 +666,23 @@
     state.chartUpdate = [];
     state.charts = [];
     for (const key of state.chosen) if (m.series.some((x) => x.key === key)) state.charts.push(chart(root, key));
-    const note = html("div", "x: crank angle φ turned from position 0, deg; click a chart to move the crank there", root);
+    const note = html("div", T("view.chart_note"), root);
     note.className = "note";
   }
 
   function chart(root, key) {
-    const { W, H, L, R, T, B } = CHART;
+    const { W, H, L, R, T: TOP, B } = CHART;
     const xOf = (i) => L + (W - L - R) * (state.data.turn_deg[i] / 360);
     const g = svg("svg", { class: "chart", viewBox: `0 0 ${W} ${H}`, preserveAspectRatio: "none", "data-series": key }, root);
     svg("line", { class: "axis", x1: L, y1: H - B, x2: W - R, y2: H - B }, g);
-    svg("line", { class: "axis", x1: L, y1: T, x2: L, y2: H - B }, g);
+    svg("line", { class: "axis", x1: L, y1: TOP, x2: L, y2: H - B }, g);
     for (const t of [0, 90, 180, 270, 360]) {
       const x = L + (W - L - R) * t / 360;
       svg("text", { x: x, y: H - 6, "text-anchor": "middle" }, g).textContent = t + "°";
     }
     const axis = svg("g", {}, g), curve = svg("path", { class: "curve" }, g);
     const title = svg("text", { class: "title", x: L + 4, y: 13 }, g);
-    const cursor = svg("line", { class: "cursor", y1: T, y2: H - B }, g);
+    const cursor = svg("line", { class: "cursor", y1: TOP, y2: H - B }, g);
     g.addEventListener("pointerdown", (ev) => pick(ev, g));
     g.addEventListener("pointermove", (ev) => { if (ev.buttons) pick(ev, g); });
     const out = { s: null };
@@ -646,10 +692,10 @@
       for (const v of s.values) if (v !== null) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
       if (lo === Infinity) { lo = 0; hi = 1; }
       if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
-      const yOf = (v) => T + (H - T - B) * (1 - (v - lo) / (hi - lo));
+      const yOf = (v) => TOP + (H - TOP - B) * (1 - (v - lo) / (hi - lo));
       g.setAttribute("data-lo", String(lo));
       g.setAttribute("data-hi", String(hi));
-      g.setAttribute("data-transform", `x = ${L} + ${W - L - R} turn / 360, y = ${T} + ${H - T - B} (hi - v) / (hi - lo)`);
+      g.setAttribute("data-transform", `x = ${L} + ${W - L - R} turn / 360, y = ${TOP} + ${H - TOP - B} (hi - v) / (hi - lo)`);
       axis.replaceChildren();
       if (lo < 0 && hi > 0) svg("line", { class: "zero", x1: L, y1: yOf(0), x2: W - R, y2: yOf(0) }, axis);
       for (const t of ticks(lo, hi, 3)) {
@@ -670,7 +716,7 @@
       const x = xOf(i).toFixed(2), s = out.s;
       cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
       cursor.setAttribute("data-index", String(i));
-      title.textContent = `${s.label}, ${s.unit}: ${fmt(s.values[i])} at φ = ${state.data.turn_deg[i].toFixed(1)}°`;
+      title.textContent = T("view.chart_title", { label: s.label, unit: s.unit, value: fmt(s.values[i]), phi: fixed(state.data.turn_deg[i], 1) });
     });
     return out;
   }
@@ -699,35 +745,34 @@
     root.setAttribute("data-said", said);
     root.replaceChildren();
     const s = m.structure;
-    const tail = s.p4 ? ` - ${s.p4}` : "";
-    html("p", `moving links n = ${s.n_links}, lower pairs p5 = ${s.p5}, higher pairs p4 = ${s.p4}; ` +
-      `W = 3n - 2p5 - p4 = 3·${s.n_links} - 2·${s.p5}${tail} = ${s.dof}; redundant constraints q = ${s.redundant}`, root);
+    const tail = s.p4 ? `${russian() ? " − " : " - "}${s.p4}` : "";
+    html("p", T("view.structure_line", { n: s.n_links, p5: s.p5, p4: s.p4, tail, dof: s.dof, q: s.redundant }), root);
     const drive = m.drives[0];
-    html("p", `drive: joint ${drive.joint}, ${fmt(drive.rpm, 4)} rpm ${drive.direction}`, root);
-    table(root, ["#", "group", "kind", "links", "joints"],
-      s.groups.map((g, i) => [i + 1, g.formula_part, g.kind, g.link_names.join(", "), g.joints.join(", ")]));
-    html("p", `structural formula: ${s.formula}`, root);
+    html("p", T("view.drive", { joint: drive.joint, rpm: fmt(drive.rpm, 4), direction: T(`view.${drive.direction}`) }), root);
+    table(root, ["#", T("view.head.group"), T("view.head.kind"), T("view.head.links"), T("view.head.joints")],
+      s.groups.map((g, i) => [i + 1, g.formula_part, g.kind_shown || g.kind, g.link_names.join(", "), g.joints.join(", ")]));
+    html("p", T("view.formula", { formula: s.formula }), root);
     if (m.extremes.length) {
-      table(root, ["", "stroke", "time ratio K", "+ stroke / other"], m.extremes.map((e) => [
-        `${e.kind} ${e.name}`,
-        e.kind === "slider" ? `${fmt(1000 * e.stroke)} mm` : `${fmt((e.stroke * 180) / Math.PI)}°`,
+      table(root, ["", T("view.head.stroke"), T("view.head.time_ratio"), T("view.head.forward")], m.extremes.map((e) => [
+        `${T(`view.kind.${e.kind}`)} ${e.name}`,
+        e.kind === "slider" ? `${fmt(1000 * e.stroke)} ${T("view.unit.mm")}` : `${fmt((e.stroke * 180) / Math.PI)}°`,
         fmt(e.time_ratio),
         fmt(e.forward_time_ratio),
       ])).setAttribute("id", "extremes");
-      if (m.stale === "extremes") html("p", "(strokes of the mechanism before the drag: solved again when it ends)", root, { class: "note" });
+      if (m.stale === "extremes") html("p", T("view.stale"), root, { class: "note" });
     }
     if (m.forces.available && m.forces.checks) {
       const c = m.forces.checks;
-      html("p", `forces: power balance ${fmt(c.driving_torque_vs_power_balance, 2)}, momentum ${fmt(c.foundation_force_vs_momentum, 2)} (relative discrepancy of the cross-checks)`, root);
+      html("p", T("view.checks", { power: fmt(c.driving_torque_vs_power_balance, 2), momentum: fmt(c.foundation_force_vs_momentum, 2) }), root);
     } else if (m.forces.available) {
-      html("p", "forces: the cross-checks come with the whole solution, once the edit is made", root);
+      html("p", T("view.checks_later"), root);
     } else {
-      html("p", `forces: not computed (${m.forces.reason})`, root);
+      html("p", T("view.no_forces", { reason: m.forces.reason }), root);
     }
     const peak = m.peaks && m.peaks.driving_torque;
     if (peak) { // refined between the samples: the number the command line, the report and the sweeps give
-      const stale = m.stale === "extremes" ? " (before the drag)" : "";
-      html("p", `peak driving torque ${fmt(peak.value, 6)} N m at φ = ${peak.turn_deg.toFixed(1)}°${stale}`, root, { id: "peak-torque" });
+      const stale = m.stale === "extremes" ? T("view.before_drag") : "";
+      html("p", T("view.peak", { value: fmt(peak.value, 6), phi: fixed(peak.turn_deg, 1), stale }), root, { id: "peak-torque" });
     }
     for (const e of m.events) html("p", `${e.kind}: ${e.message}`, root, { class: "warn" });
     for (const w of m.warnings.concat(s.warnings || [])) html("p", w, root, { class: "warn" });
@@ -774,10 +819,10 @@
     const root = $("scheme");
     root.setAttribute("data-index", String(i));
     root.setAttribute("data-angle-deg", String(deg));
-    $("angle-text").textContent = `φ = ${m.turn_deg[i].toFixed(1)}° from position 0, crank at ${(((deg % 360) + 360) % 360).toFixed(1)}° to x (sample ${i + 1} of ${n})`;
+    $("angle-text").textContent = T("view.angle", { phi: fixed(m.turn_deg[i], 1), deg: fixed(((deg % 360) + 360) % 360, 1), i: i + 1, n });
     const note = $("pose-note");
     note.hidden = m.valid[i];
-    note.textContent = m.valid[i] ? "" : "The mechanism does not assemble at this crank angle.";
+    note.textContent = m.valid[i] ? "" : T("view.no_pose");
   }
 
   function frame(t) {
@@ -795,7 +840,7 @@
 
   function play(on) {
     state.playing = on;
-    $("play").textContent = on ? "Pause" : "Play";
+    $("play").textContent = T(on ? "view.pause" : "view.play");
     $("play").setAttribute("aria-pressed", String(on));
     if (on) { state.position = state.index; state.last = null; requestAnimationFrame(frame); }
   }
@@ -823,7 +868,7 @@
   }
 
   window.linkworkViewer = {
-    state, $, svg, html, fmt, setLabel, X, Y, place, Grid, readEdit, model, merge, show, load, grow, setIndex, showError, hideError,
+    state, $, svg, html, fmt, T, written, fixed, listed, setRuns, setLabel, X, Y, place, Grid, readEdit, model, merge, show, load, grow, setIndex, showError, hideError,
     on: (name, f) => state.hooks[name].push(f),
   };
 
