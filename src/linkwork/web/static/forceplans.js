@@ -143,6 +143,7 @@
       svg("line", attrs, arrows);
       if (a.text && a.centre && a.centre[0] !== null) {  // a name too long for its arrow is listed, not placed
         const t = svg("text", { class: "fname", fill: style.colour, x: a.centre[0].toFixed(3), y: (-a.centre[1]).toFixed(3), "text-anchor": "middle", "dominant-baseline": "central", "data-name": a.text }, texts);
+        t.style.strokeWidth = (0.12 * d.em).toFixed(3); // the halo in the drawing's units, narrower than a stroke of a letter
         V.setRuns(t, a.runs || [[a.text, ""]]);
       }
     }
