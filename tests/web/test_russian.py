@@ -136,3 +136,23 @@ def test_the_viewer_refuses_an_unknown_language():
 
     with pytest.raises(LinkworkError, match="expected one of en, ru, got 'fr'"):
         Viewer("four-bar", 12, lang="fr")
+
+
+def test_an_event_is_said_in_russian_at_the_crank_angles_of_the_closed_form():
+    """A crank of 0.3 m puts A beyond the reach of rod and rocker (0.4 + 0.5 m from O3) where
+    |O3O1 + 0.3 u(a)| > 0.9: 0.5 cos a + 0.4 sin a > 0.31 / 0.6, for drive angles a between 38.66° ∓ 36.2°.  The
+    Russian page says so as the report does, at φ = a turned from position 0 (the drive ccw), decimal commas."""
+    import math
+
+    import linkwork as lw
+    from linkwork.web.cycle import solve_cycle
+    from linkwork.web.payload import events_part
+
+    cycle = solve_cycle(lw.compile(lw.example("double-cut-shears")), 24, {"links.crank.length": 0.3})
+    theta, half = math.atan2(0.4, 0.5), math.acos(0.31 / 0.6 / math.hypot(0.5, 0.4))
+    zero = math.degrees(float(cycle.kin.angles[0]))  # the drive angle of position 0
+    start, end = (f"{(math.degrees(a) - zero) % 360:.1f}".replace(".", ",") for a in (theta - half, theta + half))
+    said = [e["text"] for e in events_part(cycle, "ru") if e["kind"] == "no-assembly"]
+    assert said == [f"Группа II(2,3) ВВВ не собирается при φ от {start}° до {end}°."]
+    english = events_part(cycle, "en")
+    assert english and all("text" not in e for e in english)  # English: the analysis's message, as before

@@ -78,7 +78,7 @@ import numpy as np
 
 from linkwork.errors import UnassemblableError
 from linkwork.io import jsonout
-from linkwork.lang import LANGUAGES, check_lang, group_kind, t, texts
+from linkwork.lang import LANGUAGES, check_lang, group_kind, group_label, russian_numbers, t, texts
 from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import PlanSeries, drawing_scale, longest_length, percentile, plan_series
@@ -197,7 +197,7 @@ def full_payload(cycle: Cycle, placed: int | None = None, lang: str = "en") -> d
     }
     if cycle.forces is not None:  # the independent checks of the reactions (power and momentum balances)
         out["forces"]["checks"] = _finite(cycle.forces.checks)
-    out.update(_outcome(cycle))
+    out.update(_outcome(cycle, lang))
     return out
 
 
@@ -231,14 +231,33 @@ def display_units(lang: str) -> dict[str, list[Any]]:
     return {kind: [t(f"view.unit.{DISPLAY_UNITS[kind]}", lang), factor] for kind, (_, factor) in DISPLAY.items()}
 
 
-def _outcome(cycle: Cycle) -> dict[str, Any]:
+def _outcome(cycle: Cycle, lang: str = "en") -> dict[str, Any]:
     """The extremes, events and warnings of a cycle."""
     return {
         "extremes": [_finite(e.as_dict()) for e in extremes(cycle.kin)],
         "peaks": peaks(cycle),
-        "events": [_finite(e.as_dict()) for e in cycle.kin.events],
+        "events": events_part(cycle, lang),
         "warnings": list(cycle.notes),
     }
+
+
+def events_part(cycle: Cycle, lang: str = "en") -> list[dict[str, Any]]:
+    """The events of a cycle (:meth:`linkwork.motion.events.Event.as_dict`, its ``message`` in English); in another
+    language each with its ``text`` as the report says it (``event.KIND`` of :mod:`linkwork.lang`, the group in the
+    language's letters, the crank angles φ from position 0, a decimal comma in Russian)."""
+    from linkwork.motion.analysis import phi_deg, zero_angle
+    from linkwork.motion.kinematic_analysis import direction
+
+    out = [_finite(e.as_dict()) for e in cycle.kin.events]
+    if lang == "en" or not out:
+        return out
+    zero, sense = zero_angle(cycle.mech), direction(cycle.mech)
+    for item, e in zip(out, cycle.kin.events, strict=True):
+        if f"event.{e.kind}" in texts():
+            start, end = phi_deg([e.start, e.end], zero, sense)
+            text = t(f"event.{e.kind}", lang, group=group_label(e.group, lang), start=f"{start:.1f}", end=f"{end:.1f}")
+            item["text"] = russian_numbers(text) if lang == "ru" else text
+    return out
 
 
 def peaks(cycle: Cycle) -> dict[str, Any]:

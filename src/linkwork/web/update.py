@@ -41,6 +41,7 @@ from linkwork.web.payload import (
     _json,
     cycle_scale,
     element_list,
+    events_part,
     forces_part,
     peaks,
     plan_shape,
@@ -181,7 +182,7 @@ def edit_payload(
         "parameters": variant_parameters(cycle.mech, cycle.overrides, kin.mass_properties, editable, lang),
         "extremes": None if dragged else [_finite(e.as_dict()) for e in extremes(kin)],
         "peaks": None if dragged else peaks(cycle),
-        "events": [_finite(e.as_dict()) for e in kin.events],
+        "events": events_part(cycle, lang),
         "warnings": list(cycle.notes),
     }
     return out

@@ -774,7 +774,7 @@
       const stale = m.stale === "extremes" ? T("view.before_drag") : "";
       html("p", T("view.peak", { value: fmt(peak.value, 6), phi: fixed(peak.turn_deg, 1), stale }), root, { id: "peak-torque" });
     }
-    for (const e of m.events) html("p", `${e.kind}: ${e.message}`, root, { class: "warn" });
+    for (const e of m.events) html("p", e.text || `${e.kind}: ${e.message}`, root, { class: "warn" }); // text: in the page's language
     for (const w of m.warnings.concat(s.warnings || [])) html("p", w, root, { class: "warn" });
   }
 
