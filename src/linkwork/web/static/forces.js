@@ -55,7 +55,7 @@
         "marker-end": `url(#force-head-${a.kind})`,
       }, g);
       const text = svg("text", { class: "force-label " + a.kind, "font-size": (0.8 * em).toFixed(3), "text-anchor": "middle", "dominant-baseline": "central" }, g);
-      text.textContent = a.label;
+      V.setLabel(text, a.label); // R12 with its subscript, as the scheme names its joints (O1)
       return { a, k, line, text };
     });
     const torque = svg("path", { class: "force torque", "marker-end": "url(#force-head-torque)" }, g);
