@@ -156,3 +156,9 @@ def test_an_event_is_said_in_russian_at_the_crank_angles_of_the_closed_form():
     assert said == [f"Группа II(2,3) ВВВ не собирается при φ от {start}° до {end}°."]
     english = events_part(cycle, "en")
     assert english and all("text" not in e for e in english)  # English: the analysis's message, as before
+    # a drag there is refused in the page's language, the edit written as the page writes it
+    from linkwork.web.cycle import OutOfRange
+
+    with pytest.raises(OutOfRange) as refused:
+        Viewer("double-cut-shears", 24, lang="ru").solve({"links.crank.length": 0.3}, whole_turn=True)
+    assert str(refused.value) == (f"links.crank.length = 300 мм: механизм собирается не на всём обороте: {said[0]}")

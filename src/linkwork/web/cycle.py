@@ -20,6 +20,8 @@ import numpy as np
 from linkwork import jit
 from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.kinetostatics.reaction_forces import Forces
+from linkwork.lang import group_label, russian_numbers, t, texts
+from linkwork.motion.events import Event
 from linkwork.motion.kinematic_analysis import Kinematics, kinematics
 from linkwork.scene.scheme import CYCLE
 from linkwork.structure.model import Mechanism, one_crank
@@ -130,13 +132,14 @@ class OutOfRange(UnassemblableError):
         self.events = events
 
 
-def check_assembly(cycle: Cycle, whole: np.ndarray | None = None) -> None:
+def check_assembly(cycle: Cycle, whole: np.ndarray | None = None, lang: str = "en") -> None:
     """Raise :class:`OutOfRange` where the variant ``cycle`` is not a mechanism the page may show.
 
     A variant must assemble at the drive angle of the assembly pose (the first sample), as a file must to
     compile; the message is then the compiler's, for the file edited so.  With ``whole`` ``(A,)``, it must
     also assemble wherever ``whole`` is True (where the file's mechanism does: a drag may not take the
-    mechanism out of its range): the message names the group and the crank angles where it does not.
+    mechanism out of its range): the message names the group and the crank angles where it does not, in
+    ``lang`` (:func:`event_text`).
     """
     valid = cycle.valid
     if valid[0] and (whole is None or valid[np.asarray(whole, dtype=bool)].all()):
@@ -144,8 +147,8 @@ def check_assembly(cycle: Cycle, whole: np.ndarray | None = None) -> None:
     failed = [e for e in cycle.kin.events if e.kind == "no-assembly"]
     message = compile_message(cycle.mech, cycle.overrides) if not valid[0] else None
     if message is None:
-        where = "; ".join(e.message for e in failed)
-        message = f"{_edit_text(cycle)}: the mechanism does not assemble over the whole turn: {where}"
+        where = "; ".join(event_text(cycle, e, lang) for e in failed)
+        message = t("view.out_of_range", lang, edit=_edit_text(cycle, lang), where=where)
     raise OutOfRange(message, [e.as_dict() for e in failed])
 
 
@@ -164,8 +167,23 @@ def compile_message(mech: Mechanism, overrides: dict[str, float]) -> str | None:
     return None
 
 
-def _edit_text(cycle: Cycle) -> str:
+def _edit_text(cycle: Cycle, lang: str = "en") -> str:
     """The overrides as the page shows them (``links.crank.length = 300 mm``)."""
     from linkwork.web.edits import shown
 
-    return shown(cycle.mech, cycle.overrides) or "the file's values"
+    return shown(cycle.mech, cycle.overrides, lang) or t("view.file_values", lang)
+
+
+def event_text(cycle: Cycle, event: Event, lang: str = "en") -> str:
+    """An event of ``cycle`` as the page says it: in English the analysis's message; in another language as the
+    report says it (``event.KIND`` of :mod:`linkwork.lang`, the group in the language's letters, the crank angles φ
+    from position 0, a decimal comma in Russian)."""
+    from linkwork.motion.analysis import phi_deg, zero_angle
+    from linkwork.motion.kinematic_analysis import direction
+
+    key = f"event.{event.kind}"
+    if lang == "en" or key not in texts():
+        return event.message
+    start, end = phi_deg([event.start, event.end], zero_angle(cycle.mech), direction(cycle.mech))
+    text = t(key, lang, group=group_label(event.group, lang), start=f"{start:.1f}", end=f"{end:.1f}")
+    return russian_numbers(text) if lang == "ru" else text

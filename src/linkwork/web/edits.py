@@ -18,7 +18,7 @@ import math
 from typing import Any
 
 from linkwork.errors import ParameterError
-from linkwork.lang import t
+from linkwork.lang import russian_numbers, t
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import INERTIA_GIVEN, Masses, Parameter, parameter, parameter_list
 
@@ -30,6 +30,10 @@ LIMITS = {"length": 100.0, "angle": 100.0, "mass": 1e6, "inertia": 1e6}
 
 #: The unit the page shows each kind of value in, and the factor from SI to it.
 DISPLAY = {"length": ("mm", 1000.0), "angle": ("deg", 180.0 / math.pi), "mass": ("kg", 1.0), "inertia": ("kg m²", 1.0)}
+
+#: The key of each kind's unit among the page's texts (``view.unit.*`` of :mod:`linkwork.lang`; in English the units
+#: of :data:`DISPLAY`).
+DISPLAY_UNITS = {"length": "mm", "angle": "deg", "mass": "kg", "inertia": "kgm2"}
 
 
 def editable(mech: Mechanism) -> list[Parameter]:
@@ -109,11 +113,18 @@ def note_in(note: str | None, lang: str) -> str | None:
     return t("view.about", lang, point=note.removeprefix("about ")) if note.startswith("about ") else note
 
 
-def shown(mech: Mechanism, overrides: dict[str, float]) -> str:
-    """``overrides`` as the page shows them: ``links.crank.length = 300 mm, links.rod.mass = 90 kg``."""
+def shown(mech: Mechanism, overrides: dict[str, float], lang: str = "en") -> str:
+    """``overrides`` as the page shows them: ``links.crank.length = 300 mm, links.rod.mass = 90 kg``, the units in
+    ``lang`` (a decimal comma and ``мм`` in Russian)."""
     kinds = {p.name: p.kind for p in editable(mech)}
     parts = []
     for name, value in overrides.items():
-        unit, factor = DISPLAY[kinds.get(name, "length")]
-        parts.append(f"{name} = {value * factor:.6g} {unit}")
-    return ", ".join(parts)
+        kind = kinds.get(name, "length")
+        number = f"{value * DISPLAY[kind][1]:.6g}"
+        parts.append(f"{name} = {russian_numbers(number) if lang == 'ru' else number} {display_unit(kind, lang)}")
+    return "; ".join(parts) if lang == "ru" else ", ".join(parts)
+
+
+def display_unit(kind: str, lang: str = "en") -> str:
+    """The unit the page shows a kind of value in (:data:`DISPLAY`), in ``lang``."""
+    return t(f"view.unit.{DISPLAY_UNITS[kind]}", lang)

@@ -78,7 +78,7 @@ import numpy as np
 
 from linkwork.errors import UnassemblableError
 from linkwork.io import jsonout
-from linkwork.lang import LANGUAGES, check_lang, group_kind, group_label, russian_numbers, t, texts
+from linkwork.lang import LANGUAGES, check_lang, group_kind, t, texts
 from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import PlanSeries, drawing_scale, longest_length, percentile, plan_series
@@ -87,8 +87,8 @@ from linkwork.scene.plans import KINDS, kind_name, plan_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.web.arrows import force_arrows
-from linkwork.web.cycle import Cycle, compile_message, solve_cycle
-from linkwork.web.edits import DISPLAY
+from linkwork.web.cycle import Cycle, compile_message, event_text, solve_cycle
+from linkwork.web.edits import DISPLAY, display_unit
 
 if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
@@ -213,9 +213,6 @@ SHARED_TEXTS = (
     "unit.Nm",
 )
 
-#: The unit key (``view.unit.*``) of each kind of editable value of :data:`linkwork.web.edits.DISPLAY`.
-DISPLAY_UNITS = {"length": "mm", "angle": "deg", "mass": "kg", "inertia": "kgm2"}
-
 
 def page_texts(lang: str) -> dict[str, str]:
     """Every text the page writes, key: its text in ``lang`` (fields in braces, filled by the page): the
@@ -228,7 +225,7 @@ def page_texts(lang: str) -> dict[str, str]:
 
 def display_units(lang: str) -> dict[str, list[Any]]:
     """The unit the page shows each kind of editable value in, in ``lang``, and its factor from SI."""
-    return {kind: [t(f"view.unit.{DISPLAY_UNITS[kind]}", lang), factor] for kind, (_, factor) in DISPLAY.items()}
+    return {kind: [display_unit(kind, lang), factor] for kind, (_, factor) in DISPLAY.items()}
 
 
 def _outcome(cycle: Cycle, lang: str = "en") -> dict[str, Any]:
@@ -245,18 +242,10 @@ def events_part(cycle: Cycle, lang: str = "en") -> list[dict[str, Any]]:
     """The events of a cycle (:meth:`linkwork.motion.events.Event.as_dict`, its ``message`` in English); in another
     language each with its ``text`` as the report says it (``event.KIND`` of :mod:`linkwork.lang`, the group in the
     language's letters, the crank angles φ from position 0, a decimal comma in Russian)."""
-    from linkwork.motion.analysis import phi_deg, zero_angle
-    from linkwork.motion.kinematic_analysis import direction
-
     out = [_finite(e.as_dict()) for e in cycle.kin.events]
-    if lang == "en" or not out:
-        return out
-    zero, sense = zero_angle(cycle.mech), direction(cycle.mech)
-    for item, e in zip(out, cycle.kin.events, strict=True):
-        if f"event.{e.kind}" in texts():
-            start, end = phi_deg([e.start, e.end], zero, sense)
-            text = t(f"event.{e.kind}", lang, group=group_label(e.group, lang), start=f"{start:.1f}", end=f"{end:.1f}")
-            item["text"] = russian_numbers(text) if lang == "ru" else text
+    if lang != "en":
+        for item, e in zip(out, cycle.kin.events, strict=True):
+            item["text"] = event_text(cycle, e, lang)
     return out
 
 

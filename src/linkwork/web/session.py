@@ -208,7 +208,7 @@ class Viewer:
         steps = steps or self.steps
         checked = validated(self.mech, overrides) if overrides else {}
         cycle = solve_cycle(self.mech, steps, checked, DRAGGED if whole_turn else CYCLE)
-        check_assembly(cycle, self.whole(steps) if whole_turn else None)
+        check_assembly(cycle, self.whole(steps) if whole_turn else None, self.lang)
         return cycle
 
     def whole(self, steps: int) -> np.ndarray:
