@@ -10,7 +10,8 @@ plain JSON-able data (``force_plans`` of the payload, ``format: linkwork-view/1`
 * ``samples``: the samples drawn, and ``at``: for each, ``index``, ``turn_deg`` and its ``drawings`` (one a
   group, then the lever), each (:func:`scene_dict`) with ``kind``, ``scale`` μF (N/mm), ``plan_scale`` μv
   ((m/s)/mm, the lever's: the velocity plan's scale for the cycle), ``em`` (the labels' height), ``extent``,
-  the ``arrows`` (``kind``, ``text``, ``start``, ``end``, ``centre`` of its name, ``value`` N,
+  the ``arrows`` (``kind``, ``text``, its ``runs`` as the figures set the name (:func:`tex_runs`), ``start``,
+  ``end``, ``centre`` of its name, ``value`` N,
   ``resultant``: a reaction read off the plan, drawn dashed), the lever's ``lines``, the ``dots`` with their
   ``dot_text`` and ``dot_centres``; all in mm of the sheet, y up; the lever's ``balancing`` moment (N m,
   counter-clockwise +) and ``crank`` length (m).

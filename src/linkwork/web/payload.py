@@ -63,7 +63,11 @@ Layout (``format: linkwork-view/1``):
 * ``extremes``: every slider on a frame guide and rocker, as
   :func:`linkwork.motion.analysis.extremes` gives them (stroke, extreme
   positions, ``time_ratio`` K and ``forward_time_ratio``);
-* ``units``: the unit the page shows each kind of value in and its factor from SI;
+* ``units``: the unit the page shows each kind of value in (in the page's language) and its factor from SI;
+* ``lang`` and ``texts``: the page's language and every text it writes in it, key: text with its fields in braces
+  (:func:`page_texts`, from the catalogues of :mod:`linkwork.lang`); the series' labels and units, the plans'
+  ``kinds`` and ``pole`` (π on a Russian acceleration plan), the groups' ``kind_shown`` (ВВП) and the events'
+  ``text`` (in a language other than English) are written in it too;
 * ``structure``, ``drives``, ``events``, ``warnings``.
 """
 

@@ -839,6 +839,7 @@
   }
 
   function play(on) {
+    if (!state.data) return; // nothing to turn (nor the texts to say so) before the payload
     state.playing = on;
     $("play").textContent = T(on ? "view.pause" : "view.play");
     $("play").setAttribute("aria-pressed", String(on));
