@@ -105,6 +105,13 @@ def test_the_russian_page_shows_no_english_program_word(browser, tmp_path):
     assert caption.startswith("Рычаг Жуковского при φ = 90,0°") and "уравновешивающий момент Mу = " in caption
     inertia = page.eval_on_selector_all('#force-plan text.fname[data-name^="Φ"]', "ts => ts.map(t => t.textContent)")
     assert inertia and all(re.fullmatch(r"Φ\d", t) for t in inertia)
+    # the white halo under a name is narrower than a letter's stroke: a halo of 2 units of a drawing whose letters
+    # are 3.8 units high covered the leg of R and the bar of G (R07 read P07, G2 C2)
+    halo = page.eval_on_selector_all(
+        "#force-plan text.fname",
+        "ts => ts.map(t => parseFloat(getComputedStyle(t).strokeWidth) / parseFloat(getComputedStyle(t).fontSize))",
+    )
+    assert halo and max(halo) <= 0.15
     assert page.errors == []
     ARTIFACTS.mkdir(exist_ok=True)
     page.screenshot(path=str(ARTIFACTS / "viewer-ru.png"), full_page=True)
