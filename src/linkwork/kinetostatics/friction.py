@@ -202,7 +202,7 @@ def _iterate(
         done |= good & (np.max(np.abs(change), -1) <= TOLERANCE * np.max(np.abs(mu), -1))
     mapped, slope = _map(revolute, lam0, gain, c, mu)
     top = np.max(np.abs(mu), -1)
-    root = finite & (mu >= 0).all(-1) & (done | (np.max(np.abs(mapped - mu), -1) <= TOLERANCE * top))
+    root = finite & (done | ((mu >= 0).all(-1) & (np.max(np.abs(mapped - mu), -1) <= TOLERANCE * top)))
     amplified = ~(_amplification(revolute, lam0, gain, mu) < LOCKING)
     locked = finite & ((done & ~(_radius(slope) < 1.0)) | (root & amplified))
     done |= locked
