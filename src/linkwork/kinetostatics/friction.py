@@ -216,8 +216,10 @@ def _iterate(
 
 
 def _radius(slope: np.ndarray) -> np.ndarray:
-    """The spectral radius of each Jacobian ``slope`` ``(..., K, K)``: ``(...)``."""
-    return np.max(np.abs(np.linalg.eigvals(slope)), -1)
+    """The spectral radius of each Jacobian ``slope`` ``(..., K, K)``: ``(...)``, NaN where it is not finite."""
+    finite = np.isfinite(slope).all((-1, -2))
+    radius = np.max(np.abs(np.linalg.eigvals(np.where(finite[..., None, None], slope, 0.0))), -1)
+    return np.where(finite, radius, np.nan)
 
 
 def _amplification(revolute: np.ndarray, lam0: np.ndarray, gain: np.ndarray, mu: np.ndarray) -> np.ndarray:
@@ -272,8 +274,8 @@ def _ahead(
     (the spectral radius of ``slope`` 1 or more) or one with sizes ``>= 0`` whose friction multiplies the largest pair
     force by :data:`LOCKING` or more: ``(N,)``."""
     eye = np.eye(mu.shape[-1])
-    matrix = eye - np.where(np.isfinite(slope), slope, 0.0)
-    stable = (_radius(eye - matrix) < 1.0) & (np.abs(np.linalg.det(matrix)) > 1e-12)
+    matrix = eye - slope
+    stable = (_radius(slope) < 1.0) & (np.abs(np.linalg.det(matrix)) > 1e-12)
     limit = mu + np.linalg.solve(np.where(stable[:, None, None], matrix, eye), (mapped - mu)[..., None])[..., 0]
     return ~stable | ((limit >= 0).all(-1) & ~(_amplification(revolute, lam0, gain, limit) < LOCKING))
 
