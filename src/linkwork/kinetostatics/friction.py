@@ -13,9 +13,13 @@ samples at once).  The sizes solve ``mu = c |A lambda(mu)|`` (``c`` the coeffici
 ``A`` picks each pair's force): a small non-linear system per sample, solved by Newton's method from
 the friction of the reactions without it, vectorised over the samples, until no size changes by more than
 :data:`TOLERANCE` of the sample's largest.  Where the map does not contract at the solution (the spectral
-radius of its Jacobian is 1 or more), successive approximations would grow without bound: the friction
-feeds itself, and the pair locks (self-locking); where Newton's method does not settle in
-:data:`MAX_ITERATIONS` steps it does not converge.  Both leave NaN reactions there and are reported as a
+radius ``rho`` of its Jacobian is 1 or more), successive approximations would grow without bound: the friction
+feeds itself, and the pair locks (self-locking).  Next to such positions the solution exists but friction
+multiplies the forces by about ``1 / (1 - rho)``, without bound as ``rho`` nears 1: where it multiplies the
+largest pair force by :data:`LOCKING` or more, the pairs lock too (a design rule; the position is told from
+Newton's root, or from the map's linear model at the successive approximations where Newton's method finds
+none, within a few steps however near ``rho`` is to 1).  Where neither settles nor grows it does not converge.
+Both leave NaN reactions there and are reported as a
 :class:`~linkwork.errors.FrictionWarning` with the crank angle.  Where the reactions without friction are
 indeterminate (a dead point) the friction is unknown and taken as zero (also reported).  A last solve
 with the friction found gives the reactions, so the power and momentum balances hold to the solver's
@@ -42,8 +46,11 @@ TOLERANCE = 1e-12
 MAX_ITERATIONS = 50
 #: Successive approximations at most, where Newton's method finds no root (to tell a locking pair).
 SUCCESSIVE = 2000
-#: Growth of the friction over that of the reactions without it that counts as without bound (the pair locks).
-UNBOUNDED = 1e6
+#: The factor by which friction may multiply the largest force in a sample's pairs (over that without it) short of
+#: self-locking: at or above it the pairs lock.  Next to a lock the factor grows as ``1 / (1 - rho)`` (``rho`` the
+#: spectral radius of ``dT/dmu``, 1 at the lock), and so does the driving torque; at 1000 the drive would give some
+#: 1000 times its power without friction for the same work (an efficiency of about 0.1 %): locked for a designer.
+LOCKING = 1e3
 
 #: A solve of the linear kinetostatics with given external loads: a tuple whose first item is the
 #: multipliers ``(V, A, m)``.
@@ -168,8 +175,11 @@ def _iterate(
 
     ``revolute`` ``(K,)`` which pairs turn, ``lam0`` ``(V, A, 2K)`` the multipliers of the pairs without this
     friction, ``gain`` ``(V, A, 2K, K)`` their change with each size.  A sample is solved once no size changes
-    by more than :data:`TOLERANCE` of its largest; there the pairs lock where the spectral radius of ``dT/dmu``
-    is 1 or more (successive approximations would not settle: the friction feeds itself without bound).
+    by more than :data:`TOLERANCE` of its largest.  The pairs lock where the solution is unstable (the spectral
+    radius of ``dT/dmu`` 1 or more: successive approximations would not settle) and where the friction multiplies
+    the largest pair force by :data:`LOCKING` or more (:func:`_amplification`), whether Newton's test of the step
+    accepted that solution or, that close to locking, rounding kept the step above it while ``mu = T(mu)`` holds to
+    :data:`TOLERANCE`.  Where no solution is found, successive approximations decide (:func:`_successive`).
     Returns the sizes ``(V, A, K)``, the steps taken, and where the pairs lock and where the iteration
     does not converge ``(V, A)``.
     """
@@ -180,7 +190,6 @@ def _iterate(
     mu = _map(revolute, lam0, gain, c, np.zeros(lam0.shape[:-1] + (len(c),)))[0]
     done = ~finite  # nothing to solve there
     steps = 0
-    slope = np.zeros(mu.shape + (len(c),))
     while steps < MAX_ITERATIONS and not done.all():
         steps += 1
         mapped, slope = _map(revolute, lam0, gain, c, mu)
@@ -192,9 +201,12 @@ def _iterate(
         mu = mu + change
         done |= good & (np.max(np.abs(change), -1) <= TOLERANCE * np.max(np.abs(mu), -1))
     mapped, slope = _map(revolute, lam0, gain, c, mu)
-    radius = np.max(np.abs(np.linalg.eigvals(np.where(finite[..., None, None], slope, 0.0))), -1)
-    locked = finite & done & ~(radius < 1.0)
-    if not done.all():  # no root found: where successive approximations grow without bound, the pairs lock
+    top = np.max(np.abs(mu), -1)
+    root = finite & (done | ((mu >= 0).all(-1) & (np.max(np.abs(mapped - mu), -1) <= TOLERANCE * top)))
+    amplified = ~(_amplification(revolute, lam0, gain, mu) < LOCKING)
+    locked = finite & ((done & ~(_radius(slope) < 1.0)) | (root & amplified))
+    done |= locked
+    if not done.all():  # no root found: successive approximations tell growth without bound from settling
         start = _map(revolute, lam0, gain, c, np.zeros_like(mu))[0]
         grows, settled, found = _successive(revolute, lam0, gain, c, start, ~done)
         mu = np.where(settled[..., None], found, mu)
@@ -203,23 +215,69 @@ def _iterate(
     return mu, steps, locked, finite & ~done
 
 
+def _radius(slope: np.ndarray) -> np.ndarray:
+    """The spectral radius of each Jacobian ``slope`` ``(..., K, K)``: ``(...)``, NaN where it is not finite."""
+    finite = np.isfinite(slope).all((-1, -2))
+    radius = np.max(np.abs(np.linalg.eigvals(np.where(finite[..., None, None], slope, 0.0))), -1)
+    return np.where(finite, radius, np.nan)
+
+
+def _amplification(revolute: np.ndarray, lam0: np.ndarray, gain: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """The factor by which the friction ``mu`` ``(..., K)`` multiplies the largest force in the pairs: the largest
+    of :func:`pair_forces` with it over the largest without it, ``(...)`` (1 where both are zero, infinite where
+    the friction loads pairs that carry nothing without it)."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        force = np.max(_carried(revolute, lam0 + np.einsum("...rk,...k->...r", gain, mu)), -1)
+    force0 = np.max(_carried(revolute, lam0), -1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(force0 > 0, force / np.where(force0 > 0, force0, 1.0), np.where(force > 0, np.inf, 1.0))
+
+
 def _successive(
     revolute: np.ndarray, lam0: np.ndarray, gain: np.ndarray, c: np.ndarray, mu: np.ndarray, active: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Successive approximations ``mu <- T(mu)`` from ``mu`` where ``active``: where they grow past
-    :data:`UNBOUNDED` times the start, where they settle (to :data:`TOLERANCE`), and the sizes they settle at."""
-    first = np.maximum(np.max(mu, -1), 1e-300)
+    """Successive approximations ``mu <- T(mu)`` from ``mu`` where ``active``: where they grow without bound (the
+    pairs lock), where they settle (to :data:`TOLERANCE`), and the sizes they settle at.
+
+    They grow without bound where the friction multiplies the largest pair force by :data:`LOCKING` or more
+    (:func:`_amplification`), and, told without waiting for that, where the largest size rises and the map's
+    linear model at the iterate, ``T(mu) + J (x - mu)`` (``J = dT/dmu``), grows without bound (the spectral
+    radius of ``J`` 1 or more) or settles at a friction that multiplies the largest pair force by
+    :data:`LOCKING` or more.  Next to a lock the map is nearly that linear model (``T`` is homogeneous of degree 1
+    in ``mu`` but for the reactions without friction), with ``J`` near its spectral radius 1: the iterates grow by
+    about ``T(0)`` a step, ``1 / (1 - rho)`` steps to settle.  Only the active samples are iterated.
+    """
     grows = np.zeros(active.shape, bool)
     settled = np.zeros(active.shape, bool)
+    found = mu.copy()
+    idx = np.nonzero(active)
+    l0, g, x = lam0[idx], gain[idx], mu[idx]
+    up, still = np.zeros(len(x), bool), np.zeros(len(x), bool)
     for _ in range(SUCCESSIVE):
-        new = _map(revolute, lam0, gain, c, mu)[0]
+        new, slope = _map(revolute, l0, g, c, x)
         top = np.max(new, -1)
-        grows |= active & ~settled & ~(top <= UNBOUNDED * first)  # NaN or inf: without bound too
-        settled |= active & ~grows & (np.max(np.abs(new - mu), -1) <= TOLERANCE * top)
-        mu = np.where((active & ~grows & ~settled)[..., None], new, mu)
-        if (grows | settled | ~active).all():
+        with np.errstate(invalid="ignore", over="ignore"):
+            beyond = ~(_amplification(revolute, l0, g, new) < LOCKING)  # NaN or inf: without bound too
+            up |= ~still & (beyond | ((top > np.max(x, -1)) & _ahead(revolute, l0, g, x, new, slope)))
+            still |= ~up & (np.max(np.abs(new - x), -1) <= TOLERANCE * top)
+        x = np.where((~up & ~still)[:, None], new, x)
+        if (up | still).all():
             break
-    return grows, settled, mu
+    grows[idx], settled[idx], found[idx] = up, still, x
+    return grows, settled, found
+
+
+def _ahead(
+    revolute: np.ndarray, lam0: np.ndarray, gain: np.ndarray, mu: np.ndarray, mapped: np.ndarray, slope: np.ndarray
+) -> np.ndarray:
+    """Where the map's linear model at ``mu`` ``(N, K)``, ``x -> mapped + slope (x - mu)``, has no stable fixed point
+    (the spectral radius of ``slope`` 1 or more) or one with sizes ``>= 0`` whose friction multiplies the largest pair
+    force by :data:`LOCKING` or more: ``(N,)``."""
+    eye = np.eye(mu.shape[-1])
+    matrix = eye - slope
+    stable = (_radius(slope) < 1.0) & (np.abs(np.linalg.det(matrix)) > 1e-12)
+    limit = mu + np.linalg.solve(np.where(stable[:, None, None], matrix, eye), (mapped - mu)[..., None])[..., 0]
+    return ~stable | ((limit >= 0).all(-1) & ~(_amplification(revolute, lam0, gain, limit) < LOCKING))
 
 
 def _map(
