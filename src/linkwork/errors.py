@@ -129,7 +129,8 @@ class LinkworkWarning(UserWarning):
 
 class FrictionWarning(LinkworkWarning):
     """Friction in proportion to the pairs' forces that has no solution at some positions: the pair locks
-    (self-locking: the friction grows without bound, no drive moves the mechanism there), the iteration
+    (self-locking: the friction grows without bound, or multiplies the pairs' largest force by
+    :data:`linkwork.kinetostatics.friction.LOCKING` or more; no drive moves the mechanism there), the iteration
     does not converge, or the reactions are indeterminate there (a dead point: the friction is taken as zero).
 
     Attributes
