@@ -49,7 +49,10 @@ def test_meet_finds_the_closed_forms_crank_and_rod_for_each_member():
         assert met.metrics["stroke"][i] == pytest.approx(strokes[i], rel=1e-11)
 
 
-def test_a_target_out_of_reach_leaves_the_member_unsolved():
+def test_a_target_out_of_reach_leaves_the_member_unsolved(monkeypatch):
+    from linkwork.design import equalities
+
+    monkeypatch.setattr(equalities, "ITERATIONS", 15)  # fewer Newton steps than its 40: quicker to give up
     start = synthesize("slider-crank", stroke=0.4, time_ratio=1.2, rod_ratio=0.3)
     mech = mechanism_of(start.spec, "mechanism")
     x0 = np.array([[start.dimensions["crank"], start.dimensions["rod"]]])
@@ -61,6 +64,5 @@ def test_a_target_out_of_reach_leaves_the_member_unsolved():
         {"stroke": 0.4, "time_ratio": 3.5},
         scales=np.array([0.1, 0.1]),
         steps=360,
-        iterations=15,
     )
     assert not met.solved[0] and np.isnan(met.unknowns[0]).all()

@@ -129,8 +129,6 @@ def _bolts(foundation, points, **kw):
         np.asarray(foundation, float),
         phi,
         np.asarray(points, float),
-        threads=bundled("threads.csv"),
-        classes=bundled("bolt_classes.csv"),
         **kw,
     )
 

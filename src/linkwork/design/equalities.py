@@ -48,6 +48,10 @@ class Met:
     solved: np.ndarray
 
 
+#: Newton steps at most of :func:`meet`.
+ITERATIONS = 40
+
+
 def meet(
     mech: Mechanism,
     paths: Sequence[str],
@@ -58,7 +62,6 @@ def meet(
     scales: np.ndarray,
     metrics: Sequence[str] = (),
     steps: int = 720,
-    iterations: int = 40,
 ) -> Met:
     """Unknowns with ``metric == target`` for every equality, by Newton's method from ``start``.
 
@@ -81,9 +84,7 @@ def meet(
     metrics : list of str
         More metrics to evaluate at the solutions.
     steps : int
-        Crank angles of the turn.
-    iterations : int
-        Newton steps at most.
+        Crank angles of the turn.  Newton's method takes :data:`ITERATIONS` steps at most.
 
     Returns
     -------
@@ -105,7 +106,7 @@ def meet(
     step = np.zeros_like(u)
     active = np.ones(m, dtype=bool)
     residual = np.full((m, k), np.nan)
-    for _ in range(iterations):
+    for _ in range(ITERATIONS):
         rows = np.flatnonzero(active)
         if not len(rows):
             break

@@ -104,16 +104,16 @@ def diagram_drawing(
     title: str,
     x: np.ndarray,
     curves: Sequence[DiagramCurve],
-    xaxis: Axis,
-    yaxis: Axis,
+    axes: tuple[Axis, Axis],
     lang: str,
     lines: Sequence[tuple[np.ndarray, np.ndarray, str]] = (),
     big: bool = False,
     segment: tuple[float, float] | None = None,
 ) -> SheetDrawing:
-    """A diagram of ``curves`` over ``x`` with its axes, ticks and scales, fitting its cell; ``lines``: straight
-    lines ``(xs, ys, text)`` drawn dashed on :data:`TANGENTS`, the text right of their first point; ``segment``:
-    the values between which the y axis is drawn in the main line (Wittenbauer's ab)."""
+    """A diagram of ``curves`` over ``x`` with its ``axes`` (x, y), ticks and scales, fitting its cell; ``lines``:
+    straight lines ``(xs, ys, text)`` drawn dashed on :data:`TANGENTS`, the text right of their first point;
+    ``segment``: the values between which the y axis is drawn in the main line (Wittenbauer's ab)."""
+    xaxis, yaxis = axes
     xlow, xhigh = _span(np.asarray(x, dtype=float), xaxis)
     ylow, yhigh = _span(np.concatenate([np.ravel(c.y) for c in curves]), yaxis)
     base = 0.0 if yaxis.zero else ylow  # where the x axis crosses the y axis
@@ -251,11 +251,15 @@ def dynamics_drawings(result: Dynamics, lang: str) -> list[SheetDrawing]:
     ]
     drawings = [
         wittenbauer_drawing(result, inertia, energy, start, lang),
-        diagram_drawing(t("sheet.dyn.inertia_title", lang), phi, [DiagramCurve(j)], deg, Axis("J", kgm2), lang),
-        diagram_drawing(t("sheet.dyn.moments_title", lang), phi, moments, deg, Axis("M", nm), lang),
-        diagram_drawing(t("sheet.dyn.energy_title", lang), phi, [DiagramCurve(e)], deg, Axis("ΔT", joule), lang),
+        diagram_drawing(t("sheet.dyn.inertia_title", lang), phi, [DiagramCurve(j)], (deg, Axis("J", kgm2)), lang),
+        diagram_drawing(t("sheet.dyn.moments_title", lang), phi, moments, (deg, Axis("M", nm)), lang),
+        diagram_drawing(t("sheet.dyn.energy_title", lang), phi, [DiagramCurve(e)], (deg, Axis("ΔT", joule)), lang),
         diagram_drawing(
-            t("sheet.dyn.omega_title", lang), at, speeds, deg, Axis("ω", t("sheet.unit.rad_s", lang), zero=False), lang
+            t("sheet.dyn.omega_title", lang),
+            at,
+            speeds,
+            (deg, Axis("ω", t("sheet.unit.rad_s", lang), zero=False)),
+            lang,
         ),
     ]
     return [*drawings, figures_drawing(result, lang)]
@@ -284,7 +288,7 @@ def wittenbauer_drawing(
     axis = Axis("ΔT", t("unit.J", lang), span=span)
     jaxis = Axis("J", t("sheet.unit.inertia", lang), span=(0.0, 1.05 * float(np.max(inertia))))
     title = t("title.wittenbauer", lang)
-    return diagram_drawing(title, x, [curve], jaxis, axis, lang, lines, big=True, segment=segment)
+    return diagram_drawing(title, x, [curve], (jaxis, axis), lang, lines, big=True, segment=segment)
 
 
 def figures_drawing(result: Dynamics, lang: str) -> SheetDrawing:

@@ -212,16 +212,14 @@ def _circles(la: Locus, lb: Locus) -> Closure:
     )
     # on the change point to rounding: at the extremum of the distance to within the rounding of its rate
     on = (slack >= 0) & snapped & (dist > rounding) & (np.abs(dist_v) <= rounding * norm(dv) / dist)
-    limit = _limit(*_circles_limit(la, lb, e, a, h, on, joined, (dv, da), (dist, dist_v, dist_a)))
+    limit = _limit(*_circles_limit(la, lb, (e, a, h), on, joined, (dv, da), (dist, dist_v, dist_a)))
     return Closure(add(la.p, scale(a, e)), perp(e), h, slack, singular, limit)
 
 
 def _circles_limit(
     la: Locus,
     lb: Locus,
-    e: Vec,
-    a: np.ndarray,
-    h: np.ndarray,
+    chord: tuple[Vec, np.ndarray, np.ndarray],
     on: np.ndarray,
     joined: np.ndarray,
     rel: tuple[Vec, Vec],
@@ -233,9 +231,10 @@ def _circles_limit(
     whose limit is that of d' (turning at the part of d'' / 2 |d'| across it), and h' = 0 there; s is
     the sample's branch times the side of it.  Circles touching (the modes meet): the middle moves as
     P_a + a e, and h at the rate |h'| with h'^2 = (dh2/dq) q'' / 2 about the extremum of the distance q;
-    s is the mode just after the sample.  ``on``: there; ``rel``: the velocity and acceleration of
-    P_b - P_a; ``distance``: their distance and its first two time derivatives."""
-    (dv, da), (dist, dist_v, dist_a) = rel, distance
+    s is the mode just after the sample.  ``chord``: the unit vector e from P_a to P_b, the distance a of the
+    chord's middle from P_a along it and the half chord h; ``on``: there; ``rel``: the velocity and acceleration
+    of P_b - P_a; ``distance``: their distance and its first two time derivatives."""
+    (e, a, h), (dv, da), (dist, dist_v, dist_a) = chord, rel, distance
     parts: list[_OnLimit] = []
     if np.any(joined):
         speed = norm(dv)

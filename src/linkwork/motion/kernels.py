@@ -130,7 +130,7 @@ def dyad(
             cg, sg = d[0] / dist, d[1] / dist
             c, s = cg * c0 + sg * s0, sg * c0 - cg * s0
             theta = np.arctan2(s, c)
-            state.place(arm.link, theta, k, kd, loc.p, loc.vp, loc.ap, state.loc(arm.own), (c, s))
+            state.place(arm.link, (theta, k, kd), (loc.p, loc.vp, loc.ap), state.loc(arm.own), (c, s))
         else:
             state.place_like(arm.link, arm.carrier, x, vx, ax, xl)
     used = branch_used if isinstance(branch_used, np.ndarray) else None
@@ -190,8 +190,8 @@ def rpr(step: Step, state: State, point_link: np.ndarray) -> None:
     omega, sdot, det = solve2(col, nu, sub(vg, vs))
     rhs = add(add(sub(ag, as_), scale(omega * omega, sub(pg, ps))), scale(2 * omega * sdot, perp(u)))
     eps, _, _ = solve2(col, nu, rhs)
-    state.place(arm_g.link, theta, omega, eps, pg, vg, ag, state.loc(arm_g.own), (c, s))
-    state.place(arm_s.link, theta, omega, eps, ps, vs, as_, state.loc(arm_s.own), (c, s))
+    state.place(arm_g.link, (theta, omega, eps), (pg, vg, ag), state.loc(arm_g.own), (c, s))
+    state.place(arm_s.link, (theta, omega, eps), (ps, vs, as_), state.loc(arm_s.own), (c, s))
     _record(state, slack, det / norm(col))
 
 
@@ -214,7 +214,7 @@ def crank(
     omega = state.v[base, 2] + step.sign * dphi
     eps = state.a[base, 2] + step.sign * ddphi
     p, vp, ap = state.point(base, arm.src)
-    state.place(arm.link, theta, omega, eps, p, vp, ap, state.loc(arm.own))
+    state.place(arm.link, (theta, omega, eps), (p, vp, ap), state.loc(arm.own))
     one = np.ones(state.valid.shape)
     _record(state, one, one)
 

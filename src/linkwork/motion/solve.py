@@ -158,7 +158,7 @@ def run_each(
         for s, m in zip(mech.program, modes or [None] * len(mech.program), strict=True)
     ]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        state = _solve(mech, mech.program, geom, values, rates, accels, branches=fixed, each=drive, start=start)
+        state = _solve(mech, mech.program, geom, values, rates, accels, branches=fixed, own=(drive, start))
     _not_assembled(state)
     return state
 
@@ -175,12 +175,11 @@ def _solve(
     rates: np.ndarray,
     accels: np.ndarray,
     branches: list[np.ndarray | None] | None = None,
-    each: np.ndarray | None = None,
-    start: np.ndarray | None = None,
+    own: tuple[np.ndarray, np.ndarray | None] | None = None,
 ) -> State:
-    """Solve every step by the NumPy kernels; ``each``: the drive coordinate of every variant at every sample
-    ``(V, A)`` in place of the shared ``values[:, 0]``, with ``start``, the poses ``(N, 3, V, A)`` Newton's method
-    starts from there (one drive: :func:`run_each`)."""
+    """Solve every step by the NumPy kernels; ``own``: the drive coordinate of every variant at every sample
+    ``(V, A)`` in place of the shared ``values[:, 0]``, and the poses ``(N, 3, V, A)`` Newton's method starts from
+    there (one drive: :func:`run_each`)."""
     n_var, n_ang = geom.n_variants, values.shape[0]
     state = State.empty(mech.n_links_total, *geom.link_major, n_ang)
     offset = wrap(values[:, 0] - mech.drive_start[0])
@@ -190,6 +189,7 @@ def _solve(
     state.drive = values[:, 0]
     state.rate = rates[:, 0] if values.shape[1] == 1 else None
     ones = np.ones((n_var, n_ang))
+    each = None if own is None else own[0]
     for i, step in enumerate(program):
         branch = branches[i] if branches is not None else None
         if step.kind in ("crank", "slide"):
@@ -203,10 +203,10 @@ def _solve(
             kernels.rpr(step, state, mech.point_link)
         elif step.kind == "RPP":
             kernels.rpp(step, state, mech.point_link)
-        elif each is not None and start is not None:
-            newton_from(mech, step, state, geom, each, start, rates, accels)
+        elif own is not None and own[1] is not None:
+            newton_from(_Group(mech, step, state, geom, (rates, accels)), state, own[0], own[1])
         else:
-            newton(mech, step, state, geom, values, rates, accels)
+            newton(_Group(mech, step, state, geom, (rates, accels)), state, values)
         state.valid &= state.steps[-1].valid
         state.placed |= set(step.links)
     return state
@@ -337,18 +337,8 @@ def _rows(mech: Mechanism, links: tuple[int, ...], placed: set[int]) -> list[int
     return group_rows(build_rows(mech.pair_type, mech.pair_links, mech.drive_pair), placed, set(links))
 
 
-def newton(
-    mech: Mechanism,
-    step: Step,
-    state: State,
-    geom: Geometry,
-    values: np.ndarray,
-    rates: np.ndarray,
-    accels: np.ndarray,
-    tol: float = 1e-12,
-    iterations: int = 40,
-) -> None:
-    """Any group by a vectorised Newton method on its constraint rows.
+def newton(group: _Group, state: State, values: np.ndarray) -> None:
+    """Any group by a vectorised Newton method on its constraint rows, the drive at ``values`` ``(A, D)``.
 
     Samples are solved in rings of growing distance from the drive values
     of the assembly pose, each ring started from the nearest solved
@@ -356,52 +346,28 @@ def newton(
     along the cycle.  Velocities and accelerations come from the linear
     systems of the differentiated constraints.
     """
-    group = _Group(mech, step, state)
     n_var, n_ang = state.valid.shape
     drive = np.broadcast_to(values[None], (n_var, n_ang, values.shape[1]))
     q = np.ascontiguousarray(np.moveaxis(state.q, (0, 1), (2, 3)))  # (V, A, N, 3)
-    q[:, :, group.links] = np.asarray(mech.pose0)[group.links]
-    converged = _rings(mech, group, q, drive, values, geom, tol, iterations)
-    _place(mech, group, state, q, drive, geom, rates, accels, converged, jumps=True)
+    q[:, :, group.links] = np.asarray(group.mech.pose0)[group.links]
+    converged = _rings(group, q, drive, values)
+    _place(group, state, q, drive, converged, jumps=True)
 
 
-def newton_from(
-    mech: Mechanism,
-    step: Step,
-    state: State,
-    geom: Geometry,
-    each: np.ndarray,
-    start: np.ndarray,
-    rates: np.ndarray,
-    accels: np.ndarray,
-    tol: float = 1e-12,
-    iterations: int = 40,
-) -> None:
+def newton_from(group: _Group, state: State, each: np.ndarray, start: np.ndarray) -> None:
     """A group by Newton's method at every variant's own drive coordinates ``each`` ``(V, A)``, each sample started
     from its pose in ``start`` ``(N, 3, V, A)`` (a neighbouring solved sample's: :func:`run_each`)."""
-    group = _Group(mech, step, state)
     drive = np.ascontiguousarray(each[..., None])  # (V, A, 1)
     q = np.ascontiguousarray(np.moveaxis(state.q, (0, 1), (2, 3)))  # (V, A, N, 3)
     q[:, :, group.links] = np.moveaxis(start, (0, 1), (2, 3))[:, :, group.links]
-    converged = _newton_solve(mech, q, drive, group, geom, tol, iterations)
-    _place(mech, group, state, q, drive, geom, rates, accels, converged, jumps=False)
+    converged = _newton_solve(group, q, drive)
+    _place(group, state, q, drive, converged, jumps=False)
 
 
-def _place(
-    mech: Mechanism,
-    group: _Group,
-    state: State,
-    q: np.ndarray,
-    drive: np.ndarray,
-    geom: Geometry,
-    rates: np.ndarray,
-    accels: np.ndarray,
-    converged: np.ndarray,
-    jumps: bool,
-) -> None:
+def _place(group: _Group, state: State, q: np.ndarray, drive: np.ndarray, converged: np.ndarray, jumps: bool) -> None:
     """Put a Newton-solved group's poses ``q`` ``(V, A, N, 3)``, with its velocities and accelerations, into the
     state, and record the step (with its :func:`_jumps` where ``jumps``: along shared drive values)."""
-    vel, acc, js = _group_rates(mech, group, state, q, drive, geom, rates, accels)
+    vel, acc, js = _group_rates(group, state, q, drive)
     links = group.links
     for full, view in ((state.q, q), (state.v, vel), (state.a, acc)):
         full[links] = np.moveaxis(view[:, :, links], (0, 1), (2, 3))
@@ -412,31 +378,31 @@ def _place(
     state.steps.append(StepRecord(converged, det, np.where(converged, 1.0, -1.0), jumps=found))
 
 
+#: Newton's method: the residuals' bound, relative to the mechanism's size, and the most iterations.
+TOL, ITERATIONS = 1e-12, 40
+
+
 class _Group:
     """A group solved by Newton's method: its links, its constraint rows among the mechanism's
-    (``sel``), the columns of its coordinates in the Jacobian, and the mechanism's size (m)."""
+    (``sel``), the columns of its coordinates in the Jacobian, and the mechanism's size (m); the mechanism, the
+    variants' dimensions and the drive's speeds and accelerations ``(A, D)`` it is solved with."""
 
-    def __init__(self, mech: Mechanism, step: Step, state: State) -> None:
+    def __init__(
+        self, mech: Mechanism, step: Step, state: State, geom: Geometry, rates: tuple[np.ndarray, np.ndarray]
+    ) -> None:
+        self.mech, self.geom = mech, geom
+        self.rates, self.accels = rates
         self.links = list(step.links)
         self.sel = _rows(mech, step.links, state.placed)
         self.cols = np.array([3 * i + c for i in self.links for c in range(3)])
         self.scale = max(float(np.abs(mech.point_local).max()), 1e-3)
 
 
-def _rings(
-    mech: Mechanism,
-    group: _Group,
-    q: np.ndarray,
-    drive: np.ndarray,
-    values: np.ndarray,
-    geom: Geometry,
-    tol: float,
-    iterations: int,
-) -> np.ndarray:
+def _rings(group: _Group, q: np.ndarray, drive: np.ndarray, values: np.ndarray) -> np.ndarray:
     """Solve the group's poses in ``q`` ``(V, A, N, 3)`` in place, ring by ring of growing distance from
     the drive values of the assembly pose, each sample started from the nearest one solved; returns
     where it converged, ``(V, A)``."""
-    links = group.links
+    links, mech = group.links, group.mech
     n_var, n_ang = q.shape[:2]
     offset = wrap(values - mech.drive_start)  # (A, D)
     key = offset[:, 0] if values.shape[1] == 1 else np.max(np.abs(offset), axis=1)
@@ -455,37 +421,30 @@ def _rings(
             sub[:, :, links] = q[:, near][:, :, links]
             q[:, idx] = sub
         sub = q[:, idx]
-        converged[:, idx] = _newton_solve(mech, sub, drive[:, idx], group, geom, tol, iterations)
+        converged[:, idx] = _newton_solve(group, sub, drive[:, idx])
         q[:, idx] = sub
         solved[idx] = True
     return converged
 
 
 def _group_rates(
-    mech: Mechanism,
-    group: _Group,
-    state: State,
-    q: np.ndarray,
-    drive: np.ndarray,
-    geom: Geometry,
-    rates: np.ndarray,
-    accels: np.ndarray,
+    group: _Group, state: State, q: np.ndarray, drive: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Velocities and accelerations ``(V, A, N, 3)`` with the group's from the linear systems of the
     differentiated constraints at the poses ``q``, and the group's block of the Jacobian."""
-    sel, cols = group.sel, group.cols
+    sel, cols, mech, geom = group.sel, group.cols, group.mech, group.geom
     n_var, n_ang = q.shape[:2]
     _, jac = residuals_and_jacobian(q, mech, drive, geom=geom)
     jac = jac[..., sel, :]
     js = jac[..., cols]
     rest = np.setdiff1d(np.arange(jac.shape[-1]), cols)
     flat = np.ascontiguousarray(np.moveaxis(state.v, (0, 1), (2, 3))).reshape(n_var, n_ang, -1)
-    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], flat[..., rest]) + _drive_rows(mech, sel, rates)
+    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], flat[..., rest]) + _drive_rows(mech, sel, group.rates)
     flat[..., cols] = _lstsq(js, rhs)
     vel = flat.reshape(q.shape)
     gamma = velocity_products(q, vel, mech, geom=geom)[..., sel]
     flat = np.ascontiguousarray(np.moveaxis(state.a, (0, 1), (2, 3))).reshape(n_var, n_ang, -1)
-    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], flat[..., rest]) - gamma + _drive_rows(mech, sel, accels)
+    rhs = -np.einsum("vamk,vak->vam", jac[..., rest], flat[..., rest]) - gamma + _drive_rows(mech, sel, group.accels)
     flat[..., cols] = _lstsq(js, rhs)
     return vel, flat.reshape(q.shape), js
 
@@ -526,18 +485,16 @@ def _lstsq(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.einsum("...ij,...j->...i", np.linalg.pinv(np.nan_to_num(a)), b)
 
 
-def _newton_solve(
-    mech: Mechanism, sub: np.ndarray, drive: np.ndarray, group: _Group, geom: Geometry, tol: float, iterations: int
-) -> np.ndarray:
+def _newton_solve(group: _Group, sub: np.ndarray, drive: np.ndarray) -> np.ndarray:
     """Newton iterations in place on ``sub`` (V, a, N, 3) over the rows and columns of ``group`` (its residuals
-    within ``tol`` of its scale); returns the convergence mask."""
-    sel, cols, scale = group.sel, group.cols, group.scale
+    within :data:`TOL` of its scale, :data:`ITERATIONS` at most); returns the convergence mask."""
+    sel, cols, scale, mech, geom = group.sel, group.cols, group.scale, group.mech, group.geom
     ok = np.zeros(sub.shape[:2], dtype=bool)
     flat = sub.reshape(sub.shape[0], sub.shape[1], -1)
-    for _ in range(iterations):
+    for _ in range(ITERATIONS):
         r, jac = residuals_and_jacobian(sub, mech, drive, geom=geom)
         r, js = r[..., sel], jac[..., sel, :][..., cols]
-        ok = np.max(np.abs(r), axis=-1) < tol * scale
+        ok = np.max(np.abs(r), axis=-1) < TOL * scale
         if ok.all():
             break
         flat[..., cols] -= np.where(ok[..., None], 0.0, _lstsq(js, r))

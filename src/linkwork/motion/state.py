@@ -236,16 +236,15 @@ class State:
     def place(
         self,
         link: int,
-        theta: np.ndarray,
-        omega: np.ndarray,
-        eps: np.ndarray,
-        x: Vec,
-        vx: Vec,
-        ax: Vec,
+        turn: tuple[np.ndarray, np.ndarray, np.ndarray],
+        point: tuple[Vec, Vec, Vec],
         loc: Vec,
         cs: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> None:
-        """Set a link's state from its angle terms and the motion of its point at local ``loc``."""
+        """Set a link's state from its angle, angular speed and acceleration ``turn`` and the position, velocity and
+        acceleration ``point`` of its point at local ``loc``."""
+        theta, omega, eps = turn
+        x, vx, ax = point
         c, s = cs if cs is not None else (np.cos(theta), np.sin(theta))
         r = rot(c, s, loc)
         q, v, a = self.q[link], self.v[link], self.a[link]
@@ -257,17 +256,8 @@ class State:
 
     def place_like(self, link: int, guide: int, x: Vec, vx: Vec, ax: Vec, loc: Vec) -> None:
         """Place a link that keeps the angle of ``guide`` (a slider on it), through its point at local ``loc``."""
-        self.place(
-            link,
-            self.q[guide, 2],
-            self.v[guide, 2],
-            self.a[guide, 2],
-            x,
-            vx,
-            ax,
-            loc,
-            (self.cos[guide], self.sin[guide]),
-        )
+        turn = (self.q[guide, 2], self.v[guide, 2], self.a[guide, 2])
+        self.place(link, turn, (x, vx, ax), loc, (self.cos[guide], self.sin[guide]))
 
     def line(self, k: int, guide: int) -> tuple[Vec, Vec]:
         """Global origin and unit direction of the guide line of prismatic pair ``k``."""

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.sizing.common import Catalogue, Table
+from linkwork.sizing.common import Table, bundled
 
 
 @dataclass(frozen=True)
@@ -115,8 +115,6 @@ def size_bolts(
     phi: np.ndarray,
     points: np.ndarray,
     *,
-    threads: Catalogue,
-    classes: Catalogue,
     bolt_class: str = "5.6",
     safety: float = 1.5,
     friction: float = 0.2,
@@ -124,7 +122,7 @@ def size_bolts(
     bolt_safety: float = 1.5,
 ) -> BoltResult:
     """Preload and size of the foundation bolts at ``points`` ``(n, 2)`` m for the foundation loads ``(A, 3)``
-    at the crank angles ``phi`` (deg); see the module.
+    at the crank angles ``phi`` (deg), of the bundled threads and bolt classes; see the module.
 
     Raises
     ------
@@ -132,6 +130,7 @@ def size_bolts(
         Fewer than two bolts, bolts all at one x (no lever against the moment), an unknown class, no thread
         of the catalogue strong enough, or a factor out of range.
     """
+    threads, classes = bundled("threads.csv"), bundled("bolt_classes.csv")
     pts = np.asarray(points, dtype=float).reshape(-1, 2)
     problems = []
     if len(pts) < 2 or np.ptp(pts[:, 0]) <= 0:

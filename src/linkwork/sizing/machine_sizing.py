@@ -407,8 +407,6 @@ def _bolts(foundation: np.ndarray, phi: np.ndarray, inp: SizingSpec) -> BoltResu
         foundation,
         phi,
         np.asarray(inp.bolts, dtype=float),
-        threads=bundled("threads.csv"),
-        classes=bundled("bolt_classes.csv"),
         bolt_class=inp.bolt_class,
         safety=inp.joint_safety,
         friction=inp.friction,

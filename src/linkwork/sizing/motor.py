@@ -309,13 +309,11 @@ def choose_motor(
     reserve: float = 0.8,
     catalogue: Catalogue | None = None,
     synchronous: float | None = None,
-    steps: int | None = None,
-    tries: int = 12,
     progress: Callable[[int, int], None] | None = None,
 ) -> MotorChoice:
     """The smallest motor of ``catalogue`` (default: the bundled one) that drives ``mech`` (reduced
     quantities ``red``) with a flywheel for ``delta`` (see the module); ``synchronous`` (rad/s) keeps to
-    motors of that synchronous speed.  At most ``tries`` runs of the machine and :data:`SCREENS` flywheels sized;
+    motors of that synchronous speed.  At most :data:`TRIES` runs of the machine and :data:`SCREENS` flywheels sized;
     ``progress(k, n)`` is told of each motor ``k`` of the ``n`` looked at.
 
     Raises
@@ -341,15 +339,15 @@ def choose_motor(
             progress(k, len(order))
         row = cat.row(i)
         why = quick_screen(red, row, crank, efficiency, reserve, need)
-        if why == "" and (runs >= tries or screened >= SCREENS):
+        if why == "" and (runs >= TRIES or screened >= SCREENS):
             left = len(order) - k
-            raise LinkworkError(_none_drives(cat, need, delta, reserve, passed, left, tries if runs >= tries else None))
+            raise LinkworkError(_none_drives(cat, need, delta, reserve, passed, left, TRIES if runs >= TRIES else None))
         if why == "":
             screened += 1
             why = screen(red, row, crank, efficiency, delta, reserve, need)
         if why == "":
             runs += 1
-            choice = _run(mech, row, cat.names[i], _Duty(crank, efficiency, delta, reserve, need, steps))
+            choice = _run(mech, row, cat.names[i], _Duty(crank, efficiency, delta, reserve, need, None))
             why = _fails(choice)
             if why == "":
                 return _with(choice, tuple(passed), cat.source)
@@ -360,6 +358,8 @@ def choose_motor(
 
 #: Motors screened with their flywheel at most in one choice (each takes about a second): those beyond are named.
 SCREENS = 40
+#: Runs of the machine with a motor and its flywheel at most in one choice (:func:`choose_motor`).
+TRIES = 12
 
 
 def _none_drives(

@@ -338,7 +338,7 @@ def apply(mech: Mechanism, overrides: Mapping[str, npt.ArrayLike] | None = None)
     inertia_rule = np.asarray(mech.link_inertia_rule).copy()
     for path, value in overrides.items():
         v = np.broadcast_to(override_values(mech, path, value), (n,))
-        _set(mech, path.split("."), v, pts, origin, axis, mass, given, inertia_rule)
+        _set(mech, path.split("."), v, (pts, origin, axis), (mass, given, inertia_rule))
     follow = np.flatnonzero(mech.pair_origin_point >= 0)
     origin[:, follow] = pts[:, mech.pair_origin_point[follow]]
     if not overrides:
@@ -353,14 +353,13 @@ def _set(
     mech: Mechanism,
     parts: list[str],
     v: np.ndarray,
-    pts: np.ndarray,
-    origin: np.ndarray,
-    axis: np.ndarray,
-    mass: np.ndarray,
-    given: np.ndarray,
-    inertia_rule: np.ndarray,
+    shape: tuple[np.ndarray, np.ndarray, np.ndarray],
+    masses: tuple[np.ndarray, np.ndarray, np.ndarray],
 ) -> None:
-    """Write the values ``v`` (V,) of the parameter at ``parts`` into the variants' arrays."""
+    """Write the values ``v`` (V,) of the parameter at ``parts`` into the variants' arrays: ``shape``, the points,
+    the guides' origins and axes; ``masses``, the masses, the inertias given and each link's inertia rule."""
+    pts, origin, axis = shape
+    mass, given, inertia_rule = masses
     if parts[0] == "links" and parts[2] in ("length", "mass", "inertia"):
         link = mech.link_names.index(parts[1])
         if parts[2] == "length":

@@ -262,7 +262,7 @@ def synthesize(
         working=working,
     )
     text, spec = file_of(
-        *_file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass, load)
+        *_file((r, ell, e), (stroke, time_ratio), theta, alpha, why, speed, (section, density, ram_mass), load)
     )
     # the drive angle of the largest pressure angle: the crank square to the guide, away from it (+x)
     measured = measure(spec, [0.0], lambda mu: next(iter(mu.values())))
@@ -341,7 +341,7 @@ def peak_torques(
     for i, b in enumerate(np.atleast_1d(beta)):
         r, ell, e = (float(x) for x in dimensions(stroke, theta, b))
         _, spec = file_of(
-            *_file(r, ell, e, stroke, time_ratio, theta, 0.0, "", speed, section, density, ram_mass, load)
+            *_file((r, ell, e), (stroke, time_ratio), theta, 0.0, "", speed, (section, density, ram_mass), load)
         )
         out.flat[i] = abs(float(np.ravel(torque_peak(forces(spec, steps=360)).value)[0]))
     return out
@@ -383,8 +383,11 @@ def _least_torque(
     return best, f"the least peak driving torque under the working load {load[0]:g} N"
 
 
-def _file(r, ell, e, stroke, time_ratio, theta, alpha, why, speed, section, density, ram_mass, load=None) -> tuple:  # noqa: ANN001
-    r, ell, e = rounded(r), rounded(ell), rounded(e)  # as written: what follows is of the written lengths
+def _file(dims, asked, theta, alpha, why, speed, masses, load=None) -> tuple:  # noqa: ANN001
+    """The file's data and comments (:func:`file_of`) of the lengths ``dims`` (r, l, e; m) for the ``asked`` stroke (m)
+    and time ratio, with the bars' ``masses`` (their section (m, m), density (kg/m^3) and the ram's mass, kg)."""
+    (stroke, time_ratio), (section, density, ram_mass) = asked, masses
+    r, ell, e = (rounded(x) for x in dims)  # as written: what follows is of the written lengths
     near = math.sqrt((ell - r) ** 2 - e**2)
     start = math.pi / 2 - math.asin(e / (ell - r))  # the folded limit position: the ram at the top
     rod = bar_mass(ell, section, density)
