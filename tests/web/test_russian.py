@@ -12,8 +12,8 @@ from typer.testing import CliRunner
 
 from linkwork.lang import texts
 from linkwork.web.force_plans import tex_runs
-from linkwork.web.payload import page_texts
 from linkwork.web.session import SCRIPTS, Viewer, page_html, static_text
+from linkwork.web.texts import page_texts
 
 runner = CliRunner()
 

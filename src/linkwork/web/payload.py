@@ -65,9 +65,9 @@ Layout (``format: linkwork-view/1``):
   positions, ``time_ratio`` K and ``forward_time_ratio``);
 * ``units``: the unit the page shows each kind of value in (in the page's language) and its factor from SI;
 * ``lang`` and ``texts``: the page's language and every text it writes in it, key: text with its fields in braces
-  (:func:`page_texts`, from the catalogues of :mod:`linkwork.lang`); the series' labels and units, the plans'
-  ``kinds`` and ``pole`` (π on a Russian acceleration plan), the groups' ``kind_shown`` (ВВП) and the events'
-  ``text`` (in a language other than English) are written in it too;
+  (:func:`~linkwork.web.texts.page_texts`, from the catalogues of :mod:`linkwork.lang`); the series' labels and
+  units, the plans' ``kinds`` and ``pole`` (π on a Russian acceleration plan), the groups' ``kind_shown`` (ВВП)
+  and the events' ``text`` (in a language other than English) are written in it too;
 * ``structure``, ``drives``, ``events``, ``warnings``.
 """
 
@@ -82,7 +82,7 @@ import numpy as np
 
 from linkwork.errors import UnassemblableError
 from linkwork.io import jsonout
-from linkwork.lang import LANGUAGES, check_lang, group_kind, t, texts
+from linkwork.lang import group_kind, t
 from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import PlanSeries, drawing_scale, longest_length, percentile, plan_series
@@ -92,7 +92,7 @@ from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.web.arrows import force_arrows
 from linkwork.web.cycle import Cycle, compile_message, event_text, solve_cycle
-from linkwork.web.edits import DISPLAY, display_unit
+from linkwork.web.texts import display_units, page_texts
 
 if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
@@ -203,33 +203,6 @@ def full_payload(cycle: Cycle, placed: int | None = None, lang: str = "en") -> d
         out["forces"]["checks"] = _finite(cycle.forces.checks)
     out.update(_outcome(cycle, lang))
     return out
-
-
-#: The texts of the catalogues (:mod:`linkwork.lang`) the page shows besides its own (``view.*``): the plans'
-#: names and units, and the units of forces.
-SHARED_TEXTS = (
-    "plan.velocity",
-    "plan.acceleration",
-    "plan.unit.velocity",
-    "plan.unit.acceleration",
-    "unit.N",
-    "unit.kN",
-    "unit.Nm",
-)
-
-
-def page_texts(lang: str) -> dict[str, str]:
-    """Every text the page writes, key: its text in ``lang`` (fields in braces, filled by the page): the
-    ``view.*`` texts of the catalogues and :data:`SHARED_TEXTS`."""
-    check_lang(lang)
-    row = LANGUAGES.index(lang)
-    table = texts()
-    return {key: table[key][row] for key in [key for key in table if key.startswith("view.")] + list(SHARED_TEXTS)}
-
-
-def display_units(lang: str) -> dict[str, list[Any]]:
-    """The unit the page shows each kind of editable value in, in ``lang``, and its factor from SI."""
-    return {kind: [display_unit(kind, lang), factor] for kind, (_, factor) in DISPLAY.items()}
 
 
 def _outcome(cycle: Cycle, lang: str = "en") -> dict[str, Any]:
