@@ -160,6 +160,20 @@ def test_a_crank_rocker_edited_off_its_family_still_has_it_with_the_member_neare
     assert t.max() < 0.65 - spec.links["crank"].length and f["picked"] == len(t) - 1
 
 
+def test_the_russian_viewer_says_the_family_in_russian_with_the_same_members(tmp_path):
+    """``view --lang ru``: the slider's parameter, criterion, note and units in Russian, the members and values
+    those of the English page (the same family, only its words translated)."""
+    path = synthesize("slotted-lever", stroke=0.5, time_ratio=1.4).write(tmp_path / "shaper.yaml")
+    en, ru = (
+        TestClient(create_app(lw.load(str(path)), lang=lang), base_url=LOCAL).get("/api/family").json()
+        for lang in ("en", "ru")
+    )
+    assert (ru["parameter"], ru["unit_shown"], ru["quantity_unit_shown"]) == ("стойка d", " мм", " мм")
+    assert ru["quantity"] == "наименьшее расстояние камня от оси кулисы" and "ходом" in ru["note"]
+    assert (en["parameter"], en["unit_shown"]) == ("frame d", " mm") and "stroke" in en["note"]
+    assert ru["overrides"] == en["overrides"] and ru["values"] == en["values"] and ru["picked"] == en["picked"]
+
+
 def test_each_slotted_lever_member_keeps_the_stroke_and_time_ratio(tmp_path):
     """A crank-shaper for H = 500 mm, K = 1.4: the members over the frame d, each with r = d sin(theta / 2)
     (theta = 180 deg (K - 1) / (K + 1) = 30 deg), solved together as variants of the file, each measured on its
@@ -170,7 +184,7 @@ def test_each_slotted_lever_member_keeps_the_stroke_and_time_ratio(tmp_path):
     spec = lw.load(str(path))
     f = TestClient(create_app(spec), base_url=LOCAL).get("/api/family").json()
     members = f["overrides"]
-    assert len(members) >= 30 and f["quantity_unit"] == " mm"
+    assert len(members) >= 30 and f["quantity_unit"] == "mm" and f["quantity_unit_shown"] == " mm"
     for m in members:
         assert m["links.crank.length"] == pytest.approx(m["frame.points.O1.y"] * math.sin(math.radians(15)), rel=1e-12)
     assert members[f["picked"]]["frame.points.O1.y"] == pytest.approx(spec.frame.points["O1"][1], rel=0.03)
@@ -200,10 +214,10 @@ def test_simultaneous_first_calls_of_the_family_wait_for_one_computation(tmp_pat
     calls = []
     real = achieved.family_members
 
-    def counted(spec):
+    def counted(spec, lang="en"):
         calls.append(threading.get_ident())
         time.sleep(0.5)
-        return real(spec)
+        return real(spec, lang)
 
     monkeypatch.setattr(achieved, "family_members", counted)
     answers: list[tuple[int, str]] = []

@@ -135,25 +135,37 @@ FAMILY_MEMBERS = 41
 LEAST_OFFERED = math.radians(10.0)
 
 
-def family_members(spec: Any) -> dict[str, Any] | None:
+def family_members(spec: Any, lang: str = "en") -> dict[str, Any] | None:
     """The one-parameter family a synthesised file's requirements leave, as edits of the file's named
     parameters, for the viewer's slider: ``parameter`` and ``unit`` of the free parameter, its ``values``,
     each member's ``overrides`` (SI), ``quantity`` (the criterion's angle) and its ``quantity_values`` (deg),
     ``picked``, the member of the file, and a ``note`` on which members are offered.  A slider-crank whose
     requirements leave rod ratio and offset free, a crank-rocker, a slotted lever whose frame and crank are left
     free, double-cut shears whose crank is left free
-    (solved again, seconds, once a set of requirements); None for any other file."""
+    (solved again, seconds, once a set of requirements); None for any other file.  Its texts in ``lang``."""
     given: dict[str, Any] = (getattr(spec, "requirements", None) if spec is not None else None) or {}
     kind = given.get("kind")
     if kind == "slider-crank":
-        return _slider_crank_family(spec, given)
+        return _said(_slider_crank_family(spec, given), lang)
     if kind == "crank-rocker":
-        return _crank_rocker_family(spec, given)
+        return _said(_crank_rocker_family(spec, given), lang)
     if kind == "double-cut-shears":
-        return _shears_family(spec, given)
+        return _said(_shears_family(spec, given), lang)
     if kind == "slotted-lever":
-        return _slotted_lever_family(spec, given)
+        return _said(_slotted_lever_family(spec, given), lang)
     return None
+
+
+def _said(family: dict[str, Any] | None, lang: str) -> dict[str, Any] | None:
+    """``family`` with its texts (``parameter``, ``quantity``, ``note``: keys of :mod:`linkwork.lang`'s catalogues
+    as the families give them) and its unit in ``lang``."""
+    if family is None:
+        return None
+    from linkwork.lang import t
+
+    said = {key: t(family[key], lang) for key in ("parameter", "quantity", "note")}
+    units = {"unit_shown": family["unit"], "quantity_unit_shown": family.get("quantity_unit", "deg")}
+    return {**family, **said, **{key: t(f"family.unit.{unit}", lang) for key, unit in units.items()}}
 
 
 def _si(given: dict[str, Any], name: str, kind: str) -> float | None:
@@ -187,14 +199,14 @@ def _slider_crank_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
     ]
     picked = int(np.argmin(np.abs(c["crank"][ok] - crank))) if math.isfinite(crank) else 0
     return {
-        "parameter": f.parameter,
+        "parameter": "family.parameter.angle_OB1B2",
         "unit": "deg",
         "values": np.degrees(f.values[ok]).tolist(),
         "overrides": members,
-        "quantity": "largest pressure angle",
+        "quantity": "synth.quantity.largest_pressure_angle",
         "quantity_values": np.degrees(c["largest_pressure_angle"][ok]).tolist(),
         "picked": picked,
-        "note": "every member with the stroke and time ratio asked for",
+        "note": "family.note.every_member",
     }
 
 
@@ -237,15 +249,14 @@ def _crank_rocker_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | N
         for x, y, z, s in zip(m["crank"], m["coupler"], m["frame"], scale, strict=True)
     ]
     return {
-        "parameter": "|O2 B_f|",
+        "parameter": "family.parameter.O2Bf",
         "unit": "mm",
         "values": (t * scale * 1e3).tolist(),
         "overrides": overrides,
-        "quantity": "least transmission angle",
+        "quantity": "synth.quantity.least_transmission_angle",
         "quantity_values": np.degrees(m["least_transmission_angle"]).tolist(),
         "picked": int(np.argmin(np.abs(t - own))),
-        "note": "the crank pivot on the file's side of the chord B_e B_f (the other side's members need the "
-        "other assembly mode)",
+        "note": "family.note.crank_rocker_side",
     }
 
 
@@ -263,15 +274,15 @@ def _slotted_lever_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | 
     overrides = [{"frame.points.O1.y": float(x), "links.crank.length": float(y)} for x, y in zip(d, r, strict=True)]
     own = float(spec.frame.points["O1"][1])
     return {
-        "parameter": "frame d",
+        "parameter": "family.parameter.frame_d",
         "unit": "mm",
         "values": (d * 1e3).tolist(),
         "overrides": overrides,
-        "quantity": "least distance of the block from the lever's pivot",
-        "quantity_unit": " mm",
+        "quantity": "family.quantity.least_block_distance",
+        "quantity_unit": "mm",
         "quantity_values": (f.columns["least_block_distance"] * 1e3).tolist(),
         "picked": int(np.argmin(np.abs(d - own))),
-        "note": "every member with the stroke and time ratio asked for",
+        "note": "family.note.every_member",
     }
 
 
@@ -293,14 +304,14 @@ def _shears_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
     if not overrides:
         return None
     return {
-        "parameter": "crank length",
+        "parameter": "family.parameter.crank_length",
         "unit": "mm",
         "values": [c * 1e3 for c in cranks],
         "overrides": overrides,
-        "quantity": "least transmission angle",
+        "quantity": "synth.quantity.least_transmission_angle",
         "quantity_values": least,
         "picked": int(np.argmin(np.abs(np.array(cranks) - float(spec.links["crank"].length)))),
-        "note": "the members the synthesis's continuation solves",
+        "note": "family.note.shears",
     }
 
 

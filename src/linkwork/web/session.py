@@ -192,7 +192,7 @@ class Viewer:
         edits; none otherwise.  Solved once (seconds for the shears): requests meanwhile wait for that answer."""
         from linkwork.synthesis.achieved import family_members
 
-        return self._family.once("family", lambda: family_members(self.spec) or {"overrides": []})
+        return self._family.once("family", lambda: family_members(self.spec, self.lang) or {"overrides": []})
 
     def solve(self, overrides: dict[str, float] | None, steps: int | None = None, whole_turn: bool = False) -> Cycle:
         """The cycle of the variant ``overrides`` (SI).

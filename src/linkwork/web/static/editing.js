@@ -517,10 +517,9 @@
     const text = html("span", null, box, { id: "family-text" });
     const input = html("input", null, box, { type: "range", min: 0, max: f.overrides.length - 1, step: 1,
                                              value: f.picked, id: "family-slider" });
-    const unit = f.unit === "deg" ? "°" : ` ${f.unit}`;
-    const say = (i) => {
-      text.textContent = `${f.parameter} ${Number(f.values[i]).toFixed(2)}${unit}, ${f.quantity} ` +
-        `${Number(f.quantity_values[i]).toFixed(2)}${f.quantity_unit ?? "°"}`;
+    const say = (i) => {  // the texts, units and numbers in the page's language (family_members)
+      text.textContent = `${f.parameter} ${V.fixed(f.values[i], 2)}${f.unit_shown}, ${f.quantity} ` +
+        `${V.fixed(f.quantity_values[i], 2)}${f.quantity_unit_shown}`;
     };
     if (f.note) box.title = f.note;
     say(f.picked);
