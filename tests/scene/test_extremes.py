@@ -146,3 +146,15 @@ def test_limits_dimension_the_stroke_and_letter_the_extremes(quick, lang):
     name = kin.mechanism.point_names[p].split(".", 1)[1]
     assert {f"{name}′", f"{name}″"} <= {s for s, _ in texts}
     assert overlaps(fig) == []
+
+
+@pytest.mark.parametrize(
+    ("lang", "words"),
+    [("ru", "крайние положения ползуна на направляющей guide"), ("en", "limit positions of the slider on guide")],
+)
+def test_the_limits_title_names_the_working_member_by_its_kind_and_its_own_name(quick, lang, words):
+    """The title says what the working member is in the drawing's language (a slider on its guide), then the
+    guide's name as the file writes it; never a bare name where the program's word belongs."""
+    fig = figures.draw_limits(quick, lang=lang)
+    title = fig.axes[0].get_title()
+    assert title.startswith(f"offset-slider-crank: {words}\n"), title

@@ -335,7 +335,7 @@ def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Fi
     s = scene.scheme
     k = (math.pi + scene.theta) / (math.pi - scene.theta)
     theta = numbers(f"{math.degrees(scene.theta):.2f}", lang)
-    title = t("limits.title", lang, name=s.name, member=scene.member, theta=theta, k=numbers(f"{k:.4f}", lang))
+    title = t("limits.title", lang, name=s.name, member=scene.who(lang), theta=theta, k=numbers(f"{k:.4f}", lang))
     sh, box, bar = _overlay_sheet(scene, ax, title)
     draw_items(sh, s, 1, frame=False, kinds=("bar", "plate", "pivot", "block", "tool"), thin=0.45)
     draw_labels(sh, s, 0)

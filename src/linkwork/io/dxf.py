@@ -159,7 +159,7 @@ def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path
         _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
     k = (np.pi + scene.theta) / (np.pi - scene.theta)
     title = t(
-        "limits.title", lang, name=s.name, member=scene.member, theta=f"{np.degrees(scene.theta):.2f}", k=f"{k:.4f}"
+        "limits.title", lang, name=s.name, member=scene.who(lang), theta=f"{np.degrees(scene.theta):.2f}", k=f"{k:.4f}"
     ).replace("\n", ", ")
     _note(doc, msp, f"{title}; 1:1, {t('unit.mm', lang)}", scene.extent() * 1000, 1000 * s.em, lang)
     return _save(doc, path)

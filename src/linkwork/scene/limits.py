@@ -54,6 +54,8 @@ class LimitsScene:
         the dimension line between them (arrowheads at its ends); none for a rocker.
     stroke : Label or None
         ``H = ... mm`` beside the dimension line.
+    kind : str
+        The working member's kind, ``"slider"`` or ``"rocker"`` (:class:`linkwork.motion.analysis.Output`).
     """
 
     scheme: SchemeScene
@@ -66,6 +68,12 @@ class LimitsScene:
     letters: tuple[Label, ...] = ()
     dimension: np.ndarray = field(default_factory=lambda: np.zeros((0, 2, 2)))
     stroke: Label | None = None
+    kind: str = "slider"
+
+    def who(self, lang: str = "en") -> str:
+        """The working member as the texts name it, in ``lang``: its kind in words and its name as the file
+        writes it (``ползуна на направляющей guide_E``, ``коромысла rocker``)."""
+        return t(f"limits.member.{self.kind}", lang, member=self.member)
 
     def extent(self) -> np.ndarray:
         """``[x0, y0, x1, y1]`` of everything drawn, m."""
@@ -122,7 +130,8 @@ def limits_scene(kin: Kinematics, lang: str = "en") -> LimitsScene | None:
     out = np.array([math.cos(side), math.sin(side)])
     centre = arc[-1] + out * (0.5 * abs(out[0]) * w + 0.5 * abs(out[1]) * h + 0.5 * scheme.em)
     turned = float(np.ravel(r.rising)[0])
-    scene = LimitsScene(scheme, members[0].name, rays, arc, theta, turned, Label(text, "position", 0, o, centre[None]))
+    label = Label(text, "position", 0, o, centre[None])
+    scene = LimitsScene(scheme, members[0].name, rays, arc, theta, turned, label, kind=members[0].kind)
     if members[0].kind == "slider":
         scene = _dimensioned(scene, pts[:, members[0].point], float(np.ravel(r.stroke)[0]), lang)
     return _lettered(scene, pts, [pin, members[0].point], names)
