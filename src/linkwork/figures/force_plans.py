@@ -224,7 +224,7 @@ def lever_sheet(lv: Lever, kin: Kinematics, lang: str = "en") -> Figure:
         title += f"\n{scene.second_note(lang)}" if scene.second_scales else ""
         ax.set_title(numbers(title, lang), fontsize=8)
     note = t("levers.scale", lang, plan=f"{plan_scale:g}")
-    fig.suptitle(f"{t('levers.title', lang, name=kin.mechanism.name, count=count)}\n{note}", fontsize=10)
+    fig.suptitle(numbers(f"{t('levers.title', lang, name=kin.mechanism.name, count=count)}\n{note}", lang), fontsize=10)
     kinds = [k for k in FORCE_KINDS if any(k in s.kinds() for s in scenes)]
     seconds = {k: t("levers.second", lang) for s in scenes for k, _ in s.second_scales}
     _legend(fig, kinds, lang, seconds)
