@@ -89,6 +89,10 @@ def test_the_levers_points_at_rest_share_the_poles_label_and_nothing_crowds(lang
         if np.hypot(*v) / mu_v < TOGETHER * LETTERING:  # mm on the lever from the pole
             at_rest.add(joint.lower())
     assert at_rest == set("bcdef")  # the rocker's extreme: every joint it drives stands still
+    # the forces too short to draw, listed in the title, are named as their labels draw them: Φ₄, not Phi4 or Φ4
+    plain = [re.sub(r"\$[^$]*\$", "", s) for s in texts]  # mathtext ($\Phi_{1}$) is drawn Φ₁
+    assert not [s for s in plain if re.search(r"Phi|Φ\d", s)], texts
+    assert any("Φ$_{\\mathregular{4}}$" in s for s in texts), texts
     letters = _point_letters(texts)
     pole = [group for group in letters if "p" in group]
     assert len(pole) == 1 and at_rest <= set(pole[0]), letters

@@ -408,11 +408,12 @@ def _scene(
 
 def short_note(scene: ForceScene, lang: str = "en") -> str:
     """The line under a force plan naming its short arrows (:data:`SHORT`) with their values:
-    ``shorter than 3.5 mm: G6 = 294.3 N, Φ6 = 5.53 N`` (decimal commas in Russian); empty where none is."""
+    ``shorter than 3.5 mm: G6 = 294.3 N, Φ6 = 5.53 N`` (decimal commas in Russian; the inertia forces' Φ as their
+    labels draw it in either language); empty where none is."""
     from linkwork.lang import russian_numbers, t
 
     def listed(pairs: list[tuple[str, float]]) -> str:
-        return ", ".join(f"{name}\u00a0=\u00a0{value:.4g}\u00a0{t('unit.N', lang)}" for name, value in pairs)
+        return ", ".join(f"{_as_drawn(name)}\u00a0=\u00a0{value:.4g}\u00a0{t('unit.N', lang)}" for name, value in pairs)
 
     found = [(a.text, a.value) for a in scene.short()]
     parts = [t("forceplans.short", lang, size=f"{SHORT * scene.em:.1f}", forces=listed(found))] if found else []
