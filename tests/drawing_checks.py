@@ -11,23 +11,37 @@ TOLERANCE = 1.0
 
 def drawn_texts(fig: Any) -> list[Any]:
     """The texts that drawing ``fig`` with Agg renders (non-empty, visible, inside their axes' view),
-    in drawing order; the figure is drawn once."""
+    in drawing order, multi-line texts and the figure's suptitle among them; the figure is drawn once.
+
+    A text is the one whose ``draw`` is running when the renderer draws a string: matplotlib draws a text of
+    several lines line by line without naming the text (``mtext`` is None), so it is not read from there."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
 
     canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
     renderer = canvas.get_renderer()
     seen: dict[int, Any] = {}
-    draw_text = renderer.draw_text
+    drawing: list[Any] = []
+    draw_text, draw = renderer.draw_text, Text.draw
 
     def record(gc: Any, x: float, y: float, s: str, prop: Any, angle: float, ismath: Any = False, mtext: Any = None):
-        if mtext is not None and s.strip():
-            seen.setdefault(id(mtext), mtext)
+        if drawing and s.strip():
+            seen.setdefault(id(drawing[-1]), drawing[-1])
         return draw_text(gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
 
+    def drawn(self: Any, renderer: Any) -> Any:
+        drawing.append(self)
+        try:
+            return draw(self, renderer)
+        finally:
+            drawing.pop()
+
     renderer.draw_text = record
+    Text.draw = drawn  # type: ignore[method-assign]
     try:
         fig.draw(renderer)
     finally:
+        Text.draw = draw  # type: ignore[method-assign]
         del renderer.draw_text
     return list(seen.values())
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 pytest.importorskip("matplotlib")
@@ -53,3 +55,44 @@ def test_the_pdf_has_the_tables_within_the_page(tmp_path, monkeypatch, sketched_
     # the 12 positions' table (its heading and the crank's angle of position 11), the joints' table in Russian
     assert "положение" in words and "кривошип" in words
     assert "стойка → crank" in words and "frame" not in words.replace("knife", "")
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_the_pdf_writes_the_numbers_of_its_tables_and_paragraphs_as_the_page_does(tmp_path, monkeypatch, lang):
+    """In Russian the PDF's tables and paragraphs have the HTML page's decimal commas and powers of ten (``320,5``,
+    ``1,06·10⁴``), a name glued to a number (``O1.x``) as it is; in English the numbers as written."""
+    from types import SimpleNamespace
+
+    from matplotlib.backends.backend_pdf import PdfPages
+
+    from linkwork.lang import t
+    from linkwork.report.html import Section
+    from linkwork.report.page import write_pdf
+
+    pages = []
+    save = PdfPages.savefig
+
+    def keep(self, figure=None, **kwargs):
+        pages.append(figure)
+        return save(self, figure, **kwargs)
+
+    monkeypatch.setattr(PdfPages, "savefig", keep)
+    body = [
+        "<p>нужно 320.5 мм, O1.x</p>",
+        "<table><tr><th>φ, °</th><th>M, Н·м</th></tr><tr><td>86.6</td><td>1.06e+04</td></tr></table>",
+    ]
+    run = SimpleNamespace(
+        lang=lang,
+        mech=SimpleNamespace(name="m", structure=SimpleNamespace(formula="W = 1")),
+        sections=[Section("forces", "Силы", body)],
+        figures={},
+        t=lambda key, **values: t(key, lang, **values),
+    )
+    write_pdf(run, tmp_path / "report.pdf")
+    words = [x.get_text() for page in pages for x in page.texts]
+    if lang == "ru":
+        assert {"86,6", "1,06·10⁴"} <= set(words), words
+        assert any("320,5" in w and "O1.x" in w for w in words), words
+        assert not any(re.search(r"\d\.\d", w.replace("O1.x", "")) for w in words), words
+    else:
+        assert {"86.6", "1.06e+04"} <= set(words), words

@@ -146,3 +146,88 @@ def test_limits_dimension_the_stroke_and_letter_the_extremes(quick, lang):
     name = kin.mechanism.point_names[p].split(".", 1)[1]
     assert {f"{name}′", f"{name}″"} <= {s for s, _ in texts}
     assert overlaps(fig) == []
+
+
+@pytest.mark.parametrize(
+    ("lang", "words"),
+    [("ru", "крайние положения ползуна на направляющей guide"), ("en", "limit positions of the slider on guide")],
+)
+def test_the_limits_title_names_the_working_member_by_its_kind_and_its_own_name(quick, lang, words):
+    """The title says what the working member is in the drawing's language (a slider on its guide), then the
+    guide's name as the file writes it; never a bare name where the program's word belongs."""
+    fig = figures.draw_limits(quick, lang=lang)
+    title = fig.axes[0].get_title()
+    assert title.startswith(f"offset-slider-crank: {words}\n"), title
+
+
+#: The four-bar example (mm): frame O2O4, crank, coupler, rocker.  Its rocker's extremes are where the crank and the
+#: coupler lie on one line: O2B = coupler + crank or coupler - crank, and the rocker's angle at O4 follows from the
+#: triangle O2 O4 B by the law of cosines.
+FRAME, CRANK, COUPLER, ROCKER = 300.0, 100.0, 350.0, 250.0
+
+
+def _at_o4(d: float) -> float:
+    return math.degrees(math.acos((FRAME**2 + ROCKER**2 - d**2) / (2 * FRAME * ROCKER)))
+
+
+PSI_FOUR_BAR = _at_o4(COUPLER + CRANK) - _at_o4(COUPLER - CRANK)  # 56.34 deg
+
+
+def _swing_by_brute_force(mech, pivot: str, far: str) -> float:
+    """The rocker's swing (deg): the direction pivot -> far over a dense turn, unwrapped, its range."""
+    dense = lw.kinematics(mech, steps=3600)
+    names = [n.split(".", 1)[1] for n in mech.point_names]
+    d = dense.points()[:, names.index(far)] - dense.points()[:, names.index(pivot)]
+    angle = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    return math.degrees(float(np.ptp(angle)))
+
+
+def _psi(texts, comma):
+    found = [m for s in texts if (m := re.fullmatch(rf"ψ = (\d+)\{comma}(\d)°", s))]
+    assert len(found) == 1, texts
+    return float(f"{found[0].group(1)}.{found[0].group(2)}")
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+@pytest.mark.parametrize(("example", "pivot", "far"), [("four-bar", "O4", "B"), ("double-cut-shears", "O3", "B")])
+def test_limits_dimension_a_rockers_swing_in_the_figure_and_the_dxf(tmp_path, example, pivot, far, lang):
+    """ψ read back from the figure's text and from the DXF's DIMENSIONS layer (its text and the angle its arc
+    turns through about the rocker's pivot) is the rocker's swing: the four-bar's closed form, and for the
+    shears (whose working member is a knife: H is dimensioned too) the range of the rocker's direction over a
+    dense turn; the arc's ends lie on the rocker's lines at its two extremes; nothing overlaps."""
+    ezdxf = pytest.importorskip("ezdxf")
+    from linkwork.io.dxf import write_limits
+    from linkwork.scene.limits import limits_scene
+
+    kin = lw.kinematics(example, steps=360)
+    mech = kin.mechanism
+    swing = PSI_FOUR_BAR if example == "four-bar" else _swing_by_brute_force(mech, pivot, far)
+    if example == "four-bar":
+        assert _swing_by_brute_force(mech, pivot, far) == pytest.approx(swing, abs=0.01)
+    comma = "." if lang == "en" else ","
+    fig = figures.draw_limits(kin, lang=lang)
+    texts = [s for s, _ in _texts(fig)]
+    assert _psi(texts, comma) == pytest.approx(swing, abs=0.051)
+    assert (example == "double-cut-shears") == any(s.startswith("H = ") for s in texts)
+    assert overlaps(fig) == []
+
+    path = write_limits(limits_scene(kin, lang), tmp_path / "limits.dxf", lang)
+    msp = ezdxf.readfile(path).modelspace()
+    words = [e.plain_text().replace("\u00a0", " ") for e in msp.query("MTEXT")]
+    assert _psi(words, comma) == pytest.approx(swing, abs=0.051)
+    arcs = [np.array(e.get_points("xy")) for e in msp.query("LWPOLYLINE[layer=='DIMENSIONS']") if len(e) > 2]
+    assert len(arcs) == 1
+    names = [n.split(".", 1)[1] for n in mech.point_names]
+    o = 1000 * lw.kinematics(mech, kin.angles[:1]).points()[0, names.index(pivot)]
+    d = arcs[0] - o
+    turned = np.diff(np.unwrap(np.arctan2(d[:, 1], d[:, 0])))
+    assert math.degrees(abs(float(turned.sum()))) == pytest.approx(swing, abs=0.01)
+    assert np.ptp(np.hypot(d[:, 0], d[:, 1])) < 1e-6 * np.hypot(*d[0])  # an arc about the pivot
+    # its ends on the rocker's lines at the two extremes: the far joint's directions at the swing's ends
+    dense = lw.kinematics(mech, steps=3600)
+    e = dense.points()[:, names.index(far)] - dense.points()[:, names.index(pivot)]
+    angle = np.unwrap(np.arctan2(e[:, 1], e[:, 0]))
+    drawn = [math.atan2(v[1], v[0]) for v in (d[0], d[-1])]
+    for extreme in (angle.min(), angle.max()):
+        off = min(abs((a - extreme + math.pi) % (2 * math.pi) - math.pi) for a in drawn)
+        assert math.degrees(off) < 0.05

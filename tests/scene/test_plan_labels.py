@@ -31,6 +31,9 @@ def _twelve(name: str):
         ("0, 1, 11", [("0, 1, 11", False)]),
         ("knife_upper.edge", [("knife_upper.edge", False)]),
         ("π", [("π", False)]),
+        ("Φ2", [("Φ", False), ("2", True)]),  # the inertia force in Russian, Φ₂ as in the figures' mathtext
+        ("G6, Φ6", [("G", False), ("6", True), (", Φ", False), ("6", True)]),
+        ("MΦ2''", [("MΦ", False), ("2", True), ("''", False)]),
     ],
 )
 def test_a_label_splits_into_its_subscripts(text, runs):
@@ -147,3 +150,10 @@ def test_the_sheets_of_twelve_plans_letter_their_points_readably():
     letters = [t for ax in fig.axes for t in ax.texts if t.get_text() and t.get_color() != "#777777"]
     assert len(letters) >= 12
     assert min(t.get_fontsize() for t in letters) >= 8.5
+
+
+def test_the_russian_inertia_forces_are_subscripted_in_the_dxf_as_the_weights_are():
+    from linkwork.io.dxf import mtext
+
+    assert mtext("G6, Φ6") == "G\\S^ 6;, Φ\\S^ 6;"
+    assert mtext("MΦ2'") == "MΦ\\S^ 2;'"

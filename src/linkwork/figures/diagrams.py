@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 
 from linkwork.angles import unwrap
-from linkwork.figures.sheet import decimal_commas
+from linkwork.figures.sheet import decimal_commas, numbers
 from linkwork.lang import t
 from linkwork.motion.analysis import Output, coordinate, from_position_0, working, zero_angle
 from linkwork.motion.kinematic_analysis import direction
@@ -230,7 +230,11 @@ def torque_diagram(forces: Forces, zero: float | None = None, lang: str = "en") 
         ax.plot(phi, check[order] * factor, ls=":", color="black", lw=1.2, label=t("legend.power_balance", lang))
     mean = float(np.nanmean(torque))
     ax.axhline(
-        mean * factor, color="tab:red", lw=0.9, ls="--", label=t("legend.mean", lang, value=f"{mean * factor:.4g}")
+        mean * factor,
+        color="tab:red",
+        lw=0.9,
+        ls="--",
+        label=t("legend.mean", lang, value=numbers(f"{mean * factor:.4g}", lang)),
     )
     ax.set_ylabel(t("axis.torque", lang, unit=t(unit, lang)))
     _grid(ax)
@@ -489,7 +493,7 @@ def dynamics_diagrams(result: Dynamics, zero: float | None = None, lang: str = "
     _grid(a4)
     if result.flywheel is None:
         _legend(a4, loc="best")
-    fig.suptitle(t("title.dynamics", lang, delta=f"{result.delta:.4g}"), fontsize=11)
+    fig.suptitle(t("title.dynamics", lang, delta=numbers(f"{result.delta:.4g}", lang)), fontsize=11)
     return decimal_commas(fig, lang)
 
 
@@ -540,5 +544,7 @@ def _speed_panel(ax: Axes, result: Dynamics, zero: float, sign: float, lang: str
     rpm = 30 / np.pi
     ax.plot(phi, omega[order] * rpm, lw=1.3, label=t("legend.crank_speed", lang))
     mean = result.motion.last.omega_mean * rpm
-    ax.axhline(mean, color="0.3", lw=0.9, ls="--", label=t("legend.mean_speed", lang, value=f"{mean:.4g}"))
+    ax.axhline(
+        mean, color="0.3", lw=0.9, ls="--", label=t("legend.mean_speed", lang, value=numbers(f"{mean:.4g}", lang))
+    )
     ax.set_ylabel(t("axis.speed", lang), fontsize=9)

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from linkwork.figures.plans import LEGEND, _columns, _head
-from linkwork.figures.sheet import Sheet, add_line, numbers, room, sheet, where
+from linkwork.figures.sheet import Sheet, add_line, mathtext, numbers, room, sheet, where
 from linkwork.lang import group_label, t
 from linkwork.scene.force_plans import FORCE_KINDS, SMALL, ForceScene, force_plan_scene, lever_scene, short_note
 from linkwork.scene.style import FORCES, TEXT
@@ -123,7 +123,7 @@ def force_plans_figure(plans: ForcePlans, index: int, position: int | str | None
             title += "\n" + t("forceplans.singular", lang)
         note = short_note(scene, lang)
         if note:  # the names of the arrows too short to carry them, under the group's title
-            title += "\n" + "\n".join(textwrap.wrap(note, 44))
+            title += "\n" + "\n".join(mathtext(line) for line in textwrap.wrap(note, 44))  # Φ₆ as the labels
         titles.append(title)
     lines = max(title.count("\n") + 1 for title in titles)
     gap = 0.18 * lines  # inches of a panel's title
@@ -168,7 +168,7 @@ def lever_figure(lv: Lever, kin: Kinematics, index: int, position: int | str | N
     note += "\n" + t("lever.moment", lang, moment=f"{moment:.6g}")
     left = short_note(scene, lang)
     if left:  # the forces too short to draw at this scale, with their values
-        note += "\n" + "\n".join(textwrap.wrap(left, 64))
+        note += "\n" + "\n".join(mathtext(line) for line in textwrap.wrap(left, 64))  # Φ₆, G₁ as the labels
     angle = float(kin.angles[index])
     title = f"{t('lever.title', lang, name=name)}\n{where(angle, position, lang)}\n{note}"
     top = max(1.1, 0.3 + 0.17 * (title.count("\n") + 1))  # inches: the title's lines
@@ -224,7 +224,7 @@ def lever_sheet(lv: Lever, kin: Kinematics, lang: str = "en") -> Figure:
         title += f"\n{scene.second_note(lang)}" if scene.second_scales else ""
         ax.set_title(numbers(title, lang), fontsize=8)
     note = t("levers.scale", lang, plan=f"{plan_scale:g}")
-    fig.suptitle(f"{t('levers.title', lang, name=kin.mechanism.name, count=count)}\n{note}", fontsize=10)
+    fig.suptitle(numbers(f"{t('levers.title', lang, name=kin.mechanism.name, count=count)}\n{note}", lang), fontsize=10)
     kinds = [k for k in FORCE_KINDS if any(k in s.kinds() for s in scenes)]
     seconds = {k: t("levers.second", lang) for s in scenes for k, _ in s.second_scales}
     _legend(fig, kinds, lang, seconds)

@@ -335,7 +335,7 @@ def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Fi
     s = scene.scheme
     k = (math.pi + scene.theta) / (math.pi - scene.theta)
     theta = numbers(f"{math.degrees(scene.theta):.2f}", lang)
-    title = t("limits.title", lang, name=s.name, member=scene.member, theta=theta, k=numbers(f"{k:.4f}", lang))
+    title = t("limits.title", lang, name=s.name, member=scene.who(lang), theta=theta, k=numbers(f"{k:.4f}", lang))
     sh, box, bar = _overlay_sheet(scene, ax, title)
     draw_items(sh, s, 1, frame=False, kinds=("bar", "plate", "pivot", "block", "tool"), thin=0.45)
     draw_labels(sh, s, 0)
@@ -351,9 +351,12 @@ def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Fi
             gid="limits:ray",
         )
     add_line(sh.ax, scene.arc[:, 0], scene.arc[:, 1], color=TEXT["position"], lw=1.0, zorder=4, gid="limits:arc")
-    _draw_dimension(sh, scene.dimension, s.em)
+    _draw_dimension(sh, list(scene.dimension), s.em)
+    for swing in scene.swings:
+        _draw_dimension(sh, list(swing.lines), s.em, gid="limits:swing")
     texts = [(scene.label, "limits:theta"), *((lab, f"limits:{lab.text}") for lab in scene.letters)]
     texts += [(scene.stroke, "limits:stroke")] if scene.stroke is not None else []
+    texts += [(swing.label, "limits:swing") for swing in scene.swings]
     for lab, gid in texts:
         c = lab.centre[0]
         sh.ax.text(
@@ -372,18 +375,19 @@ def draw_limits(kin: Kinematics, ax: Axes | None = None, lang: str = "en") -> Fi
     return sh.fig
 
 
-def _draw_dimension(sh: Sheet, lines: np.ndarray, em: float) -> None:
-    """A dimension's extension lines and its dimension line (the last of ``lines`` ``(K, 2, 2)``) with an
-    arrowhead at each end, thin (gid ``limits:dimension``)."""
+def _draw_dimension(sh: Sheet, lines: list[np.ndarray], em: float, gid: str = "limits:dimension") -> None:
+    """A dimension's extension lines and its dimension line (the last of ``lines``, polylines ``(K, 2)``: a
+    straight line or an arc) with an arrowhead at each end along it, thin (gid ``gid``)."""
     from matplotlib.patches import Polygon
 
     for line in lines:
-        add_line(sh.ax, line[:, 0], line[:, 1], color="black", lw=0.6, zorder=4, gid="limits:dimension")
+        add_line(sh.ax, line[:, 0], line[:, 1], color="black", lw=0.6, zorder=4, gid=gid)
     if len(lines):
-        a, b = lines[-1]
-        u = (b - a) / max(float(np.hypot(*(b - a))), 1e-300)
-        w = np.array([-u[1], u[0]])
-        size = min(0.8 * em, 0.3 * float(np.hypot(*(b - a))))
-        for tip, d in ((a, u), (b, -u)):
-            head = np.array([tip, tip + size * d + 0.25 * size * w, tip + size * d - 0.25 * size * w])
+        line = lines[-1]
+        length = float(np.sum(np.hypot(*np.diff(line, axis=0).T)))
+        size = min(0.8 * em, 0.3 * length)
+        for tip, toward in ((line[0], line[1]), (line[-1], line[-2])):
+            u = (toward - tip) / max(float(np.hypot(*(toward - tip))), 1e-300)
+            w = np.array([-u[1], u[0]])
+            head = np.array([tip, tip + size * u + 0.25 * size * w, tip + size * u - 0.25 * size * w])
             add_patch(sh.ax, Polygon(head, closed=True, fc="black", ec="none", zorder=4))

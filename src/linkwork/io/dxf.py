@@ -153,16 +153,30 @@ def write_limits(scene: LimitsScene, path: str | Path, lang: str = "en") -> Path
     _items(msp, s, 1, kinds=("bar", "plate", "pivot", "block", "tool"), frame=False)
     for line in (*scene.rays, scene.arc):
         msp.add_lwpolyline([tuple(v) for v in line * 1000], dxfattribs={"layer": "LIMITS"})
-    for line in scene.dimension:  # the stroke H: its extension lines, its dimension line and arrowheads
-        msp.add_lwpolyline([tuple(v) for v in line * 1000], dxfattribs={"layer": "DIMENSIONS"})
-    for lab in (*s.labels, scene.label, *scene.letters, *([scene.stroke] if scene.stroke else [])):
+    for lines in (list(scene.dimension), *(list(d.lines) for d in scene.swings)):  # H, each rocker's swing ψ
+        _dimension(msp, lines, 1000 * s.em)
+    for lab in (*s.labels, *scene.texts()):
         _text(msp, lab.text, lab.centre[0] * 1000, 1000 * s.em)
     k = (np.pi + scene.theta) / (np.pi - scene.theta)
     title = t(
-        "limits.title", lang, name=s.name, member=scene.member, theta=f"{np.degrees(scene.theta):.2f}", k=f"{k:.4f}"
+        "limits.title", lang, name=s.name, member=scene.who(lang), theta=f"{np.degrees(scene.theta):.2f}", k=f"{k:.4f}"
     ).replace("\n", ", ")
     _note(doc, msp, f"{title}; 1:1, {t('unit.mm', lang)}", scene.extent() * 1000, 1000 * s.em, lang)
     return _save(doc, path)
+
+
+def _dimension(msp: Any, lines: list[np.ndarray], em: float) -> None:
+    """A dimension in the ``DIMENSIONS`` layer: its extension lines and its dimension line (the last of
+    ``lines``, polylines ``(K, 2)`` in m: a straight line or an arc), an arrowhead (``em`` mm) at each of its
+    ends along it."""
+    for line in lines:
+        msp.add_lwpolyline([tuple(v) for v in line * 1000], dxfattribs={"layer": "DIMENSIONS"})
+    if lines:
+        mm = lines[-1] * 1000
+        length = float(np.sum(np.hypot(*np.diff(mm, axis=0).T)))
+        for tip, toward in ((mm[0], mm[1]), (mm[-1], mm[-2])):
+            u = (tip - toward) / max(float(np.hypot(*(tip - toward))), 1e-300)
+            _head(msp, tip - length * u, tip, min(0.8 * em, 0.3 * length), "DIMENSIONS")
 
 
 def write_plan(scene: PlanScene, index: int, path: str | Path, lang: str = "en") -> Path:

@@ -69,7 +69,8 @@ def write_pdf(run: ReportRun, path: Path) -> None:
         pages = Pages()
         for s in run.sections:
             pages.heading(s.title)
-            for kind, part in parts(s.body):
+            body = [russian_html("".join(s.body))] if run.lang == "ru" else s.body  # as the HTML page writes it
+            for kind, part in parts(body):
                 pages.table(part) if kind == "table" else pages.paragraph(part)
         for page in pages.pages:
             pdf.savefig(page)

@@ -37,7 +37,7 @@ def requirements_section(run: ReportRun) -> None:
         lang = run.lang
         sec.figures.append(
             run.figure(
-                "limits", lambda: figures.draw_limits(kin, lang=lang), run.t("caption.limits", member=limits.member)
+                "limits", lambda: figures.draw_limits(kin, lang=lang), run.t("caption.limits", member=limits.who(lang))
             )
         )
     run.sections.append(sec)

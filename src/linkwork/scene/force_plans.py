@@ -26,7 +26,7 @@ from linkwork.kinetostatics.zhukovsky import Lever
 from linkwork.motion.plans import PlanSeries, drawing_scale
 from linkwork.scene.geometry import text_size
 from linkwork.scene.labels import DIRECTIONS, Obstacles, place_labels
-from linkwork.scene.plans import LETTERING
+from linkwork.scene.plans import LETTERING, _grouped
 from linkwork.scene.positions import FINE
 
 #: An arrow before its name is placed: start, end (mm), the force, whether it is a reaction read off the plan.
@@ -288,6 +288,11 @@ def lever_scene(
     if np.isfinite(pin).all() and (round(float(pin[0]), 6), round(float(pin[1]), 6)) not in seen:
         dots.append(pin)
         texts.append(lv.pin)
+    # points whose images nearly coincide share one label, as on the velocity plan: the pole, the joints' letters,
+    # then the centres of mass ("p, b, c, s3" at rest)
+    order = [0, *sorted(range(1, len(texts)), key=lambda j: (texts[j].startswith("s"), texts[j]))]
+    dots, texts = [dots[j] for j in order], [texts[j] for j in order]
+    texts = list(_grouped(tuple(texts), np.ones(len(texts), dtype=bool), np.array(dots)[None], em)[0])
     scene = _scene(
         "lever",
         "",
@@ -317,6 +322,13 @@ SMALL, FINER, SECOND_LENGTH = 2.0, 4.0, 12.0
 
 #: The letter of a scale of a kind of force on a lever: μG of the weights, μΦ of the inertia forces.
 KIND_SYMBOL = {"weight": "G", "inertia": "Φ"}
+
+
+#: How much wider than :func:`~linkwork.scene.geometry.text_size` (DejaVu's advances) a lever's names are placed:
+#: Agg draws text up to a tenth wider at the small sizes of a sheet of twelve levers (6.4 pt at 100 dpi: the
+#: glyphs' hinting; the letters of the points at rest about the pole, "p, b, c, d, e, f, s3, s4, s6", 6% wider),
+#: and a lever's names crowd about its pole, where a box too narrow puts a name on its neighbour.
+HINTED = 0.1
 
 
 def _second_scales(kinds: list[str], vectors: list[np.ndarray], scale: float, em: float) -> dict[str, float]:
@@ -357,13 +369,14 @@ def _scene(
         mids[0, size[:, 0] < SHORT * em] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         left = np.where(size > 0, np.stack([-along[:, 1], along[:, 0]], -1) / size, np.sqrt(0.5))
-    sizes = np.array([text_size(_as_drawn(t), em) for t in texts]).reshape(1, -1, 2)
+    wider = np.array([1.0 + HINTED, 1.0]) if kind == "lever" else np.ones(2)  # a lever's names crowd about its pole
+    sizes = np.array([text_size(_as_drawn(t), em) * wider for t in texts]).reshape(1, -1, 2)
     obstacles = Obstacles(segments, circles)
-    fine = FINE if kind == "lever" else DIRECTIONS  # a lever's names crowd about its pole
+    fine = FINE if kind == "lever" else DIRECTIONS
     gaps = np.full(len(texts), 0.3 * em)
     centres = place_labels(mids, sizes, gaps, obstacles, left[None], pad=0.1 * em, directions=fine)[0]
     boxes = np.concatenate([centres - sizes[0] / 2, centres + sizes[0] / 2], -1)[None]
-    dot_sizes = np.array([text_size(t, em) for t in dot_text]).reshape(1, -1, 2)
+    dot_sizes = np.array([text_size(t, em) * wider for t in dot_text]).reshape(1, -1, 2)
     anchors = np.where(np.array([bool(t) for t in dot_text], dtype=bool)[:, None], dots.reshape(-1, 2), np.nan)
     dot_centres = place_labels(
         anchors[None],
@@ -395,11 +408,12 @@ def _scene(
 
 def short_note(scene: ForceScene, lang: str = "en") -> str:
     """The line under a force plan naming its short arrows (:data:`SHORT`) with their values:
-    ``shorter than 3.5 mm: G6 = 294.3 N, Φ6 = 5.53 N`` (decimal commas in Russian); empty where none is."""
+    ``shorter than 3.5 mm: G6 = 294.3 N, Φ6 = 5.53 N`` (decimal commas in Russian; the inertia forces' Φ as their
+    labels draw it in either language); empty where none is."""
     from linkwork.lang import russian_numbers, t
 
     def listed(pairs: list[tuple[str, float]]) -> str:
-        return ", ".join(f"{name}\u00a0=\u00a0{value:.4g}\u00a0{t('unit.N', lang)}" for name, value in pairs)
+        return ", ".join(f"{_as_drawn(name)}\u00a0=\u00a0{value:.4g}\u00a0{t('unit.N', lang)}" for name, value in pairs)
 
     found = [(a.text, a.value) for a in scene.short()]
     parts = [t("forceplans.short", lang, size=f"{SHORT * scene.em:.1f}", forces=listed(found))] if found else []

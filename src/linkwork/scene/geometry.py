@@ -121,9 +121,10 @@ WIDE = 0.8
 SUBSCRIPT = 0.7
 
 #: A word of a label that has a subscript: a letter (with primes) and ``_`` and its subscript (``n_ba``,
-#: ``k'_a``), or a capital letter and its number (``O1``, ``R12``).
+#: ``k'_a``), or a capital letter and its number (``O1``, ``R12``, the inertia force ``Φ2`` and the inertia
+#: moment's forces ``MΦ2'`` as the textbook writes them, Φ₂, as mathtext does).
 #: The viewer's page reads the pattern from the payload (one rule for every renderer).
-SUBSCRIPTED = r"(?<![0-9A-Za-z])(?:([A-Za-zα-ωπ]'*)_([^\s,_]+)|([A-Z]'*)([0-9]+)(?![0-9A-Za-z_.]))"
+SUBSCRIPTED = r"(?<![0-9A-Za-z])(?:([A-Za-zα-ωπ]'*)_([^\s,_]+)|((?:MΦ|[A-ZΦ])'*)([0-9]+)(?![0-9A-Za-z_.]))"
 _SUBSCRIPTED = re.compile(SUBSCRIPTED)
 
 

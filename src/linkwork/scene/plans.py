@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from linkwork.lang import t
+from linkwork.lang import russian_numbers, t
 from linkwork.motion.plans import PlanSeries, drawing_scale, longest_length
 from linkwork.scene.geometry import text_size
 from linkwork.scene.labels import Obstacles, place_labels
@@ -121,9 +121,11 @@ class PlanScene:
         return "μv" if self.kind == "velocity" else "μa"
 
     def scale_note(self, lang: str = "en") -> str:
-        """The pole and the scale, as written under the plan: ``pole p,  μv = 0.05 (m/s)/mm``."""
+        """The pole and the scale, as written under the plan: ``pole p,  μv = 0.05 (m/s)/mm`` (a decimal
+        comma in Russian)."""
         unit = t(f"plan.unit.{self.kind}", lang)
-        return t("plan.scale", lang, pole=self.pole, symbol=self.symbol, scale=f"{self.scale:g}", unit=unit)
+        scale = russian_numbers(f"{self.scale:g}") if lang == "ru" else f"{self.scale:g}"  # 0,05 in Russian
+        return t("plan.scale", lang, pole=self.pole, symbol=self.symbol, scale=scale, unit=unit)
 
     def drawn(self, index: int) -> list[int]:
         """The arrows drawn at position ``index``: those of finite, non-zero length."""
