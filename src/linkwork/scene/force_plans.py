@@ -161,9 +161,8 @@ def force_plan_scene(
     largest = max((float(np.hypot(*v)) for v in values if np.isfinite(v).all()), default=0.0)
     drafts: list[_Draft] = []
     if not np.isfinite(vertices).all():  # a dead point: no plan (a part of one would mislead)
-        return _scene(
-            "force_plan", group.label, scale, np.nan, em, lang, drafts, np.zeros((0, 2, 2)), np.zeros((0, 2)), (), angle
-        )
+        nothing = (drafts, np.zeros((0, 2, 2)))
+        return _scene("force_plan", group.label, (scale, np.nan), em, lang, nothing, (np.zeros((0, 2)), ()), angle)
     for j, f in enumerate(group.polygon):
         if _drawn(values[j], largest):
             drafts.append((vertices[j], vertices[j + 1], f, False))
@@ -179,17 +178,7 @@ def force_plan_scene(
             drafts.append((ends[0], ends[1], r, True))
     corners = vertices[np.isfinite(vertices).all(-1)]
     return _scene(
-        "force_plan",
-        group.label,
-        scale,
-        np.nan,
-        em,
-        lang,
-        drafts,
-        links,
-        corners,
-        ("",) * len(corners),
-        angle,
+        "force_plan", group.label, (scale, np.nan), em, lang, (drafts, links), (corners, ("",) * len(corners)), angle
     )
 
 
@@ -296,15 +285,12 @@ def lever_scene(
     scene = _scene(
         "lever",
         "",
-        scale,
-        plan_scale,
+        (scale, plan_scale),
         em,
         lang,
-        drafts,
-        segs,
-        np.array(dots),
-        tuple(texts),
-        angle=float(velocity.angles[index]),
+        (drafts, segs),
+        (np.array(dots), tuple(texts)),
+        float(velocity.angles[index]),
     )
     arrows = tuple(
         dataclasses.replace(a, value=a.value / scale * each, second=True) if each != scale else a
@@ -348,17 +334,17 @@ def _second_scales(kinds: list[str], vectors: list[np.ndarray], scale: float, em
 def _scene(
     kind: str,
     label: str,
-    scale: float,
-    plan_scale: float,
+    scales: tuple[float, float],
     em: float,
     lang: str,
-    drafts: list[_Draft],
-    lines: np.ndarray,
-    dots: np.ndarray,
-    dot_text: tuple[str, ...],
+    drawn: tuple[list[_Draft], np.ndarray],
+    points: tuple[np.ndarray, tuple[str, ...]],
     angle: float,
 ) -> ForceScene:
-    """The scene of ``drafts`` (start, end, force, resultant) with every name placed."""
+    """The scene of the ``drawn`` arrows (each start, end, force, resultant) and thin lines, and the ``points``
+    (their places and letters), at the ``scales`` of the forces and of the plan (N/mm, m/s per mm), with every name
+    placed."""
+    (scale, plan_scale), (drafts, lines), (dots, dot_text) = scales, drawn, points
     texts = [_name(f, lang) for _, _, f, _ in drafts]
     segments = np.array([[s, e] for s, e, _, _ in drafts] + [list(x) for x in lines]).reshape(1, -1, 2, 2)
     circles = np.concatenate([dots.reshape(-1, 2), np.full((len(dots), 1), 0.25 * em)], -1)[None]
