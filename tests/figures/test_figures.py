@@ -200,3 +200,19 @@ def test_the_kinematic_diagrams_chart_the_working_members_from_position_0(name):
         np.testing.assert_allclose(slope, v[1:-1, 1], atol=1e-3 * np.abs(v[:, 1]).max())  # φ grows with time
         dv = (v[2:, 1] - v[:-2, 1]) / (phi[2:] - phi[:-2]) * omega
         np.testing.assert_allclose(dv, a[1:-1, 1], atol=2e-3 * np.abs(a[:, 1]).max())
+
+
+@pytest.mark.parametrize("name", ["shears-slider-crank", "four-bar"])
+def test_the_mean_torque_of_a_machine_whose_loads_do_no_work_is_written_as_zero(name):
+    """Gravity and the inertia forces do no work over a turn at uniform speed (the energy theorem): the mean
+    driving torque is zero, and the diagram's legend says 0, not the round-off (-1.3e-11 N m) of its samples; a
+    file with a process load keeps its mean (the double-cut shears' cut: 7.5 kJ a turn, 1.19 kN m)."""
+    f = lw.forces(name, steps=360)
+    assert abs(float(np.nanmean(f.driving_torque))) < 1e-9 * float(np.nanmax(np.abs(f.driving_torque)))
+    (mean,) = [
+        t.get_text() for t in figures.torque_diagram(f).axes[0].get_legend().get_texts() if "mean" in t.get_text()
+    ]
+    assert mean.endswith(" 0"), mean
+    cut = figures.torque_diagram(lw.forces("double-cut-shears", steps=360))
+    (mean,) = [t.get_text() for t in cut.axes[0].get_legend().get_texts() if "mean" in t.get_text()]
+    assert float(mean.split()[-1]) == pytest.approx(7.5e3 / (2 * np.pi) / 1e3, rel=2e-3), mean

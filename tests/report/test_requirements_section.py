@@ -74,6 +74,10 @@ def test_the_report_opens_with_the_requirements_and_the_limit_positions(slider_c
     theta = float(shown.replace(",", "."))
     k_tol = float(lw.load(str(slider_crank)).requirements["time_ratio_tolerance"])
     assert abs(theta - 23.4783) <= math.degrees(2 * math.pi / 2.3**2 * k_tol) + 5e-4
+    # the working member named by its kind (in Russian, the genitive of the limits' title), then as the file names it
+    assert (
+        "при крайних положениях ползуна на направляющей guide" if lang == "ru" else "with the slider on guide"
+    ) in part
     if lang == "ru":  # no English but the names from the file (the kind is the mechanism's name)
         words = set(re.findall(r"[A-Za-z]{2,}", re.sub(r"<[^>]+>|data:[^'\"]+", " ", part)))
         assert words <= {"slider", "crank", "guide"}

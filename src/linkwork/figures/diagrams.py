@@ -20,6 +20,7 @@ from linkwork.figures.sheet import decimal_commas, numbers
 from linkwork.lang import t
 from linkwork.motion.analysis import Output, coordinate, from_position_0, working, zero_angle
 from linkwork.motion.kinematic_analysis import direction
+from linkwork.zeros import magnitude, snap_zeros
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -228,7 +229,7 @@ def torque_diagram(forces: Forces, zero: float | None = None, lang: str = "en") 
     check = forces.torque_power_all[0, :, 0] if mech.n_drives == 1 else None
     if check is not None and np.isfinite(check).any():
         ax.plot(phi, check[order] * factor, ls=":", color="black", lw=1.2, label=t("legend.power_balance", lang))
-    mean = float(np.nanmean(torque))
+    mean = float(snap_zeros(np.nanmean(torque), magnitude(torque)))  # a mean that is a round-off of zero: 0
     ax.axhline(
         mean * factor,
         color="tab:red",

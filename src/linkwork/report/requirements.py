@@ -32,7 +32,7 @@ def requirements_section(run: ReportRun) -> None:
         theta = math.degrees(limits.theta)
         k = (180.0 + theta) / (180.0 - theta)
         sec.body.append(
-            paragraph(run.t("requirements.theta", theta=f"{theta:.3f}", k=f"{k:.6g}", member=limits.member))
+            paragraph(run.t("requirements.theta", theta=f"{theta:.3f}", k=f"{k:.6g}", member=limits.who(run.lang)))
         )
         lang = run.lang
         sec.figures.append(
