@@ -181,6 +181,11 @@ def russian_numbers(text: str) -> str:
     return re.sub(rf"(?<![\w.,])(-?\d+)\.(\d+){after}", r"\1,\2", out)
 
 
+def numbers(text: str, lang: str) -> str:
+    """``text`` with its numbers as ``lang`` writes them (:func:`russian_numbers` in Russian)."""
+    return russian_numbers(text) if lang == "ru" else text
+
+
 def russian_html(page: str) -> str:
     """:func:`russian_numbers` on the text of an HTML page, not on its tags, styles, scripts and ``<pre>`` blocks
     (a file's own text)."""
@@ -202,3 +207,10 @@ def t(key: str, lang: str = "en", /, **values: Any) -> str:
     """
     check_lang(lang)
     return texts()[key][LANGUAGES.index(lang)].format(**values)
+
+
+def friction_problem(problem: Any, lang: str = "en") -> str:
+    """A :class:`~linkwork.errors.FrictionWarning` (its ``kind`` and the crank angles φ of its ``angles``, deg) as
+    the report and the viewer say it in ``lang``: the first eight angles, then an ellipsis."""
+    at = ", ".join(f"{x:.0f}" for x in problem.angles[:8]) + (" …" if len(problem.angles) > 8 else "")
+    return t(f"friction.{problem.kind}", lang, at=at)

@@ -132,7 +132,8 @@ def _report_figures(name, lang, folder, monkeypatch, sketched_figures):
         return sketch(self, key, lambda: fig)
 
     monkeypatch.setattr(report_run.ReportRun, "_draw", keep)
-    build.analyze(lw.compile(lw.example(name)), folder, steps=72, animation=False, lang=lang)
+    # the sizing section draws no figure: not sized here
+    build.analyze(lw.compile(lw.example(name)), folder, steps=72, animation=False, lang=lang, sizing=False)
     return drawn
 
 

@@ -457,3 +457,22 @@ def test_the_report_draws_the_run_in_time_the_file_asks_for(tmp_path):
         last = list(csv.DictReader(f))[-1]
     run = lw.simulate(mech, 0.5, angle=math.radians(275), times=[0.5])
     assert float(last["omega [rad/s]"]) == pytest.approx(run.speed[0], rel=1e-9)
+
+
+@pytest.mark.slow  # a whole report (its figures sketched): over the default lane's budget
+def test_the_structures_warnings_are_in_the_reports_language(tmp_path, sketched_figures):
+    """The four-bar with the hint for B 100 mm from where B assembles: the Russian report's warnings section says
+    so in Russian, with decimal commas, as the viewer does; the English one as ``linkwork check`` does."""
+    import copy
+
+    import linkwork as lw
+    from linkwork.report import build
+
+    data = copy.deepcopy(lw.example("four-bar").model_dump(exclude_none=True)) | {"units": {"angle": "rad"}}
+    data["hints"] = {"B": [0.33, 0.14]}
+    mech = lw.compile(lw.from_dict(data))
+    for lang, said in (("en", mech.structure.warnings[0]), ("ru", "подсказка для B в точке (0,33; 0,14) отстоит на")):
+        build.analyze(mech, tmp_path / lang, steps=36, animation=False, lang=lang)
+        page = (tmp_path / lang / "report.html").read_text(encoding="utf-8")
+        section = page[page.index("<section id='warnings'>") :]
+        assert said in section.replace("&#x27;", "'"), section[:400]

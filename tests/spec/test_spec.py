@@ -287,3 +287,16 @@ def test_a_removed_joint_is_named_before_its_hint():
     assert problems[0].path == "joints"
     assert problems[0].message.startswith('no joint "B": coupler and rocker have a point "B" that no joint joins')
     assert not any("did you mean" in p.message for p in problems)
+
+
+def test_the_values_of_a_spec_built_from_a_dump_are_read_with_its_points_as_pairs():
+    """``lw.from_dict(spec.model_dump())`` (points as tuples, SI): every number the report's input section lists,
+    the hint for B among them, each component of a point a length of its own, as a file's ``[x, y]`` is read."""
+    import linkwork as lw
+    from linkwork.spec.values import values_read
+
+    data = lw.example("four-bar").model_dump(exclude_none=True) | {"units": {"angle": "rad"}}
+    read = {v.path: v for v in values_read(lw.from_dict(data))}
+    hint = lw.example("four-bar").hints["B"]
+    assert [read["hints.B[0]"].value, read["hints.B[1]"].value] == pytest.approx(list(hint), rel=1e-12)
+    assert read["hints.B[0]"].kind == "length" and read["frame.points.O4[0]"].value == pytest.approx(0.3)

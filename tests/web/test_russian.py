@@ -162,3 +162,38 @@ def test_an_event_is_said_in_russian_at_the_crank_angles_of_the_closed_form():
     with pytest.raises(OutOfRange) as refused:
         Viewer("double-cut-shears", 24, lang="ru").solve({"links.crank.length": 0.3}, whole_turn=True)
     assert str(refused.value) == (f"links.crank.length = 300 мм: механизм собирается не на всём обороте: {said[0]}")
+
+
+def test_the_warnings_of_the_structure_and_the_friction_are_said_in_the_pages_language():
+    """A hint 100 mm from where B assembles (the four-bar's B assembles near (330, 240) mm): the structure's
+    warning in English and in Russian with the same gap, the distance from the hint to the point assembled; a
+    slider-crank whose friction (f 0.3 in every pair) locks it: the Russian page says where as the report does
+    (Самоторможение при φ = ...), and the English page as the analysis words it."""
+    import copy
+    import re
+
+    import numpy as np
+
+    import linkwork as lw
+    from linkwork.web import payload
+    from linkwork.web.cycle import solve_cycle
+
+    data = copy.deepcopy(lw.example("four-bar").model_dump(exclude_none=True)) | {"units": {"angle": "rad"}}
+    data["hints"] = {"B": [0.33, 0.14]}
+    mech = lw.compile(lw.from_dict(data))
+    gap = float(np.hypot(*(mech.points0()[mech.point_names.index("rocker.B")] - np.array([0.33, 0.14]))))
+    assert gap > 0.05
+    (en,), (ru,) = (payload._structure(mech, lang)["warnings"] for lang in ("en", "ru"))
+    assert en == mech.structure.warnings[0] and en.startswith("the hint for B at (0.33, 0.14)")
+    assert ru.startswith("подсказка для B в точке (0,33; 0,14) отстоит на") and "вариант сборки" in ru  # commas
+    for text in (en, ru):
+        assert re.search(r" (\d+[.,]\d+) [mм] ", text).group(1).replace(",", ".") == f"{gap:.3g}"  # to 3 digits
+    locked = copy.deepcopy(lw.example("shears-slider-crank").model_dump(exclude_none=True)) | {
+        "units": {"angle": "rad"}
+    }
+    for joint in locked["joints"].values():
+        joint["friction"] = {"f": 0.3} if joint["type"] == "prismatic" else {"f": 0.3, "radius": 0.02}
+    cycle = solve_cycle(lw.compile(lw.from_dict(locked)), 36)
+    en, ru = payload._notes(cycle, "en"), payload._notes(cycle, "ru")
+    assert any("locks the mechanism" in w for w in en), en
+    assert any(w.startswith("Самоторможение при φ = ") for w in ru) and not any("locks" in w for w in ru), ru

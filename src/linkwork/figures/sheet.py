@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
-from linkwork.lang import russian_numbers, t
+from linkwork.lang import numbers, t
 from linkwork.scene.geometry import text_runs
 from linkwork.scene.style import Style
 from linkwork.units import turn_deg
@@ -166,11 +166,6 @@ def text_width(text: str, size: float, dpi: float = 100.0) -> float:
 
     pixels = RendererAgg(1, 1, dpi).get_text_width_height_descent(text, FontProperties(size=size), False)[0]
     return float(pixels) * 72.0 / dpi
-
-
-def numbers(text: str, lang: str) -> str:
-    """``text`` with its numbers as ``lang`` writes them (:func:`linkwork.lang.russian_numbers` in Russian)."""
-    return russian_numbers(text) if lang == "ru" else text
 
 
 def decimal_commas(fig: Figure, lang: str) -> Figure:

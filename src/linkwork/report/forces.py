@@ -15,7 +15,7 @@ from linkwork.io.force_tables import groups, has_losses, to_json, write_csv
 from linkwork.io.jsonout import dumps
 from linkwork.kinetostatics.peaks import pair_force_peaks, torque_peak
 from linkwork.kinetostatics.tables import pair_labels
-from linkwork.lang import group_label, link_named
+from linkwork.lang import friction_problem, group_label, link_named
 from linkwork.report.html import Section, deg, fixed, paragraph, table
 from linkwork.report.kinematics import ReportCycle
 from linkwork.report.run import ReportRun
@@ -70,8 +70,7 @@ def _efficiency_text(run: ReportRun, f: Forces) -> list[str]:
         return []
     out = []
     for problem in f.friction.problems if f.friction is not None else ():
-        at = ", ".join(f"{x:.0f}" for x in problem.angles[:8]) + (" …" if len(problem.angles) > 8 else "")
-        out.append(paragraph(run.t(f"friction.{problem.kind}", at=at)))
+        out.append(paragraph(friction_problem(problem, run.lang)))
     e = f.efficiency
     drive, cycle, eta = float(e.work(e.drive)), float(e.cycle), e.instantaneous
     if math.isfinite(cycle) and np.isfinite(eta).any():

@@ -37,7 +37,7 @@ def write_html(run: ReportRun, path: Path) -> None:
         img = f"<img alt='{html.escape(run.t('section.animation'))}' src='data:image/gif;base64,{data}'>"
         parts.append(f"<section id='animation'><h2>{html.escape(run.t('section.animation'))}</h2>{img}</section>")
     if mech.structure.warnings:
-        warnings = "".join(paragraph(w) for w in mech.structure.warnings)
+        warnings = "".join(paragraph(run.t(key, **dict(fields))) for key, fields in mech.structure.said)
         parts.append(f"<section id='warnings'><h2>{html.escape(run.t('section.warnings'))}</h2>{warnings}</section>")
     parts.append("</body></html>")
     page = "".join(parts)  # in Russian its numbers with decimal commas and powers of ten (lang.russian_html)

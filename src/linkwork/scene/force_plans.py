@@ -396,7 +396,7 @@ def short_note(scene: ForceScene, lang: str = "en") -> str:
     """The line under a force plan naming its short arrows (:data:`SHORT`) with their values:
     ``shorter than 3.5 mm: G6 = 294.3 N, Φ6 = 5.53 N`` (decimal commas in Russian; the inertia forces' Φ as their
     labels draw it in either language); empty where none is."""
-    from linkwork.lang import russian_numbers, t
+    from linkwork.lang import numbers, t
 
     def listed(pairs: list[tuple[str, float]]) -> str:
         return ", ".join(f"{_as_drawn(name)}\u00a0=\u00a0{value:.4g}\u00a0{t('unit.N', lang)}" for name, value in pairs)
@@ -407,7 +407,7 @@ def short_note(scene: ForceScene, lang: str = "en") -> str:
         size = f"{0.5 * scene.em:.1f}"
         parts.append(t("forceplans.left_out", lang, size=size, forces=listed(list(scene.left_out))))
     text = "; ".join(parts)
-    return russian_numbers(text) if lang == "ru" else text
+    return numbers(text, lang)
 
 
 def _as_drawn(name: str) -> str:

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from linkwork.lang import russian_numbers, t
+from linkwork.lang import numbers, t
 from linkwork.motion.analysis import Output, output_range, outputs, working
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.scene.geometry import bounds, text_size
@@ -244,7 +244,7 @@ OFFSET = 2.0
 def _number(value: float, decimals: int, lang: str) -> str:
     """``value`` to ``decimals`` places, with the decimal sign of ``lang``."""
     text = f"{value:.{decimals}f}"
-    return russian_numbers(text) if lang == "ru" else text
+    return numbers(text, lang)
 
 
 def _segments(line: np.ndarray) -> np.ndarray:

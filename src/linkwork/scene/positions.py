@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from linkwork.lang import russian_numbers, t
+from linkwork.lang import numbers, t
 from linkwork.motion.analysis import Output, coordinate, output_range, position_angles, transmission, working
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import plan_series
@@ -346,7 +346,7 @@ def _stroke_arcs(
 def _degrees(angle: float, lang: str) -> str:
     """An angle (rad) in degrees to 0.1, with the decimal sign of ``lang``."""
     text = f"{np.degrees(angle):.1f}"
-    return russian_numbers(text) if lang == "ru" else text
+    return numbers(text, lang)
 
 
 def _clear_of_every_position(scheme: SchemeScene, labels: tuple[Label, ...]) -> tuple[Label, ...]:

@@ -113,7 +113,7 @@ def _walk(tp: Any, raw: Any, path: Path, meta: tuple[Any, ...] = ()) -> Iterator
             if arg is not type(None) and _fits(arg, raw):
                 yield from _walk(arg, raw, path, meta)
                 return
-    elif origin is list and isinstance(raw, list):
+    elif origin is list and isinstance(raw, list | tuple):
         for i, item in enumerate(raw):
             yield from _walk(typing.get_args(tp)[0], item, path + (i,))
     elif origin is dict and isinstance(raw, dict):
@@ -138,7 +138,7 @@ def _fits(tp: Any, raw: Any) -> bool:
 def _leaf(mark: Quantity, raw: Any, path: Path) -> Iterator[tuple[Path, Any, str | None]]:
     if mark.shape == "point_or_name" and isinstance(raw, str):
         return  # a point's name
-    if mark.shape in ("point", "point_or_name", "table") and isinstance(raw, list):
+    if mark.shape in ("point", "point_or_name", "table") and isinstance(raw, list | tuple):  # a tuple: from_dict
         for i, item in enumerate(raw):
             yield path + (i,), item, mark.kind
     else:

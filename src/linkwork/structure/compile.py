@@ -15,11 +15,12 @@ from typing import NamedTuple
 import numpy as np
 
 from linkwork.errors import Problem, SpecError, StructureError, UnassemblableError
+from linkwork.lang import t
 from linkwork.spec.schema import ImpactSpec, Joint, Spec
 from linkwork.structure.assemble import assemble, scaled, solve_group, unfixed_links
 from linkwork.structure.assur import decompose, rank
 from linkwork.structure.constraints import Rows, build_rows
-from linkwork.structure.model import AssurGroup, Mechanism, PairType, Structure, formula, frozen, global_points
+from linkwork.structure.model import AssurGroup, Mechanism, PairType, Said, Structure, formula, frozen, global_points
 from linkwork.structure.parameters import (
     COM_CENTROID,
     COM_GIVEN,
@@ -176,15 +177,13 @@ def _structure(
                 f"; {redundant} constraint(s) are redundant in the assembly pose, so the actual mobility is {mobility}"
             )
         raise StructureError(msg)
-    warnings = []
+    said: list[Said] = []
     if rd0 < rd:
-        warnings.append(
-            "the assembly pose is a singular position (dead point): the constraint Jacobian loses "
-            f"rank {rd - rd0} there; choose another drive angle for the assembly"
-        )
-    warnings += _hint_warnings(mech, hints, scale)
+        said.append(("structure.warning.singular_pose", (("rank", str(rd - rd0)),)))
+    said += _hint_warnings(mech, hints, scale)
+    warnings = tuple(t(key, "en", **dict(fields)) for key, fields in said)
     return Structure(
-        count.n, count.p5, count.p4, count.w, redundant, mobility, tuple(groups), formula(groups), tuple(warnings)
+        count.n, count.p5, count.p4, count.w, redundant, mobility, tuple(groups), formula(groups), warnings, tuple(said)
     )
 
 
@@ -282,19 +281,17 @@ def _require_hints(spec: Spec, mech: Mechanism, groups: list[AssurGroup], hints:
         raise SpecError(list(dict.fromkeys(problems)))
 
 
-def _hint_warnings(mech: Mechanism, hints: dict[int, np.ndarray], scale: float) -> list[str]:
+def _hint_warnings(mech: Mechanism, hints: dict[int, np.ndarray], scale: float) -> list[Said]:
     """A warning for each hint far (more than a tenth of ``scale``) from where its point assembled."""
     pts = global_points(mech.pose0, mech.point_link, mech.point_local)
-    out: dict[tuple[str, float, float], str] = {}
+    out: dict[tuple[str, float, float], Said] = {}
     for p, h in hints.items():
         gap = float(np.hypot(*(pts[p] - h)))
         name = mech.point_names[p].split(".", 1)[1]
         key = (name, float(h[0]), float(h[1]))
         if gap > 0.1 * scale and key not in out:
-            out[key] = (
-                f"the hint for {name} at ({h[0]:.4g}, {h[1]:.4g}) is {gap:.3g} m from where it assembled, "
-                f"({pts[p][0]:.4g}, {pts[p][1]:.4g}): check that the assembly mode is the one you meant"
-            )
+            at, found = f"({h[0]:.4g}, {h[1]:.4g})", f"({pts[p][0]:.4g}, {pts[p][1]:.4g})"
+            out[key] = ("structure.warning.hint", (("name", name), ("at", at), ("gap", f"{gap:.3g}"), ("found", found)))
     return list(out.values())
 
 

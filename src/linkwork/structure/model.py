@@ -131,6 +131,10 @@ class AssurGroup:
         }
 
 
+#: A text to be said in any language: its key in :mod:`linkwork.lang`'s catalogues and its fields (name, value).
+Said = tuple[str, tuple[tuple[str, str], ...]]
+
+
 @dataclass(frozen=True)
 class Structure:
     """Structural analysis of a mechanism (``Mechanism.structure``; :func:`linkwork.compile` finds it).
@@ -154,7 +158,9 @@ class Structure:
     formula : str
         The structural formula, e.g. ``I(0,1) -> II(2,3) -> II(4,5)``.
     warnings : tuple of str, default ()
-        Singular assembly pose, hints far from the assembled points, ...
+        Singular assembly pose, hints far from the assembled points, ... (in English).
+    said : tuple of Said, default ()
+        The same warnings as keys of :mod:`linkwork.lang`'s catalogues with their fields, to be said in any language.
     """
 
     n_links: int
@@ -166,6 +172,7 @@ class Structure:
     groups: tuple[AssurGroup, ...]
     formula: str
     warnings: tuple[str, ...] = ()
+    said: tuple[Said, ...] = ()
 
     def as_dict(self) -> dict[str, Any]:
         return {

@@ -20,7 +20,7 @@ import numpy as np
 from linkwork import jit
 from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.kinetostatics.reaction_forces import Forces
-from linkwork.lang import group_label, russian_numbers, t, texts
+from linkwork.lang import group_label, numbers, t, texts
 from linkwork.motion.events import Event
 from linkwork.motion.kinematic_analysis import Kinematics, kinematics
 from linkwork.scene.scheme import CYCLE
@@ -186,4 +186,4 @@ def event_text(cycle: Cycle, event: Event, lang: str = "en") -> str:
         return event.message
     start, end = phi_deg([event.start, event.end], zero_angle(cycle.mech), direction(cycle.mech))
     text = t(key, lang, group=group_label(event.group, lang), start=f"{start:.1f}", end=f"{end:.1f}")
-    return russian_numbers(text) if lang == "ru" else text
+    return numbers(text, lang)

@@ -82,7 +82,7 @@ import numpy as np
 
 from linkwork.errors import UnassemblableError
 from linkwork.io import jsonout
-from linkwork.lang import group_kind, t
+from linkwork.lang import friction_problem, group_kind, numbers, t
 from linkwork.motion.analysis import Output, coordinate, extremes, guide, outputs, slider_coordinates
 from linkwork.motion.kinematic_analysis import kinematics
 from linkwork.motion.plans import PlanSeries, drawing_scale, longest_length, percentile, plan_series
@@ -211,8 +211,16 @@ def _outcome(cycle: Cycle, lang: str = "en") -> dict[str, Any]:
         "extremes": [_finite(e.as_dict()) for e in extremes(cycle.kin)],
         "peaks": peaks(cycle),
         "events": events_part(cycle, lang),
-        "warnings": list(cycle.notes),
+        "warnings": _notes(cycle, lang),
     }
+
+
+def _notes(cycle: Cycle, lang: str) -> list[str]:
+    """The warnings of a cycle, those of the friction as the report says them in ``lang``
+    (:func:`linkwork.lang.friction_problem`; the others as the analysis words them)."""
+    friction = cycle.forces.friction if cycle.forces is not None else None
+    said = {str(p): friction_problem(p, lang) for p in (friction.problems if friction is not None else ())}
+    return [numbers(said.get(note, note), lang) if lang != "en" else note for note in cycle.notes]
 
 
 def events_part(cycle: Cycle, lang: str = "en") -> list[dict[str, Any]]:
@@ -632,6 +640,7 @@ def _structure(mech: Mechanism, lang: str = "en") -> dict[str, Any]:
         for g in s.groups
     ]
     out["link_names"] = list(mech.link_names)
+    out["warnings"] = [numbers(t(key, lang, **dict(fields)), lang) for key, fields in s.said]  # as the report says them
     return out
 
 
