@@ -9,23 +9,30 @@ import pytest
 pytest.importorskip("matplotlib")
 
 
-@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
-def test_the_pdf_has_the_tables_within_the_page(tmp_path, monkeypatch, sketched_figures):
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
+@pytest.fixture
+def pages(monkeypatch):
+    """The figures the PDF's pages are saved from, in order (PdfPages.savefig kept as it is)."""
     from matplotlib.backends.backend_pdf import PdfPages
+
+    kept = []
+    save = PdfPages.savefig
+
+    def keep(self, figure=None, **kwargs):
+        kept.append(figure)
+        return save(self, figure, **kwargs)
+
+    monkeypatch.setattr(PdfPages, "savefig", keep)
+    return kept
+
+
+@pytest.mark.slow  # over the default lane's budget on the NumPy kernels (tests/conftest.py)
+def test_the_pdf_has_the_tables_within_the_page(tmp_path, pages, sketched_figures):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from typer.testing import CliRunner
 
     import linkwork.cli.analyze  # noqa: F401  (registers the command)
     from linkwork.cli.main import app
 
-    pages = []
-    save = PdfPages.savefig
-
-    def keep(self, figure=None, **kwargs):
-        pages.append(figure)
-        return save(self, figure, **kwargs)
-
-    monkeypatch.setattr(PdfPages, "savefig", keep)
     out = tmp_path / "r"
     args = [
         "analyze",
@@ -58,25 +65,15 @@ def test_the_pdf_has_the_tables_within_the_page(tmp_path, monkeypatch, sketched_
 
 
 @pytest.mark.parametrize("lang", ["en", "ru"])
-def test_the_pdf_writes_the_numbers_of_its_tables_and_paragraphs_as_the_page_does(tmp_path, monkeypatch, lang):
+def test_the_pdf_writes_the_numbers_of_its_tables_and_paragraphs_as_the_page_does(tmp_path, pages, lang):
     """In Russian the PDF's tables and paragraphs have the HTML page's decimal commas and powers of ten (``320,5``,
     ``1,06·10⁴``), a name glued to a number (``O1.x``) as it is; in English the numbers as written."""
     from types import SimpleNamespace
-
-    from matplotlib.backends.backend_pdf import PdfPages
 
     from linkwork.lang import t
     from linkwork.report.html import Section
     from linkwork.report.page import write_pdf
 
-    pages = []
-    save = PdfPages.savefig
-
-    def keep(self, figure=None, **kwargs):
-        pages.append(figure)
-        return save(self, figure, **kwargs)
-
-    monkeypatch.setattr(PdfPages, "savefig", keep)
     body = [
         "<p>нужно 320.5 мм, O1.x</p>",
         "<table><tr><th>φ, °</th><th>M, Н·м</th></tr><tr><td>86.6</td><td>1.06e+04</td></tr></table>",
