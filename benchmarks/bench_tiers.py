@@ -7,11 +7,13 @@ Run with ``python benchmarks/bench_tiers.py [--cache DIR] [--calls 60] [--edits 
 filled here first, which takes minutes); every run gets its own ``LINKWORK_CACHE_DIR``: the warm one, or an
 empty one for the cold rows.
 
-* A long-lived process: ``--calls`` calls each of ``lw.forces(m, steps=360)`` and ``lw.kinematics(m, steps=360)``
-  of the double-cut shears, in turn, in a fresh process; the median of the last 20 of each, the time of all the
-  calls, and the call at which the default switched to the compiled kernels (with the processor time the load
-  took).
-  Bar: the default within 1.5 times ``LINKWORK_NUMBA=1``.
+* A long-lived process: ``--calls`` (and ``--long``) calls each of ``lw.forces(m, steps=360)`` and
+  ``lw.kinematics(m, steps=360)`` of the double-cut shears, in turn, in a fresh process; the median of the last 20
+  of each, the time of all the calls and of those in the NumPy kernels, and the call at which the default switched
+  to the compiled kernels (with the processor time the load took).  The loads measured on this machine
+  (:func:`linkwork.jit.measured_cost`) are printed first: the default switches once the NumPy kernels took that.
+  Bars: the default's time of all the calls within 1.5 times ``LINKWORK_NUMBA=1``'s (its load included); the
+  median of the last 20 of ``--long`` calls within 1.5 times ``LINKWORK_NUMBA=1``'s.
 * A one-shot command: ``linkwork forces double-cut-shears`` in a fresh process, the median of ``--repeat``;
   the default with the warm cache and with an empty one (a fresh install's first command: the compile starts
   in the background, stopped after each run).  Bar: cold within 1.5 times ``LINKWORK_NUMBA=0``.
@@ -53,7 +55,7 @@ for i in range(calls):
         switched = i + 1
 print(json.dumps({"forces": statistics.median(forces[-20:]), "kinematics": statistics.median(kinematics[-20:]),
                   "total": sum(forces) + sum(kinematics), "switched": switched, "load": jit.load_seconds(),
-                  "ready": jit.ready()}))
+                  "ready": jit.ready(), "spent": jit._state.spent}))
 """
 
 
@@ -138,6 +140,7 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--cache", type=Path, help="a kernels' cache filled by linkwork warm")
     parser.add_argument("--calls", type=int, default=60)
+    parser.add_argument("--long", type=int, default=200, help="the calls of a longer process")
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--edits", type=int, default=100)
     args = parser.parse_args(argv)
@@ -146,14 +149,17 @@ def main(argv: list[str] | None = None) -> None:
         empty = Path(tmp) / "empty"
         if args.cache is None:
             subprocess.run([sys.executable, "-m", "linkwork.cli", "warm"], env=environment(None, warm), check=True)
-        print(f"long-lived process, double-cut shears, 360 angles, median of the last 20 of {args.calls} calls")
-        for label, mode in MODES.items():
-            r = long_lived(mode, warm, args.calls)
-            switched = f", switched after call {r['switched']} (load {r['load']:.2f} s)" if r["load"] else ""
-            print(
-                f"  {label:8s} lw.forces {1e3 * r['forces']:7.2f} ms   lw.kinematics {1e3 * r['kinematics']:6.2f} ms"
-                f"   all calls {r['total']:6.2f} s{switched}"
-            )
+        measured = [float(v) for record in warm.glob("loads-*") for v in record.read_text().split()]
+        print(f"loads measured on this machine (jit.measured_cost): {', '.join(f'{v:.2f}' for v in measured)} s")
+        for calls in (args.calls, args.long):
+            print(f"long-lived process, double-cut shears, 360 angles, median of the last 20 of {calls} calls")
+            for label, mode in MODES.items():
+                r = long_lived(mode, warm, calls)
+                switched = f", switched after call {r['switched']} (load {r['load']:.2f} s)" if r["load"] else ""
+                print(
+                    f"  {label:8s} lw.forces {1e3 * r['forces']:7.2f} ms   lw.kinematics {1e3 * r['kinematics']:6.2f}"
+                    f" ms   all calls {r['total']:6.2f} s   in the NumPy kernels {r['spent']:5.2f} s{switched}"
+                )
         print(f"one-shot: linkwork forces double-cut-shears, median of {args.repeat}")
         for label, mode in MODES.items():
             print(f"  {label:8s} {one_shot(mode, warm, args.repeat):6.2f} s")

@@ -375,7 +375,7 @@ from linkwork import jit
 from numba.core.registry import CPUDispatcher
 from linkwork.kinetostatics import reactions_numba
 from linkwork.motion import kernels_numba
-jit.LOAD_COST = 0.0
+jit._state.cost = 0.0  # a load that costs nothing: the switch comes at once
 m = lw.compile("double-cut-shears")
 numpy = lw.forces(m, steps=360).driving_torque
 calls = 1
@@ -421,6 +421,8 @@ def test_a_long_lived_process_switches_to_the_kernels_read_from_the_cache(tmp_pa
     assert run.returncode == 0, run.stderr
     found = json.loads(run.stdout)
     assert found["loaded"] and found["took"] > 0
+    record = (tmp_path / "kernels").glob("loads-*")
+    assert float(next(record).read_text().split()[-1]) >= found["took"]  # counted whole: SciPy's part added back
     assert found["before"] == found["read"] >= 3 and found["compiled"] == 0  # read before any call needed them
     assert found["error"] < 1e-12
 
@@ -479,7 +481,34 @@ def test_warm_compiles_every_kernel_the_analyses_call():
     assert {d: len(d.signatures) for d in dispatchers} == before
 
 
-def test_what_a_process_has_imported_already_costs_its_load_nothing(monkeypatch):
+def test_the_price_of_the_switch_is_the_median_of_the_loads_measured_here(fake):
+    """No load measured: :data:`jit.LOAD_COST`.  Loads recorded (each as a process measured it, whole): the median
+    of the last :data:`jit.MEASURED`, read once per process; values out of :data:`jit.BELIEVED` and a damaged
+    file left out.  And the switch comes once the NumPy kernels took that, not :data:`jit.LOAD_COST`."""
+    clock, loads, _ = fake
+    assert jit.measured_cost() == jit.LOAD_COST
+    for seconds in (9.0, 0.9, 0.3, 0.5, 0.7, 0.4):  # the first falls out of the last five
+        jit._remember(seconds)
+    jit._state.cost = None
+    assert jit.measured_cost() == pytest.approx(0.5)  # median of 0.9, 0.3, 0.5, 0.7, 0.4
+    record = jit._record()
+    assert record is not None and record.read_text().split() == ["0.9000", "0.3000", "0.5000", "0.7000", "0.4000"]
+    record.write_text("0.6\n1000\n0.01\n", encoding="utf-8")
+    jit._state.cost = None
+    assert jit.measured_cost() == pytest.approx(0.6)
+    record.write_text("damaged", encoding="utf-8")
+    jit._state.cost = None
+    assert jit.measured_cost() == jit.LOAD_COST
+    record.write_text("0.2\n", encoding="utf-8")
+    jit._state.cost = None
+    jit.mark_ready()
+    jit.spent(0.95 * jit.load_cost())
+    assert jit._state.loader is None and jit.load_cost() < 0.2 + 1e-12
+    jit.spent(0.06 * jit.load_cost())
+    assert _joined() and loads == ["background"]
+
+
+def test_what_a_process_has_imported_already_costs_its_load_nothing(cache, monkeypatch):
     """The price of the switch is the load's processor time less the parts a process has paid already: with SciPy's
     linear algebra imported (a run in time, a user's SciPy) it is :data:`jit.SUNK` of it less, with numba too less
     again; the parts add up to less than the whole (the compiler's set-up and the reads are always to pay)."""

@@ -211,7 +211,8 @@ def compile_kernels() -> list[str]:
 
     Every bundled example is solved with the compiled kernels over a cycle and over a few design variants,
     its points read, its forces and its dynamics found: the calls every analysis makes, so that each kernel
-    is compiled for the arrays it is called with.  Returns the examples run.
+    is compiled for the arrays it is called with.  Then a fresh process loads them, and what that cost is
+    recorded (:func:`linkwork.jit.measured_cost`).  Returns the examples run.
     """
     jit.force()
     done = []
@@ -234,4 +235,5 @@ def compile_kernels() -> list[str]:
             _dynamics(mech)
         done.append(name)
     jit.mark_ready()
+    jit.measure_load()  # what a later process's switch will cost it, measured on this machine
     return done

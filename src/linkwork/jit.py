@@ -3,13 +3,14 @@
 The kinematics and the reactions have twin kernels: NumPy (the reference, always there) and numba (the
 same arithmetic compiled to machine code, 5 to 30 times faster).  Compiling the numba kernels takes one to
 three minutes of processor time, once per install; loading them from the cache (importing numba, reading
-the compiled code) costs about :data:`LOAD_COST` seconds of processor time, more than a one-shot command spends
-in its batches.  So the kernels are tiered, as a JIT runtime tiers its code:
+the compiled code) costs a process 0.6 to 1.2 seconds of processor time (:func:`measured_cost`: measured on
+the machine, :data:`LOAD_COST` until it is), more than a one-shot command spends in its batches.  So the
+kernels are tiered, as a JIT runtime tiers its code:
 
 - ``LINKWORK_NUMBA`` unset (or ``auto``): a process starts on the NumPy kernels and counts the processor time
   it spends in them (:func:`spent`).  Once the compiled kernels are in the cache (:func:`ready`, looked at
   once every :data:`RECHECK` seconds at most) and that time exceeds what their loading would cost the
-  process (:func:`load_cost`: :data:`LOAD_COST` of processor time, less what it has imported already), a
+  process (:func:`load_cost`: the loads measured on this machine, less what it has imported already), a
   thread of the process loads them in the background (:func:`load_in_background`: no caller waits for it,
   though the calls meanwhile share the interpreter with it) and the process switches to them: from then on
   every call, whatever its size, runs compiled.  A process that stops before has paid nothing for them; one
@@ -70,7 +71,8 @@ KERNEL_MODULES = ("motion/kernels_numba.py", "kinetostatics/reactions_numba.py")
 #: ones about 2).
 LONG = 20_000
 
-#: Seconds of processor time loading the compiled kernels costs a process that has none of :data:`SUNK`, measured
+#: Seconds of processor time loading the compiled kernels costs a process that has none of :data:`SUNK`, until a load
+#: on this machine has been measured (:func:`measured_cost`; ``linkwork warm`` measures one as it ends), measured
 #: in the thread that loads them (:func:`load_seconds`; 0.76 to 1.21 s on the 2-core virtual machine of the benchmarks
 #: page): importing numba (0.23 to 0.34 s); its NumPy support (0.22 to 0.35 s, of which SciPy's linear algebra 0.14 to
 #: 0.26 s: numba's ``np.arraymath`` imports ``scipy.linalg.cython_blas`` as it is loaded, whatever the kernels use,
@@ -84,6 +86,10 @@ LOAD_COST = 1.0
 #: already (SciPy's linear algebra for a run in time or a user's own SciPy, numba for a user's own kernels) does not
 #: pay that part again (:func:`load_cost`).
 SUNK = {"numba": 0.3, "scipy.linalg": 0.2}
+
+#: How many of the last loads measured on this machine :func:`measured_cost` takes the median of, and the range of
+#: seconds it believes (a record outside it, from a file damaged or a machine swapped, is left out).
+MEASURED, BELIEVED = 5, (0.05, 20.0)
 
 #: Seconds between two looks at the cache (:func:`ready`) while the compiled kernels are not in use.
 RECHECK = 5.0
@@ -111,6 +117,7 @@ class _State:
     loader: threading.Thread | None = None  # the thread that loads them in the background, once started
     stop: threading.Event = dataclasses.field(default_factory=threading.Event)  # the process ends: load no more
     took: float | None = None  # processor seconds the load took (:func:`load_seconds`)
+    cost: float | None = None  # :func:`measured_cost`, read once
 
 
 _state = _State()
@@ -203,9 +210,70 @@ def use(samples: int) -> bool:
 
 
 def load_cost() -> float:
-    """Seconds of processor time loading the compiled kernels would cost this process now: :data:`LOAD_COST` less
-    the parts of :data:`SUNK` whose modules it has imported already."""
-    return LOAD_COST * (1.0 - sum(part for name, part in SUNK.items() if name in sys.modules))
+    """Seconds of processor time loading the compiled kernels would cost this process now: :func:`measured_cost`
+    less the parts of :data:`SUNK` whose modules it has imported already."""
+    return measured_cost() * (1.0 - _sunk())
+
+
+def _sunk() -> float:
+    """The fraction of a load that this process has paid already (:data:`SUNK`)."""
+    return sum(part for name, part in SUNK.items() if name in sys.modules)
+
+
+def measured_cost() -> float:
+    """Seconds of processor time a whole load costs on this machine: the median of the last :data:`MEASURED` loads
+    measured here (:func:`load_seconds`, each counted whole: what a process had imported already added back), read
+    from the cache once per process; :data:`LOAD_COST` until one is."""
+    state = _state
+    if state.cost is None:
+        record = _record()
+        try:
+            seen = [float(v) for v in record.read_text(encoding="utf-8").split()] if record is not None else []
+        except (OSError, ValueError):
+            seen = []
+        seen = [v for v in seen[-MEASURED:] if BELIEVED[0] <= v <= BELIEVED[1]]
+        state.cost = float(sorted(seen)[len(seen) // 2]) if seen else LOAD_COST
+    return state.cost
+
+
+def _record() -> Path | None:
+    """The file of the loads measured on this machine, beside the kernels of :func:`key`."""
+    folder = cache_dir()
+    return None if folder is None else folder / f"loads-{key()}"
+
+
+def _remember(seconds: float) -> None:
+    """Add a load of ``seconds`` (whole) to :func:`_record` (written whole, then renamed into place)."""
+    record = _record()
+    if record is None:
+        return
+    try:
+        seen = record.read_text(encoding="utf-8").split() if record.is_file() else []
+        part = record.with_suffix(f".{os.getpid()}.part")
+        part.write_text("\n".join([*seen[-(MEASURED - 1) :], f"{seconds:.4f}"]) + "\n", encoding="utf-8")
+        part.replace(record)
+    except OSError:  # a cache that went read-only: the next process measures again
+        pass
+
+
+def measure_load() -> float | None:
+    """Load the compiled kernels from the cache in a fresh process that has run an analysis, as a process on the
+    default settings does, and record its cost (:func:`measured_cost`); the seconds it took, None where it could
+    not."""
+    env = {k: v for k, v in os.environ.items() if k not in ("LINKWORK_NUMBA", "NUMBA_CACHE_DIR")}
+    folder = cache_dir()
+    if folder is None:
+        return None
+    env["LINKWORK_CACHE_DIR"] = str(folder)
+    code = (  # a process that has run an analysis (numpy and the analyses' modules imported) loads them
+        "import linkwork as lw; from linkwork import jit; lw.forces(lw.compile('four-bar'), steps=12); "
+        "jit.load_in_background(); jit._settle(); print(jit.load_seconds())"
+    )
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)
+    try:
+        return float(out.stdout)
+    except ValueError:
+        return None
 
 
 def spent(seconds: float) -> None:
@@ -271,7 +339,7 @@ def load_in_background() -> None:
 def _fetch() -> None:
     """Import numba, wrap every kernel and read every one the cache holds, then switch (what the thread of
     :func:`load_in_background` does)."""
-    start = time.thread_time()
+    start, sunk = time.thread_time(), _sunk()
     try:
         with _loading:
             if _state.loaded:  # loaded in front meanwhile (a long batch)
@@ -286,6 +354,7 @@ def _fetch() -> None:
         return
     _state.took = time.thread_time() - start
     _state.loaded = True
+    _remember(_state.took / (1.0 - sunk))
 
 
 def _read_cache(space: dict[str, Any]) -> bool:
