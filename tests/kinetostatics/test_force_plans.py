@@ -244,3 +244,30 @@ def test_springs_dampers_and_a_torsion_spring_enter_the_plans_and_the_lever() ->
             assert np.abs(r.vector[0] - expected).max() <= 1e-12 * np.abs(expected).max(), (g.label, r.name())
     torque = np.asarray(f.driving_torque)
     assert np.abs(lever(f).balancing[0] - torque).max() <= 1e-9 * np.abs(torque).max()
+
+
+@pytest.mark.filterwarnings("ignore::linkwork.errors.FrictionWarning")
+def test_friction_in_proportion_to_the_pairs_forces_enters_the_plans_and_the_lever() -> None:
+    """The slider-crank shears with f = 0.05 in every pair (pins of 10 mm), at the twelve positions: the friction
+    solved with the reactions is a known load of the plans, a couple on each link of a pin and a force along the
+    guide on the knife and the frame, named after its joint; each plan closes, its reactions are the analytic ones
+    and the lever's moment is the driving torque (to 1e-9) wherever the shears move (the plans raised before)."""
+    from kinetostatics.test_friction import _shears
+
+    mech = _shears(0.05, 0.010)
+    f = lw.forces(lw.kinematics(mech, position_angles(mech)))
+    moving = ~f.singular & np.isfinite(np.asarray(f.driving_torque))
+    assert moving.sum() >= 10
+    plans = force_plans(f)
+    named = {p.about for g in plans.groups for p in (*g.polygon, *g.couples) if p.symbol in ("F", "M")}
+    assert {"friction O", "friction A", "friction B", "friction guide"} <= named
+    for g in plans.groups:
+        for i in np.flatnonzero(moving):
+            vectors = np.array([p.vector[0, i] for p in g.polygon])
+            assert np.hypot(*vectors.sum(0)) <= 1e-12 * np.max(np.hypot(*vectors.T)), (g.label, i)
+        for r in g.reactions:
+            expected = f.pair_force(r.pair)[0] * (1 if r.link == int(mech.pair_links[r.pair, 1]) else -1)
+            gap = np.abs(r.vector[0, moving] - expected[moving]).max()
+            assert gap <= 1e-12 * np.abs(expected[moving]).max(), (g.label, r.name())
+    torque = np.asarray(f.driving_torque)[moving]
+    assert np.abs(lever(f).balancing[0][moving] - torque).max() <= 1e-9 * np.abs(torque).max()

@@ -398,6 +398,48 @@ def test_refine_calls_a_peak_unbounded_only_where_it_grows_without_bound_at_a_si
     assert not smooth.unbounded[0] and smooth.value[0] == pytest.approx(1.0, abs=1e-12)
 
 
+def test_a_peak_at_the_edge_of_a_lock_is_unbounded():
+    """A force that grows as 1 / (0.31 - x) towards a lock at x = 0.31 (a locked position has no value, as the
+    friction's rule leaves it, from x = 0.3): the zoom ends at the lock's edge, 0.3, where the value is only where
+    the rule draws the line (100); with the lock told it is unbounded there, without it the edge's value is kept.
+    A bounded peak (cos(x - 4.5)) far from the lock keeps its value."""
+    angles = np.linspace(0, 2 * np.pi, 36, endpoint=False)
+
+    def rising(x):
+        x = np.asarray(x, dtype=float)
+        with np.errstate(divide="ignore"):
+            return np.where((x > 0.3) & (x < 3.0), np.nan, 1 / (0.31 - np.where(x >= 3.0, x - 2 * np.pi, x)))
+
+    def lock(x):
+        x = np.asarray(x, dtype=float)
+        return (x > 0.3) & (x < 3.0)
+
+    found = refine(rising(angles)[None], angles, rising, "max", locked=lock)
+    assert found.unbounded[0] and found.value[0] == np.inf and found.at[0] == pytest.approx(0.3, abs=1e-9)
+    kept = refine(rising(angles)[None], angles, rising, "max")
+    assert not kept.unbounded[0] and kept.value[0] == pytest.approx(100.0, rel=1e-6)
+    smooth = refine(np.cos(angles - 4.5)[None], angles, lambda x: np.cos(x - 4.5), "max", locked=lock)
+    assert not smooth.unbounded[0] and smooth.value[0] == pytest.approx(1.0, abs=1e-12)
+
+
+@pytest.mark.filterwarnings("ignore::linkwork.errors.FrictionWarning")
+def test_the_shears_torque_next_to_their_lock_is_unbounded():
+    """The slider-crank shears with f = 0.1 lock within about 7 deg of their dead points phi = 90 and 270 deg
+    (tests/kinetostatics/test_friction_locking.py finds the first edge at 82.8 deg): the driving torque and every
+    pair force grow without bound towards a lock, so their peaks are unbounded, at an edge of a locked span
+    (no largest value: before, the peak was the value where the rule draws the line, 1,000 times the forces
+    without friction)."""
+    from kinetostatics.test_friction import _shears
+    from linkwork.kinetostatics.peaks import pair_force_peaks, torque_peak
+
+    f = lw.forces(_shears(0.1, 0.020), steps=360)
+    torque = torque_peak(f)
+    assert torque.unbounded[0]
+    phi = (np.degrees(torque.at[0]) - 90.0) % 360
+    assert min(abs(phi - edge) for edge in (82.8, 97.2, 262.8, 277.2)) < 0.3
+    assert pair_force_peaks(f, list(range(f.mechanism.n_pairs))).unbounded.all()
+
+
 def test_balance_says_the_largest_pin_force_is_unbounded():
     """The slider-crank shears' pin forces grow without bound at their change points, with counterweights or without:
     balance prints "unbounded" and its JSON a null with the reason, not inf or the nearest sample's force."""

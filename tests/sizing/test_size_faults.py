@@ -11,7 +11,7 @@ import pytest
 
 import linkwork as lw
 from commandline import linkwork
-from linkwork.errors import SpecError
+from linkwork.errors import LinkworkError, SpecError
 from linkwork.examples import text
 from linkwork.limits import MAX_CATALOGUE_ROWS, MAX_LOADS, MAX_PROBLEMS
 
@@ -255,3 +255,40 @@ def test_a_catalogue_of_motors_that_fail_the_run_is_bounded_and_says_what_it_did
     result = linkwork("size", "double-cut-shears", "--catalogue", str(path))
     _refused(result, "48 larger motors of the catalogue not tried: 12 runs of the machine is the most")
     assert time.perf_counter() - start < 180
+
+
+def _rough_shears(f: float, radius: float) -> str:
+    """The slider-crank shears of seed 000 with friction ``f`` in every pair (pins of ``radius``), as a file."""
+    out = text("shears-slider-crank")
+    for kind in ("type: revolute", "type: prismatic"):
+        pin = f", radius: {radius * 1e3:g} mm" if kind.endswith("revolute") else ""
+        out = out.replace(kind, f"{kind}, friction: {{f: {f}{pin}}}")
+    return out
+
+
+@pytest.mark.filterwarnings("ignore::linkwork.errors.FrictionWarning")
+def test_a_machine_that_friction_locks_is_not_sized_and_the_locked_angles_are_named(tmp_path):
+    """f = 0.1 with pins of 20 mm: within about the friction angle (atan 0.1 = 5.7 deg, more with the pins' friction
+    circles) of the dead points phi = 90 and 270 deg, where the rod lies across the knife's guide, no drive moves the
+    shears; sizing refuses them, naming those angles (the friction is taken as zero at the dead points themselves),
+    on the command line too: exit 2, one message, nothing written.  With f = 0.01 and pins of 10 mm nothing locks,
+    and the parts are sized."""
+    path = tmp_path / "rough.yaml"
+    path.write_text(_rough_shears(0.1, 0.020), encoding="utf-8")
+    assert path.read_text().count("friction:") >= 4
+    with pytest.raises(LinkworkError, match="friction locks the machine at phi = ") as caught:
+        lw.size(str(path), motor=False, steps=360)
+    spans = caught.value.args[0].split("phi = ")[1].split(" deg")[0].split(", ")
+    bounds = [tuple(float(x) for x in span.split(" to ")) for span in spans]
+    assert bounds[0][0] > 80 and bounds[-1][-1] < 280  # none far from the dead points
+    for dead in (90.0, 270.0):
+        near = [b for b in bounds if abs(b[0] - dead) < 10]
+        assert [b[0] for b in near] == [pytest.approx(dead - 7, abs=1.5), dead + 1]
+        assert [b[-1] for b in near] == [dead - 1, pytest.approx(dead + 7, abs=1.5)]
+    result = linkwork("size", str(path), "--write", str(tmp_path / "out.yaml"))
+    _refused(result, "friction locks the machine at phi = 83 to 89")
+    assert not (tmp_path / "out.yaml").exists() and result.stderr.count("\n") == 1
+    smooth = tmp_path / "smooth.yaml"
+    smooth.write_text(_rough_shears(0.01, 0.010), encoding="utf-8")
+    sized = lw.size(str(smooth), motor=False, steps=90)
+    assert sized.pins and sized.bearings

@@ -42,11 +42,14 @@ if TYPE_CHECKING:
 
 
 #: Why the values of ``linkwork forces --json`` may be null.
+#: Why the forces have no value at a sample: as the kinematics, and where friction locks the mechanism.
+NOT_MOVING = f"{NOT_ASSEMBLED}, or friction locks it there (efficiency.friction.problems)"
+
 FORCES_NULLS = {
     "joints": "the reactions of a group are indeterminate at its dead or change points (singular), and have "
-    "no value where the mechanism does not assemble",
-    "driving_torque": NOT_ASSEMBLED,
-    "foundation": NOT_ASSEMBLED,
+    "no value where the mechanism does not assemble or friction locks it",
+    "driving_torque": NOT_MOVING,
+    "foundation": NOT_MOVING,
     "shaking": NOT_ASSEMBLED,
     "loads": NOT_ASSEMBLED,
     "bolts.speed_for_pull_rad_s": "the machine's inertia never pulls the bolts that hard, at any crank speed",
@@ -193,8 +196,13 @@ def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: l
     if not ok.any():
         return
     unit = "N m" if revolute else "N"
+    from linkwork.kinetostatics.peaks import UNBOUNDED
+
     t, at = _torque_peak(f)
-    out.print(f"  driving torque: peak {t:.6g} {unit} at {where(at)}")
+    if math.isinf(t):
+        out.print(f"  driving torque: {UNBOUNDED}, at {where(at)}", soft_wrap=True)
+    else:
+        out.print(f"  driving torque: peak {t:.6g} {unit} at {where(at)}")
     table, note = _pair_table(f, labels)
     show(out, table)
     if note is not None:

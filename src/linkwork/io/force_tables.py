@@ -28,20 +28,24 @@ _BOLT_ANGLES = tuple(f"{name}_angle_deg" for name in ("shear", "pull", "push", "
 def _torque_peak(f: Forces) -> dict[str, Any] | None:
     """The peak driving torque (largest size, with its sign) refined between the samples
     (:func:`linkwork.kinetostatics.torque_peak`) and where it is: ``at_phi_deg`` and ``at_to_x_deg`` with one
-    crank (:func:`crank_keys`), else ``at``, the drive's coordinate in SI; None with several drives or no finite
-    sample."""
-    from linkwork.kinetostatics.peaks import torque_peak
+    crank (:func:`crank_keys`), else ``at``, the drive's coordinate in SI; where it grows without bound
+    (:data:`~linkwork.kinetostatics.peaks.UNBOUNDED`), ``value`` null, ``unbounded`` true and the ``reason``, as the
+    pairs' peaks (:func:`_largest`); None with several drives or no finite sample."""
+    from linkwork.kinetostatics.peaks import UNBOUNDED, torque_peak
     from linkwork.motion.analysis import CrankAngles
 
     if f.mechanism.n_drives != 1:
         return None
     peak = torque_peak(f)
     value, at = float(peak.value[0]), float(peak.at[0])
-    if not math.isfinite(value):
+    if math.isnan(value) or math.isnan(at):
         return None
+    record: dict[str, Any] = {"value": _clean(value), "unbounded": math.isinf(value)}
+    if math.isinf(value):
+        record["reason"] = UNBOUNDED
     if CrankAngles.of(f.mechanism) is None:  # a linear drive, or a crank that is not driven by the frame
-        return {"value": value, "at": at}
-    return crank_keys({"value": value, "at_deg": math.degrees(at)}, ("at_deg",), f.mechanism)
+        return record | {"at": at}
+    return crank_keys(record | {"at_deg": math.degrees(at)}, ("at_deg",), f.mechanism)
 
 
 def _largest(f: Forces, pairs: list[int]) -> list[dict[str, Any]]:

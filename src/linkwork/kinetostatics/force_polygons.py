@@ -240,7 +240,8 @@ def point_names(mech: Mechanism) -> list[str]:
 
 def load_names(mech: Mechanism) -> tuple[list[str], list[str]]:
     """The file's name of each elementary force and moment of :func:`~linkwork.kinetostatics.external.evaluate`,
-    in its order (a process load and a friction give two of each)."""
+    in its order (a process load and a friction give two of each), then of the friction in proportion to the pairs'
+    forces (``friction JOINT``, two of each: :func:`~linkwork.kinetostatics.friction.with_friction`)."""
     forces: list[str] = []
     moments: list[str] = []
     for load in mech.loads:
@@ -256,6 +257,12 @@ def load_names(mech: Mechanism) -> tuple[list[str], list[str]]:
             moments += [load.name, load.name]
         else:
             forces += [load.name, load.name]
+    for pair in mech.friction:  # friction in proportion to the pair's force, after the loads as it is solved
+        name = f"friction {pair.joint}"
+        if mech.pair_type[pair.pair] == PairType.REVOLUTE:
+            moments += [name, name]
+        else:
+            forces += [name, name]
     return forces, moments
 
 

@@ -17,10 +17,11 @@ Variants (and the quantities of one mechanism) are refined together, each at its
 around it, a group solved by Newton's method started from the nearer sample's pose; between two samples in
 different modes, on either side of the change point located between them, in that side's mode), and a variant
 whose re-solve does not meet its own best sample keeps the peak of its samples.  A quantity that grows without
-bound towards a singular position (the reactions next to a change point) has no peak: it is reported as
-unbounded there (:func:`refine`, :attr:`Peak.unbounded`).  This module solves nothing itself: the forces
-it refines are solved again by :meth:`linkwork.kinetostatics.Forces.at`, so that :class:`Forces` refines
-its own extremes (:meth:`~linkwork.kinetostatics.Forces.bolts`).
+bound towards a singular position (the reactions next to a change point), or towards a position where friction
+locks the mechanism, has no peak: it is reported as unbounded there (:func:`refine`, :attr:`Peak.unbounded`).
+This module solves nothing itself: the forces it refines are solved again by
+:meth:`linkwork.kinetostatics.Forces.at`, so that :class:`Forces` refines its own extremes
+(:meth:`~linkwork.kinetostatics.Forces.bolts`).
 """
 
 from __future__ import annotations
@@ -49,7 +50,10 @@ GROWTH = 10.0**0.25
 #: The normalised Jacobian determinant of some group at or below which a position is singular, for that rule.
 NEAR_SINGULAR = 1e-6
 #: Why a peak is unbounded, as the command line, the JSON and the report say it.
-UNBOUNDED = "unbounded: it grows without bound as the crank nears a singular position (a dead or change point)"
+UNBOUNDED = (
+    "unbounded: it grows without bound as the crank nears a singular position (a dead or change point) or one where "
+    "friction locks the mechanism"
+)
 
 
 @dataclass(frozen=True)
@@ -82,6 +86,7 @@ def refine(
     kind: str = "abs",
     points: int = POINTS[1],
     singular: Callable[[np.ndarray], np.ndarray] | None = None,
+    locked: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> Peak:
     """The peak of a quantity sampled ``(V, A)`` at the drive angles ``angles`` ``(A,)``, refined.
 
@@ -106,7 +111,11 @@ def refine(
         chunks give the numbers of the whole batch, bit for bit).
     singular : callable, optional
         ``singular(at) -> (V, K)`` bool: where the mechanism is at a singular position; without it no peak is
-        unbounded.
+        unbounded there.
+    locked : callable, optional
+        ``locked(at) -> (V, K)`` bool: where friction locks the mechanism.  A refined peak within
+        ``PROBES[-1]`` of a locked position is unbounded too: the forces grow without bound towards a lock, and the
+        value at its edge is only where :data:`linkwork.kinetostatics.friction.LOCKING` draws the line.
     """
     sign = {"abs": 1.0, "max": 1.0, "min": -1.0}[kind]
 
@@ -148,9 +157,13 @@ def refine(
         done |= ~trusted | (best - np.minimum(ga, gb) <= TOLERANCE * np.abs(best)) | (np.abs(b - a) <= 1e-15)
         if done.all():
             break
+    endless = np.zeros(len(at), dtype=bool)
     if singular is not None:
-        value = np.where(_unbounded(at, best, trusted & ~none, objective, quantity, singular), sign * np.inf, value)
-        value = np.where(np.isinf(value) & (kind == "abs"), np.copysign(np.inf, samples[rows, i]), value)
+        endless |= _unbounded(at, best, trusted & ~none, objective, quantity, singular)
+    if locked is not None:
+        endless |= ~none & np.asarray(locked(at[:, None] + [-PROBES[-1], PROBES[-1]])).any(axis=1)
+    value = np.where(endless, sign * np.inf, value)
+    value = np.where(np.isinf(value) & (kind == "abs"), np.copysign(np.inf, samples[rows, i]), value)
     return Peak(np.where(none, np.nan, value), np.where(none, np.nan, at))
 
 
@@ -225,9 +238,14 @@ def peaks(
         with np.errstate(invalid="ignore"):
             return np.any([np.abs(d) <= NEAR_SINGULAR for d in kin.step_det], axis=0)
 
+    def locked(at: np.ndarray) -> np.ndarray:
+        g = f.at(at, variants)
+        return np.zeros(at.shape, dtype=bool) if g is None or g.friction is None else g.friction.locked
+
     points = POINTS[1] if f.kinematics.variants else POINTS[0]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return refine(values[which, variants], f.angles, quantity, kind, points, singular)
+        rough = f.friction is not None
+        return refine(values[which, variants], f.angles, quantity, kind, points, singular, locked if rough else None)
 
 
 def peak_of(f: Forces, pick: Callable[[Forces], np.ndarray], kind: str = "abs") -> Peak:

@@ -119,11 +119,12 @@ def _torque_text(run: ReportRun, cycle: ReportCycle, f: Forces) -> list[str]:
         return []
     peak = torque_peak(f)  # refined between the samples, as every route gives it
     top, at = float(peak.value[0]), float(peak.at[0])
-    factor, unit = (1e-3, "unit.kNm") if abs(top) >= 1e4 else (1.0, "unit.Nm")
+    big = float(np.nanmax(np.abs(torque))) if math.isinf(top) else abs(top)
+    factor, unit = (1e-3, "unit.kNm") if big >= 1e4 else (1.0, "unit.Nm")
     return [
         paragraph(
             run.t(
-                "forces.torque",
+                "forces.torque.unbounded" if math.isinf(top) else "forces.torque",
                 peak=f"{top * factor:.4g}",
                 mean=f"{np.nanmean(torque) * factor:.4g}",
                 unit=run.t(unit),

@@ -12,7 +12,7 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -30,6 +30,9 @@ from linkwork.sizing.proportions import Proportions, proportions
 from linkwork.sizing.shaft import Shaft, main_shaft, split
 from linkwork.spec.schema import SizingSpec
 from linkwork.structure.model import Mechanism
+
+if TYPE_CHECKING:
+    from linkwork.kinetostatics.reaction_forces import Forces
 
 #: The default life of rolling bearings, h (:class:`~linkwork.spec.schema.SizingSpec`'s ``life``).
 LIFE_H = SizingSpec.model_fields["life"].default / 3600.0
@@ -326,7 +329,7 @@ def _sized_masses(
         return None
 
     def bars_of(m: Mechanism) -> Bars:
-        fm = forces(m, steps=steps)
+        fm = drivable(forces(m, steps=steps))
         return rules.bars(fm, np.asarray(angles.phi(fm.angles), dtype=float))
 
     def blocks_of(m: Mechanism, bars_: Bars) -> dict[str, float]:
@@ -334,6 +337,35 @@ def _sized_masses(
         return block_masses(pairs_of(forces(m, steps=steps)), bars_, rules.pin_of, width, rules.bush.p)
 
     return sized_masses(mech, bars_of, compile_spec, blocks_of=blocks_of)
+
+
+def drivable(f: Forces) -> Forces:
+    """``f``, where the machine can be driven through its whole turn; else raise :class:`LinkworkError` naming the
+    crank angles where friction locks it (:data:`linkwork.kinetostatics.friction.LOCKING`).
+
+    The design rule: a machine is sized only where its drive moves it at every position of the cycle.  Where friction
+    locks it, no motor turns it through the cycle, and next to the lock the pairs' forces grow without bound (to
+    :data:`~linkwork.kinetostatics.friction.LOCKING` times those without friction, where the rule calls it locked):
+    every bearing, pin, bar and bolt sized for them would be sized for nothing."""
+    from linkwork.kinetostatics.friction import LOCKING
+    from linkwork.motion.events import runs
+
+    fr = f.friction
+    if fr is None or not fr.locked.any():
+        return f
+    variant = int(np.flatnonzero(fr.locked.any(-1))[0])
+    shown = next(p.angles for p in fr.problems if p.kind == "locks" and p.variant == variant)
+    spans, k = [], 0
+    for i, j in runs(fr.locked[variant]):
+        first, last = shown[k], shown[k + j - i]
+        spans.append(f"{first:g}" if i == j else f"{first:g} to {last:g}")
+        k += j - i + 1
+    raise LinkworkError(  # sizing has one crank: the angles are phi, deg
+        f"friction locks the machine at phi = {', '.join(spans)} deg (self-locking: the pairs' forces would be "
+        f"{LOCKING:g} times those without friction or more, and no drive moves it there): no motor drives it "
+        "through the turn, so nothing is sized; lower the friction coefficients, or change the proportions so "
+        "that the pressure angles stay below the friction angles"
+    )
 
 
 @dataclass
@@ -358,7 +390,7 @@ def _parts(mech: Mechanism, rules: _Rules, steps: int) -> _Parts:
     inp = rules.inputs
     angles = CrankAngles.of(mech)
     assert angles is not None  # checked before the masses were sized
-    f = forces(mech, steps=steps)
+    f = drivable(forces(mech, steps=steps))
     phi = np.asarray(angles.phi(f.angles), dtype=float)
     pairs = pairs_of(f)
     pin_sizes = rules.pins
