@@ -196,6 +196,7 @@ def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: l
     if not ok.any():
         return
     unit = "N m" if revolute else "N"
+    from linkwork.kinetostatics.crosschecks import cross_checks
     from linkwork.kinetostatics.peaks import UNBOUNDED
 
     t, at = _torque_peak(f)
@@ -215,7 +216,7 @@ def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: l
         )
     _report_foundation(f, out)
     _report_efficiency(f, out)
-    checks = ", ".join(f"{k.replace('_', ' ')} {v:.1e}" for k, v in f.checks.items() if math.isfinite(v))
+    checks = ", ".join(f"{k.replace('_', ' ')} {v:.1e}" for k, v in cross_checks(f).items() if math.isfinite(v))
     out.print(f"  checks (relative discrepancy): {checks}", soft_wrap=True)
     out.print(f"  {escape(convention)}", soft_wrap=True)
 

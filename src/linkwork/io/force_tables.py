@@ -89,6 +89,8 @@ def _clean(value: float) -> float | None:
 
 def to_json(f: Any) -> dict[str, Any]:
     """The ``linkwork forces --json`` object (one mechanism)."""
+    from linkwork.kinetostatics.crosschecks import cross_checks
+
     _single(f)
     mech = f.mechanism
     joints = {}
@@ -129,7 +131,7 @@ def to_json(f: Any) -> dict[str, Any]:
         "loads": {name: _arr(v[0]) for name, v in f.loads.external.magnitude.items()},
         "bolts": {k: _clean(v) for k, v in crank_keys(f.bolts().as_dict(), _BOLT_ANGLES, mech).items()},
         "groups": groups(f),
-        "checks": {k: _clean(v) for k, v in f.checks.items()},
+        "checks": {k: _clean(v) for k, v in cross_checks(f).items()},
         "valid": [bool(x) for x in np.asarray(f.kinematics.valid).ravel()],
         **({"efficiency": efficiency_record(f)} if has_losses(f) else {}),
     }
@@ -197,20 +199,18 @@ def _balance(e: Any) -> float:
 def groups(f: Any) -> list[dict[str, Any]]:
     """Each Assur group's free body: its joints, and the largest residual of its balance relative to
     the largest force on it (zero for a correct solution)."""
+    from linkwork.kinetostatics.crosschecks import free_body_residual
+
     mech = f.mechanism
     out = []
     for body in f.free_bodies():
-        scale = max([float(np.nanmax(np.abs(c.force), initial=0.0)) for c in body.external] + [1e-300])
-        arm = 1.0 + max(float(np.nanmax(np.abs(c.point), initial=0.0)) for c in body.external)
-        force = float(np.nanmax(np.abs(body.residual[..., :2]), initial=0.0)) / scale
-        moment = float(np.nanmax(np.abs(body.residual[..., 2]), initial=0.0)) / (scale * arm)
         out.append(
             {
                 "group": body.label,
                 "links": [mech.link_names[i] for i in body.links],
                 "external": sorted({c.joint + (" (drive)" if c.drive else "") for c in body.external}),
                 "internal": sorted({c.joint for c in body.internal}),
-                "residual": max(force, moment),
+                "residual": free_body_residual(body),
             }
         )
     return out

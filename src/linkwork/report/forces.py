@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from linkwork import figures
-from linkwork.io.force_tables import groups, has_losses, to_json, write_csv
+from linkwork.io.force_tables import has_losses, to_json, write_csv
 from linkwork.io.jsonout import dumps
 from linkwork.kinetostatics.peaks import pair_force_peaks, torque_peak
 from linkwork.kinetostatics.tables import pair_labels
@@ -190,8 +190,11 @@ def _foundation_table(run: ReportRun, cycle: ReportCycle, f: Forces, unit: tuple
 
 def _checks_table(run: ReportRun, f: Forces) -> list[str]:
 
-    checks: list[list[Any]] = [[run.t(f"check.{k}"), f"{v:.2g}"] for k, v in f.checks.items()]
+    from linkwork.kinetostatics.crosschecks import cross_checks, free_body_residuals
+
+    checks: list[list[Any]] = [[run.t(f"check.{k}"), f"{v:.2g}"] for k, v in cross_checks(f).items()]
     checks += [
-        [run.t("check.free_body", group=group_label(g["group"], run.lang)), f"{g['residual']:.2g}"] for g in groups(f)
+        [run.t("check.free_body", group=group_label(label, run.lang)), f"{residual:.2g}"]
+        for label, residual in free_body_residuals(f).items()
     ]
     return [paragraph(run.t("checks.title")), table([run.t("checks.head.check"), run.t("checks.head.value")], checks)]

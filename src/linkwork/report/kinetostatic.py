@@ -347,18 +347,20 @@ def _group(run: Any, g: GroupPlan, i: int) -> list[str]:
 def _lever_table(run: Any, at12: Forces, balancing: np.ndarray, extra: Where | None = None) -> list[str]:
     """The lever's balancing moment beside the kinetostatic driving torque at the twelve positions, and at
     ``extra`` (a position between them: the force analysis's) in a row of its own, marked ``*``."""
+    from linkwork.kinetostatics.crosschecks import lever_gaps
     from linkwork.kinetostatics.zhukovsky import lever
 
     torque = np.asarray(at12.driving_torque)
     big = float(np.nanmax(np.abs(torque), initial=0.0))
-    cases = [(str(k), 30.0 * k, float(balancing[k]), float(torque[k])) for k in range(len(torque))]
+    gaps = lever_gaps(at12, big)
+    cases = [(str(k), 30.0 * k, float(balancing[k]), float(torque[k]), gaps[k]) for k in range(len(torque))]
     if extra is not None:
         moment = float(lever(extra.forces).balancing[0][extra.index])
-        cases.append(("*", extra.phi, moment, float(np.asarray(extra.forces.driving_torque)[extra.index])))
+        torque_there = float(np.asarray(extra.forces.driving_torque)[extra.index])
+        cases.append(("*", extra.phi, moment, torque_there, lever_gaps(extra.forces, big)[extra.index]))
         cases.sort(key=lambda c: c[1])
     rows = []
-    for name, phi, mb, md in cases:
-        diff = abs(mb - md) / big if big > 0 else math.nan
+    for name, phi, mb, md, diff in cases:
         rows.append([name, decimal(f"{phi:g}", run.lang), _n(mb, 7), _n(md, 7), f"{diff:.1e}"])
     head = [
         run.t("head.position"),

@@ -199,8 +199,10 @@ def full_payload(cycle: Cycle, placed: int | None = None, lang: str = "en") -> d
         "texts": page_texts(lang),
         "forces": forces_part(cycle, scene["size"]),
     }
-    if cycle.forces is not None:  # the independent checks of the reactions (power and momentum balances)
-        out["forces"]["checks"] = _finite(cycle.forces.checks)
+    if cycle.forces is not None:  # the independent checks of the reactions (kinetostatics.crosschecks)
+        from linkwork.kinetostatics.crosschecks import cross_checks
+
+        out["forces"]["checks"] = _finite(cross_checks(cycle.forces))
     out.update(_outcome(cycle, lang))
     return out
 

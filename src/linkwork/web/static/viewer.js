@@ -763,7 +763,7 @@
     }
     if (m.forces.available && m.forces.checks) {
       const c = m.forces.checks;
-      html("p", T("view.checks", { power: fmt(c.driving_torque_vs_power_balance, 2), momentum: fmt(c.foundation_force_vs_momentum, 2) }), root);
+      html("p", T("view.checks", { power: fmt(c.driving_torque_vs_power_balance, 2), momentum: fmt(c.foundation_force_vs_momentum, 2), lever: fmt(c.driving_torque_vs_lever, 2) }), root);
     } else if (m.forces.available) {
       html("p", T("view.checks_later"), root);
     } else {
