@@ -38,7 +38,7 @@ def test_reduced_load_loses_the_friction_power_at_the_nominal_speed():
     np.testing.assert_allclose(rise * math.copysign(1.0, omega), red_f.friction, rtol=0, atol=1e-9 * scale)
 
 
-# the steady cycle with friction solves the friction at every point of the integrals: 50 s of processor time on
+# the steady cycle with friction solves the friction at every point of the integrals: 16 s of processor time on
 # the NumPy kernels
 @pytest.mark.slow
 def test_dynamics_with_friction_needs_more_power_from_the_motor():

@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import FrictionWarning
-from linkwork.kinetostatics.external import Applied, pair_friction, relative_motion
+from linkwork.kinetostatics.external import Applied, generalised, pair_friction, relative_motion
 from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.structure.model import Mechanism, PairType
 from linkwork.structure.records import PairFriction
@@ -55,6 +55,9 @@ LOCKING = 1e3
 #: A solve of the linear kinetostatics with given external loads: a tuple whose first item is the
 #: multipliers ``(V, A, m)``.
 Solver = Callable[[Applied], tuple[Any, ...]]
+#: The multipliers that balance sets of loads alone, ``(S, V, A, N, 3)`` -> ``(S, V, A, m)``
+#: (:func:`linkwork.kinetostatics.reactions.balance`): the friction's responses in one solve.
+Responder = Callable[[np.ndarray], np.ndarray]
 
 
 @dataclass(frozen=True)
@@ -101,6 +104,27 @@ def with_friction(kin: Kinematics, base: Applied, sizes: np.ndarray, pairs: tupl
     return out
 
 
+def _gains(
+    kin: Kinematics, base: Applied, lam0: np.ndarray, scale: np.ndarray, solvers: tuple[Solver, Responder | None]
+) -> np.ndarray:
+    """d (pair forces' components) / d mu_j of each pair j with friction, ``(V, A, 2K, K)``: the reactions to pair
+    j's friction of size ``scale[j]`` alone, over that size (the reactions are linear in the loads), all in one solve
+    where ``respond`` is given (the NumPy kernels), else each with ``base`` less the reactions ``lam0`` to ``base``
+    (the compiled kernels: a solve each)."""
+    solve, respond = solvers
+    pairs: tuple[PairFriction, ...] = kin.mechanism.friction
+    rows = _rows(pairs)
+    units = [np.zeros(kin.valid_all.shape + (len(pairs),)) for _ in pairs]
+    for j, unit in enumerate(units):
+        unit[..., j] = scale[j]
+    if respond is None:
+        lams = [solve(with_friction(kin, base, unit, pairs))[0][..., rows] - lam0[..., rows] for unit in units]
+        return np.stack(lams, -1) / scale
+    empty = Applied([], [], {}, {})
+    alone = np.stack([generalised(kin, with_friction(kin, empty, unit, pairs)) for unit in units])
+    return np.moveaxis(respond(alone)[..., rows], 0, -1) / scale
+
+
 def pair_forces(mech: Mechanism, lam: np.ndarray, pairs: tuple[PairFriction, ...]) -> np.ndarray:
     """The force each of ``pairs`` carries, ``(V, A, K)``: ``|R|`` of a revolute pair, ``|N|`` of a prismatic
     one, from the multipliers ``lam`` ``(V, A, m)``."""
@@ -122,7 +146,9 @@ def _rows(pairs: tuple[PairFriction, ...]) -> np.ndarray:
     return np.array([r for p in pairs for r in (2 * p.pair, 2 * p.pair + 1)], dtype=np.intp)
 
 
-def solve_friction(kin: Kinematics, base: Applied, solve: Solver) -> tuple[FrictionSolution, Applied, tuple[Any, ...]]:
+def solve_friction(
+    kin: Kinematics, base: Applied, solve: Solver, respond: Responder | None = None
+) -> tuple[FrictionSolution, Applied, tuple[Any, ...]]:
     """The friction of ``kin.mechanism.friction`` with the reactions.
 
     Parameters
@@ -141,18 +167,12 @@ def solve_friction(kin: Kinematics, base: Applied, solve: Solver) -> tuple[Frict
     mech = kin.mechanism
     pairs: tuple[PairFriction, ...] = mech.friction
     c = np.array([p.coefficient for p in pairs])
-    zero = np.zeros(kin.valid_all.shape + (len(pairs),))
     lam0 = solve(base)[0]
     force0 = pair_forces(mech, lam0, pairs)
     scale = np.maximum(c * np.max(np.where(np.isfinite(force0), force0, 0.0), axis=(0, 1)), 1.0)
-    gain = []  # d (pair forces' components) / d mu_j, by solving with pair j's friction alone
     rows = _rows(pairs)
-    for j in range(len(pairs)):
-        unit = zero.copy()
-        unit[..., j] = scale[j]
-        lam_j = solve(with_friction(kin, base, unit, pairs))[0]
-        gain.append((lam_j[..., rows] - lam0[..., rows]) / scale[j])
-    mu, steps, locked, unconverged = _iterate(_revolute(mech, pairs), lam0[..., rows], np.stack(gain, -1), c)
+    gain = _gains(kin, base, lam0, scale, (solve, respond))
+    mu, steps, locked, unconverged = _iterate(_revolute(mech, pairs), lam0[..., rows], gain, c)
     indeterminate = kin.valid_all & ~np.isfinite(force0).all(-1)
     mu = np.where(indeterminate[..., None], 0.0, mu)
     mu = np.where((locked | unconverged)[..., None], np.nan, mu)

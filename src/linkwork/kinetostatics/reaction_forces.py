@@ -7,7 +7,7 @@ import time
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, partial
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -26,6 +26,7 @@ from linkwork.kinetostatics.geometry import guide_direction
 from linkwork.kinetostatics.peaks import peaks
 from linkwork.kinetostatics.reactions import (
     Loads,
+    balance,
     foundation,
     inertia_and_gravity,
     momentum_check,
@@ -525,7 +526,8 @@ def forces_of(kin: Kinematics) -> Forces:
         lam, found, loads = _solve(kin, external, compiled)
         return _made(Forces(kin, lam, found), external, loads)
     base = evaluate(kin)
-    friction, external, (lam, found, loads) = solve_friction(kin, base, lambda a: _solve(kin, a, compiled))
+    respond = None if compiled else partial(_respond, kin)
+    friction, external, (lam, found, loads) = solve_friction(kin, base, lambda a: _solve(kin, a, compiled), respond)
     for problem in friction.problems:
         warnings.warn(problem, stacklevel=2)
     return _made(Forces(kin, lam, found, friction), external, loads)
@@ -543,6 +545,15 @@ def _solve(kin: Kinematics, external: Applied | None, compiled: bool) -> tuple[n
     found = foundation(kin, frame, loads)
     jit.spent(time.thread_time() - start)  # what the compiled kernel would save (:mod:`linkwork.jit`)
     return lam, found, loads
+
+
+def _respond(kin: Kinematics, totals: np.ndarray) -> np.ndarray:
+    """The multipliers that balance each of the sets of loads ``totals`` ``(S, V, A, N, 3)`` alone, on the NumPy
+    kernels (:func:`~linkwork.kinetostatics.reactions.balance`): ``(S, V, A, m)``."""
+    start = time.thread_time()
+    lam = balance(kin, totals)[0]
+    jit.spent(time.thread_time() - start)
+    return lam
 
 
 def _made(out: Forces, external: Applied | None, loads: Loads | None) -> Forces:

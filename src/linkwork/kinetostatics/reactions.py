@@ -103,23 +103,32 @@ def solve_reactions(kin: Kinematics, loads: Loads) -> tuple[np.ndarray, np.ndarr
 
     Where a group's system is singular (a dead point) its reactions are NaN.
     """
+    lam, frame = balance(kin, loads.total[None])
+    return lam[0], frame[0]
+
+
+def balance(kin: Kinematics, totals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`solve_reactions` of ``S`` sets of loads at once, ``totals`` ``(S, V, A, N, 3)`` (each link's force and
+    moment about its origin): the multipliers ``(S, V, A, m)`` and the frame's generalised force ``(S, V, A, 3)``.
+    The reactions are linear in the loads: one Jacobian and one factorisation of each group's matrix serve every
+    set (the friction's responses to each pair's friction, :mod:`linkwork.kinetostatics.friction`)."""
     m = kin.mechanism
     _, jac = residuals_and_jacobian(kin.pose, m, geom=variant_geometry(kin))
     owned = group_order(m)
-    rhs_all = -loads.total.reshape(loads.total.shape[:2] + (-1,))  # (V, A, 3N)
-    lam = np.full(jac.shape[:-1], np.nan)
+    rhs_all = -np.moveaxis(totals.reshape(totals.shape[:3] + (-1,)), 0, -1)  # (V, A, 3N, S)
+    lam = np.full(jac.shape[:-1] + (len(totals),), np.nan)
     done: list[int] = []
     for links, sel in reversed(owned):
         cols = np.array([3 * i + k for i in links for k in range(3)])
-        rhs = rhs_all[..., cols]
-        if done:  # the reactions known, as loads: (V, A, 1, r) @ (V, A, r, 3n)
+        rhs = rhs_all[..., cols, :]
+        if done:  # the reactions known, as loads: (V, A, 3n, r) @ (V, A, r, S)
             rows = np.array(done)
-            rhs = rhs - np.matmul(lam[..., None, rows], jac[..., rows[:, None], cols])[..., 0, :]
+            rhs = rhs - np.matmul(np.swapaxes(jac[..., rows[:, None], cols], -1, -2), lam[..., rows, :])
         mat = np.swapaxes(jac[..., np.array(sel)[:, None], cols], -1, -2)  # (V, A, 3n, 3n): a column per row
-        lam[..., sel] = _solve(mat, rhs)
+        lam[..., sel, :] = _solve(mat, rhs)
         done += sel
-    frame = np.matmul(lam[..., None, :], jac[..., :3])[..., 0, :]
-    return lam, frame
+    frame = np.matmul(np.swapaxes(jac[..., :3], -1, -2), lam)  # (V, A, 3, S)
+    return np.moveaxis(lam, -1, 0), np.moveaxis(frame, -1, 0)
 
 
 #: Smallest ratio of a group matrix's least singular value to its largest of a solvable group.
@@ -127,23 +136,24 @@ RATIO = 1e-9
 
 
 def _solve(mat: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """Batched square solves; NaN where a matrix is singular (:func:`solvable`) or not finite."""
-    good = np.isfinite(mat).all(axis=(-1, -2)) & np.isfinite(rhs).all(axis=-1)
+    """Batched square solves of ``mat`` ``(..., n, n)`` for the columns of ``rhs`` ``(..., n, S)``; NaN where a matrix
+    is singular (:func:`solvable`) or not finite."""
+    good = np.isfinite(mat).all(axis=(-1, -2)) & np.isfinite(rhs).all(axis=(-1, -2))
     out = np.full(rhs.shape, np.nan)
     if not good.any():
         return out
     a, b = mat[good], rhs[good]
-    n = a.shape[-1]
+    n, s = a.shape[-1], b.shape[-1]
     try:  # the solution and the inverse from one factorisation
-        both = np.linalg.solve(a, np.concatenate([b[..., None], np.broadcast_to(np.eye(n), a.shape)], axis=-1))
+        both = np.linalg.solve(a, np.concatenate([b, np.broadcast_to(np.eye(n), a.shape)], axis=-1))
     except np.linalg.LinAlgError:  # an exactly singular matrix in the batch
         both = None
-    ok = solvable(a, None if both is None else both[..., 1:])
+    ok = solvable(a, None if both is None else both[..., s:])
     x = np.full(b.shape, np.nan)
     if both is not None:
-        x[ok] = both[ok, :, 0]
+        x[ok] = both[ok, :, :s]
     elif ok.any():
-        x[ok] = np.linalg.solve(a[ok], b[ok][..., None])[..., 0]
+        x[ok] = np.linalg.solve(a[ok], b[ok])
     out[good] = x
     return out
 
