@@ -259,8 +259,11 @@ def test_friction_in_proportion_to_the_pairs_forces_enters_the_plans_and_the_lev
     moving = ~f.singular & np.isfinite(np.asarray(f.driving_torque))
     assert moving.sum() >= 10
     plans = force_plans(f)
-    named = {p.about for g in plans.groups for p in (*g.polygon, *g.couples) if p.symbol in ("F", "M")}
-    assert {"friction O", "friction A", "friction B", "friction guide"} <= named
+    named = {p.about for g in plans.groups for p in (*g.polygon, *g.couples) if p.symbol in ("Ff", "Mf")}
+    assert named == {"friction O", "friction A", "friction B", "friction guide"}
+    rubbed = [p for g in plans.groups for p in (*g.polygon, *g.couples) if p.symbol in ("Ff", "Mf")]
+    assert {p.name() for p in rubbed} == {"Mf1", "Mf2", "Mf3", "Ff3"}  # a pin's couple on each link, the guide's force
+    assert {p.name("ru") for p in rubbed} == {"Mтр1", "Mтр2", "Mтр3", "Fтр3"}
     for g in plans.groups:
         for i in np.flatnonzero(moving):
             vectors = np.array([p.vector[0, i] for p in g.polygon])

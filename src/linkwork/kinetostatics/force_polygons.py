@@ -52,6 +52,8 @@ SYMBOLS = {
     "M": ("M", "M"),
     "MPhi": ("MPhi", "MΦ"),
     "Fb": ("Fb", "Fу"),
+    "Ff": ("Ff", "Fтр"),
+    "Mf": ("Mf", "Mтр"),
 }
 
 #: The kinds of force of a plan, in the order of a legend.
@@ -120,6 +122,8 @@ class PlanForce:
             return f"$M_{{\\Phi {sub}}}{part}$"
         if self.symbol == "Fb":  # the balancing force: F_b, F_у (уравновешивающая)
             return f"$F_{{{'у' if lang == 'ru' else 'b'}}}$"
+        if self.symbol in ("Ff", "Mf"):  # friction solved with the reactions: F_f3, F_тр3 (сила трения)
+            return f"${self.symbol[0]}_{{{'тр' if lang == 'ru' else 'f'}{self.index}}}{part}$"
         return f"${self.symbol}_{{{self.index}}}{part}$"
 
 
@@ -293,11 +297,15 @@ class _Loads:
                 self.couples[i].append(PlanForce("MPhi", str(i), "", "couple", i, zeros, com[..., i, :], moment))
         names_f, names_m = load_names(m)
         applied = f.external
-        for name, (link, pos, _, force) in zip(names_f, applied.forces, strict=True):
-            self.forces[link].append(PlanForce("F", str(link), "", "load", link, force, pos, zero, name))
-        for name, (link, moment) in zip(names_m, applied.moments, strict=True):
+        revolute = sum(m.pair_type[p.pair] == PairType.REVOLUTE for p in m.friction)
+        rubbed = (len(names_f) - 2 * (len(m.friction) - revolute), len(names_m) - 2 * revolute)  # friction from here
+        for k, (name, (link, pos, _, force)) in enumerate(zip(names_f, applied.forces, strict=True)):
+            symbol = "Ff" if k >= rubbed[0] else "F"
+            self.forces[link].append(PlanForce(symbol, str(link), "", "load", link, force, pos, zero, name))
+        for k, (name, (link, moment)) in enumerate(zip(names_m, applied.moments, strict=True)):
+            symbol = "Mf" if k >= rubbed[1] else "M"
             self.couples[link].append(
-                PlanForce("M", str(link), "", "couple", link, np.zeros(shape + (2,)), zero, moment, name)
+                PlanForce(symbol, str(link), "", "couple", link, np.zeros(shape + (2,)), zero, moment, name)
             )
 
 
