@@ -397,3 +397,31 @@ def test_a_run_past_a_change_point_goes_on_in_the_mode_of_the_cycle():
     run = simulate(mech, 0.4, speed=10.0, motor=False, times=np.linspace(0.0, 0.4, 21))
     assert run.angle[-1] > math.pi + 0.5  # through 180 deg
     np.testing.assert_allclose(run.kinematics.position("B")[:, 1], 2 * 0.15 * np.sin(run.angle), atol=1e-9)
+
+
+def test_friction_in_proportion_to_the_pin_force_slows_a_run_as_its_closed_form_says():
+    """A balanced rotor of 10 kg (its centre of mass on its pivot, 0.05 kg m^2) under gravity, its pin of 20 mm
+    with f = 0.15: the pin carries the weight alone, so its friction is the constant moment f r m g = 0.2943 N m.
+    Started at 10 rad/s against a motor of 0.1 N m it slows at (0.1 - 0.2943) / J, stops at 10 J / 0.1943 s having
+    turned 100 J / (2 x 0.1943) rad, and is held (the runs in time took no friction of the pairs before: the rotor
+    ran on at 10 rad/s)."""
+    f, r, m, g, j = 0.15, 0.020, 10.0, 9.81, 0.05
+    data = {
+        "name": "rotor-in-a-rough-pin",
+        "frame": {"points": {"O": [0, 0]}},
+        "links": {"rotor": {"points": {"O": [0, 0], "A": [0.1, 0]}, "mass": m, "com": "O", "inertia": f"{j} kg*m^2"}},
+        "joints": {"O": {"type": "revolute", "links": ["frame", "rotor"], "friction": {"f": f, "radius": f"{r} m"}}},
+        "drives": [{"joint": "O", "angle": "0 deg", "speed": "30 rpm"}],
+        "machine": {"motor": {"type": "constant", "torque": "0.1 N*m"}},
+    }
+    mech = lw.compile(lw.from_dict(data))
+    assert mech.gravity == pytest.approx(g)
+    moment = f * r * m * g
+    slows = (moment - 0.1) / j
+    run = simulate(mech, 3.0, speed=10.0, times=np.linspace(0, 3, 31))
+    assert [e.kind for e in run.events] == ["stop", "held"]
+    assert run.events[0].time == pytest.approx(10.0 / slows, rel=1e-9)
+    assert run.events[0].angle == pytest.approx(100.0 / (2 * slows), rel=1e-9)
+    before = run.time < run.events[0].time
+    np.testing.assert_allclose(run.speed[before], 10.0 - slows * run.time[before], rtol=1e-9, atol=1e-9)
+    assert np.all(run.speed[~before] == 0.0)

@@ -29,6 +29,7 @@ from linkwork.kinetostatics.reactions import (
     balance,
     foundation,
     inertia_and_gravity,
+    jacobian,
     momentum_check,
     power_check,
     solve_reactions,
@@ -526,32 +527,38 @@ def forces_of(kin: Kinematics) -> Forces:
         lam, found, loads = _solve(kin, external, compiled)
         return _made(Forces(kin, lam, found), external, loads)
     base = evaluate(kin)
-    respond = None if compiled else partial(_respond, kin)
-    friction, external, (lam, found, loads) = solve_friction(kin, base, lambda a: _solve(kin, a, compiled), respond)
+    jac = None if compiled else jacobian(kin)  # the NumPy kernels' solves share it
+    respond = None if compiled else partial(_respond, kin, jac)
+    friction, external, (lam, found, loads) = solve_friction(
+        kin, base, partial(_solve, kin, compiled=compiled, jac=jac), respond
+    )
     for problem in friction.problems:
         warnings.warn(problem, stacklevel=2)
     return _made(Forces(kin, lam, found, friction), external, loads)
 
 
-def _solve(kin: Kinematics, external: Applied | None, compiled: bool) -> tuple[np.ndarray, np.ndarray, Loads | None]:
+def _solve(
+    kin: Kinematics, external: Applied | None, compiled: bool, jac: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, Loads | None]:
     """The multipliers, the foundation loads and (solved in NumPy) the loads of every link, with the
-    external loads ``external``: by the compiled kernel where it runs, else by NumPy."""
+    external loads ``external``: by the compiled kernel where it runs, else by NumPy (with the constraints'
+    Jacobian ``jac`` where it is known already)."""
     if compiled:
         lam, found = reactions_numba.run(kin, external)
         return lam, found, None
     start = time.thread_time()
     loads = inertia_and_gravity(kin, external)
-    lam, frame = solve_reactions(kin, loads)
+    lam, frame = solve_reactions(kin, loads, jac)
     found = foundation(kin, frame, loads)
     jit.spent(time.thread_time() - start)  # what the compiled kernel would save (:mod:`linkwork.jit`)
     return lam, found, loads
 
 
-def _respond(kin: Kinematics, totals: np.ndarray) -> np.ndarray:
+def _respond(kin: Kinematics, jac: np.ndarray | None, totals: np.ndarray) -> np.ndarray:
     """The multipliers that balance each of the sets of loads ``totals`` ``(S, V, A, N, 3)`` alone, on the NumPy
     kernels (:func:`~linkwork.kinetostatics.reactions.balance`): ``(S, V, A, m)``."""
     start = time.thread_time()
-    lam = balance(kin, totals)[0]
+    lam = balance(kin, totals, jac)[0]
     jit.spent(time.thread_time() - start)
     return lam
 

@@ -97,23 +97,29 @@ def group_order(mech: Mechanism) -> list[tuple[list[int], list[int]]]:
     return owned
 
 
-def solve_reactions(kin: Kinematics, loads: Loads) -> tuple[np.ndarray, np.ndarray]:
+def solve_reactions(kin: Kinematics, loads: Loads, jac: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Multipliers of every constraint row ``(V, A, m)``, group by group from the last group back,
-    and the generalised force the pairs put on the frame ``(V, A, 3)`` (force, moment about the origin).
+    and the generalised force the pairs put on the frame ``(V, A, 3)`` (force, moment about the origin);
+    ``jac`` the constraints' Jacobian at ``kin`` where it is known already (:func:`jacobian`).
 
     Where a group's system is singular (a dead point) its reactions are NaN.
     """
-    lam, frame = balance(kin, loads.total[None])
+    lam, frame = balance(kin, loads.total[None], jac)
     return lam[0], frame[0]
 
 
-def balance(kin: Kinematics, totals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def jacobian(kin: Kinematics) -> np.ndarray:
+    """The constraints' Jacobian at the poses of ``kin``, ``(V, A, m, 3N)``: the reactions' matrix."""
+    return residuals_and_jacobian(kin.pose, kin.mechanism, geom=variant_geometry(kin))[1]
+
+
+def balance(kin: Kinematics, totals: np.ndarray, jac: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """:func:`solve_reactions` of ``S`` sets of loads at once, ``totals`` ``(S, V, A, N, 3)`` (each link's force and
     moment about its origin): the multipliers ``(S, V, A, m)`` and the frame's generalised force ``(S, V, A, 3)``.
     The reactions are linear in the loads: one Jacobian and one factorisation of each group's matrix serve every
     set (the friction's responses to each pair's friction, :mod:`linkwork.kinetostatics.friction`)."""
     m = kin.mechanism
-    _, jac = residuals_and_jacobian(kin.pose, m, geom=variant_geometry(kin))
+    jac = jacobian(kin) if jac is None else jac
     owned = group_order(m)
     rhs_all = -np.moveaxis(totals.reshape(totals.shape[:3] + (-1,)), 0, -1)  # (V, A, 3N, S)
     lam = np.full(jac.shape[:-1] + (len(totals),), np.nan)

@@ -16,7 +16,8 @@ the second (``d2 r / d psi2``):
 The friction in proportion to the pairs' forces depends on the speed (the inertia forces load the pairs):
 its power lost is taken from the kinetostatics at the file's nominal crank speed ``omega_n``
 (:mod:`linkwork.kinetostatics.friction`) and reduced to the crank, a moment always against the turning;
-a constant friction is a load like the others.  The equation of motion of the machine unit is then
+a constant friction is a load like the others (a run in time solves it at each state's true speed instead:
+:func:`pair_friction_moment`).  The equation of motion of the machine unit is then
 ``J(psi) psi'' + J'(psi) psi'^2 / 2 = M(psi) + M_drive``.
 """
 
@@ -369,7 +370,42 @@ def terms_of_both(kin: Kinematics, k: int, extra_inertia: float) -> ReducedTerms
     inertia, slope = inertia_terms(kin, loads, slice(0, k))
     inertia = inertia + extra_inertia
     load = np.sum(loads.applied[0, k:] * kin.vel[0, :k], axis=(-1, -2))
+    if kin.mechanism.friction:
+        load = load - pair_friction_moment(kin, k)
     return ReducedTerms(inertia, slope, load)
+
+
+def pair_friction_moment(kin: Kinematics, k: int) -> np.ndarray:
+    """The friction in proportion to the pairs' forces reduced to the crank at the ``K`` states of the ``2K`` samples
+    of :func:`unit_and_true_speeds`, N m ``(K,)``, against the crank's sense of motion (zero at a speed of exactly
+    zero: at rest it is a reaction, taken by the run's stops at :data:`~linkwork.machine.timerun.CREEP`).
+
+    Each pair's friction (a moment ``f r |R|`` of a revolute pair, a force ``f |N|`` along a guide) is solved with the
+    reactions at the true speed (the inertia forces of that speed loading the pairs, the crank's own acceleration
+    left out of them, as the steady cycle leaves it out at the nominal speed: :func:`friction_moment`), and its power
+    at unit crank speed, ``sum size |relative rate|``, is the moment.
+
+    Raises
+    ------
+    LinkworkError
+        Where friction locks the mechanism at a state: no drive moves it there.
+    """
+    import warnings
+
+    from linkwork.errors import FrictionWarning
+
+    with warnings.catch_warnings():  # the problems are for a cycle's reader; here a lock is an error
+        warnings.simplefilter("ignore", FrictionWarning)
+        fr = forces_of(kin).friction
+    assert fr is not None
+    locked = fr.locked[0, k:] | fr.unconverged[0, k:]
+    if locked.any():
+        where = turn_deg(float(kin.angles[k + int(np.argmax(locked))]))
+        raise LinkworkError(
+            f"friction locks the mechanism with the crank at {where:.6g} deg to x (self-locking: no drive moves it "
+            "there): the run in time cannot go on"
+        )
+    return np.sign(kin.rates[k:, 0]) * np.sum(fr.size[0, k:] * np.abs(fr.relative[0, :k]), axis=-1)
 
 
 def _no_value(kin: Kinematics, phi: np.ndarray, k: int) -> None:
