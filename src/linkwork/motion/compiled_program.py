@@ -232,18 +232,10 @@ def floats(x: np.ndarray) -> np.ndarray:
 def _in_parts(
     kernel: Callable[..., None], args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_ang: int
 ) -> None:
-    """Run the kernel on ``args`` over the samples, split into parts run on the threads of
-    :func:`linkwork.threads.pool` (:func:`linkwork.threads.parts`; the calling thread takes the first)."""
-    n_threads = threads.parts(n_var * n_ang)
+    """Run the kernel on ``args`` over the samples, in parts on the threads of :func:`linkwork.threads.in_parts`,
+    each with scratch blocks of its own."""
 
     def part(lo: int, hi: int) -> None:
         kernel(*args, lo, hi, np.zeros((n_links, STATE)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
 
-    if n_threads == 1 or n_ang < n_threads:
-        part(0, n_ang)
-        return
-    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int)
-    rest = [threads.pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
-    part(bounds[0], bounds[1])
-    for job in rest:
-        job.result()
+    threads.in_parts(part, n_ang, n_var * n_ang)
