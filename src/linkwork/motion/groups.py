@@ -35,18 +35,18 @@ CRANK, SLIDE, DYAD, RPR, RPP = range(5)
 
 #: Makes the step of a group of this kind, or None where the group is not of it: ``(mech, group, driven)``,
 #: ``driven`` the drive of each driven pair.
-Build = Callable[[Mechanism, AssurGroup, dict[int, int]], Step | None]
+BuildStep = Callable[[Mechanism, AssurGroup, dict[int, int]], Step | None]
 #: Places the step's links in the state over every sample (the NumPy kernel): ``(step, state, inputs, branch)``,
 #: ``branch`` the assembly mode of every sample ``(V, A)`` where one is given (None: followed from the assembly
 #: pose).
-Solve = Callable[[Step, State, Inputs, np.ndarray | None], None]
+SolveStep = Callable[[Step, State, Inputs, np.ndarray | None], None]
 #: The assembly mode (+1 or -1) of the step in the single-pose state of the assembly pose: ``(step, state,
 #: point_link)``.
-Mode = Callable[[Step, State, np.ndarray], float]
+ReadMode = Callable[[Step, State, np.ndarray], float]
 #: Writes the step's columns into its row ``(WIDTH,)`` of the program's table: ``(step, point_link, row)``.
-Encode = Callable[[Step, np.ndarray, np.ndarray], None]
+EncodeStep = Callable[[Step, np.ndarray, np.ndarray], None]
 #: Draws the step's vectors of the velocity and acceleration plans: ``(construction, step)``.
-Plan = Callable[[plan_steps.PlanConstruction, Step], None]
+DrawPlan = Callable[[plan_steps.PlanConstruction, Step], None]
 
 
 @dataclass(frozen=True)
@@ -58,26 +58,26 @@ class GroupKind:
     name : str
         :attr:`Step.kind` of its steps (``crank``, ``RRR`` ...).
     build : callable
-        Its step from a group of the structural model, or None (:data:`Build`).
+        Its step from a group of the structural model, or None (:data:`BuildStep`).
     solve : callable
-        Its NumPy kernel (:data:`Solve`).
+        Its NumPy kernel (:data:`SolveStep`).
     mode : callable or None
-        Reads its assembly mode off the assembly pose (:data:`Mode`); None: it has one (+1).
+        Reads its assembly mode off the assembly pose (:data:`ReadMode`); None: it has one (+1).
     code : int or None
         The code of its compiled twin (:data:`CRANK` ...; ``kernels_numba._step`` dispatches on it); None:
         solved by the NumPy kernels only (a program with such a step has no compiled table).
     encode : callable or None
-        Its row of the compiled program's table (:data:`Encode`), with a code.
+        Its row of the compiled program's table (:data:`EncodeStep`), with a code.
     twin : str
         The name of its scalar kernel in :mod:`linkwork.motion.kernels_numba` (compiled inline), with a code.
     plan : callable or None
-        Its construction of the velocity and acceleration plans (:data:`Plan`); None: its points appear by their
+        Its construction of the velocity and acceleration plans (:data:`DrawPlan`); None: its points appear by their
         absolute vectors only.
     driving : bool
         A driving link: always assembled, never singular, its motion the drive's.
     changes_mode : bool
         Its two assembly modes meet at change points, where the motion goes on in the other: its mode is followed
-        sample by sample (and can be given so, the ``branch`` of :data:`Solve`).
+        sample by sample (and can be given so, the ``branch`` of :data:`SolveStep`).
     transmission : bool
         A dyad in closed form whose normalised determinant gives a transmission angle
         (:func:`linkwork.motion.analysis.transmission`).
@@ -87,13 +87,13 @@ class GroupKind:
     """
 
     name: str
-    build: Build
-    solve: Solve
-    mode: Mode | None = None
+    build: BuildStep
+    solve: SolveStep
+    mode: ReadMode | None = None
     code: int | None = None
-    encode: Encode | None = None
+    encode: EncodeStep | None = None
     twin: str = ""
-    plan: Plan | None = None
+    plan: DrawPlan | None = None
     driving: bool = False
     changes_mode: bool = False
     transmission: bool = False
