@@ -195,9 +195,8 @@ KINDS: dict[str, GroupKind] = {
     )
 }
 
-#: The kinds solved in closed form by both twins (each with a code), and every kind.
+#: The kinds solved in closed form by both twins (each with a code).
 CLOSED_FORM = tuple(name for name, kind in KINDS.items() if kind.code is not None)
-NAMES = tuple(KINDS)
 #: The kinds of driving link, those whose mode is followed through change points, and those with a transmission
 #: angle.
 DRIVING = tuple(name for name, kind in KINDS.items() if kind.driving)
