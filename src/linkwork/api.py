@@ -36,11 +36,9 @@ from linkwork.kinetostatics.reaction_forces import forces as _forces
 from linkwork.machine.reduction import reduced as _reduced
 from linkwork.machine.steady_cycle import dynamics as _dynamics
 from linkwork.machine.timerun import simulate as _simulate
-from linkwork.motion import kernels_numba
-from linkwork.motion.kernels import with_branches
+from linkwork.motion import compiled_program, groups
 from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.motion.kinematic_analysis import kinematics as _kinematics
-from linkwork.motion.program import build
 from linkwork.sizing.machine_sizing import size as _size
 from linkwork.spec.schema import Spec
 from linkwork.stage_records import compile_friction, compile_loads, from_spec
@@ -105,9 +103,9 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
     first); a compiled Mechanism is returned as it is.  The stages, each giving data of the model
     (the records of :mod:`linkwork.structure.records`): the structural model
     (:func:`linkwork.structure.compile.structural_model`: arrays, Assur groups, assembly pose,
-    redundant constraints), the solve program of its groups (:func:`linkwork.motion.program.build`, the
-    branches read off the assembly pose by :func:`linkwork.motion.kernels.with_branches`, and its table
-    for the compiled kernels where they cover it: :func:`linkwork.motion.kernels_numba.encode`), the
+    redundant constraints), the solve program of its groups (:func:`linkwork.motion.groups.build`, the
+    branches read off the assembly pose by :func:`linkwork.motion.groups.with_branches`, and its table
+    for the compiled kernels where they cover it: :func:`linkwork.motion.compiled_program.encode`), the
     external loads (:func:`linkwork.stage_records.compile_loads`), the friction in the pairs
     (:func:`linkwork.stage_records.compile_friction`) and the machine unit's motor and gear
     (:func:`linkwork.stage_records.from_spec`).
@@ -146,11 +144,11 @@ def compile(spec: MechanismLike) -> Mechanism:  # noqa: A001 - the public name o
         assert described is not None
         spec = described
     mech = structural_model(spec)
-    program = tuple(with_branches(mech, build(mech)))
+    program = tuple(groups.with_branches(mech, groups.build(mech)))
     return dataclasses.replace(
         mech,
         program=program,
-        program_table=kernels_numba.encode(program, mech.point_link) if kernels_numba.supports(program) else None,
+        program_table=compiled_program.encode(program, mech.point_link) if compiled_program.supports(program) else None,
         loads=compile_loads(spec, mech),
         friction=compile_friction(spec, mech),
         motor_gear=from_spec(spec.machine) if spec.machine is not None else None,

@@ -9,7 +9,10 @@ thread alone.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
 
 #: Threads a long batch is split over (a process of a cluster of one-thread workers sets 1: :func:`set_threads`).
 THREADS = min(os.cpu_count() or 1, 8)
@@ -29,6 +32,22 @@ def parts(samples: int) -> int:
     """How many threads a batch of ``samples`` samples runs on: one per :data:`PER_THREAD` samples, at most
     :data:`THREADS`, at least one."""
     return min(THREADS, max(1, samples // PER_THREAD))
+
+
+def in_parts(part: Callable[[int, int], None], count: int, samples: int) -> None:
+    """Run ``part(lo, hi)`` over the slices ``lo:hi`` of ``range(count)`` (the angles of a batch of ``samples``
+    samples, variants times angles): :func:`parts` slices of about equal length, the calling thread taking the
+    first and the threads of :func:`pool` the others; one call ``part(0, count)`` where there is one part or
+    fewer angles than parts.  Returns when every part has run (raising what a part raised)."""
+    n_threads = parts(samples)
+    if n_threads == 1 or count < n_threads:
+        part(0, count)
+        return
+    bounds = np.linspace(0, count, n_threads + 1).astype(int).tolist()
+    rest = [pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
+    part(bounds[0], bounds[1])
+    for job in rest:
+        job.result()
 
 
 def set_threads(threads: int) -> None:

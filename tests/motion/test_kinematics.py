@@ -335,7 +335,7 @@ def test_isosceles_slider_crank_goes_through_its_change_points_smoothly():
 
 def test_jumps_of_a_newton_group_are_found():
     """A link moving on a circle, smooth except for one sample where it jumps across."""
-    from linkwork.motion.solve import _jumps
+    from linkwork.motion.newton import _jumps
     from linkwork.motion.state import State
 
     phi = np.linspace(0, 2, 41)

@@ -11,7 +11,7 @@ import pytest
 import linkwork as lw
 from linkwork.kinetostatics import reactions_numba
 from linkwork.kinetostatics.reactions import foundation, inertia_and_gravity, solve_reactions
-from linkwork.motion import kernels, kernels_numba, program, solve
+from linkwork.motion import groups, kernels, kernels_numba, newton, solve
 from linkwork.spec.builder import MechanismBuilder
 from linkwork.structure.model import PairType
 from linkwork.structure.parameters import apply
@@ -55,30 +55,48 @@ def _random_case(mech, seed):
     return values, rng.uniform(-3.0, 3.0, values.shape), rng.uniform(-20.0, 20.0, values.shape)
 
 
-def test_every_closed_form_kind_has_a_compiled_twin_and_a_mechanism_that_uses_it(by_kind):
-    assert set(kernels_numba.CODES) == set(program.CLOSED_FORM)
-    assert set(by_kind) == set(program.KINDS)
+def test_every_kind_has_a_mechanism_that_uses_it(by_kind):
+    assert set(by_kind) == set(groups.KINDS)
 
 
-@pytest.mark.parametrize("kind", program.CLOSED_FORM)
+@pytest.mark.parametrize("kind", groups.CLOSED_FORM)
+def test_every_closed_form_kind_has_a_compiled_twin_inlined_into_the_dispatch(kind):
+    """Its scalar kernel is a function of the numba module compiled inline, and the dispatch on codes calls it."""
+    import inspect
+
+    record = groups.KINDS[kind]
+    twin = getattr(kernels_numba, record.twin)
+    assert callable(twin) and record.twin in kernels_numba._INLINE
+    step = inspect.getsource(getattr(kernels_numba._step, "py_func", kernels_numba._step))
+    assert f"{record.twin}(" in step
+
+
+def test_the_driving_links_take_the_lowest_codes():
+    """``kernels_numba`` tells a driving link from a group by ``code < DYAD`` (its slack and determinant are 1)."""
+    codes = {name: kind.code for name, kind in groups.KINDS.items() if kind.code is not None}
+    driving = [codes[name] for name in groups.DRIVING]
+    assert max(driving) < groups.DYAD == min(c for name, c in codes.items() if name not in groups.DRIVING)
+
+
+@pytest.mark.parametrize("kind", groups.CLOSED_FORM)
 def test_every_closed_form_kind_has_a_numpy_kernel(kind, by_kind, monkeypatch):
     """The NumPy path solves each closed-form kind by its own kernel: Newton's method is never asked to."""
 
-    def no_newton(mech, step, *args, **kw):
-        raise AssertionError(f"the {step.kind} step went to Newton's method")
+    def no_newton(*args, **kw):
+        raise AssertionError(f"the {kind} step went to Newton's method")
 
     mech = by_kind[kind]
     if any(step.kind == "newton" for step in mech.program):
         pytest.skip("the mechanism has a Newton group too")
-    monkeypatch.setattr(solve, "newton", no_newton)
-    monkeypatch.setattr(solve, "newton_from", no_newton)
+    monkeypatch.setattr(newton, "newton", no_newton)
+    monkeypatch.setattr(newton, "newton_from", no_newton)
     values, rates, accels = _random_case(mech, 1)
     state = solve.run_numpy(mech, mech.program, apply(mech)[0], values, rates, accels)
     assert state.valid.all()
 
 
 @numba
-@pytest.mark.parametrize("kind", program.CLOSED_FORM)
+@pytest.mark.parametrize("kind", groups.CLOSED_FORM)
 def test_the_twins_of_each_kind_agree_on_a_random_case(kind, by_kind):
     mech = by_kind[kind]
     geom = apply(mech)[0]

@@ -22,7 +22,6 @@ from linkwork.did_you_mean import suggest
 from linkwork.errors import DesignError
 from linkwork.kinetostatics.peaks import foundation_peak, torque_peak
 from linkwork.motion.analysis import (
-    DYADS,
     Output,
     Range,
     find_output,
@@ -32,6 +31,7 @@ from linkwork.motion.analysis import (
     slopes,
     transmission,
 )
+from linkwork.motion.groups import KINDS, TRANSMISSION
 from linkwork.structure.model import Mechanism, one_crank
 from linkwork.structure.records import ExternalLoad
 
@@ -148,9 +148,9 @@ def _min_transmission(ev: Evaluation, arg: str | None) -> np.ndarray:
 
 
 def _applies_transmission(mech: Mechanism, arg: str | None) -> str | None:
-    if any(step.kind in DYADS for step in mech.program):
+    if any(KINDS[step.kind].transmission for step in mech.program):
         return None
-    return "the mechanism has no dyad solved in closed form (RRR, RRP, PRP, RPR)"
+    return f"the mechanism has no dyad solved in closed form ({', '.join(TRANSMISSION)})"
 
 
 # ---------------------------------------------------------------- forces

@@ -160,8 +160,6 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
     lam = np.empty((n_var, n_ang, m))
     frame = np.empty((n_var, n_ang, 3))
     size = 3 * encoded.width
-    n_threads = threads.parts(n_var * n_ang)
-    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int) if n_ang >= n_threads else np.array([0, n_ang])
 
     gx, gy = (float(x) for x in mech.gravity_vector)
 
@@ -199,10 +197,7 @@ def run(kin: Kinematics, applied: Applied | None) -> tuple[np.ndarray, np.ndarra
             np.zeros((m, 8)),
         )
 
-    if len(bounds) == 2:
-        part(0, n_ang)
-    else:
-        list(threads.pool().map(part, bounds[:-1], bounds[1:]))
+    threads.in_parts(part, n_ang, n_var * n_ang)
     return lam, frame
 
 

@@ -492,11 +492,11 @@ def _change_points(cycle: Kinematics, steps: np.ndarray, dense: Any) -> list[Run
     :data:`~linkwork.motion.kernels.CLOSE` of zero."""
     from scipy.optimize import minimize_scalar
 
-    from linkwork.motion.analysis import DYADS
+    from linkwork.motion.groups import KINDS
     from linkwork.motion.kernels import CLOSE
 
     mech = cycle.mechanism
-    dyads = [i for i, step in enumerate(mech.program) if step.kind in DYADS]
+    dyads = [i for i, step in enumerate(mech.program) if KINDS[step.kind].transmission]
     if not dyads or len(steps) < 2:
         return []
 

@@ -27,6 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from linkwork.angles import TWO_PI, unwrap, wrap
+from linkwork.motion.groups import KINDS
 from linkwork.motion.kinematic_analysis import Kinematics, cycle, kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.units import turn_deg
@@ -499,12 +500,9 @@ def position_angles(mech: Mechanism, count: int = 12, zero: float | None = None)
 # ---------------------------------------------------------------- transmission angles, instant centres
 
 
-#: The groups solved in closed form whose transmission angle :func:`transmission` gives.
-DYADS = ("RRR", "RRP", "PRP", "RPR")
-
-
 def transmission(kin: Kinematics) -> dict[str, np.ndarray]:
-    """Transmission angle of every closed-form dyad (RRR, RRP, PRP, RPR), rad in [0, pi/2]: ``(V, A)`` each.
+    """Transmission angle of every closed-form dyad (the kinds with ``transmission`` in
+    :data:`linkwork.motion.groups.KINDS`: RRR, RRP, PRP, RPR), rad in [0, pi/2]: ``(V, A)`` each.
 
     The angle between the directions in which the two links of the dyad would move the joint X where
     they meet (for an RRR dyad, the angle between coupler and rocker; for an RRP dyad, between the rod
@@ -513,7 +511,7 @@ def transmission(kin: Kinematics) -> dict[str, np.ndarray]:
     """
     out = {}
     for step, det in zip(kin.mechanism.program, kin.step_det, strict=True):
-        if step.kind in DYADS:
+        if KINDS[step.kind].transmission:
             out[step.label] = np.arcsin(np.clip(np.abs(det), 0.0, 1.0))
     return out
 

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from linkwork.motion.groups import KINDS
 from linkwork.motion.solve import SINGULAR, run_each
 from linkwork.structure.parameters import Geometry, Masses
 
@@ -41,7 +42,7 @@ def modes_at(
     for k, (step, branch, det) in enumerate(
         zip(mech.program, kin.step_branch or none, kin.step_det or none, strict=True)
     ):
-        if branch is None or step.kind not in ("RRR", "RRP", "PRP"):
+        if branch is None or not KINDS[step.kind].changes_mode:
             modes.append(None)
             continue
         own = branch[rows]

@@ -3,8 +3,8 @@
 :func:`encode` writes the closed-form steps of a program as an integer table (one row a step: its kind,
 then columns by kind and the arms, :data:`KIND` ...); :func:`run_program` runs a compiled kernel of
 :mod:`linkwork.motion.kernels_numba` over every sample of a batch, in parts on the threads of
-:func:`linkwork.threads.pool`, and gives what it found (:class:`Solved`).  The scalar kernels themselves,
-in machine code, are :mod:`linkwork.motion.kernels_numba`'s, which reads the columns and flags from here.
+:func:`linkwork.threads.in_parts`, and gives what it found (:class:`Solved`).  The scalar kernels themselves,
+in machine code, are :mod:`linkwork.motion.kernels_numba`'s, which reads the flags from here.
 """
 
 from __future__ import annotations
@@ -15,32 +15,11 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from linkwork import jit, threads
+from linkwork.motion import groups
+from linkwork.motion.program_table import ARM, ARMS, KIND
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import Geometry
-from linkwork.structure.records import Arm, Step
-
-#: Step kinds of the compiled program (column :data:`KIND` of its table).
-CRANK, SLIDE, DYAD, RPR, RPP = range(5)
-#: The code of each closed-form step kind (:data:`linkwork.motion.program.CLOSED_FORM`).
-CODES = {"crank": CRANK, "slide": SLIDE, "RRR": DYAD, "RRP": DYAD, "PRP": DYAD, "RPR": RPR, "RPP": RPP}
-
-# Columns of a step's row of the compiled program (:func:`encode`): its kind, then by kind
-KIND = 0
-#: crank: the driven link, the placed link it turns on (the base), the base's point at the pivot, the
-#: driven link's point there, the sign of the drive angle (:attr:`Step.sign`), the drive
-CRANK_LINK, CRANK_BASE, CRANK_SRC, CRANK_OWN, CRANK_SIGN, CRANK_DRIVE = range(1, 7)
-#: slide: the slider, the link that carries the guide, the prismatic pair, the slider's point, the drive
-SLIDE_LINK, SLIDE_GUIDE, SLIDE_PAIR, SLIDE_POINT, SLIDE_DRIVE = range(1, 6)
-#: dyad: the point of X on each arm's link (-1: the link's origin); RPR: the inner prismatic pair
-DYAD_XA, DYAD_XB = 1, 2
-RPR_INNER = 1
-#: the first column of the arms, :data:`ARM` columns each (:class:`~linkwork.motion.program.Arm`)
-ARMS = 3
-#: Columns of an arm, from its first: R (0) or P (1), its link, its outer pair, R: its own point at the
-#: outer joint, the placed link's point there and that link; P: the link whose angle it keeps, whether
-#: it is the pair's slider, the slider's point of the pair
-ARM_KIND, ARM_LINK, ARM_PAIR, ARM_OWN, ARM_SRC, ARM_SRC_LINK, ARM_CARRIER, ARM_IS_SLIDER, ARM_SLIDER_POINT = range(9)
-ARM = 9
+from linkwork.structure.records import Step
 
 #: Columns of a link's state in the scratch block of a sample (:data:`linkwork.motion.kernels_numba.S_X` ...)
 STATE = 11
@@ -98,70 +77,27 @@ F_SINGULAR, F_NEAR, F_LIMIT, F_INVALID, F_TROUBLE = range(5)
 
 
 def supports(program: tuple[Step, ...]) -> bool:
-    """Whether every step has a compiled kernel."""
-    return all(step.kind in CODES for step in program)
-
-
-def _arm(arm: Arm, point_link: np.ndarray) -> list[int]:
-    """An arm's columns (:data:`ARM_KIND` ...)."""
-    src_link = int(point_link[arm.src]) if arm.src >= 0 else -1
-    return [
-        0 if arm.kind == "R" else 1,
-        arm.link,
-        arm.pair,
-        arm.own,
-        arm.src,
-        src_link,
-        arm.carrier,
-        int(arm.own_is_slider),
-        arm.slider_point,
-    ]
+    """Whether every step has a compiled kernel (a code in :mod:`linkwork.motion.groups`)."""
+    return all(groups.KINDS[step.kind].code is not None for step in program)
 
 
 class Program(NamedTuple):
-    """The solve program for the compiled kernels: one row of ``ops`` a step (columns :data:`KIND`,
-    :data:`CRANK_LINK` ..., the arms from :data:`ARMS`), and the assembly mode of each step."""
+    """The solve program for the compiled kernels: one row of ``ops`` a step (the columns of
+    :mod:`linkwork.motion.program_table`), and the assembly mode of each step."""
 
     ops: np.ndarray  # (S, 3 + 3 ARM) int
     branch: np.ndarray  # (S,)
 
 
 def encode(program: tuple[Step, ...], point_link: np.ndarray) -> Program:
-    """The program as an integer table (one row a step) and the branch of each step."""
+    """The program as an integer table (one row a step: the code of its kind, :data:`KIND`, then the
+    columns its kind's ``encode`` writes, :mod:`linkwork.motion.groups`) and the branch of each step."""
     ops = np.full((len(program), ARMS + 3 * ARM), -1, dtype=np.int64)
     for s, step in enumerate(program):
-        kind = CODES[step.kind]
-        ops[s, KIND] = kind
-        if kind == CRANK:
-            arm = step.arms[0]
-            crank = {
-                CRANK_LINK: arm.link,
-                CRANK_BASE: int(point_link[arm.src]),
-                CRANK_SRC: arm.src,
-                CRANK_OWN: arm.own,
-                CRANK_SIGN: int(step.sign),
-                CRANK_DRIVE: step.drive,
-            }
-            for col, value in crank.items():
-                ops[s, col] = value
-        elif kind == SLIDE:
-            arm = step.arms[0]
-            slide = {
-                SLIDE_LINK: arm.link,
-                SLIDE_GUIDE: arm.carrier,
-                SLIDE_PAIR: arm.pair,
-                SLIDE_POINT: arm.slider_point,
-                SLIDE_DRIVE: step.drive,
-            }
-            for col, value in slide.items():
-                ops[s, col] = value
-        else:
-            if kind == DYAD:
-                ops[s, DYAD_XA], ops[s, DYAD_XB] = step.x_local
-            elif kind == RPR:
-                ops[s, RPR_INNER] = step.inner
-            for j, arm in enumerate(step.arms):
-                ops[s, ARMS + j * ARM : ARMS + (j + 1) * ARM] = _arm(arm, point_link)
+        kind = groups.KINDS[step.kind]
+        assert kind.code is not None and kind.encode is not None, step.kind
+        ops[s, KIND] = kind.code
+        kind.encode(step, point_link, ops[s])
     return Program(ops, np.array([step.branch for step in program], dtype=float))
 
 
@@ -232,18 +168,10 @@ def floats(x: np.ndarray) -> np.ndarray:
 def _in_parts(
     kernel: Callable[..., None], args: tuple[Any, ...], n_links: int, n_steps: int, n_var: int, n_ang: int
 ) -> None:
-    """Run the kernel on ``args`` over the samples, split into parts run on the threads of
-    :func:`linkwork.threads.pool` (:func:`linkwork.threads.parts`; the calling thread takes the first)."""
-    n_threads = threads.parts(n_var * n_ang)
+    """Run the kernel on ``args`` over the samples, in parts on the threads of :func:`linkwork.threads.in_parts`,
+    each with scratch blocks of its own."""
 
     def part(lo: int, hi: int) -> None:
         kernel(*args, lo, hi, np.zeros((n_links, STATE)), np.zeros((n_steps, 2, 3)), np.zeros((n_steps, 5)))
 
-    if n_threads == 1 or n_ang < n_threads:
-        part(0, n_ang)
-        return
-    bounds = np.linspace(0, n_ang, n_threads + 1).astype(int)
-    rest = [threads.pool().submit(part, lo, hi) for lo, hi in zip(bounds[1:-1], bounds[2:], strict=True)]
-    part(bounds[0], bounds[1])
-    for job in rest:
-        job.result()
+    threads.in_parts(part, n_ang, n_var * n_ang)

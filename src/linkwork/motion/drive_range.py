@@ -24,6 +24,7 @@ import numpy as np
 
 from linkwork.angles import TWO_PI, wrap
 from linkwork.motion.events import Event, find, runs
+from linkwork.motion.groups import KINDS
 from linkwork.motion.solve import run_numpy
 from linkwork.structure.model import Mechanism, PairType
 from linkwork.structure.parameters import apply
@@ -217,7 +218,7 @@ def singular_start(mech: Mechanism, angles: np.ndarray, dets: np.ndarray) -> str
     transmission angle, and the nearest of ``angles`` ``(A,)`` (the first the assembly angle) where every dyad is
     ten times clear of it: an assembly angle to give instead.  ``dets``: :func:`_solve`'s ``(S, A)``.
     """
-    dyads = [k for k, step in enumerate(mech.program) if step.kind in ("RRR", "RRP", "PRP")]
+    dyads = [k for k, step in enumerate(mech.program) if KINDS[step.kind].changes_mode]
     on = [k for k in dyads if dets[k, 0] < CLEAR]
     if not on:
         return None

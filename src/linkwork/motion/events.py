@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from linkwork.motion.groups import KINDS
 from linkwork.motion.state import Flip, Jump, State, StepRecord
 from linkwork.structure.records import Step
 from linkwork.units import turn_deg
@@ -101,7 +102,7 @@ def find(
     scale = _Scale(revolute)
     before = np.ones(valid.shape, dtype=bool)
     for k, (step, record) in enumerate(zip(steps, records, strict=True)):
-        if step.kind in ("crank", "slide"):
+        if KINDS[step.kind].driving:
             continue  # a driving link always assembles and is never singular
         if trouble is not None and not trouble[k, :n_var].any() and not (record.jumps or record.flips):
             continue  # the compiled kernel saw it assemble everywhere, away from singular positions

@@ -16,7 +16,6 @@ two are kept alike).
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Any
 
 import numpy as np
@@ -36,11 +35,9 @@ from linkwork.motion.state import (
     perp,
     rot,
     scale,
-    single_state,
     solve2,
     sub,
 )
-from linkwork.structure.model import Mechanism
 from linkwork.structure.records import Arm, Step
 
 #: The quantities of a point :func:`point_motion_into` gives (:func:`linkwork.motion.points.point_motion`).
@@ -256,36 +253,36 @@ def _record(
     )
 
 
-def with_branches(mech: Mechanism, steps: list[Step]) -> list[Step]:
-    """Read the branch of every closed-form step off the assembly pose."""
-    state = single_state(mech)
-    out = []
-    for step in steps:
-        if step.kind in ("RRR", "RRP", "PRP", "RPP"):
-            arms = step.arms if step.kind != "RPP" else step.arms[1:]
-            xa = _x_local(state, step.x_local[0])
-            xb = _x_local(state, step.x_local[1])
-            la = Locus(state, arms[0], xa, mech.point_link)
-            lb = Locus(state, arms[1], xb, mech.point_link)
-            x = state.point_at(arms[0].link, xa)[0]
-            if la.arm.kind == "R" and lb.arm.kind == "R":
-                branch = cross(sub(lb.p, la.p), sub(x, la.p))
-            elif la.arm.kind == "R" or lb.arm.kind == "R":
-                circle = la if la.arm.kind == "R" else lb
-                other = lb if circle is la else la
-                branch = dot(sub(x, circle.p), other.u)
-            else:
-                branch = np.ones(1)
-            step = dataclasses.replace(step, branch=float(np.sign(np.ravel(branch)[0])) or 1.0)
-        elif step.kind == "RPR":
-            arm_g, arm_s = step.arms
-            pg = state.point(int(mech.point_link[arm_g.src]), arm_g.src)[0]
-            ps = state.point(int(mech.point_link[arm_s.src]), arm_s.src)[0]
-            d = sub(ps, pg)
-            n_loc = perp((state.axis[step.inner, 0], state.axis[step.inner, 1]))
-            theta = state.q[arm_g.link, 2]
-            rel = theta - np.arctan2(d[1], d[0]) + np.arctan2(n_loc[1], n_loc[0])
-            rel = wrap(rel)
-            step = dataclasses.replace(step, branch=float(np.sign(np.ravel(rel)[0])) or 1.0)
-        out.append(step)
-    return out
+def dyad_mode(step: Step, state: State, point_link: np.ndarray) -> float:
+    """The assembly mode (+1 or -1) of a dyad closed at X (RRR, RRP, PRP; RPP through its second stage) in the
+    single-pose ``state`` of the assembly pose: on which side of the line between two circles' centres X lies,
+    or along which direction of the line from the circle's centre."""
+    arms = step.arms if step.kind != "RPP" else step.arms[1:]
+    xa = _x_local(state, step.x_local[0])
+    xb = _x_local(state, step.x_local[1])
+    la = Locus(state, arms[0], xa, point_link)
+    lb = Locus(state, arms[1], xb, point_link)
+    x = state.point_at(arms[0].link, xa)[0]
+    if la.arm.kind == "R" and lb.arm.kind == "R":
+        branch = cross(sub(lb.p, la.p), sub(x, la.p))
+    elif la.arm.kind == "R" or lb.arm.kind == "R":
+        circle = la if la.arm.kind == "R" else lb
+        other = lb if circle is la else la
+        branch = dot(sub(x, circle.p), other.u)
+    else:
+        branch = np.ones(1)
+    return float(np.sign(np.ravel(branch)[0])) or 1.0
+
+
+def rpr_mode(step: Step, state: State, point_link: np.ndarray) -> float:
+    """The assembly mode (+1 or -1) of an RPR dyad in the single-pose ``state`` of the assembly pose: the side of
+    the line between its pivots its common angle lies on."""
+    arm_g, arm_s = step.arms
+    pg = state.point(int(point_link[arm_g.src]), arm_g.src)[0]
+    ps = state.point(int(point_link[arm_s.src]), arm_s.src)[0]
+    d = sub(ps, pg)
+    n_loc = perp((state.axis[step.inner, 0], state.axis[step.inner, 1]))
+    theta = state.q[arm_g.link, 2]
+    rel = theta - np.arctan2(d[1], d[0]) + np.arctan2(n_loc[1], n_loc[0])
+    rel = wrap(rel)
+    return float(np.sign(np.ravel(rel)[0])) or 1.0

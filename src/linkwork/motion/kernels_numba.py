@@ -24,7 +24,24 @@ from typing import Any
 import numpy as np
 
 from linkwork import jit
-from linkwork.motion.compiled_program import (  # noqa: F401 - the table's layout, read where it was
+from linkwork.motion import groups
+from linkwork.motion.compiled_program import (  # noqa: F401 - read here by the callers of the compiled kernels
+    F_INVALID,
+    F_LIMIT,
+    F_NEAR,
+    F_SINGULAR,
+    F_TROUBLE,
+    STATE,
+    Program,
+    Solved,
+    encode,
+    floats,
+    run_program,
+    supports,
+)
+from linkwork.motion.groups import CRANK, DYAD, RPR, SLIDE
+from linkwork.motion.kernels import CLOSE, POSITION, ROUNDING, SINGULAR, VELOCITY
+from linkwork.motion.program_table import (
     ARM,
     ARM_CARRIER,
     ARM_IS_SLIDER,
@@ -36,41 +53,22 @@ from linkwork.motion.compiled_program import (  # noqa: F401 - the table's layou
     ARM_SRC,
     ARM_SRC_LINK,
     ARMS,
-    CODES,
-    CRANK,
     CRANK_BASE,
     CRANK_DRIVE,
     CRANK_LINK,
     CRANK_OWN,
     CRANK_SIGN,
     CRANK_SRC,
-    DYAD,
     DYAD_XA,
     DYAD_XB,
-    F_INVALID,
-    F_LIMIT,
-    F_NEAR,
-    F_SINGULAR,
-    F_TROUBLE,
     KIND,
-    RPP,
-    RPR,
     RPR_INNER,
-    SLIDE,
     SLIDE_DRIVE,
     SLIDE_GUIDE,
     SLIDE_LINK,
     SLIDE_PAIR,
     SLIDE_POINT,
-    STATE,
-    Program,
-    Solved,
-    encode,
-    floats,
-    run_program,
-    supports,
 )
-from linkwork.motion.kernels import CLOSE, POSITION, ROUNDING, SINGULAR, VELOCITY
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import Geometry
 
@@ -480,7 +478,11 @@ def _step(L, ops, st, branch, pre, local, origin, axis, values, rates, accels, i
     if kind == RPR:
         slack, det = _rpr(L, ops, st, branch, local, origin, axis)
         return slack, det, 0.0, 0.0, 0.0, 0.0, False
-    # RPP: the pinned link keeps the guide's angle; then the other link as a dyad of two lines
+    return _rpp(L, ops, st, branch, pre, local, origin, axis)  # RPP, the last code
+
+
+def _rpp(L, ops, st, branch, pre, local, origin, axis):
+    """RPP: the pinned link keeps the guide's angle; then the other link as a dyad of two lines."""
     o = ARMS
     g = ops[st, ARMS + 2 * ARM + ARM_CARRIER]
     px, py, vx, vy, ax, ay = _src_point(L, ops, st, o, local)
@@ -677,10 +679,14 @@ def _kernel(
                 flags[F_TROUBLE] = True
 
 
-#: The kernels inlined into the others, and those called from Python.
+#: The kernels inlined into the others (the scalar kernel of each kind of group, :mod:`linkwork.motion.groups`,
+#: among them), and those called from Python.
 _INLINE = tuple(
-    """_point _material _place _place_like _loc _src_point _locus _touching _snap _arm_motion _arm_extra _circles
-    _circle_line _dyad _dyad_motion _rpr _crank _slide _step _near _sample _store _driving_rows _tolerance""".split()
+    dict.fromkeys(
+        """_point _material _place _place_like _loc _src_point _locus _touching _snap _arm_motion _arm_extra _circles
+        _circle_line _dyad_motion _step _near _sample _store _driving_rows _tolerance""".split()
+        + [kind.twin for kind in groups.KINDS.values() if kind.twin]
+    )
 )
 _CALLED = ("_arm_constants", "_kernel", "_scan", "point_motion_into")
 

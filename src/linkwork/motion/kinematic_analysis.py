@@ -17,6 +17,7 @@ from linkwork.errors import LinkworkError, UnassemblableError
 from linkwork.limits import TURN_STEPS
 from linkwork.motion import between, kernels, kernels_numba
 from linkwork.motion.events import Event, find
+from linkwork.motion.groups import KINDS
 from linkwork.motion.points import point_motion
 from linkwork.motion.solve import run, run_numpy
 from linkwork.motion.state import State
@@ -521,7 +522,7 @@ def kinematics_at(
     else:
         _, each, found_modes, _ = found
         modes = [
-            np.full(each.shape, step.branch) if m is None and step.kind in ("RRR", "RRP", "PRP") else m
+            np.full(each.shape, step.branch) if m is None and KINDS[step.kind].changes_mode else m
             for step, m in zip(mech.program, found_modes, strict=True)
         ]
         angles = np.where(np.isnan(each[0])[:, None], np.nan, angles)
@@ -583,7 +584,7 @@ class _DriveFacts(NamedTuple):
 def _drive_facts(mech: Mechanism) -> _DriveFacts:
     """The facts of the mechanism's drives every call uses, found once per mechanism."""
     revolute = bool(mech.pair_type[mech.drive_pair[0]] == PairType.REVOLUTE)
-    dyads = any(step.kind in ("RRR", "RRP", "PRP") for step in mech.program)
+    dyads = any(KINDS[step.kind].changes_mode for step in mech.program)
     speeds = np.array([x if math.isfinite(x) and x != 0 else 1.0 for x in mech.drive_speed.tolist()])
     speeds.flags.writeable = False
     return _DriveFacts(revolute, revolute and mech.n_drives == 1 and dyads, speeds, float(mech.drive_start[0]))

@@ -36,6 +36,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from linkwork.motion import groups
 from linkwork.motion.analysis import guide_lines
 from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.structure.model import Mechanism, PairType, per_mechanism, point_labels
@@ -362,7 +363,7 @@ class _Layout(NamedTuple):
 def _layout(mech: Mechanism) -> _Layout:
     """The graphical construction of ``mech`` (found once per mechanism: its structure alone decides it;
     shared, not to be changed)."""
-    c = _Construction(mech)
+    c = Construction(mech)
     for step in mech.program:
         c.step(step)
     turn = np.array(c.turns, dtype=int).reshape(-1, 3).T
@@ -421,7 +422,7 @@ def _reached(
     return tuple(tuple(np.array(column, dtype=int) for column in zip(*found, strict=True)) for found in rounds)
 
 
-class _Construction:
+class Construction:
     """The graphical construction of a mechanism, step by step in solving order, without its values:
     the turning and sliding points it draws, and the edges of its velocity and acceleration plans (each
     with its number among the vectors of its kind)."""
@@ -444,29 +445,12 @@ class _Construction:
         self.acc: list[tuple[PlanEdge, int]] = []
 
     def step(self, step: Step) -> None:
-        g, arms = step.label, step.arms
-        if step.kind == "crank":
-            arm = arms[0]
-            for p in np.flatnonzero(self.mech.point_link == arm.link):
-                if p != arm.own:
-                    self.turn(g, arm, int(p))
-        elif step.kind in ("RRR", "RRP", "PRP"):
-            xp = step.x_local[0]
-            for arm in arms:
-                if arm.kind == "R":
-                    self.turn(g, arm, xp)
-                else:
-                    primes = "'" * (1 + sum(1 for other in arms[: arms.index(arm)] if other.kind == "P"))
-                    self.sliding(g, xp, arm, self._pivot(arm.carrier, xp), primes)
-        elif step.kind == "RPR":
-            # the slider turns about its pivot; the guide's coincident point turns about the guide's pivot,
-            # and the slider slides along the guide relative to it (with the Coriolis component)
-            arm_g, arm_s = arms
-            sp = arm_s.slider_point
-            self.turn(g, arm_s, sp)
-            self.sliding(g, sp, Arm("P", arm_s.link, step.inner, carrier=arm_g.link), arm_g.src)
+        """Draw a step by its kind's construction (:mod:`linkwork.motion.plan_steps`), where it has one."""
+        plan = groups.KINDS[step.kind].plan
+        if plan is not None:
+            plan(self, step)
 
-    def _pivot(self, link: int, p: int) -> int:
+    def pivot(self, link: int, p: int) -> int:
         """A point of the placed ``link`` that the coincident point of ``p`` on it turns about in the plans: one
         at rest if the link has one (its pivot), else its first other point; -1 for the frame."""
         if link == 0:

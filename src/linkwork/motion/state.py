@@ -17,7 +17,7 @@ from typing import NamedTuple
 import numpy as np
 
 from linkwork.structure.model import Mechanism
-from linkwork.structure.parameters import soa
+from linkwork.structure.parameters import Geometry, soa
 
 Vec = tuple[np.ndarray, np.ndarray]
 
@@ -78,6 +78,30 @@ class Jump(NamedTuple):
 
     variant: int
     sample: int
+
+
+class Inputs(NamedTuple):
+    """What the NumPy kernel of a step reads besides the step and the state (:class:`linkwork.motion.groups.GroupKind`).
+
+    Attributes
+    ----------
+    mech : Mechanism
+    geom : Geometry
+        Dimensions of the design variants.
+    values, rates, accels : ndarray, shape (A, D)
+        Drive coordinates (rad or m) and their first and second time derivatives.
+    own : tuple of ndarray, or None
+        The drive coordinate of every variant at every sample ``(V, A)`` in place of the shared
+        ``values[:, 0]``, and the poses ``(N, 3, V, A)`` Newton's method starts from there (or None);
+        None: the shared ``values``.
+    """
+
+    mech: Mechanism
+    geom: Geometry
+    values: np.ndarray
+    rates: np.ndarray
+    accels: np.ndarray
+    own: tuple[np.ndarray, np.ndarray | None] | None = None
 
 
 @dataclass

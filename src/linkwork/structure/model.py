@@ -335,7 +335,7 @@ class Mechanism:
     joint_names: tuple[str, ...] = field(default=())
     # the records the stages above compile into the model (linkwork.structure.records), by linkwork.compile:
     program: tuple[Step, ...] = ()  # the solve program, in solving order
-    # the program as the compiled kernels read it (linkwork.motion.kernels_numba.encode: ops, branches), if
+    # the program as the compiled kernels read it (linkwork.motion.compiled_program.encode: ops, branches), if
     # every step has a compiled kernel
     program_table: tuple[np.ndarray, np.ndarray] | None = None
     loads: tuple[ExternalLoad, ...] = ()  # the external loads

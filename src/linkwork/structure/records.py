@@ -2,7 +2,7 @@
 
 :func:`linkwork.compile` (:mod:`linkwork.api`) is the one compile: the structural model
 (:func:`linkwork.structure.compile.structural_model`), then the solve program (:class:`Step`, by
-:func:`linkwork.motion.program.build`), the external loads (:class:`ExternalLoad`, by
+:func:`linkwork.motion.groups.build`), the external loads (:class:`ExternalLoad`, by
 :func:`linkwork.stage_records.compile_loads`), the friction in the pairs (:class:`PairFriction`, by
 :func:`linkwork.stage_records.compile_friction`) and the machine unit's motor and gear
 (:class:`MotorGear`, by :func:`linkwork.stage_records.from_spec`).  They are small frozen records of numbers
