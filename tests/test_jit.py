@@ -445,6 +445,47 @@ def test_every_module_of_kernels_is_in_the_key():
     assert users == set(jit.KERNEL_MODULES)
 
 
+def test_every_module_whose_constants_the_kernels_take_in_is_in_the_key(cache):
+    """The kernel modules import their codes, table columns and tolerances from other modules of the package; numba
+    compiles those values in, and its own index does not see them: each such module keys the cache (an edit of one
+    is a new key, and a new folder of numba's: :func:`jit.numba_dir`)."""
+    import ast
+
+    src = Path(jit.__file__).parent
+    taken = set()
+    for name in jit.KERNEL_MODULES:
+        for node in ast.walk(ast.parse((src / name).read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("linkwork."):
+                module = node.module.removeprefix("linkwork.").replace(".", "/")
+                if any(a.name.isupper() for a in node.names) and (src / f"{module}.py").is_file():
+                    taken.add(f"{module}.py")
+    assert taken <= set(jit.CONSTANT_MODULES) | set(jit.KERNEL_MODULES), taken
+    assert "motion/groups.py" in taken
+    before = jit.key()
+    target = src / jit.CONSTANT_MODULES[0]
+    stat = target.stat()
+    try:
+        os.utime(target, ns=(stat.st_atime_ns, stat.st_mtime_ns + 1_000_000))
+        jit.key.cache_clear()
+        assert jit.key() != before and jit.numba_dir() != jit.cache_dir() / f"numba-{before}"
+    finally:
+        os.utime(target, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+        jit.key.cache_clear()
+
+
+def test_marking_the_cache_ready_removes_the_kernels_of_other_keys(cache):
+    """The folder numba compiled other sources into is removed once these are all in; this key's stays."""
+    folder = jit.cache_dir()
+    assert folder is not None
+    (folder / "numba-0123456789abcdef0123").mkdir()
+    (folder / "numba-0123456789abcdef0123" / "kernels_numba._kernel-1.py311.nbi").write_bytes(b"old")
+    mine = jit.numba_dir()
+    assert mine is not None
+    mine.mkdir()
+    jit.mark_ready()
+    assert sorted(p.name for p in folder.glob("numba-*")) == [mine.name] and jit.ready()
+
+
 @pytest.mark.numba
 @pytest.mark.skipif(not jit.installed(), reason="numba is not installed")
 def test_warm_compiles_every_kernel_the_analyses_call():

@@ -66,6 +66,11 @@ from typing import Any, ParamSpec, TypeVar
 #: times are part of the key of the cache, as numba's own index keys each function's).
 KERNEL_MODULES = ("motion/kernels_numba.py", "kinetostatics/reactions_numba.py")
 
+#: The modules whose constants the compiled kernels take in as they are compiled (the group kinds' codes, the
+#: program table's columns, the tolerances): numba's own index does not see them, so they key the cache too, and
+#: each key compiles into a folder of its own (:func:`numba_dir`).
+CONSTANT_MODULES = ("motion/compiled_program.py", "motion/groups.py", "motion/kernels.py", "motion/program_table.py")
+
 #: Samples (variants times angles) of a batch that pays for loading the compiled kernels in front (about
 #: :data:`LOAD_COST`; the NumPy reactions take about 35 us a sample of the double-cut shears, the compiled
 #: ones about 2).
@@ -410,9 +415,16 @@ def _load() -> bool:
     return True
 
 
-def _import_numba() -> None:
-    """Import numba with the cache folder of :func:`cache_dir` (said once where there is none)."""
+def numba_dir() -> Path | None:
+    """The folder numba caches the kernels of :func:`key` in, within :func:`cache_dir` (None where there is none):
+    one a key, so that a kernel compiled with other constants is never read back (:data:`CONSTANT_MODULES`)."""
     folder = cache_dir()
+    return None if folder is None else folder / f"numba-{key()}"
+
+
+def _import_numba() -> None:
+    """Import numba with the cache folder of :func:`numba_dir` (said once where there is none)."""
+    folder = numba_dir()
     if folder is not None:  # read by numba as it is imported (and kept if it reloads its settings)
         os.environ["NUMBA_CACHE_DIR"] = str(folder)
     import numba
@@ -487,15 +499,16 @@ def _unwritable() -> str:
 @functools.cache
 def key() -> str:
     """What the compiled kernels in the cache were compiled from: the versions of Python, numba and
-    linkwork, the machine, and each kernel module's path, size and time (numba's own index checks the
-    last two of each function's source)."""
+    linkwork, the machine, and the path, size and time of each kernel module and of each module whose constants
+    they take in (:data:`CONSTANT_MODULES`; numba's own index checks the last two of each function's source
+    only)."""
     from importlib.metadata import version
 
     import linkwork
 
     here = Path(__file__).resolve().parent
     parts = [sys.version, sys.platform, platform.machine(), version("numba"), linkwork.__version__]
-    for name in KERNEL_MODULES:
+    for name in (*KERNEL_MODULES, *CONSTANT_MODULES):
         path = here / name
         stat = path.stat()
         parts += [str(path), str(stat.st_size), str(stat.st_mtime_ns)]
@@ -515,12 +528,18 @@ def ready() -> bool:
 
 
 def mark_ready() -> None:
-    """Say that every kernel is in the cache now (written whole, then renamed into place)."""
-    path = stamp()
-    if path is not None:
+    """Say that every kernel is in the cache now (written whole, then renamed into place), and remove the kernels
+    of other keys (compiled from other sources: no process of these reads them)."""
+    import shutil
+
+    path, mine = stamp(), numba_dir()
+    if path is not None and mine is not None:
         part = path.with_suffix(".part")
         part.write_text(f"{time.time()}\n", encoding="utf-8")
         part.replace(path)
+        for old in path.parent.glob("numba-*"):
+            if old != mine:
+                shutil.rmtree(old, ignore_errors=True)
 
 
 def _lock() -> Path | None:
