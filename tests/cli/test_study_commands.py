@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 import linkwork as lw
 from linkwork.cli.main import app
 from linkwork.io.jsonout import dumps
-from mechanisms import four_bar_spec
+from mechanisms import meeting_spring_four_bar
 
 runner = CliRunner()
 
@@ -78,17 +78,11 @@ def test_the_size_command_prints_lw_size():
 
 
 def test_the_forces_command_refuses_a_spring_whose_points_meet(tmp_path):
-    """As :func:`linkwork.forces` does: one line naming the load and the crank angle, exit code 2, no traceback,
-    no file written."""
+    """As :func:`linkwork.forces` does (:func:`mechanisms.meeting_spring_four_bar`): one line naming the load and
+    the crank angle, exit code 2, no traceback, no file written."""
     import yaml
 
-    data, _ = four_bar_spec(0.3, 0.35, 0.25, 0.5, 1.0, False)
-    data["loads"] = {"s": {"type": "spring", "between": ["crank.A", "frame.O4"], "stiffness": 10.0, "free_length": 0}}
-    data["frame"]["points"]["O4"] = [0.3, 0.0]
-    data["frame"]["points"]["Q"] = [0.5, 0.0]
-    data["joints"]["O4"]["links"] = ["frame", "rocker"]
-    data["links"]["rocker"]["ends"] = ["Q", "B"]
-    data["joints"]["Q"] = data["joints"].pop("O4")
+    data = meeting_spring_four_bar()
     path = tmp_path / "meet.yaml"
     path.write_text(yaml.safe_dump(data), encoding="utf-8")
     out = tmp_path / "out"
