@@ -82,3 +82,13 @@ def test_the_study_s_cycle_turns_from_the_angle_asked_at_the_speed_asked():
     given = Study(mech, angles=np.radians([10.0, 20.0]))
     assert np.degrees(given.kin.angles) == pytest.approx([10, 20], abs=1e-12)
     assert np.asarray(given.kin.rates) == pytest.approx(2 * np.pi)  # the file's 60 rpm
+
+
+def test_a_study_balances_only_over_equal_steps_of_a_whole_turn():
+    """The least squares of the counterweights (and the first harmonic's orthonormal basis) hold over equal steps
+    of a whole turn: a study of other angles is refused, in one sentence."""
+    mech = lw.compile(lw.example("four-bar"))
+    with pytest.raises(lw.errors.LinkworkError, match="equal steps of a whole turn"):
+        Study(mech, angles=np.radians(np.arange(0.0, 180.0, 10.0))).balance(["crank"])
+    weights = Study(mech, 36).balance(["crank", "rocker"]).counterweights
+    assert [w.link for w in weights] == ["crank", "rocker"]

@@ -173,13 +173,17 @@ def balance_of(
     Raises
     ------
     LinkworkError
-        As :func:`balance`; and for forces of several variants (a sweep's): balance one mechanism.
+        As :func:`balance`; and for forces of several variants (a sweep's), or at other angles than equal steps
+        of a whole turn.
     """
     kin = before.kinematics
     mech = kin.mechanism
     index = counterweight_links(mech, links, harmonic, len(kin.angles))
     if kin.valid_all.shape[0] != 1:
         raise LinkworkError("balancing takes the forces of one mechanism, not of several variants")
+    step = np.abs(np.diff(kin.angles))
+    if not np.allclose(step, 2 * np.pi / len(kin.angles), rtol=0, atol=1e-9):
+        raise LinkworkError("balancing takes the forces over equal steps of a whole turn of the crank")
     if not np.all(kin.valid):
         raise LinkworkError("the mechanism does not assemble over the whole turn: it cannot be balanced over it")
     p = _mass_radius(before, index, harmonic)
