@@ -296,6 +296,20 @@ def four_bar_spec(a, b, c, d, phi, left, transform=(0.0, 0.0, 0.0)):
     return data, move(pb)
 
 
+def meeting_spring_four_bar():
+    """A four-bar (:func:`four_bar_spec`, as plain data) with a spring from the crank's A to the frame's O4 on a
+    crank as long as O2 O4 (the rocker pivots at Q): the spring's points meet with the crank at 0 deg to x, where
+    its line has no direction."""
+    data, _ = four_bar_spec(0.3, 0.35, 0.25, 0.5, 1.0, False)
+    data["loads"] = {"s": {"type": "spring", "between": ["crank.A", "frame.O4"], "stiffness": 10.0, "free_length": 0}}
+    data["frame"]["points"]["O4"] = [0.3, 0.0]
+    data["frame"]["points"]["Q"] = [0.5, 0.0]
+    data["joints"]["O4"]["links"] = ["frame", "rocker"]
+    data["links"]["rocker"]["ends"] = ["Q", "B"]
+    data["joints"]["Q"] = data["joints"].pop("O4")
+    return data
+
+
 four_bars = st.tuples(
     st.floats(0.05, 1.0),
     st.floats(0.05, 1.0),

@@ -69,3 +69,26 @@ def test_the_study_s_reduced_inertia_is_twice_its_kinetic_energy_over_the_crank_
     w = np.asarray(kin.rates)[:, 0]
     j = 2 * kinetic / w**2
     assert j == pytest.approx(np.asarray(red.inertia)[::25], rel=1e-9)
+
+
+def test_the_study_s_cycle_turns_from_the_angle_asked_at_the_speed_asked():
+    """``start``: the steps of a turn from that drive angle in the drive's direction (the commands' ``--steps``,
+    from the assembly pose: 60 deg, counter-clockwise, for the four-bar); ``speed``: the cycle's and the twelve
+    positions' drive speed."""
+    mech = lw.compile(lw.example("four-bar"))
+    study = Study(mech, 8, start=float(mech.drive_start[0]), speed=2.0)
+    assert np.degrees(study.kin.angles) == pytest.approx(60 + 45 * np.arange(8), abs=1e-12)
+    assert np.asarray(study.kin.rates) == pytest.approx(2.0) and np.asarray(study.twelve.rates) == pytest.approx(2.0)
+    given = Study(mech, angles=np.radians([10.0, 20.0]))
+    assert np.degrees(given.kin.angles) == pytest.approx([10, 20], abs=1e-12)
+    assert np.asarray(given.kin.rates) == pytest.approx(2 * np.pi)  # the file's 60 rpm
+
+
+def test_a_study_balances_only_over_equal_steps_of_a_whole_turn():
+    """The least squares of the counterweights (and the first harmonic's orthonormal basis) hold over equal steps
+    of a whole turn: a study of other angles is refused, in one sentence."""
+    mech = lw.compile(lw.example("four-bar"))
+    with pytest.raises(lw.errors.LinkworkError, match="equal steps of a whole turn"):
+        Study(mech, angles=np.radians(np.arange(0.0, 180.0, 10.0))).balance(["crank"])
+    weights = Study(mech, 36).balance(["crank", "rocker"]).counterweights
+    assert [w.link for w in weights] == ["crank", "rocker"]

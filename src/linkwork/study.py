@@ -9,31 +9,84 @@ nothing twice::
     study.forces.driving_torque      # solves the cycle, then its forces, once
     study.forces_twelve              # the twelve positions: solved once more, no more
 
+The commands ask a study for what their options say (the cycle's drive angles, or its steps and the angle they turn
+from, and its speed; :class:`DynamicsOptions`, :class:`SizingOptions`) and print what it reads, so that
+``linkwork kinematics``, ``forces``, ``balance``, ``dynamics`` and ``size`` give the numbers of
+:func:`linkwork.kinematics`, :func:`linkwork.forces`, :func:`linkwork.balance`, :func:`linkwork.dynamics` and
+:func:`linkwork.size` called with the same options, and the report the same where it asks the same.
+
 An analysis that fails raises when read (a :class:`~linkwork.errors.LinkworkError` saying why) and is tried
 again when read again; what succeeded is kept.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 
 from linkwork.errors import LinkworkError
-from linkwork.limits import TURN_STEPS
+from linkwork.limits import DYNAMICS_STEPS, TURN_STEPS
 
 if TYPE_CHECKING:
     from linkwork.impulse.cycle import WorkingCycle
     from linkwork.impulse.mechanism import Impact
+    from linkwork.kinetostatics.balancing import Balance
     from linkwork.kinetostatics.reaction_forces import Forces
     from linkwork.machine.steady_cycle import Dynamics
     from linkwork.machine.timerun import Run
     from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.sizing import Sizing
+    from linkwork.sizing.common import Catalogue
+    from linkwork.spec.schema import SizingSpec
     from linkwork.structure.model import Mechanism
 
-__all__ = ["Study"]
+__all__ = ["DynamicsOptions", "SizingOptions", "Study"]
+
+
+@dataclass(frozen=True)
+class DynamicsOptions:
+    """How a study runs the machine unit to its steady cycle (:func:`linkwork.dynamics`).
+
+    Attributes
+    ----------
+    delta : float, optional
+        The coefficient of speed fluctuation a flywheel is sized for, (max - min) / mean; default the file's
+        (none: no flywheel sized).
+    steps : int
+        Equal steps of one turn of the reduced model (:data:`~linkwork.limits.DYNAMICS_STEPS`, 3600).
+    """
+
+    delta: float | None = None
+    steps: int = DYNAMICS_STEPS
+
+
+@dataclass(frozen=True)
+class SizingOptions:
+    """How a study sizes the machine (:func:`linkwork.size`).
+
+    Attributes
+    ----------
+    inputs : SizingSpec or mapping
+        Fields of the file's ``sizing:`` section given over it (:class:`~linkwork.spec.schema.SizingSpec`, the one
+        home of their defaults; bare numbers in SI); empty: the file's section as it is.
+    motor : bool, optional
+        Choose the motor from the catalogue (False: bearings, pins, links and bolts only); default as the file's
+        ``sizing: motor`` says.
+    catalogue : Catalogue, optional
+        The motor catalogue, read already (:func:`linkwork.sizing.motor.motor_catalogue`); default the bundled one.
+    progress : callable, optional
+        ``progress(k, n)``: told of each motor ``k`` of the ``n`` of the catalogue the choice looks at.
+    """
+
+    inputs: SizingSpec | Mapping[str, Any] = field(default_factory=dict)
+    motor: bool | None = None
+    catalogue: Catalogue | None = None
+    progress: Callable[[int, int], None] | None = None
 
 
 class Study:
@@ -48,12 +101,43 @@ class Study:
     overrides : dict, optional
         A variant: named values (SI, checked by the caller) that differ from the file's; its kinematics are
         solved as one variant of ``mech`` (:func:`linkwork.kinematics` with ``variants``).
+    start : float, optional
+        The drive angle (rad, to the frame's x axis) from which the cycle's ``steps`` turn; default position 0
+        (:attr:`zero`).  The commands' ``--steps`` turn from the assembly pose, as :func:`linkwork.kinematics`'s
+        ``steps`` do (``start=mech.drive_start[0]``).
+    angles : array_like, optional
+        The drive coordinates of the cycle instead of ``steps``, as :func:`linkwork.kinematics` takes them (rad
+        to the frame's x axis, or m of a linear drive), shape ``(A,)`` or ``(A, drives)``: a command's
+        ``--angles``.
+    speed : float, optional
+        The drive's uniform speed (rad/s, or m/s) of the cycle and the twelve positions, in the file's
+        direction; default the file's.
+    dynamics : DynamicsOptions, optional
+        How :attr:`dynamics` runs the machine unit; default the file's flywheel rule at 3600 steps.
+    sizing : SizingOptions, optional
+        How :attr:`sizing` sizes the machine; default the file's ``sizing:`` section.
     """
 
-    def __init__(self, mech: Mechanism, steps: int = TURN_STEPS, overrides: dict[str, float] | None = None):
+    def __init__(
+        self,
+        mech: Mechanism,
+        steps: int = TURN_STEPS,
+        overrides: dict[str, float] | None = None,
+        *,
+        start: float | None = None,
+        angles: npt.ArrayLike | None = None,
+        speed: float | None = None,
+        dynamics: DynamicsOptions | None = None,
+        sizing: SizingOptions | None = None,
+    ):
         self.mech = mech
         self.steps = steps
         self.overrides = dict(overrides or {})
+        self.start = start
+        self.angles = None if angles is None else np.asarray(angles, dtype=float)
+        self.speed = speed
+        self.dynamics_options = dynamics or DynamicsOptions()
+        self.sizing_options = sizing or SizingOptions()
 
     @property
     def variants(self) -> dict[str, list[float]] | None:
@@ -82,19 +166,29 @@ class Study:
 
         return position_angles(self.mech, count, self.zero)
 
+    def cycle_angles(self) -> np.ndarray:
+        """The drive coordinates of the cycle: :attr:`angles` where given, else :attr:`steps` equal steps of a
+        turn from :attr:`start` (default position 0) in the drive's direction."""
+        from linkwork.motion.analysis import position_angles
+
+        if self.angles is not None:
+            return self.angles
+        return position_angles(self.mech, self.steps, self.zero if self.start is None else self.start)
+
     @cached_property
     def kin(self) -> Kinematics:
-        """The cycle: :attr:`steps` equal steps of a turn from position 0."""
+        """The cycle (:meth:`cycle_angles`: :attr:`steps` equal steps of a turn from position 0 unless asked
+        otherwise), at :attr:`speed`."""
         from linkwork.motion.kinematic_analysis import kinematics
 
-        return kinematics(self.mech, self.turn(self.steps), variants=self.variants)
+        return kinematics(self.mech, self.cycle_angles(), variants=self.variants, speed=self.speed)
 
     @cached_property
     def twelve(self) -> Kinematics:
-        """The 12 positions, position 0 first."""
+        """The 12 positions, position 0 first, at :attr:`speed`."""
         from linkwork.motion.kinematic_analysis import kinematics
 
-        return kinematics(self.mech, self.turn(12), variants=self.variants)
+        return kinematics(self.mech, self.turn(12), variants=self.variants, speed=self.speed)
 
     def phi(self, angles: Any) -> np.ndarray:
         """Crank angles turned from position 0, degrees in [0, 360), of drive angles (rad), as the tables and
@@ -107,10 +201,22 @@ class Study:
 
     @cached_property
     def forces(self) -> Forces:
-        """Reactions, driving torque and foundation loads over the cycle (:func:`linkwork.forces`)."""
-        from linkwork.kinetostatics.reaction_forces import forces_of
+        """Reactions, driving torque and foundation loads over the cycle (:func:`linkwork.forces`: of the file's
+        mechanism, a spring or damper whose points meet at an assembled sample is refused, as there)."""
+        from linkwork.kinetostatics.reaction_forces import elements_defined, forces_of
 
-        return forces_of(self.kin)
+        found = forces_of(self.kin)
+        if not self.overrides:
+            elements_defined(found)
+        return found
+
+    def bolt_speed(self, pull: float) -> float:
+        """The uniform crank speed (rad/s) at which the largest pull on the bolts reaches ``pull`` (N); ``inf``
+        where no speed does, 0 where the bolts carry it at rest (:func:`linkwork.bolt_speed`, over a turn of
+        :data:`~linkwork.limits.TURN_STEPS` steps)."""
+        from linkwork.kinetostatics.bolt_lift import bolt_speed
+
+        return bolt_speed(self.mech, pull=pull)
 
     @cached_property
     def forces_twelve(self) -> Forces:
@@ -133,6 +239,22 @@ class Study:
         except LinkworkError as exc:
             return None, str(exc)
 
+    def balance(
+        self,
+        links: list[str] | tuple[str, ...],
+        *,
+        harmonic: int | None = None,
+        radius: dict[str, float] | float | None = None,
+    ) -> Balance:
+        """Counterweights on ``links`` against the shaking force of :attr:`forces` (``harmonic=None``) or its first
+        harmonic (``harmonic=1``), with ``radius`` (m) from their pivots (default each link's farthest point), and
+        the forces after, solved at the cycle's angles (:func:`linkwork.balance`; the cycle must be equal steps of
+        a whole turn).  The arguments are checked before the forces are solved."""
+        from linkwork.kinetostatics.balancing import balance_of, counterweight_links
+
+        counterweight_links(self.mech, links, harmonic, self.steps if self.angles is None else len(self.angles))
+        return balance_of(self.forces, links, harmonic=harmonic, radius=radius)
+
     # ------------------------------------------------------------------ requirements
 
     @cached_property
@@ -154,10 +276,12 @@ class Study:
 
     @cached_property
     def dynamics(self) -> Dynamics:
-        """The machine unit run to its steady cycle with the file's drive (:func:`linkwork.dynamics`)."""
+        """The machine unit run to its steady cycle with the file's drive (:func:`linkwork.dynamics`), as
+        :attr:`dynamics_options` ask."""
         from linkwork.machine import dynamics
 
-        return dynamics(self.mech)
+        asked = self.dynamics_options
+        return dynamics(self.mech, delta=asked.delta, steps=asked.steps)
 
     @cached_property
     def time_run(self) -> Run:
@@ -171,14 +295,25 @@ class Study:
 
     @cached_property
     def sizing(self) -> Sizing:
-        """Motor, gear, flywheel, bearings, pins and bolts sized from the loads (:func:`linkwork.size`); the motor
-        chosen where the file's ``sizing: motor`` asks for it; the links' masses as ``linkwork size`` sizes them by
-        default, from the sized parts, to a fixed point."""
+        """Motor, gear, flywheel, bearings, pins and bolts sized from the loads (:func:`linkwork.size`), as
+        :attr:`sizing_options` ask: by default the motor chosen where the file's ``sizing: motor`` asks for it,
+        and the links' masses as ``linkwork size`` sizes them by default, from the sized parts, to a fixed point."""
         from linkwork.api import compile as compile_spec
         from linkwork.sizing import size
 
-        spec = self.mech.spec.sizing if self.mech.spec is not None else None
-        return size(self.mech, motor=bool(spec is not None and spec.motor), compile_spec=compile_spec)
+        asked = self.sizing_options
+        motor = asked.motor
+        if motor is None:
+            spec = self.mech.spec.sizing if self.mech.spec is not None else None
+            motor = bool(spec is not None and spec.motor)
+        return size(
+            self.mech,
+            sizing=asked.inputs,
+            motor=motor,
+            catalogue=asked.catalogue,
+            progress=asked.progress,
+            compile_spec=compile_spec,
+        )
 
     # ------------------------------------------------------------------ impact
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import linkwork as lw
-from mechanisms import four_bar_spec
+from mechanisms import four_bar_spec, meeting_spring_four_bar
 
 
 def heavy_four_bar(rot: float, gravity: object) -> dict:
@@ -182,13 +182,7 @@ def test_force_elements_are_checked_in_the_file():
 def test_a_spring_whose_points_meet_is_one_clear_error():
     """A spring from the crank's A to the frame's O4 on a crank as long as O2 O4: the points meet with the crank at
     0 deg to x, and the error names the load and that angle."""
-    data, _ = four_bar_spec(0.3, 0.35, 0.25, 0.5, 1.0, False)
-    data["loads"] = {"s": {"type": "spring", "between": ["crank.A", "frame.O4"], "stiffness": 10.0, "free_length": 0}}
-    data["frame"]["points"]["O4"] = [0.3, 0.0]
-    data["frame"]["points"]["Q"] = [0.5, 0.0]
-    data["joints"]["O4"]["links"] = ["frame", "rocker"]
-    data["links"]["rocker"]["ends"] = ["Q", "B"]
-    data["joints"]["Q"] = data["joints"].pop("O4")
+    data = meeting_spring_four_bar()
     with pytest.raises(lw.errors.LinkworkError, match=r'load "s".*meet with the crank at 0 deg'):
         lw.forces(lw.compile(lw.from_dict(data)), [0.5, 0.0, -0.5])
 

@@ -21,7 +21,7 @@ from linkwork.cli.app import (
     out_files,
 )
 from linkwork.errors import LinkworkError
-from linkwork.limits import MAX_ANGLES, delta_problem, whole
+from linkwork.limits import DYNAMICS_STEPS, MAX_ANGLES, delta_problem, whole
 from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
@@ -35,7 +35,7 @@ def dynamics(
     delta: Annotated[
         float | None, typer.Option(help="size a flywheel for this coefficient of speed fluctuation, e.g. 0.05")
     ] = None,
-    steps: Annotated[int, typer.Option(help="crank angles over a turn for the reduced quantities")] = 3600,
+    steps: Annotated[int, typer.Option(help="crank angles over a turn for the reduced quantities")] = DYNAMICS_STEPS,
     out: Annotated[
         str | None,
         typer.Option(help="folder for dynamics.csv and dynamics.json, or a file ending in .csv or .json for it alone"),
@@ -44,13 +44,13 @@ def dynamics(
 ) -> None:
     """Reduced inertia and loads, the run of the machine unit from rest to its steady cycle, the flywheel."""
     from linkwork.io.dynamics_tables import to_json
-    from linkwork.machine import dynamics as run
+    from linkwork.study import DynamicsOptions, Study
 
     check_options(whole(steps, "--steps", 1, MAX_ANGLES), delta_problem(delta, "--delta"))
     files = out_files(out, ("dynamics.csv", "dynamics.json")) if out is not None else []
     mech = compile_or_exit(file_or_example)
     try:
-        result = run(mech, delta=delta, steps=steps)
+        result = Study(mech, dynamics=DynamicsOptions(delta=delta, steps=steps)).dynamics
     except LinkworkError as exc:
         fail(exc)
     data = explain_nulls(to_json(mech, result), {})

@@ -18,7 +18,6 @@ from linkwork.cli.app import (
     app,
     check_options,
     compile_or_exit,
-    drive_speed,
     echo_json,
     explain_nulls,
     fail,
@@ -27,7 +26,7 @@ from linkwork.cli.app import (
     out_files,
     show,
 )
-from linkwork.cli.motion import NOT_ASSEMBLED, _angles, _where, check_angles
+from linkwork.cli.motion import NOT_ASSEMBLED, _where, check_angles, study_of
 from linkwork.limits import MAX_ANGLES, MAX_NAME, TURN_STEPS, quote, whole
 from linkwork.units import parse_quantity
 
@@ -38,7 +37,7 @@ if TYPE_CHECKING:
 
     from linkwork.kinetostatics.balancing import Balance
     from linkwork.kinetostatics.reaction_forces import Forces
-    from linkwork.structure.model import Mechanism
+    from linkwork.study import Study
 
 
 #: Why the values of ``linkwork forces --json`` may be null.
@@ -91,18 +90,16 @@ def forces(
     """Joint reactions, driving torque, foundation and bolt loads over the cycle, with the checks."""
     from linkwork.errors import LinkworkError
     from linkwork.io.force_tables import to_json
-    from linkwork.kinetostatics import forces as solve
     from linkwork.kinetostatics.tables import CONVENTION, pair_labels
 
     check_angles(steps, angles)
     files = out_files(out, ("forces.csv", "forces.json")) if out is not None else []
     mech = compile_or_exit(file_or_example)
-    where = _angles(mech, steps, angles)
-    rate = drive_speed(mech, speed)
+    study = study_of(mech, steps, angles, speed)
     target = _force(pull)
     try:
-        f = solve(mech, **where, speed=rate)
-        lift = _lift(mech, target) if target is not None else None
+        f = study.forces
+        lift = _lift(study, target) if target is not None else None
     except LinkworkError as exc:
         fail(exc)
     data = to_json(f)
@@ -162,15 +159,16 @@ def _force(text: str | None) -> float | None:
     return value
 
 
-def _lift(mech: Mechanism, pull: float) -> float:
-    """The crank speed (rad/s) at which the pull on the bolts reaches ``pull`` (N)."""
+def _lift(study: Study, pull: float) -> float:
+    """The crank speed (rad/s) at which the pull on the bolts reaches ``pull`` (N)
+    (:meth:`~linkwork.study.Study.bolt_speed`)."""
     from linkwork.errors import LinkworkError
-    from linkwork.kinetostatics import bolt_speed
     from linkwork.structure.model import PairType
 
+    mech = study.mech
     if mech.pair_type[mech.drive_pair[0]] != PairType.REVOLUTE:
         raise LinkworkError("--pull needs a crank (a revolute drive) turning uniformly")
-    return bolt_speed(mech, pull=pull)
+    return study.bolt_speed(pull)
 
 
 def _report(f: Forces, labels: list[tuple[str, int]], convention: str, groups: list[dict[str, Any]]) -> None:
@@ -332,7 +330,7 @@ def balance(
 ) -> None:
     """Counterweights that cancel the shaking force (or its first harmonic), with the figures before and after."""
     from linkwork.errors import LinkworkError, UnitParseError
-    from linkwork.kinetostatics import balance as solve
+    from linkwork.study import Study
 
     names = [n.strip() for n in links.split(",") if n.strip()]
     check_options(
@@ -350,8 +348,9 @@ def balance(
             r = parse_quantity(radius, "length")
         except UnitParseError as exc:
             fail(LinkworkError(f"--radius: {exc}"))
+    study = Study(mech, steps, start=float(mech.drive_start[0]))  # the turn from the assembly pose, as lw.balance's
     try:
-        result = solve(mech, names, harmonic=1 if first_harmonic else None, radius=r, steps=steps)
+        result = study.balance(names, harmonic=1 if first_harmonic else None, radius=r)
     except LinkworkError as exc:
         fail(exc)
     if as_json:

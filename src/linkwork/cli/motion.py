@@ -33,6 +33,7 @@ from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
     from linkwork.structure.model import Mechanism
+    from linkwork.study import Study
 
 #: Why a quantity at an angle has no value (``nulls`` of the ``--json`` records).
 NOT_ASSEMBLED = "the mechanism does not assemble at these angles (valid is false there)"
@@ -97,6 +98,20 @@ def _angles(mech: Mechanism, steps: int | None, angles: str | None) -> dict[str,
     return {"steps": steps or TURN_STEPS}
 
 
+def study_of(mech: Mechanism, steps: int | None, angles: str | None, speed: str | None) -> Study:
+    """The study (:class:`~linkwork.study.Study`) of the cycle the options ask for: the ``--angles`` (degrees; a
+    linear drive's positions, mm), or ``--steps`` equal steps of a turn from the assembly pose (as
+    :func:`linkwork.kinematics`'s ``steps``), at ``--speed``; exit code 2 with one line where they are wrong
+    (:func:`_angles`, :func:`~linkwork.cli.app.drive_speed`)."""
+    from linkwork.study import Study
+
+    where = _angles(mech, steps, angles)
+    rate = drive_speed(mech, speed)
+    if "angles" in where:
+        return Study(mech, angles=where["angles"], speed=rate)
+    return Study(mech, where["steps"], start=float(mech.drive_start[0]), speed=rate)
+
+
 def _where(mech: Mechanism, named: bool = True) -> Callable[[float], str]:
     """How the command writes where a value is: φ turned from position 0 with one crank (``phi = 102.0 deg``,
     as the report; ``102.0 deg`` unless ``named``, in a column headed "at phi"), else the first drive's
@@ -127,7 +142,6 @@ def kinematics(
 ) -> None:
     """Positions, velocities and accelerations of every point and link over the cycle."""
     from linkwork.io.motion_tables import to_json, write_csv, write_netcdf
-    from linkwork.motion import kinematics as solve
     from linkwork.motion.analysis import extremes, transmission_angles
 
     check_angles(steps, angles)
@@ -135,8 +149,9 @@ def kinematics(
     if any(p.suffix.lower() == ".nc" for p in files):
         needs("xarray", purpose=f"--out {out}: kinematics.nc (NetCDF)")
     mech = compile_or_exit(file_or_example)
+    study = study_of(mech, steps, angles, speed)
     try:
-        kin = solve(mech, **_angles(mech, steps, angles), speed=drive_speed(mech, speed))
+        kin = study.kin
     except LinkworkError as exc:
         fail(exc)
     ext = extremes(kin) if angles is None else []

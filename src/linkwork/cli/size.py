@@ -132,8 +132,7 @@ def size(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Size the machine from its loads: motor, gear and flywheel, rolling and plain bearings, pins, bolts."""
-    from linkwork.api import compile as compile_spec
-    from linkwork.sizing import size as run
+    from linkwork.study import SizingOptions, Study
 
     given = {"bearings": kind, "delta": delta, "reserve": reserve, "width_ratio": width_ratio, "masses": masses}
     problems = _option_problems(given, write, motor, catalogue=catalogue, synchronous=synchronous)
@@ -143,16 +142,15 @@ def size(
     cat = _before_work(catalogue, sync, write, motor)
     mech = compile_or_exit(file_or_example)
     bar = _progress()
+    given |= {"life": life_s, "synchronous": sync, "steel": steel, "bush": bush, "bolt_class": bolt_class}
+    asked = SizingOptions(
+        inputs={k: v for k, v in given.items() if v is not None},  # over the file's sizing: section
+        motor=motor,
+        catalogue=cat if catalogue is not None else None,  # the bundled one said as such
+        progress=bar,
+    )
     try:
-        given |= {"life": life_s, "synchronous": sync, "steel": steel, "bush": bush, "bolt_class": bolt_class}
-        result = run(
-            mech,
-            sizing={k: v for k, v in given.items() if v is not None},  # over the file's sizing: section
-            motor=motor,
-            catalogue=cat if catalogue is not None else None,  # the bundled one said as such
-            progress=bar,
-            compile_spec=compile_spec,
-        )
+        result = Study(mech, sizing=asked).sizing
         written = _write(mech, result, write) if write is not None else None
     except LinkworkError as exc:
         _cleared(bar)

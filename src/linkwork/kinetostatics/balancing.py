@@ -155,9 +155,36 @@ def balance(
     >>> b.counterweights[0].link, round(b.counterweights[0].radius, 3)
     ('crank', 0.1)
     """
-    index = _links(mech, links, harmonic, steps)
-    before = forces(mech, steps=steps, speed=speed)
-    if not np.all(before.kinematics.valid):
+    counterweight_links(mech, links, harmonic, steps)
+    return balance_of(forces(mech, steps=steps, speed=speed), links, harmonic=harmonic, radius=radius)
+
+
+def balance_of(
+    before: Forces,
+    links: list[str] | tuple[str, ...],
+    *,
+    harmonic: int | None = None,
+    radius: dict[str, float] | float | None = None,
+) -> Balance:
+    """The counterweights of :func:`balance` from the forces ``before`` of a mechanism over equal steps of a
+    whole turn of its crank (:func:`linkwork.forces`, or a study's :attr:`~linkwork.study.Study.forces`),
+    without solving them again; the forces after are solved at the same drive angles and speed.
+
+    Raises
+    ------
+    LinkworkError
+        As :func:`balance`; and for forces of several variants (a sweep's), or at other angles than equal steps
+        of a whole turn.
+    """
+    kin = before.kinematics
+    mech = kin.mechanism
+    index = counterweight_links(mech, links, harmonic, len(kin.angles))
+    if kin.valid_all.shape[0] != 1:
+        raise LinkworkError("balancing takes the forces of one mechanism, not of several variants")
+    step = np.abs(np.diff(kin.angles))
+    if not np.allclose(step, 2 * np.pi / len(kin.angles), rtol=0, atol=1e-9):
+        raise LinkworkError("balancing takes the forces over equal steps of a whole turn of the crank")
+    if not np.all(kin.valid):
         raise LinkworkError("the mechanism does not assemble over the whole turn: it cannot be balanced over it")
     p = _mass_radius(before, index, harmonic)
     mass, com, inertia = (np.array(x, dtype=float) for x in (mech.link_mass, mech.link_com, mech.link_inertia))
@@ -172,12 +199,15 @@ def balance(
             inertia[j] += mass[j] * np.sum((com[j] - new_com) ** 2) + weight.mass * np.sum((at - new_com) ** 2)
             mass[j], com[j] = total, new_com
     balanced = dataclasses.replace(mech, link_mass=frozen(mass), link_com=frozen(com), link_inertia=frozen(inertia))
-    after = forces(balanced, steps=steps, speed=speed)
+    after = forces(balanced, np.array(kin.drive), speed=np.array(kin.rates[0]))
     return Balance(weights, harmonic, balanced, before, after)
 
 
-def _links(mech: Mechanism, links: list[str] | tuple[str, ...], harmonic: int | None, steps: int) -> list[int]:
-    """The indices of the links named for counterweights, the arguments checked.
+def counterweight_links(
+    mech: Mechanism, links: list[str] | tuple[str, ...], harmonic: int | None, steps: int
+) -> list[int]:
+    """The indices of the links named for counterweights, the arguments of :func:`balance` checked (before any
+    solving: ``steps`` is the number of equal steps of the turn it will be balanced over).
 
     Raises
     ------
