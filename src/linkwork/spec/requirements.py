@@ -25,33 +25,11 @@ from typing import Any
 
 from linkwork.errors import UnitParseError
 from linkwork.limits import MAX_MAGNITUDE, echo, quote
+from linkwork.requirements import EXAMPLES, QUANTITIES, RECORDS, carried
 
 #: The requirements each kind carries (those ``linkwork synthesize`` writes for it), besides ``kind`` and
-#: ``criterion``.
-KINDS: dict[str, tuple[str, ...]] = {
-    "slider-crank": (
-        "stroke",
-        "time_ratio",
-        "rod_ratio",
-        "offset",
-        "max_pressure_angle",
-        "force",
-        "working",
-        "min_transmission_angle",
-    ),
-    "crank-rocker": ("swing", "time_ratio", "rocker", "frame", "min_transmission_angle"),
-    "slotted-lever": ("stroke", "time_ratio", "frame", "crank", "rod", "max_pressure_angle", "min_transmission_angle"),
-    "toggle-press": ("stroke", "force", "before", "torque", "swing", "time_ratio", "min_transmission_angle"),
-    "double-cut-shears": (
-        "upper_stroke",
-        "lower_stroke",
-        "time_ratio",
-        "overlap",
-        "opening",
-        "crank",
-        "min_transmission_angle",
-    ),
-}
+#: ``criterion``: the quantities and ratios of the kind's record (:mod:`linkwork.requirements`).
+KINDS: dict[str, tuple[str, ...]] = {kind: carried(kind) for kind in RECORDS}
 
 #: The suffix of a requirement's tolerance (``stroke_tolerance``).
 TOLERANCE = "_tolerance"
@@ -60,16 +38,7 @@ TOLERANCE = "_tolerance"
 CRITERIA = ("pressure", "torque")
 
 #: The kind of quantity of each requirement (:data:`linkwork.units.KINDS`); the others are plain ratios.
-QUANTITY = {
-    **dict.fromkeys(
-        ("stroke", "offset", "rocker", "frame", "crank", "rod", "before", "working", "upper_stroke", "lower_stroke"),
-        "length",
-    ),
-    **dict.fromkeys(("overlap", "opening"), "length"),
-    **dict.fromkeys(("swing", "max_pressure_angle", "min_transmission_angle"), "angle"),
-    "force": "force",
-    "torque": "moment",
-}
+QUANTITY = QUANTITIES
 
 _DEG = math.pi / 180
 
@@ -188,8 +157,7 @@ def requirement_value(name: str, value: Any) -> float | str:
             return f"a ratio is a plain number, got {echo(value)}"
         return float(value)
     if not isinstance(value, str) or _plain(value):
-        example = {"length": "400 mm", "angle": "60 deg", "force": "20 kN", "moment": "500 N*m"}[kind]
-        return f'give the unit, e.g. "{example}", got {echo(value)}'
+        return f'give the unit, e.g. "{EXAMPLES[kind]}", got {echo(value)}'
     try:
         return parse_quantity(value, kind)
     except UnitParseError as exc:

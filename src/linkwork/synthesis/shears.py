@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import SynthesisError
+from linkwork.requirements import ShearsRequirements
 from linkwork.synthesis.common import (
     TOLERANCE,
     VERIFY_STEPS,
@@ -204,22 +205,15 @@ def _last_solved(unknowns: np.ndarray, chain: list[int]) -> np.ndarray:
     return next(unknowns[i] for i in reversed(chain) if not np.isnan(unknowns[i, 0]))
 
 
-def synthesize(
-    upper_stroke: float,
-    lower_stroke: float,
-    time_ratio: float,
-    overlap: float | None = None,
-    opening: float | None = None,
-    crank: float | None = None,
-    criterion: str = "pressure",
-    min_transmission_angle: float | None = None,
-    speed: str | None = None,
-) -> Synthesis:
+def synthesize(asked: ShearsRequirements) -> Synthesis:
     """The bundled double-cut shears with the upper and lower knives' strokes (m), the time ratio K (the knives closing
     over opening), and the overlap when closed or the opening (m); ``crank`` (m) fixes the family's free crank length,
     else the member is picked by ``criterion`` (``"pressure"``: the least largest pressure angle, the greatest least
     transmission angle; ``"torque"``: the least peak driving torque under the file's cutting load).  ``speed`` replaces
-    the file's crank speed.  Verified by the analysis of the written file."""
+    the file's crank speed.  Verified by the analysis of the written file.  ``asked``: the requirements, SI."""
+    upper_stroke, lower_stroke, time_ratio = asked.upper_stroke, asked.lower_stroke, asked.time_ratio
+    overlap, opening, crank, criterion = asked.overlap, asked.opening, asked.crank, asked.criterion
+    min_transmission_angle, speed = asked.min_transmission_angle, asked.speed
     from linkwork.api import mechanism_of
 
     want = _requirements(upper_stroke, lower_stroke, time_ratio, overlap, opening)
