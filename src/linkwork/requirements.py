@@ -26,6 +26,19 @@ UNITS = ("length", "angle", "force", "moment")
 #: An example of each kind of quantity, as a message suggesting its unit writes it.
 EXAMPLES = {"length": "400 mm", "angle": "60 deg", "force": "20 kN", "moment": "500 N*m"}
 
+#: The other kinds of field as the manual's table names them.
+SHOWN = {
+    "ratio": "ratio (a plain number)",
+    "word": "word",
+    "angular_speed": "angular speed, e.g. `60 rpm`",
+    "section": "width and height (m); `40mm x 20mm` on the command line",
+    "density": "density (kg/m^3)",
+    "mass": "mass (kg)",
+}
+
+#: The command's own options of the fields of how the file is made (a speed kept as written, a section of two).
+OWN_OPTIONS = {"angular_speed": "--speed", "section": "--section"}
+
 #: How a field says what it is: a ``word`` (``criterion``) is an option but no quantity; the fields of how the
 #: file makes its mechanism (``angular_speed``, ``section``, ``density``, ``mass``) are no requirement a file
 #: carries, and the command line gives them options of its own (``--speed``, ``--section``) or none.
@@ -52,6 +65,17 @@ class Need:
         """Whether ``linkwork synthesize`` offers it as a generated ``--NAME`` option."""
         return self.carried or self.quantity == "word"
 
+    def flag(self, name: str) -> str:
+        """The option of ``linkwork synthesize`` that gives the field ``name`` (``""``: none)."""
+        return f"--{name.replace('_', '-')}" if self.option else OWN_OPTIONS.get(self.quantity, "")
+
+    @property
+    def shown(self) -> str:
+        """Its kind of quantity as the manual's table says it, with an example of its unit."""
+        if self.quantity in EXAMPLES:
+            return f"{self.quantity}, e.g. `{EXAMPLES[self.quantity]}`"
+        return SHOWN[self.quantity]
+
 
 def need(quantity: str, help: str, default: Any = dataclasses.MISSING, scale: bool = False) -> Any:  # noqa: A002
     """A field of a requirements record: required unless ``default`` is given."""
@@ -62,7 +86,7 @@ _RATIO = "K >= 1: the longer stroke's time over the shorter"
 _RULE = "the least transmission angle of every dyad over the turn (the design rule, 40 deg unless given)"
 _SPEED = "the crank's speed written in the file"
 _SECTION = "the steel bars' section (width, height)"
-_DENSITY = "the bars' density (kg/m^3)"
+_DENSITY = "the bars' density"
 _CRITERION = "how the member is picked from the family: 'pressure' (the default) or 'torque'"
 
 
@@ -71,7 +95,7 @@ class SliderCrankRequirements:
     """An offset slider-crank's requirements (SI): :func:`linkwork.synthesis.slider_crank.synthesize`."""
 
     stroke: float = need("length", "the ram's stroke", scale=True)
-    time_ratio: float = need("ratio", _RATIO)
+    time_ratio: float = need("ratio", "1 <= K < 3: the longer stroke's time over the shorter")
     rod_ratio: float | None = need("ratio", "r/l (or the offset)", None)
     offset: float | None = need("length", "the guide's offset from the crank pivot (or the rod ratio)", None)
     max_pressure_angle: float | None = need("angle", "a bound on the largest pressure angle", None)
@@ -79,7 +103,7 @@ class SliderCrankRequirements:
     speed: str = need("angular_speed", _SPEED, "60 rpm")
     section: tuple[float, float] = need("section", _SECTION, BAR)
     density: float = need("density", _DENSITY, STEEL)
-    ram_mass: float | None = need("mass", "the ram's mass (kg; the rod's unless given)", None)
+    ram_mass: float | None = need("mass", "the ram's mass (the rod's unless given)", None)
     force: float | None = need("force", "the working load, over the last 'working' of the downward stroke", None)
     working: float | None = need(
         "length", "the last part of the stroke the load acts over (the whole unless given)", None
@@ -119,7 +143,7 @@ class SlottedLeverRequirements:
     speed: str = need("angular_speed", _SPEED, "60 rpm")
     section: tuple[float, float] = need("section", _SECTION, BAR)
     density: float = need("density", _DENSITY, STEEL)
-    ram_mass: float | None = need("mass", "the ram's mass (kg; the rod's unless given)", None)
+    ram_mass: float | None = need("mass", "the ram's mass (the rod's unless given)", None)
 
 
 @dataclass(frozen=True)
@@ -224,10 +248,7 @@ def table() -> str:
     for kind in RECORDS:
         fixed = defaults(kind)
         for name, n in needs(kind).items():
-            option = f"`--{name.replace('_', '-')}`" if n.option else ""
-            example = f", e.g. `{EXAMPLES[n.quantity]}`" if n.quantity in EXAMPLES else ""
+            option = f"`{n.flag(name)}`" if n.flag(name) else ""
             default = "required" if name not in fixed else "" if fixed[name] is None else f"`{fixed[name]}`"
-            rows.append(
-                f"| `{kind}` | `{name}` | {option} | {n.quantity.replace('_', ' ')}{example} | {default} | {n.help} |"
-            )
+            rows.append(f"| `{kind}` | `{name}` | {option} | {n.shown} | {default} | {n.help} |")
     return "\n".join(rows) + "\n"
