@@ -54,8 +54,9 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
         ``"slider-crank"``, ``"crank-rocker"``, ``"slotted-lever"``, ``"toggle-press"`` or
         ``"double-cut-shears"``.
     **requirements
-        The kind's requirements named above: lengths in m, angles in rad, forces in N, torques in N m,
-        speeds in rad/s, or strings with their unit.
+        The kind's requirements named above (the fields of its record,
+        :data:`linkwork.requirements.RECORDS`): lengths in m, angles in rad, forces in N, torques in N m, or
+        strings with their unit; ``speed`` a string (``"60 rpm"``).
 
     Returns
     -------
