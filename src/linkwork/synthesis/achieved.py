@@ -65,8 +65,10 @@ def requirement_rows(kin: Kinematics) -> tuple[str, list[Row]] | None:
     given: dict[str, Any] | None = getattr(spec, "requirements", None) if spec is not None else None
     if not given:
         return None
+    from linkwork.synthesis.kinds import KINDS
+
     kind = str(given.get("kind", ""))
-    measured = measure(kin, kind)
+    measured = measure(kin, KINDS[kind].measure if kind in KINDS else None)
     rows = []
 
     def si(name: str, value: Any) -> float:

@@ -290,7 +290,7 @@ def synthesize(asked: CrankRockerRequirements) -> Synthesis:
     measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))
     measured["swing"] = measured.pop("stroke")
     predicted = {"swing": swing, "time_ratio": time_ratio, "least_transmission_angle": mu}
-    tol = tolerances_of(spec, KIND)
+    tol = tolerances_of(spec)
     confirm(measured, predicted, mu, tol)
     keep_rule(spec, bound, tol["min_transmission_angle"])
     why = "the greatest least transmission angle" if theta > 0 else "the nearest crank pivot meeting the bound"

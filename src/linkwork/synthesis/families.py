@@ -139,11 +139,16 @@ def shears_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
     """The double-cut shears' family over the crank length (no ``crank`` requirement): the members the
     synthesis's continuation solves, as edits of the named parameters it sets."""
     from linkwork.errors import SynthesisError
-    from linkwork.synthesis.shears import _requirements
+    from linkwork.synthesis.shears import _requirements, bundled
+    from linkwork.synthesis.shears_structure import structure
 
     upper, lower = _si(given, "upper_stroke", "length"), _si(given, "lower_stroke", "length")
-    if "crank" in given or upper is None or lower is None or "crank" not in spec.links:
+    try:
+        names = structure(spec)
+    except SynthesisError:
         return None
+    if "crank" in given or upper is None or lower is None or names.paths != bundled().paths:
+        return None  # the members are edits of the bundled file's parameters: of a file with its names
     ratio = float(given.get("time_ratio", 1.0))
     try:
         overlap = _requirements(upper, lower, ratio, _si(given, "overlap", "length"), _si(given, "opening", "length"))
@@ -159,7 +164,7 @@ def shears_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
         "overrides": overrides,
         "quantity": "synth.quantity.least_transmission_angle",
         "quantity_values": least,
-        "picked": int(np.argmin(np.abs(np.array(cranks) - float(spec.links["crank"].length)))),
+        "picked": int(np.argmin(np.abs(np.array(cranks) - float(spec.links[names.crank].length)))),
         "note": "family.note.shears",
     }
 

@@ -11,6 +11,7 @@ from typing import Any
 from linkwork.requirements import RECORDS
 from linkwork.synthesis import crank_rocker, families, shears, slider_crank, slotted_lever, toggle_press
 from linkwork.synthesis.common import Synthesis
+from linkwork.synthesis.rounding import Own, knives
 
 
 @dataclass(frozen=True)
@@ -28,12 +29,17 @@ class Kind:
     family : callable or None
         ``family(spec, given) -> dict or None``: the family a file of this kind leaves, for the viewer's slider
         (``given``: the file's ``requirements:``), as :func:`~linkwork.synthesis.achieved.family_members` states it.
+    measure : callable or None
+        ``measure(kin, variant) -> dict``: what the kind measures of a solved turn beside what every kind does
+        (:func:`~linkwork.synthesis.rounding.measure`), for its tolerances, its verification and the report's
+        requirements.
     """
 
     name: str
     record: type
     synthesize: Callable[[Any], Synthesis]
     family: Callable[[Any, dict[str, Any]], dict[str, Any] | None] | None = None
+    measure: Own | None = None
 
 
 def _kinds(*kinds: Kind) -> dict[str, Kind]:
@@ -48,5 +54,5 @@ KINDS: dict[str, Kind] = _kinds(
     Kind(crank_rocker.KIND, RECORDS[crank_rocker.KIND], crank_rocker.synthesize, families.crank_rocker_family),
     Kind(slotted_lever.KIND, RECORDS[slotted_lever.KIND], slotted_lever.synthesize, families.slotted_lever_family),
     Kind(toggle_press.KIND, RECORDS[toggle_press.KIND], toggle_press.synthesize),
-    Kind(shears.KIND, RECORDS[shears.KIND], shears.synthesize, families.shears_family),
+    Kind(shears.KIND, RECORDS[shears.KIND], shears.synthesize, families.shears_family, knives),
 )

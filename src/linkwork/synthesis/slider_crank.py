@@ -257,7 +257,7 @@ def synthesize(asked: SliderCrankRequirements) -> Synthesis:
     measured = measure(spec, [0.0], lambda mu: next(iter(mu.values())))
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
-    tol = tolerances_of(spec, KIND)
+    tol = tolerances_of(spec)
     confirm(measured, predicted, math.pi / 2 - alpha, tol)
     keep_rule(spec, floor, tol["min_transmission_angle"])
     return Synthesis(

@@ -238,7 +238,7 @@ def synthesize(asked: SlottedLeverRequirements) -> Synthesis:
     measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": _written_alpha(spec)}
-    tol = tolerances_of(spec, KIND)
+    tol = tolerances_of(spec)
     confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha, tol)  # the rod square to the lever at its limits
     keep_rule(spec, floor, tol["min_transmission_angle"])
     fam = family(stroke, time_ratio) if frame is None and crank is None else None

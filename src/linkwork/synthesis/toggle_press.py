@@ -178,7 +178,7 @@ def synthesize(asked: TogglePressRequirements) -> Synthesis:
     measured = measure(spec, [angle], lambda mu: next(v for key, v in mu.items() if key.endswith("RRP")), "guide")
     measured = {"stroke": measured["stroke"], "torque_at_nominal": -_torque(spec, angle)}  # clockwise
     predicted = {"stroke": stroke, "torque_at_nominal": force * rho}
-    tol = tolerances_of(spec, KIND) | {"torque_at_nominal": _nominal_spread(spec, angle)}
+    tol = tolerances_of(spec) | {"torque_at_nominal": _nominal_spread(spec, angle)}
     confirm(measured, predicted, geo["least_transmission_angle"], tol)
     keep_rule(spec, floor, tol["min_transmission_angle"])
     measured["peak_torque"] = _within_limit(spec, angle, force, before, torque)
