@@ -140,11 +140,11 @@ def shears_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
     synthesis's continuation solves, as edits of the named parameters it sets."""
     from linkwork.errors import SynthesisError
     from linkwork.synthesis.shears import _requirements, bundled
-    from linkwork.synthesis.shears_structure import structure
+    from linkwork.synthesis.shears_parts import parts
 
     upper, lower = _si(given, "upper_stroke", "length"), _si(given, "lower_stroke", "length")
     try:
-        names = structure(spec)
+        names = parts(spec)
     except SynthesisError:
         return None
     if "crank" in given or upper is None or lower is None or names.paths != bundled().paths:

@@ -104,15 +104,15 @@ def measure(kin: Kinematics, own: Own | None = None, variant: int = 0) -> dict[s
 def knives(kin: Kinematics, variant: int = 0) -> dict[str, float]:
     """The knives' strokes, K, overlap and opening of the shears solved in ``kin`` (its ``variant``) as the design
     metrics measure them, each knife's stroke along its guide as the file names it
-    (:func:`~linkwork.synthesis.shears_structure.structure`)."""
+    (:func:`~linkwork.synthesis.shears_parts.parts`)."""
     from linkwork.design.evaluate import Evaluation
     from linkwork.design.metrics import METRICS
     from linkwork.errors import SynthesisError
-    from linkwork.synthesis.shears_structure import structure
+    from linkwork.synthesis.shears_parts import parts
 
     if kin.mechanism.spec is None:
         raise SynthesisError("double-cut shears: the knives' guides are read from the mechanism's file")
-    upper, lower = structure(kin.mechanism.spec).guides
+    upper, lower = parts(kin.mechanism.spec).guides
     ev = Evaluation(kin)
 
     def one(name: str, arg: str | None = None) -> float:

@@ -4,7 +4,7 @@ the opening) and the time ratio K, keeping the bundled file's structure.
 No closed form: the design package meets the requirements as equality constraints
 (:func:`linkwork.design.equalities.meet`, Newton's method on the same metrics a sweep or an optimisation
 reports) over named parameters of the bundled file (named here as the bundled file names its parts; the
-synthesis reads the names from the file, :mod:`linkwork.synthesis.shears_structure`):
+synthesis reads the names from the file, :mod:`linkwork.synthesis.shears_parts`):
 
 * ``frame.points.O1.x`` (the crank's pivot along the rocker's arm): K, the time of the knives closing over
   that of their opening (the metric ``working_time_ratio``);
@@ -47,19 +47,19 @@ from linkwork.synthesis.common import (
     rounded,
 )
 from linkwork.synthesis.rounding import knives, tolerances_of
-from linkwork.synthesis.shears_structure import Structure, structure
+from linkwork.synthesis.shears_parts import ShearsParts, parts
 
 KIND = "double-cut-shears"
 
 
 @functools.cache
-def bundled() -> Structure:
-    """The names of the bundled file's parts (:func:`~linkwork.synthesis.shears_structure.structure`); its
-    :attr:`~linkwork.synthesis.shears_structure.Structure.paths` are the named parameters the unknowns and the
+def bundled() -> ShearsParts:
+    """The names of the bundled file's parts (:func:`~linkwork.synthesis.shears_parts.parts`); its
+    :attr:`~linkwork.synthesis.shears_parts.ShearsParts.paths` are the named parameters the unknowns and the
     family's crank length set."""
     from linkwork.api import spec_of
 
-    return structure(spec_of(KIND))
+    return parts(spec_of(KIND))
 
 
 #: The family's crank lengths, relative to the bundled crank.

@@ -1,7 +1,7 @@
 """The structure of a double-cut shears' file, read from the file: which link is the crank and where it is
 pivoted, which link (the rocker) drives the two knives' rods and at which of its points, the two knives (the
 tools of the process load, the upper first), their edges and their guides.  The synthesis edits the named
-parameters these give (:attr:`Structure.paths`) and measures the knives on those guides, whatever the file calls
+parameters these give (:attr:`ShearsParts.paths`) and measures the knives on those guides, whatever the file calls
 them."""
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from linkwork.errors import SynthesisError
 FRAME = "frame"
 
 
-class Structure(NamedTuple):
+class ShearsParts(NamedTuple):
     """The names a double-cut shears' file gives its parts (the upper knife's first in each pair).
 
     Attributes
@@ -60,8 +60,8 @@ class Structure(NamedTuple):
         return (f"stroke:{self.guides[0]}", f"stroke:{self.guides[1]}")
 
 
-def structure(spec: Any) -> Structure:
-    """The :class:`Structure` of ``spec`` (a Spec of double-cut shears); raises :class:`SynthesisError` naming
+def parts(spec: Any) -> ShearsParts:
+    """The :class:`ShearsParts` of ``spec`` (a Spec of double-cut shears); raises :class:`SynthesisError` naming
     the part it lacks."""
     tools = next(
         (load.tools for load in (spec.loads or {}).values() if load.type == "process" and len(load.tools or ()) == 2),
@@ -77,7 +77,7 @@ def structure(spec: Any) -> Structure:
         raise SynthesisError(f"double-cut shears: the knives' rods hang from {arms[0][0]!r} and {arms[1][0]!r}")
     drive = spec.drives[0].joint
     crank = next(link for link in spec.joints[drive].links if link != FRAME)
-    return Structure(
+    return ShearsParts(
         crank,
         spec.joints[drive].point or drive,
         arms[0][0],

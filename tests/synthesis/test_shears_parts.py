@@ -11,7 +11,7 @@ import linkwork as lw
 from linkwork.errors import SynthesisError
 from linkwork.examples import text
 from linkwork.synthesis.rounding import knives
-from linkwork.synthesis.shears_structure import Structure, structure
+from linkwork.synthesis.shears_parts import ShearsParts, parts
 
 #: The bundled file's names and new ones for them (whole words).
 RENAMED = {
@@ -35,12 +35,12 @@ def _renamed() -> str:
 
 
 def test_the_shears_parts_are_read_from_the_file_whatever_it_calls_them():
-    bundled = structure(lw.load("double-cut-shears"))
-    assert bundled == Structure(
+    bundled = parts(lw.load("double-cut-shears"))
+    assert bundled == ShearsParts(
         "crank", "O1", "rocker", ("D", "C"), ("knife_upper", "knife_lower"), ("edge", "edge"), ("guide_E", "guide_F")
     )
     spec = lw.loads(_renamed(), "renamed.yaml")
-    names = structure(spec)
+    names = parts(spec)
     assert names.paths == [
         "links.drive_crank.length",
         "frame.points.Q.x",
@@ -59,4 +59,4 @@ def test_shears_without_a_guided_knife_are_refused_naming_it():
     spec = lw.loads(_renamed(), "renamed.yaml")
     spec = spec.model_copy(update={"joints": {name: j for name, j in spec.joints.items() if name != "slide_bottom"}})
     with pytest.raises(SynthesisError, match="no prismatic guide of 'bottom_knife'"):
-        structure(spec)
+        parts(spec)
