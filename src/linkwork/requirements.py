@@ -215,9 +215,6 @@ QUANTITIES: dict[str, str] = {
     name: n.quantity for kind in RECORDS for name, n in needs(kind).items() if n.quantity in UNITS
 }
 
-#: The requirements that set a mechanism's scale, over every kind.
-SCALE: tuple[str, ...] = tuple(dict.fromkeys(name for kind in RECORDS for name, n in needs(kind).items() if n.scale))
-
 
 def options() -> dict[str, tuple[str, str]]:
     """The ``--NAME`` options of ``linkwork synthesize``: name -> (kind of quantity, help), in the order the kinds

@@ -12,7 +12,7 @@ import math
 from typing import Any
 
 from linkwork.errors import LinkworkError, SynthesisError
-from linkwork.requirements import QUANTITIES, RECORDS, SCALE, needs, required
+from linkwork.requirements import QUANTITIES, RECORDS, needs, required
 from linkwork.synthesis.common import Family, Synthesis
 
 __all__ = ["KINDS", "QUANTITIES", "Family", "Synthesis", "synthesize"]
@@ -93,7 +93,8 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     from linkwork.synthesis.common import dimensioned
     from linkwork.synthesis.kinds import KINDS
 
-    scale = [float(si[name]) for name in SCALE if isinstance(si.get(name), float | int)]
+    # the requirements that set the mechanism's scale, and so the step its file is dimensioned to (0.1 mm from 10 mm)
+    scale = [float(si[n]) for n, need in needs(kind).items() if need.scale and isinstance(si.get(n), float | int)]
     try:
         # the closed forms' NaN and inf are refused by the checks that follow them; the file dimensioned to 0.1 mm
         with np.errstate(all="ignore"), dimensioned(*scale):
