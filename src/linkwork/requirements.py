@@ -13,8 +13,11 @@ This module imports nothing heavy: the command line reads it to build its option
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from typing import Any
+
+from linkwork.limits import MAX_MAGNITUDE
 
 #: Density of steel (kg/m^3), and the default bar section (m): every link a steel bar of this section.
 STEEL = 7850.0
@@ -45,15 +48,33 @@ OWN_OPTIONS = {"angular_speed": "--speed", "section": "--section"}
 MAKING = ("angular_speed", "section", "density", "mass")
 
 
+#: A range a file's requirement lies in (SI): (low, high, low included, high included).
+Range = tuple[float, float, bool, bool]
+ANY: Range = (-MAX_MAGNITUDE, MAX_MAGNITUDE, True, True)
+POSITIVE: Range = (0.0, MAX_MAGNITUDE, False, True)
+#: A time ratio: the slower stroke's time over the faster.
+SLOWER: Range = (1.0, MAX_MAGNITUDE, True, True)
+#: A bound on the pressure angle, and a least transmission angle.
+PRESSURE: Range = (0.0, math.pi / 2, False, False)
+TRANSMISSION: Range = (0.0, math.pi / 2, False, True)
+#: A swing.
+SWING: Range = (0.0, math.pi, False, False)
+#: A slider-crank's time ratio: its crank turns theta = asin(e / (l - r)) - asin(e / (l + r)) < 90 deg between its
+#: limit positions, so K = (180 + theta) / (180 - theta) < 3.
+CRANK_SLIDER: Range = (1.0, 3.0, True, False)
+
+
 @dataclass(frozen=True)
 class Need:
     """What a field of a requirements record is: its kind of ``quantity`` (:data:`UNITS`, ``"ratio"``, ``"word"`` or
-    one of :data:`MAKING`), its ``help`` (one line), and whether it sets the mechanism's ``scale`` (the step its
-    file is dimensioned to: :func:`~linkwork.synthesis.common.dimensioned`)."""
+    one of :data:`MAKING`), its ``help`` (one line), whether it sets the mechanism's ``scale`` (the step its
+    file is dimensioned to: :func:`~linkwork.synthesis.common.dimensioned`) and the range a file's
+    ``requirements:`` may give it in (``within``, SI: :func:`linkwork.spec.requirements.requirement_problem`)."""
 
     quantity: str
     help: str
     scale: bool = False
+    within: Range = ANY
 
     @property
     def carried(self) -> bool:
@@ -77,9 +98,18 @@ class Need:
         return SHOWN[self.quantity]
 
 
-def need(quantity: str, help: str, default: Any = dataclasses.MISSING, scale: bool = False) -> Any:  # noqa: A002
-    """A field of a requirements record: required unless ``default`` is given."""
-    return dataclasses.field(default=default, metadata={"need": Need(quantity, help, scale)})
+def need(
+    quantity: str,
+    help: str,  # noqa: A002
+    default: Any = dataclasses.MISSING,
+    scale: bool = False,
+    within: Range | None = None,
+) -> Any:
+    """A field of a requirements record: required unless ``default`` is given; a length, force or moment is
+    positive and a ratio a time ratio unless ``within`` says otherwise."""
+    if within is None:
+        within = POSITIVE if quantity in ("length", "force", "moment") else SLOWER if quantity == "ratio" else ANY
+    return dataclasses.field(default=default, metadata={"need": Need(quantity, help, scale, within)})
 
 
 _RATIO = "K >= 1: the longer stroke's time over the shorter"
@@ -95,11 +125,13 @@ class SliderCrankRequirements:
     """An offset slider-crank's requirements (SI): :func:`linkwork.synthesis.slider_crank.synthesize`."""
 
     stroke: float = need("length", "the ram's stroke", scale=True)
-    time_ratio: float = need("ratio", "1 <= K < 3: the longer stroke's time over the shorter")
-    rod_ratio: float | None = need("ratio", "r/l (or the offset)", None)
-    offset: float | None = need("length", "the guide's offset from the crank pivot (or the rod ratio)", None)
-    max_pressure_angle: float | None = need("angle", "a bound on the largest pressure angle", None)
-    min_transmission_angle: float | None = need("angle", _RULE, None)
+    time_ratio: float = need("ratio", "1 <= K < 3: the longer stroke's time over the shorter", within=CRANK_SLIDER)
+    rod_ratio: float | None = need("ratio", "r/l (or the offset)", None, within=POSITIVE)
+    offset: float | None = need(
+        "length", "the guide's offset from the crank pivot (or the rod ratio)", None, within=ANY
+    )
+    max_pressure_angle: float | None = need("angle", "a bound on the largest pressure angle", None, within=PRESSURE)
+    min_transmission_angle: float | None = need("angle", _RULE, None, within=TRANSMISSION)
     speed: str = need("angular_speed", _SPEED, "60 rpm")
     section: tuple[float, float] = need("section", _SECTION, BAR)
     density: float = need("density", _DENSITY, STEEL)
@@ -115,11 +147,11 @@ class SliderCrankRequirements:
 class CrankRockerRequirements:
     """A crank-rocker's requirements (SI): :func:`linkwork.synthesis.crank_rocker.synthesize`."""
 
-    swing: float = need("angle", "the rocker's swing")
+    swing: float = need("angle", "the rocker's swing", within=SWING)
     time_ratio: float = need("ratio", _RATIO)
     rocker: float | None = need("length", "the rocker's length (or the frame)", None, scale=True)
     frame: float | None = need("length", "the frame's length (or the rocker)", None, scale=True)
-    min_transmission_angle: float | None = need("angle", _RULE, None)
+    min_transmission_angle: float | None = need("angle", _RULE, None, within=TRANSMISSION)
     speed: str = need("angular_speed", _SPEED, "60 rpm")
     section: tuple[float, float] = need("section", _SECTION, BAR)
     density: float = need("density", _DENSITY, STEEL)
@@ -137,9 +169,9 @@ class SlottedLeverRequirements:
     crank: float | None = need("length", "the crank's length (or the frame)", None)
     rod: float | None = need("length", "the ram's rod's length (else the shortest meeting the bound)", None)
     max_pressure_angle: float | None = need(
-        "angle", "a bound on the rod's largest pressure angle (10 deg unless given)", None
+        "angle", "a bound on the rod's largest pressure angle (10 deg unless given)", None, within=PRESSURE
     )
-    min_transmission_angle: float | None = need("angle", _RULE, None)
+    min_transmission_angle: float | None = need("angle", _RULE, None, within=TRANSMISSION)
     speed: str = need("angular_speed", _SPEED, "60 rpm")
     section: tuple[float, float] = need("section", _SECTION, BAR)
     density: float = need("density", _DENSITY, STEEL)
@@ -154,9 +186,9 @@ class TogglePressRequirements:
     force: float = need("force", "the nominal force")
     before: float = need("length", "where the nominal force acts, before the bottom dead centre")
     torque: float = need("moment", "the crank's torque limit over the turn")
-    swing: float | None = need("angle", "the upper toggle link's swing (45 deg unless given)", None)
+    swing: float | None = need("angle", "the upper toggle link's swing (45 deg unless given)", None, within=SWING)
     time_ratio: float | None = need("ratio", "the four-bar's time ratio (1.2 unless given)", None)
-    min_transmission_angle: float | None = need("angle", _RULE, None)
+    min_transmission_angle: float | None = need("angle", _RULE, None, within=TRANSMISSION)
     speed: str = need("angular_speed", _SPEED, "60 rpm")
     section: tuple[float, float] = need("section", _SECTION, BAR)
     density: float = need("density", _DENSITY, STEEL)
@@ -168,12 +200,12 @@ class ShearsRequirements:
 
     upper_stroke: float = need("length", "the upper knife's stroke", scale=True)
     lower_stroke: float = need("length", "the lower knife's stroke", scale=True)
-    time_ratio: float = need("ratio", "the knives' closing time over their opening time")
-    overlap: float | None = need("length", "the knives' overlap when closed (or the opening)", None)
+    time_ratio: float = need("ratio", "the knives' closing time over their opening time", within=POSITIVE)
+    overlap: float | None = need("length", "the knives' overlap when closed (or the opening)", None, within=ANY)
     opening: float | None = need("length", "the gap between the knives when open (or the overlap)", None)
     crank: float | None = need("length", "the crank's length (else picked by the criterion)", None)
     criterion: str = need("word", _CRITERION, "pressure")
-    min_transmission_angle: float | None = need("angle", _RULE, None)
+    min_transmission_angle: float | None = need("angle", _RULE, None, within=TRANSMISSION)
     speed: str | None = need(
         "angular_speed", "the crank's speed written in the file (the bundled file's unless given)", None
     )

@@ -9,7 +9,8 @@ import pytest
 
 import linkwork as lw
 from commandline import linkwork
-from linkwork.spec.requirements import KIND_RANGES, KINDS, QUANTITY
+from linkwork.requirements import needs
+from linkwork.spec.requirements import KINDS, QUANTITY
 
 SLIDER_CRANK = """\
 name: slider-crank
@@ -154,6 +155,6 @@ def test_the_requirements_each_kind_may_carry_are_those_its_synthesis_writes(kin
         got = parse_quantity(written[name], QUANTITY[name]) if name in QUANTITY else float(written[name])
         want = parse_quantity(value, QUANTITY[name]) if isinstance(value, str) else value
         assert got == pytest.approx(want, rel=1e-12), name
-    assert KIND_RANGES["slider-crank", "time_ratio"][1] == K_LIMIT
+    assert needs("slider-crank")["time_ratio"].within[1] == K_LIMIT
     theta = math.pi / 2
     assert (math.pi + theta) / (math.pi - theta) == K_LIMIT

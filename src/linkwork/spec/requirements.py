@@ -12,9 +12,10 @@ that what reads it later has nothing to fail on:
 - ``<name>_tolerance`` (``stroke_tolerance: "0.021 mm"``): how far the analysis may measure the requirement
   ``name`` from it and the report still call it met, in its unit, at least zero (a synthesised file states the
   one the rounding of its lengths implies); without it, 1e-6 of the requirement;
-- every value finite and within its range (:data:`RANGES`, :data:`KIND_RANGES`): a stroke is positive, a
-  pressure angle below 90 deg, a time ratio at least 1 (the slower stroke's time over the faster; a
-  slider-crank's below 3), at most :data:`~linkwork.limits.MAX_MAGNITUDE` in SI.
+- every value finite and within its range (each field's ``within`` in its kind's record,
+  :mod:`linkwork.requirements`): a stroke is positive, a pressure angle below 90 deg, a time ratio at least 1
+  (the slower stroke's time over the faster; a slider-crank's below 3), at most
+  :data:`~linkwork.limits.MAX_MAGNITUDE` in SI.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from typing import Any
 
 from linkwork.errors import UnitParseError
 from linkwork.limits import MAX_MAGNITUDE, echo, quote
-from linkwork.requirements import EXAMPLES, QUANTITIES, RECORDS, carried
+from linkwork.requirements import EXAMPLES, QUANTITIES, RECORDS, carried, needs
 
 #: The requirements each kind carries (those ``linkwork synthesize`` writes for it), besides ``kind`` and
 #: ``criterion``: the quantities and ratios of the kind's record (:mod:`linkwork.requirements`).
@@ -41,30 +42,6 @@ CRITERIA = ("pressure", "torque")
 QUANTITY = QUANTITIES
 
 _DEG = math.pi / 180
-
-#: The range of each requirement, SI: ``(low, high, low_included, high_included)``; the rest any finite value
-#: within :data:`~linkwork.limits.MAX_MAGNITUDE`.
-RANGES: dict[str, tuple[float, float, bool, bool]] = {
-    **dict.fromkeys(
-        ("stroke", "rocker", "frame", "crank", "rod", "before", "working", "upper_stroke", "lower_stroke", "opening"),
-        (0.0, MAX_MAGNITUDE, False, True),
-    ),
-    "force": (0.0, MAX_MAGNITUDE, False, True),
-    "torque": (0.0, MAX_MAGNITUDE, False, True),
-    "swing": (0.0, 180 * _DEG, False, False),
-    "max_pressure_angle": (0.0, 90 * _DEG, False, False),
-    "min_transmission_angle": (0.0, 90 * _DEG, False, True),
-    "time_ratio": (1.0, MAX_MAGNITUDE, True, True),
-    "rod_ratio": (0.0, MAX_MAGNITUDE, False, True),
-}
-
-#: Ranges of a kind's own: a slider-crank's crank turns theta = asin(e / (l - r)) - asin(e / (l + r)) < 90 deg between
-#: its limit positions, so K = (180 + theta) / (180 - theta) < 3; the knives' time ratio is closing over opening,
-#: either way round.
-KIND_RANGES: dict[tuple[str, str], tuple[float, float, bool, bool]] = {
-    ("slider-crank", "time_ratio"): (1.0, 3.0, True, False),
-    ("double-cut-shears", "time_ratio"): (0.0, MAX_MAGNITUDE, False, True),
-}
 
 #: What the analysis and the family of a kind read from the file: links, joints (and their type), frame points,
 #: and whether a process load with two tools (the knives).
@@ -124,11 +101,7 @@ def requirement_problem(kind: str, name: str, value: Any) -> str | None:
     got = requirement_value(base, value)
     if isinstance(got, str):
         return got
-    low, high, with_low, with_high = (
-        (0.0, MAX_MAGNITUDE, True, True)
-        if base != name
-        else KIND_RANGES.get((kind, name)) or RANGES.get(name, (-MAX_MAGNITUDE, MAX_MAGNITUDE, True, True))
-    )
+    low, high, with_low, with_high = (0.0, MAX_MAGNITUDE, True, True) if base != name else needs(kind)[name].within
     inside = (low < got or (with_low and low == got)) and (got < high or (with_high and got == high))
     if math.isfinite(got) and inside:
         return None
