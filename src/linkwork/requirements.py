@@ -262,7 +262,8 @@ def options() -> dict[str, tuple[str, str]]:
     for name, by_text in texts.items():
         said = "; ".join(f"{_kinds(kinds)}: {text}" for text, kinds in by_text.items())
         example = EXAMPLES.get(quantity[name])
-        out[name] = (quantity[name], f'{said} (e.g. "{example}")' if example else said)
+        article = "an" if quantity[name][0] in "aeiou" else "a"
+        out[name] = (quantity[name], f'{said} ({article} {quantity[name]}, e.g. "{example}")' if example else said)
     return out
 
 
