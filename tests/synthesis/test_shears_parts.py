@@ -10,8 +10,9 @@ import pytest
 import linkwork as lw
 from linkwork.errors import SynthesisError
 from linkwork.examples import text
+from linkwork.spec.shears import ShearsParts
 from linkwork.synthesis.rounding import knives
-from linkwork.synthesis.shears_parts import ShearsParts, parts
+from linkwork.synthesis.shears import parts
 
 #: The bundled file's names and new ones for them (whole words).
 RENAMED = {
@@ -58,5 +59,22 @@ def test_the_shears_parts_are_read_from_the_file_whatever_it_calls_them():
 def test_shears_without_a_guided_knife_are_refused_naming_it():
     spec = lw.loads(_renamed(), "renamed.yaml")
     spec = spec.model_copy(update={"joints": {name: j for name, j in spec.joints.items() if name != "slide_bottom"}})
-    with pytest.raises(SynthesisError, match="no prismatic guide of 'bottom_knife'"):
+    with pytest.raises(SynthesisError, match='the file has no prismatic guide of "bottom_knife" on the frame'):
         parts(spec)
+
+
+def test_a_renamed_shears_file_carries_the_shears_requirements_and_the_report_measures_them():
+    """The file format asks a shears file for its parts, not for the bundled file's names: the renamed file with the
+    shears' requirements is read, and its knives are measured on its own guides (the bundled strokes, 120 mm)."""
+    from linkwork.synthesis.achieved import requirement_rows
+
+    given = "requirements:\n  kind: double-cut-shears\n  upper_stroke: 120 mm\n  lower_stroke: 120 mm\n"
+    spec = lw.loads(_renamed() + given, "renamed.yaml")
+    kind, rows = requirement_rows(lw.kinematics(spec, steps=120))
+    assert kind == "double-cut-shears"
+    strokes = {row.name: row.achieved for row in rows}
+    assert strokes["upper_stroke"] == pytest.approx(0.12, rel=0.02)
+    assert strokes["lower_stroke"] == pytest.approx(0.12, rel=0.02)
+    without = _renamed().replace("  slide_bottom: {type: prismatic", "  slide_bottom: {type: revolute")
+    with pytest.raises(lw.errors.SpecError, match='no prismatic guide of "bottom_knife" on the frame'):
+        lw.loads(without + given, "x.yaml")

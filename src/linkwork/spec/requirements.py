@@ -5,7 +5,7 @@ hand is checked here, with the rest of the file (``linkwork check``, and every c
 that what reads it later has nothing to fail on:
 
 - ``kind``: one of :data:`KINDS`; the file has the names that kind's analysis and family read
-  (:data:`STRUCTURE`: the shears' knife guides, a slider-crank's crank, rod and guide...);
+  (:data:`STRUCTURE`: a slider-crank's crank, rod and guide...; the shears' knives, guides, rods and rocker);
 - every other key a requirement of that kind (:data:`KINDS`), or ``criterion`` (:data:`CRITERIA`);
 - a length, an angle, a force or a moment with its unit (``"400 mm"``, ``"60 deg"``): a bare number would be read
   in a unit nobody said; a ratio a plain number;
@@ -27,6 +27,7 @@ from typing import Any
 from linkwork.errors import UnitParseError
 from linkwork.limits import MAX_MAGNITUDE, echo, quote
 from linkwork.requirements import EXAMPLES, QUANTITIES, RECORDS, carried, needs
+from linkwork.spec.shears import shears_parts
 
 #: The requirements each kind carries (those ``linkwork synthesize`` writes for it), besides ``kind`` and
 #: ``criterion``: the quantities and ratios of the kind's record (:mod:`linkwork.requirements`).
@@ -43,18 +44,15 @@ QUANTITY = QUANTITIES
 
 _DEG = math.pi / 180
 
-#: What the analysis and the family of a kind read from the file: links, joints (and their type), frame points,
-#: and whether a process load with two tools (the knives).
+#: What the analysis and the family of a kind read from the file: links, joints (and their type), frame points (the
+#: names the closed-form kinds write in their own files), and for the shears their parts, read from the file's
+#: structure whatever it names them (:func:`~linkwork.spec.shears.shears_parts`).
 STRUCTURE: dict[str, dict[str, Any]] = {
     "slider-crank": {"links": ("crank", "rod"), "joints": {"guide": "prismatic"}},
     "crank-rocker": {"links": ("crank", "coupler", "rocker"), "points": ("O4",)},
     "slotted-lever": {"links": ("crank",), "points": ("O1",)},
     "toggle-press": {},
-    "double-cut-shears": {
-        "links": ("crank",),
-        "joints": {"guide_E": "prismatic", "guide_F": "prismatic"},
-        "knives": True,
-    },
+    "double-cut-shears": {"shears": True},
 }
 
 Report = Callable[[tuple[Any, ...], str], None]
@@ -157,8 +155,8 @@ def _check_structure(bad: Report, data: dict[str, Any], kind: str) -> None:
         if not isinstance(j, dict) or j.get("type") != type_:
             missing.append(f"{type_} joint {quote(joint)}")
     missing += [f"frame point {quote(n)}" for n in need.get("points", ()) if n not in points]
-    if need.get("knives") and not _two_tools(data.get("loads")):
-        missing.append("process load with two tools (the knives)")
+    if need.get("shears") and isinstance(lacks := shears_parts(data), str):
+        missing.append(lacks)
     if missing:
         bad(
             ("requirements", "kind"),
@@ -168,10 +166,3 @@ def _check_structure(bad: Report, data: dict[str, Any], kind: str) -> None:
 
 def _mapping(value: Any) -> dict[str, Any]:
     return value if isinstance(value, dict) else {}
-
-
-def _two_tools(loads: Any) -> bool:
-    return isinstance(loads, dict) and any(
-        isinstance(load, dict) and load.get("type") == "process" and len(load.get("tools") or ()) == 2
-        for load in loads.values()
-    )

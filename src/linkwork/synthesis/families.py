@@ -139,15 +139,12 @@ def shears_family(spec: Any, given: dict[str, Any]) -> dict[str, Any] | None:
     """The double-cut shears' family over the crank length (no ``crank`` requirement): the members the
     synthesis's continuation solves, as edits of the named parameters it sets."""
     from linkwork.errors import SynthesisError
+    from linkwork.spec.shears import shears_parts
     from linkwork.synthesis.shears import _requirements, bundled
-    from linkwork.synthesis.shears_parts import parts
 
     upper, lower = _si(given, "upper_stroke", "length"), _si(given, "lower_stroke", "length")
-    try:
-        names = parts(spec)
-    except SynthesisError:
-        return None
-    if "crank" in given or upper is None or lower is None or names.paths != bundled().paths:
+    names = shears_parts(spec)
+    if isinstance(names, str) or "crank" in given or upper is None or lower is None or names.paths != bundled().paths:
         return None  # the members are edits of the bundled file's parameters: of a file with its names
     ratio = float(given.get("time_ratio", 1.0))
     try:

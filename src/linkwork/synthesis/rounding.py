@@ -104,15 +104,16 @@ def measure(kin: Kinematics, own: Own | None = None, variant: int = 0) -> dict[s
 def knives(kin: Kinematics, variant: int = 0) -> dict[str, float]:
     """The knives' strokes, K, overlap and opening of the shears solved in ``kin`` (its ``variant``) as the design
     metrics measure them, each knife's stroke along its guide as the file names it
-    (:func:`~linkwork.synthesis.shears_parts.parts`)."""
+    (:func:`~linkwork.spec.shears.shears_parts`)."""
     from linkwork.design.evaluate import Evaluation
     from linkwork.design.metrics import METRICS
     from linkwork.errors import SynthesisError
-    from linkwork.synthesis.shears_parts import parts
+    from linkwork.spec.shears import shears_parts
 
-    if kin.mechanism.spec is None:
-        raise SynthesisError("double-cut shears: the knives' guides are read from the mechanism's file")
-    upper, lower = parts(kin.mechanism.spec).guides
+    found = shears_parts(kin.mechanism.spec)
+    if isinstance(found, str):
+        raise SynthesisError(f"double-cut shears: the mechanism's file has no {found}")
+    upper, lower = found.guides
     ev = Evaluation(kin)
 
     def one(name: str, arg: str | None = None) -> float:

@@ -4,7 +4,7 @@ the opening) and the time ratio K, keeping the bundled file's structure.
 No closed form: the design package meets the requirements as equality constraints
 (:func:`linkwork.design.equalities.meet`, Newton's method on the same metrics a sweep or an optimisation
 reports) over named parameters of the bundled file (named here as the bundled file names its parts; the
-synthesis reads the names from the file, :mod:`linkwork.synthesis.shears_parts`):
+synthesis reads the names from the file, :mod:`linkwork.spec.shears`):
 
 * ``frame.points.O1.x`` (the crank's pivot along the rocker's arm): K, the time of the knives closing over
   that of their opening (the metric ``working_time_ratio``);
@@ -35,6 +35,7 @@ import numpy as np
 
 from linkwork.errors import SynthesisError
 from linkwork.requirements import ShearsRequirements
+from linkwork.spec.shears import ShearsParts, shears_parts
 from linkwork.synthesis.common import (
     TOLERANCE,
     VERIFY_STEPS,
@@ -47,19 +48,27 @@ from linkwork.synthesis.common import (
     rounded,
 )
 from linkwork.synthesis.rounding import knives, tolerances_of
-from linkwork.synthesis.shears_parts import ShearsParts, parts
 
 KIND = "double-cut-shears"
 
 
 @functools.cache
 def bundled() -> ShearsParts:
-    """The names of the bundled file's parts (:func:`~linkwork.synthesis.shears_parts.parts`); its
-    :attr:`~linkwork.synthesis.shears_parts.ShearsParts.paths` are the named parameters the unknowns and the
+    """The names of the bundled file's parts (:func:`parts`); its
+    :attr:`~linkwork.spec.shears.ShearsParts.paths` are the named parameters the unknowns and the
     family's crank length set."""
     from linkwork.api import spec_of
 
     return parts(spec_of(KIND))
+
+
+def parts(spec: Any) -> ShearsParts:
+    """The parts of the shears ``spec`` (:func:`~linkwork.spec.shears.shears_parts`); raises
+    :class:`SynthesisError` naming the one it lacks."""
+    found = shears_parts(spec)
+    if isinstance(found, str):
+        raise SynthesisError(f"double-cut shears: the file has no {found}")
+    return found
 
 
 #: The family's crank lengths, relative to the bundled crank.
