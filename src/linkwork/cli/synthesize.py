@@ -11,6 +11,7 @@ import typer
 from linkwork.cli.app import app, echo_json, fail
 from linkwork.errors import LinkworkError
 from linkwork.limits import QUOTE_PATH, excerpt
+from linkwork.requirements import EXAMPLES, RECORDS, needs, options, required
 
 Quantity = Annotated[str | None, typer.Option()]
 
@@ -28,7 +29,7 @@ def _read(options: dict[str, tuple[str | None, str]]) -> dict[str, Any]:
         option = f"--{name.replace('_', '-')}"
         if kind != "ratio" and _bare(text):  # a bare length is no length: 160 is not 160 m to a press designer
             shown = excerpt(text.strip(), QUOTE_PATH)
-            problems.append(f'{option} "{shown}": give the unit, e.g. "{shown} {EXAMPLE_UNITS[kind]}"')
+            problems.append(f'{option} "{shown}": give the unit, e.g. "{shown} {EXAMPLES[kind].split()[1]}"')
             continue
         try:
             out[name] = _number(text) if kind == "ratio" else parse_quantity(text, kind)
@@ -37,10 +38,6 @@ def _read(options: dict[str, tuple[str | None, str]]) -> dict[str, Any]:
     if problems:
         fail(LinkworkError("\n".join(problems)))
     return out
-
-
-#: The unit a refusal of a bare number suggests, by kind of quantity.
-EXAMPLE_UNITS = {"length": "mm", "angle": "deg", "force": "kN", "moment": "N*m"}
 
 
 def _bare(text: str) -> bool:
@@ -73,31 +70,9 @@ def _section(text: str | None) -> dict[str, Any]:
         fail(LinkworkError(f'--section "{excerpt(text, QUOTE_PATH)}": {exc}, e.g. "40mm x 20mm"'))
 
 
-#: The requirement options of ``linkwork synthesize`` (each a text: a quantity with its unit, a ratio or a word), in
-#: the order of its help, with their help: the table its ``--NAME`` options are generated from (:func:`_signature`).
-REQUIREMENTS = {
-    "stroke": 'slider-crank, slotted-lever: the ram\'s stroke, e.g. "400mm"',
-    "time_ratio": "K >= 1: the longer stroke's time over the shorter",
-    "rod_ratio": "slider-crank: r/l (or --offset)",
-    "offset": "slider-crank: the guide's offset from the crank pivot",
-    "max_pressure_angle": 'slider-crank, slotted-lever: a bound, e.g. "40deg"',
-    "swing": 'crank-rocker: the rocker\'s swing, e.g. "45deg"',
-    "rocker": "crank-rocker: the rocker's length (or --frame)",
-    "frame": "crank-rocker (or --rocker), slotted-lever (or --crank): the frame",
-    "crank": "slotted-lever, double-cut-shears: the crank's length",
-    "rod": "slotted-lever: the ram's rod's length",
-    "min_transmission_angle": "every kind: the least transmission angle of every dyad over the turn (the design rule, "
-    "40deg)",
-    "force": 'toggle-press: the nominal force; slider-crank: the working load, e.g. "100kN"',
-    "working": "slider-crank: the load acts over this last part of the stroke",
-    "before": "toggle-press: where it acts, before the bottom dead centre",
-    "torque": 'toggle-press: the crank\'s torque limit, e.g. "5kN*m"',
-    "upper_stroke": "double-cut-shears: the upper knife's stroke",
-    "lower_stroke": "double-cut-shears: the lower knife's stroke",
-    "overlap": "double-cut-shears: the knives' overlap when closed (or --opening)",
-    "opening": "double-cut-shears: the gap between the knives when open",
-    "criterion": "slider-crank, double-cut-shears: pick from the family by 'pressure' (default) or 'torque'",
-}
+#: The requirement options of ``linkwork synthesize`` (each a text: a quantity with its unit, a ratio or a word): name
+#: -> (kind of quantity, help), generated from the kinds' records, in the order of its help (:func:`_signature`).
+OPTIONS = options()
 
 
 def synthesize(
@@ -128,30 +103,29 @@ def synthesize(
     --criterion picks it.  Every kind keeps the design rule: the least transmission angle of every dyad over the
     turn at least 40 deg (--min-transmission-angle lowers it).  Requirements that cannot be met: exit 2, no file."""
     from linkwork.lang import check_lang
-    from linkwork.synthesis import KINDS, QUANTITIES, required
     from linkwork.synthesis import synthesize as run
 
     try:
         check_lang(lang)
     except LinkworkError as exc:
         fail(exc)
-    if kind not in KINDS:
-        fail(LinkworkError(f"unknown kind {kind!r}: expected one of {', '.join(KINDS)}"))
+    if kind not in RECORDS:
+        fail(LinkworkError(f"unknown kind {kind!r}: expected one of {', '.join(RECORDS)}"))
     if not out.endswith((".yaml", ".yml")):
         fail(LinkworkError(f'--out "{excerpt(out, QUOTE_PATH)}": expected a .yaml file'))
-    import importlib
-
-    known = list(inspect.signature(importlib.import_module(KINDS[kind]).synthesize).parameters)
-    texts = {name: given.get(name) for name in REQUIREMENTS}
+    known = needs(kind)
+    texts = {name: given.get(name) for name in OPTIONS}
     wrong = [name for name, text in texts.items() if text is not None and name not in known]
     if wrong:
         fail(LinkworkError(f"{kind}: --{', --'.join(w.replace('_', '-') for w in wrong)}: not a requirement of {kind}"))
     texts = {name: text for name, text in texts.items() if name in known}
-    missing = [n for n in required(importlib.import_module(KINDS[kind]).synthesize) if texts[n] is None]
+    missing = [n for n in required(kind) if texts[n] is None]
     if missing:
         fail(LinkworkError(f"{kind}: missing --{', --'.join(m.replace('_', '-') for m in missing)}"))
-    words = {name: texts.pop(name) for name in ("criterion",) if texts.get(name) is not None}
-    requirements = _read({name: (text, QUANTITIES.get(name, "ratio")) for name, text in texts.items()})
+    words = {
+        name: texts.pop(name) for name in list(texts) if known[name].quantity == "word" and texts[name] is not None
+    }
+    requirements = _read({name: (text, known[name].quantity) for name, text in texts.items()})
     extra = {"speed": speed} if speed is not None else {}
     try:
         result = run(kind, **requirements, **words, **extra, **_section(section))
@@ -163,7 +137,7 @@ def synthesize(
 
 def _signature() -> inspect.Signature:
     """The options typer reads off :func:`synthesize`: ``KIND`` and ``--out``, then one ``--NAME`` option of text per
-    entry of :data:`REQUIREMENTS` (the table they are generated from), then its own."""
+    requirement of the kinds' records (:data:`OPTIONS`, generated from :mod:`linkwork.requirements`), then its own."""
     own = list(inspect.signature(synthesize, eval_str=True).parameters.values())[:-1]
     generated = [
         inspect.Parameter(
@@ -172,7 +146,7 @@ def _signature() -> inspect.Signature:
             default=None,
             annotation=Annotated[str | None, typer.Option(f"--{name.replace('_', '-')}", help=text)],
         )
-        for name, text in REQUIREMENTS.items()
+        for name, (_, text) in OPTIONS.items()
     ]
     return inspect.Signature([*own[:2], *generated, *own[2:]], return_annotation=None)
 

@@ -5,16 +5,17 @@ hand is checked here, with the rest of the file (``linkwork check``, and every c
 that what reads it later has nothing to fail on:
 
 - ``kind``: one of :data:`KINDS`; the file has the names that kind's analysis and family read
-  (:data:`STRUCTURE`: the shears' knife guides, a slider-crank's crank, rod and guide...);
+  (:data:`STRUCTURE`: a slider-crank's crank, rod and guide...; the shears' knives, guides, rods and rocker);
 - every other key a requirement of that kind (:data:`KINDS`), or ``criterion`` (:data:`CRITERIA`);
 - a length, an angle, a force or a moment with its unit (``"400 mm"``, ``"60 deg"``): a bare number would be read
   in a unit nobody said; a ratio a plain number;
 - ``<name>_tolerance`` (``stroke_tolerance: "0.021 mm"``): how far the analysis may measure the requirement
   ``name`` from it and the report still call it met, in its unit, at least zero (a synthesised file states the
   one the rounding of its lengths implies); without it, 1e-6 of the requirement;
-- every value finite and within its range (:data:`RANGES`, :data:`KIND_RANGES`): a stroke is positive, a
-  pressure angle below 90 deg, a time ratio at least 1 (the slower stroke's time over the faster; a
-  slider-crank's below 3), at most :data:`~linkwork.limits.MAX_MAGNITUDE` in SI.
+- every value finite and within its range (each field's ``within`` in its kind's record,
+  :mod:`linkwork.requirements`): a stroke is positive, a pressure angle below 90 deg, a time ratio at least 1
+  (the slower stroke's time over the faster; a slider-crank's below 3), at most
+  :data:`~linkwork.limits.MAX_MAGNITUDE` in SI.
 """
 
 from __future__ import annotations
@@ -25,33 +26,12 @@ from typing import Any
 
 from linkwork.errors import UnitParseError
 from linkwork.limits import MAX_MAGNITUDE, echo, quote
+from linkwork.requirements import EXAMPLES, QUANTITIES, RECORDS, carried, needs
+from linkwork.spec.shears import shears_parts
 
 #: The requirements each kind carries (those ``linkwork synthesize`` writes for it), besides ``kind`` and
-#: ``criterion``.
-KINDS: dict[str, tuple[str, ...]] = {
-    "slider-crank": (
-        "stroke",
-        "time_ratio",
-        "rod_ratio",
-        "offset",
-        "max_pressure_angle",
-        "force",
-        "working",
-        "min_transmission_angle",
-    ),
-    "crank-rocker": ("swing", "time_ratio", "rocker", "frame", "min_transmission_angle"),
-    "slotted-lever": ("stroke", "time_ratio", "frame", "crank", "rod", "max_pressure_angle", "min_transmission_angle"),
-    "toggle-press": ("stroke", "force", "before", "torque", "swing", "time_ratio", "min_transmission_angle"),
-    "double-cut-shears": (
-        "upper_stroke",
-        "lower_stroke",
-        "time_ratio",
-        "overlap",
-        "opening",
-        "crank",
-        "min_transmission_angle",
-    ),
-}
+#: ``criterion``: the quantities and ratios of the kind's record (:mod:`linkwork.requirements`).
+KINDS: dict[str, tuple[str, ...]] = {kind: carried(kind) for kind in RECORDS}
 
 #: The suffix of a requirement's tolerance (``stroke_tolerance``).
 TOLERANCE = "_tolerance"
@@ -60,55 +40,19 @@ TOLERANCE = "_tolerance"
 CRITERIA = ("pressure", "torque")
 
 #: The kind of quantity of each requirement (:data:`linkwork.units.KINDS`); the others are plain ratios.
-QUANTITY = {
-    **dict.fromkeys(
-        ("stroke", "offset", "rocker", "frame", "crank", "rod", "before", "working", "upper_stroke", "lower_stroke"),
-        "length",
-    ),
-    **dict.fromkeys(("overlap", "opening"), "length"),
-    **dict.fromkeys(("swing", "max_pressure_angle", "min_transmission_angle"), "angle"),
-    "force": "force",
-    "torque": "moment",
-}
+QUANTITY = QUANTITIES
 
 _DEG = math.pi / 180
 
-#: The range of each requirement, SI: ``(low, high, low_included, high_included)``; the rest any finite value
-#: within :data:`~linkwork.limits.MAX_MAGNITUDE`.
-RANGES: dict[str, tuple[float, float, bool, bool]] = {
-    **dict.fromkeys(
-        ("stroke", "rocker", "frame", "crank", "rod", "before", "working", "upper_stroke", "lower_stroke", "opening"),
-        (0.0, MAX_MAGNITUDE, False, True),
-    ),
-    "force": (0.0, MAX_MAGNITUDE, False, True),
-    "torque": (0.0, MAX_MAGNITUDE, False, True),
-    "swing": (0.0, 180 * _DEG, False, False),
-    "max_pressure_angle": (0.0, 90 * _DEG, False, False),
-    "min_transmission_angle": (0.0, 90 * _DEG, False, True),
-    "time_ratio": (1.0, MAX_MAGNITUDE, True, True),
-    "rod_ratio": (0.0, MAX_MAGNITUDE, False, True),
-}
-
-#: Ranges of a kind's own: a slider-crank's crank turns theta = asin(e / (l - r)) - asin(e / (l + r)) < 90 deg between
-#: its limit positions, so K = (180 + theta) / (180 - theta) < 3; the knives' time ratio is closing over opening,
-#: either way round.
-KIND_RANGES: dict[tuple[str, str], tuple[float, float, bool, bool]] = {
-    ("slider-crank", "time_ratio"): (1.0, 3.0, True, False),
-    ("double-cut-shears", "time_ratio"): (0.0, MAX_MAGNITUDE, False, True),
-}
-
-#: What the analysis and the family of a kind read from the file: links, joints (and their type), frame points,
-#: and whether a process load with two tools (the knives).
+#: What the analysis and the family of a kind read from the file: links, joints (and their type), frame points (the
+#: names the closed-form kinds write in their own files), and for the shears their parts, read from the file's
+#: structure whatever it names them (:func:`~linkwork.spec.shears.shears_parts`).
 STRUCTURE: dict[str, dict[str, Any]] = {
     "slider-crank": {"links": ("crank", "rod"), "joints": {"guide": "prismatic"}},
     "crank-rocker": {"links": ("crank", "coupler", "rocker"), "points": ("O4",)},
     "slotted-lever": {"links": ("crank",), "points": ("O1",)},
     "toggle-press": {},
-    "double-cut-shears": {
-        "links": ("crank",),
-        "joints": {"guide_E": "prismatic", "guide_F": "prismatic"},
-        "knives": True,
-    },
+    "double-cut-shears": {"shears": True},
 }
 
 Report = Callable[[tuple[Any, ...], str], None]
@@ -155,11 +99,7 @@ def requirement_problem(kind: str, name: str, value: Any) -> str | None:
     got = requirement_value(base, value)
     if isinstance(got, str):
         return got
-    low, high, with_low, with_high = (
-        (0.0, MAX_MAGNITUDE, True, True)
-        if base != name
-        else KIND_RANGES.get((kind, name)) or RANGES.get(name, (-MAX_MAGNITUDE, MAX_MAGNITUDE, True, True))
-    )
+    low, high, with_low, with_high = (0.0, MAX_MAGNITUDE, True, True) if base != name else needs(kind)[name].within
     inside = (low < got or (with_low and low == got)) and (got < high or (with_high and got == high))
     if math.isfinite(got) and inside:
         return None
@@ -188,8 +128,7 @@ def requirement_value(name: str, value: Any) -> float | str:
             return f"a ratio is a plain number, got {echo(value)}"
         return float(value)
     if not isinstance(value, str) or _plain(value):
-        example = {"length": "400 mm", "angle": "60 deg", "force": "20 kN", "moment": "500 N*m"}[kind]
-        return f'give the unit, e.g. "{example}", got {echo(value)}'
+        return f'give the unit, e.g. "{EXAMPLES[kind]}", got {echo(value)}'
     try:
         return parse_quantity(value, kind)
     except UnitParseError as exc:
@@ -216,8 +155,8 @@ def _check_structure(bad: Report, data: dict[str, Any], kind: str) -> None:
         if not isinstance(j, dict) or j.get("type") != type_:
             missing.append(f"{type_} joint {quote(joint)}")
     missing += [f"frame point {quote(n)}" for n in need.get("points", ()) if n not in points]
-    if need.get("knives") and not _two_tools(data.get("loads")):
-        missing.append("process load with two tools (the knives)")
+    if need.get("shears") and isinstance(lacks := shears_parts(data), str):
+        missing.append(lacks)
     if missing:
         bad(
             ("requirements", "kind"),
@@ -227,10 +166,3 @@ def _check_structure(bad: Report, data: dict[str, Any], kind: str) -> None:
 
 def _mapping(value: Any) -> dict[str, Any]:
     return value if isinstance(value, dict) else {}
-
-
-def _two_tools(loads: Any) -> bool:
-    return isinstance(loads, dict) and any(
-        isinstance(load, dict) and load.get("type") == "process" and len(load.get("tools") or ()) == 2
-        for load in loads.values()
-    )

@@ -12,18 +12,19 @@ import math
 from typing import Any
 
 from linkwork.errors import LinkworkError, SynthesisError
-from linkwork.synthesis.common import QUANTITIES, Family, Synthesis
+from linkwork.requirements import QUANTITIES, RECORDS, needs, required
+from linkwork.synthesis.common import Family, Synthesis
 
 __all__ = ["KINDS", "QUANTITIES", "Family", "Synthesis", "synthesize"]
 
-#: The kinds synthesised, and their modules.
-KINDS = {
-    "slider-crank": "linkwork.synthesis.slider_crank",
-    "crank-rocker": "linkwork.synthesis.crank_rocker",
-    "slotted-lever": "linkwork.synthesis.slotted_lever",
-    "toggle-press": "linkwork.synthesis.toggle_press",
-    "double-cut-shears": "linkwork.synthesis.shears",
-}
+
+def __getattr__(name: str) -> Any:
+    """:data:`KINDS`, the registry of the kinds (:mod:`linkwork.synthesis.kinds`), loaded when first asked for."""
+    if name == "KINDS":
+        from linkwork.synthesis.kinds import KINDS
+
+        return KINDS
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def synthesize(kind: str, **requirements: Any) -> Synthesis:
@@ -53,8 +54,9 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
         ``"slider-crank"``, ``"crank-rocker"``, ``"slotted-lever"``, ``"toggle-press"`` or
         ``"double-cut-shears"``.
     **requirements
-        The kind's requirements named above: lengths in m, angles in rad, forces in N, torques in N m,
-        speeds in rad/s, or strings with their unit.
+        The kind's requirements named above (the fields of its record,
+        :data:`linkwork.requirements.RECORDS`): lengths in m, angles in rad, forces in N, torques in N m, or
+        strings with their unit; ``speed`` a string (``"60 rpm"``).
 
     Returns
     -------
@@ -75,17 +77,13 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     >>> round(s.measured["time_ratio"], 3)
     1.2
     """
-    import importlib
-    import inspect
-
-    if kind not in KINDS:
-        raise SynthesisError(f"unknown kind {kind!r}: expected one of {', '.join(KINDS)}")
-    func = importlib.import_module(KINDS[kind]).synthesize
-    known = list(inspect.signature(func).parameters)
+    if kind not in RECORDS:
+        raise SynthesisError(f"unknown kind {kind!r}: expected one of {', '.join(RECORDS)}")
+    known = list(needs(kind))
     unknown = [name for name in requirements if name not in known]
     if unknown:
         raise SynthesisError(f"{kind}: unknown requirement {', '.join(unknown)}; expected {', '.join(known)}")
-    missing = [name for name in required(func) if name not in requirements]
+    missing = [name for name in required(kind) if name not in requirements]
     if missing:
         raise SynthesisError(f"{kind}: missing requirement {', '.join(missing)}")
     si = {name: _si(name, value) for name, value in requirements.items()}
@@ -93,22 +91,19 @@ def synthesize(kind: str, **requirements: Any) -> Synthesis:
     import numpy as np
 
     from linkwork.synthesis.common import dimensioned
+    from linkwork.synthesis.kinds import KINDS
 
-    scale = [float(si[name]) for name in SCALE if isinstance(si.get(name), float | int)]
+    # the requirements that set the mechanism's scale, and so the step its file is dimensioned to (0.1 mm from 10 mm)
+    scale = [float(si[n]) for n, need in needs(kind).items() if need.scale and isinstance(si.get(n), float | int)]
     try:
         # the closed forms' NaN and inf are refused by the checks that follow them; the file dimensioned to 0.1 mm
         with np.errstate(all="ignore"), dimensioned(*scale):
-            result = func(**si)
+            result = KINDS[kind].synthesize(KINDS[kind].record(**si))
         return _carrying(result, {"criterion": requirements["criterion"]} if "criterion" in requirements else {})
     except SynthesisError:
         raise
     except LinkworkError as exc:  # the written mechanism, which the user never sees, cannot be read or analysed
         raise SynthesisError(f"{kind}: {_request(si)} give a mechanism the analysis cannot take: {_own(exc)}") from None
-
-
-#: The requirements that set a mechanism's scale, and so the step its file is dimensioned to
-#: (:func:`~linkwork.synthesis.common.dimensioned`: 0.1 mm from 10 mm up).
-SCALE = ("stroke", "rocker", "frame", "upper_stroke", "lower_stroke")
 
 
 def in_range(si: dict[str, Any]) -> None:
@@ -213,13 +208,6 @@ def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
     )
     text = yaml_text(data)
     return dataclasses.replace(result, text=text, spec=loads(text, "<synthesised>"))
-
-
-def required(func: Any) -> list[str]:
-    """The requirements a kind's ``synthesize`` cannot do without (its parameters without a default)."""
-    import inspect
-
-    return [n for n, p in inspect.signature(func).parameters.items() if p.default is inspect.Parameter.empty]
 
 
 def _si(name: str, value: Any) -> Any:

@@ -14,6 +14,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from linkwork.errors import SynthesisError
+from linkwork.requirements import BAR, STEEL
 from linkwork.spec.schema import Spec
 
 #: The analysis's own resolution, relative: added to the tolerance the rounding of the lengths implies
@@ -64,30 +65,6 @@ TIME_RATIOS = 100.0
 #: are relative to the mechanism's size), and no shop makes a link a thousandth of its neighbour.
 PROPORTION = 1e3
 
-#: Density of steel (kg/m^3), and the default bar section (m): every link a steel bar of this section.
-STEEL = 7850.0
-BAR = (0.040, 0.020)
-
-#: The kind of quantity of each requirement that has a unit.
-QUANTITIES = {
-    "stroke": "length",
-    "offset": "length",
-    "rocker": "length",
-    "frame": "length",
-    "swing": "angle",
-    "crank": "length",
-    "rod": "length",
-    "before": "length",
-    "force": "force",
-    "torque": "moment",
-    "max_pressure_angle": "angle",
-    "min_transmission_angle": "angle",
-    "upper_stroke": "length",
-    "lower_stroke": "length",
-    "overlap": "length",
-    "opening": "length",
-    "working": "length",
-}
 
 #: The design rule every kind keeps unless the request lowers it (``min_transmission_angle``): the least
 #: transmission angle of every dyad of the written file over the turn, at least 40 deg (rad).  Nearer a dead point

@@ -29,9 +29,8 @@ import math
 import numpy as np
 
 from linkwork.errors import SynthesisError
+from linkwork.requirements import CrankRockerRequirements
 from linkwork.synthesis.common import (
-    BAR,
-    STEEL,
     Family,
     Making,
     Synthesis,
@@ -245,19 +244,14 @@ def nearest(swing: float, time_ratio: float, bound: float) -> str:
     return f"a swing of at most {down(math.degrees(lo))} deg meets it with K = {time_ratio:g}"
 
 
-def synthesize(
-    swing: float,
-    time_ratio: float,
-    rocker: float | None = None,
-    frame: float | None = None,
-    min_transmission_angle: float | None = None,
-    speed: str = "60 rpm",
-    section: tuple[float, float] = BAR,
-    density: float = STEEL,
-) -> Synthesis:
+def synthesize(asked: CrankRockerRequirements) -> Synthesis:
     """A crank-rocker for the swing psi (rad) and time ratio K, scaled by the ``rocker`` or ``frame`` length
     (m), picked with the greatest least transmission angle; ``min_transmission_angle`` (rad) a bound it must
-    meet.  Links are steel bars of ``section`` and ``density``.  Verified by the analysis of the written file."""
+    meet.  Links are steel bars of ``section`` and ``density``.  Verified by the analysis of the written file:
+    ``asked``, SI."""
+    swing, time_ratio, rocker, frame = asked.swing, asked.time_ratio, asked.rocker, asked.frame
+    speed, section, density = asked.speed, asked.section, asked.density
+    min_transmission_angle = asked.min_transmission_angle
     if not 0 < swing < math.pi:
         raise SynthesisError(f"swing {deg(swing)}: a crank-rocker swings between 0 and 180 deg")
     if not 1.0 <= time_ratio < math.inf:
@@ -296,7 +290,7 @@ def synthesize(
     measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))
     measured["swing"] = measured.pop("stroke")
     predicted = {"swing": swing, "time_ratio": time_ratio, "least_transmission_angle": mu}
-    tol = tolerances_of(spec, KIND)
+    tol = tolerances_of(spec)
     confirm(measured, predicted, mu, tol)
     keep_rule(spec, bound, tol["min_transmission_angle"])
     why = "the greatest least transmission angle" if theta > 0 else "the nearest crank pivot meeting the bound"

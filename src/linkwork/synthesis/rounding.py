@@ -6,6 +6,7 @@ kind (:func:`measure`), which the file's verification and the report's requireme
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -19,16 +20,20 @@ if TYPE_CHECKING:
 #: Headroom over the first-order bound of :func:`rounding_tolerances` for its second-order remainder.
 MARGIN = 1.1
 
+#: A kind's own measurement of a solved turn (its ``variant``), beside what :func:`measure` measures of every kind:
+#: :attr:`linkwork.synthesis.kinds.Kind.measure` (the shears' :func:`knives`).
+Own = Callable[["Kinematics", int], dict[str, float]]
 
-def tolerances_of(spec: Spec, kind: str, paths: list[str] | None = None) -> dict[str, float]:
+
+def tolerances_of(spec: Spec, own: Own | None = None, paths: list[str] | None = None) -> dict[str, float]:
     """The tolerances the rounding of ``spec``'s lengths (``paths``, else every nonzero one) implies for the
-    requirements of ``kind`` (:func:`rounding_tolerances`)."""
+    requirements its kind's measurement gives (``own`` beside the common one, :func:`rounding_tolerances`)."""
     from linkwork.api import mechanism_of
 
-    return rounding_tolerances(mechanism_of(spec), kind, paths)
+    return rounding_tolerances(mechanism_of(spec), own, paths)
 
 
-def rounding_tolerances(mech: Any, kind: str, paths: list[str] | None = None) -> dict[str, float]:
+def rounding_tolerances(mech: Any, own: Own | None = None, paths: list[str] | None = None) -> dict[str, float]:
     """The tolerance (SI) of each requirement the analysis measures on a file whose lengths are written to the
     step :func:`~linkwork.synthesis.common.step` (0.1 mm, :data:`~linkwork.synthesis.common.STEP`).
 
@@ -44,8 +49,8 @@ def rounding_tolerances(mech: Any, kind: str, paths: list[str] | None = None) ->
     ----------
     mech : Mechanism
         The written file, compiled.
-    kind : str
-        The kind synthesised (what :func:`requirement_rows` measures of it).
+    own : callable, optional
+        The kind's own measurement beside the common one (:func:`measure`).
     paths : list of str, optional
         The lengths the file rounds.
 
@@ -64,18 +69,18 @@ def rounding_tolerances(mech: Any, kind: str, paths: list[str] | None = None) ->
     for i, name in enumerate(names):
         variants[name][2 * i + 1 : 2 * i + 3] += (delta, -delta)
     kin = kinematics(mech, steps=VERIFY_STEPS, variants=variants)
-    runs = [measure(kin, kind, v) for v in range(2 * len(names) + 1)]
+    runs = [measure(kin, own, v) for v in range(2 * len(names) + 1)]
     out = {}
-    for key, own in runs[0].items():
+    for key, value in runs[0].items():
         first = sum(abs(runs[2 * i + 1][key] - runs[2 * i + 2][key]) / 2 for i in range(len(names)))
-        out[key] = MARGIN * first + TOLERANCE * abs(own)
+        out[key] = MARGIN * first + TOLERANCE * abs(value)
     return out
 
 
-def measure(kin: Kinematics, kind: str, variant: int = 0) -> dict[str, float]:
+def measure(kin: Kinematics, own: Own | None = None, variant: int = 0) -> dict[str, float]:
     """What the analysis measures of the working member over ``kin`` (its ``variant``): stroke or swing, time
     ratio, the largest pressure angle (of the dyads driving a slider, else of all) and the least transmission
-    angle; the knives' quantities for the shears."""
+    angle; then the kind's ``own`` measurement (the shears' knives, :func:`knives`)."""
     from linkwork.motion.analysis import extremes, transmission, working
 
     out: dict[str, float] = {}
@@ -91,25 +96,32 @@ def measure(kin: Kinematics, kind: str, variant: int = 0) -> dict[str, float]:
         sliding = [v for k, v in least.items() if k.endswith("RRP")] or list(least.values())
         out["max_pressure_angle"] = math.pi / 2 - min(sliding)
         out["min_transmission_angle"] = min(least.values())
-    if kind == "double-cut-shears":
-        out.update(knives(kin, variant))
+    if own is not None:
+        out.update(own(kin, variant))
     return out
 
 
 def knives(kin: Kinematics, variant: int = 0) -> dict[str, float]:
     """The knives' strokes, K, overlap and opening of the shears solved in ``kin`` (its ``variant``) as the design
-    metrics measure them."""
+    metrics measure them, each knife's stroke along its guide as the file names it
+    (:func:`~linkwork.spec.shears.shears_parts`)."""
     from linkwork.design.evaluate import Evaluation
     from linkwork.design.metrics import METRICS
+    from linkwork.errors import SynthesisError
+    from linkwork.spec.shears import shears_parts
 
+    found = shears_parts(kin.mechanism.spec)
+    if isinstance(found, str):
+        raise SynthesisError(f"double-cut shears: the mechanism's file has no {found}")
+    upper, lower = found.guides
     ev = Evaluation(kin)
 
     def one(name: str, arg: str | None = None) -> float:
         return float(np.ravel(METRICS[name].compute(ev, arg))[variant])
 
     return {
-        "upper_stroke": one("stroke", "guide_E"),
-        "lower_stroke": one("stroke", "guide_F"),
+        "upper_stroke": one("stroke", upper),
+        "lower_stroke": one("stroke", lower),
         "time_ratio": one("working_time_ratio"),
         "overlap": one("knife_overlap"),
         "opening": one("knife_clearance"),

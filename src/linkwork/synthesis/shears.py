@@ -3,7 +3,8 @@ the opening) and the time ratio K, keeping the bundled file's structure.
 
 No closed form: the design package meets the requirements as equality constraints
 (:func:`linkwork.design.equalities.meet`, Newton's method on the same metrics a sweep or an optimisation
-reports) over named parameters of the bundled file:
+reports) over named parameters of the bundled file (named here as the bundled file names its parts; the
+synthesis reads the names from the file, :mod:`linkwork.spec.shears`):
 
 * ``frame.points.O1.x`` (the crank's pivot along the rocker's arm): K, the time of the knives closing over
   that of their opening (the metric ``working_time_ratio``);
@@ -26,12 +27,15 @@ Masses, inertias, loads and the drive are the bundled file's (an override keeps 
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
 import numpy as np
 
 from linkwork.errors import SynthesisError
+from linkwork.requirements import ShearsRequirements
+from linkwork.spec.shears import ShearsParts, shears_parts
 from linkwork.synthesis.common import (
     TOLERANCE,
     VERIFY_STEPS,
@@ -47,24 +51,25 @@ from linkwork.synthesis.rounding import knives, tolerances_of
 
 KIND = "double-cut-shears"
 
-#: The named parameters the unknowns and the family's crank length set.
-CRANK = "links.crank.length"
-PATHS = [
-    CRANK,
-    "frame.points.O1.x",
-    "links.rocker.points.D.x",
-    "links.rocker.points.C.x",
-    "links.knife_upper.points.edge.y",
-    "links.knife_lower.points.edge.y",
-]
 
-#: The metrics each unknown meets, in the unknowns' order (the requirements' names beside them).
-EQUALITIES = {
-    "working_time_ratio": "time_ratio",
-    "stroke:guide_E": "upper_stroke",
-    "stroke:guide_F": "lower_stroke",
-    "knife_overlap": "overlap",
-}
+@functools.cache
+def bundled() -> ShearsParts:
+    """The names of the bundled file's parts (:func:`parts`); its
+    :attr:`~linkwork.spec.shears.ShearsParts.paths` are the named parameters the unknowns and the
+    family's crank length set."""
+    from linkwork.api import spec_of
+
+    return parts(spec_of(KIND))
+
+
+def parts(spec: Any) -> ShearsParts:
+    """The parts of the shears ``spec`` (:func:`~linkwork.spec.shears.shears_parts`); raises
+    :class:`SynthesisError` naming the one it lacks."""
+    found = shears_parts(spec)
+    if isinstance(found, str):
+        raise SynthesisError(f"double-cut shears: the file has no {found}")
+    return found
+
 
 #: The family's crank lengths, relative to the bundled crank.
 SPAN = (0.5, 2.0)
@@ -107,9 +112,9 @@ def _requirements(upper: float, lower: float, ratio: float, overlap: float | Non
 
 
 def _values(base: dict[str, float], cranks: np.ndarray):  # noqa: ANN202
-    """``values_of`` for :func:`~linkwork.design.equalities.meet`: unknowns (O1.x, D.x, C.x, s) of the
-    members -> the values of :data:`PATHS`."""
-    upper, lower = base["links.knife_upper.points.edge.y"], base["links.knife_lower.points.edge.y"]
+    """``values_of`` for :func:`~linkwork.design.equalities.meet`: unknowns (the pivot's x, the rocker's arms' x,
+    s) of the members -> the values of the :func:`bundled` paths."""
+    upper, lower = (base[path] for path in bundled().paths[4:])
 
     def values_of(u: np.ndarray, member: np.ndarray) -> np.ndarray:
         return np.column_stack([cranks[member], u[:, 0], u[:, 1], u[:, 2], upper - u[:, 3] / 2, lower + u[:, 3] / 2])
@@ -128,19 +133,20 @@ def family(mech, targets: dict[str, float], cranks: np.ndarray, metrics: list[st
     from linkwork.structure.parameters import parameter_values
 
     base = parameter_values(mech)
-    scales = np.full(4, base[CRANK])
+    paths = bundled().paths
+    scales = np.full(4, base[paths[0]])
     unknowns = np.full((len(cranks), 4), np.nan)
 
     def solve(members: list[int], starts: list[np.ndarray], goal: dict[str, float] = targets) -> None:
-        met = meet(mech, PATHS, _values(base, cranks[members]), np.array(starts), goal, scales=scales, steps=360)
+        met = meet(mech, paths, _values(base, cranks[members]), np.array(starts), goal, scales=scales, steps=360)
         unknowns[members] = met.unknowns
 
     # the first member: from the bundled file's own metrics to the requirements in steps (a homotopy)
     first = len(cranks) // 2
-    start = np.array([base[p] for p in PATHS[1:4]] + [0.0])
+    start = np.array([base[p] for p in paths[1:4]] + [0.0])
     own = evaluate(
         mech,
-        PATHS,
+        paths,
         _values(base, cranks[[first]])(start[None], np.zeros(1, int)),
         parse_metrics(list(targets), mech),
         360,
@@ -157,7 +163,7 @@ def family(mech, targets: dict[str, float], cranks: np.ndarray, metrics: list[st
         solve(members, starts)
     ok = np.flatnonzero(~np.isnan(unknowns[:, 0]))
     values = _values(base, cranks[ok])(unknowns[ok], np.arange(len(ok)))
-    cols = evaluate(mech, PATHS, values, parse_metrics([*targets, *metrics], mech), VERIFY_STEPS)
+    cols = evaluate(mech, paths, values, parse_metrics([*targets, *metrics], mech), VERIFY_STEPS)
     found = {c: np.full(len(cranks), np.nan) for c in cols}
     for c, v in cols.items():
         found[c][ok] = v
@@ -175,28 +181,24 @@ def solved_family(
 
     mech = mechanism_of(KIND, "mechanism")
     base = parameter_values(mech)
-    targets = {
-        "working_time_ratio": time_ratio,
-        "stroke:guide_E": upper_stroke,
-        "stroke:guide_F": lower_stroke,
-        "knife_overlap": overlap,
-    }
+    upper, lower = bundled().strokes
+    targets = {"working_time_ratio": time_ratio, upper: upper_stroke, lower: lower_stroke, "knife_overlap": overlap}
     # the knives' strokes grow with the rocker's swing, nearly as the crank: the family is centred there
-    guess = base[CRANK] * max(upper_stroke / _own(mech, "stroke:guide_E"), lower_stroke / _own(mech, "stroke:guide_F"))
+    guess = base[bundled().paths[0]] * max(upper_stroke / _own(mech, upper), lower_stroke / _own(mech, lower))
     cranks = np.array([crank]) if crank is not None else guess * np.geomspace(*SPAN, MEMBERS)
     unknowns, found = family(mech, targets, cranks, [m for m, _, _ in CRITERIA.values()])
     return cranks, unknowns, found
 
 
 def member_values(cranks: np.ndarray, unknowns: np.ndarray) -> list[dict[str, float]]:
-    """The values of :data:`PATHS` (SI) of the members ``cranks`` with their ``unknowns``: edits of the bundled
-    file, or of a file synthesised from it."""
+    """The values of the :func:`bundled` paths (SI) of the members ``cranks`` with their ``unknowns``: edits of the
+    bundled file, or of a file synthesised from it."""
     from linkwork.api import mechanism_of
     from linkwork.structure.parameters import parameter_values
 
     base = parameter_values(mechanism_of(KIND, "mechanism"))
     rows = _values(base, cranks)(unknowns, np.arange(len(cranks)))
-    return [dict(zip(PATHS, row.tolist(), strict=True)) for row in rows]
+    return [dict(zip(bundled().paths, row.tolist(), strict=True)) for row in rows]
 
 
 def _last_solved(unknowns: np.ndarray, chain: list[int]) -> np.ndarray:
@@ -204,22 +206,15 @@ def _last_solved(unknowns: np.ndarray, chain: list[int]) -> np.ndarray:
     return next(unknowns[i] for i in reversed(chain) if not np.isnan(unknowns[i, 0]))
 
 
-def synthesize(
-    upper_stroke: float,
-    lower_stroke: float,
-    time_ratio: float,
-    overlap: float | None = None,
-    opening: float | None = None,
-    crank: float | None = None,
-    criterion: str = "pressure",
-    min_transmission_angle: float | None = None,
-    speed: str | None = None,
-) -> Synthesis:
+def synthesize(asked: ShearsRequirements) -> Synthesis:
     """The bundled double-cut shears with the upper and lower knives' strokes (m), the time ratio K (the knives closing
     over opening), and the overlap when closed or the opening (m); ``crank`` (m) fixes the family's free crank length,
     else the member is picked by ``criterion`` (``"pressure"``: the least largest pressure angle, the greatest least
     transmission angle; ``"torque"``: the least peak driving torque under the file's cutting load).  ``speed`` replaces
-    the file's crank speed.  Verified by the analysis of the written file."""
+    the file's crank speed.  Verified by the analysis of the written file.  ``asked``: the requirements, SI."""
+    upper_stroke, lower_stroke, time_ratio = asked.upper_stroke, asked.lower_stroke, asked.time_ratio
+    overlap, opening, crank, criterion = asked.overlap, asked.opening, asked.crank, asked.criterion
+    min_transmission_angle, speed = asked.min_transmission_angle, asked.speed
     from linkwork.api import mechanism_of
 
     want = _requirements(upper_stroke, lower_stroke, time_ratio, overlap, opening)
@@ -253,7 +248,8 @@ def synthesize(
     pick = int(np.nanargmin(score))
     (exact,) = member_values(cranks[[pick]], unknowns[[pick]])
     values = {path: rounded(v) for path, v in exact.items()}  # written to 0.1 mm, as a drawing dimensions them
-    why = f"crank {values[CRANK] * 1e3:.6g} mm as given" if crank is not None else f"picked by {words}"
+    names = bundled()
+    why = f"crank {values[names.paths[0]] * 1e3:.6g} mm as given" if crank is not None else f"picked by {words}"
     text, spec = _file(mech, values, requirements, want, why, speed)
     measured = measure(spec)
     predicted = {
@@ -263,19 +259,20 @@ def synthesize(
         "overlap": want,
         "opening": upper_stroke + lower_stroke - want,
     }
-    tol = tolerances_of(spec, KIND, PATHS)
+    tol = tolerances_of(spec, knives, names.paths)
     confirm(measured, predicted, tol)
     keep_rule(spec, floor, tol["min_transmission_angle"])
     columns = {
         "crank": cranks,
-        "O1.x": unknowns[:, 0],
-        "D.x": unknowns[:, 1],
-        "C.x": unknowns[:, 2],
+        f"{names.pivot}.x": unknowns[:, 0],
+        f"{names.arms[0]}.x": unknowns[:, 1],
+        f"{names.arms[1]}.x": unknowns[:, 2],
         "edges_lengthened_by": unknowns[:, 3] / 2,
         **{m: found[m] for m, _, _ in CRITERIA.values() if m in found},
     }
     fam = None if crank is not None else Family("crank length", "m", cranks, columns, words)
-    dims = dict(zip(["crank", "O1.x", "D.x", "C.x", "upper_edge.y", "lower_edge.y"], values.values(), strict=True))
+    shown = ["crank", f"{names.pivot}.x", *(f"{arm}.x" for arm in names.arms), "upper_edge.y", "lower_edge.y"]
+    dims = dict(zip(shown, values.values(), strict=True))
     notes = [f"{m}: {found[m][pick]:.6g}" for m, _, _ in CRITERIA.values() if m in found]
     if "peak_driving_torque" not in found:
         notes.append(f"peak_driving_torque: {_peak_torque(spec):.6g}")
@@ -338,13 +335,14 @@ def _own(mech, metric: str) -> float:  # noqa: ANN001
 
 
 def _infeasible(mech, upper: float, lower: float, ratio: float, want: float, crank: float | None) -> str:  # noqa: ANN001
-    own = {m: _own(mech, m) for m in ("stroke:guide_E", "stroke:guide_F", "working_time_ratio", "knife_overlap")}
+    upper_metric, lower_metric = bundled().strokes
+    own = {m: _own(mech, m) for m in (upper_metric, lower_metric, "working_time_ratio", "knife_overlap")}
     where = f"with the crank {crank * 1e3:g} mm" if crank is not None else "for any crank length tried"
     return (
         f"upper stroke {upper * 1e3:g} mm, lower stroke {lower * 1e3:g} mm, time ratio K = {ratio:g} and overlap "
         f"{want * 1e3:g} mm: no double-cut shears of the bundled structure meet them together {where} (the "
         f"knives' rods cannot reach their guides, or the rocker's four-bar cannot give K); the bundled file has "
-        f"{own['stroke:guide_E'] * 1e3:.4g} and {own['stroke:guide_F'] * 1e3:.4g} mm, K = "
+        f"{own[upper_metric] * 1e3:.4g} and {own[lower_metric] * 1e3:.4g} mm, K = "
         f"{own['working_time_ratio']:.4g} and {own['knife_overlap'] * 1e3:.4g} mm: ask for values nearer those"
     )
 
@@ -385,12 +383,14 @@ def _file(mech, values: dict[str, float], requirements: dict, want: float, why: 
         f"crank's length {why}.  Masses, the cutting table and the motor as in the bundled file; the billet "
         "placed where the knives meet it.\n"
     )
-    data["links"]["crank"].yaml_add_eol_comment(f"# the family's free length: {why}", "length")
-    data["frame"]["points"].yaml_add_eol_comment(f"# O1.x: time ratio K = {k:.6g}", "O1")
-    data["links"]["rocker"].yaml_add_eol_comment(
-        f"# D.x: upper stroke {up * 1e3:.6g} mm; C.x: lower stroke {low * 1e3:.6g} mm", "points"
+    names = bundled()
+    data["links"][names.crank].yaml_add_eol_comment(f"# the family's free length: {why}", "length")
+    data["frame"]["points"].yaml_add_eol_comment(f"# {names.pivot}.x: time ratio K = {k:.6g}", names.pivot)
+    data["links"][names.rocker].yaml_add_eol_comment(
+        f"# {names.arms[0]}.x: upper stroke {up * 1e3:.6g} mm; {names.arms[1]}.x: lower stroke {low * 1e3:.6g} mm",
+        "points",
     )
-    for knife in ("knife_upper", "knife_lower"):
+    for knife in names.knives:
         data["links"][knife].yaml_add_eol_comment(f"# edge: overlap {want * 1e3:.6g} mm when closed", "points")
     if speed is not None:
         data["drives"][0]["speed"] = speed

@@ -34,10 +34,9 @@ import math
 import numpy as np
 
 from linkwork.errors import SynthesisError
+from linkwork.requirements import SliderCrankRequirements
 from linkwork.synthesis.common import (
-    BAR,
     LEAST_TRANSMISSION,
-    STEEL,
     Family,
     Synthesis,
     bar_mass,
@@ -216,21 +215,7 @@ def solve(
     return r, ell, e, why
 
 
-def synthesize(
-    stroke: float,
-    time_ratio: float,
-    rod_ratio: float | None = None,
-    offset: float | None = None,
-    max_pressure_angle: float | None = None,
-    min_transmission_angle: float | None = None,
-    speed: str = "60 rpm",
-    section: tuple[float, float] = BAR,
-    density: float = STEEL,
-    ram_mass: float | None = None,
-    force: float | None = None,
-    working: float | None = None,
-    criterion: str = "pressure",
-) -> Synthesis:
+def synthesize(asked: SliderCrankRequirements) -> Synthesis:
     """An offset slider-crank for the stroke H (m), time ratio K, and the rod ratio r/l or the offset e (m),
     else the family's member picked by ``criterion``: ``"pressure"``, the least largest pressure angle, or
     ``"torque"``, the least peak driving torque under the working load (refined between the samples,
@@ -238,7 +223,11 @@ def synthesize(
     it must meet.  ``force`` (N): the working load, resisting the ram over the last ``working`` (m; default the
     whole stroke) of its working (downward) stroke, written in the file as a process load.  Links are
     steel bars of ``section`` (m x m) and ``density``; the ram's mass is the rod's unless given.  Verified
-    by the analysis of the written file (:func:`~linkwork.synthesis.common.measure`)."""
+    by the analysis of the written file (:func:`~linkwork.synthesis.common.measure`): ``asked``, SI."""
+    stroke, time_ratio, rod_ratio, offset = asked.stroke, asked.time_ratio, asked.rod_ratio, asked.offset
+    force, working, criterion = asked.force, asked.working, asked.criterion
+    speed, section, density, ram_mass = asked.speed, asked.section, asked.density, asked.ram_mass
+    max_pressure_angle, min_transmission_angle = asked.max_pressure_angle, asked.min_transmission_angle
     load = _load(stroke, force, working, criterion)
     floor = least_allowed(min_transmission_angle)
     r, ell, e, why = solve(stroke, time_ratio, rod_ratio, offset, max_pressure_angle, floor)
@@ -268,7 +257,7 @@ def synthesize(
     measured = measure(spec, [0.0], lambda mu: next(iter(mu.values())))
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
-    tol = tolerances_of(spec, KIND)
+    tol = tolerances_of(spec)
     confirm(measured, predicted, math.pi / 2 - alpha, tol)
     keep_rule(spec, floor, tol["min_transmission_angle"])
     return Synthesis(

@@ -39,10 +39,9 @@ import math
 import numpy as np
 
 from linkwork.errors import SynthesisError
+from linkwork.requirements import SlottedLeverRequirements
 from linkwork.synthesis.common import (
-    BAR,
     LEAST_TRANSMISSION,
-    STEEL,
     Family,
     Making,
     Synthesis,
@@ -205,24 +204,15 @@ def _nearer(stroke: float, time_ratio: float, frame, crank, rod, bound) -> str: 
     return f"a time ratio K >= {up(hi)} keeps them in proportion"
 
 
-def synthesize(
-    stroke: float,
-    time_ratio: float,
-    frame: float | None = None,
-    crank: float | None = None,
-    rod: float | None = None,
-    max_pressure_angle: float | None = None,
-    min_transmission_angle: float | None = None,
-    speed: str = "60 rpm",
-    section: tuple[float, float] = BAR,
-    density: float = STEEL,
-    ram_mass: float | None = None,
-) -> Synthesis:
+def synthesize(asked: SlottedLeverRequirements) -> Synthesis:
     """A slotted-lever quick return (crank-shaper) for the ram's stroke H (m) and time ratio K > 1, with the
     ``frame`` d or the ``crank`` r (m) else the greatest frame, the ``rod`` (m) else the shortest rod whose
     largest pressure angle is ``max_pressure_angle`` (rad; 10 deg by default).  Links are steel bars of
     ``section`` and ``density``; the ram's mass is the rod's unless given.  Verified by the analysis of the
-    written file: the ram's stroke, K and the rod's largest pressure angle."""
+    written file: the ram's stroke, K and the rod's largest pressure angle.  ``asked``: the requirements, SI."""
+    stroke, time_ratio, frame, crank, rod = asked.stroke, asked.time_ratio, asked.frame, asked.crank, asked.rod
+    max_pressure_angle, min_transmission_angle = asked.max_pressure_angle, asked.min_transmission_angle
+    speed, section, density, ram_mass = asked.speed, asked.section, asked.density, asked.ram_mass
     floor = least_allowed(min_transmission_angle)
     dims, why = solve(stroke, time_ratio, frame, crank, rod, max_pressure_angle, floor)
     theta = crank_angle_between_limits(time_ratio)
@@ -248,7 +238,7 @@ def synthesize(
     measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
     measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": _written_alpha(spec)}
-    tol = tolerances_of(spec, KIND)
+    tol = tolerances_of(spec)
     confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha, tol)  # the rod square to the lever at its limits
     keep_rule(spec, floor, tol["min_transmission_angle"])
     fam = family(stroke, time_ratio) if frame is None and crank is None else None

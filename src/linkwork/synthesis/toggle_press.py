@@ -36,11 +36,10 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import SynthesisError
+from linkwork.requirements import TogglePressRequirements
 from linkwork.synthesis import crank_rocker
 from linkwork.synthesis.common import (
-    BAR,
     PROPORTION,
-    STEEL,
     TOLERANCE,
     VERIFY_STEPS,
     Making,
@@ -118,22 +117,15 @@ def nominal(geo: dict, before: float) -> tuple[float, float]:
     raise SynthesisError("toggle-press: the nominal point is not on the ram's way down")  # pragma: no cover
 
 
-def synthesize(
-    stroke: float,
-    force: float,
-    before: float,
-    torque: float,
-    swing: float | None = None,
-    time_ratio: float | None = None,
-    min_transmission_angle: float | None = None,
-    speed: str = "60 rpm",
-    section: tuple[float, float] = BAR,
-    density: float = STEEL,
-) -> Synthesis:
+def synthesize(asked: TogglePressRequirements) -> Synthesis:
     """A knuckle-joint press for the ram's stroke (m), the nominal ``force`` (N) at ``before`` (m) before the
     bottom dead centre and the crank's ``torque`` limit (N m); the upper link's ``swing`` (rad, 45 deg) and the
     four-bar's ``time_ratio`` (1.2) unless given.  The file carries the nominal force as a process load; the
-    stroke and the torque at the nominal point are verified by ``lw.kinematics`` and ``lw.forces``."""
+    stroke and the torque at the nominal point are verified by ``lw.kinematics`` and ``lw.forces``.  ``asked``: the
+    requirements, SI."""
+    stroke, force, before, torque = asked.stroke, asked.force, asked.before, asked.torque
+    swing, time_ratio, min_transmission_angle = asked.swing, asked.time_ratio, asked.min_transmission_angle
+    speed, section, density = asked.speed, asked.section, asked.density
     for name, value in (("stroke", stroke), ("force", force), ("before", before), ("torque", torque)):
         if not 0 < value < math.inf:
             raise SynthesisError(f"toggle-press: {name} {value!r}: expected a positive finite value (SI)")
@@ -186,7 +178,7 @@ def synthesize(
     measured = measure(spec, [angle], lambda mu: next(v for key, v in mu.items() if key.endswith("RRP")), "guide")
     measured = {"stroke": measured["stroke"], "torque_at_nominal": -_torque(spec, angle)}  # clockwise
     predicted = {"stroke": stroke, "torque_at_nominal": force * rho}
-    tol = tolerances_of(spec, KIND) | {"torque_at_nominal": _nominal_spread(spec, angle)}
+    tol = tolerances_of(spec) | {"torque_at_nominal": _nominal_spread(spec, angle)}
     confirm(measured, predicted, geo["least_transmission_angle"], tol)
     keep_rule(spec, floor, tol["min_transmission_angle"])
     measured["peak_torque"] = _within_limit(spec, angle, force, before, torque)
