@@ -70,17 +70,20 @@ def _moving(f: Forces) -> np.ndarray:
     return np.isfinite(np.asarray(f.driving_torque_all[0, :, 0])) & ~np.asarray(f.singular_all[0])
 
 
-def lever_gaps(f: Forces, scale: float | None = None) -> np.ndarray:
-    """The difference of Zhukovsky's lever's balancing moment and the driving torque at each sample of the first
+def lever_gaps(f: Forces, scale: float | None = None, balancing: np.ndarray | None = None) -> np.ndarray:
+    """The difference of Zhukovsky's lever's balancing moment (``balancing`` ``(A,)`` where the caller has the lever
+    already, else :func:`~linkwork.kinetostatics.lever` of ``f``) and the driving torque at each sample of the first
     variant of ``f``, over ``scale`` (default: the largest size of the driving torque where it moves): ``(A,)``,
     NaN where it does not."""
     from linkwork.kinetostatics.zhukovsky import lever
 
+    if balancing is None:
+        balancing = np.asarray(lever(f).balancing[0])
     torque = np.asarray(f.driving_torque_all[0, :, 0])
     moving = _moving(f)
     if scale is None:
         scale = float(np.max(np.abs(torque[moving]), initial=0.0))
-    gap = np.abs(np.asarray(lever(f).balancing[0]) - torque)
+    gap = np.abs(balancing - torque)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(moving, gap / scale if scale > 0 else gap, np.nan)
 

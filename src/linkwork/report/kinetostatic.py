@@ -162,7 +162,9 @@ def sections(run: Any, at12: Forces, cycle: Any, f: Forces) -> tuple[list[str], 
     body.append(f"<p>{_esc(run.t('kgraph.intro'))}</p>")
     for g in plans.groups:
         body += _group(run, g, i)
-    body += _lever_table(run, at12, lever(at12).balancing[0], at if at.position is None else None)
+    extra = (at, np.asarray(lv.balancing[0])) if at.position is None else None
+    levers = lever(at12)  # the twelve positions': their table and their sheet
+    body += _lever_table(run, at12, levers.balancing[0], extra)
     make_plans = functools.partial(figures.force_plans_figure, plans, i, named, lang)
     make_lever = functools.partial(figures.lever_figure, lv, at.forces.kinematics, i, named, lang)
     where = run.t("at_position", position=named)
@@ -182,7 +184,7 @@ def sections(run: Any, at12: Forces, cycle: Any, f: Forces) -> tuple[list[str], 
         names.append(
             run.figure(
                 "levers",
-                functools.partial(figures.lever_sheet, lever(at12), at12.kinematics, lang),
+                functools.partial(figures.lever_sheet, levers, at12.kinematics, lang),
                 run.t("caption.levers"),
             )
         )
@@ -344,20 +346,23 @@ def _group(run: Any, g: GroupPlan, i: int) -> list[str]:
     return out
 
 
-def _lever_table(run: Any, at12: Forces, balancing: np.ndarray, extra: Where | None = None) -> list[str]:
-    """The lever's balancing moment beside the kinetostatic driving torque at the twelve positions, and at
-    ``extra`` (a position between them: the force analysis's) in a row of its own, marked ``*``."""
+def _lever_table(
+    run: Any, at12: Forces, balancing: np.ndarray, extra: tuple[Where, np.ndarray] | None = None
+) -> list[str]:
+    """The lever's balancing moment ``balancing`` beside the kinetostatic driving torque at the twelve positions,
+    and at ``extra`` (a position between them: the force analysis's, with its lever's balancing moments) in a row of
+    its own, marked ``*``."""
     from linkwork.kinetostatics.crosschecks import lever_gaps
-    from linkwork.kinetostatics.zhukovsky import lever
 
     torque = np.asarray(at12.driving_torque)
     big = float(np.nanmax(np.abs(torque), initial=0.0))
-    gaps = lever_gaps(at12, big)
+    gaps = lever_gaps(at12, big, np.asarray(balancing))
     cases = [(str(k), 30.0 * k, float(balancing[k]), float(torque[k]), gaps[k]) for k in range(len(torque))]
     if extra is not None:
-        moment = float(lever(extra.forces).balancing[0][extra.index])
-        torque_there = float(np.asarray(extra.forces.driving_torque)[extra.index])
-        cases.append(("*", extra.phi, moment, torque_there, lever_gaps(extra.forces, big)[extra.index]))
+        there, moments = extra
+        torque_there = float(np.asarray(there.forces.driving_torque)[there.index])
+        gap = lever_gaps(there.forces, big, moments)[there.index]
+        cases.append(("*", there.phi, float(moments[there.index]), torque_there, gap))
         cases.sort(key=lambda c: c[1])
     rows = []
     for name, phi, mb, md, diff in cases:
