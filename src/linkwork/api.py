@@ -40,6 +40,7 @@ from linkwork.motion import compiled_program, groups
 from linkwork.motion.kinematic_analysis import Kinematics
 from linkwork.motion.kinematic_analysis import kinematics as _kinematics
 from linkwork.sizing.machine_sizing import size as _size
+from linkwork.spec.reader import described
 from linkwork.spec.schema import Spec
 from linkwork.stage_records import compile_friction, compile_loads, from_spec
 from linkwork.structure.compile import structural_model
@@ -72,7 +73,7 @@ def spec_of(mechanism: object, what: str = "mechanism") -> Spec | None:
     if isinstance(mechanism, Spec):
         return mechanism
     if isinstance(mechanism, Mechanism):
-        return mechanism.spec
+        return described(mechanism.description)
     if isinstance(mechanism, str | os.PathLike):
         return resolve(os.fspath(mechanism))
     raise TypeError(f"{what}: expected {EXPECTED}, got {type(mechanism).__name__}")

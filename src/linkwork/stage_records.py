@@ -40,7 +40,7 @@ def compile_loads(spec: Spec, mech: Mechanism) -> tuple[ExternalLoad, ...]:
         elif load.type == "moment":
             out.append(_moment(name, load, names))
         elif load.type in ELEMENTS:
-            out.append(ExternalLoad(name, **compile_element(load, mech, name)))
+            out.append(ExternalLoad(name, **compile_element(load, mech, name, spec)))
         else:
             out.append(_process(name, load, names))
     return tuple(out)
@@ -131,7 +131,7 @@ def _process(name: str, load: Load, names: _Names) -> ExternalLoad:
     )
 
 
-def compile_element(load: Load, mech: Mechanism, name: str = "") -> dict[str, Any]:
+def compile_element(load: Load, mech: Mechanism, name: str, spec: Spec) -> dict[str, Any]:
     """The fields of the record of one force element ``name`` of a validated spec: ``points`` the two points
     (spring, damper), ``pair`` the revolute pair (torsion spring), ``value`` the stiffness or damping, ``free`` the
     free length or angle (a preload turned into the free length at the assembly pose ``mech.pose0``).
@@ -142,7 +142,7 @@ def compile_element(load: Load, mech: Mechanism, name: str = "") -> dict[str, An
         A preload that would need a negative free length (at the preload's line of the file).
     """
     if load.type == "torsion_spring":
-        pair = _joint_pair(mech, str(load.joint))
+        pair = _joint_pair(mech, str(load.joint), spec.joints[str(load.joint)].links)
         free = float(load.free_angle if load.free_angle is not None else 0.0)
         link = int(mech.pair_members[pair, 1])
         return {"kind": load.type, "link": link, "value": float(load.stiffness or 0.0), "pair": pair, "free": free}
@@ -170,7 +170,7 @@ def compile_element(load: Load, mech: Mechanism, name: str = "") -> dict[str, An
 
 def _problem(mech: Mechanism, path: tuple[str, ...], message: str) -> SpecError:
     """A :class:`SpecError` of one problem at ``path`` of the mechanism's file (its line, where it was read)."""
-    source = mech.spec.source if mech.spec is not None else None
+    source = mech.description
     if source is not None:
         return SpecError([source.problem(path, message)])
     return SpecError([Problem(".".join(path), message)])
@@ -181,16 +181,15 @@ def _point(mech: Mechanism, ref: str) -> int:
     return mech.point_names.index(ref if "." in ref else f"frame.{ref}")
 
 
-def _joint_pair(mech: Mechanism, joint: str) -> int:
-    """The elementary pair of a revolute joint between its first two links (as the file names them)."""
-    spec = mech.spec
+def _joint_pair(mech: Mechanism, joint: str, links: list[str]) -> int:
+    """The elementary pair of a revolute joint between its first two ``links`` (as the file names them)."""
     first = None
     for k, name in enumerate(mech.pair_joint):
         if name != joint:
             continue
         first = k if first is None else first
         members = [mech.link_names[int(i)] for i in mech.pair_members[k]]
-        if spec is not None and members == list(spec.joints[joint].links[:2]):
+        if members == list(links[:2]):
             return k
     assert first is not None
     return first

@@ -287,8 +287,10 @@ class Study:
     def time_run(self) -> Run:
         """The run in time the file's ``simulate:`` asks for (:func:`linkwork.simulate`)."""
         from linkwork.machine.timerun import simulate
+        from linkwork.spec.reader import described
 
-        asked = self.mech.spec.simulate if self.mech.spec is not None else None
+        spec = described(self.mech.description)
+        asked = spec.simulate if spec is not None else None
         if asked is None:
             raise LinkworkError("the file asks for no run in time: give it a 'simulate:' section")
         return simulate(self.mech, asked.until, angle=asked.angle, speed=asked.speed or 0.0, motor=asked.motor)
@@ -304,8 +306,10 @@ class Study:
         asked = self.sizing_options
         motor = asked.motor
         if motor is None:
-            spec = self.mech.spec.sizing if self.mech.spec is not None else None
-            motor = bool(spec is not None and spec.motor)
+            from linkwork.spec.reader import described
+
+            file = described(self.mech.description)
+            motor = bool(file is not None and file.sizing is not None and file.sizing.motor)
         return size(
             self.mech,
             sizing=asked.inputs,

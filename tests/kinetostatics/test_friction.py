@@ -11,6 +11,7 @@ import pytest
 
 import linkwork as lw
 from linkwork.errors import FrictionWarning, SpecError
+from linkwork.spec.reader import described
 
 R, L, LOAD = 0.1, 0.35, 1000.0  # crank, rod (m), the load on the slider towards O (N)
 F_GUIDE = 0.15
@@ -103,7 +104,7 @@ def test_slider_crank_with_friction_in_all_four_pairs_against_the_friction_circl
 def test_friction_raises_the_drive_torque_on_the_working_stroke_and_eases_it_on_the_return():
     """Against the same mechanism without friction: friction takes power from the drive at every sample."""
     mech = _slider_crank()
-    smooth = lw.compile(lw.from_dict(_without_friction(mech.spec)))
+    smooth = lw.compile(lw.from_dict(_without_friction(described(mech.description))))
     phi = np.radians(np.arange(5.0, 360.0, 10.0))
     with_f, without = lw.forces(mech, phi), lw.forces(smooth, phi)
     omega = 10.0
@@ -150,7 +151,7 @@ def test_power_balance_with_friction_at_every_sample():
 
 def test_constant_friction_counts_among_the_losses():
     """The constant friction of a ``friction`` load: its loss is its size times the relative speed."""
-    data = _without_friction(_slider_crank().spec)
+    data = _without_friction(described(_slider_crank().description))
     data["loads"]["bearing"] = {"type": "friction", "joint": "O", "moment": 2.0}
     f = lw.forces(lw.compile(lw.from_dict(data)), steps=36)
     e = f.efficiency
@@ -288,7 +289,7 @@ def _write(tmp_path, mech: lw.Mechanism) -> str:
     import yaml
 
     path = tmp_path / "friction.yaml"
-    data = mech.spec.model_dump(exclude_none=True) | {"units": {"angle": "rad"}}
+    data = described(mech.description).model_dump(exclude_none=True) | {"units": {"angle": "rad"}}
     path.write_text(yaml.safe_dump(data, sort_keys=False))
     return str(path)
 

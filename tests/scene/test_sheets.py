@@ -165,14 +165,25 @@ def test_each_drawing_of_the_course_project_has_a_place_of_its_own_and_states_it
 def test_the_options_fill_the_title_block_as_the_file_would():
     """``--sheet a3 --title-block developer=...`` give the sheets what ``drawing: {sheet: A3, title_block:
     {developer: ...}}`` in the file gives; the file's positions stay."""
-    from linkwork.cli.analyze import _with_sheets
+    from linkwork.cli.analyze import _sheets
     from linkwork.io.sheet_drawings import sheet_options
+    from linkwork.scene.positions import plan_positions
+    from linkwork.spec.edit import text_with_section
 
     mech = lw.compile(lw.example("double-cut-shears"))
     assert sheet_options(mech) == ("A1", TitleBlock())
-    edited = _with_sheets(mech, "a3", ["developer=Иванов И. И.", "litera = У"], True)
-    assert sheet_options(edited) == ("A3", TitleBlock(developer="Иванов И. И.", litera="У"))
-    assert edited.spec.drawing.positions == [9]
+    given = _sheets("a3", ["developer=Иванов И. И.", "litera = У"], True)
+    assert sheet_options(mech, given) == ("A3", TitleBlock(developer="Иванов И. И.", litera="У"))
+    spec = lw.example("double-cut-shears")
+    edited = lw.compile(
+        lw.loads(
+            text_with_section(
+                spec, "drawing", {"sheet": "A3", "title_block": {"developer": "Иванов И. И.", "litera": "У"}}
+            )
+        )
+    )
+    assert sheet_options(edited) == sheet_options(mech, given)
+    assert plan_positions(edited) == plan_positions(mech) == [9]
 
 
 @pytest.mark.parametrize(

@@ -367,14 +367,14 @@ def test_the_machine_section_is_written_whole_into_a_file_without_one_and_key_by
     from linkwork.spec.edit import text_with_section
 
     section = {"motor": {"type": "constant", "torque": "12 N*m", "power": None}, "gear": {"ratio": 4.0}}
-    bare = lw.compile("four-bar")
-    assert bare.spec.machine is None
-    text = text_with_section(bare.spec, "machine", section)
+    bare = lw.load("four-bar")
+    assert bare.machine is None
+    text = text_with_section(bare, "machine", section)
     written = lw.loads(text)
     assert written.machine.motor.torque == 12.0 and written.machine.gear.ratio == 4.0
-    shears = lw.compile("double-cut-shears")  # an induction motor: its power and speed go, a constant torque comes
+    shears = lw.load("double-cut-shears")  # an induction motor: its power and speed go, a constant torque comes
     gone = {"power": None, "speed": None, "synchronous": None, "breakdown": None}
-    text = text_with_section(shears.spec, "machine", {**section, "motor": {**section["motor"], **gone}})
+    text = text_with_section(shears, "machine", {**section, "motor": {**section["motor"], **gone}})
     written = lw.loads(text)
     assert written.machine.motor.type == "constant" and written.machine.motor.power is None
     assert written.machine.gear.efficiency == 0.95  # kept: the new section names only the ratio

@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 import linkwork as lw
 from linkwork.errors import StructureError, UnassemblableError
+from linkwork.examples import names
 from linkwork.structure.constraints import residuals_and_jacobian
 from linkwork.structure.model import PairType, global_points
 from mechanisms import (
@@ -382,3 +383,79 @@ def test_the_assembly_pose_is_minpacks_to_the_rounding():
             m.setattr(assemble, "least_squares", scipy_ls)
             theirs = lw.compile(lw.example(name)).pose0
         np.testing.assert_allclose(ours, theirs, rtol=0, atol=2e-15, err_msg=name)
+
+
+# --- the compile boundary: the model keeps its document as plain data, and no object of the file format --------
+
+
+def _objects(value, seen=None):
+    """Every object reachable from ``value`` through dataclass fields, named tuples, tuples, lists and dicts."""
+    import dataclasses
+
+    seen = set() if seen is None else seen
+    if id(value) in seen:
+        return
+    seen.add(id(value))
+    yield value
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        children = [getattr(value, f.name) for f in dataclasses.fields(value)]
+    elif isinstance(value, dict):
+        children = [*value.keys(), *value.values()]
+    elif isinstance(value, tuple | list):
+        children = list(value)
+    else:
+        children = []
+    for child in children:
+        yield from _objects(child, seen)
+
+
+@pytest.mark.parametrize("name", names())
+def test_the_compiled_model_holds_no_object_of_the_file_format_and_reads_its_document_back(name):
+    """A compiled mechanism's fields, their records and everything in them down to the plain data of its document
+    are arrays, records and plain values: no pydantic model among them.  Its document reads back
+    (``described``) as the description it was compiled from, line numbers and all."""
+    from pydantic import BaseModel
+
+    from linkwork.spec.reader import described, validate
+
+    spec = lw.load(name)
+    mech = lw.compile(spec)
+    found = [type(x).__name__ for x in _objects(mech) if isinstance(x, BaseModel)]
+    assert found == []
+    assert mech.description is spec.source
+    again = validate(mech.description)  # what a process that did not read the file reads back
+    assert again == spec and again is not spec
+    assert described(mech.description) == spec
+    assert again.source.line(("links",)) == spec.source.line(("links",)) > 1
+
+
+def test_a_description_changed_in_code_reads_back_as_changed_not_as_its_file():
+    """A Spec changed in code (``model_copy(update=...)``) is no longer the file it was read from: its mechanism's
+    document is its own values (in SI), and reads back as them, not as the file's."""
+    from linkwork.spec.reader import described
+    from linkwork.units import SI_UNITS
+
+    spec = lw.load("double-cut-shears")
+    assert spec.loads
+    changed = spec.model_copy(update={"loads": {}})
+    assert changed.source is None and spec.source is not None
+    mech = lw.compile(changed)
+    back = described(mech.description)
+    assert back.loads == {} and back.links == spec.links and back.drives == spec.drives
+    assert back.units.length == "m"  # its values in SI, declared so
+    assert mech.loads == () and lw.compile(spec).loads != ()
+    made = lw.Spec.model_validate(changed.model_dump(), context={"units": SI_UNITS})  # by pydantic: no document
+    assert described(lw.compile(made).description).joints == spec.joints
+
+
+def test_a_mechanism_without_its_document_is_a_model_of_arrays_alone():
+    """Taken off (``description=None``), nothing reads a file: the analyses run, and what needs the file says so."""
+    import dataclasses
+
+    from linkwork.errors import ParameterError
+    from linkwork.structure.parameters import file_text
+
+    mech = dataclasses.replace(lw.compile("four-bar"), description=None)
+    assert lw.kinematics(mech, steps=12).valid_all.all()
+    with pytest.raises(ParameterError, match="no file to edit"):
+        file_text(mech, {})

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated
 
 import typer
 
@@ -90,7 +90,8 @@ def analyze(
         fail(exc)
     if dxf:
         needs("ezdxf", purpose="the drawings for CAD (linkwork analyze --dxf)")
-    mech = _with_sheets(at_speed(compile_or_exit(file_or_example), speed), sheet, title_block or [], dxf)
+    mech = at_speed(compile_or_exit(file_or_example), speed)
+    sheets = _sheets(sheet, title_block or [], dxf)
     # the spinner on stderr, and only in a terminal: piped or redirected, stdout holds the one line "wrote ..."
     shown = console(stderr=True)
     spinner = Progress(
@@ -109,6 +110,7 @@ def analyze(
                 dxf=dxf,
                 lang=lang,
                 sizing=sizing,
+                sheets=sheets,
                 progress=lambda what: bar.update(task, description=f"analysing: {what}"),
             )
         except LinkworkError as exc:
@@ -159,17 +161,15 @@ def _position(text: str | None) -> int | float | str | None:
     )
 
 
-def _with_sheets(mech: Any, sheet: str | None, fields: list[str], dxf: bool) -> Any:
-    """``mech`` with the format and the title block's fields given by ``--sheet`` and ``--title-block`` in its
-    file's ``drawing:`` section, as the same edit of the file would give; exits with a line for each wrong one
-    (exit code 2)."""
-    import dataclasses
-
+def _sheets(sheet: str | None, fields: list[str], dxf: bool) -> dict[str, str]:
+    """The format (``sheet``) and the title block's fields given by ``--sheet`` and ``--title-block``, over the
+    file's ``drawing:`` section (:func:`linkwork.io.sheet_drawings.sheet_options`); exits with a line for each wrong
+    one (exit code 2)."""
     from linkwork.errors import LinkworkError
-    from linkwork.spec.schema import Drawing, TitleBlockSpec
+    from linkwork.spec.schema import TitleBlockSpec
 
     if sheet is None and not fields:
-        return mech
+        return {}
     problems = []
     if not dxf:
         problems.append("--sheet and --title-block: the sheets are written with --dxf; add it")
@@ -185,10 +185,4 @@ def _with_sheets(mech: Any, sheet: str | None, fields: list[str], dxf: bool) -> 
             given[key.strip()] = value.strip()
     if problems:
         fail(LinkworkError("\n".join(problems)))
-    spec = mech.spec
-    if spec is None:
-        return mech
-    drawing = spec.drawing or Drawing()
-    block = drawing.title_block.model_copy(update=given)
-    drawing = drawing.model_copy(update={"title_block": block, **({"sheet": sheet.upper()} if sheet else {})})
-    return dataclasses.replace(mech, spec=spec.model_copy(update={"drawing": drawing}))
+    return {**given, **({"sheet": sheet.upper()} if sheet else {})}

@@ -60,10 +60,11 @@ def parameters(file_or_example: FileOrExample) -> None:
     """List the named parameters (dimensions, masses, moments of inertia) a sweep may vary, with the file's
     values in the file's units (the units in which bare numbers of --vary are read)."""
     from linkwork.design.plan import in_file_units
+    from linkwork.spec.reader import described
     from linkwork.structure.parameters import file_units, parameter_list
 
     mech = compile_or_exit(file_or_example)
-    declared = file_units(mech.spec)
+    declared = file_units(described(mech.description))
     for p in parameter_list(mech):
         shown, unit = in_file_units(p.value, p.kind, declared)
         note = f"  ({p.note})" if p.note and p.kind == "inertia" and not p.note.endswith("centre of mass") else ""

@@ -242,10 +242,11 @@ def _write(mech: object, result: object, out: str) -> str:
 
     from linkwork.sizing import Sizing
     from linkwork.spec.edit import text_with_section, write_text
+    from linkwork.spec.reader import described
     from linkwork.structure.model import Mechanism
 
     assert isinstance(result, Sizing) and isinstance(mech, Mechanism) and result.motor is not None
-    spec = mech.spec
+    spec = described(mech.description)
     if result.masses is not None and spec is not None:  # the masses it was sized with, written first
         from linkwork.spec.reader import loads
         from linkwork.structure.parameters import file_text

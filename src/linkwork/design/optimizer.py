@@ -29,6 +29,7 @@ from linkwork.design.sweeps import Columns, SweepTable
 from linkwork.errors import DesignError, UnitParseError
 from linkwork.limits import TURN_STEPS
 from linkwork.spec.edit import write_text
+from linkwork.spec.reader import described
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import file_text, file_units, parameter
 from linkwork.units import KINDS, parse_quantity
@@ -274,7 +275,7 @@ class _Problem:
         except DesignError as exc:
             problems += exc.problems
         try:
-            cons = parse_constraints(list(constraints), mech, file_units(mech.spec))
+            cons = parse_constraints(list(constraints), mech, file_units(described(mech.description)))
         except DesignError as exc:
             problems += exc.problems
         names = [objective, *(c.column for c in cons), *metrics, "assembles"]
@@ -315,7 +316,7 @@ def _out_problems(mech: Mechanism, out: str | Path | None) -> list[str]:
     """What keeps the optimised file ``out`` from being written."""
     if out is None:
         return []
-    if mech.spec is None:
+    if mech.description is None:
         return ["writing the optimised file needs the mechanism's description (a file, an example or a Spec)"]
     why = cannot_write(out)
     return [f'--out "{out}": {why}'] if why else []

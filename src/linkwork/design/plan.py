@@ -21,6 +21,7 @@ import numpy as np
 
 from linkwork.did_you_mean import suggest
 from linkwork.errors import DesignError, DesignWarning, UnitParseError
+from linkwork.spec.reader import described
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import Parameter, file_units, parameter_list, parameters_by_name
 from linkwork.units import parse_quantity, si_factor, unit_for
@@ -225,7 +226,7 @@ def read_varies(vary: Ranges, mech: Mechanism, count_required: bool | None = Tru
             texts.append(f"{path}={':'.join(parts)}")
     else:
         texts = list(vary)
-    declared = file_units(mech.spec)
+    declared = file_units(described(mech.description))
     out = parse_varies(texts, mech, declared, count_required)
     for line in scale_warnings(out, mech, declared):
         warnings.warn(line, DesignWarning, stacklevel=stacklevel + 1)

@@ -31,6 +31,7 @@ from linkwork.scene.plans import PlanScene, kind_name, plan_scene
 from linkwork.scene.positions import PositionsScene, position_angles, positions_scene
 from linkwork.scene.scheme import SchemeScene, scheme_scene
 from linkwork.scene.style import SCHEME, VECTORS, Style
+from linkwork.spec.reader import described
 from linkwork.units import turn_deg
 
 if TYPE_CHECKING:
@@ -76,7 +77,8 @@ def write_drawings(
     out = [write_scheme(scheme_scene(kin, at=[index], cycle=full), index, folder / "scheme.dxf", lang=lang)]
     twelve = kinematics(mech, position_angles(mech))
     out.append(write_positions(positions_scene(twelve, cycle=full, lang=lang), folder / "positions.dxf", lang))
-    limits = limits_scene(full, lang) if getattr(mech.spec, "requirements", None) else None
+    spec = described(mech.description)
+    limits = limits_scene(full, lang) if spec is not None and spec.requirements else None
     if limits is not None:
         out.append(write_limits(limits, folder / "limits.dxf", lang))
     valid = np.asarray(kin.valid_all[0])

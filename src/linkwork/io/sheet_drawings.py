@@ -6,7 +6,7 @@ the sheet places in a cell of its field.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -31,6 +31,7 @@ from linkwork.lang import t
 from linkwork.optional import require
 from linkwork.scene.geometry import text_size
 from linkwork.scene.style import FORCES
+from linkwork.spec.reader import described
 
 if TYPE_CHECKING:
     from linkwork.kinetostatics.force_polygons import ForcePlans
@@ -264,13 +265,15 @@ def _titled(block: TitleBlock, name: str, what: str) -> TitleBlock:
     return dataclasses.replace(block, title=f"{block.title or name}. {what}")
 
 
-def sheet_options(mech: Any) -> tuple[str, TitleBlock]:
-    """The format and the title block of the sheets of ``mech``: its file's ``drawing.sheet`` and
-    ``drawing.title_block`` (A1 and empty fields where it gives none)."""
-    drawing = getattr(mech.spec, "drawing", None) if mech.spec is not None else None
-    if drawing is None:
-        return "A1", TitleBlock()
-    return drawing.sheet, TitleBlock(**drawing.title_block.model_dump())
+def sheet_options(mech: Any, given: Mapping[str, str] | None = None) -> tuple[str, TitleBlock]:
+    """The format and the title block of the sheets of ``mech``: ``given``'s ``sheet`` and title block fields (those
+    of ``linkwork analyze --sheet --title-block``) over its file's ``drawing.sheet`` and ``drawing.title_block``
+    (A1 and empty fields where neither gives one)."""
+    spec = described(mech.description)
+    drawing = spec.drawing if spec is not None else None
+    fields = {**(drawing.title_block.model_dump() if drawing is not None else {}), **(given or {})}
+    sheet = fields.pop("sheet", drawing.sheet if drawing is not None else "A1")
+    return sheet, TitleBlock(**fields)
 
 
 @dataclass(frozen=True)

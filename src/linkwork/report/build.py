@@ -17,7 +17,7 @@ and diagrams is the crank angle φ turned from position 0 (0 to 360°,
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -35,6 +35,7 @@ from linkwork.report.requirements import requirements_section
 from linkwork.report.run import ReportRun
 from linkwork.report.sizing import asks_sizing, sizing_section
 from linkwork.report.structure import structure_section
+from linkwork.spec.reader import described
 from linkwork.structure.model import one_crank
 from linkwork.study import Study
 
@@ -54,6 +55,7 @@ def analyze(
     lang: str = "en",
     progress: Callable[[str], None] | None = None,
     sizing: bool | None = None,
+    sheets: Mapping[str, str] | None = None,
 ) -> Path:
     """Run every analysis ``mech`` supports and write tables, figures, an animation and
     ``report.html`` (and ``report.pdf``) into the folder ``out``; returns the report's path.
@@ -91,6 +93,9 @@ def analyze(
         ``progress(stage)`` as each stage begins.
     sizing : bool, optional
         The "Sizing" section: True, False, or None where the file has a ``sizing:`` section.
+    sheets : mapping, optional
+        The sheets' format (``"sheet": "A3"``) and title block fields (``"developer": "..."``) given over the
+        file's ``drawing:`` section (:func:`linkwork.io.sheet_drawings.sheet_options`); with ``dxf``.
 
     Returns
     -------
@@ -119,6 +124,7 @@ def analyze(
         study = Study(mech, steps)
         run = ReportRun(study, work, progress or (lambda _: None), lang, parallel=PARALLEL and not pdf)
         run.sizing = sizing
+        run.sheets = dict(sheets or {})
         try:
             _build(run, position, animation, dxf)
         finally:
@@ -175,7 +181,8 @@ def _build(run: ReportRun, position: int | float | str | None, animation: bool, 
         impact_section(run)
     if asks_sizing(run.mech, run.sizing):
         sizing_section(run)
-    if run.mech.spec is not None and run.mech.spec.simulate is not None:
+    spec = described(run.mech.description)
+    if spec is not None and spec.simulate is not None:
         simulate_section(run)
     run.progress("figures")
     run.run_here()

@@ -13,6 +13,7 @@ from linkwork.io.jsonout import dumps
 from linkwork.report.html import Section, paragraph, table
 from linkwork.report.kinematics import ReportCycle
 from linkwork.report.run import ReportRun
+from linkwork.spec.reader import described
 from linkwork.units import turn_deg
 
 
@@ -67,7 +68,8 @@ def simulate_section(run: ReportRun) -> None:
     start, end and stops, ``simulate.json`` and ``simulate.csv`` beside the report, and its diagram."""
 
     mech = run.mech
-    asked = mech.spec.simulate if mech.spec is not None else None
+    spec = described(mech.description)
+    asked = spec.simulate if spec is not None else None
     assert asked is not None  # _build calls this only for a file with a run
     run.progress("simulate")
     sec = Section("simulate", run.t("section.simulate"))

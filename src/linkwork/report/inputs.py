@@ -14,6 +14,7 @@ from collections import defaultdict
 from typing import TYPE_CHECKING, Any
 
 from linkwork.lang import file_value, file_word, link_named
+from linkwork.spec.reader import described
 from linkwork.structure.model import PairType
 
 if TYPE_CHECKING:
@@ -52,11 +53,12 @@ def input_section(mech: Mechanism, steps: int, t: Any) -> list[str]:
         body.append(guides)
     read = _values(mech)
     lang = _lang(t)
-    loads = _grouped(read, "loads.", mech.spec.loads if mech.spec is not None else {}, lang)
+    spec = described(mech.description)
+    loads = _grouped(read, "loads.", spec.loads if spec is not None else {}, lang)
     if loads:
         head = [t("input.head.load"), t("input.head.type"), t("input.head.given")]
         body.append(f"<p>{html.escape(t('input.loads'))}</p>" + _table(head, loads, code=True))
-    given = mech.spec.machine if mech.spec is not None else None
+    given = spec.machine if spec is not None else None
     machine = _grouped(read, "machine.", {k: getattr(given, k, None) for k in ("motor", "gear", "flywheel")}, lang)
     if machine:
         head = [t("input.head.part"), t("input.head.given")]
@@ -135,7 +137,8 @@ def _guides(mech: Mechanism, t: Any) -> str:
 def _values(mech: Mechanism) -> list[ValueRead]:
     from linkwork.spec.values import values_read
 
-    return values_read(mech.spec) if mech.spec is not None else []
+    spec = described(mech.description)
+    return values_read(spec) if spec is not None else []
 
 
 def _lang(t: Any) -> str:
@@ -190,7 +193,7 @@ def _file_text(mech: Mechanism) -> str | None:
     from linkwork.errors import LinkworkError
     from linkwork.spec.yamlsource import read_file, read_yaml
 
-    source = mech.spec.source if mech.spec is not None else None
+    source = mech.description
     if source is None or not mech.source:
         return None
     name = mech.source.removesuffix(".yaml")

@@ -207,7 +207,7 @@ def _sheets(run: Any, cycle: Any, plans: Any, lv: Any, at: Where) -> None:
     from linkwork.errors import LinkworkError
     from linkwork.io.sheet_drawings import SheetAnalyses, sheet_options, write_sheets
 
-    fmt, block = sheet_options(run.mech)
+    fmt, block = sheet_options(run.mech, run.sheets)
     folder = run.folder / "figures"
     twelve, first, named = cycle.twelve, cycle.drawn[0], at.name(run)
     dynamics = None

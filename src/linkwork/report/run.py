@@ -28,6 +28,7 @@ class ReportRun:
         self.progress = progress
         self.lang = lang
         self.sizing: bool | None = None  # the "Sizing" section: asked, refused, or as the file says (None)
+        self.sheets: dict[str, str] = {}  # the sheets' format and title block fields given over the file's
         self.sections: list[Section] = []
         self.figures: dict[str, Any] = {}  # those drawn in this process
         self.captions: dict[str, str] = {}

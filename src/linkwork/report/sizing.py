@@ -10,6 +10,7 @@ from linkwork.errors import LinkworkError
 from linkwork.lang import TEXTS
 from linkwork.report.html import Section, paragraph
 from linkwork.report.html import table as html_table
+from linkwork.spec.reader import described
 
 if TYPE_CHECKING:
     from linkwork.report.run import ReportRun
@@ -22,7 +23,8 @@ def asks_sizing(mech: Mechanism, asked: bool | None) -> bool:
     """Whether the report has the section: as ``asked``, else where the file has a ``sizing:`` section."""
     if asked is not None:
         return asked
-    return mech.spec is not None and mech.spec.sizing is not None
+    spec = described(mech.description)
+    return spec is not None and spec.sizing is not None
 
 
 def sizing_section(run: ReportRun) -> None:
@@ -53,7 +55,8 @@ def sizing_body(study: Study, t: Any) -> tuple[list[str], Sizing | None]:
     for table in result.tables():
         body += [paragraph(t(f"sizing.table.{table.key}")), _translated(table, t)]
     mech = study.mech
-    given = mech.spec is not None and mech.spec.machine is not None and mech.spec.machine.motor is not None
+    spec = described(mech.description)
+    given = spec is not None and spec.machine is not None and spec.machine.motor is not None
     for part, why in result.missing.items():
         if part == "motor" and why == "not asked" and given:  # the file's own motor: nothing to choose
             body.append(paragraph(t("sizing.motor_given")))

@@ -24,6 +24,7 @@ from linkwork.motion.plans import plan_series
 from linkwork.scene.geometry import place, text_size
 from linkwork.scene.labels import Obstacles, place_labels
 from linkwork.scene.scheme import Label, SchemeScene, scheme_scene
+from linkwork.spec.reader import described
 
 if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
@@ -161,7 +162,8 @@ def plans_clear(kin: Kinematics) -> np.ndarray:
 def plan_positions(mech: Mechanism, kin: Kinematics | None = None) -> list[int]:
     """The positions (of :data:`COUNT`) the plans are drawn for: the file's ``drawing.positions``, else
     :func:`best_position` of the twelve (``kin``: their kinematics, solved here if not given)."""
-    drawing = getattr(mech.spec, "drawing", None) if mech.spec is not None else None
+    spec = described(mech.description)
+    drawing = spec.drawing if spec is not None else None
     if drawing is not None and drawing.positions:
         return [int(k) for k in drawing.positions]
     if kin is None:

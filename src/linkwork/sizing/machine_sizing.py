@@ -28,6 +28,7 @@ from linkwork.sizing.pairs import Pair, pairs_of
 from linkwork.sizing.pin_shear import Pins, Steel, pins
 from linkwork.sizing.proportions import Proportions, proportions
 from linkwork.sizing.shaft import Shaft, main_shaft, split
+from linkwork.spec.reader import described
 from linkwork.spec.schema import SizingSpec
 from linkwork.structure.model import Mechanism
 
@@ -125,7 +126,8 @@ def sizing_inputs(
     from linkwork.errors import Problem, SpecError
     from linkwork.units import SI_UNITS
 
-    base = mech.spec.sizing if mech.spec is not None and mech.spec.sizing is not None else SizingSpec()
+    spec = described(mech.description)
+    base = spec.sizing if spec is not None and spec.sizing is not None else SizingSpec()
     if isinstance(sizing, SizingSpec):
         given = {k: getattr(sizing, k) for k in sizing.model_fields_set}
     else:
@@ -319,7 +321,7 @@ def _sized_masses(
 
     masses = rules.inputs.masses
     if masses is None:
-        masses = "sized" if mech.spec is not None and compile_spec is not None else "file"
+        masses = "sized" if mech.description is not None and compile_spec is not None else "file"
     angles = CrankAngles.of(mech)
     if angles is None:
         raise LinkworkError("sizing needs one crank driven by the frame: the cycle is its turn")
@@ -483,7 +485,7 @@ def _depth(bar: Any, given: dict[str, Any]) -> float:
 
 def _shaft(mech: Mechanism, pairs: list[Pair], pinned: Pins, inp: SizingSpec) -> Shaft | None:
     """The main shaft of the crank's pivot (the first drive's joint with the frame), or None (no such pair)."""
-    joint = mech.spec.drives[0].joint if mech.spec is not None and mech.spec.drives else None
+    joint = mech.pair_joint[int(mech.drive_pair[0])] if len(mech.drive_pair) else None
     pair = next((p for p in pairs if p.label == joint and p.kind == "revolute" and "frame" in p.links), None)
     pin = next((p for p in pinned.pins if p.label == joint), None)
     if pair is None or pin is None:

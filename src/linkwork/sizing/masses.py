@@ -172,7 +172,7 @@ def sized_masses(
     """
     from linkwork.structure.parameters import edited_spec
 
-    if mech.spec is None:
+    if mech.description is None:
         raise LinkworkError("sized masses: the mechanism has no file to write the masses into")
     current, masses, settled = mech, _masses(mech), False
     bars = bars_of(current)

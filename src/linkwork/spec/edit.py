@@ -15,10 +15,10 @@ from typing import Any
 
 from linkwork.atomic import write_atomic
 from linkwork.errors import ParameterError
-from linkwork.spec.reader import loads, validate
+from linkwork.spec.reader import loads, plain, si_data, validate
 from linkwork.spec.schema import Spec
 from linkwork.spec.yamlsource import Source, read_yaml
-from linkwork.units import DEFAULT_UNITS, SI_UNITS, si_factor, written
+from linkwork.units import DEFAULT_UNITS, si_factor, written
 
 _NUMBER_AND_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*)?$")
 
@@ -120,16 +120,16 @@ def text_with_values(spec: Spec, values: dict[str, float], kinds: dict[str, str]
     ParameterError
         Where the file has no place for a value.
     """
-    plain, declared = _file_data(spec, round_trip=False)
-    set_values(plain, values, declared, kinds)
+    flat, declared = _file_data(spec, round_trip=False)
+    set_values(flat, values, declared, kinds)
     data, _ = _file_data(spec, round_trip=True)
-    if data is not plain:
+    if data is not flat:
         _unshare(data, values)
         set_values(data, values, declared, kinds)
         text = yaml_text(data)
-        if read_yaml(text).data == plain:
+        if read_yaml(text).data == flat:
             return text
-    return yaml_text(plain)
+    return yaml_text(flat)
 
 
 def text_with_section(spec: Spec | None, key: str, values: dict[str, Any]) -> str:
@@ -192,7 +192,7 @@ def _sections(text: str) -> dict[str, tuple[int, int]] | None:
 def _reads_as(text: str, written: str) -> bool:
     """Whether ``text`` holds the same data as ``written`` (a splice that changed nothing but comments)."""
     yaml = round_trip_yaml()
-    return bool(_plain(yaml.load(text)) == _plain(yaml.load(written)))
+    return bool(plain(yaml.load(text)) == plain(yaml.load(written)))
 
 
 #: Why a mechanism assembled in code has no file to edit.
@@ -289,8 +289,7 @@ def _file_data(spec: Spec, round_trip: bool) -> tuple[Any, dict[str, str]]:
     elif spec.source is not None and isinstance(spec.source.data, dict):
         data = copy.deepcopy(spec.source.data)
     else:
-        data = _plain(spec.model_dump(mode="python", exclude_none=True))
-        data["units"] = dict(SI_UNITS)
+        data = si_data(spec)
     units = data.get("units") if isinstance(data, dict) else None
     return data, {**DEFAULT_UNITS, **(dict(units) if isinstance(units, dict) else {})}
 
@@ -311,11 +310,3 @@ def round_trip_yaml() -> Any:
     yaml.width = 4096  # no folding of long flow mappings
     yaml.indent(mapping=2, sequence=4, offset=2)
     return yaml
-
-
-def _plain(x: Any) -> Any:
-    if isinstance(x, dict):
-        return {k: _plain(v) for k, v in x.items()}
-    if isinstance(x, list | tuple):
-        return [_plain(v) for v in x]
-    return x

@@ -19,7 +19,7 @@ from linkwork.spec.checks import check
 from linkwork.spec.part_checks import part_checks
 from linkwork.spec.schema import UNION_TAGS, Spec
 from linkwork.spec.yamlsource import Source, dotted, read_file, read_yaml
-from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, check_unit, parse_quantity
+from linkwork.units import DECLARABLE, DEFAULT_UNITS, KINDS, SI_UNITS, check_unit, parse_quantity
 
 
 def load(path: str | Path) -> Spec:
@@ -96,6 +96,59 @@ def from_dict(data: dict[str, Any], file: str | None = None) -> Spec:
     True
     """
     return validate(Source(data, {}, file, []))
+
+
+def description(spec: Spec) -> Source:
+    """The plain record of ``spec`` a compiled mechanism keeps (``Mechanism.description``):
+    the document it was read from (its data and the line of each element), or, for a description made otherwise
+    (changed in code, or by ``Spec.model_validate``), its values in SI (:func:`si_data`).  The record reads back
+    (:func:`described`) as ``spec`` itself while it is one of the last few read."""
+    if spec.source is None:
+        return Source(si_data(spec))
+    _remember(spec)
+    return spec.source
+
+
+def si_data(spec: Spec) -> dict[str, Any]:
+    """The values of ``spec`` as the plain data of a file that declares SI units: read again (:func:`validate`),
+    they give the same description but for its ``units:``."""
+    data = plain(spec.model_dump(mode="python", exclude_none=True))
+    data["units"] = dict(SI_UNITS)
+    return data
+
+
+def plain(x: Any) -> Any:
+    """``x`` with its tuples as lists: YAML's data."""
+    if isinstance(x, dict):
+        return {k: plain(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [plain(v) for v in x]
+    return x
+
+
+#: The descriptions read back lately (:func:`described`), by the identity of their record: the record and its Spec.
+_READ_BACK: dict[int, tuple[Source, Spec]] = {}
+
+
+def described(source: Source | None) -> Spec | None:
+    """The description of the record ``source`` a compiled mechanism keeps (its ``description``; None for none): the
+    document validated again, equal to the Spec it was compiled from (a description made in code: its values with
+    SI units declared).  The last few are kept, so that the outputs that read one mechanism's file read it once."""
+    if source is None:
+        return None
+    kept = _READ_BACK.get(id(source))
+    if kept is not None and kept[0] is source:
+        return kept[1]
+    spec = validate(source)
+    _remember(spec)
+    return spec
+
+
+def _remember(spec: Spec) -> None:
+    """Keep ``spec`` (read from a document) as what its record reads back as."""
+    if len(_READ_BACK) >= 16:
+        _READ_BACK.pop(next(iter(_READ_BACK), 0), None)
+    _READ_BACK[id(spec.source)] = (spec.source, spec)
 
 
 def validate(src: Source) -> Spec:

@@ -10,6 +10,7 @@ prints.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
@@ -679,6 +680,14 @@ class Spec(_Strict):
         if not isinstance(other, Spec):
             return NotImplemented
         return type(self) is type(other) and self.__dict__ == other.__dict__
+
+    def model_copy(self, *, update: Mapping[str, Any] | None = None, deep: bool = False) -> Spec:
+        """A copy; with ``update``, one no longer read from a file: it keeps no :attr:`source` (whose data and lines
+        are of the description as read)."""
+        copied = super().model_copy(update=update, deep=deep)
+        if update:
+            copied._source = None
+        return copied
 
     @property
     def source(self) -> Any:

@@ -16,6 +16,7 @@ import numpy as np
 
 from linkwork.errors import Problem, SpecError, StructureError, UnassemblableError
 from linkwork.lang import t
+from linkwork.spec.reader import description
 from linkwork.spec.schema import ImpactSpec, Joint, Spec
 from linkwork.structure.assemble import assemble, scaled, solve_group, unfixed_links
 from linkwork.structure.assur import decompose, rank
@@ -581,7 +582,7 @@ def _model(spec: Spec, points: _Points, rules: _MassRules, pairs: _Pairs, drives
         pair_origin_point=frozen(pairs.origin_point, int),
         delta=spec.machine.delta if spec.machine is not None else None,
         blow=impact_record(spec.impact),
-        spec=spec,
+        description=description(spec),
     )
     com, inertia = mass_properties(
         mech, np.array(points.local, dtype=float).reshape(1, -1, 2), rules.mass[None], rules.inertia_given[None]

@@ -16,7 +16,7 @@ import numpy.typing as npt
 from linkwork.structure.records import ExternalLoad, ImpactRecord, MotorGear, PairFriction, Step
 
 if TYPE_CHECKING:  # the description below the model, which it keeps
-    from linkwork.spec.schema import Spec
+    from linkwork.spec.yamlsource import Source
 
 
 class PairType(IntEnum):
@@ -297,8 +297,11 @@ class Mechanism:
         The coefficient of speed fluctuation the file asks a flywheel for.
     blow : ImpactRecord or None, default None
         The file's ``impact:`` section in SI.
-    spec : Spec or None, default None
-        The description it was compiled from.
+    description : Source or None, default None
+        The document it was compiled from, as plain data with the line of each element
+        (:class:`~linkwork.spec.yamlsource.Source`; a description changed in code: its values in SI);
+        :func:`linkwork.spec.reader.described` reads it back into the description.  The model keeps no
+        object of the file format.
     gravity_direction : float, default -pi/2
         The direction gravity acts in, rad, global, counter-clockwise from +x (-y by default).
     """
@@ -343,7 +346,7 @@ class Mechanism:
     motor_gear: MotorGear | None = None  # the machine unit's motor, gear and flywheel, if the file gives them
     delta: float | None = None  # the coefficient of speed fluctuation the file asks a flywheel for
     blow: ImpactRecord | None = None  # the file's impact: section, SI, as a record
-    spec: Spec | None = field(default=None, repr=False, compare=False)  # the description it was compiled from
+    description: Source | None = field(default=None, repr=False, compare=False)  # the document, plain data
     gravity_direction: float = -math.pi / 2  # rad, global, counter-clockwise from +x: -y by default
 
     @property

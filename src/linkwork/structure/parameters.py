@@ -54,6 +54,7 @@ import numpy.typing as npt
 from linkwork.did_you_mean import suggest
 from linkwork.errors import ParameterError
 from linkwork.spec import edit
+from linkwork.spec.reader import described
 from linkwork.spec.schema import Spec
 from linkwork.structure.model import Mechanism, PairType, per_mechanism
 from linkwork.units import DEFAULT_UNITS, KINDS, SI_UNITS
@@ -298,7 +299,7 @@ def override_values(mech: Mechanism, path: str, value: Any) -> np.ndarray:
             return np.asarray(value, dtype=float).ravel()
         except (TypeError, ValueError):
             pass
-    declared = file_units(mech.spec)
+    declared = file_units(described(mech.description))
     out = np.empty(len(items))
     for i, x in enumerate(items):
         try:
@@ -478,7 +479,7 @@ def file_text(mechanism: Mechanism, values: dict[str, float]) -> str:
 
 def _described(mech: Mechanism, values: dict[str, float]) -> tuple[Spec, dict[str, str]]:
     """(spec, kinds of the paths of ``values``), each value checked against its parameter."""
-    spec = mech.spec
+    spec = described(mech.description)
     if spec is None:
         raise ParameterError(edit.NO_FILE)
     known = parameters_by_name(mech)

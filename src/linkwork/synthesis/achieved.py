@@ -13,6 +13,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from linkwork.spec.reader import described
 from linkwork.synthesis.rounding import measure
 
 if TYPE_CHECKING:
@@ -61,7 +62,7 @@ def requirement_rows(kin: Kinematics) -> tuple[str, list[Row]] | None:
     from linkwork.requirements import QUANTITIES
     from linkwork.units import parse_quantity
 
-    spec = kin.mechanism.spec
+    spec = described(kin.mechanism.description)
     given: dict[str, Any] | None = getattr(spec, "requirements", None) if spec is not None else None
     if not given:
         return None

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from linkwork.spec.reader import described
 from linkwork.synthesis.common import TOLERANCE, VERIFY_STEPS, step
 
 if TYPE_CHECKING:
@@ -110,7 +111,7 @@ def knives(kin: Kinematics, variant: int = 0) -> dict[str, float]:
     from linkwork.errors import SynthesisError
     from linkwork.spec.shears import shears_parts
 
-    found = shears_parts(kin.mechanism.spec)
+    found = shears_parts(described(kin.mechanism.description))
     if isinstance(found, str):
         raise SynthesisError(f"double-cut shears: the mechanism's file has no {found}")
     upper, lower = found.guides

@@ -38,7 +38,7 @@ DISPLAY_UNITS = {"length": "mm", "angle": "deg", "mass": "kg", "inertia": "kgm2"
 
 def editable(mech: Mechanism) -> list[Parameter]:
     """The parameters of ``mech`` an edit may set (those of the description it was compiled from)."""
-    return parameter_list(mech) if mech.spec is not None else []
+    return parameter_list(mech) if mech.description is not None else []
 
 
 def check_value(p: Parameter, value: float) -> None:
@@ -66,7 +66,7 @@ def validated(mech: Mechanism, overrides: dict[str, float]) -> dict[str, float]:
     """
     if len(overrides) > MAX_OVERRIDES:
         raise ParameterError(f"at most {MAX_OVERRIDES} overrides in one edit, got {len(overrides)}")
-    if mech.spec is None:
+    if mech.description is None:
         raise ParameterError("this viewer shows a compiled mechanism without its description: it cannot be edited")
     out = {}
     for name, value in overrides.items():

@@ -28,6 +28,7 @@ from linkwork.api import mechanism_of
 from linkwork.errors import ParameterError
 from linkwork.lang import check_lang
 from linkwork.scene.scheme import CYCLE
+from linkwork.spec.reader import described
 from linkwork.structure.model import Mechanism
 from linkwork.structure.parameters import file_text
 from linkwork.web.cycle import DRAGGED, Cycle, check_assembly, solve_cycle
@@ -167,7 +168,7 @@ class Viewer:
         check_lang(lang)
         self.lang = lang
         self.mech: Mechanism = mechanism_of(spec_or_mech, "viewer")
-        self.spec = self.mech.spec
+        self.spec = described(self.mech.description)
         self._editable = editable(self.mech)
         self.steps = steps
         self.placed = placed
