@@ -270,7 +270,7 @@ class Study:
         """The kind and the rows (asked, achieved, met) of the file's requirements, or None where it has none."""
         from linkwork.synthesis.achieved import requirement_rows
 
-        return requirement_rows(self.requirements_kin)
+        return requirement_rows(self.requirements_kin, self.mech.spec)
 
     # ------------------------------------------------------------------ machine
 
