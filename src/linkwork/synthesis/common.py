@@ -322,10 +322,9 @@ def draft(tree: Any) -> Draft:
     """The :class:`Draft` of a file's round-trip ``tree``: its data validated (:func:`linkwork.from_dict`) and
     compiled, once."""
     from linkwork.api import compile
-    from linkwork.spec.edit import _plain
     from linkwork.spec.reader import from_dict
 
-    spec = from_dict(_plain(tree), "<synthesised>")
+    spec = from_dict(tree, "<synthesised>")
     return Draft(tree, spec, compile(spec))
 
 

@@ -222,7 +222,7 @@ def synthesize(asked: SliderCrankRequirements) -> Synthesis:
     it must meet.  ``force`` (N): the working load, resisting the ram over the last ``working`` (m; default the
     whole stroke) of its working (downward) stroke, written in the file as a process load.  Links are
     steel bars of ``section`` (m x m) and ``density``; the ram's mass is the rod's unless given.  Verified
-    by the analysis of the written file (:func:`~linkwork.synthesis.common.measure`): ``asked``, SI."""
+    by the analysis of the written file (:func:`~linkwork.synthesis.measuring.measure`): ``asked``, SI."""
     stroke, time_ratio, rod_ratio, offset = asked.stroke, asked.time_ratio, asked.rod_ratio, asked.offset
     force, working, criterion = asked.force, asked.working, asked.criterion
     speed, section, density, ram_mass = asked.speed, asked.section, asked.density, asked.ram_mass
