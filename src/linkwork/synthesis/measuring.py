@@ -83,13 +83,16 @@ def least_transmission(kin: Kinematics, groups: list[list[str]]) -> np.ndarray:
 
     Each sampled local least within the largest step between two samples of the global one (where the curve
     between the samples can dip below it) is refined by solving the mechanism again between its neighbours
-    (:func:`~linkwork.kinetostatics.peaks.refine`, to about 1e-13 of the angle); the least of them is the value."""
+    (:func:`~linkwork.kinetostatics.peaks.refine`, the value to about 1e-13 of it); the least of them is the value."""
     from linkwork.kinetostatics.peaks import POINTS, refine
     from linkwork.motion.analysis import transmission
 
     mu = {k: np.atleast_2d(v) for k, v in transmission(kin).items()}
     samples = np.stack([np.min(np.stack([mu[k] for k in g]), axis=0) for g in groups])  # (G, V, A)
     rows = [(g, v, i) for g in range(len(groups)) for v in range(samples.shape[1]) for i in _leasts(samples[g, v])]
+    out = np.full(samples.shape[:2], np.nan)
+    if not rows:  # no dyad assembles anywhere on the turn
+        return out
     n = samples.shape[-1]
     windows = np.full((len(rows), n), np.nan)
     for r, (g, v, i) in enumerate(rows):
@@ -107,7 +110,6 @@ def least_transmission(kin: Kinematics, groups: list[list[str]]) -> np.ndarray:
     points = POINTS[1] if samples.shape[1] > 1 else POINTS[0]
     with np.errstate(invalid="ignore"):
         peak = refine(windows, np.asarray(kin.angles, dtype=float), quantity, "min", points)
-    out = np.full(samples.shape[:2], np.nan)
     for r, (g, v, _) in enumerate(rows):
         out[g, v] = np.fmin(out[g, v], peak.value[r])
     return out
