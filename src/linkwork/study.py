@@ -42,7 +42,7 @@ if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
     from linkwork.sizing import Sizing
     from linkwork.sizing.common import Catalogue
-    from linkwork.spec.schema import SizingSpec
+    from linkwork.spec.schema import SizingSpec, Spec
     from linkwork.structure.model import Mechanism
 
 __all__ = ["DynamicsOptions", "SizingOptions", "Study"]
@@ -270,7 +270,15 @@ class Study:
         """The kind and the rows (asked, achieved, met) of the file's requirements, or None where it has none."""
         from linkwork.synthesis.achieved import requirement_rows
 
-        return requirement_rows(self.requirements_kin)
+        return requirement_rows(self.requirements_kin, self.file)
+
+    @cached_property
+    def file(self) -> Spec | None:
+        """The description the mechanism was compiled from, read back from the document it keeps
+        (:func:`linkwork.spec.reader.described`); None for a mechanism without one."""
+        from linkwork.spec.reader import described
+
+        return described(self.mech.description)
 
     # ------------------------------------------------------------------ machine
 
@@ -287,10 +295,8 @@ class Study:
     def time_run(self) -> Run:
         """The run in time the file's ``simulate:`` asks for (:func:`linkwork.simulate`)."""
         from linkwork.machine.timerun import simulate
-        from linkwork.spec.reader import described
 
-        spec = described(self.mech.description)
-        asked = spec.simulate if spec is not None else None
+        asked = self.file.simulate if self.file is not None else None
         if asked is None:
             raise LinkworkError("the file asks for no run in time: give it a 'simulate:' section")
         return simulate(self.mech, asked.until, angle=asked.angle, speed=asked.speed or 0.0, motor=asked.motor)
@@ -306,9 +312,7 @@ class Study:
         asked = self.sizing_options
         motor = asked.motor
         if motor is None:
-            from linkwork.spec.reader import described
-
-            file = described(self.mech.description)
+            file = self.file
             motor = bool(file is not None and file.sizing is not None and file.sizing.motor)
         return size(
             self.mech,

@@ -28,8 +28,8 @@ def slider_crank(tmp_path_factory):
 
 
 def test_the_file_carries_its_requirements_and_the_analysis_finds_each_met(slider_crank):
-    kin = lw.kinematics(str(slider_crank), steps=720)
-    kind, rows = requirement_rows(kin)
+    spec = lw.load(str(slider_crank))
+    kind, rows = requirement_rows(lw.kinematics(spec, steps=720), spec)
     assert kind == "slider-crank"
     got = {r.name: r for r in rows}
     assert got["stroke"].asked == pytest.approx(0.4, rel=1e-12)
@@ -96,4 +96,5 @@ def test_the_report_opens_with_the_requirements_and_the_limit_positions(slider_c
 
 
 def test_a_file_without_requirements_has_no_such_section():
-    assert requirement_rows(lw.kinematics("double-cut-shears", steps=72)) is None
+    spec = lw.load("double-cut-shears")
+    assert requirement_rows(lw.kinematics(spec, steps=72), spec) is None

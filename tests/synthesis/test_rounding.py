@@ -53,7 +53,7 @@ def test_the_written_file_read_back_meets_each_requirement_within_the_tolerance_
     spec = lw.load(path)
     fine = lw.kinematics(spec, steps=7200)  # a finer turn than the synthesis's own
     got = measured(fine, 0)
-    kind, rows = requirement_rows(fine)
+    kind, rows = requirement_rows(fine, spec)
     by = {r.name: r for r in rows}
     assert kind == "slider-crank" and all(r.met for r in rows if r.met is not None)
     assert abs(got["stroke"] - 0.4) <= by["stroke"].tolerance
@@ -84,8 +84,8 @@ def test_the_shears_read_back_meet_their_knives_requirements_within_the_toleranc
     s = synthesize("double-cut-shears", upper_stroke=0.15, lower_stroke=0.11, time_ratio=1.05, overlap=0.015)
     path = tmp_path / "shears.yaml"
     s.write(path)
-    kin = lw.kinematics(lw.load(path), steps=3600)
-    _, rows = requirement_rows(kin)
+    spec = lw.load(path)
+    _, rows = requirement_rows(lw.kinematics(spec, steps=3600), spec)
     asked = {"upper_stroke": 0.15, "lower_stroke": 0.11, "time_ratio": 1.05, "overlap": 0.015}
     for row in rows:
         if row.name in asked:

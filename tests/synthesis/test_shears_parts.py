@@ -11,7 +11,7 @@ import linkwork as lw
 from linkwork.errors import SynthesisError
 from linkwork.examples import text
 from linkwork.spec.shears import ShearsParts
-from linkwork.synthesis.rounding import knives
+from linkwork.synthesis.measuring import knives
 from linkwork.synthesis.shears import parts
 
 #: The bundled file's names and new ones for them (whole words).
@@ -51,8 +51,10 @@ def test_the_shears_parts_are_read_from_the_file_whatever_it_calls_them():
         "links.bottom_knife.points.blade.y",
     ]
     assert names.strokes == ("stroke:slide_top", "stroke:slide_bottom")
-    same = knives(lw.kinematics(spec, steps=120))
-    assert same == pytest.approx(knives(lw.kinematics("double-cut-shears", steps=120)), rel=1e-12)
+    bundled_spec = lw.load("double-cut-shears")
+    same = {k: float(v[0]) for k, v in knives(lw.kinematics(spec, steps=120), spec).items()}
+    own = {k: float(v[0]) for k, v in knives(lw.kinematics(bundled_spec, steps=120), bundled_spec).items()}
+    assert same == pytest.approx(own, rel=1e-12)
     assert same["upper_stroke"] > 0.1  # the bundled knives' 120 mm
 
 
@@ -70,7 +72,7 @@ def test_a_renamed_shears_file_carries_the_shears_requirements_and_the_report_me
 
     given = "requirements:\n  kind: double-cut-shears\n  upper_stroke: 120 mm\n  lower_stroke: 120 mm\n"
     spec = lw.loads(_renamed() + given, "renamed.yaml")
-    kind, rows = requirement_rows(lw.kinematics(spec, steps=120))
+    kind, rows = requirement_rows(lw.kinematics(spec, steps=120), spec)
     assert kind == "double-cut-shears"
     strokes = {row.name: row.achieved for row in rows}
     assert strokes["upper_stroke"] == pytest.approx(0.12, rel=0.02)

@@ -315,7 +315,8 @@ def test_a_compiled_mechanism_is_edited_like_its_file():
 def test_a_mechanism_without_its_description_is_shown_but_not_edited():
     import dataclasses
 
-    client = TestClient(create_app(dataclasses.replace(lw.compile(lw.load("four-bar")), description=None)), base_url=LOCAL)
+    bare = dataclasses.replace(lw.compile(lw.load("four-bar")), description=None)
+    client = TestClient(create_app(bare), base_url=LOCAL)
     cycle = client.get("/api/cycle").json()
     assert cycle["editable"] is False and cycle["parameters"] == []
     r = client.post("/api/solve", json={"overrides": {"links.crank.length": 0.11}})
@@ -1093,7 +1094,8 @@ def test_the_new_endpoints_answer_only_the_loopback_host(shears):
 def test_a_saved_mechanism_without_its_description_is_refused():
     import dataclasses
 
-    client = TestClient(create_app(dataclasses.replace(lw.compile(lw.load("four-bar")), description=None)), base_url=LOCAL)
+    bare = dataclasses.replace(lw.compile(lw.load("four-bar")), description=None)
+    client = TestClient(create_app(bare), base_url=LOCAL)
     for path in ("/api/save", "/api/edit"):
         r = client.post(path, json={"overrides": {"links.crank.length": 0.11}})
         assert r.status_code == 422 and "cannot be edited" in r.json()["error"], path

@@ -35,7 +35,6 @@ from linkwork.report.requirements import requirements_section
 from linkwork.report.run import ReportRun
 from linkwork.report.sizing import asks_sizing, sizing_section
 from linkwork.report.structure import structure_section
-from linkwork.spec.reader import described
 from linkwork.structure.model import one_crank
 from linkwork.study import Study
 
@@ -181,8 +180,7 @@ def _build(run: ReportRun, position: int | float | str | None, animation: bool, 
         impact_section(run)
     if asks_sizing(run.mech, run.sizing):
         sizing_section(run)
-    spec = described(run.mech.description)
-    if spec is not None and spec.simulate is not None:
+    if run.study.file is not None and run.study.file.simulate is not None:
         simulate_section(run)
     run.progress("figures")
     run.run_here()

@@ -13,7 +13,6 @@ from linkwork.io.jsonout import dumps
 from linkwork.report.html import Section, paragraph, table
 from linkwork.report.kinematics import ReportCycle
 from linkwork.report.run import ReportRun
-from linkwork.spec.reader import described
 from linkwork.units import turn_deg
 
 
@@ -67,9 +66,7 @@ def simulate_section(run: ReportRun) -> None:
     """The run in time the file asks for (``simulate:``), as ``linkwork simulate`` runs it: a table of its
     start, end and stops, ``simulate.json`` and ``simulate.csv`` beside the report, and its diagram."""
 
-    mech = run.mech
-    spec = described(mech.description)
-    asked = spec.simulate if spec is not None else None
+    asked = run.study.file.simulate if run.study.file is not None else None
     assert asked is not None  # _build calls this only for a file with a run
     run.progress("simulate")
     sec = Section("simulate", run.t("section.simulate"))

@@ -54,8 +54,7 @@ def sizing_body(study: Study, t: Any) -> tuple[list[str], Sizing | None]:
     body += [paragraph(t("sizing.inputs")), html_table([t("sizing.col.quantity"), t("sizing.col.value")], rows)]
     for table in result.tables():
         body += [paragraph(t(f"sizing.table.{table.key}")), _translated(table, t)]
-    mech = study.mech
-    spec = described(mech.description)
+    spec = study.file
     given = spec is not None and spec.machine is not None and spec.machine.motor is not None
     for part, why in result.missing.items():
         if part == "motor" and why == "not asked" and given:  # the file's own motor: nothing to choose

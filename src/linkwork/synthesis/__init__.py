@@ -2,8 +2,10 @@
 pressure (transmission) angle.
 
 One module per kind, closed forms first; each returns a :class:`~linkwork.synthesis.common.Synthesis` whose
-text is written through the one YAML writer of mechanism files and whose stroke, time ratio and extreme
-angle the analysis measures on that text before it is returned.
+file is written through the one YAML writer of mechanism files, once, with its ``requirements:``; the stroke,
+time ratio and extreme angles of the mechanism it describes are measured by the analysis
+(:func:`~linkwork.synthesis.measuring.measure`, with the tolerances its lengths' rounding implies) before it is
+written.
 """
 
 from __future__ import annotations
@@ -179,18 +181,20 @@ def _own(exc: Exception) -> str:
 
 
 def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
-    """``result`` whose file carries its requirements (``requirements:``, through the one writer), for the
-    report to state them beside what the mechanism achieves."""
+    """``result`` with its file written: the tree the kind wrote and measured (:attr:`Synthesis.tree`) with its
+    requirements (``requirements:``, each measured one with its tolerance), for the report to state them beside
+    what the mechanism achieves; the text written once, through the one writer, and read back once
+    (:attr:`Synthesis.spec`)."""
     import dataclasses
 
     from ruamel.yaml.comments import CommentedMap
 
-    from linkwork.spec.edit import round_trip_yaml, yaml_text
+    from linkwork.spec.edit import yaml_text
     from linkwork.spec.reader import loads
     from linkwork.synthesis.achieved import SUFFIX, written
     from linkwork.synthesis.common import LEAST_TRANSMISSION
 
-    data = round_trip_yaml().load(result.text)
+    data = result.tree
     data["requirements"] = CommentedMap(written(result.kind, result.requirements, extra, result.tolerances))
     for name in data["requirements"]:
         if name.endswith(SUFFIX):
@@ -207,7 +211,7 @@ def _carrying(result: Synthesis, extra: dict[str, str]) -> Synthesis:
         "requirements", before="what the mechanism was synthesised for; the report states it beside what it achieves"
     )
     text = yaml_text(data)
-    return dataclasses.replace(result, text=text, spec=loads(text, "<synthesised>"))
+    return dataclasses.replace(result, text=text, spec=loads(text, "<synthesised>"), tree=None)
 
 
 def _si(name: str, value: Any) -> Any:

@@ -13,11 +13,11 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from linkwork.spec.reader import described
-from linkwork.synthesis.rounding import measure
+from linkwork.synthesis.measuring import measure
 
 if TYPE_CHECKING:
     from linkwork.motion.kinematic_analysis import Kinematics
+    from linkwork.spec.schema import Spec
 
 #: The requirements the analysis measures, and how they are compared: "equal" or a bound.
 MEASURED = {
@@ -34,7 +34,7 @@ MEASURED = {
 
 #: Relative agreement of an equality the report calls met, for a file that states no tolerance of its own (a
 #: synthesised file states the one its lengths' rounding implies:
-#: :func:`~linkwork.synthesis.rounding.rounding_tolerances`).
+#: :func:`~linkwork.synthesis.rounding.measure_written`).
 MET = 1e-6
 
 #: The suffix of a requirement's tolerance in a file's ``requirements:`` (``stroke_tolerance: "0.012 mm"``).
@@ -56,20 +56,20 @@ class Row:
     tolerance: float | None = None
 
 
-def requirement_rows(kin: Kinematics) -> tuple[str, list[Row]] | None:
-    """(kind, rows) of the requirements of ``kin``'s mechanism file over the whole turn ``kin``; None where
-    the file carries none."""
+def requirement_rows(kin: Kinematics, spec: Spec | None) -> tuple[str, list[Row]] | None:
+    """(kind, rows) of the requirements of the mechanism file ``spec`` over the whole turn ``kin`` of its
+    mechanism, as :func:`~linkwork.synthesis.measuring.measure` measures it (the synthesis's verification's
+    measurement); None where the file carries none."""
     from linkwork.requirements import QUANTITIES
     from linkwork.units import parse_quantity
 
-    spec = described(kin.mechanism.description)
     given: dict[str, Any] | None = getattr(spec, "requirements", None) if spec is not None else None
-    if not given:
+    if not given or spec is None:
         return None
     from linkwork.synthesis.kinds import KINDS
 
     kind = str(given.get("kind", ""))
-    measured = measure(kin, KINDS[kind].measure if kind in KINDS else None)
+    (measured, *_) = measure(kin, spec, KINDS[kind].measure if kind in KINDS else None)
     rows = []
 
     def si(name: str, value: Any) -> float:

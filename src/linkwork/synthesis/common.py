@@ -18,13 +18,13 @@ from linkwork.requirements import BAR, STEEL
 from linkwork.spec.schema import Spec
 
 #: The analysis's own resolution, relative: added to the tolerance the rounding of the lengths implies
-#: (:func:`~linkwork.synthesis.rounding.rounding_tolerances`), which the written file's measured stroke (swing),
+#: (:func:`~linkwork.synthesis.rounding.measure_written`), which the written file's measured stroke (swing),
 #: time ratio and pressure (transmission) angle must reach with the requirements and the closed forms.
 TOLERANCE = 1e-9
 
 #: The step every synthesised file writes its lengths and point coordinates to (m): 0.1 mm, as a designer
 #: dimensions a machine's drawing.  A written length is within STEP / 2 of the exact one; the tolerance of each
-#: requirement follows from it (:func:`~linkwork.synthesis.rounding.rounding_tolerances`).  A mechanism whose
+#: requirement follows from it (:func:`~linkwork.synthesis.rounding.measure_written`).  A mechanism whose
 #: scale (its stroke, rocker or frame asked) is under 100 steps (10 mm) is dimensioned to the power of ten that
 #: keeps 100 steps on it (:func:`dimensioned`), as a drawing of an instrument's linkage is.
 STEP = 1e-4
@@ -121,7 +121,8 @@ class Synthesis:
     spec : Spec
         The mechanism, read back from :attr:`text`.
     text : str
-        The mechanism file, each derived dimension with the requirement it meets as a comment.
+        The mechanism file, each derived dimension with the requirement it meets as a comment, and its
+        ``requirements:``.
     family : Family or None
         The family the requirements left, where they left one; the pick is :attr:`criterion`'s.
     criterion : str
@@ -130,7 +131,10 @@ class Synthesis:
         What else the synthesis found (the criteria of the pick).
     tolerances : dict
         The tolerance (SI) of each requirement the analysis measures, implied by the lengths written to
-        :data:`STEP` (:func:`~linkwork.synthesis.rounding.rounding_tolerances`).
+        :data:`STEP` (:func:`~linkwork.synthesis.rounding.measure_written`).
+    tree : object
+        The file's round-trip YAML tree as a kind wrote it, before :func:`linkwork.synthesis.synthesize` adds its
+        ``requirements:`` and writes :attr:`text` (and reads :attr:`spec` from it) once; None once written.
     """
 
     kind: str
@@ -144,6 +148,7 @@ class Synthesis:
     criterion: str = ""
     notes: list[str] = field(default_factory=list)
     tolerances: dict[str, float] = field(default_factory=dict)
+    tree: Any = field(default=None, repr=False, compare=False)
 
     def write(self, out: str | Path) -> Path:
         """Write :attr:`text` to ``out`` atomically; returns the path."""
@@ -193,15 +198,11 @@ def below_rule(what: str, least: float, bound: float, nearest: str) -> Synthesis
     )
 
 
-def keep_rule(spec: Spec, bound: float, tolerance: float | None = None) -> float:
-    """The least transmission angle (rad) of every dyad of ``spec`` over the turn, as :func:`linkwork.kinematics`
-    and :func:`~linkwork.motion.analysis.transmission` measure the written file; raises
-    :class:`SynthesisError` where it is under ``bound`` by more than ``tolerance`` (rad; what the lengths'
-    rounding implies, else :data:`TOLERANCE` relative): a closed form let through what the file does not keep."""
-    from linkwork.api import kinematics
-    from linkwork.motion.analysis import transmission
-
-    least = min(float(np.nanmin(v)) for v in transmission(kinematics(spec, steps=VERIFY_STEPS)).values())
+def keep_rule(least: float, bound: float, tolerance: float | None = None) -> float:
+    """``least``, the least transmission angle (rad) of every dyad of the written file over the turn as the analysis
+    measures it (:func:`~linkwork.synthesis.measuring.measure`); raises :class:`SynthesisError` where it is under
+    ``bound`` by more than ``tolerance`` (rad; what the lengths' rounding implies, else :data:`TOLERANCE`
+    relative): a closed form let through what the file does not keep."""
     if least < bound - (TOLERANCE * bound if tolerance is None else tolerance):
         raise SynthesisError(
             f"the written mechanism measures a least transmission angle of {down(math.degrees(least))} deg, under "
@@ -307,13 +308,29 @@ def commented(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> Any
     return root
 
 
-def file_of(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> tuple[str, Spec]:
-    """The mechanism file's text (through the one YAML writer) and the Spec read back from it."""
-    from linkwork.spec.edit import yaml_text
-    from linkwork.spec.reader import loads
+class Draft(NamedTuple):
+    """A synthesised file before its ``requirements:`` are written: its YAML ``tree`` (the one writer's round-trip
+    tree, a comment beside each derived dimension), and the ``spec`` and ``mech`` read and compiled from the tree's
+    data, which the analysis measures (:func:`~linkwork.synthesis.rounding.measure_written`)."""
 
-    text = yaml_text(commented(data, comments))
-    return text, loads(text, "<synthesised>")
+    tree: Any
+    spec: Spec
+    mech: Any
+
+
+def draft(tree: Any) -> Draft:
+    """The :class:`Draft` of a file's round-trip ``tree``: its data validated (:func:`linkwork.from_dict`) and
+    compiled, once."""
+    from linkwork.api import compile
+    from linkwork.spec.reader import from_dict
+
+    spec = from_dict(tree, "<synthesised>")
+    return Draft(tree, spec, compile(spec))
+
+
+def file_of(data: dict[str, Any], comments: dict[tuple[str, ...], str]) -> Draft:
+    """The mechanism file's :class:`Draft`: ``data`` with its ``comments`` as the one YAML writer's tree."""
+    return draft(commented(data, comments))
 
 
 def confirm(
@@ -321,7 +338,7 @@ def confirm(
 ) -> None:
     """Raise :class:`SynthesisError` where the analysis measured a quantity of ``predicted`` away from it by
     more than its ``tolerances`` (SI, by requirement name or :data:`ALIASES`: what the lengths' rounding implies,
-    :func:`~linkwork.synthesis.rounding.rounding_tolerances`); the message says how close to a dead point the
+    :func:`~linkwork.synthesis.rounding.measure_written`); the message says how close to a dead point the
     mechanism runs (``worst``, its least transmission angle, rad), where the measures are ill-conditioned."""
     for key, wanted in predicted.items():
         got = measured[key]
@@ -332,25 +349,3 @@ def confirm(
                 f"within {deg(worst)} of a dead point, where the limit positions are ill-conditioned: ask for "
                 "a smaller time ratio"
             )
-
-
-def measure(
-    spec: Spec,
-    extreme_angles: list[float],
-    angle_of: Callable[[dict[str, np.ndarray]], np.ndarray],
-    output: str | None = None,
-) -> dict:
-    """Stroke (or swing), time ratio and the least transmission angle of ``spec``'s output (its one output,
-    or the one named ``output``) as the analysis measures them: :func:`linkwork.motion.analysis.extremes`
-    over a sampled turn, and :func:`~linkwork.motion.analysis.transmission` over that turn and at
-    ``extreme_angles`` (the drive angles the closed form puts the extremes at; the least over all samples, so
-    a lower value anywhere is found).  ``angle_of`` picks the dyad's angles from the transmission's mapping."""
-    from linkwork.api import kinematics
-    from linkwork.motion.analysis import extremes, transmission
-
-    kin = kinematics(spec, steps=VERIFY_STEPS)
-    found = extremes(kin)
-    (out,) = found if output is None else [e for e in found if e.name == output]
-    at = kinematics(spec, np.array(extreme_angles))
-    least = min(float(np.min(angle_of(transmission(kin)))), float(np.min(angle_of(transmission(at)))))
-    return {"stroke": out.stroke, "time_ratio": out.time_ratio, "least_transmission_angle": least}

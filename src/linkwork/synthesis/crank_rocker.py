@@ -45,12 +45,11 @@ from linkwork.synthesis.common import (
     given,
     keep_rule,
     least_allowed,
-    measure,
     mm,
     proportions,
     time_ratio_of,
 )
-from linkwork.synthesis.rounding import tolerances_of
+from linkwork.synthesis.rounding import measure_written
 
 KIND = "crank-rocker"
 
@@ -286,13 +285,13 @@ def synthesize(asked: CrankRockerRequirements) -> Synthesis:
     dims = {k: float(m[k]) * scale for k in ("crank", "coupler", "rocker", "frame")}
     proportions(KIND, dims)
     requirements = given(swing=swing, time_ratio=time_ratio, rocker=rocker, frame=frame, min_transmission_angle=bound)
-    text, spec = file_of(*_file(dims, m, scale, swing, time_ratio, theta, mu, Making(speed, section, density)))
-    measured = measure(spec, [0.0, math.pi], lambda d: next(iter(d.values())))
-    measured["swing"] = measured.pop("stroke")
+    written = file_of(*_file(dims, m, scale, swing, time_ratio, theta, mu, Making(speed, section, density)))
+    got, tol = measure_written(written.mech, written.spec)
+    least = got["min_transmission_angle"]  # of its one dyad
+    measured = {"time_ratio": got["time_ratio"], "least_transmission_angle": least, "swing": got["swing"]}
     predicted = {"swing": swing, "time_ratio": time_ratio, "least_transmission_angle": mu}
-    tol = tolerances_of(spec)
     confirm(measured, predicted, mu, tol)
-    keep_rule(spec, bound, tol["min_transmission_angle"])
+    keep_rule(least, bound, tol["min_transmission_angle"])
     why = "the greatest least transmission angle" if theta > 0 else "the nearest crank pivot meeting the bound"
     return Synthesis(
         KIND,
@@ -300,11 +299,12 @@ def synthesize(asked: CrankRockerRequirements) -> Synthesis:
         dims,
         predicted,
         measured,
-        spec,
-        text,
+        written.spec,
+        "",
         family(swing, time_ratio),
         f"picked by {why}",
         tolerances=tol,
+        tree=written.tree,
     )
 
 

@@ -11,7 +11,7 @@ from typing import Any
 from linkwork.requirements import RECORDS
 from linkwork.synthesis import crank_rocker, families, shears, slider_crank, slotted_lever, toggle_press
 from linkwork.synthesis.common import Synthesis
-from linkwork.synthesis.rounding import Own, knives
+from linkwork.synthesis.measuring import Own, knives
 
 
 @dataclass(frozen=True)
@@ -30,9 +30,9 @@ class Kind:
         ``family(spec, given) -> dict or None``: the family a file of this kind leaves, for the viewer's slider
         (``given``: the file's ``requirements:``), as :func:`~linkwork.synthesis.achieved.family_members` states it.
     measure : callable or None
-        ``measure(kin, variant) -> dict``: what the kind measures of a solved turn beside what every kind does
-        (:func:`~linkwork.synthesis.rounding.measure`), for its tolerances, its verification and the report's
-        requirements.
+        ``measure(kin, spec) -> dict``: what the kind measures of a solved turn (every variant) beside what every
+        kind does, in the one measurement (:func:`~linkwork.synthesis.measuring.measure`) that its verification,
+        its tolerances and the report's requirements read.
     """
 
     name: str

@@ -39,15 +39,18 @@ from linkwork.spec.shears import ShearsParts, shears_parts
 from linkwork.synthesis.common import (
     TOLERANCE,
     VERIFY_STEPS,
+    Draft,
     Family,
     Synthesis,
     below_rule,
+    draft,
     given,
     keep_rule,
     least_allowed,
     rounded,
 )
-from linkwork.synthesis.rounding import knives, tolerances_of
+from linkwork.synthesis.measuring import knives
+from linkwork.synthesis.rounding import measure_written
 
 KIND = "double-cut-shears"
 
@@ -250,8 +253,7 @@ def synthesize(asked: ShearsRequirements) -> Synthesis:
     values = {path: rounded(v) for path, v in exact.items()}  # written to 0.1 mm, as a drawing dimensions them
     names = bundled()
     why = f"crank {values[names.paths[0]] * 1e3:.6g} mm as given" if crank is not None else f"picked by {words}"
-    text, spec = _file(mech, values, requirements, want, why, speed)
-    measured = measure(spec)
+    written = _file(mech, values, requirements, want, why, speed)
     predicted = {
         "upper_stroke": upper_stroke,
         "lower_stroke": lower_stroke,
@@ -259,9 +261,10 @@ def synthesize(asked: ShearsRequirements) -> Synthesis:
         "overlap": want,
         "opening": upper_stroke + lower_stroke - want,
     }
-    tol = tolerances_of(spec, knives, names.paths)
+    got, tol = measure_written(written.mech, written.spec, knives, names.paths)
+    measured = {key: got[key] for key in predicted}
     confirm(measured, predicted, tol)
-    keep_rule(spec, floor, tol["min_transmission_angle"])
+    keep_rule(got["min_transmission_angle"], floor, tol["min_transmission_angle"])
     columns = {
         "crank": cranks,
         f"{names.pivot}.x": unknowns[:, 0],
@@ -275,8 +278,10 @@ def synthesize(asked: ShearsRequirements) -> Synthesis:
     dims = dict(zip(shown, values.values(), strict=True))
     notes = [f"{m}: {found[m][pick]:.6g}" for m, _, _ in CRITERIA.values() if m in found]
     if "peak_driving_torque" not in found:
-        notes.append(f"peak_driving_torque: {_peak_torque(spec):.6g}")
-    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, why, notes, tol)
+        notes.append(f"peak_driving_torque: {_peak_torque(written.mech):.6g}")
+    return Synthesis(
+        KIND, requirements, dims, predicted, measured, written.spec, "", fam, why, notes, tol, tree=written.tree
+    )
 
 
 def _billet_fits(mech, opening: float) -> None:  # noqa: ANN001
@@ -306,12 +311,12 @@ def _keeps_rule(found: dict[str, np.ndarray], cranks: np.ndarray, floor: float) 
         )
 
 
-def _peak_torque(spec) -> float:  # noqa: ANN001
-    """The peak size of the driving torque (N m) of ``spec`` over the turn, refined between the samples."""
+def _peak_torque(mech) -> float:  # noqa: ANN001
+    """The peak size of the driving torque (N m) of ``mech`` over the turn, refined between the samples."""
     from linkwork.api import forces
     from linkwork.kinetostatics.peaks import torque_peak
 
-    return abs(float(torque_peak(forces(spec, steps=360)).value[0]))
+    return abs(float(torque_peak(forces(mech, steps=360)).value[0]))
 
 
 def _member_torques(mech, cranks, unknowns, requirements: dict, want: float, speed: str | None) -> np.ndarray:  # noqa: ANN001
@@ -322,7 +327,7 @@ def _member_torques(mech, cranks, unknowns, requirements: dict, want: float, spe
     for i in np.flatnonzero(np.isfinite(unknowns[:, 0])):
         (values,) = member_values(cranks[[i]], unknowns[[i]])
         written = {path: rounded(v) for path, v in values.items()}  # as its file would be written
-        out[i] = _peak_torque(_file(mech, written, requirements, want, "", speed)[1])
+        out[i] = _peak_torque(_file(mech, written, requirements, want, "", speed).mech)
     return out
 
 
@@ -347,17 +352,9 @@ def _infeasible(mech, upper: float, lower: float, ratio: float, want: float, cra
     )
 
 
-def measure(spec) -> dict[str, float]:  # noqa: ANN001
-    """The knives' strokes, K, overlap and opening of ``spec`` as :func:`linkwork.kinematics` and the design
-    metrics of that result measure them (:func:`~linkwork.synthesis.rounding.knives`)."""
-    from linkwork.api import kinematics
-
-    return knives(kinematics(spec, steps=VERIFY_STEPS))
-
-
 def confirm(measured: dict[str, float], predicted: dict[str, float], tolerances: dict[str, float]) -> None:
     """Raise where the written file measures a requirement away from it by more than its ``tolerances`` (SI: what
-    the lengths written to 0.1 mm imply, :func:`~linkwork.synthesis.rounding.rounding_tolerances`)."""
+    the lengths written to 0.1 mm imply, :func:`~linkwork.synthesis.rounding.measure_written`)."""
     for key, wanted in predicted.items():
         if not abs(measured[key] - wanted) <= tolerances[key]:
             raise SynthesisError(
@@ -366,12 +363,11 @@ def confirm(measured: dict[str, float], predicted: dict[str, float], tolerances:
             )
 
 
-def _file(mech, values: dict[str, float], requirements: dict, want: float, why: str, speed: str | None) -> tuple:  # noqa: ANN001
-    """The bundled file's text with ``values`` written in (the one writer), its cutting load's workpiece placed
-    where the new knives meet it, its hints and the comments that speak of the geometry or the speed regenerated,
-    a comment beside each derived dimension; and the Spec read back."""
-    from linkwork.spec.edit import round_trip_yaml, yaml_text
-    from linkwork.spec.reader import loads
+def _file(mech, values: dict[str, float], requirements: dict, want: float, why: str, speed: str | None) -> Draft:  # noqa: ANN001
+    """The :class:`~linkwork.synthesis.common.Draft` of the bundled file with ``values`` written in (the one
+    writer's tree), its cutting load's workpiece placed where the new knives meet it, its hints and the comments
+    that speak of the geometry or the speed regenerated, a comment beside each derived dimension."""
+    from linkwork.spec.edit import round_trip_yaml
     from linkwork.structure.parameters import file_text
 
     data = round_trip_yaml().load(file_text(mech, values))
@@ -394,19 +390,17 @@ def _file(mech, values: dict[str, float], requirements: dict, want: float, why: 
         data["links"][knife].yaml_add_eol_comment(f"# edge: overlap {want * 1e3:.6g} mm when closed", "points")
     if speed is not None:
         data["drives"][0]["speed"] = speed
-    spec = loads(yaml_text(data), "<synthesised>")
-    _regenerate(data, spec)
-    text = yaml_text(data)
-    return text, loads(text, "<synthesised>")
+    geometry = draft(data)  # before the billets, hints and comments that follow from it
+    _regenerate(data, geometry.spec, geometry.mech)
+    return draft(data)
 
 
-def _regenerate(data, spec) -> None:  # noqa: ANN001
-    """Write into ``data`` what follows from the new geometry of ``spec`` (the same file): each two-tool process
-    load's workpiece where both tools touch it at once (:func:`billets`), the hints at the assembly pose, and the
-    comments on the work a cut, the speed and the drawing."""
-    from linkwork.api import compile, kinematics
+def _regenerate(data, spec, mech) -> None:  # noqa: ANN001
+    """Write into ``data`` what follows from the new geometry of ``spec`` (the same file, compiled: ``mech``): each
+    two-tool process load's workpiece where both tools touch it at once (:func:`billets`), the hints at the assembly
+    pose, and the comments on the work a cut, the speed and the drawing."""
+    from linkwork.api import kinematics
 
-    mech = compile(spec)
     unit = _length_unit(data)
     placed = billets(mech)
     for load in mech.loads:

@@ -50,7 +50,6 @@ from linkwork.synthesis.common import (
     given,
     keep_rule,
     least_allowed,
-    measure,
     mm,
     newtons,
     proportions,
@@ -58,7 +57,7 @@ from linkwork.synthesis.common import (
     step,
     up,
 )
-from linkwork.synthesis.rounding import tolerances_of
+from linkwork.synthesis.rounding import measure_written
 
 KIND = "slider-crank"
 
@@ -223,7 +222,7 @@ def synthesize(asked: SliderCrankRequirements) -> Synthesis:
     it must meet.  ``force`` (N): the working load, resisting the ram over the last ``working`` (m; default the
     whole stroke) of its working (downward) stroke, written in the file as a process load.  Links are
     steel bars of ``section`` (m x m) and ``density``; the ram's mass is the rod's unless given.  Verified
-    by the analysis of the written file (:func:`~linkwork.synthesis.common.measure`): ``asked``, SI."""
+    by the analysis of the written file (:func:`~linkwork.synthesis.measuring.measure`): ``asked``, SI."""
     stroke, time_ratio, rod_ratio, offset = asked.stroke, asked.time_ratio, asked.rod_ratio, asked.offset
     force, working, criterion = asked.force, asked.working, asked.criterion
     speed, section, density, ram_mass = asked.speed, asked.section, asked.density, asked.ram_mass
@@ -250,27 +249,30 @@ def synthesize(asked: SliderCrankRequirements) -> Synthesis:
         force=force,
         working=working,
     )
-    text, spec = file_of(
+    written = file_of(
         *_file((r, ell, e), (stroke, time_ratio), theta, alpha, why, speed, (section, density, ram_mass), load)
     )
-    # the drive angle of the largest pressure angle: the crank square to the guide, away from it (+x)
-    measured = measure(spec, [0.0], lambda mu: next(iter(mu.values())))
-    measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
+    got, tol = measure_written(written.mech, written.spec)
+    measured = {
+        "stroke": got["stroke"],
+        "time_ratio": got["time_ratio"],
+        "largest_pressure_angle": got["max_pressure_angle"],
+    }
     predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": alpha}
-    tol = tolerances_of(spec)
     confirm(measured, predicted, math.pi / 2 - alpha, tol)
-    keep_rule(spec, floor, tol["min_transmission_angle"])
+    keep_rule(got["min_transmission_angle"], floor, tol["min_transmission_angle"])
     return Synthesis(
         KIND,
         requirements,
         {"crank": r, "rod": ell, "offset": e},
         predicted,
         measured,
-        spec,
-        text,
+        written.spec,
+        "",
         family(stroke, time_ratio) if free else None,
         f"picked by {why}",
         tolerances=tol,
+        tree=written.tree,
     )
 
 
@@ -329,10 +331,10 @@ def peak_torques(
     out = np.full(np.shape(beta), np.nan)
     for i, b in enumerate(np.atleast_1d(beta)):
         r, ell, e = (float(x) for x in dimensions(stroke, theta, b))
-        _, spec = file_of(
+        mech = file_of(
             *_file((r, ell, e), (stroke, time_ratio), theta, 0.0, "", speed, (section, density, ram_mass), load)
-        )
-        out.flat[i] = abs(float(np.ravel(torque_peak(forces(spec, steps=360)).value)[0]))
+        ).mech
+        out.flat[i] = abs(float(np.ravel(torque_peak(forces(mech, steps=360)).value)[0]))
     return out
 
 

@@ -55,13 +55,12 @@ from linkwork.synthesis.common import (
     given,
     keep_rule,
     least_allowed,
-    measure,
     mm,
     proportions,
     rounded,
     up,
 )
-from linkwork.synthesis.rounding import tolerances_of
+from linkwork.synthesis.rounding import measure_written
 
 KIND = "slotted-lever"
 
@@ -234,15 +233,30 @@ def synthesize(asked: SlottedLeverRequirements) -> Synthesis:
         max_pressure_angle=max_pressure_angle,
         min_transmission_angle=floor,
     )
-    text, spec = file_of(*_file(dims, stroke, time_ratio, theta, alpha, why, Making(speed, section, density), ram_mass))
-    measured = measure(spec, _extreme_angles(dims, theta), _rod_dyad, output="guide")
-    measured["largest_pressure_angle"] = math.pi / 2 - measured.pop("least_transmission_angle")
-    predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": _written_alpha(spec)}
-    tol = tolerances_of(spec)
+    written = file_of(*_file(dims, stroke, time_ratio, theta, alpha, why, Making(speed, section, density), ram_mass))
+    got, tol = measure_written(written.mech, written.spec)  # the ram's stroke; the pressure angle of the rod's dyad
+    measured = {
+        "stroke": got["stroke"],
+        "time_ratio": got["time_ratio"],
+        "largest_pressure_angle": got["max_pressure_angle"],
+    }
+    predicted = {"stroke": stroke, "time_ratio": time_ratio, "largest_pressure_angle": _written_alpha(written.spec)}
     confirm(measured, predicted, math.pi / 2 - theta / 2 - alpha, tol)  # the rod square to the lever at its limits
-    keep_rule(spec, floor, tol["min_transmission_angle"])
+    keep_rule(got["min_transmission_angle"], floor, tol["min_transmission_angle"])
     fam = family(stroke, time_ratio) if frame is None and crank is None else None
-    return Synthesis(KIND, requirements, dims, predicted, measured, spec, text, fam, f"picked by {why}", tolerances=tol)
+    return Synthesis(
+        KIND,
+        requirements,
+        dims,
+        predicted,
+        measured,
+        written.spec,
+        "",
+        fam,
+        f"picked by {why}",
+        tolerances=tol,
+        tree=written.tree,
+    )
 
 
 def _written_alpha(spec) -> float:  # noqa: ANN001
@@ -258,18 +272,6 @@ def _written_alpha(spec) -> float:  # noqa: ANN001
     )
     low = lever * math.sqrt(1 - (r / d) ** 2)
     return math.asin(max(abs(h - lever), abs(h - low)) / rod)
-
-
-def _rod_dyad(mu: dict[str, np.ndarray]) -> np.ndarray:
-    """The transmission angles of the rod and ram's dyad (the one RRP dyad; the block and lever make an RPR)."""
-    (label,) = [k for k in mu if k.endswith("RRP")]
-    return mu[label]
-
-
-def _extreme_angles(dims: dict, theta: float) -> list[float]:
-    """Drive angles where the rod's pressure angle is largest: the lever upright (crank up and down) and the
-    crank square to the lever at the limit positions (the crank at -theta/2 and pi + theta/2 from +x)."""
-    return [math.pi / 2, 3 * math.pi / 2, -theta / 2, math.pi + theta / 2]
 
 
 def _file(dims, stroke, time_ratio, theta, alpha, why, making: Making, ram_mass) -> tuple:  # noqa: ANN001

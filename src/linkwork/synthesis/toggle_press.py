@@ -40,7 +40,6 @@ from linkwork.requirements import TogglePressRequirements
 from linkwork.synthesis import crank_rocker
 from linkwork.synthesis.common import (
     PROPORTION,
-    TOLERANCE,
     VERIFY_STEPS,
     Making,
     Synthesis,
@@ -55,7 +54,6 @@ from linkwork.synthesis.common import (
     given,
     keep_rule,
     least_allowed,
-    measure,
     mm,
     newtons,
     proportions,
@@ -63,7 +61,7 @@ from linkwork.synthesis.common import (
     step,
     up,
 )
-from linkwork.synthesis.rounding import tolerances_of
+from linkwork.synthesis.rounding import measure_written, rounding_variants, spread
 
 KIND = "toggle-press"
 
@@ -174,13 +172,14 @@ def synthesize(asked: TogglePressRequirements) -> Synthesis:
         time_ratio=time_ratio,
         min_transmission_angle=floor,
     )
-    text, spec = file_of(*_file(geo, stroke, force, before, psi, k, Making(speed, section, density)))
-    measured = measure(spec, [angle], lambda mu: next(v for key, v in mu.items() if key.endswith("RRP")), "guide")
-    measured = {"stroke": measured["stroke"], "torque_at_nominal": -_torque(spec, angle)}  # clockwise
+    written = file_of(*_file(geo, stroke, force, before, psi, k, Making(speed, section, density)))
+    spec = written.spec
+    got, tol = measure_written(written.mech, spec)  # the ram's stroke
+    measured = {"stroke": got["stroke"], "torque_at_nominal": -_torque(spec, angle)}  # clockwise
     predicted = {"stroke": stroke, "torque_at_nominal": force * rho}
-    tol = tolerances_of(spec) | {"torque_at_nominal": _nominal_spread(spec, angle)}
+    tol = tol | {"torque_at_nominal": spread(_torque(spec, angle, rounding_variants(written.mech)))}
     confirm(measured, predicted, geo["least_transmission_angle"], tol)
-    keep_rule(spec, floor, tol["min_transmission_angle"])
+    keep_rule(got["min_transmission_angle"], floor, tol["min_transmission_angle"])
     measured["peak_torque"] = _within_limit(spec, angle, force, before, torque)
     dims = {key: float(v) for key, v in geo.items() if key != "O" and key != "least_transmission_angle"}
     dims.update(frame_x=float(geo["O"][0]), frame_y=float(geo["O"][1]))
@@ -191,28 +190,12 @@ def synthesize(asked: TogglePressRequirements) -> Synthesis:
         predicted,
         measured,
         spec,
-        text,
+        "",
         None,
         f"picked by the stated swing {deg(psi)} and time ratio K = {k:g}",
         tolerances=tol,
+        tree=written.tree,
     )
-
-
-def _nominal_spread(spec, angle: float) -> float:  # noqa: ANN001
-    """The tolerance (N m) of the torque at the nominal point the lengths written to 0.1 mm imply: the first-order
-    bound of :func:`~linkwork.synthesis.rounding.rounding_tolerances`, each length's term the central difference
-    of :func:`_torque` over +-step / 2 (variants of the file's named lengths)."""
-    from linkwork.api import mechanism_of
-    from linkwork.structure.parameters import parameter_list
-    from linkwork.synthesis.rounding import MARGIN
-
-    names = {p.name: p.value for p in parameter_list(mechanism_of(spec)) if p.kind == "length" and p.value != 0}
-    variants = {name: np.full(2 * len(names) + 1, value) for name, value in names.items()}
-    for i, name in enumerate(names):
-        variants[name][2 * i + 1 : 2 * i + 3] += (step() / 2, -step() / 2)
-    torque = _torque(spec, angle, variants)
-    first = float(np.sum(np.abs(torque[1::2] - torque[2::2]))) / 2
-    return MARGIN * first + TOLERANCE * abs(float(torque[0]))
 
 
 def _within_limit(spec, angle: float, force: float, before: float, torque: float) -> float:  # noqa: ANN001
