@@ -47,7 +47,8 @@ def test_write_puts_the_sized_masses_and_the_motor_into_the_file(tmp_path):
     import json
 
     masses = json.loads(result.stdout)["masses_kg"]
-    written = lw.compile(lw.load(out))
+    file = lw.load(out)
+    written = lw.compile(file)
     for name, mass in masses.items():
         assert float(written.link_mass[list(written.link_names).index(name)]) == pytest.approx(mass, rel=1e-9)
-    assert written.spec.machine is not None and written.spec.machine.motor.type == "induction"
+    assert file.machine is not None and file.machine.motor.type == "induction"
