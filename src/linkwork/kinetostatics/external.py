@@ -107,17 +107,24 @@ def _add(kin: Kinematics, load: ExternalLoad, out: Applied) -> None:
         _process_load(kin, load, out)
 
 
-def power_of_loads(kin: Kinematics, kinds: tuple[str, ...] | None = None) -> np.ndarray:
+def power_of_loads(
+    kin: Kinematics,
+    kinds: tuple[str, ...] | None = None,
+    *,
+    at: slice = slice(None),
+    moving: slice = slice(None),
+) -> np.ndarray:
     """Power (W) of the external loads of ``kin.mechanism`` (those of the ``kinds`` given, default all), ``(V, A)``:
     :func:`power` of :func:`evaluate`, each load evaluated and its power added before the next is evaluated, so
     the memory taken is the sum ``(V, A)`` and one load's arrays (about 13 floats a sample for a spring: its two
-    points' positions and velocities and its two forces), whatever the number of loads."""
-    total = np.zeros(kin.valid_all.shape)
+    points' positions and velocities and its two forces), whatever the number of loads.  ``at`` and ``moving``:
+    the loads of the samples ``at`` with the velocities of the samples ``moving`` (:func:`power`)."""
+    total = np.zeros(kin.valid_all[:, moving].shape)
     for load in kin.mechanism.loads:
         if kinds is None or load.kind in kinds:
             one = Applied([], [], {}, {})
             _add(kin, load, one)
-            total += power(kin, one)
+            total += power(kin, one, at=at, moving=moving)
     return total
 
 
@@ -244,14 +251,19 @@ def generalised(kin: Kinematics, applied: Applied) -> np.ndarray:
     return out
 
 
-def power(kin: Kinematics, applied: Applied | None) -> np.ndarray:
-    """Power (W) of the external loads ``applied`` (none: zero), (V, A)."""
-    w = kin.vel[..., 2]
-    total = np.zeros(kin.valid_all.shape)
+def power(
+    kin: Kinematics, applied: Applied | None, *, at: slice = slice(None), moving: slice = slice(None)
+) -> np.ndarray:
+    """Power (W) of the external loads ``applied`` (none: zero), (V, A): ``sum F . v_P + M omega``.  With ``at`` and
+    ``moving`` the loads of the samples ``at`` with the velocities of the samples ``moving`` (the same poses in
+    another motion, as many samples): the virtual power of the loads of one state in the motion of another, as the
+    reduced moment takes them (:func:`linkwork.machine.reduction.load_moment`)."""
+    w = kin.vel[:, moving, :, 2]
+    total = np.zeros(kin.valid_all[:, moving].shape)
     for _, _, vel, f in applied.forces if applied is not None else ():
-        total = total + np.sum(f * vel, -1)
+        total = total + np.sum(f[:, at] * vel[:, moving], -1)
     for link, m in applied.moments if applied is not None else ():
-        total = total + m * w[..., link]
+        total = total + m[:, at] * w[..., link]
     return total
 
 

@@ -10,14 +10,17 @@ the second (``d2 r / d psi2``):
 
     J(psi)      = sum m_i |v_Ci|^2 + J_Ci omega_i^2
     dJ/dpsi     = 2 sum m_i v_Ci . a_Ci + J_Ci omega_i epsilon_i
-    M(psi)      = sum F . v_P + M omega_i        (gravity and the file's loads)
-                  - P_friction / |omega_n|        (friction in proportion to the pairs' forces)
+    M(psi)      = sum m_i g . v_Ci + F . v_P + M omega_i     (gravity and the file's loads: :func:`load_moment`)
+                  - sum S_k |omega_rel,k|                     (friction in proportion to the pairs' forces:
+                                                               :func:`friction_moment`)
 
-The friction in proportion to the pairs' forces depends on the speed (the inertia forces load the pairs):
-its power lost is taken from the kinetostatics at the file's nominal crank speed ``omega_n``
-(:mod:`linkwork.kinetostatics.friction`) and reduced to the crank, a moment always against the turning;
-a constant friction is a load like the others (a run in time solves it at each state's true speed instead:
-:func:`pair_friction_moment`).  The equation of motion of the machine unit is then
+with the loads and the pairs' frictions ``S_k`` of the machine's state and the velocities at unit speed: one
+formula for the steady cycle and the runs in time, which differ in the state alone.  The friction in proportion to
+the pairs' forces depends on the speed (the inertia forces load the pairs): the steady cycle, whose ``M`` is a
+table over the angle, takes it turning uniformly at the file's nominal crank speed
+(:mod:`linkwork.kinetostatics.friction`, :func:`nominal_friction`), a moment always against the turning, and keeps
+the dampers' moment, proportional to the speed, apart (``-B psi'``); a run in time takes every load at each state's
+true speed (:func:`terms_of_both`, :func:`pair_friction_moment`).  The equation of motion of the machine unit is then
 ``J(psi) psi'' + J'(psi) psi'^2 / 2 = M(psi) + M_drive``.
 """
 
@@ -33,7 +36,8 @@ from typing import Any
 import numpy as np
 
 from linkwork.errors import LinkworkError
-from linkwork.kinetostatics.external import Applied, evaluate, power_of_loads
+from linkwork.kinetostatics.external import Applied, evaluate, power_of_loads, relative_motion
+from linkwork.kinetostatics.friction import FrictionSolution
 from linkwork.kinetostatics.reaction_forces import forces_of
 from linkwork.kinetostatics.reactions import gravity_power, inertia_and_gravity
 from linkwork.limits import DYNAMICS_STEPS, TURN_STEPS
@@ -254,45 +258,98 @@ def inertia_terms(kin: Kinematics, loads: Any, rows: slice = slice(None)) -> tup
 
 def _reduced_of(kin: Kinematics, psi: np.ndarray, sign: float) -> Reduced:
     """The reduced quantities of the solution ``kin`` at unit crank speed (``sign``: its direction) at the turning
-    angles ``psi``."""
+    angles ``psi``: the loads' moment of that motion (:func:`load_moment`) but the dampers', whose moment at unit speed
+    is ``-B`` (:func:`_damping`), less the friction at the file's speed (:func:`nominal_friction`)."""
     mech, angle = kin.mechanism, kin.angles
-    loads = inertia_and_gravity(kin, Applied([], [], {}, {}))  # the external loads' power: one at a time, below
+    loads = inertia_and_gravity(kin, Applied([], [], {}, {}))  # the external loads: one at a time, in load_moment
     inertia, slope = inertia_terms(kin, loads)
-    friction = friction_moment(mech, angle, sign)
-    load = (gravity_power(kin, loads.com_velocity) + power_of_loads(kin))[0] - friction
-    damping = _damping(kin)
-    if damping is not None:
-        load = load + damping  # the dampers' moment at unit speed is -B: kept apart, in B
-    return Reduced(psi, angle, inertia, slope, load, friction, damping)
+    friction = nominal_friction(kin, sign)
+    kinds = tuple(sorted({load.kind for load in mech.loads} - {"damper"}))
+    load = load_moment(kin, loads.com_velocity, kinds=kinds) - friction
+    return Reduced(psi, angle, inertia, slope, load, friction, _damping(kin))
 
 
-def friction_moment(mech: Mechanism, angle: np.ndarray, sign: float) -> np.ndarray:
-    """The power lost to friction in proportion to the pairs' forces at the crank angles ``angle``, turning
-    at the file's speed (``sign`` its direction), over that speed: N m, ``(K,)``, zero without such friction.
+def load_moment(
+    kin: Kinematics,
+    com_velocity: np.ndarray | None,
+    *,
+    kinds: tuple[str, ...] | None = None,
+    at: slice = slice(None),
+    moving: slice = slice(None),
+) -> np.ndarray:
+    """The loads' reduced moment (N m, ``(K,)``): the power of gravity and the file's loads (those of the ``kinds``
+    given, default all) at unit crank speed, ``Q = sum m g . v_C + sum F . v_P + M omega``, the loads those of the
+    state, the velocities the first transfer functions.  The one formula of the machine's load moment: the steady
+    cycle's (:func:`reduced`, the state the motion at unit speed itself) and the run in time's
+    (:func:`terms_of_both`, the loads of the samples ``at`` of ``kin`` at the true speed, the velocities of the same
+    poses at unit speed, the samples ``moving``).
+
+    Parameters
+    ----------
+    kin : Kinematics
+        The poses, one variant.
+    com_velocity : ndarray (1, A, N, 2) or None
+        The links' centres' velocities over ``kin`` (:func:`~linkwork.kinetostatics.reactions.inertia_and_gravity`),
+        m/s; None: gravity left out.
+    kinds : tuple of str, optional
+        The kinds of the file's loads taken; default all.
+    at, moving : slice
+        The samples of ``kin`` whose loads are taken, and those whose velocities (at unit crank speed), as many.
+
+    Returns
+    -------
+    ndarray (K,)
+        N m; each load evaluated and its power added before the next (:func:`power_of_loads`: the memory does not
+        grow with the number of loads).
+    """
+    total = power_of_loads(kin, kinds, at=at, moving=moving)
+    if com_velocity is not None:
+        total = gravity_power(kin, com_velocity[:, moving]) + total
+    out: np.ndarray = total[0]
+    return out
+
+
+def friction_moment(friction: FrictionSolution, at: slice, relative: np.ndarray) -> np.ndarray:
+    """The friction in proportion to the pairs' forces reduced to the crank, N m ``(K,)``, >= 0 (against the
+    motion): each pair's friction of the samples ``at`` of its solution (``f r |R|`` in a revolute pair, ``f |N|``
+    along a guide) times its relative motion at unit crank speed, ``relative`` ``(K, pairs)`` (rad or m a rad of
+    the crank): ``sum size |relative|``, the power it takes at unit speed.  The one formula of the friction's
+    moment: the steady cycle's at the file's speed (:func:`nominal_friction`), the run's at the true speed
+    (:func:`pair_friction_moment`)."""
+    out: np.ndarray = np.sum(friction.size[0, at] * np.abs(relative), axis=-1)
+    return out
+
+
+def nominal_friction(kin: Kinematics, sign: float) -> np.ndarray:
+    """The steady cycle's friction in proportion to the pairs' forces (:func:`friction_moment`) at the poses of
+    ``kin`` at unit crank speed (``sign`` its direction), the pairs loaded as when turning uniformly at the file's
+    speed: N m, ``(K,)``, zero without such friction.
 
     Raises
     ------
     LinkworkError
         Where the friction has no solution (the pairs lock, or it does not converge).
     """
+    mech = kin.mechanism
     if not mech.friction:
-        return np.zeros(len(angle))
+        return np.zeros(len(kin.angles))
     rate = abs(float(mech.drive_speed[0]))
     rate = rate if math.isfinite(rate) and rate > 0 else 1.0
-    f = forces_of(kinematics(mech, angle, speed=sign * rate))
-    assert f.friction is not None
-    for problem in f.friction.problems:
+    fr = forces_of(kinematics(mech, kin.angles, speed=sign * rate)).friction
+    assert fr is not None
+    for problem in fr.problems:
         if problem.kind != "indeterminate":
             raise LinkworkError(f"machine dynamics needs the friction at every angle: {problem}")
-    return np.sum(f.friction.loss[0], -1) / rate
+    relative = np.stack([relative_motion(kin, p.pair)[0] for p in fr.pairs], -1)
+    return friction_moment(fr, slice(None), relative)
 
 
 def _damping(kin: Kinematics) -> np.ndarray | None:
-    """The dampers' reduced damping coefficient ``(K,)`` over ``kin`` at unit crank speed (minus their power
-    there), or None without dampers."""
+    """The dampers' reduced damping coefficient ``(K,)`` over ``kin`` at unit crank speed (minus their moment
+    there, :func:`load_moment`), or None without dampers."""
     if not any(load.kind == "damper" for load in kin.mechanism.loads):
         return None
-    return -power_of_loads(kin, ("damper",))[0]
+    return -load_moment(kin, None, kinds=("damper",))
 
 
 # --- the terms at any states (phi, omega) of a run in time (linkwork.machine.timerun) ---------------------
@@ -366,10 +423,10 @@ def cycle_of(mech: Mechanism) -> Kinematics:
 def terms_of_both(kin: Kinematics, k: int, extra_inertia: float) -> ReducedTerms:
     """:func:`reduced_terms` of the ``2K`` samples of :func:`unit_and_true_speeds` (NaN where a pose does not
     assemble)."""
-    loads = inertia_and_gravity(kin)
+    loads = inertia_and_gravity(kin, Applied([], [], {}, {}))  # the external loads: one at a time, in load_moment
     inertia, slope = inertia_terms(kin, loads, slice(0, k))
     inertia = inertia + extra_inertia
-    load = np.sum(loads.applied[0, k:] * kin.vel[0, :k], axis=(-1, -2))
+    load = load_moment(kin, loads.com_velocity, at=slice(k, None), moving=slice(0, k))
     if kin.mechanism.friction:
         load = load - pair_friction_moment(kin, k)
     return ReducedTerms(inertia, slope, load)
@@ -382,8 +439,8 @@ def pair_friction_moment(kin: Kinematics, k: int) -> np.ndarray:
 
     Each pair's friction (a moment ``f r |R|`` of a revolute pair, a force ``f |N|`` along a guide) is solved with the
     reactions at the true speed (the inertia forces of that speed loading the pairs, the crank's own acceleration
-    left out of them, as the steady cycle leaves it out at the nominal speed: :func:`friction_moment`), and its power
-    at unit crank speed, ``sum size |relative rate|``, is the moment.
+    left out of them, as the steady cycle leaves it out at the nominal speed: :func:`nominal_friction`), and its
+    power at unit crank speed is the moment (:func:`friction_moment`).
 
     Raises
     ------
@@ -405,7 +462,7 @@ def pair_friction_moment(kin: Kinematics, k: int) -> np.ndarray:
             f"friction locks the mechanism with the crank at {where:.6g} deg to x (self-locking: no drive moves it "
             "there): the run in time cannot go on"
         )
-    return np.sign(kin.rates[k:, 0]) * np.sum(fr.size[0, k:] * np.abs(fr.relative[0, :k]), axis=-1)
+    return np.sign(kin.rates[k:, 0]) * friction_moment(fr, slice(k, None), fr.relative[0, :k])
 
 
 def _no_value(kin: Kinematics, phi: np.ndarray, k: int) -> None:

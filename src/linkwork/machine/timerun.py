@@ -7,7 +7,8 @@ reduced inertia and its slope and the reduced moment of the loads (no table, no 
     J(phi)       = sum m_i |dr_Ci/dphi|^2 + J_Ci (dtheta_i/dphi)^2             (+ the drive's inertia)
     J'(phi)      = 2 sum m_i dr_Ci/dphi . d2r_Ci/dphi2 + J_Ci dtheta_i/dphi d2theta_i/dphi2
     Q(phi, w)    = sum F . dr_P/dphi + M dtheta/dphi      (gravity and every load at the true speed w:
-                                                            springs, dampers, friction, process loads)
+                                                            springs, dampers, friction, process loads;
+                                                            the steady cycle's formula: reduction.load_moment)
     J phi'' + J' phi'^2 / 2 = Q(phi, phi') + M_d(phi')
 
 ``M_d`` the motor's moment (:class:`~linkwork.structure.records.MotorGear`, in the drive's direction of rotation),
